@@ -1,0 +1,83 @@
+# tinygi - build, test and benchmark.
+#
+#   make            core libraries (float and Q16.16) and the CLI for both
+#   make test       every test, both number types; ends "N passed, N failed"
+#   make clean
+#
+# Sources are found by wildcard: a new file under src/<area>/ joins the core,
+# a new tests/test_*.c becomes a test program, a new tests/*_test.sh a script.
+
+CC      ?= cc
+BUILD   ?= build
+OPT     ?= -O2
+CSTD     = -std=c99 -ffp-contract=off -fexcess-precision=fast
+WARN     = -Wall -Wextra -Wpedantic -Wshadow -Wdouble-promotion -Werror
+CFLAGS_ALL = $(CSTD) $(OPT) $(WARN) $(EXTRA_CFLAGS)
+LDLIBS_HOST = -lm $(EXTRA_LDFLAGS)
+
+SKIP      ?=
+CORE_SRC   := $(filter-out $(SKIP),$(sort $(wildcard src/*.c src/*/*.c)))
+HOSTED_SRC := $(sort $(wildcard platform/hosted/*.c))
+TEST_SRC   := $(filter-out $(SKIP),$(sort $(wildcard tests/test_*.c)))
+TEST_NAMES := $(patsubst tests/%.c,%,$(TEST_SRC))
+
+CORE_OBJ_float := $(patsubst src/%.c,$(BUILD)/float/core/%.o,$(CORE_SRC))
+CORE_OBJ_fixed := $(patsubst src/%.c,$(BUILD)/fixed/core/%.o,$(CORE_SRC))
+HOST_OBJ_float := $(patsubst platform/%.c,$(BUILD)/float/platform/%.o,$(HOSTED_SRC))
+HOST_OBJ_fixed := $(patsubst platform/%.c,$(BUILD)/fixed/platform/%.o,$(HOSTED_SRC))
+
+NUMDEF_float :=
+NUMDEF_fixed := -DTG_FIXED=1
+
+TESTS_float := $(addprefix $(BUILD)/float/tests/,$(TEST_NAMES))
+TESTS_fixed := $(addprefix $(BUILD)/fixed/tests/,$(TEST_NAMES))
+
+.PHONY: all test clean tests-build
+all: $(BUILD)/libtinygi.a $(BUILD)/libtinygi-fixed.a $(BUILD)/tinygi $(BUILD)/tinygi-fixed
+
+# ---- the core: freestanding, no libc beyond stdint/stddef/string ----
+$(BUILD)/float/core/%.o: src/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -ffreestanding -MMD -MP -c $< -o $@
+$(BUILD)/fixed/core/%.o: src/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -DTG_FIXED=1 -ffreestanding -MMD -MP -c $< -o $@
+
+$(BUILD)/libtinygi.a: $(CORE_OBJ_float)
+	@rm -f $@
+	$(AR) rcs $@ $^
+$(BUILD)/libtinygi-fixed.a: $(CORE_OBJ_fixed)
+	@rm -f $@
+	$(AR) rcs $@ $^
+
+# ---- the hosted platform ----
+$(BUILD)/float/platform/%.o: platform/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -D_POSIX_C_SOURCE=200809L -Isrc -MMD -MP -c $< -o $@
+$(BUILD)/fixed/platform/%.o: platform/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -DTG_FIXED=1 -D_POSIX_C_SOURCE=200809L -Isrc -MMD -MP -c $< -o $@
+
+# ---- the CLI ----
+$(BUILD)/tinygi: tools/tinygi.c $(HOST_OBJ_float) $(BUILD)/libtinygi.a
+	$(CC) $(CFLAGS_ALL) -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform $< $(HOST_OBJ_float) $(BUILD)/libtinygi.a -o $@ $(LDLIBS_HOST)
+$(BUILD)/tinygi-fixed: tools/tinygi.c $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a
+	$(CC) $(CFLAGS_ALL) -DTG_FIXED=1 -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform $< $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a -o $@ $(LDLIBS_HOST)
+
+# ---- tests: every tests/test_*.c, once per number type ----
+$(BUILD)/float/tests/%: tests/%.c tests/check.h $(HOST_OBJ_float) $(BUILD)/libtinygi.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform -Itests $< $(HOST_OBJ_float) $(BUILD)/libtinygi.a -o $@ $(LDLIBS_HOST)
+$(BUILD)/fixed/tests/%: tests/%.c tests/check.h $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_ALL) -DTG_FIXED=1 -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform -Itests $< $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a -o $@ $(LDLIBS_HOST)
+
+tests-build: all $(TESTS_float) $(TESTS_fixed)
+
+test: tests-build
+	@BUILD=$(BUILD) CC="$(CC)" bash tests/run.sh
+
+clean:
+	rm -rf $(BUILD) build-*
+
+-include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

@@ -1,0 +1,42 @@
+/*
+ * view.h - the camera of one frame: world <-> view <-> screen.
+ *
+ * View space: x right, y up, z forward (into the screen); visible points have
+ * z > 0 and "depth" is that z.  The projection keeps w = z, so clip space is
+ *   clip = (x * focal_x, y * focal_y, -, z)
+ * with focal_y = 1 / tan(fov_y / 2) and focal_x = focal_y / aspect; NDC is
+ * clip / w in [-1, 1]; screen pixel coordinates are
+ *   sx = (ndc_x + 1) / 2 * width,  sy = (1 - ndc_y) / 2 * height
+ * so (0,0) is the top-left corner and pixel centres sit at +0.5.
+ */
+#ifndef TG_VIEW_H
+#define TG_VIEW_H
+
+#include "../core/vec.h"
+
+typedef struct tg_view {
+    int width, height;
+    tg_vec3 eye;
+    tg_vec3 right, up, forward;  /* world-space unit basis of view space */
+    tg_real fov_y;               /* radians */
+    tg_real tan_half_fov_y;
+    tg_real aspect;              /* width / height */
+    tg_real focal_x, focal_y;    /* NDC per unit of x/z, y/z */
+    tg_real pixels_per_unit;     /* height / 2 * focal_y: screen pixels per world unit at depth 1 */
+    tg_real znear, zfar;
+} tg_view;
+
+/* Build a view; a degenerate `up` (parallel to the view direction) is replaced
+ * by a perpendicular axis so a camera looking along +/-Y still works. */
+void tg_view_make(tg_view *v, tg_vec3 eye, tg_vec3 target, tg_vec3 up,
+                  tg_real fov_y, tg_real znear, tg_real zfar, int width, int height);
+tg_vec3 tg_view_world_to_view(const tg_view *v, tg_vec3 p);   /* point */
+tg_vec3 tg_view_dir_to_view(const tg_view *v, tg_vec3 d);     /* direction */
+tg_vec3 tg_view_dir_to_world(const tg_view *v, tg_vec3 d);    /* direction */
+tg_vec3 tg_view_view_to_world(const tg_view *v, tg_vec3 p);   /* point */
+/* Screen position (sx, sy in pixels, continuous) and depth to a view-space point. */
+tg_vec3 tg_view_unproject(const tg_view *v, tg_real sx, tg_real sy, tg_real depth);
+/* View-space point (z > 0) to continuous screen position. */
+void tg_view_project(const tg_view *v, tg_vec3 pv, tg_real *sx, tg_real *sy);
+
+#endif
