@@ -17,7 +17,7 @@ LDLIBS_HOST = -lm $(EXTRA_LDFLAGS)
 
 SKIP      ?=
 CORE_SRC   := $(filter-out $(SKIP),$(sort $(wildcard src/*.c src/*/*.c)))
-HOSTED_SRC := $(sort $(wildcard platform/hosted/*.c))
+HOSTED_SRC := $(sort $(wildcard platform/hosted/*.c platform/fbdev/*.c))
 TEST_SRC   := $(filter-out $(SKIP),$(sort $(wildcard tests/test_*.c)))
 TEST_NAMES := $(patsubst tests/%.c,%,$(TEST_SRC))
 
@@ -76,6 +76,8 @@ tests-build: all $(TESTS_float) $(TESTS_fixed)
 
 test: tests-build
 	@BUILD=$(BUILD) CC="$(CC)" bash tests/run.sh
+
+-include platform/cross.mk
 
 clean:
 	rm -rf $(BUILD) build-*
