@@ -1,0 +1,119 @@
+/*
+ * imgdiff.c - image comparison for `tinygi diff` and the golden tests:
+ * RMSE, PSNR, the largest difference and where it is, and a visual
+ * difference image.  Definitions in imgdiff.h.
+ */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "imgdiff.h"
+
+static void say(char *msg, size_t msgsize, const char *fmt, ...)
+{
+    va_list ap;
+    if (!msg || msgsize == 0) return;
+    va_start(ap, fmt);
+    vsnprintf(msg, msgsize, fmt, ap);
+    va_end(ap);
+}
+
+static const char *format_name(const tg_img *img)
+{
+    if (img->format == TG_IMG_PPM) return "PPM";
+    return img->channels == 1 ? "PFM (Pf)" : "PFM (PF)";
+}
+
+static int compatible(const tg_img *a, const tg_img *b, char *msg, size_t msgsize)
+{
+    if (a->format != b->format || a->channels != b->channels) {
+        say(msg, msgsize, "cannot compare a %s image with a %s image", format_name(a),
+            format_name(b));
+        return 0;
+    }
+    if (a->width != b->width || a->height != b->height) {
+        say(msg, msgsize, "image sizes differ: %dx%d and %dx%d", a->width, a->height,
+            b->width, b->height);
+        return 0;
+    }
+    if (a->format == TG_IMG_PPM && a->maxval != b->maxval) {
+        say(msg, msgsize, "PPM maxvals differ: %d and %d", a->maxval, b->maxval);
+        return 0;
+    }
+    return 1;
+}
+
+/* |a - b|, with equal bits (or two NaNs) 0 and other non-finite cases inf. */
+static double value_difference(float a, float b)
+{
+    double d;
+    if (memcmp(&a, &b, sizeof a) == 0 || (isnan(a) && isnan(b))) return 0.0;
+    if (!isfinite(a) || !isfinite(b)) return HUGE_VAL;
+    d = (double)a - (double)b;
+    return d < 0.0 ? -d : d;
+}
+
+int tg_diff_compare(const tg_img *a, const tg_img *b, double tolerance, tg_diff *d,
+                    char *msg, size_t msgsize)
+{
+    size_t count, i, c, n = (size_t)a->channels;
+    double sum = 0.0;
+    memset(d, 0, sizeof *d);
+    if (!compatible(a, b, msg, msgsize)) return 1;
+    d->tolerance = tolerance;
+    d->peak = a->format == TG_IMG_PPM ? (double)a->maxval : 1.0;
+    d->pixels = (size_t)a->width * (size_t)a->height;
+    count = d->pixels;
+    for (i = 0; i < count; i++) {
+        int over = 0;
+        for (c = 0; c < n; c++) {
+            double diff = value_difference(a->pixels[i * n + c], b->pixels[i * n + c]);
+            sum += diff * diff;
+            if (diff > d->max_abs) {
+                d->max_abs = diff;
+                d->max_x = (int)(i % (size_t)a->width);
+                d->max_y = (int)(i / (size_t)a->width);
+                d->max_channel = (int)c;
+            }
+            if (isfinite(diff) && diff > d->max_finite) d->max_finite = diff;
+            if (diff > tolerance) over = 1;
+        }
+        d->pixels_over += (size_t)over;
+    }
+    d->rmse = sqrt(sum / (double)(count * n));
+    d->psnr = d->rmse > 0.0 ? 20.0 * log10(d->peak / d->rmse) : HUGE_VAL;
+    return 0;
+}
+
+int tg_diff_within(const tg_diff *d)
+{
+    return d->max_abs <= d->tolerance;
+}
+
+uint8_t *tg_diff_image(const tg_img *a, const tg_img *b, const tg_diff *d)
+{
+    size_t count = (size_t)a->width * (size_t)a->height, i, c, n = (size_t)a->channels;
+    uint8_t *rgb = (uint8_t *)malloc(count * 3u);
+    double scale = d->max_finite > 0.0 ? 255.0 / d->max_finite : 0.0;
+    if (!rgb) return NULL;
+    for (i = 0; i < count; i++) {
+        for (c = 0; c < 3; c++) {
+            size_t k = i * n + (n == 1 ? 0 : c);
+            double diff = value_difference(a->pixels[k], b->pixels[k]);
+            double v = isfinite(diff) ? diff * scale + 0.5 : 255.0;
+            rgb[i * 3 + c] = (uint8_t)(v > 255.0 ? 255.0 : v);
+        }
+    }
+    return rgb;
+}
+
+int tg_diff_describe(const tg_diff *d, char *buf, size_t size)
+{
+    static const char channel_name[3] = { 'r', 'g', 'b' };
+    return snprintf(buf, size, "rmse %.6g, psnr %.2f dB, max %.6g at %d,%d (channel %c), "
+                    "%lu of %lu pixels over tolerance %.6g",
+                    d->rmse, d->psnr, d->max_abs, d->max_x, d->max_y,
+                    channel_name[d->max_channel < 0 || d->max_channel > 2 ? 0 : d->max_channel],
+                    (unsigned long)d->pixels_over, (unsigned long)d->pixels, d->tolerance);
+}

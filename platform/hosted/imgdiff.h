@@ -1,0 +1,50 @@
+/*
+ * imgdiff.h - compare two images (PPM or PFM, see image.h): the numbers
+ * behind `tinygi diff` and the golden-image tests (both use this code).
+ *
+ * DEFINITIONS (over every channel value of every pixel)
+ *   difference  |a - b| per channel value, in the images' own units:
+ *               0..maxval (0..255) for PPM, linear values for PFM.  Two
+ *               values with the same bits (or both NaN) differ by 0; a
+ *               non-finite value against anything else differs by infinity.
+ *   rmse        sqrt(mean of difference^2).
+ *   psnr        20 log10(peak / rmse) in dB, peak = maxval (PPM) or 1.0
+ *               (PFM: linear white); +inf when the images are equal.
+ *   max_abs     the largest difference, at pixel (max_x, max_y), channel
+ *               max_channel (0 r, 1 g, 2 b); the first such in row order.
+ *   tolerance   the largest difference still accepted: images are "within
+ *               tolerance" when max_abs <= tolerance.  pixels_over counts
+ *               pixels with some channel difference > tolerance.
+ * Images compare only when they have the same format, size, channel count
+ * and (PPM) maxval.
+ */
+#ifndef TG_HOSTED_IMGDIFF_H
+#define TG_HOSTED_IMGDIFF_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "image.h"
+
+typedef struct tg_diff {
+    double rmse, psnr, peak;
+    double max_abs;
+    int max_x, max_y, max_channel;
+    double max_finite;        /* largest finite difference (scales the diff image) */
+    double tolerance;
+    size_t pixels, pixels_over;
+} tg_diff;
+
+/* 0 and *d filled, or 1 if the images cannot be compared (reason in msg). */
+int tg_diff_compare(const tg_img *a, const tg_img *b, double tolerance, tg_diff *d,
+                    char *msg, size_t msgsize);
+/* 1 when max_abs <= tolerance. */
+int tg_diff_within(const tg_diff *d);
+/* A visual difference image, width*height RGB bytes (malloc'd; NULL when out
+ * of memory): each channel's difference scaled so that max_finite is 255
+ * (non-finite differences are 255); one-channel images are grey. */
+uint8_t *tg_diff_image(const tg_img *a, const tg_img *b, const tg_diff *d);
+/* One line: "rmse R, psnr P dB, max M at X,Y (channel C), N of T pixels
+ * over tolerance TOL".  Returns the length snprintf would give. */
+int tg_diff_describe(const tg_diff *d, char *buf, size_t size);
+
+#endif
