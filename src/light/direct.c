@@ -1,0 +1,93 @@
+/*
+ * direct.c - direct diffuse irradiance from directional, point and spot
+ * lights: Lambert cosine, inverse-square falloff, smooth spot edge, shadow
+ * maps.  See direct.h.
+ */
+#include "direct.h"
+
+#define LIGHT_CHUNK 8   /* lights prepared at once (a frame rarely has more) */
+
+/* What a light needs per pixel, prepared once per row range. */
+typedef struct prepared_light {
+    tg_light_type type;
+    tg_vec3 radiant;        /* intensity * colour */
+    tg_vec3 to_light;       /* directional: unit vector towards the light */
+    tg_vec3 pos, dir;
+    tg_real cos_outer, cos_inner;
+    const tg_shadow_map *shadow;
+} prepared_light;
+
+static void prepare(prepared_light *p, const tg_light *l, const tg_shadow_map *sm)
+{
+    p->type = l->type;
+    p->radiant = tg_v3_scale(l->color, l->intensity);
+    p->pos = l->pos;
+    p->dir = tg_v3_normalize_or(l->dir, tg_v3(0, tg_neg(TG_ONE), 0));
+    p->to_light = tg_v3_neg(p->dir);
+    p->cos_outer = tg_cos(l->angle);
+    p->cos_inner = tg_cos(tg_mul(l->angle, TG_SPOT_INNER));
+    p->shadow = sm;
+}
+
+/* Unshadowed irradiance scale (cosine, falloff, spot edge) and the unit vector to the light. */
+static tg_real light_factor(const prepared_light *p, tg_vec3 pos, tg_vec3 n)
+{
+    tg_vec3 v;
+    tg_real len, inv, cosine, f;
+    if (p->type == TG_LIGHT_DIRECTIONAL)
+        return tg_max(tg_v3_dot(n, p->to_light), 0); /* Lambert */
+    v = tg_v3_sub(p->pos, pos);
+    len = tg_max(tg_v3_length(v), TG_DIRECT_MIN_DISTANCE);
+    inv = tg_div(TG_ONE, len);
+    cosine = tg_mul(tg_v3_dot(n, v), inv);
+    if (cosine <= 0) return 0;
+    f = tg_mul(tg_mul(cosine, inv), inv); /* Lambert, inverse square */
+    if (p->type == TG_LIGHT_SPOT) {
+        tg_real along = tg_mul(tg_neg(tg_v3_dot(v, p->dir)), inv);
+        f = tg_mul(f, tg_smoothstep(p->cos_outer, p->cos_inner, along));
+    }
+    return f;
+}
+
+tg_vec3 tg_direct_irradiance(const tg_light *l, tg_vec3 p, tg_vec3 n)
+{
+    prepared_light pl;
+    prepare(&pl, l, NULL);
+    return tg_v3_scale(pl.radiant, light_factor(&pl, p, n));
+}
+
+void tg_direct_rows(const tg_gbuffer *gb, const tg_view *view,
+                    const tg_light *lights, int light_count,
+                    const tg_shadow_map *const *shadow_maps,
+                    tg_real *e_r, tg_real *e_g, tg_real *e_b, int y0, int y1)
+{
+    prepared_light pl[LIGHT_CHUNK];
+    int first, k, x, y, w = gb->width;
+    for (y = y0; y < y1; y++) {
+        int row = y * w;
+        for (x = 0; x < w; x++) e_r[row + x] = e_g[row + x] = e_b[row + x] = 0;
+    }
+    for (first = 0; first < light_count; first += LIGHT_CHUNK) {
+        int count = light_count - first < LIGHT_CHUNK ? light_count - first : LIGHT_CHUNK;
+        for (k = 0; k < count; k++)
+            prepare(&pl[k], &lights[first + k], shadow_maps ? shadow_maps[first + k] : NULL);
+        for (y = y0; y < y1; y++) {
+            int i = y * w;
+            tg_real sy = tg_add(tg_from_int(y), TG_R(0.5f));
+            for (x = 0; x < w; x++, i++) {
+                tg_vec3 n, p, e;
+                if (gb->sky[i]) continue;
+                n = tg_v3(gb->nx[i], gb->ny[i], gb->nz[i]);
+                p = tg_view_view_to_world(view, tg_view_unproject(view, tg_add(tg_from_int(x), TG_R(0.5f)), sy, gb->depth[i]));
+                e = tg_v3(e_r[i], e_g[i], e_b[i]);
+                for (k = 0; k < count; k++) {
+                    tg_real f = light_factor(&pl[k], p, n);
+                    if (f <= 0) continue;
+                    if (pl[k].shadow) f = tg_mul(f, tg_shadow_visibility(pl[k].shadow, p, n));
+                    e = tg_v3_add(e, tg_v3_scale(pl[k].radiant, f));
+                }
+                e_r[i] = e.x; e_g[i] = e.y; e_b[i] = e.z;
+            }
+        }
+    }
+}

@@ -1,0 +1,164 @@
+/*
+ * sh.c - environment to SH9, and the far-field irradiance read from it:
+ * unoccluded (Ramamoorthi-Hanrahan), restricted to the bent cone (HBIL
+ * sec. 2.2.4) or scaled by the compensated AO factor F0 (HBIL sec. 2.2.3).
+ * See sh.h for the basis, the coefficient order and the modes.
+ */
+#include "sh.h"
+
+/* SH basis normalisation constants (Ramamoorthi-Hanrahan eq. 3) */
+#define SH_Y00 TG_R(0.282094792f)
+#define SH_Y1  TG_R(0.488602512f)
+#define SH_Y2A TG_R(1.092548431f) /* xy, yz, xz */
+#define SH_Y20 TG_R(0.315391565f) /* (3z^2 - 1) */
+#define SH_Y22 TG_R(0.546274215f) /* (x^2 - y^2) */
+
+#define SQRT_PI     TG_R(1.772453851f)
+#define SQRT_3PI    TG_R(3.069980124f)
+#define SQRT3       TG_R(1.732050808f)
+#define TWO_SQRT3   TG_R(3.464101615f)
+/* HBIL sec. 2.2.4 constants: c0 = sqrt(pi)/2, c1 = sqrt(3 pi)/3, c2 = sqrt(5 pi)/16 at t = 0 */
+#define CONE_C0 TG_R(0.886226925f)
+#define CONE_C1 TG_R(1.023326708f)
+#define CONE_C2 TG_R(0.247707956f)
+
+void tg_sh9_from_env(const tg_env *env, tg_vec3 sh[9])
+{
+    int i;
+    for (i = 0; i < 9; i++) sh[i] = tg_v3(0, 0, 0);
+    if (!env) return;
+    switch (env->type) {
+    case TG_ENV_UNIFORM:
+        /* RTR eq. 10.40 for a constant: integral of Y00 over the sphere = 2 sqrt(pi) */
+        sh[0] = tg_v3_scale(env->uniform, tg_mul(TG_R(2.0f), SQRT_PI));
+        break;
+    case TG_ENV_SKY: {
+        /* L = (s+g)/2 + (s-g)/2 sign(u.w): band 0 from the mean, band 1 from the step
+         * (integral of sign(u.w) Y10 = sqrt(3 pi)); band 2 is exactly 0. */
+        tg_vec3 mean = tg_v3_add(env->sky, env->ground);        /* (s+g) sqrt(pi) = L00 */
+        tg_vec3 half_diff = tg_v3_scale(tg_v3_sub(env->sky, env->ground), TG_R(0.5f));
+        tg_vec3 b1 = tg_v3_scale(half_diff, SQRT_3PI);
+        tg_vec3 u = env->up;
+        sh[0] = tg_v3_scale(mean, SQRT_PI);
+        sh[1] = tg_v3_scale(b1, u.y);  /* L1-1 ~ y */
+        sh[2] = tg_v3_scale(b1, u.z);  /* L10  ~ z */
+        sh[3] = tg_v3_scale(b1, u.x);  /* L11  ~ x */
+        break;
+    }
+    case TG_ENV_SH9:
+        for (i = 0; i < 9; i++) sh[i] = env->sh9[i];
+        break;
+    default:
+        break;
+    }
+}
+
+/* HBIL sec. 2.2.4 evaluation with band weights c0, c1, c2, one channel. */
+static tg_real sh_eval_lobe(const tg_real L[9], tg_vec3 n, tg_real c0, tg_real c1, tg_real c2)
+{
+    tg_real x = n.x, y = n.y, z = n.z;
+    tg_real band1 = tg_add(tg_add(tg_mul(y, L[1]), tg_mul(z, L[2])), tg_mul(x, L[3]));
+    tg_real z20 = tg_sub(tg_mul(TG_R(3.0f), tg_mul(z, z)), TG_ONE);
+    tg_real b2 = tg_mul(L[6], z20);
+    tg_real cross = tg_add(tg_add(tg_mul(tg_mul(x, y), L[4]), tg_mul(tg_mul(y, z), L[5])),
+                           tg_mul(tg_mul(z, x), L[7]));
+    tg_real e;
+    b2 = tg_add(b2, tg_mul(SQRT3, tg_mul(L[8], tg_sub(tg_mul(x, x), tg_mul(y, y)))));
+    b2 = tg_add(b2, tg_mul(TWO_SQRT3, cross));
+    e = tg_add(tg_add(tg_mul(c0, L[0]), tg_mul(c1, band1)), tg_mul(c2, b2));
+    return e > 0 ? e : 0;
+}
+
+static tg_vec3 sh_eval_rgb(const tg_vec3 sh[9], tg_vec3 n, tg_real c0, tg_real c1, tg_real c2)
+{
+    tg_real r[9], g[9], b[9];
+    int i;
+    for (i = 0; i < 9; i++) { r[i] = sh[i].x; g[i] = sh[i].y; b[i] = sh[i].z; }
+    return tg_v3(sh_eval_lobe(r, n, c0, c1, c2), sh_eval_lobe(g, n, c0, c1, c2),
+                 sh_eval_lobe(b, n, c0, c1, c2));
+}
+
+tg_vec3 tg_sh9_irradiance(const tg_vec3 sh[9], tg_vec3 n)
+{
+    /* Ramamoorthi-Hanrahan eq. 13 = HBIL sec. 2.2.4 with t = cos(pi/2) = 0 */
+    return sh_eval_rgb(sh, n, CONE_C0, CONE_C1, CONE_C2);
+}
+
+tg_vec3 tg_sh9_irradiance_cone(const tg_vec3 sh[9], tg_vec3 bent, tg_real ao)
+{
+    tg_real t = tg_sub(TG_ONE, tg_saturate(ao)); /* HBIL sec. 2.2.4: t = cos(theta_max) = 1 - AO */
+    tg_real t2 = tg_mul(t, t), t3 = tg_mul(t2, t), t4 = tg_mul(t2, t2);
+    tg_real c0 = tg_mul(CONE_C0, tg_sub(TG_ONE, t2));                  /* HBIL 2.2.4 c0 */
+    tg_real c1 = tg_mul(CONE_C1, tg_sub(TG_ONE, t3));                  /* HBIL 2.2.4 c1 */
+    tg_real c2 = tg_mul(CONE_C2, tg_sub(tg_mul(TG_R(3.0f), tg_sub(TG_ONE, t4)),
+                                        tg_mul(TG_R(2.0f), tg_sub(TG_ONE, t2)))); /* HBIL 2.2.4 c2 */
+    return sh_eval_rgb(sh, bent, c0, c1, c2);
+}
+
+tg_real tg_far_f0(tg_real ao)
+{
+    tg_real a = tg_saturate(ao);
+    tg_real s = tg_sub(TG_ONE, a);
+    tg_real s075 = tg_mul(tg_sqrt(s), tg_sqrt(tg_sqrt(s))); /* (1 - a)^0.75 */
+    return tg_mul(a, tg_add(TG_ONE, tg_mul(s075, TG_R(0.5f)))); /* HBIL sec. 2.2.3 F0 */
+}
+
+tg_vec3 tg_sh9_irradiance_f0(const tg_vec3 sh[9], tg_vec3 bent, tg_real ao)
+{
+    return tg_v3_scale(tg_sh9_irradiance(sh, bent), tg_far_f0(ao)); /* HBIL sec. 2.2.3 */
+}
+
+static tg_real sh_radiance1(const tg_real L[9], tg_vec3 d)
+{
+    tg_real x = d.x, y = d.y, z = d.z, v;
+    v = tg_mul(SH_Y00, L[0]);
+    v = tg_add(v, tg_mul(SH_Y1, tg_add(tg_add(tg_mul(y, L[1]), tg_mul(z, L[2])), tg_mul(x, L[3]))));
+    v = tg_add(v, tg_mul(SH_Y2A, tg_add(tg_add(tg_mul(tg_mul(x, y), L[4]), tg_mul(tg_mul(y, z), L[5])),
+                                        tg_mul(tg_mul(x, z), L[7]))));
+    v = tg_add(v, tg_mul(SH_Y20, tg_mul(L[6], tg_sub(tg_mul(TG_R(3.0f), tg_mul(z, z)), TG_ONE))));
+    v = tg_add(v, tg_mul(SH_Y22, tg_mul(L[8], tg_sub(tg_mul(x, x), tg_mul(y, y)))));
+    return v > 0 ? v : 0;
+}
+
+tg_vec3 tg_sh9_radiance(const tg_vec3 sh[9], tg_vec3 dir)
+{
+    tg_real r[9], g[9], b[9];
+    int i;
+    for (i = 0; i < 9; i++) { r[i] = sh[i].x; g[i] = sh[i].y; b[i] = sh[i].z; }
+    return tg_v3(sh_radiance1(r, dir), sh_radiance1(g, dir), sh_radiance1(b, dir));
+}
+
+tg_vec3 tg_env_radiance(const tg_env *env, tg_vec3 dir)
+{
+    if (!env) return tg_v3(0, 0, 0);
+    switch (env->type) {
+    case TG_ENV_UNIFORM: return env->uniform;
+    case TG_ENV_SKY:
+        return tg_v3_dot(dir, env->up) >= 0 ? env->sky : env->ground;
+    case TG_ENV_SH9: return tg_sh9_radiance(env->sh9, dir);
+    default: return tg_v3(0, 0, 0);
+    }
+}
+
+void tg_far_rows(const tg_gbuffer *gb, const tg_vec3 sh[9], const tg_real *ao,
+                 const tg_real *bent_x, const tg_real *bent_y, const tg_real *bent_z,
+                 int mode, tg_real *e_r, tg_real *e_g, tg_real *e_b, int y0, int y1)
+{
+    int use_bent = bent_x && bent_y && bent_z && mode != TG_FAR_OPEN;
+    int x, y;
+    for (y = y0; y < y1; y++) {
+        int i = y * gb->width;
+        for (x = 0; x < gb->width; x++, i++) {
+            tg_vec3 n, e;
+            tg_real a;
+            if (gb->sky[i]) { e_r[i] = e_g[i] = e_b[i] = 0; continue; }
+            n = use_bent ? tg_v3(bent_x[i], bent_y[i], bent_z[i])
+                         : tg_v3(gb->nx[i], gb->ny[i], gb->nz[i]);
+            a = ao ? ao[i] : TG_ONE;
+            if (mode == TG_FAR_CUBE_F0) e = tg_sh9_irradiance_f0(sh, n, a);
+            else if (mode == TG_FAR_OPEN || !ao) e = tg_sh9_irradiance(sh, n);
+            else e = tg_sh9_irradiance_cone(sh, n, a);
+            e_r[i] = e.x; e_g[i] = e.y; e_b[i] = e.z;
+        }
+    }
+}

@@ -1,0 +1,65 @@
+/*
+ * shadowmap.h - depth-only shadow maps for lights marked `shadows`,
+ * rasterized by the G-buffer's rasterizer (tg_raster_depth).
+ *
+ *   directional  one orthographic map fitted to the scene bounds (the light's
+ *                view of the bounding box); stored depth = distance along the
+ *                light direction from the front of the box (clip z).
+ *   spot         one perspective map, half angle = the spot angle plus a
+ *                border of PCF texels (the cone is clamped to 80 degrees).
+ *   point        a cube of six perspective faces (+X -X +Y -Y +Z -Z).  Each
+ *                face is rendered slightly wider than 90 degrees so that the
+ *                PCF footprint of a lookup near a face edge stays inside the
+ *                chosen face: no seams.
+ * Perspective maps store clip w = the distance along the face axis.
+ *
+ * Lookup (tg_shadow_visibility): receiver-plane depth bias - the receiver's
+ * depth is extrapolated from its normal to each PCF tap's texel centre, so a
+ * plane never shadows itself at any incidence (the slope term is clamped at
+ * 84 degrees) - plus a small constant bias of half a texel; then a 3x3 tent
+ * PCF (a 4x4 texel footprint with bilinear weights).  1 = lit, 0 = shadowed.
+ * Points outside a map, or where nothing was drawn, are lit.
+ *
+ * Memory: the caller gives tg_shadow_map_bytes() bytes (tg_real aligned).
+ */
+#ifndef TG_SHADOWMAP_H
+#define TG_SHADOWMAP_H
+
+#include "../scene/scene.h"
+
+#define TG_SHADOW_MAX_FACES 6
+
+typedef struct tg_shadow_map {
+    int size;                    /* texels per side */
+    int faces;                   /* 1, or 6 for a point light */
+    int orthographic;            /* directional light */
+    tg_vec3 origin;              /* light position (perspective maps) */
+    tg_vec3 right[TG_SHADOW_MAX_FACES], up[TG_SHADOW_MAX_FACES], forward[TG_SHADOW_MAX_FACES];
+    tg_mat4 world_to_clip[TG_SHADOW_MAX_FACES];
+    tg_real focal;               /* perspective: NDC per unit of x/z (1 / tan half angle) */
+    tg_real ortho_scale;         /* orthographic: NDC per world unit */
+    tg_real ortho_center_x, ortho_center_y, ortho_near; /* in the light basis */
+    tg_real texel_world;         /* ortho: world units per texel; persp: per texel at depth 1 */
+    tg_real *depth;              /* faces * size * size, face-major, rows top to bottom */
+} tg_shadow_map;
+
+/* Bytes of depth storage a map for light `l` at `size` texels needs. */
+size_t tg_shadow_map_bytes(const tg_light *l, int size);
+
+/* Fit the map to the light and the scene bounds; `memory` holds
+ * tg_shadow_map_bytes(l, size) bytes. */
+void tg_shadow_map_setup(tg_shadow_map *sm, const tg_light *l, int size,
+                         tg_vec3 scene_min, tg_vec3 scene_max, void *memory);
+
+/* Rasterize `tri_count` triangles (3 world positions each) into all faces. */
+void tg_shadow_map_render(tg_shadow_map *sm, const tg_vec3 *pos, int tri_count);
+
+/* The same for one face and texel rows [y0, y1) (for splitting across threads). */
+void tg_shadow_map_render_rows(tg_shadow_map *sm, int face, const tg_vec3 *pos,
+                               int tri_count, int y0, int y1);
+
+/* Fraction of the light reaching `world_pos` (surface normal `world_normal`,
+ * unit), in [0, 1]. */
+tg_real tg_shadow_visibility(const tg_shadow_map *sm, tg_vec3 world_pos, tg_vec3 world_normal);
+
+#endif
