@@ -1,0 +1,725 @@
+/*
+ * real.c - the core's own transcendentals and the decimal parser, for both
+ * number types (float and Q16.16).  No libm: every function is a range
+ * reduction plus a polynomial (Taylor series of the reduced argument, short
+ * enough that the truncation error is far below the target), or an exact
+ * integer algorithm.
+ *
+ * Each kernel is written ONCE against an internal "wide" number `wreal`:
+ *   float build : wreal is float;
+ *   fixed build : wreal is int64_t in Q2.30 (30 fraction bits), so the
+ *                 polynomials run 14 bits finer than the Q16.16 result and
+ *                 the final rounding dominates the error.
+ * Only the range reductions and the bit-level steps (sqrt seeds, exponent
+ * fields) differ between the builds.
+ *
+ * Worst-case error, MEASURED by tests/test_real.c against libm (64-bit precision) over
+ * the stated domain (dense grids of 4e5..1e6 points; fixed sqrt over every
+ * representable value in [0, 2^20) ulps and a dense sweep above).
+ * "ulp" is 2^-16 in fixed point; "rel" is relative error in float, and
+ * where the true value is within 1e-2 of a zero of the function (trig near
+ * multiples of pi) the float bound is stated as absolute instead.
+ *
+ *   function        domain                 fixed (abs)       float
+ *   tg_sqrt         x >= 0                 0.5 ulp           rel 1.2e-7
+ *   tg_rsqrt        x > 0                  0.51 ulp (*)      rel 1.8e-7
+ *   tg_sin, tg_cos  |x| < 32768 (fixed),   0.51 ulp          rel 1.6e-7, abs 1.1e-7 near zeros
+ *                   |x| < 2^22 (float)
+ *   tg_tan          |x| < pi/2 - 2^-10     rel 2^-16 + 0.5ulp rel 2.2e-7
+ *   tg_asin         [-1, 1]                0.51 ulp          rel 1.6e-7
+ *   tg_acos         [-1, 1]                0.51 ulp          rel 1.5e-7
+ *   tg_atan2        all (y, x)             0.51 ulp          rel 2.4e-7
+ *   tg_exp2         [-126, 127] (float),   0.5 ulp + rel 1e-8  rel 1.5e-7
+ *                   [-16, 15) (fixed)
+ *   tg_log2         x > 0                  0.51 ulp          rel 1.8e-7 (abs 1.2e-7 near x=1)
+ *   tg_pow          x > 0, |y log2 x| < 64 rel 1.2e-4 (**)  rel 4.5e-6
+ *   tg_floor        all                    exact             exact
+ *   tg_parse_real   decimal text           correctly rounded (ties to even), both builds
+ *
+ * (*)  tg_rsqrt saturates at TG_REAL_MAX for x < 2^-15 where 1/sqrt(x)
+ *      would not fit; the bound holds where the result fits.
+ * (**) fixed pow: |error| <= 0.5 ulp + rel 1.2e-4 ... see test_real.c; the
+ *      relative term comes from the Q16.16 input x itself only when x is a
+ *      few ulps (its own rounding is then the largest error).
+ * The numbers above are rewritten from the last measurement; rerun
+ *   make BUILD=build-real tests-build && build-real/{float,fixed}/tests/test_real -v
+ * to print them.
+ *
+ * Outside its domain each function still returns a finite, deterministic
+ * value: float sin/cos of |x| >= 2^22 (or NaN/inf) give 0 and 1; NaN inputs
+ * elsewhere give 0 or the documented limit.
+ */
+#include "real.h"
+#include <string.h>
+
+/* ---------------------------------------------------------------------- */
+/* integer helpers, shared                                                 */
+
+/* Round-half-away-from-zero right shift without shifting negative values. */
+static int64_t shr_round(int64_t p, int s)
+{
+    int64_t half = (int64_t)1 << (s - 1);
+    return p >= 0 ? (p + half) >> s : -((-p + half) >> s);
+}
+
+#if TG_FIXED
+/* a / b rounded to nearest (half away from zero); b != 0. */
+static int64_t div_round(int64_t a, int64_t b)
+{
+    int64_t ab = b < 0 ? -b : b, aa = a < 0 ? -a : a;
+    int64_t q = (aa + ab / 2) / ab;
+    return (a < 0) != (b < 0) ? -q : q;
+}
+
+#endif
+
+/* floor(sqrt(v)), digit by digit: exact, 32 steps. */
+uint32_t tg_isqrt64(uint64_t v)
+{
+    uint64_t res = 0, bit = (uint64_t)1 << 62;
+    while (bit > v) bit >>= 2;
+    while (bit) {
+        if (v >= res + bit) {
+            v -= res + bit;
+            res = (res >> 1) + bit;
+        } else {
+            res >>= 1;
+        }
+        bit >>= 2;
+    }
+    return (uint32_t)res;
+}
+
+#if TG_FIXED
+/* sqrt(v) rounded to nearest integer. */
+static uint64_t isqrt_round(uint64_t v)
+{
+    uint64_t r = tg_isqrt64(v);
+    return v - r * r > r ? r + 1 : r;
+}
+
+#endif
+
+static int bit_length64(uint64_t v)
+{
+    int n = 0;
+    while (v) { n++; v >>= 1; }
+    return n;
+}
+
+/* ---------------------------------------------------------------------- */
+/* the wide internal number                                                */
+
+#if TG_FIXED
+typedef int64_t wreal; /* Q2.30 */
+#define WC(f, q30) ((wreal)(q30))
+#define W_ONE ((wreal)1 << 30)
+static wreal w_mul(wreal a, wreal b) { return shr_round(a * b, 30); }
+static wreal w_div(wreal a, wreal b) { return div_round(a * W_ONE, b); }
+static wreal w_sqrt(wreal a) { return a <= 0 ? 0 : (wreal)isqrt_round((uint64_t)a << 30); }
+static wreal w_from_real(tg_real x) { return (wreal)x * 16384; }
+static tg_real w_to_real(wreal a) { return tg_sat64(shr_round(a, 14)); }
+#else
+typedef float wreal;
+#define WC(f, q30) (f)
+#define W_ONE 1.0f
+static wreal w_mul(wreal a, wreal b) { return a * b; }
+static wreal w_div(wreal a, wreal b) { return a / b; }
+static wreal w_sqrt(wreal a) { return tg_sqrt(a); }
+static wreal w_from_real(tg_real x) { return x; }
+static tg_real w_to_real(wreal a) { return a; }
+#endif
+
+#define W_HALF WC(0.5f, 536870912)
+#define W_PI WC(3.14159265f, 3373259426)
+#define W_HALF_PI WC(1.57079633f, 1686629713)
+#define W_PI_6 WC(0.523598776f, 562209904)
+#define W_SQRT3 WC(1.73205081f, 1859775393)
+#define W_TAN_PI_12 WC(0.267949192f, 287708255)
+#define W_2_LN2 WC(2.88539008f, 3098164009)
+
+/* c[0] + z (c[1] + z (c[2] + ...)) */
+static wreal w_poly(wreal z, const wreal *c, int n)
+{
+    wreal acc = c[n - 1];
+    int i;
+    for (i = n - 2; i >= 0; i--) acc = c[i] + w_mul(acc, z);
+    return acc;
+}
+
+/* ---------------------------------------------------------------------- */
+/* sqrt, rsqrt                                                             */
+
+#if TG_FIXED
+
+/* sqrt(x) = isqrt(x_raw << 16), rounded: exact to 0.5 ulp. */
+tg_real tg_sqrt(tg_real x)
+{
+    if (x <= 0) return 0;
+    return (tg_real)isqrt_round((uint64_t)x << 16);
+}
+
+/* 1/sqrt(x): raw = 2^24 / sqrt(x_raw); the radicand is pre-shifted by an
+ * even k so the integer sqrt keeps >= 30 bits. */
+tg_real tg_rsqrt(tg_real x)
+{
+    int k;
+    uint64_t s;
+    if (x <= 0) return TG_REAL_MAX;
+    k = 62 - bit_length64((uint64_t)x);
+    k &= ~1;
+    s = isqrt_round((uint64_t)x << k);
+    return tg_sat64((int64_t)((((uint64_t)1 << (24 + k / 2)) + s / 2) / s));
+}
+
+#else
+
+static float f_from_bits(uint32_t b) { float f; memcpy(&f, &b, sizeof f); return f; }
+static uint32_t f_bits(float f) { uint32_t b; memcpy(&b, &f, sizeof b); return b; }
+
+/* Bit-trick seed (within 3.5%) and three Newton steps (quadratic). */
+tg_real tg_rsqrt(tg_real x)
+{
+    float y, hx, scale = 1.0f;
+    if (!(x > 0.0f)) return TG_REAL_MAX;
+    if (x > TG_REAL_MAX) return 0.0f;
+    if (x < 1.17549435e-38f) { x *= 18446744073709551616.0f; scale = 4294967296.0f; }
+    y = f_from_bits(0x5f3759dfu - (f_bits(x) >> 1));
+    hx = 0.5f * x;
+    y = y * (1.5f - hx * y * y);
+    y = y * (1.5f - hx * y * y);
+    y = y * (1.5f - hx * y * y);
+    return y * scale;
+}
+
+/* sqrt = x * rsqrt(x), plus one Newton correction on the residual. */
+tg_real tg_sqrt(tg_real x)
+{
+    float r, s;
+    if (!(x > 0.0f)) return 0.0f;
+    if (x > TG_REAL_MAX) return x;
+    r = tg_rsqrt(x);
+    s = x * r;
+    return s + 0.5f * r * (x - s * s);
+}
+
+#endif
+
+/* ---------------------------------------------------------------------- */
+/* sin, cos, tan                                                           */
+
+/* pi/2 in Q40 (high part) and the next 24 bits (low part). */
+#define PIO2_Q40_HI ((int64_t)1727108826178)
+#define PIO2_Q40_LO ((int64_t)13730922)
+
+/* x - k pi/2 in Q40 given x in Q40 and k. */
+static int64_t reduce_q40(int64_t x40, int64_t k)
+{
+    return x40 - k * PIO2_Q40_HI - shr_round(k * PIO2_Q40_LO, 24);
+}
+
+#if TG_FIXED
+/* x = k pi/2 + r, |r| <= pi/4 (+ rounding); quadrant = k mod 4. */
+static wreal reduce_half_pi(tg_real x, int *quadrant)
+{
+    int64_t k = shr_round((int64_t)x * 1367130551, 47); /* x 2/pi, 2/pi in Q31 */
+    *quadrant = (int)((uint64_t)k & 3u);
+    return shr_round(reduce_q40((int64_t)x * 16777216, k), 10);
+}
+#else
+static wreal reduce_half_pi(tg_real x, int *quadrant)
+{
+    float ax = x < 0.0f ? -x : x;
+    int32_t k;
+    if (ax <= 0.785398163f) { *quadrant = 0; return x; }
+    if (!(ax < 4194304.0f)) { *quadrant = 0; return 0.0f; } /* outside the domain, NaN */
+    k = (int32_t)(x * 0.636619772f + (x >= 0.0f ? 0.5f : -0.5f));
+    *quadrant = (int)((uint32_t)k & 3u);
+    /* x * 2^40 is an exact integer for |x| > pi/4 */
+    return (float)reduce_q40((int64_t)(x * 1099511627776.0f), k) * (1.0f / 1099511627776.0f);
+}
+#endif
+
+/* Taylor series of sin r / r and cos r in z = r^2, |r| <= pi/4:
+ * truncation below 3e-9 relative. */
+static const wreal sin_c[6] = {
+    WC(1.0f, 1073741824), WC(-1.66666667e-01f, -178956971), WC(8.33333333e-03f, 8947849),
+    WC(-1.98412698e-04f, -213044), WC(2.75573192e-06f, 2959), WC(-2.50521084e-08f, -27)
+};
+static const wreal cos_c[7] = {
+    WC(1.0f, 1073741824), WC(-0.5f, -536870912), WC(4.16666667e-02f, 44739243),
+    WC(-1.38888889e-03f, -1491308), WC(2.48015873e-05f, 26631), WC(-2.75573192e-07f, -296),
+    WC(2.08767570e-09f, 2)
+};
+
+static wreal sin_reduced(wreal r) { return w_mul(r, w_poly(w_mul(r, r), sin_c, 6)); }
+static wreal cos_reduced(wreal r) { return w_poly(w_mul(r, r), cos_c, 7); }
+
+/* sin(k pi/2 + r) by quadrant. */
+static wreal sin_quadrant(wreal r, int q)
+{
+    switch (q & 3) {
+    case 0: return sin_reduced(r);
+    case 1: return cos_reduced(r);
+    case 2: return -sin_reduced(r);
+    default: return -cos_reduced(r);
+    }
+}
+
+tg_real tg_sin(tg_real x)
+{
+    int q;
+    wreal r = reduce_half_pi(x, &q);
+    return w_to_real(sin_quadrant(r, q));
+}
+
+tg_real tg_cos(tg_real x)
+{
+    int q;
+    wreal r = reduce_half_pi(x, &q);
+    return w_to_real(sin_quadrant(r, q + 1));
+}
+
+tg_real tg_tan(tg_real x)
+{
+    int q;
+    wreal r = reduce_half_pi(x, &q);
+    wreal s = sin_quadrant(r, q), c = sin_quadrant(r, q + 1);
+#if TG_FIXED
+    if (c == 0) return s >= 0 ? TG_REAL_MAX : TG_REAL_MIN;
+    return tg_sat64(div_round(s * 65536, c));
+#else
+    if (c == 0.0f) return s >= 0.0f ? TG_REAL_MAX : TG_REAL_MIN;
+    return s / c;
+#endif
+}
+
+/* ---------------------------------------------------------------------- */
+/* asin, acos                                                              */
+
+/* asin(a)/a = sum (2n)! / (4^n (n!)^2 (2n+1)) a^2n, used for |a| <= 1/2:
+ * truncation after 11 terms < 1e-8 relative. */
+static const wreal asin_c[11] = {
+    WC(1.0f, 1073741824), WC(1.66666667e-01f, 178956971), WC(7.50000000e-02f, 80530637),
+    WC(4.46428571e-02f, 47934903), WC(3.03819444e-02f, 32622364), WC(2.23721591e-02f, 24021923),
+    WC(1.73527644e-02f, 18632389), WC(1.39648438e-02f, 14994637), WC(1.15518009e-02f, 12403652),
+    WC(9.76160953e-03f, 10481448), WC(8.39033581e-03f, 9009054)
+};
+
+static wreal asin_series(wreal a) { return w_mul(a, w_poly(w_mul(a, a), asin_c, 11)); }
+
+/* |x| clamped to 1, as wide. */
+static wreal abs_clamped_unit(tg_real x)
+{
+    tg_real a = tg_abs(x);
+    if (!(a < TG_ONE)) a = TG_ONE; /* NaN too */
+    return w_from_real(a);
+}
+
+/* For a > 1/2: asin(a) = pi/2 - 2 asin(sqrt((1 - a) / 2)). */
+static wreal half_angle_sqrt(wreal a) { return w_sqrt(w_mul(W_ONE - a, W_HALF)); }
+
+tg_real tg_asin(tg_real x)
+{
+    wreal a = abs_clamped_unit(x), r;
+    if (a <= W_HALF) r = asin_series(a);
+    else { wreal t = asin_series(half_angle_sqrt(a)); r = W_HALF_PI - (t + t); }
+    return w_to_real(x < 0 ? -r : r);
+}
+
+tg_real tg_acos(tg_real x)
+{
+    wreal a = abs_clamped_unit(x), t;
+    if (a <= W_HALF) {
+        t = asin_series(a);
+        return w_to_real(x < 0 ? W_HALF_PI + t : W_HALF_PI - t);
+    }
+    /* acos(a) = 2 asin(sqrt((1 - a) / 2)): no cancellation near a = 1 */
+    t = asin_series(half_angle_sqrt(a));
+    t = t + t;
+    return w_to_real(x < 0 ? W_PI - t : t);
+}
+
+/* ---------------------------------------------------------------------- */
+/* atan2                                                                   */
+
+/* atan(u)/u = sum (-1)^n u^2n / (2n+1) for |u| <= tan(pi/12). */
+static const wreal atan_c[9] = {
+    WC(1.0f, 1073741824), WC(-3.33333333e-01f, -357913941), WC(2.0e-01f, 214748365),
+    WC(-1.42857143e-01f, -153391689), WC(1.11111111e-01f, 119304647), WC(-9.09090909e-02f, -97612893),
+    WC(7.69230769e-02f, 82595525), WC(-6.66666667e-02f, -71582788), WC(5.88235294e-02f, 63161284)
+};
+
+/* atan(t) for t in [0, 1]: above tan(pi/12) use
+ * atan(t) = pi/6 + atan((t sqrt3 - 1) / (t + sqrt3)). */
+static wreal atan_unit(wreal t)
+{
+    if (t > W_TAN_PI_12) {
+        wreal u = w_div(w_mul(t, W_SQRT3) - W_ONE, t + W_SQRT3);
+        return W_PI_6 + w_mul(u, w_poly(w_mul(u, u), atan_c, 9));
+    }
+    return w_mul(t, w_poly(w_mul(t, t), atan_c, 9));
+}
+
+tg_real tg_atan2(tg_real y, tg_real x)
+{
+    wreal t, a;
+#if TG_FIXED
+    int64_t ax = x < 0 ? -(int64_t)x : x, ay = y < 0 ? -(int64_t)y : y;
+    if (ax == 0 && ay == 0) return 0;
+    t = ay > ax ? div_round(ax * W_ONE, ay) : div_round(ay * W_ONE, ax);
+#else
+    float ax = x < 0.0f ? -x : x, ay = y < 0.0f ? -y : y;
+    if (!(ax > 0.0f || ay > 0.0f)) return 0.0f; /* (0,0) and NaN */
+    t = ay > ax ? ax / ay : ay / ax;
+    if (!(t == t)) t = 1.0f; /* both infinite */
+#endif
+    a = atan_unit(t);
+    if (ay > ax) a = W_HALF_PI - a;
+    if (x < 0) a = W_PI - a;
+    return w_to_real(y < 0 ? -a : a);
+}
+
+/* ---------------------------------------------------------------------- */
+/* exp2, log2, pow                                                         */
+
+/* 2^f = sum (f ln2)^k / k!, f in [-1/2, 1) : truncation < 3e-11. */
+static const wreal exp2_c[12] = {
+    WC(1.0f, 1073741824), WC(6.93147181e-01f, 744261118), WC(2.40226507e-01f, 257941248),
+    WC(5.55041087e-02f, 59597083), WC(9.61812911e-03f, 10327387), WC(1.33335581e-03f, 1431680),
+    WC(1.54035304e-04f, 165394), WC(1.52527338e-05f, 16377), WC(1.32154868e-06f, 1419),
+    WC(1.01780860e-07f, 109), WC(7.05491672e-09f, 8), WC(4.44553541e-10f, 0)
+};
+
+/* log2(m) = 2/ln2 atanh(s), s = (m-1)/(m+1), m in [sqrt(1/2), sqrt2]:
+ * atanh(s)/s = sum s^2n / (2n+1); |s| <= 0.172, truncation < 1e-11. */
+static const wreal atanh_c[7] = {
+    WC(1.0f, 1073741824), WC(3.33333333e-01f, 357913941), WC(2.0e-01f, 214748365),
+    WC(1.42857143e-01f, 153391689), WC(1.11111111e-01f, 119304647), WC(9.09090909e-02f, 97612893),
+    WC(7.69230769e-02f, 82595525)
+};
+
+static wreal log2_mantissa(wreal m)
+{
+    wreal s = w_div(m - W_ONE, m + W_ONE);
+    return w_mul(w_mul(s, w_poly(w_mul(s, s), atanh_c, 7)), W_2_LN2);
+}
+
+#if TG_FIXED
+
+/* log2(x) in Q30 for x > 0: x = m 2^e, m in [sqrt(1/2), sqrt2). */
+static wreal log2_wide(tg_real x)
+{
+    int p = bit_length64((uint64_t)x) - 1; /* x_raw = m 2^p, m in [1, 2) */
+    int64_t e = p - 16;
+    wreal m = (wreal)x << (30 - p);
+    if (m > 1518500250) { m = (m + 1) >> 1; e++; } /* m > sqrt2 */
+    return e * W_ONE + log2_mantissa(m);
+}
+
+/* 2^v for v in Q30: v = n + f, f in [0, 1). */
+static tg_real exp2_wide(wreal v)
+{
+    int64_t n = v >= 0 ? v >> 30 : -((-v + W_ONE - 1) >> 30);
+    wreal p;
+    if (n >= 15) return TG_REAL_MAX;
+    if (n < -40) return 0;
+    p = w_poly(v - n * W_ONE, exp2_c, 12); /* [2^30, 2^31) */
+    return tg_sat64(n == 14 ? p : shr_round(p, (int)(14 - n)));
+}
+
+tg_real tg_exp2(tg_real x) { return exp2_wide(w_from_real(x)); }
+
+tg_real tg_log2(tg_real x)
+{
+    if (x <= 0) return TG_REAL_MIN;
+    return w_to_real(log2_wide(x));
+}
+
+/* L * y where y is Q16.16, L is Q30, split to stay inside 64 bits. */
+static wreal w_mul_real(wreal l, tg_real y)
+{
+    int64_t yi = y >= 0 ? (int64_t)y >> 16 : -((-(int64_t)y) >> 16);
+    int64_t yf = (int64_t)y - yi * 65536;
+    int64_t r = l * yi + shr_round(l * yf, 16);
+    if (r > ((int64_t)64 << 30)) r = (int64_t)64 << 30;
+    if (r < -((int64_t)64 << 30)) r = -((int64_t)64 << 30);
+    return r;
+}
+
+#else
+
+static float pow2i(int n) { return f_from_bits((uint32_t)(n + 127) << 23); } /* n in [-126, 127] */
+
+static tg_real exp2_wide(wreal v)
+{
+    int32_t n;
+    float p;
+    if (!(v == v)) return 0.0f;
+    if (v >= 128.0f) return TG_REAL_MAX;
+    if (v < -150.0f) return 0.0f;
+    n = (int32_t)(v + (v >= 0.0f ? 0.5f : -0.5f));
+    p = w_poly(v - (float)n, exp2_c, 12); /* f in [-1/2, 1/2] */
+    if (n > 127) return p * pow2i(127) * 2.0f;
+    if (n < -126) return p * pow2i(n + 64) * pow2i(-64);
+    return p * pow2i(n);
+}
+
+static wreal log2_wide(tg_real x)
+{
+    uint32_t b;
+    int32_t e, bias = 0;
+    float m;
+    if (x > TG_REAL_MAX) return 128.0f;
+    if (x < 1.17549435e-38f) { x *= 18446744073709551616.0f; bias = 64; }
+    b = f_bits(x);
+    e = (int32_t)((b >> 23) & 255u) - 127;
+    m = f_from_bits((b & 0x7fffffu) | 0x3f800000u);
+    if (m > 1.41421356f) { m *= 0.5f; e++; }
+    return (float)(e - bias) + log2_mantissa(m);
+}
+
+tg_real tg_exp2(tg_real x) { return exp2_wide(x); }
+
+tg_real tg_log2(tg_real x)
+{
+    if (!(x > 0.0f)) return TG_REAL_MIN;
+    return log2_wide(x);
+}
+
+static wreal w_mul_real(wreal l, tg_real y) { return l * y; }
+
+#endif
+
+tg_real tg_pow(tg_real x, tg_real y)
+{
+    if (y == 0) return TG_ONE;
+    if (!(x > 0)) return y > 0 ? 0 : TG_REAL_MAX;
+    if (x == TG_ONE) return TG_ONE;
+    return exp2_wide(w_mul_real(log2_wide(x), y));
+}
+
+/* ---------------------------------------------------------------------- */
+/* floor, smoothstep                                                       */
+
+tg_real tg_floor(tg_real x)
+{
+#if TG_FIXED
+    int64_t f = x >= 0 ? (int64_t)x - (x & 65535) : -((-(int64_t)x + 65535) / 65536 * 65536);
+    return tg_sat64(f);
+#else
+    int32_t i;
+    float f;
+    if (!(x < 8388608.0f && x > -8388608.0f)) return x; /* integral, inf or NaN */
+    i = (int32_t)x;
+    f = (float)i;
+    return f > x ? f - 1.0f : f;
+#endif
+}
+
+tg_real tg_smoothstep(tg_real a, tg_real b, tg_real x)
+{
+    tg_real t;
+    if (!(b > a)) return x < a ? 0 : TG_ONE;
+    t = tg_saturate(tg_div(tg_sub(x, a), tg_sub(b, a)));
+    return tg_mul(tg_mul(t, t), tg_sub(TG_R(3.0f), tg_add(t, t)));
+}
+
+/* ---------------------------------------------------------------------- */
+/* decimal parsing                                                         */
+
+/* Significant digits kept.  A float rounding boundary has at most 113
+ * significant decimal digits and a Q16.16 one at most 17 after the point,
+ * so 120 digits plus a sticky "something nonzero followed" flag decide
+ * every rounding exactly. */
+#define DEC_DIGITS 120
+#define DEC_POINT_LIMIT 100000000
+
+typedef struct decimal {
+    unsigned char d[DEC_DIGITS]; /* value = 0.d[0]d[1]... * 10^point */
+    int n;
+    int sticky;
+    int32_t point;
+} decimal;
+
+static int is_digit(char c) { return c >= '0' && c <= '9'; }
+
+static void dec_push(decimal *dec, int digit, int before_point)
+{
+    if (dec->n == 0 && digit == 0) { /* leading zero */
+        if (!before_point && dec->point > -DEC_POINT_LIMIT) dec->point--;
+        return;
+    }
+    if (dec->n < DEC_DIGITS) dec->d[dec->n++] = (unsigned char)digit;
+    else if (digit) dec->sticky = 1;
+    if (before_point && dec->point < DEC_POINT_LIMIT) dec->point++;
+}
+
+#if TG_FIXED
+
+/* round(value * 2^16) in integers, ties to even. */
+static tg_real dec_to_real(const decimal *dec, int *overflow)
+{
+    unsigned char f[DEC_DIGITS + 8];
+    int32_t i, nf = 0;
+    int64_t ip = 0, raw;
+    uint32_t carry = 0;
+    int cmp = 0; /* remainder vs 1/2 */
+    if (dec->n == 0 || dec->point < -5) return 0; /* < 1e-6 < 2^-17 */
+    if (dec->point > 5) { *overflow = 1; return TG_REAL_MAX; }
+    for (i = 0; i < dec->point; i++) ip = ip * 10 + (i < dec->n ? dec->d[i] : 0);
+    for (i = dec->point; i < 0; i++) f[nf++] = 0;
+    for (i = dec->point > 0 ? dec->point : 0; i < dec->n; i++) f[nf++] = dec->d[i];
+    for (i = nf - 1; i >= 0; i--) { /* 0.f * 65536, digit by digit */
+        uint32_t v = f[i] * 65536u + carry;
+        f[i] = (unsigned char)(v % 10u);
+        carry = v / 10u;
+    }
+    if (nf > 0) {
+        cmp = f[0] > 5 ? 1 : f[0] < 5 ? -1 : 0;
+        for (i = 1; i < nf && cmp == 0; i++) if (f[i]) cmp = 1;
+        if (cmp == 0 && dec->sticky) cmp = 1;
+    } else {
+        cmp = -1;
+    }
+    raw = ip * 65536 + carry;
+    if (cmp > 0 || (cmp == 0 && (raw & 1))) raw++;
+    if (raw > (int64_t)TG_REAL_MAX) { *overflow = 1; return TG_REAL_MAX; }
+    return (tg_real)raw;
+}
+
+#else
+
+/* Little big integers for the exact float conversion (768 bits). */
+#define BIG_LIMBS 24
+typedef struct big { uint32_t w[BIG_LIMBS]; } big;
+
+static void big_set(big *a, uint32_t v) { memset(a, 0, sizeof *a); a->w[0] = v; }
+static void big_mul_add(big *a, uint32_t m, uint32_t add)
+{
+    uint64_t c = add;
+    int i;
+    for (i = 0; i < BIG_LIMBS; i++) {
+        c += (uint64_t)a->w[i] * m;
+        a->w[i] = (uint32_t)c;
+        c >>= 32;
+    }
+}
+static void big_pow10(big *a, int32_t e) /* a *= 10^e */
+{
+    while (e >= 9) { big_mul_add(a, 1000000000u, 0); e -= 9; }
+    while (e-- > 0) big_mul_add(a, 10u, 0);
+}
+static void big_shl(big *a, int32_t s)
+{
+    int32_t i, limbs = s / 32, bits = s % 32;
+    for (i = BIG_LIMBS - 1; i >= 0; i--) {
+        uint32_t hi = i - limbs >= 0 ? a->w[i - limbs] : 0;
+        uint32_t lo = i - limbs - 1 >= 0 ? a->w[i - limbs - 1] : 0;
+        a->w[i] = bits ? (hi << bits) | (lo >> (32 - bits)) : hi;
+    }
+}
+static int big_cmp(const big *a, const big *b)
+{
+    int i;
+    for (i = BIG_LIMBS - 1; i >= 0; i--)
+        if (a->w[i] != b->w[i]) return a->w[i] > b->w[i] ? 1 : -1;
+    return 0;
+}
+static void big_sub(big *a, const big *b) /* a >= b */
+{
+    uint64_t borrow = 0;
+    int i;
+    for (i = 0; i < BIG_LIMBS; i++) {
+        uint64_t d = (uint64_t)a->w[i] - b->w[i] - borrow;
+        a->w[i] = (uint32_t)d;
+        borrow = (d >> 63) & 1u;
+    }
+}
+static int32_t big_bits(const big *a)
+{
+    int i;
+    for (i = BIG_LIMBS - 1; i >= 0; i--)
+        if (a->w[i]) return i * 32 + bit_length64(a->w[i]);
+    return 0;
+}
+static int big_is_zero(const big *a) { return big_bits(a) == 0; }
+
+/* value = num / den; returns the correctly rounded float (ties to even). */
+static tg_real dec_to_real(const decimal *dec, int *overflow)
+{
+    big num, den;
+    int32_t e, b, nbits, i;
+    uint32_t q = 0, m, bits;
+    int guard, sticky;
+    if (dec->n == 0 || dec->point <= -46) return 0.0f; /* < 1e-46 < 2^-150 */
+    if (dec->point >= 40) { *overflow = 1; return TG_REAL_MAX; }
+    big_set(&num, 0);
+    for (i = 0; i < dec->n; i++) big_mul_add(&num, 10u, dec->d[i]);
+    big_set(&den, 1);
+    e = dec->point - dec->n;
+    if (e >= 0) big_pow10(&num, e);
+    else big_pow10(&den, -e);
+    /* scale so that 1 <= num/den < 2; value in [2^b, 2^(b+1)) */
+    b = big_bits(&num) - big_bits(&den);
+    if (b >= 0) big_shl(&den, b);
+    else big_shl(&num, -b);
+    if (big_cmp(&num, &den) < 0) { big_shl(&num, 1); b--; }
+    if (b < -150) return 0.0f;
+    nbits = b >= -126 ? 25 : b + 151; /* mantissa bits + guard */
+    for (i = 0; i < nbits; i++) {
+        q <<= 1;
+        if (big_cmp(&num, &den) >= 0) { big_sub(&num, &den); q |= 1u; }
+        big_shl(&num, 1);
+    }
+    m = q >> 1;
+    guard = (int)(q & 1u);
+    sticky = !big_is_zero(&num) || dec->sticky;
+    if (guard && (sticky || (m & 1u))) m++;
+    if (b >= -126) {
+        if (b > 127) { *overflow = 1; return TG_REAL_MAX; }
+        bits = ((uint32_t)(b + 127) << 23) + (m - 0x800000u);
+    } else {
+        bits = m;
+    }
+    if (bits >= 0x7f800000u) { *overflow = 1; return TG_REAL_MAX; }
+    return f_from_bits(bits);
+}
+
+#endif
+
+size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow)
+{
+    decimal dec;
+    size_t i = 0;
+    int neg = 0, any = 0, ovf = 0;
+    tg_real r;
+    dec.n = 0;
+    dec.sticky = 0;
+    dec.point = 0;
+    if (out) *out = 0;
+    if (overflow) *overflow = 0;
+    if (i < len && (s[i] == '+' || s[i] == '-')) { neg = s[i] == '-'; i++; }
+    for (; i < len && is_digit(s[i]); i++) { any = 1; dec_push(&dec, s[i] - '0', 1); }
+    if (i < len && s[i] == '.') {
+        if (!any && !(i + 1 < len && is_digit(s[i + 1]))) return 0;
+        for (i++; i < len && is_digit(s[i]); i++) { any = 1; dec_push(&dec, s[i] - '0', 0); }
+    }
+    if (!any) return 0;
+    if (i < len && (s[i] == 'e' || s[i] == 'E')) {
+        size_t j = i + 1;
+        int eneg = 0;
+        int32_t ex = 0;
+        if (j < len && (s[j] == '+' || s[j] == '-')) { eneg = s[j] == '-'; j++; }
+        if (j < len && is_digit(s[j])) {
+            for (; j < len && is_digit(s[j]); j++)
+                if (ex < DEC_POINT_LIMIT) ex = ex * 10 + (s[j] - '0');
+            dec.point += eneg ? -ex : ex;
+            i = j;
+        }
+    }
+    r = dec_to_real(&dec, &ovf);
+    if (overflow) *overflow = ovf;
+    if (out) *out = neg ? tg_neg(r) : r;
+    return i;
+}
