@@ -1,0 +1,341 @@
+/*
+ * render.c - tinygi's portable render driver: renders built-in scenes at a
+ * small size and writes, per scene, SCENE.ppm (8-bit sRGB colour) and one
+ * little-endian PFM per AOV (SCENE.color.pfm, SCENE.depth.pfm, ...).
+ * It is the same C99 file on every target - Linux on x86-64, i686, s390x
+ * and powerpc (port_stdio.c), Cortex-M3/M4F with newlib and Cortex-M0 with
+ * no C library at all (port_semihost.c) - so `make cross` can compare the
+ * outputs of every target byte for byte.
+ *
+ *   usage: render [OUTDIR [WxH [FRAMES [AOVS [SCENE...]]]]]
+ *     OUTDIR  where the files go (default ".")
+ *     WxH     image size (default 64x48)
+ *     FRAMES  frames rendered; the last one is written (default 1)
+ *     AOVS    comma list (default color,depth,normal,ao); an AOV the core
+ *             cannot plan for this scene is skipped with a message
+ *     SCENE   built-in scene names (default: all of them)
+ *   exit status: 0 all written, 1 runtime/output error, 2 bad arguments or
+ *   scene, 3 arena too small (TG_BM_ARENA_BYTES).
+ *
+ * Memory: one static arena of TG_BM_ARENA_BYTES holds the parsed scene,
+ * the frame (tg_plan.total_bytes) and two row buffers; nothing else.
+ */
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "tinygi.h"
+#include "port.h"
+
+#ifndef TG_BM_ARENA_BYTES
+#define TG_BM_ARENA_BYTES (2u * 1024u * 1024u)
+#endif
+
+static unsigned char arena_memory[TG_BM_ARENA_BYTES] __attribute__((aligned(16)));
+
+/* ---- tiny string helpers (no libc on the smallest targets) ---- */
+static size_t str_len(const char *s)
+{
+    size_t n = 0;
+    while (s[n]) n++;
+    return n;
+}
+
+static int str_eq(const char *a, const char *b, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n; i++)
+        if (a[i] != b[i]) return 0;
+    return b[n] == 0;
+}
+
+/* Append s to buf (of size cap) at *at; always NUL-terminated. */
+static void cat_str(char *buf, size_t cap, size_t *at, const char *s)
+{
+    while (*s && *at + 1 < cap) buf[(*at)++] = *s++;
+    buf[*at] = 0;
+}
+
+static void cat_ulong(char *buf, size_t cap, size_t *at, unsigned long v)
+{
+    char digits[24];
+    int n = 0;
+    do {
+        digits[n++] = (char)('0' + v % 10u);
+        v /= 10u;
+    } while (v);
+    while (n > 0 && *at + 1 < cap) buf[(*at)++] = digits[--n];
+    buf[*at] = 0;
+}
+
+/* Parse a decimal integer at *s, advancing it; -1 if none. */
+static long parse_ulong(const char **s)
+{
+    long v = 0;
+    if (**s < '0' || **s > '9') return -1;
+    while (**s >= '0' && **s <= '9' && v < 1000000L) v = v * 10 + (*(*s)++ - '0');
+    return v;
+}
+
+/* ---- output ---- */
+static int write_all(int h, const void *data, size_t n, int *bad)
+{
+    if (!*bad && port_write(h, data, n) != 0) *bad = 1;
+    return *bad;
+}
+
+/* PFM is little-endian (negative scale); bytes are built from the float's
+ * bits so that big-endian targets write the same file. */
+static void put_f32le(unsigned char *p, float f)
+{
+    uint32_t u;
+    memcpy(&u, &f, 4);
+    p[0] = (unsigned char)(u & 0xffu);
+    p[1] = (unsigned char)((u >> 8) & 0xffu);
+    p[2] = (unsigned char)((u >> 16) & 0xffu);
+    p[3] = (unsigned char)(u >> 24);
+}
+
+static int open_output(const char *dir, const char *scene, const char *suffix, char *path, size_t cap)
+{
+    size_t at = 0;
+    path[0] = 0;
+    cat_str(path, cap, &at, dir);
+    cat_str(path, cap, &at, "/");
+    cat_str(path, cap, &at, scene);
+    cat_str(path, cap, &at, suffix);
+    return port_open(path);
+}
+
+static void header(char *buf, size_t cap, const char *magic, int w, int h, const char *tail)
+{
+    size_t at = 0;
+    buf[0] = 0;
+    cat_str(buf, cap, &at, magic);
+    cat_ulong(buf, cap, &at, (unsigned long)w);
+    cat_str(buf, cap, &at, " ");
+    cat_ulong(buf, cap, &at, (unsigned long)h);
+    cat_str(buf, cap, &at, tail);
+}
+
+static int write_ppm(const tg_frame *frame, int w, int h, const char *dir, const char *scene, uint8_t *row8)
+{
+    char path[160], head[48];
+    int y, bad = 0, f = open_output(dir, scene, ".ppm", path, sizeof path);
+    if (f < 0) return -1;
+    header(head, sizeof head, "P6\n", w, h, "\n255\n");
+    write_all(f, head, str_len(head), &bad);
+    for (y = 0; y < h; y++) {
+        tg_frame_aov_row8(frame, TG_AOV_COLOR, y, row8);
+        write_all(f, row8, (size_t)w * 3u, &bad);
+    }
+    if (port_close(f) != 0) bad = 1;
+    return bad ? -1 : 0;
+}
+
+static int write_pfm(const tg_frame *frame, tg_aov aov, int w, int h, const char *dir,
+                     const char *scene, tg_real *row, unsigned char *bytes)
+{
+    char path[160], head[48], suffix[24];
+    size_t at = 0, i, n;
+    int y, bad = 0, f, channels = tg_aov_channels(aov);
+    cat_str(suffix, sizeof suffix, &at, ".");
+    cat_str(suffix, sizeof suffix, &at, tg_aov_name(aov));
+    cat_str(suffix, sizeof suffix, &at, ".pfm");
+    f = open_output(dir, scene, suffix, path, sizeof path);
+    if (f < 0) return -1;
+    header(head, sizeof head, channels == 3 ? "PF\n" : "Pf\n", w, h, "\n-1.0\n");
+    write_all(f, head, str_len(head), &bad);
+    n = (size_t)w * (size_t)channels;
+    for (y = h - 1; y >= 0; y--) { /* PFM rows run bottom to top */
+        tg_frame_aov_row(frame, aov, y, row);
+        for (i = 0; i < n; i++) put_f32le(bytes + 4u * i, tg_to_float(row[i]));
+        write_all(f, bytes, 4u * n, &bad);
+    }
+    if (port_close(f) != 0) bad = 1;
+    return bad ? -1 : 0;
+}
+
+/* ---- rendering ---- */
+typedef struct settings {
+    const char *outdir;
+    int width, height, frames;
+    uint32_t aovs;
+} settings;
+
+static void log_error(const char *what, const tg_error *err)
+{
+    char msg[400];
+    size_t at = 0;
+    cat_str(msg, sizeof msg, &at, "render: ");
+    cat_str(msg, sizeof msg, &at, what);
+    cat_str(msg, sizeof msg, &at, ": ");
+    at += tg_error_format(err, msg + at, sizeof msg - at);
+    port_log(msg);
+}
+
+static int status_exit(tg_status s) { return s == TG_ERR_MEMORY ? 3 : s == TG_ERR_INPUT ? 2 : 1; }
+
+/* Plan with the AOVs the core accepts for this scene (colour always). */
+static tg_status plan_scene(tg_plan *plan, const tg_scene *scene, const settings *st,
+                            const char *name, tg_error *err)
+{
+    tg_request req;
+    int a;
+    tg_request_defaults(&req);
+    req.width = st->width;
+    req.height = st->height;
+    req.frames = st->frames;
+    req.aovs = st->aovs | (1u << TG_AOV_COLOR);
+    if (tg_plan_make(plan, scene, &req, err) == TG_OK) return TG_OK;
+    for (a = 0; a < TG_AOV_COUNT; a++) { /* drop the AOVs that cannot be planned */
+        uint32_t bit = 1u << a;
+        tg_plan probe;
+        if (!(req.aovs & bit) || a == TG_AOV_COLOR) continue;
+        req.aovs &= ~bit;
+        if (tg_plan_make(&probe, scene, &req, err) == TG_OK) {
+            char msg[96];
+            size_t at = 0;
+            cat_str(msg, sizeof msg, &at, "render: ");
+            cat_str(msg, sizeof msg, &at, name);
+            cat_str(msg, sizeof msg, &at, ": skipping aov ");
+            cat_str(msg, sizeof msg, &at, tg_aov_name((tg_aov)a));
+            port_log(msg);
+            *plan = probe;
+            return TG_OK;
+        }
+        req.aovs |= bit;
+    }
+    return tg_plan_make(plan, scene, &req, err);
+}
+
+static void log_scene(const char *name, const settings *st, const tg_plan *plan, size_t arena_used, long cs)
+{
+    char msg[200];
+    size_t at = 0;
+    cat_str(msg, sizeof msg, &at, name);
+    cat_str(msg, sizeof msg, &at, " ");
+    cat_ulong(msg, sizeof msg, &at, (unsigned long)st->width);
+    cat_str(msg, sizeof msg, &at, "x");
+    cat_ulong(msg, sizeof msg, &at, (unsigned long)st->height);
+    cat_str(msg, sizeof msg, &at, " " TG_NUMBER_NAME ": frame ");
+    cat_ulong(msg, sizeof msg, &at, (unsigned long)plan->total_bytes);
+    cat_str(msg, sizeof msg, &at, " bytes, arena used ");
+    cat_ulong(msg, sizeof msg, &at, (unsigned long)arena_used);
+    cat_str(msg, sizeof msg, &at, " bytes, ");
+    cat_ulong(msg, sizeof msg, &at, (unsigned long)st->frames);
+    cat_str(msg, sizeof msg, &at, " frame(s) in ");
+    cat_ulong(msg, sizeof msg, &at, (unsigned long)(cs > 0 ? cs : 0));
+    cat_str(msg, sizeof msg, &at, "0 ms");
+    port_log(msg);
+}
+
+static int render_scene(const char *name, const settings *st)
+{
+    tg_arena arena;
+    tg_error err;
+    tg_scene *scene = 0;
+    tg_plan plan;
+    tg_frame *frame = 0;
+    tg_status s;
+    void *frame_memory;
+    tg_real *row;
+    unsigned char *bytes;
+    const char *text = tg_builtin_scene(name);
+    long t0 = port_clock_cs();
+    int i, a, bad = 0;
+
+    memset(&err, 0, sizeof err);
+    if (!text) {
+        port_log("render: unknown built-in scene");
+        port_log(name);
+        return 2;
+    }
+    tg_arena_init(&arena, arena_memory, sizeof arena_memory);
+    s = tg_scene_parse(text, str_len(text), name, 0, &arena, &scene, &err);
+    if (s != TG_OK) { log_error(name, &err); return status_exit(s); }
+    s = plan_scene(&plan, scene, st, name, &err);
+    if (s != TG_OK) { log_error(name, &err); return status_exit(s); }
+    frame_memory = tg_arena_alloc(&arena, plan.total_bytes);
+    row = tg_arena_alloc(&arena, (size_t)st->width * 3u * sizeof(tg_real));
+    bytes = tg_arena_alloc(&arena, (size_t)st->width * 3u * 4u);
+    if (!frame_memory || !row || !bytes) {
+        port_log("render: arena too small (raise TG_BM_ARENA_BYTES)");
+        return 3;
+    }
+    s = tg_frame_create(&plan, frame_memory, plan.total_bytes, &frame, &err);
+    for (i = 0; s == TG_OK && i < st->frames; i++) s = tg_frame_render(frame, i, &err);
+    if (s != TG_OK) { log_error(name, &err); return status_exit(s); }
+    log_scene(name, st, &plan, arena.used, port_clock_cs() - t0);
+
+    if (write_ppm(frame, st->width, st->height, st->outdir, name, bytes) != 0) bad = 1;
+    for (a = 0; a < TG_AOV_COUNT; a++)
+        if ((plan.request.aovs >> a) & 1u)
+            if (write_pfm(frame, (tg_aov)a, st->width, st->height, st->outdir, name, row, bytes) != 0) bad = 1;
+    if (bad) port_log("render: could not write an output file");
+    return bad;
+}
+
+static int parse_aovs(const char *list, uint32_t *aovs)
+{
+    *aovs = 0;
+    while (*list) {
+        size_t n = 0;
+        int a, found = -1;
+        while (list[n] && list[n] != ',') n++;
+        for (a = 0; a < TG_AOV_COUNT; a++)
+            if (str_eq(list, tg_aov_name((tg_aov)a), n)) found = a;
+        if (found < 0) return -1;
+        *aovs |= 1u << found;
+        list += n;
+        if (*list == ',') list++;
+    }
+    return 0;
+}
+
+static int parse_size(const char *s, int *w, int *h)
+{
+    long x = parse_ulong(&s), y;
+    if (x <= 0 || *s++ != 'x') return -1;
+    y = parse_ulong(&s);
+    if (y <= 0 || *s) return -1;
+    *w = (int)x;
+    *h = (int)y;
+    return 0;
+}
+
+static int parse_frames(const char *s)
+{
+    long n = parse_ulong(&s);
+    return *s ? -1 : (int)n;
+}
+
+int main(int argc, char **argv)
+{
+    settings st;
+    int i, worst = 0;
+    st.outdir = argc > 1 ? argv[1] : ".";
+    st.width = 64;
+    st.height = 48;
+    st.frames = 1;
+    st.aovs = (1u << TG_AOV_COLOR) | (1u << TG_AOV_DEPTH) | (1u << TG_AOV_NORMAL) | (1u << TG_AOV_AO);
+    if ((argc > 2 && parse_size(argv[2], &st.width, &st.height) != 0) ||
+        (argc > 3 && (st.frames = parse_frames(argv[3])) <= 0) ||
+        (argc > 4 && parse_aovs(argv[4], &st.aovs) != 0)) {
+        port_log("usage: render [OUTDIR [WxH [FRAMES [AOVS [SCENE...]]]]]");
+        return 2;
+    }
+    if (argc > 5) {
+        for (i = 5; i < argc; i++) {
+            int r = render_scene(argv[i], &st);
+            if (r > worst) worst = r;
+        }
+    } else {
+        const char *name;
+        for (i = 0; (name = tg_builtin_name(i)) != 0; i++) {
+            int r = render_scene(name, &st);
+            if (r > worst) worst = r;
+        }
+    }
+    return worst;
+}

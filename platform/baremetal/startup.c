@@ -1,0 +1,97 @@
+/*
+ * startup.c - what runs before main() on a Cortex-M: the vector table (the
+ * core boots from address 0: word 0 is the initial stack pointer, word 1
+ * the reset handler), the reset handler (copy .data from flash, zero .bss,
+ * switch the FPU on when there is one), argv from the semihosting command
+ * line, and the exit status back to the host.
+ *
+ * Symbols come from the linker script (sections.ld): __stack_top,
+ * __data_start/__data_end/__data_load, __bss_start__/__bss_end__.
+ * Keep the table under --gc-sections with -Wl,--undefined=tg_vectors.
+ */
+#include <stdint.h>
+#include <stddef.h>
+
+#include "semihost.h"
+
+int main(int argc, char **argv);
+void Reset_Handler(void);
+void tg_fault_handler(void);
+
+extern uint32_t __stack_top, __data_start, __data_end, __data_load;
+extern uint32_t __bss_start__, __bss_end__;
+
+#ifdef TG_BM_NEWLIB
+#include <stdio.h>
+extern void initialise_monitor_handles(void); /* newlib's librdimon */
+#endif
+
+typedef void (*tg_vector)(void);
+
+/* 16 system vectors; tinygi uses no peripheral interrupts. */
+__attribute__((section(".vectors"), used))
+const tg_vector tg_vectors[16] = {
+    (tg_vector)(uintptr_t)&__stack_top, /* 0: initial SP */
+    Reset_Handler,                      /* 1: reset */
+    tg_fault_handler,                   /* 2: NMI */
+    tg_fault_handler,                   /* 3: HardFault */
+    tg_fault_handler,                   /* 4: MemManage (v7-M) */
+    tg_fault_handler,                   /* 5: BusFault (v7-M) */
+    tg_fault_handler,                   /* 6: UsageFault (v7-M) */
+    0, 0, 0, 0,                         /* 7-10: reserved */
+    tg_fault_handler,                   /* 11: SVCall */
+    tg_fault_handler,                   /* 12: debug monitor */
+    0,                                  /* 13: reserved */
+    tg_fault_handler,                   /* 14: PendSV */
+    tg_fault_handler                    /* 15: SysTick */
+};
+
+void tg_fault_handler(void)
+{
+    sh_write0("tinygi: fault (hard fault, bus fault or usage fault)\n");
+    sh_exit(4);
+}
+
+/* argv from "prog arg1 arg2 ..." (QEMU's -semihosting-config arg=...). */
+static int split_cmdline(char *line, char **argv, int max)
+{
+    int argc = 0;
+    char *p = line;
+    while (*p && argc < max - 1) {
+        while (*p == ' ') *p++ = 0;
+        if (!*p) break;
+        argv[argc++] = p;
+        while (*p && *p != ' ') p++;
+    }
+    argv[argc] = 0;
+    return argc;
+}
+
+void Reset_Handler(void)
+{
+    static char cmdline[256];
+    static char *argv[16];
+    uint32_t *src = &__data_load, *dst;
+    int argc, status;
+
+#if defined(__ARM_FP)
+    /* CPACR: full access to coprocessors 10 and 11 (the FPU) before the
+     * first float instruction, which would otherwise fault. */
+    *(volatile uint32_t *)0xE000ED88u |= 0xFu << 20;
+    __asm__ volatile("dsb\n\tisb" ::: "memory");
+#endif
+    for (dst = &__data_start; dst < &__data_end;) *dst++ = *src++;
+    for (dst = &__bss_start__; dst < &__bss_end__;) *dst++ = 0;
+
+#ifdef TG_BM_NEWLIB
+    initialise_monitor_handles();
+#endif
+    if (sh_get_cmdline(cmdline, sizeof cmdline) != 0) cmdline[0] = 0;
+    argc = split_cmdline(cmdline, argv, 16);
+    if (argc == 0) { argv[0] = (char *)"tinygi"; argv[1] = 0; argc = 1; }
+    status = main(argc, argv);
+#ifdef TG_BM_NEWLIB
+    fflush(0);
+#endif
+    sh_exit(status);
+}

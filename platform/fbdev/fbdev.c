@@ -1,0 +1,306 @@
+/*
+ * fbdev.c - the Linux framebuffer output of fbdev.h: screen info, mapping,
+ * pixel format conversion from the bitfields, and the `view` loop that
+ * shows frames as they are rendered.  On systems without <linux/fb.h>
+ * the device functions fail with a message; conversion still works.
+ */
+#include "fbdev.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef __linux__
+#include <fcntl.h>
+#include <linux/fb.h>
+#include <sys/ioctl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#endif
+
+/* ---- formats ---- */
+typedef struct fb_layout {
+    const char *name;
+    int bpp;
+    int r_off, r_len, g_off, g_len, b_off, b_len, a_off, a_len;
+} fb_layout;
+
+static const fb_layout fb_layouts[TG_FB_FORMAT_COUNT] = {
+    {"XRGB8888", 32, 16, 8, 8, 8, 0, 8, 0, 0},
+    {"ARGB8888", 32, 16, 8, 8, 8, 0, 8, 24, 8},
+    {"XBGR8888", 32, 0, 8, 8, 8, 16, 8, 0, 0},
+    {"BGRX8888", 32, 8, 8, 16, 8, 24, 8, 0, 0},
+    {"RGB888", 24, 16, 8, 8, 8, 0, 8, 0, 0},
+    {"BGR888", 24, 0, 8, 8, 8, 16, 8, 0, 0},
+    {"RGB565", 16, 11, 5, 5, 6, 0, 5, 0, 0},
+    {"BGR565", 16, 0, 5, 5, 6, 11, 5, 0, 0},
+};
+
+const char *tg_fb_format_name(tg_fb_format format)
+{
+    return (unsigned)format < TG_FB_FORMAT_COUNT ? fb_layouts[format].name : NULL;
+}
+
+int tg_fb_info_format(tg_fb_info *info, tg_fb_format format, int xres, int yres, size_t line_length)
+{
+    const fb_layout *l;
+    if ((unsigned)format >= TG_FB_FORMAT_COUNT) return -1;
+    l = &fb_layouts[format];
+    memset(info, 0, sizeof *info);
+    info->xres = xres;
+    info->yres = yres;
+    info->bits_per_pixel = l->bpp;
+    info->line_length = line_length ? line_length : (size_t)xres * (size_t)(l->bpp / 8);
+    info->red.offset = l->r_off;   info->red.length = l->r_len;
+    info->green.offset = l->g_off; info->green.length = l->g_len;
+    info->blue.offset = l->b_off;  info->blue.length = l->b_len;
+    info->transp.offset = l->a_off; info->transp.length = l->a_len;
+    return 0;
+}
+
+static int channel_ok(tg_fb_channel c, int bpp, int optional)
+{
+    if (c.length == 0) return optional;
+    return c.length >= 1 && c.length <= 8 && c.offset >= 0 && c.offset + c.length <= bpp;
+}
+
+static uint32_t channel_mask(tg_fb_channel c)
+{
+    return c.length ? (((uint32_t)1 << c.length) - 1u) << c.offset : 0;
+}
+
+int tg_fb_info_check(const tg_fb_info *info, char *msg, size_t size)
+{
+    int bpp = info->bits_per_pixel;
+    uint32_t r = channel_mask(info->red), g = channel_mask(info->green), b = channel_mask(info->blue);
+    if (bpp != 16 && bpp != 24 && bpp != 32) {
+        snprintf(msg, size, "unsupported pixel format: %d bits per pixel (tinygi draws 16, 24 or 32)", bpp);
+        return -1;
+    }
+    if (!channel_ok(info->red, bpp, 0) || !channel_ok(info->green, bpp, 0) ||
+        !channel_ok(info->blue, bpp, 0) || !channel_ok(info->transp, bpp, 1) ||
+        (r & g) || (r & b) || (g & b) || ((r | g | b) & channel_mask(info->transp))) {
+        snprintf(msg, size, "unsupported pixel format: %d bpp with red %d/%d green %d/%d blue %d/%d "
+                 "alpha %d/%d (offset/length; each colour 1-8 bits, no overlap)", bpp,
+                 info->red.offset, info->red.length, info->green.offset, info->green.length,
+                 info->blue.offset, info->blue.length, info->transp.offset, info->transp.length);
+        return -1;
+    }
+    if (info->xres <= 0 || info->yres <= 0 || info->xoffset < 0 || info->yoffset < 0 ||
+        info->line_length < (size_t)(info->xoffset + info->xres) * (size_t)(bpp / 8)) {
+        snprintf(msg, size, "unsupported screen: %dx%d at +%d+%d with %lu bytes per line",
+                 info->xres, info->yres, info->xoffset, info->yoffset, (unsigned long)info->line_length);
+        return -1;
+    }
+    return 0;
+}
+
+/* Nearest value of an n-bit channel for an 8-bit one: round(c * (2^n - 1) / 255). */
+static void build_lut(uint32_t *lut, tg_fb_channel c)
+{
+    uint32_t top = ((uint32_t)1 << c.length) - 1u, v;
+    for (v = 0; v < 256; v++) lut[v] = ((v * top + 127u) / 255u) << c.offset;
+}
+
+/* Check `info`, fill the lookup tables; the mapping is set by the caller. */
+static int fb_setup(tg_fb *fb, const tg_fb_info *info)
+{
+    fb->info = *info;
+    if (tg_fb_info_check(info, fb->error, sizeof fb->error) != 0) return -1;
+    fb->bytes_per_pixel = info->bits_per_pixel / 8;
+    build_lut(fb->lut[0], info->red);
+    build_lut(fb->lut[1], info->green);
+    build_lut(fb->lut[2], info->blue);
+    fb->opaque = channel_mask(info->transp);
+    return 0;
+}
+
+static int host_is_little_endian(void)
+{
+    const uint16_t one = 1;
+    unsigned char b;
+    memcpy(&b, &one, 1);
+    return b == 1;
+}
+
+void tg_fb_convert_row(const tg_fb *fb, const uint8_t *rgb, int n, unsigned char *dst)
+{
+    int i, le = host_is_little_endian();
+    for (i = 0; i < n; i++, rgb += 3, dst += fb->bytes_per_pixel) {
+        uint32_t px = fb->lut[0][rgb[0]] | fb->lut[1][rgb[1]] | fb->lut[2][rgb[2]] | fb->opaque;
+        if (fb->bytes_per_pixel == 4) {
+            memcpy(dst, &px, 4); /* native byte order, like the kernel's */
+        } else if (fb->bytes_per_pixel == 2) {
+            uint16_t p16 = (uint16_t)px;
+            memcpy(dst, &p16, 2);
+        } else if (le) {
+            dst[0] = (unsigned char)px; dst[1] = (unsigned char)(px >> 8); dst[2] = (unsigned char)(px >> 16);
+        } else {
+            dst[0] = (unsigned char)(px >> 16); dst[1] = (unsigned char)(px >> 8); dst[2] = (unsigned char)px;
+        }
+    }
+}
+
+void tg_fb_put_row(tg_fb *fb, int x, int y, const uint8_t *rgb, int n)
+{
+    unsigned char *dst;
+    if (!fb->screen || y < 0 || y >= fb->info.yres || x >= fb->info.xres) return;
+    if (x < 0) {
+        if (n <= -x) return;
+        rgb += 3 * (size_t)(-x);
+        n += x;
+        x = 0;
+    }
+    if (n > fb->info.xres - x) n = fb->info.xres - x;
+    if (n <= 0) return;
+    dst = fb->screen + (size_t)y * fb->info.line_length + (size_t)x * (size_t)fb->bytes_per_pixel;
+    tg_fb_convert_row(fb, rgb, n, dst);
+}
+
+void tg_fb_draw(tg_fb *fb, int x0, int y0, int width, int height,
+                tg_fb_row_fn row, void *user, uint8_t *rgb_row)
+{
+    int y;
+    for (y = 0; y < height; y++) {
+        if (y0 + y < 0 || y0 + y >= fb->info.yres) continue;
+        row(user, y, rgb_row);
+        tg_fb_put_row(fb, x0, y0 + y, rgb_row, width);
+    }
+}
+
+/* ---- devices and files ---- */
+static void fb_clear(tg_fb *fb)
+{
+    memset(fb, 0, sizeof *fb);
+    fb->fd = -1;
+}
+
+void tg_fb_close(tg_fb *fb)
+{
+#ifdef __linux__
+    if (fb->map) munmap(fb->map, fb->map_size);
+    if (fb->fd >= 0) close(fb->fd);
+#endif
+    fb->map = NULL;
+    fb->screen = NULL;
+    fb->fd = -1;
+}
+
+#ifdef __linux__
+static int fb_map(tg_fb *fb, const char *path, size_t size)
+{
+    size_t need = (size_t)(fb->info.yoffset + fb->info.yres) * fb->info.line_length;
+    void *m;
+    if (size < need) {
+        snprintf(fb->error, sizeof fb->error, "%s: %lu bytes of screen memory, %lu needed for %dx%d",
+                 path, (unsigned long)size, (unsigned long)need, fb->info.xres, fb->info.yres);
+        return -1;
+    }
+    m = mmap(NULL, size, PROT_READ | PROT_WRITE, MAP_SHARED, fb->fd, 0);
+    if (m == MAP_FAILED) {
+        snprintf(fb->error, sizeof fb->error, "%s: cannot map the screen: %s", path, strerror(errno));
+        return -1;
+    }
+    fb->map = m;
+    fb->map_size = size;
+    fb->screen = fb->map + (size_t)fb->info.yoffset * fb->info.line_length +
+                 (size_t)fb->info.xoffset * (size_t)fb->bytes_per_pixel;
+    return 0;
+}
+
+static int fb_fail(tg_fb *fb)
+{
+    char keep[sizeof fb->error];
+    memcpy(keep, fb->error, sizeof keep);
+    tg_fb_close(fb);
+    memcpy(fb->error, keep, sizeof keep);
+    return -1;
+}
+
+static void fb_info_from_linux(tg_fb_info *info, const struct fb_var_screeninfo *var,
+                               const struct fb_fix_screeninfo *fix)
+{
+    memset(info, 0, sizeof *info);
+    info->xres = (int)var->xres;
+    info->yres = (int)var->yres;
+    info->xoffset = (int)var->xoffset;
+    info->yoffset = (int)var->yoffset;
+    info->bits_per_pixel = (int)var->bits_per_pixel;
+    info->line_length = fix->line_length;
+    info->red.offset = (int)var->red.offset;       info->red.length = (int)var->red.length;
+    info->green.offset = (int)var->green.offset;   info->green.length = (int)var->green.length;
+    info->blue.offset = (int)var->blue.offset;     info->blue.length = (int)var->blue.length;
+    info->transp.offset = (int)var->transp.offset; info->transp.length = (int)var->transp.length;
+}
+
+int tg_fb_open(tg_fb *fb, const char *path)
+{
+    struct fb_var_screeninfo var;
+    struct fb_fix_screeninfo fix;
+    tg_fb_info info;
+    char why[200];
+    fb_clear(fb);
+    if (!path) path = "/dev/fb0";
+    fb->fd = open(path, O_RDWR);
+    if (fb->fd < 0) {
+        snprintf(fb->error, sizeof fb->error, "%s: %s", path, strerror(errno));
+        return -1;
+    }
+    if (ioctl(fb->fd, FBIOGET_VSCREENINFO, &var) != 0 || ioctl(fb->fd, FBIOGET_FSCREENINFO, &fix) != 0) {
+        snprintf(fb->error, sizeof fb->error, "%s: not a framebuffer (screen info ioctl failed: %s)",
+                 path, strerror(errno));
+        return fb_fail(fb);
+    }
+    if (fix.type != FB_TYPE_PACKED_PIXELS || fix.visual != FB_VISUAL_TRUECOLOR ||
+        var.red.msb_right || var.green.msb_right || var.blue.msb_right) {
+        snprintf(fb->error, sizeof fb->error, "%s: unsupported framebuffer (type %u, visual %u; "
+                 "tinygi draws packed true-colour pixels)", path, fix.type, fix.visual);
+        return fb_fail(fb);
+    }
+    fb_info_from_linux(&info, &var, &fix);
+    if (fb_setup(fb, &info) != 0) {
+        memcpy(why, fb->error, sizeof why - 1);
+        why[sizeof why - 1] = 0;
+        snprintf(fb->error, sizeof fb->error, "%s: %s", path, why);
+        return fb_fail(fb);
+    }
+    if (fb_map(fb, path, fix.smem_len ? (size_t)fix.smem_len
+                                      : (size_t)var.yres_virtual * fix.line_length) != 0)
+        return fb_fail(fb);
+    return 0;
+}
+
+int tg_fb_open_file(tg_fb *fb, const char *path, const tg_fb_info *info)
+{
+    struct stat st;
+    fb_clear(fb);
+    if (fb_setup(fb, info) != 0) return -1;
+    fb->fd = open(path, O_RDWR);
+    if (fb->fd < 0) {
+        snprintf(fb->error, sizeof fb->error, "%s: %s", path, strerror(errno));
+        return -1;
+    }
+    if (fstat(fb->fd, &st) != 0 || st.st_size <= 0) {
+        snprintf(fb->error, sizeof fb->error, "%s: empty or unreadable file", path);
+        return fb_fail(fb);
+    }
+    if (fb_map(fb, path, (size_t)st.st_size) != 0) return fb_fail(fb);
+    return 0;
+}
+#else
+int tg_fb_open(tg_fb *fb, const char *path)
+{
+    fb_clear(fb);
+    snprintf(fb->error, sizeof fb->error, "%s: the Linux framebuffer is not available on this system",
+             path ? path : "/dev/fb0");
+    return -1;
+}
+
+int tg_fb_open_file(tg_fb *fb, const char *path, const tg_fb_info *info)
+{
+    (void)info;
+    return tg_fb_open(fb, path);
+}
+#endif
