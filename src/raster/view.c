@@ -1,0 +1,106 @@
+/*
+ * view.c - the camera of one frame: its orthonormal basis, projection and
+ * the maps world <-> view <-> screen (conventions in view.h: view x right,
+ * y up, z forward; depth = view z; screen (0,0) top-left, pixel centres at
+ * +0.5, square pixels).
+ *
+ * With square pixels both screen axes share one scale,
+ *   pixels_per_unit = height / 2 * focal_y = height / (2 tan(fov_y / 2)),
+ * so   sx = width / 2 + ppu x / z,   sy = height / 2 - ppu y / z
+ * and unproject is the exact inverse.  In fixed point the products x * ppu
+ * and (sx - w/2) * z are formed in 64 bits before the one division.
+ */
+#include "view.h"
+
+/* Below this sine of the angle between `up` and the view direction the up
+ * vector is treated as degenerate. */
+#define VIEW_DEGENERATE_UP TG_R(0.0009765625f)
+/* Smallest depth project() divides by. */
+#define VIEW_MIN_DEPTH TG_R(0.0000152587890625f)
+
+/* a * b / c with one rounding (c > 0). */
+static tg_real mul_div(tg_real a, tg_real b, tg_real c)
+{
+#if TG_FIXED
+    int64_t p = (int64_t)a * b, h = c / 2;
+    return tg_sat64(p >= 0 ? (p + h) / c : -((-p + h) / c));
+#else
+    return tg_clamp(a * b / c, TG_REAL_MIN, TG_REAL_MAX);
+#endif
+}
+
+/* The up vector actually used: `up` unless (nearly) parallel to `forward`,
+ * then world +Y, and when forward itself is (nearly) vertical the limit of
+ * tilting a level camera: -Z looking down, +Z looking up.  This choice
+ * gives screen-right = world +X for a camera looking straight down or up. */
+static tg_vec3 choose_up(tg_vec3 forward, tg_vec3 up)
+{
+    tg_vec3 u = tg_v3_normalize(up);
+    if (tg_v3_length(tg_v3_cross(forward, u)) >= VIEW_DEGENERATE_UP) return u;
+    u = tg_v3(0, TG_ONE, 0);
+    if (tg_v3_length(tg_v3_cross(forward, u)) >= VIEW_DEGENERATE_UP) return u;
+    return tg_v3(0, 0, forward.y < 0 ? tg_neg(TG_ONE) : TG_ONE);
+}
+
+void tg_view_make(tg_view *v, tg_vec3 eye, tg_vec3 target, tg_vec3 up,
+                  tg_real fov_y, tg_real znear, tg_real zfar, int width, int height)
+{
+    tg_vec3 f = tg_v3_normalize_or(tg_v3_sub(target, eye), tg_v3(0, 0, tg_neg(TG_ONE)));
+    tg_vec3 u = choose_up(f, up);
+    tg_vec3 r = tg_v3_normalize(tg_v3_cross(f, u));
+    if (width < 1) width = 1;
+    if (height < 1) height = 1;
+    v->width = width;
+    v->height = height;
+    v->eye = eye;
+    v->forward = f;
+    v->right = r;
+    v->up = tg_v3_normalize(tg_v3_cross(r, f));
+    v->fov_y = tg_clamp(fov_y, TG_R(0.001f), TG_R(3.1f));
+    v->tan_half_fov_y = tg_tan(tg_ldexp(v->fov_y, -1));
+    v->aspect = tg_ratio(width, height);
+    v->focal_y = tg_div(TG_ONE, v->tan_half_fov_y);
+    v->focal_x = tg_div(v->focal_y, v->aspect);
+    v->pixels_per_unit = tg_mul(tg_ldexp(tg_from_int(height), -1), v->focal_y);
+    v->znear = znear;
+    v->zfar = zfar;
+}
+
+tg_vec3 tg_view_dir_to_view(const tg_view *v, tg_vec3 d)
+{
+    return tg_v3(tg_v3_dot(d, v->right), tg_v3_dot(d, v->up), tg_v3_dot(d, v->forward));
+}
+
+tg_vec3 tg_view_world_to_view(const tg_view *v, tg_vec3 p)
+{
+    return tg_view_dir_to_view(v, tg_v3_sub(p, v->eye));
+}
+
+tg_vec3 tg_view_dir_to_world(const tg_view *v, tg_vec3 d)
+{
+    tg_vec3 r;
+    r.x = tg_v3_dot(tg_v3(v->right.x, v->up.x, v->forward.x), d);
+    r.y = tg_v3_dot(tg_v3(v->right.y, v->up.y, v->forward.y), d);
+    r.z = tg_v3_dot(tg_v3(v->right.z, v->up.z, v->forward.z), d);
+    return r;
+}
+
+tg_vec3 tg_view_view_to_world(const tg_view *v, tg_vec3 p)
+{
+    return tg_v3_add(v->eye, tg_view_dir_to_world(v, p));
+}
+
+tg_vec3 tg_view_unproject(const tg_view *v, tg_real sx, tg_real sy, tg_real depth)
+{
+    tg_real cx = tg_ldexp(tg_from_int(v->width), -1), cy = tg_ldexp(tg_from_int(v->height), -1);
+    return tg_v3(mul_div(tg_sub(sx, cx), depth, v->pixels_per_unit),
+                 mul_div(tg_sub(cy, sy), depth, v->pixels_per_unit), depth);
+}
+
+void tg_view_project(const tg_view *v, tg_vec3 pv, tg_real *sx, tg_real *sy)
+{
+    tg_real z = tg_max(pv.z, VIEW_MIN_DEPTH);
+    tg_real cx = tg_ldexp(tg_from_int(v->width), -1), cy = tg_ldexp(tg_from_int(v->height), -1);
+    *sx = tg_add(cx, mul_div(pv.x, v->pixels_per_unit, z));
+    *sy = tg_sub(cy, mul_div(pv.y, v->pixels_per_unit, z));
+}
