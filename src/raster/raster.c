@@ -1,0 +1,783 @@
+/*
+ * raster.c - the triangle rasterizer behind the G-buffer and the shadow maps.
+ *
+ * Per triangle:
+ *   1. world -> clip.  G-buffer: clip = (x fx, y fy, z, w = z) in view space
+ *      (view.h).  Depth-only: clip = world_to_clip * p.
+ *   2. outcodes: a triangle wholly outside one screen/near/far plane is
+ *      dropped; one with a vertex outside the near/far planes or the guard
+ *      band (|x|, |y| <= GUARD w) is clipped in homogeneous space
+ *      (Sutherland-Hodgman), so nothing behind the camera is ever projected
+ *      and screen coordinates stay bounded.  Most triangles skip this.
+ *   3. snap to 28.4 fixed point (4 sub-pixel bits), identical integers in
+ *      both number types; signed area decides facing (culling) and skips
+ *      zero-area triangles.
+ *   4. bounding box (clamped to the image and to rows [y0, y1)), exact
+ *      64-bit integer edge functions stepped per pixel, top-left fill rule.
+ *   5. per covered pixel: perspective-correct 1/w (depth = 1 / (1/w)
+ *      interpolated) and normal (n/w interpolated, renormalized), depth
+ *      test on linear depth, G-buffer writes.
+ *
+ * Interpolation differs by number type only where the representation
+ * forces it: float uses attribute planes stepped per pixel; Q16.16 uses
+ * exact integer barycentrics (the edge functions) weighting per-vertex
+ * values held in Q30, so depth keeps ~2^-30 relative precision of 1/w from
+ * near 0.05 to far 1000 with no per-triangle division.
+ */
+#include <string.h>
+#include "raster.h"
+
+#define SUB 16                    /* sub-pixels per pixel (28.4) */
+#define HALF_SUB 8                /* pixel centre offset */
+#define GUARD 8                   /* guard band, in NDC units */
+#define COORD_LIMIT (1 << 20)     /* |28.4 coordinate| bound (GUARD+1 screens of 8192/2 px * 16) */
+#define DIV_OFFSET (1 << 22)      /* a multiple of 16 above COORD_LIMIT for floor division */
+#define MAX_POLY 12               /* 3 vertices + one per clip plane, with room */
+
+/* ---------------------------------------------------------------------- */
+/* small integer helpers                                                   */
+
+#if TG_FIXED
+static int bit_length64(uint64_t v)
+{
+#if defined(__GNUC__)
+    return v ? 64 - __builtin_clzll(v) : 0;
+#else
+    int n = 0;
+    while (v) { n++; v >>= 1; }
+    return n;
+#endif
+}
+#endif
+
+/* floor(v / 16) and ceil(v / 16) for |v| < DIV_OFFSET, no negative shifts. */
+static int floor_div_sub(int64_t v) { return (int)((v + DIV_OFFSET) >> 4) - (DIV_OFFSET >> 4); }
+static int ceil_div_sub(int64_t v) { return floor_div_sub(v + SUB - 1); }
+
+static int32_t clamp_coord(int64_t v)
+{
+    return (int32_t)(v > COORD_LIMIT ? COORD_LIMIT : v < -COORD_LIMIT ? -COORD_LIMIT : v);
+}
+
+/* ---------------------------------------------------------------------- */
+/* edge functions and the fill rule                                        */
+
+typedef struct tri_edges {
+    int x0, x1, y0, y1;           /* pixel box [x0, x1) x [y0, y1) */
+    int64_t e[3];                 /* biased edge functions at the centre of pixel (x0, y0) */
+    int64_t step_x[3], step_y[3]; /* change per pixel right / down */
+    int64_t bias[3];              /* 0 on top-left edges, -1 elsewhere */
+    int64_t area2;                /* twice the area, > 0, in sub-pixels^2 */
+    int32_t cx, cy;               /* sub-pixel position of that pixel centre */
+} tri_edges;
+
+/* Set up the three edge functions of a triangle with area2 > 0 in 28.4
+ * screen space (y down).  Edge i is opposite vertex i; E_i(p) >= 0 inside.
+ * Returns 0 when the box holds no pixel centre. */
+static int edges_setup(tri_edges *t, const int32_t *x, const int32_t *y, int64_t area2,
+                       int width, int row0, int row1)
+{
+    int32_t minx = x[0], maxx = x[0], miny = y[0], maxy = y[0];
+    int i;
+    if (x[1] < minx) minx = x[1];
+    if (x[1] > maxx) maxx = x[1];
+    if (x[2] < minx) minx = x[2];
+    if (x[2] > maxx) maxx = x[2];
+    if (y[1] < miny) miny = y[1];
+    if (y[1] > maxy) maxy = y[1];
+    if (y[2] < miny) miny = y[2];
+    if (y[2] > maxy) maxy = y[2];
+    /* pixel centres px*16+8 within [min, max] */
+    t->x0 = ceil_div_sub((int64_t)minx - HALF_SUB);
+    t->x1 = floor_div_sub((int64_t)maxx - HALF_SUB) + 1;
+    t->y0 = ceil_div_sub((int64_t)miny - HALF_SUB);
+    t->y1 = floor_div_sub((int64_t)maxy - HALF_SUB) + 1;
+    if (t->x0 < 0) t->x0 = 0;
+    if (t->x1 > width) t->x1 = width;
+    if (t->y0 < row0) t->y0 = row0;
+    if (t->y1 > row1) t->y1 = row1;
+    if (t->x0 >= t->x1 || t->y0 >= t->y1) return 0;
+    t->area2 = area2;
+    t->cx = t->x0 * SUB + HALF_SUB;
+    t->cy = t->y0 * SUB + HALF_SUB;
+    for (i = 0; i < 3; i++) {
+        int a = i == 2 ? 0 : i + 1, b = i == 0 ? 2 : i - 1;
+        int64_t dx = (int64_t)x[b] - x[a], dy = (int64_t)y[b] - y[a];
+        /* E(p) = dx (p.y - a.y) - dy (p.x - a.x); top-left: dy < 0 (left) or dy == 0, dx > 0 (top) */
+        t->bias[i] = (dy < 0 || (dy == 0 && dx > 0)) ? 0 : -1;
+        t->e[i] = dx * ((int64_t)t->cy - y[a]) - dy * ((int64_t)t->cx - x[a]) + t->bias[i];
+        t->step_x[i] = -dy * SUB;
+        t->step_y[i] = dx * SUB;
+    }
+    return 1;
+}
+
+static int64_t signed_area2(const int32_t *x, const int32_t *y)
+{
+    return ((int64_t)x[1] - x[0]) * ((int64_t)y[2] - y[0]) - ((int64_t)y[1] - y[0]) * ((int64_t)x[2] - x[0]);
+}
+
+void tg_raster_coverage_count(uint16_t *count, int width, int height,
+                              const int32_t *xy, int tri_count, int y0, int y1)
+{
+    int t;
+    if (y0 < 0) y0 = 0;
+    if (y1 > height) y1 = height;
+    for (t = 0; t < tri_count; t++) {
+        int32_t x[3], y[3];
+        int64_t area2;
+        tri_edges te;
+        int row, col, k;
+        for (k = 0; k < 3; k++) {
+            x[k] = clamp_coord(xy[t * 6 + 2 * k]);
+            y[k] = clamp_coord(xy[t * 6 + 2 * k + 1]);
+        }
+        area2 = signed_area2(x, y);
+        if (area2 == 0) continue;
+        if (area2 < 0) {
+            int32_t s = x[1]; x[1] = x[2]; x[2] = s;
+            s = y[1]; y[1] = y[2]; y[2] = s;
+            area2 = -area2;
+        }
+        if (!edges_setup(&te, x, y, area2, width, y0, y1)) continue;
+        for (row = te.y0; row < te.y1; row++) {
+            int64_t dy = row - te.y0;
+            int64_t e0 = te.e[0] + dy * te.step_y[0];
+            int64_t e1 = te.e[1] + dy * te.step_y[1];
+            int64_t e2 = te.e[2] + dy * te.step_y[2];
+            uint16_t *line = count + (size_t)row * (size_t)width;
+            for (col = te.x0; col < te.x1; col++) {
+                if ((e0 | e1 | e2) >= 0) line[col]++;
+                e0 += te.step_x[0]; e1 += te.step_x[1]; e2 += te.step_x[2];
+            }
+        }
+    }
+}
+
+/* ---------------------------------------------------------------------- */
+/* clipping in homogeneous space                                           */
+
+typedef struct clip_vertex {
+    tg_real x, y, z, w;
+    tg_vec3 n;                    /* world normal (G-buffer mode) */
+} clip_vertex;
+
+enum { MODE_GBUFFER, MODE_PERSPECTIVE, MODE_ORTHO };
+enum { PL_LEFT, PL_RIGHT, PL_BOTTOM, PL_TOP, PL_NEAR, PL_FAR, PL_COUNT };
+
+typedef struct clip_ctx {
+    int mode;
+    tg_real znear, zfar;          /* G-buffer mode */
+} clip_ctx;
+
+#define GUARD_R TG_R(8.0f)
+
+/* Signed distance of v to plane p (>= 0 inside). */
+static tg_real plane_distance(const clip_ctx *c, const clip_vertex *v, int p)
+{
+    switch (p) {
+    case PL_LEFT: return tg_add(v->x, tg_mul(GUARD_R, v->w));
+    case PL_RIGHT: return tg_sub(tg_mul(GUARD_R, v->w), v->x);
+    case PL_BOTTOM: return tg_add(v->y, tg_mul(GUARD_R, v->w));
+    case PL_TOP: return tg_sub(tg_mul(GUARD_R, v->w), v->y);
+    case PL_NEAR:
+        if (c->mode == MODE_GBUFFER) return tg_sub(v->w, c->znear);
+        if (c->mode == MODE_PERSPECTIVE) return tg_add(v->z, v->w);
+        return v->z;
+    default:
+        if (c->mode == MODE_GBUFFER) return tg_sub(c->zfar, v->w);
+        if (c->mode == MODE_PERSPECTIVE) return tg_sub(v->w, v->z);
+        return TG_ONE;
+    }
+}
+
+/* Put a new vertex exactly on plane p (the lerp rounds). */
+static void snap_to_plane(const clip_ctx *c, clip_vertex *v, int p)
+{
+    switch (p) {
+    case PL_LEFT: v->x = tg_neg(tg_mul(GUARD_R, v->w)); break;
+    case PL_RIGHT: v->x = tg_mul(GUARD_R, v->w); break;
+    case PL_BOTTOM: v->y = tg_neg(tg_mul(GUARD_R, v->w)); break;
+    case PL_TOP: v->y = tg_mul(GUARD_R, v->w); break;
+    case PL_NEAR:
+        if (c->mode == MODE_GBUFFER) v->z = v->w = c->znear;
+        else if (c->mode == MODE_PERSPECTIVE) v->z = tg_neg(v->w);
+        else v->z = 0;
+        break;
+    default:
+        if (c->mode == MODE_GBUFFER) v->z = v->w = c->zfar;
+        else if (c->mode == MODE_PERSPECTIVE) v->z = v->w;
+        break;
+    }
+}
+
+static clip_vertex clip_lerp(const clip_vertex *a, const clip_vertex *b, tg_real t)
+{
+    clip_vertex r;
+    r.x = tg_lerp(a->x, b->x, t);
+    r.y = tg_lerp(a->y, b->y, t);
+    r.z = tg_lerp(a->z, b->z, t);
+    r.w = tg_lerp(a->w, b->w, t);
+    r.n = tg_v3_lerp(a->n, b->n, t);
+    return r;
+}
+
+/* Outcode bits: 0..5 outside the guard band / near / far planes (clip
+ * needed); 8..13 outside the screen planes |x|, |y| <= w, near, far. */
+#define OUT_GUARD_MASK 0x3Fu
+#define OUT_SCREEN_SHIFT 8
+static unsigned outcode(const clip_ctx *c, const clip_vertex *v)
+{
+    unsigned code = 0;
+    tg_real gw = tg_mul(GUARD_R, v->w), nw = tg_neg(v->w), ngw = tg_neg(gw);
+    if (v->x < ngw) code |= 1u << PL_LEFT;
+    if (v->x > gw) code |= 1u << PL_RIGHT;
+    if (v->y < ngw) code |= 1u << PL_BOTTOM;
+    if (v->y > gw) code |= 1u << PL_TOP;
+    if (plane_distance(c, v, PL_NEAR) < 0) code |= 1u << PL_NEAR;
+    if (plane_distance(c, v, PL_FAR) < 0) code |= 1u << PL_FAR;
+    if (v->x < nw) code |= 1u << (OUT_SCREEN_SHIFT + PL_LEFT);
+    if (v->x > v->w) code |= 1u << (OUT_SCREEN_SHIFT + PL_RIGHT);
+    if (v->y < nw) code |= 1u << (OUT_SCREEN_SHIFT + PL_BOTTOM);
+    if (v->y > v->w) code |= 1u << (OUT_SCREEN_SHIFT + PL_TOP);
+    code |= (code & ((1u << PL_NEAR) | (1u << PL_FAR))) << OUT_SCREEN_SHIFT;
+    return code;
+}
+
+/* Sutherland-Hodgman against the planes in `planes`; returns the vertex
+ * count of the clipped convex polygon (0 when nothing is left). */
+static int clip_polygon(const clip_ctx *c, clip_vertex *poly, int n, unsigned planes)
+{
+    clip_vertex tmp[MAX_POLY];
+    int p;
+    for (p = 0; p < PL_COUNT && n > 0; p++) {
+        int i, m = 0;
+        if (!(planes & (1u << p))) continue;
+        for (i = 0; i < n; i++) {
+            const clip_vertex *a = &poly[i], *b = &poly[i + 1 == n ? 0 : i + 1];
+            tg_real da = plane_distance(c, a, p), db = plane_distance(c, b, p);
+            if (da >= 0) tmp[m++] = *a;
+            if ((da >= 0) != (db >= 0) && m < MAX_POLY) {
+                /* da and db differ in sign: t = da / (da - db) in [0, 1] */
+                tg_real t = tg_clamp(tg_div(da, tg_sub(da, db)), 0, TG_ONE);
+                tmp[m] = clip_lerp(a, b, t);
+                snap_to_plane(c, &tmp[m], p);
+                m++;
+            }
+        }
+        n = m;
+        memcpy(poly, tmp, (size_t)n * sizeof *poly);
+    }
+    return n;
+}
+
+/* ---------------------------------------------------------------------- */
+/* snapping to 28.4                                                        */
+
+/* round(c / w * half16): NDC coordinate to sub-pixels from the image centre. */
+static int32_t snap_ndc(tg_real c, tg_real w, int32_t half16)
+{
+#if TG_FIXED
+    int64_t n = (int64_t)c * half16, h = w / 2;
+    if (w <= 0) return 0;
+    return clamp_coord(n >= 0 ? (n + h) / w : -((-n + h) / w));
+#else
+    float v;
+    if (!(w > 0.0f)) return 0;
+    v = c / w * (float)half16;
+    if (v > (float)COORD_LIMIT) v = (float)COORD_LIMIT;
+    if (v < -(float)COORD_LIMIT) v = -(float)COORD_LIMIT;
+    return (int32_t)(v >= 0.0f ? v + 0.5f : v - 0.5f);
+#endif
+}
+
+/* ---------------------------------------------------------------------- */
+/* per-pixel normalization                                                 */
+
+#if TG_FIXED
+/* rsqrt at the midpoints of [1, 4) split in 24 steps of 1/8, Q30. */
+static const uint32_t rsqrt_seed[24] = {
+    1041682578u, 985333074u, 937238702u, 895562589u, 858993459u, 826566842u,
+    797555404u, 771398898u, 747657839u, 725981977u, 706088274u, 687745184u,
+    670761200u, 654976372u, 640255922u, 626485368u, 613566757u, 601415717u,
+    589959130u, 579133272u, 568882316u, 559157115u, 549914212u, 541115017u };
+
+static int64_t asr64(int64_t v, int s) { return v >= 0 ? v >> s : -((-v) >> s); }
+
+/* Unit vector (Q16.16) along m (|m_i| < 2^31).  Table seed within 3.2%, two
+ * Newton steps for 1/sqrt (rel. error 3e-6, below the Q16.16 ulp).
+ * Returns 0 for the zero vector. */
+static int unit_q16(int64_t mx, int64_t my, int64_t mz, tg_real *n)
+{
+    uint64_t len2 = (uint64_t)(mx * mx) + (uint64_t)(my * my) + (uint64_t)(mz * mz);
+    uint64_t x30, y, t;
+    int b = bit_length64(len2), shift;
+    if (b == 0) return 0;
+    if (b >= 31) {
+        int k = (b - 31) >> 1;
+        x30 = len2 >> (2 * k);
+        shift = 29 + k;
+    } else {
+        int k = (32 - b) >> 1;
+        x30 = len2 << (2 * k);
+        shift = 29 - k;
+    }
+    /* x30 in [2^30, 2^32): X = x30 / 2^30 in [1, 4) */
+    y = rsqrt_seed[(x30 >> 27) - 8];
+    t = (((y * y) >> 30) * x30) >> 30;            /* X y^2, Q30 */
+    y = (y * ((3u << 30) - t)) >> 31;             /* Newton: y (3 - X y^2) / 2 */
+    t = (((y * y) >> 30) * x30) >> 30;
+    y = (y * ((3u << 30) - t)) >> 31;
+    n[0] = (tg_real)asr64(mx * (int64_t)y, shift);
+    n[1] = (tg_real)asr64(my * (int64_t)y, shift);
+    n[2] = (tg_real)asr64(mz * (int64_t)y, shift);
+    return 1;
+}
+#else
+/* 1/sqrt(x) for normal x > 0: bit-trick seed (within 0.18% after the first
+ * step) and two Newton steps, rel. error < 5e-6. */
+static float pixel_rsqrt(float x)
+{
+    union { float f; uint32_t u; } b;
+    float y;
+    b.f = x;
+    b.u = 0x5f375a86u - (b.u >> 1);
+    y = b.f;
+    y = y * (1.5f - 0.5f * x * y * y);
+    y = y * (1.5f - 0.5f * x * y * y);
+    return y;
+}
+#endif
+
+/* ---------------------------------------------------------------------- */
+/* the G-buffer                                                            */
+
+void tg_gbuffer_clear_rows(tg_gbuffer *gb, int y0, int y1)
+{
+    size_t a, n;
+    if (y0 < 0) y0 = 0;
+    if (y1 > gb->height) y1 = gb->height;
+    if (y0 >= y1) return;
+    a = (size_t)y0 * (size_t)gb->width;
+    n = (size_t)(y1 - y0) * (size_t)gb->width;
+    memset(gb->depth + a, 0, n * sizeof(tg_real));
+    memset(gb->nx + a, 0, n * sizeof(tg_real));
+    memset(gb->ny + a, 0, n * sizeof(tg_real));
+    memset(gb->nz + a, 0, n * sizeof(tg_real));
+    memset(gb->albedo_r + a, 0, n * sizeof(tg_real));
+    memset(gb->albedo_g + a, 0, n * sizeof(tg_real));
+    memset(gb->albedo_b + a, 0, n * sizeof(tg_real));
+    memset(gb->f0 + a, 0, n * sizeof(tg_real));
+    if (gb->emit_r) {
+        memset(gb->emit_r + a, 0, n * sizeof(tg_real));
+        memset(gb->emit_g + a, 0, n * sizeof(tg_real));
+        memset(gb->emit_b + a, 0, n * sizeof(tg_real));
+    }
+    memset(gb->sky + a, 1, n);
+    if (gb->object) memset(gb->object + a, 0xFF, n * sizeof(uint16_t));
+}
+
+/* What every pixel of one triangle shares. */
+typedef struct surface {
+    tg_real albedo_r, albedo_g, albedo_b, f0, emit_r, emit_g, emit_b;
+    uint16_t object;
+    tg_vec3 fallback_normal;      /* if the interpolated normal vanishes */
+} surface;
+
+/* One triangle ready to draw: screen vertices ordered so area2 > 0. */
+typedef struct screen_tri {
+    int32_t x[3], y[3];
+    tg_real w[3], z[3];
+    tg_vec3 n[3];
+} screen_tri;
+
+#if TG_FIXED
+
+/* Exact barycentrics: u_i = unbiased edge function >> s (<= 2^30). */
+typedef struct bary_setup {
+    int s, sm;                    /* weight shift; normal shift */
+    int64_t wq;                   /* w_min << 30 */
+    int64_t q[3];                 /* w_min / w_i, Q30 */
+    int64_t nq[3][3];             /* n_i q_i, Q30 */
+    int64_t z[3];                 /* clip z (orthographic depth), Q16.16 */
+} bary_setup;
+
+static void bary_make(bary_setup *b, const screen_tri *st, const tri_edges *te)
+{
+    tg_real wmin = st->w[0];
+    int i, bl;
+    if (st->w[1] < wmin) wmin = st->w[1];
+    if (st->w[2] < wmin) wmin = st->w[2];
+    if (wmin < 1) wmin = 1;
+    b->s = bit_length64((uint64_t)te->area2) - 30;
+    if (b->s < 0) b->s = 0;
+    bl = bit_length64((uint64_t)te->area2 >> b->s);
+    b->sm = bl > 0 ? bl - 1 : 0;
+    b->wq = (int64_t)wmin << 30;
+    for (i = 0; i < 3; i++) {
+        int64_t w = st->w[i] < wmin ? wmin : st->w[i];
+        b->q[i] = b->wq / w;
+        b->nq[i][0] = asr64((int64_t)st->n[i].x * b->q[i], 16);
+        b->nq[i][1] = asr64((int64_t)st->n[i].y * b->q[i], 16);
+        b->nq[i][2] = asr64((int64_t)st->n[i].z * b->q[i], 16);
+        b->z[i] = st->z[i];
+    }
+}
+
+static void gbuffer_rows(tg_gbuffer *gb, const tri_edges *te, const screen_tri *st, const surface *sf)
+{
+    bary_setup b;
+    int row, col, W = gb->width;
+    bary_make(&b, st, te);
+    for (row = te->y0; row < te->y1; row++) {
+        int64_t dy = row - te->y0;
+        int64_t e0 = te->e[0] + dy * te->step_y[0];
+        int64_t e1 = te->e[1] + dy * te->step_y[1];
+        int64_t e2 = te->e[2] + dy * te->step_y[2];
+        size_t i = (size_t)row * (size_t)W + (size_t)te->x0;
+        int seen = 0;
+        for (col = te->x0; col < te->x1; col++, i++,
+             e0 += te->step_x[0], e1 += te->step_x[1], e2 += te->step_x[2]) {
+            int64_t u0, u1, u2, su, qp;
+            tg_real n[3];
+            if ((e0 | e1 | e2) < 0) {
+                if (seen) break;
+                continue;
+            }
+            seen = 1;
+            u0 = (e0 - te->bias[0]) >> b.s;
+            u1 = (e1 - te->bias[1]) >> b.s;
+            u2 = (e2 - te->bias[2]) >> b.s;
+            su = u0 + u1 + u2;
+            if (su <= 0) continue;
+            qp = (u0 * b.q[0] + u1 * b.q[1] + u2 * b.q[2]) / su; /* 1/w, Q30 of w_min/w */
+            if (qp < 1) qp = 1;
+            if (!gb->sky[i] && b.wq >= qp * gb->depth[i]) continue;
+            if (!unit_q16(asr64(u0 * b.nq[0][0] + u1 * b.nq[1][0] + u2 * b.nq[2][0], b.sm),
+                          asr64(u0 * b.nq[0][1] + u1 * b.nq[1][1] + u2 * b.nq[2][1], b.sm),
+                          asr64(u0 * b.nq[0][2] + u1 * b.nq[1][2] + u2 * b.nq[2][2], b.sm), n)) {
+                n[0] = sf->fallback_normal.x; n[1] = sf->fallback_normal.y; n[2] = sf->fallback_normal.z;
+            }
+            gb->depth[i] = tg_sat64((b.wq + qp / 2) / qp);
+            gb->nx[i] = n[0]; gb->ny[i] = n[1]; gb->nz[i] = n[2];
+            gb->albedo_r[i] = sf->albedo_r; gb->albedo_g[i] = sf->albedo_g; gb->albedo_b[i] = sf->albedo_b;
+            gb->f0[i] = sf->f0;
+            if (gb->emit_r) { gb->emit_r[i] = sf->emit_r; gb->emit_g[i] = sf->emit_g; gb->emit_b[i] = sf->emit_b; }
+            if (gb->object) gb->object[i] = sf->object;
+            gb->sky[i] = 0;
+        }
+    }
+}
+
+static void depth_rows(tg_real *depth, int W, const tri_edges *te, const screen_tri *st, int ortho)
+{
+    bary_setup b;
+    int row, col;
+    bary_make(&b, st, te);
+    for (row = te->y0; row < te->y1; row++) {
+        int64_t dy = row - te->y0;
+        int64_t e0 = te->e[0] + dy * te->step_y[0];
+        int64_t e1 = te->e[1] + dy * te->step_y[1];
+        int64_t e2 = te->e[2] + dy * te->step_y[2];
+        size_t i = (size_t)row * (size_t)W + (size_t)te->x0;
+        int seen = 0;
+        for (col = te->x0; col < te->x1; col++, i++,
+             e0 += te->step_x[0], e1 += te->step_x[1], e2 += te->step_x[2]) {
+            int64_t u0, u1, u2, su, v;
+            if ((e0 | e1 | e2) < 0) {
+                if (seen) break;
+                continue;
+            }
+            seen = 1;
+            u0 = (e0 - te->bias[0]) >> b.s;
+            u1 = (e1 - te->bias[1]) >> b.s;
+            u2 = (e2 - te->bias[2]) >> b.s;
+            su = u0 + u1 + u2;
+            if (su <= 0) continue;
+            if (ortho) {
+                v = u0 * b.z[0] + u1 * b.z[1] + u2 * b.z[2];
+                v = v >= 0 ? (v + su / 2) / su : -((-v + su / 2) / su);
+                if (v < depth[i]) depth[i] = (tg_real)v;
+            } else {
+                v = (u0 * b.q[0] + u1 * b.q[1] + u2 * b.q[2]) / su;
+                if (v < 1) v = 1;
+                if (b.wq < v * depth[i]) depth[i] = tg_sat64((b.wq + v / 2) / v);
+            }
+        }
+    }
+}
+
+#else /* float */
+
+/* An attribute plane: value at the centre of pixel (x0, y0) and its change
+ * per pixel right and down. */
+typedef struct plane { float v, dx, dy; } plane;
+
+typedef struct plane_basis {
+    float fy20, fy01, fx02, fx10, inv_area, ox, oy;
+} plane_basis;
+
+static void plane_basis_make(plane_basis *pb, const screen_tri *st, const tri_edges *te)
+{
+    pb->fy20 = (float)(st->y[2] - st->y[0]);
+    pb->fy01 = (float)(st->y[0] - st->y[1]);
+    pb->fx02 = (float)(st->x[0] - st->x[2]);
+    pb->fx10 = (float)(st->x[1] - st->x[0]);
+    pb->inv_area = 1.0f / (float)te->area2;
+    pb->ox = (float)(te->cx - st->x[0]);
+    pb->oy = (float)(te->cy - st->y[0]);
+}
+
+/* a(p) = a0 + lambda1 (a1 - a0) + lambda2 (a2 - a0), lambda from the edge functions. */
+static plane plane_make(const plane_basis *pb, float a0, float a1, float a2)
+{
+    plane p;
+    float d1 = a1 - a0, d2 = a2 - a0;
+    float gx = (d1 * pb->fy20 + d2 * pb->fy01) * pb->inv_area;
+    float gy = (d1 * pb->fx02 + d2 * pb->fx10) * pb->inv_area;
+    p.v = a0 + gx * pb->ox + gy * pb->oy;
+    p.dx = gx * (float)SUB;
+    p.dy = gy * (float)SUB;
+    return p;
+}
+
+static void gbuffer_rows(tg_gbuffer *gb, const tri_edges *te, const screen_tri *st, const surface *sf)
+{
+    plane_basis pb;
+    plane pq, pnx, pny, pnz;
+    float wmin = st->w[0], q[3];
+    int row, col, k, W = gb->width;
+    tg_real *depth = gb->depth;
+    uint8_t *sky = gb->sky;
+    if (st->w[1] < wmin) wmin = st->w[1];
+    if (st->w[2] < wmin) wmin = st->w[2];
+    for (k = 0; k < 3; k++) q[k] = wmin / st->w[k];
+    plane_basis_make(&pb, st, te);
+    pq = plane_make(&pb, q[0], q[1], q[2]);
+    pnx = plane_make(&pb, st->n[0].x * q[0], st->n[1].x * q[1], st->n[2].x * q[2]);
+    pny = plane_make(&pb, st->n[0].y * q[0], st->n[1].y * q[1], st->n[2].y * q[2]);
+    pnz = plane_make(&pb, st->n[0].z * q[0], st->n[1].z * q[1], st->n[2].z * q[2]);
+    for (row = te->y0; row < te->y1; row++) {
+        int64_t dy64 = row - te->y0;
+        float dy = (float)dy64;
+        int64_t e0 = te->e[0] + dy64 * te->step_y[0];
+        int64_t e1 = te->e[1] + dy64 * te->step_y[1];
+        int64_t e2 = te->e[2] + dy64 * te->step_y[2];
+        float qv = pq.v + pq.dy * dy;
+        float mx = pnx.v + pnx.dy * dy, my = pny.v + pny.dy * dy, mz = pnz.v + pnz.dy * dy;
+        size_t i = (size_t)row * (size_t)W + (size_t)te->x0;
+        int seen = 0;
+        for (col = te->x0; col < te->x1; col++, i++,
+             e0 += te->step_x[0], e1 += te->step_x[1], e2 += te->step_x[2],
+             qv += pq.dx, mx += pnx.dx, my += pny.dx, mz += pnz.dx) {
+            float len2, r;
+            if ((e0 | e1 | e2) < 0) {
+                if (seen) break;
+                continue;
+            }
+            seen = 1;
+            if (!(qv > 0.0f)) continue;
+            if (!sky[i] && wmin >= qv * depth[i]) continue;
+            len2 = mx * mx + my * my + mz * mz;
+            depth[i] = wmin / qv;
+            if (len2 > 1e-30f) {
+                r = pixel_rsqrt(len2);
+                gb->nx[i] = mx * r; gb->ny[i] = my * r; gb->nz[i] = mz * r;
+            } else {
+                gb->nx[i] = sf->fallback_normal.x; gb->ny[i] = sf->fallback_normal.y; gb->nz[i] = sf->fallback_normal.z;
+            }
+            gb->albedo_r[i] = sf->albedo_r; gb->albedo_g[i] = sf->albedo_g; gb->albedo_b[i] = sf->albedo_b;
+            gb->f0[i] = sf->f0;
+            if (gb->emit_r) { gb->emit_r[i] = sf->emit_r; gb->emit_g[i] = sf->emit_g; gb->emit_b[i] = sf->emit_b; }
+            if (gb->object) gb->object[i] = sf->object;
+            sky[i] = 0;
+        }
+    }
+}
+
+static void depth_rows(tg_real *depth, int W, const tri_edges *te, const screen_tri *st, int ortho)
+{
+    plane_basis pb;
+    plane pa;
+    float wmin = st->w[0];
+    int row, col;
+    if (st->w[1] < wmin) wmin = st->w[1];
+    if (st->w[2] < wmin) wmin = st->w[2];
+    plane_basis_make(&pb, st, te);
+    if (ortho) pa = plane_make(&pb, st->z[0], st->z[1], st->z[2]);
+    else pa = plane_make(&pb, wmin / st->w[0], wmin / st->w[1], wmin / st->w[2]);
+    for (row = te->y0; row < te->y1; row++) {
+        int64_t dy64 = row - te->y0;
+        int64_t e0 = te->e[0] + dy64 * te->step_y[0];
+        int64_t e1 = te->e[1] + dy64 * te->step_y[1];
+        int64_t e2 = te->e[2] + dy64 * te->step_y[2];
+        float a = pa.v + pa.dy * (float)dy64;
+        size_t i = (size_t)row * (size_t)W + (size_t)te->x0;
+        int seen = 0;
+        for (col = te->x0; col < te->x1; col++, i++,
+             e0 += te->step_x[0], e1 += te->step_x[1], e2 += te->step_x[2], a += pa.dx) {
+            if ((e0 | e1 | e2) < 0) {
+                if (seen) break;
+                continue;
+            }
+            seen = 1;
+            if (ortho) {
+                if (a < depth[i]) depth[i] = a;
+            } else if (a > 0.0f && wmin < a * depth[i]) {
+                depth[i] = wmin / a;
+            }
+        }
+    }
+}
+
+#endif
+
+/* ---------------------------------------------------------------------- */
+/* triangles                                                               */
+
+typedef struct raster_target {
+    int width, height, row0, row1;
+    int32_t half_w16, half_h16;   /* width * 8, height * 8 */
+    clip_ctx clip;
+    tg_gbuffer *gb;               /* G-buffer mode */
+    const surface *sf;
+    int cull_back, flip_back;     /* G-buffer: one-sided / twosided */
+    tg_real *depth;               /* depth-only mode */
+} raster_target;
+
+static void draw_screen_tri(const raster_target *rt, const screen_tri *st, int64_t area2)
+{
+    tri_edges te;
+    if (!edges_setup(&te, st->x, st->y, area2, rt->width, rt->row0, rt->row1)) return;
+    if (rt->gb) gbuffer_rows(rt->gb, &te, st, rt->sf);
+    else depth_rows(rt->depth, rt->width, &te, st, rt->clip.mode == MODE_ORTHO);
+}
+
+/* Draw a convex clip-space polygon (all vertices inside near/far and the
+ * guard band) as a fan, facing decided once from its whole signed area. */
+static void draw_polygon(const raster_target *rt, const clip_vertex *poly, int n)
+{
+    int32_t sx[MAX_POLY], sy[MAX_POLY];
+    int64_t total = 0;
+    int i, front, flip;
+    for (i = 0; i < n; i++) {
+        if (poly[i].w <= 0) return;               /* a degenerate projection: nothing in front */
+        sx[i] = rt->half_w16 + snap_ndc(poly[i].x, poly[i].w, rt->half_w16);
+        sy[i] = rt->half_h16 - snap_ndc(poly[i].y, poly[i].w, rt->half_h16);
+    }
+    for (i = 0; i < n; i++) {
+        int j = i + 1 == n ? 0 : i + 1;
+        total += (int64_t)sx[i] * sy[j] - (int64_t)sx[j] * sy[i];
+    }
+    if (total == 0) return;                       /* zero area */
+    front = total < 0;                            /* counter-clockwise as seen, y down */
+    if (rt->gb && !front && rt->cull_back) return;
+    flip = rt->gb && !front && rt->flip_back;
+    for (i = 1; i + 1 < n; i++) {
+        screen_tri st;
+        int idx[3], k;
+        int64_t area2;
+        idx[0] = 0;
+        idx[1] = front ? i + 1 : i;               /* order so area2 > 0 */
+        idx[2] = front ? i : i + 1;
+        for (k = 0; k < 3; k++) {
+            const clip_vertex *v = &poly[idx[k]];
+            st.x[k] = sx[idx[k]]; st.y[k] = sy[idx[k]];
+            st.w[k] = v->w; st.z[k] = v->z;
+            st.n[k] = flip ? tg_v3_neg(v->n) : v->n;
+        }
+        area2 = signed_area2(st.x, st.y);
+        if (area2 <= 0) continue;                 /* sliver of the opposite facing */
+        draw_screen_tri(rt, &st, area2);
+    }
+}
+
+/* One clip-space triangle: reject, clip if needed, draw. */
+static void draw_clip_tri(const raster_target *rt, clip_vertex *v)
+{
+    unsigned c0 = outcode(&rt->clip, &v[0]), c1 = outcode(&rt->clip, &v[1]), c2 = outcode(&rt->clip, &v[2]);
+    clip_vertex poly[MAX_POLY];
+    int n;
+    if ((c0 & c1 & c2) >> OUT_SCREEN_SHIFT) return;   /* wholly outside one plane */
+    if (!((c0 | c1 | c2) & OUT_GUARD_MASK)) {
+        draw_polygon(rt, v, 3);
+        return;
+    }
+    poly[0] = v[0]; poly[1] = v[1]; poly[2] = v[2];
+    n = clip_polygon(&rt->clip, poly, 3, (c0 | c1 | c2) & OUT_GUARD_MASK);
+    if (n >= 3) draw_polygon(rt, poly, n);
+}
+
+static int target_rows(raster_target *rt, int width, int height, int y0, int y1)
+{
+    if (width <= 0 || height <= 0 || width > TG_RASTER_MAX_SIZE || height > TG_RASTER_MAX_SIZE) return 0;
+    rt->width = width;
+    rt->height = height;
+    rt->row0 = y0 < 0 ? 0 : y0;
+    rt->row1 = y1 > height ? height : y1;
+    rt->half_w16 = (int32_t)width * (SUB / 2);
+    rt->half_h16 = (int32_t)height * (SUB / 2);
+    return rt->row0 < rt->row1;
+}
+
+void tg_raster_gbuffer(tg_gbuffer *gb, const tg_view *view, const tg_raster_mesh *mesh, int y0, int y1)
+{
+    raster_target rt;
+    surface sf;
+    tg_vec3 rx = tg_v3_scale(view->right, view->focal_x);
+    tg_vec3 ry = tg_v3_scale(view->up, view->focal_y);
+    tg_vec3 rz = view->forward;
+    int t, k;
+    memset(&rt, 0, sizeof rt);
+    if (!target_rows(&rt, gb->width, gb->height, y0, y1)) return;
+    rt.clip.mode = MODE_GBUFFER;
+    rt.clip.znear = view->znear > 0 ? view->znear : TG_EPS;
+    rt.clip.zfar = view->zfar > rt.clip.znear ? view->zfar : tg_add(rt.clip.znear, TG_ONE);
+    rt.gb = gb;
+    rt.sf = &sf;
+    for (t = 0; t < mesh->tri_count; t++) {
+        clip_vertex v[3];
+        const tg_material *mat = &mesh->materials[mesh->tri_material[t]];
+        for (k = 0; k < 3; k++) {
+            tg_vec3 d = tg_v3_sub(mesh->pos[3 * t + k], view->eye);
+            v[k].x = tg_v3_dot(d, rx);
+            v[k].y = tg_v3_dot(d, ry);
+            v[k].w = v[k].z = tg_v3_dot(d, rz);
+            v[k].n = mesh->nrm[3 * t + k];
+        }
+        rt.cull_back = !mat->twosided;
+        rt.flip_back = mat->twosided;
+        sf.albedo_r = mat->albedo.x; sf.albedo_g = mat->albedo.y; sf.albedo_b = mat->albedo.z;
+        sf.f0 = mat->f0;
+        sf.emit_r = mat->emissive.x; sf.emit_g = mat->emissive.y; sf.emit_b = mat->emissive.z;
+        sf.object = mesh->tri_object ? mesh->tri_object[t] : 0;
+        sf.fallback_normal = mesh->nrm[3 * t];
+        draw_clip_tri(&rt, v);
+    }
+}
+
+void tg_raster_depth(tg_real *depth, int width, int height, const tg_mat4 *world_to_clip,
+                     int orthographic, const tg_vec3 *pos, int tri_count, int y0, int y1)
+{
+    raster_target rt;
+    const tg_real *m = world_to_clip->m;
+    tg_vec3 r0 = tg_v3(m[0], m[1], m[2]), r1 = tg_v3(m[4], m[5], m[6]);
+    tg_vec3 r2 = tg_v3(m[8], m[9], m[10]), r3 = tg_v3(m[12], m[13], m[14]);
+    int t, k;
+    memset(&rt, 0, sizeof rt);
+    if (!target_rows(&rt, width, height, y0, y1)) return;
+    rt.clip.mode = orthographic ? MODE_ORTHO : MODE_PERSPECTIVE;
+    rt.depth = depth;
+    for (t = 0; t < tri_count; t++) {
+        clip_vertex v[3];
+        for (k = 0; k < 3; k++) {
+            tg_vec3 p = pos[3 * t + k];
+            v[k].x = tg_add(tg_v3_dot(p, r0), m[3]);
+            v[k].y = tg_add(tg_v3_dot(p, r1), m[7]);
+            v[k].z = tg_add(tg_v3_dot(p, r2), m[11]);
+            v[k].w = orthographic ? TG_ONE : tg_add(tg_v3_dot(p, r3), m[15]);
+            v[k].n = tg_v3(0, 0, 0);
+        }
+        draw_clip_tri(&rt, v);
+    }
+}

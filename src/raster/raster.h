@@ -1,0 +1,74 @@
+/*
+ * raster.h - the triangle rasterizer: world-space triangles into the G-buffer
+ * (tg_raster_gbuffer) or into a depth-only map for shadows (tg_raster_depth).
+ *
+ * Pipeline per triangle: world -> clip (view.h conventions), outcodes,
+ * homogeneous clipping (near, far, and a guard band for the screen edges)
+ * only when a vertex needs it, snap to 28.4 fixed-point screen coordinates
+ * (the same integers in the float and the Q16.16 build), back-face culling,
+ * bounding box, incremental integer edge functions (64-bit) with the
+ * top-left fill rule, perspective-correct interpolation of 1/w and the
+ * normal, depth test on linear depth (nearest wins).
+ *
+ * Guarantees:
+ *  - triangles sharing an edge cover each pixel centre exactly once
+ *    (top-left rule on exact integer edge functions);
+ *  - a triangle crossing the near plane is clipped, never dropped, and
+ *    nothing behind the camera (w <= znear) is drawn;
+ *  - screen coordinates stay within +-(GUARD + 1) screen sizes, so the
+ *    28.4 integers never overflow; width and height must be <= 8192.
+ *  - only rows [y0, y1) are written: several threads may split the rows
+ *    of one image between them (every thread walks all triangles).
+ */
+#ifndef TG_RASTER_H
+#define TG_RASTER_H
+
+#include "../core/vec.h"
+#include "../scene/scene.h"
+#include "gbuffer.h"
+#include "view.h"
+
+#define TG_RASTER_SUBPIXEL_BITS 4   /* 28.4 screen coordinates */
+#define TG_RASTER_MAX_SIZE 8192     /* largest width or height */
+
+typedef struct tg_raster_mesh {
+    const tg_vec3 *pos;   /* 3 per triangle, world space */
+    const tg_vec3 *nrm;   /* 3 per triangle, unit world-space vertex normals */
+    const uint16_t *tri_material, *tri_object; /* per triangle; tri_object may be NULL (object 0) */
+    int tri_count;
+    const tg_material *materials;
+} tg_raster_mesh;
+
+/* Sky everywhere in rows [y0, y1): sky = 1, depth = 0, normal = 0, albedo = 0,
+ * f0 = 0, emissive = 0 (if present), object = 0xFFFF (if present). */
+void tg_gbuffer_clear_rows(tg_gbuffer *gb, int y0, int y1);
+
+/* Rasterize every triangle into G-buffer rows [y0, y1).  Writes depth (view
+ * z), the perspective-correct interpolated vertex normal renormalized per
+ * pixel (flipped for the back face of a twosided material), albedo, f0,
+ * emissive (if gb->emit_r), sky = 0 and object (if gb->object).  Back faces
+ * (clockwise on screen as the viewer sees them) of one-sided materials are
+ * culled.  The G-buffer must be cleared first (tg_gbuffer_clear_rows). */
+void tg_raster_gbuffer(tg_gbuffer *gb, const tg_view *view, const tg_raster_mesh *mesh, int y0, int y1);
+
+/* Depth only (shadow maps): clip = world_to_clip * p, NDC = clip / w,
+ * texel x = (ndc_x + 1) / 2 * width, y = (1 - ndc_y) / 2 * height.
+ *   Perspective (orthographic == 0): clip volume -w <= z <= w (the OpenGL
+ *     convention: near and far come from the matrix's z row); stored depth =
+ *     clip w (the light's view z), interpolated perspective-correctly.
+ *   Orthographic (clip w == 1): clip volume z >= 0 (no far plane); stored
+ *     depth = clip z, interpolated linearly.
+ * No culling (both faces).  depth[] (width * height) must be cleared by the
+ * caller to TG_REAL_MAX; the nearest value is kept.  Rows [y0, y1) only. */
+void tg_raster_depth(tg_real *depth, int width, int height, const tg_mat4 *world_to_clip,
+                     int orthographic, const tg_vec3 *pos, int tri_count, int y0, int y1);
+
+/* Test hook for the fill rule: add 1 to count[y * width + x] for every pixel
+ * whose centre each triangle covers, using the rasterizer's own edge setup
+ * and top-left rule, both faces, no depth test.  xy holds 6 integers per
+ * triangle: screen x, y of three vertices in 28.4 fixed point (pixel units
+ * * 16), each within +-2^19.  Zero-area triangles cover nothing. */
+void tg_raster_coverage_count(uint16_t *count, int width, int height,
+                              const int32_t *xy, int tri_count, int y0, int y1);
+
+#endif
