@@ -1,0 +1,59 @@
+/*
+ * bvh.h - a bounding-volume hierarchy over the scene's triangles, for the
+ * ray-traced AO reference (reference.c).  Built into caller memory (no
+ * allocation), deterministic (median split on the longest centroid axis,
+ * ties broken by triangle index), traversed iteratively with a fixed stack
+ * (a median split is balanced, so the depth is at most log2(n) + 2 and the
+ * 64-entry stack can never overflow for any int triangle count).
+ *
+ * Ray math is in tg_real with care for Q16.16: the triangle test works in
+ * coordinates relative to the triangle, scaled by a power of two so every
+ * product stays in range (see bvh.c).
+ */
+#ifndef TG_BVH_H
+#define TG_BVH_H
+
+#include "../core/vec.h"
+
+#define TG_BVH_LEAF_MAX 4      /* triangles per leaf */
+#define TG_BVH_STACK 64
+
+typedef struct tg_bvh_node {
+    tg_vec3 lo, hi;            /* bounds, slightly enlarged (conservative) */
+    int32_t first;             /* leaf: first slot in tri_index; inner: left child (right = first + 1) */
+    int32_t count;             /* leaf: triangles (> 0); inner: 0 */
+} tg_bvh_node;
+
+typedef struct tg_bvh {
+    int tri_count, node_count;
+    const tg_vec3 *tri_pos;    /* 3 per triangle, the caller's (not copied) */
+    tg_bvh_node *nodes;        /* node 0 is the root */
+    int32_t *tri_index;        /* leaf slots -> triangle index */
+} tg_bvh;
+
+typedef struct tg_ray_hit {
+    tg_real t;                 /* distance along the (unit) direction */
+    tg_real u, v;              /* barycentrics of vertices 1 and 2 */
+    int tri;                   /* triangle index, -1 when none */
+} tg_ray_hit;
+
+/* Bytes tg_bvh_build needs for tri_count triangles (0 when the count is
+ * negative or the size overflows). */
+size_t tg_bvh_bytes(int tri_count);
+
+/* Build over tri_pos[3 * tri_count] in `memory` (size >= tg_bvh_bytes).
+ * Returns 0, or -1 if the memory is too small or the count is negative. */
+int tg_bvh_build(tg_bvh *bvh, const tg_vec3 *tri_pos, int tri_count, void *memory, size_t size);
+
+/* Closest hit along o + t d with 0 < t < tmax (d unit).  Returns 1 on a hit. */
+int tg_bvh_closest(const tg_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax, tg_ray_hit *hit);
+
+/* Any hit with 0 < t < tmax: 1 if the segment is blocked. */
+int tg_bvh_occluded(const tg_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax);
+
+/* One ray against one triangle (v: its 3 vertices); 1 on a hit with
+ * 0 < t < tmax, filling t, u, v. Exposed for tests. */
+int tg_ray_triangle(const tg_vec3 *v, tg_vec3 o, tg_vec3 d, tg_real tmax,
+                    tg_real *t, tg_real *u, tg_real *w);
+
+#endif
