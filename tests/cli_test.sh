@@ -1,0 +1,267 @@
+#!/usr/bin/env bash
+# tests/cli_test.sh - the command line, end to end, for both number types
+# ($BUILD/tinygi and $BUILD/tinygi-fixed):
+#  - bad options and a table of malformed scenes / OBJ files: exit 2, one line
+#    "FILE:LINE:COL: error: ..." (scenes) or "tinygi: error: option ..."
+#    (usage), no output file created, an existing output file untouched, no
+#    temporary files left behind;
+#  - render: PPM header "P6 W H 255" and byte size, PFM header (Pf / PF,
+#    little-endian scale -1.0) and byte size, frame numbering with %d/%03d,
+#    --explain, --quiet, determinism, unwritable output (exit 1);
+#  - diff: exit 0/1/2, its numbers, the -o difference image;
+#  - --help, --version, list.
+set -u
+cd "$(dirname "$0")/.."
+. tests/shcheck.sh
+BUILD=${BUILD:-build}
+case $BUILD in /*) ;; *) BUILD=$PWD/$BUILD ;; esac
+T=$(mktemp -d "${TMPDIR:-/tmp}/tg_cli_XXXXXX")
+trap 'chmod -R u+w "$T" 2>/dev/null; rm -rf "$T"' EXIT
+S=$T/s          # scenes and OBJ files
+O=$T/o          # outputs (must stay empty after a refused run)
+mkdir -p "$S" "$O"
+
+# run ARGS...: run the CLI under test in $O (so a default out.ppm would land
+# there); sets rc, stdout in $T/out, stderr in $T/err
+run() { (cd "$O" && exec "$BIN" "$@") >"$T/out" 2>"$T/err"; rc=$?; }
+err_lines() { wc -l <"$T/err" | tr -d ' '; }
+empty_outdir() { [ -z "$(ls -A "$O")" ]; }
+has() { grep -qiF -- "$1" "$2"; }
+
+# refused NAME REGEX ARGS...: exit 2, one stderr line matching REGEX, and
+# nothing written to $O - both when the output does not exist and when it does
+# (with ONCE=1: ARGS are run as given, without "-o $O/out.ppm" appended).
+refused() {
+    local name=$1 re=$2; shift 2
+    rm -rf "${O:?}"/*
+    if [ "${ONCE:-0}" = 1 ]; then run "$@"; else run "$@" -o "$O/out.ppm"; fi
+    if [ "$rc" -ne 2 ]; then fail "$name" "exit $rc, expected 2: $(head -c 300 "$T/err")"; return; fi
+    if [ "$(err_lines)" -ne 1 ]; then fail "$name" "expected one stderr line, got: $(cat "$T/err")"; return; fi
+    if ! grep -Eq -- "$re" "$T/err"; then fail "$name" "message '$(cat "$T/err")' !~ /$re/"; return; fi
+    if ! empty_outdir; then fail "$name" "created: $(ls -A "$O")"; return; fi
+    if [ "${ONCE:-0}" = 1 ]; then ok "$name"; return; fi
+    printf 'precious' >"$O/out.ppm"
+    run "$@" -o "$O/out.ppm"
+    if [ "$rc" -ne 2 ] || [ "$(cat "$O/out.ppm")" != precious ] || [ "$(ls -A "$O")" != out.ppm ]; then
+        fail "$name" "existing output touched or temporaries left (exit $rc): $(ls -A "$O")"; return
+    fi
+    rm -f "$O/out.ppm"
+    ok "$name"
+}
+
+# ---- the malformed scenes (written once, shared by both binaries) ----
+HEAD='camera pos 0 1 5 target 0 0 0\nmaterial white albedo 0.8 0.8 0.8\n'
+QUAD='quad p0 -1 0 -1 p1 -1 0 1 p2 1 0 1 p3 1 0 -1 material white'
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$S/good.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n' >"$S/badindex.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -5\n' >"$S/badneg.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n' >"$S/badzero.obj"
+printf 'v 0 0 0\nv 1 x 0\nv 0 1 0\nf 1 2 3\n' >"$S/badnum.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n' >"$S/badface.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//7 3//1\n' >"$S/badnormal.obj"
+LONG=$(printf '%*s' 5000 '' | tr ' ' x)
+
+# case NAME LINE MUST-CONTAIN TEXT (printf %b escapes; "" = no substring check)
+CASES=()
+case_() { CASES+=("$1"); printf '%b' "$4" >"$S/$1.scene"; eval "line_$1=$2; want_$1=\$3"; }
+case_ unknown_keyword 3 frobnicate "${HEAD}frobnicate 1 2 3\n"
+case_ unknown_key 1 zoom 'camera pos 0 1 5 target 0 0 0 zoom 2\n'
+case_ missing_target 1 target 'camera pos 0 1 5\n'
+case_ missing_p3 3 p3 "${HEAD}quad p0 0 0 0 p1 1 0 0 p2 1 1 0 material white\n"
+case_ too_few_numbers 1 "" 'camera pos 0 1 target 0 0 0\n'
+case_ too_many_numbers 1 "" 'camera pos 0 1 5 7 target 0 0 0\n'
+case_ not_a_number 2 abc 'camera pos 0 1 5 target 0 0 0\nmaterial m albedo 0.5 abc 0.5\n'
+case_ nan_value 2 "" 'camera pos 0 1 5 target 0 0 0\nmaterial m albedo nan 0.5 0.5\n'
+case_ huge_value 3 "" "${HEAD}sphere center 0 0 0 radius 1e40 material white\n"
+case_ negative_albedo 2 albedo 'camera pos 0 1 5 target 0 0 0\nmaterial m albedo -0.5 0.5 0.5\n'
+case_ negative_radius 3 radius "${HEAD}sphere center 0 0 0 radius -1 material white\n"
+case_ negative_gi_radius 3 radius "${HEAD}gi radius -1\n"
+case_ fov_zero 1 fov 'camera pos 0 1 5 target 0 0 0 fov 0\n'
+case_ fov_180 1 fov 'camera pos 0 1 5 target 0 0 0 fov 180\n'
+case_ near_zero 1 near 'camera pos 0 1 5 target 0 0 0 near 0\n'
+case_ camera_pos_is_target 1 "" 'camera pos 1 1 1 target 1 1 1\n'
+case_ zero_light_dir 3 "" "${HEAD}light directional dir 0 0 0 color 1 1 1\n"
+case_ unknown_light_type 3 laser "${HEAD}light laser pos 0 1 0 color 1 1 1\n"
+case_ spot_without_angle 3 angle "${HEAD}light spot pos 0 1 0 dir 0 -1 0 color 1 1 1\n"
+case_ duplicate_material 3 white "${HEAD}material white albedo 0.1 0.1 0.1\n"
+case_ undefined_material 3 nosuch "${HEAD}quad p0 -1 0 -1 p1 -1 0 1 p2 1 0 1 p3 1 0 -1 material nosuch\n"
+case_ undefined_object_key 4 ghost "${HEAD}${QUAD} name floor\nobject_key name ghost t 0 translate 0 1 0\n"
+case_ object_key_bad_t 4 "" "${HEAD}${QUAD} name floor\nobject_key name floor t abc translate 0 1 0\n"
+case_ sphere_segments_low 3 segments "${HEAD}sphere center 0 0 0 radius 1 material white segments 1\n"
+case_ sh9_short 3 "" "${HEAD}env sh9 $(printf '0.1 %.0s' $(seq 26))\n"
+case_ unknown_effect 3 sparkles "${HEAD}effects direct sparkles\n"
+case_ unknown_env 3 nebula "${HEAD}env nebula 1 1 1\n"
+case_ nul_byte 3 "" "${HEAD}${QUAD}\0 \n"
+case_ long_line 3 "" "${HEAD}# ${LONG}\n"
+case_ mesh_missing 3 missing.obj "${HEAD}mesh file missing.obj material white\n"
+case_ mesh_zero_axis 3 "" "${HEAD}mesh file good.obj material white rotate 0 0 0 45\n"
+
+# OBJ errors are reported at the OBJ file's line: name OBJ LINE
+OBJ_CASES="badindex:4 badneg:4 badzero:4 badnum:2 badface:4 badnormal:5"
+for oc in $OBJ_CASES; do
+    printf '%b' "${HEAD}mesh file ${oc%%:*}.obj material white\n" >"$S/mesh_${oc%%:*}.scene"
+done
+
+check_binary() {
+    local tag=$1 c f line want col re oc obj
+    # ---- --help, --version, list, no arguments ----
+    run --help
+    expect "$tag/help" [ "$rc" -eq 0 ]
+    expect "$tag/help_lists_options" grep -q -- '--size WxH' "$T/out"
+    run --version
+    expect "$tag/version" grep -Eq '^tinygi [0-9]+\.[0-9]+\.[0-9]+ ' "$T/out"
+    run
+    expect "$tag/no_arguments_is_usage_error" [ "$rc" -eq 2 ]
+    run frobnicate
+    expect "$tag/unknown_command" [ "$rc" -eq 2 -a "$(err_lines)" -eq 1 ]
+    run list
+    expect "$tag/list" [ "$rc" -eq 0 ]
+    expect "$tag/list_names" grep -q 'builtin:cornell' "$T/out"
+    expect "$tag/list_aovs" grep -Eq 'color.*depth.*normal.*albedo' "$T/out"
+    expect "$tag/list_techniques" grep -q 'hbil' "$T/out"
+
+    # ---- bad options: exit 2, "tinygi: error: option NAME: ...", nothing written ----
+    local U='^tinygi: error: '
+    refused "$tag/opt_size_word" "${U}option --size: .*'abc'" render builtin:cornell --size abc
+    refused "$tag/opt_size_zero" "${U}option --size" render builtin:cornell --size 0x10
+    refused "$tag/opt_size_negative" "${U}option --size" render builtin:cornell --size -5x5
+    refused "$tag/opt_size_half" "${U}option --size" render builtin:cornell --size 10x
+    refused "$tag/opt_size_side_limit" "${U}option --size" render builtin:cornell --size 16385x1
+    refused "$tag/opt_size_pixel_limit" "${U}option --size" render builtin:cornell --size 4097x4097
+    refused "$tag/opt_size_overflow" "${U}option --size" render builtin:cornell --size 99999999999x99999999999
+    refused "$tag/opt_frames_zero" "${U}option --frames" render builtin:cornell --frames 0
+    refused "$tag/opt_frames_fraction" "${U}option --frames" render builtin:cornell --frames 1.5
+    refused "$tag/opt_frames_limit" "${U}option --frames" render builtin:cornell --frames 100001
+    refused "$tag/opt_aov" "${U}option --aov: .*color.*'sparkle'" render builtin:cornell --aov sparkle
+    refused "$tag/opt_technique" "${U}option --technique: .*hbil.*'magic'" render builtin:cornell --technique magic
+    refused "$tag/opt_slices" "${U}option --slices" render builtin:cornell --slices 0
+    refused "$tag/opt_samples" "${U}option --samples" render builtin:cornell --samples 257
+    refused "$tag/opt_radius_negative" "${U}option --radius" render builtin:cornell --radius -1
+    refused "$tag/opt_radius_nan" "${U}option --radius" render builtin:cornell --radius nan
+    refused "$tag/opt_radius_inf" "${U}option --radius" render builtin:cornell --radius inf
+    refused "$tag/opt_bounces" "${U}option --bounces" render builtin:cornell --bounces -1
+    refused "$tag/opt_exposure" "${U}option --exposure" render builtin:cornell --exposure -2
+    refused "$tag/opt_shadow_size" "${U}option --shadow-size" render builtin:cornell --shadow-size 4
+    refused "$tag/opt_unknown" "${U}unknown option '--sparkle'" render builtin:cornell --sparkle
+    ONCE=1 refused "$tag/opt_missing_value" "${U}option --frames: missing value" render builtin:cornell --frames
+    ONCE=1 refused "$tag/opt_extension" "${U}option -o" render builtin:cornell -o "$O/out.png"
+    ONCE=1 refused "$tag/opt_pattern_bad" "${U}option -o" render builtin:cornell -o "$O/f%s.ppm"
+    ONCE=1 refused "$tag/opt_pattern_twice" "${U}option -o" render builtin:cornell -o "$O/f%d_%d.ppm"
+    ONCE=1 refused "$tag/opt_no_scene" "${U}render: missing SCENE" render
+    refused "$tag/opt_two_scenes" "${U}render: unexpected argument" render builtin:cornell builtin:plane
+    refused "$tag/unknown_builtin" "${U}unknown built-in scene 'nowhere'" render builtin:nowhere
+    refused "$tag/scene_missing_file" "^$S/nothere.scene: error: cannot open" render "$S/nothere.scene"
+    refused "$tag/scene_is_directory" "^$S: error: " render "$S"
+
+    # ---- malformed scenes: FILE:LINE:COL: error: ..., nothing written ----
+    for c in "${CASES[@]}"; do
+        f="$S/$c.scene"; eval "line=\$line_$c; want=\$want_$c"
+        refused "$tag/scene_$c" "^$f:$line:[1-9][0-9]*: error: .+" render "$f"
+        if [ -n "$want" ] && [ "$rc" -eq 2 ] && ! has "$want" "$T/err"; then
+            fail "$tag/scene_${c}_names_it" "message does not mention '$want': $(cat "$T/err")"
+        fi
+    done
+    # the column points at the offending token
+    run render "$S/unknown_keyword.scene" -o "$O/x.ppm"
+    expect "$tag/column_of_keyword" grep -q "^$S/unknown_keyword.scene:3:1: error: " "$T/err"
+    col=$(awk '{print index($0, "zoom")}' "$S/unknown_key.scene")
+    run render "$S/unknown_key.scene" -o "$O/x.ppm"
+    expect "$tag/column_of_key" grep -q "^$S/unknown_key.scene:1:$col: error: " "$T/err"
+    for oc in $OBJ_CASES; do
+        obj=${oc%%:*}
+        refused "$tag/obj_$obj" "^$S/$obj.obj:${oc##*:}:[1-9][0-9]*: error: .+" render "$S/mesh_$obj.scene"
+    done
+
+    # ---- render (needs the core's frame) ----
+    rm -rf "${O:?}"/*
+    run render builtin:cornell --size 40x30 -o "$O/a.ppm" --quiet
+    expect "$tag/render_ppm" [ "$rc" -eq 0 -a -f "$O/a.ppm" ]
+    expect "$tag/render_quiet_is_quiet" [ ! -s "$T/err" ]
+    expect "$tag/ppm_header" [ "$(head -c 13 "$O/a.ppm" 2>/dev/null | od -An -c | tr -d ' \n')" = 'P6\n4030\n255\n' ]
+    expect "$tag/ppm_size" [ "$(wc -c <"$O/a.ppm" 2>/dev/null)" -eq $((13 + 40 * 30 * 3)) ]
+    run render builtin:cornell --size 40x30 -o "$O/b.ppm" --quiet
+    run diff "$O/a.ppm" "$O/b.ppm"
+    expect "$tag/render_deterministic" [ "$rc" -eq 0 ]
+    run render builtin:cornell --size 40x30 --aov depth -o "$O/d.pfm" --quiet
+    expect "$tag/render_pfm_depth" [ "$rc" -eq 0 ]
+    expect "$tag/pfm_header_Pf" [ "$(head -c 14 "$O/d.pfm" 2>/dev/null | od -An -c | tr -d ' \n')" = 'Pf\n4030\n-1.0\n' ]
+    expect "$tag/pfm_size_Pf" [ "$(wc -c <"$O/d.pfm" 2>/dev/null)" -eq $((14 + 40 * 30 * 4)) ]
+    for a in normal albedo color; do
+        run render builtin:cornell --size 20x10 --aov $a -o "$O/$a.pfm" --quiet
+        expect "$tag/pfm_${a}_PF" [ "$rc" -eq 0 -a "$(head -c 3 "$O/$a.pfm" 2>/dev/null)" = "$(printf 'PF\n')" \
+            -a "$(wc -c <"$O/$a.pfm" 2>/dev/null)" -eq $((14 + 20 * 10 * 12)) ]
+    done
+    run render builtin:cornell --size 16x12 --frames 3 -o "$O/f%03d.ppm" --quiet
+    expect "$tag/frames_numbered_%03d" [ "$rc" -eq 0 -a -f "$O/f000.ppm" -a -f "$O/f001.ppm" -a -f "$O/f002.ppm" -a ! -e "$O/f003.ppm" ]
+    run render builtin:cornell --size 16x12 --frames 2 -o "$O/g%d.ppm" --quiet
+    expect "$tag/frames_numbered_%d" [ "$rc" -eq 0 -a -f "$O/g0.ppm" -a -f "$O/g1.ppm" -a ! -e "$O/g2.ppm" ]
+    rm -rf "${O:?}"/*
+    run render builtin:cornell --size 16x12 --frames 2 -o "$O/last.ppm" --quiet
+    expect "$tag/frames_unnumbered_writes_last" [ "$rc" -eq 0 -a "$(ls -A "$O")" = last.ppm ]
+    rm -rf "${O:?}"/*
+    run render builtin:cornell --size 16x12 --explain -o "$O/e.ppm"
+    expect "$tag/explain" [ "$rc" -eq 0 -a -s "$T/out" ]
+    expect "$tag/explain_renders_nothing" empty_outdir
+    for s in $("$BIN" list 2>/dev/null | grep -o 'builtin:[a-z0-9_]*'); do
+        run render "$s" --size 32x24 -o "$O/s.ppm" --quiet
+        expect "$tag/render_$s" [ "$rc" -eq 0 ]
+    done
+    run render builtin:cornell --size 16x12 -o "$T/no/such/dir/x.ppm"
+    expect "$tag/unwritable_output_exit_1" [ "$rc" -eq 1 -a "$(err_lines)" -eq 1 ]
+    expect "$tag/unwritable_output_message" grep -q 'error: cannot write' "$T/err"
+    rm -rf "${O:?}"/*
+
+    # ---- diff ----
+    printf 'P6\n2 2\n255\n\012\024\036\050\062\074\106\120\132\144\156\170' >"$T/d1.ppm"
+    printf 'P6\n2 2\n255\n\012\024\036\050\065\074\106\120\132\144\156\170' >"$T/d2.ppm"  # (1,0) g +3
+    printf 'P6\n1 1\n255\n\000\000\000' >"$T/d3.ppm"
+    printf 'Pf\n1 2\n-1.0\n\000\000\000\077\000\000\200\077' >"$T/p1.pfm"   # bottom 0.5, top 1.0
+    printf 'Pf\n1 2\n-1.0\n\000\000\200\077\000\000\200\077' >"$T/p2.pfm"   # bottom 1.0, top 1.0
+    printf 'P6\n2 2\n255\n\001' >"$T/trunc.ppm"
+    run diff "$T/d1.ppm" "$T/d1.ppm"
+    expect "$tag/diff_identical_exit_0" [ "$rc" -eq 0 ]
+    expect "$tag/diff_identical_numbers" grep -q '^rmse 0$' "$T/out"
+    expect "$tag/diff_identical_psnr_inf" grep -q '^psnr inf dB$' "$T/out"
+    run diff "$T/d1.ppm" "$T/d2.ppm"
+    expect "$tag/diff_outside_exit_1" [ "$rc" -eq 1 ]
+    expect "$tag/diff_rmse" grep -q '^rmse 0.866025$' "$T/out"            # sqrt(9/12)
+    expect "$tag/diff_psnr" grep -q '^psnr 49.38 dB$' "$T/out"            # 20 log10(255/0.866)
+    expect "$tag/diff_max_where" grep -q '^max 3 at 1,0 channel g$' "$T/out"
+    expect "$tag/diff_over_count" grep -q '^over 1 of 4 pixels' "$T/out"
+    run diff "$T/d1.ppm" "$T/d2.ppm" --tolerance 3
+    expect "$tag/diff_within_tolerance_exit_0" [ "$rc" -eq 0 ]
+    run diff "$T/d1.ppm" "$T/d2.ppm" --tolerance 2.9
+    expect "$tag/diff_just_outside_exit_1" [ "$rc" -eq 1 ]
+    run diff "$T/d1.ppm" "$T/d2.ppm" -o "$T/dd.ppm"
+    expect "$tag/diff_image_written" [ "$rc" -eq 1 -a "$(od -An -tu1 "$T/dd.ppm" 2>/dev/null | tr -s ' \n' ' ')" \
+        = " 80 54 10 50 32 50 10 50 53 53 10 0 0 0 0 255 0 0 0 0 0 0 0 " ]
+    run diff "$T/p1.pfm" "$T/p2.pfm" --tolerance 0.5
+    expect "$tag/diff_pfm_within" [ "$rc" -eq 0 ]
+    expect "$tag/diff_pfm_bottom_row_is_y1" grep -q '^max 0.5 at 0,1' "$T/out"
+    run diff "$T/p1.pfm" "$T/p2.pfm" --tolerance 0.49
+    expect "$tag/diff_pfm_outside" [ "$rc" -eq 1 ]
+    run diff "$T/d1.ppm" "$T/d3.ppm" -o "$T/bad_diff.ppm"
+    expect "$tag/diff_size_mismatch_exit_2" [ "$rc" -eq 2 -a "$(err_lines)" -eq 1 -a ! -e "$T/bad_diff.ppm" ]
+    expect "$tag/diff_size_mismatch_message" grep -q 'sizes differ: 2x2 and 1x1' "$T/err"
+    run diff "$T/d1.ppm" "$T/p1.pfm"
+    expect "$tag/diff_format_mismatch_exit_2" [ "$rc" -eq 2 ]
+    run diff "$T/d1.ppm" "$T/missing.ppm"
+    expect "$tag/diff_missing_exit_2" [ "$rc" -eq 2 ]
+    expect "$tag/diff_missing_message" grep -q "^$T/missing.ppm: error: cannot open" "$T/err"
+    run diff "$T/trunc.ppm" "$T/d1.ppm"
+    expect "$tag/diff_truncated_exit_2" [ "$rc" -eq 2 ]
+    expect "$tag/diff_truncated_message" grep -q "^$T/trunc.ppm: error: PPM data truncated" "$T/err"
+    run diff "$T/d1.ppm"
+    expect "$tag/diff_one_image_exit_2" [ "$rc" -eq 2 ]
+    run diff "$T/d1.ppm" "$T/d2.ppm" --tolerance -1
+    expect "$tag/diff_bad_tolerance_exit_2" [ "$rc" -eq 2 ]
+    run diff "$T/d1.ppm" "$T/d2.ppm" -o "$T/x.pfm"
+    expect "$tag/diff_output_must_be_ppm" [ "$rc" -eq 2 -a ! -e "$T/x.pfm" ]
+}
+
+for BIN in "$BUILD/tinygi" "$BUILD/tinygi-fixed"; do
+    tag=$(basename "$BIN")
+    if [ ! -x "$BIN" ]; then fail "$tag/built" "$BIN missing"; continue; fi
+    check_binary "$tag"
+done
+summary
