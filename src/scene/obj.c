@@ -1,0 +1,440 @@
+/*
+ * obj.c - Wavefront OBJ meshes and their MTL materials, for the scene's
+ * `mesh` statement (format.md, "OBJ and MTL").
+ *
+ * OBJ: `v x y z [w | r g b]`, `vn x y z`, `vt u [v [w]]`, `f` with v, v/vt,
+ * v//vn, v/vt/vn references (1-based, or negative: counted back from the
+ * last vertex so far), polygons fan-triangulated, `usemtl NAME`,
+ * `mtllib FILE...`.  Everything else (o, g, s, l, p, ...) is ignored.
+ * MTL: `newmtl NAME` blocks with `Kd` (albedo) and `Ke` (emission); other
+ * MTL statements are ignored.
+ *
+ * The file is read through tg_io in both passes.  Pass 1 validates and
+ * counts v + vn (the scratch this mesh needs); pass 2 keeps the transformed
+ * positions at the front of the parser's scratch and the rotated normals at
+ * its back, and emits the triangles.
+ */
+#include <string.h>
+#include "parse_internal.h"
+
+typedef struct mtllib_ref {
+    tg_token name;          /* points into the OBJ text */
+    int line;
+    const char *data;       /* the MTL file, once read */
+    size_t size;
+    int loaded;
+} mtllib_ref;
+
+typedef struct obj_state {
+    tg_parser *p;
+    const char *path;       /* resolved OBJ path: messages and MTL paths */
+    const tg_xform *xf;
+    int base_material;      /* the mesh statement's material */
+    int material;           /* the current one (usemtl) */
+    size_t first_material;  /* pass 2: materials this mesh adds start here */
+    const char *objname;
+    size_t nv, nvt, nvn;
+    int nlib;
+    mtllib_ref lib[TG_OBJ_MAX_MTLLIB];
+} obj_state;
+
+typedef struct obj_ref {
+    size_t v, vn;
+    int has_vn;
+} obj_ref;
+
+int tg_path_join(const char *base, const char *rel, size_t rel_n, char *out)
+{
+    size_t dir = 0, i, n = base ? strlen(base) : 0;
+    if (rel_n > 0 && rel[0] == '/') n = 0; /* absolute */
+    for (i = 0; i < n; i++)
+        if (base[i] == '/') dir = i + 1;
+    if (dir + rel_n >= TG_PATH_MAX) return 1;
+    memcpy(out, base, dir);
+    memcpy(out + dir, rel, rel_n);
+    out[dir + rel_n] = '\0';
+    return 0;
+}
+
+static int read_file(tg_parser *p, const char *path, const char **data, size_t *size)
+{
+    *data = NULL;
+    *size = 0;
+    if (!p->io || !p->io->read_file) return 1;
+    if (p->io->read_file(p->io->user, path, data, size)) return 1;
+    if (!*data) {
+        if (*size) return 1;
+        *data = "";
+    }
+    return 0;
+}
+
+static tg_status ofail(obj_state *o, const tg_lexer *lx, int col,
+                       const char *a, const char *b, const char *c)
+{
+    return tg_parse_fail(o->p, lx->file, lx->lineno, col, a, b, c);
+}
+
+static tg_status changed(obj_state *o)
+{
+    tg_error_set(o->p->err, TG_ERR_RUNTIME, o->path, 0, 0, "the mesh file changed while parsing");
+    return TG_ERR_RUNTIME;
+}
+
+static tg_status bad_number(obj_state *o, const tg_lexer *lx, const tg_token *t,
+                            const char *what, int r)
+{
+    char buf[48];
+    ofail(o, lx, t->col, r == 2 ? "number out of range in '" : "expected a number in '", what, "', got '");
+    tg_error_append(o->p->err, tg_tok_str(t, buf));
+    tg_error_append(o->p->err, "'");
+    return TG_ERR_INPUT;
+}
+
+/* Up to `max` numbers (at least `min`) after the keyword. */
+static tg_status numbers(obj_state *o, tg_lexer *lx, const char *what, int min, int max,
+                         tg_real *out, int *count)
+{
+    tg_token t;
+    tg_real x;
+    int n = 0, r;
+    while (tg_lex_token(lx, &t)) {
+        if ((r = tg_tok_real(&t, &x))) return bad_number(o, lx, &t, what, r);
+        if (n >= max) {
+            ofail(o, lx, t.col, "too many numbers for '", what, "' (expects ");
+            tg_error_append_int(o->p->err, max);
+            tg_error_append(o->p->err, ")");
+            return TG_ERR_INPUT;
+        }
+        out[n++] = x;
+    }
+    if (n < min) {
+        ofail(o, lx, tg_lex_eol_col(lx), "'", what, "' expects ");
+        tg_error_append_int(o->p->err, min);
+        tg_error_append(o->p->err, min == 1 ? " number, got " : " numbers, got ");
+        tg_error_append_int(o->p->err, n);
+        return TG_ERR_INPUT;
+    }
+    *count = n;
+    return TG_OK;
+}
+
+/* v (normal == 0) or vn (normal == 1): stored transformed in pass 2. */
+static tg_status obj_vertex(obj_state *o, tg_lexer *lx, const tg_token *kw, int normal)
+{
+    tg_parser *p = o->p;
+    tg_real x[7];
+    tg_vec3 v;
+    tg_status st;
+    size_t *count = normal ? &o->nvn : &o->nv;
+    int n;
+    if ((st = numbers(o, lx, normal ? "vn" : "v", 3, normal ? 3 : 7, x, &n))) return st;
+    if (*count >= TG_OBJ_MAX_VERTS) {
+        ofail(o, lx, kw->col, "too many '", normal ? "vn" : "v", "' lines (the limit is ");
+        tg_error_append_int(p->err, TG_OBJ_MAX_VERTS);
+        tg_error_append(p->err, ")");
+        return TG_ERR_INPUT;
+    }
+    if (p->fill) {
+        if (o->nv + o->nvn >= p->obj_scratch) return changed(o);
+        v = tg_v3(x[0], x[1], x[2]);
+        if (normal) /* rotated with the mesh; zero stays zero (face normal then) */
+            p->scratch[p->obj_scratch - 1 - o->nvn] =
+                tg_v3_normalize_or(tg_m4_dir(&o->xf->rot, v), tg_v3(0, 0, 0));
+        else /* p' = R (s p) + t */
+            p->scratch[o->nv] = tg_v3_add(tg_m4_point(&o->xf->rot, tg_v3_scale(v, o->xf->scale)),
+                                          o->xf->translate);
+    }
+    (*count)++;
+    return TG_OK;
+}
+
+static tg_status obj_texcoord(obj_state *o, tg_lexer *lx)
+{
+    tg_real x[3];
+    int n;
+    tg_status st = numbers(o, lx, "vt", 1, 3, x, &n);
+    if (st) return st;
+    if (o->nvt < TG_OBJ_MAX_VERTS) o->nvt++;
+    return TG_OK;
+}
+
+/* One OBJ index (1-based or negative) against `count` defined so far. */
+static tg_status obj_index(obj_state *o, const tg_lexer *lx, const tg_token *ref,
+                           const tg_token *part, size_t count, const char *what, size_t *out)
+{
+    char buf[48];
+    long i;
+    int r = tg_tok_int(part, &i);
+    if (r == 1) {
+        ofail(o, lx, ref->col, "bad face vertex '", tg_tok_str(ref, buf),
+              "'; expected v, v/vt, v//vn or v/vt/vn with integer indices");
+        return TG_ERR_INPUT;
+    }
+    if (r == 0 && i == 0)
+        return ofail(o, lx, ref->col, "OBJ ", what,
+                     " index 0 is invalid; indices start at 1 (or count back from -1)");
+    if (r == 2 || (i > 0 && (size_t)i > count) || (i < 0 && (size_t)-i > count)) {
+        ofail(o, lx, ref->col, "OBJ ", what, " index ");
+        tg_error_append(o->p->err, tg_tok_str(part, buf));
+        tg_error_append(o->p->err, " is out of range (");
+        tg_error_append_int(o->p->err, (long)count);
+        tg_error_append(o->p->err, " defined so far)");
+        return TG_ERR_INPUT;
+    }
+    *out = i > 0 ? (size_t)i - 1 : count - (size_t)-i;
+    return TG_OK;
+}
+
+static tg_status obj_ref_parse(obj_state *o, const tg_lexer *lx, const tg_token *t, obj_ref *r)
+{
+    tg_token part[3];
+    size_t i, k = 0, at = 0, dummy;
+    tg_status st;
+    char buf[48];
+    for (i = 0; i <= t->n; i++) {
+        if (i == t->n || t->s[i] == '/') {
+            if (k >= 3) {
+                return ofail(o, lx, t->col, "bad face vertex '", tg_tok_str(t, buf),
+                             "'; expected v, v/vt, v//vn or v/vt/vn");
+            }
+            part[k].s = t->s + at;
+            part[k].n = i - at;
+            part[k].col = t->col + (int)at;
+            k++;
+            at = i + 1;
+        }
+    }
+    if ((st = obj_index(o, lx, t, &part[0], o->nv, "vertex", &r->v))) return st;
+    if (k >= 2 && (part[1].n > 0 || k == 2) &&
+        (st = obj_index(o, lx, t, &part[1], o->nvt, "texture", &dummy)))
+        return st;
+    r->has_vn = k == 3;
+    if (r->has_vn && (st = obj_index(o, lx, t, &part[2], o->nvn, "normal", &r->vn))) return st;
+    return TG_OK;
+}
+
+static tg_status obj_triangle(obj_state *o, const tg_lexer *lx, int col, const obj_ref r[3])
+{
+    tg_parser *p = o->p;
+    tg_vec3 pos[3], nrm[3];
+    int i, smooth = 1;
+    for (i = 0; i < 3; i++) {
+        pos[i] = nrm[i] = tg_v3(0, 0, 0);
+        if (!p->fill) continue;
+        pos[i] = p->scratch[r[i].v];
+        if (r[i].has_vn) nrm[i] = p->scratch[p->obj_scratch - 1 - r[i].vn];
+        if (!r[i].has_vn || (nrm[i].x == 0 && nrm[i].y == 0 && nrm[i].z == 0)) smooth = 0;
+    }
+    return tg_parse_emit_tri(p, lx, col, pos, smooth ? nrm : NULL, o->material);
+}
+
+/* f: a polygon, fan-triangulated (r0 r[k-1] r[k]). */
+static tg_status obj_face(obj_state *o, tg_lexer *lx)
+{
+    tg_token t;
+    obj_ref tri[3], first, prev, cur;
+    tg_status st;
+    int n = 0;
+    memset(&first, 0, sizeof first);
+    prev = first;
+    while (tg_lex_token(lx, &t)) {
+        if ((st = obj_ref_parse(o, lx, &t, &cur))) return st;
+        if (n == 0) first = cur;
+        if (n >= 2) {
+            tri[0] = first; tri[1] = prev; tri[2] = cur;
+            if ((st = obj_triangle(o, lx, t.col, tri))) return st;
+        }
+        prev = cur;
+        n++;
+    }
+    if (n < 3) {
+        ofail(o, lx, tg_lex_eol_col(lx), "a face needs at least 3 vertices, got ", NULL, NULL);
+        tg_error_append_int(o->p->err, n);
+        return TG_ERR_INPUT;
+    }
+    return TG_OK;
+}
+
+static tg_status obj_mtllib(obj_state *o, tg_lexer *lx, const tg_token *kw)
+{
+    tg_token t;
+    int n = 0;
+    while (tg_lex_token(lx, &t)) {
+        if (o->nlib >= TG_OBJ_MAX_MTLLIB) {
+            ofail(o, lx, t.col, "too many mtllib files (the limit is ", NULL, NULL);
+            tg_error_append_int(o->p->err, TG_OBJ_MAX_MTLLIB);
+            tg_error_append(o->p->err, ")");
+            return TG_ERR_INPUT;
+        }
+        memset(&o->lib[o->nlib], 0, sizeof o->lib[0]);
+        o->lib[o->nlib].name = t;
+        o->lib[o->nlib].line = lx->lineno;
+        o->nlib++;
+        n++;
+    }
+    if (n == 0) return ofail(o, lx, kw->col + 6, "'mtllib' expects a file name", NULL, NULL);
+    return TG_OK;
+}
+
+/* Kd (albedo, in [0,1]) or Ke (emission, >= 0): 1 or 3 numbers. */
+static tg_status mtl_color(obj_state *o, tg_lexer *ml, const char *what, int unit, tg_vec3 *out)
+{
+    tg_token t[3];
+    tg_real x[3];
+    char buf[48];
+    int n = 0, i, r;
+    while (n < 3 && tg_lex_token(ml, &t[n])) {
+        if ((r = tg_tok_real(&t[n], &x[n]))) return bad_number(o, ml, &t[n], what, r);
+        n++;
+    }
+    if (n == 2 || n == 0 || tg_lex_token(ml, &t[0])) {
+        ofail(o, ml, n == 0 ? tg_lex_eol_col(ml) : t[0].col, "'", what, "' expects 3 numbers (r g b) or 1 (grey)");
+        return TG_ERR_INPUT;
+    }
+    if (n == 1) { x[1] = x[2] = x[0]; t[1] = t[2] = t[0]; }
+    for (i = 0; i < 3; i++)
+        if (x[i] < 0 || (unit && x[i] > TG_ONE)) {
+            ofail(o, ml, t[i].col, "'", what, unit ? "' must be in [0, 1], got '" : "' must be 0 or more, got '");
+            tg_error_append(o->p->err, tg_tok_str(&t[i], buf));
+            tg_error_append(o->p->err, "'");
+            return TG_ERR_INPUT;
+        }
+    *out = tg_v3(x[0], x[1], x[2]);
+    return TG_OK;
+}
+
+/* Find `name` in one MTL file; 1 found (m updated), 0 not, -1 error. */
+static int mtl_search(obj_state *o, const mtllib_ref *lib, const char *path,
+                      const tg_token *name, tg_material *m)
+{
+    tg_lexer ml;
+    tg_token kw, rest;
+    int r, in_block = 0;
+    tg_lex_init(&ml, lib->data, lib->size, path);
+    while ((r = tg_lex_line(&ml, o->p->err)) > 0) {
+        if (!tg_lex_token(&ml, &kw)) continue;
+        if (tg_tok_is(&kw, "newmtl")) {
+            if (in_block) return 1;
+            in_block = tg_lex_rest(&ml, &rest) && rest.n == name->n &&
+                       memcmp(rest.s, name->s, name->n) == 0;
+        } else if (in_block && tg_tok_is(&kw, "Kd")) {
+            if (mtl_color(o, &ml, "Kd", 1, &m->albedo)) return -1;
+        } else if (in_block && tg_tok_is(&kw, "Ke")) {
+            if (mtl_color(o, &ml, "Ke", 0, &m->emissive)) return -1;
+        }
+    }
+    if (r < 0) return -1;
+    return in_block;
+}
+
+/* Look `name` up in the mtllib files named so far; m starts as the mesh's
+ * material and gets the MTL's Kd / Ke. */
+static tg_status mtl_find(obj_state *o, const tg_lexer *lx, const tg_token *name, tg_material *m)
+{
+    char path[TG_PATH_MAX], buf[48];
+    int i, r;
+    for (i = 0; i < o->nlib; i++) {
+        mtllib_ref *lib = &o->lib[i];
+        if (tg_path_join(o->path, lib->name.s, lib->name.n, path))
+            return tg_parse_fail(o->p, o->path, lib->line, lib->name.col,
+                                 "MTL path is too long", NULL, NULL);
+        if (!lib->loaded) {
+            if (read_file(o->p, path, &lib->data, &lib->size))
+                return tg_parse_fail(o->p, o->path, lib->line, lib->name.col,
+                                     "cannot read MTL file '", path, "'");
+            lib->loaded = 1;
+        }
+        r = mtl_search(o, lib, path, name, m);
+        if (r < 0) return TG_ERR_INPUT;
+        if (r > 0) return TG_OK;
+    }
+    if (o->nlib == 0)
+        return ofail(o, lx, name->col, "'usemtl ", tg_tok_str(name, buf),
+                     "' but no 'mtllib' names an MTL file before it");
+    return ofail(o, lx, name->col, "material '", tg_tok_str(name, buf),
+                 "' is not defined in the mtllib files");
+}
+
+static tg_status obj_usemtl(obj_state *o, tg_lexer *lx, const tg_token *kw)
+{
+    tg_parser *p = o->p;
+    tg_token name;
+    tg_material m;
+    tg_status st;
+    char full[TG_NAME_MAX];
+    size_t n = strlen(o->objname), k, i;
+    int index;
+    if (!tg_lex_rest(lx, &name))
+        return ofail(o, lx, kw->col + 6, "'usemtl' expects a material name", NULL, NULL);
+    if (!p->fill) {
+        p->usemtl_bound++;
+        memset(&m, 0, sizeof m);
+        return mtl_find(o, lx, &name, &m);
+    }
+    /* "objname/mtlname", cut to the name limit */
+    memcpy(full, o->objname, n);
+    if (n < TG_NAME_MAX - 1) full[n++] = '/';
+    k = name.n < TG_NAME_MAX - 1 - n ? name.n : TG_NAME_MAX - 1 - n;
+    memcpy(full + n, name.s, k);
+    full[n + k] = '\0';
+    for (i = o->first_material; i < p->materials; i++)
+        if (strcmp(p->scene->materials[i].name, full) == 0) {
+            o->material = (int)i;
+            return TG_OK;
+        }
+    m = p->scene->materials[o->base_material];
+    memcpy(m.name, full, sizeof full);
+    if ((st = mtl_find(o, lx, &name, &m))) return st;
+    if ((st = tg_parse_add_material(p, lx, name.col, &m, &index))) return st;
+    o->material = index;
+    return TG_OK;
+}
+
+static tg_status obj_line(obj_state *o, tg_lexer *lx, const tg_token *kw)
+{
+    if (tg_tok_is(kw, "v")) return obj_vertex(o, lx, kw, 0);
+    if (tg_tok_is(kw, "vn")) return obj_vertex(o, lx, kw, 1);
+    if (tg_tok_is(kw, "vt")) return obj_texcoord(o, lx);
+    if (tg_tok_is(kw, "f")) return obj_face(o, lx);
+    if (tg_tok_is(kw, "usemtl")) return obj_usemtl(o, lx, kw);
+    if (tg_tok_is(kw, "mtllib")) return obj_mtllib(o, lx, kw);
+    return TG_OK; /* o, g, s, l, p, ...: ignored */
+}
+
+tg_status tg_obj_mesh(tg_parser *p, const tg_lexer *lx, const tg_token *path_tok,
+                      const tg_xform *xf, int material, const char *objname)
+{
+    char path[TG_PATH_MAX];
+    const char *data;
+    size_t size;
+    obj_state o;
+    tg_lexer ol;
+    tg_token kw;
+    tg_status st;
+    int r;
+    if (tg_path_join(p->file, path_tok->s, path_tok->n, path)) {
+        tg_parse_fail(p, lx->file, lx->lineno, path_tok->col, "mesh path is too long (the limit is ", NULL, NULL);
+        tg_error_append_int(p->err, TG_PATH_MAX - 1);
+        tg_error_append(p->err, " bytes with the scene's directory)");
+        return TG_ERR_INPUT;
+    }
+    if (read_file(p, path, &data, &size))
+        return tg_parse_fail(p, lx->file, lx->lineno, path_tok->col,
+                             "cannot read mesh file '", path, "'");
+    memset(&o, 0, sizeof o);
+    o.p = p;
+    o.path = path;
+    o.xf = xf;
+    o.base_material = o.material = material;
+    o.first_material = p->materials;
+    o.objname = objname;
+    tg_lex_init(&ol, data, size, path);
+    while ((r = tg_lex_line(&ol, p->err)) > 0) {
+        if (!tg_lex_token(&ol, &kw)) continue;
+        if ((st = obj_line(&o, &ol, &kw))) return st;
+    }
+    if (r < 0) return TG_ERR_INPUT;
+    if (!p->fill && o.nv + o.nvn > p->obj_scratch) p->obj_scratch = o.nv + o.nvn;
+    return TG_OK;
+}
