@@ -29,31 +29,44 @@ static void prepare(prepared_light *p, const tg_light *l, const tg_shadow_map *s
     p->shadow = sm;
 }
 
-/* Unshadowed irradiance scale (cosine, falloff, spot edge) and the unit vector to the light. */
-static tg_real light_factor(const prepared_light *p, tg_vec3 pos, tg_vec3 n)
+/* Unshadowed irradiance scale as cosine * spot edge (<= 1) and the inverse
+ * distance (1 for directional lights): E = radiant * scale * inv * inv.  The
+ * product is formed largest first so Q16.16 keeps its relative precision. */
+static tg_real light_factor(const prepared_light *p, tg_vec3 pos, tg_vec3 n, tg_real *inv_dist)
 {
     tg_vec3 v;
-    tg_real len, inv, cosine, f;
+    tg_real len, inv, cosine;
+    *inv_dist = TG_ONE;
     if (p->type == TG_LIGHT_DIRECTIONAL)
         return tg_max(tg_v3_dot(n, p->to_light), 0); /* Lambert */
     v = tg_v3_sub(p->pos, pos);
     len = tg_max(tg_v3_length(v), TG_DIRECT_MIN_DISTANCE);
     inv = tg_div(TG_ONE, len);
-    cosine = tg_mul(tg_v3_dot(n, v), inv);
+    cosine = tg_mul(tg_v3_dot(n, v), inv); /* Lambert */
     if (cosine <= 0) return 0;
-    f = tg_mul(tg_mul(cosine, inv), inv); /* Lambert, inverse square */
+    *inv_dist = inv;
     if (p->type == TG_LIGHT_SPOT) {
         tg_real along = tg_mul(tg_neg(tg_v3_dot(v, p->dir)), inv);
-        f = tg_mul(f, tg_smoothstep(p->cos_outer, p->cos_inner, along));
+        cosine = tg_mul(cosine, tg_smoothstep(p->cos_outer, p->cos_inner, along)); /* smooth spot edge */
     }
-    return f;
+    return cosine;
+}
+
+/* radiant * scale / d^2 (inverse square), largest factor first. */
+static tg_vec3 light_irradiance(tg_vec3 radiant, tg_real scale, tg_real inv)
+{
+    tg_vec3 e = tg_v3_scale(radiant, scale);
+    if (inv != TG_ONE) e = tg_v3_scale(tg_v3_scale(e, inv), inv);
+    return e;
 }
 
 tg_vec3 tg_direct_irradiance(const tg_light *l, tg_vec3 p, tg_vec3 n)
 {
     prepared_light pl;
+    tg_real inv, f;
     prepare(&pl, l, NULL);
-    return tg_v3_scale(pl.radiant, light_factor(&pl, p, n));
+    f = light_factor(&pl, p, n, &inv);
+    return f > 0 ? light_irradiance(pl.radiant, f, inv) : tg_v3(0, 0, 0);
 }
 
 void tg_direct_rows(const tg_gbuffer *gb, const tg_view *view,
@@ -81,10 +94,10 @@ void tg_direct_rows(const tg_gbuffer *gb, const tg_view *view,
                 p = tg_view_view_to_world(view, tg_view_unproject(view, tg_add(tg_from_int(x), TG_R(0.5f)), sy, gb->depth[i]));
                 e = tg_v3(e_r[i], e_g[i], e_b[i]);
                 for (k = 0; k < count; k++) {
-                    tg_real f = light_factor(&pl[k], p, n);
+                    tg_real inv, f = light_factor(&pl[k], p, n, &inv);
                     if (f <= 0) continue;
                     if (pl[k].shadow) f = tg_mul(f, tg_shadow_visibility(pl[k].shadow, p, n));
-                    e = tg_v3_add(e, tg_v3_scale(pl[k].radiant, f));
+                    e = tg_v3_add(e, light_irradiance(pl[k].radiant, f, inv));
                 }
                 e_r[i] = e.x; e_g[i] = e.y; e_b[i] = e.z;
             }

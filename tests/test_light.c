@@ -1,0 +1,502 @@
+/*
+ * test_light.c - direct light, shadow maps, composition and tonemapping
+ * against analytic answers.  G-buffers are built by ray casting a tiny
+ * analytic scene (a floor and axis-aligned boxes) in double precision, so
+ * every expected value is independent of the code under test.
+ */
+#include <stdlib.h>
+#include "check.h"
+#include "light/direct.h"
+#include "light/shadowmap.h"
+#include "light/compose.h"
+#include "light/tonemap.h"
+#include "light/sh.h"
+
+#define W 64
+#define H 48
+#define DEG (3.14159265358979 / 180.0)
+#define MAP_SIZE 512
+
+/* ---- a tiny analytic scene: floor y = 0 over [-F, F]^2, plus boxes ---- */
+typedef struct { double lo[3], hi[3]; } abox;
+typedef struct { double floor_half; int box_count; abox box[4]; } ascene;
+
+/* Ray o + t d against a box (slab test); t of entry (> 1e-9) or -1, face normal in n. */
+static double ray_box(const double o[3], const double d[3], const abox *b, double n[3])
+{
+    double t0 = -1e30, t1 = 1e30;
+    int axis = -1, a;
+    double sign = 0;
+    for (a = 0; a < 3; a++) {
+        double lo, hi, s;
+        if (fabs(d[a]) < 1e-15) {
+            if (o[a] < b->lo[a] || o[a] > b->hi[a]) return -1;
+            continue;
+        }
+        lo = (b->lo[a] - o[a]) / d[a];
+        hi = (b->hi[a] - o[a]) / d[a];
+        s = -1;
+        if (lo > hi) { double tmp = lo; lo = hi; hi = tmp; s = 1; }
+        if (lo > t0) { t0 = lo; axis = a; sign = d[a] > 0 ? -1 : 1; (void)s; }
+        if (hi < t1) t1 = hi;
+    }
+    if (t0 > t1 || t1 < 1e-9 || t0 < 1e-9 || axis < 0) return -1;
+    if (n) { n[0] = n[1] = n[2] = 0; n[axis] = sign; }
+    return t0;
+}
+
+/* Nearest hit: t, normal; -1 when nothing. */
+static double ray_scene(const ascene *s, const double o[3], const double d[3], double n[3])
+{
+    double best = -1, nn[3];
+    int i;
+    if (fabs(d[1]) > 1e-15) {
+        double t = -o[1] / d[1];
+        double x = o[0] + t * d[0], z = o[2] + t * d[2];
+        if (t > 1e-9 && fabs(x) <= s->floor_half && fabs(z) <= s->floor_half) {
+            best = t; n[0] = 0; n[1] = o[1] > 0 ? 1 : -1; n[2] = 0;
+        }
+    }
+    for (i = 0; i < s->box_count; i++) {
+        double t = ray_box(o, d, &s->box[i], nn);
+        if (t > 0 && (best < 0 || t < best)) { best = t; n[0] = nn[0]; n[1] = nn[1]; n[2] = nn[2]; }
+    }
+    return best;
+}
+
+static ascene floor_only(double half)
+{
+    ascene s;
+    memset(&s, 0, sizeof s);
+    s.floor_half = half;
+    return s;
+}
+
+static double dv(tg_real r) { return check_d(r); }
+static tg_real rv(double x) { return tg_from_float((float)x); }
+static tg_vec3 v3d(double x, double y, double z) { return tg_v3(rv(x), rv(y), rv(z)); }
+
+/* World ray of pixel (x, y)'s centre, direction with view z = 1. */
+static void pixel_ray(const tg_view *v, int x, int y, double o[3], double d[3])
+{
+    double ndc_x = (x + 0.5) / v->width * 2 - 1, ndc_y = 1 - (y + 0.5) / v->height * 2;
+    double vx = ndc_x / dv(v->focal_x), vy = ndc_y / dv(v->focal_y);
+    o[0] = dv(v->eye.x); o[1] = dv(v->eye.y); o[2] = dv(v->eye.z);
+    d[0] = vx * dv(v->right.x) + vy * dv(v->up.x) + dv(v->forward.x);
+    d[1] = vx * dv(v->right.y) + vy * dv(v->up.y) + dv(v->forward.y);
+    d[2] = vx * dv(v->right.z) + vy * dv(v->up.z) + dv(v->forward.z);
+}
+
+typedef struct {
+    tg_gbuffer gb;
+    tg_real planes[16][W * H];
+    uint8_t sky[W * H];
+    double world[W * H][3]; /* exact hit point */
+    int on_floor[W * H];
+} gbuf;
+
+static gbuf *gbuf_new(void) { return (gbuf *)calloc(1, sizeof(gbuf)); }
+
+/* Ray cast the analytic scene into a G-buffer (albedo 1 1 1, f0 0). */
+static void gbuf_cast(gbuf *g, const tg_view *v, const ascene *s)
+{
+    int x, y, k;
+    tg_gbuffer *gb = &g->gb;
+    memset(gb, 0, sizeof *gb);
+    gb->width = W; gb->height = H;
+    gb->depth = g->planes[0]; gb->nx = g->planes[1]; gb->ny = g->planes[2]; gb->nz = g->planes[3];
+    gb->albedo_r = g->planes[4]; gb->albedo_g = g->planes[5]; gb->albedo_b = g->planes[6];
+    gb->f0 = g->planes[7]; gb->sky = g->sky;
+    for (y = 0; y < H; y++)
+        for (x = 0; x < W; x++) {
+            int i = y * W + x;
+            double o[3], d[3], n[3], t;
+            pixel_ray(v, x, y, o, d);
+            t = ray_scene(s, o, d, n);
+            g->on_floor[i] = 0;
+            if (t < 0) { g->sky[i] = 1; gb->depth[i] = 0; continue; }
+            g->sky[i] = 0;
+            gb->depth[i] = rv(t);
+            gb->nx[i] = rv(n[0]); gb->ny[i] = rv(n[1]); gb->nz[i] = rv(n[2]);
+            gb->albedo_r[i] = gb->albedo_g[i] = gb->albedo_b[i] = TG_ONE;
+            gb->f0[i] = 0;
+            for (k = 0; k < 3; k++) g->world[i][k] = o[k] + t * d[k];
+            g->on_floor[i] = fabs(g->world[i][1]) < 1e-6 && n[1] > 0.5;
+        }
+}
+
+/* Triangles of the analytic scene for the shadow map (floor + boxes). */
+static int scene_tris(const ascene *s, tg_vec3 *pos)
+{
+    double f = s->floor_half;
+    int n = 0, i, face;
+    tg_vec3 q[4];
+    q[0] = v3d(-f, 0, -f); q[1] = v3d(f, 0, -f); q[2] = v3d(f, 0, f); q[3] = v3d(-f, 0, f);
+    pos[n * 3 + 0] = q[0]; pos[n * 3 + 1] = q[2]; pos[n * 3 + 2] = q[1]; n++;
+    pos[n * 3 + 0] = q[0]; pos[n * 3 + 1] = q[3]; pos[n * 3 + 2] = q[2]; n++;
+    for (i = 0; i < s->box_count; i++) {
+        const abox *b = &s->box[i];
+        for (face = 0; face < 6; face++) {
+            int a = face / 2, u = (a + 1) % 3, w = (a + 2) % 3, c;
+            double p[4][3];
+            for (c = 0; c < 4; c++) {
+                p[c][a] = (face & 1) ? b->hi[a] : b->lo[a];
+                p[c][u] = (c == 1 || c == 2) ? b->hi[u] : b->lo[u];
+                p[c][w] = (c >= 2) ? b->hi[w] : b->lo[w];
+            }
+            for (c = 0; c < 4; c++) q[c] = v3d(p[c][0], p[c][1], p[c][2]);
+            pos[n * 3 + 0] = q[0]; pos[n * 3 + 1] = q[1]; pos[n * 3 + 2] = q[2]; n++;
+            pos[n * 3 + 0] = q[0]; pos[n * 3 + 1] = q[2]; pos[n * 3 + 2] = q[3]; n++;
+        }
+    }
+    return n;
+}
+
+static tg_light make_light(tg_light_type type, tg_vec3 pos, tg_vec3 dir, double intensity, double angle)
+{
+    tg_light l;
+    memset(&l, 0, sizeof l);
+    l.type = type; l.pos = pos; l.dir = tg_v3_normalize(dir);
+    l.color = v3d(1.0, 0.5, 0.25); l.intensity = rv(intensity); l.angle = rv(angle); l.shadows = 1;
+    return l;
+}
+
+static tg_real e_r[W * H], e_g[W * H], e_b[W * H];
+
+/* ---- direct light ---- */
+
+TEST(directional_incidence)
+{
+    static const double thetas[] = { 0, 20, 45, 60, 75, 80, 85 };
+    gbuf *g = gbuf_new();
+    ascene s = floor_only(50);
+    tg_view v;
+    size_t k;
+    int i, seen = 0;
+    tg_view_make(&v, v3d(0, 5, -6), v3d(0, 0, 0), v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
+    gbuf_cast(g, &v, &s);
+    for (k = 0; k < sizeof thetas / sizeof thetas[0]; k++) {
+        double th = thetas[k] * DEG, I = 2.0;
+        tg_light l = make_light(TG_LIGHT_DIRECTIONAL, v3d(0, 0, 0), v3d(sin(th), -cos(th), 0.0), I, 0);
+        tg_direct_rows(&g->gb, &v, &l, 1, NULL, e_r, e_g, e_b, 0, H);
+        for (i = 0; i < W * H; i++) {
+            double want = I * cos(th);
+            if (g->sky[i]) continue;
+            seen++;
+            CHECK(fabs(dv(e_r[i]) - want) <= 0.01 * want, "theta %g: E %g want %g", thetas[k], dv(e_r[i]), want);
+            CHECK(fabs(dv(e_g[i]) - 0.5 * want) <= 0.01 * 0.5 * want, "theta %g: E_g %g", thetas[k], dv(e_g[i]));
+            CHECK(fabs(dv(e_b[i]) - 0.25 * want) <= 0.01 * 0.25 * want + 2e-5, "theta %g: E_b %g", thetas[k], dv(e_b[i]));
+        }
+    }
+    CHECK(seen > W * H, "the floor covers the image (%d)", seen);
+    free(g);
+}
+
+TEST(point_inverse_square_and_spot_edge)
+{
+    gbuf *g = gbuf_new();
+    ascene s = floor_only(50);
+    tg_view v;
+    double L[3] = { 1, 3, 0.5 }, I = 10, angle = 30 * DEG;
+    tg_light pt = make_light(TG_LIGHT_POINT, v3d(L[0], L[1], L[2]), v3d(0, -1, 0), I, 0);
+    tg_light sp = make_light(TG_LIGHT_SPOT, v3d(L[0], L[1], L[2]), v3d(0, -1, 0), I, angle);
+    int i, inside = 0, outside = 0, between = 0;
+    tg_view_make(&v, v3d(0, 5, -6), v3d(0, 0, 0), v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
+    gbuf_cast(g, &v, &s);
+    tg_direct_rows(&g->gb, &v, &pt, 1, NULL, e_r, e_g, e_b, 0, H);
+    for (i = 0; i < W * H; i++) {
+        double *p = g->world[i], dx = L[0] - p[0], dy = L[1] - p[1], dz = L[2] - p[2];
+        double d2 = dx * dx + dy * dy + dz * dz, want = I * (dy / sqrt(d2)) / d2;
+        if (g->sky[i]) continue;
+        CHECK(fabs(dv(e_r[i]) - want) <= 0.01 * want + 3e-5, "point: E %g want %g", dv(e_r[i]), want);
+    }
+    tg_direct_rows(&g->gb, &v, &sp, 1, NULL, e_r, e_g, e_b, 0, H);
+    for (i = 0; i < W * H; i++) {
+        double *p = g->world[i], dx = L[0] - p[0], dy = L[1] - p[1], dz = L[2] - p[2];
+        double d2 = dx * dx + dy * dy + dz * dz, full = I * (dy / sqrt(d2)) / d2;
+        double off_axis = acos(dy / sqrt(d2));
+        if (g->sky[i]) continue;
+        if (off_axis < 0.84 * angle) {
+            inside++;
+            CHECK(fabs(dv(e_r[i]) - full) <= 0.01 * full + 3e-5, "spot inside: E %g want %g", dv(e_r[i]), full);
+        } else if (off_axis > 1.01 * angle) {
+            outside++;
+            CHECK(e_r[i] == 0, "spot outside: E %g", dv(e_r[i]));
+        } else {
+            between++;
+            CHECK(dv(e_r[i]) >= 0 && dv(e_r[i]) <= full * 1.01 + 3e-5, "spot edge: E %g of %g", dv(e_r[i]), full);
+        }
+    }
+    CHECK(inside > 20 && outside > 20 && between > 5, "coverage %d %d %d", inside, outside, between);
+    free(g);
+}
+
+/* ---- shadow maps ---- */
+
+/* Analytic shadow test: does the segment from p towards the light hit box b grown by m? */
+static int occluded(const double p[3], const tg_light *l, const abox *b, double m)
+{
+    abox g = *b;
+    double d[3], o[3], n[3], t, tmax = 1e30;
+    int a;
+    for (a = 0; a < 3; a++) { g.lo[a] -= m; g.hi[a] += m; o[a] = p[a]; }
+    if (l->type == TG_LIGHT_DIRECTIONAL) {
+        d[0] = -dv(l->dir.x); d[1] = -dv(l->dir.y); d[2] = -dv(l->dir.z);
+    } else {
+        d[0] = dv(l->pos.x) - p[0]; d[1] = dv(l->pos.y) - p[1]; d[2] = dv(l->pos.z) - p[2];
+        tmax = 1;
+    }
+    t = ray_box(o, d, &g, n);
+    return t > 0 && t < tmax;
+}
+
+typedef struct { int in_shadow, lit, edge; } shadow_counts;
+
+/* Render the map, light the G-buffer, and compare every floor pixel with the
+ * analytic shadow: surely inside -> E <= 2% of unshadowed, surely outside -> >= 98%. */
+static shadow_counts check_box_shadow(gbuf *g, const tg_view *v, const ascene *s, const tg_light *l,
+                                      double margin)
+{
+    static tg_vec3 pos[3 * 64];
+    static tg_real unsh_r[W * H], dummy_g[W * H], dummy_b[W * H];
+    shadow_counts c = { 0, 0, 0 };
+    tg_shadow_map sm;
+    const tg_shadow_map *maps[1];
+    void *mem = malloc(tg_shadow_map_bytes(l, MAP_SIZE));
+    int n = scene_tris(s, pos), i;
+    tg_vec3 lo = v3d(-s->floor_half, 0, -s->floor_half), hi = v3d(s->floor_half, 2, s->floor_half);
+    tg_shadow_map_setup(&sm, l, MAP_SIZE, lo, hi, mem);
+    tg_shadow_map_render(&sm, pos, n);
+    maps[0] = &sm;
+    tg_direct_rows(&g->gb, v, l, 1, NULL, unsh_r, dummy_g, dummy_b, 0, H);
+    tg_direct_rows(&g->gb, v, l, 1, maps, e_r, e_g, e_b, 0, H);
+    for (i = 0; i < W * H; i++) {
+        double full = dv(unsh_r[i]), got = dv(e_r[i]);
+        int k, inside = 0, outside = 1;
+        if (!g->on_floor[i] || full < 1e-3) continue;
+        for (k = 0; k < s->box_count; k++) {
+            if (occluded(g->world[i], l, &s->box[k], -margin)) inside = 1;
+            if (occluded(g->world[i], l, &s->box[k], margin)) outside = 0;
+        }
+        if (inside) {
+            c.in_shadow++;
+            CHECK(got <= 0.02 * full, "in the box's shadow at (%.3f, %.3f): %g of %g",
+                  g->world[i][0], g->world[i][2], got, full);
+        } else if (outside) {
+            c.lit++;
+            CHECK(got >= 0.98 * full, "outside the shadow at (%.3f, %.3f): %g of %g",
+                  g->world[i][0], g->world[i][2], got, full);
+        } else {
+            c.edge++;
+            CHECK(got >= 0 && got <= full * 1.0001 + 1e-4, "penumbra in range: %g of %g", got, full);
+        }
+    }
+    free(mem);
+    return c;
+}
+
+TEST(box_shadow_lands_where_geometry_says)
+{
+    gbuf *g = gbuf_new();
+    ascene s = { 4, 1, { { { -0.5, 0, -0.5 }, { 0.5, 1, 0.5 } } } };
+    tg_view v;
+    tg_light dl = make_light(TG_LIGHT_DIRECTIONAL, v3d(0, 0, 0), v3d(1.0, -0.8, 0.4), 1, 0);
+    tg_light sl = make_light(TG_LIGHT_SPOT, v3d(-2, 4, -1), v3d(2.5, -4, 1.2), 20, 50 * DEG);
+    tg_light pl = make_light(TG_LIGHT_POINT, v3d(-1.5, 3, 1), v3d(0, -1, 0), 20, 0);
+    shadow_counts c;
+    tg_view_make(&v, v3d(0, 7, 0.01), v3d(0, 0, 0), v3d(0, 0, 1), rv(40 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
+    gbuf_cast(g, &v, &s);
+    c = check_box_shadow(g, &v, &s, &dl, 0.08);
+    CHECK(c.in_shadow > 80 && c.lit > 500, "directional: %d in shadow, %d lit, %d edge", c.in_shadow, c.lit, c.edge);
+    c = check_box_shadow(g, &v, &s, &sl, 0.08);
+    CHECK(c.in_shadow > 60 && c.lit > 200, "spot: %d in shadow, %d lit, %d edge", c.in_shadow, c.lit, c.edge);
+    c = check_box_shadow(g, &v, &s, &pl, 0.08);
+    CHECK(c.in_shadow > 60 && c.lit > 500, "point: %d in shadow, %d lit, %d edge", c.in_shadow, c.lit, c.edge);
+    free(g);
+}
+
+TEST(no_acne_at_80_degrees)
+{
+    gbuf *g = gbuf_new();
+    ascene s = floor_only(4);
+    tg_view v;
+    double th = 80 * DEG;
+    tg_light dl = make_light(TG_LIGHT_DIRECTIONAL, v3d(0, 0, 0), v3d(sin(th), -cos(th), 0.3 * sin(th)), 1, 0);
+    tg_light sl = make_light(TG_LIGHT_SPOT, v3d(-8 * sin(th), 8 * cos(th), 0), v3d(sin(th), -cos(th), 0), 50, 20 * DEG);
+    shadow_counts c;
+    tg_view_make(&v, v3d(0, 9, -3), v3d(0, 0, 0), v3d(0, 1, 0), rv(45 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
+    gbuf_cast(g, &v, &s);
+    c = check_box_shadow(g, &v, &s, &dl, 0.0); /* no box: every floor pixel must be lit >= 98% */
+    CHECK(c.lit > 1000 && c.in_shadow == 0, "directional: %d lit", c.lit);
+    c = check_box_shadow(g, &v, &s, &sl, 0.0);
+    CHECK(c.lit > 100 && c.in_shadow == 0, "spot: %d lit", c.lit);
+    free(g);
+}
+
+TEST(point_cube_faces_meet_without_seams)
+{
+    gbuf *g = gbuf_new();
+    /* a post whose shadow crosses the +X / -Y face boundary (x - 0.3 = 1.5 on the floor) */
+    ascene s = { 4, 1, { { { 1.2, 0, -0.3 }, { 1.6, 0.6, 0.3 } } } };
+    ascene open = floor_only(4);
+    tg_view v;
+    tg_light pl = make_light(TG_LIGHT_POINT, v3d(0.3, 1.5, -0.2), v3d(0, -1, 0), 20, 0);
+    shadow_counts c;
+    tg_view_make(&v, v3d(0, 12, 0.01), v3d(0, 0, 0), v3d(0, 0, 1), rv(40 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
+    gbuf_cast(g, &v, &open);
+    c = check_box_shadow(g, &v, &open, &pl, 0.0); /* an open floor is fully lit across all five faces */
+    CHECK(c.lit > 1500 && c.in_shadow == 0, "open floor: %d lit", c.lit);
+    {   /* and directly along the face edges, sampled finely */
+        static tg_vec3 pos[3 * 64];
+        tg_shadow_map sm;
+        void *mem = malloc(tg_shadow_map_bytes(&pl, MAP_SIZE));
+        int n = scene_tris(&open, pos), k, bad = 0;
+        tg_shadow_map_setup(&sm, &pl, MAP_SIZE, v3d(-4, 0, -4), v3d(4, 2, 4), mem);
+        tg_shadow_map_render(&sm, pos, n);
+        for (k = 0; k <= 2000; k++) {
+            double z = -3.9 + 7.8 * k / 2000.0, off = ((k % 7) - 3) * 0.002;
+            tg_vec3 p1 = v3d(0.3 + 1.5 + off, 0, z), p2 = v3d(0.3 - 1.5 + off, 0, z);
+            tg_vec3 p3 = v3d(z, 0, -0.2 + 1.5 + off), up = tg_v3(0, TG_ONE, 0);
+            if (tg_shadow_visibility(&sm, p1, up) < TG_R(0.99f)) bad++;
+            if (tg_shadow_visibility(&sm, p2, up) < TG_R(0.99f)) bad++;
+            if (tg_shadow_visibility(&sm, p3, up) < TG_R(0.99f)) bad++;
+        }
+        CHECK(bad == 0, "%d points along the cube edges darkened", bad);
+        free(mem);
+    }
+    gbuf_cast(g, &v, &s);
+    c = check_box_shadow(g, &v, &s, &pl, 0.06);
+    CHECK(c.in_shadow > 8 && c.lit > 1000, "post: %d in shadow, %d lit, %d edge", c.in_shadow, c.lit, c.edge);
+    free(g);
+}
+
+/* ---- composition ---- */
+
+TEST(compose_formula_sky_and_saturation)
+{
+    static tg_real d[3][W * H], f[3][W * H], nr[3][W * H], er[W * H], eg[W * H], eb[W * H];
+    static tg_real o_r[W * H], o_g[W * H], o_b[W * H], i_r[W * H], i_g[W * H], i_b[W * H];
+    static tg_real em[3][W * H];
+    gbuf *g = gbuf_new();
+    ascene s = floor_only(4);
+    tg_env env;
+    tg_view v;
+    tg_rgb_planes terms[3];
+    int i, c, sky_seen = 0;
+    tg_view_make(&v, v3d(0, 1, -6), v3d(0, 1, 0), v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
+    gbuf_cast(g, &v, &s);
+    for (i = 0; i < W * H; i++) {
+        for (c = 0; c < 3; c++) {
+            d[c][i] = rv(0.5 + 0.1 * c); f[c][i] = rv(0.25 * (i % 5)); nr[c][i] = rv(0.125 * c);
+            em[c][i] = rv(i % 3 == 0 ? 0.75 : 0);
+        }
+        g->gb.albedo_r[i] = rv(0.8); g->gb.albedo_g[i] = rv(0.5); g->gb.albedo_b[i] = rv(0.2);
+        g->gb.f0[i] = rv(0.04 * (i % 4));
+    }
+    g->gb.emit_r = em[0]; g->gb.emit_g = em[1]; g->gb.emit_b = em[2];
+    terms[0].r = d[0]; terms[0].g = d[1]; terms[0].b = d[2];
+    terms[1].r = f[0]; terms[1].g = f[1]; terms[1].b = f[2];
+    terms[2].r = nr[0]; terms[2].g = nr[1]; terms[2].b = nr[2];
+    memset(&env, 0, sizeof env);
+    env.type = TG_ENV_SKY; env.sky = v3d(0.3, 0.5, 1.0); env.ground = v3d(0.2, 0.1, 0.05); env.up = v3d(0, 1, 0);
+    tg_compose_rows(&g->gb, &v, &env, terms, 3, o_r, o_g, o_b, i_r, i_g, i_b, 0, H);
+    for (i = 0; i < W * H; i++) {
+        double alb[3] = { 0.8, 0.5, 0.2 }, out[3] = { dv(o_r[i]), dv(o_g[i]), dv(o_b[i]) };
+        double irr[3] = { dv(i_r[i]), dv(i_g[i]), dv(i_b[i]) };
+        if (g->sky[i]) {
+            double o[3], dd[3];
+            pixel_ray(&v, i % W, i / W, o, dd);
+            sky_seen++;
+            CHECK(fabs(out[2] - (dd[1] >= 0 ? 1.0 : 0.05)) < 1e-4, "sky radiance %g", out[2]);
+            continue;
+        }
+        for (c = 0; c < 3; c++) {
+            double E = dv(d[c][i]) + dv(f[c][i]) + dv(nr[c][i]);
+            double want = alb[c] / 3.14159265358979 * (1 - dv(g->gb.f0[i])) * E + dv(em[c][i]);
+            CHECK(fabs(irr[c] - E) < 1e-4, "irradiance %g want %g", irr[c], E);
+            CHECK(fabs(out[c] - want) <= 1e-3 * want + 1e-4, "Lo %g want %g", out[c], want);
+        }
+    }
+    CHECK(sky_seen > 100, "sky pixels %d", sky_seen);
+    /* an absent term is skipped; huge irradiance saturates, never wraps */
+    terms[1].r = NULL;
+    /* fixed point: the largest value, summed twice, must saturate; float: a huge finite value */
+    for (i = 0; i < W * H; i++) { er[i] = TG_FIXED ? TG_REAL_MAX : TG_R(1e30f); eg[i] = rv(1e4); eb[i] = 0; }
+    terms[0].r = er; terms[0].g = eg; terms[0].b = eb;
+    terms[2].r = er; terms[2].g = eg; terms[2].b = eb;
+    tg_compose_rows(&g->gb, &v, NULL, terms, 3, o_r, o_g, o_b, NULL, NULL, NULL, 0, H);
+    for (i = 0; i < W * H; i++) {
+        if (g->sky[i]) { CHECK(o_r[i] == 0 && o_b[i] == 0, "sky without env is black"); continue; }
+        CHECK(tg_isfinite(o_r[i]) && dv(o_r[i]) > 1000, "HDR stays huge and positive: %g", dv(o_r[i]));
+        CHECK(dv(o_g[i]) > 1000, "2e4 irradiance: %g", dv(o_g[i]));
+        CHECK(dv(o_b[i]) >= 0 && dv(o_b[i]) <= 0.76, "no irradiance: emissive only %g", dv(o_b[i]));
+    }
+    free(g);
+}
+
+/* ---- tonemap ---- */
+
+static double srgb_exact(double c)
+{
+    return c <= 0.0031308 ? 12.92 * c : 1.055 * pow(c, 1 / 2.4) - 0.055;
+}
+
+TEST(srgb_table_matches_formula)
+{
+    double worst = 0;
+    int k, n = 200000;
+    for (k = 0; k <= n; k++) {
+        double x = (double)k / n;
+        tg_real r = rv(x);
+        double exact = 255 * srgb_exact(dv(r));
+        double err = fabs(tg_srgb8(r) - exact);
+        if (err > worst) worst = err;
+    }
+    CHECK(worst <= 0.5 + 1e-4, "worst error %.6f LSB", worst);
+    CHECK(tg_srgb8(0) == 0 && tg_srgb8(TG_ONE) == 255, "ends");
+    CHECK(tg_srgb8(TG_R(-1.0f)) == 0 && tg_srgb8(TG_R(3.0f)) == 255, "clamps");
+    printf("# sRGB table: worst error %.4f LSB\n", worst);
+}
+
+TEST(tonemap_monotone_zero_and_saturating)
+{
+    static const tg_real big[4] = { TG_REAL_MAX, TG_R(100.0f), TG_R(7.3f), TG_R(1000.0f) };
+    tg_real prev = 0;
+    uint8_t rgb[12], prev8 = 0;
+    int k, mono = 1, mono8 = 1;
+    CHECK(tg_tonemap_aces(0) == 0, "0 -> 0");
+    for (k = 0; k <= 40000; k++) {
+        tg_real x = rv(k * 0.0002);
+        tg_real y = tg_tonemap_aces(x);
+        uint8_t c = tg_srgb8(y);
+        if (y < prev) mono = 0;
+        if (c < prev8) mono8 = 0;
+        CHECK(y >= 0 && y <= TG_ONE, "range %g", dv(y));
+        prev = y; prev8 = c;
+    }
+    CHECK(mono && mono8, "monotone (linear %d, 8-bit %d)", mono, mono8);
+    CHECK(fabs(dv(tg_tonemap_aces(TG_R(0.5f))) - 0.5 * (2.51 * 0.5 + 0.03) / (0.5 * (2.43 * 0.5 + 0.59) + 0.14)) < 1e-3,
+          "ACES fit at 0.5: %g", dv(tg_tonemap_aces(TG_R(0.5f))));
+    tg_tonemap_row8(big, big, big, 4, TG_R(4.0f), rgb);
+    for (k = 0; k < 12; k++) CHECK(rgb[k] == 255, "HDR saturates to white, got %d", rgb[k]);
+    {
+        tg_real zero[2] = { 0, 0 }, quarter[2] = { TG_R(0.25f), TG_R(0.25f) };
+        tg_tonemap_row8(zero, zero, zero, 2, TG_ONE, rgb);
+        for (k = 0; k < 6; k++) CHECK(rgb[k] == 0, "black stays black");
+        tg_tonemap_row8(quarter, quarter, quarter, 1, TG_R(2.0f), rgb);
+        CHECK(rgb[0] == tg_srgb8(tg_tonemap_aces(TG_R(0.5f))), "exposure multiplies before the curve");
+    }
+}
+
+int main(void)
+{
+    RUN(directional_incidence);
+    RUN(point_inverse_square_and_spot_edge);
+    RUN(box_shadow_lands_where_geometry_says);
+    RUN(no_acne_at_80_degrees);
+    RUN(point_cube_faces_meet_without_seams);
+    RUN(compose_formula_sky_and_saturation);
+    RUN(srgb_table_matches_formula);
+    RUN(tonemap_monotone_zero_and_saturating);
+    return check_summary();
+}
