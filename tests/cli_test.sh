@@ -206,6 +206,24 @@ check_binary() {
         run render "$s" --size 32x24 -o "$O/s.ppm" --quiet
         expect "$tag/render_$s" [ "$rc" -eq 0 ]
     done
+    for wh in 1x1 3x5 5x3 4097x3; do
+        run render builtin:cornell --size "$wh" -o "$O/odd.ppm" --quiet
+        expect "$tag/render_size_$wh" [ "$rc" -eq 0 -a "$(wc -c <"$O/odd.ppm" 2>/dev/null)" -eq \
+            $(( $(printf 'P6\n%s %s\n255\n' "${wh%x*}" "${wh#*x}" | wc -c) + ${wh%x*} * ${wh#*x} * 3 )) ]
+    done
+    run render builtin:cornell --size 16x12 --technique hbil --slices 1 --samples 1 --radius 0 \
+        --bounces 0 --exposure 2 --shadow-size 64 --no-interleave --no-temporal -o "$O/opts.ppm" --quiet
+    expect "$tag/render_every_option_accepted" [ "$rc" -eq 0 -a -s "$O/opts.ppm" ]
+    run render builtin:cornell --size=16x12 --frames=2 --aov=depth -o "$O/eq.pfm" --quiet
+    expect "$tag/render_option_equals_form" [ "$rc" -eq 0 -a "$(head -c 2 "$O/eq.pfm" 2>/dev/null)" = Pf ]
+    run render builtin:cornell --size 16x12 --frames 3 -o "$O/np.ppm"
+    expect "$tag/summary_without_quiet" [ "$rc" -eq 0 -a -n "$(cat "$T/err")" ]
+    expect "$tag/no_progress_without_terminal" eval "! grep -q 'frame 1/3' '$T/err'"
+    if command -v script >/dev/null 2>&1; then # a pseudo-terminal: progress shows
+        script -qec "'$BIN' render builtin:cornell --size 16x12 --frames 3 -o '$O/p%d.ppm'" /dev/null \
+            >"$T/tty" 2>&1 </dev/null
+        expect "$tag/progress_on_terminal" grep -q 'frame 3/3, elapsed .* ETA' "$T/tty"
+    fi
     run render builtin:cornell --size 16x12 -o "$T/no/such/dir/x.ppm"
     expect "$tag/unwritable_output_exit_1" [ "$rc" -eq 1 -a "$(err_lines)" -eq 1 ]
     expect "$tag/unwritable_output_message" grep -q 'error: cannot write' "$T/err"
@@ -228,7 +246,7 @@ check_binary() {
     expect "$tag/diff_psnr" grep -q '^psnr 49.38 dB$' "$T/out"            # 20 log10(255/0.866)
     expect "$tag/diff_max_where" grep -q '^max 3 at 1,0 channel g$' "$T/out"
     expect "$tag/diff_over_count" grep -q '^over 1 of 4 pixels' "$T/out"
-    run diff "$T/d1.ppm" "$T/d2.ppm" --tolerance 3
+    run diff "$T/d1.ppm" "$T/d2.ppm" --tolerance=3
     expect "$tag/diff_within_tolerance_exit_0" [ "$rc" -eq 0 ]
     run diff "$T/d1.ppm" "$T/d2.ppm" --tolerance 2.9
     expect "$tag/diff_just_outside_exit_1" [ "$rc" -eq 1 ]
