@@ -1,7 +1,11 @@
 /*
  * libc_mini.c - the C library functions a -nostdlib build still needs: the
- * core calls memcpy/memset, and GCC itself may emit calls to them (and to
- * memmove) for structure copies.  Byte loops: small, not fast.
+ * core uses <string.h> only (memcpy, memset, strlen, strcmp, strncmp; a
+ * link error here means it reached for more), and GCC itself may emit
+ * calls to memcpy/memset/memmove for structure copies.  Byte loops: small,
+ * not fast.
+ * Compile with -fno-tree-loop-distribute-patterns, or GCC turns these very
+ * loops back into calls to themselves.
  */
 #include <stddef.h>
 
@@ -10,6 +14,8 @@ void *memmove(void *dst, const void *src, size_t n);
 void *memset(void *dst, int c, size_t n);
 int memcmp(const void *a, const void *b, size_t n);
 size_t strlen(const char *s);
+int strcmp(const char *a, const char *b);
+int strncmp(const char *a, const char *b, size_t n);
 
 void *memcpy(void *dst, const void *src, size_t n)
 {
@@ -52,3 +58,15 @@ size_t strlen(const char *s)
     while (s[n]) n++;
     return n;
 }
+
+int strncmp(const char *a, const char *b, size_t n)
+{
+    for (; n; n--, a++, b++) {
+        unsigned char p = (unsigned char)*a, q = (unsigned char)*b;
+        if (p != q) return p < q ? -1 : 1;
+        if (!p) return 0;
+    }
+    return 0;
+}
+
+int strcmp(const char *a, const char *b) { return strncmp(a, b, (size_t)-1); }

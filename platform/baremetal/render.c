@@ -11,7 +11,8 @@
  *     OUTDIR  where the files go (default ".")
  *     WxH     image size (default 64x48)
  *     FRAMES  frames rendered; the last one is written (default 1)
- *     AOVS    comma list (default color,depth,normal,ao); an AOV the core
+ *     AOVS    list split by ',' or '+' (default color,depth,normal,ao: '+'
+ *             where ',' is taken, as in QEMU's options); an AOV the core
  *             cannot plan for this scene is skipped with a message
  *     SCENE   built-in scene names (default: all of them)
  *   exit status: 0 all written, 1 runtime/output error, 2 bad arguments or
@@ -225,8 +226,8 @@ static void log_scene(const char *name, const settings *st, const tg_plan *plan,
     cat_str(msg, sizeof msg, &at, " bytes, ");
     cat_ulong(msg, sizeof msg, &at, (unsigned long)st->frames);
     cat_str(msg, sizeof msg, &at, " frame(s) in ");
-    cat_ulong(msg, sizeof msg, &at, (unsigned long)(cs > 0 ? cs : 0));
-    cat_str(msg, sizeof msg, &at, "0 ms");
+    cat_ulong(msg, sizeof msg, &at, (unsigned long)(cs > 0 ? cs * 10 : 0));
+    cat_str(msg, sizeof msg, &at, " ms");
     port_log(msg);
 }
 
@@ -282,13 +283,13 @@ static int parse_aovs(const char *list, uint32_t *aovs)
     while (*list) {
         size_t n = 0;
         int a, found = -1;
-        while (list[n] && list[n] != ',') n++;
+        while (list[n] && list[n] != ',' && list[n] != '+') n++;
         for (a = 0; a < TG_AOV_COUNT; a++)
             if (str_eq(list, tg_aov_name((tg_aov)a), n)) found = a;
         if (found < 0) return -1;
         *aovs |= 1u << found;
         list += n;
-        if (*list == ',') list++;
+        if (*list == ',' || *list == '+') list++;
     }
     return 0;
 }

@@ -1,0 +1,173 @@
+#!/usr/bin/env bash
+# platform/cross-run.sh - the body of `make cross` (see platform/cross.mk for
+# the knobs).  Builds the core libraries and platform/baremetal/render.c for
+# every target, runs them, and compares every output file with x86-64's
+# using cmp: identical frames everywhere, float and fixed point alike.
+# Prints "ok ..." / "FAIL ..." lines and ends with "N passed, N failed".
+set -u
+cd "$(dirname "$0")/.."
+OUT=${CROSS_BUILD:-build-cross}
+TARGETS=${CROSS_TARGETS:-"i686 s390x powerpc m3 m4f m0"}
+SCENES=${CROSS_SCENES:-"cornell spheres columns"}
+SIZE=${CROSS_SIZE:-64x48}
+FRAMES=${CROSS_FRAMES:-2}
+AOVS=${CROSS_AOVS:-color,depth,normal,ao}; AOVS=${AOVS//,/+} # QEMU options take commas
+M0_SIZE=${CROSS_M0_SIZE:-16x12}
+M0_SCENES=${CROSS_M0_SCENES:-cornell}
+M0_ARENA=${CROSS_M0_ARENA:-10240}
+MAKE=${MAKE:-make}
+HOST_CC=${HOST_CC:-cc}
+SKIP=${SKIP:-}
+QEMU_TIMEOUT=${CROSS_TIMEOUT:-300}
+
+CFLAGS="-std=c99 -ffp-contract=off -fexcess-precision=fast -O2 -Wall -Wextra -Wpedantic -Wshadow -Wdouble-promotion -Werror"
+BM=platform/baremetal
+passed=0; failed=0
+ok()   { echo "ok $1"; passed=$((passed + 1)); }
+fail() { echo "FAIL $1${2:+: $2}"; failed=$((failed + 1)); }
+log()  { echo "cross: $*"; }
+mkdir -p "$OUT"
+LOG="$OUT/log"; mkdir -p "$LOG"
+
+# ---- toolchains ----
+t0=$(date +%s)
+if bash platform/cross-install.sh; then ok "install toolchains"; else fail "install toolchains"; fi
+
+# ---- per-target settings: compiler, flags, runner ----
+target_cc() {
+    case $1 in
+        x86_64) echo "$HOST_CC" ;;
+        i686) echo i686-linux-gnu-gcc ;;
+        s390x) echo s390x-linux-gnu-gcc ;;
+        powerpc) echo powerpc-linux-gnu-gcc ;;
+        m3|m4f|m0) echo arm-none-eabi-gcc ;;
+    esac
+}
+target_ar() { local cc; cc=$(target_cc "$1"); [ "$1" = x86_64 ] && echo ar || echo "${cc%gcc}ar"; }
+target_flags() {
+    case $1 in
+        i686) echo "-msse2 -mfpmath=sse" ;; # x87 rounds differently
+        m3) echo "-mcpu=cortex-m3 -mthumb -ffunction-sections -fdata-sections" ;;
+        m4f) echo "-mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard -ffunction-sections -fdata-sections" ;;
+        m0) echo "-mcpu=cortex-m0 -mthumb -ffunction-sections -fdata-sections -fno-tree-loop-distribute-patterns" ;;
+    esac
+}
+target_run() { # how to run a Linux binary
+    case $1 in
+        s390x) echo qemu-s390x ;;
+        powerpc) echo qemu-ppc ;;
+        *) echo "" ;;
+    esac
+}
+target_machine() { case $1 in m3) echo mps2-an385 ;; m4f) echo mps2-an386 ;; m0) echo microbit ;; esac; }
+target_nums() { [ "$1" = m0 ] && echo fixed || echo "float fixed"; }
+is_bare() { case $1 in m3|m4f|m0) return 0 ;; *) return 1 ;; esac; }
+
+lib_for() { [ "$2" = fixed ] && echo "$OUT/$1/libtinygi-fixed.a" || echo "$OUT/$1/libtinygi.a"; }
+numdef() { [ "$1" = fixed ] && echo "-DTG_FIXED=1" || echo ""; }
+
+# Build the core libraries with the top Makefile, then the driver.
+build_target() {
+    local t=$1 cc ar flags num lib
+    cc=$(target_cc "$t"); ar=$(target_ar "$t"); flags=$(target_flags "$t")
+    command -v "$cc" >/dev/null || { fail "$t: build" "$cc not installed"; return 1; }
+    if ! $MAKE -s -j2 BUILD="$OUT/$t" CC="$cc" AR="$ar" EXTRA_CFLAGS="$flags" SKIP="$SKIP" \
+        "$OUT/$t/libtinygi.a" "$OUT/$t/libtinygi-fixed.a" >"$LOG/$t-core.log" 2>&1; then
+        fail "$t: build core" "see $LOG/$t-core.log"; tail -n 15 "$LOG/$t-core.log"; return 1
+    fi
+    for num in $(target_nums "$t"); do
+        lib=$(lib_for "$t" "$num")
+        if is_bare "$t"; then
+            build_bare "$t" "$num" "$cc" "$flags" "$lib" || return 1
+        else
+            # shellcheck disable=SC2046
+            if ! $cc $CFLAGS $flags $(numdef "$num") -Isrc -I$BM $BM/render.c $BM/port_stdio.c "$lib" \
+                $( [ "$t" = x86_64 ] || echo -static ) -o "$OUT/$t/render-$num" >"$LOG/$t-$num.log" 2>&1; then
+                fail "$t/$num: build driver" "$(head -c 600 "$LOG/$t-$num.log")"; return 1
+            fi
+        fi
+    done
+    ok "$t: build"
+}
+
+build_bare() {
+    local t=$1 num=$2 cc=$3 flags=$4 lib=$5 common extra
+    common="-Wl,--gc-sections -Wl,--undefined=tg_vectors -L$BM -Isrc -I$BM"
+    if [ "$t" = m0 ]; then # no C library at all: raw semihosting, our memcpy, libgcc last
+        # shellcheck disable=SC2086
+        $cc $CFLAGS $flags $(numdef "$num") -DTG_BM_ARENA_BYTES="$M0_ARENA" -ffreestanding -nostdlib \
+            $common -Tmicrobit.ld -Wl,-Map="$OUT/$t/render-$num.map" \
+            $BM/startup.c $BM/semihost.c $BM/render.c $BM/port_semihost.c $BM/libc_mini.c "$lib" -lgcc \
+            -o "$OUT/$t/render-$num.elf" >"$LOG/$t-$num.log" 2>&1
+    else # newlib: stdio over semihosting (librdimon), our startup and vector table
+        # shellcheck disable=SC2086
+        $cc $CFLAGS $flags $(numdef "$num") -DTG_BM_NEWLIB --specs=rdimon.specs -nostartfiles \
+            $common -Tmps2.ld $BM/startup.c $BM/semihost.c $BM/render.c $BM/port_stdio.c "$lib" \
+            -o "$OUT/$t/render-$num.elf" >"$LOG/$t-$num.log" 2>&1
+    fi || { fail "$t/$num: build driver" "$(head -c 800 "$LOG/$t-$num.log")"; return 1; }
+}
+
+# run_driver TARGET NUM DIR SIZE SCENES...
+run_driver() {
+    local t=$1 num=$2 dir=$3 size=$4; shift 4
+    local args runner
+    rm -rf "$dir"; mkdir -p "$dir"
+    if is_bare "$t"; then
+        args="arg=render,arg=$dir,arg=$size,arg=$FRAMES,arg=$AOVS"
+        for s in "$@"; do args="$args,arg=$s"; done
+        timeout "$QEMU_TIMEOUT" qemu-system-arm -M "$(target_machine "$t")" -nographic -monitor none \
+            -serial none -semihosting-config "enable=on,target=native,$args" \
+            -kernel "$OUT/$t/render-$num.elf" >"$dir.log" 2>&1
+    else
+        runner=$(target_run "$t")
+        timeout "$QEMU_TIMEOUT" $runner "$OUT/$t/render-$num" "$dir" "$size" "$FRAMES" "$AOVS" "$@" >"$dir.log" 2>&1
+    fi
+}
+
+# compare_dir NAME REFDIR DIR: every reference file present and identical.
+compare_dir() {
+    local name=$1 ref=$2 dir=$3 f bad="" n=0
+    for f in "$ref"/*; do
+        [ -f "$f" ] || continue
+        n=$((n + 1))
+        cmp -s "$f" "$dir/$(basename "$f")" || bad="$bad $(basename "$f")"
+    done
+    if [ "$n" -eq 0 ]; then fail "$name" "no reference files"
+    elif [ -z "$bad" ]; then ok "$name: $n files identical to x86_64"
+    else fail "$name" "differs from x86_64:$bad"; fi
+}
+
+# ---- x86-64: the reference ----
+# shellcheck disable=SC2086
+build_target x86_64 || { echo "$passed passed, $failed failed"; exit 1; }
+for num in float fixed; do
+    if run_driver x86_64 "$num" "$OUT/out/x86_64/$num" "$SIZE" $SCENES; then
+        ok "x86_64/$num: render $(ls "$OUT/out/x86_64/$num" | wc -l) files"
+    else fail "x86_64/$num: render" "$(tail -n 5 "$OUT/out/x86_64/$num.log")"; fi
+done
+# shellcheck disable=SC2086
+run_driver x86_64 fixed "$OUT/out/x86_64/m0-fixed" "$M0_SIZE" $M0_SCENES \
+    || fail "x86_64/fixed at $M0_SIZE: render" "$(tail -n 5 "$OUT/out/x86_64/m0-fixed.log")"
+
+# ---- the other targets ----
+for t in $TARGETS; do
+    build_target "$t" || continue
+    for num in $(target_nums "$t"); do
+        dir="$OUT/out/$t/$num"; ref="$OUT/out/x86_64/$num"
+        if [ "$t" = m0 ]; then
+            # shellcheck disable=SC2086
+            run_driver "$t" "$num" "$dir" "$M0_SIZE" $M0_SCENES; ref="$OUT/out/x86_64/m0-fixed"
+        else
+            # shellcheck disable=SC2086
+            run_driver "$t" "$num" "$dir" "$SIZE" $SCENES
+        fi
+        rc=$?
+        if [ $rc -eq 0 ]; then ok "$t/$num: runs (exit 0)"
+        else fail "$t/$num: runs" "exit $rc: $(tail -n 5 "$dir.log" | tr '\n' ' ')"; fi
+        compare_dir "$t/$num" "$ref" "$dir"
+    done
+done
+
+echo "cross: $(( $(date +%s) - t0 )) s; logs in $LOG and $OUT/out/*/*.log"
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
