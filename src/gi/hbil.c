@@ -1,0 +1,448 @@
+/*
+ * hbil.c - the HBIL horizon kernel (Mayaux 2018, sec. 1-2 and 3.3-3.4).
+ *
+ * For every pixel of an image (a 4x4 sub-image or the full-resolution
+ * image, see hbil.h) and every slice: build the local camera frame, march
+ * the depth buffer along +D and -D, keep the highest horizon on each side,
+ * gather the near-field radiance each time a horizon rises, then integrate
+ * AO, the bent normal and the cone aperture analytically in slice space.
+ *
+ * Units inside the march: the vector from the pixel to a sample is kept in
+ * view space scaled by pixels_per_unit / (depth * step), i.e. in image
+ * pixels at the pixel's depth.  Samples are then >= 1 unit away, squares stay
+ * small for Q16.16 and nothing depends on the scene's scale.
+ */
+#include <string.h>
+#include "hbil.h"
+
+#define HBIL_PATTERN 16
+/* Smallest n.w_o allowed: normals facing away from the camera are bent
+ * toward it (an invalid G-buffer normal; the horizon frame needs n.w_o > 0). */
+#define HBIL_MIN_NDOTV TG_R(0.0078125f)
+/* Tie tolerance on cos|cos| of the horizon: a sample lying on the tangent
+ * plane must not raise the horizon through rounding. */
+#define HBIL_TIE TG_R(0.00024414f)
+/* Depth is interpolated across the minor axis only between pixels whose
+ * depths differ by less than this fraction of the nearer one. */
+#define HBIL_LERP_MAX_REL TG_R(3.0f)
+/* The 3D radius test works on squared lengths in image pixels: capped so
+ * the square stays inside Q16.16. */
+#define HBIL_MAX_RADIUS_UNITS TG_R(150.0f)
+
+static const uint8_t bayer4[4][4] = {
+    { 0, 8, 2, 10 }, { 12, 4, 14, 6 }, { 3, 11, 1, 9 }, { 15, 7, 13, 5 }
+};
+
+tg_real tg_hbil_slice_phi0(int i, int j, int slices)
+{
+    tg_real rank = tg_add(tg_from_int(bayer4[j & 3][i & 3]), TG_R(0.5f));
+    if (slices < 1) slices = 1;
+    /* stratified over [0, pi / S): the 16 sub-images x S slices cover [0, pi) */
+    return tg_mul(tg_div(TG_PI, tg_from_int(slices * 16)), rank);
+}
+
+void tg_hbil_defaults(tg_hbil_params *p, const tg_view *view)
+{
+    memset(p, 0, sizeof *p);
+    p->view = view;
+    p->slices = TG_HBIL_DEFAULT_SLICES;
+    p->samples = TG_HBIL_DEFAULT_SAMPLES;
+    p->radius = TG_ONE;
+    p->max_radius_px = TG_R(128.0f);
+    p->step = 1;
+    p->slice_phi0 = tg_hbil_slice_phi0(0, 0, p->slices);
+    p->rejection_a = 0;
+    p->rejection_b = TG_R(0.2f);
+}
+
+/* ---- per-call constants ---- */
+typedef struct hbil_ctx {
+    const tg_hbil_params *p;
+    const tg_hbil_io *io;
+    int slices, samples, step, full_w, full_h;
+    tg_real ppu, inv_ppu, inv_step, pi_over_s;
+    tg_real cos_phi[HBIL_PATTERN][TG_HBIL_MAX_SLICES], sin_phi[HBIL_PATTERN][TG_HBIL_MAX_SLICES];
+    int near_field;
+} hbil_ctx;
+
+/* One side of one slice: the horizon and the radiance gathered under it. */
+typedef struct hbil_side {
+    tg_real h, hs;          /* horizon cosine from w_o and h|h| */
+    tg_real p_old;          /* P(theta) at the current horizon (near field) */
+    tg_real lr, lg, lb;     /* running radiance of sec. 3.4 */
+    tg_real er, eg, eb;     /* gathered sum of L * dE (eq. 18) */
+} hbil_side;
+
+/* The pixel: its frame and normal in view space. */
+typedef struct hbil_pixel {
+    int x, y;
+    tg_real X, Y;           /* full-res screen position from the centre, pixels, y up */
+    tg_real z, inv_z;
+    tg_vec3 wo, wx, wy;     /* local camera frame, sec. 1.1 */
+    tg_vec3 n;              /* view-space normal with n.w_o >= HBIL_MIN_NDOTV */
+    tg_real radius_units2;  /* (3D radius in image pixels at depth z)^2 */
+    tg_real reach;          /* march extent, image pixels */
+} hbil_pixel;
+
+/* Slice-space normal n' = (n.D, n.w_o) (eq. 2) and the integrals. */
+typedef struct hbil_slice {
+    tg_vec3 d;              /* D(phi) in view space */
+    tg_real nx, ny;         /* n' */
+} hbil_slice;
+
+static tg_real full_x(const hbil_ctx *c, int x)
+{
+    int X2 = 2 * (x * c->step + c->p->offset_x) + 1 - c->full_w;
+    return tg_ratio(X2, 2);
+}
+static tg_real full_y(const hbil_ctx *c, int y)
+{
+    int Y2 = c->full_h - 2 * (y * c->step + c->p->offset_y) - 1;
+    return tg_ratio(Y2, 2);
+}
+
+/* sin(theta)^2 / 2 and (theta - sin cos) / 2 from cos(theta) and the side. */
+static tg_real slice_R(tg_real c)
+{
+    return tg_mul(TG_R(0.5f), tg_sub(TG_ONE, tg_mul(c, c)));
+}
+static tg_real slice_Q(tg_real c, int side)
+{
+    tg_real theta = tg_acos(c);
+    tg_real s = tg_sqrt(tg_sub(TG_ONE, tg_mul(c, c)));
+    if (side < 0) { theta = tg_neg(theta); s = tg_neg(s); }
+    return tg_mul(TG_R(0.5f), tg_sub(theta, tg_mul(s, c)));
+}
+/* P(theta) = int_0^theta (n'.w_i') |sin| : the antiderivative of eq. 10 */
+static tg_real slice_P(const hbil_slice *sl, tg_real c, int side)
+{
+    return tg_add(tg_mul(sl->nx, slice_Q(c, side)), tg_mul(sl->ny, slice_R(c)));
+}
+
+static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
+{
+    const tg_hbil_io *io = c->io;
+    const tg_view *v = c->p->view;
+    tg_vec3 nw, k;
+    tg_real ndv, r_px;
+    if ((io->sky && io->sky[i]) || io->depth[i] <= 0) return 0;
+    px->z = io->depth[i];
+    px->inv_z = tg_div(TG_ONE, px->z);
+    px->X = full_x(c, px->x);
+    px->Y = full_y(c, px->y);
+    /* w_o: unit vector from the surface toward the eye (sec. 1.1) */
+    k = tg_v3(tg_mul(px->X, c->inv_ppu), tg_mul(px->Y, c->inv_ppu), TG_ONE);
+    px->wo = tg_v3_neg(tg_v3_normalize_or(k, tg_v3(0, 0, TG_ONE)));
+    /* w_x = Y x w_o / |..|, w_y = w_o x w_x (sec. 1.1) */
+    px->wx = tg_v3_normalize_or(tg_v3(px->wo.z, 0, tg_neg(px->wo.x)), tg_v3(TG_ONE, 0, 0));
+    px->wy = tg_v3_cross(px->wo, px->wx);
+    nw = tg_v3(io->nx[i], io->ny[i], io->nz[i]);
+    px->n = tg_v3(tg_v3_dot(nw, v->right), tg_v3_dot(nw, v->up), tg_v3_dot(nw, v->forward));
+    ndv = tg_v3_dot(px->n, px->wo);
+    if (ndv < HBIL_MIN_NDOTV)
+        px->n = tg_v3_normalize_or(tg_v3_add(px->n, tg_v3_scale(px->wo, tg_sub(HBIL_MIN_NDOTV, ndv))), px->wo);
+    /* the world radius projected to image pixels; the 3D test is unclamped */
+    r_px = tg_div(tg_mul(c->p->radius, c->ppu), px->z);
+    px->radius_units2 = tg_sqr(tg_min(tg_mul(r_px, c->inv_step), HBIL_MAX_RADIUS_UNITS));
+    px->reach = tg_mul(tg_min(r_px, c->p->max_radius_px), c->inv_step);
+    return 1;
+}
+
+/* Screen direction of D (image pixels, y down): d/de project(p + e D). */
+static void slice_screen_dir(const hbil_ctx *c, const hbil_pixel *px, tg_vec3 d, tg_real *ux, tg_real *uy)
+{
+    tg_real kx = tg_mul(px->X, c->inv_ppu), ky = tg_mul(px->Y, c->inv_ppu);
+    tg_vec3 u = tg_v3(tg_sub(d.x, tg_mul(kx, d.z)), tg_neg(tg_sub(d.y, tg_mul(ky, d.z))), 0);
+    u = tg_v3_normalize_or(u, tg_v3(TG_ONE, 0, 0));
+    *ux = u.x;
+    *uy = u.y;
+}
+
+/* Depth at the continuous minor-axis position b0 + f, so that the sample
+ * lies on the slice plane.  Between two surface pixels: 1/z interpolated
+ * linearly (exact on a plane, however grazing).  At a depth discontinuity,
+ * next to the sky or the image edge: the nearest pixel's tangent plane is
+ * extended to the ray through the continuous position; 0 (skip the sample)
+ * when that ray misses the plane or lands far from the nearest pixel. */
+static tg_real sample_depth(const hbil_ctx *c, int major_x, int a, int b0, tg_real f, int sa, int sb, int sn)
+{
+    const tg_hbil_io *io = c->io;
+    const tg_view *v = c->p->view;
+    int lim = major_x ? io->height : io->width;
+    tg_real zn = io->depth[sn], za, zb, den, gn, gc, X, Y, Xn, Yn, ratio;
+    int bn;
+    tg_vec3 nw, n;
+    if (b0 >= 0 && b0 + 1 < lim && !(io->sky && (io->sky[sa] || io->sky[sb]))) {
+        za = io->depth[sa];
+        zb = io->depth[sb];
+        if (za > 0 && zb > 0 && tg_abs(tg_sub(za, zb)) < tg_mul(HBIL_LERP_MAX_REL, tg_min(za, zb))) {
+            /* 1/z = (1-f)/za + f/zb  <=>  z = za + f (zb - za) za / (zb - f (zb - za)) */
+            tg_real dz = tg_sub(zb, za);
+            den = tg_sub(zb, tg_mul(f, dz));
+            return tg_add(za, tg_mul(tg_mul(f, dz), tg_div(za, den)));
+        }
+    }
+    /* tangent plane of the nearest pixel: z = zn (n.ray_n) / (n.ray_c), ray = (X/ppu, Y/ppu, 1) */
+    nw = tg_v3(io->nx[sn], io->ny[sn], io->nz[sn]);
+    n = tg_v3(tg_v3_dot(nw, v->right), tg_v3_dot(nw, v->up), tg_v3_dot(nw, v->forward));
+    bn = sn == sa ? b0 : b0 + 1;
+    if (major_x) {
+        X = full_x(c, a);
+        Yn = full_y(c, bn);
+        Y = tg_sub(full_y(c, b0), tg_mul(f, tg_from_int(c->step)));
+        Xn = X;
+    } else {
+        Y = full_y(c, a);
+        Xn = full_x(c, bn);
+        X = tg_add(full_x(c, b0), tg_mul(f, tg_from_int(c->step)));
+        Yn = Y;
+    }
+    gn = tg_add(tg_add(tg_mul(n.x, tg_mul(Xn, c->inv_ppu)), tg_mul(n.y, tg_mul(Yn, c->inv_ppu))), n.z);
+    gc = tg_add(tg_add(tg_mul(n.x, tg_mul(X, c->inv_ppu)), tg_mul(n.y, tg_mul(Y, c->inv_ppu))), n.z);
+    if (gn > TG_R(-0.01f)) return zn;                     /* the nearest is seen edge-on */
+    if (gc > TG_R(-0.005f)) return 0;                     /* the ray misses that plane: skip */
+    ratio = tg_div(gn, gc);
+    if (ratio < TG_R(0.5f) || ratio > TG_R(2.0f)) return 0; /* too far from the nearest: skip */
+    return tg_mul(zn, ratio);
+}
+
+/* A raised horizon: gather L(x') over the band it closes (eq. 18-19, sec. 3.4). */
+static void gather_rise(const hbil_ctx *c, const hbil_slice *sl, hbil_side *sd, int side,
+                        tg_real cos_new, tg_vec3 dir, int si)
+{
+    const tg_hbil_io *io = c->io;
+    const tg_view *v = c->p->view;
+    tg_real p_new = slice_P(sl, cos_new, side);
+    tg_real de = tg_max(0, tg_sub(sd->p_old, p_new));         /* HBIL eq. 18 */
+    tg_vec3 ns, wi;
+    tg_real t;
+    sd->p_old = p_new;
+    ns = tg_v3(io->snx ? io->snx[si] : io->nx[si], io->sny ? io->sny[si] : io->ny[si],
+               io->snz ? io->snz[si] : io->nz[si]);
+    wi = tg_v3_add(tg_v3_add(tg_v3_scale(v->right, dir.x), tg_v3_scale(v->up, dir.y)),
+                   tg_v3_scale(v->forward, dir.z));
+    t = tg_smoothstep(c->p->rejection_a, c->p->rejection_b, tg_neg(tg_v3_dot(ns, wi))); /* HBIL sec. 3.4 */
+    sd->lr = tg_lerp(sd->lr, io->rad_r[si], t);                  /* L_new = lerp(L_old, L(x'), t) */
+    sd->lg = tg_lerp(sd->lg, io->rad_g[si], t);
+    sd->lb = tg_lerp(sd->lb, io->rad_b[si], t);
+    sd->er = tg_add(sd->er, tg_mul(sd->lr, de));
+    sd->eg = tg_add(sd->eg, tg_mul(sd->lg, de));
+    sd->eb = tg_add(sd->eb, tg_mul(sd->lb, de));
+}
+
+/* March one side (+1 along D, -1 against) and raise its horizon. */
+static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice *sl,
+                       tg_real ux, tg_real uy, int side, hbil_side *sd)
+{
+    const tg_hbil_io *io = c->io;
+    const int w = io->width, h = io->height;
+    int major_x = tg_abs(ux) >= tg_abs(uy);
+    tg_real umaj = major_x ? tg_abs(ux) : tg_abs(uy);
+    tg_real slope = tg_div(major_x ? uy : ux, umaj == 0 ? TG_ONE : umaj);
+    int dir = ((major_x ? ux : uy) < 0 ? -1 : 1) * side;
+    tg_real extent = tg_mul(px->reach, umaj);                  /* along the major axis */
+    int m, n, k;
+    tg_real minor0, dminor, minor, ox;
+    if (side < 0) slope = tg_neg(slope);
+    /* whole-pixel steps along the major axis: `samples` of them reach the extent */
+    m = tg_to_int(tg_div(extent, tg_from_int(c->samples)));
+    if (tg_from_int(m * c->samples) < extent) m++;
+    if (m < 1) m = 1;
+    n = tg_to_int(tg_div(extent, tg_from_int(m)));
+    if (n > c->samples) n = c->samples;
+    minor0 = major_x ? tg_from_int(px->y) : tg_from_int(px->x);
+    dminor = tg_mul(slope, tg_from_int(m));
+    minor = minor0;
+    ox = 0;
+    for (k = 1; k <= n; k++) {
+        int a = (major_x ? px->x : px->y) + k * m * dir;
+        int b0, b1, sa, sb, sn, bn;
+        tg_real f, z1, q, X1, Y1, len2, dot;
+        tg_vec3 d;
+        minor = tg_add(minor, dminor);
+        ox = tg_add(ox, dminor);
+        if (a < 0 || a >= (major_x ? w : h)) break;           /* never past the screen edge */
+        b0 = tg_to_int(minor);
+        f = tg_sub(minor, tg_from_int(b0));
+        b1 = b0 + 1;
+        bn = f < TG_R(0.5f) ? b0 : b1;
+        if (bn < 0 || bn >= (major_x ? h : w)) break;
+        sa = major_x ? b0 * w + a : a * w + b0;
+        sb = major_x ? b1 * w + a : a * w + b1;
+        sn = bn == b0 ? sa : sb;
+        if ((io->sky && io->sky[sn]) || io->depth[sn] <= 0) continue;  /* sky never occludes */
+        z1 = sample_depth(c, major_x, a, b0, f, sa, sb, sn);
+        if (z1 <= 0) continue;
+        /* view-space offset scaled to image pixels at depth z (see top) */
+        q = tg_mul(tg_sub(z1, px->z), px->inv_z);
+        if (major_x) {
+            X1 = tg_add(px->X, tg_from_int(k * m * dir * c->step));
+            Y1 = tg_sub(px->Y, tg_mul(ox, tg_from_int(c->step)));
+            d = tg_v3(tg_from_int(k * m * dir), tg_neg(ox), 0);
+        } else {
+            X1 = tg_add(px->X, tg_mul(ox, tg_from_int(c->step)));
+            Y1 = tg_sub(px->Y, tg_from_int(k * m * dir * c->step));
+            d = tg_v3(ox, tg_from_int(-k * m * dir), 0);
+        }
+        d.x = tg_add(d.x, tg_mul(tg_mul(X1, q), c->inv_step));
+        d.y = tg_add(d.y, tg_mul(tg_mul(Y1, q), c->inv_step));
+        d.z = tg_mul(tg_mul(c->ppu, q), c->inv_step);
+        len2 = tg_v3_dot(d, d);
+        if (len2 > px->radius_units2) continue;                /* beyond the 3D radius */
+        dot = tg_v3_dot(d, px->wo);
+        /* cos(theta) > horizon, without a division: dot|dot| > h|h| |d|^2 */
+        if (tg_mul(dot, tg_abs(dot)) > tg_mul(tg_add(sd->hs, HBIL_TIE), len2)) {
+            tg_real len = tg_sqrt(len2);
+            tg_real cn = tg_clamp(tg_div(dot, len), TG_R(-1.0f), TG_ONE); /* HBIL sec. 1.3 */
+            if (cn <= sd->h) continue;
+            sd->h = cn;
+            sd->hs = tg_mul(cn, tg_abs(cn));
+            if (c->near_field)
+                gather_rise(c, sl, sd, side, cn, tg_v3_scale(d, tg_div(TG_ONE, len)), sn);
+        }
+    }
+}
+
+static void side_init(hbil_side *sd, tg_real h, tg_real p_open)
+{
+    memset(sd, 0, sizeof *sd);
+    sd->h = h;
+    sd->hs = tg_mul(h, tg_abs(h));
+    sd->p_old = p_open;
+}
+
+typedef struct hbil_sums {
+    tg_real occlusion;      /* sum_i AO_i(open) - AO_i */
+    tg_vec3 bent_delta;     /* sum_i B_i - B_i(open), view space */
+    tg_real er, eg, eb;     /* sum of L dE */
+} hbil_sums;
+
+static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_real sphi, hbil_sums *acc)
+{
+    hbil_slice sl;
+    hbil_side front, back;
+    tg_real len_n, h1i, h0i, ux, uy, q1, q0, q1i, q0i, r1, r0, r1i, r0i, p1i, p0i;
+    sl.d = tg_v3_add(tg_v3_scale(px->wx, cphi), tg_v3_scale(px->wy, sphi)); /* HBIL sec. 1.2 D(phi) */
+    sl.nx = tg_v3_dot(px->n, sl.d);                           /* HBIL eq. 2 */
+    sl.ny = tg_v3_dot(px->n, px->wo);
+    len_n = tg_sqrt(tg_add(tg_mul(sl.nx, sl.nx), tg_mul(sl.ny, sl.ny)));
+    if (len_n < sl.ny) len_n = sl.ny;                         /* ny >= HBIL_MIN_NDOTV > 0 */
+    /* horizons initialised on the tangent plane (sec. 2.1): cos = -/+ n_x/|n'| */
+    h1i = tg_clamp(tg_div(tg_neg(sl.nx), len_n), TG_R(-1.0f), TG_ONE);
+    h0i = tg_neg(h1i);
+    q1i = slice_Q(h1i, 1); q0i = slice_Q(h0i, -1);
+    r1i = slice_R(h1i); r0i = slice_R(h0i);
+    p1i = tg_add(tg_mul(sl.nx, q1i), tg_mul(sl.ny, r1i));
+    p0i = tg_add(tg_mul(sl.nx, q0i), tg_mul(sl.ny, r0i));
+    side_init(&front, h1i, p1i);
+    side_init(&back, h0i, p0i);
+    slice_screen_dir(c, px, sl.d, &ux, &uy);
+    march_side(c, px, &sl, ux, uy, 1, &front);
+    march_side(c, px, &sl, ux, uy, -1, &back);
+    q1 = front.h == h1i ? q1i : slice_Q(front.h, 1);
+    q0 = back.h == h0i ? q0i : slice_Q(back.h, -1);
+    r1 = slice_R(front.h); r0 = slice_R(back.h);
+    /* AO_i = P(theta1) + P(theta0) (eq. 10-11 with |sin|); open minus found */
+    acc->occlusion = tg_add(acc->occlusion,
+        tg_add(tg_sub(p1i, tg_add(tg_mul(sl.nx, q1), tg_mul(sl.ny, r1))),
+               tg_sub(p0i, tg_add(tg_mul(sl.nx, q0), tg_mul(sl.ny, r0)))));
+    /* eq. 5-6: n~x = Q1 + Q0, n~y = R1 + R0; B = D n~x + w_o n~y */
+    acc->bent_delta = tg_v3_add(acc->bent_delta, tg_v3_add(
+        tg_v3_scale(sl.d, tg_sub(tg_add(q1, q0), tg_add(q1i, q0i))),
+        tg_v3_scale(px->wo, tg_sub(tg_add(r1, r0), tg_add(r1i, r0i)))));
+    acc->er = tg_add(acc->er, tg_add(front.er, back.er));
+    acc->eg = tg_add(acc->eg, tg_add(front.eg, back.eg));
+    acc->eb = tg_add(acc->eb, tg_add(front.eb, back.eb));
+}
+
+static void write_open(const hbil_ctx *c, int i)
+{
+    const tg_hbil_io *io = c->io;
+    io->ao[i] = TG_ONE;
+    if (io->bent_x) io->bent_x[i] = io->nx[i];
+    if (io->bent_y) io->bent_y[i] = io->ny[i];
+    if (io->bent_z) io->bent_z[i] = io->nz[i];
+    if (io->cone) io->cone[i] = TG_HALF_PI;
+    if (c->near_field) { io->near_r[i] = 0; io->near_g[i] = 0; io->near_b[i] = 0; }
+}
+
+static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
+{
+    const tg_hbil_io *io = c->io;
+    const tg_view *v = c->p->view;
+    hbil_sums acc;
+    int s, pat = 0;
+    tg_real ao;
+    memset(&acc, 0, sizeof acc);
+    if (c->p->per_pixel_pattern) {
+        int X = px->x * c->step + c->p->offset_x, Y = px->y * c->step + c->p->offset_y;
+        pat = (Y & 3) * 4 + (X & 3);
+    }
+    for (s = 0; s < c->slices; s++)
+        slice_run(c, px, c->cos_phi[pat][s], c->sin_phi[pat][s], &acc);
+    ao = tg_saturate(tg_sub(TG_ONE, tg_div(acc.occlusion, tg_from_int(c->slices))));
+    io->ao[i] = ao;
+    if (io->cone) io->cone[i] = tg_acos(tg_sub(TG_ONE, ao));   /* HBIL eq. 12 */
+    if (io->bent_x || io->bent_y || io->bent_z) {
+        /* eq. 6: summed unnormalised over slices, normalised once (in world space) */
+        tg_vec3 nw = tg_v3(io->nx[i], io->ny[i], io->nz[i]);
+        tg_vec3 dw = tg_v3_add(tg_v3_add(tg_v3_scale(v->right, acc.bent_delta.x),
+                                         tg_v3_scale(v->up, acc.bent_delta.y)),
+                               tg_v3_scale(v->forward, acc.bent_delta.z));
+        tg_vec3 b = tg_v3_normalize_or(tg_v3_add(tg_v3_scale(nw, tg_from_int(c->slices)), dw), nw);
+        if (io->bent_x) io->bent_x[i] = b.x;
+        if (io->bent_y) io->bent_y[i] = b.y;
+        if (io->bent_z) io->bent_z[i] = b.z;
+    }
+    if (c->near_field) {
+        tg_real k = tg_mul(c->pi_over_s, tg_sub(TG_ONE, io->f0 ? tg_saturate(io->f0[i]) : 0)); /* eq. 17, 19 */
+        io->near_r[i] = tg_mul(acc.er, k);
+        io->near_g[i] = tg_mul(acc.eg, k);
+        io->near_b[i] = tg_mul(acc.eb, k);
+    }
+}
+
+static void ctx_init(hbil_ctx *c, const tg_hbil_params *p, const tg_hbil_io *io)
+{
+    int pat, s, npat;
+    c->p = p;
+    c->io = io;
+    c->slices = p->slices < 1 ? 1 : p->slices > TG_HBIL_MAX_SLICES ? TG_HBIL_MAX_SLICES : p->slices;
+    c->samples = p->samples < 1 ? 1 : p->samples;
+    c->step = p->step < 1 ? 1 : p->step;
+    c->full_w = p->view->width;
+    c->full_h = p->view->height;
+    c->ppu = p->view->pixels_per_unit;
+    c->inv_ppu = tg_div(TG_ONE, c->ppu);
+    c->inv_step = tg_ratio(1, c->step);
+    c->pi_over_s = tg_div(TG_PI, tg_from_int(c->slices));
+    c->near_field = io->rad_r && io->rad_g && io->rad_b && io->near_r && io->near_g && io->near_b;
+    npat = p->per_pixel_pattern ? HBIL_PATTERN : 1;
+    for (pat = 0; pat < npat; pat++) {
+        tg_real phi0 = p->per_pixel_pattern ? tg_hbil_slice_phi0(pat & 3, pat >> 2, c->slices) : p->slice_phi0;
+        for (s = 0; s < c->slices; s++) {
+            tg_real phi = tg_add(phi0, tg_mul(c->pi_over_s, tg_from_int(s)));
+            c->cos_phi[pat][s] = tg_cos(phi);
+            c->sin_phi[pat][s] = tg_sin(phi);
+        }
+    }
+}
+
+void tg_hbil_rows(const tg_hbil_params *p, const tg_hbil_io *io, int y0, int y1)
+{
+    hbil_ctx c;
+    hbil_pixel px;
+    int x, y;
+    if (y0 < 0) y0 = 0;
+    if (y1 > io->height) y1 = io->height;
+    ctx_init(&c, p, io);
+    for (y = y0; y < y1; y++) {
+        for (x = 0; x < io->width; x++) {
+            int i = y * io->width + x;
+            px.x = x;
+            px.y = y;
+            if (!pixel_setup(&c, &px, i)) { write_open(&c, i); continue; }
+            pixel_run(&c, &px, i);
+        }
+    }
+}
