@@ -264,6 +264,17 @@ TEST(diff_numbers)
     CHECK(tg_diff_describe(&d, msg, sizeof msg) > 0 && strstr(msg, "max 4 at 0,1 (channel b)"), "%s", msg);
 }
 
+TEST(diff_max_is_first_in_row_order)
+{
+    /* 3x2 one channel; equal largest differences at (2,0) and (1,1) */
+    float pa[6] = { 0, 0, 0, 0, 0, 0 }, pb[6] = { 1, 0, 7, 0, 7, 7 };
+    tg_img a = make_img(TG_IMG_PFM, 3, 2, 1, pa), b = make_img(TG_IMG_PFM, 3, 2, 1, pb);
+    tg_diff d;
+    CHECK(tg_diff_compare(&a, &b, 0.0, &d, NULL, 0) == 0, "compare");
+    CHECK(d.max_abs == 7.0 && d.max_x == 2 && d.max_y == 0, "max %g at %d,%d", d.max_abs, d.max_x, d.max_y);
+    CHECK(d.pixels_over == 4, "over %zu", d.pixels_over);
+}
+
 TEST(diff_identical_and_symmetric)
 {
     float pa[6] = { 0.5f, -1.0f, 2.0f, 0.25f, 1e-8f, 3.0f };
@@ -481,6 +492,7 @@ int main(void)
     RUN(size_limits_overflow_checked);
     RUN(format_from_path);
     RUN(diff_numbers);
+    RUN(diff_max_is_first_in_row_order);
     RUN(diff_identical_and_symmetric);
     RUN(diff_non_finite);
     RUN(diff_refuses_mismatch);
