@@ -13,37 +13,39 @@
  * Only the range reductions and the bit-level steps (sqrt seeds, exponent
  * fields) differ between the builds.
  *
- * Worst-case error, MEASURED by tests/test_real.c against libm (64-bit precision) over
- * the stated domain (dense grids of 4e5..1e6 points; fixed sqrt over every
- * representable value in [0, 2^20) ulps and a dense sweep above).
- * "ulp" is 2^-16 in fixed point; "rel" is relative error in float, and
- * where the true value is within 1e-2 of a zero of the function (trig near
- * multiples of pi) the float bound is stated as absolute instead.
+ * Worst-case error, MEASURED by tests/test_real.c against libm (64-bit
+ * precision) over the stated domain: dense grids of 1e5..1e7 points, every
+ * representable input where that is feasible in fixed point (sqrt below
+ * 2^22 ulps, asin/acos on [-1, 1], tan, exp2, sin/cos on [-16, 16]).
+ * Fixed: |error| in ulps (2^-16) divided by max(1, |true value|), i.e.
+ * absolute up to 1 and relative (in 2^-16 units) above.  The best possible
+ * is 0.5 ulp (the final rounding); the Q30 internals add ~1e-4 ulp.
+ * Float: relative error; for sin/cos within 1e-2 of a zero other than
+ * x = 0 (relative error is meaningless there) the ABSOLUTE error, and for
+ * true values below FLT_MIN the absolute error (subnormal results).
  *
- *   function        domain                 fixed (abs)       float
- *   tg_sqrt         x >= 0                 0.5 ulp           rel 1.2e-7
- *   tg_rsqrt        x > 0                  0.51 ulp (*)      rel 1.8e-7
- *   tg_sin, tg_cos  |x| < 32768 (fixed),   0.51 ulp          rel 1.6e-7, abs 1.1e-7 near zeros
- *                   |x| < 2^22 (float)
- *   tg_tan          |x| < pi/2 - 2^-10     rel 2^-16 + 0.5ulp rel 2.2e-7
- *   tg_asin         [-1, 1]                0.51 ulp          rel 1.6e-7
- *   tg_acos         [-1, 1]                0.51 ulp          rel 1.5e-7
- *   tg_atan2        all (y, x)             0.51 ulp          rel 2.4e-7
- *   tg_exp2         [-126, 127] (float),   0.5 ulp + rel 1e-8  rel 1.5e-7
- *                   [-16, 15) (fixed)
- *   tg_log2         x > 0                  0.51 ulp          rel 1.8e-7 (abs 1.2e-7 near x=1)
- *   tg_pow          x > 0, |y log2 x| < 64 rel 1.2e-4 (**)  rel 4.5e-6
- *   tg_floor        all                    exact             exact
- *   tg_parse_real   decimal text           correctly rounded (ties to even), both builds
- *
- * (*)  tg_rsqrt saturates at TG_REAL_MAX for x < 2^-15 where 1/sqrt(x)
- *      would not fit; the bound holds where the result fits.
- * (**) fixed pow: |error| <= 0.5 ulp + rel 1.2e-4 ... see test_real.c; the
- *      relative term comes from the Q16.16 input x itself only when x is a
- *      few ulps (its own rounding is then the largest error).
- * The numbers above are rewritten from the last measurement; rerun
- *   make BUILD=build-real tests-build && build-real/{float,fixed}/tests/test_real -v
- * to print them.
+ *   function        domain                      fixed        float
+ *   tg_sqrt         x >= 0                      0.5000 ulp   rel 1.6e-7
+ *   tg_rsqrt        x > 0 (fixed: x >= 2^-15)   0.5000 ulp   rel 1.8e-7
+ *   tg_sin          fixed all; float |x| < 2^22 0.5001 ulp   rel 1.5e-7; abs 1.1e-9 near k pi
+ *   tg_cos          as sin                      0.5001 ulp   rel 1.4e-7; abs 1.1e-9 near zeros
+ *   tg_tan          |x| <= pi/2 - 2^-10         0.5000 ulp   rel 2.2e-7
+ *   tg_asin         [-1, 1] (clamped outside)   0.5001 ulp   rel 3.9e-7
+ *   tg_acos         [-1, 1] (clamped outside)   0.5000 ulp   rel 1.9e-7
+ *   tg_atan2        all (y, x)                  0.5000 ulp   rel 2.9e-7
+ *   tg_exp2         fixed [-17, 15), float      0.5000 ulp   rel 8.8e-8
+ *                   [-126, 128)
+ *   tg_log2         x > 0                       0.5001 ulp   rel 2.6e-7
+ *   tg_pow          x > 0, |y log2 x| < 15      0.5000 ulp   rel 3.9e-6
+ *                   (fixed) or < 64 (float)
+ *   tg_floor        all                         exact        exact
+ *   tg_parse_real   decimal text                correctly rounded, ties to even
+ *                                               (300000 random strings vs strtof/strtod)
+ * Targets from issue 2: fixed trig within 2^-12 = 16 ulp, sqrt within 1 ulp;
+ * float within 1e-5 relative (1e-6 absolute near zeros).
+ * Rerun:  make BUILD=build-real tests-build &&
+ *         build-real/float/tests/test_real; build-real/fixed/tests/test_real
+ * (each prints "measured FUNCTION ..." lines).
  *
  * Outside its domain each function still returns a finite, deterministic
  * value: float sin/cos of |x| >= 2^22 (or NaN/inf) give 0 and 1; NaN inputs
@@ -370,7 +372,7 @@ tg_real tg_atan2(tg_real y, tg_real x)
     t = ay > ax ? div_round(ax * W_ONE, ay) : div_round(ay * W_ONE, ax);
 #else
     float ax = x < 0.0f ? -x : x, ay = y < 0.0f ? -y : y;
-    if (!(ax > 0.0f || ay > 0.0f)) return 0.0f; /* (0,0) and NaN */
+    if (!(ax > 0.0f || ay > 0.0f) || ax != ax || ay != ay) return 0.0f; /* (0,0), NaN */
     t = ay > ax ? ax / ay : ay / ax;
     if (!(t == t)) t = 1.0f; /* both infinite */
 #endif

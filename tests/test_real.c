@@ -1,0 +1,676 @@
+/*
+ * test_real.c - the scalar API against libm, over each function's whole
+ * domain, for the number type of this build; saturation at the range ends;
+ * the decimal parser (rounding, overflow, garbage).
+ *
+ * Every sweep prints "measured FUNCTION: ..." with the worst error found and
+ * where, and asserts the bound documented at the top of src/core/real.c.
+ *
+ * Error measures:
+ *   fixed : |f - ref| in ulps (2^-16), divided by max(1, |ref|): absolute
+ *           for results up to 1, relative (in units of 2^-16) above;
+ *   float : relative |f - ref| / |ref|; for sin/cos within 1e-2 of a zero
+ *           other than x = 0 (where relative error is meaningless) the
+ *           absolute error is measured and bounded instead.
+ */
+#include "check.h"
+#include <stdlib.h>
+#include <stdint.h>
+#include <float.h>
+
+#define BIG_ERR 1e300
+#define PI_D 3.14159265358979323846
+
+typedef struct stat {
+    const char *name;
+    double worst, at_x, at_y;
+    double worst_abs, abs_x; /* float: absolute error near zeros */
+    long n, n_abs;
+} stat;
+
+static void stat_init(stat *s, const char *name)
+{
+    memset(s, 0, sizeof *s);
+    s->name = name;
+}
+
+static void stat_add(stat *s, double e, double x, double y)
+{
+    if (!(e <= s->worst)) { s->worst = e == e ? e : BIG_ERR; s->at_x = x; s->at_y = y; }
+    s->n++;
+}
+
+#if !TG_FIXED
+static void stat_add_abs(stat *s, double e, double x)
+{
+    if (!(e <= s->worst_abs)) { s->worst_abs = e == e ? e : BIG_ERR; s->abs_x = x; }
+    s->n_abs++;
+}
+#endif
+
+static void stat_print(const stat *s)
+{
+#if TG_FIXED
+    printf("measured %-10s fixed: worst %.4f ulp (x %.9g, y %.9g), %ld points\n", s->name,
+           s->worst, s->at_x, s->at_y, s->n);
+#else
+    printf("measured %-10s float: worst rel %.3g (x %.9g, y %.9g), %ld points", s->name, s->worst,
+           s->at_x, s->at_y, s->n);
+    if (s->n_abs) printf("; near zeros abs %.3g (x %.9g), %ld points", s->worst_abs, s->abs_x, s->n_abs);
+    printf("\n");
+#endif
+    fflush(stdout);
+}
+
+/* tg_real to double exactly (check_d goes through float: 24 bits) */
+static double dv(tg_real r)
+{
+#if TG_FIXED
+    return (double)r / 65536.0;
+#else
+    return (double)r;
+#endif
+}
+
+#if !TG_FIXED
+static float from_bits(uint32_t b) { float f; memcpy(&f, &b, sizeof f); return f; }
+#endif
+
+/* Record one result against its reference. */
+static void measure(stat *s, tg_real got, double ref, double x, double y, int zero_is_abs)
+{
+    double g = dv(got);
+#if TG_FIXED
+    double m = fabs(ref) > 1.0 ? fabs(ref) : 1.0;
+    (void)zero_is_abs;
+    stat_add(s, fabs(g - ref) * 65536.0 / m, x, y);
+#else
+    if ((zero_is_abs && fabs(ref) < 1e-2) || fabs(ref) < (double)FLT_MIN) stat_add_abs(s, fabs(g - ref), x);
+    else if (ref == 0.0) stat_add(s, g == 0.0 ? 0.0 : BIG_ERR, x, y);
+    else stat_add(s, fabs(g - ref) / fabs(ref), x, y);
+#endif
+}
+
+/* bound check: fixed bound in ulps, float relative and absolute bounds */
+static void check_stat(const stat *s, double fixed_ulps, double float_rel, double float_abs)
+{
+    stat_print(s);
+#if TG_FIXED
+    (void)float_rel; (void)float_abs;
+    CHECK(s->worst <= fixed_ulps, "%s: worst %.4f ulp > %.4f at x=%.9g y=%.9g", s->name, s->worst,
+          fixed_ulps, s->at_x, s->at_y);
+#else
+    (void)fixed_ulps;
+    CHECK(s->worst <= float_rel, "%s: worst rel %.3g > %.3g at x=%.9g y=%.9g", s->name, s->worst,
+          float_rel, s->at_x, s->at_y);
+    if (float_abs < (double)FLT_MIN) float_abs = (double)FLT_MIN; /* results below FLT_MIN: absolute */
+    CHECK(s->worst_abs <= float_abs, "%s: worst abs %.3g > %.3g at x=%.9g", s->name, s->worst_abs,
+          float_abs, s->abs_x);
+#endif
+    CHECK(s->n > 1000, "%s: only %ld points", s->name, s->n);
+}
+
+/* ---- sweeps over a 1-argument function ---- */
+typedef tg_real (*fn1)(tg_real);
+typedef double (*ref1)(double);
+
+#if TG_FIXED
+/* every raw value in [lo, hi] with the given step */
+static void sweep_raw(stat *s, fn1 f, ref1 r, int64_t lo, int64_t hi, int64_t step, int zero_abs)
+{
+    int64_t i;
+    for (i = lo; i <= hi; i += step) {
+        tg_real x = (tg_real)i;
+        measure(s, f(x), r(dv(x)), dv(x), 0, zero_abs);
+    }
+}
+#else
+/* n points uniform in [lo, hi] */
+static void sweep_uniform(stat *s, fn1 f, ref1 r, double lo, double hi, long n, int zero_abs)
+{
+    long i;
+    for (i = 0; i <= n; i++) {
+        float x = (float)(lo + (hi - lo) * (double)i / (double)n);
+        measure(s, f(x), r((double)x), (double)x, 0, zero_abs);
+    }
+}
+/* every `step`-th float bit pattern with magnitude in [lo, hi], both signs
+ * when `neg` */
+static void sweep_bits(stat *s, fn1 f, ref1 r, float lo, float hi, uint32_t step, int neg, int zero_abs)
+{
+    uint32_t b, blo, bhi;
+    memcpy(&blo, &lo, 4);
+    memcpy(&bhi, &hi, 4);
+    for (b = blo; b <= bhi && b >= blo; b += step) {
+        float x = from_bits(b);
+        measure(s, f(x), r((double)x), (double)x, 0, zero_abs);
+        if (neg) measure(s, f(-x), r(-(double)x), -(double)x, 0, zero_abs);
+    }
+}
+#endif
+
+/* ---- sqrt, rsqrt ---- */
+
+#if !TG_FIXED
+static double ref_sqrt(double x) { return sqrt(x); }
+#endif
+static double ref_rsqrt(double x) { return 1.0 / sqrt(x); }
+
+TEST(sqrt_whole_domain)
+{
+    stat s;
+    stat_init(&s, "tg_sqrt");
+#if TG_FIXED
+    {
+        /* exact rounding: (2r - 1)^2 <= 4 v <= (2r + 1)^2, v = x_raw 2^16 */
+        int64_t i;
+        long bad = 0;
+        for (i = 0; i <= INT32_MAX; i += (i < (1 << 22) ? 1 : 509)) {
+            uint64_t v = (uint64_t)i << 16, r = (uint64_t)tg_sqrt((tg_real)i);
+            if (i > 0 && !((2 * r - 1) * (2 * r - 1) <= 4 * v && 4 * v <= (2 * r + 1) * (2 * r + 1))) {
+                if (bad++ < 5) fprintf(stderr, "sqrt raw %lld -> %llu\n", (long long)i, (unsigned long long)r);
+            }
+            measure(&s, (tg_real)r, sqrt(dv((tg_real)i)), dv((tg_real)i), 0, 0);
+        }
+        /* and the top end exactly */
+        measure(&s, tg_sqrt(TG_REAL_MAX), sqrt(dv(TG_REAL_MAX)), dv(TG_REAL_MAX), 0, 0);
+        CHECK(bad == 0, "%ld sqrt results not correctly rounded", bad);
+    }
+    check_stat(&s, 0.5 + 1e-9, 0, 0);
+#else
+    sweep_bits(&s, tg_sqrt, ref_sqrt, from_bits(1), FLT_MAX, 1021, 0, 0);
+    sweep_uniform(&s, tg_sqrt, ref_sqrt, 0.0, 4.0, 400000, 0);
+    check_stat(&s, 0, 2.5e-7, 0);
+#endif
+    CHECK(tg_sqrt(0) == 0, "sqrt(0)");
+    CHECK(tg_sqrt(tg_neg(TG_ONE)) == 0, "sqrt(-1) must give 0");
+    CHECK(tg_sqrt(TG_R(4.0f)) == TG_R(2.0f), "sqrt(4) exact");
+}
+
+TEST(rsqrt_whole_domain)
+{
+    stat s;
+    stat_init(&s, "tg_rsqrt");
+#if TG_FIXED
+    /* where 1/sqrt(x) fits: x >= 2^-15 (raw 2) */
+    sweep_raw(&s, tg_rsqrt, ref_rsqrt, 2, 1 << 20, 1, 0);
+    sweep_raw(&s, tg_rsqrt, ref_rsqrt, 1 << 20, INT32_MAX, 2039, 0);
+    check_stat(&s, 0.501, 0, 0);
+    CHECK(tg_rsqrt(1) == (tg_real)(1 << 24), "rsqrt(2^-16) = 256 exactly");
+#else
+    sweep_bits(&s, tg_rsqrt, ref_rsqrt, from_bits(1), FLT_MAX, 1021, 0, 0);
+    check_stat(&s, 0, 2.5e-7, 0);
+#endif
+    CHECK(tg_rsqrt(0) == TG_REAL_MAX, "rsqrt(0) saturates");
+    CHECK(tg_rsqrt(tg_neg(TG_ONE)) == TG_REAL_MAX, "rsqrt(-1) saturates");
+}
+
+/* ---- trig ---- */
+
+static double ref_sin(double x) { return sin(x); }
+static double ref_cos(double x) { return cos(x); }
+static double ref_tan(double x) { return tan(x); }
+static double ref_asin(double x) { return asin(x); }
+static double ref_acos(double x) { return acos(x); }
+
+TEST(sin_cos_whole_domain)
+{
+    stat s, c;
+    stat_init(&s, "tg_sin");
+    stat_init(&c, "tg_cos");
+#if TG_FIXED
+    /* every value in [-16, 16], then the whole range with a prime stride */
+    sweep_raw(&s, tg_sin, ref_sin, -16 * 65536, 16 * 65536, 1, 0);
+    sweep_raw(&s, tg_sin, ref_sin, -(int64_t)INT32_MAX, INT32_MAX, 4093, 0);
+    sweep_raw(&c, tg_cos, ref_cos, -16 * 65536, 16 * 65536, 1, 0);
+    sweep_raw(&c, tg_cos, ref_cos, -(int64_t)INT32_MAX, INT32_MAX, 4093, 0);
+    check_stat(&s, 0.501, 0, 0);
+    check_stat(&c, 0.501, 0, 0);
+#else
+    /* near 0 (relative), a dense uniform grid, and magnitudes up to 2^22 */
+    sweep_bits(&s, tg_sin, ref_sin, 1e-30f, 4194303.0f, 1021, 1, 0);
+    sweep_uniform(&s, tg_sin, ref_sin, -20.0, 20.0, 1000000, 0);
+    /* sin's zeros other than x = 0 */
+    {
+        stat z;
+        stat_init(&z, "tg_sin@kpi");
+        sweep_bits(&z, tg_sin, ref_sin, 0.5f, 4194303.0f, 1021, 1, 1);
+        sweep_uniform(&z, tg_sin, ref_sin, 0.5, 20.0, 1000000, 1);
+        check_stat(&z, 0, 2.5e-7, 1.5e-7);
+    }
+    sweep_bits(&c, tg_cos, ref_cos, 1e-30f, 4194303.0f, 1021, 1, 1);
+    sweep_uniform(&c, tg_cos, ref_cos, -20.0, 20.0, 1000000, 1);
+    check_stat(&s, 0, 2.5e-7, 0);
+    check_stat(&c, 0, 2.5e-7, 1.5e-7);
+#endif
+    CHECK(tg_sin(0) == 0 && tg_cos(0) == TG_ONE, "sin(0) = 0, cos(0) = 1 exactly");
+}
+
+TEST(tan_domain)
+{
+    stat s;
+    stat_init(&s, "tg_tan");
+#if TG_FIXED
+    /* every value with |x| < pi/2 - 2^-10 */
+    sweep_raw(&s, tg_tan, ref_tan, -(102944 - 64), 102944 - 64, 1, 0);
+    check_stat(&s, 0.501, 0, 0);
+#else
+    sweep_uniform(&s, tg_tan, ref_tan, -1.5698, 1.5698, 1000000, 0);
+    sweep_bits(&s, tg_tan, ref_tan, 1e-30f, 1.5698f, 1021, 1, 0);
+    check_stat(&s, 0, 3e-7, 0);
+#endif
+}
+
+TEST(asin_acos_whole_domain)
+{
+    stat s, c;
+    stat_init(&s, "tg_asin");
+    stat_init(&c, "tg_acos");
+#if TG_FIXED
+    /* every representable value in [-1, 1] */
+    sweep_raw(&s, tg_asin, ref_asin, -65536, 65536, 1, 0);
+    sweep_raw(&c, tg_acos, ref_acos, -65536, 65536, 1, 0);
+    check_stat(&s, 0.501, 0, 0);
+    check_stat(&c, 0.501, 0, 0);
+#else
+    sweep_uniform(&s, tg_asin, ref_asin, -1.0, 1.0, 1000000, 0);
+    sweep_bits(&s, tg_asin, ref_asin, 1e-38f, 1.0f, 257, 1, 0);
+    sweep_uniform(&c, tg_acos, ref_acos, -1.0, 1.0, 1000000, 0);
+    sweep_bits(&c, tg_acos, ref_acos, 1e-38f, 1.0f, 257, 1, 0);
+    check_stat(&s, 0, 4.5e-7, 0);
+    check_stat(&c, 0, 2.5e-7, 0);
+#endif
+    /* clamping outside [-1, 1] */
+    CHECK(tg_acos(TG_R(2.0f)) == 0, "acos(2) clamps to acos(1) = 0");
+    CHECK_NEAR(dv(tg_acos(TG_R(-2.0f))), PI_D, 2e-5);
+    CHECK_NEAR(dv(tg_asin(TG_R(3.0f))), PI_D / 2, 2e-5);
+    CHECK(tg_acos(TG_ONE) == 0, "acos(1) = 0 exactly");
+}
+
+/* magnitudes for atan2 sweeps: 0 and log-spaced values, both signs */
+static int atan2_values(tg_real *v, int max)
+{
+    int n = 0, i;
+    v[n++] = 0;
+#if TG_FIXED
+    for (i = 0; i < 700 && n + 2 <= max; i++) {
+        double m = pow(2.0, 31.0 * i / 699.0);
+        int64_t r = (int64_t)m;
+        if (r > INT32_MAX) r = INT32_MAX;
+        r += i % 7; /* avoid only powers of two */
+        if (r > INT32_MAX) r = INT32_MAX;
+        v[n++] = (tg_real)r;
+        v[n++] = (tg_real)-r;
+    }
+#else
+    for (i = 0; i < 700 && n + 2 <= max; i++) {
+        float m = (float)pow(10.0, -30.0 + 60.0 * i / 699.0) * (1.0f + 0.013f * (float)(i % 7));
+        v[n++] = m;
+        v[n++] = -m;
+    }
+#endif
+    return n;
+}
+
+TEST(atan2_whole_domain)
+{
+    static tg_real v[1500];
+    int n = atan2_values(v, 1500), i, j;
+    stat s;
+    stat_init(&s, "tg_atan2");
+    for (i = 0; i < n; i++)
+        for (j = 0; j < n; j++) {
+            if (v[i] == 0 && v[j] == 0) continue;
+            measure(&s, tg_atan2(v[i], v[j]), atan2(dv(v[i]), dv(v[j])), dv(v[i]),
+                    dv(v[j]), 0);
+        }
+    /* and the unit circle, densely */
+    for (i = 0; i < 1000000; i++) {
+        double a = -PI_D + 2 * PI_D * i / 1000000.0;
+        tg_real y = tg_from_float((float)sin(a)), x = tg_from_float((float)cos(a));
+        measure(&s, tg_atan2(y, x), atan2(dv(y), dv(x)), dv(y), dv(x), 0);
+    }
+    check_stat(&s, 0.501, 3e-7, 0);
+    CHECK(tg_atan2(0, 0) == 0, "atan2(0,0) = 0");
+    CHECK(tg_atan2(0, tg_neg(TG_ONE)) == TG_PI, "atan2(0,-1) = pi");
+    CHECK(tg_atan2(TG_ONE, 0) == TG_HALF_PI, "atan2(1,0) = pi/2");
+}
+
+/* ---- exp2, log2, pow ---- */
+
+static double ref_exp2(double x) { return exp2(x); }
+static double ref_log2(double x) { return log2(x); }
+
+TEST(exp2_log2_whole_domain)
+{
+    stat e, l;
+    stat_init(&e, "tg_exp2");
+    stat_init(&l, "tg_log2");
+#if TG_FIXED
+    /* every value with a representable result: [-17, 15) */
+    sweep_raw(&e, tg_exp2, ref_exp2, -17 * 65536, 15 * 65536 - 1, 1, 0);
+    sweep_raw(&l, tg_log2, ref_log2, 1, 1 << 21, 1, 0);
+    sweep_raw(&l, tg_log2, ref_log2, 1 << 21, INT32_MAX, 1021, 0);
+    check_stat(&e, 0.501, 0, 0);
+    check_stat(&l, 0.501, 0, 0);
+    CHECK(tg_exp2(TG_R(15.0f)) == TG_REAL_MAX, "exp2(15) saturates");
+    CHECK(tg_exp2(TG_R(-20.0f)) == 0, "exp2(-20) underflows to 0");
+#else
+    sweep_uniform(&e, tg_exp2, ref_exp2, -126.0, 127.99, 1000000, 0);
+    sweep_bits(&e, tg_exp2, ref_exp2, 1e-30f, 1.0f, 257, 1, 0);
+    sweep_bits(&l, tg_log2, ref_log2, from_bits(1), FLT_MAX, 1021, 0, 0);
+    sweep_uniform(&l, tg_log2, ref_log2, 0.5, 2.0, 1000000, 0);
+    check_stat(&e, 0, 2.5e-7, 0);
+    check_stat(&l, 0, 3.5e-7, 0);
+    CHECK(tg_exp2(1000.0f) == TG_REAL_MAX, "exp2(1000) saturates");
+    CHECK(tg_exp2(-1000.0f) == 0.0f, "exp2(-1000) = 0");
+#endif
+    CHECK(tg_exp2(0) == TG_ONE, "exp2(0) = 1");
+    CHECK(tg_exp2(TG_R(3.0f)) == TG_R(8.0f), "exp2(3) = 8 exactly");
+    CHECK(tg_log2(TG_R(8.0f)) == TG_R(3.0f), "log2(8) = 3 exactly");
+    CHECK(tg_log2(0) == TG_REAL_MIN, "log2(0) = MIN");
+    CHECK(tg_log2(tg_neg(TG_ONE)) == TG_REAL_MIN, "log2(-1) = MIN");
+}
+
+TEST(pow_domain)
+{
+    stat s;
+    int i, j;
+    stat_init(&s, "tg_pow");
+    for (i = 0; i < 1000; i++)
+        for (j = 0; j < 400; j++) {
+#if TG_FIXED
+            tg_real x = (tg_real)(1 + (int64_t)(pow(2.0, 31.0 * i / 999.0)) % INT32_MAX);
+            double lim = 14.9;
+#else
+            tg_real x = (float)pow(2.0, -120.0 + 240.0 * i / 999.0) * (1.0f + 0.01f * (float)(i % 5));
+            double lim = 64.0;
+#endif
+            tg_real y = tg_from_float((float)(-8.0 + 16.0 * j / 399.0));
+            double ref = pow(dv(x), dv(y));
+            if (fabs(dv(y) * log2(dv(x))) >= lim) continue;
+            measure(&s, tg_pow(x, y), ref, dv(x), dv(y), 0);
+        }
+    check_stat(&s, 0.501, 5e-6, 0);
+    CHECK(tg_pow(TG_R(2.0f), TG_R(10.0f)) == TG_R(1024.0f), "2^10 exact");
+    CHECK(tg_pow(0, TG_R(2.0f)) == 0, "0^2 = 0");
+    CHECK(tg_pow(0, 0) == TG_ONE, "0^0 = 1");
+    CHECK(tg_pow(0, tg_neg(TG_ONE)) == TG_REAL_MAX, "0^-1 saturates");
+}
+
+/* ---- floor, smoothstep ---- */
+
+TEST(floor_exact)
+{
+    long bad = 0;
+#if TG_FIXED
+    int64_t i;
+    for (i = -(int64_t)INT32_MAX; i <= INT32_MAX; i += 977) {
+        double f = floor(dv((tg_real)i));
+        double g = dv(tg_floor((tg_real)i));
+        if (f >= -32767.0 && g != f) bad++;
+    }
+    CHECK(tg_floor(TG_REAL_MIN) == TG_REAL_MIN, "floor(MIN) saturates");
+#else
+    int i;
+    for (i = 0; i < 1000000; i++) {
+        float x = (float)(-3e4 + 6e4 * i / 1000000.0);
+        if (tg_floor(x) != (float)floor((double)x)) bad++;
+    }
+    CHECK(tg_floor(1e30f) == 1e30f, "large floats are integral");
+#endif
+    CHECK(bad == 0, "%ld floor mismatches", bad);
+    CHECK(tg_floor(TG_R(-0.5f)) == tg_neg(TG_ONE), "floor(-0.5) = -1");
+    CHECK(tg_floor(TG_R(2.0f)) == TG_R(2.0f), "floor(2) = 2");
+}
+
+TEST(smoothstep_values)
+{
+    int i;
+    tg_real prev = 0;
+    CHECK(tg_smoothstep(TG_ONE, TG_R(3.0f), 0) == 0, "below a");
+    CHECK(tg_smoothstep(TG_ONE, TG_R(3.0f), TG_R(5.0f)) == TG_ONE, "above b");
+    CHECK(tg_smoothstep(TG_ONE, TG_R(3.0f), TG_R(2.0f)) == TG_R(0.5f), "midpoint 1/2");
+    CHECK(tg_smoothstep(TG_ONE, TG_ONE, TG_R(2.0f)) == TG_ONE, "a == b is a step");
+    CHECK(tg_smoothstep(TG_ONE, TG_ONE, 0) == 0, "a == b is a step");
+    for (i = 0; i <= 1000; i++) {
+        tg_real x = tg_ratio(i, 1000), r = tg_smoothstep(0, TG_ONE, x);
+        double t = dv(x);
+        CHECK_NEAR(dv(r), t * t * (3 - 2 * t), 4.0 / 65536);
+        CHECK(r >= prev, "monotonic at %d", i);
+        prev = r;
+    }
+}
+
+/* ---- saturation at the range ends ---- */
+
+TEST(saturation)
+{
+#if TG_FIXED
+    CHECK(tg_mul(TG_REAL_MAX, TG_REAL_MAX) == TG_REAL_MAX, "MAX*MAX");
+    CHECK(tg_mul(TG_REAL_MAX, TG_REAL_MIN) == TG_REAL_MIN, "MAX*MIN");
+    CHECK(tg_mul(TG_R(200.0f), TG_R(200.0f)) == TG_REAL_MAX, "200*200 saturates, not wraps");
+    CHECK(tg_mul(TG_R(-200.0f), TG_R(200.0f)) == TG_REAL_MIN, "-200*200");
+    CHECK(tg_add(TG_REAL_MAX, TG_ONE) == TG_REAL_MAX, "MAX+1");
+    CHECK(tg_add(TG_REAL_MIN, tg_neg(TG_ONE)) == TG_REAL_MIN, "MIN-1");
+    CHECK(tg_sub(TG_REAL_MIN, TG_REAL_MAX) == TG_REAL_MIN, "MIN-MAX");
+    CHECK(tg_sub(TG_REAL_MAX, TG_REAL_MIN) == TG_REAL_MAX, "MAX-MIN");
+    CHECK(tg_div(TG_ONE, 0) == TG_REAL_MAX, "1/0");
+    CHECK(tg_div(tg_neg(TG_ONE), 0) == TG_REAL_MIN, "-1/0");
+    CHECK(tg_div(0, 0) == 0, "0/0");
+    CHECK(tg_div(TG_R(1000.0f), TG_EPS) == TG_REAL_MAX, "1000/eps");
+    CHECK(tg_from_int(40000) == TG_REAL_MAX, "from_int(40000)");
+    CHECK(tg_neg(TG_REAL_MIN) == TG_REAL_MAX, "-MIN");
+    CHECK(tg_ldexp(TG_R(3.0f), 20) == TG_REAL_MAX, "ldexp saturates");
+    /* results of the transcendentals stay in range */
+    CHECK(tg_tan(TG_R(1.5707f)) > TG_R(1000.0f), "tan near pi/2 large and positive");
+    CHECK(tg_pow(TG_R(100.0f), TG_R(100.0f)) == TG_REAL_MAX, "100^100 saturates");
+#else
+    CHECK(tg_mul(TG_REAL_MAX, TG_REAL_MAX) > 0, "MAX*MAX overflows to +inf, not wraps");
+    CHECK(tg_isfinite(tg_pow(100.0f, 100.0f)) && tg_pow(100.0f, 100.0f) == TG_REAL_MAX, "pow saturates");
+    CHECK(tg_exp2(200.0f) == TG_REAL_MAX, "exp2 saturates");
+    CHECK(tg_isfinite(tg_rsqrt(0.0f)), "rsqrt(0) finite");
+    CHECK(tg_sin(INFINITY) == 0.0f && tg_cos(NAN) == TG_ONE, "outside the domain: finite");
+    CHECK(tg_atan2(NAN, 1.0f) == 0.0f, "atan2 NaN: 0");
+    CHECK(tg_isfinite(tg_tan(1.57079637f)), "tan at float(pi/2) finite");
+#endif
+    CHECK(tg_isfinite(tg_log2(0)), "log2(0) finite");
+    CHECK(tg_isfinite(tg_acos(TG_REAL_MAX)), "acos(MAX) finite");
+}
+
+/* ---- the decimal parser ---- */
+
+static tg_real parse(const char *s, size_t *used, int *ovf)
+{
+    tg_real r = TG_ONE;
+    *used = tg_parse_real(s, strlen(s), &r, ovf);
+    return r;
+}
+
+#define ALL ((size_t)-1)
+/* expected: consumed count and value (checked bit-exact) */
+static void parse_case(const char *s, size_t want_used, tg_real want, int want_ovf)
+{
+    size_t used;
+    int ovf = -1;
+    tg_real r = parse(s, &used, &ovf);
+    if (want_used == ALL) want_used = strlen(s);
+    CHECK(used == want_used, "\"%s\": used %zu, want %zu", s, used, want_used);
+    CHECK(r == want, "\"%s\": got %.9g (raw %.9g), want %.9g", s, dv(r), (double)r, dv(want));
+    CHECK(ovf == want_ovf, "\"%s\": overflow %d want %d", s, ovf, want_ovf);
+}
+
+TEST(parse_grammar)
+{
+    int ovf;
+    char buf[400];
+    parse_case("1", 1, TG_ONE, 0);
+    parse_case("-0.5", 4, TG_R(-0.5f), 0);
+    parse_case("+2.5", 4, TG_R(2.5f), 0);
+    parse_case(".5", 2, TG_R(0.5f), 0);
+    parse_case("5.", 2, TG_R(5.0f), 0);
+    parse_case("-.25e1", 6, TG_R(-2.5f), 0);
+    parse_case("2.5E+2", 6, TG_R(250.0f), 0);
+    parse_case("1e", 1, TG_ONE, 0);
+    parse_case("1e+", 1, TG_ONE, 0);
+#if TG_FIXED
+    parse_case("1e5x", 3, TG_REAL_MAX, 1);
+    parse_case("1e4x", 3, TG_R(10000.0f), 0);
+#else
+    parse_case("1e5x", 3, 100000.0f, 0);
+#endif
+    /* garbage */
+    parse_case("inf", 0, 0, 0);
+    parse_case("nan", 0, 0, 0);
+    parse_case("-", 0, 0, 0);
+    parse_case(".", 0, 0, 0);
+    parse_case("+.", 0, 0, 0);
+    parse_case("", 0, 0, 0);
+    parse_case("abc", 0, 0, 0);
+    parse_case("--1", 0, 0, 0);
+    parse_case(" 1", 0, 0, 0);
+    parse_case("0x10", 1, 0, 0); /* only "0": the caller sees "x10" left */
+    parse_case("1.5.3", 3, TG_R(1.5f), 0);
+    /* the length is respected */
+    CHECK(tg_parse_real("123", 2, &(tg_real){0}, &ovf) == 2, "len 2 of \"123\"");
+    {
+        tg_real r;
+        tg_parse_real("123", 2, &r, &ovf);
+        CHECK(r == TG_R(12.0f), "\"12\" of \"123\"");
+    }
+    /* long strings: 200 leading zeros, 200 trailing digits */
+    memset(buf, '0', 200);
+    strcpy(buf + 200, "1.5");
+    parse_case(buf, 203, TG_R(1.5f), 0);
+    strcpy(buf, "0.");
+    memset(buf + 2, '0', 300);
+    strcpy(buf + 302, "1e301");
+    parse_case(buf, strlen(buf), TG_ONE, 0);
+    /* huge exponents */
+    parse_case("1e999999999999999", 17, TG_REAL_MAX, 1);
+    parse_case("1e-999999999999999", 18, 0, 0);
+    parse_case("0e999999999", 11, 0, 0);
+    parse_case("-1e99", 5, TG_REAL_MIN, 1);
+}
+
+/* ties, sticky digits beyond the kept ones, range ends */
+TEST(parse_rounding)
+{
+    char buf[400];
+#if TG_FIXED
+    parse_case("0.00000762939453125", 19, 0, 0);          /* 2^-17: tie, to even (0) */
+    parse_case("0.00002288818359375", 19, 2, 0);          /* 3 2^-17: tie, to even (2) */
+    parse_case("0.000007629394531250000000000000000000000000001", ALL, 1, 0); /* just above */
+    parse_case("0.00000762939453124999999999999999", ALL, 0, 0);
+    parse_case("-0.00002288818359375", 20, -2, 0);
+    parse_case("0.0000152587890625", 18, 1, 0);          /* 2^-16 exactly */
+    parse_case("32767.99998474121", 17, TG_REAL_MAX, 0);  /* rounds to MAX */
+    parse_case("32767.9999923706055", 19, TG_REAL_MAX, 1); /* rounds past MAX */
+    parse_case("32768", 5, TG_REAL_MAX, 1);
+    parse_case("-32768", 6, TG_REAL_MIN, 1);
+    parse_case("1e-6", 4, 0, 0);
+    parse_case("0.1", 3, 6554, 0);                        /* 6553.6 -> 6554 */
+    parse_case("3.14159265358979", 16, 205887, 0);        /* 205887.416 */
+    /* a tie followed by 150 zeros then a 1: the sticky digit decides */
+    strcpy(buf, "0.00000762939453125");
+    memset(buf + 19, '0', 150);
+    strcpy(buf + 169, "1");
+    parse_case(buf, 170, 1, 0);
+    buf[169] = '0';
+    parse_case(buf, 170, 0, 0);
+#else
+    parse_case("16777217", 8, 16777216.0f, 0);            /* tie, to even */
+    parse_case("16777219", 8, 16777220.0f, 0);            /* tie, to even */
+    parse_case("16777217.00000000000000000000000000000000001", 44, 16777218.0f, 0);
+    parse_case("3.4028235e38", 12, FLT_MAX, 0);
+    parse_case("3.40282357e38", 13, TG_REAL_MAX, 1);      /* past FLT_MAX + ulp/2 */
+    parse_case("1e39", 4, TG_REAL_MAX, 1);
+    parse_case("1e-50", 5, 0.0f, 0);
+    parse_case("1.4e-45", 7, from_bits(1), 0);            /* smallest subnormal */
+    parse_case("7.0064923216240853e-46", 22, 0.0f, 0);    /* < half of it */
+    parse_case("7.00649232162408535461864791644958065640130970938257885878534141944895541342930300743319094181060791015625e-46", ALL, 0.0f, 0); /* exactly half: to even */
+    parse_case("7.0064923216240854e-46", 22, from_bits(1), 0);
+    parse_case("1.1754942e-38", 13, from_bits(0x7fffff), 0);
+    parse_case("0.1", 3, 0.1f, 0);
+    strcpy(buf, "16777217.");
+    memset(buf + 9, '0', 150);
+    strcpy(buf + 159, "1");
+    parse_case(buf, 160, 16777218.0f, 0);
+    buf[159] = '0';
+    parse_case(buf, 160, 16777216.0f, 0);
+#endif
+}
+
+/* random decimal strings against the C library (strtof is correctly
+ * rounded in glibc; fixed point against strtod away from ties) */
+TEST(parse_random)
+{
+    unsigned seed = 12345;
+    long i, bad = 0, n = 0;
+    char s[128];
+    for (i = 0; i < 300000; i++) {
+        int k = 0, nd, j, e, dot;
+        size_t used;
+        int ovf;
+        tg_real r;
+        seed = seed * 1103515245u + 12345u;
+        if (seed & 0x100) s[k++] = '-';
+        nd = 1 + (int)((seed >> 16) % 40);
+        dot = (int)((seed >> 8) % (unsigned)(nd + 2)) - 1; /* -1: ".5", nd: no point */
+        if (dot == -1) s[k++] = '.';
+        for (j = 0; j < nd; j++) {
+            seed = seed * 1103515245u + 12345u;
+            s[k++] = (char)('0' + (seed >> 16) % 10);
+            if (j == dot) s[k++] = '.';
+        }
+        seed = seed * 1103515245u + 12345u;
+#if TG_FIXED
+        e = (int)((seed >> 16) % 30) - 20;
+#else
+        e = (int)((seed >> 16) % 100) - 60;
+#endif
+        k += sprintf(s + k, "e%d", e);
+        used = tg_parse_real(s, (size_t)k, &r, &ovf);
+        n++;
+        if (used != (size_t)k) { bad++; continue; }
+#if TG_FIXED
+        {
+            double v = strtod(s, NULL) * 65536.0, fl = floor(v);
+            if (fabs(v) >= 2147483647.0) { if (!ovf) bad++; continue; }
+            if (fabs(v - fl - 0.5) < 1e-6) continue; /* too close to a tie for the reference */
+            if ((double)r != (fabs(v - fl) < 0.5 ? fl : fl + 1)) {
+                if (bad++ < 5) fprintf(stderr, "parse %s -> raw %d, ref %.3f\n", s, r, v);
+            }
+        }
+#else
+        {
+            float ref = strtof(s, NULL);
+            if (isinf(ref)) { if (!ovf || r != (ref > 0 ? TG_REAL_MAX : TG_REAL_MIN)) bad++; continue; }
+            if (memcmp(&ref, &r, 4) != 0) {
+                if (bad++ < 5) fprintf(stderr, "parse %s -> %.9g, strtof %.9g\n", s, (double)r, (double)ref);
+            }
+        }
+#endif
+    }
+    printf("measured tg_parse_real %s: %ld random strings, %ld mismatches\n", TG_NUMBER_NAME, n, bad);
+    CHECK(bad == 0, "%ld of %ld random strings parsed wrong", bad, n);
+}
+
+int main(void)
+{
+    RUN(sqrt_whole_domain);
+    RUN(rsqrt_whole_domain);
+    RUN(sin_cos_whole_domain);
+    RUN(tan_domain);
+    RUN(asin_acos_whole_domain);
+    RUN(atan2_whole_domain);
+    RUN(exp2_log2_whole_domain);
+    RUN(pow_domain);
+    RUN(floor_exact);
+    RUN(smoothstep_values);
+    RUN(saturation);
+    RUN(parse_grammar);
+    RUN(parse_rounding);
+    RUN(parse_random);
+    return check_summary();
+}
