@@ -1,0 +1,166 @@
+/*
+ * denoise.c - spatial 4x4-neighbourhood filter and temporal accumulation of
+ * the HBIL outputs (HBIL sec. 3.3-3.4).  See denoise.h.
+ */
+#include <string.h>
+#include "denoise.h"
+
+#define DN_CH 7     /* ao, bent xyz, near rgb */
+#define TM_CH 11    /* + depth, normal xyz */
+
+void tg_denoise_defaults(tg_denoise_params *p)
+{
+    p->depth_tolerance = TG_R(0.1f);
+    p->alpha = TG_R(0.2f);
+    p->history_depth_tolerance = TG_R(0.05f);
+    p->history_normal_cos = TG_R(0.9f);
+}
+
+static tg_real *channel(const tg_denoise_io *io, int k)
+{
+    switch (k) {
+    case 0: return io->ao;
+    case 1: return io->bent_x;
+    case 2: return io->bent_y;
+    case 3: return io->bent_z;
+    case 4: return io->near_r;
+    case 5: return io->near_g;
+    default: return io->near_b;
+    }
+}
+
+size_t tg_denoise_bytes(int w, int h) { return (size_t)w * (size_t)h * DN_CH * sizeof(tg_real); }
+
+void tg_denoise_begin(const tg_denoise_io *io, void *scratch)
+{
+    size_t n = (size_t)io->width * io->height;
+    int k;
+    for (k = 0; k < DN_CH; k++) {
+        tg_real *c = channel(io, k);
+        if (c) memcpy((tg_real *)scratch + (size_t)k * n, c, n * sizeof(tg_real));
+    }
+}
+
+static const tg_real tap_w[5] = { TG_R(0.5f), TG_ONE, TG_ONE, TG_ONE, TG_R(0.5f) };
+
+static tg_real normal_weight(tg_real d)
+{
+    d = tg_max(d, 0);
+    d = tg_mul(d, d); d = tg_mul(d, d); d = tg_mul(d, d);   /* (n_i . n_j)^8 */
+    return d;
+}
+
+static void filter_pixel(const tg_denoise_params *p, const tg_denoise_io *io, const tg_real *in, int x, int y)
+{
+    int w = io->width, h = io->height, dx, dy, k;
+    size_t n = (size_t)w * h, i = (size_t)y * w + x;
+    tg_real sum[DN_CH], wsum = 0, zi = io->depth[i];
+    tg_vec3 ni = tg_v3(io->nx[i], io->ny[i], io->nz[i]);
+    tg_real ztol = tg_mul(p->depth_tolerance, zi);
+    memset(sum, 0, sizeof sum);
+    for (dy = -2; dy <= 2; dy++) {
+        int yy = y + dy;
+        if (yy < 0 || yy >= h) continue;
+        for (dx = -2; dx <= 2; dx++) {
+            int xx = x + dx;
+            size_t j;
+            tg_real wt, dz;
+            if (xx < 0 || xx >= w) continue;
+            j = (size_t)yy * w + xx;
+            if ((io->sky && io->sky[j]) || io->depth[j] <= 0) continue;
+            dz = tg_abs(tg_sub(io->depth[j], zi));
+            if (dz >= ztol) continue;
+            wt = tg_mul(tg_mul(tap_w[dx + 2], tap_w[dy + 2]), tg_sub(TG_ONE, tg_div(dz, ztol)));
+            wt = tg_mul(wt, normal_weight(tg_v3_dot(ni, tg_v3(io->nx[j], io->ny[j], io->nz[j]))));
+            if (wt <= 0) continue;
+            for (k = 0; k < DN_CH; k++)
+                if (channel(io, k)) sum[k] = tg_add(sum[k], tg_mul(wt, in[(size_t)k * n + j]));
+            wsum = tg_add(wsum, wt);
+        }
+    }
+    if (wsum <= 0) return;   /* the centre always weighs 1: cannot happen */
+    for (k = 0; k < DN_CH; k++) {
+        tg_real *c = channel(io, k);
+        if (c) c[i] = tg_div(sum[k], wsum);
+    }
+    if (io->bent_x && io->bent_y && io->bent_z) {
+        tg_vec3 b = tg_v3_normalize_or(tg_v3(io->bent_x[i], io->bent_y[i], io->bent_z[i]), ni);
+        io->bent_x[i] = b.x; io->bent_y[i] = b.y; io->bent_z[i] = b.z;
+    }
+    io->ao[i] = tg_saturate(io->ao[i]);
+    if (io->cone) io->cone[i] = tg_acos(tg_sub(TG_ONE, io->ao[i]));   /* HBIL eq. 12 */
+}
+
+void tg_denoise_rows(const tg_denoise_params *p, const tg_denoise_io *io, const void *scratch, int y0, int y1)
+{
+    int x, y;
+    if (y0 < 0) y0 = 0;
+    if (y1 > io->height) y1 = io->height;
+    for (y = y0; y < y1; y++)
+        for (x = 0; x < io->width; x++) {
+            size_t i = (size_t)y * io->width + x;
+            if ((io->sky && io->sky[i]) || io->depth[i] <= 0) continue;
+            filter_pixel(p, io, (const tg_real *)scratch, x, y);
+        }
+}
+
+/* ---- temporal ---- */
+size_t tg_temporal_bytes(int w, int h) { return 2 * (size_t)w * (size_t)h * TM_CH * sizeof(tg_real); }
+
+void tg_temporal_clear(void *state, int w, int h) { memset(state, 0, tg_temporal_bytes(w, h)); }
+
+static void temporal_pixel(const tg_denoise_params *p, const tg_denoise_io *io, const tg_real *prev, tg_real *next,
+                           const tg_view *prev_view, const tg_view *view, int reset, int x, int y)
+{
+    int w = io->width, h = io->height, k;
+    size_t n = (size_t)w * h, i = (size_t)y * w + x, s = 0;
+    int ok = 0, sky = (io->sky && io->sky[i]) || io->depth[i] <= 0;
+    if (!reset && !sky && prev_view) {
+        tg_vec3 pv = tg_view_unproject(view, tg_add(tg_from_int(x), TG_R(0.5f)), tg_add(tg_from_int(y), TG_R(0.5f)), io->depth[i]);
+        tg_vec3 q = tg_view_world_to_view(prev_view, tg_view_view_to_world(view, pv));
+        if (q.z > 0) {
+            tg_real sx, sy;
+            int px, py;
+            tg_view_project(prev_view, q, &sx, &sy);
+            px = tg_to_int(sx); py = tg_to_int(sy);
+            if (px >= 0 && py >= 0 && px < w && py < h) {
+                tg_real hz;
+                s = (size_t)py * w + px;
+                hz = prev[7 * n + s];
+                if (hz > 0 && tg_abs(tg_sub(hz, q.z)) <= tg_mul(p->history_depth_tolerance, hz)) {
+                    tg_vec3 hn = tg_v3(prev[8 * n + s], prev[9 * n + s], prev[10 * n + s]);
+                    ok = tg_v3_dot(hn, tg_v3(io->nx[i], io->ny[i], io->nz[i])) >= p->history_normal_cos;
+                }
+            }
+        }
+    }
+    for (k = 0; k < DN_CH; k++) {
+        tg_real *c = channel(io, k);
+        tg_real v = c ? c[i] : 0;
+        if (c && ok) c[i] = v = tg_lerp(prev[(size_t)k * n + s], v, p->alpha);   /* exponential average */
+        next[(size_t)k * n + i] = v;
+    }
+    if (ok && io->bent_x && io->bent_y && io->bent_z) {
+        tg_vec3 b = tg_v3_normalize_or(tg_v3(io->bent_x[i], io->bent_y[i], io->bent_z[i]), tg_v3(io->nx[i], io->ny[i], io->nz[i]));
+        io->bent_x[i] = b.x; io->bent_y[i] = b.y; io->bent_z[i] = b.z;
+    }
+    if (ok && io->cone) io->cone[i] = tg_acos(tg_sub(TG_ONE, io->ao[i]));   /* HBIL eq. 12 */
+    next[7 * n + i] = sky ? 0 : io->depth[i];
+    next[8 * n + i] = io->nx[i]; next[9 * n + i] = io->ny[i]; next[10 * n + i] = io->nz[i];
+}
+
+void tg_temporal_rows(const tg_denoise_params *p, const tg_denoise_io *io, void *state,
+                      const tg_view *prev_view, const tg_view *view, int frame, int reset,
+                      int y0, int y1)
+{
+    size_t half = (size_t)io->width * io->height * TM_CH;
+    tg_real *a = (tg_real *)state, *b = a + half;
+    const tg_real *prev = (frame & 1) ? b : a;
+    tg_real *next = (frame & 1) ? a : b;
+    int x, y;
+    if (y0 < 0) y0 = 0;
+    if (y1 > io->height) y1 = io->height;
+    for (y = y0; y < y1; y++)
+        for (x = 0; x < io->width; x++)
+            temporal_pixel(p, io, prev, next, prev_view, view, reset, x, y);
+}
