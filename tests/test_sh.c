@@ -1,0 +1,321 @@
+/*
+ * test_sh.c - the SH9 environment and the far field: white furnace, sky
+ * hemisphere against RTR eq. 10.42, the cosine-lobe convolution and the
+ * bent-cone restriction (HBIL sec. 2.2.4) against numerical integration of
+ * the environment's radiance, the F0 alternative (HBIL sec. 2.2.3).
+ */
+#include <stdlib.h>
+#include "check.h"
+#include "light/sh.h"
+#include "light/compose.h"
+
+#define PI 3.14159265358979
+#define N 16 /* G-buffer side */
+
+static double dv(tg_real r) { return check_d(r); }
+static tg_real rv(double x) { return tg_from_float((float)x); }
+static tg_vec3 v3d(double x, double y, double z) { return tg_v3(rv(x), rv(y), rv(z)); }
+static double tol_rel(void) { return TG_FIXED ? 0.02 : 0.01; }
+
+/* The real SH basis in double, same order as sh.h. */
+static void basis(const double d[3], double y[9])
+{
+    double x = d[0], yy = d[1], z = d[2];
+    y[0] = 0.282094792;
+    y[1] = 0.488602512 * yy; y[2] = 0.488602512 * z; y[3] = 0.488602512 * x;
+    y[4] = 1.092548431 * x * yy; y[5] = 1.092548431 * yy * z;
+    y[6] = 0.315391565 * (3 * z * z - 1);
+    y[7] = 1.092548431 * x * z; y[8] = 0.546274215 * (x * x - yy * yy);
+}
+
+/* Radiance of channel c of the SH9 env in double. */
+static double sh_radiance_d(const tg_vec3 sh[9], int c, const double d[3])
+{
+    double y[9], s = 0;
+    int j;
+    basis(d, y);
+    for (j = 0; j < 9; j++) s += y[j] * dv(c == 0 ? sh[j].x : c == 1 ? sh[j].y : sh[j].z);
+    return s;
+}
+
+/* Orthonormal frame around unit n. */
+static void frame(const double n[3], double t[3], double b[3])
+{
+    double a[3] = { 1, 0, 0 }, l;
+    if (fabs(n[0]) > 0.9) { a[0] = 0; a[1] = 1; }
+    t[0] = n[1] * a[2] - n[2] * a[1]; t[1] = n[2] * a[0] - n[0] * a[2]; t[2] = n[0] * a[1] - n[1] * a[0];
+    l = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+    t[0] /= l; t[1] /= l; t[2] /= l;
+    b[0] = n[1] * t[2] - n[2] * t[1]; b[1] = n[2] * t[0] - n[0] * t[2]; b[2] = n[0] * t[1] - n[1] * t[0];
+}
+
+/* Integral of L(w) (n.w) over the cone of half angle theta_max about n (midpoint rule). */
+typedef double (*radiance_fn)(const void *ctx, const double d[3]);
+static double cone_irradiance(radiance_fn L, const void *ctx, const double n[3], double theta_max)
+{
+    double t[3], b[3], sum = 0;
+    int i, j, nt = 300, np = 600;
+    frame(n, t, b);
+    for (i = 0; i < nt; i++) {
+        double th = (i + 0.5) * theta_max / nt, st = sin(th), ct = cos(th);
+        for (j = 0; j < np; j++) {
+            double ph = (j + 0.5) * 2 * PI / np, d[3];
+            int k;
+            for (k = 0; k < 3; k++) d[k] = ct * n[k] + st * (cos(ph) * t[k] + sin(ph) * b[k]);
+            sum += L(ctx, d) * ct * st;
+        }
+    }
+    return sum * (theta_max / nt) * (2 * PI / np);
+}
+
+typedef struct { const tg_vec3 *sh; int c; } sh_ctx;
+static double L_sh(const void *ctx, const double d[3])
+{
+    const sh_ctx *s = (const sh_ctx *)ctx;
+    return sh_radiance_d(s->sh, s->c, d);
+}
+typedef struct { double sky, ground, up[3]; } sky_ctx;
+static double L_sky(const void *ctx, const double d[3])
+{
+    const sky_ctx *s = (const sky_ctx *)ctx;
+    return d[0] * s->up[0] + d[1] * s->up[1] + d[2] * s->up[2] >= 0 ? s->sky : s->ground;
+}
+
+static void unit(double d[3])
+{
+    double l = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    d[0] /= l; d[1] /= l; d[2] /= l;
+}
+
+/* A positive, band-limited test environment (L00 dominant). */
+static void test_env(tg_vec3 sh[9])
+{
+    static const double c[9][3] = {
+        { 2.0, 1.6, 1.2 }, { 0.5, 0.3, -0.2 }, { -0.3, 0.2, 0.4 }, { 0.25, -0.35, 0.1 },
+        { 0.15, 0.1, -0.1 }, { -0.12, 0.08, 0.05 }, { 0.2, -0.1, 0.15 }, { 0.1, 0.12, -0.08 }, { -0.15, 0.05, 0.1 } };
+    int j;
+    for (j = 0; j < 9; j++) sh[j] = v3d(c[j][0], c[j][1], c[j][2]);
+}
+
+static const double normals[][3] = {
+    { 0, 1, 0 }, { 0, -1, 0 }, { 1, 0, 0 }, { 0, 0, -1 }, { 0.3, 0.8, -0.5 }, { -0.7, -0.2, 0.6 }, { 0.5, -0.5, 0.7 } };
+#define NORMAL_COUNT ((int)(sizeof normals / sizeof normals[0]))
+
+typedef struct {
+    tg_gbuffer gb;
+    tg_real p[12][N * N];
+    uint8_t sky[N * N];
+} small_gb;
+
+/* An N x N G-buffer of non-sky pixels with varied unit normals. */
+static void make_gb(small_gb *g, double albedo)
+{
+    int i;
+    memset(g, 0, sizeof *g);
+    g->gb.width = g->gb.height = N;
+    g->gb.depth = g->p[0]; g->gb.nx = g->p[1]; g->gb.ny = g->p[2]; g->gb.nz = g->p[3];
+    g->gb.albedo_r = g->p[4]; g->gb.albedo_g = g->p[5]; g->gb.albedo_b = g->p[6]; g->gb.f0 = g->p[7];
+    g->gb.sky = g->sky;
+    for (i = 0; i < N * N; i++) {
+        double a = i * 2.399963, zc = 1 - 2 * (i + 0.5) / (N * N), r = sqrt(1 - zc * zc);
+        g->gb.depth[i] = TG_ONE;
+        g->gb.nx[i] = rv(r * cos(a)); g->gb.ny[i] = rv(zc); g->gb.nz[i] = rv(r * sin(a));
+        g->gb.albedo_r[i] = g->gb.albedo_g[i] = g->gb.albedo_b[i] = rv(albedo);
+        g->gb.f0[i] = 0;
+    }
+}
+
+static tg_real e[3][N * N], o[3][N * N];
+
+TEST(white_furnace)
+{
+    small_gb *g = (small_gb *)malloc(sizeof *g);
+    tg_env env;
+    tg_vec3 sh[9];
+    tg_rgb_planes far;
+    int i, c;
+    memset(&env, 0, sizeof env);
+    env.type = TG_ENV_UNIFORM; env.uniform = v3d(1, 1, 1);
+    tg_sh9_from_env(&env, sh);
+    make_gb(g, 0.5);
+    tg_far_rows(&g->gb, sh, NULL, NULL, NULL, NULL, TG_FAR_CONE_SH, e[0], e[1], e[2], 0, N);
+    far.r = e[0]; far.g = e[1]; far.b = e[2];
+    tg_compose_rows(&g->gb, NULL, &env, &far, 1, o[0], o[1], o[2], NULL, NULL, NULL, 0, N);
+    for (i = 0; i < N * N; i++)
+        for (c = 0; c < 3; c++) {
+            CHECK(fabs(dv(e[c][i]) - PI) <= tol_rel() * PI, "E %g want pi", dv(e[c][i]));
+            CHECK(fabs(dv(o[c][i]) - 0.5) <= tol_rel() * 0.5, "Lo %g want 0.5", dv(o[c][i]));
+        }
+    free(g);
+}
+
+TEST(sky_hemisphere_matches_rtr_10_42)
+{
+    double s = 1.2, gr = 0.3;
+    tg_env env;
+    tg_vec3 sh[9];
+    sky_ctx ctx;
+    int k;
+    memset(&env, 0, sizeof env);
+    env.type = TG_ENV_SKY; env.sky = v3d(s, 0.5, 0); env.ground = v3d(gr, 0.5, 0.8); env.up = v3d(0, 1, 0);
+    tg_sh9_from_env(&env, sh);
+    {   /* RTR eq. 10.42 at theta = 0, 90, 180 degrees */
+        static const double n[3][3] = { { 0, 1, 0 }, { 1, 0, 0 }, { 0, -1, 0 } };
+        double want[3] = { PI * s, PI * (0.5 * s + 0.5 * gr), PI * gr };
+        for (k = 0; k < 3; k++) {
+            tg_vec3 E = tg_sh9_irradiance(sh, v3d(n[k][0], n[k][1], n[k][2]));
+            CHECK(fabs(dv(E.x) - want[k]) <= 0.02 * want[k], "facing %d: E %g want %g", k, dv(E.x), want[k]);
+            CHECK(fabs(dv(E.y) - PI * 0.5) <= 0.02 * PI * 0.5, "grey channel %g", dv(E.y));
+            CHECK(fabs(dv(E.z) - PI * 0.8 * (k == 0 ? 0 : k == 1 ? 0.5 : 1)) <= 0.02 * PI * 0.8 + 1e-4,
+                  "black sky channel %g", dv(E.z));
+        }
+    }
+    /* at any tilt the SH9 irradiance equals the integral of the actual step (band 3+ of
+     * the step do not survive the cosine lobe), which is RTR eq. 10.43 */
+    ctx.sky = s; ctx.ground = gr; ctx.up[0] = 0; ctx.up[1] = 1; ctx.up[2] = 0;
+    for (k = 0; k < NORMAL_COUNT; k++) {
+        double n[3] = { normals[k][0], normals[k][1], normals[k][2] }, ref, ct;
+        tg_vec3 E;
+        unit(n);
+        ref = cone_irradiance(L_sky, &ctx, n, PI / 2);
+        ct = n[1];
+        E = tg_sh9_irradiance(sh, v3d(n[0], n[1], n[2]));
+        CHECK(fabs(dv(E.x) - ref) <= 0.02 * ref, "tilt %d: E %g, integral %g", k, dv(E.x), ref);
+        CHECK(fabs(ref - PI * ((1 + ct) / 2 * s + (1 - ct) / 2 * gr)) <= 1e-3 * ref, "eq. 10.43 %g", ref);
+    }
+    /* the environment itself, for sky pixels */
+    CHECK(dv(tg_env_radiance(&env, v3d(0.1, 0.5, 0)).x) == dv(env.sky.x), "sky above");
+    CHECK(dv(tg_env_radiance(&env, v3d(0.1, -0.5, 0)).x) == dv(env.ground.x), "ground below");
+}
+
+TEST(sh9_irradiance_is_the_cosine_convolution)
+{
+    tg_vec3 sh[9];
+    int k, c;
+    test_env(sh);
+    for (k = 0; k < NORMAL_COUNT; k++) {
+        double n[3] = { normals[k][0], normals[k][1], normals[k][2] };
+        tg_vec3 E;
+        unit(n);
+        E = tg_sh9_irradiance(sh, v3d(n[0], n[1], n[2]));
+        for (c = 0; c < 3; c++) {
+            sh_ctx ctx;
+            double ref, got = dv(c == 0 ? E.x : c == 1 ? E.y : E.z);
+            ctx.sh = sh; ctx.c = c;
+            ref = cone_irradiance(L_sh, &ctx, n, PI / 2);
+            CHECK(fabs(got - ref) <= tol_rel() * ref, "normal %d channel %d: %g vs integral %g", k, c, got, ref);
+        }
+    }
+}
+
+TEST(sh9_radiance_round_trip)
+{
+    /* project tg_sh9_radiance back onto the basis (RTR eq. 10.40) and recover the coefficients */
+    tg_vec3 sh[9];
+    double acc[9][3] = { { 0 } };
+    int i, j, nt = 120, np = 240;
+    test_env(sh);
+    for (i = 0; i < nt; i++) {
+        double th = (i + 0.5) * PI / nt;
+        for (j = 0; j < np; j++) {
+            double ph = (j + 0.5) * 2 * PI / np, d[3] = { sin(th) * cos(ph), cos(th), sin(th) * sin(ph) };
+            double y[9], dw = sin(th) * (PI / nt) * (2 * PI / np);
+            tg_vec3 L = tg_sh9_radiance(sh, v3d(d[0], d[1], d[2]));
+            int m;
+            basis(d, y);
+            for (m = 0; m < 9; m++) {
+                acc[m][0] += y[m] * dv(L.x) * dw; acc[m][1] += y[m] * dv(L.y) * dw; acc[m][2] += y[m] * dv(L.z) * dw;
+            }
+        }
+    }
+    for (j = 0; j < 9; j++) {
+        CHECK(fabs(acc[j][0] - dv(sh[j].x)) < 0.01, "L%d r: %g vs %g", j, acc[j][0], dv(sh[j].x));
+        CHECK(fabs(acc[j][2] - dv(sh[j].z)) < 0.01, "L%d b: %g vs %g", j, acc[j][2], dv(sh[j].z));
+    }
+}
+
+TEST(cone_restricted_far_field)
+{
+    tg_vec3 sh[9];
+    int k, a, c;
+    test_env(sh);
+    for (k = 0; k < NORMAL_COUNT; k++) {
+        double n[3] = { normals[k][0], normals[k][1], normals[k][2] };
+        tg_vec3 bent, open, full, prev;
+        unit(n);
+        bent = v3d(n[0], n[1], n[2]);
+        open = tg_sh9_irradiance(sh, bent);
+        full = tg_sh9_irradiance_cone(sh, bent, TG_ONE);
+        /* AO = 1: the whole hemisphere, equal to the unoccluded irradiance */
+        CHECK(fabs(dv(full.x) - dv(open.x)) <= (TG_FIXED ? 4e-4 : 1e-6) * (1 + dv(open.x)), "AO 1: %g vs %g", dv(full.x), dv(open.x));
+        CHECK(fabs(dv(full.z) - dv(open.z)) <= (TG_FIXED ? 4e-4 : 1e-6) * (1 + dv(open.z)), "AO 1 blue");
+        prev = full;
+        for (a = 19; a >= 0; a--) {
+            tg_real ao = rv(a / 20.0);
+            tg_vec3 E = tg_sh9_irradiance_cone(sh, bent, ao);
+            CHECK(E.x <= prev.x && E.y <= prev.y && E.z <= prev.z, "decreases as AO drops (AO %g: %g after %g)",
+                  a / 20.0, dv(E.x), dv(prev.x));
+            if (a == 0) CHECK(E.x == 0 && E.y == 0 && E.z == 0, "AO 0 gives 0");
+            if (a == 15 || a == 9 || a == 3) {  /* HBIL sec. 2.2.4 = the integral over the cone acos(1 - AO) */
+                double th = acos(1 - dv(ao));
+                for (c = 0; c < 3; c++) {
+                    sh_ctx ctx;
+                    double ref, got = dv(c == 0 ? E.x : c == 1 ? E.y : E.z);
+                    ctx.sh = sh; ctx.c = c;
+                    ref = cone_irradiance(L_sh, &ctx, n, th);
+                    CHECK(fabs(got - ref) <= tol_rel() * ref + 2e-4, "cone AO %g ch %d: %g vs %g", dv(ao), c, got, ref);
+                }
+            }
+            prev = E;
+        }
+    }
+}
+
+TEST(f0_alternative_and_far_rows_inputs)
+{
+    small_gb *g = (small_gb *)malloc(sizeof *g);
+    static tg_real ao[N * N], bx[N * N], by[N * N], bz[N * N];
+    tg_vec3 sh[9];
+    int i, mode;
+    test_env(sh);
+    CHECK(tg_far_f0(TG_ONE) == TG_ONE && tg_far_f0(0) == 0, "F0(1) = 1, F0(0) = 0");
+    for (i = 0; i <= 10; i++) {
+        double a = i / 10.0, want = a * (1 + pow(1 - a, 0.75) / 2);
+        CHECK(fabs(dv(tg_far_f0(rv(a))) - want) < (TG_FIXED ? 3e-4 : 1e-5), "F0(%g) = %g want %g", a, dv(tg_far_f0(rv(a))), want);
+    }
+    make_gb(g, 1.0);
+    for (i = 0; i < N * N; i++) {
+        ao[i] = rv((i % 11) / 10.0);
+        bx[i] = g->gb.ny[i]; by[i] = g->gb.nz[i]; bz[i] = g->gb.nx[i]; /* another unit vector */
+    }
+    g->gb.sky[5] = 1;
+    for (mode = 0; mode < 3; mode++) {
+        tg_far_rows(&g->gb, sh, ao, bx, by, bz, mode, e[0], e[1], e[2], 0, N);
+        for (i = 0; i < N * N; i++) {
+            tg_vec3 bent = tg_v3(bx[i], by[i], bz[i]), n = tg_v3(g->gb.nx[i], g->gb.ny[i], g->gb.nz[i]), want;
+            if (i == 5) { CHECK(e[0][i] == 0 && e[2][i] == 0, "sky pixel gets no far field"); continue; }
+            want = mode == TG_FAR_CONE_SH ? tg_sh9_irradiance_cone(sh, bent, ao[i])
+                 : mode == TG_FAR_CUBE_F0 ? tg_v3_scale(tg_sh9_irradiance(sh, bent), tg_far_f0(ao[i]))
+                 : tg_sh9_irradiance(sh, n);
+            CHECK(e[0][i] == want.x && e[1][i] == want.y && e[2][i] == want.z, "mode %d pixel %d", mode, i);
+        }
+    }
+    /* no AO and no bent normal: the unoccluded irradiance along the normal */
+    tg_far_rows(&g->gb, sh, NULL, NULL, NULL, NULL, TG_FAR_CONE_SH, e[0], e[1], e[2], 0, N);
+    for (i = 0; i < N * N; i++) {
+        tg_vec3 want = tg_sh9_irradiance(sh, tg_v3(g->gb.nx[i], g->gb.ny[i], g->gb.nz[i]));
+        if (i != 5) CHECK(e[0][i] == want.x, "unoccluded pixel %d", i);
+    }
+    free(g);
+}
+
+int main(void)
+{
+    RUN(white_furnace);
+    RUN(sky_hemisphere_matches_rtr_10_42);
+    RUN(sh9_irradiance_is_the_cosine_convolution);
+    RUN(sh9_radiance_round_trip);
+    RUN(cone_restricted_far_field);
+    RUN(f0_alternative_and_far_rows_inputs);
+    return check_summary();
+}
