@@ -78,18 +78,26 @@ static tg_real dot4(const tg_real *r, tg_real a, tg_real b, tg_real c, tg_real d
 
 #else
 
-/* Power-of-two factor that brings max |v| into [2^-32, 2^32]. */
-static float prescale(const tg_real *v, int n)
+/* Multiply v[0..n) by 2^(64 k), one exact step at a time. */
+static void scale_pow2_64(tg_real *v, int n, int k)
 {
-    float m = 0.0f, s = 1.0f;
     int i;
+    for (; k > 0; k--) for (i = 0; i < n; i++) v[i] *= 18446744073709551616.0f;
+    for (; k < 0; k++) for (i = 0; i < n; i++) v[i] *= 5.42101086e-20f;
+}
+
+/* k such that 2^(64 k) brings max |v| into [2^-32, 2^32]. */
+static int prescale(const tg_real *v, int n)
+{
+    float m = 0.0f;
+    int i, k = 0;
     for (i = 0; i < n; i++) {
         float a = v[i] < 0.0f ? -v[i] : v[i];
         if (a > m) m = a;
     }
-    while (m < 2.3283064e-10f && m > 0.0f) { m *= 18446744073709551616.0f; s *= 18446744073709551616.0f; }
-    while (m > 4294967296.0f) { m *= 5.4210109e-20f; s *= 5.4210109e-20f; }
-    return s;
+    while (m < 2.3283064e-10f && m > 0.0f) { m *= 18446744073709551616.0f; k++; }
+    while (m > 4294967296.0f) { m *= 5.42101086e-20f; k--; }
+    return k;
 }
 
 static int finite_n(const tg_real *v, int n)
@@ -101,11 +109,12 @@ static int finite_n(const tg_real *v, int n)
 
 static int normalize_n(tg_real *v, int n)
 {
-    float w[VEC_MAX_N], s, sum = 0.0f, r;
+    float w[VEC_MAX_N], sum = 0.0f, r;
     int i;
     if (!finite_n(v, n)) return 0;
-    s = prescale(v, n);
-    for (i = 0; i < n; i++) { w[i] = v[i] * s; sum += w[i] * w[i]; }
+    for (i = 0; i < n; i++) w[i] = v[i];
+    scale_pow2_64(w, n, prescale(v, n));
+    for (i = 0; i < n; i++) sum += w[i] * w[i];
     if (!(sum > 0.0f)) return 0;
     r = tg_rsqrt(sum);
     for (i = 0; i < n; i++) v[i] = w[i] * r;
@@ -114,13 +123,15 @@ static int normalize_n(tg_real *v, int n)
 
 tg_real tg_v3_length(tg_vec3 a)
 {
-    tg_real v[3];
-    float s;
+    tg_real v[3], l[1];
+    int k;
     v[0] = a.x; v[1] = a.y; v[2] = a.z;
     if (!finite_n(v, 3)) return TG_REAL_MAX;
-    s = prescale(v, 3);
-    v[0] *= s; v[1] *= s; v[2] *= s;
-    return tg_sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) / s;
+    k = prescale(v, 3);
+    scale_pow2_64(v, 3, k);
+    l[0] = tg_sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    scale_pow2_64(l, 1, -k);
+    return l[0];
 }
 
 static tg_real dot4(const tg_real *r, tg_real a, tg_real b, tg_real c, tg_real d)
