@@ -63,8 +63,10 @@ static int32_t clamp_coord(int64_t v)
 /* edge functions and the fill rule                                        */
 
 typedef struct tri_edges {
-    int x0, x1, y0, y1;           /* pixel box [x0, x1) x [y0, y1) */
-    int64_t e[3];                 /* biased edge functions at the centre of pixel (x0, y0) */
+    int x0, x1, y0, y1;           /* pixel box [x0, x1) x [y0, y1) to draw */
+    int oy;                       /* origin row: the box top clamped to the image only, so
+                                     results do not depend on the row range */
+    int64_t e[3];                 /* biased edge functions at the centre of pixel (x0, oy) */
     int64_t step_x[3], step_y[3]; /* change per pixel right / down */
     int64_t bias[3];              /* 0 on top-left edges, -1 elsewhere */
     int64_t area2;                /* twice the area, > 0, in sub-pixels^2 */
@@ -94,12 +96,14 @@ static int edges_setup(tri_edges *t, const int32_t *x, const int32_t *y, int64_t
     t->y1 = floor_div_sub((int64_t)maxy - HALF_SUB) + 1;
     if (t->x0 < 0) t->x0 = 0;
     if (t->x1 > width) t->x1 = width;
+    if (t->y0 < 0) t->y0 = 0;
+    t->oy = t->y0;
     if (t->y0 < row0) t->y0 = row0;
     if (t->y1 > row1) t->y1 = row1;
     if (t->x0 >= t->x1 || t->y0 >= t->y1) return 0;
     t->area2 = area2;
     t->cx = t->x0 * SUB + HALF_SUB;
-    t->cy = t->y0 * SUB + HALF_SUB;
+    t->cy = t->oy * SUB + HALF_SUB;
     for (i = 0; i < 3; i++) {
         int a = i == 2 ? 0 : i + 1, b = i == 0 ? 2 : i - 1;
         int64_t dx = (int64_t)x[b] - x[a], dy = (int64_t)y[b] - y[a];
@@ -141,7 +145,7 @@ void tg_raster_coverage_count(uint16_t *count, int width, int height,
         }
         if (!edges_setup(&te, x, y, area2, width, y0, y1)) continue;
         for (row = te.y0; row < te.y1; row++) {
-            int64_t dy = row - te.y0;
+            int64_t dy = row - te.oy;
             int64_t e0 = te.e[0] + dy * te.step_y[0];
             int64_t e1 = te.e[1] + dy * te.step_y[1];
             int64_t e2 = te.e[2] + dy * te.step_y[2];
@@ -430,7 +434,7 @@ static void gbuffer_rows(tg_gbuffer *gb, const tri_edges *te, const screen_tri *
     int row, col, W = gb->width;
     bary_make(&b, st, te);
     for (row = te->y0; row < te->y1; row++) {
-        int64_t dy = row - te->y0;
+        int64_t dy = row - te->oy;
         int64_t e0 = te->e[0] + dy * te->step_y[0];
         int64_t e1 = te->e[1] + dy * te->step_y[1];
         int64_t e2 = te->e[2] + dy * te->step_y[2];
@@ -475,7 +479,7 @@ static void depth_rows(tg_real *depth, int W, const tri_edges *te, const screen_
     int row, col;
     bary_make(&b, st, te);
     for (row = te->y0; row < te->y1; row++) {
-        int64_t dy = row - te->y0;
+        int64_t dy = row - te->oy;
         int64_t e0 = te->e[0] + dy * te->step_y[0];
         int64_t e1 = te->e[1] + dy * te->step_y[1];
         int64_t e2 = te->e[2] + dy * te->step_y[2];
@@ -558,7 +562,7 @@ static void gbuffer_rows(tg_gbuffer *gb, const tri_edges *te, const screen_tri *
     pny = plane_make(&pb, st->n[0].y * q[0], st->n[1].y * q[1], st->n[2].y * q[2]);
     pnz = plane_make(&pb, st->n[0].z * q[0], st->n[1].z * q[1], st->n[2].z * q[2]);
     for (row = te->y0; row < te->y1; row++) {
-        int64_t dy64 = row - te->y0;
+        int64_t dy64 = row - te->oy;
         float dy = (float)dy64;
         int64_t e0 = te->e[0] + dy64 * te->step_y[0];
         int64_t e1 = te->e[1] + dy64 * te->step_y[1];
@@ -607,7 +611,7 @@ static void depth_rows(tg_real *depth, int W, const tri_edges *te, const screen_
     if (ortho) pa = plane_make(&pb, st->z[0], st->z[1], st->z[2]);
     else pa = plane_make(&pb, wmin / st->w[0], wmin / st->w[1], wmin / st->w[2]);
     for (row = te->y0; row < te->y1; row++) {
-        int64_t dy64 = row - te->y0;
+        int64_t dy64 = row - te->oy;
         int64_t e0 = te->e[0] + dy64 * te->step_y[0];
         int64_t e1 = te->e[1] + dy64 * te->step_y[1];
         int64_t e2 = te->e[2] + dy64 * te->step_y[2];
