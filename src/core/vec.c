@@ -116,8 +116,8 @@ static int normalize_n(tg_real *v, int n)
     scale_pow2_64(w, n, prescale(v, n));
     for (i = 0; i < n; i++) sum += w[i] * w[i];
     if (!(sum > 0.0f)) return 0;
-    r = tg_rsqrt(sum);
-    for (i = 0; i < n; i++) v[i] = w[i] * r;
+    r = tg_sqrt(sum); /* divide: axis-aligned vectors come out exact */
+    for (i = 0; i < n; i++) v[i] = w[i] / r;
     return 1;
 }
 

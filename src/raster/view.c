@@ -36,18 +36,41 @@ static tg_real mul_div(tg_real a, tg_real b, tg_real c)
 static tg_vec3 choose_up(tg_vec3 forward, tg_vec3 up)
 {
     tg_vec3 u = tg_v3_normalize(up);
-    if (tg_v3_length(tg_v3_cross(forward, u)) >= VIEW_DEGENERATE_UP) return u;
+    if (tg_v3_length(tg_v3_cross(forward, u)) > VIEW_DEGENERATE_UP) return u;
     u = tg_v3(0, TG_ONE, 0);
-    if (tg_v3_length(tg_v3_cross(forward, u)) >= VIEW_DEGENERATE_UP) return u;
+    if (tg_v3_length(tg_v3_cross(forward, u)) > VIEW_DEGENERATE_UP) return u;
     return tg_v3(0, 0, forward.y < 0 ? tg_neg(TG_ONE) : TG_ONE);
+}
+
+/* normalize(a x b).  Fixed point forms the cross product exactly in 64
+ * bits first: for nearly parallel a, b the Q16.16 cross product would
+ * keep only a few significant bits. */
+static tg_vec3 cross_dir(tg_vec3 a, tg_vec3 b)
+{
+#if TG_FIXED
+    int64_t c[3], m = 0;
+    int i, s = 0;
+    c[0] = (int64_t)a.y * b.z - (int64_t)a.z * b.y; /* |a|, |b| <= 1: no overflow */
+    c[1] = (int64_t)a.z * b.x - (int64_t)a.x * b.z;
+    c[2] = (int64_t)a.x * b.y - (int64_t)a.y * b.x;
+    for (i = 0; i < 3; i++) if ((c[i] < 0 ? -c[i] : c[i]) > m) m = c[i] < 0 ? -c[i] : c[i];
+    while ((m >> s) >= ((int64_t)1 << 30)) s++;
+    return tg_v3_normalize(tg_v3((tg_real)tg_shr_round(c[0], s), (tg_real)tg_shr_round(c[1], s),
+                                 (tg_real)tg_shr_round(c[2], s)));
+#else
+    return tg_v3_normalize(tg_v3_cross(a, b));
+#endif
 }
 
 void tg_view_make(tg_view *v, tg_vec3 eye, tg_vec3 target, tg_vec3 up,
                   tg_real fov_y, tg_real znear, tg_real zfar, int width, int height)
 {
     tg_vec3 f = tg_v3_normalize_or(tg_v3_sub(target, eye), tg_v3(0, 0, tg_neg(TG_ONE)));
-    tg_vec3 u = choose_up(f, up);
-    tg_vec3 r = tg_v3_normalize(tg_v3_cross(f, u));
+    tg_vec3 r = cross_dir(f, choose_up(f, up));
+    /* re-orthogonalise with well-conditioned products of near-perpendicular
+     * unit vectors: up from (right, forward), then right from (forward, up) */
+    tg_vec3 u = tg_v3_normalize(tg_v3_cross(r, f));
+    r = tg_v3_normalize(tg_v3_cross(f, u));
     if (width < 1) width = 1;
     if (height < 1) height = 1;
     v->width = width;
@@ -55,7 +78,7 @@ void tg_view_make(tg_view *v, tg_vec3 eye, tg_vec3 target, tg_vec3 up,
     v->eye = eye;
     v->forward = f;
     v->right = r;
-    v->up = tg_v3_normalize(tg_v3_cross(r, f));
+    v->up = u;
     v->fov_y = tg_clamp(fov_y, TG_R(0.001f), TG_R(3.1f));
     v->tan_half_fov_y = tg_tan(tg_ldexp(v->fov_y, -1));
     v->aspect = tg_ratio(width, height);

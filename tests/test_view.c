@@ -1,0 +1,214 @@
+/*
+ * test_view.c - the camera (src/raster/view.c) for the number type of this
+ * build: orthonormal basis with screen-right = forward x up, degenerate up
+ * vectors (looking straight down/up) resolved deterministically, the
+ * projection constants, the pixel-centre convention, and round trips
+ * project(unproject(p)) and view_to_world(world_to_view(p)).
+ */
+#include "check.h"
+#include "raster/view.h"
+
+#define PI_D 3.14159265358979323846
+
+static double dv(tg_real r)
+{
+#if TG_FIXED
+    return (double)r / 65536.0;
+#else
+    return (double)r;
+#endif
+}
+
+#if TG_FIXED
+#define ULP (1.0 / 65536.0)
+#else
+#define ULP 1.2e-7
+#endif
+
+static unsigned rng_state = 7;
+static double rnd(void)
+{
+    rng_state = rng_state * 1103515245u + 12345u;
+    return (double)((rng_state >> 8) & 0xffffff) / 16777216.0;
+}
+static tg_real rr(double lo, double hi) { return tg_from_float((float)(lo + (hi - lo) * rnd())); }
+static tg_vec3 R3(double x, double y, double z) { return tg_v3(tg_from_float((float)x), tg_from_float((float)y), tg_from_float((float)z)); }
+static double dot_d(tg_vec3 a, tg_vec3 b) { return dv(a.x) * dv(b.x) + dv(a.y) * dv(b.y) + dv(a.z) * dv(b.z); }
+
+static void check_basis(const tg_view *v, const char *what)
+{
+    tg_vec3 c = tg_v3_cross(v->right, v->up);
+    CHECK(fabs(dot_d(v->right, v->right) - 1) <= 4 * ULP && fabs(dot_d(v->up, v->up) - 1) <= 4 * ULP &&
+          fabs(dot_d(v->forward, v->forward) - 1) <= 4 * ULP, "%s: basis not unit", what);
+    CHECK(fabs(dot_d(v->right, v->up)) <= 6 * ULP && fabs(dot_d(v->right, v->forward)) <= 6 * ULP &&
+          fabs(dot_d(v->up, v->forward)) <= 6 * ULP, "%s: basis not orthogonal (%.3g %.3g %.3g)", what,
+          dot_d(v->right, v->up), dot_d(v->right, v->forward), dot_d(v->up, v->forward));
+    /* view space x right, y up, z forward in a right-handed world: right x up = -forward */
+    CHECK(fabs(dv(c.x) + dv(v->forward.x)) <= 8 * ULP && fabs(dv(c.y) + dv(v->forward.y)) <= 8 * ULP &&
+          fabs(dv(c.z) + dv(v->forward.z)) <= 8 * ULP, "%s: right x up != -forward", what);
+}
+
+static int vec_is(tg_vec3 a, double x, double y, double z, double tol)
+{
+    return fabs(dv(a.x) - x) <= tol && fabs(dv(a.y) - y) <= tol && fabs(dv(a.z) - z) <= tol;
+}
+
+TEST(basis_conventions)
+{
+    tg_view v;
+    /* the classic camera: at +Z looking at the origin, up +Y */
+    tg_view_make(&v, R3(0, 0, 5), R3(0, 0, 0), R3(0, 1, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
+    check_basis(&v, "classic");
+    CHECK(vec_is(v.right, 1, 0, 0, 0) && vec_is(v.up, 0, 1, 0, 0) && vec_is(v.forward, 0, 0, -1, 0),
+          "classic camera basis: right +X, up +Y, forward -Z");
+    /* a non-unit, tilted up vector is orthogonalised */
+    tg_view_make(&v, R3(1, 2, 3), R3(-2, 0.5, -1), R3(0.3, 4, 0.2), TG_R(0.8f), TG_R(0.1f), TG_R(100.0f), 64, 48);
+    check_basis(&v, "tilted");
+    CHECK(dot_d(v.up, R3(0.3, 4, 0.2)) > 0, "up keeps the side of the given up");
+}
+
+TEST(basis_random)
+{
+    int i;
+    for (i = 0; i < 20000; i++) {
+        tg_view v;
+        tg_vec3 eye = R3(rnd() * 200 - 100, rnd() * 200 - 100, rnd() * 200 - 100);
+        tg_vec3 target = R3(rnd() * 200 - 100, rnd() * 200 - 100, rnd() * 200 - 100);
+        tg_vec3 up = R3(rnd() * 2 - 1, rnd() * 2 - 1, rnd() * 2 - 1);
+        if (i % 4 == 0) up = tg_v3_sub(target, eye); /* degenerate on purpose */
+        tg_view_make(&v, eye, target, up, rr(0.2, 2.5), TG_R(0.1f), TG_R(500.0f), 320, 240);
+        check_basis(&v, "random");
+        {
+            tg_vec3 d = tg_v3_normalize(tg_v3_sub(target, eye));
+            CHECK(vec_is(v.forward, dv(d.x), dv(d.y), dv(d.z), 2 * ULP), "forward is the view direction");
+        }
+    }
+}
+
+TEST(degenerate_up)
+{
+    tg_view v, w;
+    /* straight down with up +Y: right +X, screen-up -Z (the limit of tilting down) */
+    tg_view_make(&v, R3(0, 5, 0), R3(0, 0, 0), R3(0, 1, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
+    check_basis(&v, "down");
+    CHECK(vec_is(v.forward, 0, -1, 0, 0), "down: forward -Y");
+    CHECK(vec_is(v.right, 1, 0, 0, 0), "down: right +X");
+    CHECK(vec_is(v.up, 0, 0, -1, 0), "down: up -Z");
+    /* up -Y gives the same frame (deterministic) */
+    tg_view_make(&w, R3(0, 5, 0), R3(0, 0, 0), R3(0, -1, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
+    CHECK(memcmp(&v.right, &w.right, sizeof v.right) == 0 && memcmp(&v.up, &w.up, sizeof v.up) == 0, "up -Y same frame");
+    /* zero up is treated like a degenerate one */
+    tg_view_make(&w, R3(0, 5, 0), R3(0, 0, 0), R3(0, 0, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
+    CHECK(memcmp(&v.right, &w.right, sizeof v.right) == 0 && memcmp(&v.up, &w.up, sizeof v.up) == 0, "up 0 same frame");
+    /* straight up: right +X, screen-up +Z */
+    tg_view_make(&v, R3(0, -5, 0), R3(0, 0, 0), R3(0, 1, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
+    check_basis(&v, "up");
+    CHECK(vec_is(v.right, 1, 0, 0, 0) && vec_is(v.up, 0, 0, 1, 0), "up: right +X, up +Z");
+    /* looking along +X with up +X: world +Y is used */
+    tg_view_make(&v, R3(0, 0, 0), R3(3, 0, 0), R3(1, 0, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
+    check_basis(&v, "along x");
+    CHECK(vec_is(v.up, 0, 1, 0, 0) && vec_is(v.right, 0, 0, 1, 0), "along +X: up +Y, right +Z");
+    /* eye == target: a valid frame, forward -Z */
+    tg_view_make(&v, R3(1, 1, 1), R3(1, 1, 1), R3(0, 1, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
+    check_basis(&v, "eye == target");
+}
+
+TEST(projection_constants)
+{
+    tg_view v;
+    double fov = 60.0 * PI_D / 180.0, f = 1.0 / tan(fov / 2);
+    tg_view_make(&v, R3(0, 0, 0), R3(0, 0, -1), R3(0, 1, 0), tg_from_float((float)fov), TG_R(0.1f), TG_R(100.0f), 320, 240);
+    CHECK_NEAR(dv(v.tan_half_fov_y), tan(fov / 2), 2 * ULP);
+    CHECK_NEAR(dv(v.aspect), 320.0 / 240.0, ULP);
+    CHECK_NEAR(dv(v.focal_y), f, 4 * ULP * f);
+    CHECK_NEAR(dv(v.focal_x), f * 240.0 / 320.0, 4 * ULP * f);
+    CHECK_NEAR(dv(v.pixels_per_unit), 120.0 * f, 600 * ULP);
+    CHECK(v.width == 320 && v.height == 240, "size");
+    CHECK(v.znear == TG_R(0.1f) && v.zfar == TG_R(100.0f), "near/far kept");
+}
+
+TEST(pixel_convention)
+{
+    tg_view v;
+    tg_real sx, sy;
+    double fov = 1.2, t = tan(fov / 2), aspect = 320.0 / 240.0;
+    tg_vec3 p;
+    tg_view_make(&v, R3(0, 0, 0), R3(0, 0, -1), R3(0, 1, 0), tg_from_float((float)fov), TG_R(0.1f), TG_R(100.0f), 320, 240);
+    /* the optical axis hits the centre of the screen, (w/2, h/2) */
+    tg_view_project(&v, tg_v3(0, 0, TG_R(3.0f)), &sx, &sy);
+    CHECK(sx == TG_R(160.0f) && sy == TG_R(120.0f), "axis -> (160, 120), got (%.6f, %.6f)", dv(sx), dv(sy));
+    /* the top-left corner (0,0) is the frustum corner (-tan*aspect, +tan) at depth 1 */
+    p = tg_view_unproject(&v, 0, 0, TG_ONE);
+    CHECK(fabs(dv(p.x) + t * aspect) <= 1e-4 && fabs(dv(p.y) - t) <= 1e-4 && p.z == TG_ONE,
+          "corner (0,0) -> (%.6f %.6f %.6f), want (%.6f %.6f 1)", dv(p.x), dv(p.y), dv(p.z), -t * aspect, t);
+    /* bottom-right corner */
+    p = tg_view_unproject(&v, TG_R(320.0f), TG_R(240.0f), TG_R(2.0f));
+    CHECK(fabs(dv(p.x) - 2 * t * aspect) <= 2e-4 && fabs(dv(p.y) + 2 * t) <= 2e-4, "corner (w,h)");
+    /* pixel (0,0)'s centre is at (0.5, 0.5): left of and above the axis, inside the frustum */
+    p = tg_view_unproject(&v, TG_R(0.5f), TG_R(0.5f), TG_ONE);
+    CHECK(dv(p.x) < 0 && dv(p.y) > 0 && dv(p.x) > -t * aspect && dv(p.y) < t, "pixel (0,0) centre top-left");
+    /* a world point above the camera lands in the upper half (sy < h/2), right -> sx > w/2 */
+    tg_view_project(&v, tg_view_world_to_view(&v, R3(1, 1, -5)), &sx, &sy);
+    CHECK(dv(sx) > 160 && dv(sy) < 120, "(+x, +y) world -> right, up on screen");
+    /* depth is view z: a point 5 in front */
+    p = tg_view_world_to_view(&v, R3(2, -1, -5));
+    CHECK(p.z == TG_R(5.0f), "depth = view z = 5, got %.6f", dv(p.z));
+    /* behind the camera: finite */
+    tg_view_project(&v, tg_v3(TG_ONE, TG_ONE, tg_neg(TG_ONE)), &sx, &sy);
+    CHECK(tg_isfinite(sx) && tg_isfinite(sy), "behind the camera stays finite");
+}
+
+TEST(round_trips)
+{
+    int i;
+    double worst_px = 0, worst_w = 0, worst_rel_px = 0;
+    for (i = 0; i < 50000; i++) {
+        tg_view v;
+        tg_real sx = rr(0, 320), sy = rr(0, 240), depth = rr(0.1, 100), sx2, sy2;
+        tg_vec3 pv, pw, pv2, back;
+        tg_view_make(&v, R3(rnd() * 20 - 10, rnd() * 20 - 10, rnd() * 20 - 10),
+                     R3(rnd() * 20 - 10, rnd() * 20 - 10, rnd() * 20 - 10), R3(0, 1, 0), rr(0.3, 2.0),
+                     TG_R(0.1f), TG_R(200.0f), 320, 240);
+        pv = tg_view_unproject(&v, sx, sy, depth);
+        CHECK(pv.z == depth, "unproject keeps depth");
+        tg_view_project(&v, pv, &sx2, &sy2);
+        {
+            double e = fmax(fabs(dv(sx2) - dv(sx)), fabs(dv(sy2) - dv(sy)));
+            /* one ulp of the view-space point is ppu / depth pixels */
+            double ulp_px = ULP * (dv(v.pixels_per_unit) / dv(depth) + 1);
+            if (e > worst_px) worst_px = e;
+            if (e / ulp_px > worst_rel_px) worst_rel_px = e / ulp_px;
+        }
+        /* view -> world -> view */
+        pw = tg_view_view_to_world(&v, pv);
+        pv2 = tg_view_world_to_view(&v, pw);
+        {
+            double e = fmax(fabs(dv(pv2.x) - dv(pv.x)), fmax(fabs(dv(pv2.y) - dv(pv.y)), fabs(dv(pv2.z) - dv(pv.z))));
+            double m = 1 + fabs(dv(pv.z)) + fabs(dv(pv.x)) + fabs(dv(pv.y));
+            if (e / m > worst_w) worst_w = e / m;
+        }
+        /* directions */
+        back = tg_view_dir_to_world(&v, tg_view_dir_to_view(&v, v.forward));
+        CHECK(vec_is(back, dv(v.forward.x), dv(v.forward.y), dv(v.forward.z), 8 * ULP), "dir round trip");
+    }
+    printf("measured view %s: project(unproject) worst %.3g px (%.3g ulps of the point); "
+           "view->world->view worst %.3g (relative)\n", TG_NUMBER_NAME, worst_px, worst_rel_px, worst_w);
+#if TG_FIXED
+    CHECK(worst_rel_px <= 2.0, "project(unproject) off by %.4g point ulps", worst_rel_px);
+    CHECK(worst_w <= 2e-4, "world round trip off by %.4g", worst_w);
+#else
+    CHECK(worst_px <= 2e-4, "project(unproject) off by %.4g px", worst_px);
+    CHECK(worst_w <= 2e-6, "world round trip off by %.4g", worst_w);
+#endif
+}
+
+int main(void)
+{
+    RUN(basis_conventions);
+    RUN(basis_random);
+    RUN(degenerate_up);
+    RUN(projection_constants);
+    RUN(pixel_convention);
+    RUN(round_trips);
+    return check_summary();
+}
