@@ -140,7 +140,7 @@ static tg_status obj_vertex(obj_state *o, tg_lexer *lx, const tg_token *kw, int 
         v = tg_v3(x[0], x[1], x[2]);
         if (normal) /* rotated with the mesh; zero stays zero (face normal then) */
             p->scratch[p->obj_scratch - 1 - o->nvn] =
-                tg_v3_normalize_or(tg_m4_dir(&o->xf->rot, v), tg_v3(0, 0, 0));
+                tg_unit(tg_m4_dir(&o->xf->rot, v));
         else /* p' = R (s p) + t */
             p->scratch[o->nv] = tg_v3_add(tg_m4_point(&o->xf->rot, tg_v3_scale(v, o->xf->scale)),
                                           o->xf->translate);
@@ -280,7 +280,7 @@ static tg_status obj_mtllib(obj_state *o, tg_lexer *lx, const tg_token *kw)
 /* Kd (albedo, in [0,1]) or Ke (emission, >= 0): 1 or 3 numbers. */
 static tg_status mtl_color(obj_state *o, tg_lexer *ml, const char *what, int unit, tg_vec3 *out)
 {
-    tg_token t[3];
+    tg_token t[3], extra;
     tg_real x[3];
     char buf[48];
     int n = 0, i, r;
@@ -288,8 +288,9 @@ static tg_status mtl_color(obj_state *o, tg_lexer *ml, const char *what, int uni
         if ((r = tg_tok_real(&t[n], &x[n]))) return bad_number(o, ml, &t[n], what, r);
         n++;
     }
-    if (n == 2 || n == 0 || tg_lex_token(ml, &t[0])) {
-        ofail(o, ml, n == 0 ? tg_lex_eol_col(ml) : t[0].col, "'", what, "' expects 3 numbers (r g b) or 1 (grey)");
+    if (n == 2 || n == 0 || tg_lex_peek(ml, &extra)) {
+        ofail(o, ml, n == 3 || n == 1 ? extra.col : tg_lex_eol_col(ml), "'", what,
+              "' expects 3 numbers (r g b) or 1 (grey)");
         return TG_ERR_INPUT;
     }
     if (n == 1) { x[1] = x[2] = x[0]; t[1] = t[2] = t[0]; }

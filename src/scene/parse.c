@@ -363,7 +363,7 @@ static int is_zero_vec(tg_vec3 v) { return v.x == 0 && v.y == 0 && v.z == 0; }
 static tg_status kv_dir(tg_parser *p, const tg_lexer *lx, const key_val *kv,
                         const char *key, tg_vec3 *out)
 {
-    tg_vec3 d = tg_v3_normalize_or(kv_vec3(kv), tg_v3(0, 0, 0));
+    tg_vec3 d = tg_unit(kv_vec3(kv));
     if (is_zero_vec(d))
         return fail(p, lx, kv->tok[0].col, "'", key,
                     "' must be a direction of non-zero length");
@@ -457,6 +457,23 @@ static tg_real max_abs3(tg_vec3 v)
     return tg_max(tg_abs(v.x), tg_max(tg_abs(v.y), tg_abs(v.z)));
 }
 
+tg_vec3 tg_unit(tg_vec3 v)
+{
+    tg_vec3 u = tg_v3_normalize_or(v, tg_v3(0, 0, 0));
+    /* an axis-aligned vector's unit is exact: keep it so */
+    if (u.y == 0 && u.z == 0 && u.x != 0) u.x = u.x > 0 ? TG_ONE : tg_neg(TG_ONE);
+    if (u.x == 0 && u.z == 0 && u.y != 0) u.y = u.y > 0 ? TG_ONE : tg_neg(TG_ONE);
+    if (u.x == 0 && u.y == 0 && u.z != 0) u.z = u.z > 0 ? TG_ONE : tg_neg(TG_ONE);
+    return u;
+}
+
+tg_real tg_deg_to_rad(tg_real deg)
+{
+    /* multiply by pi first (keeps Q16.16 precision) unless that would saturate */
+    if (tg_abs(deg) <= TG_R(10000.0f)) return tg_div(tg_mul(deg, TG_PI), TG_R(180.0f));
+    return tg_mul(tg_div(deg, TG_R(180.0f)), TG_PI);
+}
+
 int tg_face_normal(tg_vec3 a, tg_vec3 b, tg_vec3 c, tg_vec3 *n)
 {
     tg_vec3 e1 = tg_v3_sub(b, a), e2 = tg_v3_sub(c, a), x;
@@ -468,7 +485,7 @@ int tg_face_normal(tg_vec3 a, tg_vec3 b, tg_vec3 c, tg_vec3 *n)
     e2 = tg_v3(tg_div(e2.x, m2), tg_div(e2.y, m2), tg_div(e2.z, m2));
     x = tg_v3_cross(e1, e2);
     if (max_abs3(x) <= TG_R(2e-5f)) return 0;
-    *n = tg_v3_normalize(x);
+    *n = tg_unit(x);
     return 1;
 }
 
@@ -562,7 +579,7 @@ static tg_status st_camera(tg_parser *p, tg_lexer *lx, const tg_token *kw)
             return st;
         fov = v[3].v[0];
     }
-    cam.fov = tg_mul(fov, TG_DEG2RAD);
+    cam.fov = tg_deg_to_rad(fov);
     cam.znear = TG_R(0.05f);
     cam.zfar = TG_R(1000.0f);
     if (v[4].present) {
@@ -721,7 +738,7 @@ static void sphere_vertex(tg_vec3 c, tg_real r, int i, int j, int rings, int seg
         tg_real theta = tg_mul(TG_PI, tg_ratio(i, rings));
         tg_real phi = tg_mul(TG_TWO_PI, tg_ratio(j % segs, segs));
         tg_real st = tg_sin(theta);
-        n = tg_v3_normalize(tg_v3(tg_mul(st, tg_cos(phi)), tg_cos(theta), tg_mul(st, tg_sin(phi))));
+        n = tg_unit(tg_v3(tg_mul(st, tg_cos(phi)), tg_cos(theta), tg_mul(st, tg_sin(phi))));
     }
     *nrm = n;
     *pos = tg_v3_add(c, tg_v3_scale(n, r));
@@ -811,7 +828,7 @@ static tg_status st_mesh(tg_parser *p, tg_lexer *lx, const tg_token *kw)
     if (v[4].present) {
         tg_vec3 axis;
         if ((st = kv_dir(p, lx, &v[4], "rotate", &axis))) return st;
-        xf.rot = tg_m4_rotate(axis, tg_mul(v[4].v[3], TG_DEG2RAD));
+        xf.rot = tg_m4_rotate(axis, tg_deg_to_rad(v[4].v[3]));
     }
     if (v[5].present) copy_name(objname, &v[5].tok[0]);
     else base_name(&v[0].tok[0], objname);
@@ -838,7 +855,7 @@ static tg_status st_object_key(tg_parser *p, tg_lexer *lx, const tg_token *kw)
     key.axis = tg_v3(0, TG_ONE, 0);
     if (v[3].present) {
         if ((st = kv_dir(p, lx, &v[3], "rotate", &key.axis))) return st;
-        key.angle = tg_mul(v[3].v[3], TG_DEG2RAD);
+        key.angle = tg_deg_to_rad(v[3].v[3]);
     }
     if (p->object_keys >= TG_SCENE_MAX_KEYS) {
         fail(p, lx, kw->col, "too many object keys (the limit is ", NULL, NULL);
@@ -922,7 +939,7 @@ static tg_status st_light(tg_parser *p, tg_lexer *lx, const tg_token *kw)
         if ((st = check_range(p, lx, &v[5], "angle", 0, TG_R(90.0f), LO_OPEN,
                               "in (0, 90] degrees (the cone's half angle)")))
             return st;
-        l.angle = tg_mul(v[5].v[0], TG_DEG2RAD);
+        l.angle = tg_deg_to_rad(v[5].v[0]);
     }
     if (p->lights >= TG_SCENE_MAX_LIGHTS) {
         fail(p, lx, kw->col, "too many lights (the limit is ", NULL, NULL);
@@ -1066,7 +1083,11 @@ static tg_status st_effects(tg_parser *p, tg_lexer *lx, const tg_token *kw)
             for (i = 0; i < sizeof effect_words / sizeof effect_words[0]; i++)
                 if (tg_tok_is(&t, effect_words[i].word)) break;
             if (i == sizeof effect_words / sizeof effect_words[0])
-                return fail(p, lx, t.col, "unknown effect '", tg_tok_str(&t, buf), expect + 2);
+            {
+                fail(p, lx, t.col, "unknown effect '", tg_tok_str(&t, buf), "'");
+                tg_error_append(p->err, expect);
+                return TG_ERR_INPUT;
+            }
             bits |= effect_words[i].bit;
         }
         n++;
@@ -1132,7 +1153,7 @@ static tg_status run_pass(tg_parser *p, const char *text, size_t size)
 static void scene_defaults(tg_scene *s)
 {
     s->camera.up = tg_v3(0, TG_ONE, 0);
-    s->camera.fov = tg_mul(TG_R(60.0f), TG_DEG2RAD);
+    s->camera.fov = tg_deg_to_rad(TG_R(60.0f));
     s->camera.znear = TG_R(0.05f);
     s->camera.zfar = TG_R(1000.0f);
     s->env.type = TG_ENV_NONE;

@@ -103,6 +103,10 @@ tg_status tg_parse_emit_tri(tg_parser *p, const tg_lexer *lx, int col,
 /* Count (pass 1) or append (pass 2) a material; *index gets its index. */
 tg_status tg_parse_add_material(tg_parser *p, const tg_lexer *lx, int col,
                                 const tg_material *m, int *index);
+/* Unit vector (exact for axis-aligned ones); zero when too short. */
+tg_vec3 tg_unit(tg_vec3 v);
+/* Degrees to radians, precise in Q16.16 too. */
+tg_real tg_deg_to_rad(tg_real deg);
 /* Face normal of a triangle, robust in fixed point; 0 if degenerate. */
 int tg_face_normal(tg_vec3 a, tg_vec3 b, tg_vec3 c, tg_vec3 *n);
 
