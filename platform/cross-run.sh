@@ -19,6 +19,10 @@ MAKE=${MAKE:-make}
 HOST_CC=${HOST_CC:-cc}
 SKIP=${SKIP:-}
 QEMU_TIMEOUT=${CROSS_TIMEOUT:-300}
+CLI_SCENES=${CROSS_CLI_SCENES:-cornell}
+SHADOW=${CROSS_SHADOW:-64}
+M0_SHADOW=${CROSS_M0_SHADOW:-8}
+CROSS_TESTS=${CROSS_TESTS:-test_fbdev} # test programs run on the Linux targets ("all": every one)
 
 CFLAGS="-std=c99 -ffp-contract=off -fexcess-precision=fast -O2 -Wall -Wextra -Wpedantic -Wshadow -Wdouble-promotion -Werror"
 BM=platform/baremetal
@@ -107,20 +111,67 @@ build_bare() {
     fi || { fail "$t/$num: build driver" "$(head -c 800 "$LOG/$t-$num.log")"; return 1; }
 }
 
-# run_driver TARGET NUM DIR SIZE SCENES...
+# The hosted CLI and test programs, static, for a Linux target.
+build_hosted() {
+    local t=$1 cc ar flags goals="" name
+    cc=$(target_cc "$t"); ar=$(target_ar "$t"); flags=$(target_flags "$t")
+    goals="$OUT/$t/tinygi $OUT/$t/tinygi-fixed"
+    if [ "$CROSS_TESTS" = all ]; then goals="$goals tests-build"
+    else for name in $CROSS_TESTS; do goals="$goals $OUT/$t/float/tests/$name $OUT/$t/fixed/tests/$name"; done; fi
+    # shellcheck disable=SC2086
+    if ! $MAKE -s -j2 BUILD="$OUT/$t" CC="$cc" AR="$ar" EXTRA_CFLAGS="$flags" SKIP="$SKIP" \
+        EXTRA_LDFLAGS="$( [ "$t" = x86_64 ] || echo -static )" $goals >"$LOG/$t-hosted.log" 2>&1; then
+        fail "$t: build CLI and tests" "see $LOG/$t-hosted.log"; tail -n 15 "$LOG/$t-hosted.log"; return 1
+    fi
+}
+
+# run_cli TARGET DIR: `tinygi render` of the CLI scenes, colour PPM and every AOV as PFM.
+run_cli() {
+    local t=$1 dir=$2 runner num exe s a rc=0
+    runner=$(target_run "$t")
+    rm -rf "$dir"; mkdir -p "$dir"
+    for num in float fixed; do
+        exe="$OUT/$t/tinygi"; [ $num = fixed ] && exe="$OUT/$t/tinygi-fixed"
+        for s in $CLI_SCENES; do
+            $runner "$exe" render "builtin:$s" --size "$SIZE" --frames "$FRAMES" --shadow-size "$SHADOW" --quiet -o "$dir/$s-$num.ppm" >>"$dir.log" 2>&1 || rc=1
+            for a in ${AOVS//+/ }; do
+                $runner "$exe" render "builtin:$s" --size "$SIZE" --frames "$FRAMES" --shadow-size "$SHADOW" --quiet --aov "$a" \
+                    -o "$dir/$s-$num.$a.pfm" >>"$dir.log" 2>&1 || rc=1
+            done
+        done
+    done
+    return $rc
+}
+
+# run_tests TARGET: the chosen test programs under the target's runner.
+run_tests() {
+    local t=$1 runner num exe out
+    runner=$(target_run "$t")
+    for num in float fixed; do
+        for exe in "$OUT/$t/$num/tests/"test_*; do
+            [ -x "$exe" ] || continue
+            out="$LOG/$t-$num-$(basename "$exe").log"
+            if timeout "$QEMU_TIMEOUT" $runner "$exe" >"$out" 2>&1; then ok "$t/$num/$(basename "$exe")"
+            else fail "$t/$num/$(basename "$exe")" "$(grep -m3 FAIL "$out" | tr '\n' ' ')see $out"; fi
+        done
+    done
+}
+
+# run_driver TARGET NUM DIR SIZE SHADOW SCENES...
 run_driver() {
-    local t=$1 num=$2 dir=$3 size=$4; shift 4
+    local t=$1 num=$2 dir=$3 size=$4 shadow=$5; shift 5
     local args runner
     rm -rf "$dir"; mkdir -p "$dir"
     if is_bare "$t"; then
-        args="arg=render,arg=$dir,arg=$size,arg=$FRAMES,arg=$AOVS"
+        args="arg=render,arg=out=$dir,arg=size=$size,arg=frames=$FRAMES,arg=aovs=$AOVS,arg=shadow=$shadow"
         for s in "$@"; do args="$args,arg=$s"; done
         timeout "$QEMU_TIMEOUT" qemu-system-arm -M "$(target_machine "$t")" -nographic -monitor none \
             -serial none -semihosting-config "enable=on,target=native,$args" \
             -kernel "$OUT/$t/render-$num.elf" >"$dir.log" 2>&1
     else
         runner=$(target_run "$t")
-        timeout "$QEMU_TIMEOUT" $runner "$OUT/$t/render-$num" "$dir" "$size" "$FRAMES" "$AOVS" "$@" >"$dir.log" 2>&1
+        timeout "$QEMU_TIMEOUT" $runner "$OUT/$t/render-$num" "out=$dir" "size=$size" \
+            "frames=$FRAMES" "aovs=$AOVS" "shadow=$shadow" "$@" >"$dir.log" 2>&1
     fi
 }
 
@@ -141,12 +192,16 @@ compare_dir() {
 # shellcheck disable=SC2086
 build_target x86_64 || { echo "$passed passed, $failed failed"; exit 1; }
 for num in float fixed; do
-    if run_driver x86_64 "$num" "$OUT/out/x86_64/$num" "$SIZE" $SCENES; then
+    if run_driver x86_64 "$num" "$OUT/out/x86_64/$num" "$SIZE" "$SHADOW" $SCENES; then
         ok "x86_64/$num: render $(ls "$OUT/out/x86_64/$num" | wc -l) files"
     else fail "x86_64/$num: render" "$(tail -n 5 "$OUT/out/x86_64/$num.log")"; fi
 done
+if build_hosted x86_64; then
+    if run_cli x86_64 "$OUT/out/x86_64/cli"; then ok "x86_64: tinygi render ($CLI_SCENES)"
+    else fail "x86_64: tinygi render" "$(tail -n 5 "$OUT/out/x86_64/cli.log")"; fi
+fi
 # shellcheck disable=SC2086
-run_driver x86_64 fixed "$OUT/out/x86_64/m0-fixed" "$M0_SIZE" $M0_SCENES \
+run_driver x86_64 fixed "$OUT/out/x86_64/m0-fixed" "$M0_SIZE" "$M0_SHADOW" $M0_SCENES \
     || fail "x86_64/fixed at $M0_SIZE: render" "$(tail -n 5 "$OUT/out/x86_64/m0-fixed.log")"
 
 # ---- the other targets ----
@@ -156,16 +211,21 @@ for t in $TARGETS; do
         dir="$OUT/out/$t/$num"; ref="$OUT/out/x86_64/$num"
         if [ "$t" = m0 ]; then
             # shellcheck disable=SC2086
-            run_driver "$t" "$num" "$dir" "$M0_SIZE" $M0_SCENES; ref="$OUT/out/x86_64/m0-fixed"
+            run_driver "$t" "$num" "$dir" "$M0_SIZE" "$M0_SHADOW" $M0_SCENES; ref="$OUT/out/x86_64/m0-fixed"
         else
             # shellcheck disable=SC2086
-            run_driver "$t" "$num" "$dir" "$SIZE" $SCENES
+            run_driver "$t" "$num" "$dir" "$SIZE" "$SHADOW" $SCENES
         fi
         rc=$?
         if [ $rc -eq 0 ]; then ok "$t/$num: runs (exit 0)"
         else fail "$t/$num: runs" "exit $rc: $(tail -n 5 "$dir.log" | tr '\n' ' ')"; fi
         compare_dir "$t/$num" "$ref" "$dir"
     done
+    if ! is_bare "$t" && build_hosted "$t"; then
+        run_cli "$t" "$OUT/out/$t/cli" || fail "$t: tinygi render" "$(tail -n 5 "$OUT/out/$t/cli.log")"
+        compare_dir "$t/cli" "$OUT/out/x86_64/cli" "$OUT/out/$t/cli"
+        run_tests "$t"
+    fi
 done
 
 echo "cross: $(( $(date +%s) - t0 )) s; logs in $LOG and $OUT/out/*/*.log"

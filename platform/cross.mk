@@ -23,6 +23,8 @@ CROSS_AOVS    ?= color,depth,normal,ao
 CROSS_M0_SIZE ?= 16x12
 CROSS_M0_SCENES ?= cornell
 CROSS_M0_ARENA ?= 10240
+CROSS_SHADOW  ?= 64
+CROSS_M0_SHADOW ?= 8
 
 .PHONY: cross cross-install
 cross:
@@ -30,7 +32,8 @@ cross:
 	 CROSS_SCENES="$(CROSS_SCENES)" CROSS_SIZE="$(CROSS_SIZE)" \
 	 CROSS_FRAMES="$(CROSS_FRAMES)" CROSS_AOVS="$(CROSS_AOVS)" \
 	 CROSS_M0_SIZE="$(CROSS_M0_SIZE)" CROSS_M0_SCENES="$(CROSS_M0_SCENES)" \
-	 CROSS_M0_ARENA="$(CROSS_M0_ARENA)" SKIP="$(SKIP)" MAKE="$(MAKE)" \
+	 CROSS_M0_ARENA="$(CROSS_M0_ARENA)" CROSS_SHADOW="$(CROSS_SHADOW)" \
+	 CROSS_M0_SHADOW="$(CROSS_M0_SHADOW)" SKIP="$(SKIP)" MAKE="$(MAKE)" \
 	 HOST_CC="$(CC)" bash platform/cross-run.sh
 cross-install:
 	@bash platform/cross-install.sh

@@ -242,6 +242,65 @@ TEST(unusable_devices_are_errors)
     unlink(path);
 }
 
+/* tg_fb_view_frames renders a built-in scene and shows it centred: the
+ * screen holds exactly the frame's 8-bit colour rows, converted. */
+TEST(view_shows_rendered_frame)
+{
+    enum { FW = 16, FH = 12, SW = 20, SH = 16 };
+    const char *text = tg_builtin_scene("cornell");
+    static unsigned char scene_mem[1 << 20];
+    tg_arena arena;
+    tg_scene *scene = NULL;
+    tg_request req;
+    tg_plan plan;
+    tg_frame *frame = NULL;
+    tg_error err;
+    tg_fb_info info;
+    tg_fb fb;
+    void *frame_mem;
+    char path[64], msg[256];
+    unsigned char *mem;
+    uint8_t rgb[FW * 3];
+    int x, y, x0 = (SW - FW) / 2, y0 = (SH - FH) / 2;
+    size_t line = 4u * SW;
+    memset(&err, 0, sizeof err);
+    CHECK(text != NULL, "no built-in cornell");
+    if (!text) return;
+    tg_arena_init(&arena, scene_mem, sizeof scene_mem);
+    CHECK(tg_scene_parse(text, strlen(text), "cornell", NULL, &arena, &scene, &err) == TG_OK, "%s", err.message);
+    tg_request_defaults(&req);
+    req.width = FW;
+    req.height = FH;
+    req.shadow_map_size = 16;
+    if (!scene || tg_plan_make(&plan, scene, &req, &err) != TG_OK) { CHECK(0, "plan: %s", err.message); return; }
+    frame_mem = malloc(plan.total_bytes);
+    if (!frame_mem || tg_frame_create(&plan, frame_mem, plan.total_bytes, &frame, &err) != TG_OK) {
+        CHECK(0, "frame: %s", err.message);
+        free(frame_mem);
+        return;
+    }
+    tg_fb_info_format(&info, TG_FB_XRGB8888, SW, SH, 0);
+    if (make_file(path, line * SH) != 0) { CHECK(0, "temp file"); free(frame_mem); return; }
+    CHECK(tg_fb_open_file(&fb, path, &info) == 0, "%s", fb.error);
+    CHECK(tg_fb_view_frames(&fb, frame, FW, FH, 2, msg, sizeof msg) == 0, "%s", msg);
+    tg_fb_close(&fb);
+    mem = read_file(path, line * SH);
+    unlink(path);
+    if (!mem) { CHECK(0, "read back"); free(frame_mem); return; }
+    for (y = 0; y < FH; y++) {
+        tg_frame_aov_row8(frame, TG_AOV_COLOR, y, rgb); /* the last frame shown */
+        for (x = 0; x < FW; x++) {
+            uint32_t v = (uint32_t)rgb[3 * x] << 16 | (uint32_t)rgb[3 * x + 1] << 8 | rgb[3 * x + 2];
+            CHECK(pixel_is(mem, (size_t)(y0 + y) * line + 4u * (size_t)(x0 + x), v, 4), "pixel (%d, %d)", x, y);
+        }
+    }
+    CHECK(untouched(mem, (size_t)(y0 - 1) * line, (int)line), "line above the image");
+    CHECK(untouched(mem, (size_t)y0 * line + 4u * (size_t)(x0 - 1), 4), "pixel left of the image");
+    CHECK(untouched(mem, (size_t)(y0 + FH) * line, (int)line), "line below the image");
+    free(mem);
+    free(frame_mem);
+}
+
 int main(void)
 {
     RUN(formats_bytes_at_known_pixels);
@@ -249,5 +308,6 @@ int main(void)
     RUN(draw_image_rows);
     RUN(unsupported_formats_are_errors);
     RUN(unusable_devices_are_errors);
+    RUN(view_shows_rendered_frame);
     return check_summary();
 }

@@ -7,14 +7,17 @@
  * no C library at all (port_semihost.c) - so `make cross` can compare the
  * outputs of every target byte for byte.
  *
- *   usage: render [OUTDIR [WxH [FRAMES [AOVS [SCENE...]]]]]
- *     OUTDIR  where the files go (default ".")
- *     WxH     image size (default 64x48)
- *     FRAMES  frames rendered; the last one is written (default 1)
- *     AOVS    list split by ',' or '+' (default color,depth,normal,ao: '+'
- *             where ',' is taken, as in QEMU's options); an AOV the core
- *             cannot plan for this scene is skipped with a message
- *     SCENE   built-in scene names (default: all of them)
+ *   usage: render [out=DIR] [size=WxH] [frames=N] [aovs=A+B+...]
+ *                 [shadow=N] [technique=NAME] [SCENE...]
+ *     out        where the files go (default ".")
+ *     size       image size (default 64x48)
+ *     frames     frames rendered; the last one is written (default 1)
+ *     aovs       AOV names split by '+' or ',' (default color+depth+normal+ao;
+ *                '+' because QEMU's -semihosting-config takes the commas);
+ *                an AOV the core cannot plan for a scene is skipped, said so
+ *     shadow     shadow map texels per side (default: the core's)
+ *     technique  hbil, gtao, ... (default: the core's)
+ *     SCENE      built-in scene names (default: all of them)
  *   exit status: 0 all written, 1 runtime/output error, 2 bad arguments or
  *   scene, 3 arena too small (TG_BM_ARENA_BYTES).
  *
@@ -48,6 +51,15 @@ static int str_eq(const char *a, const char *b, size_t n)
     for (i = 0; i < n; i++)
         if (a[i] != b[i]) return 0;
     return b[n] == 0;
+}
+
+/* The first n characters of a are those of b. */
+static int str_eq_prefix(const char *a, const char *b, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n; i++)
+        if (a[i] != b[i]) return 0;
+    return 1;
 }
 
 /* Append s to buf (of size cap) at *at; always NUL-terminated. */
@@ -160,7 +172,7 @@ static int write_pfm(const tg_frame *frame, tg_aov aov, int w, int h, const char
 /* ---- rendering ---- */
 typedef struct settings {
     const char *outdir;
-    int width, height, frames;
+    int width, height, frames, shadow, technique;
     uint32_t aovs;
 } settings;
 
@@ -188,6 +200,8 @@ static tg_status plan_scene(tg_plan *plan, const tg_scene *scene, const settings
     req.height = st->height;
     req.frames = st->frames;
     req.aovs = st->aovs | (1u << TG_AOV_COLOR);
+    if (st->shadow > 0) req.shadow_map_size = st->shadow;
+    if (st->technique >= 0) req.technique = (tg_technique)st->technique;
     if (tg_plan_make(plan, scene, &req, err) == TG_OK) return TG_OK;
     for (a = 0; a < TG_AOV_COUNT; a++) { /* drop the AOVs that cannot be planned */
         uint32_t bit = 1u << a;
@@ -305,29 +319,59 @@ static int parse_size(const char *s, int *w, int *h)
     return 0;
 }
 
-static int parse_frames(const char *s)
+static int parse_count(const char *s, int *out)
 {
     long n = parse_ulong(&s);
-    return *s ? -1 : (int)n;
+    if (n <= 0 || *s) return -1;
+    *out = (int)n;
+    return 0;
+}
+
+/* "key=value" when arg starts with key and '='; value in *v. */
+static int is_key(const char *arg, const char *key, const char **v)
+{
+    size_t n = str_len(key);
+    if (!str_eq_prefix(arg, key, n) || arg[n] != '=') return 0;
+    *v = arg + n + 1;
+    return 1;
+}
+
+static int parse_args(int argc, char **argv, settings *st, int *first_scene)
+{
+    int i;
+    for (i = 1; i < argc; i++) {
+        const char *v, *a = argv[i];
+        int bad = 0;
+        if (is_key(a, "out", &v)) st->outdir = v;
+        else if (is_key(a, "size", &v)) bad = parse_size(v, &st->width, &st->height);
+        else if (is_key(a, "frames", &v)) bad = parse_count(v, &st->frames);
+        else if (is_key(a, "aovs", &v)) bad = parse_aovs(v, &st->aovs);
+        else if (is_key(a, "shadow", &v)) bad = parse_count(v, &st->shadow);
+        else if (is_key(a, "technique", &v)) bad = (st->technique = tg_technique_from_name(v)) < 0;
+        else break;
+        if (bad) return -1;
+    }
+    *first_scene = i;
+    return 0;
 }
 
 int main(int argc, char **argv)
 {
     settings st;
-    int i, worst = 0;
-    st.outdir = argc > 1 ? argv[1] : ".";
+    int i, first, worst = 0;
+    st.outdir = ".";
     st.width = 64;
     st.height = 48;
     st.frames = 1;
+    st.shadow = 0;
+    st.technique = -1;
     st.aovs = (1u << TG_AOV_COLOR) | (1u << TG_AOV_DEPTH) | (1u << TG_AOV_NORMAL) | (1u << TG_AOV_AO);
-    if ((argc > 2 && parse_size(argv[2], &st.width, &st.height) != 0) ||
-        (argc > 3 && (st.frames = parse_frames(argv[3])) <= 0) ||
-        (argc > 4 && parse_aovs(argv[4], &st.aovs) != 0)) {
-        port_log("usage: render [OUTDIR [WxH [FRAMES [AOVS [SCENE...]]]]]");
+    if (parse_args(argc, argv, &st, &first) != 0) {
+        port_log("usage: render [out=DIR] [size=WxH] [frames=N] [aovs=A+B] [shadow=N] [technique=T] [SCENE...]");
         return 2;
     }
-    if (argc > 5) {
-        for (i = 5; i < argc; i++) {
+    if (first < argc) {
+        for (i = first; i < argc; i++) {
             int r = render_scene(argv[i], &st);
             if (r > worst) worst = r;
         }

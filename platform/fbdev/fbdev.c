@@ -304,3 +304,59 @@ int tg_fb_open_file(tg_fb *fb, const char *path, const tg_fb_info *info)
     return tg_fb_open(fb, path);
 }
 #endif
+
+/* ---- view: render and show ---- */
+typedef struct frame_rows {
+    tg_frame *frame;
+} frame_rows;
+
+static void frame_row8(void *user, int y, uint8_t *rgb)
+{
+    tg_frame_aov_row8(((frame_rows *)user)->frame, TG_AOV_COLOR, y, rgb);
+}
+
+int tg_fb_view_frames(tg_fb *fb, tg_frame *frame, int width, int height,
+                      int frames, char *msg, size_t size)
+{
+    frame_rows rows;
+    uint8_t *rgb;
+    tg_error err;
+    int i;
+    if (width <= 0 || height <= 0) {
+        snprintf(msg, size, "view: bad image size %dx%d", width, height);
+        return 1;
+    }
+    rgb = malloc((size_t)width * 3u);
+    if (!rgb) {
+        snprintf(msg, size, "view: out of memory");
+        return 1;
+    }
+    rows.frame = frame;
+    memset(&err, 0, sizeof err);
+    for (i = 0; i < frames; i++) {
+        tg_status s = tg_frame_render(frame, i, &err);
+        if (s != TG_OK) {
+            tg_error_format(&err, msg, size);
+            free(rgb);
+            return 1;
+        }
+        tg_fb_draw(fb, (fb->info.xres - width) / 2, (fb->info.yres - height) / 2,
+                   width, height, frame_row8, &rows, rgb);
+    }
+    free(rgb);
+    return 0;
+}
+
+int tg_fbdev_view(const char *path, tg_frame *frame, int width, int height,
+                  int frames, char *msg, size_t size)
+{
+    tg_fb fb;
+    int r;
+    if (tg_fb_open(&fb, path) != 0) {
+        snprintf(msg, size, "%s", fb.error);
+        return 1;
+    }
+    r = tg_fb_view_frames(&fb, frame, width, height, frames, msg, size);
+    tg_fb_close(&fb);
+    return r;
+}

@@ -86,9 +86,9 @@ void tg_fb_draw(tg_fb *fb, int x0, int y0, int width, int height,
 
 /* Render `frames` frames of `frame` (tg_frame_render with index 0, 1, ...)
  * and show each, centred, on the framebuffer at `path` (NULL: /dev/fb0) as
- * soon as it is rendered.  Returns 0; 1 when the device cannot be used
- * (missing, not a framebuffer, unsupported format) or out of memory; or the
- * tg_status of a failed render.  `msg` gets the error. */
+ * soon as it is rendered.  Returns 0, or 1 with a message in `msg` when
+ * the device cannot be used (missing, not a framebuffer, unsupported
+ * format), memory runs out or a frame fails to render. */
 int tg_fbdev_view(const char *path, tg_frame *frame, int width, int height,
                   int frames, char *msg, size_t size);
 /* The same on an open framebuffer (tests use a file-backed one). */
