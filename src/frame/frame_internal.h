@@ -1,0 +1,94 @@
+/*
+ * frame_internal.h - what a frame holds.  plan.c decides which of these
+ * exist (and sizes them); frame.c runs the passes over them; aov.c reads
+ * them out.  A NULL buffer is an effect the scene did not call for.
+ */
+#ifndef TG_FRAME_INTERNAL_H
+#define TG_FRAME_INTERNAL_H
+
+#include "../tinygi.h"
+#include "../scene/scene.h"
+#include "../raster/gbuffer.h"
+#include "../raster/view.h"
+#include "../light/shadowmap.h"
+#include "../ao/ao.h"
+#include "../ao/bvh.h"
+
+/* What the frame computes beyond the effects (internal). */
+enum {
+    TG_NEED_GI_PASS = 1u << 0,   /* a technique pass (AO and friends) runs */
+    TG_NEED_COMPOSE = 1u << 1,   /* outgoing radiance Lo (colour) */
+    TG_NEED_MOTION = 1u << 2,    /* motion vectors in the G-buffer */
+    TG_NEED_POSE = 1u << 3,      /* objects move: posed triangle copies */
+    TG_NEED_TEMPORAL = 1u << 4,  /* temporal accumulation of the GI result */
+    TG_NEED_BENT = 1u << 5,      /* bent normals are used */
+    TG_NEED_CONE = 1u << 6       /* cone apertures are used */
+};
+
+typedef struct tg_rgb { tg_real *r, *g, *b; } tg_rgb;
+
+struct tg_frame {
+    tg_plan plan;
+    const tg_scene *scene;
+    int width, height;
+    size_t pixels;
+    uint32_t effects, needs;
+    int frames_rendered;
+
+    tg_gbuffer gb;
+    tg_view view, prev_view;
+    tg_real time, prev_time;
+    int has_history;              /* the previous frame's radiance is valid */
+
+    /* animation */
+    tg_vec3 *posed_pos, *posed_nrm;
+    tg_mat4 *object_delta;        /* per object, current pose -> previous pose */
+
+    /* light */
+    tg_shadow_map *shadow_maps;   /* one per light (unused entries zero) */
+    const tg_shadow_map **shadow_ptrs;
+    int shadows_valid;
+    tg_vec3 sh[9];
+    tg_rgb direct, far, near, color, irradiance;
+
+    /* GI / AO results, full resolution */
+    tg_real *ao, *cone;
+    tg_rgb bent;
+    tg_rgb source;                /* radiance the near field gathers from */
+
+    /* HBIL: 4x4 interleaved quarter-resolution sub-images */
+    tg_real *q_depth, *q_f0;
+    tg_rgb q_normal, q_source, q_bent, q_near;
+    tg_real *q_ao, *q_cone;
+    uint8_t *q_sky;
+
+    /* radiance history for reprojection (previous frame) */
+    tg_rgb history;
+    tg_real *history_depth;
+    uint16_t *history_object;
+    void *reproject_scratch;
+    size_t reproject_scratch_bytes;
+
+    /* spatial / temporal filter */
+    void *denoise_scratch;
+    size_t denoise_scratch_bytes;
+    void *temporal_state;
+    size_t temporal_state_bytes;
+
+    /* technique scratch (reference BVH) */
+    void *technique_scratch;
+    size_t technique_scratch_bytes;
+    tg_bvh bvh;
+
+    tg_real depth_max;            /* for the 8-bit depth view */
+};
+
+/* Lay the frame's buffers out: with arena == NULL only measure (fill
+ * plan->buffers and plan->total_bytes, using *fp as scratch); otherwise carve
+ * the frame itself and then its buffers from arena and set *fp.  Returns 0,
+ * or 1 when the arena is too small. */
+int tg_frame_layout(tg_frame **fp, tg_plan *plan, tg_arena *arena);
+/* TG_NEED_* of a plan (plan.c). */
+uint32_t tg_frame_needs(const tg_plan *plan);
+
+#endif

@@ -1,0 +1,434 @@
+/*
+ * plan.c - the frame is a plan (design.md "The frame is a plan").
+ *
+ * Before any pixel is touched, the scene and the request decide which
+ * effects a frame simulates, which passes run in which order, and which
+ * buffers exist, with their sizes.  What the scene does not call for is
+ * neither computed nor allocated:
+ *   no light                      -> no direct pass
+ *   no light marked `shadows`     -> no shadow maps
+ *   no environment                -> no far-field pass
+ *   nothing lit or emissive, zero albedo everywhere, or bounces 0
+ *                                 -> no near-field gathering, no radiance history
+ *   one frame                     -> no reprojection, no temporal state
+ *   only ao / bent / cone asked   -> nothing after the kernel
+ * `effects LIST` in the scene forces (or, by omission, forbids) effects.
+ *
+ * The same layout function measures (arena NULL) and allocates, so the plan's
+ * byte count is exactly what tg_frame_create carves.
+ */
+#include <string.h>
+#include "frame_internal.h"
+#include "../core/error.h"
+#include "../gi/hbil.h"
+#include "../gi/pushpull.h"
+#include "../gi/reproject.h"
+#include "../ao/bvh.h"
+#include "../scene/anim.h"
+
+#define AOV(a) (1u << (a))
+
+static int scene_has_emissive(const tg_scene *s)
+{
+    int i;
+    for (i = 0; i < s->material_count; i++) {
+        const tg_material *m = &s->materials[i];
+        if (m->emissive.x > 0 || m->emissive.y > 0 || m->emissive.z > 0) return 1;
+    }
+    return 0;
+}
+
+static int scene_has_albedo(const tg_scene *s)
+{
+    int i;
+    for (i = 0; i < s->material_count; i++) {
+        const tg_material *m = &s->materials[i];
+        if (m->albedo.x > 0 || m->albedo.y > 0 || m->albedo.z > 0) return 1;
+    }
+    return 0;
+}
+
+static int scene_has_shadow_light(const tg_scene *s)
+{
+    int i;
+    for (i = 0; i < s->light_count; i++)
+        if (s->lights[i].shadows) return 1;
+    return 0;
+}
+
+static int technique_gathers_near(tg_technique t)
+{
+    return t == TG_TECH_HBIL || t == TG_TECH_SSDO || t == TG_TECH_REFERENCE;
+}
+
+/* Effects the scene makes possible at all. */
+static uint32_t possible_effects(const tg_scene *s, const tg_request *r)
+{
+    uint32_t e = TG_EFFECT_AO;
+    if (s->light_count > 0) e |= TG_EFFECT_DIRECT;
+    if (s->light_count > 0 && scene_has_shadow_light(s)) e |= TG_EFFECT_SHADOWS;
+    if (s->env.type != TG_ENV_NONE) e |= TG_EFFECT_FAR;
+    if (r->bounces != 0 && technique_gathers_near(r->technique) && scene_has_albedo(s) &&
+        (s->light_count > 0 || scene_has_emissive(s)))
+        e |= TG_EFFECT_NEAR;
+    if (r->frames > 1 && r->technique == TG_TECH_HBIL) e |= TG_EFFECT_REPROJECTION;
+    return e;
+}
+
+/* Effects the request calls for, given what is possible. */
+static uint32_t wanted_effects(uint32_t possible, uint32_t aovs)
+{
+    int color = (aovs & (AOV(TG_AOV_COLOR) | AOV(TG_AOV_IRRADIANCE))) != 0;
+    int want_near = color || (aovs & AOV(TG_AOV_NEAR));
+    int want_far = color || (aovs & AOV(TG_AOV_FAR));
+    int want_ao = (aovs & (AOV(TG_AOV_AO) | AOV(TG_AOV_BENT) | AOV(TG_AOV_CONE))) != 0;
+    uint32_t e = 0;
+    if (want_near && (possible & TG_EFFECT_NEAR)) e |= TG_EFFECT_NEAR;
+    if (want_far && (possible & TG_EFFECT_FAR)) e |= TG_EFFECT_FAR;
+    if ((color || (aovs & AOV(TG_AOV_DIRECT)) || (e & TG_EFFECT_NEAR)) && (possible & TG_EFFECT_DIRECT))
+        e |= TG_EFFECT_DIRECT;
+    if ((e & TG_EFFECT_DIRECT) && (possible & TG_EFFECT_SHADOWS)) e |= TG_EFFECT_SHADOWS;
+    if (want_ao || (e & (TG_EFFECT_NEAR | TG_EFFECT_FAR))) e |= TG_EFFECT_AO;
+    if ((e & TG_EFFECT_NEAR) && (possible & TG_EFFECT_REPROJECTION)) e |= TG_EFFECT_REPROJECTION;
+    return e;
+}
+
+uint32_t tg_frame_needs(const tg_plan *p)
+{
+    const tg_scene *s = p->scene;
+    const tg_request *r = &p->request;
+    uint32_t n = 0, e = p->effects;
+    if (e & (TG_EFFECT_AO | TG_EFFECT_NEAR)) n |= TG_NEED_GI_PASS;
+    if (r->aovs & (AOV(TG_AOV_COLOR) | AOV(TG_AOV_IRRADIANCE))) n |= TG_NEED_COMPOSE;
+    if (r->frames > 1 && tg_anim_has_motion(s)) {
+        int i;
+        for (i = 0; i < s->object_count; i++)
+            if (tg_anim_object_moves(s, i)) n |= TG_NEED_POSE;
+    }
+    if ((r->aovs & AOV(TG_AOV_MOTION)) && r->frames > 1) n |= TG_NEED_MOTION;
+    if (r->frames > 1 && r->temporal && r->technique == TG_TECH_HBIL && (e & TG_EFFECT_AO))
+        n |= TG_NEED_TEMPORAL | TG_NEED_MOTION;
+    if ((e & TG_EFFECT_REPROJECTION) && (n & TG_NEED_POSE)) n |= TG_NEED_MOTION;
+    if ((e & TG_EFFECT_FAR) || (r->aovs & AOV(TG_AOV_BENT))) n |= TG_NEED_BENT;
+    if (r->aovs & AOV(TG_AOV_CONE)) n |= TG_NEED_CONE;
+    return n;
+}
+
+static void resolve_request(tg_request *r, const tg_scene *s)
+{
+    if (r->slices <= 0) r->slices = s->gi.slices > 0 ? s->gi.slices : TG_HBIL_DEFAULT_SLICES;
+    if (r->samples <= 0) r->samples = s->gi.samples > 0 ? s->gi.samples : TG_HBIL_DEFAULT_SAMPLES;
+    if (r->radius < 0) r->radius = s->gi.radius >= 0 ? s->gi.radius : TG_ONE;
+    if (r->bounces < 0) r->bounces = s->gi.bounces >= 0 ? s->gi.bounces : 1;
+    if (r->frames < 1) r->frames = 1;
+    if (r->aovs == 0) r->aovs = AOV(TG_AOV_COLOR);
+    if (r->shadow_map_size <= 0) r->shadow_map_size = 512;
+}
+
+tg_status tg_plan_make(tg_plan *plan, const tg_scene *scene, const tg_request *req, tg_error *err)
+{
+    tg_frame probe, *pp = &probe;
+    uint32_t possible;
+    tg_error_clear(err);
+    memset(plan, 0, sizeof *plan);
+    plan->request = *req;
+    plan->scene = scene;
+    resolve_request(&plan->request, scene);
+    if (req->width < 1 || req->height < 1 || req->width > 8192 || req->height > 8192) {
+        tg_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "image size must be 1..8192 per side");
+        return TG_ERR_INPUT;
+    }
+    if (plan->request.slices > TG_HBIL_MAX_SLICES || plan->request.samples > 256) {
+        tg_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "slices must be 1..8 and samples 1..256");
+        return TG_ERR_INPUT;
+    }
+    if ((unsigned)plan->request.technique >= TG_TECH_COUNT) {
+        tg_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "unknown technique");
+        return TG_ERR_INPUT;
+    }
+    possible = possible_effects(scene, &plan->request);
+    if (scene->effects_auto) plan->effects = wanted_effects(possible, plan->request.aovs);
+    else plan->effects = scene->effects & possible;
+    if (plan->effects & TG_EFFECT_NEAR) plan->effects |= TG_EFFECT_AO;
+    if (!(plan->effects & TG_EFFECT_DIRECT)) plan->effects &= ~(uint32_t)TG_EFFECT_SHADOWS;
+    if (!(plan->effects & TG_EFFECT_NEAR)) plan->effects &= ~(uint32_t)TG_EFFECT_REPROJECTION;
+    memset(&probe, 0, sizeof probe);
+    if (tg_frame_layout(&pp, plan, NULL) != 0) {
+        tg_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "frame size overflows the address space");
+        return TG_ERR_INPUT;
+    }
+    return TG_OK;
+}
+
+/* ---- layout: measure or allocate ---- */
+
+typedef struct layout {
+    tg_plan *plan;
+    tg_arena *arena;   /* NULL: measure */
+    size_t total;
+    int overflow;
+} layout;
+
+static void *take(layout *l, const char *name, size_t count, size_t elem)
+{
+    size_t bytes, padded;
+    if (l->overflow || count == 0) return NULL;
+    if (tg_size_mul(count, elem, &bytes) || tg_size_add(bytes, 15, &padded)) { l->overflow = 1; return NULL; }
+    padded &= ~(size_t)15;
+    if (tg_size_add(l->total, padded, &l->total)) { l->overflow = 1; return NULL; }
+    if (!l->arena) {
+        tg_plan *p = l->plan;
+        if (p->buffer_count > 0 && strcmp(p->buffers[p->buffer_count - 1].name, name) == 0) {
+            p->buffers[p->buffer_count - 1].bytes += padded;
+        } else if (p->buffer_count < TG_PLAN_MAX_BUFFERS) {
+            p->buffers[p->buffer_count].name = name;
+            p->buffers[p->buffer_count].bytes = padded;
+            p->buffer_count++;
+        }
+        return NULL;
+    }
+    {
+        void *m = tg_arena_alloc(l->arena, bytes);
+        if (!m) l->overflow = 1;
+        return m;
+    }
+}
+
+static tg_real *take_real(layout *l, const char *name, size_t n)
+{
+    return (tg_real *)take(l, name, n, sizeof(tg_real));
+}
+
+static void take_rgb(layout *l, const char *name, size_t n, tg_rgb *c)
+{
+    c->r = take_real(l, name, n);
+    c->g = take_real(l, name, n);
+    c->b = take_real(l, name, n);
+}
+
+static void add_pass(tg_plan *p, const char *name)
+{
+    if (p->pass_count < TG_PLAN_MAX_PASSES) p->passes[p->pass_count++] = name;
+}
+
+static void layout_gbuffer(layout *l, tg_frame *f, size_t n)
+{
+    const tg_scene *s = l->plan->scene;
+    tg_gbuffer *g = &f->gb;
+    int emissive = 0, i;
+    g->width = l->plan->request.width;
+    g->height = l->plan->request.height;
+    for (i = 0; i < s->material_count; i++)
+        if (s->materials[i].emissive.x > 0 || s->materials[i].emissive.y > 0 || s->materials[i].emissive.z > 0)
+            emissive = 1;
+    g->depth = take_real(l, "G-buffer depth (view z)", n);
+    g->nx = take_real(l, "G-buffer normal (world)", n);
+    g->ny = take_real(l, "G-buffer normal (world)", n);
+    g->nz = take_real(l, "G-buffer normal (world)", n);
+    g->albedo_r = take_real(l, "G-buffer albedo", n);
+    g->albedo_g = take_real(l, "G-buffer albedo", n);
+    g->albedo_b = take_real(l, "G-buffer albedo", n);
+    g->f0 = take_real(l, "G-buffer F0", n);
+    if (emissive) {
+        g->emit_r = take_real(l, "G-buffer emissive", n);
+        g->emit_g = take_real(l, "G-buffer emissive", n);
+        g->emit_b = take_real(l, "G-buffer emissive", n);
+    }
+    g->sky = (uint8_t *)take(l, "G-buffer sky marker", n, 1);
+    if (f->needs & (TG_NEED_MOTION | TG_NEED_POSE))
+        g->object = (uint16_t *)take(l, "G-buffer object id", n, 2);
+    if (f->needs & TG_NEED_MOTION) {
+        g->motion_x = take_real(l, "motion vectors", n);
+        g->motion_y = take_real(l, "motion vectors", n);
+    }
+}
+
+static void layout_light(layout *l, tg_frame *f, size_t n)
+{
+    tg_plan *p = l->plan;
+    const tg_scene *s = p->scene;
+    uint32_t e = p->effects;
+    int i;
+    if (e & TG_EFFECT_SHADOWS) {
+        f->shadow_maps = (tg_shadow_map *)take(l, "shadow map descriptors", (size_t)s->light_count, sizeof(tg_shadow_map));
+        f->shadow_ptrs = (const tg_shadow_map **)take(l, "shadow map descriptors", (size_t)s->light_count, sizeof(void *));
+        for (i = 0; i < s->light_count; i++) {
+            if (!s->lights[i].shadows) continue;
+            {
+                int size = p->request.shadow_map_size;
+                void *depth = take(l, "shadow maps (depth)", tg_shadow_map_bytes(&s->lights[i], size), 1);
+                if (!l->arena || !depth) continue;
+                tg_shadow_map_setup(&f->shadow_maps[i], &s->lights[i], size, s->bounds_min, s->bounds_max, depth);
+                f->shadow_ptrs[i] = &f->shadow_maps[i];
+            }
+        }
+        add_pass(p, "shadow maps (depth-only raster per shadow light)");
+    }
+    if (e & TG_EFFECT_DIRECT) {
+        take_rgb(l, "direct irradiance E_direct", n, &f->direct);
+        add_pass(p, "direct light (Lambert, shadows, spot falloff)");
+    }
+    (void)n;
+}
+
+static void layout_gi(layout *l, tg_frame *f, size_t n)
+{
+    tg_plan *p = l->plan;
+    uint32_t e = p->effects;
+    int hbil = p->request.technique == TG_TECH_HBIL;
+    int interleaved = hbil && p->request.interleave;
+    if (e & TG_EFFECT_NEAR) {
+        take_rgb(l, "near-field source radiance", n, &f->source);
+        if (e & TG_EFFECT_REPROJECTION) {
+            take_rgb(l, "radiance history (last frame)", n, &f->history);
+            f->history_depth = take_real(l, "radiance history depth", n);
+            if (f->needs & TG_NEED_POSE)
+                f->history_object = (uint16_t *)take(l, "radiance history object id", n, 2);
+            f->reproject_scratch_bytes = tg_reproject_bytes(p->request.width, p->request.height)
+                                       + tg_pushpull_bytes(p->request.width, p->request.height) + n + 32;
+            f->reproject_scratch = take(l, "reprojection z-buffer + push/pull mips", f->reproject_scratch_bytes, 1);
+            add_pass(p, "reproject last frame's radiance (scatter + z-test)");
+            add_pass(p, "push/pull hole filling");
+        }
+    }
+    if (!(f->needs & TG_NEED_GI_PASS)) return;
+    f->ao = take_real(l, "ambient occlusion", n);
+    if (f->needs & TG_NEED_BENT || hbil) take_rgb(l, "bent normal (world)", n, &f->bent);
+    if (f->needs & TG_NEED_CONE) f->cone = take_real(l, "cone aperture", n);
+    if (e & TG_EFFECT_NEAR) take_rgb(l, "near-field irradiance E_near", n, &f->near);
+    if (interleaved) {
+        f->q_depth = take_real(l, "4x4 split: depth", n);
+        take_rgb(l, "4x4 split: normal", n, &f->q_normal);
+        f->q_sky = (uint8_t *)take(l, "4x4 split: sky", n, 1);
+        f->q_ao = take_real(l, "4x4 split: kernel output", n);
+        take_rgb(l, "4x4 split: kernel output", n, &f->q_bent);
+        if (e & TG_EFFECT_NEAR) {
+            f->q_f0 = take_real(l, "4x4 split: F0", n);
+            take_rgb(l, "4x4 split: source radiance", n, &f->q_source);
+            take_rgb(l, "4x4 split: kernel output", n, &f->q_near);
+        }
+        add_pass(p, "4x4 split (quarter-res depth, normal, radiance)");
+        add_pass(p, "HBIL horizon kernel (AO, bent normal, near field), per sub-image");
+        add_pass(p, "4x4 merge");
+    } else {
+        add_pass(p, hbil ? "HBIL horizon kernel, full resolution" : tg_technique_name(p->request.technique));
+    }
+    if (p->request.technique == TG_TECH_REFERENCE) {
+        f->technique_scratch_bytes = tg_bvh_bytes(p->scene->tri_count);
+        f->technique_scratch = take(l, "reference BVH", f->technique_scratch_bytes, 1);
+    }
+}
+
+int tg_frame_layout(tg_frame **fp, tg_plan *plan, tg_arena *arena)
+{
+    layout l;
+    size_t n;
+    const tg_scene *s = plan->scene;
+    uint32_t e = plan->effects;
+    tg_frame *f;
+    memset(&l, 0, sizeof l);
+    l.plan = plan;
+    l.arena = arena;
+    if (!arena) { plan->pass_count = 0; plan->buffer_count = 0; }
+    if (tg_size_mul((size_t)plan->request.width, (size_t)plan->request.height, &n)) return 1;
+    f = (tg_frame *)take(&l, "frame state", 1, sizeof(tg_frame));
+    if (arena && !f) return 1;
+    if (!arena) f = *fp;
+    *fp = f;
+    f->plan = *plan;
+    f->scene = s;
+    f->width = plan->request.width;
+    f->height = plan->request.height;
+    f->pixels = n;
+    f->effects = e;
+    f->needs = tg_frame_needs(plan);
+    if (!arena) add_pass(plan, (f->needs & TG_NEED_POSE) ? "animate (camera and object keys, posed triangles)" : "animate (camera keys)");
+    if (f->needs & TG_NEED_POSE) {
+        f->posed_pos = (tg_vec3 *)take(&l, "posed triangles", (size_t)s->tri_count * 3, sizeof(tg_vec3));
+        f->posed_nrm = (tg_vec3 *)take(&l, "posed triangles", (size_t)s->tri_count * 3, sizeof(tg_vec3));
+        f->object_delta = (tg_mat4 *)take(&l, "object motion", (size_t)s->object_count, sizeof(tg_mat4));
+    }
+    layout_gbuffer(&l, f, n);
+    add_pass(plan, "rasterize G-buffer (depth, normal, albedo, F0, emissive)");
+    if (f->needs & TG_NEED_MOTION) add_pass(plan, "motion vectors");
+    layout_light(&l, f, n);
+    layout_gi(&l, f, n);
+    if (e & TG_EFFECT_FAR) {
+        take_rgb(&l, "far-field irradiance E_far", n, &f->far);
+        add_pass(plan, "far field: SH9 environment in the bent cone");
+    }
+    if (f->needs & TG_NEED_COMPOSE) {
+        take_rgb(&l, "outgoing radiance Lo (colour)", n, &f->color);
+        if (plan->request.aovs & AOV(TG_AOV_IRRADIANCE)) take_rgb(&l, "total irradiance", n, &f->irradiance);
+        add_pass(plan, "compose Lo = albedo/pi (1-F0) (E_direct + E_far + E_near) + emissive");
+        add_pass(plan, "tonemap + sRGB (on output)");
+    }
+    if (l.overflow) return 1;
+    if (!arena) plan->total_bytes = l.total + 16;
+    return 0;
+}
+
+/* ---- explain ---- */
+
+typedef struct text { char *buf; size_t size, at; } text;
+
+static void put(text *t, const char *s)
+{
+    size_t n = strlen(s);
+    if (t->size && t->at < t->size - 1) {
+        size_t room = t->size - 1 - t->at;
+        memcpy(t->buf + t->at, s, n < room ? n : room);
+        t->buf[t->at + (n < room ? n : room)] = '\0';
+    }
+    t->at += n;
+}
+
+static void put_uint(text *t, size_t v)
+{
+    char tmp[24], out[24];
+    int n = 0, i;
+    do { tmp[n++] = (char)('0' + v % 10u); v /= 10u; } while (v);
+    for (i = 0; i < n; i++) out[i] = tmp[n - 1 - i];
+    out[n] = '\0';
+    put(t, out);
+}
+
+static void put_effects(text *t, uint32_t e)
+{
+    static const char *const names[6] = { "direct", "shadows", "far", "near", "ao", "reprojection" };
+    int i, any = 0;
+    for (i = 0; i < 6; i++) {
+        if (!(e & (1u << i))) continue;
+        if (any) put(t, " ");
+        put(t, names[i]);
+        any = 1;
+    }
+    if (!any) put(t, "(none)");
+}
+
+size_t tg_plan_explain(const tg_plan *plan, char *buf, size_t size)
+{
+    text t;
+    int i;
+    size_t pixels = (size_t)plan->request.width * (size_t)plan->request.height;
+    t.buf = buf; t.size = size; t.at = 0;
+    if (size) buf[0] = '\0';
+    put(&t, "plan: "); put_uint(&t, (size_t)plan->request.width); put(&t, "x");
+    put_uint(&t, (size_t)plan->request.height); put(&t, ", technique ");
+    put(&t, tg_technique_name(plan->request.technique)); put(&t, ", number type ");
+    put(&t, TG_NUMBER_NAME); put(&t, ", frames "); put_uint(&t, (size_t)plan->request.frames);
+    put(&t, "\neffects: "); put_effects(&t, plan->effects);
+    put(&t, "\nskipped: "); put_effects(&t, (~plan->effects) & 63u);
+    put(&t, "\npasses:\n");
+    for (i = 0; i < plan->pass_count; i++) {
+        put(&t, "  "); put_uint(&t, (size_t)(i + 1)); put(&t, ". "); put(&t, plan->passes[i]); put(&t, "\n");
+    }
+    put(&t, "buffers:\n");
+    for (i = 0; i < plan->buffer_count; i++) {
+        put(&t, "  "); put(&t, plan->buffers[i].name); put(&t, ": ");
+        put_uint(&t, plan->buffers[i].bytes); put(&t, " bytes\n");
+    }
+    put(&t, "total: "); put_uint(&t, plan->total_bytes); put(&t, " bytes, ");
+    put_uint(&t, pixels ? plan->total_bytes / pixels : 0); put(&t, " bytes per pixel\n");
+    return t.at;
+}

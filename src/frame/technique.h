@@ -1,0 +1,20 @@
+/*
+ * technique.h - the frame's GI/AO step: HBIL (interleaved or full-res, with
+ * its filters) or one of the comparison techniques, and the reprojection of
+ * last frame's radiance the near field gathers from.
+ */
+#ifndef TG_TECHNIQUE_H
+#define TG_TECHNIQUE_H
+
+#include "frame_internal.h"
+
+/* Run the plan's technique: fills f->ao, f->bent, f->cone, f->near. */
+void tg_frame_technique(tg_frame *f, int index);
+
+/* The comparison techniques (compare.c): ssao, vo, hbao, gtao, ssdo, bentcone. */
+void tg_frame_technique_other(tg_frame *f, tg_ao_io io);
+
+/* Reproject last frame's radiance into f->source; 0 if there was none. */
+int tg_frame_reproject(tg_frame *f);
+
+#endif
