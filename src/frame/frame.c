@@ -174,8 +174,9 @@ tg_status tg_frame_render(tg_frame *f, int index, tg_error *err)
     bounces = (f->effects & TG_EFFECT_NEAR) && !f->has_history ? f->plan.request.bounces : 1;
     if (bounces < 1) bounces = 1;
     for (bounce = 0; bounce < bounces; bounce++) {
-        if (f->needs & TG_NEED_GI_PASS) tg_frame_technique(f, index);
-        pass_far(f);
+        int far_done = 0;
+        if (f->needs & TG_NEED_GI_PASS) far_done = tg_frame_technique(f, index);
+        if (!far_done) pass_far(f);
         if (f->color.r) compose_into(f, f->color, f->irradiance, 1, 1);
         if (bounce + 1 < bounces && f->color.r) {
             size_t bytes = f->pixels * sizeof(tg_real);

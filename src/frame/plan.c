@@ -23,6 +23,7 @@
 #include "../gi/hbil.h"
 #include "../gi/pushpull.h"
 #include "../gi/reproject.h"
+#include "../gi/denoise.h"
 #include "../ao/bvh.h"
 #include "../scene/anim.h"
 
@@ -312,6 +313,16 @@ static void layout_gi(layout *l, tg_frame *f, size_t n)
         add_pass(p, "4x4 merge");
     } else {
         add_pass(p, hbil ? "HBIL horizon kernel, full resolution" : tg_technique_name(p->request.technique));
+    }
+    if (hbil) {
+        f->denoise_scratch_bytes = tg_denoise_bytes(p->request.width, p->request.height);
+        f->denoise_scratch = take(l, "spatial filter scratch", f->denoise_scratch_bytes, 1);
+        add_pass(p, "depth/normal-aware 4x4 filter");
+        if (f->needs & TG_NEED_TEMPORAL) {
+            f->temporal_state_bytes = tg_temporal_bytes(p->request.width, p->request.height);
+            f->temporal_state = take(l, "temporal accumulation history", f->temporal_state_bytes, 1);
+            add_pass(p, "temporal accumulation (history rejected by depth and normal)");
+        }
     }
     if (p->request.technique == TG_TECH_REFERENCE) {
         f->technique_scratch_bytes = tg_bvh_bytes(p->scene->tri_count);

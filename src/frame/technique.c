@@ -20,6 +20,7 @@
 #include "../light/direct.h"
 #include "../gi/reproject.h"
 #include "../gi/pushpull.h"
+#include "../gi/denoise.h"
 
 /* HBIL eq. 12: the bent cone's half angle from the AO, cos(alpha) = 1 - AO. */
 static void cone_from_ao(tg_frame *f)
@@ -174,22 +175,48 @@ static void reference(tg_frame *f)
     tg_reference_rows(&p, &io, 0, f->height);
 }
 
-void tg_frame_technique(tg_frame *f, int index)
+/* HBIL sec. 3.3-3.4: the depth/normal-aware filter over the 4x4
+ * neighbourhood, then (across frames) temporal accumulation. */
+static void hbil_filter(tg_frame *f, int index)
 {
-    (void)index;
+    tg_denoise_params p;
+    tg_denoise_io io;
+    const tg_gbuffer *g = &f->gb;
+    tg_denoise_defaults(&p);
+    memset(&io, 0, sizeof io);
+    io.width = f->width;
+    io.height = f->height;
+    io.depth = g->depth; io.nx = g->nx; io.ny = g->ny; io.nz = g->nz;
+    io.sky = g->sky;
+    io.ao = f->ao;
+    io.bent_x = f->bent.r; io.bent_y = f->bent.g; io.bent_z = f->bent.b;
+    io.cone = f->cone;
+    io.near_r = f->near.r; io.near_g = f->near.g; io.near_b = f->near.b;
+    tg_denoise_begin(&io, f->denoise_scratch);
+    tg_denoise_rows(&p, &io, f->denoise_scratch, 0, f->height);
+    if (f->temporal_state)
+        tg_temporal_rows(&p, &io, f->temporal_state, &f->prev_view, &f->view, index,
+                         f->frames_rendered == 0, 0, f->height);
+}
+
+int tg_frame_technique(tg_frame *f, int index)
+{
+    int far_done = 0;
     switch (f->plan.request.technique) {
     case TG_TECH_HBIL:
         if (f->plan.request.interleave) hbil_interleaved(f);
         else hbil_full(f);
+        hbil_filter(f, index);
         break;
     case TG_TECH_REFERENCE:
         reference(f);
         break;
     default:
-        tg_frame_technique_other(f, ao_io(f));
+        far_done = tg_frame_technique_other(f, ao_io(f));
         break;
     }
     cone_from_ao(f);
+    return far_done;
 }
 
 /* HBIL sec. 3.2: scatter last frame's radiance into this view through a

@@ -8,11 +8,13 @@
 
 #include "frame_internal.h"
 
-/* Run the plan's technique: fills f->ao, f->bent, f->cone, f->near. */
-void tg_frame_technique(tg_frame *f, int index);
+/* Run the plan's technique: fills f->ao, f->bent, f->cone, f->near (and
+ * f->far for techniques that shade the environment themselves: returns 1). */
+int tg_frame_technique(tg_frame *f, int index);
 
-/* The comparison techniques (compare.c): ssao, vo, hbao, gtao, ssdo, bentcone. */
-void tg_frame_technique_other(tg_frame *f, tg_ao_io io);
+/* The comparison techniques (compare.c): ssao, vo, hbao, gtao, ssdo,
+ * bentcone.  Returns 1 when the technique wrote the far field itself. */
+int tg_frame_technique_other(tg_frame *f, tg_ao_io io);
 
 /* Reproject last frame's radiance into f->source; 0 if there was none. */
 int tg_frame_reproject(tg_frame *f);
