@@ -53,29 +53,24 @@ void tg_sh9_from_env(const tg_env *env, tg_vec3 sh[9])
     }
 }
 
-/* HBIL sec. 2.2.4 evaluation with band weights c0, c1, c2, one channel. */
-static tg_real sh_eval_lobe(const tg_real L[9], tg_vec3 n, tg_real c0, tg_real c1, tg_real c2)
-{
-    tg_real x = n.x, y = n.y, z = n.z;
-    tg_real band1 = tg_add(tg_add(tg_mul(y, L[1]), tg_mul(z, L[2])), tg_mul(x, L[3]));
-    tg_real z20 = tg_sub(tg_mul(TG_R(3.0f), tg_mul(z, z)), TG_ONE);
-    tg_real b2 = tg_mul(L[6], z20);
-    tg_real cross = tg_add(tg_add(tg_mul(tg_mul(x, y), L[4]), tg_mul(tg_mul(y, z), L[5])),
-                           tg_mul(tg_mul(z, x), L[7]));
-    tg_real e;
-    b2 = tg_add(b2, tg_mul(SQRT3, tg_mul(L[8], tg_sub(tg_mul(x, x), tg_mul(y, y)))));
-    b2 = tg_add(b2, tg_mul(TWO_SQRT3, cross));
-    e = tg_add(tg_add(tg_mul(c0, L[0]), tg_mul(c1, band1)), tg_mul(c2, b2));
-    return e > 0 ? e : 0;
-}
-
+/* HBIL sec. 2.2.4 evaluation: the per-coefficient weights for normal n and
+ * band weights c0, c1, c2 (computed once, shared by the three channels):
+ *   E = c0 L00 + c1 (y L1-1 + z L10 + x L11) + c2 L20 (3z^2 - 1)
+ *     + c2 sqrt(3) L22 (x^2 - y^2) + 2 sqrt(3) c2 (xy L2-2 + yz L2-1 + zx L21) */
 static tg_vec3 sh_eval_rgb(const tg_vec3 sh[9], tg_vec3 n, tg_real c0, tg_real c1, tg_real c2)
 {
-    tg_real r[9], g[9], b[9];
-    int i;
-    for (i = 0; i < 9; i++) { r[i] = sh[i].x; g[i] = sh[i].y; b[i] = sh[i].z; }
-    return tg_v3(sh_eval_lobe(r, n, c0, c1, c2), sh_eval_lobe(g, n, c0, c1, c2),
-                 sh_eval_lobe(b, n, c0, c1, c2));
+    tg_real x = n.x, y = n.y, z = n.z, w[9], c2x = tg_mul(c2, TWO_SQRT3);
+    tg_vec3 e = tg_v3(0, 0, 0);
+    int j;
+    w[0] = c0;
+    w[1] = tg_mul(c1, y); w[2] = tg_mul(c1, z); w[3] = tg_mul(c1, x);
+    w[4] = tg_mul(c2x, tg_mul(x, y));
+    w[5] = tg_mul(c2x, tg_mul(y, z));
+    w[6] = tg_mul(c2, tg_sub(tg_mul(TG_R(3.0f), tg_mul(z, z)), TG_ONE));
+    w[7] = tg_mul(c2x, tg_mul(z, x));
+    w[8] = tg_mul(tg_mul(c2, SQRT3), tg_sub(tg_mul(x, x), tg_mul(y, y)));
+    for (j = 0; j < 9; j++) e = tg_v3_add(e, tg_v3_scale(sh[j], w[j]));
+    return tg_v3(tg_max(e.x, 0), tg_max(e.y, 0), tg_max(e.z, 0));
 }
 
 tg_vec3 tg_sh9_irradiance(const tg_vec3 sh[9], tg_vec3 n)

@@ -64,6 +64,7 @@ static void setup_ortho(tg_shadow_map *sm, tg_vec3 dir, tg_vec3 lo, tg_vec3 hi)
     sm->ortho_center_y = tg_mul(tg_add(miny, maxy), TG_R(0.5f));
     sm->ortho_near = tg_sub(minz, margin);
     sm->ortho_scale = scale;
+    sm->ortho_scale_inv = half;
     sm->texel_world = tg_div(tg_mul(half, TG_R(2.0f)), tg_from_int(sm->size));
     sm->world_to_clip[0] = tg_m4_identity();
     /* clip = ((p.r - cx) s, (p.u - cy) s, p.f - near, 1) */
@@ -110,6 +111,7 @@ void tg_shadow_map_setup(tg_shadow_map *sm, const tg_light *l, int size,
     sm->size = size > 0 ? size : 1;
     sm->faces = light_faces(l);
     sm->depth = (tg_real *)memory;
+    sm->texel_ndc = tg_div(TG_R(2.0f), tg_from_int(sm->size));
     if (l->type == TG_LIGHT_DIRECTIONAL) {
         sm->orthographic = 1;
         setup_ortho(sm, l->dir, scene_min, scene_max);
@@ -126,6 +128,7 @@ void tg_shadow_map_setup(tg_shadow_map *sm, const tg_light *l, int size,
     }
     tan_half = tg_mul(tan_half, widen);
     sm->focal = tg_div(TG_ONE, tan_half);
+    sm->tan_half = tan_half;
     sm->texel_world = tg_div(tg_mul(tan_half, TG_R(2.0f)), tg_from_int(sm->size));
     zfar = far_distance(sm->origin, scene_min, scene_max);
     znear = tg_clamp(tg_mul(zfar, TG_R(0.0005f)), TG_R(0.005f), TG_R(0.05f));
@@ -163,98 +166,109 @@ static int cube_face(tg_vec3 d)
     return d.z >= 0 ? 4 : 5;
 }
 
-/* The tent PCF: taps i0-1 .. i0+2 with weights 1-f, 1, 1, f (sum 3). */
-static void tent_weights(tg_real frac, tg_real w[4])
-{
-    w[0] = tg_sub(TG_ONE, frac); w[1] = TG_ONE; w[2] = TG_ONE; w[3] = frac;
-}
-
-/* Receiver-plane depth at the tap whose NDC offset from the lookup is (dx, dy)
- * (orthographic: world offsets).  See setup of `plane` in tg_shadow_visibility. */
-typedef struct receiver_plane {
-    int orthographic;
-    tg_real depth;          /* receiver depth at the lookup point */
-    tg_real gx, gy;         /* ortho: depth change per world unit along right / up */
-    tg_real num;            /* persp: n . p (light view space), < 0 when lit side */
-    tg_real nx_f, ny_f, nz; /* persp: n.x / focal, n.y / focal, n.z */
-    tg_real den_max;        /* persp: grazing clamp of n . r (negative) */
-} receiver_plane;
-
-static tg_real plane_depth(const receiver_plane *pl, tg_real ax, tg_real ay)
-{
-    tg_real den;
-    if (pl->orthographic) return tg_add(pl->depth, tg_add(tg_mul(pl->gx, ax), tg_mul(pl->gy, ay)));
-    /* ray r = (ndc_x / focal, ndc_y / focal, 1): depth = (n.p) / (n.r), exact for the plane */
-    den = tg_add(tg_add(tg_mul(pl->nx_f, ax), tg_mul(pl->ny_f, ay)), pl->nz);
-    if (den > pl->den_max) den = pl->den_max;
-    return tg_div(pl->num, den);
-}
-
+/* Receiver-plane depth bias: the receiver's depth at each PCF tap is
+ * extrapolated from its plane (normal n in the light basis).  Taps are
+ * separable: tap (i, j) sits at NDC offset (ox[i], oy[j]) from the lookup.
+ *   orthographic  depth(i, j) = depth + gx ox[i] + gy oy[j]
+ *   perspective   the tap's ray r = (ndc / focal, 1) meets the plane at
+ *                 depth num / den, den = n . r = den_c + dx[i] + dy[j]; the
+ *                 test depth - bias <= stored is done as num >= (stored +
+ *                 bias) den (den < 0), without a division per tap. */
 tg_real tg_shadow_visibility(const tg_shadow_map *sm, tg_vec3 p, tg_vec3 n)
 {
     int face = sm->faces == 6 ? cube_face(tg_v3_sub(p, sm->origin)) : 0;
     tg_vec3 r = sm->right[face], u = sm->up[face], f = sm->forward[face];
     tg_real nl_x = tg_v3_dot(n, r), nl_y = tg_v3_dot(n, u), nl_z = tg_v3_dot(n, f);
-    tg_real size = tg_from_int(sm->size), half_size = tg_mul(size, TG_R(0.5f));
-    tg_real ndc_x, ndc_y, tw, bias, su, sv, wx[4], wy[4], lit = 0;
+    tg_real half_size = tg_ldexp(tg_from_int(sm->size), -1);
+    tg_real ndc_x, ndc_y, tw, bias, su, sv, fx, fy, lit = 0;
+    tg_real wx[4], wy[4], tx_off[4], ty_off[4];
+    tg_real base = 0, num = 0, den_c = 0, den_max = 0;
     const tg_real *depth = sm->depth + (size_t)face * (size_t)sm->size * (size_t)sm->size;
-    receiver_plane pl;
-    int i0, j0, i, j;
+    int i0, j0, i, j, perspective = !sm->orthographic;
 
-    memset(&pl, 0, sizeof pl);
-
-    pl.orthographic = sm->orthographic;
-    if (sm->orthographic) {
+    if (!perspective) {
+        tg_real inv_nz;
         if (nl_z >= 0) return 0; /* the surface faces away from the light */
         if (nl_z > tg_neg(GRAZING_COS)) nl_z = tg_neg(GRAZING_COS);
-        tg_real lx = tg_sub(tg_v3_dot(p, r), sm->ortho_center_x);
-        tg_real ly = tg_sub(tg_v3_dot(p, u), sm->ortho_center_y);
-        ndc_x = tg_mul(lx, sm->ortho_scale);
-        ndc_y = tg_mul(ly, sm->ortho_scale);
-        pl.depth = tg_sub(tg_v3_dot(p, f), sm->ortho_near);
-        /* plane n.(dx, dy, dz) = 0 -> dz = -(nx dx + ny dy) / nz, per NDC unit */
-        pl.gx = tg_div(tg_neg(nl_x), tg_mul(nl_z, sm->ortho_scale));
-        pl.gy = tg_div(tg_neg(nl_y), tg_mul(nl_z, sm->ortho_scale));
+        ndc_x = tg_mul(tg_sub(tg_v3_dot(p, r), sm->ortho_center_x), sm->ortho_scale);
+        ndc_y = tg_mul(tg_sub(tg_v3_dot(p, u), sm->ortho_center_y), sm->ortho_scale);
         tw = sm->texel_world;
+        bias = tg_ldexp(tw, -1);
+        base = tg_sub(tg_sub(tg_v3_dot(p, f), sm->ortho_near), bias);
+        /* plane n.(dx, dy, dz) = 0 -> dz = -(nx dx + ny dy) / nz; world = ndc / scale */
+        inv_nz = tg_div(tg_neg(sm->ortho_scale_inv), nl_z);
+        nl_x = tg_mul(nl_x, inv_nz);  /* now depth change per NDC unit along x */
+        nl_y = tg_mul(nl_y, inv_nz);
     } else {
         tg_vec3 d = tg_v3_sub(p, sm->origin);
-        tg_real lz = tg_v3_dot(d, f);
+        tg_real lz = tg_v3_dot(d, f), lx = tg_v3_dot(d, r), ly = tg_v3_dot(d, u), inv_lz;
         if (lz <= TG_R(0.001f)) return TG_ONE; /* behind the light's map: unshadowed */
-        ndc_x = tg_div(tg_mul(tg_v3_dot(d, r), sm->focal), lz);
-        ndc_y = tg_div(tg_mul(tg_v3_dot(d, u), sm->focal), lz);
-        pl.depth = lz;
-        pl.num = tg_add(tg_add(tg_mul(nl_x, tg_v3_dot(d, r)), tg_mul(nl_y, tg_v3_dot(d, u))), tg_mul(nl_z, lz));
-        if (pl.num >= 0) return 0; /* faces away from the light position */
-        pl.nx_f = tg_div(nl_x, sm->focal);
-        pl.ny_f = tg_div(nl_y, sm->focal);
-        pl.nz = nl_z;
-        /* grazing clamp: a tap's receiver depth is at most 1 / GRAZING_COS times the lookup's */
-        pl.den_max = tg_mul(tg_div(pl.num, lz), GRAZING_COS);
+        num = tg_add(tg_add(tg_mul(nl_x, lx), tg_mul(nl_y, ly)), tg_mul(nl_z, lz));
+        if (num >= 0) return 0; /* faces away from the light position */
+        inv_lz = tg_div(TG_ONE, lz);
+        ndc_x = tg_mul(tg_mul(lx, sm->focal), inv_lz);
+        ndc_y = tg_mul(tg_mul(ly, sm->focal), inv_lz);
         tw = tg_mul(sm->texel_world, lz);
+        bias = tg_ldexp(tw, -1);
+        den_c = tg_mul(num, inv_lz);                 /* n . r at the lookup */
+        den_max = tg_mul(den_c, GRAZING_COS);        /* a tap is at most 1/GRAZING_COS deeper */
+        nl_x = tg_mul(nl_x, sm->tan_half);           /* d(n . r) per NDC unit */
+        nl_y = tg_mul(nl_y, sm->tan_half);
     }
-    bias = tg_mul(tw, TG_R(0.5f));
     /* continuous texel position (rows top to bottom), then the 4x4 tent footprint */
     su = tg_sub(tg_mul(tg_add(ndc_x, TG_ONE), half_size), TG_R(0.5f));
     sv = tg_sub(tg_mul(tg_sub(TG_ONE, ndc_y), half_size), TG_R(0.5f));
     i0 = tg_to_int(su); j0 = tg_to_int(sv);
     if (i0 < -2 || j0 < -2 || i0 > sm->size + 1 || j0 > sm->size + 1) return TG_ONE;
-    tent_weights(tg_sub(su, tg_from_int(i0)), wx);
-    tent_weights(tg_sub(sv, tg_from_int(j0)), wy);
-    for (j = 0; j < 4; j++) {
+    fx = tg_sub(su, tg_from_int(i0));
+    fy = tg_sub(sv, tg_from_int(j0));
+    for (i = 0; i < 4; i++) {
+        /* tap i's texel centre relative to the lookup, in NDC (y up) */
+        tg_real ox = tg_mul(tg_sub(tg_from_int(i - 1), fx), sm->texel_ndc);
+        tg_real oy = tg_neg(tg_mul(tg_sub(tg_from_int(i - 1), fy), sm->texel_ndc));
+        tx_off[i] = tg_mul(nl_x, ox);
+        ty_off[i] = tg_mul(nl_y, oy);
+    }
+    /* the tent PCF: taps i0-1 .. i0+2 with weights 1-f, 1, 1, f (sum 3) */
+    wx[0] = tg_sub(TG_ONE, fx); wx[1] = wx[2] = TG_ONE; wx[3] = fx;
+    wy[0] = tg_sub(TG_ONE, fy); wy[1] = wy[2] = TG_ONE; wy[3] = fy;
+    if (i0 >= 1 && j0 >= 1 && i0 + 2 < sm->size && j0 + 2 < sm->size) {
+        /* fast path, the whole footprint inside the map (an empty texel holds
+         * TG_REAL_MAX, which passes both tests without a special case) */
+        for (j = 0; j < 4; j++) {
+            const tg_real *row = depth + (size_t)(j0 - 1 + j) * (size_t)sm->size + (i0 - 1);
+            tg_real row_lit = 0;
+            if (perspective) {
+                tg_real den_row = tg_add(den_c, ty_off[j]);
+                for (i = 0; i < 4; i++) {
+                    tg_real den = tg_min(tg_add(den_row, tx_off[i]), den_max);
+                    row_lit = tg_add(row_lit, num >= tg_mul(tg_add(row[i], bias), den) ? wx[i] : 0);
+                }
+            } else {
+                tg_real base_row = tg_add(base, ty_off[j]);
+                for (i = 0; i < 4; i++)
+                    row_lit = tg_add(row_lit, tg_add(base_row, tx_off[i]) <= row[i] ? wx[i] : 0);
+            }
+            lit = tg_add(lit, tg_mul(row_lit, wy[j]));
+        }
+        return tg_saturate(tg_mul(lit, TG_R(1.0f / 9.0f)));
+    }
+    for (j = 0; j < 4; j++) {   /* at the map's edge: taps outside are lit */
         int ty = j0 - 1 + j;
+        const tg_real *row = depth + (size_t)(ty < 0 ? 0 : ty) * (size_t)sm->size;
         tg_real row_lit = 0;
-        /* NDC of the tap's texel centre relative to the lookup */
-        tg_real ay = tg_neg(tg_div(tg_sub(tg_from_int(ty), sv), half_size));
         for (i = 0; i < 4; i++) {
             int tx = i0 - 1 + i;
-            tg_real ax, stored, receiver;
+            tg_real stored;
             if (tx < 0 || ty < 0 || tx >= sm->size || ty >= sm->size) { row_lit = tg_add(row_lit, wx[i]); continue; }
-            stored = depth[(size_t)ty * (size_t)sm->size + (size_t)tx];
+            stored = row[tx];
             if (stored == TG_REAL_MAX) { row_lit = tg_add(row_lit, wx[i]); continue; }
-            ax = tg_div(tg_sub(tg_from_int(tx), su), half_size);
-            receiver = plane_depth(&pl, sm->orthographic ? ax : tg_add(ndc_x, ax),
-                                   sm->orthographic ? ay : tg_add(ndc_y, ay));
-            if (tg_sub(receiver, bias) <= stored) row_lit = tg_add(row_lit, wx[i]);
+            if (perspective) {
+                tg_real den = tg_min(tg_add(tg_add(den_c, tx_off[i]), ty_off[j]), den_max);
+                if (num >= tg_mul(tg_add(stored, bias), den)) row_lit = tg_add(row_lit, wx[i]);
+            } else if (tg_add(tg_add(base, tx_off[i]), ty_off[j]) <= stored) {
+                row_lit = tg_add(row_lit, wx[i]);
+            }
         }
         lit = tg_add(lit, tg_mul(row_lit, wy[j]));
     }

@@ -37,7 +37,10 @@ typedef struct tg_shadow_map {
     tg_vec3 right[TG_SHADOW_MAX_FACES], up[TG_SHADOW_MAX_FACES], forward[TG_SHADOW_MAX_FACES];
     tg_mat4 world_to_clip[TG_SHADOW_MAX_FACES];
     tg_real focal;               /* perspective: NDC per unit of x/z (1 / tan half angle) */
+    tg_real tan_half;            /* perspective: 1 / focal */
+    tg_real texel_ndc;           /* 2 / size: one texel in NDC */
     tg_real ortho_scale;         /* orthographic: NDC per world unit */
+    tg_real ortho_scale_inv;     /* orthographic: world units per NDC unit */
     tg_real ortho_center_x, ortho_center_y, ortho_near; /* in the light basis */
     tg_real texel_world;         /* ortho: world units per texel; persp: per texel at depth 1 */
     tg_real *depth;              /* faces * size * size, face-major, rows top to bottom */
