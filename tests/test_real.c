@@ -187,6 +187,33 @@ TEST(sqrt_whole_domain)
     CHECK(tg_sqrt(TG_R(4.0f)) == TG_R(2.0f), "sqrt(4) exact");
 }
 
+/* floor(sqrt(v)) for 64-bit v: r^2 <= v < (r+1)^2 */
+static int isqrt_ok(uint64_t v, uint32_t r)
+{
+    uint64_t r1 = (uint64_t)r + 1;
+    if ((uint64_t)r * r > v) return 0;
+    return r1 == ((uint64_t)1 << 32) || r1 * r1 > v;
+}
+
+TEST(isqrt64_exact)
+{
+    uint64_t k, v = 88172645463325252ull;
+    long i, bad = 0;
+    CHECK(tg_isqrt64(0) == 0 && tg_isqrt64(1) == 1 && tg_isqrt64(3) == 1 && tg_isqrt64(4) == 2, "small");
+    CHECK(tg_isqrt64(UINT64_MAX) == 0xffffffffu, "isqrt(2^64-1) = 2^32-1");
+    for (k = 1; k < ((uint64_t)1 << 32); k = k * 3 + 1) {
+        if (tg_isqrt64(k * k) != k || (k > 1 && tg_isqrt64(k * k - 1) != k - 1)) bad++;
+    }
+    for (i = 0; i < 2000000; i++) { /* xorshift64 over the whole range, and shifted down */
+        uint64_t w;
+        v ^= v << 13; v ^= v >> 7; v ^= v << 17;
+        w = v >> (i % 64);
+        if (!isqrt_ok(w, tg_isqrt64(w))) bad++;
+    }
+    for (k = 0; k < 2000000; k++) if (!isqrt_ok(k, tg_isqrt64(k))) bad++;
+    CHECK(bad == 0, "%ld wrong integer square roots", bad);
+}
+
 TEST(rsqrt_whole_domain)
 {
     stat s;
@@ -658,6 +685,7 @@ TEST(parse_random)
 
 int main(void)
 {
+    RUN(isqrt64_exact);
     RUN(sqrt_whole_domain);
     RUN(rsqrt_whole_domain);
     RUN(sin_cos_whole_domain);

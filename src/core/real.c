@@ -75,11 +75,25 @@ static int64_t div_round(int64_t a, int64_t b)
 
 #endif
 
-/* floor(sqrt(v)), digit by digit: exact, 32 steps. */
+/* Number of significant bits of v (0 for 0), by halving. */
+static int bit_length64(uint64_t v)
+{
+    int n = 0;
+    if (v >> 32) { v >>= 32; n += 32; }
+    if (v >> 16) { v >>= 16; n += 16; }
+    if (v >> 8) { v >>= 8; n += 8; }
+    if (v >> 4) { v >>= 4; n += 4; }
+    if (v >> 2) { v >>= 2; n += 2; }
+    if (v >> 1) { v >>= 1; n += 1; }
+    return n + (int)v;
+}
+
+/* floor(sqrt(v)), digit by digit: exact, one step per 2 bits of v. */
 uint32_t tg_isqrt64(uint64_t v)
 {
-    uint64_t res = 0, bit = (uint64_t)1 << 62;
-    while (bit > v) bit >>= 2;
+    uint64_t res = 0, bit;
+    if (v == 0) return 0;
+    bit = (uint64_t)1 << ((bit_length64(v) - 1) & ~1);
     while (bit) {
         if (v >= res + bit) {
             v -= res + bit;
@@ -101,13 +115,6 @@ static uint64_t isqrt_round(uint64_t v)
 }
 
 #endif
-
-static int bit_length64(uint64_t v)
-{
-    int n = 0;
-    while (v) { n++; v >>= 1; }
-    return n;
-}
 
 /* ---------------------------------------------------------------------- */
 /* the wide internal number                                                */

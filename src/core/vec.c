@@ -20,8 +20,13 @@
 static int bit_length(uint64_t v)
 {
     int n = 0;
-    while (v) { n++; v >>= 1; }
-    return n;
+    if (v >> 32) { v >>= 32; n += 32; }
+    if (v >> 16) { v >>= 16; n += 16; }
+    if (v >> 8) { v >>= 8; n += 8; }
+    if (v >> 4) { v >>= 4; n += 4; }
+    if (v >> 2) { v >>= 2; n += 2; }
+    if (v >> 1) { v >>= 1; n += 1; }
+    return n + (int)v;
 }
 
 static uint64_t isqrt_round(uint64_t v)
@@ -111,6 +116,13 @@ static int normalize_n(tg_real *v, int n)
 {
     float w[VEC_MAX_N], sum = 0.0f, r;
     int i;
+    for (i = 0; i < n; i++) sum += v[i] * v[i];
+    if (sum > 1e-30f && sum < 1e30f) { /* the common case: no scaling needed */
+        r = tg_sqrt(sum);
+        for (i = 0; i < n; i++) v[i] = v[i] / r;
+        return 1;
+    }
+    sum = 0.0f;
     if (!finite_n(v, n)) return 0;
     for (i = 0; i < n; i++) w[i] = v[i];
     scale_pow2_64(w, n, prescale(v, n));
@@ -124,7 +136,9 @@ static int normalize_n(tg_real *v, int n)
 tg_real tg_v3_length(tg_vec3 a)
 {
     tg_real v[3], l[1];
+    float sum = a.x * a.x + a.y * a.y + a.z * a.z;
     int k;
+    if (sum > 1e-30f && sum < 1e30f) return tg_sqrt(sum);
     v[0] = a.x; v[1] = a.y; v[2] = a.z;
     if (!finite_n(v, 3)) return TG_REAL_MAX;
     k = prescale(v, 3);
