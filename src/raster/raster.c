@@ -262,9 +262,12 @@ static int clip_polygon(const clip_ctx *c, clip_vertex *poly, int n, unsigned pl
             tg_real da = plane_distance(c, a, p), db = plane_distance(c, b, p);
             if (da >= 0) tmp[m++] = *a;
             if ((da >= 0) != (db >= 0) && m < MAX_POLY) {
-                /* da and db differ in sign: t = da / (da - db) in [0, 1] */
-                tg_real t = tg_clamp(tg_div(da, tg_sub(da, db)), 0, TG_ONE);
-                tmp[m] = clip_lerp(a, b, t);
+                /* from the inside vertex to the outside one, whatever the edge's
+                 * direction, so triangles sharing the edge get the same point */
+                const clip_vertex *in = da >= 0 ? a : b, *out = da >= 0 ? b : a;
+                tg_real din = da >= 0 ? da : db, dout = da >= 0 ? db : da;
+                tg_real t = tg_clamp(tg_div(din, tg_sub(din, dout)), 0, TG_ONE);
+                tmp[m] = clip_lerp(in, out, t);
                 snap_to_plane(c, &tmp[m], p);
                 m++;
             }
@@ -428,10 +431,13 @@ static void bary_make(bary_setup *b, const screen_tri *st, const tri_edges *te)
     }
 }
 
-static void gbuffer_rows(tg_gbuffer *gb, const tri_edges *te, const screen_tri *st, const surface *sf)
+static void gbuffer_rows(const tg_gbuffer *gbp, const tri_edges *te, const screen_tri *st, const surface *sfp)
 {
+    /* local copies: the byte stores to sky[] may alias anything reached through a pointer */
+    const tg_gbuffer g = *gbp;
+    const surface sf = *sfp;
     bary_setup b;
-    int row, col, W = gb->width;
+    int row, col, W = g.width;
     bary_make(&b, st, te);
     for (row = te->y0; row < te->y1; row++) {
         int64_t dy = row - te->oy;
@@ -456,19 +462,19 @@ static void gbuffer_rows(tg_gbuffer *gb, const tri_edges *te, const screen_tri *
             if (su <= 0) continue;
             qp = (u0 * b.q[0] + u1 * b.q[1] + u2 * b.q[2]) / su; /* 1/w, Q30 of w_min/w */
             if (qp < 1) qp = 1;
-            if (!gb->sky[i] && b.wq >= qp * gb->depth[i]) continue;
+            if (!g.sky[i] && b.wq >= qp * g.depth[i]) continue;
             if (!unit_q16(asr64(u0 * b.nq[0][0] + u1 * b.nq[1][0] + u2 * b.nq[2][0], b.sm),
                           asr64(u0 * b.nq[0][1] + u1 * b.nq[1][1] + u2 * b.nq[2][1], b.sm),
                           asr64(u0 * b.nq[0][2] + u1 * b.nq[1][2] + u2 * b.nq[2][2], b.sm), n)) {
-                n[0] = sf->fallback_normal.x; n[1] = sf->fallback_normal.y; n[2] = sf->fallback_normal.z;
+                n[0] = sf.fallback_normal.x; n[1] = sf.fallback_normal.y; n[2] = sf.fallback_normal.z;
             }
-            gb->depth[i] = tg_sat64((b.wq + qp / 2) / qp);
-            gb->nx[i] = n[0]; gb->ny[i] = n[1]; gb->nz[i] = n[2];
-            gb->albedo_r[i] = sf->albedo_r; gb->albedo_g[i] = sf->albedo_g; gb->albedo_b[i] = sf->albedo_b;
-            gb->f0[i] = sf->f0;
-            if (gb->emit_r) { gb->emit_r[i] = sf->emit_r; gb->emit_g[i] = sf->emit_g; gb->emit_b[i] = sf->emit_b; }
-            if (gb->object) gb->object[i] = sf->object;
-            gb->sky[i] = 0;
+            g.depth[i] = tg_sat64((b.wq + qp / 2) / qp);
+            g.nx[i] = n[0]; g.ny[i] = n[1]; g.nz[i] = n[2];
+            g.albedo_r[i] = sf.albedo_r; g.albedo_g[i] = sf.albedo_g; g.albedo_b[i] = sf.albedo_b;
+            g.f0[i] = sf.f0;
+            if (g.emit_r) { g.emit_r[i] = sf.emit_r; g.emit_g[i] = sf.emit_g; g.emit_b[i] = sf.emit_b; }
+            if (g.object) g.object[i] = sf.object;
+            g.sky[i] = 0;
         }
     }
 }
@@ -545,14 +551,17 @@ static plane plane_make(const plane_basis *pb, float a0, float a1, float a2)
     return p;
 }
 
-static void gbuffer_rows(tg_gbuffer *gb, const tri_edges *te, const screen_tri *st, const surface *sf)
+static void gbuffer_rows(const tg_gbuffer *gbp, const tri_edges *te, const screen_tri *st, const surface *sfp)
 {
+    /* local copies: the byte stores to sky[] may alias anything reached through a pointer */
+    const tg_gbuffer g = *gbp;
+    const surface sf = *sfp;
     plane_basis pb;
     plane pq, pnx, pny, pnz;
     float wmin = st->w[0], q[3];
-    int row, col, k, W = gb->width;
-    tg_real *depth = gb->depth;
-    uint8_t *sky = gb->sky;
+    int row, col, k, W = g.width;
+    tg_real *depth = g.depth;
+    uint8_t *sky = g.sky;
     if (st->w[1] < wmin) wmin = st->w[1];
     if (st->w[2] < wmin) wmin = st->w[2];
     for (k = 0; k < 3; k++) q[k] = wmin / st->w[k];
@@ -586,14 +595,14 @@ static void gbuffer_rows(tg_gbuffer *gb, const tri_edges *te, const screen_tri *
             depth[i] = wmin / qv;
             if (len2 > 1e-30f) {
                 r = pixel_rsqrt(len2);
-                gb->nx[i] = mx * r; gb->ny[i] = my * r; gb->nz[i] = mz * r;
+                g.nx[i] = mx * r; g.ny[i] = my * r; g.nz[i] = mz * r;
             } else {
-                gb->nx[i] = sf->fallback_normal.x; gb->ny[i] = sf->fallback_normal.y; gb->nz[i] = sf->fallback_normal.z;
+                g.nx[i] = sf.fallback_normal.x; g.ny[i] = sf.fallback_normal.y; g.nz[i] = sf.fallback_normal.z;
             }
-            gb->albedo_r[i] = sf->albedo_r; gb->albedo_g[i] = sf->albedo_g; gb->albedo_b[i] = sf->albedo_b;
-            gb->f0[i] = sf->f0;
-            if (gb->emit_r) { gb->emit_r[i] = sf->emit_r; gb->emit_g[i] = sf->emit_g; gb->emit_b[i] = sf->emit_b; }
-            if (gb->object) gb->object[i] = sf->object;
+            g.albedo_r[i] = sf.albedo_r; g.albedo_g[i] = sf.albedo_g; g.albedo_b[i] = sf.albedo_b;
+            g.f0[i] = sf.f0;
+            if (g.emit_r) { g.emit_r[i] = sf.emit_r; g.emit_g[i] = sf.emit_g; g.emit_b[i] = sf.emit_b; }
+            if (g.object) g.object[i] = sf.object;
             sky[i] = 0;
         }
     }
@@ -649,16 +658,57 @@ typedef struct raster_target {
     tg_real *depth;               /* depth-only mode */
 } raster_target;
 
-static void draw_screen_tri(const raster_target *rt, const screen_tri *st, int64_t area2)
+/* A clip-space vertex (inside the guard band, w > 0) to 28.4 screen
+ * coordinates.  Every path snaps through here, so a vertex shared by two
+ * triangles lands on the same integers whichever path draws them. */
+static void snap_vertex(const raster_target *rt, const clip_vertex *v, int32_t *sx, int32_t *sy)
 {
-    tri_edges te;
-    if (!edges_setup(&te, st->x, st->y, area2, rt->width, rt->row0, rt->row1)) return;
-    if (rt->gb) gbuffer_rows(rt->gb, &te, st, rt->sf);
-    else depth_rows(rt->depth, rt->width, &te, st, rt->clip.mode == MODE_ORTHO);
+    *sx = rt->half_w16 + snap_ndc(v->x, v->w, rt->half_w16);
+    *sy = rt->half_h16 - snap_ndc(v->y, v->w, rt->half_h16);
 }
 
-/* Draw a convex clip-space polygon (all vertices inside near/far and the
- * guard band) as a fan, facing decided once from its whole signed area. */
+/* Rasterize one snapped triangle: vertex k of the ordered triangle is
+ * v[idx[k]] (normals from nrm[idx[k]] when nrm is given). */
+static void draw_snapped(const raster_target *rt, const clip_vertex *v, const tg_vec3 *nrm,
+                         const int32_t *sx, const int32_t *sy, const int *idx, int64_t area2, int flip)
+{
+    screen_tri st;
+    tri_edges te;
+    int k;
+    for (k = 0; k < 3; k++) { st.x[k] = sx[idx[k]]; st.y[k] = sy[idx[k]]; }
+    if (!edges_setup(&te, st.x, st.y, area2, rt->width, rt->row0, rt->row1)) return;
+    for (k = 0; k < 3; k++) {
+        const clip_vertex *c = &v[idx[k]];
+        st.w[k] = c->w;
+        st.z[k] = c->z;
+        if (rt->gb) {
+            tg_vec3 n = nrm ? nrm[idx[k]] : c->n;
+            st.n[k] = flip ? tg_v3_neg(n) : n;
+        }
+    }
+    if (rt->gb) gbuffer_rows(rt->gb, &te, &st, rt->sf);
+    else depth_rows(rt->depth, rt->width, &te, &st, rt->clip.mode == MODE_ORTHO);
+}
+
+/* The common case: a triangle needing no clipping.  Normals come from nrm
+ * (loaded only once the triangle survives culling). */
+static void draw_triangle(const raster_target *rt, const clip_vertex *v, const tg_vec3 *nrm)
+{
+    static const int order_front[3] = { 0, 2, 1 }, order_back[3] = { 0, 1, 2 };
+    int32_t sx[3], sy[3];
+    int64_t area2;
+    int k, front;
+    for (k = 0; k < 3; k++) snap_vertex(rt, &v[k], &sx[k], &sy[k]);
+    area2 = signed_area2(sx, sy);
+    if (area2 == 0) return;                       /* zero area */
+    front = area2 < 0;                            /* counter-clockwise as seen, y down */
+    if (rt->gb && !front && rt->cull_back) return;
+    draw_snapped(rt, v, nrm, sx, sy, front ? order_front : order_back, front ? -area2 : area2,
+                 rt->gb && !front && rt->flip_back);
+}
+
+/* A clipped convex polygon, drawn as a fan; facing is decided once from
+ * its whole signed area. */
 static void draw_polygon(const raster_target *rt, const clip_vertex *poly, int n)
 {
     int32_t sx[MAX_POLY], sy[MAX_POLY];
@@ -666,48 +716,45 @@ static void draw_polygon(const raster_target *rt, const clip_vertex *poly, int n
     int i, front, flip;
     for (i = 0; i < n; i++) {
         if (poly[i].w <= 0) return;               /* a degenerate projection: nothing in front */
-        sx[i] = rt->half_w16 + snap_ndc(poly[i].x, poly[i].w, rt->half_w16);
-        sy[i] = rt->half_h16 - snap_ndc(poly[i].y, poly[i].w, rt->half_h16);
+        snap_vertex(rt, &poly[i], &sx[i], &sy[i]);
     }
     for (i = 0; i < n; i++) {
         int j = i + 1 == n ? 0 : i + 1;
         total += (int64_t)sx[i] * sy[j] - (int64_t)sx[j] * sy[i];
     }
-    if (total == 0) return;                       /* zero area */
-    front = total < 0;                            /* counter-clockwise as seen, y down */
+    if (total == 0) return;
+    front = total < 0;
     if (rt->gb && !front && rt->cull_back) return;
     flip = rt->gb && !front && rt->flip_back;
     for (i = 1; i + 1 < n; i++) {
-        screen_tri st;
-        int idx[3], k;
+        int idx[3];
+        int32_t tx[3], ty[3];
         int64_t area2;
         idx[0] = 0;
         idx[1] = front ? i + 1 : i;               /* order so area2 > 0 */
         idx[2] = front ? i : i + 1;
-        for (k = 0; k < 3; k++) {
-            const clip_vertex *v = &poly[idx[k]];
-            st.x[k] = sx[idx[k]]; st.y[k] = sy[idx[k]];
-            st.w[k] = v->w; st.z[k] = v->z;
-            st.n[k] = flip ? tg_v3_neg(v->n) : v->n;
-        }
-        area2 = signed_area2(st.x, st.y);
+        tx[0] = sx[idx[0]]; tx[1] = sx[idx[1]]; tx[2] = sx[idx[2]];
+        ty[0] = sy[idx[0]]; ty[1] = sy[idx[1]]; ty[2] = sy[idx[2]];
+        area2 = signed_area2(tx, ty);
         if (area2 <= 0) continue;                 /* sliver of the opposite facing */
-        draw_screen_tri(rt, &st, area2);
+        draw_snapped(rt, poly, NULL, sx, sy, idx, area2, flip);
     }
 }
 
-/* One clip-space triangle: reject, clip if needed, draw. */
-static void draw_clip_tri(const raster_target *rt, clip_vertex *v)
+/* One clip-space triangle: reject, clip if needed, draw.  When no clipping
+ * is needed and nrm is given, the normals are read from it lazily. */
+static void draw_clip_tri(const raster_target *rt, clip_vertex *v, const tg_vec3 *nrm)
 {
     unsigned c0 = outcode(&rt->clip, &v[0]), c1 = outcode(&rt->clip, &v[1]), c2 = outcode(&rt->clip, &v[2]);
     clip_vertex poly[MAX_POLY];
     int n;
     if ((c0 & c1 & c2) >> OUT_SCREEN_SHIFT) return;   /* wholly outside one plane */
     if (!((c0 | c1 | c2) & OUT_GUARD_MASK)) {
-        draw_polygon(rt, v, 3);
+        draw_triangle(rt, v, nrm);
         return;
     }
     poly[0] = v[0]; poly[1] = v[1]; poly[2] = v[2];
+    if (nrm) { poly[0].n = nrm[0]; poly[1].n = nrm[1]; poly[2].n = nrm[2]; }
     n = clip_polygon(&rt->clip, poly, 3, (c0 | c1 | c2) & OUT_GUARD_MASK);
     if (n >= 3) draw_polygon(rt, poly, n);
 }
@@ -747,7 +794,6 @@ void tg_raster_gbuffer(tg_gbuffer *gb, const tg_view *view, const tg_raster_mesh
             v[k].x = tg_v3_dot(d, rx);
             v[k].y = tg_v3_dot(d, ry);
             v[k].w = v[k].z = tg_v3_dot(d, rz);
-            v[k].n = mesh->nrm[3 * t + k];
         }
         rt.cull_back = !mat->twosided;
         rt.flip_back = mat->twosided;
@@ -756,7 +802,7 @@ void tg_raster_gbuffer(tg_gbuffer *gb, const tg_view *view, const tg_raster_mesh
         sf.emit_r = mat->emissive.x; sf.emit_g = mat->emissive.y; sf.emit_b = mat->emissive.z;
         sf.object = mesh->tri_object ? mesh->tri_object[t] : 0;
         sf.fallback_normal = mesh->nrm[3 * t];
-        draw_clip_tri(&rt, v);
+        draw_clip_tri(&rt, v, mesh->nrm + 3 * t);
     }
 }
 
@@ -782,6 +828,6 @@ void tg_raster_depth(tg_real *depth, int width, int height, const tg_mat4 *world
             v[k].w = orthographic ? TG_ONE : tg_add(tg_v3_dot(p, r3), m[15]);
             v[k].n = tg_v3(0, 0, 0);
         }
-        draw_clip_tri(&rt, v);
+        draw_clip_tri(&rt, v, NULL);
     }
 }
