@@ -71,11 +71,11 @@ static const char scene_spheres[] =
 static const char scene_columns[] =
     "# A colonnade: a row of columns with stepped arches under a beam, a wall\n"
     "# behind, over a floor (the kind of scene the HBIL paper shows).\n"
-    "camera pos -2 2.2 9  target 1.5 2 0  fov 55\n"
+    "camera pos -6 3 10  target 1 2 -1  fov 55\n"
     "material floor  albedo 0.55 0.5 0.45 f0 0.04\n"
     "material stone  albedo 0.75 0.7 0.62 f0 0.04\n"
     "material wall   albedo 0.6 0.3 0.2   f0 0.04\n"
-    "quad p0 -20 0 -6  p1 -20 0 6  p2 20 0 6  p3 20 0 -6  material floor name floor\n"
+    "quad p0 -24 0 -6  p1 -24 0 14  p2 24 0 14  p3 24 0 -6  material floor name floor\n"
     "box min -20 0 -4.4  max 20 6 -4  material wall  name back_wall\n"
     "box min -10.8 4 -0.5  max 10.8 4.6 0.5  material stone  name beam\n"
     "box min -10.8 0 -0.3  max -10.2 4 0.3  material stone  name column0\n"
