@@ -55,8 +55,8 @@ static tg_vec3 cross_dir(tg_vec3 a, tg_vec3 b)
     c[2] = (int64_t)a.x * b.y - (int64_t)a.y * b.x;
     for (i = 0; i < 3; i++) if ((c[i] < 0 ? -c[i] : c[i]) > m) m = c[i] < 0 ? -c[i] : c[i];
     while ((m >> s) >= ((int64_t)1 << 30)) s++;
-    return tg_v3_normalize(tg_v3((tg_real)tg_shr_round(c[0], s), (tg_real)tg_shr_round(c[1], s),
-                                 (tg_real)tg_shr_round(c[2], s)));
+    if (s > 0) for (i = 0; i < 3; i++) c[i] = tg_shr_round(c[i], s);
+    return tg_v3_normalize(tg_v3((tg_real)c[0], (tg_real)c[1], (tg_real)c[2]));
 #else
     return tg_v3_normalize(tg_v3_cross(a, b));
 #endif
