@@ -891,6 +891,91 @@ TEST(obj_from_disk)
     free(text);
 }
 
+/* ---- robustness: mutated scenes never crash and always explain ---- */
+
+static unsigned lcg_state = 12345u;
+static unsigned lcg(void) { lcg_state = lcg_state * 1664525u + 1013904223u; return lcg_state >> 8; }
+
+TEST(mutations)
+{
+    static const char alphabet[] = "0123456789-+.eE #\n\t/xaz\0";
+    static char buf[1 << 16];
+    int i, k, ok = 0, input = 0, other = 0, unexplained = 0;
+    const char *name;
+    for (i = 0; (name = tg_builtin_name(i)) != NULL; i++) {
+        const char *text = tg_builtin_scene(name);
+        size_t n = strlen(text);
+        for (k = 0; k < 400; k++) {
+            tg_scene *s;
+            tg_error err;
+            tg_status st;
+            size_t len = n, at, m = 1 + lcg() % 3, j;
+            memcpy(buf, text, n);
+            for (j = 0; j < m; j++) {
+                at = lcg() % len;
+                switch (lcg() % 3) {
+                case 0: buf[at] = alphabet[lcg() % (sizeof alphabet - 1)]; break;
+                case 1: memmove(buf + at, buf + at + 1, len - at - 1); len--; break;
+                default:
+                    if (len + 1 < sizeof buf) {
+                        memmove(buf + at + 1, buf + at, len - at);
+                        buf[at] = alphabet[lcg() % (sizeof alphabet - 1)];
+                        len++;
+                    }
+                }
+            }
+            st = parse_io(buf, len, "m.scene", NULL, &s, &err);
+            if (st == TG_OK) {
+                ok++;
+                if (check_invariants(s, "mutated") > 0) break;
+            } else if (st == TG_ERR_INPUT) {
+                input++;
+                if (err.line < 1 || err.col < 1 || !err.message[0]) unexplained++;
+            } else
+                other++;
+        }
+    }
+    CHECK(other == 0, "%d mutated scenes gave neither OK nor TG_ERR_INPUT", other);
+    CHECK(unexplained == 0, "%d input errors without LINE:COL or message", unexplained);
+    CHECK(ok > 50 && input > 200, "ok %d input %d: the mutations exercise both", ok, input);
+}
+
+/* A mesh file that changes between the two passes: a runtime error, no overrun. */
+typedef struct changing_io { int reads; } changing_io;
+
+static int changing_read(void *user, const char *path, const char **data, size_t *size)
+{
+    changing_io *c = (changing_io *)user;
+    static const char small[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    static const char big[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\nf 1 2 4\n";
+    (void)path;
+    *data = c->reads++ == 0 ? small : big;
+    *size = strlen(*data);
+    return 0;
+}
+
+TEST(mesh_changes_between_passes)
+{
+    changing_io c;
+    tg_io io;
+    tg_scene *s;
+    tg_error err;
+    static const char scene[] = CAM MAT "mesh file m.obj material m\n";
+    c.reads = 0;
+    io.user = &c;
+    io.read_file = changing_read;
+    CHECK(parse_io(scene, strlen(scene), "s.scene", &io, &s, &err) == TG_ERR_RUNTIME,
+          "changed mesh: %s", err.message);
+    CHECK(c.reads == 2, "read once per pass");
+    /* and with no error struct at all */
+    CHECK(parse_io(CAM "camra\n", 36, "s.scene", NULL, &s, NULL) == TG_ERR_INPUT, "NULL err");
+    {
+        tg_arena a;
+        tg_arena_init(&a, arena_mem, 10);
+        CHECK(tg_scene_parse(CAM, strlen(CAM), "s", NULL, &a, &s, NULL) == TG_ERR_MEMORY, "NULL err, memory");
+    }
+}
+
 int main(void)
 {
     RUN(builtins_parse);
@@ -912,5 +997,7 @@ int main(void)
     RUN(obj_bad_input);
     RUN(obj_arena);
     RUN(obj_from_disk);
+    RUN(mutations);
+    RUN(mesh_changes_between_passes);
     return check_summary();
 }

@@ -1237,7 +1237,7 @@ tg_status tg_scene_parse(const char *text, size_t size, const char *filename,
     (void)perm_end;
     if (bad || at > arena->size) {
         tg_error_set(err, TG_ERR_MEMORY, p.file, 0, 0, "the arena is too small for the scene");
-        err->bytes_needed = bad ? (size_t)-1 : at;
+        if (err) err->bytes_needed = bad ? (size_t)-1 : at;
         return TG_ERR_MEMORY;
     }
 
