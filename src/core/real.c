@@ -88,11 +88,28 @@ static int bit_length64(uint64_t v)
     return n + (int)v;
 }
 
+/* floor(sqrt(v)) for v < 2^32 in 32-bit arithmetic (cheap on 32-bit cores). */
+static uint32_t isqrt32(uint32_t v)
+{
+    uint32_t res = 0, bit = (uint32_t)1 << ((bit_length64(v) - 1) & ~1);
+    while (bit) {
+        if (v >= res + bit) {
+            v -= res + bit;
+            res = (res >> 1) + bit;
+        } else {
+            res >>= 1;
+        }
+        bit >>= 2;
+    }
+    return res;
+}
+
 /* floor(sqrt(v)), digit by digit: exact, one step per 2 bits of v. */
 uint32_t tg_isqrt64(uint64_t v)
 {
     uint64_t res = 0, bit;
     if (v == 0) return 0;
+    if (!(v >> 32)) return isqrt32((uint32_t)v);
     bit = (uint64_t)1 << ((bit_length64(v) - 1) & ~1);
     while (bit) {
         if (v >= res + bit) {
@@ -697,6 +714,12 @@ static tg_real dec_to_real(const decimal *dec, int *overflow)
 
 #endif
 
+/* Grammar: [+-] digits [. digits] [(e|E) [+-] digits], at least one mantissa
+ * digit (".5" and "5." are numbers).  No white space, "inf", "nan" or hex:
+ * "0x10" consumes only "0", so a caller that checks the count against the
+ * token length rejects it.  An exponent without digits ("1e", "1e+") is not
+ * consumed.  Huge exponents saturate (overflow set) or give 0.  The same
+ * text gives the same bits on every target: integer arithmetic only. */
 size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow)
 {
     decimal dec;
