@@ -76,7 +76,7 @@ typedef struct tri_edges {
 /* Set up the three edge functions of a triangle with area2 > 0 in 28.4
  * screen space (y down).  Edge i is opposite vertex i; E_i(p) >= 0 inside.
  * Returns 0 when the box holds no pixel centre. */
-static int edges_setup(tri_edges *t, const int32_t *x, const int32_t *y, int64_t area2,
+static inline int edges_setup(tri_edges *t, const int32_t *x, const int32_t *y, int64_t area2,
                        int width, int row0, int row1)
 {
     int32_t minx = x[0], maxx = x[0], miny = y[0], maxy = y[0];
@@ -116,9 +116,34 @@ static int edges_setup(tri_edges *t, const int32_t *x, const int32_t *y, int64_t
     return 1;
 }
 
-static int64_t signed_area2(const int32_t *x, const int32_t *y)
+static inline int64_t signed_area2(const int32_t *x, const int32_t *y)
 {
     return ((int64_t)x[1] - x[0]) * ((int64_t)y[2] - y[0]) - ((int64_t)y[1] - y[0]) * ((int64_t)x[2] - x[0]);
+}
+
+/* Edge functions at the start of `row`, pixel te->x0. */
+static inline void row_edges(const tri_edges *te, int row, int64_t *e)
+{
+    int64_t dy = row - te->oy;
+    e[0] = te->e[0] + dy * te->step_y[0];
+    e[1] = te->e[1] + dy * te->step_y[1];
+    e[2] = te->e[2] + dy * te->step_y[2];
+}
+
+/* The covered pixels of one row form one run (the triangle is convex):
+ * walk the edge functions to its first pixel *xa and return its end.  On
+ * return e[] holds the edge functions at *xa. */
+static inline int row_span(const tri_edges *te, int64_t *e, int *xa)
+{
+    int64_t e0 = e[0], e1 = e[1], e2 = e[2];
+    const int64_t s0 = te->step_x[0], s1 = te->step_x[1], s2 = te->step_x[2];
+    int x = te->x0, x1 = te->x1, xb;
+    while (x < x1 && (e0 | e1 | e2) < 0) { e0 += s0; e1 += s1; e2 += s2; x++; }
+    *xa = x;
+    e[0] = e0; e[1] = e1; e[2] = e2;
+    while (x < x1 && (e0 | e1 | e2) >= 0) { e0 += s0; e1 += s1; e2 += s2; x++; }
+    xb = x;
+    return xb;
 }
 
 void tg_raster_coverage_count(uint16_t *count, int width, int height,
@@ -145,15 +170,12 @@ void tg_raster_coverage_count(uint16_t *count, int width, int height,
         }
         if (!edges_setup(&te, x, y, area2, width, y0, y1)) continue;
         for (row = te.y0; row < te.y1; row++) {
-            int64_t dy = row - te.oy;
-            int64_t e0 = te.e[0] + dy * te.step_y[0];
-            int64_t e1 = te.e[1] + dy * te.step_y[1];
-            int64_t e2 = te.e[2] + dy * te.step_y[2];
+            int64_t e[3];
+            int xa, xb;
             uint16_t *line = count + (size_t)row * (size_t)width;
-            for (col = te.x0; col < te.x1; col++) {
-                if ((e0 | e1 | e2) >= 0) line[col]++;
-                e0 += te.step_x[0]; e1 += te.step_x[1]; e2 += te.step_x[2];
-            }
+            row_edges(&te, row, e);
+            xb = row_span(&te, e, &xa);
+            for (col = xa; col < xb; col++) line[col]++;
         }
     }
 }
@@ -177,7 +199,7 @@ typedef struct clip_ctx {
 #define GUARD_R TG_R(8.0f)
 
 /* Signed distance of v to plane p (>= 0 inside). */
-static tg_real plane_distance(const clip_ctx *c, const clip_vertex *v, int p)
+static inline tg_real plane_distance(const clip_ctx *c, const clip_vertex *v, int p)
 {
     switch (p) {
     case PL_LEFT: return tg_add(v->x, tg_mul(GUARD_R, v->w));
@@ -230,7 +252,7 @@ static clip_vertex clip_lerp(const clip_vertex *a, const clip_vertex *b, tg_real
  * needed); 8..13 outside the screen planes |x|, |y| <= w, near, far. */
 #define OUT_GUARD_MASK 0x3Fu
 #define OUT_SCREEN_SHIFT 8
-static unsigned outcode(const clip_ctx *c, const clip_vertex *v)
+static inline unsigned outcode(const clip_ctx *c, const clip_vertex *v)
 {
     unsigned code = 0;
     tg_real gw = tg_mul(GUARD_R, v->w), nw = tg_neg(v->w), ngw = tg_neg(gw);
@@ -282,7 +304,7 @@ static int clip_polygon(const clip_ctx *c, clip_vertex *poly, int n, unsigned pl
 /* snapping to 28.4                                                        */
 
 /* round(c / w * half16): NDC coordinate to sub-pixels from the image centre. */
-static int32_t snap_ndc(tg_real c, tg_real w, int32_t half16)
+static inline int32_t snap_ndc(tg_real c, tg_real w, int32_t half16)
 {
 #if TG_FIXED
     int64_t n = (int64_t)c * half16, h = w / 2;
@@ -440,21 +462,14 @@ static void gbuffer_rows(const tg_gbuffer *gbp, const tri_edges *te, const scree
     int row, col, W = g.width;
     bary_make(&b, st, te);
     for (row = te->y0; row < te->y1; row++) {
-        int64_t dy = row - te->oy;
-        int64_t e0 = te->e[0] + dy * te->step_y[0];
-        int64_t e1 = te->e[1] + dy * te->step_y[1];
-        int64_t e2 = te->e[2] + dy * te->step_y[2];
-        size_t i = (size_t)row * (size_t)W + (size_t)te->x0;
-        int seen = 0;
-        for (col = te->x0; col < te->x1; col++, i++,
+        int64_t e[3], e0, e1, e2;
+        int xa, xb = (row_edges(te, row, e), row_span(te, e, &xa));
+        size_t i = (size_t)row * (size_t)W + (size_t)xa;
+        e0 = e[0]; e1 = e[1]; e2 = e[2];
+        for (col = xa; col < xb; col++, i++,
              e0 += te->step_x[0], e1 += te->step_x[1], e2 += te->step_x[2]) {
             int64_t u0, u1, u2, su, qp;
             tg_real n[3];
-            if ((e0 | e1 | e2) < 0) {
-                if (seen) break;
-                continue;
-            }
-            seen = 1;
             u0 = (e0 - te->bias[0]) >> b.s;
             u1 = (e1 - te->bias[1]) >> b.s;
             u2 = (e2 - te->bias[2]) >> b.s;
@@ -485,20 +500,13 @@ static void depth_rows(tg_real *depth, int W, const tri_edges *te, const screen_
     int row, col;
     bary_make(&b, st, te);
     for (row = te->y0; row < te->y1; row++) {
-        int64_t dy = row - te->oy;
-        int64_t e0 = te->e[0] + dy * te->step_y[0];
-        int64_t e1 = te->e[1] + dy * te->step_y[1];
-        int64_t e2 = te->e[2] + dy * te->step_y[2];
-        size_t i = (size_t)row * (size_t)W + (size_t)te->x0;
-        int seen = 0;
-        for (col = te->x0; col < te->x1; col++, i++,
+        int64_t e[3], e0, e1, e2;
+        int xa, xb = (row_edges(te, row, e), row_span(te, e, &xa));
+        size_t i = (size_t)row * (size_t)W + (size_t)xa;
+        e0 = e[0]; e1 = e[1]; e2 = e[2];
+        for (col = xa; col < xb; col++, i++,
              e0 += te->step_x[0], e1 += te->step_x[1], e2 += te->step_x[2]) {
             int64_t u0, u1, u2, su, v;
-            if ((e0 | e1 | e2) < 0) {
-                if (seen) break;
-                continue;
-            }
-            seen = 1;
             u0 = (e0 - te->bias[0]) >> b.s;
             u1 = (e1 - te->bias[1]) >> b.s;
             u2 = (e2 - te->bias[2]) >> b.s;
@@ -527,7 +535,7 @@ typedef struct plane_basis {
     float fy20, fy01, fx02, fx10, inv_area, ox, oy;
 } plane_basis;
 
-static void plane_basis_make(plane_basis *pb, const screen_tri *st, const tri_edges *te)
+static inline void plane_basis_make(plane_basis *pb, const screen_tri *st, const tri_edges *te)
 {
     pb->fy20 = (float)(st->y[2] - st->y[0]);
     pb->fy01 = (float)(st->y[0] - st->y[1]);
@@ -539,7 +547,7 @@ static void plane_basis_make(plane_basis *pb, const screen_tri *st, const tri_ed
 }
 
 /* a(p) = a0 + lambda1 (a1 - a0) + lambda2 (a2 - a0), lambda from the edge functions. */
-static plane plane_make(const plane_basis *pb, float a0, float a1, float a2)
+static inline plane plane_make(const plane_basis *pb, float a0, float a1, float a2)
 {
     plane p;
     float d1 = a1 - a0, d2 = a2 - a0;
@@ -571,24 +579,16 @@ static void gbuffer_rows(const tg_gbuffer *gbp, const tri_edges *te, const scree
     pny = plane_make(&pb, st->n[0].y * q[0], st->n[1].y * q[1], st->n[2].y * q[2]);
     pnz = plane_make(&pb, st->n[0].z * q[0], st->n[1].z * q[1], st->n[2].z * q[2]);
     for (row = te->y0; row < te->y1; row++) {
-        int64_t dy64 = row - te->oy;
-        float dy = (float)dy64;
-        int64_t e0 = te->e[0] + dy64 * te->step_y[0];
-        int64_t e1 = te->e[1] + dy64 * te->step_y[1];
-        int64_t e2 = te->e[2] + dy64 * te->step_y[2];
-        float qv = pq.v + pq.dy * dy;
-        float mx = pnx.v + pnx.dy * dy, my = pny.v + pny.dy * dy, mz = pnz.v + pnz.dy * dy;
-        size_t i = (size_t)row * (size_t)W + (size_t)te->x0;
-        int seen = 0;
-        for (col = te->x0; col < te->x1; col++, i++,
-             e0 += te->step_x[0], e1 += te->step_x[1], e2 += te->step_x[2],
-             qv += pq.dx, mx += pnx.dx, my += pny.dx, mz += pnz.dx) {
+        int64_t e[3];
+        int xa, xb = (row_edges(te, row, e), row_span(te, e, &xa));
+        float dy = (float)(row - te->oy), dx = (float)(xa - te->x0);
+        float qv = pq.v + pq.dy * dy + pq.dx * dx;
+        float mx = pnx.v + pnx.dy * dy + pnx.dx * dx;
+        float my = pny.v + pny.dy * dy + pny.dx * dx;
+        float mz = pnz.v + pnz.dy * dy + pnz.dx * dx;
+        size_t i = (size_t)row * (size_t)W + (size_t)xa;
+        for (col = xa; col < xb; col++, i++, qv += pq.dx, mx += pnx.dx, my += pny.dx, mz += pnz.dx) {
             float len2, r;
-            if ((e0 | e1 | e2) < 0) {
-                if (seen) break;
-                continue;
-            }
-            seen = 1;
             if (!(qv > 0.0f)) continue;
             if (!sky[i] && wmin >= qv * depth[i]) continue;
             len2 = mx * mx + my * my + mz * mz;
@@ -620,20 +620,11 @@ static void depth_rows(tg_real *depth, int W, const tri_edges *te, const screen_
     if (ortho) pa = plane_make(&pb, st->z[0], st->z[1], st->z[2]);
     else pa = plane_make(&pb, wmin / st->w[0], wmin / st->w[1], wmin / st->w[2]);
     for (row = te->y0; row < te->y1; row++) {
-        int64_t dy64 = row - te->oy;
-        int64_t e0 = te->e[0] + dy64 * te->step_y[0];
-        int64_t e1 = te->e[1] + dy64 * te->step_y[1];
-        int64_t e2 = te->e[2] + dy64 * te->step_y[2];
-        float a = pa.v + pa.dy * (float)dy64;
-        size_t i = (size_t)row * (size_t)W + (size_t)te->x0;
-        int seen = 0;
-        for (col = te->x0; col < te->x1; col++, i++,
-             e0 += te->step_x[0], e1 += te->step_x[1], e2 += te->step_x[2], a += pa.dx) {
-            if ((e0 | e1 | e2) < 0) {
-                if (seen) break;
-                continue;
-            }
-            seen = 1;
+        int64_t e[3];
+        int xa, xb = (row_edges(te, row, e), row_span(te, e, &xa));
+        float a = pa.v + pa.dy * (float)(row - te->oy) + pa.dx * (float)(xa - te->x0);
+        size_t i = (size_t)row * (size_t)W + (size_t)xa;
+        for (col = xa; col < xb; col++, i++, a += pa.dx) {
             if (ortho) {
                 if (a < depth[i]) depth[i] = a;
             } else if (a > 0.0f && wmin < a * depth[i]) {
