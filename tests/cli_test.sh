@@ -8,6 +8,7 @@
 #  - render: PPM header "P6 W H 255" and byte size, PFM header (Pf / PF,
 #    little-endian scale -1.0) and byte size, frame numbering with %d/%03d,
 #    --explain, --quiet, determinism, unwritable output (exit 1);
+#  - view: framebuffer errors exit 1, usage errors exit 2;
 #  - diff: exit 0/1/2, its numbers, the -o difference image;
 #  - --help, --version, list.
 set -u
@@ -228,6 +229,17 @@ check_binary() {
     expect "$tag/unwritable_output_exit_1" [ "$rc" -eq 1 -a "$(err_lines)" -eq 1 ]
     expect "$tag/unwritable_output_message" grep -q 'error: cannot write' "$T/err"
     rm -rf "${O:?}"/*
+
+    # ---- view (framebuffer): device errors exit 1, usage errors exit 2 ----
+    run view builtin:cornell --size 16x12 --fbdev "$T/no_such_fb"
+    expect "$tag/view_missing_device_exit_1" [ "$rc" -eq 1 -a "$(err_lines)" -eq 1 ]
+    expect "$tag/view_missing_device_message" grep -q "error: .*no_such_fb" "$T/err"
+    run view builtin:cornell --fbdev /dev/null
+    expect "$tag/view_not_a_framebuffer_exit_1" [ "$rc" -eq 1 -a "$(err_lines)" -eq 1 ]
+    ONCE=1 refused "$tag/view_refuses_output" "^tinygi: error: option -o: not used by tinygi view" view builtin:cornell -o "$O/v.ppm"
+    refused "$tag/render_refuses_fbdev" "^tinygi: error: option --fbdev: not used by tinygi render" render builtin:cornell --fbdev /dev/fb0
+    ONCE=1 refused "$tag/view_missing_scene" "^tinygi: error: view: missing SCENE" view
+    ONCE=1 refused "$tag/view_bad_scene" "^$S/unknown_keyword.scene:3:1: error: " view "$S/unknown_keyword.scene"
 
     # ---- diff ----
     printf 'P6\n2 2\n255\n\012\024\036\050\062\074\106\120\132\144\156\170' >"$T/d1.ppm"

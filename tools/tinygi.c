@@ -3,6 +3,7 @@
  * images, list what is built in.
  *
  *   tinygi render SCENE [options]     SCENE is a file or builtin:NAME
+ *   tinygi view SCENE [options] [--fbdev PATH]   show frames on a framebuffer
  *   tinygi diff A B [--tolerance T] [-o DIFF.ppm]
  *   tinygi list
  *
@@ -27,6 +28,7 @@
 #include "hosted/file.h"
 #include "hosted/image.h"
 #include "hosted/imgdiff.h"
+#include "fbdev/fbdev.h"
 
 /* Limits of the command line (also in --help and the README). */
 #define CLI_MAX_SIDE TG_IMG_MAX_SIDE        /* 16384 pixels per side */
@@ -77,6 +79,8 @@ static void print_help(FILE *out)
 {
     fprintf(out,
         "usage: tinygi render SCENE [options]   render SCENE (a file or builtin:NAME)\n"
+        "       tinygi view SCENE [options] [--fbdev PATH]   show the frames on a Linux\n"
+        "                                       framebuffer (default /dev/fb0) instead\n"
         "       tinygi diff A B [--tolerance T] [-o DIFF.ppm]\n"
         "       tinygi list                     built-in scenes, AOVs, techniques\n"
         "       tinygi --help | --version\n"
@@ -225,6 +229,8 @@ static void pattern_path(const out_pattern *p, int frame, char *out)
 /* ---- render ---- */
 
 typedef struct render_opts {
+    int view;               /* tinygi view: to a framebuffer, no files */
+    const char *fbdev;      /* view: device path (NULL: /dev/fb0) */
     const char *scene;
     const char *output;
     int width, height, frames, aov, technique;
@@ -284,7 +290,7 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
 {
     static const char *const names[] = {
         "-o", "--size", "--frames", "--aov", "--technique", "--slices", "--samples",
-        "--radius", "--bounces", "--exposure", "--shadow-size"
+        "--radius", "--bounces", "--exposure", "--shadow-size", "--fbdev"
     };
     const char *a = argv[*i], *v = NULL, *name = NULL;
     char list[512];
@@ -308,8 +314,14 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
         usage_error("option %s: missing value", name);
         return 1;
     }
+    if ((!strcmp(name, "-o") && o->view) || (!strcmp(name, "--fbdev") && !o->view)) {
+        usage_error("option %s: not used by tinygi %s", name, o->view ? "view" : "render");
+        return 1;
+    }
     if (!strcmp(name, "-o")) {
         o->output = v;
+    } else if (!strcmp(name, "--fbdev")) {
+        o->fbdev = v;
     } else if (!strcmp(name, "--size")) {
         if (parse_size(v, &o->width, &o->height)) {
             usage_error("option --size: expected WxH with W,H in 1..%d and W*H <= %ld, got '%s'",
@@ -376,6 +388,7 @@ static int parse_render_args(int argc, char **argv, render_opts *o)
 {
     int i;
     memset(o, 0, sizeof *o);
+    o->view = !strcmp(argv[1], "view");
     o->output = "out.ppm";
     o->width = 320;
     o->height = 240;
@@ -396,12 +409,12 @@ static int parse_render_args(int argc, char **argv, render_opts *o)
         } else if (!o->scene) {
             o->scene = a;
         } else {
-            usage_error("render: unexpected argument '%s' (one SCENE only)", a);
+            usage_error("%s: unexpected argument '%s' (one SCENE only)", argv[1], a);
             return 1;
         }
     }
     if (!o->scene) {
-        usage_error("render: missing SCENE (a scene file or builtin:NAME)");
+        usage_error("%s: missing SCENE (a scene file or builtin:NAME)", argv[1]);
         return 1;
     }
     return 0;
@@ -653,12 +666,14 @@ static int cmd_render(int argc, char **argv)
         status = print_explain(&plan);
         goto done;
     }
+    if (o.view) goto create;
     /* Fail before a long render if the output cannot be written. */
     pattern_path(&pat, pat.numbered ? 0 : o.frames - 1, first);
     if (!status && tg_file_dir_writable(first, why, sizeof why)) {
         file_error(first, why);
         status = EXIT_RUNTIME;
     }
+create:
     if (!status) {
         frame_mem = malloc(plan.total_bytes ? plan.total_bytes : 1);
         if (!frame_mem) {
@@ -676,7 +691,12 @@ static int cmd_render(int argc, char **argv)
             status = exit_for(s);
         }
     }
-    if (!status) {
+    if (!status && o.view) {
+        if (tg_fbdev_view(o.fbdev, frame, o.width, o.height, o.frames, why, sizeof why)) {
+            usage_error("%s", why);
+            status = EXIT_RUNTIME;
+        }
+    } else if (!status) {
         tg_outfile_remove_on_signals();
         status = render_frames(&o, &pat, format, frame);
     }
@@ -807,9 +827,9 @@ int main(int argc, char **argv)
         printf("tinygi %s (%s)\n", TG_VERSION, NUMBER_DESCRIPTION);
         return 0;
     }
-    if (!strcmp(cmd, "render")) return cmd_render(argc, argv);
+    if (!strcmp(cmd, "render") || !strcmp(cmd, "view")) return cmd_render(argc, argv);
     if (!strcmp(cmd, "diff")) return cmd_diff(argc, argv);
     if (!strcmp(cmd, "list")) return cmd_list();
-    usage_error("unknown command '%s' (expected render, diff or list; see tinygi --help)", cmd);
+    usage_error("unknown command '%s' (expected render, view, diff or list; see tinygi --help)", cmd);
     return EXIT_INPUT;
 }
