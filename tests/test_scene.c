@@ -393,6 +393,8 @@ TEST(values_and_units)
               fabs(D(s->env.sh9[i].z)) == 3 * i + 3, "sh9 coefficient %d in order", i);
     CHECK(D(s->env.sh9[8].z) == -27, "negative sh9 allowed");
     CHECK(s->effects == (TG_EFFECT_FAR | TG_EFFECT_NEAR | TG_EFFECT_REPROJECTION), "effects 2");
+    st = parse("camera pos 0 10 0 target 0 0 0\n", &s, &err);
+    CHECK(st == TG_OK && veq(s->camera.up, 0, 1, 0), "a camera looking straight down parses (up kept as +Y)");
     st = parse(CAM "env uniform 0.5 0.25 0\neffects auto\n", &s, &err);
     CHECK(st == TG_OK && s->env.type == TG_ENV_UNIFORM && veq(s->env.uniform, 0.5, 0.25, 0), "uniform");
     CHECK(s->effects_auto, "effects auto");
