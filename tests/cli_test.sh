@@ -103,6 +103,24 @@ for oc in $OBJ_CASES; do
     printf '%b' "${HEAD}mesh file ${oc%%:*}.obj material white\n" >"$S/mesh_${oc%%:*}.scene"
 done
 
+# pfm_vs_ppm W H NORMAL.pfm NORMAL.ppm: the largest |0.5 n + 0.5 - ppm/255|
+# with the PFM's rows read bottom to top (od reads host byte order: the
+# caller checks the host is little-endian)
+pfm_vs_ppm() {
+    local w=$1 h=$2 hp hq
+    hp=$(printf 'PF\n%d %d\n-1.0\n' "$w" "$h" | wc -c)
+    hq=$(printf 'P6\n%d %d\n255\n' "$w" "$h" | wc -c)
+    { tail -c +$((hp + 1)) "$3" | od -An -v -tf4 | tr -s ' ' '\n' | grep -v '^$' | sed 's/^/f /'
+      tail -c +$((hq + 1)) "$4" | od -An -v -tu1 | tr -s ' ' '\n' | grep -v '^$' | sed 's/^/b /'
+    } | awk -v w="$w" -v h="$h" '$1 == "f" { f[nf++] = $2 } $1 == "b" { b[nb++] = $2 }
+        END { if (nf != w * h * 3 || nb != w * h * 3) { print 99; exit }
+              for (y = 0; y < h; y++) for (x = 0; x < w * 3; x++) {
+                  d = f[(h - 1 - y) * w * 3 + x] * 0.5 + 0.5 - b[y * w * 3 + x] / 255
+                  if (d < 0) d = -d; if (d > m) m = d }
+              print m + 0 }'
+}
+little_endian() { [ "$(printf '\001\000' | od -An -tu2 | tr -d ' ')" = 1 ]; }
+
 check_binary() {
     local tag=$1 c f line want col re oc obj
     # ---- --help, --version, list, no arguments ----
@@ -192,6 +210,11 @@ check_binary() {
         expect "$tag/pfm_${a}_PF" [ "$rc" -eq 0 -a "$(head -c 3 "$O/$a.pfm" 2>/dev/null)" = "$(printf 'PF\n')" \
             -a "$(wc -c <"$O/$a.pfm" 2>/dev/null)" -eq $((14 + 20 * 10 * 12)) ]
     done
+    if little_endian; then # the same normals in both files: PFM rows really go bottom to top
+        run render builtin:cornell --size 16x12 --aov normal -o "$O/n.pfm" --quiet
+        run render builtin:cornell --size 16x12 --aov normal -o "$O/n.ppm" --quiet
+        expect "$tag/pfm_rows_bottom_to_top" awk -v m="$(pfm_vs_ppm 16 12 "$O/n.pfm" "$O/n.ppm")" 'BEGIN { exit !(m < 0.01) }'
+    fi
     run render builtin:cornell --size 16x12 --frames 3 -o "$O/f%03d.ppm" --quiet
     expect "$tag/frames_numbered_%03d" [ "$rc" -eq 0 -a -f "$O/f000.ppm" -a -f "$O/f001.ppm" -a -f "$O/f002.ppm" -a ! -e "$O/f003.ppm" ]
     run render builtin:cornell --size 16x12 --frames 2 -o "$O/g%d.ppm" --quiet
