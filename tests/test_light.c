@@ -458,33 +458,44 @@ TEST(srgb_table_matches_formula)
     printf("# sRGB table: worst error %.4f LSB\n", worst);
 }
 
+static double aces_exact(double x)
+{
+    double y = x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14);
+    return y < 0 ? 0 : y > 1 ? 1 : y;
+}
+
 TEST(tonemap_monotone_zero_and_saturating)
 {
     static const tg_real big[4] = { TG_REAL_MAX, TG_R(100.0f), TG_R(7.3f), TG_R(1000.0f) };
     tg_real prev = 0;
     uint8_t rgb[12], prev8 = 0;
+    double worst = 0;
     int k, mono = 1, mono8 = 1;
-    CHECK(tg_tonemap_aces(0) == 0, "0 -> 0");
-    for (k = 0; k <= 40000; k++) {
-        tg_real x = rv(k * 0.0002);
+    CHECK(tg_tonemap_aces(0) == 0 && tg_tonemap8(0) == 0, "0 -> 0");
+    for (k = 0; k <= 80000; k++) {
+        tg_real x = rv(k * 0.0001);
         tg_real y = tg_tonemap_aces(x);
-        uint8_t c = tg_srgb8(y);
-        if (y < prev) mono = 0;
+        uint8_t c = tg_tonemap8(x);
+        double ideal = 255 * srgb_exact(aces_exact(dv(x))), err = fabs(c - ideal);
+        if (y < tg_sub(prev, TG_FIXED ? TG_EPS : 0)) mono = 0; /* Q16 rounding: within one ulp */
         if (c < prev8) mono8 = 0;
+        if (err > worst) worst = err;
         CHECK(y >= 0 && y <= TG_ONE, "range %g", dv(y));
+        CHECK(fabs(dv(y) - aces_exact(dv(x))) < (TG_FIXED ? 1e-4 : 1e-6), "ACES fit at %g: %g", dv(x), dv(y));
         prev = y; prev8 = c;
     }
     CHECK(mono && mono8, "monotone (linear %d, 8-bit %d)", mono, mono8);
-    CHECK(fabs(dv(tg_tonemap_aces(TG_R(0.5f))) - 0.5 * (2.51 * 0.5 + 0.03) / (0.5 * (2.43 * 0.5 + 0.59) + 0.14)) < 1e-3,
-          "ACES fit at 0.5: %g", dv(tg_tonemap_aces(TG_R(0.5f))));
+    CHECK(worst <= 0.5 + 1e-3, "tonemap8 vs the exact curve: %.5f LSB", worst);
+    printf("# tonemap8: worst error %.4f LSB against 255 srgb(aces(x))\n", worst);
     tg_tonemap_row8(big, big, big, 4, TG_R(4.0f), rgb);
     for (k = 0; k < 12; k++) CHECK(rgb[k] == 255, "HDR saturates to white, got %d", rgb[k]);
     {
-        tg_real zero[2] = { 0, 0 }, quarter[2] = { TG_R(0.25f), TG_R(0.25f) };
+        tg_real zero[2] = { 0, 0 }, quarter[2] = { TG_R(0.25f), TG_R(0.125f) };
         tg_tonemap_row8(zero, zero, zero, 2, TG_ONE, rgb);
         for (k = 0; k < 6; k++) CHECK(rgb[k] == 0, "black stays black");
-        tg_tonemap_row8(quarter, quarter, quarter, 1, TG_R(2.0f), rgb);
-        CHECK(rgb[0] == tg_srgb8(tg_tonemap_aces(TG_R(0.5f))), "exposure multiplies before the curve");
+        tg_tonemap_row8(quarter, quarter + 1, quarter, 1, TG_R(2.0f), rgb);
+        CHECK(rgb[0] == tg_tonemap8(TG_R(0.5f)) && rgb[1] == tg_tonemap8(TG_R(0.25f)),
+              "exposure multiplies before the curve");
     }
 }
 

@@ -12,6 +12,8 @@
  * (Reinhard x / (1 + x) never reaches white and flattens contrast.)
  *
  * sRGB encoding is by table (no pow at run time): correctly rounded to 8 bits.
+ * The 8-bit output is monotone in both builds; tg_tonemap_aces on its own in
+ * Q16.16 is monotone up to one ulp of rounding.
  */
 #ifndef TG_TONEMAP_H
 #define TG_TONEMAP_H
@@ -26,7 +28,12 @@ tg_real tg_tonemap_aces(tg_real x);
 /* Linear [0, 1] to the 8-bit sRGB code, correctly rounded; clamps outside. */
 uint8_t tg_srgb8(tg_real linear);
 
-/* n pixels of linear RGB planes -> exposure -> ACES -> sRGB, interleaved RGB bytes. */
+/* The 8-bit sRGB code of tg_tonemap_aces(x), correctly rounded against the
+ * exact curve (within 0.5 LSB), from a table of thresholds on x: no division. */
+uint8_t tg_tonemap8(tg_real x);
+
+/* n pixels of linear RGB planes -> exposure -> ACES -> sRGB, interleaved RGB
+ * bytes (tg_tonemap8 per channel). */
 void tg_tonemap_row8(const tg_real *r, const tg_real *g, const tg_real *b, int n,
                      tg_real exposure, uint8_t *rgb);
 
