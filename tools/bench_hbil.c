@@ -2,6 +2,8 @@
  * bench_hbil.c - time the GI chain on a 320x240 analytic groove G-buffer:
  * 4x4 split, the HBIL kernel on the 16 sub-images (2 slices, 16 samples),
  * merge, and the spatial filter; prints the median of 15 runs in ms.
+ * `bench_hbil 1` runs once (for callgrind); `bench_hbil 15 out.bin` also
+ * writes ao, bent xyz and cone as 5 x W x H raw floats for before/after diffs.
  *
  *   make BUILD=build-hbil
  *   cc -std=c99 -O2 -D_POSIX_C_SOURCE=200809L -Isrc tools/bench_hbil.c build-hbil/libtinygi.a -lm -o build-hbil/bench_hbil
@@ -21,7 +23,7 @@
 #define W 320
 #define H 240
 #define N (W * H)
-#define RUNS 15
+#define MAX_RUNS 15
 
 static double now_ms(void)
 {
@@ -63,14 +65,31 @@ static void groove(tg_view *v)
         }
 }
 
-int main(void)
+/* Write ao, bent xyz, cone (floats, N each) for before/after comparisons. */
+static void dump(const char *path)
+{
+    FILE *f = fopen(path, "wb");
+    const tg_real *ch[5] = { ao, bx, by, bz, cone };
+    int k, i;
+    if (!f) { perror(path); exit(1); }
+    for (k = 0; k < 5; k++)
+        for (i = 0; i < N; i++) {
+            float v = tg_to_float(ch[k][i]);
+            fwrite(&v, sizeof v, 1, f);
+        }
+    fclose(f);
+}
+
+/* usage: bench_hbil [RUNS [DUMP_FILE]]  (RUNS default 15; 1 for callgrind) */
+int main(int argc, char **argv)
 {
     tg_view v;
     tg_denoise_params dp;
     tg_denoise_io dio;
     void *scratch = malloc(tg_denoise_bytes(W, H));
-    double t[RUNS], sum_ao = 0;
-    int r, i, j, k;
+    double t[MAX_RUNS], sum_ao = 0;
+    int r, i, j, k, RUNS = argc > 1 ? atoi(argv[1]) : MAX_RUNS;
+    if (RUNS < 1 || RUNS > MAX_RUNS) RUNS = MAX_RUNS;
     groove(&v);
     tg_denoise_defaults(&dp);
     for (r = 0; r < RUNS; r++) {
@@ -109,6 +128,7 @@ int main(void)
     qsort(t, RUNS, sizeof t[0], cmp);
     printf("bench_hbil %s %dx%d: split+kernel+merge+filter median %.2f ms (min %.2f, max %.2f), mean AO %.4f\n",
            TG_NUMBER_NAME, W, H, t[RUNS / 2], t[0], t[RUNS - 1], sum_ao / N);
+    if (argc > 2) dump(argv[2]);
     free(scratch);
     return 0;
 }
