@@ -41,6 +41,7 @@ void tg_denoise_begin(const tg_denoise_io *io, void *scratch)
     }
 }
 
+/* 1-D tap weights (1/2, 1, 1, 1, 1/2); the 2-D weight is their product. */
 static const tg_real tap_w[5] = { TG_R(0.5f), TG_ONE, TG_ONE, TG_ONE, TG_R(0.5f) };
 
 static tg_real normal_weight(tg_real d)
@@ -50,41 +51,86 @@ static tg_real normal_weight(tg_real d)
     return d;
 }
 
-static void filter_pixel(const tg_denoise_params *p, const tg_denoise_io *io, const tg_real *in, int x, int y)
+/* Per-call constants: the present channels (input plane, output) and the
+ * 5x5 product weights. */
+typedef struct dn_ctx {
+    const tg_denoise_params *p;
+    const tg_denoise_io *io;
+    int nch;
+    const tg_real *in[DN_CH];
+    tg_real *out[DN_CH];
+    tg_real tap2[5][5];
+} dn_ctx;
+
+static void dn_ctx_init(dn_ctx *c, const tg_denoise_params *p, const tg_denoise_io *io, const tg_real *scratch)
 {
-    int w = io->width, h = io->height, dx, dy, k;
-    size_t n = (size_t)w * h, i = (size_t)y * w + x;
-    tg_real sum[DN_CH], wsum = 0, zi = io->depth[i];
-    tg_vec3 ni = tg_v3(io->nx[i], io->ny[i], io->nz[i]);
-    tg_real ztol = tg_mul(p->depth_tolerance, zi);
-    memset(sum, 0, sizeof sum);
-    for (dy = -2; dy <= 2; dy++) {
-        int yy = y + dy;
-        if (yy < 0 || yy >= h) continue;
-        for (dx = -2; dx <= 2; dx++) {
-            int xx = x + dx;
-            size_t j;
+    size_t n = (size_t)io->width * io->height;
+    int k, dx, dy;
+    c->p = p;
+    c->io = io;
+    c->nch = 0;
+    for (k = 0; k < DN_CH; k++) {
+        tg_real *ch = channel(io, k);
+        if (!ch) continue;
+        c->in[c->nch] = scratch + (size_t)k * n;
+        c->out[c->nch] = ch;
+        c->nch++;
+    }
+    for (dy = 0; dy < 5; dy++)
+        for (dx = 0; dx < 5; dx++) c->tap2[dy][dx] = tg_mul(tap_w[dx], tap_w[dy]);
+}
+
+/* The weights of the window's valid taps (depth and normal aware); returns
+ * the count, fills tap index and weight. */
+static int filter_taps(const dn_ctx *c, int x, int y, size_t *restrict tj, tg_real *restrict tw)
+{
+    const tg_denoise_io *io = c->io;
+    const tg_real *restrict depth = io->depth, *restrict nx = io->nx, *restrict ny = io->ny, *restrict nz = io->nz;
+    const uint8_t *sky = io->sky;
+    int w = io->width, h = io->height, xx, yy, nt = 0;
+    int xa = x < 2 ? 0 : x - 2, xb = x + 2 >= w ? w - 1 : x + 2;
+    int ya = y < 2 ? 0 : y - 2, yb = y + 2 >= h ? h - 1 : y + 2;
+    size_t i = (size_t)y * w + x;
+    tg_real zi = depth[i], nix = nx[i], niy = ny[i], niz = nz[i];
+    tg_real ztol = tg_mul(c->p->depth_tolerance, zi);
+    tg_real inv_ztol = tg_div(TG_ONE, ztol);
+    for (yy = ya; yy <= yb; yy++) {
+        const tg_real *tap_row = c->tap2[yy - y + 2];
+        size_t row = (size_t)yy * w;
+        for (xx = xa; xx <= xb; xx++) {
+            size_t j = row + xx;
             tg_real wt, dz;
-            if (xx < 0 || xx >= w) continue;
-            j = (size_t)yy * w + xx;
-            if ((io->sky && io->sky[j]) || io->depth[j] <= 0) continue;
-            dz = tg_abs(tg_sub(io->depth[j], zi));
+            if ((sky && sky[j]) || depth[j] <= 0) continue;
+            dz = tg_abs(tg_sub(depth[j], zi));
             if (dz >= ztol) continue;
-            wt = tg_mul(tg_mul(tap_w[dx + 2], tap_w[dy + 2]), tg_sub(TG_ONE, tg_div(dz, ztol)));
-            wt = tg_mul(wt, normal_weight(tg_v3_dot(ni, tg_v3(io->nx[j], io->ny[j], io->nz[j]))));
+            wt = tg_mul(tap_row[xx - x + 2], tg_sub(TG_ONE, tg_mul(dz, inv_ztol)));
+            wt = tg_mul(wt, normal_weight(tg_v3_dot(tg_v3(nix, niy, niz), tg_v3(nx[j], ny[j], nz[j]))));
             if (wt <= 0) continue;
-            for (k = 0; k < DN_CH; k++)
-                if (channel(io, k)) sum[k] = tg_add(sum[k], tg_mul(wt, in[(size_t)k * n + j]));
-            wsum = tg_add(wsum, wt);
+            tj[nt] = j;
+            tw[nt] = wt;
+            nt++;
         }
     }
+    return nt;
+}
+
+static void filter_pixel(const dn_ctx *c, int x, int y)
+{
+    const tg_denoise_io *io = c->io;
+    size_t i = (size_t)y * io->width + x, tj[25];
+    tg_real tw[25], wsum = 0;
+    int nt = filter_taps(c, x, y, tj, tw), t, k;
+    for (t = 0; t < nt; t++) wsum = tg_add(wsum, tw[t]);
     if (wsum <= 0) return;   /* the centre always weighs 1: cannot happen */
-    for (k = 0; k < DN_CH; k++) {
-        tg_real *c = channel(io, k);
-        if (c) c[i] = tg_div(sum[k], wsum);
+    for (k = 0; k < c->nch; k++) {
+        const tg_real *restrict in = c->in[k];
+        tg_real sum = 0;
+        for (t = 0; t < nt; t++) sum = tg_add(sum, tg_mul(tw[t], in[tj[t]]));
+        c->out[k][i] = tg_div(sum, wsum);
     }
     if (io->bent_x && io->bent_y && io->bent_z) {
-        tg_vec3 b = tg_v3_normalize_or(tg_v3(io->bent_x[i], io->bent_y[i], io->bent_z[i]), ni);
+        tg_vec3 b = tg_v3_normalize_or(tg_v3(io->bent_x[i], io->bent_y[i], io->bent_z[i]),
+                                       tg_v3(io->nx[i], io->ny[i], io->nz[i]));
         io->bent_x[i] = b.x; io->bent_y[i] = b.y; io->bent_z[i] = b.z;
     }
     io->ao[i] = tg_saturate(io->ao[i]);
@@ -93,14 +139,16 @@ static void filter_pixel(const tg_denoise_params *p, const tg_denoise_io *io, co
 
 void tg_denoise_rows(const tg_denoise_params *p, const tg_denoise_io *io, const void *scratch, int y0, int y1)
 {
+    dn_ctx c;
     int x, y;
     if (y0 < 0) y0 = 0;
     if (y1 > io->height) y1 = io->height;
+    dn_ctx_init(&c, p, io, (const tg_real *)scratch);
     for (y = y0; y < y1; y++)
         for (x = 0; x < io->width; x++) {
             size_t i = (size_t)y * io->width + x;
             if ((io->sky && io->sky[i]) || io->depth[i] <= 0) continue;
-            filter_pixel(p, io, (const tg_real *)scratch, x, y);
+            filter_pixel(&c, x, y);
         }
 }
 
