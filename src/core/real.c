@@ -26,7 +26,7 @@
  *
  *   function        domain                      fixed        float
  *   tg_sqrt         x >= 0                      0.5000 ulp   rel 1.6e-7
- *   tg_rsqrt        x > 0 (fixed: x >= 2^-15)   0.5000 ulp   rel 1.8e-7
+ *   tg_rsqrt        x > 0                       0.5000 ulp   rel 1.8e-7
  *   tg_sin          fixed all; float |x| < 2^22 0.5001 ulp   rel 1.5e-7; abs 1.1e-9 near k pi
  *   tg_cos          as sin                      0.5001 ulp   rel 1.4e-7; abs 1.1e-9 near zeros
  *   tg_tan          |x| <= pi/2 - 2^-10         0.5000 ulp   rel 2.2e-7
