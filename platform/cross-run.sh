@@ -12,9 +12,9 @@ SCENES=${CROSS_SCENES:-"cornell spheres columns"}
 SIZE=${CROSS_SIZE:-64x48}
 FRAMES=${CROSS_FRAMES:-2}
 AOVS=${CROSS_AOVS:-color,depth,normal,ao}; AOVS=${AOVS//,/+} # QEMU options take commas
-M0_SIZE=${CROSS_M0_SIZE:-16x12}
+M0_RUNS=${CROSS_M0_RUNS:-"4x3:color 6x4:ao+depth+normal"} # SIZE:AOVS, one frame each
 M0_SCENES=${CROSS_M0_SCENES:-cornell}
-M0_ARENA=${CROSS_M0_ARENA:-10240}
+M0_ARENA=${CROSS_M0_ARENA:-11008}
 MAKE=${MAKE:-make}
 HOST_CC=${HOST_CC:-cc}
 SKIP=${SKIP:-}
@@ -64,6 +64,7 @@ target_run() { # how to run a Linux binary
     esac
 }
 target_machine() { case $1 in m3) echo mps2-an385 ;; m4f) echo mps2-an386 ;; m0) echo microbit ;; esac; }
+target_opt() { [ "$1" = m0 ] && echo -Os || echo -O2; } # 256 KB of flash
 target_nums() { [ "$1" = m0 ] && echo fixed || echo "float fixed"; }
 is_bare() { case $1 in m3|m4f|m0) return 0 ;; *) return 1 ;; esac; }
 
@@ -75,8 +76,12 @@ build_target() {
     local t=$1 cc ar flags num lib
     cc=$(target_cc "$t"); ar=$(target_ar "$t"); flags=$(target_flags "$t")
     command -v "$cc" >/dev/null || { fail "$t: build" "$cc not installed"; return 1; }
-    if ! $MAKE -s -j2 BUILD="$OUT/$t" CC="$cc" AR="$ar" EXTRA_CFLAGS="$flags" SKIP="$SKIP" \
-        "$OUT/$t/libtinygi.a" "$OUT/$t/libtinygi-fixed.a" >"$LOG/$t-core.log" 2>&1; then
+    # Objects built with other flags are stale (make does not track flags).
+    local stamp="$cc $(target_opt "$t") $flags"
+    if [ -d "$OUT/$t" ] && [ "$(cat "$OUT/$t/.flags" 2>/dev/null)" != "$stamp" ]; then rm -rf "${OUT:?}/$t"; fi
+    mkdir -p "$OUT/$t"; echo "$stamp" >"$OUT/$t/.flags"
+    if ! $MAKE -s -j2 BUILD="$OUT/$t" CC="$cc" AR="$ar" OPT="$(target_opt "$t")" EXTRA_CFLAGS="$flags" \
+        SKIP="$SKIP" "$OUT/$t/libtinygi.a" "$OUT/$t/libtinygi-fixed.a" >"$LOG/$t-core.log" 2>&1; then
         fail "$t: build core" "see $LOG/$t-core.log"; tail -n 15 "$LOG/$t-core.log"; return 1
     fi
     for num in $(target_nums "$t"); do
@@ -99,7 +104,7 @@ build_bare() {
     common="-Wl,--gc-sections -Wl,--undefined=tg_vectors -L$BM -Isrc -I$BM"
     if [ "$t" = m0 ]; then # no C library at all: raw semihosting, our memcpy, libgcc last
         # shellcheck disable=SC2086
-        $cc $CFLAGS $flags $(numdef "$num") -DTG_BM_ARENA_BYTES="$M0_ARENA" -ffreestanding -nostdlib \
+        $cc $CFLAGS -Os $flags $(numdef "$num") -DTG_BM_ARENA_BYTES="$M0_ARENA" -ffreestanding -nostdlib \
             $common -Tmicrobit.ld -Wl,-Map="$OUT/$t/render-$num.map" \
             $BM/startup.c $BM/semihost.c $BM/render.c $BM/port_semihost.c $BM/libc_mini.c "$lib" -lgcc \
             -o "$OUT/$t/render-$num.elf" >"$LOG/$t-$num.log" 2>&1
@@ -157,13 +162,13 @@ run_tests() {
     done
 }
 
-# run_driver TARGET NUM DIR SIZE SHADOW SCENES...
+# run_driver TARGET NUM DIR SIZE SHADOW AOVS FRAMES SCENES...
 run_driver() {
-    local t=$1 num=$2 dir=$3 size=$4 shadow=$5; shift 5
+    local t=$1 num=$2 dir=$3 size=$4 shadow=$5 aovs=$6 frames=$7; shift 7
     local args runner
     rm -rf "$dir"; mkdir -p "$dir"
     if is_bare "$t"; then
-        args="arg=render,arg=out=$dir,arg=size=$size,arg=frames=$FRAMES,arg=aovs=$AOVS,arg=shadow=$shadow"
+        args="arg=render,arg=out=$dir,arg=size=$size,arg=frames=$frames,arg=aovs=$aovs,arg=shadow=$shadow"
         for s in "$@"; do args="$args,arg=$s"; done
         timeout "$QEMU_TIMEOUT" qemu-system-arm -M "$(target_machine "$t")" -nographic -monitor none \
             -serial none -semihosting-config "enable=on,target=native,$args" \
@@ -171,7 +176,7 @@ run_driver() {
     else
         runner=$(target_run "$t")
         timeout "$QEMU_TIMEOUT" $runner "$OUT/$t/render-$num" "out=$dir" "size=$size" \
-            "frames=$FRAMES" "aovs=$AOVS" "shadow=$shadow" "$@" >"$dir.log" 2>&1
+            "frames=$frames" "aovs=$aovs" "shadow=$shadow" "$@" >"$dir.log" 2>&1
     fi
 }
 
@@ -188,11 +193,16 @@ compare_dir() {
     else fail "$name" "differs from x86_64:$bad"; fi
 }
 
+check_run() { # NAME STATUS DIR
+    if [ "$2" -eq 0 ]; then ok "$1: runs (exit 0)"
+    else fail "$1: runs" "exit $2: $(tail -n 5 "$3.log" | tr '\n' ' ')"; fi
+}
+
 # ---- x86-64: the reference ----
 # shellcheck disable=SC2086
 build_target x86_64 || { echo "$passed passed, $failed failed"; exit 1; }
 for num in float fixed; do
-    if run_driver x86_64 "$num" "$OUT/out/x86_64/$num" "$SIZE" "$SHADOW" $SCENES; then
+    if run_driver x86_64 "$num" "$OUT/out/x86_64/$num" "$SIZE" "$SHADOW" "$AOVS" "$FRAMES" $SCENES; then
         ok "x86_64/$num: render $(ls "$OUT/out/x86_64/$num" | wc -l) files"
     else fail "x86_64/$num: render" "$(tail -n 5 "$OUT/out/x86_64/$num.log")"; fi
 done
@@ -200,26 +210,35 @@ if build_hosted x86_64; then
     if run_cli x86_64 "$OUT/out/x86_64/cli"; then ok "x86_64: tinygi render ($CLI_SCENES)"
     else fail "x86_64: tinygi render" "$(tail -n 5 "$OUT/out/x86_64/cli.log")"; fi
 fi
-# shellcheck disable=SC2086
-run_driver x86_64 fixed "$OUT/out/x86_64/m0-fixed" "$M0_SIZE" "$M0_SHADOW" $M0_SCENES \
-    || fail "x86_64/fixed at $M0_SIZE: render" "$(tail -n 5 "$OUT/out/x86_64/m0-fixed.log")"
+i=0
+for run in $M0_RUNS; do # references for the Cortex-M0's smaller frames
+    i=$((i + 1))
+    # shellcheck disable=SC2086
+    run_driver x86_64 fixed "$OUT/out/x86_64/m0-$i" "${run%%:*}" "$M0_SHADOW" "${run#*:}" 1 $M0_SCENES \
+        || fail "x86_64/fixed $run: render" "$(tail -n 5 "$OUT/out/x86_64/m0-$i.log")"
+done
 
 # ---- the other targets ----
 for t in $TARGETS; do
     build_target "$t" || continue
+    if [ "$t" = m0 ]; then
+        i=0
+        for run in $M0_RUNS; do
+            i=$((i + 1)); dir="$OUT/out/$t/fixed-$i"
+            # shellcheck disable=SC2086
+            run_driver "$t" fixed "$dir" "${run%%:*}" "$M0_SHADOW" "${run#*:}" 1 $M0_SCENES
+            check_run "$t/fixed $run" $? "$dir"
+            compare_dir "$t/fixed $run" "$OUT/out/x86_64/m0-$i" "$dir"
+            grep -h '^startup: stack\|fixed: frame' "$dir.log" | sed 's/^/cross: m0 /'
+        done
+        continue
+    fi
     for num in $(target_nums "$t"); do
-        dir="$OUT/out/$t/$num"; ref="$OUT/out/x86_64/$num"
-        if [ "$t" = m0 ]; then
-            # shellcheck disable=SC2086
-            run_driver "$t" "$num" "$dir" "$M0_SIZE" "$M0_SHADOW" $M0_SCENES; ref="$OUT/out/x86_64/m0-fixed"
-        else
-            # shellcheck disable=SC2086
-            run_driver "$t" "$num" "$dir" "$SIZE" "$SHADOW" $SCENES
-        fi
-        rc=$?
-        if [ $rc -eq 0 ]; then ok "$t/$num: runs (exit 0)"
-        else fail "$t/$num: runs" "exit $rc: $(tail -n 5 "$dir.log" | tr '\n' ' ')"; fi
-        compare_dir "$t/$num" "$ref" "$dir"
+        dir="$OUT/out/$t/$num"
+        # shellcheck disable=SC2086
+        run_driver "$t" "$num" "$dir" "$SIZE" "$SHADOW" "$AOVS" "$FRAMES" $SCENES
+        check_run "$t/$num" $? "$dir"
+        compare_dir "$t/$num" "$OUT/out/x86_64/$num" "$dir"
     done
     if ! is_bare "$t" && build_hosted "$t"; then
         run_cli "$t" "$OUT/out/$t/cli" || fail "$t: tinygi render" "$(tail -n 5 "$OUT/out/$t/cli.log")"

@@ -1,7 +1,8 @@
 /*
  * render.c - tinygi's portable render driver: renders built-in scenes at a
- * small size and writes, per scene, SCENE.ppm (8-bit sRGB colour) and one
- * little-endian PFM per AOV (SCENE.color.pfm, SCENE.depth.pfm, ...).
+ * small size and writes, per scene, one little-endian PFM per AOV
+ * (SCENE.color.pfm, SCENE.depth.pfm, ...) and, when colour is among them,
+ * SCENE.ppm (8-bit sRGB).
  * It is the same C99 file on every target - Linux on x86-64, i686, s390x
  * and powerpc (port_stdio.c), Cortex-M3/M4F with newlib and Cortex-M0 with
  * no C library at all (port_semihost.c) - so `make cross` can compare the
@@ -36,6 +37,10 @@
 #endif
 
 static unsigned char arena_memory[TG_BM_ARENA_BYTES] __attribute__((aligned(16)));
+
+/* Helpers that need big buffers stay out of render_scene's stack frame,
+ * which is live during the whole render (the deepest stack use). */
+#define NOINLINE __attribute__((noinline))
 
 /* ---- tiny string helpers (no libc on the smallest targets) ---- */
 static size_t str_len(const char *s)
@@ -131,7 +136,7 @@ static void header(char *buf, size_t cap, const char *magic, int w, int h, const
     cat_str(buf, cap, &at, tail);
 }
 
-static int write_ppm(const tg_frame *frame, int w, int h, const char *dir, const char *scene, uint8_t *row8)
+NOINLINE static int write_ppm(const tg_frame *frame, int w, int h, const char *dir, const char *scene, uint8_t *row8)
 {
     char path[160], head[48];
     int y, bad = 0, f = open_output(dir, scene, ".ppm", path, sizeof path);
@@ -146,7 +151,7 @@ static int write_ppm(const tg_frame *frame, int w, int h, const char *dir, const
     return bad ? -1 : 0;
 }
 
-static int write_pfm(const tg_frame *frame, tg_aov aov, int w, int h, const char *dir,
+NOINLINE static int write_pfm(const tg_frame *frame, tg_aov aov, int w, int h, const char *dir,
                      const char *scene, tg_real *row, unsigned char *bytes)
 {
     char path[160], head[48], suffix[24];
@@ -176,7 +181,7 @@ typedef struct settings {
     uint32_t aovs;
 } settings;
 
-static void log_error(const char *what, const tg_error *err)
+NOINLINE static void log_error(const char *what, const tg_error *err)
 {
     char msg[400];
     size_t at = 0;
@@ -189,8 +194,9 @@ static void log_error(const char *what, const tg_error *err)
 
 static int status_exit(tg_status s) { return s == TG_ERR_MEMORY ? 3 : s == TG_ERR_INPUT ? 2 : 1; }
 
-/* Plan with the AOVs the core accepts for this scene (colour always). */
-static tg_status plan_scene(tg_plan *plan, const tg_scene *scene, const settings *st,
+/* Plan with the AOVs the core accepts for this scene: when the whole set
+ * cannot be planned, drop one AOV at a time (and say so). */
+NOINLINE static tg_status plan_scene(tg_plan *plan, const tg_scene *scene, const settings *st,
                             const char *name, tg_error *err)
 {
     tg_request req;
@@ -199,16 +205,15 @@ static tg_status plan_scene(tg_plan *plan, const tg_scene *scene, const settings
     req.width = st->width;
     req.height = st->height;
     req.frames = st->frames;
-    req.aovs = st->aovs | (1u << TG_AOV_COLOR);
+    req.aovs = st->aovs;
     if (st->shadow > 0) req.shadow_map_size = st->shadow;
     if (st->technique >= 0) req.technique = (tg_technique)st->technique;
     if (tg_plan_make(plan, scene, &req, err) == TG_OK) return TG_OK;
-    for (a = 0; a < TG_AOV_COUNT; a++) { /* drop the AOVs that cannot be planned */
+    for (a = 0; a < TG_AOV_COUNT; a++) {
         uint32_t bit = 1u << a;
-        tg_plan probe;
-        if (!(req.aovs & bit) || a == TG_AOV_COLOR) continue;
+        if (!(req.aovs & bit) || req.aovs == bit) continue;
         req.aovs &= ~bit;
-        if (tg_plan_make(&probe, scene, &req, err) == TG_OK) {
+        if (tg_plan_make(plan, scene, &req, err) == TG_OK) {
             char msg[96];
             size_t at = 0;
             cat_str(msg, sizeof msg, &at, "render: ");
@@ -216,7 +221,6 @@ static tg_status plan_scene(tg_plan *plan, const tg_scene *scene, const settings
             cat_str(msg, sizeof msg, &at, ": skipping aov ");
             cat_str(msg, sizeof msg, &at, tg_aov_name((tg_aov)a));
             port_log(msg);
-            *plan = probe;
             return TG_OK;
         }
         req.aovs |= bit;
@@ -224,7 +228,22 @@ static tg_status plan_scene(tg_plan *plan, const tg_scene *scene, const settings
     return tg_plan_make(plan, scene, &req, err);
 }
 
-static void log_scene(const char *name, const settings *st, const tg_plan *plan, size_t arena_used, long cs)
+/* "render: NAME: arena too small: about N bytes needed, M available" */
+NOINLINE static void log_arena_short(const char *name, size_t used, size_t more)
+{
+    char msg[160];
+    size_t at = 0;
+    cat_str(msg, sizeof msg, &at, "render: ");
+    cat_str(msg, sizeof msg, &at, name);
+    cat_str(msg, sizeof msg, &at, ": arena too small: about ");
+    cat_ulong(msg, sizeof msg, &at, (unsigned long)(used + more));
+    cat_str(msg, sizeof msg, &at, " bytes needed, ");
+    cat_ulong(msg, sizeof msg, &at, (unsigned long)TG_BM_ARENA_BYTES);
+    cat_str(msg, sizeof msg, &at, " available (TG_BM_ARENA_BYTES)");
+    port_log(msg);
+}
+
+NOINLINE static void log_scene(const char *name, const settings *st, const tg_plan *plan, size_t arena_used, long cs)
 {
     char msg[200];
     size_t at = 0;
@@ -247,10 +266,10 @@ static void log_scene(const char *name, const settings *st, const tg_plan *plan,
 
 static int render_scene(const char *name, const settings *st)
 {
+    static tg_plan plan; /* static: 1.3 KB less stack, counted by the linker */
+    static tg_error err;
     tg_arena arena;
-    tg_error err;
     tg_scene *scene = 0;
-    tg_plan plan;
     tg_frame *frame = 0;
     tg_status s;
     void *frame_memory;
@@ -275,7 +294,7 @@ static int render_scene(const char *name, const settings *st)
     row = tg_arena_alloc(&arena, (size_t)st->width * 3u * sizeof(tg_real));
     bytes = tg_arena_alloc(&arena, (size_t)st->width * 3u * 4u);
     if (!frame_memory || !row || !bytes) {
-        port_log("render: arena too small (raise TG_BM_ARENA_BYTES)");
+        log_arena_short(name, arena.used, plan.total_bytes + (size_t)st->width * 3u * (sizeof(tg_real) + 4u) + 32u);
         return 3;
     }
     s = tg_frame_create(&plan, frame_memory, plan.total_bytes, &frame, &err);
@@ -283,7 +302,9 @@ static int render_scene(const char *name, const settings *st)
     if (s != TG_OK) { log_error(name, &err); return status_exit(s); }
     log_scene(name, st, &plan, arena.used, port_clock_cs() - t0);
 
-    if (write_ppm(frame, st->width, st->height, st->outdir, name, bytes) != 0) bad = 1;
+    if ((plan.request.aovs & (1u << TG_AOV_COLOR)) &&
+        write_ppm(frame, st->width, st->height, st->outdir, name, bytes) != 0)
+        bad = 1;
     for (a = 0; a < TG_AOV_COUNT; a++)
         if ((plan.request.aovs >> a) & 1u)
             if (write_pfm(frame, (tg_aov)a, st->width, st->height, st->outdir, name, row, bytes) != 0) bad = 1;

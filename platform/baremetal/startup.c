@@ -5,8 +5,10 @@
  * switch the FPU on when there is one), argv from the semihosting command
  * line, and the exit status back to the host.
  *
- * Symbols come from the linker script (sections.ld): __stack_top,
- * __data_start/__data_end/__data_load, __bss_start__/__bss_end__.
+ * Symbols come from the linker script (sections.ld): __stack_top and
+ * __stack_limit, __data_start/__data_end/__data_load, __bss_start__ and
+ * __bss_end__.  The stack is painted before main() and the deepest use is
+ * reported after it ("startup: stack N of M bytes used").
  * Keep the table under --gc-sections with -Wl,--undefined=tg_vectors.
  */
 #include <stdint.h>
@@ -19,7 +21,9 @@ void Reset_Handler(void);
 void tg_fault_handler(void);
 
 extern uint32_t __stack_top, __data_start, __data_end, __data_load;
-extern uint32_t __bss_start__, __bss_end__;
+extern uint32_t __bss_start__, __bss_end__, __stack_limit;
+
+#define STACK_PAINT 0x5AC35AC3u
 
 #ifdef TG_BM_NEWLIB
 #include <stdio.h>
@@ -52,6 +56,38 @@ void tg_fault_handler(void)
     sh_exit(4);
 }
 
+/* Fill the unused stack with a pattern, to find the deepest use later.
+ * Leaves the 256 bytes below the current stack pointer alone. */
+static void paint_stack(void)
+{
+    uint32_t *p = &__stack_limit, here;
+    uint32_t *top = (uint32_t *)(((uintptr_t)&here - 256u) & ~(uintptr_t)3);
+    while (p < top) *p++ = STACK_PAINT;
+}
+
+/* "startup: stack N of M bytes used" on the console. */
+static void report_stack(void)
+{
+    char line[64], digits[12];
+    const char *head = "startup: stack ", *mid = " of ", *tail = " bytes used\n";
+    uint32_t *p = &__stack_limit;
+    uint32_t used, size = (uint32_t)((uintptr_t)&__stack_top - (uintptr_t)&__stack_limit);
+    int n, at = 0, k;
+    while (p < &__stack_top && *p == STACK_PAINT) p++;
+    used = (uint32_t)((uintptr_t)&__stack_top - (uintptr_t)p);
+    for (k = 0; head[k]; k++) line[at++] = head[k];
+    for (k = 0; k < 2; k++) {
+        uint32_t v = k == 0 ? used : size;
+        n = 0;
+        do { digits[n++] = (char)('0' + v % 10u); v /= 10u; } while (v);
+        while (n) line[at++] = digits[--n];
+        if (k == 0) { const char *m = mid; while (*m) line[at++] = *m++; }
+    }
+    for (k = 0; tail[k]; k++) line[at++] = tail[k];
+    line[at] = 0;
+    sh_write0(line);
+}
+
 /* argv from "prog arg1 arg2 ..." (QEMU's -semihosting-config arg=...). */
 static int split_cmdline(char *line, char **argv, int max)
 {
@@ -82,6 +118,7 @@ void Reset_Handler(void)
 #endif
     for (dst = &__data_start; dst < &__data_end;) *dst++ = *src++;
     for (dst = &__bss_start__; dst < &__bss_end__;) *dst++ = 0;
+    paint_stack();
 
 #ifdef TG_BM_NEWLIB
     initialise_monitor_handles();
@@ -93,5 +130,6 @@ void Reset_Handler(void)
 #ifdef TG_BM_NEWLIB
     fflush(0);
 #endif
+    report_stack();
     sh_exit(status);
 }
