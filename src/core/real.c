@@ -39,6 +39,7 @@
  *   tg_pow          x > 0, |y log2 x| < 15      0.5000 ulp   rel 3.9e-6
  *                   (fixed) or < 64 (float)
  *   tg_floor        all                         exact        exact
+ *   tg_isqrt64      all uint64                  exact floor (both builds; 6e6 values incl. k^2, k^2-1)
  *   tg_parse_real   decimal text                correctly rounded, ties to even
  *                                               (300000 random strings vs strtof/strtod)
  * Targets from issue 2: fixed trig within 2^-12 = 16 ulp, sqrt within 1 ulp;
