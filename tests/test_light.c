@@ -251,6 +251,7 @@ static int occluded(const double p[3], const tg_light *l, const abox *b, double 
 }
 
 typedef struct { int in_shadow, lit, edge; } shadow_counts;
+static int shadow_filter = TG_SHADOW_PCF_TENT; /* the shadow tests run with each filter */
 
 /* Render the map, light the G-buffer, and compare every floor pixel with the
  * analytic shadow: surely inside -> E <= 2% of unshadowed, surely outside -> >= 98%. */
@@ -266,6 +267,7 @@ static shadow_counts check_box_shadow(gbuf *g, const tg_view *v, const ascene *s
     int n = scene_tris(s, pos), i;
     tg_vec3 lo = v3d(-s->floor_half, 0, -s->floor_half), hi = v3d(s->floor_half, 2, s->floor_half);
     tg_shadow_map_setup(&sm, l, MAP_SIZE, lo, hi, mem);
+    sm.filter = shadow_filter;
     tg_shadow_map_render(&sm, pos, n);
     maps[0] = &sm;
     tg_direct_rows(&g->gb, v, l, 1, NULL, unsh_r, dummy_g, dummy_b, 0, H);
@@ -280,11 +282,11 @@ static shadow_counts check_box_shadow(gbuf *g, const tg_view *v, const ascene *s
         }
         if (inside) {
             c.in_shadow++;
-            CHECK(got <= 0.02 * full, "in the box's shadow at (%.3f, %.3f): %g of %g",
+            CHECK(got <= 0.02 * full, "filter %d: in the shadow at (%.3f, %.3f): %g of %g", shadow_filter,
                   g->world[i][0], g->world[i][2], got, full);
         } else if (outside) {
             c.lit++;
-            CHECK(got >= 0.98 * full, "outside the shadow at (%.3f, %.3f): %g of %g",
+            CHECK(got >= 0.98 * full, "filter %d: outside the shadow at (%.3f, %.3f): %g of %g", shadow_filter,
                   g->world[i][0], g->world[i][2], got, full);
         } else {
             c.edge++;
@@ -295,7 +297,7 @@ static shadow_counts check_box_shadow(gbuf *g, const tg_view *v, const ascene *s
     return c;
 }
 
-TEST(box_shadow_lands_where_geometry_says)
+static void box_shadow_lands_where_geometry_says_with_filter(void)
 {
     gbuf *g = gbuf_new();
     ascene s = { 4, 1, { { { -0.5, 0, -0.5 }, { 0.5, 1, 0.5 } } } };
@@ -315,7 +317,7 @@ TEST(box_shadow_lands_where_geometry_says)
     free(g);
 }
 
-TEST(no_acne_at_80_degrees)
+static void no_acne_at_80_degrees_with_filter(void)
 {
     gbuf *g = gbuf_new();
     ascene s = floor_only(4);
@@ -333,7 +335,7 @@ TEST(no_acne_at_80_degrees)
     free(g);
 }
 
-TEST(point_cube_faces_meet_without_seams)
+static void point_cube_faces_meet_without_seams_with_filter(void)
 {
     gbuf *g = gbuf_new();
     /* a post whose shadow crosses the +X / -Y face boundary (x - 0.3 = 1.5 on the floor) */
@@ -352,6 +354,7 @@ TEST(point_cube_faces_meet_without_seams)
         void *mem = malloc(tg_shadow_map_bytes(&pl, MAP_SIZE));
         int n = scene_tris(&open, pos), k, bad = 0;
         tg_shadow_map_setup(&sm, &pl, MAP_SIZE, v3d(-4, 0, -4), v3d(4, 2, 4), mem);
+        sm.filter = shadow_filter;
         tg_shadow_map_render(&sm, pos, n);
         for (k = 0; k <= 2000; k++) {
             double z = -3.9 + 7.8 * k / 2000.0, off = ((k % 7) - 3) * 0.002;
@@ -362,6 +365,25 @@ TEST(point_cube_faces_meet_without_seams)
             if (tg_shadow_visibility(&sm, p3, up) < TG_R(0.99f)) bad++;
         }
         CHECK(bad == 0, "%d points along the cube edges darkened", bad);
+        free(mem);
+    }
+    {   /* the post's shadow crosses the +X / -Y face edge: dense samples across the edge */
+        static tg_vec3 pos[3 * 64];
+        tg_shadow_map sm;
+        void *mem = malloc(tg_shadow_map_bytes(&pl, MAP_SIZE));
+        int n = scene_tris(&s, pos), k, inside = 0;
+        tg_shadow_map_setup(&sm, &pl, MAP_SIZE, v3d(-4, 0, -4), v3d(4, 2, 4), mem);
+        sm.filter = shadow_filter;
+        tg_shadow_map_render(&sm, pos, n);
+        for (k = 0; k <= 4000; k++) {
+            double z = -0.6 + 0.8 * (k / 40) / 100.0, x = 1.8 + ((k % 40) - 20) * 0.0005;
+            double p[3] = { x, 0, z };
+            tg_real vis = tg_shadow_visibility(&sm, v3d(x, 0, z), tg_v3(0, TG_ONE, 0));
+            if (!occluded(p, &pl, &s.box[0], -0.03)) continue;
+            inside++;
+            CHECK(vis <= TG_R(0.02f), "filter %d: at the face edge (%.4f, %.3f) in shadow: %g", shadow_filter, x, z, dv(vis));
+        }
+        CHECK(inside > 1000, "samples in the shadow at the edge: %d", inside);
         free(mem);
     }
     gbuf_cast(g, &v, &s);
@@ -497,6 +519,24 @@ TEST(tonemap_monotone_zero_and_saturating)
         CHECK(rgb[0] == tg_tonemap8(TG_R(0.5f)) && rgb[1] == tg_tonemap8(TG_R(0.25f)),
               "exposure multiplies before the curve");
     }
+}
+
+TEST(box_shadow_lands_where_geometry_says)
+{
+    for (shadow_filter = 0; shadow_filter < 2; shadow_filter++) box_shadow_lands_where_geometry_says_with_filter();
+    shadow_filter = TG_SHADOW_PCF_TENT;
+}
+
+TEST(no_acne_at_80_degrees)
+{
+    for (shadow_filter = 0; shadow_filter < 2; shadow_filter++) no_acne_at_80_degrees_with_filter();
+    shadow_filter = TG_SHADOW_PCF_TENT;
+}
+
+TEST(point_cube_faces_meet_without_seams)
+{
+    for (shadow_filter = 0; shadow_filter < 2; shadow_filter++) point_cube_faces_meet_without_seams_with_filter();
+    shadow_filter = TG_SHADOW_PCF_TENT;
 }
 
 int main(void)

@@ -112,6 +112,7 @@ void tg_shadow_map_setup(tg_shadow_map *sm, const tg_light *l, int size,
     sm->faces = light_faces(l);
     sm->depth = (tg_real *)memory;
     sm->texel_ndc = tg_div(TG_R(2.0f), tg_from_int(sm->size));
+    sm->filter = TG_SHADOW_PCF_TENT;
     if (l->type == TG_LIGHT_DIRECTIONAL) {
         sm->orthographic = 1;
         setup_ortho(sm, l->dir, scene_min, scene_max);
@@ -180,11 +181,12 @@ tg_real tg_shadow_visibility(const tg_shadow_map *sm, tg_vec3 p, tg_vec3 n)
     tg_vec3 r = sm->right[face], u = sm->up[face], f = sm->forward[face];
     tg_real nl_x = tg_v3_dot(n, r), nl_y = tg_v3_dot(n, u), nl_z = tg_v3_dot(n, f);
     tg_real half_size = tg_ldexp(tg_from_int(sm->size), -1);
-    tg_real ndc_x, ndc_y, tw, bias, su, sv, fx, fy, lit = 0;
+    tg_real ndc_x, ndc_y, tw, bias, su, sv, fx, fy, norm, lit = 0;
     tg_real wx[4], wy[4], tx_off[4], ty_off[4];
     tg_real base = 0, num = 0, den_c = 0, den_max = 0;
     const tg_real *depth = sm->depth + (size_t)face * (size_t)sm->size * (size_t)sm->size;
     int i0, j0, i, j, perspective = !sm->orthographic;
+    int taps = sm->filter == TG_SHADOW_PCF_BILINEAR ? 2 : 4;
 
     if (!perspective) {
         tg_real inv_nz;
@@ -215,50 +217,59 @@ tg_real tg_shadow_visibility(const tg_shadow_map *sm, tg_vec3 p, tg_vec3 n)
         nl_x = tg_mul(nl_x, sm->tan_half);           /* d(n . r) per NDC unit */
         nl_y = tg_mul(nl_y, sm->tan_half);
     }
-    /* continuous texel position (rows top to bottom), then the 4x4 tent footprint */
+    /* continuous texel position (rows top to bottom), then the PCF footprint:
+     * tent  taps i0-1 .. i0+2, weights 1-f, 1, 1, f (sum 3 per axis)
+     * bilinear  taps i0 .. i0+1, weights 1-f, f (sum 1 per axis) */
     su = tg_sub(tg_mul(tg_add(ndc_x, TG_ONE), half_size), TG_R(0.5f));
     sv = tg_sub(tg_mul(tg_sub(TG_ONE, ndc_y), half_size), TG_R(0.5f));
     i0 = tg_to_int(su); j0 = tg_to_int(sv);
     if (i0 < -2 || j0 < -2 || i0 > sm->size + 1 || j0 > sm->size + 1) return TG_ONE;
     fx = tg_sub(su, tg_from_int(i0));
     fy = tg_sub(sv, tg_from_int(j0));
-    for (i = 0; i < 4; i++) {
-        /* tap i's texel centre relative to the lookup, in NDC (y up) */
-        tg_real ox = tg_mul(tg_sub(tg_from_int(i - 1), fx), sm->texel_ndc);
-        tg_real oy = tg_neg(tg_mul(tg_sub(tg_from_int(i - 1), fy), sm->texel_ndc));
+    if (taps == 4) {
+        wx[0] = tg_sub(TG_ONE, fx); wx[1] = wx[2] = TG_ONE; wx[3] = fx;
+        wy[0] = tg_sub(TG_ONE, fy); wy[1] = wy[2] = TG_ONE; wy[3] = fy;
+        i0 -= 1; j0 -= 1; fx = tg_add(fx, TG_ONE); fy = tg_add(fy, TG_ONE);
+        norm = TG_R(1.0f / 9.0f);
+    } else {
+        wx[0] = tg_sub(TG_ONE, fx); wx[1] = fx;
+        wy[0] = tg_sub(TG_ONE, fy); wy[1] = fy;
+        norm = TG_ONE;
+    }
+    for (i = 0; i < taps; i++) {
+        /* tap i's texel centre (i0 + i) relative to the lookup, in NDC (y up) */
+        tg_real ox = tg_mul(tg_sub(tg_from_int(i), fx), sm->texel_ndc);
+        tg_real oy = tg_neg(tg_mul(tg_sub(tg_from_int(i), fy), sm->texel_ndc));
         tx_off[i] = tg_mul(nl_x, ox);
         ty_off[i] = tg_mul(nl_y, oy);
     }
-    /* the tent PCF: taps i0-1 .. i0+2 with weights 1-f, 1, 1, f (sum 3) */
-    wx[0] = tg_sub(TG_ONE, fx); wx[1] = wx[2] = TG_ONE; wx[3] = fx;
-    wy[0] = tg_sub(TG_ONE, fy); wy[1] = wy[2] = TG_ONE; wy[3] = fy;
-    if (i0 >= 1 && j0 >= 1 && i0 + 2 < sm->size && j0 + 2 < sm->size) {
+    if (i0 >= 0 && j0 >= 0 && i0 + taps <= sm->size && j0 + taps <= sm->size) {
         /* fast path, the whole footprint inside the map (an empty texel holds
          * TG_REAL_MAX, which passes both tests without a special case) */
-        for (j = 0; j < 4; j++) {
-            const tg_real *row = depth + (size_t)(j0 - 1 + j) * (size_t)sm->size + (i0 - 1);
+        for (j = 0; j < taps; j++) {
+            const tg_real *row = depth + (size_t)(j0 + j) * (size_t)sm->size + i0;
             tg_real row_lit = 0;
             if (perspective) {
                 tg_real den_row = tg_add(den_c, ty_off[j]);
-                for (i = 0; i < 4; i++) {
+                for (i = 0; i < taps; i++) {
                     tg_real den = tg_min(tg_add(den_row, tx_off[i]), den_max);
                     row_lit = tg_add(row_lit, num >= tg_mul(tg_add(row[i], bias), den) ? wx[i] : 0);
                 }
             } else {
                 tg_real base_row = tg_add(base, ty_off[j]);
-                for (i = 0; i < 4; i++)
+                for (i = 0; i < taps; i++)
                     row_lit = tg_add(row_lit, tg_add(base_row, tx_off[i]) <= row[i] ? wx[i] : 0);
             }
             lit = tg_add(lit, tg_mul(row_lit, wy[j]));
         }
-        return tg_saturate(tg_mul(lit, TG_R(1.0f / 9.0f)));
+        return tg_saturate(tg_mul(lit, norm));
     }
-    for (j = 0; j < 4; j++) {   /* at the map's edge: taps outside are lit */
-        int ty = j0 - 1 + j;
+    for (j = 0; j < taps; j++) {   /* at the map's edge: taps outside are lit */
+        int ty = j0 + j;
         const tg_real *row = depth + (size_t)(ty < 0 ? 0 : ty) * (size_t)sm->size;
         tg_real row_lit = 0;
-        for (i = 0; i < 4; i++) {
-            int tx = i0 - 1 + i;
+        for (i = 0; i < taps; i++) {
+            int tx = i0 + i;
             tg_real stored;
             if (tx < 0 || ty < 0 || tx >= sm->size || ty >= sm->size) { row_lit = tg_add(row_lit, wx[i]); continue; }
             stored = row[tx];
@@ -272,5 +283,5 @@ tg_real tg_shadow_visibility(const tg_shadow_map *sm, tg_vec3 p, tg_vec3 n)
         }
         lit = tg_add(lit, tg_mul(row_lit, wy[j]));
     }
-    return tg_saturate(tg_mul(lit, TG_R(1.0f / 9.0f)));
+    return tg_saturate(tg_mul(lit, norm));
 }

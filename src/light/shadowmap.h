@@ -16,8 +16,9 @@
  * Lookup (tg_shadow_visibility): receiver-plane depth bias - the receiver's
  * depth is extrapolated from its normal to each PCF tap's texel centre, so a
  * plane never shadows itself at any incidence (the slope term is clamped at
- * 84 degrees) - plus a small constant bias of half a texel; then a 3x3 tent
- * PCF (a 4x4 texel footprint with bilinear weights).  1 = lit, 0 = shadowed.
+ * 84 degrees) - plus a small constant bias of half a texel; then PCF: a 3x3
+ * tent (a 4x4 texel footprint with bilinear weights) or, cheaper, a 2x2
+ * bilinear comparison.  1 = lit, 0 = shadowed.
  * Points outside a map, or where nothing was drawn, are lit.
  *
  * Memory: the caller gives tg_shadow_map_bytes() bytes (tg_real aligned).
@@ -29,10 +30,16 @@
 
 #define TG_SHADOW_MAX_FACES 6
 
+/* PCF filters (tg_shadow_map.filter; setup picks the tent):
+ *   TENT      16 taps, a 3x3 tent with bilinear weights: soft, ~1.5 texel radius
+ *   BILINEAR  4 taps, bilinear comparison: a quarter of the cost, harder edges */
+enum { TG_SHADOW_PCF_TENT = 0, TG_SHADOW_PCF_BILINEAR = 1 };
+
 typedef struct tg_shadow_map {
     int size;                    /* texels per side */
     int faces;                   /* 1, or 6 for a point light */
     int orthographic;            /* directional light */
+    int filter;                  /* TG_SHADOW_PCF_*; may be changed after setup */
     tg_vec3 origin;              /* light position (perspective maps) */
     tg_vec3 right[TG_SHADOW_MAX_FACES], up[TG_SHADOW_MAX_FACES], forward[TG_SHADOW_MAX_FACES];
     tg_mat4 world_to_clip[TG_SHADOW_MAX_FACES];
