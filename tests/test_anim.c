@@ -163,6 +163,14 @@ TEST(frame_times_and_posing)
         CHECK(fabs(dv(tg_v3_length(n)) - 1) < 1e-3, "posed normal unit");
         CHECK(fabs(dv(tg_v3_dot(n, tg_v3_normalize(tg_m4_dir(&m, ts->nrm[v])))) - 1) < 1e-3, "normal rotated");
     }
+    {
+        tg_vec3 lo, hi;
+        tg_anim_bounds(pos, 2, &lo, &hi);
+        for (v = 0; v < 6; v++)
+            CHECK(pos[v].x >= lo.x && pos[v].y >= lo.y && pos[v].z >= lo.z &&
+                  pos[v].x <= hi.x && pos[v].y <= hi.y && pos[v].z <= hi.z, "bounds hold vertex %d", v);
+        CHECK((lo.x == pos[0].x || lo.x == pos[1].x || lo.x == pos[2].x || lo.x == pos[3].x || lo.x == pos[4].x || lo.x == pos[5].x), "tight");
+    }
     ts->s.camera_key_count = 1; ts->obj[1].key_count = 1;
     CHECK(!tg_anim_has_motion(&ts->s), "single keys do not move");
     ts->s.camera_key_count = 0; ts->s.object_key_count = 0; ts->obj[1].key_count = 0;

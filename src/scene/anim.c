@@ -147,6 +147,16 @@ void tg_anim_pose(const tg_scene *s, tg_real t, tg_vec3 *pos, tg_vec3 *nrm)
     }
 }
 
+void tg_anim_bounds(const tg_vec3 *pos, int tri_count, tg_vec3 *lo, tg_vec3 *hi)
+{
+    int v, n = tri_count * 3;
+    *lo = *hi = n > 0 ? pos[0] : tg_v3(0, 0, 0);
+    for (v = 1; v < n; v++) {
+        lo->x = tg_min(lo->x, pos[v].x); lo->y = tg_min(lo->y, pos[v].y); lo->z = tg_min(lo->z, pos[v].z);
+        hi->x = tg_max(hi->x, pos[v].x); hi->y = tg_max(hi->y, pos[v].y); hi->z = tg_max(hi->z, pos[v].z);
+    }
+}
+
 void tg_motion_rows(tg_gbuffer *gb, const tg_view *cur, const tg_view *prev,
                     const tg_mat4 *cur_to_prev, int y0, int y1)
 {

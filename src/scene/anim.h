@@ -40,6 +40,11 @@ int tg_anim_object_moves(const tg_scene *s, int object);
 /* Posed copies of all triangles: 3 positions and 3 unit normals per triangle. */
 void tg_anim_pose(const tg_scene *s, tg_real t, tg_vec3 *pos, tg_vec3 *nrm);
 
+/* Bounds of tri_count posed triangles (3 positions each), e.g. to refit a
+ * shadow map (tg_shadow_map_setup) when objects move outside the rest-pose
+ * scene bounds.  No triangles: lo = hi = 0. */
+void tg_anim_bounds(const tg_vec3 *pos, int tri_count, tg_vec3 *lo, tg_vec3 *hi);
+
 /* Motion vectors for rows [y0, y1) into gb->motion_x/y.  cur_to_prev: one
  * world-space rigid delta per object (indexed by gb->object), or NULL when
  * nothing but the camera moves.  Sky pixels reproject their view direction
