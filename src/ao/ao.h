@@ -58,20 +58,28 @@ static inline tg_vec3 tg_ao_unproject(const tg_view *v, int x, int y, tg_real z)
     return tg_v3(tg_div(tg_mul(ndc_x, z), v->focal_x), tg_div(tg_mul(ndc_y, z), v->focal_y), z);
 }
 
-/* Pixel index of a view-space point, or -1 when it is behind the camera or
- * off screen.  Nearest pixel (the one whose square contains the projection). */
-static inline int tg_ao_project_index(const tg_view *v, tg_vec3 p)
+/* Pixel (px, py) of a view-space point: 1, or 0 when it is behind the
+ * camera or off screen.  Nearest pixel (whose square holds the projection). */
+static inline int tg_ao_project_pixel(const tg_view *v, tg_vec3 p, int *px, int *py)
 {
     tg_real ndc_x, ndc_y;
-    int32_t px, py;
-    if (p.z <= TG_R(0.001f)) return -1;
+    int32_t x, y;
+    if (p.z <= TG_R(0.001f)) return 0;
     ndc_x = tg_div(tg_mul(p.x, v->focal_x), p.z);
     ndc_y = tg_div(tg_mul(p.y, v->focal_y), p.z);
-    if (ndc_x <= TG_R(-1.0f) || ndc_x >= TG_ONE || ndc_y <= TG_R(-1.0f) || ndc_y >= TG_ONE) return -1;
-    px = tg_to_int(tg_ldexp(tg_mul(tg_add(ndc_x, TG_ONE), tg_from_int(v->width)), -1));
-    py = tg_to_int(tg_ldexp(tg_mul(tg_sub(TG_ONE, ndc_y), tg_from_int(v->height)), -1));
-    if (px < 0 || py < 0 || px >= v->width || py >= v->height) return -1;
-    return (int)py * v->width + (int)px;
+    if (ndc_x <= TG_R(-1.0f) || ndc_x >= TG_ONE || ndc_y <= TG_R(-1.0f) || ndc_y >= TG_ONE) return 0;
+    x = tg_to_int(tg_ldexp(tg_mul(tg_add(ndc_x, TG_ONE), tg_from_int(v->width)), -1));
+    y = tg_to_int(tg_ldexp(tg_mul(tg_sub(TG_ONE, ndc_y), tg_from_int(v->height)), -1));
+    if (x < 0 || y < 0 || x >= v->width || y >= v->height) return 0;
+    *px = (int)x; *py = (int)y;
+    return 1;
+}
+
+/* Pixel index of a view-space point, or -1 (see tg_ao_project_pixel). */
+static inline int tg_ao_project_index(const tg_view *v, tg_vec3 p)
+{
+    int x, y;
+    return tg_ao_project_pixel(v, p, &x, &y) ? y * v->width + x : -1;
 }
 
 /* World direction -> view direction and back (the view basis is orthonormal). */
@@ -83,6 +91,58 @@ static inline tg_vec3 tg_ao_dir_to_world(const tg_view *v, tg_vec3 d)
 {
     return tg_v3_add(tg_v3_add(tg_v3_scale(v->right, d.x), tg_v3_scale(v->up, d.y)),
                      tg_v3_scale(v->forward, d.z));
+}
+
+/* G-buffer normal of pixel i in view space. */
+static inline tg_vec3 tg_ao_normal_view(const tg_ao_io *io, int i)
+{
+    return tg_ao_dir_to_view(io->view, tg_v3(io->nx[i], io->ny[i], io->nz[i]));
+}
+
+/* Depth bias of a screen-space test at view position pv with view normal
+ * nv: `base` plus the depth change of the surface across one pixel
+ * (slope-scaled, as for shadow maps): (z / pixels_per_unit) tan(theta),
+ * theta between the normal and the view ray, tan clamped to 16.  At grazing
+ * angles the nearest-pixel depth of a plane differs from the plane at the
+ * sample by about this much, so smaller gaps are not evidence of occlusion. */
+static inline tg_real tg_ao_depth_bias(const tg_ao_io *io, tg_vec3 pv, tg_vec3 nv, tg_real base)
+{
+    tg_vec3 ray = tg_v3_normalize_or(pv, tg_v3(0, 0, TG_ONE));
+    tg_real c = tg_abs(tg_v3_dot(nv, ray));
+    tg_real s = tg_sqrt(tg_sub(TG_ONE, tg_min(tg_sqr(c), TG_ONE)));
+    tg_real tan_t = tg_div(s, tg_max(c, TG_R(0.0625f)));
+    tg_real pixel = tg_div(pv.z, io->view->pixels_per_unit);
+    return tg_add(base, tg_mul(pixel, tan_t));
+}
+
+/* Screen-space occlusion test of a sample point s (view space) of the
+ * shading point p, after Klehm sec. 2 (d_xn) and Ritschel sec. 3: s is an
+ * occluder position when it lies behind the surface the camera sees at its
+ * pixel j, i.e. more than `eps` below that surface's tangent plane (through
+ * the pixel's position q_j, with its normal), and q_j is within `range` of p
+ * (the range check: a foreground object far in front does not occlude what
+ * is behind it).  The tangent-plane test makes a plane exact at any viewing
+ * angle: the nearest-pixel depth of a grazing plane differs from the plane
+ * at the sample by up to a pixel's slope, which a plain depth comparison
+ * would read as occlusion.  Off-screen and sky count as open.  *qx, *qy get
+ * the pixel (when on screen). */
+static inline int tg_ao_sample_blocked_at(const tg_ao_io *io, tg_vec3 p, tg_vec3 s, tg_real eps,
+                                          tg_real range, int *qx, int *qy)
+{
+    int j;
+    tg_vec3 q, pq;
+    if (!tg_ao_project_pixel(io->view, s, qx, qy)) return 0;
+    j = *qy * io->width + *qx;
+    if (io->sky[j] || io->depth[j] >= s.z) return 0;
+    q = tg_ao_unproject(io->view, *qx, *qy, io->depth[j]);
+    pq = tg_v3_sub(q, p);
+    if (tg_v3_dot(pq, pq) >= tg_sqr(range)) return 0;
+    return tg_v3_dot(tg_ao_normal_view(io, j), tg_v3_sub(s, q)) < tg_neg(eps);
+}
+static inline int tg_ao_sample_blocked(const tg_ao_io *io, tg_vec3 p, tg_vec3 s, tg_real eps, tg_real range)
+{
+    int qx, qy;
+    return tg_ao_sample_blocked_at(io, p, s, eps, range, &qx, &qy);
 }
 
 /* Write the "nothing computed" result for pixel i (sky, or no data). */

@@ -27,6 +27,14 @@ tg_real tg_ao_golden_frac(int i)
     return tg_ratio((int32_t)(u >> 16), 65536);
 }
 
+tg_real tg_ao_radical2(int i)
+{
+    uint32_t u = (uint32_t)i, r = 0;
+    int b;
+    for (b = 0; b < 16; b++) { r = (r << 1) | (u & 1u); u >>= 1; }
+    return tg_ratio((int32_t)r, 65536);
+}
+
 void tg_ao_disk(int i, int n, tg_real *x, tg_real *y)
 {
     tg_real r = tg_sqrt(tg_ratio(2 * i + 1, 2 * n));

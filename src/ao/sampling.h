@@ -30,6 +30,9 @@ static inline const tg_ao_rot *tg_ao_rot_at(const tg_ao_rot rot[16], int x, int 
 /* Fraction in [0, 1) of i times the golden ratio (the Fibonacci angle step). */
 tg_real tg_ao_golden_frac(int i);
 
+/* Radical inverse of i in base 2 (van der Corput), in [0, 1), 16 bits. */
+tg_real tg_ao_radical2(int i);
+
 /* i-th of n points of a Vogel spiral on the unit disk: radius
  * sqrt((i + 1/2) / n) (equal areas), angle 2 pi frac(i phi). */
 void tg_ao_disk(int i, int n, tg_real *x, tg_real *y);

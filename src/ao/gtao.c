@@ -1,0 +1,130 @@
+/*
+ * gtao.c - cosine-weighted horizon-based AO and bent normal in view-vector
+ * slices (RTR eq. 11.18, Jimenez et al. 2016).  See gtao.h.
+ */
+#include "gtao.h"
+#include "sampling.h"
+
+void tg_gtao_defaults(tg_gtao_params *p)
+{
+    p->slices = 4;
+    p->steps = 8;
+    p->radius = TG_ONE;
+}
+
+typedef struct gtao_pixel {
+    int x, y;
+    tg_vec3 pv, nv, vd;   /* view position, normal, unit vector to the eye */
+    tg_real r_px, jitter;
+} gtao_pixel;
+
+/* Largest cos(angle to the view vector) of the samples along screen
+ * direction (sdx, sdy); -1 when none is within the radius. */
+static tg_real horizon_cos(const tg_gtao_params *p, const tg_ao_io *io, const gtao_pixel *px,
+                           tg_real sdx, tg_real sdy)
+{
+    tg_real best = TG_R(-1.0f), r2 = tg_sqr(p->radius);
+    tg_real above = tg_add(tg_ldexp(px->pv.z, -10), tg_mul(p->radius, TG_R(0.005f)));
+    int s;
+    for (s = 0; s < p->steps; s++) {
+        tg_real t_px = tg_div(tg_mul(tg_add(tg_from_int(s), px->jitter), px->r_px), tg_from_int(p->steps));
+        int qx, qy, j;
+        tg_vec3 h;
+        tg_real d2;
+        if (t_px < TG_ONE) continue;
+        qx = tg_to_int(tg_add(tg_add(tg_from_int(px->x), TG_R(0.5f)), tg_mul(sdx, t_px)));
+        qy = tg_to_int(tg_add(tg_add(tg_from_int(px->y), TG_R(0.5f)), tg_mul(sdy, t_px)));
+        if (qx < 0 || qy < 0 || qx >= io->width || qy >= io->height) break;
+        j = qy * io->width + qx;
+        if (io->sky[j]) continue;
+        h = tg_v3_sub(tg_ao_unproject(io->view, qx, qy, io->depth[j]), px->pv);
+        d2 = tg_v3_dot(h, h);
+        if (d2 >= r2 || d2 <= 0) continue;
+        if (tg_v3_dot(h, px->nv) <= above) continue;      /* under the tangent plane: clamped anyway */
+        best = tg_max(best, tg_mul(tg_v3_dot(h, px->vd), tg_rsqrt(d2)));
+    }
+    return best;
+}
+
+/* a(h): the inner integral of eq. 11.18 from 0 to h (either sign of h). */
+static tg_real inner_arc(tg_real h, tg_real gamma, tg_real cos_g, tg_real sin_g)
+{
+    tg_real t = tg_sub(tg_add(cos_g, tg_mul(tg_ldexp(h, 1), sin_g)), tg_cos(tg_sub(tg_ldexp(h, 1), gamma)));
+    return tg_ldexp(t, -2);
+}
+
+/* Antiderivatives of the slice bent-normal integrands (see gtao.h). */
+static tg_real bent_fs(tg_real th, tg_real cos_g, tg_real sin_g)
+{
+    tg_real s = tg_sin(th), c = tg_cos(th);
+    tg_real s3 = tg_mul(tg_sqr(s), s), c3 = tg_mul(tg_sqr(c), c);
+    return tg_add(tg_mul(cos_g, tg_div(s3, TG_R(3.0f))), tg_mul(sin_g, tg_sub(tg_div(c3, TG_R(3.0f)), c)));
+}
+static tg_real bent_fc(tg_real th, tg_real cos_g, tg_real sin_g)
+{
+    tg_real s = tg_sin(th), c = tg_cos(th);
+    tg_real s3 = tg_mul(tg_sqr(s), s), c3 = tg_mul(tg_sqr(c), c);
+    return tg_div(tg_sub(tg_mul(sin_g, s3), tg_mul(cos_g, c3)), TG_R(3.0f));
+}
+
+/* One slice: adds its visibility to *vis and its bent vector to *bent. */
+static void slice(const tg_gtao_params *p, const tg_ao_io *io, const gtao_pixel *px, tg_real sdx,
+                  tg_real sdy, tg_real *vis, tg_vec3 *bent)
+{
+    tg_vec3 d3 = tg_v3(sdx, tg_neg(sdy), 0), dir, axis, pn;
+    tg_real len, cos_n, gamma, cos_g, sin_g, h0, h1, bs, bc;
+    dir = tg_v3_normalize_or(tg_v3_sub(d3, tg_v3_scale(px->vd, tg_v3_dot(d3, px->vd))), d3);
+    axis = tg_v3_cross(dir, px->vd);
+    pn = tg_v3_sub(px->nv, tg_v3_scale(axis, tg_v3_dot(px->nv, axis)));  /* normal projected into the slice */
+    len = tg_v3_length(pn);
+    if (len <= TG_R(0.0001f)) return;
+    cos_n = tg_clamp(tg_div(tg_v3_dot(pn, px->vd), len), TG_R(-1.0f), TG_ONE);
+    gamma = tg_acos(cos_n);
+    if (tg_v3_dot(pn, dir) < 0) gamma = tg_neg(gamma);
+    cos_g = tg_cos(gamma);
+    sin_g = tg_sin(gamma);
+    h1 = tg_acos(horizon_cos(p, io, px, sdx, sdy));
+    h0 = tg_neg(tg_acos(horizon_cos(p, io, px, tg_neg(sdx), tg_neg(sdy))));
+    h1 = tg_add(gamma, tg_min(tg_sub(h1, gamma), TG_HALF_PI));            /* clamp to the normal's hemisphere */
+    h0 = tg_add(gamma, tg_max(tg_sub(h0, gamma), tg_neg(TG_HALF_PI)));
+    /* RTR eq. 11.18, inner integral on both sides, weighted by |projected normal| */
+    *vis = tg_add(*vis, tg_mul(len, tg_add(inner_arc(h0, gamma, cos_g, sin_g), inner_arc(h1, gamma, cos_g, sin_g))));
+    /* bent normal in the slice: F(h1) + F(h0) - 2 F(0), F_s(0) = -2/3 sin g, F_c(0) = -cos g / 3 */
+    bs = tg_add(tg_add(bent_fs(h1, cos_g, sin_g), bent_fs(h0, cos_g, sin_g)), tg_mul(sin_g, TG_R(1.333333333f)));
+    bc = tg_add(tg_add(bent_fc(h1, cos_g, sin_g), bent_fc(h0, cos_g, sin_g)), tg_mul(cos_g, TG_R(0.666666667f)));
+    *bent = tg_v3_add(*bent, tg_v3_scale(tg_v3_add(tg_v3_scale(dir, bs), tg_v3_scale(px->vd, bc)), len));
+}
+
+void tg_gtao_rows(const tg_gtao_params *p, const tg_ao_io *io, int y0, int y1)
+{
+    tg_real scos[TG_AO_MAX_SAMPLES], ssin[TG_AO_MAX_SAMPLES];
+    tg_ao_rot rot[16];
+    int ns = p->slices < 1 ? 1 : p->slices > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : p->slices, k, x, y;
+    for (k = 0; k < ns; k++) {                   /* slice angles over pi */
+        tg_real a = tg_mul(TG_PI, tg_ratio(k, ns));
+        scos[k] = tg_cos(a);
+        ssin[k] = tg_sin(a);
+    }
+    tg_ao_rotations(rot);
+    for (y = y0; y < y1; y++)
+        for (x = 0; x < io->width; x++) {
+            int i = y * io->width + x;
+            const tg_ao_rot *r = tg_ao_rot_at(rot, x, y);
+            gtao_pixel px;
+            tg_real vis = 0;
+            tg_vec3 bent = tg_v3(0, 0, 0);
+            tg_ao_write_open(io, i);
+            if (io->sky[i] || p->radius <= 0 || p->steps < 1) continue;
+            px.x = x; px.y = y;
+            px.pv = tg_ao_unproject(io->view, x, y, io->depth[i]);
+            px.nv = tg_ao_normal_view(io, i);
+            px.vd = tg_v3_normalize_or(tg_v3_neg(px.pv), tg_v3(0, 0, TG_R(-1.0f)));
+            px.r_px = tg_div(tg_mul(p->radius, io->view->pixels_per_unit), io->depth[i]);
+            px.jitter = r->jitter;
+            for (k = 0; k < ns; k++)
+                slice(p, io, &px, tg_sub(tg_mul(r->c, scos[k]), tg_mul(r->s, ssin[k])),
+                      tg_add(tg_mul(r->s, scos[k]), tg_mul(r->c, ssin[k])), &vis, &bent);
+            io->ao[i] = tg_saturate(tg_div(vis, tg_from_int(ns)));     /* outer integral: mean over slices */
+            tg_ao_write_bent_view(io, i, bent);
+        }
+}

@@ -1,0 +1,37 @@
+/*
+ * gtao.h - ground-truth ambient occlusion (Jimenez et al. 2016; RTR eq.
+ * 11.18): horizon-based like HBAO but with the cosine term and no ad hoc
+ * attenuation, in slices about the view vector:
+ *     k_A = 1/pi int_0^pi int_{h1(phi)}^{h2(phi)} cos(theta - gamma)^+ |sin theta| dtheta dphi
+ * The inner integral is analytic per slice,
+ *     a(h) = (cos gamma + 2 h sin gamma - cos(2 h - gamma)) / 4   for each side,
+ * times the length of the normal projected into the slice; the outer one is
+ * the mean over `slices` slice angles.  Horizons are clamped to the normal's
+ * hemisphere (h within gamma +- pi/2), so an open plane integrates to 1 up
+ * to the slice count.  Samples farther than `radius` are ignored (the same
+ * cut-off distance as the reference).  Full resolution, no interleaved
+ * quarter-res rendering; the 4x4 pattern only rotates the slices and
+ * jitters the steps per pixel.
+ *
+ * Bent normal (RTR eq. 11.10 in the slice): the cosine-weighted mean
+ * direction over [h1, h2] is analytic too,
+ *     int sin(theta) cos(theta - gamma) |sin theta| dtheta along the slice direction,
+ *     int cos(theta) cos(theta - gamma) |sin theta| dtheta along the view vector,
+ * with antiderivatives F_s = cos g sin^3/3 + sin g (cos^3/3 - cos) and
+ * F_c = sin g sin^3/3 - cos g cos^3/3 (derived here, see gtao.c).
+ */
+#ifndef TG_GTAO_H
+#define TG_GTAO_H
+
+#include "ao.h"
+
+typedef struct tg_gtao_params {
+    int slices;        /* slice directions over pi, 1..TG_AO_MAX_SAMPLES (default 4) */
+    int steps;         /* samples per side of each slice (default 8) */
+    tg_real radius;    /* world units (default 1) */
+} tg_gtao_params;
+
+void tg_gtao_defaults(tg_gtao_params *p);
+void tg_gtao_rows(const tg_gtao_params *p, const tg_ao_io *io, int y0, int y1);
+
+#endif

@@ -1,0 +1,92 @@
+/*
+ * hbao.c - horizon-based AO without the cosine, linear falloff (RTR eq.
+ * 11.16-11.17).  See hbao.h.
+ */
+#include "hbao.h"
+#include "sampling.h"
+
+void tg_hbao_defaults(tg_hbao_params *p)
+{
+    p->directions = 8;
+    p->steps = 6;
+    p->radius = TG_ONE;
+    p->angle_bias = TG_R(0.05f);
+}
+
+/* Occlusion (sin h - sin t) W of one screen direction (sdx, sdy). */
+static tg_real direction_occlusion(const tg_hbao_params *p, const tg_ao_io *io, tg_vec3 pv, tg_vec3 nv,
+                                   tg_vec3 view_dir, tg_real sdx, tg_real sdy, tg_real r_px,
+                                   tg_real jitter, int x, int y)
+{
+    const tg_view *v = io->view;
+    tg_vec3 d3 = tg_v3(sdx, tg_neg(sdy), 0);                /* screen y is down, view y up */
+    tg_vec3 axis = tg_v3_cross(d3, view_dir), tangent;
+    tg_real sin_t, max_sin, occlusion = 0;
+    tg_real above = tg_add(tg_ldexp(pv.z, -10), tg_mul(p->radius, TG_R(0.005f)));
+    int s;
+    /* tangent: the tangent plane's line in the slice (eye, screen direction) */
+    tangent = tg_v3_normalize_or(tg_v3_cross(axis, nv), d3);
+    if (tg_v3_dot(tangent, d3) < 0) tangent = tg_v3_neg(tangent);
+    sin_t = tg_neg(tangent.z);                              /* elevation towards the viewer */
+    max_sin = tg_add(sin_t, p->angle_bias);
+    for (s = 0; s < p->steps; s++) {
+        tg_real t_px = tg_div(tg_mul(tg_add(tg_from_int(s), jitter), r_px), tg_from_int(p->steps));
+        int qx, qy, j;
+        tg_vec3 h;
+        tg_real dist2, dist, sin_h;
+        if (t_px < TG_ONE) continue;
+        qx = tg_to_int(tg_add(tg_add(tg_from_int(x), TG_R(0.5f)), tg_mul(sdx, t_px)));
+        qy = tg_to_int(tg_add(tg_add(tg_from_int(y), TG_R(0.5f)), tg_mul(sdy, t_px)));
+        if (qx < 0 || qy < 0 || qx >= io->width || qy >= io->height) break;
+        j = qy * io->width + qx;
+        if (io->sky[j]) continue;
+        h = tg_v3_sub(tg_ao_unproject(v, qx, qy, io->depth[j]), pv);
+        dist2 = tg_v3_dot(h, h);
+        if (dist2 >= tg_sqr(p->radius) || dist2 <= 0) continue;
+        if (tg_v3_dot(h, nv) <= above) continue;           /* on or under the tangent plane: no horizon */
+        dist = tg_sqrt(dist2);
+        sin_h = tg_div(tg_neg(h.z), dist);
+        if (sin_h <= max_sin) continue;
+        /* RTR eq. 11.17, W(r) = 1 - r / radius: each rise of the horizon is
+         * weighted by the falloff of the point that raises it (Bavoil et al.'s
+         * accumulation; the sum telescopes to (sin h - sin t) W when a single
+         * point defines the horizon) */
+        occlusion = tg_add(occlusion, tg_mul(tg_sub(sin_h, max_sin), tg_sub(TG_ONE, tg_div(dist, p->radius))));
+        max_sin = sin_h;
+    }
+    return occlusion;
+}
+
+void tg_hbao_rows(const tg_hbao_params *p, const tg_ao_io *io, int y0, int y1)
+{
+    tg_real dcos[TG_AO_MAX_SAMPLES], dsin[TG_AO_MAX_SAMPLES];
+    tg_ao_rot rot[16];
+    int nd = p->directions < 1 ? 1 : p->directions > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : p->directions;
+    int k, x, y;
+    for (k = 0; k < nd; k++) {
+        tg_real a = tg_mul(TG_TWO_PI, tg_ratio(k, nd));
+        dcos[k] = tg_cos(a);
+        dsin[k] = tg_sin(a);
+    }
+    tg_ao_rotations(rot);
+    for (y = y0; y < y1; y++)
+        for (x = 0; x < io->width; x++) {
+            int i = y * io->width + x;
+            const tg_ao_rot *r = tg_ao_rot_at(rot, x, y);
+            tg_vec3 pv, nv, vd;
+            tg_real r_px, occ = 0;
+            tg_ao_write_open(io, i);
+            if (io->sky[i] || p->radius <= 0 || p->steps < 1) continue;
+            pv = tg_ao_unproject(io->view, x, y, io->depth[i]);
+            nv = tg_ao_normal_view(io, i);
+            vd = tg_v3_normalize_or(tg_v3_neg(pv), tg_v3(0, 0, TG_R(-1.0f)));
+            r_px = tg_div(tg_mul(p->radius, io->view->pixels_per_unit), io->depth[i]);
+            if (r_px < TG_ONE) continue;                     /* the radius covers less than a pixel */
+            for (k = 0; k < nd; k++) {
+                tg_real sdx = tg_sub(tg_mul(r->c, dcos[k]), tg_mul(r->s, dsin[k]));
+                tg_real sdy = tg_add(tg_mul(r->s, dcos[k]), tg_mul(r->c, dsin[k]));
+                occ = tg_add(occ, direction_occlusion(p, io, pv, nv, vd, sdx, sdy, r_px, r->jitter, x, y));
+            }
+            io->ao[i] = tg_saturate(tg_sub(TG_ONE, tg_div(occ, tg_from_int(nd)))); /* RTR eq. 11.17 */
+        }
+}

@@ -1,0 +1,455 @@
+/*
+ * test_ao.c - every screen-space AO technique (ssao x3, vo line/area, hbao,
+ * gtao, ssdo, bentcone) on synthetic G-buffers, in both number types:
+ *   - open plane: ao >= a per-technique bound (table below, with why);
+ *   - every pixel: ao in [0, 1], bent unit, outputs finite;
+ *   - deterministic: two runs (and split row ranges) are bit-identical;
+ *   - groove (floor meeting a tall wall): ao drops near the crease;
+ *   - groove vs the ray-traced reference (same radius): RMSE below a
+ *     stated per-technique bound (measured values are printed);
+ *   - technique-specific exact values: interreflection (RTR eq. 11.13),
+ *     bent cones' aperture (Klehm sec. 3.2), environment irradiance of an
+ *     open plane under a uniform sky (= pi L) for ssdo and bentcone.
+ * The scene code (rectangles ray-cast per pixel in double) is the same as in
+ * test_reference.c.
+ */
+#include "check.h"
+#include "ao/ao.h"
+#include "ao/bvh.h"
+#include "ao/reference.h"
+#include "ao/ssao.h"
+#include "ao/vo.h"
+#include "ao/hbao.h"
+#include "ao/gtao.h"
+#include "ao/ssdo.h"
+#include "ao/bentcone.h"
+#include <stdlib.h>
+
+#define W 48
+#define H 36
+#define MAXRECT 8
+
+typedef struct rect { double p[3], u[3], v[3]; } rect; /* p + s u + t v, s, t in [0, 1] */
+
+typedef struct scene {
+    int nrect;
+    rect r[MAXRECT];
+    tg_vec3 tri[MAXRECT * 6], nrm[MAXRECT * 6];
+    tg_view view;
+    tg_real depth[W * H], nx[W * H], ny[W * H], nz[W * H];
+    uint8_t sky[W * H];
+    double wpos[W * H][3];   /* world position per pixel (hosted, for picking pixels) */
+    int wrect[W * H];        /* which rectangle, -1 sky */
+} scene;
+
+static void cross3(const double *a, const double *b, double *c)
+{
+    c[0] = a[1] * b[2] - a[2] * b[1]; c[1] = a[2] * b[0] - a[0] * b[2]; c[2] = a[0] * b[1] - a[1] * b[0];
+}
+static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static void norm3(double *a) { double l = sqrt(dot3(a, a)); a[0] /= l; a[1] /= l; a[2] /= l; }
+static tg_vec3 tv(const double *a) { return tg_v3(tg_from_float((float)a[0]), tg_from_float((float)a[1]), tg_from_float((float)a[2])); }
+
+static void add_rect(scene *s, double px, double py, double pz, double ux, double uy, double uz,
+                     double vx, double vy, double vz)
+{
+    rect *r = &s->r[s->nrect];
+    double c[3][3], n[3];
+    int k = s->nrect * 2, j;
+    r->p[0] = px; r->p[1] = py; r->p[2] = pz;
+    r->u[0] = ux; r->u[1] = uy; r->u[2] = uz;
+    r->v[0] = vx; r->v[1] = vy; r->v[2] = vz;
+    cross3(r->u, r->v, n); norm3(n);
+    for (j = 0; j < 3; j++) { c[0][j] = r->p[j] + r->u[j]; c[1][j] = c[0][j] + r->v[j]; c[2][j] = r->p[j] + r->v[j]; }
+    s->tri[3 * k + 0] = tv(r->p); s->tri[3 * k + 1] = tv(c[0]); s->tri[3 * k + 2] = tv(c[1]);
+    s->tri[3 * k + 3] = tv(r->p); s->tri[3 * k + 4] = tv(c[1]); s->tri[3 * k + 5] = tv(c[2]);
+    for (j = 0; j < 6; j++) s->nrm[3 * k + j] = tv(n);
+    s->nrect++;
+}
+
+static void make_view(tg_view *v, const double eye[3], const double target[3], double fov_deg)
+{
+    double f[3] = { target[0] - eye[0], target[1] - eye[1], target[2] - eye[2] }, up[3] = { 0, 1, 0 }, r[3], u[3];
+    double fy = 1.0 / tan(fov_deg * 3.14159265358979 / 360.0);
+    norm3(f); cross3(f, up, r); norm3(r); cross3(r, f, u);
+    memset(v, 0, sizeof *v);
+    v->width = W; v->height = H;
+    v->eye = tv(eye); v->right = tv(r); v->up = tv(u); v->forward = tv(f);
+    v->fov_y = tg_from_float((float)(fov_deg * 3.14159265358979 / 180.0));
+    v->aspect = tg_from_float((float)W / H);
+    v->focal_y = tg_from_float((float)fy);
+    v->focal_x = tg_from_float((float)(fy * H / W));
+    v->tan_half_fov_y = tg_from_float((float)(1.0 / fy));
+    v->pixels_per_unit = tg_from_float((float)(H / 2.0 * fy));
+    v->znear = tg_from_float(0.05f); v->zfar = tg_from_float(1000.0f);
+}
+
+/* Ray-cast every pixel centre against the rectangles (double precision). */
+static void raster(scene *s, const double eye[3], const double target[3], double fov_deg)
+{
+    int x, y, k, j;
+    double f[3], r[3], u[3], up[3] = { 0, 1, 0 };
+    double fy = 1.0 / tan(fov_deg * 3.14159265358979 / 360.0), fx = fy * H / W;
+    make_view(&s->view, eye, target, fov_deg);
+    for (j = 0; j < 3; j++) f[j] = target[j] - eye[j];
+    norm3(f); cross3(f, up, r); norm3(r); cross3(r, f, u);
+    for (y = 0; y < H; y++)
+        for (x = 0; x < W; x++) {
+            int i = y * W + x, best = -1;
+            double ndx = (2.0 * x + 1 - W) / W, ndy = (H - 2.0 * y - 1) / H, d[3], bt = 1e30, bn[3] = { 0, 0, 0 };
+            for (j = 0; j < 3; j++) d[j] = f[j] + r[j] * ndx / fx + u[j] * ndy / fy; /* view z of d is 1 */
+            for (k = 0; k < s->nrect; k++) {
+                const rect *q = &s->r[k];
+                double n[3], w[3], t, a, b, uu = dot3(q->u, q->u), vv = dot3(q->v, q->v), hp[3];
+                cross3(q->u, q->v, n); norm3(n);
+                if (fabs(dot3(n, d)) < 1e-12) continue;
+                for (j = 0; j < 3; j++) w[j] = q->p[j] - eye[j];
+                t = dot3(n, w) / dot3(n, d);
+                if (t <= 1e-6 || t >= bt) continue;
+                for (j = 0; j < 3; j++) hp[j] = eye[j] + t * d[j] - q->p[j];
+                a = dot3(hp, q->u) / uu; b = dot3(hp, q->v) / vv;
+                if (a < 0 || a > 1 || b < 0 || b > 1) continue;
+                bt = t; best = k;
+                if (dot3(n, d) > 0) { n[0] = -n[0]; n[1] = -n[1]; n[2] = -n[2]; }
+                bn[0] = n[0]; bn[1] = n[1]; bn[2] = n[2];
+            }
+            s->wrect[i] = best;
+            s->sky[i] = best < 0;
+            s->depth[i] = best < 0 ? 0 : tg_from_float((float)bt);
+            s->nx[i] = tg_from_float((float)bn[0]); s->ny[i] = tg_from_float((float)bn[1]); s->nz[i] = tg_from_float((float)bn[2]);
+            for (j = 0; j < 3; j++) s->wpos[i][j] = best < 0 ? 0 : eye[j] + bt * d[j];
+        }
+}
+
+typedef struct outputs {
+    tg_real ao[W * H], bx[W * H], by[W * H], bz[W * H], nr[W * H], ng[W * H], nb[W * H];
+} outputs;
+
+static void io_for(tg_ao_io *io, scene *s, outputs *o, int want_near)
+{
+    memset(io, 0, sizeof *io);
+    io->width = W; io->height = H; io->view = &s->view;
+    io->depth = s->depth; io->nx = s->nx; io->ny = s->ny; io->nz = s->nz; io->sky = s->sky;
+    io->ao = o->ao; io->bent_x = o->bx; io->bent_y = o->by; io->bent_z = o->bz;
+    if (want_near) { io->near_r = o->nr; io->near_g = o->ng; io->near_b = o->nb; }
+}
+
+static tg_bvh bvh;
+static unsigned char *bvh_mem;
+
+static void build_bvh(scene *s)
+{
+    size_t bytes = tg_bvh_bytes(s->nrect * 2);
+    free(bvh_mem);
+    bvh_mem = malloc(bytes);
+    if (tg_bvh_build(&bvh, s->tri, s->nrect * 2, bvh_mem, bytes) != 0) { fprintf(stderr, "bvh build failed\n"); exit(2); }
+}
+
+/* ---- the groove: floor y = 0 (x >= 0) meeting a wall x = 0 (y >= 0) ---- */
+#define BIG 50.0
+static void groove(scene *s)
+{
+    static const double eye[3] = { 2.6, 1.8, 2.2 }, target[3] = { 0.35, 0.3, -0.8 };
+    memset(s, 0, sizeof *s);
+    add_rect(s, 0, 0, BIG, BIG, 0, 0, 0, 0, -2 * BIG);        /* floor, normal +y */
+    add_rect(s, 0, 0, -BIG, 0, BIG, 0, 0, 0, 2 * BIG);        /* wall, normal +x */
+    raster(s, eye, target, 60.0);
+    build_bvh(s);
+}
+
+static void open_plane(scene *s)
+{
+    static const double eye[3] = { 0.5, 2.0, 3.0 }, target[3] = { 0, 0, -1 };
+    memset(s, 0, sizeof *s);
+    add_rect(s, -BIG, 0, BIG, 2 * BIG, 0, 0, 0, 0, -2 * BIG);
+    raster(s, eye, target, 60.0);
+    build_bvh(s);
+}
+
+/* ---- the techniques under test, each with its documented defaults ---- */
+static tg_vec3 uniform_sky[9];   /* L = 1 everywhere: L00 = 2 sqrt(pi) */
+static tg_real far_r[W * H], far_g[W * H], far_b[W * H];
+
+static void run_ssao_sphere(const tg_ao_io *io, int y0, int y1)
+{ tg_ssao_params p; tg_ssao_defaults(&p); p.variant = TG_SSAO_SPHERE; tg_ssao_rows(&p, io, y0, y1); }
+static void run_ssao_hemi(const tg_ao_io *io, int y0, int y1)
+{ tg_ssao_params p; tg_ssao_defaults(&p); tg_ssao_rows(&p, io, y0, y1); }
+static void run_ssao_2d(const tg_ao_io *io, int y0, int y1)
+{ tg_ssao_params p; tg_ssao_defaults(&p); p.variant = TG_SSAO_DISK2D; tg_ssao_rows(&p, io, y0, y1); }
+static void run_vo(const tg_ao_io *io, int y0, int y1)
+{ tg_vo_params p; tg_vo_defaults(&p); tg_vo_rows(&p, io, y0, y1); }
+static void run_vo_area(const tg_ao_io *io, int y0, int y1)
+{ tg_vo_params p; tg_vo_defaults(&p); p.area = 1; p.samples = 5; tg_vo_rows(&p, io, y0, y1); }
+static void run_vo_nonormal(const tg_ao_io *io, int y0, int y1)
+{ tg_vo_params p; tg_vo_defaults(&p); p.use_normal = 0; tg_vo_rows(&p, io, y0, y1); }
+static void run_hbao(const tg_ao_io *io, int y0, int y1)
+{ tg_hbao_params p; tg_hbao_defaults(&p); tg_hbao_rows(&p, io, y0, y1); }
+static void run_gtao(const tg_ao_io *io, int y0, int y1)
+{ tg_gtao_params p; tg_gtao_defaults(&p); tg_gtao_rows(&p, io, y0, y1); }
+static void run_ssdo(const tg_ao_io *io, int y0, int y1)
+{
+    tg_ssdo_params p; tg_ssdo_defaults(&p);
+    p.env_sh9 = uniform_sky; p.far_r = far_r; p.far_g = far_g; p.far_b = far_b;
+    tg_ssdo_rows(&p, io, y0, y1);
+}
+static void run_bentcone(const tg_ao_io *io, int y0, int y1)
+{
+    tg_bentcone_params p; tg_bentcone_defaults(&p);
+    p.env_sh9 = uniform_sky; p.far_r = far_r; p.far_g = far_g; p.far_b = far_b;
+    tg_bentcone_rows(&p, io, y0, y1);
+}
+
+typedef struct technique {
+    const char *name;
+    void (*run)(const tg_ao_io *io, int y0, int y1);
+    double open_min;   /* ao bound on an open plane */
+    double rmse_max;   /* groove ao RMSE against the reference (radius 1) */
+    int has_bent;
+    double bent_max;   /* mean bent-normal angle error (deg) where the reference ao < 0.9 */
+} technique;
+
+/* Bounds.  Open plane: every point-sample test is against the occluding
+ * pixel's tangent plane and the horizon methods ignore samples on the
+ * tangent plane, so a plane is exact at any angle (>= 0.95 as the issue
+ * asks); ssao's sphere and vo without the normal are renormalised by 2 and
+ * exact by their symmetric patterns; gtao's slice quadrature of eq. 11.18
+ * leaves ~0.98 at grazing angles with 4 slices; vo's area samples read a
+ * tilted plane's depth spread over a footprint as roughness (Loos and Sloan
+ * call them adequate for creases only): >= 0.90.  Groove RMSE and bent
+ * error: the measured values (printed) plus ~40%; techniques without the
+ * cosine of eq. 11.8 (ssao sphere, 2d, hbao, bentcone's uniform directions)
+ * differ from the reference by definition as well as by sampling. */
+static const technique techniques[] = {
+    { "ssao-sphere", run_ssao_sphere, 0.95, 0.15, 1, 40 },
+    { "ssao-hemisphere", run_ssao_hemi, 0.95, 0.10, 1, 15 },
+    { "ssao-disk2d", run_ssao_2d, 0.95, 0.10, 0, 0 },
+    { "vo-lines", run_vo, 0.95, 0.10, 0, 0 },
+    { "vo-area", run_vo_area, 0.90, 0.12, 0, 0 },
+    { "vo-no-normal", run_vo_nonormal, 0.95, 0.15, 0, 0 },
+    { "hbao", run_hbao, 0.95, 0.13, 0, 0 },
+    { "gtao", run_gtao, 0.95, 0.06, 1, 10 },
+    { "ssdo", run_ssdo, 0.95, 0.13, 1, 18 },
+    { "bentcone", run_bentcone, 0.95, 0.08, 1, 18 },
+};
+#define NTECH ((int)(sizeof techniques / sizeof techniques[0]))
+
+static int worst_pixel;
+static void check_outputs(const technique *t, const scene *s, const outputs *o, double *min_ao)
+{
+    int i, bad_range = 0, bad_bent = 0;
+    *min_ao = 1;
+    worst_pixel = -1;
+    for (i = 0; i < W * H; i++) {
+        double a = check_d(o->ao[i]), bl;
+        if (!(a >= 0 && a <= 1) || !tg_isfinite(o->ao[i])) bad_range++;
+        if (s->sky[i]) continue;
+        if (a < *min_ao) { *min_ao = a; worst_pixel = i; }
+        bl = sqrt(check_d(o->bx[i]) * check_d(o->bx[i]) + check_d(o->by[i]) * check_d(o->by[i]) +
+                  check_d(o->bz[i]) * check_d(o->bz[i]));
+        if (!(fabs(bl - 1) < 2e-3)) bad_bent++;
+    }
+    CHECK(bad_range == 0, "%s: %d ao values outside [0, 1] or not finite", t->name, bad_range);
+    CHECK(bad_bent == 0, "%s: %d bent normals not unit", t->name, bad_bent);
+}
+
+TEST(open_plane_all)
+{
+    static scene s;
+    static outputs o;
+    tg_ao_io io;
+    int k;
+    open_plane(&s);
+    for (k = 0; k < NTECH; k++) {
+        double min_ao;
+        io_for(&io, &s, &o, 0);
+        techniques[k].run(&io, 0, H);
+        check_outputs(&techniques[k], &s, &o, &min_ao);
+        printf("# open plane %-16s min ao %.4f (bound %.2f) at pixel (%d, %d) depth %.2f\n", techniques[k].name, min_ao,
+               techniques[k].open_min, worst_pixel % W, worst_pixel / W, worst_pixel < 0 ? 0.0 : check_d(s.depth[worst_pixel]));
+        CHECK(min_ao >= techniques[k].open_min, "%s: open plane ao %g", techniques[k].name, min_ao);
+    }
+}
+
+TEST(deterministic_all)
+{
+    static scene s;
+    static outputs a, b;
+    tg_ao_io io;
+    int k;
+    groove(&s);
+    for (k = 0; k < NTECH; k++) {
+        io_for(&io, &s, &a, 1);
+        techniques[k].run(&io, 0, H);
+        io_for(&io, &s, &b, 1);
+        techniques[k].run(&io, 0, 13);
+        techniques[k].run(&io, 13, H);
+        CHECK(memcmp(a.ao, b.ao, sizeof a.ao) == 0, "%s: ao not deterministic", techniques[k].name);
+        CHECK(memcmp(a.bx, b.bx, sizeof a.bx) == 0 && memcmp(a.bz, b.bz, sizeof a.bz) == 0,
+              "%s: bent not deterministic", techniques[k].name);
+    }
+}
+
+/* Mean ao of floor pixels within `lo..hi` of the wall. */
+static double floor_mean(const scene *s, const tg_real *ao, double lo, double hi)
+{
+    double sum = 0;
+    int i, n = 0;
+    for (i = 0; i < W * H; i++)
+        if (!s->sky[i] && s->wrect[i] == 0 && s->wpos[i][0] >= lo && s->wpos[i][0] < hi &&
+            fabs(s->wpos[i][2]) < 10) { sum += check_d(ao[i]); n++; }
+    return n ? sum / n : -1;
+}
+
+TEST(groove_against_reference)
+{
+    static scene s;
+    static outputs ref, o;
+    tg_reference_params rp;
+    tg_ao_io io;
+    int k, i;
+    groove(&s);
+    tg_reference_defaults(&rp);
+    rp.bvh = &bvh; rp.tri_nrm = s.nrm; rp.radius = TG_ONE;
+    io_for(&io, &s, &ref, 0);
+    tg_reference_rows(&rp, &io, 0, H);
+    printf("# groove reference: floor ao near the crease %.3f, beyond the radius %.3f\n",
+           floor_mean(&s, ref.ao, 0, 0.15), floor_mean(&s, ref.ao, 1.2, 100));
+    for (k = 0; k < NTECH; k++) {
+        double se = 0, near_ao, far_ao, min_ao, bent_err = 0;
+        int n = 0, nb = 0;
+        io_for(&io, &s, &o, 0);
+        techniques[k].run(&io, 0, H);
+        check_outputs(&techniques[k], &s, &o, &min_ao);
+        for (i = 0; i < W * H; i++) {
+            double d, c;
+            if (s.sky[i]) continue;
+            d = check_d(o.ao[i]) - check_d(ref.ao[i]);
+            se += d * d; n++;
+            if (techniques[k].has_bent && check_d(ref.ao[i]) < 0.9) {
+                c = check_d(o.bx[i]) * check_d(ref.bx[i]) + check_d(o.by[i]) * check_d(ref.by[i]) +
+                    check_d(o.bz[i]) * check_d(ref.bz[i]);
+                bent_err += acos(fmax(-1.0, fmin(1.0, c))) * 180 / 3.14159265358979; nb++;
+            }
+        }
+        near_ao = floor_mean(&s, o.ao, 0, 0.15);
+        far_ao = floor_mean(&s, o.ao, 1.2, 100);
+        printf("# groove %-16s rmse %.4f (bound %.2f), crease %.3f, open floor %.3f, bent err %.1f deg\n",
+               techniques[k].name, sqrt(se / n), techniques[k].rmse_max, near_ao, far_ao, nb ? bent_err / nb : 0.0);
+        CHECK(sqrt(se / n) <= techniques[k].rmse_max, "%s: rmse %g", techniques[k].name, sqrt(se / n));
+        CHECK(near_ao >= 0 && near_ao < far_ao - 0.15, "%s: ao must drop at the crease: %g vs %g",
+              techniques[k].name, near_ao, far_ao);
+        if (techniques[k].has_bent)
+            CHECK(nb > 0 && bent_err / nb < techniques[k].bent_max, "%s: bent error %g deg (bound %g)",
+                  techniques[k].name, nb ? bent_err / nb : 0.0, techniques[k].bent_max);
+    }
+}
+
+TEST(interreflection)
+{
+    /* RTR eq. 11.13: k' = k / (1 - rho (1 - k)) */
+    CHECK_NEAR(check_d(tg_ao_interreflection(TG_R(0.5f), TG_R(0.5f))), 0.5 / 0.75, 2e-4);
+    CHECK_NEAR(check_d(tg_ao_interreflection(TG_R(0.3f), 0)), 0.3, 2e-5);
+    CHECK(tg_ao_interreflection(TG_ONE, TG_R(0.8f)) == TG_ONE, "open stays open");
+    CHECK(tg_ao_interreflection(0, TG_R(0.8f)) == 0, "k = 0 stays 0 for rho < 1");
+    CHECK(tg_ao_interreflection(0, TG_ONE) == TG_ONE, "rho = 1, k = 0: the limit 1");
+    {
+        int a, r;
+        for (a = 0; a <= 20; a++)
+            for (r = 0; r <= 20; r++) {
+                tg_real k = tg_ratio(a, 20), rho = tg_ratio(r, 20), kp = tg_ao_interreflection(k, rho);
+                CHECK(kp >= k && kp <= TG_ONE, "brightens within [k, 1]: %g -> %g", check_d(k), check_d(kp));
+            }
+    }
+}
+
+TEST(bentcone_cone_and_far)
+{
+    static scene s;
+    static outputs o;
+    static tg_real cone[W * H];
+    tg_ao_io io;
+    int i, n = 0;
+    double min_cone = 10, worst_far = 0;
+    CHECK_NEAR(check_d(tg_bentcone_aperture(TG_R(0.5f))), 3.14159265358979 / 2, 1e-4);
+    CHECK_NEAR(check_d(tg_bentcone_aperture(TG_ONE)), 0, 1e-6);
+    CHECK_NEAR(check_d(tg_bentcone_aperture(TG_R(0.75f))), 3.14159265358979 / 4, 1e-4);
+    open_plane(&s);
+    io_for(&io, &s, &o, 0);
+    io.cone = cone;
+    run_bentcone(&io, 0, H);
+    for (i = 0; i < W * H; i++) {
+        if (s.sky[i]) continue;
+        n++;
+        min_cone = fmin(min_cone, check_d(cone[i]));
+        worst_far = fmax(worst_far, fabs(check_d(far_r[i]) - 3.14159265358979));
+    }
+    printf("# bentcone open plane: min cone %.3f rad, worst |E_far - pi| %.4f\n", min_cone, worst_far);
+    CHECK(min_cone > 1.35, "open plane cone %g (pi/2 expected, spiral residue allowed)", min_cone);
+    CHECK(worst_far < 0.1, "uniform sky irradiance %g off pi", worst_far);
+    /* groove: cones narrow and bent normals lean away from the wall */
+    groove(&s);
+    io_for(&io, &s, &o, 0);
+    io.cone = cone;
+    run_bentcone(&io, 0, H);
+    {
+        double cone_crease = 0, bx = 0;
+        int m = 0;
+        for (i = 0; i < W * H; i++)
+            if (!s.sky[i] && s.wrect[i] == 0 && s.wpos[i][0] < 0.15 && fabs(s.wpos[i][2]) < 10) {
+                cone_crease += check_d(cone[i]); bx += check_d(o.bx[i]); m++;
+            }
+        CHECK(m > 0 && cone_crease / m < 1.2, "crease cone %g", m ? cone_crease / m : 0.0);
+        CHECK(m > 0 && bx / m > 0.2, "crease bent x %g", m ? bx / m : 0.0);
+    }
+}
+
+TEST(ssdo_far_and_near)
+{
+    static scene s;
+    static outputs o, ref;
+    static tg_real rr[W * H], rg[W * H], rb[W * H];
+    tg_reference_params rp;
+    tg_ao_io io;
+    int i, n = 0;
+    double worst_far = 0, e_ssdo = 0, e_ref = 0;
+    open_plane(&s);
+    io_for(&io, &s, &o, 0);
+    run_ssdo(&io, 0, H);
+    for (i = 0; i < W * H; i++)
+        if (!s.sky[i]) worst_far = fmax(worst_far, fabs(check_d(far_r[i]) - 3.14159265358979));
+    printf("# ssdo open plane: worst |E_far - pi| %.4f\n", worst_far);
+    CHECK(worst_far < 0.05, "uniform sky through ssdo: %g", worst_far);
+    /* one bounce in the groove: the wall sends L = 1, the floor nothing */
+    groove(&s);
+    for (i = 0; i < W * H; i++) { rr[i] = s.wrect[i] == 1 ? TG_ONE : 0; rg[i] = rr[i]; rb[i] = 0; }
+    io_for(&io, &s, &o, 1);
+    io.rad_r = rr; io.rad_g = rg; io.rad_b = rb;
+    run_ssdo(&io, 0, H);
+    tg_reference_defaults(&rp);
+    rp.bvh = &bvh; rp.tri_nrm = s.nrm; rp.radius = TG_ONE;
+    io_for(&io, &s, &ref, 1);
+    io.rad_r = rr; io.rad_g = rg; io.rad_b = rb;
+    tg_reference_rows(&rp, &io, 0, H);   /* view-buffer radiance: what ssdo can see */
+    for (i = 0; i < W * H; i++) {
+        CHECK(o.nr[i] >= 0 && tg_isfinite(o.nr[i]) && o.nb[i] == 0, "near must be finite, >= 0");
+        if (!s.sky[i] && s.wrect[i] == 0 && s.wpos[i][0] < 0.15 && fabs(s.wpos[i][2]) < 10) {
+            e_ssdo += check_d(o.nr[i]); e_ref += check_d(ref.nr[i]); n++;
+        }
+    }
+    printf("# ssdo near field at the crease: %.3f, reference (view radiance) %.3f\n", e_ssdo / n, e_ref / n);
+    CHECK(n > 0 && e_ssdo / n > 0.25 * e_ref / n && e_ssdo / n < 4 * e_ref / n,
+          "ssdo bounce %g vs reference %g", e_ssdo / n, e_ref / n);
+}
+
+int main(void)
+{
+    uniform_sky[0] = tg_v3(TG_R(3.5449077f), TG_R(3.5449077f), TG_R(3.5449077f));
+    RUN(open_plane_all);
+    RUN(deterministic_all);
+    RUN(groove_against_reference);
+    RUN(interreflection);
+    RUN(bentcone_cone_and_far);
+    RUN(ssdo_far_and_near);
+    free(bvh_mem);
+    return check_summary();
+}
