@@ -160,28 +160,18 @@ static void slice_screen_dir(const hbil_ctx *c, const hbil_pixel *px, tg_vec3 d,
 
 /* Depth at the continuous minor-axis position b0 + f, so that the sample
  * lies on the slice plane.  Between two surface pixels: 1/z interpolated
- * linearly (exact on a plane, however grazing).  At a depth discontinuity,
- * next to the sky or the image edge: the nearest pixel's tangent plane is
- * extended to the ray through the continuous position; 0 (skip the sample)
- * when that ray misses the plane or lands far from the nearest pixel. */
-static tg_real sample_depth(const hbil_ctx *c, int major_x, int a, int b0, tg_real f, int sa, int sb, int sn)
+ * linearly (exact on a plane, however grazing; inlined in march_side).  At
+ * a depth discontinuity, next to the sky or the image edge (here): the
+ * nearest pixel's tangent plane is extended to the ray through the
+ * continuous position; 0 (skip the sample) when that ray misses the plane
+ * or lands far from the nearest pixel. */
+static tg_real sample_depth_edge(const hbil_ctx *c, int major_x, int a, int b0, tg_real f, int sa, int sn)
 {
     const tg_hbil_io *io = c->io;
     const tg_view *v = c->p->view;
-    int lim = major_x ? io->height : io->width;
-    tg_real zn = io->depth[sn], za, zb, den, gn, gc, X, Y, Xn, Yn, ratio;
+    tg_real zn = io->depth[sn], gn, gc, X, Y, Xn, Yn, ratio;
     int bn;
     tg_vec3 nw, n;
-    if (b0 >= 0 && b0 + 1 < lim && !(io->sky && (io->sky[sa] || io->sky[sb]))) {
-        za = io->depth[sa];
-        zb = io->depth[sb];
-        if (za > 0 && zb > 0 && tg_abs(tg_sub(za, zb)) < tg_mul(HBIL_LERP_MAX_REL, tg_min(za, zb))) {
-            /* 1/z = (1-f)/za + f/zb  <=>  z = za + f (zb - za) za / (zb - f (zb - za)) */
-            tg_real dz = tg_sub(zb, za);
-            den = tg_sub(zb, tg_mul(f, dz));
-            return tg_add(za, tg_mul(tg_mul(f, dz), tg_div(za, den)));
-        }
-    }
     /* tangent plane of the nearest pixel: z = zn (n.ray_n) / (n.ray_c), ray = (X/ppu, Y/ppu, 1) */
     nw = tg_v3(io->nx[sn], io->ny[sn], io->nz[sn]);
     n = tg_v3(tg_v3_dot(nw, v->right), tg_v3_dot(nw, v->up), tg_v3_dot(nw, v->forward));
@@ -230,66 +220,84 @@ static void gather_rise(const hbil_ctx *c, const hbil_slice *sl, hbil_side *sd, 
     sd->eb = tg_add(sd->eb, tg_mul(sd->lb, de));
 }
 
-/* March one side (+1 along D, -1 against) and raise its horizon. */
+/* Whole-pixel steps along the major axis: `samples` steps of m pixels
+ * reach the extent; returns m and sets *n, the count of steps. */
+static int march_steps(const hbil_ctx *c, tg_real extent, int *n)
+{
+    int m = tg_to_int(tg_div(extent, tg_from_int(c->samples)));
+    if (tg_from_int(m * c->samples) < extent) m++;
+    if (m < 1) m = 1;
+    *n = tg_to_int(tg_div(extent, tg_from_int(m)));
+    if (*n > c->samples) *n = c->samples;
+    return m;
+}
+
+/* March one side (+1 along D, -1 against) and raise its horizon.  Indices
+ * run along the major axis a (stride smaj) and the minor axis b (smin);
+ * the sample's screen offset s (image pixels, y up) gives the view-space
+ * offset d = s + q (P0 + s), q = (z1 - z) / z, P0 = the pixel's position
+ * (X, Y, ppu) / step (see top). */
 static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice *sl,
                        tg_real ux, tg_real uy, int side, hbil_side *sd)
 {
     const tg_hbil_io *io = c->io;
+    const tg_real *restrict depth = io->depth;
+    const uint8_t *restrict sky = io->sky;
     const int w = io->width, h = io->height;
-    int major_x = tg_abs(ux) >= tg_abs(uy);
-    tg_real umaj = major_x ? tg_abs(ux) : tg_abs(uy);
+    const int major_x = tg_abs(ux) >= tg_abs(uy);
+    const int smaj = major_x ? 1 : w, smin = major_x ? w : 1, amax = major_x ? w : h, bmax = major_x ? h : w;
+    const tg_real umaj = major_x ? tg_abs(ux) : tg_abs(uy);
+    const tg_real p0x = tg_mul(px->X, c->inv_step), p0y = tg_mul(px->Y, c->inv_step);
+    const tg_real p0z = tg_mul(c->ppu, c->inv_step), z = px->z, inv_z = px->inv_z;
+    const tg_real r2 = px->radius_units2, wox = px->wo.x, woy = px->wo.y, woz = px->wo.z;
     tg_real slope = tg_div(major_x ? uy : ux, umaj == 0 ? TG_ONE : umaj);
     int dir = ((major_x ? ux : uy) < 0 ? -1 : 1) * side;
-    tg_real extent = tg_mul(px->reach, umaj);                  /* along the major axis */
-    int m, n, k;
-    tg_real minor0, dminor, minor, ox;
+    int m, n, k, da, a, kmax;
+    tg_real dminor, minor, ox;
     if (side < 0) slope = tg_neg(slope);
-    /* whole-pixel steps along the major axis: `samples` of them reach the extent */
-    m = tg_to_int(tg_div(extent, tg_from_int(c->samples)));
-    if (tg_from_int(m * c->samples) < extent) m++;
-    if (m < 1) m = 1;
-    n = tg_to_int(tg_div(extent, tg_from_int(m)));
-    if (n > c->samples) n = c->samples;
-    minor0 = major_x ? tg_from_int(px->y) : tg_from_int(px->x);
+    m = march_steps(c, tg_mul(px->reach, umaj), &n);
+    da = m * dir;
+    a = major_x ? px->x : px->y;
+    kmax = da > 0 ? (amax - 1 - a) / da : a / -da;             /* never past the screen edge */
+    if (n > kmax) n = kmax;
+    minor = major_x ? tg_from_int(px->y) : tg_from_int(px->x);
     dminor = tg_mul(slope, tg_from_int(m));
-    minor = minor0;
     ox = 0;
     for (k = 1; k <= n; k++) {
-        int a = (major_x ? px->x : px->y) + k * m * dir;
-        int b0, b1, sa, sb, sn, bn;
-        tg_real f, z1, q, X1, Y1, len2, dot;
-        tg_vec3 d;
+        int b0, bn, sa, sn;
+        tg_real f, z1, za, zb, q, sx, sy, smajor, dx, dy, dz, len2, dot;
         minor = tg_add(minor, dminor);
         ox = tg_add(ox, dminor);
-        if (a < 0 || a >= (major_x ? w : h)) break;           /* never past the screen edge */
+        a += da;
         b0 = tg_to_int(minor);
         f = tg_sub(minor, tg_from_int(b0));
-        b1 = b0 + 1;
-        bn = f < TG_R(0.5f) ? b0 : b1;
-        if (bn < 0 || bn >= (major_x ? h : w)) break;
-        sa = major_x ? b0 * w + a : a * w + b0;
-        sb = major_x ? b1 * w + a : a * w + b1;
-        sn = bn == b0 ? sa : sb;
-        if ((io->sky && io->sky[sn]) || io->depth[sn] <= 0) continue;  /* sky never occludes */
-        z1 = sample_depth(c, major_x, a, b0, f, sa, sb, sn);
-        if (z1 <= 0) continue;
-        /* view-space offset scaled to image pixels at depth z (see top) */
-        q = tg_mul(tg_sub(z1, px->z), px->inv_z);
-        if (major_x) {
-            X1 = tg_add(px->X, tg_from_int(k * m * dir * c->step));
-            Y1 = tg_sub(px->Y, tg_mul(ox, tg_from_int(c->step)));
-            d = tg_v3(tg_from_int(k * m * dir), tg_neg(ox), 0);
+        bn = f < TG_R(0.5f) ? b0 : b0 + 1;
+        if (bn < 0 || bn >= bmax) break;
+        sa = a * smaj + b0 * smin;
+        sn = bn == b0 ? sa : sa + smin;
+        if ((sky && sky[sn]) || depth[sn] <= 0) continue;      /* sky never occludes */
+        za = b0 >= 0 ? depth[sa] : 0;
+        zb = b0 + 1 < bmax ? depth[sa + smin] : 0;
+        if (za > 0 && zb > 0 && !(sky && (sky[sa] || sky[sa + smin]))
+            && tg_abs(tg_sub(za, zb)) < tg_mul(HBIL_LERP_MAX_REL, tg_min(za, zb))) {
+            /* 1/z = (1-f)/za + f/zb  <=>  z = za + f (zb - za) za / (zb - f (zb - za)) */
+            tg_real zd = tg_sub(zb, za);
+            z1 = tg_add(za, tg_mul(tg_mul(f, zd), tg_div(za, tg_sub(zb, tg_mul(f, zd)))));
         } else {
-            X1 = tg_add(px->X, tg_mul(ox, tg_from_int(c->step)));
-            Y1 = tg_sub(px->Y, tg_from_int(k * m * dir * c->step));
-            d = tg_v3(ox, tg_from_int(-k * m * dir), 0);
+            z1 = sample_depth_edge(c, major_x, a, b0, f, sa, sn);
+            if (z1 <= 0) continue;
         }
-        d.x = tg_add(d.x, tg_mul(tg_mul(X1, q), c->inv_step));
-        d.y = tg_add(d.y, tg_mul(tg_mul(Y1, q), c->inv_step));
-        d.z = tg_mul(tg_mul(c->ppu, q), c->inv_step);
-        len2 = tg_v3_dot(d, d);
-        if (len2 > px->radius_units2) continue;                /* beyond the 3D radius */
-        dot = tg_v3_dot(d, px->wo);
+        /* view-space offset scaled to image pixels at depth z (see top) */
+        q = tg_mul(tg_sub(z1, z), inv_z);
+        smajor = tg_from_int(k * da);
+        sx = major_x ? smajor : ox;
+        sy = major_x ? tg_neg(ox) : tg_neg(smajor);
+        dx = tg_add(sx, tg_mul(tg_add(p0x, sx), q));
+        dy = tg_add(sy, tg_mul(tg_add(p0y, sy), q));
+        dz = tg_mul(p0z, q);
+        len2 = tg_v3_dot(tg_v3(dx, dy, dz), tg_v3(dx, dy, dz));
+        if (len2 > r2) continue;                                /* beyond the 3D radius */
+        dot = tg_v3_dot(tg_v3(dx, dy, dz), tg_v3(wox, woy, woz));
         /* cos(theta) > horizon, without a division: dot|dot| > h|h| |d|^2 */
         if (tg_mul(dot, tg_abs(dot)) > tg_mul(tg_add(sd->hs, HBIL_TIE), len2)) {
             tg_real len = tg_sqrt(len2);
@@ -298,7 +306,7 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
             sd->h = cn;
             sd->hs = tg_mul(cn, tg_abs(cn));
             if (c->near_field)
-                gather_rise(c, sl, sd, side, cn, tg_v3_scale(d, tg_div(TG_ONE, len)), sn);
+                gather_rise(c, sl, sd, side, cn, tg_v3_scale(tg_v3(dx, dy, dz), tg_div(TG_ONE, len)), sn);
         }
     }
 }
