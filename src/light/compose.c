@@ -39,7 +39,7 @@ void tg_compose_rows(const tg_gbuffer *gb, const tg_view *view, const tg_env *en
                 eb = tg_add(eb, terms[k].b[i]);
             }
             if (want_irr) { irr_r[i] = er; irr_g[i] = eg; irr_b[i] = eb; }
-            kd = tg_mul(tg_sub(TG_ONE, gb->f0[i]), TG_INV_PI); /* HBIL eq. 19: (1 - F0), eq. 14: 1/pi */
+            kd = tg_mul(tg_saturate(tg_sub(TG_ONE, gb->f0[i])), TG_INV_PI); /* HBIL eq. 19: (1 - F0), eq. 14: 1/pi */
             out_r[i] = tg_mul(tg_mul(gb->albedo_r[i], kd), er);
             out_g[i] = tg_mul(tg_mul(gb->albedo_g[i], kd), eg);
             out_b[i] = tg_mul(tg_mul(gb->albedo_b[i], kd), eb);
