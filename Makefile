@@ -32,7 +32,7 @@ NUMDEF_fixed := -DTG_FIXED=1
 TESTS_float := $(addprefix $(BUILD)/float/tests/,$(TEST_NAMES))
 TESTS_fixed := $(addprefix $(BUILD)/fixed/tests/,$(TEST_NAMES))
 
-.PHONY: all test clean tests-build
+.PHONY: all test clean tests-build golden
 all: $(BUILD)/libtinygi.a $(BUILD)/libtinygi-fixed.a $(BUILD)/tinygi $(BUILD)/tinygi-fixed
 
 # ---- the core: freestanding, no libc beyond stdint/stddef/string ----
@@ -76,6 +76,10 @@ tests-build: all $(TESTS_float) $(TESTS_fixed)
 
 test: tests-build
 	@BUILD=$(BUILD) CC="$(CC)" bash tests/run.sh
+
+# Rewrite the golden images from the current renderer (look at them after).
+golden: all
+	@GOLDEN_UPDATE=1 BUILD=$(BUILD) bash tests/golden_test.sh | tail -n 1
 
 -include platform/cross.mk
 

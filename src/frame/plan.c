@@ -101,6 +101,8 @@ uint32_t tg_frame_needs(const tg_plan *p)
     uint32_t n = 0, e = p->effects;
     if (e & (TG_EFFECT_AO | TG_EFFECT_NEAR)) n |= TG_NEED_GI_PASS;
     if (r->aovs & (AOV(TG_AOV_COLOR) | AOV(TG_AOV_IRRADIANCE))) n |= TG_NEED_COMPOSE;
+    /* next frame's near field gathers this frame's outgoing radiance */
+    if (e & TG_EFFECT_REPROJECTION) n |= TG_NEED_COMPOSE;
     if (r->frames > 1 && tg_anim_has_motion(s)) {
         int i;
         for (i = 0; i < s->object_count; i++)

@@ -1,0 +1,424 @@
+/*
+ * test_frame.c - whole frames through the public API: the plan derives only
+ * the effects a scene calls for (and the arena shrinks with it), a skipped
+ * effect changes nothing that does not depend on it, and the physics of the
+ * composed frame: an open plane has AO ~ 1, a white furnace returns the
+ * albedo, a closed lit room converges over frames and stays finite.
+ */
+#include <stdlib.h>
+#include "check.h"
+
+typedef struct rendered {
+    tg_scene *scene;
+    tg_plan plan;
+    tg_frame *frame;
+    void *scene_mem, *frame_mem;
+    int ok;
+} rendered;
+
+static int setup(rendered *r, const char *text, const tg_request *req)
+{
+    tg_arena arena;
+    tg_error err;
+    size_t scene_bytes = 1u << 22;
+    memset(r, 0, sizeof *r);
+    r->scene_mem = malloc(scene_bytes);
+    tg_arena_init(&arena, r->scene_mem, scene_bytes);
+    if (tg_scene_parse(text, strlen(text), "test.scene", NULL, &arena, &r->scene, &err) != TG_OK) {
+        char msg[512];
+        tg_error_format(&err, msg, sizeof msg);
+        fprintf(stderr, "%s\n", msg);
+        return 0;
+    }
+    if (tg_plan_make(&r->plan, r->scene, req, &err) != TG_OK) return 0;
+    r->frame_mem = malloc(r->plan.total_bytes);
+    if (tg_frame_create(&r->plan, r->frame_mem, r->plan.total_bytes, &r->frame, &err) != TG_OK) return 0;
+    r->ok = 1;
+    return 1;
+}
+
+static void teardown(rendered *r)
+{
+    free(r->scene_mem);
+    free(r->frame_mem);
+    memset(r, 0, sizeof *r);
+}
+
+static tg_request request(int w, int h, uint32_t aovs)
+{
+    tg_request q;
+    tg_request_defaults(&q);
+    q.width = w;
+    q.height = h;
+    q.aovs = aovs;
+    return q;
+}
+
+/* Read a whole AOV (channels * w * h doubles). */
+static double *read_aov(const rendered *r, tg_aov aov)
+{
+    int w = r->plan.request.width, h = r->plan.request.height, c = tg_aov_channels(aov), y, i;
+    double *out = malloc(sizeof(double) * (size_t)(w * h * c));
+    tg_real *row = malloc(sizeof(tg_real) * (size_t)(w * c));
+    for (y = 0; y < h; y++) {
+        tg_frame_aov_row(r->frame, aov, y, row);
+        for (i = 0; i < w * c; i++) out[(size_t)y * (size_t)(w * c) + (size_t)i] = check_d(row[i]);
+    }
+    free(row);
+    return out;
+}
+
+#define AOVBIT(a) (1u << (a))
+
+static const char *lit_room =
+    "camera pos 0 1 -3.5 target 0 1 0 fov 60\n"
+    "material wall albedo 0.7 0.7 0.7 f0 0\n"
+    "material lamp albedo 0.5 0.5 0.5 emissive 5 5 5\n"
+    "box min -2 0 -4 max 2 3 2 material wall inward\n"
+    "quad p0 -0.5 2.99 -0.5  p1 0.5 2.99 -0.5  p2 0.5 2.99 0.5  p3 -0.5 2.99 0.5 material lamp\n"
+    "light point pos 0 2.5 0 color 1 1 1 intensity 4 shadows\n"
+    "gi radius 3\n";
+
+TEST(plan_follows_the_scene)
+{
+    rendered r;
+    tg_request q = request(64, 48, AOVBIT(TG_AOV_COLOR));
+    CHECK(setup(&r, tg_builtin_scene("cornell"), &q), "cornell sets up");
+    if (!r.ok) return;
+    CHECK(r.plan.effects & TG_EFFECT_DIRECT, "cornell has a light");
+    CHECK(r.plan.effects & TG_EFFECT_SHADOWS, "its light casts shadows");
+    CHECK(r.plan.effects & TG_EFFECT_NEAR, "lit, non-black walls: near field");
+    CHECK(!(r.plan.effects & TG_EFFECT_FAR), "no environment: no far field");
+    CHECK(!(r.plan.effects & TG_EFFECT_REPROJECTION), "one frame: no reprojection");
+    teardown(&r);
+    q.frames = 4;
+    CHECK(setup(&r, tg_builtin_scene("cornell"), &q), "cornell, 4 frames");
+    if (r.ok) CHECK(r.plan.effects & TG_EFFECT_REPROJECTION, "several frames: reprojection");
+    teardown(&r);
+}
+
+TEST(no_near_field_without_light_or_albedo)
+{
+    rendered r;
+    tg_request q = request(32, 24, AOVBIT(TG_AOV_COLOR));
+    const char *dark =
+        "camera pos 0 1 -3 target 0 0 0\n"
+        "material m albedo 0.5 0.5 0.5\n"
+        "quad p0 -5 0 -5 p1 -5 0 5 p2 5 0 5 p3 5 0 -5 material m\n"
+        "env uniform 1 1 1\n";
+    const char *black =
+        "camera pos 0 1 -3 target 0 0 0\n"
+        "material m albedo 0 0 0\n"
+        "quad p0 -5 0 -5 p1 -5 0 5 p2 5 0 5 p3 5 0 -5 material m\n"
+        "light directional dir 0 -1 0 color 1 1 1\n";
+    CHECK(setup(&r, dark, &q), "unlit scene sets up");
+    if (r.ok) {
+        CHECK(!(r.plan.effects & (TG_EFFECT_NEAR | TG_EFFECT_DIRECT | TG_EFFECT_SHADOWS)), "nothing lit: no near, no direct");
+        CHECK(r.plan.effects & TG_EFFECT_FAR, "environment: far field");
+    }
+    teardown(&r);
+    CHECK(setup(&r, black, &q), "black scene sets up");
+    if (r.ok) CHECK(!(r.plan.effects & TG_EFFECT_NEAR), "zero albedo: no near field");
+    teardown(&r);
+    q.bounces = 0;
+    CHECK(setup(&r, lit_room, &q), "bounces 0 sets up");
+    if (r.ok) CHECK(!(r.plan.effects & TG_EFFECT_NEAR), "bounces 0: no near field");
+    teardown(&r);
+}
+
+/* AO does not depend on lights: asking for AO alone skips every light pass,
+ * gives the bit-identical AO, and needs a smaller arena. */
+TEST(ao_alone_is_identical_and_smaller)
+{
+    rendered with_color, ao_only, unlit;
+    tg_request qc = request(64, 48, AOVBIT(TG_AOV_COLOR) | AOVBIT(TG_AOV_AO));
+    tg_request qa = request(64, 48, AOVBIT(TG_AOV_AO));
+    tg_error err;
+    double *a, *b, *c;
+    size_t i, n = 64 * 48, differ = 0, differ_unlit = 0;
+    const char *scene = tg_builtin_scene("columns");
+    char *no_lights = malloc(strlen(scene) + 1);
+    char *line, *out = no_lights;
+    /* the same scene with its light lines dropped */
+    const char *p = scene;
+    while (*p) {
+        const char *e = strchr(p, '\n');
+        size_t len = e ? (size_t)(e - p + 1) : strlen(p);
+        if (strncmp(p, "light", 5) != 0) { memcpy(out, p, len); out += len; }
+        p += len;
+    }
+    *out = '\0';
+    line = no_lights;
+    CHECK(setup(&with_color, scene, &qc), "colour + ao");
+    CHECK(setup(&ao_only, scene, &qa), "ao only");
+    CHECK(setup(&unlit, line, &qa), "ao only, no lights");
+    if (with_color.ok && ao_only.ok && unlit.ok) {
+        tg_frame_render(with_color.frame, 0, &err);
+        tg_frame_render(ao_only.frame, 0, &err);
+        tg_frame_render(unlit.frame, 0, &err);
+        a = read_aov(&with_color, TG_AOV_AO);
+        b = read_aov(&ao_only, TG_AOV_AO);
+        c = read_aov(&unlit, TG_AOV_AO);
+        for (i = 0; i < n; i++) {
+            if (a[i] != b[i]) differ++;
+            if (b[i] != c[i]) differ_unlit++;
+        }
+        CHECK(differ == 0, "%zu AO pixels differ between colour and AO-only plans", differ);
+        CHECK(differ_unlit == 0, "%zu AO pixels differ with and without lights", differ_unlit);
+        CHECK(ao_only.plan.total_bytes < with_color.plan.total_bytes / 2,
+              "AO-only arena %zu vs colour %zu bytes", ao_only.plan.total_bytes, with_color.plan.total_bytes);
+        CHECK(!(ao_only.plan.effects & (TG_EFFECT_DIRECT | TG_EFFECT_SHADOWS | TG_EFFECT_FAR | TG_EFFECT_NEAR)),
+              "AO-only plan has no light effects (0x%x)", (unsigned)ao_only.plan.effects);
+        free(a); free(b); free(c);
+    }
+    teardown(&with_color); teardown(&ao_only); teardown(&unlit);
+    free(no_lights);
+}
+
+/* An open plane, through the rasterizer, the 4x4 interleaved kernel and the
+ * filter: AO >= 0.99 on every plane pixel, bent normal within 2 degrees. */
+TEST(open_plane_ao_is_one)
+{
+    static const double elevations[] = { 5, 30, 60, 90 };
+    int k;
+    for (k = 0; k < 4; k++) {
+        char text[512];
+        rendered r;
+        tg_request q = request(80, 60, AOVBIT(TG_AOV_AO) | AOVBIT(TG_AOV_BENT));
+        tg_error err;
+        double el = elevations[k] * 3.14159265358979 / 180.0, *ao, *bent, worst = 1, worst_angle = 0;
+        size_t i, plane = 0;
+        snprintf(text, sizeof text,
+                 "camera pos 0 %.6f %.6f target 0 0 0 fov 50\n"
+                 "material m albedo 0.5 0.5 0.5\n"
+                 "quad p0 -400 0 -400 p1 -400 0 400 p2 400 0 400 p3 400 0 -400 material m\n",
+                 4 * sin(el), -4 * cos(el) + (elevations[k] == 90 ? 0.0001 : 0));
+        CHECK(setup(&r, text, &q), "plane at %g deg", elevations[k]);
+        if (!r.ok) { teardown(&r); continue; }
+        tg_frame_render(r.frame, 0, &err);
+        ao = read_aov(&r, TG_AOV_AO);
+        bent = read_aov(&r, TG_AOV_BENT);
+        for (i = 0; i < 80 * 60; i++) {
+            double ang;
+            if (bent[3 * i + 1] == 0 && ao[i] == 1 && bent[3 * i] == 0) continue; /* sky */
+            plane++;
+            if (ao[i] < worst) worst = ao[i];
+            ang = acos(fmin(1.0, fmax(-1.0, bent[3 * i + 1]))) * 180.0 / 3.14159265358979;
+            if (ang > worst_angle) worst_angle = ang;
+        }
+        CHECK(plane > 100, "plane visible at %g deg (%zu px)", elevations[k], plane);
+        CHECK(worst >= 0.99, "plane at %g deg: min AO %.4f", elevations[k], worst);
+        CHECK(worst_angle <= 2.0, "plane at %g deg: bent normal off by %.3f deg", elevations[k], worst_angle);
+        free(ao); free(bent);
+        teardown(&r);
+    }
+}
+
+/* White furnace: albedo 0.5, F0 0, under a uniform environment of radiance
+ * 1 and no light: Lo = 0.5 everywhere on the plane (float 1%, fixed 2%). */
+TEST(white_furnace_returns_the_albedo)
+{
+    rendered r;
+    tg_request q = request(64, 48, AOVBIT(TG_AOV_COLOR));
+    tg_error err;
+    double *c, worst = 0, tol = TG_FIXED ? 0.02 : 0.01;
+    size_t i, n = 0;
+    const char *text =
+        "camera pos 0 3 -4 target 0 0 0\n"
+        "material m albedo 0.5 0.5 0.5 f0 0\n"
+        "quad p0 -400 0 -400 p1 -400 0 400 p2 400 0 400 p3 400 0 -400 material m\n"
+        "env uniform 1 1 1\n";
+    CHECK(setup(&r, text, &q), "furnace sets up");
+    if (!r.ok) { teardown(&r); return; }
+    tg_frame_render(r.frame, 0, &err);
+    c = read_aov(&r, TG_AOV_COLOR);
+    for (i = 0; i < 64 * 48; i++) {
+        double e = fabs(c[3 * i] - 0.5) / 0.5;
+        if (c[3 * i] > 0.99 && c[3 * i] < 1.01) continue;   /* sky: radiance 1 */
+        n++;
+        if (e > worst) worst = e;
+    }
+    CHECK(n > 500, "plane pixels %zu", n);
+    CHECK(worst <= tol, "furnace colour off by %.4f (relative)", worst);
+    free(c);
+    teardown(&r);
+}
+
+static double mean_abs_change(const double *a, const double *b, size_t n)
+{
+    double s = 0;
+    size_t i;
+    for (i = 0; i < n; i++) s += fabs(a[i] - b[i]);
+    return s / (double)n;
+}
+
+static double mean(const double *a, size_t n)
+{
+    double s = 0;
+    size_t i;
+    for (i = 0; i < n; i++) s += a[i];
+    return s / (double)n;
+}
+
+/* HBIL eq. 17: a static closed room lit by a lamp converges over frames -
+ * the frame-to-frame change shrinks and the image ends brighter than one
+ * bounce. */
+TEST(closed_room_converges)
+{
+    rendered r;
+    tg_request q = request(80, 60, AOVBIT(TG_AOV_COLOR));
+    tg_error err;
+    size_t n = 80 * 60 * 3;
+    double *prev = NULL, *cur, first_mean = 0, early_change = 0, late_change = 0;
+    int f;
+    q.frames = 24;
+    CHECK(setup(&r, lit_room, &q), "room sets up");
+    if (!r.ok) { teardown(&r); return; }
+    for (f = 0; f < q.frames; f++) {
+        tg_frame_render(r.frame, f, &err);
+        cur = read_aov(&r, TG_AOV_COLOR);
+        if (f == 0) first_mean = mean(cur, n);
+        if (prev && f <= 3) early_change += mean_abs_change(cur, prev, n);
+        if (prev && f >= q.frames - 3) late_change += mean_abs_change(cur, prev, n);
+        free(prev);
+        prev = cur;
+    }
+    CHECK(mean(prev, n) > first_mean * 1.02, "converged %.4f vs first frame %.4f", mean(prev, n), first_mean);
+    CHECK(late_change < early_change * 0.5, "change late %.5f vs early %.5f", late_change, early_change);
+    free(prev);
+    teardown(&r);
+}
+
+/* Albedo 1 walls and a bright lamp for many frames: everything stays
+ * finite and non-negative (fixed point saturates, never wraps). */
+TEST(white_room_stays_finite)
+{
+    rendered r;
+    tg_request q = request(16, 12, AOVBIT(TG_AOV_COLOR) | AOVBIT(TG_AOV_NEAR));
+    tg_error err;
+    const char *text =
+        "camera pos 0 1 -3.5 target 0 1 0 fov 60\n"
+        "material wall albedo 1 1 1 f0 0\n"
+        "material lamp albedo 1 1 1 emissive 50 50 50\n"
+        "box min -2 0 -4 max 2 3 2 material wall inward\n"
+        "quad p0 -0.5 2.99 -0.5  p1 0.5 2.99 -0.5  p2 0.5 2.99 0.5  p3 -0.5 2.99 0.5 material lamp\n"
+        "light point pos 0 2.5 0 color 1 1 1 intensity 20\n";
+    int f, bad = 0;
+    q.frames = 500;
+    CHECK(setup(&r, text, &q), "white room sets up");
+    if (!r.ok) { teardown(&r); return; }
+    for (f = 0; f < q.frames; f++) tg_frame_render(r.frame, f, &err);
+    {
+        double *c = read_aov(&r, TG_AOV_COLOR), *nf = read_aov(&r, TG_AOV_NEAR);
+        size_t i;
+        for (i = 0; i < 16 * 12 * 3; i++) {
+            if (!isfinite(c[i]) || c[i] < 0 || !isfinite(nf[i]) || nf[i] < 0) bad++;
+        }
+        CHECK(bad == 0, "%d non-finite or negative values after 500 frames", bad);
+        CHECK(mean(c, 16 * 12 * 3) > 1.0, "a white room with a bright lamp is bright (%.3f)", mean(c, 16 * 12 * 3));
+        free(c); free(nf);
+    }
+    teardown(&r);
+}
+
+/* A camera cut (a key far from the last) keeps every output finite and
+ * the AO in [0, 1]. */
+TEST(camera_cut_is_finite)
+{
+    rendered r;
+    tg_request q = request(40, 30, AOVBIT(TG_AOV_COLOR) | AOVBIT(TG_AOV_AO));
+    tg_error err;
+    const char *text =
+        "camera pos 0 1 -3.5 target 0 1 0\n"
+        "camera_key t 0 pos 0 1 -3.5 target 0 1 0\n"
+        "camera_key t 1 pos 0 1 -3.5 target 0 1 0\n"
+        "camera_key t 1.01 pos 1.5 2.5 1.5 target -1 0 -2\n"
+        "camera_key t 2 pos 1.5 2.5 1.5 target -1 0 -2\n"
+        "material wall albedo 0.7 0.7 0.7\n"
+        "material lamp albedo 0.5 0.5 0.5 emissive 5 5 5\n"
+        "box min -2 0 -4 max 2 3 2 material wall inward\n"
+        "box min -0.5 0 -0.5 max 0.5 1 0.5 material wall\n"
+        "quad p0 -0.5 2.99 -0.5  p1 0.5 2.99 -0.5  p2 0.5 2.99 0.5  p3 -0.5 2.99 0.5 material lamp\n"
+        "light point pos 0 2.5 0 color 1 1 1 intensity 4\n";
+    int f, bad = 0;
+    q.frames = 6;
+    CHECK(setup(&r, text, &q), "cut scene sets up");
+    if (!r.ok) { teardown(&r); return; }
+    for (f = 0; f < q.frames; f++) {
+        double *c, *ao;
+        size_t i;
+        tg_frame_render(r.frame, f, &err);
+        c = read_aov(&r, TG_AOV_COLOR);
+        ao = read_aov(&r, TG_AOV_AO);
+        for (i = 0; i < 40 * 30; i++) {
+            if (!isfinite(c[3 * i]) || !isfinite(c[3 * i + 1]) || !isfinite(c[3 * i + 2]) || c[3 * i] < 0) bad++;
+            if (!(ao[i] >= 0 && ao[i] <= 1)) bad++;
+        }
+        free(c); free(ao);
+    }
+    CHECK(bad == 0, "%d bad values across the cut", bad);
+    teardown(&r);
+}
+
+/* The same frame twice gives the same bits. */
+TEST(deterministic)
+{
+    rendered a, b;
+    tg_request q = request(48, 36, AOVBIT(TG_AOV_COLOR));
+    tg_error err;
+    CHECK(setup(&a, tg_builtin_scene("cornell"), &q), "a");
+    CHECK(setup(&b, tg_builtin_scene("cornell"), &q), "b");
+    if (a.ok && b.ok) {
+        double *x, *y;
+        tg_frame_render(a.frame, 0, &err);
+        tg_frame_render(b.frame, 0, &err);
+        x = read_aov(&a, TG_AOV_COLOR);
+        y = read_aov(&b, TG_AOV_COLOR);
+        CHECK(memcmp(x, y, sizeof(double) * 48 * 36 * 3) == 0, "two renders differ");
+        free(x); free(y);
+    }
+    teardown(&a); teardown(&b);
+}
+
+/* Every technique on every built-in scene: finite, AO in [0, 1]. */
+TEST(every_technique_every_scene)
+{
+    int t, s;
+    for (t = 0; t < TG_TECH_COUNT; t++) {
+        for (s = 0; tg_builtin_name(s); s++) {
+            rendered r;
+            tg_request q = request(24, 18, AOVBIT(TG_AOV_COLOR) | AOVBIT(TG_AOV_AO));
+            tg_error err;
+            size_t i;
+            int bad = 0;
+            q.technique = (tg_technique)t;
+            if (t == TG_TECH_REFERENCE) q.samples = 32;
+            CHECK(setup(&r, tg_builtin_scene(tg_builtin_name(s)), &q), "%s on %s", tg_technique_name((tg_technique)t), tg_builtin_name(s));
+            if (r.ok && tg_frame_render(r.frame, 0, &err) == TG_OK) {
+                double *c = read_aov(&r, TG_AOV_COLOR), *ao = read_aov(&r, TG_AOV_AO);
+                for (i = 0; i < 24 * 18; i++) {
+                    if (!(ao[i] >= 0 && ao[i] <= 1)) bad++;
+                    if (!isfinite(c[3 * i]) || c[3 * i] < 0) bad++;
+                }
+                free(c); free(ao);
+            }
+            CHECK(bad == 0, "%s on %s: %d bad values", tg_technique_name((tg_technique)t), tg_builtin_name(s), bad);
+            teardown(&r);
+        }
+    }
+}
+
+int main(void)
+{
+    RUN(plan_follows_the_scene);
+    RUN(no_near_field_without_light_or_albedo);
+    RUN(ao_alone_is_identical_and_smaller);
+    RUN(open_plane_ao_is_one);
+    RUN(white_furnace_returns_the_albedo);
+    RUN(closed_room_converges);
+    RUN(white_room_stays_finite);
+    RUN(camera_cut_is_finite);
+    RUN(deterministic);
+    RUN(every_technique_every_scene);
+    return check_summary();
+}
