@@ -73,6 +73,17 @@ typedef struct tri_edges {
     int32_t cx, cy;               /* sub-pixel position of that pixel centre */
 } tri_edges;
 
+/* Edge i from a to b: E(p) = dx (p.y - a.y) - dy (p.x - a.x), >= 0 inside;
+ * top-left: dy < 0 (a left edge) or dy == 0 and dx > 0 (a top edge). */
+static inline void edge_setup(tri_edges *t, int i, int32_t ax, int32_t ay, int32_t bx, int32_t by)
+{
+    int32_t dx = bx - ax, dy = by - ay;           /* |d| < 2^21 */
+    t->bias[i] = (dy < 0 || (dy == 0 && dx > 0)) ? 0 : -1;
+    t->e[i] = (int64_t)dx * (t->cy - ay) - (int64_t)dy * (t->cx - ax) + t->bias[i];
+    t->step_x[i] = -(int64_t)dy * SUB;
+    t->step_y[i] = (int64_t)dx * SUB;
+}
+
 /* Set up the three edge functions of a triangle with area2 > 0 in 28.4
  * screen space (y down).  Edge i is opposite vertex i; E_i(p) >= 0 inside.
  * Returns 0 when the box holds no pixel centre. */
@@ -80,7 +91,6 @@ static inline int edges_setup(tri_edges *t, const int32_t *x, const int32_t *y, 
                        int width, int row0, int row1)
 {
     int32_t minx = x[0], maxx = x[0], miny = y[0], maxy = y[0];
-    int i;
     if (x[1] < minx) minx = x[1];
     if (x[1] > maxx) maxx = x[1];
     if (x[2] < minx) minx = x[2];
@@ -104,15 +114,9 @@ static inline int edges_setup(tri_edges *t, const int32_t *x, const int32_t *y, 
     t->area2 = area2;
     t->cx = t->x0 * SUB + HALF_SUB;
     t->cy = t->oy * SUB + HALF_SUB;
-    for (i = 0; i < 3; i++) {
-        int a = i == 2 ? 0 : i + 1, b = i == 0 ? 2 : i - 1;
-        int64_t dx = (int64_t)x[b] - x[a], dy = (int64_t)y[b] - y[a];
-        /* E(p) = dx (p.y - a.y) - dy (p.x - a.x); top-left: dy < 0 (left) or dy == 0, dx > 0 (top) */
-        t->bias[i] = (dy < 0 || (dy == 0 && dx > 0)) ? 0 : -1;
-        t->e[i] = dx * ((int64_t)t->cy - y[a]) - dy * ((int64_t)t->cx - x[a]) + t->bias[i];
-        t->step_x[i] = -dy * SUB;
-        t->step_y[i] = dx * SUB;
-    }
+    edge_setup(t, 0, x[1], y[1], x[2], y[2]);
+    edge_setup(t, 1, x[2], y[2], x[0], y[0]);
+    edge_setup(t, 2, x[0], y[0], x[1], y[1]);
     return 1;
 }
 
@@ -303,22 +307,32 @@ static int clip_polygon(const clip_ctx *c, clip_vertex *poly, int n, unsigned pl
 /* ---------------------------------------------------------------------- */
 /* snapping to 28.4                                                        */
 
-/* round(c / w * half16): NDC coordinate to sub-pixels from the image centre. */
-static inline int32_t snap_ndc(tg_real c, tg_real w, int32_t half16)
-{
+/* 1/w, computed once per vertex and shared by snapping and interpolation. */
 #if TG_FIXED
-    int64_t n = (int64_t)c * half16, h = w / 2;
-    if (w <= 0) return 0;
-    return clamp_coord(n >= 0 ? (n + h) / w : -((-n + h) / w));
+typedef int64_t inv_w;            /* 2^46 / w (raw Q16.16 w) */
+static inline inv_w inverse_w(tg_real w) { return w > 0 ? ((int64_t)1 << 46) / w : 0; }
+
+/* round(c / w * half16): NDC coordinate to sub-pixels from the image
+ * centre.  |c| <= GUARD w here, so c * iw < 2^50. */
+static inline int32_t snap_ndc(tg_real c, inv_w iw, int32_t half16)
+{
+    int64_t ndc = (int64_t)c * iw, v;         /* NDC * 2^46 */
+    ndc = ndc >= 0 ? ndc >> 20 : -((-ndc) >> 20);  /* NDC * 2^26 */
+    v = ndc * half16;
+    return clamp_coord(v >= 0 ? (v + (1 << 25)) >> 26 : -((-v + (1 << 25)) >> 26));
+}
 #else
-    float v;
-    if (!(w > 0.0f)) return 0;
-    v = c / w * (float)half16;
+typedef float inv_w;
+static inline inv_w inverse_w(tg_real w) { return w > 0.0f ? 1.0f / w : 0.0f; }
+
+static inline int32_t snap_ndc(tg_real c, inv_w iw, int32_t half16)
+{
+    float v = c * iw * (float)half16;
     if (v > (float)COORD_LIMIT) v = (float)COORD_LIMIT;
     if (v < -(float)COORD_LIMIT) v = -(float)COORD_LIMIT;
     return (int32_t)(v >= 0.0f ? v + 0.5f : v - 0.5f);
-#endif
 }
+#endif
 
 /* ---------------------------------------------------------------------- */
 /* per-pixel normalization                                                 */
@@ -417,6 +431,7 @@ typedef struct surface {
 typedef struct screen_tri {
     int32_t x[3], y[3];
     tg_real w[3], z[3];
+    inv_w iw[3];
     tg_vec3 n[3];
 } screen_tri;
 
@@ -444,8 +459,8 @@ static void bary_make(bary_setup *b, const screen_tri *st, const tri_edges *te)
     b->sm = bl > 0 ? bl - 1 : 0;
     b->wq = (int64_t)wmin << 30;
     for (i = 0; i < 3; i++) {
-        int64_t w = st->w[i] < wmin ? wmin : st->w[i];
-        b->q[i] = b->wq / w;
+        b->q[i] = ((int64_t)wmin * st->iw[i]) >> 16;  /* w_min / w_i <= 1, Q30 */
+        if (b->q[i] > ((int64_t)1 << 30)) b->q[i] = (int64_t)1 << 30;
         b->nq[i][0] = asr64((int64_t)st->n[i].x * b->q[i], 16);
         b->nq[i][1] = asr64((int64_t)st->n[i].y * b->q[i], 16);
         b->nq[i][2] = asr64((int64_t)st->n[i].z * b->q[i], 16);
@@ -572,7 +587,7 @@ static void gbuffer_rows(const tg_gbuffer *gbp, const tri_edges *te, const scree
     uint8_t *sky = g.sky;
     if (st->w[1] < wmin) wmin = st->w[1];
     if (st->w[2] < wmin) wmin = st->w[2];
-    for (k = 0; k < 3; k++) q[k] = wmin / st->w[k];
+    for (k = 0; k < 3; k++) q[k] = wmin * st->iw[k];
     plane_basis_make(&pb, st, te);
     pq = plane_make(&pb, q[0], q[1], q[2]);
     pnx = plane_make(&pb, st->n[0].x * q[0], st->n[1].x * q[1], st->n[2].x * q[2]);
@@ -618,7 +633,7 @@ static void depth_rows(tg_real *depth, int W, const tri_edges *te, const screen_
     if (st->w[2] < wmin) wmin = st->w[2];
     plane_basis_make(&pb, st, te);
     if (ortho) pa = plane_make(&pb, st->z[0], st->z[1], st->z[2]);
-    else pa = plane_make(&pb, wmin / st->w[0], wmin / st->w[1], wmin / st->w[2]);
+    else pa = plane_make(&pb, wmin * st->iw[0], wmin * st->iw[1], wmin * st->iw[2]);
     for (row = te->y0; row < te->y1; row++) {
         int64_t e[3];
         int xa, xb = (row_edges(te, row, e), row_span(te, e, &xa));
@@ -644,7 +659,9 @@ typedef struct raster_target {
     int32_t half_w16, half_h16;   /* width * 8, height * 8 */
     clip_ctx clip;
     tg_gbuffer *gb;               /* G-buffer mode */
-    const surface *sf;
+    const tg_material *mat;       /* of the current triangle */
+    uint16_t object;
+    const tg_vec3 *tri_nrm;       /* its three vertex normals */
     int cull_back, flip_back;     /* G-buffer: one-sided / twosided */
     tg_real *depth;               /* depth-only mode */
 } raster_target;
@@ -652,16 +669,18 @@ typedef struct raster_target {
 /* A clip-space vertex (inside the guard band, w > 0) to 28.4 screen
  * coordinates.  Every path snaps through here, so a vertex shared by two
  * triangles lands on the same integers whichever path draws them. */
-static void snap_vertex(const raster_target *rt, const clip_vertex *v, int32_t *sx, int32_t *sy)
+static inline void snap_vertex(const raster_target *rt, const clip_vertex *v, int32_t *sx, int32_t *sy, inv_w *iw)
 {
-    *sx = rt->half_w16 + snap_ndc(v->x, v->w, rt->half_w16);
-    *sy = rt->half_h16 - snap_ndc(v->y, v->w, rt->half_h16);
+    *iw = inverse_w(v->w);
+    *sx = rt->half_w16 + snap_ndc(v->x, *iw, rt->half_w16);
+    *sy = rt->half_h16 - snap_ndc(v->y, *iw, rt->half_h16);
 }
 
 /* Rasterize one snapped triangle: vertex k of the ordered triangle is
  * v[idx[k]] (normals from nrm[idx[k]] when nrm is given). */
 static void draw_snapped(const raster_target *rt, const clip_vertex *v, const tg_vec3 *nrm,
-                         const int32_t *sx, const int32_t *sy, const int *idx, int64_t area2, int flip)
+                         const int32_t *sx, const int32_t *sy, const inv_w *iw, const int *idx,
+                         int64_t area2, int flip)
 {
     screen_tri st;
     tri_edges te;
@@ -672,13 +691,22 @@ static void draw_snapped(const raster_target *rt, const clip_vertex *v, const tg
         const clip_vertex *c = &v[idx[k]];
         st.w[k] = c->w;
         st.z[k] = c->z;
+        st.iw[k] = iw[idx[k]];
         if (rt->gb) {
             tg_vec3 n = nrm ? nrm[idx[k]] : c->n;
             st.n[k] = flip ? tg_v3_neg(n) : n;
         }
     }
-    if (rt->gb) gbuffer_rows(rt->gb, &te, &st, rt->sf);
-    else depth_rows(rt->depth, rt->width, &te, &st, rt->clip.mode == MODE_ORTHO);
+    if (rt->gb) {
+        surface sf;
+        const tg_material *m = rt->mat;
+        sf.albedo_r = m->albedo.x; sf.albedo_g = m->albedo.y; sf.albedo_b = m->albedo.z;
+        sf.f0 = m->f0;
+        sf.emit_r = m->emissive.x; sf.emit_g = m->emissive.y; sf.emit_b = m->emissive.z;
+        sf.object = rt->object;
+        sf.fallback_normal = flip ? tg_v3_neg(rt->tri_nrm[0]) : rt->tri_nrm[0];
+        gbuffer_rows(rt->gb, &te, &st, &sf);
+    } else depth_rows(rt->depth, rt->width, &te, &st, rt->clip.mode == MODE_ORTHO);
 }
 
 /* The common case: a triangle needing no clipping.  Normals come from nrm
@@ -687,14 +715,15 @@ static void draw_triangle(const raster_target *rt, const clip_vertex *v, const t
 {
     static const int order_front[3] = { 0, 2, 1 }, order_back[3] = { 0, 1, 2 };
     int32_t sx[3], sy[3];
+    inv_w iw[3];
     int64_t area2;
     int k, front;
-    for (k = 0; k < 3; k++) snap_vertex(rt, &v[k], &sx[k], &sy[k]);
+    for (k = 0; k < 3; k++) snap_vertex(rt, &v[k], &sx[k], &sy[k], &iw[k]);
     area2 = signed_area2(sx, sy);
     if (area2 == 0) return;                       /* zero area */
     front = area2 < 0;                            /* counter-clockwise as seen, y down */
     if (rt->gb && !front && rt->cull_back) return;
-    draw_snapped(rt, v, nrm, sx, sy, front ? order_front : order_back, front ? -area2 : area2,
+    draw_snapped(rt, v, nrm, sx, sy, iw, front ? order_front : order_back, front ? -area2 : area2,
                  rt->gb && !front && rt->flip_back);
 }
 
@@ -703,11 +732,12 @@ static void draw_triangle(const raster_target *rt, const clip_vertex *v, const t
 static void draw_polygon(const raster_target *rt, const clip_vertex *poly, int n)
 {
     int32_t sx[MAX_POLY], sy[MAX_POLY];
+    inv_w iw[MAX_POLY];
     int64_t total = 0;
     int i, front, flip;
     for (i = 0; i < n; i++) {
         if (poly[i].w <= 0) return;               /* a degenerate projection: nothing in front */
-        snap_vertex(rt, &poly[i], &sx[i], &sy[i]);
+        snap_vertex(rt, &poly[i], &sx[i], &sy[i], &iw[i]);
     }
     for (i = 0; i < n; i++) {
         int j = i + 1 == n ? 0 : i + 1;
@@ -728,7 +758,7 @@ static void draw_polygon(const raster_target *rt, const clip_vertex *poly, int n
         ty[0] = sy[idx[0]]; ty[1] = sy[idx[1]]; ty[2] = sy[idx[2]];
         area2 = signed_area2(tx, ty);
         if (area2 <= 0) continue;                 /* sliver of the opposite facing */
-        draw_snapped(rt, poly, NULL, sx, sy, idx, area2, flip);
+        draw_snapped(rt, poly, NULL, sx, sy, iw, idx, area2, flip);
     }
 }
 
@@ -765,10 +795,10 @@ static int target_rows(raster_target *rt, int width, int height, int y0, int y1)
 void tg_raster_gbuffer(tg_gbuffer *gb, const tg_view *view, const tg_raster_mesh *mesh, int y0, int y1)
 {
     raster_target rt;
-    surface sf;
     tg_vec3 rx = tg_v3_scale(view->right, view->focal_x);
     tg_vec3 ry = tg_v3_scale(view->up, view->focal_y);
     tg_vec3 rz = view->forward;
+    tg_real znear, zfar;
     int t, k;
     memset(&rt, 0, sizeof rt);
     if (!target_rows(&rt, gb->width, gb->height, y0, y1)) return;
@@ -776,24 +806,28 @@ void tg_raster_gbuffer(tg_gbuffer *gb, const tg_view *view, const tg_raster_mesh
     rt.clip.znear = view->znear > 0 ? view->znear : TG_EPS;
     rt.clip.zfar = view->zfar > rt.clip.znear ? view->zfar : tg_add(rt.clip.znear, TG_ONE);
     rt.gb = gb;
-    rt.sf = &sf;
+    znear = rt.clip.znear;
+    zfar = rt.clip.zfar;
     for (t = 0; t < mesh->tri_count; t++) {
         clip_vertex v[3];
-        const tg_material *mat = &mesh->materials[mesh->tri_material[t]];
+        int inside = 1, right = 1, left = 1, top = 1, bottom = 1;
         for (k = 0; k < 3; k++) {
             tg_vec3 d = tg_v3_sub(mesh->pos[3 * t + k], view->eye);
-            v[k].x = tg_v3_dot(d, rx);
-            v[k].y = tg_v3_dot(d, ry);
-            v[k].w = v[k].z = tg_v3_dot(d, rz);
+            tg_real x = tg_v3_dot(d, rx), y = tg_v3_dot(d, ry), w = tg_v3_dot(d, rz);
+            tg_real gw = tg_mul(GUARD_R, w);
+            v[k].x = x; v[k].y = y; v[k].w = v[k].z = w;
+            /* inside the guard band and the depth range: no clipping needed */
+            inside &= (x >= tg_neg(gw)) & (x <= gw) & (y >= tg_neg(gw)) & (y <= gw) & (w >= znear) & (w <= zfar);
+            right &= x > w; left &= x < tg_neg(w); top &= y > w; bottom &= y < tg_neg(w);
         }
-        rt.cull_back = !mat->twosided;
-        rt.flip_back = mat->twosided;
-        sf.albedo_r = mat->albedo.x; sf.albedo_g = mat->albedo.y; sf.albedo_b = mat->albedo.z;
-        sf.f0 = mat->f0;
-        sf.emit_r = mat->emissive.x; sf.emit_g = mat->emissive.y; sf.emit_b = mat->emissive.z;
-        sf.object = mesh->tri_object ? mesh->tri_object[t] : 0;
-        sf.fallback_normal = mesh->nrm[3 * t];
-        draw_clip_tri(&rt, v, mesh->nrm + 3 * t);
+        if (right | left | top | bottom) continue;      /* wholly off one side of the screen */
+        rt.mat = &mesh->materials[mesh->tri_material[t]];
+        rt.cull_back = !rt.mat->twosided;
+        rt.flip_back = rt.mat->twosided;
+        rt.object = mesh->tri_object ? mesh->tri_object[t] : 0;
+        rt.tri_nrm = mesh->nrm + 3 * t;
+        if (inside) draw_triangle(&rt, v, rt.tri_nrm);
+        else draw_clip_tri(&rt, v, rt.tri_nrm);
     }
 }
 
