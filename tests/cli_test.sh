@@ -248,6 +248,14 @@ check_binary() {
             >"$T/tty" 2>&1 </dev/null
         expect "$tag/progress_on_terminal" grep -q 'frame 3/3, elapsed .* ETA' "$T/tty"
     fi
+    if command -v timeout >/dev/null 2>&1; then # interrupted: only whole files, no temporaries
+        rm -rf "${O:?}"/*
+        (cd "$O" && timeout -s TERM 0.5 "$BIN" render builtin:cornell --size 64x48 --frames 100000 \
+            -o "$O/k%05d.ppm" --quiet) >/dev/null 2>&1
+        expect "$tag/interrupt_leaves_no_temporary" [ -z "$(ls -A "$O" | grep -v '^k[0-9]*\.ppm$')" ]
+        expect "$tag/interrupt_leaves_whole_files" [ -z "$(find "$O" -name 'k*.ppm' ! -size $((13 + 64 * 48 * 3))c)" ]
+        rm -rf "${O:?}"/*
+    fi
     run render builtin:cornell --size 16x12 -o "$T/no/such/dir/x.ppm"
     expect "$tag/unwritable_output_exit_1" [ "$rc" -eq 1 -a "$(err_lines)" -eq 1 ]
     expect "$tag/unwritable_output_message" grep -q 'error: cannot write' "$T/err"

@@ -161,6 +161,24 @@ void tg_outfile_remove_on_signals(void)
     sigaction(SIGPIPE, &sa, NULL);
 }
 
+/* Hold off the cleanup signals while a temporary comes into being or is
+ * renamed away, so the handler never misses one nor removes a stranger's. */
+static void hold_signals(sigset_t *old)
+{
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    sigaddset(&set, SIGHUP);
+    sigaddset(&set, SIGPIPE);
+    sigprocmask(SIG_BLOCK, &set, old);
+}
+
+static void release_signals(const sigset_t *old)
+{
+    sigprocmask(SIG_SETMASK, old, NULL);
+}
+
 static void arm_cleanup(const char *tmp)
 {
     size_t n = strlen(tmp);
@@ -200,6 +218,7 @@ int tg_outfile_open(tg_outfile *f, const char *path, char *msg, size_t msgsize)
 {
     static unsigned long counter;
     size_t dlen = dir_length(path), plen = strlen(path), tlen;
+    sigset_t old;
     int attempt;
 
     f->fd = -1;
@@ -218,6 +237,7 @@ int tg_outfile_open(tg_outfile *f, const char *path, char *msg, size_t msgsize)
         outfile_release(f);
         return 1;
     }
+    hold_signals(&old);
     for (attempt = 0; attempt < 100; attempt++) {
         /* dir/.name.tmp-PID-N: same directory, so rename() is atomic */
         snprintf(f->tmp_path, tlen, "%.*s.%s.tmp-%ld-%lu", (int)dlen, path, path + dlen,
@@ -226,11 +246,14 @@ int tg_outfile_open(tg_outfile *f, const char *path, char *msg, size_t msgsize)
         if (f->fd >= 0 || errno != EEXIST) break;
     }
     if (f->fd < 0) {
-        say(msg, msgsize, "cannot write: %s", strerror(errno));
+        int e = errno;
+        release_signals(&old);
+        say(msg, msgsize, "cannot write: %s", strerror(e));
         outfile_release(f);
         return 1;
     }
     arm_cleanup(f->tmp_path);
+    release_signals(&old);
     return 0;
 }
 
@@ -280,6 +303,7 @@ static void sync_directory(const char *path)
 
 int tg_outfile_commit(tg_outfile *f, char *msg, size_t msgsize)
 {
+    sigset_t old;
     int err = 0;
     if (f->fd < 0) {
         say(msg, msgsize, "cannot write: file not open");
@@ -290,13 +314,17 @@ int tg_outfile_commit(tg_outfile *f, char *msg, size_t msgsize)
     else if (fsync(f->fd) != 0 && errno != EINVAL && errno != EROFS) err = errno;
     if (close(f->fd) != 0 && !err) err = errno ? errno : EIO;
     f->fd = -1;
+    hold_signals(&old);
     if (!err && rename(f->tmp_path, f->path) != 0) err = errno ? errno : EIO;
     if (err) {
-        say(msg, msgsize, "cannot write: %s", strerror(err));
         unlink(f->tmp_path);
         outfile_release(f);
+        release_signals(&old);
+        say(msg, msgsize, "cannot write: %s", strerror(err));
         return 1;
     }
+    cleanup_armed = 0;
+    release_signals(&old);
     sync_directory(f->path);
     outfile_release(f);
     return 0;
@@ -304,8 +332,11 @@ int tg_outfile_commit(tg_outfile *f, char *msg, size_t msgsize)
 
 void tg_outfile_abort(tg_outfile *f)
 {
+    sigset_t old;
+    hold_signals(&old);
     if (f->tmp_path && (f->fd >= 0 || cleanup_armed)) unlink(f->tmp_path);
     outfile_release(f);
+    release_signals(&old);
 }
 
 int tg_file_write_atomic(const char *path, const void *data, size_t size,
