@@ -275,15 +275,16 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
         if (bn < 0 || bn >= bmax) break;
         sa = a * smaj + b0 * smin;
         sn = bn == b0 ? sa : sa + smin;
-        if ((sky && sky[sn]) || depth[sn] <= 0) continue;      /* sky never occludes */
         za = b0 >= 0 ? depth[sa] : 0;
         zb = b0 + 1 < bmax ? depth[sa + smin] : 0;
-        if (za > 0 && zb > 0 && !(sky && (sky[sa] || sky[sa + smin]))
+        if (za > 0 && zb > 0 && !(sky && (sky[sa] | sky[sa + smin]))
             && tg_abs(tg_sub(za, zb)) < tg_mul(HBIL_LERP_MAX_REL, tg_min(za, zb))) {
-            /* 1/z = (1-f)/za + f/zb  <=>  z = za + f (zb - za) za / (zb - f (zb - za)) */
+            /* both neighbours are surface (so is the nearest, sn is sa or sa + smin):
+             * 1/z = (1-f)/za + f/zb  <=>  z = za + f (zb - za) za / (zb - f (zb - za)) */
             tg_real zd = tg_sub(zb, za);
             z1 = tg_add(za, tg_mul(tg_mul(f, zd), tg_div(za, tg_sub(zb, tg_mul(f, zd)))));
         } else {
+            if ((sky && sky[sn]) || depth[sn] <= 0) continue;  /* sky never occludes */
             z1 = sample_depth_edge(c, major_x, a, b0, f, sa, sn);
             if (z1 <= 0) continue;
         }
@@ -338,8 +339,9 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
     /* horizons initialised on the tangent plane (sec. 2.1): cos = -/+ n_x/|n'| */
     h1i = tg_clamp(tg_div(tg_neg(sl.nx), len_n), TG_R(-1.0f), TG_ONE);
     h0i = tg_neg(h1i);
-    q1i = slice_Q(h1i, 1); q0i = slice_Q(h0i, -1);
-    r1i = slice_R(h1i); r0i = slice_R(h0i);
+    /* Q(-c, -1) = Q(c, 1) - pi/2 and R(-c) = R(c): one acos for both sides */
+    q1i = slice_Q(h1i, 1); q0i = tg_sub(q1i, TG_HALF_PI);
+    r1i = slice_R(h1i); r0i = r1i;
     p1i = tg_add(tg_mul(sl.nx, q1i), tg_mul(sl.ny, r1i));
     p0i = tg_add(tg_mul(sl.nx, q0i), tg_mul(sl.ny, r0i));
     side_init(&front, h1i, p1i);
