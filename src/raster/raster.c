@@ -427,6 +427,46 @@ typedef struct surface {
     tg_vec3 fallback_normal;      /* if the interpolated normal vanishes */
 } surface;
 
+#define SPAN_CHUNK 128            /* pixels per depth-test pass before the surface writes */
+
+static inline void fill_real(tg_real *p, tg_real v, int n)
+{
+    int k;
+    for (k = 0; k < n; k++) p[k] = v;
+}
+
+/* The triangle's constant channels at pixels i0 .. i0 + n - 1: all of them
+ * when every pixel passed the depth test (straight fills), else where hit[]
+ * is set.  Kept out of the depth/normal loop, which then holds fewer
+ * pointers, and the common all-pass case becomes plain fills. */
+static void write_surface(const tg_gbuffer *g, const surface *sf, size_t i0, int n,
+                          const uint8_t *hit, int all_hit)
+{
+    int k;
+    if (all_hit) {
+        fill_real(g->albedo_r + i0, sf->albedo_r, n);
+        fill_real(g->albedo_g + i0, sf->albedo_g, n);
+        fill_real(g->albedo_b + i0, sf->albedo_b, n);
+        fill_real(g->f0 + i0, sf->f0, n);
+        if (g->emit_r) {
+            fill_real(g->emit_r + i0, sf->emit_r, n);
+            fill_real(g->emit_g + i0, sf->emit_g, n);
+            fill_real(g->emit_b + i0, sf->emit_b, n);
+        }
+        if (g->object)
+            for (k = 0; k < n; k++) g->object[i0 + k] = sf->object;
+        return;
+    }
+    for (k = 0; k < n; k++) {
+        size_t i = i0 + (size_t)k;
+        if (!hit[k]) continue;
+        g->albedo_r[i] = sf->albedo_r; g->albedo_g[i] = sf->albedo_g; g->albedo_b[i] = sf->albedo_b;
+        g->f0[i] = sf->f0;
+        if (g->emit_r) { g->emit_r[i] = sf->emit_r; g->emit_g[i] = sf->emit_g; g->emit_b[i] = sf->emit_b; }
+        if (g->object) g->object[i] = sf->object;
+    }
+}
+
 /* One triangle ready to draw: screen vertices ordered so area2 > 0. */
 typedef struct screen_tri {
     int32_t x[3], y[3];
@@ -478,33 +518,39 @@ static void gbuffer_rows(const tg_gbuffer *gbp, const tri_edges *te, const scree
     bary_make(&b, st, te);
     for (row = te->y0; row < te->y1; row++) {
         int64_t e[3], e0, e1, e2;
-        int xa, xb = (row_edges(te, row, e), row_span(te, e, &xa));
-        size_t i = (size_t)row * (size_t)W + (size_t)xa;
+        int xa, xb = (row_edges(te, row, e), row_span(te, e, &xa)), c0, c1;
+        size_t i0 = (size_t)row * (size_t)W;
         e0 = e[0]; e1 = e[1]; e2 = e[2];
-        for (col = xa; col < xb; col++, i++,
-             e0 += te->step_x[0], e1 += te->step_x[1], e2 += te->step_x[2]) {
-            int64_t u0, u1, u2, su, qp;
-            tg_real n[3];
-            u0 = (e0 - te->bias[0]) >> b.s;
-            u1 = (e1 - te->bias[1]) >> b.s;
-            u2 = (e2 - te->bias[2]) >> b.s;
-            su = u0 + u1 + u2;
-            if (su <= 0) continue;
-            qp = (u0 * b.q[0] + u1 * b.q[1] + u2 * b.q[2]) / su; /* 1/w, Q30 of w_min/w */
-            if (qp < 1) qp = 1;
-            if (!g.sky[i] && b.wq >= qp * g.depth[i]) continue;
-            if (!unit_q16(asr64(u0 * b.nq[0][0] + u1 * b.nq[1][0] + u2 * b.nq[2][0], b.sm),
-                          asr64(u0 * b.nq[0][1] + u1 * b.nq[1][1] + u2 * b.nq[2][1], b.sm),
-                          asr64(u0 * b.nq[0][2] + u1 * b.nq[1][2] + u2 * b.nq[2][2], b.sm), n)) {
-                n[0] = sf.fallback_normal.x; n[1] = sf.fallback_normal.y; n[2] = sf.fallback_normal.z;
+        for (c0 = xa; c0 < xb; c0 = c1) {
+            uint8_t hit[SPAN_CHUNK];
+            int passed = 0;
+            size_t i = i0 + (size_t)c0;
+            c1 = xb - c0 > SPAN_CHUNK ? c0 + SPAN_CHUNK : xb;
+            for (col = c0; col < c1; col++, i++,
+                 e0 += te->step_x[0], e1 += te->step_x[1], e2 += te->step_x[2]) {
+                int64_t u0, u1, u2, su, qp;
+                tg_real n[3];
+                hit[col - c0] = 0;
+                u0 = (e0 - te->bias[0]) >> b.s;
+                u1 = (e1 - te->bias[1]) >> b.s;
+                u2 = (e2 - te->bias[2]) >> b.s;
+                su = u0 + u1 + u2;
+                if (su <= 0) continue;
+                qp = (u0 * b.q[0] + u1 * b.q[1] + u2 * b.q[2]) / su; /* 1/w, Q30 of w_min/w */
+                if (qp < 1) qp = 1;
+                if (!g.sky[i] && b.wq >= qp * g.depth[i]) continue;
+                if (!unit_q16(asr64(u0 * b.nq[0][0] + u1 * b.nq[1][0] + u2 * b.nq[2][0], b.sm),
+                              asr64(u0 * b.nq[0][1] + u1 * b.nq[1][1] + u2 * b.nq[2][1], b.sm),
+                              asr64(u0 * b.nq[0][2] + u1 * b.nq[1][2] + u2 * b.nq[2][2], b.sm), n)) {
+                    n[0] = sf.fallback_normal.x; n[1] = sf.fallback_normal.y; n[2] = sf.fallback_normal.z;
+                }
+                g.depth[i] = tg_sat64((b.wq + qp / 2) / qp);
+                g.nx[i] = n[0]; g.ny[i] = n[1]; g.nz[i] = n[2];
+                g.sky[i] = 0;
+                hit[col - c0] = 1;
+                passed++;
             }
-            g.depth[i] = tg_sat64((b.wq + qp / 2) / qp);
-            g.nx[i] = n[0]; g.ny[i] = n[1]; g.nz[i] = n[2];
-            g.albedo_r[i] = sf.albedo_r; g.albedo_g[i] = sf.albedo_g; g.albedo_b[i] = sf.albedo_b;
-            g.f0[i] = sf.f0;
-            if (g.emit_r) { g.emit_r[i] = sf.emit_r; g.emit_g[i] = sf.emit_g; g.emit_b[i] = sf.emit_b; }
-            if (g.object) g.object[i] = sf.object;
-            g.sky[i] = 0;
+            if (passed) write_surface(&g, &sf, i0 + (size_t)c0, c1 - c0, hit, passed == c1 - c0);
         }
     }
 }
@@ -601,24 +647,31 @@ static void gbuffer_rows(const tg_gbuffer *gbp, const tri_edges *te, const scree
         float mx = pnx.v + pnx.dy * dy + pnx.dx * dx;
         float my = pny.v + pny.dy * dy + pny.dx * dx;
         float mz = pnz.v + pnz.dy * dy + pnz.dx * dx;
-        size_t i = (size_t)row * (size_t)W + (size_t)xa;
-        for (col = xa; col < xb; col++, i++, qv += pq.dx, mx += pnx.dx, my += pny.dx, mz += pnz.dx) {
-            float len2, r;
-            if (!(qv > 0.0f)) continue;
-            if (!sky[i] && wmin >= qv * depth[i]) continue;
-            len2 = mx * mx + my * my + mz * mz;
-            depth[i] = wmin / qv;
-            if (len2 > 1e-30f) {
-                r = pixel_rsqrt(len2);
-                g.nx[i] = mx * r; g.ny[i] = my * r; g.nz[i] = mz * r;
-            } else {
-                g.nx[i] = sf.fallback_normal.x; g.ny[i] = sf.fallback_normal.y; g.nz[i] = sf.fallback_normal.z;
+        size_t i0 = (size_t)row * (size_t)W;
+        int c0, c1;
+        for (c0 = xa; c0 < xb; c0 = c1) {
+            uint8_t hit[SPAN_CHUNK];
+            int passed = 0;
+            size_t i = i0 + (size_t)c0;
+            c1 = xb - c0 > SPAN_CHUNK ? c0 + SPAN_CHUNK : xb;
+            for (col = c0; col < c1; col++, i++, qv += pq.dx, mx += pnx.dx, my += pny.dx, mz += pnz.dx) {
+                float len2, r;
+                hit[col - c0] = 0;
+                if (!(qv > 0.0f)) continue;
+                if (!sky[i] && wmin >= qv * depth[i]) continue;
+                len2 = mx * mx + my * my + mz * mz;
+                depth[i] = wmin / qv;
+                if (len2 > 1e-30f) {
+                    r = pixel_rsqrt(len2);
+                    g.nx[i] = mx * r; g.ny[i] = my * r; g.nz[i] = mz * r;
+                } else {
+                    g.nx[i] = sf.fallback_normal.x; g.ny[i] = sf.fallback_normal.y; g.nz[i] = sf.fallback_normal.z;
+                }
+                sky[i] = 0;
+                hit[col - c0] = 1;
+                passed++;
             }
-            g.albedo_r[i] = sf.albedo_r; g.albedo_g[i] = sf.albedo_g; g.albedo_b[i] = sf.albedo_b;
-            g.f0[i] = sf.f0;
-            if (g.emit_r) { g.emit_r[i] = sf.emit_r; g.emit_g[i] = sf.emit_g; g.emit_b[i] = sf.emit_b; }
-            if (g.object) g.object[i] = sf.object;
-            sky[i] = 0;
+            if (passed) write_surface(&g, &sf, i0 + (size_t)c0, c1 - c0, hit, passed == c1 - c0);
         }
     }
 }
