@@ -35,13 +35,17 @@ static void prepare(prepared_light *p, const tg_light *l, const tg_shadow_map *s
 static tg_real light_factor(const prepared_light *p, tg_vec3 pos, tg_vec3 n, tg_real *inv_dist)
 {
     tg_vec3 v;
-    tg_real len, inv, cosine;
+    tg_real len2, inv, cosine;
     *inv_dist = TG_ONE;
     if (p->type == TG_LIGHT_DIRECTIONAL)
         return tg_max(tg_v3_dot(n, p->to_light), 0); /* Lambert */
     v = tg_v3_sub(p->pos, pos);
-    len = tg_max(tg_v3_length(v), TG_DIRECT_MIN_DISTANCE);
-    inv = tg_div(TG_ONE, len);
+    len2 = tg_v3_dot(v, v);
+    if (len2 < TG_REAL_MAX) {   /* 1/d from d^2 (the common case) */
+        inv = tg_rsqrt(tg_max(len2, tg_mul(TG_DIRECT_MIN_DISTANCE, TG_DIRECT_MIN_DISTANCE)));
+    } else {                    /* d^2 saturated (fixed point, d > 181): the exact length */
+        inv = tg_div(TG_ONE, tg_max(tg_v3_length(v), TG_DIRECT_MIN_DISTANCE));
+    }
     cosine = tg_mul(tg_v3_dot(n, v), inv); /* Lambert */
     if (cosine <= 0) return 0;
     *inv_dist = inv;
@@ -76,6 +80,7 @@ void tg_direct_rows(const tg_gbuffer *gb, const tg_view *view,
 {
     prepared_light pl[LIGHT_CHUNK];
     int first, k, x, y, w = gb->width;
+    tg_real half_w = tg_ldexp(tg_from_int(view->width), -1), half_h = tg_ldexp(tg_from_int(view->height), -1);
     for (y = y0; y < y1; y++) {
         int row = y * w;
         for (x = 0; x < w; x++) e_r[row + x] = e_g[row + x] = e_b[row + x] = 0;
@@ -86,12 +91,16 @@ void tg_direct_rows(const tg_gbuffer *gb, const tg_view *view,
             prepare(&pl[k], &lights[first + k], shadow_maps ? shadow_maps[first + k] : NULL);
         for (y = y0; y < y1; y++) {
             int i = y * w;
-            tg_real sy = tg_add(tg_from_int(y), TG_R(0.5f));
+            /* pixel centre ray with view z = 1: forward + right kx + up ky (view.h) */
+            tg_real ky = tg_div(tg_sub(half_h, tg_add(tg_from_int(y), TG_R(0.5f))), view->pixels_per_unit);
+            tg_vec3 row_dir = tg_v3_add(view->forward, tg_v3_scale(view->up, ky));
             for (x = 0; x < w; x++, i++) {
                 tg_vec3 n, p, e;
+                tg_real kx;
                 if (gb->sky[i]) continue;
                 n = tg_v3(gb->nx[i], gb->ny[i], gb->nz[i]);
-                p = tg_view_view_to_world(view, tg_view_unproject(view, tg_add(tg_from_int(x), TG_R(0.5f)), sy, gb->depth[i]));
+                kx = tg_div(tg_sub(tg_add(tg_from_int(x), TG_R(0.5f)), half_w), view->pixels_per_unit);
+                p = tg_v3_add(view->eye, tg_v3_scale(tg_v3_add(row_dir, tg_v3_scale(view->right, kx)), gb->depth[i]));
                 e = tg_v3(e_r[i], e_g[i], e_b[i]);
                 for (k = 0; k < count; k++) {
                     tg_real inv, f = light_factor(&pl[k], p, n, &inv);

@@ -59,18 +59,24 @@ void tg_sh9_from_env(const tg_env *env, tg_vec3 sh[9])
  *     + c2 sqrt(3) L22 (x^2 - y^2) + 2 sqrt(3) c2 (xy L2-2 + yz L2-1 + zx L21) */
 static tg_vec3 sh_eval_rgb(const tg_vec3 sh[9], tg_vec3 n, tg_real c0, tg_real c1, tg_real c2)
 {
-    tg_real x = n.x, y = n.y, z = n.z, w[9], c2x = tg_mul(c2, TWO_SQRT3);
-    tg_vec3 e = tg_v3(0, 0, 0);
-    int j;
-    w[0] = c0;
-    w[1] = tg_mul(c1, y); w[2] = tg_mul(c1, z); w[3] = tg_mul(c1, x);
-    w[4] = tg_mul(c2x, tg_mul(x, y));
-    w[5] = tg_mul(c2x, tg_mul(y, z));
-    w[6] = tg_mul(c2, tg_sub(tg_mul(TG_R(3.0f), tg_mul(z, z)), TG_ONE));
-    w[7] = tg_mul(c2x, tg_mul(z, x));
-    w[8] = tg_mul(tg_mul(c2, SQRT3), tg_sub(tg_mul(x, x), tg_mul(y, y)));
-    for (j = 0; j < 9; j++) e = tg_v3_add(e, tg_v3_scale(sh[j], w[j]));
-    return tg_v3(tg_max(e.x, 0), tg_max(e.y, 0), tg_max(e.z, 0));
+    tg_real x = n.x, y = n.y, z = n.z, c2x = tg_mul(c2, TWO_SQRT3);
+    /* the nine weights in three triples; each channel is then three dot
+     * products (64-bit accumulation in fixed point, one rounding each) */
+    tg_vec3 w0 = tg_v3(c0, tg_mul(c1, y), tg_mul(c1, z));
+    tg_vec3 w1 = tg_v3(tg_mul(c1, x), tg_mul(c2x, tg_mul(x, y)), tg_mul(c2x, tg_mul(y, z)));
+    tg_vec3 w2 = tg_v3(tg_mul(c2, tg_sub(tg_mul(TG_R(3.0f), tg_mul(z, z)), TG_ONE)),
+                       tg_mul(c2x, tg_mul(z, x)),
+                       tg_mul(tg_mul(c2, SQRT3), tg_sub(tg_mul(x, x), tg_mul(y, y))));
+    tg_real er = tg_add(tg_add(tg_v3_dot(w0, tg_v3(sh[0].x, sh[1].x, sh[2].x)),
+                               tg_v3_dot(w1, tg_v3(sh[3].x, sh[4].x, sh[5].x))),
+                        tg_v3_dot(w2, tg_v3(sh[6].x, sh[7].x, sh[8].x)));
+    tg_real eg = tg_add(tg_add(tg_v3_dot(w0, tg_v3(sh[0].y, sh[1].y, sh[2].y)),
+                               tg_v3_dot(w1, tg_v3(sh[3].y, sh[4].y, sh[5].y))),
+                        tg_v3_dot(w2, tg_v3(sh[6].y, sh[7].y, sh[8].y)));
+    tg_real eb = tg_add(tg_add(tg_v3_dot(w0, tg_v3(sh[0].z, sh[1].z, sh[2].z)),
+                               tg_v3_dot(w1, tg_v3(sh[3].z, sh[4].z, sh[5].z))),
+                        tg_v3_dot(w2, tg_v3(sh[6].z, sh[7].z, sh[8].z)));
+    return tg_v3(tg_max(er, 0), tg_max(eg, 0), tg_max(eb, 0));
 }
 
 tg_vec3 tg_sh9_irradiance(const tg_vec3 sh[9], tg_vec3 n)
