@@ -130,6 +130,8 @@ typedef struct tg_request {
     int bounces;           /* < 0: the scene's or the default (1) */
     int interleave;        /* 1: 4x4 interleaved quarter-res kernel (default); 0: full-res */
     int temporal;          /* 1: temporal accumulation of the GI result (default 1) */
+    int far_mode;          /* 0: SH9 cosine lobe in the bent cone (HBIL sec. 2.2.4, default);
+                              1: E0(bent) F0(AO) (HBIL sec. 2.2.3) */
     tg_real exposure;      /* linear multiplier before the tonemapper, default 1 */
     int shadow_map_size;   /* texels per side, default 512 */
 } tg_request;

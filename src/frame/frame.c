@@ -138,7 +138,8 @@ static void pass_source(tg_frame *f)
 static void pass_far(tg_frame *f)
 {
     if (!(f->effects & TG_EFFECT_FAR)) return;
-    tg_far_rows(&f->gb, f->sh, f->ao, f->bent.r, f->bent.g, f->bent.b, TG_FAR_CONE_SH,
+    tg_far_rows(&f->gb, f->sh, f->ao, f->bent.r, f->bent.g, f->bent.b,
+                f->plan.request.far_mode ? TG_FAR_CUBE_F0 : TG_FAR_CONE_SH,
                 f->far.r, f->far.g, f->far.b, 0, f->height);
 }
 
