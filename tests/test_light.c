@@ -392,6 +392,46 @@ static void point_cube_faces_meet_without_seams_with_filter(void)
     free(g);
 }
 
+TEST(degenerate_inputs_stay_finite_and_saturate)
+{
+    gbuf *g = gbuf_new();
+    ascene s = floor_only(50);
+    tg_view v;
+    tg_light lights[4];
+    tg_shadow_map sm;
+    static tg_vec3 pos[3 * 64];
+    const tg_shadow_map *maps[4] = { NULL, NULL, NULL, NULL };
+    void *mem;
+    int i, n;
+    tg_view_make(&v, v3d(0, 1, -2), v3d(0, 0, 0), v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
+    gbuf_cast(g, &v, &s);
+    /* a huge point light almost touching the floor, a zero-angle spot, a zero direction */
+    lights[0] = make_light(TG_LIGHT_POINT, v3d(0, 0.0001, 0), v3d(0, -1, 0), 30000, 0);
+    lights[1] = make_light(TG_LIGHT_SPOT, v3d(0, 1, 0), v3d(0, -1, 0), 5, 0);
+    lights[2] = make_light(TG_LIGHT_DIRECTIONAL, v3d(0, 0, 0), v3d(0, -1, 0), 1, 0);
+    lights[2].dir = tg_v3(0, 0, 0);
+    lights[3] = make_light(TG_LIGHT_POINT, v3d(0, 0, 0), v3d(0, -1, 0), 1, 0); /* on the surface */
+    for (i = 0; i < 7; i++) { g->gb.nx[i] = g->gb.ny[i] = g->gb.nz[i] = 0; } /* zero normals */
+    g->gb.depth[8] = 0;                                                       /* zero depth */
+    n = scene_tris(&s, pos);
+    mem = malloc(tg_shadow_map_bytes(&lights[3], 64));
+    tg_shadow_map_setup(&sm, &lights[3], 64, v3d(-50, 0, -50), v3d(50, 1, 50), mem);
+    tg_shadow_map_render(&sm, pos, n);
+    maps[3] = &sm;
+    tg_direct_rows(&g->gb, &v, lights, 4, maps, e_r, e_g, e_b, 0, H);
+    for (i = 0; i < W * H; i++) {
+        CHECK(tg_isfinite(e_r[i]) && e_r[i] >= 0 && e_g[i] >= 0 && e_b[i] >= 0, "pixel %d: E %g", i, dv(e_r[i]));
+    }
+    {   /* right under the huge light: saturates (fixed) or is huge (float), never negative */
+        int best = 0;
+        for (i = 0; i < W * H; i++) if (!g->sky[i] && e_r[i] > e_r[best]) best = i;
+        CHECK(dv(e_r[best]) > 1000, "peak E %g", dv(e_r[best]));
+    }
+    CHECK(tg_shadow_visibility(&sm, v3d(0, 0, 0), tg_v3(0, TG_ONE, 0)) >= 0, "lookup at the light");
+    free(mem);
+    free(g);
+}
+
 /* ---- composition ---- */
 
 TEST(compose_formula_sky_and_saturation)
@@ -546,6 +586,7 @@ int main(void)
     RUN(box_shadow_lands_where_geometry_says);
     RUN(no_acne_at_80_degrees);
     RUN(point_cube_faces_meet_without_seams);
+    RUN(degenerate_inputs_stay_finite_and_saturate);
     RUN(compose_formula_sky_and_saturation);
     RUN(srgb_table_matches_formula);
     RUN(tonemap_monotone_zero_and_saturating);
