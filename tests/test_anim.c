@@ -10,8 +10,8 @@
 
 #define PI 3.14159265358979
 #define DEG (PI / 180.0)
-#define W 64
-#define H 48
+#define W 160
+#define H 120
 
 static double dv(tg_real r) { return check_d(r); }
 static tg_real rv(double x) { return tg_from_float((float)x); }
