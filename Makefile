@@ -77,6 +77,29 @@ tests-build: all $(TESTS_float) $(TESTS_fixed)
 test: tests-build
 	@BUILD=$(BUILD) CC="$(CC)" bash tests/run.sh
 
+# ---- micro-benchmarks (speed is measured here, never in tests) ----
+.PHONY: bench-raster bench-hbil
+$(BUILD)/bench_raster: tools/bench_raster.c $(HOST_OBJ_float) $(BUILD)/libtinygi.a
+	$(CC) $(CFLAGS_ALL) -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform $< $(HOST_OBJ_float) $(BUILD)/libtinygi.a -o $@ $(LDLIBS_HOST)
+$(BUILD)/bench_raster-fixed: tools/bench_raster.c $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a
+	$(CC) $(CFLAGS_ALL) -DTG_FIXED=1 -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform $< $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a -o $@ $(LDLIBS_HOST)
+$(BUILD)/bench_hbil: tools/bench_hbil.c $(HOST_OBJ_float) $(BUILD)/libtinygi.a
+	$(CC) $(CFLAGS_ALL) -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform $< $(HOST_OBJ_float) $(BUILD)/libtinygi.a -o $@ $(LDLIBS_HOST)
+$(BUILD)/bench_hbil-fixed: tools/bench_hbil.c $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a
+	$(CC) $(CFLAGS_ALL) -DTG_FIXED=1 -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform $< $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a -o $@ $(LDLIBS_HOST)
+# 50k-triangle sphere into a full G-buffer at 320x240 and 1280x720 (Mtri/s)
+bench-raster: $(BUILD)/bench_raster $(BUILD)/bench_raster-fixed
+	$(BUILD)/bench_raster
+	$(BUILD)/bench_raster-fixed
+# the HBIL chain (split, kernel, merge, filter) at 320x240 (ms)
+bench-hbil: $(BUILD)/bench_hbil $(BUILD)/bench_hbil-fixed
+	$(BUILD)/bench_hbil
+	$(BUILD)/bench_hbil-fixed
+# whole frames of every built-in scene through the CLI (ms per frame, float and fixed)
+bench-frame: all
+	@for s in plane groove cornell spheres columns; do for b in tinygi tinygi-fixed; do \
+	  printf '%-8s %-13s ' $$s $$b; $(BUILD)/$$b render builtin:$$s -o $(BUILD)/bench-frame.ppm --frames 10 2>&1 | sed 's/.*, //'; done; done
+
 # Rewrite the golden images from the current renderer (look at them after).
 golden: all
 	@GOLDEN_UPDATE=1 BUILD=$(BUILD) bash tests/golden_test.sh | tail -n 1
