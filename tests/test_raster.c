@@ -579,6 +579,59 @@ TEST(depth_plane_and_floor)
     free(m);
 }
 
+/* A floor grid crossing the near plane and running far past the screen
+ * edges (near-plane and guard-band clipping of shared edges): no pixel
+ * whose ray clearly hits the floor is left as sky, and depths match. */
+TEST(clipped_tiling_watertight)
+{
+    enum { W = 96, H = 72, NX = 12, NZ = 12 };
+    tg_view v = view_make(W, H, 90, 1);
+    mesh *m = mesh_new();
+    gbuf g;
+    static double P[NZ + 1][NX + 1][3];
+    int i, j, k, holes = 0, bad = 0, checked = 0;
+    for (j = 0; j <= NZ; j++)
+        for (i = 0; i <= NX; i++) {
+            /* uneven spacing so the near plane and screen edges cut cells anywhere */
+            double x = -300 + 600.0 * i / NX + ((i > 0 && i < NX) ? (rnd() - 0.5) * 20 : 0);
+            double z = -40 + 440.0 * (j * j) / (NZ * NZ) + ((j > 0 && j < NZ) ? (rnd() - 0.5) * 0.5 : 0);
+            P[j][i][0] = x; P[j][i][1] = -1; P[j][i][2] = z;
+        }
+    for (j = 0; j < NZ; j++)
+        for (i = 0; i < NX; i++) {
+            double a[3][3], b[3][3];
+            for (k = 0; k < 3; k++) {
+                a[0][k] = P[j][i][k]; a[1][k] = P[j][i + 1][k]; a[2][k] = P[j + 1][i + 1][k];
+                b[0][k] = P[j][i][k]; b[1][k] = P[j + 1][i + 1][k]; b[2][k] = P[j + 1][i][k];
+            }
+            add_tri_view(m, &v, (const double(*)[3])a, NULL, 0, 0);
+            add_tri_view(m, &v, (const double(*)[3])b, NULL, 0, 0);
+        }
+    gbuf_alloc(&g, W, H);
+    tg_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    for (j = 0; j < H; j++)
+        for (i = 0; i < W; i++) {
+            double dx, dy, z;
+            pixel_ray(&v, i, j, &dx, &dy);
+            if (dy >= 0) continue;
+            z = -1.0 / dy;                         /* ray meets y = -1 at view z */
+            if (z > 350 || fabs(dx * z) > 250) continue;
+            checked++;
+            if (g.gb.sky[j * W + i]) { holes++; continue; }
+            /* depth changes by 2 z^2 / (H focal_y) per pixel row here; snapping
+             * moves vertices by up to 1/32 pixel */
+            if (fabs(D(g.gb.depth[j * W + i]) - z) > (TG_FIXED ? 3e-4 : 5e-5) * z + 0.05 * 2 * z * z / (H * D(v.focal_y))) {
+                if (bad < 3) fprintf(stderr, "  (%d, %d): depth %.6g, want %.6g\n", i, j, D(g.gb.depth[j * W + i]), z);
+                bad++;
+            }
+        }
+    CHECK(checked > W * H / 3, "checked only %d pixels", checked);
+    CHECK(holes == 0, "%d holes in a clipped floor tiling", holes);
+    CHECK(bad == 0, "%d floor pixels off the analytic depth", bad);
+    gbuf_free(&g);
+    free(m);
+}
+
 /* Vertex normals interpolate perspective-correctly and come out unit. */
 TEST(normal_interpolation)
 {
@@ -841,6 +894,7 @@ int main(void)
     RUN(near_plane_clipping);
     RUN(big_triangle_past_edges);
     RUN(depth_plane_and_floor);
+    RUN(clipped_tiling_watertight);
     RUN(normal_interpolation);
     RUN(zero_area_skipped);
     RUN(sphere_nearest_and_rows);

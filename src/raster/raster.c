@@ -435,35 +435,44 @@ static inline void fill_real(tg_real *p, tg_real v, int n)
     for (k = 0; k < n; k++) p[k] = v;
 }
 
-/* The triangle's constant channels at pixels i0 .. i0 + n - 1: all of them
- * when every pixel passed the depth test (straight fills), else where hit[]
- * is set.  Kept out of the depth/normal loop, which then holds fewer
- * pointers, and the common all-pass case becomes plain fills. */
+/* The triangle's constant channels at pixels i0 .. i0 + n - 1 where hit[]
+ * is set (every one when all_hit).  Kept out of the depth/normal loop,
+ * which then holds fewer pointers; long all-hit spans become plain fills,
+ * short ones one pass per group of channels. */
 static void write_surface(const tg_gbuffer *g, const surface *sf, size_t i0, int n,
                           const uint8_t *hit, int all_hit)
 {
+    tg_real *ar = g->albedo_r + i0, *ag = g->albedo_g + i0, *ab = g->albedo_b + i0, *f0 = g->f0 + i0;
     int k;
-    if (all_hit) {
-        fill_real(g->albedo_r + i0, sf->albedo_r, n);
-        fill_real(g->albedo_g + i0, sf->albedo_g, n);
-        fill_real(g->albedo_b + i0, sf->albedo_b, n);
-        fill_real(g->f0 + i0, sf->f0, n);
+    if (all_hit && n > 8) {
+        fill_real(ar, sf->albedo_r, n);
+        fill_real(ag, sf->albedo_g, n);
+        fill_real(ab, sf->albedo_b, n);
+        fill_real(f0, sf->f0, n);
         if (g->emit_r) {
             fill_real(g->emit_r + i0, sf->emit_r, n);
             fill_real(g->emit_g + i0, sf->emit_g, n);
             fill_real(g->emit_b + i0, sf->emit_b, n);
         }
         if (g->object)
-            for (k = 0; k < n; k++) g->object[i0 + k] = sf->object;
+            for (k = 0; k < n; k++) g->object[i0 + (size_t)k] = sf->object;
         return;
     }
     for (k = 0; k < n; k++) {
-        size_t i = i0 + (size_t)k;
-        if (!hit[k]) continue;
-        g->albedo_r[i] = sf->albedo_r; g->albedo_g[i] = sf->albedo_g; g->albedo_b[i] = sf->albedo_b;
-        g->f0[i] = sf->f0;
-        if (g->emit_r) { g->emit_r[i] = sf->emit_r; g->emit_g[i] = sf->emit_g; g->emit_b[i] = sf->emit_b; }
-        if (g->object) g->object[i] = sf->object;
+        if (!all_hit && !hit[k]) continue;
+        ar[k] = sf->albedo_r; ag[k] = sf->albedo_g; ab[k] = sf->albedo_b; f0[k] = sf->f0;
+    }
+    if (g->emit_r) {
+        tg_real *er = g->emit_r + i0, *eg = g->emit_g + i0, *eb = g->emit_b + i0;
+        for (k = 0; k < n; k++) {
+            if (!all_hit && !hit[k]) continue;
+            er[k] = sf->emit_r; eg[k] = sf->emit_g; eb[k] = sf->emit_b;
+        }
+    }
+    if (g->object) {
+        uint16_t *ob = g->object + i0;
+        for (k = 0; k < n; k++)
+            if (all_hit || hit[k]) ob[k] = sf->object;
     }
 }
 
