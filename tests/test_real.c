@@ -201,6 +201,10 @@ TEST(isqrt64_exact)
     long i, bad = 0;
     CHECK(tg_isqrt64(0) == 0 && tg_isqrt64(1) == 1 && tg_isqrt64(3) == 1 && tg_isqrt64(4) == 2, "small");
     CHECK(tg_isqrt64(UINT64_MAX) == 0xffffffffu, "isqrt(2^64-1) = 2^32-1");
+    k = 0xffffffffu;
+    CHECK(tg_isqrt64(k * k) == k && tg_isqrt64(k * k - 1) == k - 1 && tg_isqrt64(k * k + 1) == k, "near 2^64");
+    CHECK(tg_isqrt64((uint64_t)1 << 62) == (uint32_t)1 << 31 && tg_isqrt64(((uint64_t)1 << 62) - 1) == ((uint32_t)1 << 31) - 1,
+          "2^62");
     for (k = 1; k < ((uint64_t)1 << 32); k = k * 3 + 1) {
         if (tg_isqrt64(k * k) != k || (k > 1 && tg_isqrt64(k * k - 1) != k - 1)) bad++;
     }

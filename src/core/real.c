@@ -91,39 +91,54 @@ static int bit_length64(uint64_t v)
     return n + (int)v;
 }
 
-/* floor(sqrt(v)) for v < 2^32 in 32-bit arithmetic (cheap on 32-bit cores). */
-static uint32_t isqrt32(uint32_t v)
+/* 1/sqrt(M) in Q30 at the middle of [i/64, (i+1)/64), i = 16..63. */
+static const uint32_t rsqrt_seed[48] = {
+    2114695713, 2053387115, 1997119227, 1945237133, 1897199172, 1852552937, 1810917218, 1771968208,
+    1735428857, 1701060526, 1668656406, 1638036256, 1609042172, 1581535151, 1555392273, 1530504391,
+    1506774204, 1484114654, 1462447584, 1441702596, 1421816090, 1402730445, 1384393311, 1366757007,
+    1349778000, 1333416450, 1317635818, 1302402522, 1287685637, 1273456629, 1259689126, 1246358707,
+    1233442724, 1220920139, 1208771378, 1196978204, 1185523604, 1174391680, 1163567563, 1153037323,
+    1142787899, 1132807028, 1123083182, 1113605518, 1104363818, 1095348453, 1086550331, 1077960865
+};
+
+/* v > 0 as M 2^e: returns M in Q32 (M in [1/4, 1)) and an even e. */
+static uint64_t mantissa_even(uint64_t v, int *e)
 {
-    uint32_t res = 0, bit = (uint32_t)1 << ((bit_length64(v) - 1) & ~1);
-    while (bit) {
-        if (v >= res + bit) {
-            v -= res + bit;
-            res = (res >> 1) + bit;
-        } else {
-            res >>= 1;
-        }
-        bit >>= 2;
-    }
-    return res;
+    int bl = bit_length64(v);
+    uint64_t m = bl > 32 ? v >> (bl - 32) : v << (32 - bl);
+    if (bl & 1) { m >>= 1; bl++; }
+    *e = bl;
+    return m;
 }
 
-/* floor(sqrt(v)), digit by digit: exact, one step per 2 bits of v. */
+/* 1/sqrt(M) in Q30 for M in [1/4, 1) given in Q32 (relative error about
+ * 2^-29): table seed (1.5%), then three Newton steps
+ * y <- y (3 - M y^2) / 2 in integers. */
+static uint64_t rsqrt_q30(uint64_t m)
+{
+    uint64_t y = rsqrt_seed[(m >> 26) - 16];
+    int i;
+    for (i = 0; i < 3; i++) {
+        uint64_t my2 = (m * ((y * y) >> 30)) >> 32; /* M y^2, Q30 */
+        y = (y * (3 * ((uint64_t)1 << 30) - my2)) >> 31;
+    }
+    return y;
+}
+
+/* floor(sqrt(v)): sqrt(M) 2^(e/2) from the Newton reciprocal (within a few
+ * units), then made exact by integer tests r^2 <= v < (r+1)^2. */
 uint32_t tg_isqrt64(uint64_t v)
 {
-    uint64_t res = 0, bit;
+    int e;
+    uint64_t m, sm, r;
     if (v == 0) return 0;
-    if (!(v >> 32)) return isqrt32((uint32_t)v);
-    bit = (uint64_t)1 << ((bit_length64(v) - 1) & ~1);
-    while (bit) {
-        if (v >= res + bit) {
-            v -= res + bit;
-            res = (res >> 1) + bit;
-        } else {
-            res >>= 1;
-        }
-        bit >>= 2;
-    }
-    return (uint32_t)res;
+    m = mantissa_even(v, &e);
+    sm = (m * rsqrt_q30(m)) >> 32; /* sqrt(M), Q30 */
+    r = e >= 60 ? sm << (e / 2 - 30) : sm >> (30 - e / 2);
+    if (r > 0xffffffffu) r = 0xffffffffu;
+    while (r * r > v) r--;
+    while (r < 0xffffffffu && v - r * r > 2 * r) r++;
+    return (uint32_t)r;
 }
 
 #if TG_FIXED
@@ -181,55 +196,20 @@ static wreal w_poly(wreal z, const wreal *c, int n)
 
 #if TG_FIXED
 
-/* 1/sqrt(M) in Q30 at the middle of [i/64, (i+1)/64), i = 16..63. */
-static const uint32_t rsqrt_seed[48] = {
-    2114695713, 2053387115, 1997119227, 1945237133, 1897199172, 1852552937, 1810917218, 1771968208,
-    1735428857, 1701060526, 1668656406, 1638036256, 1609042172, 1581535151, 1555392273, 1530504391,
-    1506774204, 1484114654, 1462447584, 1441702596, 1421816090, 1402730445, 1384393311, 1366757007,
-    1349778000, 1333416450, 1317635818, 1302402522, 1287685637, 1273456629, 1259689126, 1246358707,
-    1233442724, 1220920139, 1208771378, 1196978204, 1185523604, 1174391680, 1163567563, 1153037323,
-    1142787899, 1132807028, 1123083182, 1113605518, 1104363818, 1095348453, 1086550331, 1077960865
-};
-
-/* For x_raw > 0: x_raw = M 2^e, M in [1/4, 1), e even; returns 1/sqrt(M)
- * in Q30 (relative error < 2^-28): table seed (1.5%) and three Newton
- * steps y <- y (3 - M y^2) / 2, all in integers. */
-static uint64_t rsqrt_mantissa_q30(tg_real x, int *e)
-{
-    int bl = bit_length64((uint64_t)x), i;
-    uint64_t m = (uint64_t)x << (32 - bl), y; /* M in Q32, [2^31, 2^32) */
-    if (bl & 1) { m >>= 1; bl++; }             /* exact: m is even here */
-    *e = bl;
-    y = rsqrt_seed[(m >> 26) - 16];
-    for (i = 0; i < 3; i++) {
-        uint64_t my2 = (m * ((y * y) >> 30)) >> 32; /* M y^2, Q30 */
-        y = (y * (3 * ((uint64_t)1 << 30) - my2)) >> 31;
-    }
-    return y;
-}
-
-/* sqrt(x) = x / sqrt(x) from the Newton reciprocal, then corrected to the
- * exactly rounded isqrt(x_raw << 16) by an integer test. */
+/* sqrt(x) = isqrt(x_raw << 16), rounded: exact to 0.5 ulp. */
 tg_real tg_sqrt(tg_real x)
 {
-    int e;
-    uint64_t y, r, v4;
     if (x <= 0) return 0;
-    y = rsqrt_mantissa_q30(x, &e);
-    r = ((uint64_t)x * y + ((uint64_t)1 << (21 + e / 2))) >> (22 + e / 2);
-    v4 = (uint64_t)x << 18; /* 4 v, v = x_raw 2^16 */
-    while ((2 * r + 1) * (2 * r + 1) < v4) r++;
-    while (r > 0 && (2 * r - 1) * (2 * r - 1) > v4) r--;
-    return (tg_real)r;
+    return (tg_real)isqrt_round((uint64_t)x << 16);
 }
 
-/* 1/sqrt(x): raw = 2^24 / sqrt(x_raw) = 2^(24 - e/2) / sqrt(M). */
+/* 1/sqrt(x): x_raw = M 2^e, raw = 2^24 / sqrt(x_raw) = 2^(24 - e/2) / sqrt(M). */
 tg_real tg_rsqrt(tg_real x)
 {
     int e;
     uint64_t y;
     if (x <= 0) return TG_REAL_MAX;
-    y = rsqrt_mantissa_q30(x, &e);
+    y = rsqrt_q30(mantissa_even((uint64_t)x, &e));
     return tg_sat64((int64_t)((y + ((uint64_t)1 << (5 + e / 2))) >> (6 + e / 2)));
 }
 
