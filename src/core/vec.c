@@ -35,15 +35,10 @@ static uint64_t isqrt_round(uint64_t v)
     return v - r * r > r ? r + 1 : r;
 }
 
-static int64_t div_round(int64_t a, int64_t b) /* b > 0 */
-{
-    return a >= 0 ? (a + b / 2) / b : -((-a + b / 2) / b);
-}
-
 /* Normalize v[0..n) in place; returns 0 (v untouched) for the zero vector. */
 static int normalize_n(tg_real *v, int n)
 {
-    int64_t w[VEC_MAX_N], m = 0;
+    int64_t w[VEC_MAX_N], m = 0, inv;
     uint64_t sum = 0, len2;
     int i, s;
     for (i = 0; i < n; i++) {
@@ -56,8 +51,9 @@ static int normalize_n(tg_real *v, int n)
         w[i] = s >= 0 ? (int64_t)v[i] * ((int64_t)1 << s) : tg_shr_round(v[i], -s);
         sum += (uint64_t)(w[i] * w[i]);
     }
-    len2 = isqrt_round(sum << 2); /* 2 |w|, in [2^30, 2^32) */
-    for (i = 0; i < n; i++) v[i] = tg_sat64(div_round(w[i] * 131072, (int64_t)len2));
+    len2 = isqrt_round(sum << 2); /* 2 |w|, in [2^30, 2^32] */
+    inv = (int64_t)((((uint64_t)1 << 62) + len2 / 2) / len2); /* 2^62 / (2 |w|), one division */
+    for (i = 0; i < n; i++) v[i] = tg_sat64(tg_shr_round(w[i] * inv, 45)); /* w 2^16 / |w| */
     return 1;
 }
 
