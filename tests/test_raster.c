@@ -688,6 +688,45 @@ TEST(zero_area_skipped)
     free(m);
 }
 
+/* Garbage in (NaN, infinities, the largest values) draws nothing wrong:
+ * no crash, every written depth finite and positive, normals unit. */
+TEST(hostile_coordinates)
+{
+    enum { W = 40, H = 30 };
+    tg_view v = view_at(W, H, 70);
+    mesh *m = mesh_new();
+    gbuf g;
+    double big = TG_FIXED ? 32000.0 : 3e38;
+    double vals[] = { 0, 1, -1, 5, 1e-30, -3, 0, 2 };
+    int t, k, i, bad = 0;
+    for (t = 0; t < 400; t++) {
+        for (k = 0; k < 3; k++) {
+            double c[3];
+            int d;
+            for (d = 0; d < 3; d++) {
+                int pick = (int)(rng() % 12);
+                c[d] = pick < 8 ? vals[pick] * (1 + rnd()) : pick == 8 ? big : pick == 9 ? -big
+                     : pick == 10 ? (TG_FIXED ? big : (double)INFINITY) : (TG_FIXED ? -big : (double)NAN);
+            }
+            m->pos[3 * m->n + k] = V(c[0], c[1], c[2]);
+            m->nrm[3 * m->n + k] = V(0, 0, -1);
+        }
+        m->mat[m->n] = (uint16_t)(t & 1);
+        m->obj[m->n] = 0;
+        m->n++;
+    }
+    gbuf_alloc(&g, W, H);
+    tg_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    for (i = 0; i < W * H; i++) {
+        double z = D(g.gb.depth[i]);
+        if (g.gb.sky[i]) continue;
+        if (!(z > 0 && z < 1e30)) bad++;
+    }
+    CHECK(bad == 0, "%d pixels with a non-finite or non-positive depth", bad);
+    gbuf_free(&g);
+    free(m);
+}
+
 /* A closed sphere: nearest wins, normals unit and facing the viewer, and
  * rendering in row bands gives the same bytes as one pass. */
 static void add_sphere(mesh *m, const tg_view *v, double cx, double cy, double cz, double r, int seg, int obj)
@@ -897,6 +936,7 @@ int main(void)
     RUN(clipped_tiling_watertight);
     RUN(normal_interpolation);
     RUN(zero_area_skipped);
+    RUN(hostile_coordinates);
     RUN(sphere_nearest_and_rows);
     RUN(depth_only_ortho);
     RUN(depth_only_perspective);

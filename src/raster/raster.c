@@ -278,10 +278,13 @@ static inline unsigned outcode(const clip_ctx *c, const clip_vertex *v)
  * count of the clipped convex polygon (0 when nothing is left). */
 static int clip_polygon(const clip_ctx *c, clip_vertex *poly, int n, unsigned planes)
 {
+    /* near and far first: the guard-band planes then cut vertices whose w
+     * is already in range, and set x, y exactly on the band */
+    static const int order[PL_COUNT] = { PL_NEAR, PL_FAR, PL_LEFT, PL_RIGHT, PL_BOTTOM, PL_TOP };
     clip_vertex tmp[MAX_POLY];
-    int p;
-    for (p = 0; p < PL_COUNT && n > 0; p++) {
-        int i, m = 0;
+    int o;
+    for (o = 0; o < PL_COUNT && n > 0; o++) {
+        int i, m = 0, p = order[o];
         if (!(planes & (1u << p))) continue;
         for (i = 0; i < n; i++) {
             const clip_vertex *a = &poly[i], *b = &poly[i + 1 == n ? 0 : i + 1];
@@ -313,10 +316,13 @@ typedef int64_t inv_w;            /* 2^46 / w (raw Q16.16 w) */
 static inline inv_w inverse_w(tg_real w) { return w > 0 ? ((int64_t)1 << 46) / w : 0; }
 
 /* round(c / w * half16): NDC coordinate to sub-pixels from the image
- * centre.  |c| <= GUARD w here, so c * iw < 2^50. */
-static inline int32_t snap_ndc(tg_real c, inv_w iw, int32_t half16)
+ * centre.  |c| <= (GUARD + 1) w, so c * iw < 2^50. */
+static inline int32_t snap_ndc(tg_real c, tg_real w, inv_w iw, int32_t half16)
 {
-    int64_t ndc = (int64_t)c * iw, v;         /* NDC * 2^46 */
+    int64_t lim = (int64_t)(GUARD + 1) * w, ndc, v;
+    if (c > lim) c = (tg_real)lim;               /* rounding in clipping: stay in the band */
+    if (c < -lim) c = (tg_real)-lim;
+    ndc = (int64_t)c * iw;                       /* NDC * 2^46 */
     ndc = ndc >= 0 ? ndc >> 20 : -((-ndc) >> 20);  /* NDC * 2^26 */
     v = ndc * half16;
     return clamp_coord(v >= 0 ? (v + (1 << 25)) >> 26 : -((-v + (1 << 25)) >> 26));
@@ -325,10 +331,11 @@ static inline int32_t snap_ndc(tg_real c, inv_w iw, int32_t half16)
 typedef float inv_w;
 static inline inv_w inverse_w(tg_real w) { return w > 0.0f ? 1.0f / w : 0.0f; }
 
-static inline int32_t snap_ndc(tg_real c, inv_w iw, int32_t half16)
+static inline int32_t snap_ndc(tg_real c, tg_real w, inv_w iw, int32_t half16)
 {
     float v = c * iw * (float)half16;
-    if (v > (float)COORD_LIMIT) v = (float)COORD_LIMIT;
+    (void)w;
+    if (!(v <= (float)COORD_LIMIT)) v = (float)COORD_LIMIT;   /* also NaN */
     if (v < -(float)COORD_LIMIT) v = -(float)COORD_LIMIT;
     return (int32_t)(v >= 0.0f ? v + 0.5f : v - 0.5f);
 }
@@ -734,8 +741,8 @@ typedef struct raster_target {
 static inline void snap_vertex(const raster_target *rt, const clip_vertex *v, int32_t *sx, int32_t *sy, inv_w *iw)
 {
     *iw = inverse_w(v->w);
-    *sx = rt->half_w16 + snap_ndc(v->x, *iw, rt->half_w16);
-    *sy = rt->half_h16 - snap_ndc(v->y, *iw, rt->half_h16);
+    *sx = rt->half_w16 + snap_ndc(v->x, v->w, *iw, rt->half_w16);
+    *sy = rt->half_h16 - snap_ndc(v->y, v->w, *iw, rt->half_h16);
 }
 
 /* Rasterize one snapped triangle: vertex k of the ordered triangle is
@@ -798,7 +805,7 @@ static void draw_polygon(const raster_target *rt, const clip_vertex *poly, int n
     int64_t total = 0;
     int i, front, flip;
     for (i = 0; i < n; i++) {
-        if (poly[i].w <= 0) return;               /* a degenerate projection: nothing in front */
+        if (!(poly[i].w > 0)) return;             /* a degenerate projection (or NaN): nothing in front */
         snap_vertex(rt, &poly[i], &sx[i], &sy[i], &iw[i]);
     }
     for (i = 0; i < n; i++) {
