@@ -94,6 +94,15 @@ static void pass_shadows(tg_frame *f)
     int i;
     /* a static scene's shadow maps are rendered once and kept */
     if (f->shadows_valid && !f->posed_pos) return;
+    if (f->posed_pos) {
+        /* objects move: refit the maps to where the geometry is now */
+        tg_vec3 lo, hi;
+        tg_anim_bounds(mesh.pos, mesh.tri_count, &lo, &hi);
+        for (i = 0; i < s->light_count; i++)
+            if (f->shadow_ptrs[i])
+                tg_shadow_map_setup(&f->shadow_maps[i], &s->lights[i], f->shadow_maps[i].size, lo, hi,
+                                    f->shadow_maps[i].depth);
+    }
     for (i = 0; i < s->light_count; i++)
         if (f->shadow_ptrs[i]) tg_shadow_map_render(&f->shadow_maps[i], mesh.pos, mesh.tri_count);
     f->shadows_valid = 1;
