@@ -14,7 +14,7 @@ FRAMES=${CROSS_FRAMES:-2}
 AOVS=${CROSS_AOVS:-color,depth,normal,ao}; AOVS=${AOVS//,/+} # QEMU options take commas
 M0_RUNS=${CROSS_M0_RUNS:-"4x3:color 6x4:ao+depth+normal"} # SIZE:AOVS, one frame each
 M0_SCENES=${CROSS_M0_SCENES:-cornell}
-M0_ARENA=${CROSS_M0_ARENA:-11008}
+M0_ARENA=${CROSS_M0_ARENA:-10496}
 MAKE=${MAKE:-make}
 HOST_CC=${HOST_CC:-cc}
 SKIP=${SKIP:-}
@@ -27,14 +27,14 @@ CROSS_TESTS=${CROSS_TESTS:-test_fbdev} # test programs run on the Linux targets 
 CFLAGS="-std=c99 -ffp-contract=off -fexcess-precision=fast -O2 -Wall -Wextra -Wpedantic -Wshadow -Wdouble-promotion -Werror"
 BM=platform/baremetal
 passed=0; failed=0
-ok()   { echo "ok $1"; passed=$((passed + 1)); }
+ok()   { echo "ok $1 ($(( $(date +%s) - t0 )) s)"; passed=$((passed + 1)); }
 fail() { echo "FAIL $1${2:+: $2}"; failed=$((failed + 1)); }
 log()  { echo "cross: $*"; }
+t0=$(date +%s)
 mkdir -p "$OUT"
 LOG="$OUT/log"; mkdir -p "$LOG"
 
 # ---- toolchains ----
-t0=$(date +%s)
 if bash platform/cross-install.sh; then ok "install toolchains"; else fail "install toolchains"; fi
 
 # ---- per-target settings: compiler, flags, runner ----

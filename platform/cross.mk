@@ -23,7 +23,7 @@ CROSS_FRAMES  ?= 2
 CROSS_AOVS    ?= color,depth,normal,ao
 CROSS_M0_RUNS ?= 4x3:color 6x4:ao+depth+normal
 CROSS_M0_SCENES ?= cornell
-CROSS_M0_ARENA ?= 11008
+CROSS_M0_ARENA ?= 10496
 CROSS_SHADOW  ?= 64
 CROSS_M0_SHADOW ?= 8
 

@@ -65,8 +65,9 @@ static void paint_stack(void)
     while (p < top) *p++ = STACK_PAINT;
 }
 
-/* "startup: stack N of M bytes used" on the console. */
-static void report_stack(void)
+/* "startup: stack N of M bytes used" on the console; returns 1 when the
+ * whole stack was used (it has probably overflowed into .bss). */
+static int report_stack(void)
 {
     char line[64], digits[12];
     const char *head = "startup: stack ", *mid = " of ", *tail = " bytes used\n";
@@ -86,6 +87,9 @@ static void report_stack(void)
     for (k = 0; tail[k]; k++) line[at++] = tail[k];
     line[at] = 0;
     sh_write0(line);
+    if (used < size) return 0;
+    sh_write0("startup: stack overflow: raise STACK_SIZE in the linker script\n");
+    return 1;
 }
 
 /* argv from "prog arg1 arg2 ..." (QEMU's -semihosting-config arg=...). */
@@ -130,6 +134,6 @@ void Reset_Handler(void)
 #ifdef TG_BM_NEWLIB
     fflush(0);
 #endif
-    report_stack();
+    if (report_stack() && status == 0) status = 5;
     sh_exit(status);
 }
