@@ -493,10 +493,12 @@ typedef struct screen_tri {
 
 #if TG_FIXED
 
-/* Exact barycentrics: u_i = unbiased edge function >> s (<= 2^30). */
+/* Exact barycentrics: u_i = unbiased edge function scaled so their sum is
+ * ~2^30.  Perspective-correct depth in one division:
+ *   w = sum(u_i) / sum(u_i / w_i) = w_min sum(u_i) / sum(u_i q_i),  q_i = w_min / w_i. */
 typedef struct bary_setup {
-    int s, sm;                    /* weight shift; normal shift */
-    int64_t wq;                   /* w_min << 30 */
+    int ls, rs, sm;               /* weight shifts left / right; normal shift */
+    int64_t wmin;                 /* nearest vertex w, raw Q16.16 */
     int64_t q[3];                 /* w_min / w_i, Q30 */
     int64_t nq[3][3];             /* n_i q_i, Q30 */
     int64_t z[3];                 /* clip z (orthographic depth), Q16.16 */
@@ -509,11 +511,13 @@ static void bary_make(bary_setup *b, const screen_tri *st, const tri_edges *te)
     if (st->w[1] < wmin) wmin = st->w[1];
     if (st->w[2] < wmin) wmin = st->w[2];
     if (wmin < 1) wmin = 1;
-    b->s = bit_length64((uint64_t)te->area2) - 30;
-    if (b->s < 0) b->s = 0;
-    bl = bit_length64((uint64_t)te->area2 >> b->s);
+    /* weights u_i = E_i 2^(ls - rs) with sum(u) = area2 2^(ls - rs) ~ 2^30 */
+    b->rs = bit_length64((uint64_t)te->area2) - 30;
+    b->ls = b->rs < 0 ? -b->rs : 0;
+    if (b->rs < 0) b->rs = 0;
+    bl = bit_length64(((uint64_t)te->area2 << b->ls) >> b->rs);
     b->sm = bl > 0 ? bl - 1 : 0;
-    b->wq = (int64_t)wmin << 30;
+    b->wmin = wmin;
     for (i = 0; i < 3; i++) {
         b->q[i] = ((int64_t)wmin * st->iw[i]) >> 16;  /* w_min / w_i <= 1, Q30 */
         if (b->q[i] > ((int64_t)1 << 30)) b->q[i] = (int64_t)1 << 30;
@@ -544,23 +548,23 @@ static void gbuffer_rows(const tg_gbuffer *gbp, const tri_edges *te, const scree
             c1 = xb - c0 > SPAN_CHUNK ? c0 + SPAN_CHUNK : xb;
             for (col = c0; col < c1; col++, i++,
                  e0 += te->step_x[0], e1 += te->step_x[1], e2 += te->step_x[2]) {
-                int64_t u0, u1, u2, su, qp;
-                tg_real n[3];
+                int64_t u0, u1, u2, su, sq;
+                tg_real n[3], z;
                 hit[col - c0] = 0;
-                u0 = (e0 - te->bias[0]) >> b.s;
-                u1 = (e1 - te->bias[1]) >> b.s;
-                u2 = (e2 - te->bias[2]) >> b.s;
+                u0 = ((e0 - te->bias[0]) << b.ls) >> b.rs;
+                u1 = ((e1 - te->bias[1]) << b.ls) >> b.rs;
+                u2 = ((e2 - te->bias[2]) << b.ls) >> b.rs;
                 su = u0 + u1 + u2;
-                if (su <= 0) continue;
-                qp = (u0 * b.q[0] + u1 * b.q[1] + u2 * b.q[2]) / su; /* 1/w, Q30 of w_min/w */
-                if (qp < 1) qp = 1;
-                if (!g.sky[i] && b.wq >= qp * g.depth[i]) continue;
+                sq = (u0 * b.q[0] + u1 * b.q[1] + u2 * b.q[2]) >> 30; /* su w_min / w */
+                if (su <= 0 || sq <= 0) continue;
+                z = tg_sat64((b.wmin * su + sq / 2) / sq);
+                if (!g.sky[i] && z >= g.depth[i]) continue;
                 if (!unit_q16(asr64(u0 * b.nq[0][0] + u1 * b.nq[1][0] + u2 * b.nq[2][0], b.sm),
                               asr64(u0 * b.nq[0][1] + u1 * b.nq[1][1] + u2 * b.nq[2][1], b.sm),
                               asr64(u0 * b.nq[0][2] + u1 * b.nq[1][2] + u2 * b.nq[2][2], b.sm), n)) {
                     n[0] = sf.fallback_normal.x; n[1] = sf.fallback_normal.y; n[2] = sf.fallback_normal.z;
                 }
-                g.depth[i] = tg_sat64((b.wq + qp / 2) / qp);
+                g.depth[i] = z;
                 g.nx[i] = n[0]; g.ny[i] = n[1]; g.nz[i] = n[2];
                 g.sky[i] = 0;
                 hit[col - c0] = 1;
@@ -584,9 +588,9 @@ static void depth_rows(tg_real *depth, int W, const tri_edges *te, const screen_
         for (col = xa; col < xb; col++, i++,
              e0 += te->step_x[0], e1 += te->step_x[1], e2 += te->step_x[2]) {
             int64_t u0, u1, u2, su, v;
-            u0 = (e0 - te->bias[0]) >> b.s;
-            u1 = (e1 - te->bias[1]) >> b.s;
-            u2 = (e2 - te->bias[2]) >> b.s;
+            u0 = ((e0 - te->bias[0]) << b.ls) >> b.rs;
+            u1 = ((e1 - te->bias[1]) << b.ls) >> b.rs;
+            u2 = ((e2 - te->bias[2]) << b.ls) >> b.rs;
             su = u0 + u1 + u2;
             if (su <= 0) continue;
             if (ortho) {
@@ -594,9 +598,10 @@ static void depth_rows(tg_real *depth, int W, const tri_edges *te, const screen_
                 v = v >= 0 ? (v + su / 2) / su : -((-v + su / 2) / su);
                 if (v < depth[i]) depth[i] = (tg_real)v;
             } else {
-                v = (u0 * b.q[0] + u1 * b.q[1] + u2 * b.q[2]) / su;
-                if (v < 1) v = 1;
-                if (b.wq < v * depth[i]) depth[i] = tg_sat64((b.wq + v / 2) / v);
+                v = (u0 * b.q[0] + u1 * b.q[1] + u2 * b.q[2]) >> 30;
+                if (v <= 0) continue;
+                v = (b.wmin * su + v / 2) / v;
+                if (v < depth[i]) depth[i] = tg_sat64(v);
             }
         }
     }
