@@ -413,6 +413,51 @@ TEST(every_technique_every_scene)
     }
 }
 
+
+/* A moving object leaves no ghost: once it stops, the frame converges to
+ * what a scene with the object standing there all along gives. */
+static double *moving_box_color(int moving)
+{
+    rendered r;
+    tg_request q = request(48, 36, AOVBIT(TG_AOV_COLOR));
+    tg_error err;
+    char text[2048];
+    double *c = NULL;
+    int f;
+    snprintf(text, sizeof text,
+        "camera pos 0 1.5 -3.5 target 0 0.5 0 fov 60\n"
+        "material wall albedo 0.7 0.7 0.7 f0 0\n"
+        "material hot albedo 0.9 0.2 0.2 emissive 3 0.5 0.5\n"
+        "box min -2 0 -4 max 2 3 2 material wall inward\n"
+        "box min -0.4 0 -0.4 max 0.4 0.8 0.4 material hot name mover\n"
+        "object_key name mover t 0 translate %s 0 0\n"
+        "object_key name mover t 1 translate 1.2 0 0\n"
+        "object_key name mover t 4 translate 1.2 0 0\n"
+        "light point pos 0 2.5 0 color 1 1 1 intensity 4\n"
+        "gi radius 2\n", moving ? "-1.2" : "1.2");
+    q.frames = 40;
+    CHECK(setup(&r, text, &q), "moving box sets up");
+    if (r.ok) {
+        for (f = 0; f < q.frames; f++) tg_frame_render(r.frame, f, &err);
+        c = read_aov(&r, TG_AOV_COLOR);
+    }
+    teardown(&r);
+    return c;
+}
+
+TEST(moving_object_leaves_no_ghost)
+{
+    double *moved = moving_box_color(1), *still = moving_box_color(0), worst = 0;
+    size_t i;
+    if (!moved || !still) { free(moved); free(still); return; }
+    for (i = 0; i < 48 * 36 * 3; i++) {
+        double d = fabs(moved[i] - still[i]);
+        if (d > worst) worst = d;
+    }
+    CHECK(worst < 0.02, "largest colour difference after the box stopped: %.4f", worst);
+    free(moved); free(still);
+}
+
 int main(void)
 {
     RUN(plan_follows_the_scene);
@@ -425,6 +470,7 @@ int main(void)
     RUN(white_room_stays_finite);
     RUN(camera_cut_is_finite);
     RUN(deterministic);
+    RUN(moving_object_leaves_no_ghost);
     RUN(every_technique_every_scene);
     return check_summary();
 }
