@@ -60,6 +60,8 @@ target_run() { # how to run a Linux binary
     case $1 in
         s390x) echo qemu-s390x ;;
         powerpc) echo qemu-ppc ;;
+        i686) # natively, unless the kernel cannot run 32-bit programs
+            "$OUT/i686/render-float" size=bad >/dev/null 2>&1; [ $? -eq 2 ] || echo qemu-i386 ;;
         *) echo "" ;;
     esac
 }
