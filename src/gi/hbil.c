@@ -132,9 +132,9 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
     px->Y = full_y(c, px->y);
     /* w_o: unit vector from the surface toward the eye (sec. 1.1) */
     k = tg_v3(tg_mul(px->X, c->inv_ppu), tg_mul(px->Y, c->inv_ppu), TG_ONE);
-    px->wo = tg_v3_neg(tg_v3_normalize_or(k, tg_v3(0, 0, TG_ONE)));
-    /* w_x = Y x w_o / |..|, w_y = w_o x w_x (sec. 1.1) */
-    px->wx = tg_v3_normalize_or(tg_v3(px->wo.z, 0, tg_neg(px->wo.x)), tg_v3(TG_ONE, 0, 0));
+    px->wo = tg_v3_scale(k, tg_neg(tg_rsqrt(tg_v3_dot(k, k))));          /* |k| >= 1 */
+    /* w_x = Y x w_o / |..| = (-1, 0, k_x) / sqrt(1 + k_x^2), w_y = w_o x w_x (sec. 1.1) */
+    px->wx = tg_v3_scale(tg_v3(tg_neg(TG_ONE), 0, k.x), tg_rsqrt(tg_add(TG_ONE, tg_mul(k.x, k.x))));
     px->wy = tg_v3_cross(px->wo, px->wx);
     nw = tg_v3(io->nx[i], io->ny[i], io->nz[i]);
     px->n = tg_v3(tg_v3_dot(nw, v->right), tg_v3_dot(nw, v->up), tg_v3_dot(nw, v->forward));
@@ -153,9 +153,11 @@ static void slice_screen_dir(const hbil_ctx *c, const hbil_pixel *px, tg_vec3 d,
 {
     tg_real kx = tg_mul(px->X, c->inv_ppu), ky = tg_mul(px->Y, c->inv_ppu);
     tg_vec3 u = tg_v3(tg_sub(d.x, tg_mul(kx, d.z)), tg_neg(tg_sub(d.y, tg_mul(ky, d.z))), 0);
-    u = tg_v3_normalize_or(u, tg_v3(TG_ONE, 0, 0));
-    *ux = u.x;
-    *uy = u.y;
+    tg_real len2 = tg_add(tg_mul(u.x, u.x), tg_mul(u.y, u.y)), inv;
+    if (len2 < TG_R(0.0001f)) { *ux = TG_ONE; *uy = 0; return; }  /* D is never along the ray */
+    inv = tg_rsqrt(len2);
+    *ux = tg_mul(u.x, inv);
+    *uy = tg_mul(u.y, inv);
 }
 
 /* Depth at the continuous minor-axis position b0 + f, so that the sample
@@ -330,14 +332,14 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
 {
     hbil_slice sl;
     hbil_side front, back;
-    tg_real len_n, h1i, h0i, ux, uy, q1, q0, q1i, q0i, r1, r0, r1i, r0i, p1i, p0i;
+    tg_real inv_len_n, h1i, h0i, ux, uy, q1, q0, q1i, q0i, r1, r0, r1i, r0i, p1i, p0i;
     sl.d = tg_v3_add(tg_v3_scale(px->wx, cphi), tg_v3_scale(px->wy, sphi)); /* HBIL sec. 1.2 D(phi) */
     sl.nx = tg_v3_dot(px->n, sl.d);                           /* HBIL eq. 2 */
     sl.ny = tg_v3_dot(px->n, px->wo);
-    len_n = tg_sqrt(tg_add(tg_mul(sl.nx, sl.nx), tg_mul(sl.ny, sl.ny)));
-    if (len_n < sl.ny) len_n = sl.ny;                         /* ny >= HBIL_MIN_NDOTV > 0 */
+    /* |n'|^2 >= ny^2 > 0 (ny >= HBIL_MIN_NDOTV) */
+    inv_len_n = tg_rsqrt(tg_max(tg_add(tg_mul(sl.nx, sl.nx), tg_mul(sl.ny, sl.ny)), tg_mul(sl.ny, sl.ny)));
     /* horizons initialised on the tangent plane (sec. 2.1): cos = -/+ n_x/|n'| */
-    h1i = tg_clamp(tg_div(tg_neg(sl.nx), len_n), TG_R(-1.0f), TG_ONE);
+    h1i = tg_clamp(tg_mul(tg_neg(sl.nx), inv_len_n), TG_R(-1.0f), TG_ONE);
     h0i = tg_neg(h1i);
     /* Q(-c, -1) = Q(c, 1) - pi/2 and R(-c) = R(c): one acos for both sides */
     q1i = slice_Q(h1i, 1); q0i = tg_sub(q1i, TG_HALF_PI);
