@@ -6,10 +6,15 @@
  * Fixed-point care:
  *  - slab tests use 1/d with |d| clamped to >= 2^-12; the boxes are
  *    enlarged by extent / 4096 so the clamped ray stays conservative;
- *  - the triangle test (Moller-Trumbore) first slides the origin along the
- *    ray to the point nearest vertex 0, then works in coordinates relative
- *    to vertex 0 scaled by a power of two into [4, 8): every cross and triple
- *    product stays far inside Q16.16's range and keeps ~17 bits.
+ *  - the traversal's triangle test (tg_bvh_tri_hit) uses triangles prepared
+ *    at build time: unit plane normal, and dual vectors of the edges scaled
+ *    by a power of two into [2, 4), so the barycentrics u = a . h, v = b . h
+ *    keep ~17 bits whatever the triangle's size; per ray and triangle it is
+ *    three dot products and one division;
+ *  - the independent Moller-Trumbore test (tg_ray_triangle, used by the
+ *    tests as a check) first slides the origin along the ray to the point
+ *    nearest vertex 0, then works in coordinates relative to vertex 0 scaled
+ *    into [4, 8): every cross and triple product stays inside Q16.16.
  */
 #include "bvh.h"
 #include "../tinygi.h"
@@ -17,17 +22,20 @@
 typedef struct bvh_task { int32_t node, begin, end; } bvh_task;
 
 #define DIR_MIN TG_R(0.000244140625f)  /* 2^-12 */
+#define EDGE_EPS TG_R(0.000244140625f) /* 2^-12 */
 
 static size_t align16(size_t n) { return (n + 15u) & ~(size_t)15u; }
 
 size_t tg_bvh_bytes(int tri_count)
 {
-    size_t nodes, idx, total;
+    size_t nodes, idx, tris, total;
     size_t n = tri_count > 0 ? (size_t)tri_count : 1u;
     if (tri_count < 0) return 0;
     if (tg_size_mul(2u * n, sizeof(tg_bvh_node), &nodes)) return 0;
     if (tg_size_mul(n, sizeof(int32_t), &idx)) return 0;
+    if (tg_size_mul(n, sizeof(tg_bvh_tri), &tris)) return 0;
     if (tg_size_add(align16(nodes), align16(idx), &total)) return 0;
+    if (tg_size_add(total, align16(tris), &total)) return 0;
     if (tg_size_add(total, 16u, &total)) return 0;
     return total;
 }
@@ -99,6 +107,7 @@ int tg_bvh_build(tg_bvh *bvh, const tg_vec3 *tri_pos, int tri_count, void *memor
     base = (base + 15u) & ~(uintptr_t)15u;
     bvh->nodes = (tg_bvh_node *)base;
     bvh->tri_index = (int32_t *)(base + align16(2u * n * sizeof(tg_bvh_node)));
+    bvh->tris = (tg_bvh_tri *)((uintptr_t)bvh->tri_index + align16(n * sizeof(int32_t)));
     bvh->tri_pos = tri_pos;
     bvh->tri_count = tri_count;
     bvh->node_count = 0;
@@ -133,6 +142,8 @@ int tg_bvh_build(tg_bvh *bvh, const tg_vec3 *tri_pos, int tri_count, void *memor
         stack[sp].node = node->first + 1; stack[sp].begin = mid; stack[sp].end = task.end; sp++;
         stack[sp].node = node->first; stack[sp].begin = task.begin; stack[sp].end = mid; sp++;
     }
+    for (i = 0; i < tri_count; i++)
+        tg_bvh_tri_prepare(&bvh->tris[i], tri_pos + 3 * (size_t)bvh->tri_index[i]);
     return 0;
 }
 
@@ -177,6 +188,57 @@ int tg_ray_triangle(const tg_vec3 *v, tg_vec3 o, tg_vec3 d, tg_real tmax,
     *t_out = t;
     *u_out = tg_div(uu, det);
     *w_out = tg_div(ww, det);
+    return 1;
+}
+
+/* ---- prepared triangles: plane, then dual-vector barycentrics ---- */
+
+static tg_vec3 v3_ldexp(tg_vec3 a, int k) { return tg_v3(tg_ldexp(a.x, k), tg_ldexp(a.y, k), tg_ldexp(a.z, k)); }
+
+void tg_bvh_tri_prepare(tg_bvh_tri *tr, const tg_vec3 *v)
+{
+    tg_vec3 e1 = tg_v3_sub(v[1], v[0]), e2 = tg_v3_sub(v[2], v[0]), nn, a, b;
+    tg_real m = tg_max(max_abs3(e1), max_abs3(e2)), len2;
+    int k = 0;
+    tr->v0 = v[0];
+    tr->n = tr->a = tr->b = tg_v3(0, 0, 0);
+    tr->k = 0;
+    if (m <= 0) return;
+    while (m < TG_R(2.0f) && k < 24) { m = tg_ldexp(m, 1); k++; }
+    while (m >= TG_R(4.0f) && k > -24) { m = tg_ldexp(m, -1); k--; }
+    e1 = v3_ldexp(e1, k);
+    e2 = v3_ldexp(e2, k);
+    nn = tg_v3_cross(e1, e2);                  /* |nn| <= 48: |nn|^2 fits Q16.16 */
+    len2 = tg_v3_dot(nn, nn);
+    if (len2 <= TG_R(0.0001f)) return;         /* degenerate: never hit */
+    tr->n = tg_v3_scale(nn, tg_rsqrt(len2));
+    a = tg_v3_cross(e2, nn);                   /* a . e1 = |nn|^2, a . e2 = 0 */
+    b = tg_v3_cross(nn, e1);                   /* b . e2 = |nn|^2, b . e1 = 0 */
+    /* divide each component (not times 1/len2: that would keep few bits in Q16.16) */
+    tr->a = tg_v3(tg_div(a.x, len2), tg_div(a.y, len2), tg_div(a.z, len2));
+    tr->b = tg_v3(tg_div(b.x, len2), tg_div(b.y, len2), tg_div(b.z, len2));
+    tr->k = k;
+}
+
+int tg_bvh_tri_hit(const tg_bvh_tri *tr, tg_vec3 o, tg_vec3 d, tg_real tmax,
+                   tg_real *t_out, tg_real *u_out, tg_real *w_out)
+{
+    tg_real nd = tg_v3_dot(tr->n, d), t, u, w;
+    tg_vec3 ov = tg_v3_sub(o, tr->v0), h;
+    if (tg_abs(nd) <= TG_R(0.0001f)) return 0;  /* parallel (or degenerate: n = 0) */
+    t = tg_div(tg_neg(tg_v3_dot(tr->n, ov)), nd);  /* the plane */
+    if (t <= 0 || t >= tmax) return 0;
+    h = v3_ldexp(tg_v3_add(ov, tg_v3_scale(d, t)), tr->k);   /* hit - v0, scaled like the edges */
+    /* edges widened by 2^-12 of the triangle: neighbours sharing an edge
+     * overlap a hair instead of letting rounding open a crack (a ray through
+     * a crack would see the sky from inside a closed box) */
+    u = tg_v3_dot(tr->a, h);
+    if (u < tg_neg(EDGE_EPS) || u > TG_R(1.000244140625f)) return 0;
+    w = tg_v3_dot(tr->b, h);
+    if (w < tg_neg(EDGE_EPS) || tg_add(u, w) > TG_R(1.000244140625f)) return 0;
+    u = tg_saturate(u);
+    w = tg_min(tg_saturate(w), tg_sub(TG_ONE, u));
+    *t_out = t; *u_out = u; *w_out = w;
     return 1;
 }
 
@@ -230,10 +292,9 @@ int tg_bvh_closest(const tg_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax, tg_ray
         if (n->count > 0) {
             int i;
             for (i = 0; i < n->count; i++) {
-                int32_t tri = bvh->tri_index[n->first + i];
                 tg_real t, u, w;
-                if (tg_ray_triangle(bvh->tri_pos + 3 * (size_t)tri, o, d, hit->t, &t, &u, &w)) {
-                    hit->t = t; hit->u = u; hit->v = w; hit->tri = tri;
+                if (tg_bvh_tri_hit(&bvh->tris[n->first + i], o, d, hit->t, &t, &u, &w)) {
+                    hit->t = t; hit->u = u; hit->v = w; hit->tri = bvh->tri_index[n->first + i];
                 }
             }
         } else {
@@ -262,9 +323,8 @@ int tg_bvh_occluded(const tg_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax)
         if (n->count > 0) {
             int i;
             for (i = 0; i < n->count; i++) {
-                int32_t tri = bvh->tri_index[n->first + i];
                 tg_real t, u, w;
-                if (tg_ray_triangle(bvh->tri_pos + 3 * (size_t)tri, o, d, tmax, &t, &u, &w)) return 1;
+                if (tg_bvh_tri_hit(&bvh->tris[n->first + i], o, d, tmax, &t, &u, &w)) return 1;
             }
         } else {
             if (box_entry(&bvh->nodes[n->first], &r, tmax) >= 0) stack[sp++] = n->first;

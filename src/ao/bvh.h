@@ -24,11 +24,23 @@ typedef struct tg_bvh_node {
     int32_t count;             /* leaf: triangles (> 0); inner: 0 */
 } tg_bvh_node;
 
+/* A triangle prepared for the traversal's test (plane, then barycentrics
+ * by dual edge vectors, Moller-Trumbore's values without its per-ray cross
+ * products).  Edges are scaled by 2^k into [2, 4) before the duals are
+ * formed, so Q16.16 keeps its precision for tiny and huge triangles alike. */
+typedef struct tg_bvh_tri {
+    tg_vec3 v0;                /* vertex 0 */
+    tg_vec3 n;                 /* unit plane normal; (0,0,0) for a degenerate triangle */
+    tg_vec3 a, b;              /* duals of the scaled edges: u = a . h', v = b . h', h' = 2^k (h - v0) */
+    int32_t k;                 /* the edge scale exponent */
+} tg_bvh_tri;
+
 typedef struct tg_bvh {
     int tri_count, node_count;
     const tg_vec3 *tri_pos;    /* 3 per triangle, the caller's (not copied) */
     tg_bvh_node *nodes;        /* node 0 is the root */
     int32_t *tri_index;        /* leaf slots -> triangle index */
+    tg_bvh_tri *tris;          /* prepared triangles, in leaf-slot order */
 } tg_bvh;
 
 typedef struct tg_ray_hit {
@@ -51,8 +63,17 @@ int tg_bvh_closest(const tg_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax, tg_ray
 /* Any hit with 0 < t < tmax: 1 if the segment is blocked. */
 int tg_bvh_occluded(const tg_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax);
 
-/* One ray against one triangle (v: its 3 vertices); 1 on a hit with
- * 0 < t < tmax, filling t, u, v. Exposed for tests. */
+/* One ray against one prepared triangle: 1 on a hit with 0 < t < tmax,
+ * filling t and the barycentrics u, w of vertices 1 and 2. */
+int tg_bvh_tri_hit(const tg_bvh_tri *tr, tg_vec3 o, tg_vec3 d, tg_real tmax,
+                   tg_real *t, tg_real *u, tg_real *w);
+
+/* Prepare a triangle (v: its 3 vertices) for tg_bvh_tri_hit. */
+void tg_bvh_tri_prepare(tg_bvh_tri *tr, const tg_vec3 *v);
+
+/* One ray against one triangle (v: its 3 vertices), Moller-Trumbore in
+ * scaled relative coordinates; 1 on a hit with 0 < t < tmax, filling t, u,
+ * v.  The independent check of tg_bvh_tri_hit in the tests. */
 int tg_ray_triangle(const tg_vec3 *v, tg_vec3 o, tg_vec3 d, tg_real tmax,
                     tg_real *t, tg_real *u, tg_real *w);
 
