@@ -29,6 +29,13 @@
  * the square stays inside Q16.16. */
 #define HBIL_MAX_RADIUS_UNITS TG_R(150.0f)
 
+/* The rare paths stay out of the march loop (register pressure). */
+#if defined(__GNUC__)
+#define HBIL_COLD __attribute__((noinline, cold))
+#else
+#define HBIL_COLD
+#endif
+
 static const uint8_t bayer4[4][4] = {
     { 0, 8, 2, 10 }, { 12, 4, 14, 6 }, { 3, 11, 1, 9 }, { 15, 7, 13, 5 }
 };
@@ -167,7 +174,7 @@ static void slice_screen_dir(const hbil_ctx *c, const hbil_pixel *px, tg_vec3 d,
  * nearest pixel's tangent plane is extended to the ray through the
  * continuous position; 0 (skip the sample) when that ray misses the plane
  * or lands far from the nearest pixel. */
-static tg_real sample_depth_edge(const hbil_ctx *c, int major_x, int a, int b0, tg_real f, int sa, int sn)
+HBIL_COLD static tg_real sample_depth_edge(const hbil_ctx *c, int major_x, int a, int b0, tg_real f, int sa, int sn)
 {
     const tg_hbil_io *io = c->io;
     const tg_view *v = c->p->view;
@@ -199,7 +206,7 @@ static tg_real sample_depth_edge(const hbil_ctx *c, int major_x, int a, int b0, 
 }
 
 /* A raised horizon: gather L(x') over the band it closes (eq. 18-19, sec. 3.4). */
-static void gather_rise(const hbil_ctx *c, const hbil_slice *sl, hbil_side *sd, int side,
+HBIL_COLD static void gather_rise(const hbil_ctx *c, const hbil_slice *sl, hbil_side *sd, int side,
                         tg_real cos_new, tg_vec3 dir, int si)
 {
     const tg_hbil_io *io = c->io;
