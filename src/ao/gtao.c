@@ -16,15 +16,31 @@ typedef struct gtao_pixel {
     int x, y;
     tg_vec3 pv, nv, vd;   /* view position, normal, unit vector to the eye */
     tg_real r_px, jitter;
+    int shift;            /* sample offsets are scaled by 2^shift (unit_shift) */
 } gtao_pixel;
+
+/* Q16.16: the power of two 2^e that brings the radius into [0.5, 1], so the
+ * squared sample distances neither underflow (a room 1 mm across) nor
+ * saturate (1 km across).  Float needs none (0: bit-identical to before). */
+static int unit_shift(tg_real radius)
+{
+    int e = 0;
+#if TG_FIXED
+    while (radius > 0 && radius < TG_R(0.5f) && e < 16) { radius = tg_ldexp(radius, 1); e++; }
+    while (radius > TG_ONE && e > -15) { radius = tg_ldexp(radius, -1); e--; }
+#else
+    (void)radius;
+#endif
+    return e;
+}
 
 /* Largest cos(angle to the view vector) of the samples along screen
  * direction (sdx, sdy); -1 when none is within the radius. */
 static tg_real horizon_cos(const tg_gtao_params *p, const tg_ao_io *io, const gtao_pixel *px,
                            tg_real sdx, tg_real sdy)
 {
-    tg_real best = TG_R(-1.0f), r2 = tg_sqr(p->radius);
-    tg_real above = tg_add(tg_ldexp(px->pv.z, -10), tg_mul(p->radius, TG_R(0.005f)));
+    tg_real rs = tg_ldexp(p->radius, px->shift), best = TG_R(-1.0f), r2 = tg_sqr(rs);
+    tg_real above = tg_add(tg_ldexp(px->pv.z, px->shift - 10), tg_mul(rs, TG_R(0.005f)));
     int s;
     for (s = 0; s < p->steps; s++) {
         tg_real t_px = tg_div(tg_mul(tg_add(tg_from_int(s), px->jitter), px->r_px), tg_from_int(p->steps));
@@ -38,6 +54,7 @@ static tg_real horizon_cos(const tg_gtao_params *p, const tg_ao_io *io, const gt
         j = qy * io->width + qx;
         if (io->sky[j]) continue;
         h = tg_v3_sub(tg_ao_unproject(io->view, qx, qy, io->depth[j]), px->pv);
+        if (px->shift) h = tg_v3(tg_ldexp(h.x, px->shift), tg_ldexp(h.y, px->shift), tg_ldexp(h.z, px->shift));
         d2 = tg_v3_dot(h, h);
         if (d2 >= r2 || d2 <= 0) continue;
         if (tg_v3_dot(h, px->nv) <= above) continue;      /* under the tangent plane: clamped anyway */
@@ -69,7 +86,7 @@ static tg_real bent_fc(tg_real th, tg_real cos_g, tg_real sin_g)
 
 /* One slice: adds its visibility to *vis and its bent vector to *bent. */
 static void slice(const tg_gtao_params *p, const tg_ao_io *io, const gtao_pixel *px, tg_real sdx,
-                  tg_real sdy, tg_real *vis, tg_vec3 *bent)
+                  tg_real sdy, tg_real *vis, tg_real *open, tg_vec3 *bent)
 {
     tg_vec3 d3 = tg_v3(sdx, tg_neg(sdy), 0), dir, axis, pn;
     tg_real len, cos_n, gamma, cos_g, sin_g, h0, h1, bs, bc;
@@ -89,6 +106,8 @@ static void slice(const tg_gtao_params *p, const tg_ao_io *io, const gtao_pixel 
     h0 = tg_add(gamma, tg_max(tg_sub(h0, gamma), tg_neg(TG_HALF_PI)));
     /* RTR eq. 11.18, inner integral on both sides, weighted by |projected normal| */
     *vis = tg_add(*vis, tg_mul(len, tg_add(inner_arc(h0, gamma, cos_g, sin_g), inner_arc(h1, gamma, cos_g, sin_g))));
+    /* the same slice with open horizons (gamma -+ pi/2): len (cos g + g sin g) */
+    *open = tg_add(*open, tg_mul(len, tg_add(cos_g, tg_mul(gamma, sin_g))));
     /* bent normal in the slice: F(h1) + F(h0) - 2 F(0), F_s(0) = -2/3 sin g, F_c(0) = -cos g / 3 */
     bs = tg_add(tg_add(bent_fs(h1, cos_g, sin_g), bent_fs(h0, cos_g, sin_g)), tg_mul(sin_g, TG_R(1.333333333f)));
     bc = tg_add(tg_add(bent_fc(h1, cos_g, sin_g), bent_fc(h0, cos_g, sin_g)), tg_mul(cos_g, TG_R(0.666666667f)));
@@ -100,6 +119,7 @@ void tg_gtao_rows(const tg_gtao_params *p, const tg_ao_io *io, int y0, int y1)
     tg_real scos[TG_AO_MAX_SAMPLES], ssin[TG_AO_MAX_SAMPLES];
     tg_ao_rot rot[16];
     int ns = p->slices < 1 ? 1 : p->slices > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : p->slices, k, x, y;
+    int shift = unit_shift(p->radius);
     for (k = 0; k < ns; k++) {                   /* slice angles over pi */
         tg_real a = tg_mul(TG_PI, tg_ratio(k, ns));
         scos[k] = tg_cos(a);
@@ -111,7 +131,7 @@ void tg_gtao_rows(const tg_gtao_params *p, const tg_ao_io *io, int y0, int y1)
             int i = y * io->width + x;
             const tg_ao_rot *r = tg_ao_rot_at(rot, x, y);
             gtao_pixel px;
-            tg_real vis = 0;
+            tg_real vis = 0, open = 0;
             tg_vec3 bent = tg_v3(0, 0, 0);
             tg_ao_write_open(io, i);
             if (io->sky[i] || p->radius <= 0 || p->steps < 1) continue;
@@ -121,10 +141,13 @@ void tg_gtao_rows(const tg_gtao_params *p, const tg_ao_io *io, int y0, int y1)
             px.vd = tg_v3_normalize_or(tg_v3_neg(px.pv), tg_v3(0, 0, TG_R(-1.0f)));
             px.r_px = tg_div(tg_mul(p->radius, io->view->pixels_per_unit), io->depth[i]);
             px.jitter = r->jitter;
+            px.shift = shift;
             for (k = 0; k < ns; k++)
                 slice(p, io, &px, tg_sub(tg_mul(r->c, scos[k]), tg_mul(r->s, ssin[k])),
-                      tg_add(tg_mul(r->s, scos[k]), tg_mul(r->c, ssin[k])), &vis, &bent);
-            io->ao[i] = tg_saturate(tg_div(vis, tg_from_int(ns)));     /* outer integral: mean over slices */
+                      tg_add(tg_mul(r->s, scos[k]), tg_mul(r->c, ssin[k])), &vis, &open, &bent);
+            /* outer integral: the slice quadrature as a ratio to the same
+             * quadrature of the open hemisphere (exact 1 on any plane) */
+            io->ao[i] = open > 0 ? tg_saturate(tg_div(vis, open)) : TG_ONE;
             tg_ao_write_bent_view(io, i, bent);
         }
 }
