@@ -186,6 +186,10 @@ static void run_hbao(const tg_ao_io *io, int y0, int y1)
 { tg_hbao_params p; tg_hbao_defaults(&p); tg_hbao_rows(&p, io, y0, y1); }
 static void run_gtao(const tg_ao_io *io, int y0, int y1)
 { tg_gtao_params p; tg_gtao_defaults(&p); tg_gtao_rows(&p, io, y0, y1); }
+static void run_gtao2(const tg_ao_io *io, int y0, int y1)
+{ tg_gtao_params p; tg_gtao_defaults(&p); p.slices = 2; p.steps = 4; tg_gtao_rows(&p, io, y0, y1); }
+static void run_hbao4(const tg_ao_io *io, int y0, int y1)
+{ tg_hbao_params p; tg_hbao_defaults(&p); p.directions = 4; p.steps = 3; tg_hbao_rows(&p, io, y0, y1); }
 static void run_ssdo(const tg_ao_io *io, int y0, int y1)
 {
     tg_ssdo_params p; tg_ssdo_defaults(&p);
@@ -228,6 +232,8 @@ static const technique techniques[] = {
     { "vo-no-normal", run_vo_nonormal, 0.95, 0.15, 0, 0 },
     { "hbao", run_hbao, 0.95, 0.13, 0, 0 },
     { "gtao", run_gtao, 0.95, 0.06, 1, 10 },
+    { "gtao-2x4", run_gtao2, 0.95, 0.08, 1, 17 },
+    { "hbao-4x3", run_hbao4, 0.95, 0.15, 0, 0 },
     { "ssdo", run_ssdo, 0.95, 0.13, 1, 18 },
     { "bentcone", run_bentcone, 0.95, 0.08, 1, 18 },
 };

@@ -6,9 +6,12 @@
  * The inner integral is analytic per slice,
  *     a(h) = (cos gamma + 2 h sin gamma - cos(2 h - gamma)) / 4   for each side,
  * times the length of the normal projected into the slice; the outer one is
- * the mean over `slices` slice angles.  Horizons are clamped to the normal's
- * hemisphere (h within gamma +- pi/2), so an open plane integrates to 1 up
- * to the slice count.  Samples farther than `radius` are ignored (the same
+ * a quadrature over `slices` slice angles.  Horizons are clamped to the
+ * normal's hemisphere (h within gamma +- pi/2).  With few slices the
+ * quadrature of the open hemisphere itself is off (0.86 for 2 slices on a
+ * plane seen at 80 degrees), so ao is the ratio of the slice sum to the
+ * same sum with open horizons, len (cos gamma + gamma sin gamma) per slice:
+ * exactly 1 on any plane, and the same weights on both sides of the ratio.  Samples farther than `radius` are ignored (the same
  * cut-off distance as the reference).  Full resolution, no interleaved
  * quarter-res rendering; the 4x4 pattern only rotates the slices and
  * jitters the steps per pixel.
