@@ -273,26 +273,29 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     dminor = tg_mul(slope, tg_from_int(m));
     ox = 0;
     for (k = 1; k <= n; k++) {
-        int b0, bn, sa, sn;
-        tg_real f, z1, za, zb, q, sx, sy, smajor, dx, dy, dz, len2, dot;
+        int b0, sa, lerp = 0;
+        tg_real f, z1 = 0, q, sx, sy, smajor, dx, dy, dz, len2, dot;
         minor = tg_add(minor, dminor);
         ox = tg_add(ox, dminor);
         a += da;
         b0 = tg_to_int(minor);
         f = tg_sub(minor, tg_from_int(b0));
-        bn = f < TG_R(0.5f) ? b0 : b0 + 1;
-        if (bn < 0 || bn >= bmax) break;
         sa = a * smaj + b0 * smin;
-        sn = bn == b0 ? sa : sa + smin;
-        za = b0 >= 0 ? depth[sa] : 0;
-        zb = b0 + 1 < bmax ? depth[sa + smin] : 0;
-        if (za > 0 && zb > 0 && !(sky && (sky[sa] | sky[sa + smin]))
-            && tg_abs(tg_sub(za, zb)) < tg_mul(HBIL_LERP_MAX_REL, tg_min(za, zb))) {
-            /* both neighbours are surface (so is the nearest, sn is sa or sa + smin):
-             * 1/z = (1-f)/za + f/zb  <=>  z = za + f (zb - za) za / (zb - f (zb - za)) */
-            tg_real zd = tg_sub(zb, za);
-            z1 = tg_add(za, tg_mul(tg_mul(f, zd), tg_div(za, tg_sub(zb, tg_mul(f, zd)))));
-        } else {
+        if ((unsigned)b0 < (unsigned)(bmax - 1)) {               /* b0 and b0 + 1 inside */
+            tg_real za = depth[sa], zb = depth[sa + smin];
+            if (za > 0 && zb > 0 && !(sky && (sky[sa] | sky[sa + smin]))
+                && tg_abs(tg_sub(za, zb)) < tg_mul(HBIL_LERP_MAX_REL, tg_min(za, zb))) {
+                /* both neighbours are surface (so is the nearest):
+                 * 1/z = (1-f)/za + f/zb  <=>  z = za + f (zb - za) za / (zb - f (zb - za)) */
+                tg_real zd = tg_sub(zb, za);
+                z1 = tg_add(za, tg_mul(tg_mul(f, zd), tg_div(za, tg_sub(zb, tg_mul(f, zd)))));
+                lerp = 1;
+            }
+        }
+        if (!lerp) {
+            int bn = f < TG_R(0.5f) ? b0 : b0 + 1, sn;
+            if (bn < 0 || bn >= bmax) break;                    /* the slice leaves the image */
+            sn = bn == b0 ? sa : sa + smin;
             if ((sky && sky[sn]) || depth[sn] <= 0) continue;  /* sky never occludes */
             z1 = sample_depth_edge(c, major_x, a, b0, f, sa, sn);
             if (z1 <= 0) continue;
@@ -316,7 +319,8 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
             sd->h = cn;
             sd->hs = tg_mul(cn, tg_abs(cn));
             if (c->near_field)
-                gather_rise(c, sl, sd, side, cn, tg_v3_scale(tg_v3(dx, dy, dz), tg_div(TG_ONE, len)), sn);
+                gather_rise(c, sl, sd, side, cn, tg_v3_scale(tg_v3(dx, dy, dz), tg_div(TG_ONE, len)),
+                            f < TG_R(0.5f) ? sa : sa + smin);      /* the nearest pixel */
         }
     }
 }
