@@ -67,7 +67,9 @@ target_run() { # how to run a Linux binary
 }
 target_machine() { case $1 in m3) echo mps2-an385 ;; m4f) echo mps2-an386 ;; m0) echo microbit ;; esac; }
 target_opt() { [ "$1" = m0 ] && echo -Os || echo -O2; } # 256 KB of flash
-target_nums() { [ "$1" = m0 ] && echo fixed || echo "float fixed"; }
+target_nums() { # m0 has no FPU and little flash; m4f is there for its FPU
+    case $1 in m0) echo fixed ;; m4f) echo float ;; *) echo "float fixed" ;; esac
+}
 is_bare() { case $1 in m3|m4f|m0) return 0 ;; *) return 1 ;; esac; }
 
 lib_for() { [ "$2" = fixed ] && echo "$OUT/$1/libtinygi-fixed.a" || echo "$OUT/$1/libtinygi.a"; }
@@ -83,7 +85,7 @@ build_target() {
     if [ -d "$OUT/$t" ] && [ "$(cat "$OUT/$t/.flags" 2>/dev/null)" != "$stamp" ]; then rm -rf "${OUT:?}/$t"; fi
     mkdir -p "$OUT/$t"; echo "$stamp" >"$OUT/$t/.flags"
     if ! $MAKE -s -j2 BUILD="$OUT/$t" CC="$cc" AR="$ar" OPT="$(target_opt "$t")" EXTRA_CFLAGS="$flags" \
-        SKIP="$SKIP" "$OUT/$t/libtinygi.a" "$OUT/$t/libtinygi-fixed.a" >"$LOG/$t-core.log" 2>&1; then
+        SKIP="$SKIP" $(for num in $(target_nums "$t"); do lib_for "$t" "$num"; done) >"$LOG/$t-core.log" 2>&1; then
         fail "$t: build core" "see $LOG/$t-core.log"; tail -n 15 "$LOG/$t-core.log"; return 1
     fi
     for num in $(target_nums "$t"); do
@@ -234,6 +236,12 @@ for t in $TARGETS; do
             grep -h '^startup: stack\|fixed: frame' "$dir.log" | sed 's/^/cross: m0 /'
         done
         continue
+    fi
+    if [ "$t" = m4f ]; then # the float core must run on the FPU, not in soft float
+        n=$(arm-none-eabi-objdump -d "$OUT/$t/render-float.elf" | grep -cE '\sv(add|sub|mul|div|sqrt)\.f32\s')
+        s=$(arm-none-eabi-objdump -d "$OUT/$t/render-float.elf" | grep -c 'bl.*<__aeabi_f\(add\|mul\|div\)>')
+        if [ "$n" -gt 100 ] && [ "$s" -eq 0 ]; then ok "m4f/float: on the FPU ($n VFP arithmetic instructions, no soft-float calls)"
+        else fail "m4f/float: on the FPU" "$n VFP instructions, $s soft-float calls"; fi
     fi
     for num in $(target_nums "$t"); do
         dir="$OUT/out/$t/$num"

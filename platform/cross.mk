@@ -9,7 +9,7 @@
 #
 # Targets: x86_64 (reference), i686 (-msse2 -mfpmath=sse), s390x and
 # powerpc (big-endian, 64- and 32-bit, qemu-user), m3 (Cortex-M3, QEMU
-# mps2-an385, newlib + semihosting), m4f (Cortex-M4F with the FPU,
+# mps2-an385, newlib + semihosting), m4f (Cortex-M4F, float on the FPU,
 # mps2-an386), m0 (Cortex-M0, QEMU microbit, 16 KB RAM, -nostdlib, -Os,
 # fixed point only; CROSS_M0_RUNS lists its SIZE:AOVS frames, because a
 # full-colour 64x48 frame cannot fit in 16 KB).  The driver is platform/baremetal/render.c on all of
