@@ -266,6 +266,7 @@ TEST(open_plane)
 {
     static scene s;
     static outputs o;
+    static tg_real cone[W * H];
     static const double eye[3] = { 0.5, 2.0, 3.0 }, target[3] = { 0, 0, -1 };
     tg_reference_params p;
     tg_ao_io io;
@@ -278,11 +279,13 @@ TEST(open_plane)
     tg_reference_defaults(&p);
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE;
     io_for(&io, &s, &o, 0);
+    io.cone = cone;
     tg_reference_rows(&p, &io, 0, H);
     for (i = 0; i < W * H; i++) {
         double c;
         if (s.sky[i]) continue;
         n++;
+        CHECK_NEAR(check_d(cone[i]), 3.14159265358979 / 2, 2e-3);   /* HBIL eq. 12 at AO = 1 */
         worst_ao = fmax(worst_ao, fabs(check_d(o.ao[i]) - 1.0));
         c = check_d(o.bx[i]) * check_d(s.nx[i]) + check_d(o.by[i]) * check_d(s.ny[i]) + check_d(o.bz[i]) * check_d(s.nz[i]);
         worst_angle = fmax(worst_angle, acos(fmin(1.0, c)) * 180 / 3.14159265358979);

@@ -84,6 +84,7 @@ static void reference_pixel(const tg_reference_params *p, const tg_ao_io *io, co
         }
     }
     io->ao[i] = tg_ratio(open, n);                      /* RTR eq. 11.8 / 11.14, cosine-importance sampled */
+    if (io->cone) io->cone[i] = tg_acos(tg_sub(TG_ONE, io->ao[i])); /* HBIL eq. 12, as HBIL defines its cone */
     if (io->bent_x) {                                   /* RTR eq. 11.10 */
         tg_vec3 bn = tg_v3_normalize_or(bent, nrm);
         io->bent_x[i] = bn.x; io->bent_y[i] = bn.y; io->bent_z[i] = bn.z;

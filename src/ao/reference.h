@@ -22,7 +22,8 @@
  *      screen-visible part of the bounce - exactly what a screen-space
  *      gatherer can know, and a lower bound of the true value;
  *   3. no near output when io->near_r is NULL.
- * The cone output is not computed (left untouched).
+ * cone  HBIL eq. 12, alpha = acos(1 - ao), the aperture HBIL derives from
+ *       its AO, so the bench compares like with like.
  */
 #ifndef TG_REFERENCE_H
 #define TG_REFERENCE_H
