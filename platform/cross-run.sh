@@ -4,8 +4,10 @@
 # every target, runs them, and compares every output file with x86-64's
 # using cmp: identical frames everywhere, float and fixed point alike.
 # Prints "ok ..." / "FAIL ..." lines and ends with "N passed, N failed".
+# Flag lists ($CFLAGS, $flags, $(numdef ...)) are split into words on purpose:
+# shellcheck disable=SC2086,SC2046
 set -u
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/.." || exit 1
 OUT=${CROSS_BUILD:-build-cross}
 TARGETS=${CROSS_TARGETS:-"i686 s390x powerpc m3 m4f m0"}
 SCENES=${CROSS_SCENES:-"cornell spheres columns"}
@@ -81,7 +83,8 @@ build_target() {
     cc=$(target_cc "$t"); ar=$(target_ar "$t"); flags=$(target_flags "$t")
     command -v "$cc" >/dev/null || { fail "$t: build" "$cc not installed"; return 1; }
     # Objects built with other flags are stale (make does not track flags).
-    local stamp="$cc $(target_opt "$t") $flags"
+    local stamp
+    stamp="$cc $(target_opt "$t") $flags"
     if [ -d "$OUT/$t" ] && [ "$(cat "$OUT/$t/.flags" 2>/dev/null)" != "$stamp" ]; then rm -rf "${OUT:?}/$t"; fi
     mkdir -p "$OUT/$t"; echo "$stamp" >"$OUT/$t/.flags"
     if ! $MAKE -s -j2 BUILD="$OUT/$t" CC="$cc" AR="$ar" OPT="$(target_opt "$t")" EXTRA_CFLAGS="$flags" \
@@ -93,7 +96,6 @@ build_target() {
         if is_bare "$t"; then
             build_bare "$t" "$num" "$cc" "$flags" "$lib" || return 1
         else
-            # shellcheck disable=SC2046
             if ! $cc $CFLAGS $flags $(numdef "$num") -Isrc -I$BM $BM/render.c $BM/port_stdio.c "$lib" \
                 $( [ "$t" = x86_64 ] || echo -static ) -o "$OUT/$t/render-$num" >"$LOG/$t-$num.log" 2>&1; then
                 fail "$t/$num: build driver" "$(head -c 600 "$LOG/$t-$num.log")"; return 1
@@ -104,16 +106,14 @@ build_target() {
 }
 
 build_bare() {
-    local t=$1 num=$2 cc=$3 flags=$4 lib=$5 common extra
+    local t=$1 num=$2 cc=$3 flags=$4 lib=$5 common
     common="-Wl,--gc-sections -Wl,--undefined=tg_vectors -L$BM -Isrc -I$BM"
     if [ "$t" = m0 ]; then # no C library at all: raw semihosting, our memcpy, libgcc last
-        # shellcheck disable=SC2086
         $cc $CFLAGS -Os $flags $(numdef "$num") -DTG_BM_ARENA_BYTES="$M0_ARENA" -ffreestanding -nostdlib \
             $common -Tmicrobit.ld -Wl,-Map="$OUT/$t/render-$num.map" \
             $BM/startup.c $BM/semihost.c $BM/render.c $BM/port_semihost.c $BM/libc_mini.c "$lib" -lgcc \
             -o "$OUT/$t/render-$num.elf" >"$LOG/$t-$num.log" 2>&1
     else # newlib: stdio over semihosting (librdimon), our startup and vector table
-        # shellcheck disable=SC2086
         $cc $CFLAGS $flags $(numdef "$num") -DTG_BM_NEWLIB --specs=rdimon.specs -nostartfiles \
             $common -Tmps2.ld $BM/startup.c $BM/semihost.c $BM/render.c $BM/port_stdio.c "$lib" \
             -o "$OUT/$t/render-$num.elf" >"$LOG/$t-$num.log" 2>&1
@@ -127,7 +127,6 @@ build_hosted() {
     goals="$OUT/$t/tinygi $OUT/$t/tinygi-fixed"
     if [ "$CROSS_TESTS" = all ]; then goals="$goals tests-build"
     else for name in $CROSS_TESTS; do goals="$goals $OUT/$t/float/tests/$name $OUT/$t/fixed/tests/$name"; done; fi
-    # shellcheck disable=SC2086
     if ! $MAKE -s -j2 BUILD="$OUT/$t" CC="$cc" AR="$ar" EXTRA_CFLAGS="$flags" SKIP="$SKIP" \
         EXTRA_LDFLAGS="$( [ "$t" = x86_64 ] || echo -static )" $goals >"$LOG/$t-hosted.log" 2>&1; then
         fail "$t: build CLI and tests" "see $LOG/$t-hosted.log"; tail -n 15 "$LOG/$t-hosted.log"; return 1
@@ -203,7 +202,6 @@ check_run() { # NAME STATUS DIR
 }
 
 # ---- x86-64: the reference ----
-# shellcheck disable=SC2086
 build_target x86_64 || { echo "$passed passed, $failed failed"; exit 1; }
 for num in float fixed; do
     if run_driver x86_64 "$num" "$OUT/out/x86_64/$num" "$SIZE" "$SHADOW" "$AOVS" "$FRAMES" $SCENES; then
@@ -217,7 +215,6 @@ fi
 i=0
 for run in $M0_RUNS; do # references for the Cortex-M0's smaller frames
     i=$((i + 1))
-    # shellcheck disable=SC2086
     run_driver x86_64 fixed "$OUT/out/x86_64/m0-$i" "${run%%:*}" "$M0_SHADOW" "${run#*:}" 1 $M0_SCENES \
         || fail "x86_64/fixed $run: render" "$(tail -n 5 "$OUT/out/x86_64/m0-$i.log")"
 done
@@ -229,8 +226,7 @@ for t in $TARGETS; do
         i=0
         for run in $M0_RUNS; do
             i=$((i + 1)); dir="$OUT/out/$t/fixed-$i"
-            # shellcheck disable=SC2086
-            run_driver "$t" fixed "$dir" "${run%%:*}" "$M0_SHADOW" "${run#*:}" 1 $M0_SCENES
+                run_driver "$t" fixed "$dir" "${run%%:*}" "$M0_SHADOW" "${run#*:}" 1 $M0_SCENES
             check_run "$t/fixed $run" $? "$dir"
             compare_dir "$t/fixed $run" "$OUT/out/x86_64/m0-$i" "$dir"
             grep -h '^startup: stack\|fixed: frame' "$dir.log" | sed 's/^/cross: m0 /'
@@ -245,7 +241,6 @@ for t in $TARGETS; do
     fi
     for num in $(target_nums "$t"); do
         dir="$OUT/out/$t/$num"
-        # shellcheck disable=SC2086
         run_driver "$t" "$num" "$dir" "$SIZE" "$SHADOW" "$AOVS" "$FRAMES" $SCENES
         check_run "$t/$num" $? "$dir"
         compare_dir "$t/$num" "$OUT/out/x86_64/$num" "$dir"
