@@ -53,9 +53,11 @@ static inline tg_real tg_ao_interreflection(tg_real ao, tg_real albedo)
 /* View-space position of the centre of pixel (x, y) at view depth z. */
 static inline tg_vec3 tg_ao_unproject(const tg_view *v, int x, int y, tg_real z)
 {
-    tg_real ndc_x = tg_ratio(2 * x + 1 - v->width, v->width);
-    tg_real ndc_y = tg_ratio(v->height - 2 * y - 1, v->height);
-    return tg_v3(tg_div(tg_mul(ndc_x, z), v->focal_x), tg_div(tg_mul(ndc_y, z), v->focal_y), z);
+    /* x_v = ndc_x z / focal_x with ndc_x = (2x + 1 - W) / W: one division per
+     * axis, of numbers near 1, so Q16.16 keeps its precision */
+    tg_real kx = tg_div(tg_from_int(2 * x + 1 - v->width), tg_mul(tg_from_int(v->width), v->focal_x));
+    tg_real ky = tg_div(tg_from_int(v->height - 2 * y - 1), tg_mul(tg_from_int(v->height), v->focal_y));
+    return tg_v3(tg_mul(kx, z), tg_mul(ky, z), z);
 }
 
 /* Pixel (px, py) of a view-space point: 1, or 0 when it is behind the

@@ -58,9 +58,14 @@ static tg_real horizon_cos(const tg_gtao_params *p, const tg_ao_io *io, const gt
         d2 = tg_v3_dot(h, h);
         if (d2 >= r2 || d2 <= 0) continue;
         if (tg_v3_dot(h, px->nv) <= above) continue;      /* under the tangent plane: clamped anyway */
-        best = tg_max(best, tg_mul(tg_v3_dot(h, px->vd), tg_rsqrt(d2)));
+        /* compare signed squared cosines (h.v)|h.v| / |h|^2: monotone in the
+         * cosine, and no square root per sample */
+        {
+            tg_real hv = tg_v3_dot(h, px->vd);
+            best = tg_max(best, tg_div(tg_mul(hv, tg_abs(hv)), d2));
+        }
     }
-    return best;
+    return best < 0 ? tg_neg(tg_sqrt(tg_neg(best))) : tg_sqrt(best);
 }
 
 /* a(h): the inner integral of eq. 11.18 from 0 to h (either sign of h). */

@@ -68,7 +68,7 @@ static void reference_pixel(const tg_reference_params *p, const tg_ao_io *io, co
     tg_ao_basis(nrm, &t, &b);
     for (s = 0; s < n; s++) {
         tg_vec3 l = tg_ao_rotate_z(tg_ao_hemi_cosine(s, n), rot->c, rot->s);
-        tg_vec3 d = tg_v3_normalize_or(tg_ao_from_local(l, t, b, nrm), nrm);
+        tg_vec3 d = tg_ao_from_local(l, t, b, nrm);     /* unit: a unit vector in an orthonormal frame */
         if (want_near) {
             tg_ray_hit h;
             if (!tg_bvh_closest(p->bvh, o, d, tmax, &h)) { open++; bent = tg_v3_add(bent, d); continue; }
