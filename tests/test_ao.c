@@ -23,6 +23,7 @@
 #include "ao/gtao.h"
 #include "ao/ssdo.h"
 #include "ao/bentcone.h"
+#include "scene/scene.h"
 #include <stdlib.h>
 
 #define W 48
@@ -447,6 +448,43 @@ TEST(ssdo_far_and_near)
           "ssdo bounce %g vs reference %g", e_ssdo / n, e_ref / n);
 }
 
+/* SSDO's light samples: a directional light from behind the wall (towards
+ * -x, 45 degrees up) is blocked for floor points closer to the wall than
+ * radius / sqrt(2) and lights the open floor with E = cos(45 deg). */
+TEST(ssdo_light_occlusion)
+{
+    static scene s;
+    static outputs o;
+    static tg_real lr[W * H], lg[W * H], lb[W * H];
+    tg_light light;
+    tg_ssdo_params p;
+    tg_ao_io io;
+    int i, n_near = 0, n_far = 0;
+    double near_e = 0, worst_far = 0;
+    memset(&light, 0, sizeof light);
+    light.type = TG_LIGHT_DIRECTIONAL;
+    light.dir = tg_v3(TG_R(0.70710678f), TG_R(-0.70710678f), 0);   /* travels +x, down */
+    light.color = tg_v3(TG_ONE, TG_ONE, TG_ONE);
+    light.intensity = TG_ONE;
+    groove(&s);
+    tg_ssdo_defaults(&p);
+    p.lights = &light; p.light_count = 1;
+    p.light_r = lr; p.light_g = lg; p.light_b = lb;
+    io_for(&io, &s, &o, 0);
+    tg_ssdo_rows(&p, &io, 0, H);
+    for (i = 0; i < W * H; i++) {
+        if (s.sky[i] || s.wrect[i] != 0 || fabs(s.wpos[i][2]) >= 10) continue;
+        CHECK(tg_isfinite(lr[i]) && lr[i] >= 0, "finite");
+        /* away from the image border: a march leaving the screen sees nothing (screen space) */
+        if (s.wpos[i][0] < 0.3 && i % W >= 4 && i % W < W - 4) { near_e += check_d(lr[i]); n_near++; }
+        if (s.wpos[i][0] > 1.5) { worst_far = fmax(worst_far, fabs(check_d(lr[i]) - 0.70710678)); n_far++; }
+    }
+    printf("# ssdo light: floor near the wall mean E %.3f (shadowed: 0), open floor worst |E - cos 45| %.4f\n",
+           n_near ? near_e / n_near : -1.0, worst_far);
+    CHECK(n_near > 0 && near_e == 0, "shadowed floor E %g", n_near ? near_e / n_near : 0.0);
+    CHECK(n_far > 0 && worst_far < 2e-3, "lit floor E off by %g", worst_far);
+}
+
 int main(void)
 {
     uniform_sky[0] = tg_v3(TG_R(3.5449077f), TG_R(3.5449077f), TG_R(3.5449077f));
@@ -456,6 +494,7 @@ int main(void)
     RUN(interreflection);
     RUN(bentcone_cone_and_far);
     RUN(ssdo_far_and_near);
+    RUN(ssdo_light_occlusion);
     free(bvh_mem);
     return check_summary();
 }

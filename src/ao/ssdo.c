@@ -5,6 +5,7 @@
 #include "ssdo.h"
 #include "sampling.h"
 #include "../light/sh.h"
+#include "../light/direct.h"
 #include <string.h>
 
 void tg_ssdo_defaults(tg_ssdo_params *p)
@@ -15,6 +16,33 @@ void tg_ssdo_defaults(tg_ssdo_params *p)
     p->bounce = TG_ONE;
     p->env_sh9 = 0;
     p->far_r = p->far_g = p->far_b = 0;
+    p->lights = 0;
+    p->light_count = 0;
+    p->light_steps = 4;
+    p->light_r = p->light_g = p->light_b = 0;
+}
+
+/* Lights with directional occlusion: each light is one more sample
+ * direction, towards it, marched in screen space (see ssdo.h). */
+static tg_vec3 lights_do(const tg_ssdo_params *p, const tg_ao_io *io, tg_vec3 pv, tg_vec3 pw, tg_vec3 nw,
+                         tg_real eps, tg_real jitter)
+{
+    tg_vec3 e = tg_v3(0, 0, 0);
+    int l, m, steps = p->light_steps < 1 ? 1 : p->light_steps;
+    for (l = 0; l < p->light_count; l++) {
+        const tg_light *li = &p->lights[l];
+        tg_vec3 el = tg_direct_irradiance(li, pw, nw), to_light, lv;
+        int blocked = 0;
+        if (el.x <= 0 && el.y <= 0 && el.z <= 0) continue;
+        to_light = li->type == TG_LIGHT_DIRECTIONAL ? tg_v3_neg(li->dir) : tg_v3_sub(li->pos, pw);
+        lv = tg_ao_dir_to_view(io->view, tg_v3_normalize_or(to_light, nw));
+        for (m = 0; m < steps && !blocked; m++) {
+            tg_real lambda = tg_div(tg_mul(p->radius, tg_add(tg_from_int(m), jitter)), tg_from_int(steps));
+            blocked = tg_ao_sample_blocked(io, pv, tg_v3_add(pv, tg_v3_scale(lv, lambda)), eps, tg_ldexp(p->radius, 1));
+        }
+        if (!blocked) e = tg_v3_add(e, el);                 /* E_l V_ss(l) */
+    }
+    return e;
 }
 
 typedef struct ssdo_sums {
@@ -73,6 +101,12 @@ static void ssdo_pixel(const tg_ssdo_params *p, const tg_ao_io *io, const tg_vec
         p->far_r[i] = tg_mul(sum.far.x, dw); p->far_g[i] = tg_mul(sum.far.y, dw); p->far_b[i] = tg_mul(sum.far.z, dw);
     }
     if (want_near) { io->near_r[i] = sum.near.x; io->near_g[i] = sum.near.y; io->near_b[i] = sum.near.z; }
+    if (p->light_r && p->lights && p->light_count > 0) {
+        tg_vec3 nw = tg_v3(io->nx[i], io->ny[i], io->nz[i]);
+        tg_vec3 pw = tg_v3_add(v->eye, tg_ao_dir_to_world(v, pv));
+        tg_vec3 e = lights_do(p, io, pv, pw, nw, bias, rot->jitter);
+        p->light_r[i] = e.x; p->light_g[i] = e.y; p->light_b[i] = e.z;
+    }
 }
 
 void tg_ssdo_rows(const tg_ssdo_params *p, const tg_ao_io *io, int y0, int y1)
@@ -96,7 +130,16 @@ void tg_ssdo_rows(const tg_ssdo_params *p, const tg_ao_io *io, int y0, int y1)
                 if (!io->sky[i] && p->env_sh9) e = tg_sh9_irradiance(p->env_sh9, tg_v3(io->nx[i], io->ny[i], io->nz[i]));
                 p->far_r[i] = e.x; p->far_g[i] = e.y; p->far_b[i] = e.z;
             }
-            if (io->sky[i] || p->radius <= 0) continue;
+            if (p->light_r) { p->light_r[i] = 0; p->light_g[i] = 0; p->light_b[i] = 0; }
+            if (io->sky[i]) continue;
+            if (p->radius <= 0) {                               /* nothing occludes */
+                if (p->light_r && p->lights && p->light_count > 0) {
+                    tg_vec3 pv = tg_ao_unproject(io->view, x, y, io->depth[i]), nw = tg_v3(io->nx[i], io->ny[i], io->nz[i]);
+                    tg_vec3 e = lights_do(p, io, pv, tg_v3_add(io->view->eye, tg_ao_dir_to_world(io->view, pv)), nw, 0, 0);
+                    p->light_r[i] = e.x; p->light_g[i] = e.y; p->light_b[i] = e.z;
+                }
+                continue;
+            }
             ssdo_pixel(p, io, dirs, steps, n, tg_ao_rot_at(rot, x, y), x, y);
         }
 }

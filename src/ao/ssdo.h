@@ -19,10 +19,16 @@
  *                  A_s / pi (Ritschel clamps d to 1; ours is scale-free).
  *   ao / bent      the cosine-weighted visible fraction and mean visible
  *                  direction of the same samples (RTR eq. 11.8, 11.10).
- * Point and directional lights: as in Ritschel's own implementation
- * ("additional samples for known important light sources ... applying
- * shadow maps") their occlusion is the direct pass's shadow maps; a delta
- * light is never hit by a hemisphere sample, so it is not part of this pass.
+ *   lights         a delta light is never hit by a random hemisphere
+ *                  direction, so, as Ritschel does for "known important
+ *                  light sources", each light gets its own additional sample
+ *                  direction (towards it); its visibility is the same
+ *                  screen-space test marched at `light_steps` points along
+ *                  that direction within the radius (Ritschel uses shadow
+ *                  maps there; the frame can use either):
+ *                  E_lights = sum_l E_l(P, n) V_ss(l), E_l from
+ *                  light/direct.h (falloff, spot cone, cosine), into
+ *                  light_r/g/b.  light_count 0 (default) skips it.
  */
 #ifndef TG_SSDO_H
 #define TG_SSDO_H
@@ -36,6 +42,10 @@ typedef struct tg_ssdo_params {
     tg_real bounce;              /* sender patch area factor (default 1) */
     const tg_vec3 *env_sh9;      /* environment radiance SH9 (light/sh.h order); NULL = none */
     tg_real *far_r, *far_g, *far_b; /* out: E_do from the environment; NULL = not wanted */
+    const struct tg_light *lights;  /* scene lights (scene.h); NULL or light_count 0 = none */
+    int light_count;
+    int light_steps;             /* screen-space march points per light (default 4) */
+    tg_real *light_r, *light_g, *light_b; /* out: direct irradiance with screen-space DO; NULL = not wanted */
 } tg_ssdo_params;
 
 void tg_ssdo_defaults(tg_ssdo_params *p);
