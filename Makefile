@@ -105,6 +105,7 @@ golden: all
 	@GOLDEN_UPDATE=1 BUILD=$(BUILD) bash tests/golden_test.sh | tail -n 1
 
 -include platform/cross.mk
+-include platform/bench.mk
 -include platform/sanitize.mk
 
 clean:

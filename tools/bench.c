@@ -1,0 +1,1198 @@
+/*
+ * bench.c - accuracy vs time (issue 5 items 3-4).  Every technique and
+ * setting is timed (median of N whole frames, hosted clock) and measured
+ * against the ray-traced reference (cached per scene and radius):
+ *
+ *   bench run    [--size WxH] [--runs N] [--out DIR] [--ref-samples N] [--scenes a,b]
+ *       sweep techniques x settings (samples, slices, radius) over the
+ *       built-in scenes in this binary's number type; writes
+ *       DIR/rows-<float|fixed>.csv, DIR/passes-<type>.md (HBIL pass
+ *       breakdown, HBIL sec. 3.5), DIR/ref/ (.bin files) (reference cache) and, in
+ *       the float build, DIR/contact.ppm/.png (every technique's AO beside
+ *       the reference).
+ *   bench report [--out DIR]
+ *       read DIR/rows-*.csv, write DIR/bench.csv, DIR/bench.md (summary,
+ *       frontier, the papers' claims with a verdict, full table) and
+ *       DIR/bench.svg (AO RMSE against ms, one polyline per technique).
+ *
+ * Errors are over pixels that are geometry in both the technique's frame and
+ * the reference: AO RMSE and max |error|; the mean angle between bent normals
+ * (degrees); near-field irradiance relative error sum|E - E_ref| / sum E_ref
+ * over the three channels (techniques that gather: hbil, ssdo; and
+ * "gtao+ir", GTAO's AO brightened by RTR eq. 11.12-11.13).
+ *
+ * Hosted tool: stdio, libm and double are fine here (not in src/).
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <math.h>
+#include <sys/stat.h>
+#include "tinygi.h"
+#include "hosted/clock.h"
+#include "frame/frame_internal.h"
+#include "gi/hbil.h"
+#include "gi/interleave.h"
+#include "gi/reproject.h"
+#include "gi/pushpull.h"
+#include "gi/denoise.h"
+
+#if TG_FIXED
+#define NUMBER "fixed"
+#else
+#define NUMBER "float"
+#endif
+
+#define AOVBIT(a) (1u << (a))
+#define MAX_RUNS 64
+#define MAX_ROWS 4096
+
+/* ------------------------------------------------------------------ */
+/* options */
+
+static int opt_w = 160, opt_h = 120, opt_runs = 5, opt_ref_samples = 256;
+static const char *opt_out = "build/bench";
+static char opt_scenes[256] = "";
+
+static void die(const char *msg, const char *arg)
+{
+    fprintf(stderr, "bench: error: %s%s%s\n", msg, arg ? ": " : "", arg ? arg : "");
+    exit(2);
+}
+
+static void mkdirs(const char *path)
+{
+    char buf[512];
+    size_t i, n = strlen(path);
+    if (n >= sizeof buf) die("path too long", path);
+    memcpy(buf, path, n + 1);
+    for (i = 1; i <= n; i++)
+        if (buf[i] == '/' || buf[i] == '\0') {
+            char c = buf[i];
+            buf[i] = '\0';
+            mkdir(buf, 0777);
+            buf[i] = c;
+        }
+}
+
+static FILE *open_out(const char *name, const char *mode)
+{
+    char path[600];
+    FILE *f;
+    snprintf(path, sizeof path, "%s/%s", opt_out, name);
+    f = fopen(path, mode);
+    if (!f) die("cannot write", path);
+    return f;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* ------------------------------------------------------------------ */
+/* frames */
+
+typedef struct frame_run {
+    void *scene_mem, *frame_mem;
+    tg_scene *scene;
+    tg_plan plan;
+    tg_frame *frame;
+} frame_run;
+
+static tg_scene *load_scene(const char *name, void **mem)
+{
+    tg_arena arena;
+    tg_error err;
+    tg_scene *s = NULL;
+    size_t bytes = (size_t)1 << 24;
+    const char *text = tg_builtin_scene(name);
+    if (!text) die("no such built-in scene", name);
+    *mem = malloc(bytes);
+    tg_arena_init(&arena, *mem, bytes);
+    if (tg_scene_parse(text, strlen(text), name, NULL, &arena, &s, &err) != TG_OK) die("scene does not parse", name);
+    return s;
+}
+
+static int frame_open(frame_run *r, tg_scene *scene, const tg_request *q)
+{
+    tg_error err;
+    memset(r, 0, sizeof *r);
+    r->scene = scene;
+    if (tg_plan_make(&r->plan, scene, q, &err) != TG_OK) {
+        fprintf(stderr, "bench: plan: %s\n", err.message);
+        return 0;
+    }
+    r->frame_mem = malloc(r->plan.total_bytes);
+    if (!r->frame_mem || tg_frame_create(&r->plan, r->frame_mem, r->plan.total_bytes, &r->frame, &err) != TG_OK) {
+        fprintf(stderr, "bench: frame: %s\n", err.message);
+        return 0;
+    }
+    return 1;
+}
+
+static void frame_close(frame_run *r)
+{
+    free(r->frame_mem);
+    r->frame_mem = NULL;
+}
+
+/* A whole AOV as floats (channels * w * h). */
+static float *read_aov(const tg_frame *f, tg_aov aov, int w, int h)
+{
+    int c = tg_aov_channels(aov), y, i;
+    float *out = malloc(sizeof(float) * (size_t)(w * h * c));
+    tg_real *row = malloc(sizeof(tg_real) * (size_t)(w * c));
+    for (y = 0; y < h; y++) {
+        tg_frame_aov_row(f, aov, y, row);
+        for (i = 0; i < w * c; i++) out[(size_t)y * (size_t)(w * c) + (size_t)i] = tg_to_float(row[i]);
+    }
+    free(row);
+    return out;
+}
+
+/* What a technique's frame gives the error measures. */
+typedef struct result {
+    float *ao, *bent, *near;   /* near NULL when not produced */
+    uint8_t *sky;
+} result;
+
+static void result_free(result *r)
+{
+    free(r->ao); free(r->bent); free(r->near); free(r->sky);
+    memset(r, 0, sizeof *r);
+}
+
+static uint8_t *read_sky(const tg_frame *f, int n)
+{
+    uint8_t *s = malloc((size_t)n);
+    memcpy(s, f->gb.sky, (size_t)n);
+    return s;
+}
+
+/* ------------------------------------------------------------------ */
+/* the reference, cached on disk (float32 planes: ao, bent xyz, near rgb, sky) */
+
+static tg_request base_request(tg_technique t, int slices, int samples, double radius, uint32_t aovs)
+{
+    tg_request q;
+    tg_request_defaults(&q);
+    q.width = opt_w;
+    q.height = opt_h;
+    q.frames = 1;
+    q.technique = t;
+    q.slices = slices;
+    q.samples = samples;
+    q.radius = radius < 0 ? TG_R(-1.0f) : tg_from_float((float)radius);
+    q.aovs = aovs;
+    return q;
+}
+
+static double scene_radius(tg_scene *s)
+{
+    tg_plan p;
+    tg_error err;
+    tg_request q = base_request(TG_TECH_HBIL, 0, 0, -1, AOVBIT(TG_AOV_AO));
+    if (tg_plan_make(&p, s, &q, &err) != TG_OK) die("plan", err.message);
+    return tg_to_float(p.request.radius);
+}
+
+static int load_reference(const char *path, result *r, int n)
+{
+    FILE *f = fopen(path, "rb");
+    float *sky;
+    int i, ok;
+    if (!f) return 0;
+    r->ao = malloc(sizeof(float) * (size_t)n);
+    r->bent = malloc(sizeof(float) * (size_t)n * 3);
+    r->near = malloc(sizeof(float) * (size_t)n * 3);
+    sky = malloc(sizeof(float) * (size_t)n);
+    ok = fread(r->ao, sizeof(float), (size_t)n, f) == (size_t)n &&
+         fread(r->bent, sizeof(float), (size_t)n * 3, f) == (size_t)n * 3 &&
+         fread(r->near, sizeof(float), (size_t)n * 3, f) == (size_t)n * 3 &&
+         fread(sky, sizeof(float), (size_t)n, f) == (size_t)n;
+    fclose(f);
+    r->sky = malloc((size_t)n);
+    for (i = 0; i < n; i++) r->sky[i] = sky[i] != 0.0f;
+    free(sky);
+    if (!ok) result_free(r);
+    return ok;
+}
+
+static void reference(tg_scene *s, const char *name, double radius, result *r)
+{
+    char path[700];
+    int n = opt_w * opt_h, i;
+    frame_run fr;
+    tg_error err;
+    tg_request q;
+    FILE *f;
+    double t0;
+    snprintf(path, sizeof path, "%s/ref/%s-%dx%d-r%.4f-s%d.bin", opt_out, name, opt_w, opt_h, radius, opt_ref_samples);
+    if (load_reference(path, r, n)) return;
+    q = base_request(TG_TECH_REFERENCE, 0, opt_ref_samples, radius,
+                     AOVBIT(TG_AOV_AO) | AOVBIT(TG_AOV_BENT) | AOVBIT(TG_AOV_NEAR));
+    if (!frame_open(&fr, s, &q)) die("reference frame", name);
+    t0 = tg_clock_seconds();
+    tg_frame_render(fr.frame, 0, &err);
+    printf("  reference %s radius %.3f: %.0f ms\n", name, radius, (tg_clock_seconds() - t0) * 1e3);
+    fflush(stdout);
+    r->ao = read_aov(fr.frame, TG_AOV_AO, opt_w, opt_h);
+    r->bent = read_aov(fr.frame, TG_AOV_BENT, opt_w, opt_h);
+    if (fr.frame->near.r) r->near = read_aov(fr.frame, TG_AOV_NEAR, opt_w, opt_h);
+    else r->near = calloc((size_t)n * 3, sizeof(float));
+    r->sky = read_sky(fr.frame, n);
+    frame_close(&fr);
+    mkdirs(opt_out);
+    {
+        char dir[620];
+        snprintf(dir, sizeof dir, "%s/ref", opt_out);
+        mkdirs(dir);
+    }
+    f = fopen(path, "wb");
+    if (!f) die("cannot write", path);
+    fwrite(r->ao, sizeof(float), (size_t)n, f);
+    fwrite(r->bent, sizeof(float), (size_t)n * 3, f);
+    fwrite(r->near, sizeof(float), (size_t)n * 3, f);
+    for (i = 0; i < n; i++) {
+        float v = (float)r->sky[i];
+        fwrite(&v, sizeof v, 1, f);
+    }
+    fclose(f);
+}
+
+/* ------------------------------------------------------------------ */
+/* errors against the reference */
+
+typedef struct errors {
+    double ao_rmse, ao_max, bent_deg, near_rel;   /* near_rel NAN: not produced */
+} errors;
+
+static errors measure(const result *t, const result *ref, int n)
+{
+    errors e;
+    double se = 0, mx = 0, ang = 0, dn = 0, sn = 0;
+    long count = 0;
+    int i, c;
+    for (i = 0; i < n; i++) {
+        double d, dot, la, lb;
+        if (t->sky[i] || ref->sky[i]) continue;
+        d = (double)t->ao[i] - (double)ref->ao[i];
+        se += d * d;
+        if (fabs(d) > mx) mx = fabs(d);
+        dot = 0; la = 0; lb = 0;
+        for (c = 0; c < 3; c++) {
+            dot += (double)t->bent[3 * i + c] * (double)ref->bent[3 * i + c];
+            la += (double)t->bent[3 * i + c] * (double)t->bent[3 * i + c];
+            lb += (double)ref->bent[3 * i + c] * (double)ref->bent[3 * i + c];
+        }
+        if (la > 0 && lb > 0) {
+            dot /= sqrt(la * lb);
+            if (dot > 1) dot = 1;
+            if (dot < -1) dot = -1;
+            ang += acos(dot) * 180.0 / 3.14159265358979;
+        }
+        if (t->near)
+            for (c = 0; c < 3; c++) {
+                dn += fabs((double)t->near[3 * i + c] - (double)ref->near[3 * i + c]);
+                sn += fabs((double)ref->near[3 * i + c]);
+            }
+        count++;
+    }
+    e.ao_rmse = count ? sqrt(se / (double)count) : 0;
+    e.ao_max = mx;
+    e.bent_deg = count ? ang / (double)count : 0;
+    e.near_rel = (t->near && sn > 0) ? dn / sn : (double)NAN;
+    return e;
+}
+
+/* ------------------------------------------------------------------ */
+/* the sweep */
+
+typedef struct config {
+    const char *label;       /* curve name in the table and plot */
+    tg_technique tech;
+    int slices, samples;
+    double rscale;           /* radius = scene radius * rscale */
+    int interleave, near;    /* near: ask for the near field (gathering techniques) */
+    int is_default, on_curve;
+} config;
+
+#define MAXCFG 96
+static config cfgs[MAXCFG];
+static int ncfg;
+
+static void add(const char *label, tg_technique t, int slices, int samples, double rscale, int near, int on_curve)
+{
+    config *c = &cfgs[ncfg++];
+    c->label = label; c->tech = t; c->slices = slices; c->samples = samples; c->rscale = rscale;
+    c->interleave = strcmp(label, "hbil-full") != 0;
+    c->near = near;
+    c->is_default = slices == 2 && samples == 16 && rscale == 1.0;
+    c->on_curve = on_curve;
+}
+
+static void build_sweep(void)
+{
+    static const int ss[][2] = { {1, 4}, {1, 8}, {2, 8}, {2, 16}, {4, 16}, {4, 32} };
+    static const int ssao_n[] = { 4, 8, 12, 16, 32, 64 }, vo_n[] = { 3, 5, 7, 9, 16, 32 };
+    static const int ssdo_n[] = { 4, 8, 16, 32, 64 }, bc_n[] = { 4, 8, 16, 32 };
+    static const double rs[] = { 0.5, 2.0 };
+    int i;
+    ncfg = 0;
+    for (i = 0; i < 6; i++) add("hbil", TG_TECH_HBIL, ss[i][0], ss[i][1], 1.0, 1, 1);
+    add("hbil-full", TG_TECH_HBIL, 1, 8, 1.0, 1, 1);
+    add("hbil-full", TG_TECH_HBIL, 2, 16, 1.0, 1, 1);
+    for (i = 0; i < 6; i++) add("gtao", TG_TECH_GTAO, ss[i][0], ss[i][1], 1.0, 0, 1);
+    for (i = 0; i < 6; i++) add("hbao", TG_TECH_HBAO, ss[i][0], ss[i][1], 1.0, 0, 1);
+    for (i = 0; i < 6; i++) add("ssao", TG_TECH_SSAO, 2, ssao_n[i], 1.0, 0, 1);
+    for (i = 0; i < 6; i++) add("vo", TG_TECH_VO, 2, vo_n[i], 1.0, 0, 1);
+    for (i = 0; i < 5; i++) add("ssdo", TG_TECH_SSDO, 2, ssdo_n[i], 1.0, 1, 1);
+    for (i = 0; i < 4; i++) add("bentcone", TG_TECH_BENTCONE, 2, bc_n[i], 1.0, 0, 1);
+    /* Ritschel table 1: directional occlusion alone (no bounce) */
+    add("ssdo-do", TG_TECH_SSDO, 2, 8, 1.0, 0, 0);
+    add("ssdo-do", TG_TECH_SSDO, 2, 16, 1.0, 0, 0);
+    /* RTR eq. 11.12-11.13 on GTAO's AO, as a near-field estimate */
+    add("gtao+ir", TG_TECH_GTAO, 2, 16, 1.0, 0, 0);
+    /* radius: half and double the scene's, at the default setting */
+    for (i = 0; i < 2; i++) {
+        add("hbil", TG_TECH_HBIL, 2, 16, rs[i], 1, 0);
+        add("gtao", TG_TECH_GTAO, 2, 16, rs[i], 0, 0);
+        add("hbao", TG_TECH_HBAO, 2, 16, rs[i], 0, 0);
+        add("ssao", TG_TECH_SSAO, 2, 16, rs[i], 0, 0);
+        add("vo", TG_TECH_VO, 2, 16, rs[i], 0, 0);
+        add("ssdo", TG_TECH_SSDO, 2, 16, rs[i], 1, 0);
+        add("bentcone", TG_TECH_BENTCONE, 2, 16, rs[i], 0, 0);
+    }
+}
+
+/* RTR eq. 11.12-11.13 as a near-field irradiance: the blocked directions
+ * (1 - k_A) see the point's own outgoing radiance, summed over bounces,
+ * E_total = E_direct k'_A / k_A, so E_near = E_direct (k'_A / k_A - 1). */
+static float *interreflection_near(const tg_frame *f, int w, int h)
+{
+    int n = w * h, i, c;
+    float *ao = read_aov(f, TG_AOV_AO, w, h), *ed = read_aov(f, TG_AOV_DIRECT, w, h);
+    float *alb = read_aov(f, TG_AOV_ALBEDO, w, h), *out = malloc(sizeof(float) * (size_t)n * 3);
+    for (i = 0; i < n; i++)
+        for (c = 0; c < 3; c++) {
+            float k = ao[i] > 1e-3f ? ao[i] : 1e-3f;
+            float kp = tg_to_float(tg_ao_interreflection(tg_from_float(k), tg_from_float(alb[3 * i + c])));
+            out[3 * i + c] = ed[3 * i + c] * (kp / k - 1.0f);
+        }
+    free(ao); free(ed); free(alb);
+    return out;
+}
+
+/* Time one configuration: warm up, read the outputs, then opt_runs frames. */
+static double run_config(tg_scene *s, const config *c, double radius, result *out)
+{
+    frame_run fr;
+    tg_error err;
+    double t[MAX_RUNS];
+    int k, n = opt_w * opt_h, ir = strcmp(c->label, "gtao+ir") == 0;
+    uint32_t aovs = AOVBIT(TG_AOV_AO) | AOVBIT(TG_AOV_BENT);
+    tg_request q;
+    if (c->near) aovs |= AOVBIT(TG_AOV_NEAR);
+    if (ir) aovs |= AOVBIT(TG_AOV_DIRECT) | AOVBIT(TG_AOV_ALBEDO);
+    q = base_request(c->tech, c->slices, c->samples, radius, aovs);
+    q.interleave = c->interleave;
+    if (!frame_open(&fr, s, &q)) die("frame", c->label);
+    tg_frame_render(fr.frame, 0, &err);
+    memset(out, 0, sizeof *out);
+    out->ao = read_aov(fr.frame, TG_AOV_AO, opt_w, opt_h);
+    out->bent = read_aov(fr.frame, TG_AOV_BENT, opt_w, opt_h);
+    out->sky = read_sky(fr.frame, n);
+    if (c->near && fr.frame->near.r) out->near = read_aov(fr.frame, TG_AOV_NEAR, opt_w, opt_h);
+    if (ir) out->near = interreflection_near(fr.frame, opt_w, opt_h);
+    for (k = 0; k < opt_runs; k++) {
+        double t0 = tg_clock_seconds();
+        tg_frame_render(fr.frame, 0, &err);
+        if (ir) free(interreflection_near(fr.frame, opt_w, opt_h));
+        t[k] = (tg_clock_seconds() - t0) * 1e3;
+    }
+    frame_close(&fr);
+    return median(t, opt_runs);
+}
+
+/* ------------------------------------------------------------------ */
+/* contact sheet: a tiny 3x5 font, PPM and an uncompressed ("stored") PNG */
+
+static const char *glyph(char ch)
+{
+    switch (ch) {
+    case 'a': return "010101111101101"; case 'b': return "110101110101110";
+    case 'c': return "011100100100011"; case 'd': return "110101101101110";
+    case 'e': return "111100110100111"; case 'f': return "111100110100100";
+    case 'g': return "011100101101011"; case 'h': return "101101111101101";
+    case 'i': return "111010010010111"; case 'l': return "100100100100111";
+    case 'n': return "110101101101101"; case 'o': return "010101101101010";
+    case 'p': return "110101110100100"; case 'r': return "110101110101101";
+    case 's': return "011100010001110"; case 't': return "111010010010010";
+    case 'u': return "101101101101111"; case 'v': return "101101101101010";
+    case '-': return "000000111000000"; case '+': return "000010111010000";
+    default: return "000000000000000";
+    }
+}
+
+static void draw_text(uint8_t *img, int iw, int x0, int y0, const char *s, int scale)
+{
+    int k, gx, gy, sx, sy;
+    for (k = 0; s[k]; k++) {
+        const char *g = glyph(s[k]);
+        for (gy = 0; gy < 5; gy++)
+            for (gx = 0; gx < 3; gx++)
+                if (g[gy * 3 + gx] == '1')
+                    for (sy = 0; sy < scale; sy++)
+                        for (sx = 0; sx < scale; sx++) {
+                            size_t p = ((size_t)(y0 + gy * scale + sy) * (size_t)iw + (size_t)(x0 + (k * 4 + gx) * scale + sx)) * 3;
+                            img[p] = 255; img[p + 1] = 230; img[p + 2] = 80;
+                        }
+    }
+}
+
+static uint32_t crc_table[256];
+static uint32_t crc32_update(uint32_t c, const uint8_t *p, size_t n)
+{
+    size_t i;
+    if (!crc_table[1]) {
+        uint32_t k, v;
+        int b;
+        for (k = 0; k < 256; k++) {
+            v = k;
+            for (b = 0; b < 8; b++) v = (v & 1) ? 0xEDB88320u ^ (v >> 1) : v >> 1;
+            crc_table[k] = v;
+        }
+    }
+    for (i = 0; i < n; i++) c = crc_table[(c ^ p[i]) & 255] ^ (c >> 8);
+    return c;
+}
+
+static void put32(uint8_t *p, uint32_t v) { p[0] = (uint8_t)(v >> 24); p[1] = (uint8_t)(v >> 16); p[2] = (uint8_t)(v >> 8); p[3] = (uint8_t)v; }
+
+static void png_chunk(FILE *f, const char *type, const uint8_t *data, size_t n)
+{
+    uint8_t b[4];
+    uint32_t crc;
+    put32(b, (uint32_t)n); fwrite(b, 1, 4, f);
+    fwrite(type, 1, 4, f);
+    if (n) fwrite(data, 1, n, f);
+    crc = crc32_update(0xFFFFFFFFu, (const uint8_t *)type, 4);
+    crc = crc32_update(crc, data, n) ^ 0xFFFFFFFFu;
+    put32(b, crc); fwrite(b, 1, 4, f);
+}
+
+/* PNG, 8-bit RGB, zlib stream of stored (uncompressed) deflate blocks. */
+static void write_png(FILE *f, const uint8_t *rgb, int w, int h)
+{
+    static const uint8_t sig[8] = { 137, 80, 78, 71, 13, 10, 26, 10 };
+    size_t raw_n = (size_t)h * (size_t)(1 + 3 * w), blocks = (raw_n + 65534) / 65535, zn, i, pos;
+    uint8_t *raw = malloc(raw_n), *z, ihdr[13];
+    uint32_t a = 1, b = 0;
+    int y;
+    for (y = 0; y < h; y++) {
+        raw[(size_t)y * (size_t)(1 + 3 * w)] = 0;
+        memcpy(raw + (size_t)y * (size_t)(1 + 3 * w) + 1, rgb + (size_t)y * (size_t)(3 * w), (size_t)(3 * w));
+    }
+    zn = 2 + raw_n + 5 * blocks + 4;
+    z = malloc(zn);
+    z[0] = 0x78; z[1] = 0x01;
+    pos = 2;
+    for (i = 0; i < raw_n; i += 65535) {
+        size_t len = raw_n - i < 65535 ? raw_n - i : 65535;
+        z[pos++] = i + len == raw_n ? 1 : 0;
+        z[pos++] = (uint8_t)(len & 255); z[pos++] = (uint8_t)(len >> 8);
+        z[pos++] = (uint8_t)(~len & 255); z[pos++] = (uint8_t)((~len >> 8) & 255);
+        memcpy(z + pos, raw + i, len);
+        pos += len;
+    }
+    for (i = 0; i < raw_n; i++) { a = (a + raw[i]) % 65521u; b = (b + a) % 65521u; }
+    put32(z + pos, (b << 16) | a);
+    pos += 4;
+    fwrite(sig, 1, 8, f);
+    put32(ihdr, (uint32_t)w); put32(ihdr + 4, (uint32_t)h);
+    ihdr[8] = 8; ihdr[9] = 2; ihdr[10] = 0; ihdr[11] = 0; ihdr[12] = 0;
+    png_chunk(f, "IHDR", ihdr, 13);
+    png_chunk(f, "IDAT", z, pos);
+    png_chunk(f, "IEND", NULL, 0);
+    free(raw); free(z);
+}
+
+#define SHEET_TILES 9
+static uint8_t *sheet;
+static int sheet_w, sheet_h;
+
+static void sheet_tile(int k, const float *ao, const char *label)
+{
+    int tx = k % 3, ty = k / 3, x, y;
+    if (!sheet) {
+        sheet_w = 3 * opt_w + 4 * 2;
+        sheet_h = 3 * opt_h + 4 * 2;
+        sheet = calloc((size_t)sheet_w * (size_t)sheet_h * 3, 1);
+    }
+    for (y = 0; y < opt_h; y++)
+        for (x = 0; x < opt_w; x++) {
+            float v = ao[y * opt_w + x];
+            int g = (int)(255.0f * (v < 0 ? 0 : v > 1 ? 1 : v) + 0.5f);
+            size_t p = ((size_t)(2 + ty * (opt_h + 2) + y) * (size_t)sheet_w + (size_t)(2 + tx * (opt_w + 2) + x)) * 3;
+            sheet[p] = sheet[p + 1] = sheet[p + 2] = (uint8_t)g;
+        }
+    if (opt_h >= 24 && (int)strlen(label) * 8 < opt_w) {
+        int x0 = 2 + tx * (opt_w + 2), y0 = 2 + ty * (opt_h + 2);
+        for (y = 0; y < 14; y++)
+            for (x = 0; x < (int)strlen(label) * 8 + 4; x++) {
+                size_t p = ((size_t)(y0 + y) * (size_t)sheet_w + (size_t)(x0 + x)) * 3;
+                sheet[p] = sheet[p + 1] = sheet[p + 2] = 0;
+            }
+        draw_text(sheet, sheet_w, x0 + 2, y0 + 2, label, 2);
+    }
+}
+
+static void sheet_write(void)
+{
+    FILE *f;
+    if (!sheet) return;
+    f = open_out("contact.ppm", "wb");
+    fprintf(f, "P6\n%d %d\n255\n", sheet_w, sheet_h);
+    fwrite(sheet, 1, (size_t)sheet_w * (size_t)sheet_h * 3, f);
+    fclose(f);
+    f = open_out("contact.png", "wb");
+    write_png(f, sheet, sheet_w, sheet_h);
+    fclose(f);
+}
+
+/* ------------------------------------------------------------------ */
+/* HBIL pass breakdown (HBIL sec. 3.5): the frame's own passes, timed one by one */
+
+typedef struct pass_times { double reproject, pushpull, split, kernel, merge, filter, frame; } pass_times;
+
+static void hbil_split(tg_frame *f)
+{
+    const tg_gbuffer *g = &f->gb;
+    int w = f->width, h = f->height;
+    tg_interleave_split(g->depth, w, h, f->q_depth);
+    tg_interleave_split(g->nx, w, h, f->q_normal.r);
+    tg_interleave_split(g->ny, w, h, f->q_normal.g);
+    tg_interleave_split(g->nz, w, h, f->q_normal.b);
+    tg_interleave_split8(g->sky, w, h, f->q_sky);
+    if (f->q_source.r) {
+        tg_interleave_split(g->f0, w, h, f->q_f0);
+        tg_interleave_split(f->source.r, w, h, f->q_source.r);
+        tg_interleave_split(f->source.g, w, h, f->q_source.g);
+        tg_interleave_split(f->source.b, w, h, f->q_source.b);
+    }
+}
+
+static void hbil_kernel(tg_frame *f)
+{
+    int w = f->width, h = f->height, i, j, near = f->q_source.r != NULL;
+    for (j = 0; j < 4; j++)
+        for (i = 0; i < 4; i++) {
+            tg_hbil_params p;
+            tg_hbil_io io;
+            int sw, sh;
+            size_t o;
+            tg_interleave_sub_rect(w, h, i, j, &sw, &sh, &o);
+            if (sw == 0 || sh == 0) continue;
+            tg_hbil_defaults(&p, &f->view);
+            p.slices = f->plan.request.slices;
+            p.samples = f->plan.request.samples;
+            p.radius = f->plan.request.radius;
+            p.step = 4; p.offset_x = i; p.offset_y = j;
+            p.slice_phi0 = tg_hbil_slice_phi0(i, j, p.slices);
+            memset(&io, 0, sizeof io);
+            io.width = sw; io.height = sh;
+            io.depth = f->q_depth + o;
+            io.nx = f->q_normal.r + o; io.ny = f->q_normal.g + o; io.nz = f->q_normal.b + o;
+            io.sky = f->q_sky + o;
+            io.ao = f->q_ao + o;
+            io.bent_x = f->q_bent.r + o; io.bent_y = f->q_bent.g + o; io.bent_z = f->q_bent.b + o;
+            if (near) {
+                io.f0 = f->q_f0 + o;
+                io.rad_r = f->q_source.r + o; io.rad_g = f->q_source.g + o; io.rad_b = f->q_source.b + o;
+                io.near_r = f->q_near.r + o; io.near_g = f->q_near.g + o; io.near_b = f->q_near.b + o;
+            }
+            tg_hbil_rows(&p, &io, 0, sh);
+        }
+}
+
+static void hbil_merge(tg_frame *f)
+{
+    int w = f->width, h = f->height;
+    tg_interleave_merge(f->q_ao, w, h, f->ao);
+    tg_interleave_merge(f->q_bent.r, w, h, f->bent.r);
+    tg_interleave_merge(f->q_bent.g, w, h, f->bent.g);
+    tg_interleave_merge(f->q_bent.b, w, h, f->bent.b);
+    if (f->q_near.r) {
+        tg_interleave_merge(f->q_near.r, w, h, f->near.r);
+        tg_interleave_merge(f->q_near.g, w, h, f->near.g);
+        tg_interleave_merge(f->q_near.b, w, h, f->near.b);
+    }
+}
+
+static void hbil_filter(tg_frame *f)
+{
+    tg_denoise_params p;
+    tg_denoise_io io;
+    const tg_gbuffer *g = &f->gb;
+    tg_denoise_defaults(&p);
+    memset(&io, 0, sizeof io);
+    io.width = f->width; io.height = f->height;
+    io.depth = g->depth; io.nx = g->nx; io.ny = g->ny; io.nz = g->nz;
+    io.sky = g->sky;
+    io.ao = f->ao;
+    io.bent_x = f->bent.r; io.bent_y = f->bent.g; io.bent_z = f->bent.b;
+    io.cone = f->cone;
+    io.near_r = f->near.r; io.near_g = f->near.g; io.near_b = f->near.b;
+    tg_denoise_begin(&io, f->denoise_scratch);
+    tg_denoise_rows(&p, &io, f->denoise_scratch, 0, f->height);
+    if (f->temporal_state)
+        tg_temporal_rows(&p, &io, f->temporal_state, &f->prev_view, &f->view, 1, 0, 0, f->height);
+}
+
+/* The reprojection as tg_frame_reproject lays out its scratch. */
+static void hbil_reproject(tg_frame *f, int which)
+{
+    tg_reproject_io io;
+    unsigned char *scratch = (unsigned char *)f->reproject_scratch;
+    size_t zbytes = (tg_reproject_bytes(f->width, f->height) + 15u) & ~(size_t)15u;
+    size_t pbytes = (tg_pushpull_bytes(f->width, f->height) + 15u) & ~(size_t)15u;
+    uint8_t *valid = scratch + zbytes + pbytes;
+    memset(&io, 0, sizeof io);
+    io.width = f->width; io.height = f->height;
+    io.prev_view = &f->prev_view; io.view = &f->view;
+    io.prev_depth = f->history_depth;
+    io.prev_r = f->history.r; io.prev_g = f->history.g; io.prev_b = f->history.b;
+    io.out_r = f->source.r; io.out_g = f->source.g; io.out_b = f->source.b;
+    io.valid = valid;
+    if (which == 0) tg_reproject_scatter(&io, scratch);
+    else tg_pushpull_fill(f->width, f->height, f->source.r, f->source.g, f->source.b, valid, scratch + zbytes);
+}
+
+#define TIME_PASS(field, call) do { double t_[MAX_RUNS]; int k_; \
+    for (k_ = 0; k_ < opt_runs; k_++) { double t0_ = tg_clock_seconds(); call; t_[k_] = (tg_clock_seconds() - t0_) * 1e3; } \
+    pt.field = median(t_, opt_runs); } while (0)
+
+static void pass_breakdown(tg_scene *s, const char *name)
+{
+    frame_run fr;
+    tg_error err;
+    pass_times pt;
+    tg_request q = base_request(TG_TECH_HBIL, 2, 16, -1, AOVBIT(TG_AOV_COLOR));
+    FILE *f;
+    char fname[64];
+    double core;
+    q.frames = 2;   /* a second frame: reprojection has a history */
+    if (!frame_open(&fr, s, &q)) die("hbil frame", name);
+    tg_frame_render(fr.frame, 0, &err);
+    tg_frame_render(fr.frame, 1, &err);
+    memset(&pt, 0, sizeof pt);
+    TIME_PASS(frame, tg_frame_render(fr.frame, 1, &err));
+    if (fr.frame->history.r && fr.frame->reproject_scratch) {
+        TIME_PASS(reproject, hbil_reproject(fr.frame, 0));
+        TIME_PASS(pushpull, hbil_reproject(fr.frame, 1));
+    }
+    TIME_PASS(split, hbil_split(fr.frame));
+    TIME_PASS(kernel, hbil_kernel(fr.frame));
+    TIME_PASS(merge, hbil_merge(fr.frame));
+    TIME_PASS(filter, hbil_filter(fr.frame));
+    frame_close(&fr);
+    core = pt.reproject + pt.pushpull + pt.split + pt.kernel;
+    snprintf(fname, sizeof fname, "passes-%s.md", NUMBER);
+    f = open_out(fname, "w");
+    fprintf(f, "HBIL pass breakdown, %s, scene %s, %dx%d, 2 slices x 16 samples, median of %d (ms; share of the four passes HBIL sec. 3.5 lists, paper's share on a GTX 680 at 1280x720 in brackets):\n\n",
+            NUMBER, name, opt_w, opt_h, opt_runs);
+    fprintf(f, "| pass | ms (%s) | share | paper |\n|---|---:|---:|---:|\n", NUMBER);
+    fprintf(f, "| reprojection | %.3f | %.0f%% | 0.16 ms (5%%) |\n", pt.reproject, 100 * pt.reproject / core);
+    fprintf(f, "| push/pull | %.3f | %.0f%% | 0.32 ms (10%%) |\n", pt.pushpull, 100 * pt.pushpull / core);
+    fprintf(f, "| buffers split | %.3f | %.0f%% | 0.78 ms (24%%) |\n", pt.split, 100 * pt.split / core);
+    fprintf(f, "| HBIL kernel | %.3f | %.0f%% | 1.97 ms (61%%) |\n", pt.kernel, 100 * pt.kernel / core);
+    fprintf(f, "| merge (not in the paper) | %.3f | | |\n", pt.merge);
+    fprintf(f, "| filter: spatial + temporal (not in the paper) | %.3f | | |\n", pt.filter);
+    fprintf(f, "| whole frame (raster, shadows, direct, GI, compose) | %.3f | | 3.23 ms (GI only) |\n\n", pt.frame);
+    fprintf(f, "Verdict (%s): %s the kernel is %.0f%% of reprojection + push/pull + split + kernel (paper 61%%); the split is %.0f%% (paper 24%%).\n\n",
+            NUMBER, pt.kernel / core > 0.5 ? "HOLDS, the kernel dominates:" : "DOES NOT HOLD, the kernel does not dominate:",
+            100 * pt.kernel / core, 100 * pt.split / core);
+    fclose(f);
+    printf("  passes (%s): reproject %.3f push/pull %.3f split %.3f kernel %.3f merge %.3f filter %.3f frame %.3f ms\n",
+           NUMBER, pt.reproject, pt.pushpull, pt.split, pt.kernel, pt.merge, pt.filter, pt.frame);
+}
+
+/* ------------------------------------------------------------------ */
+/* bench run */
+
+static int scene_wanted(const char *name)
+{
+    const char *p = opt_scenes;
+    size_t n = strlen(name);
+    if (!*p) return 1;
+    while (*p) {
+        const char *e = strchr(p, ',');
+        size_t len = e ? (size_t)(e - p) : strlen(p);
+        if (len == n && strncmp(p, name, n) == 0) return 1;
+        p += len + (e ? 1 : 0);
+    }
+    return 0;
+}
+
+static int cmd_run(void)
+{
+    char fname[64];
+    FILE *csv;
+    int si, ci, n = opt_w * opt_h, sheet_k = 0;
+    const char *name, *sheet_scene = scene_wanted("columns") ? "columns" : NULL;
+    build_sweep();
+    mkdirs(opt_out);
+    snprintf(fname, sizeof fname, "rows-%s.csv", NUMBER);
+    csv = open_out(fname, "w");
+    fprintf(csv, "scene,technique,slices,samples,radius,interleave,number,median_ms,ao_rmse,ao_max,bent_deg,near_rel,default,curve\n");
+    for (si = 0; (name = tg_builtin_name(si)) != NULL; si++) {
+        void *mem;
+        tg_scene *s;
+        double r0;
+        if (!scene_wanted(name)) continue;
+        if (!sheet_scene) sheet_scene = name;
+        s = load_scene(name, &mem);
+        r0 = scene_radius(s);
+        printf("%s (%s, radius %.3f, %dx%d, %d runs)\n", name, NUMBER, r0, opt_w, opt_h, opt_runs);
+        fflush(stdout);
+        for (ci = 0; ci < ncfg; ci++) {
+            const config *c = &cfgs[ci];
+            double radius = r0 * c->rscale, ms;
+            result ref, res;
+            errors e;
+            reference(s, name, radius, &ref);
+            ms = run_config(s, c, radius, &res);
+            e = measure(&res, &ref, n);
+            fprintf(csv, "%s,%s,%d,%d,%.4f,%d,%s,%.4f,%.6f,%.6f,%.4f,", name, c->label, c->slices, c->samples,
+                    radius, c->interleave, NUMBER, ms, e.ao_rmse, e.ao_max, e.bent_deg);
+            if (isnan(e.near_rel)) fprintf(csv, ","); else fprintf(csv, "%.6f,", e.near_rel);
+            fprintf(csv, "%d,%d\n", c->is_default, c->on_curve);
+            fflush(csv);
+            printf("  %-9s s%d n%-2d r%.2f %8.2f ms  AO rmse %.4f max %.3f  bent %5.2f deg  near %s%.3f\n",
+                   c->label, c->slices, c->samples, radius, ms, e.ao_rmse, e.ao_max, e.bent_deg,
+                   isnan(e.near_rel) ? "-" : "", isnan(e.near_rel) ? 0.0 : e.near_rel);
+            fflush(stdout);
+            if (!strcmp(NUMBER, "float") && sheet_scene && strcmp(name, sheet_scene) == 0 && c->is_default && c->on_curve && sheet_k < SHEET_TILES - 1)
+                sheet_tile(sheet_k++, res.ao, c->label);
+            if (!strcmp(NUMBER, "float") && sheet_scene && strcmp(name, sheet_scene) == 0 && ci == ncfg - 1)
+                sheet_tile(SHEET_TILES - 1, ref.ao, "reference");
+            result_free(&res);
+            result_free(&ref);
+        }
+        if (strcmp(name, "cornell") == 0 || (!scene_wanted("cornell") && strcmp(name, sheet_scene) == 0))
+            pass_breakdown(s, name);
+        free(mem);
+    }
+    fclose(csv);
+    sheet_write();
+    return 0;
+}
+
+/* ------------------------------------------------------------------ */
+/* bench report */
+
+typedef struct row {
+    char scene[32], tech[32], number[8];
+    int slices, samples, interleave, is_default, on_curve;
+    double radius, ms, ao_rmse, ao_max, bent_deg, near_rel;
+} row;
+
+static row rows[MAX_ROWS];
+static int nrows;
+
+static void read_rows(const char *number)
+{
+    char path[600], line[512];
+    FILE *f;
+    snprintf(path, sizeof path, "%s/rows-%s.csv", opt_out, number);
+    f = fopen(path, "r");
+    if (!f) return;
+    if (!fgets(line, sizeof line, f)) { fclose(f); return; }
+    while (nrows < MAX_ROWS && fgets(line, sizeof line, f)) {
+        row *r = &rows[nrows];
+        char *fld[16], *p = line;
+        int k = 0;
+        line[strcspn(line, "\r\n")] = '\0';
+        while (k < 16) {
+            fld[k++] = p;
+            p = strchr(p, ',');
+            if (!p) break;
+            *p++ = '\0';
+        }
+        if (k != 14) continue;
+        snprintf(r->scene, sizeof r->scene, "%s", fld[0]);
+        snprintf(r->tech, sizeof r->tech, "%s", fld[1]);
+        r->slices = atoi(fld[2]); r->samples = atoi(fld[3]); r->radius = atof(fld[4]);
+        r->interleave = atoi(fld[5]);
+        snprintf(r->number, sizeof r->number, "%s", fld[6]);
+        r->ms = atof(fld[7]); r->ao_rmse = atof(fld[8]); r->ao_max = atof(fld[9]); r->bent_deg = atof(fld[10]);
+        r->near_rel = fld[11][0] ? atof(fld[11]) : (double)NAN;
+        r->is_default = atoi(fld[12]); r->on_curve = atoi(fld[13]);
+        nrows++;
+    }
+    fclose(f);
+}
+
+/* Means over scenes of one (technique, setting, number, radius scale) group. */
+typedef struct point {
+    char tech[32], number[8];
+    int slices, samples, is_default, on_curve, scenes, near_n;
+    double ms, ao_rmse, ao_max, bent_deg, near_rel, rscale;
+} point;
+
+static point pts[512];
+static int npts;
+
+/* The radius scale of a row: its radius over the scene's default row's. */
+static double row_rscale(const row *r)
+{
+    int i;
+    for (i = 0; i < nrows; i++)
+        if (strcmp(rows[i].scene, r->scene) == 0 && rows[i].is_default && rows[i].radius > 0)
+            return r->radius / rows[i].radius;
+    return 1;
+}
+
+static void group_points(void)
+{
+    int i, j;
+    npts = 0;
+    for (i = 0; i < nrows; i++) {
+        const row *r = &rows[i];
+        double rs = row_rscale(r);
+        point *p = NULL;
+        for (j = 0; j < npts; j++)
+            if (strcmp(pts[j].tech, r->tech) == 0 && strcmp(pts[j].number, r->number) == 0 &&
+                pts[j].slices == r->slices && pts[j].samples == r->samples && fabs(pts[j].rscale - rs) < 1e-3) { p = &pts[j]; break; }
+        if (!p) {
+            if (npts == 512) continue;
+            p = &pts[npts++];
+            memset(p, 0, sizeof *p);
+            snprintf(p->tech, sizeof p->tech, "%s", r->tech);
+            snprintf(p->number, sizeof p->number, "%s", r->number);
+            p->slices = r->slices; p->samples = r->samples; p->rscale = rs;
+            p->is_default = r->is_default; p->on_curve = r->on_curve;
+        }
+        p->scenes++;
+        p->ms += r->ms; p->ao_rmse += r->ao_rmse; p->bent_deg += r->bent_deg;
+        if (r->ao_max > p->ao_max) p->ao_max = r->ao_max;
+        if (!isnan(r->near_rel)) { p->near_rel += r->near_rel; p->near_n++; }
+    }
+    for (j = 0; j < npts; j++) {
+        point *p = &pts[j];
+        p->ms /= p->scenes; p->ao_rmse /= p->scenes; p->bent_deg /= p->scenes;
+        p->near_rel = p->near_n ? p->near_rel / p->near_n : (double)NAN;
+    }
+}
+
+static const point *find_point(const char *tech, const char *number, int slices, int samples)
+{
+    int j;
+    for (j = 0; j < npts; j++)
+        if (strcmp(pts[j].tech, tech) == 0 && strcmp(pts[j].number, number) == 0 &&
+            (slices < 0 || pts[j].slices == slices) && pts[j].samples == samples && fabs(pts[j].rscale - 1) < 1e-3)
+            return &pts[j];
+    return NULL;
+}
+
+static const char *setting(const point *p, char *buf, size_t n)
+{
+    const char *t = p->tech;
+    if (!strcmp(t, "hbil") || !strcmp(t, "hbil-full") || !strcmp(t, "gtao") || !strcmp(t, "hbao"))
+        snprintf(buf, n, "%d slices x %d", p->slices, p->samples);
+    else snprintf(buf, n, "%d samples", p->samples);
+    if (fabs(p->rscale - 1) > 1e-3) {
+        size_t l = strlen(buf);
+        snprintf(buf + l, n - l, ", radius x%.1f", p->rscale);
+    }
+    return buf;
+}
+
+static void fmt_near(char *buf, size_t n, double v)
+{
+    if (isnan(v)) snprintf(buf, n, "-");
+    else snprintf(buf, n, "%.3f", v);
+}
+
+/* Pareto frontier of the float curve points: nothing both faster and better. */
+static int on_frontier(const point *p)
+{
+    int j;
+    if (strcmp(p->number, "float") || !p->on_curve) return 0;
+    for (j = 0; j < npts; j++) {
+        const point *q = &pts[j];
+        if (q == p || strcmp(q->number, "float") || !q->on_curve) continue;
+        if (q->ms <= p->ms && q->ao_rmse <= p->ao_rmse && (q->ms < p->ms || q->ao_rmse < p->ao_rmse)) return 0;
+    }
+    return 1;
+}
+
+static int cmp_ms(const void *a, const void *b)
+{
+    const point *x = *(const point *const *)a, *y = *(const point *const *)b;
+    return x->ms < y->ms ? -1 : x->ms > y->ms;
+}
+
+static const char *tech_names[] = { "hbil", "hbil-full", "gtao", "hbao", "ssao", "vo", "ssdo", "bentcone" };
+static const char *tech_colors[] = { "#d62728", "#ff7f0e", "#1f77b4", "#17becf", "#7f7f7f", "#2ca02c", "#9467bd", "#8c564b" };
+#define NTECH 8
+
+static void write_svg(void)
+{
+    const int W = 860, H = 540, L = 70, R = 150, T = 50, B = 60;
+    double xmin = 1e30, xmax = 0, ymax = 0, lx0, lx1;
+    int j, k, e;
+    FILE *f = open_out("bench.svg", "w");
+    for (j = 0; j < npts; j++) {
+        if (!pts[j].on_curve) continue;
+        if (pts[j].ms < xmin) xmin = pts[j].ms;
+        if (pts[j].ms > xmax) xmax = pts[j].ms;
+        if (pts[j].ao_rmse > ymax) ymax = pts[j].ao_rmse;
+    }
+    if (xmax <= 0) xmax = 1;
+    if (xmin >= xmax) xmin = xmax / 10;
+    lx0 = floor(log10(xmin) * 4) / 4; lx1 = ceil(log10(xmax) * 4) / 4;
+    if (lx1 <= lx0) lx1 = lx0 + 1;
+    ymax = ymax > 0 ? ymax * 1.1 : 1;
+#define PX(ms) (L + (log10(ms) - lx0) / (lx1 - lx0) * (W - L - R))
+#define PY(v) (H - B - (v) / ymax * (H - T - B))
+    fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" viewBox=\"0 0 %d %d\" font-family=\"sans-serif\" font-size=\"12\">\n", W, H, W, H);
+    fprintf(f, "<rect width=\"%d\" height=\"%d\" fill=\"white\"/>\n", W, H);
+    fprintf(f, "<text x=\"%d\" y=\"22\" font-size=\"15\" font-weight=\"bold\">tinygi: AO error against time (mean over %s scenes, %dx%d)</text>\n",
+            L, "the built-in", opt_w, opt_h);
+    fprintf(f, "<text x=\"%d\" y=\"40\" fill=\"#444\">lower left is better; solid = float, dashed = Q16.16 fixed; each line sweeps its technique's samples/slices; grey band = frontier</text>\n", L);
+    /* axes and grid */
+    for (e = (int)floor(lx0); e <= (int)ceil(lx1); e++) {
+        static const int m[] = { 1, 2, 5 };
+        for (k = 0; k < 3; k++) {
+            double v = m[k] * pow(10, e), x;
+            if (log10(v) < lx0 - 1e-9 || log10(v) > lx1 + 1e-9) continue;
+            x = PX(v);
+            fprintf(f, "<line x1=\"%.1f\" y1=\"%d\" x2=\"%.1f\" y2=\"%d\" stroke=\"#ddd\"/>\n", x, T, x, H - B);
+            fprintf(f, "<text x=\"%.1f\" y=\"%d\" text-anchor=\"middle\">%g</text>\n", x, H - B + 16, v);
+        }
+    }
+    for (k = 0; k <= 5; k++) {
+        double v = ymax * k / 5, y = PY(v);
+        fprintf(f, "<line x1=\"%d\" y1=\"%.1f\" x2=\"%d\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", L, y, W - R, y);
+        fprintf(f, "<text x=\"%d\" y=\"%.1f\" text-anchor=\"end\">%.3f</text>\n", L - 6, y + 4, v);
+    }
+    fprintf(f, "<rect x=\"%d\" y=\"%d\" width=\"%d\" height=\"%d\" fill=\"none\" stroke=\"black\"/>\n", L, T, W - L - R, H - T - B);
+    fprintf(f, "<text x=\"%d\" y=\"%d\" text-anchor=\"middle\">median ms per frame (log scale)</text>\n", (L + W - R) / 2, H - 18);
+    fprintf(f, "<text x=\"16\" y=\"%d\" text-anchor=\"middle\" transform=\"rotate(-90 16 %d)\">AO RMSE vs ray-traced reference</text>\n", (T + H - B) / 2, (T + H - B) / 2);
+    /* frontier */
+    {
+        const point *fr[512];
+        int nf = 0;
+        for (j = 0; j < npts; j++) if (on_frontier(&pts[j])) fr[nf++] = &pts[j];
+        qsort(fr, (size_t)nf, sizeof fr[0], cmp_ms);
+        if (nf > 1) {
+            fprintf(f, "<polyline fill=\"none\" stroke=\"#bbb\" stroke-width=\"9\" stroke-linejoin=\"round\" stroke-opacity=\"0.6\" points=\"");
+            for (k = 0; k < nf; k++) fprintf(f, "%.1f,%.1f ", PX(fr[k]->ms), PY(fr[k]->ao_rmse));
+            fprintf(f, "\"/>\n");
+        }
+    }
+    /* one polyline per technique and number type */
+    for (k = 0; k < NTECH; k++) {
+        int num;
+        for (num = 0; num < 2; num++) {
+            const char *number = num ? "fixed" : "float";
+            const point *cp[64];
+            int nc = 0, i;
+            for (j = 0; j < npts && nc < 64; j++)
+                if (pts[j].on_curve && !strcmp(pts[j].tech, tech_names[k]) && !strcmp(pts[j].number, number)) cp[nc++] = &pts[j];
+            if (!nc) continue;
+            qsort(cp, (size_t)nc, sizeof cp[0], cmp_ms);
+            fprintf(f, "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"2\"%s points=\"", tech_colors[k],
+                    num ? " stroke-dasharray=\"6 4\"" : "");
+            for (i = 0; i < nc; i++) fprintf(f, "%.1f,%.1f ", PX(cp[i]->ms), PY(cp[i]->ao_rmse));
+            fprintf(f, "\"/>\n");
+            for (i = 0; i < nc; i++) {
+                char buf[64];
+                fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%d\" fill=\"%s\"><title>%s %s %s: %.2f ms, AO RMSE %.4f</title></circle>\n",
+                        PX(cp[i]->ms), PY(cp[i]->ao_rmse), cp[i]->is_default ? 5 : 3, num ? "white" : tech_colors[k],
+                        tech_names[k], number, setting(cp[i], buf, sizeof buf), cp[i]->ms, cp[i]->ao_rmse);
+                if (num) fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%d\" fill=\"none\" stroke=\"%s\"/>\n",
+                                 PX(cp[i]->ms), PY(cp[i]->ao_rmse), cp[i]->is_default ? 5 : 3, tech_colors[k]);
+            }
+            if (!num) {
+                const point *last = cp[nc - 1];
+                char buf[64];
+                fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" fill=\"%s\" font-size=\"11\">%s %s</text>\n", PX(last->ms) + 6,
+                        PY(last->ao_rmse) - 4, tech_colors[k], tech_names[k], setting(last, buf, sizeof buf));
+            }
+        }
+        fprintf(f, "<line x1=\"%d\" y1=\"%d\" x2=\"%d\" y2=\"%d\" stroke=\"%s\" stroke-width=\"3\"/>\n", W - R + 14, T + 10 + 18 * k,
+                W - R + 36, T + 10 + 18 * k, tech_colors[k]);
+        fprintf(f, "<text x=\"%d\" y=\"%d\">%s</text>\n", W - R + 42, T + 14 + 18 * k, tech_names[k]);
+    }
+    fprintf(f, "<text x=\"%d\" y=\"%d\" fill=\"#444\" font-size=\"11\">big dot: default</text>\n", W - R + 14, T + 14 + 18 * NTECH + 6);
+    fprintf(f, "<text x=\"%d\" y=\"%d\" fill=\"#444\" font-size=\"11\">(2 slices x 16)</text>\n", W - R + 14, T + 14 + 18 * NTECH + 20);
+    fprintf(f, "</svg>\n");
+    fclose(f);
+#undef PX
+#undef PY
+}
+
+static void claim_lines(FILE *f, const char *number)
+{
+    const point *ssao12 = find_point("ssao", number, -1, 12), *ssao8 = find_point("ssao", number, -1, 8);
+    const point *ssao16 = find_point("ssao", number, -1, 16);
+    const point *bc8 = find_point("bentcone", number, -1, 8), *ssdo16 = find_point("ssdo", number, -1, 16);
+    const point *ssdo8 = find_point("ssdo", number, -1, 8);
+    const point *do8 = find_point("ssdo-do", number, -1, 8), *do16 = find_point("ssdo-do", number, -1, 16);
+    static const int vn[] = { 5, 7, 9 };
+    int k, better = 0, faster = 0;
+    if (!ssao12) return;
+    fprintf(f, "**Loos & Sloan table 1** (%s): VO with 5-9 line samples against Crytek SSAO with 12 point samples: ", number);
+    fprintf(f, "SSAO 12 %.2f ms, AO RMSE %.4f; ", ssao12->ms, ssao12->ao_rmse);
+    for (k = 0; k < 3; k++) {
+        const point *v = find_point("vo", number, -1, vn[k]);
+        if (!v) continue;
+        fprintf(f, "VO %d %.2f ms, RMSE %.4f; ", vn[k], v->ms, v->ao_rmse);
+        if (v->ao_rmse <= ssao12->ao_rmse * 1.05) better++;
+        if (v->ms <= ssao12->ms) faster++;
+        if (v->ao_rmse <= ssao12->ao_rmse * 1.05 && v->ms <= ssao12->ms) better += 10;
+    }
+    fprintf(f, "verdict: **%s**.\n\n", better >= 10 ? "HOLDS (VO matches or beats SSAO 12's error in no more time)" :
+            better > 0 ? "PARTLY (VO's error is as low, but not in less time)" :
+            faster > 0 ? "PARTLY (VO is faster, but its error is higher)" : "DOES NOT HOLD");
+    if (bc8 && ssdo16) {
+        int q = bc8->bent_deg <= ssdo16->bent_deg * 1.1, t = bc8->ms < ssdo16->ms;
+        fprintf(f, "**Klehm fig. 8** (%s): bent cones with 8 samples against SSDO with 16: bent cones %.2f ms, AO RMSE %.4f, bent %.2f deg; SSDO %.2f ms, AO RMSE %.4f, bent %.2f deg (paper: 6.0 vs 12.5 ms); verdict: **%s**.\n\n",
+                number, bc8->ms, bc8->ao_rmse, bc8->bent_deg, ssdo16->ms, ssdo16->ao_rmse, ssdo16->bent_deg,
+                q && t ? "HOLDS (as accurate a bent normal in less time)" : t ? "PARTLY (faster, but a worse bent normal)" :
+                q ? "PARTLY (as accurate, but not faster)" : "DOES NOT HOLD");
+    }
+    if (ssao8 && ssao16 && do8 && do16 && ssdo8 && ssdo16) {
+        double d8 = 100 * (do8->ms / ssao8->ms - 1), d16 = 100 * (do16->ms / ssao16->ms - 1);
+        double b8 = 100 * (ssdo8->ms / ssao8->ms - 1), b16 = 100 * (ssdo16->ms / ssao16->ms - 1);
+        fprintf(f, "**Ritschel table 1** (%s): SSDO's overhead over SSAO: directional occlusion alone %+.0f%% (N=8), %+.0f%% (N=16) (paper +0.2..+8.9%%); with one bounce %+.0f%% (N=8), %+.0f%% (N=16) (paper +19..+46%%); verdict: **%s**.\n\n",
+                number, d8, d16, b8, b16,
+                d8 < 15 && d16 < 15 && b8 < 60 && b16 < 60 ? "HOLDS (a modest overhead)" :
+                d8 < 15 && d16 < 15 ? "PARTLY (DO is cheap, the bounce costs more than the paper's)" : "DOES NOT HOLD (DO is not a small overhead here)");
+    }
+}
+
+static int cmd_report(void)
+{
+    FILE *f, *md;
+    int i, j, num;
+    char buf[64], nb[32];
+    nrows = 0;
+    read_rows("float");
+    read_rows("fixed");
+    if (!nrows) die("no rows: run `bench run` first", opt_out);
+    group_points();
+    f = open_out("bench.csv", "w");
+    fprintf(f, "scene,technique,slices,samples,radius,interleave,number,median_ms,ao_rmse,ao_max,bent_deg,near_rel,default,curve\n");
+    for (i = 0; i < nrows; i++) {
+        const row *r = &rows[i];
+        fprintf(f, "%s,%s,%d,%d,%.4f,%d,%s,%.4f,%.6f,%.6f,%.4f,", r->scene, r->tech, r->slices, r->samples, r->radius,
+                r->interleave, r->number, r->ms, r->ao_rmse, r->ao_max, r->bent_deg);
+        if (isnan(r->near_rel)) fprintf(f, ","); else fprintf(f, "%.6f,", r->near_rel);
+        fprintf(f, "%d,%d\n", r->is_default, r->on_curve);
+    }
+    fclose(f);
+    write_svg();
+    md = open_out("bench.md", "w");
+    fprintf(md, "# tinygi accuracy vs time\n\n");
+    fprintf(md, "Errors against the ray-traced reference (same radius as an obscurance cut-off); each value is the mean over the built-in scenes (max AO error: the worst pixel of any scene); ms: median whole-frame time.\n\n");
+    fprintf(md, "## Default setting (2 slices x 16 samples, the scene's radius)\n\n");
+    fprintf(md, "| technique | number | ms | AO RMSE | AO max | bent deg | near rel. err |\n|---|---|---:|---:|---:|---:|---:|\n");
+    for (num = 0; num < 2; num++)
+        for (j = 0; j < npts; j++) {
+            const point *p = &pts[j];
+            if (strcmp(p->number, num ? "fixed" : "float") || !(p->is_default || !strcmp(p->tech, "gtao+ir")) || fabs(p->rscale - 1) > 1e-3) continue;
+            if (!p->is_default && !(p->slices == 2 && p->samples == 16)) continue;
+            fmt_near(nb, sizeof nb, p->near_rel);
+            fprintf(md, "| %s | %s | %.2f | %.4f | %.3f | %.2f | %s |\n", p->tech, p->number, p->ms, p->ao_rmse, p->ao_max, p->bent_deg, nb);
+        }
+    fprintf(md, "\n## Frontier (float): no other setting is both faster and more accurate\n\n");
+    {
+        const point *fr[512];
+        int nf = 0;
+        for (j = 0; j < npts; j++) if (on_frontier(&pts[j])) fr[nf++] = &pts[j];
+        qsort(fr, (size_t)nf, sizeof fr[0], cmp_ms);
+        fprintf(md, "| technique | setting | ms | AO RMSE | step cost |\n|---|---|---:|---:|---|\n");
+        for (i = 0; i < nf; i++) {
+            char step[128] = "";
+            if (i > 0) snprintf(step, sizeof step, "%+.2f ms (x%.2f) for %.4f less RMSE (-%.0f%%)", fr[i]->ms - fr[i - 1]->ms,
+                                fr[i]->ms / fr[i - 1]->ms, fr[i - 1]->ao_rmse - fr[i]->ao_rmse,
+                                100 * (1 - fr[i]->ao_rmse / fr[i - 1]->ao_rmse));
+            fprintf(md, "| %s | %s | %.2f | %.4f | %s |\n", fr[i]->tech, setting(fr[i], buf, sizeof buf), fr[i]->ms, fr[i]->ao_rmse, step);
+        }
+    }
+    fprintf(md, "\n## The papers' claims\n\n");
+    claim_lines(md, "float");
+    claim_lines(md, "fixed");
+    for (num = 0; num < 2; num++) {
+        char path[700], line[1024];
+        FILE *p;
+        snprintf(path, sizeof path, "%s/passes-%s.md", opt_out, num ? "fixed" : "float");
+        p = fopen(path, "r");
+        if (!p) continue;
+        while (fgets(line, sizeof line, p)) fputs(line, md);
+        fclose(p);
+    }
+    {
+        const point *ir = find_point("gtao+ir", "float", 2, 16), *hb = find_point("hbil", "float", 2, 16);
+        const point *sd = find_point("ssdo", "float", 2, 16);
+        if (ir && hb) {
+            fmt_near(nb, sizeof nb, ir->near_rel);
+            fprintf(md, "**Interreflection (RTR eq. 11.12-11.13)** (float): GTAO's AO brightened, read as near-field irradiance E_direct (k'_A/k_A - 1): relative error %s against the reference's one-bounce irradiance, at %.2f ms; ",
+                    nb, ir->ms);
+            fmt_near(nb, sizeof nb, hb->near_rel);
+            fprintf(md, "HBIL's gathered bounce: %s at %.2f ms", nb, hb->ms);
+            if (sd) { fmt_near(nb, sizeof nb, sd->near_rel); fprintf(md, "; SSDO's bounce: %s at %.2f ms", nb, sd->ms); }
+            fprintf(md, ". Verdict: **%s**.\n\n", !isnan(ir->near_rel) && !isnan(hb->near_rel) && hb->near_rel < ir->near_rel ?
+                    "HBIL's gather is closer to the reference than the AO brightening" : "the AO brightening is as close as HBIL's gather here");
+        }
+    }
+    fprintf(md, "## Every row\n\n| scene | technique | setting | number | ms | AO RMSE | AO max | bent deg | near rel. err |\n|---|---|---|---|---:|---:|---:|---:|---:|\n");
+    for (i = 0; i < nrows; i++) {
+        const row *r = &rows[i];
+        point p;
+        memset(&p, 0, sizeof p);
+        snprintf(p.tech, sizeof p.tech, "%s", r->tech);
+        p.slices = r->slices; p.samples = r->samples; p.rscale = row_rscale(r);
+        fmt_near(nb, sizeof nb, r->near_rel);
+        fprintf(md, "| %s | %s | %s | %s | %.2f | %.4f | %.3f | %.2f | %s |\n", r->scene, r->tech, setting(&p, buf, sizeof buf),
+                r->number, r->ms, r->ao_rmse, r->ao_max, r->bent_deg, nb);
+    }
+    fclose(md);
+    /* the verdicts on stdout */
+    claim_lines(stdout, "float");
+    claim_lines(stdout, "fixed");
+    printf("wrote %s/bench.md, bench.csv, bench.svg\n", opt_out);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    int i;
+    if (argc < 2) die("usage: bench run|report [--size WxH] [--runs N] [--out DIR] [--ref-samples N] [--scenes a,b]", NULL);
+    for (i = 2; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!v) die("option needs a value", a);
+        if (!strcmp(a, "--size")) { if (sscanf(v, "%dx%d", &opt_w, &opt_h) != 2 || opt_w < 8 || opt_h < 8 || opt_w > 4096 || opt_h > 4096) die("bad size", v); }
+        else if (!strcmp(a, "--runs")) { opt_runs = atoi(v); if (opt_runs < 1 || opt_runs > MAX_RUNS) die("runs must be 1..64", v); }
+        else if (!strcmp(a, "--out")) opt_out = v;
+        else if (!strcmp(a, "--ref-samples")) { opt_ref_samples = atoi(v); if (opt_ref_samples < 17 || opt_ref_samples > 256) die("ref-samples must be 17..256", v); }
+        else if (!strcmp(a, "--scenes")) snprintf(opt_scenes, sizeof opt_scenes, "%s", v);
+        else die("unknown option", a);
+        i++;
+    }
+    if (!strcmp(argv[1], "run")) return cmd_run();
+    if (!strcmp(argv[1], "report")) return cmd_report();
+    die("unknown command", argv[1]);
+    return 2;
+}
