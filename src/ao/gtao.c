@@ -58,14 +58,11 @@ static tg_real horizon_cos(const tg_gtao_params *p, const tg_ao_io *io, const gt
         d2 = tg_v3_dot(h, h);
         if (d2 >= r2 || d2 <= 0) continue;
         if (tg_v3_dot(h, px->nv) <= above) continue;      /* under the tangent plane: clamped anyway */
-        /* compare signed squared cosines (h.v)|h.v| / |h|^2: monotone in the
-         * cosine, and no square root per sample */
-        {
-            tg_real hv = tg_v3_dot(h, px->vd);
-            best = tg_max(best, tg_div(tg_mul(hv, tg_abs(hv)), d2));
-        }
+        /* (h.v) / |h| by one rsqrt: a signed squared cosine would save it but
+         * loses Q16.16 bits for the nearest samples (|h|^2 ~ 1e-4) */
+        best = tg_max(best, tg_mul(tg_v3_dot(h, px->vd), tg_rsqrt(d2)));
     }
-    return best < 0 ? tg_neg(tg_sqrt(tg_neg(best))) : tg_sqrt(best);
+    return best;
 }
 
 /* a(h): the inner integral of eq. 11.18 from 0 to h (either sign of h). */
