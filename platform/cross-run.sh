@@ -13,7 +13,8 @@ TARGETS=${CROSS_TARGETS:-"i686 s390x powerpc m3 m4f m0"}
 SCENES=${CROSS_SCENES:-"cornell spheres columns"}
 SIZE=${CROSS_SIZE:-64x48}
 FRAMES=${CROSS_FRAMES:-2}
-AOVS=${CROSS_AOVS:-color,depth,normal,ao}; AOVS=${AOVS//,/+} # QEMU options take commas
+AOVS=${CROSS_AOVS:-color,depth,normal,albedo,ao,bent,cone,near,far,direct,irradiance,motion}
+AOVS=${AOVS//,/+} # QEMU options take commas
 M0_RUNS=${CROSS_M0_RUNS:-"4x3:color 6x4:ao+depth+normal"} # SIZE:AOVS, one frame each
 M0_SCENES=${CROSS_M0_SCENES:-cornell}
 M0_ARENA=${CROSS_M0_ARENA:-10496}
@@ -22,6 +23,7 @@ HOST_CC=${HOST_CC:-cc}
 SKIP=${SKIP:-}
 QEMU_TIMEOUT=${CROSS_TIMEOUT:-300}
 CLI_SCENES=${CROSS_CLI_SCENES:-cornell}
+CLI_AOVS=${CROSS_CLI_AOVS:-"depth normal ao"} # besides colour
 SHADOW=${CROSS_SHADOW:-64}
 M0_SHADOW=${CROSS_M0_SHADOW:-8}
 CROSS_TESTS=${CROSS_TESTS:-test_fbdev} # test programs run on the Linux targets ("all": every one)
@@ -142,7 +144,7 @@ run_cli() {
         exe="$OUT/$t/tinygi"; [ $num = fixed ] && exe="$OUT/$t/tinygi-fixed"
         for s in $CLI_SCENES; do
             $runner "$exe" render "builtin:$s" --size "$SIZE" --frames "$FRAMES" --shadow-size "$SHADOW" --quiet -o "$dir/$s-$num.ppm" >>"$dir.log" 2>&1 || rc=1
-            for a in ${AOVS//+/ }; do
+            for a in color $CLI_AOVS; do
                 $runner "$exe" render "builtin:$s" --size "$SIZE" --frames "$FRAMES" --shadow-size "$SHADOW" --quiet --aov "$a" \
                     -o "$dir/$s-$num.$a.pfm" >>"$dir.log" 2>&1 || rc=1
             done
