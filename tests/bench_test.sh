@@ -1,0 +1,116 @@
+#!/usr/bin/env bash
+# tests/bench_test.sh - the accuracy-vs-time bench (tools/bench.c) end to end
+# at a tiny size (32x24, one run, 17 reference samples, two scenes), float
+# then fixed then the report:
+#  - rows-float.csv / rows-fixed.csv / bench.csv: the header, one row per
+#    configuration and scene in each number type, every number finite and in
+#    range (AO errors in [0, 1], bent angle in [0, 180], near error >= 0 or
+#    empty where the technique has no near field, ms > 0);
+#  - the error columns are deterministic (a second float run gives the same);
+#  - bench.md: the summary, frontier, every paper claim with a verdict, the
+#    HBIL pass breakdown, the interreflection row, and Markdown tables whose
+#    rows all have their header's column count;
+#  - bench.svg: well-formed XML (python3 or xmllint when present, else a tag
+#    balance check), one polyline per technique, no NaN coordinates;
+#  - contact.ppm: P6 header and exact byte size of a 3x3 sheet; contact.png:
+#    PNG signature and the same size in IHDR;
+#  - bad usage exits 2.
+# Timings are printed by the bench, never asserted here.
+set -u
+cd "$(dirname "$0")/.."
+. tests/shcheck.sh
+BUILD=${BUILD:-build}
+T=$(mktemp -d "${TMPDIR:-/tmp}/tg_bench_XXXXXX")
+trap 'rm -rf "$T"' EXIT
+W=32; H=24
+ARGS="--size ${W}x${H} --runs 1 --ref-samples 17 --scenes groove,columns"
+
+if ! make -s BUILD="$BUILD" bench-build >"$T/make.log" 2>&1; then
+    fail "bench builds" "$(tail -n 5 "$T/make.log")"; summary; exit 1
+fi
+ok "bench builds"
+F="$BUILD/bench-float"; X="$BUILD/bench-fixed"
+
+expect "float run" "$F" run $ARGS --out "$T/o" >"$T/float.log" 2>&1
+expect "fixed run" "$X" run $ARGS --out "$T/o" >"$T/fixed.log" 2>&1
+expect "report" "$F" report --size ${W}x${H} --out "$T/o" >"$T/report.log" 2>&1
+
+header="scene,technique,slices,samples,radius,interleave,number,median_ms,ao_rmse,ao_max,bent_deg,near_rel,default,curve"
+for f in rows-float.csv rows-fixed.csv bench.csv; do
+    expect "$f header" test "$(head -n 1 "$T/o/$f" 2>/dev/null)" = "$header"
+done
+nf=$(($(wc -l <"$T/o/rows-float.csv") - 1)); nx=$(($(wc -l <"$T/o/rows-fixed.csv") - 1))
+nb=$(($(wc -l <"$T/o/bench.csv") - 1))
+expect "float rows: 2 scenes x the sweep ($nf)" test "$nf" -gt 40 -a $((nf % 2)) -eq 0
+expect "fixed rows match float rows ($nx)" test "$nx" -eq "$nf"
+expect "bench.csv has both ($nb)" test "$nb" -eq $((nf + nx))
+
+# every row: 14 fields, finite numbers in range
+bad=$(awk -F, 'NR > 1 {
+    num = "^-?[0-9]+(\\.[0-9]+)?$"
+    if (NF != 14) { print "fields " NR; next }
+    for (i = 8; i <= 11; i++) if ($i !~ num) print "not a finite number: line " NR " field " i " = " $i
+    if ($12 != "" && $12 !~ num) print "near not finite: line " NR
+    if ($8 + 0 <= 0) print "ms <= 0: line " NR
+    if ($9 < 0 || $9 > 1 || $10 < 0 || $10 > 1) print "AO error out of [0,1]: line " NR
+    if ($11 < 0 || $11 > 180) print "bent angle out of [0,180]: line " NR
+    if ($12 != "" && $12 < 0) print "near error < 0: line " NR
+    if ($7 != "float" && $7 != "fixed") print "number type: line " NR
+}' "$T/o/bench.csv")
+expect "every row finite and in range${bad:+: $bad}" test -z "$bad"
+near_techs=$(awk -F, 'NR > 1 && $12 != "" {print $2}' "$T/o/bench.csv" | sort -u | tr '\n' ' ')
+expect "near error for hbil, ssdo, gtao+ir only ($near_techs)" \
+    test "$near_techs" = "gtao+ir hbil hbil-full ssdo "
+for t in hbil hbil-full gtao hbao ssao vo ssdo bentcone ssdo-do gtao+ir; do
+    expect "technique $t in the table" grep -q "^[a-z]*,$t," "$T/o/bench.csv"
+done
+
+# errors are deterministic: a second float run (fresh reference cache) agrees
+"$F" run $ARGS --out "$T/o2" >/dev/null 2>&1
+cut -d, -f1-7,9-14 "$T/o/rows-float.csv" >"$T/a"; cut -d, -f1-7,9-14 "$T/o2/rows-float.csv" >"$T/b"
+expect "error columns deterministic" cmp -s "$T/a" "$T/b"
+
+# bench.md
+md="$T/o/bench.md"
+for s in "## Default setting" "## Frontier" "Loos & Sloan table 1" "Klehm fig. 8" "Ritschel table 1" \
+         "HBIL pass breakdown" "Interreflection (RTR eq. 11.12-11.13)" "## Every row"; do
+    expect "bench.md: $s" grep -qF "$s" "$md"
+done
+verdicts=$(grep -c "verdict: \*\*\|Verdict.*: \*\*\|Verdict (" "$md")
+expect "bench.md: a verdict per claim ($verdicts)" test "$verdicts" -ge 8
+badtab=$(awk -F'|' '/^\|/ { if (!inhdr) { cols = NF; inhdr = 1 } else if (NF != cols) print NR } !/^\|/ { inhdr = 0 }' "$md")
+expect "bench.md tables well-formed${badtab:+ (bad lines $badtab)}" test -z "$badtab"
+expect "bench.md: no nan" sh -c "! grep -qiw 'nan\|inf' '$md'"
+
+# bench.svg
+svg="$T/o/bench.svg"
+if command -v python3 >/dev/null 2>&1; then
+    expect "bench.svg parses (python3)" python3 -c "import sys, xml.dom.minidom; xml.dom.minidom.parse(sys.argv[1])" "$svg"
+elif command -v xmllint >/dev/null 2>&1; then
+    expect "bench.svg parses (xmllint)" xmllint --noout "$svg"
+else
+    opens=$(grep -o '<[a-z][a-z]*' "$svg" | wc -l); closes=$(grep -o '</[a-z]*>\|/>' "$svg" | wc -l)
+    expect "bench.svg tags balance ($opens/$closes)" test "$opens" -eq "$closes"
+fi
+expect "bench.svg: <svg ... </svg>" sh -c "head -n 1 '$svg' | grep -q '^<svg' && tail -n 1 '$svg' | grep -q '^</svg>'"
+lines=$(grep -c '<polyline fill="none" stroke="#[0-9a-f]*" stroke-width="2"' "$svg")
+expect "bench.svg: a polyline per technique and number type ($lines)" test "$lines" -eq 16
+expect "bench.svg: no NaN/inf coordinates" sh -c "! grep -qi 'nan\|inf' '$svg'"
+
+# contact sheet: 3x3 tiles with 2-pixel borders
+cw=$((3 * W + 8)); ch=$((3 * H + 8))
+ppm="$T/o/contact.ppm"
+expect "contact.ppm header" test "$(head -c 20 "$ppm" | tr '\n' ' ' | cut -d' ' -f1-4)" = "P6 $cw $ch 255"
+hdr=$(printf 'P6\n%d %d\n255\n' $cw $ch | wc -c)
+expect "contact.ppm size" test "$(wc -c <"$ppm")" -eq $((hdr + cw * ch * 3))
+png="$T/o/contact.png"
+expect "contact.png signature" test "$(head -c 8 "$png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a"
+expect "contact.png size in IHDR" test "$(od -An -tu1 -j16 -N8 "$png" | tr -s ' ' | sed 's/^ //')" = \
+    "0 0 $((cw >> 8)) $((cw & 255)) 0 0 $((ch >> 8)) $((ch & 255))"
+
+# usage
+"$F" >/dev/null 2>&1; expect "no command: exit 2" test $? -eq 2
+"$F" run --size 2x2 >/dev/null 2>&1; expect "bad size: exit 2" test $? -eq 2
+"$F" frobnicate --out "$T/x" >/dev/null 2>&1; expect "unknown command: exit 2" test $? -eq 2
+"$F" report --out "$T/empty" >/dev/null 2>&1; expect "report without rows: exit 2" test $? -eq 2
+summary
