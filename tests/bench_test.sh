@@ -35,7 +35,7 @@ expect "float run" "$F" run $ARGS --out "$T/o" >"$T/float.log" 2>&1
 expect "fixed run" "$X" run $ARGS --out "$T/o" >"$T/fixed.log" 2>&1
 expect "report" "$F" report --size ${W}x${H} --out "$T/o" >"$T/report.log" 2>&1
 
-header="scene,technique,slices,samples,radius,interleave,number,median_ms,ao_rmse,ao_max,bent_deg,near_rel,default,curve"
+header="scene,technique,slices,samples,radius,interleave,number,median_ms,cpu_ms,ao_rmse,ao_max,bent_deg,near_rel,default,curve"
 for f in rows-float.csv rows-fixed.csv bench.csv; do
     expect "$f header" test "$(head -n 1 "$T/o/$f" 2>/dev/null)" = "$header"
 done
@@ -48,17 +48,18 @@ expect "bench.csv has both ($nb)" test "$nb" -eq $((nf + nx))
 # every row: 14 fields, finite numbers in range
 bad=$(awk -F, 'NR > 1 {
     num = "^-?[0-9]+(\\.[0-9]+)?$"
-    if (NF != 14) { print "fields " NR; next }
-    for (i = 8; i <= 11; i++) if ($i !~ num) print "not a finite number: line " NR " field " i " = " $i
-    if ($12 != "" && $12 !~ num) print "near not finite: line " NR
+    if (NF != 15) { print "fields " NR; next }
+    for (i = 8; i <= 12; i++) if ($i !~ num) print "not a finite number: line " NR " field " i " = " $i
+    if ($13 != "" && $13 !~ num) print "near not finite: line " NR
     if ($8 + 0 <= 0) print "ms <= 0: line " NR
-    if ($9 < 0 || $9 > 1 || $10 < 0 || $10 > 1) print "AO error out of [0,1]: line " NR
-    if ($11 < 0 || $11 > 180) print "bent angle out of [0,180]: line " NR
-    if ($12 != "" && $12 < 0) print "near error < 0: line " NR
+    if ($9 + 0 < 0) print "cpu ms < 0: line " NR
+    if ($10 < 0 || $10 > 1 || $11 < 0 || $11 > 1) print "AO error out of [0,1]: line " NR
+    if ($12 < 0 || $12 > 180) print "bent angle out of [0,180]: line " NR
+    if ($13 != "" && $13 < 0) print "near error < 0: line " NR
     if ($7 != "float" && $7 != "fixed") print "number type: line " NR
 }' "$T/o/bench.csv")
 expect "every row finite and in range${bad:+: $bad}" test -z "$bad"
-near_techs=$(awk -F, 'NR > 1 && $12 != "" {print $2}' "$T/o/bench.csv" | sort -u | tr '\n' ' ')
+near_techs=$(awk -F, 'NR > 1 && $13 != "" {print $2}' "$T/o/bench.csv" | sort -u | tr '\n' ' ')
 expect "near error for hbil, ssdo, gtao+ir only ($near_techs)" \
     test "$near_techs" = "gtao+ir hbil hbil-full ssdo "
 for t in hbil hbil-full gtao hbao ssao vo ssdo bentcone ssdo-do gtao+ir; do
@@ -67,7 +68,7 @@ done
 
 # errors are deterministic: a second float run (fresh reference cache) agrees
 "$F" run $ARGS --out "$T/o2" >/dev/null 2>&1
-cut -d, -f1-7,9-14 "$T/o/rows-float.csv" >"$T/a"; cut -d, -f1-7,9-14 "$T/o2/rows-float.csv" >"$T/b"
+cut -d, -f1-7,10-15 "$T/o/rows-float.csv" >"$T/a"; cut -d, -f1-7,10-15 "$T/o2/rows-float.csv" >"$T/b"
 expect "error columns deterministic" cmp -s "$T/a" "$T/b"
 
 # bench.md
