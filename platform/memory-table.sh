@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# platform/memory-table.sh - the frame memory table of PORTING.md, from the
+# platform/memory-table.sh - the frame memory table of the README's Porting section, from the
 # plans the core makes (`tinygi render ... --explain`), so it can be
 # regenerated whenever the core changes:
 #   make && bash platform/memory-table.sh [build/tinygi] [SCENE]
