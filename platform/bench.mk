@@ -20,8 +20,11 @@ $(BUILD)/bench-fixed: tools/bench.c $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a
 
 bench-build: $(BUILD)/bench-float $(BUILD)/bench-fixed
 
-# float first: it renders (and caches) the reference the fixed run compares against
+# float first: it renders the reference once per scene and radius and caches
+# it in BENCH_DIR/ref for every row and for the fixed run; the cache is
+# cleared first so a changed renderer never meets a stale reference
 bench: bench-build
+	rm -rf $(BENCH_DIR)/ref
 	$(BUILD)/bench-float run --size $(BENCH_SIZE) --runs $(BENCH_RUNS) --out $(BENCH_DIR) $(BENCH_ARGS)
 	$(BUILD)/bench-fixed run --size $(BENCH_SIZE) --runs $(BENCH_RUNS) --out $(BENCH_DIR) $(BENCH_ARGS)
 	$(BUILD)/bench-float report --size $(BENCH_SIZE) --out $(BENCH_DIR)

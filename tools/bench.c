@@ -922,7 +922,7 @@ static const char *setting(const point *p, char *buf, size_t n)
 {
     const char *t = p->tech;
     if (!strcmp(t, "hbil") || !strcmp(t, "hbil-full") || !strcmp(t, "gtao") || !strcmp(t, "hbao"))
-        snprintf(buf, n, "%d slices x %d", p->slices, p->samples);
+        snprintf(buf, n, "%d slice%s x %d", p->slices, p->slices == 1 ? "" : "s", p->samples);
     else snprintf(buf, n, "%d samples", p->samples);
     if (fabs(p->rscale - 1) > 1e-3) {
         size_t l = strlen(buf);
@@ -963,8 +963,8 @@ static const char *tech_colors[] = { "#d62728", "#ff7f0e", "#1f77b4", "#17becf",
 static void write_svg(void)
 {
     const int W = 860, H = 540, L = 70, R = 150, T = 50, B = 60;
-    double xmin = 1e30, xmax = 0, ymax = 0, lx0, lx1;
-    int j, k, e;
+    double xmin = 1e30, xmax = 0, ymax = 0, lx0, lx1, ystep = 1;
+    int j, k, e, yticks = 5;
     FILE *f = open_out("bench.svg", "w");
     for (j = 0; j < npts; j++) {
         if (!pts[j].on_curve) continue;
@@ -976,7 +976,12 @@ static void write_svg(void)
     if (xmin >= xmax) xmin = xmax / 10;
     lx0 = floor(log10(xmin) * 4) / 4; lx1 = ceil(log10(xmax) * 4) / 4;
     if (lx1 <= lx0) lx1 = lx0 + 1;
-    ymax = ymax > 0 ? ymax * 1.1 : 1;
+    {   /* y axis: about 6 steps of a round size (1, 2, 2.5 or 5 x 10^k) */
+        double top = ymax > 0 ? ymax * 1.05 : 1, raw = top / 6, mag = pow(10, floor(log10(raw)));
+        ystep = raw <= mag ? mag : raw <= 2 * mag ? 2 * mag : raw <= 2.5 * mag ? 2.5 * mag : raw <= 5 * mag ? 5 * mag : 10 * mag;
+        yticks = (int)ceil(top / ystep - 1e-9);
+        ymax = yticks * ystep;
+    }
 #define PX(ms) (L + (log10(ms) - lx0) / (lx1 - lx0) * (W - L - R))
 #define PY(v) (H - B - (v) / ymax * (H - T - B))
     fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" viewBox=\"0 0 %d %d\" font-family=\"sans-serif\" font-size=\"12\">\n", W, H, W, H);
@@ -995,10 +1000,10 @@ static void write_svg(void)
             fprintf(f, "<text x=\"%.1f\" y=\"%d\" text-anchor=\"middle\">%g</text>\n", x, H - B + 16, v);
         }
     }
-    for (k = 0; k <= 5; k++) {
-        double v = ymax * k / 5, y = PY(v);
+    for (k = 0; k <= yticks; k++) {
+        double v = ystep * k, y = PY(v);
         fprintf(f, "<line x1=\"%d\" y1=\"%.1f\" x2=\"%d\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", L, y, W - R, y);
-        fprintf(f, "<text x=\"%d\" y=\"%.1f\" text-anchor=\"end\">%.3f</text>\n", L - 6, y + 4, v);
+        fprintf(f, "<text x=\"%d\" y=\"%.1f\" text-anchor=\"end\">%g</text>\n", L - 6, y + 4, v);
     }
     fprintf(f, "<rect x=\"%d\" y=\"%d\" width=\"%d\" height=\"%d\" fill=\"none\" stroke=\"black\"/>\n", L, T, W - L - R, H - T - B);
     fprintf(f, "<text x=\"%d\" y=\"%d\" text-anchor=\"middle\">median CPU ms per frame (log scale)</text>\n", (L + W - R) / 2, H - 18);
@@ -1038,16 +1043,21 @@ static void write_svg(void)
                 if (num) fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%d\" fill=\"none\" stroke=\"%s\"/>\n",
                                  PX(cp[i]->ms), PY(cp[i]->ao_rmse), cp[i]->is_default ? 5 : 3, tech_colors[k]);
             }
-            if (!num) {
-                const point *last = cp[nc - 1];
-                char buf[64];
-                fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" fill=\"%s\" font-size=\"11\">%s %s</text>\n", PX(last->ms) + 6,
-                        PY(last->ao_rmse) - 4, tech_colors[k], tech_names[k], setting(last, buf, sizeof buf));
-            }
         }
         fprintf(f, "<line x1=\"%d\" y1=\"%d\" x2=\"%d\" y2=\"%d\" stroke=\"%s\" stroke-width=\"3\"/>\n", W - R + 14, T + 10 + 18 * k,
                 W - R + 36, T + 10 + 18 * k, tech_colors[k]);
         fprintf(f, "<text x=\"%d\" y=\"%d\">%s</text>\n", W - R + 42, T + 14 + 18 * k, tech_names[k]);
+    }
+    /* labels last, over every line: each float curve's name at its slowest setting */
+    for (k = 0; k < NTECH; k++) {
+        const point *last = NULL;
+        char buf[64];
+        for (j = 0; j < npts; j++)
+            if (pts[j].on_curve && !strcmp(pts[j].tech, tech_names[k]) && !strcmp(pts[j].number, "float") &&
+                (!last || pts[j].ms > last->ms)) last = &pts[j];
+        if (last)
+            fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" fill=\"%s\" font-size=\"11\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\">%s %s</text>\n",
+                    PX(last->ms) + 6, PY(last->ao_rmse) - 5, tech_colors[k], tech_names[k], setting(last, buf, sizeof buf));
     }
     fprintf(f, "<text x=\"%d\" y=\"%d\" fill=\"#444\" font-size=\"11\">big dot: default</text>\n", W - R + 14, T + 14 + 18 * NTECH + 6);
     fprintf(f, "<text x=\"%d\" y=\"%d\" fill=\"#444\" font-size=\"11\">(2 slices x 16)</text>\n", W - R + 14, T + 14 + 18 * NTECH + 20);
