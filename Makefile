@@ -84,9 +84,9 @@ $(BUILD)/bench_raster: tools/bench_raster.c $(HOST_OBJ_float) $(BUILD)/libtinygi
 $(BUILD)/bench_raster-fixed: tools/bench_raster.c $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a
 	$(CC) $(CFLAGS_ALL) -DTG_FIXED=1 -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform $< $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a -o $@ $(LDLIBS_HOST)
 $(BUILD)/bench_hbil: tools/bench_hbil.c $(HOST_OBJ_float) $(BUILD)/libtinygi.a
-	$(CC) $(CFLAGS_ALL) -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform $< $(HOST_OBJ_float) $(BUILD)/libtinygi.a -o $@ $(LDLIBS_HOST)
+	$(CC) $(CFLAGS_ALL) -Wno-double-promotion -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform $< $(HOST_OBJ_float) $(BUILD)/libtinygi.a -o $@ $(LDLIBS_HOST)
 $(BUILD)/bench_hbil-fixed: tools/bench_hbil.c $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a
-	$(CC) $(CFLAGS_ALL) -DTG_FIXED=1 -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform $< $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a -o $@ $(LDLIBS_HOST)
+	$(CC) $(CFLAGS_ALL) -Wno-double-promotion -DTG_FIXED=1 -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform $< $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a -o $@ $(LDLIBS_HOST)
 # 50k-triangle sphere into a full G-buffer at 320x240 and 1280x720 (Mtri/s)
 bench-raster: $(BUILD)/bench_raster $(BUILD)/bench_raster-fixed
 	$(BUILD)/bench_raster

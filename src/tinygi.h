@@ -128,7 +128,9 @@ typedef struct tg_request {
     int samples;           /* <= 0: the scene's or the default (16) */
     tg_real radius;        /* < 0: the scene's or the default (1.0); 0 is allowed */
     int bounces;           /* < 0: the scene's or the default (1) */
-    int interleave;        /* 1: 4x4 interleaved quarter-res kernel (default); 0: full-res */
+    int interleave;        /* 1: 4x4 interleaved kernel (default); 0: one full-res image */
+    int gi_scale;          /* interleaved kernel on 1 pixel in gi_scale^2: 2 = quarter
+                              resolution (default), 1 = every pixel */
     int temporal;          /* 1: temporal accumulation of the GI result (default 1) */
     int far_mode;          /* 0: SH9 cosine lobe in the bent cone (HBIL sec. 2.2.4, default);
                               1: E0(bent) F0(AO) (HBIL sec. 2.2.3) */

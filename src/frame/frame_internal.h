@@ -56,7 +56,13 @@ struct tg_frame {
     tg_rgb bent;
     tg_rgb source;                /* radiance the near field gathers from */
 
-    /* HBIL: 4x4 interleaved quarter-resolution sub-images */
+    /* HBIL at quarter resolution: the G-buffer point-sampled to half width
+     * and height, and the kernel's results there before upsampling */
+    tg_real *half_depth, *half_f0, *half_ao;
+    tg_rgb half_normal, half_source, half_bent, half_near;
+    uint8_t *half_sky;
+
+    /* HBIL: 4x4 interleaved sub-images */
     tg_real *q_depth, *q_f0;
     tg_rgb q_normal, q_source, q_bent, q_near;
     tg_real *q_ao, *q_cone;

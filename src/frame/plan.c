@@ -126,6 +126,7 @@ static void resolve_request(tg_request *r, const tg_scene *s)
     if (r->frames < 1) r->frames = 1;
     if (r->aovs == 0) r->aovs = AOV(TG_AOV_COLOR);
     if (r->shadow_map_size <= 0) r->shadow_map_size = 512;
+    if (r->gi_scale != 1) r->gi_scale = 2;
 }
 
 tg_status tg_plan_make(tg_plan *plan, const tg_scene *scene, const tg_request *req, tg_error *err)
@@ -300,19 +301,36 @@ static void layout_gi(layout *l, tg_frame *f, size_t n)
     if (f->needs & TG_NEED_CONE) f->cone = take_real(l, "cone aperture", n);
     if (e & TG_EFFECT_NEAR) take_rgb(l, "near-field irradiance E_near", n, &f->near);
     if (interleaved) {
-        f->q_depth = take_real(l, "4x4 split: depth", n);
-        take_rgb(l, "4x4 split: normal", n, &f->q_normal);
-        f->q_sky = (uint8_t *)take(l, "4x4 split: sky", n, 1);
-        f->q_ao = take_real(l, "4x4 split: kernel output", n);
-        take_rgb(l, "4x4 split: kernel output", n, &f->q_bent);
-        if (e & TG_EFFECT_NEAR) {
-            f->q_f0 = take_real(l, "4x4 split: F0", n);
-            take_rgb(l, "4x4 split: source radiance", n, &f->q_source);
-            take_rgb(l, "4x4 split: kernel output", n, &f->q_near);
+        size_t nk = n;   /* pixels the kernel sees */
+        if (p->request.gi_scale == 2) {
+            int hw = (p->request.width + 1) / 2, hh = (p->request.height + 1) / 2;
+            nk = (size_t)hw * (size_t)hh;
+            f->half_depth = take_real(l, "quarter-res G-buffer (depth, normal, sky)", nk);
+            take_rgb(l, "quarter-res G-buffer (depth, normal, sky)", nk, &f->half_normal);
+            f->half_sky = (uint8_t *)take(l, "quarter-res G-buffer (depth, normal, sky)", nk, 1);
+            f->half_ao = take_real(l, "quarter-res kernel output", nk);
+            take_rgb(l, "quarter-res kernel output", nk, &f->half_bent);
+            if (e & TG_EFFECT_NEAR) {
+                f->half_f0 = take_real(l, "quarter-res F0 and source radiance", nk);
+                take_rgb(l, "quarter-res F0 and source radiance", nk, &f->half_source);
+                take_rgb(l, "quarter-res kernel output", nk, &f->half_near);
+            }
+            add_pass(p, "downsample to quarter resolution (point samples)");
         }
-        add_pass(p, "4x4 split (quarter-res depth, normal, radiance)");
+        f->q_depth = take_real(l, "4x4 split: depth", nk);
+        take_rgb(l, "4x4 split: normal", nk, &f->q_normal);
+        f->q_sky = (uint8_t *)take(l, "4x4 split: sky", nk, 1);
+        f->q_ao = take_real(l, "4x4 split: kernel output", nk);
+        take_rgb(l, "4x4 split: kernel output", nk, &f->q_bent);
+        if (e & TG_EFFECT_NEAR) {
+            f->q_f0 = take_real(l, "4x4 split: F0", nk);
+            take_rgb(l, "4x4 split: source radiance", nk, &f->q_source);
+            take_rgb(l, "4x4 split: kernel output", nk, &f->q_near);
+        }
+        add_pass(p, "4x4 split (depth, normal, radiance into 16 sub-images)");
         add_pass(p, "HBIL horizon kernel (AO, bent normal, near field), per sub-image");
         add_pass(p, "4x4 merge");
+        if (f->half_depth) add_pass(p, "joint bilateral upsample to full resolution");
     } else {
         add_pass(p, hbil ? "HBIL horizon kernel, full resolution" : tg_technique_name(p->request.technique));
     }

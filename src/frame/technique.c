@@ -15,6 +15,7 @@
 #include "technique.h"
 #include "../gi/hbil.h"
 #include "../gi/interleave.h"
+#include "../gi/resample.h"
 #include "../ao/ao.h"
 #include "../ao/reference.h"
 #include "../light/direct.h"
@@ -38,21 +39,100 @@ static void hbil_params(const tg_frame *f, tg_hbil_params *p)
     p->radius = f->plan.request.radius;
 }
 
-static void hbil_interleaved(tg_frame *f)
+/* The kernel's image: full resolution, or the quarter-res copy. */
+typedef struct kernel_image {
+    int w, h, scale;
+    const tg_real *depth, *nx, *ny, *nz, *f0, *src_r, *src_g, *src_b;
+    const uint8_t *sky;
+    tg_real *ao, *bent_x, *bent_y, *bent_z, *near_r, *near_g, *near_b;
+} kernel_image;
+
+static void downsample(const tg_frame *f, const tg_real *src, tg_real *dst)
+{
+    tg_downsample_rows(src, f->width, f->height, dst, 0, f->height);
+}
+
+/* Quarter resolution: point-sample the G-buffer (and the near-field
+ * source) to half width and height; the kernel writes half-res results. */
+static kernel_image quarter_image(tg_frame *f, int near)
 {
     const tg_gbuffer *g = &f->gb;
-    int w = f->width, h = f->height, i, j;
-    int near = (f->effects & TG_EFFECT_NEAR) != 0;
-    tg_interleave_split(g->depth, w, h, f->q_depth);
-    tg_interleave_split(g->nx, w, h, f->q_normal.r);
-    tg_interleave_split(g->ny, w, h, f->q_normal.g);
-    tg_interleave_split(g->nz, w, h, f->q_normal.b);
-    tg_interleave_split8(g->sky, w, h, f->q_sky);
+    kernel_image k;
+    tg_half_size(f->width, f->height, &k.w, &k.h);
+    k.scale = 2;
+    downsample(f, g->depth, f->half_depth);
+    downsample(f, g->nx, f->half_normal.r);
+    downsample(f, g->ny, f->half_normal.g);
+    downsample(f, g->nz, f->half_normal.b);
+    tg_downsample8_rows(g->sky, f->width, f->height, f->half_sky, 0, f->height);
+    k.depth = f->half_depth; k.nx = f->half_normal.r; k.ny = f->half_normal.g; k.nz = f->half_normal.b;
+    k.sky = f->half_sky;
+    k.ao = f->half_ao; k.bent_x = f->half_bent.r; k.bent_y = f->half_bent.g; k.bent_z = f->half_bent.b;
+    k.f0 = k.src_r = k.src_g = k.src_b = NULL;
+    k.near_r = k.near_g = k.near_b = NULL;
     if (near) {
-        tg_interleave_split(g->f0, w, h, f->q_f0);
-        tg_interleave_split(f->source.r, w, h, f->q_source.r);
-        tg_interleave_split(f->source.g, w, h, f->q_source.g);
-        tg_interleave_split(f->source.b, w, h, f->q_source.b);
+        downsample(f, g->f0, f->half_f0);
+        downsample(f, f->source.r, f->half_source.r);
+        downsample(f, f->source.g, f->half_source.g);
+        downsample(f, f->source.b, f->half_source.b);
+        k.f0 = f->half_f0;
+        k.src_r = f->half_source.r; k.src_g = f->half_source.g; k.src_b = f->half_source.b;
+        k.near_r = f->half_near.r; k.near_g = f->half_near.g; k.near_b = f->half_near.b;
+    }
+    return k;
+}
+
+static kernel_image full_image(tg_frame *f, int near)
+{
+    const tg_gbuffer *g = &f->gb;
+    kernel_image k;
+    k.w = f->width; k.h = f->height; k.scale = 1;
+    k.depth = g->depth; k.nx = g->nx; k.ny = g->ny; k.nz = g->nz; k.sky = g->sky;
+    k.ao = f->ao; k.bent_x = f->bent.r; k.bent_y = f->bent.g; k.bent_z = f->bent.b;
+    k.f0 = near ? g->f0 : NULL;
+    k.src_r = near ? f->source.r : NULL; k.src_g = near ? f->source.g : NULL; k.src_b = near ? f->source.b : NULL;
+    k.near_r = near ? f->near.r : NULL; k.near_g = near ? f->near.g : NULL; k.near_b = near ? f->near.b : NULL;
+    return k;
+}
+
+/* Joint bilateral upsample of the quarter-res results (resample.c). */
+static void upsample(tg_frame *f, int near)
+{
+    const tg_gbuffer *g = &f->gb;
+    tg_upsample_io io;
+    memset(&io, 0, sizeof io);
+    io.width = f->width; io.height = f->height;
+    io.depth = g->depth; io.nx = g->nx; io.ny = g->ny; io.nz = g->nz; io.sky = g->sky;
+    io.half_depth = f->half_depth;
+    io.half_nx = f->half_normal.r; io.half_ny = f->half_normal.g; io.half_nz = f->half_normal.b;
+    io.half_sky = f->half_sky;
+    io.half_ao = f->half_ao;
+    io.half_bent_x = f->half_bent.r; io.half_bent_y = f->half_bent.g; io.half_bent_z = f->half_bent.b;
+    io.ao = f->ao;
+    io.bent_x = f->bent.r; io.bent_y = f->bent.g; io.bent_z = f->bent.b;
+    if (near) {
+        io.half_near_r = f->half_near.r; io.half_near_g = f->half_near.g; io.half_near_b = f->half_near.b;
+        io.near_r = f->near.r; io.near_g = f->near.g; io.near_b = f->near.b;
+    }
+    tg_upsample_rows(&io, 0, f->height);
+}
+
+/* HBIL sec. 3.3: split into 16 sub-images, the kernel on each with its own
+ * slice angles (marching in sub-image pixels), merge back. */
+static void hbil_interleaved(tg_frame *f)
+{
+    int near = (f->effects & TG_EFFECT_NEAR) != 0, i, j;
+    kernel_image k = f->half_depth ? quarter_image(f, near) : full_image(f, near);
+    tg_interleave_split(k.depth, k.w, k.h, f->q_depth);
+    tg_interleave_split(k.nx, k.w, k.h, f->q_normal.r);
+    tg_interleave_split(k.ny, k.w, k.h, f->q_normal.g);
+    tg_interleave_split(k.nz, k.w, k.h, f->q_normal.b);
+    tg_interleave_split8(k.sky, k.w, k.h, f->q_sky);
+    if (near) {
+        tg_interleave_split(k.f0, k.w, k.h, f->q_f0);
+        tg_interleave_split(k.src_r, k.w, k.h, f->q_source.r);
+        tg_interleave_split(k.src_g, k.w, k.h, f->q_source.g);
+        tg_interleave_split(k.src_b, k.w, k.h, f->q_source.b);
     }
     for (j = 0; j < 4; j++) {
         for (i = 0; i < 4; i++) {
@@ -60,12 +140,12 @@ static void hbil_interleaved(tg_frame *f)
             tg_hbil_io io;
             int sw, sh;
             size_t o;
-            tg_interleave_sub_rect(w, h, i, j, &sw, &sh, &o);
+            tg_interleave_sub_rect(k.w, k.h, i, j, &sw, &sh, &o);
             if (sw == 0 || sh == 0) continue;
             hbil_params(f, &p);
-            p.step = 4;
-            p.offset_x = i;
-            p.offset_y = j;
+            p.step = 4 * k.scale;
+            p.offset_x = i * k.scale;
+            p.offset_y = j * k.scale;
             p.slice_phi0 = tg_hbil_slice_phi0(i, j, p.slices);
             memset(&io, 0, sizeof io);
             io.width = sw;
@@ -83,14 +163,14 @@ static void hbil_interleaved(tg_frame *f)
             tg_hbil_rows(&p, &io, 0, sh);
         }
     }
-    tg_interleave_merge(f->q_ao, w, h, f->ao);
-    tg_interleave_merge(f->q_bent.r, w, h, f->bent.r);
-    tg_interleave_merge(f->q_bent.g, w, h, f->bent.g);
-    tg_interleave_merge(f->q_bent.b, w, h, f->bent.b);
+    tg_interleave_merge(f->q_ao, k.w, k.h, k.ao);
+    tg_interleave_merge(f->q_bent.r, k.w, k.h, k.bent_x);
+    tg_interleave_merge(f->q_bent.g, k.w, k.h, k.bent_y);
+    tg_interleave_merge(f->q_bent.b, k.w, k.h, k.bent_z);
     if (near) {
-        tg_interleave_merge(f->q_near.r, w, h, f->near.r);
-        tg_interleave_merge(f->q_near.g, w, h, f->near.g);
-        tg_interleave_merge(f->q_near.b, w, h, f->near.b);
+        tg_interleave_merge(f->q_near.r, k.w, k.h, k.near_r);
+        tg_interleave_merge(f->q_near.g, k.w, k.h, k.near_g);
+        tg_interleave_merge(f->q_near.b, k.w, k.h, k.near_b);
     }
 }
 
@@ -176,14 +256,29 @@ static void reference(tg_frame *f)
 }
 
 /* HBIL sec. 3.3-3.4: the depth/normal-aware filter over the 4x4
- * neighbourhood, then (across frames) temporal accumulation. */
+ * neighbourhood (at the kernel's resolution, where the 4x4 pattern lives),
+ * then the upsample from quarter resolution, then (across frames) temporal
+ * accumulation at full resolution. */
 static void hbil_filter(tg_frame *f, int index)
 {
     tg_denoise_params p;
     tg_denoise_io io;
     const tg_gbuffer *g = &f->gb;
+    int near = (f->effects & TG_EFFECT_NEAR) != 0;
     tg_denoise_defaults(&p);
     memset(&io, 0, sizeof io);
+    if (f->half_depth) {
+        tg_half_size(f->width, f->height, &io.width, &io.height);
+        io.depth = f->half_depth;
+        io.nx = f->half_normal.r; io.ny = f->half_normal.g; io.nz = f->half_normal.b;
+        io.sky = f->half_sky;
+        io.ao = f->half_ao;
+        io.bent_x = f->half_bent.r; io.bent_y = f->half_bent.g; io.bent_z = f->half_bent.b;
+        io.near_r = f->half_near.r; io.near_g = f->half_near.g; io.near_b = f->half_near.b;
+        tg_denoise_begin(&io, f->denoise_scratch);
+        tg_denoise_rows(&p, &io, f->denoise_scratch, 0, io.height);
+        upsample(f, near);
+    }
     io.width = f->width;
     io.height = f->height;
     io.depth = g->depth; io.nx = g->nx; io.ny = g->ny; io.nz = g->nz;
@@ -192,8 +287,10 @@ static void hbil_filter(tg_frame *f, int index)
     io.bent_x = f->bent.r; io.bent_y = f->bent.g; io.bent_z = f->bent.b;
     io.cone = f->cone;
     io.near_r = f->near.r; io.near_g = f->near.g; io.near_b = f->near.b;
-    tg_denoise_begin(&io, f->denoise_scratch);
-    tg_denoise_rows(&p, &io, f->denoise_scratch, 0, f->height);
+    if (!f->half_depth) {
+        tg_denoise_begin(&io, f->denoise_scratch);
+        tg_denoise_rows(&p, &io, f->denoise_scratch, 0, f->height);
+    }
     if (f->temporal_state)
         tg_temporal_rows(&p, &io, f->temporal_state, &f->prev_view, &f->view, index,
                          f->frames_rendered == 0, 0, f->height);
