@@ -218,31 +218,7 @@ tg_real tg_rsqrt(tg_real x)
 static float f_from_bits(uint32_t b) { float f; memcpy(&f, &b, sizeof f); return f; }
 static uint32_t f_bits(float f) { uint32_t b; memcpy(&b, &f, sizeof b); return b; }
 
-/* Bit-trick seed (within 3.5%) and three Newton steps (quadratic). */
-tg_real tg_rsqrt(tg_real x)
-{
-    float y, hx, scale = 1.0f;
-    if (!(x > 0.0f)) return TG_REAL_MAX;
-    if (x > TG_REAL_MAX) return 0.0f;
-    if (x < 1.17549435e-38f) { x *= 18446744073709551616.0f; scale = 4294967296.0f; }
-    y = f_from_bits(0x5f3759dfu - (f_bits(x) >> 1));
-    hx = 0.5f * x;
-    y = y * (1.5f - hx * y * y);
-    y = y * (1.5f - hx * y * y);
-    y = y * (1.5f - hx * y * y);
-    return y * scale;
-}
-
-/* sqrt = x * rsqrt(x), plus one Newton correction on the residual. */
-tg_real tg_sqrt(tg_real x)
-{
-    float r, s;
-    if (!(x > 0.0f)) return 0.0f;
-    if (x > TG_REAL_MAX) return x;
-    r = tg_rsqrt(x);
-    s = x * r;
-    return s + 0.5f * r * (x - s * s);
-}
+/* tg_rsqrt and tg_sqrt are static inline in real.h for the float build. */
 
 #endif
 

@@ -20,6 +20,7 @@
 
 #include <stdint.h>
 #include <stddef.h>
+#include <string.h>
 
 #ifndef TG_FIXED
 #define TG_FIXED 0
@@ -129,6 +130,37 @@ static inline tg_real tg_ldexp(tg_real a, int e)
 }
 static inline int tg_isfinite(tg_real a) { return a == a && a <= TG_REAL_MAX && a >= TG_REAL_MIN; }
 
+/* rsqrt and sqrt are inline in the float build: every normalisation in the
+ * hot loops calls them (error bounds in real.c's table). */
+static inline float tg_f_from_bits(uint32_t b) { float f; memcpy(&f, &b, sizeof f); return f; }
+static inline uint32_t tg_f_bits(float f) { uint32_t b; memcpy(&b, &f, sizeof b); return b; }
+
+/* Bit-trick seed (within 3.5%) and three Newton steps (quadratic); x <= 0 gives TG_REAL_MAX. */
+static inline tg_real tg_rsqrt(tg_real x)
+{
+    float y, hx, scale = 1.0f;
+    if (!(x > 0.0f)) return TG_REAL_MAX;
+    if (x > TG_REAL_MAX) return 0.0f;
+    if (x < 1.17549435e-38f) { x *= 18446744073709551616.0f; scale = 4294967296.0f; }
+    y = tg_f_from_bits(0x5f3759dfu - (tg_f_bits(x) >> 1));
+    hx = 0.5f * x;
+    y = y * (1.5f - hx * y * y);
+    y = y * (1.5f - hx * y * y);
+    y = y * (1.5f - hx * y * y);
+    return y * scale;
+}
+
+/* sqrt = x * rsqrt(x), plus one Newton correction on the residual; x <= 0 gives 0. */
+static inline tg_real tg_sqrt(tg_real x)
+{
+    float r, s;
+    if (!(x > 0.0f)) return 0.0f;
+    if (x > TG_REAL_MAX) return x;
+    r = tg_rsqrt(x);
+    s = x * r;
+    return s + 0.5f * r * (x - s * s);
+}
+
 #endif
 
 /* ---- shared helpers, identical for both types ---- */
@@ -142,8 +174,10 @@ static inline tg_real tg_lerp(tg_real a, tg_real b, tg_real t) { return tg_add(a
 static inline tg_real tg_sqr(tg_real a) { return tg_mul(a, a); }
 
 /* ---- the core's own transcendentals (real.c; error bounds documented there) ---- */
+#if TG_FIXED
 tg_real tg_sqrt(tg_real x);           /* x <= 0 gives 0 */
 tg_real tg_rsqrt(tg_real x);          /* x <= 0 gives TG_REAL_MAX */
+#endif
 tg_real tg_sin(tg_real x);            /* radians, any x */
 tg_real tg_cos(tg_real x);
 tg_real tg_acos(tg_real x);           /* x clamped to [-1, 1]; result in [0, pi] */
