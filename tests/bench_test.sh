@@ -12,8 +12,8 @@
 #    rows all have their header's column count;
 #  - bench.svg: well-formed XML (python3 or xmllint when present, else a tag
 #    balance check), one polyline per technique, no NaN coordinates;
-#  - contact.ppm: P6 header and exact byte size of a 3x3 sheet; contact.png:
-#    PNG signature and the same size in IHDR;
+#  - contact.ppm: P6 header and exact byte size of a 5x2 sheet; contact.png:
+#    PNG signature and the same size in IHDR, 8-bit greyscale;
 #  - bad usage exits 2.
 # Timings are printed by the bench, never asserted here.
 set -u
@@ -61,8 +61,8 @@ bad=$(awk -F, 'NR > 1 {
 expect "every row finite and in range${bad:+: $bad}" test -z "$bad"
 near_techs=$(awk -F, 'NR > 1 && $13 != "" {print $2}' "$T/o/bench.csv" | sort -u | tr '\n' ' ')
 expect "near error for hbil, ssdo, gtao+ir only ($near_techs)" \
-    test "$near_techs" = "gtao+ir hbil hbil-full ssdo "
-for t in hbil hbil-full gtao hbao ssao vo ssdo bentcone ssdo-do gtao+ir; do
+    test "$near_techs" = "gtao+ir hbil hbil-1x hbil-full ssdo "
+for t in hbil hbil-1x hbil-full gtao hbao ssao vo ssdo bentcone ssdo-do gtao+ir; do
     expect "technique $t in the table" grep -q "^[a-z]*,$t," "$T/o/bench.csv"
 done
 
@@ -95,19 +95,19 @@ else
 fi
 expect "bench.svg: <svg ... </svg>" sh -c "head -n 1 '$svg' | grep -q '^<svg' && tail -n 1 '$svg' | grep -q '^</svg>'"
 lines=$(grep -c '<polyline fill="none" stroke="#[0-9a-f]*" stroke-width="2"' "$svg")
-expect "bench.svg: a polyline per technique and number type ($lines)" test "$lines" -eq 16
+expect "bench.svg: a polyline per technique and number type ($lines)" test "$lines" -eq 18
 expect "bench.svg: no NaN/inf coordinates" sh -c "! grep -qi 'nan\|inf' '$svg'"
 
-# contact sheet: 3x3 tiles with 2-pixel borders
-cw=$((3 * W + 8)); ch=$((3 * H + 8))
+# contact sheet: 5x2 tiles (nine techniques and the reference) with 2-pixel borders
+cw=$((5 * W + 12)); ch=$((2 * H + 6))
 ppm="$T/o/contact.ppm"
 expect "contact.ppm header" test "$(head -c 20 "$ppm" | tr '\n' ' ' | cut -d' ' -f1-4)" = "P6 $cw $ch 255"
 hdr=$(printf 'P6\n%d %d\n255\n' $cw $ch | wc -c)
 expect "contact.ppm size" test "$(wc -c <"$ppm")" -eq $((hdr + cw * ch * 3))
 png="$T/o/contact.png"
 expect "contact.png signature" test "$(head -c 8 "$png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a"
-expect "contact.png size in IHDR" test "$(od -An -tu1 -j16 -N8 "$png" | tr -s ' ' | sed 's/^ //')" = \
-    "0 0 $((cw >> 8)) $((cw & 255)) 0 0 $((ch >> 8)) $((ch & 255))"
+expect "contact.png size in IHDR" test "$(od -An -tu1 -j16 -N10 "$png" | tr -s ' ' | sed 's/^ //')" = \
+    "0 0 $((cw >> 8)) $((cw & 255)) 0 0 $((ch >> 8)) $((ch & 255)) 8 0"
 
 # usage
 "$F" >/dev/null 2>&1; expect "no command: exit 2" test $? -eq 2
