@@ -65,10 +65,10 @@ $(BUILD)/tinygi-fixed: tools/tinygi.c $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed
 	$(CC) $(CFLAGS_ALL) -DTG_FIXED=1 -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform $< $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a -o $@ $(LDLIBS_HOST)
 
 # ---- tests: every tests/test_*.c, once per number type ----
-$(BUILD)/float/tests/%: tests/%.c tests/check.h $(HOST_OBJ_float) $(BUILD)/libtinygi.a
+$(BUILD)/float/tests/%: tests/%.c $(wildcard tests/*.h) $(HOST_OBJ_float) $(BUILD)/libtinygi.a
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform -Itests $< $(HOST_OBJ_float) $(BUILD)/libtinygi.a -o $@ $(LDLIBS_HOST)
-$(BUILD)/fixed/tests/%: tests/%.c tests/check.h $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a
+$(BUILD)/fixed/tests/%: tests/%.c $(wildcard tests/*.h) $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_ALL) -DTG_FIXED=1 -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform -Itests $< $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a -o $@ $(LDLIBS_HOST)
 
