@@ -41,99 +41,89 @@ static void hbil_params(const tg_frame *f, tg_hbil_params *p)
 
 /* The kernel's image: full resolution, or the quarter-res copy. */
 typedef struct kernel_image {
-    int w, h, scale;
+    int w, h, scale, near;
     const tg_real *depth, *nx, *ny, *nz, *f0, *src_r, *src_g, *src_b;
     const uint8_t *sky;
     tg_real *ao, *bent_x, *bent_y, *bent_z, *near_r, *near_g, *near_b;
 } kernel_image;
+
+/* Which buffers the interleaved kernel reads and writes: the quarter-res
+ * copies when the plan has them, the full-res G-buffer otherwise. */
+static kernel_image kernel_of(tg_frame *f)
+{
+    const tg_gbuffer *g = &f->gb;
+    kernel_image k;
+    int q = f->half_depth != NULL;
+    memset(&k, 0, sizeof k);
+    k.near = (f->effects & TG_EFFECT_NEAR) != 0;
+    k.scale = q ? 2 : 1;
+    if (q) tg_half_size(f->width, f->height, &k.w, &k.h);
+    else { k.w = f->width; k.h = f->height; }
+    k.depth = q ? f->half_depth : g->depth;
+    k.nx = q ? f->half_normal.r : g->nx;
+    k.ny = q ? f->half_normal.g : g->ny;
+    k.nz = q ? f->half_normal.b : g->nz;
+    k.sky = q ? f->half_sky : g->sky;
+    k.ao = q ? f->half_ao : f->ao;
+    k.bent_x = q ? f->half_bent.r : f->bent.r;
+    k.bent_y = q ? f->half_bent.g : f->bent.g;
+    k.bent_z = q ? f->half_bent.b : f->bent.b;
+    if (k.near) {
+        k.f0 = q ? f->half_f0 : g->f0;
+        k.src_r = q ? f->half_source.r : f->source.r;
+        k.src_g = q ? f->half_source.g : f->source.g;
+        k.src_b = q ? f->half_source.b : f->source.b;
+        k.near_r = q ? f->half_near.r : f->near.r;
+        k.near_g = q ? f->half_near.g : f->near.g;
+        k.near_b = q ? f->half_near.b : f->near.b;
+    }
+    return k;
+}
 
 static void downsample(const tg_frame *f, const tg_real *src, tg_real *dst)
 {
     tg_downsample_rows(src, f->width, f->height, dst, 0, f->height);
 }
 
-/* Quarter resolution: point-sample the G-buffer (and the near-field
- * source) to half width and height; the kernel writes half-res results. */
-static kernel_image quarter_image(tg_frame *f, int near)
+void tg_hbil_stage_downsample(tg_frame *f)
 {
     const tg_gbuffer *g = &f->gb;
-    kernel_image k;
-    tg_half_size(f->width, f->height, &k.w, &k.h);
-    k.scale = 2;
+    if (!f->half_depth) return;
     downsample(f, g->depth, f->half_depth);
     downsample(f, g->nx, f->half_normal.r);
     downsample(f, g->ny, f->half_normal.g);
     downsample(f, g->nz, f->half_normal.b);
     tg_downsample8_rows(g->sky, f->width, f->height, f->half_sky, 0, f->height);
-    k.depth = f->half_depth; k.nx = f->half_normal.r; k.ny = f->half_normal.g; k.nz = f->half_normal.b;
-    k.sky = f->half_sky;
-    k.ao = f->half_ao; k.bent_x = f->half_bent.r; k.bent_y = f->half_bent.g; k.bent_z = f->half_bent.b;
-    k.f0 = k.src_r = k.src_g = k.src_b = NULL;
-    k.near_r = k.near_g = k.near_b = NULL;
-    if (near) {
+    if (f->effects & TG_EFFECT_NEAR) {
         downsample(f, g->f0, f->half_f0);
         downsample(f, f->source.r, f->half_source.r);
         downsample(f, f->source.g, f->half_source.g);
         downsample(f, f->source.b, f->half_source.b);
-        k.f0 = f->half_f0;
-        k.src_r = f->half_source.r; k.src_g = f->half_source.g; k.src_b = f->half_source.b;
-        k.near_r = f->half_near.r; k.near_g = f->half_near.g; k.near_b = f->half_near.b;
     }
-    return k;
 }
 
-static kernel_image full_image(tg_frame *f, int near)
+void tg_hbil_stage_split(tg_frame *f)
 {
-    const tg_gbuffer *g = &f->gb;
-    kernel_image k;
-    k.w = f->width; k.h = f->height; k.scale = 1;
-    k.depth = g->depth; k.nx = g->nx; k.ny = g->ny; k.nz = g->nz; k.sky = g->sky;
-    k.ao = f->ao; k.bent_x = f->bent.r; k.bent_y = f->bent.g; k.bent_z = f->bent.b;
-    k.f0 = near ? g->f0 : NULL;
-    k.src_r = near ? f->source.r : NULL; k.src_g = near ? f->source.g : NULL; k.src_b = near ? f->source.b : NULL;
-    k.near_r = near ? f->near.r : NULL; k.near_g = near ? f->near.g : NULL; k.near_b = near ? f->near.b : NULL;
-    return k;
-}
-
-/* Joint bilateral upsample of the quarter-res results (resample.c). */
-static void upsample(tg_frame *f, int near)
-{
-    const tg_gbuffer *g = &f->gb;
-    tg_upsample_io io;
-    memset(&io, 0, sizeof io);
-    io.width = f->width; io.height = f->height;
-    io.depth = g->depth; io.nx = g->nx; io.ny = g->ny; io.nz = g->nz; io.sky = g->sky;
-    io.half_depth = f->half_depth;
-    io.half_nx = f->half_normal.r; io.half_ny = f->half_normal.g; io.half_nz = f->half_normal.b;
-    io.half_sky = f->half_sky;
-    io.half_ao = f->half_ao;
-    io.half_bent_x = f->half_bent.r; io.half_bent_y = f->half_bent.g; io.half_bent_z = f->half_bent.b;
-    io.ao = f->ao;
-    io.bent_x = f->bent.r; io.bent_y = f->bent.g; io.bent_z = f->bent.b;
-    if (near) {
-        io.half_near_r = f->half_near.r; io.half_near_g = f->half_near.g; io.half_near_b = f->half_near.b;
-        io.near_r = f->near.r; io.near_g = f->near.g; io.near_b = f->near.b;
-    }
-    tg_upsample_rows(&io, 0, f->height);
-}
-
-/* HBIL sec. 3.3: split into 16 sub-images, the kernel on each with its own
- * slice angles (marching in sub-image pixels), merge back. */
-static void hbil_interleaved(tg_frame *f)
-{
-    int near = (f->effects & TG_EFFECT_NEAR) != 0, i, j;
-    kernel_image k = f->half_depth ? quarter_image(f, near) : full_image(f, near);
+    kernel_image k = kernel_of(f);
     tg_interleave_split(k.depth, k.w, k.h, f->q_depth);
     tg_interleave_split(k.nx, k.w, k.h, f->q_normal.r);
     tg_interleave_split(k.ny, k.w, k.h, f->q_normal.g);
     tg_interleave_split(k.nz, k.w, k.h, f->q_normal.b);
     tg_interleave_split8(k.sky, k.w, k.h, f->q_sky);
-    if (near) {
+    if (k.near) {
         tg_interleave_split(k.f0, k.w, k.h, f->q_f0);
         tg_interleave_split(k.src_r, k.w, k.h, f->q_source.r);
         tg_interleave_split(k.src_g, k.w, k.h, f->q_source.g);
         tg_interleave_split(k.src_b, k.w, k.h, f->q_source.b);
     }
+}
+
+/* The kernel on each of the 16 sub-images, with its own slice angles,
+ * marching in sub-image pixels (HBIL sec. 3.3). */
+void tg_hbil_stage_kernel(tg_frame *f)
+{
+    kernel_image k = kernel_of(f);
+    int i, j;
     for (j = 0; j < 4; j++) {
         for (i = 0; i < 4; i++) {
             tg_hbil_params p;
@@ -155,7 +145,7 @@ static void hbil_interleaved(tg_frame *f)
             io.sky = f->q_sky + o;
             io.ao = f->q_ao + o;
             io.bent_x = f->q_bent.r + o; io.bent_y = f->q_bent.g + o; io.bent_z = f->q_bent.b + o;
-            if (near) {
+            if (k.near) {
                 io.f0 = f->q_f0 + o;
                 io.rad_r = f->q_source.r + o; io.rad_g = f->q_source.g + o; io.rad_b = f->q_source.b + o;
                 io.near_r = f->q_near.r + o; io.near_g = f->q_near.g + o; io.near_b = f->q_near.b + o;
@@ -163,15 +153,96 @@ static void hbil_interleaved(tg_frame *f)
             tg_hbil_rows(&p, &io, 0, sh);
         }
     }
+}
+
+void tg_hbil_stage_merge(tg_frame *f)
+{
+    kernel_image k = kernel_of(f);
     tg_interleave_merge(f->q_ao, k.w, k.h, k.ao);
     tg_interleave_merge(f->q_bent.r, k.w, k.h, k.bent_x);
     tg_interleave_merge(f->q_bent.g, k.w, k.h, k.bent_y);
     tg_interleave_merge(f->q_bent.b, k.w, k.h, k.bent_z);
-    if (near) {
+    if (k.near) {
         tg_interleave_merge(f->q_near.r, k.w, k.h, k.near_r);
         tg_interleave_merge(f->q_near.g, k.w, k.h, k.near_g);
         tg_interleave_merge(f->q_near.b, k.w, k.h, k.near_b);
     }
+}
+
+/* HBIL sec. 3.3-3.4: the depth/normal-aware filter over the 4x4
+ * neighbourhood, at the kernel's resolution (where the 4x4 pattern lives). */
+void tg_hbil_stage_filter(tg_frame *f)
+{
+    kernel_image k = kernel_of(f);
+    tg_denoise_params p;
+    tg_denoise_io io;
+    tg_denoise_defaults(&p);
+    memset(&io, 0, sizeof io);
+    io.width = k.w;
+    io.height = k.h;
+    io.depth = k.depth; io.nx = k.nx; io.ny = k.ny; io.nz = k.nz;
+    io.sky = k.sky;
+    io.ao = k.ao;
+    io.bent_x = k.bent_x; io.bent_y = k.bent_y; io.bent_z = k.bent_z;
+    io.near_r = k.near_r; io.near_g = k.near_g; io.near_b = k.near_b;
+    tg_denoise_begin(&io, f->denoise_scratch);
+    tg_denoise_rows(&p, &io, f->denoise_scratch, 0, io.height);
+}
+
+/* Joint bilateral upsample of the quarter-res results (resample.c). */
+void tg_hbil_stage_upsample(tg_frame *f)
+{
+    const tg_gbuffer *g = &f->gb;
+    tg_upsample_io io;
+    if (!f->half_depth) return;
+    memset(&io, 0, sizeof io);
+    io.width = f->width; io.height = f->height;
+    io.depth = g->depth; io.nx = g->nx; io.ny = g->ny; io.nz = g->nz; io.sky = g->sky;
+    io.half_depth = f->half_depth;
+    io.half_nx = f->half_normal.r; io.half_ny = f->half_normal.g; io.half_nz = f->half_normal.b;
+    io.half_sky = f->half_sky;
+    io.half_ao = f->half_ao;
+    io.half_bent_x = f->half_bent.r; io.half_bent_y = f->half_bent.g; io.half_bent_z = f->half_bent.b;
+    io.ao = f->ao;
+    io.bent_x = f->bent.r; io.bent_y = f->bent.g; io.bent_z = f->bent.b;
+    if (f->effects & TG_EFFECT_NEAR) {
+        io.half_near_r = f->half_near.r; io.half_near_g = f->half_near.g; io.half_near_b = f->half_near.b;
+        io.near_r = f->near.r; io.near_g = f->near.g; io.near_b = f->near.b;
+    }
+    tg_upsample_rows(&io, 0, f->height);
+}
+
+/* Exponential accumulation over frames, history rejected by depth and normal. */
+void tg_hbil_stage_temporal(tg_frame *f, int index)
+{
+    const tg_gbuffer *g = &f->gb;
+    tg_denoise_params p;
+    tg_denoise_io io;
+    if (!f->temporal_state) return;
+    tg_denoise_defaults(&p);
+    memset(&io, 0, sizeof io);
+    io.width = f->width;
+    io.height = f->height;
+    io.depth = g->depth; io.nx = g->nx; io.ny = g->ny; io.nz = g->nz;
+    io.sky = g->sky;
+    io.ao = f->ao;
+    io.bent_x = f->bent.r; io.bent_y = f->bent.g; io.bent_z = f->bent.b;
+    io.cone = f->cone;
+    io.near_r = f->near.r; io.near_g = f->near.g; io.near_b = f->near.b;
+    tg_temporal_rows(&p, &io, f->temporal_state, &f->prev_view, &f->view, index,
+                     f->frames_rendered == 0, 0, f->height);
+}
+
+/* HBIL, interleaved (the default): every stage in order. */
+static void hbil_interleaved(tg_frame *f, int index)
+{
+    tg_hbil_stage_downsample(f);
+    tg_hbil_stage_split(f);
+    tg_hbil_stage_kernel(f);
+    tg_hbil_stage_merge(f);
+    tg_hbil_stage_filter(f);
+    tg_hbil_stage_upsample(f);
+    tg_hbil_stage_temporal(f, index);
 }
 
 static void hbil_full(tg_frame *f)
@@ -255,55 +326,18 @@ static void reference(tg_frame *f)
     tg_reference_rows(&p, &io, 0, f->height);
 }
 
-/* HBIL sec. 3.3-3.4: the depth/normal-aware filter over the 4x4
- * neighbourhood (at the kernel's resolution, where the 4x4 pattern lives),
- * then the upsample from quarter resolution, then (across frames) temporal
- * accumulation at full resolution. */
-static void hbil_filter(tg_frame *f, int index)
-{
-    tg_denoise_params p;
-    tg_denoise_io io;
-    const tg_gbuffer *g = &f->gb;
-    int near = (f->effects & TG_EFFECT_NEAR) != 0;
-    tg_denoise_defaults(&p);
-    memset(&io, 0, sizeof io);
-    if (f->half_depth) {
-        tg_half_size(f->width, f->height, &io.width, &io.height);
-        io.depth = f->half_depth;
-        io.nx = f->half_normal.r; io.ny = f->half_normal.g; io.nz = f->half_normal.b;
-        io.sky = f->half_sky;
-        io.ao = f->half_ao;
-        io.bent_x = f->half_bent.r; io.bent_y = f->half_bent.g; io.bent_z = f->half_bent.b;
-        io.near_r = f->half_near.r; io.near_g = f->half_near.g; io.near_b = f->half_near.b;
-        tg_denoise_begin(&io, f->denoise_scratch);
-        tg_denoise_rows(&p, &io, f->denoise_scratch, 0, io.height);
-        upsample(f, near);
-    }
-    io.width = f->width;
-    io.height = f->height;
-    io.depth = g->depth; io.nx = g->nx; io.ny = g->ny; io.nz = g->nz;
-    io.sky = g->sky;
-    io.ao = f->ao;
-    io.bent_x = f->bent.r; io.bent_y = f->bent.g; io.bent_z = f->bent.b;
-    io.cone = f->cone;
-    io.near_r = f->near.r; io.near_g = f->near.g; io.near_b = f->near.b;
-    if (!f->half_depth) {
-        tg_denoise_begin(&io, f->denoise_scratch);
-        tg_denoise_rows(&p, &io, f->denoise_scratch, 0, f->height);
-    }
-    if (f->temporal_state)
-        tg_temporal_rows(&p, &io, f->temporal_state, &f->prev_view, &f->view, index,
-                         f->frames_rendered == 0, 0, f->height);
-}
-
 int tg_frame_technique(tg_frame *f, int index)
 {
     int far_done = 0;
     switch (f->plan.request.technique) {
     case TG_TECH_HBIL:
-        if (f->plan.request.interleave) hbil_interleaved(f);
-        else hbil_full(f);
-        hbil_filter(f, index);
+        if (f->plan.request.interleave) {
+            hbil_interleaved(f, index);
+        } else {
+            hbil_full(f);
+            tg_hbil_stage_filter(f);
+            tg_hbil_stage_temporal(f, index);
+        }
         break;
     case TG_TECH_REFERENCE:
         reference(f);
@@ -316,26 +350,48 @@ int tg_frame_technique(tg_frame *f, int index)
     return far_done;
 }
 
-/* HBIL sec. 3.2: scatter last frame's radiance into this view through a
- * temporary z-buffer (nearest wins), then fill the holes by push/pull. */
-int tg_frame_reproject(tg_frame *f)
+/* Where the reprojection's scratch lives: z-buffer, push/pull mips, valid mask. */
+static void reproject_io(tg_frame *f, tg_reproject_io *io, unsigned char **zbuf, unsigned char **mips)
 {
-    tg_reproject_io io;
     unsigned char *scratch = (unsigned char *)f->reproject_scratch;
     size_t zbytes = (tg_reproject_bytes(f->width, f->height) + 15u) & ~(size_t)15u;
     size_t pbytes = (tg_pushpull_bytes(f->width, f->height) + 15u) & ~(size_t)15u;
-    uint8_t *valid = scratch + zbytes + pbytes;
-    if (!f->history.r || !scratch) return 0;
-    memset(&io, 0, sizeof io);
-    io.width = f->width;
-    io.height = f->height;
-    io.prev_view = &f->prev_view;
-    io.view = &f->view;
-    io.prev_depth = f->history_depth;
-    io.prev_r = f->history.r; io.prev_g = f->history.g; io.prev_b = f->history.b;
-    io.out_r = f->source.r; io.out_g = f->source.g; io.out_b = f->source.b;
-    io.valid = valid;
-    tg_reproject_scatter(&io, scratch);
-    tg_pushpull_fill(f->width, f->height, f->source.r, f->source.g, f->source.b, valid, scratch + zbytes);
+    memset(io, 0, sizeof *io);
+    io->width = f->width;
+    io->height = f->height;
+    io->prev_view = &f->prev_view;
+    io->view = &f->view;
+    io->prev_depth = f->history_depth;
+    io->prev_r = f->history.r; io->prev_g = f->history.g; io->prev_b = f->history.b;
+    io->out_r = f->source.r; io->out_g = f->source.g; io->out_b = f->source.b;
+    io->valid = scratch + zbytes + pbytes;
+    *zbuf = scratch;
+    *mips = scratch + zbytes;
+}
+
+/* HBIL sec. 3.2: scatter last frame's radiance into this view through a
+ * temporary z-buffer (nearest wins)... */
+void tg_frame_reproject_scatter(tg_frame *f)
+{
+    tg_reproject_io io;
+    unsigned char *zbuf, *mips;
+    reproject_io(f, &io, &zbuf, &mips);
+    tg_reproject_scatter(&io, zbuf);
+}
+
+/* ...then fill the holes by push/pull (Kraus 2009). */
+void tg_frame_reproject_fill(tg_frame *f)
+{
+    tg_reproject_io io;
+    unsigned char *zbuf, *mips;
+    reproject_io(f, &io, &zbuf, &mips);
+    tg_pushpull_fill(f->width, f->height, f->source.r, f->source.g, f->source.b, io.valid, mips);
+}
+
+int tg_frame_reproject(tg_frame *f)
+{
+    if (!f->history.r || !f->reproject_scratch) return 0;
+    tg_frame_reproject_scatter(f);
+    tg_frame_reproject_fill(f);
     return 1;
 }
