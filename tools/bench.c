@@ -32,12 +32,6 @@
 #include "tinygi.h"
 #include "hosted/clock.h"
 #include "frame/frame_internal.h"
-#include "gi/hbil.h"
-#include "gi/interleave.h"
-#include "gi/reproject.h"
-#include "gi/pushpull.h"
-#include "gi/denoise.h"
-#include "gi/resample.h"
 #include "frame/technique.h"
 
 #if TG_FIXED
@@ -600,166 +594,6 @@ typedef struct pass_times {
     double reproject, pushpull, downsample, split, kernel, merge, upsample, gi, frame;
 } pass_times;
 
-/* The kernel's image as technique.c lays it out: the quarter-res copy of
- * the G-buffer (gi_scale 2, the default) or the full-res G-buffer. */
-typedef struct kernel_image {
-    int w, h, scale, near;
-    const tg_real *depth, *nx, *ny, *nz, *f0, *src_r, *src_g, *src_b;
-    const uint8_t *sky;
-    tg_real *ao, *bent_x, *bent_y, *bent_z, *near_r, *near_g, *near_b;
-} kernel_image;
-
-static kernel_image kernel_of(tg_frame *f)
-{
-    const tg_gbuffer *g = &f->gb;
-    kernel_image k;
-    memset(&k, 0, sizeof k);
-    k.near = (f->effects & TG_EFFECT_NEAR) != 0;
-    if (f->half_depth) {
-        tg_half_size(f->width, f->height, &k.w, &k.h);
-        k.scale = 2;
-        k.depth = f->half_depth; k.nx = f->half_normal.r; k.ny = f->half_normal.g; k.nz = f->half_normal.b;
-        k.sky = f->half_sky;
-        k.ao = f->half_ao; k.bent_x = f->half_bent.r; k.bent_y = f->half_bent.g; k.bent_z = f->half_bent.b;
-        if (k.near) {
-            k.f0 = f->half_f0; k.src_r = f->half_source.r; k.src_g = f->half_source.g; k.src_b = f->half_source.b;
-            k.near_r = f->half_near.r; k.near_g = f->half_near.g; k.near_b = f->half_near.b;
-        }
-    } else {
-        k.w = f->width; k.h = f->height; k.scale = 1;
-        k.depth = g->depth; k.nx = g->nx; k.ny = g->ny; k.nz = g->nz; k.sky = g->sky;
-        k.ao = f->ao; k.bent_x = f->bent.r; k.bent_y = f->bent.g; k.bent_z = f->bent.b;
-        if (k.near) {
-            k.f0 = g->f0; k.src_r = f->source.r; k.src_g = f->source.g; k.src_b = f->source.b;
-            k.near_r = f->near.r; k.near_g = f->near.g; k.near_b = f->near.b;
-        }
-    }
-    return k;
-}
-
-static void hbil_downsample(tg_frame *f)
-{
-    const tg_gbuffer *g = &f->gb;
-    int w = f->width, h = f->height;
-    if (!f->half_depth) return;
-    tg_downsample_rows(g->depth, w, h, f->half_depth, 0, h);
-    tg_downsample_rows(g->nx, w, h, f->half_normal.r, 0, h);
-    tg_downsample_rows(g->ny, w, h, f->half_normal.g, 0, h);
-    tg_downsample_rows(g->nz, w, h, f->half_normal.b, 0, h);
-    tg_downsample8_rows(g->sky, w, h, f->half_sky, 0, h);
-    if (f->effects & TG_EFFECT_NEAR) {
-        tg_downsample_rows(g->f0, w, h, f->half_f0, 0, h);
-        tg_downsample_rows(f->source.r, w, h, f->half_source.r, 0, h);
-        tg_downsample_rows(f->source.g, w, h, f->half_source.g, 0, h);
-        tg_downsample_rows(f->source.b, w, h, f->half_source.b, 0, h);
-    }
-}
-
-static void hbil_split(tg_frame *f)
-{
-    kernel_image k = kernel_of(f);
-    tg_interleave_split(k.depth, k.w, k.h, f->q_depth);
-    tg_interleave_split(k.nx, k.w, k.h, f->q_normal.r);
-    tg_interleave_split(k.ny, k.w, k.h, f->q_normal.g);
-    tg_interleave_split(k.nz, k.w, k.h, f->q_normal.b);
-    tg_interleave_split8(k.sky, k.w, k.h, f->q_sky);
-    if (k.near) {
-        tg_interleave_split(k.f0, k.w, k.h, f->q_f0);
-        tg_interleave_split(k.src_r, k.w, k.h, f->q_source.r);
-        tg_interleave_split(k.src_g, k.w, k.h, f->q_source.g);
-        tg_interleave_split(k.src_b, k.w, k.h, f->q_source.b);
-    }
-}
-
-static void hbil_kernel(tg_frame *f)
-{
-    kernel_image k = kernel_of(f);
-    int i, j;
-    for (j = 0; j < 4; j++)
-        for (i = 0; i < 4; i++) {
-            tg_hbil_params p;
-            tg_hbil_io io;
-            int sw, sh;
-            size_t o;
-            tg_interleave_sub_rect(k.w, k.h, i, j, &sw, &sh, &o);
-            if (sw == 0 || sh == 0) continue;
-            tg_hbil_defaults(&p, &f->view);
-            p.slices = f->plan.request.slices;
-            p.samples = f->plan.request.samples;
-            p.radius = f->plan.request.radius;
-            p.step = 4 * k.scale; p.offset_x = i * k.scale; p.offset_y = j * k.scale;
-            p.slice_phi0 = tg_hbil_slice_phi0(i, j, p.slices);
-            memset(&io, 0, sizeof io);
-            io.width = sw; io.height = sh;
-            io.depth = f->q_depth + o;
-            io.nx = f->q_normal.r + o; io.ny = f->q_normal.g + o; io.nz = f->q_normal.b + o;
-            io.sky = f->q_sky + o;
-            io.ao = f->q_ao + o;
-            io.bent_x = f->q_bent.r + o; io.bent_y = f->q_bent.g + o; io.bent_z = f->q_bent.b + o;
-            if (k.near) {
-                io.f0 = f->q_f0 + o;
-                io.rad_r = f->q_source.r + o; io.rad_g = f->q_source.g + o; io.rad_b = f->q_source.b + o;
-                io.near_r = f->q_near.r + o; io.near_g = f->q_near.g + o; io.near_b = f->q_near.b + o;
-            }
-            tg_hbil_rows(&p, &io, 0, sh);
-        }
-}
-
-static void hbil_merge(tg_frame *f)
-{
-    kernel_image k = kernel_of(f);
-    tg_interleave_merge(f->q_ao, k.w, k.h, k.ao);
-    tg_interleave_merge(f->q_bent.r, k.w, k.h, k.bent_x);
-    tg_interleave_merge(f->q_bent.g, k.w, k.h, k.bent_y);
-    tg_interleave_merge(f->q_bent.b, k.w, k.h, k.bent_z);
-    if (k.near) {
-        tg_interleave_merge(f->q_near.r, k.w, k.h, k.near_r);
-        tg_interleave_merge(f->q_near.g, k.w, k.h, k.near_g);
-        tg_interleave_merge(f->q_near.b, k.w, k.h, k.near_b);
-    }
-}
-
-static void hbil_upsample(tg_frame *f)
-{
-    const tg_gbuffer *g = &f->gb;
-    tg_upsample_io io;
-    if (!f->half_depth) return;
-    memset(&io, 0, sizeof io);
-    io.width = f->width; io.height = f->height;
-    io.depth = g->depth; io.nx = g->nx; io.ny = g->ny; io.nz = g->nz; io.sky = g->sky;
-    io.half_depth = f->half_depth;
-    io.half_nx = f->half_normal.r; io.half_ny = f->half_normal.g; io.half_nz = f->half_normal.b;
-    io.half_sky = f->half_sky;
-    io.half_ao = f->half_ao;
-    io.half_bent_x = f->half_bent.r; io.half_bent_y = f->half_bent.g; io.half_bent_z = f->half_bent.b;
-    io.ao = f->ao;
-    io.bent_x = f->bent.r; io.bent_y = f->bent.g; io.bent_z = f->bent.b;
-    if (f->effects & TG_EFFECT_NEAR) {
-        io.half_near_r = f->half_near.r; io.half_near_g = f->half_near.g; io.half_near_b = f->half_near.b;
-        io.near_r = f->near.r; io.near_g = f->near.g; io.near_b = f->near.b;
-    }
-    tg_upsample_rows(&io, 0, f->height);
-}
-
-/* The reprojection as tg_frame_reproject lays out its scratch. */
-static void hbil_reproject(tg_frame *f, int which)
-{
-    tg_reproject_io io;
-    unsigned char *scratch = (unsigned char *)f->reproject_scratch;
-    size_t zbytes = (tg_reproject_bytes(f->width, f->height) + 15u) & ~(size_t)15u;
-    size_t pbytes = (tg_pushpull_bytes(f->width, f->height) + 15u) & ~(size_t)15u;
-    uint8_t *valid = scratch + zbytes + pbytes;
-    memset(&io, 0, sizeof io);
-    io.width = f->width; io.height = f->height;
-    io.prev_view = &f->prev_view; io.view = &f->view;
-    io.prev_depth = f->history_depth;
-    io.prev_r = f->history.r; io.prev_g = f->history.g; io.prev_b = f->history.b;
-    io.out_r = f->source.r; io.out_g = f->source.g; io.out_b = f->source.b;
-    io.valid = valid;
-    if (which == 0) tg_reproject_scatter(&io, scratch);
-    else tg_pushpull_fill(f->width, f->height, f->source.r, f->source.g, f->source.b, valid, scratch + zbytes);
-}
-
 #define TIME_PASS(field, call) do { double t_[MAX_RUNS]; int k_; \
     for (k_ = 0; k_ < opt_runs; k_++) { double t0_ = cpu_seconds(); call; t_[k_] = (cpu_seconds() - t0_) * 1e3; } \
     pt.field = median(t_, opt_runs); } while (0)
@@ -782,14 +616,14 @@ static void pass_breakdown(tg_scene *s, const char *name)
     memset(&pt, 0, sizeof pt);
     TIME_PASS(frame, tg_frame_render(fr.frame, 1, &err));
     if (fr.frame->history.r && fr.frame->reproject_scratch) {
-        TIME_PASS(reproject, hbil_reproject(fr.frame, 0));
-        TIME_PASS(pushpull, hbil_reproject(fr.frame, 1));
+        TIME_PASS(reproject, tg_frame_reproject_scatter(fr.frame));
+        TIME_PASS(pushpull, tg_frame_reproject_fill(fr.frame));
     }
-    TIME_PASS(downsample, hbil_downsample(fr.frame));
-    TIME_PASS(split, hbil_split(fr.frame));
-    TIME_PASS(kernel, hbil_kernel(fr.frame));
-    TIME_PASS(merge, hbil_merge(fr.frame));
-    TIME_PASS(upsample, hbil_upsample(fr.frame));
+    TIME_PASS(downsample, tg_hbil_stage_downsample(fr.frame));
+    TIME_PASS(split, tg_hbil_stage_split(fr.frame));
+    TIME_PASS(kernel, tg_hbil_stage_kernel(fr.frame));
+    TIME_PASS(merge, tg_hbil_stage_merge(fr.frame));
+    TIME_PASS(upsample, tg_hbil_stage_upsample(fr.frame));
     TIME_PASS(gi, tg_frame_technique(fr.frame, 1));
     frame_close(&fr);
     core = pt.reproject + pt.pushpull + pt.split + pt.kernel;
