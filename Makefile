@@ -95,10 +95,11 @@ bench-raster: $(BUILD)/bench_raster $(BUILD)/bench_raster-fixed
 bench-hbil: $(BUILD)/bench_hbil $(BUILD)/bench_hbil-fixed
 	$(BUILD)/bench_hbil
 	$(BUILD)/bench_hbil-fixed
-# whole frames of every built-in scene through the CLI (ms per frame, float and fixed)
+# whole frames of every built-in scene through the CLI (ms per frame, float and
+# fixed, the paper's every-pixel kernel and --gi-quarter)
 bench-frame: all
-	@for s in plane groove cornell spheres columns; do for b in tinygi tinygi-fixed; do \
-	  printf '%-8s %-13s ' $$s $$b; $(BUILD)/$$b render builtin:$$s -o $(BUILD)/bench-frame.ppm --frames 10 2>&1 | sed 's/.*, //'; done; done
+	@for s in plane groove cornell spheres columns; do for b in tinygi tinygi-fixed; do for m in "" --gi-quarter; do \
+	  printf '%-8s %-13s %-13s ' $$s $$b "$$m"; $(BUILD)/$$b render builtin:$$s -o $(BUILD)/bench-frame.ppm --frames 10 $$m 2>&1 | sed 's/.*, //'; done; done; done
 
 # Rewrite the golden images from the current renderer (look at them after).
 golden: all

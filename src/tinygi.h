@@ -129,8 +129,9 @@ typedef struct tg_request {
     tg_real radius;        /* < 0: the scene's or the default (1.0); 0 is allowed */
     int bounces;           /* < 0: the scene's or the default (1) */
     int interleave;        /* 1: 4x4 interleaved kernel (default); 0: one full-res image */
-    int gi_scale;          /* interleaved kernel on 1 pixel in gi_scale^2: 2 = quarter
-                              resolution (default), 1 = every pixel */
+    int gi_scale;          /* interleaved kernel on 1 pixel in gi_scale^2: 1 = every
+                              pixel (default, the paper's), 2 = a quarter of them (half
+                              width and height: about 3x faster, AO slightly brighter) */
     int temporal;          /* 1: temporal accumulation of the GI result (default 1) */
     int far_mode;          /* 0: SH9 cosine lobe in the bent cone (HBIL sec. 2.2.4, default);
                               1: E0(bent) F0(AO) (HBIL sec. 2.2.3) */

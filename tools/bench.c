@@ -329,7 +329,7 @@ typedef struct config {
     int slices, samples;
     double rscale;           /* radius = scene radius * rscale */
     int interleave, near;    /* near: ask for the near field (gathering techniques) */
-    int gi_scale;            /* HBIL: 2 quarter resolution (default), 1 every pixel */
+    int gi_scale;            /* HBIL: 2 quarter resolution (--gi-quarter), 1 every pixel (default) */
     int is_default, on_curve;
 } config;
 

@@ -103,7 +103,8 @@ static void print_help(FILE *out)
         "  --shadow-size N   shadow map texels per side, 8..8192 (default 512)\n"
         "  --no-interleave   full-resolution GI kernel instead of 4x4 interleaved\n"
         "  --no-temporal     no temporal accumulation\n"
-        "  --gi-full         interleaved GI kernel on every pixel instead of a quarter\n"
+        "  --gi-quarter      GI kernel on a quarter of the pixels (half width and height,\n"
+        "                    then a joint bilateral upsample): about 3x faster\n"
         "  --far-f0          far field as E0(bent) F0(AO) (HBIL sec. 2.2.3) instead of\n"
         "                    the SH9 cosine lobe restricted to the bent cone (sec. 2.2.4)\n"
         "  --explain         print the frame plan and exit without rendering\n"
@@ -241,7 +242,7 @@ typedef struct render_opts {
     long slices, samples, bounces, shadow_size;
     double radius, exposure;
     int have_radius, have_exposure;
-    int interleave, temporal, far_f0, gi_full, explain, quiet;
+    int interleave, temporal, far_f0, gi_quarter, explain, quiet;
 } render_opts;
 
 /* "--name=value" or "--name value": the value, or NULL (and the index moved). */
@@ -305,7 +306,7 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
     if (!strcmp(a, "--no-interleave")) { o->interleave = 0; return 0; }
     if (!strcmp(a, "--no-temporal")) { o->temporal = 0; return 0; }
     if (!strcmp(a, "--far-f0")) { o->far_f0 = 1; return 0; }
-    if (!strcmp(a, "--gi-full")) { o->gi_full = 1; return 0; }
+    if (!strcmp(a, "--gi-quarter")) { o->gi_quarter = 1; return 0; }
     if (!strcmp(a, "--explain")) { o->explain = 1; return 0; }
     if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) { o->quiet = 1; return 0; }
     for (k = 0; k < sizeof names / sizeof names[0] && !matched; k++) {
@@ -506,7 +507,7 @@ static void make_request(const render_opts *o, tg_request *r)
     if (o->have_exposure) r->exposure = tg_from_float((float)o->exposure);
     r->interleave = o->interleave;
     r->far_mode = o->far_f0;
-    if (o->gi_full) r->gi_scale = 1;
+    if (o->gi_quarter) r->gi_scale = 2;
     r->temporal = o->temporal;
 }
 

@@ -61,7 +61,7 @@ void tg_request_defaults(tg_request *r)
     r->radius = TG_R(-1.0f);
     r->bounces = -1;
     r->interleave = 1;
-    r->gi_scale = 2;
+    r->gi_scale = 1;
     r->temporal = 1;
     r->exposure = TG_ONE;
     r->shadow_map_size = 512;

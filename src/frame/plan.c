@@ -126,7 +126,7 @@ static void resolve_request(tg_request *r, const tg_scene *s)
     if (r->frames < 1) r->frames = 1;
     if (r->aovs == 0) r->aovs = AOV(TG_AOV_COLOR);
     if (r->shadow_map_size <= 0) r->shadow_map_size = 512;
-    if (r->gi_scale != 1) r->gi_scale = 2;
+    if (r->gi_scale != 2) r->gi_scale = 1;
 }
 
 tg_status tg_plan_make(tg_plan *plan, const tg_scene *scene, const tg_request *req, tg_error *err)
