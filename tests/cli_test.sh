@@ -238,6 +238,10 @@ check_binary() {
     run render builtin:cornell --size 16x12 --technique hbil --slices 1 --samples 1 --radius 0 \
         --bounces 0 --exposure 2 --shadow-size 64 --no-interleave --no-temporal -o "$O/opts.ppm" --quiet
     expect "$tag/render_every_option_accepted" [ "$rc" -eq 0 -a -s "$O/opts.ppm" ]
+    run render builtin:spheres --size 17x13 --gi-quarter --far-f0 -o "$O/q.ppm" --quiet
+    expect "$tag/render_gi_quarter_far_f0" [ "$rc" -eq 0 -a -s "$O/q.ppm" ]
+    run render builtin:spheres --size 17x13 --gi-quarter --explain
+    expect "$tag/explain_gi_quarter_lists_upsample" grep -q "upsample" "$T/out"
     run render builtin:cornell --size=16x12 --frames=2 --aov=depth -o "$O/eq.pfm" --quiet
     expect "$tag/render_option_equals_form" [ "$rc" -eq 0 -a "$(head -c 2 "$O/eq.pfm" 2>/dev/null)" = Pf ]
     run render builtin:cornell --size 16x12 --frames 3 -o "$O/np.ppm"

@@ -281,6 +281,8 @@ static void layout_gi(layout *l, tg_frame *f, size_t n)
     uint32_t e = p->effects;
     int hbil = p->request.technique == TG_TECH_HBIL;
     int interleaved = hbil && p->request.interleave;
+    int quarter = interleaved && p->request.gi_scale == 2;
+    int kw = p->request.width, kh = p->request.height;   /* the kernel's image */
     if (e & TG_EFFECT_NEAR) {
         take_rgb(l, "near-field source radiance", n, &f->source);
         if (e & TG_EFFECT_REPROJECTION) {
@@ -300,11 +302,13 @@ static void layout_gi(layout *l, tg_frame *f, size_t n)
     if (f->needs & TG_NEED_BENT || hbil) take_rgb(l, "bent normal (world)", n, &f->bent);
     if (f->needs & TG_NEED_CONE) f->cone = take_real(l, "cone aperture", n);
     if (e & TG_EFFECT_NEAR) take_rgb(l, "near-field irradiance E_near", n, &f->near);
+    if (quarter) {
+        kw = (p->request.width + 1) / 2;
+        kh = (p->request.height + 1) / 2;
+    }
     if (interleaved) {
-        size_t nk = n;   /* pixels the kernel sees */
-        if (p->request.gi_scale == 2) {
-            int hw = (p->request.width + 1) / 2, hh = (p->request.height + 1) / 2;
-            nk = (size_t)hw * (size_t)hh;
+        size_t nk = (size_t)kw * (size_t)kh;   /* pixels the kernel sees */
+        if (quarter) {
             f->half_depth = take_real(l, "quarter-res G-buffer (depth, normal, sky)", nk);
             take_rgb(l, "quarter-res G-buffer (depth, normal, sky)", nk, &f->half_normal);
             f->half_sky = (uint8_t *)take(l, "quarter-res G-buffer (depth, normal, sky)", nk, 1);
@@ -330,14 +334,14 @@ static void layout_gi(layout *l, tg_frame *f, size_t n)
         add_pass(p, "4x4 split (depth, normal, radiance into 16 sub-images)");
         add_pass(p, "HBIL horizon kernel (AO, bent normal, near field), per sub-image");
         add_pass(p, "4x4 merge");
-        if (f->half_depth) add_pass(p, "joint bilateral upsample to full resolution");
     } else {
         add_pass(p, hbil ? "HBIL horizon kernel, full resolution" : tg_technique_name(p->request.technique));
     }
     if (hbil) {
-        f->denoise_scratch_bytes = tg_denoise_bytes(p->request.width, p->request.height);
+        f->denoise_scratch_bytes = tg_denoise_bytes(kw, kh);
         f->denoise_scratch = take(l, "spatial filter scratch", f->denoise_scratch_bytes, 1);
-        add_pass(p, "depth/normal-aware 4x4 filter");
+        add_pass(p, quarter ? "depth/normal-aware 4x4 filter (quarter res)" : "depth/normal-aware 4x4 filter");
+        if (quarter) add_pass(p, "joint bilateral upsample to full resolution");
         if (f->needs & TG_NEED_TEMPORAL) {
             f->temporal_state_bytes = tg_temporal_bytes(p->request.width, p->request.height);
             f->temporal_state = take(l, "temporal accumulation history", f->temporal_state_bytes, 1);
@@ -373,7 +377,8 @@ int tg_frame_layout(tg_frame **fp, tg_plan *plan, tg_arena *arena)
     f->pixels = n;
     f->effects = e;
     f->needs = tg_frame_needs(plan);
-    if (!arena) add_pass(plan, (f->needs & TG_NEED_POSE) ? "animate (camera and object keys, posed triangles)" : "animate (camera keys)");
+    if (!arena) add_pass(plan, (f->needs & TG_NEED_POSE) ? "animate (camera and object keys, posed triangles)"
+                               : s->camera_key_count > 0 ? "animate (camera keys)" : "camera");
     if (f->needs & TG_NEED_POSE) {
         f->posed_pos = (tg_vec3 *)take(&l, "posed triangles", (size_t)s->tri_count * 3, sizeof(tg_vec3));
         f->posed_nrm = (tg_vec3 *)take(&l, "posed triangles", (size_t)s->tri_count * 3, sizeof(tg_vec3));
