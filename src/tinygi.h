@@ -137,6 +137,7 @@ typedef struct tg_request {
                               1: E0(bent) F0(AO) (HBIL sec. 2.2.3) */
     tg_real exposure;      /* linear multiplier before the tonemapper, default 1 */
     int shadow_map_size;   /* texels per side, default 512 */
+    int shadow_pcf;        /* 0: 16-tap tent PCF (default, soft); 1: 4-tap bilinear (a quarter of the cost) */
 } tg_request;
 
 void tg_request_defaults(tg_request *r);

@@ -154,6 +154,9 @@ check_binary() {
     refused "$tag/opt_aov" "${U}option --aov: .*color.*'sparkle'" render builtin:cornell --aov sparkle
     refused "$tag/opt_technique" "${U}option --technique: .*hbil.*'magic'" render builtin:cornell --technique magic
     refused "$tag/opt_slices" "${U}option --slices" render builtin:cornell --slices 0
+    refused "$tag/opt_slices_above_8" "${U}option --slices" render builtin:cornell --slices 9
+    run render builtin:cornell --size 16x12 --pcf-bilinear -o "$O/pcf.ppm" --quiet
+    expect "$tag/render_pcf_bilinear" [ "$rc" -eq 0 -a -s "$O/pcf.ppm" ]
     refused "$tag/opt_samples" "${U}option --samples" render builtin:cornell --samples 257
     refused "$tag/opt_radius_negative" "${U}option --radius" render builtin:cornell --radius -1
     refused "$tag/opt_radius_nan" "${U}option --radius" render builtin:cornell --radius nan

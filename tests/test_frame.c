@@ -494,6 +494,32 @@ TEST(quarter_res_approaches_full_res)
     }
 }
 
+/* The cheaper shadow filter is used when asked for, and differs from the
+ * tent only along shadow edges (mean |difference| of the direct light
+ * below 2% of its mean). */
+TEST(bilinear_pcf_only_changes_edges)
+{
+    rendered a, b;
+    tg_request qa = request(96, 72, AOVBIT(TG_AOV_DIRECT)), qb = qa;
+    tg_error err;
+    qb.shadow_pcf = 1;
+    CHECK(setup(&a, tg_builtin_scene("columns"), &qa), "tent");
+    CHECK(setup(&b, tg_builtin_scene("columns"), &qb), "bilinear");
+    if (a.ok && b.ok) {
+        double *x, *y, d = 0, m = 0;
+        size_t i, n = 96 * 72 * 3;
+        tg_frame_render(a.frame, 0, &err);
+        tg_frame_render(b.frame, 0, &err);
+        x = read_aov(&a, TG_AOV_DIRECT);
+        y = read_aov(&b, TG_AOV_DIRECT);
+        for (i = 0; i < n; i++) { d += fabs(x[i] - y[i]); m += x[i]; }
+        CHECK(d > 0, "the bilinear filter was not used");
+        CHECK(d < 0.02 * m, "mean difference %.5f vs mean %.5f", d / (double)n, m / (double)n);
+        free(x); free(y);
+    }
+    teardown(&a); teardown(&b);
+}
+
 int main(void)
 {
     RUN(plan_follows_the_scene);
@@ -507,6 +533,7 @@ int main(void)
     RUN(white_room_stays_finite);
     RUN(camera_cut_is_finite);
     RUN(deterministic);
+    RUN(bilinear_pcf_only_changes_edges);
     RUN(moving_object_leaves_no_ghost);
     RUN(every_technique_every_scene);
     return check_summary();

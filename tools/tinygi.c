@@ -95,7 +95,7 @@ static void print_help(FILE *out)
         "  --aov NAME        output: color depth normal albedo ao bent cone near far\n"
         "                    direct irradiance motion (default color)\n"
         "  --technique NAME  hbil gtao hbao ssao vo ssdo bentcone reference (default hbil)\n"
-        "  --slices N        horizon slices per pixel, 1..64\n"
+        "  --slices N        horizon slices per pixel, 1..8\n"
         "  --samples N       samples per slice, 1..256\n"
         "  --radius R        gather radius in world units, 0..10000\n"
         "  --bounces N       light bounces, 0..100\n"
@@ -103,6 +103,7 @@ static void print_help(FILE *out)
         "  --shadow-size N   shadow map texels per side, 8..8192 (default 512)\n"
         "  --no-interleave   full-resolution GI kernel instead of 4x4 interleaved\n"
         "  --no-temporal     no temporal accumulation\n"
+        "  --pcf-bilinear    4-tap shadow-map filtering instead of the 16-tap tent\n"
         "  --gi-quarter      GI kernel on a quarter of the pixels (half width and height,\n"
         "                    then a joint bilateral upsample): about 3x faster\n"
         "  --far-f0          far field as E0(bent) F0(AO) (HBIL sec. 2.2.3) instead of\n"
@@ -242,7 +243,7 @@ typedef struct render_opts {
     long slices, samples, bounces, shadow_size;
     double radius, exposure;
     int have_radius, have_exposure;
-    int interleave, temporal, far_f0, gi_quarter, explain, quiet;
+    int interleave, temporal, far_f0, gi_quarter, pcf_bilinear, explain, quiet;
 } render_opts;
 
 /* "--name=value" or "--name value": the value, or NULL (and the index moved). */
@@ -307,6 +308,7 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
     if (!strcmp(a, "--no-temporal")) { o->temporal = 0; return 0; }
     if (!strcmp(a, "--far-f0")) { o->far_f0 = 1; return 0; }
     if (!strcmp(a, "--gi-quarter")) { o->gi_quarter = 1; return 0; }
+    if (!strcmp(a, "--pcf-bilinear")) { o->pcf_bilinear = 1; return 0; }
     if (!strcmp(a, "--explain")) { o->explain = 1; return 0; }
     if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) { o->quiet = 1; return 0; }
     for (k = 0; k < sizeof names / sizeof names[0] && !matched; k++) {
@@ -356,8 +358,8 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
             return 1;
         }
     } else if (!strcmp(name, "--slices")) {
-        if (parse_long(v, 1, 64, &o->slices)) {
-            usage_error("option --slices: expected an integer in 1..64, got '%s'", v);
+        if (parse_long(v, 1, 8, &o->slices)) {
+            usage_error("option --slices: expected an integer in 1..8, got '%s'", v);
             return 1;
         }
     } else if (!strcmp(name, "--samples")) {
@@ -508,6 +510,7 @@ static void make_request(const render_opts *o, tg_request *r)
     r->interleave = o->interleave;
     r->far_mode = o->far_f0;
     if (o->gi_quarter) r->gi_scale = 2;
+    r->shadow_pcf = o->pcf_bilinear;
     r->temporal = o->temporal;
 }
 

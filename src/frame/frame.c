@@ -99,9 +99,12 @@ static void pass_shadows(tg_frame *f)
         tg_vec3 lo, hi;
         tg_anim_bounds(mesh.pos, mesh.tri_count, &lo, &hi);
         for (i = 0; i < s->light_count; i++)
-            if (f->shadow_ptrs[i])
+            if (f->shadow_ptrs[i]) {
+                int filter = f->shadow_maps[i].filter;
                 tg_shadow_map_setup(&f->shadow_maps[i], &s->lights[i], f->shadow_maps[i].size, lo, hi,
                                     f->shadow_maps[i].depth);
+                f->shadow_maps[i].filter = filter;
+            }
     }
     for (i = 0; i < s->light_count; i++)
         if (f->shadow_ptrs[i]) tg_shadow_map_render(&f->shadow_maps[i], mesh.pos, mesh.tri_count);

@@ -263,6 +263,7 @@ static void layout_light(layout *l, tg_frame *f, size_t n)
                 void *depth = take(l, "shadow maps (depth)", tg_shadow_map_bytes(&s->lights[i], size), 1);
                 if (!l->arena || !depth) continue;
                 tg_shadow_map_setup(&f->shadow_maps[i], &s->lights[i], size, s->bounds_min, s->bounds_max, depth);
+                f->shadow_maps[i].filter = p->request.shadow_pcf ? TG_SHADOW_PCF_BILINEAR : TG_SHADOW_PCF_TENT;
                 f->shadow_ptrs[i] = &f->shadow_maps[i];
             }
         }
