@@ -79,7 +79,7 @@ static int64_t div_round(int64_t a, int64_t b)
 #endif
 
 /* Number of significant bits of v (0 for 0), by halving. */
-static int bit_length64(uint64_t v)
+int tg_bit_length64(uint64_t v)
 {
     int n = 0;
     if (v >> 32) { v >>= 32; n += 32; }
@@ -104,7 +104,7 @@ static const uint32_t rsqrt_seed[48] = {
 /* v > 0 as M 2^e: returns M in Q32 (M in [1/4, 1)) and an even e. */
 static uint64_t mantissa_even(uint64_t v, int *e)
 {
-    int bl = bit_length64(v);
+    int bl = tg_bit_length64(v);
     uint64_t m = bl > 32 ? v >> (bl - 32) : v << (32 - bl);
     if (bl & 1) { m >>= 1; bl++; }
     *e = bl;
@@ -427,7 +427,7 @@ static wreal log2_mantissa(wreal m)
 /* log2(x) in Q30 for x > 0: x = m 2^e, m in [sqrt(1/2), sqrt2). */
 static wreal log2_wide(tg_real x)
 {
-    int p = bit_length64((uint64_t)x) - 1; /* x_raw = m 2^p, m in [1, 2) */
+    int p = tg_bit_length64((uint64_t)x) - 1; /* x_raw = m 2^p, m in [1, 2) */
     int64_t e = p - 16;
     wreal m = (wreal)x << (30 - p);
     if (m > 1518500250) { m = (m + 1) >> 1; e++; } /* m > sqrt2 */
@@ -657,7 +657,7 @@ static int32_t big_bits(const big *a)
 {
     int i;
     for (i = BIG_LIMBS - 1; i >= 0; i--)
-        if (a->w[i]) return i * 32 + bit_length64(a->w[i]);
+        if (a->w[i]) return i * 32 + tg_bit_length64(a->w[i]);
     return 0;
 }
 static int big_is_zero(const big *a) { return big_bits(a) == 0; }

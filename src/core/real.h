@@ -189,6 +189,8 @@ tg_real tg_log2(tg_real x);           /* x <= 0 gives TG_REAL_MIN */
 tg_real tg_pow(tg_real x, tg_real y); /* x >= 0 */
 tg_real tg_floor(tg_real x);
 tg_real tg_smoothstep(tg_real a, tg_real b, tg_real x);
+/* Number of significant bits of v (0 for 0). */
+int tg_bit_length64(uint64_t v);
 /* sqrt of a 64-bit integer, floor; used by fixed-point vector lengths. */
 uint32_t tg_isqrt64(uint64_t v);
 /* Parse a decimal number ("1", "-0.5", "2.5e-3") into a tg_real, rounding to

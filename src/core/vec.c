@@ -17,18 +17,6 @@
 
 #if TG_FIXED
 
-static int bit_length(uint64_t v)
-{
-    int n = 0;
-    if (v >> 32) { v >>= 32; n += 32; }
-    if (v >> 16) { v >>= 16; n += 16; }
-    if (v >> 8) { v >>= 8; n += 8; }
-    if (v >> 4) { v >>= 4; n += 4; }
-    if (v >> 2) { v >>= 2; n += 2; }
-    if (v >> 1) { v >>= 1; n += 1; }
-    return n + (int)v;
-}
-
 static uint64_t isqrt_round(uint64_t v)
 {
     uint64_t r = tg_isqrt64(v);
@@ -46,7 +34,7 @@ static int normalize_n(tg_real *v, int n)
         if (a > m) m = a;
     }
     if (m == 0) return 0;
-    s = 30 - bit_length((uint64_t)m); /* largest |w| in [2^29, 2^30) */
+    s = 30 - tg_bit_length64((uint64_t)m); /* largest |w| in [2^29, 2^30) */
     for (i = 0; i < n; i++) {
         w[i] = s >= 0 ? (int64_t)v[i] * ((int64_t)1 << s) : tg_shr_round(v[i], -s);
         sum += (uint64_t)(w[i] * w[i]);
