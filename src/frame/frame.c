@@ -170,7 +170,6 @@ static void keep_history(tg_frame *f)
 
 tg_status tg_frame_render(tg_frame *f, int index, tg_error *err)
 {
-    tg_rgb none = { NULL, NULL, NULL };
     int bounce, bounces;
     tg_error_clear(err);
     if (index < 0) {
@@ -198,7 +197,6 @@ tg_status tg_frame_render(tg_frame *f, int index, tg_error *err)
             memcpy(f->source.b, f->color.b, bytes);
         }
     }
-    (void)none;
     keep_history(f);
     f->frames_rendered++;
     return TG_OK;

@@ -29,23 +29,21 @@
 
 #define AOV(a) (1u << (a))
 
+static int positive(tg_vec3 c) { return c.x > 0 || c.y > 0 || c.z > 0; }
+
 static int scene_has_emissive(const tg_scene *s)
 {
     int i;
-    for (i = 0; i < s->material_count; i++) {
-        const tg_material *m = &s->materials[i];
-        if (m->emissive.x > 0 || m->emissive.y > 0 || m->emissive.z > 0) return 1;
-    }
+    for (i = 0; i < s->material_count; i++)
+        if (positive(s->materials[i].emissive)) return 1;
     return 0;
 }
 
 static int scene_has_albedo(const tg_scene *s)
 {
     int i;
-    for (i = 0; i < s->material_count; i++) {
-        const tg_material *m = &s->materials[i];
-        if (m->albedo.x > 0 || m->albedo.y > 0 || m->albedo.z > 0) return 1;
-    }
+    for (i = 0; i < s->material_count; i++)
+        if (positive(s->materials[i].albedo)) return 1;
     return 0;
 }
 
@@ -217,14 +215,10 @@ static void add_pass(tg_plan *p, const char *name)
 
 static void layout_gbuffer(layout *l, tg_frame *f, size_t n)
 {
-    const tg_scene *s = l->plan->scene;
     tg_gbuffer *g = &f->gb;
-    int emissive = 0, i;
+    int emissive = scene_has_emissive(l->plan->scene);
     g->width = l->plan->request.width;
     g->height = l->plan->request.height;
-    for (i = 0; i < s->material_count; i++)
-        if (s->materials[i].emissive.x > 0 || s->materials[i].emissive.y > 0 || s->materials[i].emissive.z > 0)
-            emissive = 1;
     g->depth = take_real(l, "G-buffer depth (view z)", n);
     g->nx = take_real(l, "G-buffer normal (world)", n);
     g->ny = take_real(l, "G-buffer normal (world)", n);
