@@ -544,17 +544,12 @@ typedef struct row_buffers {
 static int write_frame(const tg_frame *frame, tg_aov aov, tg_img_format format, int w, int h,
                        const char *path, row_buffers *rb)
 {
-    tg_outfile *f = (tg_outfile *)malloc(sizeof *f);
     char why[512];
+    tg_outfile *f = tg_outfile_create(path, why, sizeof why);
     int y, channels = tg_aov_channels(aov);
     size_t x, count = (size_t)w * (size_t)channels;
     if (!f) {
-        file_error(path, "cannot write: out of memory");
-        return 1;
-    }
-    if (tg_outfile_open(f, path, why, sizeof why)) {
         file_error(path, why);
-        free(f);
         return 1;
     }
     if (format == TG_IMG_PPM) {
@@ -571,12 +566,10 @@ static int write_frame(const tg_frame *frame, tg_aov aov, tg_img_format format, 
             tg_pfm_write_values(f, rb->floats, count);
         }
     }
-    if (tg_outfile_commit(f, why, sizeof why)) {
+    if (tg_outfile_finish(f, why, sizeof why)) {
         file_error(path, why);
-        free(f);
         return 1;
     }
-    free(f);
     return 0;
 }
 

@@ -339,23 +339,34 @@ void tg_outfile_abort(tg_outfile *f)
     release_signals(&old);
 }
 
-int tg_file_write_atomic(const char *path, const void *data, size_t size,
-                         char *msg, size_t msgsize)
+tg_outfile *tg_outfile_create(const char *path, char *msg, size_t msgsize)
 {
     tg_outfile *f = (tg_outfile *)malloc(sizeof *f);
-    int r;
     if (!f) {
         say(msg, msgsize, "cannot write: out of memory");
-        return 1;
+        return NULL;
     }
     if (tg_outfile_open(f, path, msg, msgsize)) {
         free(f);
-        return 1;
+        return NULL;
     }
-    tg_outfile_write(f, data, size);
-    r = tg_outfile_commit(f, msg, msgsize);
+    return f;
+}
+
+int tg_outfile_finish(tg_outfile *f, char *msg, size_t msgsize)
+{
+    int r = tg_outfile_commit(f, msg, msgsize);
     free(f);
     return r;
+}
+
+int tg_file_write_atomic(const char *path, const void *data, size_t size,
+                         char *msg, size_t msgsize)
+{
+    tg_outfile *f = tg_outfile_create(path, msg, msgsize);
+    if (!f) return 1;
+    tg_outfile_write(f, data, size);
+    return tg_outfile_finish(f, msg, msgsize);
 }
 
 int tg_file_dir_writable(const char *path, char *msg, size_t msgsize)

@@ -67,6 +67,12 @@ void tg_outfile_abort(tg_outfile *f);
  * file being written (if any) and then die of the signal as usual. */
 void tg_outfile_remove_on_signals(void);
 
+/* The outfile on the heap (it holds a 64 KiB buffer): allocated and opened,
+ * or NULL with the reason in msg. */
+tg_outfile *tg_outfile_create(const char *path, char *msg, size_t msgsize);
+/* tg_outfile_commit, then free the outfile; 0 on success. */
+int tg_outfile_finish(tg_outfile *f, char *msg, size_t msgsize);
+
 /* Whole buffer to `path`, atomically. */
 int tg_file_write_atomic(const char *path, const void *data, size_t size,
                          char *msg, size_t msgsize);

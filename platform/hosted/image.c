@@ -97,22 +97,12 @@ int tg_ppm_write(const char *path, int width, int height, const uint8_t *rgb,
                  char *msg, size_t msgsize)
 {
     tg_outfile *f;
-    int r;
     if (tg_img_check_size(width, height, 3, msg, msgsize)) return 1;
-    f = (tg_outfile *)malloc(sizeof *f);
-    if (!f) {
-        say(msg, msgsize, "cannot write: out of memory");
-        return 1;
-    }
-    if (tg_outfile_open(f, path, msg, msgsize)) {
-        free(f);
-        return 1;
-    }
+    f = tg_outfile_create(path, msg, msgsize);
+    if (!f) return 1;
     tg_ppm_write_header(f, width, height);
     tg_outfile_write(f, rgb, (size_t)width * (size_t)height * 3u);
-    r = tg_outfile_commit(f, msg, msgsize);
-    free(f);
-    return r;
+    return tg_outfile_finish(f, msg, msgsize);
 }
 
 int tg_pfm_write(const char *path, int width, int height, int channels,
@@ -120,23 +110,14 @@ int tg_pfm_write(const char *path, int width, int height, int channels,
 {
     tg_outfile *f;
     size_t row = (size_t)width * (size_t)channels;
-    int y, r;
+    int y;
     if (tg_img_check_size(width, height, channels, msg, msgsize)) return 1;
-    f = (tg_outfile *)malloc(sizeof *f);
-    if (!f) {
-        say(msg, msgsize, "cannot write: out of memory");
-        return 1;
-    }
-    if (tg_outfile_open(f, path, msg, msgsize)) {
-        free(f);
-        return 1;
-    }
+    f = tg_outfile_create(path, msg, msgsize);
+    if (!f) return 1;
     tg_pfm_write_header(f, width, height, channels);
     for (y = height - 1; y >= 0; y--) /* PFM rows go bottom to top */
         tg_pfm_write_values(f, values + (size_t)y * row, row);
-    r = tg_outfile_commit(f, msg, msgsize);
-    free(f);
-    return r;
+    return tg_outfile_finish(f, msg, msgsize);
 }
 
 /* ---- reading ---- */
