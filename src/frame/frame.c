@@ -82,9 +82,10 @@ static void pass_gbuffer(tg_frame *f, int index)
     if (f->gb.motion_x)
         tg_motion_rows(&f->gb, &f->view, index > 0 ? &f->prev_view : &f->view,
                        f->posed_pos ? f->object_delta : NULL, 0, f->height);
-    f->depth_max = 0;
-    for (i = 0; i < f->pixels; i++)
-        if (f->gb.depth[i] > f->depth_max) f->depth_max = f->gb.depth[i];
+    f->depth_max = 0;   /* scales the 8-bit depth view; only needed for it */
+    if (f->plan.request.aovs & (1u << TG_AOV_DEPTH))
+        for (i = 0; i < f->pixels; i++)
+            if (f->gb.depth[i] > f->depth_max) f->depth_max = f->gb.depth[i];
 }
 
 static void pass_shadows(tg_frame *f)
