@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # tinygi - build, test and benchmark.
 #
 #   make            core libraries (float and Q16.16) and the CLI for both

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # platform/bench.mk - accuracy vs time (issue 5): `make bench` sweeps every
 # technique x setting (samples, slices, radius) over the built-in scenes in
 # float and Q16.16 fixed, times whole frames (median of BENCH_RUNS) and

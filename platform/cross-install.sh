@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # platform/cross-install.sh - install the cross toolchains and emulators that
 # `make cross` needs, only those that are missing (Debian packages only).
 # Never installs gcc-multilib: that metapackage removes the gcc-*-linux-gnu

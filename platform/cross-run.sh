@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # platform/cross-run.sh - the body of `make cross` (see platform/cross.mk for
 # the knobs).  Builds the core libraries and platform/baremetal/render.c for
 # every target, runs them, and compares every output file with x86-64's
@@ -109,7 +110,7 @@ build_target() {
 
 build_bare() {
     local t=$1 num=$2 cc=$3 flags=$4 lib=$5 common
-    common="-Wl,--gc-sections -Wl,--undefined=tg_vectors -L$BM -Isrc -I$BM"
+    common="-Wl,--gc-sections -Wl,--undefined=tgp_vectors -L$BM -Isrc -I$BM"
     if [ "$t" = m0 ]; then # no C library at all: raw semihosting, our memcpy, libgcc last
         $cc $CFLAGS -Os $flags $(numdef "$num") -DTG_BM_ARENA_BYTES="$M0_ARENA" -ffreestanding -nostdlib \
             $common -Tmicrobit.ld -Wl,-Map="$OUT/$t/render-$num.map" \

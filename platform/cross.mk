@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # platform/cross.mk - `make cross`: build tinygi for other machines, run it
 # there (qemu-user, qemu-system-arm, or natively for i686) and compare every
 # output file byte for byte against x86-64's.  Included by the top Makefile.

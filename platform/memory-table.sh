@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # platform/memory-table.sh - the frame memory table of the README's Porting section, from the
 # plans the core makes (`tinygi render ... --explain`), so it can be
 # regenerated whenever the core changes:

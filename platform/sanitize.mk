@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # platform/sanitize.mk - sanitizer and fuzzing targets (included by the Makefile).
 #
 #   make sanitize                 every test (both number types, the shell tests

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * tinygi.h - the public API of tinygi, a dependency-free C99 software
  * renderer with screen-space global illumination (Horizon-Based Indirect
@@ -8,7 +9,7 @@
  *
  * MEMORY
  *   The core never allocates.  The caller hands it one arena (tg_arena) and
- *   asks how many bytes a frame plan needs (tg_plan_bytes) beforehand.
+ *   asks how many bytes a frame plan needs (tgi_plan_bytes) beforehand.
  *
  * CONVENTIONS (decided once, used everywhere)
  *   - Right-handed world space, +Y up by default.  The camera looks along

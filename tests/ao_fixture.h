@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * ao_fixture.h - the analytic test scenes shared by test_ao.c and
  * test_reference.c: rectangles ray-cast per pixel into a G-buffer (no
@@ -21,7 +22,7 @@ typedef struct scene {
     int nrect;
     rect r[MAXRECT];
     tg_vec3 tri[MAXRECT * 6], nrm[MAXRECT * 6];
-    tg_view view;
+    tgi_view view;
     tg_real depth[W * H], nx[W * H], ny[W * H], nz[W * H];
     uint8_t sky[W * H];
     double wpos[W * H][3];   /* world position per pixel (hosted, for picking pixels) */
@@ -53,7 +54,7 @@ static void add_rect(scene *s, double px, double py, double pz, double ux, doubl
     s->nrect++;
 }
 
-static void make_view(tg_view *v, const double eye[3], const double target[3], double fov_deg)
+static void make_view(tgi_view *v, const double eye[3], const double target[3], double fov_deg)
 {
     double f[3] = { target[0] - eye[0], target[1] - eye[1], target[2] - eye[2] }, up[3] = { 0, 1, 0 }, r[3], u[3];
     double fy = 1.0 / tan(fov_deg * 3.14159265358979 / 360.0);
@@ -111,7 +112,7 @@ typedef struct outputs {
     tg_real ao[W * H], bx[W * H], by[W * H], bz[W * H], nr[W * H], ng[W * H], nb[W * H];
 } outputs;
 
-static void io_for(tg_ao_io *io, scene *s, outputs *o, int want_near)
+static void io_for(tgi_ao_io *io, scene *s, outputs *o, int want_near)
 {
     memset(io, 0, sizeof *io);
     io->width = W; io->height = H; io->view = &s->view;
@@ -120,15 +121,15 @@ static void io_for(tg_ao_io *io, scene *s, outputs *o, int want_near)
     if (want_near) { io->near_r = o->nr; io->near_g = o->ng; io->near_b = o->nb; }
 }
 
-static tg_bvh bvh;
+static tgi_bvh bvh;
 static unsigned char *bvh_mem;
 
 static void build_bvh(scene *s)
 {
-    size_t bytes = tg_bvh_bytes(s->nrect * 2);
+    size_t bytes = tgi_bvh_bytes(s->nrect * 2);
     free(bvh_mem);
     bvh_mem = malloc(bytes);
-    if (tg_bvh_build(&bvh, s->tri, s->nrect * 2, bvh_mem, bytes) != 0) { fprintf(stderr, "bvh build failed\n"); exit(2); }
+    if (tgi_bvh_build(&bvh, s->tri, s->nrect * 2, bvh_mem, bytes) != 0) { fprintf(stderr, "bvh build failed\n"); exit(2); }
 }
 
 /* ---- the groove: floor y = 0 (x >= 0) meeting a wall x = 0 (y >= 0) ---- */

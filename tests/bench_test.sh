@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # tests/bench_test.sh - the accuracy-vs-time bench (tools/bench.c) end to end
 # at a tiny size (32x24, one run, 17 reference samples, two scenes), float
 # then fixed then the report:
@@ -20,7 +21,7 @@ set -u
 cd "$(dirname "$0")/.."
 . tests/shcheck.sh
 BUILD=${BUILD:-build}
-T=$(mktemp -d "${TMPDIR:-/tmp}/tg_bench_XXXXXX")
+T=$(mktemp -d "${TMPDIR:-/tmp}/tgi_bench_XXXXXX")
 trap 'rm -rf "$T"' EXIT
 W=32; H=24
 ARGS="--size ${W}x${H} --runs 1 --ref-samples 17 --scenes groove,columns"

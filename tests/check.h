@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * check.h - the tests' tiny harness (hosted code: stdio and libm allowed).
  *

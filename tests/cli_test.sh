@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # tests/cli_test.sh - the command line, end to end, for both number types
 # ($BUILD/tinygi and $BUILD/tinygi-fixed):
 #  - bad options and a table of malformed scenes / OBJ files: exit 2, one line
@@ -16,7 +17,7 @@ cd "$(dirname "$0")/.."
 . tests/shcheck.sh
 BUILD=${BUILD:-build}
 case $BUILD in /*) ;; *) BUILD=$PWD/$BUILD ;; esac
-T=$(mktemp -d "${TMPDIR:-/tmp}/tg_cli_XXXXXX")
+T=$(mktemp -d "${TMPDIR:-/tmp}/tgi_cli_XXXXXX")
 trap 'chmod -R u+w "$T" 2>/dev/null; rm -rf "$T"' EXIT
 S=$T/s          # scenes and OBJ files
 O=$T/o          # outputs (must stay empty after a refused run)

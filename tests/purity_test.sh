@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # purity_test.sh - the core is pure (issue 2 item 2): it includes nothing
 # but <stdint.h>, <stddef.h>, <string.h>; says no `double`; and the compiled
 # libraries (built with -ffreestanding) need nothing from outside but

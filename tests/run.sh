@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # tests/run.sh - run every test program (both number types) and every script
 # test, then print the one closing line "N passed, N failed".
 set -u

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # tests/shcheck.sh - sourced by the script tests: ok/fail counting that
 # matches check.h ("ok NAME" / "FAIL NAME", then "TESTS passed N failed M").
 sh_passed=0; sh_failed=0

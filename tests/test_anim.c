@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_anim.c - keyframe interpolation (exact at keys, linear between, same
  * axis angles kept past 180 degrees, slerp otherwise), frame times, posing,
@@ -22,9 +23,9 @@ static int v3_eq(tg_vec3 a, tg_vec3 b) { return a.x == b.x && a.y == b.y && a.z 
  * triangle), object 1 keyed (one triangle). */
 typedef struct {
     tg_scene s;
-    tg_camera_key ck[3];
-    tg_object obj[2];
-    tg_key ok[3];
+    tgi_camera_key ck[3];
+    tgi_object obj[2];
+    tgi_key ok[3];
     tg_vec3 pos[6], nrm[6];
     uint16_t tri_object[2], tri_material[2];
 } test_scene;
@@ -44,7 +45,7 @@ static void make_scene(test_scene *ts)
     ts->ok[2].t = rv(2.5); ts->ok[2].translate = v3d(2, 1, -1);  ts->ok[2].axis = v3d(1, 0, 0); ts->ok[2].angle = rv(90 * DEG);
     for (i = 0; i < 6; i++) {
         ts->pos[i] = v3d(i * 0.5, (i % 3) * 0.25, 1 - i * 0.1);
-        ts->nrm[i] = tg_v3_normalize(v3d(0.2 * i, 1, 0.1));
+        ts->nrm[i] = tgi_v3_normalize(v3d(0.2 * i, 1, 0.1));
     }
     ts->tri_object[0] = 0; ts->tri_object[1] = 1;
     s->camera.pos = ts->ck[0].pos; s->camera.target = ts->ck[0].target; s->camera.up = v3d(0, 1, 0);
@@ -69,30 +70,30 @@ TEST(keys_interpolate_exactly_at_keys)
 {
     test_scene *ts = (test_scene *)malloc(sizeof *ts);
     tg_vec3 pos, target;
-    tg_mat4 m, want;
+    tgi_mat4 m, want;
     int k, i;
     make_scene(ts);
     for (k = 0; k < 3; k++) {
-        tg_anim_camera(&ts->s, ts->ck[k].t, &pos, &target);
+        tgi_anim_camera(&ts->s, ts->ck[k].t, &pos, &target);
         CHECK(v3_eq(pos, ts->ck[k].pos) && v3_eq(target, ts->ck[k].target), "camera key %d exact", k);
-        tg_anim_object_matrix(&ts->s, 1, ts->ok[k].t, &m);
-        want = tg_m4_rotate(ts->ok[k].axis, ts->ok[k].angle);
+        tgi_anim_object_matrix(&ts->s, 1, ts->ok[k].t, &m);
+        want = tgi_m4_rotate(ts->ok[k].axis, ts->ok[k].angle);
         want.m[3] = ts->ok[k].translate.x; want.m[7] = ts->ok[k].translate.y; want.m[11] = ts->ok[k].translate.z;
         for (i = 0; i < 16; i++) CHECK(m.m[i] == want.m[i], "object key %d element %d exact", k, i);
     }
     /* before the first / after the last key the ends hold */
-    tg_anim_camera(&ts->s, rv(-2), &pos, &target);
+    tgi_anim_camera(&ts->s, rv(-2), &pos, &target);
     CHECK(v3_eq(pos, ts->ck[0].pos), "before the first key");
-    tg_anim_camera(&ts->s, rv(9), &pos, &target);
+    tgi_anim_camera(&ts->s, rv(9), &pos, &target);
     CHECK(v3_eq(pos, ts->ck[2].pos), "after the last key");
     /* linear between keys: t = 2 is halfway between keys 1 and 3 */
-    tg_anim_camera(&ts->s, rv(2.0), &pos, &target);
+    tgi_anim_camera(&ts->s, rv(2.0), &pos, &target);
     CHECK_NEAR(dv(pos.x), (1.5 + -2) / 2, 1e-3);
     CHECK_NEAR(dv(pos.y), (2.5 + 3) / 2, 1e-3);
     CHECK_NEAR(dv(target.z), 0.25, 1e-3);
     /* static object: identity */
-    tg_anim_object_matrix(&ts->s, 0, rv(1.0), &m);
-    want = tg_m4_identity();
+    tgi_anim_object_matrix(&ts->s, 0, rv(1.0), &m);
+    want = tgi_m4_identity();
     for (i = 0; i < 16; i++) CHECK(m.m[i] == want.m[i], "unkeyed object is at rest");
     free(ts);
 }
@@ -100,14 +101,14 @@ TEST(keys_interpolate_exactly_at_keys)
 TEST(rotation_interpolation)
 {
     test_scene *ts = (test_scene *)malloc(sizeof *ts);
-    tg_mat4 m;
+    tgi_mat4 m;
     double p[3] = { 1, 0.5, 0.25 }, axis_y[3] = { 0, 1, 0 }, want[3];
     tg_vec3 got;
     int k;
     make_scene(ts);
     /* same axis, 0 -> 270 degrees: halfway is 135 degrees, not the short way round */
-    tg_anim_object_matrix(&ts->s, 1, rv(1.0), &m);
-    got = tg_m4_point(&m, v3d(p[0], p[1], p[2]));
+    tgi_anim_object_matrix(&ts->s, 1, rv(1.0), &m);
+    got = tgi_m4_point(&m, v3d(p[0], p[1], p[2]));
     rotate_d(axis_y, 135 * DEG, p, want);
     CHECK_NEAR(dv(got.x), want[0] + 1.0, 2e-3);
     CHECK_NEAR(dv(got.y), want[1], 2e-3);
@@ -116,8 +117,8 @@ TEST(rotation_interpolation)
     for (k = 1; k < 4; k++) {
         double t = 1.5 + k * 0.25, len0 = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]), len;
         tg_vec3 r;
-        tg_anim_object_matrix(&ts->s, 1, rv(t), &m);
-        r = tg_m4_dir(&m, v3d(p[0], p[1], p[2]));
+        tgi_anim_object_matrix(&ts->s, 1, rv(t), &m);
+        r = tgi_m4_dir(&m, v3d(p[0], p[1], p[2]));
         len = sqrt(dv(r.x) * dv(r.x) + dv(r.y) * dv(r.y) + dv(r.z) * dv(r.z));
         CHECK(fabs(len - len0) < 2e-3, "rigid at t %g: |Rp| %g vs %g", t, len, len0);
     }
@@ -133,8 +134,8 @@ TEST(rotation_interpolation)
         angle = 2 * atan2(s, q[3]);
         for (j = 0; j < 3; j++) ax[j] = q[j] / s;
         rotate_d(ax, angle, p, want);
-        tg_anim_object_matrix(&ts->s, 1, rv(2.0), &m);
-        got = tg_m4_dir(&m, v3d(p[0], p[1], p[2]));
+        tgi_anim_object_matrix(&ts->s, 1, rv(2.0), &m);
+        got = tgi_m4_dir(&m, v3d(p[0], p[1], p[2]));
         CHECK_NEAR(dv(got.x), want[0], 3e-3);
         CHECK_NEAR(dv(got.y), want[1], 3e-3);
         CHECK_NEAR(dv(got.z), want[2], 3e-3);
@@ -146,35 +147,35 @@ TEST(frame_times_and_posing)
 {
     test_scene *ts = (test_scene *)malloc(sizeof *ts);
     tg_vec3 pos[6], nrm[6];
-    tg_mat4 m;
+    tgi_mat4 m;
     int v;
     make_scene(ts);
-    CHECK(tg_anim_time(&ts->s, 0, 7) == 0, "frame 0 is the first key");
-    CHECK(tg_anim_time(&ts->s, 6, 7) == rv(3.0), "the last frame is the last key");
-    CHECK_NEAR(dv(tg_anim_time(&ts->s, 2, 7)), 1.0, 1e-4);
-    CHECK(tg_anim_time(&ts->s, 0, 1) == 0, "one frame: the first key");
-    CHECK(tg_anim_has_motion(&ts->s), "keys move");
-    tg_anim_pose(&ts->s, rv(2.5), pos, nrm);
-    tg_anim_object_matrix(&ts->s, 1, rv(2.5), &m);
+    CHECK(tgi_anim_time(&ts->s, 0, 7) == 0, "frame 0 is the first key");
+    CHECK(tgi_anim_time(&ts->s, 6, 7) == rv(3.0), "the last frame is the last key");
+    CHECK_NEAR(dv(tgi_anim_time(&ts->s, 2, 7)), 1.0, 1e-4);
+    CHECK(tgi_anim_time(&ts->s, 0, 1) == 0, "one frame: the first key");
+    CHECK(tgi_anim_has_motion(&ts->s), "keys move");
+    tgi_anim_pose(&ts->s, rv(2.5), pos, nrm);
+    tgi_anim_object_matrix(&ts->s, 1, rv(2.5), &m);
     for (v = 0; v < 3; v++) CHECK(v3_eq(pos[v], ts->pos[v]) && v3_eq(nrm[v], ts->nrm[v]), "static triangle untouched");
     for (v = 3; v < 6; v++) {
-        tg_vec3 p = tg_m4_point(&m, ts->pos[v]), n = nrm[v];
+        tg_vec3 p = tgi_m4_point(&m, ts->pos[v]), n = nrm[v];
         CHECK(v3_eq(pos[v], p), "keyed triangle moved by its key");
-        CHECK(fabs(dv(tg_v3_length(n)) - 1) < 1e-3, "posed normal unit");
-        CHECK(fabs(dv(tg_v3_dot(n, tg_v3_normalize(tg_m4_dir(&m, ts->nrm[v])))) - 1) < 1e-3, "normal rotated");
+        CHECK(fabs(dv(tgi_v3_length(n)) - 1) < 1e-3, "posed normal unit");
+        CHECK(fabs(dv(tgi_v3_dot(n, tgi_v3_normalize(tgi_m4_dir(&m, ts->nrm[v])))) - 1) < 1e-3, "normal rotated");
     }
     {
         tg_vec3 lo, hi;
-        tg_anim_bounds(pos, 2, &lo, &hi);
+        tgi_anim_bounds(pos, 2, &lo, &hi);
         for (v = 0; v < 6; v++)
             CHECK(pos[v].x >= lo.x && pos[v].y >= lo.y && pos[v].z >= lo.z &&
                   pos[v].x <= hi.x && pos[v].y <= hi.y && pos[v].z <= hi.z, "bounds hold vertex %d", v);
         CHECK((lo.x == pos[0].x || lo.x == pos[1].x || lo.x == pos[2].x || lo.x == pos[3].x || lo.x == pos[4].x || lo.x == pos[5].x), "tight");
     }
     ts->s.camera_key_count = 1; ts->obj[1].key_count = 1;
-    CHECK(!tg_anim_has_motion(&ts->s), "single keys do not move");
+    CHECK(!tgi_anim_has_motion(&ts->s), "single keys do not move");
     ts->s.camera_key_count = 0; ts->s.object_key_count = 0; ts->obj[1].key_count = 0;
-    CHECK(tg_anim_time(&ts->s, 3, 10) == 0, "no keys: t = 0");
+    CHECK(tgi_anim_time(&ts->s, 3, 10) == 0, "no keys: t = 0");
     free(ts);
 }
 
@@ -183,7 +184,7 @@ TEST(frame_times_and_posing)
 /* Scene: floor y = 0, a back wall z = 5 (2.5 high), and box [-1,1]x[0,1.5]x[-1,1] posed by M (rotation + translation). */
 typedef struct { double R[3][3], T[3]; } rigid;
 
-static void rigid_from_m4(const tg_mat4 *m, rigid *r)
+static void rigid_from_m4(const tgi_mat4 *m, rigid *r)
 {
     int i, j;
     for (i = 0; i < 3; i++) { for (j = 0; j < 3; j++) r->R[i][j] = dv(m->m[i * 4 + j]); r->T[i] = dv(m->m[i * 4 + 3]); }
@@ -220,7 +221,7 @@ static double ray_box_posed(const rigid *m, const double o[3], const double d[3]
     return t0 <= t1 && t0 > 1e-9 ? t0 : -1;
 }
 
-static void view_ray(const tg_view *v, double sx, double sy, double o[3], double d[3])
+static void view_ray(const tgi_view *v, double sx, double sy, double o[3], double d[3])
 {
     double vx = (sx / v->width * 2 - 1) / dv(v->focal_x), vy = (1 - sy / v->height * 2) / dv(v->focal_y);
     o[0] = dv(v->eye.x); o[1] = dv(v->eye.y); o[2] = dv(v->eye.z);
@@ -230,7 +231,7 @@ static void view_ray(const tg_view *v, double sx, double sy, double o[3], double
 }
 
 /* Exact screen position of world point p in view v (double). */
-static int project_d(const tg_view *v, const double p[3], double *sx, double *sy)
+static int project_d(const tgi_view *v, const double p[3], double *sx, double *sy)
 {
     double q[3] = { p[0] - dv(v->eye.x), p[1] - dv(v->eye.y), p[2] - dv(v->eye.z) };
     double x = q[0] * dv(v->right.x) + q[1] * dv(v->right.y) + q[2] * dv(v->right.z);
@@ -243,7 +244,7 @@ static int project_d(const tg_view *v, const double p[3], double *sx, double *sy
 }
 
 typedef struct {
-    tg_gbuffer gb;
+    tgi_gbuffer gb;
     tg_real depth[W * H], mx[W * H], my[W * H];
     uint8_t sky[W * H];
     uint16_t object[W * H];
@@ -251,7 +252,7 @@ typedef struct {
 } motion_gb;
 
 /* Cast the floor, wall (object 0) and the box posed by `box` (object 1). */
-static void cast(motion_gb *g, const tg_view *v, const rigid *box)
+static void cast(motion_gb *g, const tgi_view *v, const rigid *box)
 {
     int x, y, k;
     memset(&g->gb, 0, sizeof g->gb);
@@ -281,20 +282,20 @@ TEST(static_scene_moving_camera_reprojects_onto_itself)
 {
     test_scene *ts = (test_scene *)malloc(sizeof *ts);
     motion_gb *g = (motion_gb *)malloc(sizeof *g);
-    tg_view cur, prev;
+    tgi_view cur, prev;
     tg_vec3 pos, target;
     rigid still = { { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } }, { 0, 0.0, 0 } };
     double worst = 0;
     int i, seen = 0, sky_seen = 0, frame;
     make_scene(ts);
     for (frame = 1; frame < 12; frame++) {
-        tg_real tc = tg_anim_time(&ts->s, frame, 12), tp = tg_anim_time(&ts->s, frame - 1, 12);
-        tg_anim_camera(&ts->s, tc, &pos, &target);
-        tg_view_make(&cur, pos, target, v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(100.0f), W, H);
-        tg_anim_camera(&ts->s, tp, &pos, &target);
-        tg_view_make(&prev, pos, target, v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(100.0f), W, H);
+        tg_real tc = tgi_anim_time(&ts->s, frame, 12), tp = tgi_anim_time(&ts->s, frame - 1, 12);
+        tgi_anim_camera(&ts->s, tc, &pos, &target);
+        tgi_view_make(&cur, pos, target, v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(100.0f), W, H);
+        tgi_anim_camera(&ts->s, tp, &pos, &target);
+        tgi_view_make(&prev, pos, target, v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(100.0f), W, H);
         cast(g, &cur, &still);
-        tg_motion_rows(&g->gb, &cur, &prev, NULL, 0, H);
+        tgi_motion_rows(&g->gb, &cur, &prev, NULL, 0, H);
         for (i = 0; i < W * H; i++) {
             double ex, ey;
             if (g->sky[i]) {   /* a direction: reprojects by rotation only */
@@ -323,23 +324,23 @@ TEST(moving_object_motion)
 {
     test_scene *ts = (test_scene *)malloc(sizeof *ts);
     motion_gb *g = (motion_gb *)malloc(sizeof *g);
-    tg_view cur, prev;
-    tg_mat4 mcur, mprev, delta[2];
+    tgi_view cur, prev;
+    tgi_mat4 mcur, mprev, delta[2];
     rigid rc, rp;
     double worst = 0;
     int i, seen = 0;
     tg_real tc = rv(1.2), tp = rv(1.0);
     make_scene(ts);
     ts->ok[1].translate = v3d(0.6, 0, 0.4); /* a gentler motion keeps the box in view */
-    tg_view_make(&cur, v3d(0, 3, -6), v3d(0, 0.5, 0), v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(100.0f), W, H);
-    tg_view_make(&prev, v3d(0.3, 3, -6.2), v3d(0, 0.5, 0), v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(100.0f), W, H);
-    tg_anim_object_matrix(&ts->s, 1, tc, &mcur);
-    tg_anim_object_matrix(&ts->s, 1, tp, &mprev);
+    tgi_view_make(&cur, v3d(0, 3, -6), v3d(0, 0.5, 0), v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(100.0f), W, H);
+    tgi_view_make(&prev, v3d(0.3, 3, -6.2), v3d(0, 0.5, 0), v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(100.0f), W, H);
+    tgi_anim_object_matrix(&ts->s, 1, tc, &mcur);
+    tgi_anim_object_matrix(&ts->s, 1, tp, &mprev);
     rigid_from_m4(&mcur, &rc); rigid_from_m4(&mprev, &rp);
-    tg_anim_object_delta(&ts->s, 0, tc, tp, &delta[0]);
-    tg_anim_object_delta(&ts->s, 1, tc, tp, &delta[1]);
+    tgi_anim_object_delta(&ts->s, 0, tc, tp, &delta[0]);
+    tgi_anim_object_delta(&ts->s, 1, tc, tp, &delta[1]);
     cast(g, &cur, &rc);
-    tg_motion_rows(&g->gb, &cur, &prev, delta, 0, H);
+    tgi_motion_rows(&g->gb, &cur, &prev, delta, 0, H);
     for (i = 0; i < W * H; i++) {
         double p[3], rest[3], ex, ey, err;
         if (g->sky[i] || g->object[i] != 1) continue;

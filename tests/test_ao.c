@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_ao.c - every screen-space AO technique (ssao x3, vo line/area, hbao,
  * gtao, ssdo, bentcone) on synthetic G-buffers, in both number types:
@@ -42,42 +43,42 @@ static void open_plane(scene *s)
 static tg_vec3 uniform_sky[9];   /* L = 1 everywhere: L00 = 2 sqrt(pi) */
 static tg_real far_r[W * H], far_g[W * H], far_b[W * H];
 
-static void run_ssao_sphere(const tg_ao_io *io, int y0, int y1)
-{ tg_ssao_params p; tg_ssao_defaults(&p); p.variant = TG_SSAO_SPHERE; tg_ssao_rows(&p, io, y0, y1); }
-static void run_ssao_hemi(const tg_ao_io *io, int y0, int y1)
-{ tg_ssao_params p; tg_ssao_defaults(&p); tg_ssao_rows(&p, io, y0, y1); }
-static void run_ssao_2d(const tg_ao_io *io, int y0, int y1)
-{ tg_ssao_params p; tg_ssao_defaults(&p); p.variant = TG_SSAO_DISK2D; tg_ssao_rows(&p, io, y0, y1); }
-static void run_vo(const tg_ao_io *io, int y0, int y1)
-{ tg_vo_params p; tg_vo_defaults(&p); tg_vo_rows(&p, io, y0, y1); }
-static void run_vo_area(const tg_ao_io *io, int y0, int y1)
-{ tg_vo_params p; tg_vo_defaults(&p); p.area = 1; p.samples = 5; tg_vo_rows(&p, io, y0, y1); }
-static void run_vo_nonormal(const tg_ao_io *io, int y0, int y1)
-{ tg_vo_params p; tg_vo_defaults(&p); p.use_normal = 0; tg_vo_rows(&p, io, y0, y1); }
-static void run_hbao(const tg_ao_io *io, int y0, int y1)
-{ tg_hbao_params p; tg_hbao_defaults(&p); tg_hbao_rows(&p, io, y0, y1); }
-static void run_gtao(const tg_ao_io *io, int y0, int y1)
-{ tg_gtao_params p; tg_gtao_defaults(&p); tg_gtao_rows(&p, io, y0, y1); }
-static void run_gtao2(const tg_ao_io *io, int y0, int y1)
-{ tg_gtao_params p; tg_gtao_defaults(&p); p.slices = 2; p.steps = 4; tg_gtao_rows(&p, io, y0, y1); }
-static void run_hbao4(const tg_ao_io *io, int y0, int y1)
-{ tg_hbao_params p; tg_hbao_defaults(&p); p.directions = 4; p.steps = 3; tg_hbao_rows(&p, io, y0, y1); }
-static void run_ssdo(const tg_ao_io *io, int y0, int y1)
+static void run_ssao_sphere(const tgi_ao_io *io, int y0, int y1)
+{ tgi_ssao_params p; tgi_ssao_defaults(&p); p.variant = TG_SSAO_SPHERE; tgi_ssao_rows(&p, io, y0, y1); }
+static void run_ssao_hemi(const tgi_ao_io *io, int y0, int y1)
+{ tgi_ssao_params p; tgi_ssao_defaults(&p); tgi_ssao_rows(&p, io, y0, y1); }
+static void run_ssao_2d(const tgi_ao_io *io, int y0, int y1)
+{ tgi_ssao_params p; tgi_ssao_defaults(&p); p.variant = TG_SSAO_DISK2D; tgi_ssao_rows(&p, io, y0, y1); }
+static void run_vo(const tgi_ao_io *io, int y0, int y1)
+{ tgi_vo_params p; tgi_vo_defaults(&p); tgi_vo_rows(&p, io, y0, y1); }
+static void run_vo_area(const tgi_ao_io *io, int y0, int y1)
+{ tgi_vo_params p; tgi_vo_defaults(&p); p.area = 1; p.samples = 5; tgi_vo_rows(&p, io, y0, y1); }
+static void run_vo_nonormal(const tgi_ao_io *io, int y0, int y1)
+{ tgi_vo_params p; tgi_vo_defaults(&p); p.use_normal = 0; tgi_vo_rows(&p, io, y0, y1); }
+static void run_hbao(const tgi_ao_io *io, int y0, int y1)
+{ tgi_hbao_params p; tgi_hbao_defaults(&p); tgi_hbao_rows(&p, io, y0, y1); }
+static void run_gtao(const tgi_ao_io *io, int y0, int y1)
+{ tgi_gtao_params p; tgi_gtao_defaults(&p); tgi_gtao_rows(&p, io, y0, y1); }
+static void run_gtao2(const tgi_ao_io *io, int y0, int y1)
+{ tgi_gtao_params p; tgi_gtao_defaults(&p); p.slices = 2; p.steps = 4; tgi_gtao_rows(&p, io, y0, y1); }
+static void run_hbao4(const tgi_ao_io *io, int y0, int y1)
+{ tgi_hbao_params p; tgi_hbao_defaults(&p); p.directions = 4; p.steps = 3; tgi_hbao_rows(&p, io, y0, y1); }
+static void run_ssdo(const tgi_ao_io *io, int y0, int y1)
 {
-    tg_ssdo_params p; tg_ssdo_defaults(&p);
+    tgi_ssdo_params p; tgi_ssdo_defaults(&p);
     p.env_sh9 = uniform_sky; p.far_r = far_r; p.far_g = far_g; p.far_b = far_b;
-    tg_ssdo_rows(&p, io, y0, y1);
+    tgi_ssdo_rows(&p, io, y0, y1);
 }
-static void run_bentcone(const tg_ao_io *io, int y0, int y1)
+static void run_bentcone(const tgi_ao_io *io, int y0, int y1)
 {
-    tg_bentcone_params p; tg_bentcone_defaults(&p);
+    tgi_bentcone_params p; tgi_bentcone_defaults(&p);
     p.env_sh9 = uniform_sky; p.far_r = far_r; p.far_g = far_g; p.far_b = far_b;
-    tg_bentcone_rows(&p, io, y0, y1);
+    tgi_bentcone_rows(&p, io, y0, y1);
 }
 
 typedef struct technique {
     const char *name;
-    void (*run)(const tg_ao_io *io, int y0, int y1);
+    void (*run)(const tgi_ao_io *io, int y0, int y1);
     double open_min;   /* ao bound on an open plane */
     double rmse_max;   /* groove ao RMSE against the reference (radius 1) */
     int has_bent;
@@ -134,7 +135,7 @@ TEST(open_plane_all)
 {
     static scene s;
     static outputs o;
-    tg_ao_io io;
+    tgi_ao_io io;
     int k;
     open_plane(&s);
     for (k = 0; k < NTECH; k++) {
@@ -152,7 +153,7 @@ TEST(deterministic_all)
 {
     static scene s;
     static outputs a, b;
-    tg_ao_io io;
+    tgi_ao_io io;
     int k;
     groove(&s);
     for (k = 0; k < NTECH; k++) {
@@ -182,14 +183,14 @@ TEST(groove_against_reference)
 {
     static scene s;
     static outputs ref, o;
-    tg_reference_params rp;
-    tg_ao_io io;
+    tgi_reference_params rp;
+    tgi_ao_io io;
     int k, i;
     groove(&s);
-    tg_reference_defaults(&rp);
+    tgi_reference_defaults(&rp);
     rp.bvh = &bvh; rp.tri_nrm = s.nrm; rp.radius = TG_ONE;
     io_for(&io, &s, &ref, 0);
-    tg_reference_rows(&rp, &io, 0, H);
+    tgi_reference_rows(&rp, &io, 0, H);
     printf("# groove reference: floor ao near the crease %.3f, beyond the radius %.3f\n",
            floor_mean(&s, ref.ao, 0, 0.15), floor_mean(&s, ref.ao, 1.2, 100));
     for (k = 0; k < NTECH; k++) {
@@ -225,16 +226,16 @@ TEST(groove_against_reference)
 TEST(interreflection)
 {
     /* RTR eq. 11.13: k' = k / (1 - rho (1 - k)) */
-    CHECK_NEAR(check_d(tg_ao_interreflection(TG_R(0.5f), TG_R(0.5f))), 0.5 / 0.75, 2e-4);
-    CHECK_NEAR(check_d(tg_ao_interreflection(TG_R(0.3f), 0)), 0.3, 2e-5);
-    CHECK(tg_ao_interreflection(TG_ONE, TG_R(0.8f)) == TG_ONE, "open stays open");
-    CHECK(tg_ao_interreflection(0, TG_R(0.8f)) == 0, "k = 0 stays 0 for rho < 1");
-    CHECK(tg_ao_interreflection(0, TG_ONE) == TG_ONE, "rho = 1, k = 0: the limit 1");
+    CHECK_NEAR(check_d(tgi_ao_interreflection(TG_R(0.5f), TG_R(0.5f))), 0.5 / 0.75, 2e-4);
+    CHECK_NEAR(check_d(tgi_ao_interreflection(TG_R(0.3f), 0)), 0.3, 2e-5);
+    CHECK(tgi_ao_interreflection(TG_ONE, TG_R(0.8f)) == TG_ONE, "open stays open");
+    CHECK(tgi_ao_interreflection(0, TG_R(0.8f)) == 0, "k = 0 stays 0 for rho < 1");
+    CHECK(tgi_ao_interreflection(0, TG_ONE) == TG_ONE, "rho = 1, k = 0: the limit 1");
     {
         int a, r;
         for (a = 0; a <= 20; a++)
             for (r = 0; r <= 20; r++) {
-                tg_real k = tg_ratio(a, 20), rho = tg_ratio(r, 20), kp = tg_ao_interreflection(k, rho);
+                tg_real k = tg_ratio(a, 20), rho = tg_ratio(r, 20), kp = tgi_ao_interreflection(k, rho);
                 CHECK(kp >= k && kp <= TG_ONE, "brightens within [k, 1]: %g -> %g", check_d(k), check_d(kp));
             }
     }
@@ -245,12 +246,12 @@ TEST(bentcone_cone_and_far)
     static scene s;
     static outputs o;
     static tg_real cone[W * H];
-    tg_ao_io io;
+    tgi_ao_io io;
     int i, n = 0;
     double min_cone = 10, worst_far = 0;
-    CHECK_NEAR(check_d(tg_bentcone_aperture(TG_R(0.5f))), 3.14159265358979 / 2, 1e-4);
-    CHECK_NEAR(check_d(tg_bentcone_aperture(TG_ONE)), 0, 1e-6);
-    CHECK_NEAR(check_d(tg_bentcone_aperture(TG_R(0.75f))), 3.14159265358979 / 4, 1e-4);
+    CHECK_NEAR(check_d(tgi_bentcone_aperture(TG_R(0.5f))), 3.14159265358979 / 2, 1e-4);
+    CHECK_NEAR(check_d(tgi_bentcone_aperture(TG_ONE)), 0, 1e-6);
+    CHECK_NEAR(check_d(tgi_bentcone_aperture(TG_R(0.75f))), 3.14159265358979 / 4, 1e-4);
     open_plane(&s);
     io_for(&io, &s, &o, 0);
     io.cone = cone;
@@ -286,8 +287,8 @@ TEST(ssdo_far_and_near)
     static scene s;
     static outputs o, ref;
     static tg_real rr[W * H], rg[W * H], rb[W * H];
-    tg_reference_params rp;
-    tg_ao_io io;
+    tgi_reference_params rp;
+    tgi_ao_io io;
     int i, n = 0;
     double worst_far = 0, e_ssdo = 0, e_ref = 0;
     open_plane(&s);
@@ -303,11 +304,11 @@ TEST(ssdo_far_and_near)
     io_for(&io, &s, &o, 1);
     io.rad_r = rr; io.rad_g = rg; io.rad_b = rb;
     run_ssdo(&io, 0, H);
-    tg_reference_defaults(&rp);
+    tgi_reference_defaults(&rp);
     rp.bvh = &bvh; rp.tri_nrm = s.nrm; rp.radius = TG_ONE;
     io_for(&io, &s, &ref, 1);
     io.rad_r = rr; io.rad_g = rg; io.rad_b = rb;
-    tg_reference_rows(&rp, &io, 0, H);   /* view-buffer radiance: what ssdo can see */
+    tgi_reference_rows(&rp, &io, 0, H);   /* view-buffer radiance: what ssdo can see */
     for (i = 0; i < W * H; i++) {
         CHECK(o.nr[i] >= 0 && tg_isfinite(o.nr[i]) && o.nb[i] == 0, "near must be finite, >= 0");
         if (!s.sky[i] && s.wrect[i] == 0 && s.wpos[i][0] < 0.15 && fabs(s.wpos[i][2]) < 10) {
@@ -327,9 +328,9 @@ TEST(ssdo_light_occlusion)
     static scene s;
     static outputs o;
     static tg_real lr[W * H], lg[W * H], lb[W * H];
-    tg_light light;
-    tg_ssdo_params p;
-    tg_ao_io io;
+    tgi_light light;
+    tgi_ssdo_params p;
+    tgi_ao_io io;
     int i, n_near = 0, n_far = 0;
     double near_e = 0, worst_far = 0;
     memset(&light, 0, sizeof light);
@@ -338,11 +339,11 @@ TEST(ssdo_light_occlusion)
     light.color = tg_v3(TG_ONE, TG_ONE, TG_ONE);
     light.intensity = TG_ONE;
     groove(&s);
-    tg_ssdo_defaults(&p);
+    tgi_ssdo_defaults(&p);
     p.lights = &light; p.light_count = 1;
     p.light_r = lr; p.light_g = lg; p.light_b = lb;
     io_for(&io, &s, &o, 0);
-    tg_ssdo_rows(&p, &io, 0, H);
+    tgi_ssdo_rows(&p, &io, 0, H);
     for (i = 0; i < W * H; i++) {
         if (s.sky[i] || s.wrect[i] != 0 || fabs(s.wpos[i][2]) >= 10) continue;
         CHECK(tg_isfinite(lr[i]) && lr[i] >= 0, "finite");

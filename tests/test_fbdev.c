@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_fbdev.c - the Linux framebuffer output (platform/fbdev) against
  * file-backed framebuffers: for every supported pixel format the bytes at
@@ -23,7 +24,7 @@ static const uint8_t colours[4][3] = {{255, 0, 0}, {10, 200, 77}, {255, 255, 255
 /* Pixel values for the colours above, from the formats' definitions
  * (565: round(c * 31 / 255) etc.; alpha opaque). */
 static const struct {
-    tg_fb_format format;
+    tgp_fb_format format;
     int bytes;
     uint32_t value[4];
 } expected[] = {
@@ -97,21 +98,21 @@ TEST(formats_bytes_at_known_pixels)
 {
     size_t k;
     for (k = 0; k < sizeof expected / sizeof expected[0]; k++) {
-        tg_fb_info info;
-        tg_fb fb;
+        tgp_fb_info info;
+        tgp_fb fb;
         char path[64];
         int b = expected[k].bytes, i;
         size_t line = (size_t)W * (size_t)b + 12, size = line * H;
         uint8_t row[12];
         unsigned char *mem;
-        const char *name = tg_fb_format_name(expected[k].format);
+        const char *name = tgp_fb_format_name(expected[k].format);
         for (i = 0; i < 4; i++) memcpy(row + 3 * i, colours[i], 3);
-        CHECK(tg_fb_info_format(&info, expected[k].format, W, H, line) == 0, "%s", name);
+        CHECK(tgp_fb_info_format(&info, expected[k].format, W, H, line) == 0, "%s", name);
         CHECK(info.bits_per_pixel == 8 * b, "%s: %d bpp", name, info.bits_per_pixel);
         if (make_file(path, size) != 0) { CHECK(0, "temp file"); return; }
-        CHECK(tg_fb_open_file(&fb, path, &info) == 0, "%s: %s", name, fb.error);
-        tg_fb_put_row(&fb, 2, 3, row, 4);
-        tg_fb_close(&fb);
+        CHECK(tgp_fb_open_file(&fb, path, &info) == 0, "%s: %s", name, fb.error);
+        tgp_fb_put_row(&fb, 2, 3, row, 4);
+        tgp_fb_close(&fb);
         mem = read_file(path, size);
         unlink(path);
         if (!mem) { CHECK(0, "read back"); return; }
@@ -129,25 +130,25 @@ TEST(formats_bytes_at_known_pixels)
 /* Clipping at all four edges, and the visible-area offset. */
 TEST(clipping_and_offset)
 {
-    tg_fb_info info;
-    tg_fb fb;
+    tgp_fb_info info;
+    tgp_fb fb;
     char path[64];
     size_t line = 4u * (W + 2), size = line * (H + 1);
     uint8_t row[5 * 3];
     unsigned char *mem;
     int i;
     for (i = 0; i < 5; i++) { row[3 * i] = (uint8_t)(i + 1); row[3 * i + 1] = 0; row[3 * i + 2] = 0; }
-    tg_fb_info_format(&info, TG_FB_XRGB8888, W, H, line);
+    tgp_fb_info_format(&info, TG_FB_XRGB8888, W, H, line);
     info.xoffset = 1; /* the visible area starts one pixel in and one line down */
     info.yoffset = 1;
     if (make_file(path, size) != 0) { CHECK(0, "temp file"); return; }
-    CHECK(tg_fb_open_file(&fb, path, &info) == 0, "%s", fb.error);
-    tg_fb_put_row(&fb, -2, 0, row, 5);     /* pixels 3, 4, 5 land at x = 0..2 */
-    tg_fb_put_row(&fb, W - 2, H - 1, row, 5); /* pixels 1, 2 at x = W-2, W-1 */
-    tg_fb_put_row(&fb, 0, H, row, 5);      /* below the screen: nothing */
-    tg_fb_put_row(&fb, 0, -1, row, 5);     /* above: nothing */
-    tg_fb_put_row(&fb, W, 2, row, 5);      /* right of it: nothing */
-    tg_fb_close(&fb);
+    CHECK(tgp_fb_open_file(&fb, path, &info) == 0, "%s", fb.error);
+    tgp_fb_put_row(&fb, -2, 0, row, 5);     /* pixels 3, 4, 5 land at x = 0..2 */
+    tgp_fb_put_row(&fb, W - 2, H - 1, row, 5); /* pixels 1, 2 at x = W-2, W-1 */
+    tgp_fb_put_row(&fb, 0, H, row, 5);      /* below the screen: nothing */
+    tgp_fb_put_row(&fb, 0, -1, row, 5);     /* above: nothing */
+    tgp_fb_put_row(&fb, W, 2, row, 5);      /* right of it: nothing */
+    tgp_fb_close(&fb);
     mem = read_file(path, size);
     unlink(path);
     if (!mem) { CHECK(0, "read back"); return; }
@@ -171,22 +172,22 @@ static void gradient_row(void *user, int y, uint8_t *rgb)
     }
 }
 
-/* tg_fb_draw puts an image's rows where they belong, RGB565. */
+/* tgp_fb_draw puts an image's rows where they belong, RGB565. */
 TEST(draw_image_rows)
 {
-    tg_fb_info info;
-    tg_fb fb;
+    tgp_fb_info info;
+    tgp_fb fb;
     char path[64];
     size_t line = 2u * W, size = line * H;
     uint8_t scratch[4 * 3];
     unsigned char *mem;
     int w = 4, x, y;
-    tg_fb_info_format(&info, TG_FB_RGB565, W, H, 0);
+    tgp_fb_info_format(&info, TG_FB_RGB565, W, H, 0);
     CHECK(info.line_length == line, "packed line %lu", (unsigned long)info.line_length);
     if (make_file(path, size) != 0) { CHECK(0, "temp file"); return; }
-    CHECK(tg_fb_open_file(&fb, path, &info) == 0, "%s", fb.error);
-    tg_fb_draw(&fb, 3, 2, w, 3, gradient_row, &w, scratch);
-    tg_fb_close(&fb);
+    CHECK(tgp_fb_open_file(&fb, path, &info) == 0, "%s", fb.error);
+    tgp_fb_draw(&fb, 3, 2, w, 3, gradient_row, &w, scratch);
+    tgp_fb_close(&fb);
     mem = read_file(path, size);
     unlink(path);
     if (!mem) { CHECK(0, "read back"); return; }
@@ -204,45 +205,45 @@ TEST(draw_image_rows)
 
 TEST(unsupported_formats_are_errors)
 {
-    tg_fb_info info;
+    tgp_fb_info info;
     char msg[256];
-    tg_fb_info_format(&info, TG_FB_XRGB8888, W, H, 0);
-    CHECK(tg_fb_info_check(&info, msg, sizeof msg) == 0, "%s", msg);
+    tgp_fb_info_format(&info, TG_FB_XRGB8888, W, H, 0);
+    CHECK(tgp_fb_info_check(&info, msg, sizeof msg) == 0, "%s", msg);
     info.bits_per_pixel = 8;
-    CHECK(tg_fb_info_check(&info, msg, sizeof msg) != 0, "8 bpp accepted");
+    CHECK(tgp_fb_info_check(&info, msg, sizeof msg) != 0, "8 bpp accepted");
     CHECK(strstr(msg, "8 bits per pixel") != NULL, "message: %s", msg);
-    tg_fb_info_format(&info, TG_FB_XRGB8888, W, H, 0);
+    tgp_fb_info_format(&info, TG_FB_XRGB8888, W, H, 0);
     info.red.length = 10;
-    CHECK(tg_fb_info_check(&info, msg, sizeof msg) != 0, "10-bit red accepted");
-    tg_fb_info_format(&info, TG_FB_RGB565, W, H, 0);
+    CHECK(tgp_fb_info_check(&info, msg, sizeof msg) != 0, "10-bit red accepted");
+    tgp_fb_info_format(&info, TG_FB_RGB565, W, H, 0);
     info.green.offset = 4; /* bits 4-9 overlap blue (0-4) */
-    CHECK(tg_fb_info_check(&info, msg, sizeof msg) != 0, "overlapping channels accepted");
-    tg_fb_info_format(&info, TG_FB_RGB565, W, H, 0);
+    CHECK(tgp_fb_info_check(&info, msg, sizeof msg) != 0, "overlapping channels accepted");
+    tgp_fb_info_format(&info, TG_FB_RGB565, W, H, 0);
     info.blue.offset = 12; /* 12 + 5 > 16 */
-    CHECK(tg_fb_info_check(&info, msg, sizeof msg) != 0, "channel past the pixel accepted");
-    tg_fb_info_format(&info, TG_FB_XRGB8888, W, H, 4u * W - 1);
-    CHECK(tg_fb_info_check(&info, msg, sizeof msg) != 0, "short line accepted");
-    CHECK(tg_fb_info_format(&info, TG_FB_FORMAT_COUNT, W, H, 0) != 0, "unknown format");
+    CHECK(tgp_fb_info_check(&info, msg, sizeof msg) != 0, "channel past the pixel accepted");
+    tgp_fb_info_format(&info, TG_FB_XRGB8888, W, H, 4u * W - 1);
+    CHECK(tgp_fb_info_check(&info, msg, sizeof msg) != 0, "short line accepted");
+    CHECK(tgp_fb_info_format(&info, TG_FB_FORMAT_COUNT, W, H, 0) != 0, "unknown format");
 }
 
 TEST(unusable_devices_are_errors)
 {
-    tg_fb fb;
-    tg_fb_info info;
+    tgp_fb fb;
+    tgp_fb_info info;
     char path[64];
-    CHECK(tg_fb_open(&fb, "/nonexistent/fb9") != 0, "missing device opened");
+    CHECK(tgp_fb_open(&fb, "/nonexistent/fb9") != 0, "missing device opened");
     CHECK(strstr(fb.error, "/nonexistent/fb9") != NULL && strstr(fb.error, "No such file") != NULL,
           "message: %s", fb.error);
     if (make_file(path, 64) != 0) { CHECK(0, "temp file"); return; }
-    CHECK(tg_fb_open(&fb, path) != 0, "regular file taken for a framebuffer");
+    CHECK(tgp_fb_open(&fb, path) != 0, "regular file taken for a framebuffer");
     CHECK(strstr(fb.error, "not a framebuffer") != NULL, "message: %s", fb.error);
-    tg_fb_info_format(&info, TG_FB_XRGB8888, W, H, 0); /* needs 192 bytes, the file has 64 */
-    CHECK(tg_fb_open_file(&fb, path, &info) != 0, "short file mapped");
+    tgp_fb_info_format(&info, TG_FB_XRGB8888, W, H, 0); /* needs 192 bytes, the file has 64 */
+    CHECK(tgp_fb_open_file(&fb, path, &info) != 0, "short file mapped");
     CHECK(strstr(fb.error, "needed") != NULL, "message: %s", fb.error);
     unlink(path);
 }
 
-/* tg_fb_view_frames renders a built-in scene and shows it centred: the
+/* tgp_fb_view_frames renders a built-in scene and shows it centred: the
  * screen holds exactly the frame's 8-bit colour rows, converted. */
 TEST(view_shows_rendered_frame)
 {
@@ -255,8 +256,8 @@ TEST(view_shows_rendered_frame)
     tg_plan plan;
     tg_frame *frame = NULL;
     tg_error err;
-    tg_fb_info info;
-    tg_fb fb;
+    tgp_fb_info info;
+    tgp_fb fb;
     void *frame_mem;
     char path[64], msg[256];
     unsigned char *mem;
@@ -279,11 +280,11 @@ TEST(view_shows_rendered_frame)
         free(frame_mem);
         return;
     }
-    tg_fb_info_format(&info, TG_FB_XRGB8888, SW, SH, 0);
+    tgp_fb_info_format(&info, TG_FB_XRGB8888, SW, SH, 0);
     if (make_file(path, line * SH) != 0) { CHECK(0, "temp file"); free(frame_mem); return; }
-    CHECK(tg_fb_open_file(&fb, path, &info) == 0, "%s", fb.error);
-    CHECK(tg_fb_view_frames(&fb, frame, FW, FH, 2, msg, sizeof msg) == 0, "%s", msg);
-    tg_fb_close(&fb);
+    CHECK(tgp_fb_open_file(&fb, path, &info) == 0, "%s", fb.error);
+    CHECK(tgp_fb_view_frames(&fb, frame, FW, FH, 2, msg, sizeof msg) == 0, "%s", msg);
+    tgp_fb_close(&fb);
     mem = read_file(path, line * SH);
     unlink(path);
     if (!mem) { CHECK(0, "read back"); free(frame_mem); return; }

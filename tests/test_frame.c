@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_frame.c - whole frames through the public API: the plan derives only
  * the effects a scene calls for (and the arena shrinks with it), a skipped

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_hardcases.c - the hard-case suite (issue 6 item 1): named scenes and
  * requests that push the numerics (grazing planes, geometry through the

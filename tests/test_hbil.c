@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_hbil.c - the HBIL horizon kernel on analytic scenes.
  *
@@ -25,7 +26,7 @@ typedef struct scene { int n; quad q[4]; } scene;
 
 typedef struct gbuf {
     int w, h;
-    tg_view view;
+    tgi_view view;
     tg_real *depth, *nx, *ny, *nz, *rad;
     uint8_t *sky;
     int *face;             /* quad index or -1 */
@@ -74,7 +75,7 @@ static void gbuf_make(gbuf *g, const scene *s, int w, int h, const double *eye, 
     double r[3], u[3], f[3], ppu;
     memset(g, 0, sizeof *g);
     g->w = w; g->h = h;
-    tg_view_make(&g->view, tv(eye[0], eye[1], eye[2]), tv(target[0], target[1], target[2]), tv(up[0], up[1], up[2]),
+    tgi_view_make(&g->view, tv(eye[0], eye[1], eye[2]), tv(target[0], target[1], target[2]), tv(up[0], up[1], up[2]),
                  tg_from_float((float)(60 * DEG)), TG_R(0.05f), TG_R(1000.0f), w, h);
     g->depth = calloc(n, sizeof(tg_real)); g->nx = calloc(n, sizeof(tg_real));
     g->ny = calloc(n, sizeof(tg_real)); g->nz = calloc(n, sizeof(tg_real));
@@ -113,9 +114,9 @@ static void result_alloc(result *r, size_t n)
 }
 static void result_free(result *r) { free(r->ao); free(r->bx); free(r->by); free(r->bz); free(r->cone); free(r->near); }
 
-static void params_for(tg_hbil_params *p, const gbuf *g, double radius)
+static void params_for(tgi_hbil_params *p, const gbuf *g, double radius)
 {
-    tg_hbil_defaults(p, &g->view);
+    tgi_hbil_defaults(p, &g->view);
     p->radius = tg_from_float((float)radius);
     p->max_radius_px = TG_R(256.0f);
 }
@@ -123,8 +124,8 @@ static void params_for(tg_hbil_params *p, const gbuf *g, double radius)
 /* Full resolution, per-pixel 4x4 pattern of the 32 directions. */
 static void run_full(const gbuf *g, double radius, int near, result *r)
 {
-    tg_hbil_params p;
-    tg_hbil_io io;
+    tgi_hbil_params p;
+    tgi_hbil_io io;
     params_for(&p, g, radius);
     p.per_pixel_pattern = 1;
     memset(&io, 0, sizeof io);
@@ -132,7 +133,7 @@ static void run_full(const gbuf *g, double radius, int near, result *r)
     io.depth = g->depth; io.nx = g->nx; io.ny = g->ny; io.nz = g->nz; io.sky = g->sky;
     io.ao = r->ao; io.bent_x = r->bx; io.bent_y = r->by; io.bent_z = r->bz; io.cone = r->cone;
     if (near) { io.rad_r = io.rad_g = io.rad_b = g->rad; io.near_r = io.near_g = io.near_b = r->near; }
-    tg_hbil_rows(&p, &io, 0, g->h);
+    tgi_hbil_rows(&p, &io, 0, g->h);
 }
 
 /* 4x4 split, the kernel per sub-image, merge. */
@@ -145,26 +146,26 @@ static void run_interleaved(const gbuf *g, double radius, result *r)
     tg_real *out[5] = { r->ao, r->bx, r->by, r->bz, r->cone };
     int k, i, j;
     for (k = 0; k < 9; k++) b[k] = malloc(n * sizeof(tg_real));
-    for (k = 0; k < 4; k++) tg_interleave_split(in[k], g->w, g->h, b[k]);
-    tg_interleave_split8(g->sky, g->w, g->h, sky);
+    for (k = 0; k < 4; k++) tgi_interleave_split(in[k], g->w, g->h, b[k]);
+    tgi_interleave_split8(g->sky, g->w, g->h, sky);
     for (j = 0; j < 4; j++)
         for (i = 0; i < 4; i++) {
-            tg_hbil_params p;
-            tg_hbil_io io;
+            tgi_hbil_params p;
+            tgi_hbil_io io;
             int sw, sh;
             size_t off;
-            tg_interleave_sub_rect(g->w, g->h, i, j, &sw, &sh, &off);
+            tgi_interleave_sub_rect(g->w, g->h, i, j, &sw, &sh, &off);
             if (sw == 0 || sh == 0) continue;
             params_for(&p, g, radius);
             p.step = 4; p.offset_x = i; p.offset_y = j;
-            p.slice_phi0 = tg_hbil_slice_phi0(i, j, p.slices);
+            p.slice_phi0 = tgi_hbil_slice_phi0(i, j, p.slices);
             memset(&io, 0, sizeof io);
             io.width = sw; io.height = sh;
             io.depth = b[0] + off; io.nx = b[1] + off; io.ny = b[2] + off; io.nz = b[3] + off; io.sky = sky + off;
             io.ao = b[4] + off; io.bent_x = b[5] + off; io.bent_y = b[6] + off; io.bent_z = b[7] + off; io.cone = b[8] + off;
-            tg_hbil_rows(&p, &io, 0, sh);
+            tgi_hbil_rows(&p, &io, 0, sh);
         }
-    for (k = 0; k < 5; k++) tg_interleave_merge(b[4 + k], g->w, g->h, out[k]);
+    for (k = 0; k < 5; k++) tgi_interleave_merge(b[4 + k], g->w, g->h, out[k]);
     for (k = 0; k < 9; k++) free(b[k]);
     free(sky);
 }

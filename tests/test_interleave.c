@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_interleave.c - 4x4 split/merge (HBIL sec. 3.3): exact round trips for
  * odd sizes, sub-image sizes, the layout, and the 8-bit variant.
@@ -13,10 +14,10 @@ static void round_trip(int w, int h)
     uint8_t *a8 = malloc(n), *s8 = malloc(n), *b8 = malloc(n);
     int ii, jj, bad = 0;
     for (i = 0; i < n; i++) { a[i] = tg_from_int((int)i * 7 - 3); a8[i] = (uint8_t)(i * 13 + 1); b[i] = TG_REAL_MAX; b8[i] = 0; }
-    tg_interleave_split(a, w, h, s);
-    tg_interleave_merge(s, w, h, b);
-    tg_interleave_split8(a8, w, h, s8);
-    tg_interleave_merge8(s8, w, h, b8);
+    tgi_interleave_split(a, w, h, s);
+    tgi_interleave_merge(s, w, h, b);
+    tgi_interleave_split8(a8, w, h, s8);
+    tgi_interleave_merge8(s8, w, h, b8);
     for (i = 0; i < n; i++) bad += a[i] != b[i] || a8[i] != b8[i];
     CHECK(bad == 0, "%dx%d: %d pixels differ after split/merge", w, h, bad);
     /* sub (i, j) holds full-res (4x + i, 4y + j) */
@@ -24,7 +25,7 @@ static void round_trip(int w, int h)
         for (ii = 0; ii < 4; ii++) {
             int sw, sh, x, y;
             size_t off;
-            tg_interleave_sub_rect(w, h, ii, jj, &sw, &sh, &off);
+            tgi_interleave_sub_rect(w, h, ii, jj, &sw, &sh, &off);
             CHECK(off == total, "%dx%d sub (%d,%d) offset %zu, expected %zu", w, h, ii, jj, off, total);
             CHECK(sw == (w > ii ? (w - ii + 3) / 4 : 0) && sh == (h > jj ? (h - jj + 3) / 4 : 0), "%dx%d sub size", w, h);
             for (y = 0; y < sh; y++)
@@ -49,10 +50,10 @@ TEST(row_ranges)
     size_t n = (size_t)w * h, i;
     tg_real a[17 * 9], s1[17 * 9], s2[17 * 9];
     for (i = 0; i < n; i++) a[i] = tg_from_int((int)i);
-    tg_interleave_split(a, w, h, s1);
+    tgi_interleave_split(a, w, h, s1);
     memset(s2, 0, sizeof s2);
-    tg_interleave_split_rows(a, w, h, s2, 5, 9);
-    tg_interleave_split_rows(a, w, h, s2, 0, 5);
+    tgi_interleave_split_rows(a, w, h, s2, 5, 9);
+    tgi_interleave_split_rows(a, w, h, s2, 0, 5);
     CHECK(memcmp(s1, s2, sizeof s1) == 0, "split by row ranges differs");
 }
 

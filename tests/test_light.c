@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_light.c - direct light, shadow maps, composition and tonemapping
  * against analytic answers.  G-buffers are built by ray casting a tiny
@@ -77,7 +78,7 @@ static tg_real rv(double x) { return tg_from_float((float)x); }
 static tg_vec3 v3d(double x, double y, double z) { return tg_v3(rv(x), rv(y), rv(z)); }
 
 /* World ray of pixel (x, y)'s centre, direction with view z = 1. */
-static void pixel_ray(const tg_view *v, int x, int y, double o[3], double d[3])
+static void pixel_ray(const tgi_view *v, int x, int y, double o[3], double d[3])
 {
     double ndc_x = (x + 0.5) / v->width * 2 - 1, ndc_y = 1 - (y + 0.5) / v->height * 2;
     double vx = ndc_x / dv(v->focal_x), vy = ndc_y / dv(v->focal_y);
@@ -88,7 +89,7 @@ static void pixel_ray(const tg_view *v, int x, int y, double o[3], double d[3])
 }
 
 typedef struct {
-    tg_gbuffer gb;
+    tgi_gbuffer gb;
     tg_real planes[16][W * H];
     uint8_t sky[W * H];
     double world[W * H][3]; /* exact hit point */
@@ -98,10 +99,10 @@ typedef struct {
 static gbuf *gbuf_new(void) { return (gbuf *)calloc(1, sizeof(gbuf)); }
 
 /* Ray cast the analytic scene into a G-buffer (albedo 1 1 1, f0 0). */
-static void gbuf_cast(gbuf *g, const tg_view *v, const ascene *s)
+static void gbuf_cast(gbuf *g, const tgi_view *v, const ascene *s)
 {
     int x, y, k;
-    tg_gbuffer *gb = &g->gb;
+    tgi_gbuffer *gb = &g->gb;
     memset(gb, 0, sizeof *gb);
     gb->width = W; gb->height = H;
     gb->depth = g->planes[0]; gb->nx = g->planes[1]; gb->ny = g->planes[2]; gb->nz = g->planes[3];
@@ -152,11 +153,11 @@ static int scene_tris(const ascene *s, tg_vec3 *pos)
     return n;
 }
 
-static tg_light make_light(tg_light_type type, tg_vec3 pos, tg_vec3 dir, double intensity, double angle)
+static tgi_light make_light(tgi_light_type type, tg_vec3 pos, tg_vec3 dir, double intensity, double angle)
 {
-    tg_light l;
+    tgi_light l;
     memset(&l, 0, sizeof l);
-    l.type = type; l.pos = pos; l.dir = tg_v3_normalize(dir);
+    l.type = type; l.pos = pos; l.dir = tgi_v3_normalize(dir);
     l.color = v3d(1.0, 0.5, 0.25); l.intensity = rv(intensity); l.angle = rv(angle); l.shadows = 1;
     return l;
 }
@@ -170,15 +171,15 @@ TEST(directional_incidence)
     static const double thetas[] = { 0, 20, 45, 60, 75, 80, 85 };
     gbuf *g = gbuf_new();
     ascene s = floor_only(50);
-    tg_view v;
+    tgi_view v;
     size_t k;
     int i, seen = 0;
-    tg_view_make(&v, v3d(0, 5, -6), v3d(0, 0, 0), v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
+    tgi_view_make(&v, v3d(0, 5, -6), v3d(0, 0, 0), v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
     gbuf_cast(g, &v, &s);
     for (k = 0; k < sizeof thetas / sizeof thetas[0]; k++) {
         double th = thetas[k] * DEG, I = 2.0;
-        tg_light l = make_light(TG_LIGHT_DIRECTIONAL, v3d(0, 0, 0), v3d(sin(th), -cos(th), 0.0), I, 0);
-        tg_direct_rows(&g->gb, &v, &l, 1, NULL, e_r, e_g, e_b, 0, H);
+        tgi_light l = make_light(TG_LIGHT_DIRECTIONAL, v3d(0, 0, 0), v3d(sin(th), -cos(th), 0.0), I, 0);
+        tgi_direct_rows(&g->gb, &v, &l, 1, NULL, e_r, e_g, e_b, 0, H);
         for (i = 0; i < W * H; i++) {
             double want = I * cos(th);
             if (g->sky[i]) continue;
@@ -196,21 +197,21 @@ TEST(point_inverse_square_and_spot_edge)
 {
     gbuf *g = gbuf_new();
     ascene s = floor_only(50);
-    tg_view v;
+    tgi_view v;
     double L[3] = { 1, 3, 0.5 }, I = 10, angle = 30 * DEG;
-    tg_light pt = make_light(TG_LIGHT_POINT, v3d(L[0], L[1], L[2]), v3d(0, -1, 0), I, 0);
-    tg_light sp = make_light(TG_LIGHT_SPOT, v3d(L[0], L[1], L[2]), v3d(0, -1, 0), I, angle);
+    tgi_light pt = make_light(TG_LIGHT_POINT, v3d(L[0], L[1], L[2]), v3d(0, -1, 0), I, 0);
+    tgi_light sp = make_light(TG_LIGHT_SPOT, v3d(L[0], L[1], L[2]), v3d(0, -1, 0), I, angle);
     int i, inside = 0, outside = 0, between = 0;
-    tg_view_make(&v, v3d(0, 5, -6), v3d(0, 0, 0), v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
+    tgi_view_make(&v, v3d(0, 5, -6), v3d(0, 0, 0), v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
     gbuf_cast(g, &v, &s);
-    tg_direct_rows(&g->gb, &v, &pt, 1, NULL, e_r, e_g, e_b, 0, H);
+    tgi_direct_rows(&g->gb, &v, &pt, 1, NULL, e_r, e_g, e_b, 0, H);
     for (i = 0; i < W * H; i++) {
         double *p = g->world[i], dx = L[0] - p[0], dy = L[1] - p[1], dz = L[2] - p[2];
         double d2 = dx * dx + dy * dy + dz * dz, want = I * (dy / sqrt(d2)) / d2;
         if (g->sky[i]) continue;
         CHECK(fabs(dv(e_r[i]) - want) <= 0.01 * want + 3e-5, "point: E %g want %g", dv(e_r[i]), want);
     }
-    tg_direct_rows(&g->gb, &v, &sp, 1, NULL, e_r, e_g, e_b, 0, H);
+    tgi_direct_rows(&g->gb, &v, &sp, 1, NULL, e_r, e_g, e_b, 0, H);
     for (i = 0; i < W * H; i++) {
         double *p = g->world[i], dx = L[0] - p[0], dy = L[1] - p[1], dz = L[2] - p[2];
         double d2 = dx * dx + dy * dy + dz * dz, full = I * (dy / sqrt(d2)) / d2;
@@ -234,7 +235,7 @@ TEST(point_inverse_square_and_spot_edge)
 /* ---- shadow maps ---- */
 
 /* Analytic shadow test: does the segment from p towards the light hit box b grown by m? */
-static int occluded(const double p[3], const tg_light *l, const abox *b, double m)
+static int occluded(const double p[3], const tgi_light *l, const abox *b, double m)
 {
     abox g = *b;
     double d[3], o[3], n[3], t, tmax = 1e30;
@@ -255,23 +256,23 @@ static int shadow_filter = TG_SHADOW_PCF_TENT; /* the shadow tests run with each
 
 /* Render the map, light the G-buffer, and compare every floor pixel with the
  * analytic shadow: surely inside -> E <= 2% of unshadowed, surely outside -> >= 98%. */
-static shadow_counts check_box_shadow(gbuf *g, const tg_view *v, const ascene *s, const tg_light *l,
+static shadow_counts check_box_shadow(gbuf *g, const tgi_view *v, const ascene *s, const tgi_light *l,
                                       double margin)
 {
     static tg_vec3 pos[3 * 64];
     static tg_real unsh_r[W * H], dummy_g[W * H], dummy_b[W * H];
     shadow_counts c = { 0, 0, 0 };
-    tg_shadow_map sm;
-    const tg_shadow_map *maps[1];
-    void *mem = malloc(tg_shadow_map_bytes(l, MAP_SIZE));
+    tgi_shadow_map sm;
+    const tgi_shadow_map *maps[1];
+    void *mem = malloc(tgi_shadow_map_bytes(l, MAP_SIZE));
     int n = scene_tris(s, pos), i;
     tg_vec3 lo = v3d(-s->floor_half, 0, -s->floor_half), hi = v3d(s->floor_half, 2, s->floor_half);
-    tg_shadow_map_setup(&sm, l, MAP_SIZE, lo, hi, mem);
+    tgi_shadow_map_setup(&sm, l, MAP_SIZE, lo, hi, mem);
     sm.filter = shadow_filter;
-    tg_shadow_map_render(&sm, pos, n);
+    tgi_shadow_map_render(&sm, pos, n);
     maps[0] = &sm;
-    tg_direct_rows(&g->gb, v, l, 1, NULL, unsh_r, dummy_g, dummy_b, 0, H);
-    tg_direct_rows(&g->gb, v, l, 1, maps, e_r, e_g, e_b, 0, H);
+    tgi_direct_rows(&g->gb, v, l, 1, NULL, unsh_r, dummy_g, dummy_b, 0, H);
+    tgi_direct_rows(&g->gb, v, l, 1, maps, e_r, e_g, e_b, 0, H);
     for (i = 0; i < W * H; i++) {
         double full = dv(unsh_r[i]), got = dv(e_r[i]);
         int k, inside = 0, outside = 1;
@@ -301,12 +302,12 @@ static void box_shadow_lands_where_geometry_says_with_filter(void)
 {
     gbuf *g = gbuf_new();
     ascene s = { 4, 1, { { { -0.5, 0, -0.5 }, { 0.5, 1, 0.5 } } } };
-    tg_view v;
-    tg_light dl = make_light(TG_LIGHT_DIRECTIONAL, v3d(0, 0, 0), v3d(1.0, -0.8, 0.4), 1, 0);
-    tg_light sl = make_light(TG_LIGHT_SPOT, v3d(-2, 4, -1), v3d(2.5, -4, 1.2), 20, 50 * DEG);
-    tg_light pl = make_light(TG_LIGHT_POINT, v3d(-1.5, 3, 1), v3d(0, -1, 0), 20, 0);
+    tgi_view v;
+    tgi_light dl = make_light(TG_LIGHT_DIRECTIONAL, v3d(0, 0, 0), v3d(1.0, -0.8, 0.4), 1, 0);
+    tgi_light sl = make_light(TG_LIGHT_SPOT, v3d(-2, 4, -1), v3d(2.5, -4, 1.2), 20, 50 * DEG);
+    tgi_light pl = make_light(TG_LIGHT_POINT, v3d(-1.5, 3, 1), v3d(0, -1, 0), 20, 0);
     shadow_counts c;
-    tg_view_make(&v, v3d(0, 7, 0.01), v3d(0, 0, 0), v3d(0, 0, 1), rv(40 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
+    tgi_view_make(&v, v3d(0, 7, 0.01), v3d(0, 0, 0), v3d(0, 0, 1), rv(40 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
     gbuf_cast(g, &v, &s);
     c = check_box_shadow(g, &v, &s, &dl, 0.08);
     CHECK(c.in_shadow > 80 && c.lit > 500, "directional: %d in shadow, %d lit, %d edge", c.in_shadow, c.lit, c.edge);
@@ -321,12 +322,12 @@ static void no_acne_at_80_degrees_with_filter(void)
 {
     gbuf *g = gbuf_new();
     ascene s = floor_only(4);
-    tg_view v;
+    tgi_view v;
     double th = 80 * DEG;
-    tg_light dl = make_light(TG_LIGHT_DIRECTIONAL, v3d(0, 0, 0), v3d(sin(th), -cos(th), 0.3 * sin(th)), 1, 0);
-    tg_light sl = make_light(TG_LIGHT_SPOT, v3d(-8 * sin(th), 8 * cos(th), 0), v3d(sin(th), -cos(th), 0), 50, 20 * DEG);
+    tgi_light dl = make_light(TG_LIGHT_DIRECTIONAL, v3d(0, 0, 0), v3d(sin(th), -cos(th), 0.3 * sin(th)), 1, 0);
+    tgi_light sl = make_light(TG_LIGHT_SPOT, v3d(-8 * sin(th), 8 * cos(th), 0), v3d(sin(th), -cos(th), 0), 50, 20 * DEG);
     shadow_counts c;
-    tg_view_make(&v, v3d(0, 9, -3), v3d(0, 0, 0), v3d(0, 1, 0), rv(45 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
+    tgi_view_make(&v, v3d(0, 9, -3), v3d(0, 0, 0), v3d(0, 1, 0), rv(45 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
     gbuf_cast(g, &v, &s);
     c = check_box_shadow(g, &v, &s, &dl, 0.0); /* no box: every floor pixel must be lit >= 98% */
     CHECK(c.lit > 1000 && c.in_shadow == 0, "directional: %d lit", c.lit);
@@ -341,44 +342,44 @@ static void point_cube_faces_meet_without_seams_with_filter(void)
     /* a post whose shadow crosses the +X / -Y face boundary (x - 0.3 = 1.5 on the floor) */
     ascene s = { 4, 1, { { { 1.2, 0, -0.3 }, { 1.6, 0.6, 0.3 } } } };
     ascene open = floor_only(4);
-    tg_view v;
-    tg_light pl = make_light(TG_LIGHT_POINT, v3d(0.3, 1.5, -0.2), v3d(0, -1, 0), 20, 0);
+    tgi_view v;
+    tgi_light pl = make_light(TG_LIGHT_POINT, v3d(0.3, 1.5, -0.2), v3d(0, -1, 0), 20, 0);
     shadow_counts c;
-    tg_view_make(&v, v3d(0, 12, 0.01), v3d(0, 0, 0), v3d(0, 0, 1), rv(40 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
+    tgi_view_make(&v, v3d(0, 12, 0.01), v3d(0, 0, 0), v3d(0, 0, 1), rv(40 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
     gbuf_cast(g, &v, &open);
     c = check_box_shadow(g, &v, &open, &pl, 0.0); /* an open floor is fully lit across all five faces */
     CHECK(c.lit > 1500 && c.in_shadow == 0, "open floor: %d lit", c.lit);
     {   /* and directly along the face edges, sampled finely */
         static tg_vec3 pos[3 * 64];
-        tg_shadow_map sm;
-        void *mem = malloc(tg_shadow_map_bytes(&pl, MAP_SIZE));
+        tgi_shadow_map sm;
+        void *mem = malloc(tgi_shadow_map_bytes(&pl, MAP_SIZE));
         int n = scene_tris(&open, pos), k, bad = 0;
-        tg_shadow_map_setup(&sm, &pl, MAP_SIZE, v3d(-4, 0, -4), v3d(4, 2, 4), mem);
+        tgi_shadow_map_setup(&sm, &pl, MAP_SIZE, v3d(-4, 0, -4), v3d(4, 2, 4), mem);
         sm.filter = shadow_filter;
-        tg_shadow_map_render(&sm, pos, n);
+        tgi_shadow_map_render(&sm, pos, n);
         for (k = 0; k <= 2000; k++) {
             double z = -3.9 + 7.8 * k / 2000.0, off = ((k % 7) - 3) * 0.002;
             tg_vec3 p1 = v3d(0.3 + 1.5 + off, 0, z), p2 = v3d(0.3 - 1.5 + off, 0, z);
             tg_vec3 p3 = v3d(z, 0, -0.2 + 1.5 + off), up = tg_v3(0, TG_ONE, 0);
-            if (tg_shadow_visibility(&sm, p1, up) < TG_R(0.99f)) bad++;
-            if (tg_shadow_visibility(&sm, p2, up) < TG_R(0.99f)) bad++;
-            if (tg_shadow_visibility(&sm, p3, up) < TG_R(0.99f)) bad++;
+            if (tgi_shadow_visibility(&sm, p1, up) < TG_R(0.99f)) bad++;
+            if (tgi_shadow_visibility(&sm, p2, up) < TG_R(0.99f)) bad++;
+            if (tgi_shadow_visibility(&sm, p3, up) < TG_R(0.99f)) bad++;
         }
         CHECK(bad == 0, "%d points along the cube edges darkened", bad);
         free(mem);
     }
     {   /* the post's shadow crosses the +X / -Y face edge: dense samples across the edge */
         static tg_vec3 pos[3 * 64];
-        tg_shadow_map sm;
-        void *mem = malloc(tg_shadow_map_bytes(&pl, MAP_SIZE));
+        tgi_shadow_map sm;
+        void *mem = malloc(tgi_shadow_map_bytes(&pl, MAP_SIZE));
         int n = scene_tris(&s, pos), k, inside = 0;
-        tg_shadow_map_setup(&sm, &pl, MAP_SIZE, v3d(-4, 0, -4), v3d(4, 2, 4), mem);
+        tgi_shadow_map_setup(&sm, &pl, MAP_SIZE, v3d(-4, 0, -4), v3d(4, 2, 4), mem);
         sm.filter = shadow_filter;
-        tg_shadow_map_render(&sm, pos, n);
+        tgi_shadow_map_render(&sm, pos, n);
         for (k = 0; k <= 4000; k++) {
             double z = -0.6 + 0.8 * (k / 40) / 100.0, x = 1.8 + ((k % 40) - 20) * 0.0005;
             double p[3] = { x, 0, z };
-            tg_real vis = tg_shadow_visibility(&sm, v3d(x, 0, z), tg_v3(0, TG_ONE, 0));
+            tg_real vis = tgi_shadow_visibility(&sm, v3d(x, 0, z), tg_v3(0, TG_ONE, 0));
             if (!occluded(p, &pl, &s.box[0], -0.03)) continue;
             inside++;
             CHECK(vis <= TG_R(0.02f), "filter %d: at the face edge (%.4f, %.3f) in shadow: %g", shadow_filter, x, z, dv(vis));
@@ -396,14 +397,14 @@ TEST(degenerate_inputs_stay_finite_and_saturate)
 {
     gbuf *g = gbuf_new();
     ascene s = floor_only(50);
-    tg_view v;
-    tg_light lights[4];
-    tg_shadow_map sm;
+    tgi_view v;
+    tgi_light lights[4];
+    tgi_shadow_map sm;
     static tg_vec3 pos[3 * 64];
-    const tg_shadow_map *maps[4] = { NULL, NULL, NULL, NULL };
+    const tgi_shadow_map *maps[4] = { NULL, NULL, NULL, NULL };
     void *mem;
     int i, n;
-    tg_view_make(&v, v3d(0, 1, -2), v3d(0, 0, 0), v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
+    tgi_view_make(&v, v3d(0, 1, -2), v3d(0, 0, 0), v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
     gbuf_cast(g, &v, &s);
     /* a huge point light almost touching the floor, a zero-angle spot, a zero direction */
     lights[0] = make_light(TG_LIGHT_POINT, v3d(0, 0.0001, 0), v3d(0, -1, 0), 30000, 0);
@@ -414,11 +415,11 @@ TEST(degenerate_inputs_stay_finite_and_saturate)
     for (i = 0; i < 7; i++) { g->gb.nx[i] = g->gb.ny[i] = g->gb.nz[i] = 0; } /* zero normals */
     g->gb.depth[8] = 0;                                                       /* zero depth */
     n = scene_tris(&s, pos);
-    mem = malloc(tg_shadow_map_bytes(&lights[3], 64));
-    tg_shadow_map_setup(&sm, &lights[3], 64, v3d(-50, 0, -50), v3d(50, 1, 50), mem);
-    tg_shadow_map_render(&sm, pos, n);
+    mem = malloc(tgi_shadow_map_bytes(&lights[3], 64));
+    tgi_shadow_map_setup(&sm, &lights[3], 64, v3d(-50, 0, -50), v3d(50, 1, 50), mem);
+    tgi_shadow_map_render(&sm, pos, n);
     maps[3] = &sm;
-    tg_direct_rows(&g->gb, &v, lights, 4, maps, e_r, e_g, e_b, 0, H);
+    tgi_direct_rows(&g->gb, &v, lights, 4, maps, e_r, e_g, e_b, 0, H);
     for (i = 0; i < W * H; i++) {
         CHECK(tg_isfinite(e_r[i]) && e_r[i] >= 0 && e_g[i] >= 0 && e_b[i] >= 0, "pixel %d: E %g", i, dv(e_r[i]));
     }
@@ -427,7 +428,7 @@ TEST(degenerate_inputs_stay_finite_and_saturate)
         for (i = 0; i < W * H; i++) if (!g->sky[i] && e_r[i] > e_r[best]) best = i;
         CHECK(dv(e_r[best]) > 1000, "peak E %g", dv(e_r[best]));
     }
-    CHECK(tg_shadow_visibility(&sm, v3d(0, 0, 0), tg_v3(0, TG_ONE, 0)) >= 0, "lookup at the light");
+    CHECK(tgi_shadow_visibility(&sm, v3d(0, 0, 0), tg_v3(0, TG_ONE, 0)) >= 0, "lookup at the light");
     free(mem);
     free(g);
 }
@@ -441,11 +442,11 @@ TEST(compose_formula_sky_and_saturation)
     static tg_real em[3][W * H];
     gbuf *g = gbuf_new();
     ascene s = floor_only(4);
-    tg_env env;
-    tg_view v;
-    tg_rgb_planes terms[3];
+    tgi_env env;
+    tgi_view v;
+    tgi_rgb_planes terms[3];
     int i, c, sky_seen = 0;
-    tg_view_make(&v, v3d(0, 1, -6), v3d(0, 1, 0), v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
+    tgi_view_make(&v, v3d(0, 1, -6), v3d(0, 1, 0), v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
     gbuf_cast(g, &v, &s);
     for (i = 0; i < W * H; i++) {
         for (c = 0; c < 3; c++) {
@@ -461,7 +462,7 @@ TEST(compose_formula_sky_and_saturation)
     terms[2].r = nr[0]; terms[2].g = nr[1]; terms[2].b = nr[2];
     memset(&env, 0, sizeof env);
     env.type = TG_ENV_SKY; env.sky = v3d(0.3, 0.5, 1.0); env.ground = v3d(0.2, 0.1, 0.05); env.up = v3d(0, 1, 0);
-    tg_compose_rows(&g->gb, &v, &env, terms, 3, o_r, o_g, o_b, i_r, i_g, i_b, 0, H);
+    tgi_compose_rows(&g->gb, &v, &env, terms, 3, o_r, o_g, o_b, i_r, i_g, i_b, 0, H);
     for (i = 0; i < W * H; i++) {
         double alb[3] = { 0.8, 0.5, 0.2 }, out[3] = { dv(o_r[i]), dv(o_g[i]), dv(o_b[i]) };
         double irr[3] = { dv(i_r[i]), dv(i_g[i]), dv(i_b[i]) };
@@ -486,7 +487,7 @@ TEST(compose_formula_sky_and_saturation)
     for (i = 0; i < W * H; i++) { er[i] = TG_FIXED ? TG_REAL_MAX : TG_R(1e30f); eg[i] = rv(1e4); eb[i] = 0; }
     terms[0].r = er; terms[0].g = eg; terms[0].b = eb;
     terms[2].r = er; terms[2].g = eg; terms[2].b = eb;
-    tg_compose_rows(&g->gb, &v, NULL, terms, 3, o_r, o_g, o_b, NULL, NULL, NULL, 0, H);
+    tgi_compose_rows(&g->gb, &v, NULL, terms, 3, o_r, o_g, o_b, NULL, NULL, NULL, 0, H);
     for (i = 0; i < W * H; i++) {
         if (g->sky[i]) { CHECK(o_r[i] == 0 && o_b[i] == 0, "sky without env is black"); continue; }
         CHECK(tg_isfinite(o_r[i]) && dv(o_r[i]) > 1000, "HDR stays huge and positive: %g", dv(o_r[i]));
@@ -511,12 +512,12 @@ TEST(srgb_table_matches_formula)
         double x = (double)k / n;
         tg_real r = rv(x);
         double exact = 255 * srgb_exact(dv(r));
-        double err = fabs(tg_srgb8(r) - exact);
+        double err = fabs(tgi_srgb8(r) - exact);
         if (err > worst) worst = err;
     }
     CHECK(worst <= 0.5 + 1e-4, "worst error %.6f LSB", worst);
-    CHECK(tg_srgb8(0) == 0 && tg_srgb8(TG_ONE) == 255, "ends");
-    CHECK(tg_srgb8(TG_R(-1.0f)) == 0 && tg_srgb8(TG_R(3.0f)) == 255, "clamps");
+    CHECK(tgi_srgb8(0) == 0 && tgi_srgb8(TG_ONE) == 255, "ends");
+    CHECK(tgi_srgb8(TG_R(-1.0f)) == 0 && tgi_srgb8(TG_R(3.0f)) == 255, "clamps");
     printf("# sRGB table: worst error %.4f LSB\n", worst);
 }
 
@@ -533,11 +534,11 @@ TEST(tonemap_monotone_zero_and_saturating)
     uint8_t rgb[12], prev8 = 0;
     double worst = 0;
     int k, mono = 1, mono8 = 1;
-    CHECK(tg_tonemap_aces(0) == 0 && tg_tonemap8(0) == 0, "0 -> 0");
+    CHECK(tgi_tonemap_aces(0) == 0 && tgi_tonemap8(0) == 0, "0 -> 0");
     for (k = 0; k <= 80000; k++) {
         tg_real x = rv(k * 0.0001);
-        tg_real y = tg_tonemap_aces(x);
-        uint8_t c = tg_tonemap8(x);
+        tg_real y = tgi_tonemap_aces(x);
+        uint8_t c = tgi_tonemap8(x);
         double ideal = 255 * srgb_exact(aces_exact(dv(x))), err = fabs(c - ideal);
         if (y < tg_sub(prev, TG_FIXED ? TG_EPS : 0)) mono = 0; /* Q16 rounding: within one ulp */
         if (c < prev8) mono8 = 0;
@@ -549,14 +550,14 @@ TEST(tonemap_monotone_zero_and_saturating)
     CHECK(mono && mono8, "monotone (linear %d, 8-bit %d)", mono, mono8);
     CHECK(worst <= 0.5 + 1e-3, "tonemap8 vs the exact curve: %.5f LSB", worst);
     printf("# tonemap8: worst error %.4f LSB against 255 srgb(aces(x))\n", worst);
-    tg_tonemap_row8(big, big, big, 4, TG_R(4.0f), rgb);
+    tgi_tonemap_row8(big, big, big, 4, TG_R(4.0f), rgb);
     for (k = 0; k < 12; k++) CHECK(rgb[k] == 255, "HDR saturates to white, got %d", rgb[k]);
     {
         tg_real zero[2] = { 0, 0 }, quarter[2] = { TG_R(0.25f), TG_R(0.125f) };
-        tg_tonemap_row8(zero, zero, zero, 2, TG_ONE, rgb);
+        tgi_tonemap_row8(zero, zero, zero, 2, TG_ONE, rgb);
         for (k = 0; k < 6; k++) CHECK(rgb[k] == 0, "black stays black");
-        tg_tonemap_row8(quarter, quarter + 1, quarter, 1, TG_R(2.0f), rgb);
-        CHECK(rgb[0] == tg_tonemap8(TG_R(0.5f)) && rgb[1] == tg_tonemap8(TG_R(0.25f)),
+        tgi_tonemap_row8(quarter, quarter + 1, quarter, 1, TG_R(2.0f), rgb);
+        CHECK(rgb[0] == tgi_tonemap8(TG_R(0.5f)) && rgb[1] == tgi_tonemap8(TG_R(0.25f)),
               "exposure multiplies before the curve");
     }
 }

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_raster.c - the rasterizer: fill rule (every pixel exactly once),
  * near-plane and guard-band clipping, depth (constant and perspective-correct
@@ -26,7 +27,7 @@ static tg_real R(double d) { return tg_from_float((float)d); }
 static tg_vec3 V(double x, double y, double z) { return tg_v3(R(x), R(y), R(z)); }
 
 typedef struct gbuf {
-    tg_gbuffer gb;
+    tgi_gbuffer gb;
     tg_real *mem;
 } gbuf;
 
@@ -45,7 +46,7 @@ static void gbuf_alloc(gbuf *g, int w, int h)
     for (k = 0; k < 11; k++) *ch[k] = g->mem + n * (size_t)k;
     g->gb.sky = (uint8_t *)calloc(n, 1);
     g->gb.object = (uint16_t *)calloc(n, sizeof(uint16_t));
-    tg_gbuffer_clear_rows(&g->gb, 0, h);
+    tgi_gbuffer_clear_rows(&g->gb, 0, h);
 }
 
 static void gbuf_free(gbuf *g)
@@ -60,8 +61,8 @@ typedef struct mesh {
     tg_vec3 pos[3 * MAX_TRIS], nrm[3 * MAX_TRIS];
     uint16_t mat[MAX_TRIS], obj[MAX_TRIS];
     int n;
-    tg_material materials[4];
-    tg_raster_mesh rm;
+    tgi_material materials[4];
+    tgi_raster_mesh rm;
 } mesh;
 
 static mesh *mesh_new(void)
@@ -77,7 +78,7 @@ static mesh *mesh_new(void)
     return m;
 }
 
-static tg_raster_mesh *mesh_rm(mesh *m)
+static tgi_raster_mesh *mesh_rm(mesh *m)
 {
     m->rm.pos = m->pos; m->rm.nrm = m->nrm;
     m->rm.tri_material = m->mat; m->rm.tri_object = m->obj;
@@ -89,22 +90,22 @@ static tg_raster_mesh *mesh_rm(mesh *m)
 /* A camera at the origin looking along +z of the world; view space is then
  * reached through the view's own basis, so tests build geometry in view
  * coordinates (x right, y up, z forward) and map it to the world. */
-static tg_view view_make(int w, int h, double fov_deg, int aligned)
+static tgi_view view_make(int w, int h, double fov_deg, int aligned)
 {
-    tg_view v;
+    tgi_view v;
     if (aligned)
-        tg_view_make(&v, V(0, 0, 0), V(0, 0, 1), V(0, 1, 0),
+        tgi_view_make(&v, V(0, 0, 0), V(0, 0, 1), V(0, 1, 0),
                      R(fov_deg * 3.14159265358979 / 180.0), R(0.05), R(1000), w, h);
     else
-        tg_view_make(&v, V(0.5, 1.0, -2.0), V(1.5, 1.25, 3.0), V(0, 1, 0),
+        tgi_view_make(&v, V(0.5, 1.0, -2.0), V(1.5, 1.25, 3.0), V(0, 1, 0),
                      R(fov_deg * 3.14159265358979 / 180.0), R(0.05), R(1000), w, h);
     return v;
 }
-static tg_view view_at(int w, int h, double fov_deg) { return view_make(w, h, fov_deg, 0); }
+static tgi_view view_at(int w, int h, double fov_deg) { return view_make(w, h, fov_deg, 0); }
 
 static double D(tg_real r) { return check_d(r); }
 
-static tg_vec3 view_to_world(const tg_view *v, double x, double y, double z)
+static tg_vec3 view_to_world(const tgi_view *v, double x, double y, double z)
 {
     double p[3];
     int k;
@@ -118,14 +119,14 @@ static tg_vec3 view_to_world(const tg_view *v, double x, double y, double z)
     return V(p[0], p[1], p[2]);
 }
 
-static tg_vec3 dir_to_world(const tg_view *v, double x, double y, double z)
+static tg_vec3 dir_to_world(const tgi_view *v, double x, double y, double z)
 {
     tg_vec3 o = view_to_world(v, 0, 0, 0), p = view_to_world(v, x, y, z);
-    return tg_v3_sub(p, o);
+    return tgi_v3_sub(p, o);
 }
 
 /* Add a triangle given in view space, with a flat normal (or vertex normals). */
-static void add_tri_view(mesh *m, const tg_view *v, const double (*p)[3], const double (*n)[3],
+static void add_tri_view(mesh *m, const tgi_view *v, const double (*p)[3], const double (*n)[3],
                          int material, int object)
 {
     int k;
@@ -148,7 +149,7 @@ static void add_tri_view(mesh *m, const tg_view *v, const double (*p)[3], const 
 }
 
 /* Ray through the centre of pixel (px, py): view-space direction with z = 1. */
-static void pixel_ray(const tg_view *v, int px, int py, double *dx, double *dy)
+static void pixel_ray(const tgi_view *v, int px, int py, double *dx, double *dy)
 {
     double ndc_x = (px + 0.5) / v->width * 2.0 - 1.0;
     double ndc_y = 1.0 - (py + 0.5) / v->height * 2.0;
@@ -158,7 +159,7 @@ static void pixel_ray(const tg_view *v, int px, int py, double *dx, double *dy)
 
 /* Intersect the pixel ray with triangle p (view space): returns the hit's
  * view z (or -1) and the barycentrics. */
-static double ray_tri(const tg_view *v, int px, int py, const double (*p)[3], double *b)
+static double ray_tri(const tgi_view *v, int px, int py, const double (*p)[3], double *b)
 {
     double d[3], e1[3], e2[3], s[3], h[3], q[3], a, f, u, w, t;
     int k;
@@ -179,7 +180,7 @@ static double ray_tri(const tg_view *v, int px, int py, const double (*p)[3], do
 
 /* Depth tolerance: relative float/fixed precision plus the depth change over
  * the snapping error (1/32 pixel) on a slope. */
-static double depth_tol(const tg_view *v, int px, int py, const double (*p)[3], double z)
+static double depth_tol(const tgi_view *v, int px, int py, const double (*p)[3], double z)
 {
     double b[3], zx = ray_tri(v, px + 1, py, p, b), zy = ray_tri(v, px, py + 1, p, b);
     double slope = fabs(zx - z) > fabs(zy - z) ? fabs(zx - z) : fabs(zy - z), size = 0;
@@ -260,7 +261,7 @@ static void grid_tiling(int w, int h, int cell_px16, int y0, int y1)
                 }
             }
         }
-    tg_raster_coverage_count(count, w, h, xy, t, y0, y1);
+    tgi_raster_coverage_count(count, w, h, xy, t, y0, y1);
     for (row = 0; row < h; row++) {
         int x, want = row >= y0 && row < y1;
         for (x = 0; x < w; x++) {
@@ -311,7 +312,7 @@ TEST(fill_rule_random_fans)
             xy[k * 6 + 2] = rev ? bx : ax; xy[k * 6 + 3] = rev ? by : ay;
             xy[k * 6 + 4] = rev ? ax : bx; xy[k * 6 + 5] = rev ? ay : by;
         }
-        tg_raster_coverage_count(count, W, H, xy, SPOKES, 0, H);
+        tgi_raster_coverage_count(count, W, H, xy, SPOKES, 0, H);
         CHECK(check_exactly_once(count, W, H) == 0, "fan %d around (%d, %d)/16", fan, cx, cy);
     }
 }
@@ -338,7 +339,7 @@ TEST(fill_rule_on_pixel_centres)
                 t++;
             }
         }
-    tg_raster_coverage_count(count, W, H, xy, t, 0, H);
+    tgi_raster_coverage_count(count, W, H, xy, t, 0, H);
     CHECK(check_exactly_once(count, W, H) == 0, "pixel-centre edges");
     /* a lone 1x1-pixel square through centres covers exactly one pixel */
     {
@@ -346,7 +347,7 @@ TEST(fill_rule_on_pixel_centres)
                            3 * 16 + 8, 2 * 16 + 8, 4 * 16 + 8, 3 * 16 + 8, 3 * 16 + 8, 3 * 16 + 8 };
         int n = 0;
         memset(count, 0, sizeof count);
-        tg_raster_coverage_count(count, W, H, sq, 2, 0, H);
+        tgi_raster_coverage_count(count, W, H, sq, 2, 0, H);
         for (k = 0; k < W * H; k++) n += count[k];
         CHECK(n == 1 && count[2 * W + 3] == 1, "unit square covers %d pixels", n);
     }
@@ -361,7 +362,7 @@ TEST(fill_rule_on_pixel_centres)
 TEST(gbuffer_tiling_ids)
 {
     enum { W = 80, H = 60, N = 12 };
-    tg_view v = view_at(W, H, 60);
+    tgi_view v = view_at(W, H, 60);
     mesh *m = mesh_new();
     gbuf g;
     double P[N + 1][N + 1][3];
@@ -383,7 +384,7 @@ TEST(gbuffer_tiling_ids)
             add_tri_view(m, &v, (const double(*)[3])b, NULL, 0, m->n);
         }
     gbuf_alloc(&g, W, H);
-    tg_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
     for (j = 0; j < H; j++)
         for (i = 0; i < W; i++) {
             int t, inside = -1;
@@ -418,14 +419,14 @@ TEST(gbuffer_tiling_ids)
 static void check_triangle(const double (*p)[3], int material, int expect_drawn, const char *what)
 {
     enum { W = 64, H = 48 };
-    tg_view v = view_at(W, H, 70);
+    tgi_view v = view_at(W, H, 70);
     mesh *m = mesh_new();
     gbuf g;
     int i, j, drawn = 0, miss = 0, extra = 0, bad_depth = 0, bad_normal = 0;
     double worst = 0;
     add_tri_view(m, &v, p, NULL, material, 7);
     gbuf_alloc(&g, W, H);
-    tg_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
     for (j = 0; j < H; j++)
         for (i = 0; i < W; i++) {
             double b[3], z = ray_tri(&v, i, j, p, b);
@@ -504,13 +505,13 @@ TEST(big_triangle_past_edges)
     const double big[3][3] = { { -900, -700, 5 }, { 900, -700, 5 }, { 0, 900, 5 } };
     const double tilted[3][3] = { { -300, -200, 30 }, { 300, -200, 5 }, { 0, 300, 12 } };
     enum { W = 64, H = 48 };
-    tg_view v = view_make(W, H, 70, 1);
+    tgi_view v = view_make(W, H, 70, 1);
     mesh *m = mesh_new();
     gbuf g;
     int i, sky = 0, bad = 0;
     add_tri_view(m, &v, big, NULL, 0, 1);
     gbuf_alloc(&g, W, H);
-    tg_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
     for (i = 0; i < W * H; i++) {
         sky += g.gb.sky[i];
         if (fabs(D(g.gb.depth[i]) - 5.0) > (TG_FIXED ? 3.0 / 65536 : 5e-6)) bad++;
@@ -528,7 +529,7 @@ TEST(big_triangle_past_edges)
 TEST(depth_plane_and_floor)
 {
     enum { W = 96, H = 72 };
-    tg_view v = view_make(W, H, 60, 1);
+    tgi_view v = view_make(W, H, 60, 1);
     mesh *m = mesh_new();
     gbuf g;
     const double q0[3][3] = { { -5, -5, 3 }, { 5, -5, 3 }, { 5, 5, 3 } };
@@ -540,7 +541,7 @@ TEST(depth_plane_and_floor)
     add_tri_view(m, &v, q0, NULL, 0, 0);
     add_tri_view(m, &v, q1, NULL, 0, 0);
     gbuf_alloc(&g, W, H);
-    tg_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
     for (i = 0; i < W * H; i++) {
         sky += g.gb.sky[i];
         if (fabs(D(g.gb.depth[i]) - 3.0) > (TG_FIXED ? 2.0 / 65536 : 3e-6)) bad++;
@@ -552,7 +553,7 @@ TEST(depth_plane_and_floor)
     add_tri_view(m, &v, f0, NULL, 0, 0);
     add_tri_view(m, &v, f1, NULL, 0, 0);
     gbuf_alloc(&g, W, H);
-    tg_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
     for (j = 0; j < H; j++)
         for (i = 0; i < W; i++) {
             double b[3], z0 = ray_tri(&v, i, j, f0, b), z1 = ray_tri(&v, i, j, f1, b), z = -1, err;
@@ -585,7 +586,7 @@ TEST(depth_plane_and_floor)
 TEST(clipped_tiling_watertight)
 {
     enum { W = 96, H = 72, NX = 12, NZ = 12 };
-    tg_view v = view_make(W, H, 90, 1);
+    tgi_view v = view_make(W, H, 90, 1);
     mesh *m = mesh_new();
     gbuf g;
     static double P[NZ + 1][NX + 1][3];
@@ -608,7 +609,7 @@ TEST(clipped_tiling_watertight)
             add_tri_view(m, &v, (const double(*)[3])b, NULL, 0, 0);
         }
     gbuf_alloc(&g, W, H);
-    tg_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
     for (j = 0; j < H; j++)
         for (i = 0; i < W; i++) {
             double dx, dy, z;
@@ -636,7 +637,7 @@ TEST(clipped_tiling_watertight)
 TEST(normal_interpolation)
 {
     enum { W = 64, H = 48 };
-    tg_view v = view_at(W, H, 70);
+    tgi_view v = view_at(W, H, 70);
     mesh *m = mesh_new();
     gbuf g;
     const double p[3][3] = { { -3, -2, 2 }, { 3, -2, 9 }, { 0, 3, 4 } };
@@ -645,7 +646,7 @@ TEST(normal_interpolation)
     double worst = 0;
     add_tri_view(m, &v, p, (const double(*)[3])n, 0, 0);
     gbuf_alloc(&g, W, H);
-    tg_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
     for (j = 0; j < H; j++)
         for (i = 0; i < W; i++) {
             double b[3], z = ray_tri(&v, i, j, p, b), e[3], len = 0, err = 0;
@@ -668,7 +669,7 @@ TEST(normal_interpolation)
 TEST(zero_area_skipped)
 {
     enum { W = 32, H = 24 };
-    tg_view v = view_at(W, H, 70);
+    tgi_view v = view_at(W, H, 70);
     mesh *m = mesh_new();
     gbuf g;
     const double line[3][3] = { { -1, -1, 3 }, { 0, 0, 3 }, { 1, 1, 3 } };
@@ -681,7 +682,7 @@ TEST(zero_area_skipped)
     add_tri_view(m, &v, dup, NULL, 1, 0);
     add_tri_view(m, &v, edge_on, NULL, 1, 0);
     gbuf_alloc(&g, W, H);
-    tg_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
     for (i = 0; i < W * H; i++) drawn += !g.gb.sky[i];
     CHECK(drawn == 0, "zero-area triangles drew %d pixels", drawn);
     gbuf_free(&g);
@@ -693,7 +694,7 @@ TEST(zero_area_skipped)
 TEST(hostile_coordinates)
 {
     enum { W = 40, H = 30 };
-    tg_view v = view_at(W, H, 70);
+    tgi_view v = view_at(W, H, 70);
     mesh *m = mesh_new();
     gbuf g;
     double big = TG_FIXED ? 32000.0 : 3e38;
@@ -716,7 +717,7 @@ TEST(hostile_coordinates)
         m->n++;
     }
     gbuf_alloc(&g, W, H);
-    tg_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
     for (i = 0; i < W * H; i++) {
         double z = D(g.gb.depth[i]);
         if (g.gb.sky[i]) continue;
@@ -729,7 +730,7 @@ TEST(hostile_coordinates)
 
 /* A closed sphere: nearest wins, normals unit and facing the viewer, and
  * rendering in row bands gives the same bytes as one pass. */
-static void add_sphere(mesh *m, const tg_view *v, double cx, double cy, double cz, double r, int seg, int obj)
+static void add_sphere(mesh *m, const tgi_view *v, double cx, double cy, double cz, double r, int seg, int obj)
 {
     int i, j, k;
     for (j = 0; j < seg; j++)
@@ -773,7 +774,7 @@ static void add_sphere(mesh *m, const tg_view *v, double cx, double cy, double c
 TEST(sphere_nearest_and_rows)
 {
     enum { W = 80, H = 60 };
-    tg_view v = view_at(W, H, 60);
+    tgi_view v = view_at(W, H, 60);
     mesh *m = mesh_new();
     gbuf g, h;
     int i, j, bad_n = 0, bad_z = 0, drawn = 0, diff = 0;
@@ -781,8 +782,8 @@ TEST(sphere_nearest_and_rows)
     add_sphere(m, &v, -0.8, -0.3, 7, 2.0, 16, 2); /* partly behind the first */
     gbuf_alloc(&g, W, H);
     gbuf_alloc(&h, W, H);
-    tg_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
-    for (i = 0; i < 5; i++) tg_raster_gbuffer(&h.gb, &v, mesh_rm(m), i * H / 5, (i + 1) * H / 5);
+    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    for (i = 0; i < 5; i++) tgi_raster_gbuffer(&h.gb, &v, mesh_rm(m), i * H / 5, (i + 1) * H / 5);
     for (j = 0; j < H; j++)
         for (i = 0; i < W; i++) {
             int idx = j * W + i;
@@ -818,8 +819,8 @@ TEST(sphere_nearest_and_rows)
     CHECK(bad_z == 0, "%d pixels not at the nearest sphere", bad_z);
     CHECK(diff == 0, "row bands differ from one pass at %d pixels", diff);
     /* rows outside the range are untouched */
-    tg_gbuffer_clear_rows(&h.gb, 0, H);
-    tg_raster_gbuffer(&h.gb, &v, mesh_rm(m), 20, 30);
+    tgi_gbuffer_clear_rows(&h.gb, 0, H);
+    tgi_raster_gbuffer(&h.gb, &v, mesh_rm(m), 20, 30);
     for (i = 0, diff = 0; i < W * H; i++)
         if ((i / W < 20 || i / W >= 30) && !h.gb.sky[i]) diff++;
     CHECK(diff == 0, "%d pixels written outside rows [20, 30)", diff);
@@ -831,7 +832,7 @@ TEST(sphere_nearest_and_rows)
 /* ---------------------------------------------------------------------- */
 /* depth only                                                              */
 
-static void set_row4(tg_mat4 *m, int r, double a, double b, double c, double d)
+static void set_row4(tgi_mat4 *m, int r, double a, double b, double c, double d)
 {
     m->m[r * 4 + 0] = R(a); m->m[r * 4 + 1] = R(b); m->m[r * 4 + 2] = R(c); m->m[r * 4 + 3] = R(d);
 }
@@ -840,7 +841,7 @@ TEST(depth_only_ortho)
 {
     enum { S = 48 };
     tg_real *depth = (tg_real *)malloc(sizeof(tg_real) * S * S);
-    tg_mat4 m;
+    tgi_mat4 m;
     /* light looks along -y; clip = (x / 4, z / 4, 10 - y, 1); a tilted plane
      * y = 2 + 0.25 x - 0.125 z spanning x, z in [-6, 6], both windings */
     const double pos[4][3] = { { -6, 0, -6 }, { 6, 0, -6 }, { 6, 0, 6 }, { -6, 0, 6 } };
@@ -861,7 +862,7 @@ TEST(depth_only_ortho)
         }
     }
     for (i = 0; i < S * S; i++) depth[i] = TG_REAL_MAX;
-    tg_raster_depth(depth, S, S, &m, 1, tri, 2, 0, S);
+    tgi_raster_depth(depth, S, S, &m, 1, tri, 2, 0, S);
     for (j = 0; j < S; j++)
         for (i = 0; i < S; i++) {
             double x = ((i + 0.5) / S * 2 - 1) * 4, z = (1 - (j + 0.5) / S * 2) * 4;
@@ -878,7 +879,7 @@ TEST(depth_only_perspective)
 {
     enum { S = 64 };
     tg_real *depth = (tg_real *)malloc(sizeof(tg_real) * S * S);
-    tg_mat4 m;
+    tgi_mat4 m;
     double n = 0.1, f = 50, a = (f + n) / (f - n), b = -2 * f * n / (f - n);
     /* light at the origin looking along +z, 90 degree frustum:
      * clip = (x, y, a z + b, z) */
@@ -896,7 +897,7 @@ TEST(depth_only_perspective)
     for (k = 0; k < 2; k++)
         for (l = 0; l < 3; l++) tri[3 * k + l] = V(P[k][l][0], P[k][l][1], P[k][l][2]);
     for (i = 0; i < S * S; i++) depth[i] = TG_REAL_MAX;
-    tg_raster_depth(depth, S, S, &m, 0, tri, 2, 0, S);
+    tgi_raster_depth(depth, S, S, &m, 0, tri, 2, 0, S);
     for (j = 0; j < S; j++)
         for (i = 0; i < S; i++) {
             /* plane z = 7 + 0.5 x: ray (u, v, 1) hits at z = 7 / (1 - 0.5 u) */
@@ -911,7 +912,7 @@ TEST(depth_only_perspective)
      * depths >= near, and nothing mirrored from behind */
     for (l = 0; l < 3; l++) tri[6 + l] = V(near_cross[l][0], near_cross[l][1], near_cross[l][2]);
     for (i = 0; i < S * S; i++) depth[i] = TG_REAL_MAX;
-    tg_raster_depth(depth, S, S, &m, 0, tri + 6, 1, 0, S);
+    tgi_raster_depth(depth, S, S, &m, 0, tri + 6, 1, 0, S);
     drawn = 0; bad = 0;
     for (i = 0; i < S * S; i++) {
         if (depth[i] == TG_REAL_MAX) continue;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_real.c - the scalar API against libm, over each function's whole
  * domain, for the number type of this build; saturation at the range ends;
@@ -199,22 +200,22 @@ TEST(isqrt64_exact)
 {
     uint64_t k, v = 88172645463325252ull;
     long i, bad = 0;
-    CHECK(tg_isqrt64(0) == 0 && tg_isqrt64(1) == 1 && tg_isqrt64(3) == 1 && tg_isqrt64(4) == 2, "small");
-    CHECK(tg_isqrt64(UINT64_MAX) == 0xffffffffu, "isqrt(2^64-1) = 2^32-1");
+    CHECK(tgi_isqrt64(0) == 0 && tgi_isqrt64(1) == 1 && tgi_isqrt64(3) == 1 && tgi_isqrt64(4) == 2, "small");
+    CHECK(tgi_isqrt64(UINT64_MAX) == 0xffffffffu, "isqrt(2^64-1) = 2^32-1");
     k = 0xffffffffu;
-    CHECK(tg_isqrt64(k * k) == k && tg_isqrt64(k * k - 1) == k - 1 && tg_isqrt64(k * k + 1) == k, "near 2^64");
-    CHECK(tg_isqrt64((uint64_t)1 << 62) == (uint32_t)1 << 31 && tg_isqrt64(((uint64_t)1 << 62) - 1) == ((uint32_t)1 << 31) - 1,
+    CHECK(tgi_isqrt64(k * k) == k && tgi_isqrt64(k * k - 1) == k - 1 && tgi_isqrt64(k * k + 1) == k, "near 2^64");
+    CHECK(tgi_isqrt64((uint64_t)1 << 62) == (uint32_t)1 << 31 && tgi_isqrt64(((uint64_t)1 << 62) - 1) == ((uint32_t)1 << 31) - 1,
           "2^62");
     for (k = 1; k < ((uint64_t)1 << 32); k = k * 3 + 1) {
-        if (tg_isqrt64(k * k) != k || (k > 1 && tg_isqrt64(k * k - 1) != k - 1)) bad++;
+        if (tgi_isqrt64(k * k) != k || (k > 1 && tgi_isqrt64(k * k - 1) != k - 1)) bad++;
     }
     for (i = 0; i < 2000000; i++) { /* xorshift64 over the whole range, and shifted down */
         uint64_t w;
         v ^= v << 13; v ^= v >> 7; v ^= v << 17;
         w = v >> (i % 64);
-        if (!isqrt_ok(w, tg_isqrt64(w))) bad++;
+        if (!isqrt_ok(w, tgi_isqrt64(w))) bad++;
     }
-    for (k = 0; k < 2000000; k++) if (!isqrt_ok(k, tg_isqrt64(k))) bad++;
+    for (k = 0; k < 2000000; k++) if (!isqrt_ok(k, tgi_isqrt64(k))) bad++;
     CHECK(bad == 0, "%ld wrong integer square roots", bad);
 }
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_reference.c - the BVH and the ray-traced AO reference on exact cases.
  *
@@ -29,25 +30,25 @@ TEST(ray_triangle_basics)
     tg_vec3 v[3] = { tg_v3(0, 0, 0), tg_v3(TG_ONE, 0, 0), tg_v3(0, TG_ONE, 0) };
     tg_real t, u, w;
     /* straight down the -z axis onto the triangle at (0.25, 0.25) from z = 2 */
-    CHECK(tg_ray_triangle(v, tg_v3(TG_R(0.25f), TG_R(0.25f), TG_R(2.0f)), tg_v3(0, 0, TG_R(-1.0f)),
+    CHECK(tgi_ray_triangle(v, tg_v3(TG_R(0.25f), TG_R(0.25f), TG_R(2.0f)), tg_v3(0, 0, TG_R(-1.0f)),
                           TG_R(10.0f), &t, &u, &w), "hit expected");
     CHECK_NEAR(check_d(t), 2.0, 1e-3);
     CHECK_NEAR(check_d(u), 0.25, 1e-3);
     CHECK_NEAR(check_d(w), 0.25, 1e-3);
     /* tmax shorter than the hit: no hit */
-    CHECK(!tg_ray_triangle(v, tg_v3(TG_R(0.25f), TG_R(0.25f), TG_R(2.0f)), tg_v3(0, 0, TG_R(-1.0f)),
+    CHECK(!tgi_ray_triangle(v, tg_v3(TG_R(0.25f), TG_R(0.25f), TG_R(2.0f)), tg_v3(0, 0, TG_R(-1.0f)),
                            TG_R(1.5f), &t, &u, &w), "tmax must cut");
     /* outside the triangle */
-    CHECK(!tg_ray_triangle(v, tg_v3(TG_R(0.75f), TG_R(0.75f), TG_R(2.0f)), tg_v3(0, 0, TG_R(-1.0f)),
+    CHECK(!tgi_ray_triangle(v, tg_v3(TG_R(0.75f), TG_R(0.75f), TG_R(2.0f)), tg_v3(0, 0, TG_R(-1.0f)),
                            TG_R(10.0f), &t, &u, &w), "miss expected");
     /* behind the origin */
-    CHECK(!tg_ray_triangle(v, tg_v3(TG_R(0.25f), TG_R(0.25f), TG_R(2.0f)), tg_v3(0, 0, TG_ONE),
+    CHECK(!tgi_ray_triangle(v, tg_v3(TG_R(0.25f), TG_R(0.25f), TG_R(2.0f)), tg_v3(0, 0, TG_ONE),
                            TG_R(10.0f), &t, &u, &w), "behind");
     /* a huge triangle (edges 400 units) is handled in fixed point too */
     {
         tg_vec3 big[3] = { tg_v3(TG_R(-200.0f), 0, TG_R(-200.0f)), tg_v3(TG_R(200.0f), 0, TG_R(-200.0f)),
                            tg_v3(0, 0, TG_R(200.0f)) };
-        CHECK(tg_ray_triangle(big, tg_v3(TG_R(1.0f), TG_R(0.01f), TG_R(3.0f)), tg_v3(0, TG_R(-1.0f), 0),
+        CHECK(tgi_ray_triangle(big, tg_v3(TG_R(1.0f), TG_R(0.01f), TG_R(3.0f)), tg_v3(0, TG_R(-1.0f), 0),
                               TG_R(10.0f), &t, &u, &w), "big hit");
         CHECK_NEAR(check_d(t), 0.01, 2e-4);
     }
@@ -64,9 +65,9 @@ TEST(bvh_matches_brute_force)
     enum { NT = 300, NR = 2000 };
     static tg_vec3 tri[3 * NT];
     int i, r, mism = 0, hits = 0, disagree = 0, compared = 0;
-    size_t bytes = tg_bvh_bytes(NT);
+    size_t bytes = tgi_bvh_bytes(NT);
     unsigned char *mem = malloc(bytes);
-    tg_bvh b;
+    tgi_bvh b;
     for (i = 0; i < NT; i++) {
         double c[3];
         int j;
@@ -78,13 +79,13 @@ TEST(bvh_matches_brute_force)
             tri[3 * i + j] = tg_v3(tg_from_float((float)px), tg_from_float((float)py), tg_from_float((float)pz));
         }
     }
-    CHECK(tg_bvh_build(&b, tri, NT, mem, bytes - 17) == -1, "too small memory must fail");
-    CHECK(tg_bvh_build(&b, tri, NT, mem, bytes) == 0, "build");
+    CHECK(tgi_bvh_build(&b, tri, NT, mem, bytes - 17) == -1, "too small memory must fail");
+    CHECK(tgi_bvh_build(&b, tri, NT, mem, bytes) == 0, "build");
     CHECK(b.node_count <= 2 * NT, "node count %d", b.node_count);
     for (r = 0; r < NR; r++) {
         double d[3], ox, oy, oz;
         tg_vec3 o, dv;
-        tg_ray_hit h;
+        tgi_ray_hit h;
         tg_real best = TG_R(20.0f), t, u, w, t2, u2, w2;
         d[0] = RND() * 2 - 1; d[1] = RND() * 2 - 1; d[2] = RND() * 2 - 1;
         ox = RND() * 10 - 5; oy = RND() * 10 - 5; oz = RND() * 10 - 5;
@@ -102,17 +103,17 @@ TEST(bvh_matches_brute_force)
         for (i = 0; i < NT; i++) {
             int slot = -1, k, a, m;
             for (k = 0; k < NT; k++) if (b.tri_index[k] == i) slot = k;
-            a = tg_bvh_tri_hit(&b.tris[slot], o, dv, TG_R(20.0f), &t, &u, &w);
-            m = tg_ray_triangle(tri + 3 * i, o, dv, TG_R(20.0f), &t2, &u2, &w2);
+            a = tgi_bvh_tri_hit(&b.tris[slot], o, dv, TG_R(20.0f), &t, &u, &w);
+            m = tgi_ray_triangle(tri + 3 * i, o, dv, TG_R(20.0f), &t2, &u2, &w2);
             if (a && t < best) { best = t; bi = i; }
             if (m && (check_d(u2) < 2e-3 || check_d(w2) < 2e-3 || check_d(u2) + check_d(w2) > 1 - 2e-3)) continue;
             compared++;
             if (a != m || (a && fabs(check_d(t) - check_d(t2)) > 1e-3 * (1 + check_d(t2)))) disagree++;
         }
-        got = tg_bvh_closest(&b, o, dv, TG_R(20.0f), &h);
+        got = tgi_bvh_closest(&b, o, dv, TG_R(20.0f), &h);
         hits += got;
         if (got != (bi >= 0) || (got && (h.tri != bi || h.t != best))) mism++;
-        if (tg_bvh_occluded(&b, o, dv, TG_R(20.0f)) != (bi >= 0)) mism++;
+        if (tgi_bvh_occluded(&b, o, dv, TG_R(20.0f)) != (bi >= 0)) mism++;
     }
     CHECK(mism == 0, "%d BVH mismatches of %d rays", mism, NR);
     /* Q16.16: the two formulations round differently for rays within the
@@ -130,18 +131,18 @@ TEST(prepared_triangle_scales)
     for (s = 0; s < 3; s++) {
         double k = scales[s];
         tg_vec3 v[3] = { tg_v3(0, 0, 0), tg_v3(tg_from_float((float)k), 0, 0), tg_v3(0, tg_from_float((float)k), 0) };
-        tg_bvh_tri tr;
+        tgi_bvh_tri tr;
         tg_real t, u, w;
-        tg_bvh_tri_prepare(&tr, v);
+        tgi_bvh_tri_prepare(&tr, v);
         /* aim at barycentrics (0.2, 0.3) from 2k above */
-        CHECK(tg_bvh_tri_hit(&tr, tg_v3(tg_from_float((float)(0.2 * k)), tg_from_float((float)(0.3 * k)), tg_from_float((float)(2 * k))),
+        CHECK(tgi_bvh_tri_hit(&tr, tg_v3(tg_from_float((float)(0.2 * k)), tg_from_float((float)(0.3 * k)), tg_from_float((float)(2 * k))),
                              tg_v3(0, 0, TG_R(-1.0f)), TG_REAL_MAX, &t, &u, &w), "scale %g: hit", k);
         /* tolerance: 2e-4 plus the input's own quantisation (two Q16.16 ulps of the coordinates / k) */
         CHECK_NEAR(check_d(u), 0.2, 2e-4 + 3.1e-5 / k);
         CHECK_NEAR(check_d(w), 0.3, 2e-4 + 3.1e-5 / k);
         CHECK_NEAR(check_d(t), 2.0 * k, 2e-4 * k + 4e-5);
         /* just outside the hypotenuse: a miss */
-        CHECK(!tg_bvh_tri_hit(&tr, tg_v3(tg_from_float((float)(0.5 * k)), tg_from_float((float)(0.505 * k)), tg_from_float((float)k)),
+        CHECK(!tgi_bvh_tri_hit(&tr, tg_v3(tg_from_float((float)(0.5 * k)), tg_from_float((float)(0.505 * k)), tg_from_float((float)k)),
                               tg_v3(0, 0, TG_R(-1.0f)), TG_REAL_MAX, &t, &u, &w), "scale %g: miss", k);
     }
 }
@@ -152,19 +153,19 @@ TEST(open_plane)
     static outputs o;
     static tg_real cone[W * H];
     static const double eye[3] = { 0.5, 2.0, 3.0 }, target[3] = { 0, 0, -1 };
-    tg_reference_params p;
-    tg_ao_io io;
+    tgi_reference_params p;
+    tgi_ao_io io;
     int i, n = 0;
     double worst_ao = 0, worst_angle = 0;
     memset(&s, 0, sizeof s);
     add_rect(&s, -BIG, 0, BIG, 2 * BIG, 0, 0, 0, 0, -2 * BIG);
     raster(&s, eye, target, 60.0);
     build_bvh(&s);
-    tg_reference_defaults(&p);
+    tgi_reference_defaults(&p);
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE;
     io_for(&io, &s, &o, 0);
     io.cone = cone;
-    tg_reference_rows(&p, &io, 0, H);
+    tgi_reference_rows(&p, &io, 0, H);
     for (i = 0; i < W * H; i++) {
         double c;
         if (s.sky[i]) continue;
@@ -191,15 +192,15 @@ TEST(groove_half)
 {
     static scene s;
     static outputs o;
-    tg_reference_params p;
-    tg_ao_io io;
+    tgi_reference_params p;
+    tgi_ao_io io;
     int i, surf, n[2] = { 0, 0 };
     double worst[2] = { 0, 0 }, tol = 0.5 / sqrt(256.0);
     groove(&s);
-    tg_reference_defaults(&p);
+    tgi_reference_defaults(&p);
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE;
     io_for(&io, &s, &o, 0);
-    tg_reference_rows(&p, &io, 0, H);
+    tgi_reference_rows(&p, &io, 0, H);
     for (surf = 0; surf < 2; surf++)
         for (i = 0; i < W * H; i++) {
             if (!near_crease(&s, i, 0.3, surf)) continue;
@@ -228,8 +229,8 @@ TEST(groove_bent_exact)
 {
     static scene s;
     static outputs o;
-    tg_reference_params p;
-    tg_ao_io io;
+    tgi_reference_params p;
+    tgi_ao_io io;
     int i, k, m = 0;
     double sx = 0, sy = 0, expect, worst = 0;
     /* cosine-weighted: l = (r cos a, sqrt(1 - r^2), r sin a) with r^2 uniform, a uniform */
@@ -241,10 +242,10 @@ TEST(groove_bent_exact)
     }
     expect = atan2(sx / m, sy / m);
     groove(&s);
-    tg_reference_defaults(&p);
+    tgi_reference_defaults(&p);
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE;
     io_for(&io, &s, &o, 0);
-    tg_reference_rows(&p, &io, 0, H);
+    tgi_reference_rows(&p, &io, 0, H);
     for (i = 0; i < W * H; i++) {
         double ang;
         if (!near_crease(&s, i, 0.3, 0)) continue;
@@ -262,14 +263,14 @@ TEST(groove_radius_cutoff)
 {
     static scene s;
     static outputs o;
-    tg_reference_params p;
-    tg_ao_io io;
+    tgi_reference_params p;
+    tgi_ao_io io;
     int i, far_n = 0, near_n = 0;
     groove(&s);
-    tg_reference_defaults(&p);
+    tgi_reference_defaults(&p);
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_R(0.5f);
     io_for(&io, &s, &o, 0);
-    tg_reference_rows(&p, &io, 0, H);
+    tgi_reference_rows(&p, &io, 0, H);
     for (i = 0; i < W * H; i++) {
         if (s.sky[i] || s.wrect[i] != 0) continue;
         if (s.wpos[i][0] > 0.55) { far_n++; CHECK(o.ao[i] == TG_ONE, "open beyond the radius: %g at x %g", check_d(o.ao[i]), s.wpos[i][0]); }
@@ -283,8 +284,8 @@ TEST(closed_box)
     static scene s;
     static outputs o;
     static const double eye[3] = { 0.1, 0.6, 0.2 }, target[3] = { 0.5, -1, -0.4 };
-    tg_reference_params p;
-    tg_ao_io io;
+    tgi_reference_params p;
+    tgi_ao_io io;
     int i, n = 0;
     double worst = 0;
     memset(&s, 0, sizeof s);
@@ -297,10 +298,10 @@ TEST(closed_box)
     add_rect(&s, 1, -1, -1, 0, 2, 0, 0, 0, 2);   /* right x = 1 */
     raster(&s, eye, target, 90.0);
     build_bvh(&s);
-    tg_reference_defaults(&p);
+    tgi_reference_defaults(&p);
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE;
     io_for(&io, &s, &o, 0);
-    tg_reference_rows(&p, &io, 0, H);
+    tgi_reference_rows(&p, &io, 0, H);
     for (i = 0; i < W * H; i++) {
         if (s.sky[i]) continue;
         n++;
@@ -326,15 +327,15 @@ TEST(near_field_half)
     static scene s;
     static outputs o;
     static tg_real rr[W * H], rg[W * H], rb[W * H];
-    tg_reference_params p;
-    tg_ao_io io;
+    tgi_reference_params p;
+    tgi_ao_io io;
     int i, n = 0;
     double worst = 0, tol = 3.14159265358979 * 0.5 / sqrt(256.0), want = 3.14159265358979 / 2;
     groove(&s);
-    tg_reference_defaults(&p);
+    tgi_reference_defaults(&p);
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE; p.radiance = wall_radiance;
     io_for(&io, &s, &o, 1);
-    tg_reference_rows(&p, &io, 0, H);
+    tgi_reference_rows(&p, &io, 0, H);
     for (i = 0; i < W * H; i++) {
         if (!near_crease(&s, i, 0.3, 0)) continue;
         n++;
@@ -354,7 +355,7 @@ TEST(near_field_half)
         p.radiance = 0;
         io_for(&io, &s, &o2, 1);
         io.rad_r = rr; io.rad_g = rg; io.rad_b = rb;
-        tg_reference_rows(&p, &io, 0, H);
+        tgi_reference_rows(&p, &io, 0, H);
         int seen = 0;
         for (i = 0; i < W * H; i++) {
             if (s.sky[i]) continue;
@@ -372,16 +373,16 @@ TEST(deterministic)
 {
     static scene s;
     static outputs a, b;
-    tg_reference_params p;
-    tg_ao_io io;
+    tgi_reference_params p;
+    tgi_ao_io io;
     groove(&s);
-    tg_reference_defaults(&p);
+    tgi_reference_defaults(&p);
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.samples = 64;
     io_for(&io, &s, &a, 0);
-    tg_reference_rows(&p, &io, 0, H);
+    tgi_reference_rows(&p, &io, 0, H);
     io_for(&io, &s, &b, 0);
-    tg_reference_rows(&p, &io, 0, H / 2);          /* two row ranges give the same image */
-    tg_reference_rows(&p, &io, H / 2, H);
+    tgi_reference_rows(&p, &io, 0, H / 2);          /* two row ranges give the same image */
+    tgi_reference_rows(&p, &io, H / 2, H);
     CHECK(memcmp(a.ao, b.ao, sizeof a.ao) == 0, "ao differs");
     CHECK(memcmp(a.bx, b.bx, sizeof a.bx) == 0, "bent differs");
 }

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_reproject.c - scatter/gather reprojection (HBIL sec. 3.2) and
  * push/pull hole filling (Kraus 2009), plus the spatial/temporal filter.
@@ -17,16 +18,16 @@
 #define H 23
 #define N (W * H)
 
-static tg_view make_view(float ex, float ey, float ez)
+static tgi_view make_view(float ex, float ey, float ez)
 {
-    tg_view v;
-    tg_view_make(&v, tg_v3(tg_from_float(ex), tg_from_float(ey), tg_from_float(ez)), tg_v3(0, 0, 0),
+    tgi_view v;
+    tgi_view_make(&v, tg_v3(tg_from_float(ex), tg_from_float(ey), tg_from_float(ez)), tg_v3(0, 0, 0),
                  tg_v3(0, TG_ONE, 0), TG_R(1.0f), TG_R(0.05f), TG_R(100.0f), W, H);
     return v;
 }
 
 /* Depth of the plane y = -1 (a floor) plus a wall z = -3, ray-cast per pixel. */
-static void scene_depth(const tg_view *v, tg_real *depth, uint8_t *sky)
+static void scene_depth(const tgi_view *v, tg_real *depth, uint8_t *sky)
 {
     int x, y;
     double ppu = check_d(v->pixels_per_unit);
@@ -58,7 +59,7 @@ static void fill_radiance(void)
     }
 }
 
-static void io_for(tg_reproject_io *io, const tg_view *pv, const tg_view *v)
+static void io_for(tgi_reproject_io *io, const tgi_view *pv, const tgi_view *v)
 {
     memset(io, 0, sizeof *io);
     io->width = W; io->height = H; io->prev_view = pv; io->view = v;
@@ -67,18 +68,18 @@ static void io_for(tg_reproject_io *io, const tg_view *pv, const tg_view *v)
     io->out_r = orr; io->out_g = org; io->out_b = orb; io->valid = valid;
 }
 
-static void *scratch_for(void) { return malloc(tg_reproject_bytes(W, H) + tg_pushpull_bytes(W, H)); }
+static void *scratch_for(void) { return malloc(tgi_reproject_bytes(W, H) + tgi_pushpull_bytes(W, H)); }
 
 TEST(static_view_is_identity)
 {
-    tg_view v = make_view(0.3f, 0.5f, 2.0f);
-    tg_reproject_io io;
+    tgi_view v = make_view(0.3f, 0.5f, 2.0f);
+    tgi_reproject_io io;
     void *s = scratch_for();
     int i, bad = 0;
     scene_depth(&v, depth0, sky0);
     fill_radiance();
     io_for(&io, &v, &v);
-    tg_reproject_scatter(&io, s);
+    tgi_reproject_scatter(&io, s);
     for (i = 0; i < N; i++) {
         if (sky0[i]) { bad += valid[i] != 0; continue; }
         bad += !valid[i] || orr[i] != rr[i] || org[i] != rg[i] || orb[i] != rb[i];
@@ -92,7 +93,7 @@ TEST(static_view_is_identity)
             mx[y * W + x] = tg_add(tg_from_int(x), TG_R(0.5f)); my[y * W + x] = tg_add(tg_from_int(y), TG_R(0.5f));
         }
         io.depth = depth0; io.sky = sky0; io.motion_x = mx; io.motion_y = my;
-        tg_reproject_gather_rows(&io, 0, H);
+        tgi_reproject_gather_rows(&io, 0, H);
         bad = 0;
         for (i = 0; i < N; i++) bad += sky0[i] ? valid[i] != 0 : (!valid[i] || orr[i] != rr[i] || orb[i] != rb[i]);
         CHECK(bad == 0, "gather: %d pixels differ", bad);
@@ -112,16 +113,16 @@ static void check_filled(const char *what, tg_real lo, tg_real hi)
 
 TEST(camera_cut_gives_zero)
 {
-    tg_view v = make_view(0.3f, 0.5f, 2.0f);
-    tg_reproject_io io;
+    tgi_view v = make_view(0.3f, 0.5f, 2.0f);
+    tgi_reproject_io io;
     void *s = scratch_for();
     int i, nz = 0;
     scene_depth(&v, depth0, sky0);
     fill_radiance();
     io_for(&io, &v, &v);
     io.prev_r = io.prev_g = io.prev_b = NULL;    /* no history */
-    tg_reproject_scatter(&io, s);
-    tg_pushpull_fill(W, H, orr, org, orb, valid, (unsigned char *)s + tg_reproject_bytes(W, H));
+    tgi_reproject_scatter(&io, s);
+    tgi_pushpull_fill(W, H, orr, org, orb, valid, (unsigned char *)s + tgi_reproject_bytes(W, H));
     for (i = 0; i < N; i++) nz += valid[i] || orr[i] != 0 || org[i] != 0 || orb[i] != 0;
     CHECK(nz == 0, "camera cut: %d pixels not zero", nz);
     free(s);
@@ -129,18 +130,18 @@ TEST(camera_cut_gives_zero)
 
 TEST(teleport_is_finite_and_hole_free)
 {
-    tg_view v0 = make_view(0.3f, 0.5f, 2.0f), v1 = make_view(-1.5f, 0.2f, 1.0f);
-    tg_reproject_io io;
+    tgi_view v0 = make_view(0.3f, 0.5f, 2.0f), v1 = make_view(-1.5f, 0.2f, 1.0f);
+    tgi_reproject_io io;
     void *s = scratch_for();
     int i, holes = 0;
     scene_depth(&v0, depth0, sky0);
     scene_depth(&v1, depth1, sky1);
     fill_radiance();
     io_for(&io, &v0, &v1);
-    tg_reproject_scatter(&io, s);
+    tgi_reproject_scatter(&io, s);
     for (i = 0; i < N; i++) holes += !valid[i];
     CHECK(holes > 0 && holes < N, "a teleport leaves some holes (%d)", holes);
-    tg_pushpull_fill(W, H, orr, org, orb, valid, (unsigned char *)s + tg_reproject_bytes(W, H));
+    tgi_pushpull_fill(W, H, orr, org, orb, valid, (unsigned char *)s + tgi_reproject_bytes(W, H));
     check_filled("teleport", TG_R(0.0999f), TG_R(1.3001f)); /* the source range */
     free(s);
 }
@@ -148,7 +149,7 @@ TEST(teleport_is_finite_and_hole_free)
 TEST(pushpull_fills_within_range)
 {
     int i, k;
-    void *s = malloc(tg_pushpull_bytes(W, H));
+    void *s = malloc(tgi_pushpull_bytes(W, H));
     for (k = 0; k < 3; k++) {
         for (i = 0; i < N; i++) {
             valid[i] = k == 0 ? (i % 3 == 0) : k == 1 ? (i == 17) : (i < N / 2);
@@ -156,7 +157,7 @@ TEST(pushpull_fills_within_range)
             org[i] = valid[i] ? TG_ONE : TG_REAL_MAX;
             orb[i] = valid[i] ? 0 : TG_REAL_MAX;
         }
-        tg_pushpull_fill(W, H, orr, org, orb, valid, s);
+        tgi_pushpull_fill(W, H, orr, org, orb, valid, s);
         check_filled("push/pull", TG_R(2.0f), TG_R(4.5f));
         for (i = 0; i < N; i++) CHECK_NEAR(check_d(org[i]), 1.0, 1e-3);
         for (i = 0; i < N; i++) if (valid[i]) CHECK(orr[i] == tg_from_float(2.0f + (float)(i % 11) * 0.25f), "valid pixel %d changed", i);
@@ -165,7 +166,7 @@ TEST(pushpull_fills_within_range)
     {
         tg_real a = TG_ONE, b = TG_ONE, c = TG_ONE;
         uint8_t v = 0;
-        tg_pushpull_fill(1, 1, &a, &b, &c, &v, s);
+        tgi_pushpull_fill(1, 1, &a, &b, &c, &v, s);
         CHECK(a == 0 && b == 0 && c == 0, "1x1 hole without data gives 0");
     }
     free(s);
@@ -175,11 +176,11 @@ TEST(pushpull_fills_within_range)
  * the temporal pass with a static view converges to a constant input. */
 TEST(filters_preserve_constants)
 {
-    tg_view v = make_view(0.3f, 0.5f, 2.0f);
+    tgi_view v = make_view(0.3f, 0.5f, 2.0f);
     static tg_real ao[N], bx[N], by[N], bz[N], cone[N], nx[N], ny[N], nz[N];
-    tg_denoise_io io;
-    tg_denoise_params p;
-    void *scratch = malloc(tg_denoise_bytes(W, H)), *state = malloc(tg_temporal_bytes(W, H));
+    tgi_denoise_io io;
+    tgi_denoise_params p;
+    void *scratch = malloc(tgi_denoise_bytes(W, H)), *state = malloc(tgi_temporal_bytes(W, H));
     int i, f, bad = 0;
     scene_depth(&v, depth0, sky0);
     for (i = 0; i < N; i++) {
@@ -190,9 +191,9 @@ TEST(filters_preserve_constants)
     memset(&io, 0, sizeof io);
     io.width = W; io.height = H; io.depth = depth0; io.nx = nx; io.ny = ny; io.nz = nz; io.sky = sky0;
     io.ao = ao; io.bent_x = bx; io.bent_y = by; io.bent_z = bz; io.cone = cone;
-    tg_denoise_defaults(&p);
-    tg_denoise_begin(&io, scratch);
-    tg_denoise_rows(&p, &io, scratch, 0, H);
+    tgi_denoise_defaults(&p);
+    tgi_denoise_begin(&io, scratch);
+    tgi_denoise_rows(&p, &io, scratch, 0, H);
     for (i = 0; i < N; i++) {
         double a = check_d(ao[i]);
         if (sky0[i]) continue;
@@ -200,10 +201,10 @@ TEST(filters_preserve_constants)
         if (fabs(check_d(cone[i]) - acos(1 - a)) > 2e-3) bad++;
     }
     CHECK(bad == 0, "filtered AO out of range or cone != acos(1 - AO): %d", bad);
-    tg_temporal_clear(state, W, H);
+    tgi_temporal_clear(state, W, H);
     for (f = 0; f < 40; f++) {
         for (i = 0; i < N; i++) ao[i] = TG_R(0.5f);
-        tg_temporal_rows(&p, &io, state, &v, &v, f, f == 0, 0, H);
+        tgi_temporal_rows(&p, &io, state, &v, &v, f, f == 0, 0, H);
     }
     for (i = 0; i < N; i++) if (!sky0[i]) CHECK_NEAR(check_d(ao[i]), 0.5, 1e-3);
     free(scratch); free(state);

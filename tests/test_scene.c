@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_scene.c - the scene format v1 parser, OBJ/MTL meshes and the built-in
  * scenes (src/scene/parse.c, obj.c, builtin.c; format in src/scene/format.md).
@@ -841,18 +842,18 @@ TEST(obj_arena)
 
 TEST(obj_from_disk)
 {
-    tg_host_io host;
+    tgp_host_io host;
     tg_scene *s;
     tg_error err;
     char *text, msg[256];
     size_t n;
     tg_status st;
     int o;
-    if (tg_file_read("tests/scenes/meshes.scene", &text, &n, msg, sizeof msg)) {
+    if (tgp_file_read("tests/scenes/meshes.scene", &text, &n, msg, sizeof msg)) {
         CHECK(0, "cannot read tests/scenes/meshes.scene: %s", msg);
         return;
     }
-    tg_host_io_init(&host);
+    tgp_host_io_init(&host);
     st = parse_io(text, n, "tests/scenes/meshes.scene", &host.io, &s, &err);
     CHECK(st == TG_OK, "parse");
     if (st == TG_OK) {
@@ -878,18 +879,18 @@ TEST(obj_from_disk)
             CHECK(bad == 0, "%d cube faces point inward", bad);
         }
     } else print_error(&err);
-    tg_host_io_free(&host);
+    tgp_host_io_free(&host);
     free(text);
 
-    if (tg_file_read("tests/scenes/bad_index.scene", &text, &n, msg, sizeof msg)) {
+    if (tgp_file_read("tests/scenes/bad_index.scene", &text, &n, msg, sizeof msg)) {
         CHECK(0, "cannot read tests/scenes/bad_index.scene: %s", msg);
         return;
     }
-    tg_host_io_init(&host);
+    tgp_host_io_init(&host);
     st = parse_io(text, n, "tests/scenes/bad_index.scene", &host.io, &s, &err);
     CHECK(st == TG_ERR_INPUT && strcmp(err.file, "tests/scenes/obj/bad_index.obj") == 0 && err.line == 5 &&
           err.col == 7, "bad index on disk: %s:%d:%d %s", err.file, err.line, err.col, err.message);
-    tg_host_io_free(&host);
+    tgp_host_io_free(&host);
     free(text);
 }
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_sh.c - the SH9 environment and the far field: white furnace, sky
  * hemisphere against RTR eq. 10.42, the cosine-lobe convolution and the
@@ -102,7 +103,7 @@ static const double normals[][3] = {
 #define NORMAL_COUNT ((int)(sizeof normals / sizeof normals[0]))
 
 typedef struct {
-    tg_gbuffer gb;
+    tgi_gbuffer gb;
     tg_real p[12][N * N];
     uint8_t sky[N * N];
 } small_gb;
@@ -130,17 +131,17 @@ static tg_real e[3][N * N], o[3][N * N];
 TEST(white_furnace)
 {
     small_gb *g = (small_gb *)malloc(sizeof *g);
-    tg_env env;
+    tgi_env env;
     tg_vec3 sh[9];
-    tg_rgb_planes far;
+    tgi_rgb_planes far;
     int i, c;
     memset(&env, 0, sizeof env);
     env.type = TG_ENV_UNIFORM; env.uniform = v3d(1, 1, 1);
-    tg_sh9_from_env(&env, sh);
+    tgi_sh9_from_env(&env, sh);
     make_gb(g, 0.5);
-    tg_far_rows(&g->gb, sh, NULL, NULL, NULL, NULL, TG_FAR_CONE_SH, e[0], e[1], e[2], 0, N);
+    tgi_far_rows(&g->gb, sh, NULL, NULL, NULL, NULL, TG_FAR_CONE_SH, e[0], e[1], e[2], 0, N);
     far.r = e[0]; far.g = e[1]; far.b = e[2];
-    tg_compose_rows(&g->gb, NULL, &env, &far, 1, o[0], o[1], o[2], NULL, NULL, NULL, 0, N);
+    tgi_compose_rows(&g->gb, NULL, &env, &far, 1, o[0], o[1], o[2], NULL, NULL, NULL, 0, N);
     for (i = 0; i < N * N; i++)
         for (c = 0; c < 3; c++) {
             CHECK(fabs(dv(e[c][i]) - PI) <= tol_rel() * PI, "E %g want pi", dv(e[c][i]));
@@ -152,18 +153,18 @@ TEST(white_furnace)
 TEST(sky_hemisphere_matches_rtr_10_42)
 {
     double s = 1.2, gr = 0.3;
-    tg_env env;
+    tgi_env env;
     tg_vec3 sh[9];
     sky_ctx ctx;
     int k;
     memset(&env, 0, sizeof env);
     env.type = TG_ENV_SKY; env.sky = v3d(s, 0.5, 0); env.ground = v3d(gr, 0.5, 0.8); env.up = v3d(0, 1, 0);
-    tg_sh9_from_env(&env, sh);
+    tgi_sh9_from_env(&env, sh);
     {   /* RTR eq. 10.42 at theta = 0, 90, 180 degrees */
         static const double n[3][3] = { { 0, 1, 0 }, { 1, 0, 0 }, { 0, -1, 0 } };
         double want[3] = { PI * s, PI * (0.5 * s + 0.5 * gr), PI * gr };
         for (k = 0; k < 3; k++) {
-            tg_vec3 E = tg_sh9_irradiance(sh, v3d(n[k][0], n[k][1], n[k][2]));
+            tg_vec3 E = tgi_sh9_irradiance(sh, v3d(n[k][0], n[k][1], n[k][2]));
             CHECK(fabs(dv(E.x) - want[k]) <= 0.02 * want[k], "facing %d: E %g want %g", k, dv(E.x), want[k]);
             CHECK(fabs(dv(E.y) - PI * 0.5) <= 0.02 * PI * 0.5, "grey channel %g", dv(E.y));
             CHECK(fabs(dv(E.z) - PI * 0.8 * (k == 0 ? 0 : k == 1 ? 0.5 : 1)) <= 0.02 * PI * 0.8 + 1e-4,
@@ -179,13 +180,13 @@ TEST(sky_hemisphere_matches_rtr_10_42)
         unit(n);
         ref = cone_irradiance(L_sky, &ctx, n, PI / 2);
         ct = n[1];
-        E = tg_sh9_irradiance(sh, v3d(n[0], n[1], n[2]));
+        E = tgi_sh9_irradiance(sh, v3d(n[0], n[1], n[2]));
         CHECK(fabs(dv(E.x) - ref) <= 0.02 * ref, "tilt %d: E %g, integral %g", k, dv(E.x), ref);
         CHECK(fabs(ref - PI * ((1 + ct) / 2 * s + (1 - ct) / 2 * gr)) <= 1e-3 * ref, "eq. 10.43 %g", ref);
     }
     /* the environment itself, for sky pixels */
-    CHECK(dv(tg_env_radiance(&env, v3d(0.1, 0.5, 0)).x) == dv(env.sky.x), "sky above");
-    CHECK(dv(tg_env_radiance(&env, v3d(0.1, -0.5, 0)).x) == dv(env.ground.x), "ground below");
+    CHECK(dv(tgi_env_radiance(&env, v3d(0.1, 0.5, 0)).x) == dv(env.sky.x), "sky above");
+    CHECK(dv(tgi_env_radiance(&env, v3d(0.1, -0.5, 0)).x) == dv(env.ground.x), "ground below");
 }
 
 TEST(sh9_irradiance_is_the_cosine_convolution)
@@ -197,7 +198,7 @@ TEST(sh9_irradiance_is_the_cosine_convolution)
         double n[3] = { normals[k][0], normals[k][1], normals[k][2] };
         tg_vec3 E;
         unit(n);
-        E = tg_sh9_irradiance(sh, v3d(n[0], n[1], n[2]));
+        E = tgi_sh9_irradiance(sh, v3d(n[0], n[1], n[2]));
         for (c = 0; c < 3; c++) {
             sh_ctx ctx;
             double ref, got = dv(c == 0 ? E.x : c == 1 ? E.y : E.z);
@@ -210,7 +211,7 @@ TEST(sh9_irradiance_is_the_cosine_convolution)
 
 TEST(sh9_radiance_round_trip)
 {
-    /* project tg_sh9_radiance back onto the basis (RTR eq. 10.40) and recover the coefficients */
+    /* project tgi_sh9_radiance back onto the basis (RTR eq. 10.40) and recover the coefficients */
     tg_vec3 sh[9];
     double acc[9][3] = { { 0 } };
     int i, j, nt = 120, np = 240;
@@ -220,7 +221,7 @@ TEST(sh9_radiance_round_trip)
         for (j = 0; j < np; j++) {
             double ph = (j + 0.5) * 2 * PI / np, d[3] = { sin(th) * cos(ph), cos(th), sin(th) * sin(ph) };
             double y[9], dw = sin(th) * (PI / nt) * (2 * PI / np);
-            tg_vec3 L = tg_sh9_radiance(sh, v3d(d[0], d[1], d[2]));
+            tg_vec3 L = tgi_sh9_radiance(sh, v3d(d[0], d[1], d[2]));
             int m;
             basis(d, y);
             for (m = 0; m < 9; m++) {
@@ -244,15 +245,15 @@ TEST(cone_restricted_far_field)
         tg_vec3 bent, open, full, prev;
         unit(n);
         bent = v3d(n[0], n[1], n[2]);
-        open = tg_sh9_irradiance(sh, bent);
-        full = tg_sh9_irradiance_cone(sh, bent, TG_ONE);
+        open = tgi_sh9_irradiance(sh, bent);
+        full = tgi_sh9_irradiance_cone(sh, bent, TG_ONE);
         /* AO = 1: the whole hemisphere, equal to the unoccluded irradiance */
         CHECK(fabs(dv(full.x) - dv(open.x)) <= (TG_FIXED ? 4e-4 : 1e-6) * (1 + dv(open.x)), "AO 1: %g vs %g", dv(full.x), dv(open.x));
         CHECK(fabs(dv(full.z) - dv(open.z)) <= (TG_FIXED ? 4e-4 : 1e-6) * (1 + dv(open.z)), "AO 1 blue");
         prev = full;
         for (a = 19; a >= 0; a--) {
             tg_real ao = rv(a / 20.0);
-            tg_vec3 E = tg_sh9_irradiance_cone(sh, bent, ao);
+            tg_vec3 E = tgi_sh9_irradiance_cone(sh, bent, ao);
             CHECK(E.x <= prev.x && E.y <= prev.y && E.z <= prev.z, "decreases as AO drops (AO %g: %g after %g)",
                   a / 20.0, dv(E.x), dv(prev.x));
             if (a == 0) CHECK(E.x == 0 && E.y == 0 && E.z == 0, "AO 0 gives 0");
@@ -278,10 +279,10 @@ TEST(f0_alternative_and_far_rows_inputs)
     tg_vec3 sh[9];
     int i, mode;
     test_env(sh);
-    CHECK(tg_far_f0(TG_ONE) == TG_ONE && tg_far_f0(0) == 0, "F0(1) = 1, F0(0) = 0");
+    CHECK(tgi_far_f0(TG_ONE) == TG_ONE && tgi_far_f0(0) == 0, "F0(1) = 1, F0(0) = 0");
     for (i = 0; i <= 10; i++) {
         double a = i / 10.0, want = a * (1 + pow(1 - a, 0.75) / 2);
-        CHECK(fabs(dv(tg_far_f0(rv(a))) - want) < (TG_FIXED ? 3e-4 : 1e-5), "F0(%g) = %g want %g", a, dv(tg_far_f0(rv(a))), want);
+        CHECK(fabs(dv(tgi_far_f0(rv(a))) - want) < (TG_FIXED ? 3e-4 : 1e-5), "F0(%g) = %g want %g", a, dv(tgi_far_f0(rv(a))), want);
     }
     make_gb(g, 1.0);
     for (i = 0; i < N * N; i++) {
@@ -290,20 +291,20 @@ TEST(f0_alternative_and_far_rows_inputs)
     }
     g->gb.sky[5] = 1;
     for (mode = 0; mode < 3; mode++) {
-        tg_far_rows(&g->gb, sh, ao, bx, by, bz, mode, e[0], e[1], e[2], 0, N);
+        tgi_far_rows(&g->gb, sh, ao, bx, by, bz, mode, e[0], e[1], e[2], 0, N);
         for (i = 0; i < N * N; i++) {
             tg_vec3 bent = tg_v3(bx[i], by[i], bz[i]), n = tg_v3(g->gb.nx[i], g->gb.ny[i], g->gb.nz[i]), want;
             if (i == 5) { CHECK(e[0][i] == 0 && e[2][i] == 0, "sky pixel gets no far field"); continue; }
-            want = mode == TG_FAR_CONE_SH ? tg_sh9_irradiance_cone(sh, bent, ao[i])
-                 : mode == TG_FAR_CUBE_F0 ? tg_v3_scale(tg_sh9_irradiance(sh, bent), tg_far_f0(ao[i]))
-                 : tg_sh9_irradiance(sh, n);
+            want = mode == TG_FAR_CONE_SH ? tgi_sh9_irradiance_cone(sh, bent, ao[i])
+                 : mode == TG_FAR_CUBE_F0 ? tgi_v3_scale(tgi_sh9_irradiance(sh, bent), tgi_far_f0(ao[i]))
+                 : tgi_sh9_irradiance(sh, n);
             CHECK(e[0][i] == want.x && e[1][i] == want.y && e[2][i] == want.z, "mode %d pixel %d", mode, i);
         }
     }
     /* no AO and no bent normal: the unoccluded irradiance along the normal */
-    tg_far_rows(&g->gb, sh, NULL, NULL, NULL, NULL, TG_FAR_CONE_SH, e[0], e[1], e[2], 0, N);
+    tgi_far_rows(&g->gb, sh, NULL, NULL, NULL, NULL, TG_FAR_CONE_SH, e[0], e[1], e[2], 0, N);
     for (i = 0; i < N * N; i++) {
-        tg_vec3 want = tg_sh9_irradiance(sh, tg_v3(g->gb.nx[i], g->gb.ny[i], g->gb.nz[i]));
+        tg_vec3 want = tgi_sh9_irradiance(sh, tg_v3(g->gb.nx[i], g->gb.ny[i], g->gb.nz[i]));
         if (i != 5) CHECK(e[0][i] == want.x, "unoccluded pixel %d", i);
     }
     free(g);

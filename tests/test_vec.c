@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_vec.c - vectors, matrices, Rodrigues rotation and quaternions for
  * the number type of this build: unit length after normalize (big and tiny
@@ -54,9 +55,9 @@ static double dot_d(tg_vec3 a, tg_vec3 b) { return dv(a.x) * dv(b.x) + dv(a.y) *
 TEST(length_exact)
 {
     int i;
-    CHECK(tg_v3_length(tg_v3(TG_R(3.0f), TG_R(4.0f), 0)) == TG_R(5.0f), "|(3,4,0)| = 5");
-    CHECK(tg_v3_length(tg_v3(TG_R(2.0f), TG_R(3.0f), TG_R(6.0f))) == TG_R(7.0f), "|(2,3,6)| = 7");
-    CHECK(tg_v3_length(tg_v3(0, 0, 0)) == 0, "|0| = 0");
+    CHECK(tgi_v3_length(tg_v3(TG_R(3.0f), TG_R(4.0f), 0)) == TG_R(5.0f), "|(3,4,0)| = 5");
+    CHECK(tgi_v3_length(tg_v3(TG_R(2.0f), TG_R(3.0f), TG_R(6.0f))) == TG_R(7.0f), "|(2,3,6)| = 7");
+    CHECK(tgi_v3_length(tg_v3(0, 0, 0)) == 0, "|0| = 0");
     for (i = 0; i < 200000; i++) {
         double mag = pow(10.0, -4.0 + 8.0 * rnd());
         tg_vec3 a = rnd_vec(mag > 18000.0 ? 18000.0 : mag);
@@ -65,24 +66,24 @@ TEST(length_exact)
         double sum = (double)a.x * a.x + (double)a.y * a.y + (double)a.z * a.z;
         double r = floor(sqrt(sum) + 0.5);
         if (r > 2147483647.0) r = 2147483647.0;
-        CHECK(fabs((double)tg_v3_length(a) - r) <= 0.0, "length raw %d vs %.0f", tg_v3_length(a), r);
+        CHECK(fabs((double)tgi_v3_length(a) - r) <= 0.0, "length raw %d vs %.0f", tgi_v3_length(a), r);
 #else
         double ref = len_d(a);
-        CHECK(fabs(dv(tg_v3_length(a)) - ref) <= 3e-7 * ref, "length %.9g vs %.9g", dv(tg_v3_length(a)), ref);
+        CHECK(fabs(dv(tgi_v3_length(a)) - ref) <= 3e-7 * ref, "length %.9g vs %.9g", dv(tgi_v3_length(a)), ref);
 #endif
     }
 #if TG_FIXED
-    CHECK(tg_v3_length(tg_v3(TG_REAL_MAX, TG_REAL_MAX, TG_REAL_MAX)) == TG_REAL_MAX, "saturates");
+    CHECK(tgi_v3_length(tg_v3(TG_REAL_MAX, TG_REAL_MAX, TG_REAL_MAX)) == TG_REAL_MAX, "saturates");
 #else
-    CHECK_NEAR(dv(tg_v3_length(tg_v3(3e30f, 4e30f, 0))) / 5e30, 1.0, 1e-6);
-    CHECK_NEAR(dv(tg_v3_length(tg_v3(3e-40f, 4e-40f, 0))) / 5e-40, 1.0, 1e-4);
+    CHECK_NEAR(dv(tgi_v3_length(tg_v3(3e30f, 4e30f, 0))) / 5e30, 1.0, 1e-6);
+    CHECK_NEAR(dv(tgi_v3_length(tg_v3(3e-40f, 4e-40f, 0))) / 5e-40, 1.0, 1e-4);
 #endif
 }
 
 /* normalize: unit length, same direction */
 static void check_unit(tg_vec3 a, const char *what)
 {
-    tg_vec3 n = tg_v3_normalize(a);
+    tg_vec3 n = tgi_v3_normalize(a);
     double l = len_d(a);
     CHECK(fabs(len_d(n) - 1.0) <= 3 * ULP, "%s: |n| = %.9g", what, len_d(n));
     CHECK(fabs(dv(n.x) - dv(a.x) / l) <= DIR_TOL && fabs(dv(n.y) - dv(a.y) / l) <= DIR_TOL &&
@@ -110,15 +111,15 @@ TEST(normalize_unit)
     check_unit(tg_v3(1, 0, 0), "1 ulp");
     check_unit(tg_v3(1, 2, 2), "(1,2,2) ulps");
     check_unit(tg_v3(-3, 0, 4), "(-3,0,4) ulps");
-    CHECK(tg_v3_normalize(tg_v3(1, 2, 2)).x == tg_ratio(1, 3), "(1,2,2) ulps -> 1/3 exactly rounded");
-    CHECK(tg_v3_normalize(tg_v3(7, 0, 0)).x == TG_ONE, "(7,0,0) ulps -> (1,0,0)");
+    CHECK(tgi_v3_normalize(tg_v3(1, 2, 2)).x == tg_ratio(1, 3), "(1,2,2) ulps -> 1/3 exactly rounded");
+    CHECK(tgi_v3_normalize(tg_v3(7, 0, 0)).x == TG_ONE, "(7,0,0) ulps -> (1,0,0)");
 #else
     check_unit(tg_v3(3e38f, -3e38f, 3e38f), "huge");
     check_unit(tg_v3(1e-45f, 0.0f, 0.0f), "subnormal");
     check_unit(tg_v3(3e-42f, 4e-42f, 0.0f), "subnormal 3-4-5");
 #endif
     {
-        tg_vec3 z = tg_v3_normalize(tg_v3(0, 0, 0)), f = tg_v3_normalize_or(tg_v3(0, 0, 0), fb);
+        tg_vec3 z = tgi_v3_normalize(tg_v3(0, 0, 0)), f = tgi_v3_normalize_or(tg_v3(0, 0, 0), fb);
         CHECK(z.x == 0 && z.y == 0 && z.z == 0, "normalize(0) = 0");
         CHECK(f.x == 0 && f.y == TG_ONE && f.z == 0, "normalize_or(0) = fallback");
     }
@@ -128,14 +129,14 @@ TEST(cross_dot_identities)
 {
     int i;
     tg_vec3 x = tg_v3(TG_ONE, 0, 0), y = tg_v3(0, TG_ONE, 0), z = tg_v3(0, 0, TG_ONE);
-    tg_vec3 c = tg_v3_cross(x, y);
+    tg_vec3 c = tgi_v3_cross(x, y);
     CHECK(c.x == 0 && c.y == 0 && c.z == TG_ONE, "x cross y = z (right-handed)");
-    c = tg_v3_cross(y, z);
+    c = tgi_v3_cross(y, z);
     CHECK(c.x == TG_ONE && c.y == 0 && c.z == 0, "y cross z = x");
     for (i = 0; i < 100000; i++) {
-        tg_vec3 a = tg_v3_normalize(rnd_vec(1.0)), b = tg_v3_normalize(rnd_vec(1.0));
-        tg_vec3 axb = tg_v3_cross(a, b), bxa = tg_v3_cross(b, a);
-        double d = dv(tg_v3_dot(a, b)), l = len_d(axb);
+        tg_vec3 a = tgi_v3_normalize(rnd_vec(1.0)), b = tgi_v3_normalize(rnd_vec(1.0));
+        tg_vec3 axb = tgi_v3_cross(a, b), bxa = tgi_v3_cross(b, a);
+        double d = dv(tgi_v3_dot(a, b)), l = len_d(axb);
         /* perpendicular to both factors */
         CHECK(fabs(dot_d(axb, a)) <= 4 * ULP && fabs(dot_d(axb, b)) <= 4 * ULP, "a x b not perpendicular");
         /* anti-commutative, exactly */
@@ -143,17 +144,17 @@ TEST(cross_dot_identities)
         /* Lagrange: |a x b|^2 + (a.b)^2 = |a|^2 |b|^2 = 1 */
         CHECK(fabs(l * l + d * d - 1.0) <= 12 * ULP, "Lagrange identity %.9g", l * l + d * d);
         /* dot is symmetric and matches the exact value */
-        CHECK(tg_v3_dot(a, b) == tg_v3_dot(b, a), "dot symmetric");
+        CHECK(tgi_v3_dot(a, b) == tgi_v3_dot(b, a), "dot symmetric");
         /* float: each product and sum rounds, so the bound scales with sum |a_i b_i| (cancellation) */
         CHECK(fabs(d - dot_d(a, b)) <= 0.5 * ULP + 2e-7 * (fabs(dv(a.x) * dv(b.x)) + fabs(dv(a.y) * dv(b.y)) + fabs(dv(a.z) * dv(b.z))),
               "dot rounding %.9g vs %.9g", d, dot_d(a, b));
     }
 }
 
-static double m4(const tg_mat4 *m, int r, int c) { return dv(m->m[r * 4 + c]); }
+static double m4(const tgi_mat4 *m, int r, int c) { return dv(m->m[r * 4 + c]); }
 
 /* R R^T = I, det R = +1, last row/column of an affine rotation */
-static void check_rotation(const tg_mat4 *r, double tol, const char *what)
+static void check_rotation(const tgi_mat4 *r, double tol, const char *what)
 {
     int i, j, k;
     double det;
@@ -174,33 +175,33 @@ static void check_rotation(const tg_mat4 *r, double tol, const char *what)
 TEST(rotation_orthonormal)
 {
     int i;
-    tg_mat4 r = tg_m4_rotate(tg_v3(0, 0, TG_R(5.0f)), TG_HALF_PI);
-    tg_vec3 p = tg_m4_dir(&r, tg_v3(TG_ONE, 0, 0));
+    tgi_mat4 r = tgi_m4_rotate(tg_v3(0, 0, TG_R(5.0f)), TG_HALF_PI);
+    tg_vec3 p = tgi_m4_dir(&r, tg_v3(TG_ONE, 0, 0));
     /* counter-clockwise about +Z: x -> y */
     CHECK_NEAR(dv(p.x), 0.0, 2 * ULP);
     CHECK_NEAR(dv(p.y), 1.0, 2 * ULP);
     CHECK_NEAR(dv(p.z), 0.0, 2 * ULP);
-    r = tg_m4_rotate(tg_v3(0, 0, 0), TG_ONE);
+    r = tgi_m4_rotate(tg_v3(0, 0, 0), TG_ONE);
     check_rotation(&r, 0, "zero axis gives identity");
     for (i = 0; i < 20000; i++) {
-        tg_vec3 axis = rnd_vec(10.0), k = tg_v3_normalize(axis), ka;
+        tg_vec3 axis = rnd_vec(10.0), k = tgi_v3_normalize(axis), ka;
         tg_real angle = rnd_real(-7.0, 7.0);
         double c = cos(dv(angle)), s = sin(dv(angle));
         tg_vec3 v = rnd_vec(1.0), rv;
         double kx = dv(k.x), ky = dv(k.y), kz = dv(k.z), vx = dv(v.x), vy = dv(v.y), vz = dv(v.z);
         double kv = kx * vx + ky * vy + kz * vz, ex, ey, ez;
         if (len_d(axis) < 1e-3) continue;
-        r = tg_m4_rotate(axis, angle);
+        r = tgi_m4_rotate(axis, angle);
         check_rotation(&r, ROT_TOL, "rotate");
         /* the axis is fixed */
-        ka = tg_m4_dir(&r, k);
+        ka = tgi_m4_dir(&r, k);
         CHECK(fabs(dv(ka.x) - kx) <= 6 * ULP && fabs(dv(ka.y) - ky) <= 6 * ULP && fabs(dv(ka.z) - kz) <= 6 * ULP,
               "axis moved");
         /* Rodrigues in 64-bit arithmetic */
         ex = vx * c + (ky * vz - kz * vy) * s + kx * kv * (1 - c);
         ey = vy * c + (kz * vx - kx * vz) * s + ky * kv * (1 - c);
         ez = vz * c + (kx * vy - ky * vx) * s + kz * kv * (1 - c);
-        rv = tg_m4_dir(&r, v);
+        rv = tgi_m4_dir(&r, v);
         CHECK(fabs(dv(rv.x) - ex) <= 8 * ULP && fabs(dv(rv.y) - ey) <= 8 * ULP && fabs(dv(rv.z) - ez) <= 8 * ULP,
               "rotated (%.9g %.9g %.9g) vs (%.9g %.9g %.9g)", dv(rv.x), dv(rv.y), dv(rv.z), ex, ey, ez);
     }
@@ -208,55 +209,55 @@ TEST(rotation_orthonormal)
 
 TEST(matrix_basics)
 {
-    tg_mat4 id = tg_m4_identity(), t = tg_m4_translate(tg_v3(TG_ONE, TG_R(2.0f), TG_R(-3.0f)));
-    tg_mat4 s = tg_m4_scale(TG_R(2.0f)), r = tg_m4_rotate(tg_v3(0, TG_ONE, 0), TG_R(0.7f));
-    tg_mat4 ts = tg_m4_mul(&t, &s), a, b, rt, r_t;
+    tgi_mat4 id = tgi_m4_identity(), t = tgi_m4_translate(tg_v3(TG_ONE, TG_R(2.0f), TG_R(-3.0f)));
+    tgi_mat4 s = tgi_m4_scale(TG_R(2.0f)), r = tgi_m4_rotate(tg_v3(0, TG_ONE, 0), TG_R(0.7f));
+    tgi_mat4 ts = tgi_m4_mul(&t, &s), a, b, rt, r_t;
     tg_vec3 p = tg_v3(TG_R(0.5f), TG_R(-1.0f), TG_R(4.0f)), q;
-    tg_vec4 v4, w4;
+    tgi_vec4 v4, w4;
     int i;
-    a = tg_m4_mul(&id, &t);
-    b = tg_m4_mul(&t, &id);
+    a = tgi_m4_mul(&id, &t);
+    b = tgi_m4_mul(&t, &id);
     CHECK(memcmp(&a, &t, sizeof a) == 0 && memcmp(&b, &t, sizeof b) == 0, "I T = T I = T");
-    q = tg_m4_point(&ts, p); /* T (S p) */
+    q = tgi_m4_point(&ts, p); /* T (S p) */
     CHECK(q.x == TG_R(2.0f) && q.y == 0 && q.z == TG_R(5.0f), "translate(scale(p))");
-    q = tg_m4_dir(&t, p);
+    q = tgi_m4_dir(&t, p);
     CHECK(q.x == p.x && q.y == p.y && q.z == p.z, "directions ignore translation");
     /* (R T) p = R (T p) */
-    rt = tg_m4_mul(&r, &t);
-    q = tg_m4_point(&rt, p);
+    rt = tgi_m4_mul(&r, &t);
+    q = tgi_m4_point(&rt, p);
     {
-        tg_vec3 tp = tg_m4_point(&t, p), rtp = tg_m4_point(&r, tp);
+        tg_vec3 tp = tgi_m4_point(&t, p), rtp = tgi_m4_point(&r, tp);
         CHECK(fabs(dv(q.x) - dv(rtp.x)) <= 4 * ULP * 5 && fabs(dv(q.y) - dv(rtp.y)) <= 4 * ULP * 5 &&
               fabs(dv(q.z) - dv(rtp.z)) <= 4 * ULP * 5, "associativity");
     }
     v4.x = p.x; v4.y = p.y; v4.z = p.z; v4.w = TG_ONE;
-    w4 = tg_m4_apply(&rt, v4);
+    w4 = tgi_m4_apply(&rt, v4);
     CHECK(w4.x == q.x && w4.y == q.y && w4.z == q.z && w4.w == TG_ONE, "apply with w = 1 equals point");
-    /* R^T R = I through tg_m4_mul */
+    /* R^T R = I through tgi_m4_mul */
     for (i = 0; i < 16; i++) r_t.m[i] = r.m[(i % 4) * 4 + i / 4];
-    a = tg_m4_mul(&r_t, &r);
+    a = tgi_m4_mul(&r_t, &r);
     for (i = 0; i < 16; i++) CHECK_NEAR(dv(a.m[i]), (i % 5 == 0) ? 1.0 : 0.0, 4 * ULP);
 #if TG_FIXED
     /* rows whose products pass 2^63 in total still come out right */
     {
-        tg_mat4 big = tg_m4_identity();
-        tg_vec4 u, o;
+        tgi_mat4 big = tgi_m4_identity();
+        tgi_vec4 u, o;
         for (i = 0; i < 4; i++) big.m[i] = TG_REAL_MAX;
         big.m[4] = TG_REAL_MAX; big.m[5] = TG_REAL_MIN; big.m[6] = TG_REAL_MAX; big.m[7] = TG_REAL_MIN;
         u.x = u.y = u.z = u.w = TG_REAL_MAX;
-        o = tg_m4_apply(&big, u);
+        o = tgi_m4_apply(&big, u);
         CHECK(o.x == TG_REAL_MAX, "huge row saturates (%d)", o.x);
         CHECK(o.y == 0, "huge cancelling row gives exactly 0 (%d)", o.y);
         u.x = TG_R(30000.0f); u.y = TG_R(-30000.0f); u.z = 0; u.w = 0;
         big.m[8] = TG_R(30000.0f); big.m[9] = TG_R(30000.0f); big.m[10] = 0; big.m[11] = 0;
-        o = tg_m4_apply(&big, u);
+        o = tgi_m4_apply(&big, u);
         CHECK(o.z == 0, "30000^2 - 30000^2 = 0 (%d)", o.z);
     }
 #endif
 }
 
-static tg_quat qneg(tg_quat q) { q.x = tg_neg(q.x); q.y = tg_neg(q.y); q.z = tg_neg(q.z); q.w = tg_neg(q.w); return q; }
-static double qdot_d(tg_quat a, tg_quat b) { return dv(a.x) * dv(b.x) + dv(a.y) * dv(b.y) + dv(a.z) * dv(b.z) + dv(a.w) * dv(b.w); }
+static tgi_quat qneg(tgi_quat q) { q.x = tg_neg(q.x); q.y = tg_neg(q.y); q.z = tg_neg(q.z); q.w = tg_neg(q.w); return q; }
+static double qdot_d(tgi_quat a, tgi_quat b) { return dv(a.x) * dv(b.x) + dv(a.y) * dv(b.y) + dv(a.z) * dv(b.z) + dv(a.w) * dv(b.w); }
 
 TEST(quaternions)
 {
@@ -264,46 +265,46 @@ TEST(quaternions)
     for (i = 0; i < 20000; i++) {
         tg_vec3 axis = rnd_vec(1.0), axis2 = rnd_vec(1.0);
         tg_real angle = rnd_real(-3.1, 3.1), angle2 = rnd_real(-3.1, 3.1);
-        tg_quat q, qa, qb, h, m, m2;
-        tg_mat4 mq, mr;
+        tgi_quat q, qa, qb, h, m, m2;
+        tgi_mat4 mq, mr;
         int j;
         if (len_d(axis) < 1e-2 || len_d(axis2) < 1e-2) continue;
-        q = tg_q_axis_angle(axis, angle);
+        q = tgi_q_axis_angle(axis, angle);
         CHECK(fabs(qdot_d(q, q) - 1.0) <= 4 * ULP, "|q| = 1");
         /* q to matrix equals Rodrigues */
-        mq = tg_q_to_m4(q);
-        mr = tg_m4_rotate(axis, angle);
+        mq = tgi_q_to_m4(q);
+        mr = tgi_m4_rotate(axis, angle);
         check_rotation(&mq, ROT_TOL, "q_to_m4");
         for (j = 0; j < 16; j++) CHECK_NEAR(dv(mq.m[j]), dv(mr.m[j]), 8 * ULP);
         /* slerp endpoints exact */
-        qa = tg_q_axis_angle(axis2, angle2);
+        qa = tgi_q_axis_angle(axis2, angle2);
         qb = q;
-        m = tg_q_slerp(qa, qb, 0);
+        m = tgi_q_slerp(qa, qb, 0);
         CHECK(memcmp(&m, &qa, sizeof m) == 0, "slerp(t=0) = a exactly");
-        m = tg_q_slerp(qa, qb, TG_ONE);
+        m = tgi_q_slerp(qa, qb, TG_ONE);
         CHECK(memcmp(&m, &qb, sizeof m) == 0, "slerp(t=1) = b exactly");
         /* midpoint of identity -> q is the half rotation */
-        h = tg_q_axis_angle(axis, tg_ldexp(angle, -1));
-        m = tg_q_slerp(tg_q_axis_angle(axis, 0), q, TG_R(0.5f));
+        h = tgi_q_axis_angle(axis, tg_ldexp(angle, -1));
+        m = tgi_q_slerp(tgi_q_axis_angle(axis, 0), q, TG_R(0.5f));
         CHECK(fabs(fabs(qdot_d(m, h)) - 1.0) <= 8 * ULP, "midpoint: dot %.9g", qdot_d(m, h));
         /* shortest arc: -b is the same rotation, same path */
-        m = tg_q_slerp(qa, qb, TG_R(0.3f));
-        m2 = tg_q_slerp(qa, qneg(qb), TG_R(0.3f));
+        m = tgi_q_slerp(qa, qb, TG_R(0.3f));
+        m2 = tgi_q_slerp(qa, qneg(qb), TG_R(0.3f));
         CHECK(fabs(qdot_d(m, m2) - 1.0) <= 8 * ULP, "slerp(a, -b) = slerp(a, b)");
         CHECK(fabs(qdot_d(m, m) - 1.0) <= 4 * ULP, "slerp result unit");
     }
     /* a 300-degree rotation is reached the short way: the midpoint turns -30 degrees */
     {
         tg_vec3 zax = tg_v3(0, 0, TG_ONE);
-        tg_quat id = tg_q_axis_angle(zax, 0), far = tg_q_axis_angle(zax, TG_R((float)(300.0 * PI_D / 180.0)));
-        tg_quat mid = tg_q_slerp(id, far, TG_R(0.5f)), want = tg_q_axis_angle(zax, TG_R((float)(-30.0 * PI_D / 180.0)));
+        tgi_quat id = tgi_q_axis_angle(zax, 0), far = tgi_q_axis_angle(zax, TG_R((float)(300.0 * PI_D / 180.0)));
+        tgi_quat mid = tgi_q_slerp(id, far, TG_R(0.5f)), want = tgi_q_axis_angle(zax, TG_R((float)(-30.0 * PI_D / 180.0)));
         CHECK(fabs(fabs(qdot_d(mid, want)) - 1.0) <= 8 * ULP, "shortest arc midpoint, dot %.9g", qdot_d(mid, want));
     }
     /* nearly equal quaternions (the nlerp branch) stay unit and between */
     {
         tg_vec3 yax = tg_v3(0, TG_ONE, 0);
-        tg_quat a = tg_q_axis_angle(yax, TG_R(0.01f)), b = tg_q_axis_angle(yax, TG_R(0.02f));
-        tg_quat m = tg_q_slerp(a, b, TG_R(0.5f)), want = tg_q_axis_angle(yax, TG_R(0.015f));
+        tgi_quat a = tgi_q_axis_angle(yax, TG_R(0.01f)), b = tgi_q_axis_angle(yax, TG_R(0.02f));
+        tgi_quat m = tgi_q_slerp(a, b, TG_R(0.5f)), want = tgi_q_axis_angle(yax, TG_R(0.015f));
         CHECK(fabs(qdot_d(m, want) - 1.0) <= 8 * ULP, "nlerp branch dot %.9g", qdot_d(m, want));
     }
 }

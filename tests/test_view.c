@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_view.c - the camera (src/raster/view.c) for the number type of this
  * build: orthonormal basis with screen-right = forward x up, degenerate up
@@ -35,9 +36,9 @@ static tg_real rr(double lo, double hi) { return tg_from_float((float)(lo + (hi 
 static tg_vec3 R3(double x, double y, double z) { return tg_v3(tg_from_float((float)x), tg_from_float((float)y), tg_from_float((float)z)); }
 static double dot_d(tg_vec3 a, tg_vec3 b) { return dv(a.x) * dv(b.x) + dv(a.y) * dv(b.y) + dv(a.z) * dv(b.z); }
 
-static void check_basis(const tg_view *v, const char *what)
+static void check_basis(const tgi_view *v, const char *what)
 {
-    tg_vec3 c = tg_v3_cross(v->right, v->up);
+    tg_vec3 c = tgi_v3_cross(v->right, v->up);
     CHECK(fabs(dot_d(v->right, v->right) - 1) <= 4 * ULP && fabs(dot_d(v->up, v->up) - 1) <= 4 * ULP &&
           fabs(dot_d(v->forward, v->forward) - 1) <= 4 * ULP, "%s: basis not unit", what);
     CHECK(fabs(dot_d(v->right, v->up)) <= 6 * ULP && fabs(dot_d(v->right, v->forward)) <= 6 * ULP &&
@@ -55,14 +56,14 @@ static int vec_is(tg_vec3 a, double x, double y, double z, double tol)
 
 TEST(basis_conventions)
 {
-    tg_view v;
+    tgi_view v;
     /* the classic camera: at +Z looking at the origin, up +Y */
-    tg_view_make(&v, R3(0, 0, 5), R3(0, 0, 0), R3(0, 1, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
+    tgi_view_make(&v, R3(0, 0, 5), R3(0, 0, 0), R3(0, 1, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
     check_basis(&v, "classic");
     CHECK(vec_is(v.right, 1, 0, 0, 0) && vec_is(v.up, 0, 1, 0, 0) && vec_is(v.forward, 0, 0, -1, 0),
           "classic camera basis: right +X, up +Y, forward -Z");
     /* a non-unit, tilted up vector is orthogonalised */
-    tg_view_make(&v, R3(1, 2, 3), R3(-2, 0.5, -1), R3(0.3, 4, 0.2), TG_R(0.8f), TG_R(0.1f), TG_R(100.0f), 64, 48);
+    tgi_view_make(&v, R3(1, 2, 3), R3(-2, 0.5, -1), R3(0.3, 4, 0.2), TG_R(0.8f), TG_R(0.1f), TG_R(100.0f), 64, 48);
     check_basis(&v, "tilted");
     CHECK(dot_d(v.up, R3(0.3, 4, 0.2)) > 0, "up keeps the side of the given up");
 }
@@ -71,15 +72,15 @@ TEST(basis_random)
 {
     int i;
     for (i = 0; i < 20000; i++) {
-        tg_view v;
+        tgi_view v;
         tg_vec3 eye = R3(rnd() * 200 - 100, rnd() * 200 - 100, rnd() * 200 - 100);
         tg_vec3 target = R3(rnd() * 200 - 100, rnd() * 200 - 100, rnd() * 200 - 100);
         tg_vec3 up = R3(rnd() * 2 - 1, rnd() * 2 - 1, rnd() * 2 - 1);
-        if (i % 4 == 0) up = tg_v3_sub(target, eye); /* degenerate on purpose */
-        tg_view_make(&v, eye, target, up, rr(0.2, 2.5), TG_R(0.1f), TG_R(500.0f), 320, 240);
+        if (i % 4 == 0) up = tgi_v3_sub(target, eye); /* degenerate on purpose */
+        tgi_view_make(&v, eye, target, up, rr(0.2, 2.5), TG_R(0.1f), TG_R(500.0f), 320, 240);
         check_basis(&v, "random");
         {
-            tg_vec3 d = tg_v3_normalize(tg_v3_sub(target, eye));
+            tg_vec3 d = tgi_v3_normalize(tgi_v3_sub(target, eye));
             CHECK(vec_is(v.forward, dv(d.x), dv(d.y), dv(d.z), 2 * ULP), "forward is the view direction");
         }
     }
@@ -87,37 +88,37 @@ TEST(basis_random)
 
 TEST(degenerate_up)
 {
-    tg_view v, w;
+    tgi_view v, w;
     /* straight down with up +Y: right +X, screen-up -Z (the limit of tilting down) */
-    tg_view_make(&v, R3(0, 5, 0), R3(0, 0, 0), R3(0, 1, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
+    tgi_view_make(&v, R3(0, 5, 0), R3(0, 0, 0), R3(0, 1, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
     check_basis(&v, "down");
     CHECK(vec_is(v.forward, 0, -1, 0, 0), "down: forward -Y");
     CHECK(vec_is(v.right, 1, 0, 0, 0), "down: right +X");
     CHECK(vec_is(v.up, 0, 0, -1, 0), "down: up -Z");
     /* up -Y gives the same frame (deterministic) */
-    tg_view_make(&w, R3(0, 5, 0), R3(0, 0, 0), R3(0, -1, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
+    tgi_view_make(&w, R3(0, 5, 0), R3(0, 0, 0), R3(0, -1, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
     CHECK(memcmp(&v.right, &w.right, sizeof v.right) == 0 && memcmp(&v.up, &w.up, sizeof v.up) == 0, "up -Y same frame");
     /* zero up is treated like a degenerate one */
-    tg_view_make(&w, R3(0, 5, 0), R3(0, 0, 0), R3(0, 0, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
+    tgi_view_make(&w, R3(0, 5, 0), R3(0, 0, 0), R3(0, 0, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
     CHECK(memcmp(&v.right, &w.right, sizeof v.right) == 0 && memcmp(&v.up, &w.up, sizeof v.up) == 0, "up 0 same frame");
     /* straight up: right +X, screen-up +Z */
-    tg_view_make(&v, R3(0, -5, 0), R3(0, 0, 0), R3(0, 1, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
+    tgi_view_make(&v, R3(0, -5, 0), R3(0, 0, 0), R3(0, 1, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
     check_basis(&v, "up");
     CHECK(vec_is(v.right, 1, 0, 0, 0) && vec_is(v.up, 0, 0, 1, 0), "up: right +X, up +Z");
     /* looking along +X with up +X: world +Y is used */
-    tg_view_make(&v, R3(0, 0, 0), R3(3, 0, 0), R3(1, 0, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
+    tgi_view_make(&v, R3(0, 0, 0), R3(3, 0, 0), R3(1, 0, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
     check_basis(&v, "along x");
     CHECK(vec_is(v.up, 0, 1, 0, 0) && vec_is(v.right, 0, 0, 1, 0), "along +X: up +Y, right +Z");
     /* eye == target: a valid frame, forward -Z */
-    tg_view_make(&v, R3(1, 1, 1), R3(1, 1, 1), R3(0, 1, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
+    tgi_view_make(&v, R3(1, 1, 1), R3(1, 1, 1), R3(0, 1, 0), TG_R(1.0f), TG_R(0.1f), TG_R(100.0f), 320, 240);
     check_basis(&v, "eye == target");
 }
 
 TEST(projection_constants)
 {
-    tg_view v;
+    tgi_view v;
     double fov = 60.0 * PI_D / 180.0, f = 1.0 / tan(fov / 2);
-    tg_view_make(&v, R3(0, 0, 0), R3(0, 0, -1), R3(0, 1, 0), tg_from_float((float)fov), TG_R(0.1f), TG_R(100.0f), 320, 240);
+    tgi_view_make(&v, R3(0, 0, 0), R3(0, 0, -1), R3(0, 1, 0), tg_from_float((float)fov), TG_R(0.1f), TG_R(100.0f), 320, 240);
     CHECK_NEAR(dv(v.tan_half_fov_y), tan(fov / 2), 2 * ULP);
     CHECK_NEAR(dv(v.aspect), 320.0 / 240.0, ULP);
     CHECK_NEAR(dv(v.focal_y), f, 4 * ULP * f);
@@ -129,32 +130,32 @@ TEST(projection_constants)
 
 TEST(pixel_convention)
 {
-    tg_view v;
+    tgi_view v;
     tg_real sx, sy;
     double fov = 1.2, t = tan(fov / 2), aspect = 320.0 / 240.0;
     tg_vec3 p;
-    tg_view_make(&v, R3(0, 0, 0), R3(0, 0, -1), R3(0, 1, 0), tg_from_float((float)fov), TG_R(0.1f), TG_R(100.0f), 320, 240);
+    tgi_view_make(&v, R3(0, 0, 0), R3(0, 0, -1), R3(0, 1, 0), tg_from_float((float)fov), TG_R(0.1f), TG_R(100.0f), 320, 240);
     /* the optical axis hits the centre of the screen, (w/2, h/2) */
-    tg_view_project(&v, tg_v3(0, 0, TG_R(3.0f)), &sx, &sy);
+    tgi_view_project(&v, tg_v3(0, 0, TG_R(3.0f)), &sx, &sy);
     CHECK(sx == TG_R(160.0f) && sy == TG_R(120.0f), "axis -> (160, 120), got (%.6f, %.6f)", dv(sx), dv(sy));
     /* the top-left corner (0,0) is the frustum corner (-tan*aspect, +tan) at depth 1 */
-    p = tg_view_unproject(&v, 0, 0, TG_ONE);
+    p = tgi_view_unproject(&v, 0, 0, TG_ONE);
     CHECK(fabs(dv(p.x) + t * aspect) <= 1e-4 && fabs(dv(p.y) - t) <= 1e-4 && p.z == TG_ONE,
           "corner (0,0) -> (%.6f %.6f %.6f), want (%.6f %.6f 1)", dv(p.x), dv(p.y), dv(p.z), -t * aspect, t);
     /* bottom-right corner */
-    p = tg_view_unproject(&v, TG_R(320.0f), TG_R(240.0f), TG_R(2.0f));
+    p = tgi_view_unproject(&v, TG_R(320.0f), TG_R(240.0f), TG_R(2.0f));
     CHECK(fabs(dv(p.x) - 2 * t * aspect) <= 2e-4 && fabs(dv(p.y) + 2 * t) <= 2e-4, "corner (w,h)");
     /* pixel (0,0)'s centre is at (0.5, 0.5): left of and above the axis, inside the frustum */
-    p = tg_view_unproject(&v, TG_R(0.5f), TG_R(0.5f), TG_ONE);
+    p = tgi_view_unproject(&v, TG_R(0.5f), TG_R(0.5f), TG_ONE);
     CHECK(dv(p.x) < 0 && dv(p.y) > 0 && dv(p.x) > -t * aspect && dv(p.y) < t, "pixel (0,0) centre top-left");
     /* a world point above the camera lands in the upper half (sy < h/2), right -> sx > w/2 */
-    tg_view_project(&v, tg_view_world_to_view(&v, R3(1, 1, -5)), &sx, &sy);
+    tgi_view_project(&v, tgi_view_world_to_view(&v, R3(1, 1, -5)), &sx, &sy);
     CHECK(dv(sx) > 160 && dv(sy) < 120, "(+x, +y) world -> right, up on screen");
     /* depth is view z: a point 5 in front */
-    p = tg_view_world_to_view(&v, R3(2, -1, -5));
+    p = tgi_view_world_to_view(&v, R3(2, -1, -5));
     CHECK(p.z == TG_R(5.0f), "depth = view z = 5, got %.6f", dv(p.z));
     /* behind the camera: finite */
-    tg_view_project(&v, tg_v3(TG_ONE, TG_ONE, tg_neg(TG_ONE)), &sx, &sy);
+    tgi_view_project(&v, tg_v3(TG_ONE, TG_ONE, tg_neg(TG_ONE)), &sx, &sy);
     CHECK(tg_isfinite(sx) && tg_isfinite(sy), "behind the camera stays finite");
 }
 
@@ -163,15 +164,15 @@ TEST(round_trips)
     int i;
     double worst_px = 0, worst_w = 0, worst_rel_px = 0;
     for (i = 0; i < 50000; i++) {
-        tg_view v;
+        tgi_view v;
         tg_real sx = rr(0, 320), sy = rr(0, 240), depth = rr(0.1, 100), sx2, sy2;
         tg_vec3 pv, pw, pv2, back;
-        tg_view_make(&v, R3(rnd() * 20 - 10, rnd() * 20 - 10, rnd() * 20 - 10),
+        tgi_view_make(&v, R3(rnd() * 20 - 10, rnd() * 20 - 10, rnd() * 20 - 10),
                      R3(rnd() * 20 - 10, rnd() * 20 - 10, rnd() * 20 - 10), R3(0, 1, 0), rr(0.3, 2.0),
                      TG_R(0.1f), TG_R(200.0f), 320, 240);
-        pv = tg_view_unproject(&v, sx, sy, depth);
+        pv = tgi_view_unproject(&v, sx, sy, depth);
         CHECK(pv.z == depth, "unproject keeps depth");
-        tg_view_project(&v, pv, &sx2, &sy2);
+        tgi_view_project(&v, pv, &sx2, &sy2);
         {
             double e = fmax(fabs(dv(sx2) - dv(sx)), fabs(dv(sy2) - dv(sy)));
             /* one ulp of the view-space point is ppu / depth pixels */
@@ -180,15 +181,15 @@ TEST(round_trips)
             if (e / ulp_px > worst_rel_px) worst_rel_px = e / ulp_px;
         }
         /* view -> world -> view */
-        pw = tg_view_view_to_world(&v, pv);
-        pv2 = tg_view_world_to_view(&v, pw);
+        pw = tgi_view_view_to_world(&v, pv);
+        pv2 = tgi_view_world_to_view(&v, pw);
         {
             double e = fmax(fabs(dv(pv2.x) - dv(pv.x)), fmax(fabs(dv(pv2.y) - dv(pv.y)), fabs(dv(pv2.z) - dv(pv.z))));
             double m = 1 + fabs(dv(pv.z)) + fabs(dv(pv.x)) + fabs(dv(pv.y));
             if (e / m > worst_w) worst_w = e / m;
         }
         /* directions */
-        back = tg_view_dir_to_world(&v, tg_view_dir_to_view(&v, v.forward));
+        back = tgi_view_dir_to_world(&v, tgi_view_dir_to_view(&v, v.forward));
         CHECK(vec_is(back, dv(v.forward.x), dv(v.forward.y), dv(v.forward.z), 8 * ULP), "dir round trip");
     }
 #if TG_FIXED

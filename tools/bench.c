@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * bench.c - accuracy vs time (issue 5 items 3-4).  Every technique and
  * setting is timed (median of N whole frames, hosted clock) and measured
@@ -247,9 +248,9 @@ static void reference(tg_scene *s, const char *name, double radius, result *r)
     q = base_request(TG_TECH_REFERENCE, 0, opt_ref_samples, radius,
                      AOVBIT(TG_AOV_AO) | AOVBIT(TG_AOV_BENT) | AOVBIT(TG_AOV_NEAR));
     if (!frame_open(&fr, s, &q)) die("reference frame", name);
-    t0 = tg_clock_seconds();
+    t0 = tgp_clock_seconds();
     tg_frame_render(fr.frame, 0, &err);
-    printf("  reference %s radius %.3f: %.0f ms\n", name, radius, (tg_clock_seconds() - t0) * 1e3);
+    printf("  reference %s radius %.3f: %.0f ms\n", name, radius, (tgp_clock_seconds() - t0) * 1e3);
     fflush(stdout);
     r->ao = read_aov(fr.frame, TG_AOV_AO, opt_w, opt_h);
     r->bent = read_aov(fr.frame, TG_AOV_BENT, opt_w, opt_h);
@@ -395,7 +396,7 @@ static float *interreflection_near(const tg_frame *f, int w, int h)
     for (i = 0; i < n; i++)
         for (c = 0; c < 3; c++) {
             float k = ao[i] > 1e-3f ? ao[i] : 1e-3f;
-            float kp = tg_to_float(tg_ao_interreflection(tg_from_float(k), tg_from_float(alb[3 * i + c])));
+            float kp = tg_to_float(tgi_ao_interreflection(tg_from_float(k), tg_from_float(alb[3 * i + c])));
             out[3 * i + c] = ed[3 * i + c] * (kp / k - 1.0f);
         }
     free(ao); free(ed); free(alb);
@@ -426,10 +427,10 @@ static double run_config(tg_scene *s, const config *c, double radius, result *ou
     if (c->near && fr.frame->near.r) out->near = read_aov(fr.frame, TG_AOV_NEAR, opt_w, opt_h);
     if (ir) out->near = interreflection_near(fr.frame, opt_w, opt_h);
     for (k = 0; k < opt_runs; k++) {
-        double t0 = tg_clock_seconds(), u0 = cpu_seconds();
+        double t0 = tgp_clock_seconds(), u0 = cpu_seconds();
         tg_frame_render(fr.frame, 0, &err);
         if (ir) free(interreflection_near(fr.frame, opt_w, opt_h));
-        t[k] = (tg_clock_seconds() - t0) * 1e3;
+        t[k] = (tgp_clock_seconds() - t0) * 1e3;
         u[k] = (cpu_seconds() - u0) * 1e3;
     }
     frame_close(&fr);
@@ -616,15 +617,15 @@ static void pass_breakdown(tg_scene *s, const char *name)
     memset(&pt, 0, sizeof pt);
     TIME_PASS(frame, tg_frame_render(fr.frame, 1, &err));
     if (fr.frame->history.r && fr.frame->reproject_scratch) {
-        TIME_PASS(reproject, tg_frame_reproject_scatter(fr.frame));
-        TIME_PASS(pushpull, tg_frame_reproject_fill(fr.frame));
+        TIME_PASS(reproject, tgi_frame_reproject_scatter(fr.frame));
+        TIME_PASS(pushpull, tgi_frame_reproject_fill(fr.frame));
     }
-    TIME_PASS(downsample, tg_hbil_stage_downsample(fr.frame));
-    TIME_PASS(split, tg_hbil_stage_split(fr.frame));
-    TIME_PASS(kernel, tg_hbil_stage_kernel(fr.frame));
-    TIME_PASS(merge, tg_hbil_stage_merge(fr.frame));
-    TIME_PASS(upsample, tg_hbil_stage_upsample(fr.frame));
-    TIME_PASS(gi, tg_frame_technique(fr.frame, 1));
+    TIME_PASS(downsample, tgi_hbil_stage_downsample(fr.frame));
+    TIME_PASS(split, tgi_hbil_stage_split(fr.frame));
+    TIME_PASS(kernel, tgi_hbil_stage_kernel(fr.frame));
+    TIME_PASS(merge, tgi_hbil_stage_merge(fr.frame));
+    TIME_PASS(upsample, tgi_hbil_stage_upsample(fr.frame));
+    TIME_PASS(gi, tgi_frame_technique(fr.frame, 1));
     frame_close(&fr);
     core = pt.reproject + pt.pushpull + pt.split + pt.kernel;
     rest = pt.gi - (pt.downsample + pt.split + pt.kernel + pt.merge + pt.upsample);
@@ -641,7 +642,7 @@ static void pass_breakdown(tg_scene *s, const char *name)
     fprintf(f, "| merge (not in the paper) | %.3f | | |\n", pt.merge);
     fprintf(f, "| joint bilateral upsample (not in the paper) | %.3f | | |\n", pt.upsample);
     fprintf(f, "| filter, temporal, cone (GI step minus the above) | %.3f | | |\n", rest > 0 ? rest : 0.0);
-    fprintf(f, "| GI step (tg_frame_technique) | %.3f | | 2.75 ms (core) |\n", pt.gi);
+    fprintf(f, "| GI step (tgi_frame_technique) | %.3f | | 2.75 ms (core) |\n", pt.gi);
     fprintf(f, "| whole frame (raster, shadows, direct, GI, compose) | %.3f | | 3.23 ms (GI only) |\n\n", pt.frame);
     fprintf(f, "Verdict (%s): %s the kernel is %.0f%% of reprojection + push/pull + split + kernel (paper 61%%); the split is %.0f%% (paper 24%%).\n\n",
             NUMBER, pt.kernel / core > 0.5 ? "HOLDS, the kernel dominates:" : "DOES NOT HOLD, the kernel does not dominate:",

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * bench_hbil.c - time the GI chain on a 320x240 analytic groove G-buffer:
  * 4x4 split, the HBIL kernel on the 16 sub-images (2 slices, 16 samples),
@@ -43,11 +44,11 @@ static tg_real sub[9][N];
 static uint8_t sky[N], subsky[N];
 
 /* The groove: faces y = |x|, seen from (0, 4, 0.5) looking down. */
-static void groove(tg_view *v)
+static void groove(tgi_view *v)
 {
     int x, y;
     double ppu;
-    tg_view_make(v, tg_v3(0, TG_R(4.0f), TG_R(0.5f)), tg_v3(0, 0, TG_R(0.5f)), tg_v3(0, 0, -TG_ONE),
+    tgi_view_make(v, tg_v3(0, TG_R(4.0f), TG_R(0.5f)), tg_v3(0, 0, TG_R(0.5f)), tg_v3(0, 0, -TG_ONE),
                  TG_R(1.0471976f), TG_R(0.05f), TG_R(100.0f), W, H);
     ppu = tg_to_float(v->pixels_per_unit);
     for (y = 0; y < H; y++)
@@ -83,45 +84,45 @@ static void dump(const char *path)
 /* usage: bench_hbil [RUNS [DUMP_FILE]]  (RUNS default 15; 1 for callgrind) */
 int main(int argc, char **argv)
 {
-    tg_view v;
-    tg_denoise_params dp;
-    tg_denoise_io dio;
-    void *scratch = malloc(tg_denoise_bytes(W, H));
+    tgi_view v;
+    tgi_denoise_params dp;
+    tgi_denoise_io dio;
+    void *scratch = malloc(tgi_denoise_bytes(W, H));
     double t[MAX_RUNS], sum_ao = 0;
     int r, i, j, k, RUNS = argc > 1 ? atoi(argv[1]) : MAX_RUNS;
     if (RUNS < 1 || RUNS > MAX_RUNS) RUNS = MAX_RUNS;
     groove(&v);
-    tg_denoise_defaults(&dp);
+    tgi_denoise_defaults(&dp);
     for (r = 0; r < RUNS; r++) {
         double t0 = now_ms();
         const tg_real *in[4] = { depth, nx, ny, nz };
         tg_real *out[5] = { ao, bx, by, bz, cone };
-        for (k = 0; k < 4; k++) tg_interleave_split(in[k], W, H, sub[k]);
-        tg_interleave_split8(sky, W, H, subsky);
+        for (k = 0; k < 4; k++) tgi_interleave_split(in[k], W, H, sub[k]);
+        tgi_interleave_split8(sky, W, H, subsky);
         for (j = 0; j < 4; j++)
             for (i = 0; i < 4; i++) {
-                tg_hbil_params p;
-                tg_hbil_io io;
+                tgi_hbil_params p;
+                tgi_hbil_io io;
                 int sw, sh;
                 size_t off;
-                tg_interleave_sub_rect(W, H, i, j, &sw, &sh, &off);
-                tg_hbil_defaults(&p, &v);
+                tgi_interleave_sub_rect(W, H, i, j, &sw, &sh, &off);
+                tgi_hbil_defaults(&p, &v);
                 p.step = 4; p.offset_x = i; p.offset_y = j;
-                p.slice_phi0 = tg_hbil_slice_phi0(i, j, p.slices);
+                p.slice_phi0 = tgi_hbil_slice_phi0(i, j, p.slices);
                 memset(&io, 0, sizeof io);
                 io.width = sw; io.height = sh;
                 io.depth = sub[0] + off; io.nx = sub[1] + off; io.ny = sub[2] + off; io.nz = sub[3] + off;
                 io.sky = subsky + off;
                 io.ao = sub[4] + off; io.bent_x = sub[5] + off; io.bent_y = sub[6] + off; io.bent_z = sub[7] + off;
                 io.cone = sub[8] + off;
-                tg_hbil_rows(&p, &io, 0, sh);
+                tgi_hbil_rows(&p, &io, 0, sh);
             }
-        for (k = 0; k < 5; k++) tg_interleave_merge(sub[4 + k], W, H, out[k]);
+        for (k = 0; k < 5; k++) tgi_interleave_merge(sub[4 + k], W, H, out[k]);
         memset(&dio, 0, sizeof dio);
         dio.width = W; dio.height = H; dio.depth = depth; dio.nx = nx; dio.ny = ny; dio.nz = nz; dio.sky = sky;
         dio.ao = ao; dio.bent_x = bx; dio.bent_y = by; dio.bent_z = bz; dio.cone = cone;
-        tg_denoise_begin(&dio, scratch);
-        tg_denoise_rows(&dp, &dio, scratch, 0, H);
+        tgi_denoise_begin(&dio, scratch);
+        tgi_denoise_rows(&dp, &dio, scratch, 0, H);
         t[r] = now_ms() - t0;
     }
     for (i = 0; i < N; i++) sum_ao += tg_to_float(ao[i]);

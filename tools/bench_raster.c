@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * bench_raster.c - rasterizer throughput: a UV sphere of ~50k triangles
  * rendered into a full G-buffer (depth, normal, albedo, f0, emissive, sky,
@@ -73,12 +74,12 @@ static int cmp_double(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
-static void bench(const tg_raster_mesh *mesh, int w, int h, int frames, int runs)
+static void bench(const tgi_raster_mesh *mesh, int w, int h, int frames, int runs)
 {
     size_t n = (size_t)w * (size_t)h;
     tg_real *mem = (tg_real *)calloc(n * 11, sizeof(tg_real));
-    tg_gbuffer gb;
-    tg_view view;
+    tgi_gbuffer gb;
+    tgi_view view;
     double *t = (double *)malloc(sizeof(double) * (size_t)runs), med;
     double *tclear = (double *)malloc(sizeof(double) * (size_t)runs);
     long drawn = 0;
@@ -92,16 +93,16 @@ static void bench(const tg_raster_mesh *mesh, int w, int h, int frames, int runs
     gb.sky = (uint8_t *)malloc(n);
     gb.object = (uint16_t *)malloc(n * sizeof(uint16_t));
     /* the sphere fills ~90% of the image height */
-    tg_view_make(&view, V(0, 0, -3.4), V(0, 0, 0), V(0, 1, 0), tg_from_float(0.6f), tg_from_float(0.05f),
+    tgi_view_make(&view, V(0, 0, -3.4), V(0, 0, 0), V(0, 1, 0), tg_from_float(0.6f), tg_from_float(0.05f),
                  tg_from_float(1000.0f), w, h);
     /* raster time only; the clear (a memset of every channel) is timed apart */
     for (run = 0; run < runs; run++) {
         double tr = 0, tc = 0;
         for (f = 0; f < frames; f++) {
             double t0 = now_seconds(), t1;
-            tg_gbuffer_clear_rows(&gb, 0, h);
+            tgi_gbuffer_clear_rows(&gb, 0, h);
             t1 = now_seconds();
-            tg_raster_gbuffer(&gb, &view, mesh, 0, h);
+            tgi_raster_gbuffer(&gb, &view, mesh, 0, h);
             tr += now_seconds() - t1;
             tc += t1 - t0;
         }
@@ -125,8 +126,8 @@ int main(int argc, char **argv)
     tg_vec3 *nrm = (tg_vec3 *)malloc(sizeof(tg_vec3) * 3 * RINGS * SLICES * 2);
     uint16_t *mat = (uint16_t *)calloc(RINGS * SLICES * 2, sizeof(uint16_t));
     uint16_t *obj = (uint16_t *)calloc(RINGS * SLICES * 2, sizeof(uint16_t));
-    tg_material m;
-    tg_raster_mesh mesh;
+    tgi_material m;
+    tgi_raster_mesh mesh;
     if (frames < 1) frames = 1;
     if (runs < 5) runs = 5;
     memset(&m, 0, sizeof m);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * tinygi.c - the command line: render a scene to PPM/PFM files, compare two
  * images, list what is built in.
@@ -445,7 +446,7 @@ static int load_scene_text(const char *scene, char **owned, const char **text, s
         *size = strlen(*text);
         return 0;
     }
-    if (tg_file_read(scene, owned, size, why, sizeof why)) {
+    if (tgp_file_read(scene, owned, size, why, sizeof why)) {
         file_error(scene, why);
         return EXIT_INPUT;
     }
@@ -454,7 +455,7 @@ static int load_scene_text(const char *scene, char **owned, const char **text, s
 }
 
 /* Parse into a malloc'd arena, growing it on TG_ERR_MEMORY.  0 ok, else exit status. */
-static int parse_scene(const char *name, const char *text, size_t size, tg_host_io *io,
+static int parse_scene(const char *name, const char *text, size_t size, tgp_host_io *io,
                        void **arena_mem, tg_scene **scene)
 {
     size_t cap;
@@ -478,7 +479,7 @@ static int parse_scene(const char *name, const char *text, size_t size, tg_host_
         }
         tg_arena_init(&arena, *arena_mem, cap);
         memset(&err, 0, sizeof err);
-        tg_host_io_free(io);
+        tgp_host_io_free(io);
         s = tg_scene_parse(text, size, name, &io->io, &arena, scene, &err);
         if (s == TG_ERR_MEMORY) {
             size_t next = err.bytes_needed > cap ? err.bytes_needed : 0;
@@ -541,11 +542,11 @@ typedef struct row_buffers {
 } row_buffers;
 
 /* Write one frame's AOV to path (atomically).  0 ok, else 1 (reported). */
-static int write_frame(const tg_frame *frame, tg_aov aov, tg_img_format format, int w, int h,
+static int write_frame(const tg_frame *frame, tg_aov aov, tgp_img_format format, int w, int h,
                        const char *path, row_buffers *rb)
 {
     char why[512];
-    tg_outfile *f = tg_outfile_create(path, why, sizeof why);
+    tgp_outfile *f = tgp_outfile_create(path, why, sizeof why);
     int y, channels = tg_aov_channels(aov);
     size_t x, count = (size_t)w * (size_t)channels;
     if (!f) {
@@ -553,20 +554,20 @@ static int write_frame(const tg_frame *frame, tg_aov aov, tg_img_format format, 
         return 1;
     }
     if (format == TG_IMG_PPM) {
-        tg_ppm_write_header(f, w, h);
+        tgp_ppm_write_header(f, w, h);
         for (y = 0; y < h; y++) {
             tg_frame_aov_row8(frame, aov, y, rb->rgb8);
-            tg_outfile_write(f, rb->rgb8, (size_t)w * 3u);
+            tgp_outfile_write(f, rb->rgb8, (size_t)w * 3u);
         }
     } else {
-        tg_pfm_write_header(f, w, h, channels);
+        tgp_pfm_write_header(f, w, h, channels);
         for (y = h - 1; y >= 0; y--) { /* PFM rows go bottom to top */
             tg_frame_aov_row(frame, aov, y, rb->reals);
             for (x = 0; x < count; x++) rb->floats[x] = tg_to_float(rb->reals[x]);
-            tg_pfm_write_values(f, rb->floats, count);
+            tgp_pfm_write_values(f, rb->floats, count);
         }
     }
-    if (tg_outfile_finish(f, why, sizeof why)) {
+    if (tgp_outfile_finish(f, why, sizeof why)) {
         file_error(path, why);
         return 1;
     }
@@ -575,20 +576,20 @@ static int write_frame(const tg_frame *frame, tg_aov aov, tg_img_format format, 
 
 static void show_progress(int done, int total, double start)
 {
-    double elapsed = tg_clock_seconds() - start;
+    double elapsed = tgp_clock_seconds() - start;
     double eta = done > 0 ? elapsed / done * (total - done) : 0.0;
     fprintf(stderr, "\rframe %d/%d, elapsed %.1f s, ETA %.1f s   ", done, total, elapsed, eta);
     fflush(stderr);
 }
 
 /* Render every frame and write the requested ones.  0 ok, else exit status. */
-static int render_frames(const render_opts *o, const out_pattern *pat, tg_img_format format,
+static int render_frames(const render_opts *o, const out_pattern *pat, tgp_img_format format,
                          tg_frame *frame)
 {
     row_buffers rb;
     char path[CLI_MAX_PATH + 16];
     int i, progress = o->frames > 1 && !o->quiet && isatty(2), status = 0;
-    double start = tg_clock_seconds();
+    double start = tgp_clock_seconds();
     tg_error err;
     rb.rgb8 = (uint8_t *)malloc((size_t)o->width * 3u);
     rb.reals = (tg_real *)malloc((size_t)o->width * 3u * sizeof(tg_real));
@@ -617,7 +618,7 @@ static int render_frames(const render_opts *o, const out_pattern *pat, tg_img_fo
         fputc('\n', stderr);
     }
     if (!status && !o->quiet) {
-        double ms = (tg_clock_seconds() - start) * 1000.0 / o->frames;
+        double ms = (tgp_clock_seconds() - start) * 1000.0 / o->frames;
         pattern_path(pat, pat->numbered ? 0 : o->frames - 1, path);
         fprintf(stderr, "tinygi: wrote %s%s (%dx%d %s, %d frame%s, %.1f ms/frame)\n", path,
                 pat->numbered && o->frames > 1 ? " ..." : "", o->width, o->height,
@@ -633,8 +634,8 @@ static int cmd_render(int argc, char **argv)
 {
     render_opts o;
     out_pattern pat;
-    tg_img_format format;
-    tg_host_io io;
+    tgp_img_format format;
+    tgp_host_io io;
     tg_request req;
     tg_plan plan;
     tg_error err;
@@ -651,11 +652,11 @@ static int cmd_render(int argc, char **argv)
         usage_error("option -o: %s in '%s'", bad, o.output);
         return EXIT_INPUT;
     }
-    if (tg_img_format_from_path(o.output, &format)) {
+    if (tgp_img_format_from_path(o.output, &format)) {
         usage_error("option -o: expected a file name ending in .ppm or .pfm, got '%s'", o.output);
         return EXIT_INPUT;
     }
-    tg_host_io_init(&io);
+    tgp_host_io_init(&io);
     status = load_scene_text(o.scene, &owned, &text, &size);
     if (!status) status = parse_scene(o.scene, text, size, &io, &scene_mem, &scene);
     if (!status) {
@@ -674,7 +675,7 @@ static int cmd_render(int argc, char **argv)
     if (o.view) goto create;
     /* Fail before a long render if the output cannot be written. */
     pattern_path(&pat, pat.numbered ? 0 : o.frames - 1, first);
-    if (!status && tg_file_dir_writable(first, why, sizeof why)) {
+    if (!status && tgp_file_dir_writable(first, why, sizeof why)) {
         file_error(first, why);
         status = EXIT_RUNTIME;
     }
@@ -697,19 +698,19 @@ create:
         }
     }
     if (!status && o.view) {
-        if (tg_fbdev_view(o.fbdev, frame, o.width, o.height, o.frames, why, sizeof why)) {
+        if (tgp_fbdev_view(o.fbdev, frame, o.width, o.height, o.frames, why, sizeof why)) {
             usage_error("%s", why);
             status = EXIT_RUNTIME;
         }
     } else if (!status) {
-        tg_outfile_remove_on_signals();
+        tgp_outfile_remove_on_signals();
         status = render_frames(&o, &pat, format, frame);
     }
 done:
     free(frame_mem);
     free(scene_mem);
     free(owned);
-    tg_host_io_free(&io);
+    tgp_host_io_free(&io);
     return status;
 }
 
@@ -719,8 +720,8 @@ static int cmd_diff(int argc, char **argv)
 {
     const char *a_path = NULL, *b_path = NULL, *out = NULL;
     double tolerance = 0.0;
-    tg_img a, b;
-    tg_diff d;
+    tgp_img a, b;
+    tgp_diff d;
     char why[512];
     int i, status;
 
@@ -742,8 +743,8 @@ static int cmd_diff(int argc, char **argv)
         }
         v = option_value(argc, argv, &i, "-o", &matched);
         if (matched) {
-            tg_img_format f;
-            if (!v || tg_img_format_from_path(v, &f) || f != TG_IMG_PPM) {
+            tgp_img_format f;
+            if (!v || tgp_img_format_from_path(v, &f) || f != TG_IMG_PPM) {
                 usage_error("option -o: expected a file name ending in .ppm, got '%s'", v ? v : "");
                 return EXIT_INPUT;
             }
@@ -765,22 +766,22 @@ static int cmd_diff(int argc, char **argv)
         usage_error("diff: expected two images: tinygi diff A B [--tolerance T] [-o DIFF.ppm]");
         return EXIT_INPUT;
     }
-    if (tg_img_read(a_path, &a, why, sizeof why)) {
+    if (tgp_img_read(a_path, &a, why, sizeof why)) {
         file_error(a_path, why);
         return EXIT_INPUT;
     }
-    if (tg_img_read(b_path, &b, why, sizeof why)) {
+    if (tgp_img_read(b_path, &b, why, sizeof why)) {
         file_error(b_path, why);
-        tg_img_free(&a);
+        tgp_img_free(&a);
         return EXIT_INPUT;
     }
-    if (tg_diff_compare(&a, &b, tolerance, &d, why, sizeof why)) {
+    if (tgp_diff_compare(&a, &b, tolerance, &d, why, sizeof why)) {
         usage_error("cannot compare '%s' and '%s': %s", a_path, b_path, why);
-        tg_img_free(&a);
-        tg_img_free(&b);
+        tgp_img_free(&a);
+        tgp_img_free(&b);
         return EXIT_INPUT;
     }
-    status = tg_diff_within(&d) ? 0 : 1;
+    status = tgp_diff_within(&d) ? 0 : 1;
     printf("size %dx%d %s\n", a.width, a.height, a.format == TG_IMG_PPM ? "PPM" : "PFM");
     printf("rmse %.6g\n", d.rmse);
     printf("psnr %.2f dB\n", d.psnr);
@@ -790,15 +791,15 @@ static int cmd_diff(int argc, char **argv)
            (unsigned long)d.pixels, d.tolerance);
     printf("%s\n", status ? "outside tolerance" : "within tolerance");
     if (out) {
-        uint8_t *rgb = tg_diff_image(&a, &b, &d);
-        if (!rgb || tg_ppm_write(out, a.width, a.height, rgb, why, sizeof why)) {
+        uint8_t *rgb = tgp_diff_image(&a, &b, &d);
+        if (!rgb || tgp_ppm_write(out, a.width, a.height, rgb, why, sizeof why)) {
             file_error(out, rgb ? why : "cannot write: out of memory");
             status = EXIT_INPUT;
         }
         free(rgb);
     }
-    tg_img_free(&a);
-    tg_img_free(&b);
+    tgp_img_free(&a);
+    tgp_img_free(&b);
     return status;
 }
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * libc_mini.c - the C library functions a -nostdlib build still needs: the
  * core uses <string.h> only (memcpy, memset, strlen, strcmp, strncmp; a

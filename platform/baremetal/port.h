@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * port.h - the few functions a target must provide for tinygi's render
  * driver (render.c): write a file, print a line, read a clock.  The core

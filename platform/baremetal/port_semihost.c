@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * port_semihost.c - port.h straight over semihosting, for a bare-metal
  * target without a C library (the Cortex-M0 build links with -nostdlib).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * port_stdio.c - port.h over C stdio: used on Linux (x86-64, i686, s390x,
  * powerpc) and on Cortex-M with newlib, whose librdimon turns fopen/fwrite

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * render.c - tinygi's portable render driver: renders built-in scenes at a
  * small size and writes, per scene, one little-endian PFM per AOV

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * semihost.c - the semihosting calls of semihost.h, for any Cortex-M
  * (ARMv6-M and ARMv7-M both have `bkpt`).  No libc: this file is what a

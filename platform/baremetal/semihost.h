@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * semihost.h - ARM semihosting: the debugger (here QEMU) performs I/O for a
  * bare-metal program.  A call is `bkpt 0xAB` on Cortex-M with the operation

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * startup.c - what runs before main() on a Cortex-M: the vector table (the
  * core boots from address 0: word 0 is the initial stack pointer, word 1
@@ -9,7 +10,7 @@
  * __stack_limit, __data_start/__data_end/__data_load, __bss_start__ and
  * __bss_end__.  The stack is painted before main() and the deepest use is
  * reported after it ("startup: stack N of M bytes used").
- * Keep the table under --gc-sections with -Wl,--undefined=tg_vectors.
+ * Keep the table under --gc-sections with -Wl,--undefined=tgp_vectors.
  */
 #include <stdint.h>
 #include <stddef.h>
@@ -18,7 +19,7 @@
 
 int main(int argc, char **argv);
 void Reset_Handler(void);
-void tg_fault_handler(void);
+void tgp_fault_handler(void);
 
 extern uint32_t __stack_top, __data_start, __data_end, __data_load;
 extern uint32_t __bss_start__, __bss_end__, __stack_limit;
@@ -30,27 +31,27 @@ extern uint32_t __bss_start__, __bss_end__, __stack_limit;
 extern void initialise_monitor_handles(void); /* newlib's librdimon */
 #endif
 
-typedef void (*tg_vector)(void);
+typedef void (*tgp_vector)(void);
 
 /* 16 system vectors; tinygi uses no peripheral interrupts. */
 __attribute__((section(".vectors"), used))
-const tg_vector tg_vectors[16] = {
-    (tg_vector)(uintptr_t)&__stack_top, /* 0: initial SP */
+const tgp_vector tgp_vectors[16] = {
+    (tgp_vector)(uintptr_t)&__stack_top, /* 0: initial SP */
     Reset_Handler,                      /* 1: reset */
-    tg_fault_handler,                   /* 2: NMI */
-    tg_fault_handler,                   /* 3: HardFault */
-    tg_fault_handler,                   /* 4: MemManage (v7-M) */
-    tg_fault_handler,                   /* 5: BusFault (v7-M) */
-    tg_fault_handler,                   /* 6: UsageFault (v7-M) */
+    tgp_fault_handler,                   /* 2: NMI */
+    tgp_fault_handler,                   /* 3: HardFault */
+    tgp_fault_handler,                   /* 4: MemManage (v7-M) */
+    tgp_fault_handler,                   /* 5: BusFault (v7-M) */
+    tgp_fault_handler,                   /* 6: UsageFault (v7-M) */
     0, 0, 0, 0,                         /* 7-10: reserved */
-    tg_fault_handler,                   /* 11: SVCall */
-    tg_fault_handler,                   /* 12: debug monitor */
+    tgp_fault_handler,                   /* 11: SVCall */
+    tgp_fault_handler,                   /* 12: debug monitor */
     0,                                  /* 13: reserved */
-    tg_fault_handler,                   /* 14: PendSV */
-    tg_fault_handler                    /* 15: SysTick */
+    tgp_fault_handler,                   /* 14: PendSV */
+    tgp_fault_handler                    /* 15: SysTick */
 };
 
-void tg_fault_handler(void)
+void tgp_fault_handler(void)
 {
     sh_write0("tinygi: fault (hard fault, bus fault or usage fault)\n");
     sh_exit(4);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * fbdev.c - the Linux framebuffer output of fbdev.h: screen info, mapping,
  * pixel format conversion from the bitfields, and the `view` loop that
@@ -38,12 +39,12 @@ static const fb_layout fb_layouts[TG_FB_FORMAT_COUNT] = {
     {"BGR565", 16, 0, 5, 5, 6, 11, 5, 0, 0},
 };
 
-const char *tg_fb_format_name(tg_fb_format format)
+const char *tgp_fb_format_name(tgp_fb_format format)
 {
     return (unsigned)format < TG_FB_FORMAT_COUNT ? fb_layouts[format].name : NULL;
 }
 
-int tg_fb_info_format(tg_fb_info *info, tg_fb_format format, int xres, int yres, size_t line_length)
+int tgp_fb_info_format(tgp_fb_info *info, tgp_fb_format format, int xres, int yres, size_t line_length)
 {
     const fb_layout *l;
     if ((unsigned)format >= TG_FB_FORMAT_COUNT) return -1;
@@ -60,18 +61,18 @@ int tg_fb_info_format(tg_fb_info *info, tg_fb_format format, int xres, int yres,
     return 0;
 }
 
-static int channel_ok(tg_fb_channel c, int bpp, int optional)
+static int channel_ok(tgp_fb_channel c, int bpp, int optional)
 {
     if (c.length == 0) return optional;
     return c.length >= 1 && c.length <= 8 && c.offset >= 0 && c.offset + c.length <= bpp;
 }
 
-static uint32_t channel_mask(tg_fb_channel c)
+static uint32_t channel_mask(tgp_fb_channel c)
 {
     return c.length ? (((uint32_t)1 << c.length) - 1u) << c.offset : 0;
 }
 
-int tg_fb_info_check(const tg_fb_info *info, char *msg, size_t size)
+int tgp_fb_info_check(const tgp_fb_info *info, char *msg, size_t size)
 {
     int bpp = info->bits_per_pixel;
     uint32_t r = channel_mask(info->red), g = channel_mask(info->green), b = channel_mask(info->blue);
@@ -98,17 +99,17 @@ int tg_fb_info_check(const tg_fb_info *info, char *msg, size_t size)
 }
 
 /* Nearest value of an n-bit channel for an 8-bit one: round(c * (2^n - 1) / 255). */
-static void build_lut(uint32_t *lut, tg_fb_channel c)
+static void build_lut(uint32_t *lut, tgp_fb_channel c)
 {
     uint32_t top = ((uint32_t)1 << c.length) - 1u, v;
     for (v = 0; v < 256; v++) lut[v] = ((v * top + 127u) / 255u) << c.offset;
 }
 
 /* Check `info`, fill the lookup tables; the mapping is set by the caller. */
-static int fb_setup(tg_fb *fb, const tg_fb_info *info)
+static int fb_setup(tgp_fb *fb, const tgp_fb_info *info)
 {
     fb->info = *info;
-    if (tg_fb_info_check(info, fb->error, sizeof fb->error) != 0) return -1;
+    if (tgp_fb_info_check(info, fb->error, sizeof fb->error) != 0) return -1;
     fb->bytes_per_pixel = info->bits_per_pixel / 8;
     build_lut(fb->lut[0], info->red);
     build_lut(fb->lut[1], info->green);
@@ -125,7 +126,7 @@ static int host_is_little_endian(void)
     return b == 1;
 }
 
-void tg_fb_convert_row(const tg_fb *fb, const uint8_t *rgb, int n, unsigned char *dst)
+void tgp_fb_convert_row(const tgp_fb *fb, const uint8_t *rgb, int n, unsigned char *dst)
 {
     int i, le = host_is_little_endian();
     for (i = 0; i < n; i++, rgb += 3, dst += fb->bytes_per_pixel) {
@@ -143,7 +144,7 @@ void tg_fb_convert_row(const tg_fb *fb, const uint8_t *rgb, int n, unsigned char
     }
 }
 
-void tg_fb_put_row(tg_fb *fb, int x, int y, const uint8_t *rgb, int n)
+void tgp_fb_put_row(tgp_fb *fb, int x, int y, const uint8_t *rgb, int n)
 {
     unsigned char *dst;
     if (!fb->screen || y < 0 || y >= fb->info.yres || x >= fb->info.xres) return;
@@ -156,28 +157,28 @@ void tg_fb_put_row(tg_fb *fb, int x, int y, const uint8_t *rgb, int n)
     if (n > fb->info.xres - x) n = fb->info.xres - x;
     if (n <= 0) return;
     dst = fb->screen + (size_t)y * fb->info.line_length + (size_t)x * (size_t)fb->bytes_per_pixel;
-    tg_fb_convert_row(fb, rgb, n, dst);
+    tgp_fb_convert_row(fb, rgb, n, dst);
 }
 
-void tg_fb_draw(tg_fb *fb, int x0, int y0, int width, int height,
-                tg_fb_row_fn row, void *user, uint8_t *rgb_row)
+void tgp_fb_draw(tgp_fb *fb, int x0, int y0, int width, int height,
+                tgp_fb_row_fn row, void *user, uint8_t *rgb_row)
 {
     int y;
     for (y = 0; y < height; y++) {
         if (y0 + y < 0 || y0 + y >= fb->info.yres) continue;
         row(user, y, rgb_row);
-        tg_fb_put_row(fb, x0, y0 + y, rgb_row, width);
+        tgp_fb_put_row(fb, x0, y0 + y, rgb_row, width);
     }
 }
 
 /* ---- devices and files ---- */
-static void fb_clear(tg_fb *fb)
+static void fb_clear(tgp_fb *fb)
 {
     memset(fb, 0, sizeof *fb);
     fb->fd = -1;
 }
 
-void tg_fb_close(tg_fb *fb)
+void tgp_fb_close(tgp_fb *fb)
 {
 #ifdef __linux__
     if (fb->map) munmap(fb->map, fb->map_size);
@@ -189,7 +190,7 @@ void tg_fb_close(tg_fb *fb)
 }
 
 #ifdef __linux__
-static int fb_map(tg_fb *fb, const char *path, size_t size)
+static int fb_map(tgp_fb *fb, const char *path, size_t size)
 {
     size_t need = (size_t)(fb->info.yoffset + fb->info.yres) * fb->info.line_length;
     void *m;
@@ -210,16 +211,16 @@ static int fb_map(tg_fb *fb, const char *path, size_t size)
     return 0;
 }
 
-static int fb_fail(tg_fb *fb)
+static int fb_fail(tgp_fb *fb)
 {
     char keep[sizeof fb->error];
     memcpy(keep, fb->error, sizeof keep);
-    tg_fb_close(fb);
+    tgp_fb_close(fb);
     memcpy(fb->error, keep, sizeof keep);
     return -1;
 }
 
-static void fb_info_from_linux(tg_fb_info *info, const struct fb_var_screeninfo *var,
+static void fb_info_from_linux(tgp_fb_info *info, const struct fb_var_screeninfo *var,
                                const struct fb_fix_screeninfo *fix)
 {
     memset(info, 0, sizeof *info);
@@ -235,11 +236,11 @@ static void fb_info_from_linux(tg_fb_info *info, const struct fb_var_screeninfo 
     info->transp.offset = (int)var->transp.offset; info->transp.length = (int)var->transp.length;
 }
 
-int tg_fb_open(tg_fb *fb, const char *path)
+int tgp_fb_open(tgp_fb *fb, const char *path)
 {
     struct fb_var_screeninfo var;
     struct fb_fix_screeninfo fix;
-    tg_fb_info info;
+    tgp_fb_info info;
     char why[200];
     fb_clear(fb);
     if (!path) path = "/dev/fb0";
@@ -272,7 +273,7 @@ int tg_fb_open(tg_fb *fb, const char *path)
     return 0;
 }
 
-int tg_fb_open_file(tg_fb *fb, const char *path, const tg_fb_info *info)
+int tgp_fb_open_file(tgp_fb *fb, const char *path, const tgp_fb_info *info)
 {
     struct stat st;
     fb_clear(fb);
@@ -290,7 +291,7 @@ int tg_fb_open_file(tg_fb *fb, const char *path, const tg_fb_info *info)
     return 0;
 }
 #else
-int tg_fb_open(tg_fb *fb, const char *path)
+int tgp_fb_open(tgp_fb *fb, const char *path)
 {
     fb_clear(fb);
     snprintf(fb->error, sizeof fb->error, "%s: the Linux framebuffer is not available on this system",
@@ -298,10 +299,10 @@ int tg_fb_open(tg_fb *fb, const char *path)
     return -1;
 }
 
-int tg_fb_open_file(tg_fb *fb, const char *path, const tg_fb_info *info)
+int tgp_fb_open_file(tgp_fb *fb, const char *path, const tgp_fb_info *info)
 {
     (void)info;
-    return tg_fb_open(fb, path);
+    return tgp_fb_open(fb, path);
 }
 #endif
 
@@ -315,7 +316,7 @@ static void frame_row8(void *user, int y, uint8_t *rgb)
     tg_frame_aov_row8(((frame_rows *)user)->frame, TG_AOV_COLOR, y, rgb);
 }
 
-int tg_fb_view_frames(tg_fb *fb, tg_frame *frame, int width, int height,
+int tgp_fb_view_frames(tgp_fb *fb, tg_frame *frame, int width, int height,
                       int frames, char *msg, size_t size)
 {
     frame_rows rows;
@@ -340,23 +341,23 @@ int tg_fb_view_frames(tg_fb *fb, tg_frame *frame, int width, int height,
             free(rgb);
             return 1;
         }
-        tg_fb_draw(fb, (fb->info.xres - width) / 2, (fb->info.yres - height) / 2,
+        tgp_fb_draw(fb, (fb->info.xres - width) / 2, (fb->info.yres - height) / 2,
                    width, height, frame_row8, &rows, rgb);
     }
     free(rgb);
     return 0;
 }
 
-int tg_fbdev_view(const char *path, tg_frame *frame, int width, int height,
+int tgp_fbdev_view(const char *path, tg_frame *frame, int width, int height,
                   int frames, char *msg, size_t size)
 {
-    tg_fb fb;
+    tgp_fb fb;
     int r;
-    if (tg_fb_open(&fb, path) != 0) {
+    if (tgp_fb_open(&fb, path) != 0) {
         snprintf(msg, size, "%s", fb.error);
         return 1;
     }
-    r = tg_fb_view_frames(&fb, frame, width, height, frames, msg, size);
-    tg_fb_close(&fb);
+    r = tgp_fb_view_frames(&fb, frame, width, height, frames, msg, size);
+    tgp_fb_close(&fb);
     return r;
 }

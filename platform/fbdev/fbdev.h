@@ -1,7 +1,8 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * fbdev.h - show tinygi frames on a Linux framebuffer (/dev/fbN).
  *
- * tg_fb_open() reads the device's variable and fixed screen info
+ * tgp_fb_open() reads the device's variable and fixed screen info
  * (FBIOGET_VSCREENINFO / FBIOGET_FSCREENINFO), checks the pixel format and
  * maps the screen.  Rows of 8-bit RGB are converted to the device's pixel
  * format from its bitfield offsets and lengths - 16, 24 or 32 bits per
@@ -10,8 +11,8 @@
  * BGRX8888 and the other orders.  Rows are line_length bytes apart and the
  * visible area starts at (xoffset, yoffset).
  *
- * ioctls do not work on regular files, so tests use tg_fb_open_file() with
- * screen info the caller supplies (tg_fb_info_format fills one in).
+ * ioctls do not work on regular files, so tests use tgp_fb_open_file() with
+ * screen info the caller supplies (tgp_fb_info_format fills one in).
  *
  * Errors come back as a message in fb->error (or the caller's buffer),
  * fit to show a person: "/dev/fb0: No such file or directory".
@@ -24,29 +25,29 @@
 
 #include "tinygi.h"
 
-typedef struct tg_fb_channel {
+typedef struct tgp_fb_channel {
     int offset, length; /* bit position from the least significant bit; 0 length: absent */
-} tg_fb_channel;
+} tgp_fb_channel;
 
-typedef struct tg_fb_info {
+typedef struct tgp_fb_info {
     int xres, yres;          /* visible size in pixels */
     int xoffset, yoffset;    /* visible area's origin in the virtual screen */
     int bits_per_pixel;      /* 16, 24 or 32 */
     size_t line_length;      /* bytes from one line to the next */
-    tg_fb_channel red, green, blue, transp;
-} tg_fb_info;
+    tgp_fb_channel red, green, blue, transp;
+} tgp_fb_info;
 
 /* Named layouts, written from the most significant bit of the pixel value
  * down (like DRM fourcc names): XRGB8888 is x:24-31 r:16-23 g:8-15 b:0-7.
  * Pixel values are stored in the machine's byte order, as fbdev does. */
-typedef enum tg_fb_format {
+typedef enum tgp_fb_format {
     TG_FB_XRGB8888, TG_FB_ARGB8888, TG_FB_XBGR8888, TG_FB_BGRX8888,
     TG_FB_RGB888, TG_FB_BGR888, TG_FB_RGB565, TG_FB_BGR565,
     TG_FB_FORMAT_COUNT
-} tg_fb_format;
+} tgp_fb_format;
 
-typedef struct tg_fb {
-    tg_fb_info info;
+typedef struct tgp_fb {
+    tgp_fb_info info;
     unsigned char *screen;   /* first byte of the visible area */
     unsigned char *map;      /* the whole mapping */
     size_t map_size;
@@ -55,44 +56,44 @@ typedef struct tg_fb {
     uint32_t lut[3][256];    /* 8-bit channel value -> its bits in the pixel */
     uint32_t opaque;         /* alpha bits, all ones */
     char error[256];
-} tg_fb;
+} tgp_fb;
 
 /* The name of a format ("XRGB8888"), and screen info for it; line_length 0
  * means packed (xres * bytes per pixel).  Returns 0, or -1 if unknown. */
-const char *tg_fb_format_name(tg_fb_format format);
-int tg_fb_info_format(tg_fb_info *info, tg_fb_format format, int xres, int yres, size_t line_length);
+const char *tgp_fb_format_name(tgp_fb_format format);
+int tgp_fb_info_format(tgp_fb_info *info, tgp_fb_format format, int xres, int yres, size_t line_length);
 
 /* Check that tinygi can draw this format; 0, or -1 with a message. */
-int tg_fb_info_check(const tg_fb_info *info, char *msg, size_t size);
+int tgp_fb_info_check(const tgp_fb_info *info, char *msg, size_t size);
 
 /* Open and map a framebuffer device (ioctls); 0, or -1 with fb->error set. */
-int tg_fb_open(tg_fb *fb, const char *path);
+int tgp_fb_open(tgp_fb *fb, const char *path);
 /* Map a regular file as a framebuffer described by `info` (for tests): the
  * file must already hold (yoffset + yres) * line_length bytes. */
-int tg_fb_open_file(tg_fb *fb, const char *path, const tg_fb_info *info);
-void tg_fb_close(tg_fb *fb);
+int tgp_fb_open_file(tgp_fb *fb, const char *path, const tgp_fb_info *info);
+void tgp_fb_close(tgp_fb *fb);
 
 /* Convert n pixels of 8-bit RGB to the device format into `dst`. */
-void tg_fb_convert_row(const tg_fb *fb, const uint8_t *rgb, int n, unsigned char *dst);
+void tgp_fb_convert_row(const tgp_fb *fb, const uint8_t *rgb, int n, unsigned char *dst);
 /* Draw n RGB pixels at (x, y) of the visible area, clipped to it. */
-void tg_fb_put_row(tg_fb *fb, int x, int y, const uint8_t *rgb, int n);
+void tgp_fb_put_row(tgp_fb *fb, int x, int y, const uint8_t *rgb, int n);
 
 /* Produces row y of an image as 8-bit RGB. */
-typedef void (*tg_fb_row_fn)(void *user, int y, uint8_t *rgb);
+typedef void (*tgp_fb_row_fn)(void *user, int y, uint8_t *rgb);
 /* Draw a width x height image with its top-left at (x0, y0), clipped.
  * `rgb_row` is scratch for one row (width * 3 bytes). */
-void tg_fb_draw(tg_fb *fb, int x0, int y0, int width, int height,
-                tg_fb_row_fn row, void *user, uint8_t *rgb_row);
+void tgp_fb_draw(tgp_fb *fb, int x0, int y0, int width, int height,
+                tgp_fb_row_fn row, void *user, uint8_t *rgb_row);
 
 /* Render `frames` frames of `frame` (tg_frame_render with index 0, 1, ...)
  * and show each, centred, on the framebuffer at `path` (NULL: /dev/fb0) as
  * soon as it is rendered.  Returns 0, or 1 with a message in `msg` when
  * the device cannot be used (missing, not a framebuffer, unsupported
  * format), memory runs out or a frame fails to render. */
-int tg_fbdev_view(const char *path, tg_frame *frame, int width, int height,
+int tgp_fbdev_view(const char *path, tg_frame *frame, int width, int height,
                   int frames, char *msg, size_t size);
 /* The same on an open framebuffer (tests use a file-backed one). */
-int tg_fb_view_frames(tg_fb *fb, tg_frame *frame, int width, int height,
+int tgp_fb_view_frames(tgp_fb *fb, tg_frame *frame, int width, int height,
                       int frames, char *msg, size_t size);
 
 #endif

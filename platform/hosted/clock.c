@@ -1,10 +1,11 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * clock.c - the monotonic clock (POSIX clock_gettime(CLOCK_MONOTONIC)).
  */
 #include <time.h>
 #include "clock.h"
 
-double tg_clock_seconds(void)
+double tgp_clock_seconds(void)
 {
     struct timespec ts;
     if (clock_gettime(CLOCK_MONOTONIC, &ts) != 0) return 0.0;

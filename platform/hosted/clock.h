@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * clock.h - a monotonic clock for progress and benchmarks (hosted).
  */
@@ -5,6 +6,6 @@
 #define TG_HOSTED_CLOCK_H
 
 /* Seconds since an arbitrary fixed point; never goes backwards. */
-double tg_clock_seconds(void);
+double tgp_clock_seconds(void);
 
 #endif

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * file.c - the hosted platform's files (POSIX): whole-file reads, the tg_io
  * the scene parser loads OBJ meshes through, and atomic writes through a
@@ -26,7 +27,7 @@ static void say(char *msg, size_t msgsize, const char *fmt, ...)
 
 /* ---- reading ---- */
 
-int tg_file_read(const char *path, char **data, size_t *size, char *msg, size_t msgsize)
+int tgp_file_read(const char *path, char **data, size_t *size, char *msg, size_t msgsize)
 {
     struct stat st;
     char *buf = NULL;
@@ -98,13 +99,13 @@ int tg_file_read(const char *path, char **data, size_t *size, char *msg, size_t 
 
 static int host_io_read(void *user, const char *path, const char **data, size_t *size)
 {
-    tg_host_io *h = (tg_host_io *)user;
-    tg_host_io_file *node;
+    tgp_host_io *h = (tgp_host_io *)user;
+    tgp_host_io_file *node;
     char *buf;
     size_t n;
 
-    if (tg_file_read(path, &buf, &n, h->last_error, sizeof h->last_error)) return 1;
-    node = (tg_host_io_file *)malloc(sizeof *node);
+    if (tgp_file_read(path, &buf, &n, h->last_error, sizeof h->last_error)) return 1;
+    node = (tgp_host_io_file *)malloc(sizeof *node);
     if (!node) {
         free(buf);
         say(h->last_error, sizeof h->last_error, "cannot read: out of memory");
@@ -118,7 +119,7 @@ static int host_io_read(void *user, const char *path, const char **data, size_t 
     return 0;
 }
 
-void tg_host_io_init(tg_host_io *h)
+void tgp_host_io_init(tgp_host_io *h)
 {
     h->io.user = h;
     h->io.read_file = host_io_read;
@@ -126,10 +127,10 @@ void tg_host_io_init(tg_host_io *h)
     h->last_error[0] = '\0';
 }
 
-void tg_host_io_free(tg_host_io *h)
+void tgp_host_io_free(tgp_host_io *h)
 {
     while (h->files) {
-        tg_host_io_file *next = h->files->next;
+        tgp_host_io_file *next = h->files->next;
         free(h->files->data);
         free(h->files);
         h->files = next;
@@ -149,7 +150,7 @@ static void on_fatal_signal(int sig)
     raise(sig);
 }
 
-void tg_outfile_remove_on_signals(void)
+void tgp_outfile_remove_on_signals(void)
 {
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
@@ -204,7 +205,7 @@ static char *dup_string(const char *s)
     return d;
 }
 
-static void outfile_release(tg_outfile *f)
+static void outfile_release(tgp_outfile *f)
 {
     if (f->fd >= 0) close(f->fd);
     f->fd = -1;
@@ -214,7 +215,7 @@ static void outfile_release(tg_outfile *f)
     f->path = f->tmp_path = NULL;
 }
 
-int tg_outfile_open(tg_outfile *f, const char *path, char *msg, size_t msgsize)
+int tgp_outfile_open(tgp_outfile *f, const char *path, char *msg, size_t msgsize)
 {
     static unsigned long counter;
     size_t dlen = dir_length(path), plen = strlen(path), tlen;
@@ -257,7 +258,7 @@ int tg_outfile_open(tg_outfile *f, const char *path, char *msg, size_t msgsize)
     return 0;
 }
 
-static void outfile_flush(tg_outfile *f)
+static void outfile_flush(tgp_outfile *f)
 {
     size_t done = 0;
     while (done < f->buffered && !f->failed) {
@@ -272,7 +273,7 @@ static void outfile_flush(tg_outfile *f)
     f->buffered = 0;
 }
 
-void tg_outfile_write(tg_outfile *f, const void *data, size_t n)
+void tgp_outfile_write(tgp_outfile *f, const void *data, size_t n)
 {
     const unsigned char *p = (const unsigned char *)data;
     if (f->fd < 0 || f->failed) return;
@@ -301,7 +302,7 @@ static void sync_directory(const char *path)
     close(fd);
 }
 
-int tg_outfile_commit(tg_outfile *f, char *msg, size_t msgsize)
+int tgp_outfile_commit(tgp_outfile *f, char *msg, size_t msgsize)
 {
     sigset_t old;
     int err = 0;
@@ -330,7 +331,7 @@ int tg_outfile_commit(tg_outfile *f, char *msg, size_t msgsize)
     return 0;
 }
 
-void tg_outfile_abort(tg_outfile *f)
+void tgp_outfile_abort(tgp_outfile *f)
 {
     sigset_t old;
     hold_signals(&old);
@@ -339,37 +340,37 @@ void tg_outfile_abort(tg_outfile *f)
     release_signals(&old);
 }
 
-tg_outfile *tg_outfile_create(const char *path, char *msg, size_t msgsize)
+tgp_outfile *tgp_outfile_create(const char *path, char *msg, size_t msgsize)
 {
-    tg_outfile *f = (tg_outfile *)malloc(sizeof *f);
+    tgp_outfile *f = (tgp_outfile *)malloc(sizeof *f);
     if (!f) {
         say(msg, msgsize, "cannot write: out of memory");
         return NULL;
     }
-    if (tg_outfile_open(f, path, msg, msgsize)) {
+    if (tgp_outfile_open(f, path, msg, msgsize)) {
         free(f);
         return NULL;
     }
     return f;
 }
 
-int tg_outfile_finish(tg_outfile *f, char *msg, size_t msgsize)
+int tgp_outfile_finish(tgp_outfile *f, char *msg, size_t msgsize)
 {
-    int r = tg_outfile_commit(f, msg, msgsize);
+    int r = tgp_outfile_commit(f, msg, msgsize);
     free(f);
     return r;
 }
 
-int tg_file_write_atomic(const char *path, const void *data, size_t size,
+int tgp_file_write_atomic(const char *path, const void *data, size_t size,
                          char *msg, size_t msgsize)
 {
-    tg_outfile *f = tg_outfile_create(path, msg, msgsize);
+    tgp_outfile *f = tgp_outfile_create(path, msg, msgsize);
     if (!f) return 1;
-    tg_outfile_write(f, data, size);
-    return tg_outfile_finish(f, msg, msgsize);
+    tgp_outfile_write(f, data, size);
+    return tgp_outfile_finish(f, msg, msgsize);
 }
 
-int tg_file_dir_writable(const char *path, char *msg, size_t msgsize)
+int tgp_file_dir_writable(const char *path, char *msg, size_t msgsize)
 {
     size_t dlen = dir_length(path);
     char dir[4096];

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * image.c - PPM (P6) and PFM (PF/Pf) writing and reading for the hosted
  * platform.  Byte order is handled here, where bytes are written and read:
@@ -19,7 +20,7 @@ static void say(char *msg, size_t msgsize, const char *fmt, ...)
     va_end(ap);
 }
 
-int tg_img_format_from_path(const char *path, tg_img_format *format)
+int tgp_img_format_from_path(const char *path, tgp_img_format *format)
 {
     size_t n = strlen(path);
     const char *ext;
@@ -35,7 +36,7 @@ int tg_img_format_from_path(const char *path, tg_img_format *format)
     return 1;
 }
 
-int tg_img_check_size(int width, int height, int channels, char *msg, size_t msgsize)
+int tgp_img_check_size(int width, int height, int channels, char *msg, size_t msgsize)
 {
     size_t pixels, values, bytes;
     if (width < 1 || height < 1 || width > TG_IMG_MAX_SIDE || height > TG_IMG_MAX_SIDE) {
@@ -59,22 +60,22 @@ int tg_img_check_size(int width, int height, int channels, char *msg, size_t msg
 
 /* ---- writing ---- */
 
-void tg_ppm_write_header(tg_outfile *f, int width, int height)
+void tgp_ppm_write_header(tgp_outfile *f, int width, int height)
 {
     char head[64];
     int n = snprintf(head, sizeof head, "P6\n%d %d\n255\n", width, height);
-    tg_outfile_write(f, head, (size_t)n);
+    tgp_outfile_write(f, head, (size_t)n);
 }
 
-void tg_pfm_write_header(tg_outfile *f, int width, int height, int channels)
+void tgp_pfm_write_header(tgp_outfile *f, int width, int height, int channels)
 {
     char head[64];
     int n = snprintf(head, sizeof head, "%s\n%d %d\n-1.0\n", channels == 1 ? "Pf" : "PF",
                      width, height);
-    tg_outfile_write(f, head, (size_t)n);
+    tgp_outfile_write(f, head, (size_t)n);
 }
 
-void tg_pfm_write_values(tg_outfile *f, const float *values, size_t count)
+void tgp_pfm_write_values(tgp_outfile *f, const float *values, size_t count)
 {
     unsigned char le[1024];
     size_t i, k = 0;
@@ -86,38 +87,38 @@ void tg_pfm_write_values(tg_outfile *f, const float *values, size_t count)
         le[k++] = (unsigned char)((bits >> 16) & 0xffu);
         le[k++] = (unsigned char)(bits >> 24);
         if (k == sizeof le) {
-            tg_outfile_write(f, le, k);
+            tgp_outfile_write(f, le, k);
             k = 0;
         }
     }
-    if (k) tg_outfile_write(f, le, k);
+    if (k) tgp_outfile_write(f, le, k);
 }
 
-int tg_ppm_write(const char *path, int width, int height, const uint8_t *rgb,
+int tgp_ppm_write(const char *path, int width, int height, const uint8_t *rgb,
                  char *msg, size_t msgsize)
 {
-    tg_outfile *f;
-    if (tg_img_check_size(width, height, 3, msg, msgsize)) return 1;
-    f = tg_outfile_create(path, msg, msgsize);
+    tgp_outfile *f;
+    if (tgp_img_check_size(width, height, 3, msg, msgsize)) return 1;
+    f = tgp_outfile_create(path, msg, msgsize);
     if (!f) return 1;
-    tg_ppm_write_header(f, width, height);
-    tg_outfile_write(f, rgb, (size_t)width * (size_t)height * 3u);
-    return tg_outfile_finish(f, msg, msgsize);
+    tgp_ppm_write_header(f, width, height);
+    tgp_outfile_write(f, rgb, (size_t)width * (size_t)height * 3u);
+    return tgp_outfile_finish(f, msg, msgsize);
 }
 
-int tg_pfm_write(const char *path, int width, int height, int channels,
+int tgp_pfm_write(const char *path, int width, int height, int channels,
                  const float *values, char *msg, size_t msgsize)
 {
-    tg_outfile *f;
+    tgp_outfile *f;
     size_t row = (size_t)width * (size_t)channels;
     int y;
-    if (tg_img_check_size(width, height, channels, msg, msgsize)) return 1;
-    f = tg_outfile_create(path, msg, msgsize);
+    if (tgp_img_check_size(width, height, channels, msg, msgsize)) return 1;
+    f = tgp_outfile_create(path, msg, msgsize);
     if (!f) return 1;
-    tg_pfm_write_header(f, width, height, channels);
+    tgp_pfm_write_header(f, width, height, channels);
     for (y = height - 1; y >= 0; y--) /* PFM rows go bottom to top */
-        tg_pfm_write_values(f, values + (size_t)y * row, row);
-    return tg_outfile_finish(f, msg, msgsize);
+        tgp_pfm_write_values(f, values + (size_t)y * row, row);
+    return tgp_outfile_finish(f, msg, msgsize);
 }
 
 /* ---- reading ---- */
@@ -198,10 +199,10 @@ static int end_header(reader *r)
     return 0;
 }
 
-static int alloc_pixels(tg_img *img, char *msg, size_t msgsize)
+static int alloc_pixels(tgp_img *img, char *msg, size_t msgsize)
 {
     size_t count = (size_t)img->width * (size_t)img->height * (size_t)img->channels;
-    if (tg_img_check_size(img->width, img->height, img->channels, msg, msgsize)) return 1;
+    if (tgp_img_check_size(img->width, img->height, img->channels, msg, msgsize)) return 1;
     img->pixels = (float *)malloc(count * sizeof(float));
     if (!img->pixels) {
         say(msg, msgsize, "out of memory for a %dx%d image", img->width, img->height);
@@ -210,7 +211,7 @@ static int alloc_pixels(tg_img *img, char *msg, size_t msgsize)
     return 0;
 }
 
-static int decode_ppm(reader *r, tg_img *img, char *msg, size_t msgsize)
+static int decode_ppm(reader *r, tgp_img *img, char *msg, size_t msgsize)
 {
     long maxval;
     size_t count, bytes_per, need, i;
@@ -227,7 +228,7 @@ static int decode_ppm(reader *r, tg_img *img, char *msg, size_t msgsize)
     img->channels = 3;
     img->format = TG_IMG_PPM;
     img->maxval = (int)maxval;
-    if (tg_img_check_size(img->width, img->height, 3, msg, msgsize)) return 1;
+    if (tgp_img_check_size(img->width, img->height, 3, msg, msgsize)) return 1;
     count = (size_t)img->width * (size_t)img->height * 3u;
     bytes_per = maxval > 255 ? 2u : 1u;
     need = count * bytes_per;
@@ -250,7 +251,7 @@ static int decode_ppm(reader *r, tg_img *img, char *msg, size_t msgsize)
     return 0;
 }
 
-static int decode_pfm(reader *r, tg_img *img, char *msg, size_t msgsize)
+static int decode_pfm(reader *r, tgp_img *img, char *msg, size_t msgsize)
 {
     float scale;
     size_t row, need, i;
@@ -267,7 +268,7 @@ static int decode_pfm(reader *r, tg_img *img, char *msg, size_t msgsize)
     little = scale < 0.0f;
     img->format = TG_IMG_PFM;
     img->maxval = 0;
-    if (tg_img_check_size(img->width, img->height, img->channels, msg, msgsize)) return 1;
+    if (tgp_img_check_size(img->width, img->height, img->channels, msg, msgsize)) return 1;
     row = (size_t)img->width * (size_t)img->channels;
     need = row * (size_t)img->height * 4u;
     if ((size_t)(r->end - r->p) < need) {
@@ -288,7 +289,7 @@ static int decode_pfm(reader *r, tg_img *img, char *msg, size_t msgsize)
     return 0;
 }
 
-int tg_img_decode(const unsigned char *data, size_t size, tg_img *img, char *msg, size_t msgsize)
+int tgp_img_decode(const unsigned char *data, size_t size, tgp_img *img, char *msg, size_t msgsize)
 {
     reader r;
     memset(img, 0, sizeof *img);
@@ -307,19 +308,19 @@ int tg_img_decode(const unsigned char *data, size_t size, tg_img *img, char *msg
     return 1;
 }
 
-int tg_img_read(const char *path, tg_img *img, char *msg, size_t msgsize)
+int tgp_img_read(const char *path, tgp_img *img, char *msg, size_t msgsize)
 {
     char *data;
     size_t size;
     int r;
     memset(img, 0, sizeof *img);
-    if (tg_file_read(path, &data, &size, msg, msgsize)) return 1;
-    r = tg_img_decode((const unsigned char *)data, size, img, msg, msgsize);
+    if (tgp_file_read(path, &data, &size, msg, msgsize)) return 1;
+    r = tgp_img_decode((const unsigned char *)data, size, img, msg, msgsize);
     free(data);
     return r;
 }
 
-void tg_img_free(tg_img *img)
+void tgp_img_free(tgp_img *img)
 {
     free(img->pixels);
     img->pixels = NULL;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * imgdiff.c - image comparison for `tinygi diff` and the golden tests:
  * RMSE, PSNR, the largest difference and where it is, and a visual
@@ -19,13 +20,13 @@ static void say(char *msg, size_t msgsize, const char *fmt, ...)
     va_end(ap);
 }
 
-static const char *format_name(const tg_img *img)
+static const char *format_name(const tgp_img *img)
 {
     if (img->format == TG_IMG_PPM) return "PPM";
     return img->channels == 1 ? "PFM (Pf)" : "PFM (PF)";
 }
 
-static int compatible(const tg_img *a, const tg_img *b, char *msg, size_t msgsize)
+static int compatible(const tgp_img *a, const tgp_img *b, char *msg, size_t msgsize)
 {
     if (a->format != b->format || a->channels != b->channels) {
         say(msg, msgsize, "cannot compare a %s image with a %s image", format_name(a),
@@ -54,7 +55,7 @@ static double value_difference(float a, float b)
     return d < 0.0 ? -d : d;
 }
 
-int tg_diff_compare(const tg_img *a, const tg_img *b, double tolerance, tg_diff *d,
+int tgp_diff_compare(const tgp_img *a, const tgp_img *b, double tolerance, tgp_diff *d,
                     char *msg, size_t msgsize)
 {
     size_t count, i, c, n = (size_t)a->channels;
@@ -86,12 +87,12 @@ int tg_diff_compare(const tg_img *a, const tg_img *b, double tolerance, tg_diff 
     return 0;
 }
 
-int tg_diff_within(const tg_diff *d)
+int tgp_diff_within(const tgp_diff *d)
 {
     return d->max_abs <= d->tolerance;
 }
 
-uint8_t *tg_diff_image(const tg_img *a, const tg_img *b, const tg_diff *d)
+uint8_t *tgp_diff_image(const tgp_img *a, const tgp_img *b, const tgp_diff *d)
 {
     size_t count = (size_t)a->width * (size_t)a->height, i, c, n = (size_t)a->channels;
     uint8_t *rgb = (uint8_t *)malloc(count * 3u);
@@ -108,7 +109,7 @@ uint8_t *tg_diff_image(const tg_img *a, const tg_img *b, const tg_diff *d)
     return rgb;
 }
 
-int tg_diff_describe(const tg_diff *d, char *buf, size_t size)
+int tgp_diff_describe(const tgp_diff *d, char *buf, size_t size)
 {
     static const char channel_name[3] = { 'r', 'g', 'b' };
     return snprintf(buf, size, "rmse %.6g, psnr %.2f dB, max %.6g at %d,%d (channel %c), "

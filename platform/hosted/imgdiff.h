@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * imgdiff.h - compare two images (PPM or PFM, see image.h): the numbers
  * behind `tinygi diff` and the golden-image tests (both use this code).
@@ -25,26 +26,26 @@
 #include <stdint.h>
 #include "image.h"
 
-typedef struct tg_diff {
+typedef struct tgp_diff {
     double rmse, psnr, peak;
     double max_abs;
     int max_x, max_y, max_channel;
     double max_finite;        /* largest finite difference (scales the diff image) */
     double tolerance;
     size_t pixels, pixels_over;
-} tg_diff;
+} tgp_diff;
 
 /* 0 and *d filled, or 1 if the images cannot be compared (reason in msg). */
-int tg_diff_compare(const tg_img *a, const tg_img *b, double tolerance, tg_diff *d,
+int tgp_diff_compare(const tgp_img *a, const tgp_img *b, double tolerance, tgp_diff *d,
                     char *msg, size_t msgsize);
 /* 1 when max_abs <= tolerance. */
-int tg_diff_within(const tg_diff *d);
+int tgp_diff_within(const tgp_diff *d);
 /* A visual difference image, width*height RGB bytes (malloc'd; NULL when out
  * of memory): each channel's difference scaled so that max_finite is 255
  * (non-finite differences are 255); one-channel images are grey. */
-uint8_t *tg_diff_image(const tg_img *a, const tg_img *b, const tg_diff *d);
+uint8_t *tgp_diff_image(const tgp_img *a, const tgp_img *b, const tgp_diff *d);
 /* One line: "rmse R, psnr P dB, max M at X,Y (channel C), N of T pixels
  * over tolerance TOL".  Returns the length snprintf would give. */
-int tg_diff_describe(const tg_diff *d, char *buf, size_t size);
+int tgp_diff_describe(const tgp_diff *d, char *buf, size_t size);
 
 #endif

@@ -1,11 +1,12 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * ao.h - what every ambient-occlusion / directional-occlusion technique of
- * tinygi shares: the pass input/output block (tg_ao_io), view-space helpers
- * written straight from the tg_view fields (no call into view.c per sample),
+ * tinygi shares: the pass input/output block (tgi_ao_io), view-space helpers
+ * written straight from the tgi_view fields (no call into view.c per sample),
  * and the interreflection brightening of AO (RTR eq. 11.12-11.13).
  *
  * Every technique is a pass of the same shape
- *     void tg_<tech>_rows(const tg_<tech>_params *p, const tg_ao_io *io, int y0, int y1);
+ *     void tg_<tech>_rows(const tg_<tech>_params *p, const tgi_ao_io *io, int y0, int y1);
  * over rows [y0, y1), so the frame can treat them alike and a hosted
  * platform can split rows across threads.  Conventions of the outputs:
  *   ao      in [0, 1], 1 = open (unoccluded);
@@ -21,16 +22,16 @@
 #include "../core/vec.h"
 #include "../raster/view.h"
 
-typedef struct tg_ao_io {
+typedef struct tgi_ao_io {
     int width, height;
-    const tg_view *view;                       /* the camera that made the G-buffer */
+    const tgi_view *view;                       /* the camera that made the G-buffer */
     const tg_real *depth, *nx, *ny, *nz;       /* G-buffer: view z, world unit normal */
     const uint8_t *sky;                        /* 1 where no triangle was drawn */
     const tg_real *rad_r, *rad_g, *rad_b;      /* direct-light outgoing diffuse radiance; NULL if none */
     tg_real *ao, *bent_x, *bent_y, *bent_z;    /* ao in [0,1]; bent world unit, may be NULL */
     tg_real *cone;                             /* bent-cone half angle (radians), may be NULL */
     tg_real *near_r, *near_g, *near_b;         /* one-bounce irradiance, NULL when not computed */
-} tg_ao_io;
+} tgi_ao_io;
 
 /* A radius this large means "unlimited" (ambient occlusion rather than
  * obscurance, RTR sec. 11.3.2). */
@@ -40,7 +41,7 @@ typedef struct tg_ao_io {
  * k'_A = k_A / (1 - rho_ss (1 - k_A)): AO brightened as if the blocked
  * directions saw the shaded point's own outgoing radiance (Stewart-Langer).
  * Usable on any technique's ao, per colour channel (albedo = rho_ss). */
-static inline tg_real tg_ao_interreflection(tg_real ao, tg_real albedo)
+static inline tg_real tgi_ao_interreflection(tg_real ao, tg_real albedo)
 {
     tg_real k = tg_saturate(ao);
     tg_real den = tg_sub(TG_ONE, tg_mul(tg_saturate(albedo), tg_sub(TG_ONE, k))); /* RTR eq. 11.13 */
@@ -51,7 +52,7 @@ static inline tg_real tg_ao_interreflection(tg_real ao, tg_real albedo)
 /* ---- view-space helpers (view.h conventions: x right, y up, z forward) ---- */
 
 /* View-space position of the centre of pixel (x, y) at view depth z. */
-static inline tg_vec3 tg_ao_unproject(const tg_view *v, int x, int y, tg_real z)
+static inline tg_vec3 tgi_ao_unproject(const tgi_view *v, int x, int y, tg_real z)
 {
     /* x_v = ndc_x z / focal_x with ndc_x = (2x + 1 - W) / W: one division per
      * axis, of numbers near 1, so Q16.16 keeps its precision */
@@ -62,7 +63,7 @@ static inline tg_vec3 tg_ao_unproject(const tg_view *v, int x, int y, tg_real z)
 
 /* Pixel (px, py) of a view-space point: 1, or 0 when it is behind the
  * camera or off screen.  Nearest pixel (whose square holds the projection). */
-static inline int tg_ao_project_pixel(const tg_view *v, tg_vec3 p, int *px, int *py)
+static inline int tgi_ao_project_pixel(const tgi_view *v, tg_vec3 p, int *px, int *py)
 {
     tg_real ndc_x, ndc_y;
     int32_t x, y;
@@ -77,28 +78,28 @@ static inline int tg_ao_project_pixel(const tg_view *v, tg_vec3 p, int *px, int 
     return 1;
 }
 
-/* Pixel index of a view-space point, or -1 (see tg_ao_project_pixel). */
-static inline int tg_ao_project_index(const tg_view *v, tg_vec3 p)
+/* Pixel index of a view-space point, or -1 (see tgi_ao_project_pixel). */
+static inline int tgi_ao_project_index(const tgi_view *v, tg_vec3 p)
 {
     int x, y;
-    return tg_ao_project_pixel(v, p, &x, &y) ? y * v->width + x : -1;
+    return tgi_ao_project_pixel(v, p, &x, &y) ? y * v->width + x : -1;
 }
 
 /* World direction -> view direction and back (the view basis is orthonormal). */
-static inline tg_vec3 tg_ao_dir_to_view(const tg_view *v, tg_vec3 d)
+static inline tg_vec3 tgi_ao_dir_to_view(const tgi_view *v, tg_vec3 d)
 {
-    return tg_v3(tg_v3_dot(d, v->right), tg_v3_dot(d, v->up), tg_v3_dot(d, v->forward));
+    return tg_v3(tgi_v3_dot(d, v->right), tgi_v3_dot(d, v->up), tgi_v3_dot(d, v->forward));
 }
-static inline tg_vec3 tg_ao_dir_to_world(const tg_view *v, tg_vec3 d)
+static inline tg_vec3 tgi_ao_dir_to_world(const tgi_view *v, tg_vec3 d)
 {
-    return tg_v3_add(tg_v3_add(tg_v3_scale(v->right, d.x), tg_v3_scale(v->up, d.y)),
-                     tg_v3_scale(v->forward, d.z));
+    return tgi_v3_add(tgi_v3_add(tgi_v3_scale(v->right, d.x), tgi_v3_scale(v->up, d.y)),
+                     tgi_v3_scale(v->forward, d.z));
 }
 
 /* G-buffer normal of pixel i in view space. */
-static inline tg_vec3 tg_ao_normal_view(const tg_ao_io *io, int i)
+static inline tg_vec3 tgi_ao_normal_view(const tgi_ao_io *io, int i)
 {
-    return tg_ao_dir_to_view(io->view, tg_v3(io->nx[i], io->ny[i], io->nz[i]));
+    return tgi_ao_dir_to_view(io->view, tg_v3(io->nx[i], io->ny[i], io->nz[i]));
 }
 
 /* Depth bias of a screen-space test at view position pv with view normal
@@ -107,10 +108,10 @@ static inline tg_vec3 tg_ao_normal_view(const tg_ao_io *io, int i)
  * theta between the normal and the view ray, tan clamped to 16.  At grazing
  * angles the nearest-pixel depth of a plane differs from the plane at the
  * sample by about this much, so smaller gaps are not evidence of occlusion. */
-static inline tg_real tg_ao_depth_bias(const tg_ao_io *io, tg_vec3 pv, tg_vec3 nv, tg_real base)
+static inline tg_real tgi_ao_depth_bias(const tgi_ao_io *io, tg_vec3 pv, tg_vec3 nv, tg_real base)
 {
-    tg_vec3 ray = tg_v3_normalize_or(pv, tg_v3(0, 0, TG_ONE));
-    tg_real c = tg_abs(tg_v3_dot(nv, ray));
+    tg_vec3 ray = tgi_v3_normalize_or(pv, tg_v3(0, 0, TG_ONE));
+    tg_real c = tg_abs(tgi_v3_dot(nv, ray));
     tg_real s = tg_sqrt(tg_sub(TG_ONE, tg_min(tg_sqr(c), TG_ONE)));
     tg_real tan_t = tg_div(s, tg_max(c, TG_R(0.0625f)));
     tg_real pixel = tg_div(pv.z, io->view->pixels_per_unit);
@@ -128,27 +129,27 @@ static inline tg_real tg_ao_depth_bias(const tg_ao_io *io, tg_vec3 pv, tg_vec3 n
  * at the sample by up to a pixel's slope, which a plain depth comparison
  * would read as occlusion.  Off-screen and sky count as open.  *qx, *qy get
  * the pixel (when on screen). */
-static inline int tg_ao_sample_blocked_at(const tg_ao_io *io, tg_vec3 p, tg_vec3 s, tg_real eps,
+static inline int tgi_ao_sample_blocked_at(const tgi_ao_io *io, tg_vec3 p, tg_vec3 s, tg_real eps,
                                           tg_real range, int *qx, int *qy)
 {
     int j;
     tg_vec3 q, pq;
-    if (!tg_ao_project_pixel(io->view, s, qx, qy)) return 0;
+    if (!tgi_ao_project_pixel(io->view, s, qx, qy)) return 0;
     j = *qy * io->width + *qx;
     if (io->sky[j] || io->depth[j] >= s.z) return 0;
-    q = tg_ao_unproject(io->view, *qx, *qy, io->depth[j]);
-    pq = tg_v3_sub(q, p);
-    if (tg_v3_dot(pq, pq) >= tg_sqr(range)) return 0;
-    return tg_v3_dot(tg_ao_normal_view(io, j), tg_v3_sub(s, q)) < tg_neg(eps);
+    q = tgi_ao_unproject(io->view, *qx, *qy, io->depth[j]);
+    pq = tgi_v3_sub(q, p);
+    if (tgi_v3_dot(pq, pq) >= tg_sqr(range)) return 0;
+    return tgi_v3_dot(tgi_ao_normal_view(io, j), tgi_v3_sub(s, q)) < tg_neg(eps);
 }
-static inline int tg_ao_sample_blocked(const tg_ao_io *io, tg_vec3 p, tg_vec3 s, tg_real eps, tg_real range)
+static inline int tgi_ao_sample_blocked(const tgi_ao_io *io, tg_vec3 p, tg_vec3 s, tg_real eps, tg_real range)
 {
     int qx, qy;
-    return tg_ao_sample_blocked_at(io, p, s, eps, range, &qx, &qy);
+    return tgi_ao_sample_blocked_at(io, p, s, eps, range, &qx, &qy);
 }
 
 /* Write the "nothing computed" result for pixel i (sky, or no data). */
-static inline void tg_ao_write_open(const tg_ao_io *io, int i)
+static inline void tgi_ao_write_open(const tgi_ao_io *io, int i)
 {
     io->ao[i] = TG_ONE;
     if (io->bent_x) { io->bent_x[i] = io->nx[i]; io->bent_y[i] = io->ny[i]; io->bent_z[i] = io->nz[i]; }
@@ -158,12 +159,12 @@ static inline void tg_ao_write_open(const tg_ao_io *io, int i)
 
 /* Store a bent normal given in view space (any length) as a world unit
  * vector; a zero vector falls back to the normal. */
-static inline void tg_ao_write_bent_view(const tg_ao_io *io, int i, tg_vec3 bent_view)
+static inline void tgi_ao_write_bent_view(const tgi_ao_io *io, int i, tg_vec3 bent_view)
 {
     tg_vec3 n = tg_v3(io->nx[i], io->ny[i], io->nz[i]);
     tg_vec3 b;
     if (!io->bent_x) return;
-    b = tg_v3_normalize_or(tg_ao_dir_to_world(io->view, bent_view), n);
+    b = tgi_v3_normalize_or(tgi_ao_dir_to_world(io->view, bent_view), n);
     io->bent_x[i] = b.x; io->bent_y[i] = b.y; io->bent_z[i] = b.z;
 }
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * bentcone.h - screen-space bent normals and bent cones (Klehm, Ritschel,
  * Eisemann and Seidel 2011, sec. 3.1-3.4).
@@ -28,23 +29,23 @@
 
 #include "ao.h"
 
-typedef struct tg_bentcone_params {
+typedef struct tgi_bentcone_params {
     int samples;                 /* directions per pixel, 1..TG_AO_MAX_SAMPLES (default 8) */
     int steps;                   /* ray-march points per direction (default 3) */
     tg_real radius;              /* world units (default 1) */
     tg_real bias;                /* depth below the occluder's tangent plane that counts, fraction of the radius (default 0.03) */
     const tg_vec3 *env_sh9;      /* environment radiance SH9; NULL = no far output */
     tg_real *far_r, *far_g, *far_b; /* out: cone-restricted environment irradiance; NULL = not wanted */
-} tg_bentcone_params;
+} tgi_bentcone_params;
 
-void tg_bentcone_defaults(tg_bentcone_params *p);
-void tg_bentcone_rows(const tg_bentcone_params *p, const tg_ao_io *io, int y0, int y1);
+void tgi_bentcone_defaults(tgi_bentcone_params *p);
+void tgi_bentcone_rows(const tgi_bentcone_params *p, const tgi_ao_io *io, int y0, int y1);
 
 /* Klehm sec. 3.2: cone half angle from the length of the mean unoccluded
  * direction (uniform hemisphere sampling), radians in [0, pi/2]. */
-tg_real tg_bentcone_aperture(tg_real mean_length);
+tg_real tgi_bentcone_aperture(tg_real mean_length);
 
 /* Klehm sec. 3.3-3.4: E_far = pi L_c(bent, cone) * ao * max(0, bent . n). */
-tg_vec3 tg_bentcone_far(const tg_vec3 sh[9], tg_vec3 bent, tg_real cone, tg_real ao, tg_vec3 n);
+tg_vec3 tgi_bentcone_far(const tg_vec3 sh[9], tg_vec3 bent, tg_real cone, tg_real ao, tg_vec3 n);
 
 #endif

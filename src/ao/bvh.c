@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * bvh.c - bounding-volume hierarchy over triangles for the ray-traced AO
  * reference: build (median split, deterministic, no recursion), closest-hit
@@ -6,12 +7,12 @@
  * Fixed-point care:
  *  - slab tests use 1/d with |d| clamped to >= 2^-12; the boxes are
  *    enlarged by extent / 4096 so the clamped ray stays conservative;
- *  - the traversal's triangle test (tg_bvh_tri_hit) uses triangles prepared
+ *  - the traversal's triangle test (tgi_bvh_tri_hit) uses triangles prepared
  *    at build time: unit plane normal, and dual vectors of the edges scaled
  *    by a power of two into [2, 4), so the barycentrics u = a . h, v = b . h
  *    keep ~17 bits whatever the triangle's size; per ray and triangle it is
  *    three dot products and one division;
- *  - the independent Moller-Trumbore test (tg_ray_triangle, used by the
+ *  - the independent Moller-Trumbore test (tgi_ray_triangle, used by the
  *    tests as a check) first slides the origin along the ray to the point
  *    nearest vertex 0, then works in coordinates relative to vertex 0 scaled
  *    into [4, 8): every cross and triple product stays inside Q16.16.
@@ -26,14 +27,14 @@ typedef struct bvh_task { int32_t node, begin, end; } bvh_task;
 
 static size_t align16(size_t n) { return (n + 15u) & ~(size_t)15u; }
 
-size_t tg_bvh_bytes(int tri_count)
+size_t tgi_bvh_bytes(int tri_count)
 {
     size_t nodes, idx, tris, total;
     size_t n = tri_count > 0 ? (size_t)tri_count : 1u;
     if (tri_count < 0) return 0;
-    if (tg_size_mul(2u * n, sizeof(tg_bvh_node), &nodes)) return 0;
+    if (tg_size_mul(2u * n, sizeof(tgi_bvh_node), &nodes)) return 0;
     if (tg_size_mul(n, sizeof(int32_t), &idx)) return 0;
-    if (tg_size_mul(n, sizeof(tg_bvh_tri), &tris)) return 0;
+    if (tg_size_mul(n, sizeof(tgi_bvh_tri), &tris)) return 0;
     if (tg_size_add(align16(nodes), align16(idx), &total)) return 0;
     if (tg_size_add(total, align16(tris), &total)) return 0;
     if (tg_size_add(total, 16u, &total)) return 0;
@@ -77,7 +78,7 @@ static void select_kth(const tg_vec3 *pos, int32_t *idx, int lo, int hi, int k, 
     }
 }
 
-static void bounds_of(const tg_bvh *b, int begin, int end, tg_vec3 *lo, tg_vec3 *hi,
+static void bounds_of(const tgi_bvh *b, int begin, int end, tg_vec3 *lo, tg_vec3 *hi,
                       tg_vec3 *clo, tg_vec3 *chi)
 {
     int i, j;
@@ -96,18 +97,18 @@ static void bounds_of(const tg_bvh *b, int begin, int end, tg_vec3 *lo, tg_vec3 
     }
 }
 
-int tg_bvh_build(tg_bvh *bvh, const tg_vec3 *tri_pos, int tri_count, void *memory, size_t size)
+int tgi_bvh_build(tgi_bvh *bvh, const tg_vec3 *tri_pos, int tri_count, void *memory, size_t size)
 {
     bvh_task stack[TG_BVH_STACK];
     int sp = 0, i;
     tg_real margin = 0;
     uintptr_t base = (uintptr_t)memory;
-    size_t need = tg_bvh_bytes(tri_count), n = tri_count > 0 ? (size_t)tri_count : 1u;
+    size_t need = tgi_bvh_bytes(tri_count), n = tri_count > 0 ? (size_t)tri_count : 1u;
     if (tri_count < 0 || need == 0 || size < need || !memory) return -1;
     base = (base + 15u) & ~(uintptr_t)15u;
-    bvh->nodes = (tg_bvh_node *)base;
-    bvh->tri_index = (int32_t *)(base + align16(2u * n * sizeof(tg_bvh_node)));
-    bvh->tris = (tg_bvh_tri *)((uintptr_t)bvh->tri_index + align16(n * sizeof(int32_t)));
+    bvh->nodes = (tgi_bvh_node *)base;
+    bvh->tri_index = (int32_t *)(base + align16(2u * n * sizeof(tgi_bvh_node)));
+    bvh->tris = (tgi_bvh_tri *)((uintptr_t)bvh->tri_index + align16(n * sizeof(int32_t)));
     bvh->tri_pos = tri_pos;
     bvh->tri_count = tri_count;
     bvh->node_count = 0;
@@ -117,7 +118,7 @@ int tg_bvh_build(tg_bvh *bvh, const tg_vec3 *tri_pos, int tri_count, void *memor
     stack[sp].node = 0; stack[sp].begin = 0; stack[sp].end = tri_count; sp++;
     while (sp > 0) {
         bvh_task task = stack[--sp];
-        tg_bvh_node *node = &bvh->nodes[task.node];
+        tgi_bvh_node *node = &bvh->nodes[task.node];
         tg_vec3 lo, hi, clo, chi, ext;
         int axis, mid;
         bounds_of(bvh, task.begin, task.end, &lo, &hi, &clo, &chi);
@@ -132,7 +133,7 @@ int tg_bvh_build(tg_bvh *bvh, const tg_vec3 *tri_pos, int tri_count, void *memor
             node->count = task.end - task.begin;
             continue;
         }
-        ext = tg_v3_sub(chi, clo);
+        ext = tgi_v3_sub(chi, clo);
         axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
         mid = task.begin + (task.end - task.begin) / 2;
         select_kth(tri_pos, bvh->tri_index, task.begin, task.end, mid, axis);
@@ -143,7 +144,7 @@ int tg_bvh_build(tg_bvh *bvh, const tg_vec3 *tri_pos, int tri_count, void *memor
         stack[sp].node = node->first; stack[sp].begin = task.begin; stack[sp].end = mid; sp++;
     }
     for (i = 0; i < tri_count; i++)
-        tg_bvh_tri_prepare(&bvh->tris[i], tri_pos + 3 * (size_t)bvh->tri_index[i]);
+        tgi_bvh_tri_prepare(&bvh->tris[i], tri_pos + 3 * (size_t)bvh->tri_index[i]);
     return 0;
 }
 
@@ -151,16 +152,16 @@ int tg_bvh_build(tg_bvh *bvh, const tg_vec3 *tri_pos, int tri_count, void *memor
 
 static tg_real max_abs3(tg_vec3 a) { return tg_max(tg_max(tg_abs(a.x), tg_abs(a.y)), tg_abs(a.z)); }
 
-int tg_ray_triangle(const tg_vec3 *v, tg_vec3 o, tg_vec3 d, tg_real tmax,
+int tgi_ray_triangle(const tg_vec3 *v, tg_vec3 o, tg_vec3 d, tg_real tmax,
                     tg_real *t_out, tg_real *u_out, tg_real *w_out)
 {
-    tg_vec3 e1 = tg_v3_sub(v[1], v[0]), e2 = tg_v3_sub(v[2], v[0]), s, p, q;
+    tg_vec3 e1 = tgi_v3_sub(v[1], v[0]), e2 = tgi_v3_sub(v[2], v[0]), s, p, q;
     tg_real emax = tg_max(max_abs3(e1), max_abs3(e2)), m, det, uu, ww, tt, t;
-    tg_real t_shift = tg_max(tg_v3_dot(tg_v3_sub(v[0], o), d), 0);
+    tg_real t_shift = tg_max(tgi_v3_dot(tgi_v3_sub(v[0], o), d), 0);
     int k = 0, neg;
     /* slide the origin to the ray point nearest vertex 0: a hit then lies
      * within one edge length of it, so |s| <= |hit - v0| <= sqrt(3) emax */
-    s = tg_v3_sub(tg_v3_add(o, tg_v3_scale(d, t_shift)), v[0]);
+    s = tgi_v3_sub(tgi_v3_add(o, tgi_v3_scale(d, t_shift)), v[0]);
     m = max_abs3(s);
     if (emax <= 0 || m > tg_add(tg_ldexp(emax, 1), TG_R(0.0001f))) return 0;
     m = tg_max(m, emax);
@@ -169,19 +170,19 @@ int tg_ray_triangle(const tg_vec3 *v, tg_vec3 o, tg_vec3 d, tg_real tmax,
     e1 = tg_v3(tg_ldexp(e1.x, k), tg_ldexp(e1.y, k), tg_ldexp(e1.z, k));
     e2 = tg_v3(tg_ldexp(e2.x, k), tg_ldexp(e2.y, k), tg_ldexp(e2.z, k));
     s = tg_v3(tg_ldexp(s.x, k), tg_ldexp(s.y, k), tg_ldexp(s.z, k));
-    p = tg_v3_cross(d, e2);
-    det = tg_v3_dot(e1, p);
+    p = tgi_v3_cross(d, e2);
+    det = tgi_v3_dot(e1, p);
     neg = det < 0;
     if (neg) det = tg_neg(det);
     if (det <= TG_R(0.0001f)) return 0;        /* ray parallel to the plane */
-    uu = tg_v3_dot(s, p);
+    uu = tgi_v3_dot(s, p);
     if (neg) uu = tg_neg(uu);
     if (uu < 0 || uu > det) return 0;
-    q = tg_v3_cross(s, e1);
-    ww = tg_v3_dot(d, q);
+    q = tgi_v3_cross(s, e1);
+    ww = tgi_v3_dot(d, q);
     if (neg) ww = tg_neg(ww);
     if (ww < 0 || tg_add(uu, ww) > det) return 0;
-    tt = tg_v3_dot(e2, q);
+    tt = tgi_v3_dot(e2, q);
     if (neg) tt = tg_neg(tt);
     t = tg_add(t_shift, tg_ldexp(tg_div(tt, det), -k));
     if (t <= 0 || t >= tmax) return 0;
@@ -195,9 +196,9 @@ int tg_ray_triangle(const tg_vec3 *v, tg_vec3 o, tg_vec3 d, tg_real tmax,
 
 static tg_vec3 v3_ldexp(tg_vec3 a, int k) { return tg_v3(tg_ldexp(a.x, k), tg_ldexp(a.y, k), tg_ldexp(a.z, k)); }
 
-void tg_bvh_tri_prepare(tg_bvh_tri *tr, const tg_vec3 *v)
+void tgi_bvh_tri_prepare(tgi_bvh_tri *tr, const tg_vec3 *v)
 {
-    tg_vec3 e1 = tg_v3_sub(v[1], v[0]), e2 = tg_v3_sub(v[2], v[0]), nn, a, b;
+    tg_vec3 e1 = tgi_v3_sub(v[1], v[0]), e2 = tgi_v3_sub(v[2], v[0]), nn, a, b;
     tg_real m = tg_max(max_abs3(e1), max_abs3(e2)), len2;
     int k = 0;
     tr->v0 = v[0];
@@ -208,33 +209,33 @@ void tg_bvh_tri_prepare(tg_bvh_tri *tr, const tg_vec3 *v)
     while (m >= TG_R(4.0f) && k > -24) { m = tg_ldexp(m, -1); k--; }
     e1 = v3_ldexp(e1, k);
     e2 = v3_ldexp(e2, k);
-    nn = tg_v3_cross(e1, e2);                  /* |nn| <= 48: |nn|^2 fits Q16.16 */
-    len2 = tg_v3_dot(nn, nn);
+    nn = tgi_v3_cross(e1, e2);                  /* |nn| <= 48: |nn|^2 fits Q16.16 */
+    len2 = tgi_v3_dot(nn, nn);
     if (len2 <= TG_R(0.0001f)) return;         /* degenerate: never hit */
-    tr->n = tg_v3_scale(nn, tg_rsqrt(len2));
-    a = tg_v3_cross(e2, nn);                   /* a . e1 = |nn|^2, a . e2 = 0 */
-    b = tg_v3_cross(nn, e1);                   /* b . e2 = |nn|^2, b . e1 = 0 */
+    tr->n = tgi_v3_scale(nn, tg_rsqrt(len2));
+    a = tgi_v3_cross(e2, nn);                   /* a . e1 = |nn|^2, a . e2 = 0 */
+    b = tgi_v3_cross(nn, e1);                   /* b . e2 = |nn|^2, b . e1 = 0 */
     /* divide each component (not times 1/len2: that would keep few bits in Q16.16) */
     tr->a = tg_v3(tg_div(a.x, len2), tg_div(a.y, len2), tg_div(a.z, len2));
     tr->b = tg_v3(tg_div(b.x, len2), tg_div(b.y, len2), tg_div(b.z, len2));
     tr->k = k;
 }
 
-int tg_bvh_tri_hit(const tg_bvh_tri *tr, tg_vec3 o, tg_vec3 d, tg_real tmax,
+int tgi_bvh_tri_hit(const tgi_bvh_tri *tr, tg_vec3 o, tg_vec3 d, tg_real tmax,
                    tg_real *t_out, tg_real *u_out, tg_real *w_out)
 {
-    tg_real nd = tg_v3_dot(tr->n, d), t, u, w;
-    tg_vec3 ov = tg_v3_sub(o, tr->v0), h;
+    tg_real nd = tgi_v3_dot(tr->n, d), t, u, w;
+    tg_vec3 ov = tgi_v3_sub(o, tr->v0), h;
     if (tg_abs(nd) <= TG_R(0.0001f)) return 0;  /* parallel (or degenerate: n = 0) */
-    t = tg_div(tg_neg(tg_v3_dot(tr->n, ov)), nd);  /* the plane */
+    t = tg_div(tg_neg(tgi_v3_dot(tr->n, ov)), nd);  /* the plane */
     if (t <= 0 || t >= tmax) return 0;
-    h = v3_ldexp(tg_v3_add(ov, tg_v3_scale(d, t)), tr->k);   /* hit - v0, scaled like the edges */
+    h = v3_ldexp(tgi_v3_add(ov, tgi_v3_scale(d, t)), tr->k);   /* hit - v0, scaled like the edges */
     /* edges widened by 2^-12 of the triangle: neighbours sharing an edge
      * overlap a hair instead of letting rounding open a crack (a ray through
      * a crack would see the sky from inside a closed box) */
-    u = tg_v3_dot(tr->a, h);
+    u = tgi_v3_dot(tr->a, h);
     if (u < tg_neg(EDGE_EPS) || u > TG_R(1.000244140625f)) return 0;
-    w = tg_v3_dot(tr->b, h);
+    w = tgi_v3_dot(tr->b, h);
     if (w < tg_neg(EDGE_EPS) || tg_add(u, w) > TG_R(1.000244140625f)) return 0;
     u = tg_saturate(u);
     w = tg_min(tg_saturate(w), tg_sub(TG_ONE, u));
@@ -270,7 +271,7 @@ static int slab(tg_real lo, tg_real hi, tg_real o, tg_real inv, tg_real *tn, tg_
 }
 
 /* Entry distance of the ray into the node's box, or -1 if missed before tmax. */
-static tg_real box_entry(const tg_bvh_node *n, const bvh_ray *r, tg_real tmax)
+static tg_real box_entry(const tgi_bvh_node *n, const bvh_ray *r, tg_real tmax)
 {
     tg_real tn = 0, tf = tmax;
     if (!slab(n->lo.x, n->hi.x, r->o.x, r->inv.x, &tn, &tf)) return -1;
@@ -279,7 +280,7 @@ static tg_real box_entry(const tg_bvh_node *n, const bvh_ray *r, tg_real tmax)
     return tn;
 }
 
-int tg_bvh_closest(const tg_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax, tg_ray_hit *hit)
+int tgi_bvh_closest(const tgi_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax, tgi_ray_hit *hit)
 {
     int32_t stack[TG_BVH_STACK];
     int sp = 0;
@@ -288,12 +289,12 @@ int tg_bvh_closest(const tg_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax, tg_ray
     if (bvh->node_count == 0 || box_entry(&bvh->nodes[0], &r, tmax) < 0) return 0;
     stack[sp++] = 0;
     while (sp > 0) {
-        const tg_bvh_node *n = &bvh->nodes[stack[--sp]];
+        const tgi_bvh_node *n = &bvh->nodes[stack[--sp]];
         if (n->count > 0) {
             int i;
             for (i = 0; i < n->count; i++) {
                 tg_real t, u, w;
-                if (tg_bvh_tri_hit(&bvh->tris[n->first + i], o, d, hit->t, &t, &u, &w)) {
+                if (tgi_bvh_tri_hit(&bvh->tris[n->first + i], o, d, hit->t, &t, &u, &w)) {
                     hit->t = t; hit->u = u; hit->v = w; hit->tri = bvh->tri_index[n->first + i];
                 }
             }
@@ -311,7 +312,7 @@ int tg_bvh_closest(const tg_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax, tg_ray
     return hit->tri >= 0;
 }
 
-int tg_bvh_occluded(const tg_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax)
+int tgi_bvh_occluded(const tgi_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax)
 {
     int32_t stack[TG_BVH_STACK];
     int sp = 0;
@@ -319,12 +320,12 @@ int tg_bvh_occluded(const tg_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax)
     if (bvh->node_count == 0 || box_entry(&bvh->nodes[0], &r, tmax) < 0) return 0;
     stack[sp++] = 0;
     while (sp > 0) {
-        const tg_bvh_node *n = &bvh->nodes[stack[--sp]];
+        const tgi_bvh_node *n = &bvh->nodes[stack[--sp]];
         if (n->count > 0) {
             int i;
             for (i = 0; i < n->count; i++) {
                 tg_real t, u, w;
-                if (tg_bvh_tri_hit(&bvh->tris[n->first + i], o, d, tmax, &t, &u, &w)) return 1;
+                if (tgi_bvh_tri_hit(&bvh->tris[n->first + i], o, d, tmax, &t, &u, &w)) return 1;
             }
         } else {
             if (box_entry(&bvh->nodes[n->first], &r, tmax) >= 0) stack[sp++] = n->first;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * bvh.h - a bounding-volume hierarchy over the scene's triangles, for the
  * ray-traced AO reference (reference.c).  Built into caller memory (no
@@ -18,63 +19,63 @@
 #define TG_BVH_LEAF_MAX 4      /* triangles per leaf */
 #define TG_BVH_STACK 64
 
-typedef struct tg_bvh_node {
+typedef struct tgi_bvh_node {
     tg_vec3 lo, hi;            /* bounds, slightly enlarged (conservative) */
     int32_t first;             /* leaf: first slot in tri_index; inner: left child (right = first + 1) */
     int32_t count;             /* leaf: triangles (> 0); inner: 0 */
-} tg_bvh_node;
+} tgi_bvh_node;
 
 /* A triangle prepared for the traversal's test (plane, then barycentrics
  * by dual edge vectors, Moller-Trumbore's values without its per-ray cross
  * products).  Edges are scaled by 2^k into [2, 4) before the duals are
  * formed, so Q16.16 keeps its precision for tiny and huge triangles alike. */
-typedef struct tg_bvh_tri {
+typedef struct tgi_bvh_tri {
     tg_vec3 v0;                /* vertex 0 */
     tg_vec3 n;                 /* unit plane normal; (0,0,0) for a degenerate triangle */
     tg_vec3 a, b;              /* duals of the scaled edges: u = a . h', v = b . h', h' = 2^k (h - v0) */
     int32_t k;                 /* the edge scale exponent */
-} tg_bvh_tri;
+} tgi_bvh_tri;
 
-typedef struct tg_bvh {
+typedef struct tgi_bvh {
     int tri_count, node_count;
     const tg_vec3 *tri_pos;    /* 3 per triangle, the caller's (not copied) */
-    tg_bvh_node *nodes;        /* node 0 is the root */
+    tgi_bvh_node *nodes;        /* node 0 is the root */
     int32_t *tri_index;        /* leaf slots -> triangle index */
-    tg_bvh_tri *tris;          /* prepared triangles, in leaf-slot order */
-} tg_bvh;
+    tgi_bvh_tri *tris;          /* prepared triangles, in leaf-slot order */
+} tgi_bvh;
 
-typedef struct tg_ray_hit {
+typedef struct tgi_ray_hit {
     tg_real t;                 /* distance along the (unit) direction */
     tg_real u, v;              /* barycentrics of vertices 1 and 2 */
     int tri;                   /* triangle index, -1 when none */
-} tg_ray_hit;
+} tgi_ray_hit;
 
-/* Bytes tg_bvh_build needs for tri_count triangles (0 when the count is
+/* Bytes tgi_bvh_build needs for tri_count triangles (0 when the count is
  * negative or the size overflows). */
-size_t tg_bvh_bytes(int tri_count);
+size_t tgi_bvh_bytes(int tri_count);
 
-/* Build over tri_pos[3 * tri_count] in `memory` (size >= tg_bvh_bytes).
+/* Build over tri_pos[3 * tri_count] in `memory` (size >= tgi_bvh_bytes).
  * Returns 0, or -1 if the memory is too small or the count is negative. */
-int tg_bvh_build(tg_bvh *bvh, const tg_vec3 *tri_pos, int tri_count, void *memory, size_t size);
+int tgi_bvh_build(tgi_bvh *bvh, const tg_vec3 *tri_pos, int tri_count, void *memory, size_t size);
 
 /* Closest hit along o + t d with 0 < t < tmax (d unit).  Returns 1 on a hit. */
-int tg_bvh_closest(const tg_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax, tg_ray_hit *hit);
+int tgi_bvh_closest(const tgi_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax, tgi_ray_hit *hit);
 
 /* Any hit with 0 < t < tmax: 1 if the segment is blocked. */
-int tg_bvh_occluded(const tg_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax);
+int tgi_bvh_occluded(const tgi_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax);
 
 /* One ray against one prepared triangle: 1 on a hit with 0 < t < tmax,
  * filling t and the barycentrics u, w of vertices 1 and 2. */
-int tg_bvh_tri_hit(const tg_bvh_tri *tr, tg_vec3 o, tg_vec3 d, tg_real tmax,
+int tgi_bvh_tri_hit(const tgi_bvh_tri *tr, tg_vec3 o, tg_vec3 d, tg_real tmax,
                    tg_real *t, tg_real *u, tg_real *w);
 
-/* Prepare a triangle (v: its 3 vertices) for tg_bvh_tri_hit. */
-void tg_bvh_tri_prepare(tg_bvh_tri *tr, const tg_vec3 *v);
+/* Prepare a triangle (v: its 3 vertices) for tgi_bvh_tri_hit. */
+void tgi_bvh_tri_prepare(tgi_bvh_tri *tr, const tg_vec3 *v);
 
 /* One ray against one triangle (v: its 3 vertices), Moller-Trumbore in
  * scaled relative coordinates; 1 on a hit with 0 < t < tmax, filling t, u,
- * v.  The independent check of tg_bvh_tri_hit in the tests. */
-int tg_ray_triangle(const tg_vec3 *v, tg_vec3 o, tg_vec3 d, tg_real tmax,
+ * v.  The independent check of tgi_bvh_tri_hit in the tests. */
+int tgi_ray_triangle(const tg_vec3 *v, tg_vec3 o, tg_vec3 d, tg_real tmax,
                     tg_real *t, tg_real *u, tg_real *w);
 
 #endif

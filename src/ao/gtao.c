@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * gtao.c - cosine-weighted horizon-based AO and bent normal in view-vector
  * slices (RTR eq. 11.18, Jimenez et al. 2016).  See gtao.h.
@@ -5,7 +6,7 @@
 #include "gtao.h"
 #include "sampling.h"
 
-void tg_gtao_defaults(tg_gtao_params *p)
+void tgi_gtao_defaults(tgi_gtao_params *p)
 {
     p->slices = 4;
     p->steps = 8;
@@ -36,7 +37,7 @@ static int unit_shift(tg_real radius)
 
 /* Largest cos(angle to the view vector) of the samples along screen
  * direction (sdx, sdy); -1 when none is within the radius. */
-static tg_real horizon_cos(const tg_gtao_params *p, const tg_ao_io *io, const gtao_pixel *px,
+static tg_real horizon_cos(const tgi_gtao_params *p, const tgi_ao_io *io, const gtao_pixel *px,
                            tg_real sdx, tg_real sdy)
 {
     tg_real rs = tg_ldexp(p->radius, px->shift), best = TG_R(-1.0f), r2 = tg_sqr(rs);
@@ -53,14 +54,14 @@ static tg_real horizon_cos(const tg_gtao_params *p, const tg_ao_io *io, const gt
         if (qx < 0 || qy < 0 || qx >= io->width || qy >= io->height) break;
         j = qy * io->width + qx;
         if (io->sky[j]) continue;
-        h = tg_v3_sub(tg_ao_unproject(io->view, qx, qy, io->depth[j]), px->pv);
+        h = tgi_v3_sub(tgi_ao_unproject(io->view, qx, qy, io->depth[j]), px->pv);
         if (px->shift) h = tg_v3(tg_ldexp(h.x, px->shift), tg_ldexp(h.y, px->shift), tg_ldexp(h.z, px->shift));
-        d2 = tg_v3_dot(h, h);
+        d2 = tgi_v3_dot(h, h);
         if (d2 >= r2 || d2 <= 0) continue;
-        if (tg_v3_dot(h, px->nv) <= above) continue;      /* under the tangent plane: clamped anyway */
+        if (tgi_v3_dot(h, px->nv) <= above) continue;      /* under the tangent plane: clamped anyway */
         /* (h.v) / |h| by one rsqrt: a signed squared cosine would save it but
          * loses Q16.16 bits for the nearest samples (|h|^2 ~ 1e-4) */
-        best = tg_max(best, tg_mul(tg_v3_dot(h, px->vd), tg_rsqrt(d2)));
+        best = tg_max(best, tg_mul(tgi_v3_dot(h, px->vd), tg_rsqrt(d2)));
     }
     return best;
 }
@@ -87,19 +88,19 @@ static tg_real bent_fc(tg_real th, tg_real cos_g, tg_real sin_g)
 }
 
 /* One slice: adds its visibility to *vis and its bent vector to *bent. */
-static void slice(const tg_gtao_params *p, const tg_ao_io *io, const gtao_pixel *px, tg_real sdx,
+static void slice(const tgi_gtao_params *p, const tgi_ao_io *io, const gtao_pixel *px, tg_real sdx,
                   tg_real sdy, tg_real *vis, tg_real *open, tg_vec3 *bent)
 {
     tg_vec3 d3 = tg_v3(sdx, tg_neg(sdy), 0), dir, axis, pn;
     tg_real len, cos_n, gamma, cos_g, sin_g, h0, h1, bs, bc;
-    dir = tg_v3_normalize_or(tg_v3_sub(d3, tg_v3_scale(px->vd, tg_v3_dot(d3, px->vd))), d3);
-    axis = tg_v3_cross(dir, px->vd);
-    pn = tg_v3_sub(px->nv, tg_v3_scale(axis, tg_v3_dot(px->nv, axis)));  /* normal projected into the slice */
-    len = tg_v3_length(pn);
+    dir = tgi_v3_normalize_or(tgi_v3_sub(d3, tgi_v3_scale(px->vd, tgi_v3_dot(d3, px->vd))), d3);
+    axis = tgi_v3_cross(dir, px->vd);
+    pn = tgi_v3_sub(px->nv, tgi_v3_scale(axis, tgi_v3_dot(px->nv, axis)));  /* normal projected into the slice */
+    len = tgi_v3_length(pn);
     if (len <= TG_R(0.0001f)) return;
-    cos_n = tg_clamp(tg_div(tg_v3_dot(pn, px->vd), len), TG_R(-1.0f), TG_ONE);
+    cos_n = tg_clamp(tg_div(tgi_v3_dot(pn, px->vd), len), TG_R(-1.0f), TG_ONE);
     gamma = tg_acos(cos_n);
-    if (tg_v3_dot(pn, dir) < 0) gamma = tg_neg(gamma);
+    if (tgi_v3_dot(pn, dir) < 0) gamma = tg_neg(gamma);
     cos_g = tg_cos(gamma);
     sin_g = tg_sin(gamma);
     h1 = tg_acos(horizon_cos(p, io, px, sdx, sdy));
@@ -113,13 +114,13 @@ static void slice(const tg_gtao_params *p, const tg_ao_io *io, const gtao_pixel 
     /* bent normal in the slice: F(h1) + F(h0) - 2 F(0), F_s(0) = -2/3 sin g, F_c(0) = -cos g / 3 */
     bs = tg_add(tg_add(bent_fs(h1, cos_g, sin_g), bent_fs(h0, cos_g, sin_g)), tg_mul(sin_g, TG_R(1.333333333f)));
     bc = tg_add(tg_add(bent_fc(h1, cos_g, sin_g), bent_fc(h0, cos_g, sin_g)), tg_mul(cos_g, TG_R(0.666666667f)));
-    *bent = tg_v3_add(*bent, tg_v3_scale(tg_v3_add(tg_v3_scale(dir, bs), tg_v3_scale(px->vd, bc)), len));
+    *bent = tgi_v3_add(*bent, tgi_v3_scale(tgi_v3_add(tgi_v3_scale(dir, bs), tgi_v3_scale(px->vd, bc)), len));
 }
 
-void tg_gtao_rows(const tg_gtao_params *p, const tg_ao_io *io, int y0, int y1)
+void tgi_gtao_rows(const tgi_gtao_params *p, const tgi_ao_io *io, int y0, int y1)
 {
     tg_real scos[TG_AO_MAX_SAMPLES], ssin[TG_AO_MAX_SAMPLES];
-    tg_ao_rot rot[16];
+    tgi_ao_rot rot[16];
     int ns = p->slices < 1 ? 1 : p->slices > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : p->slices, k, x, y;
     int shift = unit_shift(p->radius);
     for (k = 0; k < ns; k++) {                   /* slice angles over pi */
@@ -127,20 +128,20 @@ void tg_gtao_rows(const tg_gtao_params *p, const tg_ao_io *io, int y0, int y1)
         scos[k] = tg_cos(a);
         ssin[k] = tg_sin(a);
     }
-    tg_ao_rotations(rot);
+    tgi_ao_rotations(rot);
     for (y = y0; y < y1; y++)
         for (x = 0; x < io->width; x++) {
             int i = y * io->width + x;
-            const tg_ao_rot *r = tg_ao_rot_at(rot, x, y);
+            const tgi_ao_rot *r = tgi_ao_rot_at(rot, x, y);
             gtao_pixel px;
             tg_real vis = 0, open = 0;
             tg_vec3 bent = tg_v3(0, 0, 0);
-            tg_ao_write_open(io, i);
+            tgi_ao_write_open(io, i);
             if (io->sky[i] || p->radius <= 0 || p->steps < 1) continue;
             px.x = x; px.y = y;
-            px.pv = tg_ao_unproject(io->view, x, y, io->depth[i]);
-            px.nv = tg_ao_normal_view(io, i);
-            px.vd = tg_v3_normalize_or(tg_v3_neg(px.pv), tg_v3(0, 0, TG_R(-1.0f)));
+            px.pv = tgi_ao_unproject(io->view, x, y, io->depth[i]);
+            px.nv = tgi_ao_normal_view(io, i);
+            px.vd = tgi_v3_normalize_or(tgi_v3_neg(px.pv), tg_v3(0, 0, TG_R(-1.0f)));
             px.r_px = tg_div(tg_mul(p->radius, io->view->pixels_per_unit), io->depth[i]);
             px.jitter = r->jitter;
             px.shift = shift;
@@ -150,6 +151,6 @@ void tg_gtao_rows(const tg_gtao_params *p, const tg_ao_io *io, int y0, int y1)
             /* outer integral: the slice quadrature as a ratio to the same
              * quadrature of the open hemisphere (exact 1 on any plane) */
             io->ao[i] = open > 0 ? tg_saturate(tg_div(vis, open)) : TG_ONE;
-            tg_ao_write_bent_view(io, i, bent);
+            tgi_ao_write_bent_view(io, i, bent);
         }
 }

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * gtao.h - ground-truth ambient occlusion (Jimenez et al. 2016; RTR eq.
  * 11.18): horizon-based like HBAO but with the cosine term and no ad hoc
@@ -28,13 +29,13 @@
 
 #include "ao.h"
 
-typedef struct tg_gtao_params {
+typedef struct tgi_gtao_params {
     int slices;        /* slice directions over pi, 1..TG_AO_MAX_SAMPLES (default 4) */
     int steps;         /* samples per side of each slice (default 8) */
     tg_real radius;    /* world units (default 1) */
-} tg_gtao_params;
+} tgi_gtao_params;
 
-void tg_gtao_defaults(tg_gtao_params *p);
-void tg_gtao_rows(const tg_gtao_params *p, const tg_ao_io *io, int y0, int y1);
+void tgi_gtao_defaults(tgi_gtao_params *p);
+void tgi_gtao_rows(const tgi_gtao_params *p, const tgi_ao_io *io, int y0, int y1);
 
 #endif

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * hbao.c - horizon-based AO without the cosine, linear falloff (RTR eq.
  * 11.16-11.17).  See hbao.h.
@@ -5,7 +6,7 @@
 #include "hbao.h"
 #include "sampling.h"
 
-void tg_hbao_defaults(tg_hbao_params *p)
+void tgi_hbao_defaults(tgi_hbao_params *p)
 {
     p->directions = 8;
     p->steps = 6;
@@ -14,19 +15,19 @@ void tg_hbao_defaults(tg_hbao_params *p)
 }
 
 /* Occlusion (sin h - sin t) W of one screen direction (sdx, sdy). */
-static tg_real direction_occlusion(const tg_hbao_params *p, const tg_ao_io *io, tg_vec3 pv, tg_vec3 nv,
+static tg_real direction_occlusion(const tgi_hbao_params *p, const tgi_ao_io *io, tg_vec3 pv, tg_vec3 nv,
                                    tg_vec3 view_dir, tg_real sdx, tg_real sdy, tg_real r_px,
                                    tg_real jitter, int x, int y)
 {
-    const tg_view *v = io->view;
+    const tgi_view *v = io->view;
     tg_vec3 d3 = tg_v3(sdx, tg_neg(sdy), 0);                /* screen y is down, view y up */
-    tg_vec3 axis = tg_v3_cross(d3, view_dir), tangent;
+    tg_vec3 axis = tgi_v3_cross(d3, view_dir), tangent;
     tg_real sin_t, max_sin, occlusion = 0;
     tg_real above = tg_add(tg_ldexp(pv.z, -10), tg_mul(p->radius, TG_R(0.005f)));
     int s;
     /* tangent: the tangent plane's line in the slice (eye, screen direction) */
-    tangent = tg_v3_normalize_or(tg_v3_cross(axis, nv), d3);
-    if (tg_v3_dot(tangent, d3) < 0) tangent = tg_v3_neg(tangent);
+    tangent = tgi_v3_normalize_or(tgi_v3_cross(axis, nv), d3);
+    if (tgi_v3_dot(tangent, d3) < 0) tangent = tgi_v3_neg(tangent);
     sin_t = tg_neg(tangent.z);                              /* elevation towards the viewer */
     max_sin = tg_add(sin_t, p->angle_bias);
     for (s = 0; s < p->steps; s++) {
@@ -40,10 +41,10 @@ static tg_real direction_occlusion(const tg_hbao_params *p, const tg_ao_io *io, 
         if (qx < 0 || qy < 0 || qx >= io->width || qy >= io->height) break;
         j = qy * io->width + qx;
         if (io->sky[j]) continue;
-        h = tg_v3_sub(tg_ao_unproject(v, qx, qy, io->depth[j]), pv);
-        dist2 = tg_v3_dot(h, h);
+        h = tgi_v3_sub(tgi_ao_unproject(v, qx, qy, io->depth[j]), pv);
+        dist2 = tgi_v3_dot(h, h);
         if (dist2 >= tg_sqr(p->radius) || dist2 <= 0) continue;
-        if (tg_v3_dot(h, nv) <= above) continue;           /* on or under the tangent plane: no horizon */
+        if (tgi_v3_dot(h, nv) <= above) continue;           /* on or under the tangent plane: no horizon */
         dist = tg_sqrt(dist2);
         sin_h = tg_div(tg_neg(h.z), dist);
         if (sin_h <= max_sin) continue;
@@ -57,10 +58,10 @@ static tg_real direction_occlusion(const tg_hbao_params *p, const tg_ao_io *io, 
     return occlusion;
 }
 
-void tg_hbao_rows(const tg_hbao_params *p, const tg_ao_io *io, int y0, int y1)
+void tgi_hbao_rows(const tgi_hbao_params *p, const tgi_ao_io *io, int y0, int y1)
 {
     tg_real dcos[TG_AO_MAX_SAMPLES], dsin[TG_AO_MAX_SAMPLES];
-    tg_ao_rot rot[16];
+    tgi_ao_rot rot[16];
     int nd = p->directions < 1 ? 1 : p->directions > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : p->directions;
     int k, x, y;
     for (k = 0; k < nd; k++) {
@@ -68,18 +69,18 @@ void tg_hbao_rows(const tg_hbao_params *p, const tg_ao_io *io, int y0, int y1)
         dcos[k] = tg_cos(a);
         dsin[k] = tg_sin(a);
     }
-    tg_ao_rotations(rot);
+    tgi_ao_rotations(rot);
     for (y = y0; y < y1; y++)
         for (x = 0; x < io->width; x++) {
             int i = y * io->width + x;
-            const tg_ao_rot *r = tg_ao_rot_at(rot, x, y);
+            const tgi_ao_rot *r = tgi_ao_rot_at(rot, x, y);
             tg_vec3 pv, nv, vd;
             tg_real r_px, occ = 0;
-            tg_ao_write_open(io, i);
+            tgi_ao_write_open(io, i);
             if (io->sky[i] || p->radius <= 0 || p->steps < 1) continue;
-            pv = tg_ao_unproject(io->view, x, y, io->depth[i]);
-            nv = tg_ao_normal_view(io, i);
-            vd = tg_v3_normalize_or(tg_v3_neg(pv), tg_v3(0, 0, TG_R(-1.0f)));
+            pv = tgi_ao_unproject(io->view, x, y, io->depth[i]);
+            nv = tgi_ao_normal_view(io, i);
+            vd = tgi_v3_normalize_or(tgi_v3_neg(pv), tg_v3(0, 0, TG_R(-1.0f)));
             r_px = tg_div(tg_mul(p->radius, io->view->pixels_per_unit), io->depth[i]);
             if (r_px < TG_ONE) continue;                     /* the radius covers less than a pixel */
             for (k = 0; k < nd; k++) {

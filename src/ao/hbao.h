@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * hbao.h - horizon-based ambient occlusion (Bavoil et al. 2008; RTR eq.
  * 11.16-11.17): the depth buffer is a height field; along `directions`
@@ -19,14 +20,14 @@
 
 #include "ao.h"
 
-typedef struct tg_hbao_params {
+typedef struct tgi_hbao_params {
     int directions;      /* screen directions over 2 pi, 1..TG_AO_MAX_SAMPLES (default 8) */
     int steps;           /* samples per direction (default 6) */
     tg_real radius;      /* world units (default 1) */
     tg_real angle_bias;  /* sine of the bias angle added to the tangent (default 0.05) */
-} tg_hbao_params;
+} tgi_hbao_params;
 
-void tg_hbao_defaults(tg_hbao_params *p);
-void tg_hbao_rows(const tg_hbao_params *p, const tg_ao_io *io, int y0, int y1);
+void tgi_hbao_defaults(tgi_hbao_params *p);
+void tgi_hbao_rows(const tgi_hbao_params *p, const tgi_ao_io *io, int y0, int y1);
 
 #endif

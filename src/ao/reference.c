@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * reference.c - ray-traced AO, bent normal and one-bounce near-field
  * irradiance from G-buffer positions (see reference.h).  Slow on purpose and
@@ -6,7 +7,7 @@
 #include "reference.h"
 #include "sampling.h"
 
-void tg_reference_defaults(tg_reference_params *p)
+void tgi_reference_defaults(tgi_reference_params *p)
 {
     p->bvh = 0;
     p->tri_nrm = 0;
@@ -17,34 +18,34 @@ void tg_reference_defaults(tg_reference_params *p)
 }
 
 /* Unit normal at a hit, facing back along the ray. */
-static tg_vec3 hit_normal(const tg_reference_params *p, const tg_ray_hit *h, tg_vec3 d)
+static tg_vec3 hit_normal(const tgi_reference_params *p, const tgi_ray_hit *h, tg_vec3 d)
 {
     const tg_vec3 *v = p->bvh->tri_pos + 3 * (size_t)h->tri;
     tg_vec3 n;
     if (p->tri_nrm) {
         const tg_vec3 *vn = p->tri_nrm + 3 * (size_t)h->tri;
         tg_real w0 = tg_sub(tg_sub(TG_ONE, h->u), h->v);
-        n = tg_v3_add(tg_v3_add(tg_v3_scale(vn[0], w0), tg_v3_scale(vn[1], h->u)), tg_v3_scale(vn[2], h->v));
+        n = tgi_v3_add(tgi_v3_add(tgi_v3_scale(vn[0], w0), tgi_v3_scale(vn[1], h->u)), tgi_v3_scale(vn[2], h->v));
     } else {
-        tg_vec3 e1 = tg_v3_sub(v[1], v[0]), e2 = tg_v3_sub(v[2], v[0]);
+        tg_vec3 e1 = tgi_v3_sub(v[1], v[0]), e2 = tgi_v3_sub(v[2], v[0]);
         tg_real m = tg_max(tg_max(tg_abs(e1.x), tg_abs(e1.y)), tg_abs(e1.z));
         m = tg_max(m, tg_max(tg_max(tg_abs(e2.x), tg_abs(e2.y)), tg_abs(e2.z)));
         if (m > 0) { /* scale edges to ~unit so the cross product cannot saturate */
-            e1 = tg_v3_scale(e1, tg_div(TG_ONE, m));
-            e2 = tg_v3_scale(e2, tg_div(TG_ONE, m));
+            e1 = tgi_v3_scale(e1, tg_div(TG_ONE, m));
+            e2 = tgi_v3_scale(e2, tg_div(TG_ONE, m));
         }
-        n = tg_v3_cross(e1, e2);
+        n = tgi_v3_cross(e1, e2);
     }
-    n = tg_v3_normalize_or(n, tg_v3_neg(d));
-    return tg_v3_dot(n, d) > 0 ? tg_v3_neg(n) : n;
+    n = tgi_v3_normalize_or(n, tgi_v3_neg(d));
+    return tgi_v3_dot(n, d) > 0 ? tgi_v3_neg(n) : n;
 }
 
 /* L_o at a hit seen in the current view's radiance buffer, 0 when hidden. */
-static tg_vec3 radiance_from_view(const tg_ao_io *io, tg_vec3 pw)
+static tg_vec3 radiance_from_view(const tgi_ao_io *io, tg_vec3 pw)
 {
-    const tg_view *v = io->view;
-    tg_vec3 pv = tg_ao_dir_to_view(v, tg_v3_sub(pw, v->eye));
-    int j = tg_ao_project_index(v, pv);
+    const tgi_view *v = io->view;
+    tg_vec3 pv = tgi_ao_dir_to_view(v, tgi_v3_sub(pw, v->eye));
+    int j = tgi_ao_project_index(v, pv);
     tg_real tol;
     if (j < 0 || io->sky[j] || !io->rad_r) return tg_v3(0, 0, 0);
     tol = tg_add(tg_mul(pv.z, TG_R(0.01f)), TG_R(0.00390625f));
@@ -52,41 +53,41 @@ static tg_vec3 radiance_from_view(const tg_ao_io *io, tg_vec3 pw)
     return tg_v3(io->rad_r[j], io->rad_g[j], io->rad_b[j]);
 }
 
-static void reference_pixel(const tg_reference_params *p, const tg_ao_io *io, const tg_ao_rot *rot,
+static void reference_pixel(const tgi_reference_params *p, const tgi_ao_io *io, const tgi_ao_rot *rot,
                             int x, int y)
 {
     int i = y * io->width + x, s, n = p->samples > 0 ? p->samples : 1, open = 0;
     int want_near = io->near_r != 0;
-    const tg_view *v = io->view;
+    const tgi_view *v = io->view;
     tg_vec3 nrm = tg_v3(io->nx[i], io->ny[i], io->nz[i]), t, b, o, pv;
     tg_vec3 bent = tg_v3(0, 0, 0), near = tg_v3(0, 0, 0);
     tg_real eps, tmax = p->radius > 0 ? p->radius : 0;
-    pv = tg_ao_unproject(v, x, y, io->depth[i]);
+    pv = tgi_ao_unproject(v, x, y, io->depth[i]);
     /* scale-aware offset along the normal: 2^-10 of the depth + 2^-10 */
     eps = tg_add(tg_ldexp(io->depth[i], -10), TG_R(0.0009765625f));
-    o = tg_v3_add(tg_v3_add(v->eye, tg_ao_dir_to_world(v, pv)), tg_v3_scale(nrm, eps));
-    tg_ao_basis(nrm, &t, &b);
+    o = tgi_v3_add(tgi_v3_add(v->eye, tgi_ao_dir_to_world(v, pv)), tgi_v3_scale(nrm, eps));
+    tgi_ao_basis(nrm, &t, &b);
     for (s = 0; s < n; s++) {
-        tg_vec3 l = tg_ao_rotate_z(tg_ao_hemi_cosine(s, n), rot->c, rot->s);
-        tg_vec3 d = tg_ao_from_local(l, t, b, nrm);     /* unit: a unit vector in an orthonormal frame */
+        tg_vec3 l = tgi_ao_rotate_z(tgi_ao_hemi_cosine(s, n), rot->c, rot->s);
+        tg_vec3 d = tgi_ao_from_local(l, t, b, nrm);     /* unit: a unit vector in an orthonormal frame */
         if (want_near) {
-            tg_ray_hit h;
-            if (!tg_bvh_closest(p->bvh, o, d, tmax, &h)) { open++; bent = tg_v3_add(bent, d); continue; }
+            tgi_ray_hit h;
+            if (!tgi_bvh_closest(p->bvh, o, d, tmax, &h)) { open++; bent = tgi_v3_add(bent, d); continue; }
             {
-                tg_vec3 hp = tg_v3_add(o, tg_v3_scale(d, h.t)), lo;
+                tg_vec3 hp = tgi_v3_add(o, tgi_v3_scale(d, h.t)), lo;
                 lo = p->radiance ? p->radiance(p->user, h.tri, hp, hit_normal(p, &h, d))
                                  : radiance_from_view(io, hp);
-                near = tg_v3_add(near, lo);
+                near = tgi_v3_add(near, lo);
             }
-        } else if (!tg_bvh_occluded(p->bvh, o, d, tmax)) {
+        } else if (!tgi_bvh_occluded(p->bvh, o, d, tmax)) {
             open++;
-            bent = tg_v3_add(bent, d);
+            bent = tgi_v3_add(bent, d);
         }
     }
     io->ao[i] = tg_ratio(open, n);                      /* RTR eq. 11.8 / 11.14, cosine-importance sampled */
     if (io->cone) io->cone[i] = tg_acos(tg_sub(TG_ONE, io->ao[i])); /* HBIL eq. 12, as HBIL defines its cone */
     if (io->bent_x) {                                   /* RTR eq. 11.10 */
-        tg_vec3 bn = tg_v3_normalize_or(bent, nrm);
+        tg_vec3 bn = tgi_v3_normalize_or(bent, nrm);
         io->bent_x[i] = bn.x; io->bent_y[i] = bn.y; io->bent_z[i] = bn.z;
     }
     if (want_near) {                                    /* E = pi / N sum L_o (pdf cos / pi) */
@@ -95,15 +96,15 @@ static void reference_pixel(const tg_reference_params *p, const tg_ao_io *io, co
     }
 }
 
-void tg_reference_rows(const tg_reference_params *p, const tg_ao_io *io, int y0, int y1)
+void tgi_reference_rows(const tgi_reference_params *p, const tgi_ao_io *io, int y0, int y1)
 {
-    tg_ao_rot rot[16];
+    tgi_ao_rot rot[16];
     int x, y;
-    tg_ao_rotations(rot);
+    tgi_ao_rotations(rot);
     for (y = y0; y < y1; y++)
         for (x = 0; x < io->width; x++) {
             int i = y * io->width + x;
-            if (io->sky[i] || !p->bvh) { tg_ao_write_open(io, i); continue; }
-            reference_pixel(p, io, tg_ao_rot_at(rot, x, y), x, y);
+            if (io->sky[i] || !p->bvh) { tgi_ao_write_open(io, i); continue; }
+            reference_pixel(p, io, tgi_ao_rot_at(rot, x, y), x, y);
         }
 }

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * reference.h - the ray-traced ground truth every screen-space technique is
  * measured against.  From each G-buffer position it casts deterministic
@@ -33,20 +34,20 @@
 
 /* Outgoing diffuse radiance leaving triangle `tri` at world point `pos`
  * with unit normal `nrm` (facing the ray's origin). */
-typedef tg_vec3 (*tg_reference_radiance_fn)(void *user, int tri, tg_vec3 pos, tg_vec3 nrm);
+typedef tg_vec3 (*tgi_reference_radiance_fn)(void *user, int tri, tg_vec3 pos, tg_vec3 nrm);
 
-typedef struct tg_reference_params {
-    const tg_bvh *bvh;             /* over the scene's tri_pos */
+typedef struct tgi_reference_params {
+    const tgi_bvh *bvh;             /* over the scene's tri_pos */
     const tg_vec3 *tri_nrm;        /* 3 unit vertex normals per triangle; NULL = face normals */
     int samples;                   /* rays per pixel (default 256) */
     tg_real radius;                /* cut-off distance, world units; TG_AO_INFINITE = none (default 1) */
-    tg_reference_radiance_fn radiance; /* NULL: look up io->rad_* (see above) */
+    tgi_reference_radiance_fn radiance; /* NULL: look up io->rad_* (see above) */
     void *user;
-} tg_reference_params;
+} tgi_reference_params;
 
-void tg_reference_defaults(tg_reference_params *p);
+void tgi_reference_defaults(tgi_reference_params *p);
 
 /* Rows [y0, y1) of io (ao, bent if non-NULL, near if non-NULL). */
-void tg_reference_rows(const tg_reference_params *p, const tg_ao_io *io, int y0, int y1);
+void tgi_reference_rows(const tgi_reference_params *p, const tgi_ao_io *io, int y0, int y1);
 
 #endif

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * sampling.c - deterministic low-discrepancy sample patterns for the AO
  * techniques and the reference (see sampling.h).
@@ -7,7 +8,7 @@
 /* 4x4 Bayer (ordered-dither) matrix: consecutive values are far apart. */
 static const uint8_t bayer4[16] = { 0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5 };
 
-void tg_ao_rotations(tg_ao_rot rot[16])
+void tgi_ao_rotations(tgi_ao_rot rot[16])
 {
     int k;
     for (k = 0; k < 16; k++) {
@@ -19,7 +20,7 @@ void tg_ao_rotations(tg_ao_rot rot[16])
     }
 }
 
-tg_real tg_ao_golden_frac(int i)
+tg_real tgi_ao_golden_frac(int i)
 {
     /* i * 2^32 / phi, wrapped: the fractional part of i / phi in 32 bits
      * (Knuth's multiplicative hash constant 2654435769 = 2^32 / phi). */
@@ -27,7 +28,7 @@ tg_real tg_ao_golden_frac(int i)
     return tg_ratio((int32_t)(u >> 16), 65536);
 }
 
-tg_real tg_ao_radical2(int i)
+tg_real tgi_ao_radical2(int i)
 {
     uint32_t u = (uint32_t)i, r = 0;
     int b;
@@ -35,31 +36,31 @@ tg_real tg_ao_radical2(int i)
     return tg_ratio((int32_t)r, 65536);
 }
 
-void tg_ao_disk(int i, int n, tg_real *x, tg_real *y)
+void tgi_ao_disk(int i, int n, tg_real *x, tg_real *y)
 {
     tg_real r = tg_sqrt(tg_ratio(2 * i + 1, 2 * n));
-    tg_real a = tg_mul(TG_TWO_PI, tg_ao_golden_frac(i));
+    tg_real a = tg_mul(TG_TWO_PI, tgi_ao_golden_frac(i));
     *x = tg_mul(r, tg_cos(a));
     *y = tg_mul(r, tg_sin(a));
 }
 
-tg_vec3 tg_ao_hemi_cosine(int i, int n)
+tg_vec3 tgi_ao_hemi_cosine(int i, int n)
 {
     tg_real x, y, r2;
-    tg_ao_disk(i, n, &x, &y);
+    tgi_ao_disk(i, n, &x, &y);
     r2 = tg_add(tg_sqr(x), tg_sqr(y));
     return tg_v3(x, y, tg_sqrt(tg_sub(TG_ONE, tg_min(r2, TG_ONE)))); /* Malley, RTR sec. 11.3.4 */
 }
 
-tg_vec3 tg_ao_hemi_uniform(int i, int n)
+tg_vec3 tgi_ao_hemi_uniform(int i, int n)
 {
     tg_real z = tg_ratio(2 * i + 1, 2 * n);
     tg_real r = tg_sqrt(tg_sub(TG_ONE, tg_sqr(z)));
-    tg_real a = tg_mul(TG_TWO_PI, tg_ao_golden_frac(i));
+    tg_real a = tg_mul(TG_TWO_PI, tgi_ao_golden_frac(i));
     return tg_v3(tg_mul(r, tg_cos(a)), tg_mul(r, tg_sin(a)), z);
 }
 
-void tg_ao_basis(tg_vec3 n, tg_vec3 *t, tg_vec3 *b)
+void tgi_ao_basis(tg_vec3 n, tg_vec3 *t, tg_vec3 *b)
 {
     tg_real sign = n.z >= 0 ? TG_ONE : TG_R(-1.0f);
     tg_real a = tg_div(TG_R(-1.0f), tg_add(sign, n.z)); /* |sign + n.z| >= 1 */

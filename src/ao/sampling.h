@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * sampling.h - deterministic sample patterns shared by the AO techniques and
  * the ray-traced reference.  No rand(): every pattern is a closed-form
@@ -17,46 +18,46 @@
 
 /* Rotation (cos, sin) and a jitter in (0, 1) for one cell of the 4x4
  * interleaved pattern. */
-typedef struct tg_ao_rot { tg_real c, s, jitter; } tg_ao_rot;
+typedef struct tgi_ao_rot { tg_real c, s, jitter; } tgi_ao_rot;
 
 /* Fill the 16 cells: angles 2 pi (b + 1/2) / 16 by a 4x4 Bayer order b, so
  * neighbouring pixels get far-apart rotations. */
-void tg_ao_rotations(tg_ao_rot rot[16]);
-static inline const tg_ao_rot *tg_ao_rot_at(const tg_ao_rot rot[16], int x, int y)
+void tgi_ao_rotations(tgi_ao_rot rot[16]);
+static inline const tgi_ao_rot *tgi_ao_rot_at(const tgi_ao_rot rot[16], int x, int y)
 {
     return &rot[(x & 3) + ((y & 3) << 2)];
 }
 
 /* Fraction in [0, 1) of i times the golden ratio (the Fibonacci angle step). */
-tg_real tg_ao_golden_frac(int i);
+tg_real tgi_ao_golden_frac(int i);
 
 /* Radical inverse of i in base 2 (van der Corput), in [0, 1), 16 bits. */
-tg_real tg_ao_radical2(int i);
+tg_real tgi_ao_radical2(int i);
 
 /* i-th of n points of a Vogel spiral on the unit disk: radius
  * sqrt((i + 1/2) / n) (equal areas), angle 2 pi frac(i phi). */
-void tg_ao_disk(int i, int n, tg_real *x, tg_real *y);
+void tgi_ao_disk(int i, int n, tg_real *x, tg_real *y);
 
 /* i-th of n cosine-distributed hemisphere directions: the disk point lifted
  * to z = sqrt(1 - r^2) (Malley's method, RTR sec. 11.3.4). Unit. */
-tg_vec3 tg_ao_hemi_cosine(int i, int n);
+tg_vec3 tgi_ao_hemi_cosine(int i, int n);
 
 /* i-th of n directions uniform in solid angle on the hemisphere
  * (z = (i + 1/2) / n, spiral angle). Unit. */
-tg_vec3 tg_ao_hemi_uniform(int i, int n);
+tg_vec3 tgi_ao_hemi_uniform(int i, int n);
 
 /* Orthonormal basis (t, b) completing unit n (Duff et al. 2017, branchless
  * Frisvad). */
-void tg_ao_basis(tg_vec3 n, tg_vec3 *t, tg_vec3 *b);
+void tgi_ao_basis(tg_vec3 n, tg_vec3 *t, tg_vec3 *b);
 
 /* Local (z-up) vector into the frame (t, b, n). */
-static inline tg_vec3 tg_ao_from_local(tg_vec3 l, tg_vec3 t, tg_vec3 b, tg_vec3 n)
+static inline tg_vec3 tgi_ao_from_local(tg_vec3 l, tg_vec3 t, tg_vec3 b, tg_vec3 n)
 {
-    return tg_v3_add(tg_v3_add(tg_v3_scale(t, l.x), tg_v3_scale(b, l.y)), tg_v3_scale(n, l.z));
+    return tgi_v3_add(tgi_v3_add(tgi_v3_scale(t, l.x), tgi_v3_scale(b, l.y)), tgi_v3_scale(n, l.z));
 }
 
 /* Rotate the local x, y of l by (c, s) about the z axis. */
-static inline tg_vec3 tg_ao_rotate_z(tg_vec3 l, tg_real c, tg_real s)
+static inline tg_vec3 tgi_ao_rotate_z(tg_vec3 l, tg_real c, tg_real s)
 {
     return tg_v3(tg_sub(tg_mul(c, l.x), tg_mul(s, l.y)), tg_add(tg_mul(s, l.x), tg_mul(c, l.y)), l.z);
 }

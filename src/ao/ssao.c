@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * ssao.c - Crytek point-sample SSAO in a sphere, in the normal-oriented
  * hemisphere, and Crytek2D in a screen disk (see ssao.h).
@@ -5,7 +6,7 @@
 #include "ssao.h"
 #include "sampling.h"
 
-void tg_ssao_defaults(tg_ssao_params *p)
+void tgi_ssao_defaults(tgi_ssao_params *p)
 {
     p->samples = 16;
     p->radius = TG_ONE;
@@ -24,73 +25,73 @@ static int make_kernel(int variant, int n, tg_vec3 *off, tg_vec3 *dir)
         for (k = 0; k < half; k++) {
             tg_real z = tg_sub(TG_ONE, tg_ratio(2 * k + 1, half));
             tg_real r = tg_sqrt(tg_sub(TG_ONE, tg_sqr(z)));
-            tg_real a = tg_mul(TG_TWO_PI, tg_ao_golden_frac(k));
+            tg_real a = tg_mul(TG_TWO_PI, tgi_ao_golden_frac(k));
             tg_real len = tg_pow(tg_ratio(2 * k + 1, 2 * half), TG_R(0.333333333f)); /* volume-uniform */
             dir[2 * k] = tg_v3(tg_mul(r, tg_cos(a)), tg_mul(r, tg_sin(a)), z);
-            dir[2 * k + 1] = tg_v3_neg(dir[2 * k]);
-            off[2 * k] = tg_v3_scale(dir[2 * k], len);
-            off[2 * k + 1] = tg_v3_neg(off[2 * k]);
+            dir[2 * k + 1] = tgi_v3_neg(dir[2 * k]);
+            off[2 * k] = tgi_v3_scale(dir[2 * k], len);
+            off[2 * k + 1] = tgi_v3_neg(off[2 * k]);
         }
         return 2 * half;
     }
     if (variant == TG_SSAO_HEMISPHERE) {
         for (k = 0; k < n; k++) {
-            tg_real u = tg_add(tg_ao_radical2(k), tg_ratio(1, 2 * n));
-            dir[k] = tg_ao_hemi_cosine(k, n);
-            off[k] = tg_v3_scale(dir[k], tg_pow(u, TG_R(0.333333333f)));
+            tg_real u = tg_add(tgi_ao_radical2(k), tg_ratio(1, 2 * n));
+            dir[k] = tgi_ao_hemi_cosine(k, n);
+            off[k] = tgi_v3_scale(dir[k], tg_pow(u, TG_R(0.333333333f)));
         }
         return n;
     }
     for (k = 0; k < n; k++) {                 /* disk: Vogel spiral */
         tg_real x, y;
-        tg_ao_disk(k, n, &x, &y);
+        tgi_ao_disk(k, n, &x, &y);
         off[k] = tg_v3(x, y, 0);
         dir[k] = off[k];
     }
     return n;
 }
 
-static void ssao_3d(const tg_ssao_params *p, const tg_ao_io *io, const tg_vec3 *off, const tg_vec3 *dir,
-                    int n, const tg_ao_rot *rot, int x, int y)
+static void ssao_3d(const tgi_ssao_params *p, const tgi_ao_io *io, const tg_vec3 *off, const tg_vec3 *dir,
+                    int n, const tgi_ao_rot *rot, int x, int y)
 {
     int i = y * io->width + x, k, open = 0;
-    tg_vec3 pv = tg_ao_unproject(io->view, x, y, io->depth[i]), nv = tg_ao_normal_view(io, i);
+    tg_vec3 pv = tgi_ao_unproject(io->view, x, y, io->depth[i]), nv = tgi_ao_normal_view(io, i);
     tg_vec3 t = tg_v3(TG_ONE, 0, 0), b = tg_v3(0, TG_ONE, 0), axis = tg_v3(0, 0, TG_ONE);
     tg_vec3 bent = tg_v3(0, 0, 0);
     tg_real bias = tg_mul(p->bias, p->radius);
-    if (p->variant == TG_SSAO_HEMISPHERE) { axis = nv; tg_ao_basis(nv, &t, &b); }
+    if (p->variant == TG_SSAO_HEMISPHERE) { axis = nv; tgi_ao_basis(nv, &t, &b); }
     for (k = 0; k < n; k++) {
-        tg_vec3 o = tg_ao_from_local(tg_ao_rotate_z(off[k], rot->c, rot->s), t, b, axis);
-        tg_vec3 s = tg_v3_add(pv, tg_v3_scale(o, p->radius));
-        if (tg_ao_sample_blocked(io, pv, s, bias, tg_ldexp(p->radius, 1))) continue; /* Klehm eq. 3, d_x with range check */
+        tg_vec3 o = tgi_ao_from_local(tgi_ao_rotate_z(off[k], rot->c, rot->s), t, b, axis);
+        tg_vec3 s = tgi_v3_add(pv, tgi_v3_scale(o, p->radius));
+        if (tgi_ao_sample_blocked(io, pv, s, bias, tg_ldexp(p->radius, 1))) continue; /* Klehm eq. 3, d_x with range check */
         open++;
-        bent = tg_v3_add(bent, tg_ao_from_local(tg_ao_rotate_z(dir[k], rot->c, rot->s), t, b, axis));
+        bent = tgi_v3_add(bent, tgi_ao_from_local(tgi_ao_rotate_z(dir[k], rot->c, rot->s), t, b, axis));
     }
     if (p->variant == TG_SSAO_SPHERE)
         io->ao[i] = tg_min(TG_ONE, tg_ratio(2 * open, n));      /* half the ball is under any surface */
     else
         io->ao[i] = tg_ratio(open, n);                          /* Klehm eq. 3 */
-    tg_ao_write_bent_view(io, i, bent);                         /* Klehm sec. 3.1 */
+    tgi_ao_write_bent_view(io, i, bent);                         /* Klehm sec. 3.1 */
 }
 
-static void ssao_2d(const tg_ssao_params *p, const tg_ao_io *io, const tg_vec3 *off, int n,
-                    const tg_ao_rot *rot, int x, int y)
+static void ssao_2d(const tgi_ssao_params *p, const tgi_ao_io *io, const tg_vec3 *off, int n,
+                    const tgi_ao_rot *rot, int x, int y)
 {
     int i = y * io->width + x, k, blocked = 0;
-    const tg_view *v = io->view;
-    tg_vec3 pv = tg_ao_unproject(v, x, y, io->depth[i]), nv = tg_ao_normal_view(io, i);
+    const tgi_view *v = io->view;
+    tg_vec3 pv = tgi_ao_unproject(v, x, y, io->depth[i]), nv = tgi_ao_normal_view(io, i);
     tg_real r_px = tg_div(tg_mul(p->radius, v->pixels_per_unit), io->depth[i]);
     tg_real r2 = tg_sqr(p->radius);
     for (k = 0; k < n; k++) {
-        tg_vec3 o = tg_ao_rotate_z(off[k], rot->c, rot->s), d;
+        tg_vec3 o = tgi_ao_rotate_z(off[k], rot->c, rot->s), d;
         int qx = tg_to_int(tg_add(tg_add(tg_from_int(x), TG_R(0.5f)), tg_mul(o.x, r_px)));
         int qy = tg_to_int(tg_add(tg_add(tg_from_int(y), TG_R(0.5f)), tg_mul(o.y, r_px)));
         int j = qy * io->width + qx;
         tg_real dn, dd;
         if (qx < 0 || qy < 0 || qx >= io->width || qy >= io->height || j == i || io->sky[j]) continue;
-        d = tg_v3_sub(tg_ao_unproject(v, qx, qy, io->depth[j]), pv);
-        dd = tg_v3_dot(d, d);
-        dn = tg_v3_dot(d, nv);
+        d = tgi_v3_sub(tgi_ao_unproject(v, qx, qy, io->depth[j]), pv);
+        dd = tgi_v3_dot(d, d);
+        dn = tgi_v3_dot(d, nv);
         /* Klehm d_xn: above the tangent plane (with a bias angle of ~3 deg) and in range */
         if (dn > 0 && tg_sqr(dn) > tg_mul(dd, TG_R(0.0025f)) && dd < r2) blocked++;
     }
@@ -98,19 +99,19 @@ static void ssao_2d(const tg_ssao_params *p, const tg_ao_io *io, const tg_vec3 *
     if (io->bent_x) { io->bent_x[i] = io->nx[i]; io->bent_y[i] = io->ny[i]; io->bent_z[i] = io->nz[i]; }
 }
 
-void tg_ssao_rows(const tg_ssao_params *p, const tg_ao_io *io, int y0, int y1)
+void tgi_ssao_rows(const tgi_ssao_params *p, const tgi_ao_io *io, int y0, int y1)
 {
     tg_vec3 off[TG_AO_MAX_SAMPLES], dir[TG_AO_MAX_SAMPLES];
-    tg_ao_rot rot[16];
+    tgi_ao_rot rot[16];
     int n = make_kernel(p->variant, clamp_samples(p->samples), off, dir), x, y;
-    tg_ao_rotations(rot);
+    tgi_ao_rotations(rot);
     for (y = y0; y < y1; y++)
         for (x = 0; x < io->width; x++) {
             int i = y * io->width + x;
-            if (io->sky[i] || p->radius <= 0) { tg_ao_write_open(io, i); continue; }
+            if (io->sky[i] || p->radius <= 0) { tgi_ao_write_open(io, i); continue; }
             if (io->cone) io->cone[i] = TG_HALF_PI;
             if (io->near_r) { io->near_r[i] = 0; io->near_g[i] = 0; io->near_b[i] = 0; }
-            if (p->variant == TG_SSAO_DISK2D) ssao_2d(p, io, off, n, tg_ao_rot_at(rot, x, y), x, y);
-            else ssao_3d(p, io, off, dir, n, tg_ao_rot_at(rot, x, y), x, y);
+            if (p->variant == TG_SSAO_DISK2D) ssao_2d(p, io, off, n, tgi_ao_rot_at(rot, x, y), x, y);
+            else ssao_3d(p, io, off, dir, n, tgi_ao_rot_at(rot, x, y), x, y);
         }
 }

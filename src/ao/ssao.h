@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * ssao.h - Crytek-style screen-space ambient occlusion by point samples
  * (RTR sec. 11.3.6; Klehm et al. 2011 sec. 2 and 4), three variants:
@@ -30,16 +31,16 @@
 
 #include "ao.h"
 
-typedef enum tg_ssao_variant { TG_SSAO_SPHERE = 0, TG_SSAO_HEMISPHERE = 1, TG_SSAO_DISK2D = 2 } tg_ssao_variant;
+typedef enum tgi_ssao_variant { TG_SSAO_SPHERE = 0, TG_SSAO_HEMISPHERE = 1, TG_SSAO_DISK2D = 2 } tgi_ssao_variant;
 
-typedef struct tg_ssao_params {
+typedef struct tgi_ssao_params {
     int samples;       /* points per pixel, 1..TG_AO_MAX_SAMPLES (default 16) */
     tg_real radius;    /* world units (default 1) */
-    int variant;       /* tg_ssao_variant (default TG_SSAO_HEMISPHERE) */
+    int variant;       /* tgi_ssao_variant (default TG_SSAO_HEMISPHERE) */
     tg_real bias;      /* depth below the occluder's tangent plane that counts, fraction of the radius (default 0.03) */
-} tg_ssao_params;
+} tgi_ssao_params;
 
-void tg_ssao_defaults(tg_ssao_params *p);
-void tg_ssao_rows(const tg_ssao_params *p, const tg_ao_io *io, int y0, int y1);
+void tgi_ssao_defaults(tgi_ssao_params *p);
+void tgi_ssao_rows(const tgi_ssao_params *p, const tgi_ao_io *io, int y0, int y1);
 
 #endif

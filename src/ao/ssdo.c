@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * ssdo.c - screen-space directional occlusion with one indirect bounce
  * (Ritschel et al. 2009 sec. 3).  See ssdo.h.
@@ -8,7 +9,7 @@
 #include "../light/direct.h"
 #include <string.h>
 
-void tg_ssdo_defaults(tg_ssdo_params *p)
+void tgi_ssdo_defaults(tgi_ssdo_params *p)
 {
     p->samples = 16;
     p->radius = TG_ONE;
@@ -24,23 +25,23 @@ void tg_ssdo_defaults(tg_ssdo_params *p)
 
 /* Lights with directional occlusion: each light is one more sample
  * direction, towards it, marched in screen space (see ssdo.h). */
-static tg_vec3 lights_do(const tg_ssdo_params *p, const tg_ao_io *io, tg_vec3 pv, tg_vec3 pw, tg_vec3 nw,
+static tg_vec3 lights_do(const tgi_ssdo_params *p, const tgi_ao_io *io, tg_vec3 pv, tg_vec3 pw, tg_vec3 nw,
                          tg_real eps, tg_real jitter)
 {
     tg_vec3 e = tg_v3(0, 0, 0);
     int l, m, steps = p->light_steps < 1 ? 1 : p->light_steps;
     for (l = 0; l < p->light_count; l++) {
-        const tg_light *li = &p->lights[l];
-        tg_vec3 el = tg_direct_irradiance(li, pw, nw), to_light, lv;
+        const tgi_light *li = &p->lights[l];
+        tg_vec3 el = tgi_direct_irradiance(li, pw, nw), to_light, lv;
         int blocked = 0;
         if (el.x <= 0 && el.y <= 0 && el.z <= 0) continue;
-        to_light = li->type == TG_LIGHT_DIRECTIONAL ? tg_v3_neg(li->dir) : tg_v3_sub(li->pos, pw);
-        lv = tg_ao_dir_to_view(io->view, tg_v3_normalize_or(to_light, nw));
+        to_light = li->type == TG_LIGHT_DIRECTIONAL ? tgi_v3_neg(li->dir) : tgi_v3_sub(li->pos, pw);
+        lv = tgi_ao_dir_to_view(io->view, tgi_v3_normalize_or(to_light, nw));
         for (m = 0; m < steps && !blocked; m++) {
             tg_real lambda = tg_div(tg_mul(p->radius, tg_add(tg_from_int(m), jitter)), tg_from_int(steps));
-            blocked = tg_ao_sample_blocked(io, pv, tg_v3_add(pv, tg_v3_scale(lv, lambda)), eps, tg_ldexp(p->radius, 1));
+            blocked = tgi_ao_sample_blocked(io, pv, tgi_v3_add(pv, tgi_v3_scale(lv, lambda)), eps, tg_ldexp(p->radius, 1));
         }
-        if (!blocked) e = tg_v3_add(e, el);                 /* E_l V_ss(l) */
+        if (!blocked) e = tgi_v3_add(e, el);                 /* E_l V_ss(l) */
     }
     return e;
 }
@@ -51,95 +52,95 @@ typedef struct ssdo_sums {
 } ssdo_sums;
 
 /* Ritschel sec. 3, indirect: the occluder's pixel j as a sender patch. */
-static tg_vec3 sender(const tg_ao_io *io, tg_vec3 pv, tg_vec3 nv, int qx, int qy, tg_real area)
+static tg_vec3 sender(const tgi_ao_io *io, tg_vec3 pv, tg_vec3 nv, int qx, int qy, tg_real area)
 {
     int j = qy * io->width + qx;
-    tg_vec3 q = tg_ao_unproject(io->view, qx, qy, io->depth[j]), d = tg_v3_sub(q, pv), ns;
-    tg_real d2 = tg_v3_dot(d, d), inv_d, cos_s, cos_r, k;
+    tg_vec3 q = tgi_ao_unproject(io->view, qx, qy, io->depth[j]), d = tgi_v3_sub(q, pv), ns;
+    tg_real d2 = tgi_v3_dot(d, d), inv_d, cos_s, cos_r, k;
     if (d2 <= 0) return tg_v3(0, 0, 0);
     inv_d = tg_rsqrt(d2);
-    ns = tg_ao_normal_view(io, j);
-    cos_s = tg_neg(tg_mul(tg_v3_dot(ns, d), inv_d));       /* sender faces the receiver */
-    cos_r = tg_mul(tg_v3_dot(nv, d), inv_d);               /* sender above the receiver's plane */
+    ns = tgi_ao_normal_view(io, j);
+    cos_s = tg_neg(tg_mul(tgi_v3_dot(ns, d), inv_d));       /* sender faces the receiver */
+    cos_r = tg_mul(tgi_v3_dot(nv, d), inv_d);               /* sender above the receiver's plane */
     if (cos_s <= 0 || cos_r <= 0) return tg_v3(0, 0, 0);
     d2 = tg_max(d2, tg_mul(area, TG_INV_PI));               /* d clamped (Ritschel sec. 3) */
     k = tg_div(tg_mul(tg_mul(area, cos_s), cos_r), d2);    /* A_s cos(theta_s) cos(theta_r) / d^2 */
     return tg_v3(tg_mul(io->rad_r[j], k), tg_mul(io->rad_g[j], k), tg_mul(io->rad_b[j], k));
 }
 
-static void ssdo_pixel(const tg_ssdo_params *p, const tg_ao_io *io, const tg_vec3 *dirs,
-                       const tg_real *steps, int n, const tg_ao_rot *rot, int x, int y)
+static void ssdo_pixel(const tgi_ssdo_params *p, const tgi_ao_io *io, const tg_vec3 *dirs,
+                       const tg_real *steps, int n, const tgi_ao_rot *rot, int x, int y)
 {
     int i = y * io->width + x, k;
-    const tg_view *v = io->view;
-    tg_vec3 pv = tg_ao_unproject(v, x, y, io->depth[i]), nv = tg_ao_normal_view(io, i), t, b;
+    const tgi_view *v = io->view;
+    tg_vec3 pv = tgi_ao_unproject(v, x, y, io->depth[i]), nv = tgi_ao_normal_view(io, i), t, b;
     tg_real bias = tg_mul(p->bias, p->radius);
     tg_real area = tg_div(tg_mul(tg_mul(TG_PI, tg_sqr(p->radius)), p->bounce), tg_from_int(n)); /* A_s = pi r^2 / N */
     tg_real dw = tg_div(TG_TWO_PI, tg_from_int(n));                                           /* Delta w = 2 pi / N */
     int want_far = p->env_sh9 && p->far_r, want_near = io->near_r && io->rad_r;
     ssdo_sums sum;
     memset(&sum, 0, sizeof sum);
-    tg_ao_basis(nv, &t, &b);
+    tgi_ao_basis(nv, &t, &b);
     for (k = 0; k < n; k++) {
-        tg_vec3 l = tg_ao_rotate_z(dirs[k], rot->c, rot->s), w = tg_ao_from_local(l, t, b, nv);
+        tg_vec3 l = tgi_ao_rotate_z(dirs[k], rot->c, rot->s), w = tgi_ao_from_local(l, t, b, nv);
         tg_real lambda = tg_mul(p->radius, tg_add(steps[k], tg_ldexp(rot->jitter, -5)));
-        tg_vec3 s = tg_v3_add(pv, tg_v3_scale(w, lambda));
-        int qx, qy, blocked = tg_ao_sample_blocked_at(io, pv, s, bias, tg_ldexp(p->radius, 1), &qx, &qy); /* below the surface */
+        tg_vec3 s = tgi_v3_add(pv, tgi_v3_scale(w, lambda));
+        int qx, qy, blocked = tgi_ao_sample_blocked_at(io, pv, s, bias, tg_ldexp(p->radius, 1), &qx, &qy); /* below the surface */
         sum.all_cos = tg_add(sum.all_cos, l.z);
         if (!blocked) {
             sum.vis_cos = tg_add(sum.vis_cos, l.z);
-            sum.bent = tg_v3_add(sum.bent, tg_v3_scale(w, l.z));
+            sum.bent = tgi_v3_add(sum.bent, tgi_v3_scale(w, l.z));
             if (want_far)                                   /* L_in(w) V(w) cos(theta) */
-                sum.far = tg_v3_add(sum.far, tg_v3_scale(tg_sh9_radiance(p->env_sh9, tg_ao_dir_to_world(v, w)), l.z));
+                sum.far = tgi_v3_add(sum.far, tgi_v3_scale(tgi_sh9_radiance(p->env_sh9, tgi_ao_dir_to_world(v, w)), l.z));
         } else if (want_near) {
-            sum.near = tg_v3_add(sum.near, sender(io, pv, nv, qx, qy, area));
+            sum.near = tgi_v3_add(sum.near, sender(io, pv, nv, qx, qy, area));
         }
     }
     io->ao[i] = sum.all_cos > 0 ? tg_saturate(tg_div(sum.vis_cos, sum.all_cos)) : TG_ONE;
-    tg_ao_write_bent_view(io, i, sum.bent);
+    tgi_ao_write_bent_view(io, i, sum.bent);
     if (want_far) {
         p->far_r[i] = tg_mul(sum.far.x, dw); p->far_g[i] = tg_mul(sum.far.y, dw); p->far_b[i] = tg_mul(sum.far.z, dw);
     }
     if (want_near) { io->near_r[i] = sum.near.x; io->near_g[i] = sum.near.y; io->near_b[i] = sum.near.z; }
     if (p->light_r && p->lights && p->light_count > 0) {
         tg_vec3 nw = tg_v3(io->nx[i], io->ny[i], io->nz[i]);
-        tg_vec3 pw = tg_v3_add(v->eye, tg_ao_dir_to_world(v, pv));
+        tg_vec3 pw = tgi_v3_add(v->eye, tgi_ao_dir_to_world(v, pv));
         tg_vec3 e = lights_do(p, io, pv, pw, nw, bias, rot->jitter);
         p->light_r[i] = e.x; p->light_g[i] = e.y; p->light_b[i] = e.z;
     }
 }
 
-void tg_ssdo_rows(const tg_ssdo_params *p, const tg_ao_io *io, int y0, int y1)
+void tgi_ssdo_rows(const tgi_ssdo_params *p, const tgi_ao_io *io, int y0, int y1)
 {
     tg_vec3 dirs[TG_AO_MAX_SAMPLES];
     tg_real steps[TG_AO_MAX_SAMPLES];
-    tg_ao_rot rot[16];
+    tgi_ao_rot rot[16];
     int n = p->samples < 1 ? 1 : p->samples > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : p->samples, k, x, y;
     for (k = 0; k < n; k++) {
-        dirs[k] = tg_ao_hemi_uniform(k, n);               /* uniform over the hemisphere (Ritschel sec. 3) */
+        dirs[k] = tgi_ao_hemi_uniform(k, n);               /* uniform over the hemisphere (Ritschel sec. 3) */
         /* lambda in (0, 1]: van der Corput, decorrelated from the spiral; +1/32 jitter per pixel */
-        steps[k] = tg_add(tg_mul(tg_ao_radical2(k), TG_R(0.9375f)), TG_R(0.03125f));
+        steps[k] = tg_add(tg_mul(tgi_ao_radical2(k), TG_R(0.9375f)), TG_R(0.03125f));
     }
-    tg_ao_rotations(rot);
+    tgi_ao_rotations(rot);
     for (y = y0; y < y1; y++)
         for (x = 0; x < io->width; x++) {
             int i = y * io->width + x;
-            tg_ao_write_open(io, i);
+            tgi_ao_write_open(io, i);
             if (p->far_r) {
                 tg_vec3 e = tg_v3(0, 0, 0);
-                if (!io->sky[i] && p->env_sh9) e = tg_sh9_irradiance(p->env_sh9, tg_v3(io->nx[i], io->ny[i], io->nz[i]));
+                if (!io->sky[i] && p->env_sh9) e = tgi_sh9_irradiance(p->env_sh9, tg_v3(io->nx[i], io->ny[i], io->nz[i]));
                 p->far_r[i] = e.x; p->far_g[i] = e.y; p->far_b[i] = e.z;
             }
             if (p->light_r) { p->light_r[i] = 0; p->light_g[i] = 0; p->light_b[i] = 0; }
             if (io->sky[i]) continue;
             if (p->radius <= 0) {                               /* nothing occludes */
                 if (p->light_r && p->lights && p->light_count > 0) {
-                    tg_vec3 pv = tg_ao_unproject(io->view, x, y, io->depth[i]), nw = tg_v3(io->nx[i], io->ny[i], io->nz[i]);
-                    tg_vec3 e = lights_do(p, io, pv, tg_v3_add(io->view->eye, tg_ao_dir_to_world(io->view, pv)), nw, 0, 0);
+                    tg_vec3 pv = tgi_ao_unproject(io->view, x, y, io->depth[i]), nw = tg_v3(io->nx[i], io->ny[i], io->nz[i]);
+                    tg_vec3 e = lights_do(p, io, pv, tgi_v3_add(io->view->eye, tgi_ao_dir_to_world(io->view, pv)), nw, 0, 0);
                     p->light_r[i] = e.x; p->light_g[i] = e.y; p->light_b[i] = e.z;
                 }
                 continue;
             }
-            ssdo_pixel(p, io, dirs, steps, n, tg_ao_rot_at(rot, x, y), x, y);
+            ssdo_pixel(p, io, dirs, steps, n, tgi_ao_rot_at(rot, x, y), x, y);
         }
 }

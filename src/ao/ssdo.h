@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * ssdo.h - screen-space directional occlusion (Ritschel, Grosch and Seidel
  * 2009, sec. 3).  Per pixel, N directions w_i uniform over the normal's
@@ -35,20 +36,20 @@
 
 #include "ao.h"
 
-typedef struct tg_ssdo_params {
+typedef struct tgi_ssdo_params {
     int samples;                 /* directions per pixel, 1..TG_AO_MAX_SAMPLES (default 16) */
     tg_real radius;              /* r_max, world units (default 1) */
     tg_real bias;                /* depth below the occluder's tangent plane that counts, fraction of the radius (default 0.03) */
     tg_real bounce;              /* sender patch area factor (default 1) */
     const tg_vec3 *env_sh9;      /* environment radiance SH9 (light/sh.h order); NULL = none */
     tg_real *far_r, *far_g, *far_b; /* out: E_do from the environment; NULL = not wanted */
-    const struct tg_light *lights;  /* scene lights (scene.h); NULL or light_count 0 = none */
+    const struct tgi_light *lights;  /* scene lights (scene.h); NULL or light_count 0 = none */
     int light_count;
     int light_steps;             /* screen-space march points per light (default 4) */
     tg_real *light_r, *light_g, *light_b; /* out: direct irradiance with screen-space DO; NULL = not wanted */
-} tg_ssdo_params;
+} tgi_ssdo_params;
 
-void tg_ssdo_defaults(tg_ssdo_params *p);
-void tg_ssdo_rows(const tg_ssdo_params *p, const tg_ao_io *io, int y0, int y1);
+void tgi_ssdo_defaults(tgi_ssdo_params *p);
+void tgi_ssdo_rows(const tgi_ssdo_params *p, const tgi_ao_io *io, int y0, int y1);
 
 #endif

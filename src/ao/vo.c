@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * vo.c - volumetric obscurance by line samples (Loos and Sloan sec. 4.1),
  * with the thickness model (4.3), normal clamping (4.4) and optional area
@@ -6,7 +7,7 @@
 #include "vo.h"
 #include "sampling.h"
 
-void tg_vo_defaults(tg_vo_params *p)
+void tgi_vo_defaults(tgi_vo_params *p)
 {
     p->samples = 9;
     p->radius = TG_ONE;
@@ -44,7 +45,7 @@ static tg_real free_length(tg_real lo, tg_real hi, tg_real z0, tg_real z1, tg_re
 
 /* Mean and standard deviation of (depth - zc) / r over a footprint of
  * half-size `half` taps spaced `stride` pixels around (cx, cy). 0 if empty. */
-static int depth_moments(const tg_ao_io *io, int cx, int cy, int half, int stride, tg_real zc,
+static int depth_moments(const tgi_ao_io *io, int cx, int cy, int half, int stride, tg_real zc,
                          tg_real inv_r, tg_real *mu, tg_real *sigma)
 {
     tg_real m1 = 0, m2 = 0;
@@ -74,25 +75,25 @@ static int depth_moments(const tg_ao_io *io, int cx, int cy, int half, int strid
  * that ray.  This is the depth buffer read at s's exact position, free of
  * nearest-pixel quantisation on planes; a plane not cut in front of the eye
  * falls back to the stored depth. */
-static tg_real surface_depth(const tg_ao_io *io, tg_vec3 s, int qx, int qy)
+static tg_real surface_depth(const tgi_ao_io *io, tg_vec3 s, int qx, int qy)
 {
     int j = qy * io->width + qx;
-    tg_vec3 q = tg_ao_unproject(io->view, qx, qy, io->depth[j]), nj = tg_ao_normal_view(io, j);
-    tg_real n_dot_s = tg_v3_dot(nj, s), n_dot_q = tg_v3_dot(nj, q), z;
+    tg_vec3 q = tgi_ao_unproject(io->view, qx, qy, io->depth[j]), nj = tgi_ao_normal_view(io, j);
+    tg_real n_dot_s = tgi_v3_dot(nj, s), n_dot_q = tgi_v3_dot(nj, q), z;
     if (n_dot_s >= TG_R(-0.0001f) || n_dot_q >= 0) return io->depth[j];
     z = tg_div(tg_mul(s.z, n_dot_q), n_dot_s);
     return tg_clamp(z, tg_sub(io->depth[j], TG_R(64.0f)), tg_add(io->depth[j], TG_R(64.0f)));
 }
 
-static void vo_pixel(const tg_vo_params *p, const tg_ao_io *io, const tg_real *dx, const tg_real *dy,
-                     const tg_real *zs, int n, const tg_ao_rot *rot, int x, int y)
+static void vo_pixel(const tgi_vo_params *p, const tgi_ao_io *io, const tg_real *dx, const tg_real *dy,
+                     const tg_real *zs, int n, const tgi_ao_rot *rot, int x, int y)
 {
     int i = y * io->width + x, k;
-    const tg_view *v = io->view;
-    tg_vec3 pv = tg_ao_unproject(v, x, y, io->depth[i]), nv = tg_ao_normal_view(io, i);
+    const tgi_view *v = io->view;
+    tg_vec3 pv = tgi_ao_unproject(v, x, y, io->depth[i]), nv = tgi_ao_normal_view(io, i);
     tg_real inv_r = tg_div(TG_ONE, p->radius), t_r = 0, sum_free = 0, sum_len = 0;
-    tg_real n_dot_p = tg_v3_dot(nv, pv), foot_px = 0;
-    tg_real bias_r = tg_mul(tg_ao_depth_bias(io, pv, nv, 0), inv_r);   /* area: the depth buffer's slope slack */
+    tg_real n_dot_p = tgi_v3_dot(nv, pv), foot_px = 0;
+    tg_real bias_r = tg_mul(tgi_ao_depth_bias(io, pv, nv, 0), inv_r);   /* area: the depth buffer's slope slack */
     /* thickness in unit-ball coordinates: 0 = the ball's diameter (2); infinite = no model */
     t_r = p->thickness <= 0 ? TG_R(2.0f) : p->thickness == TG_AO_INFINITE ? 0 : tg_max(tg_mul(p->thickness, inv_r), TG_EPS);
     if (p->area)   /* each sample's footprint: radius R_px / sqrt(n) */
@@ -104,7 +105,7 @@ static void vo_pixel(const tg_vo_params *p, const tg_ao_io *io, const tg_real *d
         tg_real lo = tg_neg(zs[k]), hi = zs[k], z0, z1;
         int qx, qy, j;
         if (p->use_normal) {  /* sec. 4.4: cut at the tangent plane, along the eye ray through s */
-            tg_real n_dot_s = tg_v3_dot(nv, s);
+            tg_real n_dot_s = tgi_v3_dot(nv, s);
             if (n_dot_s < TG_R(-0.0001f)) {
                 tg_real zp = tg_mul(tg_sub(tg_div(tg_mul(s.z, n_dot_p), n_dot_s), pv.z), inv_r);
                 hi = tg_min(hi, zp);
@@ -112,7 +113,7 @@ static void vo_pixel(const tg_vo_params *p, const tg_ao_io *io, const tg_real *d
         }
         if (hi <= lo) continue;
         sum_len = tg_add(sum_len, tg_sub(hi, lo));
-        if (!tg_ao_project_pixel(v, s, &qx, &qy) || io->sky[j = qy * io->width + qx]) {
+        if (!tgi_ao_project_pixel(v, s, &qx, &qy) || io->sky[j = qy * io->width + qx]) {
             sum_free = tg_add(sum_free, tg_sub(hi, lo));
             continue;
         }
@@ -133,10 +134,10 @@ static void vo_pixel(const tg_vo_params *p, const tg_ao_io *io, const tg_real *d
     if (!p->use_normal) io->ao[i] = tg_min(TG_ONE, tg_ldexp(io->ao[i], 1));
 }
 
-void tg_vo_rows(const tg_vo_params *p, const tg_ao_io *io, int y0, int y1)
+void tgi_vo_rows(const tgi_vo_params *p, const tgi_ao_io *io, int y0, int y1)
 {
     tg_real dx[TG_AO_MAX_SAMPLES], dy[TG_AO_MAX_SAMPLES], zs[TG_AO_MAX_SAMPLES];
-    tg_ao_rot rot[16];
+    tgi_ao_rot rot[16];
     int n = p->samples < 1 ? 1 : p->samples > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : p->samples, k, x, y;
     /* centrally symmetric line pattern: the centre when n is odd, then
      * +- pairs of a Vogel spiral; a tilted plane's depth is linear in x, y,
@@ -146,17 +147,17 @@ void tg_vo_rows(const tg_vo_params *p, const tg_ao_io *io, int y0, int y1)
         int half = n / 2, m = n & 1 ? k - 1 : k;
         if (n & 1 && k == 0) { dx[k] = 0; dy[k] = 0; }
         else {
-            tg_ao_disk(m / 2, half, &dx[k], &dy[k]);
+            tgi_ao_disk(m / 2, half, &dx[k], &dy[k]);
             if (m & 1) { dx[k] = tg_neg(dx[k]); dy[k] = tg_neg(dy[k]); }
         }
         zs[k] = tg_sqrt(tg_max(tg_sub(TG_ONE, tg_add(tg_sqr(dx[k]), tg_sqr(dy[k]))), 0)); /* z_s, sec. 4.1 */
     }
-    tg_ao_rotations(rot);
+    tgi_ao_rotations(rot);
     for (y = y0; y < y1; y++)
         for (x = 0; x < io->width; x++) {
             int i = y * io->width + x;
-            tg_ao_write_open(io, i);
+            tgi_ao_write_open(io, i);
             if (io->sky[i] || p->radius <= 0) continue;
-            vo_pixel(p, io, dx, dy, zs, n, tg_ao_rot_at(rot, x, y), x, y);
+            vo_pixel(p, io, dx, dy, zs, n, tgi_ao_rot_at(rot, x, y), x, y);
         }
 }

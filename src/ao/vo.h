@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * vo.h - volumetric obscurance (Loos and Sloan 2010; RTR eq. 11.15): the
  * unoccupied fraction of a ball of `radius` about P, integrated numerically
@@ -27,7 +28,7 @@
 
 #include "ao.h"
 
-typedef struct tg_vo_params {
+typedef struct tgi_vo_params {
     int samples;        /* line (or area) samples on the disk, 1..TG_AO_MAX_SAMPLES (default 9) */
     tg_real radius;     /* world units (default 1) */
     tg_real thickness;  /* world units (sec. 4.3); 0 = twice the radius, the ball's diameter
@@ -36,9 +37,9 @@ typedef struct tg_vo_params {
                            TG_AO_INFINITE = no thickness model (infinitely thick) */
     int use_normal;     /* sec. 4.4 (default 1) */
     int area;           /* sec. 4.2 area samples (default 0: line samples) */
-} tg_vo_params;
+} tgi_vo_params;
 
-void tg_vo_defaults(tg_vo_params *p);
-void tg_vo_rows(const tg_vo_params *p, const tg_ao_io *io, int y0, int y1);
+void tgi_vo_defaults(tgi_vo_params *p);
+void tgi_vo_rows(const tgi_vo_params *p, const tgi_ao_io *io, int y0, int y1);
 
 #endif

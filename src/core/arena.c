@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * arena.c - the caller's one block of memory, carved front to back, and the
  * overflow-checked size arithmetic every buffer size goes through.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * error.c - errors as values a caller can show to a person.
  */
@@ -46,13 +47,13 @@ size_t tg_error_format(const tg_error *err, char *buf, size_t size)
     return append(buf, size, at, err->message);
 }
 
-void tg_error_clear(tg_error *err)
+void tgi_error_clear(tg_error *err)
 {
     if (!err) return;
     memset(err, 0, sizeof *err);
 }
 
-void tg_error_set(tg_error *err, tg_status status, const char *file, int line,
+void tgi_error_set(tg_error *err, tg_status status, const char *file, int line,
                   int col, const char *message)
 {
     size_t n;
@@ -71,16 +72,16 @@ void tg_error_set(tg_error *err, tg_status status, const char *file, int line,
     append(err->message, sizeof err->message, 0, message);
 }
 
-void tg_error_append(tg_error *err, const char *text)
+void tgi_error_append(tg_error *err, const char *text)
 {
     if (!err) return;
     append(err->message, sizeof err->message, strlen(err->message), text);
 }
 
-void tg_error_append_int(tg_error *err, long v)
+void tgi_error_append_int(tg_error *err, long v)
 {
     char num[24];
-    if (v < 0) { tg_error_append(err, "-"); v = -v; }
+    if (v < 0) { tgi_error_append(err, "-"); v = -v; }
     format_uint(num, (unsigned long)v);
-    tg_error_append(err, num);
+    tgi_error_append(err, num);
 }

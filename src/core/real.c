@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * real.c - the core's own transcendentals and the decimal parser, for both
  * number types (float and Q16.16).  No libm: every function is a range
@@ -41,7 +42,7 @@
  *   tg_pow          x > 0, |y log2 x| < 15      0.5000 ulp   rel 3.9e-6
  *                   (fixed) or < 64 (float)
  *   tg_floor        all                         exact        exact
- *   tg_isqrt64      all uint64                  exact floor (both builds; 6e6 values incl. k^2, k^2-1)
+ *   tgi_isqrt64      all uint64                  exact floor (both builds; 6e6 values incl. k^2, k^2-1)
  *   tg_parse_real   decimal text                correctly rounded, ties to even
  *                                               (300000 random strings vs strtof/strtod)
  * Targets from issue 2: fixed trig within 2^-12 = 16 ulp, sqrt within 1 ulp;
@@ -79,7 +80,7 @@ static int64_t div_round(int64_t a, int64_t b)
 #endif
 
 /* Number of significant bits of v (0 for 0), by halving. */
-int tg_bit_length64(uint64_t v)
+int tgi_bit_length64(uint64_t v)
 {
     int n = 0;
     if (v >> 32) { v >>= 32; n += 32; }
@@ -104,7 +105,7 @@ static const uint32_t rsqrt_seed[48] = {
 /* v > 0 as M 2^e: returns M in Q32 (M in [1/4, 1)) and an even e. */
 static uint64_t mantissa_even(uint64_t v, int *e)
 {
-    int bl = tg_bit_length64(v);
+    int bl = tgi_bit_length64(v);
     uint64_t m = bl > 32 ? v >> (bl - 32) : v << (32 - bl);
     if (bl & 1) { m >>= 1; bl++; }
     *e = bl;
@@ -127,7 +128,7 @@ static uint64_t rsqrt_q30(uint64_t m)
 
 /* floor(sqrt(v)): sqrt(M) 2^(e/2) from the Newton reciprocal (within a few
  * units), then made exact by integer tests r^2 <= v < (r+1)^2. */
-uint32_t tg_isqrt64(uint64_t v)
+uint32_t tgi_isqrt64(uint64_t v)
 {
     int e;
     uint64_t m, sm, r;
@@ -145,7 +146,7 @@ uint32_t tg_isqrt64(uint64_t v)
 /* sqrt(v) rounded to nearest integer. */
 static uint64_t isqrt_round(uint64_t v)
 {
-    uint64_t r = tg_isqrt64(v);
+    uint64_t r = tgi_isqrt64(v);
     return v - r * r > r ? r + 1 : r;
 }
 
@@ -162,7 +163,7 @@ static wreal w_mul(wreal a, wreal b) { return shr_round(a * b, 30); }
 static wreal w_div(wreal a, wreal b) { return div_round(a * W_ONE, b); }
 static wreal w_sqrt(wreal a) { return a <= 0 ? 0 : (wreal)isqrt_round((uint64_t)a << 30); }
 static wreal w_from_real(tg_real x) { return (wreal)x * 16384; }
-static tg_real w_to_real(wreal a) { return tg_sat64(shr_round(a, 14)); }
+static tg_real w_to_real(wreal a) { return tgi_sat64(shr_round(a, 14)); }
 #else
 typedef float wreal;
 #define WC(f, q30) (f)
@@ -210,7 +211,7 @@ tg_real tg_rsqrt(tg_real x)
     uint64_t y;
     if (x <= 0) return TG_REAL_MAX;
     y = rsqrt_q30(mantissa_even((uint64_t)x, &e));
-    return tg_sat64((int64_t)((y + ((uint64_t)1 << (5 + e / 2))) >> (6 + e / 2)));
+    return tgi_sat64((int64_t)((y + ((uint64_t)1 << (5 + e / 2))) >> (6 + e / 2)));
 }
 
 #else
@@ -304,7 +305,7 @@ tg_real tg_tan(tg_real x)
     wreal s = sin_quadrant(r, q), c = sin_quadrant(r, q + 1);
 #if TG_FIXED
     if (c == 0) return s >= 0 ? TG_REAL_MAX : TG_REAL_MIN;
-    return tg_sat64(div_round(s * 65536, c));
+    return tgi_sat64(div_round(s * 65536, c));
 #else
     if (c == 0.0f) return s >= 0.0f ? TG_REAL_MAX : TG_REAL_MIN;
     return s / c;
@@ -427,7 +428,7 @@ static wreal log2_mantissa(wreal m)
 /* log2(x) in Q30 for x > 0: x = m 2^e, m in [sqrt(1/2), sqrt2). */
 static wreal log2_wide(tg_real x)
 {
-    int p = tg_bit_length64((uint64_t)x) - 1; /* x_raw = m 2^p, m in [1, 2) */
+    int p = tgi_bit_length64((uint64_t)x) - 1; /* x_raw = m 2^p, m in [1, 2) */
     int64_t e = p - 16;
     wreal m = (wreal)x << (30 - p);
     if (m > 1518500250) { m = (m + 1) >> 1; e++; } /* m > sqrt2 */
@@ -442,7 +443,7 @@ static tg_real exp2_wide(wreal v)
     if (n >= 15) return TG_REAL_MAX;
     if (n < -40) return 0;
     p = w_poly(v - n * W_ONE, exp2_c, 12); /* [2^30, 2^31) */
-    return tg_sat64(n == 14 ? p : shr_round(p, (int)(14 - n)));
+    return tgi_sat64(n == 14 ? p : shr_round(p, (int)(14 - n)));
 }
 
 tg_real tg_exp2(tg_real x) { return exp2_wide(w_from_real(x)); }
@@ -523,7 +524,7 @@ tg_real tg_floor(tg_real x)
 {
 #if TG_FIXED
     int64_t f = x >= 0 ? (int64_t)x - (x & 65535) : -((-(int64_t)x + 65535) / 65536 * 65536);
-    return tg_sat64(f);
+    return tgi_sat64(f);
 #else
     int32_t i;
     float f;
@@ -657,7 +658,7 @@ static int32_t big_bits(const big *a)
 {
     int i;
     for (i = BIG_LIMBS - 1; i >= 0; i--)
-        if (a->w[i]) return i * 32 + tg_bit_length64(a->w[i]);
+        if (a->w[i]) return i * 32 + tgi_bit_length64(a->w[i]);
     return 0;
 }
 static int big_is_zero(const big *a) { return big_bits(a) == 0; }

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * real.h - tinygi's one number type, chosen once per build (like luaconf.h).
  *
@@ -5,7 +6,7 @@
  *   TG_FIXED=1              : tg_real is Q16.16 fixed point in int32_t.
  *
  * Every kernel is written once against the scalar API below.  The rules:
- *  - arithmetic between tg_reals goes through tg_add/tg_sub/tg_mul/tg_div
+ *  - arithmetic between tgi_reals goes through tg_add/tg_sub/tg_mul/tg_div
  *    (plain + and - are allowed in float-only code paths: there are none);
  *  - constants are written TG_R(0.5f) - a compile-time conversion;
  *  - fixed point multiplies in 64 bits and SATURATES to [-TG_REAL_MAX,
@@ -38,24 +39,24 @@ typedef int32_t tg_real;
 #define TG_R(x) ((tg_real)((x) >= 0 ? (x) * 65536.0f + 0.5f : (x) * 65536.0f - 0.5f))
 #define TG_NUMBER_NAME "fixed"
 
-static inline tg_real tg_sat64(int64_t v)
+static inline tg_real tgi_sat64(int64_t v)
 {
     if (v > (int64_t)TG_REAL_MAX) return TG_REAL_MAX;
     if (v < (int64_t)TG_REAL_MIN) return TG_REAL_MIN;
     return (tg_real)v;
 }
-static inline tg_real tg_add(tg_real a, tg_real b) { return tg_sat64((int64_t)a + b); }
-static inline tg_real tg_sub(tg_real a, tg_real b) { return tg_sat64((int64_t)a - b); }
+static inline tg_real tg_add(tg_real a, tg_real b) { return tgi_sat64((int64_t)a + b); }
+static inline tg_real tg_sub(tg_real a, tg_real b) { return tgi_sat64((int64_t)a - b); }
 static inline tg_real tg_neg(tg_real a) { return -a; }
 /* Round-half-away-from-zero shift; avoids right-shifting negative values. */
-static inline int64_t tg_shr_round(int64_t p, int s)
+static inline int64_t tgi_shr_round(int64_t p, int s)
 {
     int64_t half = (int64_t)1 << (s - 1);
     return p >= 0 ? (p + half) >> s : -((-p + half) >> s);
 }
 static inline tg_real tg_mul(tg_real a, tg_real b)
 {
-    return tg_sat64(tg_shr_round((int64_t)a * b, TG_FRAC_BITS));
+    return tgi_sat64(tgi_shr_round((int64_t)a * b, TG_FRAC_BITS));
 }
 /* Division saturates; x/0 gives +-TG_REAL_MAX by the sign of x, 0/0 gives 0. */
 static inline tg_real tg_div(tg_real a, tg_real b)
@@ -65,15 +66,15 @@ static inline tg_real tg_div(tg_real a, tg_real b)
     n = (int64_t)a * 65536;
     if ((n >= 0) == (b > 0)) n += (b > 0 ? b : -(int64_t)b) / 2;
     else n -= (b > 0 ? b : -(int64_t)b) / 2;
-    return tg_sat64(n / b);
+    return tgi_sat64(n / b);
 }
-static inline tg_real tg_from_int(int32_t i) { return tg_sat64((int64_t)i * 65536); }
+static inline tg_real tg_from_int(int32_t i) { return tgi_sat64((int64_t)i * 65536); }
 /* Floor to integer. */
 static inline int32_t tg_to_int(tg_real a) { return (int32_t)(a >= 0 ? a >> 16 : -((-(int64_t)a + 65535) >> 16)); }
 /* Round to nearest integer. */
 static inline int32_t tg_round_int(tg_real a) { return tg_to_int(a + (a < TG_REAL_MAX - 32768 ? 32768 : 0)); }
 /* n/d as a tg_real, exactly rounded; d > 0. */
-static inline tg_real tg_ratio(int32_t n, int32_t d) { return tg_sat64(((int64_t)n * 65536 + (n >= 0 ? d / 2 : -(d / 2))) / d); }
+static inline tg_real tg_ratio(int32_t n, int32_t d) { return tgi_sat64(((int64_t)n * 65536 + (n >= 0 ? d / 2 : -(d / 2))) / d); }
 /* Host-side conversions (used by platform code and tests, never by kernels). */
 static inline float tg_to_float(tg_real a) { return (float)a * (1.0f / 65536.0f); }
 static inline tg_real tg_from_float(float f)
@@ -87,8 +88,8 @@ static inline tg_real tg_from_float(float f)
 /* Multiply by a power of two (shift), saturating. */
 static inline tg_real tg_ldexp(tg_real a, int e)
 {
-    if (e >= 0) return tg_sat64((int64_t)a * ((int64_t)1 << (e > 31 ? 31 : e)));
-    return (tg_real)tg_shr_round(a, -e > 31 ? 31 : -e);
+    if (e >= 0) return tgi_sat64((int64_t)a * ((int64_t)1 << (e > 31 ? 31 : e)));
+    return (tg_real)tgi_shr_round(a, -e > 31 ? 31 : -e);
 }
 static inline int tg_isfinite(tg_real a) { (void)a; return 1; }
 
@@ -132,8 +133,8 @@ static inline int tg_isfinite(tg_real a) { return a == a && a <= TG_REAL_MAX && 
 
 /* rsqrt and sqrt are inline in the float build: every normalisation in the
  * hot loops calls them (error bounds in real.c's table). */
-static inline float tg_f_from_bits(uint32_t b) { float f; memcpy(&f, &b, sizeof f); return f; }
-static inline uint32_t tg_f_bits(float f) { uint32_t b; memcpy(&b, &f, sizeof b); return b; }
+static inline float tgi_f_from_bits(uint32_t b) { float f; memcpy(&f, &b, sizeof f); return f; }
+static inline uint32_t tgi_f_bits(float f) { uint32_t b; memcpy(&b, &f, sizeof b); return b; }
 
 /* Bit-trick seed (within 3.5%) and three Newton steps (quadratic); x <= 0 gives TG_REAL_MAX. */
 static inline tg_real tg_rsqrt(tg_real x)
@@ -142,7 +143,7 @@ static inline tg_real tg_rsqrt(tg_real x)
     if (!(x > 0.0f)) return TG_REAL_MAX;
     if (x > TG_REAL_MAX) return 0.0f;
     if (x < 1.17549435e-38f) { x *= 18446744073709551616.0f; scale = 4294967296.0f; }
-    y = tg_f_from_bits(0x5f3759dfu - (tg_f_bits(x) >> 1));
+    y = tgi_f_from_bits(0x5f3759dfu - (tgi_f_bits(x) >> 1));
     hx = 0.5f * x;
     y = y * (1.5f - hx * y * y);
     y = y * (1.5f - hx * y * y);
@@ -190,9 +191,9 @@ tg_real tg_pow(tg_real x, tg_real y); /* x >= 0 */
 tg_real tg_floor(tg_real x);
 tg_real tg_smoothstep(tg_real a, tg_real b, tg_real x);
 /* Number of significant bits of v (0 for 0). */
-int tg_bit_length64(uint64_t v);
+int tgi_bit_length64(uint64_t v);
 /* sqrt of a 64-bit integer, floor; used by fixed-point vector lengths. */
-uint32_t tg_isqrt64(uint64_t v);
+uint32_t tgi_isqrt64(uint64_t v);
 /* Parse a decimal number ("1", "-0.5", "2.5e-3") into a tg_real, rounding to
  * nearest.  Returns the count of characters used, 0 if none form a number.
  * *overflow is set when the value is outside the tg_real range (the result

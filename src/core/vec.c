@@ -1,10 +1,11 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * vec.c - vector lengths and normalization, 4x4 matrices, Rodrigues
  * rotation and quaternions over tg_real (declarations and conventions in
  * vec.h: row-major matrices acting on column vectors).
  *
  * Fixed point: lengths and normalization work on the exact 64-bit sum of
- * squares and the integer sqrt (tg_isqrt64), after shifting the vector so
+ * squares and the integer sqrt (tgi_isqrt64), after shifting the vector so
  * its largest component has 30 significant bits - a huge vector does not
  * overflow, a tiny one (a few ulps) still gets full precision.  Matrix rows
  * accumulate their four products in 64 bits before one rounding.
@@ -19,7 +20,7 @@
 
 static uint64_t isqrt_round(uint64_t v)
 {
-    uint64_t r = tg_isqrt64(v);
+    uint64_t r = tgi_isqrt64(v);
     return v - r * r > r ? r + 1 : r;
 }
 
@@ -34,18 +35,18 @@ static int normalize_n(tg_real *v, int n)
         if (a > m) m = a;
     }
     if (m == 0) return 0;
-    s = 30 - tg_bit_length64((uint64_t)m); /* largest |w| in [2^29, 2^30) */
+    s = 30 - tgi_bit_length64((uint64_t)m); /* largest |w| in [2^29, 2^30) */
     for (i = 0; i < n; i++) {
-        w[i] = s >= 0 ? (int64_t)v[i] * ((int64_t)1 << s) : tg_shr_round(v[i], -s);
+        w[i] = s >= 0 ? (int64_t)v[i] * ((int64_t)1 << s) : tgi_shr_round(v[i], -s);
         sum += (uint64_t)(w[i] * w[i]);
     }
     len2 = isqrt_round(sum << 2); /* 2 |w|, in [2^30, 2^32] */
     inv = (int64_t)((((uint64_t)1 << 62) + len2 / 2) / len2); /* 2^62 / (2 |w|), one division */
-    for (i = 0; i < n; i++) v[i] = tg_sat64(tg_shr_round(w[i] * inv, 45)); /* w 2^16 / |w| */
+    for (i = 0; i < n; i++) v[i] = tgi_sat64(tgi_shr_round(w[i] * inv, 45)); /* w 2^16 / |w| */
     return 1;
 }
 
-tg_real tg_v3_length(tg_vec3 a)
+tg_real tgi_v3_length(tg_vec3 a)
 {
     uint64_t sum = (uint64_t)((int64_t)a.x * a.x) + (uint64_t)((int64_t)a.y * a.y)
                  + (uint64_t)((int64_t)a.z * a.z);
@@ -61,8 +62,8 @@ static tg_real dot4(const tg_real *r, tg_real a, tg_real b, tg_real c, tg_real d
     int64_t s2 = (int64_t)r[2] * c + (int64_t)r[3] * d;
     const int64_t lim = (int64_t)1 << 62;
     if (s1 < lim && s1 > -lim && s2 < lim && s2 > -lim)
-        return tg_sat64(tg_shr_round(s1 + s2, TG_FRAC_BITS));
-    return tg_sat64(tg_shr_round(tg_shr_round(s1, 1) + tg_shr_round(s2, 1), TG_FRAC_BITS - 1));
+        return tgi_sat64(tgi_shr_round(s1 + s2, TG_FRAC_BITS));
+    return tgi_sat64(tgi_shr_round(tgi_shr_round(s1, 1) + tgi_shr_round(s2, 1), TG_FRAC_BITS - 1));
 }
 
 #else
@@ -117,7 +118,7 @@ static int normalize_n(tg_real *v, int n)
     return 1;
 }
 
-tg_real tg_v3_length(tg_vec3 a)
+tg_real tgi_v3_length(tg_vec3 a)
 {
     tg_real v[3], l[1];
     float sum = a.x * a.x + a.y * a.y + a.z * a.z;
@@ -139,7 +140,7 @@ static tg_real dot4(const tg_real *r, tg_real a, tg_real b, tg_real c, tg_real d
 
 #endif
 
-tg_vec3 tg_v3_normalize_or(tg_vec3 a, tg_vec3 fallback)
+tg_vec3 tgi_v3_normalize_or(tg_vec3 a, tg_vec3 fallback)
 {
     tg_real v[3];
     v[0] = a.x; v[1] = a.y; v[2] = a.z;
@@ -147,21 +148,21 @@ tg_vec3 tg_v3_normalize_or(tg_vec3 a, tg_vec3 fallback)
     return tg_v3(v[0], v[1], v[2]);
 }
 
-tg_vec3 tg_v3_normalize(tg_vec3 a) { return tg_v3_normalize_or(a, tg_v3(0, 0, 0)); }
+tg_vec3 tgi_v3_normalize(tg_vec3 a) { return tgi_v3_normalize_or(a, tg_v3(0, 0, 0)); }
 
 /* ---- matrices ---- */
 
-tg_mat4 tg_m4_identity(void)
+tgi_mat4 tgi_m4_identity(void)
 {
-    tg_mat4 m;
+    tgi_mat4 m;
     int i;
     for (i = 0; i < 16; i++) m.m[i] = (i % 5 == 0) ? TG_ONE : 0;
     return m;
 }
 
-tg_mat4 tg_m4_mul(const tg_mat4 *a, const tg_mat4 *b)
+tgi_mat4 tgi_m4_mul(const tgi_mat4 *a, const tgi_mat4 *b)
 {
-    tg_mat4 r;
+    tgi_mat4 r;
     int i, j;
     for (i = 0; i < 4; i++)
         for (j = 0; j < 4; j++)
@@ -169,9 +170,9 @@ tg_mat4 tg_m4_mul(const tg_mat4 *a, const tg_mat4 *b)
     return r;
 }
 
-tg_vec4 tg_m4_apply(const tg_mat4 *m, tg_vec4 v)
+tgi_vec4 tgi_m4_apply(const tgi_mat4 *m, tgi_vec4 v)
 {
-    tg_vec4 r;
+    tgi_vec4 r;
     r.x = dot4(&m->m[0], v.x, v.y, v.z, v.w);
     r.y = dot4(&m->m[4], v.x, v.y, v.z, v.w);
     r.z = dot4(&m->m[8], v.x, v.y, v.z, v.w);
@@ -179,30 +180,30 @@ tg_vec4 tg_m4_apply(const tg_mat4 *m, tg_vec4 v)
     return r;
 }
 
-tg_vec3 tg_m4_point(const tg_mat4 *m, tg_vec3 p)
+tg_vec3 tgi_m4_point(const tgi_mat4 *m, tg_vec3 p)
 {
     return tg_v3(dot4(&m->m[0], p.x, p.y, p.z, TG_ONE), dot4(&m->m[4], p.x, p.y, p.z, TG_ONE),
                  dot4(&m->m[8], p.x, p.y, p.z, TG_ONE));
 }
 
-tg_vec3 tg_m4_dir(const tg_mat4 *m, tg_vec3 d)
+tg_vec3 tgi_m4_dir(const tgi_mat4 *m, tg_vec3 d)
 {
     return tg_v3(dot4(&m->m[0], d.x, d.y, d.z, 0), dot4(&m->m[4], d.x, d.y, d.z, 0),
                  dot4(&m->m[8], d.x, d.y, d.z, 0));
 }
 
-tg_mat4 tg_m4_translate(tg_vec3 t)
+tgi_mat4 tgi_m4_translate(tg_vec3 t)
 {
-    tg_mat4 m = tg_m4_identity();
+    tgi_mat4 m = tgi_m4_identity();
     m.m[3] = t.x;
     m.m[7] = t.y;
     m.m[11] = t.z;
     return m;
 }
 
-tg_mat4 tg_m4_scale(tg_real s)
+tgi_mat4 tgi_m4_scale(tg_real s)
 {
-    tg_mat4 m = tg_m4_identity();
+    tgi_mat4 m = tgi_m4_identity();
     m.m[0] = s;
     m.m[5] = s;
     m.m[10] = s;
@@ -211,9 +212,9 @@ tg_mat4 tg_m4_scale(tg_real s)
 
 /* Rodrigues' rotation formula, R = c I + s [k]x + (1 - c) k k^T, for a unit
  * axis k; counter-clockwise looking down the axis (right-handed). */
-tg_mat4 tg_m4_rotate(tg_vec3 axis, tg_real angle_rad)
+tgi_mat4 tgi_m4_rotate(tg_vec3 axis, tg_real angle_rad)
 {
-    tg_mat4 m = tg_m4_identity();
+    tgi_mat4 m = tgi_m4_identity();
     tg_vec3 k = axis;
     tg_real c, s, t;
     tg_real v[3];
@@ -237,14 +238,14 @@ tg_mat4 tg_m4_rotate(tg_vec3 axis, tg_real angle_rad)
 
 /* ---- quaternions (x, y, z vector part, w scalar) ---- */
 
-static tg_quat quat(tg_real x, tg_real y, tg_real z, tg_real w)
+static tgi_quat quat(tg_real x, tg_real y, tg_real z, tg_real w)
 {
-    tg_quat q;
+    tgi_quat q;
     q.x = x; q.y = y; q.z = z; q.w = w;
     return q;
 }
 
-static tg_quat quat_normalize(tg_quat q)
+static tgi_quat quat_normalize(tgi_quat q)
 {
     tg_real v[4];
     v[0] = q.x; v[1] = q.y; v[2] = q.z; v[3] = q.w;
@@ -252,7 +253,7 @@ static tg_quat quat_normalize(tg_quat q)
     return quat(v[0], v[1], v[2], v[3]);
 }
 
-static tg_real quat_dot(tg_quat a, tg_quat b)
+static tg_real quat_dot(tgi_quat a, tgi_quat b)
 {
     tg_real r[4];
     r[0] = a.x; r[1] = a.y; r[2] = a.z; r[3] = a.w;
@@ -260,7 +261,7 @@ static tg_real quat_dot(tg_quat a, tg_quat b)
 }
 
 /* q = (k sin(angle/2), cos(angle/2)) */
-tg_quat tg_q_axis_angle(tg_vec3 axis, tg_real angle_rad)
+tgi_quat tgi_q_axis_angle(tg_vec3 axis, tg_real angle_rad)
 {
     tg_real v[3], half = tg_ldexp(angle_rad, -1), s;
     v[0] = axis.x; v[1] = axis.y; v[2] = axis.z;
@@ -271,7 +272,7 @@ tg_quat tg_q_axis_angle(tg_vec3 axis, tg_real angle_rad)
 
 /* Shoemake's slerp: sin((1-t) theta)/sin(theta) a + sin(t theta)/sin(theta) b,
  * b negated when a.b < 0 (shortest arc); nlerp when nearly parallel. */
-tg_quat tg_q_slerp(tg_quat a, tg_quat b, tg_real t)
+tgi_quat tgi_q_slerp(tgi_quat a, tgi_quat b, tg_real t)
 {
     tg_real d, wa, wb;
     if (t <= 0) return a;
@@ -293,9 +294,9 @@ tg_quat tg_q_slerp(tg_quat a, tg_quat b, tg_real t)
 }
 
 /* Rotation matrix of q (scaled by 2/|q|^2 so a non-unit q still rotates). */
-tg_mat4 tg_q_to_m4(tg_quat q)
+tgi_mat4 tgi_q_to_m4(tgi_quat q)
 {
-    tg_mat4 m = tg_m4_identity();
+    tgi_mat4 m = tgi_m4_identity();
     tg_real n2 = quat_dot(q, q), s, xs, ys, zs;
     tg_real wx, wy, wz, xx, xy, xz, yy, yz, zz;
     if (!(n2 > 0)) return m;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * vec.h - 3-vectors, quaternions and 4x4 matrices over tg_real.
  *
@@ -11,29 +12,29 @@
 #include "real.h"
 
 typedef struct tg_vec3 { tg_real x, y, z; } tg_vec3;
-typedef struct tg_vec4 { tg_real x, y, z, w; } tg_vec4;
-typedef struct tg_quat { tg_real x, y, z, w; } tg_quat;
-typedef struct tg_mat4 { tg_real m[16]; } tg_mat4;
+typedef struct tgi_vec4 { tg_real x, y, z, w; } tgi_vec4;
+typedef struct tgi_quat { tg_real x, y, z, w; } tgi_quat;
+typedef struct tgi_mat4 { tg_real m[16]; } tgi_mat4;
 
 static inline tg_vec3 tg_v3(tg_real x, tg_real y, tg_real z) { tg_vec3 v; v.x = x; v.y = y; v.z = z; return v; }
-static inline tg_vec3 tg_v3_add(tg_vec3 a, tg_vec3 b) { return tg_v3(tg_add(a.x, b.x), tg_add(a.y, b.y), tg_add(a.z, b.z)); }
-static inline tg_vec3 tg_v3_sub(tg_vec3 a, tg_vec3 b) { return tg_v3(tg_sub(a.x, b.x), tg_sub(a.y, b.y), tg_sub(a.z, b.z)); }
-static inline tg_vec3 tg_v3_scale(tg_vec3 a, tg_real s) { return tg_v3(tg_mul(a.x, s), tg_mul(a.y, s), tg_mul(a.z, s)); }
-static inline tg_vec3 tg_v3_mul(tg_vec3 a, tg_vec3 b) { return tg_v3(tg_mul(a.x, b.x), tg_mul(a.y, b.y), tg_mul(a.z, b.z)); }
-static inline tg_vec3 tg_v3_neg(tg_vec3 a) { return tg_v3(tg_neg(a.x), tg_neg(a.y), tg_neg(a.z)); }
-static inline tg_vec3 tg_v3_lerp(tg_vec3 a, tg_vec3 b, tg_real t) { return tg_v3(tg_lerp(a.x, b.x, t), tg_lerp(a.y, b.y, t), tg_lerp(a.z, b.z, t)); }
+static inline tg_vec3 tgi_v3_add(tg_vec3 a, tg_vec3 b) { return tg_v3(tg_add(a.x, b.x), tg_add(a.y, b.y), tg_add(a.z, b.z)); }
+static inline tg_vec3 tgi_v3_sub(tg_vec3 a, tg_vec3 b) { return tg_v3(tg_sub(a.x, b.x), tg_sub(a.y, b.y), tg_sub(a.z, b.z)); }
+static inline tg_vec3 tgi_v3_scale(tg_vec3 a, tg_real s) { return tg_v3(tg_mul(a.x, s), tg_mul(a.y, s), tg_mul(a.z, s)); }
+static inline tg_vec3 tgi_v3_mul(tg_vec3 a, tg_vec3 b) { return tg_v3(tg_mul(a.x, b.x), tg_mul(a.y, b.y), tg_mul(a.z, b.z)); }
+static inline tg_vec3 tgi_v3_neg(tg_vec3 a) { return tg_v3(tg_neg(a.x), tg_neg(a.y), tg_neg(a.z)); }
+static inline tg_vec3 tgi_v3_lerp(tg_vec3 a, tg_vec3 b, tg_real t) { return tg_v3(tg_lerp(a.x, b.x, t), tg_lerp(a.y, b.y, t), tg_lerp(a.z, b.z, t)); }
 
 #if TG_FIXED
-static inline tg_real tg_v3_dot(tg_vec3 a, tg_vec3 b)
+static inline tg_real tgi_v3_dot(tg_vec3 a, tg_vec3 b)
 {
     int64_t s = (int64_t)a.x * b.x + (int64_t)a.y * b.y + (int64_t)a.z * b.z;
-    return tg_sat64(tg_shr_round(s, TG_FRAC_BITS));
+    return tgi_sat64(tgi_shr_round(s, TG_FRAC_BITS));
 }
 #else
-static inline tg_real tg_v3_dot(tg_vec3 a, tg_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline tg_real tgi_v3_dot(tg_vec3 a, tg_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 #endif
 
-static inline tg_vec3 tg_v3_cross(tg_vec3 a, tg_vec3 b)
+static inline tg_vec3 tgi_v3_cross(tg_vec3 a, tg_vec3 b)
 {
     return tg_v3(tg_sub(tg_mul(a.y, b.z), tg_mul(a.z, b.y)),
                  tg_sub(tg_mul(a.z, b.x), tg_mul(a.x, b.z)),
@@ -41,22 +42,22 @@ static inline tg_vec3 tg_v3_cross(tg_vec3 a, tg_vec3 b)
 }
 
 /* vec.c */
-tg_real tg_v3_length(tg_vec3 a);           /* exact in 64 bits for fixed point */
-tg_vec3 tg_v3_normalize(tg_vec3 a);        /* zero vector gives (0,0,0) */
+tg_real tgi_v3_length(tg_vec3 a);           /* exact in 64 bits for fixed point */
+tg_vec3 tgi_v3_normalize(tg_vec3 a);        /* zero vector gives (0,0,0) */
 /* Normalize; a zero (or tiny) vector gives `fallback`. */
-tg_vec3 tg_v3_normalize_or(tg_vec3 a, tg_vec3 fallback);
+tg_vec3 tgi_v3_normalize_or(tg_vec3 a, tg_vec3 fallback);
 
-tg_mat4 tg_m4_identity(void);
-tg_mat4 tg_m4_mul(const tg_mat4 *a, const tg_mat4 *b);
-tg_vec4 tg_m4_apply(const tg_mat4 *m, tg_vec4 v);
-tg_vec3 tg_m4_point(const tg_mat4 *m, tg_vec3 p);   /* w = 1, no divide */
-tg_vec3 tg_m4_dir(const tg_mat4 *m, tg_vec3 d);     /* w = 0 */
-tg_mat4 tg_m4_translate(tg_vec3 t);
-tg_mat4 tg_m4_scale(tg_real s);
-tg_mat4 tg_m4_rotate(tg_vec3 axis, tg_real angle_rad); /* Rodrigues; axis need not be unit */
+tgi_mat4 tgi_m4_identity(void);
+tgi_mat4 tgi_m4_mul(const tgi_mat4 *a, const tgi_mat4 *b);
+tgi_vec4 tgi_m4_apply(const tgi_mat4 *m, tgi_vec4 v);
+tg_vec3 tgi_m4_point(const tgi_mat4 *m, tg_vec3 p);   /* w = 1, no divide */
+tg_vec3 tgi_m4_dir(const tgi_mat4 *m, tg_vec3 d);     /* w = 0 */
+tgi_mat4 tgi_m4_translate(tg_vec3 t);
+tgi_mat4 tgi_m4_scale(tg_real s);
+tgi_mat4 tgi_m4_rotate(tg_vec3 axis, tg_real angle_rad); /* Rodrigues; axis need not be unit */
 
-tg_quat tg_q_axis_angle(tg_vec3 axis, tg_real angle_rad);
-tg_quat tg_q_slerp(tg_quat a, tg_quat b, tg_real t); /* shortest arc, exact at t = 0 and 1 */
-tg_mat4 tg_q_to_m4(tg_quat q);
+tgi_quat tgi_q_axis_angle(tg_vec3 axis, tg_real angle_rad);
+tgi_quat tgi_q_slerp(tgi_quat a, tgi_quat b, tg_real t); /* shortest arc, exact at t = 0 and 1 */
+tgi_mat4 tgi_q_to_m4(tgi_quat q);
 
 #endif

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * aov.c - reading a rendered frame out, one row at a time: linear values
  * (tg_frame_aov_row, for PFM) or 8-bit RGB for viewing (tg_frame_aov_row8,
@@ -13,7 +14,7 @@ static tg_real at(const tg_real *buf, size_t i, tg_real fallback)
     return buf ? buf[i] : fallback;
 }
 
-static void row_rgb(const tg_rgb c, size_t i0, int w, tg_real *out, tg_real fallback)
+static void row_rgb(const tgi_rgb c, size_t i0, int w, tg_real *out, tg_real fallback)
 {
     int x;
     for (x = 0; x < w; x++) {
@@ -23,9 +24,9 @@ static void row_rgb(const tg_rgb c, size_t i0, int w, tg_real *out, tg_real fall
     }
 }
 
-static tg_rgb gb_rgb(tg_real *r, tg_real *g, tg_real *b)
+static tgi_rgb gb_rgb(tg_real *r, tg_real *g, tg_real *b)
 {
-    tg_rgb c;
+    tgi_rgb c;
     c.r = r; c.g = g; c.b = b;
     return c;
 }
@@ -33,7 +34,7 @@ static tg_rgb gb_rgb(tg_real *r, tg_real *g, tg_real *b)
 /* Pixels [x0, x0 + w) of row y. */
 static void aov_span(const tg_frame *f, tg_aov aov, int y, int x0, int w, tg_real *out)
 {
-    const tg_gbuffer *g = &f->gb;
+    const tgi_gbuffer *g = &f->gb;
     size_t i0 = (size_t)y * (size_t)f->width + (size_t)x0;
     int x;
     switch (aov) {
@@ -90,11 +91,11 @@ static void span8(const tg_frame *f, tg_aov aov, int y, int x0, int w, uint8_t *
         tg_real exposure = f->plan.request.exposure;
         for (x = 0; x < w; x++) { r[x] = row[3 * x]; g[x] = row[3 * x + 1]; b[x] = row[3 * x + 2]; }
         if (aov != TG_AOV_COLOR) exposure = tg_mul(exposure, TG_INV_PI); /* irradiance -> radiance of a white surface */
-        tg_tonemap_row8(r, g, b, w, exposure, rgb);
+        tgi_tonemap_row8(r, g, b, w, exposure, rgb);
         return;
     }
     case TG_AOV_ALBEDO:
-        for (x = 0; x < 3 * w; x++) rgb[x] = tg_srgb8(row[x]);
+        for (x = 0; x < 3 * w; x++) rgb[x] = tgi_srgb8(row[x]);
         return;
     case TG_AOV_NORMAL: case TG_AOV_BENT: case TG_AOV_MOTION:
         /* 0.5 v + 0.5 (motion: 1/16 pixel per level around grey) */

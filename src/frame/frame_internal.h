@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * frame_internal.h - what a frame holds.  plan.c decides which of these
  * exist (and sizes them); frame.c runs the passes over them; aov.c reads
@@ -25,7 +26,7 @@ enum {
     TG_NEED_CONE = 1u << 6       /* cone apertures are used */
 };
 
-typedef struct tg_rgb { tg_real *r, *g, *b; } tg_rgb;
+typedef struct tgi_rgb { tg_real *r, *g, *b; } tgi_rgb;
 
 struct tg_frame {
     tg_plan plan;
@@ -35,41 +36,41 @@ struct tg_frame {
     uint32_t effects, needs;
     int frames_rendered;
 
-    tg_gbuffer gb;
-    tg_view view, prev_view;
+    tgi_gbuffer gb;
+    tgi_view view, prev_view;
     tg_real time, prev_time;
     int has_history;              /* the previous frame's radiance is valid */
 
     /* animation */
     tg_vec3 *posed_pos, *posed_nrm;
-    tg_mat4 *object_delta;        /* per object, current pose -> previous pose */
+    tgi_mat4 *object_delta;        /* per object, current pose -> previous pose */
 
     /* light */
-    tg_shadow_map *shadow_maps;   /* one per light (unused entries zero) */
-    const tg_shadow_map **shadow_ptrs;
+    tgi_shadow_map *shadow_maps;   /* one per light (unused entries zero) */
+    const tgi_shadow_map **shadow_ptrs;
     int shadows_valid;
     tg_vec3 sh[9];
-    tg_rgb direct, far, near, color, irradiance;
+    tgi_rgb direct, far, near, color, irradiance;
 
     /* GI / AO results, full resolution */
     tg_real *ao, *cone;
-    tg_rgb bent;
-    tg_rgb source;                /* radiance the near field gathers from */
+    tgi_rgb bent;
+    tgi_rgb source;                /* radiance the near field gathers from */
 
     /* HBIL at quarter resolution: the G-buffer point-sampled to half width
      * and height, and the kernel's results there before upsampling */
     tg_real *half_depth, *half_f0, *half_ao;
-    tg_rgb half_normal, half_source, half_bent, half_near;
+    tgi_rgb half_normal, half_source, half_bent, half_near;
     uint8_t *half_sky;
 
     /* HBIL: 4x4 interleaved sub-images */
     tg_real *q_depth, *q_f0;
-    tg_rgb q_normal, q_source, q_bent, q_near;
+    tgi_rgb q_normal, q_source, q_bent, q_near;
     tg_real *q_ao, *q_cone;
     uint8_t *q_sky;
 
     /* radiance history for reprojection (previous frame) */
-    tg_rgb history;
+    tgi_rgb history;
     tg_real *history_depth;
     uint16_t *history_object;
     void *reproject_scratch;
@@ -84,7 +85,7 @@ struct tg_frame {
     /* technique scratch (reference BVH) */
     void *technique_scratch;
     size_t technique_scratch_bytes;
-    tg_bvh bvh;
+    tgi_bvh bvh;
 
     tg_real depth_max;            /* for the 8-bit depth view */
 };
@@ -93,8 +94,8 @@ struct tg_frame {
  * plan->buffers and plan->total_bytes, using *fp as scratch); otherwise carve
  * the frame itself and then its buffers from arena and set *fp.  Returns 0,
  * or 1 when the arena is too small. */
-int tg_frame_layout(tg_frame **fp, tg_plan *plan, tg_arena *arena);
+int tgi_frame_layout(tg_frame **fp, tg_plan *plan, tg_arena *arena);
 /* TG_NEED_* of a plan (plan.c). */
-uint32_t tg_frame_needs(const tg_plan *plan);
+uint32_t tgi_frame_needs(const tg_plan *plan);
 
 #endif

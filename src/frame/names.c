@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * names.c - the names a person types for outputs and techniques, and the
  * request defaults (HBIL paper defaults: 2 slices, 16 samples, 4x4 quarter-res).

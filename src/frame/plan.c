@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * plan.c - the frame is a plan (design.md "The frame is a plan").
  *
@@ -92,7 +93,7 @@ static uint32_t wanted_effects(uint32_t possible, uint32_t aovs)
     return e;
 }
 
-uint32_t tg_frame_needs(const tg_plan *p)
+uint32_t tgi_frame_needs(const tg_plan *p)
 {
     const tg_scene *s = p->scene;
     const tg_request *r = &p->request;
@@ -101,10 +102,10 @@ uint32_t tg_frame_needs(const tg_plan *p)
     if (r->aovs & (AOV(TG_AOV_COLOR) | AOV(TG_AOV_IRRADIANCE))) n |= TG_NEED_COMPOSE;
     /* next frame's near field gathers this frame's outgoing radiance */
     if (e & TG_EFFECT_REPROJECTION) n |= TG_NEED_COMPOSE;
-    if (r->frames > 1 && tg_anim_has_motion(s)) {
+    if (r->frames > 1 && tgi_anim_has_motion(s)) {
         int i;
         for (i = 0; i < s->object_count; i++)
-            if (tg_anim_object_moves(s, i)) n |= TG_NEED_POSE;
+            if (tgi_anim_object_moves(s, i)) n |= TG_NEED_POSE;
     }
     if ((r->aovs & AOV(TG_AOV_MOTION)) && r->frames > 1) n |= TG_NEED_MOTION;
     if (r->frames > 1 && r->temporal && r->technique == TG_TECH_HBIL && (e & TG_EFFECT_AO))
@@ -131,21 +132,21 @@ tg_status tg_plan_make(tg_plan *plan, const tg_scene *scene, const tg_request *r
 {
     tg_frame probe, *pp = &probe;
     uint32_t possible;
-    tg_error_clear(err);
+    tgi_error_clear(err);
     memset(plan, 0, sizeof *plan);
     plan->request = *req;
     plan->scene = scene;
     resolve_request(&plan->request, scene);
     if (req->width < 1 || req->height < 1 || req->width > 8192 || req->height > 8192) {
-        tg_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "image size must be 1..8192 per side");
+        tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "image size must be 1..8192 per side");
         return TG_ERR_INPUT;
     }
     if (plan->request.slices > TG_HBIL_MAX_SLICES || plan->request.samples > 256) {
-        tg_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "slices must be 1..8 and samples 1..256");
+        tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "slices must be 1..8 and samples 1..256");
         return TG_ERR_INPUT;
     }
     if ((unsigned)plan->request.technique >= TG_TECH_COUNT) {
-        tg_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "unknown technique");
+        tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "unknown technique");
         return TG_ERR_INPUT;
     }
     possible = possible_effects(scene, &plan->request);
@@ -155,8 +156,8 @@ tg_status tg_plan_make(tg_plan *plan, const tg_scene *scene, const tg_request *r
     if (!(plan->effects & TG_EFFECT_DIRECT)) plan->effects &= ~(uint32_t)TG_EFFECT_SHADOWS;
     if (!(plan->effects & TG_EFFECT_NEAR)) plan->effects &= ~(uint32_t)TG_EFFECT_REPROJECTION;
     memset(&probe, 0, sizeof probe);
-    if (tg_frame_layout(&pp, plan, NULL) != 0) {
-        tg_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "frame size overflows the address space");
+    if (tgi_frame_layout(&pp, plan, NULL) != 0) {
+        tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "frame size overflows the address space");
         return TG_ERR_INPUT;
     }
     return TG_OK;
@@ -201,7 +202,7 @@ static tg_real *take_real(layout *l, const char *name, size_t n)
     return (tg_real *)take(l, name, n, sizeof(tg_real));
 }
 
-static void take_rgb(layout *l, const char *name, size_t n, tg_rgb *c)
+static void take_rgb(layout *l, const char *name, size_t n, tgi_rgb *c)
 {
     c->r = take_real(l, name, n);
     c->g = take_real(l, name, n);
@@ -215,7 +216,7 @@ static void add_pass(tg_plan *p, const char *name)
 
 static void layout_gbuffer(layout *l, tg_frame *f, size_t n)
 {
-    tg_gbuffer *g = &f->gb;
+    tgi_gbuffer *g = &f->gb;
     int emissive = scene_has_emissive(l->plan->scene);
     g->width = l->plan->request.width;
     g->height = l->plan->request.height;
@@ -248,15 +249,15 @@ static void layout_light(layout *l, tg_frame *f, size_t n)
     uint32_t e = p->effects;
     int i;
     if (e & TG_EFFECT_SHADOWS) {
-        f->shadow_maps = (tg_shadow_map *)take(l, "shadow map descriptors", (size_t)s->light_count, sizeof(tg_shadow_map));
-        f->shadow_ptrs = (const tg_shadow_map **)take(l, "shadow map descriptors", (size_t)s->light_count, sizeof(void *));
+        f->shadow_maps = (tgi_shadow_map *)take(l, "shadow map descriptors", (size_t)s->light_count, sizeof(tgi_shadow_map));
+        f->shadow_ptrs = (const tgi_shadow_map **)take(l, "shadow map descriptors", (size_t)s->light_count, sizeof(void *));
         for (i = 0; i < s->light_count; i++) {
             if (!s->lights[i].shadows) continue;
             {
                 int size = p->request.shadow_map_size;
-                void *depth = take(l, "shadow maps (depth)", tg_shadow_map_bytes(&s->lights[i], size), 1);
+                void *depth = take(l, "shadow maps (depth)", tgi_shadow_map_bytes(&s->lights[i], size), 1);
                 if (!l->arena || !depth) continue;
-                tg_shadow_map_setup(&f->shadow_maps[i], &s->lights[i], size, s->bounds_min, s->bounds_max, depth);
+                tgi_shadow_map_setup(&f->shadow_maps[i], &s->lights[i], size, s->bounds_min, s->bounds_max, depth);
                 f->shadow_maps[i].filter = p->request.shadow_pcf ? TG_SHADOW_PCF_BILINEAR : TG_SHADOW_PCF_TENT;
                 f->shadow_ptrs[i] = &f->shadow_maps[i];
             }
@@ -285,8 +286,8 @@ static void layout_gi(layout *l, tg_frame *f, size_t n)
             f->history_depth = take_real(l, "radiance history depth", n);
             if (f->needs & TG_NEED_POSE)
                 f->history_object = (uint16_t *)take(l, "radiance history object id", n, 2);
-            f->reproject_scratch_bytes = tg_reproject_bytes(p->request.width, p->request.height)
-                                       + tg_pushpull_bytes(p->request.width, p->request.height) + n + 32;
+            f->reproject_scratch_bytes = tgi_reproject_bytes(p->request.width, p->request.height)
+                                       + tgi_pushpull_bytes(p->request.width, p->request.height) + n + 32;
             f->reproject_scratch = take(l, "reprojection z-buffer + push/pull mips", f->reproject_scratch_bytes, 1);
             add_pass(p, "reproject last frame's radiance (scatter + z-test)");
             add_pass(p, "push/pull hole filling");
@@ -333,23 +334,23 @@ static void layout_gi(layout *l, tg_frame *f, size_t n)
         add_pass(p, hbil ? "HBIL horizon kernel, full resolution" : tg_technique_name(p->request.technique));
     }
     if (hbil) {
-        f->denoise_scratch_bytes = tg_denoise_bytes(kw, kh);
+        f->denoise_scratch_bytes = tgi_denoise_bytes(kw, kh);
         f->denoise_scratch = take(l, "spatial filter scratch", f->denoise_scratch_bytes, 1);
         add_pass(p, quarter ? "depth/normal-aware 4x4 filter (quarter res)" : "depth/normal-aware 4x4 filter");
         if (quarter) add_pass(p, "joint bilateral upsample to full resolution");
         if (f->needs & TG_NEED_TEMPORAL) {
-            f->temporal_state_bytes = tg_temporal_bytes(p->request.width, p->request.height);
+            f->temporal_state_bytes = tgi_temporal_bytes(p->request.width, p->request.height);
             f->temporal_state = take(l, "temporal accumulation history", f->temporal_state_bytes, 1);
             add_pass(p, "temporal accumulation (history rejected by depth and normal)");
         }
     }
     if (p->request.technique == TG_TECH_REFERENCE) {
-        f->technique_scratch_bytes = tg_bvh_bytes(p->scene->tri_count);
+        f->technique_scratch_bytes = tgi_bvh_bytes(p->scene->tri_count);
         f->technique_scratch = take(l, "reference BVH", f->technique_scratch_bytes, 1);
     }
 }
 
-int tg_frame_layout(tg_frame **fp, tg_plan *plan, tg_arena *arena)
+int tgi_frame_layout(tg_frame **fp, tg_plan *plan, tg_arena *arena)
 {
     layout l;
     size_t n;
@@ -371,13 +372,13 @@ int tg_frame_layout(tg_frame **fp, tg_plan *plan, tg_arena *arena)
     f->height = plan->request.height;
     f->pixels = n;
     f->effects = e;
-    f->needs = tg_frame_needs(plan);
+    f->needs = tgi_frame_needs(plan);
     if (!arena) add_pass(plan, (f->needs & TG_NEED_POSE) ? "animate (camera and object keys, posed triangles)"
                                : s->camera_key_count > 0 ? "animate (camera keys)" : "camera");
     if (f->needs & TG_NEED_POSE) {
         f->posed_pos = (tg_vec3 *)take(&l, "posed triangles", (size_t)s->tri_count * 3, sizeof(tg_vec3));
         f->posed_nrm = (tg_vec3 *)take(&l, "posed triangles", (size_t)s->tri_count * 3, sizeof(tg_vec3));
-        f->object_delta = (tg_mat4 *)take(&l, "object motion", (size_t)s->object_count, sizeof(tg_mat4));
+        f->object_delta = (tgi_mat4 *)take(&l, "object motion", (size_t)s->object_count, sizeof(tgi_mat4));
     }
     layout_gbuffer(&l, f, n);
     add_pass(plan, "rasterize G-buffer (depth, normal, albedo, F0, emissive)");

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * technique.c - the frame's GI step.
  *
@@ -31,9 +32,9 @@ static void cone_from_ao(tg_frame *f)
     for (i = 0; i < f->pixels; i++) f->cone[i] = tg_acos(tg_sub(TG_ONE, tg_saturate(f->ao[i])));
 }
 
-static void hbil_params(const tg_frame *f, tg_hbil_params *p)
+static void hbil_params(const tg_frame *f, tgi_hbil_params *p)
 {
-    tg_hbil_defaults(p, &f->view);
+    tgi_hbil_defaults(p, &f->view);
     p->slices = f->plan.request.slices;
     p->samples = f->plan.request.samples;
     p->radius = f->plan.request.radius;
@@ -51,13 +52,13 @@ typedef struct kernel_image {
  * copies when the plan has them, the full-res G-buffer otherwise. */
 static kernel_image kernel_of(tg_frame *f)
 {
-    const tg_gbuffer *g = &f->gb;
+    const tgi_gbuffer *g = &f->gb;
     kernel_image k;
     int q = f->half_depth != NULL;
     memset(&k, 0, sizeof k);
     k.near = (f->effects & TG_EFFECT_NEAR) != 0;
     k.scale = q ? 2 : 1;
-    if (q) tg_half_size(f->width, f->height, &k.w, &k.h);
+    if (q) tgi_half_size(f->width, f->height, &k.w, &k.h);
     else { k.w = f->width; k.h = f->height; }
     k.depth = q ? f->half_depth : g->depth;
     k.nx = q ? f->half_normal.r : g->nx;
@@ -82,18 +83,18 @@ static kernel_image kernel_of(tg_frame *f)
 
 static void downsample(const tg_frame *f, const tg_real *src, tg_real *dst)
 {
-    tg_downsample_rows(src, f->width, f->height, dst, 0, f->height);
+    tgi_downsample_rows(src, f->width, f->height, dst, 0, f->height);
 }
 
-void tg_hbil_stage_downsample(tg_frame *f)
+void tgi_hbil_stage_downsample(tg_frame *f)
 {
-    const tg_gbuffer *g = &f->gb;
+    const tgi_gbuffer *g = &f->gb;
     if (!f->half_depth) return;
     downsample(f, g->depth, f->half_depth);
     downsample(f, g->nx, f->half_normal.r);
     downsample(f, g->ny, f->half_normal.g);
     downsample(f, g->nz, f->half_normal.b);
-    tg_downsample8_rows(g->sky, f->width, f->height, f->half_sky, 0, f->height);
+    tgi_downsample8_rows(g->sky, f->width, f->height, f->half_sky, 0, f->height);
     if (f->effects & TG_EFFECT_NEAR) {
         downsample(f, g->f0, f->half_f0);
         downsample(f, f->source.r, f->half_source.r);
@@ -102,41 +103,41 @@ void tg_hbil_stage_downsample(tg_frame *f)
     }
 }
 
-void tg_hbil_stage_split(tg_frame *f)
+void tgi_hbil_stage_split(tg_frame *f)
 {
     kernel_image k = kernel_of(f);
-    tg_interleave_split(k.depth, k.w, k.h, f->q_depth);
-    tg_interleave_split(k.nx, k.w, k.h, f->q_normal.r);
-    tg_interleave_split(k.ny, k.w, k.h, f->q_normal.g);
-    tg_interleave_split(k.nz, k.w, k.h, f->q_normal.b);
-    tg_interleave_split8(k.sky, k.w, k.h, f->q_sky);
+    tgi_interleave_split(k.depth, k.w, k.h, f->q_depth);
+    tgi_interleave_split(k.nx, k.w, k.h, f->q_normal.r);
+    tgi_interleave_split(k.ny, k.w, k.h, f->q_normal.g);
+    tgi_interleave_split(k.nz, k.w, k.h, f->q_normal.b);
+    tgi_interleave_split8(k.sky, k.w, k.h, f->q_sky);
     if (k.near) {
-        tg_interleave_split(k.f0, k.w, k.h, f->q_f0);
-        tg_interleave_split(k.src_r, k.w, k.h, f->q_source.r);
-        tg_interleave_split(k.src_g, k.w, k.h, f->q_source.g);
-        tg_interleave_split(k.src_b, k.w, k.h, f->q_source.b);
+        tgi_interleave_split(k.f0, k.w, k.h, f->q_f0);
+        tgi_interleave_split(k.src_r, k.w, k.h, f->q_source.r);
+        tgi_interleave_split(k.src_g, k.w, k.h, f->q_source.g);
+        tgi_interleave_split(k.src_b, k.w, k.h, f->q_source.b);
     }
 }
 
 /* The kernel on each of the 16 sub-images, with its own slice angles,
  * marching in sub-image pixels (HBIL sec. 3.3). */
-void tg_hbil_stage_kernel(tg_frame *f)
+void tgi_hbil_stage_kernel(tg_frame *f)
 {
     kernel_image k = kernel_of(f);
     int i, j;
     for (j = 0; j < 4; j++) {
         for (i = 0; i < 4; i++) {
-            tg_hbil_params p;
-            tg_hbil_io io;
+            tgi_hbil_params p;
+            tgi_hbil_io io;
             int sw, sh;
             size_t o;
-            tg_interleave_sub_rect(k.w, k.h, i, j, &sw, &sh, &o);
+            tgi_interleave_sub_rect(k.w, k.h, i, j, &sw, &sh, &o);
             if (sw == 0 || sh == 0) continue;
             hbil_params(f, &p);
             p.step = 4 * k.scale;
             p.offset_x = i * k.scale;
             p.offset_y = j * k.scale;
-            p.slice_phi0 = tg_hbil_slice_phi0(i, j, p.slices);
+            p.slice_phi0 = tgi_hbil_slice_phi0(i, j, p.slices);
             memset(&io, 0, sizeof io);
             io.width = sw;
             io.height = sh;
@@ -150,33 +151,33 @@ void tg_hbil_stage_kernel(tg_frame *f)
                 io.rad_r = f->q_source.r + o; io.rad_g = f->q_source.g + o; io.rad_b = f->q_source.b + o;
                 io.near_r = f->q_near.r + o; io.near_g = f->q_near.g + o; io.near_b = f->q_near.b + o;
             }
-            tg_hbil_rows(&p, &io, 0, sh);
+            tgi_hbil_rows(&p, &io, 0, sh);
         }
     }
 }
 
-void tg_hbil_stage_merge(tg_frame *f)
+void tgi_hbil_stage_merge(tg_frame *f)
 {
     kernel_image k = kernel_of(f);
-    tg_interleave_merge(f->q_ao, k.w, k.h, k.ao);
-    tg_interleave_merge(f->q_bent.r, k.w, k.h, k.bent_x);
-    tg_interleave_merge(f->q_bent.g, k.w, k.h, k.bent_y);
-    tg_interleave_merge(f->q_bent.b, k.w, k.h, k.bent_z);
+    tgi_interleave_merge(f->q_ao, k.w, k.h, k.ao);
+    tgi_interleave_merge(f->q_bent.r, k.w, k.h, k.bent_x);
+    tgi_interleave_merge(f->q_bent.g, k.w, k.h, k.bent_y);
+    tgi_interleave_merge(f->q_bent.b, k.w, k.h, k.bent_z);
     if (k.near) {
-        tg_interleave_merge(f->q_near.r, k.w, k.h, k.near_r);
-        tg_interleave_merge(f->q_near.g, k.w, k.h, k.near_g);
-        tg_interleave_merge(f->q_near.b, k.w, k.h, k.near_b);
+        tgi_interleave_merge(f->q_near.r, k.w, k.h, k.near_r);
+        tgi_interleave_merge(f->q_near.g, k.w, k.h, k.near_g);
+        tgi_interleave_merge(f->q_near.b, k.w, k.h, k.near_b);
     }
 }
 
 /* HBIL sec. 3.3-3.4: the depth/normal-aware filter over the 4x4
  * neighbourhood, at the kernel's resolution (where the 4x4 pattern lives). */
-void tg_hbil_stage_filter(tg_frame *f)
+void tgi_hbil_stage_filter(tg_frame *f)
 {
     kernel_image k = kernel_of(f);
-    tg_denoise_params p;
-    tg_denoise_io io;
-    tg_denoise_defaults(&p);
+    tgi_denoise_params p;
+    tgi_denoise_io io;
+    tgi_denoise_defaults(&p);
     memset(&io, 0, sizeof io);
     io.width = k.w;
     io.height = k.h;
@@ -185,15 +186,15 @@ void tg_hbil_stage_filter(tg_frame *f)
     io.ao = k.ao;
     io.bent_x = k.bent_x; io.bent_y = k.bent_y; io.bent_z = k.bent_z;
     io.near_r = k.near_r; io.near_g = k.near_g; io.near_b = k.near_b;
-    tg_denoise_begin(&io, f->denoise_scratch);
-    tg_denoise_rows(&p, &io, f->denoise_scratch, 0, io.height);
+    tgi_denoise_begin(&io, f->denoise_scratch);
+    tgi_denoise_rows(&p, &io, f->denoise_scratch, 0, io.height);
 }
 
 /* Joint bilateral upsample of the quarter-res results (resample.c). */
-void tg_hbil_stage_upsample(tg_frame *f)
+void tgi_hbil_stage_upsample(tg_frame *f)
 {
-    const tg_gbuffer *g = &f->gb;
-    tg_upsample_io io;
+    const tgi_gbuffer *g = &f->gb;
+    tgi_upsample_io io;
     if (!f->half_depth) return;
     memset(&io, 0, sizeof io);
     io.width = f->width; io.height = f->height;
@@ -209,17 +210,17 @@ void tg_hbil_stage_upsample(tg_frame *f)
         io.half_near_r = f->half_near.r; io.half_near_g = f->half_near.g; io.half_near_b = f->half_near.b;
         io.near_r = f->near.r; io.near_g = f->near.g; io.near_b = f->near.b;
     }
-    tg_upsample_rows(&io, 0, f->height);
+    tgi_upsample_rows(&io, 0, f->height);
 }
 
 /* Exponential accumulation over frames, history rejected by depth and normal. */
-void tg_hbil_stage_temporal(tg_frame *f, int index)
+void tgi_hbil_stage_temporal(tg_frame *f, int index)
 {
-    const tg_gbuffer *g = &f->gb;
-    tg_denoise_params p;
-    tg_denoise_io io;
+    const tgi_gbuffer *g = &f->gb;
+    tgi_denoise_params p;
+    tgi_denoise_io io;
     if (!f->temporal_state) return;
-    tg_denoise_defaults(&p);
+    tgi_denoise_defaults(&p);
     memset(&io, 0, sizeof io);
     io.width = f->width;
     io.height = f->height;
@@ -229,27 +230,27 @@ void tg_hbil_stage_temporal(tg_frame *f, int index)
     io.bent_x = f->bent.r; io.bent_y = f->bent.g; io.bent_z = f->bent.b;
     io.cone = f->cone;
     io.near_r = f->near.r; io.near_g = f->near.g; io.near_b = f->near.b;
-    tg_temporal_rows(&p, &io, f->temporal_state, &f->prev_view, &f->view, index,
+    tgi_temporal_rows(&p, &io, f->temporal_state, &f->prev_view, &f->view, index,
                      f->frames_rendered == 0, 0, f->height);
 }
 
 /* HBIL, interleaved (the default): every stage in order. */
 static void hbil_interleaved(tg_frame *f, int index)
 {
-    tg_hbil_stage_downsample(f);
-    tg_hbil_stage_split(f);
-    tg_hbil_stage_kernel(f);
-    tg_hbil_stage_merge(f);
-    tg_hbil_stage_filter(f);
-    tg_hbil_stage_upsample(f);
-    tg_hbil_stage_temporal(f, index);
+    tgi_hbil_stage_downsample(f);
+    tgi_hbil_stage_split(f);
+    tgi_hbil_stage_kernel(f);
+    tgi_hbil_stage_merge(f);
+    tgi_hbil_stage_filter(f);
+    tgi_hbil_stage_upsample(f);
+    tgi_hbil_stage_temporal(f, index);
 }
 
 static void hbil_full(tg_frame *f)
 {
-    const tg_gbuffer *g = &f->gb;
-    tg_hbil_params p;
-    tg_hbil_io io;
+    const tgi_gbuffer *g = &f->gb;
+    tgi_hbil_params p;
+    tgi_hbil_io io;
     hbil_params(f, &p);
     p.per_pixel_pattern = 1;
     memset(&io, 0, sizeof io);
@@ -264,13 +265,13 @@ static void hbil_full(tg_frame *f)
         io.rad_r = f->source.r; io.rad_g = f->source.g; io.rad_b = f->source.b;
         io.near_r = f->near.r; io.near_g = f->near.g; io.near_b = f->near.b;
     }
-    tg_hbil_rows(&p, &io, 0, f->height);
+    tgi_hbil_rows(&p, &io, 0, f->height);
 }
 
-static tg_ao_io ao_io(tg_frame *f)
+static tgi_ao_io ao_io(tg_frame *f)
 {
-    tg_ao_io io;
-    const tg_gbuffer *g = &f->gb;
+    tgi_ao_io io;
+    const tgi_gbuffer *g = &f->gb;
     memset(&io, 0, sizeof io);
     io.width = f->width;
     io.height = f->height;
@@ -293,40 +294,40 @@ static tg_vec3 direct_radiance_at(void *user, int tri, tg_vec3 pos, tg_vec3 nrm)
 {
     const tg_frame *f = (const tg_frame *)user;
     const tg_scene *s = f->scene;
-    const tg_material *m = &s->materials[s->tri_material[tri]];
+    const tgi_material *m = &s->materials[s->tri_material[tri]];
     tg_vec3 e = tg_v3(0, 0, 0), lo;
     tg_real k;
     int l;
     if (f->effects & TG_EFFECT_DIRECT) {
         for (l = 0; l < s->light_count; l++) {
-            tg_vec3 el = tg_direct_irradiance(&s->lights[l], pos, nrm);
+            tg_vec3 el = tgi_direct_irradiance(&s->lights[l], pos, nrm);
             if (f->shadow_ptrs && f->shadow_ptrs[l])
-                el = tg_v3_scale(el, tg_shadow_visibility(f->shadow_ptrs[l], pos, nrm));
-            e = tg_v3_add(e, el);
+                el = tgi_v3_scale(el, tgi_shadow_visibility(f->shadow_ptrs[l], pos, nrm));
+            e = tgi_v3_add(e, el);
         }
     }
     k = tg_mul(TG_INV_PI, tg_sub(TG_ONE, m->f0));   /* compose: albedo / pi * (1 - F0) */
-    lo = tg_v3_scale(tg_v3_mul(m->albedo, e), k);
-    return tg_v3_add(lo, m->emissive);
+    lo = tgi_v3_scale(tgi_v3_mul(m->albedo, e), k);
+    return tgi_v3_add(lo, m->emissive);
 }
 
 static void reference(tg_frame *f)
 {
-    tg_reference_params p;
-    tg_ao_io io = ao_io(f);
+    tgi_reference_params p;
+    tgi_ao_io io = ao_io(f);
     const tg_vec3 *pos = f->posed_pos ? f->posed_pos : f->scene->tri_pos;
-    tg_reference_defaults(&p);
-    tg_bvh_build(&f->bvh, pos, f->scene->tri_count, f->technique_scratch, f->technique_scratch_bytes);
+    tgi_reference_defaults(&p);
+    tgi_bvh_build(&f->bvh, pos, f->scene->tri_count, f->technique_scratch, f->technique_scratch_bytes);
     p.bvh = &f->bvh;
     p.tri_nrm = f->posed_nrm ? f->posed_nrm : f->scene->tri_nrm;
     p.samples = f->plan.request.samples > 16 ? f->plan.request.samples : 256;
     p.radius = f->plan.request.radius;
     p.radiance = direct_radiance_at;
     p.user = f;
-    tg_reference_rows(&p, &io, 0, f->height);
+    tgi_reference_rows(&p, &io, 0, f->height);
 }
 
-int tg_frame_technique(tg_frame *f, int index)
+int tgi_frame_technique(tg_frame *f, int index)
 {
     int far_done = 0;
     switch (f->plan.request.technique) {
@@ -335,15 +336,15 @@ int tg_frame_technique(tg_frame *f, int index)
             hbil_interleaved(f, index);
         } else {
             hbil_full(f);
-            tg_hbil_stage_filter(f);
-            tg_hbil_stage_temporal(f, index);
+            tgi_hbil_stage_filter(f);
+            tgi_hbil_stage_temporal(f, index);
         }
         break;
     case TG_TECH_REFERENCE:
         reference(f);
         break;
     default:
-        far_done = tg_frame_technique_other(f, ao_io(f));
+        far_done = tgi_frame_technique_other(f, ao_io(f));
         break;
     }
     cone_from_ao(f);
@@ -351,11 +352,11 @@ int tg_frame_technique(tg_frame *f, int index)
 }
 
 /* Where the reprojection's scratch lives: z-buffer, push/pull mips, valid mask. */
-static void reproject_io(tg_frame *f, tg_reproject_io *io, unsigned char **zbuf, unsigned char **mips)
+static void reproject_io(tg_frame *f, tgi_reproject_io *io, unsigned char **zbuf, unsigned char **mips)
 {
     unsigned char *scratch = (unsigned char *)f->reproject_scratch;
-    size_t zbytes = (tg_reproject_bytes(f->width, f->height) + 15u) & ~(size_t)15u;
-    size_t pbytes = (tg_pushpull_bytes(f->width, f->height) + 15u) & ~(size_t)15u;
+    size_t zbytes = (tgi_reproject_bytes(f->width, f->height) + 15u) & ~(size_t)15u;
+    size_t pbytes = (tgi_pushpull_bytes(f->width, f->height) + 15u) & ~(size_t)15u;
     memset(io, 0, sizeof *io);
     io->width = f->width;
     io->height = f->height;
@@ -371,27 +372,27 @@ static void reproject_io(tg_frame *f, tg_reproject_io *io, unsigned char **zbuf,
 
 /* HBIL sec. 3.2: scatter last frame's radiance into this view through a
  * temporary z-buffer (nearest wins)... */
-void tg_frame_reproject_scatter(tg_frame *f)
+void tgi_frame_reproject_scatter(tg_frame *f)
 {
-    tg_reproject_io io;
+    tgi_reproject_io io;
     unsigned char *zbuf, *mips;
     reproject_io(f, &io, &zbuf, &mips);
-    tg_reproject_scatter(&io, zbuf);
+    tgi_reproject_scatter(&io, zbuf);
 }
 
 /* ...then fill the holes by push/pull (Kraus 2009). */
-void tg_frame_reproject_fill(tg_frame *f)
+void tgi_frame_reproject_fill(tg_frame *f)
 {
-    tg_reproject_io io;
+    tgi_reproject_io io;
     unsigned char *zbuf, *mips;
     reproject_io(f, &io, &zbuf, &mips);
-    tg_pushpull_fill(f->width, f->height, f->source.r, f->source.g, f->source.b, io.valid, mips);
+    tgi_pushpull_fill(f->width, f->height, f->source.r, f->source.g, f->source.b, io.valid, mips);
 }
 
-int tg_frame_reproject(tg_frame *f)
+int tgi_frame_reproject(tg_frame *f)
 {
     if (!f->history.r || !f->reproject_scratch) return 0;
-    tg_frame_reproject_scatter(f);
-    tg_frame_reproject_fill(f);
+    tgi_frame_reproject_scatter(f);
+    tgi_frame_reproject_fill(f);
     return 1;
 }

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * denoise.c - spatial 4x4-neighbourhood filter and temporal accumulation of
  * the HBIL outputs (HBIL sec. 3.3-3.4).  See denoise.h.
@@ -8,7 +9,7 @@
 #define DN_CH 7     /* ao, bent xyz, near rgb */
 #define TM_CH 11    /* + depth, normal xyz */
 
-void tg_denoise_defaults(tg_denoise_params *p)
+void tgi_denoise_defaults(tgi_denoise_params *p)
 {
     p->depth_tolerance = TG_R(0.1f);
     p->alpha = TG_R(0.2f);
@@ -16,7 +17,7 @@ void tg_denoise_defaults(tg_denoise_params *p)
     p->history_normal_cos = TG_R(0.9f);
 }
 
-static tg_real *channel(const tg_denoise_io *io, int k)
+static tg_real *channel(const tgi_denoise_io *io, int k)
 {
     switch (k) {
     case 0: return io->ao;
@@ -29,9 +30,9 @@ static tg_real *channel(const tg_denoise_io *io, int k)
     }
 }
 
-size_t tg_denoise_bytes(int w, int h) { return (size_t)w * (size_t)h * DN_CH * sizeof(tg_real); }
+size_t tgi_denoise_bytes(int w, int h) { return (size_t)w * (size_t)h * DN_CH * sizeof(tg_real); }
 
-void tg_denoise_begin(const tg_denoise_io *io, void *scratch)
+void tgi_denoise_begin(const tgi_denoise_io *io, void *scratch)
 {
     size_t n = (size_t)io->width * io->height;
     int k;
@@ -54,15 +55,15 @@ static tg_real normal_weight(tg_real d)
 /* Per-call constants: the present channels (input plane, output) and the
  * 5x5 product weights. */
 typedef struct dn_ctx {
-    const tg_denoise_params *p;
-    const tg_denoise_io *io;
+    const tgi_denoise_params *p;
+    const tgi_denoise_io *io;
     int nch;
     const tg_real *in[DN_CH];
     tg_real *out[DN_CH];
     tg_real tap2[5][5];
 } dn_ctx;
 
-static void dn_ctx_init(dn_ctx *c, const tg_denoise_params *p, const tg_denoise_io *io, const tg_real *scratch)
+static void dn_ctx_init(dn_ctx *c, const tgi_denoise_params *p, const tgi_denoise_io *io, const tg_real *scratch)
 {
     size_t n = (size_t)io->width * io->height;
     int k, dx, dy;
@@ -84,7 +85,7 @@ static void dn_ctx_init(dn_ctx *c, const tg_denoise_params *p, const tg_denoise_
  * the count, fills tap index and weight. */
 static int filter_taps(const dn_ctx *c, int x, int y, size_t *restrict tj, tg_real *restrict tw)
 {
-    const tg_denoise_io *io = c->io;
+    const tgi_denoise_io *io = c->io;
     const tg_real *restrict depth = io->depth, *restrict nx = io->nx, *restrict ny = io->ny, *restrict nz = io->nz;
     const uint8_t *sky = io->sky;
     int w = io->width, h = io->height, xx, yy, nt = 0;
@@ -104,7 +105,7 @@ static int filter_taps(const dn_ctx *c, int x, int y, size_t *restrict tj, tg_re
             dz = tg_abs(tg_sub(depth[j], zi));
             if (dz >= ztol) continue;
             wt = tg_mul(tap_row[xx - x + 2], tg_sub(TG_ONE, tg_mul(dz, inv_ztol)));
-            wt = tg_mul(wt, normal_weight(tg_v3_dot(tg_v3(nix, niy, niz), tg_v3(nx[j], ny[j], nz[j]))));
+            wt = tg_mul(wt, normal_weight(tgi_v3_dot(tg_v3(nix, niy, niz), tg_v3(nx[j], ny[j], nz[j]))));
             if (wt <= 0) continue;
             tj[nt] = j;
             tw[nt] = wt;
@@ -116,7 +117,7 @@ static int filter_taps(const dn_ctx *c, int x, int y, size_t *restrict tj, tg_re
 
 static void filter_pixel(const dn_ctx *c, int x, int y)
 {
-    const tg_denoise_io *io = c->io;
+    const tgi_denoise_io *io = c->io;
     size_t i = (size_t)y * io->width + x, tj[25];
     tg_real tw[25], wsum = 0;
     int nt = filter_taps(c, x, y, tj, tw), t, k;
@@ -129,7 +130,7 @@ static void filter_pixel(const dn_ctx *c, int x, int y)
         c->out[k][i] = tg_div(sum, wsum);
     }
     if (io->bent_x && io->bent_y && io->bent_z) {
-        tg_vec3 b = tg_v3_normalize_or(tg_v3(io->bent_x[i], io->bent_y[i], io->bent_z[i]),
+        tg_vec3 b = tgi_v3_normalize_or(tg_v3(io->bent_x[i], io->bent_y[i], io->bent_z[i]),
                                        tg_v3(io->nx[i], io->ny[i], io->nz[i]));
         io->bent_x[i] = b.x; io->bent_y[i] = b.y; io->bent_z[i] = b.z;
     }
@@ -137,7 +138,7 @@ static void filter_pixel(const dn_ctx *c, int x, int y)
     if (io->cone) io->cone[i] = tg_acos(tg_sub(TG_ONE, io->ao[i]));   /* HBIL eq. 12 */
 }
 
-void tg_denoise_rows(const tg_denoise_params *p, const tg_denoise_io *io, const void *scratch, int y0, int y1)
+void tgi_denoise_rows(const tgi_denoise_params *p, const tgi_denoise_io *io, const void *scratch, int y0, int y1)
 {
     dn_ctx c;
     int x, y;
@@ -153,23 +154,23 @@ void tg_denoise_rows(const tg_denoise_params *p, const tg_denoise_io *io, const 
 }
 
 /* ---- temporal ---- */
-size_t tg_temporal_bytes(int w, int h) { return 2 * (size_t)w * (size_t)h * TM_CH * sizeof(tg_real); }
+size_t tgi_temporal_bytes(int w, int h) { return 2 * (size_t)w * (size_t)h * TM_CH * sizeof(tg_real); }
 
-void tg_temporal_clear(void *state, int w, int h) { memset(state, 0, tg_temporal_bytes(w, h)); }
+void tgi_temporal_clear(void *state, int w, int h) { memset(state, 0, tgi_temporal_bytes(w, h)); }
 
-static void temporal_pixel(const tg_denoise_params *p, const tg_denoise_io *io, const tg_real *prev, tg_real *next,
-                           const tg_view *prev_view, const tg_view *view, int reset, int x, int y)
+static void temporal_pixel(const tgi_denoise_params *p, const tgi_denoise_io *io, const tg_real *prev, tg_real *next,
+                           const tgi_view *prev_view, const tgi_view *view, int reset, int x, int y)
 {
     int w = io->width, h = io->height, k;
     size_t n = (size_t)w * h, i = (size_t)y * w + x, s = 0;
     int ok = 0, sky = (io->sky && io->sky[i]) || io->depth[i] <= 0;
     if (!reset && !sky && prev_view) {
-        tg_vec3 pv = tg_view_unproject(view, tg_add(tg_from_int(x), TG_R(0.5f)), tg_add(tg_from_int(y), TG_R(0.5f)), io->depth[i]);
-        tg_vec3 q = tg_view_world_to_view(prev_view, tg_view_view_to_world(view, pv));
+        tg_vec3 pv = tgi_view_unproject(view, tg_add(tg_from_int(x), TG_R(0.5f)), tg_add(tg_from_int(y), TG_R(0.5f)), io->depth[i]);
+        tg_vec3 q = tgi_view_world_to_view(prev_view, tgi_view_view_to_world(view, pv));
         if (q.z > 0) {
             tg_real sx, sy;
             int px, py;
-            tg_view_project(prev_view, q, &sx, &sy);
+            tgi_view_project(prev_view, q, &sx, &sy);
             px = tg_to_int(sx); py = tg_to_int(sy);
             if (px >= 0 && py >= 0 && px < w && py < h) {
                 tg_real hz;
@@ -177,7 +178,7 @@ static void temporal_pixel(const tg_denoise_params *p, const tg_denoise_io *io, 
                 hz = prev[7 * n + s];
                 if (hz > 0 && tg_abs(tg_sub(hz, q.z)) <= tg_mul(p->history_depth_tolerance, hz)) {
                     tg_vec3 hn = tg_v3(prev[8 * n + s], prev[9 * n + s], prev[10 * n + s]);
-                    ok = tg_v3_dot(hn, tg_v3(io->nx[i], io->ny[i], io->nz[i])) >= p->history_normal_cos;
+                    ok = tgi_v3_dot(hn, tg_v3(io->nx[i], io->ny[i], io->nz[i])) >= p->history_normal_cos;
                 }
             }
         }
@@ -189,7 +190,7 @@ static void temporal_pixel(const tg_denoise_params *p, const tg_denoise_io *io, 
         next[(size_t)k * n + i] = v;
     }
     if (ok && io->bent_x && io->bent_y && io->bent_z) {
-        tg_vec3 b = tg_v3_normalize_or(tg_v3(io->bent_x[i], io->bent_y[i], io->bent_z[i]), tg_v3(io->nx[i], io->ny[i], io->nz[i]));
+        tg_vec3 b = tgi_v3_normalize_or(tg_v3(io->bent_x[i], io->bent_y[i], io->bent_z[i]), tg_v3(io->nx[i], io->ny[i], io->nz[i]));
         io->bent_x[i] = b.x; io->bent_y[i] = b.y; io->bent_z[i] = b.z;
     }
     if (ok && io->cone) io->cone[i] = tg_acos(tg_sub(TG_ONE, io->ao[i]));   /* HBIL eq. 12 */
@@ -197,8 +198,8 @@ static void temporal_pixel(const tg_denoise_params *p, const tg_denoise_io *io, 
     next[8 * n + i] = io->nx[i]; next[9 * n + i] = io->ny[i]; next[10 * n + i] = io->nz[i];
 }
 
-void tg_temporal_rows(const tg_denoise_params *p, const tg_denoise_io *io, void *state,
-                      const tg_view *prev_view, const tg_view *view, int frame, int reset,
+void tgi_temporal_rows(const tgi_denoise_params *p, const tgi_denoise_io *io, void *state,
+                      const tgi_view *prev_view, const tgi_view *view, int frame, int reset,
                       int y0, int y1)
 {
     size_t half = (size_t)io->width * io->height * TM_CH;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * denoise.h - after the 4x4 merge: the depth- and normal-aware spatial
  * filter over the 4x4 neighbourhood (HBIL sec. 3.3-3.4) and the temporal
@@ -11,8 +12,8 @@
  * Sky pixels are left as they are.  AO, bent normal and near-field
  * irradiance are filtered; the bent normal is renormalised and the cone is
  * recomputed as acos(1 - AO) (HBIL eq. 12) from the filtered AO.
- *   tg_denoise_begin(io, scratch)   whole image first: copies the inputs
- *   tg_denoise_rows(io, scratch, y0, y1)   writes the filtered values back
+ *   tgi_denoise_begin(io, scratch)   whole image first: copies the inputs
+ *   tgi_denoise_rows(io, scratch, y0, y1)   writes the filtered values back
  *
  * Temporal: out = lerp(history, current, alpha) where the history (two
  * state halves, ping-ponged by `frame & 1`) is fetched by reprojecting
@@ -26,35 +27,35 @@
 
 #include "../raster/view.h"
 
-typedef struct tg_denoise_io {
+typedef struct tgi_denoise_io {
     int width, height;
     const tg_real *depth, *nx, *ny, *nz;   /* full-res guides (world normals) */
     const uint8_t *sky;                    /* may be NULL */
     tg_real *ao;                           /* in-out; the others may be NULL */
     tg_real *bent_x, *bent_y, *bent_z, *cone;
     tg_real *near_r, *near_g, *near_b;
-} tg_denoise_io;
+} tgi_denoise_io;
 
-typedef struct tg_denoise_params {
+typedef struct tgi_denoise_params {
     tg_real depth_tolerance;   /* relative; default 0.1 */
     /* temporal */
     tg_real alpha;             /* weight of the current frame; default 0.2 */
     tg_real history_depth_tolerance; /* relative; default 0.05 */
     tg_real history_normal_cos;      /* default 0.9 */
-} tg_denoise_params;
+} tgi_denoise_params;
 
-void tg_denoise_defaults(tg_denoise_params *p);
+void tgi_denoise_defaults(tgi_denoise_params *p);
 
-size_t tg_denoise_bytes(int w, int h);
-void tg_denoise_begin(const tg_denoise_io *io, void *scratch);
-void tg_denoise_rows(const tg_denoise_params *p, const tg_denoise_io *io, const void *scratch, int y0, int y1);
+size_t tgi_denoise_bytes(int w, int h);
+void tgi_denoise_begin(const tgi_denoise_io *io, void *scratch);
+void tgi_denoise_rows(const tgi_denoise_params *p, const tgi_denoise_io *io, const void *scratch, int y0, int y1);
 
 /* Temporal state: two halves of (ao, bent xyz, near rgb, depth, normal xyz). */
-size_t tg_temporal_bytes(int w, int h);
+size_t tgi_temporal_bytes(int w, int h);
 /* Clear the state (no history). */
-void tg_temporal_clear(void *state, int w, int h);
-void tg_temporal_rows(const tg_denoise_params *p, const tg_denoise_io *io, void *state,
-                      const tg_view *prev_view, const tg_view *view, int frame, int reset,
+void tgi_temporal_clear(void *state, int w, int h);
+void tgi_temporal_rows(const tgi_denoise_params *p, const tgi_denoise_io *io, void *state,
+                      const tgi_view *prev_view, const tgi_view *view, int frame, int reset,
                       int y0, int y1);
 
 #endif

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * hbil.c - the HBIL horizon kernel (Mayaux 2018, sec. 1-2 and 3.3-3.4).
  *
@@ -40,7 +41,7 @@ static const uint8_t bayer4[4][4] = {
     { 0, 8, 2, 10 }, { 12, 4, 14, 6 }, { 3, 11, 1, 9 }, { 15, 7, 13, 5 }
 };
 
-tg_real tg_hbil_slice_phi0(int i, int j, int slices)
+tg_real tgi_hbil_slice_phi0(int i, int j, int slices)
 {
     tg_real rank = tg_add(tg_from_int(bayer4[j & 3][i & 3]), TG_R(0.5f));
     if (slices < 1) slices = 1;
@@ -48,7 +49,7 @@ tg_real tg_hbil_slice_phi0(int i, int j, int slices)
     return tg_mul(tg_div(TG_PI, tg_from_int(slices * 16)), rank);
 }
 
-void tg_hbil_defaults(tg_hbil_params *p, const tg_view *view)
+void tgi_hbil_defaults(tgi_hbil_params *p, const tgi_view *view)
 {
     memset(p, 0, sizeof *p);
     p->view = view;
@@ -57,15 +58,15 @@ void tg_hbil_defaults(tg_hbil_params *p, const tg_view *view)
     p->radius = TG_ONE;
     p->max_radius_px = TG_R(128.0f);
     p->step = 1;
-    p->slice_phi0 = tg_hbil_slice_phi0(0, 0, p->slices);
+    p->slice_phi0 = tgi_hbil_slice_phi0(0, 0, p->slices);
     p->rejection_a = 0;
     p->rejection_b = TG_R(0.2f);
 }
 
 /* ---- per-call constants ---- */
 typedef struct hbil_ctx {
-    const tg_hbil_params *p;
-    const tg_hbil_io *io;
+    const tgi_hbil_params *p;
+    const tgi_hbil_io *io;
     int slices, samples, step, full_w, full_h;
     tg_real ppu, inv_ppu, inv_step, pi_over_s;
     tg_real cos_phi[HBIL_PATTERN][TG_HBIL_MAX_SLICES], sin_phi[HBIL_PATTERN][TG_HBIL_MAX_SLICES];
@@ -128,8 +129,8 @@ static tg_real slice_P(const hbil_slice *sl, tg_real c, int side)
 
 static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
 {
-    const tg_hbil_io *io = c->io;
-    const tg_view *v = c->p->view;
+    const tgi_hbil_io *io = c->io;
+    const tgi_view *v = c->p->view;
     tg_vec3 nw, k;
     tg_real ndv, r_px;
     if ((io->sky && io->sky[i]) || io->depth[i] <= 0) return 0;
@@ -139,15 +140,15 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
     px->Y = full_y(c, px->y);
     /* w_o: unit vector from the surface toward the eye (sec. 1.1) */
     k = tg_v3(tg_mul(px->X, c->inv_ppu), tg_mul(px->Y, c->inv_ppu), TG_ONE);
-    px->wo = tg_v3_scale(k, tg_neg(tg_rsqrt(tg_v3_dot(k, k))));          /* |k| >= 1 */
+    px->wo = tgi_v3_scale(k, tg_neg(tg_rsqrt(tgi_v3_dot(k, k))));          /* |k| >= 1 */
     /* w_x = Y x w_o / |..| = (-1, 0, k_x) / sqrt(1 + k_x^2), w_y = w_o x w_x (sec. 1.1) */
-    px->wx = tg_v3_scale(tg_v3(tg_neg(TG_ONE), 0, k.x), tg_rsqrt(tg_add(TG_ONE, tg_mul(k.x, k.x))));
-    px->wy = tg_v3_cross(px->wo, px->wx);
+    px->wx = tgi_v3_scale(tg_v3(tg_neg(TG_ONE), 0, k.x), tg_rsqrt(tg_add(TG_ONE, tg_mul(k.x, k.x))));
+    px->wy = tgi_v3_cross(px->wo, px->wx);
     nw = tg_v3(io->nx[i], io->ny[i], io->nz[i]);
-    px->n = tg_v3(tg_v3_dot(nw, v->right), tg_v3_dot(nw, v->up), tg_v3_dot(nw, v->forward));
-    ndv = tg_v3_dot(px->n, px->wo);
+    px->n = tg_v3(tgi_v3_dot(nw, v->right), tgi_v3_dot(nw, v->up), tgi_v3_dot(nw, v->forward));
+    ndv = tgi_v3_dot(px->n, px->wo);
     if (ndv < HBIL_MIN_NDOTV)
-        px->n = tg_v3_normalize_or(tg_v3_add(px->n, tg_v3_scale(px->wo, tg_sub(HBIL_MIN_NDOTV, ndv))), px->wo);
+        px->n = tgi_v3_normalize_or(tgi_v3_add(px->n, tgi_v3_scale(px->wo, tg_sub(HBIL_MIN_NDOTV, ndv))), px->wo);
     /* the world radius projected to image pixels; the 3D test is unclamped */
     r_px = tg_div(tg_mul(c->p->radius, c->ppu), px->z);
     px->radius_units2 = tg_sqr(tg_min(tg_mul(r_px, c->inv_step), HBIL_MAX_RADIUS_UNITS));
@@ -176,14 +177,14 @@ static void slice_screen_dir(const hbil_ctx *c, const hbil_pixel *px, tg_vec3 d,
  * or lands far from the nearest pixel. */
 HBIL_COLD static tg_real sample_depth_edge(const hbil_ctx *c, int major_x, int a, int b0, tg_real f, int sa, int sn)
 {
-    const tg_hbil_io *io = c->io;
-    const tg_view *v = c->p->view;
+    const tgi_hbil_io *io = c->io;
+    const tgi_view *v = c->p->view;
     tg_real zn = io->depth[sn], gn, gc, X, Y, Xn, Yn, ratio;
     int bn;
     tg_vec3 nw, n;
     /* tangent plane of the nearest pixel: z = zn (n.ray_n) / (n.ray_c), ray = (X/ppu, Y/ppu, 1) */
     nw = tg_v3(io->nx[sn], io->ny[sn], io->nz[sn]);
-    n = tg_v3(tg_v3_dot(nw, v->right), tg_v3_dot(nw, v->up), tg_v3_dot(nw, v->forward));
+    n = tg_v3(tgi_v3_dot(nw, v->right), tgi_v3_dot(nw, v->up), tgi_v3_dot(nw, v->forward));
     bn = sn == sa ? b0 : b0 + 1;
     if (major_x) {
         X = full_x(c, a);
@@ -209,8 +210,8 @@ HBIL_COLD static tg_real sample_depth_edge(const hbil_ctx *c, int major_x, int a
 HBIL_COLD static void gather_rise(const hbil_ctx *c, const hbil_slice *sl, hbil_side *sd, int side,
                         tg_real cos_new, tg_vec3 dir, int si)
 {
-    const tg_hbil_io *io = c->io;
-    const tg_view *v = c->p->view;
+    const tgi_hbil_io *io = c->io;
+    const tgi_view *v = c->p->view;
     tg_real p_new = slice_P(sl, cos_new, side);
     tg_real de = tg_max(0, tg_sub(sd->p_old, p_new));         /* HBIL eq. 18 */
     tg_vec3 ns, wi;
@@ -218,9 +219,9 @@ HBIL_COLD static void gather_rise(const hbil_ctx *c, const hbil_slice *sl, hbil_
     sd->p_old = p_new;
     ns = tg_v3(io->snx ? io->snx[si] : io->nx[si], io->sny ? io->sny[si] : io->ny[si],
                io->snz ? io->snz[si] : io->nz[si]);
-    wi = tg_v3_add(tg_v3_add(tg_v3_scale(v->right, dir.x), tg_v3_scale(v->up, dir.y)),
-                   tg_v3_scale(v->forward, dir.z));
-    t = tg_smoothstep(c->p->rejection_a, c->p->rejection_b, tg_neg(tg_v3_dot(ns, wi))); /* HBIL sec. 3.4 */
+    wi = tgi_v3_add(tgi_v3_add(tgi_v3_scale(v->right, dir.x), tgi_v3_scale(v->up, dir.y)),
+                   tgi_v3_scale(v->forward, dir.z));
+    t = tg_smoothstep(c->p->rejection_a, c->p->rejection_b, tg_neg(tgi_v3_dot(ns, wi))); /* HBIL sec. 3.4 */
     sd->lr = tg_lerp(sd->lr, io->rad_r[si], t);                  /* L_new = lerp(L_old, L(x'), t) */
     sd->lg = tg_lerp(sd->lg, io->rad_g[si], t);
     sd->lb = tg_lerp(sd->lb, io->rad_b[si], t);
@@ -249,7 +250,7 @@ static int march_steps(const hbil_ctx *c, tg_real extent, int *n)
 static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice *sl,
                        tg_real ux, tg_real uy, int side, hbil_side *sd)
 {
-    const tg_hbil_io *io = c->io;
+    const tgi_hbil_io *io = c->io;
     const tg_real *restrict depth = io->depth;
     const uint8_t *restrict sky = io->sky;
     const int w = io->width, h = io->height;
@@ -308,9 +309,9 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
         dx = tg_add(sx, tg_mul(tg_add(p0x, sx), q));
         dy = tg_add(sy, tg_mul(tg_add(p0y, sy), q));
         dz = tg_mul(p0z, q);
-        len2 = tg_v3_dot(tg_v3(dx, dy, dz), tg_v3(dx, dy, dz));
+        len2 = tgi_v3_dot(tg_v3(dx, dy, dz), tg_v3(dx, dy, dz));
         if (len2 > r2) continue;                                /* beyond the 3D radius */
-        dot = tg_v3_dot(tg_v3(dx, dy, dz), tg_v3(wox, woy, woz));
+        dot = tgi_v3_dot(tg_v3(dx, dy, dz), tg_v3(wox, woy, woz));
         /* cos(theta) > horizon, without a division: dot|dot| > h|h| |d|^2 */
         if (tg_mul(dot, tg_abs(dot)) > tg_mul(tg_add(sd->hs, HBIL_TIE), len2)) {
             tg_real len = tg_sqrt(len2);
@@ -319,7 +320,7 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
             sd->h = cn;
             sd->hs = tg_mul(cn, tg_abs(cn));
             if (c->near_field)
-                gather_rise(c, sl, sd, side, cn, tg_v3_scale(tg_v3(dx, dy, dz), tg_div(TG_ONE, len)),
+                gather_rise(c, sl, sd, side, cn, tgi_v3_scale(tg_v3(dx, dy, dz), tg_div(TG_ONE, len)),
                             f < TG_R(0.5f) ? sa : sa + smin);      /* the nearest pixel */
         }
     }
@@ -344,9 +345,9 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
     hbil_slice sl;
     hbil_side front, back;
     tg_real inv_len_n, h1i, h0i, ux, uy, q1, q0, q1i, q0i, r1, r0, r1i, r0i, p1i, p0i;
-    sl.d = tg_v3_add(tg_v3_scale(px->wx, cphi), tg_v3_scale(px->wy, sphi)); /* HBIL sec. 1.2 D(phi) */
-    sl.nx = tg_v3_dot(px->n, sl.d);                           /* HBIL eq. 2 */
-    sl.ny = tg_v3_dot(px->n, px->wo);
+    sl.d = tgi_v3_add(tgi_v3_scale(px->wx, cphi), tgi_v3_scale(px->wy, sphi)); /* HBIL sec. 1.2 D(phi) */
+    sl.nx = tgi_v3_dot(px->n, sl.d);                           /* HBIL eq. 2 */
+    sl.ny = tgi_v3_dot(px->n, px->wo);
     /* |n'|^2 >= ny^2 > 0 (ny >= HBIL_MIN_NDOTV) */
     inv_len_n = tg_rsqrt(tg_max(tg_add(tg_mul(sl.nx, sl.nx), tg_mul(sl.ny, sl.ny)), tg_mul(sl.ny, sl.ny)));
     /* horizons initialised on the tangent plane (sec. 2.1): cos = -/+ n_x/|n'| */
@@ -370,9 +371,9 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
         tg_add(tg_sub(p1i, tg_add(tg_mul(sl.nx, q1), tg_mul(sl.ny, r1))),
                tg_sub(p0i, tg_add(tg_mul(sl.nx, q0), tg_mul(sl.ny, r0)))));
     /* eq. 5-6: n~x = Q1 + Q0, n~y = R1 + R0; B = D n~x + w_o n~y */
-    acc->bent_delta = tg_v3_add(acc->bent_delta, tg_v3_add(
-        tg_v3_scale(sl.d, tg_sub(tg_add(q1, q0), tg_add(q1i, q0i))),
-        tg_v3_scale(px->wo, tg_sub(tg_add(r1, r0), tg_add(r1i, r0i)))));
+    acc->bent_delta = tgi_v3_add(acc->bent_delta, tgi_v3_add(
+        tgi_v3_scale(sl.d, tg_sub(tg_add(q1, q0), tg_add(q1i, q0i))),
+        tgi_v3_scale(px->wo, tg_sub(tg_add(r1, r0), tg_add(r1i, r0i)))));
     acc->er = tg_add(acc->er, tg_add(front.er, back.er));
     acc->eg = tg_add(acc->eg, tg_add(front.eg, back.eg));
     acc->eb = tg_add(acc->eb, tg_add(front.eb, back.eb));
@@ -380,7 +381,7 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
 
 static void write_open(const hbil_ctx *c, int i)
 {
-    const tg_hbil_io *io = c->io;
+    const tgi_hbil_io *io = c->io;
     io->ao[i] = TG_ONE;
     if (io->bent_x) io->bent_x[i] = io->nx[i];
     if (io->bent_y) io->bent_y[i] = io->ny[i];
@@ -391,8 +392,8 @@ static void write_open(const hbil_ctx *c, int i)
 
 static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
 {
-    const tg_hbil_io *io = c->io;
-    const tg_view *v = c->p->view;
+    const tgi_hbil_io *io = c->io;
+    const tgi_view *v = c->p->view;
     hbil_sums acc;
     int s, pat = 0;
     tg_real ao;
@@ -409,10 +410,10 @@ static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
     if (io->bent_x || io->bent_y || io->bent_z) {
         /* eq. 6: summed unnormalised over slices, normalised once (in world space) */
         tg_vec3 nw = tg_v3(io->nx[i], io->ny[i], io->nz[i]);
-        tg_vec3 dw = tg_v3_add(tg_v3_add(tg_v3_scale(v->right, acc.bent_delta.x),
-                                         tg_v3_scale(v->up, acc.bent_delta.y)),
-                               tg_v3_scale(v->forward, acc.bent_delta.z));
-        tg_vec3 b = tg_v3_normalize_or(tg_v3_add(tg_v3_scale(nw, tg_from_int(c->slices)), dw), nw);
+        tg_vec3 dw = tgi_v3_add(tgi_v3_add(tgi_v3_scale(v->right, acc.bent_delta.x),
+                                         tgi_v3_scale(v->up, acc.bent_delta.y)),
+                               tgi_v3_scale(v->forward, acc.bent_delta.z));
+        tg_vec3 b = tgi_v3_normalize_or(tgi_v3_add(tgi_v3_scale(nw, tg_from_int(c->slices)), dw), nw);
         if (io->bent_x) io->bent_x[i] = b.x;
         if (io->bent_y) io->bent_y[i] = b.y;
         if (io->bent_z) io->bent_z[i] = b.z;
@@ -425,7 +426,7 @@ static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
     }
 }
 
-static void ctx_init(hbil_ctx *c, const tg_hbil_params *p, const tg_hbil_io *io)
+static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_hbil_io *io)
 {
     int pat, s, npat;
     c->p = p;
@@ -442,7 +443,7 @@ static void ctx_init(hbil_ctx *c, const tg_hbil_params *p, const tg_hbil_io *io)
     c->near_field = io->rad_r && io->rad_g && io->rad_b && io->near_r && io->near_g && io->near_b;
     npat = p->per_pixel_pattern ? HBIL_PATTERN : 1;
     for (pat = 0; pat < npat; pat++) {
-        tg_real phi0 = p->per_pixel_pattern ? tg_hbil_slice_phi0(pat & 3, pat >> 2, c->slices) : p->slice_phi0;
+        tg_real phi0 = p->per_pixel_pattern ? tgi_hbil_slice_phi0(pat & 3, pat >> 2, c->slices) : p->slice_phi0;
         for (s = 0; s < c->slices; s++) {
             tg_real phi = tg_add(phi0, tg_mul(c->pi_over_s, tg_from_int(s)));
             c->cos_phi[pat][s] = tg_cos(phi);
@@ -451,7 +452,7 @@ static void ctx_init(hbil_ctx *c, const tg_hbil_params *p, const tg_hbil_io *io)
     }
 }
 
-void tg_hbil_rows(const tg_hbil_params *p, const tg_hbil_io *io, int y0, int y1)
+void tgi_hbil_rows(const tgi_hbil_params *p, const tgi_hbil_io *io, int y0, int y1)
 {
     hbil_ctx c;
     hbil_pixel px;

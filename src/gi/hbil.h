@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * hbil.h - the Horizon-Based Indirect Lighting kernel (Mayaux 2018).
  *
@@ -19,10 +20,10 @@
  *
  * Slice angles: with S slices per pixel the slices of a pixel are
  * phi0 + s * pi / S.  Each of the 16 sub-images (i, j) gets its own phi0
- * (tg_hbil_slice_phi0), stratified over [0, pi / S), so a 4x4 block covers
+ * (tgi_hbil_slice_phi0), stratified over [0, pi / S), so a 4x4 block covers
  * 16 * S directions (32 with the default S = 2, pi / 32 apart).  For the
  * full-resolution image set per_pixel_pattern: full-res pixel (X, Y) then
- * uses tg_hbil_slice_phi0(X & 3, Y & 3, S), the same directions the
+ * uses tgi_hbil_slice_phi0(X & 3, Y & 3, S), the same directions the
  * interleaved path gives that pixel, so the two results are comparable.
  *
  * Estimators (documented deviations, both consistent with the paper's
@@ -58,8 +59,8 @@
 #define TG_HBIL_DEFAULT_SLICES 2
 #define TG_HBIL_DEFAULT_SAMPLES 16
 
-typedef struct tg_hbil_params {
-    const tg_view *view;      /* full-resolution camera */
+typedef struct tgi_hbil_params {
+    const tgi_view *view;      /* full-resolution camera */
     int slices, samples;      /* per pixel; defaults 2 and 16; slices clamped to [1, TG_HBIL_MAX_SLICES] */
     tg_real radius;           /* world units; projected to pixels, clamped to max_radius_px and the screen */
     tg_real max_radius_px;    /* in full-res pixels */
@@ -67,9 +68,9 @@ typedef struct tg_hbil_params {
     tg_real slice_phi0;       /* first slice angle of this image (interleaved), radians */
     int per_pixel_pattern;    /* full-res: slice angle from (X & 3, Y & 3), slice_phi0 ignored */
     tg_real rejection_a, rejection_b; /* sec. 3.4 t = smoothstep(a, b, -n'.w_i) */
-} tg_hbil_params;
+} tgi_hbil_params;
 
-typedef struct tg_hbil_io {
+typedef struct tgi_hbil_io {
     int width, height;
     const tg_real *depth, *nx, *ny, *nz;      /* view depth; world normals */
     const tg_real *f0;                         /* may be NULL: 0 */
@@ -78,16 +79,16 @@ typedef struct tg_hbil_io {
     const tg_real *snx, *sny, *snz;            /* sender normals for the rejection filter; may alias nx..; NULL = nx.. */
     tg_real *ao, *bent_x, *bent_y, *bent_z, *cone; /* outputs; bent world space unit; any may be NULL except ao */
     tg_real *near_r, *near_g, *near_b;         /* near-field irradiance; written only with rad_r and near_r */
-} tg_hbil_io;
+} tgi_hbil_io;
 
 /* Defaults: 2 slices, 16 samples, radius 1, max radius 128 px, step 1, no
  * offset, phi0 of sub-image (0,0), no pattern, rejection a = 0, b = 0.2. */
-void tg_hbil_defaults(tg_hbil_params *p, const tg_view *view);
+void tgi_hbil_defaults(tgi_hbil_params *p, const tgi_view *view);
 
 /* First slice angle of sub-image (i, j), i, j in 0..3, with `slices` per pixel. */
-tg_real tg_hbil_slice_phi0(int i, int j, int slices);
+tg_real tgi_hbil_slice_phi0(int i, int j, int slices);
 
 /* Run the kernel on image rows [y0, y1). */
-void tg_hbil_rows(const tg_hbil_params *p, const tg_hbil_io *io, int y0, int y1);
+void tgi_hbil_rows(const tgi_hbil_params *p, const tgi_hbil_io *io, int y0, int y1);
 
 #endif

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * interleave.c - 4x4 split/merge into quarter-resolution sub-images (HBIL
  * sec. 3.3).  Layout in interleave.h.  A full-resolution row y belongs to
@@ -8,7 +9,7 @@
 
 static int sub_size(int n, int i) { return n > i ? (n - i + 3) / 4 : 0; }
 
-void tg_interleave_sub_rect(int w, int h, int i, int j, int *sw, int *sh, size_t *offset)
+void tgi_interleave_sub_rect(int w, int h, int i, int j, int *sw, int *sh, size_t *offset)
 {
     size_t off = 0;
     int k, kk = j * 4 + i;
@@ -26,7 +27,7 @@ static void row_map_make(row_map *m, int w, int h, int y)
 {
     int i, sh;
     for (i = 0; i < 4; i++) {
-        tg_interleave_sub_rect(w, h, i, y & 3, &m->sw[i], &sh, &m->base[i]);
+        tgi_interleave_sub_rect(w, h, i, y & 3, &m->sw[i], &sh, &m->base[i]);
         m->base[i] += (size_t)(y >> 2) * (size_t)m->sw[i];
     }
 }
@@ -46,16 +47,16 @@ static void row_map_make(row_map *m, int w, int h, int y)
         }                                                                 \
     }
 
-void tg_interleave_split_rows(const tg_real *src, int w, int h, tg_real *dst, int y0, int y1)
+void tgi_interleave_split_rows(const tg_real *src, int w, int h, tg_real *dst, int y0, int y1)
 { TG_INTERLEAVE_BODY(1) }
-void tg_interleave_merge_rows(const tg_real *src, int w, int h, tg_real *dst, int y0, int y1)
+void tgi_interleave_merge_rows(const tg_real *src, int w, int h, tg_real *dst, int y0, int y1)
 { TG_INTERLEAVE_BODY(0) }
-void tg_interleave_split8_rows(const uint8_t *src, int w, int h, uint8_t *dst, int y0, int y1)
+void tgi_interleave_split8_rows(const uint8_t *src, int w, int h, uint8_t *dst, int y0, int y1)
 { TG_INTERLEAVE_BODY(1) }
-void tg_interleave_merge8_rows(const uint8_t *src, int w, int h, uint8_t *dst, int y0, int y1)
+void tgi_interleave_merge8_rows(const uint8_t *src, int w, int h, uint8_t *dst, int y0, int y1)
 { TG_INTERLEAVE_BODY(0) }
 
-void tg_interleave_split(const tg_real *src, int w, int h, tg_real *dst) { tg_interleave_split_rows(src, w, h, dst, 0, h); }
-void tg_interleave_merge(const tg_real *src, int w, int h, tg_real *dst) { tg_interleave_merge_rows(src, w, h, dst, 0, h); }
-void tg_interleave_split8(const uint8_t *src, int w, int h, uint8_t *dst) { tg_interleave_split8_rows(src, w, h, dst, 0, h); }
-void tg_interleave_merge8(const uint8_t *src, int w, int h, uint8_t *dst) { tg_interleave_merge8_rows(src, w, h, dst, 0, h); }
+void tgi_interleave_split(const tg_real *src, int w, int h, tg_real *dst) { tgi_interleave_split_rows(src, w, h, dst, 0, h); }
+void tgi_interleave_merge(const tg_real *src, int w, int h, tg_real *dst) { tgi_interleave_merge_rows(src, w, h, dst, 0, h); }
+void tgi_interleave_split8(const uint8_t *src, int w, int h, uint8_t *dst) { tgi_interleave_split8_rows(src, w, h, dst, 0, h); }
+void tgi_interleave_merge8(const uint8_t *src, int w, int h, uint8_t *dst) { tgi_interleave_merge8_rows(src, w, h, dst, 0, h); }

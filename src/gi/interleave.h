@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * interleave.h - 4x4 split and merge of full-resolution buffers into 16
  * quarter-resolution sub-images (HBIL sec. 3.3; Bavoil 2014, deinterleaved
@@ -17,19 +18,19 @@
 #include "../core/real.h"
 
 /* Size and start of sub-image (i, j) of a w x h image. */
-void tg_interleave_sub_rect(int w, int h, int i, int j, int *sw, int *sh, size_t *offset);
+void tgi_interleave_sub_rect(int w, int h, int i, int j, int *sw, int *sh, size_t *offset);
 
 /* Full-resolution src (w x h) -> 16 concatenated sub-images in dst (w * h).
  * The row range [y0, y1) is in FULL-resolution rows. */
-void tg_interleave_split_rows(const tg_real *src, int w, int h, tg_real *dst, int y0, int y1);
-void tg_interleave_merge_rows(const tg_real *src, int w, int h, tg_real *dst, int y0, int y1);
-void tg_interleave_split8_rows(const uint8_t *src, int w, int h, uint8_t *dst, int y0, int y1);
-void tg_interleave_merge8_rows(const uint8_t *src, int w, int h, uint8_t *dst, int y0, int y1);
+void tgi_interleave_split_rows(const tg_real *src, int w, int h, tg_real *dst, int y0, int y1);
+void tgi_interleave_merge_rows(const tg_real *src, int w, int h, tg_real *dst, int y0, int y1);
+void tgi_interleave_split8_rows(const uint8_t *src, int w, int h, uint8_t *dst, int y0, int y1);
+void tgi_interleave_merge8_rows(const uint8_t *src, int w, int h, uint8_t *dst, int y0, int y1);
 
 /* Whole images. */
-void tg_interleave_split(const tg_real *src, int w, int h, tg_real *dst);
-void tg_interleave_merge(const tg_real *src, int w, int h, tg_real *dst);
-void tg_interleave_split8(const uint8_t *src, int w, int h, uint8_t *dst);
-void tg_interleave_merge8(const uint8_t *src, int w, int h, uint8_t *dst);
+void tgi_interleave_split(const tg_real *src, int w, int h, tg_real *dst);
+void tgi_interleave_merge(const tg_real *src, int w, int h, tg_real *dst);
+void tgi_interleave_split8(const uint8_t *src, int w, int h, uint8_t *dst);
+void tgi_interleave_merge8(const uint8_t *src, int w, int h, uint8_t *dst);
 
 #endif

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * pushpull.c - push/pull hole filling (Kraus 2009; HBIL sec. 3.2).
  * Level 0 is the caller's image with weights 1 (valid) or 0 (hole); levels
@@ -8,7 +9,7 @@
 
 static int half_up(int n) { return (n + 1) / 2; }
 
-size_t tg_pushpull_bytes(int w, int h)
+size_t tgi_pushpull_bytes(int w, int h)
 {
     size_t total = 0;
     while (w > 1 || h > 1) {
@@ -79,7 +80,7 @@ static void pull_level(tg_real *fine, int fw, int fh, const tg_real *coarse, int
         }
 }
 
-void tg_pushpull_fill(int w, int h, tg_real *r, tg_real *g, tg_real *b,
+void tgi_pushpull_fill(int w, int h, tg_real *r, tg_real *g, tg_real *b,
                       const uint8_t *valid, void *scratch)
 {
     tg_real *lv = (tg_real *)scratch, *l1;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * pushpull.h - push/pull hole filling (Kraus 2009, "The Pull-Push Algorithm
  * Revisited"; HBIL sec. 3.2).
@@ -17,11 +18,11 @@
 #include "../core/real.h"
 
 /* Scratch bytes for a w x h image (the mip chain: r, g, b, weight). */
-size_t tg_pushpull_bytes(int w, int h);
+size_t tgi_pushpull_bytes(int w, int h);
 
 /* Fill the holes (valid[i] == 0) of r, g, b in place.  `scratch` holds at
- * least tg_pushpull_bytes(w, h) bytes, aligned for tg_real. */
-void tg_pushpull_fill(int w, int h, tg_real *r, tg_real *g, tg_real *b,
+ * least tgi_pushpull_bytes(w, h) bytes, aligned for tg_real. */
+void tgi_pushpull_fill(int w, int h, tg_real *r, tg_real *g, tg_real *b,
                       const uint8_t *valid, void *scratch);
 
 #endif

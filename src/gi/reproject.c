@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * reproject.c - scatter (z-buffered) and gather reprojection of last
  * frame's radiance (HBIL sec. 3.2).  See reproject.h.
@@ -9,7 +10,7 @@
 
 typedef struct scatter_buf { tg_real *z; int32_t *src; } scatter_buf;
 
-static scatter_buf buf_of(const tg_reproject_io *io, void *scratch)
+static scatter_buf buf_of(const tgi_reproject_io *io, void *scratch)
 {
     scatter_buf b;
     size_t n = (size_t)io->width * io->height;
@@ -18,20 +19,20 @@ static scatter_buf buf_of(const tg_reproject_io *io, void *scratch)
     return b;
 }
 
-size_t tg_reproject_bytes(int w, int h)
+size_t tgi_reproject_bytes(int w, int h)
 {
     size_t n = (size_t)w * (size_t)h;
     return ((n * sizeof(tg_real) + 15) & ~(size_t)15) + n * sizeof(int32_t);
 }
 
-void tg_reproject_clear(const tg_reproject_io *io, void *scratch)
+void tgi_reproject_clear(const tgi_reproject_io *io, void *scratch)
 {
     scatter_buf b = buf_of(io, scratch);
     size_t i, n = (size_t)io->width * io->height;
     for (i = 0; i < n; i++) { b.z[i] = TG_REAL_MAX; b.src[i] = NO_SOURCE; }
 }
 
-void tg_reproject_scatter_rows(const tg_reproject_io *io, void *scratch, int y0, int y1)
+void tgi_reproject_scatter_rows(const tgi_reproject_io *io, void *scratch, int y0, int y1)
 {
     scatter_buf b = buf_of(io, scratch);
     int x, y, w = io->width, h = io->height;
@@ -46,12 +47,12 @@ void tg_reproject_scatter_rows(const tg_reproject_io *io, void *scratch, int y0,
             int dx, dy;
             size_t d;
             if ((io->prev_sky && io->prev_sky[i]) || io->prev_depth[i] <= 0) continue;
-            pv = tg_view_unproject(io->prev_view, tg_add(tg_from_int(x), TG_R(0.5f)),
+            pv = tgi_view_unproject(io->prev_view, tg_add(tg_from_int(x), TG_R(0.5f)),
                                    tg_add(tg_from_int(y), TG_R(0.5f)), io->prev_depth[i]);
-            pw = tg_view_view_to_world(io->prev_view, pv);
-            cv = tg_view_world_to_view(io->view, pw);
+            pw = tgi_view_view_to_world(io->prev_view, pv);
+            cv = tgi_view_world_to_view(io->view, pw);
             if (cv.z <= io->view->znear || cv.z <= 0) continue;     /* behind the new camera */
-            tg_view_project(io->view, cv, &sx, &sy);
+            tgi_view_project(io->view, cv, &sx, &sy);
             dx = tg_to_int(sx);
             dy = tg_to_int(sy);
             if (dx < 0 || dy < 0 || dx >= w || dy >= h) continue;
@@ -61,7 +62,7 @@ void tg_reproject_scatter_rows(const tg_reproject_io *io, void *scratch, int y0,
         }
 }
 
-void tg_reproject_resolve_rows(const tg_reproject_io *io, const void *scratch, int y0, int y1)
+void tgi_reproject_resolve_rows(const tgi_reproject_io *io, const void *scratch, int y0, int y1)
 {
     scatter_buf b = buf_of(io, (void *)(uintptr_t)scratch);
     int x, y, w = io->width;
@@ -81,14 +82,14 @@ void tg_reproject_resolve_rows(const tg_reproject_io *io, const void *scratch, i
         }
 }
 
-void tg_reproject_scatter(const tg_reproject_io *io, void *scratch)
+void tgi_reproject_scatter(const tgi_reproject_io *io, void *scratch)
 {
-    tg_reproject_clear(io, scratch);
-    tg_reproject_scatter_rows(io, scratch, 0, io->height);
-    tg_reproject_resolve_rows(io, scratch, 0, io->height);
+    tgi_reproject_clear(io, scratch);
+    tgi_reproject_scatter_rows(io, scratch, 0, io->height);
+    tgi_reproject_resolve_rows(io, scratch, 0, io->height);
 }
 
-void tg_reproject_gather_rows(const tg_reproject_io *io, int y0, int y1)
+void tgi_reproject_gather_rows(const tgi_reproject_io *io, int y0, int y1)
 {
     int x, y, w = io->width, h = io->height;
     tg_real tol = io->depth_tolerance > 0 ? io->depth_tolerance : TG_R(0.05f);
@@ -107,10 +108,10 @@ void tg_reproject_gather_rows(const tg_reproject_io *io, int y0, int y1)
                     tg_vec3 pv, pw, q;
                     s = (size_t)py * w + px;
                     /* this surface seen from the previous camera must match last frame's depth */
-                    pv = tg_view_unproject(io->view, tg_add(tg_from_int(x), TG_R(0.5f)),
+                    pv = tgi_view_unproject(io->view, tg_add(tg_from_int(x), TG_R(0.5f)),
                                            tg_add(tg_from_int(y), TG_R(0.5f)), io->depth[d]);
-                    pw = tg_view_view_to_world(io->view, pv);
-                    q = tg_view_world_to_view(io->prev_view, pw);
+                    pw = tgi_view_view_to_world(io->view, pv);
+                    q = tgi_view_world_to_view(io->prev_view, pw);
                     if (!(io->prev_sky && io->prev_sky[s]) && io->prev_depth[s] > 0 &&
                         tg_abs(tg_sub(q.z, io->prev_depth[s])) <= tg_mul(tol, io->prev_depth[s])) {
                         io->out_r[d] = io->prev_r[s]; io->out_g[d] = io->prev_g[s]; io->out_b[d] = io->prev_b[s];

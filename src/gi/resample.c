@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * resample.c - quarter resolution for the GI kernel.
  *
@@ -15,16 +16,16 @@
  */
 #include "resample.h"
 
-void tg_half_size(int w, int h, int *hw, int *hh)
+void tgi_half_size(int w, int h, int *hw, int *hh)
 {
     *hw = (w + 1) / 2;
     *hh = (h + 1) / 2;
 }
 
-void tg_downsample_rows(const tg_real *src, int w, int h, tg_real *dst, int y0, int y1)
+void tgi_downsample_rows(const tg_real *src, int w, int h, tg_real *dst, int y0, int y1)
 {
     int hw, hh, x, y;
-    tg_half_size(w, h, &hw, &hh);
+    tgi_half_size(w, h, &hw, &hh);
     if (y1 > hh) y1 = hh;
     for (y = y0; y < y1; y++) {
         const tg_real *row = src + (size_t)(2 * y) * (size_t)w;
@@ -33,10 +34,10 @@ void tg_downsample_rows(const tg_real *src, int w, int h, tg_real *dst, int y0, 
     }
 }
 
-void tg_downsample8_rows(const uint8_t *src, int w, int h, uint8_t *dst, int y0, int y1)
+void tgi_downsample8_rows(const uint8_t *src, int w, int h, uint8_t *dst, int y0, int y1)
 {
     int hw, hh, x, y;
-    tg_half_size(w, h, &hw, &hh);
+    tgi_half_size(w, h, &hw, &hh);
     if (y1 > hh) y1 = hh;
     for (y = y0; y < y1; y++) {
         const uint8_t *row = src + (size_t)(2 * y) * (size_t)w;
@@ -46,7 +47,7 @@ void tg_downsample8_rows(const uint8_t *src, int w, int h, uint8_t *dst, int y0,
 }
 
 /* (n . m)^4 for unit normals, 0 when they face apart. */
-static tg_real normal_weight(const tg_upsample_io *io, size_t i, size_t j)
+static tg_real normal_weight(const tgi_upsample_io *io, size_t i, size_t j)
 {
     tg_real d = tg_add(tg_add(tg_mul(io->nx[i], io->half_nx[j]), tg_mul(io->ny[i], io->half_ny[j])),
                        tg_mul(io->nz[i], io->half_nz[j]));
@@ -64,14 +65,14 @@ static tg_real depth_weight(tg_real z, tg_real zj)
     return tg_sub(TG_ONE, tg_div(dz, tol));
 }
 
-static void write_open(const tg_upsample_io *io, size_t i)
+static void write_open(const tgi_upsample_io *io, size_t i)
 {
     io->ao[i] = TG_ONE;
     if (io->bent_x) { io->bent_x[i] = io->nx[i]; io->bent_y[i] = io->ny[i]; io->bent_z[i] = io->nz[i]; }
     if (io->near_r) { io->near_r[i] = 0; io->near_g[i] = 0; io->near_b[i] = 0; }
 }
 
-static void upsample_pixel(const tg_upsample_io *io, int hw, int hh, int x, int y)
+static void upsample_pixel(const tgi_upsample_io *io, int hw, int hh, int x, int y)
 {
     size_t i = (size_t)y * (size_t)io->width + (size_t)x, tap[4];
     tg_real wt[4], sum = 0, ao = 0, bx = 0, by = 0, bz = 0, nr = 0, ng = 0, nb = 0;
@@ -111,11 +112,11 @@ static void upsample_pixel(const tg_upsample_io *io, int hw, int hh, int x, int 
     io->ao[i] = tg_saturate(tg_div(ao, sum));
     if (io->bent_x) {
         tg_vec3 n = tg_v3(io->nx[i], io->ny[i], io->nz[i]);
-        tg_vec3 b = tg_v3_add(n, tg_v3(tg_div(bx, sum), tg_div(by, sum), tg_div(bz, sum)));
-        tg_real d = tg_v3_dot(b, n);
+        tg_vec3 b = tgi_v3_add(n, tg_v3(tg_div(bx, sum), tg_div(by, sum), tg_div(bz, sum)));
+        tg_real d = tgi_v3_dot(b, n);
         /* keep it in the normal's hemisphere: drop the part below the tangent plane */
-        if (d < 0) b = tg_v3_sub(b, tg_v3_scale(n, d));
-        b = tg_v3_normalize_or(b, n);
+        if (d < 0) b = tgi_v3_sub(b, tgi_v3_scale(n, d));
+        b = tgi_v3_normalize_or(b, n);
         io->bent_x[i] = b.x; io->bent_y[i] = b.y; io->bent_z[i] = b.z;
     }
     if (io->near_r) {
@@ -125,10 +126,10 @@ static void upsample_pixel(const tg_upsample_io *io, int hw, int hh, int x, int 
     }
 }
 
-void tg_upsample_rows(const tg_upsample_io *io, int y0, int y1)
+void tgi_upsample_rows(const tgi_upsample_io *io, int y0, int y1)
 {
     int hw, hh, x, y;
-    tg_half_size(io->width, io->height, &hw, &hh);
+    tgi_half_size(io->width, io->height, &hw, &hh);
     if (y1 > io->height) y1 = io->height;
     for (y = y0; y < y1; y++)
         for (x = 0; x < io->width; x++) upsample_pixel(io, hw, hh, x, y);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * compose.c - Lo = albedo / pi * (1 - F0) * (E_direct + E_far + E_near) +
  * emissive per pixel, the environment on sky pixels.  See compose.h.
@@ -6,15 +7,15 @@
 #include "sh.h"
 
 /* World direction of the view ray through the centre of pixel (x, y). */
-static tg_vec3 pixel_ray(const tg_view *view, int x, int y)
+static tg_vec3 pixel_ray(const tgi_view *view, int x, int y)
 {
-    tg_vec3 pv = tg_view_unproject(view, tg_add(tg_from_int(x), TG_R(0.5f)),
+    tg_vec3 pv = tgi_view_unproject(view, tg_add(tg_from_int(x), TG_R(0.5f)),
                                    tg_add(tg_from_int(y), TG_R(0.5f)), TG_ONE);
-    return tg_view_dir_to_world(view, tg_v3_normalize_or(pv, tg_v3(0, 0, TG_ONE)));
+    return tgi_view_dir_to_world(view, tgi_v3_normalize_or(pv, tg_v3(0, 0, TG_ONE)));
 }
 
-void tg_compose_rows(const tg_gbuffer *gb, const tg_view *view, const tg_env *env,
-                     const tg_rgb_planes *terms, int term_count,
+void tgi_compose_rows(const tgi_gbuffer *gb, const tgi_view *view, const tgi_env *env,
+                     const tgi_rgb_planes *terms, int term_count,
                      tg_real *out_r, tg_real *out_g, tg_real *out_b,
                      tg_real *irr_r, tg_real *irr_g, tg_real *irr_b, int y0, int y1)
 {
@@ -27,7 +28,7 @@ void tg_compose_rows(const tg_gbuffer *gb, const tg_view *view, const tg_env *en
         for (x = 0; x < w; x++, i++) {
             tg_real er = 0, eg = 0, eb = 0, kd;
             if (gb->sky[i]) {
-                tg_vec3 sky = has_env ? tg_env_radiance(env, pixel_ray(view, x, y)) : tg_v3(0, 0, 0);
+                tg_vec3 sky = has_env ? tgi_env_radiance(env, pixel_ray(view, x, y)) : tg_v3(0, 0, 0);
                 out_r[i] = sky.x; out_g[i] = sky.y; out_b[i] = sky.z;
                 if (want_irr) irr_r[i] = irr_g[i] = irr_b[i] = 0;
                 continue;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * direct.c - direct diffuse irradiance from directional, point and spot
  * lights: Lambert cosine, inverse-square falloff, smooth spot edge, shadow
@@ -9,21 +10,21 @@
 
 /* What a light needs per pixel, prepared once per row range. */
 typedef struct prepared_light {
-    tg_light_type type;
+    tgi_light_type type;
     tg_vec3 radiant;        /* intensity * colour */
     tg_vec3 to_light;       /* directional: unit vector towards the light */
     tg_vec3 pos, dir;
     tg_real cos_outer, cos_inner;
-    const tg_shadow_map *shadow;
+    const tgi_shadow_map *shadow;
 } prepared_light;
 
-static void prepare(prepared_light *p, const tg_light *l, const tg_shadow_map *sm)
+static void prepare(prepared_light *p, const tgi_light *l, const tgi_shadow_map *sm)
 {
     p->type = l->type;
-    p->radiant = tg_v3_scale(l->color, l->intensity);
+    p->radiant = tgi_v3_scale(l->color, l->intensity);
     p->pos = l->pos;
-    p->dir = tg_v3_normalize_or(l->dir, tg_v3(0, tg_neg(TG_ONE), 0));
-    p->to_light = tg_v3_neg(p->dir);
+    p->dir = tgi_v3_normalize_or(l->dir, tg_v3(0, tg_neg(TG_ONE), 0));
+    p->to_light = tgi_v3_neg(p->dir);
     p->cos_outer = tg_cos(l->angle);
     p->cos_inner = tg_cos(tg_mul(l->angle, TG_SPOT_INNER));
     p->shadow = sm;
@@ -38,19 +39,19 @@ static tg_real light_factor(const prepared_light *p, tg_vec3 pos, tg_vec3 n, tg_
     tg_real len2, inv, cosine;
     *inv_dist = TG_ONE;
     if (p->type == TG_LIGHT_DIRECTIONAL)
-        return tg_max(tg_v3_dot(n, p->to_light), 0); /* Lambert */
-    v = tg_v3_sub(p->pos, pos);
-    len2 = tg_v3_dot(v, v);
+        return tg_max(tgi_v3_dot(n, p->to_light), 0); /* Lambert */
+    v = tgi_v3_sub(p->pos, pos);
+    len2 = tgi_v3_dot(v, v);
     if (len2 < TG_REAL_MAX) {   /* 1/d from d^2 (the common case) */
         inv = tg_rsqrt(tg_max(len2, tg_mul(TG_DIRECT_MIN_DISTANCE, TG_DIRECT_MIN_DISTANCE)));
     } else {                    /* d^2 saturated (fixed point, d > 181): the exact length */
-        inv = tg_div(TG_ONE, tg_max(tg_v3_length(v), TG_DIRECT_MIN_DISTANCE));
+        inv = tg_div(TG_ONE, tg_max(tgi_v3_length(v), TG_DIRECT_MIN_DISTANCE));
     }
-    cosine = tg_mul(tg_v3_dot(n, v), inv); /* Lambert */
+    cosine = tg_mul(tgi_v3_dot(n, v), inv); /* Lambert */
     if (cosine <= 0) return 0;
     *inv_dist = inv;
     if (p->type == TG_LIGHT_SPOT) {
-        tg_real along = tg_mul(tg_neg(tg_v3_dot(v, p->dir)), inv);
+        tg_real along = tg_mul(tg_neg(tgi_v3_dot(v, p->dir)), inv);
         cosine = tg_mul(cosine, tg_smoothstep(p->cos_outer, p->cos_inner, along)); /* smooth spot edge */
     }
     return cosine;
@@ -59,12 +60,12 @@ static tg_real light_factor(const prepared_light *p, tg_vec3 pos, tg_vec3 n, tg_
 /* radiant * scale / d^2 (inverse square), largest factor first. */
 static tg_vec3 light_irradiance(tg_vec3 radiant, tg_real scale, tg_real inv)
 {
-    tg_vec3 e = tg_v3_scale(radiant, scale);
-    if (inv != TG_ONE) e = tg_v3_scale(tg_v3_scale(e, inv), inv);
+    tg_vec3 e = tgi_v3_scale(radiant, scale);
+    if (inv != TG_ONE) e = tgi_v3_scale(tgi_v3_scale(e, inv), inv);
     return e;
 }
 
-tg_vec3 tg_direct_irradiance(const tg_light *l, tg_vec3 p, tg_vec3 n)
+tg_vec3 tgi_direct_irradiance(const tgi_light *l, tg_vec3 p, tg_vec3 n)
 {
     prepared_light pl;
     tg_real inv, f;
@@ -73,9 +74,9 @@ tg_vec3 tg_direct_irradiance(const tg_light *l, tg_vec3 p, tg_vec3 n)
     return f > 0 ? light_irradiance(pl.radiant, f, inv) : tg_v3(0, 0, 0);
 }
 
-void tg_direct_rows(const tg_gbuffer *gb, const tg_view *view,
-                    const tg_light *lights, int light_count,
-                    const tg_shadow_map *const *shadow_maps,
+void tgi_direct_rows(const tgi_gbuffer *gb, const tgi_view *view,
+                    const tgi_light *lights, int light_count,
+                    const tgi_shadow_map *const *shadow_maps,
                     tg_real *e_r, tg_real *e_g, tg_real *e_b, int y0, int y1)
 {
     prepared_light pl[LIGHT_CHUNK];
@@ -93,20 +94,20 @@ void tg_direct_rows(const tg_gbuffer *gb, const tg_view *view,
             int i = y * w;
             /* pixel centre ray with view z = 1: forward + right kx + up ky (view.h) */
             tg_real ky = tg_div(tg_sub(half_h, tg_add(tg_from_int(y), TG_R(0.5f))), view->pixels_per_unit);
-            tg_vec3 row_dir = tg_v3_add(view->forward, tg_v3_scale(view->up, ky));
+            tg_vec3 row_dir = tgi_v3_add(view->forward, tgi_v3_scale(view->up, ky));
             for (x = 0; x < w; x++, i++) {
                 tg_vec3 n, p, e;
                 tg_real kx;
                 if (gb->sky[i]) continue;
                 n = tg_v3(gb->nx[i], gb->ny[i], gb->nz[i]);
                 kx = tg_div(tg_sub(tg_add(tg_from_int(x), TG_R(0.5f)), half_w), view->pixels_per_unit);
-                p = tg_v3_add(view->eye, tg_v3_scale(tg_v3_add(row_dir, tg_v3_scale(view->right, kx)), gb->depth[i]));
+                p = tgi_v3_add(view->eye, tgi_v3_scale(tgi_v3_add(row_dir, tgi_v3_scale(view->right, kx)), gb->depth[i]));
                 e = tg_v3(e_r[i], e_g[i], e_b[i]);
                 for (k = 0; k < count; k++) {
                     tg_real inv, f = light_factor(&pl[k], p, n, &inv);
                     if (f <= 0) continue;
-                    if (pl[k].shadow) f = tg_mul(f, tg_shadow_visibility(pl[k].shadow, p, n));
-                    e = tg_v3_add(e, light_irradiance(pl[k].radiant, f, inv));
+                    if (pl[k].shadow) f = tg_mul(f, tgi_shadow_visibility(pl[k].shadow, p, n));
+                    e = tgi_v3_add(e, light_irradiance(pl[k].radiant, f, inv));
                 }
                 e_r[i] = e.x; e_g[i] = e.y; e_b[i] = e.z;
             }

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * direct.h - direct diffuse irradiance E_direct from the scene's analytic
  * lights (the AOV `direct`), per G-buffer pixel.
@@ -9,7 +10,7 @@
  * I = intensity, c = colour (linear RGB), l = unit vector to the light, d its
  * distance (clamped below at TG_DIRECT_MIN_DISTANCE so nothing divides by 0).
  * Irradiance only: the (1 - F0) and albedo / pi weights are compose's.
- * Shadowed lights multiply by tg_shadow_visibility.
+ * Shadowed lights multiply by tgi_shadow_visibility.
  */
 #ifndef TG_DIRECT_H
 #define TG_DIRECT_H
@@ -23,15 +24,15 @@
 #define TG_DIRECT_MIN_DISTANCE TG_R(0.01f)
 
 /* E_direct for rows [y0, y1).  World position of a pixel = the G-buffer depth
- * unprojected at the pixel centre (tg_view_unproject + tg_view_view_to_world).
+ * unprojected at the pixel centre (tgi_view_unproject + tgi_view_view_to_world).
  * shadow_maps: NULL, or one entry per light, a NULL entry = unshadowed.
  * Sky pixels get 0. */
-void tg_direct_rows(const tg_gbuffer *gb, const tg_view *view,
-                    const tg_light *lights, int light_count,
-                    const tg_shadow_map *const *shadow_maps,
+void tgi_direct_rows(const tgi_gbuffer *gb, const tgi_view *view,
+                    const tgi_light *lights, int light_count,
+                    const tgi_shadow_map *const *shadow_maps,
                     tg_real *e_r, tg_real *e_g, tg_real *e_b, int y0, int y1);
 
 /* Irradiance from one light at a world point with unit normal n (no shadow). */
-tg_vec3 tg_direct_irradiance(const tg_light *l, tg_vec3 p, tg_vec3 n);
+tg_vec3 tgi_direct_irradiance(const tgi_light *l, tg_vec3 p, tg_vec3 n);
 
 #endif

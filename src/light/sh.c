@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * sh.c - environment to SH9, and the far-field irradiance read from it:
  * unoccluded (Ramamoorthi-Hanrahan), restricted to the bent cone (HBIL
@@ -22,7 +23,7 @@
 #define CONE_C1 TG_R(1.023326708f)
 #define CONE_C2 TG_R(0.247707956f)
 
-void tg_sh9_from_env(const tg_env *env, tg_vec3 sh[9])
+void tgi_sh9_from_env(const tgi_env *env, tg_vec3 sh[9])
 {
     int i;
     for (i = 0; i < 9; i++) sh[i] = tg_v3(0, 0, 0);
@@ -30,19 +31,19 @@ void tg_sh9_from_env(const tg_env *env, tg_vec3 sh[9])
     switch (env->type) {
     case TG_ENV_UNIFORM:
         /* RTR eq. 10.40 for a constant: integral of Y00 over the sphere = 2 sqrt(pi) */
-        sh[0] = tg_v3_scale(env->uniform, tg_mul(TG_R(2.0f), SQRT_PI));
+        sh[0] = tgi_v3_scale(env->uniform, tg_mul(TG_R(2.0f), SQRT_PI));
         break;
     case TG_ENV_SKY: {
         /* L = (s+g)/2 + (s-g)/2 sign(u.w): band 0 from the mean, band 1 from the step
          * (integral of sign(u.w) Y10 = sqrt(3 pi)); band 2 is exactly 0. */
-        tg_vec3 mean = tg_v3_add(env->sky, env->ground);        /* (s+g) sqrt(pi) = L00 */
-        tg_vec3 half_diff = tg_v3_scale(tg_v3_sub(env->sky, env->ground), TG_R(0.5f));
-        tg_vec3 b1 = tg_v3_scale(half_diff, SQRT_3PI);
+        tg_vec3 mean = tgi_v3_add(env->sky, env->ground);        /* (s+g) sqrt(pi) = L00 */
+        tg_vec3 half_diff = tgi_v3_scale(tgi_v3_sub(env->sky, env->ground), TG_R(0.5f));
+        tg_vec3 b1 = tgi_v3_scale(half_diff, SQRT_3PI);
         tg_vec3 u = env->up;
-        sh[0] = tg_v3_scale(mean, SQRT_PI);
-        sh[1] = tg_v3_scale(b1, u.y);  /* L1-1 ~ y */
-        sh[2] = tg_v3_scale(b1, u.z);  /* L10  ~ z */
-        sh[3] = tg_v3_scale(b1, u.x);  /* L11  ~ x */
+        sh[0] = tgi_v3_scale(mean, SQRT_PI);
+        sh[1] = tgi_v3_scale(b1, u.y);  /* L1-1 ~ y */
+        sh[2] = tgi_v3_scale(b1, u.z);  /* L10  ~ z */
+        sh[3] = tgi_v3_scale(b1, u.x);  /* L11  ~ x */
         break;
     }
     case TG_ENV_SH9:
@@ -67,25 +68,25 @@ static tg_vec3 sh_eval_rgb(const tg_vec3 sh[9], tg_vec3 n, tg_real c0, tg_real c
     tg_vec3 w2 = tg_v3(tg_mul(c2, tg_sub(tg_mul(TG_R(3.0f), tg_mul(z, z)), TG_ONE)),
                        tg_mul(c2x, tg_mul(z, x)),
                        tg_mul(tg_mul(c2, SQRT3), tg_sub(tg_mul(x, x), tg_mul(y, y))));
-    tg_real er = tg_add(tg_add(tg_v3_dot(w0, tg_v3(sh[0].x, sh[1].x, sh[2].x)),
-                               tg_v3_dot(w1, tg_v3(sh[3].x, sh[4].x, sh[5].x))),
-                        tg_v3_dot(w2, tg_v3(sh[6].x, sh[7].x, sh[8].x)));
-    tg_real eg = tg_add(tg_add(tg_v3_dot(w0, tg_v3(sh[0].y, sh[1].y, sh[2].y)),
-                               tg_v3_dot(w1, tg_v3(sh[3].y, sh[4].y, sh[5].y))),
-                        tg_v3_dot(w2, tg_v3(sh[6].y, sh[7].y, sh[8].y)));
-    tg_real eb = tg_add(tg_add(tg_v3_dot(w0, tg_v3(sh[0].z, sh[1].z, sh[2].z)),
-                               tg_v3_dot(w1, tg_v3(sh[3].z, sh[4].z, sh[5].z))),
-                        tg_v3_dot(w2, tg_v3(sh[6].z, sh[7].z, sh[8].z)));
+    tg_real er = tg_add(tg_add(tgi_v3_dot(w0, tg_v3(sh[0].x, sh[1].x, sh[2].x)),
+                               tgi_v3_dot(w1, tg_v3(sh[3].x, sh[4].x, sh[5].x))),
+                        tgi_v3_dot(w2, tg_v3(sh[6].x, sh[7].x, sh[8].x)));
+    tg_real eg = tg_add(tg_add(tgi_v3_dot(w0, tg_v3(sh[0].y, sh[1].y, sh[2].y)),
+                               tgi_v3_dot(w1, tg_v3(sh[3].y, sh[4].y, sh[5].y))),
+                        tgi_v3_dot(w2, tg_v3(sh[6].y, sh[7].y, sh[8].y)));
+    tg_real eb = tg_add(tg_add(tgi_v3_dot(w0, tg_v3(sh[0].z, sh[1].z, sh[2].z)),
+                               tgi_v3_dot(w1, tg_v3(sh[3].z, sh[4].z, sh[5].z))),
+                        tgi_v3_dot(w2, tg_v3(sh[6].z, sh[7].z, sh[8].z)));
     return tg_v3(tg_max(er, 0), tg_max(eg, 0), tg_max(eb, 0));
 }
 
-tg_vec3 tg_sh9_irradiance(const tg_vec3 sh[9], tg_vec3 n)
+tg_vec3 tgi_sh9_irradiance(const tg_vec3 sh[9], tg_vec3 n)
 {
     /* Ramamoorthi-Hanrahan eq. 13 = HBIL sec. 2.2.4 with t = cos(pi/2) = 0 */
     return sh_eval_rgb(sh, n, CONE_C0, CONE_C1, CONE_C2);
 }
 
-tg_vec3 tg_sh9_irradiance_cone(const tg_vec3 sh[9], tg_vec3 bent, tg_real ao)
+tg_vec3 tgi_sh9_irradiance_cone(const tg_vec3 sh[9], tg_vec3 bent, tg_real ao)
 {
     tg_real t = tg_sub(TG_ONE, tg_saturate(ao)); /* HBIL sec. 2.2.4: t = cos(theta_max) = 1 - AO */
     tg_real t2 = tg_mul(t, t), t3 = tg_mul(t2, t), t4 = tg_mul(t2, t2);
@@ -96,7 +97,7 @@ tg_vec3 tg_sh9_irradiance_cone(const tg_vec3 sh[9], tg_vec3 bent, tg_real ao)
     return sh_eval_rgb(sh, bent, c0, c1, c2);
 }
 
-tg_real tg_far_f0(tg_real ao)
+tg_real tgi_far_f0(tg_real ao)
 {
     tg_real a = tg_saturate(ao);
     tg_real s = tg_sub(TG_ONE, a);
@@ -104,9 +105,9 @@ tg_real tg_far_f0(tg_real ao)
     return tg_mul(a, tg_add(TG_ONE, tg_mul(s075, TG_R(0.5f)))); /* HBIL sec. 2.2.3 F0 */
 }
 
-tg_vec3 tg_sh9_irradiance_f0(const tg_vec3 sh[9], tg_vec3 bent, tg_real ao)
+tg_vec3 tgi_sh9_irradiance_f0(const tg_vec3 sh[9], tg_vec3 bent, tg_real ao)
 {
-    return tg_v3_scale(tg_sh9_irradiance(sh, bent), tg_far_f0(ao)); /* HBIL sec. 2.2.3 */
+    return tgi_v3_scale(tgi_sh9_irradiance(sh, bent), tgi_far_f0(ao)); /* HBIL sec. 2.2.3 */
 }
 
 static tg_real sh_radiance1(const tg_real L[9], tg_vec3 d)
@@ -121,7 +122,7 @@ static tg_real sh_radiance1(const tg_real L[9], tg_vec3 d)
     return v > 0 ? v : 0;
 }
 
-tg_vec3 tg_sh9_radiance(const tg_vec3 sh[9], tg_vec3 dir)
+tg_vec3 tgi_sh9_radiance(const tg_vec3 sh[9], tg_vec3 dir)
 {
     tg_real r[9], g[9], b[9];
     int i;
@@ -129,19 +130,19 @@ tg_vec3 tg_sh9_radiance(const tg_vec3 sh[9], tg_vec3 dir)
     return tg_v3(sh_radiance1(r, dir), sh_radiance1(g, dir), sh_radiance1(b, dir));
 }
 
-tg_vec3 tg_env_radiance(const tg_env *env, tg_vec3 dir)
+tg_vec3 tgi_env_radiance(const tgi_env *env, tg_vec3 dir)
 {
     if (!env) return tg_v3(0, 0, 0);
     switch (env->type) {
     case TG_ENV_UNIFORM: return env->uniform;
     case TG_ENV_SKY:
-        return tg_v3_dot(dir, env->up) >= 0 ? env->sky : env->ground;
-    case TG_ENV_SH9: return tg_sh9_radiance(env->sh9, dir);
+        return tgi_v3_dot(dir, env->up) >= 0 ? env->sky : env->ground;
+    case TG_ENV_SH9: return tgi_sh9_radiance(env->sh9, dir);
     default: return tg_v3(0, 0, 0);
     }
 }
 
-void tg_far_rows(const tg_gbuffer *gb, const tg_vec3 sh[9], const tg_real *ao,
+void tgi_far_rows(const tgi_gbuffer *gb, const tg_vec3 sh[9], const tg_real *ao,
                  const tg_real *bent_x, const tg_real *bent_y, const tg_real *bent_z,
                  int mode, tg_real *e_r, tg_real *e_g, tg_real *e_b, int y0, int y1)
 {
@@ -156,9 +157,9 @@ void tg_far_rows(const tg_gbuffer *gb, const tg_vec3 sh[9], const tg_real *ao,
             n = use_bent ? tg_v3(bent_x[i], bent_y[i], bent_z[i])
                          : tg_v3(gb->nx[i], gb->ny[i], gb->nz[i]);
             a = ao ? ao[i] : TG_ONE;
-            if (mode == TG_FAR_CUBE_F0) e = tg_sh9_irradiance_f0(sh, n, a);
-            else if (mode == TG_FAR_OPEN || !ao) e = tg_sh9_irradiance(sh, n);
-            else e = tg_sh9_irradiance_cone(sh, n, a);
+            if (mode == TG_FAR_CUBE_F0) e = tgi_sh9_irradiance_f0(sh, n, a);
+            else if (mode == TG_FAR_OPEN || !ao) e = tgi_sh9_irradiance(sh, n);
+            else e = tgi_sh9_irradiance_cone(sh, n, a);
             e_r[i] = e.x; e_g[i] = e.y; e_b[i] = e.z;
         }
     }

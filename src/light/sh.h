@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * sh.h - the distant environment as nine RGB spherical-harmonic coefficients
  * (SH9, bands 0-2) and the far-field irradiance E_far read from them.
@@ -13,7 +14,7 @@
  * when irradiance is read, so the same nine numbers serve the full
  * hemisphere and the bent cone (HBIL sec. 2.2.4).
  *
- * Far field, per pixel, in one of three modes (tg_far_mode):
+ * Far field, per pixel, in one of three modes (tgi_far_mode):
  *   TG_FAR_CONE_SH   HBIL sec. 2.2.4: the cosine lobe restricted to the bent
  *                    cone, t = cos(theta_max) = 1 - AO, along the bent normal.
  *   TG_FAR_CUBE_F0   HBIL sec. 2.2.3: E0(bent) * F0(AO), the unoccluded
@@ -28,44 +29,44 @@
 #include "../raster/gbuffer.h"
 #include "../raster/view.h"
 
-typedef enum tg_far_mode { TG_FAR_CONE_SH = 0, TG_FAR_CUBE_F0 = 1, TG_FAR_OPEN = 2 } tg_far_mode;
+typedef enum tgi_far_mode { TG_FAR_CONE_SH = 0, TG_FAR_CUBE_F0 = 1, TG_FAR_OPEN = 2 } tgi_far_mode;
 
 /* Radiance SH9 of an environment (RTR eq. 10.40-10.41, done analytically):
  * uniform L -> L00 = 2 sqrt(pi) L; sky/ground hemisphere -> bands 0 and 1
  * only (the step's band-2 projection is exactly zero), whose irradiance is
  * RTR eq. 10.43 and agrees with eq. 10.42 facing up, sideways and down;
  * sh9 -> copied; none -> zeros. */
-void tg_sh9_from_env(const tg_env *env, tg_vec3 sh[9]);
+void tgi_sh9_from_env(const tgi_env *env, tg_vec3 sh[9]);
 
 /* Unoccluded irradiance E0(n), n unit world normal (Ramamoorthi-Hanrahan
  * cosine-lobe convolution). Negative ringing is clamped to 0. */
-tg_vec3 tg_sh9_irradiance(const tg_vec3 sh[9], tg_vec3 n);
+tg_vec3 tgi_sh9_irradiance(const tg_vec3 sh[9], tg_vec3 n);
 
 /* Irradiance from the cone of half angle acos(1 - ao) about `bent`
  * (HBIL sec. 2.2.4). ao in [0, 1] (clamped); ao = 1 gives the hemisphere. */
-tg_vec3 tg_sh9_irradiance_cone(const tg_vec3 sh[9], tg_vec3 bent, tg_real ao);
+tg_vec3 tgi_sh9_irradiance_cone(const tg_vec3 sh[9], tg_vec3 bent, tg_real ao);
 
 /* HBIL sec. 2.2.3: F0(a) = a (1 + (1 - a)^0.75 / 2), a clamped to [0, 1]. */
-tg_real tg_far_f0(tg_real ao);
+tg_real tgi_far_f0(tg_real ao);
 
 /* E0(bent) * F0(ao) (HBIL sec. 2.2.3). */
-tg_vec3 tg_sh9_irradiance_f0(const tg_vec3 sh[9], tg_vec3 bent, tg_real ao);
+tg_vec3 tgi_sh9_irradiance_f0(const tg_vec3 sh[9], tg_vec3 bent, tg_real ao);
 
 /* Radiance of the SH9 environment seen in world direction `dir` (unit),
  * sum of L_lm Y_lm(dir), clamped to >= 0. */
-tg_vec3 tg_sh9_radiance(const tg_vec3 sh[9], tg_vec3 dir);
+tg_vec3 tgi_sh9_radiance(const tg_vec3 sh[9], tg_vec3 dir);
 
 /* Radiance of the environment itself in direction `dir` (unit): the exact
- * step for env sky, the constant for uniform, tg_sh9_radiance for sh9, 0 for
+ * step for env sky, the constant for uniform, tgi_sh9_radiance for sh9, 0 for
  * none or a NULL env.  Used for sky pixels. */
-tg_vec3 tg_env_radiance(const tg_env *env, tg_vec3 dir);
+tg_vec3 tgi_env_radiance(const tgi_env *env, tg_vec3 dir);
 
 /* Far-field pass over rows [y0, y1): E_far per pixel into e_r/e_g/e_b.
  *   ao       per-pixel AO in [0, 1], NULL = unoccluded (AO 1)
  *   bent_*   world-space unit bent normal, NULL = use the G-buffer normal
- *   mode     a tg_far_mode
+ *   mode     a tgi_far_mode
  * Sky pixels get 0. */
-void tg_far_rows(const tg_gbuffer *gb, const tg_vec3 sh[9], const tg_real *ao,
+void tgi_far_rows(const tgi_gbuffer *gb, const tg_vec3 sh[9], const tg_real *ao,
                  const tg_real *bent_x, const tg_real *bent_y, const tg_real *bent_z,
                  int mode, tg_real *e_r, tg_real *e_g, tg_real *e_b, int y0, int y1);
 

@@ -1,7 +1,8 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * shadowmap.c - shadow maps for directional (orthographic, fitted to the
  * scene bounds), spot (perspective) and point lights (a seamless cube of six
- * wide faces), rasterized depth-only by tg_raster_depth, and the lookup:
+ * wide faces), rasterized depth-only by tgi_raster_depth, and the lookup:
  * receiver-plane depth bias + 3x3 tent PCF.  See shadowmap.h.
  */
 #include <string.h>
@@ -16,19 +17,19 @@
 static void light_basis(tg_vec3 forward, tg_vec3 *right, tg_vec3 *up)
 {
     tg_vec3 helper = tg_abs(forward.y) < TG_R(0.99f) ? tg_v3(0, TG_ONE, 0) : tg_v3(TG_ONE, 0, 0);
-    *right = tg_v3_normalize_or(tg_v3_cross(forward, helper), tg_v3(TG_ONE, 0, 0));
-    *up = tg_v3_cross(*right, forward);
+    *right = tgi_v3_normalize_or(tgi_v3_cross(forward, helper), tg_v3(TG_ONE, 0, 0));
+    *up = tgi_v3_cross(*right, forward);
 }
 
-static int light_faces(const tg_light *l) { return l->type == TG_LIGHT_POINT ? 6 : 1; }
+static int light_faces(const tgi_light *l) { return l->type == TG_LIGHT_POINT ? 6 : 1; }
 
-size_t tg_shadow_map_bytes(const tg_light *l, int size)
+size_t tgi_shadow_map_bytes(const tgi_light *l, int size)
 {
     size_t n = (size_t)(size > 0 ? size : 0);
     return (size_t)light_faces(l) * n * n * sizeof(tg_real);
 }
 
-static void set_row(tg_mat4 *m, int row, tg_vec3 a, tg_real d)
+static void set_row(tgi_mat4 *m, int row, tg_vec3 a, tg_real d)
 {
     m->m[row * 4 + 0] = a.x; m->m[row * 4 + 1] = a.y; m->m[row * 4 + 2] = a.z; m->m[row * 4 + 3] = d;
 }
@@ -39,16 +40,16 @@ static tg_vec3 box_corner(tg_vec3 lo, tg_vec3 hi, int k)
     return tg_v3((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
 }
 
-static void setup_ortho(tg_shadow_map *sm, tg_vec3 dir, tg_vec3 lo, tg_vec3 hi)
+static void setup_ortho(tgi_shadow_map *sm, tg_vec3 dir, tg_vec3 lo, tg_vec3 hi)
 {
-    tg_vec3 f = tg_v3_normalize_or(dir, tg_v3(0, tg_neg(TG_ONE), 0)), r, u;
+    tg_vec3 f = tgi_v3_normalize_or(dir, tg_v3(0, tg_neg(TG_ONE), 0)), r, u;
     tg_real minx = TG_REAL_MAX, maxx = TG_REAL_MIN, miny = TG_REAL_MAX, maxy = TG_REAL_MIN;
     tg_real minz = TG_REAL_MAX, half, scale, margin;
     int k;
     light_basis(f, &r, &u);
     for (k = 0; k < 8; k++) {
         tg_vec3 c = box_corner(lo, hi, k);
-        tg_real x = tg_v3_dot(c, r), y = tg_v3_dot(c, u), z = tg_v3_dot(c, f);
+        tg_real x = tgi_v3_dot(c, r), y = tgi_v3_dot(c, u), z = tgi_v3_dot(c, f);
         minx = tg_min(minx, x); maxx = tg_max(maxx, x);
         miny = tg_min(miny, y); maxy = tg_max(maxy, y);
         minz = tg_min(minz, z);
@@ -66,28 +67,28 @@ static void setup_ortho(tg_shadow_map *sm, tg_vec3 dir, tg_vec3 lo, tg_vec3 hi)
     sm->ortho_scale = scale;
     sm->ortho_scale_inv = half;
     sm->texel_world = tg_div(tg_mul(half, TG_R(2.0f)), tg_from_int(sm->size));
-    sm->world_to_clip[0] = tg_m4_identity();
+    sm->world_to_clip[0] = tgi_m4_identity();
     /* clip = ((p.r - cx) s, (p.u - cy) s, p.f - near, 1) */
-    set_row(&sm->world_to_clip[0], 0, tg_v3_scale(r, scale), tg_neg(tg_mul(sm->ortho_center_x, scale)));
-    set_row(&sm->world_to_clip[0], 1, tg_v3_scale(u, scale), tg_neg(tg_mul(sm->ortho_center_y, scale)));
+    set_row(&sm->world_to_clip[0], 0, tgi_v3_scale(r, scale), tg_neg(tg_mul(sm->ortho_center_x, scale)));
+    set_row(&sm->world_to_clip[0], 1, tgi_v3_scale(u, scale), tg_neg(tg_mul(sm->ortho_center_y, scale)));
     set_row(&sm->world_to_clip[0], 2, f, tg_neg(sm->ortho_near));
     set_row(&sm->world_to_clip[0], 3, tg_v3(0, 0, 0), TG_ONE);
 }
 
 /* Perspective face: clip = (x f, y f, a z + b, z) in the light's view space. */
-static void setup_face(tg_shadow_map *sm, int face, tg_vec3 forward, tg_real znear, tg_real zfar)
+static void setup_face(tgi_shadow_map *sm, int face, tg_vec3 forward, tg_real znear, tg_real zfar)
 {
     tg_vec3 r, u, o = sm->origin;
-    tg_mat4 *m = &sm->world_to_clip[face];
+    tgi_mat4 *m = &sm->world_to_clip[face];
     tg_real depth_range = tg_max(tg_sub(zfar, znear), TG_R(0.001f));
     tg_real a = tg_div(tg_add(zfar, znear), depth_range);
     tg_real b = tg_neg(tg_div(tg_mul(tg_mul(TG_R(2.0f), zfar), znear), depth_range));
     light_basis(forward, &r, &u);
     sm->right[face] = r; sm->up[face] = u; sm->forward[face] = forward;
-    set_row(m, 0, tg_v3_scale(r, sm->focal), tg_neg(tg_mul(tg_v3_dot(r, o), sm->focal)));
-    set_row(m, 1, tg_v3_scale(u, sm->focal), tg_neg(tg_mul(tg_v3_dot(u, o), sm->focal)));
-    set_row(m, 2, tg_v3_scale(forward, a), tg_add(tg_neg(tg_mul(tg_v3_dot(forward, o), a)), b));
-    set_row(m, 3, forward, tg_neg(tg_v3_dot(forward, o)));
+    set_row(m, 0, tgi_v3_scale(r, sm->focal), tg_neg(tg_mul(tgi_v3_dot(r, o), sm->focal)));
+    set_row(m, 1, tgi_v3_scale(u, sm->focal), tg_neg(tg_mul(tgi_v3_dot(u, o), sm->focal)));
+    set_row(m, 2, tgi_v3_scale(forward, a), tg_add(tg_neg(tg_mul(tgi_v3_dot(forward, o), a)), b));
+    set_row(m, 3, forward, tg_neg(tgi_v3_dot(forward, o)));
 }
 
 /* Farthest distance from the light to the bounds, plus a margin. */
@@ -95,11 +96,11 @@ static tg_real far_distance(tg_vec3 o, tg_vec3 lo, tg_vec3 hi)
 {
     tg_real d = 0;
     int k;
-    for (k = 0; k < 8; k++) d = tg_max(d, tg_v3_length(tg_v3_sub(box_corner(lo, hi, k), o)));
+    for (k = 0; k < 8; k++) d = tg_max(d, tgi_v3_length(tgi_v3_sub(box_corner(lo, hi, k), o)));
     return tg_add(tg_mul(d, TG_R(1.01f)), TG_R(0.1f));
 }
 
-void tg_shadow_map_setup(tg_shadow_map *sm, const tg_light *l, int size,
+void tgi_shadow_map_setup(tgi_shadow_map *sm, const tgi_light *l, int size,
                          tg_vec3 scene_min, tg_vec3 scene_max, void *memory)
 {
     static const tg_real axes[6][3] = {
@@ -134,28 +135,28 @@ void tg_shadow_map_setup(tg_shadow_map *sm, const tg_light *l, int size,
     zfar = far_distance(sm->origin, scene_min, scene_max);
     znear = tg_clamp(tg_mul(zfar, TG_R(0.0005f)), TG_R(0.005f), TG_R(0.05f));
     if (l->type == TG_LIGHT_SPOT) {
-        setup_face(sm, 0, tg_v3_normalize_or(l->dir, tg_v3(0, tg_neg(TG_ONE), 0)), znear, zfar);
+        setup_face(sm, 0, tgi_v3_normalize_or(l->dir, tg_v3(0, tg_neg(TG_ONE), 0)), znear, zfar);
         return;
     }
     for (f = 0; f < 6; f++)
         setup_face(sm, f, tg_v3(axes[f][0], axes[f][1], axes[f][2]), znear, zfar);
 }
 
-void tg_shadow_map_render_rows(tg_shadow_map *sm, int face, const tg_vec3 *pos,
+void tgi_shadow_map_render_rows(tgi_shadow_map *sm, int face, const tg_vec3 *pos,
                                int tri_count, int y0, int y1)
 {
     size_t n = (size_t)sm->size;
     tg_real *depth = sm->depth + (size_t)face * n * n;
     size_t i;
     for (i = (size_t)y0 * n; i < (size_t)y1 * n; i++) depth[i] = TG_REAL_MAX;
-    tg_raster_depth(depth, sm->size, sm->size, &sm->world_to_clip[face], sm->orthographic,
+    tgi_raster_depth(depth, sm->size, sm->size, &sm->world_to_clip[face], sm->orthographic,
                     pos, tri_count, y0, y1);
 }
 
-void tg_shadow_map_render(tg_shadow_map *sm, const tg_vec3 *pos, int tri_count)
+void tgi_shadow_map_render(tgi_shadow_map *sm, const tg_vec3 *pos, int tri_count)
 {
     int f;
-    for (f = 0; f < sm->faces; f++) tg_shadow_map_render_rows(sm, f, pos, tri_count, 0, sm->size);
+    for (f = 0; f < sm->faces; f++) tgi_shadow_map_render_rows(sm, f, pos, tri_count, 0, sm->size);
 }
 
 /* Cube face whose axis dominates d: +X -X +Y -Y +Z -Z. */
@@ -175,11 +176,11 @@ static int cube_face(tg_vec3 d)
  *                 depth num / den, den = n . r = den_c + dx[i] + dy[j]; the
  *                 test depth - bias <= stored is done as num >= (stored +
  *                 bias) den (den < 0), without a division per tap. */
-tg_real tg_shadow_visibility(const tg_shadow_map *sm, tg_vec3 p, tg_vec3 n)
+tg_real tgi_shadow_visibility(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n)
 {
-    int face = sm->faces == 6 ? cube_face(tg_v3_sub(p, sm->origin)) : 0;
+    int face = sm->faces == 6 ? cube_face(tgi_v3_sub(p, sm->origin)) : 0;
     tg_vec3 r = sm->right[face], u = sm->up[face], f = sm->forward[face];
-    tg_real nl_x = tg_v3_dot(n, r), nl_y = tg_v3_dot(n, u), nl_z = tg_v3_dot(n, f);
+    tg_real nl_x = tgi_v3_dot(n, r), nl_y = tgi_v3_dot(n, u), nl_z = tgi_v3_dot(n, f);
     tg_real half_size = tg_ldexp(tg_from_int(sm->size), -1);
     tg_real ndc_x, ndc_y, tw, bias, su, sv, fx, fy, norm, lit = 0;
     tg_real wx[4], wy[4], tx_off[4], ty_off[4];
@@ -192,18 +193,18 @@ tg_real tg_shadow_visibility(const tg_shadow_map *sm, tg_vec3 p, tg_vec3 n)
         tg_real inv_nz;
         if (nl_z >= 0) return 0; /* the surface faces away from the light */
         if (nl_z > tg_neg(GRAZING_COS)) nl_z = tg_neg(GRAZING_COS);
-        ndc_x = tg_mul(tg_sub(tg_v3_dot(p, r), sm->ortho_center_x), sm->ortho_scale);
-        ndc_y = tg_mul(tg_sub(tg_v3_dot(p, u), sm->ortho_center_y), sm->ortho_scale);
+        ndc_x = tg_mul(tg_sub(tgi_v3_dot(p, r), sm->ortho_center_x), sm->ortho_scale);
+        ndc_y = tg_mul(tg_sub(tgi_v3_dot(p, u), sm->ortho_center_y), sm->ortho_scale);
         tw = sm->texel_world;
         bias = tg_ldexp(tw, -1);
-        base = tg_sub(tg_sub(tg_v3_dot(p, f), sm->ortho_near), bias);
+        base = tg_sub(tg_sub(tgi_v3_dot(p, f), sm->ortho_near), bias);
         /* plane n.(dx, dy, dz) = 0 -> dz = -(nx dx + ny dy) / nz; world = ndc / scale */
         inv_nz = tg_div(tg_neg(sm->ortho_scale_inv), nl_z);
         nl_x = tg_mul(nl_x, inv_nz);  /* now depth change per NDC unit along x */
         nl_y = tg_mul(nl_y, inv_nz);
     } else {
-        tg_vec3 d = tg_v3_sub(p, sm->origin);
-        tg_real lz = tg_v3_dot(d, f), lx = tg_v3_dot(d, r), ly = tg_v3_dot(d, u), inv_lz;
+        tg_vec3 d = tgi_v3_sub(p, sm->origin);
+        tg_real lz = tgi_v3_dot(d, f), lx = tgi_v3_dot(d, r), ly = tgi_v3_dot(d, u), inv_lz;
         if (lz <= TG_R(0.001f)) return TG_ONE; /* behind the light's map: unshadowed */
         num = tg_add(tg_add(tg_mul(nl_x, lx), tg_mul(nl_y, ly)), tg_mul(nl_z, lz));
         if (num >= 0) return 0; /* faces away from the light position */

@@ -1,6 +1,7 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * shadowmap.h - depth-only shadow maps for lights marked `shadows`,
- * rasterized by the G-buffer's rasterizer (tg_raster_depth).
+ * rasterized by the G-buffer's rasterizer (tgi_raster_depth).
  *
  *   directional  one orthographic map fitted to the scene bounds (the light's
  *                view of the bounding box); stored depth = distance along the
@@ -13,7 +14,7 @@
  *                chosen face: no seams.
  * Perspective maps store clip w = the distance along the face axis.
  *
- * Lookup (tg_shadow_visibility): receiver-plane depth bias - the receiver's
+ * Lookup (tgi_shadow_visibility): receiver-plane depth bias - the receiver's
  * depth is extrapolated from its normal to each PCF tap's texel centre, so a
  * plane never shadows itself at any incidence (the slope term is clamped at
  * 84 degrees) - plus a small constant bias of half a texel; then PCF: a 3x3
@@ -21,7 +22,7 @@
  * bilinear comparison.  1 = lit, 0 = shadowed.
  * Points outside a map, or where nothing was drawn, are lit.
  *
- * Memory: the caller gives tg_shadow_map_bytes() bytes (tg_real aligned).
+ * Memory: the caller gives tgi_shadow_map_bytes() bytes (tg_real aligned).
  */
 #ifndef TG_SHADOWMAP_H
 #define TG_SHADOWMAP_H
@@ -30,19 +31,19 @@
 
 #define TG_SHADOW_MAX_FACES 6
 
-/* PCF filters (tg_shadow_map.filter; setup picks the tent):
+/* PCF filters (tgi_shadow_map.filter; setup picks the tent):
  *   TENT      16 taps, a 3x3 tent with bilinear weights: soft, ~1.5 texel radius
  *   BILINEAR  4 taps, bilinear comparison: a quarter of the cost, harder edges */
 enum { TG_SHADOW_PCF_TENT = 0, TG_SHADOW_PCF_BILINEAR = 1 };
 
-typedef struct tg_shadow_map {
+typedef struct tgi_shadow_map {
     int size;                    /* texels per side */
     int faces;                   /* 1, or 6 for a point light */
     int orthographic;            /* directional light */
     int filter;                  /* TG_SHADOW_PCF_*; may be changed after setup */
     tg_vec3 origin;              /* light position (perspective maps) */
     tg_vec3 right[TG_SHADOW_MAX_FACES], up[TG_SHADOW_MAX_FACES], forward[TG_SHADOW_MAX_FACES];
-    tg_mat4 world_to_clip[TG_SHADOW_MAX_FACES];
+    tgi_mat4 world_to_clip[TG_SHADOW_MAX_FACES];
     tg_real focal;               /* perspective: NDC per unit of x/z (1 / tan half angle) */
     tg_real tan_half;            /* perspective: 1 / focal */
     tg_real texel_ndc;           /* 2 / size: one texel in NDC */
@@ -51,25 +52,25 @@ typedef struct tg_shadow_map {
     tg_real ortho_center_x, ortho_center_y, ortho_near; /* in the light basis */
     tg_real texel_world;         /* ortho: world units per texel; persp: per texel at depth 1 */
     tg_real *depth;              /* faces * size * size, face-major, rows top to bottom */
-} tg_shadow_map;
+} tgi_shadow_map;
 
 /* Bytes of depth storage a map for light `l` at `size` texels needs. */
-size_t tg_shadow_map_bytes(const tg_light *l, int size);
+size_t tgi_shadow_map_bytes(const tgi_light *l, int size);
 
 /* Fit the map to the light and the scene bounds; `memory` holds
- * tg_shadow_map_bytes(l, size) bytes. */
-void tg_shadow_map_setup(tg_shadow_map *sm, const tg_light *l, int size,
+ * tgi_shadow_map_bytes(l, size) bytes. */
+void tgi_shadow_map_setup(tgi_shadow_map *sm, const tgi_light *l, int size,
                          tg_vec3 scene_min, tg_vec3 scene_max, void *memory);
 
 /* Rasterize `tri_count` triangles (3 world positions each) into all faces. */
-void tg_shadow_map_render(tg_shadow_map *sm, const tg_vec3 *pos, int tri_count);
+void tgi_shadow_map_render(tgi_shadow_map *sm, const tg_vec3 *pos, int tri_count);
 
 /* The same for one face and texel rows [y0, y1) (for splitting across threads). */
-void tg_shadow_map_render_rows(tg_shadow_map *sm, int face, const tg_vec3 *pos,
+void tgi_shadow_map_render_rows(tgi_shadow_map *sm, int face, const tg_vec3 *pos,
                                int tri_count, int y0, int y1);
 
 /* Fraction of the light reaching `world_pos` (surface normal `world_normal`,
  * unit), in [0, 1]. */
-tg_real tg_shadow_visibility(const tg_shadow_map *sm, tg_vec3 world_pos, tg_vec3 world_normal);
+tg_real tgi_shadow_visibility(const tgi_shadow_map *sm, tg_vec3 world_pos, tg_vec3 world_normal);
 
 #endif

@@ -1,7 +1,8 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * tonemap.c - exposure, the ACES filmic fit, and sRGB encoding by table.
- * The frame's path (tg_tonemap_row8) goes through one table of thresholds on
- * the exposed linear value; tg_tonemap_aces and tg_srgb8 are the two steps on
+ * The frame's path (tgi_tonemap_row8) goes through one table of thresholds on
+ * the exposed linear value; tgi_tonemap_aces and tgi_srgb8 are the two steps on
  * their own (the sRGB table also serves non-colour AOVs).
  *
  * The sRGB table holds the 255 decision thresholds of the 8-bit encoder: the
@@ -348,7 +349,7 @@ static const uint8_t aces_coarse_hi[225] = {
     255, 255, 255, 255, 255,
 };
 
-uint8_t tg_srgb8(tg_real v)
+uint8_t tgi_srgb8(tg_real v)
 {
     int i, code;
     if (v <= 0) return 0;
@@ -361,7 +362,7 @@ uint8_t tg_srgb8(tg_real v)
     return (uint8_t)code;
 }
 
-tg_real tg_tonemap_aces(tg_real x)
+tg_real tgi_tonemap_aces(tg_real x)
 {
     tg_real num, den;
     if (x <= 0) return 0;
@@ -373,7 +374,7 @@ tg_real tg_tonemap_aces(tg_real x)
 }
 
 /* 8-bit code of srgb(aces(x)), correctly rounded, by the x-space thresholds. */
-uint8_t tg_tonemap8(tg_real x)
+uint8_t tgi_tonemap8(tg_real x)
 {
     int i, code;
     if (x <= 0) return 0;
@@ -390,13 +391,13 @@ uint8_t tg_tonemap8(tg_real x)
     return (uint8_t)code;
 }
 
-void tg_tonemap_row8(const tg_real *r, const tg_real *g, const tg_real *b, int n,
+void tgi_tonemap_row8(const tg_real *r, const tg_real *g, const tg_real *b, int n,
                      tg_real exposure, uint8_t *rgb)
 {
     int i;
     for (i = 0; i < n; i++) {
-        rgb[3 * i + 0] = tg_tonemap8(tg_mul(r[i], exposure));
-        rgb[3 * i + 1] = tg_tonemap8(tg_mul(g[i], exposure));
-        rgb[3 * i + 2] = tg_tonemap8(tg_mul(b[i], exposure));
+        rgb[3 * i + 0] = tgi_tonemap8(tg_mul(r[i], exposure));
+        rgb[3 * i + 1] = tgi_tonemap8(tg_mul(g[i], exposure));
+        rgb[3 * i + 2] = tgi_tonemap8(tg_mul(b[i], exposure));
     }
 }

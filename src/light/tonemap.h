@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * tonemap.h - the last step of a frame: exposure, a tonemapper, sRGB 8-bit.
  *
@@ -12,7 +13,7 @@
  * (Reinhard x / (1 + x) never reaches white and flattens contrast.)
  *
  * sRGB encoding is by table (no pow at run time): correctly rounded to 8 bits.
- * The 8-bit output is monotone in both builds; tg_tonemap_aces on its own in
+ * The 8-bit output is monotone in both builds; tgi_tonemap_aces on its own in
  * Q16.16 is monotone up to one ulp of rounding.
  */
 #ifndef TG_TONEMAP_H
@@ -23,18 +24,18 @@
 #define TG_ACES_WHITE TG_R(7.25f)
 
 /* The ACES fit on one linear value; result in [0, 1]. */
-tg_real tg_tonemap_aces(tg_real x);
+tg_real tgi_tonemap_aces(tg_real x);
 
 /* Linear [0, 1] to the 8-bit sRGB code, correctly rounded; clamps outside. */
-uint8_t tg_srgb8(tg_real linear);
+uint8_t tgi_srgb8(tg_real linear);
 
-/* The 8-bit sRGB code of tg_tonemap_aces(x), correctly rounded against the
+/* The 8-bit sRGB code of tgi_tonemap_aces(x), correctly rounded against the
  * exact curve (within 0.5 LSB), from a table of thresholds on x: no division. */
-uint8_t tg_tonemap8(tg_real x);
+uint8_t tgi_tonemap8(tg_real x);
 
 /* n pixels of linear RGB planes -> exposure -> ACES -> sRGB, interleaved RGB
- * bytes (tg_tonemap8 per channel). */
-void tg_tonemap_row8(const tg_real *r, const tg_real *g, const tg_real *b, int n,
+ * bytes (tgi_tonemap8 per channel). */
+void tgi_tonemap_row8(const tg_real *r, const tg_real *g, const tg_real *b, int n,
                      tg_real exposure, uint8_t *rgb);
 
 #endif

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * gbuffer.h - the geometry buffer the rasterizer writes and every later pass
  * reads.  Structure of arrays, one tg_real (or byte) per pixel per channel,
@@ -8,7 +9,7 @@
 
 #include "../core/vec.h"
 
-typedef struct tg_gbuffer {
+typedef struct tgi_gbuffer {
     int width, height;
     tg_real *depth;              /* linear view depth (view-space z); 0 on sky */
     tg_real *nx, *ny, *nz;       /* world-space unit normal (faces the viewer) */
@@ -19,8 +20,8 @@ typedef struct tg_gbuffer {
     uint16_t *object;            /* object index per pixel (motion vectors); NULL if unused */
     tg_real *motion_x, *motion_y;/* previous-frame screen position of this pixel's surface
                                     (continuous pixel coordinates); NULL unless planned */
-} tg_gbuffer;
+} tgi_gbuffer;
 
-static inline int tg_gb_is_sky(const tg_gbuffer *g, int i) { return g->sky[i] != 0; }
+static inline int tgi_gb_is_sky(const tgi_gbuffer *g, int i) { return g->sky[i] != 0; }
 
 #endif

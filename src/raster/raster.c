@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * raster.c - the triangle rasterizer behind the G-buffer and the shadow maps.
  *
@@ -157,7 +158,7 @@ static inline int row_span(const tri_edges *te, int64_t *e, int *xa)
     return xb;
 }
 
-void tg_raster_coverage_count(uint16_t *count, int width, int height,
+void tgi_raster_coverage_count(uint16_t *count, int width, int height,
                               const int32_t *xy, int tri_count, int y0, int y1)
 {
     int t;
@@ -255,7 +256,7 @@ static clip_vertex clip_lerp(const clip_vertex *a, const clip_vertex *b, tg_real
     r.y = tg_lerp(a->y, b->y, t);
     r.z = tg_lerp(a->z, b->z, t);
     r.w = tg_lerp(a->w, b->w, t);
-    r.n = tg_v3_lerp(a->n, b->n, t);
+    r.n = tgi_v3_lerp(a->n, b->n, t);
     return r;
 }
 
@@ -409,7 +410,7 @@ static float pixel_rsqrt(float x)
 /* ---------------------------------------------------------------------- */
 /* the G-buffer                                                            */
 
-void tg_gbuffer_clear_rows(tg_gbuffer *gb, int y0, int y1)
+void tgi_gbuffer_clear_rows(tgi_gbuffer *gb, int y0, int y1)
 {
     size_t a, n;
     if (y0 < 0) y0 = 0;
@@ -453,7 +454,7 @@ static inline void fill_real(tg_real *p, tg_real v, int n)
  * is set (every one when all_hit).  Kept out of the depth/normal loop,
  * which then holds fewer pointers; long all-hit spans become plain fills,
  * short ones one pass per group of channels. */
-static void write_surface(const tg_gbuffer *g, const surface *sf, size_t i0, int n,
+static void write_surface(const tgi_gbuffer *g, const surface *sf, size_t i0, int n,
                           const uint8_t *hit, int all_hit)
 {
     tg_real *ar = g->albedo_r + i0, *ag = g->albedo_g + i0, *ab = g->albedo_b + i0, *f0 = g->f0 + i0;
@@ -535,10 +536,10 @@ static void bary_make(bary_setup *b, const screen_tri *st, const tri_edges *te)
     }
 }
 
-static void gbuffer_rows(const tg_gbuffer *gbp, const tri_edges *te, const screen_tri *st, const surface *sfp)
+static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const screen_tri *st, const surface *sfp)
 {
     /* local copies: the byte stores to sky[] may alias anything reached through a pointer */
-    const tg_gbuffer g = *gbp;
+    const tgi_gbuffer g = *gbp;
     const surface sf = *sfp;
     bary_setup b;
     int row, col, W = g.width;
@@ -564,7 +565,7 @@ static void gbuffer_rows(const tg_gbuffer *gbp, const tri_edges *te, const scree
                 su = u0 + u1 + u2;
                 sq = (u0 * b.q[0] + u1 * b.q[1] + u2 * b.q[2]) >> 30; /* su w_min / w */
                 if (su <= 0 || sq <= 0) continue;
-                z = tg_sat64((b.wmin * su + sq / 2) / sq);
+                z = tgi_sat64((b.wmin * su + sq / 2) / sq);
                 if (!g.sky[i] && z >= g.depth[i]) continue;
                 if (!unit_q16(asr64(u0 * b.nq[0][0] + u1 * b.nq[1][0] + u2 * b.nq[2][0], b.sm),
                               asr64(u0 * b.nq[0][1] + u1 * b.nq[1][1] + u2 * b.nq[2][1], b.sm),
@@ -608,7 +609,7 @@ static void depth_rows(tg_real *depth, int W, const tri_edges *te, const screen_
                 v = (u0 * b.q[0] + u1 * b.q[1] + u2 * b.q[2]) >> 30;
                 if (v <= 0) continue;
                 v = (b.wmin * su + v / 2) / v;
-                if (v < depth[i]) depth[i] = tg_sat64(v);
+                if (v < depth[i]) depth[i] = tgi_sat64(v);
             }
         }
     }
@@ -648,10 +649,10 @@ static inline plane plane_make(const plane_basis *pb, float a0, float a1, float 
     return p;
 }
 
-static void gbuffer_rows(const tg_gbuffer *gbp, const tri_edges *te, const screen_tri *st, const surface *sfp)
+static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const screen_tri *st, const surface *sfp)
 {
     /* local copies: the byte stores to sky[] may alias anything reached through a pointer */
-    const tg_gbuffer g = *gbp;
+    const tgi_gbuffer g = *gbp;
     const surface sf = *sfp;
     plane_basis pb;
     plane pq, pnx, pny, pnz;
@@ -739,8 +740,8 @@ typedef struct raster_target {
     int width, height, row0, row1;
     int32_t half_w16, half_h16;   /* width * 8, height * 8 */
     clip_ctx clip;
-    tg_gbuffer *gb;               /* G-buffer mode */
-    const tg_material *mat;       /* of the current triangle */
+    tgi_gbuffer *gb;               /* G-buffer mode */
+    const tgi_material *mat;       /* of the current triangle */
     uint16_t object;
     const tg_vec3 *tri_nrm;       /* its three vertex normals */
     int cull_back, flip_back;     /* G-buffer: one-sided / twosided */
@@ -775,17 +776,17 @@ static void draw_snapped(const raster_target *rt, const clip_vertex *v, const tg
         st.iw[k] = iw[idx[k]];
         if (rt->gb) {
             tg_vec3 n = nrm ? nrm[idx[k]] : c->n;
-            st.n[k] = flip ? tg_v3_neg(n) : n;
+            st.n[k] = flip ? tgi_v3_neg(n) : n;
         }
     }
     if (rt->gb) {
         surface sf;
-        const tg_material *m = rt->mat;
+        const tgi_material *m = rt->mat;
         sf.albedo_r = m->albedo.x; sf.albedo_g = m->albedo.y; sf.albedo_b = m->albedo.z;
         sf.f0 = m->f0;
         sf.emit_r = m->emissive.x; sf.emit_g = m->emissive.y; sf.emit_b = m->emissive.z;
         sf.object = rt->object;
-        sf.fallback_normal = flip ? tg_v3_neg(rt->tri_nrm[0]) : rt->tri_nrm[0];
+        sf.fallback_normal = flip ? tgi_v3_neg(rt->tri_nrm[0]) : rt->tri_nrm[0];
         gbuffer_rows(rt->gb, &te, &st, &sf);
     } else depth_rows(rt->depth, rt->width, &te, &st, rt->clip.mode == MODE_ORTHO);
 }
@@ -873,11 +874,11 @@ static int target_rows(raster_target *rt, int width, int height, int y0, int y1)
     return rt->row0 < rt->row1;
 }
 
-void tg_raster_gbuffer(tg_gbuffer *gb, const tg_view *view, const tg_raster_mesh *mesh, int y0, int y1)
+void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_mesh *mesh, int y0, int y1)
 {
     raster_target rt;
-    tg_vec3 rx = tg_v3_scale(view->right, view->focal_x);
-    tg_vec3 ry = tg_v3_scale(view->up, view->focal_y);
+    tg_vec3 rx = tgi_v3_scale(view->right, view->focal_x);
+    tg_vec3 ry = tgi_v3_scale(view->up, view->focal_y);
     tg_vec3 rz = view->forward;
     tg_real znear, zfar;
     int t, k;
@@ -893,8 +894,8 @@ void tg_raster_gbuffer(tg_gbuffer *gb, const tg_view *view, const tg_raster_mesh
         clip_vertex v[3];
         int inside = 1, right = 1, left = 1, top = 1, bottom = 1;
         for (k = 0; k < 3; k++) {
-            tg_vec3 d = tg_v3_sub(mesh->pos[3 * t + k], view->eye);
-            tg_real x = tg_v3_dot(d, rx), y = tg_v3_dot(d, ry), w = tg_v3_dot(d, rz);
+            tg_vec3 d = tgi_v3_sub(mesh->pos[3 * t + k], view->eye);
+            tg_real x = tgi_v3_dot(d, rx), y = tgi_v3_dot(d, ry), w = tgi_v3_dot(d, rz);
             tg_real gw = tg_mul(GUARD_R, w);
             v[k].x = x; v[k].y = y; v[k].w = v[k].z = w;
             /* inside the guard band and the depth range: no clipping needed */
@@ -912,7 +913,7 @@ void tg_raster_gbuffer(tg_gbuffer *gb, const tg_view *view, const tg_raster_mesh
     }
 }
 
-void tg_raster_depth(tg_real *depth, int width, int height, const tg_mat4 *world_to_clip,
+void tgi_raster_depth(tg_real *depth, int width, int height, const tgi_mat4 *world_to_clip,
                      int orthographic, const tg_vec3 *pos, int tri_count, int y0, int y1)
 {
     raster_target rt;
@@ -928,10 +929,10 @@ void tg_raster_depth(tg_real *depth, int width, int height, const tg_mat4 *world
         clip_vertex v[3];
         for (k = 0; k < 3; k++) {
             tg_vec3 p = pos[3 * t + k];
-            v[k].x = tg_add(tg_v3_dot(p, r0), m[3]);
-            v[k].y = tg_add(tg_v3_dot(p, r1), m[7]);
-            v[k].z = tg_add(tg_v3_dot(p, r2), m[11]);
-            v[k].w = orthographic ? TG_ONE : tg_add(tg_v3_dot(p, r3), m[15]);
+            v[k].x = tg_add(tgi_v3_dot(p, r0), m[3]);
+            v[k].y = tg_add(tgi_v3_dot(p, r1), m[7]);
+            v[k].z = tg_add(tgi_v3_dot(p, r2), m[11]);
+            v[k].w = orthographic ? TG_ONE : tg_add(tgi_v3_dot(p, r3), m[15]);
             v[k].n = tg_v3(0, 0, 0);
         }
         draw_clip_tri(&rt, v, NULL);

@@ -1,6 +1,7 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * raster.h - the triangle rasterizer: world-space triangles into the G-buffer
- * (tg_raster_gbuffer) or into a depth-only map for shadows (tg_raster_depth).
+ * (tgi_raster_gbuffer) or into a depth-only map for shadows (tgi_raster_depth).
  *
  * Pipeline per triangle: world -> clip (view.h conventions), outcodes,
  * homogeneous clipping (near, far, and a guard band for the screen edges)
@@ -31,25 +32,25 @@
 #define TG_RASTER_SUBPIXEL_BITS 4   /* 28.4 screen coordinates */
 #define TG_RASTER_MAX_SIZE 8192     /* largest width or height */
 
-typedef struct tg_raster_mesh {
+typedef struct tgi_raster_mesh {
     const tg_vec3 *pos;   /* 3 per triangle, world space */
     const tg_vec3 *nrm;   /* 3 per triangle, unit world-space vertex normals */
     const uint16_t *tri_material, *tri_object; /* per triangle; tri_object may be NULL (object 0) */
     int tri_count;
-    const tg_material *materials;
-} tg_raster_mesh;
+    const tgi_material *materials;
+} tgi_raster_mesh;
 
 /* Sky everywhere in rows [y0, y1): sky = 1, depth = 0, normal = 0, albedo = 0,
  * f0 = 0, emissive = 0 (if present), object = 0xFFFF (if present). */
-void tg_gbuffer_clear_rows(tg_gbuffer *gb, int y0, int y1);
+void tgi_gbuffer_clear_rows(tgi_gbuffer *gb, int y0, int y1);
 
 /* Rasterize every triangle into G-buffer rows [y0, y1).  Writes depth (view
  * z), the perspective-correct interpolated vertex normal renormalized per
  * pixel (flipped for the back face of a twosided material), albedo, f0,
  * emissive (if gb->emit_r), sky = 0 and object (if gb->object).  Back faces
  * (clockwise on screen as the viewer sees them) of one-sided materials are
- * culled.  The G-buffer must be cleared first (tg_gbuffer_clear_rows). */
-void tg_raster_gbuffer(tg_gbuffer *gb, const tg_view *view, const tg_raster_mesh *mesh, int y0, int y1);
+ * culled.  The G-buffer must be cleared first (tgi_gbuffer_clear_rows). */
+void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_mesh *mesh, int y0, int y1);
 
 /* Depth only (shadow maps): clip = world_to_clip * p, NDC = clip / w,
  * texel x = (ndc_x + 1) / 2 * width, y = (1 - ndc_y) / 2 * height.
@@ -60,7 +61,7 @@ void tg_raster_gbuffer(tg_gbuffer *gb, const tg_view *view, const tg_raster_mesh
  *     depth = clip z, interpolated linearly.
  * No culling (both faces).  depth[] (width * height) must be cleared by the
  * caller to TG_REAL_MAX; the nearest value is kept.  Rows [y0, y1) only. */
-void tg_raster_depth(tg_real *depth, int width, int height, const tg_mat4 *world_to_clip,
+void tgi_raster_depth(tg_real *depth, int width, int height, const tgi_mat4 *world_to_clip,
                      int orthographic, const tg_vec3 *pos, int tri_count, int y0, int y1);
 
 /* Test hook for the fill rule: add 1 to count[y * width + x] for every pixel
@@ -68,7 +69,7 @@ void tg_raster_depth(tg_real *depth, int width, int height, const tg_mat4 *world
  * and top-left rule, both faces, no depth test.  xy holds 6 integers per
  * triangle: screen x, y of three vertices in 28.4 fixed point (pixel units
  * * 16), each within +-2^19.  Zero-area triangles cover nothing. */
-void tg_raster_coverage_count(uint16_t *count, int width, int height,
+void tgi_raster_coverage_count(uint16_t *count, int width, int height,
                               const int32_t *xy, int tri_count, int y0, int y1);
 
 #endif

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * view.c - the camera of one frame: its orthonormal basis, projection and
  * the maps world <-> view <-> screen (conventions in view.h: view x right,
@@ -23,7 +24,7 @@ static tg_real mul_div(tg_real a, tg_real b, tg_real c)
 {
 #if TG_FIXED
     int64_t p = (int64_t)a * b, h = c / 2;
-    return tg_sat64(p >= 0 ? (p + h) / c : -((-p + h) / c));
+    return tgi_sat64(p >= 0 ? (p + h) / c : -((-p + h) / c));
 #else
     return tg_clamp(a * b / c, TG_REAL_MIN, TG_REAL_MAX);
 #endif
@@ -35,10 +36,10 @@ static tg_real mul_div(tg_real a, tg_real b, tg_real c)
  * gives screen-right = world +X for a camera looking straight down or up. */
 static tg_vec3 choose_up(tg_vec3 forward, tg_vec3 up)
 {
-    tg_vec3 u = tg_v3_normalize(up);
-    if (tg_v3_length(tg_v3_cross(forward, u)) > VIEW_DEGENERATE_UP) return u;
+    tg_vec3 u = tgi_v3_normalize(up);
+    if (tgi_v3_length(tgi_v3_cross(forward, u)) > VIEW_DEGENERATE_UP) return u;
     u = tg_v3(0, TG_ONE, 0);
-    if (tg_v3_length(tg_v3_cross(forward, u)) > VIEW_DEGENERATE_UP) return u;
+    if (tgi_v3_length(tgi_v3_cross(forward, u)) > VIEW_DEGENERATE_UP) return u;
     return tg_v3(0, 0, forward.y < 0 ? tg_neg(TG_ONE) : TG_ONE);
 }
 
@@ -55,22 +56,22 @@ static tg_vec3 cross_dir(tg_vec3 a, tg_vec3 b)
     c[2] = (int64_t)a.x * b.y - (int64_t)a.y * b.x;
     for (i = 0; i < 3; i++) if ((c[i] < 0 ? -c[i] : c[i]) > m) m = c[i] < 0 ? -c[i] : c[i];
     while ((m >> s) >= ((int64_t)1 << 30)) s++;
-    if (s > 0) for (i = 0; i < 3; i++) c[i] = tg_shr_round(c[i], s);
-    return tg_v3_normalize(tg_v3((tg_real)c[0], (tg_real)c[1], (tg_real)c[2]));
+    if (s > 0) for (i = 0; i < 3; i++) c[i] = tgi_shr_round(c[i], s);
+    return tgi_v3_normalize(tg_v3((tg_real)c[0], (tg_real)c[1], (tg_real)c[2]));
 #else
-    return tg_v3_normalize(tg_v3_cross(a, b));
+    return tgi_v3_normalize(tgi_v3_cross(a, b));
 #endif
 }
 
-void tg_view_make(tg_view *v, tg_vec3 eye, tg_vec3 target, tg_vec3 up,
+void tgi_view_make(tgi_view *v, tg_vec3 eye, tg_vec3 target, tg_vec3 up,
                   tg_real fov_y, tg_real znear, tg_real zfar, int width, int height)
 {
-    tg_vec3 f = tg_v3_normalize_or(tg_v3_sub(target, eye), tg_v3(0, 0, tg_neg(TG_ONE)));
+    tg_vec3 f = tgi_v3_normalize_or(tgi_v3_sub(target, eye), tg_v3(0, 0, tg_neg(TG_ONE)));
     tg_vec3 r = cross_dir(f, choose_up(f, up));
     /* re-orthogonalise with well-conditioned products of near-perpendicular
      * unit vectors: up from (right, forward), then right from (forward, up) */
-    tg_vec3 u = tg_v3_normalize(tg_v3_cross(r, f));
-    r = tg_v3_normalize(tg_v3_cross(f, u));
+    tg_vec3 u = tgi_v3_normalize(tgi_v3_cross(r, f));
+    r = tgi_v3_normalize(tgi_v3_cross(f, u));
     if (width < 1) width = 1;
     if (height < 1) height = 1;
     v->width = width;
@@ -89,38 +90,38 @@ void tg_view_make(tg_view *v, tg_vec3 eye, tg_vec3 target, tg_vec3 up,
     v->zfar = zfar;
 }
 
-tg_vec3 tg_view_dir_to_view(const tg_view *v, tg_vec3 d)
+tg_vec3 tgi_view_dir_to_view(const tgi_view *v, tg_vec3 d)
 {
-    return tg_v3(tg_v3_dot(d, v->right), tg_v3_dot(d, v->up), tg_v3_dot(d, v->forward));
+    return tg_v3(tgi_v3_dot(d, v->right), tgi_v3_dot(d, v->up), tgi_v3_dot(d, v->forward));
 }
 
-tg_vec3 tg_view_world_to_view(const tg_view *v, tg_vec3 p)
+tg_vec3 tgi_view_world_to_view(const tgi_view *v, tg_vec3 p)
 {
-    return tg_view_dir_to_view(v, tg_v3_sub(p, v->eye));
+    return tgi_view_dir_to_view(v, tgi_v3_sub(p, v->eye));
 }
 
-tg_vec3 tg_view_dir_to_world(const tg_view *v, tg_vec3 d)
+tg_vec3 tgi_view_dir_to_world(const tgi_view *v, tg_vec3 d)
 {
     tg_vec3 r;
-    r.x = tg_v3_dot(tg_v3(v->right.x, v->up.x, v->forward.x), d);
-    r.y = tg_v3_dot(tg_v3(v->right.y, v->up.y, v->forward.y), d);
-    r.z = tg_v3_dot(tg_v3(v->right.z, v->up.z, v->forward.z), d);
+    r.x = tgi_v3_dot(tg_v3(v->right.x, v->up.x, v->forward.x), d);
+    r.y = tgi_v3_dot(tg_v3(v->right.y, v->up.y, v->forward.y), d);
+    r.z = tgi_v3_dot(tg_v3(v->right.z, v->up.z, v->forward.z), d);
     return r;
 }
 
-tg_vec3 tg_view_view_to_world(const tg_view *v, tg_vec3 p)
+tg_vec3 tgi_view_view_to_world(const tgi_view *v, tg_vec3 p)
 {
-    return tg_v3_add(v->eye, tg_view_dir_to_world(v, p));
+    return tgi_v3_add(v->eye, tgi_view_dir_to_world(v, p));
 }
 
-tg_vec3 tg_view_unproject(const tg_view *v, tg_real sx, tg_real sy, tg_real depth)
+tg_vec3 tgi_view_unproject(const tgi_view *v, tg_real sx, tg_real sy, tg_real depth)
 {
     tg_real cx = tg_ldexp(tg_from_int(v->width), -1), cy = tg_ldexp(tg_from_int(v->height), -1);
     return tg_v3(mul_div(tg_sub(sx, cx), depth, v->pixels_per_unit),
                  mul_div(tg_sub(cy, sy), depth, v->pixels_per_unit), depth);
 }
 
-void tg_view_project(const tg_view *v, tg_vec3 pv, tg_real *sx, tg_real *sy)
+void tgi_view_project(const tgi_view *v, tg_vec3 pv, tg_real *sx, tg_real *sy)
 {
     tg_real z = tg_max(pv.z, VIEW_MIN_DEPTH);
     tg_real cx = tg_ldexp(tg_from_int(v->width), -1), cy = tg_ldexp(tg_from_int(v->height), -1);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * view.h - the camera of one frame: world <-> view <-> screen.
  *
@@ -14,7 +15,7 @@
 
 #include "../core/vec.h"
 
-typedef struct tg_view {
+typedef struct tgi_view {
     int width, height;
     tg_vec3 eye;
     tg_vec3 right, up, forward;  /* world-space unit basis of view space */
@@ -24,19 +25,19 @@ typedef struct tg_view {
     tg_real focal_x, focal_y;    /* NDC per unit of x/z, y/z */
     tg_real pixels_per_unit;     /* height / 2 * focal_y: screen pixels per world unit at depth 1 */
     tg_real znear, zfar;
-} tg_view;
+} tgi_view;
 
 /* Build a view; a degenerate `up` (parallel to the view direction) is replaced
  * by a perpendicular axis so a camera looking along +/-Y still works. */
-void tg_view_make(tg_view *v, tg_vec3 eye, tg_vec3 target, tg_vec3 up,
+void tgi_view_make(tgi_view *v, tg_vec3 eye, tg_vec3 target, tg_vec3 up,
                   tg_real fov_y, tg_real znear, tg_real zfar, int width, int height);
-tg_vec3 tg_view_world_to_view(const tg_view *v, tg_vec3 p);   /* point */
-tg_vec3 tg_view_dir_to_view(const tg_view *v, tg_vec3 d);     /* direction */
-tg_vec3 tg_view_dir_to_world(const tg_view *v, tg_vec3 d);    /* direction */
-tg_vec3 tg_view_view_to_world(const tg_view *v, tg_vec3 p);   /* point */
+tg_vec3 tgi_view_world_to_view(const tgi_view *v, tg_vec3 p);   /* point */
+tg_vec3 tgi_view_dir_to_view(const tgi_view *v, tg_vec3 d);     /* direction */
+tg_vec3 tgi_view_dir_to_world(const tgi_view *v, tg_vec3 d);    /* direction */
+tg_vec3 tgi_view_view_to_world(const tgi_view *v, tg_vec3 p);   /* point */
 /* Screen position (sx, sy in pixels, continuous) and depth to a view-space point. */
-tg_vec3 tg_view_unproject(const tg_view *v, tg_real sx, tg_real sy, tg_real depth);
+tg_vec3 tgi_view_unproject(const tgi_view *v, tg_real sx, tg_real sy, tg_real depth);
 /* View-space point (z > 0) to continuous screen position. */
-void tg_view_project(const tg_view *v, tg_vec3 pv, tg_real *sx, tg_real *sy);
+void tgi_view_project(const tgi_view *v, tg_vec3 pv, tg_real *sx, tg_real *sy);
 
 #endif

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * anim.c - keyframes to camera and object poses at time t, posed triangles,
  * and motion vectors (where each pixel's surface was last frame).  See anim.h.
@@ -5,7 +6,7 @@
 #include <string.h>
 #include "anim.h"
 
-tg_real tg_anim_time(const tg_scene *s, int frame, int frames)
+tg_real tgi_anim_time(const tg_scene *s, int frame, int frames)
 {
     tg_real t0 = TG_REAL_MAX, t1 = TG_REAL_MIN;
     int i;
@@ -44,110 +45,110 @@ static void key_segment(const tg_real *times, size_t stride, int count, tg_real 
 #undef KEY_T
 }
 
-void tg_anim_camera(const tg_scene *s, tg_real t, tg_vec3 *pos, tg_vec3 *target)
+void tgi_anim_camera(const tg_scene *s, tg_real t, tg_vec3 *pos, tg_vec3 *target)
 {
-    const tg_camera_key *k = s->camera_keys;
+    const tgi_camera_key *k = s->camera_keys;
     int a, b;
     tg_real u;
     if (s->camera_key_count <= 0) { *pos = s->camera.pos; *target = s->camera.target; return; }
     key_segment(&k[0].t, sizeof k[0], s->camera_key_count, t, &a, &b, &u);
     if (a == b) { *pos = k[a].pos; *target = k[a].target; return; }
-    *pos = tg_v3_lerp(k[a].pos, k[b].pos, u);
-    *target = tg_v3_lerp(k[a].target, k[b].target, u);
+    *pos = tgi_v3_lerp(k[a].pos, k[b].pos, u);
+    *target = tgi_v3_lerp(k[a].target, k[b].target, u);
 }
 
-static tg_mat4 key_matrix(tg_vec3 translate, tg_mat4 rot)
+static tgi_mat4 key_matrix(tg_vec3 translate, tgi_mat4 rot)
 {
     rot.m[3] = translate.x; rot.m[7] = translate.y; rot.m[11] = translate.z;
     return rot;
 }
 
-void tg_anim_object_matrix(const tg_scene *s, int object, tg_real t, tg_mat4 *m)
+void tgi_anim_object_matrix(const tg_scene *s, int object, tg_real t, tgi_mat4 *m)
 {
-    const tg_object *o;
-    const tg_key *k;
+    const tgi_object *o;
+    const tgi_key *k;
     int a, b;
     tg_real u;
-    *m = tg_m4_identity();
+    *m = tgi_m4_identity();
     if (object < 0 || object >= s->object_count) return;
     o = &s->objects[object];
     if (o->key_count <= 0) return;
     k = &s->object_keys[o->first_key];
     key_segment(&k[0].t, sizeof k[0], o->key_count, t, &a, &b, &u);
     if (a == b) {
-        *m = key_matrix(k[a].translate, tg_m4_rotate(k[a].axis, k[a].angle));
+        *m = key_matrix(k[a].translate, tgi_m4_rotate(k[a].axis, k[a].angle));
         return;
     }
     {
-        tg_vec3 tr = tg_v3_lerp(k[a].translate, k[b].translate, u);
-        tg_mat4 rot;
-        if (tg_v3_dot(k[a].axis, k[b].axis) >= TG_R(0.9999f)) {
+        tg_vec3 tr = tgi_v3_lerp(k[a].translate, k[b].translate, u);
+        tgi_mat4 rot;
+        if (tgi_v3_dot(k[a].axis, k[b].axis) >= TG_R(0.9999f)) {
             /* same axis: the angle itself is interpolated (turns > 180 degrees kept) */
-            rot = tg_m4_rotate(k[a].axis, tg_lerp(k[a].angle, k[b].angle, u));
+            rot = tgi_m4_rotate(k[a].axis, tg_lerp(k[a].angle, k[b].angle, u));
         } else {
-            tg_quat q = tg_q_slerp(tg_q_axis_angle(k[a].axis, k[a].angle),
-                                   tg_q_axis_angle(k[b].axis, k[b].angle), u);
-            rot = tg_q_to_m4(q);
+            tgi_quat q = tgi_q_slerp(tgi_q_axis_angle(k[a].axis, k[a].angle),
+                                   tgi_q_axis_angle(k[b].axis, k[b].angle), u);
+            rot = tgi_q_to_m4(q);
         }
         *m = key_matrix(tr, rot);
     }
 }
 
 /* Inverse of a rigid transform: [R^T, -R^T t]. */
-static tg_mat4 rigid_inverse(const tg_mat4 *m)
+static tgi_mat4 rigid_inverse(const tgi_mat4 *m)
 {
-    tg_mat4 r = tg_m4_identity();
+    tgi_mat4 r = tgi_m4_identity();
     tg_vec3 t = tg_v3(m->m[3], m->m[7], m->m[11]);
     int i, j;
     for (i = 0; i < 3; i++)
         for (j = 0; j < 3; j++) r.m[i * 4 + j] = m->m[j * 4 + i];
-    t = tg_m4_dir(&r, t);
+    t = tgi_m4_dir(&r, t);
     r.m[3] = tg_neg(t.x); r.m[7] = tg_neg(t.y); r.m[11] = tg_neg(t.z);
     return r;
 }
 
-void tg_anim_object_delta(const tg_scene *s, int object, tg_real t_cur, tg_real t_prev, tg_mat4 *d)
+void tgi_anim_object_delta(const tg_scene *s, int object, tg_real t_cur, tg_real t_prev, tgi_mat4 *d)
 {
-    tg_mat4 cur, prev, inv;
-    tg_anim_object_matrix(s, object, t_cur, &cur);
-    tg_anim_object_matrix(s, object, t_prev, &prev);
+    tgi_mat4 cur, prev, inv;
+    tgi_anim_object_matrix(s, object, t_cur, &cur);
+    tgi_anim_object_matrix(s, object, t_prev, &prev);
     inv = rigid_inverse(&cur);
-    *d = tg_m4_mul(&prev, &inv);
+    *d = tgi_m4_mul(&prev, &inv);
 }
 
-int tg_anim_object_moves(const tg_scene *s, int object)
+int tgi_anim_object_moves(const tg_scene *s, int object)
 {
     return object >= 0 && object < s->object_count && s->objects[object].key_count >= 2;
 }
 
-int tg_anim_has_motion(const tg_scene *s)
+int tgi_anim_has_motion(const tg_scene *s)
 {
     int i;
     if (s->camera_key_count >= 2) return 1;
     for (i = 0; i < s->object_count; i++)
-        if (tg_anim_object_moves(s, i)) return 1;
+        if (tgi_anim_object_moves(s, i)) return 1;
     return 0;
 }
 
-void tg_anim_pose(const tg_scene *s, tg_real t, tg_vec3 *pos, tg_vec3 *nrm)
+void tgi_anim_pose(const tg_scene *s, tg_real t, tg_vec3 *pos, tg_vec3 *nrm)
 {
     size_t n = (size_t)s->tri_count * 3;
     int o, v;
     memcpy(pos, s->tri_pos, n * sizeof *pos);
     memcpy(nrm, s->tri_nrm, n * sizeof *nrm);
     for (o = 0; o < s->object_count; o++) {
-        const tg_object *ob = &s->objects[o];
-        tg_mat4 m;
+        const tgi_object *ob = &s->objects[o];
+        tgi_mat4 m;
         if (ob->key_count <= 0) continue;
-        tg_anim_object_matrix(s, o, t, &m);
+        tgi_anim_object_matrix(s, o, t, &m);
         for (v = ob->first_tri * 3; v < (ob->first_tri + ob->tri_count) * 3; v++) {
-            pos[v] = tg_m4_point(&m, s->tri_pos[v]);
-            nrm[v] = tg_v3_normalize_or(tg_m4_dir(&m, s->tri_nrm[v]), s->tri_nrm[v]);
+            pos[v] = tgi_m4_point(&m, s->tri_pos[v]);
+            nrm[v] = tgi_v3_normalize_or(tgi_m4_dir(&m, s->tri_nrm[v]), s->tri_nrm[v]);
         }
     }
 }
 
-void tg_anim_bounds(const tg_vec3 *pos, int tri_count, tg_vec3 *lo, tg_vec3 *hi)
+void tgi_anim_bounds(const tg_vec3 *pos, int tri_count, tg_vec3 *lo, tg_vec3 *hi)
 {
     int v, n = tri_count * 3;
     *lo = *hi = n > 0 ? pos[0] : tg_v3(0, 0, 0);
@@ -157,8 +158,8 @@ void tg_anim_bounds(const tg_vec3 *pos, int tri_count, tg_vec3 *lo, tg_vec3 *hi)
     }
 }
 
-void tg_motion_rows(tg_gbuffer *gb, const tg_view *cur, const tg_view *prev,
-                    const tg_mat4 *cur_to_prev, int y0, int y1)
+void tgi_motion_rows(tgi_gbuffer *gb, const tgi_view *cur, const tgi_view *prev,
+                    const tgi_mat4 *cur_to_prev, int y0, int y1)
 {
     int use_objects = cur_to_prev && gb->object;
     int x, y, w = gb->width;
@@ -170,18 +171,18 @@ void tg_motion_rows(tg_gbuffer *gb, const tg_view *cur, const tg_view *prev,
             tg_vec3 pv;
             if (gb->sky[i]) {
                 /* a direction: rotate the view ray into the previous camera */
-                tg_vec3 d = tg_view_dir_to_world(cur, tg_view_unproject(cur, sx, sy, TG_ONE));
-                pv = tg_view_dir_to_view(prev, d);
+                tg_vec3 d = tgi_view_dir_to_world(cur, tgi_view_unproject(cur, sx, sy, TG_ONE));
+                pv = tgi_view_dir_to_view(prev, d);
             } else {
-                tg_vec3 p = tg_view_view_to_world(cur, tg_view_unproject(cur, sx, sy, gb->depth[i]));
-                if (use_objects) p = tg_m4_point(&cur_to_prev[gb->object[i]], p);
-                pv = tg_view_world_to_view(prev, p);
+                tg_vec3 p = tgi_view_view_to_world(cur, tgi_view_unproject(cur, sx, sy, gb->depth[i]));
+                if (use_objects) p = tgi_m4_point(&cur_to_prev[gb->object[i]], p);
+                pv = tgi_view_world_to_view(prev, p);
             }
             if (pv.z <= TG_R(0.0001f)) {
                 gb->motion_x[i] = gb->motion_y[i] = TG_MOTION_INVALID;
                 continue;
             }
-            tg_view_project(prev, pv, &px, &py);
+            tgi_view_project(prev, pv, &px, &py);
             gb->motion_x[i] = px; gb->motion_y[i] = py;
         }
     }

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * anim.h - keyframe animation (camera_key, object_key), posing the scene's
  * triangles at a time t, and per-pixel motion vectors.
@@ -11,7 +12,7 @@
  *            then translation).  T linear; R: when both keys rotate about
  *            the same axis the angle is interpolated linearly (so a turn of
  *            more than 180 degrees between two keys is kept), otherwise
- *            quaternion slerp along the shortest arc (tg_q_slerp).
+ *            quaternion slerp along the shortest arc (tgi_q_slerp).
  *            An object without keys stays in its rest pose.
  * Motion vectors (gbuffer.h): motion_x/y = the continuous screen position in
  * the PREVIOUS frame of the surface seen at this pixel's centre now.
@@ -26,31 +27,31 @@
 /* Screen position written for a surface that was behind the previous camera. */
 #define TG_MOTION_INVALID TG_REAL_MIN
 
-tg_real tg_anim_time(const tg_scene *s, int frame, int frames);
-void tg_anim_camera(const tg_scene *s, tg_real t, tg_vec3 *pos, tg_vec3 *target);
+tg_real tgi_anim_time(const tg_scene *s, int frame, int frames);
+void tgi_anim_camera(const tg_scene *s, tg_real t, tg_vec3 *pos, tg_vec3 *target);
 /* Key transform of `object` at t (identity without keys). */
-void tg_anim_object_matrix(const tg_scene *s, int object, tg_real t, tg_mat4 *m);
+void tgi_anim_object_matrix(const tg_scene *s, int object, tg_real t, tgi_mat4 *m);
 /* World-space rigid delta taking the object's pose at t_cur to its pose at
  * t_prev: prev = D cur. */
-void tg_anim_object_delta(const tg_scene *s, int object, tg_real t_cur, tg_real t_prev, tg_mat4 *d);
+void tgi_anim_object_delta(const tg_scene *s, int object, tg_real t_cur, tg_real t_prev, tgi_mat4 *d);
 /* 1 when anything moves between frames (two or more camera keys or object keys). */
-int tg_anim_has_motion(const tg_scene *s);
+int tgi_anim_has_motion(const tg_scene *s);
 /* 1 when the object has two or more keys (it moves). */
-int tg_anim_object_moves(const tg_scene *s, int object);
+int tgi_anim_object_moves(const tg_scene *s, int object);
 /* Posed copies of all triangles: 3 positions and 3 unit normals per triangle. */
-void tg_anim_pose(const tg_scene *s, tg_real t, tg_vec3 *pos, tg_vec3 *nrm);
+void tgi_anim_pose(const tg_scene *s, tg_real t, tg_vec3 *pos, tg_vec3 *nrm);
 
 /* Bounds of tri_count posed triangles (3 positions each), e.g. to refit a
- * shadow map (tg_shadow_map_setup) when objects move outside the rest-pose
+ * shadow map (tgi_shadow_map_setup) when objects move outside the rest-pose
  * scene bounds.  No triangles: lo = hi = 0. */
-void tg_anim_bounds(const tg_vec3 *pos, int tri_count, tg_vec3 *lo, tg_vec3 *hi);
+void tgi_anim_bounds(const tg_vec3 *pos, int tri_count, tg_vec3 *lo, tg_vec3 *hi);
 
 /* Motion vectors for rows [y0, y1) into gb->motion_x/y.  cur_to_prev: one
  * world-space rigid delta per object (indexed by gb->object), or NULL when
  * nothing but the camera moves.  Sky pixels reproject their view direction
  * (a point at infinity).  A surface behind the previous camera gets
  * TG_MOTION_INVALID in both. */
-void tg_motion_rows(tg_gbuffer *gb, const tg_view *cur, const tg_view *prev,
-                    const tg_mat4 *cur_to_prev, int y0, int y1);
+void tgi_motion_rows(tgi_gbuffer *gb, const tgi_view *cur, const tgi_view *prev,
+                    const tgi_mat4 *cur_to_prev, int y0, int y1);
 
 #endif

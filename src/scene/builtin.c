@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * builtin.c - the built-in scenes, as scene-format v1 text (format.md)
  * compiled into the core and named builtin:NAME by the CLI.  Each one has a

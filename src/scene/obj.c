@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * obj.c - Wavefront OBJ meshes and their MTL materials, for the scene's
  * `mesh` statement (format.md, "OBJ and MTL").
@@ -18,7 +19,7 @@
 #include "parse_internal.h"
 
 typedef struct mtllib_ref {
-    tg_token name;          /* points into the OBJ text */
+    tgi_token name;          /* points into the OBJ text */
     int line;
     const char *data;       /* the MTL file, once read */
     size_t size;
@@ -26,9 +27,9 @@ typedef struct mtllib_ref {
 } mtllib_ref;
 
 typedef struct obj_state {
-    tg_parser *p;
+    tgi_parser *p;
     const char *path;       /* resolved OBJ path: messages and MTL paths */
-    const tg_xform *xf;
+    const tgi_xform *xf;
     int base_material;      /* the mesh statement's material */
     int material;           /* the current one (usemtl) */
     size_t first_material;  /* pass 2: materials this mesh adds start here */
@@ -43,7 +44,7 @@ typedef struct obj_ref {
     int has_vn;
 } obj_ref;
 
-int tg_path_join(const char *base, const char *rel, size_t rel_n, char *out)
+int tgi_path_join(const char *base, const char *rel, size_t rel_n, char *out)
 {
     size_t dir = 0, i, n = base ? strlen(base) : 0;
     if (rel_n > 0 && rel[0] == '/') n = 0; /* absolute */
@@ -56,7 +57,7 @@ int tg_path_join(const char *base, const char *rel, size_t rel_n, char *out)
     return 0;
 }
 
-static int read_file(tg_parser *p, const char *path, const char **data, size_t *size)
+static int read_file(tgi_parser *p, const char *path, const char **data, size_t *size)
 {
     *data = NULL;
     *size = 0;
@@ -69,50 +70,50 @@ static int read_file(tg_parser *p, const char *path, const char **data, size_t *
     return 0;
 }
 
-static tg_status ofail(obj_state *o, const tg_lexer *lx, int col,
+static tg_status ofail(obj_state *o, const tgi_lexer *lx, int col,
                        const char *a, const char *b, const char *c)
 {
-    return tg_parse_fail(o->p, lx->file, lx->lineno, col, a, b, c);
+    return tgi_parse_fail(o->p, lx->file, lx->lineno, col, a, b, c);
 }
 
 static tg_status changed(obj_state *o)
 {
-    tg_error_set(o->p->err, TG_ERR_RUNTIME, o->path, 0, 0, "the mesh file changed while parsing");
+    tgi_error_set(o->p->err, TG_ERR_RUNTIME, o->path, 0, 0, "the mesh file changed while parsing");
     return TG_ERR_RUNTIME;
 }
 
-static tg_status bad_number(obj_state *o, const tg_lexer *lx, const tg_token *t,
+static tg_status bad_number(obj_state *o, const tgi_lexer *lx, const tgi_token *t,
                             const char *what, int r)
 {
     char buf[48];
     ofail(o, lx, t->col, r == 2 ? "number out of range in '" : "expected a number in '", what, "', got '");
-    tg_error_append(o->p->err, tg_tok_str(t, buf));
-    tg_error_append(o->p->err, "'");
+    tgi_error_append(o->p->err, tgi_tok_str(t, buf));
+    tgi_error_append(o->p->err, "'");
     return TG_ERR_INPUT;
 }
 
 /* Up to `max` numbers (at least `min`) after the keyword. */
-static tg_status numbers(obj_state *o, tg_lexer *lx, const char *what, int min, int max,
+static tg_status numbers(obj_state *o, tgi_lexer *lx, const char *what, int min, int max,
                          tg_real *out, int *count)
 {
-    tg_token t;
+    tgi_token t;
     tg_real x;
     int n = 0, r;
-    while (tg_lex_token(lx, &t)) {
-        if ((r = tg_tok_real(&t, &x))) return bad_number(o, lx, &t, what, r);
+    while (tgi_lex_token(lx, &t)) {
+        if ((r = tgi_tok_real(&t, &x))) return bad_number(o, lx, &t, what, r);
         if (n >= max) {
             ofail(o, lx, t.col, "too many numbers for '", what, "' (expects ");
-            tg_error_append_int(o->p->err, max);
-            tg_error_append(o->p->err, ")");
+            tgi_error_append_int(o->p->err, max);
+            tgi_error_append(o->p->err, ")");
             return TG_ERR_INPUT;
         }
         out[n++] = x;
     }
     if (n < min) {
-        ofail(o, lx, tg_lex_eol_col(lx), "'", what, "' expects ");
-        tg_error_append_int(o->p->err, min);
-        tg_error_append(o->p->err, min == 1 ? " number, got " : " numbers, got ");
-        tg_error_append_int(o->p->err, n);
+        ofail(o, lx, tgi_lex_eol_col(lx), "'", what, "' expects ");
+        tgi_error_append_int(o->p->err, min);
+        tgi_error_append(o->p->err, min == 1 ? " number, got " : " numbers, got ");
+        tgi_error_append_int(o->p->err, n);
         return TG_ERR_INPUT;
     }
     *count = n;
@@ -120,9 +121,9 @@ static tg_status numbers(obj_state *o, tg_lexer *lx, const char *what, int min, 
 }
 
 /* v (normal == 0) or vn (normal == 1): stored transformed in pass 2. */
-static tg_status obj_vertex(obj_state *o, tg_lexer *lx, const tg_token *kw, int normal)
+static tg_status obj_vertex(obj_state *o, tgi_lexer *lx, const tgi_token *kw, int normal)
 {
-    tg_parser *p = o->p;
+    tgi_parser *p = o->p;
     tg_real x[7];
     tg_vec3 v;
     tg_status st;
@@ -131,8 +132,8 @@ static tg_status obj_vertex(obj_state *o, tg_lexer *lx, const tg_token *kw, int 
     if ((st = numbers(o, lx, normal ? "vn" : "v", 3, normal ? 3 : 7, x, &n))) return st;
     if (*count >= TG_OBJ_MAX_VERTS) {
         ofail(o, lx, kw->col, "too many '", normal ? "vn" : "v", "' lines (the limit is ");
-        tg_error_append_int(p->err, TG_OBJ_MAX_VERTS);
-        tg_error_append(p->err, ")");
+        tgi_error_append_int(p->err, TG_OBJ_MAX_VERTS);
+        tgi_error_append(p->err, ")");
         return TG_ERR_INPUT;
     }
     if (p->fill) {
@@ -140,16 +141,16 @@ static tg_status obj_vertex(obj_state *o, tg_lexer *lx, const tg_token *kw, int 
         v = tg_v3(x[0], x[1], x[2]);
         if (normal) /* rotated with the mesh; zero stays zero (face normal then) */
             p->scratch[p->obj_scratch - 1 - o->nvn] =
-                tg_unit(tg_m4_dir(&o->xf->rot, v));
+                tgi_unit(tgi_m4_dir(&o->xf->rot, v));
         else /* p' = R (s p) + t */
-            p->scratch[o->nv] = tg_v3_add(tg_m4_point(&o->xf->rot, tg_v3_scale(v, o->xf->scale)),
+            p->scratch[o->nv] = tgi_v3_add(tgi_m4_point(&o->xf->rot, tgi_v3_scale(v, o->xf->scale)),
                                           o->xf->translate);
     }
     (*count)++;
     return TG_OK;
 }
 
-static tg_status obj_texcoord(obj_state *o, tg_lexer *lx)
+static tg_status obj_texcoord(obj_state *o, tgi_lexer *lx)
 {
     tg_real x[3];
     int n;
@@ -160,14 +161,14 @@ static tg_status obj_texcoord(obj_state *o, tg_lexer *lx)
 }
 
 /* One OBJ index (1-based or negative) against `count` defined so far. */
-static tg_status obj_index(obj_state *o, const tg_lexer *lx, const tg_token *ref,
-                           const tg_token *part, size_t count, const char *what, size_t *out)
+static tg_status obj_index(obj_state *o, const tgi_lexer *lx, const tgi_token *ref,
+                           const tgi_token *part, size_t count, const char *what, size_t *out)
 {
     char buf[48];
     long i;
-    int r = tg_tok_int(part, &i);
+    int r = tgi_tok_int(part, &i);
     if (r == 1) {
-        ofail(o, lx, ref->col, "bad face vertex '", tg_tok_str(ref, buf),
+        ofail(o, lx, ref->col, "bad face vertex '", tgi_tok_str(ref, buf),
               "'; expected v, v/vt, v//vn or v/vt/vn with integer indices");
         return TG_ERR_INPUT;
     }
@@ -176,26 +177,26 @@ static tg_status obj_index(obj_state *o, const tg_lexer *lx, const tg_token *ref
                      " index 0 is invalid; indices start at 1 (or count back from -1)");
     if (r == 2 || (i > 0 && (size_t)i > count) || (i < 0 && (size_t)-i > count)) {
         ofail(o, lx, ref->col, "OBJ ", what, " index ");
-        tg_error_append(o->p->err, tg_tok_str(part, buf));
-        tg_error_append(o->p->err, " is out of range (");
-        tg_error_append_int(o->p->err, (long)count);
-        tg_error_append(o->p->err, " defined so far)");
+        tgi_error_append(o->p->err, tgi_tok_str(part, buf));
+        tgi_error_append(o->p->err, " is out of range (");
+        tgi_error_append_int(o->p->err, (long)count);
+        tgi_error_append(o->p->err, " defined so far)");
         return TG_ERR_INPUT;
     }
     *out = i > 0 ? (size_t)i - 1 : count - (size_t)-i;
     return TG_OK;
 }
 
-static tg_status obj_ref_parse(obj_state *o, const tg_lexer *lx, const tg_token *t, obj_ref *r)
+static tg_status obj_ref_parse(obj_state *o, const tgi_lexer *lx, const tgi_token *t, obj_ref *r)
 {
-    tg_token part[3];
+    tgi_token part[3];
     size_t i, k = 0, at = 0, dummy;
     tg_status st;
     char buf[48];
     for (i = 0; i <= t->n; i++) {
         if (i == t->n || t->s[i] == '/') {
             if (k >= 3) {
-                return ofail(o, lx, t->col, "bad face vertex '", tg_tok_str(t, buf),
+                return ofail(o, lx, t->col, "bad face vertex '", tgi_tok_str(t, buf),
                              "'; expected v, v/vt, v//vn or v/vt/vn");
             }
             part[k].s = t->s + at;
@@ -214,9 +215,9 @@ static tg_status obj_ref_parse(obj_state *o, const tg_lexer *lx, const tg_token 
     return TG_OK;
 }
 
-static tg_status obj_triangle(obj_state *o, const tg_lexer *lx, int col, const obj_ref r[3])
+static tg_status obj_triangle(obj_state *o, const tgi_lexer *lx, int col, const obj_ref r[3])
 {
-    tg_parser *p = o->p;
+    tgi_parser *p = o->p;
     tg_vec3 pos[3], nrm[3];
     int i, smooth = 1;
     for (i = 0; i < 3; i++) {
@@ -226,19 +227,19 @@ static tg_status obj_triangle(obj_state *o, const tg_lexer *lx, int col, const o
         if (r[i].has_vn) nrm[i] = p->scratch[p->obj_scratch - 1 - r[i].vn];
         if (!r[i].has_vn || (nrm[i].x == 0 && nrm[i].y == 0 && nrm[i].z == 0)) smooth = 0;
     }
-    return tg_parse_emit_tri(p, lx, col, pos, smooth ? nrm : NULL, o->material);
+    return tgi_parse_emit_tri(p, lx, col, pos, smooth ? nrm : NULL, o->material);
 }
 
 /* f: a polygon, fan-triangulated (r0 r[k-1] r[k]). */
-static tg_status obj_face(obj_state *o, tg_lexer *lx)
+static tg_status obj_face(obj_state *o, tgi_lexer *lx)
 {
-    tg_token t;
+    tgi_token t;
     obj_ref tri[3], first, prev, cur;
     tg_status st;
     int n = 0;
     memset(&first, 0, sizeof first);
     prev = first;
-    while (tg_lex_token(lx, &t)) {
+    while (tgi_lex_token(lx, &t)) {
         if ((st = obj_ref_parse(o, lx, &t, &cur))) return st;
         if (n == 0) first = cur;
         if (n >= 2) {
@@ -249,22 +250,22 @@ static tg_status obj_face(obj_state *o, tg_lexer *lx)
         n++;
     }
     if (n < 3) {
-        ofail(o, lx, tg_lex_eol_col(lx), "a face needs at least 3 vertices, got ", NULL, NULL);
-        tg_error_append_int(o->p->err, n);
+        ofail(o, lx, tgi_lex_eol_col(lx), "a face needs at least 3 vertices, got ", NULL, NULL);
+        tgi_error_append_int(o->p->err, n);
         return TG_ERR_INPUT;
     }
     return TG_OK;
 }
 
-static tg_status obj_mtllib(obj_state *o, tg_lexer *lx, const tg_token *kw)
+static tg_status obj_mtllib(obj_state *o, tgi_lexer *lx, const tgi_token *kw)
 {
-    tg_token t;
+    tgi_token t;
     int n = 0;
-    while (tg_lex_token(lx, &t)) {
+    while (tgi_lex_token(lx, &t)) {
         if (o->nlib >= TG_OBJ_MAX_MTLLIB) {
             ofail(o, lx, t.col, "too many mtllib files (the limit is ", NULL, NULL);
-            tg_error_append_int(o->p->err, TG_OBJ_MAX_MTLLIB);
-            tg_error_append(o->p->err, ")");
+            tgi_error_append_int(o->p->err, TG_OBJ_MAX_MTLLIB);
+            tgi_error_append(o->p->err, ")");
             return TG_ERR_INPUT;
         }
         memset(&o->lib[o->nlib], 0, sizeof o->lib[0]);
@@ -278,18 +279,18 @@ static tg_status obj_mtllib(obj_state *o, tg_lexer *lx, const tg_token *kw)
 }
 
 /* Kd (albedo, in [0,1]) or Ke (emission, >= 0): 1 or 3 numbers. */
-static tg_status mtl_color(obj_state *o, tg_lexer *ml, const char *what, int unit, tg_vec3 *out)
+static tg_status mtl_color(obj_state *o, tgi_lexer *ml, const char *what, int unit, tg_vec3 *out)
 {
-    tg_token t[3], extra;
+    tgi_token t[3], extra;
     tg_real x[3];
     char buf[48];
     int n = 0, i, r;
-    while (n < 3 && tg_lex_token(ml, &t[n])) {
-        if ((r = tg_tok_real(&t[n], &x[n]))) return bad_number(o, ml, &t[n], what, r);
+    while (n < 3 && tgi_lex_token(ml, &t[n])) {
+        if ((r = tgi_tok_real(&t[n], &x[n]))) return bad_number(o, ml, &t[n], what, r);
         n++;
     }
-    if (n == 2 || n == 0 || tg_lex_peek(ml, &extra)) {
-        ofail(o, ml, n == 3 || n == 1 ? extra.col : tg_lex_eol_col(ml), "'", what,
+    if (n == 2 || n == 0 || tgi_lex_peek(ml, &extra)) {
+        ofail(o, ml, n == 3 || n == 1 ? extra.col : tgi_lex_eol_col(ml), "'", what,
               "' expects 3 numbers (r g b) or 1 (grey)");
         return TG_ERR_INPUT;
     }
@@ -297,8 +298,8 @@ static tg_status mtl_color(obj_state *o, tg_lexer *ml, const char *what, int uni
     for (i = 0; i < 3; i++)
         if (x[i] < 0 || (unit && x[i] > TG_ONE)) {
             ofail(o, ml, t[i].col, "'", what, unit ? "' must be in [0, 1], got '" : "' must be 0 or more, got '");
-            tg_error_append(o->p->err, tg_tok_str(&t[i], buf));
-            tg_error_append(o->p->err, "'");
+            tgi_error_append(o->p->err, tgi_tok_str(&t[i], buf));
+            tgi_error_append(o->p->err, "'");
             return TG_ERR_INPUT;
         }
     *out = tg_v3(x[0], x[1], x[2]);
@@ -307,21 +308,21 @@ static tg_status mtl_color(obj_state *o, tg_lexer *ml, const char *what, int uni
 
 /* Find `name` in one MTL file; 1 found (m updated), 0 not, -1 error. */
 static int mtl_search(obj_state *o, const mtllib_ref *lib, const char *path,
-                      const tg_token *name, tg_material *m)
+                      const tgi_token *name, tgi_material *m)
 {
-    tg_lexer ml;
-    tg_token kw, rest;
+    tgi_lexer ml;
+    tgi_token kw, rest;
     int r, in_block = 0;
-    tg_lex_init(&ml, lib->data, lib->size, path);
-    while ((r = tg_lex_line(&ml, o->p->err)) > 0) {
-        if (!tg_lex_token(&ml, &kw)) continue;
-        if (tg_tok_is(&kw, "newmtl")) {
+    tgi_lex_init(&ml, lib->data, lib->size, path);
+    while ((r = tgi_lex_line(&ml, o->p->err)) > 0) {
+        if (!tgi_lex_token(&ml, &kw)) continue;
+        if (tgi_tok_is(&kw, "newmtl")) {
             if (in_block) return 1;
-            in_block = tg_lex_rest(&ml, &rest) && rest.n == name->n &&
+            in_block = tgi_lex_rest(&ml, &rest) && rest.n == name->n &&
                        memcmp(rest.s, name->s, name->n) == 0;
-        } else if (in_block && tg_tok_is(&kw, "Kd")) {
+        } else if (in_block && tgi_tok_is(&kw, "Kd")) {
             if (mtl_color(o, &ml, "Kd", 1, &m->albedo)) return -1;
-        } else if (in_block && tg_tok_is(&kw, "Ke")) {
+        } else if (in_block && tgi_tok_is(&kw, "Ke")) {
             if (mtl_color(o, &ml, "Ke", 0, &m->emissive)) return -1;
         }
     }
@@ -331,18 +332,18 @@ static int mtl_search(obj_state *o, const mtllib_ref *lib, const char *path,
 
 /* Look `name` up in the mtllib files named so far; m starts as the mesh's
  * material and gets the MTL's Kd / Ke. */
-static tg_status mtl_find(obj_state *o, const tg_lexer *lx, const tg_token *name, tg_material *m)
+static tg_status mtl_find(obj_state *o, const tgi_lexer *lx, const tgi_token *name, tgi_material *m)
 {
     char path[TG_PATH_MAX], buf[48];
     int i, r;
     for (i = 0; i < o->nlib; i++) {
         mtllib_ref *lib = &o->lib[i];
-        if (tg_path_join(o->path, lib->name.s, lib->name.n, path))
-            return tg_parse_fail(o->p, o->path, lib->line, lib->name.col,
+        if (tgi_path_join(o->path, lib->name.s, lib->name.n, path))
+            return tgi_parse_fail(o->p, o->path, lib->line, lib->name.col,
                                  "MTL path is too long", NULL, NULL);
         if (!lib->loaded) {
             if (read_file(o->p, path, &lib->data, &lib->size))
-                return tg_parse_fail(o->p, o->path, lib->line, lib->name.col,
+                return tgi_parse_fail(o->p, o->path, lib->line, lib->name.col,
                                      "cannot read MTL file '", path, "'");
             lib->loaded = 1;
         }
@@ -351,22 +352,22 @@ static tg_status mtl_find(obj_state *o, const tg_lexer *lx, const tg_token *name
         if (r > 0) return TG_OK;
     }
     if (o->nlib == 0)
-        return ofail(o, lx, name->col, "'usemtl ", tg_tok_str(name, buf),
+        return ofail(o, lx, name->col, "'usemtl ", tgi_tok_str(name, buf),
                      "' but no 'mtllib' names an MTL file before it");
-    return ofail(o, lx, name->col, "material '", tg_tok_str(name, buf),
+    return ofail(o, lx, name->col, "material '", tgi_tok_str(name, buf),
                  "' is not defined in the mtllib files");
 }
 
-static tg_status obj_usemtl(obj_state *o, tg_lexer *lx, const tg_token *kw)
+static tg_status obj_usemtl(obj_state *o, tgi_lexer *lx, const tgi_token *kw)
 {
-    tg_parser *p = o->p;
-    tg_token name;
-    tg_material m;
+    tgi_parser *p = o->p;
+    tgi_token name;
+    tgi_material m;
     tg_status st;
     char full[TG_NAME_MAX];
     size_t n = strlen(o->objname), k, i;
     int index;
-    if (!tg_lex_rest(lx, &name))
+    if (!tgi_lex_rest(lx, &name))
         return ofail(o, lx, kw->col + 6, "'usemtl' expects a material name", NULL, NULL);
     if (!p->fill) {
         p->usemtl_bound++;
@@ -387,41 +388,41 @@ static tg_status obj_usemtl(obj_state *o, tg_lexer *lx, const tg_token *kw)
     m = p->scene->materials[o->base_material];
     memcpy(m.name, full, sizeof full);
     if ((st = mtl_find(o, lx, &name, &m))) return st;
-    if ((st = tg_parse_add_material(p, lx, name.col, &m, &index))) return st;
+    if ((st = tgi_parse_add_material(p, lx, name.col, &m, &index))) return st;
     o->material = index;
     return TG_OK;
 }
 
-static tg_status obj_line(obj_state *o, tg_lexer *lx, const tg_token *kw)
+static tg_status obj_line(obj_state *o, tgi_lexer *lx, const tgi_token *kw)
 {
-    if (tg_tok_is(kw, "v")) return obj_vertex(o, lx, kw, 0);
-    if (tg_tok_is(kw, "vn")) return obj_vertex(o, lx, kw, 1);
-    if (tg_tok_is(kw, "vt")) return obj_texcoord(o, lx);
-    if (tg_tok_is(kw, "f")) return obj_face(o, lx);
-    if (tg_tok_is(kw, "usemtl")) return obj_usemtl(o, lx, kw);
-    if (tg_tok_is(kw, "mtllib")) return obj_mtllib(o, lx, kw);
+    if (tgi_tok_is(kw, "v")) return obj_vertex(o, lx, kw, 0);
+    if (tgi_tok_is(kw, "vn")) return obj_vertex(o, lx, kw, 1);
+    if (tgi_tok_is(kw, "vt")) return obj_texcoord(o, lx);
+    if (tgi_tok_is(kw, "f")) return obj_face(o, lx);
+    if (tgi_tok_is(kw, "usemtl")) return obj_usemtl(o, lx, kw);
+    if (tgi_tok_is(kw, "mtllib")) return obj_mtllib(o, lx, kw);
     return TG_OK; /* o, g, s, l, p, ...: ignored */
 }
 
-tg_status tg_obj_mesh(tg_parser *p, const tg_lexer *lx, const tg_token *path_tok,
-                      const tg_xform *xf, int material, const char *objname)
+tg_status tgi_obj_mesh(tgi_parser *p, const tgi_lexer *lx, const tgi_token *path_tok,
+                      const tgi_xform *xf, int material, const char *objname)
 {
     char path[TG_PATH_MAX];
     const char *data;
     size_t size;
     obj_state o;
-    tg_lexer ol;
-    tg_token kw;
+    tgi_lexer ol;
+    tgi_token kw;
     tg_status st;
     int r;
-    if (tg_path_join(p->file, path_tok->s, path_tok->n, path)) {
-        tg_parse_fail(p, lx->file, lx->lineno, path_tok->col, "mesh path is too long (the limit is ", NULL, NULL);
-        tg_error_append_int(p->err, TG_PATH_MAX - 1);
-        tg_error_append(p->err, " bytes with the scene's directory)");
+    if (tgi_path_join(p->file, path_tok->s, path_tok->n, path)) {
+        tgi_parse_fail(p, lx->file, lx->lineno, path_tok->col, "mesh path is too long (the limit is ", NULL, NULL);
+        tgi_error_append_int(p->err, TG_PATH_MAX - 1);
+        tgi_error_append(p->err, " bytes with the scene's directory)");
         return TG_ERR_INPUT;
     }
     if (read_file(p, path, &data, &size))
-        return tg_parse_fail(p, lx->file, lx->lineno, path_tok->col,
+        return tgi_parse_fail(p, lx->file, lx->lineno, path_tok->col,
                              "cannot read mesh file '", path, "'");
     memset(&o, 0, sizeof o);
     o.p = p;
@@ -430,9 +431,9 @@ tg_status tg_obj_mesh(tg_parser *p, const tg_lexer *lx, const tg_token *path_tok
     o.base_material = o.material = material;
     o.first_material = p->materials;
     o.objname = objname;
-    tg_lex_init(&ol, data, size, path);
-    while ((r = tg_lex_line(&ol, p->err)) > 0) {
-        if (!tg_lex_token(&ol, &kw)) continue;
+    tgi_lex_init(&ol, data, size, path);
+    while ((r = tgi_lex_line(&ol, p->err)) > 0) {
+        if (!tgi_lex_token(&ol, &kw)) continue;
         if ((st = obj_line(&o, &ol, &kw))) return st;
     }
     if (r < 0) return TG_ERR_INPUT;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * parse.c - scene format v1 (documented in format.md beside this file):
  * text in a memory buffer to a tg_scene in the caller's arena.
@@ -25,7 +26,7 @@ static int is_blank(char c)
     return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
 }
 
-void tg_lex_init(tg_lexer *lx, const char *text, size_t size, const char *file)
+void tgi_lex_init(tgi_lexer *lx, const char *text, size_t size, const char *file)
 {
     memset(lx, 0, sizeof *lx);
     if (!text) { text = ""; size = 0; }
@@ -38,21 +39,21 @@ void tg_lex_init(tg_lexer *lx, const char *text, size_t size, const char *file)
         lx->next = text + 3; /* UTF-8 byte order mark */
 }
 
-int tg_lex_line(tg_lexer *lx, tg_error *err)
+int tgi_lex_line(tgi_lexer *lx, tg_error *err)
 {
     const char *s = lx->next, *e = s;
     if (s >= lx->end) return 0;
     while (e < lx->end && *e != '\n') {
         if (*e == '\0') {
-            tg_error_set(err, TG_ERR_INPUT, lx->file, lx->lineno + 1,
+            tgi_error_set(err, TG_ERR_INPUT, lx->file, lx->lineno + 1,
                          (int)(e - s) + 1, "NUL byte in the input; expected text");
             return -1;
         }
         if (e - s >= TG_LINE_MAX) {
-            tg_error_set(err, TG_ERR_INPUT, lx->file, lx->lineno + 1,
+            tgi_error_set(err, TG_ERR_INPUT, lx->file, lx->lineno + 1,
                          TG_LINE_MAX + 1, "line longer than ");
-            tg_error_append_int(err, TG_LINE_MAX);
-            tg_error_append(err, " bytes (the limit)");
+            tgi_error_append_int(err, TG_LINE_MAX);
+            tgi_error_append(err, " bytes (the limit)");
             return -1;
         }
         e++;
@@ -65,7 +66,7 @@ int tg_lex_line(tg_lexer *lx, tg_error *err)
     return 1;
 }
 
-int tg_lex_token(tg_lexer *lx, tg_token *t)
+int tgi_lex_token(tgi_lexer *lx, tgi_token *t)
 {
     const char *c = lx->cur;
     while (c < lx->line_end && is_blank(*c)) c++;
@@ -78,15 +79,15 @@ int tg_lex_token(tg_lexer *lx, tg_token *t)
     return 1;
 }
 
-int tg_lex_peek(tg_lexer *lx, tg_token *t)
+int tgi_lex_peek(tgi_lexer *lx, tgi_token *t)
 {
     const char *save = lx->cur;
-    int r = tg_lex_token(lx, t);
+    int r = tgi_lex_token(lx, t);
     lx->cur = save;
     return r;
 }
 
-int tg_lex_eol_col(const tg_lexer *lx)
+int tgi_lex_eol_col(const tgi_lexer *lx)
 {
     const char *c = lx->line, *last = lx->line;
     while (c < lx->line_end && *c != '#') {
@@ -96,7 +97,7 @@ int tg_lex_eol_col(const tg_lexer *lx)
     return (int)(last - lx->line) + 1;
 }
 
-int tg_lex_rest(tg_lexer *lx, tg_token *t)
+int tgi_lex_rest(tgi_lexer *lx, tgi_token *t)
 {
     const char *c = lx->cur, *e;
     while (c < lx->line_end && is_blank(*c)) c++;
@@ -111,18 +112,18 @@ int tg_lex_rest(tg_lexer *lx, tg_token *t)
     return 1;
 }
 
-int tg_tok_is(const tg_token *t, const char *word)
+int tgi_tok_is(const tgi_token *t, const char *word)
 {
     size_t n = strlen(word);
     return t->n == n && memcmp(t->s, word, n) == 0;
 }
 
-int tg_tok_eq_name(const tg_token *t, const char *name)
+int tgi_tok_eq_name(const tgi_token *t, const char *name)
 {
     return t->n < TG_NAME_MAX && memcmp(t->s, name, t->n) == 0 && name[t->n] == '\0';
 }
 
-int tg_tok_real(const tg_token *t, tg_real *out)
+int tgi_tok_real(const tgi_token *t, tg_real *out)
 {
     int overflow = 0;
     tg_real v = 0;
@@ -135,7 +136,7 @@ int tg_tok_real(const tg_token *t, tg_real *out)
     return 0;
 }
 
-int tg_tok_int(const tg_token *t, long *out)
+int tgi_tok_int(const tgi_token *t, long *out)
 {
     size_t i = 0;
     long v = 0;
@@ -152,7 +153,7 @@ int tg_tok_int(const tg_token *t, long *out)
     return 0;
 }
 
-const char *tg_tok_str(const tg_token *t, char buf[48])
+const char *tgi_tok_str(const tgi_token *t, char buf[48])
 {
     size_t n = t->n > 40 ? 40 : t->n;
     memcpy(buf, t->s, n);
@@ -165,24 +166,24 @@ const char *tg_tok_str(const tg_token *t, char buf[48])
 /* errors                                                                */
 /* ===================================================================== */
 
-tg_status tg_parse_fail(tg_parser *p, const char *file, int line, int col,
+tg_status tgi_parse_fail(tgi_parser *p, const char *file, int line, int col,
                         const char *a, const char *b, const char *c)
 {
-    tg_error_set(p->err, TG_ERR_INPUT, file, line, col, a ? a : "");
-    if (b) tg_error_append(p->err, b);
-    if (c) tg_error_append(p->err, c);
+    tgi_error_set(p->err, TG_ERR_INPUT, file, line, col, a ? a : "");
+    if (b) tgi_error_append(p->err, b);
+    if (c) tgi_error_append(p->err, c);
     return TG_ERR_INPUT;
 }
 
-static tg_status fail(tg_parser *p, const tg_lexer *lx, int col,
+static tg_status fail(tgi_parser *p, const tgi_lexer *lx, int col,
                       const char *a, const char *b, const char *c)
 {
-    return tg_parse_fail(p, lx->file, lx->lineno, col, a, b, c);
+    return tgi_parse_fail(p, lx->file, lx->lineno, col, a, b, c);
 }
 
-static tg_status fail_runtime(tg_parser *p, const char *what)
+static tg_status fail_runtime(tgi_parser *p, const char *what)
 {
-    tg_error_set(p->err, TG_ERR_RUNTIME, p->file, 0, 0, what);
+    tgi_error_set(p->err, TG_ERR_RUNTIME, p->file, 0, 0, what);
     return TG_ERR_RUNTIME;
 }
 
@@ -199,8 +200,8 @@ typedef struct key_spec {
 
 typedef struct key_val {
     int present;
-    tg_token key;
-    tg_token tok[4];    /* the value tokens (name/path in tok[0]) */
+    tgi_token key;
+    tgi_token tok[4];    /* the value tokens (name/path in tok[0]) */
     tg_real v[4];
     long i;             /* K_INT */
 } key_val;
@@ -212,75 +213,75 @@ static int kind_numbers(int kind)
     return kind == K_REAL || kind == K_INT ? 1 : kind == K_VEC3 ? 3 : kind == K_ROT ? 4 : 0;
 }
 
-static int find_key(const key_spec *spec, int n, const tg_token *t)
+static int find_key(const key_spec *spec, int n, const tgi_token *t)
 {
     int i;
     for (i = 0; i < n; i++)
-        if (tg_tok_is(t, spec[i].key)) return i;
+        if (tgi_tok_is(t, spec[i].key)) return i;
     return -1;
 }
 
 /* Read `count` numbers for `what`; stops (wrong count) at a key of `spec`. */
-static tg_status read_numbers(tg_parser *p, tg_lexer *lx, const key_spec *spec,
+static tg_status read_numbers(tgi_parser *p, tgi_lexer *lx, const key_spec *spec,
                               int nspec, const char *what, int count, int integer,
-                              tg_token *toks, tg_real *v, long *iv)
+                              tgi_token *toks, tg_real *v, long *iv)
 {
-    tg_token t;
+    tgi_token t;
     char buf[48];
     int i, r;
     for (i = 0; i < count; i++) {
-        int more = tg_lex_peek(lx, &t);
+        int more = tgi_lex_peek(lx, &t);
         if (!more || (spec && find_key(spec, nspec, &t) >= 0)) {
-            fail(p, lx, more ? t.col : tg_lex_eol_col(lx), "'", what, "' expects ");
-            tg_error_append_int(p->err, count);
-            tg_error_append(p->err, count == 1 ? " number, got " : " numbers, got ");
-            tg_error_append_int(p->err, i);
+            fail(p, lx, more ? t.col : tgi_lex_eol_col(lx), "'", what, "' expects ");
+            tgi_error_append_int(p->err, count);
+            tgi_error_append(p->err, count == 1 ? " number, got " : " numbers, got ");
+            tgi_error_append_int(p->err, i);
             return TG_ERR_INPUT;
         }
-        tg_lex_token(lx, &t);
+        tgi_lex_token(lx, &t);
         toks[i] = t;
-        r = integer ? tg_tok_int(&t, iv) : tg_tok_real(&t, &v[i]);
+        r = integer ? tgi_tok_int(&t, iv) : tgi_tok_real(&t, &v[i]);
         if (r == 1) {
             fail(p, lx, t.col, integer ? "expected an integer for '" : "expected a number for '",
                  what, "', got '");
-            tg_error_append(p->err, tg_tok_str(&t, buf));
-            tg_error_append(p->err, "'");
+            tgi_error_append(p->err, tgi_tok_str(&t, buf));
+            tgi_error_append(p->err, "'");
             return TG_ERR_INPUT;
         }
         if (r == 2) {
             fail(p, lx, t.col, "number out of range for '", what, "': '");
-            tg_error_append(p->err, tg_tok_str(&t, buf));
-            tg_error_append(p->err, "'");
+            tgi_error_append(p->err, tgi_tok_str(&t, buf));
+            tgi_error_append(p->err, "'");
             return TG_ERR_INPUT;
         }
     }
     return TG_OK;
 }
 
-static tg_status parse_keys(tg_parser *p, tg_lexer *lx, const tg_token *stmt,
+static tg_status parse_keys(tgi_parser *p, tgi_lexer *lx, const tgi_token *stmt,
                             const key_spec *spec, int nspec, key_val *val)
 {
-    tg_token t;
+    tgi_token t;
     char buf[48];
     int k, i, prev = -1;
     tg_status st;
     memset(val, 0, sizeof(key_val) * (size_t)nspec);
-    while (tg_lex_token(lx, &t)) {
+    while (tgi_lex_token(lx, &t)) {
         k = find_key(spec, nspec, &t);
         if (k < 0) {
             tg_real dummy;
-            if (prev >= 0 && tg_tok_real(&t, &dummy) != 1) {
+            if (prev >= 0 && tgi_tok_real(&t, &dummy) != 1) {
                 fail(p, lx, t.col, "too many numbers for '", spec[prev].key, "' (expects ");
-                tg_error_append_int(p->err, kind_numbers(spec[prev].kind));
-                tg_error_append(p->err, ")");
+                tgi_error_append_int(p->err, kind_numbers(spec[prev].kind));
+                tgi_error_append(p->err, ")");
                 return TG_ERR_INPUT;
             }
-            fail(p, lx, t.col, "unknown key '", tg_tok_str(&t, buf), "' in '");
-            tg_error_append(p->err, tg_tok_str(stmt, buf));
-            tg_error_append(p->err, "'; expected one of:");
+            fail(p, lx, t.col, "unknown key '", tgi_tok_str(&t, buf), "' in '");
+            tgi_error_append(p->err, tgi_tok_str(stmt, buf));
+            tgi_error_append(p->err, "'; expected one of:");
             for (i = 0; i < nspec; i++) {
-                tg_error_append(p->err, " ");
-                tg_error_append(p->err, spec[i].key);
+                tgi_error_append(p->err, " ");
+                tgi_error_append(p->err, spec[i].key);
             }
             return TG_ERR_INPUT;
         }
@@ -288,14 +289,14 @@ static tg_status parse_keys(tg_parser *p, tg_lexer *lx, const tg_token *stmt,
         val[k].present = 1;
         val[k].key = t;
         if (spec[k].kind == K_NAME || spec[k].kind == K_PATH) {
-            if (!tg_lex_token(lx, &val[k].tok[0]))
-                return fail(p, lx, tg_lex_eol_col(lx), "'", spec[k].key,
+            if (!tgi_lex_token(lx, &val[k].tok[0]))
+                return fail(p, lx, tgi_lex_eol_col(lx), "'", spec[k].key,
                             spec[k].kind == K_NAME ? "' expects a name" : "' expects a file path");
             if (spec[k].kind == K_NAME && val[k].tok[0].n >= TG_NAME_MAX) {
-                fail(p, lx, val[k].tok[0].col, "name '", tg_tok_str(&val[k].tok[0], buf),
+                fail(p, lx, val[k].tok[0].col, "name '", tgi_tok_str(&val[k].tok[0], buf),
                      "' is too long; names are at most ");
-                tg_error_append_int(p->err, TG_NAME_MAX - 1);
-                tg_error_append(p->err, " bytes");
+                tgi_error_append_int(p->err, TG_NAME_MAX - 1);
+                tgi_error_append(p->err, " bytes");
                 return TG_ERR_INPUT;
             }
         } else if (spec[k].kind != K_FLAG) {
@@ -307,35 +308,35 @@ static tg_status parse_keys(tg_parser *p, tg_lexer *lx, const tg_token *stmt,
     }
     for (k = 0; k < nspec; k++)
         if (spec[k].required && !val[k].present) {
-            fail(p, lx, stmt->col, "'", tg_tok_str(stmt, buf), "' is missing the required key '");
-            tg_error_append(p->err, spec[k].key);
-            tg_error_append(p->err, "'");
+            fail(p, lx, stmt->col, "'", tgi_tok_str(stmt, buf), "' is missing the required key '");
+            tgi_error_append(p->err, spec[k].key);
+            tgi_error_append(p->err, "'");
             return TG_ERR_INPUT;
         }
     return TG_OK;
 }
 
 /* Nothing may follow a positional statement's values. */
-static tg_status expect_end(tg_parser *p, tg_lexer *lx, const char *what, int count)
+static tg_status expect_end(tgi_parser *p, tgi_lexer *lx, const char *what, int count)
 {
-    tg_token t;
+    tgi_token t;
     tg_real dummy;
     char buf[48];
-    if (!tg_lex_token(lx, &t)) return TG_OK;
-    if (count > 0 && tg_tok_real(&t, &dummy) != 1) {
+    if (!tgi_lex_token(lx, &t)) return TG_OK;
+    if (count > 0 && tgi_tok_real(&t, &dummy) != 1) {
         fail(p, lx, t.col, "too many numbers for '", what, "' (expects ");
-        tg_error_append_int(p->err, count);
-        tg_error_append(p->err, ")");
+        tgi_error_append_int(p->err, count);
+        tgi_error_append(p->err, ")");
         return TG_ERR_INPUT;
     }
-    return fail(p, lx, t.col, "unexpected '", tg_tok_str(&t, buf), "' at the end of the line");
+    return fail(p, lx, t.col, "unexpected '", tgi_tok_str(&t, buf), "' at the end of the line");
 }
 
 /* ---- value checks ---- */
 #define LO_OPEN 1
 #define HI_OPEN 2
 
-static tg_status check_range(tg_parser *p, const tg_lexer *lx, const key_val *kv,
+static tg_status check_range(tgi_parser *p, const tgi_lexer *lx, const key_val *kv,
                              const char *key, tg_real lo, tg_real hi, int open,
                              const char *expect)
 {
@@ -345,10 +346,10 @@ static tg_status check_range(tg_parser *p, const tg_lexer *lx, const key_val *kv
         tg_real v = kv->v[i];
         if (v < lo || v > hi || ((open & LO_OPEN) && v == lo) || ((open & HI_OPEN) && v == hi)) {
             fail(p, lx, kv->tok[i].col, "'", key, "' must be ");
-            tg_error_append(p->err, expect);
-            tg_error_append(p->err, ", got '");
-            tg_error_append(p->err, tg_tok_str(&kv->tok[i], buf));
-            tg_error_append(p->err, "'");
+            tgi_error_append(p->err, expect);
+            tgi_error_append(p->err, ", got '");
+            tgi_error_append(p->err, tgi_tok_str(&kv->tok[i], buf));
+            tgi_error_append(p->err, "'");
             return TG_ERR_INPUT;
         }
     }
@@ -360,10 +361,10 @@ static tg_vec3 kv_vec3(const key_val *kv) { return tg_v3(kv->v[0], kv->v[1], kv-
 static int is_zero_vec(tg_vec3 v) { return v.x == 0 && v.y == 0 && v.z == 0; }
 
 /* The unit direction of a vec3 value; zero length is an error. */
-static tg_status kv_dir(tg_parser *p, const tg_lexer *lx, const key_val *kv,
+static tg_status kv_dir(tgi_parser *p, const tgi_lexer *lx, const key_val *kv,
                         const char *key, tg_vec3 *out)
 {
-    tg_vec3 d = tg_unit(kv_vec3(kv));
+    tg_vec3 d = tgi_unit(kv_vec3(kv));
     if (is_zero_vec(d))
         return fail(p, lx, kv->tok[0].col, "'", key,
                     "' must be a direction of non-zero length");
@@ -375,13 +376,13 @@ static tg_status kv_dir(tg_parser *p, const tg_lexer *lx, const key_val *kv,
 /* scene tables: materials, objects, triangles                          */
 /* ===================================================================== */
 
-tg_status tg_parse_add_material(tg_parser *p, const tg_lexer *lx, int col,
-                                const tg_material *m, int *index)
+tg_status tgi_parse_add_material(tgi_parser *p, const tgi_lexer *lx, int col,
+                                const tgi_material *m, int *index)
 {
     if (p->materials >= TG_SCENE_MAX_MATERIALS) {
         fail(p, lx, col, "too many materials (the limit is ", NULL, NULL);
-        tg_error_append_int(p->err, TG_SCENE_MAX_MATERIALS);
-        tg_error_append(p->err, ")");
+        tgi_error_append_int(p->err, TG_SCENE_MAX_MATERIALS);
+        tgi_error_append(p->err, ")");
         return TG_ERR_INPUT;
     }
     if (p->fill) {
@@ -392,44 +393,44 @@ tg_status tg_parse_add_material(tg_parser *p, const tg_lexer *lx, int col,
     return TG_OK;
 }
 
-static int find_material(const tg_parser *p, const tg_token *name)
+static int find_material(const tgi_parser *p, const tgi_token *name)
 {
     size_t i;
     for (i = 0; i < p->materials; i++)
-        if (tg_tok_eq_name(name, p->scene->materials[i].name)) return (int)i;
+        if (tgi_tok_eq_name(name, p->scene->materials[i].name)) return (int)i;
     return -1;
 }
 
-static int find_object(const tg_parser *p, const tg_token *name)
+static int find_object(const tgi_parser *p, const tgi_token *name)
 {
     size_t i;
     for (i = 0; i < p->objects; i++)
-        if (p->scene->objects[i].name[0] && tg_tok_eq_name(name, p->scene->objects[i].name))
+        if (p->scene->objects[i].name[0] && tgi_tok_eq_name(name, p->scene->objects[i].name))
             return (int)i;
     return -1;
 }
 
-static void copy_name(char dst[TG_NAME_MAX], const tg_token *t)
+static void copy_name(char dst[TG_NAME_MAX], const tgi_token *t)
 {
     size_t n = t->n < TG_NAME_MAX - 1 ? t->n : TG_NAME_MAX - 1;
     memcpy(dst, t->s, n);
     dst[n] = '\0';
 }
 
-tg_status tg_parse_begin_object(tg_parser *p, const tg_lexer *lx, int col,
-                                const tg_token *name)
+tg_status tgi_parse_begin_object(tgi_parser *p, const tgi_lexer *lx, int col,
+                                const tgi_token *name)
 {
     char buf[48];
-    tg_object *o;
+    tgi_object *o;
     if (p->objects >= TG_SCENE_MAX_OBJECTS) {
         fail(p, lx, col, "too many objects (the limit is ", NULL, NULL);
-        tg_error_append_int(p->err, TG_SCENE_MAX_OBJECTS);
-        tg_error_append(p->err, ")");
+        tgi_error_append_int(p->err, TG_SCENE_MAX_OBJECTS);
+        tgi_error_append(p->err, ")");
         return TG_ERR_INPUT;
     }
     if (p->fill) {
         if (name && find_object(p, name) >= 0)
-            return fail(p, lx, name->col, "duplicate object name '", tg_tok_str(name, buf),
+            return fail(p, lx, name->col, "duplicate object name '", tgi_tok_str(name, buf),
                         "'; object names must be unique");
         o = &p->scene->objects[p->objects];
         memset(o, 0, sizeof *o);
@@ -440,12 +441,12 @@ tg_status tg_parse_begin_object(tg_parser *p, const tg_lexer *lx, int col,
     return TG_OK;
 }
 
-static tg_status count_tris(tg_parser *p, const tg_lexer *lx, int col, size_t n)
+static tg_status count_tris(tgi_parser *p, const tgi_lexer *lx, int col, size_t n)
 {
     if (n > TG_SCENE_MAX_TRIS || p->tris > TG_SCENE_MAX_TRIS - n) {
         fail(p, lx, col, "too many triangles (the limit is ", NULL, NULL);
-        tg_error_append_int(p->err, TG_SCENE_MAX_TRIS);
-        tg_error_append(p->err, ")");
+        tgi_error_append_int(p->err, TG_SCENE_MAX_TRIS);
+        tgi_error_append(p->err, ")");
         return TG_ERR_INPUT;
     }
     p->tris += n;
@@ -457,9 +458,9 @@ static tg_real max_abs3(tg_vec3 v)
     return tg_max(tg_abs(v.x), tg_max(tg_abs(v.y), tg_abs(v.z)));
 }
 
-tg_vec3 tg_unit(tg_vec3 v)
+tg_vec3 tgi_unit(tg_vec3 v)
 {
-    tg_vec3 u = tg_v3_normalize_or(v, tg_v3(0, 0, 0));
+    tg_vec3 u = tgi_v3_normalize_or(v, tg_v3(0, 0, 0));
     /* an axis-aligned vector's unit is exact: keep it so */
     if (u.y == 0 && u.z == 0 && u.x != 0) u.x = u.x > 0 ? TG_ONE : tg_neg(TG_ONE);
     if (u.x == 0 && u.z == 0 && u.y != 0) u.y = u.y > 0 ? TG_ONE : tg_neg(TG_ONE);
@@ -467,25 +468,25 @@ tg_vec3 tg_unit(tg_vec3 v)
     return u;
 }
 
-tg_real tg_deg_to_rad(tg_real deg)
+tg_real tgi_deg_to_rad(tg_real deg)
 {
     /* multiply by pi first (keeps Q16.16 precision) unless that would saturate */
     if (tg_abs(deg) <= TG_R(10000.0f)) return tg_div(tg_mul(deg, TG_PI), TG_R(180.0f));
     return tg_mul(tg_div(deg, TG_R(180.0f)), TG_PI);
 }
 
-int tg_face_normal(tg_vec3 a, tg_vec3 b, tg_vec3 c, tg_vec3 *n)
+int tgi_face_normal(tg_vec3 a, tg_vec3 b, tg_vec3 c, tg_vec3 *n)
 {
-    tg_vec3 e1 = tg_v3_sub(b, a), e2 = tg_v3_sub(c, a), x;
+    tg_vec3 e1 = tgi_v3_sub(b, a), e2 = tgi_v3_sub(c, a), x;
     tg_real m1 = max_abs3(e1), m2 = max_abs3(e2);
     if (m1 == 0 || m2 == 0) return 0;
     /* scale both edges into [-1, 1] first so the fixed-point cross product
      * neither saturates nor loses its small components */
     e1 = tg_v3(tg_div(e1.x, m1), tg_div(e1.y, m1), tg_div(e1.z, m1));
     e2 = tg_v3(tg_div(e2.x, m2), tg_div(e2.y, m2), tg_div(e2.z, m2));
-    x = tg_v3_cross(e1, e2);
+    x = tgi_v3_cross(e1, e2);
     if (max_abs3(x) <= TG_R(2e-5f)) return 0;
-    *n = tg_unit(x);
+    *n = tgi_unit(x);
     return 1;
 }
 
@@ -498,7 +499,7 @@ static void grow_bounds(tg_scene *s, tg_vec3 v, int first)
                           tg_max(s->bounds_max.z, v.z));
 }
 
-tg_status tg_parse_emit_tri(tg_parser *p, const tg_lexer *lx, int col,
+tg_status tgi_parse_emit_tri(tgi_parser *p, const tgi_lexer *lx, int col,
                             const tg_vec3 pos[3], const tg_vec3 *nrm, int material)
 {
     tg_scene *s = p->scene;
@@ -507,7 +508,7 @@ tg_status tg_parse_emit_tri(tg_parser *p, const tg_lexer *lx, int col,
     int i;
     if (!p->fill) return count_tris(p, lx, col, 1);
     if (t >= (size_t)s->tri_count) return fail_runtime(p, "a mesh file changed while parsing");
-    if (!nrm && !tg_face_normal(pos[0], pos[1], pos[2], &fn))
+    if (!nrm && !tgi_face_normal(pos[0], pos[1], pos[2], &fn))
         fn = tg_v3(0, TG_ONE, 0); /* zero area: the rasterizer skips it */
     for (i = 0; i < 3; i++) {
         s->tri_pos[3 * t + (size_t)i] = pos[i];
@@ -522,7 +523,7 @@ tg_status tg_parse_emit_tri(tg_parser *p, const tg_lexer *lx, int col,
 }
 
 /* Two triangles (p0 p1 p2) (p0 p2 p3); n: one normal for all, or NULL. */
-static tg_status emit_quad(tg_parser *p, const tg_lexer *lx, int col, const tg_vec3 q[4],
+static tg_status emit_quad(tgi_parser *p, const tgi_lexer *lx, int col, const tg_vec3 q[4],
                            const tg_vec3 *n, int material)
 {
     tg_vec3 a[3], b[3], nn[3];
@@ -530,19 +531,19 @@ static tg_status emit_quad(tg_parser *p, const tg_lexer *lx, int col, const tg_v
     a[0] = q[0]; a[1] = q[1]; a[2] = q[2];
     b[0] = q[0]; b[1] = q[2]; b[2] = q[3];
     if (n) nn[0] = nn[1] = nn[2] = *n;
-    st = tg_parse_emit_tri(p, lx, col, a, n ? nn : NULL, material);
-    return st ? st : tg_parse_emit_tri(p, lx, col, b, n ? nn : NULL, material);
+    st = tgi_parse_emit_tri(p, lx, col, a, n ? nn : NULL, material);
+    return st ? st : tgi_parse_emit_tri(p, lx, col, b, n ? nn : NULL, material);
 }
 
 /* The material a geometry statement names: resolved in pass 2. */
-static tg_status resolve_material(tg_parser *p, const tg_lexer *lx, const key_val *kv, int *index)
+static tg_status resolve_material(tgi_parser *p, const tgi_lexer *lx, const key_val *kv, int *index)
 {
     char buf[48];
     *index = 0;
     if (!p->fill) return TG_OK;
     *index = find_material(p, &kv->tok[0]);
     if (*index < 0)
-        return fail(p, lx, kv->tok[0].col, "undefined material '", tg_tok_str(&kv->tok[0], buf),
+        return fail(p, lx, kv->tok[0].col, "undefined material '", tgi_tok_str(&kv->tok[0], buf),
                     "'; define it with a 'material' line before its use");
     return TG_OK;
 }
@@ -551,17 +552,17 @@ static tg_status resolve_material(tg_parser *p, const tg_lexer *lx, const key_va
 /* the statements                                                        */
 /* ===================================================================== */
 
-typedef tg_status (*statement_fn)(tg_parser *p, tg_lexer *lx, const tg_token *kw);
+typedef tg_status (*statement_fn)(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw);
 
 #define NSPEC(a) ((int)(sizeof(a) / sizeof((a)[0])))
 
-static tg_status st_camera(tg_parser *p, tg_lexer *lx, const tg_token *kw)
+static tg_status st_camera(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
 {
     static const key_spec spec[] = {
         {"pos", K_VEC3, 1}, {"target", K_VEC3, 1}, {"up", K_VEC3, 0},
         {"fov", K_REAL, 0}, {"near", K_REAL, 0}, {"far", K_REAL, 0}};
     key_val v[MAX_SPEC];
-    tg_scene_camera cam;
+    tgi_scene_camera cam;
     tg_status st;
     tg_real fov = TG_R(60.0f);
     if (p->have_camera)
@@ -569,7 +570,7 @@ static tg_status st_camera(tg_parser *p, tg_lexer *lx, const tg_token *kw)
     if ((st = parse_keys(p, lx, kw, spec, NSPEC(spec), v))) return st;
     cam.pos = kv_vec3(&v[0]);
     cam.target = kv_vec3(&v[1]);
-    if (is_zero_vec(tg_v3_sub(cam.target, cam.pos)))
+    if (is_zero_vec(tgi_v3_sub(cam.target, cam.pos)))
         return fail(p, lx, v[1].tok[0].col, "camera 'target' must differ from 'pos'", NULL, NULL);
     cam.up = tg_v3(0, TG_ONE, 0);
     if (v[2].present && (st = kv_dir(p, lx, &v[2], "up", &cam.up))) return st;
@@ -579,7 +580,7 @@ static tg_status st_camera(tg_parser *p, tg_lexer *lx, const tg_token *kw)
             return st;
         fov = v[3].v[0];
     }
-    cam.fov = tg_deg_to_rad(fov);
+    cam.fov = tgi_deg_to_rad(fov);
     cam.znear = TG_R(0.05f);
     cam.zfar = TG_R(1000.0f);
     if (v[4].present) {
@@ -596,23 +597,23 @@ static tg_status st_camera(tg_parser *p, tg_lexer *lx, const tg_token *kw)
     return TG_OK;
 }
 
-static tg_status st_camera_key(tg_parser *p, tg_lexer *lx, const tg_token *kw)
+static tg_status st_camera_key(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
 {
     static const key_spec spec[] = {{"t", K_REAL, 1}, {"pos", K_VEC3, 1}, {"target", K_VEC3, 1}};
     key_val v[MAX_SPEC];
-    tg_camera_key key, *k;
+    tgi_camera_key key, *k;
     tg_status st;
     size_t i;
     if ((st = parse_keys(p, lx, kw, spec, NSPEC(spec), v))) return st;
     key.t = v[0].v[0];
     key.pos = kv_vec3(&v[1]);
     key.target = kv_vec3(&v[2]);
-    if (is_zero_vec(tg_v3_sub(key.target, key.pos)))
+    if (is_zero_vec(tgi_v3_sub(key.target, key.pos)))
         return fail(p, lx, v[2].tok[0].col, "camera_key 'target' must differ from 'pos'", NULL, NULL);
     if (p->camera_keys >= TG_SCENE_MAX_KEYS) {
         fail(p, lx, kw->col, "too many camera keys (the limit is ", NULL, NULL);
-        tg_error_append_int(p->err, TG_SCENE_MAX_KEYS);
-        tg_error_append(p->err, ")");
+        tgi_error_append_int(p->err, TG_SCENE_MAX_KEYS);
+        tgi_error_append(p->err, ")");
         return TG_ERR_INPUT;
     }
     if (p->fill) { /* insert sorted by t */
@@ -627,24 +628,24 @@ static tg_status st_camera_key(tg_parser *p, tg_lexer *lx, const tg_token *kw)
     return TG_OK;
 }
 
-static tg_status st_material(tg_parser *p, tg_lexer *lx, const tg_token *kw)
+static tg_status st_material(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
 {
     static const key_spec spec[] = {
         {"albedo", K_VEC3, 1}, {"f0", K_REAL, 0}, {"emissive", K_VEC3, 0}, {"twosided", K_FLAG, 0}};
     key_val v[MAX_SPEC];
-    tg_token name;
-    tg_material m;
+    tgi_token name;
+    tgi_material m;
     tg_status st;
     char buf[48];
     int index;
-    int have = tg_lex_token(lx, &name);
+    int have = tgi_lex_token(lx, &name);
     if (!have || find_key(spec, NSPEC(spec), &name) >= 0)
-        return fail(p, lx, have ? name.col : tg_lex_eol_col(lx),
+        return fail(p, lx, have ? name.col : tgi_lex_eol_col(lx),
                     "'material' expects a name first: material NAME albedo R G B ...", NULL, NULL);
     if (name.n >= TG_NAME_MAX) {
-        fail(p, lx, name.col, "name '", tg_tok_str(&name, buf), "' is too long; names are at most ");
-        tg_error_append_int(p->err, TG_NAME_MAX - 1);
-        tg_error_append(p->err, " bytes");
+        fail(p, lx, name.col, "name '", tgi_tok_str(&name, buf), "' is too long; names are at most ");
+        tgi_error_append_int(p->err, TG_NAME_MAX - 1);
+        tgi_error_append(p->err, " bytes");
         return TG_ERR_INPUT;
     }
     if ((st = parse_keys(p, lx, kw, spec, NSPEC(spec), v))) return st;
@@ -663,15 +664,15 @@ static tg_status st_material(tg_parser *p, tg_lexer *lx, const tg_token *kw)
     }
     m.twosided = v[3].present;
     if (p->fill && find_material(p, &name) >= 0)
-        return fail(p, lx, name.col, "duplicate material '", tg_tok_str(&name, buf),
+        return fail(p, lx, name.col, "duplicate material '", tgi_tok_str(&name, buf),
                     "'; material names must be unique");
-    return tg_parse_add_material(p, lx, name.col, &m, &index);
+    return tgi_parse_add_material(p, lx, name.col, &m, &index);
 }
 
 /* The object name key, or NULL. */
-static const tg_token *name_of(const key_val *kv) { return kv->present ? &kv->tok[0] : NULL; }
+static const tgi_token *name_of(const key_val *kv) { return kv->present ? &kv->tok[0] : NULL; }
 
-static tg_status st_quad(tg_parser *p, tg_lexer *lx, const tg_token *kw)
+static tg_status st_quad(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
 {
     static const key_spec spec[] = {
         {"p0", K_VEC3, 1}, {"p1", K_VEC3, 1}, {"p2", K_VEC3, 1}, {"p3", K_VEC3, 1},
@@ -682,11 +683,11 @@ static tg_status st_quad(tg_parser *p, tg_lexer *lx, const tg_token *kw)
     int i, mat;
     if ((st = parse_keys(p, lx, kw, spec, NSPEC(spec), v))) return st;
     for (i = 0; i < 4; i++) q[i] = kv_vec3(&v[i]);
-    if (!tg_face_normal(q[0], q[1], q[2], &n) || !tg_face_normal(q[0], q[2], q[3], &n))
+    if (!tgi_face_normal(q[0], q[1], q[2], &n) || !tgi_face_normal(q[0], q[2], q[3], &n))
         return fail(p, lx, v[0].tok[0].col,
                     "quad has zero area; expected four corners p0 p1 p2 p3 around a polygon", NULL, NULL);
     if ((st = resolve_material(p, lx, &v[4], &mat))) return st;
-    if ((st = tg_parse_begin_object(p, lx, kw->col, name_of(&v[5])))) return st;
+    if ((st = tgi_parse_begin_object(p, lx, kw->col, name_of(&v[5])))) return st;
     return emit_quad(p, lx, kw->col, q, NULL, mat);
 }
 
@@ -695,7 +696,7 @@ static tg_status st_quad(tg_parser *p, tg_lexer *lx, const tg_token *kw)
 static const unsigned char box_faces[6][4] = {
     {0, 4, 6, 2}, {5, 1, 3, 7}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
 
-static tg_status st_box(tg_parser *p, tg_lexer *lx, const tg_token *kw)
+static tg_status st_box(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
 {
     static const key_spec spec[] = {
         {"min", K_VEC3, 1}, {"max", K_VEC3, 1}, {"material", K_NAME, 1},
@@ -710,7 +711,7 @@ static tg_status st_box(tg_parser *p, tg_lexer *lx, const tg_token *kw)
             return fail(p, lx, v[1].tok[i].col,
                         "box 'max' must be greater than 'min' on every axis", NULL, NULL);
     if ((st = resolve_material(p, lx, &v[2], &mat))) return st;
-    if ((st = tg_parse_begin_object(p, lx, kw->col, name_of(&v[4])))) return st;
+    if ((st = tgi_parse_begin_object(p, lx, kw->col, name_of(&v[4])))) return st;
     if (!p->fill) return count_tris(p, lx, kw->col, 12);
     lo = kv_vec3(&v[0]);
     hi = kv_vec3(&v[1]);
@@ -738,13 +739,13 @@ static void sphere_vertex(tg_vec3 c, tg_real r, int i, int j, int rings, int seg
         tg_real theta = tg_mul(TG_PI, tg_ratio(i, rings));
         tg_real phi = tg_mul(TG_TWO_PI, tg_ratio(j % segs, segs));
         tg_real st = tg_sin(theta);
-        n = tg_unit(tg_v3(tg_mul(st, tg_cos(phi)), tg_cos(theta), tg_mul(st, tg_sin(phi))));
+        n = tgi_unit(tg_v3(tg_mul(st, tg_cos(phi)), tg_cos(theta), tg_mul(st, tg_sin(phi))));
     }
     *nrm = n;
-    *pos = tg_v3_add(c, tg_v3_scale(n, r));
+    *pos = tgi_v3_add(c, tgi_v3_scale(n, r));
 }
 
-static tg_status st_sphere(tg_parser *p, tg_lexer *lx, const tg_token *kw)
+static tg_status st_sphere(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
 {
     static const key_spec spec[] = {
         {"center", K_VEC3, 1}, {"radius", K_REAL, 1}, {"material", K_NAME, 1},
@@ -760,16 +761,16 @@ static tg_status st_sphere(tg_parser *p, tg_lexer *lx, const tg_token *kw)
     if (v[3].present) {
         if (v[3].i < TG_SPHERE_SEG_MIN || v[3].i > TG_SPHERE_SEG_MAX) {
             fail(p, lx, v[3].tok[0].col, "'segments' must be an integer from ", NULL, NULL);
-            tg_error_append_int(p->err, TG_SPHERE_SEG_MIN);
-            tg_error_append(p->err, " to ");
-            tg_error_append_int(p->err, TG_SPHERE_SEG_MAX);
+            tgi_error_append_int(p->err, TG_SPHERE_SEG_MIN);
+            tgi_error_append(p->err, " to ");
+            tgi_error_append_int(p->err, TG_SPHERE_SEG_MAX);
             return TG_ERR_INPUT;
         }
         segs = (int)v[3].i;
     }
     rings = segs / 2;
     if ((st = resolve_material(p, lx, &v[2], &mat))) return st;
-    if ((st = tg_parse_begin_object(p, lx, kw->col, name_of(&v[4])))) return st;
+    if ((st = tgi_parse_begin_object(p, lx, kw->col, name_of(&v[4])))) return st;
     if (!p->fill) return count_tris(p, lx, kw->col, (size_t)(2 * segs * (rings - 1)));
     c = kv_vec3(&v[0]);
     r = v[1].v[0];
@@ -782,19 +783,19 @@ static tg_status st_sphere(tg_parser *p, tg_lexer *lx, const tg_token *kw)
             sphere_vertex(c, r, i + 1, j, rings, segs, &pa[3], &na[3]);
             if (i > 0) { /* (0 1 2): degenerate at the north pole */
                 for (k = 0; k < 3; k++) { tp[k] = pa[k]; tn[k] = na[k]; }
-                if ((st = tg_parse_emit_tri(p, lx, kw->col, tp, tn, mat))) return st;
+                if ((st = tgi_parse_emit_tri(p, lx, kw->col, tp, tn, mat))) return st;
             }
             if (i < rings - 1) { /* (0 2 3): degenerate at the south pole */
                 tp[0] = pa[0]; tp[1] = pa[2]; tp[2] = pa[3];
                 tn[0] = na[0]; tn[1] = na[2]; tn[2] = na[3];
-                if ((st = tg_parse_emit_tri(p, lx, kw->col, tp, tn, mat))) return st;
+                if ((st = tgi_parse_emit_tri(p, lx, kw->col, tp, tn, mat))) return st;
             }
         }
     return TG_OK;
 }
 
 /* File name without directory and extension, for "objname/mtlname". */
-static void base_name(const tg_token *path, char out[TG_NAME_MAX])
+static void base_name(const tgi_token *path, char out[TG_NAME_MAX])
 {
     size_t s = 0, e = path->n, i, n;
     for (i = 0; i < path->n; i++)
@@ -806,13 +807,13 @@ static void base_name(const tg_token *path, char out[TG_NAME_MAX])
     out[n] = '\0';
 }
 
-static tg_status st_mesh(tg_parser *p, tg_lexer *lx, const tg_token *kw)
+static tg_status st_mesh(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
 {
     static const key_spec spec[] = {
         {"file", K_PATH, 1}, {"material", K_NAME, 1}, {"translate", K_VEC3, 0},
         {"scale", K_REAL, 0}, {"rotate", K_ROT, 0}, {"name", K_NAME, 0}};
     key_val v[MAX_SPEC];
-    tg_xform xf;
+    tgi_xform xf;
     tg_status st;
     char objname[TG_NAME_MAX];
     int mat;
@@ -824,25 +825,25 @@ static tg_status st_mesh(tg_parser *p, tg_lexer *lx, const tg_token *kw)
             return st;
         xf.scale = v[3].v[0];
     }
-    xf.rot = tg_m4_identity();
+    xf.rot = tgi_m4_identity();
     if (v[4].present) {
         tg_vec3 axis;
         if ((st = kv_dir(p, lx, &v[4], "rotate", &axis))) return st;
-        xf.rot = tg_m4_rotate(axis, tg_deg_to_rad(v[4].v[3]));
+        xf.rot = tgi_m4_rotate(axis, tgi_deg_to_rad(v[4].v[3]));
     }
     if (v[5].present) copy_name(objname, &v[5].tok[0]);
     else base_name(&v[0].tok[0], objname);
     if ((st = resolve_material(p, lx, &v[1], &mat))) return st;
-    if ((st = tg_parse_begin_object(p, lx, kw->col, name_of(&v[5])))) return st;
-    return tg_obj_mesh(p, lx, &v[0].tok[0], &xf, mat, objname);
+    if ((st = tgi_parse_begin_object(p, lx, kw->col, name_of(&v[5])))) return st;
+    return tgi_obj_mesh(p, lx, &v[0].tok[0], &xf, mat, objname);
 }
 
-static tg_status st_object_key(tg_parser *p, tg_lexer *lx, const tg_token *kw)
+static tg_status st_object_key(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
 {
     static const key_spec spec[] = {
         {"name", K_NAME, 1}, {"t", K_REAL, 1}, {"translate", K_VEC3, 0}, {"rotate", K_ROT, 0}};
     key_val v[MAX_SPEC];
-    tg_key key, *k;
+    tgi_key key, *k;
     tg_status st;
     uint16_t *own;
     char buf[48];
@@ -855,25 +856,25 @@ static tg_status st_object_key(tg_parser *p, tg_lexer *lx, const tg_token *kw)
     key.axis = tg_v3(0, TG_ONE, 0);
     if (v[3].present) {
         if ((st = kv_dir(p, lx, &v[3], "rotate", &key.axis))) return st;
-        key.angle = tg_deg_to_rad(v[3].v[3]);
+        key.angle = tgi_deg_to_rad(v[3].v[3]);
     }
     if (p->object_keys >= TG_SCENE_MAX_KEYS) {
         fail(p, lx, kw->col, "too many object keys (the limit is ", NULL, NULL);
-        tg_error_append_int(p->err, TG_SCENE_MAX_KEYS);
-        tg_error_append(p->err, ")");
+        tgi_error_append_int(p->err, TG_SCENE_MAX_KEYS);
+        tgi_error_append(p->err, ")");
         return TG_ERR_INPUT;
     }
     if (p->fill) {
         obj = find_object(p, &v[0].tok[0]);
         if (obj < 0)
-            return fail(p, lx, v[0].tok[0].col, "undefined object '", tg_tok_str(&v[0].tok[0], buf),
+            return fail(p, lx, v[0].tok[0].col, "undefined object '", tgi_tok_str(&v[0].tok[0], buf),
                         "' in object_key; give an object 'name ID' before its keys");
         k = p->scene->object_keys;
         own = p->key_owner;
         for (i = 0; i < p->object_keys; i++)
             if (own[i] == obj && k[i].t == key.t)
                 return fail(p, lx, v[1].tok[0].col, "duplicate object_key time 't' for object '",
-                            tg_tok_str(&v[0].tok[0], buf), "'");
+                            tgi_tok_str(&v[0].tok[0], buf), "'");
         /* insert sorted by (object, t) so each object's keys are contiguous */
         for (i = p->object_keys; i > 0 && (own[i - 1] > obj || (own[i - 1] == obj && k[i - 1].t > key.t)); i--) {
             k[i] = k[i - 1];
@@ -886,12 +887,12 @@ static tg_status st_object_key(tg_parser *p, tg_lexer *lx, const tg_token *kw)
     return TG_OK;
 }
 
-static tg_status check_color(tg_parser *p, const tg_lexer *lx, const key_val *kv, const char *key)
+static tg_status check_color(tgi_parser *p, const tgi_lexer *lx, const key_val *kv, const char *key)
 {
     return check_range(p, lx, kv, key, 0, TG_REAL_MAX, 0, "0 or more");
 }
 
-static tg_status st_light(tg_parser *p, tg_lexer *lx, const tg_token *kw)
+static tg_status st_light(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
 {
     static const key_spec dir_spec[] = {
         {"dir", K_VEC3, 1}, {"color", K_VEC3, 1}, {"intensity", K_REAL, 0}, {"shadows", K_FLAG, 0}};
@@ -901,24 +902,24 @@ static tg_status st_light(tg_parser *p, tg_lexer *lx, const tg_token *kw)
         {"pos", K_VEC3, 1}, {"color", K_VEC3, 1}, {"intensity", K_REAL, 0}, {"shadows", K_FLAG, 0},
         {"dir", K_VEC3, 1}, {"angle", K_REAL, 1}};
     key_val v[MAX_SPEC];
-    tg_light l;
-    tg_token type;
+    tgi_light l;
+    tgi_token type;
     tg_status st;
     char buf[48];
     memset(&l, 0, sizeof l);
-    if (!tg_lex_token(lx, &type))
-        return fail(p, lx, tg_lex_eol_col(lx), "'light' expects a type: directional, point or spot", NULL, NULL);
-    if (tg_tok_is(&type, "directional")) {
+    if (!tgi_lex_token(lx, &type))
+        return fail(p, lx, tgi_lex_eol_col(lx), "'light' expects a type: directional, point or spot", NULL, NULL);
+    if (tgi_tok_is(&type, "directional")) {
         l.type = TG_LIGHT_DIRECTIONAL;
         st = parse_keys(p, lx, kw, dir_spec, NSPEC(dir_spec), v);
-    } else if (tg_tok_is(&type, "point")) {
+    } else if (tgi_tok_is(&type, "point")) {
         l.type = TG_LIGHT_POINT;
         st = parse_keys(p, lx, kw, point_spec, NSPEC(point_spec), v);
-    } else if (tg_tok_is(&type, "spot")) {
+    } else if (tgi_tok_is(&type, "spot")) {
         l.type = TG_LIGHT_SPOT;
         st = parse_keys(p, lx, kw, spot_spec, NSPEC(spot_spec), v);
     } else
-        return fail(p, lx, type.col, "unknown light type '", tg_tok_str(&type, buf),
+        return fail(p, lx, type.col, "unknown light type '", tgi_tok_str(&type, buf),
                     "'; expected directional, point or spot");
     if (st) return st;
     if (l.type == TG_LIGHT_DIRECTIONAL) {
@@ -939,12 +940,12 @@ static tg_status st_light(tg_parser *p, tg_lexer *lx, const tg_token *kw)
         if ((st = check_range(p, lx, &v[5], "angle", 0, TG_R(90.0f), LO_OPEN,
                               "in (0, 90] degrees (the cone's half angle)")))
             return st;
-        l.angle = tg_deg_to_rad(v[5].v[0]);
+        l.angle = tgi_deg_to_rad(v[5].v[0]);
     }
     if (p->lights >= TG_SCENE_MAX_LIGHTS) {
         fail(p, lx, kw->col, "too many lights (the limit is ", NULL, NULL);
-        tg_error_append_int(p->err, TG_SCENE_MAX_LIGHTS);
-        tg_error_append(p->err, ")");
+        tgi_error_append_int(p->err, TG_SCENE_MAX_LIGHTS);
+        tgi_error_append(p->err, ")");
         return TG_ERR_INPUT;
     }
     if (p->fill) p->scene->lights[p->lights] = l;
@@ -953,10 +954,10 @@ static tg_status st_light(tg_parser *p, tg_lexer *lx, const tg_token *kw)
 }
 
 /* `count` positional numbers, none negative when nonneg is set. */
-static tg_status positional(tg_parser *p, tg_lexer *lx, const char *what, int count,
+static tg_status positional(tgi_parser *p, tgi_lexer *lx, const char *what, int count,
                             int nonneg, tg_real *out)
 {
-    tg_token toks[27];
+    tgi_token toks[27];
     char buf[48];
     tg_status st;
     int i;
@@ -965,19 +966,19 @@ static tg_status positional(tg_parser *p, tg_lexer *lx, const char *what, int co
     for (i = 0; nonneg && i < count; i++)
         if (out[i] < 0) {
             fail(p, lx, toks[i].col, "'", what, "' must be 0 or more, got '");
-            tg_error_append(p->err, tg_tok_str(&toks[i], buf));
-            tg_error_append(p->err, "'");
+            tgi_error_append(p->err, tgi_tok_str(&toks[i], buf));
+            tgi_error_append(p->err, "'");
             return TG_ERR_INPUT;
         }
     return TG_OK;
 }
 
-static tg_status st_env(tg_parser *p, tg_lexer *lx, const tg_token *kw)
+static tg_status st_env(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
 {
     static const key_spec sky_spec[] = {{"sky", K_VEC3, 1}, {"ground", K_VEC3, 1}, {"up", K_VEC3, 0}};
     key_val v[MAX_SPEC];
-    tg_env env;
-    tg_token type;
+    tgi_env env;
+    tgi_token type;
     tg_status st;
     tg_real num[27];
     char buf[48];
@@ -985,14 +986,14 @@ static tg_status st_env(tg_parser *p, tg_lexer *lx, const tg_token *kw)
     if (p->have_env)
         return fail(p, lx, kw->col, "duplicate 'env' statement; only one is allowed", NULL, NULL);
     memset(&env, 0, sizeof env);
-    if (!tg_lex_peek(lx, &type))
-        return fail(p, lx, tg_lex_eol_col(lx), "'env' expects a type: uniform, sky or sh9", NULL, NULL);
-    if (tg_tok_is(&type, "uniform")) {
-        tg_lex_token(lx, &type);
+    if (!tgi_lex_peek(lx, &type))
+        return fail(p, lx, tgi_lex_eol_col(lx), "'env' expects a type: uniform, sky or sh9", NULL, NULL);
+    if (tgi_tok_is(&type, "uniform")) {
+        tgi_lex_token(lx, &type);
         if ((st = positional(p, lx, "uniform", 3, 1, num))) return st;
         env.type = TG_ENV_UNIFORM;
         env.uniform = tg_v3(num[0], num[1], num[2]);
-    } else if (tg_tok_is(&type, "sky")) {
+    } else if (tgi_tok_is(&type, "sky")) {
         if ((st = parse_keys(p, lx, kw, sky_spec, NSPEC(sky_spec), v))) return st;
         if ((st = check_color(p, lx, &v[0], "sky")) || (st = check_color(p, lx, &v[1], "ground")))
             return st;
@@ -1001,36 +1002,36 @@ static tg_status st_env(tg_parser *p, tg_lexer *lx, const tg_token *kw)
         env.ground = kv_vec3(&v[1]);
         env.up = tg_v3(0, TG_ONE, 0);
         if (v[2].present && (st = kv_dir(p, lx, &v[2], "up", &env.up))) return st;
-    } else if (tg_tok_is(&type, "sh9")) {
-        tg_lex_token(lx, &type);
+    } else if (tgi_tok_is(&type, "sh9")) {
+        tgi_lex_token(lx, &type);
         if ((st = positional(p, lx, "sh9", 27, 0, num))) return st;
         env.type = TG_ENV_SH9;
         for (i = 0; i < 9; i++) env.sh9[i] = tg_v3(num[3 * i], num[3 * i + 1], num[3 * i + 2]);
     } else
-        return fail(p, lx, type.col, "unknown env type '", tg_tok_str(&type, buf),
+        return fail(p, lx, type.col, "unknown env type '", tgi_tok_str(&type, buf),
                     "'; expected uniform, sky or sh9");
     p->have_env = 1;
     if (p->fill) p->scene->env = env;
     return TG_OK;
 }
 
-static tg_status int_range(tg_parser *p, const tg_lexer *lx, const key_val *kv,
+static tg_status int_range(tgi_parser *p, const tgi_lexer *lx, const key_val *kv,
                            const char *key, long lo, long hi)
 {
     if (kv->i >= lo && kv->i <= hi) return TG_OK;
     fail(p, lx, kv->tok[0].col, "'", key, "' must be an integer from ");
-    tg_error_append_int(p->err, lo);
-    tg_error_append(p->err, " to ");
-    tg_error_append_int(p->err, hi);
+    tgi_error_append_int(p->err, lo);
+    tgi_error_append(p->err, " to ");
+    tgi_error_append_int(p->err, hi);
     return TG_ERR_INPUT;
 }
 
-static tg_status st_gi(tg_parser *p, tg_lexer *lx, const tg_token *kw)
+static tg_status st_gi(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
 {
     static const key_spec spec[] = {
         {"radius", K_REAL, 0}, {"slices", K_INT, 0}, {"samples", K_INT, 0}, {"bounces", K_INT, 0}};
     key_val v[MAX_SPEC];
-    tg_gi_settings gi;
+    tgi_gi_settings gi;
     tg_status st;
     if (p->have_gi)
         return fail(p, lx, kw->col, "duplicate 'gi' statement; only one is allowed", NULL, NULL);
@@ -1064,35 +1065,35 @@ static const struct { const char *word; uint32_t bit; } effect_words[] = {
     {"direct", TG_EFFECT_DIRECT}, {"shadows", TG_EFFECT_SHADOWS}, {"far", TG_EFFECT_FAR},
     {"near", TG_EFFECT_NEAR}, {"ao", TG_EFFECT_AO}, {"reprojection", TG_EFFECT_REPROJECTION}};
 
-static tg_status st_effects(tg_parser *p, tg_lexer *lx, const tg_token *kw)
+static tg_status st_effects(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
 {
     static const char expect[] = "; expected 'auto' or a list of: direct shadows far near ao reprojection";
-    tg_token t;
+    tgi_token t;
     uint32_t bits = 0;
     char buf[48];
     size_t i;
     int n = 0, is_auto = 0;
     if (p->have_effects)
         return fail(p, lx, kw->col, "duplicate 'effects' statement; only one is allowed", NULL, NULL);
-    while (tg_lex_token(lx, &t)) {
-        if (tg_tok_is(&t, "auto")) {
+    while (tgi_lex_token(lx, &t)) {
+        if (tgi_tok_is(&t, "auto")) {
             if (n > 0) return fail(p, lx, t.col, "'auto' cannot be mixed with a list of effects", NULL, NULL);
             is_auto = 1;
         } else {
             if (is_auto) return fail(p, lx, t.col, "'auto' cannot be mixed with a list of effects", NULL, NULL);
             for (i = 0; i < sizeof effect_words / sizeof effect_words[0]; i++)
-                if (tg_tok_is(&t, effect_words[i].word)) break;
+                if (tgi_tok_is(&t, effect_words[i].word)) break;
             if (i == sizeof effect_words / sizeof effect_words[0])
             {
-                fail(p, lx, t.col, "unknown effect '", tg_tok_str(&t, buf), "'");
-                tg_error_append(p->err, expect);
+                fail(p, lx, t.col, "unknown effect '", tgi_tok_str(&t, buf), "'");
+                tgi_error_append(p->err, expect);
                 return TG_ERR_INPUT;
             }
             bits |= effect_words[i].bit;
         }
         n++;
     }
-    if (n == 0) return fail(p, lx, tg_lex_eol_col(lx), "'effects' expects a value", expect, NULL);
+    if (n == 0) return fail(p, lx, tgi_lex_eol_col(lx), "'effects' expects a value", expect, NULL);
     p->have_effects = 1;
     if (p->fill) {
         p->scene->effects_auto = is_auto;
@@ -1111,32 +1112,32 @@ static const struct { const char *kw; statement_fn fn; } statements[] = {
 /* the passes                                                            */
 /* ===================================================================== */
 
-static void reset_counts(tg_parser *p)
+static void reset_counts(tgi_parser *p)
 {
     p->tris = p->materials = p->objects = p->object_keys = p->camera_keys = p->lights = 0;
     p->usemtl_bound = 0;
     p->have_camera = p->have_env = p->have_gi = p->have_effects = 0;
 }
 
-static tg_status run_pass(tg_parser *p, const char *text, size_t size)
+static tg_status run_pass(tgi_parser *p, const char *text, size_t size)
 {
-    tg_lexer lx;
-    tg_token kw;
+    tgi_lexer lx;
+    tgi_token kw;
     tg_status st;
     char buf[48];
     size_t i, n = sizeof statements / sizeof statements[0];
     int r;
     reset_counts(p);
-    tg_lex_init(&lx, text, size, p->file);
-    while ((r = tg_lex_line(&lx, p->err)) > 0) {
-        if (!tg_lex_token(&lx, &kw)) continue;
+    tgi_lex_init(&lx, text, size, p->file);
+    while ((r = tgi_lex_line(&lx, p->err)) > 0) {
+        if (!tgi_lex_token(&lx, &kw)) continue;
         for (i = 0; i < n; i++)
-            if (tg_tok_is(&kw, statements[i].kw)) break;
+            if (tgi_tok_is(&kw, statements[i].kw)) break;
         if (i == n) {
-            fail(p, &lx, kw.col, "unknown keyword '", tg_tok_str(&kw, buf), "'; expected one of:");
+            fail(p, &lx, kw.col, "unknown keyword '", tgi_tok_str(&kw, buf), "'; expected one of:");
             for (i = 0; i < n; i++) {
-                tg_error_append(p->err, " ");
-                tg_error_append(p->err, statements[i].kw);
+                tgi_error_append(p->err, " ");
+                tgi_error_append(p->err, statements[i].kw);
             }
             return TG_ERR_INPUT;
         }
@@ -1144,7 +1145,7 @@ static tg_status run_pass(tg_parser *p, const char *text, size_t size)
     }
     if (r < 0) return TG_ERR_INPUT;
     if (!p->have_camera && p->camera_keys == 0)
-        return tg_parse_fail(p, p->file, lx.lineno > 0 ? lx.lineno : 1, 1,
+        return tgi_parse_fail(p, p->file, lx.lineno > 0 ? lx.lineno : 1, 1,
                              "the scene has no 'camera' statement; expected "
                              "'camera pos X Y Z target X Y Z' (or camera_key lines)", NULL, NULL);
     return TG_OK;
@@ -1153,7 +1154,7 @@ static tg_status run_pass(tg_parser *p, const char *text, size_t size)
 static void scene_defaults(tg_scene *s)
 {
     s->camera.up = tg_v3(0, TG_ONE, 0);
-    s->camera.fov = tg_deg_to_rad(TG_R(60.0f));
+    s->camera.fov = tgi_deg_to_rad(TG_R(60.0f));
     s->camera.znear = TG_R(0.05f);
     s->camera.zfar = TG_R(1000.0f);
     s->env.type = TG_ENV_NONE;
@@ -1165,7 +1166,7 @@ static void scene_defaults(tg_scene *s)
 }
 
 /* After pass 2: counts, key ranges per object, a camera from the keys. */
-static void finish_scene(tg_parser *p)
+static void finish_scene(tgi_parser *p)
 {
     tg_scene *s = p->scene;
     size_t i;
@@ -1176,7 +1177,7 @@ static void finish_scene(tg_parser *p)
     s->light_count = (int)p->lights;
     s->tri_count = (int)p->tris;
     for (i = 0; i < p->object_keys; i++) {
-        tg_object *o = &s->objects[p->key_owner[i]];
+        tgi_object *o = &s->objects[p->key_owner[i]];
         if (o->key_count == 0) o->first_key = (int)i;
         o->key_count++;
     }
@@ -1199,13 +1200,13 @@ tg_status tg_scene_parse(const char *text, size_t size, const char *filename,
                          const tg_io *io, tg_arena *arena, tg_scene **scene,
                          tg_error *err)
 {
-    tg_parser p;
+    tgi_parser p;
     tg_scene *s;
     tg_status st;
     size_t at, perm_end, used0 = arena ? arena->used : 0, tris3 = 0;
     int bad = 0;
 
-    tg_error_clear(err);
+    tgi_error_clear(err);
     if (scene) *scene = NULL;
     memset(&p, 0, sizeof p);
     p.file = filename ? filename : "<scene>";
@@ -1222,35 +1223,35 @@ tg_status tg_scene_parse(const char *text, size_t size, const char *filename,
     at = used0;
     bad |= tg_size_mul(p.tris, 3, &tris3);
     bad |= plan_add(&at, 1, sizeof(tg_scene));
-    bad |= plan_add(&at, p.material_cap, sizeof(tg_material));
-    bad |= plan_add(&at, p.objects, sizeof(tg_object));
-    bad |= plan_add(&at, p.object_keys, sizeof(tg_key));
-    bad |= plan_add(&at, p.camera_keys, sizeof(tg_camera_key));
+    bad |= plan_add(&at, p.material_cap, sizeof(tgi_material));
+    bad |= plan_add(&at, p.objects, sizeof(tgi_object));
+    bad |= plan_add(&at, p.object_keys, sizeof(tgi_key));
+    bad |= plan_add(&at, p.camera_keys, sizeof(tgi_camera_key));
     bad |= plan_add(&at, tris3, sizeof(tg_vec3));
     bad |= plan_add(&at, tris3, sizeof(tg_vec3));
     bad |= plan_add(&at, p.tris, sizeof(uint16_t));
     bad |= plan_add(&at, p.tris, sizeof(uint16_t));
-    bad |= plan_add(&at, p.lights, sizeof(tg_light));
+    bad |= plan_add(&at, p.lights, sizeof(tgi_light));
     perm_end = at;
     bad |= plan_add(&at, p.object_keys, sizeof(uint16_t));
     bad |= plan_add(&at, p.obj_scratch, sizeof(tg_vec3));
     (void)perm_end;
     if (bad || at > arena->size) {
-        tg_error_set(err, TG_ERR_MEMORY, p.file, 0, 0, "the arena is too small for the scene");
+        tgi_error_set(err, TG_ERR_MEMORY, p.file, 0, 0, "the arena is too small for the scene");
         if (err) err->bytes_needed = bad ? (size_t)-1 : at;
         return TG_ERR_MEMORY;
     }
 
     s = (tg_scene *)tg_arena_alloc(arena, sizeof(tg_scene));
-    s->materials = (tg_material *)tg_arena_alloc(arena, p.material_cap * sizeof(tg_material));
-    s->objects = (tg_object *)tg_arena_alloc(arena, p.objects * sizeof(tg_object));
-    s->object_keys = (tg_key *)tg_arena_alloc(arena, p.object_keys * sizeof(tg_key));
-    s->camera_keys = (tg_camera_key *)tg_arena_alloc(arena, p.camera_keys * sizeof(tg_camera_key));
+    s->materials = (tgi_material *)tg_arena_alloc(arena, p.material_cap * sizeof(tgi_material));
+    s->objects = (tgi_object *)tg_arena_alloc(arena, p.objects * sizeof(tgi_object));
+    s->object_keys = (tgi_key *)tg_arena_alloc(arena, p.object_keys * sizeof(tgi_key));
+    s->camera_keys = (tgi_camera_key *)tg_arena_alloc(arena, p.camera_keys * sizeof(tgi_camera_key));
     s->tri_pos = (tg_vec3 *)tg_arena_alloc(arena, tris3 * sizeof(tg_vec3));
     s->tri_nrm = (tg_vec3 *)tg_arena_alloc(arena, tris3 * sizeof(tg_vec3));
     s->tri_material = (uint16_t *)tg_arena_alloc(arena, p.tris * sizeof(uint16_t));
     s->tri_object = (uint16_t *)tg_arena_alloc(arena, p.tris * sizeof(uint16_t));
-    s->lights = (tg_light *)tg_arena_alloc(arena, p.lights * sizeof(tg_light));
+    s->lights = (tgi_light *)tg_arena_alloc(arena, p.lights * sizeof(tgi_light));
     perm_end = arena->used;
     p.key_owner = (uint16_t *)tg_arena_alloc(arena, p.object_keys * sizeof(uint16_t));
     p.scratch = (tg_vec3 *)tg_arena_alloc(arena, p.obj_scratch * sizeof(tg_vec3));

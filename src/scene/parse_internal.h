@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * parse_internal.h - what the scene parser (parse.c) and the OBJ/MTL loader
  * (obj.c) share: the limits, the line lexer, and the parser state that both
@@ -31,41 +32,41 @@
 #define TG_GI_BOUNCES_MAX 100
 
 /* ---- lexing: one line at a time, tokens split by blanks ---- */
-typedef struct tg_token {
+typedef struct tgi_token {
     const char *s;
     size_t n;
     int col;                            /* 1-based byte column */
-} tg_token;
+} tgi_token;
 
-typedef struct tg_lexer {
+typedef struct tgi_lexer {
     const char *text, *end;             /* the whole input */
     const char *next;                   /* start of the next line */
     const char *line, *line_end;        /* the current line (no newline) */
     const char *cur;                    /* cursor within the line */
     int lineno;                         /* 1-based */
     const char *file;                   /* name used in messages */
-} tg_lexer;
+} tgi_lexer;
 
-void tg_lex_init(tg_lexer *lx, const char *text, size_t size, const char *file);
+void tgi_lex_init(tgi_lexer *lx, const char *text, size_t size, const char *file);
 /* Advance to the next line; 0 at the end of input.  Rejects NUL bytes and
  * over-long lines (returns -1 with the error set). */
-int tg_lex_line(tg_lexer *lx, tg_error *err);
+int tgi_lex_line(tgi_lexer *lx, tg_error *err);
 /* Next token on the line ('#' ends it); 0 at the end of the line. */
-int tg_lex_token(tg_lexer *lx, tg_token *t);
-int tg_lex_peek(tg_lexer *lx, tg_token *t);
+int tgi_lex_token(tgi_lexer *lx, tgi_token *t);
+int tgi_lex_peek(tgi_lexer *lx, tgi_token *t);
 /* Column just past the last character of the line (for "missing" errors). */
-int tg_lex_eol_col(const tg_lexer *lx);
+int tgi_lex_eol_col(const tgi_lexer *lx);
 /* The rest of the line trimmed (without a comment), as a token. */
-int tg_lex_rest(tg_lexer *lx, tg_token *t);
-int tg_tok_is(const tg_token *t, const char *word);
+int tgi_lex_rest(tgi_lexer *lx, tgi_token *t);
+int tgi_tok_is(const tgi_token *t, const char *word);
 
 /* Whole token as a number: 0 ok, 1 not a number, 2 out of range. */
-int tg_tok_real(const tg_token *t, tg_real *out);
+int tgi_tok_real(const tgi_token *t, tg_real *out);
 /* Whole token as a decimal integer (optional sign): 0 ok, 1 not, 2 range. */
-int tg_tok_int(const tg_token *t, long *out);
+int tgi_tok_int(const tgi_token *t, long *out);
 
 /* ---- the parser state ---- */
-typedef struct tg_parser {
+typedef struct tgi_parser {
     int fill;                           /* 0: count pass, 1: fill pass */
     const char *file;                   /* scene file name for messages */
     const tg_io *io;
@@ -80,50 +81,50 @@ typedef struct tg_parser {
     tg_vec3 *scratch;                   /* pass 2: room for obj_scratch vec3 */
     uint16_t *key_owner;                /* pass 2: object of each object key */
     int have_camera, have_env, have_gi, have_effects;
-} tg_parser;
+} tgi_parser;
 
 /* A token quoted for messages (at most 40 bytes, then "..."). */
-const char *tg_tok_str(const tg_token *t, char buf[48]);
+const char *tgi_tok_str(const tgi_token *t, char buf[48]);
 /* Whether a token equals a NUL-terminated name. */
-int tg_tok_eq_name(const tg_token *t, const char *name);
+int tgi_tok_eq_name(const tgi_token *t, const char *name);
 
 /* Set an input error at (file, line, col): message built from up to three
  * pieces (NULL pieces are skipped).  Returns TG_ERR_INPUT. */
-tg_status tg_parse_fail(tg_parser *p, const char *file, int line, int col,
+tg_status tgi_parse_fail(tgi_parser *p, const char *file, int line, int col,
                         const char *a, const char *b, const char *c);
 
 /* Start an object (pass 2: checks the name is unique), add triangles to it,
  * and add a material.  Each returns TG_OK or an error already set. */
-tg_status tg_parse_begin_object(tg_parser *p, const tg_lexer *lx, int col,
-                                const tg_token *name);
+tg_status tgi_parse_begin_object(tgi_parser *p, const tgi_lexer *lx, int col,
+                                const tgi_token *name);
 /* Count (pass 1) or store (pass 2) one triangle.  n may be NULL: face normal. */
-tg_status tg_parse_emit_tri(tg_parser *p, const tg_lexer *lx, int col,
+tg_status tgi_parse_emit_tri(tgi_parser *p, const tgi_lexer *lx, int col,
                             const tg_vec3 pos[3], const tg_vec3 *nrm,
                             int material);
 /* Count (pass 1) or append (pass 2) a material; *index gets its index. */
-tg_status tg_parse_add_material(tg_parser *p, const tg_lexer *lx, int col,
-                                const tg_material *m, int *index);
+tg_status tgi_parse_add_material(tgi_parser *p, const tgi_lexer *lx, int col,
+                                const tgi_material *m, int *index);
 /* Unit vector (exact for axis-aligned ones); zero when too short. */
-tg_vec3 tg_unit(tg_vec3 v);
+tg_vec3 tgi_unit(tg_vec3 v);
 /* Degrees to radians, precise in Q16.16 too. */
-tg_real tg_deg_to_rad(tg_real deg);
+tg_real tgi_deg_to_rad(tg_real deg);
 /* Face normal of a triangle, robust in fixed point; 0 if degenerate. */
-int tg_face_normal(tg_vec3 a, tg_vec3 b, tg_vec3 c, tg_vec3 *n);
+int tgi_face_normal(tg_vec3 a, tg_vec3 b, tg_vec3 c, tg_vec3 *n);
 
 /* A rigid mesh transform: p' = R (s p) + t. */
-typedef struct tg_xform {
-    tg_mat4 rot;
+typedef struct tgi_xform {
+    tgi_mat4 rot;
     tg_real scale;
     tg_vec3 translate;
-} tg_xform;
+} tgi_xform;
 
 /* Load the OBJ named by `path_tok` (relative to the scene file) as the
  * current object, with `material` for faces before any usemtl.  `objname`
  * prefixes usemtl material names ("objname/mtlname"). */
-tg_status tg_obj_mesh(tg_parser *p, const tg_lexer *lx, const tg_token *path_tok,
-                      const tg_xform *xf, int material, const char *objname);
+tg_status tgi_obj_mesh(tgi_parser *p, const tgi_lexer *lx, const tgi_token *path_tok,
+                      const tgi_xform *xf, int material, const char *objname);
 
 /* Join dir(base) and rel into out (size TG_PATH_MAX); 0 ok, 1 too long. */
-int tg_path_join(const char *base, const char *rel, size_t rel_n, char *out);
+int tgi_path_join(const char *base, const char *rel, size_t rel_n, char *out);
 
 #endif

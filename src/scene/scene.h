@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * scene.h - the parsed scene, as every pass sees it.
  *
@@ -17,77 +18,77 @@
 #define TG_NAME_MAX 32          /* names are at most 31 bytes */
 #define TG_LINE_MAX 4096        /* longest scene/OBJ line accepted */
 
-typedef struct tg_material {
+typedef struct tgi_material {
     char name[TG_NAME_MAX];
     tg_vec3 albedo;             /* linear RGB reflectance, each in [0, 1] */
     tg_real f0;                 /* Fresnel reflectance at normal incidence, [0, 1] */
     tg_vec3 emissive;           /* linear RGB radiance, >= 0 */
     int twosided;               /* not back-face culled; normal flips to face the viewer */
-} tg_material;
+} tgi_material;
 
-typedef struct tg_key {         /* object_key: rigid transform at time t */
+typedef struct tgi_key {         /* object_key: rigid transform at time t */
     tg_real t;
     tg_vec3 translate;
     tg_vec3 axis;               /* unit rotation axis */
     tg_real angle;              /* radians */
-} tg_key;
+} tgi_key;
 
-typedef struct tg_object {
+typedef struct tgi_object {
     char name[TG_NAME_MAX];     /* "" when unnamed */
     int first_tri, tri_count;
     int first_key, key_count;   /* into scene->object_keys, sorted by t */
-} tg_object;
+} tgi_object;
 
-typedef struct tg_camera_key {
+typedef struct tgi_camera_key {
     tg_real t;
     tg_vec3 pos, target;
-} tg_camera_key;
+} tgi_camera_key;
 
-typedef enum tg_light_type { TG_LIGHT_DIRECTIONAL, TG_LIGHT_POINT, TG_LIGHT_SPOT } tg_light_type;
+typedef enum tgi_light_type { TG_LIGHT_DIRECTIONAL, TG_LIGHT_POINT, TG_LIGHT_SPOT } tgi_light_type;
 
-typedef struct tg_light {
-    tg_light_type type;
+typedef struct tgi_light {
+    tgi_light_type type;
     tg_vec3 pos;                /* point, spot */
     tg_vec3 dir;                /* unit direction the light travels (directional, spot) */
     tg_vec3 color;              /* linear RGB */
     tg_real intensity;          /* default 1 */
     tg_real angle;              /* spot: half angle of the cone, radians */
     int shadows;
-} tg_light;
+} tgi_light;
 
-typedef enum tg_env_type { TG_ENV_NONE, TG_ENV_UNIFORM, TG_ENV_SKY, TG_ENV_SH9 } tg_env_type;
+typedef enum tgi_env_type { TG_ENV_NONE, TG_ENV_UNIFORM, TG_ENV_SKY, TG_ENV_SH9 } tgi_env_type;
 
-typedef struct tg_env {
-    tg_env_type type;
+typedef struct tgi_env {
+    tgi_env_type type;
     tg_vec3 uniform;            /* TG_ENV_UNIFORM radiance */
     tg_vec3 sky, ground, up;    /* TG_ENV_SKY (up is unit) */
     tg_vec3 sh9[9];             /* TG_ENV_SH9: radiance coefficients L00, L1-1, L10, L11, L2-2, L2-1, L20, L21, L22 */
-} tg_env;
+} tgi_env;
 
-typedef struct tg_scene_camera {
+typedef struct tgi_scene_camera {
     tg_vec3 pos, target, up;    /* up defaults to +Y */
     tg_real fov;                /* vertical field of view, radians (default 60 deg) */
     tg_real znear, zfar;        /* defaults 0.05 and 1000 */
-} tg_scene_camera;
+} tgi_scene_camera;
 
 /* gi line; a field < 0 (or 0 for the ints) means "not given" */
-typedef struct tg_gi_settings {
+typedef struct tgi_gi_settings {
     tg_real radius;
     int slices, samples, bounces;
-} tg_gi_settings;
+} tgi_gi_settings;
 
 struct tg_scene {
-    tg_scene_camera camera;
+    tgi_scene_camera camera;
     int camera_key_count;
-    tg_camera_key *camera_keys; /* sorted by t */
+    tgi_camera_key *camera_keys; /* sorted by t */
 
     int material_count;
-    tg_material *materials;
+    tgi_material *materials;
 
     int object_count;
-    tg_object *objects;
+    tgi_object *objects;
     int object_key_count;
-    tg_key *object_keys;
+    tgi_key *object_keys;
 
     int tri_count;
     tg_vec3 *tri_pos;           /* 3 per triangle, world space rest pose */
@@ -96,9 +97,9 @@ struct tg_scene {
     uint16_t *tri_object;       /* per triangle */
 
     int light_count;
-    tg_light *lights;
-    tg_env env;
-    tg_gi_settings gi;
+    tgi_light *lights;
+    tgi_env env;
+    tgi_gi_settings gi;
     int effects_auto;           /* 1 unless an `effects LIST` line was given */
     uint32_t effects;           /* TG_EFFECT_* listed, when !effects_auto */
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * fuzz_common.h - shared by the libFuzzer targets (hosted, built by
  * platform/sanitize.mk with clang -fsanitize=fuzzer,address,undefined).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * fuzz_obj.c - libFuzzer target for the OBJ/MTL loader: input OBJ [~~~ MTL]
  * (see fuzz_common.h), loaded as a mesh of a fixed scene; a mesh that loads

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * fuzz_scene.c - libFuzzer target for the scene parser (tg_scene_parse):
  * input SCENE [~~~ OBJ [~~~ MTL]] (see fuzz_common.h); a scene that parses
