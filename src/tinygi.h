@@ -37,7 +37,63 @@
 #include <stdint.h>
 #include "core/real.h"
 
-#define TG_VERSION "0.1.0"
+#define TG_VERSION "0.2.0"
+
+/* ==== LIMITS AND DEFAULTS ================================================
+ * Every limit tinygi enforces, in one place (in the manner of luaconf.h),
+ * each with its unit and its reason.  The scene parser, the plan
+ * (tg_plan_make), the CLI and its --help, the README and
+ * src/scene/format.md all use these; a value past a limit is refused with a
+ * message that names it (FILE:LINE:COL in a scene file).  A build may LOWER
+ * a limit marked [policy] by defining it first; the others follow from the
+ * number formats and are fixed.
+ */
+/* -- image -- */
+#define TG_MAX_IMAGE_SIDE 8192          /* pixels per side: the rasterizer's 28.4
+                                           screen coordinates with a guard band of
+                                           GUARD screens stay within 2^20 */
+#if !defined(TG_MAX_IMAGE_PIXELS)
+#define TG_MAX_IMAGE_PIXELS 16777216L   /* [policy] pixels per frame (2^24: 4096x4096) */
+#endif
+#if !defined(TG_MAX_FRAMES)
+#define TG_MAX_FRAMES 100000            /* [policy] frames in one request */
+#endif
+/* -- GI settings (request fields and the scene's `gi` line) -- */
+#define TG_MAX_SLICES 8                 /* slices per pixel: the kernel's per-slice table */
+#define TG_MAX_SAMPLES 256              /* horizon samples per slice side */
+#define TG_MAX_BOUNCES 100              /* kernel iterations on a frame without history */
+#define TG_MAX_RADIUS 10000             /* gather radius, world units (0 is allowed) */
+#define TG_MAX_EXPOSURE 1000            /* linear multiplier before the tonemapper (0 allowed) */
+#define TG_MIN_SHADOW_MAP 8             /* shadow-map texels per side: the PCF footprint */
+#define TG_MAX_SHADOW_MAP 8192          /* ... and the rasterizer's largest side */
+#define TG_DEFAULT_SLICES 2             /* HBIL sec. 3.3: 2 slices per pixel */
+#define TG_DEFAULT_SAMPLES 16
+#define TG_DEFAULT_BOUNCES 1
+#define TG_DEFAULT_RADIUS 1             /* world units, when neither request nor scene gives one */
+#define TG_DEFAULT_SHADOW_MAP 512       /* texels per side */
+#define TG_DEFAULT_WIDTH 320
+#define TG_DEFAULT_HEIGHT 240
+/* -- scene text and OBJ files -- */
+#define TG_MAX_LINE 4096                /* bytes in a scene or OBJ line, not counting the line end */
+#define TG_MAX_NAME 31                  /* bytes in a material or object name */
+#if !defined(TG_MAX_TRIANGLES)
+#define TG_MAX_TRIANGLES 4000000L       /* [policy] triangles in a scene (meshes included) */
+#endif
+#define TG_MAX_MATERIALS 1024           /* materials in a scene */
+#define TG_MAX_OBJECTS 65535            /* objects: a 16-bit object id per triangle */
+#define TG_MAX_LIGHTS 64
+#define TG_MAX_KEYS 4096                /* camera keys; object keys likewise */
+#define TG_MIN_SPHERE_SEGMENTS 4
+#define TG_MAX_SPHERE_SEGMENTS 256
+#define TG_MAX_PATH 256                 /* a resolved mesh or MTL path, bytes with the NUL */
+#if !defined(TG_MAX_OBJ_VERTICES)
+#define TG_MAX_OBJ_VERTICES 4000000L    /* [policy] v, vn and vt lines each, per OBJ */
+#endif
+#define TG_MAX_MTLLIBS 8                /* mtllib files named by one OBJ */
+#if !defined(TG_MAX_FILE_BYTES)
+#define TG_MAX_FILE_BYTES (1L << 30)    /* [policy] a scene, OBJ or MTL file (1 GiB) */
+#endif
+/* ======================================================================= */
 
 typedef enum tg_status {
     TG_OK = 0,
