@@ -6,70 +6,7 @@
  * composed frame: an open plane has AO ~ 1, a white furnace returns the
  * albedo, a closed lit room converges over frames and stays finite.
  */
-#include <stdlib.h>
-#include "check.h"
-
-typedef struct rendered {
-    tg_scene *scene;
-    tg_plan plan;
-    tg_frame *frame;
-    void *scene_mem, *frame_mem;
-    int ok;
-} rendered;
-
-static int setup(rendered *r, const char *text, const tg_request *req)
-{
-    tg_arena arena;
-    tg_error err;
-    size_t scene_bytes = 1u << 22;
-    memset(r, 0, sizeof *r);
-    r->scene_mem = malloc(scene_bytes);
-    tg_arena_init(&arena, r->scene_mem, scene_bytes);
-    if (tg_scene_parse(text, strlen(text), "test.scene", NULL, &arena, &r->scene, &err) != TG_OK) {
-        char msg[512];
-        tg_error_format(&err, msg, sizeof msg);
-        fprintf(stderr, "%s\n", msg);
-        return 0;
-    }
-    if (tg_plan_make(&r->plan, r->scene, req, &err) != TG_OK) return 0;
-    r->frame_mem = malloc(r->plan.total_bytes);
-    if (tg_frame_create(&r->plan, r->frame_mem, r->plan.total_bytes, &r->frame, &err) != TG_OK) return 0;
-    r->ok = 1;
-    return 1;
-}
-
-static void teardown(rendered *r)
-{
-    free(r->scene_mem);
-    free(r->frame_mem);
-    memset(r, 0, sizeof *r);
-}
-
-static tg_request request(int w, int h, uint32_t aovs)
-{
-    tg_request q;
-    tg_request_defaults(&q);
-    q.width = w;
-    q.height = h;
-    q.aovs = aovs;
-    return q;
-}
-
-/* Read a whole AOV (channels * w * h doubles). */
-static double *read_aov(const rendered *r, tg_aov aov)
-{
-    int w = r->plan.request.width, h = r->plan.request.height, c = tg_aov_channels(aov), y, i;
-    double *out = malloc(sizeof(double) * (size_t)(w * h * c));
-    tg_real *row = malloc(sizeof(tg_real) * (size_t)(w * c));
-    for (y = 0; y < h; y++) {
-        tg_frame_aov_row(r->frame, aov, y, row);
-        for (i = 0; i < w * c; i++) out[(size_t)y * (size_t)(w * c) + (size_t)i] = check_d(row[i]);
-    }
-    free(row);
-    return out;
-}
-
-#define AOVBIT(a) (1u << (a))
+#include "frame_fixture.h"
 
 static const char *lit_room =
     "camera pos 0 1 -3.5 target 0 1 0 fov 60\n"

@@ -66,9 +66,20 @@ static void aov_span(const tg_frame *f, tg_aov aov, int y, int x0, int w, tg_rea
     }
 }
 
-void tg_frame_aov_row(const tg_frame *f, tg_aov aov, int y, tg_real *out)
+/* Rows outside [0, height) are refused: zeros, never a read outside. */
+static int row_outside(const tg_frame *f, int y)
 {
+    return y < 0 || y >= f->height;
+}
+
+tg_status tg_frame_aov_row(const tg_frame *f, tg_aov aov, int y, tg_real *out)
+{
+    if (row_outside(f, y)) {
+        memset(out, 0, (size_t)f->width * (size_t)tg_aov_channels(aov) * sizeof(tg_real));
+        return TG_ERR_INPUT;
+    }
     aov_span(f, aov, y, 0, f->width, out);
+    return TG_OK;
 }
 
 static uint8_t unit_to_byte(tg_real v)
@@ -115,11 +126,16 @@ static void span8(const tg_frame *f, tg_aov aov, int y, int x0, int w, uint8_t *
     }
 }
 
-void tg_frame_aov_row8(const tg_frame *f, tg_aov aov, int y, uint8_t *rgb)
+tg_status tg_frame_aov_row8(const tg_frame *f, tg_aov aov, int y, uint8_t *rgb)
 {
     int x0;
+    if (row_outside(f, y)) {
+        memset(rgb, 0, (size_t)f->width * 3u);
+        return TG_ERR_INPUT;
+    }
     for (x0 = 0; x0 < f->width; x0 += SPAN) {
         int w = f->width - x0 < SPAN ? f->width - x0 : SPAN;
         span8(f, aov, y, x0, w, rgb + 3 * x0);
     }
+    return TG_OK;
 }

@@ -95,6 +95,11 @@ struct tg_frame {
  * the frame itself and then its buffers from arena and set *fp.  Returns 0,
  * or 1 when the arena is too small. */
 int tgi_frame_layout(tg_frame **fp, tg_plan *plan, tg_arena *arena);
+/* request.c: 1 (and err set) when a field of r is past its limit; then
+ * the unset GI settings from the scene or the defaults (1 when the
+ * scene's are past a limit). */
+int tgi_request_refused(const tg_request *r, tg_error *err);
+int tgi_request_resolve(tg_request *r, const tg_scene *s, tg_error *err);
 /* TG_NEED_* of a plan (plan.c). */
 uint32_t tgi_frame_needs(const tg_plan *plan);
 

@@ -21,6 +21,7 @@
 #include <string.h>
 #include "frame_internal.h"
 #include "../core/error.h"
+#include "../core/text.h"
 #include "../gi/hbil.h"
 #include "../gi/pushpull.h"
 #include "../gi/reproject.h"
@@ -116,18 +117,6 @@ uint32_t tgi_frame_needs(const tg_plan *p)
     return n;
 }
 
-static void resolve_request(tg_request *r, const tg_scene *s)
-{
-    if (r->slices <= 0) r->slices = s->gi.slices > 0 ? s->gi.slices : TG_HBIL_DEFAULT_SLICES;
-    if (r->samples <= 0) r->samples = s->gi.samples > 0 ? s->gi.samples : TG_HBIL_DEFAULT_SAMPLES;
-    if (r->radius < 0) r->radius = s->gi.radius >= 0 ? s->gi.radius : TG_ONE;
-    if (r->bounces < 0) r->bounces = s->gi.bounces >= 0 ? s->gi.bounces : 1;
-    if (r->frames < 1) r->frames = 1;
-    if (r->aovs == 0) r->aovs = AOV(TG_AOV_COLOR);
-    if (r->shadow_map_size <= 0) r->shadow_map_size = 512;
-    if (r->gi_scale != 2) r->gi_scale = 1;
-}
-
 tg_status tg_plan_make(tg_plan *plan, const tg_scene *scene, const tg_request *req, tg_error *err)
 {
     tg_frame probe, *pp = &probe;
@@ -136,19 +125,8 @@ tg_status tg_plan_make(tg_plan *plan, const tg_scene *scene, const tg_request *r
     memset(plan, 0, sizeof *plan);
     plan->request = *req;
     plan->scene = scene;
-    resolve_request(&plan->request, scene);
-    if (req->width < 1 || req->height < 1 || req->width > 8192 || req->height > 8192) {
-        tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "image size must be 1..8192 per side");
+    if (tgi_request_refused(req, err) || tgi_request_resolve(&plan->request, scene, err))
         return TG_ERR_INPUT;
-    }
-    if (plan->request.slices > TG_HBIL_MAX_SLICES || plan->request.samples > 256) {
-        tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "slices must be 1..8 and samples 1..256");
-        return TG_ERR_INPUT;
-    }
-    if ((unsigned)plan->request.technique >= TG_TECH_COUNT) {
-        tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "unknown technique");
-        return TG_ERR_INPUT;
-    }
     possible = possible_effects(scene, &plan->request);
     if (scene->effects_auto) plan->effects = wanted_effects(possible, plan->request.aovs);
     else plan->effects = scene->effects & possible;
@@ -402,65 +380,41 @@ int tgi_frame_layout(tg_frame **fp, tg_plan *plan, tg_arena *arena)
 
 /* ---- explain ---- */
 
-typedef struct text { char *buf; size_t size, at; } text;
-
-static void put(text *t, const char *s)
-{
-    size_t n = strlen(s);
-    if (t->size && t->at < t->size - 1) {
-        size_t room = t->size - 1 - t->at;
-        memcpy(t->buf + t->at, s, n < room ? n : room);
-        t->buf[t->at + (n < room ? n : room)] = '\0';
-    }
-    t->at += n;
-}
-
-static void put_uint(text *t, size_t v)
-{
-    char tmp[24], out[24];
-    int n = 0, i;
-    do { tmp[n++] = (char)('0' + v % 10u); v /= 10u; } while (v);
-    for (i = 0; i < n; i++) out[i] = tmp[n - 1 - i];
-    out[n] = '\0';
-    put(t, out);
-}
-
-static void put_effects(text *t, uint32_t e)
+static void put_effects(tgi_text *t, uint32_t e)
 {
     static const char *const names[6] = { "direct", "shadows", "far", "near", "ao", "reprojection" };
     int i, any = 0;
     for (i = 0; i < 6; i++) {
         if (!(e & (1u << i))) continue;
-        if (any) put(t, " ");
-        put(t, names[i]);
+        if (any) tgi_text_put(t, " ");
+        tgi_text_put(t, names[i]);
         any = 1;
     }
-    if (!any) put(t, "(none)");
+    if (!any) tgi_text_put(t, "(none)");
 }
 
 size_t tg_plan_explain(const tg_plan *plan, char *buf, size_t size)
 {
-    text t;
+    tgi_text t;
     int i;
     size_t pixels = (size_t)plan->request.width * (size_t)plan->request.height;
-    t.buf = buf; t.size = size; t.at = 0;
-    if (size) buf[0] = '\0';
-    put(&t, "plan: "); put_uint(&t, (size_t)plan->request.width); put(&t, "x");
-    put_uint(&t, (size_t)plan->request.height); put(&t, ", technique ");
-    put(&t, tg_technique_name(plan->request.technique)); put(&t, ", number type ");
-    put(&t, TG_NUMBER_NAME); put(&t, ", frames "); put_uint(&t, (size_t)plan->request.frames);
-    put(&t, "\neffects: "); put_effects(&t, plan->effects);
-    put(&t, "\nskipped: "); put_effects(&t, (~plan->effects) & 63u);
-    put(&t, "\npasses:\n");
+    tgi_text_init(&t, buf, size);
+    tgi_text_put(&t, "plan: "); tgi_text_put_uint(&t, (size_t)plan->request.width); tgi_text_put(&t, "x");
+    tgi_text_put_uint(&t, (size_t)plan->request.height); tgi_text_put(&t, ", technique ");
+    tgi_text_put(&t, tg_technique_name(plan->request.technique)); tgi_text_put(&t, ", number type ");
+    tgi_text_put(&t, TG_NUMBER_NAME); tgi_text_put(&t, ", frames "); tgi_text_put_uint(&t, (size_t)plan->request.frames);
+    tgi_text_put(&t, "\neffects: "); put_effects(&t, plan->effects);
+    tgi_text_put(&t, "\nskipped: "); put_effects(&t, (~plan->effects) & 63u);
+    tgi_text_put(&t, "\npasses:\n");
     for (i = 0; i < plan->pass_count; i++) {
-        put(&t, "  "); put_uint(&t, (size_t)(i + 1)); put(&t, ". "); put(&t, plan->passes[i]); put(&t, "\n");
+        tgi_text_put(&t, "  "); tgi_text_put_uint(&t, (size_t)(i + 1)); tgi_text_put(&t, ". "); tgi_text_put(&t, plan->passes[i]); tgi_text_put(&t, "\n");
     }
-    put(&t, "buffers:\n");
+    tgi_text_put(&t, "buffers:\n");
     for (i = 0; i < plan->buffer_count; i++) {
-        put(&t, "  "); put(&t, plan->buffers[i].name); put(&t, ": ");
-        put_uint(&t, plan->buffers[i].bytes); put(&t, " bytes\n");
+        tgi_text_put(&t, "  "); tgi_text_put(&t, plan->buffers[i].name); tgi_text_put(&t, ": ");
+        tgi_text_put_uint(&t, plan->buffers[i].bytes); tgi_text_put(&t, " bytes\n");
     }
-    put(&t, "total: "); put_uint(&t, plan->total_bytes); put(&t, " bytes, ");
-    put_uint(&t, pixels ? plan->total_bytes / pixels : 0); put(&t, " bytes per pixel\n");
+    tgi_text_put(&t, "total: "); tgi_text_put_uint(&t, plan->total_bytes); tgi_text_put(&t, " bytes, ");
+    tgi_text_put_uint(&t, pixels ? plan->total_bytes / pixels : 0); tgi_text_put(&t, " bytes per pixel\n");
     return t.at;
 }
