@@ -219,7 +219,8 @@ typedef struct tg_plan {
     tg_request request;        /* the request with every default resolved */
     uint32_t effects;          /* TG_EFFECT_* the frame simulates */
     int pass_count;
-    const char *passes[TG_PLAN_MAX_PASSES];
+    const char *passes[TG_PLAN_MAX_PASSES];   /* what a frame runs, in order */
+    unsigned char pass_rows[TG_PLAN_MAX_PASSES]; /* (internal) their rows in the pass table */
     int buffer_count;
     tg_plan_buffer buffers[TG_PLAN_MAX_BUFFERS];
     size_t total_bytes;        /* arena bytes tg_frame_create needs */

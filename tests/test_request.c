@@ -109,13 +109,21 @@ static void run_case(const sweep_case *c)
     if ((double)plan.total_bytes <= RENDER_CAP) render_case(c, &plan);
 }
 
-static sweep_case int_case(const char *field, int *slot_of_q, tg_request *q, long v, int expect)
+/* A case on the small request, its field still to be set. */
+static sweep_case new_case(const char *field, int expect)
 {
     sweep_case c;
     memset(&c, 0, sizeof c);
-    *slot_of_q = (int)v;
+    c.q = small_request();
     c.field = field;
     c.expect = expect;
+    return c;
+}
+
+static sweep_case int_case(const char *field, int *slot_of_q, tg_request *q, long v, int expect)
+{
+    sweep_case c = new_case(field, expect);
+    *slot_of_q = (int)v;
     c.q = *q;
     snprintf(c.value, sizeof c.value, "%ld", v);
     return c;
@@ -167,13 +175,9 @@ TEST(image_pixels_at_the_limit)
         { TG_MAX_IMAGE_SIDE, 2048, ACCEPT }, { TG_MAX_IMAGE_SIDE, 2049, REFUSE }, { 1, TG_MAX_IMAGE_SIDE, ACCEPT } };
     size_t k;
     for (k = 0; k < sizeof sizes / sizeof sizes[0]; k++) {
-        sweep_case c;
-        memset(&c, 0, sizeof c);
-        c.q = small_request();
+        sweep_case c = new_case("pixels", sizes[k][2]);
         c.q.width = sizes[k][0];
         c.q.height = sizes[k][1];
-        c.field = "pixels";
-        c.expect = sizes[k][2];
         snprintf(c.value, sizeof c.value, "%dx%d", sizes[k][0], sizes[k][1]);
         run_case(&c);
     }
@@ -185,12 +189,8 @@ TEST(aovs_bits_outside_the_list)
         { ALL_AOVS + 1u, REFUSE }, { 0x80000000u, REFUSE }, { 0xffffffffu, REFUSE } };
     size_t k;
     for (k = 0; k < sizeof bits / sizeof bits[0]; k++) {
-        sweep_case c;
-        memset(&c, 0, sizeof c);
-        c.q = small_request();
+        sweep_case c = new_case("aovs", (int)bits[k][1]);
         c.q.aovs = bits[k][0];
-        c.field = "aovs";
-        c.expect = (int)bits[k][1];
         snprintf(c.value, sizeof c.value, "0x%lx", (unsigned long)bits[k][0]);
         run_case(&c);
     }
@@ -198,12 +198,8 @@ TEST(aovs_bits_outside_the_list)
 
 static void real_case(const char *field, int is_radius, tg_real v, const char *shown, int expect)
 {
-    sweep_case c;
-    memset(&c, 0, sizeof c);
-    c.q = small_request();
+    sweep_case c = new_case(field, expect);
     if (is_radius) c.q.radius = v; else c.q.exposure = v;
-    c.field = field;
-    c.expect = expect;
     snprintf(c.value, sizeof c.value, "%s", shown);
     run_case(&c);
 }

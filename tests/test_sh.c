@@ -133,7 +133,8 @@ TEST(white_furnace)
     small_gb *g = (small_gb *)malloc(sizeof *g);
     tgi_env env;
     tg_vec3 sh[9];
-    tgi_rgb_planes far;
+    tgi_rgb far, out;
+    tgi_gview view;
     int i, c;
     memset(&env, 0, sizeof env);
     env.type = TG_ENV_UNIFORM; env.uniform = v3d(1, 1, 1);
@@ -141,7 +142,9 @@ TEST(white_furnace)
     make_gb(g, 0.5);
     tgi_far_rows(&g->gb, sh, NULL, NULL, NULL, NULL, TG_FAR_CONE_SH, e[0], e[1], e[2], 0, N);
     far.r = e[0]; far.g = e[1]; far.b = e[2];
-    tgi_compose_rows(&g->gb, NULL, &env, &far, 1, o[0], o[1], o[2], NULL, NULL, NULL, 0, N);
+    out.r = o[0]; out.g = o[1]; out.b = o[2];
+    tgi_gview_of(&view, &g->gb, NULL);
+    tgi_compose_rows(&view, &env, &far, 1, &out, NULL, 0, N);
     for (i = 0; i < N * N; i++)
         for (c = 0; c < 3; c++) {
             CHECK(fabs(dv(e[c][i]) - PI) <= tol_rel() * PI, "E %g want pi", dv(e[c][i]));
