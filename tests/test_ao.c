@@ -87,8 +87,8 @@ typedef struct technique {
 
 /* Bounds.  Open plane: every point-sample test is against the occluding
  * pixel's tangent plane and the horizon methods ignore samples on the
- * tangent plane, so a plane is exact at any angle (>= 0.95 as the issue
- * asks); ssao's sphere and vo without the normal are renormalised by 2 and
+ * tangent plane, so a plane is exact at any angle (>= 0.95, the bound every
+ * technique is held to); ssao's sphere and vo without the normal are renormalised by 2 and
  * exact by their symmetric patterns; gtao's slice quadrature of eq. 11.18
  * leaves ~0.98 at grazing angles with 4 slices; vo's area samples read a
  * tilted plane's depth spread over a footprint as roughness (Loos and Sloan

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * test_hardcases.c - the hard-case suite (issue 6 item 1): named scenes and
+ * test_hardcases.c - the hard-case suite: named scenes and
  * requests that push the numerics (grazing planes, geometry through the
  * near plane and behind the camera, degenerate triangles, extreme fov,
  * near/far and scale, tiny and odd framebuffers, many frames, camera cuts,
@@ -297,7 +297,7 @@ static void scaled_room(char *text, size_t n, double s)
 }
 
 /* Techniques whose AO is checked to be the same at every scale.  Known
- * failures at scale 0.001 (left out until fixed; see the issue 6 report):
+ * failures at scale 0.001 (left out until fixed):
  * the reference (float and fixed: a world-unit ray epsilon, AO off by
  * ~0.08), and in fixed point hbao (0.08) and vo (0.18), whose
  * squared distances underflow Q16.16. */

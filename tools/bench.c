@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * bench.c - accuracy vs time (issue 5 items 3-4).  Every technique and
+ * bench.c - accuracy vs time.  Every technique and
  * setting is timed (median of N whole frames, hosted clock) and measured
  * against the ray-traced reference (cached per scene and radius):
  *

@@ -32,12 +32,12 @@ size_t tgi_bvh_bytes(int tri_count)
     size_t nodes, idx, tris, total;
     size_t n = tri_count > 0 ? (size_t)tri_count : 1u;
     if (tri_count < 0) return 0;
-    if (tg_size_mul(2u * n, sizeof(tgi_bvh_node), &nodes)) return 0;
-    if (tg_size_mul(n, sizeof(int32_t), &idx)) return 0;
-    if (tg_size_mul(n, sizeof(tgi_bvh_tri), &tris)) return 0;
-    if (tg_size_add(align16(nodes), align16(idx), &total)) return 0;
-    if (tg_size_add(total, align16(tris), &total)) return 0;
-    if (tg_size_add(total, 16u, &total)) return 0;
+    if (tg_size_mul(2u * n, sizeof(tgi_bvh_node), &nodes)) return SIZE_MAX;
+    if (tg_size_mul(n, sizeof(int32_t), &idx)) return SIZE_MAX;
+    if (tg_size_mul(n, sizeof(tgi_bvh_tri), &tris)) return SIZE_MAX;
+    if (tg_size_add(align16(nodes), align16(idx), &total)) return SIZE_MAX;
+    if (tg_size_add(total, align16(tris), &total)) return SIZE_MAX;
+    if (tg_size_add(total, 16u, &total)) return SIZE_MAX;
     return total;
 }
 
