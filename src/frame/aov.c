@@ -122,7 +122,7 @@ static void span8(const tg_frame *f, tg_aov aov, int y, int x0, int w, uint8_t *
     case TG_AOV_COLOR: case TG_AOV_NEAR: case TG_AOV_FAR: case TG_AOV_DIRECT: case TG_AOV_IRRADIANCE: {
         /* HDR: exposure, tonemapper, sRGB */
         tg_real r[SPAN], g[SPAN], b[SPAN];
-        tg_real exposure = f->plan.request.exposure;
+        tg_real exposure = f->request.exposure;
         for (x = 0; x < w; x++) { r[x] = row[3 * x]; g[x] = row[3 * x + 1]; b[x] = row[3 * x + 2]; }
         if (aov != TG_AOV_COLOR) exposure = tg_mul(exposure, TG_INV_PI); /* irradiance -> radiance of a white surface */
         tgi_tonemap_row8(r, g, b, w, exposure, rgb);

@@ -36,8 +36,8 @@ void tgi_pass_ssao(tg_frame *f, int y0, int y1)
 {
     tgi_ssao_params p;
     tgi_ssao_defaults(&p);
-    p.samples = technique_samples(f->plan.request.samples);
-    p.radius = f->plan.request.radius;
+    p.samples = technique_samples(f->request.samples);
+    p.radius = f->request.radius;
     tgi_ssao_rows(&p, &f->full, &f->res, y0, y1);
 }
 
@@ -45,8 +45,8 @@ void tgi_pass_vo(tg_frame *f, int y0, int y1)
 {
     tgi_vo_params p;
     tgi_vo_defaults(&p);
-    p.samples = technique_samples(f->plan.request.samples);
-    p.radius = f->plan.request.radius;
+    p.samples = technique_samples(f->request.samples);
+    p.radius = f->request.radius;
     tgi_vo_rows(&p, &f->full, &f->res, y0, y1);
 }
 
@@ -54,9 +54,9 @@ void tgi_pass_hbao(tg_frame *f, int y0, int y1)
 {
     tgi_hbao_params p;
     tgi_hbao_defaults(&p);
-    p.directions = technique_samples(2 * f->plan.request.slices);
-    p.steps = technique_samples(f->plan.request.samples);
-    p.radius = f->plan.request.radius;
+    p.directions = technique_samples(2 * f->request.slices);
+    p.steps = technique_samples(f->request.samples);
+    p.radius = f->request.radius;
     tgi_hbao_rows(&p, &f->full, &f->res, y0, y1);
 }
 
@@ -64,9 +64,9 @@ void tgi_pass_gtao(tg_frame *f, int y0, int y1)
 {
     tgi_gtao_params p;
     tgi_gtao_defaults(&p);
-    p.slices = technique_samples(f->plan.request.slices);
-    p.steps = technique_samples(f->plan.request.samples);
-    p.radius = f->plan.request.radius;
+    p.slices = technique_samples(f->request.slices);
+    p.steps = technique_samples(f->request.samples);
+    p.radius = f->request.radius;
     tgi_gtao_rows(&p, &f->full, &f->res, y0, y1);
 }
 
@@ -74,8 +74,8 @@ void tgi_pass_ssdo(tg_frame *f, int y0, int y1)
 {
     tgi_ssdo_params p;
     tgi_ssdo_defaults(&p);
-    p.samples = technique_samples(f->plan.request.samples);
-    p.radius = f->plan.request.radius;
+    p.samples = technique_samples(f->request.samples);
+    p.radius = f->request.radius;
     p.env_sh9 = far_sh(f);
     if (p.env_sh9) p.far = f->far;
     tgi_ssdo_rows(&p, &f->full, &f->source, &f->res, y0, y1);
@@ -85,8 +85,8 @@ void tgi_pass_bentcone(tg_frame *f, int y0, int y1)
 {
     tgi_bentcone_params p;
     tgi_bentcone_defaults(&p);
-    p.samples = technique_samples(f->plan.request.samples);
-    p.radius = f->plan.request.radius;
+    p.samples = technique_samples(f->request.samples);
+    p.radius = f->request.radius;
     p.env_sh9 = far_sh(f);
     if (p.env_sh9) p.far = f->far;
     tgi_bentcone_rows(&p, &f->full, &f->res, y0, y1);
@@ -127,8 +127,8 @@ void tgi_pass_reference(tg_frame *f, int y0, int y1)
     tgi_reference_defaults(&p);
     p.bvh = &f->bvh;
     p.tri_nrm = f->posed_nrm ? f->posed_nrm : f->scene->tri_nrm;
-    p.samples = f->plan.request.samples > 16 ? f->plan.request.samples : 256;
-    p.radius = f->plan.request.radius;
+    p.samples = f->request.samples > 16 ? f->request.samples : 256;
+    p.radius = f->request.radius;
     p.radiance = direct_radiance_at;
     p.user = f;
     tgi_reference_rows(&p, &f->full, &f->source, &f->res, y0, y1);

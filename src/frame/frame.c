@@ -38,7 +38,7 @@ int tgi_pass_row_count(const tg_frame *f, const tgi_pass *p)
 {
     switch (p->rows) {
     case TGI_ROWS_IMAGE: return f->height;
-    case TGI_ROWS_KERNEL: return f->kernel.height;
+    case TGI_ROWS_KERNEL: return tgi_frame_kernel(f, NULL, NULL)->height;
     default: return 0;
     }
 }
@@ -63,7 +63,6 @@ static void run_frame_pass(tg_frame *f, const tgi_pass *p, int band)
 
 tg_status tgi_frame_render_bands(tg_frame *f, int index, int band, tg_error *err)
 {
-    const tg_plan *plan = &f->plan;
     int k = 0, end, j;
     tgi_error_clear(err);
     if (index < 0) {
@@ -71,16 +70,16 @@ tg_status tgi_frame_render_bands(tg_frame *f, int index, int band, tg_error *err
         return TG_ERR_INPUT;
     }
     f->index = index;
-    f->bounces = (f->effects & TG_EFFECT_NEAR) && !f->has_history ? plan->request.bounces : 1;
+    f->bounces = (f->effects & TG_EFFECT_NEAR) && !f->has_history ? f->request.bounces : 1;
     if (f->bounces < 1) f->bounces = 1;
-    while (k < plan->pass_count) {
-        if (!(tgi_passes[plan->pass_rows[k]].when & TGI_BOUNCE)) {
-            run_frame_pass(f, &tgi_passes[plan->pass_rows[k++]], band);
+    while (k < f->pass_count) {
+        if (!(tgi_passes[f->pass_rows[k]].when & TGI_BOUNCE)) {
+            run_frame_pass(f, &tgi_passes[f->pass_rows[k++]], band);
             continue;
         }
-        for (end = k; end < plan->pass_count && (tgi_passes[plan->pass_rows[end]].when & TGI_BOUNCE); end++) {}
+        for (end = k; end < f->pass_count && (tgi_passes[f->pass_rows[end]].when & TGI_BOUNCE); end++) {}
         for (f->bounce = 0; f->bounce < f->bounces; f->bounce++)
-            for (j = k; j < end; j++) run_frame_pass(f, &tgi_passes[plan->pass_rows[j]], band);
+            for (j = k; j < end; j++) run_frame_pass(f, &tgi_passes[f->pass_rows[j]], band);
         k = end;
     }
     if (f->history.r) f->has_history = 1;

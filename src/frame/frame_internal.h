@@ -32,7 +32,9 @@ enum {
 };
 
 struct tg_frame {
-    tg_plan plan;
+    tg_request request;            /* the plan's, every default resolved */
+    int pass_count;                /* the plan's passes: rows of the pass table */
+    unsigned char pass_rows[TG_PLAN_MAX_PASSES];
     const tg_scene *scene;
     int width, height;
     size_t pixels;
@@ -46,6 +48,7 @@ struct tg_frame {
     tg_real time, prev_time;
     tgi_gbuffer gb;                /* what the rasterizer writes, full resolution */
     tgi_gview full;                /* the view every full-resolution pass reads */
+    tgi_gview half_view;           /* the quarter-res copy's, with --gi-quarter */
 
     /* animation */
     tg_vec3 *posed_pos, *posed_nrm;
@@ -62,11 +65,8 @@ struct tg_frame {
     tgi_gresult res;
     tgi_rgb source;
 
-    /* the image the interleaved kernel splits: the full view, or its
-     * quarter-res copy (half width and height, point-sampled) */
-    tgi_gview kernel;
-    tgi_gresult kernel_res;
-    tgi_rgb kernel_source;
+    /* with --gi-quarter the interleaved kernel's image is a point-sampled
+     * copy at half width and height (tgi_frame_kernel) */
     tgi_gbuffer half;              /* storage of the quarter-res copy */
     tgi_gresult half_res;
     tgi_rgb half_source;
@@ -153,6 +153,10 @@ int tgi_request_resolve(tg_request *r, const tg_scene *s, tg_error *err);
 tgi_raster_mesh tgi_frame_mesh(const tg_frame *f);
 /* TG_NEED_* of a plan (plan.c). */
 uint32_t tgi_frame_needs(const tg_plan *plan);
+/* The image the interleaved kernel splits, its results and source: the
+ * full-resolution view, or with --gi-quarter the half-resolution copy
+ * (layout.c). */
+const tgi_gview *tgi_frame_kernel(const tg_frame *f, const tgi_gresult **res, const tgi_rgb **source);
 /* The technique of the plan is HBIL with the interleaved kernel, and at
  * quarter resolution (plan.c). */
 int tgi_frame_interleaved(const tg_frame *f);

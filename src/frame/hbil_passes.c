@@ -21,9 +21,9 @@
 static void hbil_params(const tg_frame *f, tgi_hbil_params *p)
 {
     tgi_hbil_defaults(p);
-    p->slices = f->plan.request.slices;
-    p->samples = f->plan.request.samples;
-    p->radius = f->plan.request.radius;
+    p->slices = f->request.slices;
+    p->samples = f->request.samples;
+    p->radius = f->request.radius;
 }
 
 /* Results without the cone: the kernel and the filter leave it to the
@@ -43,7 +43,8 @@ void tgi_pass_downsample(tg_frame *f, int y0, int y1)
 /* Kernel-image rows [y0, y1) into the 16 packed sub-images. */
 void tgi_pass_split(tg_frame *f, int y0, int y1)
 {
-    const tgi_gview *k = &f->kernel;
+    const tgi_rgb *source;
+    const tgi_gview *k = tgi_frame_kernel(f, NULL, &source);
     int with_source = tgi_rgb_present(&f->split_source), x, y;
     size_t start[4];
     for (y = y0; y < y1; y++) {
@@ -51,7 +52,7 @@ void tgi_pass_split(tg_frame *f, int y0, int y1)
         for (x = 0; x < k->width; x++) {
             size_t i = tgi_gv_index(k, x, y), s = start[x & 3] + (size_t)(x >> 2);
             tgi_gview_copy_pixel(&f->split, s, k, i);
-            if (with_source) tgi_rgb_set(&f->split_source, s, tgi_rgb_get(&f->kernel_source, i));
+            if (with_source) tgi_rgb_set(&f->split_source, s, tgi_rgb_get(source, i));
         }
     }
 }
@@ -62,7 +63,7 @@ void tgi_pass_hbil_interleaved(tg_frame *f, int y0, int y1)
 {
     tgi_hbil_params p;
     hbil_params(f, &p);
-    tgi_hbil_interleaved_rows(&p, &f->kernel, &f->split, &f->split_source, &f->split_res, y0, y1);
+    tgi_hbil_interleaved_rows(&p, tgi_frame_kernel(f, NULL, NULL), &f->split, &f->split_source, &f->split_res, y0, y1);
 }
 
 void tgi_pass_hbil_full(tg_frame *f, int y0, int y1)
@@ -77,13 +78,14 @@ void tgi_pass_hbil_full(tg_frame *f, int y0, int y1)
 /* Kernel-image rows [y0, y1) back from the 16 sub-images. */
 void tgi_pass_merge(tg_frame *f, int y0, int y1)
 {
-    const tgi_gview *k = &f->kernel;
+    const tgi_gresult *res;
+    const tgi_gview *k = tgi_frame_kernel(f, &res, NULL);
     int x, y;
     size_t start[4];
     for (y = y0; y < y1; y++) {
         tgi_interleave_row(k->width, k->height, y, start);
         for (x = 0; x < k->width; x++)
-            tgi_gresult_copy_pixel(&f->kernel_res, tgi_gv_index(k, x, y), &f->split_res,
+            tgi_gresult_copy_pixel(res, tgi_gv_index(k, x, y), &f->split_res,
                                    start[x & 3] + (size_t)(x >> 2));
     }
 }
@@ -93,23 +95,27 @@ void tgi_pass_merge(tg_frame *f, int y0, int y1)
  * first the unfiltered values are kept, then every row is filtered. */
 void tgi_pass_filter_input(tg_frame *f, int y0, int y1)
 {
-    tgi_gresult res = without_cone(&f->kernel_res);
-    tgi_denoise_keep_rows(&f->kernel, &res, f->denoise_scratch, y0, y1);
+    const tgi_gresult *kr;
+    const tgi_gview *k = tgi_frame_kernel(f, &kr, NULL);
+    tgi_gresult res = without_cone(kr);
+    tgi_denoise_keep_rows(k, &res, f->denoise_scratch, y0, y1);
 }
 
 void tgi_pass_filter(tg_frame *f, int y0, int y1)
 {
     tgi_denoise_params p;
-    tgi_gresult res = without_cone(&f->kernel_res);
+    const tgi_gresult *kr;
+    const tgi_gview *k = tgi_frame_kernel(f, &kr, NULL);
+    tgi_gresult res = without_cone(kr);
     tgi_denoise_defaults(&p);
-    tgi_denoise_rows(&p, &f->kernel, &res, f->denoise_scratch, y0, y1);
+    tgi_denoise_rows(&p, k, &res, f->denoise_scratch, y0, y1);
 }
 
 /* Joint bilateral upsample of the quarter-res results (resample.c). */
 void tgi_pass_upsample(tg_frame *f, int y0, int y1)
 {
     tgi_gresult res = without_cone(&f->res);
-    tgi_upsample_rows(&f->full, &f->kernel, &f->half_res, &res, y0, y1);
+    tgi_upsample_rows(&f->full, &f->half_view, &f->half_res, &res, y0, y1);
 }
 
 /* Exponential accumulation over frames, history rejected by depth and normal. */

@@ -152,7 +152,7 @@ static void group_motion(layout *l, tg_frame *f)
 static void group_shadow_maps(layout *l, tg_frame *f)
 {
     const tg_scene *s = f->scene;
-    const tg_request *r = &f->plan.request;
+    const tg_request *r = &f->request;
     int i;
     if (!(f->effects & TG_EFFECT_SHADOWS)) return;
     f->shadow_maps = (tgi_shadow_map *)take(l, "shadow map descriptors", (size_t)s->light_count, sizeof(tgi_shadow_map));
@@ -198,7 +198,7 @@ static void group_reproject(layout *l, tg_frame *f)
 
 static void group_results(layout *l, tg_frame *f)
 {
-    int hbil = f->plan.request.technique == TG_TECH_HBIL;
+    int hbil = f->request.technique == TG_TECH_HBIL;
     if (!(f->needs & TG_NEED_GI_PASS)) return;
     f->res.ao = take_real(l, "ambient occlusion", f->pixels);
     if ((f->needs & TG_NEED_BENT) || hbil) {
@@ -239,7 +239,7 @@ static void group_filter(layout *l, tg_frame *f)
 {
     int w, h;
     size_t n;
-    if (f->plan.request.technique != TG_TECH_HBIL) return;
+    if (f->request.technique != TG_TECH_HBIL) return;
     kernel_size(f, &w, &h, &n);
     f->denoise_scratch = take(l, "spatial filter input", tgi_denoise_bytes(w, h), 1);
 }
@@ -252,7 +252,7 @@ static void group_temporal(layout *l, tg_frame *f)
 
 static void group_bvh(layout *l, tg_frame *f)
 {
-    if (f->plan.request.technique != TG_TECH_REFERENCE) return;
+    if (f->request.technique != TG_TECH_REFERENCE) return;
     f->bvh_scratch_bytes = tgi_bvh_bytes(f->scene->tri_count);
     f->bvh_scratch = take(l, "reference BVH", f->bvh_scratch_bytes, 1);
 }
@@ -269,7 +269,7 @@ static void group_color(layout *l, tg_frame *f)
 
 static void group_irradiance(layout *l, tg_frame *f)
 {
-    if ((f->needs & TG_NEED_COMPOSE) && (f->plan.request.aovs & AOV(TG_AOV_IRRADIANCE)))
+    if ((f->needs & TG_NEED_COMPOSE) && (f->request.aovs & AOV(TG_AOV_IRRADIANCE)))
         take_rgb(l, "total irradiance", f->pixels, &f->irradiance);
 }
 
@@ -284,7 +284,9 @@ static void (*const group_layout[TGI_BUF_GROUPS])(layout *l, tg_frame *f) = {
 
 static void frame_init(tg_frame *f, const tg_plan *plan, size_t pixels)
 {
-    f->plan = *plan;
+    f->request = plan->request;
+    f->pass_count = plan->pass_count;
+    memcpy(f->pass_rows, plan->pass_rows, sizeof f->pass_rows);
     f->scene = plan->scene;
     f->width = plan->request.width;
     f->height = plan->request.height;
@@ -298,14 +300,16 @@ static void frame_init(tg_frame *f, const tg_plan *plan, size_t pixels)
 static void frame_views(tg_frame *f)
 {
     tgi_gview_of(&f->full, &f->gb, &f->view);
-    f->kernel = f->full;
-    f->kernel_res = f->res;
-    f->kernel_source = f->source;
-    if (tgi_frame_quarter(f)) {
-        tgi_gview_packed(&f->kernel, &f->half, 0, f->half.width, f->half.height, 2, 0, 0, &f->view);
-        f->kernel_res = f->half_res;
-        f->kernel_source = f->half_source;
-    }
+    if (tgi_frame_quarter(f))
+        tgi_gview_packed(&f->half_view, &f->half, 0, f->half.width, f->half.height, 2, 0, 0, &f->view);
+}
+
+const tgi_gview *tgi_frame_kernel(const tg_frame *f, const tgi_gresult **res, const tgi_rgb **source)
+{
+    int quarter = tgi_frame_quarter(f);
+    if (res) *res = quarter ? &f->half_res : &f->res;
+    if (source) *source = quarter ? &f->half_source : &f->source;
+    return quarter ? &f->half_view : &f->full;
 }
 
 /* 1 when the plan has no room for another pass (TG_PLAN_MAX_PASSES). */

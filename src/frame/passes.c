@@ -51,7 +51,7 @@ void tgi_pass_keep_history(tg_frame *f, int y0, int y1);
 /* ---- when the plan needs them ---- */
 static int always(const tg_frame *f) { (void)f; return 1; }
 static int wants_motion(const tg_frame *f) { return (f->needs & TG_NEED_MOTION) != 0; }
-static int wants_depth_view(const tg_frame *f) { return (f->plan.request.aovs & AOV(TG_AOV_DEPTH)) != 0; }
+static int wants_depth_view(const tg_frame *f) { return (f->request.aovs & AOV(TG_AOV_DEPTH)) != 0; }
 static int casts_shadows(const tg_frame *f) { return (f->effects & TG_EFFECT_SHADOWS) != 0; }
 static int lights_directly(const tg_frame *f) { return (f->effects & TG_EFFECT_DIRECT) != 0; }
 static int gathers_near(const tg_frame *f) { return (f->effects & TG_EFFECT_NEAR) != 0; }
@@ -61,7 +61,7 @@ static int accumulates(const tg_frame *f) { return (f->needs & TG_NEED_TEMPORAL)
 
 static int technique_runs(const tg_frame *f, tg_technique t)
 {
-    return (f->needs & TG_NEED_GI_PASS) && f->plan.request.technique == t;
+    return (f->needs & TG_NEED_GI_PASS) && f->request.technique == t;
 }
 static int runs_hbil(const tg_frame *f) { return technique_runs(f, TG_TECH_HBIL); }
 static int runs_hbil_interleaved(const tg_frame *f) { return runs_hbil(f) && tgi_frame_interleaved(f); }
@@ -82,7 +82,7 @@ static int shades_far(const tg_frame *f)
 }
 static int iterates_bounces(const tg_frame *f)
 {
-    return gathers_near(f) && composes(f) && f->plan.request.bounces > 1;
+    return gathers_near(f) && composes(f) && f->request.bounces > 1;
 }
 
 #define ROWS(fn) TGI_ROWS_IMAGE, fn, NULL

@@ -210,10 +210,10 @@ size_t tg_plan_explain(const tg_plan *plan, char *buf, size_t size)
 
 int tgi_frame_interleaved(const tg_frame *f)
 {
-    return f->plan.request.technique == TG_TECH_HBIL && f->plan.request.interleave;
+    return f->request.technique == TG_TECH_HBIL && f->request.interleave;
 }
 
 int tgi_frame_quarter(const tg_frame *f)
 {
-    return tgi_frame_interleaved(f) && f->plan.request.gi_scale == 2;
+    return tgi_frame_interleaved(f) && f->request.gi_scale == 2;
 }

@@ -16,7 +16,7 @@ void tgi_pass_animate(tg_frame *f)
     int o;
     f->prev_view = f->view;
     f->prev_time = f->time;
-    f->time = tgi_anim_time(s, f->index, f->plan.request.frames);
+    f->time = tgi_anim_time(s, f->index, f->request.frames);
     if (s->camera_key_count > 0) tgi_anim_camera(s, f->time, &pos, &target);
     tgi_view_make(&f->view, pos, target, s->camera.up, s->camera.fov, s->camera.znear,
                  s->camera.zfar, f->width, f->height);
