@@ -90,7 +90,7 @@ static int iterates_bounces(const tg_frame *f)
 #define SERIAL(fn) TGI_SERIAL, NULL, fn
 
 const tgi_pass tgi_passes[] = {
-    { "animate (camera keys, posed triangles of moving objects)", always,
+    { "camera (animated by its keys; posed triangles when objects move)", always,
       B(POSE), 0, SERIAL(tgi_pass_animate) },
     { "rasterize G-buffer (depth, normal, albedo, F0, emissive)", always,
       B(GBUFFER), 0, ROWS(tgi_pass_gbuffer) },

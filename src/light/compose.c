@@ -22,9 +22,9 @@ void tgi_compose_rows(const tgi_gview *g, const tgi_env *env, const tgi_rgb *ter
     int has_emit = tgi_gv_has_emissive(g);
     int want_irr = tgi_rgb_present(irr);
     int x, y, k;
-    for (y = y0; y < y1; y++)
-        for (x = 0; x < g->width; x++) {
-            size_t i = tgi_gv_index(g, x, y);
+    for (y = y0; y < y1; y++) {
+        size_t i = tgi_gv_index(g, 0, y);
+        for (x = 0; x < g->width; x++, i += (size_t)g->pixel_stride) {
             tg_real er = 0, eg = 0, eb = 0, kd;
             tg_vec3 a, lo;
             if (tgi_gv_is_sky(g, i)) {
@@ -47,4 +47,5 @@ void tgi_compose_rows(const tgi_gview *g, const tgi_env *env, const tgi_rgb *ter
             if (has_emit) lo = tgi_v3_add(lo, tgi_gv_emissive(g, i));
             tgi_rgb_set(out, i, lo);
         }
+    }
 }
