@@ -170,15 +170,18 @@ TEST(every_int_field_at_its_extremes)
 
 TEST(image_pixels_at_the_limit)
 {
-    static const int sizes[][3] = {   /* width, height, expectation */
-        { 4096, 4096, ACCEPT }, { 4097, 4096, REFUSE }, { TG_MAX_IMAGE_SIDE, TG_MAX_IMAGE_SIDE, REFUSE },
-        { TG_MAX_IMAGE_SIDE, 2048, ACCEPT }, { TG_MAX_IMAGE_SIDE, 2049, REFUSE }, { 1, TG_MAX_IMAGE_SIDE, ACCEPT } };
+    static const long sizes[][3] = {   /* width, height, expectation */
+        { TG_MAX_IMAGE_SIDE, TG_MAX_IMAGE_PIXELS / TG_MAX_IMAGE_SIDE, ACCEPT },
+        { TG_MAX_IMAGE_SIDE, TG_MAX_IMAGE_PIXELS / TG_MAX_IMAGE_SIDE + 1, REFUSE },
+        { TG_MAX_IMAGE_PIXELS / TG_MAX_IMAGE_SIDE + 1, TG_MAX_IMAGE_SIDE, REFUSE },
+        { TG_MAX_IMAGE_SIDE, TG_MAX_IMAGE_SIDE, TG_MAX_IMAGE_PIXELS >= (long)TG_MAX_IMAGE_SIDE * TG_MAX_IMAGE_SIDE ? ACCEPT : REFUSE },
+        { 1, TG_MAX_IMAGE_SIDE, ACCEPT } };
     size_t k;
     for (k = 0; k < sizeof sizes / sizeof sizes[0]; k++) {
-        sweep_case c = new_case("pixels", sizes[k][2]);
-        c.q.width = sizes[k][0];
-        c.q.height = sizes[k][1];
-        snprintf(c.value, sizeof c.value, "%dx%d", sizes[k][0], sizes[k][1]);
+        sweep_case c = new_case("pixels", (int)sizes[k][2]);
+        c.q.width = (int)sizes[k][0];
+        c.q.height = (int)sizes[k][1];
+        snprintf(c.value, sizeof c.value, "%ldx%ld", sizes[k][0], sizes[k][1]);
         run_case(&c);
     }
 }
