@@ -82,6 +82,7 @@ void tgi_direct_rows(const tgi_gbuffer *gb, const tgi_view *view,
     prepared_light pl[LIGHT_CHUNK];
     int first, k, x, y, w = gb->width;
     tg_real half_w = tg_ldexp(tg_from_int(view->width), -1), half_h = tg_ldexp(tg_from_int(view->height), -1);
+    tg_real position_error = tgi_shadow_gbuffer_error(view); /* per unit depth */
     for (y = y0; y < y1; y++) {
         int row = y * w;
         for (x = 0; x < w; x++) e_r[row + x] = e_g[row + x] = e_b[row + x] = 0;
@@ -106,7 +107,8 @@ void tgi_direct_rows(const tgi_gbuffer *gb, const tgi_view *view,
                 for (k = 0; k < count; k++) {
                     tg_real inv, f = light_factor(&pl[k], p, n, &inv);
                     if (f <= 0) continue;
-                    if (pl[k].shadow) f = tg_mul(f, tgi_shadow_visibility(pl[k].shadow, p, n));
+                    if (pl[k].shadow) f = tg_mul(f, tgi_shadow_visibility_err(pl[k].shadow, p, n,
+                                                                                    tg_mul(gb->depth[i], position_error)));
                     e = tgi_v3_add(e, light_irradiance(pl[k].radiant, f, inv));
                 }
                 e_r[i] = e.x; e_g[i] = e.y; e_b[i] = e.z;
