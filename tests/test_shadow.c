@@ -17,144 +17,13 @@
  * around it on its tangent plane (farther than the PCF footprint and the
  * position error), "surely shadowed" when it is blocked from all of them.
  */
-#include <stdlib.h>
-#include <stdint.h>
-#include "check.h"
+#include "raster_fixture.h"
 #include "light/direct.h"
 #include "light/shadowmap.h"
-#include "raster/raster.h"
-#include "ao/bvh.h"
 
-#define DEG (3.14159265358979 / 180.0)
-#define MAXTRI 64
-
-static double dv(tg_real r) { return check_d(r); }
-static tg_real rv(double x) { return tg_from_float((float)x); }
-static tg_vec3 v3(double x, double y, double z) { return tg_v3(rv(x), rv(y), rv(z)); }
-
-/* ---- geometry: quads as triangle pairs, one two-sided white material ---- */
-
-typedef struct geo {
-    int n;
-    tg_vec3 pos[3 * MAXTRI], nrm[3 * MAXTRI];
-    uint16_t mat[MAXTRI];
-    double lo[3], hi[3];
-} geo;
-
-static void geo_point(geo *g, const double *p)
-{
-    int k;
-    for (k = 0; k < 3; k++) {
-        if (g->n == 0 && k == 0) { g->lo[0] = g->hi[0] = p[0]; g->lo[1] = g->hi[1] = p[1]; g->lo[2] = g->hi[2] = p[2]; }
-        if (p[k] < g->lo[k]) g->lo[k] = p[k];
-        if (p[k] > g->hi[k]) g->hi[k] = p[k];
-    }
-}
-
-/* Quad p0 p1 p2 p3 (a planar convex loop). */
-static void quad(geo *g, double q[4][3])
-{
-    double e1[3], e2[3], n[3], l;
-    int t, k, c;
-    for (k = 0; k < 3; k++) { e1[k] = q[1][k] - q[0][k]; e2[k] = q[2][k] - q[0][k]; }
-    n[0] = e1[1] * e2[2] - e1[2] * e2[1]; n[1] = e1[2] * e2[0] - e1[0] * e2[2]; n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    for (t = 0; t < 2; t++) {
-        static const int idx[2][3] = { { 0, 1, 2 }, { 0, 2, 3 } };
-        for (c = 0; c < 3; c++) {
-            const double *p = q[idx[t][c]];
-            geo_point(g, p);
-            g->pos[3 * g->n + c] = v3(p[0], p[1], p[2]);
-            g->nrm[3 * g->n + c] = v3(n[0] / l, n[1] / l, n[2] / l);
-        }
-        g->mat[g->n] = 0;
-        g->n++;
-    }
-}
-
-/* Axis-aligned rectangle on plane `axis` = c, spanning [a0, a1] x [b0, b1]
- * in the two other axes (in x, y, z order). */
-static void rect(geo *g, int axis, double c, double a0, double a1, double b0, double b1)
-{
-    double q[4][3];
-    int u = axis == 0 ? 1 : 0, w = axis == 2 ? 1 : 2, k;
-    for (k = 0; k < 4; k++) {
-        q[k][axis] = c;
-        q[k][u] = (k == 1 || k == 2) ? a1 : a0;
-        q[k][w] = (k >= 2) ? b1 : b0;
-    }
-    quad(g, q);
-}
-
-static void box(geo *g, const double lo[3], const double hi[3], int skip_face)
-{
-    int a, s;
-    for (a = 0; a < 3; a++)
-        for (s = 0; s < 2; s++) {
-            int u = a == 0 ? 1 : 0, w = a == 2 ? 1 : 2;
-            if (2 * a + s == skip_face) continue;
-            rect(g, a, s ? hi[a] : lo[a], lo[u], hi[u], lo[w], hi[w]);
-        }
-}
-
-static tgi_bvh bvh;
-static void *bvh_mem;
-
-static void geo_bvh(const geo *g)
-{
-    size_t bytes = tgi_bvh_bytes(g->n);
-    free(bvh_mem);
-    bvh_mem = malloc(bytes);
-    if (!bvh_mem || tgi_bvh_build(&bvh, g->pos, g->n, bvh_mem, bytes) != 0) { fprintf(stderr, "bvh\n"); exit(2); }
-}
-
-/* ---- an image: the rasterized G-buffer and the light it receives ---- */
-
-typedef struct image {
-    int w, h;
-    tgi_view view;
-    tgi_gbuffer gb;
-    tg_real *planes;
-    uint8_t *sky;
-    tg_real *e_r, *e_g, *e_b, *u_r, *u_g, *u_b; /* E with shadows, E without */
-    double texel_world;                         /* of the last map: per unit distance, or absolute (ortho) */
-} image;
-
-static void image_free(image *im)
-{
-    free(im->planes); free(im->sky);
-    memset(im, 0, sizeof *im);
-}
-
-static void image_render(image *im, const geo *g, const double eye[3], const double target[3], double fov_deg,
-                         int w, int h)
-{
-    static const tgi_material white = { "white", { TG_ONE, TG_ONE, TG_ONE }, 0, { 0, 0, 0 }, 1 };
-    tgi_raster_mesh mesh;
-    size_t n = (size_t)w * (size_t)h;
-    int k;
-    tg_real *p;
-    memset(im, 0, sizeof *im);
-    im->w = w; im->h = h;
-    im->planes = (tg_real *)calloc(n * 14, sizeof(tg_real));
-    im->sky = (uint8_t *)calloc(n, 1);
-    if (!im->planes || !im->sky) { fprintf(stderr, "out of memory\n"); exit(2); }
-    p = im->planes;
-    im->gb.width = w; im->gb.height = h;
-    im->gb.depth = p; im->gb.nx = p + n; im->gb.ny = p + 2 * n; im->gb.nz = p + 3 * n;
-    im->gb.albedo_r = p + 4 * n; im->gb.albedo_g = p + 5 * n; im->gb.albedo_b = p + 6 * n; im->gb.f0 = p + 7 * n;
-    im->gb.sky = im->sky;
-    im->e_r = p + 8 * n; im->e_g = p + 9 * n; im->e_b = p + 10 * n;
-    im->u_r = p + 11 * n; im->u_g = p + 12 * n; im->u_b = p + 13 * n;
-    tgi_view_make(&im->view, v3(eye[0], eye[1], eye[2]), v3(target[0], target[1], target[2]), v3(0, 1, 0),
-                  rv(fov_deg * DEG), TG_R(0.05f), TG_R(1000.0f), w, h);
-    mesh.pos = g->pos; mesh.nrm = g->nrm; mesh.tri_material = g->mat; mesh.tri_object = NULL;
-    mesh.tri_count = g->n; mesh.materials = &white;
-    tgi_gbuffer_clear_rows(&im->gb, 0, h);
-    tgi_raster_gbuffer(&im->gb, &im->view, &mesh, 0, h);
-    for (k = 0; k < w * h; k++) if (!im->sky[k]) break;
-    CHECK(k < w * h, "the camera sees the scene");
-}
+/* Outputs: E with shadows (0-2), E without (3-5). */
+#define E_R(im) ((im)->out[0])
+#define U_R(im) ((im)->out[3])
 
 /* E with the light's shadow map (size, filter) and E without shadows. */
 static void image_light(image *im, const geo *g, const tgi_light *l, int size, int filter)
@@ -169,24 +38,11 @@ static void image_light(image *im, const geo *g, const tgi_light *l, int size, i
     tgi_shadow_map_render(&sm, g->pos, g->n);
     im->texel_world = dv(sm.texel_world);
     maps[0] = &sm;
-    tgi_direct_rows(&im->gb, &im->view, l, 1, maps, im->e_r, im->e_g, im->e_b, 0, im->h);
-    tgi_direct_rows(&im->gb, &im->view, l, 1, NULL, im->u_r, im->u_g, im->u_b, 0, im->h);
+    tgi_direct_rows(&im->gb, &im->view, l, 1, maps, E_R(im), im->out[1], im->out[2], 0, im->h);
+    tgi_direct_rows(&im->gb, &im->view, l, 1, NULL, U_R(im), im->out[4], im->out[5], 0, im->h);
     free(mem);
 }
 
-/* World position of pixel i as the direct pass reconstructs it (view.h). */
-static void pixel_pos(const image *im, int i, double p[3], double n[3])
-{
-    const tgi_view *v = &im->view;
-    double kx = (i % im->w + 0.5 - im->w / 2.0) / dv(v->pixels_per_unit);
-    double ky = (im->h / 2.0 - (i / im->w + 0.5)) / dv(v->pixels_per_unit), z = dv(im->gb.depth[i]);
-    p[0] = dv(v->eye.x) + z * (dv(v->forward.x) + ky * dv(v->up.x) + kx * dv(v->right.x));
-    p[1] = dv(v->eye.y) + z * (dv(v->forward.y) + ky * dv(v->up.y) + kx * dv(v->right.y));
-    p[2] = dv(v->eye.z) + z * (dv(v->forward.z) + ky * dv(v->up.z) + kx * dv(v->right.z));
-    n[0] = dv(im->gb.nx[i]); n[1] = dv(im->gb.ny[i]); n[2] = dv(im->gb.nz[i]);
-}
-
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 /* Unit vector from p toward the light, its distance (1e6 for a directional light). */
 static double to_light(const tgi_light *l, const double p[3], double d[3])
@@ -255,7 +111,7 @@ static tally check_visibility(const image *im, const tgi_light *l, const char *w
         pixel_pos(im, i, p, n);
         dist = to_light(l, p, d);
         cosl = dot3(n, d);
-        u = dv(im->u_r[i]); e = dv(im->e_r[i]);
+        u = dv(U_R(im)[i]); e = dv(E_R(im)[i]);
         CHECK(e >= 0 && e <= u * (1 + 1e-4) + 1e-6, "%s: E %g outside [0, unshadowed %g]", what, e, u);
         if (cosl < 0.01 || u <= 0) continue;
         footprint = dv(im->gb.depth[i]) / dv(im->view.pixels_per_unit);
@@ -281,15 +137,6 @@ static tally check_visibility(const image *im, const tgi_light *l, const char *w
         }
     }
     return t;
-}
-
-static tgi_light make_light(tgi_light_type type, tg_vec3 pos, tg_vec3 dir, double intensity, double angle)
-{
-    tgi_light l;
-    memset(&l, 0, sizeof l);
-    l.type = type; l.pos = pos; l.dir = tgi_v3_normalize(dir);
-    l.color = v3(1, 1, 1); l.intensity = rv(intensity); l.angle = rv(angle); l.shadows = 1;
-    return l;
 }
 
 static const int sizes[][2] = { { 40, 30 }, { 80, 60 }, { 160, 120 }, { 320, 240 }, { 640, 480 } };
@@ -351,7 +198,7 @@ static void lit_check(const image *im, const tgi_light *l, const char *what, int
     CHECK(t.shadowed == 0, "%s: %d pixels surely shadowed", what, t.shadowed);
     CHECK(t.lit >= min_lit, "%s: %d pixels surely lit", what, t.lit);
     for (i = 0; i < im->w * im->h; i++) {
-        double p[3], n[3], d[3], q[3], lift, e = dv(im->e_r[i]);
+        double p[3], n[3], d[3], q[3], lift, e = dv(E_R(im)[i]);
         int c;
         if (im->sky[i]) continue;
         pixel_pos(im, i, p, n);
@@ -374,7 +221,7 @@ static void lit_check(const image *im, const tgi_light *l, const char *what, int
         pixel_pos(im, i, p, n);
         want = room_exact_irradiance(im, l, i, p, n, &err);
         if (want <= 0) continue;
-        e = dv(im->u_r[i]);
+        e = dv(U_R(im)[i]);
         /* E = I cos / d^2 moves by up to 2 err / d (distance) and
          * err / (d cos) (angle) relative, for a position error err */
         L[0] = dv(l->pos.x) - p[0]; L[1] = dv(l->pos.y) - p[1]; L[2] = dv(l->pos.z) - p[2];
@@ -394,7 +241,7 @@ static void room_check(const geo *g, const tgi_light *l, const double eye[3], co
     char what[96];
     for (s = 0; s < SIZE_COUNT; s++) {
         image im;
-        image_render(&im, g, eye, target, fov, sizes[s][0], sizes[s][1]);
+        image_render(&im, g, NULL, eye, target, fov, sizes[s][0], sizes[s][1]);
         for (m = 0; m < MAP_COUNT; m++)
             for (filter = 0; filter < 2; filter++) {
                 /* the largest map only at the smallest size, the bilinear
@@ -413,14 +260,15 @@ TEST(ceiling_over_a_point_light_is_lit_at_every_size)
 {
     static const double eye[3] = { 0, 1.25, -3.5 }, target[3] = { 0, 1.6, 2.5 };
     static const double eye2[3] = { 0.8, 0.6, 0.7 }, target2[3] = { -0.6, 2.5, 4.0 };
-    geo g;
+    geo *g = geo_new();
     tgi_light l;
-    empty_room(&g);
-    geo_bvh(&g);
+    empty_room(g);
+    geo_bvh(g);
     /* 1% of the room's height below the ceiling */
     l = make_light(TG_LIGHT_POINT, v3(0.4, 2.5 - 0.025, 2.3), v3(0, -1, 0), 2, 0);
-    room_check(&g, &l, eye, target, 60, "ceiling (front view)", 1);
-    room_check(&g, &l, eye2, target2, 70, "ceiling (from below)", 1);
+    room_check(g, &l, eye, target, 60, "ceiling (front view)", 1);
+    room_check(g, &l, eye2, target2, 70, "ceiling (from below)", 1);
+    free(g);
 }
 
 /* A wall x = 0 (and a floor) lit at 85 degrees from the wall's normal at its
@@ -430,18 +278,19 @@ TEST(wall_at_85_degrees_is_lit_at_every_size)
     static const double eye[3] = { 3.5, 1.6, -1.2 }, target[3] = { 0, 1.4, 0.6 };
     double th = 85 * DEG, c[3] = { 0, 1.5, 0 }, dist = 2.5;
     double lp[3] = { c[0] + dist * cos(th), c[1], c[2] - dist * sin(th) };
-    geo g;
+    geo *g = geo_new();
     tgi_light pt, sp, dl;
-    memset(&g, 0, sizeof g);
-    rect(&g, 0, 0, 0, 3, -3, 3);        /* the wall, normal +x */
-    rect(&g, 1, 0, 0, 4, -3, 3);        /* a floor in front of it */
-    geo_bvh(&g);
+    memset(g, 0, sizeof *g);
+    rect(g, 0, 0, 0, 3, -3, 3);        /* the wall, normal +x */
+    rect(g, 1, 0, 0, 4, -3, 3);        /* a floor in front of it */
+    geo_bvh(g);
     pt = make_light(TG_LIGHT_POINT, v3(lp[0], lp[1], lp[2]), v3(0, -1, 0), 8, 0);
     sp = make_light(TG_LIGHT_SPOT, v3(lp[0], lp[1], lp[2]), v3(c[0] - lp[0], c[1] - lp[1], c[2] - lp[2]), 8, 70 * DEG);
     dl = make_light(TG_LIGHT_DIRECTIONAL, v3(0, 0, 0), v3(-cos(th), -0.05, sin(th)), 1, 0);
-    room_check(&g, &pt, eye, target, 60, "wall 85 point", 0);
-    room_check(&g, &sp, eye, target, 60, "wall 85 spot", 0);
-    room_check(&g, &dl, eye, target, 60, "wall 85 directional", 0);
+    room_check(g, &pt, eye, target, 60, "wall 85 point", 0);
+    room_check(g, &sp, eye, target, 60, "wall 85 spot", 0);
+    room_check(g, &dl, eye, target, 60, "wall 85 directional", 0);
+    free(g);
 }
 
 /* ---- occluders still shadow ---- */
@@ -464,7 +313,7 @@ static void shadow_check(const geo *g, const tgi_light *l, const double eye[3], 
             image im;
             tally t;
             if (filter && s != 2) continue;  /* the bilinear filter at 160x120 (time) */
-            image_render(&im, g, eye, target, fov, sizes[s][0], sizes[s][1]);
+            image_render(&im, g, NULL, eye, target, fov, sizes[s][0], sizes[s][1]);
             snprintf(what, sizeof what, "%s %dx%d map %d %s", name, im.w, im.h, size, filter ? "bilinear" : "tent");
             image_light(&im, g, l, size, filter ? TG_SHADOW_PCF_BILINEAR : TG_SHADOW_PCF_TENT);
             t = check_visibility(&im, l, what, 1);
@@ -481,15 +330,16 @@ TEST(box_on_a_floor_casts_its_shadow)
 {
     static const double lo[3] = { -0.5, 0, -0.5 }, hi[3] = { 0.5, 1, 0.5 };
     static const double eye[3] = { 0.5, 6, -4 }, target[3] = { 0, 0, 0.5 };
-    geo g;
+    geo *g = geo_new();
     tgi_light pl = make_light(TG_LIGHT_POINT, v3(-1.5, 3, -1), v3(0, -1, 0), 20, 0);
     tgi_light sl = make_light(TG_LIGHT_SPOT, v3(-2, 4, -1), v3(2.5, -4, 1.2), 20, 50 * DEG);
     tgi_light dl = make_light(TG_LIGHT_DIRECTIONAL, v3(0, 0, 0), v3(0.8, -1, 0.5), 1, 0);
-    floor_and_box(&g, 6, lo, hi);
-    shadow_check(&g, &pl, eye, target, 50, 512, "box point", 30);
-    shadow_check(&g, &sl, eye, target, 50, 512, "box spot", 20);
-    shadow_check(&g, &dl, eye, target, 50, 512, "box directional", 15);
-    shadow_check(&g, &pl, eye, target, 50, 64, "box point", 5);
+    floor_and_box(g, 6, lo, hi);
+    shadow_check(g, &pl, eye, target, 50, 512, "box point", 30);
+    shadow_check(g, &sl, eye, target, 50, 512, "box spot", 20);
+    shadow_check(g, &dl, eye, target, 50, 512, "box directional", 15);
+    shadow_check(g, &pl, eye, target, 50, 64, "box point", 5);
+    free(g);
 }
 
 /* Light 1-3 degrees above the floor's plane: the box's shadow is 20-60 times
@@ -499,21 +349,22 @@ TEST(receivers_at_87_to_89_degrees_are_shadowed_and_lit)
     static const double lo[3] = { -0.5, 0, -0.5 }, hi[3] = { 0.5, 1.5, 0.5 };
     static const double eye[3] = { 0, 14, -6 }, target[3] = { 0, 0, 6 };
     static const double angles[] = { 87, 88, 89 };
-    geo g;
+    geo *g = geo_new();
     size_t k;
     char name[64];
-    floor_and_box(&g, 20, lo, hi);
+    floor_and_box(g, 20, lo, hi);
     for (k = 0; k < sizeof angles / sizeof angles[0]; k++) {
         double th = angles[k] * DEG;
         tgi_light dl = make_light(TG_LIGHT_DIRECTIONAL, v3(0, 0, 0), v3(0.1 * sin(th), -cos(th), sin(th)), 1, 0);
         /* a point light 15 m away at the same elevation */
         tgi_light pl = make_light(TG_LIGHT_POINT, v3(0, 15 * cos(th), -15 * sin(th)), v3(0, -1, 0), 400, 0);
         snprintf(name, sizeof name, "%g deg directional", angles[k]);
-        shadow_check(&g, &dl, eye, target, 60, 1024, name, 8);
+        shadow_check(g, &dl, eye, target, 60, 1024, name, 8);
         if (angles[k] > 88) continue; /* the point light would sit below the box's top */
         snprintf(name, sizeof name, "%g deg point", angles[k]);
-        shadow_check(&g, &pl, eye, target, 60, 1024, name, 20);
+        shadow_check(g, &pl, eye, target, 60, 1024, name, 20);
     }
+    free(g);
 }
 
 /* Geometry crossing the light's near plane and lying behind the light: a
@@ -525,24 +376,25 @@ TEST(receivers_at_87_to_89_degrees_are_shadowed_and_lit)
 TEST(geometry_at_and_behind_the_light_near_plane)
 {
     static const double eye[3] = { 0, 7, -5 }, target[3] = { 0, 0, 0.5 };
-    geo g;
+    geo *g = geo_new();
     tgi_light pl = make_light(TG_LIGHT_POINT, v3(0, 2, 0), v3(0, -1, 0), 10, 0);
     tgi_light sl = make_light(TG_LIGHT_SPOT, v3(0, 2, 0), v3(0, -1, 0), 10, 70 * DEG);
-    memset(&g, 0, sizeof g);
-    rect(&g, 1, 0, -5, 5, -5, 5);
-    rect(&g, 2, 0.01, -1, 1, 1.5, 2.5);          /* fin: z = 0.01, x in [-1, 1], y in [1.5, 2.5] */
-    geo_bvh(&g);
-    shadow_check(&g, &pl, eye, target, 60, 512, "fin beside a point light", 300);
-    memset(&g, 0, sizeof g);
-    rect(&g, 1, 0, -5, 5, -5, 5);
-    rect(&g, 0, 1, 1.5, 2.5, -1, 1);              /* a wall x = 1 from above to below the spot */
-    geo_bvh(&g);
-    shadow_check(&g, &sl, eye, target, 60, 512, "wall through a spot light's plane", 40);
-    memset(&g, 0, sizeof g);
-    rect(&g, 1, 0, -5, 5, -5, 5);
-    rect(&g, 1, 1.98, -0.012, 0.012, -0.012, 0.012); /* plate 2 cm under the light, 2.4 cm wide */
-    geo_bvh(&g);
-    shadow_check(&g, &pl, eye, target, 60, 512, "plate 2 cm under a point light", 50);
+    memset(g, 0, sizeof *g);
+    rect(g, 1, 0, -5, 5, -5, 5);
+    rect(g, 2, 0.01, -1, 1, 1.5, 2.5);          /* fin: z = 0.01, x in [-1, 1], y in [1.5, 2.5] */
+    geo_bvh(g);
+    shadow_check(g, &pl, eye, target, 60, 512, "fin beside a point light", 300);
+    memset(g, 0, sizeof *g);
+    rect(g, 1, 0, -5, 5, -5, 5);
+    rect(g, 0, 1, 1.5, 2.5, -1, 1);              /* a wall x = 1 from above to below the spot */
+    geo_bvh(g);
+    shadow_check(g, &sl, eye, target, 60, 512, "wall through a spot light's plane", 40);
+    memset(g, 0, sizeof *g);
+    rect(g, 1, 0, -5, 5, -5, 5);
+    rect(g, 1, 1.98, -0.012, 0.012, -0.012, 0.012); /* plate 2 cm under the light, 2.4 cm wide */
+    geo_bvh(g);
+    shadow_check(g, &pl, eye, target, 60, 512, "plate 2 cm under a point light", 50);
+    free(g);
 }
 
 /* ---- the lookup itself, at exact points ---- */
@@ -563,18 +415,18 @@ static void exact_map(tgi_shadow_map *sm, void **mem, const geo *g, const tgi_li
 TEST(concave_corner_is_not_darkened)
 {
     double th = 80 * DEG, ct = cos(th);
-    geo g;
+    geo *g = geo_new();
     tgi_light dl = make_light(TG_LIGHT_DIRECTIONAL, v3(0, 0, 0), v3(-sin(th), -cos(th), 0.1), 1, 0);
     tgi_light pl = make_light(TG_LIGHT_POINT, v3(6 * sin(th), 6 * cos(th), 0.3), v3(0, -1, 0), 1, 0);
     const tgi_light *lights[2] = { &dl, &pl };
     int k, j, seen = 0;
-    memset(&g, 0, sizeof g);
-    rect(&g, 1, 0, 0, 8, -4, 4);   /* floor x >= 0 */
-    rect(&g, 0, 0, 0, 4, -4, 4);   /* wall x = 0, facing +x */
+    memset(g, 0, sizeof *g);
+    rect(g, 1, 0, 0, 8, -4, 4);   /* floor x >= 0 */
+    rect(g, 0, 0, 0, 4, -4, 4);   /* wall x = 0, facing +x */
     for (k = 0; k < 2; k++) {
         tgi_shadow_map sm;
         void *mem;
-        exact_map(&sm, &mem, &g, lights[k], 512);
+        exact_map(&sm, &mem, g, lights[k], 512);
         for (j = 0; j < 400; j++) {
             /* the lateral texel in world units at the receiver */
             double z = -1 + (j % 20) * 0.1, x0, tw = dv(sm.texel_world), lateral;
@@ -591,6 +443,7 @@ TEST(concave_corner_is_not_darkened)
         free(mem);
     }
     CHECK(seen == 800, "%d points", seen);
+    free(g);
 }
 
 /* The receiver's offset toward the light stops half way to it: a light 2 cm
@@ -599,19 +452,20 @@ TEST(concave_corner_is_not_darkened)
  * plane would pass the light and everything would be lit). */
 TEST(offset_stops_half_way_to_the_light)
 {
-    geo g;
+    geo *g = geo_new();
     tgi_light pl = make_light(TG_LIGHT_POINT, v3(0, 0.02, 0), v3(0, -1, 0), 1, 0);
     tgi_shadow_map sm;
     void *mem;
-    memset(&g, 0, sizeof g);
-    rect(&g, 1, 0, -2, 2, -2, 2);
-    rect(&g, 1, 0.015, -0.2, 0.2, -0.2, 0.2);
-    exact_map(&sm, &mem, &g, &pl, 512);
+    memset(g, 0, sizeof *g);
+    rect(g, 1, 0, -2, 2, -2, 2);
+    rect(g, 1, 0.015, -0.2, 0.2, -0.2, 0.2);
+    exact_map(&sm, &mem, g, &pl, 512);
     CHECK(tgi_shadow_visibility_err(&sm, v3(0.05, 0, 0.03), v3(0, 1, 0), TG_R(0.05f)) <= TG_R(0.02f),
           "under the plate, position error 5 cm: %g", dv(tgi_shadow_visibility_err(&sm, v3(0.05, 0, 0.03), v3(0, 1, 0), TG_R(0.05f))));
     CHECK(tgi_shadow_visibility_err(&sm, v3(1.5, 0, 0.3), v3(0, 1, 0), TG_R(0.05f)) >= TG_R(0.98f),
           "beyond the plate's shadow: %g", dv(tgi_shadow_visibility_err(&sm, v3(1.5, 0, 0.3), v3(0, 1, 0), TG_R(0.05f))));
     free(mem);
+    free(g);
 }
 
 /* ---- sizes ---- */
