@@ -309,13 +309,25 @@ static tg_real pcf(const tgi_shadow_map *sm, const lookup *q)
         int ty = j0 + j;
         const tg_real *row = depth + (size_t)(ty < 0 ? 0 : ty) * (size_t)sm->size;
         tg_real row_lit = 0;
-        for (i = 0; i < taps; i++) {
-            int tx = i0 + i;
-            if (!inside && (tx < 0 || ty < 0 || tx >= sm->size || ty >= sm->size)) {
-                row_lit = tg_add(row_lit, wx[i]);
-                continue;
+        if (inside && perspective) {        /* the common cases, without per-tap checks */
+            tg_real den_row = tg_add(q->den_c, dy[j]);
+            for (i = 0; i < taps; i++) {
+                tg_real den = tg_min(tg_add(den_row, dx[i]), q->den_c);
+                if (q->num >= tg_mul(tg_add(row[i0 + i], q->bias), den)) row_lit = tg_add(row_lit, wx[i]);
             }
-            if (tap_lit(q, perspective, tg_add(dx[i], dy[j]), row[tx])) row_lit = tg_add(row_lit, wx[i]);
+        } else if (inside) {                /* base + min(dx + dy, 0) <= stored, as two tests */
+            tg_real base_row = tg_add(q->base, dy[j]);
+            for (i = 0; i < taps; i++) {
+                tg_real stored = row[i0 + i];
+                if (tg_add(base_row, dx[i]) <= stored || q->base <= stored) row_lit = tg_add(row_lit, wx[i]);
+            }
+        } else {                            /* at the map's edge: taps outside are lit */
+            for (i = 0; i < taps; i++) {
+                int tx = i0 + i;
+                if (tx < 0 || ty < 0 || tx >= sm->size || ty >= sm->size ||
+                    tap_lit(q, perspective, tg_add(dx[i], dy[j]), row[tx]))
+                    row_lit = tg_add(row_lit, wx[i]);
+            }
         }
         lit = tg_add(lit, tg_mul(row_lit, wy[j]));
     }
