@@ -8,9 +8,6 @@
 set -u
 cd "$(dirname "$0")/.."
 . tests/shcheck.sh
-BUILD=${BUILD:-build}
-case $BUILD in /*) ;; *) BUILD=$PWD/$BUILD ;; esac
-T=$(mktemp -d "${TMPDIR:-/tmp}/tgi_amalg_XXXXXX"); trap 'rm -rf "$T"' EXIT
 . tests/build_check.sh
 A=$BUILD/amalgamation
 

@@ -1,8 +1,12 @@
 # SPDX-License-Identifier: MIT
 # tests/build_check.sh - sourced by the build tests (install, amalgamation,
-# README snippet), after tests/shcheck.sh.  Needs $BUILD and a scratch dir $T.
+# README snippet), after tests/shcheck.sh: sets $BUILD (absolute) and a
+# scratch directory $T, removed on exit.
 # `make test` hands the scripts its compiler and flags: CC, TG_CFLAGS (every
 # compile flag), TG_LDLIBS (link flags and libraries), MAKE and MAKEFLAGS.
+BUILD=${BUILD:-build}
+case $BUILD in /*) ;; *) BUILD=$PWD/$BUILD ;; esac
+T=$(mktemp -d "${TMPDIR:-/tmp}/tgi_build_XXXXXX"); trap 'rm -rf "$T"' EXIT
 CC=${CC:-cc}
 TG_CFLAGS=${TG_CFLAGS:--std=c99 -O2}
 TG_LDLIBS=${TG_LDLIBS:-}

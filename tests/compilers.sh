@@ -61,9 +61,9 @@ for c in $COMPILERS; do
         for f in "$a"/*; do
             n=$((n + 1)); cmp -s "$f" "$b/${f##*/}" || differ="$differ ${f##*/}"
         done
-        extra=$(cd "$b" && ls | while read -r f; do [ -e "$a/$f" ] || echo "$f"; done)
+        extra=$(for f in "$b"/*; do [ -e "$a/${f##*/}" ] || printf ' %s' "${f##*/}"; done)
         if [ -z "$differ" ] && [ -z "$extra" ] && [ "$n" -gt 1 ]; then ok "$c = $first, $num: $n files identical"
-        else fail "$c = $first, $num" "differ:$(echo "$differ" | cut -c 1-300) ${extra:+only in $c: $extra}"; fi
+        else fail "$c = $first, $num" "differ:$(echo "$differ" | cut -c 1-300) ${extra:+only in $c:$extra}"; fi
     done
 done
 summary

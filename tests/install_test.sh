@@ -9,9 +9,6 @@
 set -u
 cd "$(dirname "$0")/.."
 . tests/shcheck.sh
-BUILD=${BUILD:-build}
-case $BUILD in /*) ;; *) BUILD=$PWD/$BUILD ;; esac
-T=$(mktemp -d "${TMPDIR:-/tmp}/tgi_install_XXXXXX"); trap 'rm -rf "$T"' EXIT
 . tests/build_check.sh
 P=$T/prefix
 PKG_CONFIG=${PKG_CONFIG:-pkg-config}

@@ -8,8 +8,6 @@
 set -u
 cd "$(dirname "$0")/.."
 . tests/shcheck.sh
-BUILD=${BUILD:-build}
-T=$(mktemp -d "${TMPDIR:-/tmp}/tgi_readme_XXXXXX"); trap 'rm -rf "$T"' EXIT
 . tests/build_check.sh
 
 awk '/^<!-- begin examples\/minimal.c -->/ { on = 1; next } /^<!-- end examples\/minimal.c -->/ { on = 0 }
