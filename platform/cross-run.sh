@@ -17,7 +17,7 @@ set -u
 cd "$(dirname "$0")/.." || exit 1
 MODE=${1:-check}
 OUT=${CROSS_BUILD:-build-cross}
-TARGETS=${CROSS_TARGETS:-"i686 s390x powerpc m3 m4f m0 rv32 rv32f"}
+TARGETS=${CROSS_TARGETS:-"i686 s390x powerpc m3 m4f m0 m0mps2 rv32 rv32f"}
 SCENES=${CROSS_SCENES:-"cornell spheres columns"}
 SIZE=${CROSS_SIZE:-64x48}
 FRAMES=${CROSS_FRAMES:-2}
@@ -58,7 +58,7 @@ target_cc() {
         i686) echo i686-linux-gnu-gcc ;;
         s390x) echo s390x-linux-gnu-gcc ;;
         powerpc) echo powerpc-linux-gnu-gcc ;;
-        m3|m4f|m0|m0count) echo arm-none-eabi-gcc ;;
+        m3|m4f|m0|m0mps2) echo arm-none-eabi-gcc ;;
         rv32|rv32f) echo riscv64-unknown-elf-gcc ;;
     esac
 }
@@ -69,7 +69,7 @@ target_flags() { # for the core and the driver
         i686) echo "-msse2 -mfpmath=sse" ;; # x87 rounds differently
         m3) echo "-mcpu=cortex-m3 -mthumb -ffunction-sections -fdata-sections" ;;
         m4f) echo "-mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard -ffunction-sections -fdata-sections" ;;
-        m0|m0count) echo "-mcpu=cortex-m0 -mthumb -ffunction-sections -fdata-sections -fno-tree-loop-distribute-patterns" ;;
+        m0|m0mps2) echo "-mcpu=cortex-m0 -mthumb -ffunction-sections -fdata-sections -fno-tree-loop-distribute-patterns" ;;
         rv32) echo "-march=rv32imac -mabi=ilp32 $rv" ;;    # soft float
         rv32f) echo "-march=rv32imafc -mabi=ilp32f $rv" ;; # float on the F extension
     esac
@@ -91,23 +91,24 @@ target_run() { # how to run a Linux binary
 # in ns, so one instruction is one ns there.
 target_qemu() {
     case $1 in
-        m3|m0count) echo "qemu-system-arm -M mps2-an385 -icount shift=7,sleep=off" ;;
+        m3|m0mps2) echo "qemu-system-arm -M mps2-an385 -icount shift=7,sleep=off" ;;
         m4f) echo "qemu-system-arm -M mps2-an386 -icount shift=7,sleep=off" ;;
         m0) echo "qemu-system-arm -M microbit" ;; # no counter
         rv32|rv32f) echo "qemu-system-riscv32 -M virt -bios none -icount shift=0,sleep=off" ;;
     esac
 }
-target_opt() { case $1 in m0|m0count) echo -Os ;; *) echo -O2 ;; esac; } # M0: 256 KB of flash
+target_opt() { case $1 in m0|m0mps2) echo -Os ;; *) echo -O2 ;; esac; } # M0: 256 KB of flash
 target_nums() { # m0 has no FPU and little flash; m4f and rv32f are there for their FPU
-    case $1 in m0|m0count) echo fixed ;; m4f|rv32f) echo float ;; *) echo "float fixed" ;; esac
+    case $1 in m0|m0mps2) echo fixed ;; m4f|rv32f) echo float ;; *) echo "float fixed" ;; esac
 }
-is_bare() { case $1 in m3|m4f|m0|m0count|rv32|rv32f) return 0 ;; *) return 1 ;; esac; }
+is_bare() { case $1 in m3|m4f|m0|m0mps2|rv32|rv32f) return 0 ;; *) return 1 ;; esac; }
 # The driver's static arena (TG_BM_ARENA_BYTES), per target.
 target_arena() {
     [ "$MODE" = count ] && { echo "${CROSS_COUNT_ARENA:-14680064}"; return; }
     case $1 in
         m0) echo "${CROSS_M0_ARENA:-10496}" ;;
         m3) echo "${CROSS_M3_ARENA:-2097152}" ;;
+        m0mps2) echo "${CROSS_M0MPS2_ARENA:-2097152}" ;;
         m4f) echo "${CROSS_M4F_ARENA:-2097152}" ;;
         rv32|rv32f) echo "${CROSS_RV32_ARENA:-2097152}" ;;
     esac
@@ -117,6 +118,7 @@ target_runs() {
     case $1 in
         m0) echo "$M0_RUNS" ;;
         m3) echo "${CROSS_M3_RUNS:-$RUN}" ;;
+        m0mps2) echo "${CROSS_M0MPS2_RUNS:-$RUN}" ;;
         m4f) echo "${CROSS_M4F_RUNS:-$RUN}" ;;
         rv32|rv32f) echo "${CROSS_RV32_RUNS:-$RUN}" ;;
         *) echo "$RUN" ;;
@@ -125,7 +127,7 @@ target_runs() {
 
 lib_for() { [ "$2" = fixed ] && echo "$OUT/$1/libtinygi-fixed.a" || echo "$OUT/$1/libtinygi.a"; }
 numdef() { [ "$1" = fixed ] && echo "-DTG_FIXED=1" || echo ""; }
-lib_dir() { [ "$1" = m0count ] && echo m0 || echo "$1"; } # the counting M0 build reuses m0's libraries
+lib_dir() { [ "$1" = m0mps2 ] && echo m0 || echo "$1"; } # the same M0 code, another board
 
 # Build the core libraries with the top Makefile, then the driver.
 build_target() {
@@ -161,10 +163,11 @@ build_bare() {
     common="-Wl,--gc-sections -L$BM -Isrc -I$BM -DTG_BM_ARENA_BYTES=$(target_arena "$t") $(numdef "$num")"
     common="$common $BM/startup.c $BM/semihost.c $BM/render.c $BM/counter.c"
     case $t in
-        m0|m0count) # no C library at all: raw semihosting, our memcpy, libgcc last
+        m0|m0mps2) # no C library at all: raw semihosting, our memcpy, libgcc last
             local board="-Tmicrobit.ld"
-            # counting: the same M0 code on the MPS2 board (ARMv6-M is a subset of ARMv7-M), in its 16 MB PSRAM
-            [ "$t" = m0count ] && board="-Tmps2.ld -DTG_BM_MPS2 -Wl,--defsym=RAM_ORIGIN=0x21000000 -Wl,--defsym=RAM_SIZE=16M"
+            # m0mps2: the same M0 code on the MPS2 board (ARMv6-M is a subset of ARMv7-M), in its
+            # 16 MB PSRAM: full-size frames and an instruction counter
+            [ "$t" = m0mps2 ] && board="-Tmps2.ld -DTG_BM_MPS2 -Wl,--defsym=RAM_ORIGIN=0x21000000 -Wl,--defsym=RAM_SIZE=16M"
             $cc $CFLAGS -Os $flags -ffreestanding -nostdlib -Wl,--undefined=tgp_vectors $board \
                 -Wl,-Map="$BIN/$t/render-$num.map" $common $BM/port_semihost.c $BM/libc_mini.c "$lib" -lgcc \
                 -o "$BIN/$t/render-$num.elf" ;;
@@ -357,7 +360,7 @@ check_mode() {
 count_mode() {
     local t num dir n table=""
     BIN="$OUT/count"; LOG="$BIN/log"; mkdir -p "$LOG"
-    for t in m3 m4f m0count rv32 rv32f; do
+    for t in m3 m4f m0mps2 rv32 rv32f; do
         build_target "$t" || continue
         for num in $(target_nums "$t"); do
             dir="$BIN/out/$t/$num"
@@ -365,7 +368,7 @@ count_mode() {
             check_run "$t/$num $COUNT_RUN" $? "$dir"
             print_counts "$t" "$num" "$dir.log"
             n=$(grep -h ' instructions, ' "$dir.log" | tail -n 1 | sed 's/.*: \([0-9]*\) instructions.*/\1/')
-            table="$table$(count_row "${t%count}" "$num" "${n:-0}")"$'\n'
+            table="$table$(count_row "$(core_name "$t")" "$(number_name "$t" "$num")" "${n:-0}")"$'\n'
         done
     done
     echo "cross: the last frame of $COUNT_RUN (QEMU -icount, platform/baremetal/counter.c);"
@@ -373,6 +376,13 @@ count_mode() {
     echo "| core | number | instructions per frame | per pixel | fps at 100 MHz | fps at 480 MHz |"
     echo "| --- | --- | --- | --- | --- | --- |"
     printf '%s' "$table"
+}
+core_name() {
+    case $1 in m3) echo Cortex-M3 ;; m4f) echo Cortex-M4F ;; m0mps2) echo "Cortex-M0 (-Os)" ;;
+               rv32) echo "RISC-V RV32IMAC" ;; rv32f) echo "RISC-V RV32IMAFC" ;; *) echo "$1" ;; esac
+}
+number_name() { # TARGET NUM
+    case $1/$2 in */fixed) echo Q16.16 ;; m4f/float|rv32f/float) echo "float on the FPU" ;; *) echo "soft float" ;; esac
 }
 count_row() { # CORE NUMBER INSTRUCTIONS
     local px size

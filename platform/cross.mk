@@ -16,7 +16,8 @@
 # powerpc (big-endian, 64- and 32-bit, qemu-user), m3 (Cortex-M3, QEMU
 # mps2-an385, newlib + semihosting), m4f (Cortex-M4F, float on the FPU,
 # mps2-an386), m0 (Cortex-M0, QEMU microbit, 16 KB RAM, -nostdlib, -Os,
-# fixed point only), rv32 (RV32IMAC, soft float and fixed, QEMU virt,
+# fixed point only), m0mps2 (the same M0 code on mps2-an385, in its 16 MB
+# PSRAM: full-size frames, instruction counts), rv32 (RV32IMAC, soft float and fixed, QEMU virt,
 # picolibc + our semihosting) and rv32f (RV32IMAFC, float on the F
 # extension).  The driver is platform/baremetal/render.c on all of them; the
 # Linux targets also run the tinygi CLI and tests/test_fbdev.  The
@@ -30,7 +31,7 @@
 comma := ,
 space := $() $()
 CROSS_BUILD   ?= build-cross
-CROSS_TARGETS ?= i686 s390x powerpc m3 m4f m0 rv32 rv32f
+CROSS_TARGETS ?= i686 s390x powerpc m3 m4f m0 m0mps2 rv32 rv32f
 CROSS_SCENES  ?= cornell spheres columns
 CROSS_SIZE    ?= 64x48
 CROSS_FRAMES  ?= 2
@@ -41,13 +42,15 @@ CROSS_RUN     ?= size=$(CROSS_SIZE),frames=$(CROSS_FRAMES),shadow=$(CROSS_SHADOW
 CROSS_M3_RUNS   ?= $(CROSS_RUN)
 CROSS_M4F_RUNS  ?= $(CROSS_RUN)
 CROSS_RV32_RUNS ?= $(CROSS_RUN)
+CROSS_M0MPS2_RUNS ?= $(CROSS_RUN)
 # 16 KB of RAM: a full-colour 64x48 frame cannot fit
 CROSS_M0_RUNS   ?= size=4x3,frames=1,shadow=8,aovs=color,cornell size=6x4,frames=1,shadow=8,aovs=ao+depth+normal,cornell
 CROSS_M3_ARENA   ?= 2097152
 CROSS_M4F_ARENA  ?= 2097152
 CROSS_RV32_ARENA ?= 2097152
 CROSS_M0_ARENA   ?= 10496
-# make cross-count: the M0 code is counted on the MPS2 board (its PSRAM)
+CROSS_M0MPS2_ARENA ?= 2097152
+# make cross-count: every frame's instructions (the M0 code on the MPS2 board)
 CROSS_COUNT_RUN   ?= size=160x120,frames=2,shadow=64,aovs=color,cornell
 CROSS_COUNT_ARENA ?= 14680064
 
@@ -58,6 +61,7 @@ CROSS_ENV = CROSS_BUILD="$(CROSS_BUILD)" CROSS_TARGETS="$(CROSS_TARGETS)" \
 	 CROSS_RV32_RUNS="$(CROSS_RV32_RUNS)" CROSS_M0_RUNS="$(CROSS_M0_RUNS)" \
 	 CROSS_M3_ARENA="$(CROSS_M3_ARENA)" CROSS_M4F_ARENA="$(CROSS_M4F_ARENA)" \
 	 CROSS_RV32_ARENA="$(CROSS_RV32_ARENA)" CROSS_M0_ARENA="$(CROSS_M0_ARENA)" \
+	 CROSS_M0MPS2_RUNS="$(CROSS_M0MPS2_RUNS)" CROSS_M0MPS2_ARENA="$(CROSS_M0MPS2_ARENA)" \
 	 CROSS_COUNT_RUN="$(CROSS_COUNT_RUN)" CROSS_COUNT_ARENA="$(CROSS_COUNT_ARENA)" \
 	 SKIP="$(SKIP)" MAKE="$(MAKE)" HOST_CC="$(CC)"
 

@@ -308,8 +308,8 @@ static int render_scene(const char *name, const settings *st)
     tg_real *row;
     unsigned char *bytes;
     const char *text = tg_builtin_scene(name);
-    /* Where instructions are counted, the host clock is never read: its
-     * digits in the log would change the instructions that follow. */
+    /* Where instructions are counted the host clock is not read, so that
+     * a run's log is the same every time. */
     uint64_t insn0 = port_insn_count();
     long t0 = insn0 > 0 ? 0 : port_clock_cs();
     int i, a, bad = 0;
