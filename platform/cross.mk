@@ -7,8 +7,8 @@
 #   make cross            install what is missing, build, run, compare;
 #                         ends with "N passed, N failed"
 #   make cross-count      instructions per frame of one request (CROSS_COUNT_RUN)
-#                         on every bare-metal core, as a table (after make cross,
-#                         whose core libraries it reuses)
+#                         on every bare-metal core, as a table (it shares make
+#                         cross's core libraries)
 #   make cross-install    only the toolchain/emulator installs (apt-get)
 #   make cross CROSS_TARGETS="s390x m3"   a subset (x86_64 always runs)
 #
