@@ -1,106 +1,167 @@
 # SPDX-License-Identifier: MIT
-# tinygi - build, test and benchmark.
+# tinygi - build, test, install.
 #
-#   make            core libraries (float and Q16.16) and the CLI for both
-#   make test       every test, both number types; ends "N passed, N failed"
+#   make                  core libraries (float and Q16.16), the CLI and the
+#                         examples for both number types, into $(BUILD)
+#   make test             every test, both number types; ends "N passed, N failed"
+#   make DEV=1 ...        warnings are errors (development and CI; the default
+#                         build never stops on a warning)
+#   make install          library, header, pkg-config file (both number types)
+#   make uninstall        and the CLI into $(DESTDIR)$(PREFIX)
+#   make amalgamation     $(BUILD)/amalgamation/tinygi.c + tinygi.h
+#   make examples         examples/*.c against the built library, or
+#                         EXAMPLES_LIB=installed (pkg-config) or =amalgamation
+#   make compilers        gcc and clang builds render the same files, bit for bit
 #   make clean
 #
+# Standard variables are honoured: CC, CFLAGS (default -O2), CPPFLAGS,
+# LDFLAGS, LDLIBS, AR, PREFIX (default /usr/local), DESTDIR; changing any flag
+# rebuilds (the objects depend on $(BUILD)/flags, rewritten when a flag
+# changes).  OPT, EXTRA_CFLAGS and EXTRA_LDFLAGS are older names still read
+# (CFLAGS defaults to $(OPT); the EXTRA_ ones are added after CFLAGS/LDFLAGS).
+#
 # Sources are found by wildcard: a new file under src/<area>/ joins the core,
-# a new tests/test_*.c becomes a test program, a new tests/*_test.sh a script.
+# a new tests/test_*.c becomes a test program, a new tests/*_test.sh a script,
+# a new examples/*.c an example.
 
-CC      ?= cc
 BUILD   ?= build
 OPT     ?= -O2
-CSTD     = -std=c99 -ffp-contract=off -fexcess-precision=fast
-WARN     = -Wall -Wextra -Wpedantic -Wshadow -Wdouble-promotion -Werror
-CFLAGS_ALL = $(CSTD) $(OPT) $(WARN) $(EXTRA_CFLAGS)
-LDLIBS_HOST = -lm $(EXTRA_LDFLAGS)
+CFLAGS  ?= $(OPT)
+PREFIX  ?= /usr/local
+DESTDIR ?=
+BINDIR  ?= $(PREFIX)/bin
+LIBDIR  ?= $(PREFIX)/lib
+INCLUDEDIR ?= $(PREFIX)/include
+PKGCONFIGDIR ?= $(LIBDIR)/pkgconfig
+INSTALL ?= install
+PKG_CONFIG ?= pkg-config
+
+# ---- flags chosen per compiler ----
+# Reproducible floats: no contraction into FMAs, and float arithmetic done in
+# float.  gcc needs -fexcess-precision=fast for the second; clang has no such
+# option before clang 16 (clang 14 rejects it) and evaluates float in float
+# wherever FLT_EVAL_METHOD is 0 (x86-64, ARM, RISC-V, i686 with -msse2
+# -mfpmath=sse); `make compilers` proves gcc and clang builds bit-identical.
+CC_FAMILY := $(shell $(CC) -dM -E -x c /dev/null 2>/dev/null | sed -n 's/^.define __clang__ .*/clang/p; s/^.define __GNUC__ .*/gcc/p' | sort | head -n 1)
+REPRO_gcc   := -ffp-contract=off -fexcess-precision=fast
+REPRO_clang := -ffp-contract=off
+WARN_gcc    := -Wall -Wextra -Wpedantic -Wshadow -Wdouble-promotion
+WARN_clang  := $(WARN_gcc)
+REPRO ?= $(REPRO_$(CC_FAMILY))
+WARN  ?= $(WARN_$(CC_FAMILY))
+DEV   ?=
+WERROR ?= $(if $(filter 1,$(DEV)),-Werror)
+
+# Every compile line, and every hosted link line (platform/bench.mk uses both).
+CFLAGS_ALL  = -std=c99 $(REPRO) $(WARN) $(WERROR) $(CPPFLAGS) $(CFLAGS) $(EXTRA_CFLAGS)
+LDLIBS_HOST = $(LDFLAGS) $(EXTRA_LDFLAGS) $(LDLIBS) -lm
+HOSTED_DEFS = -D_POSIX_C_SOURCE=200809L
+FLAGS_STAMP = $(BUILD)/flags
 
 SKIP      ?=
 CORE_SRC   := $(filter-out $(SKIP),$(sort $(wildcard src/*.c src/*/*.c)))
+CORE_HDR   := $(sort $(wildcard src/*.h src/*/*.h))
 HOSTED_SRC := $(sort $(wildcard platform/hosted/*.c platform/fbdev/*.c))
 TEST_SRC   := $(filter-out $(SKIP),$(sort $(wildcard tests/test_*.c)))
 TEST_NAMES := $(patsubst tests/%.c,%,$(TEST_SRC))
+EXAMPLE_SRC := $(sort $(wildcard examples/*.c))
+EXAMPLES_LIB ?= built
+AMALG      := $(BUILD)/amalgamation
+VERSION    := $(shell sed -n 's/^.define TG_VERSION "\(.*\)".*/\1/p' src/tinygi.h)
 
-CORE_OBJ_float := $(patsubst src/%.c,$(BUILD)/float/core/%.o,$(CORE_SRC))
-CORE_OBJ_fixed := $(patsubst src/%.c,$(BUILD)/fixed/core/%.o,$(CORE_SRC))
-HOST_OBJ_float := $(patsubst platform/%.c,$(BUILD)/float/platform/%.o,$(HOSTED_SRC))
-HOST_OBJ_fixed := $(patsubst platform/%.c,$(BUILD)/fixed/platform/%.o,$(HOSTED_SRC))
-
-NUMDEF_float :=
-NUMDEF_fixed := -DTG_FIXED=1
-
-TESTS_float := $(addprefix $(BUILD)/float/tests/,$(TEST_NAMES))
-TESTS_fixed := $(addprefix $(BUILD)/fixed/tests/,$(TEST_NAMES))
-
-.PHONY: all test clean tests-build golden
+.PHONY: all test clean tests-build golden examples amalgamation install uninstall compilers FORCE
 all: $(BUILD)/libtinygi.a $(BUILD)/libtinygi-fixed.a $(BUILD)/tinygi $(BUILD)/tinygi-fixed
 
-# ---- the core: freestanding, no libc beyond stdint/stddef/string ----
-$(BUILD)/float/core/%.o: src/%.c
-	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) -ffreestanding -MMD -MP -c $< -o $@
-$(BUILD)/fixed/core/%.o: src/%.c
-	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) -DTG_FIXED=1 -ffreestanding -MMD -MP -c $< -o $@
+FORCE:
+# The flags every output was built with; rewritten only when they change.
+$(FLAGS_STAMP): FORCE
+	@mkdir -p $(@D)
+	@printf '%s\n' '$(subst ','\'',$(strip $(CC) $(CFLAGS_ALL) | $(LDLIBS_HOST) | $(AR)))' >$@.new; \
+	 if cmp -s $@.new $@; then rm -f $@.new; else mv $@.new $@; fi
 
-$(BUILD)/libtinygi.a: $(CORE_OBJ_float)
-	@rm -f $@
-	$(AR) rcs $@ $^
-$(BUILD)/libtinygi-fixed.a: $(CORE_OBJ_fixed)
-	@rm -f $@
-	$(AR) rcs $@ $^
+# ---- one number type: $(1) float|fixed, $(2) file suffix, $(3) its defines ----
+# Variables per number type (used by platform/bench.mk and platform/cross.mk):
+#   NUMDEF_x, LIB_x, CORE_OBJ_x, HOST_OBJ_x, CLI_x, TESTS_x, EXAMPLES_x
+define number_type
+NUMDEF_$(1)   := $(3)
+LIB_$(1)      := $$(BUILD)/libtinygi$(2).a
+CLI_$(1)      := $$(BUILD)/tinygi$(2)
+PC_$(1)       := tinygi$(2)
+CORE_OBJ_$(1) := $$(patsubst src/%.c,$$(BUILD)/$(1)/core/%.o,$$(CORE_SRC))
+HOST_OBJ_$(1) := $$(patsubst platform/%.c,$$(BUILD)/$(1)/platform/%.o,$$(HOSTED_SRC))
+TESTS_$(1)    := $$(addprefix $$(BUILD)/$(1)/tests/,$$(TEST_NAMES))
+EXAMPLES_$(1) := $$(patsubst examples/%.c,$$(BUILD)/$(1)/examples-$$(EXAMPLES_LIB)/%,$$(EXAMPLE_SRC))
+all: $$(patsubst examples/%.c,$$(BUILD)/$(1)/examples-built/%,$$(EXAMPLE_SRC))
+examples: $$(EXAMPLES_$(1))
 
-# ---- the hosted platform ----
-$(BUILD)/float/platform/%.o: platform/%.c
-	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) -D_POSIX_C_SOURCE=200809L -Isrc -MMD -MP -c $< -o $@
-$(BUILD)/fixed/platform/%.o: platform/%.c
-	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) -DTG_FIXED=1 -D_POSIX_C_SOURCE=200809L -Isrc -MMD -MP -c $< -o $@
-
-# ---- the CLI ----
-$(BUILD)/tinygi: tools/tinygi.c $(HOST_OBJ_float) $(BUILD)/libtinygi.a
-	$(CC) $(CFLAGS_ALL) -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform $< $(HOST_OBJ_float) $(BUILD)/libtinygi.a -o $@ $(LDLIBS_HOST)
-$(BUILD)/tinygi-fixed: tools/tinygi.c $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a
-	$(CC) $(CFLAGS_ALL) -DTG_FIXED=1 -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform $< $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a -o $@ $(LDLIBS_HOST)
-
-# ---- tests: every tests/test_*.c, once per number type ----
-$(BUILD)/float/tests/%: tests/%.c $(wildcard tests/*.h) $(HOST_OBJ_float) $(BUILD)/libtinygi.a
-	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform -Itests $< $(HOST_OBJ_float) $(BUILD)/libtinygi.a -o $@ $(LDLIBS_HOST)
-$(BUILD)/fixed/tests/%: tests/%.c $(wildcard tests/*.h) $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a
-	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_ALL) -DTG_FIXED=1 -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform -Itests $< $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a -o $@ $(LDLIBS_HOST)
+# the core: freestanding, no libc beyond stdint/stddef/string
+$$(BUILD)/$(1)/core/%.o: src/%.c $$(FLAGS_STAMP)
+	@mkdir -p $$(@D)
+	$$(CC) $$(CFLAGS_ALL) $(3) -ffreestanding -MMD -MP -c $$< -o $$@
+$$(LIB_$(1)): $$(CORE_OBJ_$(1))
+	@rm -f $$@
+	$$(AR) rcs $$@ $$^
+# the hosted platform, the CLI and the tests
+$$(BUILD)/$(1)/platform/%.o: platform/%.c $$(FLAGS_STAMP)
+	@mkdir -p $$(@D)
+	$$(CC) $$(CFLAGS_ALL) $(3) $$(HOSTED_DEFS) -Isrc -MMD -MP -c $$< -o $$@
+$$(CLI_$(1)): tools/tinygi.c $$(HOST_OBJ_$(1)) $$(LIB_$(1))
+	$$(CC) $$(CFLAGS_ALL) $(3) $$(HOSTED_DEFS) -Isrc -Iplatform $$< $$(HOST_OBJ_$(1)) $$(LIB_$(1)) -o $$@ $$(LDLIBS_HOST)
+$$(BUILD)/$(1)/tests/%: tests/%.c $$(wildcard tests/*.h) $$(HOST_OBJ_$(1)) $$(LIB_$(1))
+	@mkdir -p $$(@D)
+	$$(CC) $$(CFLAGS_ALL) $(3) $$(HOSTED_DEFS) -Isrc -Iplatform -Itests $$< $$(HOST_OBJ_$(1)) $$(LIB_$(1)) -o $$@ $$(LDLIBS_HOST)
+# the examples, against the built library, the installed one or the amalgamation
+$$(BUILD)/$(1)/examples-built/%: examples/%.c $$(LIB_$(1)) $$(CORE_HDR)
+	@mkdir -p $$(@D)
+	$$(CC) $$(CFLAGS_ALL) $(3) -Isrc $$< $$(LIB_$(1)) -o $$@ $$(LDLIBS_HOST)
+$$(BUILD)/$(1)/examples-installed/%: examples/%.c FORCE
+	@mkdir -p $$(@D)
+	$$(CC) $$(CFLAGS_ALL) `$$(PKG_CONFIG) --cflags $$(PC_$(1))` $$< `$$(PKG_CONFIG) --libs $$(PC_$(1))` -o $$@ $$(LDLIBS_HOST)
+$$(BUILD)/$(1)/examples-amalgamation/%: examples/%.c $$(AMALG)/tinygi.c $$(AMALG)/tinygi.h
+	@mkdir -p $$(@D)
+	$$(CC) $$(CFLAGS_ALL) $(3) -I$$(AMALG) $$< $$(AMALG)/tinygi.c -o $$@ $$(LDLIBS_HOST)
+endef
+$(eval $(call number_type,float,,))
+$(eval $(call number_type,fixed,-fixed,-DTG_FIXED=1))
 
 tests-build: all $(TESTS_float) $(TESTS_fixed)
 
+# The scripts get the build's compiler and flags, and call make with them.
 test: tests-build
-	@BUILD=$(BUILD) CC="$(CC)" bash tests/run.sh
+	@BUILD=$(BUILD) CC="$(CC)" MAKE="$(MAKE)" REPRO='$(REPRO)' \
+	 TG_CFLAGS='$(subst ','\'',$(CFLAGS_ALL))' TG_LDLIBS='$(subst ','\'',$(LDLIBS_HOST))' \
+	 bash tests/run.sh
 
-# ---- micro-benchmarks (speed is measured here, never in tests) ----
-.PHONY: bench-raster bench-hbil
-$(BUILD)/bench_raster: tools/bench_raster.c $(HOST_OBJ_float) $(BUILD)/libtinygi.a
-	$(CC) $(CFLAGS_ALL) -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform $< $(HOST_OBJ_float) $(BUILD)/libtinygi.a -o $@ $(LDLIBS_HOST)
-$(BUILD)/bench_raster-fixed: tools/bench_raster.c $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a
-	$(CC) $(CFLAGS_ALL) -DTG_FIXED=1 -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform $< $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a -o $@ $(LDLIBS_HOST)
-$(BUILD)/bench_hbil: tools/bench_hbil.c $(HOST_OBJ_float) $(BUILD)/libtinygi.a
-	$(CC) $(CFLAGS_ALL) -Wno-double-promotion -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform $< $(HOST_OBJ_float) $(BUILD)/libtinygi.a -o $@ $(LDLIBS_HOST)
-$(BUILD)/bench_hbil-fixed: tools/bench_hbil.c $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a
-	$(CC) $(CFLAGS_ALL) -Wno-double-promotion -DTG_FIXED=1 -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform $< $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a -o $@ $(LDLIBS_HOST)
-# 50k-triangle sphere into a full G-buffer at 320x240 and 1280x720 (Mtri/s)
-bench-raster: $(BUILD)/bench_raster $(BUILD)/bench_raster-fixed
-	$(BUILD)/bench_raster
-	$(BUILD)/bench_raster-fixed
-# the HBIL chain (split, kernel, merge, filter) at 320x240 (ms)
-bench-hbil: $(BUILD)/bench_hbil $(BUILD)/bench_hbil-fixed
-	$(BUILD)/bench_hbil
-	$(BUILD)/bench_hbil-fixed
-# whole frames of every built-in scene through the CLI (ms per frame, float and
-# fixed, the paper's every-pixel kernel and --gi-quarter)
-bench-frame: all
-	@for s in plane groove cornell spheres columns; do for b in tinygi tinygi-fixed; do for m in "" --gi-quarter; do \
-	  printf '%-8s %-13s %-13s ' $$s $$b "$$m"; $(BUILD)/$$b render builtin:$$s -o $(BUILD)/bench-frame.ppm --frames 10 $$m 2>&1 | sed 's/.*, //'; done; done; done
+# ---- the single-file build ----
+amalgamation: $(AMALG)/tinygi.c $(AMALG)/tinygi.h
+$(AMALG)/tinygi.c: tools/amalgamate.sh tools/amalgamate.awk $(CORE_SRC) $(CORE_HDR)
+	sh tools/amalgamate.sh $(AMALG) $(CORE_SRC)
+$(AMALG)/tinygi.h: $(AMALG)/tinygi.c
+
+# ---- install: both number types, each with its pkg-config file ----
+# The installed header is the amalgamated one: src/tinygi.h with the headers
+# it includes inlined, so one file is enough.
+install: all $(AMALG)/tinygi.h
+	$(INSTALL) -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(LIBDIR) $(DESTDIR)$(INCLUDEDIR) $(DESTDIR)$(PKGCONFIGDIR)
+	$(INSTALL) -m 644 $(AMALG)/tinygi.h $(DESTDIR)$(INCLUDEDIR)/tinygi.h
+	$(INSTALL) -m 644 $(LIB_float) $(LIB_fixed) $(DESTDIR)$(LIBDIR)/
+	$(INSTALL) -m 755 $(CLI_float) $(CLI_fixed) $(DESTDIR)$(BINDIR)/
+	sed -e 's|@PREFIX@|$(PREFIX)|; s|@LIBDIR@|$(LIBDIR)|; s|@INCLUDEDIR@|$(INCLUDEDIR)|' \
+	    -e 's|@VERSION@|$(VERSION)|; s|@NAME@|tinygi|; s|@NUMBER@|float|; s|@CFLAGS@||' \
+	    tools/tinygi.pc.in >$(DESTDIR)$(PKGCONFIGDIR)/tinygi.pc
+	sed -e 's|@PREFIX@|$(PREFIX)|; s|@LIBDIR@|$(LIBDIR)|; s|@INCLUDEDIR@|$(INCLUDEDIR)|' \
+	    -e 's|@VERSION@|$(VERSION)|; s|@NAME@|tinygi-fixed|; s|@NUMBER@|Q16.16 fixed point|; s|@CFLAGS@| -DTG_FIXED=1|' \
+	    tools/tinygi.pc.in >$(DESTDIR)$(PKGCONFIGDIR)/tinygi-fixed.pc
+uninstall:
+	rm -f $(DESTDIR)$(INCLUDEDIR)/tinygi.h \
+	      $(DESTDIR)$(LIBDIR)/libtinygi.a $(DESTDIR)$(LIBDIR)/libtinygi-fixed.a \
+	      $(DESTDIR)$(BINDIR)/tinygi $(DESTDIR)$(BINDIR)/tinygi-fixed \
+	      $(DESTDIR)$(PKGCONFIGDIR)/tinygi.pc $(DESTDIR)$(PKGCONFIGDIR)/tinygi-fixed.pc
+
+# ---- gcc and clang agree bit for bit (CI; each compiler builds in build-CC) ----
+COMPILERS ?= gcc clang
+compilers:
+	@COMPILERS="$(COMPILERS)" MAKE="$(MAKE)" bash tests/compilers.sh
 
 # Rewrite the golden images from the current renderer (look at them after).
 golden: all
@@ -113,4 +174,4 @@ golden: all
 clean:
 	rm -rf $(BUILD) build-*
 
--include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
+-include $(patsubst %.o,%.d,$(CORE_OBJ_float) $(CORE_OBJ_fixed) $(HOST_OBJ_float) $(HOST_OBJ_fixed))

@@ -20,6 +20,9 @@ want_cmd  powerpc-linux-gnu-gcc    gcc-powerpc-linux-gnu
 want_file /usr/powerpc-linux-gnu/include/stdio.h libc6-dev-powerpc-cross
 want_cmd  i686-linux-gnu-gcc       gcc-i686-linux-gnu
 want_file /usr/i686-linux-gnu/include/stdio.h    libc6-dev-i386-cross
+want_cmd  riscv64-unknown-elf-gcc  gcc-riscv64-unknown-elf
+want_file /usr/lib/picolibc/riscv64-unknown-elf/picolibc.specs picolibc-riscv64-unknown-elf
+want_cmd  qemu-system-riscv32      qemu-system-misc
 
 [ ${#need[@]} -eq 0 ] && exit 0
 # de-duplicate

@@ -13,10 +13,10 @@
 #
 # The core is compiled -ffreestanding; gcc and clang still instrument it.
 # libFuzzer needs clang and its runtime (Debian: packages clang and
-# libclang-rt-NN-dev); `make fuzz` says what is missing.  clang does not know
-# -fexcess-precision=fast (a warning, an error under -Werror), so the fuzz
-# build uses its own flag set (warnings not errors: clang warns where gcc does not).  New crashes are written to
-# $(FUZZ_BUILD)/crashes/; turn each into a regression test.
+# libclang-rt-NN-dev); `make fuzz` says what is missing.  The fuzz build takes
+# clang's flags from the Makefile (REPRO_clang, WARN_clang; -Werror with
+# DEV=1).  New crashes are written to $(FUZZ_BUILD)/crashes/; turn each into a
+# regression test.
 
 SAN_BUILD   ?= build-san
 SAN_FLAGS   ?= -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g
@@ -27,7 +27,7 @@ FUZZ_BUILD  ?= build-fuzz
 FUZZ_CC     ?= clang
 FUZZ_SECONDS ?= 30
 FUZZ_TARGETS := scene obj
-FUZZ_FLAGS  = -std=c99 -ffp-contract=off -O1 -g -Wall -Wextra \
+FUZZ_FLAGS  = -std=c99 $(REPRO_clang) $(WARN_clang) $(WERROR) -O1 -g \
               -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all
 FUZZ_BINS   := $(foreach t,$(FUZZ_TARGETS),$(FUZZ_BUILD)/fuzz_$(t) $(FUZZ_BUILD)/fuzz_$(t)-fixed)
 FUZZ_CORE   = $(filter-out $(SKIP),$(sort $(wildcard src/*.c src/*/*.c)))
@@ -36,8 +36,8 @@ FUZZ_CORE   = $(filter-out $(SKIP),$(sort $(wildcard src/*.c src/*/*.c)))
 sanitize:
 	@start=$$(date +%s); \
 	ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	$(MAKE) --no-print-directory BUILD=$(SAN_BUILD) OPT=-O1 \
-	    EXTRA_CFLAGS="$(SAN_FLAGS) $(SAN_WARN)" EXTRA_LDFLAGS="$(SAN_FLAGS)" test; rc=$$?; \
+	$(MAKE) --no-print-directory BUILD=$(SAN_BUILD) \
+	    CFLAGS="-O1 $(SAN_FLAGS) $(SAN_WARN)" LDFLAGS="$(SAN_FLAGS)" test; rc=$$?; \
 	echo "sanitize: $$(( $$(date +%s) - start )) s"; exit $$rc
 
 fuzz-check:

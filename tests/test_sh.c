@@ -3,7 +3,9 @@
  * test_sh.c - the SH9 environment and the far field: white furnace, sky
  * hemisphere against RTR eq. 10.42, the cosine-lobe convolution and the
  * bent-cone restriction (HBIL sec. 2.2.4) against numerical integration of
- * the environment's radiance, the F0 alternative (HBIL sec. 2.2.3).
+ * the environment's radiance, the cone aperture of a cosine-weighted AO,
+ * the F0 alternative (HBIL sec. 2.2.3), and both under a uniform sky:
+ * Lo = albedo / pi (1 - F0) pi L AO exactly.
  */
 #include <stdlib.h>
 #include "check.h"
@@ -249,19 +251,19 @@ TEST(cone_restricted_far_field)
         unit(n);
         bent = v3d(n[0], n[1], n[2]);
         open = tgi_sh9_irradiance(sh, bent);
-        full = tgi_sh9_irradiance_cone(sh, bent, TG_ONE);
+        full = tgi_sh9_irradiance_bent_cone(sh, bent, TG_ONE);
         /* AO = 1: the whole hemisphere, equal to the unoccluded irradiance */
         CHECK(fabs(dv(full.x) - dv(open.x)) <= (TG_FIXED ? 4e-4 : 1e-6) * (1 + dv(open.x)), "AO 1: %g vs %g", dv(full.x), dv(open.x));
         CHECK(fabs(dv(full.z) - dv(open.z)) <= (TG_FIXED ? 4e-4 : 1e-6) * (1 + dv(open.z)), "AO 1 blue");
         prev = full;
         for (a = 19; a >= 0; a--) {
             tg_real ao = rv(a / 20.0);
-            tg_vec3 E = tgi_sh9_irradiance_cone(sh, bent, ao);
+            tg_vec3 E = tgi_sh9_irradiance_bent_cone(sh, bent, ao);
             CHECK(E.x <= prev.x && E.y <= prev.y && E.z <= prev.z, "decreases as AO drops (AO %g: %g after %g)",
                   a / 20.0, dv(E.x), dv(prev.x));
             if (a == 0) CHECK(E.x == 0 && E.y == 0 && E.z == 0, "AO 0 gives 0");
-            if (a == 15 || a == 9 || a == 3) {  /* HBIL sec. 2.2.4 = the integral over the cone acos(1 - AO) */
-                double th = acos(1 - dv(ao));
+            if (a == 15 || a == 9 || a == 3) {  /* HBIL sec. 2.2.4 = the integral over the cone asin(sqrt(AO)) */
+                double th = asin(sqrt(dv(ao)));
                 for (c = 0; c < 3; c++) {
                     sh_ctx ctx;
                     double ref, got = dv(c == 0 ? E.x : c == 1 ? E.y : E.z);
@@ -275,6 +277,75 @@ TEST(cone_restricted_far_field)
     }
 }
 
+/* cos(alpha) = sqrt(1 - AO): the cone whose own cosine-weighted AO
+ * (1/pi int_cone cos dw, integrated numerically) is AO. */
+TEST(cone_aperture_of_a_cosine_weighted_ao)
+{
+    int i;
+    CHECK(tgi_cone_cos_from_ao(TG_ONE) == 0 && tgi_cone_cos_from_ao(0) == TG_ONE, "AO 1 -> 0, AO 0 -> 1");
+    CHECK(tgi_cone_cos_from_ao(rv(1.5)) == 0 && tgi_cone_cos_from_ao(rv(-0.5)) == TG_ONE, "clamped");
+    CHECK(fabs(dv(tgi_cone_cos_from_ao(rv(0.75))) - 0.5) < 1e-4, "AO 3/4 -> 60 degrees");
+    CHECK(fabs(dv(tgi_cone_angle_from_ao(TG_ONE)) - PI / 2) < 1e-4 && tgi_cone_angle_from_ao(0) == 0,
+          "angles: AO 1 -> pi/2, AO 0 -> 0");
+    for (i = 1; i < 20; i++) {
+        double ao = i / 20.0, c = dv(tgi_cone_cos_from_ao(rv(ao))), alpha = acos(c), sum = 0;
+        int k, steps = 2000;
+        for (k = 0; k < steps; k++) {   /* 1/pi int_0^alpha 2 pi cos sin dtheta, midpoint rule */
+            double th = (k + 0.5) * alpha / steps;
+            sum += 2 * cos(th) * sin(th) * alpha / steps;
+        }
+        CHECK(fabs(sum - ao) < (TG_FIXED ? 2e-4 : 2e-6), "AO %g: the cone %g rad has AO %g", ao, alpha, sum);
+        CHECK(fabs(dv(tgi_cone_angle_from_ao(rv(ao))) - alpha) < (TG_FIXED ? 2e-4 : 2e-6), "angle of AO %g", ao);
+        /* HBIL eq. 12's aperture acos(1 - AO) is wider: its cone lets through
+         * (2 - AO) times the light the AO says */
+        {
+            double t12 = 1 - ao, e12 = 1 - t12 * t12;
+            CHECK(fabs(e12 / ao - (2 - ao)) < 1e-12 && e12 > ao, "eq. 12 at AO %g", ao);
+        }
+    }
+}
+
+/* A uniform sky L over surfaces of albedo a and Fresnel F0 with AO A:
+ * Lo = a / pi (1 - F0) pi L A, exactly, in both far-field modes, for any
+ * bent normal (a uniform sky does not care where the cone points). */
+TEST(uniform_sky_gives_albedo_times_ao_in_both_modes)
+{
+    small_gb *g = (small_gb *)malloc(sizeof *g);
+    static tg_real ao[N * N], bx[N * N], by[N * N], bz[N * N];
+    tgi_env env;
+    tg_vec3 sh[9];
+    tgi_rgb_planes far;
+    double L[3] = { 0.8, 1.0, 1.3 }, albedo = 0.6, f0 = 0.04;
+    int i, c, mode;
+    memset(&env, 0, sizeof env);
+    env.type = TG_ENV_UNIFORM; env.uniform = v3d(L[0], L[1], L[2]);
+    tgi_sh9_from_env(&env, sh);
+    make_gb(g, albedo);
+    for (i = 0; i < N * N; i++) {
+        g->gb.f0[i] = rv(f0);
+        ao[i] = rv((i % 21) / 20.0);
+        bx[i] = g->gb.ny[i]; by[i] = g->gb.nz[i]; bz[i] = g->gb.nx[i];
+    }
+    for (mode = TG_FAR_CONE_SH; mode <= TG_FAR_CUBE_F0; mode++) {
+        double worst = 0;
+        tgi_far_rows(&g->gb, sh, ao, bx, by, bz, mode, e[0], e[1], e[2], 0, N);
+        far.r = e[0]; far.g = e[1]; far.b = e[2];
+        tgi_compose_rows(&g->gb, NULL, &env, &far, 1, o[0], o[1], o[2], NULL, NULL, NULL, 0, N);
+        for (i = 0; i < N * N; i++)
+            for (c = 0; c < 3; c++) {
+                double A = dv(ao[i]), want_e = PI * L[c] * A, want = albedo * (1 - f0) * L[c] * A;
+                double err = fabs(dv(o[c][i]) - want);
+                if (err > worst) worst = err;
+                CHECK(fabs(dv(e[c][i]) - want_e) <= (TG_FIXED ? 3e-4 : 2e-6) * (1 + want_e),
+                      "mode %d AO %g: E %g want pi L AO = %g", mode, A, dv(e[c][i]), want_e);
+                CHECK(err <= (TG_FIXED ? 2e-4 : 1e-6) * (1 + want), "mode %d AO %g: Lo %g want %g", mode, A,
+                      dv(o[c][i]), want);
+            }
+        printf("# uniform sky, far mode %d: largest |Lo - a/pi (1 - F0) pi L AO| = %.2g\n", mode, worst);
+    }
+    free(g);
+}
+
 TEST(f0_alternative_and_far_rows_inputs)
 {
     small_gb *g = (small_gb *)malloc(sizeof *g);
@@ -282,11 +353,6 @@ TEST(f0_alternative_and_far_rows_inputs)
     tg_vec3 sh[9];
     int i, mode;
     test_env(sh);
-    CHECK(tgi_far_f0(TG_ONE) == TG_ONE && tgi_far_f0(0) == 0, "F0(1) = 1, F0(0) = 0");
-    for (i = 0; i <= 10; i++) {
-        double a = i / 10.0, want = a * (1 + pow(1 - a, 0.75) / 2);
-        CHECK(fabs(dv(tgi_far_f0(rv(a))) - want) < (TG_FIXED ? 3e-4 : 1e-5), "F0(%g) = %g want %g", a, dv(tgi_far_f0(rv(a))), want);
-    }
     make_gb(g, 1.0);
     for (i = 0; i < N * N; i++) {
         ao[i] = rv((i % 11) / 10.0);
@@ -298,8 +364,8 @@ TEST(f0_alternative_and_far_rows_inputs)
         for (i = 0; i < N * N; i++) {
             tg_vec3 bent = tg_v3(bx[i], by[i], bz[i]), n = tg_v3(g->gb.nx[i], g->gb.ny[i], g->gb.nz[i]), want;
             if (i == 5) { CHECK(e[0][i] == 0 && e[2][i] == 0, "sky pixel gets no far field"); continue; }
-            want = mode == TG_FAR_CONE_SH ? tgi_sh9_irradiance_cone(sh, bent, ao[i])
-                 : mode == TG_FAR_CUBE_F0 ? tgi_v3_scale(tgi_sh9_irradiance(sh, bent), tgi_far_f0(ao[i]))
+            want = mode == TG_FAR_CONE_SH ? tgi_sh9_irradiance_bent_cone(sh, bent, ao[i])
+                 : mode == TG_FAR_CUBE_F0 ? tgi_v3_scale(tgi_sh9_irradiance(sh, bent), ao[i])
                  : tgi_sh9_irradiance(sh, n);
             CHECK(e[0][i] == want.x && e[1][i] == want.y && e[2][i] == want.z, "mode %d pixel %d", mode, i);
         }
@@ -320,6 +386,8 @@ int main(void)
     RUN(sh9_irradiance_is_the_cosine_convolution);
     RUN(sh9_radiance_round_trip);
     RUN(cone_restricted_far_field);
+    RUN(cone_aperture_of_a_cosine_weighted_ao);
+    RUN(uniform_sky_gives_albedo_times_ao_in_both_modes);
     RUN(f0_alternative_and_far_rows_inputs);
     return check_summary();
 }

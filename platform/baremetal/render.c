@@ -5,9 +5,9 @@
  * (SCENE.color.pfm, SCENE.depth.pfm, ...) and, when colour is among them,
  * SCENE.ppm (8-bit sRGB).
  * It is the same C99 file on every target - Linux on x86-64, i686, s390x
- * and powerpc (port_stdio.c), Cortex-M3/M4F with newlib and Cortex-M0 with
- * no C library at all (port_semihost.c) - so `make cross` can compare the
- * outputs of every target byte for byte.
+ * and powerpc (port_stdio.c), Cortex-M3/M4F with newlib, Cortex-M0 with
+ * no C library at all and 32-bit RISC-V with picolibc (port_semihost.c) -
+ * so `make cross` can compare the outputs of every target byte for byte.
  *
  *   usage: render [out=DIR] [size=WxH] [frames=N] [aovs=A+B+...]
  *                 [shadow=N] [technique=NAME] [SCENE...]
@@ -25,6 +25,9 @@
  *
  * Memory: one static arena of TG_BM_ARENA_BYTES holds the parsed scene,
  * the frame (tg_plan.total_bytes) and two row buffers; nothing else.
+ * Cost: where port_insn_count() counts (counter.c), each frame's
+ * instructions are printed ("cornell 64x48 fixed frame 2/2: N
+ * instructions, P per pixel").
  */
 #include <stddef.h>
 #include <stdint.h>
@@ -75,12 +78,12 @@ static void cat_str(char *buf, size_t cap, size_t *at, const char *s)
     buf[*at] = 0;
 }
 
-static void cat_ulong(char *buf, size_t cap, size_t *at, unsigned long v)
+static void cat_uint(char *buf, size_t cap, size_t *at, uint64_t v)
 {
     char digits[24];
     int n = 0;
     do {
-        digits[n++] = (char)('0' + v % 10u);
+        digits[n++] = (char)('0' + (int)(v % 10u));
         v /= 10u;
     } while (v);
     while (n > 0 && *at + 1 < cap) buf[(*at)++] = digits[--n];
@@ -131,9 +134,9 @@ static void header(char *buf, size_t cap, const char *magic, int w, int h, const
     size_t at = 0;
     buf[0] = 0;
     cat_str(buf, cap, &at, magic);
-    cat_ulong(buf, cap, &at, (unsigned long)w);
+    cat_uint(buf, cap, &at, (uint64_t)w);
     cat_str(buf, cap, &at, " ");
-    cat_ulong(buf, cap, &at, (unsigned long)h);
+    cat_uint(buf, cap, &at, (uint64_t)h);
     cat_str(buf, cap, &at, tail);
 }
 
@@ -237,31 +240,59 @@ NOINLINE static void log_arena_short(const char *name, size_t used, size_t more)
     cat_str(msg, sizeof msg, &at, "render: ");
     cat_str(msg, sizeof msg, &at, name);
     cat_str(msg, sizeof msg, &at, ": arena too small: about ");
-    cat_ulong(msg, sizeof msg, &at, (unsigned long)(used + more));
+    cat_uint(msg, sizeof msg, &at, (uint64_t)(used + more));
     cat_str(msg, sizeof msg, &at, " bytes needed, ");
-    cat_ulong(msg, sizeof msg, &at, (unsigned long)TG_BM_ARENA_BYTES);
+    cat_uint(msg, sizeof msg, &at, (uint64_t)TG_BM_ARENA_BYTES);
     cat_str(msg, sizeof msg, &at, " available (TG_BM_ARENA_BYTES)");
     port_log(msg);
 }
 
-NOINLINE static void log_scene(const char *name, const settings *st, const tg_plan *plan, size_t arena_used, long cs)
+/* "NAME WxH NUMBER" */
+static void cat_scene(char *msg, size_t cap, size_t *at, const char *name, const settings *st)
+{
+    cat_str(msg, cap, at, name);
+    cat_str(msg, cap, at, " ");
+    cat_uint(msg, cap, at, (uint64_t)st->width);
+    cat_str(msg, cap, at, "x");
+    cat_uint(msg, cap, at, (uint64_t)st->height);
+    cat_str(msg, cap, at, " " TG_NUMBER_NAME);
+}
+
+/* "NAME WxH NUMBER: frame B bytes, arena used A bytes, N frame(s) in C
+ * instructions" (or "in T ms" where nothing counts instructions). */
+NOINLINE static void log_scene(const char *name, const settings *st, const tg_plan *plan, size_t arena_used,
+                               uint64_t insns, long cs)
 {
     char msg[200];
     size_t at = 0;
-    cat_str(msg, sizeof msg, &at, name);
-    cat_str(msg, sizeof msg, &at, " ");
-    cat_ulong(msg, sizeof msg, &at, (unsigned long)st->width);
-    cat_str(msg, sizeof msg, &at, "x");
-    cat_ulong(msg, sizeof msg, &at, (unsigned long)st->height);
-    cat_str(msg, sizeof msg, &at, " " TG_NUMBER_NAME ": frame ");
-    cat_ulong(msg, sizeof msg, &at, (unsigned long)plan->total_bytes);
+    cat_scene(msg, sizeof msg, &at, name, st);
+    cat_str(msg, sizeof msg, &at, ": frame ");
+    cat_uint(msg, sizeof msg, &at, (uint64_t)plan->total_bytes);
     cat_str(msg, sizeof msg, &at, " bytes, arena used ");
-    cat_ulong(msg, sizeof msg, &at, (unsigned long)arena_used);
+    cat_uint(msg, sizeof msg, &at, (uint64_t)arena_used);
     cat_str(msg, sizeof msg, &at, " bytes, ");
-    cat_ulong(msg, sizeof msg, &at, (unsigned long)st->frames);
+    cat_uint(msg, sizeof msg, &at, (uint64_t)st->frames);
     cat_str(msg, sizeof msg, &at, " frame(s) in ");
-    cat_ulong(msg, sizeof msg, &at, (unsigned long)(cs > 0 ? cs * 10 : 0));
-    cat_str(msg, sizeof msg, &at, " ms");
+    cat_uint(msg, sizeof msg, &at, insns > 0 ? insns : (uint64_t)(cs > 0 ? cs * 10 : 0));
+    cat_str(msg, sizeof msg, &at, insns > 0 ? " instructions" : " ms");
+    port_log(msg);
+}
+
+/* "NAME WxH NUMBER frame I/N: C instructions, P per pixel" (counter.c) */
+NOINLINE static void log_frame_count(const char *name, const settings *st, int i, uint64_t insns)
+{
+    char msg[160];
+    size_t at = 0;
+    cat_scene(msg, sizeof msg, &at, name, st);
+    cat_str(msg, sizeof msg, &at, " frame ");
+    cat_uint(msg, sizeof msg, &at, (uint64_t)i + 1u);
+    cat_str(msg, sizeof msg, &at, "/");
+    cat_uint(msg, sizeof msg, &at, (uint64_t)st->frames);
+    cat_str(msg, sizeof msg, &at, ": ");
+    cat_uint(msg, sizeof msg, &at, insns);
+    cat_str(msg, sizeof msg, &at, " instructions, ");
+    cat_uint(msg, sizeof msg, &at, insns / ((uint64_t)st->width * (uint64_t)st->height));
+    cat_str(msg, sizeof msg, &at, " per pixel");
     port_log(msg);
 }
 
@@ -277,7 +308,10 @@ static int render_scene(const char *name, const settings *st)
     tg_real *row;
     unsigned char *bytes;
     const char *text = tg_builtin_scene(name);
-    long t0 = port_clock_cs();
+    /* Where instructions are counted the host clock is not read, so that
+     * a run's log is the same every time. */
+    uint64_t insn0 = port_insn_count();
+    long t0 = insn0 > 0 ? 0 : port_clock_cs();
     int i, a, bad = 0;
 
     memset(&err, 0, sizeof err);
@@ -299,9 +333,15 @@ static int render_scene(const char *name, const settings *st)
         return 3;
     }
     s = tg_frame_create(&plan, frame_memory, plan.total_bytes, &frame, &err);
-    for (i = 0; s == TG_OK && i < st->frames; i++) s = tg_frame_render(frame, i, &err);
+    for (i = 0; s == TG_OK && i < st->frames; i++) {
+        uint64_t insns = port_insn_count();
+        s = tg_frame_render(frame, i, &err);
+        insns = port_insn_count() - insns;
+        if (s == TG_OK && insns > 0) log_frame_count(name, st, i, insns);
+    }
     if (s != TG_OK) { log_error(name, &err); return status_exit(s); }
-    log_scene(name, st, &plan, arena.used, port_clock_cs() - t0);
+    if (insn0 > 0) log_scene(name, st, &plan, arena.used, port_insn_count() - insn0, 0);
+    else log_scene(name, st, &plan, arena.used, 0, port_clock_cs() - t0);
 
     if ((plan.request.aovs & (1u << TG_AOV_COLOR)) &&
         write_ppm(frame, st->width, st->height, st->outdir, name, bytes) != 0)

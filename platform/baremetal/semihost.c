@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * semihost.c - the semihosting calls of semihost.h, for any Cortex-M
- * (ARMv6-M and ARMv7-M both have `bkpt`).  No libc: this file is what a
- * -nostdlib target (the Cortex-M0) uses for all of its I/O.
+ * (ARMv6-M and ARMv7-M both have `bkpt`) and for 32-bit RISC-V (the RISC-V
+ * semihosting spec uses ARM's operations and argument blocks).  No libc:
+ * this file is what the Cortex-M0 and RISC-V targets use for all their I/O.
  */
 #include "semihost.h"
 
@@ -16,6 +17,22 @@ enum {
 #define ADP_STOPPED_APPLICATION_EXIT 0x20026u
 #define SH_OPEN_MODE_WB 5 /* fopen modes: r, rb, r+, r+b, w, wb, ... */
 
+#if defined(__riscv)
+/* RISC-V: a0 = operation, a1 = argument block; the trap is an `ebreak`
+ * between two no-op shifts, all three uncompressed (RISC-V Semihosting,
+ * version 0.2, sec. 2.1), so the debugger can tell it from a breakpoint. */
+static int sh_call(int op, const void *arg)
+{
+    register int a0 __asm__("a0") = op;
+    register const void *a1 __asm__("a1") = arg;
+    __asm__ volatile(".option push\n\t.option norvc\n\t"
+                     "slli x0, x0, 0x1f\n\tebreak\n\tsrai x0, x0, 7\n\t"
+                     ".option pop"
+                     : "+r"(a0) : "r"(a1) : "memory");
+    return a0;
+}
+#else
+/* Cortex-M: r0 = operation, r1 = argument block, `bkpt 0xAB`. */
 static int sh_call(int op, const void *arg)
 {
     register int r0 __asm__("r0") = op;
@@ -23,6 +40,7 @@ static int sh_call(int op, const void *arg)
     __asm__ volatile("bkpt 0xAB" : "+r"(r0) : "r"(r1) : "memory");
     return r0;
 }
+#endif
 
 static size_t sh_strlen(const char *s)
 {

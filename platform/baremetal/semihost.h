@@ -3,12 +3,15 @@
  * semihost.h - ARM semihosting: the debugger (here QEMU) performs I/O for a
  * bare-metal program.  A call is `bkpt 0xAB` on Cortex-M with the operation
  * in r0 and a pointer to its argument block in r1 (ARM "Semihosting for
- * AArch32 and AArch64", version 2).  Only what tinygi's bare-metal driver
+ * AArch32 and AArch64", version 2); on RISC-V it is the sequence
+ * `slli x0,x0,0x1f; ebreak; srai x0,x0,7` with a0 and a1, and the same
+ * operations (RISC-V Semihosting, version 0.2).  Only what tinygi's bare-metal driver
  * needs: write text, open/write/close a host file, read the command line,
  * read a clock, and exit with a status.
  *
  * QEMU must run with `-semihosting-config enable=on,target=native`, or the
- * first bkpt is a lockup.
+ * first call is a lockup (Cortex-M) or a breakpoint trap (RISC-V: startup.c
+ * reports it as a fault, which cannot be printed either).
  */
 #ifndef TG_SEMIHOST_H
 #define TG_SEMIHOST_H

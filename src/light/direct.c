@@ -81,6 +81,7 @@ void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_coun
     prepared_light pl[LIGHT_CHUNK];
     int first, k, x, y, w = g->width;
     tg_real half_w = tg_ldexp(tg_from_int(view->width), -1), half_h = tg_ldexp(tg_from_int(view->height), -1);
+    tg_real position_error = tgi_shadow_gbuffer_error(view); /* per unit depth */
     for (y = y0; y < y1; y++)
         for (x = 0; x < w; x++) tgi_rgb_set(e_out, tgi_gv_index(g, x, y), tg_v3(0, 0, 0));
     for (first = 0; first < light_count; first += LIGHT_CHUNK) {
@@ -103,7 +104,8 @@ void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_coun
                 for (k = 0; k < count; k++) {
                     tg_real inv, f = light_factor(&pl[k], p, n, &inv);
                     if (f <= 0) continue;
-                    if (pl[k].shadow) f = tg_mul(f, tgi_shadow_visibility(pl[k].shadow, p, n));
+                    if (pl[k].shadow) f = tg_mul(f, tgi_shadow_visibility_err(pl[k].shadow, p, n,
+                                                                                    tg_mul(tgi_gv_depth(g, i), position_error)));
                     e = tgi_v3_add(e, light_irradiance(pl[k].radiant, f, inv));
                 }
                 tgi_rgb_set(e_out, i, e);

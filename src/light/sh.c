@@ -2,7 +2,8 @@
 /*
  * sh.c - environment to SH9, and the far-field irradiance read from it:
  * unoccluded (Ramamoorthi-Hanrahan), restricted to the bent cone (HBIL
- * sec. 2.2.4) or scaled by the compensated AO factor F0 (HBIL sec. 2.2.3).
+ * sec. 2.2.4) or scaled by the AO factor F0 (HBIL sec. 2.2.3), both for a
+ * cosine-weighted AO (the deviation is documented in sh.h).
  * See sh.h for the basis, the coefficient order and the modes.
  */
 #include "sh.h"
@@ -86,28 +87,49 @@ tg_vec3 tgi_sh9_irradiance(const tg_vec3 sh[9], tg_vec3 n)
     return sh_eval_rgb(sh, n, CONE_C0, CONE_C1, CONE_C2);
 }
 
-tg_vec3 tgi_sh9_irradiance_cone(const tg_vec3 sh[9], tg_vec3 bent, tg_real ao)
+tg_real tgi_cone_cos_from_ao(tg_real ao)
 {
-    tg_real t = tg_sub(TG_ONE, tg_saturate(ao)); /* HBIL sec. 2.2.4: t = cos(theta_max) = 1 - AO */
-    tg_real t2 = tg_mul(t, t), t3 = tg_mul(t2, t), t4 = tg_mul(t2, t2);
-    tg_real c0 = tg_mul(CONE_C0, tg_sub(TG_ONE, t2));                  /* HBIL 2.2.4 c0 */
-    tg_real c1 = tg_mul(CONE_C1, tg_sub(TG_ONE, t3));                  /* HBIL 2.2.4 c1 */
-    tg_real c2 = tg_mul(CONE_C2, tg_sub(tg_mul(TG_R(3.0f), tg_sub(TG_ONE, t4)),
-                                        tg_mul(TG_R(2.0f), tg_sub(TG_ONE, t2)))); /* HBIL 2.2.4 c2 */
-    return sh_eval_rgb(sh, bent, c0, c1, c2);
+    /* a cosine-weighted AO of an open cone is sin^2(alpha) (sh.h) */
+    return tg_sqrt(tg_sub(TG_ONE, tg_saturate(ao)));
 }
 
-tg_real tgi_far_f0(tg_real ao)
+tg_real tgi_cone_angle_from_ao(tg_real ao)
 {
-    tg_real a = tg_saturate(ao);
-    tg_real s = tg_sub(TG_ONE, a);
-    tg_real s075 = tg_mul(tg_sqrt(s), tg_sqrt(tg_sqrt(s))); /* (1 - a)^0.75 */
-    return tg_mul(a, tg_add(TG_ONE, tg_mul(s075, TG_R(0.5f)))); /* HBIL sec. 2.2.3 F0 */
+    return tg_acos(tgi_cone_cos_from_ao(ao));
+}
+
+/* HBIL sec. 2.2.4 for t = cos(theta_max), given 1 - t^2 (exact when the
+ * caller has it, e.g. AO itself). */
+static tg_vec3 irradiance_in_cone(const tg_vec3 sh[9], tg_vec3 axis, tg_real t, tg_real one_minus_t2)
+{
+    tg_real t2 = tg_sub(TG_ONE, one_minus_t2), t3 = tg_mul(t2, t), t4 = tg_mul(t2, t2);
+    tg_real c0 = tg_mul(CONE_C0, one_minus_t2);                          /* HBIL 2.2.4 c0 */
+    tg_real c1 = tg_mul(CONE_C1, tg_sub(TG_ONE, t3));                    /* HBIL 2.2.4 c1 */
+    tg_real c2 = tg_mul(CONE_C2, tg_sub(tg_mul(TG_R(3.0f), tg_sub(TG_ONE, t4)),
+                                        tg_mul(TG_R(2.0f), one_minus_t2))); /* HBIL 2.2.4 c2 */
+    return sh_eval_rgb(sh, axis, c0, c1, c2);
+}
+
+tg_vec3 tgi_sh9_irradiance_in_cone(const tg_vec3 sh[9], tg_vec3 axis, tg_real cos_alpha)
+{
+    tg_real t = tg_saturate(cos_alpha);
+    return irradiance_in_cone(sh, axis, t, tg_sub(TG_ONE, tg_mul(t, t)));
+}
+
+tg_vec3 tgi_sh9_irradiance_bent_cone(const tg_vec3 sh[9], tg_vec3 bent, tg_real ao)
+{
+    /* 1 - cos^2(alpha) = AO exactly, so a uniform sky gives pi L AO to the last bit */
+    return irradiance_in_cone(sh, bent, tgi_cone_cos_from_ao(ao), tg_saturate(ao));
+}
+
+tg_vec3 tgi_sh9_irradiance_cone(const tg_vec3 sh[9], tg_vec3 bent, tg_real x)
+{
+    return tgi_sh9_irradiance_in_cone(sh, bent, tg_sub(TG_ONE, tg_saturate(x)));
 }
 
 tg_vec3 tgi_sh9_irradiance_f0(const tg_vec3 sh[9], tg_vec3 bent, tg_real ao)
 {
-    return tgi_v3_scale(tgi_sh9_irradiance(sh, bent), tgi_far_f0(ao)); /* HBIL sec. 2.2.3 */
+    return tgi_v3_scale(tgi_sh9_irradiance(sh, bent), tg_saturate(ao)); /* HBIL sec. 2.2.3, F0(AO) = AO */
 }
 
 static tg_real sh_radiance1(const tg_real L[9], tg_vec3 d)
@@ -159,7 +181,7 @@ void tgi_far_rows(const tgi_gbuffer *gb, const tg_vec3 sh[9], const tg_real *ao,
             a = ao ? ao[i] : TG_ONE;
             if (mode == TG_FAR_CUBE_F0) e = tgi_sh9_irradiance_f0(sh, n, a);
             else if (mode == TG_FAR_OPEN || !ao) e = tgi_sh9_irradiance(sh, n);
-            else e = tgi_sh9_irradiance_cone(sh, n, a);
+            else e = tgi_sh9_irradiance_bent_cone(sh, n, a);
             e_r[i] = e.x; e_g[i] = e.y; e_b[i] = e.z;
         }
     }

@@ -16,11 +16,28 @@
  *
  * Far field, per pixel, in one of three modes (tgi_far_mode):
  *   TG_FAR_CONE_SH   HBIL sec. 2.2.4: the cosine lobe restricted to the bent
- *                    cone, t = cos(theta_max) = 1 - AO, along the bent normal.
+ *                    cone of half angle alpha along the bent normal,
+ *                    cos(alpha) = tgi_cone_cos_from_ao(AO).
  *   TG_FAR_CUBE_F0   HBIL sec. 2.2.3: E0(bent) * F0(AO), the unoccluded
- *                    irradiance times the energy-compensated AO factor.
+ *                    irradiance times the AO factor; F0(AO) = AO here.
  *   TG_FAR_OPEN      E0(n): unoccluded, AO and bent normal ignored.
- * With AO = 1 the first two equal the unoccluded irradiance exactly.
+ * With AO = 1 the first two equal the unoccluded irradiance exactly; under a
+ * uniform environment L both give pi L AO exactly, the irradiance a
+ * cosine-weighted AO means (AO = 1/pi int V cos dw, HBIL eq. 9).
+ *
+ * Deviation from HBIL (the cone aperture).  HBIL eq. 12 takes
+ * cos(alpha) = 1 - AO, the aperture of a cone whose SOLID ANGLE is 2 pi AO:
+ * the AO of eq. 8, uniform over solid angle.  tinygi's AO is cosine-weighted
+ * (eq. 9, as HBIL itself computes it, eq. 11); an unoccluded cone of half
+ * angle alpha about the normal has that AO = 1/pi int_0^alpha 2 pi cos sin
+ * = sin^2(alpha), so cos(alpha) = sqrt(1 - AO).  With eq. 12 the cone's
+ * lobe integral under a uniform sky is pi L (1 - (1 - AO)^2) =
+ * pi L AO (2 - AO): (2 - AO) times what the occlusion lets through (+50% at
+ * AO 0.5), which a path tracer confirms (tests/test_pathtrace.c).  Likewise
+ * HBIL's F0(a) = a (1 + (1 - a)^0.75 / 2) (sec. 2.2.3) lifts eq. 8's
+ * uniform AO toward a cosine-weighted visibility; applied to a
+ * cosine-weighted AO it overshoots by the same kind of factor, so F0 is the
+ * identity here.
  */
 #ifndef TG_SH_H
 #define TG_SH_H
@@ -42,14 +59,30 @@ void tgi_sh9_from_env(const tgi_env *env, tg_vec3 sh[9]);
  * cosine-lobe convolution). Negative ringing is clamped to 0. */
 tg_vec3 tgi_sh9_irradiance(const tg_vec3 sh[9], tg_vec3 n);
 
-/* Irradiance from the cone of half angle acos(1 - ao) about `bent`
- * (HBIL sec. 2.2.4). ao in [0, 1] (clamped); ao = 1 gives the hemisphere. */
-tg_vec3 tgi_sh9_irradiance_cone(const tg_vec3 sh[9], tg_vec3 bent, tg_real ao);
+/* The bent cone's aperture from a cosine-weighted AO (clamped to [0, 1]):
+ * cos(alpha) = sqrt(1 - AO), the one place this formula lives (see the
+ * deviation above).  AO 1 -> 0 (the hemisphere), AO 0 -> 1 (a closed cone). */
+tg_real tgi_cone_cos_from_ao(tg_real ao);
 
-/* HBIL sec. 2.2.3: F0(a) = a (1 + (1 - a)^0.75 / 2), a clamped to [0, 1]. */
-tg_real tgi_far_f0(tg_real ao);
+/* The same as a half angle in radians, in [0, pi/2] (the `cone` AOV). */
+tg_real tgi_cone_angle_from_ao(tg_real ao);
 
-/* E0(bent) * F0(ao) (HBIL sec. 2.2.3). */
+/* Irradiance from the cone of half angle alpha about `axis`, given
+ * cos_alpha in [0, 1] (clamped) (HBIL sec. 2.2.4); cos_alpha = 0 gives the
+ * hemisphere. */
+tg_vec3 tgi_sh9_irradiance_in_cone(const tg_vec3 sh[9], tg_vec3 axis, tg_real cos_alpha);
+
+/* The bent cone of a cosine-weighted AO: tgi_sh9_irradiance_in_cone with
+ * cos_alpha = tgi_cone_cos_from_ao(ao), its band-0 weight exact in AO. */
+tg_vec3 tgi_sh9_irradiance_bent_cone(const tg_vec3 sh[9], tg_vec3 bent, tg_real ao);
+
+/* Deprecated, kept while src/ao/bentcone.c calls it: the cone of half angle
+ * acos(1 - x) (HBIL eq. 12's aperture for x = AO); bentcone.c passes
+ * x = 1 - cos(cone) and should call tgi_sh9_irradiance_in_cone(sh, bent,
+ * cos(cone)) instead. */
+tg_vec3 tgi_sh9_irradiance_cone(const tg_vec3 sh[9], tg_vec3 bent, tg_real x);
+
+/* E0(bent) * F0(ao) (HBIL sec. 2.2.3) with F0(AO) = AO (see above). */
 tg_vec3 tgi_sh9_irradiance_f0(const tg_vec3 sh[9], tg_vec3 bent, tg_real ao);
 
 /* Radiance of the SH9 environment seen in world direction `dir` (unit),

@@ -11,7 +11,14 @@
 
 #define SHADOW_BORDER 2                 /* texels kept for the PCF footprint at a face edge */
 #define SPOT_MAX_ANGLE TG_R(1.3962634f) /* 80 degrees */
-#define GRAZING_COS TG_R(0.1f)          /* slope of the receiver plane clamped at ~84 degrees */
+#define GRAZING_MIN_COS TG_R(0.001f)    /* |n . l| floor: keeps the receiver plane's slope finite */
+/* Error bounds of rasterized depth (tgi_raster_* snap vertices to 1/16 of a
+ * pixel or texel: a vertex moves up to sqrt(2)/32 of one sideways, and the
+ * plane through the moved vertices, taken at any point of the triangle, moves
+ * along its normal by at most that much at the point's own depth), with a
+ * margin of ~3; and of the arithmetic, in units of the number type. */
+#define RECEIVER_SNAP TG_R(0.125f)
+#define RECEIVER_ULPS 8
 
 /* A right-handed light basis: forward given, right = forward x helper, up = right x forward. */
 static void light_basis(tg_vec3 forward, tg_vec3 *right, tg_vec3 *up)
@@ -25,8 +32,12 @@ static int light_faces(const tgi_light *l) { return l->type == TG_LIGHT_POINT ? 
 
 size_t tgi_shadow_map_bytes(const tgi_light *l, int size)
 {
-    size_t n = (size_t)(size > 0 ? size : 0);
-    return (size_t)light_faces(l) * n * n * sizeof(tg_real);
+    size_t texels, bytes;
+    if (size < TG_MIN_SHADOW_MAP || size > TG_MAX_SHADOW_MAP) return 0;
+    if (tg_size_mul((size_t)size, (size_t)size, &texels) ||
+        tg_size_mul(texels, (size_t)light_faces(l), &texels) ||
+        tg_size_mul(texels, sizeof(tg_real), &bytes)) return 0;
+    return bytes;
 }
 
 static void set_row(tgi_mat4 *m, int row, tg_vec3 a, tg_real d)
@@ -109,7 +120,8 @@ void tgi_shadow_map_setup(tgi_shadow_map *sm, const tgi_light *l, int size,
     tg_real tan_half, zfar, znear, widen;
     int f;
     memset(sm, 0, sizeof *sm);
-    sm->size = size > 0 ? size : 1;
+    if (tgi_shadow_map_bytes(l, size) == 0) return; /* empty: faces = 0 */
+    sm->size = size;
     sm->faces = light_faces(l);
     sm->depth = (tg_real *)memory;
     sm->texel_ndc = tg_div(TG_R(2.0f), tg_from_int(sm->size));
@@ -146,8 +158,10 @@ void tgi_shadow_map_render_rows(tgi_shadow_map *sm, int face, const tg_vec3 *pos
                                int tri_count, int y0, int y1)
 {
     size_t n = (size_t)sm->size;
-    tg_real *depth = sm->depth + (size_t)face * n * n;
+    tg_real *depth;
     size_t i;
+    if (face < 0 || face >= sm->faces) return;
+    depth = sm->depth + (size_t)face * n * n;
     for (i = (size_t)y0 * n; i < (size_t)y1 * n; i++) depth[i] = TG_REAL_MAX;
     tgi_raster_depth(depth, sm->size, sm->size, &sm->world_to_clip[face], sm->orthographic,
                     pos, tri_count, y0, y1);
@@ -168,61 +182,108 @@ static int cube_face(tg_vec3 d)
     return d.z >= 0 ? 4 : 5;
 }
 
-/* Receiver-plane depth bias: the receiver's depth at each PCF tap is
- * extrapolated from its plane (normal n in the light basis).  Taps are
- * separable: tap (i, j) sits at NDC offset (ox[i], oy[j]) from the lookup.
- *   orthographic  depth(i, j) = depth + gx ox[i] + gy oy[j]
- *   perspective   the tap's ray r = (ndc / focal, 1) meets the plane at
- *                 depth num / den, den = n . r = den_c + dx[i] + dy[j]; the
- *                 test depth - bias <= stored is done as num >= (stored +
- *                 bias) den (den < 0), without a division per tap. */
-tg_real tgi_shadow_visibility(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n)
+tg_real tgi_shadow_gbuffer_error(const tgi_view *view)
 {
-    int face = sm->faces == 6 ? cube_face(tgi_v3_sub(p, sm->origin)) : 0;
-    tg_vec3 r = sm->right[face], u = sm->up[face], f = sm->forward[face];
-    tg_real nl_x = tgi_v3_dot(n, r), nl_y = tgi_v3_dot(n, u), nl_z = tgi_v3_dot(n, f);
+    /* RECEIVER_SNAP pixels at depth 1, plus RECEIVER_ULPS of the number type */
+    return tg_add(tg_div(RECEIVER_SNAP, view->pixels_per_unit), RECEIVER_ULPS * TG_EPS);
+}
+
+/* How far the map's own depths may lie in front of the true surface, along
+ * its normal, at distance `lz` (perspective) or anywhere (orthographic). */
+static tg_real map_error(const tgi_shadow_map *sm, tg_real lz)
+{
+    tg_real texel = sm->orthographic ? sm->texel_world : tg_mul(sm->texel_world, lz);
+    return tg_add(tg_add(tg_mul(texel, RECEIVER_SNAP), tg_mul(lz, RECEIVER_ULPS * TG_EPS)),
+                  RECEIVER_ULPS * TG_EPS);
+}
+
+/* One lookup, prepared: the texel position and the receiver plane (the
+ * plane through the receiver, moved toward the light by its error bound).
+ *   orthographic  tap depth = base + min(dx[i] + dy[j], 0)
+ *   perspective   tap ray r = (ndc / focal, 1) meets the plane at depth
+ *                 num / den, den = n . r = den_c + dx[i] + dy[j], clamped
+ *                 to <= den_c; lit when num >= (stored + bias) den (den < 0)
+ * Both clamps keep a tap no deeper than the lookup itself: a tap past the
+ * plane's horizon or round a concave corner would otherwise compare the
+ * plane's continuation with whatever lies there. */
+typedef struct lookup {
+    int face;
+    tg_real ndc_x, ndc_y;
+    tg_real slope_x, slope_y;   /* depth (ortho) or den (perspective) per NDC unit */
+    tg_real base;               /* ortho: the receiver's depth at the lookup, biased */
+    tg_real num, den_c, bias;   /* perspective */
+} lookup;
+
+/* 1 when prepared, 0 when the surface faces away from the light. */
+static int prepare_ortho(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, tg_real err, lookup *q)
+{
+    tg_vec3 r = sm->right[0], u = sm->up[0], f = sm->forward[0];
+    tg_real nl_z = tgi_v3_dot(n, f), depth, inv_nz;
+    if (nl_z >= 0) return 0;
+    nl_z = tg_min(nl_z, tg_neg(GRAZING_MIN_COS));
+    depth = tg_sub(tgi_v3_dot(p, f), sm->ortho_near);
+    err = tg_add(err, map_error(sm, tg_abs(depth)));
+    q->face = 0;
+    q->num = q->den_c = q->bias = 0;
+    q->ndc_x = tg_mul(tg_sub(tgi_v3_dot(p, r), sm->ortho_center_x), sm->ortho_scale);
+    q->ndc_y = tg_mul(tg_sub(tgi_v3_dot(p, u), sm->ortho_center_y), sm->ortho_scale);
+    /* the receiver moved by err along n is err / |n . f| nearer the light */
+    q->base = tg_sub(tg_sub(depth, tg_ldexp(sm->texel_world, -1)), tg_div(err, tg_neg(nl_z)));
+    /* plane n.(dx, dy, dz) = 0 -> dz = -(nx dx + ny dy) / nz; world = ndc / scale */
+    inv_nz = tg_div(tg_neg(sm->ortho_scale_inv), nl_z);
+    q->slope_x = tg_mul(tgi_v3_dot(n, r), inv_nz);
+    q->slope_y = tg_mul(tgi_v3_dot(n, u), inv_nz);
+    return 1;
+}
+
+/* 1 when prepared, 0 when the surface faces away, -1 behind the light's map (lit). */
+static int prepare_perspective(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, tg_real err, lookup *q)
+{
+    tg_vec3 d = tgi_v3_sub(p, sm->origin), r, u, f;
+    tg_real lx, ly, lz, inv_lz;
+    q->face = sm->faces == 6 ? cube_face(d) : 0;
+    q->base = 0;
+    r = sm->right[q->face]; u = sm->up[q->face]; f = sm->forward[q->face];
+    lz = tgi_v3_dot(d, f); lx = tgi_v3_dot(d, r); ly = tgi_v3_dot(d, u);
+    if (lz <= TG_R(0.001f)) return -1;
+    q->num = tgi_v3_dot(n, d);          /* n . (p - light): < 0 when the surface faces it */
+    if (q->num >= 0) return 0;
+    inv_lz = tg_div(TG_ONE, lz);
+    q->ndc_x = tg_mul(tg_mul(lx, sm->focal), inv_lz);
+    q->ndc_y = tg_mul(tg_mul(ly, sm->focal), inv_lz);
+    q->den_c = tg_mul(q->num, inv_lz);  /* n . r at the lookup */
+    q->bias = tg_ldexp(tg_mul(sm->texel_world, lz), -1);
+    /* the plane moved toward the light by err, at most half way to it */
+    err = tg_add(err, map_error(sm, lz));
+    q->num = tg_min(tg_add(q->num, err), tg_ldexp(q->num, -1));
+    q->slope_x = tg_mul(tgi_v3_dot(n, r), sm->tan_half);
+    q->slope_y = tg_mul(tgi_v3_dot(n, u), sm->tan_half);
+    return 1;
+}
+
+/* Is the receiver lit at a tap whose offsets are dx + dy, against `stored`? */
+static inline int tap_lit(const lookup *q, int perspective, tg_real off, tg_real stored)
+{
+    if (perspective)
+        return q->num >= tg_mul(tg_add(stored, q->bias), tg_min(tg_add(q->den_c, off), q->den_c));
+    return tg_add(q->base, tg_min(off, 0)) <= stored;
+}
+
+/* PCF over the prepared lookup: continuous texel position (rows top to
+ * bottom), then the footprint:
+ *   tent      taps i0-1 .. i0+2, weights 1-f, 1, 1, f (sum 3 per axis)
+ *   bilinear  taps i0 .. i0+1, weights 1-f, f (sum 1 per axis)
+ * Taps outside the map, and texels where nothing was drawn, are lit. */
+static tg_real pcf(const tgi_shadow_map *sm, const lookup *q)
+{
     tg_real half_size = tg_ldexp(tg_from_int(sm->size), -1);
-    tg_real ndc_x, ndc_y, tw, bias, su, sv, fx, fy, norm, lit = 0;
-    tg_real wx[4], wy[4], tx_off[4], ty_off[4];
-    tg_real base = 0, num = 0, den_c = 0, den_max = 0;
-    const tg_real *depth = sm->depth + (size_t)face * (size_t)sm->size * (size_t)sm->size;
+    tg_real su, sv, fx, fy, norm, lit = 0, wx[4], wy[4], dx[4], dy[4];
+    const tg_real *depth = sm->depth + (size_t)q->face * (size_t)sm->size * (size_t)sm->size;
     int i0, j0, i, j, perspective = !sm->orthographic;
     int taps = sm->filter == TG_SHADOW_PCF_BILINEAR ? 2 : 4;
-
-    if (!perspective) {
-        tg_real inv_nz;
-        if (nl_z >= 0) return 0; /* the surface faces away from the light */
-        if (nl_z > tg_neg(GRAZING_COS)) nl_z = tg_neg(GRAZING_COS);
-        ndc_x = tg_mul(tg_sub(tgi_v3_dot(p, r), sm->ortho_center_x), sm->ortho_scale);
-        ndc_y = tg_mul(tg_sub(tgi_v3_dot(p, u), sm->ortho_center_y), sm->ortho_scale);
-        tw = sm->texel_world;
-        bias = tg_ldexp(tw, -1);
-        base = tg_sub(tg_sub(tgi_v3_dot(p, f), sm->ortho_near), bias);
-        /* plane n.(dx, dy, dz) = 0 -> dz = -(nx dx + ny dy) / nz; world = ndc / scale */
-        inv_nz = tg_div(tg_neg(sm->ortho_scale_inv), nl_z);
-        nl_x = tg_mul(nl_x, inv_nz);  /* now depth change per NDC unit along x */
-        nl_y = tg_mul(nl_y, inv_nz);
-    } else {
-        tg_vec3 d = tgi_v3_sub(p, sm->origin);
-        tg_real lz = tgi_v3_dot(d, f), lx = tgi_v3_dot(d, r), ly = tgi_v3_dot(d, u), inv_lz;
-        if (lz <= TG_R(0.001f)) return TG_ONE; /* behind the light's map: unshadowed */
-        num = tg_add(tg_add(tg_mul(nl_x, lx), tg_mul(nl_y, ly)), tg_mul(nl_z, lz));
-        if (num >= 0) return 0; /* faces away from the light position */
-        inv_lz = tg_div(TG_ONE, lz);
-        ndc_x = tg_mul(tg_mul(lx, sm->focal), inv_lz);
-        ndc_y = tg_mul(tg_mul(ly, sm->focal), inv_lz);
-        tw = tg_mul(sm->texel_world, lz);
-        bias = tg_ldexp(tw, -1);
-        den_c = tg_mul(num, inv_lz);                 /* n . r at the lookup */
-        den_max = tg_mul(den_c, GRAZING_COS);        /* a tap is at most 1/GRAZING_COS deeper */
-        nl_x = tg_mul(nl_x, sm->tan_half);           /* d(n . r) per NDC unit */
-        nl_y = tg_mul(nl_y, sm->tan_half);
-    }
-    /* continuous texel position (rows top to bottom), then the PCF footprint:
-     * tent  taps i0-1 .. i0+2, weights 1-f, 1, 1, f (sum 3 per axis)
-     * bilinear  taps i0 .. i0+1, weights 1-f, f (sum 1 per axis) */
-    su = tg_sub(tg_mul(tg_add(ndc_x, TG_ONE), half_size), TG_R(0.5f));
-    sv = tg_sub(tg_mul(tg_sub(TG_ONE, ndc_y), half_size), TG_R(0.5f));
+    int inside;
+    su = tg_sub(tg_mul(tg_add(q->ndc_x, TG_ONE), half_size), TG_R(0.5f));
+    sv = tg_sub(tg_mul(tg_sub(TG_ONE, q->ndc_y), half_size), TG_R(0.5f));
     i0 = tg_to_int(su); j0 = tg_to_int(sv);
     if (i0 < -2 || j0 < -2 || i0 > sm->size + 1 || j0 > sm->size + 1) return TG_ONE;
     fx = tg_sub(su, tg_from_int(i0));
@@ -239,50 +300,53 @@ tg_real tgi_shadow_visibility(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n)
     }
     for (i = 0; i < taps; i++) {
         /* tap i's texel centre (i0 + i) relative to the lookup, in NDC (y up) */
-        tg_real ox = tg_mul(tg_sub(tg_from_int(i), fx), sm->texel_ndc);
-        tg_real oy = tg_neg(tg_mul(tg_sub(tg_from_int(i), fy), sm->texel_ndc));
-        tx_off[i] = tg_mul(nl_x, ox);
-        ty_off[i] = tg_mul(nl_y, oy);
+        dx[i] = tg_mul(q->slope_x, tg_mul(tg_sub(tg_from_int(i), fx), sm->texel_ndc));
+        dy[i] = tg_mul(q->slope_y, tg_neg(tg_mul(tg_sub(tg_from_int(i), fy), sm->texel_ndc)));
     }
-    if (i0 >= 0 && j0 >= 0 && i0 + taps <= sm->size && j0 + taps <= sm->size) {
-        /* fast path, the whole footprint inside the map (an empty texel holds
-         * TG_REAL_MAX, which passes both tests without a special case) */
-        for (j = 0; j < taps; j++) {
-            const tg_real *row = depth + (size_t)(j0 + j) * (size_t)sm->size + i0;
-            tg_real row_lit = 0;
-            if (perspective) {
-                tg_real den_row = tg_add(den_c, ty_off[j]);
-                for (i = 0; i < taps; i++) {
-                    tg_real den = tg_min(tg_add(den_row, tx_off[i]), den_max);
-                    row_lit = tg_add(row_lit, num >= tg_mul(tg_add(row[i], bias), den) ? wx[i] : 0);
-                }
-            } else {
-                tg_real base_row = tg_add(base, ty_off[j]);
-                for (i = 0; i < taps; i++)
-                    row_lit = tg_add(row_lit, tg_add(base_row, tx_off[i]) <= row[i] ? wx[i] : 0);
-            }
-            lit = tg_add(lit, tg_mul(row_lit, wy[j]));
-        }
-        return tg_saturate(tg_mul(lit, norm));
-    }
-    for (j = 0; j < taps; j++) {   /* at the map's edge: taps outside are lit */
+    /* an empty texel holds TG_REAL_MAX, which every tap test passes */
+    inside = i0 >= 0 && j0 >= 0 && i0 + taps <= sm->size && j0 + taps <= sm->size;
+    for (j = 0; j < taps; j++) {
         int ty = j0 + j;
         const tg_real *row = depth + (size_t)(ty < 0 ? 0 : ty) * (size_t)sm->size;
         tg_real row_lit = 0;
-        for (i = 0; i < taps; i++) {
-            int tx = i0 + i;
-            tg_real stored;
-            if (tx < 0 || ty < 0 || tx >= sm->size || ty >= sm->size) { row_lit = tg_add(row_lit, wx[i]); continue; }
-            stored = row[tx];
-            if (stored == TG_REAL_MAX) { row_lit = tg_add(row_lit, wx[i]); continue; }
-            if (perspective) {
-                tg_real den = tg_min(tg_add(tg_add(den_c, tx_off[i]), ty_off[j]), den_max);
-                if (num >= tg_mul(tg_add(stored, bias), den)) row_lit = tg_add(row_lit, wx[i]);
-            } else if (tg_add(tg_add(base, tx_off[i]), ty_off[j]) <= stored) {
-                row_lit = tg_add(row_lit, wx[i]);
+        if (inside && perspective) {        /* the common cases, without per-tap checks */
+            tg_real den_row = tg_add(q->den_c, dy[j]);
+            for (i = 0; i < taps; i++) {
+                tg_real den = tg_min(tg_add(den_row, dx[i]), q->den_c);
+                if (q->num >= tg_mul(tg_add(row[i0 + i], q->bias), den)) row_lit = tg_add(row_lit, wx[i]);
+            }
+        } else if (inside) {                /* base + min(dx + dy, 0) <= stored, as two tests */
+            tg_real base_row = tg_add(q->base, dy[j]);
+            for (i = 0; i < taps; i++) {
+                tg_real stored = row[i0 + i];
+                if (tg_add(base_row, dx[i]) <= stored || q->base <= stored) row_lit = tg_add(row_lit, wx[i]);
+            }
+        } else {                            /* at the map's edge: taps outside are lit */
+            for (i = 0; i < taps; i++) {
+                int tx = i0 + i;
+                if (tx < 0 || ty < 0 || tx >= sm->size || ty >= sm->size ||
+                    tap_lit(q, perspective, tg_add(dx[i], dy[j]), row[tx]))
+                    row_lit = tg_add(row_lit, wx[i]);
             }
         }
         lit = tg_add(lit, tg_mul(row_lit, wy[j]));
     }
     return tg_saturate(tg_mul(lit, norm));
+}
+
+tg_real tgi_shadow_visibility_err(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, tg_real position_error)
+{
+    lookup q;
+    int state;
+    if (sm->faces == 0) return TG_ONE;  /* no map (an impossible size) */
+    position_error = tg_max(position_error, 0);
+    state = sm->orthographic ? prepare_ortho(sm, p, n, position_error, &q)
+                             : prepare_perspective(sm, p, n, position_error, &q);
+    if (state <= 0) return state < 0 ? TG_ONE : 0;
+    return pcf(sm, &q);
+}
+
+tg_real tgi_shadow_visibility(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n)
+{
+    return tgi_shadow_visibility_err(sm, p, n, 0);
 }

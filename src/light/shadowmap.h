@@ -14,13 +14,27 @@
  *                chosen face: no seams.
  * Perspective maps store clip w = the distance along the face axis.
  *
- * Lookup (tgi_shadow_visibility): receiver-plane depth bias - the receiver's
- * depth is extrapolated from its normal to each PCF tap's texel centre, so a
- * plane never shadows itself at any incidence (the slope term is clamped at
- * 84 degrees) - plus a small constant bias of half a texel; then PCF: a 3x3
- * tent (a 4x4 texel footprint with bilinear weights) or, cheaper, a 2x2
- * bilinear comparison.  1 = lit, 0 = shadowed.
- * Points outside a map, or where nothing was drawn, are lit.
+ * Lookup (tgi_shadow_visibility_err): PCF, a 3x3 tent (a 4x4 texel
+ * footprint with bilinear weights) or, cheaper, a 2x2 bilinear comparison,
+ * of the receiver against the stored depths.  1 = lit, 0 = shadowed.
+ *   - receiver plane: the receiver's depth at each tap is extrapolated along
+ *     its tangent plane to the tap's texel centre, so a plane is compared
+ *     with itself at every incidence; a tap is never taken deeper than the
+ *     lookup itself (past the plane's horizon, or round a concave corner,
+ *     the plane's continuation is not there to be shadowed);
+ *   - normal offset: that plane is first moved toward the light along the
+ *     normal by the error bound of the receiver's position (the caller's
+ *     `position_error`: a G-buffer position reconstructed from rasterized
+ *     depth is off by up to ~1/20 pixel, tgi_shadow_gbuffer_error) plus
+ *     the map's own (its rasterized depths likewise, ~1/20 texel), at most
+ *     half way to the light.  An offset along the normal is 1/cos(theta)
+ *     along the light's ray, so it holds at every grazing angle, where a
+ *     depth bias does not: a surface facing the light with nothing between
+ *     is lit at any image and map size;
+ *   - plus a constant bias of half a texel (curved receivers).
+ * Points outside a map, or where nothing was drawn, are lit.  An occluder
+ * nearer the receiver's plane than the offset is lost (light leaks by
+ * ~1/8 pixel or texel at contact).
  *
  * Memory: the caller gives tgi_shadow_map_bytes() bytes (tg_real aligned).
  */
@@ -28,6 +42,7 @@
 #define TG_SHADOWMAP_H
 
 #include "../scene/scene.h"
+#include "../raster/view.h"
 
 #define TG_SHADOW_MAX_FACES 6
 
@@ -54,11 +69,14 @@ typedef struct tgi_shadow_map {
     tg_real *depth;              /* faces * size * size, face-major, rows top to bottom */
 } tgi_shadow_map;
 
-/* Bytes of depth storage a map for light `l` at `size` texels needs. */
+/* Bytes of depth storage a map for light `l` at `size` texels needs; 0 for
+ * a size outside TG_MIN_SHADOW_MAP..TG_MAX_SHADOW_MAP (or one whose bytes
+ * would not fit in a size_t). */
 size_t tgi_shadow_map_bytes(const tgi_light *l, int size);
 
 /* Fit the map to the light and the scene bounds; `memory` holds
- * tgi_shadow_map_bytes(l, size) bytes. */
+ * tgi_shadow_map_bytes(l, size) bytes.  A size that bytes refuses gives an
+ * empty map: rendering writes nothing and every lookup is lit. */
 void tgi_shadow_map_setup(tgi_shadow_map *sm, const tgi_light *l, int size,
                          tg_vec3 scene_min, tg_vec3 scene_max, void *memory);
 
@@ -70,7 +88,17 @@ void tgi_shadow_map_render_rows(tgi_shadow_map *sm, int face, const tg_vec3 *pos
                                int tri_count, int y0, int y1);
 
 /* Fraction of the light reaching `world_pos` (surface normal `world_normal`,
- * unit), in [0, 1]. */
+ * unit), in [0, 1].  `position_error` (>= 0, world units) bounds how far
+ * world_pos may lie from the true surface along the normal. */
+tg_real tgi_shadow_visibility_err(const tgi_shadow_map *sm, tg_vec3 world_pos, tg_vec3 world_normal,
+                                  tg_real position_error);
+
+/* The same for an exact receiver (a ray-traced point): position_error 0. */
 tg_real tgi_shadow_visibility(const tgi_shadow_map *sm, tg_vec3 world_pos, tg_vec3 world_normal);
+
+/* Error bound, per unit of view depth, of a world position reconstructed
+ * from the G-buffer depth of `view` (the rasterizer's 1/16-pixel snapping,
+ * and the arithmetic): position_error = depth * this. */
+tg_real tgi_shadow_gbuffer_error(const tgi_view *view);
 
 #endif
