@@ -33,3 +33,54 @@ bench: bench-build
 bench-publish:
 	@mkdir -p tools/bench-results
 	cp $(BENCH_DIR)/bench.svg $(BENCH_DIR)/bench.md $(BENCH_DIR)/bench.csv $(BENCH_DIR)/contact.png tools/bench-results/
+
+# ---- cost and speed benches (speed is measured here, never in tests) ----
+#
+#   make bench-count    instructions per frame and per pixel per pass (callgrind;
+#                       deterministic, load does not matter).  Narrow it with
+#                       BENCH_SCENES="cornell columns" (or all), BENCH_TYPES="float fixed",
+#                       BENCH_MODES="default quarter", BENCH_FRAMES=10, BENCH_FRAME_SIZE=320x240
+#   make bench-frame    whole frames through the CLI, timed: every configuration
+#                       once per round, interleaved, BENCH_ROUNDS rounds, medians
+#                       (min..max) of CPU and wall time, load average at start and end
+#   make bench-raster   the 49,728-triangle sphere at 320x240 and 1280x720, float and
+#                       Q16.16, timed the same way, Mtri/s, and callgrind's count per
+#                       frame; BENCH_PEERS="CMD;CMD" adds programs that print the same
+#                       line (tools/bench_time.py describes it)
+# Results: $(BUILD)/bench-count/, $(BUILD)/bench-frame/, $(BUILD)/bench-raster/
+# (count.md/.csv, time.md/.csv).
+
+BENCH_SCENES     ?= cornell columns
+BENCH_TYPES      ?= float fixed
+BENCH_MODES      ?= default quarter
+BENCH_FRAMES     ?= 10
+BENCH_FRAME_SIZE ?= 320x240
+BENCH_JOBS       ?= 2
+BENCH_ROUNDS     ?=
+BENCH_FRAME_SCENES ?= all
+BENCH_RASTER_FRAMES ?= 20
+BENCH_PEERS      ?=
+
+.PHONY: bench-count bench-frame bench-raster bench-valgrind
+# valgrind (callgrind), installed from Debian packages only if it is missing
+bench-valgrind:
+	@command -v valgrind >/dev/null 2>&1 || { \
+	  command -v apt-get >/dev/null 2>&1 || { echo "bench: install valgrind (callgrind)" >&2; exit 1; }; \
+	  echo "bench: installing valgrind"; sudo=""; [ "$$(id -u)" -ne 0 ] && sudo=sudo; \
+	  export DEBIAN_FRONTEND=noninteractive; \
+	  $$sudo apt-get install -y -qq --no-install-recommends valgrind >/dev/null 2>&1 || \
+	  { $$sudo apt-get update -qq && $$sudo apt-get install -y -qq --no-install-recommends valgrind; } || \
+	  { echo "bench: apt-get install valgrind failed" >&2; exit 1; }; }
+
+bench-count: all bench-valgrind
+	python3 tools/bench_count.py --build $(BUILD) --scenes "$(BENCH_SCENES)" --types "$(BENCH_TYPES)" \
+	  --modes "$(BENCH_MODES)" --frames $(BENCH_FRAMES) --size $(BENCH_FRAME_SIZE) --jobs $(BENCH_JOBS)
+
+bench-frame: all
+	python3 tools/bench_time.py frame --build $(BUILD) --scenes "$(BENCH_FRAME_SCENES)" \
+	  --types "$(BENCH_TYPES)" --modes "$(BENCH_MODES)" --frames $(BENCH_FRAMES) \
+	  --size $(BENCH_FRAME_SIZE) --rounds $(or $(BENCH_ROUNDS),5)
+
+bench-raster: $(BUILD)/bench_raster $(BUILD)/bench_raster-fixed bench-valgrind
+	BENCH_PEERS="$(BENCH_PEERS)" python3 tools/bench_time.py raster --build $(BUILD) \
+	  --frames $(BENCH_RASTER_FRAMES) --rounds $(or $(BENCH_ROUNDS),7)
