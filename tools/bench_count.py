@@ -241,7 +241,9 @@ def summarize(frames, setup, final, passes_fn):
             per_pass[name] += ir
     for name in names:
         per_pass[name] /= len(steady)
+    first_pass = dict(pass_costs(frames[0], passes))
     return {
+        "first_pass": first_pass,
         "frames": n,
         "mean": sum(p.total for p in frames) / n,
         "steady": sum(p.total for p in steady) / len(steady),
@@ -282,6 +284,10 @@ def write_reports(args, results, outdir, header):
             for name in s["passes"]:
                 ir = s["per_pass"][name]
                 cw.writerow([scene, ntype, mode, args.size, s["frames"], "pass:" + name,
+                             "%.0f" % ir, "%.1f" % (ir / px)])
+            for name in s["passes"]:
+                ir = s["first_pass"].get(name, 0)
+                cw.writerow([scene, ntype, mode, args.size, s["frames"], "first-frame pass:" + name,
                              "%.0f" % ir, "%.1f" % (ir / px)])
     os.replace(csv_path + ".tmp", csv_path)
 
@@ -337,6 +343,15 @@ def write_reports(args, results, outdir, header):
             lines.append("| %s | %s |" % (name, " | ".join(vals)))
         lines.append("| **frame** | %s |" % " | ".join("**%s**" % fmt_px(t / px) for t in totals))
         lines.append("")
+        extra = []
+        for name in names:
+            d = [(results[(scene,) + c]["first_pass"].get(name, 0) - results[(scene,) + c]["per_pass"].get(name, 0))
+                 / px for c in cols]
+            if any(abs(v) >= 5 for v in d):
+                extra.append("%s %s" % (name, " / ".join("%+.0f" % v for v in d)))
+        if extra:
+            lines.append("Frame 0 differs (per pixel, same columns): " + "; ".join(extra) + ".")
+            lines.append("")
     with open(md_path + ".tmp", "w") as fh:
         fh.write("\n".join(lines))
     os.replace(md_path + ".tmp", md_path)
