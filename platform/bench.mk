@@ -40,6 +40,7 @@ bench-publish:
 #                       deterministic, load does not matter).  Narrow it with
 #                       BENCH_SCENES="cornell columns" (or all), BENCH_TYPES="float fixed",
 #                       BENCH_MODES="default quarter", BENCH_FRAMES=10, BENCH_FRAME_SIZE=320x240
+#   make bench-count-check   bench_count.py's own check (a fake program with passes)
 #   make bench-frame    whole frames through the CLI, timed: every configuration
 #                       once per round, interleaved, BENCH_ROUNDS rounds, medians
 #                       (min..max) of CPU and wall time, load average at start and end
@@ -61,7 +62,7 @@ BENCH_FRAME_SCENES ?= all
 BENCH_RASTER_FRAMES ?= 20
 BENCH_PEERS      ?=
 
-.PHONY: bench-count bench-frame bench-raster bench-valgrind
+.PHONY: bench-count bench-count-check bench-frame bench-raster bench-valgrind
 # valgrind (callgrind), installed from Debian packages only if it is missing
 bench-valgrind:
 	@command -v valgrind >/dev/null 2>&1 || { \
@@ -75,6 +76,10 @@ bench-valgrind:
 bench-count: all bench-valgrind
 	python3 tools/bench_count.py --build $(BUILD) --scenes "$(BENCH_SCENES)" --types "$(BENCH_TYPES)" \
 	  --modes "$(BENCH_MODES)" --frames $(BENCH_FRAMES) --size $(BENCH_FRAME_SIZE) --jobs $(BENCH_JOBS)
+
+# the callgrind reading and the tgi_pass_* discovery, on a small fake program
+bench-count-check: bench-valgrind
+	python3 tools/bench_count.py --self-test
 
 bench-frame: all
 	python3 tools/bench_time.py frame --build $(BUILD) --scenes "$(BENCH_FRAME_SCENES)" \

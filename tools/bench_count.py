@@ -255,6 +255,16 @@ def summarize(frames, setup, final, passes_fn):
     }
 
 
+def warn_coverage(s, what):
+    """The passes should account for the frame; if they do not, the table
+    of today's functions is stale (or the tgi_pass_* functions were inlined)."""
+    rest = s["per_pass"].get("(rest)", 0)
+    if s["steady"] and abs(rest) > 0.05 * s["steady"]:
+        print("bench_count: warning: %s: %.0f%% of the frame is in no pass; name the passes "
+              "tgi_pass_* (not inlined) or update LEGACY_PASSES in %s"
+              % (what, 100.0 * rest / s["steady"], os.path.relpath(__file__)), file=sys.stderr)
+
+
 def fmt_m(ir):
     return "%.1fM" % (ir / 1e6)
 
@@ -374,6 +384,58 @@ def describe_source(build):
         rev or "?", " (with uncommitted changes)" if dirty else "", cc, vg, build)
 
 
+SELF_TEST_C = r"""
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+static volatile unsigned sink;
+static void __attribute__((noinline)) spin(unsigned n) { unsigned i; for (i = 0; i < n; i++) sink += i; }
+void __attribute__((noinline)) tgi_pass_alpha(int i) { spin(i == 0 ? 50000 : 10000); }
+void __attribute__((noinline)) tgi_pass_beta(void) { spin(30000); }
+void __attribute__((noinline)) tg_frame_render(int i) { tgi_pass_alpha(i); tgi_pass_beta(); spin(1000); }
+void __attribute__((noinline)) tg_frame_aov_row8(void) { spin(7000); }
+int main(int argc, char **argv)
+{
+    int i, frames = 1;
+    for (i = 1; i + 1 < argc; i++) if (!strcmp(argv[i], "--frames")) frames = atoi(argv[i + 1]);
+    spin(20000);
+    for (i = 0; i < frames; i++) tg_frame_render(i);
+    tg_frame_aov_row8();
+    return 0;
+}
+"""
+
+
+def self_test():
+    """A fake renderer with two tgi_pass_* functions: the passes must be
+    found, and their per-frame costs must be in the ratio the program sets."""
+    with tempfile.TemporaryDirectory(prefix="bench-count-test-") as tmp:
+        src = os.path.join(tmp, "fake.c")
+        with open(src, "w") as fh:
+            fh.write(SELF_TEST_C)
+        subprocess.run([os.environ.get("CC", "cc"), "-O1", src, "-o", os.path.join(tmp, "tinygi")], check=True)
+        frames, setup, final = run_config(os.path.join(tmp, "tinygi"), "x", "4x4", 3, False, tmp)
+        s = summarize(frames, setup, final, passes_for)
+        p = dict(alpha=0, beta=1, **{"(rest)": 0})
+        p.update(s["per_pass"])
+        p["beta"] = p["beta"] or 1
+        p["alpha"] = p["alpha"] or 1
+        checks = [
+            ("passes found", s["passes"] == ["alpha", "beta", "(rest)"]),
+            ("alpha:beta = 1:3 in steady frames", abs(p["alpha"] * 3 / p["beta"] - 1) < 0.01),
+            ("frame 0 alpha 5x steady", abs(s["first_pass"].get("alpha", 0) / p["alpha"] / 5 - 1) < 0.01),
+            ("rest small", 0 < p["(rest)"] < 0.05 * s["steady"]),
+            ("rows add up", abs(sum(p.values()) - s["steady"]) < 1),
+            ("output counted", abs(s["output"] / p["beta"] * 30000 / 7000 - 1) < 0.02),
+            ("setup before frame 0", s["setup"] > 20000 * 2),
+        ]
+    bad = [name for name, ok in checks if not ok]
+    for name, ok in checks:
+        print("  %s %s" % ("ok  " if ok else "FAIL", name))
+    print("bench_count self-test: %s" % ("passed" if not bad else "FAILED"))
+    return 1 if bad else 0
+
+
 def split_list(v):
     return [x for x in re.split(r"[,\s]+", v) if x]
 
@@ -388,7 +450,11 @@ def main():
     ap.add_argument("--frames", type=int, default=10)
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--out", default=None)
+    ap.add_argument("--self-test", action="store_true",
+                    help="check the callgrind reading and pass discovery on a small fake program")
     args = ap.parse_args()
+    if args.self_test:
+        sys.exit(self_test())
     args.scenes = split_list(args.scenes)
     if args.scenes == ["all"]:
         args.scenes = ["plane", "groove", "cornell", "spheres", "columns"]
@@ -421,6 +487,7 @@ def main():
             s = results[(scene, ntype, mode)]
             print("  %-8s %-5s %-7s mean %8s  steady %8s  first %8s" % (
                 scene, ntype, mode, fmt_m(s["mean"]), fmt_m(s["steady"]), fmt_m(s["first"])), flush=True)
+            warn_coverage(s, "%s %s %s" % (scene, ntype, mode))
     md, cs = write_reports(args, results, out, header)
     print()
     print(open(md).read())

@@ -95,6 +95,12 @@ def frame_main(args):
     scenes = split_list(args.scenes)
     if scenes == ["all"]:
         scenes = ["plane", "groove", "cornell", "spheres", "columns"]
+    for t in split_list(args.types):
+        if t not in ("float", "fixed"):
+            sys.exit("bench_time: type must be float or fixed, got '%s'" % t)
+    for m in split_list(args.modes):
+        if m not in ("default", "quarter"):
+            sys.exit("bench_time: mode must be default or quarter, got '%s'" % m)
     configs = [(s, m, t) for s in scenes for m in split_list(args.modes) for t in split_list(args.types)]
     tmp = tempfile.mkdtemp(prefix="bench-frame-")
 
