@@ -67,6 +67,7 @@ class Profile:
     def __init__(self, path):
         self.total = 0
         self.trigger = ""
+        self.fn_ids = {}        # fn -> callgrind's number for it (grows in order of first execution)
         self.self_cost = {}     # fn -> Ir
         self.calls = {}         # (caller, callee) -> [Ir inclusive, count]
         self._parse(path)
@@ -84,6 +85,7 @@ class Profile:
                 return value
             if m.group(2) is not None:
                 names[m.group(1)] = m.group(2)
+                self.fn_ids.setdefault(base_name(m.group(2)), int(m.group(1)))
             return names.get(m.group(1), "?" + m.group(1))
 
         with open(path, encoding="utf-8", errors="replace") as fh:
@@ -171,16 +173,19 @@ LEGACY_PASSES = [
 ]
 
 PASS_PREFIX = "tgi_pass_"
+NOT_PASSES = {"tgi_pass_row_count"}     # the pass runner's helpers that share the prefix
 
 
 def discovered_passes(profiles):
-    """tgi_pass_<name> functions, in order of first appearance."""
-    seen = []
+    """tgi_pass_<name> functions, in the order they first ran (callgrind
+    numbers functions as it meets them)."""
+    first = {}
     for p in profiles:
-        for fn in sorted(p.functions()):
-            if fn.startswith(PASS_PREFIX) and fn not in seen:
-                seen.append(fn)
-    return [(fn[len(PASS_PREFIX):], [fn]) for fn in seen]
+        for fn in p.functions():
+            if fn.startswith(PASS_PREFIX) and fn not in NOT_PASSES:
+                first[fn] = min(first.get(fn, 1 << 60), p.fn_ids.get(fn, 1 << 59))
+    order = sorted(first, key=lambda fn: (first[fn], fn))
+    return [(fn[len(PASS_PREFIX):], [fn]) for fn in order]
 
 
 def entry_cost(profile, entry):
