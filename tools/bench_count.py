@@ -445,21 +445,19 @@ def split_list(v):
     return [x for x in re.split(r"[,\s]+", v) if x]
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+def add_frame_options(ap, scenes):
+    """The options naming the frames to run (bench_count and bench_time frame)."""
     ap.add_argument("--build", default="build")
-    ap.add_argument("--scenes", default="cornell,columns", help="comma list, or 'all'")
+    ap.add_argument("--scenes", default=scenes, help="comma list, or 'all'")
     ap.add_argument("--types", default="float,fixed")
     ap.add_argument("--modes", default="default,quarter")
     ap.add_argument("--size", default="320x240")
     ap.add_argument("--frames", type=int, default=10)
-    ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--out", default=None)
-    ap.add_argument("--self-test", action="store_true",
-                    help="check the callgrind reading and pass discovery on a small fake program")
-    args = ap.parse_args()
-    if args.self_test:
-        sys.exit(self_test())
+
+
+def check_frame_options(args, prog):
+    """Lists from the options; exits with a message on a bad value."""
     args.scenes = split_list(args.scenes)
     if args.scenes == ["all"]:
         args.scenes = ["plane", "groove", "cornell", "spheres", "columns"]
@@ -467,12 +465,26 @@ def main():
     args.modes = split_list(args.modes)
     for t in args.types:
         if t not in ("float", "fixed"):
-            sys.exit("bench_count: type must be float or fixed, got '%s'" % t)
+            sys.exit("%s: type must be float or fixed, got '%s'" % (prog, t))
     for m in args.modes:
         if m not in ("default", "quarter"):
-            sys.exit("bench_count: mode must be default or quarter, got '%s'" % m)
+            sys.exit("%s: mode must be default or quarter, got '%s'" % (prog, m))
     if not re.match(r"^\d+x\d+$", args.size):
-        sys.exit("bench_count: --size: expected WxH, got '%s'" % args.size)
+        sys.exit("%s: --size: expected WxH, got '%s'" % (prog, args.size))
+    if args.frames < 1:
+        sys.exit("%s: --frames must be at least 1" % prog)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    add_frame_options(ap, "cornell,columns")
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--self-test", action="store_true",
+                    help="check the callgrind reading and pass discovery on a small fake program")
+    args = ap.parse_args()
+    if args.self_test:
+        sys.exit(self_test())
+    check_frame_options(args, "bench_count")
     if args.frames < 2:
         sys.exit("bench_count: --frames must be at least 2 (frame 0 and a steady frame)")
     if not shutil.which("valgrind"):

@@ -92,16 +92,8 @@ def csv_text(header, rows):
 # ---- frame ------------------------------------------------------------------
 
 def frame_main(args):
-    scenes = split_list(args.scenes)
-    if scenes == ["all"]:
-        scenes = ["plane", "groove", "cornell", "spheres", "columns"]
-    for t in split_list(args.types):
-        if t not in ("float", "fixed"):
-            sys.exit("bench_time: type must be float or fixed, got '%s'" % t)
-    for m in split_list(args.modes):
-        if m not in ("default", "quarter"):
-            sys.exit("bench_time: mode must be default or quarter, got '%s'" % m)
-    configs = [(s, m, t) for s in scenes for m in split_list(args.modes) for t in split_list(args.types)]
+    bench_count.check_frame_options(args, "bench_time")
+    configs = [(s, m, t) for s in args.scenes for m in args.modes for t in args.types]
     tmp = tempfile.mkdtemp(prefix="bench-frame-")
 
     def run_one(cfg):
@@ -273,14 +265,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     sub = ap.add_subparsers(dest="what", required=True)
     f = sub.add_parser("frame")
-    f.add_argument("--build", default="build")
-    f.add_argument("--scenes", default="all")
-    f.add_argument("--types", default="float,fixed")
-    f.add_argument("--modes", default="default,quarter")
-    f.add_argument("--size", default="320x240")
-    f.add_argument("--frames", type=int, default=10)
+    bench_count.add_frame_options(f, "all")
     f.add_argument("--rounds", type=int, default=5)
-    f.add_argument("--out", default=None)
     r = sub.add_parser("raster")
     r.add_argument("--build", default="build")
     r.add_argument("--sizes", default="320x240,1280x720")
