@@ -15,6 +15,7 @@
  *           absolute error is measured and bounded instead.
  */
 #include "check.h"
+#include "core/real.h"
 #include <stdlib.h>
 #include <stdint.h>
 #include <float.h>
