@@ -346,6 +346,7 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #define TG_MAX_KEYS 4096                /* camera keys; object keys likewise */
 #define TG_MIN_SPHERE_SEGMENTS 4
 #define TG_MAX_SPHERE_SEGMENTS 256
+#define TG_DEFAULT_SPHERE_SEGMENTS 24   /* segments around a sphere (12 rings) */
 #define TG_MAX_PATH 256                 /* a resolved mesh or MTL path, bytes with the NUL */
 #if !defined(TG_MAX_OBJ_VERTICES)
 #define TG_MAX_OBJ_VERTICES 4000000L    /* [policy] v, vn and vt lines each, per OBJ */

@@ -440,7 +440,7 @@ TEST(lexing)
 {
     tg_scene *s;
     tg_error err;
-    char line[TG_LINE_MAX + 64];
+    char line[TG_MAX_LINE + 64];
     tg_status st;
     /* BOM, CRLF, tabs, comments, blank lines, a line of exactly the limit */
     st = parse("\xEF\xBB\xBF# comment\r\n\r\n\tcamera\tpos 0 1 5 target 0 0 0 # trailing\r\n" MAT, &s, &err);
@@ -448,17 +448,17 @@ TEST(lexing)
     if (st) print_error(&err);
     memset(line, ' ', sizeof line);
     memcpy(line, CAM, strlen(CAM));
-    line[strlen(CAM) + TG_LINE_MAX - 1] = '#';
-    line[strlen(CAM) + TG_LINE_MAX] = '\n';
-    line[strlen(CAM) + TG_LINE_MAX + 1] = '\0';
+    line[strlen(CAM) + TG_MAX_LINE - 1] = '#';
+    line[strlen(CAM) + TG_MAX_LINE] = '\n';
+    line[strlen(CAM) + TG_MAX_LINE + 1] = '\0';
     st = parse(line, &s, &err);
-    CHECK(st == TG_OK, "a line of exactly %d bytes", TG_LINE_MAX);
-    line[strlen(CAM) + TG_LINE_MAX] = ' ';
-    line[strlen(CAM) + TG_LINE_MAX + 1] = '\n';
-    line[strlen(CAM) + TG_LINE_MAX + 2] = '\0';
+    CHECK(st == TG_OK, "a line of exactly %d bytes", TG_MAX_LINE);
+    line[strlen(CAM) + TG_MAX_LINE] = ' ';
+    line[strlen(CAM) + TG_MAX_LINE + 1] = '\n';
+    line[strlen(CAM) + TG_MAX_LINE + 2] = '\0';
     st = parse(line, &s, &err);
-    CHECK(st == TG_ERR_INPUT && err.line == 2 && err.col == TG_LINE_MAX + 1 && strstr(err.message, "line longer"),
-          "a line of %d bytes: %d:%d %s", TG_LINE_MAX + 1, err.line, err.col, err.message);
+    CHECK(st == TG_ERR_INPUT && err.line == 2 && err.col == TG_MAX_LINE + 1 && strstr(err.message, "line longer"),
+          "a line of %d bytes: %d:%d %s", TG_MAX_LINE + 1, err.line, err.col, err.message);
     {
         static const char nul[] = "camera pos 0 1 5\0 target 0 0 0\n";
         st = parse_io(nul, sizeof nul - 1, "n.scene", NULL, &s, &err);
@@ -531,7 +531,7 @@ static const bad_case bad_cases[] = {
     {"camera pos 0 1 5 target 0 0 0\nenv sh9 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1\n", 2, 112, "'sh9' expects 27 numbers, got 26"},
     {"camera pos 0 1 5 target 0 0 0\nenv sky 1 1 1 ground 1 1 1\nenv uniform 1 1 1\n", 3, 1, "duplicate 'env'"},
     {"camera pos 0 1 5 target 0 0 0\nenv sky 1 1 1\n", 2, 1, "missing the required key 'ground'"},
-    {"camera pos 0 1 5 target 0 0 0\ngi slices 0\n", 2, 11, "'slices' must be an integer from 1 to 64"},
+    {"camera pos 0 1 5 target 0 0 0\ngi slices 0\n", 2, 11, "'slices' must be an integer from 1 to 8"},
     {"camera pos 0 1 5 target 0 0 0\ngi samples 2.5\n", 2, 12, "expected an integer for 'samples'"},
     {"camera pos 0 1 5 target 0 0 0\ngi radius -1\n", 2, 11, "'radius' must be 0 or more"},
     {"camera pos 0 1 5 target 0 0 0\ngi bounces 101\n", 2, 12, "'bounces' must be an integer from 0 to 100"},

@@ -11,6 +11,8 @@
  * accumulate their four products in 64 bits before one rounding.
  * Float: the vector is scaled by a power of two (exact) before squaring, so
  * nothing overflows or underflows.
+ * At the end: exact axis-aligned units, robust face normals and degrees to
+ * radians, which the scene parser and the OBJ loader build geometry with.
  */
 #include "vec.h"
 
@@ -315,4 +317,44 @@ tgi_mat4 tgi_q_to_m4(tgi_quat q)
     m.m[9] = tg_add(yz, wx);
     m.m[10] = tg_sub(TG_ONE, tg_add(xx, yy));
     return m;
+}
+
+/* ---------------------------------------------------------------------- */
+/* geometry helpers of the scene (parser and meshes)                      */
+
+static tg_real max_abs3(tg_vec3 v)
+{
+    return tg_max(tg_abs(v.x), tg_max(tg_abs(v.y), tg_abs(v.z)));
+}
+
+tg_vec3 tgi_unit(tg_vec3 v)
+{
+    tg_vec3 u = tgi_v3_normalize_or(v, tg_v3(0, 0, 0));
+    /* an axis-aligned vector's unit is exact: keep it so */
+    if (u.y == 0 && u.z == 0 && u.x != 0) u.x = u.x > 0 ? TG_ONE : tg_neg(TG_ONE);
+    if (u.x == 0 && u.z == 0 && u.y != 0) u.y = u.y > 0 ? TG_ONE : tg_neg(TG_ONE);
+    if (u.x == 0 && u.y == 0 && u.z != 0) u.z = u.z > 0 ? TG_ONE : tg_neg(TG_ONE);
+    return u;
+}
+
+tg_real tgi_deg_to_rad(tg_real deg)
+{
+    /* multiply by pi first (keeps Q16.16 precision) unless that would saturate */
+    if (tg_abs(deg) <= TG_R(10000.0f)) return tg_div(tg_mul(deg, TG_PI), TG_R(180.0f));
+    return tg_mul(tg_div(deg, TG_R(180.0f)), TG_PI);
+}
+
+int tgi_face_normal(tg_vec3 a, tg_vec3 b, tg_vec3 c, tg_vec3 *n)
+{
+    tg_vec3 e1 = tgi_v3_sub(b, a), e2 = tgi_v3_sub(c, a), x;
+    tg_real m1 = max_abs3(e1), m2 = max_abs3(e2);
+    if (m1 == 0 || m2 == 0) return 0;
+    /* scale both edges into [-1, 1] first so the fixed-point cross product
+     * neither saturates nor loses its small components */
+    e1 = tg_v3(tg_div(e1.x, m1), tg_div(e1.y, m1), tg_div(e1.z, m1));
+    e2 = tg_v3(tg_div(e2.x, m2), tg_div(e2.y, m2), tg_div(e2.z, m2));
+    x = tgi_v3_cross(e1, e2);
+    if (max_abs3(x) <= TG_R(2e-5f)) return 0;
+    *n = tgi_unit(x);
+    return 1;
 }

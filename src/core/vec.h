@@ -60,4 +60,12 @@ tgi_quat tgi_q_axis_angle(tg_vec3 axis, tg_real angle_rad);
 tgi_quat tgi_q_slerp(tgi_quat a, tgi_quat b, tg_real t); /* shortest arc, exact at t = 0 and 1 */
 tgi_mat4 tgi_q_to_m4(tgi_quat q);
 
+/* Unit vector, exact for axis-aligned ones; zero when too short. */
+tg_vec3 tgi_unit(tg_vec3 v);
+/* Degrees to radians, precise in Q16.16 too. */
+tg_real tgi_deg_to_rad(tg_real deg);
+/* Unit face normal of triangle (a, b, c), counter-clockwise front, robust in
+ * fixed point (edges scaled to [-1, 1] first); returns 0 if degenerate. */
+int tgi_face_normal(tg_vec3 a, tg_vec3 b, tg_vec3 c, tg_vec3 *n);
+
 #endif

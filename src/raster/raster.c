@@ -38,9 +38,14 @@
 #define SUB 16                    /* sub-pixels per pixel (28.4) */
 #define HALF_SUB 8                /* pixel centre offset */
 #define GUARD 8                   /* guard band, in NDC units */
-#define COORD_LIMIT (1 << 20)     /* |28.4 coordinate| bound (GUARD+1 screens of 8192/2 px * 16) */
+#define COORD_LIMIT (1 << 20)     /* |28.4 coordinate| bound: GUARD + 1 half screens of
+                                     TG_MAX_IMAGE_SIDE pixels, 16 sub-pixels each, fit */
 #define DIV_OFFSET (1 << 22)      /* a multiple of 16 above COORD_LIMIT for floor division */
 #define MAX_POLY 12               /* 3 vertices + one per clip plane, with room */
+
+#if (GUARD + 1) * (TG_MAX_IMAGE_SIDE / 2) * SUB > COORD_LIMIT || TG_MAX_SHADOW_MAP > TG_MAX_IMAGE_SIDE
+#error "TG_MAX_IMAGE_SIDE or TG_MAX_SHADOW_MAP is beyond the rasterizer's 28.4 coordinates"
+#endif
 
 /* ---------------------------------------------------------------------- */
 /* small integer helpers                                                   */
@@ -864,7 +869,7 @@ static void draw_clip_tri(const raster_target *rt, clip_vertex *v, const tg_vec3
 
 static int target_rows(raster_target *rt, int width, int height, int y0, int y1)
 {
-    if (width <= 0 || height <= 0 || width > TG_RASTER_MAX_SIZE || height > TG_RASTER_MAX_SIZE) return 0;
+    if (width <= 0 || height <= 0 || width > TG_MAX_IMAGE_SIDE || height > TG_MAX_IMAGE_SIDE) return 0;
     rt->width = width;
     rt->height = height;
     rt->row0 = y0 < 0 ? 0 : y0;

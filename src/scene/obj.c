@@ -17,6 +17,7 @@
  */
 #include <string.h>
 #include "parse_internal.h"
+#include "../core/path.h"
 
 typedef struct mtllib_ref {
     tgi_token name;          /* points into the OBJ text */
@@ -36,26 +37,13 @@ typedef struct obj_state {
     const char *objname;
     size_t nv, nvt, nvn;
     int nlib;
-    mtllib_ref lib[TG_OBJ_MAX_MTLLIB];
+    mtllib_ref lib[TG_MAX_MTLLIBS];
 } obj_state;
 
 typedef struct obj_ref {
     size_t v, vn;
     int has_vn;
 } obj_ref;
-
-int tgi_path_join(const char *base, const char *rel, size_t rel_n, char *out)
-{
-    size_t dir = 0, i, n = base ? strlen(base) : 0;
-    if (rel_n > 0 && rel[0] == '/') n = 0; /* absolute */
-    for (i = 0; i < n; i++)
-        if (base[i] == '/') dir = i + 1;
-    if (dir + rel_n >= TG_PATH_MAX) return 1;
-    memcpy(out, base, dir);
-    memcpy(out + dir, rel, rel_n);
-    out[dir + rel_n] = '\0';
-    return 0;
-}
 
 static int read_file(tgi_parser *p, const char *path, const char **data, size_t *size)
 {
@@ -130,9 +118,9 @@ static tg_status obj_vertex(obj_state *o, tgi_lexer *lx, const tgi_token *kw, in
     size_t *count = normal ? &o->nvn : &o->nv;
     int n;
     if ((st = numbers(o, lx, normal ? "vn" : "v", 3, normal ? 3 : 7, x, &n))) return st;
-    if (*count >= TG_OBJ_MAX_VERTS) {
+    if (*count >= TG_MAX_OBJ_VERTICES) {
         ofail(o, lx, kw->col, "too many '", normal ? "vn" : "v", "' lines (the limit is ");
-        tgi_error_append_int(p->err, TG_OBJ_MAX_VERTS);
+        tgi_error_append_int(p->err, TG_MAX_OBJ_VERTICES);
         tgi_error_append(p->err, ")");
         return TG_ERR_INPUT;
     }
@@ -156,7 +144,7 @@ static tg_status obj_texcoord(obj_state *o, tgi_lexer *lx)
     int n;
     tg_status st = numbers(o, lx, "vt", 1, 3, x, &n);
     if (st) return st;
-    if (o->nvt < TG_OBJ_MAX_VERTS) o->nvt++;
+    if (o->nvt < TG_MAX_OBJ_VERTICES) o->nvt++;
     return TG_OK;
 }
 
@@ -262,9 +250,9 @@ static tg_status obj_mtllib(obj_state *o, tgi_lexer *lx, const tgi_token *kw)
     tgi_token t;
     int n = 0;
     while (tgi_lex_token(lx, &t)) {
-        if (o->nlib >= TG_OBJ_MAX_MTLLIB) {
+        if (o->nlib >= TG_MAX_MTLLIBS) {
             ofail(o, lx, t.col, "too many mtllib files (the limit is ", NULL, NULL);
-            tgi_error_append_int(o->p->err, TG_OBJ_MAX_MTLLIB);
+            tgi_error_append_int(o->p->err, TG_MAX_MTLLIBS);
             tgi_error_append(o->p->err, ")");
             return TG_ERR_INPUT;
         }
@@ -334,7 +322,7 @@ static int mtl_search(obj_state *o, const mtllib_ref *lib, const char *path,
  * material and gets the MTL's Kd / Ke. */
 static tg_status mtl_find(obj_state *o, const tgi_lexer *lx, const tgi_token *name, tgi_material *m)
 {
-    char path[TG_PATH_MAX], buf[48];
+    char path[TG_MAX_PATH], buf[48];
     int i, r;
     for (i = 0; i < o->nlib; i++) {
         mtllib_ref *lib = &o->lib[i];
@@ -364,7 +352,7 @@ static tg_status obj_usemtl(obj_state *o, tgi_lexer *lx, const tgi_token *kw)
     tgi_token name;
     tgi_material m;
     tg_status st;
-    char full[TG_NAME_MAX];
+    char full[TG_MAX_NAME + 1];
     size_t n = strlen(o->objname), k, i;
     int index;
     if (!tgi_lex_rest(lx, &name))
@@ -376,8 +364,8 @@ static tg_status obj_usemtl(obj_state *o, tgi_lexer *lx, const tgi_token *kw)
     }
     /* "objname/mtlname", cut to the name limit */
     memcpy(full, o->objname, n);
-    if (n < TG_NAME_MAX - 1) full[n++] = '/';
-    k = name.n < TG_NAME_MAX - 1 - n ? name.n : TG_NAME_MAX - 1 - n;
+    if (n < TG_MAX_NAME) full[n++] = '/';
+    k = name.n < TG_MAX_NAME - n ? name.n : TG_MAX_NAME - n;
     memcpy(full + n, name.s, k);
     full[n + k] = '\0';
     for (i = o->first_material; i < p->materials; i++)
@@ -407,7 +395,7 @@ static tg_status obj_line(obj_state *o, tgi_lexer *lx, const tgi_token *kw)
 tg_status tgi_obj_mesh(tgi_parser *p, const tgi_lexer *lx, const tgi_token *path_tok,
                       const tgi_xform *xf, int material, const char *objname)
 {
-    char path[TG_PATH_MAX];
+    char path[TG_MAX_PATH];
     const char *data;
     size_t size;
     obj_state o;
@@ -417,7 +405,7 @@ tg_status tgi_obj_mesh(tgi_parser *p, const tgi_lexer *lx, const tgi_token *path
     int r;
     if (tgi_path_join(p->file, path_tok->s, path_tok->n, path)) {
         tgi_parse_fail(p, lx->file, lx->lineno, path_tok->col, "mesh path is too long (the limit is ", NULL, NULL);
-        tgi_error_append_int(p->err, TG_PATH_MAX - 1);
+        tgi_error_append_int(p->err, (TG_MAX_PATH - 1));
         tgi_error_append(p->err, " bytes with the scene's directory)");
         return TG_ERR_INPUT;
     }
