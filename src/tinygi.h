@@ -390,9 +390,14 @@ int tg_size_add(size_t a, size_t b, size_t *out);
 /* ---- files the scene refers to (OBJ meshes): supplied by the platform ---- */
 typedef struct tg_io {
     void *user;
-    /* Give the whole file; the buffer must stay valid while parsing.
-     * Return 0 on success, non-zero if the file cannot be read. */
-    int (*read_file)(void *user, const char *path, const char **data, size_t *size);
+    /* Give the whole file (at most TG_MAX_FILE_BYTES); the buffer must stay
+     * valid while parsing.  Return 0 on success, non-zero if the file cannot
+     * be read, and then may set *reason (NULL on entry) to a short phrase
+     * saying why, e.g. "permission denied", "is a directory", "not a regular
+     * file", "larger than the 1 GiB limit": the parser reports
+     * "cannot read mesh file 'PATH': REASON". */
+    int (*read_file)(void *user, const char *path, const char **data, size_t *size,
+                     const char **reason);
 } tg_io;
 
 /* ---- scenes ---- */

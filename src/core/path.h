@@ -10,8 +10,8 @@
 
 /* Join the directory of `base` (up to its last '/') and `rel` (rel_n bytes)
  * into out (TG_MAX_PATH bytes); an absolute `rel` ('/' first) is used as
- * is.  Returns 0, or 1 when the result would not fit (out is then
- * unchanged). */
-int tgi_path_join(const char *base, const char *rel, size_t rel_n, char out[TG_MAX_PATH]);
+ * is.  Returns the joined length in bytes (without the NUL): the path was
+ * written when it is below TG_MAX_PATH, otherwise out is unchanged. */
+size_t tgi_path_join(const char *base, const char *rel, size_t rel_n, char out[TG_MAX_PATH]);
 
 #endif

@@ -25,30 +25,57 @@ void tgi_lex_init(tgi_lexer *lx, const char *text, size_t size, const char *file
         lx->next = text + 3; /* UTF-8 byte order mark */
 }
 
+const char *tgi_number_text(size_t v, char buf[24])
+{
+    char tmp[24];
+    int n = 0, i;
+    do { tmp[n++] = (char)('0' + v % 10u); v /= 10u; } while (v && n < 23);
+    for (i = 0; i < n; i++) buf[i] = tmp[n - 1 - i];
+    buf[n] = '\0';
+    return buf;
+}
+
+tg_status tgi_limit_fail(tg_error *err, const char *file, int line, int col,
+                         const char *name, long lo, long hi, const char *got)
+{
+    tgi_error_set(err, TG_ERR_INPUT, file, line, col, name);
+    tgi_error_append(err, " must be ");
+    tgi_error_append_int(err, lo);
+    tgi_error_append(err, "..");
+    tgi_error_append_int(err, hi);
+    tgi_error_append(err, ", got ");
+    tgi_error_append(err, got);
+    return TG_ERR_INPUT;
+}
+
+/* A line ends at "\n", "\r\n" or a lone "\r" (old Mac text). */
+static int is_line_end(char c) { return c == '\n' || c == '\r'; }
+
 int tgi_lex_line(tgi_lexer *lx, tg_error *err)
 {
-    const char *s = lx->next, *e = s;
+    const char *s = lx->next, *e = s, *next;
+    char got[24];
     if (s >= lx->end) return 0;
-    while (e < lx->end && *e != '\n') {
+    while (e < lx->end && !is_line_end(*e)) {
         if (*e == '\0') {
             tgi_error_set(err, TG_ERR_INPUT, lx->file, lx->lineno + 1,
                          (int)(e - s) + 1, "NUL byte in the input; expected text");
             return -1;
         }
-        if (e - s >= TG_MAX_LINE) {
-            tgi_error_set(err, TG_ERR_INPUT, lx->file, lx->lineno + 1,
-                         TG_MAX_LINE + 1, "line longer than ");
-            tgi_error_append_int(err, TG_MAX_LINE);
-            tgi_error_append(err, " bytes (the limit)");
-            return -1;
-        }
         e++;
     }
+    if (e - s > TG_MAX_LINE) {
+        tgi_limit_fail(err, lx->file, lx->lineno + 1, TG_MAX_LINE + 1, "line length in bytes",
+                       0, TG_MAX_LINE, tgi_number_text((size_t)(e - s), got));
+        return -1;
+    }
+    next = e;
+    if (next < lx->end) next += (*next == '\r' && next + 1 < lx->end && next[1] == '\n') ? 2 : 1;
     lx->lineno++;
     lx->line = s;
     lx->line_end = e;
     lx->cur = s;
-    lx->next = e < lx->end ? e + 1 : e;
+    lx->next = next;
     return 1;
 }
 
@@ -136,6 +163,15 @@ int tgi_tok_int(const tgi_token *t, long *out)
         v = v * 10 + (c - '0');
     }
     *out = neg ? -v : v;
+    return 0;
+}
+
+int tgi_tok_rounds_to_zero(const tgi_token *t, tg_real v)
+{
+    size_t i;
+    if (v != 0) return 0;
+    for (i = 0; i < t->n && t->s[i] != 'e' && t->s[i] != 'E'; i++)
+        if (t->s[i] >= '1' && t->s[i] <= '9') return 1;
     return 0;
 }
 

@@ -36,6 +36,21 @@ static tg_status fail(tgi_parser *p, const tgi_lexer *lx, int col,
     return tgi_parse_fail(p, lx->file, lx->lineno, col, a, b, c);
 }
 
+/* "NAME must be LO..HI, got GOT" (lex.h), GOT a count or a token's text. */
+static tg_status limit(tgi_parser *p, const tgi_lexer *lx, int col, const char *name,
+                       long lo, long hi, size_t got)
+{
+    char buf[24];
+    return tgi_limit_fail(p->err, lx->file, lx->lineno, col, name, lo, hi, tgi_number_text(got, buf));
+}
+
+static tg_status limit_tok(tgi_parser *p, const tgi_lexer *lx, const tgi_token *t,
+                           const char *name, long lo, long hi)
+{
+    char buf[48];
+    return tgi_limit_fail(p->err, lx->file, lx->lineno, t->col, name, lo, hi, tgi_tok_str(t, buf));
+}
+
 static tg_status fail_runtime(tgi_parser *p, const char *what)
 {
     tgi_error_set(p->err, TG_ERR_RUNTIME, p->file, 0, 0, what);
@@ -106,7 +121,7 @@ static tg_status read_numbers(tgi_parser *p, tgi_lexer *lx, const key_spec *spec
         if (r == 2) {
             fail(p, lx, t.col, "number out of range for '", what, "': '");
             tgi_error_append(p->err, tgi_tok_str(&t, buf));
-            tgi_error_append(p->err, "'");
+            tgi_error_append(p->err, "'" TGI_RANGE_NOTE);
             return TG_ERR_INPUT;
         }
     }
@@ -147,13 +162,9 @@ static tg_status parse_keys(tgi_parser *p, tgi_lexer *lx, const tgi_token *stmt,
             if (!tgi_lex_token(lx, &val[k].tok[0]))
                 return fail(p, lx, tgi_lex_eol_col(lx), "'", spec[k].key,
                             spec[k].kind == K_NAME ? "' expects a name" : "' expects a file path");
-            if (spec[k].kind == K_NAME && val[k].tok[0].n > TG_MAX_NAME) {
-                fail(p, lx, val[k].tok[0].col, "name '", tgi_tok_str(&val[k].tok[0], buf),
-                     "' is too long; names are at most ");
-                tgi_error_append_int(p->err, TG_MAX_NAME);
-                tgi_error_append(p->err, " bytes");
-                return TG_ERR_INPUT;
-            }
+            if (spec[k].kind == K_NAME && val[k].tok[0].n > TG_MAX_NAME)
+                return limit(p, lx, val[k].tok[0].col, "name length in bytes", 1, TG_MAX_NAME,
+                             val[k].tok[0].n);
         } else if (spec[k].kind != K_FLAG) {
             st = read_numbers(p, lx, spec, nspec, spec[k].key, kind_numbers(spec[k].kind),
                               spec[k].kind == K_INT, val[k].tok, val[k].v, &val[k].i);
@@ -205,6 +216,7 @@ static tg_status check_range(tgi_parser *p, const tgi_lexer *lx, const key_val *
             tgi_error_append(p->err, ", got '");
             tgi_error_append(p->err, tgi_tok_str(&kv->tok[i], buf));
             tgi_error_append(p->err, "'");
+            if (tgi_tok_rounds_to_zero(&kv->tok[i], v)) tgi_error_append(p->err, TGI_ZERO_NOTE);
             return TG_ERR_INPUT;
         }
     }
@@ -220,9 +232,13 @@ static tg_status kv_dir(tgi_parser *p, const tgi_lexer *lx, const key_val *kv,
                         const char *key, tg_vec3 *out)
 {
     tg_vec3 d = tgi_unit(kv_vec3(kv));
-    if (is_zero_vec(d))
-        return fail(p, lx, kv->tok[0].col, "'", key,
-                    "' must be a direction of non-zero length");
+    if (is_zero_vec(d)) {
+        fail(p, lx, kv->tok[0].col, "'", key, "' must be a direction of non-zero length");
+        if (tgi_tok_rounds_to_zero(&kv->tok[0], kv->v[0]) || tgi_tok_rounds_to_zero(&kv->tok[1], kv->v[1]) ||
+            tgi_tok_rounds_to_zero(&kv->tok[2], kv->v[2]))
+            tgi_error_append(p->err, TGI_ZERO_NOTE);
+        return TG_ERR_INPUT;
+    }
     *out = d;
     return TG_OK;
 }
@@ -234,12 +250,8 @@ static tg_status kv_dir(tgi_parser *p, const tgi_lexer *lx, const key_val *kv,
 tg_status tgi_parse_add_material(tgi_parser *p, const tgi_lexer *lx, int col,
                                 const tgi_material *m, int *index)
 {
-    if (p->materials >= TG_MAX_MATERIALS) {
-        fail(p, lx, col, "too many materials (the limit is ", NULL, NULL);
-        tgi_error_append_int(p->err, TG_MAX_MATERIALS);
-        tgi_error_append(p->err, ")");
-        return TG_ERR_INPUT;
-    }
+    if (p->materials >= TG_MAX_MATERIALS)
+        return limit(p, lx, col, "material count", 0, TG_MAX_MATERIALS, p->materials + 1);
     if (p->fill) {
         if (p->materials >= p->material_cap) return fail_runtime(p, "a mesh file changed while parsing");
         p->scene->materials[p->materials] = *m;
@@ -277,12 +289,8 @@ tg_status tgi_parse_begin_object(tgi_parser *p, const tgi_lexer *lx, int col,
 {
     char buf[48];
     tgi_object *o;
-    if (p->objects >= TG_MAX_OBJECTS) {
-        fail(p, lx, col, "too many objects (the limit is ", NULL, NULL);
-        tgi_error_append_int(p->err, TG_MAX_OBJECTS);
-        tgi_error_append(p->err, ")");
-        return TG_ERR_INPUT;
-    }
+    if (p->objects >= TG_MAX_OBJECTS)
+        return limit(p, lx, col, "object count", 0, TG_MAX_OBJECTS, p->objects + 1);
     if (p->fill) {
         if (name && find_object(p, name) >= 0)
             return fail(p, lx, name->col, "duplicate object name '", tgi_tok_str(name, buf),
@@ -298,12 +306,8 @@ tg_status tgi_parse_begin_object(tgi_parser *p, const tgi_lexer *lx, int col,
 
 static tg_status count_tris(tgi_parser *p, const tgi_lexer *lx, int col, size_t n)
 {
-    if (n > TG_MAX_TRIANGLES || p->tris > TG_MAX_TRIANGLES - n) {
-        fail(p, lx, col, "too many triangles (the limit is ", NULL, NULL);
-        tgi_error_append_int(p->err, TG_MAX_TRIANGLES);
-        tgi_error_append(p->err, ")");
-        return TG_ERR_INPUT;
-    }
+    if (n > TG_MAX_TRIANGLES || p->tris > TG_MAX_TRIANGLES - n)
+        return limit(p, lx, col, "triangle count", 0, TG_MAX_TRIANGLES, p->tris + n);
     p->tris += n;
     return TG_OK;
 }
@@ -428,12 +432,8 @@ static tg_status st_camera_key(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw
     key.target = kv_vec3(&v[2]);
     if (is_zero_vec(tgi_v3_sub(key.target, key.pos)))
         return fail(p, lx, v[2].tok[0].col, "camera_key 'target' must differ from 'pos'", NULL, NULL);
-    if (p->camera_keys >= TG_MAX_KEYS) {
-        fail(p, lx, kw->col, "too many camera keys (the limit is ", NULL, NULL);
-        tgi_error_append_int(p->err, TG_MAX_KEYS);
-        tgi_error_append(p->err, ")");
-        return TG_ERR_INPUT;
-    }
+    if (p->camera_keys >= TG_MAX_KEYS)
+        return limit(p, lx, kw->col, "camera_key count", 0, TG_MAX_KEYS, p->camera_keys + 1);
     if (p->fill) { /* insert sorted by t */
         k = p->scene->camera_keys;
         for (i = 0; i < p->camera_keys; i++)
@@ -460,12 +460,7 @@ static tg_status st_material(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     if (!have || find_key(spec, NSPEC(spec), &name) >= 0)
         return fail(p, lx, have ? name.col : tgi_lex_eol_col(lx),
                     "'material' expects a name first: material NAME albedo R G B ...", NULL, NULL);
-    if (name.n > TG_MAX_NAME) {
-        fail(p, lx, name.col, "name '", tgi_tok_str(&name, buf), "' is too long; names are at most ");
-        tgi_error_append_int(p->err, TG_MAX_NAME);
-        tgi_error_append(p->err, " bytes");
-        return TG_ERR_INPUT;
-    }
+    if (name.n > TG_MAX_NAME) return limit(p, lx, name.col, "name length in bytes", 1, TG_MAX_NAME, name.n);
     if ((st = parse_keys(p, lx, kw, spec, NSPEC(spec), v))) return st;
     memset(&m, 0, sizeof m);
     copy_name(m.name, &name);
@@ -577,13 +572,9 @@ static tg_status st_sphere(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     if ((st = check_range(p, lx, &v[1], "radius", 0, TG_REAL_MAX, LO_OPEN, "greater than 0")))
         return st;
     if (v[3].present) {
-        if (v[3].i < TG_MIN_SPHERE_SEGMENTS || v[3].i > TG_MAX_SPHERE_SEGMENTS) {
-            fail(p, lx, v[3].tok[0].col, "'segments' must be an integer from ", NULL, NULL);
-            tgi_error_append_int(p->err, TG_MIN_SPHERE_SEGMENTS);
-            tgi_error_append(p->err, " to ");
-            tgi_error_append_int(p->err, TG_MAX_SPHERE_SEGMENTS);
-            return TG_ERR_INPUT;
-        }
+        if (v[3].i < TG_MIN_SPHERE_SEGMENTS || v[3].i > TG_MAX_SPHERE_SEGMENTS)
+            return limit_tok(p, lx, &v[3].tok[0], "sphere segments", TG_MIN_SPHERE_SEGMENTS,
+                             TG_MAX_SPHERE_SEGMENTS);
         segs = (int)v[3].i;
     }
     rings = segs / 2;
@@ -676,12 +667,8 @@ static tg_status st_object_key(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw
         if ((st = kv_dir(p, lx, &v[3], "rotate", &key.axis))) return st;
         key.angle = tgi_deg_to_rad(v[3].v[3]);
     }
-    if (p->object_keys >= TG_MAX_KEYS) {
-        fail(p, lx, kw->col, "too many object keys (the limit is ", NULL, NULL);
-        tgi_error_append_int(p->err, TG_MAX_KEYS);
-        tgi_error_append(p->err, ")");
-        return TG_ERR_INPUT;
-    }
+    if (p->object_keys >= TG_MAX_KEYS)
+        return limit(p, lx, kw->col, "object_key count", 0, TG_MAX_KEYS, p->object_keys + 1);
     if (p->fill) {
         obj = find_object(p, &v[0].tok[0]);
         if (obj < 0)
@@ -760,12 +747,8 @@ static tg_status st_light(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
             return st;
         l.angle = tgi_deg_to_rad(v[5].v[0]);
     }
-    if (p->lights >= TG_MAX_LIGHTS) {
-        fail(p, lx, kw->col, "too many lights (the limit is ", NULL, NULL);
-        tgi_error_append_int(p->err, TG_MAX_LIGHTS);
-        tgi_error_append(p->err, ")");
-        return TG_ERR_INPUT;
-    }
+    if (p->lights >= TG_MAX_LIGHTS)
+        return limit(p, lx, kw->col, "light count", 0, TG_MAX_LIGHTS, p->lights + 1);
     if (p->fill) p->scene->lights[p->lights] = l;
     p->lights++;
     return TG_OK;
@@ -833,15 +816,12 @@ static tg_status st_env(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     return TG_OK;
 }
 
-static tg_status int_range(tgi_parser *p, const tgi_lexer *lx, const key_val *kv,
-                           const char *key, long lo, long hi)
+/* An integer value within a limit of tinygi.h's block. */
+static tg_status int_limit(tgi_parser *p, const tgi_lexer *lx, const key_val *kv,
+                           const char *name, long lo, long hi)
 {
     if (kv->i >= lo && kv->i <= hi) return TG_OK;
-    fail(p, lx, kv->tok[0].col, "'", key, "' must be an integer from ");
-    tgi_error_append_int(p->err, lo);
-    tgi_error_append(p->err, " to ");
-    tgi_error_append_int(p->err, hi);
-    return TG_ERR_INPUT;
+    return limit_tok(p, lx, &kv->tok[0], name, lo, hi);
 }
 
 static tg_status st_gi(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
@@ -858,20 +838,20 @@ static tg_status st_gi(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     gi.slices = gi.samples = 0;
     gi.bounces = -1;
     if (v[0].present) {
-        if ((st = check_range(p, lx, &v[0], "radius", 0, TG_REAL_MAX, 0, "0 or more (world units)")))
-            return st;
+        if (v[0].v[0] < 0 || v[0].v[0] > TG_R(TG_MAX_RADIUS))
+            return limit_tok(p, lx, &v[0].tok[0], "gi radius", 0, TG_MAX_RADIUS);
         gi.radius = v[0].v[0];
     }
     if (v[1].present) {
-        if ((st = int_range(p, lx, &v[1], "slices", 1, TG_MAX_SLICES))) return st;
+        if ((st = int_limit(p, lx, &v[1], "gi slices", 1, TG_MAX_SLICES))) return st;
         gi.slices = (int)v[1].i;
     }
     if (v[2].present) {
-        if ((st = int_range(p, lx, &v[2], "samples", 1, TG_MAX_SAMPLES))) return st;
+        if ((st = int_limit(p, lx, &v[2], "gi samples", 1, TG_MAX_SAMPLES))) return st;
         gi.samples = (int)v[2].i;
     }
     if (v[3].present) {
-        if ((st = int_range(p, lx, &v[3], "bounces", 0, TG_MAX_BOUNCES))) return st;
+        if ((st = int_limit(p, lx, &v[3], "gi bounces", 0, TG_MAX_BOUNCES))) return st;
         gi.bounces = (int)v[3].i;
     }
     p->have_gi = 1;
@@ -1031,6 +1011,11 @@ tg_status tg_scene_parse(const char *text, size_t size, const char *filename,
     p.io = io;
     p.err = err;
     if (!arena || !scene || (!text && size)) return fail_runtime(&p, "tg_scene_parse: missing argument");
+    if (size > (size_t)TG_MAX_FILE_BYTES) {
+        char got[24];
+        return tgi_limit_fail(err, p.file, 0, 0, "scene size in bytes", 0, TG_MAX_FILE_BYTES,
+                              tgi_number_text(size, got));
+    }
 
     /* pass 1: validate and count */
     if ((st = run_pass(&p, text, size))) return st;

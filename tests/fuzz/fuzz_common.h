@@ -27,9 +27,11 @@ typedef struct fuzz_files {
     size_t obj_n, mtl_n;
 } fuzz_files;
 
-static int fuzz_read(void *user, const char *path, const char **data, size_t *size)
+static int fuzz_read(void *user, const char *path, const char **data, size_t *size,
+                     const char **reason)
 {
     const fuzz_files *f = (const fuzz_files *)user;
+    (void)reason;
     size_t n = strlen(path);
     if (n >= 4 && memcmp(path + n - 4, ".obj", 4) == 0) {
         if (!f->obj) return 1;
