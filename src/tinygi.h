@@ -382,7 +382,10 @@ typedef struct tg_arena {
 } tg_arena;
 
 void tg_arena_init(tg_arena *a, void *memory, size_t size);
-void *tg_arena_alloc(tg_arena *a, size_t bytes); /* 16-byte aligned, zeroed; NULL when full */
+/* `bytes` zeroed bytes at the next 16-byte aligned ADDRESS (whatever the
+ * alignment of the memory given to tg_arena_init: up to 15 bytes of it may
+ * go to padding); NULL when they do not fit. */
+void *tg_arena_alloc(tg_arena *a, size_t bytes);
 /* a * b with overflow check: returns 0 and sets *out, or returns 1 on overflow. */
 int tg_size_mul(size_t a, size_t b, size_t *out);
 int tg_size_add(size_t a, size_t b, size_t *out);

@@ -11,8 +11,58 @@
 #include "../tinygi.h"
 
 /* Number of significant bits of v (0 for 0). */
-int tgi_bit_length64(uint64_t v);
+static inline int tgi_bit_length64(uint64_t v)
+{
+#if defined(__GNUC__)
+    return v ? 64 - __builtin_clzll(v) : 0;
+#else
+    int n = 0;
+    if (v >> 32) { v >>= 32; n += 32; }
+    if (v >> 16) { v >>= 16; n += 16; }
+    if (v >> 8) { v >>= 8; n += 8; }
+    if (v >> 4) { v >>= 4; n += 4; }
+    if (v >> 2) { v >>= 2; n += 2; }
+    if (v >> 1) { v >>= 1; n += 1; }
+    return n + (int)v;
+#endif
+}
+
 /* sqrt of a 64-bit integer, floor; used by fixed-point vector lengths. */
 uint32_t tgi_isqrt64(uint64_t v);
+/* sqrt of a 64-bit integer, rounded to nearest. */
+static inline uint64_t tgi_isqrt_round64(uint64_t v)
+{
+    uint64_t r = tgi_isqrt64(v);
+    return v - r * r > r ? r + 1 : r;
+}
+
+/* ---- the per-pixel reciprocal square root ----
+ * Cheaper than tg_rsqrt (two Newton steps instead of three, and no range
+ * handling), for the rasterizer's per-pixel normals, whose error stays below
+ * the number type's step; error bounds measured by tests/test_real.c. */
+#if TG_FIXED
+/* rsqrt at the midpoints of [1, 4) split in 24 steps of 1/8, Q30 (real.c). */
+extern const uint32_t tgi_rsqrt_seed_q30[24];
+
+/* 1/sqrt(X) in Q30 for X = x30 / 2^30 in [1, 4): table seed within 3.2%,
+ * then two Newton steps y (3 - X y^2) / 2 in integers (rel. error 3e-6). */
+static inline uint64_t tgi_rsqrt_q30_fast(uint64_t x30)
+{
+    uint64_t y = tgi_rsqrt_seed_q30[(x30 >> 27) - 8], t;
+    t = (((y * y) >> 30) * x30) >> 30;            /* X y^2, Q30 */
+    y = (y * ((3u << 30) - t)) >> 31;
+    t = (((y * y) >> 30) * x30) >> 30;
+    return (y * ((3u << 30) - t)) >> 31;
+}
+#else
+/* 1/sqrt(x) for a normal float x > 0: bit-trick seed (within 0.18% after
+ * the first step) and two Newton steps, rel. error < 5e-6. */
+static inline float tgi_rsqrt_fast(float x)
+{
+    float y = tgi_f_from_bits(0x5f375a86u - (tgi_f_bits(x) >> 1));
+    y = y * (1.5f - 0.5f * x * y * y);
+    return y * (1.5f - 0.5f * x * y * y);
+}
+#endif
 
 #endif

@@ -22,6 +22,8 @@ static inline tg_vec3 tgi_v3_sub(tg_vec3 a, tg_vec3 b) { return tg_v3(tg_sub(a.x
 static inline tg_vec3 tgi_v3_scale(tg_vec3 a, tg_real s) { return tg_v3(tg_mul(a.x, s), tg_mul(a.y, s), tg_mul(a.z, s)); }
 static inline tg_vec3 tgi_v3_mul(tg_vec3 a, tg_vec3 b) { return tg_v3(tg_mul(a.x, b.x), tg_mul(a.y, b.y), tg_mul(a.z, b.z)); }
 static inline tg_vec3 tgi_v3_neg(tg_vec3 a) { return tg_v3(tg_neg(a.x), tg_neg(a.y), tg_neg(a.z)); }
+/* The largest |component|. */
+static inline tg_real tgi_v3_max_abs(tg_vec3 v) { return tg_max(tg_abs(v.x), tg_max(tg_abs(v.y), tg_abs(v.z))); }
 static inline tg_vec3 tgi_v3_lerp(tg_vec3 a, tg_vec3 b, tg_real t) { return tg_v3(tg_lerp(a.x, b.x, t), tg_lerp(a.y, b.y, t), tg_lerp(a.z, b.z, t)); }
 
 #if TG_FIXED

@@ -22,18 +22,25 @@ tg_real tgi_anim_time(const tg_scene *s, int frame, int frames)
     return tg_add(t0, tg_mul(tg_sub(t1, t0), tg_ratio(frame, frames - 1)));
 }
 
+/* The time of key i, keys `stride` bytes apart starting at `times`. */
+static tg_real key_time(const tg_real *times, size_t stride, int i)
+{
+    tg_real t;
+    memcpy(&t, (const unsigned char *)times + (size_t)i * stride, sizeof t);
+    return t;
+}
+
 /* Segment of sorted key times containing t: *a, *b key indices and the
  * fraction u; a == b when t is at or outside a key (exact values). */
 static void key_segment(const tg_real *times, size_t stride, int count, tg_real t,
                         int *a, int *b, tg_real *u)
 {
     int k;
-#define KEY_T(i) (*(const tg_real *)((const unsigned char *)times + (size_t)(i) * stride))
     *u = 0;
-    if (t <= KEY_T(0)) { *a = *b = 0; return; }
-    if (t >= KEY_T(count - 1)) { *a = *b = count - 1; return; }
+    if (t <= key_time(times, stride, 0)) { *a = *b = 0; return; }
+    if (t >= key_time(times, stride, count - 1)) { *a = *b = count - 1; return; }
     for (k = 0; k + 1 < count; k++) {
-        tg_real ta = KEY_T(k), tb = KEY_T(k + 1);
+        tg_real ta = key_time(times, stride, k), tb = key_time(times, stride, k + 1);
         if (t == ta) { *a = *b = k; return; }
         if (t < tb) {
             *a = k; *b = k + 1;
@@ -42,7 +49,6 @@ static void key_segment(const tg_real *times, size_t stride, int count, tg_real 
         }
     }
     *a = *b = count - 1;
-#undef KEY_T
 }
 
 void tgi_anim_camera(const tg_scene *s, tg_real t, tg_vec3 *pos, tg_vec3 *target)

@@ -16,6 +16,7 @@
  */
 #include <string.h>
 #include "parse_internal.h"
+#include "../core/arena.h"
 
 /* ===================================================================== */
 /* errors                                                                */
@@ -330,8 +331,8 @@ tg_status tgi_parse_emit_tri(tgi_parser *p, const tgi_lexer *lx, int col,
     int i;
     if (!p->fill) return count_tris(p, lx, col, 1);
     if (t >= (size_t)s->tri_count) return fail_runtime(p, "a mesh file changed while parsing");
-    if (!nrm && !tgi_face_normal(pos[0], pos[1], pos[2], &fn))
-        fn = tg_v3(0, TG_ONE, 0); /* zero area: the rasterizer skips it */
+    fn = tg_v3(0, TG_ONE, 0); /* for zero area: the rasterizer skips it */
+    if (!nrm) tgi_face_normal(pos[0], pos[1], pos[2], &fn);
     for (i = 0; i < 3; i++) {
         s->tri_pos[3 * t + (size_t)i] = pos[i];
         s->tri_nrm[3 * t + (size_t)i] = nrm ? nrm[i] : fn;
@@ -985,12 +986,12 @@ static void finish_scene(tgi_parser *p)
     }
 }
 
-/* Offsets of one arena carve, as tg_arena_alloc will place them. */
-static int plan_add(size_t *at, size_t count, size_t elem)
+/* Offsets of one arena carve, as tg_arena_alloc will place them (aligned
+ * addresses: the padding depends on where the arena's memory starts). */
+static int plan_add(const tg_arena *a, size_t *at, size_t count, size_t elem)
 {
     size_t bytes, start;
-    if (tg_size_mul(count, elem, &bytes) || tg_size_add(*at, 15, &start)) return 1;
-    start &= ~(size_t)15;
+    if (tg_size_mul(count, elem, &bytes) || tg_size_add(*at, tgi_arena_pad(a->base, *at), &start)) return 1;
     return tg_size_add(start, bytes, at);
 }
 
@@ -1025,19 +1026,19 @@ tg_status tg_scene_parse(const char *text, size_t size, const char *filename,
     if (p.material_cap > TG_MAX_MATERIALS) p.material_cap = TG_MAX_MATERIALS;
     at = used0;
     bad |= tg_size_mul(p.tris, 3, &tris3);
-    bad |= plan_add(&at, 1, sizeof(tg_scene));
-    bad |= plan_add(&at, p.material_cap, sizeof(tgi_material));
-    bad |= plan_add(&at, p.objects, sizeof(tgi_object));
-    bad |= plan_add(&at, p.object_keys, sizeof(tgi_key));
-    bad |= plan_add(&at, p.camera_keys, sizeof(tgi_camera_key));
-    bad |= plan_add(&at, tris3, sizeof(tg_vec3));
-    bad |= plan_add(&at, tris3, sizeof(tg_vec3));
-    bad |= plan_add(&at, p.tris, sizeof(uint16_t));
-    bad |= plan_add(&at, p.tris, sizeof(uint16_t));
-    bad |= plan_add(&at, p.lights, sizeof(tgi_light));
+    bad |= plan_add(arena, &at, 1, sizeof(tg_scene));
+    bad |= plan_add(arena, &at, p.material_cap, sizeof(tgi_material));
+    bad |= plan_add(arena, &at, p.objects, sizeof(tgi_object));
+    bad |= plan_add(arena, &at, p.object_keys, sizeof(tgi_key));
+    bad |= plan_add(arena, &at, p.camera_keys, sizeof(tgi_camera_key));
+    bad |= plan_add(arena, &at, tris3, sizeof(tg_vec3));
+    bad |= plan_add(arena, &at, tris3, sizeof(tg_vec3));
+    bad |= plan_add(arena, &at, p.tris, sizeof(uint16_t));
+    bad |= plan_add(arena, &at, p.tris, sizeof(uint16_t));
+    bad |= plan_add(arena, &at, p.lights, sizeof(tgi_light));
     perm_end = at;
-    bad |= plan_add(&at, p.object_keys, sizeof(uint16_t));
-    bad |= plan_add(&at, p.obj_scratch, sizeof(tg_vec3));
+    bad |= plan_add(arena, &at, p.object_keys, sizeof(uint16_t));
+    bad |= plan_add(arena, &at, p.obj_scratch, sizeof(tg_vec3));
     (void)perm_end;
     if (bad || at > arena->size) {
         tgi_error_set(err, TG_ERR_MEMORY, p.file, 0, 0, "the arena is too small for the scene");
