@@ -347,6 +347,10 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #define TG_MIN_SPHERE_SEGMENTS 4
 #define TG_MAX_SPHERE_SEGMENTS 256
 #define TG_DEFAULT_SPHERE_SEGMENTS 24   /* segments around a sphere (12 rings) */
+#define TG_DEFAULT_FOV 60               /* camera: vertical field of view, degrees */
+#define TG_DEFAULT_NEAR 0.05f           /* camera: near plane, world units */
+#define TG_DEFAULT_FAR 1000             /* camera: far plane, world units */
+#define TG_DEFAULT_F0 0.04f             /* material: Fresnel F0 of a dielectric */
 #define TG_MAX_PATH 256                 /* a resolved mesh or MTL path, bytes with the NUL */
 #if !defined(TG_MAX_OBJ_VERTICES)
 #define TG_MAX_OBJ_VERTICES 4000000L    /* [policy] v, vn and vt lines each, per OBJ */

@@ -12,6 +12,7 @@ cd "$(dirname "$0")/.."
 BUILD=${BUILD:-build}
 CC=${CC:-cc}
 CXX=${CXX:-g++}
+ldflags=${EXTRA_LDFLAGS:-}   # make sanitize: the libraries need the sanitizer runtimes
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 mkdir "$tmp/inc"
 cp src/tinygi.h "$tmp/inc/"
@@ -58,14 +59,14 @@ for num in float fixed; do
         $CC -std=c99 -Wall -Wextra -Wpedantic -Wshadow -Werror -ffreestanding $def -I"$tmp/inc" -c "$tmp/alone.c" -o "$tmp/alone.o"
     expect "$num: tinygi.h compiles alone as C++" \
         $CXX -std=c++11 -Wall -Wextra -Wpedantic -Werror $def -I"$tmp/inc" -x c++ -c "$tmp/alone.c" -o "$tmp/alone.o"
-    if $CC -std=c99 -Wall -Werror $def -I"$tmp/inc" "$tmp/prog.c" "$lib" -o "$tmp/prog-$num" 2>"$tmp/err" \
+    if $CC -std=c99 -Wall -Werror $def -I"$tmp/inc" "$tmp/prog.c" "$lib" -o "$tmp/prog-$num" $ldflags 2>"$tmp/err" \
         && "$tmp/prog-$num" >"$tmp/out"; then ok "$num: C program links and renders ($(cat "$tmp/out"))"
     else fail "$num: C program links and renders" "$(head -c 300 "$tmp/err")"; fi
-    if $CXX -std=c++11 -Wall -Wextra -Werror $def -I"$tmp/inc" "$tmp/prog.cpp" "$lib" -o "$tmp/progxx-$num" 2>"$tmp/err" \
+    if $CXX -std=c++11 -Wall -Wextra -Werror $def -I"$tmp/inc" "$tmp/prog.cpp" "$lib" -o "$tmp/progxx-$num" $ldflags 2>"$tmp/err" \
         && "$tmp/progxx-$num" >"$tmp/out"; then ok "$num: C++ program links (extern \"C\") and renders ($(cat "$tmp/out"))"
     else fail "$num: C++ program links (extern \"C\") and renders" "$(head -c 300 "$tmp/err")"; fi
     # the mismatch: this type's header, the other type's library
-    if $CC -std=c99 $def -I"$tmp/inc" "$tmp/prog.c" "$other" -o "$tmp/mix" 2>"$tmp/err"; then
+    if $CC -std=c99 $def -I"$tmp/inc" "$tmp/prog.c" "$other" -o "$tmp/mix" $ldflags 2>"$tmp/err"; then
         fail "$num header with $(basename "$other"): the link must fail"
     else
         expect "$num header with $(basename "$other"): link fails on a ${sym} symbol" grep -q "tg_[a-z_0-9]*${sym}" "$tmp/err"

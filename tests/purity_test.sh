@@ -48,7 +48,7 @@ for num in float fixed; do
     expect "$num: every function tinygi.h declares carries $sfx (add '#define tg_NAME TG_ABI(tg_NAME)' to its ABI block)" \
         test -z "$unsuffixed"
     [ -z "$unsuffixed" ] || echo "  without the suffix: $unsuffixed"
-    extra=$(comm -23 <(echo "$exported") <(echo "$declared") | grep -v '^tgi_' | tr '\n' ' ')
+    extra=$(comm -23 <(echo "$exported") <(echo "$declared") | grep -vE '^(tgi_|__)' | tr '\n' ' ')
     expect "$(basename "$lib") exports only tinygi.h's functions and tgi_ names" test -z "$extra"
     [ -z "$extra" ] || echo "  exported but not public API (make them static or tgi_): $extra"
     missing=$(comm -13 <(echo "$exported") <(echo "$declared") | tr '\n' ' ')

@@ -387,7 +387,7 @@ static tg_status st_camera(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     key_val v[MAX_SPEC];
     tgi_scene_camera cam;
     tg_status st;
-    tg_real fov = TG_R(60.0f);
+    tg_real fov = TG_R(TG_DEFAULT_FOV);
     if (p->have_camera)
         return fail(p, lx, kw->col, "duplicate 'camera' statement; only one is allowed", NULL, NULL);
     if ((st = parse_keys(p, lx, kw, spec, NSPEC(spec), v))) return st;
@@ -404,8 +404,8 @@ static tg_status st_camera(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
         fov = v[3].v[0];
     }
     cam.fov = tgi_deg_to_rad(fov);
-    cam.znear = TG_R(0.05f);
-    cam.zfar = TG_R(1000.0f);
+    cam.znear = TG_R(TG_DEFAULT_NEAR);
+    cam.zfar = TG_R(TG_DEFAULT_FAR);
     if (v[4].present) {
         if ((st = check_range(p, lx, &v[4], "near", 0, TG_REAL_MAX, LO_OPEN, "greater than 0")))
             return st;
@@ -467,7 +467,7 @@ static tg_status st_material(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     copy_name(m.name, &name);
     if ((st = check_range(p, lx, &v[0], "albedo", 0, TG_ONE, 0, "in [0, 1]"))) return st;
     m.albedo = kv_vec3(&v[0]);
-    m.f0 = TG_R(0.04f);
+    m.f0 = TG_R(TG_DEFAULT_F0);
     if (v[1].present) {
         if ((st = check_range(p, lx, &v[1], "f0", 0, TG_ONE, 0, "in [0, 1]"))) return st;
         m.f0 = v[1].v[0];
@@ -953,9 +953,9 @@ static tg_status run_pass(tgi_parser *p, const char *text, size_t size)
 static void scene_defaults(tg_scene *s)
 {
     s->camera.up = tg_v3(0, TG_ONE, 0);
-    s->camera.fov = tgi_deg_to_rad(TG_R(60.0f));
-    s->camera.znear = TG_R(0.05f);
-    s->camera.zfar = TG_R(1000.0f);
+    s->camera.fov = tgi_deg_to_rad(TG_R(TG_DEFAULT_FOV));
+    s->camera.znear = TG_R(TG_DEFAULT_NEAR);
+    s->camera.zfar = TG_R(TG_DEFAULT_FAR);
     s->env.type = TG_ENV_NONE;
     s->gi.radius = TG_R(-1.0f);
     s->gi.slices = s->gi.samples = 0;
