@@ -218,7 +218,6 @@ static inline tg_real tg_saturate(tg_real a) { return tg_clamp(a, 0, TG_ONE); }
 static inline tg_real tg_lerp(tg_real a, tg_real b, tg_real t) { return tg_add(a, tg_mul(tg_sub(b, a), t)); }
 static inline tg_real tg_sqr(tg_real a) { return tg_mul(a, a); }
 
-
 /* ==== ABI: symbols carry the number type ===================================
  * Each public function is a macro for its symbol, NAME_f32 (float) or
  * NAME_q16 (Q16.16): programs write tg_plan_make, the library exports
@@ -267,7 +266,6 @@ static inline tg_real tg_sqr(tg_real a) { return tg_mul(a, a); }
 #define tg_frame_render TG_ABI(tg_frame_render)
 #define tg_frame_aov_row TG_ABI(tg_frame_aov_row)
 #define tg_frame_aov_row8 TG_ABI(tg_frame_aov_row8)
-/* ======================================================================= */
 
 /* ---- the core's own transcendentals (real.c; error bounds documented there) ---- */
 #if TG_FIXED
@@ -291,13 +289,11 @@ tg_real tg_smoothstep(tg_real a, tg_real b, tg_real x);
  * then saturates). */
 size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 
-
 #define TG_PI TG_R(3.14159265358979f)
 #define TG_TWO_PI TG_R(6.28318530717959f)
 #define TG_HALF_PI TG_R(1.57079632679490f)
 #define TG_INV_PI TG_R(0.318309886183791f)
 #define TG_DEG2RAD TG_R(0.0174532925199433f)
-
 /* ======================================================================= */
 
 /* ==== LIMITS AND DEFAULTS ================================================
