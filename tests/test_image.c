@@ -440,14 +440,14 @@ TEST(file_read_errors)
 TEST(host_io_reads_and_frees)
 {
     tgp_host_io h;
-    const char *d1, *d2;
+    const char *d1, *d2, *why = NULL;
     size_t n1, n2;
     CHECK(write_raw(tmp_path("m.obj"), "v 0 0 0\n", 8) == 0, "setup");
     tgp_host_io_init(&h);
-    CHECK(h.io.read_file(h.io.user, tmp_path("m.obj"), &d1, &n1) == 0 && n1 == 8, "read");
-    CHECK(h.io.read_file(h.io.user, tmp_path("m.obj"), &d2, &n2) == 0 && d1 != d2, "second buffer");
+    CHECK(h.io.read_file(h.io.user, tmp_path("m.obj"), &d1, &n1, &why) == 0 && n1 == 8, "read");
+    CHECK(h.io.read_file(h.io.user, tmp_path("m.obj"), &d2, &n2, &why) == 0 && d1 != d2, "second buffer");
     CHECK(memcmp(d1, "v 0 0 0\n", 8) == 0, "both buffers stay valid");
-    CHECK(h.io.read_file(h.io.user, tmp_path("none.obj"), &d2, &n2) != 0, "missing");
+    CHECK(h.io.read_file(h.io.user, tmp_path("none.obj"), &d2, &n2, &why) != 0, "missing");
     CHECK(strstr(h.last_error, "cannot open") != NULL, "%s", h.last_error);
     tgp_host_io_free(&h);
     CHECK(h.files == NULL, "freed");

@@ -97,9 +97,11 @@ int tgp_file_read(const char *path, char **data, size_t *size, char *msg, size_t
 
 /* ---- tg_io ---- */
 
-static int host_io_read(void *user, const char *path, const char **data, size_t *size)
+static int host_io_read(void *user, const char *path, const char **data, size_t *size,
+                        const char **reason)
 {
     tgp_host_io *h = (tgp_host_io *)user;
+    (void)reason;
     tgp_host_io_file *node;
     char *buf;
     size_t n;

@@ -21,6 +21,7 @@
 #include "../light/sh.h"
 #include "../light/compose.h"
 #include "../scene/anim.h"
+#include "../raster/motion.h"
 
 tg_status tg_frame_create(const tg_plan *plan, void *memory, size_t size,
                           tg_frame **frame, tg_error *err)
