@@ -49,7 +49,7 @@
 #include "../scene/scene.h"
 #include "../raster/gbuffer.h"
 #include "../raster/view.h"
-#include "../ao/bvh.h"
+#include "bvh.h"
 
 #define TG_PATHTRACE_DEFAULT_SAMPLES 256
 

@@ -7,10 +7,10 @@
  */
 #include <string.h>
 #include "pathtrace.h"
-#include "direct.h"
-#include "shadowmap.h"
-#include "sh.h"
-#include "../ao/sampling.h"
+#include "../light/direct.h"
+#include "../light/shadowmap.h"
+#include "../light/sh.h"
+#include "sampling.h"
 
 #define HIT_EPS_REL TG_R(0.00006103515625f) /* 2^-14 of a point's coordinates: its ray's start offset */
 #define HIT_EPS_ULPS 8
