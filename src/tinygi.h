@@ -129,8 +129,11 @@ int tg_size_add(size_t a, size_t b, size_t *out);
 typedef struct tg_io {
     void *user;
     /* Give the whole file; the buffer must stay valid while parsing.
-     * Return 0 on success, non-zero if the file cannot be read. */
-    int (*read_file)(void *user, const char *path, const char **data, size_t *size);
+     * Return 0 on success, non-zero if the file cannot be read; then set
+     * *reason to a short phrase ("permission denied", "is a directory",
+     * "not a regular file", "larger than the 1 GiB limit") or leave it NULL. */
+    int (*read_file)(void *user, const char *path, const char **data, size_t *size,
+                     const char **reason);
 } tg_io;
 
 /* ---- scenes ---- */

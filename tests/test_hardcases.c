@@ -33,8 +33,10 @@ typedef struct rendered {
 
 /* In-memory files for scenes with meshes: every path gets `obj_text`. */
 static const char *io_obj_text;
-static int io_read(void *user, const char *path, const char **data, size_t *size)
+static int io_read(void *user, const char *path, const char **data, size_t *size,
+                   const char **reason)
 {
+    (void)reason;
     (void)user; (void)path;
     if (!io_obj_text) return 1;
     *data = io_obj_text;

@@ -57,17 +57,31 @@ int tgi_path_join(const char *base, const char *rel, size_t rel_n, char *out)
     return 0;
 }
 
-static int read_file(tgi_parser *p, const char *path, const char **data, size_t *size)
+static int read_file(tgi_parser *p, const char *path, const char **data, size_t *size,
+                     const char **reason)
 {
     *data = NULL;
     *size = 0;
+    *reason = NULL;
     if (!p->io || !p->io->read_file) return 1;
-    if (p->io->read_file(p->io->user, path, data, size)) return 1;
+    if (p->io->read_file(p->io->user, path, data, size, reason)) return 1;
     if (!*data) {
         if (*size) return 1;
         *data = "";
     }
     return 0;
+}
+
+/* "cannot read WHAT file 'PATH'", then ": REASON" when the tg_io gave one */
+static tg_status read_fail(tgi_parser *p, const char *file, int line, int col,
+                           const char *what, const char *path, const char *reason)
+{
+    tgi_parse_fail(p, file, line, col, what, path, "'");
+    if (reason) {
+        tgi_error_append(p->err, ": ");
+        tgi_error_append(p->err, reason);
+    }
+    return TG_ERR_INPUT;
 }
 
 static tg_status ofail(obj_state *o, const tgi_lexer *lx, int col,
@@ -335,6 +349,7 @@ static int mtl_search(obj_state *o, const mtllib_ref *lib, const char *path,
 static tg_status mtl_find(obj_state *o, const tgi_lexer *lx, const tgi_token *name, tgi_material *m)
 {
     char path[TG_PATH_MAX], buf[48];
+    const char *why;
     int i, r;
     for (i = 0; i < o->nlib; i++) {
         mtllib_ref *lib = &o->lib[i];
@@ -342,9 +357,9 @@ static tg_status mtl_find(obj_state *o, const tgi_lexer *lx, const tgi_token *na
             return tgi_parse_fail(o->p, o->path, lib->line, lib->name.col,
                                  "MTL path is too long", NULL, NULL);
         if (!lib->loaded) {
-            if (read_file(o->p, path, &lib->data, &lib->size))
-                return tgi_parse_fail(o->p, o->path, lib->line, lib->name.col,
-                                     "cannot read MTL file '", path, "'");
+            if (read_file(o->p, path, &lib->data, &lib->size, &why))
+                return read_fail(o->p, o->path, lib->line, lib->name.col,
+                                 "cannot read MTL file '", path, why);
             lib->loaded = 1;
         }
         r = mtl_search(o, lib, path, name, m);
@@ -408,7 +423,7 @@ tg_status tgi_obj_mesh(tgi_parser *p, const tgi_lexer *lx, const tgi_token *path
                       const tgi_xform *xf, int material, const char *objname)
 {
     char path[TG_PATH_MAX];
-    const char *data;
+    const char *data, *why;
     size_t size;
     obj_state o;
     tgi_lexer ol;
@@ -421,9 +436,8 @@ tg_status tgi_obj_mesh(tgi_parser *p, const tgi_lexer *lx, const tgi_token *path
         tgi_error_append(p->err, " bytes with the scene's directory)");
         return TG_ERR_INPUT;
     }
-    if (read_file(p, path, &data, &size))
-        return tgi_parse_fail(p, lx->file, lx->lineno, path_tok->col,
-                             "cannot read mesh file '", path, "'");
+    if (read_file(p, path, &data, &size, &why))
+        return read_fail(p, lx->file, lx->lineno, path_tok->col, "cannot read mesh file '", path, why);
     memset(&o, 0, sizeof o);
     o.p = p;
     o.path = path;

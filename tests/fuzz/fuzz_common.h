@@ -27,8 +27,10 @@ typedef struct fuzz_files {
     size_t obj_n, mtl_n;
 } fuzz_files;
 
-static int fuzz_read(void *user, const char *path, const char **data, size_t *size)
+static int fuzz_read(void *user, const char *path, const char **data, size_t *size,
+                     const char **reason)
 {
+    (void)reason;
     const fuzz_files *f = (const fuzz_files *)user;
     size_t n = strlen(path);
     if (n >= 4 && memcmp(path + n - 4, ".obj", 4) == 0) {
