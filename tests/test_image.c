@@ -364,6 +364,29 @@ TEST(png_one_block_per_row)
     CHECK(tgp_png_write(tmp_path("c.png"), 0, 3, rgb, NULL, 0) != 0, "0x3 refused");
 }
 
+TEST(png_adler32_past_the_modulus)
+{
+    /* 200x100 white: the sums pass 65521 many times; Adler-32 computed here
+     * byte by byte, the slow way of RFC 1950 sec. 8.2 */
+    enum { W = 200, H = 100 };
+    static uint8_t rgb[W * H * 3];
+    unsigned char *d;
+    size_t n, i;
+    uint32_t s1 = 1, s2 = 0;
+    memset(rgb, 255, sizeof rgb);
+    for (i = 0; i < (size_t)H * (1 + 3 * W); i++) {
+        s1 = (s1 + (i % (1 + 3 * W) == 0 ? 0u : 255u)) % 65521u;
+        s2 = (s2 + s1) % 65521u;
+    }
+    CHECK(tgp_png_write(tmp_path("w.png"), W, H, rgb, NULL, 0) == 0, "write");
+    CHECK(read_raw(tmp_path("w.png"), &d, &n) == 0 && n > 24, "read back");
+    if (n <= 24) return;
+    /* the Adler-32 ends the last IDAT, just before its CRC and the 12-byte IEND */
+    CHECK(be32(d + n - 12 - 8) == (s2 << 16 | s1), "Adler-32 %08x, expected %08x",
+          (unsigned)be32(d + n - 20), (unsigned)(s2 << 16 | s1));
+    free(d);
+}
+
 TEST(diff_refuses_mismatch)
 {
     float p[12] = { 0 };
@@ -422,6 +445,7 @@ int main(void)
     RUN(crc32_check_values);
     RUN(png_bytes_on_disk);
     RUN(png_one_block_per_row);
+    RUN(png_adler32_past_the_modulus);
     RUN(diff_image_scaled);
     RUN(clock_monotonic);
     tmpdir_remove();

@@ -403,13 +403,9 @@ static int target_check_names(out_target *t, char *msg, size_t msgsize)
         errno_text(errno, why, sizeof why);
         return out_fail(TG_ERR_RUNTIME, msg, msgsize, what, why);
     }
+    /* (a name longer than the file system allows failed lstat: ENAMETOOLONG) */
     name_max = pathconf(dir, _PC_NAME_MAX);
     if (name_max < (long)TMP_EXTRA + 1) name_max = 255;
-    if (nlen > (size_t)name_max) {
-        say(msg, msgsize, "cannot write: the file name is %lu bytes, longer than the %ld the "
-            "file system allows", (unsigned long)nlen, name_max);
-        return TG_ERR_INPUT;
-    }
     t->keep = nlen < (size_t)name_max - TMP_EXTRA ? nlen : (size_t)name_max - TMP_EXTRA;
     while (t->keep > 0 && ((unsigned char)t->path[dlen + t->keep] & 0xC0) == 0x80)
         t->keep--; /* do not cut a UTF-8 character */
