@@ -462,8 +462,8 @@ static long temporary_pid(const char *name)
     if (name[0] != '.') return 0;
     for (p = name + 1; (q = strstr(p, TMP_MARK)) != NULL; p = q + 1) mark = q;
     if (!mark) return 0;
-    for (p = mark + sizeof TMP_MARK - 1; *p >= '0' && *p <= '9' && pid < 100000000000L; p++)
-        pid = pid * 10 + (*p - '0');
+    for (p = mark + sizeof TMP_MARK - 1; *p >= '0' && *p <= '9' && pid < 214748364L; p++)
+        pid = pid * 10 + (*p - '0'); /* at most 2^31 - 9: fits a 32-bit long */
     if (*p++ != '-' || !(*p >= '0' && *p <= '9')) return 0;
     while (*p >= '0' && *p <= '9') p++;
     return *p ? 0 : pid;
