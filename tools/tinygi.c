@@ -218,7 +218,7 @@ static int size_option(const char *s, int *w, int *h)
             return 1;
         }
     }
-    if (side[0] * side[1] > (long)TG_MAX_IMAGE_PIXELS) { /* sides <= 8192: no overflow */
+    if (side[0] * side[1] > (long)TG_MAX_IMAGE_PIXELS) { /* sides <= TG_MAX_IMAGE_SIDE: fits */
         usage_error("option --size: pixels (width*height) must be 1..%ld, got %ld",
                     (long)TG_MAX_IMAGE_PIXELS, side[0] * side[1]);
         return 1;
