@@ -663,6 +663,7 @@ typedef struct memfs {
 static int mem_read(void *user, const char *path, const char **data, size_t *size,
                     const char **reason)
 {
+    (void)reason;
     memfs *fs = (memfs *)user;
     const memfile *f;
     if (fs->nreq < 8) snprintf(fs->requested[fs->nreq++], 256, "%s", path);
@@ -1012,6 +1013,7 @@ typedef struct changing_io { int reads; } changing_io;
 static int changing_read(void *user, const char *path, const char **data, size_t *size,
                          const char **reason)
 {
+    (void)reason;
     changing_io *c = (changing_io *)user;
     static const char small[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
     static const char big[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\nf 1 2 4\n";

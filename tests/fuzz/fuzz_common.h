@@ -31,6 +31,7 @@ typedef struct fuzz_files {
 static int fuzz_read(void *user, const char *path, const char **data, size_t *size,
                      const char **reason)
 {
+    (void)reason;
     const fuzz_files *f = (const fuzz_files *)user;
     (void)reason;
     size_t n = strlen(path);
