@@ -13,11 +13,28 @@ BENCH_RUNS ?= 5
 BENCH_DIR  ?= $(BUILD)/bench
 BENCH_ARGS ?=
 
-.PHONY: bench bench-build bench-publish
-$(BUILD)/bench-float: tools/bench.c $(HOST_OBJ_float) $(BUILD)/libtinygi.a
-	$(CC) $(CFLAGS_ALL) -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform $< $(HOST_OBJ_float) $(BUILD)/libtinygi.a -o $@ $(LDLIBS_HOST)
-$(BUILD)/bench-fixed: tools/bench.c $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a
-	$(CC) $(CFLAGS_ALL) -DTG_FIXED=1 -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform $< $(HOST_OBJ_fixed) $(BUILD)/libtinygi-fixed.a -o $@ $(LDLIBS_HOST)
+.PHONY: bench bench-build bench-publish bench-hbil
+
+# The bench programs, once per number type ($(1) float|fixed, $(2) file
+# suffix): bench-float/-fixed (tools/bench.c), bench_raster[-fixed],
+# bench_hbil[-fixed].  They link the hosted platform and the core library.
+BENCH_LINK = -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform
+define bench_programs
+$$(BUILD)/bench-$(1): tools/bench.c $$(HOST_OBJ_$(1)) $$(BUILD)/libtinygi$(2).a
+	$$(CC) $$(CFLAGS_ALL) $$(NUMDEF_$(1)) $$(BENCH_LINK) $$< $$(HOST_OBJ_$(1)) $$(BUILD)/libtinygi$(2).a -o $$@ $$(LDLIBS_HOST)
+$$(BUILD)/bench_raster$(2): tools/bench_raster.c $$(HOST_OBJ_$(1)) $$(BUILD)/libtinygi$(2).a
+	$$(CC) $$(CFLAGS_ALL) $$(NUMDEF_$(1)) $$(BENCH_LINK) $$< $$(HOST_OBJ_$(1)) $$(BUILD)/libtinygi$(2).a -o $$@ $$(LDLIBS_HOST)
+$$(BUILD)/bench_hbil$(2): tools/bench_hbil.c $$(HOST_OBJ_$(1)) $$(BUILD)/libtinygi$(2).a
+	$$(CC) $$(CFLAGS_ALL) -Wno-double-promotion $$(NUMDEF_$(1)) $$(BENCH_LINK) $$< $$(HOST_OBJ_$(1)) $$(BUILD)/libtinygi$(2).a -o $$@ $$(LDLIBS_HOST)
+endef
+$(eval $(call bench_programs,float,))
+$(eval $(call bench_programs,fixed,-fixed))
+
+# the HBIL chain alone (split, kernel, merge, filter) on an analytic 320x240
+# groove; `valgrind --tool=callgrind $(BUILD)/bench_hbil 1` counts it
+bench-hbil: $(BUILD)/bench_hbil $(BUILD)/bench_hbil-fixed
+	$(BUILD)/bench_hbil
+	$(BUILD)/bench_hbil-fixed
 
 bench-build: $(BUILD)/bench-float $(BUILD)/bench-fixed
 
@@ -33,3 +50,59 @@ bench: bench-build
 bench-publish:
 	@mkdir -p tools/bench-results
 	cp $(BENCH_DIR)/bench.svg $(BENCH_DIR)/bench.md $(BENCH_DIR)/bench.csv $(BENCH_DIR)/contact.png tools/bench-results/
+
+# ---- cost and speed benches (speed is measured here, never in tests) ----
+#
+#   make bench-count    instructions per frame and per pixel per pass (callgrind;
+#                       deterministic, load does not matter).  Narrow it with
+#                       BENCH_SCENES="cornell columns" (or all), BENCH_TYPES="float fixed",
+#                       BENCH_MODES="default quarter", BENCH_FRAMES=10, BENCH_FRAME_SIZE=320x240
+#   make bench-count-check   bench_count.py's own check (a fake program with passes)
+#   make bench-frame    whole frames through the CLI, timed: every configuration
+#                       once per round, interleaved, BENCH_ROUNDS rounds, medians
+#                       (min..max) of CPU and wall time, load average at start and end
+#   make bench-raster   the 49,728-triangle sphere at 320x240 and 1280x720, float and
+#                       Q16.16, timed the same way, Mtri/s, and callgrind's count per
+#                       frame; BENCH_PEERS="CMD;CMD" adds programs that print the same
+#                       line (tools/bench_time.py describes it)
+# Results: $(BUILD)/bench-count/, $(BUILD)/bench-frame/, $(BUILD)/bench-raster/
+# (count.md/.csv, time.md/.csv).
+
+BENCH_SCENES     ?= cornell columns
+BENCH_TYPES      ?= float fixed
+BENCH_MODES      ?= default quarter
+BENCH_FRAMES     ?= 10
+BENCH_FRAME_SIZE ?= 320x240
+BENCH_JOBS       ?= 2
+BENCH_ROUNDS     ?=
+BENCH_FRAME_SCENES ?= all
+BENCH_RASTER_FRAMES ?= 20
+BENCH_PEERS      ?=
+
+.PHONY: bench-count bench-count-check bench-frame bench-raster bench-valgrind
+# valgrind (callgrind), installed from Debian packages only if it is missing
+bench-valgrind:
+	@command -v valgrind >/dev/null 2>&1 || { \
+	  command -v apt-get >/dev/null 2>&1 || { echo "bench: install valgrind (callgrind)" >&2; exit 1; }; \
+	  echo "bench: installing valgrind"; sudo=""; [ "$$(id -u)" -ne 0 ] && sudo=sudo; \
+	  export DEBIAN_FRONTEND=noninteractive; \
+	  $$sudo apt-get install -y -qq --no-install-recommends valgrind >/dev/null 2>&1 || \
+	  { $$sudo apt-get update -qq && $$sudo apt-get install -y -qq --no-install-recommends valgrind; } || \
+	  { echo "bench: apt-get install valgrind failed" >&2; exit 1; }; }
+
+bench-count: all bench-valgrind
+	python3 tools/bench_count.py --build $(BUILD) --scenes "$(BENCH_SCENES)" --types "$(BENCH_TYPES)" \
+	  --modes "$(BENCH_MODES)" --frames $(BENCH_FRAMES) --size $(BENCH_FRAME_SIZE) --jobs $(BENCH_JOBS)
+
+# the callgrind reading and the tgi_pass_* discovery, on a small fake program
+bench-count-check: bench-valgrind
+	python3 tools/bench_count.py --self-test
+
+bench-frame: all
+	python3 tools/bench_time.py frame --build $(BUILD) --scenes "$(BENCH_FRAME_SCENES)" \
+	  --types "$(BENCH_TYPES)" --modes "$(BENCH_MODES)" --frames $(BENCH_FRAMES) \
+	  --size $(BENCH_FRAME_SIZE) --rounds $(or $(BENCH_ROUNDS),5)
+
+bench-raster: $(BUILD)/bench_raster $(BUILD)/bench_raster-fixed bench-valgrind
+	BENCH_PEERS="$(BENCH_PEERS)" python3 tools/bench_time.py raster --build $(BUILD) \
+	  --frames $(BENCH_RASTER_FRAMES) --rounds $(or $(BENCH_ROUNDS),7)

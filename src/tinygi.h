@@ -2,14 +2,20 @@
 /*
  * tinygi.h - the public API of tinygi, a dependency-free C99 software
  * renderer with screen-space global illumination (Horizon-Based Indirect
- * Lighting, HBIL) for small machines.
+ * Lighting, HBIL) for small machines.  This one header is all a program
+ * needs: it includes nothing but <stddef.h>, <stdint.h> and <string.h>, and
+ * compiles as C99 or C++ (extern "C").
  *
  * CONFIGURATION (one macro, set for the whole build, like luaconf.h)
  *   TG_FIXED=1   tg_real is Q16.16 fixed point (int32_t); default is float.
+ *   The program and the library must agree: every public function's symbol
+ *   carries the number type (tg_plan_make is tg_plan_make_f32 or
+ *   tg_plan_make_q16, by the macros in "ABI" below), so a program built with
+ *   the other type's header fails to LINK instead of reading garbage.
  *
  * MEMORY
  *   The core never allocates.  The caller hands it one arena (tg_arena) and
- *   asks how many bytes a frame plan needs (tgi_plan_bytes) beforehand.
+ *   asks how many bytes a frame plan needs (tg_plan.total_bytes) beforehand.
  *
  * CONVENTIONS (decided once, used everywhere)
  *   - Right-handed world space, +Y up by default.  The camera looks along
@@ -35,9 +41,260 @@
 
 #include <stddef.h>
 #include <stdint.h>
-#include "core/real.h"
+#include <string.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 #define TG_VERSION "0.2.0"
+
+/* ==== THE NUMBER TYPE =====================================================
+ * tinygi's one number type, chosen once per build.
+ *
+ *   TG_FIXED undefined or 0 : tg_real is IEEE-754 float.
+ *   TG_FIXED=1              : tg_real is Q16.16 fixed point in int32_t.
+ *
+ * Every kernel is written once against the scalar API below.  The rules:
+ *  - arithmetic between tg_reals goes through tg_add/tg_sub/tg_mul/tg_div;
+ *  - constants are written TG_R(0.5f) - a compile-time conversion;
+ *  - fixed point multiplies in 64 bits and SATURATES to [-TG_REAL_MAX,
+ *    TG_REAL_MAX]: it never wraps (a wrapped radiance is a black speck).
+ *    -INT32_MAX, not INT32_MIN, is the floor so that negation is safe.
+ *  - the transcendentals (tg_sqrt, tg_sin, ...) are the core's own, in
+ *    src/core/real.c, each with a worst-case error documented there and
+ *    measured against libm by tests/test_real.c.
+ * Names with the tgi_ prefix below are static inline helpers of this
+ * section, not API.
+ */
+#ifndef TG_FIXED
+#define TG_FIXED 0
+#endif
+
+#if TG_FIXED
+
+typedef int32_t tg_real;
+#define TG_FRAC_BITS 16
+#define TG_ONE ((tg_real)65536)
+#define TG_REAL_MAX ((tg_real)INT32_MAX)
+#define TG_REAL_MIN (-TG_REAL_MAX)
+#define TG_EPS ((tg_real)1) /* one ulp, 2^-16 */
+/* Compile-time conversion of a float constant (rounds to nearest). */
+#define TG_R(x) ((tg_real)((x) >= 0 ? (x) * 65536.0f + 0.5f : (x) * 65536.0f - 0.5f))
+#define TG_NUMBER_NAME "fixed"
+
+static inline tg_real tgi_sat64(int64_t v)
+{
+    if (v > (int64_t)TG_REAL_MAX) return TG_REAL_MAX;
+    if (v < (int64_t)TG_REAL_MIN) return TG_REAL_MIN;
+    return (tg_real)v;
+}
+static inline tg_real tg_add(tg_real a, tg_real b) { return tgi_sat64((int64_t)a + b); }
+static inline tg_real tg_sub(tg_real a, tg_real b) { return tgi_sat64((int64_t)a - b); }
+static inline tg_real tg_neg(tg_real a) { return -a; }
+/* Round-half-away-from-zero shift; avoids right-shifting negative values. */
+static inline int64_t tgi_shr_round(int64_t p, int s)
+{
+    int64_t half = (int64_t)1 << (s - 1);
+    return p >= 0 ? (p + half) >> s : -((-p + half) >> s);
+}
+static inline tg_real tg_mul(tg_real a, tg_real b)
+{
+    return tgi_sat64(tgi_shr_round((int64_t)a * b, TG_FRAC_BITS));
+}
+/* Division saturates; x/0 gives +-TG_REAL_MAX by the sign of x, 0/0 gives 0. */
+static inline tg_real tg_div(tg_real a, tg_real b)
+{
+    int64_t n;
+    if (b == 0) return a > 0 ? TG_REAL_MAX : a < 0 ? TG_REAL_MIN : 0;
+    n = (int64_t)a * 65536;
+    if ((n >= 0) == (b > 0)) n += (b > 0 ? b : -(int64_t)b) / 2;
+    else n -= (b > 0 ? b : -(int64_t)b) / 2;
+    return tgi_sat64(n / b);
+}
+static inline tg_real tg_from_int(int32_t i) { return tgi_sat64((int64_t)i * 65536); }
+/* Floor to integer. */
+static inline int32_t tg_to_int(tg_real a) { return (int32_t)(a >= 0 ? a >> 16 : -((-(int64_t)a + 65535) >> 16)); }
+/* Round to nearest integer. */
+static inline int32_t tg_round_int(tg_real a) { return tg_to_int(a + (a < TG_REAL_MAX - 32768 ? 32768 : 0)); }
+/* n/d as a tg_real, exactly rounded; d > 0. */
+static inline tg_real tg_ratio(int32_t n, int32_t d) { return tgi_sat64(((int64_t)n * 65536 + (n >= 0 ? d / 2 : -(d / 2))) / d); }
+/* Host-side conversions (used by platform code and tests, never by kernels). */
+static inline float tg_to_float(tg_real a) { return (float)a * (1.0f / 65536.0f); }
+static inline tg_real tg_from_float(float f)
+{
+    float s = f * 65536.0f;
+    if (!(s == s)) return 0;
+    if (s >= 2147483520.0f) return TG_REAL_MAX;
+    if (s <= -2147483520.0f) return TG_REAL_MIN;
+    return (tg_real)(s >= 0 ? s + 0.5f : s - 0.5f);
+}
+/* Multiply by a power of two (shift), saturating. */
+static inline tg_real tg_ldexp(tg_real a, int e)
+{
+    if (e >= 0) return tgi_sat64((int64_t)a * ((int64_t)1 << (e > 31 ? 31 : e)));
+    return (tg_real)tgi_shr_round(a, -e > 31 ? 31 : -e);
+}
+static inline int tg_isfinite(tg_real a) { (void)a; return 1; }
+
+#else /* float */
+
+typedef float tg_real;
+#define TG_ONE 1.0f
+#define TG_REAL_MAX 3.402823466e+38f
+#define TG_REAL_MIN (-TG_REAL_MAX)
+#define TG_EPS 1.1920929e-07f
+#define TG_R(x) ((tg_real)(x))
+#define TG_NUMBER_NAME "float"
+
+static inline tg_real tg_add(tg_real a, tg_real b) { return a + b; }
+static inline tg_real tg_sub(tg_real a, tg_real b) { return a - b; }
+static inline tg_real tg_neg(tg_real a) { return -a; }
+static inline tg_real tg_mul(tg_real a, tg_real b) { return a * b; }
+static inline tg_real tg_div(tg_real a, tg_real b) { return a / b; }
+static inline tg_real tg_from_int(int32_t i) { return (tg_real)i; }
+/* Floor to integer (saturates at the int32 range; NaN gives 0). */
+static inline int32_t tg_to_int(tg_real a)
+{
+    int32_t i;
+    if (!(a == a)) return 0;
+    if (a >= 2147483520.0f) return INT32_MAX;
+    if (a <= -2147483520.0f) return -INT32_MAX;
+    i = (int32_t)a;
+    return (tg_real)i > a ? i - 1 : i;
+}
+static inline int32_t tg_round_int(tg_real a) { return tg_to_int(a + 0.5f); }
+static inline tg_real tg_ratio(int32_t n, int32_t d) { return (tg_real)n / (tg_real)d; }
+static inline float tg_to_float(tg_real a) { return a; }
+static inline tg_real tg_from_float(float f) { return f; }
+static inline tg_real tg_ldexp(tg_real a, int e)
+{
+    while (e > 0) { a *= 2.0f; e--; }
+    while (e < 0) { a *= 0.5f; e++; }
+    return a;
+}
+static inline int tg_isfinite(tg_real a) { return a == a && a <= TG_REAL_MAX && a >= TG_REAL_MIN; }
+
+/* rsqrt and sqrt are inline in the float build: every normalisation in the
+ * hot loops calls them (error bounds in real.c's table). */
+static inline float tgi_f_from_bits(uint32_t b) { float f; memcpy(&f, &b, sizeof f); return f; }
+static inline uint32_t tgi_f_bits(float f) { uint32_t b; memcpy(&b, &f, sizeof b); return b; }
+
+/* Bit-trick seed (within 3.5%) and three Newton steps (quadratic); x <= 0 gives TG_REAL_MAX. */
+static inline tg_real tg_rsqrt(tg_real x)
+{
+    float y, hx, scale = 1.0f;
+    if (!(x > 0.0f)) return TG_REAL_MAX;
+    if (x > TG_REAL_MAX) return 0.0f;
+    if (x < 1.17549435e-38f) { x *= 18446744073709551616.0f; scale = 4294967296.0f; }
+    y = tgi_f_from_bits(0x5f3759dfu - (tgi_f_bits(x) >> 1));
+    hx = 0.5f * x;
+    y = y * (1.5f - hx * y * y);
+    y = y * (1.5f - hx * y * y);
+    y = y * (1.5f - hx * y * y);
+    return y * scale;
+}
+
+/* sqrt = x * rsqrt(x), plus one Newton correction on the residual; x <= 0 gives 0. */
+static inline tg_real tg_sqrt(tg_real x)
+{
+    float r, s;
+    if (!(x > 0.0f)) return 0.0f;
+    if (x > TG_REAL_MAX) return x;
+    r = tg_rsqrt(x);
+    s = x * r;
+    return s + 0.5f * r * (x - s * s);
+}
+
+#endif
+
+/* ---- shared helpers, identical for both types ---- */
+static inline tg_real tg_abs(tg_real a) { return a < 0 ? tg_neg(a) : a; }
+static inline tg_real tg_min(tg_real a, tg_real b) { return a < b ? a : b; }
+static inline tg_real tg_max(tg_real a, tg_real b) { return a > b ? a : b; }
+static inline tg_real tg_clamp(tg_real a, tg_real lo, tg_real hi) { return a < lo ? lo : a > hi ? hi : a; }
+static inline tg_real tg_saturate(tg_real a) { return tg_clamp(a, 0, TG_ONE); }
+/* a + (b - a) * t */
+static inline tg_real tg_lerp(tg_real a, tg_real b, tg_real t) { return tg_add(a, tg_mul(tg_sub(b, a), t)); }
+static inline tg_real tg_sqr(tg_real a) { return tg_mul(a, a); }
+
+/* ==== ABI: symbols carry the number type ===================================
+ * Each public function is a macro for its symbol, NAME_f32 (float) or
+ * NAME_q16 (Q16.16): programs write tg_plan_make, the library exports
+ * tg_plan_make_q16, and a header/library mismatch fails at link time.
+ * A new public function gets its line here (tests/purity_test.sh checks
+ * that the libraries export nothing else).
+ */
+#if TG_FIXED
+#define TG_ABI(name) name##_q16
+#else
+#define TG_ABI(name) name##_f32
+#endif
+#if TG_FIXED
+#define tg_sqrt TG_ABI(tg_sqrt)
+#define tg_rsqrt TG_ABI(tg_rsqrt)
+#endif
+#define tg_sin TG_ABI(tg_sin)
+#define tg_cos TG_ABI(tg_cos)
+#define tg_acos TG_ABI(tg_acos)
+#define tg_asin TG_ABI(tg_asin)
+#define tg_atan2 TG_ABI(tg_atan2)
+#define tg_tan TG_ABI(tg_tan)
+#define tg_exp2 TG_ABI(tg_exp2)
+#define tg_log2 TG_ABI(tg_log2)
+#define tg_pow TG_ABI(tg_pow)
+#define tg_floor TG_ABI(tg_floor)
+#define tg_smoothstep TG_ABI(tg_smoothstep)
+#define tg_parse_real TG_ABI(tg_parse_real)
+#define tg_error_format TG_ABI(tg_error_format)
+#define tg_arena_init TG_ABI(tg_arena_init)
+#define tg_arena_alloc TG_ABI(tg_arena_alloc)
+#define tg_size_mul TG_ABI(tg_size_mul)
+#define tg_size_add TG_ABI(tg_size_add)
+#define tg_scene_parse TG_ABI(tg_scene_parse)
+#define tg_builtin_scene TG_ABI(tg_builtin_scene)
+#define tg_builtin_name TG_ABI(tg_builtin_name)
+#define tg_aov_name TG_ABI(tg_aov_name)
+#define tg_aov_from_name TG_ABI(tg_aov_from_name)
+#define tg_aov_channels TG_ABI(tg_aov_channels)
+#define tg_technique_name TG_ABI(tg_technique_name)
+#define tg_technique_from_name TG_ABI(tg_technique_from_name)
+#define tg_request_defaults TG_ABI(tg_request_defaults)
+#define tg_plan_make TG_ABI(tg_plan_make)
+#define tg_plan_explain TG_ABI(tg_plan_explain)
+#define tg_frame_create TG_ABI(tg_frame_create)
+#define tg_frame_render TG_ABI(tg_frame_render)
+#define tg_frame_aov_row TG_ABI(tg_frame_aov_row)
+#define tg_frame_aov_row8 TG_ABI(tg_frame_aov_row8)
+
+/* ---- the core's own transcendentals (real.c; error bounds documented there) ---- */
+#if TG_FIXED
+tg_real tg_sqrt(tg_real x);           /* x <= 0 gives 0 */
+tg_real tg_rsqrt(tg_real x);          /* x <= 0 gives TG_REAL_MAX */
+#endif
+tg_real tg_sin(tg_real x);            /* radians, any x */
+tg_real tg_cos(tg_real x);
+tg_real tg_acos(tg_real x);           /* x clamped to [-1, 1]; result in [0, pi] */
+tg_real tg_asin(tg_real x);           /* x clamped to [-1, 1] */
+tg_real tg_atan2(tg_real y, tg_real x); /* result in [-pi, pi]; (0,0) gives 0 */
+tg_real tg_tan(tg_real x);            /* |x| < pi/2 */
+tg_real tg_exp2(tg_real x);           /* saturates */
+tg_real tg_log2(tg_real x);           /* x <= 0 gives TG_REAL_MIN */
+tg_real tg_pow(tg_real x, tg_real y); /* x >= 0 */
+tg_real tg_floor(tg_real x);
+tg_real tg_smoothstep(tg_real a, tg_real b, tg_real x);
+/* Parse a decimal number ("1", "-0.5", "2.5e-3") into a tg_real, rounding to
+ * nearest.  Returns the count of characters used, 0 if none form a number.
+ * *overflow is set when the value is outside the tg_real range (the result
+ * then saturates). */
+size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
+
+#define TG_PI TG_R(3.14159265358979f)
+#define TG_TWO_PI TG_R(6.28318530717959f)
+#define TG_HALF_PI TG_R(1.57079632679490f)
+#define TG_INV_PI TG_R(0.318309886183791f)
+#define TG_DEG2RAD TG_R(0.0174532925199433f)
+/* ======================================================================= */
 
 /* ==== LIMITS AND DEFAULTS ================================================
  * Every limit tinygi enforces, in one place (in the manner of luaconf.h),
@@ -85,6 +342,11 @@
 #define TG_MAX_KEYS 4096                /* camera keys; object keys likewise */
 #define TG_MIN_SPHERE_SEGMENTS 4
 #define TG_MAX_SPHERE_SEGMENTS 256
+#define TG_DEFAULT_SPHERE_SEGMENTS 24   /* segments around a sphere (12 rings) */
+#define TG_DEFAULT_FOV 60               /* camera: vertical field of view, degrees */
+#define TG_DEFAULT_NEAR 0.05f           /* camera: near plane, world units */
+#define TG_DEFAULT_FAR 1000             /* camera: far plane, world units */
+#define TG_DEFAULT_F0 0.04f             /* material: Fresnel F0 of a dielectric */
 #define TG_MAX_PATH 256                 /* a resolved mesh or MTL path, bytes with the NUL */
 #if !defined(TG_MAX_OBJ_VERTICES)
 #define TG_MAX_OBJ_VERTICES 4000000L    /* [policy] v, vn and vt lines each, per OBJ */
@@ -120,7 +382,10 @@ typedef struct tg_arena {
 } tg_arena;
 
 void tg_arena_init(tg_arena *a, void *memory, size_t size);
-void *tg_arena_alloc(tg_arena *a, size_t bytes); /* 16-byte aligned, zeroed; NULL when full */
+/* `bytes` zeroed bytes at the next 16-byte aligned ADDRESS (whatever the
+ * alignment of the memory given to tg_arena_init: up to 15 bytes of it may
+ * go to padding); NULL when they do not fit. */
+void *tg_arena_alloc(tg_arena *a, size_t bytes);
 /* a * b with overflow check: returns 0 and sets *out, or returns 1 on overflow. */
 int tg_size_mul(size_t a, size_t b, size_t *out);
 int tg_size_add(size_t a, size_t b, size_t *out);
@@ -128,9 +393,14 @@ int tg_size_add(size_t a, size_t b, size_t *out);
 /* ---- files the scene refers to (OBJ meshes): supplied by the platform ---- */
 typedef struct tg_io {
     void *user;
-    /* Give the whole file; the buffer must stay valid while parsing.
-     * Return 0 on success, non-zero if the file cannot be read. */
-    int (*read_file)(void *user, const char *path, const char **data, size_t *size);
+    /* Give the whole file (at most TG_MAX_FILE_BYTES); the buffer must stay
+     * valid while parsing.  Return 0 on success, non-zero if the file cannot
+     * be read, and then may set *reason (NULL on entry) to a short phrase
+     * saying why, e.g. "permission denied", "is a directory", "not a regular
+     * file", "larger than the 1 GiB limit": the parser reports
+     * "cannot read mesh file 'PATH': REASON". */
+    int (*read_file)(void *user, const char *path, const char **data, size_t *size,
+                     const char **reason);
 } tg_io;
 
 /* ---- scenes ---- */
@@ -252,5 +522,9 @@ tg_status tg_frame_aov_row(const tg_frame *frame, tg_aov aov, int y, tg_real *ou
  * colour is exposed, tonemapped and sRGB-encoded; normals are 0.5n + 0.5;
  * scalar AOVs are grey.  y as for tg_frame_aov_row (zeros when refused). */
 tg_status tg_frame_aov_row8(const tg_frame *frame, tg_aov aov, int y, uint8_t *rgb);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

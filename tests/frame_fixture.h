@@ -27,9 +27,10 @@ typedef struct rendered {
 /* The text every mesh path of the scene reads (NULL: no file). */
 static const char *fixture_mesh_text;
 
-static inline int fixture_read(void *user, const char *path, const char **data, size_t *size)
+static inline int fixture_read(void *user, const char *path, const char **data, size_t *size,
+                               const char **reason)
 {
-    (void)user; (void)path;
+    (void)user; (void)path; (void)reason;
     if (!fixture_mesh_text) return 1;
     *data = fixture_mesh_text;
     *size = strlen(fixture_mesh_text);

@@ -13,6 +13,7 @@
 #include <stdint.h>
 #include "check.h"
 #include "raster/raster.h"
+#include "scene/scene.h"
 #include "ao/bvh.h"
 
 #define DEG (3.14159265358979 / 180.0)

@@ -8,6 +8,7 @@
 #include "check.h"
 #include "scene/scene.h"
 #include "scene/anim.h"
+#include "raster/motion.h"
 
 #define PI 3.14159265358979
 #define DEG (PI / 180.0)

@@ -2,42 +2,19 @@
 /*
  * test_image.c - the hosted platform's image files and diff: PPM and PFM
  * bytes on disk (headers, byte order, PFM's bottom-to-top rows), round
- * trips, refusal of malformed files, the diff numbers against hand-computed
- * values, and atomic writes (a failed write never leaves a partial file or
- * touches an existing one).
+ * trips, refusal of malformed files, PNG's chunks, CRC-32, Adler-32 and
+ * stored blocks (tests/png_test.sh decodes whole files with Python's zlib),
+ * and the diff numbers against hand-computed values, non-finite values
+ * included.  Files and atomic writes: test_file.c.
  */
-#include <dirent.h>
-#include <signal.h>
-#include <sys/resource.h>
 #include <stdint.h>
 #include <stdlib.h>
-#include <sys/stat.h>
-#include <unistd.h>
 #include "check.h"
+#include "tmpdir.h"
 #include "hosted/file.h"
 #include "hosted/image.h"
 #include "hosted/imgdiff.h"
 #include "hosted/clock.h"
-
-static char tmpdir[256];
-
-static const char *tmp_path(const char *name)
-{
-    static char buf[4][512];
-    static int next;
-    char *p = buf[next++ & 3];
-    snprintf(p, 512, "%s/%s", tmpdir, name);
-    return p;
-}
-
-static int write_raw(const char *path, const void *data, size_t n)
-{
-    FILE *f = fopen(path, "wb");
-    size_t w;
-    if (!f) return 1;
-    w = fwrite(data, 1, n, f);
-    return fclose(f) != 0 || w != n;
-}
 
 static int read_raw(const char *path, unsigned char **data, size_t *n)
 {
@@ -45,19 +22,6 @@ static int read_raw(const char *path, unsigned char **data, size_t *n)
     if (tgp_file_read(path, &d, n, NULL, 0)) return 1;
     *data = (unsigned char *)d;
     return 0;
-}
-
-/* Entries in tmpdir whose name contains ".tmp-" (left-over temporaries). */
-static int count_temporaries(void)
-{
-    DIR *d = opendir(tmpdir);
-    struct dirent *e;
-    int n = 0;
-    if (!d) return -1;
-    while ((e = readdir(d)) != NULL)
-        if (strstr(e->d_name, ".tmp-")) n++;
-    closedir(d);
-    return n;
 }
 
 TEST(ppm_bytes_on_disk)
@@ -183,8 +147,9 @@ TEST(malformed_images_refused)
         { "P6\n0 2\n255\n", 11, "1.." },
         { "P6\n2 0\n255\n", 11, "1.." },
         { "P6\n99999999999999999999 1\n255\n", 30, "width" },
-        { "P6\n16385 1\n255\n", 15, "width" },
-        { "P6\n16384 16384\n255\n", 19, "pixels" },
+        { "P6\n8193 1\n255\n", 14, "width must be 1..8192" },
+        { "P6\n1 8193\n255\n", 14, "height must be 1..8192" },
+        { "P6\n8192 8192\n255\n", 17, "pixels must be 1..16777216" },
         { "P6\nx 1\n255\n", 11, "width" },
         { "P6\n1 1\n0\n\1\2\3", 12, "maxval" },
         { "P6\n1 1\n70000\n\1\2\3", 16, "maxval" },
@@ -212,9 +177,15 @@ TEST(size_limits_overflow_checked)
     char msg[256];
     CHECK(tgp_img_check_size(1, 1, 3, msg, sizeof msg) == 0, "1x1");
     CHECK(tgp_img_check_size(4097, 3, 3, msg, sizeof msg) == 0, "4097x3");
-    CHECK(tgp_img_check_size(TG_IMG_MAX_SIDE, 4096, 3, msg, sizeof msg) == 0, "16384x4096");
-    CHECK(tgp_img_check_size(TG_IMG_MAX_SIDE, TG_IMG_MAX_SIDE, 3, msg, sizeof msg) != 0, "pixel cap");
-    CHECK(tgp_img_check_size(TG_IMG_MAX_SIDE + 1, 1, 3, msg, sizeof msg) != 0, "side cap");
+    /* the renderer's limits (tinygi.h): sides 1..8192, at most 2^24 pixels */
+    CHECK(tgp_img_check_size(TG_MAX_IMAGE_SIDE, (int)(TG_MAX_IMAGE_PIXELS / TG_MAX_IMAGE_SIDE), 3,
+                             msg, sizeof msg) == 0, "8192x2048: %s", msg);
+    CHECK(tgp_img_check_size(TG_MAX_IMAGE_SIDE, (int)(TG_MAX_IMAGE_PIXELS / TG_MAX_IMAGE_SIDE) + 1,
+                             3, msg, sizeof msg) != 0 && strstr(msg, "pixels must be 1..16777216"),
+          "pixel cap: %s", msg);
+    CHECK(tgp_img_check_size(TG_MAX_IMAGE_SIDE + 1, 1, 3, msg, sizeof msg) != 0 &&
+          strstr(msg, "each side must be 1..8192"), "side cap: %s", msg);
+    CHECK(tgp_img_check_size(1, TG_MAX_IMAGE_SIDE + 1, 3, msg, sizeof msg) != 0, "height cap");
     CHECK(tgp_img_check_size(0, 1, 3, msg, sizeof msg) != 0, "zero");
     CHECK(tgp_img_check_size(-5, 1, 3, msg, sizeof msg) != 0, "negative");
     CHECK(tgp_img_check_size(1, 1, 2, msg, sizeof msg) != 0, "2 channels");
@@ -226,7 +197,9 @@ TEST(format_from_path)
     CHECK(tgp_img_format_from_path("a/out.ppm", &f) == 0 && f == TG_IMG_PPM, "ppm");
     CHECK(tgp_img_format_from_path("OUT.PFM", &f) == 0 && f == TG_IMG_PFM, "PFM");
     CHECK(tgp_img_format_from_path("f%04d.pfm", &f) == 0 && f == TG_IMG_PFM, "pattern");
-    CHECK(tgp_img_format_from_path("out.png", &f) != 0, "png");
+    CHECK(tgp_img_format_from_path("out.png", &f) == 0 && f == TG_IMG_PNG, "png");
+    CHECK(tgp_img_format_from_path("F%03d.PNG", &f) == 0 && f == TG_IMG_PNG, "PNG pattern");
+    CHECK(tgp_img_format_from_path("out.jpg", &f) != 0, "jpg");
     CHECK(tgp_img_format_from_path("ppm", &f) != 0, "no dot");
     CHECK(tgp_img_format_from_path("out.ppmx", &f) != 0, "ppmx");
 }
@@ -299,11 +272,119 @@ TEST(diff_non_finite)
     tgp_img a = make_img(TG_IMG_PFM, 2, 1, 1, pa), b = make_img(TG_IMG_PFM, 2, 1, 1, pb);
     tgp_img c = make_img(TG_IMG_PFM, 2, 1, 1, pc);
     tgp_diff d;
-    CHECK(tgp_diff_compare(&a, &a, 0.0, &d, NULL, 0) == 0 && d.max_abs == 0.0, "NaN equals NaN bits");
+    char line[512];
+    /* an image against itself: NaN vs NaN and inf vs inf are differences */
+    CHECK(tgp_diff_compare(&a, &a, 1e30, &d, NULL, 0) == 0, "compare");
+    CHECK(isinf(d.max_abs) && d.max_x == 0 && d.pixels_over == 2 && !tgp_diff_within(&d),
+          "NaN vs NaN and inf vs inf: max %g at %d, %zu over", d.max_abs, d.max_x, d.pixels_over);
+    CHECK(d.nan[0] == 1 && d.inf[0] == 1 && d.nan[1] == 1 && d.inf[1] == 1, "counted");
+    CHECK(d.first_x[0] == 0 && d.first_y[0] == 0, "first at %d,%d", d.first_x[0], d.first_y[0]);
     CHECK(tgp_diff_compare(&a, &b, 1e30, &d, NULL, 0) == 0, "compare");
-    CHECK(isinf(d.max_abs) && d.max_x == 1 && !tgp_diff_within(&d), "inf vs 1 is infinite");
-    CHECK(tgp_diff_compare(&a, &c, 1e30, &d, NULL, 0) == 0, "compare");
-    CHECK(isinf(d.max_abs) && d.max_x == 0, "NaN vs 1 is infinite");
+    CHECK(isinf(d.max_abs) && d.max_x == 0 && !tgp_diff_within(&d), "NaN vs NaN first");
+    CHECK(d.nan[1] == 1 && d.inf[1] == 0, "b: one NaN");
+    CHECK(tgp_diff_compare(&b, &c, 1e30, &d, NULL, 0) == 0, "compare");
+    CHECK(isinf(d.max_abs) && d.max_x == 0 && d.pixels_over == 2, "NaN vs 1 and 1 vs inf");
+    CHECK(tgp_diff_describe(&d, line, sizeof line) > 0 &&
+          strstr(line, "a has 1 NaN and 0 inf values (first at 0,0)") &&
+          strstr(line, "b has 0 NaN and 1 inf values (first at 1,0)"), "%s", line);
+    /* a NaN where the other image has the same finite values elsewhere */
+    pb[0] = 2.0f;
+    CHECK(tgp_diff_compare(&b, &b, 0.0, &d, NULL, 0) == 0 && d.max_abs == 0.0 &&
+          tgp_diff_within(&d) && d.first_x[0] == -1, "finite images equal to themselves");
+}
+
+/* ---- PNG ---- */
+
+static uint32_t be32(const unsigned char *p)
+{
+    return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
+}
+
+TEST(crc32_check_values)
+{
+    /* the CRC-32 check value (ISO 3309 / ITU-T V.42) and PNG's IEND chunk CRC */
+    CHECK(tgp_crc32(0, "123456789", 9) == 0xCBF43926u, "%08x", (unsigned)tgp_crc32(0, "123456789", 9));
+    CHECK(tgp_crc32(0, "IEND", 4) == 0xAE426082u, "IEND");
+    CHECK(tgp_crc32(tgp_crc32(0, "1234", 4), "56789", 5) == 0xCBF43926u, "continued");
+}
+
+TEST(png_bytes_on_disk)
+{
+    /* 2x1: one scanline [0, 1 2 3, 250 251 252] in one stored block */
+    const uint8_t rgb[6] = { 1, 2, 3, 250, 251, 252 };
+    static const unsigned char sig[8] = { 137, 'P', 'N', 'G', 13, 10, 26, 10 };
+    static const unsigned char ihdr[13] = { 0, 0, 0, 2, 0, 0, 0, 1, 8, 2, 0, 0, 0 };
+    unsigned char *d;
+    size_t n, idat = 8 + 12 + 13, len;
+    uint32_t s1 = 1 + 0 + 1 + 2 + 3 + 250 + 251 + 252, s2 = 0, run = 1;
+    int i;
+    const int bytes[7] = { 0, 1, 2, 3, 250, 251, 252 };
+    for (i = 0; i < 7; i++) { run += (uint32_t)bytes[i]; s2 += run; } /* RFC 1950 sec. 8.2 */
+    CHECK(tgp_png_write(tmp_path("a.png"), 2, 1, rgb, NULL, 0) == 0, "write");
+    CHECK(read_raw(tmp_path("a.png"), &d, &n) == 0, "read back");
+    if (n < idat + 8) return;
+    CHECK(memcmp(d, sig, 8) == 0, "signature");
+    CHECK(be32(d + 8) == 13 && memcmp(d + 12, "IHDR", 4) == 0 && memcmp(d + 16, ihdr, 13) == 0,
+          "IHDR: 2x1, 8 bits, RGB");
+    CHECK(be32(d + 29) == tgp_crc32(0, d + 12, 17), "IHDR CRC");
+    len = be32(d + idat);
+    CHECK(len == 2 + 5 + 7 + 4 && memcmp(d + idat + 4, "IDAT", 4) == 0, "one IDAT of %zu", len);
+    CHECK(d[idat + 8] == 0x78 && d[idat + 9] == 0x01 && (0x78 * 256 + 0x01) % 31 == 0, "zlib header");
+    CHECK(d[idat + 10] == 1 && d[idat + 11] == 7 && d[idat + 12] == 0 && d[idat + 13] == 0xf8 &&
+          d[idat + 14] == 0xff, "stored block: final, LEN 7, NLEN ~7");
+    CHECK(d[idat + 15] == 0 && memcmp(d + idat + 16, rgb, 6) == 0, "filter None, then the pixels");
+    CHECK(be32(d + idat + 22) == ((s2 % 65521u) << 16 | (s1 % 65521u)), "Adler-32 %08x",
+          (unsigned)be32(d + idat + 22));
+    CHECK(be32(d + idat + 8 + len) == tgp_crc32(0, d + idat + 4, 4 + len), "IDAT CRC");
+    CHECK(n == idat + 12 + len + 12 && be32(d + n - 12) == 0 && memcmp(d + n - 8, "IEND", 4) == 0 &&
+          be32(d + n - 4) == 0xAE426082u, "IEND last, %zu bytes", n);
+    free(d);
+}
+
+TEST(png_one_block_per_row)
+{
+    /* 3 rows: three IDAT chunks, only the last block final and followed by Adler-32 */
+    uint8_t rgb[4 * 3 * 3];
+    unsigned char *d;
+    size_t n, at = 8 + 25;
+    int row;
+    memset(rgb, 7, sizeof rgb);
+    CHECK(tgp_png_write(tmp_path("b.png"), 4, 3, rgb, NULL, 0) == 0, "write");
+    CHECK(read_raw(tmp_path("b.png"), &d, &n) == 0, "read back");
+    for (row = 0; row < 3 && at + 12 <= n; row++) {
+        size_t len = be32(d + at), head = row == 0 ? 2 : 0;
+        CHECK(memcmp(d + at + 4, "IDAT", 4) == 0, "row %d IDAT", row);
+        CHECK(len == head + 5 + 13 + (row == 2 ? 4 : 0), "row %d length %zu", row, len);
+        CHECK(d[at + 8 + head] == (row == 2), "row %d BFINAL", row);
+        CHECK(be32(d + at + 8 + len) == tgp_crc32(0, d + at + 4, 4 + len), "row %d CRC", row);
+        at += 12 + len;
+    }
+    CHECK(at + 12 == n, "IEND follows the last row");
+    free(d);
+    CHECK(tgp_png_write(tmp_path("c.png"), 0, 3, rgb, NULL, 0) != 0, "0x3 refused");
+}
+
+TEST(png_adler32_past_the_modulus)
+{
+    /* 200x100 white: the sums pass 65521 many times; Adler-32 computed here
+     * byte by byte, the slow way of RFC 1950 sec. 8.2 */
+    enum { W = 200, H = 100 };
+    static uint8_t rgb[W * H * 3];
+    unsigned char *d;
+    size_t n, i;
+    uint32_t s1 = 1, s2 = 0;
+    memset(rgb, 255, sizeof rgb);
+    for (i = 0; i < (size_t)H * (1 + 3 * W); i++) {
+        s1 = (s1 + (i % (1 + 3 * W) == 0 ? 0u : 255u)) % 65521u;
+        s2 = (s2 + s1) % 65521u;
+    }
+    CHECK(tgp_png_write(tmp_path("w.png"), W, H, rgb, NULL, 0) == 0, "write");
+    CHECK(read_raw(tmp_path("w.png"), &d, &n) == 0 && n > 24, "read back");
+    if (n <= 24) return;
+    /* the Adler-32 ends the last IDAT, just before its CRC and the 12-byte IEND */
+    CHECK(be32(d + n - 12 - 8) == (s2 << 16 | s1), "Adler-32 %08x, expected %08x",
+          (unsigned)be32(d + n - 20), (unsigned)(s2 << 16 | s1));
+    free(d);
 }
 
 TEST(diff_refuses_mismatch)
@@ -337,151 +418,15 @@ TEST(diff_image_scaled)
     free(rgb);
 }
 
-TEST(atomic_write_replaces_whole_file)
-{
-    const char *path = tmp_path("atomic.bin");
-    char *data;
-    size_t n;
-    struct stat st;
-    mode_t old = umask(022);
-    CHECK(write_raw(path, "old contents", 12) == 0, "setup");
-    CHECK(tgp_file_write_atomic(path, "new", 3, NULL, 0) == 0, "write");
-    CHECK(tgp_file_read(path, &data, &n, NULL, 0) == 0 && n == 3 && memcmp(data, "new", 3) == 0,
-          "replaced whole");
-    free(data);
-    CHECK(stat(path, &st) == 0 && (st.st_mode & 0777) == 0644, "mode %o (0666 minus umask 022)",
-          (unsigned)(st.st_mode & 0777));
-    CHECK(count_temporaries() == 0, "no temporaries left");
-    umask(old);
-}
-
-TEST(atomic_write_abort_leaves_existing_file)
-{
-    const char *path = tmp_path("keep.ppm");
-    tgp_outfile *f = (tgp_outfile *)malloc(sizeof *f);
-    char *data;
-    size_t n;
-    CHECK(write_raw(path, "precious", 8) == 0, "setup");
-    CHECK(tgp_outfile_open(f, path, NULL, 0) == 0, "open");
-    tgp_ppm_write_header(f, 100, 100);
-    tgp_outfile_write(f, "partial", 7);
-    CHECK(count_temporaries() == 1, "one temporary while writing");
-    tgp_outfile_abort(f);
-    CHECK(tgp_file_read(path, &data, &n, NULL, 0) == 0 && n == 8 && memcmp(data, "precious", 8) == 0,
-          "existing file untouched");
-    free(data);
-    CHECK(count_temporaries() == 0, "temporary removed");
-    free(f);
-}
-
-TEST(atomic_write_failure_leaves_nothing)
-{
-    char msg[256] = "";
-    const char *dirpath = tmp_path("adir");
-    const char *missing = tmp_path("no/such/dir/x.ppm");
-    uint8_t rgb[3] = { 1, 2, 3 };
-    struct stat st;
-    /* destination is a directory: rename fails, the directory stays, no temporary */
-    CHECK(mkdir(dirpath, 0755) == 0, "setup");
-    CHECK(tgp_ppm_write(dirpath, 1, 1, rgb, msg, sizeof msg) != 0, "write over a directory refused");
-    CHECK(strstr(msg, "cannot write") != NULL, "message '%s'", msg);
-    CHECK(stat(dirpath, &st) == 0 && S_ISDIR(st.st_mode), "directory untouched");
-    CHECK(count_temporaries() == 0, "temporary removed");
-    CHECK(tgp_file_dir_writable(dirpath, msg, sizeof msg) != 0, "dir_writable says no: %s", msg);
-    rmdir(dirpath);
-    /* missing directory */
-    CHECK(tgp_ppm_write(missing, 1, 1, rgb, msg, sizeof msg) != 0, "missing dir refused");
-    CHECK(stat(missing, &st) != 0, "nothing created");
-    CHECK(tgp_file_dir_writable(missing, msg, sizeof msg) != 0, "dir_writable says no");
-    CHECK(tgp_file_dir_writable(tmp_path("fine.ppm"), msg, sizeof msg) == 0, "%s", msg);
-    /* a size outside the limits is refused before any file is made */
-    CHECK(tgp_ppm_write(tmp_path("zero.ppm"), 0, 5, rgb, msg, sizeof msg) != 0, "0x5 refused");
-    CHECK(stat(tmp_path("zero.ppm"), &st) != 0, "nothing created");
-}
-
-TEST(write_error_midway_leaves_existing_file)
-{
-    /* A file-size limit makes write() fail part way (EFBIG), even as root. */
-    static char big[200000];
-    const char *path = tmp_path("full.ppm");
-    struct rlimit old, lim;
-    char msg[256] = "", *data;
-    size_t n;
-    CHECK(write_raw(path, "precious", 8) == 0, "setup");
-    CHECK(getrlimit(RLIMIT_FSIZE, &old) == 0, "getrlimit");
-    lim = old;
-    lim.rlim_cur = 1000;
-    signal(SIGXFSZ, SIG_IGN);
-    CHECK(setrlimit(RLIMIT_FSIZE, &lim) == 0, "setrlimit");
-    CHECK(tgp_file_write_atomic(path, big, sizeof big, msg, sizeof msg) != 0, "write past the limit fails");
-    setrlimit(RLIMIT_FSIZE, &old);
-    signal(SIGXFSZ, SIG_DFL);
-    CHECK(strstr(msg, "cannot write") != NULL, "message '%s'", msg);
-    CHECK(tgp_file_read(path, &data, &n, NULL, 0) == 0 && n == 8 && memcmp(data, "precious", 8) == 0,
-          "existing file untouched");
-    free(data);
-    CHECK(count_temporaries() == 0, "no partial temporary left");
-}
-
-TEST(file_read_errors)
-{
-    char *data;
-    size_t n;
-    char msg[256];
-    CHECK(tgp_file_read(tmp_path("nope"), &data, &n, msg, sizeof msg) != 0 &&
-          strstr(msg, "cannot open"), "%s", msg);
-    CHECK(tgp_file_read(tmpdir, &data, &n, msg, sizeof msg) != 0 && strstr(msg, "directory"), "%s", msg);
-    CHECK(write_raw(tmp_path("empty"), "", 0) == 0, "setup");
-    CHECK(tgp_file_read(tmp_path("empty"), &data, &n, msg, sizeof msg) == 0 && n == 0 && data[0] == 0,
-          "empty file reads as empty, NUL-terminated");
-    free(data);
-}
-
-TEST(host_io_reads_and_frees)
-{
-    tgp_host_io h;
-    const char *d1, *d2;
-    size_t n1, n2;
-    CHECK(write_raw(tmp_path("m.obj"), "v 0 0 0\n", 8) == 0, "setup");
-    tgp_host_io_init(&h);
-    CHECK(h.io.read_file(h.io.user, tmp_path("m.obj"), &d1, &n1) == 0 && n1 == 8, "read");
-    CHECK(h.io.read_file(h.io.user, tmp_path("m.obj"), &d2, &n2) == 0 && d1 != d2, "second buffer");
-    CHECK(memcmp(d1, "v 0 0 0\n", 8) == 0, "both buffers stay valid");
-    CHECK(h.io.read_file(h.io.user, tmp_path("none.obj"), &d2, &n2) != 0, "missing");
-    CHECK(strstr(h.last_error, "cannot open") != NULL, "%s", h.last_error);
-    tgp_host_io_free(&h);
-    CHECK(h.files == NULL, "freed");
-}
-
 TEST(clock_monotonic)
 {
     double a = tgp_clock_seconds(), b = tgp_clock_seconds();
     CHECK(a > 0.0 && b >= a, "%f then %f", a, b);
 }
 
-static void remove_tree(void)
-{
-    DIR *d = opendir(tmpdir);
-    struct dirent *e;
-    char p[600];
-    if (!d) return;
-    while ((e = readdir(d)) != NULL) {
-        if (e->d_name[0] == '.' && (!e->d_name[1] || (e->d_name[1] == '.' && !e->d_name[2]))) continue;
-        snprintf(p, sizeof p, "%s/%s", tmpdir, e->d_name);
-        if (unlink(p) != 0) rmdir(p);
-    }
-    closedir(d);
-    rmdir(tmpdir);
-}
-
 int main(void)
 {
-    const char *base = getenv("TMPDIR");
-    snprintf(tmpdir, sizeof tmpdir, "%s/tgi_image_XXXXXX", base && *base ? base : "/tmp");
-    if (!mkdtemp(tmpdir)) {
-        perror("mkdtemp");
-        return 1;
-    }
+    if (tmpdir_make("image")) return 1;
     RUN(ppm_bytes_on_disk);
     RUN(ppm_round_trip);
     RUN(pfm_bytes_on_disk);
@@ -497,14 +442,12 @@ int main(void)
     RUN(diff_identical_and_symmetric);
     RUN(diff_non_finite);
     RUN(diff_refuses_mismatch);
+    RUN(crc32_check_values);
+    RUN(png_bytes_on_disk);
+    RUN(png_one_block_per_row);
+    RUN(png_adler32_past_the_modulus);
     RUN(diff_image_scaled);
-    RUN(atomic_write_replaces_whole_file);
-    RUN(atomic_write_abort_leaves_existing_file);
-    RUN(atomic_write_failure_leaves_nothing);
-    RUN(write_error_midway_leaves_existing_file);
-    RUN(file_read_errors);
-    RUN(host_io_reads_and_frees);
     RUN(clock_monotonic);
-    remove_tree();
+    tmpdir_remove();
     return check_summary();
 }

@@ -17,7 +17,7 @@
  *     another image.
  */
 #include "raster_fixture.h"
-#include "light/pathtrace.h"
+#include "ao/pathtrace.h"
 #include "light/direct.h"
 #include "light/sh.h"
 #include "ao/reference.h"

@@ -15,6 +15,7 @@
  *           absolute error is measured and bounded instead.
  */
 #include "check.h"
+#include "core/real.h"
 #include <stdlib.h>
 #include <stdint.h>
 #include <float.h>
@@ -688,9 +689,49 @@ TEST(parse_random)
     CHECK(bad == 0, "%ld of %ld random strings parsed wrong", bad, n);
 }
 
+/* The integer helpers of core/real.h: bit length, rounded isqrt, and the
+ * rasterizer's per-pixel reciprocal square root (bounds stated there). */
+TEST(integer_helpers)
+{
+    int k, bad = 0;
+    double worst = 0;
+    CHECK(tgi_bit_length64(0) == 0 && tgi_bit_length64(1) == 1 && tgi_bit_length64(UINT64_MAX) == 64, "ends");
+    for (k = 1; k < 64; k++) {
+        uint64_t p = (uint64_t)1 << k;
+        if (tgi_bit_length64(p) != k + 1 || tgi_bit_length64(p - 1) != k || tgi_bit_length64(p | 1) != k + 1) bad++;
+    }
+    CHECK(bad == 0, "%d wrong bit lengths", bad);
+    CHECK(tgi_isqrt_round64(0) == 0 && tgi_isqrt_round64(2) == 1 && tgi_isqrt_round64(3) == 2 &&
+          tgi_isqrt_round64(12) == 3 && tgi_isqrt_round64(13) == 4, "rounded isqrt");
+#if TG_FIXED
+    {   /* 1/sqrt(X) in Q30 over X in [1, 4), every 1024th input */
+        uint64_t x;
+        for (x = (uint64_t)1 << 30; x < (uint64_t)1 << 32; x += 1024) {
+            double X = (double)x / 1073741824.0, ref = 1.0 / sqrt(X);
+            double e = fabs((double)tgi_rsqrt_q30_fast(x) / 1073741824.0 - ref) / ref;
+            if (e > worst) worst = e;
+        }
+        printf("measured tgi_rsqrt_q30_fast: rel. error %.3g over [1, 4)\n", worst);
+        CHECK(worst < 3.2e-6, "rel. error %.3g", worst);
+    }
+#else
+    {   /* 1/sqrt(x) over the normal floats, 64 points per octave */
+        double x;
+        for (x = 1.2e-38; x < 3e38; x *= 1.0108892860517005) {
+            double ref = 1.0 / sqrt((double)(float)x);
+            double e = fabs((double)tgi_rsqrt_fast((float)x) - ref) / ref;
+            if (e > worst) worst = e;
+        }
+        printf("measured tgi_rsqrt_fast: rel. error %.3g over the normal floats\n", worst);
+        CHECK(worst < 5e-6, "rel. error %.3g", worst);
+    }
+#endif
+}
+
 int main(void)
 {
     RUN(isqrt64_exact);
+    RUN(integer_helpers);
     RUN(sqrt_whole_domain);
     RUN(rsqrt_whole_domain);
     RUN(sin_cos_whole_domain);

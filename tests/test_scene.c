@@ -13,6 +13,7 @@
  */
 #include "check.h"
 #include "scene/scene.h"
+#include "scene/lex.h"
 #include "hosted/file.h"
 #include <stdlib.h>
 
@@ -440,7 +441,7 @@ TEST(lexing)
 {
     tg_scene *s;
     tg_error err;
-    char line[TG_LINE_MAX + 64];
+    char line[TG_MAX_LINE + 64];
     tg_status st;
     /* BOM, CRLF, tabs, comments, blank lines, a line of exactly the limit */
     st = parse("\xEF\xBB\xBF# comment\r\n\r\n\tcamera\tpos 0 1 5 target 0 0 0 # trailing\r\n" MAT, &s, &err);
@@ -448,23 +449,58 @@ TEST(lexing)
     if (st) print_error(&err);
     memset(line, ' ', sizeof line);
     memcpy(line, CAM, strlen(CAM));
-    line[strlen(CAM) + TG_LINE_MAX - 1] = '#';
-    line[strlen(CAM) + TG_LINE_MAX] = '\n';
-    line[strlen(CAM) + TG_LINE_MAX + 1] = '\0';
+    line[strlen(CAM) + TG_MAX_LINE - 1] = '#';
+    line[strlen(CAM) + TG_MAX_LINE] = '\n';
+    line[strlen(CAM) + TG_MAX_LINE + 1] = '\0';
     st = parse(line, &s, &err);
-    CHECK(st == TG_OK, "a line of exactly %d bytes", TG_LINE_MAX);
-    line[strlen(CAM) + TG_LINE_MAX] = ' ';
-    line[strlen(CAM) + TG_LINE_MAX + 1] = '\n';
-    line[strlen(CAM) + TG_LINE_MAX + 2] = '\0';
+    CHECK(st == TG_OK, "a line of exactly %d bytes", TG_MAX_LINE);
+    line[strlen(CAM) + TG_MAX_LINE] = ' ';
+    line[strlen(CAM) + TG_MAX_LINE + 1] = '\n';
+    line[strlen(CAM) + TG_MAX_LINE + 2] = '\0';
     st = parse(line, &s, &err);
-    CHECK(st == TG_ERR_INPUT && err.line == 2 && err.col == TG_LINE_MAX + 1 && strstr(err.message, "line longer"),
-          "a line of %d bytes: %d:%d %s", TG_LINE_MAX + 1, err.line, err.col, err.message);
+    CHECK(st == TG_ERR_INPUT && err.line == 2 && err.col == TG_MAX_LINE + 1 && strstr(err.message, "line length in bytes must be 0..4096, got 4097"),
+          "a line of %d bytes: %d:%d %s", TG_MAX_LINE + 1, err.line, err.col, err.message);
+    /* CR-only line ends (old Mac text) end lines too; lines are counted */
+    st = parse("camera pos 0 1 5 target 0 0 0\rmaterial m albedo 1 1 1\r\rmaterial n albedo 1 1 1\r", &s, &err);
+    CHECK(st == TG_OK && s->material_count == 2, "CR-only lines: %s", err.message);
+    st = parse("camera pos 0 1 5 target 0 0 0\r\n\rmaterial m albedo 1 1 1\rbogus\r", &s, &err);
+    CHECK(st == TG_ERR_INPUT && err.line == 4 && err.col == 1 && strstr(err.message, "unknown keyword 'bogus'"),
+          "CR, CRLF and CR lines counted: %d:%d %s", err.line, err.col, err.message);
     {
         static const char nul[] = "camera pos 0 1 5\0 target 0 0 0\n";
         st = parse_io(nul, sizeof nul - 1, "n.scene", NULL, &s, &err);
         CHECK(st == TG_ERR_INPUT && err.line == 1 && err.col == 17 && strstr(err.message, "NUL byte"),
               "NUL: %d:%d %s", err.line, err.col, err.message);
     }
+}
+
+/* A value that rounds to 0 in the number type says so; one past the range
+ * says what the range is. */
+TEST(number_notes)
+{
+#if TG_FIXED
+    static const char tiny[] = "0.000001", huge[] = "40000";
+#else
+    static const char tiny[] = "1e-50", huge[] = "1e39";
+#endif
+    char text[256];
+    tg_scene *s;
+    tg_error err;
+    snprintf(text, sizeof text, CAM MAT "sphere center 0 0 0 radius %s material m\n", tiny);
+    CHECK(parse(text, &s, &err) == TG_ERR_INPUT && err.line == 3 && err.col == 28 &&
+          strstr(err.message, "'radius' must be greater than 0") && strstr(err.message, TGI_ZERO_NOTE),
+          "radius %s: %d:%d %s", tiny, err.line, err.col, err.message);
+    snprintf(text, sizeof text, CAM MAT "mesh file a.obj material m scale %s\n", tiny);
+    CHECK(parse(text, &s, &err) == TG_ERR_INPUT && strstr(err.message, TGI_ZERO_NOTE), "scale %s: %s", tiny, err.message);
+    snprintf(text, sizeof text, "camera pos 0 1 5 target 0 0 0 up 0 %s 0\n", tiny);
+    CHECK(parse(text, &s, &err) == TG_ERR_INPUT && strstr(err.message, "non-zero length") &&
+          strstr(err.message, TGI_ZERO_NOTE), "up 0 %s 0: %s", tiny, err.message);
+    snprintf(text, sizeof text, "camera pos 0 1 5 target 0 0 0 up 0 0 0\n");
+    CHECK(parse(text, &s, &err) == TG_ERR_INPUT && !strstr(err.message, "rounds to 0"), "a true zero: %s", err.message);
+    snprintf(text, sizeof text, "camera pos 0 %s 5 target 0 0 0\n", huge);
+    CHECK(parse(text, &s, &err) == TG_ERR_INPUT && err.col == 14 && strstr(err.message, "number out of range") &&
+          strstr(err.message, TGI_RANGE_NOTE), "pos 0 %s 5: %s", huge, err.message);
+    CHECK(strstr(TG_FIXED ? TGI_ZERO_NOTE : "Q16.16", "Q16.16") != NULL, "the fixed-point note names Q16.16");
 }
 
 /* ---- bad input: every class of error ---- */
@@ -495,7 +531,7 @@ static const bad_case bad_cases[] = {
     {"camera pos 0 1 5 target 0 0 0\nmaterial m albedo 0.5 0.5 0.5 emissive 1 -1 1\n", 2, 42, "'emissive' must be 0 or more"},
     {"camera pos 0 1 5 target 0 0 0\nmaterial m albedo 0.5 0.5 0.5\nsphere center 0 0 0 radius -1 material m\n", 3, 28, "'radius' must be greater than 0"},
     {"camera pos 0 1 5 target 0 0 0\nmaterial m albedo 0.5 0.5 0.5\nsphere center 0 0 0 radius 0 material m\n", 3, 28, "'radius' must be greater than 0"},
-    {"camera pos 0 1 5 target 0 0 0\nmaterial m albedo 0.5 0.5 0.5\nsphere center 0 0 0 radius 1 material m segments 2\n", 3, 50, "'segments' must be an integer from 4 to 256"},
+    {"camera pos 0 1 5 target 0 0 0\nmaterial m albedo 0.5 0.5 0.5\nsphere center 0 0 0 radius 1 material m segments 2\n", 3, 50, "sphere segments must be 4..256, got 2"},
     {"camera pos 0 1 5 target 0 0 0 fov 0\n", 1, 35, "'fov' must be between 0 and 180"},
     {"camera pos 0 1 5 target 0 0 0 fov 180\n", 1, 35, "'fov' must be between 0 and 180"},
     {"camera pos 0 1 5 target 0 0 0 near 0\n", 1, 36, "'near' must be greater than 0"},
@@ -514,7 +550,7 @@ static const bad_case bad_cases[] = {
     {"camera pos 0 1 5 target 0 0 0\nquad p0 0 0 0 p1 1 0 0 p2 1 1 0 p3 0 1 0 material nope\n", 2, 51, "undefined material 'nope'"},
     {"camera pos 0 1 5 target 0 0 0\nquad p0 0 0 0 p1 1 0 0 p2 1 1 0 p3 0 1 0 material m\nmaterial m albedo 0.5 0.5 0.5\n", 2, 51, "undefined material 'm'"},
     {"camera pos 0 1 5 target 0 0 0\nmaterial albedo 1 1 1\n", 2, 10, "'material' expects a name first"},
-    {"camera pos 0 1 5 target 0 0 0\nmaterial aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa albedo 1 1 1\n", 2, 10, "is too long; names are at most 31 bytes"},
+    {"camera pos 0 1 5 target 0 0 0\nmaterial aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa albedo 1 1 1\n", 2, 10, "name length in bytes must be 1..31, got 32"},
     {"camera pos 0 1 5 target 0 0 0\nmaterial m albedo 0.5 0.5 0.5\nbox min 0 0 0 max 1 1 1 material m name a\nbox min 2 0 0 max 3 1 1 material m name a\n", 4, 41, "duplicate object name 'a'"},
     {"camera pos 0 1 5 target 0 0 0\nobject_key name ghost t 0\n", 2, 17, "undefined object 'ghost'"},
     {"camera pos 0 1 5 target 0 0 0\nmaterial m albedo 0.5 0.5 0.5\nbox min 0 0 0 max 1 1 1 material m name a\nobject_key name a t 0 rotate 0 0 0 90\n", 4, 30, "'rotate' must be a direction of non-zero length"},
@@ -531,10 +567,10 @@ static const bad_case bad_cases[] = {
     {"camera pos 0 1 5 target 0 0 0\nenv sh9 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1 0.1\n", 2, 112, "'sh9' expects 27 numbers, got 26"},
     {"camera pos 0 1 5 target 0 0 0\nenv sky 1 1 1 ground 1 1 1\nenv uniform 1 1 1\n", 3, 1, "duplicate 'env'"},
     {"camera pos 0 1 5 target 0 0 0\nenv sky 1 1 1\n", 2, 1, "missing the required key 'ground'"},
-    {"camera pos 0 1 5 target 0 0 0\ngi slices 0\n", 2, 11, "'slices' must be an integer from 1 to 64"},
+    {"camera pos 0 1 5 target 0 0 0\ngi slices 0\n", 2, 11, "gi slices must be 1..8, got 0"},
     {"camera pos 0 1 5 target 0 0 0\ngi samples 2.5\n", 2, 12, "expected an integer for 'samples'"},
-    {"camera pos 0 1 5 target 0 0 0\ngi radius -1\n", 2, 11, "'radius' must be 0 or more"},
-    {"camera pos 0 1 5 target 0 0 0\ngi bounces 101\n", 2, 12, "'bounces' must be an integer from 0 to 100"},
+    {"camera pos 0 1 5 target 0 0 0\ngi radius -1\n", 2, 11, "gi radius must be 0..10000, got -1"},
+    {"camera pos 0 1 5 target 0 0 0\ngi bounces 101\n", 2, 12, "gi bounces must be 0..100, got 101"},
     {"camera pos 0 1 5 target 0 0 0\neffects direct glow\n", 2, 16, "unknown effect 'glow'"},
     {"camera pos 0 1 5 target 0 0 0\neffects auto ao\n", 2, 14, "'auto' cannot be mixed"},
     {"camera pos 0 1 5 target 0 0 0\neffects\n", 2, 8, "'effects' expects a value"},
@@ -576,12 +612,12 @@ TEST(limits)
     at += (size_t)snprintf(big + at, cap - at, CAM);
     for (i = 0; i <= 64; i++)
         at += (size_t)snprintf(big + at, cap - at, "light point pos 0 %d 0 color 1 1 1\n", i);
-    CHECK(parse(big, &s, &err) == TG_ERR_INPUT && err.line == 66 && strstr(err.message, "too many lights"),
+    CHECK(parse(big, &s, &err) == TG_ERR_INPUT && err.line == 66 && strstr(err.message, "light count must be 0..64, got 65"),
           "65 lights: %d %s", err.line, err.message);
     at = (size_t)snprintf(big, cap, CAM);
     for (i = 0; i <= 1024; i++)
         at += (size_t)snprintf(big + at, cap - at, "material m%d albedo 1 1 1\n", i);
-    CHECK(parse(big, &s, &err) == TG_ERR_INPUT && err.line == 1026 && strstr(err.message, "too many materials"),
+    CHECK(parse(big, &s, &err) == TG_ERR_INPUT && err.line == 1026 && strstr(err.message, "material count must be 0..1024, got 1025"),
           "1025 materials: %d %s", err.line, err.message);
     free(big);
 }
@@ -624,8 +660,10 @@ typedef struct memfs {
     int nreq;
 } memfs;
 
-static int mem_read(void *user, const char *path, const char **data, size_t *size)
+static int mem_read(void *user, const char *path, const char **data, size_t *size,
+                    const char **reason)
 {
+    (void)reason;
     memfs *fs = (memfs *)user;
     const memfile *f;
     if (fs->nreq < 8) snprintf(fs->requested[fs->nreq++], 256, "%s", path);
@@ -635,6 +673,7 @@ static int mem_read(void *user, const char *path, const char **data, size_t *siz
             *size = strlen(f->data);
             return 0;
         }
+    *reason = "no such file in the test's memfs";
     return 1;
 }
 
@@ -769,6 +808,16 @@ static const obj_bad obj_bad_cases[] = {
     {"mtllib m.mtl\nusemtl red\n", "newmtl red\nKd 0.5 x 0.5\n", "s/m.mtl", 2, 8, "expected a number in 'Kd'"},
     {"mtllib m.mtl\nusemtl red\n", "newmtl red\nKe 1 -1 0\n", "s/m.mtl", 2, 6, "'Ke' must be 0 or more"},
     {"mtllib m.mtl\nusemtl red\n", "newmtl red\nKd 1 1\n", "s/m.mtl", 2, 7, "'Kd' expects 3 numbers"},
+    /* not an OBJ at all: an error, not an empty object */
+    {"", NULL, "s/t.scene", 3, 11, "mesh file 's/m.obj' has no faces; expected an OBJ file with 'v' and 'f' lines"},
+    {"v 0 0 0\nv 1 0 0\nv 0 1 0\n", NULL, "s/t.scene", 3, 11, "mesh file 's/m.obj' has no faces"},
+    {"root:x:0:0:root:/root:/bin/bash\ndaemon:x:1:1:daemon:/usr/sbin:/usr/sbin/nologin\n", NULL, "s/t.scene", 3, 11,
+     "mesh file 's/m.obj' has no faces"},
+    /* an mtllib that cannot be read is an error even when no usemtl needs it */
+    {"mtllib none.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", NULL, "s/m.obj", 1, 8,
+     "cannot read MTL file 's/none.mtl': no such file in the test's memfs"},
+    /* numbers past the number type's range say what the range is */
+    {"v 0 0 1e39\n", NULL, "s/m.obj", 1, 7, "number out of range in 'v', got '1e39'" TGI_RANGE_NOTE},
 };
 
 TEST(obj_bad_input)
@@ -805,7 +854,22 @@ TEST(obj_bad_input)
         tg_scene *s;
         tg_error err;
         CHECK(parse(scene, &s, &err) == TG_ERR_INPUT && err.line == 3 && err.col == 11 &&
-              strstr(err.message, "cannot read mesh file 'm.obj'"), "no io: %d:%d %s", err.line, err.col, err.message);
+              strstr(err.message, "cannot read mesh file 'm.obj': no tg_io to read files with"),
+              "no io: %d:%d %s", err.line, err.col, err.message);
+    }
+    {   /* the reader's reason is in the message */
+        static const memfile none[] = {{NULL, NULL}};
+        memfs fs;
+        tg_io io;
+        tg_scene *s;
+        tg_error err;
+        memset(&fs, 0, sizeof fs);
+        fs.files = none;
+        io.user = &fs;
+        io.read_file = mem_read;
+        CHECK(parse_io(scene, strlen(scene), "s/t.scene", &io, &s, &err) == TG_ERR_INPUT && err.line == 3 &&
+              err.col == 11 && strcmp(err.message, "cannot read mesh file 's/m.obj': no such file in the test's memfs") == 0,
+              "reason: %d:%d %s", err.line, err.col, err.message);
     }
 }
 
@@ -946,12 +1010,14 @@ TEST(mutations)
 /* A mesh file that changes between the two passes: a runtime error, no overrun. */
 typedef struct changing_io { int reads; } changing_io;
 
-static int changing_read(void *user, const char *path, const char **data, size_t *size)
+static int changing_read(void *user, const char *path, const char **data, size_t *size,
+                         const char **reason)
 {
+    (void)reason;
     changing_io *c = (changing_io *)user;
     static const char small[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
     static const char big[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\nf 1 2 4\n";
-    (void)path;
+    (void)path; (void)reason;
     *data = c->reads++ == 0 ? small : big;
     *size = strlen(*data);
     return 0;
@@ -992,6 +1058,7 @@ int main(void)
     RUN(values_and_units);
     RUN(keys_sorted);
     RUN(lexing);
+    RUN(number_notes);
     RUN(bad_input_table);
     RUN(limits);
     RUN(arena_protocol);

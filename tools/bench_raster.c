@@ -1,16 +1,17 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * bench_raster.c - rasterizer throughput: a UV sphere of ~50k triangles
- * rendered into a full G-buffer (depth, normal, albedo, f0, emissive, sky,
- * object) at 320x240 and 1280x720, one core, thread CPU time.  Prints Mtri/s (triangles
- * submitted per second, back faces included, as the peers count them), the
- * median of RUNS runs of FRAMES frames each, for the number type this
- * program is built with.  The time is the rasterizer's alone; the G-buffer
- * clear (a memset per channel) is reported beside it.
+ * bench_raster.c - rasterizer throughput: a UV sphere of 49,728 triangles
+ * (112 rings x 224 slices, the pole slivers dropped) rendered into a full
+ * G-buffer (depth, normal, albedo, f0, emissive, sky, object: 11 tg_real
+ * planes and 3 bytes a pixel) on one core, for the number type this program
+ * is built with.  For each size it prints one line of per-frame means over
+ * FRAMES frames (after two untimed ones): the draw (tgi_raster_gbuffer) and
+ * the clear (tgi_gbuffer_clear_rows) apart, in thread CPU time and wall time.
+ * `make bench-raster` (tools/bench_time.py) runs it in interleaved rounds
+ * and reports medians, Mtri/s (triangles submitted per second, back faces
+ * included, as the peers count them) and callgrind's count per frame.
  *
- *   cc -std=c99 -O2 -Isrc -Iplatform tools/bench_raster.c build/libtinygi.a -lm
- *   cc -std=c99 -O2 -DTG_FIXED=1 -Isrc -Iplatform tools/bench_raster.c build/libtinygi-fixed.a -lm
- *   ./a.out [frames] [runs]
+ *   build/bench_raster [WxH ...] [--frames N]     default 320x240 1280x720, 20
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -26,11 +27,19 @@
 #define PI 3.14159265358979323846
 
 /* CPU time of this thread: on a shared, loaded machine it tracks the work
- * done far better than the wall clock (which counts time spent descheduled). */
-static double now_seconds(void)
+ * done far better than the wall clock (which counts time spent descheduled);
+ * both are reported. */
+static double cpu_seconds(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+static double wall_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
 }
 
@@ -68,22 +77,31 @@ static int build_sphere(tg_vec3 *pos, tg_vec3 *nrm)
     return n;
 }
 
-static int cmp_double(const void *a, const void *b)
+/* Kept out of line so that callgrind can count one frame's draw and clear
+ * (bench_time.py reads the inclusive cost of these two names). */
+static void __attribute__((noinline)) bench_clear(tgi_gbuffer *gb)
 {
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
+    tgi_gbuffer_clear_rows(gb, 0, gb->height);
 }
 
-static void bench(const tgi_raster_mesh *mesh, int w, int h, int frames, int runs)
+static void __attribute__((noinline)) bench_draw(tgi_gbuffer *gb, const tgi_view *view,
+                                                 const tgi_raster_mesh *mesh)
+{
+    tgi_raster_gbuffer(gb, view, mesh, 0, gb->height);
+}
+
+/* Two untimed frames (page faults, caches), then FRAMES timed ones; one
+ * line, the per-frame means of this run: the driver (tools/bench_time.py)
+ * interleaves runs of every configuration and takes medians. */
+static void bench(const tgi_raster_mesh *mesh, int w, int h, int frames)
 {
     size_t n = (size_t)w * (size_t)h;
     tg_real *mem = (tg_real *)calloc(n * 11, sizeof(tg_real));
     tgi_gbuffer gb;
     tgi_view view;
-    double *t = (double *)malloc(sizeof(double) * (size_t)runs), med;
-    double *tclear = (double *)malloc(sizeof(double) * (size_t)runs);
+    double draw_cpu = 0, draw_wall = 0, clear_cpu = 0, clear_wall = 0;
     long drawn = 0;
-    int run, f;
+    int f;
     size_t i;
     memset(&gb, 0, sizeof gb);
     gb.width = w; gb.height = h;
@@ -92,52 +110,73 @@ static void bench(const tgi_raster_mesh *mesh, int w, int h, int frames, int run
     gb.f0 = mem + 7 * n; gb.emit_r = mem + 8 * n; gb.emit_g = mem + 9 * n; gb.emit_b = mem + 10 * n;
     gb.sky = (uint8_t *)malloc(n);
     gb.object = (uint16_t *)malloc(n * sizeof(uint16_t));
+    if (!mem || !gb.sky || !gb.object) {
+        fprintf(stderr, "bench_raster: out of memory at %dx%d\n", w, h);
+        exit(1);
+    }
     /* the sphere fills ~90% of the image height */
     tgi_view_make(&view, V(0, 0, -3.4), V(0, 0, 0), V(0, 1, 0), tg_from_float(0.6f), tg_from_float(0.05f),
                  tg_from_float(1000.0f), w, h);
-    /* raster time only; the clear (a memset of every channel) is timed apart */
-    for (run = 0; run < runs; run++) {
-        double tr = 0, tc = 0;
-        for (f = 0; f < frames; f++) {
-            double t0 = now_seconds(), t1;
-            tgi_gbuffer_clear_rows(&gb, 0, h);
-            t1 = now_seconds();
-            tgi_raster_gbuffer(&gb, &view, mesh, 0, h);
-            tr += now_seconds() - t1;
-            tc += t1 - t0;
-        }
-        t[run] = tr;
-        tclear[run] = tc;
+    for (f = -2; f < frames; f++) {
+        double c0 = cpu_seconds(), w0 = wall_seconds(), c1, w1;
+        bench_clear(&gb);
+        c1 = cpu_seconds(); w1 = wall_seconds();
+        bench_draw(&gb, &view, mesh);
+        if (f < 0) continue;
+        clear_cpu += c1 - c0; clear_wall += w1 - w0;
+        draw_cpu += cpu_seconds() - c1; draw_wall += wall_seconds() - w1;
     }
     for (i = 0; i < n; i++) drawn += !gb.sky[i];
-    qsort(t, (size_t)runs, sizeof *t, cmp_double);
-    qsort(tclear, (size_t)runs, sizeof *tclear, cmp_double);
-    med = t[runs / 2];
-    printf("%-5s %4dx%-4d %6d tris %7.2f Mtri/s  raster %6.3f ms/frame, clear %6.3f ms  (median of %d runs x %d frames; %ld px covered)\n",
-           TG_NUMBER_NAME, w, h, mesh->tri_count, mesh->tri_count * (double)frames / med * 1e-6,
-           med / frames * 1e3, tclear[runs / 2] / frames * 1e3, runs, frames, drawn);
-    free(mem); free(gb.sky); free(gb.object); free(t); free(tclear);
+    printf("tinygi-%s %dx%d tris=%d frames=%d draw_cpu_ms=%.4f draw_wall_ms=%.4f clear_cpu_ms=%.4f "
+           "clear_wall_ms=%.4f covered=%ld\n",
+           TG_NUMBER_NAME, w, h, mesh->tri_count, frames, draw_cpu / frames * 1e3, draw_wall / frames * 1e3,
+           clear_cpu / frames * 1e3, clear_wall / frames * 1e3, drawn);
+    fflush(stdout);
+    free(mem); free(gb.sky); free(gb.object);
+}
+
+static int parse_size(const char *s, int *w, int *h)
+{
+    char x;
+    return sscanf(s, "%d%c%d", w, &x, h) == 3 && x == 'x' && *w >= 1 && *h >= 1 && *w <= 8192 && *h <= 8192;
 }
 
 int main(int argc, char **argv)
 {
-    int frames = argc > 1 ? atoi(argv[1]) : 20, runs = argc > 2 ? atoi(argv[2]) : 9;
+    int frames = 20, sizes[8][2], nsizes = 0, a, k;
     tg_vec3 *pos = (tg_vec3 *)malloc(sizeof(tg_vec3) * 3 * RINGS * SLICES * 2);
     tg_vec3 *nrm = (tg_vec3 *)malloc(sizeof(tg_vec3) * 3 * RINGS * SLICES * 2);
     uint16_t *mat = (uint16_t *)calloc(RINGS * SLICES * 2, sizeof(uint16_t));
     uint16_t *obj = (uint16_t *)calloc(RINGS * SLICES * 2, sizeof(uint16_t));
     tgi_material m;
     tgi_raster_mesh mesh;
-    if (frames < 1) frames = 1;
-    if (runs < 5) runs = 5;
+    for (a = 1; a < argc; a++) {
+        if (!strcmp(argv[a], "--frames") && a + 1 < argc) {
+            frames = atoi(argv[++a]);
+            if (frames < 1 || frames > 100000) {
+                fprintf(stderr, "bench_raster: --frames must be 1..100000, got '%s'\n", argv[a]);
+                return 2;
+            }
+        } else if (nsizes < 8 && parse_size(argv[a], &sizes[nsizes][0], &sizes[nsizes][1])) {
+            nsizes++;
+        } else {
+            fprintf(stderr, "usage: bench_raster [WxH ...] [--frames N]   (got '%s')\n", argv[a]);
+            return 2;
+        }
+    }
+    if (nsizes == 0) {
+        sizes[0][0] = 320; sizes[0][1] = 240;
+        sizes[1][0] = 1280; sizes[1][1] = 720;
+        nsizes = 2;
+    }
+    if (!pos || !nrm || !mat || !obj) return 1;
     memset(&m, 0, sizeof m);
     m.albedo = V(0.8, 0.6, 0.4);
     m.f0 = tg_from_float(0.04f);
     mesh.pos = pos; mesh.nrm = nrm; mesh.tri_material = mat; mesh.tri_object = obj;
     mesh.materials = &m;
     mesh.tri_count = build_sphere(pos, nrm);
-    bench(&mesh, 320, 240, frames, runs);
-    bench(&mesh, 1280, 720, frames, runs);
+    for (k = 0; k < nsizes; k++) bench(&mesh, sizes[k][0], sizes[k][1], frames);
     free(pos); free(nrm); free(mat); free(obj);
     return 0;
 }

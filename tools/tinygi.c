@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * tinygi.c - the command line: render a scene to PPM/PFM files, compare two
- * images, list what is built in.
+ * tinygi.c - the command line: render a scene to PPM/PFM/PNG files, compare
+ * two images, list what is built in.
  *
  *   tinygi render SCENE [options]     SCENE is a file or builtin:NAME
  *   tinygi view SCENE [options] [--fbdev PATH]   show frames on a framebuffer
@@ -11,8 +11,10 @@
  * Exit status: 0 success (diff: within tolerance); 1 runtime failure (cannot
  * write, out of memory; diff: outside tolerance); 2 bad usage or bad input
  * (diff: unreadable or mismatched images).  On status 2 nothing is written:
- * everything is validated before the first byte goes out, and every file is
- * written through a temporary and renamed (platform/hosted/file.h).
+ * everything is validated before the first byte goes out (options against
+ * the limits block of tinygi.h, the output names, no output naming an
+ * input), and every file is written through a temporary and renamed
+ * (platform/hosted/file.h).
  *
  * The memory story: the scene is parsed into one malloc'd arena (grown and
  * retried on TG_ERR_MEMORY), the frame plan says how many bytes a frame
@@ -31,11 +33,8 @@
 #include "hosted/imgdiff.h"
 #include "fbdev/fbdev.h"
 
-/* Limits of the command line (also in --help and the README). */
-#define CLI_MAX_SIDE TG_IMG_MAX_SIDE        /* 16384 pixels per side */
-#define CLI_MAX_PIXELS ((long)1 << 24)      /* 16,777,216 pixels per frame */
-#define CLI_MAX_FRAMES 100000
-#define CLI_MAX_PATH 4096
+/* The limits of options are the core's (tinygi.h); these two are the CLI's own. */
+#define CLI_MAX_PATH 4096                     /* an output path or pattern, bytes */
 #define CLI_MAX_SCENE_ARENA ((size_t)1 << 31) /* 2 GiB for a parsed scene */
 
 #define EXIT_RUNTIME 1
@@ -88,20 +87,28 @@ static void print_help(FILE *out)
         "render and view options:\n"
         "  -o PATH           render: output file (default out.ppm); .ppm is 8 bits per\n"
         "                    channel for viewing (colour exposed, tonemapped, sRGB),\n"
-        "                    .pfm linear floats (Pf for 1-channel AOVs, PF for RGB);\n"
-        "                    %%d or %%04d in PATH numbers frames from 0 (%%%% is a '%%');\n"
-        "                    without it only the last frame is written\n"
-        "  --size WxH        image size (default 320x240; sides 1..%d, at most %ld pixels)\n"
+        "                    .png the same pixels as PNG, .pfm linear floats (Pf for\n"
+        "                    1-channel AOVs, PF for RGB); %%d or %%04d in PATH numbers\n"
+        "                    frames from 0 (%%%% is a '%%'); without it only the last\n"
+        "                    frame is written.  Never an input file; a symbolic link is\n"
+        "                    written through; an existing read-only file is refused\n");
+    fprintf(out,
+        "  --size WxH        image size (default %dx%d; sides 1..%d, at most %ld pixels)\n"
         "  --frames N        frames to render, 1..%d (default 1)\n"
         "  --aov NAME        output: color depth normal albedo ao bent cone near far\n"
         "                    direct irradiance motion (default color)\n"
         "  --technique NAME  hbil gtao hbao ssao vo ssdo bentcone reference (default hbil)\n"
-        "  --slices N        horizon slices per pixel, 1..8\n"
-        "  --samples N       samples per slice, 1..256\n"
-        "  --radius R        gather radius in world units, 0..10000\n"
-        "  --bounces N       light bounces, 0..100\n"
-        "  --exposure E      linear exposure before the tonemapper, 0..1000 (default 1)\n"
-        "  --shadow-size N   shadow map texels per side, 8..8192 (default 512)\n"
+        "  --slices N        horizon slices per pixel, 1..%d (default %d)\n"
+        "  --samples N       samples per slice, 1..%d (default %d)\n"
+        "  --radius R        gather radius in world units, 0..%d (default %d)\n"
+        "  --bounces N       light bounces, 0..%d (default %d)\n"
+        "  --exposure E      linear exposure before the tonemapper, 0..%d (default 1)\n"
+        "  --shadow-size N   shadow map texels per side, %d..%d (default %d)\n",
+        TG_DEFAULT_WIDTH, TG_DEFAULT_HEIGHT, TG_MAX_IMAGE_SIDE, (long)TG_MAX_IMAGE_PIXELS,
+        TG_MAX_FRAMES, TG_MAX_SLICES, TG_DEFAULT_SLICES, TG_MAX_SAMPLES, TG_DEFAULT_SAMPLES,
+        TG_MAX_RADIUS, TG_DEFAULT_RADIUS, TG_MAX_BOUNCES, TG_DEFAULT_BOUNCES, TG_MAX_EXPOSURE,
+        TG_MIN_SHADOW_MAP, TG_MAX_SHADOW_MAP, TG_DEFAULT_SHADOW_MAP);
+    fprintf(out,
         "  --no-interleave   full-resolution GI kernel instead of 4x4 interleaved\n"
         "  --no-temporal     no temporal accumulation\n"
         "  --pcf-bilinear    4-tap shadow-map filtering instead of the 16-tap tent\n"
@@ -118,24 +125,31 @@ static void print_help(FILE *out)
         "  PSNR (peak 255 for PPM, 1.0 for PFM) and the largest per-channel\n"
         "  difference and where it is.  T (default 0) is the largest per-channel\n"
         "  difference accepted, in the images' units: 0..255 for PPM, linear for\n"
-        "  PFM.  -o writes the absolute difference scaled so the largest is white.\n"
+        "  PFM.  A NaN or infinity in either image is always a difference, and is\n"
+        "  reported.  -o writes the absolute difference (.ppm or .png) scaled so\n"
+        "  the largest is white.\n"
         "\n"
-        "exit status: 0 success (diff: within tolerance); 1 runtime failure\n"
-        "  (diff: outside tolerance); 2 bad usage or bad input, nothing written\n"
-        "  (diff: unreadable or mismatched images, or DIFF.ppm not written)\n",
-        CLI_MAX_SIDE, CLI_MAX_PIXELS, CLI_MAX_FRAMES);
+        "input files (scenes, meshes, images) must be regular files of at most %ld\n"
+        "  bytes.\n"
+        "\n"
+        "exit status: 0 success (diff: within tolerance); 1 runtime failure such\n"
+        "  as out of memory or an output the file system refuses (diff: outside\n"
+        "  tolerance); 2 bad usage or bad input, nothing written (diff: any failure)\n",
+        (long)TG_MAX_FILE_BYTES);
 }
 
 /* ---- option values ---- */
 
+/* An integer: 0 ok, 1 not an integer, 2 outside lo..hi. */
 static int parse_long(const char *s, long lo, long hi, long *out)
 {
     char *end;
     long v;
-    if (!*s || !((*s >= '0' && *s <= '9') || *s == '-')) return 1;
+    if (!*s || !((*s >= '0' && *s <= '9') || *s == '-' || *s == '+')) return 1;
     errno = 0;
     v = strtol(s, &end, 10);
-    if (errno || *end || v < lo || v > hi) return 1;
+    if (*end) return 1;
+    if (errno || v < lo || v > hi) return 2;
     *out = v;
     return 0;
 }
@@ -147,25 +161,70 @@ static int parse_number(const char *s, double lo, double hi, double *out)
     if (!*s || !((*s >= '0' && *s <= '9') || *s == '-' || *s == '+' || *s == '.')) return 1;
     errno = 0;
     v = strtod(s, &end);
-    if (errno || *end || !(v >= lo && v <= hi)) return 1; /* also refuses NaN */
+    if (*end) return 1;
+    if (errno || !(v >= lo && v <= hi)) return 2; /* also refuses NaN */
     *out = v;
     return 0;
 }
 
-static int parse_size(const char *s, int *w, int *h)
+/* The value as the user gave it, for "got V" ('' when empty). */
+static const char *shown(const char *v)
+{
+    return *v ? v : "''";
+}
+
+/* "option NAME: must be LO..HI, got V" unless v is an integer in lo..hi. */
+static int int_option(const char *name, const char *v, long lo, long hi, long *out)
+{
+    if (!parse_long(v, lo, hi, out)) return 0;
+    usage_error("option %s: must be %ld..%ld, got %s", name, lo, hi, shown(v));
+    return 1;
+}
+
+static int real_option(const char *name, const char *v, double hi, double *out)
+{
+    if (!parse_number(v, 0.0, hi, out)) return 0;
+    usage_error("option %s: must be 0..%g, got %s", name, hi, shown(v));
+    return 1;
+}
+
+/* --size WxH: 0 ok, else 1 (reported). */
+static int size_option(const char *s, int *w, int *h)
 {
     char buf[64];
     const char *x = strchr(s, 'x');
-    long lw, lh;
+    long side[2];
     size_t n;
+    int k;
     if (!x) x = strchr(s, 'X');
-    if (!x || (n = (size_t)(x - s)) >= sizeof buf) return 1;
+    if (!x || (n = (size_t)(x - s)) >= sizeof buf) {
+        usage_error("option --size: expected WxH (e.g. %dx%d), got '%s'", TG_DEFAULT_WIDTH,
+                    TG_DEFAULT_HEIGHT, s);
+        return 1;
+    }
     memcpy(buf, s, n);
     buf[n] = '\0';
-    if (parse_long(buf, 1, CLI_MAX_SIDE, &lw) || parse_long(x + 1, 1, CLI_MAX_SIDE, &lh)) return 1;
-    if (lw * lh > CLI_MAX_PIXELS) return 1; /* both <= 16384: the product fits a long */
-    *w = (int)lw;
-    *h = (int)lh;
+    for (k = 0; k < 2; k++) {
+        const char *v = k ? x + 1 : buf;
+        int r = parse_long(v, 1, TG_MAX_IMAGE_SIDE, &side[k]);
+        if (r == 1) {
+            usage_error("option --size: expected WxH (e.g. %dx%d), got '%s'", TG_DEFAULT_WIDTH,
+                        TG_DEFAULT_HEIGHT, s);
+            return 1;
+        }
+        if (r) {
+            usage_error("option --size: %s must be 1..%d, got %s", k ? "height" : "width",
+                        TG_MAX_IMAGE_SIDE, v);
+            return 1;
+        }
+    }
+    if (side[0] * side[1] > (long)TG_MAX_IMAGE_PIXELS) { /* sides <= TG_MAX_IMAGE_SIDE: fits */
+        usage_error("option --size: pixels (width*height) must be 1..%ld, got %ld",
+                    (long)TG_MAX_IMAGE_PIXELS, side[0] * side[1]);
+        return 1;
+    }
+    *w = (int)side[0];
+    *h = (int)side[1];
     return 0;
 }
 
@@ -333,16 +392,9 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
     } else if (!strcmp(name, "--fbdev")) {
         o->fbdev = v;
     } else if (!strcmp(name, "--size")) {
-        if (parse_size(v, &o->width, &o->height)) {
-            usage_error("option --size: expected WxH with W,H in 1..%d and W*H <= %ld, got '%s'",
-                        CLI_MAX_SIDE, CLI_MAX_PIXELS, v);
-            return 1;
-        }
+        if (size_option(v, &o->width, &o->height)) return 1;
     } else if (!strcmp(name, "--frames")) {
-        if (parse_long(v, 1, CLI_MAX_FRAMES, &l)) {
-            usage_error("option --frames: expected an integer in 1..%d, got '%s'", CLI_MAX_FRAMES, v);
-            return 1;
-        }
+        if (int_option(name, v, 1, TG_MAX_FRAMES, &l)) return 1;
         o->frames = (int)l;
     } else if (!strcmp(name, "--aov")) {
         o->aov = tg_aov_from_name(v);
@@ -359,36 +411,18 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
             return 1;
         }
     } else if (!strcmp(name, "--slices")) {
-        if (parse_long(v, 1, 8, &o->slices)) {
-            usage_error("option --slices: expected an integer in 1..8, got '%s'", v);
-            return 1;
-        }
+        return int_option(name, v, 1, TG_MAX_SLICES, &o->slices);
     } else if (!strcmp(name, "--samples")) {
-        if (parse_long(v, 1, 256, &o->samples)) {
-            usage_error("option --samples: expected an integer in 1..256, got '%s'", v);
-            return 1;
-        }
+        return int_option(name, v, 1, TG_MAX_SAMPLES, &o->samples);
     } else if (!strcmp(name, "--bounces")) {
-        if (parse_long(v, 0, 100, &o->bounces)) {
-            usage_error("option --bounces: expected an integer in 0..100, got '%s'", v);
-            return 1;
-        }
+        return int_option(name, v, 0, TG_MAX_BOUNCES, &o->bounces);
     } else if (!strcmp(name, "--shadow-size")) {
-        if (parse_long(v, 8, 8192, &o->shadow_size)) {
-            usage_error("option --shadow-size: expected an integer in 8..8192, got '%s'", v);
-            return 1;
-        }
+        return int_option(name, v, TG_MIN_SHADOW_MAP, TG_MAX_SHADOW_MAP, &o->shadow_size);
     } else if (!strcmp(name, "--radius")) {
-        if (parse_number(v, 0.0, 10000.0, &o->radius)) {
-            usage_error("option --radius: expected a number in 0..10000 (world units), got '%s'", v);
-            return 1;
-        }
+        if (real_option(name, v, TG_MAX_RADIUS, &o->radius)) return 1;
         o->have_radius = 1;
     } else if (!strcmp(name, "--exposure")) {
-        if (parse_number(v, 0.0, 1000.0, &o->exposure)) {
-            usage_error("option --exposure: expected a number in 0..1000, got '%s'", v);
-            return 1;
-        }
+        if (real_option(name, v, TG_MAX_EXPOSURE, &o->exposure)) return 1;
         o->have_exposure = 1;
     }
     return 0;
@@ -400,8 +434,8 @@ static int parse_render_args(int argc, char **argv, render_opts *o)
     memset(o, 0, sizeof *o);
     o->view = !strcmp(argv[1], "view");
     o->output = "out.ppm";
-    o->width = 320;
-    o->height = 240;
+    o->width = TG_DEFAULT_WIDTH;
+    o->height = TG_DEFAULT_HEIGHT;
     o->frames = 1;
     o->aov = TG_AOV_COLOR;
     o->technique = -1;
@@ -430,11 +464,14 @@ static int parse_render_args(int argc, char **argv, render_opts *o)
     return 0;
 }
 
-/* Scene text: a file or builtin:NAME.  0 ok; else exit status. */
-static int load_scene_text(const char *scene, char **owned, const char **text, size_t *size)
+/* Scene text: a file or builtin:NAME (then *is_file is 0).  0 ok; else exit status. */
+static int load_scene_text(const char *scene, char **owned, const char **text, size_t *size,
+                           tgp_file_id *id, int *is_file)
 {
     char why[512];
+    int r;
     *owned = NULL;
+    *is_file = 0;
     if (!strncmp(scene, "builtin:", 8)) {
         *text = tg_builtin_scene(scene + 8);
         if (!*text) {
@@ -446,10 +483,12 @@ static int load_scene_text(const char *scene, char **owned, const char **text, s
         *size = strlen(*text);
         return 0;
     }
-    if (tgp_file_read(scene, owned, size, why, sizeof why)) {
-        file_error(scene, why);
-        return EXIT_INPUT;
+    r = tgp_file_read_limited(scene, (size_t)TG_MAX_FILE_BYTES, owned, size, id, why, sizeof why);
+    if (r) {
+        fprintf(stderr, "%s: error: cannot read: %s\n", scene, why);
+        return exit_for((tg_status)r);
     }
+    *is_file = 1;
     *text = *owned;
     return 0;
 }
@@ -489,7 +528,8 @@ static int parse_scene(const char *name, const char *text, size_t size, tgp_host
     }
     if (s != TG_OK) {
         core_error(&err);
-        return exit_for(s);
+        /* a mesh that could not be read for want of memory is not bad input */
+        return io->last_status == TG_ERR_RUNTIME ? EXIT_RUNTIME : exit_for(s);
     }
     return 0;
 }
@@ -558,6 +598,13 @@ static int write_frame(const tg_frame *frame, tg_aov aov, tgp_img_format format,
         for (y = 0; y < h; y++) {
             tg_frame_aov_row8(frame, aov, y, rb->rgb8);
             tgp_outfile_write(f, rb->rgb8, (size_t)w * 3u);
+        }
+    } else if (format == TG_IMG_PNG) {
+        tgp_png png;
+        tgp_png_write_header(f, &png, w, h);
+        for (y = 0; y < h; y++) {
+            tg_frame_aov_row8(frame, aov, y, rb->rgb8);
+            tgp_png_write_row(f, &png, rb->rgb8);
         }
     } else {
         tgp_pfm_write_header(f, w, h, channels);
@@ -630,22 +677,113 @@ static int render_frames(const render_opts *o, const out_pattern *pat, tgp_img_f
     return status;
 }
 
+/* 0 if every file the render will write can be written (names, directories,
+ * no read-only file in the way): checked before any work; else exit status. */
+static int check_outputs(const render_opts *o, const out_pattern *pat)
+{
+    char path[CLI_MAX_PATH + 16], why[512];
+    int i = pat->numbered ? 0 : o->frames - 1;
+    for (; i < o->frames; i++) {
+        int r;
+        pattern_path(pat, i, path);
+        r = tgp_outfile_check(path, why, sizeof why);
+        if (r) {
+            file_error(path, why);
+            return r == TG_ERR_INPUT ? EXIT_INPUT : EXIT_RUNTIME;
+        }
+    }
+    return 0;
+}
+
+/* Inputs are never overwritten: 0 if no output is the same file (device and
+ * inode, whatever links lead there) as the scene or a mesh/MTL it read. */
+static int refuse_inputs(const render_opts *o, const out_pattern *pat,
+                         const tgp_file_id *scene_id, const tgp_host_io *io)
+{
+    char path[CLI_MAX_PATH + 16];
+    int i = pat->numbered ? 0 : o->frames - 1;
+    for (; i < o->frames; i++) {
+        const tgp_host_io_file *in;
+        const char *input = NULL;
+        tgp_file_id out;
+        pattern_path(pat, i, path);
+        if (tgp_file_identify(path, &out)) continue; /* does not exist yet */
+        if (scene_id && out.dev == scene_id->dev && out.ino == scene_id->ino) input = o->scene;
+        for (in = io->files; in && !input; in = in->next)
+            if (out.dev == in->id.dev && out.ino == in->id.ino) input = in->path;
+        if (input) {
+            fprintf(stderr, "%s: error: the output is the input file '%s'; refusing to "
+                    "overwrite it\n", path, input);
+            return EXIT_INPUT;
+        }
+    }
+    return 0;
+}
+
+/* --aov near / far on a frame that computes no such light: say why it is black. */
+static void warn_black_aov(const render_opts *o, const tg_plan *plan, const tg_scene *scene)
+{
+    if (o->aov == TG_AOV_NEAR && !(plan->effects & TG_EFFECT_NEAR)) {
+        tg_request probe_req = plan->request;
+        tg_plan probe;
+        tg_error err;
+        const char *why = "the scene has no light to bounce (no lights or emissive surfaces "
+                          "with albedo) or its effects line leaves near out";
+        probe_req.technique = TG_TECH_HBIL;
+        if (plan->request.bounces == 0) why = "bounces are 0";
+        else if (plan->request.technique != TG_TECH_HBIL &&
+                 tg_plan_make(&probe, scene, &probe_req, &err) == TG_OK &&
+                 (probe.effects & TG_EFFECT_NEAR))
+            why = "this technique computes no near field (bounce light); hbil does";
+        fprintf(stderr, "tinygi: warning: --aov near (technique %s) is black: %s\n",
+                tg_technique_name(plan->request.technique), why);
+    }
+    if (o->aov == TG_AOV_FAR && !(plan->effects & TG_EFFECT_FAR))
+        fprintf(stderr, "tinygi: warning: --aov far is black: the scene has no environment "
+                "light (an env line) or its effects line leaves far out\n");
+}
+
+/* The scene and its plan: 0 or exit status. */
+static int plan_scene(const render_opts *o, const out_pattern *pat, tgp_host_io *io,
+                      char **owned, void **scene_mem, tg_plan *plan)
+{
+    tg_request req;
+    tg_error err;
+    tg_scene *scene = NULL;
+    tgp_file_id scene_id;
+    const char *text;
+    size_t size;
+    int is_file, status;
+    tg_status s;
+    status = load_scene_text(o->scene, owned, &text, &size, &scene_id, &is_file);
+    if (!status) status = parse_scene(o->scene, text, size, io, scene_mem, &scene);
+    if (!status && !o->view && !o->explain)
+        status = refuse_inputs(o, pat, is_file ? &scene_id : NULL, io);
+    if (status) return status;
+    make_request(o, &req);
+    memset(&err, 0, sizeof err);
+    s = tg_plan_make(plan, scene, &req, &err);
+    if (s != TG_OK) {
+        core_error(&err);
+        return exit_for(s);
+    }
+    warn_black_aov(o, plan, scene);
+    return 0;
+}
+
 static int cmd_render(int argc, char **argv)
 {
     render_opts o;
     out_pattern pat;
     tgp_img_format format;
     tgp_host_io io;
-    tg_request req;
     tg_plan plan;
     tg_error err;
-    tg_scene *scene = NULL;
     tg_frame *frame = NULL;
     void *scene_mem = NULL, *frame_mem = NULL;
-    char *owned = NULL, why[512], first[CLI_MAX_PATH + 16];
-    const char *text, *bad;
-    size_t size;
-    int status;
+    char *owned = NULL, why[512];
+    const char *bad;
+    int status = 0;
 
     if (parse_render_args(argc, argv, &o)) return EXIT_INPUT;
     if (parse_pattern(o.output, &pat, &bad)) {
@@ -653,33 +791,18 @@ static int cmd_render(int argc, char **argv)
         return EXIT_INPUT;
     }
     if (tgp_img_format_from_path(o.output, &format)) {
-        usage_error("option -o: expected a file name ending in .ppm or .pfm, got '%s'", o.output);
+        usage_error("option -o: expected a file name ending in .ppm, .png or .pfm, got '%s'",
+                    o.output);
         return EXIT_INPUT;
     }
+    /* Fail before a long render if an output cannot be written. */
+    if (!o.view && !o.explain) status = check_outputs(&o, &pat);
     tgp_host_io_init(&io);
-    status = load_scene_text(o.scene, &owned, &text, &size);
-    if (!status) status = parse_scene(o.scene, text, size, &io, &scene_mem, &scene);
-    if (!status) {
-        make_request(&o, &req);
-        memset(&err, 0, sizeof err);
-        tg_status s = tg_plan_make(&plan, scene, &req, &err);
-        if (s != TG_OK) {
-            core_error(&err);
-            status = exit_for(s);
-        }
-    }
+    if (!status) status = plan_scene(&o, &pat, &io, &owned, &scene_mem, &plan);
     if (!status && o.explain) {
         status = print_explain(&plan);
         goto done;
     }
-    if (o.view) goto create;
-    /* Fail before a long render if the output cannot be written. */
-    pattern_path(&pat, pat.numbered ? 0 : o.frames - 1, first);
-    if (!status && tgp_file_dir_writable(first, why, sizeof why)) {
-        file_error(first, why);
-        status = EXIT_RUNTIME;
-    }
-create:
     if (!status) {
         frame_mem = malloc(plan.total_bytes ? plan.total_bytes : 1);
         if (!frame_mem) {
@@ -716,9 +839,27 @@ done:
 
 /* ---- diff ---- */
 
+/* diff -o: writable, and neither image (checked before they are read). */
+static int diff_output_refused(const char *out, const char *a_path, const char *b_path)
+{
+    char why[512];
+    tgp_file_id id;
+    if (tgp_outfile_check(out, why, sizeof why)) {
+        file_error(out, why);
+        return 1;
+    }
+    if (!tgp_file_identify(out, &id) && (tgp_file_is(a_path, &id) || tgp_file_is(b_path, &id))) {
+        fprintf(stderr, "%s: error: the output is the input file '%s'; refusing to overwrite it\n",
+                out, tgp_file_is(a_path, &id) ? a_path : b_path);
+        return 1;
+    }
+    return 0;
+}
+
 static int cmd_diff(int argc, char **argv)
 {
     const char *a_path = NULL, *b_path = NULL, *out = NULL;
+    tgp_img_format out_format = TG_IMG_PPM;
     double tolerance = 0.0;
     tgp_img a, b;
     tgp_diff d;
@@ -743,9 +884,9 @@ static int cmd_diff(int argc, char **argv)
         }
         v = option_value(argc, argv, &i, "-o", &matched);
         if (matched) {
-            tgp_img_format f;
-            if (!v || tgp_img_format_from_path(v, &f) || f != TG_IMG_PPM) {
-                usage_error("option -o: expected a file name ending in .ppm, got '%s'", v ? v : "");
+            if (!v || tgp_img_format_from_path(v, &out_format) || out_format == TG_IMG_PFM) {
+                usage_error("option -o: expected a file name ending in .ppm or .png, got '%s'",
+                            v ? v : "");
                 return EXIT_INPUT;
             }
             out = v;
@@ -766,6 +907,7 @@ static int cmd_diff(int argc, char **argv)
         usage_error("diff: expected two images: tinygi diff A B [--tolerance T] [-o DIFF.ppm]");
         return EXIT_INPUT;
     }
+    if (out && diff_output_refused(out, a_path, b_path)) return EXIT_INPUT;
     if (tgp_img_read(a_path, &a, why, sizeof why)) {
         file_error(a_path, why);
         return EXIT_INPUT;
@@ -789,10 +931,16 @@ static int cmd_diff(int argc, char **argv)
            a.channels == 1 ? 'v' : "rgb"[d.max_channel]);
     printf("over %lu of %lu pixels (tolerance %.6g)\n", (unsigned long)d.pixels_over,
            (unsigned long)d.pixels, d.tolerance);
+    for (i = 0; i < 2; i++)
+        if (d.nan[i] || d.inf[i])
+            printf("not finite in %s: %lu NaN, %lu inf values, first at %d,%d\n", i ? "B" : "A",
+                   (unsigned long)d.nan[i], (unsigned long)d.inf[i], d.first_x[i], d.first_y[i]);
     printf("%s\n", status ? "outside tolerance" : "within tolerance");
     if (out) {
         uint8_t *rgb = tgp_diff_image(&a, &b, &d);
-        if (!rgb || tgp_ppm_write(out, a.width, a.height, rgb, why, sizeof why)) {
+        if (!rgb || (out_format == TG_IMG_PNG
+                         ? tgp_png_write(out, a.width, a.height, rgb, why, sizeof why)
+                         : tgp_ppm_write(out, a.width, a.height, rgb, why, sizeof why))) {
             file_error(out, rgb ? why : "cannot write: out of memory");
             status = EXIT_INPUT;
         }

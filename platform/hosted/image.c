@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * image.c - PPM (P6) and PFM (PF/Pf) writing and reading for the hosted
- * platform.  Byte order is handled here, where bytes are written and read:
- * PFM floats go out little-endian whatever the host is.
+ * image.c - PPM (P6) and PFM (PF/Pf) writing and reading, and PNG writing,
+ * for the hosted platform.  Byte order is handled here, where bytes are
+ * written and read: PFM floats go out little-endian and PNG integers
+ * big-endian whatever the host is.
  */
 #include <ctype.h>
 #include <stdarg.h>
@@ -33,26 +34,27 @@ int tgp_img_format_from_path(const char *path, tgp_img_format *format)
     e[3] = '\0';
     if (strcmp(e, "ppm") == 0) { *format = TG_IMG_PPM; return 0; }
     if (strcmp(e, "pfm") == 0) { *format = TG_IMG_PFM; return 0; }
+    if (strcmp(e, "png") == 0) { *format = TG_IMG_PNG; return 0; }
     return 1;
 }
 
 int tgp_img_check_size(int width, int height, int channels, char *msg, size_t msgsize)
 {
     size_t pixels, values, bytes;
-    if (width < 1 || height < 1 || width > TG_IMG_MAX_SIDE || height > TG_IMG_MAX_SIDE) {
-        say(msg, msgsize, "image size %dx%d: each side must be in 1..%d", width, height,
-            TG_IMG_MAX_SIDE);
+    if (width < 1 || height < 1 || width > TG_MAX_IMAGE_SIDE || height > TG_MAX_IMAGE_SIDE) {
+        say(msg, msgsize, "image size %dx%d: each side must be 1..%d", width, height,
+            TG_MAX_IMAGE_SIDE);
         return 1;
     }
     if (channels != 1 && channels != 3) {
         say(msg, msgsize, "image with %d channels: expected 1 or 3", channels);
         return 1;
     }
-    if (tg_size_mul((size_t)width, (size_t)height, &pixels) || pixels > TG_IMG_MAX_PIXELS ||
-        tg_size_mul(pixels, (size_t)channels, &values) ||
+    if (tg_size_mul((size_t)width, (size_t)height, &pixels) ||
+        pixels > (size_t)TG_MAX_IMAGE_PIXELS || tg_size_mul(pixels, (size_t)channels, &values) ||
         tg_size_mul(values, sizeof(float), &bytes)) {
-        say(msg, msgsize, "image size %dx%d: more than %lu pixels", width, height,
-            (unsigned long)TG_IMG_MAX_PIXELS);
+        say(msg, msgsize, "image size %dx%d: pixels must be 1..%ld", width, height,
+            (long)TG_MAX_IMAGE_PIXELS);
         return 1;
     }
     return 0;
@@ -121,6 +123,138 @@ int tgp_pfm_write(const char *path, int width, int height, int channels,
     return tgp_outfile_finish(f, msg, msgsize);
 }
 
+/* ---- PNG ---- */
+
+/* A stored deflate block holds at most 65535 bytes: a scanline (filter
+ * byte + 3 bytes per pixel) must fit one. */
+typedef char png_row_fits_a_stored_block[1 + 3 * TG_MAX_IMAGE_SIDE <= 65535 ? 1 : -1];
+
+uint32_t tgp_crc32(uint32_t crc, const void *data, size_t n)
+{
+    static uint32_t table[256];
+    const unsigned char *p = (const unsigned char *)data;
+    size_t i;
+    if (!table[1]) {
+        uint32_t k, v;
+        int b;
+        for (k = 0; k < 256; k++) {
+            for (v = k, b = 0; b < 8; b++) v = (v & 1u) ? 0xEDB88320u ^ (v >> 1) : v >> 1;
+            table[k] = v;
+        }
+    }
+    crc = ~crc;
+    for (i = 0; i < n; i++) crc = table[(crc ^ p[i]) & 255u] ^ (crc >> 8);
+    return ~crc;
+}
+
+/* RFC 1950 sec. 8.2: s1 = 1 + sum of bytes, s2 = sum of the s1s, both mod 65521 */
+static uint32_t adler32(uint32_t adler, const unsigned char *p, size_t n)
+{
+    uint32_t a = adler & 0xffffu, b = adler >> 16;
+    while (n > 0) {
+        size_t run = n < 5552 ? n : 5552; /* the most bytes before b can overflow */
+        n -= run;
+        while (run--) {
+            a += *p++;
+            b += a;
+        }
+        a %= 65521u;
+        b %= 65521u;
+    }
+    return b << 16 | a;
+}
+
+static void put_be32(unsigned char *p, uint32_t v)
+{
+    p[0] = (unsigned char)(v >> 24);
+    p[1] = (unsigned char)(v >> 16);
+    p[2] = (unsigned char)(v >> 8);
+    p[3] = (unsigned char)v;
+}
+
+/* One chunk: length, type, the pieces of its data, CRC over type and data. */
+static void png_chunk(tgp_outfile *f, const char *type, const unsigned char *const *piece,
+                      const size_t *len, int pieces)
+{
+    unsigned char be[4];
+    uint32_t crc = tgp_crc32(0, type, 4), total = 0;
+    int i;
+    for (i = 0; i < pieces; i++) total += (uint32_t)len[i];
+    put_be32(be, total);
+    tgp_outfile_write(f, be, 4);
+    tgp_outfile_write(f, type, 4);
+    for (i = 0; i < pieces; i++) {
+        tgp_outfile_write(f, piece[i], len[i]);
+        crc = tgp_crc32(crc, piece[i], len[i]);
+    }
+    put_be32(be, crc);
+    tgp_outfile_write(f, be, 4);
+}
+
+void tgp_png_write_header(tgp_outfile *f, tgp_png *png, int width, int height)
+{
+    static const unsigned char signature[8] = { 137, 'P', 'N', 'G', '\r', '\n', 26, '\n' };
+    unsigned char ihdr[13];
+    const unsigned char *piece[1];
+    size_t len[1];
+    png->width = width;
+    png->height = height;
+    png->row = 0;
+    png->adler = 1;
+    put_be32(ihdr, (uint32_t)width);
+    put_be32(ihdr + 4, (uint32_t)height);
+    ihdr[8] = 8;   /* bits per sample */
+    ihdr[9] = 2;   /* colour type: RGB */
+    ihdr[10] = ihdr[11] = ihdr[12] = 0; /* deflate, adaptive filtering, no interlace */
+    tgp_outfile_write(f, signature, sizeof signature);
+    piece[0] = ihdr;
+    len[0] = sizeof ihdr;
+    png_chunk(f, "IHDR", piece, len, 1);
+}
+
+void tgp_png_write_row(tgp_outfile *f, tgp_png *png, const uint8_t *rgb)
+{
+    static const unsigned char zlib_header[2] = { 0x78, 0x01 }; /* deflate, 32K window, check bits */
+    static const unsigned char filter_none = 0;
+    unsigned char block[5], adler[4];
+    const unsigned char *piece[5];
+    size_t len[5], n = 1 + (size_t)png->width * 3u;
+    int k = 0, last = png->row == png->height - 1;
+    if (png->row >= png->height) return;
+    if (png->row == 0) piece[k] = zlib_header, len[k++] = 2;
+    block[0] = (unsigned char)last; /* BFINAL, BTYPE 00: stored */
+    block[1] = (unsigned char)(n & 0xffu);
+    block[2] = (unsigned char)(n >> 8);
+    block[3] = (unsigned char)(~n & 0xffu); /* NLEN: one's complement of LEN */
+    block[4] = (unsigned char)((~n >> 8) & 0xffu);
+    piece[k] = block, len[k++] = 5;
+    piece[k] = &filter_none, len[k++] = 1;
+    piece[k] = rgb, len[k++] = n - 1;
+    png->adler = adler32(png->adler, &filter_none, 1);
+    png->adler = adler32(png->adler, rgb, n - 1);
+    if (last) {
+        put_be32(adler, png->adler);
+        piece[k] = adler, len[k++] = 4;
+    }
+    png_chunk(f, "IDAT", piece, len, k);
+    if (last) png_chunk(f, "IEND", piece, len, 0);
+    png->row++;
+}
+
+int tgp_png_write(const char *path, int width, int height, const uint8_t *rgb,
+                 char *msg, size_t msgsize)
+{
+    tgp_outfile *f;
+    tgp_png png;
+    int y;
+    if (tgp_img_check_size(width, height, 3, msg, msgsize)) return 1;
+    f = tgp_outfile_create(path, msg, msgsize);
+    if (!f) return 1;
+    tgp_png_write_header(f, &png, width, height);
+    for (y = 0; y < height; y++) tgp_png_write_row(f, &png, rgb + (size_t)y * (size_t)width * 3u);
+    return tgp_outfile_finish(f, msg, msgsize);
+}
+
 /* ---- reading ---- */
 
 typedef struct reader {
@@ -174,16 +308,16 @@ static int read_scale(reader *r, float *scale)
 
 static int read_dims(reader *r, int *w, int *h, char *msg, size_t msgsize)
 {
-    long lw = read_uint(r, TG_IMG_MAX_SIDE), lh;
+    long lw = read_uint(r, TG_MAX_IMAGE_SIDE), lh;
     if (lw < 0) {
-        say(msg, msgsize, lw == -2 ? "width larger than %d" : "bad width (expected a number)",
-            TG_IMG_MAX_SIDE);
+        say(msg, msgsize, lw == -2 ? "width must be 1..%d" : "bad width (expected a number)",
+            TG_MAX_IMAGE_SIDE);
         return 1;
     }
-    lh = read_uint(r, TG_IMG_MAX_SIDE);
+    lh = read_uint(r, TG_MAX_IMAGE_SIDE);
     if (lh < 0) {
-        say(msg, msgsize, lh == -2 ? "height larger than %d" : "bad height (expected a number)",
-            TG_IMG_MAX_SIDE);
+        say(msg, msgsize, lh == -2 ? "height must be 1..%d" : "bad height (expected a number)",
+            TG_MAX_IMAGE_SIDE);
         return 1;
     }
     *w = (int)lw;

@@ -45,14 +45,25 @@ static int compatible(const tgp_img *a, const tgp_img *b, char *msg, size_t msgs
     return 1;
 }
 
-/* |a - b|, with equal bits (or two NaNs) 0 and other non-finite cases inf. */
+/* |a - b|; infinite when either is not finite (NaN against NaN included). */
 static double value_difference(float a, float b)
 {
     double d;
-    if (memcmp(&a, &b, sizeof a) == 0 || (isnan(a) && isnan(b))) return 0.0;
     if (!isfinite(a) || !isfinite(b)) return HUGE_VAL;
     d = (double)a - (double)b;
     return d < 0.0 ? -d : d;
+}
+
+/* Count a's NaN and infinite values into image k's tallies. */
+static void count_nonfinite(tgp_diff *d, int k, float v, size_t pixel, int width)
+{
+    if (isfinite(v)) return;
+    if (isnan(v)) d->nan[k]++;
+    else d->inf[k]++;
+    if (d->first_x[k] < 0) {
+        d->first_x[k] = (int)(pixel % (size_t)width);
+        d->first_y[k] = (int)(pixel / (size_t)width);
+    }
 }
 
 int tgp_diff_compare(const tgp_img *a, const tgp_img *b, double tolerance, tgp_diff *d,
@@ -65,11 +76,14 @@ int tgp_diff_compare(const tgp_img *a, const tgp_img *b, double tolerance, tgp_d
     d->tolerance = tolerance;
     d->peak = a->format == TG_IMG_PPM ? (double)a->maxval : 1.0;
     d->pixels = (size_t)a->width * (size_t)a->height;
+    d->first_x[0] = d->first_x[1] = d->first_y[0] = d->first_y[1] = -1;
     count = d->pixels;
     for (i = 0; i < count; i++) {
         int over = 0;
         for (c = 0; c < n; c++) {
             double diff = value_difference(a->pixels[i * n + c], b->pixels[i * n + c]);
+            count_nonfinite(d, 0, a->pixels[i * n + c], i, a->width);
+            count_nonfinite(d, 1, b->pixels[i * n + c], i, a->width);
             sum += diff * diff;
             if (diff > d->max_abs) {
                 d->max_abs = diff;
@@ -89,7 +103,7 @@ int tgp_diff_compare(const tgp_img *a, const tgp_img *b, double tolerance, tgp_d
 
 int tgp_diff_within(const tgp_diff *d)
 {
-    return d->max_abs <= d->tolerance;
+    return d->max_abs <= d->tolerance && !d->nan[0] && !d->nan[1] && !d->inf[0] && !d->inf[1];
 }
 
 uint8_t *tgp_diff_image(const tgp_img *a, const tgp_img *b, const tgp_diff *d)
@@ -112,9 +126,20 @@ uint8_t *tgp_diff_image(const tgp_img *a, const tgp_img *b, const tgp_diff *d)
 int tgp_diff_describe(const tgp_diff *d, char *buf, size_t size)
 {
     static const char channel_name[3] = { 'r', 'g', 'b' };
-    return snprintf(buf, size, "rmse %.6g, psnr %.2f dB, max %.6g at %d,%d (channel %c), "
-                    "%lu of %lu pixels over tolerance %.6g",
-                    d->rmse, d->psnr, d->max_abs, d->max_x, d->max_y,
-                    channel_name[d->max_channel < 0 || d->max_channel > 2 ? 0 : d->max_channel],
-                    (unsigned long)d->pixels_over, (unsigned long)d->pixels, d->tolerance);
+    int n = snprintf(buf, size, "rmse %.6g, psnr %.2f dB, max %.6g at %d,%d (channel %c), "
+                     "%lu of %lu pixels over tolerance %.6g",
+                     d->rmse, d->psnr, d->max_abs, d->max_x, d->max_y,
+                     channel_name[d->max_channel < 0 || d->max_channel > 2 ? 0 : d->max_channel],
+                     (unsigned long)d->pixels_over, (unsigned long)d->pixels, d->tolerance);
+    int k;
+    for (k = 0; k < 2 && n >= 0; k++) {
+        size_t at = (size_t)n < size ? (size_t)n : size;
+        int m;
+        if (!d->nan[k] && !d->inf[k]) continue;
+        m = snprintf(buf + at, size - at, ", %s has %lu NaN and %lu inf values (first at %d,%d)",
+                     k ? "b" : "a", (unsigned long)d->nan[k], (unsigned long)d->inf[k],
+                     d->first_x[k], d->first_y[k]);
+        n = m < 0 ? m : n + m;
+    }
+    return n;
 }

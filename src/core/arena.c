@@ -4,7 +4,7 @@
  * overflow-checked size arithmetic every buffer size goes through.
  */
 #include <string.h>
-#include "../tinygi.h"
+#include "arena.h"
 
 void tg_arena_init(tg_arena *a, void *memory, size_t size)
 {
@@ -14,9 +14,14 @@ void tg_arena_init(tg_arena *a, void *memory, size_t size)
     a->failed_request = 0;
 }
 
+size_t tgi_arena_pad(const void *base, size_t used)
+{
+    return (size_t)(16u - (((uintptr_t)base + used) & 15u)) & 15u;
+}
+
 void *tg_arena_alloc(tg_arena *a, size_t bytes)
 {
-    size_t start = (a->used + 15u) & ~(size_t)15u;
+    size_t start = a->used + tgi_arena_pad(a->base, a->used);
     void *p;
     if (start < a->used || start > a->size || bytes > a->size - start) {
         if (bytes > a->failed_request) a->failed_request = bytes;

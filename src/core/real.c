@@ -79,18 +79,13 @@ static int64_t div_round(int64_t a, int64_t b)
 
 #endif
 
-/* Number of significant bits of v (0 for 0), by halving. */
-int tgi_bit_length64(uint64_t v)
-{
-    int n = 0;
-    if (v >> 32) { v >>= 32; n += 32; }
-    if (v >> 16) { v >>= 16; n += 16; }
-    if (v >> 8) { v >>= 8; n += 8; }
-    if (v >> 4) { v >>= 4; n += 4; }
-    if (v >> 2) { v >>= 2; n += 2; }
-    if (v >> 1) { v >>= 1; n += 1; }
-    return n + (int)v;
-}
+#if TG_FIXED
+const uint32_t tgi_rsqrt_seed_q30[24] = {
+    1041682578u, 985333074u, 937238702u, 895562589u, 858993459u, 826566842u,
+    797555404u, 771398898u, 747657839u, 725981977u, 706088274u, 687745184u,
+    670761200u, 654976372u, 640255922u, 626485368u, 613566757u, 601415717u,
+    589959130u, 579133272u, 568882316u, 559157115u, 549914212u, 541115017u };
+#endif
 
 /* 1/sqrt(M) in Q30 at the middle of [i/64, (i+1)/64), i = 16..63. */
 static const uint32_t rsqrt_seed[48] = {
@@ -142,16 +137,6 @@ uint32_t tgi_isqrt64(uint64_t v)
     return (uint32_t)r;
 }
 
-#if TG_FIXED
-/* sqrt(v) rounded to nearest integer. */
-static uint64_t isqrt_round(uint64_t v)
-{
-    uint64_t r = tgi_isqrt64(v);
-    return v - r * r > r ? r + 1 : r;
-}
-
-#endif
-
 /* ---------------------------------------------------------------------- */
 /* the wide internal number                                                */
 
@@ -161,7 +146,7 @@ typedef int64_t wreal; /* Q2.30 */
 #define W_ONE ((wreal)1 << 30)
 static wreal w_mul(wreal a, wreal b) { return shr_round(a * b, 30); }
 static wreal w_div(wreal a, wreal b) { return div_round(a * W_ONE, b); }
-static wreal w_sqrt(wreal a) { return a <= 0 ? 0 : (wreal)isqrt_round((uint64_t)a << 30); }
+static wreal w_sqrt(wreal a) { return a <= 0 ? 0 : (wreal)tgi_isqrt_round64((uint64_t)a << 30); }
 static wreal w_from_real(tg_real x) { return (wreal)x * 16384; }
 static tg_real w_to_real(wreal a) { return tgi_sat64(shr_round(a, 14)); }
 #else
@@ -201,7 +186,7 @@ static wreal w_poly(wreal z, const wreal *c, int n)
 tg_real tg_sqrt(tg_real x)
 {
     if (x <= 0) return 0;
-    return (tg_real)isqrt_round((uint64_t)x << 16);
+    return (tg_real)tgi_isqrt_round64((uint64_t)x << 16);
 }
 
 /* 1/sqrt(x): x_raw = M 2^e, raw = 2^24 / sqrt(x_raw) = 2^(24 - e/2) / sqrt(M). */
@@ -249,12 +234,14 @@ static wreal reduce_half_pi(tg_real x, int *quadrant)
 {
     float ax = x < 0.0f ? -x : x;
     int32_t k;
+    int64_t r;
     if (ax <= 0.785398163f) { *quadrant = 0; return x; }
     if (!(ax < 4194304.0f)) { *quadrant = 0; return 0.0f; } /* outside the domain, NaN */
     k = (int32_t)(x * 0.636619772f + (x >= 0.0f ? 0.5f : -0.5f));
     *quadrant = (int)((uint32_t)k & 3u);
     /* x * 2^40 is an exact integer for |x| > pi/4 */
-    return (float)reduce_q40((int64_t)(x * 1099511627776.0f), k) * (1.0f / 1099511627776.0f);
+    r = reduce_q40((int64_t)(x * 1099511627776.0f), k);
+    return (float)r * (1.0f / 1099511627776.0f);
 }
 #endif
 

@@ -11,18 +11,15 @@
  * accumulate their four products in 64 bits before one rounding.
  * Float: the vector is scaled by a power of two (exact) before squaring, so
  * nothing overflows or underflows.
+ * At the end: exact axis-aligned units, robust face normals and degrees to
+ * radians, which the scene parser and the OBJ loader build geometry with.
  */
+#include <string.h>
 #include "vec.h"
 
 #define VEC_MAX_N 4
 
 #if TG_FIXED
-
-static uint64_t isqrt_round(uint64_t v)
-{
-    uint64_t r = tgi_isqrt64(v);
-    return v - r * r > r ? r + 1 : r;
-}
 
 /* Normalize v[0..n) in place; returns 0 (v untouched) for the zero vector. */
 static int normalize_n(tg_real *v, int n)
@@ -40,7 +37,7 @@ static int normalize_n(tg_real *v, int n)
         w[i] = s >= 0 ? (int64_t)v[i] * ((int64_t)1 << s) : tgi_shr_round(v[i], -s);
         sum += (uint64_t)(w[i] * w[i]);
     }
-    len2 = isqrt_round(sum << 2); /* 2 |w|, in [2^30, 2^32] */
+    len2 = tgi_isqrt_round64(sum << 2); /* 2 |w|, in [2^30, 2^32] */
     inv = (int64_t)((((uint64_t)1 << 62) + len2 / 2) / len2); /* 2^62 / (2 |w|), one division */
     for (i = 0; i < n; i++) v[i] = tgi_sat64(tgi_shr_round(w[i] * inv, 45)); /* w 2^16 / |w| */
     return 1;
@@ -50,7 +47,7 @@ tg_real tgi_v3_length(tg_vec3 a)
 {
     uint64_t sum = (uint64_t)((int64_t)a.x * a.x) + (uint64_t)((int64_t)a.y * a.y)
                  + (uint64_t)((int64_t)a.z * a.z);
-    uint64_t r = isqrt_round(sum); /* sum = |a|^2 2^32 exactly */
+    uint64_t r = tgi_isqrt_round64(sum); /* sum = |a|^2 2^32 exactly */
     return r > (uint64_t)TG_REAL_MAX ? TG_REAL_MAX : (tg_real)r;
 }
 
@@ -155,8 +152,8 @@ tg_vec3 tgi_v3_normalize(tg_vec3 a) { return tgi_v3_normalize_or(a, tg_v3(0, 0, 
 tgi_mat4 tgi_m4_identity(void)
 {
     tgi_mat4 m;
-    int i;
-    for (i = 0; i < 16; i++) m.m[i] = (i % 5 == 0) ? TG_ONE : 0;
+    memset(&m, 0, sizeof m);
+    m.m[0] = m.m[5] = m.m[10] = m.m[15] = TG_ONE;
     return m;
 }
 
@@ -164,6 +161,7 @@ tgi_mat4 tgi_m4_mul(const tgi_mat4 *a, const tgi_mat4 *b)
 {
     tgi_mat4 r;
     int i, j;
+    memset(&r, 0, sizeof r);
     for (i = 0; i < 4; i++)
         for (j = 0; j < 4; j++)
             r.m[i * 4 + j] = dot4(&a->m[i * 4], b->m[j], b->m[4 + j], b->m[8 + j], b->m[12 + j]);
@@ -315,4 +313,39 @@ tgi_mat4 tgi_q_to_m4(tgi_quat q)
     m.m[9] = tg_add(yz, wx);
     m.m[10] = tg_sub(TG_ONE, tg_add(xx, yy));
     return m;
+}
+
+/* ---------------------------------------------------------------------- */
+/* geometry helpers of the scene (parser and meshes)                      */
+
+tg_vec3 tgi_unit(tg_vec3 v)
+{
+    tg_vec3 u = tgi_v3_normalize_or(v, tg_v3(0, 0, 0));
+    /* an axis-aligned vector's unit is exact: keep it so */
+    if (u.y == 0 && u.z == 0 && u.x != 0) u.x = u.x > 0 ? TG_ONE : tg_neg(TG_ONE);
+    if (u.x == 0 && u.z == 0 && u.y != 0) u.y = u.y > 0 ? TG_ONE : tg_neg(TG_ONE);
+    if (u.x == 0 && u.y == 0 && u.z != 0) u.z = u.z > 0 ? TG_ONE : tg_neg(TG_ONE);
+    return u;
+}
+
+tg_real tgi_deg_to_rad(tg_real deg)
+{
+    /* multiply by pi first (keeps Q16.16 precision) unless that would saturate */
+    if (tg_abs(deg) <= TG_R(10000.0f)) return tg_div(tg_mul(deg, TG_PI), TG_R(180.0f));
+    return tg_mul(tg_div(deg, TG_R(180.0f)), TG_PI);
+}
+
+int tgi_face_normal(tg_vec3 a, tg_vec3 b, tg_vec3 c, tg_vec3 *n)
+{
+    tg_vec3 e1 = tgi_v3_sub(b, a), e2 = tgi_v3_sub(c, a), x;
+    tg_real m1 = tgi_v3_max_abs(e1), m2 = tgi_v3_max_abs(e2);
+    if (m1 == 0 || m2 == 0) return 0;
+    /* scale both edges into [-1, 1] first so the fixed-point cross product
+     * neither saturates nor loses its small components */
+    e1 = tg_v3(tg_div(e1.x, m1), tg_div(e1.y, m1), tg_div(e1.z, m1));
+    e2 = tg_v3(tg_div(e2.x, m2), tg_div(e2.y, m2), tg_div(e2.z, m2));
+    x = tgi_v3_cross(e1, e2);
+    if (tgi_v3_max_abs(x) <= TG_R(2e-5f)) return 0;
+    *n = tgi_unit(x);
+    return 1;
 }

@@ -22,6 +22,8 @@ static inline tg_vec3 tgi_v3_sub(tg_vec3 a, tg_vec3 b) { return tg_v3(tg_sub(a.x
 static inline tg_vec3 tgi_v3_scale(tg_vec3 a, tg_real s) { return tg_v3(tg_mul(a.x, s), tg_mul(a.y, s), tg_mul(a.z, s)); }
 static inline tg_vec3 tgi_v3_mul(tg_vec3 a, tg_vec3 b) { return tg_v3(tg_mul(a.x, b.x), tg_mul(a.y, b.y), tg_mul(a.z, b.z)); }
 static inline tg_vec3 tgi_v3_neg(tg_vec3 a) { return tg_v3(tg_neg(a.x), tg_neg(a.y), tg_neg(a.z)); }
+/* The largest |component|. */
+static inline tg_real tgi_v3_max_abs(tg_vec3 v) { return tg_max(tg_abs(v.x), tg_max(tg_abs(v.y), tg_abs(v.z))); }
 static inline tg_vec3 tgi_v3_lerp(tg_vec3 a, tg_vec3 b, tg_real t) { return tg_v3(tg_lerp(a.x, b.x, t), tg_lerp(a.y, b.y, t), tg_lerp(a.z, b.z, t)); }
 
 #if TG_FIXED
@@ -59,5 +61,13 @@ tgi_mat4 tgi_m4_rotate(tg_vec3 axis, tg_real angle_rad); /* Rodrigues; axis need
 tgi_quat tgi_q_axis_angle(tg_vec3 axis, tg_real angle_rad);
 tgi_quat tgi_q_slerp(tgi_quat a, tgi_quat b, tg_real t); /* shortest arc, exact at t = 0 and 1 */
 tgi_mat4 tgi_q_to_m4(tgi_quat q);
+
+/* Unit vector, exact for axis-aligned ones; zero when too short. */
+tg_vec3 tgi_unit(tg_vec3 v);
+/* Degrees to radians, precise in Q16.16 too. */
+tg_real tgi_deg_to_rad(tg_real deg);
+/* Unit face normal of triangle (a, b, c), counter-clockwise front, robust in
+ * fixed point (edges scaled to [-1, 1] first); returns 0 if degenerate. */
+int tgi_face_normal(tg_vec3 a, tg_vec3 b, tg_vec3 c, tg_vec3 *n);
 
 #endif

@@ -6,6 +6,7 @@
  */
 #include "frame_internal.h"
 #include "../scene/anim.h"
+#include "../raster/motion.h"
 
 /* The camera (keys or fixed) and, when objects move, the posed triangles and
  * each object's motion since the previous frame. */

@@ -34,29 +34,22 @@
  */
 #include <string.h>
 #include "raster.h"
+#include "../core/real.h"
 
 #define SUB 16                    /* sub-pixels per pixel (28.4) */
 #define HALF_SUB 8                /* pixel centre offset */
 #define GUARD 8                   /* guard band, in NDC units */
-#define COORD_LIMIT (1 << 20)     /* |28.4 coordinate| bound (GUARD+1 screens of 8192/2 px * 16) */
+#define COORD_LIMIT (1 << 20)     /* |28.4 coordinate| bound: GUARD + 1 half screens of
+                                     TG_MAX_IMAGE_SIDE pixels, 16 sub-pixels each, fit */
 #define DIV_OFFSET (1 << 22)      /* a multiple of 16 above COORD_LIMIT for floor division */
 #define MAX_POLY 12               /* 3 vertices + one per clip plane, with room */
 
+#if (GUARD + 1) * (TG_MAX_IMAGE_SIDE / 2) * SUB > COORD_LIMIT || TG_MAX_SHADOW_MAP > TG_MAX_IMAGE_SIDE
+#error "TG_MAX_IMAGE_SIDE or TG_MAX_SHADOW_MAP is beyond the rasterizer's 28.4 coordinates"
+#endif
+
 /* ---------------------------------------------------------------------- */
 /* small integer helpers                                                   */
-
-#if TG_FIXED
-static int bit_length64(uint64_t v)
-{
-#if defined(__GNUC__)
-    return v ? 64 - __builtin_clzll(v) : 0;
-#else
-    int n = 0;
-    while (v) { n++; v >>= 1; }
-    return n;
-#endif
-}
-#endif
 
 /* floor(v / 16) and ceil(v / 16) for |v| < DIV_OFFSET, no negative shifts. */
 static int floor_div_sub(int64_t v) { return (int)((v + DIV_OFFSET) >> 4) - (DIV_OFFSET >> 4); }
@@ -156,6 +149,13 @@ static inline int row_span(const tri_edges *te, int64_t *e, int *xa)
     while (x < x1 && (e0 | e1 | e2) >= 0) { e0 += s0; e1 += s1; e2 += s2; x++; }
     xb = x;
     return xb;
+}
+
+/* The edge values at the start of `row` and its span: row_edges, then row_span. */
+static inline int row_start(const tri_edges *te, int row, int64_t *e, int *xa)
+{
+    row_edges(te, row, e);
+    return row_span(te, e, xa);
 }
 
 void tgi_raster_coverage_count(uint16_t *count, int width, int height,
@@ -353,23 +353,16 @@ static inline int32_t snap_ndc(tg_real c, tg_real w, inv_w iw, int32_t half16)
 /* per-pixel normalization                                                 */
 
 #if TG_FIXED
-/* rsqrt at the midpoints of [1, 4) split in 24 steps of 1/8, Q30. */
-static const uint32_t rsqrt_seed[24] = {
-    1041682578u, 985333074u, 937238702u, 895562589u, 858993459u, 826566842u,
-    797555404u, 771398898u, 747657839u, 725981977u, 706088274u, 687745184u,
-    670761200u, 654976372u, 640255922u, 626485368u, 613566757u, 601415717u,
-    589959130u, 579133272u, 568882316u, 559157115u, 549914212u, 541115017u };
-
 static int64_t asr64(int64_t v, int s) { return v >= 0 ? v >> s : -((-v) >> s); }
 
-/* Unit vector (Q16.16) along m (|m_i| < 2^31).  Table seed within 3.2%, two
- * Newton steps for 1/sqrt (rel. error 3e-6, below the Q16.16 ulp).
- * Returns 0 for the zero vector. */
+/* Unit vector (Q16.16) along m (|m_i| < 2^31): 1/sqrt by
+ * tgi_rsqrt_q30_fast (rel. error 3e-6, below the Q16.16 ulp).  Returns 0
+ * for the zero vector. */
 static int unit_q16(int64_t mx, int64_t my, int64_t mz, tg_real *n)
 {
     uint64_t len2 = (uint64_t)(mx * mx) + (uint64_t)(my * my) + (uint64_t)(mz * mz);
-    uint64_t x30, y, t;
-    int b = bit_length64(len2), shift;
+    uint64_t x30, y;
+    int b = tgi_bit_length64(len2), shift;
     if (b == 0) return 0;
     if (b >= 31) {
         int k = (b - 31) >> 1;
@@ -381,29 +374,11 @@ static int unit_q16(int64_t mx, int64_t my, int64_t mz, tg_real *n)
         shift = 29 - k;
     }
     /* x30 in [2^30, 2^32): X = x30 / 2^30 in [1, 4) */
-    y = rsqrt_seed[(x30 >> 27) - 8];
-    t = (((y * y) >> 30) * x30) >> 30;            /* X y^2, Q30 */
-    y = (y * ((3u << 30) - t)) >> 31;             /* Newton: y (3 - X y^2) / 2 */
-    t = (((y * y) >> 30) * x30) >> 30;
-    y = (y * ((3u << 30) - t)) >> 31;
+    y = tgi_rsqrt_q30_fast(x30);
     n[0] = (tg_real)asr64(mx * (int64_t)y, shift);
     n[1] = (tg_real)asr64(my * (int64_t)y, shift);
     n[2] = (tg_real)asr64(mz * (int64_t)y, shift);
     return 1;
-}
-#else
-/* 1/sqrt(x) for normal x > 0: bit-trick seed (within 0.18% after the first
- * step) and two Newton steps, rel. error < 5e-6. */
-static float pixel_rsqrt(float x)
-{
-    union { float f; uint32_t u; } b;
-    float y;
-    b.f = x;
-    b.u = 0x5f375a86u - (b.u >> 1);
-    y = b.f;
-    y = y * (1.5f - 0.5f * x * y * y);
-    y = y * (1.5f - 0.5f * x * y * y);
-    return y;
 }
 #endif
 
@@ -520,10 +495,10 @@ static void bary_make(bary_setup *b, const screen_tri *st, const tri_edges *te)
     if (st->w[2] < wmin) wmin = st->w[2];
     if (wmin < 1) wmin = 1;
     /* weights u_i = E_i 2^(ls - rs) with sum(u) = area2 2^(ls - rs) ~ 2^30 */
-    b->rs = bit_length64((uint64_t)te->area2) - 30;
+    b->rs = tgi_bit_length64((uint64_t)te->area2) - 30;
     b->ls = b->rs < 0 ? -b->rs : 0;
     if (b->rs < 0) b->rs = 0;
-    bl = bit_length64(((uint64_t)te->area2 << b->ls) >> b->rs);
+    bl = tgi_bit_length64(((uint64_t)te->area2 << b->ls) >> b->rs);
     b->sm = bl > 0 ? bl - 1 : 0;
     b->wmin = wmin;
     for (i = 0; i < 3; i++) {
@@ -546,7 +521,7 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
     bary_make(&b, st, te);
     for (row = te->y0; row < te->y1; row++) {
         int64_t e[3], e0, e1, e2;
-        int xa, xb = (row_edges(te, row, e), row_span(te, e, &xa)), c0, c1;
+        int xa, xb = row_start(te, row, e, &xa), c0, c1;
         size_t i0 = (size_t)row * (size_t)W;
         e0 = e[0]; e1 = e[1]; e2 = e[2];
         for (c0 = xa; c0 < xb; c0 = c1) {
@@ -590,7 +565,7 @@ static void depth_rows(tg_real *depth, int W, const tri_edges *te, const screen_
     bary_make(&b, st, te);
     for (row = te->y0; row < te->y1; row++) {
         int64_t e[3], e0, e1, e2;
-        int xa, xb = (row_edges(te, row, e), row_span(te, e, &xa));
+        int xa, xb = row_start(te, row, e, &xa);
         size_t i = (size_t)row * (size_t)W + (size_t)xa;
         e0 = e[0]; e1 = e[1]; e2 = e[2];
         for (col = xa; col < xb; col++, i++,
@@ -670,7 +645,7 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
     pnz = plane_make(&pb, st->n[0].z * q[0], st->n[1].z * q[1], st->n[2].z * q[2]);
     for (row = te->y0; row < te->y1; row++) {
         int64_t e[3];
-        int xa, xb = (row_edges(te, row, e), row_span(te, e, &xa));
+        int xa, xb = row_start(te, row, e, &xa);
         float dy = (float)(row - te->oy), dx = (float)(xa - te->x0);
         float qv = pq.v + pq.dy * dy + pq.dx * dx;
         float mx = pnx.v + pnx.dy * dy + pnx.dx * dx;
@@ -691,7 +666,7 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
                 len2 = mx * mx + my * my + mz * mz;
                 depth[i] = wmin / qv;
                 if (len2 > 1e-30f) {
-                    r = pixel_rsqrt(len2);
+                    r = tgi_rsqrt_fast(len2);
                     g.nx[i] = mx * r; g.ny[i] = my * r; g.nz[i] = mz * r;
                 } else {
                     g.nx[i] = sf.fallback_normal.x; g.ny[i] = sf.fallback_normal.y; g.nz[i] = sf.fallback_normal.z;
@@ -718,7 +693,7 @@ static void depth_rows(tg_real *depth, int W, const tri_edges *te, const screen_
     else pa = plane_make(&pb, wmin * st->iw[0], wmin * st->iw[1], wmin * st->iw[2]);
     for (row = te->y0; row < te->y1; row++) {
         int64_t e[3];
-        int xa, xb = (row_edges(te, row, e), row_span(te, e, &xa));
+        int xa, xb = row_start(te, row, e, &xa);
         float a = pa.v + pa.dy * (float)(row - te->oy) + pa.dx * (float)(xa - te->x0);
         size_t i = (size_t)row * (size_t)W + (size_t)xa;
         for (col = xa; col < xb; col++, i++, a += pa.dx) {
@@ -864,7 +839,7 @@ static void draw_clip_tri(const raster_target *rt, clip_vertex *v, const tg_vec3
 
 static int target_rows(raster_target *rt, int width, int height, int y0, int y1)
 {
-    if (width <= 0 || height <= 0 || width > TG_RASTER_MAX_SIZE || height > TG_RASTER_MAX_SIZE) return 0;
+    if (width <= 0 || height <= 0 || width > TG_MAX_IMAGE_SIDE || height > TG_MAX_IMAGE_SIDE) return 0;
     rt->width = width;
     rt->height = height;
     rt->row0 = y0 < 0 ? 0 : y0;
@@ -899,7 +874,7 @@ void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_
             tg_real gw = tg_mul(GUARD_R, w);
             v[k].x = x; v[k].y = y; v[k].w = v[k].z = w;
             /* inside the guard band and the depth range: no clipping needed */
-            inside &= (x >= tg_neg(gw)) & (x <= gw) & (y >= tg_neg(gw)) & (y <= gw) & (w >= znear) & (w <= zfar);
+            inside &= x >= tg_neg(gw) && x <= gw && y >= tg_neg(gw) && y <= gw && w >= znear && w <= zfar;
             right &= x > w; left &= x < tg_neg(w); top &= y > w; bottom &= y < tg_neg(w);
         }
         if (right | left | top | bottom) continue;      /* wholly off one side of the screen */

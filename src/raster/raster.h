@@ -17,7 +17,8 @@
  *  - a triangle crossing the near plane is clipped, never dropped, and
  *    nothing behind the camera (w <= znear) is drawn;
  *  - screen coordinates stay within +-(GUARD + 1) screen sizes, so the
- *    28.4 integers never overflow; width and height must be <= 8192.
+ *    28.4 integers never overflow; width and height must be at most
+ *    TG_MAX_IMAGE_SIDE (tinygi.h), shadow maps included.
  *  - only rows [y0, y1) are written: several threads may split the rows
  *    of one image between them (every thread walks all triangles).
  */
@@ -25,12 +26,11 @@
 #define TG_RASTER_H
 
 #include "../core/vec.h"
-#include "../scene/scene.h"
+#include "../core/material.h"
 #include "gbuffer.h"
 #include "view.h"
 
 #define TG_RASTER_SUBPIXEL_BITS 4   /* 28.4 screen coordinates */
-#define TG_RASTER_MAX_SIZE 8192     /* largest width or height */
 
 typedef struct tgi_raster_mesh {
     const tg_vec3 *pos;   /* 3 per triangle, world space */

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * anim.c - keyframes to camera and object poses at time t, posed triangles,
- * and motion vectors (where each pixel's surface was last frame).  See anim.h.
+ * and the rigid deltas between two times.  See anim.h.
  */
 #include <string.h>
 #include "anim.h"
@@ -22,18 +22,25 @@ tg_real tgi_anim_time(const tg_scene *s, int frame, int frames)
     return tg_add(t0, tg_mul(tg_sub(t1, t0), tg_ratio(frame, frames - 1)));
 }
 
+/* The time of key i, keys `stride` bytes apart starting at `times`. */
+static tg_real key_time(const tg_real *times, size_t stride, int i)
+{
+    tg_real t;
+    memcpy(&t, (const unsigned char *)times + (size_t)i * stride, sizeof t);
+    return t;
+}
+
 /* Segment of sorted key times containing t: *a, *b key indices and the
  * fraction u; a == b when t is at or outside a key (exact values). */
 static void key_segment(const tg_real *times, size_t stride, int count, tg_real t,
                         int *a, int *b, tg_real *u)
 {
     int k;
-#define KEY_T(i) (*(const tg_real *)((const unsigned char *)times + (size_t)(i) * stride))
     *u = 0;
-    if (t <= KEY_T(0)) { *a = *b = 0; return; }
-    if (t >= KEY_T(count - 1)) { *a = *b = count - 1; return; }
+    if (t <= key_time(times, stride, 0)) { *a = *b = 0; return; }
+    if (t >= key_time(times, stride, count - 1)) { *a = *b = count - 1; return; }
     for (k = 0; k + 1 < count; k++) {
-        tg_real ta = KEY_T(k), tb = KEY_T(k + 1);
+        tg_real ta = key_time(times, stride, k), tb = key_time(times, stride, k + 1);
         if (t == ta) { *a = *b = k; return; }
         if (t < tb) {
             *a = k; *b = k + 1;
@@ -42,7 +49,6 @@ static void key_segment(const tg_real *times, size_t stride, int count, tg_real 
         }
     }
     *a = *b = count - 1;
-#undef KEY_T
 }
 
 void tgi_anim_camera(const tg_scene *s, tg_real t, tg_vec3 *pos, tg_vec3 *target)
@@ -155,35 +161,5 @@ void tgi_anim_bounds(const tg_vec3 *pos, int tri_count, tg_vec3 *lo, tg_vec3 *hi
     for (v = 1; v < n; v++) {
         lo->x = tg_min(lo->x, pos[v].x); lo->y = tg_min(lo->y, pos[v].y); lo->z = tg_min(lo->z, pos[v].z);
         hi->x = tg_max(hi->x, pos[v].x); hi->y = tg_max(hi->y, pos[v].y); hi->z = tg_max(hi->z, pos[v].z);
-    }
-}
-
-void tgi_motion_rows(tgi_gbuffer *gb, const tgi_view *cur, const tgi_view *prev,
-                    const tgi_mat4 *cur_to_prev, int y0, int y1)
-{
-    int use_objects = cur_to_prev && gb->object;
-    int x, y, w = gb->width;
-    for (y = y0; y < y1; y++) {
-        int i = y * w;
-        tg_real sy = tg_add(tg_from_int(y), TG_R(0.5f));
-        for (x = 0; x < w; x++, i++) {
-            tg_real sx = tg_add(tg_from_int(x), TG_R(0.5f)), px, py;
-            tg_vec3 pv;
-            if (gb->sky[i]) {
-                /* a direction: rotate the view ray into the previous camera */
-                tg_vec3 d = tgi_view_dir_to_world(cur, tgi_view_unproject(cur, sx, sy, TG_ONE));
-                pv = tgi_view_dir_to_view(prev, d);
-            } else {
-                tg_vec3 p = tgi_view_view_to_world(cur, tgi_view_unproject(cur, sx, sy, gb->depth[i]));
-                if (use_objects) p = tgi_m4_point(&cur_to_prev[gb->object[i]], p);
-                pv = tgi_view_world_to_view(prev, p);
-            }
-            if (pv.z <= TG_R(0.0001f)) {
-                gb->motion_x[i] = gb->motion_y[i] = TG_MOTION_INVALID;
-                continue;
-            }
-            tgi_view_project(prev, pv, &px, &py);
-            gb->motion_x[i] = px; gb->motion_y[i] = py;
-        }
     }
 }

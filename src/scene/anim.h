@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * anim.h - keyframe animation (camera_key, object_key), posing the scene's
- * triangles at a time t, and per-pixel motion vectors.
+ * anim.h - keyframe animation (camera_key, object_key): camera and object
+ * poses at a time t, posed triangles, and the per-object deltas from which
+ * raster/motion.h makes motion vectors.
  *
  * Time: frame i of N samples t linearly from the first key to the last
  * (over camera and object keys together); frame 0 is the first key, frame
@@ -14,18 +15,11 @@
  *            more than 180 degrees between two keys is kept), otherwise
  *            quaternion slerp along the shortest arc (tgi_q_slerp).
  *            An object without keys stays in its rest pose.
- * Motion vectors (gbuffer.h): motion_x/y = the continuous screen position in
- * the PREVIOUS frame of the surface seen at this pixel's centre now.
  */
 #ifndef TG_ANIM_H
 #define TG_ANIM_H
 
 #include "scene.h"
-#include "../raster/gbuffer.h"
-#include "../raster/view.h"
-
-/* Screen position written for a surface that was behind the previous camera. */
-#define TG_MOTION_INVALID TG_REAL_MIN
 
 tg_real tgi_anim_time(const tg_scene *s, int frame, int frames);
 void tgi_anim_camera(const tg_scene *s, tg_real t, tg_vec3 *pos, tg_vec3 *target);
@@ -45,13 +39,5 @@ void tgi_anim_pose(const tg_scene *s, tg_real t, tg_vec3 *pos, tg_vec3 *nrm);
  * shadow map (tgi_shadow_map_setup) when objects move outside the rest-pose
  * scene bounds.  No triangles: lo = hi = 0. */
 void tgi_anim_bounds(const tg_vec3 *pos, int tri_count, tg_vec3 *lo, tg_vec3 *hi);
-
-/* Motion vectors for rows [y0, y1) into gb->motion_x/y.  cur_to_prev: one
- * world-space rigid delta per object (indexed by gb->object), or NULL when
- * nothing but the camera moves.  Sky pixels reproject their view direction
- * (a point at infinity).  A surface behind the previous camera gets
- * TG_MOTION_INVALID in both. */
-void tgi_motion_rows(tgi_gbuffer *gb, const tgi_view *cur, const tgi_view *prev,
-                    const tgi_mat4 *cur_to_prev, int y0, int y1);
 
 #endif

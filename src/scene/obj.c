@@ -17,13 +17,13 @@
  */
 #include <string.h>
 #include "parse_internal.h"
+#include "../core/path.h"
 
 typedef struct mtllib_ref {
     tgi_token name;          /* points into the OBJ text */
-    int line;
-    const char *data;       /* the MTL file, once read */
+    char path[TG_MAX_PATH];  /* resolved against the OBJ's directory */
+    const char *data;        /* the MTL file, read at its mtllib line */
     size_t size;
-    int loaded;
 } mtllib_ref;
 
 typedef struct obj_state {
@@ -36,7 +36,7 @@ typedef struct obj_state {
     const char *objname;
     size_t nv, nvt, nvn;
     int nlib;
-    mtllib_ref lib[TG_OBJ_MAX_MTLLIB];
+    mtllib_ref lib[TG_MAX_MTLLIBS];
 } obj_state;
 
 typedef struct obj_ref {
@@ -44,30 +44,43 @@ typedef struct obj_ref {
     int has_vn;
 } obj_ref;
 
-int tgi_path_join(const char *base, const char *rel, size_t rel_n, char *out)
+/* Resolve `name` (a token at FILE:LINE) against the directory of `base`
+ * and read that file (an OBJ, or an MTL when `mtl`) through tg_io.  An
+ * error names the file and why it cannot be read ("cannot read mesh file
+ * 'a.obj': permission denied"), or the path length or file size against
+ * TG_MAX_PATH and TG_MAX_FILE_BYTES. */
+static tg_status load_file(tgi_parser *p, const char *file, int line, const tgi_token *name,
+                           const char *base, int mtl, char path[TG_MAX_PATH],
+                           const char **data, size_t *size)
 {
-    size_t dir = 0, i, n = base ? strlen(base) : 0;
-    if (rel_n > 0 && rel[0] == '/') n = 0; /* absolute */
-    for (i = 0; i < n; i++)
-        if (base[i] == '/') dir = i + 1;
-    if (dir + rel_n >= TG_PATH_MAX) return 1;
-    memcpy(out, base, dir);
-    memcpy(out + dir, rel, rel_n);
-    out[dir + rel_n] = '\0';
-    return 0;
-}
-
-static int read_file(tgi_parser *p, const char *path, const char **data, size_t *size)
-{
+    const char *reason = NULL;
+    char got[24];
+    size_t n = tgi_path_join(base, name->s, name->n, path);
     *data = NULL;
     *size = 0;
-    if (!p->io || !p->io->read_file) return 1;
-    if (p->io->read_file(p->io->user, path, data, size)) return 1;
-    if (!*data) {
-        if (*size) return 1;
-        *data = "";
+    if (n >= TG_MAX_PATH) {
+        tgi_limit_fail(p->err, file, line, name->col,
+                       mtl ? "MTL path length in bytes" : "mesh path length in bytes",
+                       1, TG_MAX_PATH - 1, tgi_number_text(n, got));
+        tgi_error_append(p->err, " (joined to the directory of the file naming it)");
+        return TG_ERR_INPUT;
     }
-    return 0;
+    if (!p->io || !p->io->read_file) reason = "no tg_io to read files with";
+    else if (p->io->read_file(p->io->user, path, data, size, &reason) == 0 && (*data || !*size)) {
+        if (!*data) *data = "";
+        if (*size <= (size_t)TG_MAX_FILE_BYTES) return TG_OK;
+        return tgi_limit_fail(p->err, file, line, name->col,
+                              mtl ? "MTL file size in bytes" : "mesh file size in bytes",
+                              0, TG_MAX_FILE_BYTES, tgi_number_text(*size, got));
+    }
+    tgi_parse_fail(p, file, line, name->col, "cannot read ", mtl ? "MTL" : "mesh", " file '");
+    tgi_error_append(p->err, path);
+    tgi_error_append(p->err, "'");
+    if (reason) {
+        tgi_error_append(p->err, ": ");
+        tgi_error_append(p->err, reason);
+    }
+    return TG_ERR_INPUT;
 }
 
 static tg_status ofail(obj_state *o, const tgi_lexer *lx, int col,
@@ -88,7 +101,7 @@ static tg_status bad_number(obj_state *o, const tgi_lexer *lx, const tgi_token *
     char buf[48];
     ofail(o, lx, t->col, r == 2 ? "number out of range in '" : "expected a number in '", what, "', got '");
     tgi_error_append(o->p->err, tgi_tok_str(t, buf));
-    tgi_error_append(o->p->err, "'");
+    tgi_error_append(o->p->err, r == 2 ? "'" TGI_RANGE_NOTE : "'");
     return TG_ERR_INPUT;
 }
 
@@ -130,11 +143,11 @@ static tg_status obj_vertex(obj_state *o, tgi_lexer *lx, const tgi_token *kw, in
     size_t *count = normal ? &o->nvn : &o->nv;
     int n;
     if ((st = numbers(o, lx, normal ? "vn" : "v", 3, normal ? 3 : 7, x, &n))) return st;
-    if (*count >= TG_OBJ_MAX_VERTS) {
-        ofail(o, lx, kw->col, "too many '", normal ? "vn" : "v", "' lines (the limit is ");
-        tgi_error_append_int(p->err, TG_OBJ_MAX_VERTS);
-        tgi_error_append(p->err, ")");
-        return TG_ERR_INPUT;
+    if (*count >= TG_MAX_OBJ_VERTICES) {
+        char got[24];
+        return tgi_limit_fail(p->err, lx->file, lx->lineno, kw->col,
+                              normal ? "vn count per OBJ file" : "v count per OBJ file",
+                              0, TG_MAX_OBJ_VERTICES, tgi_number_text(*count + 1, got));
     }
     if (p->fill) {
         if (o->nv + o->nvn >= p->obj_scratch) return changed(o);
@@ -156,7 +169,7 @@ static tg_status obj_texcoord(obj_state *o, tgi_lexer *lx)
     int n;
     tg_status st = numbers(o, lx, "vt", 1, 3, x, &n);
     if (st) return st;
-    if (o->nvt < TG_OBJ_MAX_VERTS) o->nvt++;
+    if (o->nvt < TG_MAX_OBJ_VERTICES) o->nvt++;
     return TG_OK;
 }
 
@@ -257,20 +270,23 @@ static tg_status obj_face(obj_state *o, tgi_lexer *lx)
     return TG_OK;
 }
 
+/* mtllib FILE...: each file is read here, so a missing one is an error
+ * whether or not a usemtl needs it (format.md). */
 static tg_status obj_mtllib(obj_state *o, tgi_lexer *lx, const tgi_token *kw)
 {
     tgi_token t;
+    tg_status st;
+    char got[24];
     int n = 0;
     while (tgi_lex_token(lx, &t)) {
-        if (o->nlib >= TG_OBJ_MAX_MTLLIB) {
-            ofail(o, lx, t.col, "too many mtllib files (the limit is ", NULL, NULL);
-            tgi_error_append_int(o->p->err, TG_OBJ_MAX_MTLLIB);
-            tgi_error_append(o->p->err, ")");
-            return TG_ERR_INPUT;
-        }
-        memset(&o->lib[o->nlib], 0, sizeof o->lib[0]);
-        o->lib[o->nlib].name = t;
-        o->lib[o->nlib].line = lx->lineno;
+        mtllib_ref *lib = &o->lib[o->nlib];
+        if (o->nlib >= TG_MAX_MTLLIBS)
+            return tgi_limit_fail(o->p->err, lx->file, lx->lineno, t.col, "mtllib count per OBJ file",
+                                  0, TG_MAX_MTLLIBS, tgi_number_text((size_t)o->nlib + 1, got));
+        memset(lib, 0, sizeof *lib);
+        lib->name = t;
+        if ((st = load_file(o->p, lx->file, lx->lineno, &t, o->path, 1, lib->path, &lib->data, &lib->size)))
+            return st;
         o->nlib++;
         n++;
     }
@@ -307,13 +323,12 @@ static tg_status mtl_color(obj_state *o, tgi_lexer *ml, const char *what, int un
 }
 
 /* Find `name` in one MTL file; 1 found (m updated), 0 not, -1 error. */
-static int mtl_search(obj_state *o, const mtllib_ref *lib, const char *path,
-                      const tgi_token *name, tgi_material *m)
+static int mtl_search(obj_state *o, const mtllib_ref *lib, const tgi_token *name, tgi_material *m)
 {
     tgi_lexer ml;
     tgi_token kw, rest;
     int r, in_block = 0;
-    tgi_lex_init(&ml, lib->data, lib->size, path);
+    tgi_lex_init(&ml, lib->data, lib->size, lib->path);
     while ((r = tgi_lex_line(&ml, o->p->err)) > 0) {
         if (!tgi_lex_token(&ml, &kw)) continue;
         if (tgi_tok_is(&kw, "newmtl")) {
@@ -334,20 +349,10 @@ static int mtl_search(obj_state *o, const mtllib_ref *lib, const char *path,
  * material and gets the MTL's Kd / Ke. */
 static tg_status mtl_find(obj_state *o, const tgi_lexer *lx, const tgi_token *name, tgi_material *m)
 {
-    char path[TG_PATH_MAX], buf[48];
+    char buf[48];
     int i, r;
     for (i = 0; i < o->nlib; i++) {
-        mtllib_ref *lib = &o->lib[i];
-        if (tgi_path_join(o->path, lib->name.s, lib->name.n, path))
-            return tgi_parse_fail(o->p, o->path, lib->line, lib->name.col,
-                                 "MTL path is too long", NULL, NULL);
-        if (!lib->loaded) {
-            if (read_file(o->p, path, &lib->data, &lib->size))
-                return tgi_parse_fail(o->p, o->path, lib->line, lib->name.col,
-                                     "cannot read MTL file '", path, "'");
-            lib->loaded = 1;
-        }
-        r = mtl_search(o, lib, path, name, m);
+        r = mtl_search(o, &o->lib[i], name, m);
         if (r < 0) return TG_ERR_INPUT;
         if (r > 0) return TG_OK;
     }
@@ -364,7 +369,7 @@ static tg_status obj_usemtl(obj_state *o, tgi_lexer *lx, const tgi_token *kw)
     tgi_token name;
     tgi_material m;
     tg_status st;
-    char full[TG_NAME_MAX];
+    char full[TG_MAX_NAME + 1];
     size_t n = strlen(o->objname), k, i;
     int index;
     if (!tgi_lex_rest(lx, &name))
@@ -376,8 +381,8 @@ static tg_status obj_usemtl(obj_state *o, tgi_lexer *lx, const tgi_token *kw)
     }
     /* "objname/mtlname", cut to the name limit */
     memcpy(full, o->objname, n);
-    if (n < TG_NAME_MAX - 1) full[n++] = '/';
-    k = name.n < TG_NAME_MAX - 1 - n ? name.n : TG_NAME_MAX - 1 - n;
+    if (n < TG_MAX_NAME) full[n++] = '/';
+    k = name.n < TG_MAX_NAME - n ? name.n : TG_MAX_NAME - n;
     memcpy(full + n, name.s, k);
     full[n + k] = '\0';
     for (i = o->first_material; i < p->materials; i++)
@@ -407,23 +412,15 @@ static tg_status obj_line(obj_state *o, tgi_lexer *lx, const tgi_token *kw)
 tg_status tgi_obj_mesh(tgi_parser *p, const tgi_lexer *lx, const tgi_token *path_tok,
                       const tgi_xform *xf, int material, const char *objname)
 {
-    char path[TG_PATH_MAX];
+    char path[TG_MAX_PATH];
     const char *data;
-    size_t size;
+    size_t size, tris0 = p->tris;
     obj_state o;
     tgi_lexer ol;
     tgi_token kw;
     tg_status st;
     int r;
-    if (tgi_path_join(p->file, path_tok->s, path_tok->n, path)) {
-        tgi_parse_fail(p, lx->file, lx->lineno, path_tok->col, "mesh path is too long (the limit is ", NULL, NULL);
-        tgi_error_append_int(p->err, TG_PATH_MAX - 1);
-        tgi_error_append(p->err, " bytes with the scene's directory)");
-        return TG_ERR_INPUT;
-    }
-    if (read_file(p, path, &data, &size))
-        return tgi_parse_fail(p, lx->file, lx->lineno, path_tok->col,
-                             "cannot read mesh file '", path, "'");
+    if ((st = load_file(p, lx->file, lx->lineno, path_tok, p->file, 0, path, &data, &size))) return st;
     memset(&o, 0, sizeof o);
     o.p = p;
     o.path = path;
@@ -437,6 +434,9 @@ tg_status tgi_obj_mesh(tgi_parser *p, const tgi_lexer *lx, const tgi_token *path
         if ((st = obj_line(&o, &ol, &kw))) return st;
     }
     if (r < 0) return TG_ERR_INPUT;
+    if (p->tris == tris0)
+        return tgi_parse_fail(p, lx->file, lx->lineno, path_tok->col, "mesh file '", path,
+                              "' has no faces; expected an OBJ file with 'v' and 'f' lines");
     if (!p->fill && o.nv + o.nvn > p->obj_scratch) p->obj_scratch = o.nv + o.nvn;
     return TG_OK;
 }

@@ -16,151 +16,7 @@
  */
 #include <string.h>
 #include "parse_internal.h"
-
-/* ===================================================================== */
-/* lexer                                                                 */
-/* ===================================================================== */
-
-static int is_blank(char c)
-{
-    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-}
-
-void tgi_lex_init(tgi_lexer *lx, const char *text, size_t size, const char *file)
-{
-    memset(lx, 0, sizeof *lx);
-    if (!text) { text = ""; size = 0; }
-    lx->text = text;
-    lx->end = text + size;
-    lx->next = text;
-    lx->file = file;
-    if (size >= 3 && (unsigned char)text[0] == 0xEFu &&
-        (unsigned char)text[1] == 0xBBu && (unsigned char)text[2] == 0xBFu)
-        lx->next = text + 3; /* UTF-8 byte order mark */
-}
-
-int tgi_lex_line(tgi_lexer *lx, tg_error *err)
-{
-    const char *s = lx->next, *e = s;
-    if (s >= lx->end) return 0;
-    while (e < lx->end && *e != '\n') {
-        if (*e == '\0') {
-            tgi_error_set(err, TG_ERR_INPUT, lx->file, lx->lineno + 1,
-                         (int)(e - s) + 1, "NUL byte in the input; expected text");
-            return -1;
-        }
-        if (e - s >= TG_LINE_MAX) {
-            tgi_error_set(err, TG_ERR_INPUT, lx->file, lx->lineno + 1,
-                         TG_LINE_MAX + 1, "line longer than ");
-            tgi_error_append_int(err, TG_LINE_MAX);
-            tgi_error_append(err, " bytes (the limit)");
-            return -1;
-        }
-        e++;
-    }
-    lx->lineno++;
-    lx->line = s;
-    lx->line_end = e;
-    lx->cur = s;
-    lx->next = e < lx->end ? e + 1 : e;
-    return 1;
-}
-
-int tgi_lex_token(tgi_lexer *lx, tgi_token *t)
-{
-    const char *c = lx->cur;
-    while (c < lx->line_end && is_blank(*c)) c++;
-    if (c >= lx->line_end || *c == '#') { lx->cur = lx->line_end; return 0; }
-    t->s = c;
-    t->col = (int)(c - lx->line) + 1;
-    while (c < lx->line_end && !is_blank(*c) && *c != '#') c++;
-    t->n = (size_t)(c - t->s);
-    lx->cur = c;
-    return 1;
-}
-
-int tgi_lex_peek(tgi_lexer *lx, tgi_token *t)
-{
-    const char *save = lx->cur;
-    int r = tgi_lex_token(lx, t);
-    lx->cur = save;
-    return r;
-}
-
-int tgi_lex_eol_col(const tgi_lexer *lx)
-{
-    const char *c = lx->line, *last = lx->line;
-    while (c < lx->line_end && *c != '#') {
-        if (!is_blank(*c)) last = c + 1;
-        c++;
-    }
-    return (int)(last - lx->line) + 1;
-}
-
-int tgi_lex_rest(tgi_lexer *lx, tgi_token *t)
-{
-    const char *c = lx->cur, *e;
-    while (c < lx->line_end && is_blank(*c)) c++;
-    e = c;
-    while (e < lx->line_end && *e != '#') e++;
-    while (e > c && is_blank(e[-1])) e--;
-    lx->cur = lx->line_end;
-    if (e == c) return 0;
-    t->s = c;
-    t->n = (size_t)(e - c);
-    t->col = (int)(c - lx->line) + 1;
-    return 1;
-}
-
-int tgi_tok_is(const tgi_token *t, const char *word)
-{
-    size_t n = strlen(word);
-    return t->n == n && memcmp(t->s, word, n) == 0;
-}
-
-int tgi_tok_eq_name(const tgi_token *t, const char *name)
-{
-    return t->n < TG_NAME_MAX && memcmp(t->s, name, t->n) == 0 && name[t->n] == '\0';
-}
-
-int tgi_tok_real(const tgi_token *t, tg_real *out)
-{
-    int overflow = 0;
-    tg_real v = 0;
-    size_t used;
-    if (t->n == 0) return 1;
-    used = tg_parse_real(t->s, t->n, &v, &overflow);
-    if (used != t->n) return 1;
-    if (overflow || !tg_isfinite(v)) return 2;
-    *out = v;
-    return 0;
-}
-
-int tgi_tok_int(const tgi_token *t, long *out)
-{
-    size_t i = 0;
-    long v = 0;
-    int neg = 0;
-    if (t->n && (t->s[0] == '-' || t->s[0] == '+')) { neg = t->s[0] == '-'; i = 1; }
-    if (i >= t->n) return 1;
-    for (; i < t->n; i++) {
-        char c = t->s[i];
-        if (c < '0' || c > '9') return 1;
-        if (v > 100000000L) return 2; /* keeps |v| below 1e9 + 9 */
-        v = v * 10 + (c - '0');
-    }
-    *out = neg ? -v : v;
-    return 0;
-}
-
-const char *tgi_tok_str(const tgi_token *t, char buf[48])
-{
-    size_t n = t->n > 40 ? 40 : t->n;
-    memcpy(buf, t->s, n);
-    if (t->n > 40) { memcpy(buf + n, "...", 3); n += 3; }
-    buf[n] = '\0';
-    return buf;
-}
+#include "../core/arena.h"
 
 /* ===================================================================== */
 /* errors                                                                */
@@ -179,6 +35,21 @@ static tg_status fail(tgi_parser *p, const tgi_lexer *lx, int col,
                       const char *a, const char *b, const char *c)
 {
     return tgi_parse_fail(p, lx->file, lx->lineno, col, a, b, c);
+}
+
+/* "NAME must be LO..HI, got GOT" (lex.h), GOT a count or a token's text. */
+static tg_status limit(tgi_parser *p, const tgi_lexer *lx, int col, const char *name,
+                       long lo, long hi, size_t got)
+{
+    char buf[24];
+    return tgi_limit_fail(p->err, lx->file, lx->lineno, col, name, lo, hi, tgi_number_text(got, buf));
+}
+
+static tg_status limit_tok(tgi_parser *p, const tgi_lexer *lx, const tgi_token *t,
+                           const char *name, long lo, long hi)
+{
+    char buf[48];
+    return tgi_limit_fail(p->err, lx->file, lx->lineno, t->col, name, lo, hi, tgi_tok_str(t, buf));
 }
 
 static tg_status fail_runtime(tgi_parser *p, const char *what)
@@ -251,7 +122,7 @@ static tg_status read_numbers(tgi_parser *p, tgi_lexer *lx, const key_spec *spec
         if (r == 2) {
             fail(p, lx, t.col, "number out of range for '", what, "': '");
             tgi_error_append(p->err, tgi_tok_str(&t, buf));
-            tgi_error_append(p->err, "'");
+            tgi_error_append(p->err, "'" TGI_RANGE_NOTE);
             return TG_ERR_INPUT;
         }
     }
@@ -292,13 +163,9 @@ static tg_status parse_keys(tgi_parser *p, tgi_lexer *lx, const tgi_token *stmt,
             if (!tgi_lex_token(lx, &val[k].tok[0]))
                 return fail(p, lx, tgi_lex_eol_col(lx), "'", spec[k].key,
                             spec[k].kind == K_NAME ? "' expects a name" : "' expects a file path");
-            if (spec[k].kind == K_NAME && val[k].tok[0].n >= TG_NAME_MAX) {
-                fail(p, lx, val[k].tok[0].col, "name '", tgi_tok_str(&val[k].tok[0], buf),
-                     "' is too long; names are at most ");
-                tgi_error_append_int(p->err, TG_NAME_MAX - 1);
-                tgi_error_append(p->err, " bytes");
-                return TG_ERR_INPUT;
-            }
+            if (spec[k].kind == K_NAME && val[k].tok[0].n > TG_MAX_NAME)
+                return limit(p, lx, val[k].tok[0].col, "name length in bytes", 1, TG_MAX_NAME,
+                             val[k].tok[0].n);
         } else if (spec[k].kind != K_FLAG) {
             st = read_numbers(p, lx, spec, nspec, spec[k].key, kind_numbers(spec[k].kind),
                               spec[k].kind == K_INT, val[k].tok, val[k].v, &val[k].i);
@@ -350,6 +217,7 @@ static tg_status check_range(tgi_parser *p, const tgi_lexer *lx, const key_val *
             tgi_error_append(p->err, ", got '");
             tgi_error_append(p->err, tgi_tok_str(&kv->tok[i], buf));
             tgi_error_append(p->err, "'");
+            if (tgi_tok_rounds_to_zero(&kv->tok[i], v)) tgi_error_append(p->err, TGI_ZERO_NOTE);
             return TG_ERR_INPUT;
         }
     }
@@ -365,9 +233,13 @@ static tg_status kv_dir(tgi_parser *p, const tgi_lexer *lx, const key_val *kv,
                         const char *key, tg_vec3 *out)
 {
     tg_vec3 d = tgi_unit(kv_vec3(kv));
-    if (is_zero_vec(d))
-        return fail(p, lx, kv->tok[0].col, "'", key,
-                    "' must be a direction of non-zero length");
+    if (is_zero_vec(d)) {
+        fail(p, lx, kv->tok[0].col, "'", key, "' must be a direction of non-zero length");
+        if (tgi_tok_rounds_to_zero(&kv->tok[0], kv->v[0]) || tgi_tok_rounds_to_zero(&kv->tok[1], kv->v[1]) ||
+            tgi_tok_rounds_to_zero(&kv->tok[2], kv->v[2]))
+            tgi_error_append(p->err, TGI_ZERO_NOTE);
+        return TG_ERR_INPUT;
+    }
     *out = d;
     return TG_OK;
 }
@@ -379,12 +251,8 @@ static tg_status kv_dir(tgi_parser *p, const tgi_lexer *lx, const key_val *kv,
 tg_status tgi_parse_add_material(tgi_parser *p, const tgi_lexer *lx, int col,
                                 const tgi_material *m, int *index)
 {
-    if (p->materials >= TG_SCENE_MAX_MATERIALS) {
-        fail(p, lx, col, "too many materials (the limit is ", NULL, NULL);
-        tgi_error_append_int(p->err, TG_SCENE_MAX_MATERIALS);
-        tgi_error_append(p->err, ")");
-        return TG_ERR_INPUT;
-    }
+    if (p->materials >= TG_MAX_MATERIALS)
+        return limit(p, lx, col, "material count", 0, TG_MAX_MATERIALS, p->materials + 1);
     if (p->fill) {
         if (p->materials >= p->material_cap) return fail_runtime(p, "a mesh file changed while parsing");
         p->scene->materials[p->materials] = *m;
@@ -410,9 +278,9 @@ static int find_object(const tgi_parser *p, const tgi_token *name)
     return -1;
 }
 
-static void copy_name(char dst[TG_NAME_MAX], const tgi_token *t)
+static void copy_name(char dst[TG_MAX_NAME + 1], const tgi_token *t)
 {
-    size_t n = t->n < TG_NAME_MAX - 1 ? t->n : TG_NAME_MAX - 1;
+    size_t n = t->n < TG_MAX_NAME ? t->n : TG_MAX_NAME;
     memcpy(dst, t->s, n);
     dst[n] = '\0';
 }
@@ -422,12 +290,8 @@ tg_status tgi_parse_begin_object(tgi_parser *p, const tgi_lexer *lx, int col,
 {
     char buf[48];
     tgi_object *o;
-    if (p->objects >= TG_SCENE_MAX_OBJECTS) {
-        fail(p, lx, col, "too many objects (the limit is ", NULL, NULL);
-        tgi_error_append_int(p->err, TG_SCENE_MAX_OBJECTS);
-        tgi_error_append(p->err, ")");
-        return TG_ERR_INPUT;
-    }
+    if (p->objects >= TG_MAX_OBJECTS)
+        return limit(p, lx, col, "object count", 0, TG_MAX_OBJECTS, p->objects + 1);
     if (p->fill) {
         if (name && find_object(p, name) >= 0)
             return fail(p, lx, name->col, "duplicate object name '", tgi_tok_str(name, buf),
@@ -443,51 +307,10 @@ tg_status tgi_parse_begin_object(tgi_parser *p, const tgi_lexer *lx, int col,
 
 static tg_status count_tris(tgi_parser *p, const tgi_lexer *lx, int col, size_t n)
 {
-    if (n > TG_SCENE_MAX_TRIS || p->tris > TG_SCENE_MAX_TRIS - n) {
-        fail(p, lx, col, "too many triangles (the limit is ", NULL, NULL);
-        tgi_error_append_int(p->err, TG_SCENE_MAX_TRIS);
-        tgi_error_append(p->err, ")");
-        return TG_ERR_INPUT;
-    }
+    if (n > TG_MAX_TRIANGLES || p->tris > TG_MAX_TRIANGLES - n)
+        return limit(p, lx, col, "triangle count", 0, TG_MAX_TRIANGLES, p->tris + n);
     p->tris += n;
     return TG_OK;
-}
-
-static tg_real max_abs3(tg_vec3 v)
-{
-    return tg_max(tg_abs(v.x), tg_max(tg_abs(v.y), tg_abs(v.z)));
-}
-
-tg_vec3 tgi_unit(tg_vec3 v)
-{
-    tg_vec3 u = tgi_v3_normalize_or(v, tg_v3(0, 0, 0));
-    /* an axis-aligned vector's unit is exact: keep it so */
-    if (u.y == 0 && u.z == 0 && u.x != 0) u.x = u.x > 0 ? TG_ONE : tg_neg(TG_ONE);
-    if (u.x == 0 && u.z == 0 && u.y != 0) u.y = u.y > 0 ? TG_ONE : tg_neg(TG_ONE);
-    if (u.x == 0 && u.y == 0 && u.z != 0) u.z = u.z > 0 ? TG_ONE : tg_neg(TG_ONE);
-    return u;
-}
-
-tg_real tgi_deg_to_rad(tg_real deg)
-{
-    /* multiply by pi first (keeps Q16.16 precision) unless that would saturate */
-    if (tg_abs(deg) <= TG_R(10000.0f)) return tg_div(tg_mul(deg, TG_PI), TG_R(180.0f));
-    return tg_mul(tg_div(deg, TG_R(180.0f)), TG_PI);
-}
-
-int tgi_face_normal(tg_vec3 a, tg_vec3 b, tg_vec3 c, tg_vec3 *n)
-{
-    tg_vec3 e1 = tgi_v3_sub(b, a), e2 = tgi_v3_sub(c, a), x;
-    tg_real m1 = max_abs3(e1), m2 = max_abs3(e2);
-    if (m1 == 0 || m2 == 0) return 0;
-    /* scale both edges into [-1, 1] first so the fixed-point cross product
-     * neither saturates nor loses its small components */
-    e1 = tg_v3(tg_div(e1.x, m1), tg_div(e1.y, m1), tg_div(e1.z, m1));
-    e2 = tg_v3(tg_div(e2.x, m2), tg_div(e2.y, m2), tg_div(e2.z, m2));
-    x = tgi_v3_cross(e1, e2);
-    if (max_abs3(x) <= TG_R(2e-5f)) return 0;
-    *n = tgi_unit(x);
-    return 1;
 }
 
 static void grow_bounds(tg_scene *s, tg_vec3 v, int first)
@@ -508,8 +331,8 @@ tg_status tgi_parse_emit_tri(tgi_parser *p, const tgi_lexer *lx, int col,
     int i;
     if (!p->fill) return count_tris(p, lx, col, 1);
     if (t >= (size_t)s->tri_count) return fail_runtime(p, "a mesh file changed while parsing");
-    if (!nrm && !tgi_face_normal(pos[0], pos[1], pos[2], &fn))
-        fn = tg_v3(0, TG_ONE, 0); /* zero area: the rasterizer skips it */
+    fn = tg_v3(0, TG_ONE, 0); /* for zero area: the rasterizer skips it */
+    if (!nrm) tgi_face_normal(pos[0], pos[1], pos[2], &fn);
     for (i = 0; i < 3; i++) {
         s->tri_pos[3 * t + (size_t)i] = pos[i];
         s->tri_nrm[3 * t + (size_t)i] = nrm ? nrm[i] : fn;
@@ -564,7 +387,7 @@ static tg_status st_camera(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     key_val v[MAX_SPEC];
     tgi_scene_camera cam;
     tg_status st;
-    tg_real fov = TG_R(60.0f);
+    tg_real fov = TG_R(TG_DEFAULT_FOV);
     if (p->have_camera)
         return fail(p, lx, kw->col, "duplicate 'camera' statement; only one is allowed", NULL, NULL);
     if ((st = parse_keys(p, lx, kw, spec, NSPEC(spec), v))) return st;
@@ -581,8 +404,8 @@ static tg_status st_camera(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
         fov = v[3].v[0];
     }
     cam.fov = tgi_deg_to_rad(fov);
-    cam.znear = TG_R(0.05f);
-    cam.zfar = TG_R(1000.0f);
+    cam.znear = TG_R(TG_DEFAULT_NEAR);
+    cam.zfar = TG_R(TG_DEFAULT_FAR);
     if (v[4].present) {
         if ((st = check_range(p, lx, &v[4], "near", 0, TG_REAL_MAX, LO_OPEN, "greater than 0")))
             return st;
@@ -610,12 +433,8 @@ static tg_status st_camera_key(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw
     key.target = kv_vec3(&v[2]);
     if (is_zero_vec(tgi_v3_sub(key.target, key.pos)))
         return fail(p, lx, v[2].tok[0].col, "camera_key 'target' must differ from 'pos'", NULL, NULL);
-    if (p->camera_keys >= TG_SCENE_MAX_KEYS) {
-        fail(p, lx, kw->col, "too many camera keys (the limit is ", NULL, NULL);
-        tgi_error_append_int(p->err, TG_SCENE_MAX_KEYS);
-        tgi_error_append(p->err, ")");
-        return TG_ERR_INPUT;
-    }
+    if (p->camera_keys >= TG_MAX_KEYS)
+        return limit(p, lx, kw->col, "camera_key count", 0, TG_MAX_KEYS, p->camera_keys + 1);
     if (p->fill) { /* insert sorted by t */
         k = p->scene->camera_keys;
         for (i = 0; i < p->camera_keys; i++)
@@ -642,18 +461,13 @@ static tg_status st_material(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     if (!have || find_key(spec, NSPEC(spec), &name) >= 0)
         return fail(p, lx, have ? name.col : tgi_lex_eol_col(lx),
                     "'material' expects a name first: material NAME albedo R G B ...", NULL, NULL);
-    if (name.n >= TG_NAME_MAX) {
-        fail(p, lx, name.col, "name '", tgi_tok_str(&name, buf), "' is too long; names are at most ");
-        tgi_error_append_int(p->err, TG_NAME_MAX - 1);
-        tgi_error_append(p->err, " bytes");
-        return TG_ERR_INPUT;
-    }
+    if (name.n > TG_MAX_NAME) return limit(p, lx, name.col, "name length in bytes", 1, TG_MAX_NAME, name.n);
     if ((st = parse_keys(p, lx, kw, spec, NSPEC(spec), v))) return st;
     memset(&m, 0, sizeof m);
     copy_name(m.name, &name);
     if ((st = check_range(p, lx, &v[0], "albedo", 0, TG_ONE, 0, "in [0, 1]"))) return st;
     m.albedo = kv_vec3(&v[0]);
-    m.f0 = TG_R(0.04f);
+    m.f0 = TG_R(TG_DEFAULT_F0);
     if (v[1].present) {
         if ((st = check_range(p, lx, &v[1], "f0", 0, TG_ONE, 0, "in [0, 1]"))) return st;
         m.f0 = v[1].v[0];
@@ -754,18 +568,14 @@ static tg_status st_sphere(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     tg_vec3 c, pa[4], na[4], tp[3], tn[3];
     tg_status st;
     tg_real r;
-    int mat, segs = TG_SPHERE_SEG_DEFAULT, rings, i, j, k;
+    int mat, segs = TG_DEFAULT_SPHERE_SEGMENTS, rings, i, j, k;
     if ((st = parse_keys(p, lx, kw, spec, NSPEC(spec), v))) return st;
     if ((st = check_range(p, lx, &v[1], "radius", 0, TG_REAL_MAX, LO_OPEN, "greater than 0")))
         return st;
     if (v[3].present) {
-        if (v[3].i < TG_SPHERE_SEG_MIN || v[3].i > TG_SPHERE_SEG_MAX) {
-            fail(p, lx, v[3].tok[0].col, "'segments' must be an integer from ", NULL, NULL);
-            tgi_error_append_int(p->err, TG_SPHERE_SEG_MIN);
-            tgi_error_append(p->err, " to ");
-            tgi_error_append_int(p->err, TG_SPHERE_SEG_MAX);
-            return TG_ERR_INPUT;
-        }
+        if (v[3].i < TG_MIN_SPHERE_SEGMENTS || v[3].i > TG_MAX_SPHERE_SEGMENTS)
+            return limit_tok(p, lx, &v[3].tok[0], "sphere segments", TG_MIN_SPHERE_SEGMENTS,
+                             TG_MAX_SPHERE_SEGMENTS);
         segs = (int)v[3].i;
     }
     rings = segs / 2;
@@ -795,14 +605,14 @@ static tg_status st_sphere(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
 }
 
 /* File name without directory and extension, for "objname/mtlname". */
-static void base_name(const tgi_token *path, char out[TG_NAME_MAX])
+static void base_name(const tgi_token *path, char out[TG_MAX_NAME + 1])
 {
     size_t s = 0, e = path->n, i, n;
     for (i = 0; i < path->n; i++)
         if (path->s[i] == '/' || path->s[i] == '\\') s = i + 1;
     for (i = path->n; i > s; i--)
         if (path->s[i - 1] == '.') { e = i - 1; break; }
-    n = e - s < TG_NAME_MAX - 1 ? e - s : TG_NAME_MAX - 1;
+    n = e - s < TG_MAX_NAME ? e - s : TG_MAX_NAME;
     memcpy(out, path->s + s, n);
     out[n] = '\0';
 }
@@ -815,7 +625,7 @@ static tg_status st_mesh(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     key_val v[MAX_SPEC];
     tgi_xform xf;
     tg_status st;
-    char objname[TG_NAME_MAX];
+    char objname[TG_MAX_NAME + 1];
     int mat;
     if ((st = parse_keys(p, lx, kw, spec, NSPEC(spec), v))) return st;
     xf.translate = v[2].present ? kv_vec3(&v[2]) : tg_v3(0, 0, 0);
@@ -858,12 +668,8 @@ static tg_status st_object_key(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw
         if ((st = kv_dir(p, lx, &v[3], "rotate", &key.axis))) return st;
         key.angle = tgi_deg_to_rad(v[3].v[3]);
     }
-    if (p->object_keys >= TG_SCENE_MAX_KEYS) {
-        fail(p, lx, kw->col, "too many object keys (the limit is ", NULL, NULL);
-        tgi_error_append_int(p->err, TG_SCENE_MAX_KEYS);
-        tgi_error_append(p->err, ")");
-        return TG_ERR_INPUT;
-    }
+    if (p->object_keys >= TG_MAX_KEYS)
+        return limit(p, lx, kw->col, "object_key count", 0, TG_MAX_KEYS, p->object_keys + 1);
     if (p->fill) {
         obj = find_object(p, &v[0].tok[0]);
         if (obj < 0)
@@ -942,12 +748,8 @@ static tg_status st_light(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
             return st;
         l.angle = tgi_deg_to_rad(v[5].v[0]);
     }
-    if (p->lights >= TG_SCENE_MAX_LIGHTS) {
-        fail(p, lx, kw->col, "too many lights (the limit is ", NULL, NULL);
-        tgi_error_append_int(p->err, TG_SCENE_MAX_LIGHTS);
-        tgi_error_append(p->err, ")");
-        return TG_ERR_INPUT;
-    }
+    if (p->lights >= TG_MAX_LIGHTS)
+        return limit(p, lx, kw->col, "light count", 0, TG_MAX_LIGHTS, p->lights + 1);
     if (p->fill) p->scene->lights[p->lights] = l;
     p->lights++;
     return TG_OK;
@@ -1015,15 +817,12 @@ static tg_status st_env(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     return TG_OK;
 }
 
-static tg_status int_range(tgi_parser *p, const tgi_lexer *lx, const key_val *kv,
-                           const char *key, long lo, long hi)
+/* An integer value within a limit of tinygi.h's block. */
+static tg_status int_limit(tgi_parser *p, const tgi_lexer *lx, const key_val *kv,
+                           const char *name, long lo, long hi)
 {
     if (kv->i >= lo && kv->i <= hi) return TG_OK;
-    fail(p, lx, kv->tok[0].col, "'", key, "' must be an integer from ");
-    tgi_error_append_int(p->err, lo);
-    tgi_error_append(p->err, " to ");
-    tgi_error_append_int(p->err, hi);
-    return TG_ERR_INPUT;
+    return limit_tok(p, lx, &kv->tok[0], name, lo, hi);
 }
 
 static tg_status st_gi(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
@@ -1040,20 +839,20 @@ static tg_status st_gi(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     gi.slices = gi.samples = 0;
     gi.bounces = -1;
     if (v[0].present) {
-        if ((st = check_range(p, lx, &v[0], "radius", 0, TG_REAL_MAX, 0, "0 or more (world units)")))
-            return st;
+        if (v[0].v[0] < 0 || v[0].v[0] > TG_R(TG_MAX_RADIUS))
+            return limit_tok(p, lx, &v[0].tok[0], "gi radius", 0, TG_MAX_RADIUS);
         gi.radius = v[0].v[0];
     }
     if (v[1].present) {
-        if ((st = int_range(p, lx, &v[1], "slices", 1, TG_GI_SLICES_MAX))) return st;
+        if ((st = int_limit(p, lx, &v[1], "gi slices", 1, TG_MAX_SLICES))) return st;
         gi.slices = (int)v[1].i;
     }
     if (v[2].present) {
-        if ((st = int_range(p, lx, &v[2], "samples", 1, TG_GI_SAMPLES_MAX))) return st;
+        if ((st = int_limit(p, lx, &v[2], "gi samples", 1, TG_MAX_SAMPLES))) return st;
         gi.samples = (int)v[2].i;
     }
     if (v[3].present) {
-        if ((st = int_range(p, lx, &v[3], "bounces", 0, TG_GI_BOUNCES_MAX))) return st;
+        if ((st = int_limit(p, lx, &v[3], "gi bounces", 0, TG_MAX_BOUNCES))) return st;
         gi.bounces = (int)v[3].i;
     }
     p->have_gi = 1;
@@ -1154,9 +953,9 @@ static tg_status run_pass(tgi_parser *p, const char *text, size_t size)
 static void scene_defaults(tg_scene *s)
 {
     s->camera.up = tg_v3(0, TG_ONE, 0);
-    s->camera.fov = tgi_deg_to_rad(TG_R(60.0f));
-    s->camera.znear = TG_R(0.05f);
-    s->camera.zfar = TG_R(1000.0f);
+    s->camera.fov = tgi_deg_to_rad(TG_R(TG_DEFAULT_FOV));
+    s->camera.znear = TG_R(TG_DEFAULT_NEAR);
+    s->camera.zfar = TG_R(TG_DEFAULT_FAR);
     s->env.type = TG_ENV_NONE;
     s->gi.radius = TG_R(-1.0f);
     s->gi.slices = s->gi.samples = 0;
@@ -1187,12 +986,12 @@ static void finish_scene(tgi_parser *p)
     }
 }
 
-/* Offsets of one arena carve, as tg_arena_alloc will place them. */
-static int plan_add(size_t *at, size_t count, size_t elem)
+/* Offsets of one arena carve, as tg_arena_alloc will place them (aligned
+ * addresses: the padding depends on where the arena's memory starts). */
+static int plan_add(const tg_arena *a, size_t *at, size_t count, size_t elem)
 {
     size_t bytes, start;
-    if (tg_size_mul(count, elem, &bytes) || tg_size_add(*at, 15, &start)) return 1;
-    start &= ~(size_t)15;
+    if (tg_size_mul(count, elem, &bytes) || tg_size_add(*at, tgi_arena_pad(a->base, *at), &start)) return 1;
     return tg_size_add(start, bytes, at);
 }
 
@@ -1213,28 +1012,33 @@ tg_status tg_scene_parse(const char *text, size_t size, const char *filename,
     p.io = io;
     p.err = err;
     if (!arena || !scene || (!text && size)) return fail_runtime(&p, "tg_scene_parse: missing argument");
+    if (size > (size_t)TG_MAX_FILE_BYTES) {
+        char got[24];
+        return tgi_limit_fail(err, p.file, 0, 0, "scene size in bytes", 0, TG_MAX_FILE_BYTES,
+                              tgi_number_text(size, got));
+    }
 
     /* pass 1: validate and count */
     if ((st = run_pass(&p, text, size))) return st;
 
     /* the arena: the scene's arrays, then scratch released at the end */
-    p.material_cap = p.materials + (p.usemtl_bound < TG_SCENE_MAX_MATERIALS ? p.usemtl_bound : TG_SCENE_MAX_MATERIALS);
-    if (p.material_cap > TG_SCENE_MAX_MATERIALS) p.material_cap = TG_SCENE_MAX_MATERIALS;
+    p.material_cap = p.materials + (p.usemtl_bound < TG_MAX_MATERIALS ? p.usemtl_bound : TG_MAX_MATERIALS);
+    if (p.material_cap > TG_MAX_MATERIALS) p.material_cap = TG_MAX_MATERIALS;
     at = used0;
     bad |= tg_size_mul(p.tris, 3, &tris3);
-    bad |= plan_add(&at, 1, sizeof(tg_scene));
-    bad |= plan_add(&at, p.material_cap, sizeof(tgi_material));
-    bad |= plan_add(&at, p.objects, sizeof(tgi_object));
-    bad |= plan_add(&at, p.object_keys, sizeof(tgi_key));
-    bad |= plan_add(&at, p.camera_keys, sizeof(tgi_camera_key));
-    bad |= plan_add(&at, tris3, sizeof(tg_vec3));
-    bad |= plan_add(&at, tris3, sizeof(tg_vec3));
-    bad |= plan_add(&at, p.tris, sizeof(uint16_t));
-    bad |= plan_add(&at, p.tris, sizeof(uint16_t));
-    bad |= plan_add(&at, p.lights, sizeof(tgi_light));
+    bad |= plan_add(arena, &at, 1, sizeof(tg_scene));
+    bad |= plan_add(arena, &at, p.material_cap, sizeof(tgi_material));
+    bad |= plan_add(arena, &at, p.objects, sizeof(tgi_object));
+    bad |= plan_add(arena, &at, p.object_keys, sizeof(tgi_key));
+    bad |= plan_add(arena, &at, p.camera_keys, sizeof(tgi_camera_key));
+    bad |= plan_add(arena, &at, tris3, sizeof(tg_vec3));
+    bad |= plan_add(arena, &at, tris3, sizeof(tg_vec3));
+    bad |= plan_add(arena, &at, p.tris, sizeof(uint16_t));
+    bad |= plan_add(arena, &at, p.tris, sizeof(uint16_t));
+    bad |= plan_add(arena, &at, p.lights, sizeof(tgi_light));
     perm_end = at;
-    bad |= plan_add(&at, p.object_keys, sizeof(uint16_t));
-    bad |= plan_add(&at, p.obj_scratch, sizeof(tg_vec3));
+    bad |= plan_add(arena, &at, p.object_keys, sizeof(uint16_t));
+    bad |= plan_add(arena, &at, p.obj_scratch, sizeof(tg_vec3));
     (void)perm_end;
     if (bad || at > arena->size) {
         tgi_error_set(err, TG_ERR_MEMORY, p.file, 0, 0, "the arena is too small for the scene");

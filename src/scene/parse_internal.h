@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * parse_internal.h - what the scene parser (parse.c) and the OBJ/MTL loader
- * (obj.c) share: the limits, the line lexer, and the parser state that both
- * passes run over.
+ * (obj.c) share: the parser state that both passes run over, and the
+ * tables both add to (the lexer is lex.h; the limits are tinygi.h's).
  *
  * The parse runs the same code twice.  Pass 1 (p->fill == 0) validates the
  * text and every OBJ/MTL file and counts what the scene needs; pass 2
@@ -13,57 +13,8 @@
 #define TG_PARSE_INTERNAL_H
 
 #include "scene.h"
+#include "lex.h"
 #include "../core/error.h"
-
-/* Limits (documented in format.md). */
-#define TG_SCENE_MAX_TRIS 4000000
-#define TG_SCENE_MAX_MATERIALS 1024
-#define TG_SCENE_MAX_OBJECTS 65535
-#define TG_SCENE_MAX_LIGHTS 64
-#define TG_SCENE_MAX_KEYS 4096          /* camera keys; object keys likewise */
-#define TG_SPHERE_SEG_MIN 4
-#define TG_SPHERE_SEG_MAX 256
-#define TG_SPHERE_SEG_DEFAULT 24
-#define TG_PATH_MAX 256                 /* resolved mesh / MTL path, bytes incl. NUL */
-#define TG_OBJ_MAX_VERTS 4000000        /* v, vn and vt lines each */
-#define TG_OBJ_MAX_MTLLIB 8             /* mtllib files named per OBJ */
-#define TG_GI_SLICES_MAX 64
-#define TG_GI_SAMPLES_MAX 256
-#define TG_GI_BOUNCES_MAX 100
-
-/* ---- lexing: one line at a time, tokens split by blanks ---- */
-typedef struct tgi_token {
-    const char *s;
-    size_t n;
-    int col;                            /* 1-based byte column */
-} tgi_token;
-
-typedef struct tgi_lexer {
-    const char *text, *end;             /* the whole input */
-    const char *next;                   /* start of the next line */
-    const char *line, *line_end;        /* the current line (no newline) */
-    const char *cur;                    /* cursor within the line */
-    int lineno;                         /* 1-based */
-    const char *file;                   /* name used in messages */
-} tgi_lexer;
-
-void tgi_lex_init(tgi_lexer *lx, const char *text, size_t size, const char *file);
-/* Advance to the next line; 0 at the end of input.  Rejects NUL bytes and
- * over-long lines (returns -1 with the error set). */
-int tgi_lex_line(tgi_lexer *lx, tg_error *err);
-/* Next token on the line ('#' ends it); 0 at the end of the line. */
-int tgi_lex_token(tgi_lexer *lx, tgi_token *t);
-int tgi_lex_peek(tgi_lexer *lx, tgi_token *t);
-/* Column just past the last character of the line (for "missing" errors). */
-int tgi_lex_eol_col(const tgi_lexer *lx);
-/* The rest of the line trimmed (without a comment), as a token. */
-int tgi_lex_rest(tgi_lexer *lx, tgi_token *t);
-int tgi_tok_is(const tgi_token *t, const char *word);
-
-/* Whole token as a number: 0 ok, 1 not a number, 2 out of range. */
-int tgi_tok_real(const tgi_token *t, tg_real *out);
-/* Whole token as a decimal integer (optional sign): 0 ok, 1 not, 2 range. */
-int tgi_tok_int(const tgi_token *t, long *out);
 
 /* ---- the parser state ---- */
 typedef struct tgi_parser {
@@ -83,11 +34,6 @@ typedef struct tgi_parser {
     int have_camera, have_env, have_gi, have_effects;
 } tgi_parser;
 
-/* A token quoted for messages (at most 40 bytes, then "..."). */
-const char *tgi_tok_str(const tgi_token *t, char buf[48]);
-/* Whether a token equals a NUL-terminated name. */
-int tgi_tok_eq_name(const tgi_token *t, const char *name);
-
 /* Set an input error at (file, line, col): message built from up to three
  * pieces (NULL pieces are skipped).  Returns TG_ERR_INPUT. */
 tg_status tgi_parse_fail(tgi_parser *p, const char *file, int line, int col,
@@ -104,12 +50,6 @@ tg_status tgi_parse_emit_tri(tgi_parser *p, const tgi_lexer *lx, int col,
 /* Count (pass 1) or append (pass 2) a material; *index gets its index. */
 tg_status tgi_parse_add_material(tgi_parser *p, const tgi_lexer *lx, int col,
                                 const tgi_material *m, int *index);
-/* Unit vector (exact for axis-aligned ones); zero when too short. */
-tg_vec3 tgi_unit(tg_vec3 v);
-/* Degrees to radians, precise in Q16.16 too. */
-tg_real tgi_deg_to_rad(tg_real deg);
-/* Face normal of a triangle, robust in fixed point; 0 if degenerate. */
-int tgi_face_normal(tg_vec3 a, tg_vec3 b, tg_vec3 c, tg_vec3 *n);
 
 /* A rigid mesh transform: p' = R (s p) + t. */
 typedef struct tgi_xform {
@@ -123,8 +63,5 @@ typedef struct tgi_xform {
  * prefixes usemtl material names ("objname/mtlname"). */
 tg_status tgi_obj_mesh(tgi_parser *p, const tgi_lexer *lx, const tgi_token *path_tok,
                       const tgi_xform *xf, int material, const char *objname);
-
-/* Join dir(base) and rel into out (size TG_PATH_MAX); 0 ok, 1 too long. */
-int tgi_path_join(const char *base, const char *rel, size_t rel_n, char *out);
 
 #endif

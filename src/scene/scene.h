@@ -14,17 +14,7 @@
 
 #include "../tinygi.h"
 #include "../core/vec.h"
-
-#define TG_NAME_MAX 32          /* names are at most 31 bytes */
-#define TG_LINE_MAX 4096        /* longest scene/OBJ line accepted */
-
-typedef struct tgi_material {
-    char name[TG_NAME_MAX];
-    tg_vec3 albedo;             /* linear RGB reflectance, each in [0, 1] */
-    tg_real f0;                 /* Fresnel reflectance at normal incidence, [0, 1] */
-    tg_vec3 emissive;           /* linear RGB radiance, >= 0 */
-    int twosided;               /* not back-face culled; normal flips to face the viewer */
-} tgi_material;
+#include "../core/material.h"
 
 typedef struct tgi_key {         /* object_key: rigid transform at time t */
     tg_real t;
@@ -34,7 +24,7 @@ typedef struct tgi_key {         /* object_key: rigid transform at time t */
 } tgi_key;
 
 typedef struct tgi_object {
-    char name[TG_NAME_MAX];     /* "" when unnamed */
+    char name[TG_MAX_NAME + 1]; /* "" when unnamed */
     int first_tri, tri_count;
     int first_key, key_count;   /* into scene->object_keys, sorted by t */
 } tgi_object;

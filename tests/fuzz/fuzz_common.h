@@ -7,9 +7,10 @@
  *   fuzz_scene:  SCENE [~~~ OBJ [~~~ MTL]]
  *   fuzz_obj:    OBJ [~~~ MTL]  (under a fixed scene that loads it as a mesh)
  * The tg_io serves the OBJ part for any path ending in ".obj" and the MTL
- * part for anything else.  A scene that parses is planned and rendered at a
- * tiny size, and every output must be finite (abort otherwise), so the
- * fuzzer hunts NaNs and wraps as well as memory errors.
+ * part (or an empty file when there is none) for anything else.  A scene
+ * that parses is planned and rendered at a tiny size, and every output must
+ * be finite (abort otherwise), so the fuzzer hunts NaNs and wraps as well as
+ * memory errors.
  */
 #ifndef TG_FUZZ_COMMON_H
 #define TG_FUZZ_COMMON_H
@@ -27,16 +28,18 @@ typedef struct fuzz_files {
     size_t obj_n, mtl_n;
 } fuzz_files;
 
-static int fuzz_read(void *user, const char *path, const char **data, size_t *size)
+static int fuzz_read(void *user, const char *path, const char **data, size_t *size,
+                     const char **reason)
 {
+    (void)reason;
     const fuzz_files *f = (const fuzz_files *)user;
+    (void)reason;
     size_t n = strlen(path);
     if (n >= 4 && memcmp(path + n - 4, ".obj", 4) == 0) {
         if (!f->obj) return 1;
         *data = f->obj; *size = f->obj_n;
-    } else {
-        if (!f->mtl) return 1;
-        *data = f->mtl; *size = f->mtl_n;
+    } else { /* no MTL part: an empty MTL, so an mtllib line does not end the input */
+        *data = f->mtl ? f->mtl : ""; *size = f->mtl ? f->mtl_n : 0;
     }
     return 0;
 }
