@@ -61,7 +61,7 @@ static void run_frame_pass(tg_frame *f, const tgi_pass *p, int band)
     for (y1 = n; y1 > 0; y1 -= band) p->run_rows(f, y1 > band ? y1 - band : 0, y1);
 }
 
-tg_status tgi_frame_render_bands(tg_frame *f, int index, int band, tg_error *err)
+tg_status tg_frame_render(tg_frame *f, int index, tg_error *err)
 {
     int k = 0, end, j;
     tgi_error_clear(err);
@@ -74,12 +74,12 @@ tg_status tgi_frame_render_bands(tg_frame *f, int index, int band, tg_error *err
     if (f->bounces < 1) f->bounces = 1;
     while (k < f->pass_count) {
         if (!(tgi_passes[f->pass_rows[k]].when & TGI_BOUNCE)) {
-            run_frame_pass(f, &tgi_passes[f->pass_rows[k++]], band);
+            run_frame_pass(f, &tgi_passes[f->pass_rows[k++]], f->band);
             continue;
         }
         for (end = k; end < f->pass_count && (tgi_passes[f->pass_rows[end]].when & TGI_BOUNCE); end++) {}
         for (f->bounce = 0; f->bounce < f->bounces; f->bounce++)
-            for (j = k; j < end; j++) run_frame_pass(f, &tgi_passes[f->pass_rows[j]], band);
+            for (j = k; j < end; j++) run_frame_pass(f, &tgi_passes[f->pass_rows[j]], f->band);
         k = end;
     }
     if (f->history.r) f->has_history = 1;
@@ -87,7 +87,11 @@ tg_status tgi_frame_render_bands(tg_frame *f, int index, int band, tg_error *err
     return TG_OK;
 }
 
-tg_status tg_frame_render(tg_frame *f, int index, tg_error *err)
+tg_status tgi_frame_render_bands(tg_frame *f, int index, int band, tg_error *err)
 {
-    return tgi_frame_render_bands(f, index, 0, err);
+    tg_status s;
+    f->band = band;
+    s = tg_frame_render(f, index, err);
+    f->band = 0;
+    return s;
 }

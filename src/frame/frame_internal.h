@@ -43,6 +43,7 @@ struct tg_frame {
     int index;                     /* the frame being rendered */
     int bounce, bounces;           /* the kernel iteration running, of how many */
     int has_history;               /* the previous frame's radiance is valid */
+    int band;                      /* rows per call of a row-parallel pass; 0: all at once */
 
     tgi_view view, prev_view;
     tg_real time, prev_time;
@@ -135,8 +136,8 @@ extern const int tgi_pass_count;
 
 /* Rows a pass runs over on this frame (0 for a serial step). */
 int tgi_pass_row_count(const tg_frame *f, const tgi_pass *p);
-/* Render frame `index`, each row-parallel pass in bands of `band` rows,
- * last band first (0: all rows in one call).  tg_frame_render is band 0. */
+/* Render frame `index` with each row-parallel pass in bands of `band` rows,
+ * last band first (0: all rows in one call, as tg_frame_render does). */
 tg_status tgi_frame_render_bands(tg_frame *f, int index, int band, tg_error *err);
 
 /* Lay the frame's buffers out (layout.c): with arena == NULL only measure
