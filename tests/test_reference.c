@@ -129,7 +129,7 @@ TEST(prepared_triangle_scales)
     static const float scales[] = { 0.01f, 1.0f, 400.0f };
     int s;
     for (s = 0; s < 3; s++) {
-        double k = scales[s];
+        double k = (double)scales[s];
         tg_vec3 v[3] = { tg_v3(0, 0, 0), tg_v3(tg_from_float((float)k), 0, 0), tg_v3(0, tg_from_float((float)k), 0) };
         tgi_bvh_tri tr;
         tg_real t, u, w;

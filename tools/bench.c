@@ -210,7 +210,7 @@ static double scene_radius(tg_scene *s)
     tg_error err;
     tg_request q = base_request(TG_TECH_HBIL, 0, 0, -1, AOVBIT(TG_AOV_AO));
     if (tg_plan_make(&p, s, &q, &err) != TG_OK) die("plan", err.message);
-    return tg_to_float(p.request.radius);
+    return (double)tg_to_float(p.request.radius);
 }
 
 static int load_reference(const char *path, result *r, int n)
@@ -1132,7 +1132,7 @@ int main(int argc, char **argv)
 {
     int i;
     if (argc < 2) die("usage: bench run|report [--size WxH] [--runs N] [--out DIR] [--ref-samples N] [--scenes a,b]", NULL);
-    for (i = 2; i < argc; i++) {
+    for (i = 2; i < argc; i += 2) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!v) die("option needs a value", a);
         if (!strcmp(a, "--size")) { if (sscanf(v, "%dx%d", &opt_w, &opt_h) != 2 || opt_w < 8 || opt_h < 8 || opt_w > 4096 || opt_h > 4096) die("bad size", v); }
@@ -1141,7 +1141,6 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--ref-samples")) { opt_ref_samples = atoi(v); if (opt_ref_samples < 17 || opt_ref_samples > 256) die("ref-samples must be 17..256", v); }
         else if (!strcmp(a, "--scenes")) snprintf(opt_scenes, sizeof opt_scenes, "%s", v);
         else die("unknown option", a);
-        i++;
     }
     if (!strcmp(argv[1], "run")) return cmd_run();
     if (!strcmp(argv[1], "report")) return cmd_report();
