@@ -477,11 +477,11 @@ TEST(map_bytes_are_checked)
     tgi_shadow_map sm;
     static const int bad[] = { -1, 0, 1, TG_MIN_SHADOW_MAP - 1, TG_MAX_SHADOW_MAP + 1, 13378, 65536, 1518500250, INT32_MAX };
     size_t k;
-    CHECK(tgi_shadow_map_bytes(&pt, 512) == 6u * 512 * 512 * sizeof(tg_real), "point 512: %zu", tgi_shadow_map_bytes(&pt, 512));
-    CHECK(tgi_shadow_map_bytes(&dl, 512) == 512u * 512 * sizeof(tg_real), "directional 512");
+    CHECK(tgi_shadow_map_bytes(&pt, 512) == 6u * 512 * 512 * 2, "point 512 (16 bits a texel): %zu", tgi_shadow_map_bytes(&pt, 512));
+    CHECK(tgi_shadow_map_bytes(&dl, 512) == 512u * 512 * 2, "directional 512");
     CHECK(tgi_shadow_map_bytes(&pt, TG_MIN_SHADOW_MAP) > 0 && tgi_shadow_map_bytes(&pt, TG_MAX_SHADOW_MAP) > 0,
           "the limits themselves are allowed");
-    /* the largest map fits a 32-bit size_t: 6 * 8192^2 * 4 < 2^32 */
+    /* the largest map fits a 32-bit size_t: 6 * 8192^2 * 2 < 2^32 */
     CHECK((double)tgi_shadow_map_bytes(&pt, TG_MAX_SHADOW_MAP) < 4294967296.0, "largest map %zu bytes",
           tgi_shadow_map_bytes(&pt, TG_MAX_SHADOW_MAP));
     for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
