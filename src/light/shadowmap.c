@@ -21,8 +21,7 @@
 #define RECEIVER_SNAP TG_R(0.125f)
 #define RECEIVER_ULPS 8
 
-/* A right-handed light basis: forward given, right = forward x helper, up = right x forward. */
-static void light_basis(tg_vec3 forward, tg_vec3 *right, tg_vec3 *up)
+void tgi_shadow_basis(tg_vec3 forward, tg_vec3 *right, tg_vec3 *up)
 {
     tg_vec3 helper = tg_abs(forward.y) < TG_R(0.99f) ? tg_v3(0, TG_ONE, 0) : tg_v3(TG_ONE, 0, 0);
     *right = tgi_v3_normalize_or(tgi_v3_cross(forward, helper), tg_v3(TG_ONE, 0, 0));
@@ -64,9 +63,7 @@ void tgi_shadow_need_init(tgi_shadow_need *nd, const tgi_light *l)
 void tgi_shadow_need_all(tgi_shadow_need *nd)
 {
     int f;
-    nd->all = 1;
-    nd->window_set = 0;
-    for (f = 0; f < nd->faces; f++) nd->seen[f] = 1;
+    for (f = 0; f < nd->faces; f++) nd->seen[f] = 1, nd->window_set[f] = 0;
 }
 
 /* ceil(density) + the border on each side, within the limits (density may
@@ -89,8 +86,8 @@ void tgi_shadow_need_finish(tgi_shadow_need *nd, int size_override)
         tg_real d = nd->density[f];
         if (!nd->seen[f]) { nd->size[f] = 0; continue; }
         if (size_override > 0) { nd->size[f] = size_override; continue; }
-        if (nd->window_set) /* directional: per world unit, across the receivers' square */
-            d = tg_mul(d, tg_max(tg_sub(nd->window[2], nd->window[0]), tg_sub(nd->window[3], nd->window[1])));
+        if (nd->window_set[f]) /* texels per unit, across the window's side */
+            d = tg_mul(d, tg_max(tg_sub(nd->window[f][2], nd->window[f][0]), tg_sub(nd->window[f][3], nd->window[f][1])));
         nd->size[f] = face_size(d);
     }
 }
@@ -150,7 +147,7 @@ static void setup_ortho(tgi_shadow_map *sm, tg_vec3 dir, tg_vec3 lo, tg_vec3 hi)
     tg_real minx = TG_REAL_MAX, maxx = TG_REAL_MIN, miny = TG_REAL_MAX, maxy = TG_REAL_MIN;
     tg_real minz = TG_REAL_MAX, maxz = TG_REAL_MIN, half, scale, margin;
     int k;
-    light_basis(f, &r, &u);
+    tgi_shadow_basis(f, &r, &u);
     for (k = 0; k < 8; k++) {
         tg_vec3 c = box_corner(lo, hi, k);
         tg_real x = tgi_v3_dot(c, r), y = tgi_v3_dot(c, u), z = tgi_v3_dot(c, f);
@@ -158,9 +155,9 @@ static void setup_ortho(tgi_shadow_map *sm, tg_vec3 dir, tg_vec3 lo, tg_vec3 hi)
         miny = tg_min(miny, y); maxy = tg_max(maxy, y);
         minz = tg_min(minz, z); maxz = tg_max(maxz, z);
     }
-    if (sm->need.window_set) {  /* across the light: the receivers' square only */
-        minx = sm->need.window[0]; miny = sm->need.window[1];
-        maxx = sm->need.window[2]; maxy = sm->need.window[3];
+    if (sm->need.window_set[0]) {  /* across the light: the receivers' window only */
+        minx = sm->need.window[0][0]; miny = sm->need.window[0][1];
+        maxx = sm->need.window[0][2]; maxy = sm->need.window[0][3];
     }
     half = tg_mul(tg_max(tg_sub(maxx, minx), tg_sub(maxy, miny)), TG_R(0.5f));
     half = tg_max(half, TG_R(0.01f));
@@ -186,26 +183,40 @@ static void setup_ortho(tgi_shadow_map *sm, tg_vec3 dir, tg_vec3 lo, tg_vec3 hi)
     set_row(&fc->world_to_clip, 3, tg_v3(0, 0, 0), TG_ONE);
 }
 
-/* Perspective face: clip = (x f, y f, a z + b, z) in the light's view space;
- * nominal half angle tan_nominal, widened by the face's border. */
+/* Perspective face: clip = ((x - cx z) f, (y - cy z) f, a z + b, z) in the
+ * light's view space, f = 1 / the window's half side, widened by the
+ * face's border; the window (centre cx, cy, half side h in x/z, y/z) is the
+ * need's, or the whole nominal face. */
 static void setup_face(tgi_shadow_map *sm, int face, tg_vec3 forward, tg_real tan_nominal,
                        tg_real znear, tg_real zfar)
 {
     tgi_shadow_face *fc = &sm->face[face];
+    const tgi_shadow_need *nd = &sm->need;
     tg_vec3 r, u, o = sm->origin;
     tgi_mat4 *m = &fc->world_to_clip;
     tg_real depth_range = tg_max(tg_sub(zfar, znear), TG_R(0.001f));
     tg_real a = tg_div(tg_add(zfar, znear), depth_range);
     tg_real b = tg_neg(tg_div(tg_mul(tg_mul(TG_R(2.0f), zfar), znear), depth_range));
-    light_basis(forward, &r, &u);
+    tg_real h = tan_nominal;
+    tg_vec3 rx, uy;
+    fc->center_x = fc->center_y = 0;
+    if (nd->window_set[face]) {
+        const tg_real *w = nd->window[face];
+        fc->center_x = tg_ldexp(tg_add(w[0], w[2]), -1);
+        fc->center_y = tg_ldexp(tg_add(w[1], w[3]), -1);
+        h = tg_max(tg_ldexp(tg_max(tg_sub(w[2], w[0]), tg_sub(w[3], w[1])), -1), TG_R(0.001f));
+    }
+    tgi_shadow_basis(forward, &r, &u);
     fc->right = r; fc->up = u; fc->forward = forward;
-    fc->tan_half = tg_mul(tan_nominal, widening(fc->size));
+    fc->tan_half = tg_mul(h, widening(fc->size));
     fc->focal = tg_div(TG_ONE, fc->tan_half);
     fc->texel_ndc = tg_div(TG_R(2.0f), tg_from_int(fc->size));
     fc->texel_world = tg_div(tg_mul(fc->tan_half, TG_R(2.0f)), tg_from_int(fc->size));
     set_depth_range(fc, sm->depth_bits, znear, zfar);
-    set_row(m, 0, tgi_v3_scale(r, fc->focal), tg_neg(tg_mul(tgi_v3_dot(r, o), fc->focal)));
-    set_row(m, 1, tgi_v3_scale(u, fc->focal), tg_neg(tg_mul(tgi_v3_dot(u, o), fc->focal)));
+    rx = tgi_v3_scale(tgi_v3_sub(r, tgi_v3_scale(forward, fc->center_x)), fc->focal);
+    uy = tgi_v3_scale(tgi_v3_sub(u, tgi_v3_scale(forward, fc->center_y)), fc->focal);
+    set_row(m, 0, rx, tg_neg(tgi_v3_dot(rx, o)));
+    set_row(m, 1, uy, tg_neg(tgi_v3_dot(uy, o)));
     set_row(m, 2, tgi_v3_scale(forward, a), tg_add(tg_neg(tg_mul(tgi_v3_dot(forward, o), a)), b));
     set_row(m, 3, forward, tg_neg(tgi_v3_dot(forward, o)));
 }
@@ -434,8 +445,8 @@ static int prepare_perspective(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, t
     q->num = tgi_v3_dot(n, d);          /* n . (p - light): < 0 when the surface faces it */
     if (q->num >= 0) return 0;
     inv_lz = tg_div(TG_ONE, lz);
-    q->ndc_x = tg_mul(tg_mul(lx, fc->focal), inv_lz);
-    q->ndc_y = tg_mul(tg_mul(ly, fc->focal), inv_lz);
+    q->ndc_x = tg_mul(tg_sub(tg_mul(lx, inv_lz), fc->center_x), fc->focal);
+    q->ndc_y = tg_mul(tg_sub(tg_mul(ly, inv_lz), fc->center_y), fc->focal);
     q->den_c = tg_mul(q->num, inv_lz);  /* n . r at the lookup */
     q->bias = depth_bias(fc, tg_mul(fc->texel_world, lz));
     /* the plane moved toward the light by err, at most half way to it */

@@ -88,17 +88,21 @@ enum { TG_SHADOW_PCF_TENT = 0, TG_SHADOW_PCF_BILINEAR = 1 };
 enum { TG_SHADOW_DEPTH16 = 16, TG_SHADOW_DEPTH32 = 32 };
 
 /* What a light's shadow map needs for the views a request renders
- * (shadowview.c fills it; tgi_shadow_need_finish turns it into sizes). */
+ * (tgi_shadow_map_size_rule fills it, view by view; tgi_shadow_need_finish
+ * turns it into sizes).  The light plane of a face: tan coordinates
+ * (x/z, y/z in the face's basis) for a perspective face, world units in
+ * the light's basis for a directional map. */
 typedef struct tgi_shadow_need {
     int faces;                             /* 1, or 6 for a point light */
-    int all;                               /* 1: every face, whole bounds (no view given) */
     int seen[TG_SHADOW_MAX_FACES];         /* some view's receivers look this face up */
-    tg_real density[TG_SHADOW_MAX_FACES];  /* texels across the nominal face (perspective)
-                                              or per world unit (directional) */
-    int window_set;                        /* directional: the receivers' square is known */
-    tg_real window[4];                     /* directional: x0 y0 x1 y1 in the light basis */
+    tg_real density[TG_SHADOW_MAX_FACES];  /* texels per unit of the light plane the rule asks for */
+    int window_set[TG_SHADOW_MAX_FACES];   /* 1: window[] holds the seen receivers */
+    tg_real window[TG_SHADOW_MAX_FACES][4]; /* x0 y0 x1 y1 on the light plane (else the whole
+                                              face, or the bounds for a directional map) */
     int size[TG_SHADOW_MAX_FACES];         /* after finish: texels per side, 0 = absent */
     int depth_bits;                        /* TG_SHADOW_DEPTH16 (default) or 32 */
+    int objects_move;                      /* set by the caller: the triangles the rule is
+                                              given are not where every frame has them */
 } tgi_shadow_need;
 
 /* One face of a map. */
@@ -109,6 +113,7 @@ typedef struct tgi_shadow_face {
     tgi_mat4 world_to_clip;
     tg_real focal;               /* perspective: NDC per unit of x/z (1 / tan half angle) */
     tg_real tan_half;            /* perspective: 1 / focal */
+    tg_real center_x, center_y;  /* perspective: the window's centre, in x/z and y/z */
     tg_real texel_ndc;           /* 2 / size: one texel in NDC */
     tg_real texel_world;         /* ortho: world units per texel; persp: per texel at depth 1 */
     tg_real depth_lo, depth_range; /* 16-bit: stored depth = lo + range q / 65536 */
@@ -162,8 +167,8 @@ void tgi_shadow_need_init(tgi_shadow_need *nd, const tgi_light *l);
 /* Every face, the whole bounds (when no view is known). */
 void tgi_shadow_need_all(tgi_shadow_need *nd);
 
-/* Sizes from the densities: each seen face gets ceil(density) texels
- * across its nominal extent plus the PCF border, clamped to
+/* Sizes from the densities: each seen face gets ceil(density x its window's
+ * side) texels plus the PCF border on each side, clamped to
  * TG_MIN_SHADOW_MAP..TG_MAX_SHADOW_MAP; an unseen face 0.  A size_override
  * > 0 (--shadow-size) gives every seen face that size instead. */
 void tgi_shadow_need_finish(tgi_shadow_need *nd, int size_override);
@@ -216,9 +221,13 @@ int tgi_shadow_cube_face(tg_vec3 d);
  * cube face, tan(angle) for a spot (clamped to 80 degrees); 0 otherwise. */
 tg_real tgi_shadow_nominal_tan(const tgi_light *l);
 
-/* The light's near distance and the unit axis of face f (perspective maps). */
+/* The light's near distance and the unit axis of face f (perspective maps;
+ * a directional light's direction). */
 tg_real tgi_shadow_near(tg_vec3 origin, tg_vec3 scene_min, tg_vec3 scene_max);
 tg_vec3 tgi_shadow_face_axis(const tgi_light *l, int face);
+
+/* A face's right-handed basis: forward given, right = forward x helper, up = right x forward. */
+void tgi_shadow_basis(tg_vec3 forward, tg_vec3 *right, tg_vec3 *up);
 
 /* Texels of PCF border on each side of a face beyond its nominal extent. */
 #define TG_SHADOW_BORDER 2
