@@ -136,6 +136,21 @@ static void rule_need(tgi_shadow_need *nd, const tgi_light *l, const geo *g, con
     tgi_shadow_need_finish(nd, override);
 }
 
+/* Face f of a finished need: a window of side within [side_lo, side_hi],
+ * `texels` texels across side_lo (within 2%), and the size that density
+ * times the window's side and the PCF border make. */
+static void check_face(const tgi_shadow_need *nd, int f, double side_lo, double side_hi, double texels, const char *what)
+{
+    double side = fmax(dv(nd->window[f][2]) - dv(nd->window[f][0]), dv(nd->window[f][3]) - dv(nd->window[f][1]));
+    double density = dv(nd->density[f]);
+    CHECK(nd->seen[f] && nd->window_set[f], "%s: face %d seen", what, f);
+    CHECK(side >= side_lo && side <= side_hi, "%s: window side %g, want %g..%g", what, side, side_lo, side_hi);
+    CHECK(fabs(density * side_lo - texels) <= 0.02 * texels, "%s: %g texels across, want %g", what, density * side_lo, texels);
+    CHECK(nd->size[f] == (int)ceil(density * side - 1e-3) + 2 * TG_SHADOW_BORDER ||
+          nd->size[f] == (int)ceil(density * side + 1e-3) + 2 * TG_SHADOW_BORDER,
+          "%s: size %d, density %g x side %g + the border", what, nd->size[f], density, side);
+}
+
 /* A camera straight above a 2 x 2 floor that it frames exactly (square
  * image W x W), the sun straight above: the floor fills the image (A_cam =
  * 1) and covers 4 square units of the light plane, so the density is W / 2
@@ -153,18 +168,12 @@ TEST(rule_gives_a_texel_per_pixel_under_the_sun)
         int w = widths[k];
         tgi_view view;
         tgi_shadow_need nd;
-        double side;
+        char what[32];
+        snprintf(what, sizeof what, "sun, W %d", w);
         tgi_view_make(&view, v3(0, 4, 0), v3(0, 0, 0), v3(0, 0, 1), rv(2 * atan(0.25)), TG_R(0.05f), TG_R(100.0f), w, w);
         rule_need(&nd, &sun, g, &view, 0);
-        side = fmax(dv(nd.window[0][2]) - dv(nd.window[0][0]), dv(nd.window[0][3]) - dv(nd.window[0][1]));
-        CHECK(nd.seen[0] && nd.window_set[0], "W %d: the floor is seen", w);
         /* the window: the floor, and the position error's margin (at most 5%) */
-        CHECK(side >= 2 && side <= 2.1, "W %d: window side %g (the floor)", w, side);
-        CHECK(fabs(dv(nd.density[0]) - w / 2.0) <= 0.02 * w / 2.0, "W %d: density %g texels per unit, want %g",
-              w, dv(nd.density[0]), w / 2.0);
-        CHECK(nd.size[0] == (int)ceil(dv(nd.density[0]) * side - 1e-3) + 2 * TG_SHADOW_BORDER ||
-              nd.size[0] == (int)ceil(dv(nd.density[0]) * side + 1e-3) + 2 * TG_SHADOW_BORDER,
-              "W %d: size %d, density %g x side %g + the border", w, nd.size[0], dv(nd.density[0]), side);
+        check_face(&nd, 0, 2, 2.1, w, what);
         CHECK(tgi_shadow_need_bytes(&nd) == (size_t)nd.size[0] * (size_t)nd.size[0] * 2, "W %d: bytes", w);
     }
     free(g);
@@ -188,19 +197,14 @@ TEST(rule_gives_a_texel_per_pixel_from_the_light)
         int w = widths[k];
         tgi_view view;
         tgi_shadow_need nd;
-        double side;
+        char what[32];
+        snprintf(what, sizeof what, "point, W %d", w);
         tgi_view_make(&view, v3(0.3, 2, -0.2), v3(0.3, 0, -0.2), v3(0, 0, 1), rv(80 * DEG), TG_R(0.05f), TG_R(100.0f), w, w);
         rule_need(&nd, &pt, g, &view, 0);
         for (f = 0; f < 6; f++)
             CHECK((f == 3) == (nd.size[f] > 0), "W %d: face %d size %d (only -Y is seen)", w, f, nd.size[f]);
         /* the window: the view, and the position error's margin (at most 5%) */
-        side = fmax(dv(nd.window[3][2]) - dv(nd.window[3][0]), dv(nd.window[3][3]) - dv(nd.window[3][1]));
-        CHECK(side >= 2 * t && side <= 2 * t * 1.05, "W %d: window side %g, want %g", w, side, 2 * t);
-        CHECK(fabs(dv(nd.density[3]) * 2 * t - w) <= 0.02 * w, "W %d: %g texels across the view", w,
-              dv(nd.density[3]) * 2 * t);
-        CHECK(nd.size[3] == (int)ceil(dv(nd.density[3]) * side - 1e-3) + 2 * TG_SHADOW_BORDER ||
-              nd.size[3] == (int)ceil(dv(nd.density[3]) * side + 1e-3) + 2 * TG_SHADOW_BORDER,
-              "W %d: size %d, density %g x side %g + the border", w, nd.size[3], dv(nd.density[3]), side);
+        check_face(&nd, 3, 2 * t, 2 * t * 1.05, w, what);
         CHECK(tgi_shadow_map_bytes_for_view(&pt, &view, v3(-10, 0, -10), v3(10, 0, 10), g->pos, g->n, 0) ==
               (size_t)nd.size[3] * (size_t)nd.size[3] * 2, "bytes for the view: one face of %d", nd.size[3]);
         /* --shadow-size overrides the size of every seen face, and only theirs */

@@ -4,8 +4,8 @@
  * receivers' square and the scene bounds), spot (perspective) and point
  * lights (a seamless cube of up to six wide faces, each sized on its own),
  * rasterized depth-only in 16 bits (tgi_raster_depth16) or 32, and the
- * lookup: receiver-plane depth bias + 3x3 tent PCF, or the caller's ray
- * function.  See shadowmap.h.
+ * lookup: receiver-plane depth bias + 2x2 bilinear or 3x3 tent PCF, or the
+ * caller's ray function.  See shadowmap.h.
  */
 #include <string.h>
 #include "shadowmap.h"
@@ -287,7 +287,7 @@ void tgi_shadow_map_setup_need(tgi_shadow_map *sm, const tgi_light *l, const tgi
     size_t offset[TG_SHADOW_MAX_FACES];
     int f;
     memset(sm, 0, sizeof *sm);
-    sm->filter = TG_SHADOW_PCF_TENT;
+    sm->filter = TG_SHADOW_PCF_BILINEAR;
     sm->light = l;
     if (need_layout(nd, offset) == 0) return;  /* empty: faces = 0 */
     sm->need = *nd;
@@ -457,15 +457,18 @@ static int prepare_perspective(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, t
     return 1;
 }
 
-/* A 16-bit code read back as a depth: lo + range q / 65536. */
-static inline tg_real depth16(const tgi_shadow_face *fc, uint16_t q)
+/* A 16-bit code read back as a depth plus c: c + range q / 65536 (c = the
+ * face's depth_lo, or that plus a bias). */
+static inline tg_real depth16_plus(const tgi_shadow_face *fc, uint16_t q, tg_real c)
 {
 #if TG_FIXED
-    return tg_add(fc->depth_lo, (tg_real)(((int64_t)fc->depth_range * q + 32768) >> 16));
+    return tg_add(c, (tg_real)(((int64_t)fc->depth_range * q + 32768) >> 16));
 #else
-    return fc->depth_lo + (float)q * fc->depth_step;
+    return c + (float)q * fc->depth_step;
 #endif
 }
+
+static inline tg_real depth16(const tgi_shadow_face *fc, uint16_t q) { return depth16_plus(fc, q, fc->depth_lo); }
 
 #define PCF_MAX_TAPS 4
 
@@ -497,6 +500,35 @@ static void fetch_taps(const tgi_shadow_map *sm, const tgi_shadow_face *fc, int 
             }
         }
     }
+}
+
+/* The common case of pcf(): a 16-bit face, the footprint inside it; the
+ * codes compared as read back (the bias folded into the read-back). */
+static tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *q, int i0, int j0, int taps,
+                            const uint16_t *depth, const tg_real *wx, const tg_real *wy,
+                            const tg_real *dx, const tg_real *dy, int perspective)
+{
+    const uint16_t *row = depth + fc->offset + (size_t)j0 * (size_t)fc->size + (size_t)i0;
+    tg_real lit = 0, lo_bias = tg_add(fc->depth_lo, q->bias);
+    int i, j;
+    for (j = 0; j < taps; j++, row += fc->size) {
+        tg_real row_lit = 0;
+        if (perspective) {
+            tg_real den_row = tg_add(q->den_c, dy[j]);
+            for (i = 0; i < taps; i++) {
+                tg_real den = tg_min(tg_add(den_row, dx[i]), q->den_c);
+                if (q->num >= tg_mul(depth16_plus(fc, row[i], lo_bias), den)) row_lit = tg_add(row_lit, wx[i]);
+            }
+        } else {                            /* base + min(dx + dy, 0) <= stored, as two tests */
+            tg_real base_row = tg_add(q->base, dy[j]);
+            for (i = 0; i < taps; i++) {
+                tg_real stored = depth16(fc, row[i]);
+                if (tg_add(base_row, dx[i]) <= stored || q->base <= stored) row_lit = tg_add(row_lit, wx[i]);
+            }
+        }
+        lit = tg_add(lit, tg_mul(row_lit, wy[j]));
+    }
+    return lit;
 }
 
 /* PCF over the prepared lookup: continuous texel position (rows top to
@@ -533,6 +565,9 @@ static tg_real pcf(const tgi_shadow_map *sm, const lookup *q)
         dx[i] = tg_mul(q->slope_x, tg_mul(tg_sub(tg_from_int(i), fx), fc->texel_ndc));
         dy[i] = tg_mul(q->slope_y, tg_neg(tg_mul(tg_sub(tg_from_int(i), fy), fc->texel_ndc)));
     }
+    if (sm->depth_bits == TG_SHADOW_DEPTH16 && i0 >= 0 && j0 >= 0 && i0 + taps <= fc->size && j0 + taps <= fc->size)
+        return tg_saturate(tg_mul(pcf16_inside(fc, q, i0, j0, taps, (const uint16_t *)sm->depth, wx, wy, dx, dy,
+                                               !sm->orthographic), norm));
     fetch_taps(sm, fc, i0, j0, taps, st);
     for (j = 0; j < taps; j++) {
         tg_real row_lit = 0;
