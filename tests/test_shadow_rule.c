@@ -415,12 +415,24 @@ TEST(need_bytes_are_checked)
     CHECK(tgi_shadow_need_bytes(&nd) == 0, "a size below the limit");
     nd.size[4] = TG_MAX_SHADOW_MAP + 1;
     CHECK(tgi_shadow_need_bytes(&nd) == 0, "a size above the limit");
-    /* the rule's densities are clamped to the limits */
+    /* the rule's densities (texels per unit across windows of side 1) are clamped to the limits */
     nd.size[4] = 0;
     nd.density[1] = TG_REAL_MAX; nd.density[4] = 0;
+    nd.window_set[1] = nd.window_set[4] = 1;
+    nd.window[1][0] = nd.window[1][1] = nd.window[4][0] = nd.window[4][1] = 0;
+    nd.window[1][2] = nd.window[1][3] = nd.window[4][2] = nd.window[4][3] = TG_ONE;
     tgi_shadow_need_finish(&nd, 0);
     CHECK(nd.size[1] == TG_MAX_SHADOW_MAP && nd.size[4] == TG_MIN_SHADOW_MAP, "clamped: %d %d", nd.size[1], nd.size[4]);
     CHECK(tgi_shadow_need_bytes(&nd) > 0, "the largest face's bytes fit");
+    /* whole faces (need_all after the rule) take the largest size the rule gave */
+    nd.density[1] = TG_R(50.0f);
+    nd.window_set[1] = 1;
+    nd.window[1][0] = nd.window[1][1] = TG_R(-0.5f); nd.window[1][2] = nd.window[1][3] = TG_R(0.5f);
+    tgi_shadow_need_all(&nd);
+    nd.window_set[1] = 1;
+    tgi_shadow_need_finish(&nd, 0);
+    CHECK(nd.size[1] == 50 + 2 * TG_SHADOW_BORDER, "a windowed face: %d", nd.size[1]);
+    CHECK(nd.size[0] == nd.size[1] && nd.size[5] == nd.size[1], "whole faces as large: %d %d", nd.size[0], nd.size[5]);
 }
 
 TEST(animation_bounds_hold_every_pose)

@@ -81,15 +81,19 @@ static int face_size(tg_real density)
 
 void tgi_shadow_need_finish(tgi_shadow_need *nd, int size_override)
 {
-    int f;
+    int f, largest = TG_MIN_SHADOW_MAP;
     for (f = 0; f < nd->faces; f++) {
-        tg_real d = nd->density[f];
-        if (!nd->seen[f]) { nd->size[f] = 0; continue; }
+        const tg_real *w = nd->window[f];
+        nd->size[f] = 0;
+        if (!nd->seen[f]) continue;
         if (size_override > 0) { nd->size[f] = size_override; continue; }
-        if (nd->window_set[f]) /* texels per unit, across the window's side */
-            d = tg_mul(d, tg_max(tg_sub(nd->window[f][2], nd->window[f][0]), tg_sub(nd->window[f][3], nd->window[f][1])));
-        nd->size[f] = face_size(d);
+        if (!nd->window_set[f]) continue;   /* whole: below */
+        /* texels per unit, across the window's side */
+        nd->size[f] = face_size(tg_mul(nd->density[f], tg_max(tg_sub(w[2], w[0]), tg_sub(w[3], w[1]))));
+        if (nd->size[f] > largest) largest = nd->size[f];
     }
+    for (f = 0; f < nd->faces; f++)     /* whole faces without a size: the largest the rule gave */
+        if (nd->seen[f] && nd->size[f] == 0) nd->size[f] = largest;
 }
 
 size_t tgi_shadow_need_bytes(const tgi_shadow_need *nd)

@@ -57,19 +57,29 @@
  * Memory: the caller gives tgi_shadow_need_bytes() bytes (2-byte aligned
  * for 16-bit maps, tg_real aligned for 32-bit ones).
  *
- * What the plan calls, per light with `shadows` (shadowview.c holds the
+ * What the plan calls, per light with `shadows` (shadowview.h holds the
  * view-dependent functions):
- *   tgi_shadow_need nd;
- *   tgi_shadow_need_init(&nd, light);
- *   for every frame's view v (the camera may move; objects that move: pass
- *   bounds holding every pose, tgi_shadow_animation_bounds):
- *       tgi_shadow_map_size_rule(&nd, light, &v, lo, hi);
+ *   lo, hi = tgi_shadow_animation_bounds(scene, frames)  (the rest bounds
+ *            when nothing moves)
+ *   tgi_shadow_need_init(&nd, light);  nd.objects_move = (objects move);
+ *   for every frame's camera view v (once for a still camera):
+ *       tgi_shadow_map_size_rule(&nd, light, &v, lo, hi, tri_pos, tri_count);
  *   tgi_shadow_need_finish(&nd, request.shadow_map_size);  (0 = by the rule)
- *   bytes = tgi_shadow_need_bytes(&nd);  memory = take(bytes)
- *   tgi_shadow_map_setup_need(&sm, light, &nd, lo, hi, memory);
- *   each frame: tgi_shadow_map_render(&sm, ...) when objects moved (after
- *   tgi_shadow_map_refit(&sm, posed_lo, posed_hi)) or on the first frame;
- *   tgi_direct_rows(..., shadow_maps = &sm, ...).
+ *   map_bytes = tgi_shadow_need_bytes(&nd);
+ *   tgi_shadow_choose(map_bytes, tgi_bvh_bytes(tri_count) or 0 once a BVH
+ *                     is paid for, pixels):
+ *     TG_SHADOW_BY_MAP:  tgi_shadow_map_setup_need(&sm, light, &nd, lo, hi,
+ *                        take(map_bytes)); sm.filter = the request's;
+ *                        frame 0, and every frame whose objects moved
+ *                        (after tgi_shadow_map_refit(&sm, posed lo, hi)):
+ *                        tgi_shadow_map_render(&sm, posed triangles);
+ *     TG_SHADOW_BY_RAYS: tgi_bvh_build over the triangles (again whenever
+ *                        they move), tgi_shadow_rays_setup(&sm, light,
+ *                        tgi_bvh_light_visibility, &bvh);
+ *   tgi_direct_rows(..., shadow_maps = { &sm, ... }, ...) as before.
+ * A technique that looks shadows up at points the camera does not see (the
+ * reference's one-bounce source at its rays' hits) needs every face whole:
+ * tgi_shadow_need_all(&nd) before finish (or shadow rays).
  */
 #ifndef TG_SHADOWMAP_H
 #define TG_SHADOWMAP_H
@@ -168,13 +178,16 @@ void tgi_shadow_map_setup(tgi_shadow_map *sm, const tgi_light *l, int size,
 /* Start a need for light l: no face seen yet, 16-bit storage. */
 void tgi_shadow_need_init(tgi_shadow_need *nd, const tgi_light *l);
 
-/* Every face, the whole bounds (when no view is known). */
+/* Every face, whole (the whole nominal face; a directional map the whole
+ * bounds): when no view is known, or when shadows are looked up where the
+ * camera does not see. */
 void tgi_shadow_need_all(tgi_shadow_need *nd);
 
-/* Sizes from the densities: each seen face gets ceil(density x its window's
- * side) texels plus the PCF border on each side, clamped to
- * TG_MIN_SHADOW_MAP..TG_MAX_SHADOW_MAP; an unseen face 0.  A size_override
- * > 0 (--shadow-size) gives every seen face that size instead. */
+/* Sizes from the densities: each seen face with a window gets
+ * ceil(density x its window's side) texels plus the PCF border on each
+ * side, clamped to TG_MIN_SHADOW_MAP..TG_MAX_SHADOW_MAP; a whole face the
+ * largest of those (at least TG_MIN_SHADOW_MAP); an unseen face 0.  A
+ * size_override > 0 (--shadow-size) gives every seen face that size. */
 void tgi_shadow_need_finish(tgi_shadow_need *nd, int size_override);
 
 /* Bytes of the storage for a finished need; 0 when a size is out of range
