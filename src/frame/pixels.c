@@ -44,44 +44,42 @@ int tgi_pixel_bytes(tg_pixel_format format)
     }
 }
 
+static int little_endian(void)
+{
+    const uint16_t one = 1;
+    return *(const uint8_t *)&one == 1;
+}
+
 /* floor(x / 255) for 0 <= x < 65535. */
 static unsigned div255(unsigned x)
 {
     return (x + 1u + (x >> 8)) >> 8;
 }
 
-/* floor(255 t) for pixel x of row y: the threshold, in 255ths of a level. */
-static unsigned threshold255(int x, int y, int dither)
-{
-    return dither ? ((2u * bayer_index[(y & 3) * 4 + (x & 3)] + 1u) * 255u) >> 5 : 127u;
-}
-
 static void row_565(const uint8_t *rgb, int n, int y, tg_pixel_format format, int dither, uint8_t *dst)
 {
-    int x;
+    unsigned t[4]; /* floor(255 t) of the row's thresholds, by column mod 4 */
+    int x, hi = format != TG_PIXEL_RGB565_BE && little_endian(); /* where the high byte goes */
+    int top = format == TG_PIXEL_BGR565 ? 2 : 0;                   /* the channel in bits 15-11 */
+    for (x = 0; x < 4; x++) t[x] = dither ? ((2u * bayer_index[(y & 3) * 4 + x] + 1u) * 255u) >> 5 : 127u;
     for (x = 0; x < n; x++, rgb += 3, dst += 2) {
-        unsigned t = threshold255(x, y, dither);
-        unsigned r = div255(rgb[0] * 31u + t), g = div255(rgb[1] * 63u + t), b = div255(rgb[2] * 31u + t);
-        uint16_t v = (uint16_t)(format == TG_PIXEL_BGR565 ? b << 11 | g << 5 | r : r << 11 | g << 5 | b);
-        if (format == TG_PIXEL_RGB565_BE) {
-            dst[0] = (uint8_t)(v >> 8);
-            dst[1] = (uint8_t)v;
-        } else {
-            memcpy(dst, &v, 2); /* the machine's byte order */
-        }
+        unsigned high = div255(rgb[top] * 31u + t[x & 3]), g = div255(rgb[1] * 63u + t[x & 3]);
+        unsigned low = div255(rgb[2 - top] * 31u + t[x & 3]);
+        unsigned v = high << 11 | g << 5 | low;
+        dst[hi] = (uint8_t)(v >> 8);
+        dst[hi ^ 1] = (uint8_t)v;
     }
 }
 
-static void row_8888(const uint8_t *rgb, int n, tg_pixel_format format, uint8_t *dst)
+/* Each pixel's red, green and blue bytes to at[0..2] and, with 4 bytes, 255 to at[3]. */
+static void row_bytes(const uint8_t *rgb, int n, int bytes, const uint8_t *at, uint8_t *dst)
 {
     int x;
-    for (x = 0; x < n; x++, rgb += 3, dst += 4) {
-        if (format == TG_PIXEL_XRGB8888) {
-            uint32_t v = 0xFF000000u | (uint32_t)rgb[0] << 16 | (uint32_t)rgb[1] << 8 | rgb[2];
-            memcpy(dst, &v, 4); /* the machine's byte order */
-        } else {
-            dst[0] = rgb[0]; dst[1] = rgb[1]; dst[2] = rgb[2]; dst[3] = 255;
-        }
+    for (x = 0; x < n; x++, rgb += 3, dst += bytes) {
+        dst[at[0]] = rgb[0];
+        dst[at[1]] = rgb[1];
+        dst[at[2]] = rgb[2];
+        if (bytes == 4) dst[at[3]] = 255;
     }
 }
 
@@ -94,16 +92,16 @@ static void row_grey(const uint8_t *rgb, int n, uint8_t *dst)
 
 void tgi_pixels_row(const uint8_t *rgb, int n, int y, tg_pixel_format format, int flags, uint8_t *dst)
 {
-    int x;
+    static const uint8_t bgr[3] = {2, 1, 0}, rgba[4] = {0, 1, 2, 3};
+    static const uint8_t xrgb_le[4] = {2, 1, 0, 3}, xrgb_be[4] = {1, 2, 3, 0}; /* 0xXXRRGGBB stored */
     switch (format) {
     case TG_PIXEL_RGB565: case TG_PIXEL_BGR565: case TG_PIXEL_RGB565_BE:
         row_565(rgb, n, y, format, flags & TG_PIXELS_DITHER, dst);
         break;
     case TG_PIXEL_RGB888: if (dst != rgb) memcpy(dst, rgb, 3 * (size_t)n); break;
-    case TG_PIXEL_BGR888:
-        for (x = 0; x < n; x++) { dst[3 * x] = rgb[3 * x + 2]; dst[3 * x + 1] = rgb[3 * x + 1]; dst[3 * x + 2] = rgb[3 * x]; }
-        break;
-    case TG_PIXEL_XRGB8888: case TG_PIXEL_RGBA8888: row_8888(rgb, n, format, dst); break;
+    case TG_PIXEL_BGR888: row_bytes(rgb, n, 3, bgr, dst); break;
+    case TG_PIXEL_XRGB8888: row_bytes(rgb, n, 4, little_endian() ? xrgb_le : xrgb_be, dst); break;
+    case TG_PIXEL_RGBA8888: row_bytes(rgb, n, 4, rgba, dst); break;
     case TG_PIXEL_GREY8: row_grey(rgb, n, dst); break;
     default: break;
     }
