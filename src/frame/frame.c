@@ -8,9 +8,9 @@
  * (tg_frame_set_parallel: it may split them over threads or cores, any
  * split gives the same output), else in one call on this thread; a serial
  * pass runs once, on this thread.  On a frame without history the bounce
- * loop (the passes marked
- * TGI_BOUNCE) runs `bounces` times, each iteration gathering the radiance
- * the previous one composed (with history, one per frame: HBIL eq. 17).
+ * loop (the passes marked TGI_BOUNCE) runs `bounces` times, each iteration
+ * gathering the radiance the previous one composed (with history, one per
+ * frame: HBIL eq. 17).
  */
 #include <string.h>
 #include "frame_internal.h"
