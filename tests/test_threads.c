@@ -12,6 +12,7 @@
  * `test_threads quick` runs a smaller set (tests/threads_tsan_test.sh runs
  * it under ThreadSanitizer).
  */
+#include <pthread.h>
 #include <stdlib.h>
 #include "frame_fixture.h"
 #include "hosted/threads.h"
@@ -250,6 +251,50 @@ TEST(moving_scene_every_technique_same_bits)
     }
 }
 
+/* Two application threads render at the same time through one pool: the
+ * run that finds the pool busy does its rows itself, and both frames keep
+ * their bits. */
+typedef struct app_render {
+    const tg_parallel *h;
+    tg_request q;
+    unsigned char *bits;
+    size_t bytes;
+} app_render;
+
+static void *render_on_app_thread(void *arg)
+{
+    app_render *a = (app_render *)arg;
+    a->bits = render_with(moving, &a->q, a->h, &a->bytes);
+    return NULL;
+}
+
+TEST(two_frames_share_a_pool)
+{
+    app_render a[2];
+    pthread_t t[2];
+    tg_parallel h;
+    size_t n0[2];
+    unsigned char *ref[2];
+    int i;
+    if (!pools[2]) { CHECK(0, "a pool of %d threads", thread_counts[2]); return; }
+    h = tgp_pool_parallel(pools[2]);
+    for (i = 0; i < 2; i++) {
+        a[i].h = &h;
+        a[i].q = request(W + 8 * i, H, ALL_AOVS);
+        a[i].q.frames = 3;
+        a[i].q.gi_scale = 1 + i;
+        ref[i] = render_with(moving, &a[i].q, NULL, &n0[i]);
+    }
+    for (i = 0; i < 2; i++) CHECK(pthread_create(&t[i], NULL, render_on_app_thread, &a[i]) == 0, "thread %d", i);
+    for (i = 0; i < 2; i++) pthread_join(t[i], NULL);
+    for (i = 0; i < 2; i++) {
+        CHECK(ref[i] && a[i].bits && a[i].bytes == n0[i] && memcmp(ref[i], a[i].bits, n0[i]) == 0,
+              "frame %d rendered beside another through one pool differs", i);
+        free(ref[i]);
+        free(a[i].bits);
+    }
+}
+
 int main(int argc, char **argv)
 {
     int p;
@@ -265,6 +310,7 @@ int main(int argc, char **argv)
     }
     RUN(every_builtin_scene_every_aov_same_bits);
     RUN(moving_scene_every_technique_same_bits);
+    RUN(two_frames_share_a_pool);
     for (p = 0; p < NPOOLS; p++) tgp_pool_destroy(pools[p]);
     return check_summary();
 }
