@@ -106,7 +106,7 @@ static void print_help(FILE *out)
         "  --exposure E      linear exposure before the tonemapper, 0..%d (default 1)\n"
         "  --shadow-size N   shadow map texels per side, %d..%d (default %d)\n"
         "  --threads N       threads that share each pass's rows, 1..%d (default: the\n"
-        "                    machine's processors, here %d); the image is the same\n",
+        "                    processors, here %d); the image is the same for every N\n",
         TG_DEFAULT_WIDTH, TG_DEFAULT_HEIGHT, TG_MAX_IMAGE_SIDE, (long)TG_MAX_IMAGE_PIXELS,
         TG_MAX_FRAMES, TG_MAX_SLICES, TG_DEFAULT_SLICES, TG_MAX_SAMPLES, TG_DEFAULT_SAMPLES,
         TG_MAX_RADIUS, TG_DEFAULT_RADIUS, TG_MAX_BOUNCES, TG_DEFAULT_BOUNCES, TG_MAX_EXPOSURE,
