@@ -54,7 +54,7 @@ WERROR ?= $(if $(filter 1,$(DEV)),-Werror)
 
 # Every compile line, and every hosted link line (platform/bench.mk uses both).
 CFLAGS_ALL  = -std=c99 $(REPRO) $(WARN) $(WERROR) $(CPPFLAGS) $(CFLAGS) $(EXTRA_CFLAGS)
-LDLIBS_HOST = $(LDFLAGS) $(EXTRA_LDFLAGS) $(LDLIBS) -lm
+LDLIBS_HOST = $(LDFLAGS) $(EXTRA_LDFLAGS) $(LDLIBS) -lm -lpthread
 HOSTED_DEFS = -D_POSIX_C_SOURCE=200809L
 FLAGS_STAMP = $(BUILD)/flags
 

@@ -60,12 +60,16 @@ bench-publish:
 #   make bench-count-check   bench_count.py's own check (a fake program with passes)
 #   make bench-frame    whole frames through the CLI, timed: every configuration
 #                       once per round, interleaved, BENCH_ROUNDS rounds, medians
-#                       (min..max) of CPU and wall time, load average at start and end
+#                       (min..max) of CPU and wall time, load average at start and end;
+#                       one thread (BENCH_THREADS="1 2" adds configurations)
+#   make bench-threads  the same for --threads 1 and 2 (BENCH_THREADS), cornell and
+#                       columns (BENCH_FRAME_SCENES), and the wall-time speed-up of
+#                       each thread count over one, paired round by round
 #   make bench-raster   the 49,728-triangle sphere at 320x240 and 1280x720, float and
 #                       Q16.16, timed the same way, Mtri/s, and callgrind's count per
 #                       frame; BENCH_PEERS="CMD;CMD" adds programs that print the same
 #                       line (tools/bench_time.py describes it)
-# Results: $(BUILD)/bench-count/, $(BUILD)/bench-frame/, $(BUILD)/bench-raster/
+# Results: $(BUILD)/bench-count/, $(BUILD)/bench-frame/, $(BUILD)/bench-threads/, $(BUILD)/bench-raster/
 # (count.md/.csv, time.md/.csv).
 
 BENCH_SCENES     ?= cornell columns
@@ -75,11 +79,12 @@ BENCH_FRAMES     ?= 10
 BENCH_FRAME_SIZE ?= 320x240
 BENCH_JOBS       ?= 2
 BENCH_ROUNDS     ?=
-BENCH_FRAME_SCENES ?= all
+BENCH_FRAME_SCENES ?=
+BENCH_THREADS    ?=
 BENCH_RASTER_FRAMES ?= 20
 BENCH_PEERS      ?=
 
-.PHONY: bench-count bench-count-check bench-frame bench-raster bench-valgrind
+.PHONY: bench-count bench-count-check bench-frame bench-threads bench-raster bench-valgrind
 # valgrind (callgrind), installed from Debian packages only if it is missing
 bench-valgrind:
 	@command -v valgrind >/dev/null 2>&1 || { \
@@ -98,10 +103,16 @@ bench-count: all bench-valgrind
 bench-count-check: bench-valgrind
 	python3 tools/bench_count.py --self-test
 
+BENCH_FRAME_RUN = python3 tools/bench_time.py frame --build $(BUILD) --types "$(BENCH_TYPES)" \
+	  --modes "$(BENCH_MODES)" --frames $(BENCH_FRAMES) --size $(BENCH_FRAME_SIZE) \
+	  --rounds $(or $(BENCH_ROUNDS),5)
 bench-frame: all
-	python3 tools/bench_time.py frame --build $(BUILD) --scenes "$(BENCH_FRAME_SCENES)" \
-	  --types "$(BENCH_TYPES)" --modes "$(BENCH_MODES)" --frames $(BENCH_FRAMES) \
-	  --size $(BENCH_FRAME_SIZE) --rounds $(or $(BENCH_ROUNDS),5)
+	$(BENCH_FRAME_RUN) --scenes "$(or $(BENCH_FRAME_SCENES),all)" --threads "$(or $(BENCH_THREADS),1)"
+
+# one thread against two: the pool's speed-up in wall time (platform/hosted/threads.c)
+bench-threads: all
+	$(BENCH_FRAME_RUN) --scenes "$(or $(BENCH_FRAME_SCENES),cornell columns)" \
+	  --threads "$(or $(BENCH_THREADS),1 2)" --out $(BUILD)/bench-threads
 
 bench-raster: $(BUILD)/bench_raster $(BUILD)/bench_raster-fixed bench-valgrind
 	BENCH_PEERS="$(BENCH_PEERS)" python3 tools/bench_time.py raster --build $(BUILD) \

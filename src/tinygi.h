@@ -267,6 +267,7 @@ static inline tg_real tg_sqr(tg_real a) { return tg_mul(a, a); }
 #define tg_frame_aov_row TG_ABI(tg_frame_aov_row)
 #define tg_frame_aov_row8 TG_ABI(tg_frame_aov_row8)
 #define tg_frame_write_pixels TG_ABI(tg_frame_write_pixels)
+#define tg_frame_set_parallel TG_ABI(tg_frame_set_parallel)
 
 /* ---- the core's own transcendentals (real.c; error bounds documented there) ---- */
 #if TG_FIXED
@@ -331,6 +332,10 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #define TG_DEFAULT_SHADOW_MAP 512       /* texels per side */
 #define TG_DEFAULT_WIDTH 320
 #define TG_DEFAULT_HEIGHT 240
+/* -- threads (the hosted platform's pool; the core never creates one) -- */
+#if !defined(TG_MAX_THREADS)
+#define TG_MAX_THREADS 64               /* [policy] threads of a hosted pool (tinygi --threads) */
+#endif
 /* -- scene text and OBJ files -- */
 #define TG_MAX_LINE 4096                /* bytes in a scene or OBJ line, not counting the line end */
 #define TG_MAX_NAME 31                  /* bytes in a material or object name */
@@ -515,6 +520,36 @@ tg_status tg_frame_create(const tg_plan *plan, void *memory, size_t size,
                           tg_frame **frame, tg_error *err);
 /* Render frame `index` (0-based; the animation time comes from it). */
 tg_status tg_frame_render(tg_frame *frame, int index, tg_error *err);
+
+/* ---- threads: the platform runs row ranges, the core creates no thread ----
+ * Most passes of a frame are row-parallel: rows [y0, y1) of the pass's
+ * image are computed from what earlier passes wrote, and no two rows write
+ * the same byte.  tg_frame_render hands each such pass (and each inner row
+ * loop of a pass) to `run`, which must call fn(job, y0, y1) over disjoint
+ * ranges that together cover [0, rows) exactly once, in any order and split,
+ * possibly at the same time on several threads or cores, and return only
+ * when every call has returned (the next pass reads what they wrote, so
+ * `run` must also make their writes visible to the calling thread: a mutex,
+ * a join or a core's FIFO and barrier do).  Serial steps (the camera,
+ * shadow maps, the reprojection scatter, push/pull, the reference's BVH)
+ * run on the thread that called tg_frame_render.
+ *  - Any split gives the same bits as one call over [0, rows).
+ *  - fn touches only the frame's arena and the scene (read only): nothing
+ *    global, no allocation, no I/O; each thread that runs it needs the stack
+ *    a frame needs on the calling thread (see README "Porting").
+ *  - `run` is called from the thread that called tg_frame_render, never
+ *    from inside fn; with rows >= 1.  The simplest correct `run` is
+ *    fn(job, 0, rows).
+ * Do not render two frames that share a hook's threads at the same time
+ * unless `run` allows it. */
+typedef void (*tg_rows_fn)(void *job, int y0, int y1);
+typedef struct tg_parallel {
+    void *user;
+    void (*run)(void *user, tg_rows_fn fn, void *job, int rows);
+} tg_parallel;
+/* Run the frame's row-parallel passes through p (copied; NULL: every pass on
+ * the calling thread, the default).  TG_ERR_INPUT when p->run is NULL. */
+tg_status tg_frame_set_parallel(tg_frame *frame, const tg_parallel *p);
 /* Row y of an AOV as linear values: `out` holds width * tg_aov_channels(aov)
  * values.  y must be in [0, height): another row is refused (TG_ERR_INPUT,
  * `out` all zeros), nothing outside the frame is read. */

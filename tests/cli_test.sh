@@ -17,6 +17,7 @@ cd "$(dirname "$0")/.."
 . tests/shcheck.sh
 BUILD=${BUILD:-build}
 case $BUILD in /*) ;; *) BUILD=$PWD/$BUILD ;; esac
+MAX_THREADS=$(awk '$1 == "#define" && $2 == "TG_MAX_THREADS" { print $3; exit }' src/tinygi.h)
 T=$(mktemp -d "${TMPDIR:-/tmp}/tgi_cli_XXXXXX")
 trap 'chmod -R u+w "$T" 2>/dev/null; rm -rf "$T"' EXIT
 S=$T/s          # scenes and OBJ files
@@ -165,6 +166,9 @@ check_binary() {
     refused "$tag/opt_bounces" "${U}option --bounces" render builtin:cornell --bounces -1
     refused "$tag/opt_exposure" "${U}option --exposure" render builtin:cornell --exposure -2
     refused "$tag/opt_shadow_size" "${U}option --shadow-size" render builtin:cornell --shadow-size 4
+    refused "$tag/opt_threads_zero" "${U}option --threads: must be 1\\.\\.$MAX_THREADS, got 0\$" render builtin:cornell --threads 0
+    refused "$tag/opt_threads_limit" "${U}option --threads: must be 1\\.\\.$MAX_THREADS, got $((MAX_THREADS + 1))\$" \
+        render builtin:cornell --threads $((MAX_THREADS + 1))
     refused "$tag/opt_unknown" "${U}unknown option '--sparkle'" render builtin:cornell --sparkle
     ONCE=1 refused "$tag/opt_missing_value" "${U}option --frames: missing value" render builtin:cornell --frames
     ONCE=1 refused "$tag/opt_extension" "${U}option -o: expected a file name ending in .ppm, .png or .pfm" render builtin:cornell -o "$O/out.jpg"
@@ -280,6 +284,26 @@ check_binary() {
     run render builtin:cornell --size 16x12 -o "$T/no/such/dir/x.ppm"
     expect "$tag/unwritable_output_exit_1" [ "$rc" -eq 1 -a "$(err_lines)" -eq 1 ]
     expect "$tag/unwritable_output_message" grep -q 'error: cannot write' "$T/err"
+    rm -rf "${O:?}"/*
+
+    # ---- --threads: the same bits for every thread count (PFM: every bit of
+    # the linear values), every built-in scene, 3 frames (reprojection), full
+    # and quarter-resolution GI; 40 threads is more than the 24 rows ----
+    for s in $("$BIN" list 2>/dev/null | grep -o 'builtin:[a-z0-9_]*'); do
+        for mode in "" --gi-quarter; do
+            same=1
+            for n in 1 2 3 7 40; do
+                run render "$s" --size 32x24 --frames 3 $mode --aov color --threads $n -o "$O/t$n.pfm" --quiet
+                [ "$rc" -eq 0 ] && cmp -s "$O/t1.pfm" "$O/t$n.pfm" || { same=0; break; }
+            done
+            expect "$tag/threads_same_bits_${s#builtin:}${mode:+_quarter}" [ "$same" -eq 1 ]
+        done
+    done
+    run render builtin:columns --size 32x24 --frames 2 --aov near -o "$O/default.pfm" --quiet
+    run render builtin:columns --size 32x24 --frames 2 --aov near --threads 1 -o "$O/one.pfm" --quiet
+    expect "$tag/threads_default_same_bits" cmp -s "$O/default.pfm" "$O/one.pfm"
+    run --help
+    expect "$tag/threads_in_help" grep -q -- "--threads N .*1\.\.$MAX_THREADS" "$T/out"
     rm -rf "${O:?}"/*
 
     # ---- view (framebuffer): device errors exit 1, usage errors exit 2 ----

@@ -505,7 +505,10 @@ TEST(explain_lists_the_plan)
     teardown(&r);
 }
 
-static unsigned char *render_in_bands(const char *text, const tg_request *q, int band, size_t *bytes)
+/* Every AOV after q->frames frames, each row-parallel pass in bands of
+ * `band` rows (0: one call) or through the hook h (when not NULL). */
+static unsigned char *render_in_bands(const char *text, const tg_request *q, int band,
+                                      const tg_parallel *h, size_t *bytes)
 {
     rendered r;
     tg_error err;
@@ -513,15 +516,35 @@ static unsigned char *render_in_bands(const char *text, const tg_request *q, int
     int f;
     *bytes = 0;
     if (!setup(&r, text, q)) { teardown(&r); return NULL; }
+    if (h) tg_frame_set_parallel(r.frame, h);
     for (f = 0; f < q->frames; f++) tgi_frame_render_bands(r.frame, f, band, &err);
     all = raw_aovs(&r, bytes);
     teardown(&r);
     return all;
 }
 
+/* A platform hook without threads that splits the rows into pieces of 2,
+ * 1, 5 and 3 rows (repeating) and runs the odd pieces in order, then the
+ * even ones last first: any order and split must give the same bits. */
+static void scrambled_run(void *user, tg_rows_fn fn, void *job, int rows)
+{
+    static const int sizes[] = { 2, 1, 5, 3 };
+    int start[TG_MAX_IMAGE_SIDE + 1], n = 0, y = 0, k;
+    (void)user;
+    while (y < rows) {
+        start[n] = y;
+        y += sizes[n % 4];
+        n++;
+    }
+    start[n] = rows;
+    for (k = 1; k < n; k += 2) fn(job, start[k], start[k + 1]);
+    for (k = (n - 1) & ~1; k >= 0; k -= 2) fn(job, start[k], start[k + 1]);
+}
+
 /* Rows of a row-parallel pass are independent: rendered in bands of 1, 3
- * and 7 rows, last band first, every AOV has the bits of one call per pass
- * (what a threaded platform may do). */
+ * and 7 rows, last band first, and through a hook that scrambles pieces of
+ * 1 to 5 rows, every AOV has the bits of one call per pass (what a
+ * threaded platform may do). */
 TEST(any_split_of_the_rows_gives_the_same_frame)
 {
     static const char *moving =
@@ -537,7 +560,10 @@ TEST(any_split_of_the_rows_gives_the_same_frame)
         "env sky 0.4 0.5 0.7 ground 0.2 0.2 0.2\n"
         "gi radius 2\n";
     static const int bands[] = { 1, 3, 7 };
+    tg_parallel scrambled;
     int t, b, cfg;
+    scrambled.user = NULL;
+    scrambled.run = scrambled_run;
     for (cfg = 0; cfg < 6; cfg++) {
         tg_request q = request(29, 21, ALL_AOVS);
         unsigned char *whole, *split;
@@ -550,16 +576,63 @@ TEST(any_split_of_the_rows_gives_the_same_frame)
         if (cfg == 3) q.technique = TG_TECH_SSDO;
         if (cfg == 4) q.technique = TG_TECH_GTAO;
         if (cfg == 5) { q.technique = TG_TECH_REFERENCE; q.samples = 8; q.frames = 2; }
-        whole = render_in_bands(moving, &q, 0, &nw);
+        whole = render_in_bands(moving, &q, 0, NULL, &nw);
         CHECK(whole != NULL, "configuration %d renders", t);
-        for (b = 0; whole && b < 3; b++) {
-            split = render_in_bands(moving, &q, bands[b], &ns);
+        for (b = 0; whole && b < 4; b++) {
+            split = render_in_bands(moving, &q, b < 3 ? bands[b] : 0, b < 3 ? NULL : &scrambled, &ns);
             CHECK(split && ns == nw && memcmp(whole, split, nw) == 0,
-                  "configuration %d in bands of %d rows differs", t, bands[b]);
+                  "configuration %d in bands of %d rows differs (0: scrambled)", t, b < 3 ? bands[b] : 0);
             free(split);
         }
         free(whole);
     }
+}
+
+/* A hook that counts what it is given and runs it on this thread. */
+typedef struct hook_count {
+    int calls;
+    long rows;
+} hook_count;
+
+static void counting_run(void *user, tg_rows_fn fn, void *job, int rows)
+{
+    hook_count *c = (hook_count *)user;
+    c->calls++;
+    c->rows += rows;
+    fn(job, 0, rows);
+}
+
+/* Every row-parallel pass of the plan goes through the platform's hook
+ * (passes with inner row loops may call it more often), and none without
+ * one; tg_frame_set_parallel(NULL) takes the hook away again. */
+TEST(row_passes_go_through_the_hook)
+{
+    rendered r;
+    tg_request q = request(40, 30, ALL_AOVS);
+    tg_error err;
+    hook_count count = { 0, 0 };
+    tg_parallel h;
+    int i, calls = 0;
+    long rows = 0;
+    h.user = &count;
+    h.run = counting_run;
+    if (!setup(&r, tg_builtin_scene("cornell"), &q)) { CHECK(0, "setup: %s", r.msg); return; }
+    for (i = 0; i < r.plan.pass_count; i++) { /* a first frame, one bounce */
+        const tgi_pass *p = &tgi_passes[r.plan.pass_rows[i]];
+        if (p->rows == TGI_SERIAL || (p->when & TGI_ON_HISTORY)) continue;
+        calls++;
+        rows += tgi_pass_row_count(r.frame, p);
+    }
+    CHECK(tg_frame_set_parallel(r.frame, &h) == TG_OK, "the hook is taken");
+    CHECK(tg_frame_render(r.frame, 0, &err) == TG_OK, "renders");
+    CHECK(calls > 5 && count.calls >= calls && count.rows >= rows,
+          "%d calls over %ld rows through the hook, the plan has %d row passes over %ld rows",
+          count.calls, count.rows, calls, rows);
+    count.calls = 0;
+    CHECK(tg_frame_set_parallel(r.frame, NULL) == TG_OK, "the hook is given back");
+    CHECK(tg_frame_render(r.frame, 1, &err) == TG_OK, "renders");
+    CHECK(count.calls == 0, "%d calls after the hook was taken away", count.calls);
+    teardown(&r);
 }
 
 int main(void)
@@ -568,6 +641,7 @@ int main(void)
     RUN(pass_table_is_well_formed);
     RUN(explain_lists_the_plan);
     RUN(any_split_of_the_rows_gives_the_same_frame);
+    RUN(row_passes_go_through_the_hook);
     RUN(no_near_field_without_light_or_albedo);
     RUN(ao_alone_is_identical_and_smaller);
     RUN(open_plane_ao_is_one);

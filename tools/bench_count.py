@@ -11,7 +11,7 @@ same binary, scene and options give the same numbers on every run.
 For every scene x number type x mode it runs
 
     valgrind --tool=callgrind --dump-before=tg_frame_render --dump-after=tg_frame_render
-             BUILD/tinygi[-fixed] render builtin:SCENE --size WxH --frames N [--gi-quarter]
+             BUILD/tinygi[-fixed] render builtin:SCENE --size WxH --frames N --threads 1 [--gi-quarter]
 
 so callgrind writes one profile per call of tg_frame_render (one frame),
 one for what comes before the first (start-up, scene, plan) and one for
@@ -54,11 +54,12 @@ import tempfile
 # ---- callgrind profile parsing ------------------------------------------
 
 _SUFFIX = re.compile(r"(\.(part|isra|constprop|cold|lto_priv)(\.\d+)?)+$")
+_ABI = re.compile(r"^(tg_\w+)_(f32|q16)$")   # the public API's symbols (TG_ABI in tinygi.h)
 
 
 def base_name(fn):
     """gcc's clones (foo.part.0, foo.isra.0, foo.cold) count as foo."""
-    return _SUFFIX.sub("", fn)
+    return _ABI.sub(r"\1", _SUFFIX.sub("", fn))
 
 
 class Profile:
@@ -204,15 +205,16 @@ def pass_costs(profile, passes):
 
 # ---- running callgrind ------------------------------------------------------
 
-def run_config(binary, scene, size, frames, quarter, workdir):
+def run_config(binary, scene, size, frames, quarter, workdir, render_fn="tg_frame_render"):
     """Profiles of every frame (index order), of the setup before the first
-    and of what follows the last (the output image)."""
+    and of what follows the last (the output image).  render_fn: the
+    symbol of tg_frame_render (TG_ABI in tinygi.h names it per number type)."""
     out = os.path.join(workdir, "cg.out")
     img = os.path.join(workdir, "out.ppm")
     cmd = ["valgrind", "--tool=callgrind", "--callgrind-out-file=" + out,
-           "--dump-before=tg_frame_render", "--dump-after=tg_frame_render",
+           "--dump-before=" + render_fn, "--dump-after=" + render_fn,
            binary, "render", "builtin:" + scene, "--size", size,
-           "--frames", str(frames), "-o", img, "--quiet"]
+           "--frames", str(frames), "--threads", "1", "-o", img, "--quiet"]
     if quarter:
         cmd.append("--gi-quarter")
     r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -229,7 +231,8 @@ def run_config(binary, scene, size, frames, quarter, workdir):
 def measure(args, scene, ntype, mode):
     binary = os.path.join(args.build, "tinygi" if ntype == "float" else "tinygi-fixed")
     with tempfile.TemporaryDirectory(prefix="bench-count-") as tmp:
-        frames, setup, final = run_config(binary, scene, args.size, args.frames, mode == "quarter", tmp)
+        frames, setup, final = run_config(binary, scene, args.size, args.frames, mode == "quarter", tmp,
+                                          "tg_frame_render_" + ("f32" if ntype == "float" else "q16"))
     return scene, ntype, mode, frames, setup, final
 
 

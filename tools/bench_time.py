@@ -9,15 +9,18 @@ and the min..max of CPU time and of wall time, with the load average
 
     python3 tools/bench_time.py frame  [--build build] [--scenes all] [--types float,fixed]
                                        [--modes default,quarter] [--size 320x240]
-                                       [--frames 10] [--rounds 5]
+                                       [--frames 10] [--rounds 5] [--threads 1,2]
     python3 tools/bench_time.py raster [--build build] [--sizes 320x240,1280x720]
                                        [--frames 20] [--rounds 7] [--peer CMD]... [--no-count]
 
 frame: whole frames through the CLI, `tinygi[-fixed] render builtin:SCENE
---size WxH --frames N [--gi-quarter]`; CPU time is the child's user + system
-time (wait4), wall time its elapsed time, both divided by N (they include
-the start-up and the one written image, under 2% of a 10-frame run by
-`make bench-count`).
+--size WxH --frames N --threads T [--gi-quarter]`; CPU time is the child's
+user + system time (wait4, all its threads), wall time its elapsed time,
+both divided by N (they include the start-up and the one written image,
+under 2% of a 10-frame run by `make bench-count`).  With several thread
+counts (--threads 1,2) a second table gives each one's speed-up over the
+first in wall time: the median of the rounds' ratios (each round runs both
+under the same load) and the ratio of the medians.
 
 raster: tools/bench_raster.c (float and Q16.16), and any --peer programs,
 on the 49,728-triangle sphere.  A program is run as `CMD WxH --frames N`
@@ -91,16 +94,42 @@ def csv_text(header, rows):
 
 # ---- frame ------------------------------------------------------------------
 
+def speedup_lines(configs, samples, threads):
+    """Wall-time speed-up of each thread count over the first, per scene, mode and type."""
+    if len(threads) < 2:
+        return []
+    lines = ["", "Speed-up in wall time over %s thread%s: median of the per-round ratios (ratio of "
+             "the medians)." % (threads[0], "" if threads[0] == "1" else "s"), "",
+             "| scene | mode | type | " + " | ".join("%s threads" % n for n in threads[1:]) + " |",
+             "| --- | --- | --- | " + " | ".join("---:" for _ in threads[1:]) + " |"]
+    index = {cfg: i for i, cfg in enumerate(configs)}
+    for cfg in configs:
+        if cfg[3] != threads[0]:
+            continue
+        base = [s["wall"] for s in samples[index[cfg]]]
+        cells = []
+        for n in threads[1:]:
+            other = [s["wall"] for s in samples[index[cfg[:3] + (n,)]]]
+            ratios = [b / o for b, o in zip(base, other) if o > 0]
+            cells.append("%.2fx (%.2fx)" % (statistics.median(ratios),
+                                            statistics.median(base) / statistics.median(other)))
+        lines.append("| %s | %s | %s | %s |" % (cfg[0], cfg[1], cfg[2], " | ".join(cells)))
+    return lines
+
+
 def frame_main(args):
     bench_count.check_frame_options(args, "bench_time")
-    configs = [(s, m, t) for s in args.scenes for m in args.modes for t in args.types]
+    threads = split_list(args.threads)
+    if not threads or not all(re.match(r"^[1-9][0-9]*$", n) for n in threads):
+        sys.exit("bench_time: --threads: expected a list of thread counts, got '%s'" % args.threads)
+    configs = [(s, m, t, n) for s in args.scenes for m in args.modes for t in args.types for n in threads]
     tmp = tempfile.mkdtemp(prefix="bench-frame-")
 
     def run_one(cfg):
-        scene, mode, ntype = cfg
+        scene, mode, ntype, nthreads = cfg
         binary = os.path.join(args.build, "tinygi" if ntype == "float" else "tinygi-fixed")
         cmd = [binary, "render", "builtin:" + scene, "--size", args.size, "--frames", str(args.frames),
-               "-o", os.path.join(tmp, "out.ppm"), "--quiet"]
+               "--threads", nthreads, "-o", os.path.join(tmp, "out.ppm"), "--quiet"]
         if mode == "quarter":
             cmd.append("--gi-quarter")
         t0 = time.monotonic()
@@ -123,21 +152,23 @@ def frame_main(args):
              "%s; %s, %d frames a run, %d rounds interleaved; load average %s at start, %s at end."
              % (bench_count.describe_source(args.build), args.size, args.frames, args.rounds, start, end), "",
              "ms per frame, median (min..max) over the rounds; CPU = user + system time of the process.", "",
-             "| scene | mode | type | CPU ms/frame | wall ms/frame |", "| --- | --- | --- | ---: | ---: |"]
+             "| scene | mode | type | threads | CPU ms/frame | wall ms/frame |",
+             "| --- | --- | --- | ---: | ---: | ---: |"]
     rows = []
-    for i, (scene, mode, ntype) in enumerate(configs):
+    for i, (scene, mode, ntype, nthreads) in enumerate(configs):
         cpu = [s["cpu"] for s in samples[i]]
         wall = [s["wall"] for s in samples[i]]
-        lines.append("| %s | %s | %s | %s | %s |" % (scene, mode, ntype, med_range(cpu, "%.1f"),
-                                                     med_range(wall, "%.1f")))
-        rows.append([scene, mode, ntype, args.size, args.frames, len(cpu),
+        lines.append("| %s | %s | %s | %s | %s | %s |" % (scene, mode, ntype, nthreads, med_range(cpu, "%.1f"),
+                                                          med_range(wall, "%.1f")))
+        rows.append([scene, mode, ntype, nthreads, args.size, args.frames, len(cpu),
                      "%.2f" % statistics.median(cpu), "%.2f" % min(cpu), "%.2f" % max(cpu),
                      "%.2f" % statistics.median(wall), "%.2f" % min(wall), "%.2f" % max(wall), start, end])
+    lines += speedup_lines(configs, samples, threads)
     out = args.out or os.path.join(args.build, "bench-frame")
     os.makedirs(out, exist_ok=True)
     write_atomic(os.path.join(out, "time.md"), "\n".join(lines) + "\n")
     write_atomic(os.path.join(out, "time.csv"), csv_text(
-        ["scene", "mode", "type", "size", "frames", "rounds", "cpu_ms_median", "cpu_ms_min", "cpu_ms_max",
+        ["scene", "mode", "type", "threads", "size", "frames", "rounds", "cpu_ms_median", "cpu_ms_min", "cpu_ms_max",
          "wall_ms_median", "wall_ms_min", "wall_ms_max", "load_start", "load_end"], rows))
     print()
     print("\n".join(lines))
@@ -267,6 +298,7 @@ def main():
     f = sub.add_parser("frame")
     bench_count.add_frame_options(f, "all")
     f.add_argument("--rounds", type=int, default=5)
+    f.add_argument("--threads", default="1", help="comma list of thread counts (tinygi --threads)")
     r = sub.add_parser("raster")
     r.add_argument("--build", default="build")
     r.add_argument("--sizes", default="320x240,1280x720")

@@ -31,6 +31,7 @@
 #include "hosted/file.h"
 #include "hosted/image.h"
 #include "hosted/imgdiff.h"
+#include "hosted/threads.h"
 #include "fbdev/fbdev.h"
 
 /* The limits of options are the core's (tinygi.h); these two are the CLI's own. */
@@ -103,11 +104,13 @@ static void print_help(FILE *out)
         "  --radius R        gather radius in world units, 0..%d (default %d)\n"
         "  --bounces N       light bounces, 0..%d (default %d)\n"
         "  --exposure E      linear exposure before the tonemapper, 0..%d (default 1)\n"
-        "  --shadow-size N   shadow map texels per side, %d..%d (default %d)\n",
+        "  --shadow-size N   shadow map texels per side, %d..%d (default %d)\n"
+        "  --threads N       threads that share each pass's rows, 1..%d (default: the\n"
+        "                    processors, here %d); the image is the same for every N\n",
         TG_DEFAULT_WIDTH, TG_DEFAULT_HEIGHT, TG_MAX_IMAGE_SIDE, (long)TG_MAX_IMAGE_PIXELS,
         TG_MAX_FRAMES, TG_MAX_SLICES, TG_DEFAULT_SLICES, TG_MAX_SAMPLES, TG_DEFAULT_SAMPLES,
         TG_MAX_RADIUS, TG_DEFAULT_RADIUS, TG_MAX_BOUNCES, TG_DEFAULT_BOUNCES, TG_MAX_EXPOSURE,
-        TG_MIN_SHADOW_MAP, TG_MAX_SHADOW_MAP, TG_DEFAULT_SHADOW_MAP);
+        TG_MIN_SHADOW_MAP, TG_MAX_SHADOW_MAP, TG_DEFAULT_SHADOW_MAP, TG_MAX_THREADS, tgp_cores());
     fprintf(out,
         "  --no-interleave   full-resolution GI kernel instead of 4x4 interleaved\n"
         "  --no-temporal     no temporal accumulation\n"
@@ -300,7 +303,7 @@ typedef struct render_opts {
     const char *scene;
     const char *output;
     int width, height, frames, aov, technique;
-    long slices, samples, bounces, shadow_size;
+    long slices, samples, bounces, shadow_size, threads;
     double radius, exposure;
     int have_radius, have_exposure;
     int interleave, temporal, far_f0, gi_quarter, pcf_bilinear, explain, quiet;
@@ -356,7 +359,7 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
 {
     static const char *const names[] = {
         "-o", "--size", "--frames", "--aov", "--technique", "--slices", "--samples",
-        "--radius", "--bounces", "--exposure", "--shadow-size", "--fbdev"
+        "--radius", "--bounces", "--exposure", "--shadow-size", "--fbdev", "--threads"
     };
     const char *a = argv[*i], *v = NULL, *name = NULL;
     char list[512];
@@ -418,6 +421,8 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
         return int_option(name, v, 0, TG_MAX_BOUNCES, &o->bounces);
     } else if (!strcmp(name, "--shadow-size")) {
         return int_option(name, v, TG_MIN_SHADOW_MAP, TG_MAX_SHADOW_MAP, &o->shadow_size);
+    } else if (!strcmp(name, "--threads")) {
+        return int_option(name, v, 1, TG_MAX_THREADS, &o->threads);
     } else if (!strcmp(name, "--radius")) {
         if (real_option(name, v, TG_MAX_RADIUS, &o->radius)) return 1;
         o->have_radius = 1;
@@ -441,6 +446,7 @@ static int parse_render_args(int argc, char **argv, render_opts *o)
     o->technique = -1;
     o->slices = o->samples = -1;
     o->bounces = o->shadow_size = -1;
+    o->threads = tgp_cores();
     o->interleave = o->temporal = 1;
     for (i = 2; i < argc; i++) {
         const char *a = argv[i];
@@ -780,6 +786,7 @@ static int cmd_render(int argc, char **argv)
     tg_plan plan;
     tg_error err;
     tg_frame *frame = NULL;
+    tgp_pool *pool = NULL;
     void *scene_mem = NULL, *frame_mem = NULL;
     char *owned = NULL, why[512];
     const char *bad;
@@ -820,6 +827,16 @@ static int cmd_render(int argc, char **argv)
             status = exit_for(s);
         }
     }
+    if (!status && o.threads > 1) { /* every pass's rows shared by the pool */
+        tg_parallel hook;
+        if (tgp_pool_create((int)o.threads, &pool, why, sizeof why)) {
+            fprintf(stderr, "tinygi: error: --threads %ld: %s\n", o.threads, why);
+            status = EXIT_RUNTIME;
+        } else {
+            hook = tgp_pool_parallel(pool);
+            tg_frame_set_parallel(frame, &hook);
+        }
+    }
     if (!status && o.view) {
         if (tgp_fbdev_view(o.fbdev, frame, o.width, o.height, o.frames, why, sizeof why)) {
             usage_error("%s", why);
@@ -830,6 +847,7 @@ static int cmd_render(int argc, char **argv)
         status = render_frames(&o, &pat, format, frame);
     }
 done:
+    tgp_pool_destroy(pool);
     free(frame_mem);
     free(scene_mem);
     free(owned);

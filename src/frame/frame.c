@@ -4,11 +4,13 @@
  * plan's passes in order: the rows of the pass table (passes.c) the plan
  * needs, as tg_plan_explain lists them.
  *
- * A row-parallel pass runs over its rows [0, n) in one call here (a hosted
- * platform may split them: any split gives the same output); a serial pass
- * runs once.  On a frame without history the bounce loop (the passes marked
- * TGI_BOUNCE) runs `bounces` times, each iteration gathering the radiance
- * the previous one composed (with history, one per frame: HBIL eq. 17).
+ * A row-parallel pass runs over its rows [0, n) through the platform's hook
+ * (tg_frame_set_parallel: it may split them over threads or cores, any
+ * split gives the same output), else in one call on this thread; a serial
+ * pass runs once, on this thread.  On a frame without history the bounce
+ * loop (the passes marked TGI_BOUNCE) runs `bounces` times, each iteration
+ * gathering the radiance the previous one composed (with history, one per
+ * frame: HBIL eq. 17).
  */
 #include <string.h>
 #include "frame_internal.h"
@@ -51,14 +53,48 @@ static int runs_now(const tg_frame *f, const tgi_pass *p)
     return 1;
 }
 
-/* One pass: serial, or its rows in bands of `band` (0: all), last band first. */
-static void run_frame_pass(tg_frame *f, const tgi_pass *p, int band)
+tg_status tg_frame_set_parallel(tg_frame *f, const tg_parallel *p)
 {
-    int n = tgi_pass_row_count(f, p), y1;
+    if (p && !p->run) return TG_ERR_INPUT;
+    if (p) f->parallel = *p;
+    else memset(&f->parallel, 0, sizeof f->parallel);
+    return TG_OK;
+}
+
+/* Through the hook; without one on this thread, in bands of f->band rows
+ * (0: all at once), last band first. */
+void tgi_frame_parallel_rows(tg_frame *f, tg_rows_fn fn, void *job, int rows)
+{
+    int band = f->band > 0 ? f->band : rows, y1;
+    if (rows <= 0) return;
+    if (f->parallel.run) {
+        f->parallel.run(f->parallel.user, fn, job, rows);
+        return;
+    }
+    for (y1 = rows; y1 > 0; y1 -= band) fn(job, y1 > band ? y1 - band : 0, y1);
+}
+
+/* A row-parallel pass as a job of the hook. */
+typedef struct pass_job {
+    tg_frame *f;
+    void (*rows)(tg_frame *f, int y0, int y1);
+} pass_job;
+
+static void pass_job_rows(void *job, int y0, int y1)
+{
+    const pass_job *j = (const pass_job *)job;
+    j->rows(j->f, y0, y1);
+}
+
+/* One pass: serial, or its rows through tgi_frame_parallel_rows. */
+static void run_frame_pass(tg_frame *f, const tgi_pass *p)
+{
+    pass_job job;
     if (!runs_now(f, p)) return;
     if (p->rows == TGI_SERIAL) { p->run(f); return; }
-    if (band <= 0) band = n;
-    for (y1 = n; y1 > 0; y1 -= band) p->run_rows(f, y1 > band ? y1 - band : 0, y1);
+    job.f = f;
+    job.rows = p->run_rows;
+    tgi_frame_parallel_rows(f, pass_job_rows, &job, tgi_pass_row_count(f, p));
 }
 
 tg_status tg_frame_render(tg_frame *f, int index, tg_error *err)
@@ -74,12 +110,12 @@ tg_status tg_frame_render(tg_frame *f, int index, tg_error *err)
     if (f->bounces < 1) f->bounces = 1;
     while (k < f->pass_count) {
         if (!(tgi_passes[f->pass_rows[k]].when & TGI_BOUNCE)) {
-            run_frame_pass(f, &tgi_passes[f->pass_rows[k++]], f->band);
+            run_frame_pass(f, &tgi_passes[f->pass_rows[k++]]);
             continue;
         }
         for (end = k; end < f->pass_count && (tgi_passes[f->pass_rows[end]].when & TGI_BOUNCE); end++) {}
         for (f->bounce = 0; f->bounce < f->bounces; f->bounce++)
-            for (j = k; j < end; j++) run_frame_pass(f, &tgi_passes[f->pass_rows[j]], f->band);
+            for (j = k; j < end; j++) run_frame_pass(f, &tgi_passes[f->pass_rows[j]]);
         k = end;
     }
     if (f->history.r) f->has_history = 1;

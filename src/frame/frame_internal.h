@@ -44,6 +44,7 @@ struct tg_frame {
     int bounce, bounces;           /* the kernel iteration running, of how many */
     int has_history;               /* the previous frame's radiance is valid */
     int band;                      /* rows per call of a row-parallel pass; 0: all at once */
+    tg_parallel parallel;          /* the platform's row runner (run NULL: this thread) */
 
     tgi_view view, prev_view;
     tg_real time, prev_time;
@@ -136,6 +137,11 @@ extern const int tgi_pass_count;
 
 /* Rows a pass runs over on this frame (0 for a serial step). */
 int tgi_pass_row_count(const tg_frame *f, const tgi_pass *p);
+/* fn(job, y0, y1) over [0, rows) through the platform's hook (frame.c): for
+ * a serial pass with inner row loops (each loop one call; the calls run one
+ * after the other).  Call it only from a serial pass, never from inside fn:
+ * fn follows the contract of tg_parallel in tinygi.h. */
+void tgi_frame_parallel_rows(tg_frame *f, tg_rows_fn fn, void *job, int rows);
 /* Render frame `index` with each row-parallel pass in bands of `band` rows,
  * last band first (0: all rows in one call, as tg_frame_render does). */
 tg_status tgi_frame_render_bands(tg_frame *f, int index, int band, tg_error *err);
