@@ -568,6 +568,7 @@ tg_status tg_frame_aov_row8(const tg_frame *frame, tg_aov aov, int y, uint8_t *r
  *               from the first key to the last over request.frames frames).
  *   light, env  the program's values replace the scene's from the next
  *               render on (the scene has no keys for them).
+ * A frame made anew (tg_frame_create) starts from the scene again.
  * The next tg_frame_render then reprojects what the previous frame showed,
  * with motion vectors from the old camera and poses to the new: the one
  * code path of the keys (src/frame/camera.c).

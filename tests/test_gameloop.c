@@ -263,6 +263,26 @@ TEST(teleport_and_declared_cut_drop_the_history)
     teardown(&r); teardown(&fresh);
 }
 
+/* Frame index 0 starts afresh: rendered again after a sequence, it is the
+ * first frame of a fresh frame (it reprojected stale history before). */
+TEST(index_zero_starts_afresh)
+{
+    rendered r, fresh;
+    tg_request q = loop_request(FRAMES, 0);
+    tg_error err;
+    int i;
+    const char *text = scene_with(0, room_light, camera_keys, object_keys);
+    CHECK(setup(&r, text, &q) && setup(&fresh, text, &q), "set up");
+    if (r.ok && fresh.ok) {
+        for (i = 0; i < 3; i++) tg_frame_render(r.frame, i, &err);
+        tg_frame_render(r.frame, 0, &err);
+        tg_frame_render(fresh.frame, 0, &err);
+        CHECK(!tg_frame_reprojected(r.frame), "index 0 is a first frame");
+        CHECK(same_frames(&r, &fresh), "index 0 again renders what a fresh frame renders");
+    }
+    teardown(&r); teardown(&fresh);
+}
+
 /* The keys' jumps are cuts too (the same detection): a key that turns the
  * camera round, and one that moves it across the room. */
 TEST(key_jumps_are_cuts)
@@ -528,6 +548,7 @@ int main(void)
     RUN(set_time_samples_the_keys);
     RUN(program_camera_takes_precedence);
     RUN(teleport_and_declared_cut_drop_the_history);
+    RUN(index_zero_starts_afresh);
     RUN(key_jumps_are_cuts);
     RUN(changed_lights_render_their_shadow_maps);
     RUN(turned_directional_light);
