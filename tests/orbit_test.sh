@@ -5,7 +5,9 @@
 # frame differs from the one before (the camera moves), every frame's mean
 # radiance is a finite positive number, frame 0 is a first frame and
 # frames 1-3 are reprojected from the one before (no cut detected in a
-# smooth orbit); a bad option is refused with exit status 2.
+# smooth orbit); the builds from the amalgamation and the installed library
+# write the same frames; a bad option is refused with exit status 2; the
+# README's game-loop snippet compiles.
 set -u
 cd "$(dirname "$0")/.."
 . tests/shcheck.sh
@@ -36,6 +38,16 @@ for num in float fixed; do
              END { exit bad || n != 4 }' "$T/$num.out"
     expect "orbit ($num): frame 0 is a first frame, frames 1-3 are reprojected" \
         test "$(cut -d, -f1 "$T/$num.out" | sed 's/.*: //' | tr '\n' ' ')" = "first frame reprojected reprojected reprojected "
+    # the builds from the amalgamation and the installed library (made by
+    # amalgamation_test.sh and install_test.sh, which run before) write the same frames
+    for lib in amalgamation installed; do
+        other=$BUILD/$num/examples-$lib/orbit
+        [ -x "$other" ] || { echo "# orbit ($num, $lib): not built, not compared"; continue; }
+        same=yes
+        "$other" -n 4 -s 32x24 -o "$T/$num-$lib-" >/dev/null 2>&1 || same=no
+        for i in 0 1 2 3; do cmp -s "$T/$num-00$i.ppm" "$T/$num-$lib-00$i.ppm" || same=no; done
+        expect "orbit ($num) built from the $lib library writes the same frames" test $same = yes
+    done
 done
 
 "$BUILD/float/examples-built/orbit" -n 2 -s wide -o "$T/x-" >/dev/null 2>&1
