@@ -268,6 +268,18 @@ static inline tg_real tg_sqr(tg_real a) { return tg_mul(a, a); }
 #define tg_frame_aov_row8 TG_ABI(tg_frame_aov_row8)
 #define tg_frame_write_pixels TG_ABI(tg_frame_write_pixels)
 #define tg_frame_set_parallel TG_ABI(tg_frame_set_parallel)
+#define tg_scene_find_object TG_ABI(tg_scene_find_object)
+#define tg_scene_light_count TG_ABI(tg_scene_light_count)
+#define tg_frame_set_camera TG_ABI(tg_frame_set_camera)
+#define tg_frame_set_object TG_ABI(tg_frame_set_object)
+#define tg_frame_set_time TG_ABI(tg_frame_set_time)
+#define tg_frame_set_light TG_ABI(tg_frame_set_light)
+#define tg_frame_move_light TG_ABI(tg_frame_move_light)
+#define tg_frame_set_env_uniform TG_ABI(tg_frame_set_env_uniform)
+#define tg_frame_set_env_sky TG_ABI(tg_frame_set_env_sky)
+#define tg_frame_set_env_sh9 TG_ABI(tg_frame_set_env_sh9)
+#define tg_frame_cut TG_ABI(tg_frame_cut)
+#define tg_frame_reprojected TG_ABI(tg_frame_reprojected)
 
 /* ---- the core's own transcendentals (real.c; error bounds documented there) ---- */
 #if TG_FIXED
@@ -352,6 +364,12 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #define TG_DEFAULT_FOV 60               /* camera: vertical field of view, degrees */
 #define TG_DEFAULT_NEAR 0.05f           /* camera: near plane, world units */
 #define TG_DEFAULT_FAR 1000             /* camera: far plane, world units */
+#if !defined(TG_CUT_DISTANCE)
+#define TG_CUT_DISTANCE 0.5f            /* [policy] a camera cut: a move of more than this
+                                           fraction of the scene's size (its bounding box's
+                                           diagonal) from one frame to the next, or a turn
+                                           by more than the vertical fov, drops the history */
+#endif
 #define TG_DEFAULT_F0 0.04f             /* material: Fresnel F0 of a dielectric */
 #define TG_MAX_PATH 256                 /* a resolved mesh or MTL path, bytes with the NUL */
 #if !defined(TG_MAX_OBJ_VERTICES)
@@ -477,6 +495,11 @@ typedef struct tg_request {
                               (default 1; NaN and the infinities are refused) */
     int shadow_map_size;   /* texels per side, TG_MIN_SHADOW_MAP..TG_MAX_SHADOW_MAP; <= 0: unset */
     int shadow_pcf;        /* 0: 16-tap tent PCF (default, soft); 1: 4-tap bilinear (a quarter of the cost) */
+    int game_loop;         /* 0 (default): the camera and objects follow the scene's keys;
+                              1: the program may also set the camera, objects, lights and
+                              environment per frame ("the game loop" below): the frame keeps
+                              a copy of the lights and environment and posed copies of the
+                              triangles (72 bytes a triangle) */
 } tg_request;
 
 /* Every field at its default: 320x240, one frame, colour, HBIL, GI settings unset. */
@@ -518,7 +541,11 @@ typedef struct tg_frame tg_frame;
 /* Carve a frame out of `memory` (at least plan->total_bytes). */
 tg_status tg_frame_create(const tg_plan *plan, void *memory, size_t size,
                           tg_frame **frame, tg_error *err);
-/* Render frame `index` (0-based; the animation time comes from it). */
+/* Render frame `index` (0-based; the keys' time comes from it unless
+ * tg_frame_set_time set one).  Frames follow one another: frame index > 0
+ * reprojects the frame rendered before it (see "the game loop"); index 0
+ * starts afresh, with no history.  The temporal filter alternates two
+ * buffers by the parity of index, so a sequence counts up by one. */
 tg_status tg_frame_render(tg_frame *frame, int index, tg_error *err);
 
 /* ---- threads: the platform runs row ranges, the core creates no thread ----
@@ -598,6 +625,105 @@ typedef enum tg_pixel_format {
 enum { TG_PIXELS_DITHER = 1 };
 tg_status tg_frame_write_pixels(const tg_frame *frame, tg_aov aov, int y0, int y1,
                                 tg_pixel_format format, int flags, void *dst, size_t stride);
+/* ---- the game loop: driving frames from a program ----
+ * A frame renders the scene as it is NOW: its camera, object poses, lights
+ * and environment are per-frame state held by the frame, never written
+ * into the parsed scene, so one scene can drive several frames.  Two
+ * producers fill that state before each render: the scene's keys
+ * (camera_key, object_key at the keys' time) and the program, through the
+ * calls below, made between renders (never during one).  Precedence, per
+ * quantity:
+ *   camera      the program's from the first tg_frame_set_camera on (the
+ *               last one set holds while no new one comes); before that,
+ *               the camera keys (or the fixed camera).
+ *   object      likewise per object: tg_frame_set_object takes that object
+ *               from its keys for good; the others follow their keys.
+ *   keys' time  tg_frame_set_time's t from its first call on; before that,
+ *               the frame index (src/scene/format.md, camera_key: t runs
+ *               from the first key to the last over request.frames frames).
+ *   light, env  the program's values replace the scene's from the next
+ *               render on (the scene has no keys for them).
+ * A frame made anew (tg_frame_create) starts from the scene again.
+ * The next tg_frame_render then reprojects what the previous frame showed,
+ * with motion vectors from the old camera and poses to the new: the one
+ * code path of the keys (src/frame/camera.c).
+ *
+ * A camera cut drops the history (the frame renders as a first frame: no
+ * reprojection, the temporal filter restarts, the full `gi bounces`, zero
+ * motion): declared by tg_frame_cut, or detected when the camera moved
+ * further than TG_CUT_DISTANCE times the scene's size (its bounding box's
+ * diagonal) or turned by more than the vertical fov since the last frame,
+ * whoever moved it.  tg_frame_reprojected says whether it happened.
+ *
+ * The setters (camera, object, light, environment) need a plan made with
+ * request.game_loop = 1, which keeps what they change; on another frame
+ * they return TG_ERR_INPUT.  tg_frame_set_time and tg_frame_cut work on any
+ * frame.  Every call checks its arguments and returns TG_ERR_INPUT, with a
+ * message in err (which may be NULL), on a NULL pointer, an index out of
+ * range or a value outside its domain (NaN and the infinities are outside
+ * every domain); nothing is changed then.  Vectors are 3 tg_reals (x, y,
+ * z) in world space; angles are radians.
+ *
+ * What changes cost: a moved object or light (tg_frame_move_light) fits and
+ * renders its shadow map again on the next render; a light's colour or
+ * intensity and the environment change no shadow map (the environment's
+ * SH9 projection is recomputed at once, 9 coefficients).  A static scene
+ * renders its shadow maps once. */
+
+/* The index of the object named `name` (the scene's `name ID`), or -1 when
+ * no object has that name or either argument is NULL. */
+int tg_scene_find_object(const tg_scene *scene, const char *name);
+/* Lights have no names: they are numbered 0..count-1 in the order of the
+ * scene's `light` lines.  0 for a NULL scene. */
+int tg_scene_light_count(const tg_scene *scene);
+
+/* The camera from the next render on: at `pos`, looking at `target` (which
+ * must differ from pos), `up` any non-zero vector (normalized; one
+ * parallel to the view gets a perpendicular one, as in the scene), and
+ * `fov` the vertical field of view in radians, in (0, pi).  near and far
+ * stay the scene's camera's. */
+tg_status tg_frame_set_camera(tg_frame *frame, const tg_real pos[3], const tg_real target[3],
+                              const tg_real up[3], tg_real fov, tg_error *err);
+/* Object `object`'s pose from the next render on, as the scene's
+ * object_key gives it: the rest-pose triangles rotated by `angle` radians
+ * (any finite value) about the unit `axis` (non-zero, normalized) through
+ * the world origin, then moved by `translate`.  Axis-angle and not a
+ * quaternion or matrix because it is the keys' own form: the program and
+ * the keys build the pose by the same code, so the same pose gives the
+ * same bits, and a pose cannot be other than rigid.  From a unit
+ * quaternion (x, y, z, w): axis (x, y, z), angle 2 atan2(|(x, y, z)|, w). */
+tg_status tg_frame_set_object(tg_frame *frame, int object, const tg_real translate[3],
+                              const tg_real axis[3], tg_real angle, tg_error *err);
+/* Sample the keys at time t (the scene's key units, any finite value) from
+ * the next render on, instead of at the time the frame index gives. */
+tg_status tg_frame_set_time(tg_frame *frame, tg_real t, tg_error *err);
+/* Light `light`'s colour (linear RGB, each >= 0) and intensity (>= 0) from
+ * the next render on.  No shadow map is rendered again for it. */
+tg_status tg_frame_set_light(tg_frame *frame, int light, const tg_real color[3],
+                             tg_real intensity, tg_error *err);
+/* Move light `light` from the next render on: `pos` for a point or spot
+ * light, `dir` (the direction light travels, non-zero, normalized) for a
+ * directional or spot light; NULL keeps the current one (both NULL is
+ * refused, and so is a `pos` for a directional or a `dir` for a point
+ * light).  Its shadow map is fitted and rendered again. */
+tg_status tg_frame_move_light(tg_frame *frame, int light, const tg_real pos[3],
+                              const tg_real dir[3], tg_error *err);
+/* The environment from the next render on, as the scene's `env` lines
+ * give it (each colour >= 0; `up` non-zero, normalized; SH9: 27 numbers,
+ * RGB of L00, L1-1, L10, L11, L2-2, L2-1, L20, L21, L22, any sign).  The
+ * scene must have an `env` line (without one the plan has no far field). */
+tg_status tg_frame_set_env_uniform(tg_frame *frame, const tg_real radiance[3], tg_error *err);
+tg_status tg_frame_set_env_sky(tg_frame *frame, const tg_real sky[3], const tg_real ground[3],
+                               const tg_real up[3], tg_error *err);
+tg_status tg_frame_set_env_sh9(tg_frame *frame, const tg_real coeffs[27], tg_error *err);
+/* Declare a camera cut: the next render drops the history.  TG_ERR_INPUT
+ * for a NULL frame. */
+tg_status tg_frame_cut(tg_frame *frame);
+/* 1 when the frame last rendered continued from the one before (its
+ * radiance and temporal history reprojected, motion from the previous
+ * camera and poses); 0 on a first frame, after a cut (declared or
+ * detected), when the plan keeps no history (one frame) and for NULL. */
+int tg_frame_reprojected(const tg_frame *frame);
 
 #ifdef __cplusplus
 }

@@ -56,6 +56,18 @@ struct tg_frame {
     tg_vec3 *posed_pos, *posed_nrm;
     tgi_mat4 *object_delta;        /* per object, current pose -> previous pose */
 
+    /* the game loop (camera.c): what the program set, and the poses shown */
+    struct tgi_drive {
+        unsigned set;              /* TGI_SET_CAMERA, TGI_SET_TIME */
+        int cut;                   /* tg_frame_cut: the next render drops the history */
+        int reprojected;           /* tg_frame_reprojected of the last render */
+        tg_vec3 pos, target, up;   /* the program's camera */
+        tg_real fov, time;         /* its fov; the keys' time it set */
+        tgi_mat4 *object_set;      /* per object, the program's pose (m[15] == 0: none) */
+        tgi_mat4 *object_pose;     /* per object, the pose last rendered */
+    } drive;
+    uint64_t shadows_stale;        /* bit per light: fit and render its map again */
+
     /* light */
     tgi_shadow_map *shadow_maps;   /* one per light (unused entries zero) */
     const tgi_shadow_map **shadow_ptrs;
@@ -156,6 +168,10 @@ int tgi_frame_layout(tg_frame **fp, tg_plan *plan, tg_arena *arena);
  * scene's are past a limit). */
 int tgi_request_refused(const tg_request *r, tg_error *err);
 int tgi_request_resolve(tg_request *r, const tg_scene *s, tg_error *err);
+/* The game loop's copy of the scene (camera.c): the frame renders `own`, a
+ * copy of its scene whose lights are `lights` (a copy of the scene's), so
+ * the program may change lights and environment per frame. */
+void tgi_frame_own_scene(tg_frame *f, tg_scene *own, tgi_light *lights);
 /* The triangles as the rasterizer takes them: posed, or the scene's (rasterize.c). */
 tgi_raster_mesh tgi_frame_mesh(const tg_frame *f);
 /* TG_NEED_* of a plan (plan.c). */

@@ -107,10 +107,18 @@ static void kernel_size(const tg_frame *f, int *w, int *h, size_t *n)
 static void group_pose(layout *l, tg_frame *f)
 {
     const tg_scene *s = f->scene;
+    if (f->request.game_loop) {
+        const char *name = "the program's scene state (game loop)";
+        tg_scene *own = (tg_scene *)take(l, name, 1, sizeof(tg_scene));
+        tgi_light *lights = (tgi_light *)take(l, name, (size_t)s->light_count, sizeof(tgi_light));
+        f->drive.object_set = (tgi_mat4 *)take(l, name, (size_t)s->object_count, sizeof(tgi_mat4));
+        if (own) tgi_frame_own_scene(f, own, lights);
+    }
     if (!(f->needs & TG_NEED_POSE)) return;
     f->posed_pos = (tg_vec3 *)take(l, "posed triangles", (size_t)s->tri_count * 3, sizeof(tg_vec3));
     f->posed_nrm = (tg_vec3 *)take(l, "posed triangles", (size_t)s->tri_count * 3, sizeof(tg_vec3));
     f->object_delta = (tgi_mat4 *)take(l, "object motion", (size_t)s->object_count, sizeof(tgi_mat4));
+    f->drive.object_pose = (tgi_mat4 *)take(l, "object motion", (size_t)s->object_count, sizeof(tgi_mat4));
 }
 
 static void group_gbuffer(layout *l, tg_frame *f)

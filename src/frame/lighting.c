@@ -13,27 +13,29 @@
 #include "../light/compose.h"
 
 /* A static scene's shadow maps are rendered once and kept; when objects
- * move they are refitted to where the geometry is now. */
+ * move (camera.c marks every map stale) or a light moves (its map) they
+ * are refitted to where the geometry and the light are now. */
 void tgi_pass_shadow_maps(tg_frame *f)
 {
     const tg_scene *s = f->scene;
     tgi_raster_mesh mesh = tgi_frame_mesh(f);
+    tg_vec3 lo = s->bounds_min, hi = s->bounds_max;
     int i;
-    if (f->shadows_valid && !f->posed_pos) return;
-    if (f->posed_pos) {
-        tg_vec3 lo, hi;
-        tgi_anim_bounds(mesh.pos, mesh.tri_count, &lo, &hi);
-        for (i = 0; i < s->light_count; i++)
-            if (f->shadow_ptrs[i]) {
-                int filter = f->shadow_maps[i].filter;
-                tgi_shadow_map_setup(&f->shadow_maps[i], &s->lights[i], f->shadow_maps[i].size, lo, hi,
-                                    f->shadow_maps[i].depth);
-                f->shadow_maps[i].filter = filter;
-            }
+    if (f->shadows_valid && !f->shadows_stale) return;
+    if (f->shadows_stale) tgi_anim_bounds(mesh.pos, mesh.tri_count, &lo, &hi);
+    for (i = 0; i < s->light_count; i++) {
+        int stale = (int)(f->shadows_stale >> i) & 1;
+        if (!f->shadow_ptrs[i] || (f->shadows_valid && !stale)) continue;
+        if (stale) {
+            int filter = f->shadow_maps[i].filter;
+            tgi_shadow_map_setup(&f->shadow_maps[i], &s->lights[i], f->shadow_maps[i].size, lo, hi,
+                                f->shadow_maps[i].depth);
+            f->shadow_maps[i].filter = filter;
+        }
+        tgi_shadow_map_render(&f->shadow_maps[i], mesh.pos, mesh.tri_count);
     }
-    for (i = 0; i < s->light_count; i++)
-        if (f->shadow_ptrs[i]) tgi_shadow_map_render(&f->shadow_maps[i], mesh.pos, mesh.tri_count);
     f->shadows_valid = 1;
+    f->shadows_stale = 0;
 }
 
 void tgi_pass_direct(tg_frame *f, int y0, int y1)

@@ -14,8 +14,8 @@
 #define AOV(a) (1u << (a))
 #define B(g) TGI_BUF(TGI_BUF_##g)
 
-/* ---- the pass functions (one file per family: rasterize.c, lighting.c,
- * reprojection.c, hbil_passes.c, compare.c) ---- */
+/* ---- the pass functions (one file per family: camera.c, rasterize.c,
+ * lighting.c, reprojection.c, hbil_passes.c, compare.c) ---- */
 void tgi_pass_animate(tg_frame *f);
 void tgi_pass_gbuffer(tg_frame *f, int y0, int y1);
 void tgi_pass_motion(tg_frame *f, int y0, int y1);
@@ -90,7 +90,7 @@ static int iterates_bounces(const tg_frame *f)
 #define SERIAL(fn) TGI_SERIAL, NULL, fn
 
 const tgi_pass tgi_passes[] = {
-    { "camera (animated by its keys; posed triangles when objects move)", always,
+    { "camera (the program's or its keys'; posed triangles when objects move)", always,
       B(POSE), 0, SERIAL(tgi_pass_animate) },
     { "rasterize G-buffer (depth, normal, albedo, F0, emissive)", always,
       B(GBUFFER), 0, ROWS(tgi_pass_gbuffer) },

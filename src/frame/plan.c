@@ -97,11 +97,7 @@ uint32_t tgi_frame_needs(const tg_plan *p)
     if (r->aovs & (AOV(TG_AOV_COLOR) | AOV(TG_AOV_IRRADIANCE))) n |= TG_NEED_COMPOSE;
     /* next frame's near field gathers this frame's outgoing radiance */
     if (e & TG_EFFECT_REPROJECTION) n |= TG_NEED_COMPOSE;
-    if (r->frames > 1 && tgi_anim_has_motion(s)) {
-        int i;
-        for (i = 0; i < s->object_count; i++)
-            if (tgi_anim_object_moves(s, i)) n |= TG_NEED_POSE;
-    }
+    if (tgi_anim_has_posed_objects(s) || (r->game_loop && s->object_count > 0)) n |= TG_NEED_POSE;
     if ((r->aovs & AOV(TG_AOV_MOTION)) && r->frames > 1) n |= TG_NEED_MOTION;
     if (r->frames > 1 && r->temporal && r->technique == TG_TECH_HBIL && (e & TG_EFFECT_AO))
         n |= TG_NEED_TEMPORAL | TG_NEED_MOTION;

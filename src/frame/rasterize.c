@@ -1,32 +1,11 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * rasterize.c - the frame's geometry passes: the camera and the posed
- * triangles at this frame's time, the G-buffer, the motion vectors, and the
- * depth range the 8-bit depth view is scaled by.
+ * rasterize.c - the frame's geometry passes: the G-buffer of the triangles
+ * as this frame poses them (camera.c), the motion vectors, and the depth
+ * range the 8-bit depth view is scaled by.
  */
 #include "frame_internal.h"
-#include "../scene/anim.h"
 #include "../raster/motion.h"
-
-/* The camera (keys or fixed) and, when objects move, the posed triangles and
- * each object's motion since the previous frame. */
-void tgi_pass_animate(tg_frame *f)
-{
-    const tg_scene *s = f->scene;
-    tg_vec3 pos = s->camera.pos, target = s->camera.target;
-    int o;
-    f->prev_view = f->view;
-    f->prev_time = f->time;
-    f->time = tgi_anim_time(s, f->index, f->request.frames);
-    if (s->camera_key_count > 0) tgi_anim_camera(s, f->time, &pos, &target);
-    tgi_view_make(&f->view, pos, target, s->camera.up, s->camera.fov, s->camera.znear,
-                 s->camera.zfar, f->width, f->height);
-    if (f->posed_pos) {
-        tgi_anim_pose(s, f->time, f->posed_pos, f->posed_nrm);
-        for (o = 0; o < s->object_count; o++)
-            tgi_anim_object_delta(s, o, f->time, f->index > 0 ? f->prev_time : f->time, &f->object_delta[o]);
-    }
-}
 
 tgi_raster_mesh tgi_frame_mesh(const tg_frame *f)
 {

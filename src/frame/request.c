@@ -86,7 +86,8 @@ static int switch_outside(const tg_request *r, tg_error *err)
         || int_outside(err, "gi_scale", r->gi_scale, 1, 2)
         || int_outside(err, "temporal", r->temporal, 0, 1)
         || int_outside(err, "far_mode", r->far_mode, 0, 1)
-        || int_outside(err, "shadow_pcf", r->shadow_pcf, 0, 1);
+        || int_outside(err, "shadow_pcf", r->shadow_pcf, 0, 1)
+        || int_outside(err, "game_loop", r->game_loop, 0, 1);
 }
 
 int tgi_request_refused(const tg_request *r, tg_error *err)

@@ -69,6 +69,11 @@ static tgi_mat4 key_matrix(tg_vec3 translate, tgi_mat4 rot)
     return rot;
 }
 
+tgi_mat4 tgi_anim_key_matrix(tg_vec3 translate, tg_vec3 axis, tg_real angle)
+{
+    return key_matrix(translate, tgi_m4_rotate(axis, angle));
+}
+
 void tgi_anim_object_matrix(const tg_scene *s, int object, tg_real t, tgi_mat4 *m)
 {
     const tgi_object *o;
@@ -82,7 +87,7 @@ void tgi_anim_object_matrix(const tg_scene *s, int object, tg_real t, tgi_mat4 *
     k = &s->object_keys[o->first_key];
     key_segment(&k[0].t, sizeof k[0], o->key_count, t, &a, &b, &u);
     if (a == b) {
-        *m = key_matrix(k[a].translate, tgi_m4_rotate(k[a].axis, k[a].angle));
+        *m = tgi_anim_key_matrix(k[a].translate, k[a].axis, k[a].angle);
         return;
     }
     {
@@ -113,13 +118,18 @@ static tgi_mat4 rigid_inverse(const tgi_mat4 *m)
     return r;
 }
 
+void tgi_anim_delta(const tgi_mat4 *cur, const tgi_mat4 *prev, tgi_mat4 *d)
+{
+    tgi_mat4 inv = rigid_inverse(cur);
+    *d = tgi_m4_mul(prev, &inv);
+}
+
 void tgi_anim_object_delta(const tg_scene *s, int object, tg_real t_cur, tg_real t_prev, tgi_mat4 *d)
 {
-    tgi_mat4 cur, prev, inv;
+    tgi_mat4 cur, prev;
     tgi_anim_object_matrix(s, object, t_cur, &cur);
     tgi_anim_object_matrix(s, object, t_prev, &prev);
-    inv = rigid_inverse(&cur);
-    *d = tgi_m4_mul(&prev, &inv);
+    tgi_anim_delta(&cur, &prev, d);
 }
 
 int tgi_anim_object_moves(const tg_scene *s, int object)
@@ -136,21 +146,35 @@ int tgi_anim_has_motion(const tg_scene *s)
     return 0;
 }
 
+int tgi_anim_has_posed_objects(const tg_scene *s)
+{
+    int i;
+    for (i = 0; i < s->object_count; i++)
+        if (s->objects[i].key_count > 0) return 1;
+    return 0;
+}
+
+void tgi_anim_pose_object(const tg_scene *s, int object, const tgi_mat4 *m, tg_vec3 *pos, tg_vec3 *nrm)
+{
+    const tgi_object *ob = &s->objects[object];
+    int v;
+    for (v = ob->first_tri * 3; v < (ob->first_tri + ob->tri_count) * 3; v++) {
+        pos[v] = tgi_m4_point(m, s->tri_pos[v]);
+        nrm[v] = tgi_v3_normalize_or(tgi_m4_dir(m, s->tri_nrm[v]), s->tri_nrm[v]);
+    }
+}
+
 void tgi_anim_pose(const tg_scene *s, tg_real t, tg_vec3 *pos, tg_vec3 *nrm)
 {
     size_t n = (size_t)s->tri_count * 3;
-    int o, v;
+    int o;
     memcpy(pos, s->tri_pos, n * sizeof *pos);
     memcpy(nrm, s->tri_nrm, n * sizeof *nrm);
     for (o = 0; o < s->object_count; o++) {
-        const tgi_object *ob = &s->objects[o];
         tgi_mat4 m;
-        if (ob->key_count <= 0) continue;
+        if (s->objects[o].key_count <= 0) continue;
         tgi_anim_object_matrix(s, o, t, &m);
-        for (v = ob->first_tri * 3; v < (ob->first_tri + ob->tri_count) * 3; v++) {
-            pos[v] = tgi_m4_point(&m, s->tri_pos[v]);
-            nrm[v] = tgi_v3_normalize_or(tgi_m4_dir(&m, s->tri_nrm[v]), s->tri_nrm[v]);
-        }
+        tgi_anim_pose_object(s, o, &m, pos, nrm);
     }
 }
 
