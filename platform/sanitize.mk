@@ -6,10 +6,18 @@
 #                                 UndefinedBehaviorSanitizer in $(SAN_BUILD);
 #                                 any report aborts the test that hit it
 #   make fuzz [FUZZ_SECONDS=30]   libFuzzer targets (tests/fuzz/fuzz_*.c) for the
-#                                 scene parser and the OBJ/MTL loader, float and
-#                                 Q16.16, each run FUZZ_SECONDS from the seed
-#                                 corpus tests/fuzz/corpus_<target>/
+#                                 scene parser, the OBJ/MTL loader and the whole
+#                                 API (request + scene, planned and rendered in
+#                                 a small arena), float and Q16.16, each run
+#                                 FUZZ_SECONDS from the seed corpus
+#                                 tests/fuzz/corpus_<target>/
 #   make fuzz-build               only build them (into $(FUZZ_BUILD))
+#   make soak [SOAK_LAPS=8]       tests/soak.c under ASan + UBSan (built in
+#                                 $(SAN_BUILD), the libraries `make sanitize`
+#                                 built), float and Q16.16: SOAK_LAPS x 256 + 1
+#                                 frames of an animated scene with reprojection
+#                                 at 32x24, every output bounded, laps that
+#                                 repeat, the frame's memory guarded
 #
 # The core is compiled -ffreestanding; gcc and clang still instrument it.
 # libFuzzer needs clang and its runtime (Debian: packages clang and
@@ -26,19 +34,30 @@ SAN_WARN    ?= -Wno-maybe-uninitialized
 FUZZ_BUILD  ?= build-fuzz
 FUZZ_CC     ?= clang
 FUZZ_SECONDS ?= 30
-FUZZ_TARGETS := scene obj
+FUZZ_TARGETS := scene obj api
 FUZZ_FLAGS  = -std=c99 $(REPRO_clang) $(WARN_clang) $(WERROR) -O1 -g \
               -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all
 FUZZ_BINS   := $(foreach t,$(FUZZ_TARGETS),$(FUZZ_BUILD)/fuzz_$(t) $(FUZZ_BUILD)/fuzz_$(t)-fixed)
 FUZZ_CORE   = $(filter-out $(SKIP),$(sort $(wildcard src/*.c src/*/*.c)))
 
-.PHONY: sanitize fuzz fuzz-build fuzz-check
+SOAK_LAPS   ?= 8
+SAN_ENV     = ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+
+.PHONY: sanitize fuzz fuzz-build fuzz-check soak
 sanitize:
 	@start=$$(date +%s); \
-	ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	$(MAKE) --no-print-directory BUILD=$(SAN_BUILD) \
+	$(SAN_ENV) $(MAKE) --no-print-directory BUILD=$(SAN_BUILD) \
 	    CFLAGS="-O1 $(SAN_FLAGS) $(SAN_WARN)" LDFLAGS="$(SAN_FLAGS)" test; rc=$$?; \
 	echo "sanitize: $$(( $$(date +%s) - start )) s"; exit $$rc
+
+# tests/soak.c is built by the tests' rule of the Makefile (not a test_*.c,
+# so `make test` does not run it).
+soak:
+	@$(MAKE) --no-print-directory BUILD=$(SAN_BUILD) CFLAGS="-O1 $(SAN_FLAGS) $(SAN_WARN)" \
+	    LDFLAGS="$(SAN_FLAGS)" $(SAN_BUILD)/float/tests/soak $(SAN_BUILD)/fixed/tests/soak
+	@start=$$(date +%s); rc=0; \
+	for n in float fixed; do $(SAN_ENV) $(SAN_BUILD)/$$n/tests/soak $(SOAK_LAPS) || rc=1; done; \
+	echo "soak: $$(( $$(date +%s) - start )) s"; exit $$rc
 
 fuzz-check:
 	@command -v $(FUZZ_CC) >/dev/null || { echo "make fuzz: $(FUZZ_CC) not found; install it: apt-get install -y --no-install-recommends clang libclang-rt-dev (or libclang-rt-14-dev)"; exit 2; }
