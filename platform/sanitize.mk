@@ -67,12 +67,27 @@ fuzz-check:
 
 fuzz-build: fuzz-check $(FUZZ_BINS)
 
-$(FUZZ_BUILD)/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_common.h $(FUZZ_CORE)
-	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(FUZZ_FLAGS) -Isrc $< $(FUZZ_CORE) -o $@
-$(FUZZ_BUILD)/fuzz_%-fixed: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_common.h $(FUZZ_CORE)
-	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(FUZZ_FLAGS) -DTG_FIXED=1 -Isrc $< $(FUZZ_CORE) -o $@
+# The core is compiled once per number type (objects in $(FUZZ_BUILD)/float
+# and /fixed, rebuilt when a source, a header or the flags change) and
+# linked into every target.
+FUZZ_OBJ_float = $(patsubst src/%.c,$(FUZZ_BUILD)/float/%.o,$(FUZZ_CORE))
+FUZZ_OBJ_fixed = $(patsubst src/%.c,$(FUZZ_BUILD)/fixed/%.o,$(FUZZ_CORE))
+FUZZ_STAMP     = $(FUZZ_BUILD)/flags
+$(FUZZ_STAMP): FORCE
+	@mkdir -p $(@D)
+	@printf '%s\n' '$(FUZZ_CC) $(FUZZ_FLAGS)' >$@.new; if cmp -s $@.new $@; then rm -f $@.new; else mv $@.new $@; fi
+$(FUZZ_BUILD)/float/%.o: src/%.c $(FUZZ_STAMP)
+	@mkdir -p $(@D)
+	$(FUZZ_CC) $(FUZZ_FLAGS) -MMD -MP -c $< -o $@
+$(FUZZ_BUILD)/fixed/%.o: src/%.c $(FUZZ_STAMP)
+	@mkdir -p $(@D)
+	$(FUZZ_CC) $(FUZZ_FLAGS) -DTG_FIXED=1 -MMD -MP -c $< -o $@
+-include $(patsubst %.o,%.d,$(FUZZ_OBJ_float) $(FUZZ_OBJ_fixed))
+
+$(FUZZ_BUILD)/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_common.h $(FUZZ_OBJ_float)
+	$(FUZZ_CC) $(FUZZ_FLAGS) -Isrc $< $(FUZZ_OBJ_float) -o $@
+$(FUZZ_BUILD)/fuzz_%-fixed: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_common.h $(FUZZ_OBJ_fixed)
+	$(FUZZ_CC) $(FUZZ_FLAGS) -DTG_FIXED=1 -Isrc $< $(FUZZ_OBJ_fixed) -o $@
 
 # Each target runs from a scratch copy of its seed corpus (new inputs stay in
 # the build dir, the repository's seeds are not touched).
