@@ -16,9 +16,13 @@
  *     colour repeats the frame LAP before (mean absolute difference below
  *     DRIFT_TOL, mean colour within ENERGY_TOL), so nothing accumulates
  *     over thousands of frames of reprojection;
- *   - fixed memory: the frame gets exactly the plan's total_bytes with guard
- *     bytes before and after it, checked every 100 frames; re-planning gives
- *     the same total_bytes; the scene's memory is not written (checksum).
+ *   - fixed memory: the frame gets exactly the plan's total_bytes, at an
+ *     address 1 past a multiple of 16 (the worst alignment: the plan's
+ *     16 bytes of slack go to padding, so the frame ends within a byte of
+ *     its memory's end), with guard bytes before and after it, checked every
+ *     100 frames (and poisoned under AddressSanitizer, which then reports
+ *     the first byte written to them); re-planning gives the same
+ *     total_bytes; the scene's memory is not written (checksum).
  * Prints one line per number type, exits 1 on the first failure.
  *
  *   usage: soak [LAPS]   (a power of two, 2..64)
@@ -27,6 +31,14 @@
 #include <stdlib.h>
 #include <string.h>
 #include "tinygi.h"
+#if defined(__SANITIZE_ADDRESS__)
+#include <sanitizer/asan_interface.h>
+#define POISON(p, n) ASAN_POISON_MEMORY_REGION(p, n)
+#define UNPOISON(p, n) ASAN_UNPOISON_MEMORY_REGION(p, n)
+#else
+#define POISON(p, n) ((void)(p), (void)(n))
+#define UNPOISON(p, n) ((void)(p), (void)(n))
+#endif
 
 #define W 32
 #define H 24
@@ -34,7 +46,7 @@
 #define COLOR_BOUND 64.0f   /* linear radiance; the brightest surface here is ~6 */
 #define DRIFT_TOL 1e-3      /* mean |colour(i) - colour(i - LAP)| from the third lap on */
 #define ENERGY_TOL 1e-4     /* |mean colour(i) - mean colour(i - LAP)| likewise */
-#define GUARD 4096
+#define GUARD 4097           /* after malloc's 16-byte aligned block: the frame at 16k + 1 */
 #define PATTERN 0x5A
 
 static int failures;
@@ -198,6 +210,8 @@ static int soak(int frames)
         return 1;
     }
     scene_sum = checksum(scene_mem, scene_bytes);
+    POISON(frame_block, GUARD);
+    POISON(frame_block + GUARD + plan.total_bytes, GUARD);
     for (i = 0; i < frames && !failures; i++) {
         float *prev = laps + (size_t)(i % LAP) * W * H * 3;
         if (tg_frame_render(frame, i, &err) != TG_OK) { FAIL("render %d: %s", i, err.message); break; }
@@ -211,8 +225,12 @@ static int soak(int frames)
         }
         memcpy(prev, color, sizeof color);
         if (i % 100 == 99 || i == frames - 1) {
+            UNPOISON(frame_block, GUARD);
+            UNPOISON(frame_block + GUARD + plan.total_bytes, GUARD);
             if (!intact(frame_block, GUARD) || !intact(frame_block + GUARD + plan.total_bytes, GUARD))
                 FAIL("frame %d: the frame wrote outside its %zu bytes", i, plan.total_bytes);
+            POISON(frame_block, GUARD);
+            POISON(frame_block + GUARD + plan.total_bytes, GUARD);
             if (checksum(scene_mem, scene_bytes) != scene_sum) FAIL("frame %d: the scene's memory changed", i);
             if (tg_plan_make(&again, scene, &q, &err) != TG_OK || again.total_bytes != plan.total_bytes)
                 FAIL("frame %d: re-planning gives %zu bytes, not %zu", i, again.total_bytes, plan.total_bytes);
@@ -228,6 +246,7 @@ static int soak(int frames)
            ENERGY_TOL, failures ? "FAILED" : "ok");
     free(text);
     free(scene_mem);
+    UNPOISON(frame_block, plan.total_bytes + 2 * GUARD);
     free(frame_block);
     free(laps);
     return failures ? 1 : 0;
