@@ -481,27 +481,34 @@ enum {
     TG_EFFECT_REPROJECTION = 1u << 5
 };
 
+/* What to render.  tg_plan_make checks every field against the limits block
+ * above and refuses a value past its limit (TG_ERR_INPUT, a message naming
+ * the field: "slices must be 1..8, got 20"); "unset" values take the
+ * scene's gi line, else the TG_DEFAULT_* value. */
 typedef struct tg_request {
-    int width, height;     /* default 320x240 */
-    int frames;            /* frames to render (1: no reprojection) */
-    uint32_t aovs;         /* bit (1u << TG_AOV_x) per output wanted; default colour */
-    tg_technique technique;
-    int slices;            /* <= 0: the scene's gi line or the default (2) */
-    int samples;           /* <= 0: the scene's or the default (16) */
-    tg_real radius;        /* < 0: the scene's or the default (1.0); 0 is allowed */
-    int bounces;           /* < 0: the scene's or the default (1) */
+    int width, height;     /* 1..TG_MAX_IMAGE_SIDE each, at most TG_MAX_IMAGE_PIXELS in all */
+    int frames;            /* frames to render, 1..TG_MAX_FRAMES (1: no reprojection) */
+    uint32_t aovs;         /* bit (1u << TG_AOV_x) per output wanted; 0: colour */
+    tg_technique technique;/* 0..TG_TECH_COUNT - 1 */
+    int slices;            /* 1..TG_MAX_SLICES; <= 0: unset */
+    int samples;           /* 1..TG_MAX_SAMPLES; <= 0: unset */
+    tg_real radius;        /* world units, 0..TG_MAX_RADIUS (0 is allowed); -1: unset;
+                              NaN, the infinities and other negatives are refused */
+    int bounces;           /* 0..TG_MAX_BOUNCES; < 0: unset */
     int interleave;        /* 1: 4x4 interleaved kernel (default); 0: one full-res image */
     int gi_scale;          /* interleaved kernel on 1 pixel in gi_scale^2: 1 = every
                               pixel (default, the paper's), 2 = a quarter of them (half
                               width and height: about 3x faster, AO slightly brighter) */
-    int temporal;          /* 1: temporal accumulation of the GI result (default 1) */
+    int temporal;          /* 1: temporal accumulation of the GI result (default); 0: none */
     int far_mode;          /* 0: SH9 cosine lobe in the bent cone (HBIL sec. 2.2.4, default);
                               1: E0(bent) F0(AO) (HBIL sec. 2.2.3) */
-    tg_real exposure;      /* linear multiplier before the tonemapper, default 1 */
-    int shadow_map_size;   /* texels per side, default 512 */
+    tg_real exposure;      /* linear multiplier before the tonemapper, 0..TG_MAX_EXPOSURE
+                              (default 1; NaN and the infinities are refused) */
+    int shadow_map_size;   /* texels per side, TG_MIN_SHADOW_MAP..TG_MAX_SHADOW_MAP; <= 0: unset */
     int shadow_pcf;        /* 0: 16-tap tent PCF (default, soft); 1: 4-tap bilinear (a quarter of the cost) */
 } tg_request;
 
+/* Every field at its default: 320x240, one frame, colour, HBIL, GI settings unset. */
 void tg_request_defaults(tg_request *r);
 
 /* ---- the frame plan ---- */
@@ -517,13 +524,18 @@ typedef struct tg_plan {
     tg_request request;        /* the request with every default resolved */
     uint32_t effects;          /* TG_EFFECT_* the frame simulates */
     int pass_count;
-    const char *passes[TG_PLAN_MAX_PASSES];
+    const char *passes[TG_PLAN_MAX_PASSES];   /* what a frame runs, in order */
+    unsigned char pass_rows[TG_PLAN_MAX_PASSES]; /* (internal) their rows in the pass table */
     int buffer_count;
     tg_plan_buffer buffers[TG_PLAN_MAX_BUFFERS];
     size_t total_bytes;        /* arena bytes tg_frame_create needs */
     const tg_scene *scene;
 } tg_plan;
 
+/* Decide what a frame of `scene` computes for `req` and how many arena
+ * bytes it needs.  TG_ERR_INPUT when a request field (or the scene's gi
+ * value it falls back on) is past its limit, or when the frame's size does
+ * not fit the address space. */
 tg_status tg_plan_make(tg_plan *plan, const tg_scene *scene,
                        const tg_request *req, tg_error *err);
 /* Human-readable plan (the CLI's --explain) into buf, cut and NUL-terminated
@@ -546,11 +558,14 @@ tg_status tg_frame_create(const tg_plan *plan, void *memory, size_t size,
  * order is allowed: reprojection uses the frame rendered before as history.
  * A negative index is TG_ERR_INPUT; rendering allocates nothing. */
 tg_status tg_frame_render(tg_frame *frame, int index, tg_error *err);
-/* One row of an AOV as linear values (channels per pixel from tg_aov_channels). */
-void tg_frame_aov_row(const tg_frame *frame, tg_aov aov, int y, tg_real *out);
-/* One row of an AOV as 8-bit RGB for viewing: colour is exposed, tonemapped
- * and sRGB-encoded; normals are 0.5n + 0.5; scalar AOVs are grey. */
-void tg_frame_aov_row8(const tg_frame *frame, tg_aov aov, int y, uint8_t *rgb);
+/* Row y of an AOV as linear values: `out` holds width * tg_aov_channels(aov)
+ * values.  y must be in [0, height): another row is refused (TG_ERR_INPUT,
+ * `out` all zeros), nothing outside the frame is read. */
+tg_status tg_frame_aov_row(const tg_frame *frame, tg_aov aov, int y, tg_real *out);
+/* Row y of an AOV as 8-bit RGB for viewing (`rgb` holds 3 * width bytes):
+ * colour is exposed, tonemapped and sRGB-encoded; normals are 0.5n + 0.5;
+ * scalar AOVs are grey.  y as for tg_frame_aov_row (zeros when refused). */
+tg_status tg_frame_aov_row8(const tg_frame *frame, tg_aov aov, int y, uint8_t *rgb);
 
 #ifdef __cplusplus
 }

@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 BUILD=${BUILD:-build}
 CC=${CC:-cc}
 CXX=${CXX:-g++}
-ldflags=${EXTRA_LDFLAGS:-}   # make sanitize: the libraries need the sanitizer runtimes
+ldflags="${EXTRA_LDFLAGS:-} ${LDFLAGS:-}"   # make sanitize: the libraries need the sanitizer runtimes
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 mkdir "$tmp/inc"
 cp src/tinygi.h "$tmp/inc/"

@@ -112,13 +112,24 @@ typedef struct outputs {
     tg_real ao[W * H], bx[W * H], by[W * H], bz[W * H], nr[W * H], ng[W * H], nb[W * H];
 } outputs;
 
-static void io_for(tgi_ao_io *io, scene *s, outputs *o, int want_near)
+/* What a technique reads and writes: the view of the ray-cast G-buffer, the
+ * results (into `outputs`) and the radiance planes (absent unless a test
+ * sets them). */
+typedef struct ao_pass {
+    tgi_gbuffer gb;
+    tgi_gview g;
+    tgi_gresult out;
+    tgi_rgb rad;
+} ao_pass;
+
+static void io_for(ao_pass *io, scene *s, outputs *o, int want_near)
 {
     memset(io, 0, sizeof *io);
-    io->width = W; io->height = H; io->view = &s->view;
-    io->depth = s->depth; io->nx = s->nx; io->ny = s->ny; io->nz = s->nz; io->sky = s->sky;
-    io->ao = o->ao; io->bent_x = o->bx; io->bent_y = o->by; io->bent_z = o->bz;
-    if (want_near) { io->near_r = o->nr; io->near_g = o->ng; io->near_b = o->nb; }
+    io->gb.width = W; io->gb.height = H;
+    io->gb.depth = s->depth; io->gb.nx = s->nx; io->gb.ny = s->ny; io->gb.nz = s->nz; io->gb.sky = s->sky;
+    tgi_gview_of(&io->g, &io->gb, &s->view);
+    io->out.ao = o->ao; io->out.bent_x = o->bx; io->out.bent_y = o->by; io->out.bent_z = o->bz;
+    if (want_near) { io->out.near.r = o->nr; io->out.near.g = o->ng; io->out.near.b = o->nb; }
 }
 
 static tgi_bvh bvh;

@@ -7,7 +7,7 @@
 # AO PFM within 0.02 absolute per pixel.  Renders are deterministic, so on
 # the machine that made the goldens the difference is 0; the slack is for
 # other compilers and targets.  Fixed and float AO must also agree within
-# RMSE 0.02 on every scene (issue 4).
+# RMSE 0.02 on every scene.
 # Regenerate after an intended change: `make golden`, then look at them.
 set -u
 cd "$(dirname "$0")/.."

@@ -6,70 +6,8 @@
  * composed frame: an open plane has AO ~ 1, a white furnace returns the
  * albedo, a closed lit room converges over frames and stays finite.
  */
-#include <stdlib.h>
-#include "check.h"
-
-typedef struct rendered {
-    tg_scene *scene;
-    tg_plan plan;
-    tg_frame *frame;
-    void *scene_mem, *frame_mem;
-    int ok;
-} rendered;
-
-static int setup(rendered *r, const char *text, const tg_request *req)
-{
-    tg_arena arena;
-    tg_error err;
-    size_t scene_bytes = 1u << 22;
-    memset(r, 0, sizeof *r);
-    r->scene_mem = malloc(scene_bytes);
-    tg_arena_init(&arena, r->scene_mem, scene_bytes);
-    if (tg_scene_parse(text, strlen(text), "test.scene", NULL, &arena, &r->scene, &err) != TG_OK) {
-        char msg[512];
-        tg_error_format(&err, msg, sizeof msg);
-        fprintf(stderr, "%s\n", msg);
-        return 0;
-    }
-    if (tg_plan_make(&r->plan, r->scene, req, &err) != TG_OK) return 0;
-    r->frame_mem = malloc(r->plan.total_bytes);
-    if (tg_frame_create(&r->plan, r->frame_mem, r->plan.total_bytes, &r->frame, &err) != TG_OK) return 0;
-    r->ok = 1;
-    return 1;
-}
-
-static void teardown(rendered *r)
-{
-    free(r->scene_mem);
-    free(r->frame_mem);
-    memset(r, 0, sizeof *r);
-}
-
-static tg_request request(int w, int h, uint32_t aovs)
-{
-    tg_request q;
-    tg_request_defaults(&q);
-    q.width = w;
-    q.height = h;
-    q.aovs = aovs;
-    return q;
-}
-
-/* Read a whole AOV (channels * w * h doubles). */
-static double *read_aov(const rendered *r, tg_aov aov)
-{
-    int w = r->plan.request.width, h = r->plan.request.height, c = tg_aov_channels(aov), y, i;
-    double *out = malloc(sizeof(double) * (size_t)(w * h * c));
-    tg_real *row = malloc(sizeof(tg_real) * (size_t)(w * c));
-    for (y = 0; y < h; y++) {
-        tg_frame_aov_row(r->frame, aov, y, row);
-        for (i = 0; i < w * c; i++) out[(size_t)y * (size_t)(w * c) + (size_t)i] = check_d(row[i]);
-    }
-    free(row);
-    return out;
-}
-
-#define AOVBIT(a) (1u << (a))
+#include "frame_fixture.h"
+#include "frame/frame_internal.h"
 
 static const char *lit_room =
     "camera pos 0 1 -3.5 target 0 1 0 fov 60\n"
@@ -521,9 +459,115 @@ TEST(bilinear_pcf_only_changes_edges)
     teardown(&a); teardown(&b);
 }
 
+
+/* ---- the pass table ---- */
+
+/* Every row runs one way (over rows, or serially), the bounce loop's rows
+ * are contiguous, and the table fits the plan. */
+TEST(pass_table_is_well_formed)
+{
+    int k, first = -1, last = -1, gaps = 0;
+    CHECK(tgi_pass_count <= TG_PLAN_MAX_PASSES && tgi_pass_count <= 255, "%d rows", tgi_pass_count);
+    for (k = 0; k < tgi_pass_count; k++) {
+        const tgi_pass *p = &tgi_passes[k];
+        CHECK(p->name && p->name[0] && p->needed, "row %d: a name and a predicate", k);
+        CHECK(p->rows == TGI_SERIAL ? p->run && !p->run_rows : p->run_rows && !p->run,
+              "row %d (%s): one run function, of its kind", k, p->name);
+        if (p->when & TGI_BOUNCE) { if (first < 0) first = k; last = k; }
+    }
+    for (k = first; k >= 0 && k <= last; k++) gaps += !(tgi_passes[k].when & TGI_BOUNCE);
+    CHECK(first >= 0 && gaps == 0, "bounce rows %d..%d with %d gaps", first, last, gaps);
+}
+
+/* --explain lists the passes the frame runs, in order, numbered. */
+TEST(explain_lists_the_plan)
+{
+    rendered r;
+    tg_request q = request(32, 24, AOVBIT(TG_AOV_COLOR) | AOVBIT(TG_AOV_DEPTH));
+    char text[8192];
+    const char *at;
+    int i;
+    q.frames = 3;
+    q.bounces = 2;
+    CHECK(setup(&r, lit_room, &q), "lit room sets up");
+    if (!r.ok) { teardown(&r); return; }
+    CHECK(tg_plan_explain(&r.plan, text, sizeof text) < sizeof text, "explanation fits");
+    at = text;
+    for (i = 0; i < r.plan.pass_count; i++) {
+        char line[300];
+        snprintf(line, sizeof line, "  %d. %s", i + 1, tgi_passes[r.plan.pass_rows[i]].name);
+        CHECK(strcmp(r.plan.passes[i], tgi_passes[r.plan.pass_rows[i]].name) == 0, "pass %d named by its row", i);
+        at = strstr(at, line);
+        CHECK(at != NULL, "pass %d (%s) not listed in order", i + 1, r.plan.passes[i]);
+        if (!at) break;
+    }
+    CHECK(strstr(text, "run 2 times: gi bounces") != NULL, "the bounce loop is announced:\n%s", text);
+    teardown(&r);
+}
+
+static unsigned char *render_in_bands(const char *text, const tg_request *q, int band, size_t *bytes)
+{
+    rendered r;
+    tg_error err;
+    unsigned char *all = NULL;
+    int f;
+    *bytes = 0;
+    if (!setup(&r, text, q)) { teardown(&r); return NULL; }
+    for (f = 0; f < q->frames; f++) tgi_frame_render_bands(r.frame, f, band, &err);
+    all = raw_aovs(&r, bytes);
+    teardown(&r);
+    return all;
+}
+
+/* Rows of a row-parallel pass are independent: rendered in bands of 1, 3
+ * and 7 rows, last band first, every AOV has the bits of one call per pass
+ * (what a threaded platform may do). */
+TEST(any_split_of_the_rows_gives_the_same_frame)
+{
+    static const char *moving =
+        "camera_key t 0 pos 0 1.5 -3.5 target 0 0.5 0\n"
+        "camera_key t 1 pos 0.4 1.4 -3.2 target 0 0.5 0\n"
+        "material wall albedo 0.7 0.7 0.7 f0 0.04\n"
+        "material hot albedo 0.9 0.2 0.2 emissive 3 0.5 0.5\n"
+        "box min -2 0 -4 max 2 3 2 material wall inward\n"
+        "box min -0.4 0 -0.4 max 0.4 0.8 0.4 material hot name mover\n"
+        "object_key name mover t 0 translate -0.5 0 0\n"
+        "object_key name mover t 1 translate 0.5 0 0\n"
+        "light spot pos 0 2.5 -1 dir 0 -1 0.3 angle 50 color 1 1 1 intensity 6 shadows\n"
+        "env sky 0.4 0.5 0.7 ground 0.2 0.2 0.2\n"
+        "gi radius 2\n";
+    static const int bands[] = { 1, 3, 7 };
+    int t, b, cfg;
+    for (cfg = 0; cfg < 6; cfg++) {
+        tg_request q = request(29, 21, ALL_AOVS);
+        unsigned char *whole, *split;
+        size_t nw, ns;
+        q.frames = 3;
+        q.bounces = 2;
+        t = cfg;
+        if (cfg == 1) q.gi_scale = 2;
+        if (cfg == 2) q.interleave = 0;
+        if (cfg == 3) q.technique = TG_TECH_SSDO;
+        if (cfg == 4) q.technique = TG_TECH_GTAO;
+        if (cfg == 5) { q.technique = TG_TECH_REFERENCE; q.samples = 8; q.frames = 2; }
+        whole = render_in_bands(moving, &q, 0, &nw);
+        CHECK(whole != NULL, "configuration %d renders", t);
+        for (b = 0; whole && b < 3; b++) {
+            split = render_in_bands(moving, &q, bands[b], &ns);
+            CHECK(split && ns == nw && memcmp(whole, split, nw) == 0,
+                  "configuration %d in bands of %d rows differs", t, bands[b]);
+            free(split);
+        }
+        free(whole);
+    }
+}
+
 int main(void)
 {
     RUN(plan_follows_the_scene);
+    RUN(pass_table_is_well_formed);
+    RUN(explain_lists_the_plan);
+    RUN(any_split_of_the_rows_gives_the_same_frame);
     RUN(no_near_field_without_light_or_albedo);
     RUN(ao_alone_is_identical_and_smaller);
     RUN(open_plane_ao_is_one);

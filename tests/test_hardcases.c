@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * test_hardcases.c - the hard-case suite (issue 6 item 1): named scenes and
+ * test_hardcases.c - the hard-case suite: named scenes and
  * requests that push the numerics (grazing planes, geometry through the
  * near plane and behind the camera, degenerate triangles, extreme fov,
  * near/far and scale, tiny and odd framebuffers, many frames, camera cuts,
@@ -15,102 +15,7 @@
  * Sizes are tiny and the reference uses 16 samples so the whole suite stays
  * well under a minute per number type.
  */
-#include <stdlib.h>
-#include "check.h"
-
-#define AOVBIT(a) (1u << (a))
-#define ALL_AOVS ((1u << TG_AOV_COUNT) - 1u)
-
-typedef struct rendered {
-    tg_scene *scene;
-    tg_plan plan;
-    tg_frame *frame;
-    void *scene_mem, *frame_mem;
-    int ok;
-    tg_status status;  /* of the step that failed */
-    char msg[600];
-} rendered;
-
-/* In-memory files for scenes with meshes: every path gets `obj_text`. */
-static const char *io_obj_text;
-static int io_read(void *user, const char *path, const char **data, size_t *size,
-                   const char **reason)
-{
-    (void)user; (void)path; (void)reason;
-    if (!io_obj_text) return 1;
-    *data = io_obj_text;
-    *size = strlen(io_obj_text);
-    return 0;
-}
-
-static int setup(rendered *r, const char *text, const tg_request *req)
-{
-    tg_arena arena;
-    tg_error err;
-    tg_io io;
-    size_t scene_bytes = 1u << 22;
-    tg_status s;
-    memset(r, 0, sizeof *r);
-    memset(&err, 0, sizeof err);
-    io.user = NULL;
-    io.read_file = io_read;
-    r->scene_mem = malloc(scene_bytes);
-    tg_arena_init(&arena, r->scene_mem, scene_bytes);
-    s = tg_scene_parse(text, strlen(text), "hard.scene", &io, &arena, &r->scene, &err);
-    if (s == TG_OK) s = tg_plan_make(&r->plan, r->scene, req, &err);
-    if (s == TG_OK) {
-        r->frame_mem = malloc(r->plan.total_bytes);
-        s = tg_frame_create(&r->plan, r->frame_mem, r->plan.total_bytes, &r->frame, &err);
-    }
-    if (s != TG_OK) {
-        r->status = s;
-        tg_error_format(&err, r->msg, sizeof r->msg);
-        return 0;
-    }
-    r->ok = 1;
-    return 1;
-}
-
-static void teardown(rendered *r)
-{
-    free(r->scene_mem);
-    free(r->frame_mem);
-    r->scene_mem = r->frame_mem = NULL;
-    r->ok = 0;
-}
-
-/* Read a whole AOV (channels * w * h doubles). */
-static double *read_aov(const rendered *r, tg_aov aov)
-{
-    int w = r->plan.request.width, h = r->plan.request.height, c = tg_aov_channels(aov), y, i;
-    double *out = malloc(sizeof(double) * (size_t)w * (size_t)h * (size_t)c);
-    tg_real *row = malloc(sizeof(tg_real) * (size_t)w * (size_t)c);
-    for (y = 0; y < h; y++) {
-        tg_frame_aov_row(r->frame, aov, y, row);
-        for (i = 0; i < w * c; i++) out[(size_t)y * (size_t)(w * c) + (size_t)i] = check_d(row[i]);
-    }
-    free(row);
-    return out;
-}
-
-/* Raw bits of every AOV of the current frame, concatenated. */
-static unsigned char *raw_aovs(const rendered *r, size_t *bytes)
-{
-    int w = r->plan.request.width, h = r->plan.request.height, a, y;
-    size_t n = 0, cap = 0;
-    unsigned char *buf;
-    for (a = 0; a < TG_AOV_COUNT; a++) cap += (size_t)w * (size_t)h * (size_t)tg_aov_channels((tg_aov)a) * sizeof(tg_real);
-    buf = malloc(cap);
-    for (a = 0; a < TG_AOV_COUNT; a++) {
-        size_t row = (size_t)w * (size_t)tg_aov_channels((tg_aov)a) * sizeof(tg_real);
-        for (y = 0; y < h; y++) {
-            tg_frame_aov_row(r->frame, (tg_aov)a, y, (tg_real *)(void *)(buf + n));
-            n += row;
-        }
-    }
-    *bytes = n;
-    return buf;
-}
+#include "frame_fixture.h"
 
 #define CONE_MAX (1.5707963267948966 + (TG_FIXED ? 2e-5 : 1e-6))
 
@@ -274,13 +179,13 @@ TEST(interpolated_normals_facing_away)
         "mesh file away.obj material m\n"
         "light point pos 0 2 -2 color 1 1 1 intensity 3 shadows\n"
         "env uniform 0.3 0.3 0.3\n";
-    io_obj_text =
+    fixture_mesh_text =
         "v -1 0 0\nv 1 0 0\nv 1 2 0\nv -1 2 0\n"
         "vn 0 0 1\nvn 0.2 0 1\nvn 0 0.99 0.01\nvn -0.7 0 0.7\n"
         "f 1//1 2//2 3//3\nf 1//1 3//3 4//4\n"
         "f 2//4 1//2 4//1\n";
     run_case(&c);
-    io_obj_text = NULL;
+    fixture_mesh_text = NULL;
 }
 
 TEST(camera_inside_a_box)
@@ -316,11 +221,11 @@ TEST(near_plane_crossing_and_behind_camera)
         "mesh file w.obj material m\n"
         "light point pos 0 2 2 color 1 1 1 intensity 3 shadows\n"
         "env uniform 0.2 0.2 0.2\n";
-    io_obj_text =
+    fixture_mesh_text =
         "v -1 0.5 0\nv -0.5 2 3\nv -2 0.2 -1\nv -0.2 1.2 0.01\n"
         "f 1 2 3\nf 4 2 1\nf 3 2 4\n";
     run_case(&c);
-    io_obj_text = NULL;
+    fixture_mesh_text = NULL;
 }
 
 TEST(sky_beside_geometry)
@@ -392,7 +297,7 @@ static void scaled_room(char *text, size_t n, double s)
 }
 
 /* Techniques whose AO is checked to be the same at every scale.  Known
- * failures at scale 0.001 (left out until fixed; see the issue 6 report):
+ * failures at scale 0.001 (left out until fixed):
  * the reference (float and fixed: a world-unit ray epsilon, AO off by
  * ~0.08), and in fixed point hbao (0.08) and vo (0.18), whose
  * squared distances underflow Q16.16. */
@@ -519,13 +424,13 @@ TEST(degenerate_triangles)
         "mesh file bad.obj material m\n"
         "light point pos 0 2 -1 color 1 1 1 intensity 3 shadows\n"
         "env uniform 0.3 0.3 0.3\n";
-    io_obj_text =
+    fixture_mesh_text =
         "v 0 0.5 0\nv 1 0.5 0\nv 2 0.5 0\nv 0 1.5 0\nv -1 0.2 0\nv 1 0.2001 0\nv -1 0.2 0.00001\n"
         "vn 0 0 -1\n"
         "f 1 1 1\nf 1 2 1\nf 1 2 3\nf 3 2 1\n"
         "f 5 6 7\nf 5 4 6\nf 1//1 2//1 3//1\nf 4 4 2\n";
     run_case(&c);
-    io_obj_text = NULL;
+    fixture_mesh_text = NULL;
 }
 
 TEST(fov_extremes_and_camera_straight_down)

@@ -114,26 +114,44 @@ static void result_alloc(result *r, size_t n)
 }
 static void result_free(result *r) { free(r->ao); free(r->bx); free(r->by); free(r->bz); free(r->cone); free(r->near); }
 
-static void params_for(tgi_hbil_params *p, const gbuf *g, double radius)
+static void params_for(tgi_hbil_params *p, double radius)
 {
-    tgi_hbil_defaults(p, &g->view);
+    tgi_hbil_defaults(p);
     p->radius = tg_from_float((float)radius);
     p->max_radius_px = TG_R(256.0f);
+}
+
+/* The full-resolution view of g (its storage in *gb). */
+static void view_of(const gbuf *g, tgi_gbuffer *gb, tgi_gview *v)
+{
+    memset(gb, 0, sizeof *gb);
+    gb->width = g->w; gb->height = g->h;
+    gb->depth = g->depth; gb->nx = g->nx; gb->ny = g->ny; gb->nz = g->nz; gb->sky = g->sky;
+    tgi_gview_of(v, gb, &g->view);
+}
+
+static tgi_gresult results_of(const result *r, int near)
+{
+    tgi_gresult o;
+    memset(&o, 0, sizeof o);
+    o.ao = r->ao; o.bent_x = r->bx; o.bent_y = r->by; o.bent_z = r->bz; o.cone = r->cone;
+    if (near) o.near.r = o.near.g = o.near.b = r->near;
+    return o;
 }
 
 /* Full resolution, per-pixel 4x4 pattern of the 32 directions. */
 static void run_full(const gbuf *g, double radius, int near, result *r)
 {
     tgi_hbil_params p;
-    tgi_hbil_io io;
-    params_for(&p, g, radius);
+    tgi_gbuffer gb;
+    tgi_gview v;
+    tgi_gresult o = results_of(r, near);
+    tgi_rgb rad;
+    params_for(&p, radius);
     p.per_pixel_pattern = 1;
-    memset(&io, 0, sizeof io);
-    io.width = g->w; io.height = g->h;
-    io.depth = g->depth; io.nx = g->nx; io.ny = g->ny; io.nz = g->nz; io.sky = g->sky;
-    io.ao = r->ao; io.bent_x = r->bx; io.bent_y = r->by; io.bent_z = r->bz; io.cone = r->cone;
-    if (near) { io.rad_r = io.rad_g = io.rad_b = g->rad; io.near_r = io.near_g = io.near_b = r->near; }
-    tgi_hbil_rows(&p, &io, 0, g->h);
+    view_of(g, &gb, &v);
+    rad.r = rad.g = rad.b = near ? g->rad : NULL;
+    tgi_hbil_rows(&p, &v, &rad, &o, 0, g->h);
 }
 
 /* 4x4 split, the kernel per sub-image, merge. */
@@ -144,30 +162,46 @@ static void run_interleaved(const gbuf *g, double radius, result *r)
     uint8_t *sky = malloc(n);
     const tg_real *in[4] = { g->depth, g->nx, g->ny, g->nz };
     tg_real *out[5] = { r->ao, r->bx, r->by, r->bz, r->cone };
-    int k, i, j;
+    tgi_gbuffer split, gb;
+    tgi_gview full;
+    tgi_gresult o;
+    tgi_hbil_params p;
+    int k;
     for (k = 0; k < 9; k++) b[k] = malloc(n * sizeof(tg_real));
     for (k = 0; k < 4; k++) tgi_interleave_split(in[k], g->w, g->h, b[k]);
     tgi_interleave_split8(g->sky, g->w, g->h, sky);
-    for (j = 0; j < 4; j++)
-        for (i = 0; i < 4; i++) {
-            tgi_hbil_params p;
-            tgi_hbil_io io;
-            int sw, sh;
-            size_t off;
-            tgi_interleave_sub_rect(g->w, g->h, i, j, &sw, &sh, &off);
-            if (sw == 0 || sh == 0) continue;
-            params_for(&p, g, radius);
-            p.step = 4; p.offset_x = i; p.offset_y = j;
-            p.slice_phi0 = tgi_hbil_slice_phi0(i, j, p.slices);
-            memset(&io, 0, sizeof io);
-            io.width = sw; io.height = sh;
-            io.depth = b[0] + off; io.nx = b[1] + off; io.ny = b[2] + off; io.nz = b[3] + off; io.sky = sky + off;
-            io.ao = b[4] + off; io.bent_x = b[5] + off; io.bent_y = b[6] + off; io.bent_z = b[7] + off; io.cone = b[8] + off;
-            tgi_hbil_rows(&p, &io, 0, sh);
-        }
+    memset(&split, 0, sizeof split);
+    split.depth = b[0]; split.nx = b[1]; split.ny = b[2]; split.nz = b[3]; split.sky = sky;
+    memset(&o, 0, sizeof o);
+    o.ao = b[4]; o.bent_x = b[5]; o.bent_y = b[6]; o.bent_z = b[7]; o.cone = b[8];
+    params_for(&p, radius);
+    view_of(g, &gb, &full);
+    tgi_hbil_interleaved_rows(&p, &full, &split, NULL, &o, 0, g->h);
     for (k = 0; k < 5; k++) tgi_interleave_merge(b[4 + k], g->w, g->h, out[k]);
     for (k = 0; k < 9; k++) free(b[k]);
     free(sky);
+}
+
+/* The same 16 sub-images as strided views of the full-resolution buffers
+ * (no copy), the results written in place. */
+static void run_strided(const gbuf *g, double radius, result *r)
+{
+    tgi_gbuffer gb;
+    tgi_gview full;
+    tgi_gresult all = results_of(r, 0);
+    int i, j;
+    view_of(g, &gb, &full);
+    for (j = 0; j < 4; j++)
+        for (i = 0; i < 4; i++) {
+            tgi_hbil_params p;
+            tgi_gview sub;
+            tgi_gresult o = tgi_gresult_from(&all, tgi_gv_index(&full, i, j));
+            tgi_gview_strided_sub(&sub, &full, i, j);
+            if (sub.width == 0 || sub.height == 0) continue;
+            params_for(&p, radius);
+            p.slice_phi0 = tgi_hbil_slice_phi0(i, j, p.slices);
+            tgi_hbil_rows(&p, &sub, NULL, &o, 0, sub.height);
+        }
 }
 
 static double angle_deg(double ax, double ay, double az, double bx, double by, double bz)
@@ -383,6 +417,29 @@ TEST(interleaved_matches_full_res)
     gbuf_free(&g);
 }
 
+/* A 4x4 sub-image read as a strided view of the full-resolution buffers
+ * gives the same bits as the packed copy the split makes (odd sizes: some
+ * sub-images are narrower than others). */
+TEST(strided_sub_images_match_packed_copies)
+{
+    scene s;
+    gbuf g;
+    result packed, strided;
+    size_t n, i, diff = 0;
+    groove_scene(&s);
+    groove_view(&g, &s, 53, 37);
+    n = (size_t)g.w * g.h;
+    result_alloc(&packed, n); result_alloc(&strided, n);
+    run_interleaved(&g, 1.0, &packed);
+    run_strided(&g, 1.0, &strided);
+    for (i = 0; i < n; i++)
+        diff += packed.ao[i] != strided.ao[i] || packed.bx[i] != strided.bx[i] || packed.by[i] != strided.by[i]
+              || packed.bz[i] != strided.bz[i] || packed.cone[i] != strided.cone[i];
+    CHECK(diff == 0, "%zu of %zu pixels differ", diff, n);
+    result_free(&packed); result_free(&strided);
+    gbuf_free(&g);
+}
+
 /* Near field: a box around the camera of uniform radiance L, so every
  * occluded direction sends L: AO + E_near / (pi L) = 1 (HBIL fig. 15). */
 TEST(near_field_complements_ao)
@@ -469,6 +526,7 @@ int main(int argc, char **argv)
     RUN(groove);
     RUN(cone_is_acos_one_minus_ao);
     RUN(interleaved_matches_full_res);
+    RUN(strided_sub_images_match_packed_copies);
     RUN(near_field_complements_ao);
     RUN(fixed_and_float_agree);
     return check_summary();

@@ -98,6 +98,33 @@ typedef struct {
 
 static gbuf *gbuf_new(void) { return (gbuf *)calloc(1, sizeof(gbuf)); }
 
+static tgi_rgb rgb_of(tg_real *r, tg_real *g, tg_real *b)
+{
+    tgi_rgb c;
+    c.r = r; c.g = g; c.b = b;
+    return c;
+}
+
+/* E_direct of the test G-buffer seen by camera v, into three planes. */
+static void direct_rows(const tgi_gbuffer *gb, const tgi_view *v, const tgi_light *lights, int n,
+                        const tgi_shadow_map *const *maps, tg_real *r, tg_real *g, tg_real *b, int y0, int y1)
+{
+    tgi_gview view;
+    tgi_rgb e = rgb_of(r, g, b);
+    tgi_gview_of(&view, gb, v);
+    tgi_direct_rows(&view, lights, n, maps, &e, y0, y1);
+}
+
+/* Lo (and E when irr_r is not NULL) of the test G-buffer seen by camera v. */
+static void compose_rows(const tgi_gbuffer *gb, const tgi_view *v, const tgi_env *env, const tgi_rgb *terms, int n,
+                         tg_real *o_r, tg_real *o_g, tg_real *o_b, tg_real *i_r, tg_real *i_g, tg_real *i_b)
+{
+    tgi_gview view;
+    tgi_rgb out = rgb_of(o_r, o_g, o_b), irr = rgb_of(i_r, i_g, i_b);
+    tgi_gview_of(&view, gb, v);
+    tgi_compose_rows(&view, env, terms, n, &out, &irr, 0, gb->height);
+}
+
 /* Ray cast the analytic scene into a G-buffer (albedo 1 1 1, f0 0). */
 static void gbuf_cast(gbuf *g, const tgi_view *v, const ascene *s)
 {
@@ -179,7 +206,7 @@ TEST(directional_incidence)
     for (k = 0; k < sizeof thetas / sizeof thetas[0]; k++) {
         double th = thetas[k] * DEG, I = 2.0;
         tgi_light l = make_light(TG_LIGHT_DIRECTIONAL, v3d(0, 0, 0), v3d(sin(th), -cos(th), 0.0), I, 0);
-        tgi_direct_rows(&g->gb, &v, &l, 1, NULL, e_r, e_g, e_b, 0, H);
+        direct_rows(&g->gb, &v, &l, 1, NULL, e_r, e_g, e_b, 0, H);
         for (i = 0; i < W * H; i++) {
             double want = I * cos(th);
             if (g->sky[i]) continue;
@@ -204,14 +231,14 @@ TEST(point_inverse_square_and_spot_edge)
     int i, inside = 0, outside = 0, between = 0;
     tgi_view_make(&v, v3d(0, 5, -6), v3d(0, 0, 0), v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
     gbuf_cast(g, &v, &s);
-    tgi_direct_rows(&g->gb, &v, &pt, 1, NULL, e_r, e_g, e_b, 0, H);
+    direct_rows(&g->gb, &v, &pt, 1, NULL, e_r, e_g, e_b, 0, H);
     for (i = 0; i < W * H; i++) {
         double *p = g->world[i], dx = L[0] - p[0], dy = L[1] - p[1], dz = L[2] - p[2];
         double d2 = dx * dx + dy * dy + dz * dz, want = I * (dy / sqrt(d2)) / d2;
         if (g->sky[i]) continue;
         CHECK(fabs(dv(e_r[i]) - want) <= 0.01 * want + 3e-5, "point: E %g want %g", dv(e_r[i]), want);
     }
-    tgi_direct_rows(&g->gb, &v, &sp, 1, NULL, e_r, e_g, e_b, 0, H);
+    direct_rows(&g->gb, &v, &sp, 1, NULL, e_r, e_g, e_b, 0, H);
     for (i = 0; i < W * H; i++) {
         double *p = g->world[i], dx = L[0] - p[0], dy = L[1] - p[1], dz = L[2] - p[2];
         double d2 = dx * dx + dy * dy + dz * dz, full = I * (dy / sqrt(d2)) / d2;
@@ -271,8 +298,8 @@ static shadow_counts check_box_shadow(gbuf *g, const tgi_view *v, const ascene *
     sm.filter = shadow_filter;
     tgi_shadow_map_render(&sm, pos, n);
     maps[0] = &sm;
-    tgi_direct_rows(&g->gb, v, l, 1, NULL, unsh_r, dummy_g, dummy_b, 0, H);
-    tgi_direct_rows(&g->gb, v, l, 1, maps, e_r, e_g, e_b, 0, H);
+    direct_rows(&g->gb, v, l, 1, NULL, unsh_r, dummy_g, dummy_b, 0, H);
+    direct_rows(&g->gb, v, l, 1, maps, e_r, e_g, e_b, 0, H);
     for (i = 0; i < W * H; i++) {
         double full = dv(unsh_r[i]), got = dv(e_r[i]);
         int k, inside = 0, outside = 1;
@@ -419,7 +446,7 @@ TEST(degenerate_inputs_stay_finite_and_saturate)
     tgi_shadow_map_setup(&sm, &lights[3], 64, v3d(-50, 0, -50), v3d(50, 1, 50), mem);
     tgi_shadow_map_render(&sm, pos, n);
     maps[3] = &sm;
-    tgi_direct_rows(&g->gb, &v, lights, 4, maps, e_r, e_g, e_b, 0, H);
+    direct_rows(&g->gb, &v, lights, 4, maps, e_r, e_g, e_b, 0, H);
     for (i = 0; i < W * H; i++) {
         CHECK(tg_isfinite(e_r[i]) && e_r[i] >= 0 && e_g[i] >= 0 && e_b[i] >= 0, "pixel %d: E %g", i, dv(e_r[i]));
     }
@@ -444,7 +471,7 @@ TEST(compose_formula_sky_and_saturation)
     ascene s = floor_only(4);
     tgi_env env;
     tgi_view v;
-    tgi_rgb_planes terms[3];
+    tgi_rgb terms[3];
     int i, c, sky_seen = 0;
     tgi_view_make(&v, v3d(0, 1, -6), v3d(0, 1, 0), v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
     gbuf_cast(g, &v, &s);
@@ -462,7 +489,7 @@ TEST(compose_formula_sky_and_saturation)
     terms[2].r = nr[0]; terms[2].g = nr[1]; terms[2].b = nr[2];
     memset(&env, 0, sizeof env);
     env.type = TG_ENV_SKY; env.sky = v3d(0.3, 0.5, 1.0); env.ground = v3d(0.2, 0.1, 0.05); env.up = v3d(0, 1, 0);
-    tgi_compose_rows(&g->gb, &v, &env, terms, 3, o_r, o_g, o_b, i_r, i_g, i_b, 0, H);
+    compose_rows(&g->gb, &v, &env, terms, 3, o_r, o_g, o_b, i_r, i_g, i_b);
     for (i = 0; i < W * H; i++) {
         double alb[3] = { 0.8, 0.5, 0.2 }, out[3] = { dv(o_r[i]), dv(o_g[i]), dv(o_b[i]) };
         double irr[3] = { dv(i_r[i]), dv(i_g[i]), dv(i_b[i]) };
@@ -487,7 +514,7 @@ TEST(compose_formula_sky_and_saturation)
     for (i = 0; i < W * H; i++) { er[i] = TG_FIXED ? TG_REAL_MAX : TG_R(1e30f); eg[i] = rv(1e4); eb[i] = 0; }
     terms[0].r = er; terms[0].g = eg; terms[0].b = eb;
     terms[2].r = er; terms[2].g = eg; terms[2].b = eb;
-    tgi_compose_rows(&g->gb, &v, NULL, terms, 3, o_r, o_g, o_b, NULL, NULL, NULL, 0, H);
+    compose_rows(&g->gb, &v, NULL, terms, 3, o_r, o_g, o_b, NULL, NULL, NULL);
     for (i = 0; i < W * H; i++) {
         if (g->sky[i]) { CHECK(o_r[i] == 0 && o_b[i] == 0, "sky without env is black"); continue; }
         CHECK(tg_isfinite(o_r[i]) && dv(o_r[i]) > 1000, "HDR stays huge and positive: %g", dv(o_r[i]));

@@ -221,7 +221,7 @@ TEST(point_light_over_a_plane_is_inverse_square_and_cosine)
     for (k = 1; k < 3; k++) {   /* spot and directional: direct.c's formulas, unshadowed */
         params_for(&p, g, mats, &lights[k], 1, NULL, 2, 1);
         trace(&p, &im, 0, im.h);
-        tgi_direct_rows(&im.gb, &im.view, &lights[k], 1, NULL, dr, dg, db, 0, im.h);
+        { tgi_gview v; tgi_rgb e = { dr, dg, db }; tgi_gview_of(&v, &im.gb, &im.view); tgi_direct_rows(&v, &lights[k], 1, NULL, &e, 0, im.h); }
         for (i = 0; i < im.w * im.h; i++) {
             if (im.sky[i]) continue;
             CHECK(fabs(dv(im.out[3][i]) - dv(dr[i])) <= (TG_FIXED ? 2e-3 : 1e-6) * (1 + dv(dr[i])) &&
@@ -269,7 +269,7 @@ TEST(shadow_rays_see_occluders)
     image_render(&im, g, mats, eye, target, 50, 80, 60);
     params_for(&p, g, mats, &l, 1, NULL, 1, 0);
     trace(&p, &im, 0, im.h);
-    tgi_direct_rows(&im.gb, &im.view, &l, 1, NULL, dr, dg, db, 0, im.h);
+    { tgi_gview v; tgi_rgb e = { dr, dg, db }; tgi_gview_of(&v, &im.gb, &im.view); tgi_direct_rows(&v, &l, 1, NULL, &e, 0, im.h); }
     for (i = 0; i < im.w * im.h; i++) {
         double pos[3], n[3], e = dv(im.out[3][i]), u = dv(dr[i]);
         if (im.sky[i] || u <= 0) continue;
@@ -360,7 +360,8 @@ TEST(uniform_sky_through_occlusion_is_pi_l_times_cosine_ao)
     tgi_env env;
     tgi_pathtrace_params p;
     tgi_reference_params rp;
-    tgi_ao_io io;
+    tgi_gview io;
+    tgi_gresult out;
     tg_vec3 sh[9];
     geo *g = geo_new();
     image im;
@@ -377,10 +378,10 @@ TEST(uniform_sky_through_occlusion_is_pi_l_times_cosine_ao)
     trace(&p, &im, 0, im.h);
     tgi_reference_defaults(&rp);
     rp.bvh = &bvh; rp.tri_nrm = g->nrm; rp.samples = 256; rp.radius = TG_AO_INFINITE;
-    memset(&io, 0, sizeof io);
-    io.width = im.w; io.height = im.h; io.view = &im.view;
-    io.depth = im.gb.depth; io.nx = im.gb.nx; io.ny = im.gb.ny; io.nz = im.gb.nz; io.sky = im.sky; io.ao = ao;
-    tgi_reference_rows(&rp, &io, 0, im.h);
+    memset(&out, 0, sizeof out);
+    out.ao = ao;
+    tgi_gview_of(&io, &im.gb, &im.view);
+    tgi_reference_rows(&rp, &io, NULL, &out, 0, im.h);
     for (i = 0; i < im.w * im.h; i++) {
         double a = dv(ao[i]);
         if (im.sky[i] || a > 0.97) continue;   /* pixels the wall occludes */

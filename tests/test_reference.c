@@ -129,7 +129,7 @@ TEST(prepared_triangle_scales)
     static const float scales[] = { 0.01f, 1.0f, 400.0f };
     int s;
     for (s = 0; s < 3; s++) {
-        double k = scales[s];
+        double k = (double)scales[s];
         tg_vec3 v[3] = { tg_v3(0, 0, 0), tg_v3(tg_from_float((float)k), 0, 0), tg_v3(0, tg_from_float((float)k), 0) };
         tgi_bvh_tri tr;
         tg_real t, u, w;
@@ -154,7 +154,7 @@ TEST(open_plane)
     static tg_real cone[W * H];
     static const double eye[3] = { 0.5, 2.0, 3.0 }, target[3] = { 0, 0, -1 };
     tgi_reference_params p;
-    tgi_ao_io io;
+    ao_pass io;
     int i, n = 0;
     double worst_ao = 0, worst_angle = 0;
     memset(&s, 0, sizeof s);
@@ -164,8 +164,8 @@ TEST(open_plane)
     tgi_reference_defaults(&p);
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE;
     io_for(&io, &s, &o, 0);
-    io.cone = cone;
-    tgi_reference_rows(&p, &io, 0, H);
+    io.out.cone = cone;
+    tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
     for (i = 0; i < W * H; i++) {
         double c;
         if (s.sky[i]) continue;
@@ -193,14 +193,14 @@ TEST(groove_half)
     static scene s;
     static outputs o;
     tgi_reference_params p;
-    tgi_ao_io io;
+    ao_pass io;
     int i, surf, n[2] = { 0, 0 };
     double worst[2] = { 0, 0 }, tol = 0.5 / sqrt(256.0);
     groove(&s);
     tgi_reference_defaults(&p);
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE;
     io_for(&io, &s, &o, 0);
-    tgi_reference_rows(&p, &io, 0, H);
+    tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
     for (surf = 0; surf < 2; surf++)
         for (i = 0; i < W * H; i++) {
             if (!near_crease(&s, i, 0.3, surf)) continue;
@@ -230,7 +230,7 @@ TEST(groove_bent_exact)
     static scene s;
     static outputs o;
     tgi_reference_params p;
-    tgi_ao_io io;
+    ao_pass io;
     int i, k, m = 0;
     double sx = 0, sy = 0, expect, worst = 0;
     /* cosine-weighted: l = (r cos a, sqrt(1 - r^2), r sin a) with r^2 uniform, a uniform */
@@ -245,7 +245,7 @@ TEST(groove_bent_exact)
     tgi_reference_defaults(&p);
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE;
     io_for(&io, &s, &o, 0);
-    tgi_reference_rows(&p, &io, 0, H);
+    tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
     for (i = 0; i < W * H; i++) {
         double ang;
         if (!near_crease(&s, i, 0.3, 0)) continue;
@@ -264,13 +264,13 @@ TEST(groove_radius_cutoff)
     static scene s;
     static outputs o;
     tgi_reference_params p;
-    tgi_ao_io io;
+    ao_pass io;
     int i, far_n = 0, near_n = 0;
     groove(&s);
     tgi_reference_defaults(&p);
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_R(0.5f);
     io_for(&io, &s, &o, 0);
-    tgi_reference_rows(&p, &io, 0, H);
+    tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
     for (i = 0; i < W * H; i++) {
         if (s.sky[i] || s.wrect[i] != 0) continue;
         if (s.wpos[i][0] > 0.55) { far_n++; CHECK(o.ao[i] == TG_ONE, "open beyond the radius: %g at x %g", check_d(o.ao[i]), s.wpos[i][0]); }
@@ -285,7 +285,7 @@ TEST(closed_box)
     static outputs o;
     static const double eye[3] = { 0.1, 0.6, 0.2 }, target[3] = { 0.5, -1, -0.4 };
     tgi_reference_params p;
-    tgi_ao_io io;
+    ao_pass io;
     int i, n = 0;
     double worst = 0;
     memset(&s, 0, sizeof s);
@@ -301,7 +301,7 @@ TEST(closed_box)
     tgi_reference_defaults(&p);
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE;
     io_for(&io, &s, &o, 0);
-    tgi_reference_rows(&p, &io, 0, H);
+    tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
     for (i = 0; i < W * H; i++) {
         if (s.sky[i]) continue;
         n++;
@@ -328,14 +328,14 @@ TEST(near_field_half)
     static outputs o;
     static tg_real rr[W * H], rg[W * H], rb[W * H];
     tgi_reference_params p;
-    tgi_ao_io io;
+    ao_pass io;
     int i, n = 0;
     double worst = 0, tol = 3.14159265358979 * 0.5 / sqrt(256.0), want = 3.14159265358979 / 2;
     groove(&s);
     tgi_reference_defaults(&p);
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE; p.radiance = wall_radiance;
     io_for(&io, &s, &o, 1);
-    tgi_reference_rows(&p, &io, 0, H);
+    tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
     for (i = 0; i < W * H; i++) {
         if (!near_crease(&s, i, 0.3, 0)) continue;
         n++;
@@ -354,8 +354,8 @@ TEST(near_field_half)
         static outputs o2;
         p.radiance = 0;
         io_for(&io, &s, &o2, 1);
-        io.rad_r = rr; io.rad_g = rg; io.rad_b = rb;
-        tgi_reference_rows(&p, &io, 0, H);
+        io.rad.r = rr; io.rad.g = rg; io.rad.b = rb;
+        tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
         int seen = 0;
         for (i = 0; i < W * H; i++) {
             if (s.sky[i]) continue;
@@ -374,15 +374,15 @@ TEST(deterministic)
     static scene s;
     static outputs a, b;
     tgi_reference_params p;
-    tgi_ao_io io;
+    ao_pass io;
     groove(&s);
     tgi_reference_defaults(&p);
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.samples = 64;
     io_for(&io, &s, &a, 0);
-    tgi_reference_rows(&p, &io, 0, H);
+    tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
     io_for(&io, &s, &b, 0);
-    tgi_reference_rows(&p, &io, 0, H / 2);          /* two row ranges give the same image */
-    tgi_reference_rows(&p, &io, H / 2, H);
+    tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H / 2);          /* two row ranges give the same image */
+    tgi_reference_rows(&p, &io.g, &io.rad, &io.out, H / 2, H);
     CHECK(memcmp(a.ao, b.ao, sizeof a.ao) == 0, "ao differs");
     CHECK(memcmp(a.bx, b.bx, sizeof a.bx) == 0, "bent differs");
 }

@@ -13,6 +13,7 @@
 #include "gi/reproject.h"
 #include "gi/pushpull.h"
 #include "gi/denoise.h"
+#include "gi/temporal.h"
 
 #define W 37
 #define H 23
@@ -178,8 +179,11 @@ TEST(filters_preserve_constants)
 {
     tgi_view v = make_view(0.3f, 0.5f, 2.0f);
     static tg_real ao[N], bx[N], by[N], bz[N], cone[N], nx[N], ny[N], nz[N];
-    tgi_denoise_io io;
+    tgi_gbuffer gb;
+    tgi_gview g;
+    tgi_gresult r;
     tgi_denoise_params p;
+    tgi_temporal_params tp;
     void *scratch = malloc(tgi_denoise_bytes(W, H)), *state = malloc(tgi_temporal_bytes(W, H));
     int i, f, bad = 0;
     scene_depth(&v, depth0, sky0);
@@ -188,12 +192,14 @@ TEST(filters_preserve_constants)
         nx[i] = 0; ny[i] = TG_ONE; nz[i] = 0;
         bx[i] = 0; by[i] = TG_ONE; bz[i] = 0;
     }
-    memset(&io, 0, sizeof io);
-    io.width = W; io.height = H; io.depth = depth0; io.nx = nx; io.ny = ny; io.nz = nz; io.sky = sky0;
-    io.ao = ao; io.bent_x = bx; io.bent_y = by; io.bent_z = bz; io.cone = cone;
+    memset(&gb, 0, sizeof gb);
+    gb.width = W; gb.height = H; gb.depth = depth0; gb.nx = nx; gb.ny = ny; gb.nz = nz; gb.sky = sky0;
+    tgi_gview_of(&g, &gb, &v);
+    memset(&r, 0, sizeof r);
+    r.ao = ao; r.bent_x = bx; r.bent_y = by; r.bent_z = bz; r.cone = cone;
     tgi_denoise_defaults(&p);
-    tgi_denoise_begin(&io, scratch);
-    tgi_denoise_rows(&p, &io, scratch, 0, H);
+    tgi_denoise_keep_rows(&g, &r, scratch, 0, H);
+    tgi_denoise_rows(&p, &g, &r, scratch, 0, H);
     for (i = 0; i < N; i++) {
         double a = check_d(ao[i]);
         if (sky0[i]) continue;
@@ -201,10 +207,11 @@ TEST(filters_preserve_constants)
         if (fabs(check_d(cone[i]) - acos(1 - a)) > 2e-3) bad++;
     }
     CHECK(bad == 0, "filtered AO out of range or cone != acos(1 - AO): %d", bad);
+    tgi_temporal_defaults(&tp);
     tgi_temporal_clear(state, W, H);
     for (f = 0; f < 40; f++) {
         for (i = 0; i < N; i++) ao[i] = TG_R(0.5f);
-        tgi_temporal_rows(&p, &io, state, &v, &v, f, f == 0, 0, H);
+        tgi_temporal_rows(&tp, &g, &r, state, &v, f, f == 0, 0, H);
     }
     for (i = 0; i < N; i++) if (!sky0[i]) CHECK_NEAR(check_d(ao[i]), 0.5, 1e-3);
     free(scratch); free(state);

@@ -130,20 +130,29 @@ static void make_gb(small_gb *g, double albedo)
 
 static tg_real e[3][N * N], o[3][N * N];
 
+/* Lo of the small G-buffer (no camera: a black sky) lit by E_far in e, into o. */
+static void compose_far(const small_gb *g, const tgi_env *env)
+{
+    tgi_gview view;
+    tgi_rgb far, out;
+    far.r = e[0]; far.g = e[1]; far.b = e[2];
+    out.r = o[0]; out.g = o[1]; out.b = o[2];
+    tgi_gview_of(&view, &g->gb, NULL);
+    tgi_compose_rows(&view, env, &far, 1, &out, NULL, 0, N);
+}
+
 TEST(white_furnace)
 {
     small_gb *g = (small_gb *)malloc(sizeof *g);
     tgi_env env;
     tg_vec3 sh[9];
-    tgi_rgb_planes far;
     int i, c;
     memset(&env, 0, sizeof env);
     env.type = TG_ENV_UNIFORM; env.uniform = v3d(1, 1, 1);
     tgi_sh9_from_env(&env, sh);
     make_gb(g, 0.5);
     tgi_far_rows(&g->gb, sh, NULL, NULL, NULL, NULL, TG_FAR_CONE_SH, e[0], e[1], e[2], 0, N);
-    far.r = e[0]; far.g = e[1]; far.b = e[2];
-    tgi_compose_rows(&g->gb, NULL, &env, &far, 1, o[0], o[1], o[2], NULL, NULL, NULL, 0, N);
+    compose_far(g, &env);
     for (i = 0; i < N * N; i++)
         for (c = 0; c < 3; c++) {
             CHECK(fabs(dv(e[c][i]) - PI) <= tol_rel() * PI, "E %g want pi", dv(e[c][i]));
@@ -311,7 +320,6 @@ TEST(uniform_sky_gives_albedo_times_ao_in_both_modes)
     static tg_real ao[N * N], bx[N * N], by[N * N], bz[N * N];
     tgi_env env;
     tg_vec3 sh[9];
-    tgi_rgb_planes far;
     double L[3] = { 0.8, 1.0, 1.3 }, albedo = 0.6, f0 = 0.04;
     int i, c, mode;
     memset(&env, 0, sizeof env);
@@ -326,8 +334,7 @@ TEST(uniform_sky_gives_albedo_times_ao_in_both_modes)
     for (mode = TG_FAR_CONE_SH; mode <= TG_FAR_CUBE_F0; mode++) {
         double worst = 0;
         tgi_far_rows(&g->gb, sh, ao, bx, by, bz, mode, e[0], e[1], e[2], 0, N);
-        far.r = e[0]; far.g = e[1]; far.b = e[2];
-        tgi_compose_rows(&g->gb, NULL, &env, &far, 1, o[0], o[1], o[2], NULL, NULL, NULL, 0, N);
+        compose_far(g, &env);
         for (i = 0; i < N * N; i++)
             for (c = 0; c < 3; c++) {
                 double A = dv(ao[i]), want_e = PI * L[c] * A, want = albedo * (1 - f0) * L[c] * A;

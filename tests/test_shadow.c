@@ -30,6 +30,8 @@ static void image_light(image *im, const geo *g, const tgi_light *l, int size, i
 {
     tgi_shadow_map sm;
     const tgi_shadow_map *maps[1];
+    tgi_gview v;
+    tgi_rgb e = { E_R(im), im->out[1], im->out[2] }, u = { U_R(im), im->out[4], im->out[5] };
     size_t bytes = tgi_shadow_map_bytes(l, size);
     void *mem = malloc(bytes);
     if (!mem) { fprintf(stderr, "out of memory\n"); exit(2); }
@@ -38,8 +40,9 @@ static void image_light(image *im, const geo *g, const tgi_light *l, int size, i
     tgi_shadow_map_render(&sm, g->pos, g->n);
     im->texel_world = dv(sm.texel_world);
     maps[0] = &sm;
-    tgi_direct_rows(&im->gb, &im->view, l, 1, maps, E_R(im), im->out[1], im->out[2], 0, im->h);
-    tgi_direct_rows(&im->gb, &im->view, l, 1, NULL, U_R(im), im->out[4], im->out[5], 0, im->h);
+    tgi_gview_of(&v, &im->gb, &im->view);
+    tgi_direct_rows(&v, l, 1, maps, &e, 0, im->h);
+    tgi_direct_rows(&v, l, 1, NULL, &u, 0, im->h);
     free(mem);
 }
 

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * bench.c - accuracy vs time (issue 5 items 3-4).  Every technique and
+ * bench.c - accuracy vs time.  Every technique and
  * setting is timed (median of N whole frames, hosted clock) and measured
  * against the ray-traced reference (cached per scene and radius):
  *
@@ -33,7 +33,7 @@
 #include "tinygi.h"
 #include "hosted/clock.h"
 #include "frame/frame_internal.h"
-#include "frame/technique.h"
+#include "ao/ao.h"
 
 #if TG_FIXED
 #define NUMBER "fixed"
@@ -181,7 +181,8 @@ static void result_free(result *r)
 static uint8_t *read_sky(const tg_frame *f, int n)
 {
     uint8_t *s = malloc((size_t)n);
-    memcpy(s, f->gb.sky, (size_t)n);
+    int i;
+    for (i = 0; i < n; i++) s[i] = (uint8_t)tgi_gv_is_sky(&f->full, (size_t)i);
     return s;
 }
 
@@ -209,7 +210,7 @@ static double scene_radius(tg_scene *s)
     tg_error err;
     tg_request q = base_request(TG_TECH_HBIL, 0, 0, -1, AOVBIT(TG_AOV_AO));
     if (tg_plan_make(&p, s, &q, &err) != TG_OK) die("plan", err.message);
-    return tg_to_float(p.request.radius);
+    return (double)tg_to_float(p.request.radius);
 }
 
 static int load_reference(const char *path, result *r, int n)
@@ -254,7 +255,7 @@ static void reference(tg_scene *s, const char *name, double radius, result *r)
     fflush(stdout);
     r->ao = read_aov(fr.frame, TG_AOV_AO, opt_w, opt_h);
     r->bent = read_aov(fr.frame, TG_AOV_BENT, opt_w, opt_h);
-    if (fr.frame->near.r) r->near = read_aov(fr.frame, TG_AOV_NEAR, opt_w, opt_h);
+    if (fr.frame->res.near.r) r->near = read_aov(fr.frame, TG_AOV_NEAR, opt_w, opt_h);
     else r->near = calloc((size_t)n * 3, sizeof(float));
     r->sky = read_sky(fr.frame, n);
     frame_close(&fr);
@@ -424,7 +425,7 @@ static double run_config(tg_scene *s, const config *c, double radius, result *ou
     out->ao = read_aov(fr.frame, TG_AOV_AO, opt_w, opt_h);
     out->bent = read_aov(fr.frame, TG_AOV_BENT, opt_w, opt_h);
     out->sky = read_sky(fr.frame, n);
-    if (c->near && fr.frame->near.r) out->near = read_aov(fr.frame, TG_AOV_NEAR, opt_w, opt_h);
+    if (c->near && fr.frame->res.near.r) out->near = read_aov(fr.frame, TG_AOV_NEAR, opt_w, opt_h);
     if (ir) out->near = interreflection_near(fr.frame, opt_w, opt_h);
     for (k = 0; k < opt_runs; k++) {
         double t0 = tgp_clock_seconds(), u0 = cpu_seconds();
@@ -589,67 +590,80 @@ static void sheet_write(void)
 }
 
 /* ------------------------------------------------------------------ */
-/* HBIL pass breakdown (HBIL sec. 3.5): the frame's own passes, timed one by one */
+/* HBIL pass breakdown (HBIL sec. 3.5): the plan's own passes (the rows of
+ * the pass table the frame runs), timed one by one on a frame with history */
 
-typedef struct pass_times {
-    double reproject, pushpull, downsample, split, kernel, merge, upsample, gi, frame;
-} pass_times;
+#define MAX_TIMED 40
 
-#define TIME_PASS(field, call) do { double t_[MAX_RUNS]; int k_; \
-    for (k_ = 0; k_ < opt_runs; k_++) { double t0_ = cpu_seconds(); call; t_[k_] = (cpu_seconds() - t0_) * 1e3; } \
-    pt.field = median(t_, opt_runs); } while (0)
+/* Median ms of one pass of the plan, run as the frame runs it. */
+static double time_pass(tg_frame *f, const tgi_pass *p)
+{
+    double t[MAX_RUNS];
+    int k;
+    for (k = 0; k < opt_runs; k++) {
+        double t0 = cpu_seconds();
+        if (p->rows == TGI_SERIAL) p->run(f);
+        else p->run_rows(f, 0, tgi_pass_row_count(f, p));
+        t[k] = (cpu_seconds() - t0) * 1e3;
+    }
+    return median(t, opt_runs);
+}
+
+/* ms of the first pass whose name starts with `prefix` (0 when none). */
+static double ms_of(const tg_plan *plan, const double *ms, const char *prefix)
+{
+    int i;
+    for (i = 0; i < plan->pass_count; i++)
+        if (strncmp(plan->passes[i], prefix, strlen(prefix)) == 0) return ms[i];
+    return 0;
+}
 
 static void pass_breakdown(tg_scene *s, const char *name)
 {
     frame_run fr;
     tg_error err;
-    pass_times pt;
     tg_request q = base_request(TG_TECH_HBIL, 2, 16, -1, AOVBIT(TG_AOV_COLOR));
+    double ms[MAX_TIMED], frame_ms, core, t[MAX_RUNS];
+    const char *paper[4] = { "reproject", "push/pull", "4x4 split", "HBIL horizon kernel" };
+    const char *paper_ms[4] = { "0.16 ms (5%)", "0.32 ms (10%)", "0.78 ms (24%)", "1.97 ms (61%)" };
     FILE *f;
     char fname[64];
-    double core, rest;
-    int half;
+    int i, k;
     q.frames = 2;   /* a second frame: reprojection has a history */
     if (!frame_open(&fr, s, &q)) die("hbil frame", name);
     tg_frame_render(fr.frame, 0, &err);
     tg_frame_render(fr.frame, 1, &err);
-    half = fr.frame->half_depth != NULL;
-    memset(&pt, 0, sizeof pt);
-    TIME_PASS(frame, tg_frame_render(fr.frame, 1, &err));
-    if (fr.frame->history.r && fr.frame->reproject_scratch) {
-        TIME_PASS(reproject, tgi_frame_reproject_scatter(fr.frame));
-        TIME_PASS(pushpull, tgi_frame_reproject_fill(fr.frame));
+    for (k = 0; k < opt_runs; k++) {
+        double t0 = cpu_seconds();
+        tg_frame_render(fr.frame, 1, &err);
+        t[k] = (cpu_seconds() - t0) * 1e3;
     }
-    TIME_PASS(downsample, tgi_hbil_stage_downsample(fr.frame));
-    TIME_PASS(split, tgi_hbil_stage_split(fr.frame));
-    TIME_PASS(kernel, tgi_hbil_stage_kernel(fr.frame));
-    TIME_PASS(merge, tgi_hbil_stage_merge(fr.frame));
-    TIME_PASS(upsample, tgi_hbil_stage_upsample(fr.frame));
-    TIME_PASS(gi, tgi_frame_technique(fr.frame, 1));
-    frame_close(&fr);
-    core = pt.reproject + pt.pushpull + pt.split + pt.kernel;
-    rest = pt.gi - (pt.downsample + pt.split + pt.kernel + pt.merge + pt.upsample);
+    frame_ms = median(t, opt_runs);
+    for (i = 0; i < fr.plan.pass_count && i < MAX_TIMED; i++)
+        ms[i] = time_pass(fr.frame, &tgi_passes[fr.plan.pass_rows[i]]);
+    core = 0;
+    for (k = 0; k < 4; k++) core += ms_of(&fr.plan, ms, paper[k]);
     snprintf(fname, sizeof fname, "passes-%s.md", NUMBER);
     f = open_out(fname, "w");
-    fprintf(f, "HBIL pass breakdown, %s, scene %s, %dx%d, 2 slices x 16 samples, kernel at %s resolution, median of %d (CPU ms; share of the four passes HBIL sec. 3.5 lists; the paper's GTX 680 at 1280x720 in the last column):\n\n",
-            NUMBER, name, opt_w, opt_h, half ? "quarter" : "full", opt_runs);
+    fprintf(f, "HBIL pass breakdown, %s, scene %s, %dx%d, 2 slices x 16 samples, median of %d (CPU ms of every pass of the plan, in the order the frame runs them; the share of the four passes HBIL sec. 3.5 lists, and the paper's GTX 680 at 1280x720, in the last columns):\n\n",
+            NUMBER, name, opt_w, opt_h, opt_runs);
     fprintf(f, "| pass | ms (%s) | share | paper |\n|---|---:|---:|---:|\n", NUMBER);
-    fprintf(f, "| reprojection | %.3f | %.0f%% | 0.16 ms (5%%) |\n", pt.reproject, 100 * pt.reproject / core);
-    fprintf(f, "| push/pull | %.3f | %.0f%% | 0.32 ms (10%%) |\n", pt.pushpull, 100 * pt.pushpull / core);
-    fprintf(f, "| buffers split | %.3f | %.0f%% | 0.78 ms (24%%) |\n", pt.split, 100 * pt.split / core);
-    fprintf(f, "| HBIL kernel | %.3f | %.0f%% | 1.97 ms (61%%) |\n", pt.kernel, 100 * pt.kernel / core);
-    fprintf(f, "| downsample to quarter res (not in the paper) | %.3f | | |\n", pt.downsample);
-    fprintf(f, "| merge (not in the paper) | %.3f | | |\n", pt.merge);
-    fprintf(f, "| joint bilateral upsample (not in the paper) | %.3f | | |\n", pt.upsample);
-    fprintf(f, "| filter, temporal, cone (GI step minus the above) | %.3f | | |\n", rest > 0 ? rest : 0.0);
-    fprintf(f, "| GI step (tgi_frame_technique) | %.3f | | 2.75 ms (core) |\n", pt.gi);
-    fprintf(f, "| whole frame (raster, shadows, direct, GI, compose) | %.3f | | 3.23 ms (GI only) |\n\n", pt.frame);
+    for (i = 0; i < fr.plan.pass_count && i < MAX_TIMED; i++) {
+        int p = -1;
+        for (k = 0; k < 4; k++)
+            if (strncmp(fr.plan.passes[i], paper[k], strlen(paper[k])) == 0) p = k;
+        if (p >= 0) fprintf(f, "| %s | %.3f | %.0f%% | %s |\n", fr.plan.passes[i], ms[i], 100 * ms[i] / core, paper_ms[p]);
+        else fprintf(f, "| %s | %.3f | | |\n", fr.plan.passes[i], ms[i]);
+    }
+    fprintf(f, "| whole frame (tg_frame_render) | %.3f | | 3.23 ms (GI only) |\n\n", frame_ms);
     fprintf(f, "Verdict (%s): %s the kernel is %.0f%% of reprojection + push/pull + split + kernel (paper 61%%); the split is %.0f%% (paper 24%%).\n\n",
-            NUMBER, pt.kernel / core > 0.5 ? "HOLDS, the kernel dominates:" : "DOES NOT HOLD, the kernel does not dominate:",
-            100 * pt.kernel / core, 100 * pt.split / core);
+            NUMBER, ms_of(&fr.plan, ms, paper[3]) / core > 0.5 ? "HOLDS, the kernel dominates:" : "DOES NOT HOLD, the kernel does not dominate:",
+            100 * ms_of(&fr.plan, ms, paper[3]) / core, 100 * ms_of(&fr.plan, ms, paper[2]) / core);
     fclose(f);
-    printf("  passes (%s): reproject %.3f push/pull %.3f downsample %.3f split %.3f kernel %.3f merge %.3f upsample %.3f gi %.3f frame %.3f ms\n",
-           NUMBER, pt.reproject, pt.pushpull, pt.downsample, pt.split, pt.kernel, pt.merge, pt.upsample, pt.gi, pt.frame);
+    printf("  passes (%s):", NUMBER);
+    for (i = 0; i < fr.plan.pass_count && i < MAX_TIMED; i++) printf(" %.3f", ms[i]);
+    printf(" ms; frame %.3f ms\n", frame_ms);
+    frame_close(&fr);
 }
 
 /* ------------------------------------------------------------------ */
@@ -1118,7 +1132,7 @@ int main(int argc, char **argv)
 {
     int i;
     if (argc < 2) die("usage: bench run|report [--size WxH] [--runs N] [--out DIR] [--ref-samples N] [--scenes a,b]", NULL);
-    for (i = 2; i < argc; i++) {
+    for (i = 2; i < argc; i += 2) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!v) die("option needs a value", a);
         if (!strcmp(a, "--size")) { if (sscanf(v, "%dx%d", &opt_w, &opt_h) != 2 || opt_w < 8 || opt_h < 8 || opt_w > 4096 || opt_h > 4096) die("bad size", v); }
@@ -1127,7 +1141,6 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--ref-samples")) { opt_ref_samples = atoi(v); if (opt_ref_samples < 17 || opt_ref_samples > 256) die("ref-samples must be 17..256", v); }
         else if (!strcmp(a, "--scenes")) snprintf(opt_scenes, sizeof opt_scenes, "%s", v);
         else die("unknown option", a);
-        i++;
     }
     if (!strcmp(argv[1], "run")) return cmd_run();
     if (!strcmp(argv[1], "report")) return cmd_report();

@@ -86,43 +86,37 @@ int main(int argc, char **argv)
 {
     tgi_view v;
     tgi_denoise_params dp;
-    tgi_denoise_io dio;
+    tgi_hbil_params hp;
+    tgi_gbuffer gb, split;
+    tgi_gview full;
+    tgi_gresult res, split_res;
     void *scratch = malloc(tgi_denoise_bytes(W, H));
     double t[MAX_RUNS], sum_ao = 0;
-    int r, i, j, k, RUNS = argc > 1 ? atoi(argv[1]) : MAX_RUNS;
+    int r, i, k, RUNS = argc > 1 ? atoi(argv[1]) : MAX_RUNS;
     if (RUNS < 1 || RUNS > MAX_RUNS) RUNS = MAX_RUNS;
     groove(&v);
     tgi_denoise_defaults(&dp);
+    tgi_hbil_defaults(&hp);
+    memset(&gb, 0, sizeof gb);
+    gb.width = W; gb.height = H; gb.depth = depth; gb.nx = nx; gb.ny = ny; gb.nz = nz; gb.sky = sky;
+    tgi_gview_of(&full, &gb, &v);
+    memset(&split, 0, sizeof split);
+    split.depth = sub[0]; split.nx = sub[1]; split.ny = sub[2]; split.nz = sub[3]; split.sky = subsky;
+    memset(&res, 0, sizeof res);
+    res.ao = ao; res.bent_x = bx; res.bent_y = by; res.bent_z = bz; res.cone = cone;
+    memset(&split_res, 0, sizeof split_res);
+    split_res.ao = sub[4]; split_res.bent_x = sub[5]; split_res.bent_y = sub[6]; split_res.bent_z = sub[7];
+    split_res.cone = sub[8];
     for (r = 0; r < RUNS; r++) {
         double t0 = now_ms();
         const tg_real *in[4] = { depth, nx, ny, nz };
         tg_real *out[5] = { ao, bx, by, bz, cone };
         for (k = 0; k < 4; k++) tgi_interleave_split(in[k], W, H, sub[k]);
         tgi_interleave_split8(sky, W, H, subsky);
-        for (j = 0; j < 4; j++)
-            for (i = 0; i < 4; i++) {
-                tgi_hbil_params p;
-                tgi_hbil_io io;
-                int sw, sh;
-                size_t off;
-                tgi_interleave_sub_rect(W, H, i, j, &sw, &sh, &off);
-                tgi_hbil_defaults(&p, &v);
-                p.step = 4; p.offset_x = i; p.offset_y = j;
-                p.slice_phi0 = tgi_hbil_slice_phi0(i, j, p.slices);
-                memset(&io, 0, sizeof io);
-                io.width = sw; io.height = sh;
-                io.depth = sub[0] + off; io.nx = sub[1] + off; io.ny = sub[2] + off; io.nz = sub[3] + off;
-                io.sky = subsky + off;
-                io.ao = sub[4] + off; io.bent_x = sub[5] + off; io.bent_y = sub[6] + off; io.bent_z = sub[7] + off;
-                io.cone = sub[8] + off;
-                tgi_hbil_rows(&p, &io, 0, sh);
-            }
+        tgi_hbil_interleaved_rows(&hp, &full, &split, NULL, &split_res, 0, H);
         for (k = 0; k < 5; k++) tgi_interleave_merge(sub[4 + k], W, H, out[k]);
-        memset(&dio, 0, sizeof dio);
-        dio.width = W; dio.height = H; dio.depth = depth; dio.nx = nx; dio.ny = ny; dio.nz = nz; dio.sky = sky;
-        dio.ao = ao; dio.bent_x = bx; dio.bent_y = by; dio.bent_z = bz; dio.cone = cone;
-        tgi_denoise_begin(&dio, scratch);
-        tgi_denoise_rows(&dp, &dio, scratch, 0, H);
+        tgi_denoise_keep_rows(&full, &res, scratch, 0, H);
+        tgi_denoise_rows(&dp, &full, &res, scratch, 0, H);
         t[r] = now_ms() - t0;
     }
     for (i = 0; i < N; i++) sum_ao += tg_to_float(ao[i]);

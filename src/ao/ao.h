@@ -1,14 +1,18 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * ao.h - what every ambient-occlusion / directional-occlusion technique of
- * tinygi shares: the pass input/output block (tgi_ao_io), view-space helpers
- * written straight from the tgi_view fields (no call into view.c per sample),
- * and the interreflection brightening of AO (RTR eq. 11.12-11.13).
+ * tinygi shares: view-space helpers written straight from the tgi_view
+ * fields (no call into view.c per sample), read through the G-buffer view
+ * (raster/gview.h), and the interreflection brightening of AO (RTR eq.
+ * 11.12-11.13).
  *
  * Every technique is a pass of the same shape
- *     void tg_<tech>_rows(const tg_<tech>_params *p, const tgi_ao_io *io, int y0, int y1);
- * over rows [y0, y1), so the frame can treat them alike and a hosted
- * platform can split rows across threads.  Conventions of the outputs:
+ *     void tgi_<tech>_rows(const tgi_<tech>_params *p, const tgi_gview *g,
+ *                          const tgi_gresult *out, int y0, int y1);
+ * over rows [y0, y1) of a full-resolution view (SSDO and the reference also
+ * read the direct-light radiance, indexed like g), so the frame can treat
+ * them alike and rows can be split across threads.  Conventions of the
+ * results:
  *   ao      in [0, 1], 1 = open (unoccluded);
  *   bent    world-space unit bent normal (RTR eq. 11.10); NULL = not wanted;
  *   cone    bent-cone half angle in radians, [0, pi/2]; NULL = not wanted;
@@ -20,18 +24,7 @@
 #define TG_AO_H
 
 #include "../core/vec.h"
-#include "../raster/view.h"
-
-typedef struct tgi_ao_io {
-    int width, height;
-    const tgi_view *view;                       /* the camera that made the G-buffer */
-    const tg_real *depth, *nx, *ny, *nz;       /* G-buffer: view z, world unit normal */
-    const uint8_t *sky;                        /* 1 where no triangle was drawn */
-    const tg_real *rad_r, *rad_g, *rad_b;      /* direct-light outgoing diffuse radiance; NULL if none */
-    tg_real *ao, *bent_x, *bent_y, *bent_z;    /* ao in [0,1]; bent world unit, may be NULL */
-    tg_real *cone;                             /* bent-cone half angle (radians), may be NULL */
-    tg_real *near_r, *near_g, *near_b;         /* one-bounce irradiance, NULL when not computed */
-} tgi_ao_io;
+#include "../raster/gview.h"
 
 /* A radius this large means "unlimited" (ambient occlusion rather than
  * obscurance, RTR sec. 11.3.2). */
@@ -97,9 +90,9 @@ static inline tg_vec3 tgi_ao_dir_to_world(const tgi_view *v, tg_vec3 d)
 }
 
 /* G-buffer normal of pixel i in view space. */
-static inline tg_vec3 tgi_ao_normal_view(const tgi_ao_io *io, int i)
+static inline tg_vec3 tgi_ao_normal_view(const tgi_gview *g, size_t i)
 {
-    return tgi_ao_dir_to_view(io->view, tg_v3(io->nx[i], io->ny[i], io->nz[i]));
+    return tgi_ao_dir_to_view(g->camera, tgi_gv_normal(g, i));
 }
 
 /* Depth bias of a screen-space test at view position pv with view normal
@@ -108,13 +101,13 @@ static inline tg_vec3 tgi_ao_normal_view(const tgi_ao_io *io, int i)
  * theta between the normal and the view ray, tan clamped to 16.  At grazing
  * angles the nearest-pixel depth of a plane differs from the plane at the
  * sample by about this much, so smaller gaps are not evidence of occlusion. */
-static inline tg_real tgi_ao_depth_bias(const tgi_ao_io *io, tg_vec3 pv, tg_vec3 nv, tg_real base)
+static inline tg_real tgi_ao_depth_bias(const tgi_gview *g, tg_vec3 pv, tg_vec3 nv, tg_real base)
 {
     tg_vec3 ray = tgi_v3_normalize_or(pv, tg_v3(0, 0, TG_ONE));
     tg_real c = tg_abs(tgi_v3_dot(nv, ray));
     tg_real s = tg_sqrt(tg_sub(TG_ONE, tg_min(tg_sqr(c), TG_ONE)));
     tg_real tan_t = tg_div(s, tg_max(c, TG_R(0.0625f)));
-    tg_real pixel = tg_div(pv.z, io->view->pixels_per_unit);
+    tg_real pixel = tg_div(pv.z, g->camera->pixels_per_unit);
     return tg_add(base, tg_mul(pixel, tan_t));
 }
 
@@ -129,43 +122,40 @@ static inline tg_real tgi_ao_depth_bias(const tgi_ao_io *io, tg_vec3 pv, tg_vec3
  * at the sample by up to a pixel's slope, which a plain depth comparison
  * would read as occlusion.  Off-screen and sky count as open.  *qx, *qy get
  * the pixel (when on screen). */
-static inline int tgi_ao_sample_blocked_at(const tgi_ao_io *io, tg_vec3 p, tg_vec3 s, tg_real eps,
+static inline int tgi_ao_sample_blocked_at(const tgi_gview *g, tg_vec3 p, tg_vec3 s, tg_real eps,
                                           tg_real range, int *qx, int *qy)
 {
-    int j;
+    size_t j;
     tg_vec3 q, pq;
-    if (!tgi_ao_project_pixel(io->view, s, qx, qy)) return 0;
-    j = *qy * io->width + *qx;
-    if (io->sky[j] || io->depth[j] >= s.z) return 0;
-    q = tgi_ao_unproject(io->view, *qx, *qy, io->depth[j]);
+    if (!tgi_ao_project_pixel(g->camera, s, qx, qy)) return 0;
+    j = tgi_gv_index(g, *qx, *qy);
+    if (tgi_gv_is_sky(g, j) || tgi_gv_depth(g, j) >= s.z) return 0;
+    q = tgi_ao_unproject(g->camera, *qx, *qy, tgi_gv_depth(g, j));
     pq = tgi_v3_sub(q, p);
     if (tgi_v3_dot(pq, pq) >= tg_sqr(range)) return 0;
-    return tgi_v3_dot(tgi_ao_normal_view(io, j), tgi_v3_sub(s, q)) < tg_neg(eps);
+    return tgi_v3_dot(tgi_ao_normal_view(g, j), tgi_v3_sub(s, q)) < tg_neg(eps);
 }
-static inline int tgi_ao_sample_blocked(const tgi_ao_io *io, tg_vec3 p, tg_vec3 s, tg_real eps, tg_real range)
+static inline int tgi_ao_sample_blocked(const tgi_gview *g, tg_vec3 p, tg_vec3 s, tg_real eps, tg_real range)
 {
     int qx, qy;
-    return tgi_ao_sample_blocked_at(io, p, s, eps, range, &qx, &qy);
+    return tgi_ao_sample_blocked_at(g, p, s, eps, range, &qx, &qy);
 }
 
 /* Write the "nothing computed" result for pixel i (sky, or no data). */
-static inline void tgi_ao_write_open(const tgi_ao_io *io, int i)
+static inline void tgi_ao_write_open(const tgi_gview *g, const tgi_gresult *out, size_t i)
 {
-    io->ao[i] = TG_ONE;
-    if (io->bent_x) { io->bent_x[i] = io->nx[i]; io->bent_y[i] = io->ny[i]; io->bent_z[i] = io->nz[i]; }
-    if (io->cone) io->cone[i] = TG_HALF_PI;
-    if (io->near_r) { io->near_r[i] = 0; io->near_g[i] = 0; io->near_b[i] = 0; }
+    tgi_gr_set_ao(out, i, TG_ONE);
+    if (tgi_gr_has_bent(out)) tgi_gr_set_bent(out, i, tgi_gv_normal(g, i));
+    if (tgi_gr_has_cone(out)) tgi_gr_set_cone(out, i, TG_HALF_PI);
+    if (tgi_gr_has_near(out)) tgi_gr_set_near(out, i, tg_v3(0, 0, 0));
 }
 
 /* Store a bent normal given in view space (any length) as a world unit
  * vector; a zero vector falls back to the normal. */
-static inline void tgi_ao_write_bent_view(const tgi_ao_io *io, int i, tg_vec3 bent_view)
+static inline void tgi_ao_write_bent_view(const tgi_gview *g, const tgi_gresult *out, size_t i, tg_vec3 bent_view)
 {
-    tg_vec3 n = tg_v3(io->nx[i], io->ny[i], io->nz[i]);
-    tg_vec3 b;
-    if (!io->bent_x) return;
-    b = tgi_v3_normalize_or(tgi_ao_dir_to_world(io->view, bent_view), n);
-    io->bent_x[i] = b.x; io->bent_y[i] = b.y; io->bent_z[i] = b.z;
+    if (!tgi_gr_has_bent(out)) return;
+    tgi_gr_set_bent(out, i, tgi_v3_normalize_or(tgi_ao_dir_to_world(g->camera, bent_view), tgi_gv_normal(g, i)));
 }
 
 #endif

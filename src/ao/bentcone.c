@@ -15,7 +15,7 @@ void tgi_bentcone_defaults(tgi_bentcone_params *p)
     p->radius = TG_ONE;
     p->bias = TG_R(0.03f);
     p->env_sh9 = 0;
-    p->far_r = p->far_g = p->far_b = 0;
+    p->far.r = p->far.g = p->far.b = 0;
 }
 
 tg_real tgi_bentcone_aperture(tg_real mean_length)
@@ -35,13 +35,13 @@ tg_vec3 tgi_bentcone_far(const tg_vec3 sh[9], tg_vec3 bent, tg_real cone, tg_rea
     return tgi_v3_scale(e, tg_mul(ao, geo));                  /* sec. 3.4 geometric term, times AO */
 }
 
-static void bentcone_pixel(const tgi_bentcone_params *p, const tgi_ao_io *io, const tg_vec3 *dirs, int n,
+static void bentcone_pixel(const tgi_bentcone_params *p, const tgi_gview *g, const tgi_gresult *out, const tg_vec3 *dirs, int n,
                            const tgi_ao_rot *rot, int x, int y)
 {
-    int i = y * io->width + x, k, m, open = 0, steps = p->steps < 1 ? 1 : p->steps;
-    const tgi_view *v = io->view;
-    tg_vec3 pv = tgi_ao_unproject(v, x, y, io->depth[i]), nv = tgi_ao_normal_view(io, i), t, b;
-    tg_vec3 sum = tg_v3(0, 0, 0), nw = tg_v3(io->nx[i], io->ny[i], io->nz[i]), bent_w;
+    int i = (int)tgi_gv_index(g, x, y), k, m, open = 0, steps = p->steps < 1 ? 1 : p->steps;
+    const tgi_view *v = g->camera;
+    tg_vec3 pv = tgi_ao_unproject(v, x, y, tgi_gv_depth(g, i)), nv = tgi_ao_normal_view(g, i), t, b;
+    tg_vec3 sum = tg_v3(0, 0, 0), nw = tgi_gv_normal(g, i), bent_w;
     tg_real bias = tg_mul(p->bias, p->radius), mean_len, cone, ao;
     tgi_ao_basis(nv, &t, &b);
     for (k = 0; k < n; k++) {
@@ -49,14 +49,14 @@ static void bentcone_pixel(const tgi_bentcone_params *p, const tgi_ao_io *io, co
         int blocked = 0;
         for (m = 0; m < steps && !blocked; m++) {           /* ray-march points along w */
             tg_real lambda = tg_div(tg_mul(p->radius, tg_add(tg_from_int(m), rot->jitter)), tg_from_int(steps));
-            blocked = tgi_ao_sample_blocked(io, pv, tgi_v3_add(pv, tgi_v3_scale(w, lambda)), bias, tg_ldexp(p->radius, 1));
+            blocked = tgi_ao_sample_blocked(g, pv, tgi_v3_add(pv, tgi_v3_scale(w, lambda)), bias, tg_ldexp(p->radius, 1));
         }
         if (blocked) continue;
         open++;
         sum = tgi_v3_add(sum, w);
     }
     ao = tg_ratio(open, n);                                 /* Klehm eq. 3 */
-    io->ao[i] = ao;
+    tgi_gr_set_ao(out, i, ao);
     if (open == 0) {
         bent_w = nw;
         cone = 0;
@@ -66,15 +66,15 @@ static void bentcone_pixel(const tgi_bentcone_params *p, const tgi_ao_io *io, co
         cone = tgi_bentcone_aperture(mean_len);
         bent_w = tgi_v3_normalize_or(tgi_ao_dir_to_world(v, mean), nw);
     }
-    if (io->bent_x) { io->bent_x[i] = bent_w.x; io->bent_y[i] = bent_w.y; io->bent_z[i] = bent_w.z; }
-    if (io->cone) io->cone[i] = cone;
-    if (p->env_sh9 && p->far_r) {
+    if (tgi_gr_has_bent(out)) tgi_gr_set_bent(out, i, bent_w);
+    if (tgi_gr_has_cone(out)) tgi_gr_set_cone(out, i, cone);
+    if (p->env_sh9 && tgi_rgb_present(&p->far)) {
         tg_vec3 e = tgi_bentcone_far(p->env_sh9, bent_w, cone, ao, nw);
-        p->far_r[i] = e.x; p->far_g[i] = e.y; p->far_b[i] = e.z;
+        tgi_rgb_set(&p->far, i, e);
     }
 }
 
-void tgi_bentcone_rows(const tgi_bentcone_params *p, const tgi_ao_io *io, int y0, int y1)
+void tgi_bentcone_rows(const tgi_bentcone_params *p, const tgi_gview *g, const tgi_gresult *out, int y0, int y1)
 {
     tg_vec3 dirs[TG_AO_MAX_SAMPLES];
     tgi_ao_rot rot[16];
@@ -82,15 +82,15 @@ void tgi_bentcone_rows(const tgi_bentcone_params *p, const tgi_ao_io *io, int y0
     for (k = 0; k < n; k++) dirs[k] = tgi_ao_hemi_uniform(k, n);
     tgi_ao_rotations(rot);
     for (y = y0; y < y1; y++)
-        for (x = 0; x < io->width; x++) {
-            int i = y * io->width + x;
-            tgi_ao_write_open(io, i);
-            if (p->far_r) {
+        for (x = 0; x < g->width; x++) {
+            int i = (int)tgi_gv_index(g, x, y);
+            tgi_ao_write_open(g, out, i);
+            if (tgi_rgb_present(&p->far)) {
                 tg_vec3 e = tg_v3(0, 0, 0);
-                if (!io->sky[i] && p->env_sh9) e = tgi_sh9_irradiance(p->env_sh9, tg_v3(io->nx[i], io->ny[i], io->nz[i]));
-                p->far_r[i] = e.x; p->far_g[i] = e.y; p->far_b[i] = e.z;
+                if (!tgi_gv_is_sky(g, i) && p->env_sh9) e = tgi_sh9_irradiance(p->env_sh9, tgi_gv_normal(g, i));
+                tgi_rgb_set(&p->far, i, e);
             }
-            if (io->sky[i] || p->radius <= 0) continue;
-            bentcone_pixel(p, io, dirs, n, tgi_ao_rot_at(rot, x, y), x, y);
+            if (tgi_gv_is_sky(g, i) || p->radius <= 0) continue;
+            bentcone_pixel(p, g, out, dirs, n, tgi_ao_rot_at(rot, x, y), x, y);
         }
 }

@@ -22,7 +22,7 @@
  *   sec. 3.4  the geometric term heuristic (w . n) ~ (w . N)(N . n): the
  *             cone irradiance is multiplied by max(0, N . n), and by ao
  *             ("we still rely on AO to estimate the average visibility").
- * Output far: E_far = pi L_c(N, C) ao (N . n), into far_r/g/b.
+ * Output far: E_far = pi L_c(N, C) ao (N . n), into far.
  */
 #ifndef TG_BENTCONE_H
 #define TG_BENTCONE_H
@@ -35,11 +35,12 @@ typedef struct tgi_bentcone_params {
     tg_real radius;              /* world units (default 1) */
     tg_real bias;                /* depth below the occluder's tangent plane that counts, fraction of the radius (default 0.03) */
     const tg_vec3 *env_sh9;      /* environment radiance SH9; NULL = no far output */
-    tg_real *far_r, *far_g, *far_b; /* out: cone-restricted environment irradiance; NULL = not wanted */
+    tgi_rgb far;                 /* out: cone-restricted environment irradiance; absent = not wanted */
 } tgi_bentcone_params;
 
 void tgi_bentcone_defaults(tgi_bentcone_params *p);
-void tgi_bentcone_rows(const tgi_bentcone_params *p, const tgi_ao_io *io, int y0, int y1);
+void tgi_bentcone_rows(const tgi_bentcone_params *p, const tgi_gview *g, const tgi_gresult *out,
+                    int y0, int y1);
 
 /* Klehm sec. 3.2: cone half angle from the length of the mean unoccluded
  * direction (uniform hemisphere sampling), radians in [0, pi/2]. */

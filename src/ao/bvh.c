@@ -32,12 +32,12 @@ size_t tgi_bvh_bytes(int tri_count)
     size_t nodes, idx, tris, total;
     size_t n = tri_count > 0 ? (size_t)tri_count : 1u;
     if (tri_count < 0) return 0;
-    if (tg_size_mul(2u * n, sizeof(tgi_bvh_node), &nodes)) return 0;
-    if (tg_size_mul(n, sizeof(int32_t), &idx)) return 0;
-    if (tg_size_mul(n, sizeof(tgi_bvh_tri), &tris)) return 0;
-    if (tg_size_add(align16(nodes), align16(idx), &total)) return 0;
-    if (tg_size_add(total, align16(tris), &total)) return 0;
-    if (tg_size_add(total, 16u, &total)) return 0;
+    if (tg_size_mul(2u * n, sizeof(tgi_bvh_node), &nodes)) return SIZE_MAX;
+    if (tg_size_mul(n, sizeof(int32_t), &idx)) return SIZE_MAX;
+    if (tg_size_mul(n, sizeof(tgi_bvh_tri), &tris)) return SIZE_MAX;
+    if (tg_size_add(align16(nodes), align16(idx), &total)) return SIZE_MAX;
+    if (tg_size_add(total, align16(tris), &total)) return SIZE_MAX;
+    if (tg_size_add(total, 16u, &total)) return SIZE_MAX;
     return total;
 }
 
@@ -150,19 +150,19 @@ int tgi_bvh_build(tgi_bvh *bvh, const tg_vec3 *tri_pos, int tri_count, void *mem
 
 /* ---- ray / triangle (Moller-Trumbore in scaled relative coordinates) ---- */
 
-static tg_real max_abs3(tg_vec3 a) { return tg_max(tg_max(tg_abs(a.x), tg_abs(a.y)), tg_abs(a.z)); }
+static tg_real bvh_max_abs3(tg_vec3 a) { return tg_max(tg_max(tg_abs(a.x), tg_abs(a.y)), tg_abs(a.z)); }
 
 int tgi_ray_triangle(const tg_vec3 *v, tg_vec3 o, tg_vec3 d, tg_real tmax,
                     tg_real *t_out, tg_real *u_out, tg_real *w_out)
 {
     tg_vec3 e1 = tgi_v3_sub(v[1], v[0]), e2 = tgi_v3_sub(v[2], v[0]), s, p, q;
-    tg_real emax = tg_max(max_abs3(e1), max_abs3(e2)), m, det, uu, ww, tt, t;
+    tg_real emax = tg_max(bvh_max_abs3(e1), bvh_max_abs3(e2)), m, det, uu, ww, tt, t;
     tg_real t_shift = tg_max(tgi_v3_dot(tgi_v3_sub(v[0], o), d), 0);
     int k = 0, neg;
     /* slide the origin to the ray point nearest vertex 0: a hit then lies
      * within one edge length of it, so |s| <= |hit - v0| <= sqrt(3) emax */
     s = tgi_v3_sub(tgi_v3_add(o, tgi_v3_scale(d, t_shift)), v[0]);
-    m = max_abs3(s);
+    m = bvh_max_abs3(s);
     if (emax <= 0 || m > tg_add(tg_ldexp(emax, 1), TG_R(0.0001f))) return 0;
     m = tg_max(m, emax);
     while (m < TG_R(4.0f) && k < 24) { m = tg_ldexp(m, 1); k++; }
@@ -199,7 +199,7 @@ static tg_vec3 v3_ldexp(tg_vec3 a, int k) { return tg_v3(tg_ldexp(a.x, k), tg_ld
 void tgi_bvh_tri_prepare(tgi_bvh_tri *tr, const tg_vec3 *v)
 {
     tg_vec3 e1 = tgi_v3_sub(v[1], v[0]), e2 = tgi_v3_sub(v[2], v[0]), nn, a, b;
-    tg_real m = tg_max(max_abs3(e1), max_abs3(e2)), len2;
+    tg_real m = tg_max(bvh_max_abs3(e1), bvh_max_abs3(e2)), len2;
     int k = 0;
     tr->v0 = v[0];
     tr->n = tr->a = tr->b = tg_v3(0, 0, 0);

@@ -52,7 +52,7 @@ typedef struct tgi_ray_hit {
 
 /* Bytes tgi_bvh_build needs for tri_count triangles (0 when the count is
  * negative or the size overflows). */
-size_t tgi_bvh_bytes(int tri_count);
+size_t tgi_bvh_bytes(int tri_count);   /* SIZE_MAX when that does not fit */
 
 /* Build over tri_pos[3 * tri_count] in `memory` (size >= tgi_bvh_bytes).
  * Returns 0, or -1 if the memory is too small or the count is negative. */

@@ -37,7 +37,7 @@ static int unit_shift(tg_real radius)
 
 /* Largest cos(angle to the view vector) of the samples along screen
  * direction (sdx, sdy); -1 when none is within the radius. */
-static tg_real horizon_cos(const tgi_gtao_params *p, const tgi_ao_io *io, const gtao_pixel *px,
+static tg_real horizon_cos(const tgi_gtao_params *p, const tgi_gview *g, const gtao_pixel *px,
                            tg_real sdx, tg_real sdy)
 {
     tg_real rs = tg_ldexp(p->radius, px->shift), best = TG_R(-1.0f), r2 = tg_sqr(rs);
@@ -51,10 +51,10 @@ static tg_real horizon_cos(const tgi_gtao_params *p, const tgi_ao_io *io, const 
         if (t_px < TG_ONE) continue;
         qx = tg_to_int(tg_add(tg_add(tg_from_int(px->x), TG_R(0.5f)), tg_mul(sdx, t_px)));
         qy = tg_to_int(tg_add(tg_add(tg_from_int(px->y), TG_R(0.5f)), tg_mul(sdy, t_px)));
-        if (qx < 0 || qy < 0 || qx >= io->width || qy >= io->height) break;
-        j = qy * io->width + qx;
-        if (io->sky[j]) continue;
-        h = tgi_v3_sub(tgi_ao_unproject(io->view, qx, qy, io->depth[j]), px->pv);
+        if (qx < 0 || qy < 0 || qx >= g->width || qy >= g->height) break;
+        j = (int)tgi_gv_index(g, qx, qy);
+        if (tgi_gv_is_sky(g, j)) continue;
+        h = tgi_v3_sub(tgi_ao_unproject(g->camera, qx, qy, tgi_gv_depth(g, j)), px->pv);
         if (px->shift) h = tg_v3(tg_ldexp(h.x, px->shift), tg_ldexp(h.y, px->shift), tg_ldexp(h.z, px->shift));
         d2 = tgi_v3_dot(h, h);
         if (d2 >= r2 || d2 <= 0) continue;
@@ -88,7 +88,7 @@ static tg_real bent_fc(tg_real th, tg_real cos_g, tg_real sin_g)
 }
 
 /* One slice: adds its visibility to *vis and its bent vector to *bent. */
-static void slice(const tgi_gtao_params *p, const tgi_ao_io *io, const gtao_pixel *px, tg_real sdx,
+static void slice(const tgi_gtao_params *p, const tgi_gview *g, const gtao_pixel *px, tg_real sdx,
                   tg_real sdy, tg_real *vis, tg_real *open, tg_vec3 *bent)
 {
     tg_vec3 d3 = tg_v3(sdx, tg_neg(sdy), 0), dir, axis, pn;
@@ -103,8 +103,8 @@ static void slice(const tgi_gtao_params *p, const tgi_ao_io *io, const gtao_pixe
     if (tgi_v3_dot(pn, dir) < 0) gamma = tg_neg(gamma);
     cos_g = tg_cos(gamma);
     sin_g = tg_sin(gamma);
-    h1 = tg_acos(horizon_cos(p, io, px, sdx, sdy));
-    h0 = tg_neg(tg_acos(horizon_cos(p, io, px, tg_neg(sdx), tg_neg(sdy))));
+    h1 = tg_acos(horizon_cos(p, g, px, sdx, sdy));
+    h0 = tg_neg(tg_acos(horizon_cos(p, g, px, tg_neg(sdx), tg_neg(sdy))));
     h1 = tg_add(gamma, tg_min(tg_sub(h1, gamma), TG_HALF_PI));            /* clamp to the normal's hemisphere */
     h0 = tg_add(gamma, tg_max(tg_sub(h0, gamma), tg_neg(TG_HALF_PI)));
     /* RTR eq. 11.18, inner integral on both sides, weighted by |projected normal| */
@@ -117,7 +117,7 @@ static void slice(const tgi_gtao_params *p, const tgi_ao_io *io, const gtao_pixe
     *bent = tgi_v3_add(*bent, tgi_v3_scale(tgi_v3_add(tgi_v3_scale(dir, bs), tgi_v3_scale(px->vd, bc)), len));
 }
 
-void tgi_gtao_rows(const tgi_gtao_params *p, const tgi_ao_io *io, int y0, int y1)
+void tgi_gtao_rows(const tgi_gtao_params *p, const tgi_gview *g, const tgi_gresult *out, int y0, int y1)
 {
     tg_real scos[TG_AO_MAX_SAMPLES], ssin[TG_AO_MAX_SAMPLES];
     tgi_ao_rot rot[16];
@@ -130,27 +130,27 @@ void tgi_gtao_rows(const tgi_gtao_params *p, const tgi_ao_io *io, int y0, int y1
     }
     tgi_ao_rotations(rot);
     for (y = y0; y < y1; y++)
-        for (x = 0; x < io->width; x++) {
-            int i = y * io->width + x;
+        for (x = 0; x < g->width; x++) {
+            int i = (int)tgi_gv_index(g, x, y);
             const tgi_ao_rot *r = tgi_ao_rot_at(rot, x, y);
             gtao_pixel px;
             tg_real vis = 0, open = 0;
             tg_vec3 bent = tg_v3(0, 0, 0);
-            tgi_ao_write_open(io, i);
-            if (io->sky[i] || p->radius <= 0 || p->steps < 1) continue;
+            tgi_ao_write_open(g, out, i);
+            if (tgi_gv_is_sky(g, i) || p->radius <= 0 || p->steps < 1) continue;
             px.x = x; px.y = y;
-            px.pv = tgi_ao_unproject(io->view, x, y, io->depth[i]);
-            px.nv = tgi_ao_normal_view(io, i);
+            px.pv = tgi_ao_unproject(g->camera, x, y, tgi_gv_depth(g, i));
+            px.nv = tgi_ao_normal_view(g, i);
             px.vd = tgi_v3_normalize_or(tgi_v3_neg(px.pv), tg_v3(0, 0, TG_R(-1.0f)));
-            px.r_px = tg_div(tg_mul(p->radius, io->view->pixels_per_unit), io->depth[i]);
+            px.r_px = tg_div(tg_mul(p->radius, g->camera->pixels_per_unit), tgi_gv_depth(g, i));
             px.jitter = r->jitter;
             px.shift = shift;
             for (k = 0; k < ns; k++)
-                slice(p, io, &px, tg_sub(tg_mul(r->c, scos[k]), tg_mul(r->s, ssin[k])),
+                slice(p, g, &px, tg_sub(tg_mul(r->c, scos[k]), tg_mul(r->s, ssin[k])),
                       tg_add(tg_mul(r->s, scos[k]), tg_mul(r->c, ssin[k])), &vis, &open, &bent);
             /* outer integral: the slice quadrature as a ratio to the same
              * quadrature of the open hemisphere (exact 1 on any plane) */
-            io->ao[i] = open > 0 ? tg_saturate(tg_div(vis, open)) : TG_ONE;
-            tgi_ao_write_bent_view(io, i, bent);
+            tgi_gr_set_ao(out, i, open > 0 ? tg_saturate(tg_div(vis, open)) : TG_ONE);
+            tgi_ao_write_bent_view(g, out, i, bent);
         }
 }

@@ -36,6 +36,7 @@ typedef struct tgi_gtao_params {
 } tgi_gtao_params;
 
 void tgi_gtao_defaults(tgi_gtao_params *p);
-void tgi_gtao_rows(const tgi_gtao_params *p, const tgi_ao_io *io, int y0, int y1);
+void tgi_gtao_rows(const tgi_gtao_params *p, const tgi_gview *g, const tgi_gresult *out,
+                    int y0, int y1);
 
 #endif

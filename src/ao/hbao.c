@@ -15,11 +15,11 @@ void tgi_hbao_defaults(tgi_hbao_params *p)
 }
 
 /* Occlusion (sin h - sin t) W of one screen direction (sdx, sdy). */
-static tg_real direction_occlusion(const tgi_hbao_params *p, const tgi_ao_io *io, tg_vec3 pv, tg_vec3 nv,
+static tg_real direction_occlusion(const tgi_hbao_params *p, const tgi_gview *g, tg_vec3 pv, tg_vec3 nv,
                                    tg_vec3 view_dir, tg_real sdx, tg_real sdy, tg_real r_px,
                                    tg_real jitter, int x, int y)
 {
-    const tgi_view *v = io->view;
+    const tgi_view *v = g->camera;
     tg_vec3 d3 = tg_v3(sdx, tg_neg(sdy), 0);                /* screen y is down, view y up */
     tg_vec3 axis = tgi_v3_cross(d3, view_dir), tangent;
     tg_real sin_t, max_sin, occlusion = 0;
@@ -38,10 +38,10 @@ static tg_real direction_occlusion(const tgi_hbao_params *p, const tgi_ao_io *io
         if (t_px < TG_ONE) continue;
         qx = tg_to_int(tg_add(tg_add(tg_from_int(x), TG_R(0.5f)), tg_mul(sdx, t_px)));
         qy = tg_to_int(tg_add(tg_add(tg_from_int(y), TG_R(0.5f)), tg_mul(sdy, t_px)));
-        if (qx < 0 || qy < 0 || qx >= io->width || qy >= io->height) break;
-        j = qy * io->width + qx;
-        if (io->sky[j]) continue;
-        h = tgi_v3_sub(tgi_ao_unproject(v, qx, qy, io->depth[j]), pv);
+        if (qx < 0 || qy < 0 || qx >= g->width || qy >= g->height) break;
+        j = (int)tgi_gv_index(g, qx, qy);
+        if (tgi_gv_is_sky(g, j)) continue;
+        h = tgi_v3_sub(tgi_ao_unproject(v, qx, qy, tgi_gv_depth(g, j)), pv);
         dist2 = tgi_v3_dot(h, h);
         if (dist2 >= tg_sqr(p->radius) || dist2 <= 0) continue;
         if (tgi_v3_dot(h, nv) <= above) continue;           /* on or under the tangent plane: no horizon */
@@ -58,7 +58,7 @@ static tg_real direction_occlusion(const tgi_hbao_params *p, const tgi_ao_io *io
     return occlusion;
 }
 
-void tgi_hbao_rows(const tgi_hbao_params *p, const tgi_ao_io *io, int y0, int y1)
+void tgi_hbao_rows(const tgi_hbao_params *p, const tgi_gview *g, const tgi_gresult *out, int y0, int y1)
 {
     tg_real dcos[TG_AO_MAX_SAMPLES], dsin[TG_AO_MAX_SAMPLES];
     tgi_ao_rot rot[16];
@@ -71,23 +71,23 @@ void tgi_hbao_rows(const tgi_hbao_params *p, const tgi_ao_io *io, int y0, int y1
     }
     tgi_ao_rotations(rot);
     for (y = y0; y < y1; y++)
-        for (x = 0; x < io->width; x++) {
-            int i = y * io->width + x;
+        for (x = 0; x < g->width; x++) {
+            int i = (int)tgi_gv_index(g, x, y);
             const tgi_ao_rot *r = tgi_ao_rot_at(rot, x, y);
             tg_vec3 pv, nv, vd;
             tg_real r_px, occ = 0;
-            tgi_ao_write_open(io, i);
-            if (io->sky[i] || p->radius <= 0 || p->steps < 1) continue;
-            pv = tgi_ao_unproject(io->view, x, y, io->depth[i]);
-            nv = tgi_ao_normal_view(io, i);
+            tgi_ao_write_open(g, out, i);
+            if (tgi_gv_is_sky(g, i) || p->radius <= 0 || p->steps < 1) continue;
+            pv = tgi_ao_unproject(g->camera, x, y, tgi_gv_depth(g, i));
+            nv = tgi_ao_normal_view(g, i);
             vd = tgi_v3_normalize_or(tgi_v3_neg(pv), tg_v3(0, 0, TG_R(-1.0f)));
-            r_px = tg_div(tg_mul(p->radius, io->view->pixels_per_unit), io->depth[i]);
+            r_px = tg_div(tg_mul(p->radius, g->camera->pixels_per_unit), tgi_gv_depth(g, i));
             if (r_px < TG_ONE) continue;                     /* the radius covers less than a pixel */
             for (k = 0; k < nd; k++) {
                 tg_real sdx = tg_sub(tg_mul(r->c, dcos[k]), tg_mul(r->s, dsin[k]));
                 tg_real sdy = tg_add(tg_mul(r->s, dcos[k]), tg_mul(r->c, dsin[k]));
-                occ = tg_add(occ, direction_occlusion(p, io, pv, nv, vd, sdx, sdy, r_px, r->jitter, x, y));
+                occ = tg_add(occ, direction_occlusion(p, g, pv, nv, vd, sdx, sdy, r_px, r->jitter, x, y));
             }
-            io->ao[i] = tg_saturate(tg_sub(TG_ONE, tg_div(occ, tg_from_int(nd)))); /* RTR eq. 11.17 */
+            tgi_gr_set_ao(out, i, tg_saturate(tg_sub(TG_ONE, tg_div(occ, tg_from_int(nd))))); /* RTR eq. 11.17 */
         }
 }

@@ -28,6 +28,7 @@ typedef struct tgi_hbao_params {
 } tgi_hbao_params;
 
 void tgi_hbao_defaults(tgi_hbao_params *p);
-void tgi_hbao_rows(const tgi_hbao_params *p, const tgi_ao_io *io, int y0, int y1);
+void tgi_hbao_rows(const tgi_hbao_params *p, const tgi_gview *g, const tgi_gresult *out,
+                    int y0, int y1);
 
 #endif

@@ -41,30 +41,30 @@ static tg_vec3 hit_normal(const tgi_reference_params *p, const tgi_ray_hit *h, t
 }
 
 /* L_o at a hit seen in the current view's radiance buffer, 0 when hidden. */
-static tg_vec3 radiance_from_view(const tgi_ao_io *io, tg_vec3 pw)
+static tg_vec3 radiance_from_view(const tgi_gview *g, const tgi_rgb *radiance, tg_vec3 pw)
 {
-    const tgi_view *v = io->view;
+    const tgi_view *v = g->camera;
     tg_vec3 pv = tgi_ao_dir_to_view(v, tgi_v3_sub(pw, v->eye));
     int j = tgi_ao_project_index(v, pv);
     tg_real tol;
-    if (j < 0 || io->sky[j] || !io->rad_r) return tg_v3(0, 0, 0);
+    if (j < 0 || tgi_gv_is_sky(g, j) || !tgi_rgb_present(radiance)) return tg_v3(0, 0, 0);
     tol = tg_add(tg_mul(pv.z, TG_R(0.01f)), TG_R(0.00390625f));
-    if (tg_abs(tg_sub(io->depth[j], pv.z)) > tol) return tg_v3(0, 0, 0);
-    return tg_v3(io->rad_r[j], io->rad_g[j], io->rad_b[j]);
+    if (tg_abs(tg_sub(tgi_gv_depth(g, j), pv.z)) > tol) return tg_v3(0, 0, 0);
+    return tgi_rgb_get(radiance, j);
 }
 
-static void reference_pixel(const tgi_reference_params *p, const tgi_ao_io *io, const tgi_ao_rot *rot,
+static void reference_pixel(const tgi_reference_params *p, const tgi_gview *g, const tgi_rgb *radiance, const tgi_gresult *out, const tgi_ao_rot *rot,
                             int x, int y)
 {
-    int i = y * io->width + x, s, n = p->samples > 0 ? p->samples : 1, open = 0;
-    int want_near = io->near_r != 0;
-    const tgi_view *v = io->view;
-    tg_vec3 nrm = tg_v3(io->nx[i], io->ny[i], io->nz[i]), t, b, o, pv;
+    int i = (int)tgi_gv_index(g, x, y), s, n = p->samples > 0 ? p->samples : 1, open = 0;
+    int want_near = tgi_gr_has_near(out);
+    const tgi_view *v = g->camera;
+    tg_vec3 nrm = tgi_gv_normal(g, i), t, b, o, pv;
     tg_vec3 bent = tg_v3(0, 0, 0), near = tg_v3(0, 0, 0);
     tg_real eps, tmax = p->radius > 0 ? p->radius : 0;
-    pv = tgi_ao_unproject(v, x, y, io->depth[i]);
+    pv = tgi_ao_unproject(v, x, y, tgi_gv_depth(g, i));
     /* scale-aware offset along the normal: 2^-10 of the depth + 2^-10 */
-    eps = tg_add(tg_ldexp(io->depth[i], -10), TG_R(0.0009765625f));
+    eps = tg_add(tg_ldexp(tgi_gv_depth(g, i), -10), TG_R(0.0009765625f));
     o = tgi_v3_add(tgi_v3_add(v->eye, tgi_ao_dir_to_world(v, pv)), tgi_v3_scale(nrm, eps));
     tgi_ao_basis(nrm, &t, &b);
     for (s = 0; s < n; s++) {
@@ -76,7 +76,7 @@ static void reference_pixel(const tgi_reference_params *p, const tgi_ao_io *io, 
             {
                 tg_vec3 hp = tgi_v3_add(o, tgi_v3_scale(d, h.t)), lo;
                 lo = p->radiance ? p->radiance(p->user, h.tri, hp, hit_normal(p, &h, d))
-                                 : radiance_from_view(io, hp);
+                                 : radiance_from_view(g, radiance, hp);
                 near = tgi_v3_add(near, lo);
             }
         } else if (!tgi_bvh_occluded(p->bvh, o, d, tmax)) {
@@ -84,27 +84,28 @@ static void reference_pixel(const tgi_reference_params *p, const tgi_ao_io *io, 
             bent = tgi_v3_add(bent, d);
         }
     }
-    io->ao[i] = tg_ratio(open, n);                      /* RTR eq. 11.8 / 11.14, cosine-importance sampled */
-    if (io->cone) io->cone[i] = tg_acos(tg_sub(TG_ONE, io->ao[i])); /* HBIL eq. 12, as HBIL defines its cone */
-    if (io->bent_x) {                                   /* RTR eq. 11.10 */
+    tgi_gr_set_ao(out, i, tg_ratio(open, n));          /* RTR eq. 11.8 / 11.14, cosine-importance sampled */
+    if (tgi_gr_has_cone(out))                           /* HBIL eq. 12, as HBIL defines its cone */
+        tgi_gr_set_cone(out, i, tg_acos(tg_sub(TG_ONE, tgi_gr_ao(out, i))));
+    if (tgi_gr_has_bent(out)) {                         /* RTR eq. 11.10 */
         tg_vec3 bn = tgi_v3_normalize_or(bent, nrm);
-        io->bent_x[i] = bn.x; io->bent_y[i] = bn.y; io->bent_z[i] = bn.z;
+        tgi_gr_set_bent(out, i, bn);
     }
     if (want_near) {                                    /* E = pi / N sum L_o (pdf cos / pi) */
         tg_real k = tg_div(TG_PI, tg_from_int(n));
-        io->near_r[i] = tg_mul(near.x, k); io->near_g[i] = tg_mul(near.y, k); io->near_b[i] = tg_mul(near.z, k);
+        tgi_gr_set_near(out, i, tg_v3(tg_mul(near.x, k), tg_mul(near.y, k), tg_mul(near.z, k)));
     }
 }
 
-void tgi_reference_rows(const tgi_reference_params *p, const tgi_ao_io *io, int y0, int y1)
+void tgi_reference_rows(const tgi_reference_params *p, const tgi_gview *g, const tgi_rgb *radiance, const tgi_gresult *out, int y0, int y1)
 {
     tgi_ao_rot rot[16];
     int x, y;
     tgi_ao_rotations(rot);
     for (y = y0; y < y1; y++)
-        for (x = 0; x < io->width; x++) {
-            int i = y * io->width + x;
-            if (io->sky[i] || !p->bvh) { tgi_ao_write_open(io, i); continue; }
-            reference_pixel(p, io, tgi_ao_rot_at(rot, x, y), x, y);
+        for (x = 0; x < g->width; x++) {
+            int i = (int)tgi_gv_index(g, x, y);
+            if (tgi_gv_is_sky(g, i) || !p->bvh) { tgi_ao_write_open(g, out, i); continue; }
+            reference_pixel(p, g, radiance, out, tgi_ao_rot_at(rot, x, y), x, y);
         }
 }

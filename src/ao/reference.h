@@ -17,12 +17,12 @@
  *   1. the `radiance` callback (exact: the frame evaluates direct light at
  *      any point; the reference is slow on purpose, so a call per hit is
  *      acceptable here and nowhere else);
- *   2. else the io->rad_* buffer, looked up by projecting the hit into the
+ *   2. else the `radiance` planes, looked up by projecting the hit into the
  *      current view, when the hit is the surface the camera sees there
  *      (depth within 1% + 2^-8); hidden hits then give 0, so this is the
  *      screen-visible part of the bounce - exactly what a screen-space
  *      gatherer can know, and a lower bound of the true value;
- *   3. no near output when io->near_r is NULL.
+ *   3. no near output when the results have no near field.
  * cone  HBIL eq. 12, alpha = acos(1 - ao), the aperture HBIL derives from
  *       its AO, so the bench compares like with like.
  */
@@ -41,13 +41,14 @@ typedef struct tgi_reference_params {
     const tg_vec3 *tri_nrm;        /* 3 unit vertex normals per triangle; NULL = face normals */
     int samples;                   /* rays per pixel (default 256) */
     tg_real radius;                /* cut-off distance, world units; TG_AO_INFINITE = none (default 1) */
-    tgi_reference_radiance_fn radiance; /* NULL: look up io->rad_* (see above) */
+    tgi_reference_radiance_fn radiance; /* NULL: look up `radiance` (see above) */
     void *user;
 } tgi_reference_params;
 
 void tgi_reference_defaults(tgi_reference_params *p);
 
-/* Rows [y0, y1) of io (ao, bent if non-NULL, near if non-NULL). */
-void tgi_reference_rows(const tgi_reference_params *p, const tgi_ao_io *io, int y0, int y1);
+/* Rows [y0, y1) of the view g (ao; bent, cone and near when out has them). */
+void tgi_reference_rows(const tgi_reference_params *p, const tgi_gview *g, const tgi_rgb *radiance,
+                    const tgi_gresult *out, int y0, int y1);
 
 #endif

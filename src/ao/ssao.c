@@ -51,11 +51,11 @@ static int make_kernel(int variant, int n, tg_vec3 *off, tg_vec3 *dir)
     return n;
 }
 
-static void ssao_3d(const tgi_ssao_params *p, const tgi_ao_io *io, const tg_vec3 *off, const tg_vec3 *dir,
+static void ssao_3d(const tgi_ssao_params *p, const tgi_gview *g, const tgi_gresult *out, const tg_vec3 *off, const tg_vec3 *dir,
                     int n, const tgi_ao_rot *rot, int x, int y)
 {
-    int i = y * io->width + x, k, open = 0;
-    tg_vec3 pv = tgi_ao_unproject(io->view, x, y, io->depth[i]), nv = tgi_ao_normal_view(io, i);
+    int i = (int)tgi_gv_index(g, x, y), k, open = 0;
+    tg_vec3 pv = tgi_ao_unproject(g->camera, x, y, tgi_gv_depth(g, i)), nv = tgi_ao_normal_view(g, i);
     tg_vec3 t = tg_v3(TG_ONE, 0, 0), b = tg_v3(0, TG_ONE, 0), axis = tg_v3(0, 0, TG_ONE);
     tg_vec3 bent = tg_v3(0, 0, 0);
     tg_real bias = tg_mul(p->bias, p->radius);
@@ -63,55 +63,55 @@ static void ssao_3d(const tgi_ssao_params *p, const tgi_ao_io *io, const tg_vec3
     for (k = 0; k < n; k++) {
         tg_vec3 o = tgi_ao_from_local(tgi_ao_rotate_z(off[k], rot->c, rot->s), t, b, axis);
         tg_vec3 s = tgi_v3_add(pv, tgi_v3_scale(o, p->radius));
-        if (tgi_ao_sample_blocked(io, pv, s, bias, tg_ldexp(p->radius, 1))) continue; /* Klehm eq. 3, d_x with range check */
+        if (tgi_ao_sample_blocked(g, pv, s, bias, tg_ldexp(p->radius, 1))) continue; /* Klehm eq. 3, d_x with range check */
         open++;
         bent = tgi_v3_add(bent, tgi_ao_from_local(tgi_ao_rotate_z(dir[k], rot->c, rot->s), t, b, axis));
     }
     if (p->variant == TG_SSAO_SPHERE)
-        io->ao[i] = tg_min(TG_ONE, tg_ratio(2 * open, n));      /* half the ball is under any surface */
+        tgi_gr_set_ao(out, i, tg_min(TG_ONE, tg_ratio(2 * open, n)));      /* half the ball is under any surface */
     else
-        io->ao[i] = tg_ratio(open, n);                          /* Klehm eq. 3 */
-    tgi_ao_write_bent_view(io, i, bent);                         /* Klehm sec. 3.1 */
+        tgi_gr_set_ao(out, i, tg_ratio(open, n));                          /* Klehm eq. 3 */
+    tgi_ao_write_bent_view(g, out, i, bent);                         /* Klehm sec. 3.1 */
 }
 
-static void ssao_2d(const tgi_ssao_params *p, const tgi_ao_io *io, const tg_vec3 *off, int n,
+static void ssao_2d(const tgi_ssao_params *p, const tgi_gview *g, const tgi_gresult *out, const tg_vec3 *off, int n,
                     const tgi_ao_rot *rot, int x, int y)
 {
-    int i = y * io->width + x, k, blocked = 0;
-    const tgi_view *v = io->view;
-    tg_vec3 pv = tgi_ao_unproject(v, x, y, io->depth[i]), nv = tgi_ao_normal_view(io, i);
-    tg_real r_px = tg_div(tg_mul(p->radius, v->pixels_per_unit), io->depth[i]);
+    int i = (int)tgi_gv_index(g, x, y), k, blocked = 0;
+    const tgi_view *v = g->camera;
+    tg_vec3 pv = tgi_ao_unproject(v, x, y, tgi_gv_depth(g, i)), nv = tgi_ao_normal_view(g, i);
+    tg_real r_px = tg_div(tg_mul(p->radius, v->pixels_per_unit), tgi_gv_depth(g, i));
     tg_real r2 = tg_sqr(p->radius);
     for (k = 0; k < n; k++) {
         tg_vec3 o = tgi_ao_rotate_z(off[k], rot->c, rot->s), d;
         int qx = tg_to_int(tg_add(tg_add(tg_from_int(x), TG_R(0.5f)), tg_mul(o.x, r_px)));
         int qy = tg_to_int(tg_add(tg_add(tg_from_int(y), TG_R(0.5f)), tg_mul(o.y, r_px)));
-        int j = qy * io->width + qx;
+        int j = (int)tgi_gv_index(g, qx, qy);
         tg_real dn, dd;
-        if (qx < 0 || qy < 0 || qx >= io->width || qy >= io->height || j == i || io->sky[j]) continue;
-        d = tgi_v3_sub(tgi_ao_unproject(v, qx, qy, io->depth[j]), pv);
+        if (qx < 0 || qy < 0 || qx >= g->width || qy >= g->height || j == i || tgi_gv_is_sky(g, j)) continue;
+        d = tgi_v3_sub(tgi_ao_unproject(v, qx, qy, tgi_gv_depth(g, j)), pv);
         dd = tgi_v3_dot(d, d);
         dn = tgi_v3_dot(d, nv);
         /* Klehm d_xn: above the tangent plane (with a bias angle of ~3 deg) and in range */
         if (dn > 0 && tg_sqr(dn) > tg_mul(dd, TG_R(0.0025f)) && dd < r2) blocked++;
     }
-    io->ao[i] = tg_sub(TG_ONE, tg_ratio(blocked, n));            /* Klehm eq. 3 */
-    if (io->bent_x) { io->bent_x[i] = io->nx[i]; io->bent_y[i] = io->ny[i]; io->bent_z[i] = io->nz[i]; }
+    tgi_gr_set_ao(out, i, tg_sub(TG_ONE, tg_ratio(blocked, n)));            /* Klehm eq. 3 */
+    if (tgi_gr_has_bent(out)) tgi_gr_set_bent(out, i, tgi_gv_normal(g, i));
 }
 
-void tgi_ssao_rows(const tgi_ssao_params *p, const tgi_ao_io *io, int y0, int y1)
+void tgi_ssao_rows(const tgi_ssao_params *p, const tgi_gview *g, const tgi_gresult *out, int y0, int y1)
 {
     tg_vec3 off[TG_AO_MAX_SAMPLES], dir[TG_AO_MAX_SAMPLES];
     tgi_ao_rot rot[16];
     int n = make_kernel(p->variant, clamp_samples(p->samples), off, dir), x, y;
     tgi_ao_rotations(rot);
     for (y = y0; y < y1; y++)
-        for (x = 0; x < io->width; x++) {
-            int i = y * io->width + x;
-            if (io->sky[i] || p->radius <= 0) { tgi_ao_write_open(io, i); continue; }
-            if (io->cone) io->cone[i] = TG_HALF_PI;
-            if (io->near_r) { io->near_r[i] = 0; io->near_g[i] = 0; io->near_b[i] = 0; }
-            if (p->variant == TG_SSAO_DISK2D) ssao_2d(p, io, off, n, tgi_ao_rot_at(rot, x, y), x, y);
-            else ssao_3d(p, io, off, dir, n, tgi_ao_rot_at(rot, x, y), x, y);
+        for (x = 0; x < g->width; x++) {
+            int i = (int)tgi_gv_index(g, x, y);
+            if (tgi_gv_is_sky(g, i) || p->radius <= 0) { tgi_ao_write_open(g, out, i); continue; }
+            if (tgi_gr_has_cone(out)) tgi_gr_set_cone(out, i, TG_HALF_PI);
+            if (tgi_gr_has_near(out)) tgi_gr_set_near(out, i, tg_v3(0, 0, 0));
+            if (p->variant == TG_SSAO_DISK2D) ssao_2d(p, g, out, off, n, tgi_ao_rot_at(rot, x, y), x, y);
+            else ssao_3d(p, g, out, off, dir, n, tgi_ao_rot_at(rot, x, y), x, y);
         }
 }

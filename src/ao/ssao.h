@@ -41,6 +41,7 @@ typedef struct tgi_ssao_params {
 } tgi_ssao_params;
 
 void tgi_ssao_defaults(tgi_ssao_params *p);
-void tgi_ssao_rows(const tgi_ssao_params *p, const tgi_ao_io *io, int y0, int y1);
+void tgi_ssao_rows(const tgi_ssao_params *p, const tgi_gview *g, const tgi_gresult *out,
+                    int y0, int y1);
 
 #endif

@@ -9,10 +9,10 @@
  *   direct / far   E_do = sum_i L_env(w_i) V(w_i) cos(theta_i) Delta w
  *                  (Ritschel's L_dir without the BRDF rho/pi, which the
  *                  compose pass applies): the environment is occluded per
- *                  direction, not by one AO factor.  Written to far_r/g/b.
+ *                  direction, not by one AO factor.  Written to far.
  *   indirect       E_near = sum_i L_pixel (1 - V(w_i)) A_s cos(theta_s) cos(theta_r) / d_i^2
  *                  for each occluder, the pixel it projects to sends its
- *                  direct-light radiance (io->rad_*) from a patch of area
+ *                  direct-light radiance (`radiance`) from a patch of area
  *                  A_s = bounce * pi radius^2 / N oriented by that pixel's
  *                  normal; back-facing senders (cos theta_s <= 0) and
  *                  senders below the receiver's tangent plane give nothing
@@ -29,7 +29,7 @@
  *                  maps there; the frame can use either):
  *                  E_lights = sum_l E_l(P, n) V_ss(l), E_l from
  *                  light/direct.h (falloff, spot cone, cosine), into
- *                  light_r/g/b.  light_count 0 (default) skips it.
+ *                  light.  light_count 0 (default) skips it.
  */
 #ifndef TG_SSDO_H
 #define TG_SSDO_H
@@ -42,14 +42,15 @@ typedef struct tgi_ssdo_params {
     tg_real bias;                /* depth below the occluder's tangent plane that counts, fraction of the radius (default 0.03) */
     tg_real bounce;              /* sender patch area factor (default 1) */
     const tg_vec3 *env_sh9;      /* environment radiance SH9 (light/sh.h order); NULL = none */
-    tg_real *far_r, *far_g, *far_b; /* out: E_do from the environment; NULL = not wanted */
+    tgi_rgb far;                 /* out: E_do from the environment; absent = not wanted */
     const struct tgi_light *lights;  /* scene lights (scene.h); NULL or light_count 0 = none */
     int light_count;
     int light_steps;             /* screen-space march points per light (default 4) */
-    tg_real *light_r, *light_g, *light_b; /* out: direct irradiance with screen-space DO; NULL = not wanted */
+    tgi_rgb light;               /* out: direct irradiance with screen-space DO; absent = not wanted */
 } tgi_ssdo_params;
 
 void tgi_ssdo_defaults(tgi_ssdo_params *p);
-void tgi_ssdo_rows(const tgi_ssdo_params *p, const tgi_ao_io *io, int y0, int y1);
+void tgi_ssdo_rows(const tgi_ssdo_params *p, const tgi_gview *g, const tgi_rgb *radiance,
+                    const tgi_gresult *out, int y0, int y1);
 
 #endif

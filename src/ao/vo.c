@@ -45,7 +45,7 @@ static tg_real free_length(tg_real lo, tg_real hi, tg_real z0, tg_real z1, tg_re
 
 /* Mean and standard deviation of (depth - zc) / r over a footprint of
  * half-size `half` taps spaced `stride` pixels around (cx, cy). 0 if empty. */
-static int depth_moments(const tgi_ao_io *io, int cx, int cy, int half, int stride, tg_real zc,
+static int depth_moments(const tgi_gview *g, int cx, int cy, int half, int stride, tg_real zc,
                          tg_real inv_r, tg_real *mu, tg_real *sigma)
 {
     tg_real m1 = 0, m2 = 0;
@@ -54,10 +54,10 @@ static int depth_moments(const tgi_ao_io *io, int cx, int cy, int half, int stri
         for (dx = -half; dx <= half; dx++) {
             int x = cx + dx * stride, y = cy + dy * stride, j;
             tg_real d;
-            if (x < 0 || y < 0 || x >= io->width || y >= io->height) continue;
-            j = y * io->width + x;
-            if (io->sky[j]) continue;
-            d = tg_clamp(tg_mul(tg_sub(io->depth[j], zc), inv_r), TG_R(-64.0f), TG_R(64.0f));
+            if (x < 0 || y < 0 || x >= g->width || y >= g->height) continue;
+            j = (int)tgi_gv_index(g, x, y);
+            if (tgi_gv_is_sky(g, j)) continue;
+            d = tg_clamp(tg_mul(tg_sub(tgi_gv_depth(g, j), zc), inv_r), TG_R(-64.0f), TG_R(64.0f));
             m1 = tg_add(m1, d);
             m2 = tg_add(m2, tg_sqr(d));
             count++;
@@ -75,29 +75,29 @@ static int depth_moments(const tgi_ao_io *io, int cx, int cy, int half, int stri
  * that ray.  This is the depth buffer read at s's exact position, free of
  * nearest-pixel quantisation on planes; a plane not cut in front of the eye
  * falls back to the stored depth. */
-static tg_real surface_depth(const tgi_ao_io *io, tg_vec3 s, int qx, int qy)
+static tg_real surface_depth(const tgi_gview *g, tg_vec3 s, int qx, int qy)
 {
-    int j = qy * io->width + qx;
-    tg_vec3 q = tgi_ao_unproject(io->view, qx, qy, io->depth[j]), nj = tgi_ao_normal_view(io, j);
+    int j = (int)tgi_gv_index(g, qx, qy);
+    tg_vec3 q = tgi_ao_unproject(g->camera, qx, qy, tgi_gv_depth(g, j)), nj = tgi_ao_normal_view(g, j);
     tg_real n_dot_s = tgi_v3_dot(nj, s), n_dot_q = tgi_v3_dot(nj, q), z;
-    if (n_dot_s >= TG_R(-0.0001f) || n_dot_q >= 0) return io->depth[j];
+    if (n_dot_s >= TG_R(-0.0001f) || n_dot_q >= 0) return tgi_gv_depth(g, j);
     z = tg_div(tg_mul(s.z, n_dot_q), n_dot_s);
-    return tg_clamp(z, tg_sub(io->depth[j], TG_R(64.0f)), tg_add(io->depth[j], TG_R(64.0f)));
+    return tg_clamp(z, tg_sub(tgi_gv_depth(g, j), TG_R(64.0f)), tg_add(tgi_gv_depth(g, j), TG_R(64.0f)));
 }
 
-static void vo_pixel(const tgi_vo_params *p, const tgi_ao_io *io, const tg_real *dx, const tg_real *dy,
+static void vo_pixel(const tgi_vo_params *p, const tgi_gview *g, const tgi_gresult *out, const tg_real *dx, const tg_real *dy,
                      const tg_real *zs, int n, const tgi_ao_rot *rot, int x, int y)
 {
-    int i = y * io->width + x, k;
-    const tgi_view *v = io->view;
-    tg_vec3 pv = tgi_ao_unproject(v, x, y, io->depth[i]), nv = tgi_ao_normal_view(io, i);
+    int i = (int)tgi_gv_index(g, x, y), k;
+    const tgi_view *v = g->camera;
+    tg_vec3 pv = tgi_ao_unproject(v, x, y, tgi_gv_depth(g, i)), nv = tgi_ao_normal_view(g, i);
     tg_real inv_r = tg_div(TG_ONE, p->radius), t_r = 0, sum_free = 0, sum_len = 0;
     tg_real n_dot_p = tgi_v3_dot(nv, pv), foot_px = 0;
-    tg_real bias_r = tg_mul(tgi_ao_depth_bias(io, pv, nv, 0), inv_r);   /* area: the depth buffer's slope slack */
+    tg_real bias_r = tg_mul(tgi_ao_depth_bias(g, pv, nv, 0), inv_r);   /* area: the depth buffer's slope slack */
     /* thickness in unit-ball coordinates: 0 = the ball's diameter (2); infinite = no model */
     t_r = p->thickness <= 0 ? TG_R(2.0f) : p->thickness == TG_AO_INFINITE ? 0 : tg_max(tg_mul(p->thickness, inv_r), TG_EPS);
     if (p->area)   /* each sample's footprint: radius R_px / sqrt(n) */
-        foot_px = tg_div(tg_div(tg_mul(p->radius, v->pixels_per_unit), io->depth[i]), tg_sqrt(tg_from_int(n)));
+        foot_px = tg_div(tg_div(tg_mul(p->radius, v->pixels_per_unit), tgi_gv_depth(g, i)), tg_sqrt(tg_from_int(n)));
     for (k = 0; k < n; k++) {
         tg_real sx = tg_sub(tg_mul(rot->c, dx[k]), tg_mul(rot->s, dy[k]));
         tg_real sy = tg_add(tg_mul(rot->s, dx[k]), tg_mul(rot->c, dy[k]));
@@ -113,28 +113,28 @@ static void vo_pixel(const tgi_vo_params *p, const tgi_ao_io *io, const tg_real 
         }
         if (hi <= lo) continue;
         sum_len = tg_add(sum_len, tg_sub(hi, lo));
-        if (!tgi_ao_project_pixel(v, s, &qx, &qy) || io->sky[j = qy * io->width + qx]) {
+        if (!tgi_ao_project_pixel(v, s, &qx, &qy) || tgi_gv_is_sky(g, j = (int)tgi_gv_index(g, qx, qy))) {
             sum_free = tg_add(sum_free, tg_sub(hi, lo));
             continue;
         }
-        z0 = z1 = tg_clamp(tg_mul(tg_sub(surface_depth(io, s, qx, qy), pv.z), inv_r), TG_R(-64.0f), TG_R(64.0f));
+        z0 = z1 = tg_clamp(tg_mul(tg_sub(surface_depth(g, s, qx, qy), pv.z), inv_r), TG_R(-64.0f), TG_R(64.0f));
         if (p->area) {
             tg_real mu, sigma;
             int half = tg_to_int(foot_px), stride = 1;
             if (half > 3) { stride = (half + 2) / 3; half = 3; }
-            if (depth_moments(io, qx, qy, half, stride, pv.z, inv_r, &mu, &sigma)) {
+            if (depth_moments(g, qx, qy, half, stride, pv.z, inv_r, &mu, &sigma)) {
                 z0 = tg_add(tg_sub(mu, sigma), bias_r);     /* box model of the depth distribution */
                 z1 = tg_add(tg_add(mu, sigma), bias_r);
             }
         }
         sum_free = tg_add(sum_free, free_length(lo, hi, z0, z1, t_r)); /* sec. 4.1 line integral */
     }
-    if (sum_len <= 0) { io->ao[i] = TG_ONE; return; }
-    io->ao[i] = tg_saturate(tg_div(sum_free, sum_len));
-    if (!p->use_normal) io->ao[i] = tg_min(TG_ONE, tg_ldexp(io->ao[i], 1));
+    if (sum_len <= 0) { tgi_gr_set_ao(out, i, TG_ONE); return; }
+    tgi_gr_set_ao(out, i, tg_saturate(tg_div(sum_free, sum_len)));
+    if (!p->use_normal) tgi_gr_set_ao(out, i, tg_min(TG_ONE, tg_ldexp(tgi_gr_ao(out, i), 1)));
 }
 
-void tgi_vo_rows(const tgi_vo_params *p, const tgi_ao_io *io, int y0, int y1)
+void tgi_vo_rows(const tgi_vo_params *p, const tgi_gview *g, const tgi_gresult *out, int y0, int y1)
 {
     tg_real dx[TG_AO_MAX_SAMPLES], dy[TG_AO_MAX_SAMPLES], zs[TG_AO_MAX_SAMPLES];
     tgi_ao_rot rot[16];
@@ -154,10 +154,10 @@ void tgi_vo_rows(const tgi_vo_params *p, const tgi_ao_io *io, int y0, int y1)
     }
     tgi_ao_rotations(rot);
     for (y = y0; y < y1; y++)
-        for (x = 0; x < io->width; x++) {
-            int i = y * io->width + x;
-            tgi_ao_write_open(io, i);
-            if (io->sky[i] || p->radius <= 0) continue;
-            vo_pixel(p, io, dx, dy, zs, n, tgi_ao_rot_at(rot, x, y), x, y);
+        for (x = 0; x < g->width; x++) {
+            int i = (int)tgi_gv_index(g, x, y);
+            tgi_ao_write_open(g, out, i);
+            if (tgi_gv_is_sky(g, i) || p->radius <= 0) continue;
+            vo_pixel(p, g, out, dx, dy, zs, n, tgi_ao_rot_at(rot, x, y), x, y);
         }
 }

@@ -40,6 +40,7 @@ typedef struct tgi_vo_params {
 } tgi_vo_params;
 
 void tgi_vo_defaults(tgi_vo_params *p);
-void tgi_vo_rows(const tgi_vo_params *p, const tgi_ao_io *io, int y0, int y1);
+void tgi_vo_rows(const tgi_vo_params *p, const tgi_gview *g, const tgi_gresult *out,
+                    int y0, int y1);
 
 #endif

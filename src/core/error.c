@@ -4,47 +4,25 @@
  */
 #include <string.h>
 #include "error.h"
-
-static size_t append(char *buf, size_t size, size_t at, const char *s)
-{
-    size_t n = strlen(s);
-    if (size == 0) return at + n;
-    if (at < size - 1) {
-        size_t room = size - 1 - at;
-        memcpy(buf + at, s, n < room ? n : room);
-        buf[at + (n < room ? n : room)] = '\0';
-    }
-    return at + n;
-}
-
-static void format_uint(char *out, unsigned long v)
-{
-    char tmp[24];
-    int n = 0, i;
-    do { tmp[n++] = (char)('0' + v % 10u); v /= 10u; } while (v && n < 23);
-    for (i = 0; i < n; i++) out[i] = tmp[n - 1 - i];
-    out[n] = '\0';
-}
+#include "text.h"
 
 size_t tg_error_format(const tg_error *err, char *buf, size_t size)
 {
-    size_t at = 0;
-    char num[24];
-    if (size) buf[0] = '\0';
+    tgi_text t;
+    tgi_text_init(&t, buf, size);
     if (err->file[0]) {
-        at = append(buf, size, at, err->file);
+        tgi_text_put(&t, err->file);
         if (err->line > 0) {
-            format_uint(num, (unsigned long)err->line);
-            at = append(buf, size, at, ":");
-            at = append(buf, size, at, num);
-            format_uint(num, (unsigned long)(err->col > 0 ? err->col : 1));
-            at = append(buf, size, at, ":");
-            at = append(buf, size, at, num);
+            tgi_text_put(&t, ":");
+            tgi_text_put_int(&t, err->line);
+            tgi_text_put(&t, ":");
+            tgi_text_put_int(&t, err->col > 0 ? err->col : 1);
         }
-        at = append(buf, size, at, ": ");
+        tgi_text_put(&t, ": ");
     }
-    at = append(buf, size, at, "error: ");
-    return append(buf, size, at, err->message);
+    tgi_text_put(&t, "error: ");
+    tgi_text_put(&t, err->message);
+    return t.at;
 }
 
 void tgi_error_clear(tg_error *err)
@@ -69,19 +47,49 @@ void tgi_error_set(tg_error *err, tg_status status, const char *file, int line,
     err->line = line;
     err->col = col;
     err->message[0] = '\0';
-    append(err->message, sizeof err->message, 0, message);
+    tgi_error_append(err, message);
+}
+
+/* The message so far as a text to append to. */
+static tgi_text message_text(tg_error *err)
+{
+    tgi_text t;
+    t.buf = err->message;
+    t.size = sizeof err->message;
+    t.at = strlen(err->message);
+    return t;
 }
 
 void tgi_error_append(tg_error *err, const char *text)
 {
+    tgi_text t;
     if (!err) return;
-    append(err->message, sizeof err->message, strlen(err->message), text);
+    t = message_text(err);
+    tgi_text_put(&t, text);
 }
 
 void tgi_error_append_int(tg_error *err, long v)
 {
-    char num[24];
-    if (v < 0) { tgi_error_append(err, "-"); v = -v; }
-    format_uint(num, (unsigned long)v);
-    tgi_error_append(err, num);
+    tgi_text t;
+    if (!err) return;
+    t = message_text(err);
+    tgi_text_put_int(&t, v);
+}
+
+void tgi_error_append_real(tg_error *err, tg_real v)
+{
+    tgi_text t;
+    if (!err) return;
+    t = message_text(err);
+    tgi_text_put_real(&t, v);
+}
+
+void tgi_error_range(tg_error *err, const char *name, long lo, long hi)
+{
+    tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, name);
+    tgi_error_append(err, " must be ");
+    tgi_error_append_int(err, lo);
+    tgi_error_append(err, "..");
+    tgi_error_append_int(err, hi);
+    tgi_error_append(err, ", got ");
 }

@@ -2,73 +2,107 @@
 /*
  * aov.c - reading a rendered frame out, one row at a time: linear values
  * (tg_frame_aov_row, for PFM) or 8-bit RGB for viewing (tg_frame_aov_row8,
- * for PPM and screens).  An AOV whose effect the plan left out reads as 0
- * (for ao: 1, open; for bent: the normal; for cone: pi/2).
+ * for PPM and screens), through the G-buffer view and the results' accessors.
+ * An AOV whose effect the plan left out reads as 0 (for ao: 1, open; for
+ * bent: the normal; for cone: pi/2).
  */
 #include <string.h>
 #include "frame_internal.h"
 #include "../light/tonemap.h"
 
-static tg_real at(const tg_real *buf, size_t i, tg_real fallback)
-{
-    return buf ? buf[i] : fallback;
-}
-
-static void row_rgb(const tgi_rgb c, size_t i0, int w, tg_real *out, tg_real fallback)
+/* RGB planes (absent: `fallback`) at pixels [i0, i0 + w) of a packed row. */
+static void row_rgb(const tgi_rgb *c, const tgi_gview *g, int x0, int y, int w, tg_real *out, tg_real fallback)
 {
     int x;
     for (x = 0; x < w; x++) {
-        out[3 * x + 0] = at(c.r, i0 + (size_t)x, fallback);
-        out[3 * x + 1] = at(c.g, i0 + (size_t)x, fallback);
-        out[3 * x + 2] = at(c.b, i0 + (size_t)x, fallback);
+        tg_vec3 v = tgi_rgb_present(c) ? tgi_rgb_get(c, tgi_gv_index(g, x0 + x, y)) : tg_v3(fallback, fallback, fallback);
+        out[3 * x + 0] = v.x; out[3 * x + 1] = v.y; out[3 * x + 2] = v.z;
     }
 }
 
-static tgi_rgb gb_rgb(tg_real *r, tg_real *g, tg_real *b)
+/* A G-buffer vector (normal or albedo) of pixels [x0, x0 + w) of row y. */
+static void row_vec(const tgi_gview *g, tg_vec3 (*get)(const tgi_gview *, size_t), int x0, int y, int w, tg_real *out)
 {
-    tgi_rgb c;
-    c.r = r; c.g = g; c.b = b;
-    return c;
+    int x;
+    for (x = 0; x < w; x++) {
+        tg_vec3 v = get(g, tgi_gv_index(g, x0 + x, y));
+        out[3 * x + 0] = v.x; out[3 * x + 1] = v.y; out[3 * x + 2] = v.z;
+    }
+}
+
+static void row_bent(const tg_frame *f, int x0, int y, int w, tg_real *out)
+{
+    const tgi_gview *g = &f->full;
+    int x;
+    if (!f->res.ao || !tgi_gr_has_bent(&f->res)) { row_vec(g, tgi_gv_normal, x0, y, w, out); return; }
+    for (x = 0; x < w; x++) {
+        tg_vec3 v = tgi_gr_bent(&f->res, tgi_gv_index(g, x0 + x, y));
+        out[3 * x + 0] = v.x; out[3 * x + 1] = v.y; out[3 * x + 2] = v.z;
+    }
+}
+
+/* AO (1, open, without a GI pass) or cone (pi/2 without one). */
+static void row_scalar(const tg_frame *f, tg_aov aov, int x0, int y, int w, tg_real *out)
+{
+    const tgi_gview *g = &f->full;
+    int x;
+    for (x = 0; x < w; x++) {
+        size_t i = tgi_gv_index(g, x0 + x, y);
+        if (aov == TG_AOV_DEPTH) out[x] = tgi_gv_depth(g, i);
+        else if (aov == TG_AOV_AO) out[x] = f->res.ao ? tgi_gr_ao(&f->res, i) : TG_ONE;
+        else out[x] = f->res.ao && tgi_gr_has_cone(&f->res) ? tgi_gr_cone(&f->res, i) : TG_HALF_PI;
+    }
+}
+
+/* Motion: the offset to last frame's position, z = validity. */
+static void row_motion(const tg_frame *f, int x0, int y, int w, tg_real *out)
+{
+    const tgi_gbuffer *g = &f->gb;
+    size_t i0 = (size_t)y * (size_t)f->width + (size_t)x0;
+    int x;
+    for (x = 0; x < w; x++) {
+        size_t i = i0 + (size_t)x;
+        tg_real px = tg_add(tg_from_int(x0 + x), TG_R(0.5f)), py = tg_add(tg_from_int(y), TG_R(0.5f));
+        int valid = g->motion_x && g->motion_x[i] != TG_REAL_MIN;
+        out[3 * x + 0] = valid ? tg_sub(g->motion_x[i], px) : 0;
+        out[3 * x + 1] = valid ? tg_sub(g->motion_y[i], py) : 0;
+        out[3 * x + 2] = valid ? TG_ONE : 0;
+    }
 }
 
 /* Pixels [x0, x0 + w) of row y. */
 static void aov_span(const tg_frame *f, tg_aov aov, int y, int x0, int w, tg_real *out)
 {
-    const tgi_gbuffer *g = &f->gb;
-    size_t i0 = (size_t)y * (size_t)f->width + (size_t)x0;
-    int x;
+    const tgi_gview *g = &f->full;
     switch (aov) {
-    case TG_AOV_COLOR: row_rgb(f->color, i0, w, out, 0); break;
-    case TG_AOV_DEPTH: for (x = 0; x < w; x++) out[x] = g->depth[i0 + (size_t)x]; break;
-    case TG_AOV_NORMAL: row_rgb(gb_rgb(g->nx, g->ny, g->nz), i0, w, out, 0); break;
-    case TG_AOV_ALBEDO: row_rgb(gb_rgb(g->albedo_r, g->albedo_g, g->albedo_b), i0, w, out, 0); break;
-    case TG_AOV_AO: for (x = 0; x < w; x++) out[x] = at(f->ao, i0 + (size_t)x, TG_ONE); break;
-    case TG_AOV_BENT:
-        if (f->bent.r) row_rgb(f->bent, i0, w, out, 0);
-        else row_rgb(gb_rgb(g->nx, g->ny, g->nz), i0, w, out, 0);
-        break;
-    case TG_AOV_CONE: for (x = 0; x < w; x++) out[x] = at(f->cone, i0 + (size_t)x, TG_HALF_PI); break;
-    case TG_AOV_NEAR: row_rgb(f->near, i0, w, out, 0); break;
-    case TG_AOV_FAR: row_rgb(f->far, i0, w, out, 0); break;
-    case TG_AOV_DIRECT: row_rgb(f->direct, i0, w, out, 0); break;
-    case TG_AOV_IRRADIANCE: row_rgb(f->irradiance, i0, w, out, 0); break;
-    case TG_AOV_MOTION:
-        for (x = 0; x < w; x++) {
-            size_t i = i0 + (size_t)x;
-            tg_real px = tg_add(tg_from_int(x0 + x), TG_R(0.5f)), py = tg_add(tg_from_int(y), TG_R(0.5f));
-            int valid = g->motion_x && g->motion_x[i] != TG_REAL_MIN;
-            out[3 * x + 0] = valid ? tg_sub(g->motion_x[i], px) : 0;
-            out[3 * x + 1] = valid ? tg_sub(g->motion_y[i], py) : 0;
-            out[3 * x + 2] = valid ? TG_ONE : 0;
-        }
-        break;
+    case TG_AOV_COLOR: row_rgb(&f->color, g, x0, y, w, out, 0); break;
+    case TG_AOV_DEPTH: case TG_AOV_AO: case TG_AOV_CONE: row_scalar(f, aov, x0, y, w, out); break;
+    case TG_AOV_NORMAL: row_vec(g, tgi_gv_normal, x0, y, w, out); break;
+    case TG_AOV_ALBEDO: row_vec(g, tgi_gv_albedo, x0, y, w, out); break;
+    case TG_AOV_BENT: row_bent(f, x0, y, w, out); break;
+    case TG_AOV_NEAR: row_rgb(&f->res.near, g, x0, y, w, out, 0); break;
+    case TG_AOV_FAR: row_rgb(&f->far, g, x0, y, w, out, 0); break;
+    case TG_AOV_DIRECT: row_rgb(&f->direct, g, x0, y, w, out, 0); break;
+    case TG_AOV_IRRADIANCE: row_rgb(&f->irradiance, g, x0, y, w, out, 0); break;
+    case TG_AOV_MOTION: row_motion(f, x0, y, w, out); break;
     default: memset(out, 0, (size_t)w * sizeof(tg_real)); break;
     }
 }
 
-void tg_frame_aov_row(const tg_frame *f, tg_aov aov, int y, tg_real *out)
+/* Rows outside [0, height) are refused: zeros, never a read outside. */
+static int row_outside(const tg_frame *f, int y)
 {
+    return y < 0 || y >= f->height;
+}
+
+tg_status tg_frame_aov_row(const tg_frame *f, tg_aov aov, int y, tg_real *out)
+{
+    if (row_outside(f, y)) {
+        memset(out, 0, (size_t)f->width * (size_t)tg_aov_channels(aov) * sizeof(tg_real));
+        return TG_ERR_INPUT;
+    }
     aov_span(f, aov, y, 0, f->width, out);
+    return TG_OK;
 }
 
 static uint8_t unit_to_byte(tg_real v)
@@ -88,7 +122,7 @@ static void span8(const tg_frame *f, tg_aov aov, int y, int x0, int w, uint8_t *
     case TG_AOV_COLOR: case TG_AOV_NEAR: case TG_AOV_FAR: case TG_AOV_DIRECT: case TG_AOV_IRRADIANCE: {
         /* HDR: exposure, tonemapper, sRGB */
         tg_real r[SPAN], g[SPAN], b[SPAN];
-        tg_real exposure = f->plan.request.exposure;
+        tg_real exposure = f->request.exposure;
         for (x = 0; x < w; x++) { r[x] = row[3 * x]; g[x] = row[3 * x + 1]; b[x] = row[3 * x + 2]; }
         if (aov != TG_AOV_COLOR) exposure = tg_mul(exposure, TG_INV_PI); /* irradiance -> radiance of a white surface */
         tgi_tonemap_row8(r, g, b, w, exposure, rgb);
@@ -115,11 +149,16 @@ static void span8(const tg_frame *f, tg_aov aov, int y, int x0, int w, uint8_t *
     }
 }
 
-void tg_frame_aov_row8(const tg_frame *f, tg_aov aov, int y, uint8_t *rgb)
+tg_status tg_frame_aov_row8(const tg_frame *f, tg_aov aov, int y, uint8_t *rgb)
 {
     int x0;
+    if (row_outside(f, y)) {
+        memset(rgb, 0, (size_t)f->width * 3u);
+        return TG_ERR_INPUT;
+    }
     for (x0 = 0; x0 < f->width; x0 += SPAN) {
         int w = f->width - x0 < SPAN ? f->width - x0 : SPAN;
         span8(f, aov, y, x0, w, rgb + 3 * x0);
     }
+    return TG_OK;
 }

@@ -1,15 +1,16 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * compare.c - the papers' other screen-space techniques, run at full
- * resolution from the G-buffer so the bench can set them beside HBIL and the
- * ray-traced reference (issue 5).  The request's knobs map onto each:
+ * resolution from the G-buffer view so the bench can set them beside HBIL
+ * and the ray-traced reference.  The request's knobs map onto each:
  *   slices  -> GTAO slices, HBAO directions (2 per slice: a slice has two sides)
  *   samples -> GTAO/HBAO steps per direction, SSAO/VO/SSDO/bent-cone samples
  *   radius  -> every technique's world-space radius
  * Everything else is the technique's documented default.  SSDO and bent
- * cones compute their own environment term (returns 1: far field done).
+ * cones compute their own environment term (the plan then runs no far-field
+ * pass).  The reference ray traces the scene's triangles through a BVH.
  */
-#include "technique.h"
+#include "frame_internal.h"
 #include "../ao/sampling.h"
 #include "../ao/ssao.h"
 #include "../ao/vo.h"
@@ -17,72 +18,118 @@
 #include "../ao/gtao.h"
 #include "../ao/ssdo.h"
 #include "../ao/bentcone.h"
+#include "../ao/reference.h"
+#include "../light/direct.h"
 
-static int clamp_samples(int n)
+static int technique_samples(int n)
 {
     return n < 1 ? 1 : n > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : n;
 }
 
-int tgi_frame_technique_other(tg_frame *f, tgi_ao_io io)
+/* The environment's SH9 when the plan has a far field, else NULL. */
+static const tg_vec3 *far_sh(const tg_frame *f)
 {
-    const tg_request *r = &f->plan.request;
-    const tg_vec3 *sh = (f->effects & TG_EFFECT_FAR) ? f->sh : NULL;
-    switch (r->technique) {
-    case TG_TECH_SSAO: {
-        tgi_ssao_params p;
-        tgi_ssao_defaults(&p);
-        p.samples = clamp_samples(r->samples);
-        p.radius = r->radius;
-        tgi_ssao_rows(&p, &io, 0, f->height);
-        return 0;
+    return (f->effects & TG_EFFECT_FAR) ? f->sh : NULL;
+}
+
+void tgi_pass_ssao(tg_frame *f, int y0, int y1)
+{
+    tgi_ssao_params p;
+    tgi_ssao_defaults(&p);
+    p.samples = technique_samples(f->request.samples);
+    p.radius = f->request.radius;
+    tgi_ssao_rows(&p, &f->full, &f->res, y0, y1);
+}
+
+void tgi_pass_vo(tg_frame *f, int y0, int y1)
+{
+    tgi_vo_params p;
+    tgi_vo_defaults(&p);
+    p.samples = technique_samples(f->request.samples);
+    p.radius = f->request.radius;
+    tgi_vo_rows(&p, &f->full, &f->res, y0, y1);
+}
+
+void tgi_pass_hbao(tg_frame *f, int y0, int y1)
+{
+    tgi_hbao_params p;
+    tgi_hbao_defaults(&p);
+    p.directions = technique_samples(2 * f->request.slices);
+    p.steps = technique_samples(f->request.samples);
+    p.radius = f->request.radius;
+    tgi_hbao_rows(&p, &f->full, &f->res, y0, y1);
+}
+
+void tgi_pass_gtao(tg_frame *f, int y0, int y1)
+{
+    tgi_gtao_params p;
+    tgi_gtao_defaults(&p);
+    p.slices = technique_samples(f->request.slices);
+    p.steps = technique_samples(f->request.samples);
+    p.radius = f->request.radius;
+    tgi_gtao_rows(&p, &f->full, &f->res, y0, y1);
+}
+
+void tgi_pass_ssdo(tg_frame *f, int y0, int y1)
+{
+    tgi_ssdo_params p;
+    tgi_ssdo_defaults(&p);
+    p.samples = technique_samples(f->request.samples);
+    p.radius = f->request.radius;
+    p.env_sh9 = far_sh(f);
+    if (p.env_sh9) p.far = f->far;
+    tgi_ssdo_rows(&p, &f->full, &f->source, &f->res, y0, y1);
+}
+
+void tgi_pass_bentcone(tg_frame *f, int y0, int y1)
+{
+    tgi_bentcone_params p;
+    tgi_bentcone_defaults(&p);
+    p.samples = technique_samples(f->request.samples);
+    p.radius = f->request.radius;
+    p.env_sh9 = far_sh(f);
+    if (p.env_sh9) p.far = f->far;
+    tgi_bentcone_rows(&p, &f->full, &f->res, y0, y1);
+}
+
+/* Outgoing diffuse radiance leaving a scene point under the direct lights:
+ * the reference's exact one-bounce source (same lights, same shadow maps). */
+static tg_vec3 direct_radiance_at(void *user, int tri, tg_vec3 pos, tg_vec3 nrm)
+{
+    const tg_frame *f = (const tg_frame *)user;
+    const tg_scene *s = f->scene;
+    const tgi_material *m = &s->materials[s->tri_material[tri]];
+    tg_vec3 e = tg_v3(0, 0, 0), lo;
+    tg_real k;
+    int l;
+    if (f->effects & TG_EFFECT_DIRECT) {
+        for (l = 0; l < s->light_count; l++) {
+            tg_vec3 el = tgi_direct_irradiance(&s->lights[l], pos, nrm);
+            if (f->shadow_ptrs && f->shadow_ptrs[l])
+                el = tgi_v3_scale(el, tgi_shadow_visibility(f->shadow_ptrs[l], pos, nrm));
+            e = tgi_v3_add(e, el);
+        }
     }
-    case TG_TECH_VO: {
-        tgi_vo_params p;
-        tgi_vo_defaults(&p);
-        p.samples = clamp_samples(r->samples);
-        p.radius = r->radius;
-        tgi_vo_rows(&p, &io, 0, f->height);
-        return 0;
-    }
-    case TG_TECH_HBAO: {
-        tgi_hbao_params p;
-        tgi_hbao_defaults(&p);
-        p.directions = clamp_samples(2 * r->slices);
-        p.steps = clamp_samples(r->samples);
-        p.radius = r->radius;
-        tgi_hbao_rows(&p, &io, 0, f->height);
-        return 0;
-    }
-    case TG_TECH_GTAO: {
-        tgi_gtao_params p;
-        tgi_gtao_defaults(&p);
-        p.slices = clamp_samples(r->slices);
-        p.steps = clamp_samples(r->samples);
-        p.radius = r->radius;
-        tgi_gtao_rows(&p, &io, 0, f->height);
-        return 0;
-    }
-    case TG_TECH_SSDO: {
-        tgi_ssdo_params p;
-        tgi_ssdo_defaults(&p);
-        p.samples = clamp_samples(r->samples);
-        p.radius = r->radius;
-        p.env_sh9 = sh;
-        if (sh) { p.far_r = f->far.r; p.far_g = f->far.g; p.far_b = f->far.b; }
-        tgi_ssdo_rows(&p, &io, 0, f->height);
-        return sh != NULL;
-    }
-    case TG_TECH_BENTCONE: {
-        tgi_bentcone_params p;
-        tgi_bentcone_defaults(&p);
-        p.samples = clamp_samples(r->samples);
-        p.radius = r->radius;
-        p.env_sh9 = sh;
-        if (sh) { p.far_r = f->far.r; p.far_g = f->far.g; p.far_b = f->far.b; }
-        tgi_bentcone_rows(&p, &io, 0, f->height);
-        return sh != NULL;
-    }
-    default:
-        return 0;
-    }
+    k = tg_mul(TG_INV_PI, tg_sub(TG_ONE, m->f0));   /* compose: albedo / pi * (1 - F0) */
+    lo = tgi_v3_scale(tgi_v3_mul(m->albedo, e), k);
+    return tgi_v3_add(lo, m->emissive);
+}
+
+void tgi_pass_reference_bvh(tg_frame *f)
+{
+    const tg_vec3 *pos = f->posed_pos ? f->posed_pos : f->scene->tri_pos;
+    tgi_bvh_build(&f->bvh, pos, f->scene->tri_count, f->bvh_scratch, f->bvh_scratch_bytes);
+}
+
+void tgi_pass_reference(tg_frame *f, int y0, int y1)
+{
+    tgi_reference_params p;
+    tgi_reference_defaults(&p);
+    p.bvh = &f->bvh;
+    p.tri_nrm = f->posed_nrm ? f->posed_nrm : f->scene->tri_nrm;
+    p.samples = f->request.samples > 16 ? f->request.samples : 256;
+    p.radius = f->request.radius;
+    p.radiance = direct_radiance_at;
+    p.user = f;
+    tgi_reference_rows(&p, &f->full, &f->source, &f->res, y0, y1);
 }

@@ -1,18 +1,23 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * frame_internal.h - what a frame holds.  plan.c decides which of these
- * exist (and sizes them); frame.c runs the passes over them; aov.c reads
- * them out.  A NULL buffer is an effect the scene did not call for.
+ * frame_internal.h - what a frame holds, and the pass table that says what
+ * runs on it.
+ *
+ * A frame is a list of passes (passes.c): each row names the pass in the
+ * papers' words, says when the plan needs it, which buffers it reads and
+ * writes, and how it runs (over rows, or as one serial step).  plan.c walks
+ * the table to decide the passes and buffers (layout.c sizes and carves
+ * them), tg_plan_explain prints that same list, and tg_frame_render
+ * (frame.c) runs it.  A NULL buffer is an effect the scene did not call for.
  */
 #ifndef TG_FRAME_INTERNAL_H
 #define TG_FRAME_INTERNAL_H
 
 #include "../tinygi.h"
 #include "../scene/scene.h"
-#include "../raster/gbuffer.h"
-#include "../raster/view.h"
+#include "../raster/gview.h"
+#include "../raster/raster.h"
 #include "../light/shadowmap.h"
-#include "../ao/ao.h"
 #include "../ao/bvh.h"
 
 /* What the frame computes beyond the effects (internal). */
@@ -26,20 +31,25 @@ enum {
     TG_NEED_CONE = 1u << 6       /* cone apertures are used */
 };
 
-typedef struct tgi_rgb { tg_real *r, *g, *b; } tgi_rgb;
-
 struct tg_frame {
-    tg_plan plan;
+    tg_request request;            /* the plan's, every default resolved */
+    int pass_count;                /* the plan's passes: rows of the pass table */
+    unsigned char pass_rows[TG_PLAN_MAX_PASSES];
     const tg_scene *scene;
     int width, height;
     size_t pixels;
     uint32_t effects, needs;
     int frames_rendered;
+    int index;                     /* the frame being rendered */
+    int bounce, bounces;           /* the kernel iteration running, of how many */
+    int has_history;               /* the previous frame's radiance is valid */
+    int band;                      /* rows per call of a row-parallel pass; 0: all at once */
 
-    tgi_gbuffer gb;
     tgi_view view, prev_view;
     tg_real time, prev_time;
-    int has_history;              /* the previous frame's radiance is valid */
+    tgi_gbuffer gb;                /* what the rasterizer writes, full resolution */
+    tgi_gview full;                /* the view every full-resolution pass reads */
+    tgi_gview half_view;           /* the quarter-res copy's, with --gi-quarter */
 
     /* animation */
     tg_vec3 *posed_pos, *posed_nrm;
@@ -50,52 +60,107 @@ struct tg_frame {
     const tgi_shadow_map **shadow_ptrs;
     int shadows_valid;
     tg_vec3 sh[9];
-    tgi_rgb direct, far, near, color, irradiance;
+    tgi_rgb direct, far, color, irradiance;
 
-    /* GI / AO results, full resolution */
-    tg_real *ao, *cone;
-    tgi_rgb bent;
-    tgi_rgb source;                /* radiance the near field gathers from */
+    /* GI results at full resolution, and the radiance the near field gathers */
+    tgi_gresult res;
+    tgi_rgb source;
 
-    /* HBIL at quarter resolution: the G-buffer point-sampled to half width
-     * and height, and the kernel's results there before upsampling */
-    tg_real *half_depth, *half_f0, *half_ao;
-    tgi_rgb half_normal, half_source, half_bent, half_near;
-    uint8_t *half_sky;
+    /* with --gi-quarter the interleaved kernel's image is a point-sampled
+     * copy at half width and height (tgi_frame_kernel) */
+    tgi_gbuffer half;              /* storage of the quarter-res copy */
+    tgi_gresult half_res;
+    tgi_rgb half_source;
 
-    /* HBIL: 4x4 interleaved sub-images */
-    tg_real *q_depth, *q_f0;
-    tgi_rgb q_normal, q_source, q_bent, q_near;
-    tg_real *q_ao, *q_cone;
-    uint8_t *q_sky;
+    /* the 4x4 split: 16 packed sub-images of the kernel's image */
+    tgi_gbuffer split;
+    tgi_gresult split_res;
+    tgi_rgb split_source;
 
     /* radiance history for reprojection (previous frame) */
     tgi_rgb history;
     tg_real *history_depth;
     uint16_t *history_object;
-    void *reproject_scratch;
-    size_t reproject_scratch_bytes;
+    void *reproject_zbuffer, *pushpull_mips;
+    uint8_t *reproject_valid;
 
     /* spatial / temporal filter */
     void *denoise_scratch;
-    size_t denoise_scratch_bytes;
     void *temporal_state;
-    size_t temporal_state_bytes;
 
     /* technique scratch (reference BVH) */
-    void *technique_scratch;
-    size_t technique_scratch_bytes;
+    void *bvh_scratch;
+    size_t bvh_scratch_bytes;
     tgi_bvh bvh;
 
     tg_real depth_max;            /* for the 8-bit depth view */
 };
 
-/* Lay the frame's buffers out: with arena == NULL only measure (fill
- * plan->buffers and plan->total_bytes, using *fp as scratch); otherwise carve
- * the frame itself and then its buffers from arena and set *fp.  Returns 0,
- * or 1 when the arena is too small. */
+/* ---- buffers: each group is carved once, by the first pass that uses it ---- */
+enum tgi_buffer_group {
+    TGI_BUF_POSE, TGI_BUF_GBUFFER, TGI_BUF_MOTION, TGI_BUF_SHADOW_MAPS, TGI_BUF_DIRECT,
+    TGI_BUF_SOURCE, TGI_BUF_HISTORY, TGI_BUF_REPROJECT, TGI_BUF_RESULTS, TGI_BUF_HALF,
+    TGI_BUF_SPLIT, TGI_BUF_FILTER, TGI_BUF_TEMPORAL, TGI_BUF_BVH, TGI_BUF_FAR,
+    TGI_BUF_COLOR, TGI_BUF_IRRADIANCE,
+    TGI_BUF_GROUPS
+};
+#define TGI_BUF(g) (1u << (g))
+
+/* ---- the pass table ---- */
+enum tgi_pass_rows {
+    TGI_SERIAL,         /* one whole-image step: run(f) */
+    TGI_ROWS_IMAGE,     /* rows(f, y0, y1) over the image's rows */
+    TGI_ROWS_KERNEL     /* rows(f, y0, y1) over the kernel image's rows (half with --gi-quarter) */
+};
+enum {
+    TGI_ON_FIRST_FRAME = 1u << 0,  /* only on a frame without history (a cut, the first) */
+    TGI_ON_HISTORY = 1u << 1,      /* only on a frame with last frame's radiance */
+    TGI_BOUNCE = 1u << 2           /* in the bounce loop: run `bounces` times on a frame
+                                      without history (the rows so marked are contiguous) */
+};
+
+typedef struct tgi_pass {
+    const char *name;                      /* what it computes, in the papers' words */
+    int (*needed)(const tg_frame *f);      /* does the plan call for it (f->plan, effects, needs) */
+    uint32_t buffers;                      /* TGI_BUF() of every group it reads or writes */
+    uint32_t when;                         /* TGI_ON_* and TGI_BOUNCE flags */
+    int rows;                              /* enum tgi_pass_rows */
+    void (*run_rows)(tg_frame *f, int y0, int y1);  /* row-parallel: any split of the
+                                                       rows gives the same output */
+    void (*run)(tg_frame *f);              /* TGI_SERIAL */
+} tgi_pass;
+
+/* The table (passes.c), in the order the passes run. */
+extern const tgi_pass tgi_passes[];
+extern const int tgi_pass_count;
+
+/* Rows a pass runs over on this frame (0 for a serial step). */
+int tgi_pass_row_count(const tg_frame *f, const tgi_pass *p);
+/* Render frame `index` with each row-parallel pass in bands of `band` rows,
+ * last band first (0: all rows in one call, as tg_frame_render does). */
+tg_status tgi_frame_render_bands(tg_frame *f, int index, int band, tg_error *err);
+
+/* Lay the frame's buffers out (layout.c): with arena == NULL only measure
+ * (fill plan->passes, plan->buffers and plan->total_bytes, using *fp as
+ * scratch); otherwise carve the frame itself and then its buffers from
+ * arena and set *fp.  Returns 0, or 1 when the arena is too small. */
 int tgi_frame_layout(tg_frame **fp, tg_plan *plan, tg_arena *arena);
+/* request.c: 1 (and err set) when a field of r is past its limit; then
+ * the unset GI settings from the scene or the defaults (1 when the
+ * scene's are past a limit). */
+int tgi_request_refused(const tg_request *r, tg_error *err);
+int tgi_request_resolve(tg_request *r, const tg_scene *s, tg_error *err);
+/* The triangles as the rasterizer takes them: posed, or the scene's (rasterize.c). */
+tgi_raster_mesh tgi_frame_mesh(const tg_frame *f);
 /* TG_NEED_* of a plan (plan.c). */
 uint32_t tgi_frame_needs(const tg_plan *plan);
+/* The image the interleaved kernel splits, its results and source: the
+ * full-resolution view, or with --gi-quarter the half-resolution copy
+ * (layout.c). */
+const tgi_gview *tgi_frame_kernel(const tg_frame *f, const tgi_gresult **res, const tgi_rgb **source);
+/* The technique of the plan is HBIL with the interleaved kernel, and at
+ * quarter resolution (plan.c). */
+int tgi_frame_interleaved(const tg_frame *f);
+int tgi_frame_quarter(const tg_frame *f);
 
 #endif

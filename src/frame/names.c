@@ -1,7 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * names.c - the names a person types for outputs and techniques, and the
- * request defaults (HBIL paper defaults: 2 slices, 16 samples, 4x4 quarter-res).
+ * names.c - the names a person types for outputs and techniques.
  */
 #include <string.h>
 #include "../tinygi.h"
@@ -47,23 +46,4 @@ int tg_technique_from_name(const char *name)
     for (i = 0; i < TG_TECH_COUNT; i++)
         if (strcmp(name, technique_names[i]) == 0) return i;
     return -1;
-}
-
-void tg_request_defaults(tg_request *r)
-{
-    memset(r, 0, sizeof *r);
-    r->width = 320;
-    r->height = 240;
-    r->frames = 1;
-    r->aovs = 1u << TG_AOV_COLOR;
-    r->technique = TG_TECH_HBIL;
-    r->slices = 0;
-    r->samples = 0;
-    r->radius = TG_R(-1.0f);
-    r->bounces = -1;
-    r->interleave = 1;
-    r->gi_scale = 1;
-    r->temporal = 1;
-    r->exposure = TG_ONE;
-    r->shadow_map_size = 512;
 }

@@ -15,6 +15,7 @@
  */
 #include <string.h>
 #include "hbil.h"
+#include "interleave.h"
 
 #define HBIL_PATTERN 16
 /* Smallest n.w_o allowed: normals facing away from the camera are bent
@@ -37,27 +38,25 @@
 #define HBIL_COLD
 #endif
 
-static const uint8_t bayer4[4][4] = {
+static const uint8_t slice_rank4[4][4] = {
     { 0, 8, 2, 10 }, { 12, 4, 14, 6 }, { 3, 11, 1, 9 }, { 15, 7, 13, 5 }
 };
 
 tg_real tgi_hbil_slice_phi0(int i, int j, int slices)
 {
-    tg_real rank = tg_add(tg_from_int(bayer4[j & 3][i & 3]), TG_R(0.5f));
+    tg_real rank = tg_add(tg_from_int(slice_rank4[j & 3][i & 3]), TG_R(0.5f));
     if (slices < 1) slices = 1;
     /* stratified over [0, pi / S): the 16 sub-images x S slices cover [0, pi) */
     return tg_mul(tg_div(TG_PI, tg_from_int(slices * 16)), rank);
 }
 
-void tgi_hbil_defaults(tgi_hbil_params *p, const tgi_view *view)
+void tgi_hbil_defaults(tgi_hbil_params *p)
 {
     memset(p, 0, sizeof *p);
-    p->view = view;
-    p->slices = TG_HBIL_DEFAULT_SLICES;
-    p->samples = TG_HBIL_DEFAULT_SAMPLES;
+    p->slices = TG_DEFAULT_SLICES;
+    p->samples = TG_DEFAULT_SAMPLES;
     p->radius = TG_ONE;
     p->max_radius_px = TG_R(128.0f);
-    p->step = 1;
     p->slice_phi0 = tgi_hbil_slice_phi0(0, 0, p->slices);
     p->rejection_a = 0;
     p->rejection_b = TG_R(0.2f);
@@ -66,10 +65,13 @@ void tgi_hbil_defaults(tgi_hbil_params *p, const tgi_view *view)
 /* ---- per-call constants ---- */
 typedef struct hbil_ctx {
     const tgi_hbil_params *p;
-    const tgi_hbil_io *io;
+    const tgi_gview *g;         /* what the kernel reads */
+    const tgi_view *v;          /* the full-resolution camera */
+    const tgi_rgb *rad;         /* the near field's source radiance */
+    const tgi_gresult *out;
     int slices, samples, step, full_w, full_h;
     tg_real ppu, inv_ppu, inv_step, pi_over_s;
-    tg_real cos_phi[HBIL_PATTERN][TG_HBIL_MAX_SLICES], sin_phi[HBIL_PATTERN][TG_HBIL_MAX_SLICES];
+    tg_real cos_phi[HBIL_PATTERN][TG_MAX_SLICES], sin_phi[HBIL_PATTERN][TG_MAX_SLICES];
     int near_field;
 } hbil_ctx;
 
@@ -100,12 +102,12 @@ typedef struct hbil_slice {
 
 static tg_real full_x(const hbil_ctx *c, int x)
 {
-    int X2 = 2 * (x * c->step + c->p->offset_x) + 1 - c->full_w;
+    int X2 = 2 * (x * c->step + c->g->offset_x) + 1 - c->full_w;
     return tg_ratio(X2, 2);
 }
 static tg_real full_y(const hbil_ctx *c, int y)
 {
-    int Y2 = c->full_h - 2 * (y * c->step + c->p->offset_y) - 1;
+    int Y2 = c->full_h - 2 * (y * c->step + c->g->offset_y) - 1;
     return tg_ratio(Y2, 2);
 }
 
@@ -129,12 +131,12 @@ static tg_real slice_P(const hbil_slice *sl, tg_real c, int side)
 
 static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
 {
-    const tgi_hbil_io *io = c->io;
-    const tgi_view *v = c->p->view;
+    const tgi_gview *g = c->g;
+    const tgi_view *v = c->v;
     tg_vec3 nw, k;
     tg_real ndv, r_px;
-    if ((io->sky && io->sky[i]) || io->depth[i] <= 0) return 0;
-    px->z = io->depth[i];
+    if (tgi_gv_is_sky(g, i) || tgi_gv_depth(g, i) <= 0) return 0;
+    px->z = tgi_gv_depth(g, i);
     px->inv_z = tg_div(TG_ONE, px->z);
     px->X = full_x(c, px->x);
     px->Y = full_y(c, px->y);
@@ -144,7 +146,7 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
     /* w_x = Y x w_o / |..| = (-1, 0, k_x) / sqrt(1 + k_x^2), w_y = w_o x w_x (sec. 1.1) */
     px->wx = tgi_v3_scale(tg_v3(tg_neg(TG_ONE), 0, k.x), tg_rsqrt(tg_add(TG_ONE, tg_mul(k.x, k.x))));
     px->wy = tgi_v3_cross(px->wo, px->wx);
-    nw = tg_v3(io->nx[i], io->ny[i], io->nz[i]);
+    nw = tgi_gv_normal(g, i);
     px->n = tg_v3(tgi_v3_dot(nw, v->right), tgi_v3_dot(nw, v->up), tgi_v3_dot(nw, v->forward));
     ndv = tgi_v3_dot(px->n, px->wo);
     if (ndv < HBIL_MIN_NDOTV)
@@ -177,13 +179,12 @@ static void slice_screen_dir(const hbil_ctx *c, const hbil_pixel *px, tg_vec3 d,
  * or lands far from the nearest pixel. */
 HBIL_COLD static tg_real sample_depth_edge(const hbil_ctx *c, int major_x, int a, int b0, tg_real f, int sa, int sn)
 {
-    const tgi_hbil_io *io = c->io;
-    const tgi_view *v = c->p->view;
-    tg_real zn = io->depth[sn], gn, gc, X, Y, Xn, Yn, ratio;
+    const tgi_view *v = c->v;
+    tg_real zn = tgi_gv_depth(c->g, sn), gn, gc, X, Y, Xn, Yn, ratio;
     int bn;
     tg_vec3 nw, n;
     /* tangent plane of the nearest pixel: z = zn (n.ray_n) / (n.ray_c), ray = (X/ppu, Y/ppu, 1) */
-    nw = tg_v3(io->nx[sn], io->ny[sn], io->nz[sn]);
+    nw = tgi_gv_normal(c->g, sn);
     n = tg_v3(tgi_v3_dot(nw, v->right), tgi_v3_dot(nw, v->up), tgi_v3_dot(nw, v->forward));
     bn = sn == sa ? b0 : b0 + 1;
     if (major_x) {
@@ -210,21 +211,20 @@ HBIL_COLD static tg_real sample_depth_edge(const hbil_ctx *c, int major_x, int a
 HBIL_COLD static void gather_rise(const hbil_ctx *c, const hbil_slice *sl, hbil_side *sd, int side,
                         tg_real cos_new, tg_vec3 dir, int si)
 {
-    const tgi_hbil_io *io = c->io;
-    const tgi_view *v = c->p->view;
+    const tgi_view *v = c->v;
     tg_real p_new = slice_P(sl, cos_new, side);
     tg_real de = tg_max(0, tg_sub(sd->p_old, p_new));         /* HBIL eq. 18 */
-    tg_vec3 ns, wi;
+    tg_vec3 ns, wi, l;
     tg_real t;
     sd->p_old = p_new;
-    ns = tg_v3(io->snx ? io->snx[si] : io->nx[si], io->sny ? io->sny[si] : io->ny[si],
-               io->snz ? io->snz[si] : io->nz[si]);
+    ns = tgi_gv_normal(c->g, si);                                /* the sender's normal */
     wi = tgi_v3_add(tgi_v3_add(tgi_v3_scale(v->right, dir.x), tgi_v3_scale(v->up, dir.y)),
                    tgi_v3_scale(v->forward, dir.z));
     t = tg_smoothstep(c->p->rejection_a, c->p->rejection_b, tg_neg(tgi_v3_dot(ns, wi))); /* HBIL sec. 3.4 */
-    sd->lr = tg_lerp(sd->lr, io->rad_r[si], t);                  /* L_new = lerp(L_old, L(x'), t) */
-    sd->lg = tg_lerp(sd->lg, io->rad_g[si], t);
-    sd->lb = tg_lerp(sd->lb, io->rad_b[si], t);
+    l = tgi_rgb_get(c->rad, si);
+    sd->lr = tg_lerp(sd->lr, l.x, t);                            /* L_new = lerp(L_old, L(x'), t) */
+    sd->lg = tg_lerp(sd->lg, l.y, t);
+    sd->lb = tg_lerp(sd->lb, l.z, t);
     sd->er = tg_add(sd->er, tg_mul(sd->lr, de));
     sd->eg = tg_add(sd->eg, tg_mul(sd->lg, de));
     sd->eb = tg_add(sd->eb, tg_mul(sd->lb, de));
@@ -250,12 +250,10 @@ static int march_steps(const hbil_ctx *c, tg_real extent, int *n)
 static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice *sl,
                        tg_real ux, tg_real uy, int side, hbil_side *sd)
 {
-    const tgi_hbil_io *io = c->io;
-    const tg_real *restrict depth = io->depth;
-    const uint8_t *restrict sky = io->sky;
-    const int w = io->width, h = io->height;
+    const tgi_gview g = *c->g;   /* a local copy: its fields stay in registers */
+    const int w = g.width, h = g.height, rs = g.row_stride, ps = g.pixel_stride;
     const int major_x = tg_abs(ux) >= tg_abs(uy);
-    const int smaj = major_x ? 1 : w, smin = major_x ? w : 1, amax = major_x ? w : h, bmax = major_x ? h : w;
+    const int smaj = major_x ? ps : rs, smin = major_x ? rs : ps, amax = major_x ? w : h, bmax = major_x ? h : w;
     const tg_real umaj = major_x ? tg_abs(ux) : tg_abs(uy);
     const tg_real p0x = tg_mul(px->X, c->inv_step), p0y = tg_mul(px->Y, c->inv_step);
     const tg_real p0z = tg_mul(c->ppu, c->inv_step), z = px->z, inv_z = px->inv_z;
@@ -283,8 +281,8 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
         f = tg_sub(minor, tg_from_int(b0));
         sa = a * smaj + b0 * smin;
         if ((unsigned)b0 < (unsigned)(bmax - 1)) {               /* b0 and b0 + 1 inside */
-            tg_real za = depth[sa], zb = depth[sa + smin];
-            if (za > 0 && zb > 0 && !(sky && (sky[sa] | sky[sa + smin]))
+            tg_real za = tgi_gv_depth(&g, sa), zb = tgi_gv_depth(&g, sa + smin);
+            if (za > 0 && zb > 0 && !(tgi_gv_is_sky(&g, sa) | tgi_gv_is_sky(&g, sa + smin))
                 && tg_abs(tg_sub(za, zb)) < tg_mul(HBIL_LERP_MAX_REL, tg_min(za, zb))) {
                 /* both neighbours are surface (so is the nearest):
                  * 1/z = (1-f)/za + f/zb  <=>  z = za + f (zb - za) za / (zb - f (zb - za)) */
@@ -297,7 +295,7 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
             int bn = f < TG_R(0.5f) ? b0 : b0 + 1, sn;
             if (bn < 0 || bn >= bmax) break;                    /* the slice leaves the image */
             sn = bn == b0 ? sa : sa + smin;
-            if ((sky && sky[sn]) || depth[sn] <= 0) continue;  /* sky never occludes */
+            if (tgi_gv_is_sky(&g, sn) || tgi_gv_depth(&g, sn) <= 0) continue;  /* sky never occludes */
             z1 = sample_depth_edge(c, major_x, a, b0, f, sa, sn);
             if (z1 <= 0) continue;
         }
@@ -381,66 +379,63 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
 
 static void write_open(const hbil_ctx *c, int i)
 {
-    const tgi_hbil_io *io = c->io;
-    io->ao[i] = TG_ONE;
-    if (io->bent_x) io->bent_x[i] = io->nx[i];
-    if (io->bent_y) io->bent_y[i] = io->ny[i];
-    if (io->bent_z) io->bent_z[i] = io->nz[i];
-    if (io->cone) io->cone[i] = TG_HALF_PI;
-    if (c->near_field) { io->near_r[i] = 0; io->near_g[i] = 0; io->near_b[i] = 0; }
+    const tgi_gresult *out = c->out;
+    tgi_gr_set_ao(out, i, TG_ONE);
+    if (tgi_gr_has_bent(out)) tgi_gr_set_bent(out, i, tgi_gv_normal(c->g, i));
+    if (tgi_gr_has_cone(out)) tgi_gr_set_cone(out, i, TG_HALF_PI);
+    if (c->near_field) tgi_gr_set_near(out, i, tg_v3(0, 0, 0));
 }
 
 static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
 {
-    const tgi_hbil_io *io = c->io;
-    const tgi_view *v = c->p->view;
+    const tgi_gresult *out = c->out;
+    const tgi_view *v = c->v;
     hbil_sums acc;
     int s, pat = 0;
     tg_real ao;
     memset(&acc, 0, sizeof acc);
     if (c->p->per_pixel_pattern) {
-        int X = px->x * c->step + c->p->offset_x, Y = px->y * c->step + c->p->offset_y;
+        int X = px->x * c->step + c->g->offset_x, Y = px->y * c->step + c->g->offset_y;
         pat = (Y & 3) * 4 + (X & 3);
     }
     for (s = 0; s < c->slices; s++)
         slice_run(c, px, c->cos_phi[pat][s], c->sin_phi[pat][s], &acc);
     ao = tg_saturate(tg_sub(TG_ONE, tg_div(acc.occlusion, tg_from_int(c->slices))));
-    io->ao[i] = ao;
-    if (io->cone) io->cone[i] = tg_acos(tg_sub(TG_ONE, ao));   /* HBIL eq. 12 */
-    if (io->bent_x || io->bent_y || io->bent_z) {
+    tgi_gr_set_ao(out, i, ao);
+    if (tgi_gr_has_cone(out)) tgi_gr_set_cone(out, i, tg_acos(tg_sub(TG_ONE, ao)));   /* HBIL eq. 12 */
+    if (tgi_gr_has_bent(out)) {
         /* eq. 6: summed unnormalised over slices, normalised once (in world space) */
-        tg_vec3 nw = tg_v3(io->nx[i], io->ny[i], io->nz[i]);
+        tg_vec3 nw = tgi_gv_normal(c->g, i);
         tg_vec3 dw = tgi_v3_add(tgi_v3_add(tgi_v3_scale(v->right, acc.bent_delta.x),
                                          tgi_v3_scale(v->up, acc.bent_delta.y)),
                                tgi_v3_scale(v->forward, acc.bent_delta.z));
-        tg_vec3 b = tgi_v3_normalize_or(tgi_v3_add(tgi_v3_scale(nw, tg_from_int(c->slices)), dw), nw);
-        if (io->bent_x) io->bent_x[i] = b.x;
-        if (io->bent_y) io->bent_y[i] = b.y;
-        if (io->bent_z) io->bent_z[i] = b.z;
+        tgi_gr_set_bent(out, i, tgi_v3_normalize_or(tgi_v3_add(tgi_v3_scale(nw, tg_from_int(c->slices)), dw), nw));
     }
     if (c->near_field) {
-        tg_real k = tg_mul(c->pi_over_s, tg_sub(TG_ONE, io->f0 ? tg_saturate(io->f0[i]) : 0)); /* eq. 17, 19 */
-        io->near_r[i] = tg_mul(acc.er, k);
-        io->near_g[i] = tg_mul(acc.eg, k);
-        io->near_b[i] = tg_mul(acc.eb, k);
+        tg_real k = tg_mul(c->pi_over_s, tg_sub(TG_ONE, tg_saturate(tgi_gv_f0(c->g, i)))); /* eq. 17, 19 */
+        tgi_gr_set_near(out, i, tg_v3(tg_mul(acc.er, k), tg_mul(acc.eg, k), tg_mul(acc.eb, k)));
     }
 }
 
-static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_hbil_io *io)
+static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, const tgi_rgb *radiance,
+                     const tgi_gresult *out)
 {
     int pat, s, npat;
     c->p = p;
-    c->io = io;
-    c->slices = p->slices < 1 ? 1 : p->slices > TG_HBIL_MAX_SLICES ? TG_HBIL_MAX_SLICES : p->slices;
+    c->g = g;
+    c->v = g->camera;
+    c->rad = radiance;
+    c->out = out;
+    c->slices = p->slices < 1 ? 1 : p->slices > TG_MAX_SLICES ? TG_MAX_SLICES : p->slices;
     c->samples = p->samples < 1 ? 1 : p->samples;
-    c->step = p->step < 1 ? 1 : p->step;
-    c->full_w = p->view->width;
-    c->full_h = p->view->height;
-    c->ppu = p->view->pixels_per_unit;
+    c->step = g->step < 1 ? 1 : g->step;
+    c->full_w = c->v->width;
+    c->full_h = c->v->height;
+    c->ppu = c->v->pixels_per_unit;
     c->inv_ppu = tg_div(TG_ONE, c->ppu);
     c->inv_step = tg_ratio(1, c->step);
     c->pi_over_s = tg_div(TG_PI, tg_from_int(c->slices));
-    c->near_field = io->rad_r && io->rad_g && io->rad_b && io->near_r && io->near_g && io->near_b;
+    c->near_field = tgi_rgb_present(radiance) && tgi_gr_has_near(out);
     npat = p->per_pixel_pattern ? HBIL_PATTERN : 1;
     for (pat = 0; pat < npat; pat++) {
         tg_real phi0 = p->per_pixel_pattern ? tgi_hbil_slice_phi0(pat & 3, pat >> 2, c->slices) : p->slice_phi0;
@@ -452,21 +447,45 @@ static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_hbil_io *i
     }
 }
 
-void tgi_hbil_rows(const tgi_hbil_params *p, const tgi_hbil_io *io, int y0, int y1)
+void tgi_hbil_rows(const tgi_hbil_params *p, const tgi_gview *g, const tgi_rgb *radiance,
+                   const tgi_gresult *out, int y0, int y1)
 {
     hbil_ctx c;
     hbil_pixel px;
     int x, y;
     if (y0 < 0) y0 = 0;
-    if (y1 > io->height) y1 = io->height;
-    ctx_init(&c, p, io);
+    if (y1 > g->height) y1 = g->height;
+    ctx_init(&c, p, g, radiance, out);
     for (y = y0; y < y1; y++) {
-        for (x = 0; x < io->width; x++) {
-            int i = y * io->width + x;
+        for (x = 0; x < g->width; x++) {
+            int i = (int)tgi_gv_index(g, x, y);
             px.x = x;
             px.y = y;
             if (!pixel_setup(&c, &px, i)) { write_open(&c, i); continue; }
             pixel_run(&c, &px, i);
         }
     }
+}
+
+void tgi_hbil_interleaved_rows(const tgi_hbil_params *p, const tgi_gview *k, const tgi_gbuffer *split,
+                               const tgi_rgb *radiance, const tgi_gresult *out, int y0, int y1)
+{
+    int i, j;
+    for (j = 0; j < 4; j++)
+        for (i = 0; i < 4; i++) {
+            tgi_hbil_params ps = *p;
+            tgi_gview sub;
+            tgi_gresult res;
+            tgi_rgb src = { NULL, NULL, NULL };
+            int sw, sh;
+            size_t o;
+            tgi_interleave_sub_rect(k->width, k->height, i, j, &sw, &sh, &o);
+            if (sw == 0 || sh == 0) continue;
+            tgi_gview_packed(&sub, split, o, sw, sh, 4 * k->step, k->offset_x + i * k->step,
+                             k->offset_y + j * k->step, k->camera);
+            res = tgi_gresult_from(out, o);
+            if (radiance) src = tgi_rgb_from(radiance, o);
+            ps.slice_phi0 = tgi_hbil_slice_phi0(i, j, p->slices);
+            tgi_hbil_rows(&ps, &sub, &src, &res, (y0 - j + 3) / 4, (y1 - j + 3) / 4);
+        }
 }

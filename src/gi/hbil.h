@@ -3,10 +3,11 @@
  * hbil.h - the Horizon-Based Indirect Lighting kernel (Mayaux 2018).
  *
  * One function serves the 4x4-interleaved quarter-resolution sub-images and
- * the full-resolution, non-interleaved image: it processes an image of
- * (width, height) pixels whose pixel (x, y) is full-resolution pixel
- * (x * step + offset_x, y * step + offset_y), and it marches in ITS OWN
- * pixels (HBIL sec. 3.3: "the march steps in sub-image pixels").
+ * the full-resolution, non-interleaved image: it processes a G-buffer view
+ * (raster/gview.h) whose pixel (x, y) is full-resolution pixel
+ * (x * step + offset_x, y * step + offset_y), packed or strided, and it
+ * marches in ITS OWN pixels (HBIL sec. 3.3: "the march steps in sub-image
+ * pixels").
  *
  * Per pixel and per slice (HBIL sec. 1-2):
  *   local camera frame from the view vector (sec. 1.1), slice direction
@@ -53,42 +54,40 @@
 #ifndef TG_HBIL_H
 #define TG_HBIL_H
 
-#include "../raster/view.h"
-
-#define TG_HBIL_MAX_SLICES 8
-#define TG_HBIL_DEFAULT_SLICES 2
-#define TG_HBIL_DEFAULT_SAMPLES 16
+#include "../tinygi.h"
+#include "../raster/gview.h"
 
 typedef struct tgi_hbil_params {
-    const tgi_view *view;      /* full-resolution camera */
-    int slices, samples;      /* per pixel; defaults 2 and 16; slices clamped to [1, TG_HBIL_MAX_SLICES] */
+    int slices, samples;      /* per pixel; defaults 2 and 16; slices clamped to [1, TG_MAX_SLICES] */
     tg_real radius;           /* world units; projected to pixels, clamped to max_radius_px and the screen */
     tg_real max_radius_px;    /* in full-res pixels */
-    int step, offset_x, offset_y;   /* image pixel (x, y) -> full-res pixel (x*step+ox, y*step+oy) */
     tg_real slice_phi0;       /* first slice angle of this image (interleaved), radians */
     int per_pixel_pattern;    /* full-res: slice angle from (X & 3, Y & 3), slice_phi0 ignored */
     tg_real rejection_a, rejection_b; /* sec. 3.4 t = smoothstep(a, b, -n'.w_i) */
 } tgi_hbil_params;
 
-typedef struct tgi_hbil_io {
-    int width, height;
-    const tg_real *depth, *nx, *ny, *nz;      /* view depth; world normals */
-    const tg_real *f0;                         /* may be NULL: 0 */
-    const uint8_t *sky;                        /* may be NULL: no sky */
-    const tg_real *rad_r, *rad_g, *rad_b;      /* last frame's diffuse radiance reprojected; NULL = no near field */
-    const tg_real *snx, *sny, *snz;            /* sender normals for the rejection filter; may alias nx..; NULL = nx.. */
-    tg_real *ao, *bent_x, *bent_y, *bent_z, *cone; /* outputs; bent world space unit; any may be NULL except ao */
-    tg_real *near_r, *near_g, *near_b;         /* near-field irradiance; written only with rad_r and near_r */
-} tgi_hbil_io;
-
-/* Defaults: 2 slices, 16 samples, radius 1, max radius 128 px, step 1, no
- * offset, phi0 of sub-image (0,0), no pattern, rejection a = 0, b = 0.2. */
-void tgi_hbil_defaults(tgi_hbil_params *p, const tgi_view *view);
+/* Defaults: 2 slices, 16 samples, radius 1, max radius 128 px, phi0 of
+ * sub-image (0,0), no pattern, rejection a = 0, b = 0.2. */
+void tgi_hbil_defaults(tgi_hbil_params *p);
 
 /* First slice angle of sub-image (i, j), i, j in 0..3, with `slices` per pixel. */
 tg_real tgi_hbil_slice_phi0(int i, int j, int slices);
 
-/* Run the kernel on image rows [y0, y1). */
-void tgi_hbil_rows(const tgi_hbil_params *p, const tgi_hbil_io *io, int y0, int y1);
+/* Run the kernel on rows [y0, y1) of the view `g` (its camera is the
+ * full-resolution one; the F0 it carries weighs the near field, 0 when it
+ * carries none).  radiance: last frame's diffuse radiance reprojected,
+ * indexed like g; NULL or absent = no near field.  out: AO always, the
+ * bent normal, cone and near-field irradiance when present (the near field
+ * only with radiance). */
+void tgi_hbil_rows(const tgi_hbil_params *p, const tgi_gview *g, const tgi_rgb *radiance,
+                   const tgi_gresult *out, int y0, int y1);
+
+/* The interleaved kernel (HBIL sec. 3.3): rows [y0, y1) of the image `k`
+ * (a view standing for the full-resolution image, or for its quarter-res
+ * copy) whose 16 sub-images (gi/interleave.h) are packed in `split`, with
+ * the radiance and results packed alike; each sub-image (i, j) gets its own
+ * first slice angle.  Row Y of k is row Y / 4 of the sub-images (i, Y & 3). */
+void tgi_hbil_interleaved_rows(const tgi_hbil_params *p, const tgi_gview *k, const tgi_gbuffer *split,
+                               const tgi_rgb *radiance, const tgi_gresult *out, int y0, int y1);
 
 #endif

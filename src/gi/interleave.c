@@ -9,39 +9,38 @@
 
 static int sub_size(int n, int i) { return n > i ? (n - i + 3) / 4 : 0; }
 
+/* Sub-images before (i, j) in the order k = j * 4 + i: the whole rows of
+ * sub-images above (each row of four is w wide) and those left of it. */
 void tgi_interleave_sub_rect(int w, int h, int i, int j, int *sw, int *sh, size_t *offset)
 {
-    size_t off = 0;
-    int k, kk = j * 4 + i;
-    for (k = 0; k < kk; k++)
-        off += (size_t)sub_size(w, k & 3) * (size_t)sub_size(h, k >> 2);
+    size_t above = 0, left = 0;
+    int k;
+    for (k = 0; k < j; k++) above += (size_t)sub_size(h, k);
+    for (k = 0; k < i; k++) left += (size_t)sub_size(w, k);
     if (sw) *sw = sub_size(w, i);
     if (sh) *sh = sub_size(h, j);
-    if (offset) *offset = off;
+    if (offset) *offset = above * (size_t)w + left * (size_t)sub_size(h, j);
 }
 
-/* Index in the sub-image layout of full-resolution pixel (x, y). */
-typedef struct row_map { size_t base[4]; int sw[4]; } row_map;
-
-static void row_map_make(row_map *m, int w, int h, int y)
+void tgi_interleave_row(int w, int h, int y, size_t start[4])
 {
-    int i, sh;
+    int i, sw, sh;
     for (i = 0; i < 4; i++) {
-        tgi_interleave_sub_rect(w, h, i, y & 3, &m->sw[i], &sh, &m->base[i]);
-        m->base[i] += (size_t)(y >> 2) * (size_t)m->sw[i];
+        tgi_interleave_sub_rect(w, h, i, y & 3, &sw, &sh, &start[i]);
+        start[i] += (size_t)(y >> 2) * (size_t)sw;
     }
 }
 
 #define TG_INTERLEAVE_BODY(SPLIT)                                         \
     int x, y;                                                             \
-    row_map m;                                                            \
+    size_t start[4];                                                      \
     if (y0 < 0) y0 = 0;                                                   \
     if (y1 > h) y1 = h;                                                   \
     for (y = y0; y < y1; y++) {                                           \
         size_t row = (size_t)y * (size_t)w;                               \
-        row_map_make(&m, w, h, y);                                        \
+        tgi_interleave_row(w, h, y, start);                               \
         for (x = 0; x < w; x++) {                                         \
-            size_t s = m.base[x & 3] + (size_t)(x >> 2);                  \
+            size_t s = start[x & 3] + (size_t)(x >> 2);                   \
             if (SPLIT) dst[s] = src[row + (size_t)x];                     \
             else dst[row + (size_t)x] = src[s];                           \
         }                                                                 \

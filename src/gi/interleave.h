@@ -20,6 +20,10 @@
 /* Size and start of sub-image (i, j) of a w x h image. */
 void tgi_interleave_sub_rect(int w, int h, int i, int j, int *sw, int *sh, size_t *offset);
 
+/* Where full-resolution row y lands: pixel (x, y) of a w x h image is at
+ * start[x & 3] + (x >> 2) of the sub-image layout. */
+void tgi_interleave_row(int w, int h, int y, size_t start[4]);
+
 /* Full-resolution src (w x h) -> 16 concatenated sub-images in dst (w * h).
  * The row range [y0, y1) is in FULL-resolution rows. */
 void tgi_interleave_split_rows(const tg_real *src, int w, int h, tg_real *dst, int y0, int y1);

@@ -5,17 +5,20 @@
  * 1.. live in the scratch as (r, g, b, w) quadruples.
  */
 #include <string.h>
+#include "../tinygi.h"
 #include "pushpull.h"
 
 static int half_up(int n) { return (n + 1) / 2; }
 
 size_t tgi_pushpull_bytes(int w, int h)
 {
-    size_t total = 0;
+    size_t total = 0, level;
     while (w > 1 || h > 1) {
         w = half_up(w);
         h = half_up(h);
-        total += (size_t)w * (size_t)h * 4 * sizeof(tg_real);
+        if (tg_size_mul((size_t)w, (size_t)h, &level) || tg_size_mul(level, 4 * sizeof(tg_real), &level)
+            || tg_size_add(total, level, &total))
+            return SIZE_MAX;
     }
     return total;
 }

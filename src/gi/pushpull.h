@@ -18,7 +18,7 @@
 #include "../core/real.h"
 
 /* Scratch bytes for a w x h image (the mip chain: r, g, b, weight). */
-size_t tgi_pushpull_bytes(int w, int h);
+size_t tgi_pushpull_bytes(int w, int h);   /* SIZE_MAX when that does not fit */
 
 /* Fill the holes (valid[i] == 0) of r, g, b in place.  `scratch` holds at
  * least tgi_pushpull_bytes(w, h) bytes, aligned for tg_real. */

@@ -4,6 +4,7 @@
  * frame's radiance (HBIL sec. 3.2).  See reproject.h.
  */
 #include <string.h>
+#include "../tinygi.h"
 #include "reproject.h"
 
 #define NO_SOURCE (-1)
@@ -21,8 +22,11 @@ static scatter_buf buf_of(const tgi_reproject_io *io, void *scratch)
 
 size_t tgi_reproject_bytes(int w, int h)
 {
-    size_t n = (size_t)w * (size_t)h;
-    return ((n * sizeof(tg_real) + 15) & ~(size_t)15) + n * sizeof(int32_t);
+    size_t n, z, idx;
+    if (w < 0 || h < 0 || tg_size_mul((size_t)w, (size_t)h, &n) || tg_size_mul(n, sizeof(tg_real), &z)
+        || tg_size_add(z, 15, &z) || tg_size_mul(n, sizeof(int32_t), &idx) || tg_size_add(z & ~(size_t)15, idx, &z))
+        return SIZE_MAX;
+    return z;
 }
 
 void tgi_reproject_clear(const tgi_reproject_io *io, void *scratch)

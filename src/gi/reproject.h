@@ -42,7 +42,7 @@ typedef struct tgi_reproject_io {
 } tgi_reproject_io;
 
 /* Scratch of the scatter: a z-buffer and the winning source index. */
-size_t tgi_reproject_bytes(int w, int h);
+size_t tgi_reproject_bytes(int w, int h);   /* SIZE_MAX when that does not fit */
 
 void tgi_reproject_clear(const tgi_reproject_io *io, void *scratch);
 void tgi_reproject_scatter_rows(const tgi_reproject_io *io, void *scratch, int y0, int y1);

@@ -22,42 +22,31 @@ void tgi_half_size(int w, int h, int *hw, int *hh)
     *hh = (h + 1) / 2;
 }
 
-void tgi_downsample_rows(const tg_real *src, int w, int h, tg_real *dst, int y0, int y1)
+void tgi_downsample_rows(const tgi_gview *full, const tgi_gbuffer *half, const tgi_rgb *src,
+                         const tgi_rgb *half_src, int y0, int y1)
 {
-    int hw, hh, x, y;
-    tgi_half_size(w, h, &hw, &hh);
+    int hw, hh, x, y, with_src = tgi_rgb_present(src) && tgi_rgb_present(half_src);
+    tgi_half_size(full->width, full->height, &hw, &hh);
     if (y1 > hh) y1 = hh;
-    for (y = y0; y < y1; y++) {
-        const tg_real *row = src + (size_t)(2 * y) * (size_t)w;
-        tg_real *out = dst + (size_t)y * (size_t)hw;
-        for (x = 0; x < hw; x++) out[x] = row[2 * x];
-    }
-}
-
-void tgi_downsample8_rows(const uint8_t *src, int w, int h, uint8_t *dst, int y0, int y1)
-{
-    int hw, hh, x, y;
-    tgi_half_size(w, h, &hw, &hh);
-    if (y1 > hh) y1 = hh;
-    for (y = y0; y < y1; y++) {
-        const uint8_t *row = src + (size_t)(2 * y) * (size_t)w;
-        uint8_t *out = dst + (size_t)y * (size_t)hw;
-        for (x = 0; x < hw; x++) out[x] = row[2 * x];
-    }
+    for (y = y0; y < y1; y++)
+        for (x = 0; x < hw; x++) {
+            size_t i = tgi_gv_index(full, 2 * x, 2 * y), j = (size_t)y * (size_t)hw + (size_t)x;
+            tgi_gview_copy_pixel(half, j, full, i);
+            if (with_src) tgi_rgb_set(half_src, j, tgi_rgb_get(src, i));
+        }
 }
 
 /* (n . m)^4 for unit normals, 0 when they face apart. */
-static tg_real normal_weight(const tgi_upsample_io *io, size_t i, size_t j)
+static tg_real upsample_normal_weight(tg_vec3 n, tg_vec3 m)
 {
-    tg_real d = tg_add(tg_add(tg_mul(io->nx[i], io->half_nx[j]), tg_mul(io->ny[i], io->half_ny[j])),
-                       tg_mul(io->nz[i], io->half_nz[j]));
+    tg_real d = tg_add(tg_add(tg_mul(n.x, m.x), tg_mul(n.y, m.y)), tg_mul(n.z, m.z));
     if (d <= 0) return 0;
     d = tg_mul(d, d);
     return tg_mul(d, d);
 }
 
 /* 1 - |z_j - z| / (0.1 z), clamped to [0, 1]. */
-static tg_real depth_weight(tg_real z, tg_real zj)
+static tg_real upsample_depth_weight(tg_real z, tg_real zj)
 {
     tg_real tol = tg_mul(z, TG_R(0.1f));
     tg_real dz = tg_abs(tg_sub(zj, z));
@@ -65,72 +54,78 @@ static tg_real depth_weight(tg_real z, tg_real zj)
     return tg_sub(TG_ONE, tg_div(dz, tol));
 }
 
-static void write_open(const tgi_upsample_io *io, size_t i)
+static void upsample_open(const tgi_gview *full, const tgi_gresult *out, size_t i)
 {
-    io->ao[i] = TG_ONE;
-    if (io->bent_x) { io->bent_x[i] = io->nx[i]; io->bent_y[i] = io->ny[i]; io->bent_z[i] = io->nz[i]; }
-    if (io->near_r) { io->near_r[i] = 0; io->near_g[i] = 0; io->near_b[i] = 0; }
+    tgi_gr_set_ao(out, i, TG_ONE);
+    if (tgi_gr_has_bent(out)) tgi_gr_set_bent(out, i, tgi_gv_normal(full, i));
+    if (tgi_gr_has_near(out)) tgi_gr_set_near(out, i, tg_v3(0, 0, 0));
 }
 
-static void upsample_pixel(const tgi_upsample_io *io, int hw, int hh, int x, int y)
+/* The (up to) 2x2 half-res neighbours of full-res (x, y) and their bilinear
+ * weights: an even coordinate sits on a half-res sample, an odd one halfway. */
+static void bilinear_taps(const tgi_gview *half, int x, int y, size_t tap[4], tg_real wt[4])
 {
-    size_t i = (size_t)y * (size_t)io->width + (size_t)x, tap[4];
-    tg_real wt[4], sum = 0, ao = 0, bx = 0, by = 0, bz = 0, nr = 0, ng = 0, nb = 0;
-    int X0 = x >> 1, Y0 = y >> 1, X1 = X0 + (x & 1), Y1 = Y0 + (y & 1), k;
-    tg_real half = TG_R(0.5f), floor_w = TG_R(0.015625f);
-    if (io->sky && io->sky[i]) { write_open(io, i); return; }
-    if (X1 >= hw) X1 = hw - 1;
-    if (Y1 >= hh) Y1 = hh - 1;
-    tap[0] = (size_t)Y0 * (size_t)hw + (size_t)X0; tap[1] = (size_t)Y0 * (size_t)hw + (size_t)X1;
-    tap[2] = (size_t)Y1 * (size_t)hw + (size_t)X0; tap[3] = (size_t)Y1 * (size_t)hw + (size_t)X1;
-    /* bilinear: an even coordinate sits on a half-res sample, an odd one halfway */
-    wt[0] = tg_mul((x & 1) ? half : TG_ONE, (y & 1) ? half : TG_ONE);
-    wt[1] = (x & 1) ? tg_mul(half, (y & 1) ? half : TG_ONE) : 0;
-    wt[2] = (y & 1) ? tg_mul((x & 1) ? half : TG_ONE, half) : 0;
-    wt[3] = ((x & 1) && (y & 1)) ? tg_mul(half, half) : 0;
+    int X0 = x >> 1, Y0 = y >> 1, X1 = X0 + (x & 1), Y1 = Y0 + (y & 1);
+    tg_real h = TG_R(0.5f);
+    if (X1 >= half->width) X1 = half->width - 1;
+    if (Y1 >= half->height) Y1 = half->height - 1;
+    tap[0] = tgi_gv_index(half, X0, Y0); tap[1] = tgi_gv_index(half, X1, Y0);
+    tap[2] = tgi_gv_index(half, X0, Y1); tap[3] = tgi_gv_index(half, X1, Y1);
+    wt[0] = tg_mul((x & 1) ? h : TG_ONE, (y & 1) ? h : TG_ONE);
+    wt[1] = (x & 1) ? tg_mul(h, (y & 1) ? h : TG_ONE) : 0;
+    wt[2] = (y & 1) ? tg_mul((x & 1) ? h : TG_ONE, h) : 0;
+    wt[3] = ((x & 1) && (y & 1)) ? tg_mul(h, h) : 0;
+}
+
+static void upsample_pixel(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *hr,
+                           const tgi_gresult *out, int x, int y)
+{
+    size_t i = tgi_gv_index(full, x, y), tap[4];
+    tg_real wt[4], sum = 0, ao = 0, floor_w = TG_R(0.015625f);
+    tg_vec3 n = tgi_gv_normal(full, i), bend = tg_v3(0, 0, 0), near = tg_v3(0, 0, 0);
+    int k, want_bent = tgi_gr_has_bent(out), want_near = tgi_gr_has_near(out);
+    if (tgi_gv_is_sky(full, i)) { upsample_open(full, out, i); return; }
+    bilinear_taps(half, x, y, tap, wt);
     for (k = 0; k < 4; k++) {
         size_t j = tap[k];
         tg_real w;
+        tg_vec3 nj;
         if (wt[k] == 0) continue;
-        if (io->half_sky && io->half_sky[j]) continue;
-        w = tg_mul(wt[k], tg_max(floor_w, tg_mul(depth_weight(io->depth[i], io->half_depth[j]),
-                                                  normal_weight(io, i, j))));
+        if (tgi_gv_is_sky(half, j)) continue;
+        nj = tgi_gv_normal(half, j);
+        w = tg_mul(wt[k], tg_max(floor_w, tg_mul(upsample_depth_weight(tgi_gv_depth(full, i), tgi_gv_depth(half, j)),
+                                                  upsample_normal_weight(n, nj))));
         sum = tg_add(sum, w);
-        ao = tg_add(ao, tg_mul(w, io->half_ao[j]));
-        if (io->bent_x) {   /* the bend (bent - normal) is what carries over (Klehm sec. 3.4) */
-            bx = tg_add(bx, tg_mul(w, tg_sub(io->half_bent_x[j], io->half_nx[j])));
-            by = tg_add(by, tg_mul(w, tg_sub(io->half_bent_y[j], io->half_ny[j])));
-            bz = tg_add(bz, tg_mul(w, tg_sub(io->half_bent_z[j], io->half_nz[j])));
+        ao = tg_add(ao, tg_mul(w, tgi_gr_ao(hr, j)));
+        if (want_bent) {   /* the bend (bent - normal) is what carries over (Klehm sec. 3.4) */
+            tg_vec3 b = tgi_gr_bent(hr, j);
+            bend = tg_v3(tg_add(bend.x, tg_mul(w, tg_sub(b.x, nj.x))), tg_add(bend.y, tg_mul(w, tg_sub(b.y, nj.y))),
+                         tg_add(bend.z, tg_mul(w, tg_sub(b.z, nj.z))));
         }
-        if (io->near_r) {
-            nr = tg_add(nr, tg_mul(w, io->half_near_r[j]));
-            ng = tg_add(ng, tg_mul(w, io->half_near_g[j]));
-            nb = tg_add(nb, tg_mul(w, io->half_near_b[j]));
+        if (want_near) {
+            tg_vec3 e = tgi_gr_near(hr, j);
+            near = tg_v3(tg_add(near.x, tg_mul(w, e.x)), tg_add(near.y, tg_mul(w, e.y)), tg_add(near.z, tg_mul(w, e.z)));
         }
     }
-    if (sum <= 0) { write_open(io, i); return; }   /* only sky around: treat as open */
-    io->ao[i] = tg_saturate(tg_div(ao, sum));
-    if (io->bent_x) {
-        tg_vec3 n = tg_v3(io->nx[i], io->ny[i], io->nz[i]);
-        tg_vec3 b = tgi_v3_add(n, tg_v3(tg_div(bx, sum), tg_div(by, sum), tg_div(bz, sum)));
+    if (sum <= 0) { upsample_open(full, out, i); return; }   /* only sky around: treat as open */
+    tgi_gr_set_ao(out, i, tg_saturate(tg_div(ao, sum)));
+    if (want_bent) {
+        tg_vec3 b = tgi_v3_add(n, tg_v3(tg_div(bend.x, sum), tg_div(bend.y, sum), tg_div(bend.z, sum)));
         tg_real d = tgi_v3_dot(b, n);
         /* keep it in the normal's hemisphere: drop the part below the tangent plane */
         if (d < 0) b = tgi_v3_sub(b, tgi_v3_scale(n, d));
-        b = tgi_v3_normalize_or(b, n);
-        io->bent_x[i] = b.x; io->bent_y[i] = b.y; io->bent_z[i] = b.z;
+        tgi_gr_set_bent(out, i, tgi_v3_normalize_or(b, n));
     }
-    if (io->near_r) {
-        io->near_r[i] = tg_max(0, tg_div(nr, sum));
-        io->near_g[i] = tg_max(0, tg_div(ng, sum));
-        io->near_b[i] = tg_max(0, tg_div(nb, sum));
-    }
+    if (want_near)
+        tgi_gr_set_near(out, i, tg_v3(tg_max(0, tg_div(near.x, sum)), tg_max(0, tg_div(near.y, sum)),
+                                      tg_max(0, tg_div(near.z, sum))));
 }
 
-void tgi_upsample_rows(const tgi_upsample_io *io, int y0, int y1)
+void tgi_upsample_rows(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res,
+                       const tgi_gresult *out, int y0, int y1)
 {
-    int hw, hh, x, y;
-    tgi_half_size(io->width, io->height, &hw, &hh);
-    if (y1 > io->height) y1 = io->height;
+    int x, y;
+    if (y1 > full->height) y1 = full->height;
     for (y = y0; y < y1; y++)
-        for (x = 0; x < io->width; x++) upsample_pixel(io, hw, hh, x, y);
+        for (x = 0; x < full->width; x++) upsample_pixel(full, half, half_res, out, x, y);
 }

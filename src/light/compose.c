@@ -14,41 +14,38 @@ static tg_vec3 pixel_ray(const tgi_view *view, int x, int y)
     return tgi_view_dir_to_world(view, tgi_v3_normalize_or(pv, tg_v3(0, 0, TG_ONE)));
 }
 
-void tgi_compose_rows(const tgi_gbuffer *gb, const tgi_view *view, const tgi_env *env,
-                     const tgi_rgb_planes *terms, int term_count,
-                     tg_real *out_r, tg_real *out_g, tg_real *out_b,
-                     tg_real *irr_r, tg_real *irr_g, tg_real *irr_b, int y0, int y1)
+void tgi_compose_rows(const tgi_gview *g, const tgi_env *env, const tgi_rgb *terms, int term_count,
+                      const tgi_rgb *out, const tgi_rgb *irr, int y0, int y1)
 {
+    const tgi_view *view = g->camera;
     int has_env = env && env->type != TG_ENV_NONE && view;
-    int has_emit = gb->emit_r && gb->emit_g && gb->emit_b;
-    int want_irr = irr_r && irr_g && irr_b;
-    int x, y, k, w = gb->width;
+    int has_emit = tgi_gv_has_emissive(g);
+    int want_irr = tgi_rgb_present(irr);
+    int x, y, k;
     for (y = y0; y < y1; y++) {
-        int i = y * w;
-        for (x = 0; x < w; x++, i++) {
+        size_t i = tgi_gv_index(g, 0, y);
+        for (x = 0; x < g->width; x++, i += (size_t)g->pixel_stride) {
             tg_real er = 0, eg = 0, eb = 0, kd;
-            if (gb->sky[i]) {
-                tg_vec3 sky = has_env ? tgi_env_radiance(env, pixel_ray(view, x, y)) : tg_v3(0, 0, 0);
-                out_r[i] = sky.x; out_g[i] = sky.y; out_b[i] = sky.z;
-                if (want_irr) irr_r[i] = irr_g[i] = irr_b[i] = 0;
+            tg_vec3 a, lo;
+            if (tgi_gv_is_sky(g, i)) {
+                tgi_rgb_set(out, i, has_env ? tgi_env_radiance(env, pixel_ray(view, x, y)) : tg_v3(0, 0, 0));
+                if (want_irr) tgi_rgb_set(irr, i, tg_v3(0, 0, 0));
                 continue;
             }
             for (k = 0; k < term_count; k++) {
-                if (!terms[k].r) continue;
-                er = tg_add(er, terms[k].r[i]);  /* HBIL sec. 2.3: E = E_direct + E_far + E_near */
-                eg = tg_add(eg, terms[k].g[i]);
-                eb = tg_add(eb, terms[k].b[i]);
+                tg_vec3 e;
+                if (!tgi_rgb_present(&terms[k])) continue;
+                e = tgi_rgb_get(&terms[k], i);
+                er = tg_add(er, e.x);  /* HBIL sec. 2.3: E = E_direct + E_far + E_near */
+                eg = tg_add(eg, e.y);
+                eb = tg_add(eb, e.z);
             }
-            if (want_irr) { irr_r[i] = er; irr_g[i] = eg; irr_b[i] = eb; }
-            kd = tg_mul(tg_saturate(tg_sub(TG_ONE, gb->f0[i])), TG_INV_PI); /* HBIL eq. 19: (1 - F0), eq. 14: 1/pi */
-            out_r[i] = tg_mul(tg_mul(gb->albedo_r[i], kd), er);
-            out_g[i] = tg_mul(tg_mul(gb->albedo_g[i], kd), eg);
-            out_b[i] = tg_mul(tg_mul(gb->albedo_b[i], kd), eb);
-            if (has_emit) {
-                out_r[i] = tg_add(out_r[i], gb->emit_r[i]);
-                out_g[i] = tg_add(out_g[i], gb->emit_g[i]);
-                out_b[i] = tg_add(out_b[i], gb->emit_b[i]);
-            }
+            if (want_irr) tgi_rgb_set(irr, i, tg_v3(er, eg, eb));
+            kd = tg_mul(tg_saturate(tg_sub(TG_ONE, tgi_gv_f0(g, i))), TG_INV_PI); /* HBIL eq. 19: (1 - F0), eq. 14: 1/pi */
+            a = tgi_gv_albedo(g, i);
+            lo = tg_v3(tg_mul(tg_mul(a.x, kd), er), tg_mul(tg_mul(a.y, kd), eg), tg_mul(tg_mul(a.z, kd), eb));
+            if (has_emit) lo = tgi_v3_add(lo, tgi_gv_emissive(g, i));
+            tgi_rgb_set(out, i, lo);
         }
     }
 }

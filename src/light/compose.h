@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * compose.h - outgoing diffuse radiance from the irradiance terms, in linear
- * light (HBIL eq. 14 and 19, design.md "compose"):
+ * light (HBIL eq. 14 and 19):
  *
  *   E  = E_direct + E_far + E_near                    (HBIL sec. 2.3)
  *   Lo = albedo / pi * (1 - F0) * E + emissive        (HBIL eq. 14, 19)
@@ -15,21 +15,14 @@
 #define TG_COMPOSE_H
 
 #include "../scene/scene.h"
-#include "../raster/gbuffer.h"
-#include "../raster/view.h"
+#include "../raster/gview.h"
 
-/* One irradiance term as three planes (gbuffer layout); r == NULL = absent. */
-typedef struct tgi_rgb_planes {
-    const tg_real *r, *g, *b;
-} tgi_rgb_planes;
-
-/* Rows [y0, y1).  terms: term_count irradiance terms summed (e.g. [direct,
- * far, near]); absent terms are skipped.  out_*: Lo.  irr_*: the total E
- * (AOV `irradiance`), NULL when not wanted.  view and env give the sky
- * (env may be NULL). */
-void tgi_compose_rows(const tgi_gbuffer *gb, const tgi_view *view, const tgi_env *env,
-                     const tgi_rgb_planes *terms, int term_count,
-                     tg_real *out_r, tg_real *out_g, tg_real *out_b,
-                     tg_real *irr_r, tg_real *irr_g, tg_real *irr_b, int y0, int y1);
+/* Rows [y0, y1) of a full-resolution view g.  terms: term_count irradiance
+ * terms summed (e.g. [direct, far, near]), indexed like g; absent terms are
+ * skipped.  out: Lo.  irr: the total E (AOV `irradiance`); NULL or absent
+ * when not wanted.  g's camera and env give the sky (either may be NULL:
+ * a black sky). */
+void tgi_compose_rows(const tgi_gview *g, const tgi_env *env, const tgi_rgb *terms, int term_count,
+                      const tgi_rgb *out, const tgi_rgb *irr, int y0, int y1);
 
 #endif

@@ -74,44 +74,41 @@ tg_vec3 tgi_direct_irradiance(const tgi_light *l, tg_vec3 p, tg_vec3 n)
     return f > 0 ? light_irradiance(pl.radiant, f, inv) : tg_v3(0, 0, 0);
 }
 
-void tgi_direct_rows(const tgi_gbuffer *gb, const tgi_view *view,
-                    const tgi_light *lights, int light_count,
-                    const tgi_shadow_map *const *shadow_maps,
-                    tg_real *e_r, tg_real *e_g, tg_real *e_b, int y0, int y1)
+void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_count,
+                    const tgi_shadow_map *const *shadow_maps, const tgi_rgb *e_out, int y0, int y1)
 {
+    const tgi_view *view = g->camera;
     prepared_light pl[LIGHT_CHUNK];
-    int first, k, x, y, w = gb->width;
+    int first, k, x, y, w = g->width;
     tg_real half_w = tg_ldexp(tg_from_int(view->width), -1), half_h = tg_ldexp(tg_from_int(view->height), -1);
     tg_real position_error = tgi_shadow_gbuffer_error(view); /* per unit depth */
-    for (y = y0; y < y1; y++) {
-        int row = y * w;
-        for (x = 0; x < w; x++) e_r[row + x] = e_g[row + x] = e_b[row + x] = 0;
-    }
+    for (y = y0; y < y1; y++)
+        for (x = 0; x < w; x++) tgi_rgb_set(e_out, tgi_gv_index(g, x, y), tg_v3(0, 0, 0));
     for (first = 0; first < light_count; first += LIGHT_CHUNK) {
         int count = light_count - first < LIGHT_CHUNK ? light_count - first : LIGHT_CHUNK;
         for (k = 0; k < count; k++)
             prepare(&pl[k], &lights[first + k], shadow_maps ? shadow_maps[first + k] : NULL);
         for (y = y0; y < y1; y++) {
-            int i = y * w;
             /* pixel centre ray with view z = 1: forward + right kx + up ky (view.h) */
             tg_real ky = tg_div(tg_sub(half_h, tg_add(tg_from_int(y), TG_R(0.5f))), view->pixels_per_unit);
             tg_vec3 row_dir = tgi_v3_add(view->forward, tgi_v3_scale(view->up, ky));
-            for (x = 0; x < w; x++, i++) {
+            for (x = 0; x < w; x++) {
+                size_t i = tgi_gv_index(g, x, y);
                 tg_vec3 n, p, e;
                 tg_real kx;
-                if (gb->sky[i]) continue;
-                n = tg_v3(gb->nx[i], gb->ny[i], gb->nz[i]);
+                if (tgi_gv_is_sky(g, i)) continue;
+                n = tgi_gv_normal(g, i);
                 kx = tg_div(tg_sub(tg_add(tg_from_int(x), TG_R(0.5f)), half_w), view->pixels_per_unit);
-                p = tgi_v3_add(view->eye, tgi_v3_scale(tgi_v3_add(row_dir, tgi_v3_scale(view->right, kx)), gb->depth[i]));
-                e = tg_v3(e_r[i], e_g[i], e_b[i]);
+                p = tgi_v3_add(view->eye, tgi_v3_scale(tgi_v3_add(row_dir, tgi_v3_scale(view->right, kx)), tgi_gv_depth(g, i)));
+                e = tgi_rgb_get(e_out, i);
                 for (k = 0; k < count; k++) {
                     tg_real inv, f = light_factor(&pl[k], p, n, &inv);
                     if (f <= 0) continue;
                     if (pl[k].shadow) f = tg_mul(f, tgi_shadow_visibility_err(pl[k].shadow, p, n,
-                                                                                    tg_mul(gb->depth[i], position_error)));
+                                                                                    tg_mul(tgi_gv_depth(g, i), position_error)));
                     e = tgi_v3_add(e, light_irradiance(pl[k].radiant, f, inv));
                 }
-                e_r[i] = e.x; e_g[i] = e.y; e_b[i] = e.z;
+                tgi_rgb_set(e_out, i, e);
             }
         }
     }

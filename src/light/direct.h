@@ -16,21 +16,19 @@
 #define TG_DIRECT_H
 
 #include "../scene/scene.h"
-#include "../raster/gbuffer.h"
-#include "../raster/view.h"
+#include "../raster/gview.h"
 #include "shadowmap.h"
 
 #define TG_SPOT_INNER TG_R(0.85f)
 #define TG_DIRECT_MIN_DISTANCE TG_R(0.01f)
 
-/* E_direct for rows [y0, y1).  World position of a pixel = the G-buffer depth
- * unprojected at the pixel centre (tgi_view_unproject + tgi_view_view_to_world).
+/* E_direct for rows [y0, y1) of a full-resolution view g, into e (indexed
+ * like g).  World position of a pixel = the G-buffer depth unprojected at
+ * the pixel centre with g's camera (tgi_view_unproject + tgi_view_view_to_world).
  * shadow_maps: NULL, or one entry per light, a NULL entry = unshadowed.
  * Sky pixels get 0. */
-void tgi_direct_rows(const tgi_gbuffer *gb, const tgi_view *view,
-                    const tgi_light *lights, int light_count,
-                    const tgi_shadow_map *const *shadow_maps,
-                    tg_real *e_r, tg_real *e_g, tg_real *e_b, int y0, int y1);
+void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_count,
+                    const tgi_shadow_map *const *shadow_maps, const tgi_rgb *e, int y0, int y1);
 
 /* Irradiance from one light at a world point with unit normal n (no shadow). */
 tg_vec3 tgi_direct_irradiance(const tgi_light *l, tg_vec3 p, tg_vec3 n);

@@ -1,0 +1,160 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * passes.c - the pass table: every pass of a frame, one row each, in the
+ * order they run.  A row says what the pass computes (in the papers'
+ * words, as --explain prints it), when the plan needs it, the buffer groups
+ * it reads or writes (carved by layout.c), on which frames it runs, and its
+ * function: tgi_pass_<name>(f, y0, y1) over rows, or tgi_pass_<name>(f) for a
+ * whole-image step.  The plan, its explanation, the arena's size and
+ * tg_frame_render all walk this table.  Adding a pass: README "Adding a
+ * pass".
+ */
+#include "frame_internal.h"
+
+#define AOV(a) (1u << (a))
+#define B(g) TGI_BUF(TGI_BUF_##g)
+
+/* ---- the pass functions (one file per family: rasterize.c, lighting.c,
+ * reprojection.c, hbil_passes.c, compare.c) ---- */
+void tgi_pass_animate(tg_frame *f);
+void tgi_pass_gbuffer(tg_frame *f, int y0, int y1);
+void tgi_pass_motion(tg_frame *f, int y0, int y1);
+void tgi_pass_depth_range(tg_frame *f);
+void tgi_pass_shadow_maps(tg_frame *f);
+void tgi_pass_direct(tg_frame *f, int y0, int y1);
+void tgi_pass_source_direct(tg_frame *f, int y0, int y1);
+void tgi_pass_reproject(tg_frame *f);
+void tgi_pass_push_pull(tg_frame *f);
+void tgi_pass_reference_bvh(tg_frame *f);
+void tgi_pass_downsample(tg_frame *f, int y0, int y1);
+void tgi_pass_split(tg_frame *f, int y0, int y1);
+void tgi_pass_hbil_interleaved(tg_frame *f, int y0, int y1);
+void tgi_pass_hbil_full(tg_frame *f, int y0, int y1);
+void tgi_pass_merge(tg_frame *f, int y0, int y1);
+void tgi_pass_filter_input(tg_frame *f, int y0, int y1);
+void tgi_pass_filter(tg_frame *f, int y0, int y1);
+void tgi_pass_upsample(tg_frame *f, int y0, int y1);
+void tgi_pass_temporal(tg_frame *f, int y0, int y1);
+void tgi_pass_ssao(tg_frame *f, int y0, int y1);
+void tgi_pass_vo(tg_frame *f, int y0, int y1);
+void tgi_pass_hbao(tg_frame *f, int y0, int y1);
+void tgi_pass_gtao(tg_frame *f, int y0, int y1);
+void tgi_pass_ssdo(tg_frame *f, int y0, int y1);
+void tgi_pass_bentcone(tg_frame *f, int y0, int y1);
+void tgi_pass_reference(tg_frame *f, int y0, int y1);
+void tgi_pass_cone(tg_frame *f, int y0, int y1);
+void tgi_pass_far(tg_frame *f, int y0, int y1);
+void tgi_pass_compose(tg_frame *f, int y0, int y1);
+void tgi_pass_next_bounce(tg_frame *f, int y0, int y1);
+void tgi_pass_keep_history(tg_frame *f, int y0, int y1);
+
+/* ---- when the plan needs them ---- */
+static int always(const tg_frame *f) { (void)f; return 1; }
+static int wants_motion(const tg_frame *f) { return (f->needs & TG_NEED_MOTION) != 0; }
+static int wants_depth_view(const tg_frame *f) { return (f->request.aovs & AOV(TG_AOV_DEPTH)) != 0; }
+static int casts_shadows(const tg_frame *f) { return (f->effects & TG_EFFECT_SHADOWS) != 0; }
+static int lights_directly(const tg_frame *f) { return (f->effects & TG_EFFECT_DIRECT) != 0; }
+static int gathers_near(const tg_frame *f) { return (f->effects & TG_EFFECT_NEAR) != 0; }
+static int reprojects(const tg_frame *f) { return (f->effects & TG_EFFECT_REPROJECTION) != 0; }
+static int composes(const tg_frame *f) { return (f->needs & TG_NEED_COMPOSE) != 0; }
+static int accumulates(const tg_frame *f) { return (f->needs & TG_NEED_TEMPORAL) != 0; }
+
+static int technique_runs(const tg_frame *f, tg_technique t)
+{
+    return (f->needs & TG_NEED_GI_PASS) && f->request.technique == t;
+}
+static int runs_hbil(const tg_frame *f) { return technique_runs(f, TG_TECH_HBIL); }
+static int runs_hbil_interleaved(const tg_frame *f) { return runs_hbil(f) && tgi_frame_interleaved(f); }
+static int runs_hbil_full(const tg_frame *f) { return runs_hbil(f) && !tgi_frame_interleaved(f); }
+static int runs_hbil_quarter(const tg_frame *f) { return runs_hbil(f) && tgi_frame_quarter(f); }
+static int runs_ssao(const tg_frame *f) { return technique_runs(f, TG_TECH_SSAO); }
+static int runs_vo(const tg_frame *f) { return technique_runs(f, TG_TECH_VO); }
+static int runs_hbao(const tg_frame *f) { return technique_runs(f, TG_TECH_HBAO); }
+static int runs_gtao(const tg_frame *f) { return technique_runs(f, TG_TECH_GTAO); }
+static int runs_ssdo(const tg_frame *f) { return technique_runs(f, TG_TECH_SSDO); }
+static int runs_bentcone(const tg_frame *f) { return technique_runs(f, TG_TECH_BENTCONE); }
+static int runs_reference(const tg_frame *f) { return technique_runs(f, TG_TECH_REFERENCE); }
+static int wants_cone(const tg_frame *f) { return (f->needs & TG_NEED_GI_PASS) && (f->needs & TG_NEED_CONE); }
+/* SSDO and bent cones light the environment themselves */
+static int shades_far(const tg_frame *f)
+{
+    return (f->effects & TG_EFFECT_FAR) && !runs_ssdo(f) && !runs_bentcone(f);
+}
+static int iterates_bounces(const tg_frame *f)
+{
+    return gathers_near(f) && composes(f) && f->request.bounces > 1;
+}
+
+#define ROWS(fn) TGI_ROWS_IMAGE, fn, NULL
+#define KERNEL_ROWS(fn) TGI_ROWS_KERNEL, fn, NULL
+#define SERIAL(fn) TGI_SERIAL, NULL, fn
+
+const tgi_pass tgi_passes[] = {
+    { "camera (animated by its keys; posed triangles when objects move)", always,
+      B(POSE), 0, SERIAL(tgi_pass_animate) },
+    { "rasterize G-buffer (depth, normal, albedo, F0, emissive)", always,
+      B(GBUFFER), 0, ROWS(tgi_pass_gbuffer) },
+    { "motion vectors", wants_motion,
+      B(GBUFFER) | B(MOTION) | B(POSE), 0, ROWS(tgi_pass_motion) },
+    { "depth range (for the 8-bit depth view)", wants_depth_view,
+      B(GBUFFER), 0, SERIAL(tgi_pass_depth_range) },
+    { "shadow maps (depth-only raster per shadow light)", casts_shadows,
+      B(SHADOW_MAPS) | B(POSE), 0, SERIAL(tgi_pass_shadow_maps) },
+    { "direct light (Lambert, shadows, spot falloff)", lights_directly,
+      B(GBUFFER) | B(SHADOW_MAPS) | B(DIRECT), 0, ROWS(tgi_pass_direct) },
+    { "near-field source: this frame's direct light and emission", gathers_near,
+      B(DIRECT) | B(SOURCE), TGI_ON_FIRST_FRAME, ROWS(tgi_pass_source_direct) },
+    { "reproject last frame's radiance (scatter + z-test)", reprojects,
+      B(SOURCE) | B(HISTORY) | B(REPROJECT), TGI_ON_HISTORY, SERIAL(tgi_pass_reproject) },
+    { "push/pull hole filling", reprojects,
+      B(SOURCE) | B(REPROJECT), TGI_ON_HISTORY, SERIAL(tgi_pass_push_pull) },
+    { "reference: BVH over the posed triangles", runs_reference,
+      B(BVH) | B(POSE), 0, SERIAL(tgi_pass_reference_bvh) },
+    /* the kernel and what follows it: iterated on a frame without history
+     * (gi bounces), each iteration gathering the previous one's radiance */
+    { "downsample to quarter resolution (point samples)", runs_hbil_quarter,
+      B(HALF) | B(SOURCE), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_downsample) },
+    { "4x4 split (depth, normal, radiance into 16 sub-images)", runs_hbil_interleaved,
+      B(HALF) | B(SOURCE) | B(SPLIT), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_split) },
+    { "HBIL horizon kernel (AO, bent normal, near field), per sub-image", runs_hbil_interleaved,
+      B(SPLIT), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_hbil_interleaved) },
+    { "HBIL horizon kernel, full resolution", runs_hbil_full,
+      B(RESULTS) | B(SOURCE), TGI_BOUNCE, ROWS(tgi_pass_hbil_full) },
+    { "4x4 merge", runs_hbil_interleaved,
+      B(SPLIT) | B(HALF) | B(RESULTS), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_merge) },
+    { "depth/normal-aware 4x4 filter: its input", runs_hbil,
+      B(HALF) | B(RESULTS) | B(FILTER), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_filter_input) },
+    { "depth/normal-aware 4x4 filter (at the kernel's resolution)", runs_hbil,
+      B(HALF) | B(RESULTS) | B(FILTER), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_filter) },
+    { "joint bilateral upsample to full resolution", runs_hbil_quarter,
+      B(HALF) | B(RESULTS), TGI_BOUNCE, ROWS(tgi_pass_upsample) },
+    { "temporal accumulation (history rejected by depth and normal)", accumulates,
+      B(RESULTS) | B(TEMPORAL), TGI_BOUNCE, ROWS(tgi_pass_temporal) },
+    { "SSAO (Crytek point samples, normal-oriented hemisphere)", runs_ssao,
+      B(RESULTS), TGI_BOUNCE, ROWS(tgi_pass_ssao) },
+    { "volumetric obscurance (line samples in the ball)", runs_vo,
+      B(RESULTS), TGI_BOUNCE, ROWS(tgi_pass_vo) },
+    { "HBAO (horizon angles in screen directions)", runs_hbao,
+      B(RESULTS), TGI_BOUNCE, ROWS(tgi_pass_hbao) },
+    { "GTAO (cosine-weighted horizons in view-vector slices)", runs_gtao,
+      B(RESULTS), TGI_BOUNCE, ROWS(tgi_pass_gtao) },
+    { "SSDO (directional occlusion, one indirect bounce, far field)", runs_ssdo,
+      B(RESULTS) | B(SOURCE) | B(FAR), TGI_BOUNCE, ROWS(tgi_pass_ssdo) },
+    { "bent normals and cones (far field in the cone)", runs_bentcone,
+      B(RESULTS) | B(FAR), TGI_BOUNCE, ROWS(tgi_pass_bentcone) },
+    { "reference: ray-traced AO, bent normal and near field", runs_reference,
+      B(RESULTS) | B(SOURCE) | B(BVH), TGI_BOUNCE, ROWS(tgi_pass_reference) },
+    { "cone aperture from AO (HBIL eq. 12)", wants_cone,
+      B(RESULTS), TGI_BOUNCE, ROWS(tgi_pass_cone) },
+    { "far field: SH9 environment in the bent cone", shades_far,
+      B(RESULTS) | B(FAR), TGI_BOUNCE, ROWS(tgi_pass_far) },
+    { "compose Lo = albedo/pi (1-F0) (E_direct + E_far + E_near) + emissive", composes,
+      B(DIRECT) | B(FAR) | B(RESULTS) | B(COLOR) | B(IRRADIANCE), TGI_BOUNCE, ROWS(tgi_pass_compose) },
+    { "next bounce gathers this one's radiance", iterates_bounces,
+      B(COLOR) | B(SOURCE), TGI_BOUNCE, ROWS(tgi_pass_next_bounce) },
+    /* after the bounces */
+    { "keep the radiance as next frame's history", reprojects,
+      B(GBUFFER) | B(COLOR) | B(SOURCE) | B(HISTORY), 0, ROWS(tgi_pass_keep_history) },
+};
+
+const int tgi_pass_count = (int)(sizeof tgi_passes / sizeof tgi_passes[0]);

@@ -1,0 +1,117 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * request.c - what a caller asks for: the request's defaults, and the check
+ * of every field against the limits block of tinygi.h (the same limits the
+ * CLI and the scene parser use), before anything is planned or allocated.
+ * A value past a limit is refused with TG_ERR_INPUT and a message naming
+ * the field: "slices must be 1..8, got 20".
+ */
+#include <string.h>
+#include "frame_internal.h"
+#include "../core/error.h"
+
+#define UNSET_RADIUS TG_R(-1.0f)   /* tg_request.radius: the scene's or the default */
+
+void tg_request_defaults(tg_request *r)
+{
+    memset(r, 0, sizeof *r);
+    r->width = TG_DEFAULT_WIDTH;
+    r->height = TG_DEFAULT_HEIGHT;
+    r->frames = 1;
+    r->aovs = 1u << TG_AOV_COLOR;
+    r->technique = TG_TECH_HBIL;
+    r->slices = 0;
+    r->samples = 0;
+    r->radius = UNSET_RADIUS;
+    r->bounces = -1;
+    r->interleave = 1;
+    r->gi_scale = 1;
+    r->temporal = 1;
+    r->exposure = TG_ONE;
+    r->shadow_map_size = TG_DEFAULT_SHADOW_MAP;
+}
+
+/* 1 (and the message) when v is outside lo..hi. */
+static int int_outside(tg_error *err, const char *name, long v, long lo, long hi)
+{
+    if (v >= lo && v <= hi) return 0;
+    tgi_error_range(err, name, lo, hi);
+    tgi_error_append_int(err, v);
+    return 1;
+}
+
+/* Reals: NaN and the infinities are outside every range. */
+static int real_outside(tg_error *err, const char *name, tg_real v, long lo, long hi)
+{
+    if (tg_isfinite(v) && v >= tg_from_int((int32_t)lo) && v <= tg_from_int((int32_t)hi)) return 0;
+    tgi_error_range(err, name, lo, hi);
+    tgi_error_append_real(err, v);
+    return 1;
+}
+
+static int size_outside(const tg_request *r, tg_error *err)
+{
+    if (int_outside(err, "width", r->width, 1, TG_MAX_IMAGE_SIDE)) return 1;
+    if (int_outside(err, "height", r->height, 1, TG_MAX_IMAGE_SIDE)) return 1;
+    return int_outside(err, "pixels (width x height)", (long)r->width * r->height, 1, TG_MAX_IMAGE_PIXELS);
+}
+
+static int aovs_outside(const tg_request *r, tg_error *err)
+{
+    uint32_t all = (1u << TG_AOV_COUNT) - 1u;
+    if (!(r->aovs & ~all)) return 0;
+    tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "aovs must be 0..");
+    tgi_error_append_int(err, (long)all);
+    tgi_error_append(err, " (one bit per TG_AOV_*), got bit ");
+    tgi_error_append_int(err, (long)tgi_bit_length64(r->aovs) - 1);
+    return 1;
+}
+
+/* The GI settings; <= 0 slices or samples, -1 radius and < 0 bounces are
+ * unset (the scene's gi line or the default decide). */
+static int gi_outside(const tg_request *r, tg_error *err)
+{
+    if (r->slices > 0 && int_outside(err, "slices", r->slices, 1, TG_MAX_SLICES)) return 1;
+    if (r->samples > 0 && int_outside(err, "samples", r->samples, 1, TG_MAX_SAMPLES)) return 1;
+    if (r->radius != UNSET_RADIUS && real_outside(err, "radius", r->radius, 0, TG_MAX_RADIUS)) return 1;
+    if (r->bounces >= 0 && int_outside(err, "bounces", r->bounces, 0, TG_MAX_BOUNCES)) return 1;
+    return 0;
+}
+
+/* The switches: each takes exactly the values documented in tinygi.h. */
+static int switch_outside(const tg_request *r, tg_error *err)
+{
+    return int_outside(err, "technique", (long)r->technique, 0, TG_TECH_COUNT - 1)
+        || int_outside(err, "interleave", r->interleave, 0, 1)
+        || int_outside(err, "gi_scale", r->gi_scale, 1, 2)
+        || int_outside(err, "temporal", r->temporal, 0, 1)
+        || int_outside(err, "far_mode", r->far_mode, 0, 1)
+        || int_outside(err, "shadow_pcf", r->shadow_pcf, 0, 1);
+}
+
+int tgi_request_refused(const tg_request *r, tg_error *err)
+{
+    return size_outside(r, err)
+        || int_outside(err, "frames", r->frames, 1, TG_MAX_FRAMES)
+        || aovs_outside(r, err)
+        || switch_outside(r, err)
+        || gi_outside(r, err)
+        || real_outside(err, "exposure", r->exposure, 0, TG_MAX_EXPOSURE)
+        || (r->shadow_map_size > 0
+            && int_outside(err, "shadow_map_size", r->shadow_map_size, TG_MIN_SHADOW_MAP, TG_MAX_SHADOW_MAP));
+}
+
+/* Unset GI settings from the scene's gi line, else the defaults; then the
+ * scene's values are checked like the request's. */
+int tgi_request_resolve(tg_request *r, const tg_scene *s, tg_error *err)
+{
+    if (r->slices <= 0) r->slices = s->gi.slices > 0 ? s->gi.slices : TG_DEFAULT_SLICES;
+    if (r->samples <= 0) r->samples = s->gi.samples > 0 ? s->gi.samples : TG_DEFAULT_SAMPLES;
+    if (r->radius == UNSET_RADIUS) r->radius = s->gi.radius >= 0 ? s->gi.radius : tg_from_int(TG_DEFAULT_RADIUS);
+    if (r->bounces < 0) r->bounces = s->gi.bounces >= 0 ? s->gi.bounces : TG_DEFAULT_BOUNCES;
+    if (r->aovs == 0) r->aovs = 1u << TG_AOV_COLOR;
+    if (r->shadow_map_size <= 0) r->shadow_map_size = TG_DEFAULT_SHADOW_MAP;
+    if (!gi_outside(r, err)) return 0;
+    tgi_error_append(err, " (the scene's gi line)");
+    return 1;
+}

@@ -1,0 +1,322 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * test_request.c - the API is as safe as the CLI: every tg_request field
+ * swept to its extremes (each is refused with TG_ERR_INPUT and a message
+ * naming the field, or it plans a sane arena and renders finite AOVs), the
+ * scene's gi values checked like the request's, and AOV rows outside the
+ * image refused without reading outside the frame.  Sizes are computed in
+ * double here so the test means the same on a 32-bit build (where a wrapped
+ * size_t would show as a plan far smaller than its buffers).
+ */
+#include <float.h>
+#include <limits.h>
+#include "frame_fixture.h"
+
+/* Every effect and both kinds of shadow map: a point light (six faces) and
+ * a spot, an environment, an emissive material. */
+static const char *scene_text =
+    "camera pos 0 1.2 -3 target 0 0.8 0 fov 60\n"
+    "material wall albedo 0.7 0.6 0.5 f0 0.04\n"
+    "material lamp albedo 0.5 0.5 0.5 emissive 2 2 2\n"
+    "quad p0 -3 0 -3  p1 3 0 -3  p2 3 0 3  p3 -3 0 3 material wall\n"
+    "box min -0.5 0 -0.5 max 0.5 1 0.5 material wall\n"
+    "box min 0.8 0 0.8 max 1.2 0.4 1.2 material lamp\n"
+    "light point pos 0 2.5 -1 color 1 1 1 intensity 6 shadows\n"
+    "light spot pos 1 2 -1 dir -0.3 -1 0.3 angle 40 color 1 1 1 intensity 4 shadows\n"
+    "env sky 0.4 0.5 0.7 ground 0.2 0.2 0.2\n";
+
+#define RENDER_CAP (48.0 * 1024 * 1024)   /* arena bytes this test renders at most */
+
+enum { ACCEPT, REFUSE };
+
+typedef struct sweep_case {
+    const char *field;      /* the word the refusal must contain */
+    int expect;
+    tg_request q;
+    char value[48];
+} sweep_case;
+
+static tg_scene *sweep_scene;
+static void *sweep_scene_mem;
+
+static tg_request small_request(void)
+{
+    tg_request q = request(12, 9, ALL_AOVS);
+    q.frames = 2;
+    return q;
+}
+
+static int all_finite(const rendered *r)
+{
+    int a, bad = 0;
+    size_t n = (size_t)r->plan.request.width * (size_t)r->plan.request.height, i;
+    for (a = 0; a < TG_AOV_COUNT; a++) {
+        double *v = read_aov(r, (tg_aov)a);
+        for (i = 0; i < n * (size_t)tg_aov_channels((tg_aov)a); i++) bad += !isfinite(v[i]);
+        free(v);
+    }
+    return bad == 0;
+}
+
+/* Two frames (or one), every AOV finite. */
+static void render_case(const sweep_case *c, const tg_plan *plan)
+{
+    rendered r;
+    tg_error err;
+    int f;
+    memset(&r, 0, sizeof r);
+    r.plan = *plan;
+    r.frame_mem = malloc(plan->total_bytes);
+    CHECK(r.frame_mem && tg_frame_create(plan, r.frame_mem, plan->total_bytes, &r.frame, &err) == TG_OK,
+          "%s = %s: frame create", c->field, c->value);
+    if (!r.frame) { free(r.frame_mem); return; }
+    for (f = 0; f < (plan->request.frames < 2 ? plan->request.frames : 2); f++) {
+        CHECK(tg_frame_render(r.frame, f, &err) == TG_OK, "%s = %s: render", c->field, c->value);
+        CHECK(all_finite(&r), "%s = %s: frame %d has a non-finite AOV", c->field, c->value, f);
+    }
+    free(r.frame_mem);
+}
+
+/* The arena holds at least the G-buffer depth and the shadow maps: a size
+ * that wrapped around would be smaller. */
+static double least_bytes(const tg_plan *p)
+{
+    double n = (double)p->request.shadow_map_size;
+    return (double)p->request.width * p->request.height * sizeof(tg_real) + (6.0 + 1.0) * n * n * 4.0;
+}
+
+static void run_case(const sweep_case *c)
+{
+    tg_plan plan;
+    tg_error err;
+    char msg[600];
+    tg_status s;
+    memset(&err, 0, sizeof err);
+    s = tg_plan_make(&plan, sweep_scene, &c->q, &err);
+    tg_error_format(&err, msg, sizeof msg);
+    if (c->expect == REFUSE) {
+        CHECK(s == TG_ERR_INPUT, "%s = %s: accepted (status %d), expected a refusal", c->field, c->value, (int)s);
+        CHECK(s != TG_ERR_INPUT || (strstr(msg, c->field) && strstr(msg, "must be")),
+              "%s = %s: message does not name the field: %s", c->field, c->value, msg);
+        return;
+    }
+    /* within every limit: planned, or refused only for the address space */
+    CHECK(s == TG_OK || (s == TG_ERR_INPUT && strstr(msg, "address space")),
+          "%s = %s: refused: %s", c->field, c->value, msg);
+    if (s != TG_OK) return;
+    CHECK((double)plan.total_bytes >= least_bytes(&plan), "%s = %s: plan of %.0f bytes, less than its buffers (%.0f)",
+          c->field, c->value, (double)plan.total_bytes, least_bytes(&plan));
+    if ((double)plan.total_bytes <= RENDER_CAP) render_case(c, &plan);
+}
+
+/* A case on the small request, its field still to be set. */
+static sweep_case new_case(const char *field, int expect)
+{
+    sweep_case c;
+    memset(&c, 0, sizeof c);
+    c.q = small_request();
+    c.field = field;
+    c.expect = expect;
+    return c;
+}
+
+static sweep_case int_case(const char *field, int *slot_of_q, tg_request *q, long v, int expect)
+{
+    sweep_case c = new_case(field, expect);
+    *slot_of_q = (int)v;
+    c.q = *q;
+    snprintf(c.value, sizeof c.value, "%ld", v);
+    return c;
+}
+
+/* An int field: each value with its expectation, on an otherwise small request. */
+#define SWEEP_INT(FIELD, NAME, ...) do {                                       \
+        static const long v_[][2] = { __VA_ARGS__ };                           \
+        size_t k_;                                                             \
+        for (k_ = 0; k_ < sizeof v_ / sizeof v_[0]; k_++) {                    \
+            tg_request q_ = small_request();                                   \
+            sweep_case c_ = int_case(NAME, (int *)(void *)&q_.FIELD, &q_, v_[k_][0], (int)v_[k_][1]); \
+            run_case(&c_);                                                     \
+        }                                                                      \
+    } while (0)
+
+TEST(every_int_field_at_its_extremes)
+{
+    SWEEP_INT(width, "width", { INT_MIN, REFUSE }, { -1, REFUSE }, { 0, REFUSE }, { 1, ACCEPT },
+              { TG_MAX_IMAGE_SIDE, ACCEPT }, { TG_MAX_IMAGE_SIDE + 1, REFUSE }, { INT_MAX, REFUSE });
+    SWEEP_INT(height, "height", { INT_MIN, REFUSE }, { 0, REFUSE }, { 1, ACCEPT },
+              { TG_MAX_IMAGE_SIDE, ACCEPT }, { TG_MAX_IMAGE_SIDE + 1, REFUSE }, { INT_MAX, REFUSE });
+    SWEEP_INT(frames, "frames", { INT_MIN, REFUSE }, { -1, REFUSE }, { 0, REFUSE }, { 1, ACCEPT },
+              { TG_MAX_FRAMES, ACCEPT }, { TG_MAX_FRAMES + 1L, REFUSE }, { INT_MAX, REFUSE });
+    SWEEP_INT(technique, "technique", { INT_MIN, REFUSE }, { -1, REFUSE }, { TG_TECH_COUNT, REFUSE },
+              { INT_MAX, REFUSE }, { TG_TECH_HBIL, ACCEPT }, { TG_TECH_SSDO, ACCEPT }, { TG_TECH_BENTCONE, ACCEPT });
+    SWEEP_INT(slices, "slices", { INT_MIN, ACCEPT }, { 0, ACCEPT }, { 1, ACCEPT }, { TG_MAX_SLICES, ACCEPT },
+              { TG_MAX_SLICES + 1, REFUSE }, { INT_MAX, REFUSE });
+    SWEEP_INT(samples, "samples", { INT_MIN, ACCEPT }, { 0, ACCEPT }, { 1, ACCEPT }, { TG_MAX_SAMPLES, ACCEPT },
+              { TG_MAX_SAMPLES + 1, REFUSE }, { INT_MAX, REFUSE });
+    SWEEP_INT(bounces, "bounces", { INT_MIN, ACCEPT }, { -1, ACCEPT }, { 0, ACCEPT }, { TG_MAX_BOUNCES, ACCEPT },
+              { TG_MAX_BOUNCES + 1, REFUSE }, { 1000000, REFUSE }, { INT_MAX, REFUSE });
+    SWEEP_INT(interleave, "interleave", { INT_MIN, REFUSE }, { -1, REFUSE }, { 0, ACCEPT }, { 1, ACCEPT },
+              { 2, REFUSE }, { INT_MAX, REFUSE });
+    SWEEP_INT(gi_scale, "gi_scale", { INT_MIN, REFUSE }, { 0, REFUSE }, { 1, ACCEPT }, { 2, ACCEPT },
+              { 3, REFUSE }, { INT_MAX, REFUSE });
+    SWEEP_INT(temporal, "temporal", { -1, REFUSE }, { 0, ACCEPT }, { 1, ACCEPT }, { 2, REFUSE }, { INT_MAX, REFUSE });
+    SWEEP_INT(far_mode, "far_mode", { -1, REFUSE }, { 0, ACCEPT }, { 1, ACCEPT }, { 2, REFUSE }, { INT_MAX, REFUSE });
+    SWEEP_INT(shadow_pcf, "shadow_pcf", { -1, REFUSE }, { 0, ACCEPT }, { 1, ACCEPT }, { 2, REFUSE }, { INT_MAX, REFUSE });
+    SWEEP_INT(shadow_map_size, "shadow_map_size", { INT_MIN, ACCEPT }, { 0, ACCEPT }, { 1, REFUSE },
+              { TG_MIN_SHADOW_MAP - 1, REFUSE }, { TG_MIN_SHADOW_MAP, ACCEPT }, { TG_MAX_SHADOW_MAP, ACCEPT },
+              { TG_MAX_SHADOW_MAP + 1, REFUSE }, { 13378, REFUSE }, { 1518500250, REFUSE }, { INT_MAX, REFUSE });
+}
+
+TEST(image_pixels_at_the_limit)
+{
+    static const long sizes[][3] = {   /* width, height, expectation */
+        { TG_MAX_IMAGE_SIDE, TG_MAX_IMAGE_PIXELS / TG_MAX_IMAGE_SIDE, ACCEPT },
+        { TG_MAX_IMAGE_SIDE, TG_MAX_IMAGE_PIXELS / TG_MAX_IMAGE_SIDE + 1, REFUSE },
+        { TG_MAX_IMAGE_PIXELS / TG_MAX_IMAGE_SIDE + 1, TG_MAX_IMAGE_SIDE, REFUSE },
+        { TG_MAX_IMAGE_SIDE, TG_MAX_IMAGE_SIDE, TG_MAX_IMAGE_PIXELS >= (long)TG_MAX_IMAGE_SIDE * TG_MAX_IMAGE_SIDE ? ACCEPT : REFUSE },
+        { 1, TG_MAX_IMAGE_SIDE, ACCEPT } };
+    size_t k;
+    for (k = 0; k < sizeof sizes / sizeof sizes[0]; k++) {
+        sweep_case c = new_case("pixels", (int)sizes[k][2]);
+        c.q.width = (int)sizes[k][0];
+        c.q.height = (int)sizes[k][1];
+        snprintf(c.value, sizeof c.value, "%ldx%ld", sizes[k][0], sizes[k][1]);
+        run_case(&c);
+    }
+}
+
+TEST(aovs_bits_outside_the_list)
+{
+    static const uint32_t bits[][2] = { { 0, ACCEPT }, { 1, ACCEPT }, { ALL_AOVS, ACCEPT },
+        { ALL_AOVS + 1u, REFUSE }, { 0x80000000u, REFUSE }, { 0xffffffffu, REFUSE } };
+    size_t k;
+    for (k = 0; k < sizeof bits / sizeof bits[0]; k++) {
+        sweep_case c = new_case("aovs", (int)bits[k][1]);
+        c.q.aovs = bits[k][0];
+        snprintf(c.value, sizeof c.value, "0x%lx", (unsigned long)bits[k][0]);
+        run_case(&c);
+    }
+}
+
+static void real_case(const char *field, int is_radius, tg_real v, const char *shown, int expect)
+{
+    sweep_case c = new_case(field, expect);
+    if (is_radius) c.q.radius = v; else c.q.exposure = v;
+    snprintf(c.value, sizeof c.value, "%s", shown);
+    run_case(&c);
+}
+
+TEST(radius_and_exposure_at_their_extremes)
+{
+    int k;
+    for (k = 0; k < 2; k++) {
+        const char *f = k ? "radius" : "exposure";
+        real_case(f, k, TG_REAL_MIN, "most negative", REFUSE);
+        real_case(f, k, TG_R(-2.0f), "-2", REFUSE);
+        real_case(f, k, TG_R(-0.5f), "-0.5", REFUSE);
+        real_case(f, k, 0, "0", ACCEPT);
+        real_case(f, k, TG_EPS, "smallest", ACCEPT);
+        real_case(f, k, tg_from_int(k ? TG_MAX_RADIUS : TG_MAX_EXPOSURE), "max", ACCEPT);
+        real_case(f, k, tg_add(tg_from_int(k ? TG_MAX_RADIUS : TG_MAX_EXPOSURE), TG_ONE), "max + 1", REFUSE);
+        real_case(f, k, TG_REAL_MAX, "largest", REFUSE);
+#if !TG_FIXED
+        real_case(f, k, -HUGE_VALF, "-inf", REFUSE);
+        real_case(f, k, HUGE_VALF, "inf", REFUSE);
+        real_case(f, k, nanf(""), "nan", REFUSE);
+#endif
+    }
+    real_case("radius", 1, TG_R(-1.0f), "-1 (unset)", ACCEPT);
+    real_case("exposure", 0, TG_R(-1.0f), "-1", REFUSE);
+}
+
+TEST(refusal_names_the_field_and_the_value)
+{
+    tg_request q = small_request();
+    tg_plan plan;
+    tg_error err;
+    char msg[600];
+    q.slices = 20;
+    CHECK(tg_plan_make(&plan, sweep_scene, &q, &err) == TG_ERR_INPUT, "slices 20 refused");
+    tg_error_format(&err, msg, sizeof msg);
+    CHECK(strcmp(msg, "error: slices must be 1..8, got 20") == 0, "message: %s", msg);
+    q = small_request();
+    q.exposure = TG_R(-2.5f);
+    CHECK(tg_plan_make(&plan, sweep_scene, &q, &err) == TG_ERR_INPUT, "exposure -2.5 refused");
+    tg_error_format(&err, msg, sizeof msg);
+    CHECK(strcmp(msg, "error: exposure must be 0..1000, got -2.5") == 0, "message: %s", msg);
+}
+
+/* The scene's gi values are held to the same limits (by the parser, or
+ * else by the plan), with the same words. */
+TEST(scene_gi_values_have_the_same_limits)
+{
+    static const char *lines[] = { "gi slices 20\n", "gi samples 300\n", "gi bounces 101\n" };
+    static const char *field[] = { "slices", "samples", "bounces" };
+    int k;
+    for (k = 0; k < 3; k++) {
+        char text[1024];
+        rendered r;
+        tg_request q = small_request();
+        snprintf(text, sizeof text, "%s%s", scene_text, lines[k]);
+        CHECK(!setup(&r, text, &q), "%s accepted", lines[k]);
+        CHECK(r.status == TG_ERR_INPUT && strstr(r.msg, field[k]) && strstr(r.msg, "must be"),
+              "%s: %s", lines[k], r.msg);
+        teardown(&r);
+    }
+}
+
+/* Rows outside [0, height): refused, the row zeroed, nothing past it written. */
+TEST(aov_rows_outside_the_image_are_refused)
+{
+    static const int rows[] = { 6, 7, -1, INT_MAX, INT_MIN };
+    rendered r;
+    tg_request q = request(8, 6, ALL_AOVS);
+    tg_error err;
+    size_t k;
+    int a, i;
+    CHECK(setup(&r, scene_text, &q) && tg_frame_render(r.frame, 0, &err) == TG_OK, "renders");
+    if (!r.ok) { teardown(&r); return; }
+    for (a = 0; a < TG_AOV_COUNT; a++)
+        for (k = 0; k < sizeof rows / sizeof rows[0]; k++) {
+            tg_real out[3 * 8 + 1];
+            uint8_t rgb[3 * 8 + 1];
+            int n = 8 * tg_aov_channels((tg_aov)a), bad = 0;
+            memset(out, 0x5a, sizeof out);
+            memset(rgb, 0x5a, sizeof rgb);
+            CHECK(tg_frame_aov_row(r.frame, (tg_aov)a, rows[k], out) == TG_ERR_INPUT, "aov %d row %d", a, rows[k]);
+            CHECK(tg_frame_aov_row8(r.frame, (tg_aov)a, rows[k], rgb) == TG_ERR_INPUT, "aov8 %d row %d", a, rows[k]);
+            for (i = 0; i < n; i++) bad += out[i] != 0;
+            for (i = 0; i < 24; i++) bad += rgb[i] != 0;
+            CHECK(bad == 0, "aov %d row %d: %d values not zero", a, rows[k], bad);
+            CHECK(rgb[24] == 0x5a, "aov8 %d row %d wrote past the row", a, rows[k]);
+        }
+    for (a = 0; a < TG_AOV_COUNT; a++) {
+        tg_real out[3 * 8];
+        CHECK(tg_frame_aov_row(r.frame, (tg_aov)a, 0, out) == TG_OK, "row 0 of aov %d", a);
+        CHECK(tg_frame_aov_row(r.frame, (tg_aov)a, 5, out) == TG_OK, "row 5 of aov %d", a);
+    }
+    teardown(&r);
+}
+
+int main(void)
+{
+    tg_arena arena;
+    tg_error err;
+    size_t bytes = 1u << 22;
+    sweep_scene_mem = malloc(bytes);
+    tg_arena_init(&arena, sweep_scene_mem, bytes);
+    if (tg_scene_parse(scene_text, strlen(scene_text), "sweep.scene", NULL, &arena, &sweep_scene, &err) != TG_OK) {
+        fprintf(stderr, "the sweep scene does not parse\n");
+        return 2;
+    }
+    RUN(every_int_field_at_its_extremes);
+    RUN(image_pixels_at_the_limit);
+    RUN(aovs_bits_outside_the_list);
+    RUN(radius_and_exposure_at_their_extremes);
+    RUN(refusal_names_the_field_and_the_value);
+    RUN(scene_gi_values_have_the_same_limits);
+    RUN(aov_rows_outside_the_image_are_refused);
+    free(sweep_scene_mem);
+    return check_summary();
+}
