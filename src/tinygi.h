@@ -560,7 +560,9 @@ tg_status tg_frame_create(const tg_plan *plan, void *memory, size_t size,
 tg_status tg_frame_render(tg_frame *frame, int index, tg_error *err);
 /* Row y of an AOV as linear values: `out` holds width * tg_aov_channels(aov)
  * values.  y must be in [0, height): another row is refused (TG_ERR_INPUT,
- * `out` all zeros), nothing outside the frame is read. */
+ * `out` all zeros), nothing outside the frame is read.  An AOV the plan did
+ * not compute reads as 0 (ao 1, cone pi/2, bent the normal); a value
+ * outside the enum reads as `width` zeros. */
 tg_status tg_frame_aov_row(const tg_frame *frame, tg_aov aov, int y, tg_real *out);
 /* Row y of an AOV as 8-bit RGB for viewing (`rgb` holds 3 * width bytes):
  * colour is exposed, tonemapped and sRGB-encoded; normals are 0.5n + 0.5;

@@ -28,15 +28,10 @@
 #include "check.h"
 
 /* ---- expected failures ----------------------------------------------------
- * XFAIL_REQUEST: tg_plan_make does not check every tg_request field here yet,
- *   and tg_frame_aov_row/_row8 read outside the frame for a row outside
- *   [0, height).  Both are fixed by src/frame/request.c and src/frame/aov.c
- *   on branch `frame`; remove the mark when it is merged.
  * XFAIL_HANDLE: a NULL or failed handle from an earlier call (scene, plan,
  *   frame) and a NULL err are not refused by src/frame; the one-line fix is
  *   in the comment beside each case.
- * Set a mark to NULL to expect the case to pass. */
-#define XFAIL_REQUEST "tg_plan_make's field checks and the AOV row checks (src/frame on branch frame)"
+ * Pass NULL instead of the mark to expect the case to pass. */
 #define XFAIL_HANDLE "a NULL/failed handle or NULL err in src/frame (fix beside the case)"
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -226,8 +221,8 @@ static long check_outputs(const tg_frame *frame, const tg_plan *plan)
         if (!(plan->request.aovs & (1u << a))) { guard_free(&row); guard_free(&row8); continue; }
         for (y = 0; y < h; y++) {
             const tg_real *v = (const tg_real *)row.p;
-            tg_frame_aov_row(frame, (tg_aov)a, y, (tg_real *)row.p);
-            tg_frame_aov_row8(frame, (tg_aov)a, y, row8.p);
+            if (tg_frame_aov_row(frame, (tg_aov)a, y, (tg_real *)row.p) != TG_OK ||
+                tg_frame_aov_row8(frame, (tg_aov)a, y, row8.p) != TG_OK) bad++;
             for (i = 0; i < w * c; i++) {
                 int nonneg = a == TG_AOV_COLOR || a == TG_AOV_IRRADIANCE || a == TG_AOV_DIRECT ||
                              a == TG_AOV_NEAR || a == TG_AOV_AO || a == TG_AOV_DEPTH;
@@ -1052,8 +1047,9 @@ TEST(aov_rows_outside_refused)
             guarded row8 = guard_alloc(24, 0);
             memset(row.p, 0x7F, row.size);
             memset(row8.p, 0x7F, row8.size);
-            tg_frame_aov_row(frame, (tg_aov)a, rows[i], (tg_real *)row.p);
-            tg_frame_aov_row8(frame, (tg_aov)a, rows[i], row8.p);
+            CHECK(tg_frame_aov_row(frame, (tg_aov)a, rows[i], (tg_real *)row.p) == TG_ERR_INPUT &&
+                  tg_frame_aov_row8(frame, (tg_aov)a, rows[i], row8.p) == TG_ERR_INPUT,
+                  "%s row %d: refused", tg_aov_name((tg_aov)a), rows[i]);
             for (k = 0; k < 8 * c; k++) CHECK(((tg_real *)row.p)[k] == 0, "%s row %d: zeros", tg_aov_name((tg_aov)a), rows[i]);
             for (k = 0; k < 24; k++) CHECK(row8.p[k] == 0, "%s row8 %d: zeros", tg_aov_name((tg_aov)a), rows[i]);
             CHECK(guard_intact(&row) && guard_intact(&row8), "wrote outside the row");
@@ -1209,18 +1205,18 @@ int main(void)
     CASE(scene_text_hostile_bytes, NULL);
     CASE(scene_arena_short_by_one, NULL);
     CASE(scene_io_misbehaves, NULL);
-    CASE(request_size_refused, XFAIL_REQUEST);
+    CASE(request_size_refused, NULL);
     CASE(request_size_extremes_render, NULL);
-    CASE(request_frames_and_aovs_refused, XFAIL_REQUEST);
-    CASE(request_gi_settings_refused, XFAIL_REQUEST);
-    CASE(request_switches_and_shadow_map_refused, XFAIL_REQUEST);
+    CASE(request_frames_and_aovs_refused, NULL);
+    CASE(request_gi_settings_refused, NULL);
+    CASE(request_switches_and_shadow_map_refused, NULL);
     CASE(request_limits_render, NULL);
     CASE(techniques_at_odd_sizes, NULL);
     CASE(plan_explain_any_size, NULL);
     CASE(frame_memory_any_base_and_short, NULL);
     CASE(render_indices_out_of_order, NULL);
     CASE(aov_not_requested_or_unknown, NULL);
-    CASE(aov_rows_outside_refused, XFAIL_REQUEST);
+    CASE(aov_rows_outside_refused, NULL);
     CASE(no_pointers_kept, NULL);
     CASE(plan_before_parse, XFAIL_HANDLE);
     CASE(create_from_failed_plan, XFAIL_HANDLE);
