@@ -285,6 +285,7 @@ static inline tg_real tg_sqr(tg_real a) { return tg_mul(a, a); }
 #define tg_frame_render TG_ABI(tg_frame_render)
 #define tg_frame_aov_row TG_ABI(tg_frame_aov_row)
 #define tg_frame_aov_row8 TG_ABI(tg_frame_aov_row8)
+#define tg_frame_write_pixels TG_ABI(tg_frame_write_pixels)
 
 /* ---- the core's own transcendentals (real.c; error bounds documented there) ---- */
 #if TG_FIXED
@@ -568,6 +569,46 @@ tg_status tg_frame_aov_row(const tg_frame *frame, tg_aov aov, int y, tg_real *ou
  * colour is exposed, tonemapped and sRGB-encoded; normals are 0.5n + 0.5;
  * scalar AOVs are grey.  y as for tg_frame_aov_row (zeros when refused). */
 tg_status tg_frame_aov_row8(const tg_frame *frame, tg_aov aov, int y, uint8_t *rgb);
+
+/* ---- pixels for a display ----
+ * tg_frame_write_pixels writes rows [y0, y1) of an AOV, as tg_frame_aov_row8
+ * gives them (8-bit sRGB), into `dst` in a display's pixel format: row y0 at
+ * dst, each next row `stride` bytes further (stride >= width * bytes per
+ * pixel; bytes past a row's pixels are not touched).  Each format by its
+ * bytes in memory:
+ *   TG_PIXEL_RGB565    2: one uint16_t in the MACHINE's byte order, red in
+ *                      bits 15-11, green 10-5, blue 4-0 (the Linux
+ *                      framebuffer's, LTDC's, SDL's RGB565)
+ *   TG_PIXEL_BGR565    2: the same with blue in 15-11 and red in 4-0
+ *   TG_PIXEL_RGB565_BE 2: the RGB565 value high byte first on any machine
+ *                      (what SPI panels such as the ILI9341 and ST7789 read)
+ *   TG_PIXEL_RGB888    3: R, G, B (as PPM)
+ *   TG_PIXEL_BGR888    3: B, G, R
+ *   TG_PIXEL_XRGB8888  4: one uint32_t in the machine's byte order,
+ *                      0xXXRRGGBB with X = 255, so it is opaque ARGB8888 too
+ *                      (bytes B, G, R, 255 on a little-endian machine)
+ *   TG_PIXEL_RGBA8888  4: R, G, B, 255 (as OpenGL's GL_RGBA bytes and PNG)
+ *   TG_PIXEL_GREY8     1: the Rec. 709 luma of the sRGB bytes,
+ *                      round(0.2126 R + 0.7152 G + 0.0722 B), halves up
+ * 5- and 6-bit channels are rounded to nearest, round(c * 31 / 255).  With
+ * TG_PIXELS_DITHER they are dithered instead (ordered, 4x4 Bayer):
+ * floor(c * 31 / 255 + (M + 0.5) / 16), M the Bayer index at (x mod 4,
+ * y mod 4) of the pixel's place in the FRAME, so the pattern stays still from
+ * frame to frame and does not depend on how rows are split over calls; any
+ * 4x4 block of one colour averages to c * 31 / 255 within 1/32.  The flag
+ * changes nothing in the 8-bit formats.  Without division, identical in both
+ * number types.  Uses 3 * width bytes of stack (RGB888: none).  TG_ERR_INPUT,
+ * with nothing written, for a NULL frame or dst, an unknown aov, format or
+ * flag, rows not 0 <= y0 <= y1 <= height, or a stride below a row. */
+typedef enum tg_pixel_format {
+    TG_PIXEL_RGB565, TG_PIXEL_BGR565, TG_PIXEL_RGB565_BE,
+    TG_PIXEL_RGB888, TG_PIXEL_BGR888, TG_PIXEL_XRGB8888, TG_PIXEL_RGBA8888,
+    TG_PIXEL_GREY8,
+    TG_PIXEL_FORMAT_COUNT
+} tg_pixel_format;
+enum { TG_PIXELS_DITHER = 1 };
+tg_status tg_frame_write_pixels(const tg_frame *frame, tg_aov aov, int y0, int y1,
+                                tg_pixel_format format, int flags, void *dst, size_t stride);
 
 #ifdef __cplusplus
 }

@@ -6,7 +6,9 @@
  * hand, in the machine's byte order as fbdev stores them), padding beyond
  * the visible line is untouched, rows are line_length apart, the visible
  * offset is honoured, clipping holds, and unusable devices and formats are
- * clear errors.
+ * clear errors.  Devices whose bytes are one of the core's pixel formats
+ * show frames through tg_frame_write_pixels: the same bytes as the
+ * conversion from the bitfields, screen by screen.
  */
 #include <stdint.h>
 #include <stdlib.h>
@@ -22,16 +24,16 @@
 static const uint8_t colours[4][3] = {{255, 0, 0}, {10, 200, 77}, {255, 255, 255}, {0, 0, 0}};
 
 /* Pixel values for the colours above, from the formats' definitions
- * (565: round(c * 31 / 255) etc.; alpha opaque). */
+ * (565: round(c * 31 / 255) etc.; bits of no colour, X or alpha, all ones). */
 static const struct {
     tgp_fb_format format;
     int bytes;
     uint32_t value[4];
 } expected[] = {
-    {TG_FB_XRGB8888, 4, {0x00FF0000u, 0x000AC84Du, 0x00FFFFFFu, 0x00000000u}},
+    {TG_FB_XRGB8888, 4, {0xFFFF0000u, 0xFF0AC84Du, 0xFFFFFFFFu, 0xFF000000u}},
     {TG_FB_ARGB8888, 4, {0xFFFF0000u, 0xFF0AC84Du, 0xFFFFFFFFu, 0xFF000000u}},
-    {TG_FB_XBGR8888, 4, {0x000000FFu, 0x004DC80Au, 0x00FFFFFFu, 0x00000000u}},
-    {TG_FB_BGRX8888, 4, {0x0000FF00u, 0x4DC80A00u, 0xFFFFFF00u, 0x00000000u}},
+    {TG_FB_XBGR8888, 4, {0xFF0000FFu, 0xFF4DC80Au, 0xFFFFFFFFu, 0xFF000000u}},
+    {TG_FB_BGRX8888, 4, {0x0000FFFFu, 0x4DC80AFFu, 0xFFFFFFFFu, 0x000000FFu}},
     {TG_FB_RGB888, 3, {0xFF0000u, 0x0AC84Du, 0xFFFFFFu, 0x000000u}},
     {TG_FB_BGR888, 3, {0x0000FFu, 0x4DC80Au, 0xFFFFFFu, 0x000000u}},
     {TG_FB_RGB565, 2, {0xF800u, 0x0E29u, 0xFFFFu, 0x0000u}},
@@ -152,10 +154,11 @@ TEST(clipping_and_offset)
     mem = read_file(path, size);
     unlink(path);
     if (!mem) { CHECK(0, "read back"); return; }
-    for (i = 0; i < 3; i++) CHECK(pixel_is(mem, line + 4u * (size_t)(1 + i), (uint32_t)(i + 3) << 16, 4), "clipped left %d", i);
+    for (i = 0; i < 3; i++)
+        CHECK(pixel_is(mem, line + 4u * (size_t)(1 + i), 0xFF000000u | (uint32_t)(i + 3) << 16, 4), "clipped left %d", i);
     CHECK(untouched(mem, line, 4), "left of the visible area");
-    CHECK(pixel_is(mem, (size_t)H * line + 4u * (W - 1), 1u << 16, 4), "clipped right 0");
-    CHECK(pixel_is(mem, (size_t)H * line + 4u * W, 2u << 16, 4), "clipped right 1");
+    CHECK(pixel_is(mem, (size_t)H * line + 4u * (W - 1), 0xFF000000u | 1u << 16, 4), "clipped right 0");
+    CHECK(pixel_is(mem, (size_t)H * line + 4u * W, 0xFF000000u | 2u << 16, 4), "clipped right 1");
     CHECK(untouched(mem, (size_t)H * line + 4u * (W + 1), 4), "past the right edge");
     CHECK(untouched(mem, 0, (int)line), "line 0 (above the visible area)");
     CHECK(untouched(mem, 3 * line + 4u * (W + 1), 4), "right of the screen");
@@ -243,11 +246,14 @@ TEST(unusable_devices_are_errors)
     unlink(path);
 }
 
-/* tgp_fb_view_frames renders a built-in scene and shows it centred: the
- * screen holds exactly the frame's 8-bit colour rows, converted. */
-TEST(view_shows_rendered_frame)
+static void frame_rows_color(void *user, int y, uint8_t *rgb)
 {
-    enum { FW = 16, FH = 12, SW = 20, SH = 16 };
+    tg_frame_aov_row8((tg_frame *)user, TG_AOV_COLOR, y, rgb);
+}
+
+/* A rendered w x h frame of the built-in cornell (its memory in *mem). */
+static tg_frame *cornell_frame(int w, int h, void **mem)
+{
     const char *text = tg_builtin_scene("cornell");
     static unsigned char scene_mem[1 << 20];
     tg_arena arena;
@@ -256,30 +262,35 @@ TEST(view_shows_rendered_frame)
     tg_plan plan;
     tg_frame *frame = NULL;
     tg_error err;
+    *mem = NULL;
+    memset(&err, 0, sizeof err);
+    tg_arena_init(&arena, scene_mem, sizeof scene_mem);
+    if (!text || tg_scene_parse(text, strlen(text), "cornell", NULL, &arena, &scene, &err) != TG_OK) return NULL;
+    tg_request_defaults(&req);
+    req.width = w;
+    req.height = h;
+    req.shadow_map_size = 16;
+    if (tg_plan_make(&plan, scene, &req, &err) != TG_OK) return NULL;
+    *mem = malloc(plan.total_bytes);
+    if (!*mem || tg_frame_create(&plan, *mem, plan.total_bytes, &frame, &err) != TG_OK) return NULL;
+    return tg_frame_render(frame, 0, &err) == TG_OK ? frame : NULL;
+}
+
+/* tgp_fb_view_frames renders a built-in scene and shows it centred: the
+ * screen holds exactly the frame's 8-bit colour rows, converted. */
+TEST(view_shows_rendered_frame)
+{
+    enum { FW = 16, FH = 12, SW = 20, SH = 16 };
     tgp_fb_info info;
     tgp_fb fb;
     void *frame_mem;
+    tg_frame *frame = cornell_frame(FW, FH, &frame_mem);
     char path[64], msg[256];
     unsigned char *mem;
     uint8_t rgb[FW * 3];
     int x, y, x0 = (SW - FW) / 2, y0 = (SH - FH) / 2;
     size_t line = 4u * SW;
-    memset(&err, 0, sizeof err);
-    CHECK(text != NULL, "no built-in cornell");
-    if (!text) return;
-    tg_arena_init(&arena, scene_mem, sizeof scene_mem);
-    CHECK(tg_scene_parse(text, strlen(text), "cornell", NULL, &arena, &scene, &err) == TG_OK, "%s", err.message);
-    tg_request_defaults(&req);
-    req.width = FW;
-    req.height = FH;
-    req.shadow_map_size = 16;
-    if (!scene || tg_plan_make(&plan, scene, &req, &err) != TG_OK) { CHECK(0, "plan: %s", err.message); return; }
-    frame_mem = malloc(plan.total_bytes);
-    if (!frame_mem || tg_frame_create(&plan, frame_mem, plan.total_bytes, &frame, &err) != TG_OK) {
-        CHECK(0, "frame: %s", err.message);
-        free(frame_mem);
-        return;
-    }
+    if (!frame) { CHECK(0, "cornell frame"); free(frame_mem); return; }
     tgp_fb_info_format(&info, TG_FB_XRGB8888, SW, SH, 0);
     if (make_file(path, line * SH) != 0) { CHECK(0, "temp file"); free(frame_mem); return; }
     CHECK(tgp_fb_open_file(&fb, path, &info) == 0, "%s", fb.error);
@@ -291,7 +302,7 @@ TEST(view_shows_rendered_frame)
     for (y = 0; y < FH; y++) {
         tg_frame_aov_row8(frame, TG_AOV_COLOR, y, rgb); /* the last frame shown */
         for (x = 0; x < FW; x++) {
-            uint32_t v = (uint32_t)rgb[3 * x] << 16 | (uint32_t)rgb[3 * x + 1] << 8 | rgb[3 * x + 2];
+            uint32_t v = 0xFF000000u | (uint32_t)rgb[3 * x] << 16 | (uint32_t)rgb[3 * x + 1] << 8 | rgb[3 * x + 2];
             CHECK(pixel_is(mem, (size_t)(y0 + y) * line + 4u * (size_t)(x0 + x), v, 4), "pixel (%d, %d)", x, y);
         }
     }
@@ -299,6 +310,86 @@ TEST(view_shows_rendered_frame)
     CHECK(untouched(mem, (size_t)y0 * line + 4u * (size_t)(x0 - 1), 4), "pixel left of the image");
     CHECK(untouched(mem, (size_t)(y0 + FH) * line, (int)line), "line below the image");
     free(mem);
+    free(frame_mem);
+}
+
+/* Which named layouts are one of the core's formats, in this machine's
+ * byte order (fbdev stores pixel values in it). */
+TEST(core_format_of_each_layout)
+{
+    int le = little_endian();
+    const int want[TG_FB_FORMAT_COUNT] = {
+        TG_PIXEL_XRGB8888, TG_PIXEL_XRGB8888,      /* XRGB8888, ARGB8888 */
+        le ? TG_PIXEL_RGBA8888 : -1, -1,           /* XBGR8888 (bytes R, G, B, X when little-endian), BGRX8888 */
+        le ? TG_PIXEL_BGR888 : TG_PIXEL_RGB888,    /* RGB888: red is the high byte of the value */
+        le ? TG_PIXEL_RGB888 : TG_PIXEL_BGR888,    /* BGR888 */
+        TG_PIXEL_RGB565, TG_PIXEL_BGR565,
+    };
+    tgp_fb_info info;
+    int k;
+    for (k = 0; k < TG_FB_FORMAT_COUNT; k++) {
+        tgp_fb_info_format(&info, (tgp_fb_format)k, W, H, 0);
+        CHECK(tgp_fb_core_format(&info) == want[k], "%s: %d, not %d", tgp_fb_format_name((tgp_fb_format)k),
+              tgp_fb_core_format(&info), want[k]);
+    }
+    tgp_fb_info_format(&info, TG_FB_RGB565, W, H, 0); /* RGB555 */
+    info.red.offset = 10; info.green.length = 5;
+    CHECK(tgp_fb_core_format(&info) == -1, "RGB555 taken for a core format");
+    tgp_fb_info_format(&info, TG_FB_XRGB8888, W, H, 0); /* 7-bit red */
+    info.red.length = 7;
+    CHECK(tgp_fb_core_format(&info) == -1, "XRGB7888 taken for a core format");
+}
+
+/* A frame shown through the core's writer is, byte for byte, the frame's
+ * rows converted from the bitfields: every named layout, on a screen larger
+ * than the frame, one shorter (rows clipped: the core writes the visible
+ * ones) and one narrower (converted from the bitfields, clipped), lines
+ * padded by 4 bytes, the visible area offset by a pixel and a line. */
+TEST(view_core_path_same_bytes_as_bitfields)
+{
+    enum { FW = 16, FH = 12 };
+    static const int screens[3][2] = {{20, 16}, {18, 9}, {13, 15}};
+    void *frame_mem;
+    tg_frame *frame = cornell_frame(FW, FH, &frame_mem);
+    uint8_t rgb[FW * 3];
+    int k, s;
+    if (!frame) { CHECK(0, "cornell frame"); free(frame_mem); return; }
+    for (k = 0; k < TG_FB_FORMAT_COUNT; k++)
+        for (s = 0; s < 3; s++) {
+            const char *name = tgp_fb_format_name((tgp_fb_format)k);
+            tgp_fb_info info;
+            tgp_fb shown, converted;
+            char path_a[64], path_b[64], msg[256];
+            unsigned char *a, *b;
+            size_t size;
+            int sw = screens[s][0], sh = screens[s][1];
+            tgp_fb_info_format(&info, (tgp_fb_format)k, sw, sh, 0);
+            info.line_length += 4;
+            info.xoffset = 1; /* the visible area starts one pixel in and one line down */
+            info.yoffset = 1;
+            info.line_length += (size_t)(info.bits_per_pixel / 8);
+            size = info.line_length * (size_t)(sh + 2); /* a line above and below the visible area */
+            if (make_file(path_a, size) != 0 || make_file(path_b, size) != 0) { CHECK(0, "temp file"); continue; }
+            CHECK(tgp_fb_open_file(&shown, path_a, &info) == 0 && tgp_fb_open_file(&converted, path_b, &info) == 0,
+                  "%s: %s", name, shown.error);
+            CHECK(tgp_fb_view_frames(&shown, frame, FW, FH, 1, msg, sizeof msg) == 0, "%s", msg);
+            converted.pixel_format = -1; /* the frame just shown, from the bitfields */
+            tgp_fb_draw(&converted, (sw - FW) / 2, (sh - FH) / 2, FW, FH, frame_rows_color, frame, rgb);
+            tgp_fb_close(&shown);
+            tgp_fb_close(&converted);
+            a = read_file(path_a, size);
+            b = read_file(path_b, size);
+            unlink(path_a);
+            unlink(path_b);
+            CHECK(a && b && memcmp(a, b, size) == 0, "%s on %dx%d: the core's bytes differ from the bitfields'", name, sw, sh);
+            CHECK(a && untouched(a, 0, (int)info.line_length) && untouched(a, size - info.line_length, (int)info.line_length),
+                  "%s on %dx%d: lines outside the visible area written", name, sw, sh);
+            CHECK(a && !untouched(a, (size_t)(1 + sh / 2) * info.line_length + (size_t)(sw / 2) * (size_t)(info.bits_per_pixel / 8),
+                                  info.bits_per_pixel / 8),
+                  "%s on %dx%d: nothing shown", name, sw, sh);
+            free(a);
+            free(b);
+        }
     free(frame_mem);
 }
 
@@ -310,5 +401,7 @@ int main(void)
     RUN(unsupported_formats_are_errors);
     RUN(unusable_devices_are_errors);
     RUN(view_shows_rendered_frame);
+    RUN(core_format_of_each_layout);
+    RUN(view_core_path_same_bytes_as_bitfields);
     return check_summary();
 }

@@ -25,19 +25,26 @@
 #define E_R(im) ((im)->out[0])
 #define U_R(im) ((im)->out[3])
 
-/* E with the light's shadow map (size, filter) and E without shadows. */
+#define RAYS 0   /* image_light's size for ray-cast shadows (tgi_bvh_light_visibility) */
+
+/* E with the light's shadow map (size, filter) or shadow rays (size RAYS),
+ * and E without shadows. */
 static void image_light(image *im, const geo *g, const tgi_light *l, int size, int filter)
 {
     tgi_shadow_map sm;
     const tgi_shadow_map *maps[1];
     tgi_gview v;
     tgi_rgb e = { E_R(im), im->out[1], im->out[2] }, u = { U_R(im), im->out[4], im->out[5] };
-    size_t bytes = tgi_shadow_map_bytes(l, size);
+    size_t bytes = size == RAYS ? 1 : tgi_shadow_map_bytes(l, size);
     void *mem = malloc(bytes);
     if (!mem) { fprintf(stderr, "out of memory\n"); exit(2); }
-    tgi_shadow_map_setup(&sm, l, size, v3(g->lo[0], g->lo[1], g->lo[2]), v3(g->hi[0], g->hi[1], g->hi[2]), mem);
-    sm.filter = filter;
-    tgi_shadow_map_render(&sm, g->pos, g->n);
+    if (size == RAYS) {
+        tgi_shadow_rays_setup(&sm, l, tgi_bvh_light_visibility, &bvh);
+    } else {
+        tgi_shadow_map_setup(&sm, l, size, v3(g->lo[0], g->lo[1], g->lo[2]), v3(g->hi[0], g->hi[1], g->hi[2]), mem);
+        sm.filter = filter;
+        tgi_shadow_map_render(&sm, g->pos, g->n);
+    }
     im->texel_world = dv(sm.texel_world);
     maps[0] = &sm;
     tgi_gview_of(&v, &im->gb, &im->view);
@@ -46,6 +53,10 @@ static void image_light(image *im, const geo *g, const tgi_light *l, int size, i
     free(mem);
 }
 
+static const char *method_name(int size, int filter)
+{
+    return size == RAYS ? "rays" : filter ? "bilinear" : "tent";
+}
 
 /* Unit vector from p toward the light, its distance (1e6 for a directional light). */
 static double to_light(const tgi_light *l, const double p[3], double d[3])
@@ -144,7 +155,7 @@ static tally check_visibility(const image *im, const tgi_light *l, const char *w
 
 static const int sizes[][2] = { { 40, 30 }, { 80, 60 }, { 160, 120 }, { 320, 240 }, { 640, 480 } };
 #define SIZE_COUNT ((int)(sizeof sizes / sizeof sizes[0]))
-static const int map_sizes[] = { TG_MIN_SHADOW_MAP, 64, 512, 2048 };
+static const int map_sizes[] = { TG_MIN_SHADOW_MAP, 64, 149, 512, 2048 };
 #define MAP_COUNT ((int)(sizeof map_sizes / sizeof map_sizes[0]))
 
 /* ---- a surface facing the light with nothing between is lit ---- */
@@ -251,10 +262,15 @@ static void room_check(const geo *g, const tgi_light *l, const double eye[3], co
                  * filter only with the default map (time) */
                 if ((map_sizes[m] > 512 && s > 0) || (filter && (map_sizes[m] != 512 || s != 2))) continue;
                 snprintf(what, sizeof what, "%s %dx%d map %d %s", name, im.w, im.h, map_sizes[m],
-                         filter ? "bilinear" : "tent");
+                         method_name(map_sizes[m], filter));
                 image_light(&im, g, l, map_sizes[m], filter ? TG_SHADOW_PCF_BILINEAR : TG_SHADOW_PCF_TENT);
                 lit_check(&im, l, what, analytic && m == 0, map_sizes[m] >= 512 ? im.w * im.h / 20 / ((im.w * im.h) / 5000 + 1) : 0);
             }
+        if (s + 1 < SIZE_COUNT) {   /* shadow rays: the same checks (time: not at the largest size) */
+            snprintf(what, sizeof what, "%s %dx%d rays", name, im.w, im.h);
+            image_light(&im, g, l, RAYS, 0);
+            lit_check(&im, l, what, 0, im.w * im.h / 20 / ((im.w * im.h) / 5000 + 1));
+        }
         image_free(&im);
     }
 }
@@ -306,27 +322,54 @@ static void floor_and_box(geo *g, double half, const double lo[3], const double 
     geo_bvh(g);
 }
 
+/* Shadow maps (the tent at every size, the bilinear filter at 160x120) and
+ * shadow rays (up to 320x240) against the BVH's surely lit and surely
+ * shadowed pixels; at 320x240 the map and the rays also agree (visibility
+ * within 0.5) on all but `max_disagree` percent of the pixels facing the light. */
 static void shadow_check(const geo *g, const tgi_light *l, const double eye[3], const double target[3],
-                         double fov, int size, const char *name, int min_shadowed)
+                         double fov, int size, const char *name, int min_shadowed, double max_disagree)
 {
-    int s, filter;
+    static const int method_size[3] = { -1, -1, RAYS }, method_filter[3] = { 0, 1, 0 };
+    int s, k;
     char what[96];
-    for (s = 0; s < SIZE_COUNT; s++)
-        for (filter = 0; filter < 2; filter++) {
-            image im;
+    for (s = 0; s < SIZE_COUNT; s++) {
+        image im;
+        tg_real *map_vis = NULL;
+        image_render(&im, g, NULL, eye, target, fov, sizes[s][0], sizes[s][1]);
+        for (k = 0; k < 3; k++) {
+            int msize = method_size[k] < 0 ? size : method_size[k], i, facing = 0, disagree = 0;
             tally t;
-            if (filter && s != 2) continue;  /* the bilinear filter at 160x120 (time) */
-            image_render(&im, g, NULL, eye, target, fov, sizes[s][0], sizes[s][1]);
-            snprintf(what, sizeof what, "%s %dx%d map %d %s", name, im.w, im.h, size, filter ? "bilinear" : "tent");
-            image_light(&im, g, l, size, filter ? TG_SHADOW_PCF_BILINEAR : TG_SHADOW_PCF_TENT);
+            if ((k == 1 && s != 2) || (k == 2 && s > 3)) continue;  /* time */
+            snprintf(what, sizeof what, "%s %dx%d map %d %s", name, im.w, im.h, size, method_name(msize, method_filter[k]));
+            image_light(&im, g, l, msize, method_filter[k] ? TG_SHADOW_PCF_BILINEAR : TG_SHADOW_PCF_TENT);
             t = check_visibility(&im, l, what, 1);
             if (getenv("SHADOW_COUNTS")) printf("# %s: %d shadowed %d lit %d penumbra\n", what, t.shadowed, t.lit, t.penumbra);
             /* the shadow is there (from 320x240 on: below, the margins of
              * "surely" can cover it), and so is the open floor */
             CHECK((s < 3 || t.shadowed >= min_shadowed) && t.lit >= 100,
                   "%s: %d surely shadowed, %d surely lit", what, t.shadowed, t.lit);
-            image_free(&im);
+            if (s != 3) continue;
+            if (k == 0) {   /* keep the map's visibility for the rays to compare with */
+                map_vis = (tg_real *)malloc((size_t)im.w * (size_t)im.h * sizeof(tg_real));
+                if (!map_vis) { fprintf(stderr, "out of memory\n"); exit(2); }
+                for (i = 0; i < im.w * im.h; i++)
+                    map_vis[i] = U_R(&im)[i] > 0 ? rv(dv(E_R(&im)[i]) / dv(U_R(&im)[i])) : 0;
+                continue;
+            }
+            if (k != 2 || !map_vis) continue;
+            for (i = 0; i < im.w * im.h; i++) {
+                double u = dv(U_R(&im)[i]);
+                if (im.sky[i] || u <= 0) continue;
+                facing++;
+                disagree += fabs(dv(E_R(&im)[i]) / u - dv(map_vis[i])) > 0.5;
+            }
+            if (getenv("SHADOW_COUNTS")) printf("# %s: rays and map disagree on %d of %d\n", what, disagree, facing);
+            CHECK(facing > 0 && disagree <= max_disagree / 100 * facing, "%s: rays and the map disagree on %d of %d pixels",
+                  what, disagree, facing);
         }
+        free(map_vis);
+        image_free(&im);
+    }
 }
 
 TEST(box_on_a_floor_casts_its_shadow)
@@ -338,10 +381,10 @@ TEST(box_on_a_floor_casts_its_shadow)
     tgi_light sl = make_light(TG_LIGHT_SPOT, v3(-2, 4, -1), v3(2.5, -4, 1.2), 20, 50 * DEG);
     tgi_light dl = make_light(TG_LIGHT_DIRECTIONAL, v3(0, 0, 0), v3(0.8, -1, 0.5), 1, 0);
     floor_and_box(g, 6, lo, hi);
-    shadow_check(g, &pl, eye, target, 50, 512, "box point", 30);
-    shadow_check(g, &sl, eye, target, 50, 512, "box spot", 20);
-    shadow_check(g, &dl, eye, target, 50, 512, "box directional", 15);
-    shadow_check(g, &pl, eye, target, 50, 64, "box point", 5);
+    shadow_check(g, &pl, eye, target, 50, 512, "box point", 30, 0.5);
+    shadow_check(g, &sl, eye, target, 50, 512, "box spot", 20, 0.5);
+    shadow_check(g, &dl, eye, target, 50, 512, "box directional", 15, 0.5);
+    shadow_check(g, &pl, eye, target, 50, 64, "box point", 5, 0.5);
     free(g);
 }
 
@@ -362,10 +405,10 @@ TEST(receivers_at_87_to_89_degrees_are_shadowed_and_lit)
         /* a point light 15 m away at the same elevation */
         tgi_light pl = make_light(TG_LIGHT_POINT, v3(0, 15 * cos(th), -15 * sin(th)), v3(0, -1, 0), 400, 0);
         snprintf(name, sizeof name, "%g deg directional", angles[k]);
-        shadow_check(g, &dl, eye, target, 60, 1024, name, 8);
+        shadow_check(g, &dl, eye, target, 60, 1024, name, 8, 0.5);
         if (angles[k] > 88) continue; /* the point light would sit below the box's top */
         snprintf(name, sizeof name, "%g deg point", angles[k]);
-        shadow_check(g, &pl, eye, target, 60, 1024, name, 20);
+        shadow_check(g, &pl, eye, target, 60, 1024, name, 20, 0.5);
     }
     free(g);
 }
@@ -386,17 +429,17 @@ TEST(geometry_at_and_behind_the_light_near_plane)
     rect(g, 1, 0, -5, 5, -5, 5);
     rect(g, 2, 0.01, -1, 1, 1.5, 2.5);          /* fin: z = 0.01, x in [-1, 1], y in [1.5, 2.5] */
     geo_bvh(g);
-    shadow_check(g, &pl, eye, target, 60, 512, "fin beside a point light", 300);
+    shadow_check(g, &pl, eye, target, 60, 512, "fin beside a point light", 300, 0.5);
     memset(g, 0, sizeof *g);
     rect(g, 1, 0, -5, 5, -5, 5);
     rect(g, 0, 1, 1.5, 2.5, -1, 1);              /* a wall x = 1 from above to below the spot */
     geo_bvh(g);
-    shadow_check(g, &sl, eye, target, 60, 512, "wall through a spot light's plane", 40);
+    shadow_check(g, &sl, eye, target, 60, 512, "wall through a spot light's plane", 40, 0.5);
     memset(g, 0, sizeof *g);
     rect(g, 1, 0, -5, 5, -5, 5);
     rect(g, 1, 1.98, -0.012, 0.012, -0.012, 0.012); /* plate 2 cm under the light, 2.4 cm wide */
     geo_bvh(g);
-    shadow_check(g, &pl, eye, target, 60, 512, "plate 2 cm under a point light", 50);
+    shadow_check(g, &pl, eye, target, 60, 512, "plate 2 cm under a point light", 50, 0.5);
     free(g);
 }
 
@@ -480,11 +523,11 @@ TEST(map_bytes_are_checked)
     tgi_shadow_map sm;
     static const int bad[] = { -1, 0, 1, TG_MIN_SHADOW_MAP - 1, TG_MAX_SHADOW_MAP + 1, 13378, 65536, 1518500250, INT32_MAX };
     size_t k;
-    CHECK(tgi_shadow_map_bytes(&pt, 512) == 6u * 512 * 512 * sizeof(tg_real), "point 512: %zu", tgi_shadow_map_bytes(&pt, 512));
-    CHECK(tgi_shadow_map_bytes(&dl, 512) == 512u * 512 * sizeof(tg_real), "directional 512");
+    CHECK(tgi_shadow_map_bytes(&pt, 512) == 6u * 512 * 512 * 2, "point 512 (16 bits a texel): %zu", tgi_shadow_map_bytes(&pt, 512));
+    CHECK(tgi_shadow_map_bytes(&dl, 512) == 512u * 512 * 2, "directional 512");
     CHECK(tgi_shadow_map_bytes(&pt, TG_MIN_SHADOW_MAP) > 0 && tgi_shadow_map_bytes(&pt, TG_MAX_SHADOW_MAP) > 0,
           "the limits themselves are allowed");
-    /* the largest map fits a 32-bit size_t: 6 * 8192^2 * 4 < 2^32 */
+    /* the largest map fits a 32-bit size_t: 6 * 8192^2 * 2 < 2^32 */
     CHECK((double)tgi_shadow_map_bytes(&pt, TG_MAX_SHADOW_MAP) < 4294967296.0, "largest map %zu bytes",
           tgi_shadow_map_bytes(&pt, TG_MAX_SHADOW_MAP));
     for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {

@@ -1,9 +1,11 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * fbdev.c - the Linux framebuffer output of fbdev.h: screen info, mapping,
- * pixel format conversion from the bitfields, and the `view` loop that
- * shows frames as they are rendered.  On systems without <linux/fb.h>
- * the device functions fail with a message; conversion still works.
+ * the device's pixel format (one of the core's, written by
+ * tg_frame_write_pixels, or converted here from its bitfields), and the
+ * `view` loop that shows frames as they are rendered.  On systems without
+ * <linux/fb.h> the device functions fail with a message; conversion still
+ * works.
  */
 #include "fbdev.h"
 
@@ -98,6 +100,51 @@ int tgp_fb_info_check(const tgp_fb_info *info, char *msg, size_t size)
     return 0;
 }
 
+static int host_is_little_endian(void)
+{
+    const uint16_t one = 1;
+    unsigned char b;
+    memcpy(&b, &one, 1);
+    return b == 1;
+}
+
+/* Byte of an 8-bit channel within a pixel of n bytes stored in the
+ * machine's order; -1 if the channel is not a whole byte. */
+static int channel_byte(tgp_fb_channel c, int n)
+{
+    if (c.length != 8 || c.offset % 8 != 0) return -1;
+    return host_is_little_endian() ? c.offset / 8 : n - 1 - c.offset / 8;
+}
+
+static int channel_is(tgp_fb_channel c, int offset, int length)
+{
+    return c.offset == offset && c.length == length;
+}
+
+/* The core's pixel format (tinygi.h) whose bytes are this device's, with
+ * every bit that holds no colour set; -1 if none is. */
+int tgp_fb_core_format(const tgp_fb_info *info)
+{
+    static const struct { tg_pixel_format format; int bytes; signed char r, g, b; } bytewise[] = {
+        {TG_PIXEL_RGB888, 3, 0, 1, 2}, {TG_PIXEL_BGR888, 3, 2, 1, 0}, {TG_PIXEL_RGBA8888, 4, 0, 1, 2},
+    };
+    tgp_fb_channel xrgb_r = {16, 8}, xrgb_g = {8, 8}, xrgb_b = {0, 8};
+    int n = info->bits_per_pixel / 8, r = channel_byte(info->red, n), g = channel_byte(info->green, n);
+    int b = channel_byte(info->blue, n);
+    size_t k;
+    if (n == 2 && channel_is(info->green, 5, 6) && info->transp.length == 0) {
+        if (channel_is(info->red, 11, 5) && channel_is(info->blue, 0, 5)) return TG_PIXEL_RGB565;
+        if (channel_is(info->red, 0, 5) && channel_is(info->blue, 11, 5)) return TG_PIXEL_BGR565;
+    }
+    if (r < 0 || g < 0 || b < 0) return -1;
+    if (n == 4 && r == channel_byte(xrgb_r, 4) && g == channel_byte(xrgb_g, 4) && b == channel_byte(xrgb_b, 4))
+        return TG_PIXEL_XRGB8888;
+    for (k = 0; k < sizeof bytewise / sizeof bytewise[0]; k++)
+        if (n == bytewise[k].bytes && r == bytewise[k].r && g == bytewise[k].g && b == bytewise[k].b)
+            return bytewise[k].format;
+    return -1;
+}
+
 /* Nearest value of an n-bit channel for an 8-bit one: round(c * (2^n - 1) / 255). */
 static void build_lut(uint32_t *lut, tgp_fb_channel c)
 {
@@ -114,16 +161,10 @@ static int fb_setup(tgp_fb *fb, const tgp_fb_info *info)
     build_lut(fb->lut[0], info->red);
     build_lut(fb->lut[1], info->green);
     build_lut(fb->lut[2], info->blue);
-    fb->opaque = channel_mask(info->transp);
+    fb->opaque = (info->bits_per_pixel == 32 ? 0xFFFFFFFFu : ((uint32_t)1 << info->bits_per_pixel) - 1u) &
+                 ~(channel_mask(info->red) | channel_mask(info->green) | channel_mask(info->blue));
+    fb->pixel_format = tgp_fb_core_format(info);
     return 0;
-}
-
-static int host_is_little_endian(void)
-{
-    const uint16_t one = 1;
-    unsigned char b;
-    memcpy(&b, &one, 1);
-    return b == 1;
 }
 
 void tgp_fb_convert_row(const tgp_fb *fb, const uint8_t *rgb, int n, unsigned char *dst)
@@ -316,10 +357,29 @@ static void frame_row8(void *user, int y, uint8_t *rgb)
     tg_frame_aov_row8(((frame_rows *)user)->frame, TG_AOV_COLOR, y, rgb);
 }
 
+/* The frame's colour, centred: written by the core straight into the screen
+ * when the device's format is one of the core's and the rows fit across it
+ * (the rows below or above the screen are left out), else a row at a time
+ * through `rgb` (width * 3 bytes), converted from the bitfields and clipped. */
+static int show_frame(tgp_fb *fb, tg_frame *frame, int width, int height, uint8_t *rgb)
+{
+    int x0 = (fb->info.xres - width) / 2, y0 = (fb->info.yres - height) / 2;
+    frame_rows rows;
+    if (fb->pixel_format >= 0 && width <= fb->info.xres) {
+        int first = y0 < 0 ? -y0 : 0, end = fb->info.yres - y0 < height ? fb->info.yres - y0 : height;
+        size_t line = fb->info.line_length;
+        unsigned char *at = fb->screen + (size_t)(y0 + first) * line + (size_t)x0 * (size_t)fb->bytes_per_pixel;
+        return tg_frame_write_pixels(frame, TG_AOV_COLOR, first, end, (tg_pixel_format)fb->pixel_format, 0,
+                                     at, line) == TG_OK ? 0 : -1;
+    }
+    rows.frame = frame;
+    tgp_fb_draw(fb, x0, y0, width, height, frame_row8, &rows, rgb);
+    return 0;
+}
+
 int tgp_fb_view_frames(tgp_fb *fb, tg_frame *frame, int width, int height,
                       int frames, char *msg, size_t size)
 {
-    frame_rows rows;
     uint8_t *rgb;
     tg_error err;
     int i;
@@ -332,7 +392,6 @@ int tgp_fb_view_frames(tgp_fb *fb, tg_frame *frame, int width, int height,
         snprintf(msg, size, "view: out of memory");
         return 1;
     }
-    rows.frame = frame;
     memset(&err, 0, sizeof err);
     for (i = 0; i < frames; i++) {
         tg_status s = tg_frame_render(frame, i, &err);
@@ -341,8 +400,11 @@ int tgp_fb_view_frames(tgp_fb *fb, tg_frame *frame, int width, int height,
             free(rgb);
             return 1;
         }
-        tgp_fb_draw(fb, (fb->info.xres - width) / 2, (fb->info.yres - height) / 2,
-                   width, height, frame_row8, &rows, rgb);
+        if (show_frame(fb, frame, width, height, rgb) != 0) {
+            snprintf(msg, size, "view: a %dx%d frame's rows cannot be written to the screen", width, height);
+            free(rgb);
+            return 1;
+        }
     }
     free(rgb);
     return 0;

@@ -6,10 +6,14 @@
  * (FBIOGET_VSCREENINFO / FBIOGET_FSCREENINFO), checks the pixel format and
  * maps the screen.  Rows of 8-bit RGB are converted to the device's pixel
  * format from its bitfield offsets and lengths - 16, 24 or 32 bits per
- * pixel, each of red/green/blue 1..8 bits, an optional alpha channel
- * (written opaque) - which covers XRGB8888, ARGB8888, RGB565, BGR888,
- * BGRX8888 and the other orders.  Rows are line_length bytes apart and the
- * visible area starts at (xoffset, yoffset).
+ * pixel, each of red/green/blue 1..8 bits, bits that hold no colour (alpha,
+ * padding) written as ones, i.e. opaque - which covers XRGB8888, ARGB8888,
+ * RGB565, BGR888, BGRX8888 and the other orders.  When the device's bytes
+ * are those of one of the core's pixel formats (RGB565, BGR565, RGB888,
+ * BGR888, XRGB8888, RGBA8888: tgp_fb_core_format), frames are written by
+ * tg_frame_write_pixels straight into the screen, with the same bytes.  Rows
+ * are line_length bytes apart and the visible area starts at (xoffset,
+ * yoffset).
  *
  * ioctls do not work on regular files, so tests use tgp_fb_open_file() with
  * screen info the caller supplies (tgp_fb_info_format fills one in).
@@ -54,7 +58,8 @@ typedef struct tgp_fb {
     int fd;
     int bytes_per_pixel;
     uint32_t lut[3][256];    /* 8-bit channel value -> its bits in the pixel */
-    uint32_t opaque;         /* alpha bits, all ones */
+    uint32_t opaque;         /* the bits of no colour channel, all ones */
+    int pixel_format;        /* tgp_fb_core_format's, or -1: from the bitfields */
     char error[256];
 } tgp_fb;
 
@@ -62,6 +67,12 @@ typedef struct tgp_fb {
  * means packed (xres * bytes per pixel).  Returns 0, or -1 if unknown. */
 const char *tgp_fb_format_name(tgp_fb_format format);
 int tgp_fb_info_format(tgp_fb_info *info, tgp_fb_format format, int xres, int yres, size_t line_length);
+
+/* The core's tg_pixel_format that writes exactly the bytes this format
+ * holds (the 5/6-bit channels rounded to nearest, the bits of no colour set),
+ * or -1.  In the machine's byte order: on a little-endian machine RGB888
+ * (red in bits 16-23) is the core's BGR888 and XBGR8888 its RGBA8888. */
+int tgp_fb_core_format(const tgp_fb_info *info);
 
 /* Check that tinygi can draw this format; 0, or -1 with a message. */
 int tgp_fb_info_check(const tgp_fb_info *info, char *msg, size_t size);

@@ -334,3 +334,28 @@ int tgi_bvh_occluded(const tgi_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax)
     }
     return 0;
 }
+
+#define SHADOW_EPS_REL TG_R(0.00006103515625f) /* 2^-14 of a point's coordinates */
+#define SHADOW_EPS_ULPS 8
+
+tg_real tgi_bvh_light_visibility(const void *tracer, const tgi_light *l, tg_vec3 p, tg_vec3 n, tg_real err)
+{
+    const tgi_bvh *bvh = (const tgi_bvh *)tracer;
+    tg_real s = tg_add(tg_add(tg_add(tg_abs(p.x), tg_abs(p.y)), tg_abs(p.z)), TG_ONE);
+    tg_real eps = tg_add(tg_mul(s, SHADOW_EPS_REL), SHADOW_EPS_ULPS * TG_EPS), tmax;
+    tg_vec3 o = tgi_v3_add(p, tgi_v3_scale(n, tg_add(tg_max(err, 0), eps))), d;
+    if (bvh->node_count == 0) return TG_ONE;
+    if (l->type == TG_LIGHT_DIRECTIONAL) {
+        /* out of the root box: |o - centre| + its half diagonal, and a unit */
+        const tgi_bvh_node *root = &bvh->nodes[0];
+        tg_vec3 c = tgi_v3_scale(tgi_v3_add(root->lo, root->hi), TG_R(0.5f));
+        d = tgi_v3_neg(tgi_v3_normalize_or(l->dir, tg_v3(0, tg_neg(TG_ONE), 0)));
+        tmax = tg_add(tg_add(tgi_v3_length(tgi_v3_sub(o, c)), tgi_v3_length(tgi_v3_sub(root->hi, c))), TG_ONE);
+    } else {
+        d = tgi_v3_sub(l->pos, o);
+        tmax = tg_sub(tgi_v3_length(d), eps);
+        if (tmax <= 0) return TG_ONE;
+        d = tgi_v3_normalize(d);
+    }
+    return tgi_bvh_occluded(bvh, o, d, tmax) ? 0 : TG_ONE;
+}

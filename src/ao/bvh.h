@@ -15,6 +15,7 @@
 #define TG_BVH_H
 
 #include "../core/vec.h"
+#include "../scene/scene.h"
 
 #define TG_BVH_LEAF_MAX 4      /* triangles per leaf */
 #define TG_BVH_STACK 64
@@ -63,6 +64,14 @@ int tgi_bvh_closest(const tgi_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax, tgi_
 
 /* Any hit with 0 < t < tmax: 1 if the segment is blocked. */
 int tgi_bvh_occluded(const tgi_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax);
+
+/* Shadow ray for light l from receiver p (unit normal n facing the light,
+ * position error bound err): 1 when nothing blocks the segment to the light
+ * (a point or spot) or the ray toward it (directional), else 0 - hard
+ * shadows.  The ray starts at p + n (err + 2^-14 |p|_1 + 8 ulps) and stops
+ * that much short of a point light.  `bvh` is a const tgi_bvh * (the shape
+ * of tgi_shadow_ray_fn in light/shadowmap.h). */
+tg_real tgi_bvh_light_visibility(const void *bvh, const tgi_light *l, tg_vec3 p, tg_vec3 n, tg_real err);
 
 /* One ray against one prepared triangle: 1 on a hit with 0 < t < tmax,
  * filling t and the barycentrics u, w of vertices 1 and 2. */

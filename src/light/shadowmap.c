@@ -1,15 +1,16 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * shadowmap.c - shadow maps for directional (orthographic, fitted to the
- * scene bounds), spot (perspective) and point lights (a seamless cube of six
- * wide faces), rasterized depth-only by tgi_raster_depth, and the lookup:
- * receiver-plane depth bias + 3x3 tent PCF.  See shadowmap.h.
+ * receivers' square and the scene bounds), spot (perspective) and point
+ * lights (a seamless cube of up to six wide faces, each sized on its own),
+ * rasterized depth-only in 16 bits (tgi_raster_depth16) or 32, and the
+ * lookup: receiver-plane depth bias + 2x2 bilinear or 3x3 tent PCF, or the
+ * caller's ray function.  See shadowmap.h.
  */
 #include <string.h>
 #include "shadowmap.h"
 #include "../raster/raster.h"
 
-#define SHADOW_BORDER 2                 /* texels kept for the PCF footprint at a face edge */
 #define SPOT_MAX_ANGLE TG_R(1.3962634f) /* 80 degrees */
 #define GRAZING_MIN_COS TG_R(0.001f)    /* |n . l| floor: keeps the receiver plane's slope finite */
 /* Error bounds of rasterized depth (tgi_raster_* snap vertices to 1/16 of a
@@ -20,8 +21,7 @@
 #define RECEIVER_SNAP TG_R(0.125f)
 #define RECEIVER_ULPS 8
 
-/* A right-handed light basis: forward given, right = forward x helper, up = right x forward. */
-static void light_basis(tg_vec3 forward, tg_vec3 *right, tg_vec3 *up)
+void tgi_shadow_basis(tg_vec3 forward, tg_vec3 *right, tg_vec3 *up)
 {
     tg_vec3 helper = tg_abs(forward.y) < TG_R(0.99f) ? tg_v3(0, TG_ONE, 0) : tg_v3(TG_ONE, 0, 0);
     *right = tgi_v3_normalize_or(tgi_v3_cross(forward, helper), tg_v3(TG_ONE, 0, 0));
@@ -30,14 +30,91 @@ static void light_basis(tg_vec3 forward, tg_vec3 *right, tg_vec3 *up)
 
 static int light_faces(const tgi_light *l) { return l->type == TG_LIGHT_POINT ? 6 : 1; }
 
+static size_t texel_bytes(int depth_bits)
+{
+    return depth_bits == TG_SHADOW_DEPTH32 ? sizeof(tg_real) : sizeof(uint16_t);
+}
+
+/* Storage of the faces of a finished need, each face's first texel in
+ * offset[] (may be NULL); 0 when a present face's size is out of range,
+ * the sum overflows, or no face is present. */
+static size_t need_layout(const tgi_shadow_need *nd, size_t *offset)
+{
+    size_t total = 0, texels = 0, bytes;
+    int f;
+    for (f = 0; f < nd->faces; f++) {
+        int n = nd->size[f];
+        if (offset) offset[f] = texels;
+        if (n == 0) continue;
+        if (n < TG_MIN_SHADOW_MAP || n > TG_MAX_SHADOW_MAP) return 0;
+        if (tg_size_mul((size_t)n, (size_t)n, &bytes) || tg_size_add(texels, bytes, &texels)) return 0;
+    }
+    if (tg_size_mul(texels, texel_bytes(nd->depth_bits), &total)) return 0;
+    return total;
+}
+
+void tgi_shadow_need_init(tgi_shadow_need *nd, const tgi_light *l)
+{
+    memset(nd, 0, sizeof *nd);
+    nd->faces = light_faces(l);
+    nd->depth_bits = TG_SHADOW_DEPTH16;
+}
+
+void tgi_shadow_need_all(tgi_shadow_need *nd)
+{
+    int f;
+    for (f = 0; f < nd->faces; f++) nd->seen[f] = 1, nd->window_set[f] = 0;
+}
+
+/* ceil(density) + the border on each side, within the limits (density may
+ * be anything a rule gives, including a saturated one). */
+static int face_size(tg_real density)
+{
+    int32_t n;
+    if (!(density > 0)) return TG_MIN_SHADOW_MAP;
+    if (density >= tg_from_int(TG_MAX_SHADOW_MAP)) return TG_MAX_SHADOW_MAP;
+    n = tg_to_int(density);
+    if (tg_from_int(n) < density) n++;
+    n += 2 * TG_SHADOW_BORDER;
+    return n < TG_MIN_SHADOW_MAP ? TG_MIN_SHADOW_MAP : n > TG_MAX_SHADOW_MAP ? TG_MAX_SHADOW_MAP : (int)n;
+}
+
+void tgi_shadow_need_finish(tgi_shadow_need *nd, int size_override)
+{
+    int f, largest = TG_MIN_SHADOW_MAP;
+    for (f = 0; f < nd->faces; f++) {
+        const tg_real *w = nd->window[f];
+        nd->size[f] = 0;
+        if (!nd->seen[f]) continue;
+        if (size_override > 0) { nd->size[f] = size_override; continue; }
+        if (!nd->window_set[f]) continue;   /* whole: below */
+        /* texels per unit, across the window's side */
+        nd->size[f] = face_size(tg_mul(nd->density[f], tg_max(tg_sub(w[2], w[0]), tg_sub(w[3], w[1]))));
+        if (nd->size[f] > largest) largest = nd->size[f];
+    }
+    for (f = 0; f < nd->faces; f++)     /* whole faces without a size: the largest the rule gave */
+        if (nd->seen[f] && nd->size[f] == 0) nd->size[f] = largest;
+}
+
+size_t tgi_shadow_need_bytes(const tgi_shadow_need *nd)
+{
+    return need_layout(nd, NULL);
+}
+
+/* The need of a map with every face at `size`, 16-bit. */
+static void uniform_need(tgi_shadow_need *nd, const tgi_light *l, int size)
+{
+    tgi_shadow_need_init(nd, l);
+    tgi_shadow_need_all(nd);
+    tgi_shadow_need_finish(nd, size);
+}
+
 size_t tgi_shadow_map_bytes(const tgi_light *l, int size)
 {
-    size_t texels, bytes;
+    tgi_shadow_need nd;
     if (size < TG_MIN_SHADOW_MAP || size > TG_MAX_SHADOW_MAP) return 0;
-    if (tg_size_mul((size_t)size, (size_t)size, &texels) ||
-        tg_size_mul(texels, (size_t)light_faces(l), &texels) ||
-        tg_size_mul(texels, sizeof(tg_real), &bytes)) return 0;
-    return bytes;
+    uniform_need(&nd, l, size);
+    return tgi_shadow_need_bytes(&nd);
 }
 
 static void set_row(tgi_mat4 *m, int row, tg_vec3 a, tg_real d)
@@ -51,130 +128,242 @@ static tg_vec3 box_corner(tg_vec3 lo, tg_vec3 hi, int k)
     return tg_v3((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
 }
 
+/* size / (size - 2 border): a face is widened so a PCF border lies outside its nominal extent. */
+static tg_real widening(int size)
+{
+    return tg_ratio(size, size > 2 * TG_SHADOW_BORDER + 1 ? size - 2 * TG_SHADOW_BORDER : 1);
+}
+
+/* The 16-bit depth range [lo, lo + range) of a face: range > 0 (the raster
+ * draws nothing otherwise), one step = range / 65536. */
+static void set_depth_range(tgi_shadow_face *fc, int depth_bits, tg_real lo, tg_real hi)
+{
+    fc->depth_lo = lo;
+    fc->depth_range = tg_max(tg_sub(hi, lo), TG_R(0.001f));
+    fc->depth_step = depth_bits == TG_SHADOW_DEPTH16 ? tg_ldexp(fc->depth_range, -16) : 0;
+    if (depth_bits == TG_SHADOW_DEPTH16 && fc->depth_step < TG_EPS) fc->depth_step = TG_EPS;
+}
+
 static void setup_ortho(tgi_shadow_map *sm, tg_vec3 dir, tg_vec3 lo, tg_vec3 hi)
 {
+    tgi_shadow_face *fc = &sm->face[0];
     tg_vec3 f = tgi_v3_normalize_or(dir, tg_v3(0, tg_neg(TG_ONE), 0)), r, u;
     tg_real minx = TG_REAL_MAX, maxx = TG_REAL_MIN, miny = TG_REAL_MAX, maxy = TG_REAL_MIN;
-    tg_real minz = TG_REAL_MAX, half, scale, margin;
+    tg_real minz = TG_REAL_MAX, maxz = TG_REAL_MIN, half, scale, margin;
     int k;
-    light_basis(f, &r, &u);
+    tgi_shadow_basis(f, &r, &u);
     for (k = 0; k < 8; k++) {
         tg_vec3 c = box_corner(lo, hi, k);
         tg_real x = tgi_v3_dot(c, r), y = tgi_v3_dot(c, u), z = tgi_v3_dot(c, f);
         minx = tg_min(minx, x); maxx = tg_max(maxx, x);
         miny = tg_min(miny, y); maxy = tg_max(maxy, y);
-        minz = tg_min(minz, z);
+        minz = tg_min(minz, z); maxz = tg_max(maxz, z);
+    }
+    if (sm->need.window_set[0]) {  /* across the light: the receivers' window only */
+        minx = sm->need.window[0][0]; miny = sm->need.window[0][1];
+        maxx = sm->need.window[0][2]; maxy = sm->need.window[0][3];
     }
     half = tg_mul(tg_max(tg_sub(maxx, minx), tg_sub(maxy, miny)), TG_R(0.5f));
     half = tg_max(half, TG_R(0.01f));
-    /* widen so the box plus a PCF border of texels fits */
-    half = tg_div(tg_mul(half, tg_from_int(sm->size)), tg_from_int(sm->size > 2 * SHADOW_BORDER + 1 ? sm->size - 2 * SHADOW_BORDER : 1));
+    /* widen so the square plus a PCF border of texels fits */
+    half = tg_mul(half, widening(fc->size));
     margin = tg_max(tg_mul(half, TG_R(0.01f)), TG_R(0.01f));
     scale = tg_div(TG_ONE, half);
-    sm->right[0] = r; sm->up[0] = u; sm->forward[0] = f;
+    fc->right = r; fc->up = u; fc->forward = f;
     sm->ortho_center_x = tg_mul(tg_add(minx, maxx), TG_R(0.5f));
     sm->ortho_center_y = tg_mul(tg_add(miny, maxy), TG_R(0.5f));
     sm->ortho_near = tg_sub(minz, margin);
     sm->ortho_scale = scale;
     sm->ortho_scale_inv = half;
-    sm->texel_world = tg_div(tg_mul(half, TG_R(2.0f)), tg_from_int(sm->size));
-    sm->world_to_clip[0] = tgi_m4_identity();
+    fc->texel_ndc = tg_div(TG_R(2.0f), tg_from_int(fc->size));
+    fc->texel_world = tg_div(tg_mul(half, TG_R(2.0f)), tg_from_int(fc->size));
+    /* stored depth = clip z, from 0 at the near side to past the far side */
+    set_depth_range(fc, sm->depth_bits, 0, tg_add(tg_sub(maxz, sm->ortho_near), tg_ldexp(margin, 1)));
+    fc->world_to_clip = tgi_m4_identity();
     /* clip = ((p.r - cx) s, (p.u - cy) s, p.f - near, 1) */
-    set_row(&sm->world_to_clip[0], 0, tgi_v3_scale(r, scale), tg_neg(tg_mul(sm->ortho_center_x, scale)));
-    set_row(&sm->world_to_clip[0], 1, tgi_v3_scale(u, scale), tg_neg(tg_mul(sm->ortho_center_y, scale)));
-    set_row(&sm->world_to_clip[0], 2, f, tg_neg(sm->ortho_near));
-    set_row(&sm->world_to_clip[0], 3, tg_v3(0, 0, 0), TG_ONE);
+    set_row(&fc->world_to_clip, 0, tgi_v3_scale(r, scale), tg_neg(tg_mul(sm->ortho_center_x, scale)));
+    set_row(&fc->world_to_clip, 1, tgi_v3_scale(u, scale), tg_neg(tg_mul(sm->ortho_center_y, scale)));
+    set_row(&fc->world_to_clip, 2, f, tg_neg(sm->ortho_near));
+    set_row(&fc->world_to_clip, 3, tg_v3(0, 0, 0), TG_ONE);
 }
 
-/* Perspective face: clip = (x f, y f, a z + b, z) in the light's view space. */
-static void setup_face(tgi_shadow_map *sm, int face, tg_vec3 forward, tg_real znear, tg_real zfar)
+/* Perspective face: clip = ((x - cx z) f, (y - cy z) f, a z + b, z) in the
+ * light's view space, f = 1 / the window's half side, widened by the
+ * face's border; the window (centre cx, cy, half side h in x/z, y/z) is the
+ * need's, or the whole nominal face. */
+static void setup_face(tgi_shadow_map *sm, int face, tg_vec3 forward, tg_real tan_nominal,
+                       tg_real znear, tg_real zfar)
 {
+    tgi_shadow_face *fc = &sm->face[face];
+    const tgi_shadow_need *nd = &sm->need;
     tg_vec3 r, u, o = sm->origin;
-    tgi_mat4 *m = &sm->world_to_clip[face];
+    tgi_mat4 *m = &fc->world_to_clip;
     tg_real depth_range = tg_max(tg_sub(zfar, znear), TG_R(0.001f));
     tg_real a = tg_div(tg_add(zfar, znear), depth_range);
     tg_real b = tg_neg(tg_div(tg_mul(tg_mul(TG_R(2.0f), zfar), znear), depth_range));
-    light_basis(forward, &r, &u);
-    sm->right[face] = r; sm->up[face] = u; sm->forward[face] = forward;
-    set_row(m, 0, tgi_v3_scale(r, sm->focal), tg_neg(tg_mul(tgi_v3_dot(r, o), sm->focal)));
-    set_row(m, 1, tgi_v3_scale(u, sm->focal), tg_neg(tg_mul(tgi_v3_dot(u, o), sm->focal)));
+    tg_real h = tan_nominal;
+    tg_vec3 rx, uy;
+    fc->center_x = fc->center_y = 0;
+    if (nd->window_set[face]) {
+        const tg_real *w = nd->window[face];
+        fc->center_x = tg_ldexp(tg_add(w[0], w[2]), -1);
+        fc->center_y = tg_ldexp(tg_add(w[1], w[3]), -1);
+        h = tg_max(tg_ldexp(tg_max(tg_sub(w[2], w[0]), tg_sub(w[3], w[1])), -1), TG_R(0.001f));
+    }
+    tgi_shadow_basis(forward, &r, &u);
+    fc->right = r; fc->up = u; fc->forward = forward;
+    fc->tan_half = tg_mul(h, widening(fc->size));
+    fc->focal = tg_div(TG_ONE, fc->tan_half);
+    fc->texel_ndc = tg_div(TG_R(2.0f), tg_from_int(fc->size));
+    fc->texel_world = tg_div(tg_mul(fc->tan_half, TG_R(2.0f)), tg_from_int(fc->size));
+    set_depth_range(fc, sm->depth_bits, znear, zfar);
+    rx = tgi_v3_scale(tgi_v3_sub(r, tgi_v3_scale(forward, fc->center_x)), fc->focal);
+    uy = tgi_v3_scale(tgi_v3_sub(u, tgi_v3_scale(forward, fc->center_y)), fc->focal);
+    set_row(m, 0, rx, tg_neg(tgi_v3_dot(rx, o)));
+    set_row(m, 1, uy, tg_neg(tgi_v3_dot(uy, o)));
     set_row(m, 2, tgi_v3_scale(forward, a), tg_add(tg_neg(tg_mul(tgi_v3_dot(forward, o), a)), b));
     set_row(m, 3, forward, tg_neg(tgi_v3_dot(forward, o)));
 }
 
-/* Farthest distance from the light to the bounds, plus a margin. */
-static tg_real far_distance(tg_vec3 o, tg_vec3 lo, tg_vec3 hi)
+/* Farthest distance from o to the bounds along `axis` (or in any direction,
+ * axis = 0), plus a margin: 1% and 0.1. */
+static tg_real far_along(tg_vec3 o, tg_vec3 axis, tg_vec3 lo, tg_vec3 hi)
 {
     tg_real d = 0;
-    int k;
-    for (k = 0; k < 8; k++) d = tg_max(d, tgi_v3_length(tgi_v3_sub(box_corner(lo, hi, k), o)));
+    int k, any = axis.x == 0 && axis.y == 0 && axis.z == 0;
+    for (k = 0; k < 8; k++) {
+        tg_vec3 v = tgi_v3_sub(box_corner(lo, hi, k), o);
+        d = tg_max(d, any ? tgi_v3_length(v) : tgi_v3_dot(v, axis));
+    }
     return tg_add(tg_mul(d, TG_R(1.01f)), TG_R(0.1f));
+}
+
+tg_real tgi_shadow_near(tg_vec3 origin, tg_vec3 scene_min, tg_vec3 scene_max)
+{
+    tg_real zfar = far_along(origin, tg_v3(0, 0, 0), scene_min, scene_max);
+    return tg_clamp(tg_mul(zfar, TG_R(0.0005f)), TG_R(0.005f), TG_R(0.05f));
+}
+
+tg_vec3 tgi_shadow_face_axis(const tgi_light *l, int face)
+{
+    static const tg_real axes[6][3] = {
+        { TG_ONE, 0, 0 }, { -TG_ONE, 0, 0 }, { 0, TG_ONE, 0 },
+        { 0, -TG_ONE, 0 }, { 0, 0, TG_ONE }, { 0, 0, -TG_ONE } };
+    if (l->type == TG_LIGHT_POINT && face >= 0 && face < 6)
+        return tg_v3(axes[face][0], axes[face][1], axes[face][2]);
+    return tgi_v3_normalize_or(l->dir, tg_v3(0, tg_neg(TG_ONE), 0));
+}
+
+tg_real tgi_shadow_nominal_tan(const tgi_light *l)
+{
+    tg_real angle;
+    if (l->type == TG_LIGHT_POINT) return TG_ONE;  /* 90 degree cube face */
+    if (l->type != TG_LIGHT_SPOT) return 0;
+    angle = tg_clamp(l->angle, TG_R(0.001f), SPOT_MAX_ANGLE);
+    return tg_div(tg_sin(angle), tg_max(tg_cos(angle), TG_R(0.01f)));
+}
+
+/* Place every face (the need and the memory are set). */
+static void fit(tgi_shadow_map *sm, const tgi_light *l, tg_vec3 lo, tg_vec3 hi)
+{
+    tg_real znear;
+    int f;
+    if (l->type == TG_LIGHT_DIRECTIONAL) {
+        sm->orthographic = 1;
+        setup_ortho(sm, l->dir, lo, hi);
+        sm->texel_world = sm->face[0].texel_world;
+        return;
+    }
+    sm->origin = l->pos;
+    znear = tgi_shadow_near(sm->origin, lo, hi);
+    for (f = 0; f < sm->faces; f++) {
+        tg_vec3 axis = tgi_shadow_face_axis(l, f);
+        if (sm->face[f].size == 0) continue;
+        setup_face(sm, f, axis, tgi_shadow_nominal_tan(l), znear,
+                   tg_max(far_along(sm->origin, axis, lo, hi), tg_ldexp(znear, 1)));
+        if (sm->face[f].size == sm->size) sm->texel_world = sm->face[f].texel_world;
+    }
+}
+
+void tgi_shadow_map_setup_need(tgi_shadow_map *sm, const tgi_light *l, const tgi_shadow_need *nd,
+                               tg_vec3 scene_min, tg_vec3 scene_max, void *memory)
+{
+    size_t offset[TG_SHADOW_MAX_FACES];
+    int f;
+    memset(sm, 0, sizeof *sm);
+    sm->filter = TG_SHADOW_PCF_BILINEAR;
+    sm->light = l;
+    if (need_layout(nd, offset) == 0) return;  /* empty: faces = 0 */
+    sm->need = *nd;
+    sm->faces = nd->faces;
+    sm->depth_bits = nd->depth_bits == TG_SHADOW_DEPTH32 ? TG_SHADOW_DEPTH32 : TG_SHADOW_DEPTH16;
+    sm->depth = memory;
+    for (f = 0; f < sm->faces; f++) {
+        sm->face[f].size = nd->size[f];
+        sm->face[f].offset = offset[f];
+        if (nd->size[f] > sm->size) sm->size = nd->size[f];
+    }
+    fit(sm, l, scene_min, scene_max);
 }
 
 void tgi_shadow_map_setup(tgi_shadow_map *sm, const tgi_light *l, int size,
                          tg_vec3 scene_min, tg_vec3 scene_max, void *memory)
 {
-    static const tg_real axes[6][3] = {
-        { TG_ONE, 0, 0 }, { -TG_ONE, 0, 0 }, { 0, TG_ONE, 0 },
-        { 0, -TG_ONE, 0 }, { 0, 0, TG_ONE }, { 0, 0, -TG_ONE } };
-    tg_real tan_half, zfar, znear, widen;
-    int f;
+    tgi_shadow_need nd;
+    if (size < TG_MIN_SHADOW_MAP || size > TG_MAX_SHADOW_MAP) {
+        memset(sm, 0, sizeof *sm);
+        return;
+    }
+    uniform_need(&nd, l, size);
+    tgi_shadow_map_setup_need(sm, l, &nd, scene_min, scene_max, memory);
+}
+
+void tgi_shadow_map_refit(tgi_shadow_map *sm, tg_vec3 scene_min, tg_vec3 scene_max)
+{
+    if (sm->faces == 0 || sm->ray || !sm->light) return;
+    fit(sm, sm->light, scene_min, scene_max);
+}
+
+void tgi_shadow_rays_setup(tgi_shadow_map *sm, const tgi_light *l, tgi_shadow_ray_fn ray,
+                           const void *tracer)
+{
     memset(sm, 0, sizeof *sm);
-    if (tgi_shadow_map_bytes(l, size) == 0) return; /* empty: faces = 0 */
-    sm->size = size;
-    sm->faces = light_faces(l);
-    sm->depth = (tg_real *)memory;
-    sm->texel_ndc = tg_div(TG_R(2.0f), tg_from_int(sm->size));
-    sm->filter = TG_SHADOW_PCF_TENT;
-    if (l->type == TG_LIGHT_DIRECTIONAL) {
-        sm->orthographic = 1;
-        setup_ortho(sm, l->dir, scene_min, scene_max);
-        return;
-    }
-    sm->origin = l->pos;
-    /* size / (size - 2 border): the face is widened so a PCF border lies outside its nominal cone */
-    widen = tg_ratio(sm->size, sm->size > 2 * SHADOW_BORDER + 1 ? sm->size - 2 * SHADOW_BORDER : 1);
-    if (l->type == TG_LIGHT_SPOT) {
-        tg_real angle = tg_clamp(l->angle, TG_R(0.001f), SPOT_MAX_ANGLE);
-        tan_half = tg_div(tg_sin(angle), tg_max(tg_cos(angle), TG_R(0.01f)));
-    } else {
-        tan_half = TG_ONE; /* 90 degree cube face */
-    }
-    tan_half = tg_mul(tan_half, widen);
-    sm->focal = tg_div(TG_ONE, tan_half);
-    sm->tan_half = tan_half;
-    sm->texel_world = tg_div(tg_mul(tan_half, TG_R(2.0f)), tg_from_int(sm->size));
-    zfar = far_distance(sm->origin, scene_min, scene_max);
-    znear = tg_clamp(tg_mul(zfar, TG_R(0.0005f)), TG_R(0.005f), TG_R(0.05f));
-    if (l->type == TG_LIGHT_SPOT) {
-        setup_face(sm, 0, tgi_v3_normalize_or(l->dir, tg_v3(0, tg_neg(TG_ONE), 0)), znear, zfar);
-        return;
-    }
-    for (f = 0; f < 6; f++)
-        setup_face(sm, f, tg_v3(axes[f][0], axes[f][1], axes[f][2]), znear, zfar);
+    sm->light = l;
+    sm->ray = ray;
+    sm->tracer = tracer;
 }
 
 void tgi_shadow_map_render_rows(tgi_shadow_map *sm, int face, const tg_vec3 *pos,
                                int tri_count, int y0, int y1)
 {
-    size_t n = (size_t)sm->size;
-    tg_real *depth;
-    size_t i;
-    if (face < 0 || face >= sm->faces) return;
-    depth = sm->depth + (size_t)face * n * n;
-    for (i = (size_t)y0 * n; i < (size_t)y1 * n; i++) depth[i] = TG_REAL_MAX;
-    tgi_raster_depth(depth, sm->size, sm->size, &sm->world_to_clip[face], sm->orthographic,
-                    pos, tri_count, y0, y1);
+    const tgi_shadow_face *fc;
+    size_t n, i;
+    if (face < 0 || face >= sm->faces || sm->face[face].size == 0) return;
+    fc = &sm->face[face];
+    n = (size_t)fc->size;
+    if (y0 < 0) y0 = 0;
+    if (y1 > fc->size) y1 = fc->size;
+    if (y0 >= y1) return;
+    if (sm->depth_bits == TG_SHADOW_DEPTH16) {
+        uint16_t *depth = (uint16_t *)sm->depth + fc->offset;
+        for (i = (size_t)y0 * n; i < (size_t)y1 * n; i++) depth[i] = TG_RASTER_DEPTH16_EMPTY;
+        tgi_raster_depth16(depth, fc->size, fc->size, &fc->world_to_clip, sm->orthographic,
+                           fc->depth_lo, fc->depth_range, pos, tri_count, y0, y1);
+    } else {
+        tg_real *depth = (tg_real *)sm->depth + fc->offset;
+        for (i = (size_t)y0 * n; i < (size_t)y1 * n; i++) depth[i] = TG_REAL_MAX;
+        tgi_raster_depth(depth, fc->size, fc->size, &fc->world_to_clip, sm->orthographic,
+                         pos, tri_count, y0, y1);
+    }
 }
 
 void tgi_shadow_map_render(tgi_shadow_map *sm, const tg_vec3 *pos, int tri_count)
 {
     int f;
-    for (f = 0; f < sm->faces; f++) tgi_shadow_map_render_rows(sm, f, pos, tri_count, 0, sm->size);
+    for (f = 0; f < sm->faces; f++) tgi_shadow_map_render_rows(sm, f, pos, tri_count, 0, sm->face[f].size);
 }
 
-/* Cube face whose axis dominates d: +X -X +Y -Y +Z -Z. */
-static int cube_face(tg_vec3 d)
+int tgi_shadow_cube_face(tg_vec3 d)
 {
     tg_real ax = tg_abs(d.x), ay = tg_abs(d.y), az = tg_abs(d.z);
     if (ax >= ay && ax >= az) return d.x >= 0 ? 0 : 1;
@@ -188,13 +377,20 @@ tg_real tgi_shadow_gbuffer_error(const tgi_view *view)
     return tg_add(tg_div(RECEIVER_SNAP, view->pixels_per_unit), RECEIVER_ULPS * TG_EPS);
 }
 
-/* How far the map's own depths may lie in front of the true surface, along
- * its normal, at distance `lz` (perspective) or anywhere (orthographic). */
-static tg_real map_error(const tgi_shadow_map *sm, tg_real lz)
+/* How far the face's own depths may lie in front of the true surface: along
+ * its normal at distance `lz` (perspective) or anywhere (orthographic). */
+static tg_real map_error(const tgi_shadow_map *sm, const tgi_shadow_face *fc, tg_real lz)
 {
-    tg_real texel = sm->orthographic ? sm->texel_world : tg_mul(sm->texel_world, lz);
+    tg_real texel = sm->orthographic ? fc->texel_world : tg_mul(fc->texel_world, lz);
     return tg_add(tg_add(tg_mul(texel, RECEIVER_SNAP), tg_mul(lz, RECEIVER_ULPS * TG_EPS)),
                   RECEIVER_ULPS * TG_EPS);
+}
+
+/* The constant depth bias of a lookup at distance lz: half a texel, plus one
+ * quantisation step of a 16-bit face. */
+static tg_real depth_bias(const tgi_shadow_face *fc, tg_real texel)
+{
+    return tg_add(tg_ldexp(texel, -1), fc->depth_step);
 }
 
 /* One lookup, prepared: the texel position and the receiver plane (the
@@ -207,7 +403,7 @@ static tg_real map_error(const tgi_shadow_map *sm, tg_real lz)
  * plane's horizon or round a concave corner would otherwise compare the
  * plane's continuation with whatever lies there. */
 typedef struct lookup {
-    int face;
+    const tgi_shadow_face *fc;
     tg_real ndc_x, ndc_y;
     tg_real slope_x, slope_y;   /* depth (ortho) or den (perspective) per NDC unit */
     tg_real base;               /* ortho: the receiver's depth at the lookup, biased */
@@ -217,18 +413,19 @@ typedef struct lookup {
 /* 1 when prepared, 0 when the surface faces away from the light. */
 static int prepare_ortho(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, tg_real err, lookup *q)
 {
-    tg_vec3 r = sm->right[0], u = sm->up[0], f = sm->forward[0];
+    const tgi_shadow_face *fc = &sm->face[0];
+    tg_vec3 r = fc->right, u = fc->up, f = fc->forward;
     tg_real nl_z = tgi_v3_dot(n, f), depth, inv_nz;
     if (nl_z >= 0) return 0;
     nl_z = tg_min(nl_z, tg_neg(GRAZING_MIN_COS));
     depth = tg_sub(tgi_v3_dot(p, f), sm->ortho_near);
-    err = tg_add(err, map_error(sm, tg_abs(depth)));
-    q->face = 0;
+    err = tg_add(err, map_error(sm, fc, tg_abs(depth)));
+    q->fc = fc;
     q->num = q->den_c = q->bias = 0;
     q->ndc_x = tg_mul(tg_sub(tgi_v3_dot(p, r), sm->ortho_center_x), sm->ortho_scale);
     q->ndc_y = tg_mul(tg_sub(tgi_v3_dot(p, u), sm->ortho_center_y), sm->ortho_scale);
     /* the receiver moved by err along n is err / |n . f| nearer the light */
-    q->base = tg_sub(tg_sub(depth, tg_ldexp(sm->texel_world, -1)), tg_div(err, tg_neg(nl_z)));
+    q->base = tg_sub(tg_sub(depth, depth_bias(fc, fc->texel_world)), tg_div(err, tg_neg(nl_z)));
     /* plane n.(dx, dy, dz) = 0 -> dz = -(nx dx + ny dy) / nz; world = ndc / scale */
     inv_nz = tg_div(tg_neg(sm->ortho_scale_inv), nl_z);
     q->slope_x = tg_mul(tgi_v3_dot(n, r), inv_nz);
@@ -236,37 +433,106 @@ static int prepare_ortho(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, tg_real
     return 1;
 }
 
-/* 1 when prepared, 0 when the surface faces away, -1 behind the light's map (lit). */
+/* 1 when prepared, 0 when the surface faces away, -1 behind the light's map
+ * or in an absent face (lit). */
 static int prepare_perspective(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, tg_real err, lookup *q)
 {
     tg_vec3 d = tgi_v3_sub(p, sm->origin), r, u, f;
+    const tgi_shadow_face *fc = &sm->face[sm->faces == 6 ? tgi_shadow_cube_face(d) : 0];
     tg_real lx, ly, lz, inv_lz;
-    q->face = sm->faces == 6 ? cube_face(d) : 0;
+    if (fc->size == 0) return -1;
+    q->fc = fc;
     q->base = 0;
-    r = sm->right[q->face]; u = sm->up[q->face]; f = sm->forward[q->face];
+    r = fc->right; u = fc->up; f = fc->forward;
     lz = tgi_v3_dot(d, f); lx = tgi_v3_dot(d, r); ly = tgi_v3_dot(d, u);
     if (lz <= TG_R(0.001f)) return -1;
     q->num = tgi_v3_dot(n, d);          /* n . (p - light): < 0 when the surface faces it */
     if (q->num >= 0) return 0;
     inv_lz = tg_div(TG_ONE, lz);
-    q->ndc_x = tg_mul(tg_mul(lx, sm->focal), inv_lz);
-    q->ndc_y = tg_mul(tg_mul(ly, sm->focal), inv_lz);
+    q->ndc_x = tg_mul(tg_sub(tg_mul(lx, inv_lz), fc->center_x), fc->focal);
+    q->ndc_y = tg_mul(tg_sub(tg_mul(ly, inv_lz), fc->center_y), fc->focal);
     q->den_c = tg_mul(q->num, inv_lz);  /* n . r at the lookup */
-    q->bias = tg_ldexp(tg_mul(sm->texel_world, lz), -1);
+    q->bias = depth_bias(fc, tg_mul(fc->texel_world, lz));
     /* the plane moved toward the light by err, at most half way to it */
-    err = tg_add(err, map_error(sm, lz));
+    err = tg_add(err, map_error(sm, fc, lz));
     q->num = tg_min(tg_add(q->num, err), tg_ldexp(q->num, -1));
-    q->slope_x = tg_mul(tgi_v3_dot(n, r), sm->tan_half);
-    q->slope_y = tg_mul(tgi_v3_dot(n, u), sm->tan_half);
+    q->slope_x = tg_mul(tgi_v3_dot(n, r), fc->tan_half);
+    q->slope_y = tg_mul(tgi_v3_dot(n, u), fc->tan_half);
     return 1;
 }
 
-/* Is the receiver lit at a tap whose offsets are dx + dy, against `stored`? */
-static inline int tap_lit(const lookup *q, int perspective, tg_real off, tg_real stored)
+/* A 16-bit code read back as a depth plus c: c + range q / 65536 (c = the
+ * face's depth_lo, or that plus a bias). */
+static inline tg_real depth16_plus(const tgi_shadow_face *fc, uint16_t q, tg_real c)
 {
-    if (perspective)
-        return q->num >= tg_mul(tg_add(stored, q->bias), tg_min(tg_add(q->den_c, off), q->den_c));
-    return tg_add(q->base, tg_min(off, 0)) <= stored;
+#if TG_FIXED
+    return tg_add(c, (tg_real)(((int64_t)fc->depth_range * q + 32768) >> 16));
+#else
+    return c + (float)q * fc->depth_step;
+#endif
+}
+
+static inline tg_real depth16(const tgi_shadow_face *fc, uint16_t q) { return depth16_plus(fc, q, fc->depth_lo); }
+
+#define PCF_MAX_TAPS 4
+
+/* The stored depths under a taps x taps footprint whose top-left texel is
+ * (i0, j0), row by row; TG_REAL_MAX outside the face (lit). */
+static void fetch_taps(const tgi_shadow_map *sm, const tgi_shadow_face *fc, int i0, int j0, int taps,
+                       tg_real st[PCF_MAX_TAPS][PCF_MAX_TAPS])
+{
+    int i, j, n = fc->size;
+    int inside = i0 >= 0 && j0 >= 0 && i0 + taps <= n && j0 + taps <= n;
+    for (j = 0; j < taps; j++) {
+        int ty = j0 + j;
+        size_t row = fc->offset + (size_t)(ty < 0 ? 0 : ty) * (size_t)n;
+        if (sm->depth_bits == TG_SHADOW_DEPTH16) {
+            const uint16_t *d = (const uint16_t *)sm->depth + row;
+            if (inside) {
+                for (i = 0; i < taps; i++) st[j][i] = depth16(fc, d[i0 + i]);
+                continue;
+            }
+            for (i = 0; i < taps; i++) {
+                int tx = i0 + i;
+                st[j][i] = (tx < 0 || ty < 0 || tx >= n || ty >= n) ? TG_REAL_MAX : depth16(fc, d[tx]);
+            }
+        } else {
+            const tg_real *d = (const tg_real *)sm->depth + row;
+            for (i = 0; i < taps; i++) {
+                int tx = i0 + i;
+                st[j][i] = (!inside && (tx < 0 || ty < 0 || tx >= n || ty >= n)) ? TG_REAL_MAX : d[tx];
+            }
+        }
+    }
+}
+
+/* The common case of pcf(): a 16-bit face, the footprint inside it; the
+ * codes compared as read back (the bias folded into the read-back). */
+static tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *q, int i0, int j0, int taps,
+                            const uint16_t *depth, const tg_real *wx, const tg_real *wy,
+                            const tg_real *dx, const tg_real *dy, int perspective)
+{
+    const uint16_t *row = depth + fc->offset + (size_t)j0 * (size_t)fc->size + (size_t)i0;
+    tg_real lit = 0, lo_bias = tg_add(fc->depth_lo, q->bias);
+    int i, j;
+    for (j = 0; j < taps; j++, row += fc->size) {
+        tg_real row_lit = 0;
+        if (perspective) {
+            tg_real den_row = tg_add(q->den_c, dy[j]);
+            for (i = 0; i < taps; i++) {
+                tg_real den = tg_min(tg_add(den_row, dx[i]), q->den_c);
+                if (q->num >= tg_mul(depth16_plus(fc, row[i], lo_bias), den)) row_lit = tg_add(row_lit, wx[i]);
+            }
+        } else {                            /* base + min(dx + dy, 0) <= stored, as two tests */
+            tg_real base_row = tg_add(q->base, dy[j]);
+            for (i = 0; i < taps; i++) {
+                tg_real stored = depth16(fc, row[i]);
+                if (tg_add(base_row, dx[i]) <= stored || q->base <= stored) row_lit = tg_add(row_lit, wx[i]);
+            }
+        }
+        lit = tg_add(lit, tg_mul(row_lit, wy[j]));
+    }
+    return lit;
 }
 
 /* PCF over the prepared lookup: continuous texel position (rows top to
@@ -276,16 +542,16 @@ static inline int tap_lit(const lookup *q, int perspective, tg_real off, tg_real
  * Taps outside the map, and texels where nothing was drawn, are lit. */
 static tg_real pcf(const tgi_shadow_map *sm, const lookup *q)
 {
-    tg_real half_size = tg_ldexp(tg_from_int(sm->size), -1);
-    tg_real su, sv, fx, fy, norm, lit = 0, wx[4], wy[4], dx[4], dy[4];
-    const tg_real *depth = sm->depth + (size_t)q->face * (size_t)sm->size * (size_t)sm->size;
-    int i0, j0, i, j, perspective = !sm->orthographic;
+    const tgi_shadow_face *fc = q->fc;
+    tg_real half_size = tg_ldexp(tg_from_int(fc->size), -1);
+    tg_real su, sv, fx, fy, norm, lit = 0, wx[PCF_MAX_TAPS], wy[PCF_MAX_TAPS], dx[PCF_MAX_TAPS], dy[PCF_MAX_TAPS];
+    tg_real st[PCF_MAX_TAPS][PCF_MAX_TAPS];
+    int i0, j0, i, j;
     int taps = sm->filter == TG_SHADOW_PCF_BILINEAR ? 2 : 4;
-    int inside;
     su = tg_sub(tg_mul(tg_add(q->ndc_x, TG_ONE), half_size), TG_R(0.5f));
     sv = tg_sub(tg_mul(tg_sub(TG_ONE, q->ndc_y), half_size), TG_R(0.5f));
     i0 = tg_to_int(su); j0 = tg_to_int(sv);
-    if (i0 < -2 || j0 < -2 || i0 > sm->size + 1 || j0 > sm->size + 1) return TG_ONE;
+    if (i0 < -2 || j0 < -2 || i0 > fc->size + 1 || j0 > fc->size + 1) return TG_ONE;
     fx = tg_sub(su, tg_from_int(i0));
     fy = tg_sub(sv, tg_from_int(j0));
     if (taps == 4) {
@@ -300,34 +566,25 @@ static tg_real pcf(const tgi_shadow_map *sm, const lookup *q)
     }
     for (i = 0; i < taps; i++) {
         /* tap i's texel centre (i0 + i) relative to the lookup, in NDC (y up) */
-        dx[i] = tg_mul(q->slope_x, tg_mul(tg_sub(tg_from_int(i), fx), sm->texel_ndc));
-        dy[i] = tg_mul(q->slope_y, tg_neg(tg_mul(tg_sub(tg_from_int(i), fy), sm->texel_ndc)));
+        dx[i] = tg_mul(q->slope_x, tg_mul(tg_sub(tg_from_int(i), fx), fc->texel_ndc));
+        dy[i] = tg_mul(q->slope_y, tg_neg(tg_mul(tg_sub(tg_from_int(i), fy), fc->texel_ndc)));
     }
-    /* an empty texel holds TG_REAL_MAX, which every tap test passes */
-    inside = i0 >= 0 && j0 >= 0 && i0 + taps <= sm->size && j0 + taps <= sm->size;
+    if (sm->depth_bits == TG_SHADOW_DEPTH16 && i0 >= 0 && j0 >= 0 && i0 + taps <= fc->size && j0 + taps <= fc->size)
+        return tg_saturate(tg_mul(pcf16_inside(fc, q, i0, j0, taps, (const uint16_t *)sm->depth, wx, wy, dx, dy,
+                                               !sm->orthographic), norm));
+    fetch_taps(sm, fc, i0, j0, taps, st);
     for (j = 0; j < taps; j++) {
-        int ty = j0 + j;
-        const tg_real *row = depth + (size_t)(ty < 0 ? 0 : ty) * (size_t)sm->size;
         tg_real row_lit = 0;
-        if (inside && perspective) {        /* the common cases, without per-tap checks */
+        if (!sm->orthographic) {
             tg_real den_row = tg_add(q->den_c, dy[j]);
             for (i = 0; i < taps; i++) {
                 tg_real den = tg_min(tg_add(den_row, dx[i]), q->den_c);
-                if (q->num >= tg_mul(tg_add(row[i0 + i], q->bias), den)) row_lit = tg_add(row_lit, wx[i]);
+                if (q->num >= tg_mul(tg_add(st[j][i], q->bias), den)) row_lit = tg_add(row_lit, wx[i]);
             }
-        } else if (inside) {                /* base + min(dx + dy, 0) <= stored, as two tests */
+        } else {                            /* base + min(dx + dy, 0) <= stored, as two tests */
             tg_real base_row = tg_add(q->base, dy[j]);
-            for (i = 0; i < taps; i++) {
-                tg_real stored = row[i0 + i];
-                if (tg_add(base_row, dx[i]) <= stored || q->base <= stored) row_lit = tg_add(row_lit, wx[i]);
-            }
-        } else {                            /* at the map's edge: taps outside are lit */
-            for (i = 0; i < taps; i++) {
-                int tx = i0 + i;
-                if (tx < 0 || ty < 0 || tx >= sm->size || ty >= sm->size ||
-                    tap_lit(q, perspective, tg_add(dx[i], dy[j]), row[tx]))
-                    row_lit = tg_add(row_lit, wx[i]);
-            }
+            for (i = 0; i < taps; i++)
+                if (tg_add(base_row, dx[i]) <= st[j][i] || q->base <= st[j][i]) row_lit = tg_add(row_lit, wx[i]);
         }
         lit = tg_add(lit, tg_mul(row_lit, wy[j]));
     }
@@ -338,8 +595,9 @@ tg_real tgi_shadow_visibility_err(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n
 {
     lookup q;
     int state;
-    if (sm->faces == 0) return TG_ONE;  /* no map (an impossible size) */
     position_error = tg_max(position_error, 0);
+    if (sm->ray) return sm->ray(sm->tracer, sm->light, p, n, position_error);
+    if (sm->faces == 0) return TG_ONE;  /* no map (an impossible size) */
     state = sm->orthographic ? prepare_ortho(sm, p, n, position_error, &q)
                              : prepare_perspective(sm, p, n, position_error, &q);
     if (state <= 0) return state < 0 ? TG_ONE : 0;

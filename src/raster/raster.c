@@ -466,6 +466,48 @@ static void write_surface(const tgi_gbuffer *g, const surface *sf, size_t i0, in
     }
 }
 
+/* Depth-only output: 32-bit depths (tg_real), or 16-bit codes of the depth
+ * range [lo, lo + range): q = round((depth - lo) 65536 / range), clamped to
+ * [0, TG_RASTER_DEPTH16_EMPTY - 1]; the nearest code is kept. */
+typedef struct depth_out {
+    tg_real *d32;
+    uint16_t *d16;
+    tg_real lo;
+#if TG_FIXED
+    int64_t range, recip;         /* raw Q16.16 range (>= 1); 2^48 / range */
+#else
+    float scale;                  /* 65536 / range */
+#endif
+} depth_out;
+
+static inline uint16_t depth_code(const depth_out *o, tg_real z)
+{
+#if TG_FIXED
+    int64_t dz = (int64_t)z - o->lo, q;
+    if (dz <= 0) return 0;
+    if (dz > o->range) dz = o->range;
+    q = (dz * o->recip + ((int64_t)1 << 31)) >> 32;   /* dz * recip <= 2^48 */
+#else
+    float f = (z - o->lo) * o->scale + 0.5f;
+    int32_t q;
+    if (!(f > 0.0f)) return 0;                        /* also NaN */
+    if (f >= (float)TG_RASTER_DEPTH16_EMPTY) return TG_RASTER_DEPTH16_EMPTY - 1;
+    q = (int32_t)f;
+#endif
+    return (uint16_t)(q < TG_RASTER_DEPTH16_EMPTY ? q : TG_RASTER_DEPTH16_EMPTY - 1);
+}
+
+/* Keep depth z at texel i when nearer than what is there. */
+static inline void depth_keep(const depth_out *o, size_t i, tg_real z)
+{
+    if (o->d16) {
+        uint16_t q = depth_code(o, z);
+        if (q < o->d16[i]) o->d16[i] = q;
+    } else if (z < o->d32[i]) {
+        o->d32[i] = z;
+    }
+}
+
 /* One triangle ready to draw: screen vertices ordered so area2 > 0. */
 typedef struct screen_tri {
     int32_t x[3], y[3];
@@ -558,7 +600,7 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
     }
 }
 
-static void depth_rows(tg_real *depth, int W, const tri_edges *te, const screen_tri *st, int ortho)
+static void depth_rows(const depth_out *o, int W, const tri_edges *te, const screen_tri *st, int ortho)
 {
     bary_setup b;
     int row, col;
@@ -579,12 +621,12 @@ static void depth_rows(tg_real *depth, int W, const tri_edges *te, const screen_
             if (ortho) {
                 v = u0 * b.z[0] + u1 * b.z[1] + u2 * b.z[2];
                 v = v >= 0 ? (v + su / 2) / su : -((-v + su / 2) / su);
-                if (v < depth[i]) depth[i] = (tg_real)v;
+                depth_keep(o, i, tgi_sat64(v));
             } else {
                 v = (u0 * b.q[0] + u1 * b.q[1] + u2 * b.q[2]) >> 30;
                 if (v <= 0) continue;
                 v = (b.wmin * su + v / 2) / v;
-                if (v < depth[i]) depth[i] = tgi_sat64(v);
+                depth_keep(o, i, tgi_sat64(v));
             }
         }
     }
@@ -680,7 +722,7 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
     }
 }
 
-static void depth_rows(tg_real *depth, int W, const tri_edges *te, const screen_tri *st, int ortho)
+static void depth_rows(const depth_out *o, int W, const tri_edges *te, const screen_tri *st, int ortho)
 {
     plane_basis pb;
     plane pa;
@@ -698,9 +740,10 @@ static void depth_rows(tg_real *depth, int W, const tri_edges *te, const screen_
         size_t i = (size_t)row * (size_t)W + (size_t)xa;
         for (col = xa; col < xb; col++, i++, a += pa.dx) {
             if (ortho) {
-                if (a < depth[i]) depth[i] = a;
-            } else if (a > 0.0f && wmin < a * depth[i]) {
-                depth[i] = wmin / a;
+                depth_keep(o, i, a);
+            } else if (a > 0.0f) {
+                if (o->d16) depth_keep(o, i, wmin / a);
+                else if (wmin < a * o->d32[i]) o->d32[i] = wmin / a;
             }
         }
     }
@@ -720,7 +763,7 @@ typedef struct raster_target {
     uint16_t object;
     const tg_vec3 *tri_nrm;       /* its three vertex normals */
     int cull_back, flip_back;     /* G-buffer: one-sided / twosided */
-    tg_real *depth;               /* depth-only mode */
+    depth_out dout;               /* depth-only mode */
 } raster_target;
 
 /* A clip-space vertex (inside the guard band, w > 0) to 28.4 screen
@@ -763,7 +806,7 @@ static void draw_snapped(const raster_target *rt, const clip_vertex *v, const tg
         sf.object = rt->object;
         sf.fallback_normal = flip ? tgi_v3_neg(rt->tri_nrm[0]) : rt->tri_nrm[0];
         gbuffer_rows(rt->gb, &te, &st, &sf);
-    } else depth_rows(rt->depth, rt->width, &te, &st, rt->clip.mode == MODE_ORTHO);
+    } else depth_rows(&rt->dout, rt->width, &te, &st, rt->clip.mode == MODE_ORTHO);
 }
 
 /* The common case: a triangle needing no clipping.  Normals come from nrm
@@ -888,18 +931,15 @@ void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_
     }
 }
 
-void tgi_raster_depth(tg_real *depth, int width, int height, const tgi_mat4 *world_to_clip,
-                     int orthographic, const tg_vec3 *pos, int tri_count, int y0, int y1)
+/* Depth-only rows into rt (set up by the callers below). */
+static void raster_depth_rows(raster_target *rt, const tgi_mat4 *world_to_clip, int orthographic,
+                              const tg_vec3 *pos, int tri_count)
 {
-    raster_target rt;
     const tg_real *m = world_to_clip->m;
     tg_vec3 r0 = tg_v3(m[0], m[1], m[2]), r1 = tg_v3(m[4], m[5], m[6]);
     tg_vec3 r2 = tg_v3(m[8], m[9], m[10]), r3 = tg_v3(m[12], m[13], m[14]);
     int t, k;
-    memset(&rt, 0, sizeof rt);
-    if (!target_rows(&rt, width, height, y0, y1)) return;
-    rt.clip.mode = orthographic ? MODE_ORTHO : MODE_PERSPECTIVE;
-    rt.depth = depth;
+    rt->clip.mode = orthographic ? MODE_ORTHO : MODE_PERSPECTIVE;
     for (t = 0; t < tri_count; t++) {
         clip_vertex v[3];
         for (k = 0; k < 3; k++) {
@@ -910,6 +950,34 @@ void tgi_raster_depth(tg_real *depth, int width, int height, const tgi_mat4 *wor
             v[k].w = orthographic ? TG_ONE : tg_add(tgi_v3_dot(p, r3), m[15]);
             v[k].n = tg_v3(0, 0, 0);
         }
-        draw_clip_tri(&rt, v, NULL);
+        draw_clip_tri(rt, v, NULL);
     }
+}
+
+void tgi_raster_depth(tg_real *depth, int width, int height, const tgi_mat4 *world_to_clip,
+                     int orthographic, const tg_vec3 *pos, int tri_count, int y0, int y1)
+{
+    raster_target rt;
+    memset(&rt, 0, sizeof rt);
+    if (!target_rows(&rt, width, height, y0, y1)) return;
+    rt.dout.d32 = depth;
+    raster_depth_rows(&rt, world_to_clip, orthographic, pos, tri_count);
+}
+
+void tgi_raster_depth16(uint16_t *depth, int width, int height, const tgi_mat4 *world_to_clip,
+                       int orthographic, tg_real depth_lo, tg_real depth_range,
+                       const tg_vec3 *pos, int tri_count, int y0, int y1)
+{
+    raster_target rt;
+    memset(&rt, 0, sizeof rt);
+    if (!(depth_range > 0) || !target_rows(&rt, width, height, y0, y1)) return;
+    rt.dout.d16 = depth;
+    rt.dout.lo = depth_lo;
+#if TG_FIXED
+    rt.dout.range = depth_range;
+    rt.dout.recip = (((int64_t)1 << 48) + depth_range / 2) / depth_range;
+#else
+    rt.dout.scale = 65536.0f / depth_range;
+#endif
+    raster_depth_rows(&rt, world_to_clip, orthographic, pos, tri_count);
 }

@@ -64,6 +64,18 @@ void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_
 void tgi_raster_depth(tg_real *depth, int width, int height, const tgi_mat4 *world_to_clip,
                      int orthographic, const tg_vec3 *pos, int tri_count, int y0, int y1);
 
+/* The same into 16-bit codes (shadow maps at half the memory): a depth d
+ * is stored as q = round((d - depth_lo) 65536 / depth_range), clamped to
+ * [0, TG_RASTER_DEPTH16_EMPTY - 1], and reads back as
+ * depth_lo + q depth_range / 65536, within half a step (depth_range / 2^17)
+ * plus the number type's rounding.  depth[] must be cleared by the caller to
+ * TG_RASTER_DEPTH16_EMPTY; the smallest code is kept.  depth_range > 0
+ * (nothing is drawn otherwise). */
+#define TG_RASTER_DEPTH16_EMPTY 0xFFFF
+void tgi_raster_depth16(uint16_t *depth, int width, int height, const tgi_mat4 *world_to_clip,
+                       int orthographic, tg_real depth_lo, tg_real depth_range,
+                       const tg_vec3 *pos, int tri_count, int y0, int y1);
+
 /* Test hook for the fill rule: add 1 to count[y * width + x] for every pixel
  * whose centre each triangle covers, using the rasterizer's own edge setup
  * and top-left rule, both faces, no depth test.  xy holds 6 integers per

@@ -1,0 +1,407 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * shadowview.c - the shadow size rule and face culling for a view (convex
+ * regions by polygon clipping, projected areas by the shoelace formula),
+ * the bounds of an animation, and the choice between shadow maps and
+ * shadow rays.  See shadowview.h.
+ */
+#include <string.h>
+#include "shadowview.h"
+#include "../scene/anim.h"
+
+#define POLY_MAX 24                    /* a quad or triangle cut by up to 17 planes */
+#define APEX_NEAR TG_R(0.001f)         /* the lookup's own nearest distance (lit nearer) */
+#define PLANE_MAX_TAN TG_R(1.5f)       /* light-plane coordinates kept within 1.5 x the face */
+#define CLIP_SLACK (16 * TG_EPS)       /* the clipping's own rounding */
+
+/* Inside: n . p + d >= -margin. */
+typedef struct halfspace { tg_vec3 n; tg_real d; } halfspace;
+
+/* A convex hexahedron: corner k has bit 0 = the +x side, bit 1 = +y, bit 2 =
+ * +z (of its own frame); h[] = the half-spaces -x +x -y +y -z +z. */
+typedef struct hexa { tg_vec3 c[8]; halfspace h[6]; } hexa;
+
+static tg_vec3 corner(tg_vec3 lo, tg_vec3 hi, int k)
+{
+    return tg_v3((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
+}
+
+static halfspace plane(tg_vec3 n, tg_vec3 through)
+{
+    halfspace h;
+    h.n = n;
+    h.d = tg_neg(tgi_v3_dot(n, through));
+    return h;
+}
+
+static void hexa_box(hexa *x, tg_vec3 lo, tg_vec3 hi)
+{
+    int k;
+    for (k = 0; k < 8; k++) x->c[k] = corner(lo, hi, k);
+    x->h[0] = plane(tg_v3(TG_ONE, 0, 0), lo); x->h[1] = plane(tg_v3(-TG_ONE, 0, 0), hi);
+    x->h[2] = plane(tg_v3(0, TG_ONE, 0), lo); x->h[3] = plane(tg_v3(0, -TG_ONE, 0), hi);
+    x->h[4] = plane(tg_v3(0, 0, TG_ONE), lo); x->h[5] = plane(tg_v3(0, 0, -TG_ONE), hi);
+}
+
+/* The frustum |x| <= z tx, |y| <= z ty, znear <= z <= zfar of the frame
+ * (o; r, u, f), its side and far planes moved out by `grow` (world units):
+ * |x| <= (z + ax) tx with ax = grow sqrt(1 + tx^2) / tx, the same in y,
+ * z <= zfar + grow.  Still a hexahedron with planar faces. */
+static void hexa_frustum(hexa *x, tg_vec3 o, tg_vec3 r, tg_vec3 u, tg_vec3 f, tg_real tx, tg_real ty,
+                         tg_real znear, tg_real zfar, tg_real grow)
+{
+    tg_real lx = tg_sqrt(tg_add(TG_ONE, tg_mul(tx, tx))), ly = tg_sqrt(tg_add(TG_ONE, tg_mul(ty, ty)));
+    tg_real ax = tg_div(tg_mul(grow, lx), tx), ay = tg_div(tg_mul(grow, ly), ty);
+    tg_vec3 ftx = tgi_v3_scale(f, tx), fty = tgi_v3_scale(f, ty);
+    tg_vec3 ox = tgi_v3_sub(o, tgi_v3_scale(f, ax)), oy = tgi_v3_sub(o, tgi_v3_scale(f, ay));
+    int k;
+    zfar = tg_add(zfar, grow);
+    for (k = 0; k < 8; k++) {
+        tg_real z = (k & 4) ? zfar : znear;
+        tg_real hx = tg_mul(tg_add(z, ax), tx), hy = tg_mul(tg_add(z, ay), ty);
+        tg_vec3 p = tgi_v3_add(o, tgi_v3_scale(f, z));
+        p = tgi_v3_add(p, tgi_v3_scale(r, (k & 1) ? hx : tg_neg(hx)));
+        x->c[k] = tgi_v3_add(p, tgi_v3_scale(u, (k & 2) ? hy : tg_neg(hy)));
+    }
+    /* the side planes through the apexes moved back by ax (x) and ay (y) */
+    x->h[0] = plane(tgi_v3_scale(tgi_v3_add(ftx, r), tg_div(TG_ONE, lx)), ox);  /* x >= -(z + ax) tx */
+    x->h[1] = plane(tgi_v3_scale(tgi_v3_sub(ftx, r), tg_div(TG_ONE, lx)), ox);  /* x <= (z + ax) tx */
+    x->h[2] = plane(tgi_v3_scale(tgi_v3_add(fty, u), tg_div(TG_ONE, ly)), oy);
+    x->h[3] = plane(tgi_v3_scale(tgi_v3_sub(fty, u), tg_div(TG_ONE, ly)), oy);
+    x->h[4] = plane(f, tgi_v3_add(o, tgi_v3_scale(f, znear)));
+    x->h[5] = plane(tgi_v3_neg(f), tgi_v3_add(o, tgi_v3_scale(f, zfar)));
+}
+
+/* Cut the convex polygon p[0..n) by half-spaces h[0..count) grown by
+ * margin (Sutherland-Hodgman); returns the vertices left. */
+static int clip(tg_vec3 *p, int n, const halfspace *h, int count, tg_real margin)
+{
+    tg_vec3 tmp[POLY_MAX];
+    int k, i;
+    for (k = 0; k < count && n > 0; k++) {
+        int m = 0;
+        for (i = 0; i < n; i++) {
+            tg_vec3 a = p[i], b = p[i + 1 == n ? 0 : i + 1];
+            tg_real da = tg_add(tg_add(tgi_v3_dot(h[k].n, a), h[k].d), margin);
+            tg_real db = tg_add(tg_add(tgi_v3_dot(h[k].n, b), h[k].d), margin);
+            if (da >= 0 && m < POLY_MAX) tmp[m++] = a;
+            if ((da >= 0) != (db >= 0) && m < POLY_MAX)
+                tmp[m++] = tgi_v3_lerp(a, b, tg_clamp(tg_div(da, tg_sub(da, db)), 0, TG_ONE));
+        }
+        n = m;
+        memcpy(p, tmp, (size_t)n * sizeof *p);
+    }
+    return n;
+}
+
+/* ---- projections onto the image and the light plane ---- */
+
+/* What one face of the light sees: its frame and how a point maps onto its
+ * light plane (x/z, y/z; or, directional, the light basis's x, y relative
+ * to `origin`, times `scale`). */
+typedef struct light_face {
+    int perspective;
+    tg_vec3 o, r, u, f;
+    tg_real tan_nominal, scale;
+    hexa pyramid;                      /* perspective: the face's region from APEX_NEAR to the far bound */
+} light_face;
+
+static void light_plane(const light_face *lf, tg_vec3 p, tg_real *x, tg_real *y)
+{
+    tg_vec3 d = tgi_v3_sub(p, lf->o);
+    tg_real lim;
+    if (!lf->perspective) {
+        *x = tg_mul(tgi_v3_dot(d, lf->r), lf->scale);
+        *y = tg_mul(tgi_v3_dot(d, lf->u), lf->scale);
+        return;
+    }
+    {
+        tg_real inv = tg_div(TG_ONE, tg_max(tgi_v3_dot(d, lf->f), APEX_NEAR));
+        lim = tg_mul(lf->tan_nominal, PLANE_MAX_TAN);
+        *x = tg_clamp(tg_mul(tgi_v3_dot(d, lf->r), inv), tg_neg(lim), lim);
+        *y = tg_clamp(tg_mul(tgi_v3_dot(d, lf->u), inv), tg_neg(lim), lim);
+    }
+}
+
+static void image_plane(const tgi_view *v, tg_vec3 p, tg_real *x, tg_real *y)
+{
+    tg_vec3 d = tgi_v3_sub(p, v->eye);
+    tg_real inv = tg_div(TG_ONE, tg_max(tgi_v3_dot(d, v->forward), tg_ldexp(v->znear, -1)));
+    *x = tg_clamp(tg_mul(tg_mul(tgi_v3_dot(d, v->right), v->focal_x), inv), TG_R(-2.0f), TG_R(2.0f));
+    *y = tg_clamp(tg_mul(tg_mul(tgi_v3_dot(d, v->up), v->focal_y), inv), TG_R(-2.0f), TG_R(2.0f));
+}
+
+/* Twice the signed area of a projected polygon (shoelace, about its first vertex). */
+static tg_real shoelace(const tg_real *x, const tg_real *y, int n)
+{
+    tg_real s = 0;
+    int i;
+    for (i = 1; i + 1 < n; i++) {
+        tg_real ax = tg_sub(x[i], x[0]), ay = tg_sub(y[i], y[0]);
+        tg_real bx = tg_sub(x[i + 1], x[0]), by = tg_sub(y[i + 1], y[0]);
+        s = tg_add(s, tg_sub(tg_mul(ax, by), tg_mul(ay, bx)));
+    }
+    return s;
+}
+
+/* A polygon's areas: on the image (NDC units^2) and on the light plane. */
+static void areas(const tgi_view *v, const light_face *lf, const tg_vec3 *p, int n,
+                  tg_real *cam, tg_real *light)
+{
+    tg_real cx[POLY_MAX], cy[POLY_MAX], lx[POLY_MAX], ly[POLY_MAX];
+    int i;
+    for (i = 0; i < n; i++) {
+        image_plane(v, p[i], &cx[i], &cy[i]);
+        light_plane(lf, p[i], &lx[i], &ly[i]);
+    }
+    *cam = tg_add(*cam, tg_ldexp(tg_abs(shoelace(cx, cy, n)), -1));
+    *light = tg_add(*light, tg_ldexp(tg_abs(shoelace(lx, ly, n)), -1));
+}
+
+/* ---- the region of one face ---- */
+
+/* What the region's boundary adds up: seen, the window, the volume's areas. */
+typedef struct region {
+    int seen;
+    tg_real w[4];
+    tg_real cam, light;
+} region;
+
+static void region_add(region *rg, const tgi_view *v, const light_face *lf, const tg_vec3 *p, int n)
+{
+    int i;
+    for (i = 0; i < n; i++) {
+        tg_real x, y;
+        light_plane(lf, p[i], &x, &y);
+        if (!rg->seen) { rg->w[0] = rg->w[2] = x; rg->w[1] = rg->w[3] = y; }
+        rg->seen = 1;
+        rg->w[0] = tg_min(rg->w[0], x); rg->w[2] = tg_max(rg->w[2], x);
+        rg->w[1] = tg_min(rg->w[1], y); rg->w[3] = tg_max(rg->w[3], y);
+    }
+    areas(v, lf, p, n, &rg->cam, &rg->light);
+}
+
+/* The boundary of the intersection of hexahedra hx[0..count): each one's
+ * faces cut by the others' half-spaces (grown by margin); every piece left
+ * goes to the region.  Exact for convex hexahedra: the intersection is
+ * empty exactly when no piece is left. */
+static void intersect(region *rg, const hexa *const *hx, int count, tg_real margin,
+                      const tgi_view *v, const light_face *lf)
+{
+    int a, b, face;
+    for (a = 0; a < count; a++)
+        for (face = 0; face < 6; face++) {
+            int axis = face >> 1, side = face & 1, ua = (axis + 1) % 3, wa = (axis + 2) % 3, n = 4, k;
+            static const int su[4] = { 0, 1, 1, 0 }, sw[4] = { 0, 0, 1, 1 };
+            tg_vec3 p[POLY_MAX];
+            for (k = 0; k < 4; k++) p[k] = hx[a]->c[(side << axis) | (su[k] << ua) | (sw[k] << wa)];
+            for (b = 0; b < count && n > 0; b++)
+                if (b != a) n = clip(p, n, hx[b]->h, 6, margin);
+            if (n > 0) region_add(rg, v, lf, p, n);
+        }
+}
+
+/* ---- the rule ---- */
+
+/* The camera's frustum, its far side cut at the bounds' farthest corner;
+ * 0 when the bounds lie wholly behind its near plane. */
+static int camera_hexa(hexa *x, const tgi_view *v, tg_vec3 lo, tg_vec3 hi, tg_real margin)
+{
+    tg_real zfar = 0, tx = tg_div(TG_ONE, v->focal_x), ty = tg_div(TG_ONE, v->focal_y);
+    int k;
+    for (k = 0; k < 8; k++) zfar = tg_max(zfar, tgi_v3_dot(tgi_v3_sub(corner(lo, hi, k), v->eye), v->forward));
+    zfar = tg_min(tg_add(zfar, margin), v->zfar);
+    if (zfar <= v->znear) return 0;
+    hexa_frustum(x, v->eye, v->right, v->up, v->forward, tx, ty, v->znear, zfar, margin);
+    return 1;
+}
+
+static void light_face_make(light_face *lf, const tgi_light *l, int face, tg_vec3 lo, tg_vec3 hi, tg_real margin)
+{
+    tg_real zfar = 0;
+    int k;
+    memset(lf, 0, sizeof *lf);
+    lf->f = tgi_shadow_face_axis(l, face);
+    tgi_shadow_basis(lf->f, &lf->r, &lf->u);
+    lf->perspective = l->type != TG_LIGHT_DIRECTIONAL;
+    lf->tan_nominal = tgi_shadow_nominal_tan(l);
+    if (!lf->perspective) {
+        /* light-plane coordinates about the bounds' centre, scaled to about 1 */
+        tg_vec3 c = tgi_v3_scale(tgi_v3_add(lo, hi), TG_R(0.5f));
+        lf->o = c;
+        lf->scale = tg_div(TG_ONE, tg_max(tgi_v3_length(tgi_v3_sub(hi, c)), TG_R(0.001f)));
+        return;
+    }
+    lf->o = l->pos;
+    for (k = 0; k < 8; k++) zfar = tg_max(zfar, tgi_v3_dot(tgi_v3_sub(corner(lo, hi, k), lf->o), lf->f));
+    hexa_frustum(&lf->pyramid, lf->o, lf->r, lf->u, lf->f, lf->tan_nominal, lf->tan_nominal,
+                 APEX_NEAR, tg_max(zfar, tg_ldexp(APEX_NEAR, 1)), margin);
+}
+
+/* Facing both the camera and the light (the side the camera sees is the lit one). */
+static int lit_and_seen(const tgi_light *l, const tgi_view *v, const tg_vec3 *t)
+{
+    tg_vec3 n, c = tgi_v3_scale(tgi_v3_add(tgi_v3_add(t[0], t[1]), t[2]), TG_R(1.0f / 3.0f));
+    tg_real to_eye, to_light;
+    if (!tgi_face_normal(t[0], t[1], t[2], &n)) return 0;
+    to_eye = tgi_v3_dot(n, tgi_v3_sub(v->eye, c));
+    to_light = l->type == TG_LIGHT_DIRECTIONAL ? tg_neg(tgi_v3_dot(n, l->dir)) : tgi_v3_dot(n, tgi_v3_sub(l->pos, c));
+    return (to_eye > 0 && to_light > 0) || (to_eye < 0 && to_light < 0);
+}
+
+/* The triangles' areas per face: cut to the frustum (and each face's
+ * pyramid, both grown by the margin), projected on the image and the light
+ * plane, for the triangles facing the camera and the light.  Every
+ * triangle that leaves a piece, whichever way it faces (a shading normal
+ * may face the light when the triangle does not), marks the face in
+ * hit[].  Returns 1 when every triangle was visited (hit[] is then exact). */
+static int triangle_areas(region *rg, int *hit, const light_face *lf, int faces, const tgi_light *l,
+                          const tgi_view *v, const hexa *cam, const tg_vec3 *pos, int tri_count)
+{
+    int stride = tri_count / TG_SHADOW_RULE_TRIANGLES + 1, t, f;
+    for (t = 0; t < tri_count; t += stride) {
+        tg_vec3 p[POLY_MAX];
+        int n, weigh = lit_and_seen(l, v, pos + 3 * (size_t)t);
+        memcpy(p, pos + 3 * (size_t)t, 3 * sizeof *p);
+        n = clip(p, 3, cam->h, 6, CLIP_SLACK);
+        if (n == 0) continue;
+        for (f = 0; f < faces; f++) {
+            tg_vec3 q[POLY_MAX];
+            int m = n;
+            if (!rg[f].seen) continue;
+            memcpy(q, p, (size_t)n * sizeof *q);
+            if (lf[f].perspective) m = clip(q, n, lf[f].pyramid.h, 6, CLIP_SLACK);
+            if (m == 0) continue;
+            hit[f] = 1;
+            if (weigh) areas(v, &lf[f], q, m, &rg[f].cam, &rg[f].light);
+        }
+    }
+    return stride == 1;
+}
+
+/* Texels per unit of the light plane: sqrt(A_cam W H / A_light), A_cam the
+ * image fraction (NDC area / 4); 0 when nothing was measured. */
+static tg_real rule_density(const region *rg, const tgi_view *v)
+{
+    tg_real cam = tg_ldexp(rg->cam, -2);
+    if (!(rg->light > 0) || !(cam > 0)) return 0;
+    return tg_mul(tg_mul(tg_div(tg_sqrt(cam), tg_sqrt(rg->light)), tg_sqrt(tg_from_int(v->width))),
+                  tg_sqrt(tg_from_int(v->height)));
+}
+
+/* Merge one face's region into the need: seen, window (light-plane units),
+ * density (the largest). */
+static void need_merge(tgi_shadow_need *nd, int f, const region *rg, const light_face *lf, tg_real d)
+{
+    tg_real w[4];
+    int k;
+    if (!rg->seen) return;
+    for (k = 0; k < 4; k++) {
+        w[k] = rg->w[k];
+        if (lf->perspective) w[k] = tg_clamp(w[k], tg_neg(lf->tan_nominal), lf->tan_nominal);
+        else w[k] = tg_div(w[k], lf->scale);               /* back to world units */
+    }
+    if (!lf->perspective) {                               /* relative to the light basis's origin */
+        tg_real ox = tgi_v3_dot(lf->o, lf->r), oy = tgi_v3_dot(lf->o, lf->u);
+        w[0] = tg_add(w[0], ox); w[2] = tg_add(w[2], ox);
+        w[1] = tg_add(w[1], oy); w[3] = tg_add(w[3], oy);
+        d = tg_mul(d, lf->scale);                         /* per world unit */
+    }
+    if (nd->seen[f] && !nd->window_set[f]) {
+        /* seen before without a window (tgi_shadow_need_all): it stays whole */
+    } else if (!nd->window_set[f]) {
+        memcpy(nd->window[f], w, sizeof w);
+        nd->window_set[f] = 1;
+    } else {
+        nd->window[f][0] = tg_min(nd->window[f][0], w[0]); nd->window[f][1] = tg_min(nd->window[f][1], w[1]);
+        nd->window[f][2] = tg_max(nd->window[f][2], w[2]); nd->window[f][3] = tg_max(nd->window[f][3], w[3]);
+    }
+    nd->seen[f] = 1;
+    nd->density[f] = tg_max(nd->density[f], d);
+}
+
+void tgi_shadow_map_size_rule(tgi_shadow_need *nd, const tgi_light *l, const tgi_view *view,
+                              tg_vec3 lo, tg_vec3 hi, const tg_vec3 *tri_pos, int tri_count)
+{
+    light_face lf[TG_SHADOW_MAX_FACES];
+    region rg[TG_SHADOW_MAX_FACES];
+    hexa box, cam;
+    const hexa *hx[3];
+    tg_real margin, extent = tgi_v3_length(tgi_v3_sub(hi, lo));
+    int f, k;
+    /* the G-buffer position's error bound at the bounds' deepest corner, and the arithmetic */
+    tg_real zmax = 0;
+    for (k = 0; k < 8; k++) zmax = tg_max(zmax, tgi_v3_dot(tgi_v3_sub(corner(lo, hi, k), view->eye), view->forward));
+    margin = tg_add(tg_add(tg_ldexp(tg_mul(zmax, tgi_shadow_gbuffer_error(view)), 1), tg_ldexp(extent, -12)),
+                    64 * TG_EPS);
+    memset(rg, 0, sizeof rg);
+    hexa_box(&box, tgi_v3_sub(lo, tg_v3(margin, margin, margin)), tgi_v3_add(hi, tg_v3(margin, margin, margin)));
+    if (!camera_hexa(&cam, view, lo, hi, margin)) return;
+    hx[0] = &box; hx[1] = &cam;
+    for (f = 0; f < nd->faces; f++) {
+        light_face_make(&lf[f], l, f, lo, hi, margin);
+        hx[2] = &lf[f].pyramid;
+        intersect(&rg[f], hx, lf[f].perspective ? 3 : 2, CLIP_SLACK, view, &lf[f]);
+    }
+    if (tri_pos && tri_count > 0) {
+        /* the receivers' areas replace the region's volume; where every
+         * triangle was visited at its place in this view, a face none of
+         * them reaches is not seen either */
+        int hit[TG_SHADOW_MAX_FACES] = { 0, 0, 0, 0, 0, 0 };
+        for (f = 0; f < nd->faces; f++) rg[f].cam = rg[f].light = 0;
+        if (triangle_areas(rg, hit, lf, nd->faces, l, view, &cam, tri_pos, tri_count) && !nd->objects_move)
+            for (f = 0; f < nd->faces; f++) rg[f].seen &= hit[f];
+    }
+    for (f = 0; f < nd->faces; f++) need_merge(nd, f, &rg[f], &lf[f], rule_density(&rg[f], view));
+}
+
+size_t tgi_shadow_map_bytes_for_view(const tgi_light *l, const tgi_view *view, tg_vec3 lo, tg_vec3 hi,
+                                     const tg_vec3 *tri_pos, int tri_count, int size_override)
+{
+    tgi_shadow_need nd;
+    tgi_shadow_need_init(&nd, l);
+    tgi_shadow_map_size_rule(&nd, l, view, lo, hi, tri_pos, tri_count);
+    tgi_shadow_need_finish(&nd, size_override);
+    return tgi_shadow_need_bytes(&nd);
+}
+
+void tgi_shadow_animation_bounds(const tg_scene *s, int frames, tg_vec3 *lo, tg_vec3 *hi)
+{
+    int o, t, k, frame;
+    *lo = s->bounds_min;
+    *hi = s->bounds_max;
+    if (frames < 1) frames = 1;
+    for (o = 0; o < s->object_count; o++) {
+        tg_vec3 olo = tg_v3(0, 0, 0), ohi = olo;
+        int any = 0;
+        if (!tgi_anim_object_moves(s, o)) continue;
+        for (t = 0; t < s->tri_count; t++) {       /* the object's rest bounds */
+            if (s->tri_object[t] != o) continue;
+            for (k = 0; k < 3; k++) {
+                tg_vec3 p = s->tri_pos[3 * (size_t)t + (size_t)k];
+                if (!any) olo = ohi = p;
+                any = 1;
+                olo = tg_v3(tg_min(olo.x, p.x), tg_min(olo.y, p.y), tg_min(olo.z, p.z));
+                ohi = tg_v3(tg_max(ohi.x, p.x), tg_max(ohi.y, p.y), tg_max(ohi.z, p.z));
+            }
+        }
+        if (!any) continue;
+        for (frame = 0; frame < frames; frame++) {  /* carried by each frame's pose */
+            tgi_mat4 m;
+            tgi_anim_object_matrix(s, o, tgi_anim_time(s, frame, frames), &m);
+            for (k = 0; k < 8; k++) {
+                tg_vec3 p = tgi_m4_point(&m, corner(olo, ohi, k));
+                *lo = tg_v3(tg_min(lo->x, p.x), tg_min(lo->y, p.y), tg_min(lo->z, p.z));
+                *hi = tg_v3(tg_max(hi->x, p.x), tg_max(hi->y, p.y), tg_max(hi->z, p.z));
+            }
+        }
+    }
+}
+
+int tgi_shadow_choose(size_t map_bytes, size_t bvh_bytes, size_t pixels)
+{
+    size_t budget;
+    if (tg_size_mul(pixels, TG_SHADOW_MAP_BYTES_PER_PIXEL, &budget) || map_bytes <= budget)
+        return TG_SHADOW_BY_MAP;
+    return bvh_bytes < map_bytes ? TG_SHADOW_BY_RAYS : TG_SHADOW_BY_MAP;
+}
