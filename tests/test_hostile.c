@@ -1060,6 +1060,83 @@ TEST(aov_rows_outside_refused)
     guard_free(&g);
 }
 
+/* ---- tg_frame_write_pixels ---- */
+
+static int pixel_bytes(int format)
+{
+    static const int bytes[TG_PIXEL_FORMAT_COUNT] = { 2, 2, 2, 3, 3, 4, 4, 1 };
+    return bytes[format];
+}
+
+/* One call into a guarded buffer of `size` bytes: its status, and whether
+ * it wrote only inside the rows' pixels (1) or nothing at all when refused. */
+static tg_status write_pixels_guarded(const tg_frame *frame, int aov, int y0, int y1, int format, int flags,
+                                      size_t stride, size_t size, int *clean)
+{
+    guarded g = guard_alloc(size, 0);
+    tg_status st;
+    size_t i, k;
+    memset(g.p, PATTERN, size);
+    st = tg_frame_write_pixels(frame, (tg_aov)aov, y0, y1, (tg_pixel_format)format, flags, g.p, stride);
+    *clean = guard_intact(&g);
+    if (st != TG_OK)
+        for (i = 0; i < size; i++) *clean &= g.p[i] == PATTERN;
+    else if ((unsigned)format < TG_PIXEL_FORMAT_COUNT && stride > (size_t)8 * (size_t)pixel_bytes(format))
+        for (i = 0; y0 + (int)i < y1; i++)                   /* bytes past each row's pixels untouched */
+            for (k = (size_t)8 * (size_t)pixel_bytes(format); k < stride && i * stride + k < size; k++)
+                *clean &= g.p[i * stride + k] == PATTERN;
+    guard_free(&g);
+    return st;
+}
+
+/* Every argument of tg_frame_write_pixels past its range is refused with
+ * nothing written; in range, exactly the rows' pixels are written, into a
+ * buffer of exactly (rows - 1) * stride + a row's bytes. */
+TEST(write_pixels_hostile)
+{
+    static const int bad_rows[][2] = { { -1, 1 }, { 0, 7 }, { 3, 2 }, { INT_MIN, 0 }, { 0, INT_MAX }, { 7, 7 } };
+    tg_request q = small_request(8, 6, 1);
+    tg_plan plan;
+    tg_error err;
+    tg_frame *frame;
+    guarded g;
+    int f, i, clean;
+    uint8_t byte;
+    CHECK(tg_plan_make(&plan, scene_everything(), &q, &err) == TG_OK, "%s", err.message);
+    g = guard_alloc(plan.total_bytes, 0);
+    CHECK(tg_frame_create(&plan, g.p, g.size, &frame, &err) == TG_OK, "%s", err.message);
+    CHECK(tg_frame_render(frame, 0, &err) == TG_OK, "%s", err.message);
+    for (f = 0; f < TG_PIXEL_FORMAT_COUNT; f++) {
+        size_t row = (size_t)8 * (size_t)pixel_bytes(f);
+        for (i = 0; i < 6; i++)
+            CHECK(write_pixels_guarded(frame, TG_AOV_COLOR, bad_rows[i][0], bad_rows[i][1], f, 0, row, 6 * row, &clean)
+                  == TG_ERR_INPUT && clean, "format %d rows [%d, %d): refused, nothing written", f, bad_rows[i][0], bad_rows[i][1]);
+        CHECK(write_pixels_guarded(frame, TG_AOV_COLOR, 0, 6, f, 0, row - 1, 6 * row, &clean) == TG_ERR_INPUT && clean,
+              "format %d: a stride one byte short of a row refused", f);
+        CHECK(write_pixels_guarded(frame, -1, 0, 6, f, 0, row, 6 * row, &clean) == TG_ERR_INPUT && clean, "aov -1");
+        CHECK(write_pixels_guarded(frame, TG_AOV_COUNT, 0, 6, f, 0, row, 6 * row, &clean) == TG_ERR_INPUT && clean, "aov COUNT");
+        CHECK(write_pixels_guarded(frame, TG_AOV_COLOR, 0, 6, f, 2, row, 6 * row, &clean) == TG_ERR_INPUT && clean, "flag 2");
+        CHECK(write_pixels_guarded(frame, TG_AOV_COLOR, 0, 6, f, -1, row, 6 * row, &clean) == TG_ERR_INPUT && clean, "flags -1");
+        CHECK(write_pixels_guarded(NULL, TG_AOV_COLOR, 0, 6, f, 0, row, 6 * row, &clean) == TG_ERR_INPUT && clean, "NULL frame");
+        CHECK(tg_frame_write_pixels(frame, TG_AOV_COLOR, 0, 6, (tg_pixel_format)f, 0, NULL, row) == TG_ERR_INPUT, "NULL dst");
+        CHECK(write_pixels_guarded(frame, TG_AOV_COLOR, 0, 6, f, 0, row, 6 * row, &clean) == TG_OK && clean,
+              "format %d: the whole frame, rows packed", f);
+        CHECK(write_pixels_guarded(frame, TG_AOV_NORMAL, 1, 5, f, TG_PIXELS_DITHER, row + 13, 3 * (row + 13) + row, &clean)
+              == TG_OK && clean, "format %d: rows [1, 5) with 13 bytes between rows", f);
+        CHECK(write_pixels_guarded(frame, TG_AOV_DEPTH, 5, 6, f, 0, row, row, &clean) == TG_OK && clean, "format %d: the last row", f);
+        CHECK(tg_frame_write_pixels(frame, TG_AOV_AO, 6, 6, (tg_pixel_format)f, 0, &byte, row) == TG_OK, "no rows");
+    }
+    CHECK(write_pixels_guarded(frame, TG_AOV_COLOR, 0, 6, -1, 0, 64, 6 * 64, &clean) == TG_ERR_INPUT && clean, "format -1");
+    CHECK(write_pixels_guarded(frame, TG_AOV_COLOR, 0, 6, TG_PIXEL_FORMAT_COUNT, 0, 64, 6 * 64, &clean) == TG_ERR_INPUT && clean,
+          "format COUNT");
+    CHECK(write_pixels_guarded(frame, TG_AOV_COLOR, 2, 3, TG_PIXEL_RGB888, 0, SIZE_MAX, 24, &clean) == TG_OK && clean,
+          "one row with the largest stride");
+    CHECK(write_pixels_guarded(frame, TG_AOV_COLOR, 2, 3, TG_PIXEL_RGB565, 0, SIZE_MAX, 16, &clean) == TG_OK && clean,
+          "one row with the largest stride (RGB565)");
+    CHECK(guard_intact(&g), "wrote outside the frame");
+    guard_free(&g);
+}
+
 /* What tinygi.h says the core keeps no pointer into (text, files, file
  * names, requests, plans, errors) is freed right after each call; the frame
  * renders on, and gives the same image as a frame whose inputs stayed
@@ -1217,6 +1294,7 @@ int main(void)
     CASE(render_indices_out_of_order, NULL);
     CASE(aov_not_requested_or_unknown, NULL);
     CASE(aov_rows_outside_refused, NULL);
+    CASE(write_pixels_hostile, NULL);
     CASE(no_pointers_kept, NULL);
     CASE(plan_before_parse, XFAIL_HANDLE);
     CASE(create_from_failed_plan, XFAIL_HANDLE);

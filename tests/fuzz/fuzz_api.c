@@ -6,7 +6,7 @@
  * out and rendered in ONE small arena, so parsing, planning, layout and
  * rendering are fuzzed together.
  *
- * Input: the header read_case reads (23 bytes; a missing byte reads as 0), then
+ * Input: the header read_case reads (25 bytes; a missing byte reads as 0), then
  *   mode 0: the scene text itself;
  *   mode 1: a built-in scene with the bytes appended (more objects, lights,
  *           keys, gi and effects lines);
@@ -21,7 +21,9 @@
  * plan_checks_fields).  A frame is rendered only when its work is small
  * (WORK_BUDGET), so each input runs in well under a second.  Every output
  * must be finite, colour and irradiances >= 0, AO in [0, 1], normals and
- * bent normals at most unit length, cone apertures in [0, pi/2].
+ * bent normals at most unit length, cone apertures in [0, pi/2]; the frame
+ * is also written in a fuzzed display format (tg_frame_write_pixels, format
+ * and flags out of range included) into a buffer of exactly its size.
  */
 #include <limits.h>
 #include <stdint.h>
@@ -91,6 +93,7 @@ typedef struct fuzz_case {
     tg_request q;
     int index[MAX_RENDERS];
     unsigned offset, mode, builtin;
+    int format, flags;   /* tg_frame_write_pixels */
 } fuzz_case;
 
 static void read_case(reader *r, fuzz_case *c)
@@ -119,6 +122,8 @@ static void read_case(reader *r, fuzz_case *c)
     q->shadow_map_size = pick_int(r, TG_MIN_SHADOW_MAP - 1, 64);
     q->shadow_pcf = pick_int(r, 0, 1);
     for (k = 0; k < MAX_RENDERS; k++) c->index[k] = pick_int(r, 0, 5);
+    c->format = pick_int(r, 0, TG_PIXEL_FORMAT_COUNT - 1);
+    c->flags = pick_int(r, 0, TG_PIXELS_DITHER);
 }
 
 /* ---- the documented limits (tinygi.h, the tg_request comments) ---- */
@@ -295,6 +300,21 @@ static void trace(const char *what, const tg_plan *plan, const tg_error *err)
     else fprintf(stderr, "fuzz_api: %s: %s\n", what, err ? err->message : "");
 }
 
+/* The frame's colour in the case's display format, rows packed, into a
+ * buffer of exactly their bytes; refused exactly when the format or the
+ * flags are unknown. */
+static void write_pixels(const fuzz_case *c, const tg_frame *frame, const tg_plan *plan)
+{
+    static const int bytes[TG_PIXEL_FORMAT_COUNT] = { 2, 2, 2, 3, 3, 4, 4, 1 };
+    int known = c->format >= 0 && c->format < TG_PIXEL_FORMAT_COUNT && (c->flags & ~TG_PIXELS_DITHER) == 0;
+    size_t row = (size_t)plan->request.width * (size_t)(known ? bytes[c->format] : 4);
+    uint8_t *dst = (uint8_t *)malloc(row * (size_t)plan->request.height);
+    tg_status st = tg_frame_write_pixels(frame, TG_AOV_COLOR, 0, plan->request.height, (tg_pixel_format)c->format,
+                                         c->flags, dst, row);
+    if (st != (known ? TG_OK : TG_ERR_INPUT)) abort();
+    free(dst);
+}
+
 static void render(const fuzz_case *c, const tg_plan *plan, unsigned char *mem, size_t size)
 {
     tg_frame *frame = NULL;
@@ -313,6 +333,7 @@ static void render(const fuzz_case *c, const tg_plan *plan, unsigned char *mem, 
         if (st != (c->index[k] < 0 ? TG_ERR_INPUT : TG_OK)) abort();
         check_outputs(frame, plan);
     }
+    write_pixels(c, frame, plan);
 }
 
 static void run(const fuzz_case *c, const char *text, size_t n)
