@@ -6,10 +6,18 @@
 #                                 UndefinedBehaviorSanitizer in $(SAN_BUILD);
 #                                 any report aborts the test that hit it
 #   make fuzz [FUZZ_SECONDS=30]   libFuzzer targets (tests/fuzz/fuzz_*.c) for the
-#                                 scene parser and the OBJ/MTL loader, float and
-#                                 Q16.16, each run FUZZ_SECONDS from the seed
-#                                 corpus tests/fuzz/corpus_<target>/
+#                                 scene parser, the OBJ/MTL loader and the whole
+#                                 API (request + scene, planned and rendered in
+#                                 a small arena), float and Q16.16, each run
+#                                 FUZZ_SECONDS from the seed corpus
+#                                 tests/fuzz/corpus_<target>/
 #   make fuzz-build               only build them (into $(FUZZ_BUILD))
+#   make soak [SOAK_LAPS=8]       tests/soak.c under ASan + UBSan (built in
+#                                 $(SAN_BUILD), the libraries `make sanitize`
+#                                 built), float and Q16.16: SOAK_LAPS x 256 + 1
+#                                 frames of an animated scene with reprojection
+#                                 at 32x24, every output bounded, laps that
+#                                 repeat, the frame's memory guarded
 #
 # The core is compiled -ffreestanding; gcc and clang still instrument it.
 # libFuzzer needs clang and its runtime (Debian: packages clang and
@@ -26,19 +34,30 @@ SAN_WARN    ?= -Wno-maybe-uninitialized
 FUZZ_BUILD  ?= build-fuzz
 FUZZ_CC     ?= clang
 FUZZ_SECONDS ?= 30
-FUZZ_TARGETS := scene obj
+FUZZ_TARGETS := scene obj api
 FUZZ_FLAGS  = -std=c99 $(REPRO_clang) $(WARN_clang) $(WERROR) -O1 -g \
               -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all
 FUZZ_BINS   := $(foreach t,$(FUZZ_TARGETS),$(FUZZ_BUILD)/fuzz_$(t) $(FUZZ_BUILD)/fuzz_$(t)-fixed)
 FUZZ_CORE   = $(filter-out $(SKIP),$(sort $(wildcard src/*.c src/*/*.c)))
 
-.PHONY: sanitize fuzz fuzz-build fuzz-check
+SOAK_LAPS   ?= 8
+SAN_ENV     = ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+
+.PHONY: sanitize fuzz fuzz-build fuzz-check soak
 sanitize:
 	@start=$$(date +%s); \
-	ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	$(MAKE) --no-print-directory BUILD=$(SAN_BUILD) \
+	$(SAN_ENV) $(MAKE) --no-print-directory BUILD=$(SAN_BUILD) \
 	    CFLAGS="-O1 $(SAN_FLAGS) $(SAN_WARN)" LDFLAGS="$(SAN_FLAGS)" test; rc=$$?; \
 	echo "sanitize: $$(( $$(date +%s) - start )) s"; exit $$rc
+
+# tests/soak.c is built by the tests' rule of the Makefile (not a test_*.c,
+# so `make test` does not run it).
+soak:
+	@$(MAKE) --no-print-directory BUILD=$(SAN_BUILD) CFLAGS="-O1 $(SAN_FLAGS) $(SAN_WARN)" \
+	    LDFLAGS="$(SAN_FLAGS)" $(SAN_BUILD)/float/tests/soak $(SAN_BUILD)/fixed/tests/soak
+	@start=$$(date +%s); rc=0; \
+	for n in float fixed; do $(SAN_ENV) $(SAN_BUILD)/$$n/tests/soak $(SOAK_LAPS) || rc=1; done; \
+	echo "soak: $$(( $$(date +%s) - start )) s"; exit $$rc
 
 fuzz-check:
 	@command -v $(FUZZ_CC) >/dev/null || { echo "make fuzz: $(FUZZ_CC) not found; install it: apt-get install -y --no-install-recommends clang libclang-rt-dev (or libclang-rt-14-dev)"; exit 2; }
@@ -48,12 +67,27 @@ fuzz-check:
 
 fuzz-build: fuzz-check $(FUZZ_BINS)
 
-$(FUZZ_BUILD)/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_common.h $(FUZZ_CORE)
-	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(FUZZ_FLAGS) -Isrc $< $(FUZZ_CORE) -o $@
-$(FUZZ_BUILD)/fuzz_%-fixed: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_common.h $(FUZZ_CORE)
-	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(FUZZ_FLAGS) -DTG_FIXED=1 -Isrc $< $(FUZZ_CORE) -o $@
+# The core is compiled once per number type (objects in $(FUZZ_BUILD)/float
+# and /fixed, rebuilt when a source, a header or the flags change) and
+# linked into every target.
+FUZZ_OBJ_float = $(patsubst src/%.c,$(FUZZ_BUILD)/float/%.o,$(FUZZ_CORE))
+FUZZ_OBJ_fixed = $(patsubst src/%.c,$(FUZZ_BUILD)/fixed/%.o,$(FUZZ_CORE))
+FUZZ_STAMP     = $(FUZZ_BUILD)/flags
+$(FUZZ_STAMP): FORCE
+	@mkdir -p $(@D)
+	@printf '%s\n' '$(FUZZ_CC) $(FUZZ_FLAGS)' >$@.new; if cmp -s $@.new $@; then rm -f $@.new; else mv $@.new $@; fi
+$(FUZZ_BUILD)/float/%.o: src/%.c $(FUZZ_STAMP)
+	@mkdir -p $(@D)
+	$(FUZZ_CC) $(FUZZ_FLAGS) -MMD -MP -c $< -o $@
+$(FUZZ_BUILD)/fixed/%.o: src/%.c $(FUZZ_STAMP)
+	@mkdir -p $(@D)
+	$(FUZZ_CC) $(FUZZ_FLAGS) -DTG_FIXED=1 -MMD -MP -c $< -o $@
+-include $(patsubst %.o,%.d,$(FUZZ_OBJ_float) $(FUZZ_OBJ_fixed))
+
+$(FUZZ_BUILD)/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_common.h $(FUZZ_OBJ_float)
+	$(FUZZ_CC) $(FUZZ_FLAGS) -Isrc $< $(FUZZ_OBJ_float) -o $@
+$(FUZZ_BUILD)/fuzz_%-fixed: tests/fuzz/fuzz_%.c tests/fuzz/fuzz_common.h $(FUZZ_OBJ_fixed)
+	$(FUZZ_CC) $(FUZZ_FLAGS) -DTG_FIXED=1 -Isrc $< $(FUZZ_OBJ_fixed) -o $@
 
 # Each target runs from a scratch copy of its seed corpus (new inputs stay in
 # the build dir, the repository's seeds are not touched).

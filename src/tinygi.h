@@ -35,6 +35,25 @@
  * ERRORS
  *   Functions return TG_OK (0) or a tg_status; a tg_error then holds a
  *   message fit to show a person, with FILE:LINE:COL when it is about input.
+ *
+ * ARGUMENTS: what the core checks, what the caller guarantees
+ *   - Pointers are not checked: each must point to memory of the size its
+ *     comment gives, unless the comment allows NULL.  `err` may be NULL in
+ *     every function but tg_frame_create (the status alone then tells).
+ *   - Sizes, indices and names are checked as each function's comment says;
+ *     past its range a value is refused with a status or gets the stated
+ *     fallback, and nothing outside the memory given is read or written.
+ *   - A handle is used only after the call that made it returned TG_OK: the
+ *     scene of tg_scene_parse, the plan of tg_plan_make, the frame of
+ *     tg_frame_create.  What a failed call leaves (a NULL scene or frame, a
+ *     plan with total_bytes 0) must not be passed on.
+ *   - Memory the core points into stays valid and untouched by the caller
+ *     while it is in use: a scene's arena while the scene, its plans or its
+ *     frames are used; a frame's memory while the frame is.  The core
+ *     allocates nothing after tg_frame_create and keeps no pointer into
+ *     text, files, requests, plans or errors after a call returns.
+ *   - Memory may have any alignment: the arena aligns each block to a
+ *     16-byte address.
  */
 #ifndef TINYGI_H
 #define TINYGI_H
@@ -395,7 +414,11 @@ typedef struct tg_error {
     size_t bytes_needed; /* with TG_ERR_MEMORY */
 } tg_error;
 
-/* Write the error as "FILE:LINE:COL: error: MESSAGE" (or "error: MESSAGE"). */
+/* Write the error as "FILE:LINE:COL: error: MESSAGE" (or "error: MESSAGE";
+ * no ":LINE:COL" when line <= 0) into buf, cut to size - 1 bytes and always
+ * NUL-terminated when size > 0; buf may be NULL when size is 0.  Returns the
+ * length of the whole text, as snprintf does (>= size: it was cut).  `err`
+ * is one a tinygi function filled, or all zero. */
 size_t tg_error_format(const tg_error *err, char *buf, size_t size);
 
 /* ---- the arena: one block of caller memory, carved front to back ---- */
@@ -405,12 +428,17 @@ typedef struct tg_arena {
     size_t failed_request; /* largest request that did not fit, 0 if none */
 } tg_arena;
 
+/* `size` bytes at `memory` (any alignment), none used yet; NULL memory gives
+ * an empty arena whatever the size.  `size` must not exceed the memory. */
 void tg_arena_init(tg_arena *a, void *memory, size_t size);
 /* `bytes` zeroed bytes at the next 16-byte aligned ADDRESS (whatever the
  * alignment of the memory given to tg_arena_init: up to 15 bytes of it may
- * go to padding); NULL when they do not fit. */
+ * go to padding); NULL when they do not fit (a->used unchanged,
+ * a->failed_request updated), and from an arena without memory.  0 bytes
+ * gives a pointer not to be dereferenced. */
 void *tg_arena_alloc(tg_arena *a, size_t bytes);
-/* a * b with overflow check: returns 0 and sets *out, or returns 1 on overflow. */
+/* a * b with overflow check: returns 0 and sets *out, or returns 1 on
+ * overflow (*out unchanged).  tg_size_add likewise for a + b. */
 int tg_size_mul(size_t a, size_t b, size_t *out);
 int tg_size_add(size_t a, size_t b, size_t *out);
 
@@ -430,15 +458,22 @@ typedef struct tg_io {
 /* ---- scenes ---- */
 typedef struct tg_scene tg_scene;
 
-/* Parse scene-format v1 text (see README "Scene format").  `filename` is used
- * in messages and to resolve mesh paths.  `io` may be NULL (no meshes).  The
- * scene lives in `arena`. */
+/* Parse scene-format v1 text (see README "Scene format"): `size` bytes at
+ * `text`, no NUL needed (text may be NULL when size is 0); a size over
+ * TG_MAX_FILE_BYTES is TG_ERR_INPUT before a byte is read.  `filename` is
+ * used in messages and to resolve mesh paths (NULL: "<scene>").  `io` may
+ * be NULL (then a mesh line is TG_ERR_INPUT).  The scene lives in `arena`
+ * (its blocks from arena->used on); a NULL arena or scene is
+ * TG_ERR_RUNTIME.  TG_ERR_MEMORY when the arena is too small, with
+ * err->bytes_needed the arena size that would do (its used bytes included).
+ * On failure *scene is NULL and arena->used is unchanged. */
 tg_status tg_scene_parse(const char *text, size_t size, const char *filename,
                          const tg_io *io, tg_arena *arena, tg_scene **scene,
                          tg_error *err);
-/* Built-in scenes: their text, by name ("cornell"), or NULL. */
+/* Built-in scenes: their text, by name ("cornell" or "builtin:cornell"), or
+ * NULL for an unknown name or NULL. */
 const char *tg_builtin_scene(const char *name);
-/* The i-th built-in scene name, NULL past the end. */
+/* The i-th built-in scene name, NULL for i outside 0..count-1. */
 const char *tg_builtin_name(int i);
 
 /* ---- what to render ---- */
@@ -448,17 +483,17 @@ typedef enum tg_aov {
     TG_AOV_DIRECT, TG_AOV_IRRADIANCE, TG_AOV_MOTION,
     TG_AOV_COUNT
 } tg_aov;
-const char *tg_aov_name(tg_aov aov);
-int tg_aov_from_name(const char *name); /* -1 if unknown */
-int tg_aov_channels(tg_aov aov);        /* 1 or 3 (motion: 3, z = validity) */
+const char *tg_aov_name(tg_aov aov);    /* "?" for a value outside the enum */
+int tg_aov_from_name(const char *name); /* exact lower-case name; -1 if unknown (name not NULL) */
+int tg_aov_channels(tg_aov aov);        /* 1 or 3 (motion: 3, z = validity); 3 if unknown */
 
 typedef enum tg_technique {
     TG_TECH_HBIL, TG_TECH_GTAO, TG_TECH_HBAO, TG_TECH_SSAO, TG_TECH_VO,
     TG_TECH_SSDO, TG_TECH_BENTCONE, TG_TECH_REFERENCE,
     TG_TECH_COUNT
 } tg_technique;
-const char *tg_technique_name(tg_technique t);
-int tg_technique_from_name(const char *name); /* -1 if unknown */
+const char *tg_technique_name(tg_technique t);    /* "?" for a value outside the enum */
+int tg_technique_from_name(const char *name); /* -1 if unknown (name not NULL) */
 
 /* Effects a frame can simulate; a plan holds the subset the scene calls for. */
 enum {
@@ -532,20 +567,28 @@ typedef struct tg_plan {
  * not fit the address space. */
 tg_status tg_plan_make(tg_plan *plan, const tg_scene *scene,
                        const tg_request *req, tg_error *err);
-/* Human-readable plan (the CLI's --explain); returns the length written. */
+/* Human-readable plan (the CLI's --explain) into buf, cut and NUL-terminated
+ * as by tg_error_format (buf may be NULL when size is 0); returns the length
+ * of the whole text. */
 size_t tg_plan_explain(const tg_plan *plan, char *buf, size_t size);
 
 /* ---- frames ---- */
 typedef struct tg_frame tg_frame;
 
-/* Carve a frame out of `memory` (at least plan->total_bytes). */
+/* Carve a frame out of `size` bytes at `memory`, at any alignment:
+ * plan->total_bytes is enough at every address.  Too little (or NULL
+ * memory) is TG_ERR_MEMORY, err->bytes_needed = plan->total_bytes.  On
+ * failure *frame is NULL.  The frame uses only those bytes; it copies what
+ * it needs of the plan, and points into the plan's scene. */
 tg_status tg_frame_create(const tg_plan *plan, void *memory, size_t size,
                           tg_frame **frame, tg_error *err);
 /* Render frame `index` (0-based; the keys' time comes from it unless
- * tg_frame_set_time set one).  Frames follow one another: frame index > 0
+ * tg_frame_set_time set one: 0 the first key, request.frames - 1 the last,
+ * later indices hold the last).  Frames follow one another: frame index > 0
  * reprojects the frame rendered before it (see "the game loop"); index 0
  * starts afresh, with no history.  The temporal filter alternates two
- * buffers by the parity of index, so a sequence counts up by one. */
+ * buffers by the parity of index, so a sequence counts up by one.  A
+ * negative index is TG_ERR_INPUT; rendering allocates nothing. */
 tg_status tg_frame_render(tg_frame *frame, int index, tg_error *err);
 
 /* ---- threads: the platform runs row ranges, the core creates no thread ----
@@ -579,7 +622,9 @@ typedef struct tg_parallel {
 tg_status tg_frame_set_parallel(tg_frame *frame, const tg_parallel *p);
 /* Row y of an AOV as linear values: `out` holds width * tg_aov_channels(aov)
  * values.  y must be in [0, height): another row is refused (TG_ERR_INPUT,
- * `out` all zeros), nothing outside the frame is read. */
+ * `out` all zeros), nothing outside the frame is read.  An AOV the plan did
+ * not compute reads as 0 (ao 1, cone pi/2, bent the normal); a value
+ * outside the enum reads as `width` zeros. */
 tg_status tg_frame_aov_row(const tg_frame *frame, tg_aov aov, int y, tg_real *out);
 /* Row y of an AOV as 8-bit RGB for viewing (`rgb` holds 3 * width bytes):
  * colour is exposed, tonemapped and sRGB-encoded; normals are 0.5n + 0.5;

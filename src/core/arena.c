@@ -23,7 +23,7 @@ void *tg_arena_alloc(tg_arena *a, size_t bytes)
 {
     size_t start = a->used + tgi_arena_pad(a->base, a->used);
     void *p;
-    if (start < a->used || start > a->size || bytes > a->size - start) {
+    if (!a->base || start < a->used || start > a->size || bytes > a->size - start) {
         if (bytes > a->failed_request) a->failed_request = bytes;
         return NULL;
     }
