@@ -20,12 +20,13 @@ static void row_rgb(const tgi_rgb *c, const tgi_gview *g, int x0, int y, int w, 
     }
 }
 
-/* A G-buffer vector (normal or albedo) of pixels [x0, x0 + w) of row y. */
+/* A G-buffer vector (normal or albedo) of pixels [x0, x0 + w) of row y; 0 on sky. */
 static void row_vec(const tgi_gview *g, tg_vec3 (*get)(const tgi_gview *, size_t), int x0, int y, int w, tg_real *out)
 {
     int x;
     for (x = 0; x < w; x++) {
-        tg_vec3 v = get(g, tgi_gv_index(g, x0 + x, y));
+        size_t i = tgi_gv_index(g, x0 + x, y);
+        tg_vec3 v = tgi_gv_is_sky(g, i) ? tg_v3(0, 0, 0) : get(g, i);
         out[3 * x + 0] = v.x; out[3 * x + 1] = v.y; out[3 * x + 2] = v.z;
     }
 }
@@ -36,7 +37,8 @@ static void row_bent(const tg_frame *f, int x0, int y, int w, tg_real *out)
     int x;
     if (!f->res.ao || !tgi_gr_has_bent(&f->res)) { row_vec(g, tgi_gv_normal, x0, y, w, out); return; }
     for (x = 0; x < w; x++) {
-        tg_vec3 v = tgi_gr_bent(&f->res, tgi_gv_index(g, x0 + x, y));
+        size_t i = tgi_gv_index(g, x0 + x, y);
+        tg_vec3 v = tgi_gv_is_sky(g, i) ? tg_v3(0, 0, 0) : tgi_gr_bent(&f->res, i);
         out[3 * x + 0] = v.x; out[3 * x + 1] = v.y; out[3 * x + 2] = v.z;
     }
 }
@@ -50,7 +52,7 @@ static void row_scalar(const tg_frame *f, tg_aov aov, int x0, int y, int w, tg_r
         size_t i = tgi_gv_index(g, x0 + x, y);
         if (aov == TG_AOV_DEPTH) out[x] = tgi_gv_depth(g, i);
         else if (aov == TG_AOV_AO) out[x] = f->res.ao ? tgi_gr_ao(&f->res, i) : TG_ONE;
-        else out[x] = f->res.ao && tgi_gr_has_cone(&f->res) ? tgi_gr_cone(&f->res, i) : TG_HALF_PI;
+        else out[x] = f->res.ao ? tgi_gr_cone(&f->res, i) : TG_HALF_PI;
     }
 }
 

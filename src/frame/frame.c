@@ -82,7 +82,7 @@ tg_status tg_frame_render(tg_frame *f, int index, tg_error *err)
             for (j = k; j < end; j++) run_frame_pass(f, &tgi_passes[f->pass_rows[j]], f->band);
         k = end;
     }
-    if (f->history.r) f->has_history = 1;
+    if (tgi_rgb_present(&f->history)) f->has_history = 1;
     f->frames_rendered++;
     return TG_OK;
 }

@@ -79,10 +79,8 @@ struct tg_frame {
 
     /* radiance history for reprojection (previous frame) */
     tgi_rgb history;
-    tg_real *history_depth;
-    uint16_t *history_object;
-    void *reproject_zbuffer, *pushpull_mips;
-    uint8_t *reproject_valid;
+    tgi_prev_geometry prev_geometry;
+    void *pushpull_mips;
 
     /* spatial / temporal filter */
     void *denoise_scratch;

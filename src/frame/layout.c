@@ -13,7 +13,6 @@
 #include <string.h>
 #include "frame_internal.h"
 #include "../gi/pushpull.h"
-#include "../gi/reproject.h"
 #include "../gi/denoise.h"
 #include "../gi/temporal.h"
 #include "../gi/resample.h"
@@ -64,33 +63,61 @@ static tg_real *take_real(layout *l, const char *name, size_t n)
 
 static void take_rgb(layout *l, const char *name, size_t n, tgi_rgb *c)
 {
+#if TG_WIDE_STORAGE
     c->r = take_real(l, name, n);
     c->g = take_real(l, name, n);
     c->b = take_real(l, name, n);
+#else
+    c->p = (uint32_t *)take(l, name, n, sizeof(uint32_t));
+#endif
 }
 
-/* Depth, normal and sky of a copy the kernel reads (F0 with the near field). */
-static void take_kernel_gbuffer(layout *l, tgi_gbuffer *g, size_t n, int w, int h, int with_f0,
-                                const char *depth, const char *normal, const char *sky, const char *f0)
+/* Depth, normal and material index: the storage of a G-buffer of n pixels. */
+static void take_gbuffer_planes(layout *l, tgi_gbuffer *g, const tg_scene *s, size_t n, int w, int h,
+                                const char *depth, const char *normal)
 {
+    int i;
     g->width = w;
     g->height = h;
+    g->materials = s->materials;
+    g->has_emissive = 0;
+    for (i = 0; i < s->material_count; i++) {
+        tg_vec3 e = s->materials[i].emissive;
+        if (e.x > 0 || e.y > 0 || e.z > 0) g->has_emissive = 1;
+    }
+#if TG_WIDE_STORAGE
     g->depth = take_real(l, depth, n);
     g->nx = take_real(l, normal, n);
     g->ny = take_real(l, normal, n);
     g->nz = take_real(l, normal, n);
-    g->sky = (uint8_t *)take(l, sky, n, 1);
-    if (with_f0) g->f0 = take_real(l, f0, n);
+    g->material = (uint16_t *)take(l, normal, n, sizeof(uint16_t));
+#else
+    g->depth = (uint32_t *)take(l, depth, n, sizeof(uint32_t));
+    g->nm = (uint32_t *)take(l, normal, n, sizeof(uint32_t));
+#endif
+}
+
+static void take_results(layout *l, tgi_gresult *r, size_t n, int bent, int near,
+                         const char *ao_name, const char *bent_name, const char *near_name)
+{
+#if TG_WIDE_STORAGE
+    r->ao = take_real(l, ao_name, n);
+    if (bent) {
+        r->bent_x = take_real(l, bent_name, n);
+        r->bent_y = take_real(l, bent_name, n);
+        r->bent_z = take_real(l, bent_name, n);
+    }
+#else
+    r->ao = (uint8_t *)take(l, ao_name, n, 1);
+    if (bent) r->bent = (uint16_t *)take(l, bent_name, n, sizeof(uint16_t));
+#endif
+    if (near) take_rgb(l, near_name, n, &r->near);
 }
 
 /* The kernel's results at its own resolution: AO, bent normal, near field. */
 static void take_kernel_results(layout *l, tgi_gresult *r, size_t n, int near, const char *name)
 {
-    r->ao = take_real(l, name, n);
-    r->bent_x = take_real(l, name, n);
-    r->bent_y = take_real(l, name, n);
-    r->bent_z = take_real(l, name, n);
-    if (near) take_rgb(l, name, n, &r->near);
+    take_results(l, r, n, 1, near, name, name, name);
 }
 
 /* The kernel's image: full size, or half width and height (quarter res). */
@@ -117,27 +144,8 @@ static void group_gbuffer(layout *l, tg_frame *f)
 {
     tgi_gbuffer *g = &f->gb;
     size_t n = f->pixels;
-    int i, emissive = 0;
-    for (i = 0; i < f->scene->material_count; i++) {
-        tg_vec3 e = f->scene->materials[i].emissive;
-        if (e.x > 0 || e.y > 0 || e.z > 0) emissive = 1;
-    }
-    g->width = f->width;
-    g->height = f->height;
-    g->depth = take_real(l, "G-buffer depth (view z)", n);
-    g->nx = take_real(l, "G-buffer normal (world)", n);
-    g->ny = take_real(l, "G-buffer normal (world)", n);
-    g->nz = take_real(l, "G-buffer normal (world)", n);
-    g->albedo_r = take_real(l, "G-buffer albedo", n);
-    g->albedo_g = take_real(l, "G-buffer albedo", n);
-    g->albedo_b = take_real(l, "G-buffer albedo", n);
-    g->f0 = take_real(l, "G-buffer F0", n);
-    if (emissive) {
-        g->emit_r = take_real(l, "G-buffer emissive", n);
-        g->emit_g = take_real(l, "G-buffer emissive", n);
-        g->emit_b = take_real(l, "G-buffer emissive", n);
-    }
-    g->sky = (uint8_t *)take(l, "G-buffer sky marker", n, 1);
+    take_gbuffer_planes(l, g, f->scene, n, f->width, f->height, "G-buffer depth (view z; 0: sky)",
+                        "G-buffer normal and material index");
     if (f->needs & (TG_NEED_MOTION | TG_NEED_POSE))
         g->object = (uint16_t *)take(l, "G-buffer object id", n, 2);
 }
@@ -182,32 +190,29 @@ static void group_history(layout *l, tg_frame *f)
 {
     if (!(f->effects & TG_EFFECT_REPROJECTION)) return;
     take_rgb(l, "radiance history (last frame)", f->pixels, &f->history);
-    f->history_depth = take_real(l, "radiance history depth", f->pixels);
-    if (f->needs & TG_NEED_POSE)
-        f->history_object = (uint16_t *)take(l, "radiance history object id", f->pixels, 2);
+#if TG_WIDE_STORAGE
+    f->prev_geometry.depth = take_real(l, "last frame's depth and normal", f->pixels);
+    f->prev_geometry.nx = take_real(l, "last frame's depth and normal", f->pixels);
+    f->prev_geometry.ny = take_real(l, "last frame's depth and normal", f->pixels);
+    f->prev_geometry.nz = take_real(l, "last frame's depth and normal", f->pixels);
+#else
+    f->prev_geometry.dn = (uint32_t *)take(l, "last frame's depth and normal", f->pixels, sizeof(uint32_t));
+#endif
 }
 
-/* The scatter's z-buffer, the push/pull mip chain and the valid mask between them. */
+/* The push/pull mip chain. */
 static void group_reproject(layout *l, tg_frame *f)
 {
     if (!(f->effects & TG_EFFECT_REPROJECTION)) return;
-    f->reproject_zbuffer = take(l, "reprojection z-buffer", tgi_reproject_bytes(f->width, f->height), 1);
     f->pushpull_mips = take(l, "push/pull mips", tgi_pushpull_bytes(f->width, f->height), 1);
-    f->reproject_valid = (uint8_t *)take(l, "reprojection valid mask", f->pixels, 1);
 }
 
 static void group_results(layout *l, tg_frame *f)
 {
     int hbil = f->request.technique == TG_TECH_HBIL;
     if (!(f->needs & TG_NEED_GI_PASS)) return;
-    f->res.ao = take_real(l, "ambient occlusion", f->pixels);
-    if ((f->needs & TG_NEED_BENT) || hbil) {
-        f->res.bent_x = take_real(l, "bent normal (world)", f->pixels);
-        f->res.bent_y = take_real(l, "bent normal (world)", f->pixels);
-        f->res.bent_z = take_real(l, "bent normal (world)", f->pixels);
-    }
-    if (f->needs & TG_NEED_CONE) f->res.cone = take_real(l, "cone aperture", f->pixels);
-    if (f->effects & TG_EFFECT_NEAR) take_rgb(l, "near-field irradiance E_near", f->pixels, &f->res.near);
+    take_results(l, &f->res, f->pixels, (f->needs & TG_NEED_BENT) || hbil, (f->effects & TG_EFFECT_NEAR) != 0,
+                 "ambient occlusion", "bent normal (world)", "near-field irradiance E_near");
 }
 
 static void group_half(layout *l, tg_frame *f)
@@ -216,10 +221,9 @@ static void group_half(layout *l, tg_frame *f)
     size_t n;
     if (!tgi_frame_quarter(f)) return;
     kernel_size(f, &w, &h, &n);
-    take_kernel_gbuffer(l, &f->half, n, w, h, near, "quarter-res G-buffer (depth, normal, sky)",
-                        "quarter-res G-buffer (depth, normal, sky)", "quarter-res G-buffer (depth, normal, sky)",
-                        "quarter-res F0 and source radiance");
-    if (near) take_rgb(l, "quarter-res F0 and source radiance", n, &f->half_source);
+    take_gbuffer_planes(l, &f->half, f->scene, n, w, h, "quarter-res G-buffer (depth, normal, material)",
+                        "quarter-res G-buffer (depth, normal, material)");
+    if (near) take_rgb(l, "quarter-res source radiance", n, &f->half_source);
     take_kernel_results(l, &f->half_res, n, near, "quarter-res kernel output");
 }
 
@@ -229,8 +233,7 @@ static void group_split(layout *l, tg_frame *f)
     size_t n;
     if (!tgi_frame_interleaved(f)) return;
     kernel_size(f, &w, &h, &n);
-    take_kernel_gbuffer(l, &f->split, n, w, h, near, "4x4 split: depth", "4x4 split: normal", "4x4 split: sky",
-                        "4x4 split: F0");
+    take_gbuffer_planes(l, &f->split, f->scene, n, w, h, "4x4 split: depth", "4x4 split: normal and material");
     if (near) take_rgb(l, "4x4 split: source radiance", n, &f->split_source);
     take_kernel_results(l, &f->split_res, n, near, "4x4 split: kernel output");
 }

@@ -52,9 +52,7 @@ void tgi_pass_source_direct(tg_frame *f, int y0, int y1)
 
 void tgi_pass_far(tg_frame *f, int y0, int y1)
 {
-    tgi_far_rows(&f->gb, f->sh, f->res.ao, f->res.bent_x, f->res.bent_y, f->res.bent_z,
-                 f->request.far_mode ? TG_FAR_CUBE_F0 : TG_FAR_CONE_SH,
-                 f->far.r, f->far.g, f->far.b, y0, y1);
+    tgi_far_rows(&f->full, f->sh, &f->res, f->request.far_mode ? TG_FAR_CUBE_F0 : TG_FAR_CONE_SH, &f->far, y0, y1);
 }
 
 /* Lo from every irradiance term the plan has (HBIL sec. 2.3). */

@@ -23,7 +23,7 @@ void tgi_pass_depth_range(tg_frame *f);
 void tgi_pass_shadow_maps(tg_frame *f);
 void tgi_pass_direct(tg_frame *f, int y0, int y1);
 void tgi_pass_source_direct(tg_frame *f, int y0, int y1);
-void tgi_pass_reproject(tg_frame *f);
+void tgi_pass_reproject(tg_frame *f, int y0, int y1);
 void tgi_pass_push_pull(tg_frame *f);
 void tgi_pass_reference_bvh(tg_frame *f);
 void tgi_pass_downsample(tg_frame *f, int y0, int y1);
@@ -104,8 +104,8 @@ const tgi_pass tgi_passes[] = {
       B(GBUFFER) | B(SHADOW_MAPS) | B(DIRECT), 0, ROWS(tgi_pass_direct) },
     { "near-field source: this frame's direct light and emission", gathers_near,
       B(DIRECT) | B(SOURCE), TGI_ON_FIRST_FRAME, ROWS(tgi_pass_source_direct) },
-    { "reproject last frame's radiance (scatter + z-test)", reprojects,
-      B(SOURCE) | B(HISTORY) | B(REPROJECT), TGI_ON_HISTORY, SERIAL(tgi_pass_reproject) },
+    { "reproject last frame's radiance (gather through the depth, z-test)", reprojects,
+      B(GBUFFER) | B(POSE) | B(SOURCE) | B(HISTORY), TGI_ON_HISTORY, ROWS(tgi_pass_reproject) },
     { "push/pull hole filling", reprojects,
       B(SOURCE) | B(REPROJECT), TGI_ON_HISTORY, SERIAL(tgi_pass_push_pull) },
     { "reference: BVH over the posed triangles", runs_reference,

@@ -97,21 +97,27 @@ static inline uint32_t tgi_oct_quant(float p, int bits)
 }
 #endif
 
-/* Vector m (any length > 0; the zero vector packs as +z) to two `bits`-bit
- * coordinates, u in the low bits, v above it. */
-static inline uint32_t tgi_oct_pack(tg_vec3 m, int bits)
-{
-    uint32_t u, v;
 #if TG_FIXED
-    int64_t x = m.x, y = m.y, z = m.z, ax = x < 0 ? -x : x, ay = y < 0 ? -y : y;
-    int64_t l1 = ax + ay + (z < 0 ? -z : z);
+/* Vector (x, y, z), integers with |.| < 2^31, to two `bits`-bit
+ * coordinates, u in the low bits, v above it (the zero vector packs as +z). */
+static inline uint32_t tgi_oct_pack64(int64_t x, int64_t y, int64_t z, int bits)
+{
+    int64_t ax = x < 0 ? -x : x, ay = y < 0 ? -y : y, l1 = ax + ay + (z < 0 ? -z : z);
     if (l1 == 0) { x = 0; y = 0; z = 1; l1 = 1; }
     if (z < 0) {                      /* fold the lower half: p' = (1 - |p.yx|) sign(p) */
         int64_t fx = (l1 - ay) * (x < 0 ? -1 : 1), fy = (l1 - ax) * (y < 0 ? -1 : 1);
         x = fx; y = fy;
     }
-    u = tgi_oct_quant(x, l1, bits);
-    v = tgi_oct_quant(y, l1, bits);
+    return tgi_oct_quant(x, l1, bits) | (tgi_oct_quant(y, l1, bits) << bits);
+}
+#endif
+
+/* Vector m (any length > 0; the zero vector packs as +z) to two `bits`-bit
+ * coordinates, u in the low bits, v above it. */
+static inline uint32_t tgi_oct_pack(tg_vec3 m, int bits)
+{
+#if TG_FIXED
+    return tgi_oct_pack64(m.x, m.y, m.z, bits);
 #else
     float ax = m.x < 0 ? -m.x : m.x, ay = m.y < 0 ? -m.y : m.y, l1 = ax + ay + (m.z < 0 ? -m.z : m.z);
     float x, y, r;
@@ -122,10 +128,8 @@ static inline uint32_t tgi_oct_pack(tg_vec3 m, int bits)
         float fx = (1.0f - ay * r) * (m.x < 0.0f ? -1.0f : 1.0f), fy = (1.0f - ax * r) * (m.y < 0.0f ? -1.0f : 1.0f);
         x = fx; y = fy;
     }
-    u = tgi_oct_quant(x, bits);
-    v = tgi_oct_quant(y, bits);
+    return tgi_oct_quant(x, bits) | (tgi_oct_quant(y, bits) << bits);
 #endif
-    return u | (v << bits);
 }
 
 #if TG_FIXED
