@@ -160,7 +160,7 @@ static void gbuf_cast(gbuf *g, const tgi_view *v, const ascene *s)
     for (y = 0; y < H; y++)
         for (x = 0; x < W; x++) {
             int i = y * W + x;
-            double o[3], d[3], n[3], t;
+            double o[3], d[3], n[3] = { 0, 0, 0 }, t;
             pixel_ray(v, x, y, o, d);
             t = ray_scene(s, o, d, n);
             g->on_floor[i] = 0;
