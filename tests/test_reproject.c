@@ -229,45 +229,94 @@ TEST(pushpull_fills_within_range)
     free(s);
 }
 
-/* The spatial filter keeps AO in the range of its inputs; the temporal
- * pass with a static view converges to a constant input. */
-TEST(filters_preserve_constants)
+/* The spatial filter keeps AO in the range of its inputs and leaves a
+ * constant field constant. */
+TEST(filter_preserves_range_and_constants)
 {
     tgi_view v = make_view(0.3f, 0.5f, 2.0f);
     static tg_real ao[N];
     tgi_gview g;
-    tgi_gresult r;
+    tgi_gresult r, filtered;
     tgi_denoise_params p;
-    tgi_temporal_params tp;
-    void *scratch = malloc(tgi_denoise_bytes(W, H)), *state = malloc(tgi_temporal_bytes(W, H));
-    int i, f, bad = 0;
+    int i, k, bad = 0;
     setup(&v);
     g = sf_view(&g0, &v);
-    sf_results_alloc(&r, N, 1, 0, 0);
-    for (i = 0; i < N; i++) {
-        tgi_gr_set_ao(&r, (size_t)i, tg_from_float(0.25f + (float)(i % 4) * 0.25f)); /* varies inside every 4x4 block */
-        tgi_gr_set_bent(&r, (size_t)i, tg_v3(0, TG_ONE, 0));
-    }
+    sf_results_alloc(&r, N, 1, 0, 1);
+    sf_results_alloc(&filtered, N, 1, 0, 1);
     tgi_denoise_defaults(&p);
-    tgi_denoise_keep_rows(&g, &r, scratch, 0, H);
-    tgi_denoise_rows(&p, &g, &r, scratch, 0, H);
-    sf_results_read(&r, N, ao, NULL, NULL, NULL, NULL, NULL, NULL, NULL);
-    for (i = 0; i < N; i++) {
-        double a = check_d(ao[i]);
-        if (tgi_gv_is_sky(&g, (size_t)i)) continue;
-        if (!(a >= 0.25 && a <= 1.0)) bad++;
+    for (k = 0; k < 2; k++) {
+        for (i = 0; i < N; i++) {
+            /* varies inside every 4x4 block, or constant */
+            tgi_gr_set_ao(&r, (size_t)i, k ? TG_R(0.5f) : tg_from_float(0.25f + (float)(i % 4) * 0.25f));
+            tgi_gr_set_bent(&r, (size_t)i, tg_v3(0, TG_ONE, 0));
+            tgi_gr_set_near(&r, (size_t)i, tg_v3(TG_ONE, TG_R(0.5f), 0));
+        }
+        tgi_denoise_rows(&p, &g, &r, &filtered, 0, H);
+        sf_results_read(&filtered, N, ao, NULL, NULL, NULL, NULL, NULL, NULL, NULL);
+        for (i = 0; i < N; i++) {
+            double a = check_d(ao[i]);
+            tg_vec3 e = tgi_gr_near(&filtered, (size_t)i), b = tgi_gr_bent(&filtered, (size_t)i);
+            if (tgi_gv_is_sky(&g, (size_t)i)) continue;
+            if (k == 0 && !(a >= 0.25 && a <= 1.0)) bad++;
+            if (k == 1 && (fabs(a - 0.5) > 1.0 / 255 || fabs(check_d(e.x) - 1) > 1e-3 || fabs(check_d(e.y) - 0.5) > 1e-3 ||
+                           check_d(b.y) < 0.9999)) bad++;
+        }
     }
-    CHECK(bad == 0, "filtered AO out of range: %d", bad);
-    tgi_temporal_defaults(&tp);
-    tgi_temporal_clear(state, W, H);
-    for (f = 0; f < 40; f++) {
-        for (i = 0; i < N; i++) tgi_gr_set_ao(&r, (size_t)i, TG_R(0.5f));
-        tgi_temporal_rows(&tp, &g, &r, state, &v, f, f == 0, 0, H);
-    }
-    sf_results_read(&r, N, ao, NULL, NULL, NULL, NULL, NULL, NULL, NULL);
-    for (i = 0; i < N; i++) if (!tgi_gv_is_sky(&g, (size_t)i)) CHECK_NEAR(check_d(ao[i]), 0.5, 1e-3 + 0.5 / 255);
+    CHECK(bad == 0, "filtered AO out of range, or a constant field changed: %d", bad);
     sf_results_free(&r);
-    free(scratch); free(state);
+    sf_results_free(&filtered);
+}
+
+/* Temporal accumulation with a static view: an input alternating between
+ * 0.25 and 0.75 frame by frame settles at 0.5 +- 0.028 (alpha 0.2: the
+ * fixed points (0.16 b + 0.2 a) / 0.36), the frames' results alternating
+ * between two buffers; history whose depth does not match is rejected. */
+TEST(temporal_accumulates_and_rejects)
+{
+    tgi_view v = make_view(0.3f, 0.5f, 2.0f);
+    tgi_gview g;
+    tgi_gresult set[2];
+    tgi_temporal_params tp;
+    int i, f, bad = 0, changed = 0;
+    double worst = 0;
+    setup(&v);
+    g = sf_view(&g0, &v);
+    sf_results_alloc(&set[0], N, 1, 0, 0);
+    sf_results_alloc(&set[1], N, 1, 0, 0);
+    tgi_temporal_defaults(&tp);
+    for (f = 0; f < 40; f++) {
+        const tgi_gresult *r = &set[f & 1], *last = &set[1 - (f & 1)];
+        for (i = 0; i < N; i++) {
+            tgi_gr_set_ao(r, (size_t)i, (f & 1) ? TG_R(0.75f) : TG_R(0.25f));
+            tgi_gr_set_bent(r, (size_t)i, tg_v3(0, TG_ONE, 0));
+        }
+        tgi_temporal_rows(&tp, &g, r, last, &prev, &v, f == 0, 0, H);
+    }
+    for (i = 0; i < N; i++) {
+        double a = check_d(tgi_gr_ao(&set[1], (size_t)i));   /* the last frame's (f = 39) */
+        if (tgi_gv_is_sky(&g, (size_t)i)) continue;
+        if (fabs(a - 0.5) > worst) worst = fabs(a - 0.5);
+        if (fabs(a - 0.5278) > 0.01) bad++;
+    }
+    printf("# temporal: alternating 0.25 / 0.75 settles within %.4f of 0.5\n", worst);
+    CHECK(bad == 0, "%d pixels did not settle at 0.528 (worst |AO - 0.5| %.4f)", bad, worst);
+    /* last frame's depth twice as far: every history rejected, the input kept */
+    {
+        tgi_gbuffer far;
+        tgi_gview fv;
+        sf_gbuffer_alloc(&far, W, H, NULL, 0);
+        for (i = 0; i < N; i++)
+            sf_gbuffer_set(&far, (size_t)i, tg_mul(tgi_gv_depth(&g, (size_t)i), TG_R(2.0f)), tg_v3(0, TG_ONE, 0), 0);
+        fv = sf_view(&far, &v);
+        for (i = 0; i < N; i++) tgi_prev_keep(&prev, (size_t)i, &fv, (size_t)i);
+        for (i = 0; i < N; i++) tgi_gr_set_ao(&set[0], (size_t)i, TG_R(0.25f));
+        tgi_temporal_rows(&tp, &g, &set[0], &set[1], &prev, &v, 0, 0, H);
+        for (i = 0; i < N; i++) changed += tgi_gr_ao(&set[0], (size_t)i) != tgi_unorm8_unpack(tgi_unorm8_pack(TG_R(0.25f)));
+        CHECK(changed == 0, "%d pixels took a history whose depth does not match", changed);
+        sf_gbuffer_free(&far);
+    }
+    sf_results_free(&set[0]);
+    sf_results_free(&set[1]);
 }
 
 int main(void)
@@ -277,6 +326,7 @@ int main(void)
     RUN(camera_cut_gives_zero);
     RUN(teleport_is_finite_and_hole_free);
     RUN(pushpull_fills_within_range);
-    RUN(filters_preserve_constants);
+    RUN(filter_preserves_range_and_constants);
+    RUN(temporal_accumulates_and_rejects);
     return check_summary();
 }

@@ -72,6 +72,8 @@ tg_status tg_frame_render(tg_frame *f, int index, tg_error *err)
     f->index = index;
     f->bounces = (f->effects & TG_EFFECT_NEAR) && !f->has_history ? f->request.bounces : 1;
     if (f->bounces < 1) f->bounces = 1;
+    f->bounce = 0;
+    tgi_frame_begin(f);
     while (k < f->pass_count) {
         if (!(tgi_passes[f->pass_rows[k]].when & TGI_BOUNCE)) {
             run_frame_pass(f, &tgi_passes[f->pass_rows[k++]], f->band);

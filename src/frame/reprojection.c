@@ -3,7 +3,7 @@
  * reprojection.c - last frame's radiance as this frame's near-field source
  * (HBIL sec. 3.2): gathered into this view through the depth and the two
  * cameras, the holes filled by push/pull, and, at the end of every frame,
- * the radiance and the geometry kept as the next frame's history.
+ * the geometry kept for the next frame's depth tests.
  */
 #include "frame_internal.h"
 #include "../gi/reproject.h"
@@ -21,26 +21,22 @@ void tgi_pass_reproject(tg_frame *f, int y0, int y1)
     io.object = f->posed_pos ? f->gb.object : NULL;
     io.object_delta = f->object_delta;
     io.depth_tolerance = 0;
-    io.out = &f->source;
+    io.out = &f->bounce_source;
     tgi_reproject_gather_rows(&io, y0, y1);
 }
 
 /* ...then fill the holes by push/pull (Kraus 2009). */
 void tgi_pass_push_pull(tg_frame *f)
 {
-    tgi_pushpull_fill(f->width, f->height, &f->source, f->pushpull_mips);
+    tgi_pushpull_fill(f->width, f->height, &f->bounce_source, f->pushpull_mips);
 }
 
-/* The radiance the next frame's near field gathers: this frame's Lo (or,
- * without colour, its source), with the depth and normal it was seen at. */
+/* Last frame's geometry for the next frame's depth tests (its Lo stays
+ * where compose wrote it, frame_internal.h). */
 void tgi_pass_keep_history(tg_frame *f, int y0, int y1)
 {
-    const tgi_rgb *lo = tgi_rgb_present(&f->color) ? &f->color : &f->source;
     int x, y;
     for (y = y0; y < y1; y++)
-        for (x = 0; x < f->width; x++) {
-            size_t i = (size_t)y * (size_t)f->width + (size_t)x, j = tgi_gv_index(&f->full, x, y);
-            tgi_rgb_copy(&f->history, i, lo, j);
-            tgi_prev_keep(&f->prev_geometry, i, &f->full, j);
-        }
+        for (x = 0; x < f->width; x++)
+            tgi_prev_keep(&f->prev_geometry, (size_t)y * (size_t)f->width + (size_t)x, &f->full, tgi_gv_index(&f->full, x, y));
 }

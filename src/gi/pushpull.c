@@ -27,7 +27,8 @@ typedef struct pp_level {
 
 static int half_up(int n) { return (n + 1) / 2; }
 
-/* Bytes of one level of n texels (16-byte aligned parts); *overflow set on overflow. */
+/* Bytes of one level of n texels (16-byte aligned parts, as level_carve
+ * lays them); *overflow set on overflow. */
 static size_t level_bytes(size_t n, int *overflow)
 {
     size_t c, w;
@@ -42,15 +43,7 @@ static size_t level_bytes(size_t n, int *overflow)
 /* Point level l's planes at `base` (n texels). */
 static void level_carve(pp_level *l, unsigned char *base, size_t n)
 {
-    size_t c = (n * TGI_RGB_PIXEL_BYTES + 15) & ~(size_t)15;
-#if TG_WIDE_STORAGE
-    l->c.r = (tg_real *)(void *)base;
-    l->c.g = l->c.r + n;
-    l->c.b = l->c.g + n;
-#else
-    l->c.p = (uint32_t *)(void *)base;
-#endif
-    l->wt = (pp_weight *)(void *)(base + c);
+    l->wt = (pp_weight *)(void *)(base + tgi_rgb_carve(&l->c, n, base));
 }
 
 /* The chain of a w x h image: levels 1.. (count returned), carved from

@@ -40,6 +40,7 @@ size_t tgi_rgb_carve(tgi_rgb *c, size_t n, void *mem)
 {
     unsigned char *base = (unsigned char *)mem;
     size_t at = 0;
+    *c = tgi_rgb_none();
 #if TG_WIDE_STORAGE
     c->r = (tg_real *)part(base, &at, n, sizeof(tg_real));
     c->g = (tg_real *)part(base, &at, n, sizeof(tg_real));

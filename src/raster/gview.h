@@ -185,35 +185,78 @@ static inline void tgi_gview_copy_pixel(const tgi_gbuffer *dst, size_t j, const 
 #endif
 }
 
-/* ---- colour planes: radiance or irradiance, linear RGB ---- */
-#if TG_WIDE_STORAGE
-typedef struct tgi_rgb { tg_real *r, *g, *b; } tgi_rgb;   /* r NULL: absent */
+/* ---- the light a diffuse surface sends ---- */
 
+/* Lo of pixel i of storage g under irradiance e: albedo / pi (1 - F0) e +
+ * emissive (HBIL sec. 2.3: eq. 14's 1/pi, eq. 19's 1 - F0); 0 on sky. */
+static inline tg_vec3 tgi_gb_lit(const tgi_gbuffer *g, size_t i, tg_vec3 e)
+{
+    const tgi_material *m;
+    tg_real kd;
+    tg_vec3 lo;
+    if (g->depth[i] == 0) return tg_v3(0, 0, 0);
+#if TG_WIDE_STORAGE
+    m = &g->materials[g->material[i]];
+#else
+    m = &g->materials[g->nm[i] >> TGI_MATERIAL_SHIFT];
+#endif
+    kd = tg_mul(tg_saturate(tg_sub(TG_ONE, m->f0)), TG_INV_PI);
+    lo = tg_v3(tg_mul(tg_mul(m->albedo.x, kd), e.x), tg_mul(tg_mul(m->albedo.y, kd), e.y),
+               tg_mul(tg_mul(m->albedo.z, kd), e.z));
+    return g->has_emissive ? tgi_v3_add(lo, m->emissive) : lo;
+}
+static inline tg_vec3 tgi_gv_lit(const tgi_gview *v, size_t i, tg_vec3 e) { return tgi_gb_lit(&v->store, i, e); }
+
+/* ---- colour planes: radiance or irradiance, linear RGB ----
+ * A plane may be read as lit: it holds irradiance, and its reads give the
+ * radiance its surfaces send (tgi_gb_lit), so the direct light's plane is
+ * also the near field's first source without a plane of its own. */
+typedef struct tgi_rgb {
+#if TG_WIDE_STORAGE
+    tg_real *r, *g, *b;            /* r NULL: absent */
+#else
+    uint32_t *p;                   /* RGB9E5 words; NULL: absent */
+#endif
+    const tgi_gbuffer *lit;        /* non-NULL: reads are tgi_gb_lit of these surfaces */
+    size_t lit_at;                 /* pixel i of the plane is pixel lit_at + i of lit */
+} tgi_rgb;
+
+#if TG_WIDE_STORAGE
 static inline int tgi_rgb_present(const tgi_rgb *c) { return c && c->r != NULL; }
-static inline tg_vec3 tgi_rgb_get(const tgi_rgb *c, size_t i) { return tg_v3(c->r[i], c->g[i], c->b[i]); }
+static inline tg_vec3 tgi_rgb_stored(const tgi_rgb *c, size_t i) { return tg_v3(c->r[i], c->g[i], c->b[i]); }
 static inline void tgi_rgb_set(const tgi_rgb *c, size_t i, tg_vec3 v) { c->r[i] = v.x; c->g[i] = v.y; c->b[i] = v.z; }
-/* The planes seen from index `start` on (absent stays absent). */
+#else
+static inline int tgi_rgb_present(const tgi_rgb *c) { return c && c->p != NULL; }
+static inline tg_vec3 tgi_rgb_stored(const tgi_rgb *c, size_t i) { return tgi_rgb9e5_unpack(c->p[i]); }
+static inline void tgi_rgb_set(const tgi_rgb *c, size_t i, tg_vec3 v) { c->p[i] = tgi_rgb9e5_pack(v); }
+#endif
+static inline tg_vec3 tgi_rgb_get(const tgi_rgb *c, size_t i)
+{
+    tg_vec3 v = tgi_rgb_stored(c, i);
+    return c->lit ? tgi_gb_lit(c->lit, c->lit_at + i, v) : v;
+}
+/* The plane seen from index `start` on (absent stays absent). */
 static inline tgi_rgb tgi_rgb_from(const tgi_rgb *c, size_t start)
 {
-    tgi_rgb s;
+    tgi_rgb s = *c;
+#if TG_WIDE_STORAGE
     s.r = c->r ? c->r + start : NULL;
     s.g = c->g ? c->g + start : NULL;
     s.b = c->b ? c->b + start : NULL;
-    return s;
-}
 #else
-typedef struct tgi_rgb { uint32_t *p; } tgi_rgb;          /* RGB9E5 words; p NULL: absent */
-
-static inline int tgi_rgb_present(const tgi_rgb *c) { return c && c->p != NULL; }
-static inline tg_vec3 tgi_rgb_get(const tgi_rgb *c, size_t i) { return tgi_rgb9e5_unpack(c->p[i]); }
-static inline void tgi_rgb_set(const tgi_rgb *c, size_t i, tg_vec3 v) { c->p[i] = tgi_rgb9e5_pack(v); }
-static inline tgi_rgb tgi_rgb_from(const tgi_rgb *c, size_t start)
-{
-    tgi_rgb s;
     s.p = c->p ? c->p + start : NULL;
+#endif
+    s.lit_at = c->lit_at + start;
     return s;
 }
-#endif
+/* The same plane read as lit by the surfaces of g (pixel i of the plane is pixel i of g). */
+static inline tgi_rgb tgi_rgb_lit_by(const tgi_rgb *c, const tgi_gbuffer *g)
+{
+    tgi_rgb s = *c;
+    s.lit = g;
+    s.lit_at = 0;
+    return s;
+}
 /* An absent colour plane. */
 static inline tgi_rgb tgi_rgb_none(void)
 {
@@ -223,7 +266,7 @@ static inline tgi_rgb tgi_rgb_none(void)
 }
 /* Bytes a pixel of a colour plane. */
 #define TGI_RGB_PIXEL_BYTES (TG_WIDE_STORAGE ? 3 * sizeof(tg_real) : sizeof(uint32_t))
-/* Pixel j of dst = pixel i of src, as stored. */
+/* Pixel j of dst = pixel i of src, as stored (src not lit). */
 #if TG_WIDE_STORAGE
 static inline void tgi_rgb_copy(const tgi_rgb *dst, size_t j, const tgi_rgb *src, size_t i)
 {
@@ -335,6 +378,24 @@ static inline tg_real tgi_gr_cone(const tgi_gresult *r, size_t i)
 static inline int tgi_gr_has_near(const tgi_gresult *r) { return tgi_rgb_present(&r->near); }
 static inline tg_vec3 tgi_gr_near(const tgi_gresult *r, size_t i) { return tgi_rgb_get(&r->near, i); }
 static inline void tgi_gr_set_near(const tgi_gresult *r, size_t i, tg_vec3 e) { tgi_rgb_set(&r->near, i, e); }
+
+/* Every channel of pixel i at once (those r lacks read as ao 1, bent 0, near 0). */
+typedef struct tgi_gr_value { tg_real ao; tg_vec3 bent, near; } tgi_gr_value;
+static inline tgi_gr_value tgi_gr_get(const tgi_gresult *r, size_t i)
+{
+    tgi_gr_value v;
+    v.ao = r->ao ? tgi_gr_ao(r, i) : TG_ONE;
+    v.bent = tgi_gr_has_bent(r) ? tgi_gr_bent(r, i) : tg_v3(0, 0, 0);
+    v.near = tgi_gr_has_near(r) ? tgi_gr_near(r, i) : tg_v3(0, 0, 0);
+    return v;
+}
+/* Write the channels r has. */
+static inline void tgi_gr_put(const tgi_gresult *r, size_t i, const tgi_gr_value *v)
+{
+    if (r->ao) tgi_gr_set_ao(r, i, v->ao);
+    if (tgi_gr_has_bent(r)) tgi_gr_set_bent(r, i, v->bent);
+    if (tgi_gr_has_near(r)) tgi_gr_set_near(r, i, v->near);
+}
 
 /* The results seen from index `start` on (a sub-image of a larger image). */
 static inline tgi_gresult tgi_gresult_from(const tgi_gresult *r, size_t start)
