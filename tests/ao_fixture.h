@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include "ao/ao.h"
 #include "ao/bvh.h"
+#include "storage_fixture.h"
 
 #define W 48
 #define H 36
@@ -109,27 +110,58 @@ static void raster(scene *s, const double eye[3], const double target[3], double
 }
 
 typedef struct outputs {
-    tg_real ao[W * H], bx[W * H], by[W * H], bz[W * H], nr[W * H], ng[W * H], nb[W * H];
+    tg_real ao[W * H], bx[W * H], by[W * H], bz[W * H], cone[W * H], nr[W * H], ng[W * H], nb[W * H];
 } outputs;
 
-/* What a technique reads and writes: the view of the ray-cast G-buffer, the
- * results (into `outputs`) and the radiance planes (absent unless a test
- * sets them). */
+/* What a technique reads and writes: the view of the ray-cast G-buffer (in
+ * the build's storage), the results (read back into `outputs` by io_read)
+ * and the radiance planes (absent unless a test sets them). */
 typedef struct ao_pass {
-    tgi_gbuffer gb;
     tgi_gview g;
     tgi_gresult out;
     tgi_rgb rad;
+    outputs *o;
 } ao_pass;
 
-static void io_for(ao_pass *io, scene *s, outputs *o, int want_near)
+static tgi_gbuffer ao_gb;
+static tgi_gresult ao_res, ao_res_near, ao_res_cone, ao_res_near_cone;
+static tgi_rgb ao_rad;
+
+static inline void io_for(ao_pass *io, scene *s, outputs *o, int want_near)
 {
+    if (!ao_gb.depth) {
+        sf_gbuffer_alloc(&ao_gb, W, H, NULL, 0);
+        sf_results_alloc(&ao_res, W * H, 1, 0, 0);
+        sf_results_alloc(&ao_res_near, W * H, 1, 0, 1);
+        sf_results_alloc(&ao_res_cone, W * H, 1, 1, 0);
+        sf_results_alloc(&ao_res_near_cone, W * H, 1, 1, 1);
+        sf_rgb_alloc(&ao_rad, W * H);
+    }
     memset(io, 0, sizeof *io);
-    io->gb.width = W; io->gb.height = H;
-    io->gb.depth = s->depth; io->gb.nx = s->nx; io->gb.ny = s->ny; io->gb.nz = s->nz; io->gb.sky = s->sky;
-    tgi_gview_of(&io->g, &io->gb, &s->view);
-    io->out.ao = o->ao; io->out.bent_x = o->bx; io->out.bent_y = o->by; io->out.bent_z = o->bz;
-    if (want_near) { io->out.near.r = o->nr; io->out.near.g = o->ng; io->out.near.b = o->nb; }
+    sf_gbuffer_fill(&ao_gb, s->depth, s->nx, s->ny, s->nz, s->sky, 0);
+    io->g = sf_view(&ao_gb, &s->view);
+    io->out = want_near ? ao_res_near : ao_res;
+    io->o = o;
+}
+
+/* The technique's own cone as well (io_read fills o->cone). */
+static inline void io_with_cone(ao_pass *io)
+{
+    io->out = tgi_gr_has_near(&io->out) ? ao_res_near_cone : ao_res_cone;
+}
+
+/* Radiance planes the technique gathers. */
+static inline void io_radiance(ao_pass *io, const tg_real *r, const tg_real *g, const tg_real *b)
+{
+    sf_rgb_fill(&ao_rad, W * H, r, g, b);
+    io->rad = ao_rad;
+}
+
+/* The results as numbers, into the outputs io_for was given. */
+static inline void io_read(const ao_pass *io)
+{
+    outputs *o = io->o;
+    sf_results_read(&io->out, W * H, o->ao, o->bx, o->by, o->bz, o->cone, o->nr, o->ng, o->nb);
 }
 
 static tgi_bvh bvh;

@@ -15,6 +15,8 @@
 #include "raster/raster.h"
 #include "scene/scene.h"
 #include "ao/bvh.h"
+#include "storage_fixture.h"
+#include "light/direct.h"
 
 #define DEG (3.14159265358979 / 180.0)
 #define MAXTRI 4096
@@ -131,8 +133,9 @@ static tgi_light make_light(tgi_light_type type, tg_vec3 pos, tg_vec3 dir, doubl
 typedef struct image {
     int w, h;
     tgi_view view;
-    tgi_gbuffer gb;
+    tgi_gbuffer gb;                  /* in the build's storage (storage_fixture.h) */
     tg_real *planes;
+    tg_real *depth, *nx, *ny, *nz;   /* the G-buffer read back as numbers */
     uint8_t *sky;
     tg_real *out[IMAGE_OUTPUTS];     /* planes for the test's results */
     double texel_world;              /* test_shadow: of the last map */
@@ -141,7 +144,21 @@ typedef struct image {
 static void image_free(image *im)
 {
     free(im->planes); free(im->sky);
+    sf_gbuffer_free(&im->gb);
     memset(im, 0, sizeof *im);
+}
+
+/* The G-buffer as numbers: depth, normal, sky. */
+static void image_read_back(image *im)
+{
+    tgi_gview v = sf_view(&im->gb, &im->view);
+    size_t i, n = (size_t)im->w * (size_t)im->h;
+    for (i = 0; i < n; i++) {
+        tg_vec3 nn = tgi_gv_is_sky(&v, i) ? tg_v3(0, 0, 0) : tgi_gv_normal(&v, i);
+        im->sky[i] = (uint8_t)tgi_gv_is_sky(&v, i);
+        im->depth[i] = tgi_gv_depth(&v, i);
+        im->nx[i] = nn.x; im->ny[i] = nn.y; im->nz[i] = nn.z;
+    }
 }
 
 /* Rasterize g seen from eye toward target (fov in degrees) at w x h;
@@ -152,28 +169,39 @@ static void image_render(image *im, const geo *g, const tgi_material *materials,
     static const tgi_material white = { "white", { TG_ONE, TG_ONE, TG_ONE }, 0, { 0, 0, 0 }, 1 };
     tgi_raster_mesh mesh;
     size_t n = (size_t)w * (size_t)h;
-    int k;
+    int k, used;
     tg_real *p;
     memset(im, 0, sizeof *im);
     im->w = w; im->h = h;
-    im->planes = (tg_real *)calloc(n * (11 + IMAGE_OUTPUTS), sizeof(tg_real));
+    im->planes = (tg_real *)calloc(n * (4 + IMAGE_OUTPUTS), sizeof(tg_real));
     im->sky = (uint8_t *)calloc(n, 1);
     if (!im->planes || !im->sky) { fprintf(stderr, "out of memory\n"); exit(2); }
     p = im->planes;
-    im->gb.width = w; im->gb.height = h;
-    im->gb.depth = p; im->gb.nx = p + n; im->gb.ny = p + 2 * n; im->gb.nz = p + 3 * n;
-    im->gb.albedo_r = p + 4 * n; im->gb.albedo_g = p + 5 * n; im->gb.albedo_b = p + 6 * n; im->gb.f0 = p + 7 * n;
-    im->gb.emit_r = p + 8 * n; im->gb.emit_g = p + 9 * n; im->gb.emit_b = p + 10 * n;
-    im->gb.sky = im->sky;
-    for (k = 0; k < IMAGE_OUTPUTS; k++) im->out[k] = p + (11 + (size_t)k) * n;
+    im->depth = p; im->nx = p + n; im->ny = p + 2 * n; im->nz = p + 3 * n;
+    for (k = 0; k < IMAGE_OUTPUTS; k++) im->out[k] = p + (4 + (size_t)k) * n;
+    for (k = 0, used = 1; k < g->n; k++) if (g->mat[k] + 1 > used) used = g->mat[k] + 1;
+    sf_gbuffer_alloc(&im->gb, w, h, materials ? materials : &white, materials ? used : 1);
     tgi_view_make(&im->view, v3(eye[0], eye[1], eye[2]), v3(target[0], target[1], target[2]), v3(0, 1, 0),
                   rv(fov_deg * DEG), TG_R(0.05f), TG_R(1000.0f), w, h);
     mesh.pos = g->pos; mesh.nrm = g->nrm; mesh.tri_material = g->mat; mesh.tri_object = NULL;
     mesh.tri_count = g->n; mesh.materials = materials ? materials : &white;
     tgi_gbuffer_clear_rows(&im->gb, 0, h);
     tgi_raster_gbuffer(&im->gb, &im->view, &mesh, 0, h);
+    image_read_back(im);
     for (k = 0; k < w * h; k++) if (!im->sky[k]) break;
     CHECK(k < w * h, "the camera sees the scene");
+}
+
+/* Direct irradiance (light/direct.h) of the image's G-buffer into outputs
+ * first .. first + 2, through the build's colour storage. */
+static void image_direct(image *im, const tgi_light *lights, int count, const tgi_shadow_map *const *maps, int first)
+{
+    tgi_gview v = sf_view(&im->gb, &im->view);
+    tgi_rgb e;
+    sf_rgb_alloc(&e, (size_t)im->w * (size_t)im->h);
+    tgi_direct_rows(&v, lights, count, maps, &e, 0, im->h);
+    sf_rgb_read(&e, (size_t)im->w * (size_t)im->h, im->out[first], im->out[first + 1], im->out[first + 2]);
+    sf_rgb_free(&e);
 }
 
 /* World position of pixel i as the passes reconstruct it (view.h), and its normal. */
@@ -181,11 +209,11 @@ static void pixel_pos(const image *im, int i, double p[3], double n[3])
 {
     const tgi_view *v = &im->view;
     double kx = (i % im->w + 0.5 - im->w / 2.0) / dv(v->pixels_per_unit);
-    double ky = (im->h / 2.0 - (i / im->w + 0.5)) / dv(v->pixels_per_unit), z = dv(im->gb.depth[i]);
+    double ky = (im->h / 2.0 - (i / im->w + 0.5)) / dv(v->pixels_per_unit), z = dv(im->depth[i]);
     p[0] = dv(v->eye.x) + z * (dv(v->forward.x) + ky * dv(v->up.x) + kx * dv(v->right.x));
     p[1] = dv(v->eye.y) + z * (dv(v->forward.y) + ky * dv(v->up.y) + kx * dv(v->right.y));
     p[2] = dv(v->eye.z) + z * (dv(v->forward.z) + ky * dv(v->up.z) + kx * dv(v->right.z));
-    n[0] = dv(im->gb.nx[i]); n[1] = dv(im->gb.ny[i]); n[2] = dv(im->gb.nz[i]);
+    n[0] = dv(im->nx[i]); n[1] = dv(im->ny[i]); n[2] = dv(im->nz[i]);
 }
 
 #endif

@@ -9,6 +9,7 @@
 #include "scene/scene.h"
 #include "scene/anim.h"
 #include "raster/motion.h"
+#include "storage_fixture.h"
 
 #define PI 3.14159265358979
 #define DEG (PI / 180.0)
@@ -245,7 +246,7 @@ static int project_d(const tgi_view *v, const double p[3], double *sx, double *s
 }
 
 typedef struct {
-    tgi_gbuffer gb;
+    tgi_gbuffer gb;                  /* the build's storage of depth (normals unused) */
     tg_real depth[W * H], mx[W * H], my[W * H];
     uint8_t sky[W * H];
     uint16_t object[W * H];
@@ -256,8 +257,7 @@ typedef struct {
 static void cast(motion_gb *g, const tgi_view *v, const rigid *box)
 {
     int x, y, k;
-    memset(&g->gb, 0, sizeof g->gb);
-    g->gb.width = W; g->gb.height = H; g->gb.depth = g->depth; g->gb.sky = g->sky;
+    if (!g->gb.depth) sf_gbuffer_alloc(&g->gb, W, H, NULL, 0);
     g->gb.object = g->object; g->gb.motion_x = g->mx; g->gb.motion_y = g->my;
     for (y = 0; y < H; y++)
         for (x = 0; x < W; x++) {
@@ -276,13 +276,21 @@ static void cast(motion_gb *g, const tgi_view *v, const rigid *box)
             g->depth[i] = best < 0 ? 0 : rv(best); /* the direction has view z = 1 */
             g->object[i] = (uint16_t)obj;
             for (k = 0; k < 3; k++) g->world[i][k] = o[k] + best * d[k];
+            sf_gbuffer_set(&g->gb, (size_t)i, g->depth[i], tg_v3(0, TG_ONE, 0), 0);
         }
+}
+
+static void motion_gb_free(motion_gb *g)
+{
+    g->gb.object = NULL; g->gb.motion_x = g->gb.motion_y = NULL;   /* the struct's own arrays */
+    sf_gbuffer_free(&g->gb);
+    free(g);
 }
 
 TEST(static_scene_moving_camera_reprojects_onto_itself)
 {
     test_scene *ts = (test_scene *)malloc(sizeof *ts);
-    motion_gb *g = (motion_gb *)malloc(sizeof *g);
+    motion_gb *g = (motion_gb *)calloc(1, sizeof *g);
     tgi_view cur, prev;
     tg_vec3 pos, target;
     rigid still = { { { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } }, { 0, 0.0, 0 } };
@@ -318,13 +326,13 @@ TEST(static_scene_moving_camera_reprojects_onto_itself)
     }
     CHECK(seen > 10 * W * H / 2 && sky_seen > 100, "coverage %d surface, %d sky", seen, sky_seen);
     printf("# static scene, moving camera: worst reprojection error %.4f px\n", worst);
-    free(ts); free(g);
+    free(ts); motion_gb_free(g);
 }
 
 TEST(moving_object_motion)
 {
     test_scene *ts = (test_scene *)malloc(sizeof *ts);
-    motion_gb *g = (motion_gb *)malloc(sizeof *g);
+    motion_gb *g = (motion_gb *)calloc(1, sizeof *g);
     tgi_view cur, prev;
     tgi_mat4 mcur, mprev, delta[2];
     rigid rc, rp;
@@ -355,7 +363,7 @@ TEST(moving_object_motion)
     }
     CHECK(seen > 100, "box pixels %d", seen);
     printf("# moving object: worst error %.4f px\n", worst);
-    free(ts); free(g);
+    free(ts); motion_gb_free(g);
 }
 
 int main(void)

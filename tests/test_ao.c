@@ -42,6 +42,13 @@ static void open_plane(scene *s)
 /* ---- the techniques under test, each with its documented defaults ---- */
 static tg_vec3 uniform_sky[9];   /* L = 1 everywhere: L00 = 2 sqrt(pi) */
 static tg_real far_r[W * H], far_g[W * H], far_b[W * H];
+static tgi_rgb far_store;   /* the far field in the build's storage, read back into far_* */
+
+static tgi_rgb far_plane(void)
+{
+    if (!tgi_rgb_present(&far_store)) sf_rgb_alloc(&far_store, W * H);
+    return far_store;
+}
 
 static void run_ssao_sphere(const ao_pass *io, int y0, int y1)
 { tgi_ssao_params p; tgi_ssao_defaults(&p); p.variant = TG_SSAO_SPHERE; tgi_ssao_rows(&p, &io->g, &io->out, y0, y1); }
@@ -66,14 +73,16 @@ static void run_hbao4(const ao_pass *io, int y0, int y1)
 static void run_ssdo(const ao_pass *io, int y0, int y1)
 {
     tgi_ssdo_params p; tgi_ssdo_defaults(&p);
-    p.env_sh9 = uniform_sky; p.far.r = far_r; p.far.g = far_g; p.far.b = far_b;
+    p.env_sh9 = uniform_sky; p.far = far_plane();
     tgi_ssdo_rows(&p, &io->g, &io->rad, &io->out, y0, y1);
+    sf_rgb_read(&far_store, W * H, far_r, far_g, far_b);
 }
 static void run_bentcone(const ao_pass *io, int y0, int y1)
 {
     tgi_bentcone_params p; tgi_bentcone_defaults(&p);
-    p.env_sh9 = uniform_sky; p.far.r = far_r; p.far.g = far_g; p.far.b = far_b;
+    p.env_sh9 = uniform_sky; p.far = far_plane();
     tgi_bentcone_rows(&p, &io->g, &io->out, y0, y1);
+    sf_rgb_read(&far_store, W * H, far_r, far_g, far_b);
 }
 
 typedef struct technique {
@@ -142,6 +151,7 @@ TEST(open_plane_all)
         double min_ao;
         io_for(&io, &s, &o, 0);
         techniques[k].run(&io, 0, H);
+        io_read(&io);
         check_outputs(&techniques[k], &s, &o, &min_ao);
         printf("# open plane %-16s min ao %.4f (bound %.2f) at pixel (%d, %d) depth %.2f\n", techniques[k].name, min_ao,
                techniques[k].open_min, worst_pixel % W, worst_pixel / W, worst_pixel < 0 ? 0.0 : check_d(s.depth[worst_pixel]));
@@ -159,9 +169,12 @@ TEST(deterministic_all)
     for (k = 0; k < NTECH; k++) {
         io_for(&io, &s, &a, 1);
         techniques[k].run(&io, 0, H);
+        io_read(&io);
         io_for(&io, &s, &b, 1);
         techniques[k].run(&io, 0, 13);
+        io_read(&io);
         techniques[k].run(&io, 13, H);
+        io_read(&io);
         CHECK(memcmp(a.ao, b.ao, sizeof a.ao) == 0, "%s: ao not deterministic", techniques[k].name);
         CHECK(memcmp(a.bx, b.bx, sizeof a.bx) == 0 && memcmp(a.bz, b.bz, sizeof a.bz) == 0,
               "%s: bent not deterministic", techniques[k].name);
@@ -191,6 +204,7 @@ TEST(groove_against_reference)
     rp.bvh = &bvh; rp.tri_nrm = s.nrm; rp.radius = TG_ONE;
     io_for(&io, &s, &ref, 0);
     tgi_reference_rows(&rp, &io.g, &io.rad, &io.out, 0, H);
+    io_read(&io);
     printf("# groove reference: floor ao near the crease %.3f, beyond the radius %.3f\n",
            floor_mean(&s, ref.ao, 0, 0.15), floor_mean(&s, ref.ao, 1.2, 100));
     for (k = 0; k < NTECH; k++) {
@@ -198,6 +212,7 @@ TEST(groove_against_reference)
         int n = 0, nb = 0;
         io_for(&io, &s, &o, 0);
         techniques[k].run(&io, 0, H);
+        io_read(&io);
         check_outputs(&techniques[k], &s, &o, &min_ao);
         for (i = 0; i < W * H; i++) {
             double d, c;
@@ -245,7 +260,6 @@ TEST(bentcone_cone_and_far)
 {
     static scene s;
     static outputs o;
-    static tg_real cone[W * H];
     ao_pass io;
     int i, n = 0;
     double min_cone = 10, worst_far = 0;
@@ -254,12 +268,13 @@ TEST(bentcone_cone_and_far)
     CHECK_NEAR(check_d(tgi_bentcone_aperture(TG_R(0.75f))), 3.14159265358979 / 4, 1e-4);
     open_plane(&s);
     io_for(&io, &s, &o, 0);
-    io.out.cone = cone;
+    io_with_cone(&io);
     run_bentcone(&io, 0, H);
+    io_read(&io);
     for (i = 0; i < W * H; i++) {
         if (s.sky[i]) continue;
         n++;
-        min_cone = fmin(min_cone, check_d(cone[i]));
+        min_cone = fmin(min_cone, check_d(o.cone[i]));
         worst_far = fmax(worst_far, fabs(check_d(far_r[i]) - 3.14159265358979));
     }
     printf("# bentcone open plane: min cone %.3f rad, worst |E_far - pi| %.4f\n", min_cone, worst_far);
@@ -268,14 +283,15 @@ TEST(bentcone_cone_and_far)
     /* groove: cones narrow and bent normals lean away from the wall */
     groove(&s);
     io_for(&io, &s, &o, 0);
-    io.out.cone = cone;
+    io_with_cone(&io);
     run_bentcone(&io, 0, H);
+    io_read(&io);
     {
         double cone_crease = 0, bx = 0;
         int m = 0;
         for (i = 0; i < W * H; i++)
             if (!s.sky[i] && s.wrect[i] == 0 && s.wpos[i][0] < 0.15 && fabs(s.wpos[i][2]) < 10) {
-                cone_crease += check_d(cone[i]); bx += check_d(o.bx[i]); m++;
+                cone_crease += check_d(o.cone[i]); bx += check_d(o.bx[i]); m++;
             }
         CHECK(m > 0 && cone_crease / m < 1.2, "crease cone %g", m ? cone_crease / m : 0.0);
         CHECK(m > 0 && bx / m > 0.2, "crease bent x %g", m ? bx / m : 0.0);
@@ -294,6 +310,7 @@ TEST(ssdo_far_and_near)
     open_plane(&s);
     io_for(&io, &s, &o, 0);
     run_ssdo(&io, 0, H);
+    io_read(&io);
     for (i = 0; i < W * H; i++)
         if (!s.sky[i]) worst_far = fmax(worst_far, fabs(check_d(far_r[i]) - 3.14159265358979));
     printf("# ssdo open plane: worst |E_far - pi| %.4f\n", worst_far);
@@ -302,13 +319,15 @@ TEST(ssdo_far_and_near)
     groove(&s);
     for (i = 0; i < W * H; i++) { rr[i] = s.wrect[i] == 1 ? TG_ONE : 0; rg[i] = rr[i]; rb[i] = 0; }
     io_for(&io, &s, &o, 1);
-    io.rad.r = rr; io.rad.g = rg; io.rad.b = rb;
+    io_radiance(&io, rr, rg, rb);
     run_ssdo(&io, 0, H);
+    io_read(&io);
     tgi_reference_defaults(&rp);
     rp.bvh = &bvh; rp.tri_nrm = s.nrm; rp.radius = TG_ONE;
     io_for(&io, &s, &ref, 1);
-    io.rad.r = rr; io.rad.g = rg; io.rad.b = rb;
+    io_radiance(&io, rr, rg, rb);
     tgi_reference_rows(&rp, &io.g, &io.rad, &io.out, 0, H);   /* view-buffer radiance: what ssdo can see */
+    io_read(&io);
     for (i = 0; i < W * H; i++) {
         CHECK(o.nr[i] >= 0 && tg_isfinite(o.nr[i]) && o.nb[i] == 0, "near must be finite, >= 0");
         if (!s.sky[i] && s.wrect[i] == 0 && s.wpos[i][0] < 0.15 && fabs(s.wpos[i][2]) < 10) {
@@ -341,9 +360,12 @@ TEST(ssdo_light_occlusion)
     groove(&s);
     tgi_ssdo_defaults(&p);
     p.lights = &light; p.light_count = 1;
-    p.light.r = lr; p.light.g = lg; p.light.b = lb;
+    sf_rgb_alloc(&p.light, W * H);
     io_for(&io, &s, &o, 0);
     tgi_ssdo_rows(&p, &io.g, &io.rad, &io.out, 0, H);
+    io_read(&io);
+    sf_rgb_read(&p.light, W * H, lr, lg, lb);
+    sf_rgb_free(&p.light);
     for (i = 0; i < W * H; i++) {
         if (s.sky[i] || s.wrect[i] != 0 || fabs(s.wpos[i][2]) >= 10) continue;
         CHECK(tg_isfinite(lr[i]) && lr[i] >= 0, "finite");

@@ -12,6 +12,7 @@
 #include "light/compose.h"
 #include "light/tonemap.h"
 #include "light/sh.h"
+#include "storage_fixture.h"
 
 #define W 64
 #define H 48
@@ -89,65 +90,83 @@ static void pixel_ray(const tgi_view *v, int x, int y, double o[3], double d[3])
 }
 
 typedef struct {
-    tgi_gbuffer gb;
-    tg_real planes[16][W * H];
+    tgi_gbuffer gb;         /* the build's storage (storage_fixture.h) */
     uint8_t sky[W * H];
     double world[W * H][3]; /* exact hit point */
     int on_floor[W * H];
 } gbuf;
 
-static gbuf *gbuf_new(void) { return (gbuf *)calloc(1, sizeof(gbuf)); }
+/* The materials: 0 white (albedo 1 1 1, f0 0); 1..8 compose's test set. */
+static tgi_material gbuf_materials[9];
 
-static tgi_rgb rgb_of(tg_real *r, tg_real *g, tg_real *b)
+static gbuf *gbuf_new(void)
 {
-    tgi_rgb c;
-    c.r = r; c.g = g; c.b = b;
-    return c;
+    gbuf *g = (gbuf *)calloc(1, sizeof(gbuf));
+    gbuf_materials[0].albedo = tg_v3(TG_ONE, TG_ONE, TG_ONE);
+    sf_gbuffer_alloc(&g->gb, W, H, gbuf_materials, 9);
+    return g;
 }
 
-/* E_direct of the test G-buffer seen by camera v, into three planes. */
+static void gbuf_free(gbuf *g)
+{
+    sf_gbuffer_free(&g->gb);
+    free(g);
+}
+
+/* E_direct of the test G-buffer seen by camera v, into three planes
+ * (through the build's colour storage). */
 static void direct_rows(const tgi_gbuffer *gb, const tgi_view *v, const tgi_light *lights, int n,
                         const tgi_shadow_map *const *maps, tg_real *r, tg_real *g, tg_real *b, int y0, int y1)
 {
     tgi_gview view;
-    tgi_rgb e = rgb_of(r, g, b);
+    tgi_rgb e;
+    sf_rgb_alloc(&e, W * H);
     tgi_gview_of(&view, gb, v);
     tgi_direct_rows(&view, lights, n, maps, &e, y0, y1);
+    sf_rgb_read(&e, W * H, r, g, b);
+    sf_rgb_free(&e);
 }
 
-/* Lo (and E when irr_r is not NULL) of the test G-buffer seen by camera v. */
-static void compose_rows(const tgi_gbuffer *gb, const tgi_view *v, const tgi_env *env, const tgi_rgb *terms, int n,
-                         tg_real *o_r, tg_real *o_g, tg_real *o_b, tg_real *i_r, tg_real *i_g, tg_real *i_b)
+/* Lo (and E when i_r is not NULL) of the test G-buffer seen by camera v,
+ * from term planes (NULL: absent), through the build's colour storage. */
+static void compose_rows(const tgi_gbuffer *gb, const tgi_view *v, const tgi_env *env, tg_real *const *term_planes,
+                         int n, tg_real *o_r, tg_real *o_g, tg_real *o_b, tg_real *i_r, tg_real *i_g, tg_real *i_b)
 {
     tgi_gview view;
-    tgi_rgb out = rgb_of(o_r, o_g, o_b), irr = rgb_of(i_r, i_g, i_b);
+    tgi_rgb out, irr = tgi_rgb_none(), terms[3];
+    int k;
+    for (k = 0; k < n; k++) {
+        terms[k] = tgi_rgb_none();
+        if (!term_planes[3 * k]) continue;
+        sf_rgb_alloc(&terms[k], W * H);
+        sf_rgb_fill(&terms[k], W * H, term_planes[3 * k], term_planes[3 * k + 1], term_planes[3 * k + 2]);
+        sf_rgb_read(&terms[k], W * H, term_planes[3 * k], term_planes[3 * k + 1], term_planes[3 * k + 2]);
+    }
+    sf_rgb_alloc(&out, W * H);
+    if (i_r) sf_rgb_alloc(&irr, W * H);
     tgi_gview_of(&view, gb, v);
     tgi_compose_rows(&view, env, terms, n, &out, &irr, 0, gb->height);
+    sf_rgb_read(&out, W * H, o_r, o_g, o_b);
+    if (i_r) { sf_rgb_read(&irr, W * H, i_r, i_g, i_b); sf_rgb_free(&irr); }
+    sf_rgb_free(&out);
+    for (k = 0; k < n; k++) if (tgi_rgb_present(&terms[k])) sf_rgb_free(&terms[k]);
 }
 
-/* Ray cast the analytic scene into a G-buffer (albedo 1 1 1, f0 0). */
+/* Ray cast the analytic scene into a G-buffer (material 0: albedo 1 1 1, f0 0). */
 static void gbuf_cast(gbuf *g, const tgi_view *v, const ascene *s)
 {
     int x, y, k;
     tgi_gbuffer *gb = &g->gb;
-    memset(gb, 0, sizeof *gb);
-    gb->width = W; gb->height = H;
-    gb->depth = g->planes[0]; gb->nx = g->planes[1]; gb->ny = g->planes[2]; gb->nz = g->planes[3];
-    gb->albedo_r = g->planes[4]; gb->albedo_g = g->planes[5]; gb->albedo_b = g->planes[6];
-    gb->f0 = g->planes[7]; gb->sky = g->sky;
     for (y = 0; y < H; y++)
         for (x = 0; x < W; x++) {
             int i = y * W + x;
-            double o[3], d[3], n[3], t;
+            double o[3], d[3], n[3] = { 0, 0, 0 }, t;
             pixel_ray(v, x, y, o, d);
             t = ray_scene(s, o, d, n);
             g->on_floor[i] = 0;
-            if (t < 0) { g->sky[i] = 1; gb->depth[i] = 0; continue; }
+            if (t < 0) { g->sky[i] = 1; tgi_gb_set_sky(gb, (size_t)i); continue; }
             g->sky[i] = 0;
-            gb->depth[i] = rv(t);
-            gb->nx[i] = rv(n[0]); gb->ny[i] = rv(n[1]); gb->nz[i] = rv(n[2]);
-            gb->albedo_r[i] = gb->albedo_g[i] = gb->albedo_b[i] = TG_ONE;
-            gb->f0[i] = 0;
+            tgi_gb_set(gb, (size_t)i, rv(t), tg_v3(rv(n[0]), rv(n[1]), rv(n[2])), 0);
             for (k = 0; k < 3; k++) g->world[i][k] = o[k] + t * d[k];
             g->on_floor[i] = fabs(g->world[i][1]) < 1e-6 && n[1] > 0.5;
         }
@@ -217,7 +236,7 @@ TEST(directional_incidence)
         }
     }
     CHECK(seen > W * H, "the floor covers the image (%d)", seen);
-    free(g);
+    gbuf_free(g);
 }
 
 TEST(point_inverse_square_and_spot_edge)
@@ -256,7 +275,7 @@ TEST(point_inverse_square_and_spot_edge)
         }
     }
     CHECK(inside > 20 && outside > 20 && between > 5, "coverage %d %d %d", inside, outside, between);
-    free(g);
+    gbuf_free(g);
 }
 
 /* ---- shadow maps ---- */
@@ -342,7 +361,7 @@ static void box_shadow_lands_where_geometry_says_with_filter(void)
     CHECK(c.in_shadow > 60 && c.lit > 200, "spot: %d in shadow, %d lit, %d edge", c.in_shadow, c.lit, c.edge);
     c = check_box_shadow(g, &v, &s, &pl, 0.08);
     CHECK(c.in_shadow > 60 && c.lit > 500, "point: %d in shadow, %d lit, %d edge", c.in_shadow, c.lit, c.edge);
-    free(g);
+    gbuf_free(g);
 }
 
 static void no_acne_at_80_degrees_with_filter(void)
@@ -360,7 +379,7 @@ static void no_acne_at_80_degrees_with_filter(void)
     CHECK(c.lit > 1000 && c.in_shadow == 0, "directional: %d lit", c.lit);
     c = check_box_shadow(g, &v, &s, &sl, 0.0);
     CHECK(c.lit > 100 && c.in_shadow == 0, "spot: %d lit", c.lit);
-    free(g);
+    gbuf_free(g);
 }
 
 static void point_cube_faces_meet_without_seams_with_filter(void)
@@ -417,7 +436,7 @@ static void point_cube_faces_meet_without_seams_with_filter(void)
     gbuf_cast(g, &v, &s);
     c = check_box_shadow(g, &v, &s, &pl, 0.06);
     CHECK(c.in_shadow > 8 && c.lit > 1000, "post: %d in shadow, %d lit, %d edge", c.in_shadow, c.lit, c.edge);
-    free(g);
+    gbuf_free(g);
 }
 
 TEST(degenerate_inputs_stay_finite_and_saturate)
@@ -439,8 +458,10 @@ TEST(degenerate_inputs_stay_finite_and_saturate)
     lights[2] = make_light(TG_LIGHT_DIRECTIONAL, v3d(0, 0, 0), v3d(0, -1, 0), 1, 0);
     lights[2].dir = tg_v3(0, 0, 0);
     lights[3] = make_light(TG_LIGHT_POINT, v3d(0, 0, 0), v3d(0, -1, 0), 1, 0); /* on the surface */
+#if TG_WIDE_STORAGE
     for (i = 0; i < 7; i++) { g->gb.nx[i] = g->gb.ny[i] = g->gb.nz[i] = 0; } /* zero normals */
-    g->gb.depth[8] = 0;                                                       /* zero depth */
+#endif                                  /* (compact storage has none: octahedral) */
+    tgi_gb_set_sky(&g->gb, 8);          /* zero depth is sky */
     n = scene_tris(&s, pos);
     mem = malloc(tgi_shadow_map_bytes(&lights[3], 64));
     tgi_shadow_map_setup(&sm, &lights[3], 64, v3d(-50, 0, -50), v3d(50, 1, 50), mem);
@@ -457,7 +478,7 @@ TEST(degenerate_inputs_stay_finite_and_saturate)
     }
     CHECK(tgi_shadow_visibility(&sm, v3d(0, 0, 0), tg_v3(0, TG_ONE, 0)) >= 0, "lookup at the light");
     free(mem);
-    free(g);
+    gbuf_free(g);
 }
 
 /* ---- composition ---- */
@@ -466,27 +487,31 @@ TEST(compose_formula_sky_and_saturation)
 {
     static tg_real d[3][W * H], f[3][W * H], nr[3][W * H], er[W * H], eg[W * H], eb[W * H];
     static tg_real o_r[W * H], o_g[W * H], o_b[W * H], i_r[W * H], i_g[W * H], i_b[W * H];
-    static tg_real em[3][W * H];
     gbuf *g = gbuf_new();
     ascene s = floor_only(4);
     tgi_env env;
     tgi_view v;
-    tgi_rgb terms[3];
+    tg_real *terms[9];
     int i, c, sky_seen = 0;
     tgi_view_make(&v, v3d(0, 1, -6), v3d(0, 1, 0), v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
     gbuf_cast(g, &v, &s);
-    for (i = 0; i < W * H; i++) {
-        for (c = 0; c < 3; c++) {
-            d[c][i] = rv(0.5 + 0.1 * c); f[c][i] = rv(0.25 * (i % 5)); nr[c][i] = rv(0.125 * c);
-            em[c][i] = rv(i % 3 == 0 ? 0.75 : 0);
-        }
-        g->gb.albedo_r[i] = rv(0.8); g->gb.albedo_g[i] = rv(0.5); g->gb.albedo_b[i] = rv(0.2);
-        g->gb.f0[i] = rv(0.04 * (i % 4));
+    /* per pixel: albedo 0.8 0.5 0.2, F0 0.04 (i % 4), emissive 0.75 on every third pixel:
+     * material 1 + i % 4 + 4 (i % 3 == 0) */
+    for (i = 0; i < 8; i++) {
+        gbuf_materials[1 + i].albedo = tg_v3(rv(0.8), rv(0.5), rv(0.2));
+        gbuf_materials[1 + i].f0 = rv(0.04 * (i % 4));
+        gbuf_materials[1 + i].emissive = i >= 4 ? tg_v3(rv(0.75), rv(0.75), rv(0.75)) : tg_v3(0, 0, 0);
     }
-    g->gb.emit_r = em[0]; g->gb.emit_g = em[1]; g->gb.emit_b = em[2];
-    terms[0].r = d[0]; terms[0].g = d[1]; terms[0].b = d[2];
-    terms[1].r = f[0]; terms[1].g = f[1]; terms[1].b = f[2];
-    terms[2].r = nr[0]; terms[2].g = nr[1]; terms[2].b = nr[2];
+    g->gb.has_emissive = 1;
+    {
+        tgi_gview gv = sf_view(&g->gb, &v);
+        for (i = 0; i < W * H; i++) {
+            for (c = 0; c < 3; c++) { d[c][i] = rv(0.5 + 0.1 * c); f[c][i] = rv(0.25 * (i % 5)); nr[c][i] = rv(0.125 * c); }
+            if (!g->sky[i]) tgi_gb_set(&g->gb, (size_t)i, tgi_gv_depth(&gv, (size_t)i), tgi_gv_normal(&gv, (size_t)i),
+                                       1 + i % 4 + (i % 3 == 0 ? 4 : 0));
+        }
+    }
+    for (c = 0; c < 3; c++) { terms[c] = d[c]; terms[3 + c] = f[c]; terms[6 + c] = nr[c]; }
     memset(&env, 0, sizeof env);
     env.type = TG_ENV_SKY; env.sky = v3d(0.3, 0.5, 1.0); env.ground = v3d(0.2, 0.1, 0.05); env.up = v3d(0, 1, 0);
     compose_rows(&g->gb, &v, &env, terms, 3, o_r, o_g, o_b, i_r, i_g, i_b);
@@ -497,23 +522,33 @@ TEST(compose_formula_sky_and_saturation)
             double o[3], dd[3];
             pixel_ray(&v, i % W, i / W, o, dd);
             sky_seen++;
-            CHECK(fabs(out[2] - (dd[1] >= 0 ? 1.0 : 0.05)) < 1e-4, "sky radiance %g", out[2]);
+            CHECK(fabs(out[2] - (dd[1] >= 0 ? 1.0 : 0.05)) < 1e-4 + sf_rgb_rounding(dd[1] >= 0 ? 1.0 : 0.2),
+                  "sky radiance %g", out[2]);
             continue;
         }
-        for (c = 0; c < 3; c++) {
-            double E = dv(d[c][i]) + dv(f[c][i]) + dv(nr[c][i]);
-            double want = alb[c] / 3.14159265358979 * (1 - dv(g->gb.f0[i])) * E + dv(em[c][i]);
-            CHECK(fabs(irr[c] - E) < 1e-4, "irradiance %g want %g", irr[c], E);
-            CHECK(fabs(out[c] - want) <= 1e-3 * want + 1e-4, "Lo %g want %g", out[c], want);
+        {
+            /* the terms as stored (compose_rows read them back); the outputs within their storage's
+             * rounding (RGB9E5: a step of the largest channel) */
+            double E[3], want[3], f0 = 0.04 * (i % 4), em = i % 3 == 0 ? 0.75 : 0;
+            for (c = 0; c < 3; c++) {
+                E[c] = dv(d[c][i]) + dv(f[c][i]) + dv(nr[c][i]);
+                want[c] = alb[c] / 3.14159265358979 * (1 - f0) * E[c] + em;
+            }
+            for (c = 0; c < 3; c++) {
+                CHECK(fabs(irr[c] - E[c]) < 1e-4 + sf_rgb_rounding(fmax(E[0], fmax(E[1], E[2]))),
+                      "irradiance %g want %g", irr[c], E[c]);
+                CHECK(fabs(out[c] - want[c]) <= 1e-3 * want[c] + 1e-4 + sf_rgb_rounding(fmax(want[0], fmax(want[1], want[2]))),
+                      "Lo %g want %g", out[c], want[c]);
+            }
         }
     }
     CHECK(sky_seen > 100, "sky pixels %d", sky_seen);
     /* an absent term is skipped; huge irradiance saturates, never wraps */
-    terms[1].r = NULL;
+    terms[3] = NULL;
     /* fixed point: the largest value, summed twice, must saturate; float: a huge finite value */
     for (i = 0; i < W * H; i++) { er[i] = TG_FIXED ? TG_REAL_MAX : TG_R(1e30f); eg[i] = rv(1e4); eb[i] = 0; }
-    terms[0].r = er; terms[0].g = eg; terms[0].b = eb;
-    terms[2].r = er; terms[2].g = eg; terms[2].b = eb;
+    terms[0] = er; terms[1] = eg; terms[2] = eb;
+    terms[6] = er; terms[7] = eg; terms[8] = eb;
     compose_rows(&g->gb, &v, NULL, terms, 3, o_r, o_g, o_b, NULL, NULL, NULL);
     for (i = 0; i < W * H; i++) {
         if (g->sky[i]) { CHECK(o_r[i] == 0 && o_b[i] == 0, "sky without env is black"); continue; }
@@ -521,7 +556,7 @@ TEST(compose_formula_sky_and_saturation)
         CHECK(dv(o_g[i]) > 1000, "2e4 irradiance: %g", dv(o_g[i]));
         CHECK(dv(o_b[i]) >= 0 && dv(o_b[i]) <= 0.76, "no irradiance: emissive only %g", dv(o_b[i]));
     }
-    free(g);
+    gbuf_free(g);
 }
 
 /* ---- tonemap ---- */

@@ -8,6 +8,7 @@
  */
 #include <stdlib.h>
 #include "check.h"
+#include "storage_fixture.h"
 #include "raster/raster.h"
 
 /* ---------------------------------------------------------------------- */
@@ -26,34 +27,35 @@ static double rnd(void) { return (rng() & 0xFFFFFF) / 16777216.0; }
 static tg_real R(double d) { return tg_from_float((float)d); }
 static tg_vec3 V(double x, double y, double z) { return tg_v3(R(x), R(y), R(z)); }
 
+/* The G-buffer in the build's storage (storage_fixture.h), read back
+ * through gview.h's accessors. */
 typedef struct gbuf {
     tgi_gbuffer gb;
-    tg_real *mem;
 } gbuf;
 
 static void gbuf_alloc(gbuf *g, int w, int h)
 {
-    size_t n = (size_t)w * (size_t)h;
-    int k;
-    tg_real **ch[11];
-    memset(g, 0, sizeof *g);
-    g->gb.width = w;
-    g->gb.height = h;
-    g->mem = (tg_real *)calloc(n * 11, sizeof(tg_real));
-    ch[0] = &g->gb.depth; ch[1] = &g->gb.nx; ch[2] = &g->gb.ny; ch[3] = &g->gb.nz;
-    ch[4] = &g->gb.albedo_r; ch[5] = &g->gb.albedo_g; ch[6] = &g->gb.albedo_b; ch[7] = &g->gb.f0;
-    ch[8] = &g->gb.emit_r; ch[9] = &g->gb.emit_g; ch[10] = &g->gb.emit_b;
-    for (k = 0; k < 11; k++) *ch[k] = g->mem + n * (size_t)k;
-    g->gb.sky = (uint8_t *)calloc(n, 1);
-    g->gb.object = (uint16_t *)calloc(n, sizeof(uint16_t));
+    sf_gbuffer_alloc(&g->gb, w, h, NULL, 0);
+    g->gb.object = (uint16_t *)sf_calloc((size_t)w * (size_t)h, sizeof(uint16_t));
     tgi_gbuffer_clear_rows(&g->gb, 0, h);
 }
 
-static void gbuf_free(gbuf *g)
+static void gbuf_free(gbuf *g) { sf_gbuffer_free(&g->gb); }
+
+static int gsky(const gbuf *g, int i) { tgi_gview v = sf_view(&g->gb, NULL); return tgi_gv_is_sky(&v, (size_t)i); }
+static double gdepth(const gbuf *g, int i) { tgi_gview v = sf_view(&g->gb, NULL); return (double)tg_to_float(tgi_gv_depth(&v, (size_t)i)); }
+static tg_vec3 gnormal(const gbuf *g, int i) { tgi_gview v = sf_view(&g->gb, NULL); return tgi_gv_normal(&v, (size_t)i); }
+static int gmaterial(const gbuf *g, int i) { tgi_gview v = sf_view(&g->gb, NULL); return tgi_gv_material_index(&v, (size_t)i); }
+/* The same stored bits at pixel i. */
+static int gsame(const gbuf *a, const gbuf *b, int i)
 {
-    free(g->mem);
-    free(g->gb.sky);
-    free(g->gb.object);
+#if TG_WIDE_STORAGE
+    return a->gb.depth[i] == b->gb.depth[i] && a->gb.nx[i] == b->gb.nx[i] && a->gb.ny[i] == b->gb.ny[i] &&
+           a->gb.nz[i] == b->gb.nz[i] && a->gb.material[i] == b->gb.material[i] && a->gb.object[i] == b->gb.object[i];
+#else
+    return a->gb.depth[i] == b->gb.depth[i] && (!a->gb.depth[i] || a->gb.nm[i] == b->gb.nm[i]) &&
+           a->gb.object[i] == b->gb.object[i];
+#endif
 }
 
 #define MAX_TRIS 20000
@@ -388,7 +390,7 @@ TEST(gbuffer_tiling_ids)
     for (j = 0; j < H; j++)
         for (i = 0; i < W; i++) {
             int t, inside = -1;
-            sky += g.gb.sky[j * W + i];
+            sky += gsky(&g, j * W + i);
             for (t = 0; t < m->n; t++) {
                 double tri[3][3], bc[3];
                 int q = t / 2, qi = q % N, qj = q / N;
@@ -430,7 +432,7 @@ static void check_triangle(const double (*p)[3], int material, int expect_drawn,
     for (j = 0; j < H; j++)
         for (i = 0; i < W; i++) {
             double b[3], z = ray_tri(&v, i, j, p, b);
-            int idx = j * W + i, is = !g.gb.sky[idx];
+            int idx = j * W + i, is = !gsky(&g, idx);
             double margin = 0.01, zn = D(v.znear);
             int in = z > zn * 1.01 && b[0] > margin && b[1] > margin && b[2] > margin;
             int out = z < zn * 0.99 || b[0] < -margin || b[1] < -margin || b[2] < -margin;
@@ -438,12 +440,12 @@ static void check_triangle(const double (*p)[3], int material, int expect_drawn,
             if (expect_drawn && in && !is) miss++;
             if ((!expect_drawn || out) && is) extra++;
             if (is && in) {
-                double err = fabs(D(g.gb.depth[idx]) - z), nlen;
+                double err = fabs(gdepth(&g, idx) - z), nlen;
                 double nv[3], nw[3], dotv;
                 if (err > depth_tol(&v, i, j, p, z)) bad_depth++;
                 if (err > worst) worst = err;
                 /* the normal faces the viewer: dot(n, eye - point) > 0 */
-                nv[0] = D(g.gb.nx[idx]); nv[1] = D(g.gb.ny[idx]); nv[2] = D(g.gb.nz[idx]);
+                nv[0] = D(gnormal(&g, idx).x); nv[1] = D(gnormal(&g, idx).y); nv[2] = D(gnormal(&g, idx).z);
                 nlen = sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
                 {
                     tg_vec3 hit = view_to_world(&v, 0, 0, 0), pt;
@@ -454,8 +456,7 @@ static void check_triangle(const double (*p)[3], int material, int expect_drawn,
                 }
                 dotv = nv[0] * nw[0] + nv[1] * nw[1] + nv[2] * nw[2];
                 if (fabs(nlen - 1) > (TG_FIXED ? 2e-4 : 1e-5) || !(dotv > 0)) bad_normal++;
-                CHECK(D(g.gb.albedo_r[idx]) == D(m->materials[material].albedo.x) && g.gb.object[idx] == 7 &&
-                      D(g.gb.emit_b[idx]) == D(m->materials[material].emissive.z), "%s: surface attributes", what);
+                CHECK(gmaterial(&g, idx) == material && g.gb.object[idx] == 7, "%s: surface attributes", what);
             }
         }
     CHECK(miss == 0, "%s: %d pixels inside not drawn", what, miss);
@@ -513,11 +514,11 @@ TEST(big_triangle_past_edges)
     gbuf_alloc(&g, W, H);
     tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
     for (i = 0; i < W * H; i++) {
-        sky += g.gb.sky[i];
-        if (fabs(D(g.gb.depth[i]) - 5.0) > (TG_FIXED ? 3.0 / 65536 : 5e-6)) bad++;
+        sky += gsky(&g, i);
+        if (fabs(gdepth(&g, i) - 5.0) > (TG_FIXED ? 3.0 / 65536 : 5e-6)) bad++;
     }
     CHECK(sky == 0, "%d pixels left uncovered", sky);
-    CHECK(bad == 0, "%d pixels not at depth 5 (e.g. %.9g)", bad, D(g.gb.depth[0]));
+    CHECK(bad == 0, "%d pixels not at depth 5 (e.g. %.9g)", bad, gdepth(&g, 0));
     gbuf_free(&g);
     free(m);
     check_triangle(big, 0, 1, "big facing triangle");
@@ -543,8 +544,8 @@ TEST(depth_plane_and_floor)
     gbuf_alloc(&g, W, H);
     tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
     for (i = 0; i < W * H; i++) {
-        sky += g.gb.sky[i];
-        if (fabs(D(g.gb.depth[i]) - 3.0) > (TG_FIXED ? 2.0 / 65536 : 3e-6)) bad++;
+        sky += gsky(&g, i);
+        if (fabs(gdepth(&g, i) - 3.0) > (TG_FIXED ? 2.0 / 65536 : 3e-6)) bad++;
     }
     CHECK(sky == 0 && bad == 0, "plane at depth 3: %d sky, %d off", sky, bad);
     gbuf_free(&g);
@@ -561,7 +562,7 @@ TEST(depth_plane_and_floor)
             if (z0 < 0) z0 = -1;
             if (z1 < 0) z1 = -1;
             (void)b;
-            if (g.gb.sky[idx]) continue;
+            if (gsky(&g, idx)) continue;
             floor_px++;
             /* the plane y = -1 hit by this pixel's ray */
             {
@@ -570,7 +571,7 @@ TEST(depth_plane_and_floor)
                 if (dy < 0) z = -1.0 / dy;
             }
             if (z < 0 || z > 850) continue;
-            err = fabs(D(g.gb.depth[idx]) - z);
+            err = fabs(gdepth(&g, idx) - z);
             if (err / z > worst) worst = err / z;
             if (err > depth_tol(&v, i, j, f0, z)) bad++;
         }
@@ -618,11 +619,11 @@ TEST(clipped_tiling_watertight)
             z = -1.0 / dy;                         /* ray meets y = -1 at view z */
             if (z > 350 || fabs(dx * z) > 250) continue;
             checked++;
-            if (g.gb.sky[j * W + i]) { holes++; continue; }
+            if (gsky(&g, j * W + i)) { holes++; continue; }
             /* depth changes by 2 z^2 / (H focal_y) per pixel row here; snapping
              * moves vertices by up to 1/32 pixel */
-            if (fabs(D(g.gb.depth[j * W + i]) - z) > (TG_FIXED ? 3e-4 : 5e-5) * z + 0.05 * 2 * z * z / (H * D(v.focal_y))) {
-                if (bad < 3) fprintf(stderr, "  (%d, %d): depth %.6g, want %.6g\n", i, j, D(g.gb.depth[j * W + i]), z);
+            if (fabs(gdepth(&g, j * W + i) - z) > (TG_FIXED ? 3e-4 : 5e-5) * z + 0.05 * 2 * z * z / (H * D(v.focal_y))) {
+                if (bad < 3) fprintf(stderr, "  (%d, %d): depth %.6g, want %.6g\n", i, j, gdepth(&g, j * W + i), z);
                 bad++;
             }
         }
@@ -652,11 +653,11 @@ TEST(normal_interpolation)
             double b[3], z = ray_tri(&v, i, j, p, b), e[3], len = 0, err = 0;
             int idx = j * W + i;
             tg_vec3 ew;
-            if (g.gb.sky[idx] || z < 0 || b[0] < 0.01 || b[1] < 0.01 || b[2] < 0.01) continue;
+            if (gsky(&g, idx) || z < 0 || b[0] < 0.01 || b[1] < 0.01 || b[2] < 0.01) continue;
             for (k = 0; k < 3; k++) e[k] = b[0] * n[0][k] + b[1] * n[1][k] + b[2] * n[2][k];
             len = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
             ew = dir_to_world(&v, e[0] / len, e[1] / len, e[2] / len);
-            err = fabs(D(g.gb.nx[idx]) - D(ew.x)) + fabs(D(g.gb.ny[idx]) - D(ew.y)) + fabs(D(g.gb.nz[idx]) - D(ew.z));
+            err = fabs(D(gnormal(&g, idx).x) - D(ew.x)) + fabs(D(gnormal(&g, idx).y) - D(ew.y)) + fabs(D(gnormal(&g, idx).z) - D(ew.z));
             if (err > worst) worst = err;
             if (err > 0.01) bad++;
             count++;
@@ -683,7 +684,7 @@ TEST(zero_area_skipped)
     add_tri_view(m, &v, edge_on, NULL, 1, 0);
     gbuf_alloc(&g, W, H);
     tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
-    for (i = 0; i < W * H; i++) drawn += !g.gb.sky[i];
+    for (i = 0; i < W * H; i++) drawn += !gsky(&g, i);
     CHECK(drawn == 0, "zero-area triangles drew %d pixels", drawn);
     gbuf_free(&g);
     free(m);
@@ -719,8 +720,8 @@ TEST(hostile_coordinates)
     gbuf_alloc(&g, W, H);
     tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
     for (i = 0; i < W * H; i++) {
-        double z = D(g.gb.depth[i]);
-        if (g.gb.sky[i]) continue;
+        double z = gdepth(&g, i);
+        if (gsky(&g, i)) continue;
         if (!(z > 0 && z < 1e30)) bad++;
     }
     CHECK(bad == 0, "%d pixels with a non-finite or non-positive depth", bad);
@@ -789,9 +790,9 @@ TEST(sphere_nearest_and_rows)
             int idx = j * W + i;
             double dx, dy, best = -1, nl;
             int s, grazing = 0;
-            if (g.gb.sky[idx]) continue;
+            if (gsky(&g, idx)) continue;
             drawn++;
-            nl = sqrt(D(g.gb.nx[idx]) * D(g.gb.nx[idx]) + D(g.gb.ny[idx]) * D(g.gb.ny[idx]) + D(g.gb.nz[idx]) * D(g.gb.nz[idx]));
+            nl = sqrt(D(gnormal(&g, idx).x) * D(gnormal(&g, idx).x) + D(gnormal(&g, idx).y) * D(gnormal(&g, idx).y) + D(gnormal(&g, idx).z) * D(gnormal(&g, idx).z));
             if (fabs(nl - 1) > (TG_FIXED ? 2e-4 : 1e-5)) bad_n++;
             /* analytic nearest sphere hit (the mesh is inscribed: within its sagitta) */
             pixel_ray(&v, i, j, &dx, &dy);
@@ -809,11 +810,10 @@ TEST(sphere_nearest_and_rows)
                     grazing = -(hp[0] * dx + hp[1] * dy + hp[2]) / (r * sqrt(a)) < 0.3;
                 }
             }
-            if (best > 0 && !grazing && fabs(D(g.gb.depth[idx]) - best) > 0.06) bad_z++;
+            if (best > 0 && !grazing && fabs(gdepth(&g, idx) - best) > 0.06) bad_z++;
         }
     for (i = 0; i < W * H; i++)
-        if (g.gb.depth[i] != h.gb.depth[i] || g.gb.nx[i] != h.gb.nx[i] || g.gb.object[i] != h.gb.object[i] ||
-            g.gb.sky[i] != h.gb.sky[i]) diff++;
+        if (!gsame(&g, &h, i)) diff++;
     CHECK(drawn > 500, "sphere drew %d pixels", drawn);
     CHECK(bad_n == 0, "%d non-unit normals", bad_n);
     CHECK(bad_z == 0, "%d pixels not at the nearest sphere", bad_z);
@@ -822,7 +822,7 @@ TEST(sphere_nearest_and_rows)
     tgi_gbuffer_clear_rows(&h.gb, 0, H);
     tgi_raster_gbuffer(&h.gb, &v, mesh_rm(m), 20, 30);
     for (i = 0, diff = 0; i < W * H; i++)
-        if ((i / W < 20 || i / W >= 30) && !h.gb.sky[i]) diff++;
+        if ((i / W < 20 || i / W >= 30) && !gsky(&h, i)) diff++;
     CHECK(diff == 0, "%d pixels written outside rows [20, 30)", diff);
     gbuf_free(&g);
     gbuf_free(&h);

@@ -151,7 +151,6 @@ TEST(open_plane)
 {
     static scene s;
     static outputs o;
-    static tg_real cone[W * H];
     static const double eye[3] = { 0.5, 2.0, 3.0 }, target[3] = { 0, 0, -1 };
     tgi_reference_params p;
     ao_pass io;
@@ -164,13 +163,14 @@ TEST(open_plane)
     tgi_reference_defaults(&p);
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE;
     io_for(&io, &s, &o, 0);
-    io.out.cone = cone;
+    io_with_cone(&io);
     tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
+    io_read(&io);
     for (i = 0; i < W * H; i++) {
         double c;
         if (s.sky[i]) continue;
         n++;
-        CHECK_NEAR(check_d(cone[i]), 3.14159265358979 / 2, 2e-3);   /* HBIL eq. 12 at AO = 1 */
+        CHECK_NEAR(check_d(o.cone[i]), 3.14159265358979 / 2, 2e-3);   /* HBIL eq. 12 at AO = 1 */
         worst_ao = fmax(worst_ao, fabs(check_d(o.ao[i]) - 1.0));
         c = check_d(o.bx[i]) * check_d(s.nx[i]) + check_d(o.by[i]) * check_d(s.ny[i]) + check_d(o.bz[i]) * check_d(s.nz[i]);
         worst_angle = fmax(worst_angle, acos(fmin(1.0, c)) * 180 / 3.14159265358979);
@@ -201,6 +201,7 @@ TEST(groove_half)
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE;
     io_for(&io, &s, &o, 0);
     tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
+    io_read(&io);
     for (surf = 0; surf < 2; surf++)
         for (i = 0; i < W * H; i++) {
             if (!near_crease(&s, i, 0.3, surf)) continue;
@@ -246,6 +247,7 @@ TEST(groove_bent_exact)
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE;
     io_for(&io, &s, &o, 0);
     tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
+    io_read(&io);
     for (i = 0; i < W * H; i++) {
         double ang;
         if (!near_crease(&s, i, 0.3, 0)) continue;
@@ -271,6 +273,7 @@ TEST(groove_radius_cutoff)
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_R(0.5f);
     io_for(&io, &s, &o, 0);
     tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
+    io_read(&io);
     for (i = 0; i < W * H; i++) {
         if (s.sky[i] || s.wrect[i] != 0) continue;
         if (s.wpos[i][0] > 0.55) { far_n++; CHECK(o.ao[i] == TG_ONE, "open beyond the radius: %g at x %g", check_d(o.ao[i]), s.wpos[i][0]); }
@@ -302,6 +305,7 @@ TEST(closed_box)
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE;
     io_for(&io, &s, &o, 0);
     tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
+    io_read(&io);
     for (i = 0; i < W * H; i++) {
         if (s.sky[i]) continue;
         n++;
@@ -336,12 +340,14 @@ TEST(near_field_half)
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE; p.radiance = wall_radiance;
     io_for(&io, &s, &o, 1);
     tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
+    io_read(&io);
     for (i = 0; i < W * H; i++) {
         if (!near_crease(&s, i, 0.3, 0)) continue;
         n++;
         worst = fmax(worst, fabs(check_d(o.nr[i]) - want));
-        CHECK_NEAR(check_d(o.ng[i]), 0.5 * check_d(o.nr[i]), 1e-3);
-        CHECK_NEAR(check_d(o.nb[i]), 0.25 * check_d(o.nr[i]), 1e-3);
+        /* the colour's ratios, within the storage's rounding of each channel */
+        CHECK_NEAR(check_d(o.ng[i]), 0.5 * check_d(o.nr[i]), 1e-3 + 1.5 * sf_rgb_rounding(check_d(o.nr[i])));
+        CHECK_NEAR(check_d(o.nb[i]), 0.25 * check_d(o.nr[i]), 1e-3 + 1.25 * sf_rgb_rounding(check_d(o.nr[i])));
     }
     printf("# near field: %d floor px, worst |E - pi/2| %.4f (tolerance %.4f)\n", n, worst, tol);
     CHECK(n >= 3, "pixels %d", n);
@@ -354,8 +360,9 @@ TEST(near_field_half)
         static outputs o2;
         p.radiance = 0;
         io_for(&io, &s, &o2, 1);
-        io.rad.r = rr; io.rad.g = rg; io.rad.b = rb;
+        io_radiance(&io, rr, rg, rb);
         tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
+        io_read(&io);
         int seen = 0;
         for (i = 0; i < W * H; i++) {
             if (s.sky[i]) continue;
@@ -380,9 +387,12 @@ TEST(deterministic)
     p.bvh = &bvh; p.tri_nrm = s.nrm; p.samples = 64;
     io_for(&io, &s, &a, 0);
     tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
+    io_read(&io);
     io_for(&io, &s, &b, 0);
     tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H / 2);          /* two row ranges give the same image */
+    io_read(&io);
     tgi_reference_rows(&p, &io.g, &io.rad, &io.out, H / 2, H);
+    io_read(&io);
     CHECK(memcmp(a.ao, b.ao, sizeof a.ao) == 0, "ao differs");
     CHECK(memcmp(a.bx, b.bx, sizeof a.bx) == 0, "bent differs");
 }

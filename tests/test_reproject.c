@@ -1,14 +1,17 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * test_reproject.c - scatter/gather reprojection (HBIL sec. 3.2) and
- * push/pull hole filling (Kraus 2009), plus the spatial/temporal filter.
+ * test_reproject.c - gather reprojection (HBIL sec. 3.2) and push/pull
+ * hole filling (Kraus 2009), plus the spatial/temporal filter.
  *
- * Scene: a tilted analytic plane z = depth(x, y) seen by a camera; checks
- * identity for a static view, finite hole-free output after a camera cut
- * and after a teleport, holes filled within the range of valid inputs.
+ * Scene: a floor y = -1 and a wall z = -3 ray cast per pixel; checks
+ * identity for a static view, that a moved camera fetches last frame's
+ * radiance from where the same surface was, finite hole-free output after a
+ * camera cut and after a teleport, holes filled within the range of valid
+ * inputs.  Buffers are in the build's storage (storage_fixture.h).
  */
 #include <stdlib.h>
 #include "check.h"
+#include "storage_fixture.h"
 #include "raster/view.h"
 #include "gi/reproject.h"
 #include "gi/pushpull.h"
@@ -27,104 +30,154 @@ static tgi_view make_view(float ex, float ey, float ez)
     return v;
 }
 
-/* Depth of the plane y = -1 (a floor) plus a wall z = -3, ray-cast per pixel. */
-static void scene_depth(const tgi_view *v, tg_real *depth, uint8_t *sky)
+/* World point of pixel i of v at view depth z (view.h conventions). */
+static void world_of(const tgi_view *v, int i, double z, double p[3])
 {
-    int x, y;
     double ppu = check_d(v->pixels_per_unit);
-    for (y = 0; y < H; y++)
-        for (x = 0; x < W; x++) {
-            double X = (x + 0.5 - W / 2.0) / ppu, Y = (H / 2.0 - (y + 0.5)) / ppu, d[3], e[3], t = 1e30, tt;
-            int i = y * W + x;
-            d[0] = check_d(v->right.x) * X + check_d(v->up.x) * Y + check_d(v->forward.x);
-            d[1] = check_d(v->right.y) * X + check_d(v->up.y) * Y + check_d(v->forward.y);
-            d[2] = check_d(v->right.z) * X + check_d(v->up.z) * Y + check_d(v->forward.z);
-            e[0] = check_d(v->eye.x); e[1] = check_d(v->eye.y); e[2] = check_d(v->eye.z);
-            if (d[1] < -1e-9) { tt = (-1 - e[1]) / d[1]; if (tt > 0 && tt < t) t = tt; }
-            if (d[2] < -1e-9) { tt = (-3 - e[2]) / d[2]; if (tt > 0 && tt < t) t = tt; }
-            sky[i] = t > 1e29;
-            depth[i] = sky[i] ? 0 : tg_from_float((float)t);
-        }
+    double X = (i % W + 0.5 - W / 2.0) / ppu, Y = (H / 2.0 - (i / W + 0.5)) / ppu;
+    p[0] = check_d(v->eye.x) + z * (check_d(v->right.x) * X + check_d(v->up.x) * Y + check_d(v->forward.x));
+    p[1] = check_d(v->eye.y) + z * (check_d(v->right.y) * X + check_d(v->up.y) * Y + check_d(v->forward.y));
+    p[2] = check_d(v->eye.z) + z * (check_d(v->right.z) * X + check_d(v->up.z) * Y + check_d(v->forward.z));
 }
 
-static tg_real depth0[N], depth1[N], rr[N], rg[N], rb[N], orr[N], org[N], orb[N];
-static uint8_t sky0[N], sky1[N], valid[N];
-
-static void fill_radiance(void)
+/* The floor y = -1 and the wall z = -3 ray cast per pixel into g (sky: 0). */
+static void scene_cast(const tgi_view *v, tgi_gbuffer *g)
 {
     int i;
     for (i = 0; i < N; i++) {
-        rr[i] = tg_from_float(0.1f + (float)(i % 7) * 0.2f);
-        rg[i] = tg_from_float(0.5f + (float)(i % 5) * 0.1f);
-        rb[i] = tg_from_float((float)(i % 3));
+        double d[3], t = 1e30, tt, e1 = check_d(v->eye.y), e2 = check_d(v->eye.z), p[3];
+        world_of(v, i, 1.0, p);
+        d[1] = p[1] - e1; d[2] = p[2] - e2;
+        if (d[1] < -1e-9) { tt = (-1 - e1) / d[1]; if (tt > 0 && tt < t) t = tt; }
+        if (d[2] < -1e-9) { tt = (-3 - e2) / d[2]; if (tt > 0 && tt < t) t = tt; }
+        sf_gbuffer_set(g, (size_t)i, t > 1e29 ? 0 : tg_from_float((float)t), tg_v3(0, TG_ONE, 0), 0);
     }
 }
 
-static void io_for(tgi_reproject_io *io, const tgi_view *pv, const tgi_view *v)
+static tgi_gbuffer g0, g1;
+static tgi_prev_geometry prev;
+static tgi_rgb history, out;
+
+static void setup(const tgi_view *v0)
 {
-    memset(io, 0, sizeof *io);
-    io->width = W; io->height = H; io->prev_view = pv; io->view = v;
-    io->prev_depth = depth0; io->prev_sky = sky0;
-    io->prev_r = rr; io->prev_g = rg; io->prev_b = rb;
-    io->out_r = orr; io->out_g = org; io->out_b = orb; io->valid = valid;
+    size_t i;
+    tgi_gview view;
+    if (!g0.depth) {
+        sf_gbuffer_alloc(&g0, W, H, NULL, 0);
+        sf_gbuffer_alloc(&g1, W, H, NULL, 0);
+        sf_prev_alloc(&prev, N);
+        sf_rgb_alloc(&history, N);
+        sf_rgb_alloc(&out, N);
+    }
+    scene_cast(v0, &g0);
+    view = sf_view(&g0, v0);
+    for (i = 0; i < N; i++) {
+        tgi_prev_keep(&prev, i, &view, i);
+        tgi_rgb_set(&history, i, tg_v3(tg_from_float(0.1f + (float)(i % 7) * 0.2f),
+                                       tg_from_float(0.5f + (float)(i % 5) * 0.1f), tg_from_float((float)(i % 3))));
+    }
 }
 
-static void *scratch_for(void) { return malloc(tgi_reproject_bytes(W, H) + tgi_pushpull_bytes(W, H)); }
+static void gather(const tgi_view *v0, const tgi_view *v1, const tgi_gbuffer *g, const tgi_rgb *hist)
+{
+    tgi_reproject_io io;
+    tgi_gview view = sf_view(g, v1);
+    memset(&io, 0, sizeof io);
+    io.g = &view;
+    io.prev_view = v0;
+    io.prev_geometry = &prev;
+    io.prev = hist;
+    io.out = &out;
+    tgi_reproject_gather_rows(&io, 0, H);
+}
+
+static int holes(void)
+{
+    int i, n = 0;
+    for (i = 0; i < N; i++) n += tgi_rgb_is_hole(&out, (size_t)i);
+    return n;
+}
 
 TEST(static_view_is_identity)
 {
     tgi_view v = make_view(0.3f, 0.5f, 2.0f);
-    tgi_reproject_io io;
-    void *s = scratch_for();
+    tgi_gview view;
     int i, bad = 0;
-    scene_depth(&v, depth0, sky0);
-    fill_radiance();
-    io_for(&io, &v, &v);
-    tgi_reproject_scatter(&io, s);
+    setup(&v);
+    gather(&v, &v, &g0, &history);
+    view = sf_view(&g0, &v);
     for (i = 0; i < N; i++) {
-        if (sky0[i]) { bad += valid[i] != 0; continue; }
-        bad += !valid[i] || orr[i] != rr[i] || org[i] != rg[i] || orb[i] != rb[i];
+        tg_vec3 a = tgi_rgb_get(&out, (size_t)i), b = tgi_rgb_get(&history, (size_t)i);
+        if (tgi_gv_is_sky(&view, (size_t)i)) { bad += !tgi_rgb_is_hole(&out, (size_t)i); continue; }
+        bad += tgi_rgb_is_hole(&out, (size_t)i) || a.x != b.x || a.y != b.y || a.z != b.z;
     }
-    CHECK(bad == 0, "scatter: %d pixels differ from the source", bad);
-    /* gather with identity motion vectors */
-    {
-        tg_real mx[N], my[N];
-        int x, y;
-        for (y = 0; y < H; y++) for (x = 0; x < W; x++) {
-            mx[y * W + x] = tg_add(tg_from_int(x), TG_R(0.5f)); my[y * W + x] = tg_add(tg_from_int(y), TG_R(0.5f));
-        }
-        io.depth = depth0; io.sky = sky0; io.motion_x = mx; io.motion_y = my;
-        tgi_reproject_gather_rows(&io, 0, H);
-        bad = 0;
-        for (i = 0; i < N; i++) bad += sky0[i] ? valid[i] != 0 : (!valid[i] || orr[i] != rr[i] || orb[i] != rb[i]);
-        CHECK(bad == 0, "gather: %d pixels differ", bad);
-    }
-    free(s);
+    CHECK(bad == 0, "%d pixels differ from the source", bad);
 }
 
-static void check_filled(const char *what, tg_real lo, tg_real hi)
+/* Screen position (continuous pixels) of world point p in view v. */
+static void project(const tgi_view *v, const double p[3], double *px, double *py)
+{
+    double d[3] = { p[0] - check_d(v->eye.x), p[1] - check_d(v->eye.y), p[2] - check_d(v->eye.z) };
+    double x = d[0] * check_d(v->right.x) + d[1] * check_d(v->right.y) + d[2] * check_d(v->right.z);
+    double y = d[0] * check_d(v->up.x) + d[1] * check_d(v->up.y) + d[2] * check_d(v->up.z);
+    double z = d[0] * check_d(v->forward.x) + d[1] * check_d(v->forward.y) + d[2] * check_d(v->forward.z);
+    double ppu = check_d(v->pixels_per_unit);
+    *px = W / 2.0 + x / z * ppu;
+    *py = H / 2.0 - y / z * ppu;
+}
+
+/* A moved camera fetches each surface's radiance from the pixel where last
+ * frame saw it (the pixel its point projects into): the history holds each
+ * pixel's own coordinates. */
+TEST(moved_camera_fetches_the_same_surface)
+{
+    tgi_view v0 = make_view(0.3f, 0.5f, 2.0f), v1 = make_view(0.1f, 0.55f, 1.8f);
+    tgi_gview view1;
+    int i, fetched = 0, bad = 0;
+    setup(&v0);
+    for (i = 0; i < N; i++) tgi_rgb_set(&history, (size_t)i, tg_v3(tg_from_int(i % W + 1), tg_from_int(i / W + 1), 0));
+    scene_cast(&v1, &g1);
+    gather(&v0, &v1, &g1, &history);
+    view1 = sf_view(&g1, &v1);
+    for (i = 0; i < N; i++) {
+        tg_vec3 c = tgi_rgb_get(&out, (size_t)i);
+        double p[3], px, py;
+        if (tgi_rgb_is_hole(&out, (size_t)i)) continue;
+        fetched++;
+        world_of(&v1, i, check_d(tgi_gv_depth(&view1, (size_t)i)), p);
+        project(&v0, p, &px, &py);
+        if (fabs(px - (check_d(c.x) - 0.5)) > 0.51 || fabs(py - (check_d(c.y) - 0.5)) > 0.51) bad++;
+    }
+    printf("# moved camera: %d of %d pixels fetched their history\n", fetched, N);
+    CHECK(fetched > N / 2, "only %d pixels found their history", fetched);
+    CHECK(bad == 0, "%d pixels fetched radiance from another pixel than the one their surface was in", bad);
+}
+
+static void check_filled(const char *what, double lo, double hi)
 {
     int i, bad = 0;
     for (i = 0; i < N; i++) {
-        double a = check_d(orr[i]);
-        if (!(a == a) || orr[i] < lo || orr[i] > hi || org[i] < 0 || orb[i] < 0) bad++;
+        tg_vec3 c = tgi_rgb_get(&out, (size_t)i);
+        double a = check_d(c.x);
+        if (tgi_rgb_is_hole(&out, (size_t)i) || !(a == a) || a < lo || a > hi || c.y < 0 || c.z < 0) bad++;
     }
-    CHECK(bad == 0, "%s: %d pixels outside [%g, %g] or not finite", what, bad, check_d(lo), check_d(hi));
+    CHECK(bad == 0, "%s: %d pixels outside [%g, %g], not finite or holes", what, bad, lo, hi);
 }
 
 TEST(camera_cut_gives_zero)
 {
     tgi_view v = make_view(0.3f, 0.5f, 2.0f);
-    tgi_reproject_io io;
-    void *s = scratch_for();
+    tgi_rgb none = tgi_rgb_none();
+    void *s = malloc(tgi_pushpull_bytes(W, H));
     int i, nz = 0;
-    scene_depth(&v, depth0, sky0);
-    fill_radiance();
-    io_for(&io, &v, &v);
-    io.prev_r = io.prev_g = io.prev_b = NULL;    /* no history */
-    tgi_reproject_scatter(&io, s);
-    tgi_pushpull_fill(W, H, orr, org, orb, valid, (unsigned char *)s + tgi_reproject_bytes(W, H));
-    for (i = 0; i < N; i++) nz += valid[i] || orr[i] != 0 || org[i] != 0 || orb[i] != 0;
+    setup(&v);
+    gather(&v, &v, &g0, &none);    /* no history */
+    CHECK(holes() == N, "a cut leaves every pixel a hole");
+    tgi_pushpull_fill(W, H, &out, s);
+    for (i = 0; i < N; i++) {
+        tg_vec3 c = tgi_rgb_get(&out, (size_t)i);
+        nz += tgi_rgb_is_hole(&out, (size_t)i) || c.x != 0 || c.y != 0 || c.z != 0;
+    }
     CHECK(nz == 0, "camera cut: %d pixels not zero", nz);
     free(s);
 }
@@ -132,18 +185,15 @@ TEST(camera_cut_gives_zero)
 TEST(teleport_is_finite_and_hole_free)
 {
     tgi_view v0 = make_view(0.3f, 0.5f, 2.0f), v1 = make_view(-1.5f, 0.2f, 1.0f);
-    tgi_reproject_io io;
-    void *s = scratch_for();
-    int i, holes = 0;
-    scene_depth(&v0, depth0, sky0);
-    scene_depth(&v1, depth1, sky1);
-    fill_radiance();
-    io_for(&io, &v0, &v1);
-    tgi_reproject_scatter(&io, s);
-    for (i = 0; i < N; i++) holes += !valid[i];
-    CHECK(holes > 0 && holes < N, "a teleport leaves some holes (%d)", holes);
-    tgi_pushpull_fill(W, H, orr, org, orb, valid, (unsigned char *)s + tgi_reproject_bytes(W, H));
-    check_filled("teleport", TG_R(0.0999f), TG_R(1.3001f)); /* the source range */
+    void *s = malloc(tgi_pushpull_bytes(W, H));
+    int n;
+    setup(&v0);
+    scene_cast(&v1, &g1);
+    gather(&v0, &v1, &g1, &history);
+    n = holes();
+    CHECK(n > 0 && n < N, "a teleport leaves some holes (%d)", n);
+    tgi_pushpull_fill(W, H, &out, s);
+    check_filled("teleport", 0.0999 - sf_rgb_rounding(2.0), 1.3001 + sf_rgb_rounding(2.0)); /* the source range */
     free(s);
 }
 
@@ -153,76 +203,130 @@ TEST(pushpull_fills_within_range)
     void *s = malloc(tgi_pushpull_bytes(W, H));
     for (k = 0; k < 3; k++) {
         for (i = 0; i < N; i++) {
-            valid[i] = k == 0 ? (i % 3 == 0) : k == 1 ? (i == 17) : (i < N / 2);
-            orr[i] = valid[i] ? tg_from_float(2.0f + (float)(i % 11) * 0.25f) : TG_REAL_MAX;  /* holes hold garbage */
-            org[i] = valid[i] ? TG_ONE : TG_REAL_MAX;
-            orb[i] = valid[i] ? 0 : TG_REAL_MAX;
+            int valid = k == 0 ? (i % 3 == 0) : k == 1 ? (i == 17) : (i < N / 2);
+            if (valid) tgi_rgb_set(&out, (size_t)i, tg_v3(tg_from_float(2.0f + (float)(i % 11) * 0.25f), TG_ONE, 0));
+            else tgi_rgb_set_hole(&out, (size_t)i);
         }
-        tgi_pushpull_fill(W, H, orr, org, orb, valid, s);
-        check_filled("push/pull", TG_R(2.0f), TG_R(4.5f));
-        for (i = 0; i < N; i++) CHECK_NEAR(check_d(org[i]), 1.0, 1e-3);
-        for (i = 0; i < N; i++) if (valid[i]) CHECK(orr[i] == tg_from_float(2.0f + (float)(i % 11) * 0.25f), "valid pixel %d changed", i);
+        tgi_pushpull_fill(W, H, &out, s);
+        check_filled("push/pull", 2.0, 4.5);
+        for (i = 0; i < N; i++) CHECK_NEAR(check_d(tgi_rgb_get(&out, (size_t)i).y), 1.0, 1e-3);
+        for (i = 0; i < N; i++) {
+            int valid = k == 0 ? (i % 3 == 0) : k == 1 ? (i == 17) : (i < N / 2);
+            if (valid) CHECK(tgi_rgb_get(&out, (size_t)i).x == tg_from_float(2.0f + (float)(i % 11) * 0.25f),
+                             "valid pixel %d changed", i);
+        }
     }
-    /* odd and tiny sizes */
-    {
-        tg_real a = TG_ONE, b = TG_ONE, c = TG_ONE;
-        uint8_t v = 0;
-        tgi_pushpull_fill(1, 1, &a, &b, &c, &v, s);
-        CHECK(a == 0 && b == 0 && c == 0, "1x1 hole without data gives 0");
+    {   /* odd and tiny sizes */
+        tgi_rgb one;
+        tg_vec3 c;
+        sf_rgb_alloc(&one, 1);
+        tgi_rgb_set_hole(&one, 0);
+        tgi_pushpull_fill(1, 1, &one, s);
+        c = tgi_rgb_get(&one, 0);
+        CHECK(!tgi_rgb_is_hole(&one, 0) && c.x == 0 && c.y == 0 && c.z == 0, "1x1 hole without data gives 0");
+        sf_rgb_free(&one);
     }
     free(s);
 }
 
-/* The spatial filter leaves a constant field constant and keeps cone = acos(1 - AO);
- * the temporal pass with a static view converges to a constant input. */
-TEST(filters_preserve_constants)
+/* The spatial filter keeps AO in the range of its inputs and leaves a
+ * constant field constant. */
+TEST(filter_preserves_range_and_constants)
 {
     tgi_view v = make_view(0.3f, 0.5f, 2.0f);
-    static tg_real ao[N], bx[N], by[N], bz[N], cone[N], nx[N], ny[N], nz[N];
-    tgi_gbuffer gb;
+    static tg_real ao[N];
     tgi_gview g;
-    tgi_gresult r;
+    tgi_gresult r, filtered;
     tgi_denoise_params p;
-    tgi_temporal_params tp;
-    void *scratch = malloc(tgi_denoise_bytes(W, H)), *state = malloc(tgi_temporal_bytes(W, H));
-    int i, f, bad = 0;
-    scene_depth(&v, depth0, sky0);
-    for (i = 0; i < N; i++) {
-        ao[i] = tg_from_float(0.25f + (float)(i % 4) * 0.25f); /* varies inside every 4x4 block */
-        nx[i] = 0; ny[i] = TG_ONE; nz[i] = 0;
-        bx[i] = 0; by[i] = TG_ONE; bz[i] = 0;
-    }
-    memset(&gb, 0, sizeof gb);
-    gb.width = W; gb.height = H; gb.depth = depth0; gb.nx = nx; gb.ny = ny; gb.nz = nz; gb.sky = sky0;
-    tgi_gview_of(&g, &gb, &v);
-    memset(&r, 0, sizeof r);
-    r.ao = ao; r.bent_x = bx; r.bent_y = by; r.bent_z = bz; r.cone = cone;
+    int i, k, bad = 0;
+    setup(&v);
+    g = sf_view(&g0, &v);
+    sf_results_alloc(&r, N, 1, 0, 1);
+    sf_results_alloc(&filtered, N, 1, 0, 1);
     tgi_denoise_defaults(&p);
-    tgi_denoise_keep_rows(&g, &r, scratch, 0, H);
-    tgi_denoise_rows(&p, &g, &r, scratch, 0, H);
-    for (i = 0; i < N; i++) {
-        double a = check_d(ao[i]);
-        if (sky0[i]) continue;
-        if (!(a >= 0.25 && a <= 1.0)) bad++;
-        if (fabs(check_d(cone[i]) - acos(1 - a)) > 2e-3) bad++;
+    for (k = 0; k < 2; k++) {
+        for (i = 0; i < N; i++) {
+            /* varies inside every 4x4 block, or constant */
+            tgi_gr_set_ao(&r, (size_t)i, k ? TG_R(0.5f) : tg_from_float(0.25f + (float)(i % 4) * 0.25f));
+            tgi_gr_set_bent(&r, (size_t)i, tg_v3(0, TG_ONE, 0));
+            tgi_gr_set_near(&r, (size_t)i, tg_v3(TG_ONE, TG_R(0.5f), 0));
+        }
+        tgi_denoise_rows(&p, &g, &r, &filtered, 0, H);
+        sf_results_read(&filtered, N, ao, NULL, NULL, NULL, NULL, NULL, NULL, NULL);
+        for (i = 0; i < N; i++) {
+            double a = check_d(ao[i]);
+            tg_vec3 e = tgi_gr_near(&filtered, (size_t)i), b = tgi_gr_bent(&filtered, (size_t)i);
+            if (tgi_gv_is_sky(&g, (size_t)i)) continue;
+            if (k == 0 && !(a >= 0.25 && a <= 1.0)) bad++;
+            if (k == 1 && (fabs(a - 0.5) > 1.0 / 255 || fabs(check_d(e.x) - 1) > 1e-3 || fabs(check_d(e.y) - 0.5) > 1e-3 ||
+                           check_d(b.y) < 0.9999)) bad++;
+        }
     }
-    CHECK(bad == 0, "filtered AO out of range or cone != acos(1 - AO): %d", bad);
+    CHECK(bad == 0, "filtered AO out of range, or a constant field changed: %d", bad);
+    sf_results_free(&r);
+    sf_results_free(&filtered);
+}
+
+/* Temporal accumulation with a static view: an input alternating between
+ * 0.25 and 0.75 frame by frame settles at 0.5 +- 0.028 (alpha 0.2: the
+ * fixed points (0.16 b + 0.2 a) / 0.36), the frames' results alternating
+ * between two buffers; history whose depth does not match is rejected. */
+TEST(temporal_accumulates_and_rejects)
+{
+    tgi_view v = make_view(0.3f, 0.5f, 2.0f);
+    tgi_gview g;
+    tgi_gresult set[2];
+    tgi_temporal_params tp;
+    int i, f, bad = 0, changed = 0;
+    double worst = 0;
+    setup(&v);
+    g = sf_view(&g0, &v);
+    sf_results_alloc(&set[0], N, 1, 0, 0);
+    sf_results_alloc(&set[1], N, 1, 0, 0);
     tgi_temporal_defaults(&tp);
-    tgi_temporal_clear(state, W, H);
     for (f = 0; f < 40; f++) {
-        for (i = 0; i < N; i++) ao[i] = TG_R(0.5f);
-        tgi_temporal_rows(&tp, &g, &r, state, &v, f, f == 0, 0, H);
+        const tgi_gresult *r = &set[f & 1], *last = &set[1 - (f & 1)];
+        for (i = 0; i < N; i++) {
+            tgi_gr_set_ao(r, (size_t)i, (f & 1) ? TG_R(0.75f) : TG_R(0.25f));
+            tgi_gr_set_bent(r, (size_t)i, tg_v3(0, TG_ONE, 0));
+        }
+        tgi_temporal_rows(&tp, &g, r, last, &prev, &v, f == 0, 0, H);
     }
-    for (i = 0; i < N; i++) if (!sky0[i]) CHECK_NEAR(check_d(ao[i]), 0.5, 1e-3);
-    free(scratch); free(state);
+    for (i = 0; i < N; i++) {
+        double a = check_d(tgi_gr_ao(&set[1], (size_t)i));   /* the last frame's (f = 39) */
+        if (tgi_gv_is_sky(&g, (size_t)i)) continue;
+        if (fabs(a - 0.5) > worst) worst = fabs(a - 0.5);
+        if (fabs(a - 0.5278) > 0.01) bad++;
+    }
+    printf("# temporal: alternating 0.25 / 0.75 settles within %.4f of 0.5\n", worst);
+    CHECK(bad == 0, "%d pixels did not settle at 0.528 (worst |AO - 0.5| %.4f)", bad, worst);
+    /* last frame's depth twice as far: every history rejected, the input kept */
+    {
+        tgi_gbuffer far;
+        tgi_gview fv;
+        sf_gbuffer_alloc(&far, W, H, NULL, 0);
+        for (i = 0; i < N; i++)
+            sf_gbuffer_set(&far, (size_t)i, tg_mul(tgi_gv_depth(&g, (size_t)i), TG_R(2.0f)), tg_v3(0, TG_ONE, 0), 0);
+        fv = sf_view(&far, &v);
+        for (i = 0; i < N; i++) tgi_prev_keep(&prev, (size_t)i, &fv, (size_t)i);
+        for (i = 0; i < N; i++) tgi_gr_set_ao(&set[0], (size_t)i, TG_R(0.25f));
+        tgi_temporal_rows(&tp, &g, &set[0], &set[1], &prev, &v, 0, 0, H);
+        for (i = 0; i < N; i++) changed += tgi_gr_ao(&set[0], (size_t)i) != tgi_unorm8_unpack(tgi_unorm8_pack(TG_R(0.25f)));
+        CHECK(changed == 0, "%d pixels took a history whose depth does not match", changed);
+        sf_gbuffer_free(&far);
+    }
+    sf_results_free(&set[0]);
+    sf_results_free(&set[1]);
 }
 
 int main(void)
 {
     RUN(static_view_is_identity);
+    RUN(moved_camera_fetches_the_same_surface);
     RUN(camera_cut_gives_zero);
     RUN(teleport_is_finite_and_hole_free);
     RUN(pushpull_fills_within_range);
-    RUN(filters_preserve_constants);
+    RUN(filter_preserves_range_and_constants);
+    RUN(temporal_accumulates_and_rejects);
     return check_summary();
 }

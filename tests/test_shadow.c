@@ -33,8 +33,6 @@ static void image_light(image *im, const geo *g, const tgi_light *l, int size, i
 {
     tgi_shadow_map sm;
     const tgi_shadow_map *maps[1];
-    tgi_gview v;
-    tgi_rgb e = { E_R(im), im->out[1], im->out[2] }, u = { U_R(im), im->out[4], im->out[5] };
     size_t bytes = size == RAYS ? 1 : tgi_shadow_map_bytes(l, size);
     void *mem = malloc(bytes);
     if (!mem) { fprintf(stderr, "out of memory\n"); exit(2); }
@@ -47,9 +45,8 @@ static void image_light(image *im, const geo *g, const tgi_light *l, int size, i
     }
     im->texel_world = dv(sm.texel_world);
     maps[0] = &sm;
-    tgi_gview_of(&v, &im->gb, &im->view);
-    tgi_direct_rows(&v, l, 1, maps, &e, 0, im->h);
-    tgi_direct_rows(&v, l, 1, NULL, &u, 0, im->h);
+    image_direct(im, l, 1, maps, 0);
+    image_direct(im, l, 1, NULL, 3);
     free(mem);
 }
 
@@ -128,7 +125,7 @@ static tally check_visibility(const image *im, const tgi_light *l, const char *w
         u = dv(U_R(im)[i]); e = dv(E_R(im)[i]);
         CHECK(e >= 0 && e <= u * (1 + 1e-4) + 1e-6, "%s: E %g outside [0, unshadowed %g]", what, e, u);
         if (cosl < 0.01 || u <= 0) continue;
-        footprint = dv(im->gb.depth[i]) / dv(im->view.pixels_per_unit);
+        footprint = dv(im->depth[i]) / dv(im->view.pixels_per_unit);
         texel = l->type == TG_LIGHT_DIRECTIONAL ? im->texel_world : im->texel_world * dist;
         lift = 0.1 * footprint + 1e-3;
         across = 2.5 * texel + 2 * footprint + 0.005;
@@ -219,7 +216,7 @@ static void lit_check(const image *im, const tgi_light *l, const char *what, int
         to_light(l, p, d);
         if (dot3(n, d) < 0.01) continue;
         facing++;
-        lift = 0.1 * dv(im->gb.depth[i]) / dv(im->view.pixels_per_unit) + 1e-3;
+        lift = 0.1 * dv(im->depth[i]) / dv(im->view.pixels_per_unit) + 1e-3;
         for (c = 0; c < 3; c++) q[c] = p[c] + n[c] * lift;
         if (ray_blocked(l, q)) continue;
         visible++;

@@ -248,7 +248,7 @@ static tg_vec3 pixel_world(const image *im, int i)
     tg_real ky = tg_div(tg_sub(half_h, tg_add(tg_from_int(y), TG_R(0.5f))), v->pixels_per_unit);
     tg_real kx = tg_div(tg_sub(tg_add(tg_from_int(x), TG_R(0.5f)), half_w), v->pixels_per_unit);
     tg_vec3 d = tgi_v3_add(tgi_v3_add(v->forward, tgi_v3_scale(v->up, ky)), tgi_v3_scale(v->right, kx));
-    return tgi_v3_add(v->eye, tgi_v3_scale(d, im->gb.depth[i]));
+    return tgi_v3_add(v->eye, tgi_v3_scale(d, im->depth[i]));
 }
 
 /* Every pixel whose lookup the direct pass makes (facing the light, inside
@@ -265,11 +265,11 @@ static int check_lookups(const image *im, const tgi_light *l, const tgi_shadow_n
         if (im->sky[i]) continue;
         p = pixel_world(im, i);
         {   /* the same point as the fixture's double-precision one */
-            double pd[3], nd3[3], tol = 1e-3 * (1 + dv(im->gb.depth[i])) + (TG_FIXED ? 2e-3 : 0);
+            double pd[3], nd3[3], tol = 1e-3 * (1 + dv(im->depth[i])) + (TG_FIXED ? 2e-3 : 0);
             pixel_pos(im, i, pd, nd3);
             CHECK(fabs(pd[0] - dv(p.x)) + fabs(pd[1] - dv(p.y)) + fabs(pd[2] - dv(p.z)) <= tol, "%s: pixel %d reconstructed", what, i);
         }
-        nrm = tg_v3(im->gb.nx[i], im->gb.ny[i], im->gb.nz[i]);
+        nrm = tg_v3(im->nx[i], im->ny[i], im->nz[i]);
         if (tgi_v3_dot(tgi_direct_irradiance(l, p, nrm), tg_v3(TG_ONE, TG_ONE, TG_ONE)) <= 0) continue;
         n++;
         if (l->type == TG_LIGHT_DIRECTIONAL) {
@@ -293,7 +293,7 @@ static int check_lookups(const image *im, const tgi_light *l, const tgi_shadow_n
         if (x < dv(nd->window[f][0]) - 1e-4 || x > dv(nd->window[f][2]) + 1e-4 ||
             y < dv(nd->window[f][1]) - 1e-4 || y > dv(nd->window[f][3]) + 1e-4) {
             if (getenv("SHADOW_DEBUG"))
-                printf("p %.4f %.4f %.4f depth %.4f eye %.3f %.3f %.3f\n", dv(p.x), dv(p.y), dv(p.z), dv(im->gb.depth[i]),
+                printf("p %.4f %.4f %.4f depth %.4f eye %.3f %.3f %.3f\n", dv(p.x), dv(p.y), dv(p.z), dv(im->depth[i]),
                        dv(im->view.eye.x), dv(im->view.eye.y), dv(im->view.eye.z));
             if (bad++ < 5)
                 CHECK(0, "%s: pixel %d,%d at (%.4f %.4f) outside face %d's window %.4f %.4f %.4f %.4f", what, i % im->w,
@@ -378,9 +378,9 @@ TEST(culled_map_lights_like_a_full_one)
     tgi_shadow_map_render(&culled, g->pos, g->n);
     map_with(&full, &mem_f, g, &l, 512, TG_SHADOW_DEPTH16);
     maps[0] = &culled;
-    { tgi_gview gv; tgi_rgb e = { im.out[0], im.out[1], im.out[2] }; tgi_gview_of(&gv, &im.gb, &im.view); tgi_direct_rows(&gv, &l, 1, maps, &e, 0, im.h); }
+    image_direct(&im, &l, 1, maps, 0);
     maps[0] = &full;
-    { tgi_gview gv; tgi_rgb e = { im.out[3], im.out[4], im.out[5] }; tgi_gview_of(&gv, &im.gb, &im.view); tgi_direct_rows(&gv, &l, 1, maps, &e, 0, im.h); }
+    image_direct(&im, &l, 1, maps, 3);
     for (i = 0; i < im.w * im.h; i++) {
         double a = dv(im.out[0][i]), b = dv(im.out[3][i]);
         if (im.sky[i] || b <= 0) continue;

@@ -255,7 +255,7 @@ static void reference(tg_scene *s, const char *name, double radius, result *r)
     fflush(stdout);
     r->ao = read_aov(fr.frame, TG_AOV_AO, opt_w, opt_h);
     r->bent = read_aov(fr.frame, TG_AOV_BENT, opt_w, opt_h);
-    if (fr.frame->res.near.r) r->near = read_aov(fr.frame, TG_AOV_NEAR, opt_w, opt_h);
+    if (tgi_gr_has_near(&fr.frame->out)) r->near = read_aov(fr.frame, TG_AOV_NEAR, opt_w, opt_h);
     else r->near = calloc((size_t)n * 3, sizeof(float));
     r->sky = read_sky(fr.frame, n);
     frame_close(&fr);
@@ -425,7 +425,7 @@ static double run_config(tg_scene *s, const config *c, double radius, result *ou
     out->ao = read_aov(fr.frame, TG_AOV_AO, opt_w, opt_h);
     out->bent = read_aov(fr.frame, TG_AOV_BENT, opt_w, opt_h);
     out->sky = read_sky(fr.frame, n);
-    if (c->near && fr.frame->res.near.r) out->near = read_aov(fr.frame, TG_AOV_NEAR, opt_w, opt_h);
+    if (c->near && tgi_gr_has_near(&fr.frame->out)) out->near = read_aov(fr.frame, TG_AOV_NEAR, opt_w, opt_h);
     if (ir) out->near = interreflection_near(fr.frame, opt_w, opt_h);
     for (k = 0; k < opt_runs; k++) {
         double t0 = tgp_clock_seconds(), u0 = cpu_seconds();

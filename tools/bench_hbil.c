@@ -40,8 +40,7 @@ static int cmp(const void *a, const void *b)
 }
 
 static tg_real depth[N], nx[N], ny[N], nz[N], ao[N], bx[N], by[N], bz[N], cone[N];
-static tg_real sub[9][N];
-static uint8_t sky[N], subsky[N];
+static uint8_t sky[N];
 
 /* The groove: faces y = |x|, seen from (0, 4, 0.5) looking down. */
 static void groove(tgi_view *v)
@@ -84,6 +83,7 @@ static void dump(const char *path)
 /* usage: bench_hbil [RUNS [DUMP_FILE]]  (RUNS default 15; 1 for callgrind) */
 int main(int argc, char **argv)
 {
+    static const tgi_material white = { "white", { TG_ONE, TG_ONE, TG_ONE }, 0, { 0, 0, 0 }, 0 };
     tgi_view v;
     tgi_denoise_params dp;
     tgi_hbil_params hp;
@@ -91,39 +91,52 @@ int main(int argc, char **argv)
     tgi_gview full;
     tgi_gresult res, split_res;
     void *scratch = malloc(tgi_denoise_bytes(W, H));
+    /* the build's storage (raster/gview.h): G-buffer, its 4x4 split and the results of both */
+    void *gmem = calloc(tgi_gbuffer_carve(&gb, W, H, NULL), 1), *smem = calloc(tgi_gbuffer_carve(&split, W, H, NULL), 1);
+    void *rmem = calloc(tgi_gresult_carve(&res, N, 1, 1, 0, NULL), 1);
+    void *srmem = calloc(tgi_gresult_carve(&split_res, N, 1, 1, 0, NULL), 1);
     double t[MAX_RUNS], sum_ao = 0;
-    int r, i, k, RUNS = argc > 1 ? atoi(argv[1]) : MAX_RUNS;
+    int r, i, x, y, RUNS = argc > 1 ? atoi(argv[1]) : MAX_RUNS;
+    size_t start[4];
     if (RUNS < 1 || RUNS > MAX_RUNS) RUNS = MAX_RUNS;
     groove(&v);
     tgi_denoise_defaults(&dp);
     tgi_hbil_defaults(&hp);
-    memset(&gb, 0, sizeof gb);
-    gb.width = W; gb.height = H; gb.depth = depth; gb.nx = nx; gb.ny = ny; gb.nz = nz; gb.sky = sky;
+    tgi_gbuffer_carve(&gb, W, H, gmem);
+    tgi_gbuffer_carve(&split, W, H, smem);
+    tgi_gresult_carve(&res, N, 1, 1, 0, rmem);
+    tgi_gresult_carve(&split_res, N, 1, 1, 0, srmem);
+    gb.materials = split.materials = &white;
+    for (i = 0; i < N; i++) tgi_gb_set(&gb, (size_t)i, depth[i], tg_v3(nx[i], ny[i], nz[i]), 0);
     tgi_gview_of(&full, &gb, &v);
-    memset(&split, 0, sizeof split);
-    split.depth = sub[0]; split.nx = sub[1]; split.ny = sub[2]; split.nz = sub[3]; split.sky = subsky;
-    memset(&res, 0, sizeof res);
-    res.ao = ao; res.bent_x = bx; res.bent_y = by; res.bent_z = bz; res.cone = cone;
-    memset(&split_res, 0, sizeof split_res);
-    split_res.ao = sub[4]; split_res.bent_x = sub[5]; split_res.bent_y = sub[6]; split_res.bent_z = sub[7];
-    split_res.cone = sub[8];
     for (r = 0; r < RUNS; r++) {
         double t0 = now_ms();
-        const tg_real *in[4] = { depth, nx, ny, nz };
-        tg_real *out[5] = { ao, bx, by, bz, cone };
-        for (k = 0; k < 4; k++) tgi_interleave_split(in[k], W, H, sub[k]);
-        tgi_interleave_split8(sky, W, H, subsky);
+        for (y = 0; y < H; y++) {          /* split, as the frame's split pass */
+            tgi_interleave_row(W, H, y, start);
+            for (x = 0; x < W; x++)
+                tgi_gview_copy_pixel(&split, start[x & 3] + (size_t)(x >> 2), &full, tgi_gv_index(&full, x, y));
+        }
         tgi_hbil_interleaved_rows(&hp, &full, &split, NULL, &split_res, 0, H);
-        for (k = 0; k < 5; k++) tgi_interleave_merge(sub[4 + k], W, H, out[k]);
+        for (y = 0; y < H; y++) {          /* merge */
+            tgi_interleave_row(W, H, y, start);
+            for (x = 0; x < W; x++)
+                tgi_gresult_copy_pixel(&res, tgi_gv_index(&full, x, y), &split_res, start[x & 3] + (size_t)(x >> 2));
+        }
         tgi_denoise_keep_rows(&full, &res, scratch, 0, H);
         tgi_denoise_rows(&dp, &full, &res, scratch, 0, H);
         t[r] = now_ms() - t0;
     }
-    for (i = 0; i < N; i++) sum_ao += tg_to_float(ao[i]);
+    for (i = 0; i < N; i++) {
+        tg_vec3 b = tgi_gr_bent(&res, (size_t)i);
+        ao[i] = tgi_gr_ao(&res, (size_t)i);
+        bx[i] = b.x; by[i] = b.y; bz[i] = b.z;
+        cone[i] = tgi_gr_cone(&res, (size_t)i);
+        sum_ao += tg_to_float(ao[i]);
+    }
     qsort(t, RUNS, sizeof t[0], cmp);
     printf("bench_hbil %s %dx%d: split+kernel+merge+filter median %.2f ms (min %.2f, max %.2f), mean AO %.4f\n",
            TG_NUMBER_NAME, W, H, t[RUNS / 2], t[0], t[RUNS - 1], sum_ao / N);
     if (argc > 2) dump(argv[2]);
-    free(scratch);
+    free(scratch); free(gmem); free(smem); free(rmem); free(srmem);
     return 0;
 }

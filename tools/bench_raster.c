@@ -21,6 +21,7 @@
 #include <time.h>
 #include "tinygi.h"
 #include "raster/raster.h"
+#include "raster/gview.h"
 
 #define RINGS 112
 #define SLICES 224
@@ -96,21 +97,17 @@ static void __attribute__((noinline)) bench_draw(tgi_gbuffer *gb, const tgi_view
 static void bench(const tgi_raster_mesh *mesh, int w, int h, int frames)
 {
     size_t n = (size_t)w * (size_t)h;
-    tg_real *mem = (tg_real *)calloc(n * 11, sizeof(tg_real));
     tgi_gbuffer gb;
+    void *mem = calloc(tgi_gbuffer_carve(&gb, w, h, NULL), 1);
     tgi_view view;
     double draw_cpu = 0, draw_wall = 0, clear_cpu = 0, clear_wall = 0;
     long drawn = 0;
     int f;
     size_t i;
-    memset(&gb, 0, sizeof gb);
-    gb.width = w; gb.height = h;
-    gb.depth = mem; gb.nx = mem + n; gb.ny = mem + 2 * n; gb.nz = mem + 3 * n;
-    gb.albedo_r = mem + 4 * n; gb.albedo_g = mem + 5 * n; gb.albedo_b = mem + 6 * n;
-    gb.f0 = mem + 7 * n; gb.emit_r = mem + 8 * n; gb.emit_g = mem + 9 * n; gb.emit_b = mem + 10 * n;
-    gb.sky = (uint8_t *)malloc(n);
+    tgi_gbuffer_carve(&gb, w, h, mem);   /* the build's storage (raster/gview.h) */
+    gb.materials = mesh->materials;
     gb.object = (uint16_t *)malloc(n * sizeof(uint16_t));
-    if (!mem || !gb.sky || !gb.object) {
+    if (!mem || !gb.object) {
         fprintf(stderr, "bench_raster: out of memory at %dx%d\n", w, h);
         exit(1);
     }
@@ -126,13 +123,13 @@ static void bench(const tgi_raster_mesh *mesh, int w, int h, int frames)
         clear_cpu += c1 - c0; clear_wall += w1 - w0;
         draw_cpu += cpu_seconds() - c1; draw_wall += wall_seconds() - w1;
     }
-    for (i = 0; i < n; i++) drawn += !gb.sky[i];
+    for (i = 0; i < n; i++) drawn += gb.depth[i] != 0;
     printf("tinygi-%s %dx%d tris=%d frames=%d draw_cpu_ms=%.4f draw_wall_ms=%.4f clear_cpu_ms=%.4f "
            "clear_wall_ms=%.4f covered=%ld\n",
            TG_NUMBER_NAME, w, h, mesh->tri_count, frames, draw_cpu / frames * 1e3, draw_wall / frames * 1e3,
            clear_cpu / frames * 1e3, clear_wall / frames * 1e3, drawn);
     fflush(stdout);
-    free(mem); free(gb.sky); free(gb.object);
+    free(mem); free(gb.object);
 }
 
 static int parse_size(const char *s, int *w, int *h)

@@ -15,7 +15,7 @@ void tgi_bentcone_defaults(tgi_bentcone_params *p)
     p->radius = TG_ONE;
     p->bias = TG_R(0.03f);
     p->env_sh9 = 0;
-    p->far.r = p->far.g = p->far.b = 0;
+    p->far = tgi_rgb_none();
 }
 
 tg_real tgi_bentcone_aperture(tg_real mean_length)

@@ -355,13 +355,14 @@ static tg_vec3 pixel_irradiance(const tracer *t, const vertex *v0, uint32_t pixe
 
 void tgi_pathtrace_rows(const tgi_pathtrace_params *p, const tgi_pathtrace_io *io, int y0, int y1)
 {
-    const tgi_gbuffer *gb = io->gb;
     const tgi_view *view = io->view;
+    tgi_gview g;
     tracer t;
     tgi_pathtrace_params q = *p;
     tg_real half_w = tg_ldexp(tg_from_int(view->width), -1), half_h = tg_ldexp(tg_from_int(view->height), -1);
     tg_real gb_error = tgi_shadow_gbuffer_error(view);
-    int x, y, w = gb->width;
+    int x, y, w = io->gb->width;
+    tgi_gview_of(&g, io->gb, view);
     if (q.bounces < 0) q.bounces = 0;
     if (q.bounces > TG_MAX_BOUNCES) q.bounces = TG_MAX_BOUNCES;
     t.p = &q;
@@ -375,19 +376,19 @@ void tgi_pathtrace_rows(const tgi_pathtrace_params *p, const tgi_pathtrace_io *i
             tg_real kx = tg_div(tg_sub(tg_add(tg_from_int(x), TG_R(0.5f)), half_w), view->pixels_per_unit);
             tg_vec3 dir = tgi_v3_add(row_dir, tgi_v3_scale(view->right, kx)), e, lo;
             vertex v0;
-            if (gb->sky[i]) {
+            if (tgi_gv_is_sky(&g, i)) {
                 lo = p->env ? tgi_env_radiance(p->env, tgi_v3_normalize(dir)) : tg_v3(0, 0, 0);
                 io->out_r[i] = lo.x; io->out_g[i] = lo.y; io->out_b[i] = lo.z;
                 if (io->irr_r) io->irr_r[i] = io->irr_g[i] = io->irr_b[i] = 0;
                 continue;
             }
-            v0.p = tgi_v3_add(view->eye, tgi_v3_scale(dir, gb->depth[i]));
-            v0.n = v0.ng = tg_v3(gb->nx[i], gb->ny[i], gb->nz[i]);
-            v0.rho = tgi_v3_scale(tg_v3(gb->albedo_r[i], gb->albedo_g[i], gb->albedo_b[i]), tg_sub(TG_ONE, gb->f0[i]));
-            v0.eps = tg_add(tg_mul(gb->depth[i], gb_error), point_eps(v0.p));
+            v0.p = tgi_v3_add(view->eye, tgi_v3_scale(dir, tgi_gv_depth(&g, i)));
+            v0.n = v0.ng = tgi_gv_normal(&g, i);
+            v0.rho = tgi_v3_scale(tgi_gv_albedo(&g, i), tg_sub(TG_ONE, tgi_gv_f0(&g, i)));
+            v0.eps = tg_add(tg_mul(tgi_gv_depth(&g, i), gb_error), point_eps(v0.p));
             e = pixel_irradiance(&t, &v0, (uint32_t)i);
             lo = tgi_v3_scale(tgi_v3_mul(v0.rho, e), TG_INV_PI);   /* rho / pi E (HBIL eq. 14) */
-            if (gb->emit_r) lo = tgi_v3_add(lo, tg_v3(gb->emit_r[i], gb->emit_g[i], gb->emit_b[i]));
+            if (tgi_gv_has_emissive(&g)) lo = tgi_v3_add(lo, tgi_gv_emissive(&g, i));
             io->out_r[i] = lo.x; io->out_g[i] = lo.y; io->out_b[i] = lo.z;
             if (io->irr_r) { io->irr_r[i] = e.x; io->irr_g[i] = e.y; io->irr_b[i] = e.z; }
         }

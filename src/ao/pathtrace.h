@@ -47,7 +47,7 @@
 #define TG_PATHTRACE_H
 
 #include "../scene/scene.h"
-#include "../raster/gbuffer.h"
+#include "../raster/gview.h"
 #include "../raster/view.h"
 #include "bvh.h"
 

@@ -16,11 +16,11 @@ void tgi_ssdo_defaults(tgi_ssdo_params *p)
     p->bias = TG_R(0.03f);
     p->bounce = TG_ONE;
     p->env_sh9 = 0;
-    p->far.r = p->far.g = p->far.b = 0;
+    p->far = tgi_rgb_none();
     p->lights = 0;
     p->light_count = 0;
     p->light_steps = 4;
-    p->light.r = p->light.g = p->light.b = 0;
+    p->light = tgi_rgb_none();
 }
 
 /* Lights with directional occlusion: each light is one more sample

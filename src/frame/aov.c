@@ -20,12 +20,13 @@ static void row_rgb(const tgi_rgb *c, const tgi_gview *g, int x0, int y, int w, 
     }
 }
 
-/* A G-buffer vector (normal or albedo) of pixels [x0, x0 + w) of row y. */
+/* A G-buffer vector (normal or albedo) of pixels [x0, x0 + w) of row y; 0 on sky. */
 static void row_vec(const tgi_gview *g, tg_vec3 (*get)(const tgi_gview *, size_t), int x0, int y, int w, tg_real *out)
 {
     int x;
     for (x = 0; x < w; x++) {
-        tg_vec3 v = get(g, tgi_gv_index(g, x0 + x, y));
+        size_t i = tgi_gv_index(g, x0 + x, y);
+        tg_vec3 v = tgi_gv_is_sky(g, i) ? tg_v3(0, 0, 0) : get(g, i);
         out[3 * x + 0] = v.x; out[3 * x + 1] = v.y; out[3 * x + 2] = v.z;
     }
 }
@@ -34,9 +35,10 @@ static void row_bent(const tg_frame *f, int x0, int y, int w, tg_real *out)
 {
     const tgi_gview *g = &f->full;
     int x;
-    if (!f->res.ao || !tgi_gr_has_bent(&f->res)) { row_vec(g, tgi_gv_normal, x0, y, w, out); return; }
+    if (!tgi_gr_has_bent(&f->out)) { row_vec(g, tgi_gv_normal, x0, y, w, out); return; }
     for (x = 0; x < w; x++) {
-        tg_vec3 v = tgi_gr_bent(&f->res, tgi_gv_index(g, x0 + x, y));
+        size_t i = tgi_gv_index(g, x0 + x, y);
+        tg_vec3 v = tgi_gv_is_sky(g, i) ? tg_v3(0, 0, 0) : tgi_gr_bent(&f->out, i);
         out[3 * x + 0] = v.x; out[3 * x + 1] = v.y; out[3 * x + 2] = v.z;
     }
 }
@@ -49,8 +51,8 @@ static void row_scalar(const tg_frame *f, tg_aov aov, int x0, int y, int w, tg_r
     for (x = 0; x < w; x++) {
         size_t i = tgi_gv_index(g, x0 + x, y);
         if (aov == TG_AOV_DEPTH) out[x] = tgi_gv_depth(g, i);
-        else if (aov == TG_AOV_AO) out[x] = f->res.ao ? tgi_gr_ao(&f->res, i) : TG_ONE;
-        else out[x] = f->res.ao && tgi_gr_has_cone(&f->res) ? tgi_gr_cone(&f->res, i) : TG_HALF_PI;
+        else if (aov == TG_AOV_AO) out[x] = f->out.ao ? tgi_gr_ao(&f->out, i) : TG_ONE;
+        else out[x] = f->out.ao ? tgi_gr_cone(&f->out, i) : TG_HALF_PI;
     }
 }
 
@@ -70,6 +72,13 @@ static void row_motion(const tg_frame *f, int x0, int y, int w, tg_real *out)
     }
 }
 
+/* E_direct as its AOV reads it: its own plane when asked (else it lives in a
+ * radiance slot, composed over; frame_internal.h), NULL otherwise. */
+static const tgi_rgb *direct_plane(const tg_frame *f)
+{
+    return (f->effects & TG_EFFECT_DIRECT) && (f->request.aovs & (1u << TG_AOV_DIRECT)) ? &f->direct : NULL;
+}
+
 /* Pixels [x0, x0 + w) of row y. */
 static void aov_span(const tg_frame *f, tg_aov aov, int y, int x0, int w, tg_real *out)
 {
@@ -80,9 +89,9 @@ static void aov_span(const tg_frame *f, tg_aov aov, int y, int x0, int w, tg_rea
     case TG_AOV_NORMAL: row_vec(g, tgi_gv_normal, x0, y, w, out); break;
     case TG_AOV_ALBEDO: row_vec(g, tgi_gv_albedo, x0, y, w, out); break;
     case TG_AOV_BENT: row_bent(f, x0, y, w, out); break;
-    case TG_AOV_NEAR: row_rgb(&f->res.near, g, x0, y, w, out, 0); break;
+    case TG_AOV_NEAR: row_rgb(&f->out.near, g, x0, y, w, out, 0); break;
     case TG_AOV_FAR: row_rgb(&f->far, g, x0, y, w, out, 0); break;
-    case TG_AOV_DIRECT: row_rgb(&f->direct, g, x0, y, w, out, 0); break;
+    case TG_AOV_DIRECT: row_rgb(direct_plane(f), g, x0, y, w, out, 0); break;
     case TG_AOV_IRRADIANCE: row_rgb(&f->irradiance, g, x0, y, w, out, 0); break;
     case TG_AOV_MOTION: row_motion(f, x0, y, w, out); break;
     default: memset(out, 0, (size_t)w * sizeof(tg_real)); break;

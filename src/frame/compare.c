@@ -78,7 +78,7 @@ void tgi_pass_ssdo(tg_frame *f, int y0, int y1)
     p.radius = f->request.radius;
     p.env_sh9 = far_sh(f);
     if (p.env_sh9) p.far = f->far;
-    tgi_ssdo_rows(&p, &f->full, &f->source, &f->res, y0, y1);
+    tgi_ssdo_rows(&p, &f->full, tgi_frame_source(f), &f->res, y0, y1);
 }
 
 void tgi_pass_bentcone(tg_frame *f, int y0, int y1)
@@ -131,5 +131,5 @@ void tgi_pass_reference(tg_frame *f, int y0, int y1)
     p.radius = f->request.radius;
     p.radiance = direct_radiance_at;
     p.user = f;
-    tgi_reference_rows(&p, &f->full, &f->source, &f->res, y0, y1);
+    tgi_reference_rows(&p, &f->full, tgi_frame_source(f), &f->res, y0, y1);
 }

@@ -108,6 +108,12 @@ tg_status tg_frame_render(tg_frame *f, int index, tg_error *err)
     f->index = index;
     f->bounces = (f->effects & TG_EFFECT_NEAR) && !f->has_history ? f->request.bounces : 1;
     if (f->bounces < 1) f->bounces = 1;
+    f->bounce = 0;
+    /* the camera pass, always the table's first row, decides whether this
+     * frame continues the last one (a cut drops the history); the buffers'
+     * roles for this frame follow from that */
+    run_frame_pass(f, &tgi_passes[f->pass_rows[k++]]);
+    tgi_frame_begin(f);
     while (k < f->pass_count) {
         if (!(tgi_passes[f->pass_rows[k]].when & TGI_BOUNCE)) {
             run_frame_pass(f, &tgi_passes[f->pass_rows[k++]]);
@@ -118,7 +124,7 @@ tg_status tg_frame_render(tg_frame *f, int index, tg_error *err)
             for (j = k; j < end; j++) run_frame_pass(f, &tgi_passes[f->pass_rows[j]]);
         k = end;
     }
-    if (f->history.r) f->has_history = 1;
+    if (tgi_rgb_present(&f->history)) f->has_history = 1;
     f->frames_rendered++;
     return TG_OK;
 }

@@ -73,33 +73,40 @@ struct tg_frame {
     const tgi_shadow_map **shadow_ptrs;
     int shadows_valid;
     tg_vec3 sh[9];
-    tgi_rgb direct, far, color, irradiance;
 
-    /* GI results at full resolution, and the radiance the near field gathers */
-    tgi_gresult res;
-    tgi_rgb source;
+    /* Radiance planes.  Two slots alternate frame by frame (tgi_frame_begin):
+     * with history, slot[t & 1] holds last frame's Lo until reprojection,
+     * then push/pull's mips, then this frame's near field; slot[1 - (t & 1)]
+     * holds last frame's accumulated near field until temporal accumulation,
+     * then E_direct, then this frame's Lo, composed in place.  bounce_source holds
+     * the reprojected radiance (or a bounce's Lo for the next bounce).  With
+     * the kernel at quarter resolution its near field is there and Lo is
+     * composed over the history itself.  A plane an AOV asks for is its own. */
+    tgi_rgb slot[2], bounce_source;
+    tgi_rgb direct, color;         /* this frame's roles (pointing into the slots) */
+    tgi_rgb history;               /* last frame's Lo (reprojection reads it) */
+    tgi_rgb source;                /* what the near field gathers on the first bounce */
+    tgi_rgb far, irradiance;       /* own planes: their AOVs (or SSDO's, bent cones' far field) */
+    int direct_own;                /* E_direct has its own plane (the direct AOV) */
 
-    /* with --gi-quarter the interleaved kernel's image is a point-sampled
-     * copy at half width and height (tgi_frame_kernel) */
+    /* GI results at the kernel's resolution: this frame's (unfiltered, then
+     * accumulated) and last frame's, alternating between two sets */
+    tgi_gresult set[2], res, res_prev;
+    /* with --gi-quarter: the same at half width and height, and the filtered ones */
     tgi_gbuffer half;              /* storage of the quarter-res copy */
-    tgi_gresult half_res;
+    tgi_gresult half_set[2], half_res, half_prev, half_filtered;
     tgi_rgb half_source;
+    /* the filtered (or upsampled) results an AOV asks for, at full resolution */
+    tgi_gresult out;
 
     /* the 4x4 split: 16 packed sub-images of the kernel's image */
     tgi_gbuffer split;
     tgi_gresult split_res;
     tgi_rgb split_source;
 
-    /* radiance history for reprojection (previous frame) */
-    tgi_rgb history;
-    tg_real *history_depth;
-    uint16_t *history_object;
-    void *reproject_zbuffer, *pushpull_mips;
-    uint8_t *reproject_valid;
-
-    /* spatial / temporal filter */
-    void *denoise_scratch;
-    void *temporal_state;
+    /* last frame's geometry (reprojection, temporal accumulation) */
+    tgi_prev_geometry prev_geometry;
+    void *pushpull_mips;
 
     /* technique scratch (reference BVH) */
     void *bvh_scratch;
@@ -180,6 +187,14 @@ uint32_t tgi_frame_needs(const tg_plan *plan);
  * full-resolution view, or with --gi-quarter the half-resolution copy
  * (layout.c). */
 const tgi_gview *tgi_frame_kernel(const tg_frame *f, const tgi_gresult **res, const tgi_rgb **source);
+/* The radiance the near field gathers on this bounce, at full resolution:
+ * this frame's direct light and emission (the first bounce of a frame
+ * without history), last frame's reprojected radiance, or the previous
+ * bounce's Lo (layout.c). */
+const tgi_rgb *tgi_frame_source(const tg_frame *f);
+/* What the radiance slots and results sets hold this frame (frame_internal.h's
+ * tg_frame); tg_frame_render calls it first (layout.c). */
+void tgi_frame_begin(tg_frame *f);
 /* The technique of the plan is HBIL with the interleaved kernel, and at
  * quarter resolution (plan.c). */
 int tgi_frame_interleaved(const tg_frame *f);

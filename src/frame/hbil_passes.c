@@ -15,8 +15,6 @@
 #include "../gi/hbil.h"
 #include "../gi/interleave.h"
 #include "../gi/resample.h"
-#include "../gi/denoise.h"
-#include "../gi/temporal.h"
 
 static void hbil_params(const tg_frame *f, tgi_hbil_params *p)
 {
@@ -37,7 +35,7 @@ static tgi_gresult without_cone(const tgi_gresult *r)
 
 void tgi_pass_downsample(tg_frame *f, int y0, int y1)
 {
-    tgi_downsample_rows(&f->full, &f->half, &f->source, &f->half_source, y0, y1);
+    tgi_downsample_rows(&f->full, &f->half, tgi_frame_source(f), &f->half_source, y0, y1);
 }
 
 /* Kernel-image rows [y0, y1) into the 16 packed sub-images. */
@@ -72,7 +70,7 @@ void tgi_pass_hbil_full(tg_frame *f, int y0, int y1)
     tgi_gresult res = without_cone(&f->res);
     hbil_params(f, &p);
     p.per_pixel_pattern = 1;
-    tgi_hbil_rows(&p, &f->full, &f->source, &res, y0, y1);
+    tgi_hbil_rows(&p, &f->full, tgi_frame_source(f), &res, y0, y1);
 }
 
 /* Kernel-image rows [y0, y1) back from the 16 sub-images. */
@@ -88,52 +86,4 @@ void tgi_pass_merge(tg_frame *f, int y0, int y1)
             tgi_gresult_copy_pixel(res, tgi_gv_index(k, x, y), &f->split_res,
                                    start[x & 3] + (size_t)(x >> 2));
     }
-}
-
-/* HBIL sec. 3.3-3.4: the depth/normal-aware filter over the 4x4
- * neighbourhood, at the kernel's resolution (where the 4x4 pattern lives):
- * first the unfiltered values are kept, then every row is filtered. */
-void tgi_pass_filter_input(tg_frame *f, int y0, int y1)
-{
-    const tgi_gresult *kr;
-    const tgi_gview *k = tgi_frame_kernel(f, &kr, NULL);
-    tgi_gresult res = without_cone(kr);
-    tgi_denoise_keep_rows(k, &res, f->denoise_scratch, y0, y1);
-}
-
-void tgi_pass_filter(tg_frame *f, int y0, int y1)
-{
-    tgi_denoise_params p;
-    const tgi_gresult *kr;
-    const tgi_gview *k = tgi_frame_kernel(f, &kr, NULL);
-    tgi_gresult res = without_cone(kr);
-    tgi_denoise_defaults(&p);
-    tgi_denoise_rows(&p, k, &res, f->denoise_scratch, y0, y1);
-}
-
-/* Joint bilateral upsample of the quarter-res results (resample.c). */
-void tgi_pass_upsample(tg_frame *f, int y0, int y1)
-{
-    tgi_gresult res = without_cone(&f->res);
-    tgi_upsample_rows(&f->full, &f->half_view, &f->half_res, &res, y0, y1);
-}
-
-/* Exponential accumulation over frames, history rejected by depth and normal. */
-void tgi_pass_temporal(tg_frame *f, int y0, int y1)
-{
-    tgi_temporal_params p;
-    tgi_temporal_defaults(&p);
-    tgi_temporal_rows(&p, &f->full, &f->res, f->temporal_state, &f->prev_view, f->index,
-                      f->frames_rendered == 0, y0, y1);
-}
-
-/* HBIL eq. 12: the bent cone's half angle from the AO, cos(alpha) = 1 - AO. */
-void tgi_pass_cone(tg_frame *f, int y0, int y1)
-{
-    int x, y;
-    for (y = y0; y < y1; y++)
-        for (x = 0; x < f->width; x++) {
-            size_t i = tgi_gv_index(&f->full, x, y);
-            tgi_gr_set_cone(&f->res, i, tg_acos(tg_sub(TG_ONE, tg_saturate(tgi_gr_ao(&f->res, i)))));
-        }
 }

@@ -13,9 +13,6 @@
 #include <string.h>
 #include "frame_internal.h"
 #include "../gi/pushpull.h"
-#include "../gi/reproject.h"
-#include "../gi/denoise.h"
-#include "../gi/temporal.h"
 #include "../gi/resample.h"
 
 #define AOV(a) (1u << (a))
@@ -57,6 +54,21 @@ static void *take(layout *l, const char *name, size_t count, size_t elem)
     return m;
 }
 
+/* Storage formats, as --explain prints them beside each buffer. */
+#if TG_WIDE_STORAGE
+#define FMT_G "tg_real depth (0: sky) and normal, 16-bit material index"
+#define FMT_RGB "3 x tg_real"
+#define FMT_AO "tg_real"
+#define FMT_BENT "3 x tg_real"
+#define FMT_PREV "tg_real depth and normal"
+#else
+#define FMT_G "32-bit float depth (0: sky); octahedral 2x11 normal + 10-bit material index"
+#define FMT_RGB "RGB9E5, 32 bits"
+#define FMT_AO "8 bits"
+#define FMT_BENT "octahedral 2x8"
+#define FMT_PREV "16-bit float depth + octahedral 2x8 normal"
+#endif
+
 static tg_real *take_real(layout *l, const char *name, size_t n)
 {
     return (tg_real *)take(l, name, n, sizeof(tg_real));
@@ -64,33 +76,34 @@ static tg_real *take_real(layout *l, const char *name, size_t n)
 
 static void take_rgb(layout *l, const char *name, size_t n, tgi_rgb *c)
 {
-    c->r = take_real(l, name, n);
-    c->g = take_real(l, name, n);
-    c->b = take_real(l, name, n);
+    tgi_rgb_carve(c, n, take(l, name, tgi_rgb_carve(c, n, NULL), 1));
+    if (!tgi_rgb_present(c)) *c = tgi_rgb_none();
 }
 
-/* Depth, normal and sky of a copy the kernel reads (F0 with the near field). */
-static void take_kernel_gbuffer(layout *l, tgi_gbuffer *g, size_t n, int w, int h, int with_f0,
-                                const char *depth, const char *normal, const char *sky, const char *f0)
+/* A G-buffer's storage of n = w x h pixels, its materials from the scene. */
+static void take_gbuffer_planes(layout *l, tgi_gbuffer *g, const tg_scene *s, int w, int h, const char *name)
 {
-    g->width = w;
-    g->height = h;
-    g->depth = take_real(l, depth, n);
-    g->nx = take_real(l, normal, n);
-    g->ny = take_real(l, normal, n);
-    g->nz = take_real(l, normal, n);
-    g->sky = (uint8_t *)take(l, sky, n, 1);
-    if (with_f0) g->f0 = take_real(l, f0, n);
+    int i;
+    tgi_gbuffer_carve(g, w, h, take(l, name, tgi_gbuffer_carve(g, w, h, NULL), 1));
+    g->materials = s->materials;
+    for (i = 0; i < s->material_count; i++) {
+        tg_vec3 e = s->materials[i].emissive;
+        if (e.x > 0 || e.y > 0 || e.z > 0) g->has_emissive = 1;
+    }
+}
+
+/* Results of n pixels: AO, the bent normal and the near field when asked. */
+static void take_results(layout *l, tgi_gresult *r, size_t n, int bent, int near, const char *name)
+{
+    void *m = take(l, name, tgi_gresult_carve(r, n, bent, 0, near, NULL), 1);
+    tgi_gresult_carve(r, n, bent, 0, near, m);
+    if (!m) memset(r, 0, sizeof *r);
 }
 
 /* The kernel's results at its own resolution: AO, bent normal, near field. */
 static void take_kernel_results(layout *l, tgi_gresult *r, size_t n, int near, const char *name)
 {
-    r->ao = take_real(l, name, n);
-    r->bent_x = take_real(l, name, n);
-    r->bent_y = take_real(l, name, n);
-    r->bent_z = take_real(l, name, n);
-    if (near) take_rgb(l, name, n, &r->near);
+    take_results(l, r, n, 1, near, name);
 }
 
 /* The kernel's image: full size, or half width and height (quarter res). */
@@ -100,6 +113,20 @@ static void kernel_size(const tg_frame *f, int *w, int *h, size_t *n)
     *h = f->height;
     if (tgi_frame_quarter(f)) tgi_half_size(f->width, f->height, w, h);
     *n = (size_t)*w * (size_t)*h;
+}
+
+/* What the plan computes, as the groups size it. */
+static int near_field(const tg_frame *f) { return (f->effects & TG_EFFECT_NEAR) != 0; }
+static int reprojects(const tg_frame *f) { return (f->effects & TG_EFFECT_REPROJECTION) != 0; }
+/* The kernel's near field lives in the radiance slots (the kernel at full resolution). */
+static int near_in_slots(const tg_frame *f) { return near_field(f) && !tgi_frame_quarter(f); }
+static int wants_aov(const tg_frame *f, tg_aov a) { return (f->request.aovs & AOV(a)) != 0; }
+static int direct_own(const tg_frame *f) { return (f->effects & TG_EFFECT_DIRECT) && wants_aov(f, TG_AOV_DIRECT); }
+static int bent_needed(const tg_frame *f) { return (f->needs & TG_NEED_BENT) != 0; }
+/* The resolved results an AOV reads have planes of their own (HBIL filters or upsamples). */
+static int resolves_into_planes(const tg_frame *f)
+{
+    return (f->needs & TG_NEED_GI_PASS) && f->request.technique == TG_TECH_HBIL;
 }
 
 /* ---- the groups ---- */
@@ -123,38 +150,15 @@ static void group_pose(layout *l, tg_frame *f)
 
 static void group_gbuffer(layout *l, tg_frame *f)
 {
-    tgi_gbuffer *g = &f->gb;
-    size_t n = f->pixels;
-    int i, emissive = 0;
-    for (i = 0; i < f->scene->material_count; i++) {
-        tg_vec3 e = f->scene->materials[i].emissive;
-        if (e.x > 0 || e.y > 0 || e.z > 0) emissive = 1;
-    }
-    g->width = f->width;
-    g->height = f->height;
-    g->depth = take_real(l, "G-buffer depth (view z)", n);
-    g->nx = take_real(l, "G-buffer normal (world)", n);
-    g->ny = take_real(l, "G-buffer normal (world)", n);
-    g->nz = take_real(l, "G-buffer normal (world)", n);
-    g->albedo_r = take_real(l, "G-buffer albedo", n);
-    g->albedo_g = take_real(l, "G-buffer albedo", n);
-    g->albedo_b = take_real(l, "G-buffer albedo", n);
-    g->f0 = take_real(l, "G-buffer F0", n);
-    if (emissive) {
-        g->emit_r = take_real(l, "G-buffer emissive", n);
-        g->emit_g = take_real(l, "G-buffer emissive", n);
-        g->emit_b = take_real(l, "G-buffer emissive", n);
-    }
-    g->sky = (uint8_t *)take(l, "G-buffer sky marker", n, 1);
-    if (f->needs & (TG_NEED_MOTION | TG_NEED_POSE))
-        g->object = (uint16_t *)take(l, "G-buffer object id", n, 2);
+    take_gbuffer_planes(l, &f->gb, f->scene, f->width, f->height, "G-buffer [" FMT_G "]");
+    if (f->needs & TG_NEED_POSE) f->gb.object = (uint16_t *)take(l, "G-buffer object id [16 bits]", f->pixels, 2);
 }
 
 static void group_motion(layout *l, tg_frame *f)
 {
     if (!(f->needs & TG_NEED_MOTION)) return;
-    f->gb.motion_x = take_real(l, "motion vectors", f->pixels);
-    f->gb.motion_y = take_real(l, "motion vectors", f->pixels);
+    f->gb.motion_x = take_real(l, "motion vectors [2 x tg_real]", f->pixels);
+    f->gb.motion_y = take_real(l, "motion vectors [2 x tg_real]", f->pixels);
 }
 
 static void group_shadow_maps(layout *l, tg_frame *f)
@@ -176,86 +180,110 @@ static void group_shadow_maps(layout *l, tg_frame *f)
     }
 }
 
+/* E_direct's own plane: only when its AOV is asked (else it lives in a slot). */
 static void group_direct(layout *l, tg_frame *f)
 {
-    if (f->effects & TG_EFFECT_DIRECT) take_rgb(l, "direct irradiance E_direct", f->pixels, &f->direct);
+    if (direct_own(f)) take_rgb(l, "direct irradiance E_direct [" FMT_RGB "]", f->pixels, &f->direct);
 }
 
+/* The radiance slots (frame_internal.h): the lit slot (E_direct and Lo, or
+ * last frame's Lo), the near-field slot when the kernel gathers at full
+ * resolution, and the bounce slot for reprojected radiance. */
 static void group_source(layout *l, tg_frame *f)
 {
-    if (f->effects & TG_EFFECT_NEAR) take_rgb(l, "near-field source radiance", f->pixels, &f->source);
+    int composes = (f->needs & TG_NEED_COMPOSE) != 0, lit = composes || near_field(f);
+    size_t n = f->pixels, mips = reprojects(f) ? tgi_pushpull_bytes(f->width, f->height) : 0;
+    if (lit) {
+        size_t b = tgi_rgb_carve(&f->slot[0], n, NULL);
+        tgi_rgb_carve(&f->slot[0], n, take(l, near_in_slots(f) ? "radiance slot A: E_direct, Lo; last frame's Lo or near field,"
+                                             " push/pull mips [" FMT_RGB "]"
+                                           : "radiance slot A: E_direct, Lo; last frame's Lo, push/pull mips [" FMT_RGB "]",
+                                           b > mips ? b : mips, 1));
+    }
+    if (near_in_slots(f)) {
+        size_t b = tgi_rgb_carve(&f->slot[1], n, NULL);
+        tgi_rgb_carve(&f->slot[1], n, take(l, "radiance slot B: the near field; alternates with A [" FMT_RGB "]",
+                                           b > mips ? b : mips, 1));
+    }
+    if (reprojects(f) || (near_field(f) && f->request.bounces > 1))
+        take_rgb(l, "near-field source: reprojected radiance, or a bounce's Lo [" FMT_RGB "]", n, &f->bounce_source);
 }
 
+/* Last frame's geometry: reprojection's and temporal accumulation's depth test. */
 static void group_history(layout *l, tg_frame *f)
 {
-    if (!(f->effects & TG_EFFECT_REPROJECTION)) return;
-    take_rgb(l, "radiance history (last frame)", f->pixels, &f->history);
-    f->history_depth = take_real(l, "radiance history depth", f->pixels);
-    if (f->needs & TG_NEED_POSE)
-        f->history_object = (uint16_t *)take(l, "radiance history object id", f->pixels, 2);
+    if (!reprojects(f) && !(f->needs & TG_NEED_TEMPORAL)) return;
+    tgi_prev_carve(&f->prev_geometry, f->pixels,
+                   take(l, "last frame's depth and normal [" FMT_PREV "]", tgi_prev_carve(&f->prev_geometry, f->pixels, NULL), 1));
 }
 
-/* The scatter's z-buffer, the push/pull mip chain and the valid mask between them. */
+/* Push/pull's mips live in the slot last frame's Lo leaves (tgi_frame_begin). */
 static void group_reproject(layout *l, tg_frame *f)
 {
-    if (!(f->effects & TG_EFFECT_REPROJECTION)) return;
-    f->reproject_zbuffer = take(l, "reprojection z-buffer", tgi_reproject_bytes(f->width, f->height), 1);
-    f->pushpull_mips = take(l, "push/pull mips", tgi_pushpull_bytes(f->width, f->height), 1);
-    f->reproject_valid = (uint8_t *)take(l, "reprojection valid mask", f->pixels, 1);
+    (void)l; (void)f;
 }
 
+/* This frame's results at the kernel's resolution (the near field, at full
+ * resolution, in a radiance slot). */
 static void group_results(layout *l, tg_frame *f)
 {
-    int hbil = f->request.technique == TG_TECH_HBIL;
+    int w, h;
+    size_t n;
     if (!(f->needs & TG_NEED_GI_PASS)) return;
-    f->res.ao = take_real(l, "ambient occlusion", f->pixels);
-    if ((f->needs & TG_NEED_BENT) || hbil) {
-        f->res.bent_x = take_real(l, "bent normal (world)", f->pixels);
-        f->res.bent_y = take_real(l, "bent normal (world)", f->pixels);
-        f->res.bent_z = take_real(l, "bent normal (world)", f->pixels);
-    }
-    if (f->needs & TG_NEED_CONE) f->res.cone = take_real(l, "cone aperture", f->pixels);
-    if (f->effects & TG_EFFECT_NEAR) take_rgb(l, "near-field irradiance E_near", f->pixels, &f->res.near);
+    kernel_size(f, &w, &h, &n);
+    if (tgi_frame_quarter(f))
+        take_results(l, &f->half_set[0], n, bent_needed(f), near_field(f),
+                     "quarter-res kernel results: AO [" FMT_AO "], bent [" FMT_BENT "], near [" FMT_RGB "]");
+    else
+        take_results(l, &f->set[0], n, bent_needed(f), 0, bent_needed(f) ? "kernel results: AO [" FMT_AO "], bent normal [" FMT_BENT "]"
+                                                                          : "kernel results: AO [" FMT_AO "]");
 }
 
 static void group_half(layout *l, tg_frame *f)
 {
-    int near = (f->effects & TG_EFFECT_NEAR) != 0, w, h;
+    int w, h;
     size_t n;
     if (!tgi_frame_quarter(f)) return;
     kernel_size(f, &w, &h, &n);
-    take_kernel_gbuffer(l, &f->half, n, w, h, near, "quarter-res G-buffer (depth, normal, sky)",
-                        "quarter-res G-buffer (depth, normal, sky)", "quarter-res G-buffer (depth, normal, sky)",
-                        "quarter-res F0 and source radiance");
-    if (near) take_rgb(l, "quarter-res F0 and source radiance", n, &f->half_source);
-    take_kernel_results(l, &f->half_res, n, near, "quarter-res kernel output");
+    take_gbuffer_planes(l, &f->half, f->scene, w, h, "quarter-res G-buffer [" FMT_G "]");
+    if (near_field(f)) take_rgb(l, "quarter-res source radiance [" FMT_RGB "]", n, &f->half_source);
 }
 
 static void group_split(layout *l, tg_frame *f)
 {
-    int near = (f->effects & TG_EFFECT_NEAR) != 0, w, h;
+    int near = near_field(f), w, h;
     size_t n;
     if (!tgi_frame_interleaved(f)) return;
     kernel_size(f, &w, &h, &n);
-    take_kernel_gbuffer(l, &f->split, n, w, h, near, "4x4 split: depth", "4x4 split: normal", "4x4 split: sky",
-                        "4x4 split: F0");
-    if (near) take_rgb(l, "4x4 split: source radiance", n, &f->split_source);
+    take_gbuffer_planes(l, &f->split, f->scene, w, h, "4x4 split: G-buffer [" FMT_G "]");
+    if (near) take_rgb(l, "4x4 split: source radiance [" FMT_RGB "]", n, &f->split_source);
     take_kernel_results(l, &f->split_res, n, near, "4x4 split: kernel output");
 }
 
+/* The filtered quarter-res results the upsample reads. */
 static void group_filter(layout *l, tg_frame *f)
 {
     int w, h;
     size_t n;
-    if (f->request.technique != TG_TECH_HBIL) return;
+    if (!tgi_frame_quarter(f)) return;
     kernel_size(f, &w, &h, &n);
-    f->denoise_scratch = take(l, "spatial filter input", tgi_denoise_bytes(w, h), 1);
+    take_results(l, &f->half_filtered, n, bent_needed(f), near_field(f),
+                 "quarter-res filtered results: AO, bent, near [" FMT_AO ", " FMT_BENT ", " FMT_RGB "]");
 }
 
+/* Last frame's accumulated results: the second set (its near field, at full
+ * resolution, in the other radiance slot). */
 static void group_temporal(layout *l, tg_frame *f)
 {
-    if (f->needs & TG_NEED_TEMPORAL)
-        f->temporal_state = take(l, "temporal accumulation history", tgi_temporal_bytes(f->width, f->height), 1);
+    int w, h;
+    size_t n;
+    if (!(f->needs & TG_NEED_TEMPORAL)) return;
+    kernel_size(f, &w, &h, &n);
+    if (tgi_frame_quarter(f))
+        take_results(l, &f->half_set[1], n, bent_needed(f), near_field(f),
+                     "quarter-res results of last frame (temporal accumulation)");
+    else
+        take_results(l, &f->set[1], n, bent_needed(f), 0, "kernel results of last frame (temporal accumulation)");
 }
 
 static void group_bvh(layout *l, tg_frame *f)
@@ -265,20 +293,30 @@ static void group_bvh(layout *l, tg_frame *f)
     f->bvh_scratch = take(l, "reference BVH", f->bvh_scratch_bytes, 1);
 }
 
+/* E_far's own plane: its AOV, or a technique that writes it (SSDO, bent
+ * cones); else compose computes it per pixel. */
 static void group_far(layout *l, tg_frame *f)
 {
-    if (f->effects & TG_EFFECT_FAR) take_rgb(l, "far-field irradiance E_far", f->pixels, &f->far);
+    int technique_far = f->request.technique == TG_TECH_SSDO || f->request.technique == TG_TECH_BENTCONE;
+    if ((f->effects & TG_EFFECT_FAR) && (technique_far || wants_aov(f, TG_AOV_FAR)))
+        take_rgb(l, "far-field irradiance E_far [" FMT_RGB "]", f->pixels, &f->far);
 }
 
+/* The filtered full-resolution results the AOVs ask for (other techniques
+ * read their results as they are). */
 static void group_color(layout *l, tg_frame *f)
 {
-    if (f->needs & TG_NEED_COMPOSE) take_rgb(l, "outgoing radiance Lo (colour)", f->pixels, &f->color);
+    int ao = wants_aov(f, TG_AOV_AO) || wants_aov(f, TG_AOV_CONE), bent = wants_aov(f, TG_AOV_BENT);
+    int near = wants_aov(f, TG_AOV_NEAR) && near_field(f);
+    if (!resolves_into_planes(f) || !(ao || bent || near)) return;
+    take_results(l, &f->out, f->pixels, bent, near, "filtered results for the AOVs asked [" FMT_AO ", " FMT_BENT ", " FMT_RGB "]");
+    if (!ao) f->out.ao = NULL;
 }
 
 static void group_irradiance(layout *l, tg_frame *f)
 {
-    if ((f->needs & TG_NEED_COMPOSE) && (f->request.aovs & AOV(TG_AOV_IRRADIANCE)))
-        take_rgb(l, "total irradiance", f->pixels, &f->irradiance);
+    if ((f->needs & TG_NEED_COMPOSE) && wants_aov(f, TG_AOV_IRRADIANCE))
+        take_rgb(l, "total irradiance [" FMT_RGB "]", f->pixels, &f->irradiance);
 }
 
 static void (*const group_layout[TGI_BUF_GROUPS])(layout *l, tg_frame *f) = {
@@ -310,14 +348,54 @@ static void frame_views(tg_frame *f)
     tgi_gview_of(&f->full, &f->gb, &f->view);
     if (tgi_frame_quarter(f))
         tgi_gview_packed(&f->half_view, &f->half, 0, f->half.width, f->half.height, 2, 0, 0, &f->view);
+    tgi_frame_begin(f);
+}
+
+const tgi_rgb *tgi_frame_source(const tg_frame *f)
+{
+    return f->bounce > 0 ? &f->bounce_source : &f->source;
 }
 
 const tgi_gview *tgi_frame_kernel(const tg_frame *f, const tgi_gresult **res, const tgi_rgb **source)
 {
     int quarter = tgi_frame_quarter(f);
     if (res) *res = quarter ? &f->half_res : &f->res;
-    if (source) *source = quarter ? &f->half_source : &f->source;
+    if (source) *source = quarter ? &f->half_source : tgi_frame_source(f);
     return quarter ? &f->half_view : &f->full;
+}
+
+/* The plane under a colour plane's first pointer (push/pull's scratch). */
+static void *plane_memory(const tgi_rgb *c)
+{
+#if TG_WIDE_STORAGE
+    return c->r;
+#else
+    return c->p;
+#endif
+}
+
+/* This frame's results: set t of two (temporal accumulation), else the one. */
+static void results_roles(const tgi_gresult *set, int t, tgi_gresult *res, tgi_gresult *prev)
+{
+    int two = set[1].ao != NULL;
+    *res = set[two ? t : 0];
+    *prev = set[two ? 1 - t : 0];
+}
+
+void tgi_frame_begin(tg_frame *f)
+{
+    int t = f->frames_rendered & 1, two = tgi_rgb_present(&f->slot[1]);
+    const tgi_rgb *lo = two ? &f->slot[1 - t] : &f->slot[0], *hist = two ? &f->slot[t] : &f->slot[0];
+    results_roles(f->set, t, &f->res, &f->res_prev);
+    results_roles(f->half_set, t, &f->half_res, &f->half_prev);
+    if (two) { f->res.near = f->slot[t]; f->res_prev.near = f->slot[1 - t]; }
+    f->color = (f->needs & TG_NEED_COMPOSE) ? *lo : tgi_rgb_none();
+    if (!direct_own(f)) f->direct = (f->effects & (TG_EFFECT_DIRECT | TG_EFFECT_NEAR)) ? *lo : tgi_rgb_none();
+    f->history = reprojects(f) ? *hist : tgi_rgb_none();
+    f->pushpull_mips = reprojects(f) ? plane_memory(hist) : NULL;
+    f->source = tgi_rgb_none();
+    if (near_field(f)) f->source = f->has_history ? f->bounce_source : tgi_rgb_lit_by(&f->direct, &f->gb);
+    if (!resolves_into_planes(f)) f->out = f->res;
 }
 
 /* 1 when the plan has no room for another pass (TG_PLAN_MAX_PASSES). */

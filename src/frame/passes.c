@@ -15,15 +15,14 @@
 #define B(g) TGI_BUF(TGI_BUF_##g)
 
 /* ---- the pass functions (one file per family: camera.c, rasterize.c,
- * lighting.c, reprojection.c, hbil_passes.c, compare.c) ---- */
+ * lighting.c, reprojection.c, hbil_passes.c, resolve.c, compare.c) ---- */
 void tgi_pass_animate(tg_frame *f);
 void tgi_pass_gbuffer(tg_frame *f, int y0, int y1);
 void tgi_pass_motion(tg_frame *f, int y0, int y1);
 void tgi_pass_depth_range(tg_frame *f);
 void tgi_pass_shadow_maps(tg_frame *f);
 void tgi_pass_direct(tg_frame *f, int y0, int y1);
-void tgi_pass_source_direct(tg_frame *f, int y0, int y1);
-void tgi_pass_reproject(tg_frame *f);
+void tgi_pass_reproject(tg_frame *f, int y0, int y1);
 void tgi_pass_push_pull(tg_frame *f);
 void tgi_pass_reference_bvh(tg_frame *f);
 void tgi_pass_downsample(tg_frame *f, int y0, int y1);
@@ -31,10 +30,8 @@ void tgi_pass_split(tg_frame *f, int y0, int y1);
 void tgi_pass_hbil_interleaved(tg_frame *f, int y0, int y1);
 void tgi_pass_hbil_full(tg_frame *f, int y0, int y1);
 void tgi_pass_merge(tg_frame *f, int y0, int y1);
-void tgi_pass_filter_input(tg_frame *f, int y0, int y1);
-void tgi_pass_filter(tg_frame *f, int y0, int y1);
-void tgi_pass_upsample(tg_frame *f, int y0, int y1);
 void tgi_pass_temporal(tg_frame *f, int y0, int y1);
+void tgi_pass_filter_quarter(tg_frame *f, int y0, int y1);
 void tgi_pass_ssao(tg_frame *f, int y0, int y1);
 void tgi_pass_vo(tg_frame *f, int y0, int y1);
 void tgi_pass_hbao(tg_frame *f, int y0, int y1);
@@ -42,10 +39,7 @@ void tgi_pass_gtao(tg_frame *f, int y0, int y1);
 void tgi_pass_ssdo(tg_frame *f, int y0, int y1);
 void tgi_pass_bentcone(tg_frame *f, int y0, int y1);
 void tgi_pass_reference(tg_frame *f, int y0, int y1);
-void tgi_pass_cone(tg_frame *f, int y0, int y1);
-void tgi_pass_far(tg_frame *f, int y0, int y1);
-void tgi_pass_compose(tg_frame *f, int y0, int y1);
-void tgi_pass_next_bounce(tg_frame *f, int y0, int y1);
+void tgi_pass_resolve(tg_frame *f, int y0, int y1);
 void tgi_pass_keep_history(tg_frame *f, int y0, int y1);
 
 /* ---- when the plan needs them ---- */
@@ -53,11 +47,14 @@ static int always(const tg_frame *f) { (void)f; return 1; }
 static int wants_motion(const tg_frame *f) { return (f->needs & TG_NEED_MOTION) != 0; }
 static int wants_depth_view(const tg_frame *f) { return (f->request.aovs & AOV(TG_AOV_DEPTH)) != 0; }
 static int casts_shadows(const tg_frame *f) { return (f->effects & TG_EFFECT_SHADOWS) != 0; }
-static int lights_directly(const tg_frame *f) { return (f->effects & TG_EFFECT_DIRECT) != 0; }
 static int gathers_near(const tg_frame *f) { return (f->effects & TG_EFFECT_NEAR) != 0; }
+/* E_direct: the direct light, or (near field, no light) the 0 the first source is lit with */
+static int lights_directly(const tg_frame *f) { return (f->effects & TG_EFFECT_DIRECT) || gathers_near(f); }
 static int reprojects(const tg_frame *f) { return (f->effects & TG_EFFECT_REPROJECTION) != 0; }
+static int lights_after_history(const tg_frame *f) { return lights_directly(f) && reprojects(f); }
 static int composes(const tg_frame *f) { return (f->needs & TG_NEED_COMPOSE) != 0; }
 static int accumulates(const tg_frame *f) { return (f->needs & TG_NEED_TEMPORAL) != 0; }
+static int keeps_geometry(const tg_frame *f) { return reprojects(f) || accumulates(f); }
 
 static int technique_runs(const tg_frame *f, tg_technique t)
 {
@@ -74,15 +71,12 @@ static int runs_gtao(const tg_frame *f) { return technique_runs(f, TG_TECH_GTAO)
 static int runs_ssdo(const tg_frame *f) { return technique_runs(f, TG_TECH_SSDO); }
 static int runs_bentcone(const tg_frame *f) { return technique_runs(f, TG_TECH_BENTCONE); }
 static int runs_reference(const tg_frame *f) { return technique_runs(f, TG_TECH_REFERENCE); }
-static int wants_cone(const tg_frame *f) { return (f->needs & TG_NEED_GI_PASS) && (f->needs & TG_NEED_CONE); }
-/* SSDO and bent cones light the environment themselves */
-static int shades_far(const tg_frame *f)
+/* compose, or an AOV of the GI results or the far field (everything after the kernel) */
+static int resolves(const tg_frame *f)
 {
-    return (f->effects & TG_EFFECT_FAR) && !runs_ssdo(f) && !runs_bentcone(f);
-}
-static int iterates_bounces(const tg_frame *f)
-{
-    return gathers_near(f) && composes(f) && f->request.bounces > 1;
+    uint32_t results = AOV(TG_AOV_AO) | AOV(TG_AOV_BENT) | AOV(TG_AOV_CONE) | AOV(TG_AOV_NEAR) | AOV(TG_AOV_FAR);
+    return composes(f) || (runs_hbil(f) && (f->request.aovs & results)) ||
+           ((f->effects & TG_EFFECT_FAR) && (f->request.aovs & AOV(TG_AOV_FAR)));
 }
 
 #define ROWS(fn) TGI_ROWS_IMAGE, fn, NULL
@@ -92,7 +86,7 @@ static int iterates_bounces(const tg_frame *f)
 const tgi_pass tgi_passes[] = {
     { "camera (the program's or its keys'; posed triangles when objects move)", always,
       B(POSE), 0, SERIAL(tgi_pass_animate) },
-    { "rasterize G-buffer (depth, normal, albedo, F0, emissive)", always,
+    { "rasterize G-buffer (depth, normal, material)", always,
       B(GBUFFER), 0, ROWS(tgi_pass_gbuffer) },
     { "motion vectors", wants_motion,
       B(GBUFFER) | B(MOTION) | B(POSE), 0, ROWS(tgi_pass_motion) },
@@ -100,14 +94,12 @@ const tgi_pass tgi_passes[] = {
       B(GBUFFER), 0, SERIAL(tgi_pass_depth_range) },
     { "shadow maps (depth-only raster per shadow light)", casts_shadows,
       B(SHADOW_MAPS) | B(POSE), 0, SERIAL(tgi_pass_shadow_maps) },
-    { "direct light (Lambert, shadows, spot falloff)", lights_directly,
-      B(GBUFFER) | B(SHADOW_MAPS) | B(DIRECT), 0, ROWS(tgi_pass_direct) },
-    { "near-field source: this frame's direct light and emission", gathers_near,
-      B(DIRECT) | B(SOURCE), TGI_ON_FIRST_FRAME, ROWS(tgi_pass_source_direct) },
-    { "reproject last frame's radiance (scatter + z-test)", reprojects,
-      B(SOURCE) | B(HISTORY) | B(REPROJECT), TGI_ON_HISTORY, SERIAL(tgi_pass_reproject) },
+    { "reproject last frame's radiance (gather through the depth, z-test)", reprojects,
+      B(GBUFFER) | B(POSE) | B(SOURCE) | B(HISTORY), TGI_ON_HISTORY, ROWS(tgi_pass_reproject) },
     { "push/pull hole filling", reprojects,
       B(SOURCE) | B(REPROJECT), TGI_ON_HISTORY, SERIAL(tgi_pass_push_pull) },
+    { "direct light (Lambert, shadows, spot falloff): E_direct, the near field's first source", lights_directly,
+      B(GBUFFER) | B(SHADOW_MAPS) | B(DIRECT) | B(SOURCE), TGI_ON_FIRST_FRAME, ROWS(tgi_pass_direct) },
     { "reference: BVH over the posed triangles", runs_reference,
       B(BVH) | B(POSE), 0, SERIAL(tgi_pass_reference_bvh) },
     /* the kernel and what follows it: iterated on a frame without history
@@ -121,15 +113,9 @@ const tgi_pass tgi_passes[] = {
     { "HBIL horizon kernel, full resolution", runs_hbil_full,
       B(RESULTS) | B(SOURCE), TGI_BOUNCE, ROWS(tgi_pass_hbil_full) },
     { "4x4 merge", runs_hbil_interleaved,
-      B(SPLIT) | B(HALF) | B(RESULTS), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_merge) },
-    { "depth/normal-aware 4x4 filter: its input", runs_hbil,
-      B(HALF) | B(RESULTS) | B(FILTER), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_filter_input) },
-    { "depth/normal-aware 4x4 filter (at the kernel's resolution)", runs_hbil,
-      B(HALF) | B(RESULTS) | B(FILTER), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_filter) },
-    { "joint bilateral upsample to full resolution", runs_hbil_quarter,
-      B(HALF) | B(RESULTS), TGI_BOUNCE, ROWS(tgi_pass_upsample) },
-    { "temporal accumulation (history rejected by depth and normal)", accumulates,
-      B(RESULTS) | B(TEMPORAL), TGI_BOUNCE, ROWS(tgi_pass_temporal) },
+      B(SPLIT) | B(HALF) | B(SOURCE) | B(RESULTS), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_merge) },
+    { "temporal accumulation at the kernel's resolution (history rejected by depth and normal)", accumulates,
+      B(HALF) | B(SOURCE) | B(RESULTS) | B(TEMPORAL) | B(HISTORY), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_temporal) },
     { "SSAO (Crytek point samples, normal-oriented hemisphere)", runs_ssao,
       B(RESULTS), TGI_BOUNCE, ROWS(tgi_pass_ssao) },
     { "volumetric obscurance (line samples in the ball)", runs_vo,
@@ -144,17 +130,17 @@ const tgi_pass tgi_passes[] = {
       B(RESULTS) | B(FAR), TGI_BOUNCE, ROWS(tgi_pass_bentcone) },
     { "reference: ray-traced AO, bent normal and near field", runs_reference,
       B(RESULTS) | B(SOURCE) | B(BVH), TGI_BOUNCE, ROWS(tgi_pass_reference) },
-    { "cone aperture from AO (HBIL eq. 12)", wants_cone,
-      B(RESULTS), TGI_BOUNCE, ROWS(tgi_pass_cone) },
-    { "far field: SH9 environment in the bent cone", shades_far,
-      B(RESULTS) | B(FAR), TGI_BOUNCE, ROWS(tgi_pass_far) },
-    { "compose Lo = albedo/pi (1-F0) (E_direct + E_far + E_near) + emissive", composes,
-      B(DIRECT) | B(FAR) | B(RESULTS) | B(COLOR) | B(IRRADIANCE), TGI_BOUNCE, ROWS(tgi_pass_compose) },
-    { "next bounce gathers this one's radiance", iterates_bounces,
-      B(COLOR) | B(SOURCE), TGI_BOUNCE, ROWS(tgi_pass_next_bounce) },
+    { "depth/normal-aware 4x4 filter at quarter resolution", runs_hbil_quarter,
+      B(HALF) | B(RESULTS) | B(FILTER), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_filter_quarter) },
+    { "direct light (Lambert, shadows, spot falloff): E_direct", lights_after_history,
+      B(GBUFFER) | B(SHADOW_MAPS) | B(DIRECT) | B(SOURCE), TGI_BOUNCE | TGI_ON_HISTORY, ROWS(tgi_pass_direct) },
+    { "4x4 filter (or joint bilateral upsample) of the GI results, far field in the bent cone, "
+      "compose Lo = albedo/pi (1-F0) (E_direct + E_far + E_near) + emissive", resolves,
+      B(GBUFFER) | B(DIRECT) | B(SOURCE) | B(RESULTS) | B(HALF) | B(FILTER) | B(FAR) | B(COLOR) | B(IRRADIANCE),
+      TGI_BOUNCE, ROWS(tgi_pass_resolve) },
     /* after the bounces */
-    { "keep the radiance as next frame's history", reprojects,
-      B(GBUFFER) | B(COLOR) | B(SOURCE) | B(HISTORY), 0, ROWS(tgi_pass_keep_history) },
+    { "keep the depth and normal as next frame's history", keeps_geometry,
+      B(GBUFFER) | B(HISTORY), 0, ROWS(tgi_pass_keep_history) },
 };
 
 const int tgi_pass_count = (int)(sizeof tgi_passes / sizeof tgi_passes[0]);

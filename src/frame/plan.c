@@ -98,10 +98,12 @@ uint32_t tgi_frame_needs(const tg_plan *p)
     /* next frame's near field gathers this frame's outgoing radiance */
     if (e & TG_EFFECT_REPROJECTION) n |= TG_NEED_COMPOSE;
     if (tgi_anim_has_posed_objects(s) || (r->game_loop && s->object_count > 0)) n |= TG_NEED_POSE;
+    /* reprojection and temporal accumulation find last frame's pixel
+     * through the depth and the cameras (and the posed objects' motion):
+     * motion vectors are for their AOV alone */
     if ((r->aovs & AOV(TG_AOV_MOTION)) && r->frames > 1) n |= TG_NEED_MOTION;
     if (r->frames > 1 && r->temporal && r->technique == TG_TECH_HBIL && (e & TG_EFFECT_AO))
-        n |= TG_NEED_TEMPORAL | TG_NEED_MOTION;
-    if ((e & TG_EFFECT_REPROJECTION) && (n & TG_NEED_POSE)) n |= TG_NEED_MOTION;
+        n |= TG_NEED_TEMPORAL;
     if ((e & TG_EFFECT_FAR) || (r->aovs & AOV(TG_AOV_BENT))) n |= TG_NEED_BENT;
     if (r->aovs & AOV(TG_AOV_CONE)) n |= TG_NEED_CONE;
     return n;

@@ -1,23 +1,21 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * denoise.h - after the 4x4 merge: the depth- and normal-aware spatial
- * filter over the 4x4 neighbourhood (HBIL sec. 3.3-3.4).
+ * denoise.h - the depth- and normal-aware spatial filter over the 4x4
+ * neighbourhood of the interleaved kernel's results (HBIL sec. 3.3-3.4).
  *
  * A 5x5 window with 1-D weights (1/2, 1, 1, 1, 1/2), which gives each of
  * the 16 interleaved direction patterns the same total weight (the 32
  * directions are merged evenly, and the window is symmetric), times
  *   w_depth  = 1 - |z_j - z_i| / (tol z_i), clamped at 0
  *   w_normal = max(0, n_i . n_j)^8
- * Sky pixels are left as they are.  AO, bent normal and near-field
- * irradiance are filtered; the bent normal is renormalised and the cone is
- * recomputed as acos(1 - AO) (HBIL eq. 12) from the filtered AO.
- *   tgi_denoise_keep_rows(g, r, scratch, y0, y1)      first, every row: keeps
- *                                                     the unfiltered values
- *   tgi_denoise_rows(p, g, r, scratch, y0, y1)        then writes the filtered
- *                                                     values back
- * Both are row-parallel (any split of the rows gives the same result), the
- * second only after the first has run on every row.  The temporal
- * accumulation that follows is in temporal.h.
+ * AO, bent normal and near-field irradiance are filtered; the bent normal is
+ * renormalised (the cone is HBIL eq. 12 of the filtered AO when read).
+ *
+ * The filter reads the unfiltered results and gives filtered values
+ * elsewhere, so it needs no scratch and any split of the rows gives the same
+ * result: per pixel where they are used (tgi_denoise_pixel: the frame's
+ * compose), or rows into another results view (tgi_denoise_rows).  Sky
+ * pixels keep their values.
  */
 #ifndef TG_DENOISE_H
 #define TG_DENOISE_H
@@ -30,10 +28,12 @@ typedef struct tgi_denoise_params {
 
 void tgi_denoise_defaults(tgi_denoise_params *p);
 
-/* Scratch bytes for a w x h view (SIZE_MAX when that does not fit). */
-size_t tgi_denoise_bytes(int w, int h);
-void tgi_denoise_keep_rows(const tgi_gview *g, const tgi_gresult *r, void *scratch, int y0, int y1);
-void tgi_denoise_rows(const tgi_denoise_params *p, const tgi_gview *g, const tgi_gresult *r,
-                      const void *scratch, int y0, int y1);
+/* The filtered values of pixel (x, y) of view g from the results r (indexed
+ * like g). */
+tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, const tgi_gresult *r, int x, int y);
+
+/* Rows [y0, y1) of the filtered results of r into out (indexed like g, not r). */
+void tgi_denoise_rows(const tgi_denoise_params *p, const tgi_gview *g, const tgi_gresult *r, const tgi_gresult *out,
+                      int y0, int y1);
 
 #endif

@@ -1,28 +1,27 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * pushpull.h - push/pull hole filling (Kraus 2009, "The Pull-Push Algorithm
- * Revisited"; HBIL sec. 3.2).
+ * pushpull.h - push/pull hole filling (Kraus 2009, "The Pull-Push
+ * Algorithm Revisited"; HBIL sec. 3.2): the holes of a reprojected radiance
+ * image take a smooth value from the valid pixels around them.
  *
- * Push: mips are built from the valid pixels only, each texel carrying the
- * weight of the valid pixels under it (clamped to 1).  Pull: from the
- * coarsest level up, every texel with weight < 1 is completed by the
- * bilinearly upsampled coarser level.  Every output is a convex combination
- * of valid inputs, so it is finite and within their range; no valid input
- * at all (a camera cut) gives 0 everywhere.  Valid pixels are unchanged.
- *
- * Whole-image pass (the mip chain is small: 1/3 of the image).
+ * Push: level 1 is the 2x2 mean of each block's valid pixels (weight 1 when
+ * any is valid, else 0); each coarser level the weighted 2x2 mean of the
+ * finer one, weights summed and clamped to 1.  Pull: from the coarsest level
+ * up, a texel of weight w < 1 becomes w c + (1 - w) bilinear(coarser); the
+ * holes of the image take the bilinear sample of level 1.  Valid pixels are
+ * never changed; the result has no hole and is finite.  The mip chain
+ * (levels 1..) lives in the scratch: a colour plane and a weight per texel
+ * (RGB9E5 and 8 bits, or tg_real with TG_WIDE_STORAGE): about a third of
+ * the image's pixels.
  */
 #ifndef TG_PUSHPULL_H
 #define TG_PUSHPULL_H
 
-#include "../core/real.h"
+#include "../raster/gview.h"
 
-/* Scratch bytes for a w x h image (the mip chain: r, g, b, weight). */
 size_t tgi_pushpull_bytes(int w, int h);   /* SIZE_MAX when that does not fit */
 
-/* Fill the holes (valid[i] == 0) of r, g, b in place.  `scratch` holds at
- * least tgi_pushpull_bytes(w, h) bytes, aligned for tg_real. */
-void tgi_pushpull_fill(int w, int h, tg_real *r, tg_real *g, tg_real *b,
-                      const uint8_t *valid, void *scratch);
+/* Fill the holes (tgi_rgb_is_hole) of the w x h packed image c. */
+void tgi_pushpull_fill(int w, int h, const tgi_rgb *c, void *scratch);
 
 #endif

@@ -12,7 +12,7 @@
  * at 1/64 so a pixel always gets a value.  The bent normal is carried as its
  * bend, bent - normal, added to this pixel's own normal and kept in its
  * hemisphere.  Sky pixels get AO 1, the normal
- * as bent normal and no near field.
+ * as bent normal (0 on sky) and no near field.
  */
 #include "resample.h"
 
@@ -54,11 +54,14 @@ static tg_real upsample_depth_weight(tg_real z, tg_real zj)
     return tg_sub(TG_ONE, tg_div(dz, tol));
 }
 
-static void upsample_open(const tgi_gview *full, const tgi_gresult *out, size_t i)
+/* Sky, or only sky around: open (AO 1, the normal as bent normal, no near field). */
+static tgi_gr_value upsample_open(const tgi_gview *full, size_t i)
 {
-    tgi_gr_set_ao(out, i, TG_ONE);
-    if (tgi_gr_has_bent(out)) tgi_gr_set_bent(out, i, tgi_gv_normal(full, i));
-    if (tgi_gr_has_near(out)) tgi_gr_set_near(out, i, tg_v3(0, 0, 0));
+    tgi_gr_value v;
+    v.ao = TG_ONE;
+    v.bent = tgi_gv_is_sky(full, i) ? tg_v3(0, 0, 0) : tgi_gv_normal(full, i);
+    v.near = tg_v3(0, 0, 0);
+    return v;
 }
 
 /* The (up to) 2x2 half-res neighbours of full-res (x, y) and their bilinear
@@ -77,14 +80,15 @@ static void bilinear_taps(const tgi_gview *half, int x, int y, size_t tap[4], tg
     wt[3] = ((x & 1) && (y & 1)) ? tg_mul(h, h) : 0;
 }
 
-static void upsample_pixel(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *hr,
-                           const tgi_gresult *out, int x, int y)
+tgi_gr_value tgi_upsample_pixel(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *hr, int x, int y)
 {
     size_t i = tgi_gv_index(full, x, y), tap[4];
     tg_real wt[4], sum = 0, ao = 0, floor_w = TG_R(0.015625f);
-    tg_vec3 n = tgi_gv_normal(full, i), bend = tg_v3(0, 0, 0), near = tg_v3(0, 0, 0);
-    int k, want_bent = tgi_gr_has_bent(out), want_near = tgi_gr_has_near(out);
-    if (tgi_gv_is_sky(full, i)) { upsample_open(full, out, i); return; }
+    tg_vec3 n, bend = tg_v3(0, 0, 0), near = tg_v3(0, 0, 0);
+    int k, want_bent = tgi_gr_has_bent(hr), want_near = tgi_gr_has_near(hr);
+    tgi_gr_value v;
+    if (tgi_gv_is_sky(full, i)) return upsample_open(full, i);
+    n = tgi_gv_normal(full, i);
     bilinear_taps(half, x, y, tap, wt);
     for (k = 0; k < 4; k++) {
         size_t j = tap[k];
@@ -107,18 +111,19 @@ static void upsample_pixel(const tgi_gview *full, const tgi_gview *half, const t
             near = tg_v3(tg_add(near.x, tg_mul(w, e.x)), tg_add(near.y, tg_mul(w, e.y)), tg_add(near.z, tg_mul(w, e.z)));
         }
     }
-    if (sum <= 0) { upsample_open(full, out, i); return; }   /* only sky around: treat as open */
-    tgi_gr_set_ao(out, i, tg_saturate(tg_div(ao, sum)));
+    if (sum <= 0) return upsample_open(full, i);   /* only sky around: treat as open */
+    v.ao = tg_saturate(tg_div(ao, sum));
+    v.bent = n;
     if (want_bent) {
         tg_vec3 b = tgi_v3_add(n, tg_v3(tg_div(bend.x, sum), tg_div(bend.y, sum), tg_div(bend.z, sum)));
         tg_real d = tgi_v3_dot(b, n);
         /* keep it in the normal's hemisphere: drop the part below the tangent plane */
         if (d < 0) b = tgi_v3_sub(b, tgi_v3_scale(n, d));
-        tgi_gr_set_bent(out, i, tgi_v3_normalize_or(b, n));
+        v.bent = tgi_v3_normalize_or(b, n);
     }
-    if (want_near)
-        tgi_gr_set_near(out, i, tg_v3(tg_max(0, tg_div(near.x, sum)), tg_max(0, tg_div(near.y, sum)),
-                                      tg_max(0, tg_div(near.z, sum))));
+    v.near = want_near ? tg_v3(tg_max(0, tg_div(near.x, sum)), tg_max(0, tg_div(near.y, sum)), tg_max(0, tg_div(near.z, sum)))
+                       : tg_v3(0, 0, 0);
+    return v;
 }
 
 void tgi_upsample_rows(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res,
@@ -127,5 +132,8 @@ void tgi_upsample_rows(const tgi_gview *full, const tgi_gview *half, const tgi_g
     int x, y;
     if (y1 > full->height) y1 = full->height;
     for (y = y0; y < y1; y++)
-        for (x = 0; x < full->width; x++) upsample_pixel(full, half, half_res, out, x, y);
+        for (x = 0; x < full->width; x++) {
+            tgi_gr_value v = tgi_upsample_pixel(full, half, half_res, x, y);
+            tgi_gr_put(out, tgi_gv_index(full, x, y), &v);
+        }
 }

@@ -14,13 +14,15 @@
 void tgi_half_size(int w, int h, int *hw, int *hh);
 
 /* Half-res rows [y0, y1): half-res pixel (X, Y) = full's pixel (2X, 2Y):
- * depth, normal, sky, F0 (when half has it) into the packed storage half
- * (of the half size), and the radiance src into half_src when present. */
+ * its G-buffer pixel into the packed storage half (of the half size), and
+ * the radiance src into half_src when present. */
 void tgi_downsample_rows(const tgi_gview *full, const tgi_gbuffer *half, const tgi_rgb *src,
                          const tgi_rgb *half_src, int y0, int y1);
 
-/* Full-res rows [y0, y1) of out from the half-res results half_res (indexed
- * like the view half), guided by both views' depth and normals. */
+/* The upsampled results at full-res pixel (x, y) from the half-res results
+ * half_res (indexed like the view half), guided by both views' depth and
+ * normals; and full-res rows [y0, y1) of them into out. */
+tgi_gr_value tgi_upsample_pixel(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res, int x, int y);
 void tgi_upsample_rows(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res,
                        const tgi_gresult *out, int y0, int y1);
 

@@ -1,16 +1,19 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * temporal.h - exponential accumulation of the GI results over frames,
- * with the history rejected by depth and normal (after the spatial filter
- * of denoise.h).
+ * temporal.h - exponential accumulation of the GI results over frames, with
+ * the history rejected by depth and normal.
  *
- * out = lerp(history, current, alpha) where the history (two state halves,
- * ping-ponged by `frame & 1`) is fetched by reprojecting this pixel's
- * surface into the previous view and accepted only when last frame's depth
- * there matches within history_depth_tolerance and the stored normal
- * within history_normal_cos; otherwise out = current.  `reset` (a camera
- * cut, the first frame) ignores the history.  Row-parallel: a row reads
- * any pixel of last frame's half and writes only its own pixels.
+ * r = lerp(history, r, alpha) in place, where the history is last frame's
+ * accumulated results `prev` at the pixel this pixel's surface lands in when
+ * reprojected into the previous view, accepted only when last frame's depth
+ * there matches within history_depth_tolerance and its normal within
+ * history_normal_cos (last frame's full-resolution geometry, gview.h's
+ * tgi_prev_geometry); otherwise r keeps this frame's values.  It runs at
+ * the kernel's resolution, on the unfiltered results (the spatial filter
+ * reads the accumulated ones, denoise.h), so r and prev alternate between
+ * two buffers frame by frame and nothing else is kept.  `reset` (a camera
+ * cut, the first frame) ignores the history.  Row-parallel: a row reads any
+ * pixel of prev and writes only its own.
  */
 #ifndef TG_TEMPORAL_H
 #define TG_TEMPORAL_H
@@ -25,14 +28,10 @@ typedef struct tgi_temporal_params {
 
 void tgi_temporal_defaults(tgi_temporal_params *p);
 
-/* State: two halves of (ao, bent xyz, near rgb, depth, normal xyz) for a
- * w x h image (SIZE_MAX when that does not fit). */
-size_t tgi_temporal_bytes(int w, int h);
-/* Clear the state (no history). */
-void tgi_temporal_clear(void *state, int w, int h);
-/* Rows [y0, y1) of a full-resolution view g (its camera is this frame's)
- * and its results r, accumulated in place. */
-void tgi_temporal_rows(const tgi_temporal_params *p, const tgi_gview *g, const tgi_gresult *r, void *state,
-                       const tgi_view *prev_view, int frame, int reset, int y0, int y1);
+/* Rows [y0, y1) of the view g (full resolution, or the packed quarter-res
+ * copy; its camera is this frame's) and its results r, accumulated in place
+ * from prev (indexed like g); prev_geometry is packed at full resolution. */
+void tgi_temporal_rows(const tgi_temporal_params *p, const tgi_gview *g, const tgi_gresult *r, const tgi_gresult *prev,
+                       const tgi_prev_geometry *prev_geometry, const tgi_view *prev_view, int reset, int y0, int y1);
 
 #endif

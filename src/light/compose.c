@@ -14,21 +14,25 @@ static tg_vec3 pixel_ray(const tgi_view *view, int x, int y)
     return tgi_view_dir_to_world(view, tgi_v3_normalize_or(pv, tg_v3(0, 0, TG_ONE)));
 }
 
+tg_vec3 tgi_compose_sky(const tgi_view *view, const tgi_env *env, int x, int y)
+{
+    if (!view || !env || env->type == TG_ENV_NONE) return tg_v3(0, 0, 0);
+    return tgi_env_radiance(env, pixel_ray(view, x, y));
+}
+
 void tgi_compose_rows(const tgi_gview *g, const tgi_env *env, const tgi_rgb *terms, int term_count,
                       const tgi_rgb *out, const tgi_rgb *irr, int y0, int y1)
 {
     const tgi_view *view = g->camera;
     int has_env = env && env->type != TG_ENV_NONE && view;
-    int has_emit = tgi_gv_has_emissive(g);
     int want_irr = tgi_rgb_present(irr);
     int x, y, k;
     for (y = y0; y < y1; y++) {
         size_t i = tgi_gv_index(g, 0, y);
         for (x = 0; x < g->width; x++, i += (size_t)g->pixel_stride) {
-            tg_real er = 0, eg = 0, eb = 0, kd;
-            tg_vec3 a, lo;
+            tg_real er = 0, eg = 0, eb = 0;
             if (tgi_gv_is_sky(g, i)) {
-                tgi_rgb_set(out, i, has_env ? tgi_env_radiance(env, pixel_ray(view, x, y)) : tg_v3(0, 0, 0));
+                tgi_rgb_set(out, i, has_env ? tgi_compose_sky(view, env, x, y) : tg_v3(0, 0, 0));
                 if (want_irr) tgi_rgb_set(irr, i, tg_v3(0, 0, 0));
                 continue;
             }
@@ -41,11 +45,7 @@ void tgi_compose_rows(const tgi_gview *g, const tgi_env *env, const tgi_rgb *ter
                 eb = tg_add(eb, e.z);
             }
             if (want_irr) tgi_rgb_set(irr, i, tg_v3(er, eg, eb));
-            kd = tg_mul(tg_saturate(tg_sub(TG_ONE, tgi_gv_f0(g, i))), TG_INV_PI); /* HBIL eq. 19: (1 - F0), eq. 14: 1/pi */
-            a = tgi_gv_albedo(g, i);
-            lo = tg_v3(tg_mul(tg_mul(a.x, kd), er), tg_mul(tg_mul(a.y, kd), eg), tg_mul(tg_mul(a.z, kd), eb));
-            if (has_emit) lo = tgi_v3_add(lo, tgi_gv_emissive(g, i));
-            tgi_rgb_set(out, i, lo);
+            tgi_rgb_set(out, i, tgi_gv_lit(g, i, tg_v3(er, eg, eb)));   /* HBIL eq. 14, 19 */
         }
     }
 }

@@ -25,4 +25,8 @@
 void tgi_compose_rows(const tgi_gview *g, const tgi_env *env, const tgi_rgb *terms, int term_count,
                       const tgi_rgb *out, const tgi_rgb *irr, int y0, int y1);
 
+/* The radiance of a sky pixel (x, y) of the camera's image: the
+ * environment along its view ray (0 without an environment or camera). */
+tg_vec3 tgi_compose_sky(const tgi_view *view, const tgi_env *env, int x, int y);
+
 #endif

@@ -164,25 +164,26 @@ tg_vec3 tgi_env_radiance(const tgi_env *env, tg_vec3 dir)
     }
 }
 
-void tgi_far_rows(const tgi_gbuffer *gb, const tg_vec3 sh[9], const tg_real *ao,
-                 const tg_real *bent_x, const tg_real *bent_y, const tg_real *bent_z,
-                 int mode, tg_real *e_r, tg_real *e_g, tg_real *e_b, int y0, int y1)
+tg_vec3 tgi_far_irradiance(const tg_vec3 sh[9], tg_vec3 n, int has_ao, tg_real ao, int has_bent, tg_vec3 bent,
+                           int mode)
 {
-    int use_bent = bent_x && bent_y && bent_z && mode != TG_FAR_OPEN;
+    if (has_bent && mode != TG_FAR_OPEN) n = bent;
+    if (!has_ao) ao = TG_ONE;
+    if (mode == TG_FAR_CUBE_F0) return tgi_sh9_irradiance_f0(sh, n, ao);
+    if (mode == TG_FAR_OPEN || !has_ao) return tgi_sh9_irradiance(sh, n);
+    return tgi_sh9_irradiance_bent_cone(sh, n, ao);
+}
+
+void tgi_far_rows(const tgi_gview *g, const tg_vec3 sh[9], const tgi_gresult *res, int mode,
+                  const tgi_rgb *out, int y0, int y1)
+{
+    int has_ao = res && res->ao, has_bent = has_ao && tgi_gr_has_bent(res);
     int x, y;
-    for (y = y0; y < y1; y++) {
-        int i = y * gb->width;
-        for (x = 0; x < gb->width; x++, i++) {
-            tg_vec3 n, e;
-            tg_real a;
-            if (gb->sky[i]) { e_r[i] = e_g[i] = e_b[i] = 0; continue; }
-            n = use_bent ? tg_v3(bent_x[i], bent_y[i], bent_z[i])
-                         : tg_v3(gb->nx[i], gb->ny[i], gb->nz[i]);
-            a = ao ? ao[i] : TG_ONE;
-            if (mode == TG_FAR_CUBE_F0) e = tgi_sh9_irradiance_f0(sh, n, a);
-            else if (mode == TG_FAR_OPEN || !ao) e = tgi_sh9_irradiance(sh, n);
-            else e = tgi_sh9_irradiance_bent_cone(sh, n, a);
-            e_r[i] = e.x; e_g[i] = e.y; e_b[i] = e.z;
+    for (y = y0; y < y1; y++)
+        for (x = 0; x < g->width; x++) {
+            size_t i = tgi_gv_index(g, x, y);
+            if (tgi_gv_is_sky(g, i)) { tgi_rgb_set(out, i, tg_v3(0, 0, 0)); continue; }
+            tgi_rgb_set(out, i, tgi_far_irradiance(sh, tgi_gv_normal(g, i), has_ao, has_ao ? tgi_gr_ao(res, i) : TG_ONE,
+                                                   has_bent, has_bent ? tgi_gr_bent(res, i) : tg_v3(0, 0, 0), mode));
         }
-    }
 }

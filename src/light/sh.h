@@ -43,7 +43,7 @@
 #define TG_SH_H
 
 #include "../scene/scene.h"
-#include "../raster/gbuffer.h"
+#include "../raster/gview.h"
 #include "../raster/view.h"
 
 typedef enum tgi_far_mode { TG_FAR_CONE_SH = 0, TG_FAR_CUBE_F0 = 1, TG_FAR_OPEN = 2 } tgi_far_mode;
@@ -94,13 +94,16 @@ tg_vec3 tgi_sh9_radiance(const tg_vec3 sh[9], tg_vec3 dir);
  * none or a NULL env.  Used for sky pixels. */
 tg_vec3 tgi_env_radiance(const tgi_env *env, tg_vec3 dir);
 
-/* Far-field pass over rows [y0, y1): E_far per pixel into e_r/e_g/e_b.
- *   ao       per-pixel AO in [0, 1], NULL = unoccluded (AO 1)
- *   bent_*   world-space unit bent normal, NULL = use the G-buffer normal
- *   mode     a tgi_far_mode
+/* E_far of one surface: normal n, AO `ao` and bent normal `bent` of the GI
+ * results (has_ao 0: unoccluded; has_bent 0: the normal), in `mode` (a
+ * tgi_far_mode). */
+tg_vec3 tgi_far_irradiance(const tg_vec3 sh[9], tg_vec3 n, int has_ao, tg_real ao, int has_bent, tg_vec3 bent,
+                           int mode);
+
+/* Far-field pass over rows [y0, y1) of the view g: E_far per pixel into
+ * `out`, from the results `res` (NULL: unoccluded, the G-buffer normal).
  * Sky pixels get 0. */
-void tgi_far_rows(const tgi_gbuffer *gb, const tg_vec3 sh[9], const tg_real *ao,
-                 const tg_real *bent_x, const tg_real *bent_y, const tg_real *bent_z,
-                 int mode, tg_real *e_r, tg_real *e_g, tg_real *e_b, int y0, int y1);
+void tgi_far_rows(const tgi_gview *g, const tg_vec3 sh[9], const tgi_gresult *res, int mode,
+                  const tgi_rgb *out, int y0, int y1);
 
 #endif

@@ -1,27 +1,58 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * gbuffer.h - the geometry buffer the rasterizer writes and every later pass
- * reads.  Structure of arrays, one tg_real (or byte) per pixel per channel,
- * row-major, index = y * width + x.
+ * reads (through the accessors of gview.h, never these fields).  Row-major,
+ * index = y * width + x.
+ *
+ * Storage (pack.h has the formats), the same in both number types:
+ *   depth  32 bits: binary32 bits of the view depth; 0 = sky (no triangle)
+ *   nm     32 bits: octahedral world normal, 2 x 11 bits, and the material
+ *          index above them (10 bits: albedo, F0 and emissive come from the
+ *          scene's material table, `materials`)
+ * 8 bytes a pixel.  Built with TG_WIDE_STORAGE=1 the G-buffer (and the GI
+ * results and colour planes of gview.h) are tg_real planes instead, 18
+ * bytes a pixel here: the reference the compact formats are measured
+ * against (tests/storage_test.sh, the bench's wide rows).
  */
 #ifndef TG_GBUFFER_H
 #define TG_GBUFFER_H
 
 #include "../core/vec.h"
+#include "../core/material.h"
+
+#ifndef TG_WIDE_STORAGE
+#define TG_WIDE_STORAGE 0
+#endif
+
+#define TGI_NORMAL_BITS 11                 /* per octahedral coordinate */
+#define TGI_MATERIAL_SHIFT (2 * TGI_NORMAL_BITS)
+#define TGI_NORMAL_MASK ((1u << TGI_MATERIAL_SHIFT) - 1u)
+#if TG_MAX_MATERIALS > (1 << (32 - TGI_MATERIAL_SHIFT))
+#error "TG_MAX_MATERIALS does not fit the G-buffer's material index bits"
+#endif
 
 typedef struct tgi_gbuffer {
     int width, height;
-    tg_real *depth;              /* linear view depth (view-space z); 0 on sky */
-    tg_real *nx, *ny, *nz;       /* world-space unit normal (faces the viewer) */
-    tg_real *albedo_r, *albedo_g, *albedo_b;
-    tg_real *f0;
-    tg_real *emit_r, *emit_g, *emit_b; /* NULL when the scene has no emissive material */
-    uint8_t *sky;                /* 1 where no triangle was drawn */
-    uint16_t *object;            /* object index per pixel (motion vectors); NULL if unused */
-    tg_real *motion_x, *motion_y;/* previous-frame screen position of this pixel's surface
-                                    (continuous pixel coordinates); NULL unless planned */
+#if TG_WIDE_STORAGE
+    tg_real *depth;               /* linear view depth (view-space z); 0 on sky */
+    tg_real *nx, *ny, *nz;        /* world-space unit normal (faces the viewer) */
+    uint16_t *material;           /* index into materials */
+#else
+    uint32_t *depth;              /* binary32 bits of the view depth; 0 on sky */
+    uint32_t *nm;                 /* octahedral normal | material index << TGI_MATERIAL_SHIFT */
+#endif
+    const tgi_material *materials;/* the scene's material table */
+    int has_emissive;             /* some material of the table emits */
+    uint16_t *object;             /* object index per pixel (objects move); NULL if unused */
+    tg_real *motion_x, *motion_y; /* previous-frame screen position of this pixel's surface
+                                     (continuous pixel coordinates); NULL unless planned */
 } tgi_gbuffer;
 
-static inline int tgi_gb_is_sky(const tgi_gbuffer *g, int i) { return g->sky[i] != 0; }
+/* Bytes a pixel of the G-buffer's depth, normal and material. */
+#if TG_WIDE_STORAGE
+#define TGI_GBUFFER_PIXEL_BYTES (4 * sizeof(tg_real) + sizeof(uint16_t))
+#else
+#define TGI_GBUFFER_PIXEL_BYTES (2 * sizeof(uint32_t))
+#endif
 
 #endif

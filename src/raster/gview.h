@@ -13,19 +13,27 @@
  *     (x * step + offset_x, y * step + offset_y)  of the camera's image.
  *
  * Passes read and write ONLY through the accessors below, never through the
- * storage, so that a narrower storage (octahedral normals, one material
- * index per pixel, sky folded into depth 0, 8-bit AO, shared-exponent RGB)
- * changes this file and the rasterizer's writer, not the passes.
+ * storage: the formats (pack.h, gbuffer.h) live here and in the rasterizer's
+ * writer, not in the passes.
+ *   G-buffer   binary32 depth with sky as 0; octahedral normal 2x11 bits and
+ *              a material index in 32 bits (albedo, F0 and emissive read
+ *              from the scene's material table)
+ *   results    AO in 8 bits; bent normal octahedral 2x8; the cone is not
+ *              stored (HBIL eq. 12 from the AO when read); near-field
+ *              irradiance as a colour plane
+ *   colour     RGB9E5 (shared exponent, saturating, never negative)
+ * With TG_WIDE_STORAGE=1 every one of them is tg_real planes.
  *
- * A results view (tgi_gresult: AO, bent normal, cone, near-field
- * irradiance) and colour planes (tgi_rgb: radiance or irradiance) are
- * indexed like the G-buffer view they are used with.
+ * A results view (tgi_gresult: AO, bent normal, near-field irradiance) and
+ * colour planes (tgi_rgb: radiance or irradiance) are indexed like the
+ * G-buffer view they are used with.
  */
 #ifndef TG_GVIEW_H
 #define TG_GVIEW_H
 
 #include "gbuffer.h"
 #include "view.h"
+#include "pack.h"
 
 typedef struct tgi_gview {
     int width, height;             /* pixels of this view */
@@ -39,37 +47,85 @@ static inline size_t tgi_gv_index(const tgi_gview *v, int x, int y)
 {
     return (size_t)y * (size_t)v->row_stride + (size_t)x * (size_t)v->pixel_stride;
 }
+
+/* ---- the G-buffer: reading ---- */
+
+/* 1 where no triangle was drawn (depth 0). */
+static inline int tgi_gv_is_sky(const tgi_gview *v, size_t i) { return v->store.depth[i] == 0; }
+#if TG_WIDE_STORAGE
 /* Linear view depth (view-space z), 0 on sky. */
 static inline tg_real tgi_gv_depth(const tgi_gview *v, size_t i) { return v->store.depth[i]; }
-/* World-space unit normal, facing the viewer. */
+/* World-space unit normal, facing the viewer (undefined on sky). */
 static inline tg_vec3 tgi_gv_normal(const tgi_gview *v, size_t i)
 {
     return tg_v3(v->store.nx[i], v->store.ny[i], v->store.nz[i]);
 }
-/* 1 where no triangle was drawn. */
-static inline int tgi_gv_is_sky(const tgi_gview *v, size_t i) { return v->store.sky[i] != 0; }
+static inline int tgi_gv_material_index(const tgi_gview *v, size_t i) { return v->store.material[i]; }
+#else
+static inline tg_real tgi_gv_depth(const tgi_gview *v, size_t i) { return tgi_depth_unpack(v->store.depth[i]); }
+static inline tg_vec3 tgi_gv_normal(const tgi_gview *v, size_t i)
+{
+    return tgi_oct_unpack(v->store.nm[i] & TGI_NORMAL_MASK, TGI_NORMAL_BITS);
+}
+static inline int tgi_gv_material_index(const tgi_gview *v, size_t i)
+{
+    return (int)(v->store.nm[i] >> TGI_MATERIAL_SHIFT);
+}
+#endif
+/* The surface's material (NULL on sky). */
+static inline const tgi_material *tgi_gv_material(const tgi_gview *v, size_t i)
+{
+    return tgi_gv_is_sky(v, i) ? NULL : &v->store.materials[tgi_gv_material_index(v, i)];
+}
+/* Albedo, F0 and emissive of the material; 0 on sky. */
 static inline tg_vec3 tgi_gv_albedo(const tgi_gview *v, size_t i)
 {
-    return tg_v3(v->store.albedo_r[i], v->store.albedo_g[i], v->store.albedo_b[i]);
+    const tgi_material *m = tgi_gv_material(v, i);
+    return m ? m->albedo : tg_v3(0, 0, 0);
 }
-/* Specular reflectance at normal incidence; 0 when the view carries none. */
-static inline tg_real tgi_gv_f0(const tgi_gview *v, size_t i) { return v->store.f0 ? v->store.f0[i] : 0; }
+static inline tg_real tgi_gv_f0(const tgi_gview *v, size_t i)
+{
+    const tgi_material *m = tgi_gv_material(v, i);
+    return m ? m->f0 : 0;
+}
 /* 1 when some material of the scene emits (else tgi_gv_emissive is 0). */
-static inline int tgi_gv_has_emissive(const tgi_gview *v) { return v->store.emit_r != NULL; }
+static inline int tgi_gv_has_emissive(const tgi_gview *v) { return v->store.has_emissive; }
 static inline tg_vec3 tgi_gv_emissive(const tgi_gview *v, size_t i)
 {
-    return tg_v3(v->store.emit_r[i], v->store.emit_g[i], v->store.emit_b[i]);
+    const tgi_material *m = tgi_gv_material(v, i);
+    return m ? m->emissive : tg_v3(0, 0, 0);
 }
+
+/* ---- the G-buffer: writing (the rasterizer, copies, tests) ---- */
+
+/* Pixel i of storage g: a surface at view depth z > 0 with world normal n
+ * (any length > 0) of material `material`. */
+static inline void tgi_gb_set(const tgi_gbuffer *g, size_t i, tg_real z, tg_vec3 n, int material)
+{
+#if TG_WIDE_STORAGE
+    n = tgi_v3_normalize_or(n, tg_v3(0, 0, TG_ONE));
+    g->depth[i] = z > 0 ? z : 0;
+    g->nx[i] = n.x; g->ny[i] = n.y; g->nz[i] = n.z;
+    g->material[i] = (uint16_t)material;
+#else
+    g->depth[i] = tgi_depth_pack(z);
+    g->nm[i] = tgi_oct_pack(n, TGI_NORMAL_BITS) | ((uint32_t)material << TGI_MATERIAL_SHIFT);
+#endif
+}
+/* Pixel i of storage g: sky. */
+static inline void tgi_gb_set_sky(const tgi_gbuffer *g, size_t i) { g->depth[i] = 0; }
 
 /* Storage g seen from index `start` on (absent planes stay absent). */
 static inline tgi_gbuffer tgi_gbuffer_from(const tgi_gbuffer *g, size_t start)
 {
     tgi_gbuffer s = *g;
 #define TGI_FROM(p) s.p = g->p ? g->p + start : NULL
-    TGI_FROM(depth); TGI_FROM(nx); TGI_FROM(ny); TGI_FROM(nz);
-    TGI_FROM(albedo_r); TGI_FROM(albedo_g); TGI_FROM(albedo_b); TGI_FROM(f0);
-    TGI_FROM(emit_r); TGI_FROM(emit_g); TGI_FROM(emit_b);
-    TGI_FROM(sky); TGI_FROM(object); TGI_FROM(motion_x); TGI_FROM(motion_y);
+#if TG_WIDE_STORAGE
+    TGI_FROM(depth); TGI_FROM(nx); TGI_FROM(ny); TGI_FROM(nz); TGI_FROM(material);
+#else
+    TGI_FROM(depth); TGI_FROM(nm);
+#endif
+    TGI_FROM(object); TGI_FROM(motion_x); TGI_FROM(motion_y);
 #undef TGI_FROM
     return s;
 }
@@ -114,42 +170,174 @@ static inline void tgi_gview_strided_sub(tgi_gview *sub, const tgi_gview *full, 
     sub->offset_y = full->offset_y + j * full->step;
     if (w && h) sub->store = tgi_gbuffer_from(&full->store, tgi_gv_index(full, i, j));
 }
-/* Copy pixel i of src into pixel j of the packed storage dst: the depth,
- * normal, sky and (when dst has it) F0. */
+/* Copy pixel i of src into pixel j of the packed storage dst: depth, normal
+ * and material, as stored (no conversion). */
 static inline void tgi_gview_copy_pixel(const tgi_gbuffer *dst, size_t j, const tgi_gview *src, size_t i)
 {
     dst->depth[j] = src->store.depth[i];
+#if TG_WIDE_STORAGE
     dst->nx[j] = src->store.nx[i];
     dst->ny[j] = src->store.ny[i];
     dst->nz[j] = src->store.nz[i];
-    dst->sky[j] = src->store.sky[i];
-    if (dst->f0) dst->f0[j] = src->store.f0[i];
+    dst->material[j] = src->store.material[i];
+#else
+    dst->nm[j] = src->store.nm[i];
+#endif
 }
 
-/* ---- colour planes: radiance or irradiance, linear RGB ---- */
-typedef struct tgi_rgb { tg_real *r, *g, *b; } tgi_rgb;   /* r NULL: absent */
+/* ---- the light a diffuse surface sends ---- */
 
+/* Lo of pixel i of storage g under irradiance e: albedo / pi (1 - F0) e +
+ * emissive (HBIL sec. 2.3: eq. 14's 1/pi, eq. 19's 1 - F0); 0 on sky. */
+static inline tg_vec3 tgi_gb_lit(const tgi_gbuffer *g, size_t i, tg_vec3 e)
+{
+    const tgi_material *m;
+    tg_real kd;
+    tg_vec3 lo;
+    if (g->depth[i] == 0) return tg_v3(0, 0, 0);
+#if TG_WIDE_STORAGE
+    m = &g->materials[g->material[i]];
+#else
+    m = &g->materials[g->nm[i] >> TGI_MATERIAL_SHIFT];
+#endif
+    kd = tg_mul(tg_saturate(tg_sub(TG_ONE, m->f0)), TG_INV_PI);
+    lo = tg_v3(tg_mul(tg_mul(m->albedo.x, kd), e.x), tg_mul(tg_mul(m->albedo.y, kd), e.y),
+               tg_mul(tg_mul(m->albedo.z, kd), e.z));
+    return g->has_emissive ? tgi_v3_add(lo, m->emissive) : lo;
+}
+static inline tg_vec3 tgi_gv_lit(const tgi_gview *v, size_t i, tg_vec3 e) { return tgi_gb_lit(&v->store, i, e); }
+
+/* ---- colour planes: radiance or irradiance, linear RGB ----
+ * A plane may be read as lit: it holds irradiance, and its reads give the
+ * radiance its surfaces send (tgi_gb_lit), so the direct light's plane is
+ * also the near field's first source without a plane of its own. */
+typedef struct tgi_rgb {
+#if TG_WIDE_STORAGE
+    tg_real *r, *g, *b;            /* r NULL: absent */
+#else
+    uint32_t *p;                   /* RGB9E5 words; NULL: absent */
+#endif
+    const tgi_gbuffer *lit;        /* non-NULL: reads are tgi_gb_lit of these surfaces */
+    size_t lit_at;                 /* pixel i of the plane is pixel lit_at + i of lit */
+} tgi_rgb;
+
+#if TG_WIDE_STORAGE
 static inline int tgi_rgb_present(const tgi_rgb *c) { return c && c->r != NULL; }
-static inline tg_vec3 tgi_rgb_get(const tgi_rgb *c, size_t i) { return tg_v3(c->r[i], c->g[i], c->b[i]); }
+static inline tg_vec3 tgi_rgb_stored(const tgi_rgb *c, size_t i) { return tg_v3(c->r[i], c->g[i], c->b[i]); }
 static inline void tgi_rgb_set(const tgi_rgb *c, size_t i, tg_vec3 v) { c->r[i] = v.x; c->g[i] = v.y; c->b[i] = v.z; }
-/* The planes seen from index `start` on (absent stays absent). */
+#else
+static inline int tgi_rgb_present(const tgi_rgb *c) { return c && c->p != NULL; }
+static inline tg_vec3 tgi_rgb_stored(const tgi_rgb *c, size_t i) { return tgi_rgb9e5_unpack(c->p[i]); }
+static inline void tgi_rgb_set(const tgi_rgb *c, size_t i, tg_vec3 v) { c->p[i] = tgi_rgb9e5_pack(v); }
+#endif
+static inline tg_vec3 tgi_rgb_get(const tgi_rgb *c, size_t i)
+{
+    tg_vec3 v = tgi_rgb_stored(c, i);
+    return c->lit ? tgi_gb_lit(c->lit, c->lit_at + i, v) : v;
+}
+/* The plane seen from index `start` on (absent stays absent). */
 static inline tgi_rgb tgi_rgb_from(const tgi_rgb *c, size_t start)
 {
-    tgi_rgb s;
+    tgi_rgb s = *c;
+#if TG_WIDE_STORAGE
     s.r = c->r ? c->r + start : NULL;
     s.g = c->g ? c->g + start : NULL;
     s.b = c->b ? c->b + start : NULL;
+#else
+    s.p = c->p ? c->p + start : NULL;
+#endif
+    s.lit_at = c->lit_at + start;
     return s;
 }
+/* The same plane read as lit by the surfaces of g (pixel i of the plane is pixel i of g). */
+static inline tgi_rgb tgi_rgb_lit_by(const tgi_rgb *c, const tgi_gbuffer *g)
+{
+    tgi_rgb s = *c;
+    s.lit = g;
+    s.lit_at = 0;
+    return s;
+}
+/* An absent colour plane. */
+static inline tgi_rgb tgi_rgb_none(void)
+{
+    tgi_rgb c;
+    memset(&c, 0, sizeof c);
+    return c;
+}
+/* Bytes a pixel of a colour plane. */
+#define TGI_RGB_PIXEL_BYTES (TG_WIDE_STORAGE ? 3 * sizeof(tg_real) : sizeof(uint32_t))
+/* Pixel j of dst = pixel i of src, as stored (src not lit). */
+#if TG_WIDE_STORAGE
+static inline void tgi_rgb_copy(const tgi_rgb *dst, size_t j, const tgi_rgb *src, size_t i)
+{
+    dst->r[j] = src->r[i]; dst->g[j] = src->g[i]; dst->b[j] = src->b[i];
+}
+#else
+static inline void tgi_rgb_copy(const tgi_rgb *dst, size_t j, const tgi_rgb *src, size_t i) { dst->p[j] = src->p[i]; }
+#endif
+/* A pixel without a value (a reprojection hole): reads as 0, marked apart. */
+#if TG_WIDE_STORAGE
+static inline void tgi_rgb_set_hole(const tgi_rgb *c, size_t i) { c->r[i] = TG_REAL_MIN; c->g[i] = c->b[i] = 0; }
+static inline int tgi_rgb_is_hole(const tgi_rgb *c, size_t i) { return c->r[i] == TG_REAL_MIN; }
+#else
+static inline void tgi_rgb_set_hole(const tgi_rgb *c, size_t i) { c->p[i] = TGI_RGB9E5_INVALID; }
+static inline int tgi_rgb_is_hole(const tgi_rgb *c, size_t i) { return c->p[i] == TGI_RGB9E5_INVALID; }
+#endif
+
+/* ---- last frame's geometry: what reprojection and temporal accumulation
+ * test a pixel's history against.  Compact: one word a pixel, the view
+ * depth's binary32 bits rounded to their top 16 (8-bit exponent, 7-bit
+ * mantissa: 0.4%, against a 5% depth tolerance) and the normal octahedral
+ * 2x8. ---- */
+typedef struct tgi_prev_geometry {
+#if TG_WIDE_STORAGE
+    tg_real *depth, *nx, *ny, *nz;
+#else
+    uint32_t *dn;                 /* depth bits >> 16 above, octahedral normal below */
+#endif
+} tgi_prev_geometry;
+
+/* Keep pixel i of view g as pixel j of last frame's geometry h. */
+static inline void tgi_prev_keep(const tgi_prev_geometry *h, size_t j, const tgi_gview *g, size_t i)
+{
+    tg_vec3 n = tgi_gv_is_sky(g, i) ? tg_v3(0, 0, TG_ONE) : tgi_gv_normal(g, i);
+#if TG_WIDE_STORAGE
+    h->depth[j] = tgi_gv_depth(g, i);
+    h->nx[j] = n.x; h->ny[j] = n.y; h->nz[j] = n.z;
+#else
+    uint32_t d = g->store.depth[i], top = d ? (d + 0x8000u) >> 16 : 0;
+    h->dn[j] = (top << 16) | tgi_oct_pack(n, 8);
+#endif
+}
+#if TG_WIDE_STORAGE
+static inline tg_real tgi_prev_depth(const tgi_prev_geometry *h, size_t j) { return h->depth[j]; }
+static inline tg_vec3 tgi_prev_normal(const tgi_prev_geometry *h, size_t j)
+{
+    return tg_v3(h->nx[j], h->ny[j], h->nz[j]);
+}
+#else
+static inline tg_real tgi_prev_depth(const tgi_prev_geometry *h, size_t j)
+{
+    return tgi_depth_unpack(h->dn[j] & 0xFFFF0000u);
+}
+static inline tg_vec3 tgi_prev_normal(const tgi_prev_geometry *h, size_t j) { return tgi_oct_unpack(h->dn[j] & 0xFFFFu, 8); }
+#endif
 
 /* ---- the GI results of a pass ---- */
 typedef struct tgi_gresult {
+#if TG_WIDE_STORAGE
     tg_real *ao;                         /* [0, 1], 1 = open; always present */
     tg_real *bent_x, *bent_y, *bent_z;   /* world unit bent normal; NULL: not wanted */
-    tg_real *cone;                       /* bent-cone half angle, radians; NULL: not wanted */
-    tgi_rgb near;                        /* near-field irradiance; r NULL: not gathered */
+    tg_real *cone;                       /* a technique's own cone half angle; NULL: HBIL eq. 12 */
+#else
+    uint8_t *ao;                         /* unorm8 */
+    uint16_t *bent;                      /* octahedral 2x8 */
+    uint8_t *cone;                       /* unorm8 of the angle / (pi / 2); NULL: HBIL eq. 12 */
+#endif
+    tgi_rgb near;                        /* near-field irradiance; absent: not gathered */
 } tgi_gresult;
 
+#if TG_WIDE_STORAGE
 static inline tg_real tgi_gr_ao(const tgi_gresult *r, size_t i) { return r->ao[i]; }
 static inline void tgi_gr_set_ao(const tgi_gresult *r, size_t i, tg_real v) { r->ao[i] = v; }
 static inline int tgi_gr_has_bent(const tgi_gresult *r) { return r->bent_x != NULL; }
@@ -158,21 +346,69 @@ static inline void tgi_gr_set_bent(const tgi_gresult *r, size_t i, tg_vec3 b)
 {
     r->bent_x[i] = b.x; r->bent_y[i] = b.y; r->bent_z[i] = b.z;
 }
+#else
+static inline tg_real tgi_gr_ao(const tgi_gresult *r, size_t i) { return tgi_unorm8_unpack(r->ao[i]); }
+static inline void tgi_gr_set_ao(const tgi_gresult *r, size_t i, tg_real v) { r->ao[i] = tgi_unorm8_pack(v); }
+static inline int tgi_gr_has_bent(const tgi_gresult *r) { return r->bent != NULL; }
+static inline tg_vec3 tgi_gr_bent(const tgi_gresult *r, size_t i) { return tgi_oct_unpack(r->bent[i], 8); }
+static inline void tgi_gr_set_bent(const tgi_gresult *r, size_t i, tg_vec3 b) { r->bent[i] = (uint16_t)tgi_oct_pack(b, 8); }
+#endif
+/* The bent cone's half angle: HBIL eq. 12 of the AO when read, unless a
+ * results view carries a cone plane of its own (a technique's estimate, for
+ * its tests: the frame carves none).  Writes without a plane go nowhere. */
 static inline int tgi_gr_has_cone(const tgi_gresult *r) { return r->cone != NULL; }
-static inline tg_real tgi_gr_cone(const tgi_gresult *r, size_t i) { return r->cone[i]; }
-static inline void tgi_gr_set_cone(const tgi_gresult *r, size_t i, tg_real c) { r->cone[i] = c; }
-static inline int tgi_gr_has_near(const tgi_gresult *r) { return r->near.r != NULL; }
+#if TG_WIDE_STORAGE
+static inline void tgi_gr_set_cone(const tgi_gresult *r, size_t i, tg_real c) { if (r->cone) r->cone[i] = c; }
+static inline tg_real tgi_gr_stored_cone(const tgi_gresult *r, size_t i) { return r->cone[i]; }
+#else
+static inline void tgi_gr_set_cone(const tgi_gresult *r, size_t i, tg_real c)
+{
+    if (r->cone) r->cone[i] = tgi_unorm8_pack(tg_div(c, TG_HALF_PI));
+}
+static inline tg_real tgi_gr_stored_cone(const tgi_gresult *r, size_t i)
+{
+    return tg_mul(tgi_unorm8_unpack(r->cone[i]), TG_HALF_PI);
+}
+#endif
+static inline tg_real tgi_gr_cone(const tgi_gresult *r, size_t i)
+{
+    if (r->cone) return tgi_gr_stored_cone(r, i);
+    return tg_acos(tg_sub(TG_ONE, tg_saturate(tgi_gr_ao(r, i))));   /* HBIL eq. 12: cos(alpha) = 1 - AO */
+}
+static inline int tgi_gr_has_near(const tgi_gresult *r) { return tgi_rgb_present(&r->near); }
 static inline tg_vec3 tgi_gr_near(const tgi_gresult *r, size_t i) { return tgi_rgb_get(&r->near, i); }
 static inline void tgi_gr_set_near(const tgi_gresult *r, size_t i, tg_vec3 e) { tgi_rgb_set(&r->near, i, e); }
+
+/* Every channel of pixel i at once (those r lacks read as ao 1, bent 0, near 0). */
+typedef struct tgi_gr_value { tg_real ao; tg_vec3 bent, near; } tgi_gr_value;
+static inline tgi_gr_value tgi_gr_get(const tgi_gresult *r, size_t i)
+{
+    tgi_gr_value v;
+    v.ao = r->ao ? tgi_gr_ao(r, i) : TG_ONE;
+    v.bent = tgi_gr_has_bent(r) ? tgi_gr_bent(r, i) : tg_v3(0, 0, 0);
+    v.near = tgi_gr_has_near(r) ? tgi_gr_near(r, i) : tg_v3(0, 0, 0);
+    return v;
+}
+/* Write the channels r has. */
+static inline void tgi_gr_put(const tgi_gresult *r, size_t i, const tgi_gr_value *v)
+{
+    if (r->ao) tgi_gr_set_ao(r, i, v->ao);
+    if (tgi_gr_has_bent(r)) tgi_gr_set_bent(r, i, v->bent);
+    if (tgi_gr_has_near(r)) tgi_gr_set_near(r, i, v->near);
+}
 
 /* The results seen from index `start` on (a sub-image of a larger image). */
 static inline tgi_gresult tgi_gresult_from(const tgi_gresult *r, size_t start)
 {
     tgi_gresult s;
     s.ao = r->ao ? r->ao + start : NULL;
+#if TG_WIDE_STORAGE
     s.bent_x = r->bent_x ? r->bent_x + start : NULL;
     s.bent_y = r->bent_y ? r->bent_y + start : NULL;
     s.bent_z = r->bent_z ? r->bent_z + start : NULL;
+#else
+    s.bent = r->bent ? r->bent + start : NULL;
+#endif
     s.cone = r->cone ? r->cone + start : NULL;
     s.near = tgi_rgb_from(&r->near, start);
     return s;
@@ -181,10 +417,27 @@ static inline tgi_gresult tgi_gresult_from(const tgi_gresult *r, size_t start)
 /* Copy pixel i of src into pixel j of dst: the channels both have. */
 static inline void tgi_gresult_copy_pixel(const tgi_gresult *dst, size_t j, const tgi_gresult *src, size_t i)
 {
+#if TG_WIDE_STORAGE
     tgi_gr_set_ao(dst, j, tgi_gr_ao(src, i));
     if (tgi_gr_has_bent(dst) && tgi_gr_has_bent(src)) tgi_gr_set_bent(dst, j, tgi_gr_bent(src, i));
-    if (tgi_gr_has_cone(dst) && tgi_gr_has_cone(src)) tgi_gr_set_cone(dst, j, tgi_gr_cone(src, i));
+    if (dst->cone && src->cone) dst->cone[j] = src->cone[i];
     if (tgi_gr_has_near(dst) && tgi_gr_has_near(src)) tgi_gr_set_near(dst, j, tgi_gr_near(src, i));
+#else
+    dst->ao[j] = src->ao[i];                       /* the same formats: the words */
+    if (dst->bent && src->bent) dst->bent[j] = src->bent[i];
+    if (dst->cone && src->cone) dst->cone[j] = src->cone[i];
+    if (dst->near.p && src->near.p) dst->near.p[j] = src->near.p[i];
+#endif
 }
+
+/* ---- storage from one block of memory (gstore.c): each function points
+ * its planes into mem (16-byte aligned parts; NULL: measure only) and
+ * returns the bytes.  G-buffer planes only (materials, object and motion
+ * are the caller's); results with the bent normal, a cone plane and the
+ * near field when asked. ---- */
+size_t tgi_gbuffer_carve(tgi_gbuffer *g, int w, int h, void *mem);
+size_t tgi_gresult_carve(tgi_gresult *r, size_t n, int bent, int cone, int near, void *mem);
+size_t tgi_rgb_carve(tgi_rgb *c, size_t n, void *mem);
+size_t tgi_prev_carve(tgi_prev_geometry *h, size_t n, void *mem);
 
 #endif

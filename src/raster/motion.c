@@ -4,32 +4,48 @@
  * of the previous frame (motion.h).
  */
 #include "motion.h"
+#include "gview.h"
+
+int tgi_motion_prev_position(const tgi_view *cur, const tgi_view *prev, const tgi_mat4 *delta,
+                             int x, int y, tg_real depth, tg_real *px, tg_real *py, tg_real *prev_z)
+{
+    tg_real sx = tg_add(tg_from_int(x), TG_R(0.5f)), sy = tg_add(tg_from_int(y), TG_R(0.5f));
+    tg_vec3 p = tgi_view_view_to_world(cur, tgi_view_unproject(cur, sx, sy, depth)), pv;
+    if (delta) p = tgi_m4_point(delta, p);
+    pv = tgi_view_world_to_view(prev, p);
+    *prev_z = pv.z;
+    if (pv.z <= TG_R(0.0001f)) return 0;
+    tgi_view_project(prev, pv, px, py);
+    return 1;
+}
 
 void tgi_motion_rows(tgi_gbuffer *gb, const tgi_view *cur, const tgi_view *prev,
                     const tgi_mat4 *cur_to_prev, int y0, int y1)
 {
     int use_objects = cur_to_prev && gb->object;
     int x, y, w = gb->width;
+    tgi_gview g;
+    tgi_gview_of(&g, gb, cur);
     for (y = y0; y < y1; y++) {
-        int i = y * w;
-        tg_real sy = tg_add(tg_from_int(y), TG_R(0.5f));
+        size_t i = (size_t)y * (size_t)w;
         for (x = 0; x < w; x++, i++) {
-            tg_real sx = tg_add(tg_from_int(x), TG_R(0.5f)), px, py;
-            tg_vec3 pv;
-            if (gb->sky[i]) {
+            tg_real px, py, z;
+            int front;
+            if (tgi_gv_is_sky(&g, i)) {
                 /* a direction: rotate the view ray into the previous camera */
+                tg_real sx = tg_add(tg_from_int(x), TG_R(0.5f)), sy = tg_add(tg_from_int(y), TG_R(0.5f));
                 tg_vec3 d = tgi_view_dir_to_world(cur, tgi_view_unproject(cur, sx, sy, TG_ONE));
-                pv = tgi_view_dir_to_view(prev, d);
+                tg_vec3 pv = tgi_view_dir_to_view(prev, d);
+                front = pv.z > TG_R(0.0001f);
+                if (front) tgi_view_project(prev, pv, &px, &py);
             } else {
-                tg_vec3 p = tgi_view_view_to_world(cur, tgi_view_unproject(cur, sx, sy, gb->depth[i]));
-                if (use_objects) p = tgi_m4_point(&cur_to_prev[gb->object[i]], p);
-                pv = tgi_view_world_to_view(prev, p);
+                front = tgi_motion_prev_position(cur, prev, use_objects ? &cur_to_prev[gb->object[i]] : NULL, x, y,
+                                                 tgi_gv_depth(&g, i), &px, &py, &z);
             }
-            if (pv.z <= TG_R(0.0001f)) {
+            if (!front) {
                 gb->motion_x[i] = gb->motion_y[i] = TG_MOTION_INVALID;
                 continue;
             }
-            tgi_view_project(prev, pv, &px, &py);
             gb->motion_x[i] = px; gb->motion_y[i] = py;
         }
     }

@@ -22,6 +22,13 @@
  * nothing but the camera moves.  Sky pixels reproject their view direction
  * (a point at infinity).  A surface behind the previous camera gets
  * TG_MOTION_INVALID in both. */
+/* Where the surface at the centre of pixel (x, y) of `cur`, at view depth
+ * `depth`, was on the screen of `prev` (*px, *py, continuous pixels; its
+ * previous view depth *prev_z), moved by its object's delta (NULL: it does
+ * not move).  0 when it was behind the previous camera. */
+int tgi_motion_prev_position(const tgi_view *cur, const tgi_view *prev, const tgi_mat4 *delta,
+                             int x, int y, tg_real depth, tg_real *px, tg_real *py, tg_real *prev_z);
+
 void tgi_motion_rows(tgi_gbuffer *gb, const tgi_view *cur, const tgi_view *prev,
                     const tgi_mat4 *cur_to_prev, int y0, int y1);
 

@@ -34,6 +34,7 @@
  */
 #include <string.h>
 #include "raster.h"
+#include "gview.h"
 #include "../core/real.h"
 
 #define SUB 16                    /* sub-pixels per pixel (28.4) */
@@ -355,6 +356,8 @@ static inline int32_t snap_ndc(tg_real c, tg_real w, inv_w iw, int32_t half16)
 #if TG_FIXED
 static int64_t asr64(int64_t v, int s) { return v >= 0 ? v >> s : -((-v) >> s); }
 
+#if TG_WIDE_STORAGE
+
 /* Unit vector (Q16.16) along m (|m_i| < 2^31): 1/sqrt by
  * tgi_rsqrt_q30_fast (rel. error 3e-6, below the Q16.16 ulp).  Returns 0
  * for the zero vector. */
@@ -381,10 +384,13 @@ static int unit_q16(int64_t mx, int64_t my, int64_t mz, tg_real *n)
     return 1;
 }
 #endif
+#endif
 
 /* ---------------------------------------------------------------------- */
 /* the G-buffer                                                            */
 
+/* Only the depth is cleared (0: sky): every other channel of a pixel is
+ * read only where the depth says a surface was drawn, and is written with it. */
 void tgi_gbuffer_clear_rows(tgi_gbuffer *gb, int y0, int y1)
 {
     size_t a, n;
@@ -393,78 +399,17 @@ void tgi_gbuffer_clear_rows(tgi_gbuffer *gb, int y0, int y1)
     if (y0 >= y1) return;
     a = (size_t)y0 * (size_t)gb->width;
     n = (size_t)(y1 - y0) * (size_t)gb->width;
-    memset(gb->depth + a, 0, n * sizeof(tg_real));
-    memset(gb->nx + a, 0, n * sizeof(tg_real));
-    memset(gb->ny + a, 0, n * sizeof(tg_real));
-    memset(gb->nz + a, 0, n * sizeof(tg_real));
-    memset(gb->albedo_r + a, 0, n * sizeof(tg_real));
-    memset(gb->albedo_g + a, 0, n * sizeof(tg_real));
-    memset(gb->albedo_b + a, 0, n * sizeof(tg_real));
-    memset(gb->f0 + a, 0, n * sizeof(tg_real));
-    if (gb->emit_r) {
-        memset(gb->emit_r + a, 0, n * sizeof(tg_real));
-        memset(gb->emit_g + a, 0, n * sizeof(tg_real));
-        memset(gb->emit_b + a, 0, n * sizeof(tg_real));
-    }
-    memset(gb->sky + a, 1, n);
+    memset(gb->depth + a, 0, n * sizeof *gb->depth);
     if (gb->object) memset(gb->object + a, 0xFF, n * sizeof(uint16_t));
 }
 
 /* What every pixel of one triangle shares. */
 typedef struct surface {
-    tg_real albedo_r, albedo_g, albedo_b, f0, emit_r, emit_g, emit_b;
+    uint32_t material;            /* compact: index << TGI_MATERIAL_SHIFT; wide: index */
     uint16_t object;
     tg_vec3 fallback_normal;      /* if the interpolated normal vanishes */
+    uint32_t fallback_nm;         /* compact: the same, packed */
 } surface;
-
-#define SPAN_CHUNK 128            /* pixels per depth-test pass before the surface writes */
-
-static inline void fill_real(tg_real *p, tg_real v, int n)
-{
-    int k;
-    for (k = 0; k < n; k++) p[k] = v;
-}
-
-/* The triangle's constant channels at pixels i0 .. i0 + n - 1 where hit[]
- * is set (every one when all_hit).  Kept out of the depth/normal loop,
- * which then holds fewer pointers; long all-hit spans become plain fills,
- * short ones one pass per group of channels. */
-static void write_surface(const tgi_gbuffer *g, const surface *sf, size_t i0, int n,
-                          const uint8_t *hit, int all_hit)
-{
-    tg_real *ar = g->albedo_r + i0, *ag = g->albedo_g + i0, *ab = g->albedo_b + i0, *f0 = g->f0 + i0;
-    int k;
-    if (all_hit && n > 8) {
-        fill_real(ar, sf->albedo_r, n);
-        fill_real(ag, sf->albedo_g, n);
-        fill_real(ab, sf->albedo_b, n);
-        fill_real(f0, sf->f0, n);
-        if (g->emit_r) {
-            fill_real(g->emit_r + i0, sf->emit_r, n);
-            fill_real(g->emit_g + i0, sf->emit_g, n);
-            fill_real(g->emit_b + i0, sf->emit_b, n);
-        }
-        if (g->object)
-            for (k = 0; k < n; k++) g->object[i0 + (size_t)k] = sf->object;
-        return;
-    }
-    for (k = 0; k < n; k++) {
-        if (!all_hit && !hit[k]) continue;
-        ar[k] = sf->albedo_r; ag[k] = sf->albedo_g; ab[k] = sf->albedo_b; f0[k] = sf->f0;
-    }
-    if (g->emit_r) {
-        tg_real *er = g->emit_r + i0, *eg = g->emit_g + i0, *eb = g->emit_b + i0;
-        for (k = 0; k < n; k++) {
-            if (!all_hit && !hit[k]) continue;
-            er[k] = sf->emit_r; eg[k] = sf->emit_g; eb[k] = sf->emit_b;
-        }
-    }
-    if (g->object) {
-        uint16_t *ob = g->object + i0;
-        for (k = 0; k < n; k++)
-            if (all_hit || hit[k]) ob[k] = sf->object;
-    }
-}
 
 /* Depth-only output: 32-bit depths (tg_real), or 16-bit codes of the depth
  * range [lo, lo + range): q = round((depth - lo) 65536 / range), clamped to
@@ -555,7 +500,7 @@ static void bary_make(bary_setup *b, const screen_tri *st, const tri_edges *te)
 
 static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const screen_tri *st, const surface *sfp)
 {
-    /* local copies: the byte stores to sky[] may alias anything reached through a pointer */
+    /* local copies: the stores may alias anything reached through a pointer */
     const tgi_gbuffer g = *gbp;
     const surface sf = *sfp;
     bary_setup b;
@@ -563,39 +508,42 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
     bary_make(&b, st, te);
     for (row = te->y0; row < te->y1; row++) {
         int64_t e[3], e0, e1, e2;
-        int xa, xb = row_start(te, row, e, &xa), c0, c1;
-        size_t i0 = (size_t)row * (size_t)W;
+        int xa, xb = row_start(te, row, e, &xa);
+        size_t i = (size_t)row * (size_t)W + (size_t)xa;
         e0 = e[0]; e1 = e[1]; e2 = e[2];
-        for (c0 = xa; c0 < xb; c0 = c1) {
-            uint8_t hit[SPAN_CHUNK];
-            int passed = 0;
-            size_t i = i0 + (size_t)c0;
-            c1 = xb - c0 > SPAN_CHUNK ? c0 + SPAN_CHUNK : xb;
-            for (col = c0; col < c1; col++, i++,
-                 e0 += te->step_x[0], e1 += te->step_x[1], e2 += te->step_x[2]) {
-                int64_t u0, u1, u2, su, sq;
-                tg_real n[3], z;
-                hit[col - c0] = 0;
-                u0 = ((e0 - te->bias[0]) << b.ls) >> b.rs;
-                u1 = ((e1 - te->bias[1]) << b.ls) >> b.rs;
-                u2 = ((e2 - te->bias[2]) << b.ls) >> b.rs;
-                su = u0 + u1 + u2;
-                sq = (u0 * b.q[0] + u1 * b.q[1] + u2 * b.q[2]) >> 30; /* su w_min / w */
-                if (su <= 0 || sq <= 0) continue;
-                z = tgi_sat64((b.wmin * su + sq / 2) / sq);
-                if (!g.sky[i] && z >= g.depth[i]) continue;
-                if (!unit_q16(asr64(u0 * b.nq[0][0] + u1 * b.nq[1][0] + u2 * b.nq[2][0], b.sm),
-                              asr64(u0 * b.nq[0][1] + u1 * b.nq[1][1] + u2 * b.nq[2][1], b.sm),
-                              asr64(u0 * b.nq[0][2] + u1 * b.nq[1][2] + u2 * b.nq[2][2], b.sm), n)) {
+        for (col = xa; col < xb; col++, i++, e0 += te->step_x[0], e1 += te->step_x[1], e2 += te->step_x[2]) {
+            int64_t u0, u1, u2, su, sq, mx, my, mz;
+            tg_real z;
+            u0 = ((e0 - te->bias[0]) << b.ls) >> b.rs;
+            u1 = ((e1 - te->bias[1]) << b.ls) >> b.rs;
+            u2 = ((e2 - te->bias[2]) << b.ls) >> b.rs;
+            su = u0 + u1 + u2;
+            sq = (u0 * b.q[0] + u1 * b.q[1] + u2 * b.q[2]) >> 30; /* su w_min / w */
+            if (su <= 0 || sq <= 0) continue;
+            z = tgi_sat64((b.wmin * su + sq / 2) / sq);
+            mx = asr64(u0 * b.nq[0][0] + u1 * b.nq[1][0] + u2 * b.nq[2][0], b.sm);
+            my = asr64(u0 * b.nq[0][1] + u1 * b.nq[1][1] + u2 * b.nq[2][1], b.sm);
+            mz = asr64(u0 * b.nq[0][2] + u1 * b.nq[1][2] + u2 * b.nq[2][2], b.sm);
+#if TG_WIDE_STORAGE
+            {
+                tg_real n[3];
+                if (g.depth[i] > 0 && z >= g.depth[i]) continue;
+                if (!unit_q16(mx, my, mz, n)) {
                     n[0] = sf.fallback_normal.x; n[1] = sf.fallback_normal.y; n[2] = sf.fallback_normal.z;
                 }
                 g.depth[i] = z;
                 g.nx[i] = n[0]; g.ny[i] = n[1]; g.nz[i] = n[2];
-                g.sky[i] = 0;
-                hit[col - c0] = 1;
-                passed++;
+                g.material[i] = (uint16_t)sf.material;
             }
-            if (passed) write_surface(&g, &sf, i0 + (size_t)c0, c1 - c0, hit, passed == c1 - c0);
+#else
+            {
+                uint32_t zb = tgi_depth_pack(z);   /* binary32 words order like the depths */
+                if (g.depth[i] && zb >= g.depth[i]) continue;
+                g.depth[i] = zb;
+                g.nm[i] = ((mx | my | mz) ? tgi_oct_pack64(mx, my, mz, TGI_NORMAL_BITS) : sf.fallback_nm) | sf.material;
+            }
+#endif
+            if (g.object) g.object[i] = sf.object;
         }
     }
 }
@@ -668,15 +616,13 @@ static inline plane plane_make(const plane_basis *pb, float a0, float a1, float 
 
 static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const screen_tri *st, const surface *sfp)
 {
-    /* local copies: the byte stores to sky[] may alias anything reached through a pointer */
+    /* local copies: the stores may alias anything reached through a pointer */
     const tgi_gbuffer g = *gbp;
     const surface sf = *sfp;
     plane_basis pb;
     plane pq, pnx, pny, pnz;
     float wmin = st->w[0], q[3];
     int row, col, k, W = g.width;
-    tg_real *depth = g.depth;
-    uint8_t *sky = g.sky;
     if (st->w[1] < wmin) wmin = st->w[1];
     if (st->w[2] < wmin) wmin = st->w[2];
     for (k = 0; k < 3; k++) q[k] = wmin * st->iw[k];
@@ -693,31 +639,28 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
         float mx = pnx.v + pnx.dy * dy + pnx.dx * dx;
         float my = pny.v + pny.dy * dy + pny.dx * dx;
         float mz = pnz.v + pnz.dy * dy + pnz.dx * dx;
-        size_t i0 = (size_t)row * (size_t)W;
-        int c0, c1;
-        for (c0 = xa; c0 < xb; c0 = c1) {
-            uint8_t hit[SPAN_CHUNK];
-            int passed = 0;
-            size_t i = i0 + (size_t)c0;
-            c1 = xb - c0 > SPAN_CHUNK ? c0 + SPAN_CHUNK : xb;
-            for (col = c0; col < c1; col++, i++, qv += pq.dx, mx += pnx.dx, my += pny.dx, mz += pnz.dx) {
-                float len2, r;
-                hit[col - c0] = 0;
-                if (!(qv > 0.0f)) continue;
-                if (!sky[i] && wmin >= qv * depth[i]) continue;
-                len2 = mx * mx + my * my + mz * mz;
-                depth[i] = wmin / qv;
-                if (len2 > 1e-30f) {
-                    r = tgi_rsqrt_fast(len2);
-                    g.nx[i] = mx * r; g.ny[i] = my * r; g.nz[i] = mz * r;
-                } else {
-                    g.nx[i] = sf.fallback_normal.x; g.ny[i] = sf.fallback_normal.y; g.nz[i] = sf.fallback_normal.z;
-                }
-                sky[i] = 0;
-                hit[col - c0] = 1;
-                passed++;
+        size_t i = (size_t)row * (size_t)W + (size_t)xa;
+        for (col = xa; col < xb; col++, i++, qv += pq.dx, mx += pnx.dx, my += pny.dx, mz += pnz.dx) {
+            float len2 = mx * mx + my * my + mz * mz, d;
+            if (!(qv > 0.0f)) continue;
+#if TG_WIDE_STORAGE
+            d = g.depth[i];
+            if (d > 0.0f && wmin >= qv * d) continue;
+            g.depth[i] = wmin / qv;
+            if (len2 > 1e-30f) {
+                float r = tgi_rsqrt_fast(len2);
+                g.nx[i] = mx * r; g.ny[i] = my * r; g.nz[i] = mz * r;
+            } else {
+                g.nx[i] = sf.fallback_normal.x; g.ny[i] = sf.fallback_normal.y; g.nz[i] = sf.fallback_normal.z;
             }
-            if (passed) write_surface(&g, &sf, i0 + (size_t)c0, c1 - c0, hit, passed == c1 - c0);
+            g.material[i] = (uint16_t)sf.material;
+#else
+            d = tgi_depth_unpack(g.depth[i]);   /* a reinterpretation: 0 is sky */
+            if (d > 0.0f && wmin >= qv * d) continue;
+            g.depth[i] = tgi_depth_pack(wmin / qv);
+            g.nm[i] = (len2 > 1e-30f ? tgi_oct_pack(tg_v3(mx, my, mz), TGI_NORMAL_BITS) : sf.fallback_nm) | sf.material;
+#endif
+            if (g.object) g.object[i] = sf.object;
         }
     }
 }
@@ -759,7 +702,7 @@ typedef struct raster_target {
     int32_t half_w16, half_h16;   /* width * 8, height * 8 */
     clip_ctx clip;
     tgi_gbuffer *gb;               /* G-buffer mode */
-    const tgi_material *mat;       /* of the current triangle */
+    int material;                 /* of the current triangle: its index */
     uint16_t object;
     const tg_vec3 *tri_nrm;       /* its three vertex normals */
     int cull_back, flip_back;     /* G-buffer: one-sided / twosided */
@@ -799,12 +742,15 @@ static void draw_snapped(const raster_target *rt, const clip_vertex *v, const tg
     }
     if (rt->gb) {
         surface sf;
-        const tgi_material *m = rt->mat;
-        sf.albedo_r = m->albedo.x; sf.albedo_g = m->albedo.y; sf.albedo_b = m->albedo.z;
-        sf.f0 = m->f0;
-        sf.emit_r = m->emissive.x; sf.emit_g = m->emissive.y; sf.emit_b = m->emissive.z;
         sf.object = rt->object;
         sf.fallback_normal = flip ? tgi_v3_neg(rt->tri_nrm[0]) : rt->tri_nrm[0];
+#if TG_WIDE_STORAGE
+        sf.material = (uint32_t)rt->material;
+        sf.fallback_nm = 0;
+#else
+        sf.material = (uint32_t)rt->material << TGI_MATERIAL_SHIFT;
+        sf.fallback_nm = tgi_oct_pack(sf.fallback_normal, TGI_NORMAL_BITS);
+#endif
         gbuffer_rows(rt->gb, &te, &st, &sf);
     } else depth_rows(&rt->dout, rt->width, &te, &st, rt->clip.mode == MODE_ORTHO);
 }
@@ -921,9 +867,9 @@ void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_
             right &= x > w; left &= x < tg_neg(w); top &= y > w; bottom &= y < tg_neg(w);
         }
         if (right | left | top | bottom) continue;      /* wholly off one side of the screen */
-        rt.mat = &mesh->materials[mesh->tri_material[t]];
-        rt.cull_back = !rt.mat->twosided;
-        rt.flip_back = rt.mat->twosided;
+        rt.material = mesh->tri_material[t];
+        rt.cull_back = !mesh->materials[rt.material].twosided;
+        rt.flip_back = mesh->materials[rt.material].twosided;
         rt.object = mesh->tri_object ? mesh->tri_object[t] : 0;
         rt.tri_nrm = mesh->nrm + 3 * t;
         if (inside) draw_triangle(&rt, v, rt.tri_nrm);

@@ -1,0 +1,113 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * resolve.c - the GI results after the kernel: temporal accumulation at the
+ * kernel's resolution, the filter at quarter resolution, and the resolve
+ * pass, which per pixel filters the results over their 4x4 neighbourhood
+ * (HBIL sec. 3.3-3.4; or upsamples the filtered quarter-res ones), lights
+ * the far field in the bent cone (HBIL sec. 2.2.4) and composes Lo (HBIL
+ * sec. 2.3), writing the filtered results only where an AOV asks for them.
+ * The filter reads the kernel's results in their plane and writes nowhere
+ * else, so no full-size copy of them is kept and any split of the rows gives
+ * the same frame.
+ */
+#include "frame_internal.h"
+#include "../gi/denoise.h"
+#include "../gi/temporal.h"
+#include "../gi/resample.h"
+#include "../light/sh.h"
+#include "../light/compose.h"
+
+/* Exponential accumulation over frames, in place, at the kernel's resolution. */
+void tgi_pass_temporal(tg_frame *f, int y0, int y1)
+{
+    tgi_temporal_params p;
+    const tgi_gresult *res;
+    const tgi_gview *k = tgi_frame_kernel(f, &res, NULL);
+    tgi_temporal_defaults(&p);
+    tgi_temporal_rows(&p, k, res, tgi_frame_quarter(f) ? &f->half_prev : &f->res_prev, &f->prev_geometry,
+                      &f->prev_view, f->frames_rendered == 0, y0, y1);
+}
+
+/* HBIL sec. 3.3-3.4 at quarter resolution: the filtered results the
+ * upsample reads. */
+void tgi_pass_filter_quarter(tg_frame *f, int y0, int y1)
+{
+    tgi_denoise_params p;
+    tgi_denoise_defaults(&p);
+    tgi_denoise_rows(&p, &f->half_view, &f->half_res, &f->half_filtered, y0, y1);
+}
+
+/* What a row of the resolve needs, fixed per call. */
+typedef struct resolve_ctx {
+    tgi_denoise_params filter;
+    int gi, hbil, quarter, far_mode, far_inline;
+    const tgi_rgb *lo;            /* where Lo goes: this frame's colour, or the next bounce's source */
+    const tgi_rgb *far_own;       /* E_far's plane, written here (its AOV) */
+} resolve_ctx;
+
+static void resolve_ctx_init(resolve_ctx *c, const tg_frame *f)
+{
+    int technique_far = f->request.technique == TG_TECH_SSDO || f->request.technique == TG_TECH_BENTCONE;
+    tgi_denoise_defaults(&c->filter);
+    c->gi = (f->needs & TG_NEED_GI_PASS) != 0;
+    c->hbil = c->gi && f->request.technique == TG_TECH_HBIL;
+    c->quarter = tgi_frame_quarter(f);
+    c->far_mode = f->request.far_mode ? TG_FAR_CUBE_F0 : TG_FAR_CONE_SH;
+    c->far_inline = (f->effects & TG_EFFECT_FAR) && !technique_far;
+    c->far_own = c->far_inline && tgi_rgb_present(&f->far) ? &f->far : NULL;
+    c->lo = f->bounce + 1 < f->bounces ? &f->bounce_source : &f->color;
+}
+
+/* The GI results of full-resolution pixel (x, y) as compose and the AOVs use
+ * them: HBIL's filtered (or upsampled), another technique's as they are. */
+static tgi_gr_value results_at(const resolve_ctx *c, const tg_frame *f, int x, int y, size_t i)
+{
+    if (!c->hbil) return tgi_gr_get(&f->res, i);
+    if (c->quarter) return tgi_upsample_pixel(&f->full, &f->half_view, &f->half_filtered, x, y);
+    return tgi_denoise_pixel(&c->filter, &f->full, &f->res, x, y);
+}
+
+/* E = E_direct + E_far + E_near (HBIL sec. 2.3) of a surface pixel. */
+static tg_vec3 irradiance_at(const resolve_ctx *c, const tg_frame *f, size_t i, const tgi_gr_value *v)
+{
+    tg_vec3 e = tg_v3(0, 0, 0), far;
+    int has_bent = c->hbil ? (c->quarter ? tgi_gr_has_bent(&f->half_filtered) : tgi_gr_has_bent(&f->res))
+                           : tgi_gr_has_bent(&f->res);
+    if (tgi_rgb_present(&f->direct)) e = tgi_rgb_get(&f->direct, i);
+    if (c->far_inline) {
+        far = tgi_far_irradiance(f->sh, tgi_gv_normal(&f->full, i), c->gi, v->ao, has_bent, v->bent, c->far_mode);
+        if (c->far_own) tgi_rgb_set(c->far_own, i, far);
+        e = tgi_v3_add(e, far);
+    } else if (tgi_rgb_present(&f->far)) {
+        e = tgi_v3_add(e, tgi_rgb_get(&f->far, i));   /* SSDO's or bent cones' own */
+    }
+    if (c->gi && (f->effects & TG_EFFECT_NEAR)) e = tgi_v3_add(e, v->near);
+    return e;
+}
+
+void tgi_pass_resolve(tg_frame *f, int y0, int y1)
+{
+    resolve_ctx c;
+    int x, y, compose = (f->needs & TG_NEED_COMPOSE) != 0;
+    resolve_ctx_init(&c, f);
+    for (y = y0; y < y1; y++)
+        for (x = 0; x < f->width; x++) {
+            size_t i = tgi_gv_index(&f->full, x, y);
+            tgi_gr_value v;
+            tg_vec3 e;
+            v.ao = TG_ONE; v.bent = v.near = tg_v3(0, 0, 0);
+            if (c.gi) v = results_at(&c, f, x, y, i);
+            if (c.hbil) tgi_gr_put(&f->out, i, &v);   /* the filtered results an AOV asks for */
+            if (tgi_gv_is_sky(&f->full, i)) {
+                if (c.far_own) tgi_rgb_set(c.far_own, i, tg_v3(0, 0, 0));
+                if (!compose) continue;
+                tgi_rgb_set(c.lo, i, tgi_compose_sky(&f->view, &f->scene->env, x, y));
+                if (tgi_rgb_present(&f->irradiance)) tgi_rgb_set(&f->irradiance, i, tg_v3(0, 0, 0));
+                continue;
+            }
+            e = irradiance_at(&c, f, i, &v);
+            if (!compose) continue;
+            if (tgi_rgb_present(&f->irradiance)) tgi_rgb_set(&f->irradiance, i, e);
+            tgi_rgb_set(c.lo, i, tgi_gv_lit(&f->full, i, e));   /* HBIL eq. 14, 19 */
+        }
+}

@@ -1,0 +1,256 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * pack.h - the storage formats of the frame's buffers: the same bits in both
+ * number types (a float frame's buffers and a Q16.16 frame's buffers hold
+ * the same format; each build converts with its own arithmetic, integer only
+ * in Q16.16).
+ *
+ *   depth      32-bit IEEE-754 binary32 bits of the view depth (0: sky).
+ *              Positive floats order like their bits, so a depth test can
+ *              compare the words.  Q16.16 values below 256 round-trip
+ *              exactly; above, to 2^-24 relative.
+ *   unit vector  octahedral (Cigolle et al. 2014, "A Survey of Efficient
+ *              Representations for Independent Unit Vectors", sec. 3.1):
+ *              the unit sphere onto the octahedron |x|+|y|+|z| = 1, the
+ *              lower half folded over the upper, two coordinates in
+ *              [-1, 1] quantized to `bits` each (2x11 for G-buffer normals,
+ *              2x8 for bent normals) on 2^bits - 2 steps, so that 0 and +-1
+ *              (the axes: floors and walls) are exact.
+ *   RGB9E5     three 9-bit mantissas sharing a 5-bit exponent (the
+ *              EXT_texture_shared_exponent format): non-negative linear
+ *              RGB up to 65408, relative step 2^-9 of the largest channel.
+ *              Negative, NaN and -0 store 0; larger values saturate (Q16.16's
+ *              largest, 32768, fits).  RGB9E5_INVALID marks a pixel without
+ *              a value (reads as 0; the encoder never produces it).
+ *   unorm8     [0, 1] in 8 bits (ambient occlusion).
+ */
+#ifndef TG_PACK_H
+#define TG_PACK_H
+
+#include "../core/real.h"
+#include "../core/vec.h"
+
+/* ---- depth: binary32 bits ---- */
+#if TG_FIXED
+static inline uint32_t tgi_depth_pack(tg_real z)
+{
+    uint32_t v = (uint32_t)z, m;
+    int b, e;
+    if (z <= 0) return 0;
+    b = tgi_bit_length64(v);          /* 1..31: z = v 2^-16, v in [2^(b-1), 2^b) */
+    e = b - 1 - 16;                   /* floor(log2(z)) */
+    if (b <= 24) {
+        m = v << (24 - b);            /* exact: 24 significant bits */
+    } else {
+        int s = b - 24;
+        m = (v + (1u << (s - 1))) >> s;
+        if (m >> 24) { m >>= 1; e++; }   /* rounding carried into the next power of two */
+    }
+    return ((uint32_t)(e + 127) << 23) | (m & 0x7FFFFFu);
+}
+static inline tg_real tgi_depth_unpack(uint32_t bits)
+{
+    int e = (int)((bits >> 23) & 0xFF) - 127, s;
+    uint32_t m = (bits & 0x7FFFFFu) | 0x800000u;   /* z = m 2^(e - 23), Q16.16 raw m 2^(e - 7) */
+    if (bits == 0) return 0;
+    s = e - 7;
+    if (s >= 8) return TG_REAL_MAX;                /* >= 2^15: beyond Q16.16 */
+    if (s >= 0) return (tg_real)(m << s);
+    if (s < -24) return 0;
+    return (tg_real)((m + (1u << (-s - 1))) >> -s);
+}
+#else
+typedef union tgi_f32_bits { float f; uint32_t u; } tgi_f32_bits;
+static inline uint32_t tgi_depth_pack(tg_real z)
+{
+    tgi_f32_bits b;
+    if (!(z > 0.0f)) return 0;        /* sky, negative and NaN */
+    b.f = z;
+    return b.u;
+}
+static inline tg_real tgi_depth_unpack(uint32_t bits)
+{
+    tgi_f32_bits b;
+    b.u = bits;
+    return b.f;
+}
+#endif
+
+/* ---- octahedral unit vectors ---- */
+
+/* Quantize one octahedral coordinate p in [-1, 1] (as num / den, |num| <= den)
+ * to 0 .. 2^bits - 2, rounded to nearest. */
+#if TG_FIXED
+static inline uint32_t tgi_oct_quant(int64_t num, int64_t den, int bits)
+{
+    int64_t q = (int64_t)((1u << bits) - 2);
+    return (uint32_t)(((num + den) * q + den) / (2 * den));
+}
+#else
+static inline uint32_t tgi_oct_quant(float p, int bits)
+{
+    float q = (float)((1u << bits) - 2);
+    float u = (p + 1.0f) * 0.5f * q + 0.5f;
+    if (!(u > 0.0f)) return 0;
+    if (u >= q) return (uint32_t)q;
+    return (uint32_t)u;
+}
+#endif
+
+#if TG_FIXED
+/* Vector (x, y, z), integers with |.| < 2^31, to two `bits`-bit
+ * coordinates, u in the low bits, v above it (the zero vector packs as +z). */
+static inline uint32_t tgi_oct_pack64(int64_t x, int64_t y, int64_t z, int bits)
+{
+    int64_t ax = x < 0 ? -x : x, ay = y < 0 ? -y : y, l1 = ax + ay + (z < 0 ? -z : z);
+    if (l1 == 0) { x = 0; y = 0; z = 1; l1 = 1; }
+    if (z < 0) {                      /* fold the lower half: p' = (1 - |p.yx|) sign(p) */
+        int64_t fx = (l1 - ay) * (x < 0 ? -1 : 1), fy = (l1 - ax) * (y < 0 ? -1 : 1);
+        x = fx; y = fy;
+    }
+    return tgi_oct_quant(x, l1, bits) | (tgi_oct_quant(y, l1, bits) << bits);
+}
+#endif
+
+/* Vector m (any length > 0; the zero vector packs as +z) to two `bits`-bit
+ * coordinates, u in the low bits, v above it. */
+static inline uint32_t tgi_oct_pack(tg_vec3 m, int bits)
+{
+#if TG_FIXED
+    return tgi_oct_pack64(m.x, m.y, m.z, bits);
+#else
+    float ax = m.x < 0 ? -m.x : m.x, ay = m.y < 0 ? -m.y : m.y, l1 = ax + ay + (m.z < 0 ? -m.z : m.z);
+    float x, y, r;
+    if (!(l1 > 0.0f) || l1 > TG_REAL_MAX) return tgi_oct_pack(tg_v3(0, 0, TG_ONE), bits);
+    r = 1.0f / l1;
+    x = m.x * r; y = m.y * r;
+    if (m.z < 0.0f) {
+        float fx = (1.0f - ay * r) * (m.x < 0.0f ? -1.0f : 1.0f), fy = (1.0f - ax * r) * (m.y < 0.0f ? -1.0f : 1.0f);
+        x = fx; y = fy;
+    }
+    return tgi_oct_quant(x, bits) | (tgi_oct_quant(y, bits) << bits);
+#endif
+}
+
+#if TG_FIXED
+static inline tg_real tgi_oct_scale(int32_t c, uint64_t r, int shift)
+{
+    uint64_t a = (uint64_t)(c < 0 ? -(int64_t)c : c) * r >> shift;
+    return c < 0 ? -(tg_real)a : (tg_real)a;
+}
+#endif
+
+/* Unit vector of two `bits`-bit octahedral coordinates.  The fold and the
+ * lengths are integers (the same in both builds); only the final
+ * normalisation is in the number type. */
+static inline tg_vec3 tgi_oct_unpack(uint32_t w, int bits)
+{
+    int32_t q = (int32_t)((1u << bits) - 2), mask = (int32_t)((1u << bits) - 1);
+    int32_t x = 2 * (int32_t)(w & (uint32_t)mask) - q, y = 2 * (int32_t)((w >> bits) & (uint32_t)mask) - q;
+    int32_t ax = x < 0 ? -x : x, ay = y < 0 ? -y : y, z = q - ax - ay;
+    tg_vec3 n;
+    if (z < 0) {                      /* the folded lower half */
+        int32_t fx = (q - ay) * (x < 0 ? -1 : 1), fy = (q - ax) * (y < 0 ? -1 : 1);
+        x = fx; y = fy;
+    }
+#if TG_FIXED
+    {
+        /* 1/|(x, y, z)| by the integer rsqrt: |.|^2 < 3 2^(2 bits), x30 in [2^30, 2^32) */
+        uint64_t len2 = (uint64_t)((int64_t)x * x + (int64_t)y * y + (int64_t)z * z), r;
+        int b = tgi_bit_length64(len2), k = (32 - b) >> 1, shift = 29 - k;
+        r = tgi_rsqrt_q30_fast(len2 << (2 * k));
+        /* component c / |.| in Q16.16: c r 2^-shift, truncated toward 0 (odd in c) */
+        n.x = tgi_oct_scale(x, r, shift);
+        n.y = tgi_oct_scale(y, r, shift);
+        n.z = tgi_oct_scale(z, r, shift);
+    }
+#else
+    {
+        float fx = (float)x, fy = (float)y, fz = (float)z;
+        float r = tgi_rsqrt_fast(fx * fx + fy * fy + fz * fz);
+        n.x = fx * r; n.y = fy * r; n.z = fz * r;
+    }
+#endif
+    return n;
+}
+
+/* ---- RGB9E5: shared-exponent radiance ---- */
+#define TGI_RGB9E5_INVALID 0xF8000000u    /* exponent 31, mantissas 0: "no value" */
+
+#if TG_FIXED
+static inline uint32_t tgi_rgb9e5_mant(tg_real c, int e)
+{
+    uint32_t q = c > 0 ? (uint32_t)c : 0;      /* raw Q16.16; a mantissa is c / 2^(e - 8) raw */
+    if (e >= 8) return e - 8 >= 1 ? (q + (1u << (e - 9))) >> (e - 8) : q;
+    return q << (8 - e);
+}
+static inline uint32_t tgi_rgb9e5_pack(tg_vec3 c)
+{
+    tg_real mx = tg_max(tg_max(c.x, c.y), c.z);
+    int e;
+    if (mx <= 0) return 0;
+    e = tgi_bit_length64((uint32_t)mx) - 1;     /* exponent field: floor(log2) + 16 */
+    if (tgi_rgb9e5_mant(mx, e) >= 512) e++;
+    return tgi_rgb9e5_mant(c.x, e) | (tgi_rgb9e5_mant(c.y, e) << 9) | (tgi_rgb9e5_mant(c.z, e) << 18)
+           | ((uint32_t)e << 27);
+}
+static inline tg_real tgi_rgb9e5_chan(uint32_t m, int e)
+{
+    if (e >= 8) return (uint64_t)m << (e - 8) > (uint64_t)TG_REAL_MAX ? TG_REAL_MAX : (tg_real)(m << (e - 8));
+    return (tg_real)((m + (1u << (7 - e))) >> (8 - e));
+}
+#else
+static inline float tgi_pow2f(int k) { tgi_f32_bits b; b.u = (uint32_t)(k + 127) << 23; return b.f; }
+static inline uint32_t tgi_rgb9e5_mant(float c, float inv_step)
+{
+    float m = c * inv_step + 0.5f;
+    return c > 0.0f ? (uint32_t)m : 0;
+}
+static inline uint32_t tgi_rgb9e5_pack(tg_vec3 c)
+{
+    const float top = 65408.0f;               /* (511 / 512) 2^16 */
+    float r = c.x > top ? top : c.x, g = c.y > top ? top : c.y, b = c.z > top ? top : c.z, mx;
+    tgi_f32_bits bits;
+    int e;
+    if (!(r > 0.0f)) r = 0.0f;
+    if (!(g > 0.0f)) g = 0.0f;
+    if (!(b > 0.0f)) b = 0.0f;
+    mx = r > g ? r : g;
+    if (b > mx) mx = b;
+    if (mx < 5.9604645e-8f) return 0;          /* below half the smallest step, 2^-24 */
+    bits.f = mx;
+    e = (int)((bits.u >> 23) & 0xFF) - 127 + 16;   /* floor(log2) + 16, >= -8 */
+    if (e < 0) e = 0;
+    if (tgi_rgb9e5_mant(mx, tgi_pow2f(24 - e)) >= 512) e++;
+    return tgi_rgb9e5_mant(r, tgi_pow2f(24 - e)) | (tgi_rgb9e5_mant(g, tgi_pow2f(24 - e)) << 9)
+           | (tgi_rgb9e5_mant(b, tgi_pow2f(24 - e)) << 18) | ((uint32_t)e << 27);
+}
+static inline tg_real tgi_rgb9e5_chan(uint32_t m, int e) { return (float)m * tgi_pow2f(e - 24); }
+#endif
+
+/* Linear RGB of a packed word (TGI_RGB9E5_INVALID reads as 0). */
+static inline tg_vec3 tgi_rgb9e5_unpack(uint32_t w)
+{
+    int e = (int)(w >> 27);
+    tg_vec3 c;
+    c.x = tgi_rgb9e5_chan(w & 511u, e);
+    c.y = tgi_rgb9e5_chan((w >> 9) & 511u, e);
+    c.z = tgi_rgb9e5_chan((w >> 18) & 511u, e);
+    return c;
+}
+
+/* ---- unorm8: [0, 1] in a byte ---- */
+static inline uint8_t tgi_unorm8_pack(tg_real a)
+{
+    return (uint8_t)tg_round_int(tg_mul(tg_saturate(a), TG_R(255.0f)));
+}
+static inline tg_real tgi_unorm8_unpack(uint8_t q)
+{
+#if TG_FIXED
+    return (tg_real)((uint32_t)q * 257u + ((uint32_t)q >> 7));   /* q 65536 / 255, rounded */
+#else
+    return (float)q * (1.0f / 255.0f);
+#endif
+}
+
+#endif

@@ -1,0 +1,183 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * test_pack.c - the storage formats (raster/pack.h): the same bits in both
+ * number types, round trips within the format's step, saturation instead of
+ * wrapping, nothing non-finite.
+ */
+#include <stdlib.h>
+#include "check.h"
+#include "raster/pack.h"
+
+static tg_real rv(double v) { return tg_from_float((float)v); }
+static double dv(tg_real v) { return (double)tg_to_float(v); }
+
+/* A deterministic pseudo-random number in [0, 1). */
+static double rnd(uint32_t *s)
+{
+    *s = *s * 1664525u + 1013904223u;
+    return (double)(*s >> 8) / 16777216.0;
+}
+
+/* Both builds write the IEEE bits of the same value. */
+TEST(depth_is_binary32_in_both_builds)
+{
+    CHECK(tgi_depth_pack(TG_ONE) == 0x3F800000u, "1.0 -> 0x%08x", (unsigned)tgi_depth_pack(TG_ONE));
+    CHECK(tgi_depth_pack(TG_R(1.5f)) == 0x3FC00000u, "1.5 -> 0x%08x", (unsigned)tgi_depth_pack(TG_R(1.5f)));
+    CHECK(tgi_depth_pack(TG_R(0.25f)) == 0x3E800000u, "0.25 -> 0x%08x", (unsigned)tgi_depth_pack(TG_R(0.25f)));
+    CHECK(tgi_depth_pack(TG_R(1000.0f)) == 0x447A0000u, "1000 -> 0x%08x", (unsigned)tgi_depth_pack(TG_R(1000.0f)));
+    CHECK(tgi_depth_pack(0) == 0 && tgi_depth_pack(TG_R(-2.0f)) == 0, "sky and negative depths pack as 0");
+    CHECK(tgi_depth_unpack(0) == 0, "0 is sky");
+}
+
+/* Round trips: exact in float, exact below 256 in Q16.16 and within 2^-24
+ * above; the packed words order like the depths (the raster's depth test). */
+TEST(depth_round_trip_and_order)
+{
+    uint32_t s = 7, prev_bits = 0;
+    int i, order_ok = 1, exact_ok = 1;
+    double worst = 0;
+    tg_real prev = 0;
+    for (i = 0; i < 200000; i++) {
+        double d = exp(-8.0 + 15.0 * rnd(&s));   /* 3e-4 .. 1.1e3 */
+        tg_real z = rv(d), back;
+        uint32_t b = tgi_depth_pack(z);
+        if (z <= 0) continue;
+        back = tgi_depth_unpack(b);
+        if (z < TG_R(256.0f) && back != z) exact_ok = 0;
+        if (fabs(dv(back) - dv(z)) / dv(z) > worst) worst = fabs(dv(back) - dv(z)) / dv(z);
+        if ((z > prev) != (b > prev_bits) && z != prev) order_ok = 0;
+        prev = z; prev_bits = b;
+    }
+    CHECK(exact_ok, "a depth below 256 does not round-trip exactly");
+    CHECK(worst <= 6e-8, "worst relative round-trip error %.3g", worst);
+    CHECK(order_ok, "packed depths do not order like the depths");
+#if TG_FIXED
+    CHECK(tgi_depth_unpack(tgi_depth_pack(TG_REAL_MAX)) == TG_REAL_MAX, "the largest Q16.16 depth saturates, never wraps");
+    CHECK(tgi_depth_unpack(0x7F000000u) == TG_REAL_MAX, "a float depth beyond Q16.16 saturates");
+#endif
+}
+
+static double angle_deg(tg_vec3 a, double bx, double by, double bz)
+{
+    double d = (dv(a.x) * bx + dv(a.y) * by + dv(a.z) * bz) /
+               sqrt(dv(a.x) * dv(a.x) + dv(a.y) * dv(a.y) + dv(a.z) * dv(a.z));
+    if (d > 1) d = 1;
+    return acos(d) * 180.0 / 3.14159265358979;
+}
+
+/* Octahedral unit vectors: every direction within the step's angle, unit
+ * length, axis vectors exactly, the same words in both builds. */
+static void oct_round_trip(int bits, double max_deg)
+{
+    uint32_t s = 11;
+    double worst = 0, worst_len = 0;
+    int i;
+    for (i = 0; i < 100000; i++) {
+        double z = 2 * rnd(&s) - 1, phi = 6.28318530718 * rnd(&s), r = sqrt(1 - z * z);
+        double x = r * cos(phi), y = r * sin(phi);
+        tg_vec3 n = tgi_oct_unpack(tgi_oct_pack(tg_v3(rv(x), rv(y), rv(z)), bits), bits);
+        double a = angle_deg(n, x, y, z), len = sqrt(dv(n.x) * dv(n.x) + dv(n.y) * dv(n.y) + dv(n.z) * dv(n.z));
+        if (a > worst) worst = a;
+        if (fabs(len - 1) > worst_len) worst_len = fabs(len - 1);
+    }
+    CHECK(worst <= max_deg, "2x%d: worst angle %.4f deg (bound %.4f)", bits, worst, max_deg);
+    CHECK(worst_len <= 1e-4, "2x%d: decoded length off by %.3g", bits, worst_len);
+}
+
+TEST(octahedral_normals)
+{
+    static const int axes[6][3] = { { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 }, { 0, 0, 1 }, { 0, 0, -1 } };
+    int k;
+    oct_round_trip(11, 0.125);
+    oct_round_trip(8, 1.0);
+    for (k = 0; k < 6; k++) {
+        tg_vec3 a = tg_v3(tg_from_int(axes[k][0]), tg_from_int(axes[k][1]), tg_from_int(axes[k][2]));
+        tg_vec3 b = tgi_oct_unpack(tgi_oct_pack(a, 11), 11);
+        CHECK(angle_deg(b, axes[k][0], axes[k][1], axes[k][2]) == 0, "axis %d comes back at %.4f deg", k,
+              angle_deg(b, axes[k][0], axes[k][1], axes[k][2]));
+    }
+    /* the same words in both builds: +x, a diagonal, below the horizon, and the zero vector (as +z) */
+    CHECK(tgi_oct_pack(tg_v3(TG_ONE, 0, 0), 11) == (2046u | (1023u << 11)), "+x packs as 0x%x",
+          (unsigned)tgi_oct_pack(tg_v3(TG_ONE, 0, 0), 11));
+    CHECK(tgi_oct_pack(tg_v3(TG_ONE, TG_ONE, TG_ONE), 11) == (1364u | (1364u << 11)), "(1,1,1) packs as 0x%x",
+          (unsigned)tgi_oct_pack(tg_v3(TG_ONE, TG_ONE, TG_ONE), 11));
+    CHECK(tgi_oct_pack(tg_v3(TG_R(-0.5f), TG_R(0.25f), TG_R(-0.25f)), 8) == (32u | (191u << 8)),
+          "(-0.5, 0.25, -0.25) packs as 0x%x", (unsigned)tgi_oct_pack(tg_v3(TG_R(-0.5f), TG_R(0.25f), TG_R(-0.25f)), 8));
+    CHECK(tgi_oct_pack(tg_v3(0, 0, 0), 8) == tgi_oct_pack(tg_v3(0, 0, TG_ONE), 8), "the zero vector packs as +z");
+}
+
+/* RGB9E5: within half a step of the largest channel's exponent, the same
+ * words in both builds, saturating, never negative or non-finite. */
+TEST(shared_exponent_rgb)
+{
+    uint32_t s = 3;
+    int i, ok = 1, ok_exp = 1;
+    double worst = 0;
+    for (i = 0; i < 100000; i++) {
+        double m = exp(-10.0 + 20.0 * rnd(&s));   /* 4.5e-5 .. 2.2e4 */
+        double c[3], step;
+        uint32_t w;
+        tg_vec3 v, back;
+        int k;
+        for (k = 0; k < 3; k++) c[k] = m * rnd(&s);
+        v = tg_v3(rv(c[0]), rv(c[1]), rv(c[2]));
+        w = tgi_rgb9e5_pack(v);
+        back = tgi_rgb9e5_unpack(w);
+        m = dv(tg_max(tg_max(v.x, v.y), v.z));
+        if (m >= 1.0 / 65536) ok_exp &= w >> 27 == (uint32_t)floor(log2(m)) + 16u || w >> 27 == (uint32_t)floor(log2(m)) + 17u;
+        step = pow(2.0, (double)(w >> 27) - 24);  /* 9-bit mantissas of the shared exponent */
+        for (k = 0; k < 3; k++) {
+            double in = k == 0 ? dv(v.x) : k == 1 ? dv(v.y) : dv(v.z);
+            double out = k == 0 ? dv(back.x) : k == 1 ? dv(back.y) : dv(back.z);
+            double e = fabs(out - in) / step;
+            if (e > worst) worst = e;
+            if (!(out >= 0)) ok = 0;
+        }
+    }
+    CHECK(worst <= 0.5 + 1e-3, "worst error %.4f steps", worst);
+    CHECK(ok_exp, "the shared exponent is not the largest channel's (or one more, when it rounds up)");
+    CHECK(ok, "a channel came back negative or NaN");
+    CHECK(tgi_rgb9e5_pack(tg_v3(TG_ONE, TG_R(0.5f), TG_R(0.25f))) == (256u | (128u << 9) | (64u << 18) | (16u << 27)),
+          "(1, 0.5, 0.25) packs as 0x%08x", (unsigned)tgi_rgb9e5_pack(tg_v3(TG_ONE, TG_R(0.5f), TG_R(0.25f))));
+    CHECK(tgi_rgb9e5_pack(tg_v3(TG_R(-1.0f), 0, 0)) == 0, "negative radiance stores 0");
+    {
+        tg_vec3 big = tgi_rgb9e5_unpack(tgi_rgb9e5_pack(tg_v3(TG_REAL_MAX, TG_REAL_MAX, 0)));
+        CHECK(big.x > TG_R(30000.0f) && big.x == big.y && big.z == 0, "the largest value saturates: %g", dv(big.x));
+        CHECK(tgi_rgb9e5_pack(tg_v3(TG_REAL_MAX, 0, 0)) != TGI_RGB9E5_INVALID, "saturation never gives the invalid mark");
+    }
+    {
+        tg_vec3 inv = tgi_rgb9e5_unpack(TGI_RGB9E5_INVALID);
+        CHECK(inv.x == 0 && inv.y == 0 && inv.z == 0, "the invalid mark reads as 0");
+    }
+#if !TG_FIXED
+    {
+        float nan = 0.0f / 0.0f;
+        CHECK(tgi_rgb9e5_pack(tg_v3(nan, 1.0f / 0.0f, 1.0f)) == tgi_rgb9e5_pack(tg_v3(0, 65408.0f, 1.0f)),
+              "NaN stores 0, infinity saturates");
+    }
+#endif
+}
+
+TEST(unorm8_ao)
+{
+    int q, ok = 1;
+    for (q = 0; q < 256; q++) {
+        tg_real a = tgi_unorm8_unpack((uint8_t)q);
+        if (tgi_unorm8_pack(a) != q) ok = 0;
+        if (fabs(dv(a) - q / 255.0) > 1e-5) ok = 0;
+    }
+    CHECK(ok, "a byte does not round-trip");
+    CHECK(tgi_unorm8_unpack(255) == TG_ONE && tgi_unorm8_unpack(0) == 0, "0 and 1 are exact");
+    CHECK(tgi_unorm8_pack(TG_R(2.0f)) == 255 && tgi_unorm8_pack(TG_R(-1.0f)) == 0, "AO saturates to [0, 1]");
+    CHECK(tgi_unorm8_pack(TG_R(0.5f)) == 128, "0.5 packs as %d", tgi_unorm8_pack(TG_R(0.5f)));
+}
+
+int main(void)
+{
+    RUN(depth_is_binary32_in_both_builds);
+    RUN(depth_round_trip_and_order);
+    RUN(octahedral_normals);
+    RUN(shared_exponent_rgb);
+    RUN(unorm8_ao);
+    return check_summary();
+}
