@@ -359,7 +359,10 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #define TG_DEFAULT_SLICES 2             /* HBIL sec. 3.3: 2 slices per pixel */
 #define TG_DEFAULT_SAMPLES 16
 #define TG_DEFAULT_BOUNCES 1
-#define TG_DEFAULT_RADIUS 1             /* world units, when neither request nor scene gives one */
+#define TG_DEFAULT_RADIUS 1             /* world units, for a scene without extent (neither request
+                                           nor scene giving one: see TG_RADIUS_ENV_DIVISOR) */
+#define TG_RADIUS_ENV_DIVISOR 30        /* a scene without a gi radius gets its bounds' diagonal
+                                           without an environment, diagonal / this with one */
 #define TG_DEFAULT_SHADOW_MAP 512       /* texels per side */
 #define TG_DEFAULT_WIDTH 320
 #define TG_DEFAULT_HEIGHT 240

@@ -49,8 +49,7 @@ static const char scene_cornell[] =
     "quad p0 2.65 0 2.96  p1 3.14 0 4.56  p2 3.14 3.3 4.56  p3 2.65 3.3 2.96  material white\n"
     "quad p0 3.14 0 4.56  p1 4.72 0 4.06  p2 4.72 3.3 4.06  p3 3.14 3.3 4.56  material white\n"
     "quad p0 4.72 0 4.06  p1 4.23 0 2.47  p2 4.23 3.3 2.47  p3 4.72 3.3 4.06  material white\n"
-    "light point pos 2.78 5.3 2.795  color 1 0.85 0.65  intensity 18  shadows\n"
-    "gi radius 2.5\n";
+    "light point pos 2.78 5.3 2.795  color 1 0.85 0.65  intensity 18  shadows\n";
 
 static const char scene_spheres[] =
     "# Spheres resting on a floor under the sun and a sky.\n"
