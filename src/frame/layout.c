@@ -288,7 +288,7 @@ static void group_temporal(layout *l, tg_frame *f)
 
 static void group_bvh(layout *l, tg_frame *f)
 {
-    if (f->request.technique != TG_TECH_REFERENCE) return;
+    if (TG_NO_REFERENCE || f->request.technique != TG_TECH_REFERENCE) return;
     f->bvh_scratch_bytes = tgi_bvh_bytes(f->scene->tri_count);
     f->bvh_scratch = take(l, "reference BVH", f->bvh_scratch_bytes, 1);
 }

@@ -9,6 +9,8 @@
 #include "shadowview.h"
 #include "../scene/anim.h"
 
+#if !TG_NO_SHADOW_MAPS /* the whole file is left out with TG_NO_SHADOW_MAPS=1 (tinygi.h "FEATURE SWITCHES") */
+
 #define POLY_MAX 24                    /* a quad or triangle cut by up to 17 planes */
 #define APEX_NEAR TG_R(0.001f)         /* the lookup's own nearest distance (lit nearer) */
 #define PLANE_MAX_TAN TG_R(1.5f)       /* light-plane coordinates kept within 1.5 x the face */
@@ -405,3 +407,5 @@ int tgi_shadow_choose(size_t map_bytes, size_t bvh_bytes, size_t pixels)
         return TG_SHADOW_BY_MAP;
     return bvh_bytes < map_bytes ? TG_SHADOW_BY_RAYS : TG_SHADOW_BY_MAP;
 }
+
+#endif /* !TG_NO_SHADOW_MAPS */

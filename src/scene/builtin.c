@@ -7,6 +7,7 @@
 #include <string.h>
 #include "../tinygi.h"
 
+#if !TG_NO_BUILTIN_SCENES /* the scenes' text is left out with TG_NO_BUILTIN_SCENES=1 */
 static const char scene_plane[] =
     "# A large floor seen at an angle under a sky.\n"
     "camera pos 0 3 12  target 0 0 0  fov 60\n"
@@ -128,3 +129,19 @@ const char *tg_builtin_name(int i)
 {
     return i >= 0 && i < BUILTIN_COUNT ? builtins[i].name : NULL;
 }
+
+#else /* TG_NO_BUILTIN_SCENES: no scene has a name */
+
+const char *tg_builtin_scene(const char *name)
+{
+    (void)name;
+    return NULL;
+}
+
+const char *tg_builtin_name(int i)
+{
+    (void)i;
+    return NULL;
+}
+
+#endif
