@@ -15,7 +15,9 @@
 # FPU (Cortex-M4F, -mfpu=fpv4-sp-d16 -mfloat-abi=hard).
 #
 #   SIZE_LTO=1   also link with -flto (one more table)
-#   SIZE_TOP=N   then list the N largest functions of each Q16.16 program
+#   SIZE_TOP=N   then list, for each configuration's Q16.16 program (without
+#                -flto), the N largest source files (tools/size_files.awk
+#                on the link map) and the N largest functions
 #                (arm-none-eabi-nm --size-sort)
 #   SIZE_BUILD=dir  where to build (default build-size)
 # Needs arm-none-eabi-gcc (`make cross-install` installs it).
@@ -67,8 +69,9 @@ link_app() {
     [ "$want" = ao ] && flags="$flags -DTG_SIZE_AO_ONLY=1"
     app=$dir/size_app-$num.elf
     # shellcheck disable=SC2086
-    $CC $flags -fno-lto -fno-tree-loop-distribute-patterns -c $BM/libc_mini.c -o "$dir/libc_mini-$num.o" &&
-    $CC $flags -ffreestanding -nostdlib -Isrc -e tgs_start -Wl,--gc-sections tools/size_app.c "$lib" \
+    $CC $flags -fno-lto -fno-tree-loop-distribute-patterns -c $BM/libc_mini.c -o "$dir/libc_mini-$num.o" \
+        >>"$dir.log" 2>&1 &&
+    $CC $flags -ffreestanding -nostdlib -Isrc -e tgs_start -Wl,--gc-sections -Wl,-Map="$app.map" tools/size_app.c "$lib" \
         "$dir/libc_mini-$num.o" -lgcc -o "$app" >>"$dir.log" 2>&1 ||
         { echo "size-table: linking $app failed, see $dir.log" >&2; return 1; }
     arm-none-eabi-size -A "$app" | awk '$1 == ".text" {t = $2} $1 == ".rodata" || $1 == ".data" {r += $2}
@@ -107,8 +110,10 @@ table "" "#### Linked with --gc-sections" || exit 1
 if [ "$LTO" = 1 ]; then table "-flto" "#### ... and -flto" || exit 1; fi
 if [ "$TOP" -gt 0 ]; then
     for i in "${!CONFIGS[@]}"; do
+        echo "#### largest files, Q16.16: ${CONFIGS[$i]%%|*}"
+        awk -f tools/size_files.awk "$(cat "$OUT/c$i-fixed/app-fixed").map" | sort -rn | head -n "$TOP"
         echo "#### largest functions, Q16.16: ${CONFIGS[$i]%%|*}"
-        arm-none-eabi-nm --size-sort -S "$(cat "$OUT/c$i-fixed/app-fixed")" | grep -i ' t ' | tail -n "$TOP" |
-            awk '{printf "  %6d  %s\n", strtonum("0x" $2), $4}' | sort -rn
+        arm-none-eabi-nm --size-sort -S -t d "$(cat "$OUT/c$i-fixed/app-fixed")" | grep -i ' t ' |
+            tail -n "$TOP" | awk '{printf "  %6d  %s\n", $2, $4}' | sort -rn
     done
 fi
