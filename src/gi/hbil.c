@@ -475,7 +475,7 @@ void tgi_hbil_interleaved_rows(const tgi_hbil_params *p, const tgi_gview *k, con
             tgi_hbil_params ps = *p;
             tgi_gview sub;
             tgi_gresult res;
-            tgi_rgb src = { NULL };
+            tgi_rgb src = tgi_rgb_none();
             int sw, sh;
             size_t o;
             tgi_interleave_sub_rect(k->width, k->height, i, j, &sw, &sh, &o);
