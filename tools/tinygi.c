@@ -482,8 +482,11 @@ static int load_scene_text(const char *scene, char **owned, const char **text, s
         *text = tg_builtin_scene(scene + 8);
         if (!*text) {
             char list[512];
-            usage_error("unknown built-in scene '%s' (expected builtin: and one of %s)",
-                        scene + 8, join_names(list, sizeof list, builtin_name_i, 1000));
+            if (!tg_builtin_name(0))
+                usage_error("built-in scenes are left out of this build (TG_NO_BUILTIN_SCENES=1)");
+            else
+                usage_error("unknown built-in scene '%s' (expected builtin: and one of %s)",
+                            scene + 8, join_names(list, sizeof list, builtin_name_i, 1000));
             return EXIT_INPUT;
         }
         *size = strlen(*text);
