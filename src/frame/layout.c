@@ -100,12 +100,6 @@ static void take_results(layout *l, tgi_gresult *r, size_t n, int bent, int near
     if (!m) memset(r, 0, sizeof *r);
 }
 
-/* The kernel's results at its own resolution: AO, bent normal, near field. */
-static void take_kernel_results(layout *l, tgi_gresult *r, size_t n, int near, const char *name)
-{
-    take_results(l, r, n, 1, near, name);
-}
-
 /* The kernel's image: full size, or half width and height (quarter res). */
 static void kernel_size(const tg_frame *f, int *w, int *h, size_t *n)
 {
@@ -249,17 +243,6 @@ static void group_half(layout *l, tg_frame *f)
     if (near_field(f)) take_rgb(l, "quarter-res source radiance [" FMT_RGB "]", n, &f->half_source);
 }
 
-static void group_split(layout *l, tg_frame *f)
-{
-    int near = near_field(f), w, h;
-    size_t n;
-    if (!tgi_frame_interleaved(f)) return;
-    kernel_size(f, &w, &h, &n);
-    take_gbuffer_planes(l, &f->split, f->scene, w, h, "4x4 split: G-buffer [" FMT_G "]");
-    if (near) take_rgb(l, "4x4 split: source radiance [" FMT_RGB "]", n, &f->split_source);
-    take_kernel_results(l, &f->split_res, n, near, "4x4 split: kernel output");
-}
-
 /* The filtered quarter-res results the upsample reads. */
 static void group_filter(layout *l, tg_frame *f)
 {
@@ -322,7 +305,7 @@ static void group_irradiance(layout *l, tg_frame *f)
 static void (*const group_layout[TGI_BUF_GROUPS])(layout *l, tg_frame *f) = {
     group_pose, group_gbuffer, group_motion, group_shadow_maps, group_direct,
     group_source, group_history, group_reproject, group_results, group_half,
-    group_split, group_filter, group_temporal, group_bvh, group_far,
+    group_filter, group_temporal, group_bvh, group_far,
     group_color, group_irradiance
 };
 

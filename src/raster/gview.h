@@ -219,6 +219,8 @@ typedef struct tgi_rgb {
 #endif
     const tgi_gbuffer *lit;        /* non-NULL: reads are tgi_gb_lit of these surfaces */
     size_t lit_at;                 /* pixel i of the plane is pixel lit_at + i of lit */
+    int lit_rounded;               /* lit reads rounded to the plane's format, as a copy
+                                      of the lit values into such a plane would hold them */
 } tgi_rgb;
 
 #if TG_WIDE_STORAGE
@@ -233,7 +235,12 @@ static inline void tgi_rgb_set(const tgi_rgb *c, size_t i, tg_vec3 v) { c->p[i] 
 static inline tg_vec3 tgi_rgb_get(const tgi_rgb *c, size_t i)
 {
     tg_vec3 v = tgi_rgb_stored(c, i);
-    return c->lit ? tgi_gb_lit(c->lit, c->lit_at + i, v) : v;
+    if (!c->lit) return v;
+    v = tgi_gb_lit(c->lit, c->lit_at + i, v);
+#if !TG_WIDE_STORAGE
+    if (c->lit_rounded) v = tgi_rgb9e5_unpack(tgi_rgb9e5_pack(v));
+#endif
+    return v;
 }
 /* The plane seen from index `start` on (absent stays absent). */
 static inline tgi_rgb tgi_rgb_from(const tgi_rgb *c, size_t start)
