@@ -169,6 +169,13 @@ compilers:
 golden: all
 	@GOLDEN_UPDATE=1 BUILD=$(BUILD) bash tests/golden_test.sh | tail -n 1
 
+# The README's memory tables ("Memory per frame"), from the plans the core makes.
+$(BUILD)/memory_scene: tools/memory_scene.c $(BUILD)/libtinygi.a
+	$(CC) $(CFLAGS_ALL) -Isrc $< $(BUILD)/libtinygi.a -o $@ $(LDLIBS_HOST)
+memory-table: $(BUILD)/tinygi $(BUILD)/memory_scene
+	@bash tools/memory_table.sh --readme README.md $(BUILD)
+.PHONY: memory-table
+
 -include platform/cross.mk
 -include platform/bench.mk
 -include platform/sanitize.mk

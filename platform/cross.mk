@@ -43,13 +43,13 @@ CROSS_AOVS    ?= color,depth,normal,albedo,ao,bent,cone,near,far,direct,irradian
 CROSS_SHADOW  ?= 64
 # the run of every target (the Linux ones render only this one)
 CROSS_RUN     ?= size=$(CROSS_SIZE),frames=$(CROSS_FRAMES),shadow=$(CROSS_SHADOW),aovs=$(subst $(comma),+,$(CROSS_AOVS)),$(subst $(space),$(comma),$(strip $(CROSS_SCENES)))
-CROSS_M3_RUNS   ?= $(CROSS_RUN)
+CROSS_M3_RUNS   ?= $(CROSS_RUN) size=320x240,frames=2,shadow=64,aovs=color,cornell
 CROSS_M4F_RUNS  ?= $(CROSS_RUN)
 CROSS_RV32_RUNS ?= $(CROSS_RUN)
 CROSS_M0MPS2_RUNS ?= $(CROSS_RUN)
 # 16 KB of RAM: a full-colour 64x48 frame cannot fit
-CROSS_M0_RUNS   ?= size=4x3,frames=1,shadow=8,aovs=color,cornell size=6x4,frames=1,shadow=8,aovs=ao+depth+normal,cornell
-CROSS_M3_ARENA   ?= 2097152
+CROSS_M0_RUNS   ?= size=12x9,frames=2,shadow=8,aovs=color,cornell size=24x18,frames=1,shadow=8,aovs=ao+depth+normal,cornell
+CROSS_M3_ARENA   ?= 2359296
 CROSS_M4F_ARENA  ?= 2097152
 CROSS_RV32_ARENA ?= 2097152
 CROSS_M0_ARENA   ?= 10496

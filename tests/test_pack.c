@@ -2,11 +2,12 @@
 /*
  * test_pack.c - the storage formats (raster/pack.h): the same bits in both
  * number types, round trips within the format's step, saturation instead of
- * wrapping, nothing non-finite.
+ * wrapping, nothing non-finite; the G-buffer of a frame that reads no
+ * material (gview.h): 6 bytes a pixel, the normal within 2x8's step.
  */
 #include <stdlib.h>
 #include "check.h"
-#include "raster/pack.h"
+#include "raster/gview.h"
 
 static tg_real rv(double v) { return tg_from_float((float)v); }
 static double dv(tg_real v) { return (double)tg_to_float(v); }
@@ -172,6 +173,47 @@ TEST(unorm8_ao)
     CHECK(tgi_unorm8_pack(TG_R(0.5f)) == 128, "0.5 packs as %d", tgi_unorm8_pack(TG_R(0.5f)));
 }
 
+/* A G-buffer without material (tgi_gbuffer_carve_geometry, an AO-only
+ * frame's): depth as stored, the normal within the 2x8 step, no material
+ * (albedo, F0, emissive and the light sent read 0), copies keep it. */
+TEST(geometry_gbuffer_without_material)
+{
+    tgi_material mats[2];
+    tgi_gbuffer g, h;
+    tgi_gview v, w;
+    size_t bytes = tgi_gbuffer_carve_geometry(&g, 4, 3, NULL), full = tgi_gbuffer_carve(&h, 4, 3, NULL);
+    void *mem = calloc(bytes, 1), *mem2 = calloc(bytes, 1);
+    tg_vec3 n = tg_v3(TG_R(0.48f), TG_R(-0.6f), TG_R(0.64f)), back;
+    double a;
+    memset(mats, 0, sizeof mats);
+    mats[1].albedo = tg_v3(TG_R(0.5f), TG_R(0.5f), TG_R(0.5f));
+    mats[1].f0 = TG_R(0.25f);
+#if TG_WIDE_STORAGE
+    CHECK(bytes == full, "wide storage keeps every plane (%lu vs %lu bytes)", (unsigned long)bytes, (unsigned long)full);
+#else
+    CHECK(bytes == 48 + 32 && full == 48 + 48, "12 pixels: %lu bytes (depth 48 + normal 24, each to 16), full %lu",
+          (unsigned long)bytes, (unsigned long)full);
+#endif
+    tgi_gbuffer_carve_geometry(&g, 4, 3, mem);
+    tgi_gbuffer_carve_geometry(&h, 4, 3, mem2);
+    g.materials = h.materials = mats;
+    tgi_gb_set(&g, 5, TG_R(2.5f), n, 1);
+    tgi_gview_of(&v, &g, NULL);
+    tgi_gview_of(&w, &h, NULL);
+    tgi_gview_copy_pixel(&h, 5, &v, 5);
+    back = tgi_gv_normal(&w, 5);
+    a = angle_deg(back, 0.48, -0.6, 0.64);
+    CHECK(tgi_gv_depth(&w, 5) == TG_R(2.5f) && !tgi_gv_is_sky(&w, 5) && tgi_gv_is_sky(&w, 4), "depth and sky as stored");
+    CHECK(a <= 1.0, "the normal comes back %.3f deg off (2x8 bound 1 deg)", a);
+#if !TG_WIDE_STORAGE
+    CHECK(!tgi_gb_has_material(&g) && tgi_gv_material(&w, 5) == NULL, "no material plane, no material");
+    CHECK(tgi_gv_f0(&w, 5) == 0 && tgi_gv_albedo(&w, 5).x == 0 && tgi_gv_lit(&w, 5, tg_v3(TG_ONE, TG_ONE, TG_ONE)).y == 0,
+          "albedo, F0 and the light sent read 0");
+#endif
+    free(mem);
+    free(mem2);
+}
+
 int main(void)
 {
     RUN(depth_is_binary32_in_both_builds);
@@ -179,5 +221,6 @@ int main(void)
     RUN(octahedral_normals);
     RUN(shared_exponent_rgb);
     RUN(unorm8_ao);
+    RUN(geometry_gbuffer_without_material);
     return check_summary();
 }

@@ -99,11 +99,6 @@ struct tg_frame {
     /* the filtered (or upsampled) results an AOV asks for, at full resolution */
     tgi_gresult out;
 
-    /* the 4x4 split: 16 packed sub-images of the kernel's image */
-    tgi_gbuffer split;
-    tgi_gresult split_res;
-    tgi_rgb split_source;
-
     /* last frame's geometry (reprojection, temporal accumulation) */
     tgi_prev_geometry prev_geometry;
     void *pushpull_mips;
@@ -120,7 +115,7 @@ struct tg_frame {
 enum tgi_buffer_group {
     TGI_BUF_POSE, TGI_BUF_GBUFFER, TGI_BUF_MOTION, TGI_BUF_SHADOW_MAPS, TGI_BUF_DIRECT,
     TGI_BUF_SOURCE, TGI_BUF_HISTORY, TGI_BUF_REPROJECT, TGI_BUF_RESULTS, TGI_BUF_HALF,
-    TGI_BUF_SPLIT, TGI_BUF_FILTER, TGI_BUF_TEMPORAL, TGI_BUF_BVH, TGI_BUF_FAR,
+    TGI_BUF_FILTER, TGI_BUF_TEMPORAL, TGI_BUF_BVH, TGI_BUF_FAR,
     TGI_BUF_COLOR, TGI_BUF_IRRADIANCE,
     TGI_BUF_GROUPS
 };

@@ -38,30 +38,38 @@ void tgi_pass_downsample(tg_frame *f, int y0, int y1)
     tgi_downsample_rows(&f->full, &f->half, tgi_frame_source(f), &f->half_source, y0, y1);
 }
 
-/* Kernel-image rows [y0, y1) into the 16 packed sub-images. */
-void tgi_pass_split(tg_frame *f, int y0, int y1)
-{
-    const tgi_rgb *source;
-    const tgi_gview *k = tgi_frame_kernel(f, NULL, &source);
-    int with_source = tgi_rgb_present(&f->split_source), x, y;
-    size_t start[4];
-    for (y = y0; y < y1; y++) {
-        tgi_interleave_row(k->width, k->height, y, start);
-        for (x = 0; x < k->width; x++) {
-            size_t i = tgi_gv_index(k, x, y), s = start[x & 3] + (size_t)(x >> 2);
-            tgi_gview_copy_pixel(&f->split, s, k, i);
-            if (with_source) tgi_rgb_set(&f->split_source, s, tgi_rgb_get(source, i));
-        }
-    }
-}
-
-/* The kernel on each of the 16 sub-images, with its own slice angles,
- * marching in sub-image pixels (HBIL sec. 3.3). */
+/* The kernel on each of the 16 sub-images (i, j) of the kernel's image
+ * (HBIL sec. 3.3), each a strided view of the image (no copy): its pixel
+ * (x, y) is the image's (4x + i, 4y + j); its results and source radiance
+ * are read and written in place, indexed alike.  Each sub-image gets its
+ * own first slice angle and the kernel marches in sub-image pixels.  Rows
+ * [y0, y1) of the image: row Y is row Y / 4 of the sub-images (i, Y & 3),
+ * so any split of the rows writes disjoint pixels. */
 void tgi_pass_hbil_interleaved(tg_frame *f, int y0, int y1)
 {
     tgi_hbil_params p;
+    const tgi_gresult *res;
+    const tgi_rgb *source;
+    const tgi_gview *k = tgi_frame_kernel(f, &res, &source);
+    int i, j;
     hbil_params(f, &p);
-    tgi_hbil_interleaved_rows(&p, tgi_frame_kernel(f, NULL, NULL), &f->split, &f->split_source, &f->split_res, y0, y1);
+    for (j = 0; j < 4; j++)
+        for (i = 0; i < 4; i++) {
+            tgi_hbil_params ps = p;
+            tgi_gview sub;
+            tgi_gresult out;
+            tgi_rgb src;
+            size_t o;
+            tgi_gview_strided_sub(&sub, k, i, j);
+            if (sub.width == 0 || sub.height == 0) continue;
+            o = tgi_gv_index(k, i, j);
+            out = without_cone(res);
+            out = tgi_gresult_from(&out, o);
+            src = tgi_rgb_from(source, o);
+            src.lit_rounded = 1;   /* read as the plane it once was copied into */
+            ps.slice_phi0 = tgi_hbil_slice_phi0(i, j, p.slices);
+            tgi_hbil_rows(&ps, &sub, &src, &out, (y0 - j + 3) / 4, (y1 - j + 3) / 4);
+        }
 }
 
 void tgi_pass_hbil_full(tg_frame *f, int y0, int y1)
@@ -71,19 +79,4 @@ void tgi_pass_hbil_full(tg_frame *f, int y0, int y1)
     hbil_params(f, &p);
     p.per_pixel_pattern = 1;
     tgi_hbil_rows(&p, &f->full, tgi_frame_source(f), &res, y0, y1);
-}
-
-/* Kernel-image rows [y0, y1) back from the 16 sub-images. */
-void tgi_pass_merge(tg_frame *f, int y0, int y1)
-{
-    const tgi_gresult *res;
-    const tgi_gview *k = tgi_frame_kernel(f, &res, NULL);
-    int x, y;
-    size_t start[4];
-    for (y = y0; y < y1; y++) {
-        tgi_interleave_row(k->width, k->height, y, start);
-        for (x = 0; x < k->width; x++)
-            tgi_gresult_copy_pixel(res, tgi_gv_index(k, x, y), &f->split_res,
-                                   start[x & 3] + (size_t)(x >> 2));
-    }
 }

@@ -57,12 +57,14 @@ static void *take(layout *l, const char *name, size_t count, size_t elem)
 /* Storage formats, as --explain prints them beside each buffer. */
 #if TG_WIDE_STORAGE
 #define FMT_G "tg_real depth (0: sky) and normal, 16-bit material index"
+#define FMT_G_GEOMETRY FMT_G " (the material unread)"
 #define FMT_RGB "3 x tg_real"
 #define FMT_AO "tg_real"
 #define FMT_BENT "3 x tg_real"
 #define FMT_PREV "tg_real depth and normal"
 #else
 #define FMT_G "32-bit float depth (0: sky); octahedral 2x11 normal + 10-bit material index"
+#define FMT_G_GEOMETRY "32-bit float depth (0: sky); octahedral 2x8 normal"
 #define FMT_RGB "RGB9E5, 32 bits"
 #define FMT_AO "8 bits"
 #define FMT_BENT "octahedral 2x8"
@@ -80,11 +82,14 @@ static void take_rgb(layout *l, const char *name, size_t n, tgi_rgb *c)
     if (!tgi_rgb_present(c)) *c = tgi_rgb_none();
 }
 
-/* A G-buffer's storage of n = w x h pixels, its materials from the scene. */
-static void take_gbuffer_planes(layout *l, tgi_gbuffer *g, const tg_scene *s, int w, int h, const char *name)
+/* A G-buffer's storage of n = w x h pixels, its materials from the scene
+ * (with `material` 0, depth and normal only). */
+static void take_gbuffer_planes(layout *l, tgi_gbuffer *g, const tg_scene *s, int w, int h, int material,
+                                const char *name)
 {
     int i;
-    tgi_gbuffer_carve(g, w, h, take(l, name, tgi_gbuffer_carve(g, w, h, NULL), 1));
+    if (material) tgi_gbuffer_carve(g, w, h, take(l, name, tgi_gbuffer_carve(g, w, h, NULL), 1));
+    else tgi_gbuffer_carve_geometry(g, w, h, take(l, name, tgi_gbuffer_carve_geometry(g, w, h, NULL), 1));
     g->materials = s->materials;
     for (i = 0; i < s->material_count; i++) {
         tg_vec3 e = s->materials[i].emissive;
@@ -98,12 +103,6 @@ static void take_results(layout *l, tgi_gresult *r, size_t n, int bent, int near
     void *m = take(l, name, tgi_gresult_carve(r, n, bent, 0, near, NULL), 1);
     tgi_gresult_carve(r, n, bent, 0, near, m);
     if (!m) memset(r, 0, sizeof *r);
-}
-
-/* The kernel's results at its own resolution: AO, bent normal, near field. */
-static void take_kernel_results(layout *l, tgi_gresult *r, size_t n, int near, const char *name)
-{
-    take_results(l, r, n, 1, near, name);
 }
 
 /* The kernel's image: full size, or half width and height (quarter res). */
@@ -123,6 +122,17 @@ static int near_in_slots(const tg_frame *f) { return near_field(f) && !tgi_frame
 static int wants_aov(const tg_frame *f, tg_aov a) { return (f->request.aovs & AOV(a)) != 0; }
 static int direct_own(const tg_frame *f) { return (f->effects & TG_EFFECT_DIRECT) && wants_aov(f, TG_AOV_DIRECT); }
 static int bent_needed(const tg_frame *f) { return (f->needs & TG_NEED_BENT) != 0; }
+/* Some pass or output reads a surface's material (albedo, F0, emissive):
+ * light, compose, the techniques that light, any output but those of the
+ * geometry and the occlusion.  Else the G-buffer keeps no material. */
+static int reads_material(const tg_frame *f)
+{
+    uint32_t geometric = AOV(TG_AOV_AO) | AOV(TG_AOV_BENT) | AOV(TG_AOV_CONE) | AOV(TG_AOV_DEPTH) |
+                         AOV(TG_AOV_NORMAL) | AOV(TG_AOV_MOTION);
+    tg_technique t = f->request.technique;
+    return (f->needs & TG_NEED_COMPOSE) || (f->effects & (TG_EFFECT_DIRECT | TG_EFFECT_NEAR | TG_EFFECT_FAR)) ||
+           f->request.aovs == 0 || (f->request.aovs & ~geometric) || t == TG_TECH_SSDO || t == TG_TECH_REFERENCE;
+}
 /* The resolved results an AOV reads have planes of their own (HBIL filters or upsamples). */
 static int resolves_into_planes(const tg_frame *f)
 {
@@ -150,7 +160,10 @@ static void group_pose(layout *l, tg_frame *f)
 
 static void group_gbuffer(layout *l, tg_frame *f)
 {
-    take_gbuffer_planes(l, &f->gb, f->scene, f->width, f->height, "G-buffer [" FMT_G "]");
+    if (reads_material(f))
+        take_gbuffer_planes(l, &f->gb, f->scene, f->width, f->height, 1, "G-buffer [" FMT_G "]");
+    else
+        take_gbuffer_planes(l, &f->gb, f->scene, f->width, f->height, 0, "G-buffer, no material [" FMT_G_GEOMETRY "]");
     if (f->needs & TG_NEED_POSE) f->gb.object = (uint16_t *)take(l, "G-buffer object id [16 bits]", f->pixels, 2);
 }
 
@@ -245,19 +258,11 @@ static void group_half(layout *l, tg_frame *f)
     size_t n;
     if (!tgi_frame_quarter(f)) return;
     kernel_size(f, &w, &h, &n);
-    take_gbuffer_planes(l, &f->half, f->scene, w, h, "quarter-res G-buffer [" FMT_G "]");
+    if (reads_material(f))
+        take_gbuffer_planes(l, &f->half, f->scene, w, h, 1, "quarter-res G-buffer [" FMT_G "]");
+    else
+        take_gbuffer_planes(l, &f->half, f->scene, w, h, 0, "quarter-res G-buffer, no material [" FMT_G_GEOMETRY "]");
     if (near_field(f)) take_rgb(l, "quarter-res source radiance [" FMT_RGB "]", n, &f->half_source);
-}
-
-static void group_split(layout *l, tg_frame *f)
-{
-    int near = near_field(f), w, h;
-    size_t n;
-    if (!tgi_frame_interleaved(f)) return;
-    kernel_size(f, &w, &h, &n);
-    take_gbuffer_planes(l, &f->split, f->scene, w, h, "4x4 split: G-buffer [" FMT_G "]");
-    if (near) take_rgb(l, "4x4 split: source radiance [" FMT_RGB "]", n, &f->split_source);
-    take_kernel_results(l, &f->split_res, n, near, "4x4 split: kernel output");
 }
 
 /* The filtered quarter-res results the upsample reads. */
@@ -322,7 +327,7 @@ static void group_irradiance(layout *l, tg_frame *f)
 static void (*const group_layout[TGI_BUF_GROUPS])(layout *l, tg_frame *f) = {
     group_pose, group_gbuffer, group_motion, group_shadow_maps, group_direct,
     group_source, group_history, group_reproject, group_results, group_half,
-    group_split, group_filter, group_temporal, group_bvh, group_far,
+    group_filter, group_temporal, group_bvh, group_far,
     group_color, group_irradiance
 };
 

@@ -26,10 +26,8 @@ void tgi_pass_reproject(tg_frame *f, int y0, int y1);
 void tgi_pass_push_pull(tg_frame *f);
 void tgi_pass_reference_bvh(tg_frame *f);
 void tgi_pass_downsample(tg_frame *f, int y0, int y1);
-void tgi_pass_split(tg_frame *f, int y0, int y1);
 void tgi_pass_hbil_interleaved(tg_frame *f, int y0, int y1);
 void tgi_pass_hbil_full(tg_frame *f, int y0, int y1);
-void tgi_pass_merge(tg_frame *f, int y0, int y1);
 void tgi_pass_temporal(tg_frame *f, int y0, int y1);
 void tgi_pass_filter_quarter(tg_frame *f, int y0, int y1);
 void tgi_pass_ssao(tg_frame *f, int y0, int y1);
@@ -114,14 +112,10 @@ const tgi_pass tgi_passes[] = {
      * (gi bounces), each iteration gathering the previous one's radiance */
     { "downsample to quarter resolution (point samples)", runs_hbil_quarter,
       B(HALF) | B(SOURCE), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_downsample) },
-    { "4x4 split (depth, normal, radiance into 16 sub-images)", runs_hbil_interleaved,
-      B(HALF) | B(SOURCE) | B(SPLIT), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_split) },
-    { "HBIL horizon kernel (AO, bent normal, near field), per sub-image", runs_hbil_interleaved,
-      B(SPLIT), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_hbil_interleaved) },
+    { "HBIL horizon kernel (AO, bent normal, near field), per 4x4 sub-image (strided, in place)", runs_hbil_interleaved,
+      B(HALF) | B(SOURCE) | B(RESULTS), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_hbil_interleaved) },
     { "HBIL horizon kernel, full resolution", runs_hbil_full,
       B(RESULTS) | B(SOURCE), TGI_BOUNCE, ROWS(tgi_pass_hbil_full) },
-    { "4x4 merge", runs_hbil_interleaved,
-      B(SPLIT) | B(HALF) | B(SOURCE) | B(RESULTS), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_merge) },
     { "temporal accumulation at the kernel's resolution (history rejected by depth and normal)", accumulates,
       B(HALF) | B(SOURCE) | B(RESULTS) | B(TEMPORAL) | B(HISTORY), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_temporal) },
 #if !TG_NO_TECHNIQUES

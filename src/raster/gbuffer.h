@@ -9,7 +9,8 @@
  *   nm     32 bits: octahedral world normal, 2 x 11 bits, and the material
  *          index above them (10 bits: albedo, F0 and emissive come from the
  *          scene's material table, `materials`)
- * 8 bytes a pixel.  Built with TG_WIDE_STORAGE=1 the G-buffer (and the GI
+ * 8 bytes a pixel.  A frame that reads no material (AO only) has n8, the
+ * octahedral normal in 2 x 8 bits, instead of nm: 6 bytes a pixel.  Built with TG_WIDE_STORAGE=1 the G-buffer (and the GI
  * results and colour planes of gview.h) are tg_real planes instead, 18
  * bytes a pixel here: the reference the compact formats are measured
  * against (tests/storage_test.sh, the bench's wide rows).
@@ -40,6 +41,8 @@ typedef struct tgi_gbuffer {
 #else
     uint32_t *depth;              /* binary32 bits of the view depth; 0 on sky */
     uint32_t *nm;                 /* octahedral normal | material index << TGI_MATERIAL_SHIFT */
+    uint16_t *n8;                 /* instead of nm when no pass reads a material (AO
+                                     only): octahedral normal 2 x 8 bits */
 #endif
     const tgi_material *materials;/* the scene's material table */
     int has_emissive;             /* some material of the table emits */

@@ -36,6 +36,22 @@ size_t tgi_gbuffer_carve(tgi_gbuffer *g, int w, int h, void *mem)
     return at;
 }
 
+size_t tgi_gbuffer_carve_geometry(tgi_gbuffer *g, int w, int h, void *mem)
+{
+#if TG_WIDE_STORAGE
+    return tgi_gbuffer_carve(g, w, h, mem);
+#else
+    unsigned char *base = (unsigned char *)mem;
+    size_t n = (size_t)w * (size_t)h, at = 0;
+    memset(g, 0, sizeof *g);
+    g->width = w;
+    g->height = h;
+    g->depth = (uint32_t *)part(base, &at, n, sizeof(uint32_t));
+    g->n8 = (uint16_t *)part(base, &at, n, sizeof(uint16_t));
+    return at;
+#endif
+}
+
 size_t tgi_rgb_carve(tgi_rgb *c, size_t n, void *mem)
 {
     unsigned char *base = (unsigned char *)mem;

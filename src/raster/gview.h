@@ -17,7 +17,8 @@
  * writer, not in the passes.
  *   G-buffer   binary32 depth with sky as 0; octahedral normal 2x11 bits and
  *              a material index in 32 bits (albedo, F0 and emissive read
- *              from the scene's material table)
+ *              from the scene's material table); in a frame that reads no
+ *              material (AO only) the octahedral normal 2x8 alone
  *   results    AO in 8 bits; bent normal octahedral 2x8; the cone is not
  *              stored (HBIL eq. 12 from the AO when read); near-field
  *              irradiance as a colour plane
@@ -65,17 +66,28 @@ static inline int tgi_gv_material_index(const tgi_gview *v, size_t i) { return v
 static inline tg_real tgi_gv_depth(const tgi_gview *v, size_t i) { return tgi_depth_unpack(v->store.depth[i]); }
 static inline tg_vec3 tgi_gv_normal(const tgi_gview *v, size_t i)
 {
+    if (!v->store.nm) return tgi_oct_unpack(v->store.n8[i], 8);
     return tgi_oct_unpack(v->store.nm[i] & TGI_NORMAL_MASK, TGI_NORMAL_BITS);
 }
 static inline int tgi_gv_material_index(const tgi_gview *v, size_t i)
 {
-    return (int)(v->store.nm[i] >> TGI_MATERIAL_SHIFT);
+    return v->store.nm ? (int)(v->store.nm[i] >> TGI_MATERIAL_SHIFT) : 0;
 }
 #endif
-/* The surface's material (NULL on sky). */
+/* 1 when the storage holds a material per pixel (not so in an AO-only frame). */
+static inline int tgi_gb_has_material(const tgi_gbuffer *g)
+{
+#if TG_WIDE_STORAGE
+    return g->material != NULL;
+#else
+    return g->nm != NULL;
+#endif
+}
+/* The surface's material (NULL on sky, or without materials). */
 static inline const tgi_material *tgi_gv_material(const tgi_gview *v, size_t i)
 {
-    return tgi_gv_is_sky(v, i) ? NULL : &v->store.materials[tgi_gv_material_index(v, i)];
+    if (tgi_gv_is_sky(v, i) || !tgi_gb_has_material(&v->store)) return NULL;
+    return &v->store.materials[tgi_gv_material_index(v, i)];
 }
 /* Albedo, F0 and emissive of the material; 0 on sky. */
 static inline tg_vec3 tgi_gv_albedo(const tgi_gview *v, size_t i)
@@ -109,7 +121,8 @@ static inline void tgi_gb_set(const tgi_gbuffer *g, size_t i, tg_real z, tg_vec3
     g->material[i] = (uint16_t)material;
 #else
     g->depth[i] = tgi_depth_pack(z);
-    g->nm[i] = tgi_oct_pack(n, TGI_NORMAL_BITS) | ((uint32_t)material << TGI_MATERIAL_SHIFT);
+    if (g->nm) g->nm[i] = tgi_oct_pack(n, TGI_NORMAL_BITS) | ((uint32_t)material << TGI_MATERIAL_SHIFT);
+    else g->n8[i] = (uint16_t)tgi_oct_pack(n, 8);
 #endif
 }
 /* Pixel i of storage g: sky. */
@@ -123,7 +136,7 @@ static inline tgi_gbuffer tgi_gbuffer_from(const tgi_gbuffer *g, size_t start)
 #if TG_WIDE_STORAGE
     TGI_FROM(depth); TGI_FROM(nx); TGI_FROM(ny); TGI_FROM(nz); TGI_FROM(material);
 #else
-    TGI_FROM(depth); TGI_FROM(nm);
+    TGI_FROM(depth); TGI_FROM(nm); TGI_FROM(n8);
 #endif
     TGI_FROM(object); TGI_FROM(motion_x); TGI_FROM(motion_y);
 #undef TGI_FROM
@@ -181,7 +194,8 @@ static inline void tgi_gview_copy_pixel(const tgi_gbuffer *dst, size_t j, const 
     dst->nz[j] = src->store.nz[i];
     dst->material[j] = src->store.material[i];
 #else
-    dst->nm[j] = src->store.nm[i];
+    if (dst->nm) dst->nm[j] = src->store.nm[i];   /* dst has src's planes */
+    else dst->n8[j] = src->store.n8[i];
 #endif
 }
 
@@ -194,7 +208,7 @@ static inline tg_vec3 tgi_gb_lit(const tgi_gbuffer *g, size_t i, tg_vec3 e)
     const tgi_material *m;
     tg_real kd;
     tg_vec3 lo;
-    if (g->depth[i] == 0) return tg_v3(0, 0, 0);
+    if (g->depth[i] == 0 || !tgi_gb_has_material(g)) return tg_v3(0, 0, 0);
 #if TG_WIDE_STORAGE
     m = &g->materials[g->material[i]];
 #else
@@ -219,6 +233,8 @@ typedef struct tgi_rgb {
 #endif
     const tgi_gbuffer *lit;        /* non-NULL: reads are tgi_gb_lit of these surfaces */
     size_t lit_at;                 /* pixel i of the plane is pixel lit_at + i of lit */
+    int lit_rounded;               /* lit reads rounded to the plane's format, as a copy
+                                      of the lit values into such a plane would hold them */
 } tgi_rgb;
 
 #if TG_WIDE_STORAGE
@@ -233,7 +249,12 @@ static inline void tgi_rgb_set(const tgi_rgb *c, size_t i, tg_vec3 v) { c->p[i] 
 static inline tg_vec3 tgi_rgb_get(const tgi_rgb *c, size_t i)
 {
     tg_vec3 v = tgi_rgb_stored(c, i);
-    return c->lit ? tgi_gb_lit(c->lit, c->lit_at + i, v) : v;
+    if (!c->lit) return v;
+    v = tgi_gb_lit(c->lit, c->lit_at + i, v);
+#if !TG_WIDE_STORAGE
+    if (c->lit_rounded) v = tgi_rgb9e5_unpack(tgi_rgb9e5_pack(v));
+#endif
+    return v;
 }
 /* The plane seen from index `start` on (absent stays absent). */
 static inline tgi_rgb tgi_rgb_from(const tgi_rgb *c, size_t start)
@@ -436,6 +457,9 @@ static inline void tgi_gresult_copy_pixel(const tgi_gresult *dst, size_t j, cons
  * are the caller's); results with the bent normal, a cone plane and the
  * near field when asked. ---- */
 size_t tgi_gbuffer_carve(tgi_gbuffer *g, int w, int h, void *mem);
+/* The same without the material: depth and normal only (compact: the
+ * normal octahedral 2x8; wide: as tgi_gbuffer_carve). */
+size_t tgi_gbuffer_carve_geometry(tgi_gbuffer *g, int w, int h, void *mem);
 size_t tgi_gresult_carve(tgi_gresult *r, size_t n, int bent, int cone, int near, void *mem);
 size_t tgi_rgb_carve(tgi_rgb *c, size_t n, void *mem);
 size_t tgi_prev_carve(tgi_prev_geometry *h, size_t n, void *mem);

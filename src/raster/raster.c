@@ -415,7 +415,17 @@ typedef struct surface {
     uint16_t object;
     tg_vec3 fallback_normal;      /* if the interpolated normal vanishes */
     uint32_t fallback_nm;         /* compact: the same, packed */
+    int normal_bits;              /* compact: per octahedral coordinate (nm, or n8) */
 } surface;
+
+#if !TG_WIDE_STORAGE
+/* Pixel i's packed normal and material: the nm word, or n8 without a material. */
+static void put_nm(const tgi_gbuffer *g, size_t i, uint32_t w)
+{
+    if (g->nm) g->nm[i] = w;
+    else g->n8[i] = (uint16_t)w;
+}
+#endif
 
 /* Depth-only output: 32-bit depths (tg_real), or 16-bit codes of the depth
  * range [lo, lo + range): q = round((depth - lo) 65536 / range), clamped to
@@ -546,7 +556,7 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
                 uint32_t zb = tgi_depth_pack(z);   /* binary32 words order like the depths */
                 if (g.depth[i] && zb >= g.depth[i]) continue;
                 g.depth[i] = zb;
-                g.nm[i] = ((mx | my | mz) ? tgi_oct_pack64(mx, my, mz, TGI_NORMAL_BITS) : sf.fallback_nm) | sf.material;
+                put_nm(&g, i, ((mx | my | mz) ? tgi_oct_pack64(mx, my, mz, sf.normal_bits) : sf.fallback_nm) | sf.material);
             }
 #endif
             if (g.object) g.object[i] = sf.object;
@@ -664,7 +674,7 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
             d = tgi_depth_unpack(g.depth[i]);   /* a reinterpretation: 0 is sky */
             if (d > 0.0f && wmin >= qv * d) continue;
             g.depth[i] = tgi_depth_pack(wmin / qv);
-            g.nm[i] = (len2 > 1e-30f ? tgi_oct_pack(tg_v3(mx, my, mz), TGI_NORMAL_BITS) : sf.fallback_nm) | sf.material;
+            put_nm(&g, i, (len2 > 1e-30f ? tgi_oct_pack(tg_v3(mx, my, mz), sf.normal_bits) : sf.fallback_nm) | sf.material);
 #endif
             if (g.object) g.object[i] = sf.object;
         }
@@ -754,8 +764,9 @@ static void draw_snapped(const raster_target *rt, const clip_vertex *v, const tg
         sf.material = (uint32_t)rt->material;
         sf.fallback_nm = 0;
 #else
-        sf.material = (uint32_t)rt->material << TGI_MATERIAL_SHIFT;
-        sf.fallback_nm = tgi_oct_pack(sf.fallback_normal, TGI_NORMAL_BITS);
+        sf.normal_bits = rt->gb->nm ? TGI_NORMAL_BITS : 8;
+        sf.material = rt->gb->nm ? (uint32_t)rt->material << TGI_MATERIAL_SHIFT : 0;
+        sf.fallback_nm = tgi_oct_pack(sf.fallback_normal, sf.normal_bits);
 #endif
         gbuffer_rows(rt->gb, &te, &st, &sf);
     } else depth_rows(&rt->dout, rt->width, &te, &st, rt->clip.mode == MODE_ORTHO);
