@@ -25,6 +25,15 @@ static size_t buffer_bytes(const tg_plan *p, const char *prefix)
 
 static size_t round16(size_t n) { return (n + 15) & ~(size_t)15; }
 
+/* A frame of `text` for q with shadow maps forced; 0 (reported) when it fails. */
+static int set_up_maps(rendered *r, const char *text, tg_request q)
+{
+    q.shadow_method = TG_SHADOWS_MAPS;
+    if (setup(r, text, &q)) return 1;
+    CHECK(0, "%s", r->msg);
+    return 0;
+}
+
 /* The rule's need for light i at the scene's own camera, computed here
  * step by step (the plan's own path is tgi_shadow_plan). */
 static void rule_at_the_camera(const tg_scene *s, int i, int w, int h, int size, tgi_shadow_need *nd)
@@ -63,9 +72,8 @@ static void check_rule_sizes(const char *scene, int w, int h, int size)
     tg_request q = request(w, h, AOVBIT(TG_AOV_COLOR));
     size_t want = 0;
     int i, f;
-    q.shadow_method = TG_SHADOWS_MAPS;
     q.shadow_map_size = size;
-    if (!setup(&r, tg_builtin_scene(scene), &q)) { CHECK(0, "%s: %s", scene, r.msg); return; }
+    if (!set_up_maps(&r, tg_builtin_scene(scene), q)) return;
     for (i = 0; i < r.scene->light_count; i++) {
         tgi_shadow_need nd;
         size_t texels = 0;
@@ -105,10 +113,8 @@ TEST(default_maps_fit_in_eight_bytes_a_pixel)
     size_t a;
     for (a = 0; a < 2; a++) {
         rendered r;
-        tg_request q = request(320, 240, AOVBIT(TG_AOV_COLOR));
         size_t bytes;
-        q.shadow_method = TG_SHADOWS_MAPS;
-        if (!setup(&r, tg_builtin_scene(scenes[a]), &q)) { CHECK(0, "%s", r.msg); continue; }
+        if (!set_up_maps(&r, tg_builtin_scene(scenes[a]), request(320, 240, AOVBIT(TG_AOV_COLOR)))) continue;
         bytes = buffer_bytes(&r.plan, "shadow maps (depth)");
         CHECK(bytes > 0 && bytes <= 320u * 240u * TG_SHADOW_MAP_BYTES_PER_PIXEL, "%s: %zu bytes", scenes[a], bytes);
         teardown(&r);
@@ -136,8 +142,7 @@ TEST(culled_faces_take_no_memory)
         double *e;
         int x, y, dark = 0;
         q.shadow_map_size = sizes[k];
-        q.shadow_method = TG_SHADOWS_MAPS;
-        if (!setup(&r, text, &q)) { CHECK(0, "%s", r.msg); continue; }
+        if (!set_up_maps(&r, text, q)) continue;
         for (f = 0; f < 6; f++)
             CHECK((r.frame->shadow_maps[0].face[f].size > 0) == (f == 3), "size %d: face %d size %d", sizes[k], f,
                   r.frame->shadow_maps[0].face[f].size);
@@ -324,10 +329,9 @@ TEST(unknown_views_need_every_face)
         rendered r;
         tg_request q = request(64, 48, AOVBIT(TG_AOV_COLOR));
         int f;
-        q.shadow_method = TG_SHADOWS_MAPS;
         if (k == 0) q.game_loop = 1;
         else q.technique = TG_TECH_REFERENCE;
-        if (!setup(&r, tg_builtin_scene("cornell"), &q)) { CHECK(0, "%s", r.msg); continue; }
+        if (!set_up_maps(&r, tg_builtin_scene("cornell"), q)) continue;
         for (f = 0; f < 6; f++) {
             CHECK(r.frame->shadow_maps[0].face[f].size > 0, "%s: face %d absent", k ? "reference" : "game loop", f);
             CHECK(!r.frame->shadow_maps[0].need.window_set[f], "%s: face %d windowed", k ? "reference" : "game loop", f);

@@ -517,8 +517,8 @@ void tgi_shadow_explain(tgi_text *t, const tg_scene *s, const tg_request *r, siz
 {
     int i;
     tgi_text_put(t, r->shadow_map_size > 0 ? "shadows (every face a view needs, whole, at --shadow-size):\n"
-                                          : "shadows (size rule: about one texel per image pixel on what the camera sees; "
-                                            "faces no visible receiver looks up are absent):\n");
+                                          : "shadows (size rule: about a texel per image pixel on what the camera sees; "
+                                            "unseen faces absent):\n");
     for (i = 0; i < s->light_count; i++)
         if (s->lights[i].shadows) put_light(t, s, r, i, bvh_bytes);
 }
