@@ -532,8 +532,9 @@ typedef struct tg_request {
                               1: E0(bent) F0(AO) (HBIL sec. 2.2.3) */
     tg_real exposure;      /* linear multiplier before the tonemapper, 0..TG_MAX_EXPOSURE
                               (default 1; NaN and the infinities are refused) */
-    int shadow_map_size;   /* texels per side of every face the view needs,
-                              TG_MIN_SHADOW_MAP..TG_MAX_SHADOW_MAP; <= 0: unset (the size rule) */
+    int shadow_map_size;   /* texels per side of every face the views need, each whole,
+                              TG_MIN_SHADOW_MAP..TG_MAX_SHADOW_MAP; <= 0: unset (the size rule,
+                              README "Shadows") */
     int shadow_pcf;        /* 1: 4-tap bilinear PCF (tg_request_defaults'); 0: 16-tap tent,
                               softer, 1.6x the cost, and darker bands along concave corners */
     int shadow_method;     /* TG_SHADOWS_AUTO (0, default): the plan chooses per light between
