@@ -12,6 +12,8 @@
 #   make examples         examples/*.c against the built library, or
 #                         EXAMPLES_LIB=installed (pkg-config) or =amalgamation
 #   make compilers        gcc and clang builds render the same files, bit for bit
+#   make size-table       Cortex-M4 .text per configuration of the feature
+#                         switches (TG_NO_* in src/tinygi.h; platform/cross.mk)
 #   make clean
 #
 # Standard variables are honoured: CC, CFLAGS (default -O2), CPPFLAGS,

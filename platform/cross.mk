@@ -10,6 +10,10 @@
 #                         on every bare-metal core, as a table (it shares make
 #                         cross's core libraries)
 #   make cross-install    only the toolchain/emulator installs (apt-get)
+#   make size-table       the Cortex-M4 .text per configuration of the
+#                         feature switches, as README "Flash size" shows it
+#                         (tools/size_table.sh; SIZE_LTO=1 adds -flto,
+#                         SIZE_TOP=N lists the N largest functions)
 #   make cross CROSS_TARGETS="s390x m3"   a subset (x86_64 always runs)
 #
 # Targets: x86_64 (reference), i686 (-msse2 -mfpmath=sse), s390x and
@@ -72,3 +76,9 @@ cross-count:
 	@$(CROSS_ENV) bash platform/cross-run.sh count
 cross-install:
 	@bash platform/cross-install.sh
+
+.PHONY: size-table
+SIZE_LTO ?= 0
+SIZE_TOP ?= 0
+size-table:
+	@MAKE="$(MAKE)" SIZE_LTO="$(SIZE_LTO)" SIZE_TOP="$(SIZE_TOP)" bash tools/size_table.sh

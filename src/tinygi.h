@@ -12,6 +12,10 @@
  *   carries the number type (tg_plan_make is tg_plan_make_f32 or
  *   tg_plan_make_q16, by the macros in "ABI" below), so a program built with
  *   the other type's header fails to LINK instead of reading garbage.
+ * Feature switches TG_NO_TECHNIQUES, TG_NO_REFERENCE, TG_NO_OBJ,
+ * TG_NO_BUILTIN_SCENES, TG_NO_SHADOW_MAPS, TG_NO_ENVIRONMENT (0 or 1, for
+ * the LIBRARY's build) leave code out of it to save flash: see "FEATURE
+ * SWITCHES" below.
  *
  * MEMORY
  *   The core never allocates.  The caller hands it one arena (tg_arena) and
@@ -329,6 +333,52 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #define TG_DEG2RAD TG_R(0.0174532925199433f)
 /* ======================================================================= */
 
+/* ==== FEATURE SWITCHES ===================================================
+ * Each is 0 (default: the feature is in) or 1 (left out of the library:
+ * its files compile to nothing and no pass-table row refers to it, so the
+ * linker has nothing of it to pull in).  Set them for the library's build
+ * (-DTG_NO_OBJ=1 ...); the API stays the same, and a program built without
+ * them links to such a library.  What needs a left-out feature is refused
+ * with TG_ERR_INPUT and a message naming the switch, e.g. "technique gtao is
+ * left out of this build (TG_NO_TECHNIQUES=1)":
+ *   TG_NO_TECHNIQUES      GTAO, HBAO, SSAO, VO, SSDO, bent cones (src/ao):
+ *                         tg_plan_make refuses those techniques.
+ *   TG_NO_REFERENCE       the ray-traced reference, its BVH and the path
+ *                         tracer: tg_plan_make refuses technique reference.
+ *   TG_NO_OBJ             the OBJ/MTL loader: tg_scene_parse refuses a
+ *                         `mesh` line.
+ *   TG_NO_BUILTIN_SCENES  the built-in scenes' text: tg_builtin_scene and
+ *                         tg_builtin_name give NULL for every name/index.
+ *   TG_NO_SHADOW_MAPS     shadow maps: tg_plan_make refuses a plan with the
+ *                         shadows effect (a light marked `shadows` lighting
+ *                         the frame); leave `shadows` off the lights.
+ *   TG_NO_ENVIRONMENT     the environment (SH9 projection, far field, sky):
+ *                         tg_plan_make refuses a plan that would read the
+ *                         scene's `env` (the far effect, or colour over a
+ *                         sky); AO-only plans of such a scene still work.
+ * README "Flash size" has the .text each configuration takes on a Cortex-M4
+ * (`make size-table`).
+ */
+#ifndef TG_NO_TECHNIQUES
+#define TG_NO_TECHNIQUES 0
+#endif
+#ifndef TG_NO_REFERENCE
+#define TG_NO_REFERENCE 0
+#endif
+#ifndef TG_NO_OBJ
+#define TG_NO_OBJ 0
+#endif
+#ifndef TG_NO_BUILTIN_SCENES
+#define TG_NO_BUILTIN_SCENES 0
+#endif
+#ifndef TG_NO_SHADOW_MAPS
+#define TG_NO_SHADOW_MAPS 0
+#endif
+#ifndef TG_NO_ENVIRONMENT
+#define TG_NO_ENVIRONMENT 0
+#endif
+/* ======================================================================= */
+
 /* ==== LIMITS AND DEFAULTS ================================================
  * Every limit tinygi enforces, in one place (in the manner of luaconf.h),
  * each with its unit and its reason.  The scene parser, the plan
@@ -359,7 +409,10 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #define TG_DEFAULT_SLICES 2             /* HBIL sec. 3.3: 2 slices per pixel */
 #define TG_DEFAULT_SAMPLES 16
 #define TG_DEFAULT_BOUNCES 1
-#define TG_DEFAULT_RADIUS 1             /* world units, when neither request nor scene gives one */
+#define TG_DEFAULT_RADIUS 1             /* world units, for a scene without extent (neither request
+                                           nor scene giving one: see TG_RADIUS_ENV_DIVISOR) */
+#define TG_RADIUS_ENV_DIVISOR 30        /* a scene without a gi radius gets its bounds' diagonal
+                                           without an environment, diagonal / this with one */
 #define TG_DEFAULT_SHADOW_MAP 0         /* texels per side; 0: each face by the size rule,
                                            about one texel per image pixel (README "Shadows") */
 #define TG_DEFAULT_WIDTH 320

@@ -130,7 +130,8 @@ TEST(open_plane_ao_is_one)
         snprintf(text, sizeof text,
                  "camera pos 0 %.6f %.6f target 0 0 0 fov 50\n"
                  "material m albedo 0.5 0.5 0.5\n"
-                 "quad p0 -400 0 -400 p1 -400 0 400 p2 400 0 400 p3 400 0 -400 material m\n",
+                 "quad p0 -400 0 -400 p1 -400 0 400 p2 400 0 400 p3 400 0 -400 material m\n"
+                 "gi radius 1\n",   /* a scene-wide radius leaves AO 0.95 on the horizon row at 5 deg */
                  4 * sin(el), -4 * cos(el) + (elevations[k] == 90 ? 0.0001 : 0));
         CHECK(setup(&r, text, &q), "plane at %g deg", elevations[k]);
         if (!r.ok) { teardown(&r); continue; }

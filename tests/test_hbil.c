@@ -148,8 +148,10 @@ static void results_read(tgi_gresult *o, size_t n, result *r)
     sf_results_free(o);
 }
 
-/* Full resolution, per-pixel 4x4 pattern of the 32 directions. */
-static void run_full(const gbuf *g, double radius, int near, result *r)
+/* Full resolution, per-pixel 4x4 pattern of the 32 directions; every
+ * surface of material `mat` of `materials` (NULL: the fixture's). */
+static void run_full_with(const gbuf *g, double radius, int near, result *r, const tgi_material *materials,
+                          int count, int mat)
 {
     tgi_hbil_params p;
     tgi_gbuffer gb;
@@ -159,13 +161,16 @@ static void run_full(const gbuf *g, double radius, int near, result *r)
     tgi_rgb rad = tgi_rgb_none();
     params_for(&p, radius);
     p.per_pixel_pattern = 1;
-    view_of(g, &gb, &v);
+    sf_gbuffer_alloc(&gb, g->w, g->h, materials, count);
+    sf_gbuffer_fill(&gb, g->depth, g->nx, g->ny, g->nz, g->sky, mat);
+    tgi_gview_of(&v, &gb, &g->view);
     if (near) { sf_rgb_alloc(&rad, n); sf_rgb_fill(&rad, n, g->rad, g->rad, g->rad); }
     tgi_hbil_rows(&p, &v, &rad, &o, 0, g->h);
     results_read(&o, n, r);
     if (near) sf_rgb_free(&rad);
     sf_gbuffer_free(&gb);
 }
+static void run_full(const gbuf *g, double radius, int near, result *r) { run_full_with(g, radius, near, r, NULL, 0, 0); }
 
 /* 4x4 split, the kernel per sub-image, merge. */
 static void run_interleaved(const gbuf *g, double radius, result *r)
@@ -496,6 +501,78 @@ TEST(near_field_complements_ao)
     gbuf_free(&g);
 }
 
+/* E_near is irradiance (HBIL eq. 16-18): the receiver's 1 - F0 of eq. 19
+ * weighs it once, with the albedo, where Lo is composed, so a receiver's
+ * F0 does not change it (it did: the kernel applied 1 - F0 too, and the
+ * composed near field came out (1 - F0)^2). */
+TEST(near_field_is_irradiance)
+{
+    scene s;
+    gbuf g;
+    result r[2];
+    tgi_material m[2];
+    size_t i, n;
+    double sum[2] = { 0, 0 }, worst = 0;
+    int k;
+    memset(m, 0, sizeof m);
+    for (k = 0; k < 2; k++) m[k].albedo = tg_v3(TG_R(0.8f), TG_R(0.8f), TG_R(0.8f));
+    m[1].f0 = TG_R(0.5f);
+    groove_scene(&s);
+    s.q[0].rad = 1.0; s.q[1].rad = 1.0;
+    groove_view(&g, &s, 64, 48);
+    n = (size_t)g.w * g.h;
+    for (k = 0; k < 2; k++) {
+        result_alloc(&r[k], n);
+        run_full_with(&g, 1.0, 1, &r[k], m, 2, k);
+    }
+    for (i = 0; i < n; i++) {
+        if (g.sky[i]) continue;
+        sum[0] += check_d(r[0].near[i]);
+        sum[1] += check_d(r[1].near[i]);
+        worst = fmax(worst, fabs(check_d(r[0].near[i]) - check_d(r[1].near[i])));
+    }
+    printf("  near field, receiver F0 0 vs 0.5: sums %.4f vs %.4f, worst pixel difference %.5f\n", sum[0], sum[1], worst);
+    CHECK(sum[0] > 1, "the groove gathers light: %g", sum[0]);
+    CHECK(worst == 0, "E_near depends on the receiver's F0: worst difference %g", worst);
+    for (k = 0; k < 2; k++) result_free(&r[k]);
+    gbuf_free(&g);
+}
+
+/* A scene without a gi radius gets one sized to it: its bounds' diagonal
+ * without an environment, the diagonal / TG_RADIUS_ENV_DIVISOR with one;
+ * the scene's gi line or the request still decides when they give one. */
+TEST(gather_radius_sized_to_the_scene)
+{
+    static const char *base =
+        "camera pos 1 2 -5 target 1 2 0\n"
+        "material m albedo 0.5 0.5 0.5\n"
+        "box min -1 0 0  max 2 4 12  material m\n"   /* diagonal 13 */
+        "light point pos 1 2 -1 color 1 1 1\n";
+    static const char *tails[4] = { "", "env uniform 1 1 1\n", "gi radius 2\n", "" };
+    double want[4] = { 13.0, 13.0 / TG_RADIUS_ENV_DIVISOR, 2.0, 5.0 };
+    static unsigned char mem[1 << 20];
+    int k;
+    for (k = 0; k < 4; k++) {
+        char text[1024];
+        tg_arena arena;
+        tg_scene *sc = NULL;
+        tg_error err;
+        tg_request q;
+        tg_plan plan;
+        snprintf(text, sizeof text, "%s%s", base, tails[k]);
+        tg_arena_init(&arena, mem, sizeof mem);
+        CHECK(tg_scene_parse(text, strlen(text), "radius.scene", NULL, &arena, &sc, &err) == TG_OK, "scene %d parses", k);
+        if (!sc) continue;
+        tg_request_defaults(&q);
+        q.width = 32; q.height = 24;
+        if (k == 3) q.radius = TG_R(5.0f);
+        CHECK(tg_plan_make(&plan, sc, &q, &err) == TG_OK, "case %d plans", k);
+        printf("  gather radius, case %d: %.4f (want %.4f)\n", k, check_d(plan.request.radius), want[k]);
+        CHECK(fabs(check_d(plan.request.radius) - want[k]) < 1e-3 * want[k] + 1e-4, "case %d: radius %g, want %g",
+              k, check_d(plan.request.radius), want[k]);
+    }
+}
+
 /* Fixed and float agree: the float run writes its AO next to its binary, the
  * fixed run (tests/run.sh runs float first) reads and compares. */
 static const char *argv0 = "";
@@ -555,6 +632,8 @@ int main(int argc, char **argv)
     RUN(interleaved_matches_full_res);
     RUN(strided_sub_images_match_packed_copies);
     RUN(near_field_complements_ao);
+    RUN(near_field_is_irradiance);
+    RUN(gather_radius_sized_to_the_scene);
     RUN(fixed_and_float_agree);
     return check_summary();
 }

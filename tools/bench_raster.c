@@ -91,6 +91,35 @@ static void __attribute__((noinline)) bench_draw(tgi_gbuffer *gb, const tgi_view
     tgi_raster_gbuffer(gb, view, mesh, 0, gb->height);
 }
 
+/* FNV-1a of what the draw wrote (depth, normal, material, object of every
+ * covered pixel): a change to the rasterizer that should keep its output
+ * bit for bit is checked by comparing this between builds. */
+static void fnv_bytes(unsigned long *h, const void *p, size_t n)
+{
+    const unsigned char *b = (const unsigned char *)p;
+    while (n--) *h = ((*h ^ *b++) * 16777619ul) & 0xFFFFFFFFul;
+}
+
+static unsigned long gbuffer_hash(const tgi_gbuffer *gb)
+{
+    unsigned long h = 2166136261ul;
+    size_t i, n = (size_t)gb->width * (size_t)gb->height;
+    for (i = 0; i < n; i++) {
+        fnv_bytes(&h, &gb->depth[i], sizeof gb->depth[i]);
+        if (!gb->depth[i]) continue;
+#if TG_WIDE_STORAGE
+        fnv_bytes(&h, &gb->nx[i], sizeof gb->nx[i]);
+        fnv_bytes(&h, &gb->ny[i], sizeof gb->ny[i]);
+        fnv_bytes(&h, &gb->nz[i], sizeof gb->nz[i]);
+        fnv_bytes(&h, &gb->material[i], sizeof gb->material[i]);
+#else
+        fnv_bytes(&h, &gb->nm[i], sizeof gb->nm[i]);
+#endif
+        fnv_bytes(&h, &gb->object[i], sizeof gb->object[i]);
+    }
+    return h;
+}
+
 /* Two untimed frames (page faults, caches), then FRAMES timed ones; one
  * line, the per-frame means of this run: the driver (tools/bench_time.py)
  * interleaves runs of every configuration and takes medians. */
@@ -125,9 +154,9 @@ static void bench(const tgi_raster_mesh *mesh, int w, int h, int frames)
     }
     for (i = 0; i < n; i++) drawn += gb.depth[i] != 0;
     printf("tinygi-%s %dx%d tris=%d frames=%d draw_cpu_ms=%.4f draw_wall_ms=%.4f clear_cpu_ms=%.4f "
-           "clear_wall_ms=%.4f covered=%ld\n",
+           "clear_wall_ms=%.4f covered=%ld gbuffer_fnv=0x%08lx\n",
            TG_NUMBER_NAME, w, h, mesh->tri_count, frames, draw_cpu / frames * 1e3, draw_wall / frames * 1e3,
-           clear_cpu / frames * 1e3, clear_wall / frames * 1e3, drawn);
+           clear_cpu / frames * 1e3, clear_wall / frames * 1e3, drawn, gbuffer_hash(&gb));
     fflush(stdout);
     free(mem); free(gb.object);
 }

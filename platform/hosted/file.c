@@ -20,7 +20,8 @@
 #include <unistd.h>
 #include "file.h"
 
-static void say(char *msg, size_t msgsize, const char *fmt, ...)
+/* printf into msg (msgsize bytes, cut to fit); nothing when msg is NULL. */
+void tgp_say(char *msg, size_t msgsize, const char *fmt, ...)
 {
     va_list ap;
     if (!msg || msgsize == 0) return;
@@ -34,7 +35,7 @@ static void say(char *msg, size_t msgsize, const char *fmt, ...)
 /* strerror's text with a lower-case first letter: "no such file or directory" */
 static void errno_text(int e, char *buf, size_t size)
 {
-    say(buf, size, "%s", strerror(e));
+    tgp_say(buf, size, "%s", strerror(e));
     if (size && buf[0] >= 'A' && buf[0] <= 'Z') buf[0] = (char)(buf[0] - 'A' + 'a');
 }
 
@@ -51,18 +52,18 @@ void tgp_bytes_text(size_t bytes, char *buf, size_t size)
     for (i = 0; i < 3; i++) {
         size_t u = (size_t)1 << (30 - 10 * i);
         if (bytes >= u && bytes % u == 0) {
-            say(buf, size, "%lu %s", (unsigned long)(bytes / u), unit[i]);
+            tgp_say(buf, size, "%lu %s", (unsigned long)(bytes / u), unit[i]);
             return;
         }
     }
-    say(buf, size, "%lu bytes", (unsigned long)bytes);
+    tgp_say(buf, size, "%lu bytes", (unsigned long)bytes);
 }
 
 static int too_large(size_t limit, char *msg, size_t msgsize)
 {
     char text[64];
     tgp_bytes_text(limit, text, sizeof text);
-    say(msg, msgsize, "larger than the %s limit", text);
+    tgp_say(msg, msgsize, "larger than the %s limit", text);
     return TG_ERR_INPUT;
 }
 
@@ -83,8 +84,8 @@ static int open_regular(const char *path, size_t limit, struct stat *st, char *m
         return -TG_ERR_RUNTIME;
     }
     e = 0;
-    if (S_ISDIR(st->st_mode)) say(msg, msgsize, "is a directory"), e = TG_ERR_INPUT;
-    else if (!S_ISREG(st->st_mode)) say(msg, msgsize, "not a regular file"), e = TG_ERR_INPUT;
+    if (S_ISDIR(st->st_mode)) tgp_say(msg, msgsize, "is a directory"), e = TG_ERR_INPUT;
+    else if (!S_ISREG(st->st_mode)) tgp_say(msg, msgsize, "not a regular file"), e = TG_ERR_INPUT;
     else if (st->st_size < 0 || (uintmax_t)st->st_size > (uintmax_t)limit) e = too_large(limit, msg, msgsize);
     flags = fcntl(fd, F_GETFL);
     if (!e && flags >= 0) fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
@@ -111,7 +112,7 @@ static int read_all(int fd, size_t limit, size_t cap, char **data, size_t *size,
             nbuf = (char *)realloc(buf, ncap);
             if (!nbuf) {
                 free(buf);
-                say(msg, msgsize, "out of memory (%lu bytes)", (unsigned long)ncap);
+                tgp_say(msg, msgsize, "out of memory (%lu bytes)", (unsigned long)ncap);
                 return TG_ERR_RUNTIME;
             }
             buf = nbuf;
@@ -166,7 +167,7 @@ int tgp_file_read(const char *path, char **data, size_t *size, char *msg, size_t
 {
     char why[200];
     int r = tgp_file_read_limited(path, (size_t)TG_MAX_FILE_BYTES, data, size, NULL, why, sizeof why);
-    if (r) say(msg, msgsize, "cannot read: %s", why);
+    if (r) tgp_say(msg, msgsize, "cannot read: %s", why);
     return r;
 }
 
@@ -203,7 +204,7 @@ static int host_io_read(void *user, const char *path, const char **data, size_t 
     if (!r && (!node || !(node->path = dup_string(path)))) {
         free(buf);
         free(node);
-        say(h->last_error, sizeof h->last_error, "out of memory");
+        tgp_say(h->last_error, sizeof h->last_error, "out of memory");
         r = TG_ERR_RUNTIME;
     }
     if (r) {
@@ -380,7 +381,7 @@ typedef struct out_target {
 
 static int out_fail(int status, char *msg, size_t msgsize, const char *what, const char *detail)
 {
-    say(msg, msgsize, "cannot write: %s%s%s", what, detail ? ": " : "", detail ? detail : "");
+    tgp_say(msg, msgsize, "cannot write: %s%s%s", what, detail ? ": " : "", detail ? detail : "");
     return status;
 }
 
@@ -636,7 +637,7 @@ int tgp_outfile_commit(tgp_outfile *f, char *msg, size_t msgsize)
     sigset_t old;
     int err = 0;
     if (f->fd < 0) {
-        say(msg, msgsize, "cannot write: file not open");
+        tgp_say(msg, msgsize, "cannot write: file not open");
         return 1;
     }
     outfile_flush(f);
@@ -650,7 +651,7 @@ int tgp_outfile_commit(tgp_outfile *f, char *msg, size_t msgsize)
         unlink(f->tmp_path);
         outfile_release(f);
         release_signals(&old);
-        say(msg, msgsize, "cannot write: %s", strerror(err));
+        tgp_say(msg, msgsize, "cannot write: %s", strerror(err));
         return 1;
     }
     cleanup_armed = 0;
@@ -673,7 +674,7 @@ tgp_outfile *tgp_outfile_create(const char *path, char *msg, size_t msgsize)
 {
     tgp_outfile *f = (tgp_outfile *)malloc(sizeof *f);
     if (!f) {
-        say(msg, msgsize, "cannot write: out of memory");
+        tgp_say(msg, msgsize, "cannot write: out of memory");
         return NULL;
     }
     if (tgp_outfile_open(f, path, msg, msgsize)) {

@@ -69,6 +69,13 @@ int tgp_file_read(const char *path, char **data, size_t *size, char *msg, size_t
  * identity in *id when id is not NULL. */
 int tgp_file_read_limited(const char *path, size_t limit, char **data, size_t *size,
                           tgp_file_id *id, char *msg, size_t msgsize);
+/* printf into msg (msgsize bytes, cut to fit); nothing when msg is NULL:
+ * how the hosted platform writes its messages. */
+void tgp_say(char *msg, size_t msgsize, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
 /* "1 GiB", "64 KiB" or "1000 bytes": a byte count as the limits are said. */
 void tgp_bytes_text(size_t bytes, char *buf, size_t size);
 

@@ -12,14 +12,6 @@
 #include <string.h>
 #include "image.h"
 
-static void say(char *msg, size_t msgsize, const char *fmt, ...)
-{
-    va_list ap;
-    if (!msg || msgsize == 0) return;
-    va_start(ap, fmt);
-    vsnprintf(msg, msgsize, fmt, ap);
-    va_end(ap);
-}
 
 int tgp_img_format_from_path(const char *path, tgp_img_format *format)
 {
@@ -42,18 +34,18 @@ int tgp_img_check_size(int width, int height, int channels, char *msg, size_t ms
 {
     size_t pixels, values, bytes;
     if (width < 1 || height < 1 || width > TG_MAX_IMAGE_SIDE || height > TG_MAX_IMAGE_SIDE) {
-        say(msg, msgsize, "image size %dx%d: each side must be 1..%d", width, height,
+        tgp_say(msg, msgsize, "image size %dx%d: each side must be 1..%d", width, height,
             TG_MAX_IMAGE_SIDE);
         return 1;
     }
     if (channels != 1 && channels != 3) {
-        say(msg, msgsize, "image with %d channels: expected 1 or 3", channels);
+        tgp_say(msg, msgsize, "image with %d channels: expected 1 or 3", channels);
         return 1;
     }
     if (tg_size_mul((size_t)width, (size_t)height, &pixels) ||
         pixels > (size_t)TG_MAX_IMAGE_PIXELS || tg_size_mul(pixels, (size_t)channels, &values) ||
         tg_size_mul(values, sizeof(float), &bytes)) {
-        say(msg, msgsize, "image size %dx%d: pixels must be 1..%ld", width, height,
+        tgp_say(msg, msgsize, "image size %dx%d: pixels must be 1..%ld", width, height,
             (long)TG_MAX_IMAGE_PIXELS);
         return 1;
     }
@@ -310,13 +302,13 @@ static int read_dims(reader *r, int *w, int *h, char *msg, size_t msgsize)
 {
     long lw = read_uint(r, TG_MAX_IMAGE_SIDE), lh;
     if (lw < 0) {
-        say(msg, msgsize, lw == -2 ? "width must be 1..%d" : "bad width (expected a number)",
+        tgp_say(msg, msgsize, lw == -2 ? "width must be 1..%d" : "bad width (expected a number)",
             TG_MAX_IMAGE_SIDE);
         return 1;
     }
     lh = read_uint(r, TG_MAX_IMAGE_SIDE);
     if (lh < 0) {
-        say(msg, msgsize, lh == -2 ? "height must be 1..%d" : "bad height (expected a number)",
+        tgp_say(msg, msgsize, lh == -2 ? "height must be 1..%d" : "bad height (expected a number)",
             TG_MAX_IMAGE_SIDE);
         return 1;
     }
@@ -339,7 +331,7 @@ static int alloc_pixels(tgp_img *img, char *msg, size_t msgsize)
     if (tgp_img_check_size(img->width, img->height, img->channels, msg, msgsize)) return 1;
     img->pixels = (float *)malloc(count * sizeof(float));
     if (!img->pixels) {
-        say(msg, msgsize, "out of memory for a %dx%d image", img->width, img->height);
+        tgp_say(msg, msgsize, "out of memory for a %dx%d image", img->width, img->height);
         return 1;
     }
     return 0;
@@ -352,11 +344,11 @@ static int decode_ppm(reader *r, tgp_img *img, char *msg, size_t msgsize)
     if (read_dims(r, &img->width, &img->height, msg, msgsize)) return 1;
     maxval = read_uint(r, 65535);
     if (maxval < 1) {
-        say(msg, msgsize, "bad PPM maxval (expected 1..65535)");
+        tgp_say(msg, msgsize, "bad PPM maxval (expected 1..65535)");
         return 1;
     }
     if (end_header(r)) {
-        say(msg, msgsize, "PPM header ends without the pixel data");
+        tgp_say(msg, msgsize, "PPM header ends without the pixel data");
         return 1;
     }
     img->channels = 3;
@@ -367,7 +359,7 @@ static int decode_ppm(reader *r, tgp_img *img, char *msg, size_t msgsize)
     bytes_per = maxval > 255 ? 2u : 1u;
     need = count * bytes_per;
     if ((size_t)(r->end - r->p) < need) {
-        say(msg, msgsize, "PPM data truncated: %lu of %lu bytes",
+        tgp_say(msg, msgsize, "PPM data truncated: %lu of %lu bytes",
             (unsigned long)(r->end - r->p), (unsigned long)need);
         return 1;
     }
@@ -375,7 +367,7 @@ static int decode_ppm(reader *r, tgp_img *img, char *msg, size_t msgsize)
     for (i = 0; i < count; i++) {
         unsigned v = bytes_per == 2 ? ((unsigned)r->p[2 * i] << 8) | r->p[2 * i + 1] : r->p[i];
         if (v > (unsigned)maxval) {
-            say(msg, msgsize, "PPM sample %u exceeds maxval %ld", v, maxval);
+            tgp_say(msg, msgsize, "PPM sample %u exceeds maxval %ld", v, maxval);
             free(img->pixels);
             img->pixels = NULL;
             return 1;
@@ -392,11 +384,11 @@ static int decode_pfm(reader *r, tgp_img *img, char *msg, size_t msgsize)
     int y, little;
     if (read_dims(r, &img->width, &img->height, msg, msgsize)) return 1;
     if (read_scale(r, &scale)) {
-        say(msg, msgsize, "bad PFM scale (expected a non-zero number, negative for little-endian)");
+        tgp_say(msg, msgsize, "bad PFM scale (expected a non-zero number, negative for little-endian)");
         return 1;
     }
     if (end_header(r)) {
-        say(msg, msgsize, "PFM header ends without the pixel data");
+        tgp_say(msg, msgsize, "PFM header ends without the pixel data");
         return 1;
     }
     little = scale < 0.0f;
@@ -406,7 +398,7 @@ static int decode_pfm(reader *r, tgp_img *img, char *msg, size_t msgsize)
     row = (size_t)img->width * (size_t)img->channels;
     need = row * (size_t)img->height * 4u;
     if ((size_t)(r->end - r->p) < need) {
-        say(msg, msgsize, "PFM data truncated: %lu of %lu bytes",
+        tgp_say(msg, msgsize, "PFM data truncated: %lu of %lu bytes",
             (unsigned long)(r->end - r->p), (unsigned long)need);
         return 1;
     }
@@ -438,7 +430,7 @@ int tgp_img_decode(const unsigned char *data, size_t size, tgp_img *img, char *m
         r.p += 2;
         return decode_pfm(&r, img, msg, msgsize);
     }
-    say(msg, msgsize, "not a PPM (P6) or PFM (PF/Pf) image");
+    tgp_say(msg, msgsize, "not a PPM (P6) or PFM (PF/Pf) image");
     return 1;
 }
 

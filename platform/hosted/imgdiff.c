@@ -9,16 +9,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "file.h"
 #include "imgdiff.h"
 
-static void say(char *msg, size_t msgsize, const char *fmt, ...)
-{
-    va_list ap;
-    if (!msg || msgsize == 0) return;
-    va_start(ap, fmt);
-    vsnprintf(msg, msgsize, fmt, ap);
-    va_end(ap);
-}
 
 static const char *format_name(const tgp_img *img)
 {
@@ -29,17 +22,17 @@ static const char *format_name(const tgp_img *img)
 static int compatible(const tgp_img *a, const tgp_img *b, char *msg, size_t msgsize)
 {
     if (a->format != b->format || a->channels != b->channels) {
-        say(msg, msgsize, "cannot compare a %s image with a %s image", format_name(a),
+        tgp_say(msg, msgsize, "cannot compare a %s image with a %s image", format_name(a),
             format_name(b));
         return 0;
     }
     if (a->width != b->width || a->height != b->height) {
-        say(msg, msgsize, "image sizes differ: %dx%d and %dx%d", a->width, a->height,
+        tgp_say(msg, msgsize, "image sizes differ: %dx%d and %dx%d", a->width, a->height,
             b->width, b->height);
         return 0;
     }
     if (a->format == TG_IMG_PPM && a->maxval != b->maxval) {
-        say(msg, msgsize, "PPM maxvals differ: %d and %d", a->maxval, b->maxval);
+        tgp_say(msg, msgsize, "PPM maxvals differ: %d and %d", a->maxval, b->maxval);
         return 0;
     }
     return 1;

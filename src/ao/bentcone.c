@@ -8,6 +8,8 @@
 #include "sampling.h"
 #include "../light/sh.h"
 
+#if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
+
 void tgi_bentcone_defaults(tgi_bentcone_params *p)
 {
     p->samples = 8;
@@ -94,3 +96,5 @@ void tgi_bentcone_rows(const tgi_bentcone_params *p, const tgi_gview *g, const t
             bentcone_pixel(p, g, out, dirs, n, tgi_ao_rot_at(rot, x, y), x, y);
         }
 }
+
+#endif /* !TG_NO_TECHNIQUES */

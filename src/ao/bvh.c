@@ -20,6 +20,8 @@
 #include "bvh.h"
 #include "../tinygi.h"
 
+#if !TG_NO_REFERENCE /* the whole file is left out with TG_NO_REFERENCE=1 (tinygi.h "FEATURE SWITCHES") */
+
 typedef struct bvh_task { int32_t node, begin, end; } bvh_task;
 
 #define DIR_MIN TG_R(0.000244140625f)  /* 2^-12 */
@@ -359,3 +361,5 @@ tg_real tgi_bvh_light_visibility(const void *tracer, const tgi_light *l, tg_vec3
     }
     return tgi_bvh_occluded(bvh, o, d, tmax) ? 0 : TG_ONE;
 }
+
+#endif /* !TG_NO_REFERENCE */

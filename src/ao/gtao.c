@@ -6,6 +6,8 @@
 #include "gtao.h"
 #include "sampling.h"
 
+#if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
+
 void tgi_gtao_defaults(tgi_gtao_params *p)
 {
     p->slices = 4;
@@ -154,3 +156,5 @@ void tgi_gtao_rows(const tgi_gtao_params *p, const tgi_gview *g, const tgi_gresu
             tgi_ao_write_bent_view(g, out, i, bent);
         }
 }
+
+#endif /* !TG_NO_TECHNIQUES */

@@ -6,6 +6,8 @@
 #include "hbao.h"
 #include "sampling.h"
 
+#if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
+
 void tgi_hbao_defaults(tgi_hbao_params *p)
 {
     p->directions = 8;
@@ -91,3 +93,5 @@ void tgi_hbao_rows(const tgi_hbao_params *p, const tgi_gview *g, const tgi_gresu
             tgi_gr_set_ao(out, i, tg_saturate(tg_sub(TG_ONE, tg_div(occ, tg_from_int(nd))))); /* RTR eq. 11.17 */
         }
 }
+
+#endif /* !TG_NO_TECHNIQUES */

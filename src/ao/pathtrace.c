@@ -12,6 +12,8 @@
 #include "../light/sh.h"
 #include "sampling.h"
 
+#if !TG_NO_REFERENCE /* the whole file is left out with TG_NO_REFERENCE=1 (tinygi.h "FEATURE SWITCHES") */
+
 #define HIT_EPS_REL TG_R(0.00006103515625f) /* 2^-14 of a point's coordinates: its ray's start offset */
 #define HIT_EPS_ULPS 8
 #define RR_MIN_SURVIVAL TG_R(0.0625f)
@@ -394,3 +396,5 @@ void tgi_pathtrace_rows(const tgi_pathtrace_params *p, const tgi_pathtrace_io *i
         }
     }
 }
+
+#endif /* !TG_NO_REFERENCE */

@@ -7,6 +7,8 @@
 #include "reference.h"
 #include "sampling.h"
 
+#if !TG_NO_REFERENCE /* the whole file is left out with TG_NO_REFERENCE=1 (tinygi.h "FEATURE SWITCHES") */
+
 void tgi_reference_defaults(tgi_reference_params *p)
 {
     p->bvh = 0;
@@ -109,3 +111,5 @@ void tgi_reference_rows(const tgi_reference_params *p, const tgi_gview *g, const
             reference_pixel(p, g, radiance, out, tgi_ao_rot_at(rot, x, y), x, y);
         }
 }
+
+#endif /* !TG_NO_REFERENCE */

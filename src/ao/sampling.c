@@ -5,6 +5,8 @@
  */
 #include "sampling.h"
 
+#if !(TG_NO_TECHNIQUES && TG_NO_REFERENCE) /* used by the techniques and the reference only (tinygi.h "FEATURE SWITCHES") */
+
 /* 4x4 Bayer (ordered-dither) matrix: consecutive values are far apart. */
 static const uint8_t bayer4[16] = { 0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5 };
 
@@ -68,3 +70,5 @@ void tgi_ao_basis(tg_vec3 n, tg_vec3 *t, tg_vec3 *b)
     *t = tg_v3(tg_add(TG_ONE, tg_mul(tg_mul(sign, tg_sqr(n.x)), a)), tg_mul(sign, bb), tg_neg(tg_mul(sign, n.x)));
     *b = tg_v3(bb, tg_add(sign, tg_mul(tg_sqr(n.y), a)), tg_neg(n.y));
 }
+
+#endif /* !(TG_NO_TECHNIQUES && TG_NO_REFERENCE) */

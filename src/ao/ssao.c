@@ -6,6 +6,8 @@
 #include "ssao.h"
 #include "sampling.h"
 
+#if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
+
 void tgi_ssao_defaults(tgi_ssao_params *p)
 {
     p->samples = 16;
@@ -115,3 +117,5 @@ void tgi_ssao_rows(const tgi_ssao_params *p, const tgi_gview *g, const tgi_gresu
             else ssao_3d(p, g, out, off, dir, n, tgi_ao_rot_at(rot, x, y), x, y);
         }
 }
+
+#endif /* !TG_NO_TECHNIQUES */

@@ -9,6 +9,8 @@
 #include "../light/direct.h"
 #include <string.h>
 
+#if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
+
 void tgi_ssdo_defaults(tgi_ssdo_params *p)
 {
     p->samples = 16;
@@ -145,3 +147,5 @@ void tgi_ssdo_rows(const tgi_ssdo_params *p, const tgi_gview *g, const tgi_rgb *
             ssdo_pixel(p, g, radiance, out, dirs, steps, n, tgi_ao_rot_at(rot, x, y), x, y);
         }
 }
+
+#endif /* !TG_NO_TECHNIQUES */

@@ -7,6 +7,8 @@
 #include "vo.h"
 #include "sampling.h"
 
+#if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
+
 void tgi_vo_defaults(tgi_vo_params *p)
 {
     p->samples = 9;
@@ -161,3 +163,5 @@ void tgi_vo_rows(const tgi_vo_params *p, const tgi_gview *g, const tgi_gresult *
             vo_pixel(p, g, out, dx, dy, zs, n, tgi_ao_rot_at(rot, x, y), x, y);
         }
 }
+
+#endif /* !TG_NO_TECHNIQUES */

@@ -21,6 +21,7 @@
 #include "../ao/reference.h"
 #include "../light/direct.h"
 
+#if !TG_NO_TECHNIQUES /* the techniques' passes (tinygi.h "FEATURE SWITCHES") */
 static int technique_samples(int n)
 {
     return n < 1 ? 1 : n > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : n;
@@ -92,6 +93,9 @@ void tgi_pass_bentcone(tg_frame *f, int y0, int y1)
     tgi_bentcone_rows(&p, &f->full, &f->res, y0, y1);
 }
 
+#endif /* !TG_NO_TECHNIQUES */
+
+#if !TG_NO_REFERENCE /* the reference's passes */
 /* Outgoing diffuse radiance leaving a scene point under the direct lights:
  * the reference's exact one-bounce source (same lights, same shadow maps). */
 static tg_vec3 direct_radiance_at(void *user, int tri, tg_vec3 pos, tg_vec3 nrm)
@@ -133,3 +137,4 @@ void tgi_pass_reference(tg_frame *f, int y0, int y1)
     p.user = f;
     tgi_reference_rows(&p, &f->full, tgi_frame_source(f), &f->res, y0, y1);
 }
+#endif /* !TG_NO_REFERENCE */

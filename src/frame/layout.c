@@ -166,7 +166,12 @@ static void group_motion(layout *l, tg_frame *f)
  * its address needs no GOT in position-independent code). */
 static tg_real bvh_shadow_ray(const void *bvh, const tgi_light *l, tg_vec3 p, tg_vec3 n, tg_real err)
 {
+#if TG_NO_REFERENCE   /* no BVH in this build: the plan never chooses rays */
+    (void)bvh; (void)l; (void)p; (void)n; (void)err;
+    return TG_ONE;
+#else
     return tgi_bvh_light_visibility(bvh, l, p, n, err);
+#endif
 }
 
 /* Per shadowed light, maps sized and culled by the plan (tgi_shadow_plan:
@@ -185,7 +190,8 @@ static void group_shadow_maps(layout *l, tg_frame *f)
         void *depth = NULL;
         int by;
         if (!s->lights[i].shadows) continue;
-        by = tgi_shadow_plan(s, &f->request, i, reference ? 0 : tgi_bvh_bytes(s->tri_count), &nd, &lo, &hi);
+        by = tgi_shadow_plan(s, &f->request, i, TG_NO_REFERENCE ? SIZE_MAX : reference ? 0 : tgi_bvh_bytes(s->tri_count),
+                             &nd, &lo, &hi);
         rays |= by == TG_SHADOW_BY_RAYS;
         if (by == TG_SHADOW_BY_MAP) depth = take(l, "shadow maps (depth) [16 bits]", tgi_shadow_need_bytes(&nd), 1);
         if (!l->arena) continue;
@@ -194,7 +200,7 @@ static void group_shadow_maps(layout *l, tg_frame *f)
         f->shadow_maps[i].filter = f->request.shadow_pcf ? TG_SHADOW_PCF_BILINEAR : TG_SHADOW_PCF_TENT;
         f->shadow_ptrs[i] = &f->shadow_maps[i];
     }
-    if (rays && !reference) {
+    if (!TG_NO_REFERENCE && rays && !reference) {
         f->bvh_scratch_bytes = tgi_bvh_bytes(s->tri_count);
         f->bvh_scratch = take(l, "shadow rays: BVH", f->bvh_scratch_bytes, 1);
     }
@@ -308,7 +314,7 @@ static void group_temporal(layout *l, tg_frame *f)
 
 static void group_bvh(layout *l, tg_frame *f)
 {
-    if (f->request.technique != TG_TECH_REFERENCE) return;
+    if (TG_NO_REFERENCE || f->request.technique != TG_TECH_REFERENCE) return;
     f->bvh_scratch_bytes = tgi_bvh_bytes(f->scene->tri_count);
     f->bvh_scratch = take(l, "reference BVH", f->bvh_scratch_bytes, 1);
 }

@@ -31,7 +31,7 @@ void tgi_pass_shadow_maps(tg_frame *f)
         if (stale) tgi_shadow_map_refit(sm, lo, hi);
         tgi_shadow_map_render(sm, mesh.pos, mesh.tri_count);
     }
-    if (rays) tgi_bvh_build(&f->bvh, mesh.pos, mesh.tri_count, f->bvh_scratch, f->bvh_scratch_bytes);
+    if (!TG_NO_REFERENCE && rays) tgi_bvh_build(&f->bvh, mesh.pos, mesh.tri_count, f->bvh_scratch, f->bvh_scratch_bytes);
     f->shadows_valid = 1;
     f->shadows_stale = 0;
 }

@@ -39,6 +39,8 @@ void tgi_pass_gtao(tg_frame *f, int y0, int y1);
 void tgi_pass_ssdo(tg_frame *f, int y0, int y1);
 void tgi_pass_bentcone(tg_frame *f, int y0, int y1);
 void tgi_pass_reference(tg_frame *f, int y0, int y1);
+/* A left-out feature (tinygi.h "FEATURE SWITCHES") has no rows below, so
+ * nothing refers to its passes and the linker leaves them out. */
 void tgi_pass_resolve(tg_frame *f, int y0, int y1);
 void tgi_pass_keep_history(tg_frame *f, int y0, int y1);
 
@@ -64,13 +66,17 @@ static int runs_hbil(const tg_frame *f) { return technique_runs(f, TG_TECH_HBIL)
 static int runs_hbil_interleaved(const tg_frame *f) { return runs_hbil(f) && tgi_frame_interleaved(f); }
 static int runs_hbil_full(const tg_frame *f) { return runs_hbil(f) && !tgi_frame_interleaved(f); }
 static int runs_hbil_quarter(const tg_frame *f) { return runs_hbil(f) && tgi_frame_quarter(f); }
+#if !TG_NO_TECHNIQUES
 static int runs_ssao(const tg_frame *f) { return technique_runs(f, TG_TECH_SSAO); }
 static int runs_vo(const tg_frame *f) { return technique_runs(f, TG_TECH_VO); }
 static int runs_hbao(const tg_frame *f) { return technique_runs(f, TG_TECH_HBAO); }
 static int runs_gtao(const tg_frame *f) { return technique_runs(f, TG_TECH_GTAO); }
 static int runs_ssdo(const tg_frame *f) { return technique_runs(f, TG_TECH_SSDO); }
 static int runs_bentcone(const tg_frame *f) { return technique_runs(f, TG_TECH_BENTCONE); }
+#endif
+#if !TG_NO_REFERENCE
 static int runs_reference(const tg_frame *f) { return technique_runs(f, TG_TECH_REFERENCE); }
+#endif
 /* compose, or an AOV of the GI results or the far field (everything after the kernel) */
 static int resolves(const tg_frame *f)
 {
@@ -100,8 +106,10 @@ const tgi_pass tgi_passes[] = {
       B(SOURCE) | B(REPROJECT), TGI_ON_HISTORY, SERIAL(tgi_pass_push_pull) },
     { "direct light (Lambert, shadows, spot falloff): E_direct, the near field's first source", lights_directly,
       B(GBUFFER) | B(SHADOW_MAPS) | B(DIRECT) | B(SOURCE), TGI_ON_FIRST_FRAME, ROWS(tgi_pass_direct) },
+#if !TG_NO_REFERENCE
     { "reference: BVH over the posed triangles", runs_reference,
       B(BVH) | B(POSE), 0, SERIAL(tgi_pass_reference_bvh) },
+#endif
     /* the kernel and what follows it: iterated on a frame without history
      * (gi bounces), each iteration gathering the previous one's radiance */
     { "downsample to quarter resolution (point samples)", runs_hbil_quarter,
@@ -116,6 +124,7 @@ const tgi_pass tgi_passes[] = {
       B(SPLIT) | B(HALF) | B(SOURCE) | B(RESULTS), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_merge) },
     { "temporal accumulation at the kernel's resolution (history rejected by depth and normal)", accumulates,
       B(HALF) | B(SOURCE) | B(RESULTS) | B(TEMPORAL) | B(HISTORY), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_temporal) },
+#if !TG_NO_TECHNIQUES
     { "SSAO (Crytek point samples, normal-oriented hemisphere)", runs_ssao,
       B(RESULTS), TGI_BOUNCE, ROWS(tgi_pass_ssao) },
     { "volumetric obscurance (line samples in the ball)", runs_vo,
@@ -128,8 +137,11 @@ const tgi_pass tgi_passes[] = {
       B(RESULTS) | B(SOURCE) | B(FAR), TGI_BOUNCE, ROWS(tgi_pass_ssdo) },
     { "bent normals and cones (far field in the cone)", runs_bentcone,
       B(RESULTS) | B(FAR), TGI_BOUNCE, ROWS(tgi_pass_bentcone) },
+#endif
+#if !TG_NO_REFERENCE
     { "reference: ray-traced AO, bent normal and near field", runs_reference,
       B(RESULTS) | B(SOURCE) | B(BVH), TGI_BOUNCE, ROWS(tgi_pass_reference) },
+#endif
     { "depth/normal-aware 4x4 filter at quarter resolution", runs_hbil_quarter,
       B(HALF) | B(RESULTS) | B(FILTER), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_filter_quarter) },
     { "direct light (Lambert, shadows, spot falloff): E_direct", lights_after_history,

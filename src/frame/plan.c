@@ -89,6 +89,41 @@ static uint32_t wanted_effects(uint32_t possible, uint32_t aovs)
     return e;
 }
 
+/* "HEAD[NAME] left out of this build (SWITCH=1)[WHY]": a feature the
+ * plan needs is not in this build (tinygi.h "FEATURE SWITCHES"). */
+static int refuse_left_out(tg_error *err, const char *head, const char *name, const char *sw, const char *why)
+{
+    tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, head);
+    if (name) {
+        tgi_error_append(err, name);
+        tgi_error_append(err, " is");
+    }
+    tgi_error_append(err, " left out of this build (");
+    tgi_error_append(err, sw);
+    tgi_error_append(err, "=1)");
+    if (why) tgi_error_append(err, why);
+    return 1;
+}
+
+/* 1 (and the message) when the plan needs a feature this build leaves out. */
+static int left_out(const tg_plan *p, tg_error *err)
+{
+    tg_technique t = p->request.technique;
+    int reads_env = p->scene->env.type != TG_ENV_NONE &&
+                    ((p->effects & TG_EFFECT_FAR) || (tgi_frame_needs(p) & TG_NEED_COMPOSE));
+    if (TG_NO_TECHNIQUES && t != TG_TECH_HBIL && t != TG_TECH_REFERENCE)
+        return refuse_left_out(err, "technique ", tg_technique_name(t), "TG_NO_TECHNIQUES", NULL);
+    if (TG_NO_REFERENCE && t == TG_TECH_REFERENCE)
+        return refuse_left_out(err, "technique ", tg_technique_name(t), "TG_NO_REFERENCE", NULL);
+    if (TG_NO_SHADOW_MAPS && (p->effects & TG_EFFECT_SHADOWS))
+        return refuse_left_out(err, "shadow maps are", NULL, "TG_NO_SHADOW_MAPS",
+                               ": a light the plan uses is marked `shadows`");
+    if (TG_NO_ENVIRONMENT && reads_env)
+        return refuse_left_out(err, "the environment is", NULL, "TG_NO_ENVIRONMENT",
+                               ": the plan reads the scene's env (the far field, or the sky behind colour)");
+    return 0;
+}
+
 uint32_t tgi_frame_needs(const tg_plan *p)
 {
     const tg_scene *s = p->scene;
@@ -126,6 +161,7 @@ tg_status tg_plan_make(tg_plan *plan, const tg_scene *scene, const tg_request *r
     if (plan->effects & TG_EFFECT_NEAR) plan->effects |= TG_EFFECT_AO;
     if (!(plan->effects & TG_EFFECT_DIRECT)) plan->effects &= ~(uint32_t)TG_EFFECT_SHADOWS;
     if (!(plan->effects & TG_EFFECT_NEAR)) plan->effects &= ~(uint32_t)TG_EFFECT_REPROJECTION;
+    if (left_out(plan, err)) return TG_ERR_INPUT;
     memset(&probe, 0, sizeof probe);
     if (tgi_frame_layout(&pp, plan, NULL) != 0) {
         tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "frame size overflows the address space");
@@ -206,7 +242,8 @@ size_t tg_plan_explain(const tg_plan *plan, char *buf, size_t size)
     put_number_line(&t, "", pixels ? plan->total_bytes / pixels : 0, " bytes per pixel\n");
     if (plan->effects & TG_EFFECT_SHADOWS)
         tgi_shadow_explain(&t, plan->scene, &plan->request,
-                           plan->request.technique == TG_TECH_REFERENCE ? 0 : tgi_bvh_bytes(plan->scene->tri_count));
+                           TG_NO_REFERENCE ? SIZE_MAX
+                           : plan->request.technique == TG_TECH_REFERENCE ? 0 : tgi_bvh_bytes(plan->scene->tri_count));
     return t.at;
 }
 

@@ -88,7 +88,9 @@ static int switch_outside(const tg_request *r, tg_error *err)
         || int_outside(err, "temporal", r->temporal, 0, 1)
         || int_outside(err, "far_mode", r->far_mode, 0, 1)
         || int_outside(err, "shadow_pcf", r->shadow_pcf, 0, 1)
-        || int_outside(err, "shadow_method", r->shadow_method, TG_SHADOWS_AUTO, TG_SHADOWS_RAYS)
+        /* shadow rays trace the reference's BVH (left out by TG_NO_REFERENCE) */
+        || int_outside(err, "shadow_method", r->shadow_method, TG_SHADOWS_AUTO,
+                       TG_NO_REFERENCE ? TG_SHADOWS_MAPS : TG_SHADOWS_RAYS)
         || int_outside(err, "game_loop", r->game_loop, 0, 1);
 }
 
@@ -104,13 +106,31 @@ int tgi_request_refused(const tg_request *r, tg_error *err)
             && int_outside(err, "shadow_map_size", r->shadow_map_size, TG_MIN_SHADOW_MAP, TG_MAX_SHADOW_MAP));
 }
 
-/* Unset GI settings from the scene's gi line, else the defaults; then the
- * scene's values are checked like the request's. */
+/* The gather radius of a scene that gives none.  Without an environment
+ * the far field is zero and the near field is all the indirect light
+ * (HBIL eq. 15-17): a radius shorter than the scene drops the light of
+ * every surface beyond it, so it spans the scene (its bounds' diagonal;
+ * the screen bounds the march).  With an environment, directions with
+ * nothing within the radius see the sky instead, and a local radius
+ * (diagonal / TG_RADIUS_ENV_DIVISOR) keeps a foreground object from
+ * occluding, in the depth buffer, what lies far behind it.  A scene
+ * without extent gets TG_DEFAULT_RADIUS. */
+static tg_real scene_gather_radius(const tg_scene *s)
+{
+    tg_real d = tgi_v3_length(tgi_v3_sub(s->bounds_max, s->bounds_min));
+    if (d <= 0) return tg_from_int(TG_DEFAULT_RADIUS);
+    if (s->env.type != TG_ENV_NONE) d = tg_div(d, tg_from_int(TG_RADIUS_ENV_DIVISOR));
+    return tg_min(d, tg_from_int(TG_MAX_RADIUS));
+}
+
+/* Unset GI settings from the scene's gi line, else the defaults (the
+ * radius: sized to the scene); then the scene's values are checked like
+ * the request's. */
 int tgi_request_resolve(tg_request *r, const tg_scene *s, tg_error *err)
 {
     if (r->slices <= 0) r->slices = s->gi.slices > 0 ? s->gi.slices : TG_DEFAULT_SLICES;
     if (r->samples <= 0) r->samples = s->gi.samples > 0 ? s->gi.samples : TG_DEFAULT_SAMPLES;
-    if (r->radius == UNSET_RADIUS) r->radius = s->gi.radius >= 0 ? s->gi.radius : tg_from_int(TG_DEFAULT_RADIUS);
+    if (r->radius == UNSET_RADIUS) r->radius = s->gi.radius >= 0 ? s->gi.radius : scene_gather_radius(s);
     if (r->bounces < 0) r->bounces = s->gi.bounces >= 0 ? s->gi.bounces : TG_DEFAULT_BOUNCES;
     if (r->aovs == 0) r->aovs = 1u << TG_AOV_COLOR;
     if (r->shadow_map_size <= 0) r->shadow_map_size = TG_DEFAULT_SHADOW_MAP;   /* 0: the size rule */

@@ -411,10 +411,9 @@ static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
                                tgi_v3_scale(v->forward, acc.bent_delta.z));
         tgi_gr_set_bent(out, i, tgi_v3_normalize_or(tgi_v3_add(tgi_v3_scale(nw, tg_from_int(c->slices)), dw), nw));
     }
-    if (c->near_field) {
-        tg_real k = tg_mul(c->pi_over_s, tg_sub(TG_ONE, tg_saturate(tgi_gv_f0(c->g, i)))); /* eq. 17, 19 */
-        tgi_gr_set_near(out, i, tg_v3(tg_mul(acc.er, k), tg_mul(acc.eg, k), tg_mul(acc.eb, k)));
-    }
+    if (c->near_field)   /* eq. 16-18; the receiver's (1 - F0) of eq. 19 is applied where Lo is composed */
+        tgi_gr_set_near(out, i, tg_v3(tg_mul(acc.er, c->pi_over_s), tg_mul(acc.eg, c->pi_over_s),
+                                      tg_mul(acc.eb, c->pi_over_s)));
 }
 
 static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, const tgi_rgb *radiance,

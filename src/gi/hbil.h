@@ -16,8 +16,9 @@
  *   (sec. 1.3), horizons initialised from the normal (sec. 2.1),
  *   cosine-weighted AO (eq. 10-11), bent normal (eq. 4-6), cone aperture
  *   (eq. 12) and near-field irradiance gathered where the horizon rises
- *   (eq. 18) weighted by 1 - F0 (eq. 19) with the sender-normal rejection
- *   filter and running lerp of sec. 3.4.
+ *   (eq. 18), as irradiance: the receiver's 1 - F0 of eq. 19 is applied
+ *   once, with the albedo, where Lo is composed (eq. 14), with the
+ *   sender-normal rejection filter and running lerp of sec. 3.4.
  *
  * Slice angles: with S slices per pixel the slices of a pixel are
  * phi0 + s * pi / S.  Each of the 16 sub-images (i, j) gets its own phi0
@@ -41,7 +42,7 @@
  *    |sin(theta)| of eq. 10 on the back side; we integrate eq. 10 exactly
  *    (this matches GTAO, RTR eq. 11.18), which gives ~n_x = 0 for
  *    symmetric horizons as it must.
- *  - E_near = (pi / S) (1 - F0) sum over rises of L * dE (eq. 16-19).  With
+ *  - E_near = (pi / S) sum over rises of L * dE (eq. 16-18).  With
  *    uniform radiance L in every occluded direction, AO + E_near / (pi L)
  *    = 1 exactly (fig. 15: the near field is the complement of the far).
  *
@@ -74,8 +75,7 @@ void tgi_hbil_defaults(tgi_hbil_params *p);
 tg_real tgi_hbil_slice_phi0(int i, int j, int slices);
 
 /* Run the kernel on rows [y0, y1) of the view `g` (its camera is the
- * full-resolution one; the F0 it carries weighs the near field, 0 when it
- * carries none).  radiance: last frame's diffuse radiance reprojected,
+ * full-resolution one).  radiance: last frame's diffuse radiance reprojected,
  * indexed like g; NULL or absent = no near field.  out: AO always, the
  * bent normal, cone and near-field irradiance when present (the near field
  * only with radiance). */

@@ -8,6 +8,8 @@
  */
 #include "sh.h"
 
+#if !TG_NO_ENVIRONMENT /* the whole file is left out with TG_NO_ENVIRONMENT=1 (tinygi.h "FEATURE SWITCHES") */
+
 /* SH basis normalisation constants (Ramamoorthi-Hanrahan eq. 3) */
 #define SH_Y00 TG_R(0.282094792f)
 #define SH_Y1  TG_R(0.488602512f)
@@ -187,3 +189,5 @@ void tgi_far_rows(const tgi_gview *g, const tg_vec3 sh[9], const tgi_gresult *re
                                                    has_bent, has_bent ? tgi_gr_bent(res, i) : tg_v3(0, 0, 0), mode));
         }
 }
+
+#endif /* !TG_NO_ENVIRONMENT */

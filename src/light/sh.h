@@ -48,6 +48,29 @@
 
 typedef enum tgi_far_mode { TG_FAR_CONE_SH = 0, TG_FAR_CUBE_F0 = 1, TG_FAR_OPEN = 2 } tgi_far_mode;
 
+#if TG_NO_ENVIRONMENT
+/* This build has no environment (tinygi.h "FEATURE SWITCHES"): tg_plan_make
+ * refuses every plan that would read the scene's env (the far effect,
+ * colour over a sky), so the frame's SH9 stays zero and the callers below
+ * are reached only with no environment, whose SH9, radiance and far field
+ * are 0.  Nothing of sh.c is linked. */
+static inline void tgi_sh9_from_env(const tgi_env *env, tg_vec3 sh[9]) { (void)env; memset(sh, 0, 9 * sizeof *sh); }
+static inline tg_vec3 tgi_sh9_irradiance(const tg_vec3 sh[9], tg_vec3 n) { (void)sh; (void)n; return tg_v3(0, 0, 0); }
+static inline tg_vec3 tgi_sh9_irradiance_cone(const tg_vec3 sh[9], tg_vec3 bent, tg_real x)
+{
+    (void)sh; (void)bent; (void)x;
+    return tg_v3(0, 0, 0);
+}
+static inline tg_vec3 tgi_sh9_radiance(const tg_vec3 sh[9], tg_vec3 dir) { (void)sh; (void)dir; return tg_v3(0, 0, 0); }
+static inline tg_vec3 tgi_env_radiance(const tgi_env *env, tg_vec3 dir) { (void)env; (void)dir; return tg_v3(0, 0, 0); }
+static inline tg_vec3 tgi_far_irradiance(const tg_vec3 sh[9], tg_vec3 n, int has_ao, tg_real ao, int has_bent,
+                                         tg_vec3 bent, int mode)
+{
+    (void)sh; (void)n; (void)has_ao; (void)ao; (void)has_bent; (void)bent; (void)mode;
+    return tg_v3(0, 0, 0);
+}
+#else
+
 /* Radiance SH9 of an environment (RTR eq. 10.40-10.41, done analytically):
  * uniform L -> L00 = 2 sqrt(pi) L; sky/ground hemisphere -> bands 0 and 1
  * only (the step's band-2 projection is exactly zero), whose irradiance is
@@ -105,5 +128,7 @@ tg_vec3 tgi_far_irradiance(const tg_vec3 sh[9], tg_vec3 n, int has_ao, tg_real a
  * Sky pixels get 0. */
 void tgi_far_rows(const tgi_gview *g, const tg_vec3 sh[9], const tgi_gresult *res, int mode,
                   const tgi_rgb *out, int y0, int y1);
+
+#endif /* !TG_NO_ENVIRONMENT */
 
 #endif

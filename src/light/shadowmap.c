@@ -11,6 +11,8 @@
 #include "shadowmap.h"
 #include "../raster/raster.h"
 
+#if !TG_NO_SHADOW_MAPS /* the whole file is left out with TG_NO_SHADOW_MAPS=1 (tinygi.h "FEATURE SWITCHES") */
+
 #define SPOT_MAX_ANGLE TG_R(1.3962634f) /* 80 degrees */
 #define GRAZING_MIN_COS TG_R(0.001f)    /* |n . l| floor: keeps the receiver plane's slope finite */
 /* Error bounds of rasterized depth (tgi_raster_* snap vertices to 1/16 of a
@@ -619,3 +621,5 @@ tg_real tgi_shadow_visibility(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n)
 {
     return tgi_shadow_visibility_err(sm, p, n, 0);
 }
+
+#endif /* !TG_NO_SHADOW_MAPS */

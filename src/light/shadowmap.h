@@ -164,6 +164,53 @@ typedef struct tgi_shadow_map {
 /* ---- a need without a view: every face at one size (the --shadow-size
  * behaviour before the size rule) ---- */
 
+#if TG_NO_SHADOW_MAPS
+/* This build has no shadow maps (tinygi.h "FEATURE SWITCHES"): tg_plan_make
+ * refuses the shadows effect, so no frame holds a map and every map pointer
+ * the callers pass is NULL.  What they call reads as "no map": 0 bytes,
+ * nothing to fit or render, every point lit.  Nothing of shadowmap.c is
+ * linked. */
+static inline size_t tgi_shadow_map_bytes(const tgi_light *l, int size) { (void)l; (void)size; return 0; }
+static inline void tgi_shadow_map_setup(tgi_shadow_map *sm, const tgi_light *l, int size,
+                                        tg_vec3 scene_min, tg_vec3 scene_max, void *memory)
+{
+    (void)l; (void)size; (void)scene_min; (void)scene_max; (void)memory;
+    memset(sm, 0, sizeof *sm);
+}
+static inline void tgi_shadow_map_render(tgi_shadow_map *sm, const tg_vec3 *pos, int tri_count)
+{
+    (void)sm; (void)pos; (void)tri_count;
+}
+static inline tg_real tgi_shadow_visibility_err(const tgi_shadow_map *sm, tg_vec3 world_pos,
+                                                tg_vec3 world_normal, tg_real position_error)
+{
+    (void)sm; (void)world_pos; (void)world_normal; (void)position_error;
+    return TG_ONE;
+}
+static inline tg_real tgi_shadow_visibility(const tgi_shadow_map *sm, tg_vec3 world_pos, tg_vec3 world_normal)
+{
+    (void)sm; (void)world_pos; (void)world_normal;
+    return TG_ONE;
+}
+static inline tg_real tgi_shadow_gbuffer_error(const tgi_view *view) { (void)view; return 0; }
+static inline size_t tgi_shadow_need_bytes(const tgi_shadow_need *nd) { (void)nd; return 0; }
+static inline void tgi_shadow_map_setup_need(tgi_shadow_map *sm, const tgi_light *l, const tgi_shadow_need *nd,
+                                             tg_vec3 scene_min, tg_vec3 scene_max, void *memory)
+{
+    (void)l; (void)nd; (void)scene_min; (void)scene_max; (void)memory;
+    memset(sm, 0, sizeof *sm);
+}
+static inline void tgi_shadow_map_refit(tgi_shadow_map *sm, tg_vec3 scene_min, tg_vec3 scene_max)
+{
+    (void)sm; (void)scene_min; (void)scene_max;
+}
+static inline void tgi_shadow_rays_setup(tgi_shadow_map *sm, const tgi_light *l, tgi_shadow_ray_fn ray,
+                                         const void *tracer)
+{
+    (void)l; (void)ray; (void)tracer;
+    memset(sm, 0, sizeof *sm);
+}
+#else
 /* Bytes of a 16-bit map for light `l` with every face at `size` texels; 0
  * for a size outside TG_MIN_SHADOW_MAP..TG_MAX_SHADOW_MAP (or one whose
  * bytes would not fit in a size_t). */
@@ -249,6 +296,8 @@ tg_vec3 tgi_shadow_face_axis(const tgi_light *l, int face);
 
 /* A face's right-handed basis: forward given, right = forward x helper, up = right x forward. */
 void tgi_shadow_basis(tg_vec3 forward, tg_vec3 *right, tg_vec3 *up);
+
+#endif /* !TG_NO_SHADOW_MAPS */
 
 /* Texels of PCF border on each side of a face beyond its nominal extent. */
 #define TG_SHADOW_BORDER 2

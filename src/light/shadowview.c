@@ -10,6 +10,8 @@
 #include "../scene/anim.h"
 #include "../core/text.h"
 
+#if !TG_NO_SHADOW_MAPS /* the whole file is left out with TG_NO_SHADOW_MAPS=1 (tinygi.h "FEATURE SWITCHES") */
+
 #define POLY_MAX 24                    /* a quad or triangle cut by up to 17 planes */
 #define APEX_NEAR TG_R(0.001f)         /* the lookup's own nearest distance (lit nearer) */
 #define PLANE_MAX_TAN TG_R(1.5f)       /* light-plane coordinates kept within 1.5 x the face */
@@ -522,3 +524,5 @@ void tgi_shadow_explain(tgi_text *t, const tg_scene *s, const tg_request *r, siz
     for (i = 0; i < s->light_count; i++)
         if (s->lights[i].shadows) put_light(t, s, r, i, bvh_bytes);
 }
+
+#endif /* !TG_NO_SHADOW_MAPS */

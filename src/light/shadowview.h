@@ -98,13 +98,32 @@ int tgi_shadow_choose(size_t map_bytes, size_t bvh_bytes, size_t pixels);
  * technique that looks shadows up where the camera does not see (the
  * reference) or more than TG_SHADOW_PLAN_VIEWS views make every face whole
  * (tgi_shadow_need_all) at the rule's density. */
+#if TG_NO_SHADOW_MAPS
+/* (no shadow maps in this build: tg_plan_make refuses the shadows effect) */
+static inline int tgi_shadow_plan(const tg_scene *s, const tg_request *r, int light, size_t bvh_bytes,
+                                  tgi_shadow_need *nd, tg_vec3 *lo, tg_vec3 *hi)
+{
+    (void)r; (void)light; (void)bvh_bytes;
+    memset(nd, 0, sizeof *nd);
+    *lo = s->bounds_min; *hi = s->bounds_max;
+    return TG_SHADOW_BY_MAP;
+}
+#else
 int tgi_shadow_plan(const tg_scene *s, const tg_request *r, int light, size_t bvh_bytes,
                     tgi_shadow_need *nd, tg_vec3 *lo, tg_vec3 *hi);
+#endif
 
 /* The plan's shadows for tg_plan_explain: per shadowed light, rays or
  * each face's size ("absent" for a culled face) and the bytes (bvh_bytes
  * as tgi_shadow_plan's). */
 struct tgi_text;
+#if TG_NO_SHADOW_MAPS
+static inline void tgi_shadow_explain(struct tgi_text *t, const tg_scene *s, const tg_request *r, size_t bvh_bytes)
+{
+    (void)t; (void)s; (void)r; (void)bvh_bytes;
+}
+#else
 void tgi_shadow_explain(struct tgi_text *t, const tg_scene *s, const tg_request *r, size_t bvh_bytes);
+#endif
 
 #endif

@@ -338,15 +338,21 @@ static inline int32_t snap_ndc(tg_real c, tg_real w, inv_w iw, int32_t half16)
 }
 #else
 typedef float inv_w;
-static inline inv_w inverse_w(tg_real w) { return w > 0.0f ? 1.0f / w : 0.0f; }
+/* Selects rather than branches (the division is always made): a batch of
+ * vertices can go through these together. */
+static inline inv_w inverse_w(tg_real w)
+{
+    float r = 1.0f / w;
+    return w > 0.0f ? r : 0.0f;
+}
 
 static inline int32_t snap_ndc(tg_real c, tg_real w, inv_w iw, int32_t half16)
 {
     float v = c * iw * (float)half16;
     (void)w;
-    if (!(v <= (float)COORD_LIMIT)) v = (float)COORD_LIMIT;   /* also NaN */
-    if (v < -(float)COORD_LIMIT) v = -(float)COORD_LIMIT;
-    return (int32_t)(v >= 0.0f ? v + 0.5f : v - 0.5f);
+    v = v <= (float)COORD_LIMIT ? v : (float)COORD_LIMIT;     /* also NaN */
+    v = v < -(float)COORD_LIMIT ? -(float)COORD_LIMIT : v;
+    return (int32_t)(v + (v >= 0.0f ? 0.5f : -0.5f));        /* v - 0.5f is v + -0.5f */
 }
 #endif
 
@@ -838,42 +844,147 @@ static int target_rows(raster_target *rt, int width, int height, int y0, int y1)
     return rt->row0 < rt->row1;
 }
 
+/* ---------------------------------------------------------------------- */
+/* G-buffer triangles through a small vertex cache                         */
+
+/* A world vertex in view clip space (x fx, y fy, w = view z), classified:
+ * V_INSIDE when inside the guard band and the depth range (no clipping
+ * needed; sx, sy are then its 28.4 screen position), V_RIGHT.. when beyond
+ * that screen side. */
+enum { V_INSIDE = 1, V_RIGHT = 2, V_LEFT = 4, V_TOP = 8, V_BOTTOM = 16 };
+#define V_OFF_SIDE (V_RIGHT | V_LEFT | V_TOP | V_BOTTOM)
+
+typedef struct view_vertex {
+    tg_real x, y, w;
+    inv_w iw;
+    int32_t sx, sy;
+    int flags;
+} view_vertex;
+
+typedef struct view_frame {
+    tg_vec3 eye, rx, ry, rz;      /* clip x = (p - eye) . rx, y = . ry, w = . rz */
+    tg_real znear, zfar;
+} view_frame;
+
+static inline view_vertex view_vertex_make(const raster_target *rt, const view_frame *vf, tg_vec3 p)
+{
+    view_vertex o;
+    tg_vec3 d = tgi_v3_sub(p, vf->eye);
+    tg_real x = tgi_v3_dot(d, vf->rx), y = tgi_v3_dot(d, vf->ry), w = tgi_v3_dot(d, vf->rz);
+    tg_real gw = tg_mul(GUARD_R, w), ngw = tg_neg(gw), nw = tg_neg(w);
+    o.x = x;
+    o.y = y;
+    o.w = w;
+    o.iw = inverse_w(w);
+    o.flags = ((x >= ngw) & (x <= gw) & (y >= ngw) & (y <= gw) & (w >= vf->znear) & (w <= vf->zfar)) * V_INSIDE
+              | (x > w) * V_RIGHT | (x < nw) * V_LEFT | (y > w) * V_TOP | (y < nw) * V_BOTTOM;
+    o.sx = rt->half_w16 + snap_ndc(x, w, o.iw, rt->half_w16);
+    o.sy = rt->half_h16 - snap_ndc(y, w, o.iw, rt->half_h16);
+    return o;
+}
+
+/* Neighbouring triangles of a mesh share vertices (a triangle strip reuses
+ * two of every three): a direct-mapped cache keyed by the position's bits
+ * gives back the same view_vertex without transforming it again. */
+#define VCACHE_BITS 4
+typedef struct vertex_cache {
+    uint32_t key[1 << VCACHE_BITS][3];
+    view_vertex v[1 << VCACHE_BITS];
+} vertex_cache;
+
+static inline uint32_t real_bits(tg_real r)
+{
+#if TG_FIXED
+    return (uint32_t)r;
+#else
+    union { float f; uint32_t u; } b;
+    b.f = r;
+    return b.u;
+#endif
+}
+
+/* Every entry starts as the origin, transformed: a hit is always right. */
+static void vertex_cache_init(vertex_cache *c, const raster_target *rt, const view_frame *vf)
+{
+    view_vertex o = view_vertex_make(rt, vf, tg_v3(0, 0, 0));
+    uint32_t z = real_bits(0);
+    int i;
+    for (i = 0; i < 1 << VCACHE_BITS; i++) {
+        c->key[i][0] = c->key[i][1] = c->key[i][2] = z;
+        c->v[i] = o;
+    }
+}
+
+static inline view_vertex vertex_lookup(vertex_cache *c, const raster_target *rt, const view_frame *vf, tg_vec3 p)
+{
+    uint32_t kx = real_bits(p.x), ky = real_bits(p.y), kz = real_bits(p.z);
+    uint32_t h = (kx * 0x9E3779B1u + ky * 0x85EBCA77u + kz * 0xC2B2AE3Du) >> (32 - VCACHE_BITS);
+    if (c->key[h][0] != kx || c->key[h][1] != ky || c->key[h][2] != kz) {
+        c->key[h][0] = kx; c->key[h][1] = ky; c->key[h][2] = kz;
+        c->v[h] = view_vertex_make(rt, vf, p);
+    }
+    return c->v[h];
+}
+
+/* Triangle t: reject, cull, draw (clipped if needed). */
+static void gbuffer_triangle(raster_target *rt, const view_vertex *vv, const tgi_raster_mesh *mesh, int t)
+{
+    static const int order_front[3] = { 0, 2, 1 }, order_back[3] = { 0, 1, 2 };
+    int f = vv[0].flags & vv[1].flags & vv[2].flags, twosided, front = 0, k;
+    int32_t sx[3], sy[3];
+    inv_w iw[3];
+    int64_t area2 = 0;
+    clip_vertex v[3];
+    if (f & V_OFF_SIDE) return;                   /* wholly off one side of the screen */
+    twosided = mesh->materials[mesh->tri_material[t]].twosided;
+    for (k = 0; k < 3; k++) { sx[k] = vv[k].sx; sy[k] = vv[k].sy; iw[k] = vv[k].iw; }
+    if (f & V_INSIDE) {
+        area2 = signed_area2(sx, sy);
+        front = area2 < 0;                        /* counter-clockwise as seen, y down */
+        if (area2 == 0 || (!front && !twosided)) return;   /* zero area, culled */
+    }
+    rt->material = mesh->tri_material[t];
+    rt->cull_back = !twosided;
+    rt->flip_back = twosided;
+    rt->object = mesh->tri_object ? mesh->tri_object[t] : 0;
+    rt->tri_nrm = mesh->nrm + 3 * t;
+    for (k = 0; k < 3; k++) {
+        v[k].x = vv[k].x;
+        v[k].y = vv[k].y;
+        v[k].z = v[k].w = vv[k].w;
+    }
+    if (f & V_INSIDE)
+        draw_snapped(rt, v, rt->tri_nrm, sx, sy, iw, front ? order_front : order_back,
+                     front ? -area2 : area2, !front && twosided);
+    else
+        draw_clip_tri(rt, v, rt->tri_nrm);
+}
+
 void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_mesh *mesh, int y0, int y1)
 {
     raster_target rt;
-    tg_vec3 rx = tgi_v3_scale(view->right, view->focal_x);
-    tg_vec3 ry = tgi_v3_scale(view->up, view->focal_y);
-    tg_vec3 rz = view->forward;
-    tg_real znear, zfar;
-    int t, k;
+    view_frame vf;
+    vertex_cache cache;
+    int t;
     memset(&rt, 0, sizeof rt);
     if (!target_rows(&rt, gb->width, gb->height, y0, y1)) return;
     rt.clip.mode = MODE_GBUFFER;
     rt.clip.znear = view->znear > 0 ? view->znear : TG_EPS;
     rt.clip.zfar = view->zfar > rt.clip.znear ? view->zfar : tg_add(rt.clip.znear, TG_ONE);
     rt.gb = gb;
-    znear = rt.clip.znear;
-    zfar = rt.clip.zfar;
+    vf.eye = view->eye;
+    vf.rx = tgi_v3_scale(view->right, view->focal_x);
+    vf.ry = tgi_v3_scale(view->up, view->focal_y);
+    vf.rz = view->forward;
+    vf.znear = rt.clip.znear;
+    vf.zfar = rt.clip.zfar;
+    vertex_cache_init(&cache, &rt, &vf);
     for (t = 0; t < mesh->tri_count; t++) {
-        clip_vertex v[3];
-        int inside = 1, right = 1, left = 1, top = 1, bottom = 1;
-        for (k = 0; k < 3; k++) {
-            tg_vec3 d = tgi_v3_sub(mesh->pos[3 * t + k], view->eye);
-            tg_real x = tgi_v3_dot(d, rx), y = tgi_v3_dot(d, ry), w = tgi_v3_dot(d, rz);
-            tg_real gw = tg_mul(GUARD_R, w);
-            v[k].x = x; v[k].y = y; v[k].w = v[k].z = w;
-            /* inside the guard band and the depth range: no clipping needed */
-            inside &= x >= tg_neg(gw) && x <= gw && y >= tg_neg(gw) && y <= gw && w >= znear && w <= zfar;
-            right &= x > w; left &= x < tg_neg(w); top &= y > w; bottom &= y < tg_neg(w);
-        }
-        if (right | left | top | bottom) continue;      /* wholly off one side of the screen */
-        rt.material = mesh->tri_material[t];
-        rt.cull_back = !mesh->materials[rt.material].twosided;
-        rt.flip_back = mesh->materials[rt.material].twosided;
-        rt.object = mesh->tri_object ? mesh->tri_object[t] : 0;
-        rt.tri_nrm = mesh->nrm + 3 * t;
-        if (inside) draw_triangle(&rt, v, rt.tri_nrm);
-        else draw_clip_tri(&rt, v, rt.tri_nrm);
+        view_vertex vv[3];
+        vv[0] = vertex_lookup(&cache, &rt, &vf, mesh->pos[3 * t]);
+        vv[1] = vertex_lookup(&cache, &rt, &vf, mesh->pos[3 * t + 1]);
+        vv[2] = vertex_lookup(&cache, &rt, &vf, mesh->pos[3 * t + 2]);
+        gbuffer_triangle(&rt, vv, mesh, t);
     }
 }
 

@@ -7,6 +7,7 @@
 #include <string.h>
 #include "../tinygi.h"
 
+#if !TG_NO_BUILTIN_SCENES /* the scenes' text is left out with TG_NO_BUILTIN_SCENES=1 */
 static const char scene_plane[] =
     "# A large floor seen at an angle under a sky.\n"
     "camera pos 0 3 12  target 0 0 0  fov 60\n"
@@ -49,8 +50,7 @@ static const char scene_cornell[] =
     "quad p0 2.65 0 2.96  p1 3.14 0 4.56  p2 3.14 3.3 4.56  p3 2.65 3.3 2.96  material white\n"
     "quad p0 3.14 0 4.56  p1 4.72 0 4.06  p2 4.72 3.3 4.06  p3 3.14 3.3 4.56  material white\n"
     "quad p0 4.72 0 4.06  p1 4.23 0 2.47  p2 4.23 3.3 2.47  p3 4.72 3.3 4.06  material white\n"
-    "light point pos 2.78 5.3 2.795  color 1 0.85 0.65  intensity 18  shadows\n"
-    "gi radius 2.5\n";
+    "light point pos 2.78 5.3 2.795  color 1 0.85 0.65  intensity 18  shadows\n";
 
 static const char scene_spheres[] =
     "# Spheres resting on a floor under the sun and a sky.\n"
@@ -129,3 +129,19 @@ const char *tg_builtin_name(int i)
 {
     return i >= 0 && i < BUILTIN_COUNT ? builtins[i].name : NULL;
 }
+
+#else /* TG_NO_BUILTIN_SCENES: no scene has a name */
+
+const char *tg_builtin_scene(const char *name)
+{
+    (void)name;
+    return NULL;
+}
+
+const char *tg_builtin_name(int i)
+{
+    (void)i;
+    return NULL;
+}
+
+#endif

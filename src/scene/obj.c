@@ -19,6 +19,8 @@
 #include "parse_internal.h"
 #include "../core/path.h"
 
+#if !TG_NO_OBJ /* the whole file is left out with TG_NO_OBJ=1 (tinygi.h "FEATURE SWITCHES") */
+
 typedef struct mtllib_ref {
     tgi_token name;          /* points into the OBJ text */
     char path[TG_MAX_PATH];  /* resolved against the OBJ's directory */
@@ -440,3 +442,5 @@ tg_status tgi_obj_mesh(tgi_parser *p, const tgi_lexer *lx, const tgi_token *path
     if (!p->fill && o.nv + o.nvn > p->obj_scratch) p->obj_scratch = o.nv + o.nvn;
     return TG_OK;
 }
+
+#endif /* !TG_NO_OBJ */

@@ -645,7 +645,12 @@ static tg_status st_mesh(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     else base_name(&v[0].tok[0], objname);
     if ((st = resolve_material(p, lx, &v[1], &mat))) return st;
     if ((st = tgi_parse_begin_object(p, lx, kw->col, name_of(&v[5])))) return st;
+#if TG_NO_OBJ
+    (void)xf;
+    return fail(p, lx, kw->col, "'mesh': OBJ files are left out of this build (TG_NO_OBJ=1)", NULL, NULL);
+#else
     return tgi_obj_mesh(p, lx, &v[0].tok[0], &xf, mat, objname);
+#endif
 }
 
 static tg_status st_object_key(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)

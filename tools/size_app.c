@@ -1,0 +1,87 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * size_app.c - the smallest whole program an embedder would flash: parse a
+ * scene from text, plan one request, render frames, hand the pixels to a
+ * display buffer.  tools/size_table.sh links it with the core for a
+ * Cortex-M4 (-Os -mthumb, -ffunction-sections, --gc-sections, no C library
+ * but platform/baremetal/libc_mini.c) under each configuration of feature
+ * switches and prints the .text the linker kept.  Not a program to run:
+ * its entry never returns and nothing reads its display buffer.
+ *
+ * What it asks for follows the switches it is built with:
+ *   TG_SIZE_AO_ONLY=1   the AO AOV as grey 8, a scene with no light;
+ *   otherwise           colour as RGB565, a scene with a shadowed point
+ *                       light (and a sky, unless TG_NO_ENVIRONMENT).
+ */
+#include "tinygi.h"
+
+#ifndef TG_SIZE_AO_ONLY
+#define TG_SIZE_AO_ONLY 0
+#endif
+#define SIZE_W 64
+#define SIZE_H 48
+
+static const char scene_text[] =
+    "camera pos 0 1.5 -4  target 0 1 0  fov 50\n"
+    "material white albedo 0.73 0.73 0.73\n"
+    "material red albedo 0.63 0.065 0.05\n"
+    "quad p0 -2 0 -2  p1 -2 0 2  p2 2 0 2  p3 2 0 -2  material white name floor\n"
+    "quad p0 -2 0 2  p1 -2 3 2  p2 2 3 2  p3 2 0 2  material red name back\n"
+    "box min -0.5 0 -0.5  max 0.5 1 0.5  material white name block\n"
+#if !TG_SIZE_AO_ONLY
+    "light point pos 0 2.8 0  color 1 0.9 0.8  intensity 10  shadows\n"
+#if !defined(TG_NO_ENVIRONMENT) || !TG_NO_ENVIRONMENT
+    "env sky 0.45 0.6 0.9  ground 0.25 0.22 0.2\n"
+#endif
+#endif
+    ;
+
+static unsigned char arena_memory[1u << 20] __attribute__((aligned(16)));
+#if TG_SIZE_AO_ONLY
+static uint8_t display[SIZE_W * SIZE_H];
+#else
+static uint16_t display[SIZE_W * SIZE_H];
+#endif
+
+void tgs_start(void);
+
+static void render(void)
+{
+    tg_arena arena;
+    tg_scene *scene;
+    tg_plan plan;
+    tg_request req;
+    tg_frame *frame;
+    tg_error err;
+    void *memory;
+    int i;
+    tg_arena_init(&arena, arena_memory, sizeof arena_memory);
+    if (tg_scene_parse(scene_text, sizeof scene_text - 1, "size", NULL, &arena, &scene, &err) != TG_OK)
+        return;
+    tg_request_defaults(&req);
+    req.width = SIZE_W;
+    req.height = SIZE_H;
+    req.frames = 2;
+#if TG_SIZE_AO_ONLY
+    req.aovs = 1u << TG_AOV_AO;
+#endif
+    if (tg_plan_make(&plan, scene, &req, &err) != TG_OK) return;
+    memory = tg_arena_alloc(&arena, plan.total_bytes);
+    if (tg_frame_create(&plan, memory, plan.total_bytes, &frame, &err) != TG_OK) return;
+    for (i = 0; i < req.frames; i++) {
+        if (tg_frame_render(frame, i, &err) != TG_OK) return;
+#if TG_SIZE_AO_ONLY
+        tg_frame_write_pixels(frame, TG_AOV_AO, 0, SIZE_H, TG_PIXEL_GREY8, 0, display, SIZE_W);
+#else
+        tg_frame_write_pixels(frame, TG_AOV_COLOR, 0, SIZE_H, TG_PIXEL_RGB565, TG_PIXELS_DITHER,
+                              display, 2 * SIZE_W);
+#endif
+    }
+}
+
+void tgs_start(void)
+{
+    render();
+    for (;;) {
+    }
+}
