@@ -413,7 +413,8 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
                                            nor scene giving one: see TG_RADIUS_ENV_DIVISOR) */
 #define TG_RADIUS_ENV_DIVISOR 30        /* a scene without a gi radius gets its bounds' diagonal
                                            without an environment, diagonal / this with one */
-#define TG_DEFAULT_SHADOW_MAP 512       /* texels per side */
+#define TG_DEFAULT_SHADOW_MAP 0         /* texels per side; 0: each face by the size rule,
+                                           about one texel per image pixel (README "Shadows") */
 #define TG_DEFAULT_WIDTH 320
 #define TG_DEFAULT_HEIGHT 240
 /* -- threads (the hosted platform's pool; the core never creates one) -- */
@@ -558,6 +559,9 @@ enum {
     TG_EFFECT_REPROJECTION = 1u << 5
 };
 
+/* tg_request.shadow_method */
+enum { TG_SHADOWS_AUTO = 0, TG_SHADOWS_MAPS = 1, TG_SHADOWS_RAYS = 2 };
+
 /* What to render.  tg_plan_make checks every field against the limits block
  * above and refuses a value past its limit (TG_ERR_INPUT, a message naming
  * the field: "slices must be 1..8, got 20"); "unset" values take the
@@ -581,8 +585,14 @@ typedef struct tg_request {
                               1: E0(bent) F0(AO) (HBIL sec. 2.2.3) */
     tg_real exposure;      /* linear multiplier before the tonemapper, 0..TG_MAX_EXPOSURE
                               (default 1; NaN and the infinities are refused) */
-    int shadow_map_size;   /* texels per side, TG_MIN_SHADOW_MAP..TG_MAX_SHADOW_MAP; <= 0: unset */
-    int shadow_pcf;        /* 0: 16-tap tent PCF (default, soft); 1: 4-tap bilinear (a quarter of the cost) */
+    int shadow_map_size;   /* texels per side of every face the views need, each whole,
+                              TG_MIN_SHADOW_MAP..TG_MAX_SHADOW_MAP; <= 0: unset (the size rule,
+                              README "Shadows") */
+    int shadow_pcf;        /* 1: 4-tap bilinear PCF (tg_request_defaults'); 0: 16-tap tent,
+                              softer, 1.6x the cost, and darker bands along concave corners */
+    int shadow_method;     /* TG_SHADOWS_AUTO (0, default): the plan chooses per light between
+                              shadow maps and shadow rays against a BVH (README "Shadows");
+                              TG_SHADOWS_MAPS or TG_SHADOWS_RAYS force one */
     int game_loop;         /* 0 (default): the camera and objects follow the scene's keys;
                               1: the program may also set the camera, objects, lights and
                               environment per frame ("the game loop" below): the frame keeps

@@ -18,8 +18,9 @@
  * DIR/METHOD.pgm.
  * Methods: none (no shadows), rays (tgi_bvh_light_visibility: the
  * reference), map32-N / map16-N (every face N texels, 32 or 16 bits),
- * rule16 (16 bits, sizes and faces by tgi_shadow_map_size_rule), each
- * with -tent or -bilinear PCF.  Per row: the map's faces and bytes (the
+ * rule16 (16 bits, sizes and faces by tgi_shadow_map_size_rule), plan
+ * (the frame's default maps: tgi_shadow_plan, the rule raised within the
+ * budget), each with -tent or -bilinear PCF.  Per row: the map's faces and bytes (the
  * BVH's for rays), bytes per image pixel, and against the rays over the
  * pixels a shadowed light faces: wrong = |visibility - rays'| > 0.5 (lit
  * taken for shadowed or the reverse), mean |visibility - rays'|,
@@ -37,9 +38,10 @@
 #include "light/shadowmap.h"
 #include "light/shadowview.h"
 #include "ao/bvh.h"
+#include "storage_fixture.h"
 
 typedef struct method { const char *name; int kind, bits, size, filter; double scale; } method;
-enum { NONE, RAYS, MAP, RULE };
+enum { NONE, RAYS, MAP, RULE, PLAN };
 
 static int parse_method(const char *s, method *m)
 {
@@ -49,6 +51,7 @@ static int parse_method(const char *s, method *m)
     m->filter = dash && !strcmp(dash, "-bilinear") ? TG_SHADOW_PCF_BILINEAR : TG_SHADOW_PCF_TENT;
     if (!strcmp(s, "none")) { m->kind = NONE; return 1; }
     if (!strcmp(s, "rays")) { m->kind = RAYS; return 1; }
+    if (!strncmp(s, "plan", 4)) { m->kind = PLAN; m->bits = 16; return 1; }
     if (!strncmp(s, "rule16", 6)) {   /* rule16xK: the rule's densities times K */
         m->kind = RULE; m->bits = 16; m->scale = 1;
         if (s[6] == 'x') m->scale = atof(s + 7);
@@ -84,7 +87,6 @@ static void frame_make(frame_in *fi, const char *name, int w, int h)
     const char *text = tg_builtin_scene(name);
     tg_error err;
     tgi_raster_mesh mesh;
-    tg_real *p;
     const tgi_scene_camera *c;
     memset(fi, 0, sizeof *fi);
     if (!text) { fprintf(stderr, "no built-in scene '%s'\n", name); exit(2); }
@@ -96,11 +98,8 @@ static void frame_make(frame_in *fi, const char *name, int w, int h)
     c = &fi->scene->camera;
     fi->w = w; fi->h = h;
     tgi_view_make(&fi->view, c->pos, c->target, c->up, c->fov, c->znear, c->zfar, w, h);
-    p = (tg_real *)xmalloc(n * 8 * sizeof(tg_real));
-    fi->gb.width = w; fi->gb.height = h;
-    fi->gb.depth = p; fi->gb.nx = p + n; fi->gb.ny = p + 2 * n; fi->gb.nz = p + 3 * n;
-    fi->gb.albedo_r = p + 4 * n; fi->gb.albedo_g = p + 5 * n; fi->gb.albedo_b = p + 6 * n; fi->gb.f0 = p + 7 * n;
-    fi->gb.sky = (uint8_t *)xmalloc(n);
+    (void)n;
+    sf_gbuffer_alloc(&fi->gb, w, h, fi->scene->materials, fi->scene->material_count);
     mesh.pos = fi->scene->tri_pos; mesh.nrm = fi->scene->tri_nrm;
     mesh.tri_material = fi->scene->tri_material; mesh.tri_object = fi->scene->tri_object;
     mesh.tri_count = fi->scene->tri_count; mesh.materials = fi->scene->materials;
@@ -140,7 +139,14 @@ static size_t shadows_make(const frame_in *fi, const method *m, tgi_shadow_map *
         }
         tgi_shadow_need_init(&nd, l);
         nd.depth_bits = m->bits;
-        if (m->kind == RULE) {
+        if (m->kind == PLAN) {   /* the frame's: tgi_shadow_plan, maps forced */
+            tg_request q;
+            tg_vec3 lo, hi;
+            tg_request_defaults(&q);
+            q.width = fi->w; q.height = fi->h;
+            q.shadow_method = TG_SHADOWS_MAPS;
+            tgi_shadow_plan(s, &q, i, 0, &nd, &lo, &hi);
+        } else if (m->kind == RULE) {
             tgi_shadow_map_size_rule(&nd, l, &fi->view, s->bounds_min, s->bounds_max, s->tri_pos, s->tri_count);
             for (f = 0; f < nd.faces; f++) nd.density[f] = tg_mul(nd.density[f], tg_from_float((float)m->scale));
             tgi_shadow_need_finish(&nd, 0);
@@ -164,7 +170,12 @@ static tg_real *direct(const frame_in *fi, const tgi_shadow_map *const *ptr)
 {
     size_t n = (size_t)fi->w * (size_t)fi->h;
     tg_real *e = (tg_real *)xmalloc(3 * n * sizeof(tg_real));
-    { tgi_gview gv; tgi_rgb er = { e, e + n, e + 2 * n }; tgi_gview_of(&gv, &fi->gb, &fi->view); tgi_direct_rows(&gv, fi->scene->lights, fi->scene->light_count, ptr, &er, 0, fi->h); }
+    tgi_gview gv = sf_view(&fi->gb, &fi->view);
+    tgi_rgb er;
+    sf_rgb_alloc(&er, n);
+    tgi_direct_rows(&gv, fi->scene->lights, fi->scene->light_count, ptr, &er, 0, fi->h);
+    sf_rgb_read(&er, n, e, e + n, e + 2 * n);
+    sf_rgb_free(&er);
     return e;
 }
 
@@ -204,7 +215,7 @@ static void row(const frame_in *fi, const method *m, const tg_real *e_none, cons
     if (!print || !e_rays) { free(e); return; }
     for (i = 0; i < n; i++) {
         double u = lum(e_none, n, i), r = lum(e_rays, n, i), x = lum(e, n, i);
-        if (fi->gb.sky[i] || u <= 0) continue;
+        if (fi->gb.depth[i] == 0 || u <= 0) continue;
         facing++;
         if (fabs(x / u - r / u) > 0.5) wrong++;
         dvis += fabs(x / u - r / u);
@@ -221,7 +232,7 @@ static void row(const frame_in *fi, const method *m, const tg_real *e_none, cons
 int main(int argc, char **argv)
 {
     static const char *const all_default[] = { "none", "rays", "map32-512-tent", "map16-512-tent", "map32-512-bilinear",
-                                       "rule16-tent", "rule16-bilinear", "map16-64-tent", NULL };
+                                       "rule16-tent", "rule16-bilinear", "plan-tent", "plan-bilinear", "map16-64-tent", NULL };
     const char *const *all = all_default;
     const char *list[64];
     frame_in fi;

@@ -441,6 +441,7 @@ TEST(bilinear_pcf_only_changes_edges)
     rendered a, b;
     tg_request qa = request(96, 72, AOVBIT(TG_AOV_DIRECT)), qb = qa;
     tg_error err;
+    qa.shadow_pcf = 0;   /* the tent; the default is the bilinear */
     qb.shadow_pcf = 1;
     CHECK(setup(&a, tg_builtin_scene("columns"), &qa), "tent");
     CHECK(setup(&b, tg_builtin_scene("columns"), &qb), "bilinear");

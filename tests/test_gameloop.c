@@ -67,6 +67,9 @@ static tg_request loop_request(int frames, int game_loop)
     tg_request q = request(W, H, ALL_AOVS);
     q.frames = frames;
     q.game_loop = game_loop;
+    /* one map size in every plan: the size rule sizes maps by the views
+     * and lights a plan knows (a game loop's: every face whole) */
+    q.shadow_map_size = 64;
     return q;
 }
 

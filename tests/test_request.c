@@ -77,13 +77,13 @@ static void render_case(const sweep_case *c, const tg_plan *plan)
     free(r.frame_mem);
 }
 
-/* The arena holds at least the G-buffer depth and the shadow maps (16 bits
- * a texel): a size
- * that wrapped around would be smaller. */
+/* The arena holds at least the G-buffer depth and a shadow-map face the
+ * view needs (16 bits a texel): a size that wrapped around would be
+ * smaller. */
 static double least_bytes(const tg_plan *p)
 {
     double n = (double)p->request.shadow_map_size;
-    return (double)p->request.width * p->request.height * sizeof(tg_real) + 6.0 * n * n * 2.0;
+    return (double)p->request.width * p->request.height * sizeof(tg_real) + n * n * 2.0;
 }
 
 static void run_case(const sweep_case *c)

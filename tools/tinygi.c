@@ -104,17 +104,21 @@ static void print_help(FILE *out)
         "  --radius R        gather radius in world units, 0..%d (default %d)\n"
         "  --bounces N       light bounces, 0..%d (default %d)\n"
         "  --exposure E      linear exposure before the tonemapper, 0..%d (default 1)\n"
-        "  --shadow-size N   shadow map texels per side, %d..%d (default %d)\n"
+        "  --shadow-size N   shadow map texels per side of every face the view needs,\n"
+        "                    %d..%d (default: each face by the size rule, about a texel\n"
+        "                    per image pixel)\n"
+        "  --shadows HOW     auto maps rays: shadow maps, or shadow rays against a BVH\n"
+        "                    (default auto: the plan chooses per light, see --explain)\n"
         "  --threads N       threads that share each pass's rows, 1..%d (default: the\n"
         "                    processors, here %d); the image is the same for every N\n",
         TG_DEFAULT_WIDTH, TG_DEFAULT_HEIGHT, TG_MAX_IMAGE_SIDE, (long)TG_MAX_IMAGE_PIXELS,
         TG_MAX_FRAMES, TG_MAX_SLICES, TG_DEFAULT_SLICES, TG_MAX_SAMPLES, TG_DEFAULT_SAMPLES,
         TG_MAX_RADIUS, TG_DEFAULT_RADIUS, TG_MAX_BOUNCES, TG_DEFAULT_BOUNCES, TG_MAX_EXPOSURE,
-        TG_MIN_SHADOW_MAP, TG_MAX_SHADOW_MAP, TG_DEFAULT_SHADOW_MAP, TG_MAX_THREADS, tgp_cores());
+        TG_MIN_SHADOW_MAP, TG_MAX_SHADOW_MAP, TG_MAX_THREADS, tgp_cores());
     fprintf(out,
         "  --no-interleave   full-resolution GI kernel instead of 4x4 interleaved\n"
         "  --no-temporal     no temporal accumulation\n"
-        "  --pcf-bilinear    4-tap shadow-map filtering instead of the 16-tap tent\n"
+        "  --pcf-tent        16-tap tent shadow-map filtering instead of the 4-tap bilinear\n"
         "  --gi-quarter      GI kernel on a quarter of the pixels (half width and height,\n"
         "                    then a joint bilateral upsample): about 3x faster\n"
         "  --far-f0          far field as E0(bent) F0(AO) (HBIL sec. 2.2.3) instead of\n"
@@ -304,9 +308,10 @@ typedef struct render_opts {
     const char *output;
     int width, height, frames, aov, technique;
     long slices, samples, bounces, shadow_size, threads;
+    int shadows;            /* TG_SHADOWS_* */
     double radius, exposure;
     int have_radius, have_exposure;
-    int interleave, temporal, far_f0, gi_quarter, pcf_bilinear, explain, quiet;
+    int interleave, temporal, far_f0, gi_quarter, pcf_tent, explain, quiet;
 } render_opts;
 
 /* "--name=value" or "--name value": the value, or NULL (and the index moved). */
@@ -359,7 +364,8 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
 {
     static const char *const names[] = {
         "-o", "--size", "--frames", "--aov", "--technique", "--slices", "--samples",
-        "--radius", "--bounces", "--exposure", "--shadow-size", "--fbdev", "--threads"
+        "--radius", "--bounces", "--exposure", "--shadow-size", "--fbdev", "--threads",
+        "--shadows"
     };
     const char *a = argv[*i], *v = NULL, *name = NULL;
     char list[512];
@@ -371,7 +377,8 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
     if (!strcmp(a, "--no-temporal")) { o->temporal = 0; return 0; }
     if (!strcmp(a, "--far-f0")) { o->far_f0 = 1; return 0; }
     if (!strcmp(a, "--gi-quarter")) { o->gi_quarter = 1; return 0; }
-    if (!strcmp(a, "--pcf-bilinear")) { o->pcf_bilinear = 1; return 0; }
+    if (!strcmp(a, "--pcf-bilinear")) { o->pcf_tent = 0; return 0; }   /* the default (kept for scripts) */
+    if (!strcmp(a, "--pcf-tent")) { o->pcf_tent = 1; return 0; }
     if (!strcmp(a, "--explain")) { o->explain = 1; return 0; }
     if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) { o->quiet = 1; return 0; }
     for (k = 0; k < sizeof names / sizeof names[0] && !matched; k++) {
@@ -421,6 +428,14 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
         return int_option(name, v, 0, TG_MAX_BOUNCES, &o->bounces);
     } else if (!strcmp(name, "--shadow-size")) {
         return int_option(name, v, TG_MIN_SHADOW_MAP, TG_MAX_SHADOW_MAP, &o->shadow_size);
+    } else if (!strcmp(name, "--shadows")) {
+        static const char *const how[3] = { "auto", "maps", "rays" };
+        for (k = 0; k < 3 && strcmp(v, how[k]); k++) continue;
+        if (k == 3) {
+            usage_error("option --shadows: expected one of auto maps rays; got '%s'", v);
+            return 1;
+        }
+        o->shadows = (int)k;   /* TG_SHADOWS_AUTO, _MAPS, _RAYS */
     } else if (!strcmp(name, "--threads")) {
         return int_option(name, v, 1, TG_MAX_THREADS, &o->threads);
     } else if (!strcmp(name, "--radius")) {
@@ -560,7 +575,8 @@ static void make_request(const render_opts *o, tg_request *r)
     r->interleave = o->interleave;
     r->far_mode = o->far_f0;
     if (o->gi_quarter) r->gi_scale = 2;
-    r->shadow_pcf = o->pcf_bilinear;
+    r->shadow_pcf = !o->pcf_tent;
+    r->shadow_method = o->shadows;
     r->temporal = o->temporal;
 }
 

@@ -14,6 +14,7 @@
 #include "frame_internal.h"
 #include "../gi/pushpull.h"
 #include "../gi/resample.h"
+#include "../light/shadowview.h"
 
 #define AOV(a) (1u << (a))
 
@@ -174,22 +175,47 @@ static void group_motion(layout *l, tg_frame *f)
     f->gb.motion_y = take_real(l, "motion vectors [2 x tg_real]", f->pixels);
 }
 
+/* Shadow rays against the frame's BVH (a local function, so that taking
+ * its address needs no GOT in position-independent code). */
+static tg_real bvh_shadow_ray(const void *bvh, const tgi_light *l, tg_vec3 p, tg_vec3 n, tg_real err)
+{
+#if TG_NO_REFERENCE   /* no BVH in this build: the plan never chooses rays */
+    (void)bvh; (void)l; (void)p; (void)n; (void)err;
+    return TG_ONE;
+#else
+    return tgi_bvh_light_visibility(bvh, l, p, n, err);
+#endif
+}
+
+/* Per shadowed light, maps sized and culled by the plan (tgi_shadow_plan:
+ * absent faces take no bytes) or shadow rays, and the BVH they trace (the
+ * reference's own when it runs). */
 static void group_shadow_maps(layout *l, tg_frame *f)
 {
     const tg_scene *s = f->scene;
-    const tg_request *r = &f->request;
-    int i;
+    int i, rays = 0, reference = f->request.technique == TG_TECH_REFERENCE;
     if (!(f->effects & TG_EFFECT_SHADOWS)) return;
     f->shadow_maps = (tgi_shadow_map *)take(l, "shadow map descriptors", (size_t)s->light_count, sizeof(tgi_shadow_map));
     f->shadow_ptrs = (const tgi_shadow_map **)take(l, "shadow map descriptors", (size_t)s->light_count, sizeof(void *));
     for (i = 0; i < s->light_count; i++) {
-        void *depth;
+        tgi_shadow_need nd;
+        tg_vec3 lo, hi;
+        void *depth = NULL;
+        int by;
         if (!s->lights[i].shadows) continue;
-        depth = take(l, "shadow maps (depth)", tgi_shadow_map_bytes(&s->lights[i], r->shadow_map_size), 1);
-        if (!l->arena || !depth) continue;
-        tgi_shadow_map_setup(&f->shadow_maps[i], &s->lights[i], r->shadow_map_size, s->bounds_min, s->bounds_max, depth);
-        f->shadow_maps[i].filter = r->shadow_pcf ? TG_SHADOW_PCF_BILINEAR : TG_SHADOW_PCF_TENT;
+        by = tgi_shadow_plan(s, &f->request, i, TG_NO_REFERENCE ? SIZE_MAX : reference ? 0 : tgi_bvh_bytes(s->tri_count),
+                             &nd, &lo, &hi);
+        rays |= by == TG_SHADOW_BY_RAYS;
+        if (by == TG_SHADOW_BY_MAP) depth = take(l, "shadow maps (depth) [16 bits]", tgi_shadow_need_bytes(&nd), 1);
+        if (!l->arena) continue;
+        if (by == TG_SHADOW_BY_RAYS) tgi_shadow_rays_setup(&f->shadow_maps[i], &s->lights[i], bvh_shadow_ray, &f->bvh);
+        else tgi_shadow_map_setup_need(&f->shadow_maps[i], &s->lights[i], &nd, lo, hi, depth);
+        f->shadow_maps[i].filter = f->request.shadow_pcf ? TG_SHADOW_PCF_BILINEAR : TG_SHADOW_PCF_TENT;
         f->shadow_ptrs[i] = &f->shadow_maps[i];
+    }
+    if (!TG_NO_REFERENCE && rays && !reference) {
+        f->bvh_scratch_bytes = tgi_bvh_bytes(s->tri_count);
+        f->bvh_scratch = take(l, "shadow rays: BVH", f->bvh_scratch_bytes, 1);
     }
 }
 

@@ -10,28 +10,28 @@
 #include "../scene/anim.h"
 #include "../light/direct.h"
 
-/* A static scene's shadow maps are rendered once and kept; when objects
- * move (camera.c marks every map stale) or a light moves (its map) they
- * are refitted to where the geometry and the light are now. */
+/* A static scene's shadow maps (or the BVH shadow rays trace) are made
+ * once and kept; when objects move (camera.c marks every light stale) or
+ * a light moves (its own) the maps are refitted to where the geometry and
+ * the light are now, keeping the plan's faces and sizes, and the BVH is
+ * built again. */
 void tgi_pass_shadow_maps(tg_frame *f)
 {
     const tg_scene *s = f->scene;
     tgi_raster_mesh mesh = tgi_frame_mesh(f);
     tg_vec3 lo = s->bounds_min, hi = s->bounds_max;
-    int i;
+    int i, rays = 0;
     if (f->shadows_valid && !f->shadows_stale) return;
     if (f->shadows_stale) tgi_anim_bounds(mesh.pos, mesh.tri_count, &lo, &hi);
     for (i = 0; i < s->light_count; i++) {
+        tgi_shadow_map *sm = &f->shadow_maps[i];
         int stale = (int)(f->shadows_stale >> i) & 1;
         if (!f->shadow_ptrs[i] || (f->shadows_valid && !stale)) continue;
-        if (stale) {
-            int filter = f->shadow_maps[i].filter;
-            tgi_shadow_map_setup(&f->shadow_maps[i], &s->lights[i], f->shadow_maps[i].size, lo, hi,
-                                f->shadow_maps[i].depth);
-            f->shadow_maps[i].filter = filter;
-        }
-        tgi_shadow_map_render(&f->shadow_maps[i], mesh.pos, mesh.tri_count);
+        if (sm->ray) { rays = 1; continue; }
+        if (stale) tgi_shadow_map_refit(sm, lo, hi);
+        tgi_shadow_map_render(sm, mesh.pos, mesh.tri_count);
     }
+    if (!TG_NO_REFERENCE && rays) tgi_bvh_build(&f->bvh, mesh.pos, mesh.tri_count, f->bvh_scratch, f->bvh_scratch_bytes);
     f->shadows_valid = 1;
     f->shadows_stale = 0;
 }

@@ -22,6 +22,7 @@
 #include "../core/error.h"
 #include "../core/text.h"
 #include "../scene/anim.h"
+#include "../light/shadowview.h"
 
 #define AOV(a) (1u << (a))
 
@@ -239,6 +240,10 @@ size_t tg_plan_explain(const tg_plan *plan, char *buf, size_t size)
     }
     put_number_line(&t, "total: ", plan->total_bytes, " bytes, ");
     put_number_line(&t, "", pixels ? plan->total_bytes / pixels : 0, " bytes per pixel\n");
+    if (plan->effects & TG_EFFECT_SHADOWS)
+        tgi_shadow_explain(&t, plan->scene, &plan->request,
+                           TG_NO_REFERENCE ? SIZE_MAX
+                           : plan->request.technique == TG_TECH_REFERENCE ? 0 : tgi_bvh_bytes(plan->scene->tri_count));
     return t.at;
 }
 

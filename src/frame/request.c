@@ -29,6 +29,7 @@ void tg_request_defaults(tg_request *r)
     r->temporal = 1;
     r->exposure = TG_ONE;
     r->shadow_map_size = TG_DEFAULT_SHADOW_MAP;
+    r->shadow_pcf = 1;   /* bilinear: nearer hard shadows than the tent at the size rule's density */
 }
 
 /* 1 (and the message) when v is outside lo..hi. */
@@ -87,6 +88,9 @@ static int switch_outside(const tg_request *r, tg_error *err)
         || int_outside(err, "temporal", r->temporal, 0, 1)
         || int_outside(err, "far_mode", r->far_mode, 0, 1)
         || int_outside(err, "shadow_pcf", r->shadow_pcf, 0, 1)
+        /* shadow rays trace the reference's BVH (left out by TG_NO_REFERENCE) */
+        || int_outside(err, "shadow_method", r->shadow_method, TG_SHADOWS_AUTO,
+                       TG_NO_REFERENCE ? TG_SHADOWS_MAPS : TG_SHADOWS_RAYS)
         || int_outside(err, "game_loop", r->game_loop, 0, 1);
 }
 
@@ -129,7 +133,7 @@ int tgi_request_resolve(tg_request *r, const tg_scene *s, tg_error *err)
     if (r->radius == UNSET_RADIUS) r->radius = s->gi.radius >= 0 ? s->gi.radius : scene_gather_radius(s);
     if (r->bounces < 0) r->bounces = s->gi.bounces >= 0 ? s->gi.bounces : TG_DEFAULT_BOUNCES;
     if (r->aovs == 0) r->aovs = 1u << TG_AOV_COLOR;
-    if (r->shadow_map_size <= 0) r->shadow_map_size = TG_DEFAULT_SHADOW_MAP;
+    if (r->shadow_map_size <= 0) r->shadow_map_size = TG_DEFAULT_SHADOW_MAP;   /* 0: the size rule */
     if (!gi_outside(r, err)) return 0;
     tgi_error_append(err, " (the scene's gi line)");
     return 1;

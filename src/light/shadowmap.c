@@ -81,17 +81,28 @@ static int face_size(tg_real density)
     return n < TG_MIN_SHADOW_MAP ? TG_MIN_SHADOW_MAP : n > TG_MAX_SHADOW_MAP ? TG_MAX_SHADOW_MAP : (int)n;
 }
 
+/* Face f's size by its density: across its window, or across the whole
+ * face when that side is known; 0 when neither. */
+static int density_size(const tgi_shadow_need *nd, int f)
+{
+    const tg_real *w = nd->window[f];
+    if (nd->window_set[f]) return face_size(tg_mul(nd->density[f], tg_max(tg_sub(w[2], w[0]), tg_sub(w[3], w[1]))));
+    if (nd->density[f] > 0 && nd->whole_side[f] > 0) return face_size(tg_mul(nd->density[f], nd->whole_side[f]));
+    return 0;
+}
+
 void tgi_shadow_need_finish(tgi_shadow_need *nd, int size_override)
 {
     int f, largest = TG_MIN_SHADOW_MAP;
     for (f = 0; f < nd->faces; f++) {
-        const tg_real *w = nd->window[f];
         nd->size[f] = 0;
         if (!nd->seen[f]) continue;
-        if (size_override > 0) { nd->size[f] = size_override; continue; }
-        if (!nd->window_set[f]) continue;   /* whole: below */
-        /* texels per unit, across the window's side */
-        nd->size[f] = face_size(tg_mul(nd->density[f], tg_max(tg_sub(w[2], w[0]), tg_sub(w[3], w[1]))));
+        if (size_override > 0) {   /* whole, so that every plan's face is the same */
+            nd->size[f] = size_override;
+            nd->window_set[f] = 0;
+            continue;
+        }
+        nd->size[f] = density_size(nd, f);   /* texels per unit, across the face */
         if (nd->size[f] > largest) largest = nd->size[f];
     }
     for (f = 0; f < nd->faces; f++)     /* whole faces without a size: the largest the rule gave */

@@ -113,6 +113,8 @@ typedef struct tgi_shadow_need {
     int window_set[TG_SHADOW_MAX_FACES];   /* 1: window[] holds the seen receivers */
     tg_real window[TG_SHADOW_MAX_FACES][4]; /* x0 y0 x1 y1 on the light plane (else the whole
                                               face, or the bounds for a directional map) */
+    tg_real whole_side[TG_SHADOW_MAX_FACES]; /* the whole face's side on the light plane
+                                              (the rule sets it; 0: unknown) */
     int size[TG_SHADOW_MAX_FACES];         /* after finish: texels per side, 0 = absent */
     int depth_bits;                        /* TG_SHADOW_DEPTH16 (default) or 32 */
     int objects_move;                      /* set by the caller: the triangles the rule is
@@ -191,6 +193,23 @@ static inline tg_real tgi_shadow_visibility(const tgi_shadow_map *sm, tg_vec3 wo
     return TG_ONE;
 }
 static inline tg_real tgi_shadow_gbuffer_error(const tgi_view *view) { (void)view; return 0; }
+static inline size_t tgi_shadow_need_bytes(const tgi_shadow_need *nd) { (void)nd; return 0; }
+static inline void tgi_shadow_map_setup_need(tgi_shadow_map *sm, const tgi_light *l, const tgi_shadow_need *nd,
+                                             tg_vec3 scene_min, tg_vec3 scene_max, void *memory)
+{
+    (void)l; (void)nd; (void)scene_min; (void)scene_max; (void)memory;
+    memset(sm, 0, sizeof *sm);
+}
+static inline void tgi_shadow_map_refit(tgi_shadow_map *sm, tg_vec3 scene_min, tg_vec3 scene_max)
+{
+    (void)sm; (void)scene_min; (void)scene_max;
+}
+static inline void tgi_shadow_rays_setup(tgi_shadow_map *sm, const tgi_light *l, tgi_shadow_ray_fn ray,
+                                         const void *tracer)
+{
+    (void)l; (void)ray; (void)tracer;
+    memset(sm, 0, sizeof *sm);
+}
 #else
 /* Bytes of a 16-bit map for light `l` with every face at `size` texels; 0
  * for a size outside TG_MIN_SHADOW_MAP..TG_MAX_SHADOW_MAP (or one whose
@@ -215,9 +234,11 @@ void tgi_shadow_need_all(tgi_shadow_need *nd);
 
 /* Sizes from the densities: each seen face with a window gets
  * ceil(density x its window's side) texels plus the PCF border on each
- * side, clamped to TG_MIN_SHADOW_MAP..TG_MAX_SHADOW_MAP; a whole face the
- * largest of those (at least TG_MIN_SHADOW_MAP); an unseen face 0.  A
- * size_override > 0 (--shadow-size) gives every seen face that size. */
+ * side, clamped to TG_MIN_SHADOW_MAP..TG_MAX_SHADOW_MAP; a whole face
+ * likewise across its whole side when the rule gave it a density and that
+ * side, else the largest of the others (at least TG_MIN_SHADOW_MAP); an
+ * unseen face 0.  A size_override > 0 (--shadow-size) makes every seen
+ * face whole at that size (the same face whatever the views). */
 void tgi_shadow_need_finish(tgi_shadow_need *nd, int size_override);
 
 /* Bytes of the storage for a finished need; 0 when a size is out of range

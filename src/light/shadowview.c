@@ -8,6 +8,7 @@
 #include <string.h>
 #include "shadowview.h"
 #include "../scene/anim.h"
+#include "../core/text.h"
 
 #if !TG_NO_SHADOW_MAPS /* the whole file is left out with TG_NO_SHADOW_MAPS=1 (tinygi.h "FEATURE SWITCHES") */
 
@@ -322,6 +323,21 @@ static void need_merge(tgi_shadow_need *nd, int f, const region *rg, const light
     nd->density[f] = tg_max(nd->density[f], d);
 }
 
+/* The whole face's side on its light plane: the nominal face, or the
+ * bounds' extent across a directional light (as the map's setup fits it). */
+static tg_real nominal_side(const light_face *lf, tg_vec3 lo, tg_vec3 hi)
+{
+    tg_real x0 = TG_REAL_MAX, x1 = TG_REAL_MIN, y0 = TG_REAL_MAX, y1 = TG_REAL_MIN;
+    int k;
+    if (lf->perspective) return tg_ldexp(lf->tan_nominal, 1);
+    for (k = 0; k < 8; k++) {
+        tg_vec3 c = corner(lo, hi, k);
+        x0 = tg_min(x0, tgi_v3_dot(c, lf->r)); x1 = tg_max(x1, tgi_v3_dot(c, lf->r));
+        y0 = tg_min(y0, tgi_v3_dot(c, lf->u)); y1 = tg_max(y1, tgi_v3_dot(c, lf->u));
+    }
+    return tg_max(tg_sub(x1, x0), tg_sub(y1, y0));
+}
+
 void tgi_shadow_map_size_rule(tgi_shadow_need *nd, const tgi_light *l, const tgi_view *view,
                               tg_vec3 lo, tg_vec3 hi, const tg_vec3 *tri_pos, int tri_count)
 {
@@ -342,6 +358,7 @@ void tgi_shadow_map_size_rule(tgi_shadow_need *nd, const tgi_light *l, const tgi
     hx[0] = &box; hx[1] = &cam;
     for (f = 0; f < nd->faces; f++) {
         light_face_make(&lf[f], l, f, lo, hi, margin);
+        nd->whole_side[f] = nominal_side(&lf[f], lo, hi);
         hx[2] = &lf[f].pyramid;
         intersect(&rg[f], hx, lf[f].perspective ? 3 : 2, CLIP_SLACK, view, &lf[f]);
     }
@@ -406,6 +423,106 @@ int tgi_shadow_choose(size_t map_bytes, size_t bvh_bytes, size_t pixels)
     if (tg_size_mul(pixels, TG_SHADOW_MAP_BYTES_PER_PIXEL, &budget) || map_bytes <= budget)
         return TG_SHADOW_BY_MAP;
     return bvh_bytes < map_bytes ? TG_SHADOW_BY_RAYS : TG_SHADOW_BY_MAP;
+}
+
+/* ---- the plan ---- */
+
+/* The camera of frame `frame` of the request: its keys' or the scene's. */
+static void frame_view(tgi_view *v, const tg_scene *s, const tg_request *r, int frame)
+{
+    tg_vec3 pos = s->camera.pos, target = s->camera.target;
+    if (s->camera_key_count > 0) tgi_anim_camera(s, tgi_anim_time(s, frame, r->frames), &pos, &target);
+    tgi_view_make(v, pos, target, s->camera.up, s->camera.fov, s->camera.znear, s->camera.zfar, r->width, r->height);
+}
+
+/* A finished need well within TG_SHADOW_MAP_BYTES_PER_PIXEL bytes per
+ * image pixel: its densities raised by up to TG_SHADOW_RULE_GAIN, as far
+ * as the maps still fit (in steps of 1/16; a texel per pixel leaves 1-2
+ * pixel bands along concave corners, where the filter's footprint
+ * crosses onto the other surface, README "Shadows"). */
+static void spend_the_budget(tgi_shadow_need *nd, size_t pixels)
+{
+    tgi_shadow_need base = *nd;
+    size_t budget, bytes = tgi_shadow_need_bytes(nd);
+    int step, f;
+    if (bytes == 0 || tg_size_mul(pixels, TG_SHADOW_MAP_BYTES_PER_PIXEL, &budget) || bytes >= budget) return;
+    for (step = 16 * TG_SHADOW_RULE_GAIN; step > 16; step--) {
+        for (f = 0; f < nd->faces; f++) nd->density[f] = tg_mul(base.density[f], tg_ratio(step, 16));
+        tgi_shadow_need_finish(nd, 0);
+        bytes = tgi_shadow_need_bytes(nd);
+        if (bytes > 0 && bytes <= budget) return;
+    }
+    *nd = base;
+}
+
+/* Whether the views the rule sees are all the views the lookups come from. */
+static int views_known(const tg_scene *s, const tg_request *r)
+{
+    int views = s->camera_key_count > 0 ? r->frames : 1;
+    return !r->game_loop && r->technique != TG_TECH_REFERENCE && views <= TG_SHADOW_PLAN_VIEWS;
+}
+
+int tgi_shadow_plan(const tg_scene *s, const tg_request *r, int light, size_t bvh_bytes,
+                    tgi_shadow_need *nd, tg_vec3 *lo, tg_vec3 *hi)
+{
+    const tgi_light *l = &s->lights[light];
+    int views = s->camera_key_count > 0 ? r->frames : 1, k, n;
+    tgi_view v;
+    tgi_shadow_animation_bounds(s, r->frames, lo, hi);
+    tgi_shadow_need_init(nd, l);
+    if (r->shadow_method == TG_SHADOWS_RAYS) return TG_SHADOW_BY_RAYS;
+    nd->objects_move = tgi_anim_has_posed_objects(s) || (r->game_loop && s->object_count > 0);
+    if (!views_known(s, r)) tgi_shadow_need_all(nd);
+    n = views < TG_SHADOW_PLAN_VIEWS ? views : TG_SHADOW_PLAN_VIEWS;
+    for (k = 0; k < n; k++) {   /* every frame's view, or n spread over them */
+        frame_view(&v, s, r, n == views ? k : (int)((long)k * (views - 1) / (n > 1 ? n - 1 : 1)));
+        tgi_shadow_map_size_rule(nd, l, &v, *lo, *hi, s->tri_pos, s->tri_count);
+    }
+    tgi_shadow_need_finish(nd, r->shadow_map_size);
+    if (r->shadow_map_size <= 0) spend_the_budget(nd, (size_t)r->width * (size_t)r->height);
+    if (r->shadow_method == TG_SHADOWS_MAPS || r->shadow_map_size > 0) return TG_SHADOW_BY_MAP;
+    return tgi_shadow_choose(tgi_shadow_need_bytes(nd), bvh_bytes, (size_t)r->width * (size_t)r->height);
+}
+
+/* "  light I (TYPE): ..." for the plan's explanation. */
+static void put_light(tgi_text *t, const tg_scene *s, const tg_request *r, int i, size_t bvh)
+{
+    static const char *const face_names[6] = { "+X", "-X", "+Y", "-Y", "+Z", "-Z" };
+    static const char *const types[3] = { "directional", "point", "spot" };
+    tgi_shadow_need nd;
+    tg_vec3 lo, hi;
+    int f, by = tgi_shadow_plan(s, r, i, bvh, &nd, &lo, &hi);
+    tgi_text_put(t, "  light ");
+    tgi_text_put_uint(t, (size_t)i);
+    tgi_text_put(t, " (");
+    tgi_text_put(t, types[s->lights[i].type]);
+    if (by == TG_SHADOW_BY_RAYS) {
+        tgi_text_put(t, "): shadow rays against the BVH of ");
+        tgi_text_put_uint(t, (size_t)s->tri_count);
+        tgi_text_put(t, " triangles\n");
+        return;
+    }
+    tgi_text_put(t, "): 16-bit map, texels per side");
+    for (f = 0; f < nd.faces; f++) {
+        tgi_text_put(t, nd.faces > 1 ? (f ? ", " : " ") : " ");
+        if (nd.faces > 1) { tgi_text_put(t, face_names[f]); tgi_text_put(t, " "); }
+        if (nd.size[f]) tgi_text_put_uint(t, (size_t)nd.size[f]);
+        else tgi_text_put(t, "absent");
+    }
+    tgi_text_put(t, r->shadow_map_size > 0 || !views_known(s, r) ? " (whole faces)" : "");
+    tgi_text_put(t, ": ");
+    tgi_text_put_uint(t, tgi_shadow_need_bytes(&nd));
+    tgi_text_put(t, " bytes\n");
+}
+
+void tgi_shadow_explain(tgi_text *t, const tg_scene *s, const tg_request *r, size_t bvh_bytes)
+{
+    int i;
+    tgi_text_put(t, r->shadow_map_size > 0 ? "shadows (every face a view needs, whole, at --shadow-size):\n"
+                                          : "shadows (size rule: about a texel per image pixel on what the camera sees; "
+                                            "unseen faces absent):\n");
+    for (i = 0; i < s->light_count; i++)
+        if (s->lights[i].shadows) put_light(t, s, r, i, bvh_bytes);
 }
 
 #endif /* !TG_NO_SHADOW_MAPS */

@@ -80,4 +80,50 @@ enum { TG_SHADOW_BY_MAP = 0, TG_SHADOW_BY_RAYS = 1 };
  * from tgi_shadow_need_bytes, bvh_bytes from tgi_bvh_bytes(triangles). */
 int tgi_shadow_choose(size_t map_bytes, size_t bvh_bytes, size_t pixels);
 
+/* ---- the plan ---- */
+
+/* Views the plan gives the rule: every frame's camera up to this many;
+ * beyond, this many spread over the frames and every face whole. */
+#define TG_SHADOW_PLAN_VIEWS 16
+
+/* The plan raises the rule's densities by up to this factor while the maps
+ * stay within TG_SHADOW_MAP_BYTES_PER_PIXEL bytes per image pixel. */
+#define TG_SHADOW_RULE_GAIN 2
+
+/* Light `light`'s shadows for request r (defaults resolved): how
+ * (TG_SHADOW_BY_MAP or BY_RAYS: r->shadow_method, else tgi_shadow_choose
+ * with bvh_bytes, 0 when a BVH is paid for anyway), and for maps the
+ * finished need and the bounds to set the map up with.  The rule sees
+ * every frame's camera by the keys; the program's cameras (game loop), a
+ * technique that looks shadows up where the camera does not see (the
+ * reference) or more than TG_SHADOW_PLAN_VIEWS views make every face whole
+ * (tgi_shadow_need_all) at the rule's density. */
+#if TG_NO_SHADOW_MAPS
+/* (no shadow maps in this build: tg_plan_make refuses the shadows effect) */
+static inline int tgi_shadow_plan(const tg_scene *s, const tg_request *r, int light, size_t bvh_bytes,
+                                  tgi_shadow_need *nd, tg_vec3 *lo, tg_vec3 *hi)
+{
+    (void)r; (void)light; (void)bvh_bytes;
+    memset(nd, 0, sizeof *nd);
+    *lo = s->bounds_min; *hi = s->bounds_max;
+    return TG_SHADOW_BY_MAP;
+}
+#else
+int tgi_shadow_plan(const tg_scene *s, const tg_request *r, int light, size_t bvh_bytes,
+                    tgi_shadow_need *nd, tg_vec3 *lo, tg_vec3 *hi);
+#endif
+
+/* The plan's shadows for tg_plan_explain: per shadowed light, rays or
+ * each face's size ("absent" for a culled face) and the bytes (bvh_bytes
+ * as tgi_shadow_plan's). */
+struct tgi_text;
+#if TG_NO_SHADOW_MAPS
+static inline void tgi_shadow_explain(struct tgi_text *t, const tg_scene *s, const tg_request *r, size_t bvh_bytes)
+{
+    (void)t; (void)s; (void)r; (void)bvh_bytes;
+}
+#else
+void tgi_shadow_explain(struct tgi_text *t, const tg_scene *s, const tg_request *r, size_t bvh_bytes);
+#endif
+
 #endif
