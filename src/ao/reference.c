@@ -6,6 +6,7 @@
  */
 #include "reference.h"
 #include "sampling.h"
+#include "../light/sh.h"
 
 void tgi_reference_defaults(tgi_reference_params *p)
 {
@@ -85,8 +86,8 @@ static void reference_pixel(const tgi_reference_params *p, const tgi_gview *g, c
         }
     }
     tgi_gr_set_ao(out, i, tg_ratio(open, n));          /* RTR eq. 11.8 / 11.14, cosine-importance sampled */
-    if (tgi_gr_has_cone(out))                           /* HBIL eq. 12, as HBIL defines its cone */
-        tgi_gr_set_cone(out, i, tg_acos(tg_sub(TG_ONE, tgi_gr_ao(out, i))));
+    if (tgi_gr_has_cone(out))                           /* the cone of a cosine-weighted AO (sh.h) */
+        tgi_gr_set_cone(out, i, tgi_cone_angle_from_ao(tgi_gr_ao(out, i)));
     if (tgi_gr_has_bent(out)) {                         /* RTR eq. 11.10 */
         tg_vec3 bn = tgi_v3_normalize_or(bent, nrm);
         tgi_gr_set_bent(out, i, bn);
