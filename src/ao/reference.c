@@ -7,6 +7,7 @@
 #include "reference.h"
 #include "sampling.h"
 #include "../light/sh.h"
+#include "../light/shadowmap.h"
 
 void tgi_reference_defaults(tgi_reference_params *p)
 {
@@ -64,8 +65,11 @@ static void reference_pixel(const tgi_reference_params *p, const tgi_gview *g, c
     tg_vec3 bent = tg_v3(0, 0, 0), near = tg_v3(0, 0, 0);
     tg_real eps, tmax = p->radius > 0 ? p->radius : 0;
     pv = tgi_ao_unproject(v, x, y, tgi_gv_depth(g, i));
-    /* scale-aware offset along the normal: 2^-10 of the depth + 2^-10 */
-    eps = tg_add(tg_ldexp(tgi_gv_depth(g, i), -10), TG_R(0.0009765625f));
+    /* offset along the normal: the reconstructed position's error bound
+     * (tgi_shadow_gbuffer_error: about 1/20 pixel, large in a small image)
+     * plus 2^-10 of the depth + 2^-10 */
+    eps = tg_add(tg_mul(tgi_gv_depth(g, i), tgi_shadow_gbuffer_error(v)),
+                 tg_add(tg_ldexp(tgi_gv_depth(g, i), -10), TG_R(0.0009765625f)));
     o = tgi_v3_add(tgi_v3_add(v->eye, tgi_ao_dir_to_world(v, pv)), tgi_v3_scale(nrm, eps));
     tgi_ao_basis(nrm, &t, &b);
     for (s = 0; s < n; s++) {
