@@ -2,8 +2,10 @@
 # platform/bench.mk - accuracy vs time (issue 5): `make bench` sweeps every
 # technique x setting (samples, slices, radius) over the built-in scenes in
 # float and Q16.16 fixed, times whole frames (median of BENCH_RUNS) and
-# measures them against the ray-traced reference; results in BENCH_DIR
-# (bench.md, bench.csv, bench.svg, contact.ppm/.png).  `make bench-publish`
+# measures them against the ray-traced reference; every technique's colour
+# (HBIL converged) against the path tracer (technique pathtrace); results in
+# BENCH_DIR (bench.md, bench.csv, bench.svg, contact.ppm/.png,
+# bench-color.csv/.svg, contact-color.ppm/.png).  `make bench-publish`
 # copies them to tools/bench-results/ (the README's copy).
 #
 #   make bench BENCH_SIZE=160x120 BENCH_RUNS=5 [BENCH_ARGS="--scenes columns"]
@@ -50,6 +52,8 @@ bench: bench-build
 bench-publish:
 	@mkdir -p tools/bench-results
 	cp $(BENCH_DIR)/bench.svg $(BENCH_DIR)/bench.md $(BENCH_DIR)/bench.csv $(BENCH_DIR)/contact.png tools/bench-results/
+	cp $(BENCH_DIR)/bench-color.svg $(BENCH_DIR)/bench-color.csv $(BENCH_DIR)/contact-color.png tools/bench-results/
+	cp $(BENCH_DIR)/multibounce-float.csv tools/bench-results/multibounce.csv
 
 # ---- cost and speed benches (speed is measured here, never in tests) ----
 #

@@ -415,6 +415,11 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
                                            without an environment, diagonal / this with one */
 #define TG_DEFAULT_SHADOW_MAP 0         /* texels per side; 0: each face by the size rule,
                                            about one texel per image pixel (README "Shadows") */
+/* the path-traced reference (technique pathtrace: samples = paths per pixel,
+ * bounces = most indirect bounces; the scene's gi line is not read) */
+#define TG_DEFAULT_PATHTRACE_SAMPLES 64 /* paths per pixel */
+#define TG_DEFAULT_PATHTRACE_BOUNCES 8  /* as a path tracer's "max bounces" */
+#define TG_DEFAULT_PATHTRACE_ROULETTE 3 /* Russian roulette from this path vertex on */
 #define TG_DEFAULT_WIDTH 320
 #define TG_DEFAULT_HEIGHT 240
 /* -- threads (the hosted platform's pool; the core never creates one) -- */
@@ -544,6 +549,11 @@ int tg_aov_channels(tg_aov aov);        /* 1 or 3 (motion: 3, z = validity); 3 i
 typedef enum tg_technique {
     TG_TECH_HBIL, TG_TECH_GTAO, TG_TECH_HBAO, TG_TECH_SSAO, TG_TECH_VO,
     TG_TECH_SSDO, TG_TECH_BENTCONE, TG_TECH_REFERENCE,
+    TG_TECH_PATHTRACE,  /* the multi-bounce ground truth: unbiased diffuse path
+                           tracing of the scene's triangles (src/ao/pathtrace.h);
+                           colour and irradiance only (AO reads 1), no
+                           screen-space effect (the plan's effects are 0),
+                           each frame traced anew with the seed frame index + 1 */
     TG_TECH_COUNT
 } tg_technique;
 const char *tg_technique_name(tg_technique t);    /* "?" for a value outside the enum */
@@ -572,10 +582,12 @@ typedef struct tg_request {
     uint32_t aovs;         /* bit (1u << TG_AOV_x) per output wanted; 0: colour */
     tg_technique technique;/* 0..TG_TECH_COUNT - 1 */
     int slices;            /* 1..TG_MAX_SLICES; <= 0: unset */
-    int samples;           /* 1..TG_MAX_SAMPLES; <= 0: unset */
+    int samples;           /* 1..TG_MAX_SAMPLES; <= 0: unset (pathtrace: paths per
+                              pixel, unset: TG_DEFAULT_PATHTRACE_SAMPLES) */
     tg_real radius;        /* world units, 0..TG_MAX_RADIUS (0 is allowed); -1: unset;
                               NaN, the infinities and other negatives are refused */
-    int bounces;           /* 0..TG_MAX_BOUNCES; < 0: unset */
+    int bounces;           /* 0..TG_MAX_BOUNCES; < 0: unset (pathtrace: most
+                              bounces, unset: TG_DEFAULT_PATHTRACE_BOUNCES) */
     int interleave;        /* 1: 4x4 interleaved kernel (default); 0: one full-res image */
     int gi_scale;          /* interleaved kernel on 1 pixel in gi_scale^2: 1 = every
                               pixel (default, the paper's), 2 = a quarter of them (half

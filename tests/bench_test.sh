@@ -15,6 +15,13 @@
 #    balance check), one polyline per technique, no NaN coordinates;
 #  - contact.ppm: P6 header and exact byte size of a 5x2 sheet; contact.png:
 #    PNG signature and the same size in IHDR, 8-bit greyscale;
+#  - colour against the path tracer: color-float.csv / color-fixed.csv /
+#    bench-color.csv, one row per scene and technique (ten), RMSE in [0, 1],
+#    energy > 0, the reference's noise >= 0, deterministic; bench.md's colour
+#    section; bench-color.svg parses, a dot per technique and number type;
+#    contact-color.png: a 4x3 sheet, 8-bit RGB;
+#  - multi-bounce AO: multibounce-float.csv / -fixed.csv, two AO sources per
+#    scene, RMSEs in [0, 1], biases in [-1, 1]; bench.md's section;
 #  - bad usage exits 2.
 # Timings are printed by the bench, never asserted here.
 set -u
@@ -24,7 +31,7 @@ BUILD=${BUILD:-build}
 T=$(mktemp -d "${TMPDIR:-/tmp}/tgi_bench_XXXXXX")
 trap 'rm -rf "$T"' EXIT
 W=32; H=24
-ARGS="--size ${W}x${H} --runs 1 --ref-samples 17 --scenes groove,columns"
+ARGS="--size ${W}x${H} --runs 1 --ref-samples 17 --scenes groove,columns --pt-samples 4 --color-frames 2"
 
 if ! make -s BUILD="$BUILD" bench-build >"$T/make.log" 2>&1; then
     fail "bench builds" "$(tail -n 5 "$T/make.log")"; summary; exit 1
@@ -71,10 +78,46 @@ done
 "$F" run $ARGS --out "$T/o2" >/dev/null 2>&1
 cut -d, -f1-7,10-15 "$T/o/rows-float.csv" >"$T/a"; cut -d, -f1-7,10-15 "$T/o2/rows-float.csv" >"$T/b"
 expect "error columns deterministic" cmp -s "$T/a" "$T/b"
+cut -d, -f1-4,6-9 "$T/o/color-float.csv" >"$T/a"; cut -d, -f1-4,6-9 "$T/o2/color-float.csv" >"$T/b"
+expect "colour error columns deterministic" cmp -s "$T/a" "$T/b"
+
+# colour against the path tracer
+cheader="scene,technique,frames,number,cpu_ms,color_rmse,energy,ref_noise,ref_paths"
+for f in color-float.csv color-fixed.csv bench-color.csv; do
+    expect "$f header" test "$(head -n 1 "$T/o/$f" 2>/dev/null)" = "$cheader"
+done
+cf=$(($(wc -l <"$T/o/color-float.csv") - 1)); cb=$(($(wc -l <"$T/o/bench-color.csv") - 1))
+expect "colour rows: 2 scenes x 10 techniques ($cf)" test "$cf" -eq 20
+expect "bench-color.csv has both number types ($cb)" test "$cb" -eq 40
+bad=$(awk -F, 'NR > 1 {
+    num = "^-?[0-9]+(\\.[0-9]+)?$"
+    if (NF != 9) { print "fields " NR; next }
+    for (i = 5; i <= 8; i++) if ($i !~ num) print "not a finite number: line " NR " field " i " = " $i
+    if ($6 < 0 || $6 > 1) print "colour RMSE out of [0,1]: line " NR
+    if ($7 <= 0) print "energy <= 0: line " NR
+    if ($8 < 0) print "noise < 0: line " NR
+    if ($9 != 4) print "paths: line " NR
+    if ($2 ~ /^hbil/ && $3 != 2) print "hbil frames: line " NR
+}' "$T/o/bench-color.csv")
+expect "every colour row finite and in range${bad:+: $bad}" test -z "$bad"
+for t in hbil hbil-1x hbil-full gtao hbao ssao vo ssdo bentcone reference; do
+    expect "colour of $t" grep -q "^[a-z]*,$t,.*,float," "$T/o/bench-color.csv"
+done
+
+# multi-bounce AO under a white sky
+mheader="scene,ao,number,plain_rmse,multibounce_rmse,interreflection_rmse,plain_bias,multibounce_bias"
+for f in multibounce-float.csv multibounce-fixed.csv; do
+    expect "$f header" test "$(head -n 1 "$T/o/$f" 2>/dev/null)" = "$mheader"
+    expect "$f: 2 scenes x 2 AO sources" test "$(($(wc -l <"$T/o/$f") - 1))" -eq 4
+    bad=$(awk -F, 'NR > 1 { if (NF != 8) print "fields " NR
+        for (i = 4; i <= 6; i++) if (!($i >= 0 && $i <= 1)) print "RMSE out of [0,1]: line " NR
+        for (i = 7; i <= 8; i++) if (!($i >= -1 && $i <= 1)) print "bias out of [-1,1]: line " NR }' "$T/o/$f")
+    expect "$f in range${bad:+: $bad}" test -z "$bad"
+done
 
 # bench.md
 md="$T/o/bench.md"
-for s in "## Default setting" "## Frontier" "Loos & Sloan table 1" "Klehm fig. 8" "Ritschel table 1" \
+for s in "## Default setting" "## Colour against the path-traced reference" "## Multi-bounce AO (GTAO" "## Frontier" "Loos & Sloan table 1" "Klehm fig. 8" "Ritschel table 1" \
          "HBIL pass breakdown" "Interreflection (RTR eq. 11.12-11.13)" "## Every row"; do
     expect "bench.md: $s" grep -qF "$s" "$md"
 done
@@ -105,14 +148,28 @@ ppm="$T/o/contact.ppm"
 expect "contact.ppm header" test "$(head -c 20 "$ppm" | tr '\n' ' ' | cut -d' ' -f1-4)" = "P6 $cw $ch 255"
 hdr=$(printf 'P6\n%d %d\n255\n' $cw $ch | wc -c)
 expect "contact.ppm size" test "$(wc -c <"$ppm")" -eq $((hdr + cw * ch * 3))
-png="$T/o/contact.png"
-expect "contact.png signature" test "$(head -c 8 "$png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a"
-expect "contact.png size in IHDR" test "$(od -An -tu1 -j16 -N10 "$png" | tr -s ' ' | sed 's/^ //')" = \
-    "0 0 $((cw >> 8)) $((cw & 255)) 0 0 $((ch >> 8)) $((ch & 255)) 8 0"
+# png_is NAME WIDTH HEIGHT COLOUR_TYPE: the signature, and IHDR's size, 8 bits, colour type
+png_is() {
+    expect "$(basename "$1") signature" test "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a"
+    expect "$(basename "$1") size in IHDR, 8 bits, colour type $4" test "$(od -An -tu1 -j16 -N10 "$1" | tr -s ' ' | sed 's/^ //')" = \
+        "0 0 $(($2 >> 8)) $(($2 & 255)) 0 0 $(($3 >> 8)) $(($3 & 255)) 8 $4"
+}
+png_is "$T/o/contact.png" $cw $ch 0
+
+# colour plot and sheet
+csvg="$T/o/bench-color.svg"
+if command -v python3 >/dev/null 2>&1; then
+    expect "bench-color.svg parses (python3)" python3 -c "import sys, xml.dom.minidom; xml.dom.minidom.parse(sys.argv[1])" "$csvg"
+fi
+dots=$(grep -c '<circle' "$csvg")
+expect "bench-color.svg: a dot per technique and number type ($dots)" test "$dots" -eq 20
+expect "bench-color.svg: no NaN/inf" sh -c "! grep -qi 'nan\|inf' '$csvg'"
+png_is "$T/o/contact-color.png" $((4 * W + 10)) $((3 * H + 8)) 2
 
 # usage
 "$F" >/dev/null 2>&1; expect "no command: exit 2" test $? -eq 2
 "$F" run --size 2x2 >/dev/null 2>&1; expect "bad size: exit 2" test $? -eq 2
 "$F" frobnicate --out "$T/x" >/dev/null 2>&1; expect "unknown command: exit 2" test $? -eq 2
 "$F" report --out "$T/empty" >/dev/null 2>&1; expect "report without rows: exit 2" test $? -eq 2
+"$F" run --pt-samples 1 --out "$T/x" >/dev/null 2>&1; expect "bad pt-samples: exit 2" test $? -eq 2
 summary

@@ -7,7 +7,7 @@
  * unoccluded with the bent normal on the normal; a 90-degree groove's AO
  * rises with distance from the crease, is the same on both faces and is
  * close to a ray-traced cosine-weighted AO with the same radius; cone =
- * acos(1 - AO) (eq. 12); the interleaved path approaches the full-resolution
+ * acos(sqrt(1 - AO)) (src/light/sh.h, not eq. 12); the interleaved path approaches the full-resolution
  * kernel with the same 32 directions; near field: an enclosure of uniform
  * radiance L gives AO + E_near / (pi L) = 1; fixed and float agree.
  */
@@ -364,7 +364,10 @@ TEST(groove)
     gbuf_free(&g);
 }
 
-TEST(cone_is_acos_one_minus_ao)
+/* The cone whose cosine-weighted AO is the AO: acos(sqrt(1 - AO)) (src/light/sh.h). */
+static double cone_of(double a) { return acos(sqrt(1 - a)); }
+
+TEST(cone_is_the_aperture_of_a_cosine_weighted_ao)
 {
     scene s;
     gbuf g;
@@ -377,18 +380,18 @@ TEST(cone_is_acos_one_minus_ao)
     result_alloc(&r, n);
     run_full(&g, 1.0, 0, &r);
     for (i = 0; i < n; i++) {
-        double a = check_d(r.ao[i]), c = check_d(r.cone[i]), e = fabs(c - acos(1 - a));
+        double a = check_d(r.ao[i]), c = check_d(r.cone[i]), e = fabs(c - cone_of(a));
         CHECK(a >= 0 && a <= 1 && c >= 0 && c <= 1.5708 + 1e-3, "pixel %zu: AO %g cone %g", i, a, c);
 #if !TG_WIDE_STORAGE
         {   /* as stored: AO and cone in 8 bits each; take off the rounding of both */
-            double h = 0.5 / 255, lo = acos(1 - fmin(1, a + h)), hi = acos(1 - fmax(0, a - h));
-            double round = fmax(fabs(lo - acos(1 - a)), fabs(hi - acos(1 - a))) + 0.5 / 255 * 1.5707963;
+            double h = 0.5 / 255, lo = cone_of(fmin(1, a + h)), hi = cone_of(fmax(0, a - h));
+            double round = fmax(fabs(lo - cone_of(a)), fabs(hi - cone_of(a))) + 0.5 / 255 * 1.5707963;
             e = fmax(0, e - round);
         }
 #endif
         if (e > worst) worst = e;
     }
-    CHECK(worst < 2e-3, "cone vs acos(1 - AO): worst %.5f rad", worst); /* fixed acos error bound */
+    CHECK(worst < 2e-3, "cone vs acos(sqrt(1 - AO)): worst %.5f rad", worst); /* fixed acos error bound */
     result_free(&r);
     gbuf_free(&g);
 }
@@ -628,7 +631,7 @@ int main(int argc, char **argv)
     RUN(open_plane_full_res);
     RUN(open_plane_interleaved);
     RUN(groove);
-    RUN(cone_is_acos_one_minus_ao);
+    RUN(cone_is_the_aperture_of_a_cosine_weighted_ao);
     RUN(interleaved_matches_full_res);
     RUN(strided_sub_images_match_packed_copies);
     RUN(near_field_complements_ao);

@@ -5,6 +5,7 @@
  * against the ray-traced reference (cached per scene and radius):
  *
  *   bench run    [--size WxH] [--runs N] [--out DIR] [--ref-samples N] [--scenes a,b]
+ *                [--pt-samples N] [--color-frames N] [--only color|multibounce]
  *       sweep techniques x settings (samples, slices, radius) over the
  *       built-in scenes in this binary's number type; writes
  *       DIR/rows-<float|fixed>.csv, DIR/passes-<type>.md (HBIL pass
@@ -15,6 +16,25 @@
  *       read DIR/rows-*.csv, write DIR/bench.csv, DIR/bench.md (summary,
  *       frontier, the papers' claims with a verdict, full table) and
  *       DIR/bench.svg (AO RMSE against ms, one polyline per technique).
+ *
+ * Colour: every technique at its default setting (HBIL converged over
+ * --color-frames frames, the others one frame; plus "reference", the
+ * ray-traced AO and one-bounce near field composed like the others) against
+ * the path-traced reference (technique pathtrace, --pt-samples paths per
+ * pixel, its default bounces; cached per scene): colour RMSE over geometry
+ * pixels with every channel clamped to [0, 1], and the energy ratio
+ * sum Lo / sum Lo_ref (unclamped).  The reference is traced as two halves
+ * with different seeds: their difference gives its own noise (RMSE of the
+ * average), the floor under every technique's colour RMSE.  Written to
+ * DIR/color-<type>.csv; the report adds bench-color.csv, a section of
+ * bench.md, bench-color.svg (colour RMSE against ms) and, from the float
+ * run, contact-color.ppm/.png (every technique's colour beside the path
+ * tracer's, tonemapped as the CLI's PPM).
+ *
+ * Multi-bounce AO: each scene under a uniform white sky alone; the path
+ * tracer's E / (pi L) against the AO (ray-traced without a cut-off, and
+ * GTAO's), GTAO's multi-bounce fit of it (Jimenez et al. 2016, eq. 10) and
+ * RTR eq. 11.13; DIR/multibounce-<type>.csv, a section of bench.md.
  *
  * Errors are over pixels that are geometry in both the technique's frame and
  * the reference: AO RMSE and max |error|; the mean angle between bent normals
@@ -34,6 +54,7 @@
 #include "hosted/clock.h"
 #include "frame/frame_internal.h"
 #include "ao/ao.h"
+#include "light/tonemap.h"
 
 #if TG_FIXED
 #define NUMBER "fixed"
@@ -44,13 +65,15 @@
 #define AOVBIT(a) (1u << (a))
 #define MAX_RUNS 64
 #define MAX_ROWS 4096
+#define COLOR_HEADER "scene,technique,frames,number,cpu_ms,color_rmse,energy,ref_noise,ref_paths"
 
 /* ------------------------------------------------------------------ */
 /* options */
 
-static int opt_w = 160, opt_h = 120, opt_runs = 5, opt_ref_samples = 256;
+static int opt_w = 160, opt_h = 120, opt_runs = 5, opt_ref_samples = 256, opt_pt_samples = 256, opt_color_frames = 60;
 static const char *opt_out = "build/bench";
 static char opt_scenes[256] = "";
+static char opt_only[32] = "";     /* "": everything; "color" or "multibounce": that part alone */
 
 static void die(const char *msg, const char *arg)
 {
@@ -507,19 +530,20 @@ static void png_chunk(FILE *f, const char *type, const uint8_t *data, size_t n)
     put32(b, crc); fwrite(b, 1, 4, f);
 }
 
-/* PNG, 8-bit greyscale (the red channel of an RGB image: the sheet is
- * grey), zlib stream of stored (uncompressed) deflate blocks. */
-static void write_png(FILE *f, const uint8_t *rgb, int w, int h)
+/* PNG of an RGB image, 8-bit: greyscale (its red channel, for a grey
+ * sheet) when channels is 1, RGB when 3; zlib stream of stored
+ * (uncompressed) deflate blocks. */
+static void write_png(FILE *f, const uint8_t *rgb, int w, int h, int channels)
 {
     static const uint8_t sig[8] = { 137, 80, 78, 71, 13, 10, 26, 10 };
-    size_t raw_n = (size_t)h * (size_t)(1 + w), blocks = (raw_n + 65534) / 65535, zn, i, pos;
+    size_t row = (size_t)(1 + channels * w), raw_n = (size_t)h * row, blocks = (raw_n + 65534) / 65535, zn, i, pos;
     uint8_t *raw = malloc(raw_n), *z, ihdr[13];
     uint32_t a = 1, b = 0;
     int y, x;
     for (y = 0; y < h; y++) {
-        raw[(size_t)y * (size_t)(1 + w)] = 0;
-        for (x = 0; x < w; x++)
-            raw[(size_t)y * (size_t)(1 + w) + 1 + (size_t)x] = rgb[((size_t)y * (size_t)w + (size_t)x) * 3];
+        raw[(size_t)y * row] = 0;
+        for (x = 0; x < w * channels; x++)
+            raw[(size_t)y * row + 1 + (size_t)x] = rgb[((size_t)y * (size_t)w + (size_t)(x / channels)) * 3 + (size_t)(x % channels)];
     }
     zn = 2 + raw_n + 5 * blocks + 4;
     z = malloc(zn);
@@ -538,7 +562,7 @@ static void write_png(FILE *f, const uint8_t *rgb, int w, int h)
     pos += 4;
     fwrite(sig, 1, 8, f);
     put32(ihdr, (uint32_t)w); put32(ihdr + 4, (uint32_t)h);
-    ihdr[8] = 8; ihdr[9] = 0; ihdr[10] = 0; ihdr[11] = 0; ihdr[12] = 0;
+    ihdr[8] = 8; ihdr[9] = channels == 3 ? 2 : 0; ihdr[10] = 0; ihdr[11] = 0; ihdr[12] = 0;
     png_chunk(f, "IHDR", ihdr, 13);
     png_chunk(f, "IDAT", z, pos);
     png_chunk(f, "IEND", NULL, 0);
@@ -585,8 +609,334 @@ static void sheet_write(void)
     fwrite(sheet, 1, (size_t)sheet_w * (size_t)sheet_h * 3, f);
     fclose(f);
     f = open_out("contact.png", "wb");
-    write_png(f, sheet, sheet_w, sheet_h);
+    write_png(f, sheet, sheet_w, sheet_h, 1);
     fclose(f);
+}
+
+/* ------------------------------------------------------------------ */
+/* colour against the path-traced reference */
+
+typedef struct color_config {
+    const char *label;
+    tg_technique tech;
+    int interleave, gi_scale, converge;   /* converge: HBIL, rendered over --color-frames frames */
+} color_config;
+
+#define COLOR_TECHS 10
+static const color_config color_cfgs[COLOR_TECHS] = {
+    { "hbil", TG_TECH_HBIL, 1, 2, 1 }, { "hbil-1x", TG_TECH_HBIL, 1, 1, 1 }, { "hbil-full", TG_TECH_HBIL, 0, 1, 1 },
+    { "gtao", TG_TECH_GTAO, 1, 1, 0 }, { "hbao", TG_TECH_HBAO, 1, 1, 0 }, { "ssao", TG_TECH_SSAO, 1, 1, 0 },
+    { "vo", TG_TECH_VO, 1, 1, 0 }, { "ssdo", TG_TECH_SSDO, 1, 1, 0 }, { "bentcone", TG_TECH_BENTCONE, 1, 1, 0 },
+    { "reference", TG_TECH_REFERENCE, 1, 1, 0 }
+};
+
+typedef struct color_ref {
+    float *rgb;          /* linear Lo, 3 a pixel */
+    uint8_t *sky;
+    double noise;        /* its own colour RMSE (clamped), from the two halves */
+} color_ref;
+
+static void color_ref_free(color_ref *r)
+{
+    free(r->rgb); free(r->sky);
+    memset(r, 0, sizeof *r);
+}
+
+static double clamp01(double v) { return v < 0 ? 0 : v > 1 ? 1 : v; }
+
+/* Colour RMSE with every channel clamped to [0, 1] and the energy ratio
+ * sum a / sum b, over pixels that are geometry in both. */
+static void color_errors(const float *a, const uint8_t *sky_a, const float *b, const uint8_t *sky_b, int n,
+                         double *rmse, double *energy)
+{
+    double se = 0, ea = 0, eb = 0;
+    long k = 0;
+    int i, c;
+    for (i = 0; i < n; i++) {
+        if (sky_a[i] || sky_b[i]) continue;
+        for (c = 0; c < 3; c++) {
+            double d = clamp01(a[3 * i + c]) - clamp01(b[3 * i + c]);
+            se += d * d;
+            ea += (double)a[3 * i + c];
+            eb += (double)b[3 * i + c];
+            k++;
+        }
+    }
+    *rmse = k ? sqrt(se / (double)k) : 0;
+    *energy = eb > 0 ? ea / eb : 0;
+}
+
+static int load_color_ref(const char *path, color_ref *r, int n)
+{
+    FILE *f = fopen(path, "rb");
+    int ok;
+    if (!f) return 0;
+    r->rgb = malloc(sizeof(float) * (size_t)n * 3);
+    r->sky = malloc((size_t)n);
+    ok = fread(r->rgb, sizeof(float), (size_t)n * 3, f) == (size_t)n * 3 && fread(r->sky, 1, (size_t)n, f) == (size_t)n &&
+         fread(&r->noise, sizeof r->noise, 1, f) == 1;
+    fclose(f);
+    if (!ok) color_ref_free(r);
+    return ok;
+}
+
+/* The path tracer's colour for a scene, as two halves of --pt-samples paths
+ * (frame indices 0 and 1 draw different paths), averaged; cached. */
+static void color_reference(tg_scene *s, const char *name, color_ref *r)
+{
+    char path[700], dir[620];
+    int n = opt_w * opt_h, i, half = opt_pt_samples / 2;
+    frame_run fr;
+    tg_error err;
+    tg_request q;
+    float *a, *b;
+    double t0, e;
+    FILE *f;
+    snprintf(path, sizeof path, "%s/ref/%s-%dx%d-pt%d.bin", opt_out, name, opt_w, opt_h, opt_pt_samples);
+    if (load_color_ref(path, r, n)) return;
+    q = base_request(TG_TECH_PATHTRACE, 0, half, -1, AOVBIT(TG_AOV_COLOR));
+    if (!frame_open(&fr, s, &q)) die("path-traced reference frame", name);
+    t0 = cpu_seconds();
+    tg_frame_render(fr.frame, 0, &err);
+    a = read_aov(fr.frame, TG_AOV_COLOR, opt_w, opt_h);
+    tg_frame_render(fr.frame, 1, &err);
+    b = read_aov(fr.frame, TG_AOV_COLOR, opt_w, opt_h);
+    r->sky = read_sky(fr.frame, n);
+    printf("  path-traced reference %s (%d paths, %d bounces): %.0f ms CPU\n", name, 2 * half,
+           fr.plan.request.bounces, (cpu_seconds() - t0) * 1e3);
+    fflush(stdout);
+    frame_close(&fr);
+    color_errors(a, r->sky, b, r->sky, n, &r->noise, &e);
+    r->noise *= 0.5;   /* the halves differ by twice the average's noise (in RMS) */
+    r->rgb = a;
+    for (i = 0; i < 3 * n; i++) a[i] = 0.5f * (a[i] + b[i]);
+    free(b);
+    snprintf(dir, sizeof dir, "%s/ref", opt_out);
+    mkdirs(dir);
+    f = fopen(path, "wb");
+    if (!f) die("cannot write", path);
+    fwrite(r->rgb, sizeof(float), (size_t)n * 3, f);
+    fwrite(r->sky, 1, (size_t)n, f);
+    fwrite(&r->noise, sizeof r->noise, 1, f);
+    fclose(f);
+}
+
+/* The colour sheet: every technique's colour and the path tracer's,
+ * tonemapped as the CLI's PPM (exposure 1). */
+#define CSHEET_COLS 4
+#define CSHEET_TILES 12
+static uint8_t *csheet;
+static int csheet_w, csheet_h;
+
+static void color_tile(int k, const float *rgb, const char *label)
+{
+    int tx = k % CSHEET_COLS, ty = k / CSHEET_COLS, x, y, c;
+    if (!csheet) {
+        csheet_w = CSHEET_COLS * opt_w + (CSHEET_COLS + 1) * 2;
+        csheet_h = (CSHEET_TILES / CSHEET_COLS) * opt_h + (CSHEET_TILES / CSHEET_COLS + 1) * 2;
+        csheet = calloc((size_t)csheet_w * (size_t)csheet_h * 3, 1);
+    }
+    for (y = 0; y < opt_h; y++)
+        for (x = 0; x < opt_w; x++)
+            for (c = 0; c < 3; c++) {
+                size_t p = ((size_t)(2 + ty * (opt_h + 2) + y) * (size_t)csheet_w + (size_t)(2 + tx * (opt_w + 2) + x)) * 3;
+                csheet[p + (size_t)c] = tgi_tonemap8(tg_from_float(rgb[3 * (y * opt_w + x) + c]));
+            }
+    if (opt_h >= 24 && (int)strlen(label) * 8 < opt_w) {
+        int x0 = 2 + tx * (opt_w + 2), y0 = 2 + ty * (opt_h + 2);
+        for (y = 0; y < 14; y++)
+            for (x = 0; x < (int)strlen(label) * 8 + 4; x++) {
+                size_t p = ((size_t)(y0 + y) * (size_t)csheet_w + (size_t)(x0 + x)) * 3;
+                csheet[p] = csheet[p + 1] = csheet[p + 2] = 0;
+            }
+        draw_text(csheet, csheet_w, x0 + 2, y0 + 2, label, 2);
+    }
+}
+
+static void color_sheet_write(void)
+{
+    FILE *f;
+    if (!csheet) return;
+    f = open_out("contact-color.ppm", "wb");
+    fprintf(f, "P6\n%d %d\n255\n", csheet_w, csheet_h);
+    fwrite(csheet, 1, (size_t)csheet_w * (size_t)csheet_h * 3, f);
+    fclose(f);
+    f = open_out("contact-color.png", "wb");
+    write_png(f, csheet, csheet_w, csheet_h, 3);
+    fclose(f);
+}
+
+/* One technique's colour: converged (HBIL: --color-frames frames in
+ * sequence), then opt_runs more frames timed.  Returns the colour. */
+static float *color_run(tg_scene *s, const color_config *c, double radius, double *cpu_ms)
+{
+    double u[MAX_RUNS];
+    frame_run fr;
+    tg_error err;
+    tg_request q = base_request(c->tech, 2, 16, radius, AOVBIT(TG_AOV_COLOR));
+    int k, frames = c->converge ? opt_color_frames : 1;
+    float *rgb;
+    q.frames = frames + opt_runs;
+    q.interleave = c->interleave;
+    q.gi_scale = c->gi_scale;
+    if (c->tech == TG_TECH_REFERENCE) q.samples = opt_ref_samples;
+    if (!frame_open(&fr, s, &q)) die("colour frame", c->label);
+    for (k = 0; k < frames; k++) tg_frame_render(fr.frame, k, &err);
+    rgb = read_aov(fr.frame, TG_AOV_COLOR, opt_w, opt_h);
+    for (k = 0; k < opt_runs; k++) {
+        double u0 = cpu_seconds();
+        tg_frame_render(fr.frame, frames + k, &err);
+        u[k] = (cpu_seconds() - u0) * 1e3;
+    }
+    frame_close(&fr);
+    *cpu_ms = median(u, opt_runs);
+    return rgb;
+}
+
+/* Every technique's colour on one scene against the path tracer's. */
+static void color_rows(tg_scene *s, const char *name, double radius, FILE *csv, int tiles)
+{
+    int k, n = opt_w * opt_h;
+    color_ref ref;
+    uint8_t *sky;
+    color_reference(s, name, &ref);
+    {   /* any technique's frame has the same sky */
+        frame_run fr;
+        tg_request q = base_request(TG_TECH_SSAO, 2, 4, radius, AOVBIT(TG_AOV_AO));
+        tg_error err;
+        if (!frame_open(&fr, s, &q)) die("frame", name);
+        tg_frame_render(fr.frame, 0, &err);
+        sky = read_sky(fr.frame, n);
+        frame_close(&fr);
+    }
+    for (k = 0; k < COLOR_TECHS; k++) {
+        const color_config *c = &color_cfgs[k];
+        double cpu, rmse, energy;
+        float *rgb = color_run(s, c, radius, &cpu);
+        color_errors(rgb, sky, ref.rgb, ref.sky, n, &rmse, &energy);
+        fprintf(csv, "%s,%s,%d,%s,%.4f,%.6f,%.6f,%.6f,%d\n", name, c->label, c->converge ? opt_color_frames : 1, NUMBER, cpu,
+                rmse, energy, ref.noise, 2 * (opt_pt_samples / 2));
+        fflush(csv);
+        printf("  colour %-9s %3d frame%s %8.2f ms (cpu)  RMSE %.4f  energy %.3f  (reference noise %.4f)\n", c->label,
+               c->converge ? opt_color_frames : 1, c->converge && opt_color_frames > 1 ? "s" : " ", cpu, rmse, energy, ref.noise);
+        fflush(stdout);
+        if (tiles) color_tile(k, rgb, c->label);
+        free(rgb);
+    }
+    if (tiles) color_tile(COLOR_TECHS, ref.rgb, "pathtrace");
+    free(sky);
+    color_ref_free(&ref);
+}
+
+/* ------------------------------------------------------------------ */
+/* multi-bounce AO (GTAO eq. 10) against the path tracer under a white sky */
+
+#define MB_HEADER "scene,ao,number,plain_rmse,multibounce_rmse,interreflection_rmse,plain_bias,multibounce_bias"
+
+/* The scene lit by a uniform white sky alone: its lights, environment and
+ * emission dropped (malloc'd). */
+static char *white_sky_text(const char *text)
+{
+    size_t n = strlen(text);
+    char *out = malloc(n + 32), *o = out, line[4096];
+    const char *p = text;
+    while (*p) {
+        const char *e = strchr(p, '\n');
+        size_t len = e ? (size_t)(e - p) + 1 : strlen(p);
+        char *m;
+        if (len >= sizeof line) die("scene line too long", NULL);
+        memcpy(line, p, len);
+        line[len] = '\0';
+        p += len;
+        if (!strncmp(line, "light", 5) || !strncmp(line, "env", 3)) continue;
+        if ((m = strstr(line, "emissive")) != NULL) {   /* "emissive R G B": four words out */
+            char *q = m;
+            int w;
+            for (w = 0; w < 4; w++) {
+                while (*q == ' ') q++;
+                while (*q && *q != ' ' && *q != '\n') q++;
+            }
+            memmove(m, q, strlen(q) + 1);
+        }
+        memcpy(o, line, strlen(line));
+        o += strlen(line);
+    }
+    strcpy(o, "\nenv uniform 1 1 1\n");
+    return out;
+}
+
+static tg_scene *parse_text(const char *text, const char *name, void **mem)
+{
+    tg_arena arena;
+    tg_error err;
+    tg_scene *s = NULL;
+    size_t bytes = (size_t)1 << 24;
+    *mem = malloc(bytes);
+    tg_arena_init(&arena, *mem, bytes);
+    if (tg_scene_parse(text, strlen(text), name, NULL, &arena, &s, &err) != TG_OK) die("scene does not parse", err.message);
+    return s;
+}
+
+/* One frame's AOV (and the sky, the albedo when asked) of technique t. */
+static float *render_aov(tg_scene *s, tg_technique t, int samples, double radius, tg_aov aov, uint8_t **sky, float **albedo)
+{
+    frame_run fr;
+    tg_error err;
+    tg_request q = base_request(t, 2, samples, radius, AOVBIT(aov) | AOVBIT(TG_AOV_ALBEDO));
+    float *v;
+    if (!frame_open(&fr, s, &q)) die("frame", tg_technique_name(t));
+    tg_frame_render(fr.frame, 0, &err);
+    v = read_aov(fr.frame, aov, opt_w, opt_h);
+    if (sky) *sky = read_sky(fr.frame, opt_w * opt_h);
+    if (albedo) *albedo = read_aov(fr.frame, TG_AOV_ALBEDO, opt_w, opt_h);
+    frame_close(&fr);
+    return v;
+}
+
+/* AO, the fit and RTR eq. 11.13 against E / (pi L) of the path tracer. */
+static void multibounce_errors(const float *ao, const float *albedo, const float *kref, const uint8_t *sky, double out[5])
+{
+    double s[5] = { 0, 0, 0, 0, 0 };
+    long k = 0;
+    int i, c, n = opt_w * opt_h;
+    for (i = 0; i < n; i++) {
+        if (sky[i]) continue;
+        for (c = 0; c < 3; c++) {
+            tg_real a = tg_from_float(ao[i]), rho = tg_from_float(albedo[3 * i + c]);
+            double want = (double)kref[3 * i + c], plain = (double)ao[i] - want;
+            double mb = (double)tg_to_float(tgi_ao_multibounce(a, rho)) - want;
+            double ir = (double)tg_to_float(tgi_ao_interreflection(a, rho)) - want;
+            s[0] += plain * plain; s[1] += mb * mb; s[2] += ir * ir; s[3] += plain; s[4] += mb;
+            k++;
+        }
+    }
+    for (c = 0; c < 5; c++) out[c] = k ? s[c] / (double)k : 0;
+    for (c = 0; c < 3; c++) out[c] = sqrt(out[c]);
+}
+
+static void multibounce_rows(const char *name, double radius, FILE *csv)
+{
+    void *mem;
+    char *text = white_sky_text(tg_builtin_scene(name));
+    tg_scene *s = parse_text(text, name, &mem);
+    int i, n = opt_w * opt_h, src;
+    uint8_t *sky;
+    float *albedo, *e = render_aov(s, TG_TECH_PATHTRACE, opt_pt_samples < TG_MAX_SAMPLES ? opt_pt_samples : TG_MAX_SAMPLES,
+                                   -1, TG_AOV_IRRADIANCE, &sky, &albedo);
+    for (i = 0; i < 3 * n; i++) e[i] = (float)((double)e[i] / 3.14159265358979);   /* E / (pi L), L = 1 */
+    for (src = 0; src < 2; src++) {
+        /* the ray-traced AO without a cut-off (the fit's own error), GTAO as a frame gives it */
+        float *ao = src ? render_aov(s, TG_TECH_GTAO, 16, radius, TG_AOV_AO, NULL, NULL)
+                        : render_aov(s, TG_TECH_REFERENCE, opt_ref_samples, TG_MAX_RADIUS, TG_AOV_AO, NULL, NULL);
+        double r[5];
+        multibounce_errors(ao, albedo, e, sky, r);
+        fprintf(csv, "%s,%s,%s,%.6f,%.6f,%.6f,%.6f,%.6f\n", name, src ? "gtao" : "reference", NUMBER, r[0], r[1], r[2], r[3], r[4]);
+        printf("  white sky, %s AO: RMSE against E/(pi L): AO %.4f, GTAO multi-bounce %.4f, RTR 11.13 %.4f (bias %+.4f, %+.4f)\n",
+               src ? "gtao" : "reference", r[0], r[1], r[2], r[3], r[4]);
+        fflush(stdout);
+        free(ao);
+    }
+    free(e); free(sky); free(albedo); free(text); free(mem);
 }
 
 /* ------------------------------------------------------------------ */
@@ -686,14 +1036,21 @@ static int scene_wanted(const char *name)
 static int cmd_run(void)
 {
     char fname[64];
-    FILE *csv;
+    FILE *csv, *ccsv, *mcsv;
     int si, ci, n = opt_w * opt_h, sheet_k = 0;
     const char *name, *sheet_scene = scene_wanted("columns") ? "columns" : NULL;
+    const char *color_scene = scene_wanted("cornell") ? "cornell" : NULL;
     build_sweep();
     mkdirs(opt_out);
     snprintf(fname, sizeof fname, "rows-%s.csv", NUMBER);
     csv = open_out(fname, "w");
     fprintf(csv, "scene,technique,slices,samples,radius,interleave,number,median_ms,cpu_ms,ao_rmse,ao_max,bent_deg,near_rel,default,curve\n");
+    snprintf(fname, sizeof fname, "color-%s.csv", NUMBER);
+    ccsv = open_out(fname, "w");
+    fprintf(ccsv, COLOR_HEADER "\n");
+    snprintf(fname, sizeof fname, "multibounce-%s.csv", NUMBER);
+    mcsv = open_out(fname, "w");
+    fprintf(mcsv, MB_HEADER "\n");
     for (si = 0; (name = tg_builtin_name(si)) != NULL; si++) {
         void *mem;
         tg_scene *s;
@@ -704,7 +1061,7 @@ static int cmd_run(void)
         r0 = scene_radius(s);
         printf("%s (%s, radius %.3f, %dx%d, %d runs)\n", name, NUMBER, r0, opt_w, opt_h, opt_runs);
         fflush(stdout);
-        for (ci = 0; ci < ncfg; ci++) {
+        for (ci = 0; ci < ncfg && !*opt_only; ci++) {
             const config *c = &cfgs[ci];
             double radius = r0 * c->rscale, ms, cpu;
             result ref, res;
@@ -728,12 +1085,19 @@ static int cmd_run(void)
             result_free(&res);
             result_free(&ref);
         }
-        if (strcmp(name, "cornell") == 0 || (!scene_wanted("cornell") && strcmp(name, sheet_scene) == 0))
+        if (!*opt_only && (strcmp(name, "cornell") == 0 || (!scene_wanted("cornell") && strcmp(name, sheet_scene) == 0)))
             pass_breakdown(s, name);
+        if (!color_scene) color_scene = name;
+        if (strcmp(opt_only, "multibounce"))
+            color_rows(s, name, r0, ccsv, !strcmp(NUMBER, "float") && strcmp(name, color_scene) == 0);
+        if (strcmp(opt_only, "color")) multibounce_rows(name, r0, mcsv);
         free(mem);
     }
     fclose(csv);
+    fclose(ccsv);
+    fclose(mcsv);
     sheet_write();
+    color_sheet_write();
     return 0;
 }
 
@@ -1034,15 +1398,215 @@ static void claim_lines(FILE *f, const char *number)
     }
 }
 
+/* ---- colour rows: DIR/color-<type>.csv ---- */
+
+typedef struct crow {
+    char scene[32], tech[32], number[8];
+    int frames, paths;
+    double cpu, rmse, energy, noise;
+} crow;
+
+static crow crows[MAX_ROWS];
+static int ncrows;
+
+static void read_color_rows(const char *number)
+{
+    char path[600], line[512];
+    FILE *f;
+    snprintf(path, sizeof path, "%s/color-%s.csv", opt_out, number);
+    f = fopen(path, "r");
+    if (!f) return;
+    if (!fgets(line, sizeof line, f)) { fclose(f); return; }
+    while (ncrows < MAX_ROWS && fgets(line, sizeof line, f)) {
+        crow *r = &crows[ncrows];
+        if (sscanf(line, "%31[^,],%31[^,],%d,%7[^,],%lf,%lf,%lf,%lf,%d", r->scene, r->tech, &r->frames, r->number, &r->cpu,
+                   &r->rmse, &r->energy, &r->noise, &r->paths) == 9)
+            ncrows++;
+    }
+    fclose(f);
+}
+
+/* Means over the scenes of one technique and number type. */
+typedef struct cpoint { double cpu, rmse, energy, noise, emin, emax; int scenes, frames; } cpoint;
+
+static int color_point(const char *tech, const char *number, cpoint *p)
+{
+    int i;
+    memset(p, 0, sizeof *p);
+    p->emin = 1e30;
+    for (i = 0; i < ncrows; i++) {
+        const crow *r = &crows[i];
+        if (strcmp(r->tech, tech) || strcmp(r->number, number)) continue;
+        p->cpu += r->cpu; p->rmse += r->rmse; p->energy += r->energy; p->noise += r->noise;
+        if (r->energy < p->emin) p->emin = r->energy;
+        if (r->energy > p->emax) p->emax = r->energy;
+        p->frames = r->frames;
+        p->scenes++;
+    }
+    if (!p->scenes) return 0;
+    p->cpu /= p->scenes; p->rmse /= p->scenes; p->energy /= p->scenes; p->noise /= p->scenes;
+    return 1;
+}
+
+static void color_report(FILE *md)
+{
+    FILE *f;
+    int i, k, num, frames = 1;
+    if (!ncrows) return;
+    for (i = 0; i < ncrows; i++) if (crows[i].frames > frames) frames = crows[i].frames;
+    f = open_out("bench-color.csv", "w");
+    fprintf(f, COLOR_HEADER "\n");
+    for (i = 0; i < ncrows; i++) {
+        const crow *r = &crows[i];
+        fprintf(f, "%s,%s,%d,%s,%.4f,%.6f,%.6f,%.6f,%d\n", r->scene, r->tech, r->frames, r->number, r->cpu, r->rmse, r->energy,
+                r->noise, r->paths);
+    }
+    fclose(f);
+    fprintf(md, "## Colour against the path-traced reference\n\n");
+    fprintf(md, "Each technique at its default setting (2 slices x 16 samples, the scene's radius; HBIL converged over %d frames, the others one frame; `reference`: the ray-traced AO and one-bounce near field, composed like the others) against `--technique pathtrace` (%d paths per pixel in two halves, its default bounces). Colour RMSE over geometry pixels with every channel clamped to [0, 1]; energy: sum Lo / sum Lo_ref (1 = the path tracer's light). The reference's own noise (from its two halves) is a floor under every RMSE. CPU ms: median per frame (converged).\n\n",
+            frames, crows[0].paths);
+    fprintf(md, "| technique | number | CPU ms | colour RMSE | energy (mean) | energy (range over scenes) |\n|---|---|---:|---:|---:|---|\n");
+    for (num = 0; num < 2; num++)
+        for (k = 0; k < COLOR_TECHS; k++) {
+            cpoint p;
+            if (!color_point(color_cfgs[k].label, num ? "fixed" : "float", &p)) continue;
+            fprintf(md, "| %s | %s | %.2f | %.4f | %.3f | %.3f..%.3f |\n", color_cfgs[k].label, num ? "fixed" : "float", p.cpu,
+                    p.rmse, p.energy, p.emin, p.emax);
+        }
+    fprintf(md, "\n| scene | technique | number | frames | CPU ms | colour RMSE | energy | reference noise |\n|---|---|---|---:|---:|---:|---:|---:|\n");
+    for (i = 0; i < ncrows; i++) {
+        const crow *r = &crows[i];
+        fprintf(md, "| %s | %s | %s | %d | %.2f | %.4f | %.3f | %.4f |\n", r->scene, r->tech, r->number, r->frames, r->cpu,
+                r->rmse, r->energy, r->noise);
+    }
+    fprintf(md, "\n");
+}
+
+/* bench-color.svg: colour RMSE against CPU ms, a dot per technique (float
+ * filled, fixed hollow), labelled; the path tracer's noise as a dashed line. */
+static void write_color_svg(void)
+{
+    const int W = 760, H = 460, L = 70, R = 30, T = 50, B = 60;
+    double xmin = 1e30, xmax = 0, ymax = 0, noise = 0, lx0, lx1;
+    int k, num, e;
+    cpoint pt[2][COLOR_TECHS];
+    int have[2][COLOR_TECHS];
+    FILE *f;
+    if (!ncrows) return;
+    for (num = 0; num < 2; num++)
+        for (k = 0; k < COLOR_TECHS; k++) {
+            have[num][k] = color_point(color_cfgs[k].label, num ? "fixed" : "float", &pt[num][k]);
+            if (!have[num][k]) continue;
+            if (pt[num][k].cpu > 0 && pt[num][k].cpu < xmin) xmin = pt[num][k].cpu;
+            if (pt[num][k].cpu > xmax) xmax = pt[num][k].cpu;
+            if (pt[num][k].rmse > ymax) ymax = pt[num][k].rmse;
+            noise = pt[num][k].noise;
+        }
+    if (xmax <= 0) xmax = 1;
+    if (xmin >= xmax) xmin = xmax / 10;
+    lx0 = floor(log10(xmin) * 2) / 2; lx1 = ceil(log10(xmax) * 2) / 2;
+    if (lx1 <= lx0) lx1 = lx0 + 1;
+    ymax = ymax > 0 ? ymax * 1.15 : 1;
+#define CX(ms) (L + (log10(ms) - lx0) / (lx1 - lx0) * (W - L - R))
+#define CY(v) (H - B - (v) / ymax * (H - T - B))
+    f = open_out("bench-color.svg", "w");
+    fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" viewBox=\"0 0 %d %d\" font-family=\"sans-serif\" font-size=\"12\">\n", W, H, W, H);
+    fprintf(f, "<rect width=\"%d\" height=\"%d\" fill=\"white\"/>\n", W, H);
+    fprintf(f, "<text x=\"%d\" y=\"22\" font-size=\"15\" font-weight=\"bold\">tinygi: colour error against the path tracer (mean over scenes, %dx%d)</text>\n", L, opt_w, opt_h);
+    fprintf(f, "<text x=\"%d\" y=\"40\" fill=\"#444\">filled = float, hollow = Q16.16; default settings, HBIL converged; dashed = the path tracer's own noise</text>\n", L);
+    for (e = (int)floor(lx0); e <= (int)ceil(lx1); e++) {
+        static const int m[] = { 1, 2, 5 };
+        for (k = 0; k < 3; k++) {
+            double v = m[k] * pow(10, e), x;
+            if (log10(v) < lx0 - 1e-9 || log10(v) > lx1 + 1e-9) continue;
+            x = CX(v);
+            fprintf(f, "<line x1=\"%.1f\" y1=\"%d\" x2=\"%.1f\" y2=\"%d\" stroke=\"#ddd\"/>\n", x, T, x, H - B);
+            fprintf(f, "<text x=\"%.1f\" y=\"%d\" text-anchor=\"middle\">%g</text>\n", x, H - B + 16, v);
+        }
+    }
+    for (k = 0; k <= 5; k++) {
+        double v = ymax * k / 5, y = CY(v);
+        fprintf(f, "<line x1=\"%d\" y1=\"%.1f\" x2=\"%d\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", L, y, W - R, y);
+        fprintf(f, "<text x=\"%d\" y=\"%.1f\" text-anchor=\"end\">%.3f</text>\n", L - 6, y + 4, v);
+    }
+    fprintf(f, "<rect x=\"%d\" y=\"%d\" width=\"%d\" height=\"%d\" fill=\"none\" stroke=\"black\"/>\n", L, T, W - L - R, H - T - B);
+    fprintf(f, "<line x1=\"%d\" y1=\"%.1f\" x2=\"%d\" y2=\"%.1f\" stroke=\"#888\" stroke-dasharray=\"6 4\"/>\n", L, CY(noise), W - R, CY(noise));
+    fprintf(f, "<text x=\"%d\" y=\"%d\" text-anchor=\"middle\">median CPU ms per frame (log scale)</text>\n", (L + W - R) / 2, H - 18);
+    fprintf(f, "<text x=\"16\" y=\"%d\" text-anchor=\"middle\" transform=\"rotate(-90 16 %d)\">colour RMSE (clamped at 1)</text>\n", (T + H - B) / 2, (T + H - B) / 2);
+    for (num = 1; num >= 0; num--)
+        for (k = 0; k < COLOR_TECHS; k++) {
+            const cpoint *p = &pt[num][k];
+            if (!have[num][k] || p->cpu <= 0) continue;
+            fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"5\" fill=\"%s\" stroke=\"#d62728\"><title>%s %s: %.2f ms, colour RMSE %.4f, energy %.3f</title></circle>\n",
+                    CX(p->cpu), CY(p->rmse), num ? "white" : "#d62728", color_cfgs[k].label, num ? "fixed" : "float", p->cpu, p->rmse, p->energy);
+            if (!num)
+                fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"11\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\">%s (energy %.2f)</text>\n",
+                        CX(p->cpu) + 7, CY(p->rmse) - 6 - 11 * (k % 2), color_cfgs[k].label, p->energy);
+        }
+    fprintf(f, "</svg>\n");
+    fclose(f);
+#undef CX
+#undef CY
+}
+
+/* 1 when DIR/multibounce-float.csv or -fixed.csv has a row. */
+static int multibounce_rows_exist(void)
+{
+    char path[600], line[512];
+    int num, lines = 0;
+    for (num = 0; num < 2; num++) {
+        FILE *f;
+        snprintf(path, sizeof path, "%s/multibounce-%s.csv", opt_out, num ? "fixed" : "float");
+        f = fopen(path, "r");
+        if (!f) continue;
+        while (fgets(line, sizeof line, f)) lines++;
+        lines--;
+        fclose(f);
+    }
+    return lines > 0;
+}
+
+/* The multi-bounce rows (DIR/multibounce-<type>.csv) as a section of bench.md. */
+static void multibounce_report(FILE *md)
+{
+    char path[600], line[512];
+    int num, first = 1;
+    for (num = 0; num < 2; num++) {
+        FILE *f;
+        snprintf(path, sizeof path, "%s/multibounce-%s.csv", opt_out, num ? "fixed" : "float");
+        f = fopen(path, "r");
+        if (!f) continue;
+        if (!fgets(line, sizeof line, f)) { fclose(f); continue; }
+        while (fgets(line, sizeof line, f)) {
+            char scene[32], ao[32], number[8];
+            double v[5];
+            if (sscanf(line, "%31[^,],%31[^,],%7[^,],%lf,%lf,%lf,%lf,%lf", scene, ao, number, &v[0], &v[1], &v[2], &v[3], &v[4]) != 8)
+                continue;
+            if (first) {
+                fprintf(md, "## Multi-bounce AO (GTAO, Jimenez et al. 2016, eq. 10) against the path tracer\n\n");
+                fprintf(md, "Each scene lit by a uniform white sky alone (its lights, environment and emission dropped): the path tracer's E / (pi L) (interreflections included, its default bounces) is what an AO-only output should show. Against it, per colour channel over geometry pixels: the AO itself, the GTAO multi-bounce fit of the AO and the albedo, and RTR eq. 11.13 (k_A / (1 - rho (1 - k_A))). `reference`: the ray-traced AO without a cut-off (the fit's own error); `gtao`: GTAO at the scene's radius, as a frame gives it. Bias: mean (estimate - path tracer).\n\n");
+                fprintf(md, "| scene | AO | number | AO RMSE | multi-bounce RMSE | RTR 11.13 RMSE | AO bias | multi-bounce bias |\n|---|---|---|---:|---:|---:|---:|---:|\n");
+                first = 0;
+            }
+            fprintf(md, "| %s | %s | %s | %.4f | %.4f | %.4f | %+.4f | %+.4f |\n", scene, ao, number, v[0], v[1], v[2], v[3], v[4]);
+        }
+        fclose(f);
+    }
+    if (!first) fprintf(md, "\n");
+}
+
 static int cmd_report(void)
 {
     FILE *f, *md;
     int i, j, num;
     char buf[64], nb[32];
     nrows = 0;
+    ncrows = 0;
     read_rows("float");
     read_rows("fixed");
-    if (!nrows) die("no rows: run `bench run` first", opt_out);
+    read_color_rows("float");
+    read_color_rows("fixed");
+    if (!nrows && !ncrows && !multibounce_rows_exist()) die("no rows: run `bench run` first", opt_out);
     group_points();
     f = open_out("bench.csv", "w");
     fprintf(f, "scene,technique,slices,samples,radius,interleave,number,median_ms,cpu_ms,ao_rmse,ao_max,bent_deg,near_rel,default,curve\n");
@@ -1055,6 +1619,7 @@ static int cmd_report(void)
     }
     fclose(f);
     write_svg();
+    write_color_svg();
     md = open_out("bench.md", "w");
     fprintf(md, "# tinygi accuracy vs time\n\n");
     fprintf(md, "Errors against the ray-traced reference (same radius as an obscurance cut-off); each value is the mean over the built-in scenes (max AO error: the worst pixel of any scene); CPU ms: median process CPU time per whole frame (robust on a busy machine: the plot, the frontier and the claims use it); wall ms: median by the hosted clock.\n\n");
@@ -1068,7 +1633,10 @@ static int cmd_report(void)
             fmt_near(nb, sizeof nb, p->near_rel);
             fprintf(md, "| %s | %s | %.2f | %.2f | %.4f | %.3f | %.2f | %s |\n", p->tech, p->number, p->ms, p->wall, p->ao_rmse, p->ao_max, p->bent_deg, nb);
         }
-    fprintf(md, "\n## Frontier (float): no other setting is both faster and more accurate\n\n");
+    fprintf(md, "\n");
+    color_report(md);
+    multibounce_report(md);
+    fprintf(md, "## Frontier (float): no other setting is both faster and more accurate\n\n");
     {
         const point *fr[512];
         int nf = 0;
@@ -1124,14 +1692,14 @@ static int cmd_report(void)
     /* the verdicts on stdout */
     claim_lines(stdout, "float");
     claim_lines(stdout, "fixed");
-    printf("wrote %s/bench.md, bench.csv, bench.svg\n", opt_out);
+    printf("wrote %s/bench.md, bench.csv, bench.svg%s\n", opt_out, ncrows ? ", bench-color.csv, bench-color.svg" : "");
     return 0;
 }
 
 int main(int argc, char **argv)
 {
     int i;
-    if (argc < 2) die("usage: bench run|report [--size WxH] [--runs N] [--out DIR] [--ref-samples N] [--scenes a,b]", NULL);
+    if (argc < 2) die("usage: bench run|report [--size WxH] [--runs N] [--out DIR] [--ref-samples N] [--scenes a,b] [--pt-samples N] [--color-frames N] [--only color|multibounce]", NULL);
     for (i = 2; i < argc; i += 2) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!v) die("option needs a value", a);
@@ -1140,6 +1708,12 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--out")) opt_out = v;
         else if (!strcmp(a, "--ref-samples")) { opt_ref_samples = atoi(v); if (opt_ref_samples < 17 || opt_ref_samples > 256) die("ref-samples must be 17..256", v); }
         else if (!strcmp(a, "--scenes")) snprintf(opt_scenes, sizeof opt_scenes, "%s", v);
+        else if (!strcmp(a, "--pt-samples")) { opt_pt_samples = atoi(v); if (opt_pt_samples < 2 || opt_pt_samples > 2 * TG_MAX_SAMPLES) die("pt-samples must be 2..512", v); }
+        else if (!strcmp(a, "--only")) {
+            if (strcmp(v, "color") && strcmp(v, "multibounce")) die("--only takes color or multibounce", v);
+            snprintf(opt_only, sizeof opt_only, "%s", v);
+        }
+        else if (!strcmp(a, "--color-frames")) { opt_color_frames = atoi(v); if (opt_color_frames < 1 || opt_color_frames > 1000) die("color-frames must be 1..1000", v); }
         else die("unknown option", a);
     }
     if (!strcmp(argv[1], "run")) return cmd_run();

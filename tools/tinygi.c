@@ -98,11 +98,14 @@ static void print_help(FILE *out)
         "  --frames N        frames to render, 1..%d (default 1)\n"
         "  --aov NAME        output: color depth normal albedo ao bent cone near far\n"
         "                    direct irradiance motion (default color)\n"
-        "  --technique NAME  hbil gtao hbao ssao vo ssdo bentcone reference (default hbil)\n"
+        "  --technique NAME  hbil gtao hbao ssao vo ssdo bentcone reference pathtrace\n"
+        "                    (default hbil; pathtrace: the path-traced ground truth)\n"
         "  --slices N        horizon slices per pixel, 1..%d (default %d)\n"
-        "  --samples N       samples per slice, 1..%d (default %d)\n"
+        "  --samples N       samples per slice, 1..%d (default %d; pathtrace: paths\n"
+        "                    per pixel, default %d)\n"
         "  --radius R        gather radius in world units, 0..%d (default %d)\n"
-        "  --bounces N       light bounces, 0..%d (default %d)\n"
+        "  --bounces N       light bounces, 0..%d (default %d; pathtrace: the most\n"
+        "                    bounces, default %d)\n"
         "  --exposure E      linear exposure before the tonemapper, 0..%d (default 1)\n"
         "  --shadow-size N   shadow map texels per side of every face the view needs,\n"
         "                    %d..%d (default: each face by the size rule, about a texel\n"
@@ -112,8 +115,8 @@ static void print_help(FILE *out)
         "  --threads N       threads that share each pass's rows, 1..%d (default: the\n"
         "                    processors, here %d); the image is the same for every N\n",
         TG_DEFAULT_WIDTH, TG_DEFAULT_HEIGHT, TG_MAX_IMAGE_SIDE, (long)TG_MAX_IMAGE_PIXELS,
-        TG_MAX_FRAMES, TG_MAX_SLICES, TG_DEFAULT_SLICES, TG_MAX_SAMPLES, TG_DEFAULT_SAMPLES,
-        TG_MAX_RADIUS, TG_DEFAULT_RADIUS, TG_MAX_BOUNCES, TG_DEFAULT_BOUNCES, TG_MAX_EXPOSURE,
+        TG_MAX_FRAMES, TG_MAX_SLICES, TG_DEFAULT_SLICES, TG_MAX_SAMPLES, TG_DEFAULT_SAMPLES, TG_DEFAULT_PATHTRACE_SAMPLES,
+        TG_MAX_RADIUS, TG_DEFAULT_RADIUS, TG_MAX_BOUNCES, TG_DEFAULT_BOUNCES, TG_DEFAULT_PATHTRACE_BOUNCES, TG_MAX_EXPOSURE,
         TG_MIN_SHADOW_MAP, TG_MAX_SHADOW_MAP, TG_MAX_THREADS, tgp_cores());
     fprintf(out,
         "  --no-interleave   full-resolution GI kernel instead of 4x4 interleaved\n"

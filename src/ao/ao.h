@@ -42,6 +42,25 @@ static inline tg_real tgi_ao_interreflection(tg_real ao, tg_real albedo)
     return tg_saturate(tg_div(k, den));
 }
 
+/* ---- multi-bounce AO (Jimenez et al. 2016, GTAO, eq. 10) ----
+ * A cubic fit, per colour channel, of path-traced occlusion under a uniform
+ * white sky with the interreflections of surfaces of albedo rho around the
+ * point (the albedo taken as locally constant), from the AO k:
+ *   k' = max(k, ((a k + b) k + c) k),  a = 2.0404 rho - 0.3324,
+ *   b = -4.7951 rho + 0.6417,  c = 2.7552 rho + 0.6903.
+ * k' = 0 at k = 0, about 1 at k = 1 (a + b + c = 0.9996 + 0.0005 rho, so
+ * the result is clamped to [k, 1]), and grows with rho.  For AO-only
+ * output: what the AO means with the bounces a path tracer adds. */
+static inline tg_real tgi_ao_multibounce(tg_real ao, tg_real albedo)
+{
+    tg_real k = tg_saturate(ao), rho = tg_saturate(albedo);
+    tg_real a = tg_sub(tg_mul(TG_R(2.0404f), rho), TG_R(0.3324f));    /* GTAO eq. 10 */
+    tg_real b = tg_add(tg_mul(TG_R(-4.7951f), rho), TG_R(0.6417f));
+    tg_real c = tg_add(tg_mul(TG_R(2.7552f), rho), TG_R(0.6903f));
+    tg_real v = tg_mul(tg_add(tg_mul(tg_add(tg_mul(a, k), b), k), c), k);
+    return tg_clamp(v, k, TG_ONE);
+}
+
 /* ---- view-space helpers (view.h conventions: x right, y up, z forward) ---- */
 
 /* View-space position of the centre of pixel (x, y) at view depth z. */

@@ -33,7 +33,7 @@ tg_vec3 tgi_bentcone_far(const tg_vec3 sh[9], tg_vec3 bent, tg_real cone, tg_rea
     if (s2 < TG_R(0.001f))                                   /* the limit a -> 0: pi L(N) */
         e = tgi_v3_scale(tgi_sh9_radiance(sh, bent), TG_PI);
     else                                                     /* t int_cone L (w . N) dw, t = 1 / sin^2 a */
-        e = tgi_v3_scale(tgi_sh9_irradiance_cone(sh, bent, tg_sub(TG_ONE, tg_cos(cone))), tg_div(TG_ONE, s2));
+        e = tgi_v3_scale(tgi_sh9_irradiance_in_cone(sh, bent, tg_cos(cone)), tg_div(TG_ONE, s2));
     return tgi_v3_scale(e, tg_mul(ao, geo));                  /* sec. 3.4 geometric term, times AO */
 }
 

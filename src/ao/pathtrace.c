@@ -316,7 +316,7 @@ static tg_vec3 path_irradiance(const tracer *t, const vertex *v0, pcg32 *rng)
 void tgi_pathtrace_defaults(tgi_pathtrace_params *p)
 {
     memset(p, 0, sizeof *p);
-    p->samples = TG_PATHTRACE_DEFAULT_SAMPLES;
+    p->samples = TG_DEFAULT_PATHTRACE_SAMPLES;
     p->bounces = 1;
     p->rr_start = TG_MAX_BOUNCES + 1;
     p->seed = 1;
@@ -355,6 +355,18 @@ static tg_vec3 pixel_irradiance(const tracer *t, const vertex *v0, uint32_t pixe
     return tg_v3(sum_mean(sr, n), sum_mean(sg, n), sum_mean(sb, n));
 }
 
+/* Lo and E of pixel i into the io's planes or colour storage. */
+static void store(const tgi_pathtrace_io *io, size_t i, tg_vec3 lo, tg_vec3 e)
+{
+    if (io->color || io->irradiance) {
+        if (tgi_rgb_present(io->color)) tgi_rgb_set(io->color, i, lo);
+        if (tgi_rgb_present(io->irradiance)) tgi_rgb_set(io->irradiance, i, e);
+        return;
+    }
+    io->out_r[i] = lo.x; io->out_g[i] = lo.y; io->out_b[i] = lo.z;
+    if (io->irr_r) { io->irr_r[i] = e.x; io->irr_g[i] = e.y; io->irr_b[i] = e.z; }
+}
+
 void tgi_pathtrace_rows(const tgi_pathtrace_params *p, const tgi_pathtrace_io *io, int y0, int y1)
 {
     const tgi_view *view = io->view;
@@ -380,8 +392,7 @@ void tgi_pathtrace_rows(const tgi_pathtrace_params *p, const tgi_pathtrace_io *i
             vertex v0;
             if (tgi_gv_is_sky(&g, i)) {
                 lo = p->env ? tgi_env_radiance(p->env, tgi_v3_normalize(dir)) : tg_v3(0, 0, 0);
-                io->out_r[i] = lo.x; io->out_g[i] = lo.y; io->out_b[i] = lo.z;
-                if (io->irr_r) io->irr_r[i] = io->irr_g[i] = io->irr_b[i] = 0;
+                store(io, i, lo, tg_v3(0, 0, 0));
                 continue;
             }
             v0.p = tgi_v3_add(view->eye, tgi_v3_scale(dir, tgi_gv_depth(&g, i)));
@@ -391,8 +402,7 @@ void tgi_pathtrace_rows(const tgi_pathtrace_params *p, const tgi_pathtrace_io *i
             e = pixel_irradiance(&t, &v0, (uint32_t)i);
             lo = tgi_v3_scale(tgi_v3_mul(v0.rho, e), TG_INV_PI);   /* rho / pi E (HBIL eq. 14) */
             if (tgi_gv_has_emissive(&g)) lo = tgi_v3_add(lo, tgi_gv_emissive(&g, i));
-            io->out_r[i] = lo.x; io->out_g[i] = lo.y; io->out_b[i] = lo.z;
-            if (io->irr_r) { io->irr_r[i] = e.x; io->irr_g[i] = e.y; io->irr_b[i] = e.z; }
+            store(io, i, lo, e);
         }
     }
 }

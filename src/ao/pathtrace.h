@@ -34,7 +34,8 @@
  * leave a G-buffer point lifted along its normal by its position error
  * bound (tgi_shadow_gbuffer_error).  Sky pixels get the environment.
  *
- * Samples: `samples` paths per pixel (default TG_PATHTRACE_DEFAULT_SAMPLES).
+ * Samples: `samples` paths per pixel (default TG_DEFAULT_PATHTRACE_SAMPLES,
+ * src/tinygi.h).
  * Random numbers: PCG32 (O'Neill 2014) seeded by (seed, pixel index, sample
  * index) only, so any split of the rows gives the same image.
  *
@@ -50,8 +51,6 @@
 #include "../raster/gview.h"
 #include "../raster/view.h"
 #include "bvh.h"
-
-#define TG_PATHTRACE_DEFAULT_SAMPLES 256
 
 /* One emissive triangle in the next-event table. */
 typedef struct tgi_pt_emitter {
@@ -81,9 +80,11 @@ typedef struct tgi_pathtrace_io {
     const tgi_view *view;
     tg_real *out_r, *out_g, *out_b;     /* Lo per pixel (emission included; sky: the environment) */
     tg_real *irr_r, *irr_g, *irr_b;     /* E per pixel (sky: 0), NULL when not wanted */
+    const tgi_rgb *color, *irradiance;  /* instead of the planes when not NULL (a frame's
+                                           storage): Lo and E; an absent one is not written */
 } tgi_pathtrace_io;
 
-/* Defaults: TG_PATHTRACE_DEFAULT_SAMPLES samples, 1 bounce, no roulette,
+/* Defaults: TG_DEFAULT_PATHTRACE_SAMPLES samples, 1 bounce, no roulette,
  * seed 1; the scene pointers NULL. */
 void tgi_pathtrace_defaults(tgi_pathtrace_params *p);
 

@@ -6,6 +6,8 @@
  */
 #include "reference.h"
 #include "sampling.h"
+#include "../light/sh.h"
+#include "../light/shadowmap.h"
 
 #if !TG_NO_REFERENCE /* the whole file is left out with TG_NO_REFERENCE=1 (tinygi.h "FEATURE SWITCHES") */
 
@@ -65,8 +67,11 @@ static void reference_pixel(const tgi_reference_params *p, const tgi_gview *g, c
     tg_vec3 bent = tg_v3(0, 0, 0), near = tg_v3(0, 0, 0);
     tg_real eps, tmax = p->radius > 0 ? p->radius : 0;
     pv = tgi_ao_unproject(v, x, y, tgi_gv_depth(g, i));
-    /* scale-aware offset along the normal: 2^-10 of the depth + 2^-10 */
-    eps = tg_add(tg_ldexp(tgi_gv_depth(g, i), -10), TG_R(0.0009765625f));
+    /* offset along the normal: the reconstructed position's error bound
+     * (tgi_shadow_gbuffer_error: about 1/20 pixel, large in a small image)
+     * plus 2^-10 of the depth + 2^-10 */
+    eps = tg_add(tg_mul(tgi_gv_depth(g, i), tgi_shadow_gbuffer_error(v)),
+                 tg_add(tg_ldexp(tgi_gv_depth(g, i), -10), TG_R(0.0009765625f)));
     o = tgi_v3_add(tgi_v3_add(v->eye, tgi_ao_dir_to_world(v, pv)), tgi_v3_scale(nrm, eps));
     tgi_ao_basis(nrm, &t, &b);
     for (s = 0; s < n; s++) {
@@ -87,8 +92,8 @@ static void reference_pixel(const tgi_reference_params *p, const tgi_gview *g, c
         }
     }
     tgi_gr_set_ao(out, i, tg_ratio(open, n));          /* RTR eq. 11.8 / 11.14, cosine-importance sampled */
-    if (tgi_gr_has_cone(out))                           /* HBIL eq. 12, as HBIL defines its cone */
-        tgi_gr_set_cone(out, i, tg_acos(tg_sub(TG_ONE, tgi_gr_ao(out, i))));
+    if (tgi_gr_has_cone(out))                           /* the cone of a cosine-weighted AO (sh.h) */
+        tgi_gr_set_cone(out, i, tgi_cone_angle_from_ao(tgi_gr_ao(out, i)));
     if (tgi_gr_has_bent(out)) {                         /* RTR eq. 11.10 */
         tg_vec3 bn = tgi_v3_normalize_or(bent, nrm);
         tgi_gr_set_bent(out, i, bn);

@@ -23,8 +23,10 @@
  *      screen-visible part of the bounce - exactly what a screen-space
  *      gatherer can know, and a lower bound of the true value;
  *   3. no near output when the results have no near field.
- * cone  HBIL eq. 12, alpha = acos(1 - ao), the aperture HBIL derives from
- *       its AO, so the bench compares like with like.
+ * cone  alpha = acos(sqrt(1 - ao)), the cone whose cosine-weighted AO is
+ *       ao (tgi_cone_angle_from_ao, src/light/sh.h; not HBIL eq. 12's
+ *       acos(1 - ao), see the deviation there), as every technique's cone
+ *       AOV reads it, so the bench compares like with like.
  */
 #ifndef TG_REFERENCE_H
 #define TG_REFERENCE_H

@@ -9,6 +9,8 @@
  * Everything else is the technique's documented default.  SSDO and bent
  * cones compute their own environment term (the plan then runs no far-field
  * pass).  The reference ray traces the scene's triangles through a BVH.
+ * The path tracer (pathtrace) takes samples as paths per pixel and bounces
+ * as the most indirect bounces, and writes the colour and irradiance.
  */
 #include "frame_internal.h"
 #include "../ao/sampling.h"
@@ -19,6 +21,7 @@
 #include "../ao/ssdo.h"
 #include "../ao/bentcone.h"
 #include "../ao/reference.h"
+#include "../ao/pathtrace.h"
 #include "../light/direct.h"
 
 #if !TG_NO_TECHNIQUES /* the techniques' passes (tinygi.h "FEATURE SWITCHES") */
@@ -136,5 +139,43 @@ void tgi_pass_reference(tg_frame *f, int y0, int y1)
     p.radiance = direct_radiance_at;
     p.user = f;
     tgi_reference_rows(&p, &f->full, tgi_frame_source(f), &f->res, y0, y1);
+}
+
+/* The path tracer's BVH over the posed triangles and its table of emissive
+ * triangles (both carved by layout.c's BVH group). */
+void tgi_pass_pathtrace_setup(tg_frame *f)
+{
+    const tg_scene *s = f->scene;
+    const tg_vec3 *pos = f->posed_pos ? f->posed_pos : s->tri_pos;
+    tgi_bvh_build(&f->bvh, pos, s->tri_count, f->bvh_scratch, f->bvh_scratch_bytes);
+    f->emitter_count = f->emitters ? tgi_pathtrace_emitters((tgi_pt_emitter *)f->emitters, pos, s->tri_material,
+                                                            s->materials, s->tri_count) : 0;
+}
+
+void tgi_pass_pathtrace(tg_frame *f, int y0, int y1)
+{
+    const tg_scene *s = f->scene;
+    tgi_pathtrace_params p;
+    tgi_pathtrace_io io;
+    tgi_pathtrace_defaults(&p);
+    p.bvh = &f->bvh;
+    p.tri_nrm = f->posed_nrm ? f->posed_nrm : s->tri_nrm;
+    p.tri_material = s->tri_material;
+    p.materials = s->materials;
+    p.lights = s->lights;
+    p.light_count = s->light_count;
+    p.env = s->env.type != TG_ENV_NONE ? &s->env : NULL;
+    p.emitters = f->emitter_count > 0 ? (const tgi_pt_emitter *)f->emitters : NULL;
+    p.emitter_count = f->emitter_count;
+    p.samples = f->request.samples;
+    p.bounces = f->request.bounces;
+    p.rr_start = TG_DEFAULT_PATHTRACE_ROULETTE;
+    p.seed = (uint32_t)f->index + 1u;
+    memset(&io, 0, sizeof io);
+    io.gb = &f->gb;
+    io.view = &f->view;
+    io.color = &f->color;
+    io.irradiance = &f->irradiance;
+    tgi_pathtrace_rows(&p, &io, y0, y1);
 }
 #endif /* !TG_NO_REFERENCE */

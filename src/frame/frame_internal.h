@@ -103,10 +103,12 @@ struct tg_frame {
     tgi_prev_geometry prev_geometry;
     void *pushpull_mips;
 
-    /* technique scratch (reference BVH) */
+    /* technique scratch (reference BVH; the path tracer's emissive triangles) */
     void *bvh_scratch;
     size_t bvh_scratch_bytes;
     tgi_bvh bvh;
+    void *emitters;
+    int emitter_count;
 
     tg_real depth_max;            /* for the 8-bit depth view */
 };

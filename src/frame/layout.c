@@ -15,6 +15,7 @@
 #include "../gi/pushpull.h"
 #include "../gi/resample.h"
 #include "../light/shadowview.h"
+#include "../ao/pathtrace.h"
 
 #define AOV(a) (1u << (a))
 
@@ -319,9 +320,14 @@ static void group_temporal(layout *l, tg_frame *f)
 
 static void group_bvh(layout *l, tg_frame *f)
 {
-    if (TG_NO_REFERENCE || f->request.technique != TG_TECH_REFERENCE) return;
-    f->bvh_scratch_bytes = tgi_bvh_bytes(f->scene->tri_count);
-    f->bvh_scratch = take(l, "reference BVH", f->bvh_scratch_bytes, 1);
+    const tg_scene *s = f->scene;
+    int traces = f->request.technique == TG_TECH_PATHTRACE, n;
+    if (TG_NO_REFERENCE) return;
+    if (f->request.technique != TG_TECH_REFERENCE && !traces) return;
+    f->bvh_scratch_bytes = tgi_bvh_bytes(s->tri_count);
+    f->bvh_scratch = take(l, traces ? "BVH of the triangles (path tracer)" : "reference BVH", f->bvh_scratch_bytes, 1);
+    n = traces ? tgi_pathtrace_emitter_count(s->tri_material, s->materials, s->tri_count) : 0;
+    if (n > 0) f->emitters = take(l, "emissive triangles (path tracer's next-event table)", tgi_pathtrace_emitter_bytes(n), 1);
 }
 
 /* E_far's own plane: its AOV, or a technique that writes it (SSDO, bent

@@ -37,6 +37,8 @@ void tgi_pass_gtao(tg_frame *f, int y0, int y1);
 void tgi_pass_ssdo(tg_frame *f, int y0, int y1);
 void tgi_pass_bentcone(tg_frame *f, int y0, int y1);
 void tgi_pass_reference(tg_frame *f, int y0, int y1);
+void tgi_pass_pathtrace_setup(tg_frame *f);
+void tgi_pass_pathtrace(tg_frame *f, int y0, int y1);
 /* A left-out feature (tinygi.h "FEATURE SWITCHES") has no rows below, so
  * nothing refers to its passes and the linker leaves them out. */
 void tgi_pass_resolve(tg_frame *f, int y0, int y1);
@@ -74,11 +76,17 @@ static int runs_bentcone(const tg_frame *f) { return technique_runs(f, TG_TECH_B
 #endif
 #if !TG_NO_REFERENCE
 static int runs_reference(const tg_frame *f) { return technique_runs(f, TG_TECH_REFERENCE); }
+/* the path tracer: its own colour and irradiance, no GI pass, no compose */
+static int path_traces(const tg_frame *f)
+{
+    return f->request.technique == TG_TECH_PATHTRACE && (f->needs & TG_NEED_COMPOSE);
+}
 #endif
 /* compose, or an AOV of the GI results or the far field (everything after the kernel) */
 static int resolves(const tg_frame *f)
 {
     uint32_t results = AOV(TG_AOV_AO) | AOV(TG_AOV_BENT) | AOV(TG_AOV_CONE) | AOV(TG_AOV_NEAR) | AOV(TG_AOV_FAR);
+    if (f->request.technique == TG_TECH_PATHTRACE) return 0;
     return composes(f) || (runs_hbil(f) && (f->request.aovs & results)) ||
            ((f->effects & TG_EFFECT_FAR) && (f->request.aovs & AOV(TG_AOV_FAR)));
 }
@@ -107,6 +115,11 @@ const tgi_pass tgi_passes[] = {
 #if !TG_NO_REFERENCE
     { "reference: BVH over the posed triangles", runs_reference,
       B(BVH) | B(POSE), 0, SERIAL(tgi_pass_reference_bvh) },
+    { "path tracing: BVH over the posed triangles, table of emissive triangles", path_traces,
+      B(BVH) | B(POSE), 0, SERIAL(tgi_pass_pathtrace_setup) },
+    { "path tracing: Lo = albedo/pi (1-F0) E + emissive, E from lights, emitters and the environment "
+      "by next-event estimation over `bounces` diffuse bounces", path_traces,
+      B(GBUFFER) | B(BVH) | B(SOURCE) | B(IRRADIANCE), 0, ROWS(tgi_pass_pathtrace) },
 #endif
     /* the kernel and what follows it: iterated on a frame without history
      * (gi bounces), each iteration gathering the previous one's radiance */

@@ -158,6 +158,7 @@ tg_status tg_plan_make(tg_plan *plan, const tg_scene *scene, const tg_request *r
     possible = possible_effects(scene, &plan->request);
     if (scene->effects_auto) plan->effects = wanted_effects(possible, plan->request.aovs);
     else plan->effects = scene->effects & possible;
+    if (plan->request.technique == TG_TECH_PATHTRACE) plan->effects = 0;   /* it traces all light itself */
     if (plan->effects & TG_EFFECT_NEAR) plan->effects |= TG_EFFECT_AO;
     if (!(plan->effects & TG_EFFECT_DIRECT)) plan->effects &= ~(uint32_t)TG_EFFECT_SHADOWS;
     if (!(plan->effects & TG_EFFECT_NEAR)) plan->effects &= ~(uint32_t)TG_EFFECT_REPROJECTION;
@@ -225,7 +226,10 @@ size_t tg_plan_explain(const tg_plan *plan, char *buf, size_t size)
     tgi_text_put(&t, tg_technique_name(plan->request.technique));
     tgi_text_put(&t, ", number type " TG_NUMBER_NAME);
     put_number_line(&t, ", frames ", (size_t)plan->request.frames, "\neffects: ");
-    put_effects(&t, plan->effects);
+    if (plan->request.technique == TG_TECH_PATHTRACE)
+        put_number_line(&t, "(none: path traced, lights, emitters and environment over ", (size_t)plan->request.bounces,
+                        " bounces)");
+    else put_effects(&t, plan->effects);
     tgi_text_put(&t, "\nskipped: ");
     put_effects(&t, (~plan->effects) & 63u);
     tgi_text_put(&t, "\npasses:\n");

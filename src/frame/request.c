@@ -128,6 +128,10 @@ static tg_real scene_gather_radius(const tg_scene *s)
  * the request's. */
 int tgi_request_resolve(tg_request *r, const tg_scene *s, tg_error *err)
 {
+    if (r->technique == TG_TECH_PATHTRACE) {   /* the scene's gi line is the screen-space kernel's */
+        if (r->samples <= 0) r->samples = TG_DEFAULT_PATHTRACE_SAMPLES;
+        if (r->bounces < 0) r->bounces = TG_DEFAULT_PATHTRACE_BOUNCES;
+    }
     if (r->slices <= 0) r->slices = s->gi.slices > 0 ? s->gi.slices : TG_DEFAULT_SLICES;
     if (r->samples <= 0) r->samples = s->gi.samples > 0 ? s->gi.samples : TG_DEFAULT_SAMPLES;
     if (r->radius == UNSET_RADIUS) r->radius = s->gi.radius >= 0 ? s->gi.radius : scene_gather_radius(s);

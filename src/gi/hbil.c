@@ -16,6 +16,7 @@
 #include <string.h>
 #include "hbil.h"
 #include "interleave.h"
+#include "../light/sh.h"
 
 #define HBIL_PATTERN 16
 /* Smallest n.w_o allowed: normals facing away from the camera are bent
@@ -402,7 +403,7 @@ static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
         slice_run(c, px, c->cos_phi[pat][s], c->sin_phi[pat][s], &acc);
     ao = tg_saturate(tg_sub(TG_ONE, tg_div(acc.occlusion, tg_from_int(c->slices))));
     tgi_gr_set_ao(out, i, ao);
-    if (tgi_gr_has_cone(out)) tgi_gr_set_cone(out, i, tg_acos(tg_sub(TG_ONE, ao)));   /* HBIL eq. 12 */
+    if (tgi_gr_has_cone(out)) tgi_gr_set_cone(out, i, tgi_cone_angle_from_ao(ao));   /* not eq. 12: sh.h */
     if (tgi_gr_has_bent(out)) {
         /* eq. 6: summed unnormalised over slices, normalised once (in world space) */
         tg_vec3 nw = tgi_gv_normal(c->g, i);

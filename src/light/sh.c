@@ -124,11 +124,6 @@ tg_vec3 tgi_sh9_irradiance_bent_cone(const tg_vec3 sh[9], tg_vec3 bent, tg_real 
     return irradiance_in_cone(sh, bent, tgi_cone_cos_from_ao(ao), tg_saturate(ao));
 }
 
-tg_vec3 tgi_sh9_irradiance_cone(const tg_vec3 sh[9], tg_vec3 bent, tg_real x)
-{
-    return tgi_sh9_irradiance_in_cone(sh, bent, tg_sub(TG_ONE, tg_saturate(x)));
-}
-
 tg_vec3 tgi_sh9_irradiance_f0(const tg_vec3 sh[9], tg_vec3 bent, tg_real ao)
 {
     return tgi_v3_scale(tgi_sh9_irradiance(sh, bent), tg_saturate(ao)); /* HBIL sec. 2.2.3, F0(AO) = AO */

@@ -99,12 +99,6 @@ tg_vec3 tgi_sh9_irradiance_in_cone(const tg_vec3 sh[9], tg_vec3 axis, tg_real co
  * cos_alpha = tgi_cone_cos_from_ao(ao), its band-0 weight exact in AO. */
 tg_vec3 tgi_sh9_irradiance_bent_cone(const tg_vec3 sh[9], tg_vec3 bent, tg_real ao);
 
-/* Deprecated, kept while src/ao/bentcone.c calls it: the cone of half angle
- * acos(1 - x) (HBIL eq. 12's aperture for x = AO); bentcone.c passes
- * x = 1 - cos(cone) and should call tgi_sh9_irradiance_in_cone(sh, bent,
- * cos(cone)) instead. */
-tg_vec3 tgi_sh9_irradiance_cone(const tg_vec3 sh[9], tg_vec3 bent, tg_real x);
-
 /* E0(bent) * F0(ao) (HBIL sec. 2.2.3) with F0(AO) = AO (see above). */
 tg_vec3 tgi_sh9_irradiance_f0(const tg_vec3 sh[9], tg_vec3 bent, tg_real ao);
 

@@ -20,7 +20,7 @@
  *              from the scene's material table); in a frame that reads no
  *              material (AO only) the octahedral normal 2x8 alone
  *   results    AO in 8 bits; bent normal octahedral 2x8; the cone is not
- *              stored (HBIL eq. 12 from the AO when read); near-field
+ *              stored (acos sqrt(1 - AO) when read, src/light/sh.h); near-field
  *              irradiance as a colour plane
  *   colour     RGB9E5 (shared exponent, saturating, never negative)
  * With TG_WIDE_STORAGE=1 every one of them is tg_real planes.
@@ -349,11 +349,11 @@ typedef struct tgi_gresult {
 #if TG_WIDE_STORAGE
     tg_real *ao;                         /* [0, 1], 1 = open; always present */
     tg_real *bent_x, *bent_y, *bent_z;   /* world unit bent normal; NULL: not wanted */
-    tg_real *cone;                       /* a technique's own cone half angle; NULL: HBIL eq. 12 */
+    tg_real *cone;                       /* a technique's own cone half angle; NULL: from the AO */
 #else
     uint8_t *ao;                         /* unorm8 */
     uint16_t *bent;                      /* octahedral 2x8 */
-    uint8_t *cone;                       /* unorm8 of the angle / (pi / 2); NULL: HBIL eq. 12 */
+    uint8_t *cone;                       /* unorm8 of the angle / (pi / 2); NULL: from the AO */
 #endif
     tgi_rgb near;                        /* near-field irradiance; absent: not gathered */
 } tgi_gresult;
@@ -374,7 +374,7 @@ static inline int tgi_gr_has_bent(const tgi_gresult *r) { return r->bent != NULL
 static inline tg_vec3 tgi_gr_bent(const tgi_gresult *r, size_t i) { return tgi_oct_unpack(r->bent[i], 8); }
 static inline void tgi_gr_set_bent(const tgi_gresult *r, size_t i, tg_vec3 b) { r->bent[i] = (uint16_t)tgi_oct_pack(b, 8); }
 #endif
-/* The bent cone's half angle: HBIL eq. 12 of the AO when read, unless a
+/* The bent cone's half angle: from the AO when read, unless a
  * results view carries a cone plane of its own (a technique's estimate, for
  * its tests: the frame carves none).  Writes without a plane go nowhere. */
 static inline int tgi_gr_has_cone(const tgi_gresult *r) { return r->cone != NULL; }
@@ -394,7 +394,8 @@ static inline tg_real tgi_gr_stored_cone(const tgi_gresult *r, size_t i)
 static inline tg_real tgi_gr_cone(const tgi_gresult *r, size_t i)
 {
     if (r->cone) return tgi_gr_stored_cone(r, i);
-    return tg_acos(tg_sub(TG_ONE, tg_saturate(tgi_gr_ao(r, i))));   /* HBIL eq. 12: cos(alpha) = 1 - AO */
+    /* cos(alpha) = sqrt(1 - AO), a cosine-weighted AO's cone (tgi_cone_cos_from_ao, src/light/sh.h) */
+    return tg_acos(tg_sqrt(tg_sub(TG_ONE, tg_saturate(tgi_gr_ao(r, i)))));
 }
 static inline int tgi_gr_has_near(const tgi_gresult *r) { return tgi_rgb_present(&r->near); }
 static inline tg_vec3 tgi_gr_near(const tgi_gresult *r, size_t i) { return tgi_rgb_get(&r->near, i); }

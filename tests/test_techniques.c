@@ -1,0 +1,226 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * test_techniques.c - every technique through the public API, on exact
+ * cases:
+ *   - the far field is consistent with the AO it uses: under a uniform sky
+ *     L, with no light and no emitter, every pixel's colour is
+ *     Lo = albedo / pi (1 - F0) pi L AO exactly (the AO AOV's own value,
+ *     within its 8-bit and RGB9E5 storage), for any AO, in both far-field
+ *     modes, for every technique whose far field is read from its AO;
+ *   - the cone AOV is the cone whose cosine-weighted AO is the AO:
+ *     cos(cone) = sqrt(1 - AO) (src/light/sh.h), not HBIL eq. 12's 1 - AO;
+ *   - the ray-traced reference's AO does not depend on the image size (its
+ *     rays start off the reconstructed position by that position's error
+ *     bound, which grows with the pixels);
+ *   - GTAO's multi-bounce fit (Jimenez et al. 2016, eq. 10): the cubic as
+ *     published, in [AO, 1], 0 at AO 0, 1 at AO 1, growing with albedo and
+ *     AO (its accuracy against the path tracer is measured by the bench);
+ *   - technique pathtrace: a convex object under a uniform sky L (the
+ *     furnace) reflects rho L and receives E = pi L at every pixel; its plan
+ *     has no screen-space effect; a frame is deterministic and the next
+ *     frame index draws other paths.  (src/ao/pathtrace.c's own analytic
+ *     cases are in tests/test_pathtrace.c.)
+ */
+#include <math.h>
+#include "frame_fixture.h"
+#include "ao/ao.h"
+
+#define PI 3.14159265358979
+
+/* A floor, a wall and a box on the floor: AO from 0 to 1.  No light, no
+ * emitter: the sky is the only light. */
+static const char *groove_under_uniform_sky =
+    "camera pos 3 2.5 5  target 0 0.6 0  fov 60\n"
+    "material m albedo 0.6 0.5 0.4 f0 0.04\n"
+    "quad p0 -6 0 -1  p1 -6 0 6  p2 6 0 6  p3 6 0 -1  material m\n"
+    "quad p0 -6 0 -1  p1 6 0 -1  p2 6 5 -1  p3 -6 5 -1  material m\n"
+    "box min -0.5 0 0 max 0.5 0.8 1 material m\n"
+    "env uniform 0.8 1.0 1.3\n"
+    "gi radius 2\n";
+
+/* The far field reads these techniques' AO (SSDO and bent cones integrate
+ * their own). */
+static const tg_technique far_from_ao[] = {
+    TG_TECH_HBIL, TG_TECH_GTAO, TG_TECH_HBAO, TG_TECH_SSAO, TG_TECH_VO, TG_TECH_REFERENCE
+};
+
+static void uniform_sky_case(tg_technique t, int far_mode, int quarter)
+{
+    static const double L[3] = { 0.8, 1.0, 1.3 }, albedo[3] = { 0.6, 0.5, 0.4 }, f0 = 0.04;
+    tg_request q = request(48, 36, AOVBIT(TG_AOV_COLOR) | AOVBIT(TG_AOV_AO) | AOVBIT(TG_AOV_CONE) | AOVBIT(TG_AOV_DEPTH));
+    rendered r;
+    double *color, *ao, *cone, *depth, worst = 0, worst_cone = 0, ao_min = 1;
+    int i, c, n = 48 * 36, bad = 0;
+    q.technique = t;
+    q.far_mode = far_mode;
+    q.gi_scale = quarter ? 2 : 1;
+    q.samples = 8;
+    if (!setup(&r, groove_under_uniform_sky, &q)) {
+        CHECK(0, "%s sets up: %s", tg_technique_name(t), r.msg);
+        return;
+    }
+    CHECK(tg_frame_render(r.frame, 0, NULL) == TG_OK, "renders");
+    color = read_aov(&r, TG_AOV_COLOR);
+    ao = read_aov(&r, TG_AOV_AO);
+    cone = read_aov(&r, TG_AOV_CONE);
+    depth = read_aov(&r, TG_AOV_DEPTH);
+    for (i = 0; i < n; i++) {
+        double A = ao[i], dc = fabs(cone[i] - acos(sqrt(1 - A)));
+        if (depth[i] == 0) continue;   /* sky: the environment itself */
+        if (A < ao_min) ao_min = A;
+        if (dc > worst_cone) worst_cone = dc;
+        for (c = 0; c < 3; c++) {
+            /* the AOV's AO is 8 bits of the value compose used (1/510), colour is RGB9E5 (2^-9) */
+            double want = albedo[c] * (1 - f0) * L[c] * A, got = color[3 * i + c];
+            double tol = albedo[c] * (1 - f0) * L[c] / 500 + want / 256 + (TG_FIXED ? 2e-3 : 1e-5);
+            if (fabs(got - want) > worst) worst = fabs(got - want);
+            if (fabs(got - want) > tol && bad++ < 3)
+                CHECK(0, "%s far mode %d pixel %d ch %d: Lo %g, albedo (1 - F0) L AO = %g (AO %g)",
+                      tg_technique_name(t), far_mode, i, c, got, want, A);
+        }
+    }
+    printf("# %s%s, far mode %d: AO down to %.2f, largest |Lo - a (1-F0) L AO| %.2g, |cone - acos sqrt(1-AO)| %.2g\n",
+           tg_technique_name(t), quarter ? " (quarter)" : "", far_mode, ao_min, worst, worst_cone);
+    CHECK(bad == 0, "%s far mode %d: %d channels off", tg_technique_name(t), far_mode, bad);
+    CHECK(ao_min < 0.7, "%s: the scene has occluded pixels (AO down to %g)", tg_technique_name(t), ao_min);
+    CHECK(worst_cone < (TG_FIXED ? 2e-3 : 1e-4), "%s: cone = acos(sqrt(1 - AO)) within %g", tg_technique_name(t),
+          worst_cone);
+    free(color); free(ao); free(cone); free(depth);
+    teardown(&r);
+}
+
+TEST(uniform_sky_gives_albedo_times_ao_for_every_technique)
+{
+    size_t k;
+    for (k = 0; k < sizeof far_from_ao / sizeof far_from_ao[0]; k++) {
+        uniform_sky_case(far_from_ao[k], 0, 0);
+        uniform_sky_case(far_from_ao[k], 1, 0);
+    }
+    uniform_sky_case(TG_TECH_HBIL, 0, 1);
+}
+
+/* The groove (builtin) at 8x6 to 160x120: the mean AO of its surfaces is
+ * the same at every size (an offset too small for large pixels made the
+ * surfaces occlude themselves: mean 0.66 at 32x24 against 0.98). */
+TEST(reference_ao_does_not_depend_on_the_image_size)
+{
+    static const int sizes[][2] = { { 160, 120 }, { 8, 6 }, { 16, 12 }, { 32, 24 }, { 64, 48 } };
+    double mean_big = 0;
+    int k, i;
+    for (k = 0; k < 5; k++) {
+        int w = sizes[k][0], h = sizes[k][1], n = 0;
+        tg_request q = request(w, h, AOVBIT(TG_AOV_AO) | AOVBIT(TG_AOV_DEPTH));
+        rendered r;
+        double *ao, *depth, sum = 0;
+        q.technique = TG_TECH_REFERENCE;
+        q.samples = 64;
+        if (!setup(&r, tg_builtin_scene("groove"), &q)) { CHECK(0, "sets up: %s", r.msg); return; }
+        CHECK(tg_frame_render(r.frame, 0, NULL) == TG_OK, "renders");
+        ao = read_aov(&r, TG_AOV_AO); depth = read_aov(&r, TG_AOV_DEPTH);
+        for (i = 0; i < w * h; i++)
+            if (depth[i] > 0) { n++; sum += ao[i]; }
+        if (k == 0) mean_big = sum / n;
+        printf("# reference on the groove at %dx%d: mean AO %.4f over %d pixels\n", w, h, sum / n, n);
+        CHECK(n > 0 && fabs(sum / n - mean_big) < 0.03, "%dx%d: mean AO %g, at 160x120 %g", w, h, sum / n, mean_big);
+        free(ao); free(depth);
+        teardown(&r);
+    }
+}
+
+TEST(gtao_multibounce_fit)
+{
+    int i, j;
+    double worst = 0;
+    for (j = 0; j <= 10; j++) {
+        double rho = j / 10.0, prev_k = -1;
+        double a = 2.0404 * rho - 0.3324, b = -4.7951 * rho + 0.6417, c = 2.7552 * rho + 0.6903;
+        CHECK(check_d(tgi_ao_multibounce(0, TG_R((float)rho))) == 0, "AO 0 stays 0 (albedo %g)", rho);
+        CHECK(tgi_ao_multibounce(TG_ONE, TG_R((float)rho)) == TG_ONE, "AO 1 stays 1 (albedo %g)", rho);
+        for (i = 0; i <= 40; i++) {
+            double k = check_d(TG_R((float)(i / 40.0))), want = fmin(1, fmax(k, ((a * k + b) * k + c) * k));
+            double got = check_d(tgi_ao_multibounce(TG_R((float)k), TG_R((float)rho)));
+            double lower = j > 0 ? check_d(tgi_ao_multibounce(TG_R((float)k), TG_R((float)(rho - 0.1)))) : 0;
+            if (fabs(got - want) > worst) worst = fabs(got - want);
+            CHECK(got >= k - 1e-6 && got <= 1, "in [AO, 1]: AO %g albedo %g gives %g", k, rho, got);
+            CHECK(got >= lower - 1e-6, "grows with albedo at AO %g", k);
+            CHECK(got >= prev_k - 1e-6, "grows with AO at albedo %g", rho);
+            prev_k = got;
+        }
+    }
+    printf("# GTAO multi-bounce fit: largest difference from the published cubic %.2g\n", worst);
+    CHECK(worst < (TG_FIXED ? 3e-4 : 1e-6), "the published cubic within %g", worst);
+    CHECK(fabs(check_d(tgi_ao_multibounce(TG_R(0.5f), TG_R(0.8f))) - 0.811125) < 2e-4, "AO 0.5, albedo 0.8: %g",
+          check_d(tgi_ao_multibounce(TG_R(0.5f), TG_R(0.8f))));
+}
+
+static const char *furnace_sphere =
+    "camera pos 0 0 4  target 0 0 0  fov 40\n"
+    "material m albedo 0.8 0.6 0.4 f0 0\n"
+    "sphere center 0 0 0 radius 1 material m segments 48\n"
+    "env uniform 0.5 0.5 0.5\n"
+    "gi radius 0.3 bounces 1\n";
+
+TEST(pathtrace_furnace_through_the_frame)
+{
+    static const double albedo[3] = { 0.8, 0.6, 0.4 }, L = 0.5;
+    tg_request q = request(40, 30, AOVBIT(TG_AOV_COLOR) | AOVBIT(TG_AOV_IRRADIANCE) | AOVBIT(TG_AOV_AO) | AOVBIT(TG_AOV_DEPTH));
+    rendered r;
+    double *color, *irr, *ao, *depth, sum[3] = { 0, 0, 0 }, worst_e = 0;
+    unsigned char *bits0, *bits0b, *bits1;
+    size_t n0, n0b, n1;
+    int i, c, n = 0, k;
+    q.technique = TG_TECH_PATHTRACE;
+    q.samples = 16;
+    if (!setup(&r, furnace_sphere, &q)) { CHECK(0, "sets up: %s", r.msg); return; }
+    CHECK(r.plan.effects == 0, "no screen-space effect (effects %u)", (unsigned)r.plan.effects);
+    CHECK(r.plan.request.samples == 16 && r.plan.request.bounces == TG_DEFAULT_PATHTRACE_BOUNCES,
+          "samples as asked, bounces the path tracer's default (the scene's gi line is not read): %d, %d",
+          r.plan.request.samples, r.plan.request.bounces);
+    for (k = 0; k < r.plan.pass_count; k++)
+        CHECK(!strstr(r.plan.passes[k], "compose") && !strstr(r.plan.passes[k], "direct light"), "pass %s", r.plan.passes[k]);
+    CHECK(tg_frame_render(r.frame, 0, NULL) == TG_OK, "renders");
+    color = read_aov(&r, TG_AOV_COLOR); irr = read_aov(&r, TG_AOV_IRRADIANCE);
+    ao = read_aov(&r, TG_AOV_AO); depth = read_aov(&r, TG_AOV_DEPTH);
+    for (i = 0; i < 40 * 30; i++) {
+        CHECK(ao[i] == 1, "AO reads 1");
+        if (depth[i] == 0) {
+            CHECK(fabs(color[3 * i] - L) < 2e-3 && irr[3 * i] == 0, "sky: L, E 0");
+            continue;
+        }
+        for (c = 0; c < 3; c++) sum[c] += color[3 * i + c];
+        if (fabs(irr[3 * i] - PI * L) > worst_e) worst_e = fabs(irr[3 * i] - PI * L);
+        n++;
+    }
+    printf("# pathtrace furnace, %d pixels: mean Lo %.4f %.4f %.4f (rho L %.2f %.2f %.2f), worst |E - pi L| %.3g\n", n,
+           sum[0] / n, sum[1] / n, sum[2] / n, albedo[0] * L, albedo[1] * L, albedo[2] * L, worst_e);
+    CHECK(n > 300, "the sphere covers %d pixels", n);
+    for (c = 0; c < 3; c++)
+        CHECK(fabs(sum[c] / n / (albedo[c] * L) - 1) < (TG_FIXED ? 0.03 : 0.01), "channel %d: mean Lo %g, rho L %g", c,
+              sum[c] / n, albedo[c] * L);
+    free(color); free(irr); free(ao); free(depth);
+    teardown(&r);
+    /* the furnace has no noise (every path escapes); the groove has */
+    q = request(24, 18, AOVBIT(TG_AOV_COLOR));
+    q.technique = TG_TECH_PATHTRACE;
+    q.samples = 4;
+    if (!setup(&r, groove_under_uniform_sky, &q)) { CHECK(0, "groove sets up: %s", r.msg); return; }
+    CHECK(tg_frame_render(r.frame, 0, NULL) == TG_OK, "renders");
+    bits0 = raw_aovs(&r, &n0);
+    CHECK(tg_frame_render(r.frame, 0, NULL) == TG_OK, "renders again");
+    bits0b = raw_aovs(&r, &n0b);
+    CHECK(n0 == n0b && memcmp(bits0, bits0b, n0) == 0, "the same frame index gives the same bits");
+    CHECK(tg_frame_render(r.frame, 1, NULL) == TG_OK, "renders frame 1");
+    bits1 = raw_aovs(&r, &n1);
+    CHECK(n1 == n0 && memcmp(bits0, bits1, n0) != 0, "frame 1 draws other paths");
+    free(bits0); free(bits0b); free(bits1);
+    teardown(&r);
+}
+
+int main(void)
+{
+    RUN(uniform_sky_gives_albedo_times_ao_for_every_technique);
+    RUN(reference_ao_does_not_depend_on_the_image_size);
+    RUN(gtao_multibounce_fit);
+    RUN(pathtrace_furnace_through_the_frame);
+    return check_summary();
+}
