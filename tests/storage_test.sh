@@ -56,7 +56,7 @@ done
 per_pixel() {
     local s=$1; shift
     "$BUILD/tinygi" render "builtin:$s" --size 320x240 "$@" --explain |
-        awk '/^  / && / bytes$/ && !/^  shadow map/ && !/^  frame state/ {b += $(NF - 1)} END {printf "%.2f", b / 76800}'
+        awk '/^total:/ {exit} /^  / && / bytes$/ && !/^  shadow map/ && !/^  frame state/ {b += $(NF - 1)} END {printf "%.2f", b / 76800}'
 }
 for s in cornell columns; do
     for goal in "32|colour, 10 frames|--frames 10" "24|colour, 1 frame|" "8|AO only|--aov ao"; do

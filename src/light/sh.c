@@ -89,17 +89,6 @@ tg_vec3 tgi_sh9_irradiance(const tg_vec3 sh[9], tg_vec3 n)
     return sh_eval_rgb(sh, n, CONE_C0, CONE_C1, CONE_C2);
 }
 
-tg_real tgi_cone_cos_from_ao(tg_real ao)
-{
-    /* a cosine-weighted AO of an open cone is sin^2(alpha) (sh.h) */
-    return tg_sqrt(tg_sub(TG_ONE, tg_saturate(ao)));
-}
-
-tg_real tgi_cone_angle_from_ao(tg_real ao)
-{
-    return tg_acos(tgi_cone_cos_from_ao(ao));
-}
-
 /* HBIL sec. 2.2.4 for t = cos(theta_max), given 1 - t^2 (exact when the
  * caller has it, e.g. AO itself). */
 static tg_vec3 irradiance_in_cone(const tg_vec3 sh[9], tg_vec3 axis, tg_real t, tg_real one_minus_t2)

@@ -48,6 +48,21 @@
 
 typedef enum tgi_far_mode { TG_FAR_CONE_SH = 0, TG_FAR_CUBE_F0 = 1, TG_FAR_OPEN = 2 } tgi_far_mode;
 
+/* The bent cone's aperture from a cosine-weighted AO (clamped to [0, 1]):
+ * cos(alpha) = sqrt(1 - AO), the one place this formula lives (see the
+ * deviation above).  AO 1 -> 0 (the hemisphere), AO 0 -> 1 (a closed cone). */
+static inline tg_real tgi_cone_cos_from_ao(tg_real ao)
+{
+    /* a cosine-weighted AO of an open cone is sin^2(alpha) */
+    return tg_sqrt(tg_sub(TG_ONE, tg_saturate(ao)));
+}
+
+/* The same as a half angle in radians, in [0, pi/2] (the `cone` AOV). */
+static inline tg_real tgi_cone_angle_from_ao(tg_real ao)
+{
+    return tg_acos(tgi_cone_cos_from_ao(ao));
+}
+
 #if TG_NO_ENVIRONMENT
 /* This build has no environment (tinygi.h "FEATURE SWITCHES"): tg_plan_make
  * refuses every plan that would read the scene's env (the far effect,
@@ -56,9 +71,9 @@ typedef enum tgi_far_mode { TG_FAR_CONE_SH = 0, TG_FAR_CUBE_F0 = 1, TG_FAR_OPEN 
  * are 0.  Nothing of sh.c is linked. */
 static inline void tgi_sh9_from_env(const tgi_env *env, tg_vec3 sh[9]) { (void)env; memset(sh, 0, 9 * sizeof *sh); }
 static inline tg_vec3 tgi_sh9_irradiance(const tg_vec3 sh[9], tg_vec3 n) { (void)sh; (void)n; return tg_v3(0, 0, 0); }
-static inline tg_vec3 tgi_sh9_irradiance_cone(const tg_vec3 sh[9], tg_vec3 bent, tg_real x)
+static inline tg_vec3 tgi_sh9_irradiance_in_cone(const tg_vec3 sh[9], tg_vec3 axis, tg_real cos_alpha)
 {
-    (void)sh; (void)bent; (void)x;
+    (void)sh; (void)axis; (void)cos_alpha;
     return tg_v3(0, 0, 0);
 }
 static inline tg_vec3 tgi_sh9_radiance(const tg_vec3 sh[9], tg_vec3 dir) { (void)sh; (void)dir; return tg_v3(0, 0, 0); }
@@ -82,13 +97,6 @@ void tgi_sh9_from_env(const tgi_env *env, tg_vec3 sh[9]);
  * cosine-lobe convolution). Negative ringing is clamped to 0. */
 tg_vec3 tgi_sh9_irradiance(const tg_vec3 sh[9], tg_vec3 n);
 
-/* The bent cone's aperture from a cosine-weighted AO (clamped to [0, 1]):
- * cos(alpha) = sqrt(1 - AO), the one place this formula lives (see the
- * deviation above).  AO 1 -> 0 (the hemisphere), AO 0 -> 1 (a closed cone). */
-tg_real tgi_cone_cos_from_ao(tg_real ao);
-
-/* The same as a half angle in radians, in [0, pi/2] (the `cone` AOV). */
-tg_real tgi_cone_angle_from_ao(tg_real ao);
 
 /* Irradiance from the cone of half angle alpha about `axis`, given
  * cos_alpha in [0, 1] (clamped) (HBIL sec. 2.2.4); cos_alpha = 0 gives the
