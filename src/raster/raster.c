@@ -127,37 +127,62 @@ static inline int64_t signed_area2(const int32_t *x, const int32_t *y)
     return ((int64_t)x[1] - x[0]) * ((int64_t)y[2] - y[0]) - ((int64_t)y[1] - y[0]) * ((int64_t)x[2] - x[0]);
 }
 
-/* Edge functions at the start of `row`, pixel te->x0. */
-static inline void row_edges(const tri_edges *te, int row, int64_t *e)
+/* The covered pixels of a row form one run (the triangle is convex),
+ * bounded by each edge's boundary in that row: for an edge whose E grows to
+ * the right, its first pixel with E >= 0; for one whose E falls, its first
+ * pixel with E < 0; a horizontal edge takes the whole row or none of it.
+ * A boundary moves little from one row to the next, so each is walked from
+ * where it was in the row above (exact integer steps, no division). */
+typedef struct span_walk {
+    int bx[3];                    /* boundary of edge i in this row, within [x0, x1] */
+    int64_t be[3];                /* E_i at bx[i] */
+} span_walk;
+
+/* Start at row te->y0. */
+static inline void span_begin(span_walk *sw, const tri_edges *te)
 {
-    int64_t dy = row - te->oy;
-    e[0] = te->e[0] + dy * te->step_y[0];
-    e[1] = te->e[1] + dy * te->step_y[1];
-    e[2] = te->e[2] + dy * te->step_y[2];
+    int64_t dy = te->y0 - te->oy;
+    int i;
+    for (i = 0; i < 3; i++) {
+        sw->bx[i] = te->x0;
+        sw->be[i] = te->e[i] + dy * te->step_y[i];
+    }
 }
 
-/* The covered pixels of one row form one run (the triangle is convex):
- * walk the edge functions to its first pixel *xa and return its end.  On
- * return e[] holds the edge functions at *xa. */
-static inline int row_span(const tri_edges *te, int64_t *e, int *xa)
+/* The run [*xa, returned end) of this row (empty when end <= *xa); moves
+ * the walk on to the next row. */
+static inline int span_row(const tri_edges *te, span_walk *sw, int *xa)
 {
-    int64_t e0 = e[0], e1 = e[1], e2 = e[2];
-    const int64_t s0 = te->step_x[0], s1 = te->step_x[1], s2 = te->step_x[2];
-    int x = te->x0, x1 = te->x1, xb;
-    while (x < x1 && (e0 | e1 | e2) < 0) { e0 += s0; e1 += s1; e2 += s2; x++; }
-    *xa = x;
-    e[0] = e0; e[1] = e1; e[2] = e2;
-    while (x < x1 && (e0 | e1 | e2) >= 0) { e0 += s0; e1 += s1; e2 += s2; x++; }
-    xb = x;
-    return xb;
+    int a = te->x0, b = te->x1, i;
+    for (i = 0; i < 3; i++) {
+        const int64_t s = te->step_x[i];
+        int64_t e = sw->be[i];
+        int x = sw->bx[i];
+        if (s > 0) {
+            if (e < 0) { while (x < te->x1 && e < 0) { x++; e += s; } }
+            else { while (x > te->x0 && e - s >= 0) { x--; e -= s; } }
+            if (x > a) a = x;
+        } else if (s < 0) {
+            if (e >= 0) { while (x < te->x1 && e >= 0) { x++; e += s; } }
+            else { while (x > te->x0 && e - s < 0) { x--; e -= s; } }
+            if (x < b) b = x;
+        } else if (e < 0) {
+            b = te->x0;
+        }
+        sw->bx[i] = x;
+        sw->be[i] = e + te->step_y[i];
+    }
+    *xa = a;
+    return b;
 }
 
-/* The edge values at the start of `row` and its span: row_edges, then row_span. */
-static inline int row_start(const tri_edges *te, int row, int64_t *e, int *xa)
+#if TG_FIXED
+/* E_i at the centre of pixel (x, row). */
+static inline int64_t edge_at(const tri_edges *te, int i, int row, int x)
 {
-    row_edges(te, row, e);
-    return row_span(te, e, xa);
+    return te->e[i] + (int64_t)(row - te->oy) * te->step_y[i] + (int64_t)(x - te->x0) * te->step_x[i];
 }
+#endif
 
 void tgi_raster_coverage_count(uint16_t *count, int width, int height,
                               const int32_t *xy, int tri_count, int y0, int y1)
@@ -169,6 +194,7 @@ void tgi_raster_coverage_count(uint16_t *count, int width, int height,
         int32_t x[3], y[3];
         int64_t area2;
         tri_edges te;
+        span_walk sw;
         int row, col, k;
         for (k = 0; k < 3; k++) {
             x[k] = clamp_coord(xy[t * 6 + 2 * k]);
@@ -182,12 +208,10 @@ void tgi_raster_coverage_count(uint16_t *count, int width, int height,
             area2 = -area2;
         }
         if (!edges_setup(&te, x, y, area2, width, y0, y1)) continue;
+        span_begin(&sw, &te);
         for (row = te.y0; row < te.y1; row++) {
-            int64_t e[3];
-            int xa, xb;
+            int xa, xb = span_row(&te, &sw, &xa);
             uint16_t *line = count + (size_t)row * (size_t)width;
-            row_edges(&te, row, e);
-            xb = row_span(&te, e, &xa);
             for (col = xa; col < xb; col++) line[col]++;
         }
     }
@@ -414,7 +438,6 @@ typedef struct surface {
     uint32_t material;            /* compact: index << TGI_MATERIAL_SHIFT; wide: index */
     uint16_t object;
     tg_vec3 fallback_normal;      /* if the interpolated normal vanishes */
-    uint32_t fallback_nm;         /* compact: the same, packed */
 } surface;
 
 /* Depth-only output: 32-bit depths (tg_real), or 16-bit codes of the depth
@@ -510,13 +533,16 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
     const tgi_gbuffer g = *gbp;
     const surface sf = *sfp;
     bary_setup b;
+    span_walk sw;
     int row, col, W = g.width;
     bary_make(&b, st, te);
+    span_begin(&sw, te);
     for (row = te->y0; row < te->y1; row++) {
-        int64_t e[3], e0, e1, e2;
-        int xa, xb = row_start(te, row, e, &xa);
+        int64_t e0, e1, e2;
+        int xa, xb = span_row(te, &sw, &xa);
         size_t i = (size_t)row * (size_t)W + (size_t)xa;
-        e0 = e[0]; e1 = e[1]; e2 = e[2];
+        if (xb <= xa) continue;
+        e0 = edge_at(te, 0, row, xa); e1 = edge_at(te, 1, row, xa); e2 = edge_at(te, 2, row, xa);
         for (col = xa; col < xb; col++, i++, e0 += te->step_x[0], e1 += te->step_x[1], e2 += te->step_x[2]) {
             int64_t u0, u1, u2, su, sq, mx, my, mz;
             tg_real z;
@@ -546,7 +572,8 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
                 uint32_t zb = tgi_depth_pack(z);   /* binary32 words order like the depths */
                 if (g.depth[i] && zb >= g.depth[i]) continue;
                 g.depth[i] = zb;
-                g.nm[i] = ((mx | my | mz) ? tgi_oct_pack64(mx, my, mz, TGI_NORMAL_BITS) : sf.fallback_nm) | sf.material;
+                g.nm[i] = ((mx | my | mz) ? tgi_oct_pack64(mx, my, mz, TGI_NORMAL_BITS)
+                                          : tgi_oct_pack(sf.fallback_normal, TGI_NORMAL_BITS)) | sf.material;
             }
 #endif
             if (g.object) g.object[i] = sf.object;
@@ -557,13 +584,16 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
 static void depth_rows(const depth_out *o, int W, const tri_edges *te, const screen_tri *st, int ortho)
 {
     bary_setup b;
+    span_walk sw;
     int row, col;
     bary_make(&b, st, te);
+    span_begin(&sw, te);
     for (row = te->y0; row < te->y1; row++) {
-        int64_t e[3], e0, e1, e2;
-        int xa, xb = row_start(te, row, e, &xa);
+        int64_t e0, e1, e2;
+        int xa, xb = span_row(te, &sw, &xa);
         size_t i = (size_t)row * (size_t)W + (size_t)xa;
-        e0 = e[0]; e1 = e[1]; e2 = e[2];
+        if (xb <= xa) continue;
+        e0 = edge_at(te, 0, row, xa); e1 = edge_at(te, 1, row, xa); e2 = edge_at(te, 2, row, xa);
         for (col = xa; col < xb; col++, i++,
              e0 += te->step_x[0], e1 += te->step_x[1], e2 += te->step_x[2]) {
             int64_t u0, u1, u2, su, v;
@@ -627,6 +657,7 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
     const surface sf = *sfp;
     plane_basis pb;
     plane pq, pnx, pny, pnz;
+    span_walk sw;
     float wmin = st->w[0], q[3];
     int row, col, k, W = g.width;
     if (st->w[1] < wmin) wmin = st->w[1];
@@ -637,15 +668,19 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
     pnx = plane_make(&pb, st->n[0].x * q[0], st->n[1].x * q[1], st->n[2].x * q[2]);
     pny = plane_make(&pb, st->n[0].y * q[0], st->n[1].y * q[1], st->n[2].y * q[2]);
     pnz = plane_make(&pb, st->n[0].z * q[0], st->n[1].z * q[1], st->n[2].z * q[2]);
+    span_begin(&sw, te);
     for (row = te->y0; row < te->y1; row++) {
-        int64_t e[3];
-        int xa, xb = row_start(te, row, e, &xa);
-        float dy = (float)(row - te->oy), dx = (float)(xa - te->x0);
-        float qv = pq.v + pq.dy * dy + pq.dx * dx;
-        float mx = pnx.v + pnx.dy * dy + pnx.dx * dx;
-        float my = pny.v + pny.dy * dy + pny.dx * dx;
-        float mz = pnz.v + pnz.dy * dy + pnz.dx * dx;
-        size_t i = (size_t)row * (size_t)W + (size_t)xa;
+        int xa, xb = span_row(te, &sw, &xa);
+        float dy, dx, qv, mx, my, mz;
+        size_t i;
+        if (xb <= xa) continue;
+        dy = (float)(row - te->oy);
+        dx = (float)(xa - te->x0);
+        qv = pq.v + pq.dy * dy + pq.dx * dx;
+        mx = pnx.v + pnx.dy * dy + pnx.dx * dx;
+        my = pny.v + pny.dy * dy + pny.dx * dx;
+        mz = pnz.v + pnz.dy * dy + pnz.dx * dx;
+        i = (size_t)row * (size_t)W + (size_t)xa;
         for (col = xa; col < xb; col++, i++, qv += pq.dx, mx += pnx.dx, my += pny.dx, mz += pnz.dx) {
             float len2 = mx * mx + my * my + mz * mz, d;
             if (!(qv > 0.0f)) continue;
@@ -664,7 +699,7 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
             d = tgi_depth_unpack(g.depth[i]);   /* a reinterpretation: 0 is sky */
             if (d > 0.0f && wmin >= qv * d) continue;
             g.depth[i] = tgi_depth_pack(wmin / qv);
-            g.nm[i] = (len2 > 1e-30f ? tgi_oct_pack(tg_v3(mx, my, mz), TGI_NORMAL_BITS) : sf.fallback_nm) | sf.material;
+            g.nm[i] = tgi_oct_pack(len2 > 1e-30f ? tg_v3(mx, my, mz) : sf.fallback_normal, TGI_NORMAL_BITS) | sf.material;
 #endif
             if (g.object) g.object[i] = sf.object;
         }
@@ -675,6 +710,7 @@ static void depth_rows(const depth_out *o, int W, const tri_edges *te, const scr
 {
     plane_basis pb;
     plane pa;
+    span_walk sw;
     float wmin = st->w[0];
     int row, col;
     if (st->w[1] < wmin) wmin = st->w[1];
@@ -682,11 +718,14 @@ static void depth_rows(const depth_out *o, int W, const tri_edges *te, const scr
     plane_basis_make(&pb, st, te);
     if (ortho) pa = plane_make(&pb, st->z[0], st->z[1], st->z[2]);
     else pa = plane_make(&pb, wmin * st->iw[0], wmin * st->iw[1], wmin * st->iw[2]);
+    span_begin(&sw, te);
     for (row = te->y0; row < te->y1; row++) {
-        int64_t e[3];
-        int xa, xb = row_start(te, row, e, &xa);
-        float a = pa.v + pa.dy * (float)(row - te->oy) + pa.dx * (float)(xa - te->x0);
-        size_t i = (size_t)row * (size_t)W + (size_t)xa;
+        int xa, xb = span_row(te, &sw, &xa);
+        float a;
+        size_t i;
+        if (xb <= xa) continue;
+        a = pa.v + pa.dy * (float)(row - te->oy) + pa.dx * (float)(xa - te->x0);
+        i = (size_t)row * (size_t)W + (size_t)xa;
         for (col = xa; col < xb; col++, i++, a += pa.dx) {
             if (ortho) {
                 depth_keep(o, i, a);
@@ -752,10 +791,8 @@ static void draw_snapped(const raster_target *rt, const clip_vertex *v, const tg
         sf.fallback_normal = flip ? tgi_v3_neg(rt->tri_nrm[0]) : rt->tri_nrm[0];
 #if TG_WIDE_STORAGE
         sf.material = (uint32_t)rt->material;
-        sf.fallback_nm = 0;
 #else
         sf.material = (uint32_t)rt->material << TGI_MATERIAL_SHIFT;
-        sf.fallback_nm = tgi_oct_pack(sf.fallback_normal, TGI_NORMAL_BITS);
 #endif
         gbuffer_rows(rt->gb, &te, &st, &sf);
     } else depth_rows(&rt->dout, rt->width, &te, &st, rt->clip.mode == MODE_ORTHO);
