@@ -362,21 +362,15 @@ static inline int32_t snap_ndc(tg_real c, tg_real w, inv_w iw, int32_t half16)
 }
 #else
 typedef float inv_w;
-/* Selects rather than branches (the division is always made): a batch of
- * vertices can go through these together. */
-static inline inv_w inverse_w(tg_real w)
-{
-    float r = 1.0f / w;
-    return w > 0.0f ? r : 0.0f;
-}
+static inline inv_w inverse_w(tg_real w) { return w > 0.0f ? 1.0f / w : 0.0f; }
 
 static inline int32_t snap_ndc(tg_real c, tg_real w, inv_w iw, int32_t half16)
 {
     float v = c * iw * (float)half16;
     (void)w;
-    v = v <= (float)COORD_LIMIT ? v : (float)COORD_LIMIT;     /* also NaN */
-    v = v < -(float)COORD_LIMIT ? -(float)COORD_LIMIT : v;
-    return (int32_t)(v + (v >= 0.0f ? 0.5f : -0.5f));        /* v - 0.5f is v + -0.5f */
+    if (!(v <= (float)COORD_LIMIT)) v = (float)COORD_LIMIT;   /* also NaN */
+    if (v < -(float)COORD_LIMIT) v = -(float)COORD_LIMIT;
+    return (int32_t)(v >= 0.0f ? v + 0.5f : v - 0.5f);
 }
 #endif
 
@@ -913,8 +907,11 @@ static inline view_vertex view_vertex_make(const raster_target *rt, const view_f
     o.y = y;
     o.w = w;
     o.iw = inverse_w(w);
-    o.flags = ((x >= ngw) & (x <= gw) & (y >= ngw) & (y <= gw) & (w >= vf->znear) & (w <= vf->zfar)) * V_INSIDE
-              | (x > w) * V_RIGHT | (x < nw) * V_LEFT | (y > w) * V_TOP | (y < nw) * V_BOTTOM;
+    o.flags = x >= ngw && x <= gw && y >= ngw && y <= gw && w >= vf->znear && w <= vf->zfar ? V_INSIDE : 0;
+    if (x > w) o.flags |= V_RIGHT;                /* each almost never: branches that predict well */
+    if (x < nw) o.flags |= V_LEFT;
+    if (y > w) o.flags |= V_TOP;
+    if (y < nw) o.flags |= V_BOTTOM;
     o.sx = rt->half_w16 + snap_ndc(x, w, o.iw, rt->half_w16);
     o.sy = rt->half_h16 - snap_ndc(y, w, o.iw, rt->half_h16);
     return o;
@@ -952,31 +949,44 @@ static void vertex_cache_init(vertex_cache *c, const raster_target *rt, const vi
     }
 }
 
-static inline view_vertex vertex_lookup(vertex_cache *c, const raster_target *rt, const view_frame *vf, tg_vec3 p)
+/* One triangle's vertices as the drawing code takes them. */
+typedef struct tri_vertices {
+    clip_vertex v[3];
+    int32_t sx[3], sy[3];
+    inv_w iw[3];
+    int flags;                    /* V_* of all three: V_INSIDE if all are inside, V_RIGHT.. if all are beyond */
+} tri_vertices;
+
+/* Vertex k of tv: the view_vertex of p, from the cache or made there. */
+static inline void vertex_fetch(vertex_cache *c, const raster_target *rt, const view_frame *vf, tg_vec3 p,
+                                tri_vertices *tv, int k)
 {
     uint32_t kx = real_bits(p.x), ky = real_bits(p.y), kz = real_bits(p.z);
     uint32_t h = (kx * 0x9E3779B1u + ky * 0x85EBCA77u + kz * 0xC2B2AE3Du) >> (32 - VCACHE_BITS);
+    const view_vertex *o = &c->v[h];
     if (c->key[h][0] != kx || c->key[h][1] != ky || c->key[h][2] != kz) {
         c->key[h][0] = kx; c->key[h][1] = ky; c->key[h][2] = kz;
         c->v[h] = view_vertex_make(rt, vf, p);
     }
-    return c->v[h];
+    tv->v[k].x = o->x;
+    tv->v[k].y = o->y;
+    tv->v[k].z = tv->v[k].w = o->w;
+    tv->sx[k] = o->sx;
+    tv->sy[k] = o->sy;
+    tv->iw[k] = o->iw;
+    tv->flags &= o->flags;
 }
 
 /* Triangle t: reject, cull, draw (clipped if needed). */
-static void gbuffer_triangle(raster_target *rt, const view_vertex *vv, const tgi_raster_mesh *mesh, int t)
+static void gbuffer_triangle(raster_target *rt, tri_vertices *tv, const tgi_raster_mesh *mesh, int t)
 {
     static const int order_front[3] = { 0, 2, 1 }, order_back[3] = { 0, 1, 2 };
-    int f = vv[0].flags & vv[1].flags & vv[2].flags, twosided, front = 0, k;
-    int32_t sx[3], sy[3];
-    inv_w iw[3];
+    int twosided, front = 0;
     int64_t area2 = 0;
-    clip_vertex v[3];
-    if (f & V_OFF_SIDE) return;                   /* wholly off one side of the screen */
+    if (tv->flags & V_OFF_SIDE) return;           /* wholly off one side of the screen */
     twosided = mesh->materials[mesh->tri_material[t]].twosided;
-    for (k = 0; k < 3; k++) { sx[k] = vv[k].sx; sy[k] = vv[k].sy; iw[k] = vv[k].iw; }
-    if (f & V_INSIDE) {
-        area2 = signed_area2(sx, sy);
+    if (tv->flags & V_INSIDE) {
+        area2 = signed_area2(tv->sx, tv->sy);
         front = area2 < 0;                        /* counter-clockwise as seen, y down */
         if (area2 == 0 || (!front && !twosided)) return;   /* zero area, culled */
     }
@@ -985,16 +995,11 @@ static void gbuffer_triangle(raster_target *rt, const view_vertex *vv, const tgi
     rt->flip_back = twosided;
     rt->object = mesh->tri_object ? mesh->tri_object[t] : 0;
     rt->tri_nrm = mesh->nrm + 3 * t;
-    for (k = 0; k < 3; k++) {
-        v[k].x = vv[k].x;
-        v[k].y = vv[k].y;
-        v[k].z = v[k].w = vv[k].w;
-    }
-    if (f & V_INSIDE)
-        draw_snapped(rt, v, rt->tri_nrm, sx, sy, iw, front ? order_front : order_back,
+    if (tv->flags & V_INSIDE)
+        draw_snapped(rt, tv->v, rt->tri_nrm, tv->sx, tv->sy, tv->iw, front ? order_front : order_back,
                      front ? -area2 : area2, !front && twosided);
     else
-        draw_clip_tri(rt, v, rt->tri_nrm);
+        draw_clip_tri(rt, tv->v, rt->tri_nrm);
 }
 
 void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_mesh *mesh, int y0, int y1)
@@ -1017,11 +1022,12 @@ void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_
     vf.zfar = rt.clip.zfar;
     vertex_cache_init(&cache, &rt, &vf);
     for (t = 0; t < mesh->tri_count; t++) {
-        view_vertex vv[3];
-        vv[0] = vertex_lookup(&cache, &rt, &vf, mesh->pos[3 * t]);
-        vv[1] = vertex_lookup(&cache, &rt, &vf, mesh->pos[3 * t + 1]);
-        vv[2] = vertex_lookup(&cache, &rt, &vf, mesh->pos[3 * t + 2]);
-        gbuffer_triangle(&rt, vv, mesh, t);
+        tri_vertices tv;
+        tv.flags = ~0;
+        vertex_fetch(&cache, &rt, &vf, mesh->pos[3 * t], &tv, 0);
+        vertex_fetch(&cache, &rt, &vf, mesh->pos[3 * t + 1], &tv, 1);
+        vertex_fetch(&cache, &rt, &vf, mesh->pos[3 * t + 2], &tv, 2);
+        gbuffer_triangle(&rt, &tv, mesh, t);
     }
 }
 
