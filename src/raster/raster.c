@@ -4,7 +4,9 @@
  *
  * Per triangle:
  *   1. world -> clip.  G-buffer: clip = (x fx, y fy, z, w = z) in view space
- *      (view.h).  Depth-only: clip = world_to_clip * p.
+ *      (view.h), each vertex classified and snapped (3.) once and kept in a
+ *      small cache keyed by its position's bits, since neighbouring
+ *      triangles share vertices.  Depth-only: clip = world_to_clip * p.
  *   2. a triangle wholly outside one screen/near/far plane is dropped; one
  *      with a vertex outside the near/far planes or the guard band
  *      (|x|, |y| <= GUARD w) is clipped in homogeneous space
@@ -20,10 +22,9 @@
  *      covered run is found by stepping them, so the pixel loop has no
  *      coverage test.
  *   5. per covered pixel: perspective-correct 1/w (depth = 1 / interpolated
- *      1/w) and normal (n/w interpolated, renormalized), depth test on
- *      linear depth (nearest wins), depth/normal/sky writes; then the
- *      triangle's constant channels (albedo, f0, emissive, object) for the
- *      pixels that passed.
+ *      1/w) and normal (n/w interpolated), depth test on linear depth
+ *      (nearest wins); where it passes, depth, packed normal with the
+ *      material index, and object are written.
  *
  * Interpolation differs by number type only where the representation
  * forces it: float steps attribute planes per pixel; Q16.16 weights
@@ -127,53 +128,38 @@ static inline int64_t signed_area2(const int32_t *x, const int32_t *y)
     return ((int64_t)x[1] - x[0]) * ((int64_t)y[2] - y[0]) - ((int64_t)y[1] - y[0]) * ((int64_t)x[2] - x[0]);
 }
 
-/* The covered pixels of a row form one run (the triangle is convex),
- * bounded by each edge's boundary in that row: for an edge whose E grows to
- * the right, its first pixel with E >= 0; for one whose E falls, its first
- * pixel with E < 0; a horizontal edge takes the whole row or none of it.
- * A boundary moves little from one row to the next, so each is walked from
- * where it was in the row above (exact integer steps, no division). */
+/* The covered pixels of a row form one run (the triangle is convex): the
+ * row's pixels are tested from the box's left side, all edges at once, and
+ * the edge values step down a row at a time.  (Walking each edge's
+ * boundary from the row above instead executes fewer instructions on wide
+ * rows, but its many short loops mispredict more: measured slower.) */
 typedef struct span_walk {
-    int bx[3];                    /* boundary of edge i in this row, within [x0, x1] */
-    int64_t be[3];                /* E_i at bx[i] */
+    int64_t e[3];                 /* E_i at the centre of pixel (x0, row) */
 } span_walk;
 
 /* Start at row te->y0. */
 static inline void span_begin(span_walk *sw, const tri_edges *te)
 {
     int64_t dy = te->y0 - te->oy;
-    int i;
-    for (i = 0; i < 3; i++) {
-        sw->bx[i] = te->x0;
-        sw->be[i] = te->e[i] + dy * te->step_y[i];
-    }
+    sw->e[0] = te->e[0] + dy * te->step_y[0];
+    sw->e[1] = te->e[1] + dy * te->step_y[1];
+    sw->e[2] = te->e[2] + dy * te->step_y[2];
 }
 
 /* The run [*xa, returned end) of this row (empty when end <= *xa); moves
- * the walk on to the next row. */
+ * on to the next row. */
 static inline int span_row(const tri_edges *te, span_walk *sw, int *xa)
 {
-    int a = te->x0, b = te->x1, i;
-    for (i = 0; i < 3; i++) {
-        const int64_t s = te->step_x[i];
-        int64_t e = sw->be[i];
-        int x = sw->bx[i];
-        if (s > 0) {
-            if (e < 0) { while (x < te->x1 && e < 0) { x++; e += s; } }
-            else { while (x > te->x0 && e - s >= 0) { x--; e -= s; } }
-            if (x > a) a = x;
-        } else if (s < 0) {
-            if (e >= 0) { while (x < te->x1 && e >= 0) { x++; e += s; } }
-            else { while (x > te->x0 && e - s < 0) { x--; e -= s; } }
-            if (x < b) b = x;
-        } else if (e < 0) {
-            b = te->x0;
-        }
-        sw->bx[i] = x;
-        sw->be[i] = e + te->step_y[i];
-    }
-    *xa = a;
-    return b;
+    int64_t e0 = sw->e[0], e1 = sw->e[1], e2 = sw->e[2];
+    const int64_t s0 = te->step_x[0], s1 = te->step_x[1], s2 = te->step_x[2];
+    int x = te->x0, x1 = te->x1;
+    while (x < x1 && (e0 | e1 | e2) < 0) { e0 += s0; e1 += s1; e2 += s2; x++; }
+    *xa = x;
+    while (x < x1 && (e0 | e1 | e2) >= 0) { e0 += s0; e1 += s1; e2 += s2; x++; }
+    sw->e[0] += te->step_y[0];
+    sw->e[1] += te->step_y[1];
+    sw->e[2] += te->step_y[2];
+    return x;
 }
 
 #if TG_FIXED
