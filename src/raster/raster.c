@@ -4,7 +4,9 @@
  *
  * Per triangle:
  *   1. world -> clip.  G-buffer: clip = (x fx, y fy, z, w = z) in view space
- *      (view.h).  Depth-only: clip = world_to_clip * p.
+ *      (view.h), each vertex classified and snapped (3.) once and kept in a
+ *      small cache keyed by its position's bits, since neighbouring
+ *      triangles share vertices.  Depth-only: clip = world_to_clip * p.
  *   2. a triangle wholly outside one screen/near/far plane is dropped; one
  *      with a vertex outside the near/far planes or the guard band
  *      (|x|, |y| <= GUARD w) is clipped in homogeneous space
@@ -20,10 +22,9 @@
  *      covered run is found by stepping them, so the pixel loop has no
  *      coverage test.
  *   5. per covered pixel: perspective-correct 1/w (depth = 1 / interpolated
- *      1/w) and normal (n/w interpolated, renormalized), depth test on
- *      linear depth (nearest wins), depth/normal/sky writes; then the
- *      triangle's constant channels (albedo, f0, emissive, object) for the
- *      pixels that passed.
+ *      1/w) and normal (n/w interpolated), depth test on linear depth
+ *      (nearest wins); where it passes, depth, packed normal with the
+ *      material index, and object are written.
  *
  * Interpolation differs by number type only where the representation
  * forces it: float steps attribute planes per pixel; Q16.16 weights
@@ -127,37 +128,47 @@ static inline int64_t signed_area2(const int32_t *x, const int32_t *y)
     return ((int64_t)x[1] - x[0]) * ((int64_t)y[2] - y[0]) - ((int64_t)y[1] - y[0]) * ((int64_t)x[2] - x[0]);
 }
 
-/* Edge functions at the start of `row`, pixel te->x0. */
-static inline void row_edges(const tri_edges *te, int row, int64_t *e)
+/* The covered pixels of a row form one run (the triangle is convex): the
+ * row's pixels are tested from the box's left side, all edges at once, and
+ * the edge values step down a row at a time.  (Walking each edge's
+ * boundary from the row above instead executes fewer instructions on wide
+ * rows, but its many short loops mispredict more: measured slower.) */
+typedef struct span_walk {
+    int64_t e[3];                 /* E_i at the centre of pixel (x0, row) */
+} span_walk;
+
+/* Start at row te->y0. */
+static inline void span_begin(span_walk *sw, const tri_edges *te)
 {
-    int64_t dy = row - te->oy;
-    e[0] = te->e[0] + dy * te->step_y[0];
-    e[1] = te->e[1] + dy * te->step_y[1];
-    e[2] = te->e[2] + dy * te->step_y[2];
+    int64_t dy = te->y0 - te->oy;
+    sw->e[0] = te->e[0] + dy * te->step_y[0];
+    sw->e[1] = te->e[1] + dy * te->step_y[1];
+    sw->e[2] = te->e[2] + dy * te->step_y[2];
 }
 
-/* The covered pixels of one row form one run (the triangle is convex):
- * walk the edge functions to its first pixel *xa and return its end.  On
- * return e[] holds the edge functions at *xa. */
-static inline int row_span(const tri_edges *te, int64_t *e, int *xa)
+/* The run [*xa, returned end) of this row (empty when end <= *xa); moves
+ * on to the next row. */
+static inline int span_row(const tri_edges *te, span_walk *sw, int *xa)
 {
-    int64_t e0 = e[0], e1 = e[1], e2 = e[2];
+    int64_t e0 = sw->e[0], e1 = sw->e[1], e2 = sw->e[2];
     const int64_t s0 = te->step_x[0], s1 = te->step_x[1], s2 = te->step_x[2];
-    int x = te->x0, x1 = te->x1, xb;
+    int x = te->x0, x1 = te->x1;
     while (x < x1 && (e0 | e1 | e2) < 0) { e0 += s0; e1 += s1; e2 += s2; x++; }
     *xa = x;
-    e[0] = e0; e[1] = e1; e[2] = e2;
     while (x < x1 && (e0 | e1 | e2) >= 0) { e0 += s0; e1 += s1; e2 += s2; x++; }
-    xb = x;
-    return xb;
+    sw->e[0] += te->step_y[0];
+    sw->e[1] += te->step_y[1];
+    sw->e[2] += te->step_y[2];
+    return x;
 }
 
-/* The edge values at the start of `row` and its span: row_edges, then row_span. */
-static inline int row_start(const tri_edges *te, int row, int64_t *e, int *xa)
+#if TG_FIXED
+/* E_i at the centre of pixel (x, row). */
+static inline int64_t edge_at(const tri_edges *te, int i, int row, int x)
 {
-    row_edges(te, row, e);
-    return row_span(te, e, xa);
+    return te->e[i] + (int64_t)(row - te->oy) * te->step_y[i] + (int64_t)(x - te->x0) * te->step_x[i];
 }
+#endif
 
 void tgi_raster_coverage_count(uint16_t *count, int width, int height,
                               const int32_t *xy, int tri_count, int y0, int y1)
@@ -169,6 +180,7 @@ void tgi_raster_coverage_count(uint16_t *count, int width, int height,
         int32_t x[3], y[3];
         int64_t area2;
         tri_edges te;
+        span_walk sw;
         int row, col, k;
         for (k = 0; k < 3; k++) {
             x[k] = clamp_coord(xy[t * 6 + 2 * k]);
@@ -182,12 +194,10 @@ void tgi_raster_coverage_count(uint16_t *count, int width, int height,
             area2 = -area2;
         }
         if (!edges_setup(&te, x, y, area2, width, y0, y1)) continue;
+        span_begin(&sw, &te);
         for (row = te.y0; row < te.y1; row++) {
-            int64_t e[3];
-            int xa, xb;
+            int xa, xb = span_row(&te, &sw, &xa);
             uint16_t *line = count + (size_t)row * (size_t)width;
-            row_edges(&te, row, e);
-            xb = row_span(&te, e, &xa);
             for (col = xa; col < xb; col++) line[col]++;
         }
     }
@@ -338,21 +348,15 @@ static inline int32_t snap_ndc(tg_real c, tg_real w, inv_w iw, int32_t half16)
 }
 #else
 typedef float inv_w;
-/* Selects rather than branches (the division is always made): a batch of
- * vertices can go through these together. */
-static inline inv_w inverse_w(tg_real w)
-{
-    float r = 1.0f / w;
-    return w > 0.0f ? r : 0.0f;
-}
+static inline inv_w inverse_w(tg_real w) { return w > 0.0f ? 1.0f / w : 0.0f; }
 
 static inline int32_t snap_ndc(tg_real c, tg_real w, inv_w iw, int32_t half16)
 {
     float v = c * iw * (float)half16;
     (void)w;
-    v = v <= (float)COORD_LIMIT ? v : (float)COORD_LIMIT;     /* also NaN */
-    v = v < -(float)COORD_LIMIT ? -(float)COORD_LIMIT : v;
-    return (int32_t)(v + (v >= 0.0f ? 0.5f : -0.5f));        /* v - 0.5f is v + -0.5f */
+    if (!(v <= (float)COORD_LIMIT)) v = (float)COORD_LIMIT;   /* also NaN */
+    if (v < -(float)COORD_LIMIT) v = -(float)COORD_LIMIT;
+    return (int32_t)(v >= 0.0f ? v + 0.5f : v - 0.5f);
 }
 #endif
 
@@ -414,7 +418,6 @@ typedef struct surface {
     uint32_t material;            /* compact: index << TGI_MATERIAL_SHIFT; wide: index */
     uint16_t object;
     tg_vec3 fallback_normal;      /* if the interpolated normal vanishes */
-    uint32_t fallback_nm;         /* compact: the same, packed */
     int normal_bits;              /* compact: per octahedral coordinate (nm, or n8) */
 } surface;
 
@@ -520,13 +523,16 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
     const tgi_gbuffer g = *gbp;
     const surface sf = *sfp;
     bary_setup b;
+    span_walk sw;
     int row, col, W = g.width;
     bary_make(&b, st, te);
+    span_begin(&sw, te);
     for (row = te->y0; row < te->y1; row++) {
-        int64_t e[3], e0, e1, e2;
-        int xa, xb = row_start(te, row, e, &xa);
+        int64_t e0, e1, e2;
+        int xa, xb = span_row(te, &sw, &xa);
         size_t i = (size_t)row * (size_t)W + (size_t)xa;
-        e0 = e[0]; e1 = e[1]; e2 = e[2];
+        if (xb <= xa) continue;
+        e0 = edge_at(te, 0, row, xa); e1 = edge_at(te, 1, row, xa); e2 = edge_at(te, 2, row, xa);
         for (col = xa; col < xb; col++, i++, e0 += te->step_x[0], e1 += te->step_x[1], e2 += te->step_x[2]) {
             int64_t u0, u1, u2, su, sq, mx, my, mz;
             tg_real z;
@@ -556,7 +562,8 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
                 uint32_t zb = tgi_depth_pack(z);   /* binary32 words order like the depths */
                 if (g.depth[i] && zb >= g.depth[i]) continue;
                 g.depth[i] = zb;
-                put_nm(&g, i, ((mx | my | mz) ? tgi_oct_pack64(mx, my, mz, sf.normal_bits) : sf.fallback_nm) | sf.material);
+                put_nm(&g, i, ((mx | my | mz) ? tgi_oct_pack64(mx, my, mz, sf.normal_bits)
+                                              : tgi_oct_pack(sf.fallback_normal, sf.normal_bits)) | sf.material);
             }
 #endif
             if (g.object) g.object[i] = sf.object;
@@ -567,13 +574,16 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
 static void depth_rows(const depth_out *o, int W, const tri_edges *te, const screen_tri *st, int ortho)
 {
     bary_setup b;
+    span_walk sw;
     int row, col;
     bary_make(&b, st, te);
+    span_begin(&sw, te);
     for (row = te->y0; row < te->y1; row++) {
-        int64_t e[3], e0, e1, e2;
-        int xa, xb = row_start(te, row, e, &xa);
+        int64_t e0, e1, e2;
+        int xa, xb = span_row(te, &sw, &xa);
         size_t i = (size_t)row * (size_t)W + (size_t)xa;
-        e0 = e[0]; e1 = e[1]; e2 = e[2];
+        if (xb <= xa) continue;
+        e0 = edge_at(te, 0, row, xa); e1 = edge_at(te, 1, row, xa); e2 = edge_at(te, 2, row, xa);
         for (col = xa; col < xb; col++, i++,
              e0 += te->step_x[0], e1 += te->step_x[1], e2 += te->step_x[2]) {
             int64_t u0, u1, u2, su, v;
@@ -637,6 +647,7 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
     const surface sf = *sfp;
     plane_basis pb;
     plane pq, pnx, pny, pnz;
+    span_walk sw;
     float wmin = st->w[0], q[3];
     int row, col, k, W = g.width;
     if (st->w[1] < wmin) wmin = st->w[1];
@@ -647,15 +658,19 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
     pnx = plane_make(&pb, st->n[0].x * q[0], st->n[1].x * q[1], st->n[2].x * q[2]);
     pny = plane_make(&pb, st->n[0].y * q[0], st->n[1].y * q[1], st->n[2].y * q[2]);
     pnz = plane_make(&pb, st->n[0].z * q[0], st->n[1].z * q[1], st->n[2].z * q[2]);
+    span_begin(&sw, te);
     for (row = te->y0; row < te->y1; row++) {
-        int64_t e[3];
-        int xa, xb = row_start(te, row, e, &xa);
-        float dy = (float)(row - te->oy), dx = (float)(xa - te->x0);
-        float qv = pq.v + pq.dy * dy + pq.dx * dx;
-        float mx = pnx.v + pnx.dy * dy + pnx.dx * dx;
-        float my = pny.v + pny.dy * dy + pny.dx * dx;
-        float mz = pnz.v + pnz.dy * dy + pnz.dx * dx;
-        size_t i = (size_t)row * (size_t)W + (size_t)xa;
+        int xa, xb = span_row(te, &sw, &xa);
+        float dy, dx, qv, mx, my, mz;
+        size_t i;
+        if (xb <= xa) continue;
+        dy = (float)(row - te->oy);
+        dx = (float)(xa - te->x0);
+        qv = pq.v + pq.dy * dy + pq.dx * dx;
+        mx = pnx.v + pnx.dy * dy + pnx.dx * dx;
+        my = pny.v + pny.dy * dy + pny.dx * dx;
+        mz = pnz.v + pnz.dy * dy + pnz.dx * dx;
+        i = (size_t)row * (size_t)W + (size_t)xa;
         for (col = xa; col < xb; col++, i++, qv += pq.dx, mx += pnx.dx, my += pny.dx, mz += pnz.dx) {
             float len2 = mx * mx + my * my + mz * mz, d;
             if (!(qv > 0.0f)) continue;
@@ -674,7 +689,7 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
             d = tgi_depth_unpack(g.depth[i]);   /* a reinterpretation: 0 is sky */
             if (d > 0.0f && wmin >= qv * d) continue;
             g.depth[i] = tgi_depth_pack(wmin / qv);
-            put_nm(&g, i, (len2 > 1e-30f ? tgi_oct_pack(tg_v3(mx, my, mz), sf.normal_bits) : sf.fallback_nm) | sf.material);
+            put_nm(&g, i, tgi_oct_pack(len2 > 1e-30f ? tg_v3(mx, my, mz) : sf.fallback_normal, sf.normal_bits) | sf.material);
 #endif
             if (g.object) g.object[i] = sf.object;
         }
@@ -685,6 +700,7 @@ static void depth_rows(const depth_out *o, int W, const tri_edges *te, const scr
 {
     plane_basis pb;
     plane pa;
+    span_walk sw;
     float wmin = st->w[0];
     int row, col;
     if (st->w[1] < wmin) wmin = st->w[1];
@@ -692,11 +708,14 @@ static void depth_rows(const depth_out *o, int W, const tri_edges *te, const scr
     plane_basis_make(&pb, st, te);
     if (ortho) pa = plane_make(&pb, st->z[0], st->z[1], st->z[2]);
     else pa = plane_make(&pb, wmin * st->iw[0], wmin * st->iw[1], wmin * st->iw[2]);
+    span_begin(&sw, te);
     for (row = te->y0; row < te->y1; row++) {
-        int64_t e[3];
-        int xa, xb = row_start(te, row, e, &xa);
-        float a = pa.v + pa.dy * (float)(row - te->oy) + pa.dx * (float)(xa - te->x0);
-        size_t i = (size_t)row * (size_t)W + (size_t)xa;
+        int xa, xb = span_row(te, &sw, &xa);
+        float a;
+        size_t i;
+        if (xb <= xa) continue;
+        a = pa.v + pa.dy * (float)(row - te->oy) + pa.dx * (float)(xa - te->x0);
+        i = (size_t)row * (size_t)W + (size_t)xa;
         for (col = xa; col < xb; col++, i++, a += pa.dx) {
             if (ortho) {
                 depth_keep(o, i, a);
@@ -762,11 +781,9 @@ static void draw_snapped(const raster_target *rt, const clip_vertex *v, const tg
         sf.fallback_normal = flip ? tgi_v3_neg(rt->tri_nrm[0]) : rt->tri_nrm[0];
 #if TG_WIDE_STORAGE
         sf.material = (uint32_t)rt->material;
-        sf.fallback_nm = 0;
 #else
         sf.normal_bits = rt->gb->nm ? TGI_NORMAL_BITS : 8;
         sf.material = rt->gb->nm ? (uint32_t)rt->material << TGI_MATERIAL_SHIFT : 0;
-        sf.fallback_nm = tgi_oct_pack(sf.fallback_normal, sf.normal_bits);
 #endif
         gbuffer_rows(rt->gb, &te, &st, &sf);
     } else depth_rows(&rt->dout, rt->width, &te, &st, rt->clip.mode == MODE_ORTHO);
@@ -887,8 +904,11 @@ static inline view_vertex view_vertex_make(const raster_target *rt, const view_f
     o.y = y;
     o.w = w;
     o.iw = inverse_w(w);
-    o.flags = ((x >= ngw) & (x <= gw) & (y >= ngw) & (y <= gw) & (w >= vf->znear) & (w <= vf->zfar)) * V_INSIDE
-              | (x > w) * V_RIGHT | (x < nw) * V_LEFT | (y > w) * V_TOP | (y < nw) * V_BOTTOM;
+    o.flags = x >= ngw && x <= gw && y >= ngw && y <= gw && w >= vf->znear && w <= vf->zfar ? V_INSIDE : 0;
+    if (x > w) o.flags |= V_RIGHT;                /* each almost never: branches that predict well */
+    if (x < nw) o.flags |= V_LEFT;
+    if (y > w) o.flags |= V_TOP;
+    if (y < nw) o.flags |= V_BOTTOM;
     o.sx = rt->half_w16 + snap_ndc(x, w, o.iw, rt->half_w16);
     o.sy = rt->half_h16 - snap_ndc(y, w, o.iw, rt->half_h16);
     return o;
@@ -926,31 +946,44 @@ static void vertex_cache_init(vertex_cache *c, const raster_target *rt, const vi
     }
 }
 
-static inline view_vertex vertex_lookup(vertex_cache *c, const raster_target *rt, const view_frame *vf, tg_vec3 p)
+/* One triangle's vertices as the drawing code takes them. */
+typedef struct tri_vertices {
+    clip_vertex v[3];
+    int32_t sx[3], sy[3];
+    inv_w iw[3];
+    int flags;                    /* V_* of all three: V_INSIDE if all are inside, V_RIGHT.. if all are beyond */
+} tri_vertices;
+
+/* Vertex k of tv: the view_vertex of p, from the cache or made there. */
+static inline void vertex_fetch(vertex_cache *c, const raster_target *rt, const view_frame *vf, tg_vec3 p,
+                                tri_vertices *tv, int k)
 {
     uint32_t kx = real_bits(p.x), ky = real_bits(p.y), kz = real_bits(p.z);
     uint32_t h = (kx * 0x9E3779B1u + ky * 0x85EBCA77u + kz * 0xC2B2AE3Du) >> (32 - VCACHE_BITS);
+    const view_vertex *o = &c->v[h];
     if (c->key[h][0] != kx || c->key[h][1] != ky || c->key[h][2] != kz) {
         c->key[h][0] = kx; c->key[h][1] = ky; c->key[h][2] = kz;
         c->v[h] = view_vertex_make(rt, vf, p);
     }
-    return c->v[h];
+    tv->v[k].x = o->x;
+    tv->v[k].y = o->y;
+    tv->v[k].z = tv->v[k].w = o->w;
+    tv->sx[k] = o->sx;
+    tv->sy[k] = o->sy;
+    tv->iw[k] = o->iw;
+    tv->flags &= o->flags;
 }
 
 /* Triangle t: reject, cull, draw (clipped if needed). */
-static void gbuffer_triangle(raster_target *rt, const view_vertex *vv, const tgi_raster_mesh *mesh, int t)
+static void gbuffer_triangle(raster_target *rt, tri_vertices *tv, const tgi_raster_mesh *mesh, int t)
 {
     static const int order_front[3] = { 0, 2, 1 }, order_back[3] = { 0, 1, 2 };
-    int f = vv[0].flags & vv[1].flags & vv[2].flags, twosided, front = 0, k;
-    int32_t sx[3], sy[3];
-    inv_w iw[3];
+    int twosided, front = 0;
     int64_t area2 = 0;
-    clip_vertex v[3];
-    if (f & V_OFF_SIDE) return;                   /* wholly off one side of the screen */
+    if (tv->flags & V_OFF_SIDE) return;           /* wholly off one side of the screen */
     twosided = mesh->materials[mesh->tri_material[t]].twosided;
-    for (k = 0; k < 3; k++) { sx[k] = vv[k].sx; sy[k] = vv[k].sy; iw[k] = vv[k].iw; }
-    if (f & V_INSIDE) {
-        area2 = signed_area2(sx, sy);
+    if (tv->flags & V_INSIDE) {
+        area2 = signed_area2(tv->sx, tv->sy);
         front = area2 < 0;                        /* counter-clockwise as seen, y down */
         if (area2 == 0 || (!front && !twosided)) return;   /* zero area, culled */
     }
@@ -959,16 +992,11 @@ static void gbuffer_triangle(raster_target *rt, const view_vertex *vv, const tgi
     rt->flip_back = twosided;
     rt->object = mesh->tri_object ? mesh->tri_object[t] : 0;
     rt->tri_nrm = mesh->nrm + 3 * t;
-    for (k = 0; k < 3; k++) {
-        v[k].x = vv[k].x;
-        v[k].y = vv[k].y;
-        v[k].z = v[k].w = vv[k].w;
-    }
-    if (f & V_INSIDE)
-        draw_snapped(rt, v, rt->tri_nrm, sx, sy, iw, front ? order_front : order_back,
+    if (tv->flags & V_INSIDE)
+        draw_snapped(rt, tv->v, rt->tri_nrm, tv->sx, tv->sy, tv->iw, front ? order_front : order_back,
                      front ? -area2 : area2, !front && twosided);
     else
-        draw_clip_tri(rt, v, rt->tri_nrm);
+        draw_clip_tri(rt, tv->v, rt->tri_nrm);
 }
 
 void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_mesh *mesh, int y0, int y1)
@@ -991,11 +1019,12 @@ void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_
     vf.zfar = rt.clip.zfar;
     vertex_cache_init(&cache, &rt, &vf);
     for (t = 0; t < mesh->tri_count; t++) {
-        view_vertex vv[3];
-        vv[0] = vertex_lookup(&cache, &rt, &vf, mesh->pos[3 * t]);
-        vv[1] = vertex_lookup(&cache, &rt, &vf, mesh->pos[3 * t + 1]);
-        vv[2] = vertex_lookup(&cache, &rt, &vf, mesh->pos[3 * t + 2]);
-        gbuffer_triangle(&rt, vv, mesh, t);
+        tri_vertices tv;
+        tv.flags = ~0;
+        vertex_fetch(&cache, &rt, &vf, mesh->pos[3 * t], &tv, 0);
+        vertex_fetch(&cache, &rt, &vf, mesh->pos[3 * t + 1], &tv, 1);
+        vertex_fetch(&cache, &rt, &vf, mesh->pos[3 * t + 2], &tv, 2);
+        gbuffer_triangle(&rt, &tv, mesh, t);
     }
 }
 
