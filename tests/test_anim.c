@@ -366,6 +366,33 @@ TEST(moving_object_motion)
     free(ts); motion_gb_free(g);
 }
 
+/* A surface on the previous camera's eye plane has no motion vector: the
+ * camera looks along -z from z = 2 now and from z = 0 last frame (it backed
+ * away), so the points at depth 2 (the plane z = 0, exactly in both number
+ * types) were in its eye plane, those at depth 1.99995 just behind it and
+ * those at depth 2.00005 less than the 1e-4 margin in front of it: none
+ * has a motion vector; at depth 2.01 they were 0.01 in front, and have one. */
+TEST(motion_on_the_previous_eye_plane_is_invalid)
+{
+    tgi_view cur, prev;
+    int x, y, valid_on = 0, valid_near = 0, valid_front = 0;
+    tgi_view_make(&cur, tg_v3(0, 0, TG_R(2.0f)), tg_v3(0, 0, 0), tg_v3(0, TG_ONE, 0), TG_R(1.0f), TG_R(0.05f),
+                  TG_R(100.0f), 32, 24);
+    tgi_view_make(&prev, tg_v3(0, 0, 0), tg_v3(0, 0, tg_neg(TG_ONE)), tg_v3(0, TG_ONE, 0), TG_R(1.0f), TG_R(0.05f),
+                  TG_R(100.0f), 32, 24);
+    for (y = 0; y < 24; y++)
+        for (x = 0; x < 32; x++) {
+            tg_real px, py, z;
+            valid_on += tgi_motion_prev_position(&cur, &prev, NULL, x, y, TG_R(2.0f), &px, &py, &z);
+            valid_near += tgi_motion_prev_position(&cur, &prev, NULL, x, y, TG_R(1.99995f), &px, &py, &z);
+            valid_near += tgi_motion_prev_position(&cur, &prev, NULL, x, y, TG_R(2.00005f), &px, &py, &z);
+            valid_front += tgi_motion_prev_position(&cur, &prev, NULL, x, y, TG_R(2.01f), &px, &py, &z);
+        }
+    CHECK(valid_on == 0, "%d points on the previous eye plane got a motion vector", valid_on);
+    CHECK(valid_near == 0, "%d points within 1e-4 of it got a motion vector", valid_near);
+    CHECK(valid_front == 32 * 24, "only %d points 0.01 in front of it got one", valid_front);
+}
+
 int main(void)
 {
     RUN(keys_interpolate_exactly_at_keys);
@@ -373,5 +400,6 @@ int main(void)
     RUN(frame_times_and_posing);
     RUN(static_scene_moving_camera_reprojects_onto_itself);
     RUN(moving_object_motion);
+    RUN(motion_on_the_previous_eye_plane_is_invalid);
     return check_summary();
 }
