@@ -393,6 +393,28 @@ TEST(motion_on_the_previous_eye_plane_is_invalid)
     CHECK(valid_front == 32 * 24, "only %d points 0.01 in front of it got one", valid_front);
 }
 
+/* A time exactly on a middle key takes that key, not the interpolation
+ * toward it (in float 0.7 + (0.1 - 0.7) * 1 is 0.100000024, not 0.1). */
+TEST(a_time_on_a_middle_key_takes_it_exactly)
+{
+    tg_scene s;
+    tgi_camera_key keys[3];
+    tg_vec3 pos, target;
+    int k;
+    memset(&s, 0, sizeof s);
+    memset(keys, 0, sizeof keys);
+    for (k = 0; k < 3; k++) {
+        keys[k].t = tg_from_int(k);
+        keys[k].pos = tg_v3(rv(k == 0 ? 0.7 : k == 1 ? 0.1 : 0.5), rv(0.3 * k), 0);
+        keys[k].target = tg_v3(0, 0, rv(-1.0 - 0.7 * k));
+    }
+    s.camera_keys = keys;
+    s.camera_key_count = 3;
+    tgi_anim_camera(&s, TG_ONE, &pos, &target);
+    CHECK(pos.x == keys[1].pos.x && pos.y == keys[1].pos.y && target.z == keys[1].target.z,
+          "camera at key 1: (%.9g, %.9g), want (%.9g, %.9g)", dv(pos.x), dv(pos.y), dv(keys[1].pos.x), dv(keys[1].pos.y));
+}
+
 int main(void)
 {
     RUN(keys_interpolate_exactly_at_keys);
@@ -401,5 +423,6 @@ int main(void)
     RUN(static_scene_moving_camera_reprojects_onto_itself);
     RUN(moving_object_motion);
     RUN(motion_on_the_previous_eye_plane_is_invalid);
+    RUN(a_time_on_a_middle_key_takes_it_exactly);
     return check_summary();
 }
