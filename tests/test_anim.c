@@ -366,6 +366,55 @@ TEST(moving_object_motion)
     free(ts); motion_gb_free(g);
 }
 
+/* A surface on the previous camera's eye plane has no motion vector: the
+ * camera looks along -z from z = 2 now and from z = 0 last frame (it backed
+ * away), so the points at depth 2 (the plane z = 0, exactly in both number
+ * types) were in its eye plane, those at depth 1.99995 just behind it and
+ * those at depth 2.00005 less than the 1e-4 margin in front of it: none
+ * has a motion vector; at depth 2.01 they were 0.01 in front, and have one. */
+TEST(motion_on_the_previous_eye_plane_is_invalid)
+{
+    tgi_view cur, prev;
+    int x, y, valid_on = 0, valid_near = 0, valid_front = 0;
+    tgi_view_make(&cur, tg_v3(0, 0, TG_R(2.0f)), tg_v3(0, 0, 0), tg_v3(0, TG_ONE, 0), TG_R(1.0f), TG_R(0.05f),
+                  TG_R(100.0f), 32, 24);
+    tgi_view_make(&prev, tg_v3(0, 0, 0), tg_v3(0, 0, tg_neg(TG_ONE)), tg_v3(0, TG_ONE, 0), TG_R(1.0f), TG_R(0.05f),
+                  TG_R(100.0f), 32, 24);
+    for (y = 0; y < 24; y++)
+        for (x = 0; x < 32; x++) {
+            tg_real px, py, z;
+            valid_on += tgi_motion_prev_position(&cur, &prev, NULL, x, y, TG_R(2.0f), &px, &py, &z);
+            valid_near += tgi_motion_prev_position(&cur, &prev, NULL, x, y, TG_R(1.99995f), &px, &py, &z);
+            valid_near += tgi_motion_prev_position(&cur, &prev, NULL, x, y, TG_R(2.00005f), &px, &py, &z);
+            valid_front += tgi_motion_prev_position(&cur, &prev, NULL, x, y, TG_R(2.01f), &px, &py, &z);
+        }
+    CHECK(valid_on == 0, "%d points on the previous eye plane got a motion vector", valid_on);
+    CHECK(valid_near == 0, "%d points within 1e-4 of it got a motion vector", valid_near);
+    CHECK(valid_front == 32 * 24, "only %d points 0.01 in front of it got one", valid_front);
+}
+
+/* A time exactly on a middle key takes that key, not the interpolation
+ * toward it (in float 0.7 + (0.1 - 0.7) * 1 is 0.100000024, not 0.1). */
+TEST(a_time_on_a_middle_key_takes_it_exactly)
+{
+    tg_scene s;
+    tgi_camera_key keys[3];
+    tg_vec3 pos, target;
+    int k;
+    memset(&s, 0, sizeof s);
+    memset(keys, 0, sizeof keys);
+    for (k = 0; k < 3; k++) {
+        keys[k].t = tg_from_int(k);
+        keys[k].pos = tg_v3(rv(k == 0 ? 0.7 : k == 1 ? 0.1 : 0.5), rv(0.3 * k), 0);
+        keys[k].target = tg_v3(0, 0, rv(-1.0 - 0.7 * k));
+    }
+    s.camera_keys = keys;
+    s.camera_key_count = 3;
+    tgi_anim_camera(&s, TG_ONE, &pos, &target);
+    CHECK(pos.x == keys[1].pos.x && pos.y == keys[1].pos.y && target.z == keys[1].target.z,
+          "camera at key 1: (%.9g, %.9g), want (%.9g, %.9g)", dv(pos.x), dv(pos.y), dv(keys[1].pos.x), dv(keys[1].pos.y));
+}
+
 int main(void)
 {
     RUN(keys_interpolate_exactly_at_keys);
@@ -373,5 +422,7 @@ int main(void)
     RUN(frame_times_and_posing);
     RUN(static_scene_moving_camera_reprojects_onto_itself);
     RUN(moving_object_motion);
+    RUN(motion_on_the_previous_eye_plane_is_invalid);
+    RUN(a_time_on_a_middle_key_takes_it_exactly);
     return check_summary();
 }

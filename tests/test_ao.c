@@ -266,6 +266,20 @@ TEST(bentcone_cone_and_far)
     CHECK_NEAR(check_d(tgi_bentcone_aperture(TG_R(0.5f))), 3.14159265358979 / 2, 1e-4);
     CHECK_NEAR(check_d(tgi_bentcone_aperture(TG_ONE)), 0, 1e-6);
     CHECK_NEAR(check_d(tgi_bentcone_aperture(TG_R(0.75f))), 3.14159265358979 / 4, 1e-4);
+    {   /* the far field under a uniform sky L = 1 is pi AO (N . bent) for any aperture: the cone
+         * integral pi sin^2 a normalised by 1 / sin^2 a (Klehm sec. 3.4) */
+        tg_vec3 sh[9], e;
+        int j, a;
+        for (j = 0; j < 9; j++) sh[j] = tg_v3(0, 0, 0);
+        sh[0] = tg_v3(TG_R(3.544907702f), TG_R(3.544907702f), TG_R(3.544907702f));   /* 2 sqrt(pi) */
+        for (a = 30; a <= 75; a += 15) {
+            double rad = a * 3.14159265358979 / 180;
+            e = tgi_bentcone_far(sh, tg_v3(0, TG_ONE, 0), tg_from_float((float)rad), TG_R(0.5f),
+                                 tg_v3(TG_R(0.5f), TG_R(0.866025404f), 0));
+            CHECK(fabs(check_d(e.x) - 3.14159265358979 * 0.5 * 0.866025404) <= 2e-3,
+                  "aperture %d degrees: E %g, want pi 0.5 cos 30 = %g", a, check_d(e.x), 3.14159265358979 * 0.5 * 0.866025404);
+        }
+    }
     open_plane(&s);
     io_for(&io, &s, &o, 0);
     io_with_cone(&io);

@@ -234,6 +234,37 @@ TEST(closed_room_converges)
     teardown(&r);
 }
 
+/* The end of a frame keeps its geometry for the next frame's depth tests:
+ * every pixel, the last column and row included, holds this frame's depth
+ * (within the kept 16 bits: 0.4%) and normal (octahedral 2x8). */
+TEST(kept_geometry_is_every_pixel_of_the_frame)
+{
+    rendered r;
+    tg_request q = request(40, 30, AOVBIT(TG_AOV_COLOR));
+    tg_error err;
+    int x, y, bad = 0;
+    q.frames = 2;
+    CHECK(setup(&r, lit_room, &q), "room sets up");
+    if (!r.ok) { teardown(&r); return; }
+    CHECK(r.plan.effects & TG_EFFECT_REPROJECTION, "two frames: reprojection");
+    CHECK(tg_frame_render(r.frame, 0, &err) == TG_OK, "renders: %s", err.message);
+    for (y = 0; y < 30; y++)
+        for (x = 0; x < 40; x++) {
+            const tgi_gview *g = &r.frame->full;
+            size_t i = tgi_gv_index(g, x, y), j = (size_t)y * 40 + (size_t)x;
+            double z = (double)tg_to_float(tgi_gv_depth(g, i)), kz = (double)tg_to_float(tgi_prev_depth(&r.frame->prev_geometry, j));
+            tg_vec3 n = tgi_gv_normal(g, i), kn = tgi_prev_normal(&r.frame->prev_geometry, j);
+            if (tgi_gv_is_sky(g, i)) { bad += kz != 0; continue; }
+            if (fabs(kz - z) > 0.005 * z || tg_to_float(tgi_v3_dot(n, kn)) < 0.995f) {
+                if (bad < 3) printf("# pixel (%d, %d): kept depth %g normal . n %g, depth %g\n", x, y, kz,
+                                    (double)tg_to_float(tgi_v3_dot(n, kn)), z);
+                bad++;
+            }
+        }
+    CHECK(bad == 0, "%d pixels of last frame's geometry differ from the frame's", bad);
+    teardown(&r);
+}
+
 /* Albedo 1 walls and a bright lamp for many frames: everything stays
  * finite and non-negative (fixed point saturates, never wraps). */
 TEST(white_room_stays_finite)
@@ -650,6 +681,7 @@ int main(void)
     RUN(white_furnace_returns_the_albedo);
     RUN(white_furnace_far_f0);
     RUN(closed_room_converges);
+    RUN(kept_geometry_is_every_pixel_of_the_frame);
     RUN(white_room_stays_finite);
     RUN(camera_cut_is_finite);
     RUN(deterministic);

@@ -236,6 +236,16 @@ TEST(directional_incidence)
         }
     }
     CHECK(seen > W * H, "the floor covers the image (%d)", seen);
+    {   /* a second light from below the floor adds nothing (Lambert's cosine clamped at 0), it
+         * does not take light away: E = I cos 20 of the first */
+        tgi_light two[2];
+        double want = 2.0 * cos(20 * DEG);
+        two[0] = make_light(TG_LIGHT_DIRECTIONAL, v3d(0, 0, 0), v3d(sin(20 * DEG), -cos(20 * DEG), 0.0), 2.0, 0);
+        two[1] = make_light(TG_LIGHT_DIRECTIONAL, v3d(0, 0, 0), v3d(0.3, 1, 0.2), 2.0, 0);
+        direct_rows(&g->gb, &v, two, 2, NULL, e_r, e_g, e_b, 0, H);
+        for (i = 0; i < W * H; i++)
+            if (!g->sky[i]) CHECK(fabs(dv(e_r[i]) - want) <= 0.01 * want, "light from below: E %g want %g", dv(e_r[i]), want);
+    }
     gbuf_free(g);
 }
 
@@ -270,8 +280,12 @@ TEST(point_inverse_square_and_spot_edge)
             outside++;
             CHECK(e_r[i] == 0, "spot outside: E %g", dv(e_r[i]));
         } else {
+            /* the smooth edge: full * smoothstep(cos outer, cos inner, cos off-axis) */
+            double c0 = cos(angle), c1 = cos(angle * dv(TG_SPOT_INNER)), t = (cos(off_axis) - c0) / (c1 - c0);
+            t = t < 0 ? 0 : t > 1 ? 1 : t;
             between++;
-            CHECK(dv(e_r[i]) >= 0 && dv(e_r[i]) <= full * 1.01 + 3e-5, "spot edge: E %g of %g", dv(e_r[i]), full);
+            CHECK(fabs(dv(e_r[i]) - full * t * t * (3 - 2 * t)) <= 0.02 * full + 1e-4, "spot edge: E %g of %g, want %g",
+                  dv(e_r[i]), full, full * t * t * (3 - 2 * t));
         }
     }
     CHECK(inside > 20 && outside > 20 && between > 5, "coverage %d %d %d", inside, outside, between);
@@ -481,7 +495,52 @@ TEST(degenerate_inputs_stay_finite_and_saturate)
     gbuf_free(g);
 }
 
+/* A point light nearer a surface than TG_DIRECT_MIN_DISTANCE (0.01) is
+ * taken at that distance: 0.005 above the surface along its normal, E =
+ * I (0.005 / 0.01) / 0.01^2 = 5000 I (the cosine from the clamped distance
+ * too), never above I / 0.01^2; a light exactly on the point gives 0, not
+ * NaN. */
+TEST(point_light_nearer_than_the_minimum_distance)
+{
+    tgi_light l = make_light(TG_LIGHT_POINT, v3d(0, 0.005, 0), v3d(0, -1, 0), 1, 0);
+    tg_vec3 n = tg_v3(0, TG_ONE, 0), e = tgi_direct_irradiance(&l, tg_v3(0, 0, 0), n);
+    double tol = TG_FIXED ? 0.25 : 0.01;   /* 0.01^2 is 7 ulps in Q16.16 */
+    CHECK(fabs(dv(e.x) - 5000) <= tol * 5000 && dv(e.x) <= 10000 * (1 + tol), "E %g, want 5000", dv(e.x));
+    l = make_light(TG_LIGHT_POINT, v3d(0, 0, 0), v3d(0, -1, 0), 1, 0);
+    e = tgi_direct_irradiance(&l, tg_v3(0, 0, 0), n);
+    CHECK(e.x == 0 && e.y == 0 && e.z == 0, "a light on the point: E %g", dv(e.x));
+}
+
 /* ---- composition ---- */
+
+/* A sky pixel shows the environment along the ray through its centre: an
+ * SH9 environment of bands 0 and 1 (radiance linear in the direction) to
+ * 1e-4 (1e-3 in fixed point; a ray through the pixel's corner is 3e-3 off
+ * or more here). */
+TEST(sky_pixels_see_along_their_centre_ray)
+{
+    static const double L[4] = { 2.0, 0.5, 0.3, 0.8 };   /* L00, L1-1 (y), L10 (z), L11 (x) */
+    tgi_env env;
+    tgi_view v;
+    double tol = TG_FIXED ? 1e-3 : 1e-4, worst = 0;
+    int x, y, k;
+    memset(&env, 0, sizeof env);
+    env.type = TG_ENV_SH9;
+    for (k = 0; k < 4; k++) env.sh9[k] = v3d(L[k], L[k], L[k]);
+    tgi_view_make(&v, v3d(0, 1, -6), v3d(0.5, 1.3, 0), v3d(0, 1, 0), rv(60 * DEG), TG_R(0.05f), TG_R(1000.0f), W, H);
+    for (y = 0; y < H; y++)
+        for (x = 0; x < W; x++) {
+            double o[3], d[3], l, want;
+            tg_vec3 got = tgi_compose_sky(&v, &env, x, y);
+            pixel_ray(&v, x, y, o, d);
+            l = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            want = 0.282094792 * L[0] + 0.488602512 * (d[1] * L[1] + d[2] * L[2] + d[0] * L[3]) / l;
+            if (fabs(dv(got.x) - want) > worst) worst = fabs(dv(got.x) - want);
+        }
+    printf("# sky pixels: within %.2g of the environment along their centre ray\n", worst);
+    CHECK(worst <= tol, "a sky pixel %.2g off its centre ray's radiance", worst);
+}
+
 
 TEST(compose_formula_sky_and_saturation)
 {
@@ -619,8 +678,8 @@ TEST(tonemap_monotone_zero_and_saturating)
         tgi_tonemap_row8(zero, zero, zero, 2, TG_ONE, rgb);
         for (k = 0; k < 6; k++) CHECK(rgb[k] == 0, "black stays black");
         tgi_tonemap_row8(quarter, quarter + 1, quarter, 1, TG_R(2.0f), rgb);
-        CHECK(rgb[0] == tgi_tonemap8(TG_R(0.5f)) && rgb[1] == tgi_tonemap8(TG_R(0.25f)),
-              "exposure multiplies before the curve");
+        CHECK(rgb[0] == tgi_tonemap8(TG_R(0.5f)) && rgb[1] == tgi_tonemap8(TG_R(0.25f)) &&
+              rgb[2] == tgi_tonemap8(TG_R(0.5f)), "exposure multiplies each channel before the curve");
     }
 }
 
@@ -650,7 +709,9 @@ int main(void)
     RUN(no_acne_at_80_degrees);
     RUN(point_cube_faces_meet_without_seams);
     RUN(degenerate_inputs_stay_finite_and_saturate);
+    RUN(point_light_nearer_than_the_minimum_distance);
     RUN(compose_formula_sky_and_saturation);
+    RUN(sky_pixels_see_along_their_centre_ray);
     RUN(srgb_table_matches_formula);
     RUN(tonemap_monotone_zero_and_saturating);
     return check_summary();

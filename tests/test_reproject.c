@@ -40,6 +40,8 @@ static void world_of(const tgi_view *v, int i, double z, double p[3])
     p[2] = check_d(v->eye.z) + z * (check_d(v->right.z) * X + check_d(v->up.z) * Y + check_d(v->forward.z));
 }
 
+static int no_floor;   /* 1: the wall alone */
+
 /* The floor y = -1 and the wall z = -3 ray cast per pixel into g (sky: 0). */
 static void scene_cast(const tgi_view *v, tgi_gbuffer *g)
 {
@@ -48,7 +50,7 @@ static void scene_cast(const tgi_view *v, tgi_gbuffer *g)
         double d[3], t = 1e30, tt, e1 = check_d(v->eye.y), e2 = check_d(v->eye.z), p[3];
         world_of(v, i, 1.0, p);
         d[1] = p[1] - e1; d[2] = p[2] - e2;
-        if (d[1] < -1e-9) { tt = (-1 - e1) / d[1]; if (tt > 0 && tt < t) t = tt; }
+        if (d[1] < -1e-9 && !no_floor) { tt = (-1 - e1) / d[1]; if (tt > 0 && tt < t) t = tt; }
         if (d[2] < -1e-9) { tt = (-3 - e2) / d[2]; if (tt > 0 && tt < t) t = tt; }
         sf_gbuffer_set(g, (size_t)i, t > 1e29 ? 0 : tg_from_float((float)t), tg_v3(0, TG_ONE, 0), 0);
     }
@@ -65,8 +67,8 @@ static void setup(const tgi_view *v0)
     if (!g0.depth) {
         sf_gbuffer_alloc(&g0, W, H, NULL, 0);
         sf_gbuffer_alloc(&g1, W, H, NULL, 0);
-        sf_prev_alloc(&prev, N);
-        sf_rgb_alloc(&history, N);
+        sf_prev_alloc(&prev, N + W);      /* a row past the image: what a larger buffer would hold */
+        sf_rgb_alloc(&history, N + W);
         sf_rgb_alloc(&out, N);
     }
     scene_cast(v0, &g0);
@@ -319,6 +321,271 @@ TEST(temporal_accumulates_and_rejects)
     sf_results_free(&set[1]);
 }
 
+/* A camera at eye looking along -z (its right is +x, its up +y). */
+static tgi_view make_view_ahead(double ex, double ey, double ez)
+{
+    tgi_view v;
+    tg_vec3 e = tg_v3(tg_from_float((float)ex), tg_from_float((float)ey), tg_from_float((float)ez));
+    tgi_view_make(&v, e, tgi_v3_add(e, tg_v3(0, 0, tg_neg(TG_ONE))), tg_v3(0, TG_ONE, 0), TG_R(1.0f), TG_R(0.05f),
+                  TG_R(100.0f), W, H);
+    return v;
+}
+
+/* HBIL sec. 3.2's z-test: with a static camera, a surface 3% farther than
+ * last frame's takes last frame's radiance exactly, one 7% farther (past the
+ * 5% tolerance: a disocclusion) is a hole. */
+TEST(gather_depth_test_has_a_five_percent_tolerance)
+{
+    tgi_view v = make_view(0.3f, 0.5f, 2.0f);
+    tgi_gview view0;
+    int i, kept = 0, bad_near = 0, bad_far = 0;
+    setup(&v);
+    view0 = sf_view(&g0, &v);
+    for (i = 0; i < N; i++) {
+        tg_real z = tgi_gv_depth(&view0, (size_t)i);
+        if (tgi_gv_is_sky(&view0, (size_t)i)) { sf_gbuffer_set(&g1, (size_t)i, 0, tg_v3(0, TG_ONE, 0), 0); continue; }
+        sf_gbuffer_set(&g1, (size_t)i, tg_mul(z, (i % W) % 2 ? TG_R(1.07f) : TG_R(1.03f)), tg_v3(0, TG_ONE, 0), 0);
+    }
+    gather(&v, &v, &g1, &history);
+    for (i = 0; i < N; i++) {
+        tg_vec3 a = tgi_rgb_get(&out, (size_t)i), b = tgi_rgb_get(&history, (size_t)i);
+        if (tgi_gv_is_sky(&view0, (size_t)i)) continue;
+        if ((i % W) % 2) { bad_far += !tgi_rgb_is_hole(&out, (size_t)i); continue; }
+        kept++;
+        bad_near += tgi_rgb_is_hole(&out, (size_t)i) || a.x != b.x || a.y != b.y || a.z != b.z;
+    }
+    CHECK(kept > N / 4, "only %d pixels tested", kept);
+    CHECK(bad_near == 0, "%d pixels 3%% farther did not take their own history", bad_near);
+    CHECK(bad_far == 0, "%d pixels 7%% farther took a history across the disocclusion", bad_far);
+}
+
+/* A camera panned by one pixel (at the wall's depth, the wall alone) in
+ * each direction: a surface that last frame was outside the image (past the
+ * last column or row, left of the first column or above the first row) is
+ * a hole, although the buffers go on past the image with the same surface;
+ * every other pixel takes the radiance of the pixel its surface was in. */
+TEST(gather_out_of_image_history_is_a_hole)
+{
+    static const int pan[4][2] = { { 1, 0 }, { -1, 0 }, { 0, 1 }, { 0, -1 } };
+    tgi_view v0 = make_view_ahead(0, 0, 2), v1;
+    tgi_gview view0, view1;
+    double step;
+    int k, i, outside = 0, inside = 0, bad_out = 0, bad_in = 0;
+    no_floor = 1;
+    setup(&v0);
+    view0 = sf_view(&g0, &v0);
+    for (i = 0; i < N + W; i++) {
+        tgi_rgb_set(&history, (size_t)i, tg_v3(tg_from_int(i % W + 1), tg_from_int(i / W + 1), 0));
+        if (i >= N) tgi_prev_keep(&prev, (size_t)i, &view0, (size_t)(i - W));   /* the wall goes on */
+    }
+    step = 5.0 / check_d(v0.pixels_per_unit);   /* one pixel at the wall z = -3, 5 from the eye */
+    for (k = 0; k < 4; k++) {
+        v1 = make_view_ahead(pan[k][0] * step, pan[k][1] * step, 2);
+        scene_cast(&v1, &g1);
+        gather(&v0, &v1, &g1, &history);
+        view1 = sf_view(&g1, &v1);
+        for (i = 0; i < N; i++) {
+            double p[3], px, py;
+            tg_vec3 c = tgi_rgb_get(&out, (size_t)i);
+            if (tgi_gv_is_sky(&view1, (size_t)i)) continue;
+            world_of(&v1, i, check_d(tgi_gv_depth(&view1, (size_t)i)), p);
+            project(&v0, p, &px, &py);
+            if (px < -0.05 || py < -0.05 || px > W + 0.05 || py > H + 0.05) {
+                outside++;
+                bad_out += !tgi_rgb_is_hole(&out, (size_t)i);
+            } else if (fabs(px - floor(px) - 0.5) < 0.45 && fabs(py - floor(py) - 0.5) < 0.45 && px < W && py < H) {
+                inside++;
+                bad_in += tgi_rgb_is_hole(&out, (size_t)i) || check_d(c.x) != floor(px) + 1 || check_d(c.y) != floor(py) + 1;
+            }
+        }
+    }
+    no_floor = 0;
+    printf("# out-of-image history: %d pixels outside, %d inside\n", outside, inside);
+    CHECK(outside == 2 * (W + H), "%d pixels came from outside the image, not %d", outside, 2 * (W + H));
+    CHECK(inside == 4 * N - outside, "only %d pixels came from inside the image", inside);
+    CHECK(bad_out == 0, "%d pixels whose surface was outside the image took a history", bad_out);
+    CHECK(bad_in == 0, "%d pixels did not take the history of the pixel their surface was in", bad_in);
+}
+
+/* A moving object: the wall (alone, camera static) of object 0 on even rows
+ * moved one pixel right since last frame (its delta, current pose to last
+ * frame's, is one pixel left), odd rows belong to no object (0xFFFF).  On
+ * even rows pixel x takes the history of pixel x - 1 and the first column,
+ * which was outside the image, is a hole; odd rows take their own. */
+TEST(gather_follows_the_object_motion)
+{
+    tgi_view v = make_view_ahead(0, 0, 2);
+    static uint16_t object[N];
+    tgi_mat4 delta[1];
+    tgi_reproject_io io;
+    tgi_gview view;
+    int i, bad = 0, moved = 0;
+    no_floor = 1;
+    setup(&v);
+    no_floor = 0;
+    for (i = 0; i < N; i++) {
+        tgi_rgb_set(&history, (size_t)i, tg_v3(tg_from_int(i % W + 1), tg_from_int(i / W + 1), 0));
+        object[i] = (i / W) % 2 ? 0xFFFF : 0;
+    }
+    delta[0] = tgi_m4_translate(tg_v3(tg_from_float((float)(-5.0 / check_d(v.pixels_per_unit))), 0, 0));
+    view = sf_view(&g0, &v);
+    memset(&io, 0, sizeof io);
+    io.g = &view;
+    io.prev_view = &v;
+    io.prev_geometry = &prev;
+    io.prev = &history;
+    io.object = object;
+    io.object_delta = delta;
+    io.out = &out;
+    tgi_reproject_gather_rows(&io, 0, H);
+    for (i = 0; i < N; i++) {
+        int x = i % W, from = object[i] == 0 ? x - 1 : x;
+        tg_vec3 c = tgi_rgb_get(&out, (size_t)i);
+        if (from < 0) { bad += !tgi_rgb_is_hole(&out, (size_t)i); continue; }
+        moved += from != x;
+        bad += tgi_rgb_is_hole(&out, (size_t)i) || check_d(c.x) != from + 1 || check_d(c.y) != i / W + 1;
+    }
+    CHECK(moved > N / 3, "only %d pixels moved", moved);
+    CHECK(bad == 0, "%d pixels did not take the history of where their object was", bad);
+}
+
+/* Temporal accumulation (an exponential average, alpha 0.2 on the current
+ * frame): history AO 1, near field (1, 0.5, 0.25), bent normal +y under a
+ * current AO 0, near field 0 and bent normal +x give exactly AO 0.8, near
+ * field (0.8, 0.4, 0.2) and bent normal normalize(0.2, 0.8, 0).  History is
+ * accepted 3% farther and rejected 7% farther (the 5% depth tolerance), and
+ * accepted with a normal 18 degrees off, rejected 32 degrees off (cos 0.9). */
+TEST(temporal_blends_with_exact_weights)
+{
+    tgi_view v = make_view(0.3f, 0.5f, 2.0f);
+    tgi_gview g, pv;
+    tgi_gresult cur, last;
+    tgi_temporal_params tp;
+    tgi_gbuffer pg;
+    const double bl = sqrt(0.2 * 0.2 + 0.8 * 0.8);
+    int i, k, tested = 0, bad_blend = 0, bad_keep = 0;
+    setup(&v);
+    g = sf_view(&g0, &v);
+    sf_results_alloc(&cur, N, 1, 0, 1);
+    sf_results_alloc(&last, N, 1, 0, 1);
+    sf_gbuffer_alloc(&pg, W, H, NULL, 0);
+    tgi_temporal_defaults(&tp);
+    /* last frame's geometry: pixel kind k = i % 5: 0 same, 1 3% farther,
+     * 2 7% farther, 3 normal 18 degrees off, 4 normal 32 degrees off */
+    for (i = 0; i < N; i++) {
+        tg_real z = tgi_gv_depth(&g, (size_t)i);
+        static const float scale[5] = { 1.0f, 1.03f, 1.07f, 1.0f, 1.0f };
+        static const float tilt[5] = { 0, 0, 0, 0.3249f, 0.6249f };   /* tan 18, tan 32 degrees */
+        k = i % 5;
+        sf_gbuffer_set(&pg, (size_t)i, tgi_gv_is_sky(&g, (size_t)i) ? 0 : tg_mul(z, tg_from_float(scale[k])),
+                       tg_v3(tg_from_float(tilt[k]), TG_ONE, 0), 0);
+    }
+    pv = sf_view(&pg, &v);
+    for (i = 0; i < N; i++) tgi_prev_keep(&prev, (size_t)i, &pv, (size_t)i);
+    for (i = 0; i < N; i++) {
+        tgi_gr_set_ao(&last, (size_t)i, TG_ONE);
+        tgi_gr_set_bent(&last, (size_t)i, tg_v3(0, TG_ONE, 0));
+        tgi_gr_set_near(&last, (size_t)i, tg_v3(TG_ONE, TG_R(0.5f), TG_R(0.25f)));
+        tgi_gr_set_ao(&cur, (size_t)i, 0);
+        tgi_gr_set_bent(&cur, (size_t)i, tg_v3(TG_ONE, 0, 0));
+        tgi_gr_set_near(&cur, (size_t)i, tg_v3(0, 0, 0));
+    }
+    tgi_temporal_rows(&tp, &g, &cur, &last, &prev, &v, 0, 0, H);
+    for (i = 0; i < N; i++) {
+        double a = check_d(tgi_gr_ao(&cur, (size_t)i)), tol = sf_rgb_rounding(1.0) + 1e-3;
+        tg_vec3 e = tgi_gr_near(&cur, (size_t)i), b = tgi_gr_bent(&cur, (size_t)i);
+        if (tgi_gv_is_sky(&g, (size_t)i)) continue;
+        k = i % 5;
+        tested++;
+        if (k == 0 || k == 1 || k == 3)
+            bad_blend += fabs(a - 0.8) > 1.0 / 255 + 1e-4 || fabs(check_d(e.x) - 0.8) > tol ||
+                         fabs(check_d(e.y) - 0.4) > tol || fabs(check_d(e.z) - 0.2) > tol ||
+                         fabs(check_d(b.x) - 0.2 / bl) > 0.02 || fabs(check_d(b.y) - 0.8 / bl) > 0.02;
+        else
+            bad_keep += a != 0 || e.x != 0 || e.y != 0 || e.z != 0 || fabs(check_d(b.x) - 1) > 0.02;
+    }
+    CHECK(tested > N / 2, "only %d pixels tested", tested);
+    CHECK(bad_blend == 0, "%d pixels not blended 0.8 history + 0.2 current", bad_blend);
+    CHECK(bad_keep == 0, "%d pixels took a history 7%% farther or 32 degrees off", bad_keep);
+    sf_gbuffer_free(&pg);
+    sf_results_free(&cur);
+    sf_results_free(&last);
+}
+
+/* Temporal history on a 4x4 sub-image (the pixel (x, y) of sub-image (0, 0)
+ * stands for full-res (4x, 4y)): a camera panned one pixel right, so the
+ * surface of the last column (x = W - 1, in this sub-image as W = 37) was
+ * at x = W last frame, outside the image: its value is kept, while the
+ * columns inside take their history. */
+TEST(temporal_out_of_image_history_on_a_sub_image)
+{
+    tgi_view v0 = make_view_ahead(0, 0, 2), v1;
+    tgi_gview full, sub, pv;
+    tgi_gresult cur, last;
+    tgi_temporal_params tp;
+    int x, y, edge = 0, inner = 0, bad_edge = 0;
+    setup(&v0);
+    v1 = make_view_ahead(5.0 / check_d(v0.pixels_per_unit), 0, 2);
+    scene_cast(&v1, &g1);
+    pv = sf_view(&g0, &v0);
+    for (x = 0; x < N; x++) tgi_prev_keep(&prev, (size_t)x, &pv, (size_t)x);
+    full = sf_view(&g1, &v1);
+    tgi_gview_strided_sub(&sub, &full, 0, 0);
+    sf_results_alloc(&cur, N, 0, 0, 0);
+    sf_results_alloc(&last, N, 0, 0, 0);
+    for (x = 0; x < N; x++) { tgi_gr_set_ao(&cur, (size_t)x, 0); tgi_gr_set_ao(&last, (size_t)x, TG_ONE); }
+    tgi_temporal_defaults(&tp);
+    tgi_temporal_rows(&tp, &sub, &cur, &last, &prev, &v0, 0, 0, sub.height);
+    for (y = 0; y < sub.height; y++)
+        for (x = 0; x < sub.width; x++) {
+            size_t i = tgi_gv_index(&sub, x, y);
+            if (tgi_gv_is_sky(&sub, i)) continue;
+            if (4 * x == W - 1) { edge++; bad_edge += tgi_gr_ao(&cur, i) != 0; }
+            else inner += tgi_gr_ao(&cur, i) != 0;
+        }
+    CHECK(W % 4 == 1 && edge > 0, "the sub-image holds the last column (%d pixels)", edge);
+    CHECK(inner > sub.width * sub.height / 2, "only %d pixels took their history", inner);
+    CHECK(bad_edge == 0, "%d pixels of the last column took a history from outside the image", bad_edge);
+    sf_results_free(&cur);
+    sf_results_free(&last);
+}
+
+/* Push/pull on a ramp: columns x even hold x, odd ones are holes (a 16x8
+ * image, so every 2x2 block of level 1 holds one column: level 1's texel X
+ * is 2X with weight 1).  A hole at x = 2X + 1 takes the bilinear sample of
+ * level 1 at its centre, a quarter texel right of texel X: 0.75 * 2X +
+ * 0.25 * (2X + 2) = x - 0.5; the last column (clamped at the border) x - 1.
+ * The same down the rows for a ramp in y. */
+TEST(pushpull_ramp_takes_the_bilinear_sample)
+{
+    enum { PW = 16, PH = 8 };
+    tgi_rgb c;
+    void *s = malloc(tgi_pushpull_bytes(PW, PH) + tgi_pushpull_bytes(PH, PW));
+    int axis, i, bad = 0;
+    sf_rgb_alloc(&c, PW * PH);
+    for (axis = 0; axis < 2; axis++) {
+        int w = axis ? PH : PW, h = axis ? PW : PH;
+        for (i = 0; i < w * h; i++) {
+            int t = axis ? i / w : i % w;
+            if (t % 2) tgi_rgb_set_hole(&c, (size_t)i);
+            else tgi_rgb_set(&c, (size_t)i, tg_v3(tg_from_int(t), TG_ONE, 0));
+        }
+        tgi_pushpull_fill(w, h, &c, s);
+        for (i = 0; i < w * h; i++) {
+            int t = axis ? i / w : i % w, last = axis ? h - 1 : w - 1;
+            double want = t % 2 == 0 ? t : t == last ? t - 1 : t - 0.5;
+            double got = check_d(tgi_rgb_get(&c, (size_t)i).x);
+            if (fabs(got - want) > 2 * sf_rgb_rounding(16.0) + 1e-3) {
+                if (bad < 5) printf("# ramp along %s: pixel %d: %g, want %g\n", axis ? "y" : "x", i, got, want);
+                bad++;
+            }
+        }
+    }
+    CHECK(bad == 0, "%d pixels not at the bilinear sample of level 1", bad);
+    sf_rgb_free(&c);
+    free(s);
+}
+
 int main(void)
 {
     RUN(static_view_is_identity);
@@ -328,5 +595,11 @@ int main(void)
     RUN(pushpull_fills_within_range);
     RUN(filter_preserves_range_and_constants);
     RUN(temporal_accumulates_and_rejects);
+    RUN(gather_depth_test_has_a_five_percent_tolerance);
+    RUN(gather_out_of_image_history_is_a_hole);
+    RUN(gather_follows_the_object_motion);
+    RUN(temporal_blends_with_exact_weights);
+    RUN(temporal_out_of_image_history_on_a_sub_image);
+    RUN(pushpull_ramp_takes_the_bilinear_sample);
     return check_summary();
 }

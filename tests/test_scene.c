@@ -619,7 +619,26 @@ TEST(limits)
         at += (size_t)snprintf(big + at, cap - at, "material m%d albedo 1 1 1\n", i);
     CHECK(parse(big, &s, &err) == TG_ERR_INPUT && err.line == 1026 && strstr(err.message, "material count must be 0..1024, got 1025"),
           "1025 materials: %d %s", err.line, err.message);
+    /* each limit itself is allowed: the largest slices, samples and bounces,
+     * the fewest sphere segments, radius 0 */
+    snprintf(big, cap, CAM MAT "sphere center 0 0 0 radius 1 material m segments %d\n"
+             "gi radius 0 slices %d samples %d bounces %d\n", TG_MIN_SPHERE_SEGMENTS, TG_MAX_SLICES, TG_MAX_SAMPLES,
+             TG_MAX_BOUNCES);
+    CHECK(parse(big, &s, &err) == TG_OK, "the limits themselves: %s", err.message);
+    /* an integer token past 1e9 is out of range as a number (a 32-bit long would wrap it) */
+    CHECK(parse(CAM "gi slices 4294967297\n", &s, &err) == TG_ERR_INPUT && strstr(err.message, "number out of range"),
+          "slices 2^32 + 1: %s", err.message);
     free(big);
+}
+
+/* A sky without `up` has up = +y (src/scene/format.md). */
+TEST(sky_up_defaults_to_y)
+{
+    tg_scene *s;
+    tg_error err;
+    CHECK(parse(CAM "env sky 1 1 1 ground 0 0 0\n", &s, &err) == TG_OK, "parse: %s", err.message);
+    CHECK(s->env.type == TG_ENV_SKY && veq(s->env.up, 0, 1, 0), "default up (%g %g %g)", D(s->env.up.x), D(s->env.up.y),
+          D(s->env.up.z));
 }
 
 /* ---- the arena ---- */
@@ -1061,6 +1080,7 @@ int main(void)
     RUN(number_notes);
     RUN(bad_input_table);
     RUN(limits);
+    RUN(sky_up_defaults_to_y);
     RUN(arena_protocol);
     RUN(obj_from_memory);
     RUN(obj_transform);

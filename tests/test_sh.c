@@ -427,6 +427,84 @@ TEST(f0_alternative_and_far_rows_inputs)
     free_gb(g);
 }
 
+/* Each basis function alone (over L00 = 1, keeping the radiance positive):
+ * the radiance is Y00 + 0.5 Y_j(d) and the irradiance pi Y00 + 0.5 A_l Y_j(n)
+ * with A_0 = pi, A_1 = 2 pi / 3, A_2 = pi / 4 (Ramamoorthi-Hanrahan eq. 8
+ * and 12), against the basis in double to 1e-5 (1e-4 in fixed point; a
+ * basis constant wrong in its third digit is 5e-4 off or more). */
+TEST(sh9_basis_functions_exact)
+{
+    static const double A[9] = { PI, 2 * PI / 3, 2 * PI / 3, 2 * PI / 3, PI / 4, PI / 4, PI / 4, PI / 4, PI / 4 };
+    double tol = TG_FIXED ? 1e-4 : 1e-5, worst_l = 0, worst_e = 0;
+    int i, j, count = 400;
+    for (j = 0; j < 9; j++) {
+        tg_vec3 sh[9];
+        int k;
+        for (k = 0; k < 9; k++) sh[k] = tg_v3(0, 0, 0);
+        sh[0] = tg_v3(TG_ONE, TG_ONE, TG_ONE);
+        sh[j] = tgi_v3_add(sh[j], tg_v3(TG_R(0.5f), TG_R(0.5f), TG_R(0.5f)));
+        for (i = 0; i < count; i++) {   /* a Fibonacci sphere */
+            double z = 1 - (2 * i + 1.0) / count, r = sqrt(1 - z * z), ph = i * 2.399963229728653;
+            double d[3] = { r * cos(ph), r * sin(ph), z }, y[9], want_l, want_e;
+            tg_vec3 dd = v3d(d[0], d[1], d[2]), L, E;
+            basis(d, y);
+            want_l = y[0] * (j == 0 ? 1.5 : 1.0) + (j ? 0.5 * y[j] : 0);
+            want_e = PI * y[0] * (j == 0 ? 1.5 : 1.0) + (j ? 0.5 * A[j] * y[j] : 0);
+            L = tgi_sh9_radiance(sh, dd);
+            E = tgi_sh9_irradiance(sh, dd);
+            if (fabs(dv(L.x) - want_l) > worst_l) worst_l = fabs(dv(L.x) - want_l);
+            if (fabs(dv(E.z) - want_e) > worst_e) worst_e = fabs(dv(E.z) - want_e);
+            CHECK(fabs(dv(L.x) - want_l) <= tol, "Y%d at (%.3f %.3f %.3f): radiance %.6f, want %.6f", j, d[0], d[1],
+                  d[2], dv(L.x), want_l);
+            CHECK(fabs(dv(E.z) - want_e) <= 2 * tol, "Y%d at (%.3f %.3f %.3f): irradiance %.6f, want %.6f", j, d[0],
+                  d[1], d[2], dv(E.z), want_e);
+        }
+    }
+    printf("# SH9 basis: radiance within %.2g, irradiance within %.2g of the basis in double\n", worst_l, worst_e);
+}
+
+/* The F0 alternative (HBIL sec. 2.2.3) scales by AO clamped to [0, 1]. */
+TEST(f0_alternative_clamps_ao)
+{
+    tg_vec3 sh[9], n = v3d(0.3, 0.8, -0.52), open, a, b;
+    test_env(sh);
+    open = tgi_sh9_irradiance(sh, n);
+    a = tgi_sh9_irradiance_f0(sh, n, TG_R(1.5f));
+    b = tgi_sh9_irradiance_f0(sh, n, TG_R(-0.5f));
+    CHECK(a.x == open.x && a.y == open.y && a.z == open.z, "AO 1.5 gives the open irradiance");
+    CHECK(b.x == 0 && b.y == 0 && b.z == 0, "AO -0.5 gives 0");
+}
+
+/* A sky whose up is tilted off every axis: the SH9 irradiance is RTR eq.
+ * 10.43 exactly, E = pi ((1 + cos) / 2 sky + (1 - cos) / 2 ground) with cos
+ * the angle to up (the step's band 2 is 0 and its bands 3+ do not survive
+ * the cosine lobe), to 1e-3 (2e-3 in fixed point); a direction on the
+ * horizon (exactly perpendicular to up) sees the sky. */
+TEST(tilted_sky_is_rtr_10_43_exactly)
+{
+    double s = 1.2, gr = 0.3, up[3] = { 0.36, 0.48, 0.8 }, tol = TG_FIXED ? 2e-3 : 1e-3;   /* unit */
+    tgi_env env;
+    tg_vec3 sh[9];
+    int k;
+    memset(&env, 0, sizeof env);
+    env.type = TG_ENV_SKY; env.sky = v3d(s, s, s); env.ground = v3d(gr, gr, gr); env.up = v3d(up[0], up[1], up[2]);
+    tgi_sh9_from_env(&env, sh);
+    for (k = 0; k < NORMAL_COUNT + 2; k++) {
+        double n[3], ct, want;
+        tg_vec3 E;
+        if (k < NORMAL_COUNT) { n[0] = normals[k][0]; n[1] = normals[k][1]; n[2] = normals[k][2]; unit(n); }
+        else { int sgn = k == NORMAL_COUNT ? 1 : -1; n[0] = sgn * up[0]; n[1] = sgn * up[1]; n[2] = sgn * up[2]; }
+        ct = n[0] * up[0] + n[1] * up[1] + n[2] * up[2];
+        want = PI * ((1 + ct) / 2 * s + (1 - ct) / 2 * gr);
+        E = tgi_sh9_irradiance(sh, v3d(n[0], n[1], n[2]));
+        CHECK(fabs(dv(E.x) - want) <= tol * want, "normal %d (cos %.3f to up): E %g want %g", k, ct, dv(E.x), want);
+    }
+    /* (1, 0.8, -0.6) . (0, 0.6, 0.8) = 0: the same two products, exactly cancelling */
+    env.up = tg_v3(0, TG_R(0.6f), TG_R(0.8f));
+    CHECK(dv(tgi_env_radiance(&env, tg_v3(TG_ONE, TG_R(0.8f), TG_R(-0.6f))).x) == dv(env.sky.x), "the horizon is sky");
+    CHECK(dv(tgi_env_radiance(&env, tg_v3(TG_ONE, TG_R(0.8f), TG_R(-0.61f))).x) == dv(env.ground.x), "just below it ground");
+}
+
 int main(void)
 {
     RUN(white_furnace);
@@ -437,5 +515,8 @@ int main(void)
     RUN(cone_aperture_of_a_cosine_weighted_ao);
     RUN(uniform_sky_gives_albedo_times_ao_in_both_modes);
     RUN(f0_alternative_and_far_rows_inputs);
+    RUN(sh9_basis_functions_exact);
+    RUN(f0_alternative_clamps_ao);
+    RUN(tilted_sky_is_rtr_10_43_exactly);
     return check_summary();
 }

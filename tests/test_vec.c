@@ -309,6 +309,41 @@ TEST(quaternions)
     }
 }
 
+/* Slerp interpolates the angle: a 16-degree turn about y at t = 0.25 is
+ * the 4-degree turn, q = (0, sin 2, 0, cos 2) degrees, to 1e-6 in float
+ * (normalised lerp there is 4e-5 off; 1e-4 in fixed point). */
+TEST(slerp_is_angle_linear_below_the_nlerp_switch)
+{
+    tg_vec3 yax = tg_v3(0, TG_ONE, 0);
+    double tol = TG_FIXED ? 1e-4 : 1e-6, a;
+    int k;
+    for (k = 1; k < 4; k++) {
+        tgi_quat m = tgi_q_slerp(tgi_q_axis_angle(yax, 0), tgi_q_axis_angle(yax, TG_R((float)(16.0 * PI_D / 180.0))),
+                                 tg_from_float(0.25f * (float)k));
+        a = 4.0 * k * PI_D / 180.0;
+        CHECK(fabs(dv(m.y) - sin(a / 2)) <= tol && fabs(dv(m.w) - cos(a / 2)) <= tol,
+              "t = %.2f: (%.7f, %.7f), want (%.7f, %.7f)", 0.25 * k, dv(m.y), dv(m.w), sin(a / 2), cos(a / 2));
+    }
+}
+
+/* Float lengths of tiny vectors keep their precision (no subnormal sum of
+ * squares): |(3, 4, 0) 1e-22| = 5e-22 to 1e-6. */
+TEST(length_of_tiny_and_thin)
+{
+#if !TG_FIXED
+    tg_real l = tgi_v3_length(tg_v3(3e-22f, 4e-22f, 0));
+    CHECK(fabs(dv(l) / 5e-22 - 1) <= 1e-6, "length %g", dv(l));
+#endif
+    {   /* a triangle whose edges are 0.1 degree apart has a face normal; 0.0005 degree is degenerate */
+        tg_vec3 n = tg_v3(0, 0, 0);
+        double a = 0.1 * PI_D / 180.0, b = 0.0005 * PI_D / 180.0;
+        CHECK(tgi_face_normal(tg_v3(0, 0, 0), tg_v3(TG_ONE, 0, 0), tg_v3(tg_from_float((float)cos(a)),
+                              tg_from_float((float)sin(a)), 0), &n) == 1 && n.z == TG_ONE, "thin triangle: n.z %g", dv(n.z));
+        CHECK(tgi_face_normal(tg_v3(0, 0, 0), tg_v3(TG_ONE, 0, 0), tg_v3(tg_from_float((float)cos(b)),
+                              tg_from_float((float)sin(b)), 0), &n) == 0, "0.0005 degrees is degenerate");
+    }
+}
+
 int main(void)
 {
     RUN(length_exact);
@@ -317,5 +352,7 @@ int main(void)
     RUN(rotation_orthonormal);
     RUN(matrix_basics);
     RUN(quaternions);
+    RUN(slerp_is_angle_linear_below_the_nlerp_switch);
+    RUN(length_of_tiny_and_thin);
     return check_summary();
 }
