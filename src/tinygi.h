@@ -200,8 +200,16 @@ static inline int tg_isfinite(tg_real a) { return a == a && a <= TG_REAL_MAX && 
 
 /* rsqrt and sqrt are inline in the float build: every normalisation in the
  * hot loops calls them (error bounds in real.c's table). */
-static inline float tgi_f_from_bits(uint32_t b) { float f; memcpy(&f, &b, sizeof f); return f; }
-static inline uint32_t tgi_f_bits(float f) { uint32_t b; memcpy(&b, &f, sizeof b); return b; }
+/* The bits of a float and back.  -ffreestanding (the core's build) turns
+ * off the compiler's own memcpy, so a 4-byte type pun would be a library
+ * call per use; gcc and clang take __builtin_memcpy as one move. */
+#if defined(__GNUC__)
+#define TGI_PUN_COPY __builtin_memcpy
+#else
+#define TGI_PUN_COPY memcpy
+#endif
+static inline float tgi_f_from_bits(uint32_t b) { float f; TGI_PUN_COPY(&f, &b, sizeof f); return f; }
+static inline uint32_t tgi_f_bits(float f) { uint32_t b; TGI_PUN_COPY(&b, &f, sizeof b); return b; }
 
 /* Bit-trick seed (within 3.5%) and three Newton steps (quadratic); x <= 0 gives TG_REAL_MAX. */
 static inline tg_real tg_rsqrt(tg_real x)

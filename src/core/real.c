@@ -201,8 +201,8 @@ tg_real tg_rsqrt(tg_real x)
 
 #else
 
-static float f_from_bits(uint32_t b) { float f; memcpy(&f, &b, sizeof f); return f; }
-static uint32_t f_bits(float f) { uint32_t b; memcpy(&b, &f, sizeof b); return b; }
+static float f_from_bits(uint32_t b) { return tgi_f_from_bits(b); }
+static uint32_t f_bits(float f) { return tgi_f_bits(f); }
 
 /* tg_rsqrt and tg_sqrt are static inline in real.h for the float build. */
 
