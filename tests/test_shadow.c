@@ -539,8 +539,53 @@ TEST(map_bytes_are_checked)
     }
 }
 
+/* Equal depths in the depth test: the first triangle drawn keeps the pixel,
+ * in the G-buffer raster of both number types ("nearer", not "nearer or
+ * equal"), so float and Q16.16 agree where coplanar surfaces meet. */
+/* Two quads on the same plane with the same vertices (so every depth is
+ * bit for bit the same), red drawn first, blue second, seen from one side
+ * and from a grazing angle: every covered pixel is red. */
+static void ties_from(const double eye[3], const char *what)
+{
+    static const tgi_material mats[2] = {
+        { "red", { TG_ONE, 0, 0 }, 0, { 0, 0, 0 }, 1 },
+        { "blue", { 0, 0, TG_ONE }, 0, { 0, 0, 0 }, 1 },
+    };
+    static const double target[3] = { 0, 0, 0 };
+    double q[4][3] = { { -1, 0, -1 }, { 1, 0, -1 }, { 1, 0, 1 }, { -1, 0, 1 } };
+    geo *g = geo_new();
+    image im;
+    tgi_gview v;
+    int i, covered = 0, blue = 0;
+    g->material = 0;
+    quad(g, q);
+    g->material = 1;
+    quad(g, q);
+    image_render(&im, g, mats, eye, target, 60, 48, 36);
+    v = sf_view(&im.gb, &im.view);
+    for (i = 0; i < im.w * im.h; i++) {
+        tg_vec3 a;
+        if (im.sky[i]) continue;
+        covered++;
+        a = tgi_gv_albedo(&v, (size_t)i);
+        if (a.z > 0 || a.x < TG_ONE) blue++;
+    }
+    CHECK(covered > 100, "%s: the plane covers %d pixels", what, covered);
+    CHECK(blue == 0, "%s: %d of %d pixels took the second of two equal depths", what, blue, covered);
+    image_free(&im);
+    free(g);
+}
+
+TEST(coplanar_ties_keep_the_first_drawn)
+{
+    static const double above[3] = { 0.3, 2.5, -1.7 }, grazing[3] = { 0.2, 0.25, -1.4 };
+    ties_from(above, "from above");
+    ties_from(grazing, "grazing");
+}
+
 int main(void)
 {
+    RUN(coplanar_ties_keep_the_first_drawn);
     RUN(map_bytes_are_checked);
     RUN(ceiling_over_a_point_light_is_lit_at_every_size);
     RUN(wall_at_85_degrees_is_lit_at_every_size);

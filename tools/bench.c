@@ -655,7 +655,7 @@ static void color_errors(const float *a, const uint8_t *sky_a, const float *b, c
     for (i = 0; i < n; i++) {
         if (sky_a[i] || sky_b[i]) continue;
         for (c = 0; c < 3; c++) {
-            double d = clamp01(a[3 * i + c]) - clamp01(b[3 * i + c]);
+            double d = clamp01((double)a[3 * i + c]) - clamp01((double)b[3 * i + c]);
             se += d * d;
             ea += (double)a[3 * i + c];
             eb += (double)b[3 * i + c];

@@ -677,6 +677,7 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
 #if TG_WIDE_STORAGE
             d = g.depth[i];
             if (d > 0.0f && wmin >= qv * d) continue;
+            if (d > 0.0f && wmin / qv >= d) continue;   /* an equal depth: the first drawn keeps it */
             g.depth[i] = wmin / qv;
             if (len2 > 1e-30f) {
                 float r = tgi_rsqrt_fast(len2);
@@ -688,7 +689,12 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
 #else
             d = tgi_depth_unpack(g.depth[i]);   /* a reinterpretation: 0 is sky */
             if (d > 0.0f && wmin >= qv * d) continue;
-            g.depth[i] = tgi_depth_pack(wmin / qv);
+            {   /* qv * d rounds: an equal depth can pass the test above, and the
+                 * first surface drawn keeps it, as in Q16.16 */
+                uint32_t zb = tgi_depth_pack(wmin / qv);
+                if (g.depth[i] != 0 && zb >= g.depth[i]) continue;
+                g.depth[i] = zb;
+            }
             put_nm(&g, i, tgi_oct_pack(len2 > 1e-30f ? tg_v3(mx, my, mz) : sf.fallback_normal, sf.normal_bits) | sf.material);
 #endif
             if (g.object) g.object[i] = sf.object;
