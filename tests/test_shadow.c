@@ -539,6 +539,42 @@ TEST(map_bytes_are_checked)
     }
 }
 
+/* A plate at the very top of the scene's bounds, under a light straight
+ * overhead: the map's near side lies outside the bounds (by its margin), so
+ * the plate is in the map and shadows the floor under it; the open floor is
+ * lit.  Both filters, two map sizes. */
+TEST(occluder_at_the_bounds_near_side_casts_its_shadow)
+{
+    geo *g = geo_new();
+    tgi_light dl = make_light(TG_LIGHT_DIRECTIONAL, v3(0, 0, 0), v3(0, -1, 0), 1, 0);
+    static const int map_sides[2] = { 64, 512 };
+    int k, filter;
+    memset(g, 0, sizeof *g);
+    rect(g, 1, 0, -3, 3, -3, 3);
+    rect(g, 1, 1, -0.8, 0.8, -0.8, 0.8);
+    for (k = 0; k < 2; k++)
+        for (filter = 0; filter < 2; filter++) {
+            tgi_shadow_map sm;
+            void *mem = malloc(tgi_shadow_map_bytes(&dl, map_sides[k]));
+            double x, z;
+            int dark = 0, lit = 0, under = 0, open = 0;
+            if (!mem) { fprintf(stderr, "out of memory\n"); exit(2); }
+            tgi_shadow_map_setup(&sm, &dl, map_sides[k], v3(g->lo[0], g->lo[1], g->lo[2]), v3(g->hi[0], g->hi[1], g->hi[2]), mem);
+            sm.filter = filter;
+            tgi_shadow_map_render(&sm, g->pos, g->n);
+            for (x = -2.5; x <= 2.5; x += 0.25)
+                for (z = -2.5; z <= 2.5; z += 0.25) {
+                    double v = dv(tgi_shadow_visibility(&sm, v3(x, 0, z), v3(0, 1, 0)));
+                    if (fabs(x) < 0.5 && fabs(z) < 0.5) { under++; dark += v < 0.01; }
+                    if (fabs(x) > 1.2 || fabs(z) > 1.2) { open++; lit += v > 0.99; }
+                }
+            CHECK(dark == under, "size %d filter %d: %d of %d floor points under the plate in shadow", map_sides[k], filter, dark, under);
+            CHECK(lit == open, "size %d filter %d: %d of %d open floor points lit", map_sides[k], filter, lit, open);
+            free(mem);
+        }
+    free(g);
+}
+
 /* Equal depths in the depth test: the first triangle drawn keeps the pixel,
  * in the G-buffer raster of both number types ("nearer", not "nearer or
  * equal"), so float and Q16.16 agree where coplanar surfaces meet. */
@@ -585,6 +621,7 @@ TEST(coplanar_ties_keep_the_first_drawn)
 
 int main(void)
 {
+    RUN(occluder_at_the_bounds_near_side_casts_its_shadow);
     RUN(coplanar_ties_keep_the_first_drawn);
     RUN(map_bytes_are_checked);
     RUN(ceiling_over_a_point_light_is_lit_at_every_size);
