@@ -48,7 +48,7 @@ CROSS_M4F_RUNS  ?= $(CROSS_RUN)
 CROSS_RV32_RUNS ?= $(CROSS_RUN)
 CROSS_M0MPS2_RUNS ?= $(CROSS_RUN)
 # 16 KB of RAM: a full-colour 64x48 frame cannot fit
-CROSS_M0_RUNS   ?= size=12x9,frames=2,shadow=8,aovs=color,cornell size=24x18,frames=1,shadow=8,aovs=ao+depth+normal,cornell
+CROSS_M0_RUNS   ?= size=24x18,frames=1,shadow=8,aovs=ao+depth+normal,cornell
 CROSS_M3_ARENA   ?= 2359296
 CROSS_M4F_ARENA  ?= 2097152
 CROSS_RV32_ARENA ?= 2097152
