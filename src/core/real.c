@@ -201,8 +201,6 @@ tg_real tg_rsqrt(tg_real x)
 
 #else
 
-static float f_from_bits(uint32_t b) { return tgi_f_from_bits(b); }
-static uint32_t f_bits(float f) { return tgi_f_bits(f); }
 
 /* tg_rsqrt and tg_sqrt are static inline in real.h for the float build. */
 
@@ -454,7 +452,7 @@ static wreal w_mul_real(wreal l, tg_real y)
 
 #else
 
-static float pow2i(int n) { return f_from_bits((uint32_t)(n + 127) << 23); } /* n in [-126, 127] */
+static float pow2i(int n) { return tgi_f_from_bits((uint32_t)(n + 127) << 23); } /* n in [-126, 127] */
 
 static tg_real exp2_wide(wreal v)
 {
@@ -477,9 +475,9 @@ static wreal log2_wide(tg_real x)
     float m;
     if (x > TG_REAL_MAX) return 128.0f;
     if (x < 1.17549435e-38f) { x *= 18446744073709551616.0f; bias = 64; }
-    b = f_bits(x);
+    b = tgi_f_bits(x);
     e = (int32_t)((b >> 23) & 255u) - 127;
-    m = f_from_bits((b & 0x7fffffu) | 0x3f800000u);
+    m = tgi_f_from_bits((b & 0x7fffffu) | 0x3f800000u);
     if (m > 1.41421356f) { m *= 0.5f; e++; }
     return (float)(e - bias) + log2_mantissa(m);
 }
@@ -688,7 +686,7 @@ static tg_real dec_to_real(const decimal *dec, int *overflow)
         bits = m;
     }
     if (bits >= 0x7f800000u) { *overflow = 1; return TG_REAL_MAX; }
-    return f_from_bits(bits);
+    return tgi_f_from_bits(bits);
 }
 
 #endif

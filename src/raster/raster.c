@@ -677,8 +677,11 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
 #if TG_WIDE_STORAGE
             d = g.depth[i];
             if (d > 0.0f && wmin >= qv * d) continue;
-            if (d > 0.0f && wmin / qv >= d) continue;   /* an equal depth: the first drawn keeps it */
-            g.depth[i] = wmin / qv;
+            {
+                float z = wmin / qv;
+                if (d > 0.0f && z >= d) continue;   /* an equal depth: the first drawn keeps it */
+                g.depth[i] = z;
+            }
             if (len2 > 1e-30f) {
                 float r = tgi_rsqrt_fast(len2);
                 g.nx[i] = mx * r; g.ny[i] = my * r; g.nz[i] = mz * r;
