@@ -252,32 +252,26 @@ static int lit_and_seen(const tgi_light *l, const tgi_view *v, const tg_vec3 *t)
     return (to_eye > 0 && to_light > 0) || (to_eye < 0 && to_light < 0);
 }
 
-/* The triangles' areas per face: cut to the frustum (and each face's
+/* The triangles' areas on one face: cut to the frustum (and the face's
  * pyramid, both grown by the margin), projected on the image and the light
  * plane, for the triangles facing the camera and the light.  Every
  * triangle that leaves a piece, whichever way it faces (a shading normal
- * may face the light when the triangle does not), marks the face in
- * hit[].  Returns 1 when every triangle was visited (hit[] is then exact). */
-static int triangle_areas(region *rg, int *hit, const light_face *lf, int faces, const tgi_light *l,
+ * may face the light when the triangle does not), sets *hit.  Returns 1
+ * when every triangle was visited (*hit is then exact). */
+static int triangle_areas(region *rg, int *hit, const light_face *lf, const tgi_light *l,
                           const tgi_view *v, const hexa *cam, const tg_vec3 *pos, int tri_count)
 {
-    int stride = tri_count / TG_SHADOW_RULE_TRIANGLES + 1, t, f;
+    int stride = tri_count / TG_SHADOW_RULE_TRIANGLES + 1, t;
+    if (!rg->seen) return stride == 1;
     for (t = 0; t < tri_count; t += stride) {
         tg_vec3 p[POLY_MAX];
-        int n, weigh = lit_and_seen(l, v, pos + 3 * (size_t)t);
+        int n;
         memcpy(p, pos + 3 * (size_t)t, 3 * sizeof *p);
         n = clip(p, 3, cam->h, 6, CLIP_SLACK);
+        if (n > 0 && lf->perspective) n = clip(p, n, lf->pyramid.h, 6, CLIP_SLACK);
         if (n == 0) continue;
-        for (f = 0; f < faces; f++) {
-            tg_vec3 q[POLY_MAX];
-            int m = n;
-            if (!rg[f].seen) continue;
-            memcpy(q, p, (size_t)n * sizeof *q);
-            if (lf[f].perspective) m = clip(q, n, lf[f].pyramid.h, 6, CLIP_SLACK);
-            if (m == 0) continue;
-            hit[f] = 1;
-            if (weigh) areas(v, &lf[f], q, m, &rg[f].cam, &rg[f].light);
-        }
+        *hit = 1;
+        if (lit_and_seen(l, v, pos + 3 * (size_t)t)) areas(v, lf, p, n, &rg->cam, &rg->light);
     }
     return stride == 1;
 }
@@ -341,8 +335,8 @@ static tg_real nominal_side(const light_face *lf, tg_vec3 lo, tg_vec3 hi)
 void tgi_shadow_map_size_rule(tgi_shadow_need *nd, const tgi_light *l, const tgi_view *view,
                               tg_vec3 lo, tg_vec3 hi, const tg_vec3 *tri_pos, int tri_count)
 {
-    light_face lf[TG_SHADOW_MAX_FACES];
-    region rg[TG_SHADOW_MAX_FACES];
+    light_face lf;
+    region rg;
     hexa box, cam;
     const hexa *hx[3];
     tg_real margin, extent = tgi_v3_length(tgi_v3_sub(hi, lo));
@@ -352,26 +346,29 @@ void tgi_shadow_map_size_rule(tgi_shadow_need *nd, const tgi_light *l, const tgi
     for (k = 0; k < 8; k++) zmax = tg_max(zmax, tgi_v3_dot(tgi_v3_sub(corner(lo, hi, k), view->eye), view->forward));
     margin = tg_add(tg_add(tg_ldexp(tg_mul(zmax, tgi_shadow_gbuffer_error(view)), 1), tg_ldexp(extent, -12)),
                     64 * TG_EPS);
-    memset(rg, 0, sizeof rg);
     hexa_box(&box, tgi_v3_sub(lo, tg_v3(margin, margin, margin)), tgi_v3_add(hi, tg_v3(margin, margin, margin)));
     if (!camera_hexa(&cam, view, lo, hi, margin)) return;
     hx[0] = &box; hx[1] = &cam;
+    /* The faces are independent: one at a time, so that one face's frame
+     * and region are on the stack rather than six (the plan runs on the
+     * smallest cores' stacks too: README "Porting"). */
     for (f = 0; f < nd->faces; f++) {
-        light_face_make(&lf[f], l, f, lo, hi, margin);
-        nd->whole_side[f] = nominal_side(&lf[f], lo, hi);
-        hx[2] = &lf[f].pyramid;
-        intersect(&rg[f], hx, lf[f].perspective ? 3 : 2, CLIP_SLACK, view, &lf[f]);
+        memset(&rg, 0, sizeof rg);
+        light_face_make(&lf, l, f, lo, hi, margin);
+        nd->whole_side[f] = nominal_side(&lf, lo, hi);
+        hx[2] = &lf.pyramid;
+        intersect(&rg, hx, lf.perspective ? 3 : 2, CLIP_SLACK, view, &lf);
+        if (tri_pos && tri_count > 0) {
+            /* the receivers' areas replace the region's volume; where every
+             * triangle was visited at its place in this view, a face none of
+             * them reaches is not seen either */
+            int hit = 0;
+            rg.cam = rg.light = 0;
+            if (triangle_areas(&rg, &hit, &lf, l, view, &cam, tri_pos, tri_count) && !nd->objects_move)
+                rg.seen &= hit;
+        }
+        need_merge(nd, f, &rg, &lf, rule_density(&rg, view));
     }
-    if (tri_pos && tri_count > 0) {
-        /* the receivers' areas replace the region's volume; where every
-         * triangle was visited at its place in this view, a face none of
-         * them reaches is not seen either */
-        int hit[TG_SHADOW_MAX_FACES] = { 0, 0, 0, 0, 0, 0 };
-        for (f = 0; f < nd->faces; f++) rg[f].cam = rg[f].light = 0;
-        if (triangle_areas(rg, hit, lf, nd->faces, l, view, &cam, tri_pos, tri_count) && !nd->objects_move)
-            for (f = 0; f < nd->faces; f++) rg[f].seen &= hit[f];
-    }
-    for (f = 0; f < nd->faces; f++) need_merge(nd, f, &rg[f], &lf[f], rule_density(&rg[f], view));
 }
 
 size_t tgi_shadow_map_bytes_for_view(const tgi_light *l, const tgi_view *view, tg_vec3 lo, tg_vec3 hi,
