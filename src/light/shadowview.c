@@ -134,31 +134,39 @@ static void image_plane(const tgi_view *v, tg_vec3 p, tg_real *x, tg_real *y)
     *y = tg_clamp(tg_mul(tg_mul(tgi_v3_dot(d, v->up), v->focal_y), inv), TG_R(-2.0f), TG_R(2.0f));
 }
 
-/* Twice the signed area of a projected polygon (shoelace, about its first vertex). */
-static tg_real shoelace(const tg_real *x, const tg_real *y, int n)
+/* Twice the signed area of a projected polygon (shoelace, about its first
+ * vertex), a vertex at a time: no arrays of the polygon's projections on
+ * the stack. */
+typedef struct shoelace { tg_real x0, y0, px, py, s; } shoelace;
+
+static void shoelace_add(shoelace *sl, int i, tg_real x, tg_real y)
 {
-    tg_real s = 0;
-    int i;
-    for (i = 1; i + 1 < n; i++) {
-        tg_real ax = tg_sub(x[i], x[0]), ay = tg_sub(y[i], y[0]);
-        tg_real bx = tg_sub(x[i + 1], x[0]), by = tg_sub(y[i + 1], y[0]);
-        s = tg_add(s, tg_sub(tg_mul(ax, by), tg_mul(ay, bx)));
+    if (i == 0) {
+        sl->x0 = x; sl->y0 = y; sl->s = 0;
+    } else if (i > 1) {
+        tg_real ax = tg_sub(sl->px, sl->x0), ay = tg_sub(sl->py, sl->y0);
+        tg_real bx = tg_sub(x, sl->x0), by = tg_sub(y, sl->y0);
+        sl->s = tg_add(sl->s, tg_sub(tg_mul(ax, by), tg_mul(ay, bx)));
     }
-    return s;
+    sl->px = x; sl->py = y;
 }
 
 /* A polygon's areas: on the image (NDC units^2) and on the light plane. */
 static void areas(const tgi_view *v, const light_face *lf, const tg_vec3 *p, int n,
                   tg_real *cam, tg_real *light)
 {
-    tg_real cx[POLY_MAX], cy[POLY_MAX], lx[POLY_MAX], ly[POLY_MAX];
+    shoelace c, l;
     int i;
+    c.s = l.s = 0;
     for (i = 0; i < n; i++) {
-        image_plane(v, p[i], &cx[i], &cy[i]);
-        light_plane(lf, p[i], &lx[i], &ly[i]);
+        tg_real x, y;
+        image_plane(v, p[i], &x, &y);
+        shoelace_add(&c, i, x, y);
+        light_plane(lf, p[i], &x, &y);
+        shoelace_add(&l, i, x, y);
     }
-    *cam = tg_add(*cam, tg_ldexp(tg_abs(shoelace(cx, cy, n)), -1));
-    *light = tg_add(*light, tg_ldexp(tg_abs(shoelace(lx, ly, n)), -1));
+    *cam = tg_add(*cam, tg_ldexp(tg_abs(c.s), -1));
+    *light = tg_add(*light, tg_ldexp(tg_abs(l.s), -1));
 }
 
 /* ---- the region of one face ---- */
