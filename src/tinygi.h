@@ -434,14 +434,6 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #if !defined(TG_MAX_THREADS)
 #define TG_MAX_THREADS 64               /* [policy] threads of a hosted pool (tinygi --threads) */
 #endif
-/* -- stack -- */
-#if !defined(TG_VERTEX_CACHE_BITS)
-#define TG_VERTEX_CACHE_BITS 4          /* [policy] the G-buffer rasterizer's vertex cache holds
-                                           2^this transformed vertices on the stack (44 bytes each
-                                           on a 32-bit core: 704 at 4); a hit gives the bits a miss
-                                           does, so fewer only cost time.  1..8; the Cortex-M0 of
-                                           make cross builds with 2 (platform/cross-run.sh) */
-#endif
 /* -- scene text and OBJ files -- */
 #define TG_MAX_LINE 4096                /* bytes in a scene or OBJ line, not counting the line end */
 #define TG_MAX_NAME 31                  /* bytes in a material or object name */

@@ -926,10 +926,7 @@ static inline view_vertex view_vertex_make(const raster_target *rt, const view_f
 /* Neighbouring triangles of a mesh share vertices (a triangle strip reuses
  * two of every three): a direct-mapped cache keyed by the position's bits
  * gives back the same view_vertex without transforming it again. */
-#define VCACHE_BITS TG_VERTEX_CACHE_BITS   /* tinygi.h: its stack against the transforms it saves */
-#if VCACHE_BITS < 1 || VCACHE_BITS > 8
-#error "TG_VERTEX_CACHE_BITS must be 1..8"
-#endif
+#define VCACHE_BITS 4
 typedef struct vertex_cache {
     uint32_t key[1 << VCACHE_BITS][3];
     view_vertex v[1 << VCACHE_BITS];
