@@ -341,7 +341,7 @@ check_mode() {
                 if is_bare "$t"; then
                     print_counts "$t" "$num" "$dir.log"
                     grep -h '^startup: stack' "$dir.log" | sed "s|^|cross: $t/$num |"
-                    [ "$t" = m0 ] && grep -h 'arena used' "$dir.log" | sed "s|^|cross: $t/$num |"
+                    case $t in m0|m0mps2) grep -h 'arena used' "$dir.log" | sed "s|^|cross: $t/$num |" ;; esac
                 fi
             done
         done
