@@ -16,6 +16,14 @@
 #define APEX_NEAR TG_R(0.001f)         /* the lookup's own nearest distance (lit nearer) */
 #define PLANE_MAX_TAN TG_R(1.5f)       /* light-plane coordinates kept within 1.5 x the face */
 #define CLIP_SLACK (16 * TG_EPS)       /* the clipping's own rounding */
+/* A function whose locals stay out of its caller's stack frame, so that
+ * they are not on the stack while the caller's other callees run (the
+ * plan runs on the smallest cores' stacks: README "Porting"). */
+#if defined(__GNUC__)
+#define APART __attribute__((noinline))
+#else
+#define APART
+#endif
 
 /* Inside: n . p + d >= -margin. */
 typedef struct halfspace { tg_vec3 n; tg_real d; } halfspace;
@@ -195,16 +203,15 @@ static void region_add(region *rg, const tgi_view *v, const light_face *lf, cons
 /* The boundary of the intersection of hexahedra hx[0..count): each one's
  * faces cut by the others' half-spaces (grown by margin); every piece left
  * goes to the region.  Exact for convex hexahedra: the intersection is
- * empty exactly when no piece is left. */
+ * empty exactly when no piece is left.  p: room for a polygon (POLY_MAX). */
 static void intersect(region *rg, const hexa *const *hx, int count, tg_real margin,
-                      const tgi_view *v, const light_face *lf)
+                      const tgi_view *v, const light_face *lf, tg_vec3 *p)
 {
     int a, b, face;
     for (a = 0; a < count; a++)
         for (face = 0; face < 6; face++) {
             int axis = face >> 1, side = face & 1, ua = (axis + 1) % 3, wa = (axis + 2) % 3, n = 4, k;
             static const int su[4] = { 0, 1, 1, 0 }, sw[4] = { 0, 0, 1, 1 };
-            tg_vec3 p[POLY_MAX];
             for (k = 0; k < 4; k++) p[k] = hx[a]->c[(side << axis) | (su[k] << ua) | (sw[k] << wa)];
             for (b = 0; b < count && n > 0; b++)
                 if (b != a) n = clip(p, n, hx[b]->h, 6, margin);
@@ -265,14 +272,14 @@ static int lit_and_seen(const tgi_light *l, const tgi_view *v, const tg_vec3 *t)
  * plane, for the triangles facing the camera and the light.  Every
  * triangle that leaves a piece, whichever way it faces (a shading normal
  * may face the light when the triangle does not), sets *hit.  Returns 1
- * when every triangle was visited (*hit is then exact). */
+ * when every triangle was visited (*hit is then exact).  p: room for a
+ * polygon (POLY_MAX). */
 static int triangle_areas(region *rg, int *hit, const light_face *lf, const tgi_light *l,
-                          const tgi_view *v, const hexa *cam, const tg_vec3 *pos, int tri_count)
+                          const tgi_view *v, const hexa *cam, const tg_vec3 *pos, int tri_count, tg_vec3 *p)
 {
     int stride = tri_count / TG_SHADOW_RULE_TRIANGLES + 1, t;
     if (!rg->seen) return stride == 1;
     for (t = 0; t < tri_count; t += stride) {
-        tg_vec3 p[POLY_MAX];
         int n;
         memcpy(p, pos + 3 * (size_t)t, 3 * sizeof *p);
         n = clip(p, 3, cam->h, 6, CLIP_SLACK);
@@ -347,6 +354,7 @@ void tgi_shadow_map_size_rule(tgi_shadow_need *nd, const tgi_light *l, const tgi
     region rg;
     hexa box, cam;
     const hexa *hx[3];
+    tg_vec3 poly[POLY_MAX];            /* the polygon being cut, for intersect and triangle_areas in turn */
     tg_real margin, extent = tgi_v3_length(tgi_v3_sub(hi, lo));
     int f, k;
     /* the G-buffer position's error bound at the bounds' deepest corner, and the arithmetic */
@@ -365,14 +373,14 @@ void tgi_shadow_map_size_rule(tgi_shadow_need *nd, const tgi_light *l, const tgi
         light_face_make(&lf, l, f, lo, hi, margin);
         nd->whole_side[f] = nominal_side(&lf, lo, hi);
         hx[2] = &lf.pyramid;
-        intersect(&rg, hx, lf.perspective ? 3 : 2, CLIP_SLACK, view, &lf);
+        intersect(&rg, hx, lf.perspective ? 3 : 2, CLIP_SLACK, view, &lf, poly);
         if (tri_pos && tri_count > 0) {
             /* the receivers' areas replace the region's volume; where every
              * triangle was visited at its place in this view, a face none of
              * them reaches is not seen either */
             int hit = 0;
             rg.cam = rg.light = 0;
-            if (triangle_areas(&rg, &hit, &lf, l, view, &cam, tri_pos, tri_count) && !nd->objects_move)
+            if (triangle_areas(&rg, &hit, &lf, l, view, &cam, tri_pos, tri_count, poly) && !nd->objects_move)
                 rg.seen &= hit;
         }
         need_merge(nd, f, &rg, &lf, rule_density(&rg, view));
@@ -445,7 +453,7 @@ static void frame_view(tgi_view *v, const tg_scene *s, const tg_request *r, int 
  * as the maps still fit (in steps of 1/16; a texel per pixel leaves 1-2
  * pixel bands along concave corners, where the filter's footprint
  * crosses onto the other surface, README "Shadows"). */
-static void spend_the_budget(tgi_shadow_need *nd, size_t pixels)
+APART static void spend_the_budget(tgi_shadow_need *nd, size_t pixels)
 {
     tgi_shadow_need base = *nd;
     size_t budget, bytes = tgi_shadow_need_bytes(nd);
