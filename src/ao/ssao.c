@@ -16,7 +16,6 @@ void tgi_ssao_defaults(tgi_ssao_params *p)
     p->bias = TG_R(0.03f);
 }
 
-static int clamp_samples(int n) { return n < 1 ? 1 : n > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : n; }
 
 /* Kernel of unit-ball offsets (local frame) and their unit directions. */
 static int make_kernel(int variant, int n, tg_vec3 *off, tg_vec3 *dir)
@@ -105,7 +104,7 @@ void tgi_ssao_rows(const tgi_ssao_params *p, const tgi_gview *g, const tgi_gresu
 {
     tg_vec3 off[TG_AO_MAX_SAMPLES], dir[TG_AO_MAX_SAMPLES];
     tgi_ao_rot rot[16];
-    int n = make_kernel(p->variant, clamp_samples(p->samples), off, dir), x, y;
+    int n = make_kernel(p->variant, tgi_ao_count(p->samples), off, dir), x, y;
     tgi_ao_rotations(rot);
     for (y = y0; y < y1; y++)
         for (x = 0; x < g->width; x++) {

@@ -140,7 +140,7 @@ void tgi_vo_rows(const tgi_vo_params *p, const tgi_gview *g, const tgi_gresult *
 {
     tg_real dx[TG_AO_MAX_SAMPLES], dy[TG_AO_MAX_SAMPLES], zs[TG_AO_MAX_SAMPLES];
     tgi_ao_rot rot[16];
-    int n = p->samples < 1 ? 1 : p->samples > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : p->samples, k, x, y;
+    int n = tgi_ao_count(p->samples), k, x, y;
     /* centrally symmetric line pattern: the centre when n is odd, then
      * +- pairs of a Vogel spiral; a tilted plane's depth is linear in x, y,
      * so its errors cancel pairwise (Loos and Sloan sec. 4.5 note the best
