@@ -31,6 +31,11 @@
  * obscurance, RTR sec. 11.3.2). */
 #define TG_AO_INFINITE TG_REAL_MAX
 
+/* The default `bias` of the techniques that test samples against the
+ * occluder's tangent plane (SSAO, SSDO, bent cones): the depth below it that
+ * counts, as a fraction of the radius. */
+#define TG_AO_DEFAULT_BIAS TG_R(0.03f)
+
 /* ---- interreflection (RTR eq. 11.12-11.13) ----
  * k'_A = k_A / (1 - rho_ss (1 - k_A)): AO brightened as if the blocked
  * directions saw the shaded point's own outgoing radiance (Stewart-Langer).

@@ -10,14 +10,13 @@
 
 #if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
 
+/* (far left out: all zero, an absent plane as tgi_rgb_none) */
+static const tgi_bentcone_params bentcone_defaults = { .samples = 8, .steps = 3, .radius = TG_ONE, .bias = TG_AO_DEFAULT_BIAS,
+    .env_sh9 = NULL };
+
 void tgi_bentcone_defaults(tgi_bentcone_params *p)
 {
-    p->samples = 8;
-    p->steps = 3;
-    p->radius = TG_ONE;
-    p->bias = TG_R(0.03f);
-    p->env_sh9 = 0;
-    p->far = tgi_rgb_none();
+    *p = bentcone_defaults;
 }
 
 tg_real tgi_bentcone_aperture(tg_real mean_length)

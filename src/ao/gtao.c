@@ -8,11 +8,11 @@
 
 #if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
 
+static const tgi_gtao_params gtao_defaults = { .slices = 4, .steps = 8, .radius = TG_ONE };
+
 void tgi_gtao_defaults(tgi_gtao_params *p)
 {
-    p->slices = 4;
-    p->steps = 8;
-    p->radius = TG_ONE;
+    *p = gtao_defaults;
 }
 
 typedef struct gtao_pixel {

@@ -8,12 +8,11 @@
 
 #if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
 
+static const tgi_hbao_params hbao_defaults = { .directions = 8, .steps = 6, .radius = TG_ONE, .angle_bias = TG_R(0.05f) };
+
 void tgi_hbao_defaults(tgi_hbao_params *p)
 {
-    p->directions = 8;
-    p->steps = 6;
-    p->radius = TG_ONE;
-    p->angle_bias = TG_R(0.05f);
+    *p = hbao_defaults;
 }
 
 /* Occlusion (sin h - sin t) W of one screen direction (sdx, sdy). */

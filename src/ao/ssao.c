@@ -8,12 +8,11 @@
 
 #if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
 
+static const tgi_ssao_params ssao_defaults = { .samples = 16, .radius = TG_ONE, .variant = TG_SSAO_HEMISPHERE, .bias = TG_AO_DEFAULT_BIAS };
+
 void tgi_ssao_defaults(tgi_ssao_params *p)
 {
-    p->samples = 16;
-    p->radius = TG_ONE;
-    p->variant = TG_SSAO_HEMISPHERE;
-    p->bias = TG_R(0.03f);
+    *p = ssao_defaults;
 }
 
 

@@ -11,18 +11,13 @@
 
 #if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
 
+/* (far and light left out: all zero, absent planes as tgi_rgb_none) */
+static const tgi_ssdo_params ssdo_defaults = { .samples = 16, .radius = TG_ONE, .bias = TG_AO_DEFAULT_BIAS, .bounce = TG_ONE,
+    .env_sh9 = NULL, .lights = NULL, .light_count = 0, .light_steps = 4 };
+
 void tgi_ssdo_defaults(tgi_ssdo_params *p)
 {
-    p->samples = 16;
-    p->radius = TG_ONE;
-    p->bias = TG_R(0.03f);
-    p->bounce = TG_ONE;
-    p->env_sh9 = 0;
-    p->far = tgi_rgb_none();
-    p->lights = 0;
-    p->light_count = 0;
-    p->light_steps = 4;
-    p->light = tgi_rgb_none();
+    *p = ssdo_defaults;
 }
 
 /* Lights with directional occlusion: each light is one more sample

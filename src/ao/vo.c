@@ -9,13 +9,11 @@
 
 #if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
 
+static const tgi_vo_params vo_defaults = { .samples = 9, .radius = TG_ONE, .thickness = 0, .use_normal = 1, .area = 0 };
+
 void tgi_vo_defaults(tgi_vo_params *p)
 {
-    p->samples = 9;
-    p->radius = TG_ONE;
-    p->thickness = 0;
-    p->use_normal = 1;
-    p->area = 0;
+    *p = vo_defaults;
 }
 
 /* Integral over [lo, hi] of the visibility g: 1 for z <= z0, falling
