@@ -80,5 +80,6 @@ cross-install:
 .PHONY: size-table
 SIZE_LTO ?= 0
 SIZE_TOP ?= 0
-size-table:
-	@MAKE="$(MAKE)" SIZE_LTO="$(SIZE_LTO)" SIZE_TOP="$(SIZE_TOP)" bash tools/size_table.sh
+size-table: $(BAKE_float) $(BAKE_fixed)
+	@MAKE="$(MAKE)" SIZE_LTO="$(SIZE_LTO)" SIZE_TOP="$(SIZE_TOP)" SIZE_BAKE="$(BAKE_float) $(BAKE_fixed)" \
+	 bash tools/size_table.sh
