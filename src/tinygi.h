@@ -403,6 +403,18 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #ifndef TG_NO_COLOR
 #define TG_NO_COLOR 0
 #endif
+/* TG_OUTLINE_HELPERS: 1 makes the larger storage helpers every pass calls
+ * (src/raster/pack.h: octahedral normals, RGB9E5) one out-of-line copy
+ * instead of one per file; the default is on when compiling for size (-Os),
+ * where the compiler keeps a static copy in each file; the same bits either
+ * way. */
+#ifndef TG_OUTLINE_HELPERS
+#ifdef __OPTIMIZE_SIZE__
+#define TG_OUTLINE_HELPERS 1
+#else
+#define TG_OUTLINE_HELPERS 0
+#endif
+#endif
 /* ======================================================================= */
 
 /* ==== LIMITS AND DEFAULTS ================================================
