@@ -38,15 +38,25 @@ static void real(tg_real v)
 #endif
 }
 
+static void comma_real(tg_real v)
+{
+    fputs(", ", out);
+    real(v);
+}
+
 static void vec3(tg_vec3 v)
 {
     fputs("{", out);
     real(v.x);
-    fputs(", ", out);
-    real(v.y);
-    fputs(", ", out);
-    real(v.z);
+    comma_real(v.y);
+    comma_real(v.z);
     fputs("}", out);
+}
+
+static void comma_vec3(tg_vec3 v)
+{
+    fputs(", ", out);
+    vec3(v);
 }
 
 static void name(const char *s)
@@ -87,19 +97,19 @@ static void bake(const tg_scene *s, const char *fn, const char *source)
     fprintf(out, "#if %sTG_FIXED\n#error \"baked for %s: bake it with tinygi-bake%s\"\n#endif\n\n",
             TG_FIXED ? "!" : "", TG_NUMBER_NAME, TG_FIXED ? "-fixed" : "");
     ARRAY("tgi_camera_key", "camera_keys", s->camera_key_count,
-          (fputs("{", out), real(s->camera_keys[i_].t), fputs(", ", out), vec3(s->camera_keys[i_].pos),
-           fputs(", ", out), vec3(s->camera_keys[i_].target), fputs("}", out)));
+          (fputs("{", out), real(s->camera_keys[i_].t), comma_vec3(s->camera_keys[i_].pos),
+           comma_vec3(s->camera_keys[i_].target), fputs("}", out)));
     ARRAY("tgi_material", "materials", s->material_count,
-          (fputs("{", out), name(s->materials[i_].name), fputs(", ", out), vec3(s->materials[i_].albedo),
-           fputs(", ", out), real(s->materials[i_].f0), fputs(", ", out), vec3(s->materials[i_].emissive),
+          (fputs("{", out), name(s->materials[i_].name), comma_vec3(s->materials[i_].albedo),
+           comma_real(s->materials[i_].f0), comma_vec3(s->materials[i_].emissive),
            fprintf(out, ", %d}", s->materials[i_].twosided)));
     ARRAY("tgi_object", "objects", s->object_count,
           (fputs("{", out), name(s->objects[i_].name),
            fprintf(out, ", %d, %d, %d, %d}", s->objects[i_].first_tri, s->objects[i_].tri_count,
                    s->objects[i_].first_key, s->objects[i_].key_count)));
     ARRAY("tgi_key", "object_keys", s->object_key_count,
-          (fputs("{", out), real(s->object_keys[i_].t), fputs(", ", out), vec3(s->object_keys[i_].translate),
-           fputs(", ", out), vec3(s->object_keys[i_].axis), fputs(", ", out), real(s->object_keys[i_].angle),
+          (fputs("{", out), real(s->object_keys[i_].t), comma_vec3(s->object_keys[i_].translate),
+           comma_vec3(s->object_keys[i_].axis), comma_real(s->object_keys[i_].angle),
            fputs("}", out)));
     ARRAY("tg_vec3", "tri_pos", 3 * s->tri_count, vec3(s->tri_pos[i_]));
     ARRAY("tg_vec3", "tri_nrm", 3 * s->tri_count, vec3(s->tri_nrm[i_]));
@@ -107,24 +117,19 @@ static void bake(const tg_scene *s, const char *fn, const char *source)
     ARRAY("uint16_t", "tri_object", s->tri_count, fprintf(out, "%u", (unsigned)s->tri_object[i_]));
     ARRAY("tgi_light", "lights", s->light_count,
           (fprintf(out, "{(tgi_light_type)%d, ", (int)s->lights[i_].type), vec3(s->lights[i_].pos),
-           fputs(", ", out), vec3(s->lights[i_].dir), fputs(", ", out), vec3(s->lights[i_].color),
-           fputs(", ", out), real(s->lights[i_].intensity), fputs(", ", out), real(s->lights[i_].angle),
+           comma_vec3(s->lights[i_].dir), comma_vec3(s->lights[i_].color),
+           comma_real(s->lights[i_].intensity), comma_real(s->lights[i_].angle),
            fprintf(out, ", %d}", s->lights[i_].shadows)));
 
     /* the arrays are const (flash); the scene's pointers are not, and no
      * pass writes through them (tg_plan_make takes a const tg_scene) */
     fputs("\nstatic const tg_scene scene = {\n    .camera = {", out);
     vec3(s->camera.pos);
-    fputs(", ", out);
-    vec3(s->camera.target);
-    fputs(", ", out);
-    vec3(s->camera.up);
-    fputs(", ", out);
-    real(s->camera.fov);
-    fputs(", ", out);
-    real(s->camera.znear);
-    fputs(", ", out);
-    real(s->camera.zfar);
+    comma_vec3(s->camera.target);
+    comma_vec3(s->camera.up);
+    comma_real(s->camera.fov);
+    comma_real(s->camera.znear);
+    comma_real(s->camera.zfar);
     fprintf(out, "},\n    .camera_key_count = %d, .camera_keys = (tgi_camera_key *)camera_keys,\n",
             s->camera_key_count);
     fprintf(out, "    .material_count = %d, .materials = (tgi_material *)materials,\n", s->material_count);
@@ -136,17 +141,12 @@ static void bake(const tg_scene *s, const char *fn, const char *source)
     fprintf(out, "    .light_count = %d, .lights = (tgi_light *)lights,\n", s->light_count);
     fprintf(out, "    .env = {(tgi_env_type)%d, ", (int)s->env.type);
     vec3(s->env.uniform);
-    fputs(", ", out);
-    vec3(s->env.sky);
-    fputs(", ", out);
-    vec3(s->env.ground);
-    fputs(", ", out);
-    vec3(s->env.up);
+    comma_vec3(s->env.sky);
+    comma_vec3(s->env.ground);
+    comma_vec3(s->env.up);
     fputs(", {", out);
-    for (i = 0; i < 9; i++) {
-        if (i) fputs(", ", out);
-        vec3(s->env.sh9[i]);
-    }
+    vec3(s->env.sh9[0]);
+    for (i = 1; i < 9; i++) comma_vec3(s->env.sh9[i]);
     fputs("}},\n    .gi = {", out);
     real(s->gi.radius);
     fprintf(out, ", %d, %d, %d},\n", s->gi.slices, s->gi.samples, s->gi.bounces);
