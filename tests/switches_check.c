@@ -88,9 +88,10 @@ static const tg_scene *parse(const char *text, tg_status *st, tg_error *err)
 #if TG_NO_SCENE_TEXT
     /* refused (TEST(scene_text) checks how): the same scene, baked */
     if (*st == TG_ERR_INPUT && s == NULL) {
-        *st = TG_OK;
-        return text == scene_plain ? switches_plain() : text == scene_rich ? switches_rich()
-               : text == scene_sky_no_far ? switches_sky_no_far() : NULL;
+        const tg_scene *baked = text == scene_plain ? switches_plain() : text == scene_rich ? switches_rich()
+                                : text == scene_sky_no_far ? switches_sky_no_far() : NULL;
+        if (baked) *st = TG_OK;
+        return baked;
     }
 #endif
     return s;
@@ -249,7 +250,7 @@ TEST(obj_meshes)
     tg_error err;
     const tg_scene *s = parse(scene_mesh, &st, &err);
     if (TG_NO_SCENE_TEXT) {
-        CHECK(st != TG_OK && s == NULL, "no scene text, yet a mesh scene: status %d", (int)st);
+        CHECK(refused(st, &err, "TG_NO_SCENE_TEXT") && s == NULL, "status %d", (int)st);
     } else if (TG_NO_OBJ) {
         CHECK(refused(st, &err, "TG_NO_OBJ") && s == NULL, "status %d", (int)st);
         CHECK(err.line == 3 && err.col == 1, "at %d:%d", err.line, err.col);
