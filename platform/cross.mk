@@ -81,5 +81,6 @@ cross-install:
 SIZE_LTO ?= 0
 SIZE_TOP ?= 0
 size-table: $(BAKE_float) $(BAKE_fixed)
-	@MAKE="$(MAKE)" SIZE_LTO="$(SIZE_LTO)" SIZE_TOP="$(SIZE_TOP)" SIZE_BAKE="$(BAKE_float) $(BAKE_fixed)" \
+	@MAKE="$(MAKE)" SIZE_LTO="$(SIZE_LTO)" SIZE_TOP="$(SIZE_TOP)" SIZE_ROWS="$(SIZE_ROWS)" SIZE_NUMS="$(SIZE_NUMS)" \
+	 SIZE_BAKE="$(BAKE_float) $(BAKE_fixed)" \
 	 bash tools/size_table.sh
