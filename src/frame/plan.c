@@ -119,14 +119,14 @@ static int left_out(const tg_plan *p, tg_error *err)
     if (TG_NO_SHADOW_MAPS && (p->effects & TG_EFFECT_SHADOWS))
         return refuse_left_out(err, "shadow maps are", NULL, "TG_NO_SHADOW_MAPS",
                                ": a light the plan uses is marked `shadows`");
+    if (TG_NO_ENVIRONMENT && reads_env)
+        return refuse_left_out(err, "the environment is", NULL, "TG_NO_ENVIRONMENT",
+                               ": the plan reads the scene's env (the far field, or the sky behind colour)");
     if (TG_NO_COLOR && ((p->effects & (TG_EFFECT_DIRECT | TG_EFFECT_NEAR | TG_EFFECT_FAR | TG_EFFECT_REPROJECTION)) ||
                         (p->request.aovs & RADIANCE_AOVS)))
         return refuse_left_out(err, "colour is", NULL, "TG_NO_COLOR",
                                ": the plan asks for light (colour, irradiance, direct, near or far); "
                                "AO, bent normals, cones and the geometry AOVs render");
-    if (TG_NO_ENVIRONMENT && reads_env)
-        return refuse_left_out(err, "the environment is", NULL, "TG_NO_ENVIRONMENT",
-                               ": the plan reads the scene's env (the far field, or the sky behind colour)");
     return 0;
 }
 
