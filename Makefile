@@ -88,12 +88,14 @@ define number_type
 NUMDEF_$(1)   := $(3)
 LIB_$(1)      := $$(BUILD)/libtinygi$(2).a
 CLI_$(1)      := $$(BUILD)/tinygi$(2)
+BAKE_$(1)     := $$(BUILD)/tinygi-bake$(2)
 PC_$(1)       := tinygi$(2)
 CORE_OBJ_$(1) := $$(patsubst src/%.c,$$(BUILD)/$(1)/core/%.o,$$(CORE_SRC))
 HOST_OBJ_$(1) := $$(patsubst platform/%.c,$$(BUILD)/$(1)/platform/%.o,$$(HOSTED_SRC))
 TESTS_$(1)    := $$(addprefix $$(BUILD)/$(1)/tests/,$$(TEST_NAMES))
 EXAMPLES_$(1) := $$(patsubst examples/%.c,$$(BUILD)/$(1)/examples-$$(EXAMPLES_LIB)/%,$$(EXAMPLE_SRC))
 all: $$(patsubst examples/%.c,$$(BUILD)/$(1)/examples-built/%,$$(EXAMPLE_SRC))
+all: $$(BAKE_$(1))
 examples: $$(EXAMPLES_$(1))
 
 # the core: freestanding, no libc beyond stdint/stddef/string
@@ -108,6 +110,9 @@ $$(BUILD)/$(1)/platform/%.o: platform/%.c $$(FLAGS_STAMP)
 	@mkdir -p $$(@D)
 	$$(CC) $$(CFLAGS_ALL) $(3) $$(HOSTED_DEFS) -Isrc -MMD -MP -c $$< -o $$@
 $$(CLI_$(1)): tools/tinygi.c $$(HOST_OBJ_$(1)) $$(LIB_$(1))
+	$$(CC) $$(CFLAGS_ALL) $(3) $$(HOSTED_DEFS) -Isrc -Iplatform $$< $$(HOST_OBJ_$(1)) $$(LIB_$(1)) -o $$@ $$(LDLIBS_HOST)
+# tinygi-bake: a scene as C data, for builds with TG_NO_SCENE_TEXT (tools/scene_bake.c)
+$$(BAKE_$(1)): tools/scene_bake.c $$(HOST_OBJ_$(1)) $$(LIB_$(1))
 	$$(CC) $$(CFLAGS_ALL) $(3) $$(HOSTED_DEFS) -Isrc -Iplatform $$< $$(HOST_OBJ_$(1)) $$(LIB_$(1)) -o $$@ $$(LDLIBS_HOST)
 $$(BUILD)/$(1)/tests/%: tests/%.c $$(wildcard tests/*.h) $$(HOST_OBJ_$(1)) $$(LIB_$(1))
 	@mkdir -p $$(@D)

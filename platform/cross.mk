@@ -81,5 +81,7 @@ cross-install:
 .PHONY: size-table
 SIZE_LTO ?= 0
 SIZE_TOP ?= 0
-size-table:
-	@MAKE="$(MAKE)" SIZE_LTO="$(SIZE_LTO)" SIZE_TOP="$(SIZE_TOP)" bash tools/size_table.sh
+size-table: $(BAKE_float) $(BAKE_fixed)
+	@MAKE="$(MAKE)" SIZE_LTO="$(SIZE_LTO)" SIZE_TOP="$(SIZE_TOP)" SIZE_ROWS="$(SIZE_ROWS)" SIZE_NUMS="$(SIZE_NUMS)" \
+	 SIZE_BAKE="$(BAKE_float) $(BAKE_fixed)" \
+	 bash tools/size_table.sh

@@ -13,7 +13,8 @@
  *   tg_plan_make_q16, by the macros in "ABI" below), so a program built with
  *   the other type's header fails to LINK instead of reading garbage.
  * Feature switches TG_NO_TECHNIQUES, TG_NO_REFERENCE, TG_NO_OBJ,
- * TG_NO_BUILTIN_SCENES, TG_NO_SHADOW_MAPS, TG_NO_ENVIRONMENT (0 or 1, for
+ * TG_NO_BUILTIN_SCENES, TG_NO_SHADOW_MAPS, TG_NO_ENVIRONMENT,
+ * TG_NO_SCENE_TEXT, TG_NO_COLOR (0 or 1, for
  * the LIBRARY's build) leave code out of it to save flash: see "FEATURE
  * SWITCHES" below.
  *
@@ -364,6 +365,17 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
  *                         tg_plan_make refuses a plan that would read the
  *                         scene's `env` (the far effect, or colour over a
  *                         sky); AO-only plans of such a scene still work.
+ *   TG_NO_SCENE_TEXT      the scene-text parser, its lexer and the OBJ
+ *                         loader: tg_scene_parse refuses every text; the
+ *                         program renders a scene baked into C data on the
+ *                         host (tinygi-bake, tools/scene_bake.c).
+ *   TG_NO_COLOR           everything after AO that makes colour: direct
+ *                         light, shadow maps, reprojection of radiance and
+ *                         push/pull, composition: tg_plan_make refuses a
+ *                         plan with the direct, near, far or reprojection
+ *                         effect or a radiance AOV (colour, irradiance,
+ *                         direct, near, far); AO, bent normals, cones and
+ *                         the geometry AOVs still render.
  * README "Flash size" has the .text each configuration takes on a Cortex-M4
  * (`make size-table`).
  */
@@ -384,6 +396,24 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #endif
 #ifndef TG_NO_ENVIRONMENT
 #define TG_NO_ENVIRONMENT 0
+#endif
+#ifndef TG_NO_SCENE_TEXT
+#define TG_NO_SCENE_TEXT 0
+#endif
+#ifndef TG_NO_COLOR
+#define TG_NO_COLOR 0
+#endif
+/* TG_OUTLINE_HELPERS: 1 makes the larger storage helpers every pass calls
+ * (src/raster/pack.h: octahedral normals, RGB9E5) one out-of-line copy
+ * instead of one per file; the default is on when compiling for size (-Os),
+ * where the compiler keeps a static copy in each file; the same bits either
+ * way. */
+#ifndef TG_OUTLINE_HELPERS
+#ifdef __OPTIMIZE_SIZE__
+#define TG_OUTLINE_HELPERS 1
+#else
+#define TG_OUTLINE_HELPERS 0
+#endif
 #endif
 /* ======================================================================= */
 

@@ -6,6 +6,10 @@
  * direct light and reprojection, and AO), and for each switch either uses
  * the feature (switch 0: it works) or asks for it and must be refused with
  * TG_ERR_INPUT and a message naming the switch (switch 1).
+ *
+ * With TG_NO_SCENE_TEXT=1 the scenes below are not parsed: the script bakes
+ * them on the host (tinygi-bake; this file built with SWITCHES_PRINT=1
+ * prints them) and links them in as switches_plain() and the like.
  */
 #include <stdlib.h>
 #include "check.h"
@@ -50,15 +54,42 @@ static int read_mem(void *user, const char *path, const char **data, size_t *siz
     return 0;
 }
 
+#if SWITCHES_PRINT
+/* the scenes' text, for baking: switches_check plain|rich|sky_no_far */
+int main(int argc, char **argv)
+{
+    const char *text = argc < 2 ? NULL : !strcmp(argv[1], "plain") ? scene_plain
+                       : !strcmp(argv[1], "rich") ? scene_rich : !strcmp(argv[1], "sky_no_far") ? scene_sky_no_far : NULL;
+    (void)read_mem; (void)scene_mesh;
+    (void)check_current_name; (void)check_current_failures; (void)check_tests_passed; (void)check_tests_failed;
+    return text ? fputs(text, stdout) < 0 : 2;
+}
+#else
+
 static unsigned char scene_memory[1 << 20];
 static tg_arena arena;
 
-static tg_scene *parse(const char *text, tg_status *st, tg_error *err)
+#if TG_NO_SCENE_TEXT
+const tg_scene *switches_plain(void);
+const tg_scene *switches_rich(void);
+const tg_scene *switches_sky_no_far(void);
+#endif
+
+static const tg_scene *parse(const char *text, tg_status *st, tg_error *err)
 {
     tg_io io = { NULL, read_mem };
     tg_scene *s = NULL;
     tg_arena_init(&arena, scene_memory, sizeof scene_memory);
     *st = tg_scene_parse(text, strlen(text), "switches.scene", &io, &arena, &s, err);
+#if TG_NO_SCENE_TEXT
+    /* refused (TEST(scene_text) checks how): the same scene, baked */
+    if (*st == TG_ERR_INPUT && s == NULL) {
+        const tg_scene *baked = text == scene_plain ? switches_plain() : text == scene_rich ? switches_rich()
+                                : text == scene_sky_no_far ? switches_sky_no_far() : NULL;
+        if (baked) *st = TG_OK;
+        return baked;
+    }
+#endif
     return s;
 }
 
@@ -66,7 +97,7 @@ static tg_status plan_for(const char *text, tg_technique t, uint32_t aovs, int f
 {
     tg_status st;
     tg_request req;
-    tg_scene *s = parse(text, &st, err);
+    const tg_scene *s = parse(text, &st, err);
     if (st != TG_OK) return st;
     tg_request_defaults(&req);
     req.width = W;
@@ -116,9 +147,14 @@ TEST(renders_colour_and_ao)
 {
     tg_plan plan;
     tg_error err;
-    CHECK(plan_for(scene_plain, TG_TECH_HBIL, 1u << TG_AOV_COLOR, 3, &plan, &err) == TG_OK, "%s", err.message);
-    CHECK(plan.effects & TG_EFFECT_REPROJECTION, "effects %u", (unsigned)plan.effects);
-    CHECK(renders_within(&plan, TG_AOV_COLOR, 0, 1e6), "colour not finite or negative");
+    tg_status st = plan_for(scene_plain, TG_TECH_HBIL, 1u << TG_AOV_COLOR, 3, &plan, &err);
+    if (TG_NO_COLOR) {
+        CHECK(refused(st, &err, "TG_NO_COLOR"), "status %d", (int)st);
+    } else {
+        CHECK(st == TG_OK, "%s", err.message);
+        CHECK(plan.effects & TG_EFFECT_REPROJECTION, "effects %u", (unsigned)plan.effects);
+        CHECK(renders_within(&plan, TG_AOV_COLOR, 0, 1e6), "colour not finite or negative");
+    }
     CHECK(plan_for(scene_plain, TG_TECH_HBIL, 1u << TG_AOV_AO, 1, &plan, &err) == TG_OK, "%s", err.message);
     CHECK(renders_within(&plan, TG_AOV_AO, 0, 1), "AO outside [0, 1]");
 }
@@ -163,6 +199,8 @@ TEST(shadow_maps)
     tg_status st = plan_for(scene_rich, TG_TECH_HBIL, 1u << TG_AOV_DIRECT, 1, &plan, &err);
     if (TG_NO_SHADOW_MAPS) {
         CHECK(refused(st, &err, "TG_NO_SHADOW_MAPS"), "status %d", (int)st);
+    } else if (TG_NO_COLOR) {
+        CHECK(refused(st, &err, "TG_NO_COLOR"), "status %d", (int)st);
     } else {
         CHECK(st == TG_OK, "%s", err.message);
         CHECK(plan.effects & TG_EFFECT_SHADOWS, "effects %u", (unsigned)plan.effects);
@@ -180,6 +218,8 @@ TEST(environment)
     tg_status st = plan_for(scene_rich, TG_TECH_HBIL, 1u << TG_AOV_FAR, 1, &plan, &err);
     if (TG_NO_ENVIRONMENT) {
         CHECK(refused(st, &err, "TG_NO_ENVIRONMENT"), "far: status %d", (int)st);
+    } else if (TG_NO_COLOR) {
+        CHECK(refused(st, &err, "TG_NO_COLOR"), "far: status %d", (int)st);
     } else {
         CHECK(st == TG_OK, "%s", err.message);
         CHECK(plan.effects & TG_EFFECT_FAR, "effects %u", (unsigned)plan.effects);
@@ -189,20 +229,25 @@ TEST(environment)
     st = plan_for(scene_sky_no_far, TG_TECH_HBIL, 1u << TG_AOV_COLOR, 1, &plan, &err);
     if (TG_NO_ENVIRONMENT) {
         CHECK(refused(st, &err, "TG_NO_ENVIRONMENT"), "sky: status %d", (int)st);
+    } else if (TG_NO_COLOR) {
+        CHECK(refused(st, &err, "TG_NO_COLOR"), "sky: status %d", (int)st);
     } else {
         CHECK(st == TG_OK && !(plan.effects & TG_EFFECT_FAR), "%s", err.message);
         CHECK(renders_within(&plan, TG_AOV_COLOR, 0, 1e6), "colour not finite");
     }
-    /* a scene without env renders colour in every build */
-    CHECK(plan_for(scene_plain, TG_TECH_HBIL, 1u << TG_AOV_COLOR, 1, &plan, &err) == TG_OK, "%s", err.message);
+    /* a scene without env renders colour in every build with colour */
+    st = plan_for(scene_plain, TG_TECH_HBIL, 1u << TG_AOV_COLOR, 1, &plan, &err);
+    CHECK(TG_NO_COLOR ? refused(st, &err, "TG_NO_COLOR") : st == TG_OK, "%s", err.message);
 }
 
 TEST(obj_meshes)
 {
     tg_status st;
     tg_error err;
-    tg_scene *s = parse(scene_mesh, &st, &err);
-    if (TG_NO_OBJ) {
+    const tg_scene *s = parse(scene_mesh, &st, &err);
+    if (TG_NO_SCENE_TEXT) {
+        CHECK(refused(st, &err, "TG_NO_SCENE_TEXT") && s == NULL, "status %d", (int)st);
+    } else if (TG_NO_OBJ) {
         CHECK(refused(st, &err, "TG_NO_OBJ") && s == NULL, "status %d", (int)st);
         CHECK(err.line == 3 && err.col == 1, "at %d:%d", err.line, err.col);
     } else {
@@ -219,6 +264,43 @@ TEST(builtin_scenes)
     }
 }
 
+TEST(scene_text)
+{
+    tg_scene *s = NULL;
+    tg_error err;
+    tg_status st;
+    tg_arena_init(&arena, scene_memory, sizeof scene_memory);
+    st = tg_scene_parse(scene_plain, strlen(scene_plain), "switches.scene", NULL, &arena, &s, &err);
+    if (TG_NO_SCENE_TEXT) {
+        CHECK(refused(st, &err, "TG_NO_SCENE_TEXT") && s == NULL, "status %d", (int)st);
+        CHECK(!strcmp(err.file, "switches.scene"), "error file %s", err.file);
+        CHECK(arena.used == 0, "a refused parse took %zu bytes", arena.used);
+    } else {
+        CHECK(st == TG_OK && s != NULL, "%s", err.message);
+    }
+}
+
+/* Colour and every light AOV are refused with TG_NO_COLOR=1; AO, bent
+ * normals and the geometry AOVs (here of the lit scene) render. */
+TEST(color)
+{
+    static const tg_aov light[] = { TG_AOV_COLOR, TG_AOV_IRRADIANCE, TG_AOV_DIRECT, TG_AOV_NEAR };
+    tg_plan plan;
+    tg_error err;
+    tg_status st;
+    int i;
+    for (i = 0; i < 4; i++) {
+        st = plan_for(scene_plain, TG_TECH_HBIL, 1u << light[i], 2, &plan, &err);
+        if (TG_NO_COLOR) CHECK(refused(st, &err, "TG_NO_COLOR"), "%s: status %d", tg_aov_name(light[i]), (int)st);
+        else CHECK(st == TG_OK, "%s: %s", tg_aov_name(light[i]), err.message);
+    }
+    st = plan_for(scene_plain, TG_TECH_HBIL, (1u << TG_AOV_AO) | (1u << TG_AOV_BENT) | (1u << TG_AOV_DEPTH) |
+                  (1u << TG_AOV_ALBEDO), 2, &plan, &err);
+    CHECK(st == TG_OK, "%s", err.message);
+    CHECK(!(plan.effects & (TG_EFFECT_DIRECT | TG_EFFECT_NEAR)), "effects %u", (unsigned)plan.effects);
+    CHECK(renders_within(&plan, TG_AOV_BENT, -1, 1), "bent normal outside [-1, 1]");
+}
+
 int main(void)
 {
     RUN(renders_colour_and_ao);
@@ -228,5 +310,8 @@ int main(void)
     RUN(environment);
     RUN(obj_meshes);
     RUN(builtin_scenes);
+    RUN(scene_text);
+    RUN(color);
     return check_summary();
 }
+#endif /* !SWITCHES_PRINT */

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # switches_test.sh - the feature switches (tinygi.h "FEATURE SWITCHES"):
-# the core builds and links with each one set alone and with all six, in
+# the core builds and links with each one set alone and with all eight, in
 # both number types, and tests/switches_check.c then renders what the build
 # keeps and sees what it left out refused (TG_ERR_INPUT naming the switch).
+# A build without scene text renders the same scenes baked into C data by
+# $BUILD/tinygi-bake (and -fixed).
 # The linked program (--gc-sections) must hold no global symbol of a
 # left-out file; the full CLI, which holds them all, shows the patterns find
 # them.  Host builds at -O0 (fast to compile; nothing here is timed).
@@ -16,7 +18,7 @@ TG_CFLAGS=${TG_CFLAGS:--std=c99}
 TG_LDLIBS=${TG_LDLIBS:--lm}
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 
-SWITCHES="TECHNIQUES REFERENCE OBJ BUILTIN_SCENES SHADOW_MAPS ENVIRONMENT"
+SWITCHES="TECHNIQUES REFERENCE OBJ BUILTIN_SCENES SHADOW_MAPS ENVIRONMENT SCENE_TEXT COLOR"
 # the global symbols (nm) of each switch's left-out files
 pattern() {
     case $1 in
@@ -26,6 +28,8 @@ pattern() {
         BUILTIN_SCENES) echo ' [a-zA-Z] scene_(plane|groove|cornell|spheres|columns)$' ;;
         SHADOW_MAPS)    echo ' T tgi_shadow_' ;;
         ENVIRONMENT)    echo ' T tgi_(sh9_|env_radiance|far_|cone_)' ;;
+        SCENE_TEXT)     echo ' T tgi_(lex_|tok_|parse_|obj_)' ;;
+        COLOR)          echo ' T tgi_(direct_rows|pushpull_|reproject_gather|compose_|tonemap_row8|pass_(direct|reproject|push_pull|shadow_maps)$)' ;;
     esac
 }
 
@@ -41,13 +45,32 @@ done
 # keep it whole
 sh tools/amalgamate.sh "$tmp/amalg" src/*/*.c 2>/dev/null
 
+# switches_check's scenes baked for the builds without scene text: the
+# check built with SWITCHES_PRINT=1 prints them, tinygi-bake bakes them
+baked_float="" baked_fixed=""
+# shellcheck disable=SC2086
+if $CC $TG_CFLAGS -DSWITCHES_PRINT=1 -Isrc -Itests tests/switches_check.c $BUILD/libtinygi.a $TG_LDLIBS \
+       -o "$tmp/print" >"$tmp/print.log" 2>&1; then
+    for scene in plain rich sky_no_far; do
+        "$tmp/print" $scene >"$tmp/$scene.scene" || fail "switches/print $scene" "exit $?"
+        for num in float fixed; do
+            bake=$BUILD/tinygi-bake; [ $num = fixed ] && bake=$BUILD/tinygi-bake-fixed
+            if "$bake" --name switches_$scene "$tmp/$scene.scene" -o "$tmp/baked-$num-$scene.c" 2>"$tmp/bake.log"; then
+                eval "baked_$num=\"\$baked_$num $tmp/baked-$num-$scene.c\""
+            else fail "switches/bake $scene ($num)" "$(head -c 400 "$tmp/bake.log")"; fi
+        done
+    done
+else fail "switches/print build" "$(head -c 600 "$tmp/print.log")"; fi
+
 # build one configuration: $1 name, $2 number-type define, $3... switches set to 1
 build() {
     local name=$1 num=$2 defs="" sw; shift 2
+    local baked=""
     for sw in "$@"; do defs="$defs -DTG_NO_$sw=1"; done
+    case " $* " in *" SCENE_TEXT "*) if [ -n "$num" ]; then baked=$baked_fixed; else baked=$baked_float; fi ;; esac
     # shellcheck disable=SC2086
-    $CC $TG_CFLAGS -O0 $num $defs -ffunction-sections -fdata-sections -I"$tmp/amalg" -Itests \
-        tests/switches_check.c "$tmp/amalg/tinygi.c" -Wl,--gc-sections $TG_LDLIBS -o "$tmp/$name" >"$tmp/$name.log" 2>&1
+    $CC $TG_CFLAGS -O0 $num $defs -ffunction-sections -fdata-sections -I"$tmp/amalg" -Itests -Isrc \
+        tests/switches_check.c "$tmp/amalg/tinygi.c" $baked -Wl,--gc-sections $TG_LDLIBS -o "$tmp/$name" >"$tmp/$name.log" 2>&1
     echo $? >"$tmp/$name.rc"
 }
 
@@ -64,7 +87,7 @@ check() {
     done
 }
 
-# each switch alone and all six, both number types; two builds at a time
+# each switch alone and all eight, both number types; two builds at a time
 configs=""
 for num in float fixed; do
     for sw in $SWITCHES all; do configs="$configs $num-$sw"; done

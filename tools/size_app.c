@@ -12,6 +12,10 @@
  *   TG_SIZE_AO_ONLY=1   the AO AOV as grey 8, a scene with no light;
  *   otherwise           colour as RGB565, a scene with a shadowed point
  *                       light (and a sky, unless TG_NO_ENVIRONMENT).
+ * With TG_NO_SCENE_TEXT=1 the scene is not parsed: tools/size_table.sh
+ * bakes the same text into C data (tinygi-bake --name tgs_baked_scene) and
+ * links it in.  Built on the host with TG_SIZE_PRINT_SCENE=1 it is a
+ * program that prints that text, for the baking.
  */
 #include "tinygi.h"
 #include "room_scene.h"
@@ -19,9 +23,13 @@
 #ifndef TG_SIZE_AO_ONLY
 #define TG_SIZE_AO_ONLY 0
 #endif
+#ifndef TG_SIZE_PRINT_SCENE
+#define TG_SIZE_PRINT_SCENE 0
+#endif
 #define SIZE_W 64
 #define SIZE_H 48
 
+#if !TG_NO_SCENE_TEXT || TG_SIZE_PRINT_SCENE
 static const char scene_text[] =
     TG_ROOM_SCENE
 #if !TG_SIZE_AO_ONLY
@@ -31,6 +39,18 @@ static const char scene_text[] =
 #endif
 #endif
     ;
+#endif
+
+#if TG_SIZE_PRINT_SCENE
+#include <stdio.h>
+int main(void)
+{
+    return fputs(scene_text, stdout) < 0;
+}
+#else
+#if TG_NO_SCENE_TEXT
+const tg_scene *tgs_baked_scene(void); /* tinygi-bake's file, from scene_text */
+#endif
 
 static unsigned char arena_memory[1u << 20] __attribute__((aligned(16)));
 #if TG_SIZE_AO_ONLY
@@ -44,7 +64,7 @@ void tgs_start(void);
 static void render(void)
 {
     tg_arena arena;
-    tg_scene *scene;
+    const tg_scene *scene;
     tg_plan plan;
     tg_request req;
     tg_frame *frame;
@@ -52,8 +72,14 @@ static void render(void)
     void *memory;
     int i;
     tg_arena_init(&arena, arena_memory, sizeof arena_memory);
-    if (tg_scene_parse(scene_text, sizeof scene_text - 1, "size", NULL, &arena, &scene, &err) != TG_OK)
+#if TG_NO_SCENE_TEXT
+    scene = tgs_baked_scene();
+#else
+    tg_scene *parsed;
+    if (tg_scene_parse(scene_text, sizeof scene_text - 1, "size", NULL, &arena, &parsed, &err) != TG_OK)
         return;
+    scene = parsed;
+#endif
     tg_request_defaults(&req);
     req.width = SIZE_W;
     req.height = SIZE_H;
@@ -81,3 +107,4 @@ void tgs_start(void)
     for (;;) {
     }
 }
+#endif /* !TG_SIZE_PRINT_SCENE */

@@ -20,6 +20,13 @@
 #                on the link map) and the N largest functions
 #                (arm-none-eabi-nm --size-sort)
 #   SIZE_BUILD=dir  where to build (default build-size)
+#   SIZE_ROWS="0 3" only these rows (0-based; default all), SIZE_NUMS="fixed"
+#                only these number types (of fixed soft fpu): for trying a
+#                change (the README's tables have every row and column)
+#   SIZE_BAKE="float-tool fixed-tool"  tinygi-bake for the host, both number
+#                types (default build/tinygi-bake build/tinygi-bake-fixed):
+#                a configuration with TG_NO_SCENE_TEXT links size_app's
+#                scene baked into C data instead of parsing it
 # Needs arm-none-eabi-gcc (`make cross-install` installs it).
 set -u
 cd "$(dirname "$0")/.." || exit 1
@@ -27,6 +34,8 @@ MAKE=${MAKE:-make}
 OUT=${SIZE_BUILD:-build-size}
 LTO=${SIZE_LTO:-0}
 TOP=${SIZE_TOP:-0}
+read -r BAKE_FLOAT BAKE_FIXED <<<"${SIZE_BAKE:-build/tinygi-bake build/tinygi-bake-fixed}"
+HOSTCC=${HOSTCC:-cc}
 CC=arm-none-eabi-gcc
 if ! command -v $CC >/dev/null 2>&1 || ! command -v arm-none-eabi-size >/dev/null 2>&1; then
     echo "size-table: $CC not found; \`make cross-install\` installs it" >&2
@@ -37,16 +46,18 @@ CPU="-mthumb -mcpu=cortex-m4"
 FPU="-mfpu=fpv4-sp-d16 -mfloat-abi=hard"
 SECTIONS="-ffunction-sections -fdata-sections"
 LEAN="-DTG_NO_TECHNIQUES=1 -DTG_NO_REFERENCE=1 -DTG_NO_OBJ=1 -DTG_NO_BUILTIN_SCENES=1"
-ALL="$LEAN -DTG_NO_SHADOW_MAPS=1 -DTG_NO_ENVIRONMENT=1"
+ALL="$LEAN -DTG_NO_SHADOW_MAPS=1 -DTG_NO_ENVIRONMENT=1 -DTG_NO_SCENE_TEXT=1 -DTG_NO_COLOR=1"
 
 # configurations: name | switches | what size_app asks for
 CONFIGS=(
     "full (every feature)||colour"
     "HBIL colour, direct light, shadows, sky (no techniques, reference, OBJ, built-in scenes)|$LEAN|colour"
     "HBIL colour, direct light, shadows (the same without environment)|$LEAN -DTG_NO_ENVIRONMENT=1|colour"
-    "AO only (every switch set)|$ALL|ao"
+    "HBIL colour, direct light, shadows, baked scene (the same without scene text)|$LEAN -DTG_NO_ENVIRONMENT=1 -DTG_NO_SCENE_TEXT=1|colour"
+    "AO only, baked scene (every switch set)|$ALL|ao"
 )
-NUMS="fixed soft fpu"
+NUMS=${SIZE_NUMS:-fixed soft fpu}
+ROWS=${SIZE_ROWS:-${!CONFIGS[*]}}
 
 # build one core library: $1 directory, $2 number type, $3 switches, $4 extra flags
 build_lib() {
@@ -68,10 +79,22 @@ link_app() {
     [ "$num" = fpu ] && flags="$flags $FPU"
     [ "$want" = ao ] && flags="$flags -DTG_SIZE_AO_ONLY=1"
     app=$dir/size_app-$num.elf
+    baked=""
+    case " $defs " in *" -DTG_NO_SCENE_TEXT=1 "*)
+        # the scene size_app would parse, printed on the host and baked
+        baked=$dir/baked-$num.c
+        bake=$BAKE_FLOAT; [ "$num" = fixed ] && bake=$BAKE_FIXED
+        # shellcheck disable=SC2086
+        $HOSTCC -std=c99 -Isrc $defs -DTG_SIZE_PRINT_SCENE=1 -DTG_SIZE_AO_ONLY=$([ "$want" = ao ] && echo 1 || echo 0) \
+            tools/size_app.c -o "$dir/print_scene" >>"$dir.log" 2>&1 &&
+        "$dir/print_scene" >"$dir/size_app.scene" &&
+        "$bake" --name tgs_baked_scene "$dir/size_app.scene" -o "$baked" >>"$dir.log" 2>&1 ||
+            { echo "size-table: baking the scene for $app failed, see $dir.log" >&2; return 1; }
+    esac
     # shellcheck disable=SC2086
     $CC $flags -fno-lto -fno-tree-loop-distribute-patterns -c $BM/libc_mini.c -o "$dir/libc_mini-$num.o" \
         >>"$dir.log" 2>&1 &&
-    $CC $flags -ffreestanding -nostdlib -Isrc -e tgs_start -Wl,--gc-sections -Wl,-Map="$app.map" tools/size_app.c "$lib" \
+    $CC $flags -ffreestanding -nostdlib -Isrc -e tgs_start -Wl,--gc-sections -Wl,-Map="$app.map" tools/size_app.c $baked "$lib" \
         "$dir/libc_mini-$num.o" -lgcc -o "$app" >>"$dir.log" 2>&1 ||
         { echo "size-table: linking $app failed, see $dir.log" >&2; return 1; }
     arm-none-eabi-size -A "$app" | awk '$1 == ".text" {t = $2} $1 == ".rodata" || $1 == ".data" {r += $2}
@@ -87,7 +110,7 @@ table() {
     echo
     echo "| configuration | Q16.16 | float, soft | float, FPU (M4F) | read-only data (Q16.16) |"
     echo "|---|---:|---:|---:|---:|"
-    for i in "${!CONFIGS[@]}"; do
+    for i in $ROWS; do
         cfg=${CONFIGS[$i]}; name=${cfg%%|*}; defs=${cfg#*|}; want=${defs#*|}; defs=${defs%|*}
         cells=""; rodata=""
         for num in $NUMS; do
@@ -109,7 +132,7 @@ echo
 table "" "#### Linked with --gc-sections" || exit 1
 if [ "$LTO" = 1 ]; then table "-flto" "#### ... and -flto" || exit 1; fi
 if [ "$TOP" -gt 0 ]; then
-    for i in "${!CONFIGS[@]}"; do
+    for i in $ROWS; do
         echo "#### largest files, Q16.16: ${CONFIGS[$i]%%|*}"
         awk -f tools/size_files.awk "$(cat "$OUT/c$i-fixed/app-fixed").map" | sort -rn | head -n "$TOP"
         echo "#### largest functions, Q16.16: ${CONFIGS[$i]%%|*}"

@@ -128,6 +128,7 @@ static void span8(const tg_frame *f, tg_aov aov, int y, int x0, int w, uint8_t *
     int x, c;
     aov_span(f, aov, y, x0, w, row);
     switch (aov) {
+#if !TG_NO_COLOR /* the plan refuses these AOVs with TG_NO_COLOR=1 (tinygi.h "FEATURE SWITCHES") */
     case TG_AOV_COLOR: case TG_AOV_NEAR: case TG_AOV_FAR: case TG_AOV_DIRECT: case TG_AOV_IRRADIANCE: {
         /* HDR: exposure, tonemapper, sRGB */
         tg_real r[SPAN], g[SPAN], b[SPAN];
@@ -137,6 +138,7 @@ static void span8(const tg_frame *f, tg_aov aov, int y, int x0, int w, uint8_t *
         tgi_tonemap_row8(r, g, b, w, exposure, rgb);
         return;
     }
+#endif
     case TG_AOV_ALBEDO:
         for (x = 0; x < 3 * w; x++) rgb[x] = tgi_srgb8(row[x]);
         return;

@@ -10,6 +10,8 @@
 #include "../scene/anim.h"
 #include "../light/direct.h"
 
+#if !TG_NO_COLOR /* the whole file is left out with TG_NO_COLOR=1 (tinygi.h "FEATURE SWITCHES") */
+
 /* A static scene's shadow maps (or the BVH shadow rays trace) are made
  * once and kept; when objects move (camera.c marks every light stale) or
  * a light moves (its own) the maps are refitted to where the geometry and
@@ -45,3 +47,4 @@ void tgi_pass_direct(tg_frame *f, int y0, int y1)
                     (f->effects & TG_EFFECT_SHADOWS) ? f->shadow_ptrs : NULL, &f->direct, y0, y1);
 }
 
+#endif /* !TG_NO_COLOR */

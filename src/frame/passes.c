@@ -29,12 +29,14 @@ tgi_pass_rows_fn tgi_pass_gbuffer, tgi_pass_motion, tgi_pass_direct, tgi_pass_re
 static int always(const tg_frame *f) { (void)f; return 1; }
 static int wants_motion(const tg_frame *f) { return (f->needs & TG_NEED_MOTION) != 0; }
 static int wants_depth_view(const tg_frame *f) { return (f->request.aovs & AOV(TG_AOV_DEPTH)) != 0; }
+static int reprojects(const tg_frame *f) { return (f->effects & TG_EFFECT_REPROJECTION) != 0; }
+#if !TG_NO_COLOR /* the colour passes' rows (tinygi.h "FEATURE SWITCHES") */
 static int casts_shadows(const tg_frame *f) { return (f->effects & TG_EFFECT_SHADOWS) != 0; }
 static int gathers_near(const tg_frame *f) { return (f->effects & TG_EFFECT_NEAR) != 0; }
 /* E_direct: the direct light, or (near field, no light) the 0 the first source is lit with */
 static int lights_directly(const tg_frame *f) { return (f->effects & TG_EFFECT_DIRECT) || gathers_near(f); }
-static int reprojects(const tg_frame *f) { return (f->effects & TG_EFFECT_REPROJECTION) != 0; }
 static int lights_after_history(const tg_frame *f) { return lights_directly(f) && reprojects(f); }
+#endif
 static int composes(const tg_frame *f) { return (f->needs & TG_NEED_COMPOSE) != 0; }
 static int accumulates(const tg_frame *f) { return (f->needs & TG_NEED_TEMPORAL) != 0; }
 static int keeps_geometry(const tg_frame *f) { return reprojects(f) || accumulates(f); }
@@ -85,6 +87,7 @@ const tgi_pass tgi_passes[] = {
       B(GBUFFER) | B(MOTION) | B(POSE), 0, ROWS(tgi_pass_motion) },
     { "depth range (for the 8-bit depth view)", wants_depth_view,
       B(GBUFFER), 0, SERIAL(tgi_pass_depth_range) },
+#if !TG_NO_COLOR
     { "shadow maps (depth-only raster per shadow light)", casts_shadows,
       B(SHADOW_MAPS) | B(POSE), 0, SERIAL(tgi_pass_shadow_maps) },
     { "reproject last frame's radiance (gather through the depth, z-test)", reprojects,
@@ -93,6 +96,7 @@ const tgi_pass tgi_passes[] = {
       B(SOURCE) | B(REPROJECT), TGI_ON_HISTORY, SERIAL(tgi_pass_push_pull) },
     { "direct light (Lambert, shadows, spot falloff): E_direct, the near field's first source", lights_directly,
       B(GBUFFER) | B(SHADOW_MAPS) | B(DIRECT) | B(SOURCE), TGI_ON_FIRST_FRAME, ROWS(tgi_pass_direct) },
+#endif
 #if !TG_NO_REFERENCE
     { "reference: BVH over the posed triangles", runs_reference,
       B(BVH) | B(POSE), 0, SERIAL(tgi_pass_reference_bvh) },
@@ -132,8 +136,10 @@ const tgi_pass tgi_passes[] = {
 #endif
     { "depth/normal-aware 4x4 filter at quarter resolution", runs_hbil_quarter,
       B(HALF) | B(RESULTS) | B(FILTER), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_filter_quarter) },
+#if !TG_NO_COLOR
     { "direct light (Lambert, shadows, spot falloff): E_direct", lights_after_history,
       B(GBUFFER) | B(SHADOW_MAPS) | B(DIRECT) | B(SOURCE), TGI_BOUNCE | TGI_ON_HISTORY, ROWS(tgi_pass_direct) },
+#endif
     { "4x4 filter (or joint bilateral upsample) of the GI results, far field in the bent cone, "
       "compose Lo = albedo/pi (1-F0) (E_direct + E_far + E_near) + emissive", resolves,
       B(GBUFFER) | B(DIRECT) | B(SOURCE) | B(RESULTS) | B(HALF) | B(FILTER) | B(FAR) | B(COLOR) | B(IRRADIANCE),

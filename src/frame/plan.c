@@ -25,6 +25,7 @@
 #include "../light/shadowview.h"
 
 #define AOV(a) (1u << (a))
+#define RADIANCE_AOVS (AOV(TG_AOV_COLOR) | AOV(TG_AOV_IRRADIANCE) | AOV(TG_AOV_DIRECT) | AOV(TG_AOV_NEAR) | AOV(TG_AOV_FAR))
 
 static int positive(tg_vec3 c) { return c.x > 0 || c.y > 0 || c.z > 0; }
 
@@ -121,6 +122,11 @@ static int left_out(const tg_plan *p, tg_error *err)
     if (TG_NO_ENVIRONMENT && reads_env)
         return refuse_left_out(err, "the environment is", NULL, "TG_NO_ENVIRONMENT",
                                ": the plan reads the scene's env (the far field, or the sky behind colour)");
+    if (TG_NO_COLOR && ((p->effects & (TG_EFFECT_DIRECT | TG_EFFECT_NEAR | TG_EFFECT_FAR | TG_EFFECT_REPROJECTION)) ||
+                        (p->request.aovs & RADIANCE_AOVS)))
+        return refuse_left_out(err, "colour is", NULL, "TG_NO_COLOR",
+                               ": the plan asks for light (colour, irradiance, direct, near or far); "
+                               "AO, bent normals, cones and the geometry AOVs render");
     return 0;
 }
 

@@ -9,6 +9,8 @@
 #include "../gi/reproject.h"
 #include "../gi/pushpull.h"
 
+#if !TG_NO_COLOR /* radiance reprojection is left out with TG_NO_COLOR=1 (tinygi.h "FEATURE SWITCHES") */
+
 /* HBIL sec. 3.2: last frame's radiance where this frame's surfaces were,
  * with the paper's depth test. */
 void tgi_pass_reproject(tg_frame *f, int y0, int y1)
@@ -33,6 +35,8 @@ void tgi_pass_push_pull(tg_frame *f)
 
 /* Last frame's geometry for the next frame's depth tests (its Lo stays
  * where compose wrote it, frame_internal.h). */
+#endif /* !TG_NO_COLOR */
+
 void tgi_pass_keep_history(tg_frame *f, int y0, int y1)
 {
     int x, y;

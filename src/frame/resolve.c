@@ -100,7 +100,7 @@ void tgi_pass_resolve(tg_frame *f, int y0, int y1)
             if (c.hbil) tgi_gr_put(&f->out, i, &v);   /* the filtered results an AOV asks for */
             if (tgi_gv_is_sky(&f->full, i)) {
                 if (c.far_own) tgi_rgb_set(c.far_own, i, tg_v3(0, 0, 0));
-                if (!compose) continue;
+                if (TG_NO_COLOR || !compose) continue;   /* no composition with TG_NO_COLOR=1 */
                 tgi_rgb_set(c.lo, i, tgi_compose_sky(&f->view, &f->scene->env, x, y));
                 if (tgi_rgb_present(&f->irradiance)) tgi_rgb_set(&f->irradiance, i, tg_v3(0, 0, 0));
                 continue;

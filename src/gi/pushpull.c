@@ -7,6 +7,8 @@
 #include "../tinygi.h"
 #include "pushpull.h"
 
+#if !TG_NO_COLOR /* the whole file is left out with TG_NO_COLOR=1 (tinygi.h "FEATURE SWITCHES") */
+
 #define MAX_LEVELS 32
 
 #if TG_WIDE_STORAGE
@@ -178,3 +180,5 @@ void tgi_pushpull_fill(int w, int h, const tgi_rgb *c, void *scratch)
         for (x = 0; x < w; x++, i++)
             if (tgi_rgb_is_hole(c, i)) tgi_rgb_set(c, i, upsample(&lv[0], x, y));
 }
+
+#endif /* !TG_NO_COLOR */

@@ -7,6 +7,8 @@
 #include "reproject.h"
 #include "../raster/motion.h"
 
+#if !TG_NO_COLOR /* the whole file is left out with TG_NO_COLOR=1 (tinygi.h "FEATURE SWITCHES") */
+
 /* Last frame's pixel holding this surface: 1 and *s when its depth agrees. */
 static int history_pixel(const tgi_reproject_io *io, int x, int y, size_t i, tg_real tol, size_t *s)
 {
@@ -39,3 +41,5 @@ void tgi_reproject_gather_rows(const tgi_reproject_io *io, int y0, int y1)
                 tgi_rgb_set_hole(io->out, i);
         }
 }
+
+#endif /* !TG_NO_COLOR */

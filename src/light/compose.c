@@ -6,6 +6,8 @@
 #include "compose.h"
 #include "sh.h"
 
+#if !TG_NO_COLOR /* the whole file is left out with TG_NO_COLOR=1 (tinygi.h "FEATURE SWITCHES") */
+
 /* World direction of the view ray through the centre of pixel (x, y). */
 static tg_vec3 pixel_ray(const tgi_view *view, int x, int y)
 {
@@ -49,3 +51,5 @@ void tgi_compose_rows(const tgi_gview *g, const tgi_env *env, const tgi_rgb *ter
         }
     }
 }
+
+#endif /* !TG_NO_COLOR */

@@ -74,6 +74,7 @@ tg_vec3 tgi_direct_irradiance(const tgi_light *l, tg_vec3 p, tg_vec3 n)
     return f > 0 ? light_irradiance(pl.radiant, f, inv) : tg_v3(0, 0, 0);
 }
 
+#if !TG_NO_COLOR /* the direct-light pass is left out with TG_NO_COLOR=1 (tinygi.h "FEATURE SWITCHES") */
 void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_count,
                     const tgi_shadow_map *const *shadow_maps, const tgi_rgb *e_out, int y0, int y1)
 {
@@ -113,3 +114,4 @@ void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_coun
         }
     }
 }
+#endif /* !TG_NO_COLOR */

@@ -143,7 +143,7 @@ static inline tg_real tgi_oct_scale(int32_t c, uint64_t r, int shift)
 /* Unit vector of two `bits`-bit octahedral coordinates.  The fold and the
  * lengths are integers (the same in both builds); only the final
  * normalisation is in the number type. */
-static inline tg_vec3 tgi_oct_unpack(uint32_t w, int bits)
+static inline tg_vec3 tgi_oct_unpack_inline(uint32_t w, int bits)
 {
     int32_t q = (int32_t)((1u << bits) - 2), mask = (int32_t)((1u << bits) - 1);
     int32_t x = 2 * (int32_t)(w & (uint32_t)mask) - q, y = 2 * (int32_t)((w >> bits) & (uint32_t)mask) - q;
@@ -184,7 +184,7 @@ static inline uint32_t tgi_rgb9e5_mant(tg_real c, int e)
     if (e >= 8) return e - 8 >= 1 ? (q + (1u << (e - 9))) >> (e - 8) : q;
     return q << (8 - e);
 }
-static inline uint32_t tgi_rgb9e5_pack(tg_vec3 c)
+static inline uint32_t tgi_rgb9e5_pack_inline(tg_vec3 c)
 {
     tg_real mx = tg_max(tg_max(c.x, c.y), c.z);
     int e;
@@ -206,7 +206,7 @@ static inline uint32_t tgi_rgb9e5_mant(float c, float inv_step)
     float m = c * inv_step + 0.5f;
     return c > 0.0f ? (uint32_t)m : 0;
 }
-static inline uint32_t tgi_rgb9e5_pack(tg_vec3 c)
+static inline uint32_t tgi_rgb9e5_pack_inline(tg_vec3 c)
 {
     const float top = 65408.0f;               /* (511 / 512) 2^16 */
     float r = c.x > top ? top : c.x, g = c.y > top ? top : c.y, b = c.z > top ? top : c.z, mx;
@@ -229,7 +229,7 @@ static inline tg_real tgi_rgb9e5_chan(uint32_t m, int e) { return (float)m * tgi
 #endif
 
 /* Linear RGB of a packed word (TGI_RGB9E5_INVALID reads as 0). */
-static inline tg_vec3 tgi_rgb9e5_unpack(uint32_t w)
+static inline tg_vec3 tgi_rgb9e5_unpack_inline(uint32_t w)
 {
     int e = (int)(w >> 27);
     tg_vec3 c;
@@ -238,6 +238,19 @@ static inline tg_vec3 tgi_rgb9e5_unpack(uint32_t w)
     c.z = tgi_rgb9e5_chan((w >> 18) & 511u, e);
     return c;
 }
+
+/* The helpers every pass calls, inline, or with TG_OUTLINE_HELPERS (tinygi.h;
+ * on at -Os) one copy in pack.c instead of one in each file that calls
+ * them: the same code, the same bits. */
+#if TG_OUTLINE_HELPERS
+tg_vec3 tgi_oct_unpack(uint32_t w, int bits);
+uint32_t tgi_rgb9e5_pack(tg_vec3 c);
+tg_vec3 tgi_rgb9e5_unpack(uint32_t w);
+#else
+static inline tg_vec3 tgi_oct_unpack(uint32_t w, int bits) { return tgi_oct_unpack_inline(w, bits); }
+static inline uint32_t tgi_rgb9e5_pack(tg_vec3 c) { return tgi_rgb9e5_pack_inline(c); }
+static inline tg_vec3 tgi_rgb9e5_unpack(uint32_t w) { return tgi_rgb9e5_unpack_inline(w); }
+#endif
 
 /* ---- unorm8: [0, 1] in a byte ---- */
 static inline uint8_t tgi_unorm8_pack(tg_real a)

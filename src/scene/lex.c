@@ -7,6 +7,8 @@
 #include "lex.h"
 #include "../core/error.h"
 
+#if !TG_NO_SCENE_TEXT /* the whole file is left out with TG_NO_SCENE_TEXT=1 (tinygi.h "FEATURE SWITCHES") */
+
 static int is_blank(char c)
 {
     return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
@@ -183,3 +185,5 @@ const char *tgi_tok_str(const tgi_token *t, char buf[48])
     buf[n] = '\0';
     return buf;
 }
+
+#endif /* !TG_NO_SCENE_TEXT */

@@ -19,7 +19,7 @@
 #include "parse_internal.h"
 #include "../core/path.h"
 
-#if !TG_NO_OBJ /* the whole file is left out with TG_NO_OBJ=1 (tinygi.h "FEATURE SWITCHES") */
+#if !TG_NO_OBJ && !TG_NO_SCENE_TEXT /* the whole file is left out with TG_NO_OBJ=1 or TG_NO_SCENE_TEXT=1 (tinygi.h "FEATURE SWITCHES") */
 
 typedef struct mtllib_ref {
     tgi_token name;          /* points into the OBJ text */
@@ -443,4 +443,4 @@ tg_status tgi_obj_mesh(tgi_parser *p, const tgi_lexer *lx, const tgi_token *path
     return TG_OK;
 }
 
-#endif /* !TG_NO_OBJ */
+#endif /* !TG_NO_OBJ && !TG_NO_SCENE_TEXT */

@@ -18,6 +18,8 @@
 #include "parse_internal.h"
 #include "../core/arena.h"
 
+#if !TG_NO_SCENE_TEXT /* the whole file is left out with TG_NO_SCENE_TEXT=1 (tinygi.h "FEATURE SWITCHES"; scene_text.c refuses) */
+
 /* ===================================================================== */
 /* errors                                                                */
 /* ===================================================================== */
@@ -1089,3 +1091,5 @@ tg_status tg_scene_parse(const char *text, size_t size, const char *filename,
     *scene = s;
     return TG_OK;
 }
+
+#endif /* !TG_NO_SCENE_TEXT */
