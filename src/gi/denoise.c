@@ -54,7 +54,7 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
                                tgi_denoise_walk *k, int x, int y)
 {
     size_t i = tgi_gv_index(g, x, y);
-    int w = g->width, h = g->height, xx, yy, has_bent = tgi_gr_has_bent(r), has_near = tgi_gr_has_near(r);
+    int w = g->width, h = g->height, xx, yy, slot[5], has_bent = tgi_gr_has_bent(r), has_near = tgi_gr_has_near(r);
     int xa = x < 2 ? 0 : x - 2, xb = x + 2 >= w ? w - 1 : x + 2;
     int ya = y < 2 ? 0 : y - 2, yb = y + 2 >= h ? h - 1 : y + 2;
     tg_real zi, ztol, inv_ztol, wsum = 0, ao = 0;
@@ -73,9 +73,10 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     ni = ci->n;
     ztol = tg_mul(p->depth_tolerance, zi);
     inv_ztol = tg_div(TG_ONE, ztol);
+    for (xx = xa; xx <= xb; xx++) slot[xx - xa] = xx % 5;
     for (yy = ya; yy <= yb; yy++)
         for (xx = xa; xx <= xb; xx++) {
-            const tgi_denoise_tap *t = &k->tap[xx % 5][yy - y + 2];
+            const tgi_denoise_tap *t = &k->tap[slot[xx - xa]][yy - y + 2];
             tg_real wt = tap_weight(t, tg_mul(tap_w[xx - x + 2], tap_w[yy - y + 2]), zi, ni, ztol, inv_ztol);
             if (wt <= 0) continue;
             wsum = tg_add(wsum, wt);

@@ -32,11 +32,16 @@
  * the square stays inside Q16.16. */
 #define HBIL_MAX_RADIUS_UNITS TG_R(150.0f)
 
-/* The rare paths stay out of the march loop (register pressure). */
+/* The rare paths stay out of the march loop (register pressure).  The
+ * gather is not rare (a third of the samples raise the horizon in a
+ * corner): out of line, but not cold (gcc would compile it for size, its
+ * Q16.16 arithmetic as calls). */
 #if defined(__GNUC__)
 #define HBIL_COLD __attribute__((noinline, cold))
+#define HBIL_NOINLINE __attribute__((noinline))
 #else
 #define HBIL_COLD
+#define HBIL_NOINLINE
 #endif
 
 static const uint8_t slice_rank4[4][4] = {
@@ -204,7 +209,7 @@ HBIL_COLD static tg_real sample_depth_edge(const hbil_ctx *c, int major_x, int a
 }
 
 /* A raised horizon: gather L(x') over the band it closes (eq. 18-19, sec. 3.4). */
-HBIL_COLD static void gather_rise(const hbil_ctx *c, const hbil_slice *sl, hbil_side *sd, int side,
+HBIL_NOINLINE static void gather_rise(const hbil_ctx *c, const hbil_slice *sl, hbil_side *sd, int side,
                         tg_real cos_new, tg_vec3 dir, int si)
 {
     const tgi_view *v = c->v;
