@@ -40,6 +40,7 @@ void tgi_pass_filter_quarter(tg_frame *f, int y0, int y1)
 /* What a row of the resolve needs, fixed per call. */
 typedef struct resolve_ctx {
     tgi_denoise_params filter;
+    tgi_denoise_walk walk;        /* the filter's decoded window along the row */
     int gi, hbil, quarter, far_mode, far_inline;
     const tgi_rgb *lo;            /* where Lo goes: this frame's colour, or the next bounce's source */
     const tgi_rgb *far_own;       /* E_far's plane, written here (its AOV) */
@@ -49,6 +50,7 @@ static void resolve_ctx_init(resolve_ctx *c, const tg_frame *f)
 {
     int technique_far = f->request.technique == TG_TECH_SSDO || f->request.technique == TG_TECH_BENTCONE;
     tgi_denoise_defaults(&c->filter);
+    tgi_denoise_walk_start(&c->walk);
     c->gi = (f->needs & TG_NEED_GI_PASS) != 0;
     c->hbil = c->gi && f->request.technique == TG_TECH_HBIL;
     c->quarter = tgi_frame_quarter(f);
@@ -60,11 +62,11 @@ static void resolve_ctx_init(resolve_ctx *c, const tg_frame *f)
 
 /* The GI results of full-resolution pixel (x, y) as compose and the AOVs use
  * them: HBIL's filtered (or upsampled), another technique's as they are. */
-static tgi_gr_value results_at(const resolve_ctx *c, const tg_frame *f, int x, int y, size_t i)
+static tgi_gr_value results_at(resolve_ctx *c, const tg_frame *f, int x, int y, size_t i)
 {
     if (!c->hbil) return tgi_gr_get(&f->res, i);
     if (c->quarter) return tgi_upsample_pixel(&f->full, &f->half_view, &f->half_filtered, x, y);
-    return tgi_denoise_pixel(&c->filter, &f->full, &f->res, x, y);
+    return tgi_denoise_pixel(&c->filter, &f->full, &f->res, &c->walk, x, y);
 }
 
 /* E = E_direct + E_far + E_near (HBIL sec. 2.3) of a surface pixel. */

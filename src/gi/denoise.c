@@ -21,42 +21,68 @@ static tg_real normal_weight(tg_real d)
     return d;
 }
 
-/* Weight of tap j for the centre (depth zi, normal ni): depth and normal
- * aware; 0 for sky and for a depth step of tol zi or more. */
-static tg_real tap_weight(const tgi_gview *g, size_t j, tg_real tap, tg_real zi, tg_vec3 ni, tg_real ztol,
-                          tg_real inv_ztol)
+/* Pixel (xx, yy) of g decoded into its tap slot. */
+static void tap_load(tgi_denoise_tap *t, const tgi_gview *g, const tgi_gresult *r, int xx, int yy)
 {
-    tg_real dz, wt;
-    if (tgi_gv_is_sky(g, j)) return 0;
-    dz = tg_abs(tg_sub(tgi_gv_depth(g, j), zi));
-    if (dz >= ztol) return 0;
-    wt = tg_mul(tap, tg_sub(TG_ONE, tg_mul(dz, inv_ztol)));
-    return tg_mul(wt, normal_weight(tgi_v3_dot(ni, tgi_gv_normal(g, j))));
+    size_t j = tgi_gv_index(g, xx, yy);
+    t->sky = tgi_gv_is_sky(g, j);
+    if (t->sky) return;
+    t->z = tgi_gv_depth(g, j);
+    t->n = tgi_gv_normal(g, j);
+    t->v = tgi_gr_get(r, j);
 }
 
-tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, const tgi_gresult *r, int x, int y)
+/* Weight of tap t for the centre (depth zi, normal ni): depth and normal
+ * aware; 0 for sky and for a depth step of tol zi or more. */
+static tg_real tap_weight(const tgi_denoise_tap *t, tg_real tap, tg_real zi, tg_vec3 ni, tg_real ztol, tg_real inv_ztol)
+{
+    tg_real dz, wt;
+    if (t->sky) return 0;
+    dz = tg_abs(tg_sub(t->z, zi));
+    if (dz >= ztol) return 0;
+    wt = tg_mul(tap, tg_sub(TG_ONE, tg_mul(dz, inv_ztol)));
+    return tg_mul(wt, normal_weight(tgi_v3_dot(ni, t->n)));
+}
+
+void tgi_denoise_walk_start(tgi_denoise_walk *k)
+{
+    k->y = -1;
+    k->lo = k->next = 0;
+}
+
+tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, const tgi_gresult *r,
+                               tgi_denoise_walk *k, int x, int y)
 {
     size_t i = tgi_gv_index(g, x, y);
-    int w = g->width, h = g->height, xx, yy, has_bent = tgi_gr_has_bent(r), has_near = tgi_gr_has_near(r);
+    int w = g->width, h = g->height, xx, yy, slot[5], has_bent = tgi_gr_has_bent(r), has_near = tgi_gr_has_near(r);
     int xa = x < 2 ? 0 : x - 2, xb = x + 2 >= w ? w - 1 : x + 2;
     int ya = y < 2 ? 0 : y - 2, yb = y + 2 >= h ? h - 1 : y + 2;
     tg_real zi, ztol, inv_ztol, wsum = 0, ao = 0;
     tg_vec3 ni, bent = tg_v3(0, 0, 0), near = tg_v3(0, 0, 0);
+    const tgi_denoise_tap *ci;
     tgi_gr_value v;
     if (tgi_gv_is_sky(g, i)) return tgi_gr_get(r, i);
-    zi = tgi_gv_depth(g, i);
-    ni = tgi_gv_normal(g, i);
+    /* the window's columns decoded once: those of the last pixel are kept */
+    if (k->y != y || xa < k->lo) { k->y = y; k->lo = k->next = xa; }
+    for (; k->next <= xb; k->next++)
+        for (yy = ya; yy <= yb; yy++)
+            tap_load(&k->tap[k->next % 5][yy - y + 2], g, r, k->next, yy);
+    if (k->next - k->lo > 5) k->lo = k->next - 5;
+    ci = &k->tap[x % 5][2];
+    zi = ci->z;
+    ni = ci->n;
     ztol = tg_mul(p->depth_tolerance, zi);
     inv_ztol = tg_div(TG_ONE, ztol);
+    for (xx = xa; xx <= xb; xx++) slot[xx - xa] = xx % 5;
     for (yy = ya; yy <= yb; yy++)
         for (xx = xa; xx <= xb; xx++) {
-            size_t j = tgi_gv_index(g, xx, yy);
-            tg_real wt = tap_weight(g, j, tg_mul(tap_w[xx - x + 2], tap_w[yy - y + 2]), zi, ni, ztol, inv_ztol);
+            const tgi_denoise_tap *t = &k->tap[slot[xx - xa]][yy - y + 2];
+            tg_real wt = tap_weight(t, tg_mul(tap_w[xx - x + 2], tap_w[yy - y + 2]), zi, ni, ztol, inv_ztol);
             if (wt <= 0) continue;
             wsum = tg_add(wsum, wt);
-            ao = tg_add(ao, tg_mul(wt, tgi_gr_ao(r, j)));
-            if (has_bent) bent = tgi_v3_add(bent, tgi_v3_scale(tgi_gr_bent(r, j), wt));
-            if (has_near) near = tgi_v3_add(near, tgi_v3_scale(tgi_gr_near(r, j), wt));
+            ao = tg_add(ao, tg_mul(wt, t->v.ao));
+            if (has_bent) bent = tgi_v3_add(bent, tgi_v3_scale(t->v.bent, wt));
+            if (has_near) near = tgi_v3_add(near, tgi_v3_scale(t->v.near, wt));
         }
     if (wsum <= 0) return tgi_gr_get(r, i);   /* the centre always weighs 1: cannot happen */
     v.ao = tg_saturate(tg_div(ao, wsum));
@@ -69,12 +95,14 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
 void tgi_denoise_rows(const tgi_denoise_params *p, const tgi_gview *g, const tgi_gresult *r, const tgi_gresult *out,
                       int y0, int y1)
 {
+    tgi_denoise_walk k;
     int x, y;
     if (y0 < 0) y0 = 0;
     if (y1 > g->height) y1 = g->height;
+    tgi_denoise_walk_start(&k);
     for (y = y0; y < y1; y++)
         for (x = 0; x < g->width; x++) {
-            tgi_gr_value v = tgi_denoise_pixel(p, g, r, x, y);
+            tgi_gr_value v = tgi_denoise_pixel(p, g, r, &k, x, y);
             tgi_gr_put(out, tgi_gv_index(g, x, y), &v);
         }
 }

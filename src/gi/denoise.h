@@ -28,9 +28,29 @@ typedef struct tgi_denoise_params {
 
 void tgi_denoise_defaults(tgi_denoise_params *p);
 
+/* A pixel's taps as the filter reads them: decoded once. */
+typedef struct tgi_denoise_tap {
+    int sky;
+    tg_real z;
+    tg_vec3 n;
+    tgi_gr_value v;            /* as tgi_gr_get reads it */
+} tgi_denoise_tap;
+
+/* The 5x5 window along a row: the columns a pixel shares with the pixel
+ * before it are not decoded again (each pixel once per row instead of 25
+ * times).  Any order of calls gives the same values; along a row (x
+ * increasing) is the fast one. */
+typedef struct tgi_denoise_walk {
+    int y, lo, next;                /* row y's columns [lo, next) are decoded */
+    tgi_denoise_tap tap[5][5];      /* [column % 5][row - y + 2] */
+} tgi_denoise_walk;
+
+void tgi_denoise_walk_start(tgi_denoise_walk *k);
+
 /* The filtered values of pixel (x, y) of view g from the results r (indexed
- * like g). */
-tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, const tgi_gresult *r, int x, int y);
+ * like g); k: the walk (tgi_denoise_walk_start), kept between calls. */
+tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, const tgi_gresult *r,
+                               tgi_denoise_walk *k, int x, int y);
 
 /* Rows [y0, y1) of the filtered results of r into out (indexed like g, not r). */
 void tgi_denoise_rows(const tgi_denoise_params *p, const tgi_gview *g, const tgi_gresult *r, const tgi_gresult *out,

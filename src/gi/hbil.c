@@ -32,11 +32,16 @@
  * the square stays inside Q16.16. */
 #define HBIL_MAX_RADIUS_UNITS TG_R(150.0f)
 
-/* The rare paths stay out of the march loop (register pressure). */
+/* The rare paths stay out of the march loop (register pressure).  The
+ * gather is not rare (a third of the samples raise the horizon in a
+ * corner): out of line, but not cold (gcc would compile it for size, its
+ * Q16.16 arithmetic as calls). */
 #if defined(__GNUC__)
 #define HBIL_COLD __attribute__((noinline, cold))
+#define HBIL_NOINLINE __attribute__((noinline))
 #else
 #define HBIL_COLD
+#define HBIL_NOINLINE
 #endif
 
 static const uint8_t slice_rank4[4][4] = {
@@ -80,6 +85,7 @@ typedef struct hbil_ctx {
 typedef struct hbil_side {
     tg_real h, hs;          /* horizon cosine from w_o and h|h| */
     tg_real p_old;          /* P(theta) at the current horizon (near field) */
+    tg_real q;              /* Q(theta) at the current horizon (near field: kept by gather_rise) */
     tg_real lr, lg, lb;     /* running radiance of sec. 3.4 */
     tg_real er, eg, eb;     /* gathered sum of L * dE (eq. 18) */
 } hbil_side;
@@ -112,6 +118,31 @@ static tg_real full_y(const hbil_ctx *c, int y)
     return tg_ratio(Y2, 2);
 }
 
+/* acos for the horizon angles: sqrt(1 - a) times a degree-7 polynomial in
+ * a = |c| (Hastings' fit, |error| <= 2e-8 on [0, 1]; acos(-a) = pi -
+ * acos(a)): one square root and 8 terms where tg_acos's series takes 11 and
+ * its wide arithmetic.  The error against tg_acos is measured by
+ * tests/test_hbil.c (hbil_acos_accuracy). */
+static const tg_real acos_fit[8] = {
+    TG_R(1.5707963050f), TG_R(-0.2145988016f), TG_R(0.0889789874f), TG_R(-0.0501743046f),
+    TG_R(0.0308918810f), TG_R(-0.0170881256f), TG_R(0.0066700901f), TG_R(-0.0012624911f)
+};
+tg_real tgi_hbil_acos(tg_real c)
+{
+    const tg_real *k = acos_fit;
+    tg_real a = tg_min(tg_abs(c), TG_ONE), p, t;
+    /* Horner, written out (gcc keeps a loop of 7 as a loop) */
+    p = tg_add(tg_mul(k[7], a), k[6]);
+    p = tg_add(tg_mul(p, a), k[5]);
+    p = tg_add(tg_mul(p, a), k[4]);
+    p = tg_add(tg_mul(p, a), k[3]);
+    p = tg_add(tg_mul(p, a), k[2]);
+    p = tg_add(tg_mul(p, a), k[1]);
+    p = tg_add(tg_mul(p, a), k[0]);
+    t = tg_mul(tg_sqrt(tg_sub(TG_ONE, a)), p);
+    return c < 0 ? tg_sub(TG_PI, t) : t;
+}
+
 /* sin(theta)^2 / 2 and (theta - sin cos) / 2 from cos(theta) and the side. */
 static tg_real slice_R(tg_real c)
 {
@@ -119,17 +150,11 @@ static tg_real slice_R(tg_real c)
 }
 static tg_real slice_Q(tg_real c, int side)
 {
-    tg_real theta = tg_acos(c);
+    tg_real theta = tgi_hbil_acos(c);
     tg_real s = tg_sqrt(tg_sub(TG_ONE, tg_mul(c, c)));
     if (side < 0) { theta = tg_neg(theta); s = tg_neg(s); }
     return tg_mul(TG_R(0.5f), tg_sub(theta, tg_mul(s, c)));
 }
-/* P(theta) = int_0^theta (n'.w_i') |sin| : the antiderivative of eq. 10 */
-static tg_real slice_P(const hbil_slice *sl, tg_real c, int side)
-{
-    return tg_add(tg_mul(sl->nx, slice_Q(c, side)), tg_mul(sl->ny, slice_R(c)));
-}
-
 static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
 {
     const tgi_gview *g = c->g;
@@ -209,23 +234,28 @@ HBIL_COLD static tg_real sample_depth_edge(const hbil_ctx *c, int major_x, int a
 }
 
 /* A raised horizon: gather L(x') over the band it closes (eq. 18-19, sec. 3.4). */
-HBIL_COLD static void gather_rise(const hbil_ctx *c, const hbil_slice *sl, hbil_side *sd, int side,
+HBIL_NOINLINE static void gather_rise(const hbil_ctx *c, const hbil_slice *sl, hbil_side *sd, int side,
                         tg_real cos_new, tg_vec3 dir, int si)
 {
     const tgi_view *v = c->v;
-    tg_real p_new = slice_P(sl, cos_new, side);
+    tg_real q_new = slice_Q(cos_new, side);
+    /* P(theta) = int_0^theta (n'.w_i') |sin| : the antiderivative of eq. 10 */
+    tg_real p_new = tg_add(tg_mul(sl->nx, q_new), tg_mul(sl->ny, slice_R(cos_new)));
     tg_real de = tg_max(0, tg_sub(sd->p_old, p_new));         /* HBIL eq. 18 */
     tg_vec3 ns, wi, l;
     tg_real t;
     sd->p_old = p_new;
+    sd->q = q_new;
     ns = tgi_gv_normal(c->g, si);                                /* the sender's normal */
     wi = tgi_v3_add(tgi_v3_add(tgi_v3_scale(v->right, dir.x), tgi_v3_scale(v->up, dir.y)),
                    tgi_v3_scale(v->forward, dir.z));
     t = tg_smoothstep(c->p->rejection_a, c->p->rejection_b, tg_neg(tgi_v3_dot(ns, wi))); /* HBIL sec. 3.4 */
-    l = tgi_rgb_get(c->rad, si);
-    sd->lr = tg_lerp(sd->lr, l.x, t);                            /* L_new = lerp(L_old, L(x'), t) */
-    sd->lg = tg_lerp(sd->lg, l.y, t);
-    sd->lb = tg_lerp(sd->lb, l.z, t);
+    if (t != 0) {   /* lerp(L_old, L(x'), 0) is L_old: the sender's radiance is not read */
+        l = tgi_rgb_get(c->rad, si);
+        sd->lr = tg_lerp(sd->lr, l.x, t);                        /* L_new = lerp(L_old, L(x'), t) */
+        sd->lg = tg_lerp(sd->lg, l.y, t);
+        sd->lb = tg_lerp(sd->lb, l.z, t);
+    }
     sd->er = tg_add(sd->er, tg_mul(sd->lr, de));
     sd->eg = tg_add(sd->eg, tg_mul(sd->lg, de));
     sd->eb = tg_add(sd->eb, tg_mul(sd->lb, de));
@@ -243,56 +273,58 @@ static int march_steps(const hbil_ctx *c, tg_real extent, int *n)
     return m;
 }
 
-/* March one side (+1 along D, -1 against) and raise its horizon.  Indices
- * run along the major axis a (stride smaj) and the minor axis b (smin);
- * the sample's screen offset s (image pixels, y up) gives the view-space
- * offset d = s + q (P0 + s), q = (z1 - z) / z, P0 = the pixel's position
- * (X, Y, ppu) / step (see top). */
-static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice *sl,
-                       tg_real ux, tg_real uy, int side, hbil_side *sd)
+/* Floor of a finite value well inside the int range (the march's minor
+ * coordinate): tg_to_int without its NaN and saturation tests. */
+static inline int floor_small(tg_real a)
+{
+#if TG_FIXED
+    return tg_to_int(a);
+#else
+    int i = (int)a;
+    return (tg_real)i > a ? i - 1 : i;
+#endif
+}
+
+/* The march's per-side constants (march_side). */
+typedef struct hbil_march {
+    tg_real p0x, p0y, p0z, z, inv_z, r2, wox, woy, woz;
+    tg_real minor, dminor;
+    int a, da, n, smaj, smin, bmax;
+} hbil_march;
+
+/* The samples of one side; major_x is a constant in each of the two
+ * copies (march_side), so the axis choice costs nothing per sample. */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void march_samples(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_side *sd,
+                                 const hbil_march *mr, const int major_x)
 {
     const tgi_gview g = *c->g;   /* a local copy: its fields stay in registers */
-    const int w = g.width, h = g.height, rs = g.row_stride, ps = g.pixel_stride;
-    const int major_x = tg_abs(ux) >= tg_abs(uy);
-    const int smaj = major_x ? ps : rs, smin = major_x ? rs : ps, amax = major_x ? w : h, bmax = major_x ? h : w;
-    const tg_real umaj = major_x ? tg_abs(ux) : tg_abs(uy);
-    const tg_real p0x = tg_mul(px->X, c->inv_step), p0y = tg_mul(px->Y, c->inv_step);
-    const tg_real p0z = tg_mul(c->ppu, c->inv_step), z = px->z, inv_z = px->inv_z;
-    const tg_real r2 = px->radius_units2, wox = px->wo.x, woy = px->wo.y, woz = px->wo.z;
-    tg_real slope = tg_div(major_x ? uy : ux, umaj == 0 ? TG_ONE : umaj);
-    int dir = ((major_x ? ux : uy) < 0 ? -1 : 1) * side;
-    int m, n, k, da, a, kmax;
-    tg_real dminor, minor, ox;
-    if (side < 0) slope = tg_neg(slope);
-    m = march_steps(c, tg_mul(px->reach, umaj), &n);
-    da = m * dir;
-    a = major_x ? px->x : px->y;
-    kmax = da > 0 ? (amax - 1 - a) / da : a / -da;             /* never past the screen edge */
-    if (n > kmax) n = kmax;
-    minor = major_x ? tg_from_int(px->y) : tg_from_int(px->x);
-    dminor = tg_mul(slope, tg_from_int(m));
-    ox = 0;
+    const int smaj = mr->smaj, smin = mr->smin, bmax = mr->bmax, da = mr->da, n = mr->n;
+    const tg_real p0x = mr->p0x, p0y = mr->p0y, p0z = mr->p0z, z = mr->z, inv_z = mr->inv_z, r2 = mr->r2;
+    const tg_real wox = mr->wox, woy = mr->woy, woz = mr->woz, dminor = mr->dminor;
+    tg_real minor = mr->minor, ox = 0, hs_tie = tg_add(sd->hs, HBIL_TIE);
+    int k, a = mr->a, sa_major = a * smaj;
     for (k = 1; k <= n; k++) {
-        int b0, sa, lerp = 0;
-        tg_real f, z1 = 0, q, sx, sy, smajor, dx, dy, dz, len2, dot;
+        int b0, sa;
+        tg_real f, z1, q, sx, sy, smajor, dx, dy, dz, len2, dot, za, zb;
         minor = tg_add(minor, dminor);
         ox = tg_add(ox, dminor);
         a += da;
-        b0 = tg_to_int(minor);
+        sa_major += da * smaj;
+        b0 = floor_small(minor);
         f = tg_sub(minor, tg_from_int(b0));
-        sa = a * smaj + b0 * smin;
-        if ((unsigned)b0 < (unsigned)(bmax - 1)) {               /* b0 and b0 + 1 inside */
-            tg_real za = tgi_gv_depth(&g, sa), zb = tgi_gv_depth(&g, sa + smin);
-            if (za > 0 && zb > 0 && !(tgi_gv_is_sky(&g, sa) | tgi_gv_is_sky(&g, sa + smin))
-                && tg_abs(tg_sub(za, zb)) < tg_mul(HBIL_LERP_MAX_REL, tg_min(za, zb))) {
-                /* both neighbours are surface (so is the nearest):
-                 * 1/z = (1-f)/za + f/zb  <=>  z = za + f (zb - za) za / (zb - f (zb - za)) */
-                tg_real zd = tg_sub(zb, za);
-                z1 = tg_add(za, tg_mul(tg_mul(f, zd), tg_div(za, tg_sub(zb, tg_mul(f, zd)))));
-                lerp = 1;
-            }
-        }
-        if (!lerp) {
+        sa = sa_major + b0 * smin;
+        /* both neighbours surface (depth > 0 is not sky) and close: 1/z
+         * interpolated linearly, 1/z = (1-f)/za + f/zb  <=>
+         * z = za + f (zb - za) za / (zb - f (zb - za)) */
+        if ((unsigned)b0 < (unsigned)(bmax - 1)                 /* b0 and b0 + 1 inside */
+            && (za = tgi_gv_depth(&g, sa)) > 0 && (zb = tgi_gv_depth(&g, sa + smin)) > 0
+            && tg_abs(tg_sub(za, zb)) < tg_mul(HBIL_LERP_MAX_REL, tg_min(za, zb))) {
+            tg_real zd = tg_sub(zb, za);
+            z1 = tg_add(za, tg_mul(tg_mul(f, zd), tg_div(za, tg_sub(zb, tg_mul(f, zd)))));
+        } else {
             int bn = f < TG_R(0.5f) ? b0 : b0 + 1, sn;
             if (bn < 0 || bn >= bmax) break;                    /* the slice leaves the image */
             sn = bn == b0 ? sa : sa + smin;
@@ -312,12 +344,13 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
         if (len2 > r2) continue;                                /* beyond the 3D radius */
         dot = tgi_v3_dot(tg_v3(dx, dy, dz), tg_v3(wox, woy, woz));
         /* cos(theta) > horizon, without a division: dot|dot| > h|h| |d|^2 */
-        if (tg_mul(dot, tg_abs(dot)) > tg_mul(tg_add(sd->hs, HBIL_TIE), len2)) {
+        if (tg_mul(dot, tg_abs(dot)) > tg_mul(hs_tie, len2)) {
             tg_real len = tg_sqrt(len2);
             tg_real cn = tg_clamp(tg_div(dot, len), TG_R(-1.0f), TG_ONE); /* HBIL sec. 1.3 */
             if (cn <= sd->h) continue;
             sd->h = cn;
             sd->hs = tg_mul(cn, tg_abs(cn));
+            hs_tie = tg_add(sd->hs, HBIL_TIE);
             if (c->near_field)
                 gather_rise(c, sl, sd, side, cn, tgi_v3_scale(tg_v3(dx, dy, dz), tg_div(TG_ONE, len)),
                             f < TG_R(0.5f) ? sa : sa + smin);      /* the nearest pixel */
@@ -325,11 +358,51 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     }
 }
 
-static void side_init(hbil_side *sd, tg_real h, tg_real p_open)
+/* March one side (+1 along D, -1 against) and raise its horizon.  Indices
+ * run along the major axis a (stride smaj) and the minor axis b (smin);
+ * the sample's screen offset s (image pixels, y up) gives the view-space
+ * offset d = s + q (P0 + s), q = (z1 - z) / z, P0 = the pixel's position
+ * (X, Y, ppu) / step (see top). */
+static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice *sl,
+                       tg_real ux, tg_real uy, int side, hbil_side *sd)
+{
+    const tgi_gview *g = c->g;
+    const int w = g->width, h = g->height, rs = g->row_stride, ps = g->pixel_stride;
+    const int major_x = tg_abs(ux) >= tg_abs(uy);
+    const int amax = major_x ? w : h;
+    const tg_real umaj = major_x ? tg_abs(ux) : tg_abs(uy);
+    tg_real slope = tg_div(major_x ? uy : ux, umaj == 0 ? TG_ONE : umaj);
+    int dir = ((major_x ? ux : uy) < 0 ? -1 : 1) * side;
+    int m, kmax;
+    hbil_march mr;
+    mr.smaj = major_x ? ps : rs;
+    mr.smin = major_x ? rs : ps;
+    mr.bmax = major_x ? h : w;
+    mr.p0x = tg_mul(px->X, c->inv_step);
+    mr.p0y = tg_mul(px->Y, c->inv_step);
+    mr.p0z = tg_mul(c->ppu, c->inv_step);
+    mr.z = px->z;
+    mr.inv_z = px->inv_z;
+    mr.r2 = px->radius_units2;
+    mr.wox = px->wo.x; mr.woy = px->wo.y; mr.woz = px->wo.z;
+    if (side < 0) slope = tg_neg(slope);
+    m = march_steps(c, tg_mul(px->reach, umaj), &mr.n);
+    mr.da = m * dir;
+    mr.a = major_x ? px->x : px->y;
+    kmax = mr.da > 0 ? (amax - 1 - mr.a) / mr.da : mr.a / -mr.da;   /* never past the screen edge */
+    if (mr.n > kmax) mr.n = kmax;
+    mr.minor = major_x ? tg_from_int(px->y) : tg_from_int(px->x);
+    mr.dminor = tg_mul(slope, tg_from_int(m));
+    if (major_x) march_samples(c, sl, side, sd, &mr, 1);
+    else march_samples(c, sl, side, sd, &mr, 0);
+}
+
+static void side_init(hbil_side *sd, tg_real h, tg_real q_open, tg_real p_open)
 {
     memset(sd, 0, sizeof *sd);
     sd->h = h;
     sd->hs = tg_mul(h, tg_abs(h));
+    sd->q = q_open;
     sd->p_old = p_open;
 }
 
@@ -357,13 +430,14 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
     r1i = slice_R(h1i); r0i = r1i;
     p1i = tg_add(tg_mul(sl.nx, q1i), tg_mul(sl.ny, r1i));
     p0i = tg_add(tg_mul(sl.nx, q0i), tg_mul(sl.ny, r0i));
-    side_init(&front, h1i, p1i);
-    side_init(&back, h0i, p0i);
+    side_init(&front, h1i, q1i, p1i);
+    side_init(&back, h0i, q0i, p0i);
     slice_screen_dir(c, px, sl.d, &ux, &uy);
     march_side(c, px, &sl, ux, uy, 1, &front);
     march_side(c, px, &sl, ux, uy, -1, &back);
-    q1 = front.h == h1i ? q1i : slice_Q(front.h, 1);
-    q0 = back.h == h0i ? q0i : slice_Q(back.h, -1);
+    /* Q at the found horizons: the near field's gather kept them */
+    q1 = c->near_field || front.h == h1i ? front.q : slice_Q(front.h, 1);
+    q0 = c->near_field || back.h == h0i ? back.q : slice_Q(back.h, -1);
     r1 = slice_R(front.h); r0 = slice_R(back.h);
     /* AO_i = P(theta1) + P(theta0) (eq. 10-11 with |sin|); open minus found */
     acc->occlusion = tg_add(acc->occlusion,

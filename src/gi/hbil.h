@@ -90,4 +90,8 @@ void tgi_hbil_rows(const tgi_hbil_params *p, const tgi_gview *g, const tgi_rgb *
 void tgi_hbil_interleaved_rows(const tgi_hbil_params *p, const tgi_gview *k, const tgi_gbuffer *split,
                                const tgi_rgb *radiance, const tgi_gresult *out, int y0, int y1);
 
+/* acos(c), c in [-1, 1] (clamped), as the kernel's horizon angles use it
+ * (a cheaper fit than tg_acos; error in tests/test_hbil.c). */
+tg_real tgi_hbil_acos(tg_real c);
+
 #endif
