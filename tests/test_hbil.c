@@ -221,7 +221,7 @@ static void run_strided(const gbuf *g, double radius, result *r)
             tgi_gview_strided_sub(&sub, &full, i, j);
             if (sub.width == 0 || sub.height == 0) continue;
             params_for(&p, radius);
-            p.slice_phi0 = tgi_hbil_slice_phi0(i, j, p.slices);
+            p.slice_phi0 = tgi_hbil_slice_phi0(i, j, p.slices, 0);
             tgi_hbil_rows(&p, &sub, NULL, &o, 0, sub.height);
         }
     results_read(&all, (size_t)g->w * g->h, r);
