@@ -22,9 +22,10 @@ static void hbil_params(const tg_frame *f, tgi_hbil_params *p)
     p->slices = f->request.slices;
     p->samples = f->request.samples;
     p->radius = f->request.radius;
-    /* each frame its own eighth of the directions and march offsets; the
-     * index is the caller's, so the same frames give the same pictures */
-    p->rotation = (int)((unsigned)f->index % TG_HBIL_ROTATIONS);
+    /* with temporal accumulation each frame since the history began takes
+     * its own eighth of the directions and march offsets (a first frame is
+     * the same whatever its index); without it, every frame the first's */
+    p->rotation = (f->needs & TG_NEED_TEMPORAL) ? f->frames_rendered % TG_HBIL_ROTATIONS : 0;
 }
 
 /* Results without the cone: the kernel and the filter leave it to the
