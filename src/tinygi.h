@@ -445,6 +445,9 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #define TG_MIN_SHADOW_MAP 8             /* shadow-map texels per side: the PCF footprint */
 #define TG_MAX_SHADOW_MAP 8192          /* ... and the rasterizer's largest side */
 #define TG_DEFAULT_SLICES 2             /* HBIL sec. 3.3: 2 slices per pixel */
+#define TG_HBIL_ROTATIONS 8             /* frames before HBIL's slice angles and march offsets repeat:
+                                        * each frame takes the next eighth of every stratum, so the
+                                        * temporal accumulation (weight 0.2) sees 8 x 32 directions */
 #define TG_DEFAULT_SAMPLES 16
 #define TG_DEFAULT_BOUNCES 1
 #define TG_DEFAULT_RADIUS 1             /* world units, for a scene without extent (neither request

@@ -22,6 +22,10 @@ static void hbil_params(const tg_frame *f, tgi_hbil_params *p)
     p->slices = f->request.slices;
     p->samples = f->request.samples;
     p->radius = f->request.radius;
+    /* with temporal accumulation each frame since the history began takes
+     * its own eighth of the directions and march offsets (a first frame is
+     * the same whatever its index); without it, every frame the first's */
+    p->rotation = (f->needs & TG_NEED_TEMPORAL) ? f->frames_rendered % TG_HBIL_ROTATIONS : 0;
 }
 
 /* Results without the cone: the kernel and the filter leave it to the
@@ -67,7 +71,8 @@ void tgi_pass_hbil_interleaved(tg_frame *f, int y0, int y1)
             out = tgi_gresult_from(&out, o);
             src = tgi_rgb_from(source, o);
             src.lit_rounded = 1;   /* read as the plane it once was copied into */
-            ps.slice_phi0 = tgi_hbil_slice_phi0(i, j, p.slices);
+            ps.slice_phi0 = tgi_hbil_slice_phi0(i, j, p.slices, p.rotation);
+            ps.step_jitter = tgi_hbil_step_jitter(i, j, p.rotation);
             tgi_hbil_rows(&ps, &sub, &src, &out, (y0 - j + 3) / 4, (y1 - j + 3) / 4);
         }
 }

@@ -48,12 +48,28 @@ static const uint8_t slice_rank4[4][4] = {
     { 0, 8, 2, 10 }, { 12, 4, 14, 6 }, { 3, 11, 1, 9 }, { 15, 7, 13, 5 }
 };
 
-tg_real tgi_hbil_slice_phi0(int i, int j, int slices)
+/* Where in its stratum rotation r samples, in [0, 1): the eighths in
+ * bit-reversed order, so any run of consecutive frames spreads out; the
+ * march offsets use the order shifted by half, apart from the angles'. */
+static tg_real rotation_offset(int r)
 {
-    tg_real rank = tg_add(tg_from_int(slice_rank4[j & 3][i & 3]), TG_R(0.5f));
+    static const uint8_t bitrev3[8] = { 0, 4, 2, 6, 1, 5, 3, 7 };
+    return tg_ratio(2 * bitrev3[r & 7] + 1, 2 * TG_HBIL_ROTATIONS);
+}
+
+tg_real tgi_hbil_slice_phi0(int i, int j, int slices, int rot)
+{
+    tg_real rank = tg_add(tg_from_int(slice_rank4[j & 3][i & 3]), rotation_offset(rot));
     if (slices < 1) slices = 1;
     /* stratified over [0, pi / S): the 16 sub-images x S slices cover [0, pi) */
     return tg_mul(tg_div(TG_PI, tg_from_int(slices * 16)), rank);
+}
+
+tg_real tgi_hbil_step_jitter(int i, int j, int rot)
+{
+    /* the slice angles' ranks transposed: no sub-image pairs its slice rank with the same jitter rank */
+    tg_real rank = tg_add(tg_from_int(slice_rank4[i & 3][j & 3]), rotation_offset(rot + TG_HBIL_ROTATIONS / 2));
+    return tg_mul(rank, TG_R(1.0f / 16.0f));
 }
 
 void tgi_hbil_defaults(tgi_hbil_params *p)
@@ -63,7 +79,7 @@ void tgi_hbil_defaults(tgi_hbil_params *p)
     p->samples = TG_DEFAULT_SAMPLES;
     p->radius = TG_ONE;
     p->max_radius_px = TG_R(128.0f);
-    p->slice_phi0 = tgi_hbil_slice_phi0(0, 0, p->slices);
+    p->slice_phi0 = tgi_hbil_slice_phi0(0, 0, p->slices, 0);
     p->rejection_a = 0;
     p->rejection_b = TG_R(0.2f);
 }
@@ -78,6 +94,7 @@ typedef struct hbil_ctx {
     int slices, samples, step, full_w, full_h;
     tg_real ppu, inv_ppu, inv_step, pi_over_s;
     tg_real cos_phi[HBIL_PATTERN][TG_MAX_SLICES], sin_phi[HBIL_PATTERN][TG_MAX_SLICES];
+    tg_real jitter[HBIL_PATTERN];  /* step_jitter per pattern cell */
     int near_field;
 } hbil_ctx;
 
@@ -99,6 +116,7 @@ typedef struct hbil_pixel {
     tg_vec3 n;              /* view-space normal with n.w_o >= HBIL_MIN_NDOTV */
     tg_real radius_units2;  /* (3D radius in image pixels at depth z)^2 */
     tg_real reach;          /* march extent, image pixels */
+    tg_real jitter;         /* the samples start this fraction of a step nearer */
 } hbil_pixel;
 
 /* Slice-space normal n' = (n.D, n.w_o) (eq. 2) and the integrals. */
@@ -288,8 +306,9 @@ static inline int floor_small(tg_real a)
 /* The march's per-side constants (march_side). */
 typedef struct hbil_march {
     tg_real p0x, p0y, p0z, z, inv_z, r2, wox, woy, woz;
-    tg_real minor, dminor;
+    tg_real minor, dminor, ox;     /* ox: the minor offset before the first sample */
     int a, da, n, smaj, smin, bmax;
+    int back;                      /* o dir: sample k stands k da - back from the pixel */
 } hbil_march;
 
 /* The samples of one side; major_x is a constant in each of the two
@@ -304,7 +323,8 @@ static inline void march_samples(const hbil_ctx *c, const hbil_slice *sl, int si
     const int smaj = mr->smaj, smin = mr->smin, bmax = mr->bmax, da = mr->da, n = mr->n;
     const tg_real p0x = mr->p0x, p0y = mr->p0y, p0z = mr->p0z, z = mr->z, inv_z = mr->inv_z, r2 = mr->r2;
     const tg_real wox = mr->wox, woy = mr->woy, woz = mr->woz, dminor = mr->dminor;
-    tg_real minor = mr->minor, ox = 0, hs_tie = tg_add(sd->hs, HBIL_TIE);
+    const int back = mr->back;
+    tg_real minor = mr->minor, ox = mr->ox, hs_tie = tg_add(sd->hs, HBIL_TIE);
     int k, a = mr->a, sa_major = a * smaj;
     for (k = 1; k <= n; k++) {
         int b0, sa;
@@ -334,7 +354,7 @@ static inline void march_samples(const hbil_ctx *c, const hbil_slice *sl, int si
         }
         /* view-space offset scaled to image pixels at depth z (see top) */
         q = tg_mul(tg_sub(z1, z), inv_z);
-        smajor = tg_from_int(k * da);
+        smajor = tg_from_int(k * da - back);
         sx = major_x ? smajor : ox;
         sy = major_x ? tg_neg(ox) : tg_neg(smajor);
         dx = tg_add(sx, tg_mul(tg_add(p0x, sx), q));
@@ -373,7 +393,7 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     const tg_real umaj = major_x ? tg_abs(ux) : tg_abs(uy);
     tg_real slope = tg_div(major_x ? uy : ux, umaj == 0 ? TG_ONE : umaj);
     int dir = ((major_x ? ux : uy) < 0 ? -1 : 1) * side;
-    int m, kmax;
+    int m, kmax, o;
     hbil_march mr;
     mr.smaj = major_x ? ps : rs;
     mr.smin = major_x ? rs : ps;
@@ -387,11 +407,16 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     mr.wox = px->wo.x; mr.woy = px->wo.y; mr.woz = px->wo.z;
     if (side < 0) slope = tg_neg(slope);
     m = march_steps(c, tg_mul(px->reach, umaj), &mr.n);
+    o = tg_to_int(tg_mul(px->jitter, tg_from_int(m)));           /* sample k at k m - o pixels */
+    if (o < 0 || o >= m) o = 0;
     mr.da = m * dir;
     mr.a = major_x ? px->x : px->y;
-    kmax = mr.da > 0 ? (amax - 1 - mr.a) / mr.da : mr.a / -mr.da;   /* never past the screen edge */
+    kmax = ((mr.da > 0 ? amax - 1 - mr.a : mr.a) + o) / m;        /* never past the screen edge */
     if (mr.n > kmax) mr.n = kmax;
-    mr.minor = major_x ? tg_from_int(px->y) : tg_from_int(px->x);
+    mr.back = o * dir;
+    mr.a -= mr.back;
+    mr.ox = tg_mul(slope, tg_from_int(-o));
+    mr.minor = tg_add(major_x ? tg_from_int(px->y) : tg_from_int(px->x), mr.ox);
     mr.dminor = tg_mul(slope, tg_from_int(m));
     if (major_x) march_samples(c, sl, side, sd, &mr, 1);
     else march_samples(c, sl, side, sd, &mr, 0);
@@ -473,6 +498,7 @@ static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
         int X = px->x * c->step + c->g->offset_x, Y = px->y * c->step + c->g->offset_y;
         pat = (Y & 3) * 4 + (X & 3);
     }
+    px->jitter = c->jitter[pat];
     for (s = 0; s < c->slices; s++)
         slice_run(c, px, c->cos_phi[pat][s], c->sin_phi[pat][s], &acc);
     ao = tg_saturate(tg_sub(TG_ONE, tg_div(acc.occlusion, tg_from_int(c->slices))));
@@ -512,7 +538,9 @@ static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, 
     c->near_field = tgi_rgb_present(radiance) && tgi_gr_has_near(out);
     npat = p->per_pixel_pattern ? HBIL_PATTERN : 1;
     for (pat = 0; pat < npat; pat++) {
-        tg_real phi0 = p->per_pixel_pattern ? tgi_hbil_slice_phi0(pat & 3, pat >> 2, c->slices) : p->slice_phi0;
+        tg_real phi0 = p->per_pixel_pattern ? tgi_hbil_slice_phi0(pat & 3, pat >> 2, c->slices, p->rotation)
+                                            : p->slice_phi0;
+        c->jitter[pat] = p->per_pixel_pattern ? tgi_hbil_step_jitter(pat & 3, pat >> 2, p->rotation) : p->step_jitter;
         for (s = 0; s < c->slices; s++) {
             tg_real phi = tg_add(phi0, tg_mul(c->pi_over_s, tg_from_int(s)));
             c->cos_phi[pat][s] = tg_cos(phi);
@@ -559,7 +587,8 @@ void tgi_hbil_interleaved_rows(const tgi_hbil_params *p, const tgi_gview *k, con
                              k->offset_y + j * k->step, k->camera);
             res = tgi_gresult_from(out, o);
             if (radiance) src = tgi_rgb_from(radiance, o);
-            ps.slice_phi0 = tgi_hbil_slice_phi0(i, j, p->slices);
+            ps.slice_phi0 = tgi_hbil_slice_phi0(i, j, p->slices, p->rotation);
+            ps.step_jitter = tgi_hbil_step_jitter(i, j, p->rotation);
             tgi_hbil_rows(&ps, &sub, &src, &res, (y0 - j + 3) / 4, (y1 - j + 3) / 4);
         }
 }

@@ -64,6 +64,9 @@ typedef struct tgi_hbil_params {
     tg_real max_radius_px;    /* in full-res pixels */
     tg_real slice_phi0;       /* first slice angle of this image (interleaved), radians */
     int per_pixel_pattern;    /* full-res: slice angle from (X & 3, Y & 3), slice_phi0 ignored */
+    int rotation;             /* with the pattern: the frame rotation (tgi_hbil_slice_phi0) */
+    tg_real step_jitter;      /* in [0, 1): this image's samples start that fraction of a march
+                               * step nearer (interleaved; from (X & 3, Y & 3) with the pattern) */
     tg_real rejection_a, rejection_b; /* sec. 3.4 t = smoothstep(a, b, -n'.w_i) */
 } tgi_hbil_params;
 
@@ -71,8 +74,22 @@ typedef struct tgi_hbil_params {
  * sub-image (0,0), no pattern, rejection a = 0, b = 0.2. */
 void tgi_hbil_defaults(tgi_hbil_params *p);
 
-/* First slice angle of sub-image (i, j), i, j in 0..3, with `slices` per pixel. */
-tg_real tgi_hbil_slice_phi0(int i, int j, int slices);
+/* First slice angle of sub-image (i, j), i, j in 0..3, with `slices` per
+ * pixel, in frame rotation `rot` (0..TG_HBIL_ROTATIONS - 1, the frame's
+ * index modulo TG_HBIL_ROTATIONS): the 16 sub-images x S slices stratify
+ * [0, pi) and each rotation takes its own eighth of every stratum, so the
+ * frames of a still view gather from 8 x 32 directions. */
+tg_real tgi_hbil_slice_phi0(int i, int j, int slices, int rot);
+
+/* The march's start jitter of sub-image (i, j), a fraction of a step in
+ * [0, 1): the 16 sub-images of a 4x4 block start their samples at the 16
+ * offsets (k + 1/2) / 16 of a step, in an order unlike the slice angles',
+ * so the 4x4 filter averages both (HBAO's per-pixel jitter, Bavoil 2008,
+ * interleaved as HBIL sec. 3.3 interleaves the directions).  Without it
+ * every pixel of a surface meets an occluder at a multiple of the step and
+ * the near field shows bands the step's length apart.  Each frame
+ * rotation `rot` takes its own eighth of every offset stratum. */
+tg_real tgi_hbil_step_jitter(int i, int j, int rot);
 
 /* Run the kernel on rows [y0, y1) of the view `g` (its camera is the
  * full-resolution one).  radiance: last frame's diffuse radiance reprojected,
