@@ -96,8 +96,9 @@ scene_limit() {
     done
 }
 
-# every limit of one CLI ($BIN)
+# every limit of one CLI ($BIN, named $1)
 check_binary() {
+    local tag=$1
     "$BIN" --help >"$T/help" 2>&1
 
     # --size: each side 1..SIDE, and at most PIXELS pixels

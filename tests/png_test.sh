@@ -60,8 +60,9 @@ except Exception as e:  # one line for the test log
 EOF
 png_matches_ppm() { python3 "$T/check.py" "$1" "$2" >"$T/why" 2>&1; }
 
-# every PNG of one CLI ($BIN)
+# every PNG of one CLI ($BIN, named $1)
 check_binary() {
+    local tag=$1
     for c in "cornell 1x1 color" "cornell 17x13 color" "spheres 200x150 color" "columns 64x48 normal" \
              "cornell 40x30 depth" "groove 33x20 ao" "plane 8192x1 color"; do
         set -- $c
