@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include "ao/ao.h"
 #include "ao/bvh.h"
+#include "ao/reference.h"
 #include "storage_fixture.h"
 
 #define W 48
@@ -173,6 +174,24 @@ static void build_bvh(scene *s)
     free(bvh_mem);
     bvh_mem = malloc(bytes);
     if (tgi_bvh_build(&bvh, s->tri, s->nrect * 2, bvh_mem, bytes) != 0) { fprintf(stderr, "bvh build failed\n"); exit(2); }
+}
+
+/* The reference's parameters for s (the BVH build_bvh made, s's triangle
+ * normals) at radius. */
+static inline tgi_reference_params reference_params(const scene *s, tg_real radius)
+{
+    tgi_reference_params p;
+    tgi_reference_defaults(&p);
+    p.bvh = &bvh; p.tri_nrm = s->nrm; p.radius = radius;
+    return p;
+}
+
+/* The reference with p over s into o (no near field, no cone). */
+static inline void reference_run(ao_pass *io, const tgi_reference_params *p, scene *s, outputs *o)
+{
+    io_for(io, s, o, 0);
+    tgi_reference_rows(p, &io->g, &io->rad, &io->out, 0, H);
+    io_read(io);
 }
 
 /* ---- the groove: floor y = 0 (x >= 0) meeting a wall x = 0 (y >= 0) ---- */

@@ -28,8 +28,7 @@ set -u
 cd "$(dirname "$0")/.."
 . tests/shcheck.sh
 BUILD=${BUILD:-build}
-T=$(mktemp -d "${TMPDIR:-/tmp}/tgi_bench_XXXXXX")
-trap 'rm -rf "$T"' EXIT
+sh_scratch bench
 W=32; H=24
 ARGS="--size ${W}x${H} --runs 1 --ref-samples 17 --scenes groove,columns --pt-samples 4 --color-frames 2"
 

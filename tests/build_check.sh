@@ -4,9 +4,8 @@
 # scratch directory $T, removed on exit.
 # `make test` hands the scripts its compiler and flags: CC, TG_CFLAGS (every
 # compile flag), TG_LDLIBS (link flags and libraries), MAKE and MAKEFLAGS.
-BUILD=${BUILD:-build}
-case $BUILD in /*) ;; *) BUILD=$PWD/$BUILD ;; esac
-T=$(mktemp -d "${TMPDIR:-/tmp}/tgi_build_XXXXXX"); trap 'rm -rf "$T"' EXIT
+sh_build
+sh_scratch build
 CC=${CC:-cc}
 TG_CFLAGS=${TG_CFLAGS:--std=c99 -O2}
 TG_LDLIBS=${TG_LDLIBS:-}

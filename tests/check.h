@@ -69,4 +69,31 @@ static inline int check_summary(void)
 /* tg_real to double, for comparisons in tests. */
 static inline double check_d(tg_real r) { return (double)tg_to_float(r); }
 
+/* tg_real to double exactly (check_d goes through float: 24 bits). */
+static inline double check_exact(tg_real r)
+{
+#if TG_FIXED
+    return (double)r / 65536.0;
+#else
+    return (double)r;
+#endif
+}
+
+#define CHECK_PI 3.14159265358979323846
+
+/* A unit in the last place of the build's number near 1. */
+#if TG_FIXED
+#define CHECK_ULP (1.0 / 65536.0)
+#else
+#define CHECK_ULP 1.2e-7
+#endif
+
+/* The tests' linear congruential generator: the next value in [0, 1) of
+ * the sequence *state seeds. */
+static inline double check_rnd(unsigned *state)
+{
+    *state = *state * 1103515245u + 12345u;
+    return (double)((*state >> 8) & 0xffffff) / 16777216.0;
+}
+
 #endif

@@ -15,11 +15,9 @@
 set -u
 cd "$(dirname "$0")/.."
 . tests/shcheck.sh
-BUILD=${BUILD:-build}
-case $BUILD in /*) ;; *) BUILD=$PWD/$BUILD ;; esac
+sh_build
 MAX_THREADS=$(awk '$1 == "#define" && $2 == "TG_MAX_THREADS" { print $3; exit }' src/tinygi.h)
-T=$(mktemp -d "${TMPDIR:-/tmp}/tgi_cli_XXXXXX")
-trap 'chmod -R u+w "$T" 2>/dev/null; rm -rf "$T"' EXIT
+sh_scratch cli
 S=$T/s          # scenes and OBJ files
 O=$T/o          # outputs (must stay empty after a refused run)
 mkdir -p "$S" "$O"
@@ -377,9 +375,5 @@ check_binary() {
     expect "$tag/diff_output_must_be_ppm_or_png" [ "$rc" -eq 2 -a ! -e "$T/x.pfm" ]
 }
 
-for BIN in "$BUILD/tinygi" "$BUILD/tinygi-fixed"; do
-    tag=$(basename "$BIN")
-    if [ ! -x "$BIN" ]; then fail "$tag/built" "$BIN missing"; continue; fi
-    check_binary "$tag"
-done
+each_cli check_binary
 summary

@@ -17,10 +17,8 @@
 set -u
 cd "$(dirname "$0")/.."
 . tests/shcheck.sh
-BUILD=${BUILD:-build}
-case $BUILD in /*) ;; *) BUILD=$PWD/$BUILD ;; esac
-T=$(mktemp -d "${TMPDIR:-/tmp}/tgi_file_XXXXXX")
-trap 'chmod -R u+w "$T" 2>/dev/null; rm -rf "$T"' EXIT
+sh_build
+sh_scratch file
 SCENE='camera pos 0 3 3 target 0 0 0
 material m albedo 0.8 0.8 0.8
 light point pos 0 3 0 color 1 1 1 intensity 5
@@ -206,9 +204,5 @@ check_binary() {
     kill "$live" 2>/dev/null; wait "$live" 2>/dev/null
 }
 
-for BIN in "$BUILD/tinygi" "$BUILD/tinygi-fixed"; do
-    tag=$(basename "$BIN")
-    if [ ! -x "$BIN" ]; then fail "$tag/built" "$BIN missing"; continue; fi
-    check_binary "$tag"
-done
+each_cli check_binary
 summary

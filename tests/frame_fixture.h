@@ -75,6 +75,14 @@ static inline void teardown(rendered *r)
     r->ok = 0;
 }
 
+/* setup as a check ("WHAT sets up"); r is torn down when it fails. */
+static inline int setup_checked(rendered *r, const char *text, const tg_request *req, const char *what)
+{
+    CHECK(setup(r, text, req), "%s sets up", what);
+    if (!r->ok) teardown(r);
+    return r->ok;
+}
+
 static inline tg_request request(int w, int h, uint32_t aovs)
 {
     tg_request q;

@@ -13,10 +13,8 @@
 set -u
 cd "$(dirname "$0")/.."
 . tests/shcheck.sh
-BUILD=${BUILD:-build}
-case $BUILD in /*) ;; *) BUILD=$PWD/$BUILD ;; esac
-T=$(mktemp -d "${TMPDIR:-/tmp}/tgi_limits_XXXXXX")
-trap 'rm -rf "$T"' EXIT
+sh_build
+sh_scratch limits
 
 # the value of a limit macro in src/tinygi.h (plain integers, or (1L << N))
 limit() {
@@ -98,9 +96,9 @@ scene_limit() {
     done
 }
 
-for BIN in "$BUILD/tinygi" "$BUILD/tinygi-fixed"; do
-    tag=$(basename "$BIN")
-    if [ ! -x "$BIN" ]; then fail "$tag/built" "$BIN missing"; continue; fi
+# every limit of one CLI ($BIN, named $1)
+check_binary() {
+    local tag=$1
     "$BIN" --help >"$T/help" 2>&1
 
     # --size: each side 1..SIDE, and at most PIXELS pixels
@@ -131,5 +129,7 @@ for BIN in "$BUILD/tinygi" "$BUILD/tinygi-fixed"; do
     scene_limit samples 1 "$SAMPLES"
     scene_limit bounces 0 "$BOUNCES"
     scene_limit radius 0 "$RADIUS"
-done
+}
+
+each_cli check_binary
 summary

@@ -10,10 +10,8 @@
 set -u
 cd "$(dirname "$0")/.."
 . tests/shcheck.sh
-BUILD=${BUILD:-build}
-case $BUILD in /*) ;; *) BUILD=$PWD/$BUILD ;; esac
-T=$(mktemp -d "${TMPDIR:-/tmp}/tgi_png_XXXXXX")
-trap 'rm -rf "$T"' EXIT
+sh_build
+sh_scratch png
 if ! command -v python3 >/dev/null 2>&1; then
     fail "python3" "python3 is needed to decode the PNG files"; summary; exit 1
 fi
@@ -62,9 +60,9 @@ except Exception as e:  # one line for the test log
 EOF
 png_matches_ppm() { python3 "$T/check.py" "$1" "$2" >"$T/why" 2>&1; }
 
-for BIN in "$BUILD/tinygi" "$BUILD/tinygi-fixed"; do
-    tag=$(basename "$BIN")
-    if [ ! -x "$BIN" ]; then fail "$tag/built" "$BIN missing"; continue; fi
+# every PNG of one CLI ($BIN, named $1)
+check_binary() {
+    local tag=$1
     for c in "cornell 1x1 color" "cornell 17x13 color" "spheres 200x150 color" "columns 64x48 normal" \
              "cornell 40x30 depth" "groove 33x20 ao" "plane 8192x1 color"; do
         set -- $c
@@ -88,5 +86,7 @@ for BIN in "$BUILD/tinygi" "$BUILD/tinygi-fixed"; do
     if png_matches_ppm "$T/d.png" "$T/d.ppm"; then ok "$tag/png_diff_image"
     else fail "$tag/png_diff_image" "$(cat "$T/why")"; fi
     rm -f "$T"/*.png "$T"/*.ppm
-done
+}
+
+each_cli check_binary
 summary

@@ -16,7 +16,7 @@
 #include "scene/scene.h"
 #include "ao/bvh.h"
 #include "storage_fixture.h"
-#include "light/direct.h"
+#include "light_fixture.h"
 
 #define DEG (3.14159265358979 / 180.0)
 #define MAXTRI 4096
@@ -115,16 +115,6 @@ static void geo_bvh(const geo *g)
     free(bvh_mem);
     bvh_mem = malloc(bytes);
     if (!bvh_mem || tgi_bvh_build(&bvh, g->pos, g->n, bvh_mem, bytes) != 0) { fprintf(stderr, "bvh\n"); exit(2); }
-}
-
-/* A light with shadows, colour (1, 0.5, 0.25). */
-static tgi_light make_light(tgi_light_type type, tg_vec3 pos, tg_vec3 dir, double intensity, double angle)
-{
-    tgi_light l;
-    memset(&l, 0, sizeof l);
-    l.type = type; l.pos = pos; l.dir = tgi_v3_normalize(dir);
-    l.color = v3(1.0, 0.5, 0.25); l.intensity = rv(intensity); l.angle = rv(angle); l.shadows = 1;
-    return l;
 }
 
 /* ---- an image: the rasterized G-buffer and per-pixel outputs ---- */

@@ -7,3 +7,20 @@ fail() { echo "FAIL $1${2:+: $2}"; sh_failed=$((sh_failed + 1)); }
 # expect NAME COND-EXIT-STATUS...: run "$@" after the name; pass when it succeeds
 expect() { local name=$1; shift; if "$@"; then ok "$name"; else fail "$name"; fi; }
 summary() { echo "TESTS passed $sh_passed failed $sh_failed"; [ "$sh_failed" -eq 0 ]; }
+# sh_build: $BUILD (default build) as an absolute path.
+sh_build() { BUILD=${BUILD:-build}; case $BUILD in /*) ;; *) BUILD=$PWD/$BUILD ;; esac; }
+# sh_scratch NAME: $T, a fresh directory ${TMPDIR:-/tmp}/tgi_NAME_XXXXXX,
+# removed on exit (made writable first: some tests make read-only files).
+sh_scratch() {
+    T=$(mktemp -d "${TMPDIR:-/tmp}/tgi_$1_XXXXXX")
+    trap 'chmod -R u+w "$T" 2>/dev/null; rm -rf "$T"' EXIT
+}
+# each_cli FN: FN TAG for each CLI ($BUILD/tinygi, $BUILD/tinygi-fixed) with
+# $BIN the program and $tag its name; a CLI not built fails TAG/built.
+each_cli() {
+    for BIN in "$BUILD/tinygi" "$BUILD/tinygi-fixed"; do
+        tag=$(basename "$BIN")
+        if [ ! -x "$BIN" ]; then fail "$tag/built" "$BIN missing"; continue; fi
+        "$1" "$tag"
+    done
+}

@@ -73,6 +73,16 @@ static inline tgi_gview sf_view(const tgi_gbuffer *g, const tgi_view *v)
     return view;
 }
 
+/* The first plane of a carved block, the one its allocation starts (the
+ * wide and the compact storage name it differently). */
+#if TG_WIDE_STORAGE
+#define SF_RGB_BLOCK(c) ((c)->r)
+#define SF_PREV_BLOCK(h) ((h)->depth)
+#else
+#define SF_RGB_BLOCK(c) ((c)->p)
+#define SF_PREV_BLOCK(h) ((h)->dn)
+#endif
+
 /* ---- colour planes ---- */
 static inline void sf_rgb_alloc(tgi_rgb *c, size_t n)
 {
@@ -80,11 +90,7 @@ static inline void sf_rgb_alloc(tgi_rgb *c, size_t n)
 }
 static inline void sf_rgb_free(tgi_rgb *c)
 {
-#if TG_WIDE_STORAGE
-    free(c->r);
-#else
-    free(c->p);
-#endif
+    free(SF_RGB_BLOCK(c));
     *c = tgi_rgb_none();
 }
 static inline void sf_rgb_fill(const tgi_rgb *c, size_t n, const tg_real *r, const tg_real *g, const tg_real *b)
@@ -120,11 +126,7 @@ static inline void sf_prev_alloc(tgi_prev_geometry *h, size_t n)
 }
 static inline void sf_prev_free(tgi_prev_geometry *h)
 {
-#if TG_WIDE_STORAGE
-    free(h->depth);
-#else
-    free(h->dn);
-#endif
+    free(SF_PREV_BLOCK(h));
     memset(h, 0, sizeof *h);
 }
 

@@ -143,6 +143,27 @@ static int refused(tg_status st, const tg_error *err, const char *sw)
     return 1;
 }
 
+/* text planned for technique t and one AOV, aov: with the switch sw
+ * compiled out (off) refused with a message naming it, and so is light
+ * (direct, far, colour) without colour (TG_NO_COLOR); else planned, with
+ * `effect` among the plan's effects (0: none asked), rendering aov within
+ * [lo, hi].  The status, plan and error are the caller's to check further. */
+static tg_status check_switch(int off, const char *sw, const char *text, tg_technique t, tg_aov aov,
+                              unsigned effect, double lo, double hi, const char *what, tg_plan *plan, tg_error *err)
+{
+    tg_status st = plan_for(text, t, 1u << aov, 1, plan, err);
+    if (off) {
+        CHECK(refused(st, err, sw), "%s: status %d", what, (int)st);
+    } else if (TG_NO_COLOR && (aov == TG_AOV_DIRECT || aov == TG_AOV_FAR || aov == TG_AOV_COLOR)) {
+        CHECK(refused(st, err, "TG_NO_COLOR"), "%s: status %d", what, (int)st);
+    } else {
+        CHECK(st == TG_OK, "%s: %s", what, err->message);
+        if (effect) CHECK(plan->effects & effect, "%s: effects %u", what, (unsigned)plan->effects);
+        CHECK(renders_within(plan, aov, lo, hi), "%s: %s outside [%g, %g] or not finite", what, tg_aov_name(aov), lo, hi);
+    }
+    return st;
+}
+
 TEST(renders_colour_and_ao)
 {
     tg_plan plan;
@@ -164,17 +185,11 @@ TEST(techniques)
     static const tg_technique some[] = { TG_TECH_GTAO, TG_TECH_SSAO, TG_TECH_BENTCONE };
     tg_plan plan;
     tg_error err;
-    tg_status st;
     int i;
     for (i = 0; i < 3; i++) {
-        st = plan_for(scene_plain, some[i], 1u << TG_AOV_AO, 1, &plan, &err);
-        if (TG_NO_TECHNIQUES) {
-            CHECK(refused(st, &err, "TG_NO_TECHNIQUES"), "%s: status %d", tg_technique_name(some[i]), (int)st);
-            CHECK(strstr(err.message, tg_technique_name(some[i])) != NULL, "%s", err.message);
-        } else {
-            CHECK(st == TG_OK, "%s", err.message);
-            CHECK(renders_within(&plan, TG_AOV_AO, 0, 1), "%s: AO outside [0, 1]", tg_technique_name(some[i]));
-        }
+        const char *name = tg_technique_name(some[i]);
+        check_switch(TG_NO_TECHNIQUES, "TG_NO_TECHNIQUES", scene_plain, some[i], TG_AOV_AO, 0, 0, 1, name, &plan, &err);
+        if (TG_NO_TECHNIQUES) CHECK(strstr(err.message, name) != NULL, "%s", err.message);
     }
 }
 
@@ -182,30 +197,17 @@ TEST(reference)
 {
     tg_plan plan;
     tg_error err;
-    tg_status st = plan_for(scene_plain, TG_TECH_REFERENCE, 1u << TG_AOV_AO, 1, &plan, &err);
-    if (TG_NO_REFERENCE) {
-        CHECK(refused(st, &err, "TG_NO_REFERENCE"), "status %d", (int)st);
-        CHECK(plan.total_bytes == 0, "a refused plan has total_bytes %zu", plan.total_bytes);
-    } else {
-        CHECK(st == TG_OK, "%s", err.message);
-        CHECK(renders_within(&plan, TG_AOV_AO, 0, 1), "reference AO outside [0, 1]");
-    }
+    check_switch(TG_NO_REFERENCE, "TG_NO_REFERENCE", scene_plain, TG_TECH_REFERENCE, TG_AOV_AO, 0, 0, 1, "reference",
+                 &plan, &err);
+    if (TG_NO_REFERENCE) CHECK(plan.total_bytes == 0, "a refused plan has total_bytes %zu", plan.total_bytes);
 }
 
 TEST(shadow_maps)
 {
     tg_plan plan;
     tg_error err;
-    tg_status st = plan_for(scene_rich, TG_TECH_HBIL, 1u << TG_AOV_DIRECT, 1, &plan, &err);
-    if (TG_NO_SHADOW_MAPS) {
-        CHECK(refused(st, &err, "TG_NO_SHADOW_MAPS"), "status %d", (int)st);
-    } else if (TG_NO_COLOR) {
-        CHECK(refused(st, &err, "TG_NO_COLOR"), "status %d", (int)st);
-    } else {
-        CHECK(st == TG_OK, "%s", err.message);
-        CHECK(plan.effects & TG_EFFECT_SHADOWS, "effects %u", (unsigned)plan.effects);
-        CHECK(renders_within(&plan, TG_AOV_DIRECT, 0, 1e6), "direct light not finite");
-    }
+    check_switch(TG_NO_SHADOW_MAPS, "TG_NO_SHADOW_MAPS", scene_rich, TG_TECH_HBIL, TG_AOV_DIRECT, TG_EFFECT_SHADOWS,
+                 0, 1e6, "direct light", &plan, &err);
     /* AO of the same scene needs no shadow map (nor the environment) */
     CHECK(plan_for(scene_rich, TG_TECH_HBIL, 1u << TG_AOV_AO, 1, &plan, &err) == TG_OK, "%s", err.message);
     CHECK(renders_within(&plan, TG_AOV_AO, 0, 1), "AO outside [0, 1]");
@@ -215,29 +217,17 @@ TEST(environment)
 {
     tg_plan plan;
     tg_error err;
-    tg_status st = plan_for(scene_rich, TG_TECH_HBIL, 1u << TG_AOV_FAR, 1, &plan, &err);
-    if (TG_NO_ENVIRONMENT) {
-        CHECK(refused(st, &err, "TG_NO_ENVIRONMENT"), "far: status %d", (int)st);
-    } else if (TG_NO_COLOR) {
-        CHECK(refused(st, &err, "TG_NO_COLOR"), "far: status %d", (int)st);
-    } else {
-        CHECK(st == TG_OK, "%s", err.message);
-        CHECK(plan.effects & TG_EFFECT_FAR, "effects %u", (unsigned)plan.effects);
-        CHECK(renders_within(&plan, TG_AOV_FAR, 0, 1e6), "far field not finite");
-    }
+    check_switch(TG_NO_ENVIRONMENT, "TG_NO_ENVIRONMENT", scene_rich, TG_TECH_HBIL, TG_AOV_FAR, TG_EFFECT_FAR,
+                 0, 1e6, "far", &plan, &err);
     /* colour over the sky reads the env even with `effects` leaving far out */
-    st = plan_for(scene_sky_no_far, TG_TECH_HBIL, 1u << TG_AOV_COLOR, 1, &plan, &err);
-    if (TG_NO_ENVIRONMENT) {
-        CHECK(refused(st, &err, "TG_NO_ENVIRONMENT"), "sky: status %d", (int)st);
-    } else if (TG_NO_COLOR) {
-        CHECK(refused(st, &err, "TG_NO_COLOR"), "sky: status %d", (int)st);
-    } else {
-        CHECK(st == TG_OK && !(plan.effects & TG_EFFECT_FAR), "%s", err.message);
-        CHECK(renders_within(&plan, TG_AOV_COLOR, 0, 1e6), "colour not finite");
-    }
+    check_switch(TG_NO_ENVIRONMENT, "TG_NO_ENVIRONMENT", scene_sky_no_far, TG_TECH_HBIL, TG_AOV_COLOR, 0,
+                 0, 1e6, "sky", &plan, &err);
+    if (!TG_NO_ENVIRONMENT && !TG_NO_COLOR) CHECK(!(plan.effects & TG_EFFECT_FAR), "sky: effects %u", (unsigned)plan.effects);
     /* a scene without env renders colour in every build with colour */
-    st = plan_for(scene_plain, TG_TECH_HBIL, 1u << TG_AOV_COLOR, 1, &plan, &err);
-    CHECK(TG_NO_COLOR ? refused(st, &err, "TG_NO_COLOR") : st == TG_OK, "%s", err.message);
+    {
+        tg_status st = plan_for(scene_plain, TG_TECH_HBIL, 1u << TG_AOV_COLOR, 1, &plan, &err);
+        CHECK(TG_NO_COLOR ? refused(st, &err, "TG_NO_COLOR") : st == TG_OK, "%s", err.message);
+    }
 }
 
 TEST(obj_meshes)

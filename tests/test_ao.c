@@ -200,11 +200,8 @@ TEST(groove_against_reference)
     ao_pass io;
     int k, i;
     groove(&s);
-    tgi_reference_defaults(&rp);
-    rp.bvh = &bvh; rp.tri_nrm = s.nrm; rp.radius = TG_ONE;
-    io_for(&io, &s, &ref, 0);
-    tgi_reference_rows(&rp, &io.g, &io.rad, &io.out, 0, H);
-    io_read(&io);
+    rp = reference_params(&s, TG_ONE);
+    reference_run(&io, &rp, &s, &ref);
     printf("# groove reference: floor ao near the crease %.3f, beyond the radius %.3f\n",
            floor_mean(&s, ref.ao, 0, 0.15), floor_mean(&s, ref.ao, 1.2, 100));
     for (k = 0; k < NTECH; k++) {
@@ -336,8 +333,7 @@ TEST(ssdo_far_and_near)
     io_radiance(&io, rr, rg, rb);
     run_ssdo(&io, 0, H);
     io_read(&io);
-    tgi_reference_defaults(&rp);
-    rp.bvh = &bvh; rp.tri_nrm = s.nrm; rp.radius = TG_ONE;
+    rp = reference_params(&s, TG_ONE);
     io_for(&io, &s, &ref, 1);
     io_radiance(&io, rr, rg, rb);
     tgi_reference_rows(&rp, &io.g, &io.rad, &io.out, 0, H);   /* view-buffer radiance: what ssdo can see */

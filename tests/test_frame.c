@@ -169,8 +169,7 @@ static void white_furnace(int far_mode)
         "quad p0 -400 0 -400 p1 -400 0 400 p2 400 0 400 p3 400 0 -400 material m\n"
         "env uniform 1 1 1\n";
     q.far_mode = far_mode;
-    CHECK(setup(&r, text, &q), "furnace sets up");
-    if (!r.ok) { teardown(&r); return; }
+    if (!setup_checked(&r, text, &q, "furnace")) return;
     tg_frame_render(r.frame, 0, &err);
     c = read_aov(&r, TG_AOV_COLOR);
     for (i = 0; i < 64 * 48; i++) {
@@ -217,8 +216,7 @@ TEST(closed_room_converges)
     double *prev = NULL, *cur, first_mean = 0, early_change = 0, late_change = 0;
     int f;
     q.frames = 24;
-    CHECK(setup(&r, lit_room, &q), "room sets up");
-    if (!r.ok) { teardown(&r); return; }
+    if (!setup_checked(&r, lit_room, &q, "room")) return;
     for (f = 0; f < q.frames; f++) {
         tg_frame_render(r.frame, f, &err);
         cur = read_aov(&r, TG_AOV_COLOR);
@@ -244,8 +242,7 @@ TEST(kept_geometry_is_every_pixel_of_the_frame)
     tg_error err;
     int x, y, bad = 0;
     q.frames = 2;
-    CHECK(setup(&r, lit_room, &q), "room sets up");
-    if (!r.ok) { teardown(&r); return; }
+    if (!setup_checked(&r, lit_room, &q, "room")) return;
     CHECK(r.plan.effects & TG_EFFECT_REPROJECTION, "two frames: reprojection");
     CHECK(tg_frame_render(r.frame, 0, &err) == TG_OK, "renders: %s", err.message);
     for (y = 0; y < 30; y++)
@@ -281,8 +278,7 @@ TEST(white_room_stays_finite)
         "light point pos 0 2.5 0 color 1 1 1 intensity 20\n";
     int f, bad = 0;
     q.frames = 500;
-    CHECK(setup(&r, text, &q), "white room sets up");
-    if (!r.ok) { teardown(&r); return; }
+    if (!setup_checked(&r, text, &q, "white room")) return;
     for (f = 0; f < q.frames; f++) tg_frame_render(r.frame, f, &err);
     {
         double *c = read_aov(&r, TG_AOV_COLOR), *nf = read_aov(&r, TG_AOV_NEAR);
@@ -318,8 +314,7 @@ TEST(camera_cut_is_finite)
         "light point pos 0 2.5 0 color 1 1 1 intensity 4\n";
     int f, bad = 0;
     q.frames = 6;
-    CHECK(setup(&r, text, &q), "cut scene sets up");
-    if (!r.ok) { teardown(&r); return; }
+    if (!setup_checked(&r, text, &q, "cut scene")) return;
     for (f = 0; f < q.frames; f++) {
         double *c, *ao;
         size_t i;
@@ -521,8 +516,7 @@ TEST(explain_lists_the_plan)
     int i;
     q.frames = 3;
     q.bounces = 2;
-    CHECK(setup(&r, lit_room, &q), "lit room sets up");
-    if (!r.ok) { teardown(&r); return; }
+    if (!setup_checked(&r, lit_room, &q, "lit room")) return;
     CHECK(tg_plan_explain(&r.plan, text, sizeof text) < sizeof text, "explanation fits");
     at = text;
     for (i = 0; i < r.plan.pass_count; i++) {

@@ -84,6 +84,17 @@ static int same_frames(const rendered *a, const rendered *b)
     return same;
 }
 
+/* Render frame `index` of r and frame 0 of fresh (its camera set alike):
+ * r starts afresh (it does not reproject) and renders what fresh renders. */
+static void check_starts_afresh(const rendered *r, const rendered *fresh, int index, const char *what)
+{
+    tg_error err;
+    tg_frame_render(r->frame, index, &err);
+    tg_frame_render(fresh->frame, 0, &err);
+    CHECK(!tg_frame_reprojected(r->frame), "%s: a first frame (no history)", what);
+    CHECK(same_frames(r, fresh), "%s: a fresh first frame", what);
+}
+
 /* One AOV of a and b, bit for bit. */
 static int same_aov(const rendered *a, const rendered *b, tg_aov aov)
 {
@@ -247,11 +258,8 @@ TEST(teleport_and_declared_cut_drop_the_history)
     put3f(target, -1, 0.5f, -2);
     CHECK(tg_frame_set_camera(r.frame, pos, target, up, fov, &err) == TG_OK, "teleport: %s", err.message);
     tg_frame_set_camera(fresh.frame, pos, target, up, fov, &err);
-    tg_frame_render(r.frame, 3, &err);
-    tg_frame_render(fresh.frame, 0, &err);
-    CHECK(!tg_frame_reprojected(r.frame), "a teleport is detected as a cut");
+    check_starts_afresh(&r, &fresh, 3, "a teleport is a cut");
     CHECK(all_finite(&r), "the frame after the teleport is finite, AO in [0, 1]");
-    CHECK(same_frames(&r, &fresh), "the frame after a cut is a fresh first frame");
     /* a tiny move, declared a cut */
     pos[0] = tg_add(pos[0], TG_R(0.01f));
     tg_frame_set_camera(r.frame, pos, target, up, fov, &err);
@@ -259,10 +267,7 @@ TEST(teleport_and_declared_cut_drop_the_history)
     CHECK(tg_frame_reprojected(r.frame), "a tiny move is not a cut");
     CHECK(tg_frame_cut(r.frame) == TG_OK, "cut");
     tg_frame_set_camera(fresh.frame, pos, target, up, fov, &err);
-    tg_frame_render(r.frame, 5, &err);
-    tg_frame_render(fresh.frame, 0, &err);
-    CHECK(!tg_frame_reprojected(r.frame), "a declared cut drops the history");
-    CHECK(same_frames(&r, &fresh), "and renders a fresh first frame");
+    check_starts_afresh(&r, &fresh, 5, "a declared cut drops the history");
     teardown(&r); teardown(&fresh);
 }
 
@@ -278,10 +283,7 @@ TEST(index_zero_starts_afresh)
     CHECK(setup(&r, text, &q) && setup(&fresh, text, &q), "set up");
     if (r.ok && fresh.ok) {
         for (i = 0; i < 3; i++) tg_frame_render(r.frame, i, &err);
-        tg_frame_render(r.frame, 0, &err);
-        tg_frame_render(fresh.frame, 0, &err);
-        CHECK(!tg_frame_reprojected(r.frame), "index 0 is a first frame");
-        CHECK(same_frames(&r, &fresh), "index 0 again renders what a fresh frame renders");
+        check_starts_afresh(&r, &fresh, 0, "index 0 again");
     }
     teardown(&r); teardown(&fresh);
 }

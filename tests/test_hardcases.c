@@ -60,12 +60,14 @@ static int frame_violations(const rendered *r, char *why, size_t why_n)
 }
 
 typedef struct hard_case {
+    const char *test;     /* the TEST that runs it (the table below) */
     const char *name;
     const char *text;
     int width, height, frames;
     int samples, slices;  /* 0: default (the reference gets 16) */
     double radius;        /* < 0: the scene's */
     int may_refuse;       /* fixed point may refuse with a clear TG_ERR_INPUT */
+    const char *mesh;     /* the OBJ text every mesh path reads (NULL: none) */
 } hard_case;
 
 /* Run a case with technique t twice; check every frame of the first run and
@@ -87,8 +89,10 @@ static int run_technique(const hard_case *c, int t)
     q.samples = c->samples ? c->samples : (t == TG_TECH_REFERENCE ? 16 : 0);
     q.slices = c->slices;
     if (c->radius >= 0) q.radius = TG_R((float)c->radius);
+    fixture_mesh_text = c->mesh;
     ok_a = setup(&a, c->text, &q);
     ok_b = setup(&b, c->text, &q);
+    fixture_mesh_text = NULL;
     if (!ok_a || !ok_b) {
         int refused = TG_FIXED && c->may_refuse && a.status == TG_ERR_INPUT && strstr(a.msg, "error: ") && strlen(a.msg) > 20;
         CHECK(refused, "%s / %s: setup failed (%d): %s", c->name, tg_technique_name((tg_technique)t), (int)a.status, a.msg);
@@ -127,22 +131,244 @@ static void run_case(const hard_case *c)
 
 /* ---- scenes ---- */
 
-static const char *room =
-    "camera pos 0 1 -3.5 target 0 1 0 fov 60\n"
-    "material wall albedo 0.7 0.7 0.7 f0 0\n"
-    "material lamp albedo 0.5 0.5 0.5 emissive 5 5 5\n"
-    "box min -2 0 -4 max 2 3 2 material wall inward\n"
-    "box min -0.5 0 -0.5 max 0.5 1 0.5 material wall\n"
-    "quad p0 -0.5 2.99 -0.5  p1 0.5 2.99 -0.5  p2 0.5 2.99 0.5  p3 -0.5 2.99 0.5 material lamp\n"
-    "light point pos 0 2.5 0 color 1 1 1 intensity 4 shadows\n"
-    "env uniform 0.2 0.2 0.2\n"
-    "gi radius 1.5\n";
+#define ROOM                                                                  \
+    "camera pos 0 1 -3.5 target 0 1 0 fov 60\n"                               \
+    "material wall albedo 0.7 0.7 0.7 f0 0\n"                                 \
+    "material lamp albedo 0.5 0.5 0.5 emissive 5 5 5\n"                       \
+    "box min -2 0 -4 max 2 3 2 material wall inward\n"                        \
+    "box min -0.5 0 -0.5 max 0.5 1 0.5 material wall\n"                       \
+    "quad p0 -0.5 2.99 -0.5  p1 0.5 2.99 -0.5  p2 0.5 2.99 0.5  p3 -0.5 2.99 0.5 material lamp\n" \
+    "light point pos 0 2.5 0 color 1 1 1 intensity 4 shadows\n"               \
+    "env uniform 0.2 0.2 0.2\n"                                               \
+    "gi radius 1.5\n"
+
+/* The cases whose scene is a fixed text, each run by the TEST named in its
+ * first field (in the table's order). */
+static const hard_case named_cases[] = {
+    /* A mesh whose vertex normals point away from the camera (and one at 89
+     * degrees to its face): shading normals facing away. */
+    { "interpolated_normals_facing_away", "normals facing away",
+      "camera pos 0 1 -3 target 0 0.5 0\n"
+      "material m albedo 0.6 0.6 0.6 twosided\n"
+      "quad p0 -5 0 -5 p1 -5 0 5 p2 5 0 5 p3 5 0 -5 material m\n"
+      "mesh file away.obj material m\n"
+      "light point pos 0 2 -2 color 1 1 1 intensity 3 shadows\n"
+      "env uniform 0.3 0.3 0.3\n",
+      16, 12, 1, 0, 0, -1, 0,
+      "v -1 0 0\nv 1 0 0\nv 1 2 0\nv -1 2 0\n"
+      "vn 0 0 1\nvn 0.2 0 1\nvn 0 0.99 0.01\nvn -0.7 0 0.7\n"
+      "f 1//1 2//2 3//3\nf 1//1 3//3 4//4\n"
+      "f 2//4 1//2 4//1\n" },
+    { "camera_inside_a_box", "inside an inward box",
+      "camera pos 0 0 0 target 1 0.2 0.3 fov 90\n"
+      "material m albedo 0.8 0.8 0.8\n"
+      "box min -1 -1 -1 max 1 1 1 material m inward\n"
+      "light point pos 0 0.5 0 color 1 1 1 intensity 2 shadows\n",
+      16, 12, 1, 0, 0, -1, 0, NULL },
+    { "camera_inside_a_box", "inside an outward two-sided box",
+      "camera pos 0 0 0 target 1 0.2 0.3 fov 90\n"
+      "material m albedo 0.8 0.8 0.8 twosided\n"
+      "box min -1 -1 -1 max 1 1 1 material m\n"
+      "light point pos 0 0.5 0 color 1 1 1 intensity 2\n"
+      "env uniform 1 1 1\n",
+      16, 12, 1, 0, 0, -1, 0, NULL },
+    /* A wall through the camera (it crosses the near plane), a floor that
+     * runs behind the camera, and a triangle with a vertex exactly in the
+     * camera's plane (w = 0) and one behind it (w < 0). */
+    { "near_plane_crossing_and_behind_camera", "geometry through the near plane and behind the camera",
+      "camera pos 0 1 0 target 0 1 1 near 0.05\n"
+      "material m albedo 0.6 0.6 0.6 twosided\n"
+      "quad p0 -20 0 -20 p1 -20 0 20 p2 20 0 20 p3 20 0 -20 material m\n"
+      "quad p0 0.3 0 -5 p1 0.3 0 5 p2 0.3 3 5 p3 0.3 3 -5 material m\n"
+      "mesh file w.obj material m\n"
+      "light point pos 0 2 2 color 1 1 1 intensity 3 shadows\n"
+      "env uniform 0.2 0.2 0.2\n",
+      16, 12, 1, 0, 0, -1, 0,
+      "v -1 0.5 0\nv -0.5 2 3\nv -2 0.2 -1\nv -0.2 1.2 0.01\n"
+      "f 1 2 3\nf 4 2 1\nf 3 2 4\n" },
+    { "sky_beside_geometry", "a lone box in an empty sky",
+      "camera pos 0 0.5 -3 target 0 0.5 0\n"
+      "material m albedo 0.9 0.9 0.9\n"
+      "box min -0.4 0 -0.4 max 0.4 1 0.4 material m\n"
+      "light directional dir 0 -1 1 color 1 1 1\n",
+      16, 12, 1, 0, 0, -1, 0, NULL },
+    { "sky_beside_geometry", "a box against an environment",
+      "camera pos 0 0.5 -3 target 0 0.5 0\n"
+      "material m albedo 0.9 0.9 0.9\n"
+      "box min -0.4 0 -0.4 max 0.4 1 0.4 material m\n"
+      "env sky 1 1 1 ground 0.3 0.2 0.1\n"
+      "gi radius 5\n",
+      16, 12, 1, 0, 0, -1, 0, NULL },
+    /* Pillars about a pixel wide (at 32 px across a 60 degree fov, 8 m away,
+     * a pixel is ~0.29 m) in front of a far wall. */
+    { "one_pixel_pillars", "one-pixel pillars before a far wall",
+      "camera pos 0 1 -8 target 0 1 0\n"
+      "material m albedo 0.7 0.7 0.7\n"
+      "quad p0 -20 0 -20 p1 -20 0 20 p2 20 0 20 p3 20 0 -20 material m\n"
+      "quad p0 -20 0 20 p1 20 0 20 p2 20 8 20 p3 -20 8 20 material m\n"
+      "box min -2.1 0 0 max -1.85 3 0.25 material m\n"
+      "box min -0.1 0 0 max 0.15 3 0.25 material m\n"
+      "box min 1.9 0 0 max 2.02 3 0.12 material m\n"
+      "light point pos 0 4 -4 color 1 1 1 intensity 10 shadows\n"
+      "gi radius 2\n",
+      32, 24, 1, 0, 0, -1, 0, NULL },
+    { "near_tiny_far_huge", "near 1e-3, far 1e4",
+      "camera pos 0 1 -3 target 0 1 0 near 0.001 far 10000\n"
+      "material m albedo 0.7 0.7 0.7\n"
+      "quad p0 -9000 0 -9000 p1 -9000 0 9000 p2 9000 0 9000 p3 9000 0 -9000 material m\n"
+      "quad p0 -9000 0 9000 p1 9000 0 9000 p2 9000 5000 9000 p3 -9000 5000 9000 material m\n"
+      "box min -0.5 0 -0.5 max 0.5 1 0.5 material m\n"
+      "light point pos 0 3 -1 color 1 1 1 intensity 3 shadows\n"
+      "env uniform 0.2 0.2 0.2\n",
+      16, 12, 1, 0, 0, -1, 0, NULL },
+    { "radius_zero_and_screen_covering", "radius 0", ROOM, 16, 12, 1, 0, 0, 0, 0, NULL },
+    { "radius_zero_and_screen_covering", "radius covering the screen", ROOM, 16, 12, 1, 0, 0, 1000, 0, NULL },
+    { "samples_and_slices_extremes", "samples 1", ROOM, 16, 12, 1, 1, 0, -1, 0, NULL },
+    { "samples_and_slices_extremes", "samples 64", ROOM, 12, 8, 1, 64, 0, -1, 0, NULL },
+    { "samples_and_slices_extremes", "slices 1", ROOM, 16, 12, 1, 0, 1, -1, 0, NULL },
+    { "samples_and_slices_extremes", "slices 8", ROOM, 16, 12, 1, 0, 8, -1, 0, NULL },
+    { "white_box_1000_frames_and_hot_emitter", "albedo 1 closed box, 1000 frames",
+      "camera pos 0 1 -1.5 target 0 1 0\n"
+      "material wall albedo 1 1 1 f0 0\n"
+      "material lamp albedo 1 1 1 emissive 20 20 20\n"
+      "box min -2 0 -2 max 2 3 2 material wall inward\n"
+      "box min -0.5 0 -0.5 max 0.5 1 0.5 material lamp\n"
+      "light point pos 0 2.5 0 color 1 1 1 intensity 20\n"
+      "env uniform 1 1 1\n",
+      4, 4, 1000, 0, 0, -1, 0, NULL },
+    { "white_box_1000_frames_and_hot_emitter", "emissive 1e4",
+      "camera pos 0 1 -3.5 target 0 1 0\n"
+      "material wall albedo 1 1 1 f0 0\n"
+      "material lamp albedo 1 1 1 emissive 10000 10000 10000\n"
+      "box min -2 0 -4 max 2 3 2 material wall inward\n"
+      "box min -0.5 0 -0.5 max 0.5 1 0.5 material lamp\n"
+      "light point pos 0 2.5 0 color 1 1 1 intensity 10000 shadows\n",
+      16, 12, 3, 0, 0, -1, 0, NULL },
+    /* Zero-area, collinear and sliver triangles (the OBJ loader keeps them). */
+    { "degenerate_triangles", "zero-area, collinear and sliver triangles",
+      "camera pos 0 1 -3 target 0 0.5 0\n"
+      "material m albedo 0.6 0.6 0.6 twosided\n"
+      "quad p0 -5 0 -5 p1 -5 0 5 p2 5 0 5 p3 5 0 -5 material m\n"
+      "mesh file bad.obj material m\n"
+      "light point pos 0 2 -1 color 1 1 1 intensity 3 shadows\n"
+      "env uniform 0.3 0.3 0.3\n",
+      16, 12, 1, 0, 0, -1, 0,
+      "v 0 0.5 0\nv 1 0.5 0\nv 2 0.5 0\nv 0 1.5 0\nv -1 0.2 0\nv 1 0.2001 0\nv -1 0.2 0.00001\n"
+      "vn 0 0 -1\n"
+      "f 1 1 1\nf 1 2 1\nf 1 2 3\nf 3 2 1\n"
+      "f 5 6 7\nf 5 4 6\nf 1//1 2//1 3//1\nf 4 4 2\n" },
+    { "fov_extremes_and_camera_straight_down", "fov 1",
+      "camera pos 0 1 -3.5 target 0 0.5 0 fov 1\n"
+      "material m albedo 0.7 0.7 0.7\n"
+      "box min -2 0 -4 max 2 3 2 material m inward\n"
+      "box min -0.5 0 -0.5 max 0.5 1 0.5 material m\n"
+      "light point pos 0 2.5 0 color 1 1 1 intensity 4\n",
+      16, 12, 1, 0, 0, -1, 0, NULL },
+    { "fov_extremes_and_camera_straight_down", "fov 179",
+      "camera pos 0 1 -3.5 target 0 1 0 fov 179\n"
+      "material m albedo 0.7 0.7 0.7\n"
+      "box min -2 0 -4 max 2 3 2 material m inward\n"
+      "box min -0.5 0 -0.5 max 0.5 1 0.5 material m\n"
+      "light point pos 0 2.5 0 color 1 1 1 intensity 4\n",
+      16, 12, 1, 0, 0, -1, 0, NULL },
+    { "fov_extremes_and_camera_straight_down", "camera straight down",
+      "camera pos 0 4 0 target 0 0 0\n"
+      "material m albedo 0.7 0.7 0.7\n"
+      "quad p0 -5 0 -5 p1 -5 0 5 p2 5 0 5 p3 5 0 -5 material m\n"
+      "box min -0.5 0 -0.5 max 0.5 1 0.5 material m\n"
+      "light directional dir 0 -1 0 color 1 1 1 shadows\n"
+      "env uniform 0.3 0.3 0.3\n",
+      16, 12, 2, 0, 0, -1, 0, NULL },
+    /* A square pit seen from straight above: at its centre the horizons are
+     * the same on every side, the horizontal parts of the bent normal cancel. */
+    { "symmetric_pit", "symmetric pit",
+      "camera pos 0 3 0.0001 target 0 0 0 fov 40\n"
+      "material m albedo 0.7 0.7 0.7\n"
+      "quad p0 -1 -1 -1 p1 -1 -1 1 p2 1 -1 1 p3 1 -1 -1 material m\n"
+      "quad p0 -1 -1 -1 p1 1 -1 -1 p2 1 0 -1 p3 -1 0 -1 material m\n"
+      "quad p0 1 -1 1 p1 -1 -1 1 p2 -1 0 1 p3 1 0 1 material m\n"
+      "quad p0 -1 -1 1 p1 -1 -1 -1 p2 -1 0 -1 p3 -1 0 1 material m\n"
+      "quad p0 1 -1 -1 p1 1 -1 1 p2 1 0 1 p3 1 0 -1 material m\n"
+      "env uniform 1 1 1\n"
+      "gi radius 3\n",
+      17, 17, 1, 0, 0, -1, 0, NULL },
+    { "camera_cut_and_fast_object", "camera cut",
+      "camera_key t 0 pos 0 1 -3.5 target 0 1 0\n"
+      "camera_key t 1 pos 0 1 -3.5 target 0 1 0\n"
+      "camera_key t 1.01 pos 1.5 2.5 1.5 target -1 0 -2\n"
+      "camera_key t 3 pos 1.5 2.5 1.5 target -1 0 -2\n"
+      "material wall albedo 0.7 0.7 0.7\n"
+      "material lamp albedo 0.5 0.5 0.5 emissive 5 5 5\n"
+      "box min -2 0 -4 max 2 3 2 material wall inward\n"
+      "box min -0.5 0 -0.5 max 0.5 1 0.5 material wall\n"
+      "quad p0 -0.5 2.99 -0.5  p1 0.5 2.99 -0.5  p2 0.5 2.99 0.5  p3 -0.5 2.99 0.5 material lamp\n"
+      "light point pos 0 2.5 0 color 1 1 1 intensity 4 shadows\n",
+      16, 12, 4, 0, 0, -1, 0, NULL },
+    { "camera_cut_and_fast_object", "fast-moving object",
+      "camera pos 0 1 -3.5 target 0 1 0\n"
+      "camera_key t 0 pos 0 1 -3.5 target 0 1 0\n"
+      "camera_key t 3 pos 0.1 1 -3.5 target 0 1 0\n"
+      "material wall albedo 0.7 0.7 0.7\n"
+      "box min -2 0 -4 max 2 3 2 material wall inward\n"
+      "box min -0.5 0 -0.5 max 0.5 1 0.5 material wall name runner\n"
+      "object_key name runner t 0 translate -1.4 0 0\n"
+      "object_key name runner t 1 translate 1.4 0.5 -1 rotate 0 1 0 90\n"
+      "object_key name runner t 2 translate -1.4 0 -2 rotate 1 0 0 180\n"
+      "object_key name runner t 3 translate 1.4 1 0\n"
+      "light point pos 0 2.5 0 color 1 1 1 intensity 4 shadows\n"
+      "env uniform 0.2 0.2 0.2\n",
+      16, 12, 4, 0, 0, -1, 0, NULL },
+};
+
+/* Run every case of named_cases the test `test` owns (it owns at least one). */
+static void run_named(const char *test)
+{
+    size_t i;
+    int owned = 0;
+    for (i = 0; i < sizeof named_cases / sizeof named_cases[0]; i++)
+        if (strcmp(named_cases[i].test, test) == 0) {
+            run_case(&named_cases[i]);
+            owned++;
+        }
+    CHECK(owned > 0, "no case in named_cases for %s", test);
+}
+
+#define NAMED_TEST(name) TEST(name) { run_named(#name); }
+
+NAMED_TEST(interpolated_normals_facing_away)
+NAMED_TEST(camera_inside_a_box)
+NAMED_TEST(near_plane_crossing_and_behind_camera)
+NAMED_TEST(sky_beside_geometry)
+NAMED_TEST(one_pixel_pillars)
+NAMED_TEST(near_tiny_far_huge)
+NAMED_TEST(radius_zero_and_screen_covering)
+NAMED_TEST(samples_and_slices_extremes)
+NAMED_TEST(white_box_1000_frames_and_hot_emitter)
+NAMED_TEST(degenerate_triangles)
+NAMED_TEST(fov_extremes_and_camera_straight_down)
+NAMED_TEST(symmetric_pit)
+NAMED_TEST(camera_cut_and_fast_object)
+
+/* A generated scene: its name and text. */
+typedef struct scene_buf { char name[64], text[1024]; } scene_buf;
+
+/* The case of the default size (16x12, one frame) that renders b->text;
+ * b->name is name_fmt with value. */
+static hard_case generated(scene_buf *b, const char *name_fmt, double value, int may_refuse)
+{
+    hard_case c = { 0, 0, 0, 16, 12, 1, 0, 0, -1, 0, NULL };
+    snprintf(b->name, sizeof b->name, name_fmt, value);
+    c.name = b->name;
+    c.text = b->text;
+    c.may_refuse = may_refuse;
+    return c;
+}
 
 /* A plane (y = 0) seen at `deg` degrees between the view and the plane. */
-static void plane_at(char *text, size_t n, double deg)
+static void plane_at(scene_buf *b, double deg)
 {
     double a = deg * 3.14159265358979 / 180.0;
-    snprintf(text, n,
+    snprintf(b->text, sizeof b->text,
              "camera pos 0 %.7f %.7f target 0 0 0 fov 50\n"
              "material m albedo 0.5 0.5 0.5\n"
              "quad p0 -300 0 -300 p1 -300 0 300 p2 300 0 300 p3 300 0 -300 material m\n"
@@ -157,133 +383,19 @@ TEST(planes_at_grazing_and_steep_angles)
     static const double deg[] = { 0.1, 1, 80, 89.9 };
     int k;
     for (k = 0; k < 4; k++) {
-        char text[1024], name[64];
-        hard_case c = { 0, 0, 16, 12, 1, 0, 0, -1, 0 };
-        plane_at(text, sizeof text, deg[k]);
-        snprintf(name, sizeof name, "plane at %g deg", deg[k]);
-        c.name = name;
-        c.text = text;
+        scene_buf b;
+        hard_case c;
+        plane_at(&b, deg[k]);
+        c = generated(&b, "plane at %g deg", deg[k], 0);
         run_case(&c);
     }
 }
 
-/* A mesh whose vertex normals point away from the camera (and one at 89
- * degrees to its face): shading normals facing away. */
-TEST(interpolated_normals_facing_away)
-{
-    hard_case c = { "normals facing away", 0, 16, 12, 1, 0, 0, -1, 0 };
-    c.text =
-        "camera pos 0 1 -3 target 0 0.5 0\n"
-        "material m albedo 0.6 0.6 0.6 twosided\n"
-        "quad p0 -5 0 -5 p1 -5 0 5 p2 5 0 5 p3 5 0 -5 material m\n"
-        "mesh file away.obj material m\n"
-        "light point pos 0 2 -2 color 1 1 1 intensity 3 shadows\n"
-        "env uniform 0.3 0.3 0.3\n";
-    fixture_mesh_text =
-        "v -1 0 0\nv 1 0 0\nv 1 2 0\nv -1 2 0\n"
-        "vn 0 0 1\nvn 0.2 0 1\nvn 0 0.99 0.01\nvn -0.7 0 0.7\n"
-        "f 1//1 2//2 3//3\nf 1//1 3//3 4//4\n"
-        "f 2//4 1//2 4//1\n";
-    run_case(&c);
-    fixture_mesh_text = NULL;
-}
-
-TEST(camera_inside_a_box)
-{
-    hard_case in = { "inside an inward box", 0, 16, 12, 1, 0, 0, -1, 0 };
-    hard_case out = { "inside an outward two-sided box", 0, 16, 12, 1, 0, 0, -1, 0 };
-    in.text =
-        "camera pos 0 0 0 target 1 0.2 0.3 fov 90\n"
-        "material m albedo 0.8 0.8 0.8\n"
-        "box min -1 -1 -1 max 1 1 1 material m inward\n"
-        "light point pos 0 0.5 0 color 1 1 1 intensity 2 shadows\n";
-    out.text =
-        "camera pos 0 0 0 target 1 0.2 0.3 fov 90\n"
-        "material m albedo 0.8 0.8 0.8 twosided\n"
-        "box min -1 -1 -1 max 1 1 1 material m\n"
-        "light point pos 0 0.5 0 color 1 1 1 intensity 2\n"
-        "env uniform 1 1 1\n";
-    run_case(&in);
-    run_case(&out);
-}
-
-/* A wall through the camera (it crosses the near plane), a floor that runs
- * behind the camera, and a triangle with a vertex exactly in the camera's
- * plane (w = 0) and one behind it (w < 0). */
-TEST(near_plane_crossing_and_behind_camera)
-{
-    hard_case c = { "geometry through the near plane and behind the camera", 0, 16, 12, 1, 0, 0, -1, 0 };
-    c.text =
-        "camera pos 0 1 0 target 0 1 1 near 0.05\n"
-        "material m albedo 0.6 0.6 0.6 twosided\n"
-        "quad p0 -20 0 -20 p1 -20 0 20 p2 20 0 20 p3 20 0 -20 material m\n"
-        "quad p0 0.3 0 -5 p1 0.3 0 5 p2 0.3 3 5 p3 0.3 3 -5 material m\n"
-        "mesh file w.obj material m\n"
-        "light point pos 0 2 2 color 1 1 1 intensity 3 shadows\n"
-        "env uniform 0.2 0.2 0.2\n";
-    fixture_mesh_text =
-        "v -1 0.5 0\nv -0.5 2 3\nv -2 0.2 -1\nv -0.2 1.2 0.01\n"
-        "f 1 2 3\nf 4 2 1\nf 3 2 4\n";
-    run_case(&c);
-    fixture_mesh_text = NULL;
-}
-
-TEST(sky_beside_geometry)
-{
-    hard_case lone = { "a lone box in an empty sky", 0, 16, 12, 1, 0, 0, -1, 0 };
-    hard_case lit = { "a box against an environment", 0, 16, 12, 1, 0, 0, -1, 0 };
-    lone.text =
-        "camera pos 0 0.5 -3 target 0 0.5 0\n"
-        "material m albedo 0.9 0.9 0.9\n"
-        "box min -0.4 0 -0.4 max 0.4 1 0.4 material m\n"
-        "light directional dir 0 -1 1 color 1 1 1\n";
-    lit.text =
-        "camera pos 0 0.5 -3 target 0 0.5 0\n"
-        "material m albedo 0.9 0.9 0.9\n"
-        "box min -0.4 0 -0.4 max 0.4 1 0.4 material m\n"
-        "env sky 1 1 1 ground 0.3 0.2 0.1\n"
-        "gi radius 5\n";
-    run_case(&lone);
-    run_case(&lit);
-}
-
-/* Pillars about a pixel wide (at 32 px across a 60 degree fov, 8 m away,
- * a pixel is ~0.29 m) in front of a far wall. */
-TEST(one_pixel_pillars)
-{
-    hard_case c = { "one-pixel pillars before a far wall", 0, 32, 24, 1, 0, 0, -1, 0 };
-    c.text =
-        "camera pos 0 1 -8 target 0 1 0\n"
-        "material m albedo 0.7 0.7 0.7\n"
-        "quad p0 -20 0 -20 p1 -20 0 20 p2 20 0 20 p3 20 0 -20 material m\n"
-        "quad p0 -20 0 20 p1 20 0 20 p2 20 8 20 p3 -20 8 20 material m\n"
-        "box min -2.1 0 0 max -1.85 3 0.25 material m\n"
-        "box min -0.1 0 0 max 0.15 3 0.25 material m\n"
-        "box min 1.9 0 0 max 2.02 3 0.12 material m\n"
-        "light point pos 0 4 -4 color 1 1 1 intensity 10 shadows\n"
-        "gi radius 2\n";
-    run_case(&c);
-}
-
-TEST(near_tiny_far_huge)
-{
-    hard_case c = { "near 1e-3, far 1e4", 0, 16, 12, 1, 0, 0, -1, 0 };
-    c.text =
-        "camera pos 0 1 -3 target 0 1 0 near 0.001 far 10000\n"
-        "material m albedo 0.7 0.7 0.7\n"
-        "quad p0 -9000 0 -9000 p1 -9000 0 9000 p2 9000 0 9000 p3 9000 0 -9000 material m\n"
-        "quad p0 -9000 0 9000 p1 9000 0 9000 p2 9000 5000 9000 p3 -9000 5000 9000 material m\n"
-        "box min -0.5 0 -0.5 max 0.5 1 0.5 material m\n"
-        "light point pos 0 3 -1 color 1 1 1 intensity 3 shadows\n"
-        "env uniform 0.2 0.2 0.2\n";
-    run_case(&c);
-}
-
 /* The room scaled by s (geometry, camera, near/far, radius; lights scaled
  * so that the irradiance is the same). */
-static void scaled_room(char *text, size_t n, double s)
+static void scaled_room(scene_buf *b, double s)
 {
-    snprintf(text, n,
+    snprintf(b->text, sizeof b->text,
              "camera pos 0 %.9g %.9g target 0 %.9g 0 fov 60 near %.9g far %.9g\n"
              "material wall albedo 0.7 0.7 0.7 f0 0\n"
              "box min %.9g 0 %.9g max %.9g %.9g %.9g material wall inward\n"
@@ -313,16 +425,14 @@ static int scale_invariant(int t)
 TEST(room_scaled_by_1000_and_0001)
 {
     static const double scales[] = { 1000, 0.001 };
-    char unit[1024];
+    scene_buf unit;
     int k, t;
-    scaled_room(unit, sizeof unit, 1);
+    scaled_room(&unit, 1);
     for (k = 0; k < 2; k++) {
-        char text[1024], name[64];
-        hard_case c = { 0, 0, 16, 12, 1, 0, 0, -1, 1 };
-        scaled_room(text, sizeof text, scales[k]);
-        snprintf(name, sizeof name, "room scaled by %g", scales[k]);
-        c.name = name;
-        c.text = text;
+        scene_buf room;
+        hard_case c;
+        scaled_room(&room, scales[k]);
+        c = generated(&room, "room scaled by %g", scales[k], 1);
         for (t = 0; t < TG_TECH_COUNT; t++) {
             if (run_technique(&c, t) && scale_invariant(t)) {
                 rendered a, b;
@@ -331,7 +441,7 @@ TEST(room_scaled_by_1000_and_0001)
                 tg_request_defaults(&q);
                 q.width = 32; q.height = 24; q.aovs = AOVBIT(TG_AOV_AO); q.technique = (tg_technique)t;
                 if (t == TG_TECH_REFERENCE) q.samples = 16;
-                if (setup(&a, unit, &q) && setup(&b, text, &q)) {
+                if (setup(&a, unit.text, &q) && setup(&b, c.text, &q)) {
                     double *x, *y, diff = 0;
                     size_t i;
                     tg_frame_render(a.frame, 0, &err);
@@ -341,37 +451,15 @@ TEST(room_scaled_by_1000_and_0001)
                     for (i = 0; i < 32 * 24; i++) diff += fabs(x[i] - y[i]);
                     diff /= 32 * 24;
                     CHECK(diff <= 0.02, "%s / %s: AO differs from the unit room by %.4f on average",
-                          name, tg_technique_name((tg_technique)t), diff);
+                          c.name, tg_technique_name((tg_technique)t), diff);
                     free(x); free(y);
                 } else {
-                    CHECK(TG_FIXED && b.status == TG_ERR_INPUT, "%s: %s", name, b.msg);
+                    CHECK(TG_FIXED && b.status == TG_ERR_INPUT, "%s: %s", c.name, b.msg);
                 }
                 teardown(&a); teardown(&b);
             }
         }
     }
-}
-
-TEST(radius_zero_and_screen_covering)
-{
-    hard_case zero = { "radius 0", 0, 16, 12, 1, 0, 0, 0, 0 };
-    hard_case huge = { "radius covering the screen", 0, 16, 12, 1, 0, 0, 1000, 0 };
-    zero.text = huge.text = room;
-    run_case(&zero);
-    run_case(&huge);
-}
-
-TEST(samples_and_slices_extremes)
-{
-    hard_case s1 = { "samples 1", 0, 16, 12, 1, 1, 0, -1, 0 };
-    hard_case s64 = { "samples 64", 0, 12, 8, 1, 64, 0, -1, 0 };
-    hard_case l1 = { "slices 1", 0, 16, 12, 1, 0, 1, -1, 0 };
-    hard_case l8 = { "slices 8", 0, 16, 12, 1, 0, 8, -1, 0 };
-    s1.text = s64.text = l1.text = l8.text = room;
-    run_case(&s1);
-    run_case(&s64);
-    run_case(&l1);
-    run_case(&l8);
 }
 
 TEST(odd_framebuffers)
@@ -380,7 +468,7 @@ TEST(odd_framebuffers)
     int k;
     for (k = 0; k < 5; k++) {
         char name[64];
-        hard_case c = { 0, 0, 0, 0, 2, 0, 0, -1, 0 };
+        hard_case c = { 0, 0, 0, 0, 0, 2, 0, 0, -1, 0, NULL };
         snprintf(name, sizeof name, "framebuffer %dx%d", sizes[k][0], sizes[k][1]);
         c.name = name;
         c.text = tg_builtin_scene("cornell");
@@ -388,96 +476,6 @@ TEST(odd_framebuffers)
         c.height = sizes[k][1];
         run_case(&c);
     }
-}
-
-TEST(white_box_1000_frames_and_hot_emitter)
-{
-    hard_case white = { "albedo 1 closed box, 1000 frames", 0, 4, 4, 1000, 0, 0, -1, 0 };
-    hard_case hot = { "emissive 1e4", 0, 16, 12, 3, 0, 0, -1, 0 };
-    white.text =
-        "camera pos 0 1 -1.5 target 0 1 0\n"
-        "material wall albedo 1 1 1 f0 0\n"
-        "material lamp albedo 1 1 1 emissive 20 20 20\n"
-        "box min -2 0 -2 max 2 3 2 material wall inward\n"
-        "box min -0.5 0 -0.5 max 0.5 1 0.5 material lamp\n"
-        "light point pos 0 2.5 0 color 1 1 1 intensity 20\n"
-        "env uniform 1 1 1\n";
-    hot.text =
-        "camera pos 0 1 -3.5 target 0 1 0\n"
-        "material wall albedo 1 1 1 f0 0\n"
-        "material lamp albedo 1 1 1 emissive 10000 10000 10000\n"
-        "box min -2 0 -4 max 2 3 2 material wall inward\n"
-        "box min -0.5 0 -0.5 max 0.5 1 0.5 material lamp\n"
-        "light point pos 0 2.5 0 color 1 1 1 intensity 10000 shadows\n";
-    run_case(&white);
-    run_case(&hot);
-}
-
-/* Zero-area, collinear and sliver triangles (the OBJ loader keeps them). */
-TEST(degenerate_triangles)
-{
-    hard_case c = { "zero-area, collinear and sliver triangles", 0, 16, 12, 1, 0, 0, -1, 0 };
-    c.text =
-        "camera pos 0 1 -3 target 0 0.5 0\n"
-        "material m albedo 0.6 0.6 0.6 twosided\n"
-        "quad p0 -5 0 -5 p1 -5 0 5 p2 5 0 5 p3 5 0 -5 material m\n"
-        "mesh file bad.obj material m\n"
-        "light point pos 0 2 -1 color 1 1 1 intensity 3 shadows\n"
-        "env uniform 0.3 0.3 0.3\n";
-    fixture_mesh_text =
-        "v 0 0.5 0\nv 1 0.5 0\nv 2 0.5 0\nv 0 1.5 0\nv -1 0.2 0\nv 1 0.2001 0\nv -1 0.2 0.00001\n"
-        "vn 0 0 -1\n"
-        "f 1 1 1\nf 1 2 1\nf 1 2 3\nf 3 2 1\n"
-        "f 5 6 7\nf 5 4 6\nf 1//1 2//1 3//1\nf 4 4 2\n";
-    run_case(&c);
-    fixture_mesh_text = NULL;
-}
-
-TEST(fov_extremes_and_camera_straight_down)
-{
-    hard_case f1 = { "fov 1", 0, 16, 12, 1, 0, 0, -1, 0 };
-    hard_case f179 = { "fov 179", 0, 16, 12, 1, 0, 0, -1, 0 };
-    hard_case down = { "camera straight down", 0, 16, 12, 2, 0, 0, -1, 0 };
-    f1.text =
-        "camera pos 0 1 -3.5 target 0 0.5 0 fov 1\n"
-        "material m albedo 0.7 0.7 0.7\n"
-        "box min -2 0 -4 max 2 3 2 material m inward\n"
-        "box min -0.5 0 -0.5 max 0.5 1 0.5 material m\n"
-        "light point pos 0 2.5 0 color 1 1 1 intensity 4\n";
-    f179.text =
-        "camera pos 0 1 -3.5 target 0 1 0 fov 179\n"
-        "material m albedo 0.7 0.7 0.7\n"
-        "box min -2 0 -4 max 2 3 2 material m inward\n"
-        "box min -0.5 0 -0.5 max 0.5 1 0.5 material m\n"
-        "light point pos 0 2.5 0 color 1 1 1 intensity 4\n";
-    down.text =
-        "camera pos 0 4 0 target 0 0 0\n"
-        "material m albedo 0.7 0.7 0.7\n"
-        "quad p0 -5 0 -5 p1 -5 0 5 p2 5 0 5 p3 5 0 -5 material m\n"
-        "box min -0.5 0 -0.5 max 0.5 1 0.5 material m\n"
-        "light directional dir 0 -1 0 color 1 1 1 shadows\n"
-        "env uniform 0.3 0.3 0.3\n";
-    run_case(&f1);
-    run_case(&f179);
-    run_case(&down);
-}
-
-/* A square pit seen from straight above: at its centre the horizons are
- * the same on every side, the horizontal parts of the bent normal cancel. */
-TEST(symmetric_pit)
-{
-    hard_case c = { "symmetric pit", 0, 17, 17, 1, 0, 0, -1, 0 };
-    c.text =
-        "camera pos 0 3 0.0001 target 0 0 0 fov 40\n"
-        "material m albedo 0.7 0.7 0.7\n"
-        "quad p0 -1 -1 -1 p1 -1 -1 1 p2 1 -1 1 p3 1 -1 -1 material m\n"
-        "quad p0 -1 -1 -1 p1 1 -1 -1 p2 1 0 -1 p3 -1 0 -1 material m\n"
-        "quad p0 1 -1 1 p1 -1 -1 1 p2 -1 0 1 p3 1 0 1 material m\n"
-        "quad p0 -1 -1 1 p1 -1 -1 -1 p2 -1 0 -1 p3 -1 0 1 material m\n"
-        "quad p0 1 -1 -1 p1 1 -1 1 p2 1 0 1 p3 1 0 -1 material m\n"
-        "env uniform 1 1 1\n"
-        "gi radius 3\n";
-    run_case(&c);
 }
 
 TEST(acos_a_hair_outside_its_domain)
@@ -499,38 +497,6 @@ TEST(acos_a_hair_outside_its_domain)
     CHECK_NEAR(check_d(tg_acos(TG_REAL_MIN)), 3.14159265358979, 2e-3);
 #endif
     CHECK(check_d(tg_sqrt(TG_R(-1e-4f))) == 0, "sqrt of a tiny negative is 0");
-}
-
-TEST(camera_cut_and_fast_object)
-{
-    hard_case cut = { "camera cut", 0, 16, 12, 4, 0, 0, -1, 0 };
-    hard_case fast = { "fast-moving object", 0, 16, 12, 4, 0, 0, -1, 0 };
-    cut.text =
-        "camera_key t 0 pos 0 1 -3.5 target 0 1 0\n"
-        "camera_key t 1 pos 0 1 -3.5 target 0 1 0\n"
-        "camera_key t 1.01 pos 1.5 2.5 1.5 target -1 0 -2\n"
-        "camera_key t 3 pos 1.5 2.5 1.5 target -1 0 -2\n"
-        "material wall albedo 0.7 0.7 0.7\n"
-        "material lamp albedo 0.5 0.5 0.5 emissive 5 5 5\n"
-        "box min -2 0 -4 max 2 3 2 material wall inward\n"
-        "box min -0.5 0 -0.5 max 0.5 1 0.5 material wall\n"
-        "quad p0 -0.5 2.99 -0.5  p1 0.5 2.99 -0.5  p2 0.5 2.99 0.5  p3 -0.5 2.99 0.5 material lamp\n"
-        "light point pos 0 2.5 0 color 1 1 1 intensity 4 shadows\n";
-    fast.text =
-        "camera pos 0 1 -3.5 target 0 1 0\n"
-        "camera_key t 0 pos 0 1 -3.5 target 0 1 0\n"
-        "camera_key t 3 pos 0.1 1 -3.5 target 0 1 0\n"
-        "material wall albedo 0.7 0.7 0.7\n"
-        "box min -2 0 -4 max 2 3 2 material wall inward\n"
-        "box min -0.5 0 -0.5 max 0.5 1 0.5 material wall name runner\n"
-        "object_key name runner t 0 translate -1.4 0 0\n"
-        "object_key name runner t 1 translate 1.4 0.5 -1 rotate 0 1 0 90\n"
-        "object_key name runner t 2 translate -1.4 0 -2 rotate 1 0 0 180\n"
-        "object_key name runner t 3 translate 1.4 1 0\n"
-        "light point pos 0 2.5 0 color 1 1 1 intensity 4 shadows\n"
-        "env uniform 0.2 0.2 0.2\n";
-    run_case(&cut);
-    run_case(&fast);
 }
 
 int main(void)

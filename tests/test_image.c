@@ -24,16 +24,25 @@ static int read_raw(const char *path, unsigned char **data, size_t *n)
     return 0;
 }
 
+/* The bytes of the file at path (malloc'd), checked to be want_n of them
+ * starting with header. */
+static unsigned char *read_with_header(const char *path, size_t want_n, const char *header)
+{
+    unsigned char *data;
+    size_t n;
+    CHECK(read_raw(path, &data, &n) == 0, "read back");
+    CHECK(n == want_n, "size %zu", n);
+    CHECK(memcmp(data, header, strlen(header)) == 0, "header");
+    return data;
+}
+
 TEST(ppm_bytes_on_disk)
 {
     const uint8_t rgb[2 * 3 * 2] = { 1, 2, 3, 4, 5, 6, 250, 251, 252, 0, 128, 255 };
     const char *path = tmp_path("a.ppm");
     unsigned char *data;
-    size_t n;
     CHECK(tgp_ppm_write(path, 2, 2, rgb, NULL, 0) == 0, "write");
-    CHECK(read_raw(path, &data, &n) == 0, "read back");
-    CHECK(n == 11 + 12, "size %zu", n);
-    CHECK(memcmp(data, "P6\n2 2\n255\n", 11) == 0, "header");
+    data = read_with_header(path, 11 + 12, "P6\n2 2\n255\n");
     CHECK(memcmp(data + 11, rgb, 12) == 0, "pixels top to bottom, as given");
     free(data);
 }
@@ -63,11 +72,9 @@ TEST(pfm_bytes_on_disk)
     const unsigned char three_le[4] = { 0x00, 0x00, 0x40, 0x40 }; /* 3.0f */
     const char *path = tmp_path("a.pfm");
     unsigned char *data;
-    size_t n, h = strlen("Pf\n2 2\n-1.0\n");
+    size_t h = strlen("Pf\n2 2\n-1.0\n");
     CHECK(tgp_pfm_write(path, 2, 2, 1, v, NULL, 0) == 0, "write");
-    CHECK(read_raw(path, &data, &n) == 0, "read back");
-    CHECK(n == h + 16, "size %zu", n);
-    CHECK(memcmp(data, "Pf\n2 2\n-1.0\n", h) == 0, "header");
+    data = read_with_header(path, h + 16, "Pf\n2 2\n-1.0\n");
     /* the file's first row is the image's BOTTOM row, little-endian */
     CHECK(memcmp(data + h, three_le, 4) == 0, "first stored value is 3.0f LE");
     CHECK(memcmp(data + h + 8, one_le, 4) == 0, "third stored value is 1.0f LE");
@@ -78,15 +85,11 @@ TEST(pfm_rgb_header_and_size)
 {
     enum { W = 5, H = 3 };
     float v[W * H * 3];
-    unsigned char *data;
-    size_t n, h = strlen("PF\n5 3\n-1.0\n");
+    size_t h = strlen("PF\n5 3\n-1.0\n");
     int i;
     for (i = 0; i < W * H * 3; i++) v[i] = (float)i;
     CHECK(tgp_pfm_write(tmp_path("rgb.pfm"), W, H, 3, v, NULL, 0) == 0, "write");
-    CHECK(read_raw(tmp_path("rgb.pfm"), &data, &n) == 0, "read back");
-    CHECK(n == h + (size_t)W * H * 3 * 4, "size %zu", n);
-    CHECK(memcmp(data, "PF\n5 3\n-1.0\n", h) == 0, "header");
-    free(data);
+    free(read_with_header(tmp_path("rgb.pfm"), h + (size_t)W * H * 3 * 4, "PF\n5 3\n-1.0\n"));
 }
 
 TEST(pfm_round_trip)

@@ -13,6 +13,7 @@
 #include "light/tonemap.h"
 #include "light/sh.h"
 #include "storage_fixture.h"
+#include "light_fixture.h"
 
 #define W 64
 #define H 48
@@ -199,15 +200,6 @@ static int scene_tris(const ascene *s, tg_vec3 *pos)
     return n;
 }
 
-static tgi_light make_light(tgi_light_type type, tg_vec3 pos, tg_vec3 dir, double intensity, double angle)
-{
-    tgi_light l;
-    memset(&l, 0, sizeof l);
-    l.type = type; l.pos = pos; l.dir = tgi_v3_normalize(dir);
-    l.color = v3d(1.0, 0.5, 0.25); l.intensity = rv(intensity); l.angle = rv(angle); l.shadows = 1;
-    return l;
-}
-
 static tg_real e_r[W * H], e_g[W * H], e_b[W * H];
 
 /* ---- direct light ---- */
@@ -314,22 +306,31 @@ static int occluded(const double p[3], const tgi_light *l, const abox *b, double
 typedef struct { int in_shadow, lit, edge; } shadow_counts;
 static int shadow_filter = TG_SHADOW_PCF_TENT; /* the shadow tests run with each filter */
 
+/* The shadow map of light l over scene s (its floor's extent, 2 high) with
+ * shadow_filter; returns the map's memory (the caller frees it). */
+static void *scene_shadow_map(tgi_shadow_map *sm, const ascene *s, const tgi_light *l)
+{
+    static tg_vec3 pos[3 * 64];
+    void *mem = malloc(tgi_shadow_map_bytes(l, MAP_SIZE));
+    int n = scene_tris(s, pos);
+    tg_vec3 lo = v3d(-s->floor_half, 0, -s->floor_half), hi = v3d(s->floor_half, 2, s->floor_half);
+    tgi_shadow_map_setup(sm, l, MAP_SIZE, lo, hi, mem);
+    sm->filter = shadow_filter;
+    tgi_shadow_map_render(sm, pos, n);
+    return mem;
+}
+
 /* Render the map, light the G-buffer, and compare every floor pixel with the
  * analytic shadow: surely inside -> E <= 2% of unshadowed, surely outside -> >= 98%. */
 static shadow_counts check_box_shadow(gbuf *g, const tgi_view *v, const ascene *s, const tgi_light *l,
                                       double margin)
 {
-    static tg_vec3 pos[3 * 64];
     static tg_real unsh_r[W * H], dummy_g[W * H], dummy_b[W * H];
     shadow_counts c = { 0, 0, 0 };
     tgi_shadow_map sm;
     const tgi_shadow_map *maps[1];
-    void *mem = malloc(tgi_shadow_map_bytes(l, MAP_SIZE));
-    int n = scene_tris(s, pos), i;
-    tg_vec3 lo = v3d(-s->floor_half, 0, -s->floor_half), hi = v3d(s->floor_half, 2, s->floor_half);
-    tgi_shadow_map_setup(&sm, l, MAP_SIZE, lo, hi, mem);
-    sm.filter = shadow_filter;
-    tgi_shadow_map_render(&sm, pos, n);
+    void *mem = scene_shadow_map(&sm, s, l);
+    int i;
     maps[0] = &sm;
     direct_rows(&g->gb, v, l, 1, NULL, unsh_r, dummy_g, dummy_b, 0, H);
     direct_rows(&g->gb, v, l, 1, maps, e_r, e_g, e_b, 0, H);
@@ -410,13 +411,9 @@ static void point_cube_faces_meet_without_seams_with_filter(void)
     c = check_box_shadow(g, &v, &open, &pl, 0.0); /* an open floor is fully lit across all five faces */
     CHECK(c.lit > 1500 && c.in_shadow == 0, "open floor: %d lit", c.lit);
     {   /* and directly along the face edges, sampled finely */
-        static tg_vec3 pos[3 * 64];
         tgi_shadow_map sm;
-        void *mem = malloc(tgi_shadow_map_bytes(&pl, MAP_SIZE));
-        int n = scene_tris(&open, pos), k, bad = 0;
-        tgi_shadow_map_setup(&sm, &pl, MAP_SIZE, v3d(-4, 0, -4), v3d(4, 2, 4), mem);
-        sm.filter = shadow_filter;
-        tgi_shadow_map_render(&sm, pos, n);
+        void *mem = scene_shadow_map(&sm, &open, &pl);
+        int k, bad = 0;
         for (k = 0; k <= 2000; k++) {
             double z = -3.9 + 7.8 * k / 2000.0, off = ((k % 7) - 3) * 0.002;
             tg_vec3 p1 = v3d(0.3 + 1.5 + off, 0, z), p2 = v3d(0.3 - 1.5 + off, 0, z);
@@ -429,13 +426,9 @@ static void point_cube_faces_meet_without_seams_with_filter(void)
         free(mem);
     }
     {   /* the post's shadow crosses the +X / -Y face edge: dense samples across the edge */
-        static tg_vec3 pos[3 * 64];
         tgi_shadow_map sm;
-        void *mem = malloc(tgi_shadow_map_bytes(&pl, MAP_SIZE));
-        int n = scene_tris(&s, pos), k, inside = 0;
-        tgi_shadow_map_setup(&sm, &pl, MAP_SIZE, v3d(-4, 0, -4), v3d(4, 2, 4), mem);
-        sm.filter = shadow_filter;
-        tgi_shadow_map_render(&sm, pos, n);
+        void *mem = scene_shadow_map(&sm, &s, &pl);
+        int k, inside = 0;
         for (k = 0; k <= 4000; k++) {
             double z = -0.6 + 0.8 * (k / 40) / 100.0, x = 1.8 + ((k % 40) - 20) * 0.0005;
             double p[3] = { x, 0, z };

@@ -107,6 +107,19 @@ static tgi_view view_at(int w, int h, double fov_deg) { return view_make(w, h, f
 
 static double D(tg_real r) { return check_d(r); }
 
+/* A G-buffer of v's size with all of m rasterized from v. */
+static void gbuf_draw(gbuf *g, const tgi_view *v, mesh *m)
+{
+    gbuf_alloc(g, v->width, v->height);
+    tgi_raster_gbuffer(&g->gb, v, mesh_rm(m), 0, v->height);
+}
+
+static void drawn_free(gbuf *g, mesh *m)
+{
+    gbuf_free(g);
+    free(m);
+}
+
 static tg_vec3 view_to_world(const tgi_view *v, double x, double y, double z)
 {
     double p[3];
@@ -385,8 +398,7 @@ TEST(gbuffer_tiling_ids)
             add_tri_view(m, &v, (const double(*)[3])a, NULL, 0, m->n);
             add_tri_view(m, &v, (const double(*)[3])b, NULL, 0, m->n);
         }
-    gbuf_alloc(&g, W, H);
-    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    gbuf_draw(&g, &v, m);
     for (j = 0; j < H; j++)
         for (i = 0; i < W; i++) {
             int t, inside = -1;
@@ -411,8 +423,7 @@ TEST(gbuffer_tiling_ids)
         }
     CHECK(sky == 0, "%d sky pixels in a closed tiling", sky);
     CHECK(wrong == 0 && checked > W * H / 2, "%d of %d pixels hold the wrong object id", wrong, checked);
-    gbuf_free(&g);
-    free(m);
+    drawn_free(&g, m);
 }
 
 /* Render one view-space triangle; check every pixel against the ray cast:
@@ -427,8 +438,7 @@ static void check_triangle(const double (*p)[3], int material, int expect_drawn,
     int i, j, drawn = 0, miss = 0, extra = 0, bad_depth = 0, bad_normal = 0;
     double worst = 0;
     add_tri_view(m, &v, p, NULL, material, 7);
-    gbuf_alloc(&g, W, H);
-    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    gbuf_draw(&g, &v, m);
     for (j = 0; j < H; j++)
         for (i = 0; i < W; i++) {
             double b[3], z = ray_tri(&v, i, j, p, b);
@@ -464,8 +474,7 @@ static void check_triangle(const double (*p)[3], int material, int expect_drawn,
     CHECK(bad_depth == 0, "%s: %d pixels with wrong depth (worst %g)", what, bad_depth, worst);
     CHECK(bad_normal == 0, "%s: %d pixels with a non-unit or back-facing normal", what, bad_normal);
     CHECK(!expect_drawn || drawn > 20, "%s: only %d pixels drawn", what, drawn);
-    gbuf_free(&g);
-    free(m);
+    drawn_free(&g, m);
 }
 
 TEST(front_back_twosided)
@@ -511,16 +520,14 @@ TEST(big_triangle_past_edges)
     gbuf g;
     int i, sky = 0, bad = 0;
     add_tri_view(m, &v, big, NULL, 0, 1);
-    gbuf_alloc(&g, W, H);
-    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    gbuf_draw(&g, &v, m);
     for (i = 0; i < W * H; i++) {
         sky += gsky(&g, i);
         if (fabs(gdepth(&g, i) - 5.0) > (TG_FIXED ? 3.0 / 65536 : 5e-6)) bad++;
     }
     CHECK(sky == 0, "%d pixels left uncovered", sky);
     CHECK(bad == 0, "%d pixels not at depth 5 (e.g. %.9g)", bad, gdepth(&g, 0));
-    gbuf_free(&g);
-    free(m);
+    drawn_free(&g, m);
     check_triangle(big, 0, 1, "big facing triangle");
     check_triangle(tilted, 0, 1, "big tilted triangle");
 }
@@ -541,8 +548,7 @@ TEST(depth_plane_and_floor)
     double worst = 0;
     add_tri_view(m, &v, q0, NULL, 0, 0);
     add_tri_view(m, &v, q1, NULL, 0, 0);
-    gbuf_alloc(&g, W, H);
-    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    gbuf_draw(&g, &v, m);
     for (i = 0; i < W * H; i++) {
         sky += gsky(&g, i);
         if (fabs(gdepth(&g, i) - 3.0) > (TG_FIXED ? 2.0 / 65536 : 3e-6)) bad++;
@@ -553,8 +559,7 @@ TEST(depth_plane_and_floor)
     m->n = 0;
     add_tri_view(m, &v, f0, NULL, 0, 0);
     add_tri_view(m, &v, f1, NULL, 0, 0);
-    gbuf_alloc(&g, W, H);
-    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    gbuf_draw(&g, &v, m);
     for (j = 0; j < H; j++)
         for (i = 0; i < W; i++) {
             double b[3], z0 = ray_tri(&v, i, j, f0, b), z1 = ray_tri(&v, i, j, f1, b), z = -1, err;
@@ -577,8 +582,7 @@ TEST(depth_plane_and_floor)
         }
     CHECK(floor_px > W * H / 3, "floor drew %d pixels", floor_px);
     CHECK(bad == 0, "floor: %d pixels off the analytic depth (worst rel %g)", bad, worst);
-    gbuf_free(&g);
-    free(m);
+    drawn_free(&g, m);
 }
 
 /* A floor grid crossing the near plane and running far past the screen
@@ -609,8 +613,7 @@ TEST(clipped_tiling_watertight)
             add_tri_view(m, &v, (const double(*)[3])a, NULL, 0, 0);
             add_tri_view(m, &v, (const double(*)[3])b, NULL, 0, 0);
         }
-    gbuf_alloc(&g, W, H);
-    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    gbuf_draw(&g, &v, m);
     for (j = 0; j < H; j++)
         for (i = 0; i < W; i++) {
             double dx, dy, z;
@@ -630,8 +633,7 @@ TEST(clipped_tiling_watertight)
     CHECK(checked > W * H / 3, "checked only %d pixels", checked);
     CHECK(holes == 0, "%d holes in a clipped floor tiling", holes);
     CHECK(bad == 0, "%d floor pixels off the analytic depth", bad);
-    gbuf_free(&g);
-    free(m);
+    drawn_free(&g, m);
 }
 
 /* Vertex normals interpolate perspective-correctly and come out unit. */
@@ -646,8 +648,7 @@ TEST(normal_interpolation)
     int i, j, k, bad = 0, count = 0;
     double worst = 0;
     add_tri_view(m, &v, p, (const double(*)[3])n, 0, 0);
-    gbuf_alloc(&g, W, H);
-    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    gbuf_draw(&g, &v, m);
     for (j = 0; j < H; j++)
         for (i = 0; i < W; i++) {
             double b[3], z = ray_tri(&v, i, j, p, b), e[3], len = 0, err = 0;
@@ -663,8 +664,7 @@ TEST(normal_interpolation)
             count++;
         }
     CHECK(count > 100 && bad == 0, "%d of %d normals off the perspective-correct value (worst %g)", bad, count, worst);
-    gbuf_free(&g);
-    free(m);
+    drawn_free(&g, m);
 }
 
 TEST(zero_area_skipped)
@@ -682,12 +682,10 @@ TEST(zero_area_skipped)
     add_tri_view(m, &v, point, NULL, 1, 0);
     add_tri_view(m, &v, dup, NULL, 1, 0);
     add_tri_view(m, &v, edge_on, NULL, 1, 0);
-    gbuf_alloc(&g, W, H);
-    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    gbuf_draw(&g, &v, m);
     for (i = 0; i < W * H; i++) drawn += !gsky(&g, i);
     CHECK(drawn == 0, "zero-area triangles drew %d pixels", drawn);
-    gbuf_free(&g);
-    free(m);
+    drawn_free(&g, m);
 }
 
 /* Garbage in (NaN, infinities, the largest values) draws nothing wrong:
@@ -717,16 +715,14 @@ TEST(hostile_coordinates)
         m->obj[m->n] = 0;
         m->n++;
     }
-    gbuf_alloc(&g, W, H);
-    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    gbuf_draw(&g, &v, m);
     for (i = 0; i < W * H; i++) {
         double z = gdepth(&g, i);
         if (gsky(&g, i)) continue;
         if (!(z > 0 && z < 1e30)) bad++;
     }
     CHECK(bad == 0, "%d pixels with a non-finite or non-positive depth", bad);
-    gbuf_free(&g);
-    free(m);
+    drawn_free(&g, m);
 }
 
 /* A closed sphere: nearest wins, normals unit and facing the viewer, and

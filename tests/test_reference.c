@@ -160,8 +160,7 @@ TEST(open_plane)
     add_rect(&s, -BIG, 0, BIG, 2 * BIG, 0, 0, 0, 0, -2 * BIG);
     raster(&s, eye, target, 60.0);
     build_bvh(&s);
-    tgi_reference_defaults(&p);
-    p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE;
+    p = reference_params(&s, TG_AO_INFINITE);
     io_for(&io, &s, &o, 0);
     io_with_cone(&io);
     tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
@@ -197,11 +196,8 @@ TEST(groove_half)
     int i, surf, n[2] = { 0, 0 };
     double worst[2] = { 0, 0 }, tol = 0.5 / sqrt(256.0);
     groove(&s);
-    tgi_reference_defaults(&p);
-    p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE;
-    io_for(&io, &s, &o, 0);
-    tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
-    io_read(&io);
+    p = reference_params(&s, TG_AO_INFINITE);
+    reference_run(&io, &p, &s, &o);
     for (surf = 0; surf < 2; surf++)
         for (i = 0; i < W * H; i++) {
             if (!near_crease(&s, i, 0.3, surf)) continue;
@@ -243,11 +239,8 @@ TEST(groove_bent_exact)
     }
     expect = atan2(sx / m, sy / m);
     groove(&s);
-    tgi_reference_defaults(&p);
-    p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE;
-    io_for(&io, &s, &o, 0);
-    tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
-    io_read(&io);
+    p = reference_params(&s, TG_AO_INFINITE);
+    reference_run(&io, &p, &s, &o);
     for (i = 0; i < W * H; i++) {
         double ang;
         if (!near_crease(&s, i, 0.3, 0)) continue;
@@ -269,11 +262,8 @@ TEST(groove_radius_cutoff)
     ao_pass io;
     int i, far_n = 0, near_n = 0;
     groove(&s);
-    tgi_reference_defaults(&p);
-    p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_R(0.5f);
-    io_for(&io, &s, &o, 0);
-    tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
-    io_read(&io);
+    p = reference_params(&s, TG_R(0.5f));
+    reference_run(&io, &p, &s, &o);
     for (i = 0; i < W * H; i++) {
         if (s.sky[i] || s.wrect[i] != 0) continue;
         if (s.wpos[i][0] > 0.55) { far_n++; CHECK(o.ao[i] == TG_ONE, "open beyond the radius: %g at x %g", check_d(o.ao[i]), s.wpos[i][0]); }
@@ -301,11 +291,8 @@ TEST(closed_box)
     add_rect(&s, 1, -1, -1, 0, 2, 0, 0, 0, 2);   /* right x = 1 */
     raster(&s, eye, target, 90.0);
     build_bvh(&s);
-    tgi_reference_defaults(&p);
-    p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE;
-    io_for(&io, &s, &o, 0);
-    tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
-    io_read(&io);
+    p = reference_params(&s, TG_AO_INFINITE);
+    reference_run(&io, &p, &s, &o);
     for (i = 0; i < W * H; i++) {
         if (s.sky[i]) continue;
         n++;
@@ -336,8 +323,8 @@ TEST(near_field_half)
     int i, n = 0;
     double worst = 0, tol = 3.14159265358979 * 0.5 / sqrt(256.0), want = 3.14159265358979 / 2;
     groove(&s);
-    tgi_reference_defaults(&p);
-    p.bvh = &bvh; p.tri_nrm = s.nrm; p.radius = TG_AO_INFINITE; p.radiance = wall_radiance;
+    p = reference_params(&s, TG_AO_INFINITE);
+    p.radiance = wall_radiance;
     io_for(&io, &s, &o, 1);
     tgi_reference_rows(&p, &io.g, &io.rad, &io.out, 0, H);
     io_read(&io);

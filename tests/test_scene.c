@@ -696,6 +696,18 @@ static int mem_read(void *user, const char *path, const char **data, size_t *siz
     return 1;
 }
 
+/* A tg_io reading the memory files `files` through fs (which records the
+ * paths asked for). */
+static tg_io memfs_io(memfs *fs, const memfile *files)
+{
+    tg_io io;
+    memset(fs, 0, sizeof *fs);
+    fs->files = files;
+    io.user = fs;
+    io.read_file = mem_read;
+    return io;
+}
+
 static const char obj_a[] =
     "# quad polygon, smooth triangle with negative indices, pentagon\n"
     "mtllib a.mtl\n"
@@ -726,10 +738,7 @@ TEST(obj_from_memory)
     tg_error err;
     tg_status st;
     int red, glow, t, i;
-    memset(&fs, 0, sizeof fs);
-    fs.files = files;
-    io.user = &fs;
-    io.read_file = mem_read;
+    io = memfs_io(&fs, files);
     st = parse_io(scene, strlen(scene), "dir/scene.scene", &io, &s, &err);
     CHECK(st == TG_OK, "parse");
     if (st) { print_error(&err); return; }
@@ -779,10 +788,7 @@ TEST(obj_transform)
     tg_scene *s;
     tg_error err;
     tg_status st;
-    memset(&fs, 0, sizeof fs);
-    fs.files = files;
-    io.user = &fs;
-    io.read_file = mem_read;
+    io = memfs_io(&fs, files);
     st = parse_io(scene, strlen(scene), "s.scene", &io, &s, &err);
     CHECK(st == TG_OK, "parse");
     if (st) { print_error(&err); return; }
@@ -856,10 +862,7 @@ TEST(obj_bad_input)
         files[0].data = obj_bad_cases[i].obj;
         files[1].path = obj_bad_cases[i].mtl ? "s/m.mtl" : NULL;
         files[1].data = obj_bad_cases[i].mtl;
-        memset(&fs, 0, sizeof fs);
-        fs.files = files;
-        io.user = &fs;
-        io.read_file = mem_read;
+        io = memfs_io(&fs, files);
         st = parse_io(scene, strlen(scene), "s/t.scene", &io, &s, &err);
         tg_error_format(&err, msg, sizeof msg);
         CHECK(st == TG_ERR_INPUT, "obj case %d: status %d", (int)i, (int)st);
@@ -882,10 +885,7 @@ TEST(obj_bad_input)
         tg_io io;
         tg_scene *s;
         tg_error err;
-        memset(&fs, 0, sizeof fs);
-        fs.files = none;
-        io.user = &fs;
-        io.read_file = mem_read;
+        io = memfs_io(&fs, none);
         CHECK(parse_io(scene, strlen(scene), "s/t.scene", &io, &s, &err) == TG_ERR_INPUT && err.line == 3 &&
               err.col == 11 && strcmp(err.message, "cannot read mesh file 's/m.obj': no such file in the test's memfs") == 0,
               "reason: %d:%d %s", err.line, err.col, err.message);
@@ -904,10 +904,7 @@ TEST(obj_arena)
     tg_error err;
     size_t need;
     tg_status st;
-    memset(&fs, 0, sizeof fs);
-    fs.files = files;
-    io.user = &fs;
-    io.read_file = mem_read;
+    io = memfs_io(&fs, files);
     tg_arena_init(&a, mem, 100);
     CHECK(tg_scene_parse(scene, strlen(scene), "x.scene", &io, &a, &s, &err) == TG_ERR_MEMORY, "too small");
     need = err.bytes_needed;

@@ -136,6 +136,31 @@ static void rule_need(tgi_shadow_need *nd, const tgi_light *l, const geo *g, con
     tgi_shadow_need_finish(nd, override);
 }
 
+/* A floor y = 0 over [-half, half]^2 alone. */
+static geo *floor_geo(double half)
+{
+    geo *g = geo_new();
+    memset(g, 0, sizeof *g);
+    rect(g, 1, 0, -half, half, -half, half);
+    return g;
+}
+
+/* A square w x w camera at eye looking at target (up +Z, fov in radians),
+ * and the rule's need for light l over g there; what names it. */
+typedef struct square_need {
+    tgi_view view;
+    tgi_shadow_need nd;
+    char what[32];
+} square_need;
+
+static void need_looking_down(square_need *q, const char *light_name, const tgi_light *l, const geo *g,
+                              tg_vec3 eye, tg_vec3 target, double fov_rad, int w)
+{
+    snprintf(q->what, sizeof q->what, "%s, W %d", light_name, w);
+    tgi_view_make(&q->view, eye, target, v3(0, 0, 1), rv(fov_rad), TG_R(0.05f), TG_R(100.0f), w, w);
+    rule_need(&q->nd, l, g, &q->view, 0);
+}
+
 /* Face f of a finished need: a window of side within [side_lo, side_hi],
  * `texels` texels across side_lo (within 2%), and the size that density
  * times the window's side and the PCF border make. */
@@ -159,22 +184,16 @@ static void check_face(const tgi_shadow_need *nd, int f, double side_lo, double 
 TEST(rule_gives_a_texel_per_pixel_under_the_sun)
 {
     static const int widths[] = { 16, 64, 128, 320 };
-    geo *g = geo_new();
+    geo *g = floor_geo(1);
     tgi_light sun = make_light(TG_LIGHT_DIRECTIONAL, v3(0, 0, 0), v3(0, -1, 0), 1, 0);
     size_t k;
-    memset(g, 0, sizeof *g);
-    rect(g, 1, 0, -1, 1, -1, 1);
     for (k = 0; k < sizeof widths / sizeof widths[0]; k++) {
         int w = widths[k];
-        tgi_view view;
-        tgi_shadow_need nd;
-        char what[32];
-        snprintf(what, sizeof what, "sun, W %d", w);
-        tgi_view_make(&view, v3(0, 4, 0), v3(0, 0, 0), v3(0, 0, 1), rv(2 * atan(0.25)), TG_R(0.05f), TG_R(100.0f), w, w);
-        rule_need(&nd, &sun, g, &view, 0);
+        square_need q;
+        need_looking_down(&q, "sun", &sun, g, v3(0, 4, 0), v3(0, 0, 0), 2 * atan(0.25), w);
         /* the window: the floor, and the position error's margin (at most 5%) */
-        check_face(&nd, 0, 2, 2.1, w, what);
-        CHECK(tgi_shadow_need_bytes(&nd) == (size_t)nd.size[0] * (size_t)nd.size[0] * 2, "W %d: bytes", w);
+        check_face(&q.nd, 0, 2, 2.1, w, q.what);
+        CHECK(tgi_shadow_need_bytes(&q.nd) == (size_t)q.nd.size[0] * (size_t)q.nd.size[0] * 2, "W %d: bytes", w);
     }
     free(g);
 }
@@ -186,31 +205,25 @@ TEST(rule_gives_a_texel_per_pixel_under_the_sun)
 TEST(rule_gives_a_texel_per_pixel_from_the_light)
 {
     static const int widths[] = { 32, 100, 240 };
-    geo *g = geo_new();
+    geo *g = floor_geo(10);
     tgi_light pt = make_light(TG_LIGHT_POINT, v3(0.3, 2, -0.2), v3(0, -1, 0), 1, 0);
     double t = tan(40 * DEG);
     size_t k;
     int f;
-    memset(g, 0, sizeof *g);
-    rect(g, 1, 0, -10, 10, -10, 10);
     for (k = 0; k < sizeof widths / sizeof widths[0]; k++) {
         int w = widths[k];
-        tgi_view view;
-        tgi_shadow_need nd;
-        char what[32];
-        snprintf(what, sizeof what, "point, W %d", w);
-        tgi_view_make(&view, v3(0.3, 2, -0.2), v3(0.3, 0, -0.2), v3(0, 0, 1), rv(80 * DEG), TG_R(0.05f), TG_R(100.0f), w, w);
-        rule_need(&nd, &pt, g, &view, 0);
+        square_need q;
+        need_looking_down(&q, "point", &pt, g, v3(0.3, 2, -0.2), v3(0.3, 0, -0.2), 80 * DEG, w);
         for (f = 0; f < 6; f++)
-            CHECK((f == 3) == (nd.size[f] > 0), "W %d: face %d size %d (only -Y is seen)", w, f, nd.size[f]);
+            CHECK((f == 3) == (q.nd.size[f] > 0), "W %d: face %d size %d (only -Y is seen)", w, f, q.nd.size[f]);
         /* the window: the view, and the position error's margin (at most 5%) */
-        check_face(&nd, 3, 2 * t, 2 * t * 1.05, w, what);
-        CHECK(tgi_shadow_map_bytes_for_view(&pt, &view, v3(-10, 0, -10), v3(10, 0, 10), g->pos, g->n, 0) ==
-              (size_t)nd.size[3] * (size_t)nd.size[3] * 2, "bytes for the view: one face of %d", nd.size[3]);
+        check_face(&q.nd, 3, 2 * t, 2 * t * 1.05, w, q.what);
+        CHECK(tgi_shadow_map_bytes_for_view(&pt, &q.view, v3(-10, 0, -10), v3(10, 0, 10), g->pos, g->n, 0) ==
+              (size_t)q.nd.size[3] * (size_t)q.nd.size[3] * 2, "bytes for the view: one face of %d", q.nd.size[3]);
         /* --shadow-size overrides the size of every seen face, and only theirs */
-        tgi_shadow_need_finish(&nd, 77);
-        for (f = 0; f < 6; f++) CHECK(nd.size[f] == (f == 3 ? 77 : 0), "override: face %d size %d", f, nd.size[f]);
-        CHECK(tgi_shadow_map_bytes_for_view(&pt, &view, v3(-10, 0, -10), v3(10, 0, 10), g->pos, g->n, 77) == 77u * 77 * 2,
+        tgi_shadow_need_finish(&q.nd, 77);
+        for (f = 0; f < 6; f++) CHECK(q.nd.size[f] == (f == 3 ? 77 : 0), "override: face %d size %d", f, q.nd.size[f]);
+        CHECK(tgi_shadow_map_bytes_for_view(&pt, &q.view, v3(-10, 0, -10), v3(10, 0, 10), g->pos, g->n, 77) == 77u * 77 * 2,
               "bytes for the view at --shadow-size 77");
     }
     free(g);

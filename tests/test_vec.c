@@ -10,34 +10,19 @@
 #include "core/vec.h"
 #include <stdlib.h>
 
-#define PI_D 3.14159265358979323846
-
-static double dv(tg_real r)
-{
-#if TG_FIXED
-    return (double)r / 65536.0;
-#else
-    return (double)r;
-#endif
-}
 
 /* one ulp of the build (fixed) or a float tolerance scaled by magnitude */
+#define ULP CHECK_ULP
 #if TG_FIXED
-#define ULP (1.0 / 65536.0)
 #define DIR_TOL (1.5 * ULP)  /* per component of a normalized vector */
 #define ROT_TOL (8 * ULP)    /* per element of a rotation matrix product */
 #else
-#define ULP 1.2e-7
 #define DIR_TOL 4e-7
 #define ROT_TOL 2.5e-6
 #endif
 
 static unsigned rng_state = 1;
-static double rnd(void) /* [0, 1) */
-{
-    rng_state = rng_state * 1103515245u + 12345u;
-    return (double)((rng_state >> 8) & 0xffffff) / 16777216.0;
-}
+static double rnd(void) { return check_rnd(&rng_state); } /* [0, 1) */
 static tg_real rnd_real(double lo, double hi) { return tg_from_float((float)(lo + (hi - lo) * rnd())); }
 /* One draw per statement: C leaves the order of arguments unspecified, and
  * the same inputs must be drawn on every target (s390x, powerpc). */
@@ -49,8 +34,8 @@ static tg_vec3 rnd_vec(double r)
     return tg_v3(x, y, z);
 }
 
-static double len_d(tg_vec3 a) { return sqrt(dv(a.x) * dv(a.x) + dv(a.y) * dv(a.y) + dv(a.z) * dv(a.z)); }
-static double dot_d(tg_vec3 a, tg_vec3 b) { return dv(a.x) * dv(b.x) + dv(a.y) * dv(b.y) + dv(a.z) * dv(b.z); }
+static double len_d(tg_vec3 a) { return sqrt(check_exact(a.x) * check_exact(a.x) + check_exact(a.y) * check_exact(a.y) + check_exact(a.z) * check_exact(a.z)); }
+static double dot_d(tg_vec3 a, tg_vec3 b) { return check_exact(a.x) * check_exact(b.x) + check_exact(a.y) * check_exact(b.y) + check_exact(a.z) * check_exact(b.z); }
 
 TEST(length_exact)
 {
@@ -69,14 +54,14 @@ TEST(length_exact)
         CHECK(fabs((double)tgi_v3_length(a) - r) <= 0.0, "length raw %d vs %.0f", tgi_v3_length(a), r);
 #else
         double ref = len_d(a);
-        CHECK(fabs(dv(tgi_v3_length(a)) - ref) <= 3e-7 * ref, "length %.9g vs %.9g", dv(tgi_v3_length(a)), ref);
+        CHECK(fabs(check_exact(tgi_v3_length(a)) - ref) <= 3e-7 * ref, "length %.9g vs %.9g", check_exact(tgi_v3_length(a)), ref);
 #endif
     }
 #if TG_FIXED
     CHECK(tgi_v3_length(tg_v3(TG_REAL_MAX, TG_REAL_MAX, TG_REAL_MAX)) == TG_REAL_MAX, "saturates");
 #else
-    CHECK_NEAR(dv(tgi_v3_length(tg_v3(3e30f, 4e30f, 0))) / 5e30, 1.0, 1e-6);
-    CHECK_NEAR(dv(tgi_v3_length(tg_v3(3e-40f, 4e-40f, 0))) / 5e-40, 1.0, 1e-4);
+    CHECK_NEAR(check_exact(tgi_v3_length(tg_v3(3e30f, 4e30f, 0))) / 5e30, 1.0, 1e-6);
+    CHECK_NEAR(check_exact(tgi_v3_length(tg_v3(3e-40f, 4e-40f, 0))) / 5e-40, 1.0, 1e-4);
 #endif
 }
 
@@ -86,10 +71,10 @@ static void check_unit(tg_vec3 a, const char *what)
     tg_vec3 n = tgi_v3_normalize(a);
     double l = len_d(a);
     CHECK(fabs(len_d(n) - 1.0) <= 3 * ULP, "%s: |n| = %.9g", what, len_d(n));
-    CHECK(fabs(dv(n.x) - dv(a.x) / l) <= DIR_TOL && fabs(dv(n.y) - dv(a.y) / l) <= DIR_TOL &&
-          fabs(dv(n.z) - dv(a.z) / l) <= DIR_TOL,
-          "%s: direction (%.9g %.9g %.9g) of (%.9g %.9g %.9g)", what, dv(n.x), dv(n.y), dv(n.z),
-          dv(a.x), dv(a.y), dv(a.z));
+    CHECK(fabs(check_exact(n.x) - check_exact(a.x) / l) <= DIR_TOL && fabs(check_exact(n.y) - check_exact(a.y) / l) <= DIR_TOL &&
+          fabs(check_exact(n.z) - check_exact(a.z) / l) <= DIR_TOL,
+          "%s: direction (%.9g %.9g %.9g) of (%.9g %.9g %.9g)", what, check_exact(n.x), check_exact(n.y), check_exact(n.z),
+          check_exact(a.x), check_exact(a.y), check_exact(a.z));
 }
 
 TEST(normalize_unit)
@@ -136,7 +121,7 @@ TEST(cross_dot_identities)
     for (i = 0; i < 100000; i++) {
         tg_vec3 a = tgi_v3_normalize(rnd_vec(1.0)), b = tgi_v3_normalize(rnd_vec(1.0));
         tg_vec3 axb = tgi_v3_cross(a, b), bxa = tgi_v3_cross(b, a);
-        double d = dv(tgi_v3_dot(a, b)), l = len_d(axb);
+        double d = check_exact(tgi_v3_dot(a, b)), l = len_d(axb);
         /* perpendicular to both factors */
         CHECK(fabs(dot_d(axb, a)) <= 4 * ULP && fabs(dot_d(axb, b)) <= 4 * ULP, "a x b not perpendicular");
         /* anti-commutative, exactly */
@@ -146,12 +131,12 @@ TEST(cross_dot_identities)
         /* dot is symmetric and matches the exact value */
         CHECK(tgi_v3_dot(a, b) == tgi_v3_dot(b, a), "dot symmetric");
         /* float: each product and sum rounds, so the bound scales with sum |a_i b_i| (cancellation) */
-        CHECK(fabs(d - dot_d(a, b)) <= 0.5 * ULP + 2e-7 * (fabs(dv(a.x) * dv(b.x)) + fabs(dv(a.y) * dv(b.y)) + fabs(dv(a.z) * dv(b.z))),
+        CHECK(fabs(d - dot_d(a, b)) <= 0.5 * ULP + 2e-7 * (fabs(check_exact(a.x) * check_exact(b.x)) + fabs(check_exact(a.y) * check_exact(b.y)) + fabs(check_exact(a.z) * check_exact(b.z))),
               "dot rounding %.9g vs %.9g", d, dot_d(a, b));
     }
 }
 
-static double m4(const tgi_mat4 *m, int r, int c) { return dv(m->m[r * 4 + c]); }
+static double m4(const tgi_mat4 *m, int r, int c) { return check_exact(m->m[r * 4 + c]); }
 
 /* R R^T = I, det R = +1, last row/column of an affine rotation */
 static void check_rotation(const tgi_mat4 *r, double tol, const char *what)
@@ -178,32 +163,32 @@ TEST(rotation_orthonormal)
     tgi_mat4 r = tgi_m4_rotate(tg_v3(0, 0, TG_R(5.0f)), TG_HALF_PI);
     tg_vec3 p = tgi_m4_dir(&r, tg_v3(TG_ONE, 0, 0));
     /* counter-clockwise about +Z: x -> y */
-    CHECK_NEAR(dv(p.x), 0.0, 2 * ULP);
-    CHECK_NEAR(dv(p.y), 1.0, 2 * ULP);
-    CHECK_NEAR(dv(p.z), 0.0, 2 * ULP);
+    CHECK_NEAR(check_exact(p.x), 0.0, 2 * ULP);
+    CHECK_NEAR(check_exact(p.y), 1.0, 2 * ULP);
+    CHECK_NEAR(check_exact(p.z), 0.0, 2 * ULP);
     r = tgi_m4_rotate(tg_v3(0, 0, 0), TG_ONE);
     check_rotation(&r, 0, "zero axis gives identity");
     for (i = 0; i < 20000; i++) {
         tg_vec3 axis = rnd_vec(10.0), k = tgi_v3_normalize(axis), ka;
         tg_real angle = rnd_real(-7.0, 7.0);
-        double c = cos(dv(angle)), s = sin(dv(angle));
+        double c = cos(check_exact(angle)), s = sin(check_exact(angle));
         tg_vec3 v = rnd_vec(1.0), rv;
-        double kx = dv(k.x), ky = dv(k.y), kz = dv(k.z), vx = dv(v.x), vy = dv(v.y), vz = dv(v.z);
+        double kx = check_exact(k.x), ky = check_exact(k.y), kz = check_exact(k.z), vx = check_exact(v.x), vy = check_exact(v.y), vz = check_exact(v.z);
         double kv = kx * vx + ky * vy + kz * vz, ex, ey, ez;
         if (len_d(axis) < 1e-3) continue;
         r = tgi_m4_rotate(axis, angle);
         check_rotation(&r, ROT_TOL, "rotate");
         /* the axis is fixed */
         ka = tgi_m4_dir(&r, k);
-        CHECK(fabs(dv(ka.x) - kx) <= 6 * ULP && fabs(dv(ka.y) - ky) <= 6 * ULP && fabs(dv(ka.z) - kz) <= 6 * ULP,
+        CHECK(fabs(check_exact(ka.x) - kx) <= 6 * ULP && fabs(check_exact(ka.y) - ky) <= 6 * ULP && fabs(check_exact(ka.z) - kz) <= 6 * ULP,
               "axis moved");
         /* Rodrigues in 64-bit arithmetic */
         ex = vx * c + (ky * vz - kz * vy) * s + kx * kv * (1 - c);
         ey = vy * c + (kz * vx - kx * vz) * s + ky * kv * (1 - c);
         ez = vz * c + (kx * vy - ky * vx) * s + kz * kv * (1 - c);
         rv = tgi_m4_dir(&r, v);
-        CHECK(fabs(dv(rv.x) - ex) <= 8 * ULP && fabs(dv(rv.y) - ey) <= 8 * ULP && fabs(dv(rv.z) - ez) <= 8 * ULP,
-              "rotated (%.9g %.9g %.9g) vs (%.9g %.9g %.9g)", dv(rv.x), dv(rv.y), dv(rv.z), ex, ey, ez);
+        CHECK(fabs(check_exact(rv.x) - ex) <= 8 * ULP && fabs(check_exact(rv.y) - ey) <= 8 * ULP && fabs(check_exact(rv.z) - ez) <= 8 * ULP,
+              "rotated (%.9g %.9g %.9g) vs (%.9g %.9g %.9g)", check_exact(rv.x), check_exact(rv.y), check_exact(rv.z), ex, ey, ez);
     }
 }
 
@@ -227,8 +212,8 @@ TEST(matrix_basics)
     q = tgi_m4_point(&rt, p);
     {
         tg_vec3 tp = tgi_m4_point(&t, p), rtp = tgi_m4_point(&r, tp);
-        CHECK(fabs(dv(q.x) - dv(rtp.x)) <= 4 * ULP * 5 && fabs(dv(q.y) - dv(rtp.y)) <= 4 * ULP * 5 &&
-              fabs(dv(q.z) - dv(rtp.z)) <= 4 * ULP * 5, "associativity");
+        CHECK(fabs(check_exact(q.x) - check_exact(rtp.x)) <= 4 * ULP * 5 && fabs(check_exact(q.y) - check_exact(rtp.y)) <= 4 * ULP * 5 &&
+              fabs(check_exact(q.z) - check_exact(rtp.z)) <= 4 * ULP * 5, "associativity");
     }
     v4.x = p.x; v4.y = p.y; v4.z = p.z; v4.w = TG_ONE;
     w4 = tgi_m4_apply(&rt, v4);
@@ -236,7 +221,7 @@ TEST(matrix_basics)
     /* R^T R = I through tgi_m4_mul */
     for (i = 0; i < 16; i++) r_t.m[i] = r.m[(i % 4) * 4 + i / 4];
     a = tgi_m4_mul(&r_t, &r);
-    for (i = 0; i < 16; i++) CHECK_NEAR(dv(a.m[i]), (i % 5 == 0) ? 1.0 : 0.0, 4 * ULP);
+    for (i = 0; i < 16; i++) CHECK_NEAR(check_exact(a.m[i]), (i % 5 == 0) ? 1.0 : 0.0, 4 * ULP);
 #if TG_FIXED
     /* rows whose products pass 2^63 in total still come out right */
     {
@@ -257,7 +242,7 @@ TEST(matrix_basics)
 }
 
 static tgi_quat qneg(tgi_quat q) { q.x = tg_neg(q.x); q.y = tg_neg(q.y); q.z = tg_neg(q.z); q.w = tg_neg(q.w); return q; }
-static double qdot_d(tgi_quat a, tgi_quat b) { return dv(a.x) * dv(b.x) + dv(a.y) * dv(b.y) + dv(a.z) * dv(b.z) + dv(a.w) * dv(b.w); }
+static double qdot_d(tgi_quat a, tgi_quat b) { return check_exact(a.x) * check_exact(b.x) + check_exact(a.y) * check_exact(b.y) + check_exact(a.z) * check_exact(b.z) + check_exact(a.w) * check_exact(b.w); }
 
 TEST(quaternions)
 {
@@ -275,7 +260,7 @@ TEST(quaternions)
         mq = tgi_q_to_m4(q);
         mr = tgi_m4_rotate(axis, angle);
         check_rotation(&mq, ROT_TOL, "q_to_m4");
-        for (j = 0; j < 16; j++) CHECK_NEAR(dv(mq.m[j]), dv(mr.m[j]), 8 * ULP);
+        for (j = 0; j < 16; j++) CHECK_NEAR(check_exact(mq.m[j]), check_exact(mr.m[j]), 8 * ULP);
         /* slerp endpoints exact */
         qa = tgi_q_axis_angle(axis2, angle2);
         qb = q;
@@ -296,8 +281,8 @@ TEST(quaternions)
     /* a 300-degree rotation is reached the short way: the midpoint turns -30 degrees */
     {
         tg_vec3 zax = tg_v3(0, 0, TG_ONE);
-        tgi_quat id = tgi_q_axis_angle(zax, 0), far = tgi_q_axis_angle(zax, TG_R((float)(300.0 * PI_D / 180.0)));
-        tgi_quat mid = tgi_q_slerp(id, far, TG_R(0.5f)), want = tgi_q_axis_angle(zax, TG_R((float)(-30.0 * PI_D / 180.0)));
+        tgi_quat id = tgi_q_axis_angle(zax, 0), far = tgi_q_axis_angle(zax, TG_R((float)(300.0 * CHECK_PI / 180.0)));
+        tgi_quat mid = tgi_q_slerp(id, far, TG_R(0.5f)), want = tgi_q_axis_angle(zax, TG_R((float)(-30.0 * CHECK_PI / 180.0)));
         CHECK(fabs(fabs(qdot_d(mid, want)) - 1.0) <= 8 * ULP, "shortest arc midpoint, dot %.9g", qdot_d(mid, want));
     }
     /* nearly equal quaternions (the nlerp branch) stay unit and between */
@@ -318,11 +303,11 @@ TEST(slerp_is_angle_linear_below_the_nlerp_switch)
     double tol = TG_FIXED ? 1e-4 : 1e-6, a;
     int k;
     for (k = 1; k < 4; k++) {
-        tgi_quat m = tgi_q_slerp(tgi_q_axis_angle(yax, 0), tgi_q_axis_angle(yax, TG_R((float)(16.0 * PI_D / 180.0))),
+        tgi_quat m = tgi_q_slerp(tgi_q_axis_angle(yax, 0), tgi_q_axis_angle(yax, TG_R((float)(16.0 * CHECK_PI / 180.0))),
                                  tg_from_float(0.25f * (float)k));
-        a = 4.0 * k * PI_D / 180.0;
-        CHECK(fabs(dv(m.y) - sin(a / 2)) <= tol && fabs(dv(m.w) - cos(a / 2)) <= tol,
-              "t = %.2f: (%.7f, %.7f), want (%.7f, %.7f)", 0.25 * k, dv(m.y), dv(m.w), sin(a / 2), cos(a / 2));
+        a = 4.0 * k * CHECK_PI / 180.0;
+        CHECK(fabs(check_exact(m.y) - sin(a / 2)) <= tol && fabs(check_exact(m.w) - cos(a / 2)) <= tol,
+              "t = %.2f: (%.7f, %.7f), want (%.7f, %.7f)", 0.25 * k, check_exact(m.y), check_exact(m.w), sin(a / 2), cos(a / 2));
     }
 }
 
@@ -332,13 +317,13 @@ TEST(length_of_tiny_and_thin)
 {
 #if !TG_FIXED
     tg_real l = tgi_v3_length(tg_v3(3e-22f, 4e-22f, 0));
-    CHECK(fabs(dv(l) / 5e-22 - 1) <= 1e-6, "length %g", dv(l));
+    CHECK(fabs(check_exact(l) / 5e-22 - 1) <= 1e-6, "length %g", check_exact(l));
 #endif
     {   /* a triangle whose edges are 0.1 degree apart has a face normal; 0.0005 degree is degenerate */
         tg_vec3 n = tg_v3(0, 0, 0);
-        double a = 0.1 * PI_D / 180.0, b = 0.0005 * PI_D / 180.0;
+        double a = 0.1 * CHECK_PI / 180.0, b = 0.0005 * CHECK_PI / 180.0;
         CHECK(tgi_face_normal(tg_v3(0, 0, 0), tg_v3(TG_ONE, 0, 0), tg_v3(tg_from_float((float)cos(a)),
-                              tg_from_float((float)sin(a)), 0), &n) == 1 && n.z == TG_ONE, "thin triangle: n.z %g", dv(n.z));
+                              tg_from_float((float)sin(a)), 0), &n) == 1 && n.z == TG_ONE, "thin triangle: n.z %g", check_exact(n.z));
         CHECK(tgi_face_normal(tg_v3(0, 0, 0), tg_v3(TG_ONE, 0, 0), tg_v3(tg_from_float((float)cos(b)),
                               tg_from_float((float)sin(b)), 0), &n) == 0, "0.0005 degrees is degenerate");
     }

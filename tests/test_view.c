@@ -9,32 +9,14 @@
 #include "check.h"
 #include "raster/view.h"
 
-#define PI_D 3.14159265358979323846
 
-static double dv(tg_real r)
-{
-#if TG_FIXED
-    return (double)r / 65536.0;
-#else
-    return (double)r;
-#endif
-}
-
-#if TG_FIXED
-#define ULP (1.0 / 65536.0)
-#else
-#define ULP 1.2e-7
-#endif
+#define ULP CHECK_ULP
 
 static unsigned rng_state = 7;
-static double rnd(void)
-{
-    rng_state = rng_state * 1103515245u + 12345u;
-    return (double)((rng_state >> 8) & 0xffffff) / 16777216.0;
-}
+static double rnd(void) { return check_rnd(&rng_state); }
 static tg_real rr(double lo, double hi) { return tg_from_float((float)(lo + (hi - lo) * rnd())); }
 static tg_vec3 R3(double x, double y, double z) { return tg_v3(tg_from_float((float)x), tg_from_float((float)y), tg_from_float((float)z)); }
-static double dot_d(tg_vec3 a, tg_vec3 b) { return dv(a.x) * dv(b.x) + dv(a.y) * dv(b.y) + dv(a.z) * dv(b.z); }
+static double dot_d(tg_vec3 a, tg_vec3 b) { return check_exact(a.x) * check_exact(b.x) + check_exact(a.y) * check_exact(b.y) + check_exact(a.z) * check_exact(b.z); }
 
 static void check_basis(const tgi_view *v, const char *what)
 {
@@ -45,13 +27,13 @@ static void check_basis(const tgi_view *v, const char *what)
           fabs(dot_d(v->up, v->forward)) <= 6 * ULP, "%s: basis not orthogonal (%.3g %.3g %.3g)", what,
           dot_d(v->right, v->up), dot_d(v->right, v->forward), dot_d(v->up, v->forward));
     /* view space x right, y up, z forward in a right-handed world: right x up = -forward */
-    CHECK(fabs(dv(c.x) + dv(v->forward.x)) <= 8 * ULP && fabs(dv(c.y) + dv(v->forward.y)) <= 8 * ULP &&
-          fabs(dv(c.z) + dv(v->forward.z)) <= 8 * ULP, "%s: right x up != -forward", what);
+    CHECK(fabs(check_exact(c.x) + check_exact(v->forward.x)) <= 8 * ULP && fabs(check_exact(c.y) + check_exact(v->forward.y)) <= 8 * ULP &&
+          fabs(check_exact(c.z) + check_exact(v->forward.z)) <= 8 * ULP, "%s: right x up != -forward", what);
 }
 
 static int vec_is(tg_vec3 a, double x, double y, double z, double tol)
 {
-    return fabs(dv(a.x) - x) <= tol && fabs(dv(a.y) - y) <= tol && fabs(dv(a.z) - z) <= tol;
+    return fabs(check_exact(a.x) - x) <= tol && fabs(check_exact(a.y) - y) <= tol && fabs(check_exact(a.z) - z) <= tol;
 }
 
 TEST(basis_conventions)
@@ -81,7 +63,7 @@ TEST(basis_random)
         check_basis(&v, "random");
         {
             tg_vec3 d = tgi_v3_normalize(tgi_v3_sub(target, eye));
-            CHECK(vec_is(v.forward, dv(d.x), dv(d.y), dv(d.z), 2 * ULP), "forward is the view direction");
+            CHECK(vec_is(v.forward, check_exact(d.x), check_exact(d.y), check_exact(d.z), 2 * ULP), "forward is the view direction");
         }
     }
 }
@@ -117,13 +99,13 @@ TEST(degenerate_up)
 TEST(projection_constants)
 {
     tgi_view v;
-    double fov = 60.0 * PI_D / 180.0, f = 1.0 / tan(fov / 2);
+    double fov = 60.0 * CHECK_PI / 180.0, f = 1.0 / tan(fov / 2);
     tgi_view_make(&v, R3(0, 0, 0), R3(0, 0, -1), R3(0, 1, 0), tg_from_float((float)fov), TG_R(0.1f), TG_R(100.0f), 320, 240);
-    CHECK_NEAR(dv(v.tan_half_fov_y), tan(fov / 2), 2 * ULP);
-    CHECK_NEAR(dv(v.aspect), 320.0 / 240.0, ULP);
-    CHECK_NEAR(dv(v.focal_y), f, 4 * ULP * f);
-    CHECK_NEAR(dv(v.focal_x), f * 240.0 / 320.0, 4 * ULP * f);
-    CHECK_NEAR(dv(v.pixels_per_unit), 120.0 * f, 600 * ULP);
+    CHECK_NEAR(check_exact(v.tan_half_fov_y), tan(fov / 2), 2 * ULP);
+    CHECK_NEAR(check_exact(v.aspect), 320.0 / 240.0, ULP);
+    CHECK_NEAR(check_exact(v.focal_y), f, 4 * ULP * f);
+    CHECK_NEAR(check_exact(v.focal_x), f * 240.0 / 320.0, 4 * ULP * f);
+    CHECK_NEAR(check_exact(v.pixels_per_unit), 120.0 * f, 600 * ULP);
     CHECK(v.width == 320 && v.height == 240, "size");
     CHECK(v.znear == TG_R(0.1f) && v.zfar == TG_R(100.0f), "near/far kept");
 }
@@ -137,23 +119,23 @@ TEST(pixel_convention)
     tgi_view_make(&v, R3(0, 0, 0), R3(0, 0, -1), R3(0, 1, 0), tg_from_float((float)fov), TG_R(0.1f), TG_R(100.0f), 320, 240);
     /* the optical axis hits the centre of the screen, (w/2, h/2) */
     tgi_view_project(&v, tg_v3(0, 0, TG_R(3.0f)), &sx, &sy);
-    CHECK(sx == TG_R(160.0f) && sy == TG_R(120.0f), "axis -> (160, 120), got (%.6f, %.6f)", dv(sx), dv(sy));
+    CHECK(sx == TG_R(160.0f) && sy == TG_R(120.0f), "axis -> (160, 120), got (%.6f, %.6f)", check_exact(sx), check_exact(sy));
     /* the top-left corner (0,0) is the frustum corner (-tan*aspect, +tan) at depth 1 */
     p = tgi_view_unproject(&v, 0, 0, TG_ONE);
-    CHECK(fabs(dv(p.x) + t * aspect) <= 1e-4 && fabs(dv(p.y) - t) <= 1e-4 && p.z == TG_ONE,
-          "corner (0,0) -> (%.6f %.6f %.6f), want (%.6f %.6f 1)", dv(p.x), dv(p.y), dv(p.z), -t * aspect, t);
+    CHECK(fabs(check_exact(p.x) + t * aspect) <= 1e-4 && fabs(check_exact(p.y) - t) <= 1e-4 && p.z == TG_ONE,
+          "corner (0,0) -> (%.6f %.6f %.6f), want (%.6f %.6f 1)", check_exact(p.x), check_exact(p.y), check_exact(p.z), -t * aspect, t);
     /* bottom-right corner */
     p = tgi_view_unproject(&v, TG_R(320.0f), TG_R(240.0f), TG_R(2.0f));
-    CHECK(fabs(dv(p.x) - 2 * t * aspect) <= 2e-4 && fabs(dv(p.y) + 2 * t) <= 2e-4, "corner (w,h)");
+    CHECK(fabs(check_exact(p.x) - 2 * t * aspect) <= 2e-4 && fabs(check_exact(p.y) + 2 * t) <= 2e-4, "corner (w,h)");
     /* pixel (0,0)'s centre is at (0.5, 0.5): left of and above the axis, inside the frustum */
     p = tgi_view_unproject(&v, TG_R(0.5f), TG_R(0.5f), TG_ONE);
-    CHECK(dv(p.x) < 0 && dv(p.y) > 0 && dv(p.x) > -t * aspect && dv(p.y) < t, "pixel (0,0) centre top-left");
+    CHECK(check_exact(p.x) < 0 && check_exact(p.y) > 0 && check_exact(p.x) > -t * aspect && check_exact(p.y) < t, "pixel (0,0) centre top-left");
     /* a world point above the camera lands in the upper half (sy < h/2), right -> sx > w/2 */
     tgi_view_project(&v, tgi_view_world_to_view(&v, R3(1, 1, -5)), &sx, &sy);
-    CHECK(dv(sx) > 160 && dv(sy) < 120, "(+x, +y) world -> right, up on screen");
+    CHECK(check_exact(sx) > 160 && check_exact(sy) < 120, "(+x, +y) world -> right, up on screen");
     /* depth is view z: a point 5 in front */
     p = tgi_view_world_to_view(&v, R3(2, -1, -5));
-    CHECK(p.z == TG_R(5.0f), "depth = view z = 5, got %.6f", dv(p.z));
+    CHECK(p.z == TG_R(5.0f), "depth = view z = 5, got %.6f", check_exact(p.z));
     /* behind the camera: finite */
     tgi_view_project(&v, tg_v3(TG_ONE, TG_ONE, tg_neg(TG_ONE)), &sx, &sy);
     CHECK(tg_isfinite(sx) && tg_isfinite(sy), "behind the camera stays finite");
@@ -174,9 +156,9 @@ TEST(round_trips)
         CHECK(pv.z == depth, "unproject keeps depth");
         tgi_view_project(&v, pv, &sx2, &sy2);
         {
-            double e = fmax(fabs(dv(sx2) - dv(sx)), fabs(dv(sy2) - dv(sy)));
+            double e = fmax(fabs(check_exact(sx2) - check_exact(sx)), fabs(check_exact(sy2) - check_exact(sy)));
             /* one ulp of the view-space point is ppu / depth pixels */
-            double ulp_px = ULP * (dv(v.pixels_per_unit) / dv(depth) + 1);
+            double ulp_px = ULP * (check_exact(v.pixels_per_unit) / check_exact(depth) + 1);
             if (e > worst_px) worst_px = e;
             if (e / ulp_px > worst_rel_px) worst_rel_px = e / ulp_px;
         }
@@ -184,13 +166,13 @@ TEST(round_trips)
         pw = tgi_view_view_to_world(&v, pv);
         pv2 = tgi_view_world_to_view(&v, pw);
         {
-            double e = fmax(fabs(dv(pv2.x) - dv(pv.x)), fmax(fabs(dv(pv2.y) - dv(pv.y)), fabs(dv(pv2.z) - dv(pv.z))));
-            double m = 1 + fabs(dv(pv.z)) + fabs(dv(pv.x)) + fabs(dv(pv.y));
+            double e = fmax(fabs(check_exact(pv2.x) - check_exact(pv.x)), fmax(fabs(check_exact(pv2.y) - check_exact(pv.y)), fabs(check_exact(pv2.z) - check_exact(pv.z))));
+            double m = 1 + fabs(check_exact(pv.z)) + fabs(check_exact(pv.x)) + fabs(check_exact(pv.y));
             if (e / m > worst_w) worst_w = e / m;
         }
         /* directions */
         back = tgi_view_dir_to_world(&v, tgi_view_dir_to_view(&v, v.forward));
-        CHECK(vec_is(back, dv(v.forward.x), dv(v.forward.y), dv(v.forward.z), 8 * ULP), "dir round trip");
+        CHECK(vec_is(back, check_exact(v.forward.x), check_exact(v.forward.y), check_exact(v.forward.z), 8 * ULP), "dir round trip");
     }
 #if TG_FIXED
     printf("measured view fixed: project(unproject) worst %.3g px (%.3g ulps of the view-space point); "

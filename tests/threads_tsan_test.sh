@@ -11,8 +11,7 @@ set -u
 cd "$(dirname "$0")/.."
 . tests/shcheck.sh
 CC=${CC:-cc}
-T=$(mktemp -d "${TMPDIR:-/tmp}/tgi_tsan_XXXXXX")
-trap 'rm -rf "$T"' EXIT
+sh_scratch tsan
 FLAGS="-std=c99 ${REPRO:-} -O1 -g -fsanitize=thread -D_POSIX_C_SOURCE=200809L"
 
 printf '#include <pthread.h>\nstatic void *f(void *a) { return a; }\nint main(void) { pthread_t t; return pthread_create(&t, 0, f, 0) || pthread_join(t, 0); }\n' >"$T/probe.c"
