@@ -11,11 +11,7 @@
 set -u
 cd "$(dirname "$0")/.."
 . tests/shcheck.sh
-BUILD=${BUILD:-build}
-CC=${CC:-cc}
-TG_CFLAGS=${TG_CFLAGS:--std=c99}
-TG_LDLIBS=${TG_LDLIBS:--lm}
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+sh_host_build
 
 cat >"$tmp/keys.scene" <<'SCENE'
 camera_key t 0  pos 0 2 -6  target 0 0.5 0

@@ -15,6 +15,16 @@ sh_scratch() {
     T=$(mktemp -d "${TMPDIR:-/tmp}/tgi_$1_XXXXXX")
     trap 'chmod -R u+w "$T" 2>/dev/null; rm -rf "$T"' EXIT
 }
+# sh_host_build: what a script that compiles the core itself uses: BUILD,
+# CC, TG_CFLAGS, TG_LDLIBS as make passes them (or the defaults) and $tmp, a
+# scratch directory removed on exit.
+sh_host_build() {
+    BUILD=${BUILD:-build}
+    CC=${CC:-cc}
+    TG_CFLAGS=${TG_CFLAGS:--std=c99}
+    TG_LDLIBS=${TG_LDLIBS:--lm}
+    tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+}
 # each_cli FN: FN TAG for each CLI ($BUILD/tinygi, $BUILD/tinygi-fixed) with
 # $BIN the program and $tag its name; a CLI not built fails TAG/built.
 each_cli() {

@@ -12,11 +12,7 @@
 set -u
 cd "$(dirname "$0")/.."
 . tests/shcheck.sh
-BUILD=${BUILD:-build}
-CC=${CC:-cc}
-TG_CFLAGS=${TG_CFLAGS:--std=c99}
-TG_LDLIBS=${TG_LDLIBS:--lm}
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+sh_host_build
 
 SWITCHES="TECHNIQUES REFERENCE OBJ BUILTIN_SCENES SHADOW_MAPS ENVIRONMENT SCENE_TEXT COLOR"
 # the global symbols (nm) of each switch's left-out files

@@ -246,6 +246,17 @@ static tg_status kv_dir(tgi_parser *p, const tgi_lexer *lx, const key_val *kv,
     return TG_OK;
 }
 
+/* A key whose value must be greater than 0 (near, scale, radius): its value
+ * in *out when present; *out unchanged when absent. */
+static tg_status kv_positive(tgi_parser *p, const tgi_lexer *lx, const key_val *kv, const char *key, tg_real *out)
+{
+    tg_status st;
+    if (!kv->present) return TG_OK;
+    if ((st = check_range(p, lx, kv, key, 0, TG_REAL_MAX, LO_OPEN, "greater than 0"))) return st;
+    *out = kv->v[0];
+    return TG_OK;
+}
+
 /* ===================================================================== */
 /* scene tables: materials, objects, triangles                          */
 /* ===================================================================== */
@@ -408,11 +419,7 @@ static tg_status st_camera(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     cam.fov = tgi_deg_to_rad(fov);
     cam.znear = TG_R(TG_DEFAULT_NEAR);
     cam.zfar = TG_R(TG_DEFAULT_FAR);
-    if (v[4].present) {
-        if ((st = check_range(p, lx, &v[4], "near", 0, TG_REAL_MAX, LO_OPEN, "greater than 0")))
-            return st;
-        cam.znear = v[4].v[0];
-    }
+    if ((st = kv_positive(p, lx, &v[4], "near", &cam.znear))) return st;
     if (v[5].present) cam.zfar = v[5].v[0];
     if (cam.zfar <= cam.znear)
         return fail(p, lx, v[5].present ? v[5].tok[0].col : v[4].tok[0].col,
@@ -632,11 +639,7 @@ static tg_status st_mesh(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     if ((st = parse_keys(p, lx, kw, spec, NSPEC(spec), v))) return st;
     xf.translate = v[2].present ? kv_vec3(&v[2]) : tg_v3(0, 0, 0);
     xf.scale = TG_ONE;
-    if (v[3].present) {
-        if ((st = check_range(p, lx, &v[3], "scale", 0, TG_REAL_MAX, LO_OPEN, "greater than 0")))
-            return st;
-        xf.scale = v[3].v[0];
-    }
+    if ((st = kv_positive(p, lx, &v[3], "scale", &xf.scale))) return st;
     xf.rot = tgi_m4_identity();
     if (v[4].present) {
         tg_vec3 axis;
