@@ -393,6 +393,36 @@ TEST(ssdo_light_occlusion)
     CHECK(n_far > 0 && worst_far < 2e-3, "lit floor E off by %g", worst_far);
 }
 
+/* Crytek2D's range check: a floor under a plate floating 3 units above it
+ * (radius 1).  Plate pixels next to a floor pixel on screen are above its
+ * tangent plane but 3 units away: out of range, so every floor pixel is
+ * exactly open (AO = 1), the plate's edge on screen as well. */
+TEST(ssao_2d_out_of_range_is_open)
+{
+    static scene s;
+    static outputs o;
+    static const double eye[3] = { -1.5, 9.0, 7.0 }, target[3] = { 0, 0, -1 };
+    ao_pass io;
+    int i, n = 0, edge = 0, closed = 0;
+    memset(&s, 0, sizeof s);
+    add_rect(&s, -BIG, 0, BIG, 2 * BIG, 0, 0, 0, 0, -2 * BIG);  /* floor y = 0, normal +y */
+    add_rect(&s, 0, 3, BIG, BIG, 0, 0, 0, 0, -2 * BIG);         /* plate y = 3, x >= 0 */
+    raster(&s, eye, target, 60.0);
+    io_for(&io, &s, &o, 0);
+    run_ssao_2d(&io, 0, H);
+    io_read(&io);
+    for (i = 0; i < W * H; i++) {
+        int x = i % W;
+        if (s.wrect[i] != 0) continue;
+        n++;
+        if (x + 1 < W && s.wrect[i + 1] == 1) edge++;
+        if (o.ao[i] != TG_ONE) closed++;
+    }
+    printf("# ssao-disk2d under a plate 3 above: %d floor pixels (%d next to the plate), %d not open\n", n, edge, closed);
+    CHECK(n > 100 && edge > 5, "the view must show the floor beside the plate: %d, %d", n, edge);
+    CHECK(closed == 0, "%d floor pixels occluded by a plate 3 radii away", closed);
+}
+
 int main(void)
 {
     uniform_sky[0] = tg_v3(TG_R(3.5449077f), TG_R(3.5449077f), TG_R(3.5449077f));
@@ -403,6 +433,7 @@ int main(void)
     RUN(bentcone_cone_and_far);
     RUN(ssdo_far_and_near);
     RUN(ssdo_light_occlusion);
+    RUN(ssao_2d_out_of_range_is_open);
     free(bvh_mem);
     return check_summary();
 }
