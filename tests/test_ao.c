@@ -423,6 +423,48 @@ TEST(ssao_2d_out_of_range_is_open)
     CHECK(closed == 0, "%d floor pixels occluded by a plate 3 radii away", closed);
 }
 
+/* HBAO's falloff W(r) = 1 - r / R (RTR eq. 11.17): a floor beside a plate
+ * at height h < R.  Every sample that raises the horizon of a floor point is
+ * on the plate, at least d = sqrt(h^2 + x^2) away (x: the point's distance
+ * to the plate's edge), so each rise is weighted by at most 1 - d / R; the
+ * rises of one direction add up to at most 1 - sin t (sin h <= 1), and
+ * sin t is odd in the direction (the 8 directions come in opposite pairs),
+ * so the mean over directions is at most 1 - d / R: AO >= d / R.  The
+ * tolerance is one step of the stored AO (unorm8). */
+TEST(hbao_falloff_bounds_far_occlusion)
+{
+    static scene s;
+    static outputs o;
+    static const double eye[3] = { -2.2, 1.7, 1.2 }, target[3] = { 0.3, 0, -0.4 };
+    const double h = 0.8;   /* tgi_hbao_defaults: radius R = 1 */
+    ao_pass io;
+    int i, n = 0, bad = 0;
+    double worst = 1, mean = 0;
+    memset(&s, 0, sizeof s);
+    add_rect(&s, -BIG, 0, BIG, 2 * BIG, 0, 0, 0, 0, -2 * BIG);  /* floor y = 0, normal +y */
+    add_rect(&s, 0, h, BIG, BIG, 0, 0, 0, 0, -2 * BIG);         /* plate y = h, x >= 0 */
+    raster(&s, eye, target, 60.0);
+    io_for(&io, &s, &o, 0);
+    run_hbao(&io, 0, H);
+    io_read(&io);
+    for (i = 0; i < W * H; i++) {
+        double x = s.wpos[i][0], d, bound, a;
+        if (s.wrect[i] != 0 || x >= 0) continue;
+        d = sqrt(h * h + x * x);
+        if (d >= 1) continue;
+        bound = d;
+        a = check_d(o.ao[i]);
+        n++;
+        mean += a;
+        worst = fmin(worst, a - bound);
+        if (a < bound - 1.0 / 255) bad++;
+    }
+    printf("# hbao beside a plate %.1f high: %d floor pixels within the radius, mean ao %.3f, worst ao - bound %.4f\n",
+           h, n, n ? mean / n : 0.0, worst);
+    CHECK(n > 20, "the view must show the floor beside the plate: %d pixels", n);
+    CHECK(bad == 0, "%d floor pixels more occluded than the falloff allows (worst by %g)", bad, -worst);
+}
+
 int main(void)
 {
     uniform_sky[0] = tg_v3(TG_R(3.5449077f), TG_R(3.5449077f), TG_R(3.5449077f));
@@ -434,6 +476,7 @@ int main(void)
     RUN(ssdo_far_and_near);
     RUN(ssdo_light_occlusion);
     RUN(ssao_2d_out_of_range_is_open);
+    RUN(hbao_falloff_bounds_far_occlusion);
     free(bvh_mem);
     return check_summary();
 }
