@@ -619,6 +619,40 @@ TEST(coplanar_ties_keep_the_first_drawn)
     ties_from(grazing, "grazing");
 }
 
+/* Receivers beyond 89.94 degrees (|n . l| below GRAZING_MIN_COS = 0.001 in
+ * src/light/shadowmap.c) facing a light straight above, under a plate 6-16
+ * m over them: a wall point 0.2 m over the floor, its normal 0.0005 to
+ * 0.00005 from horizontal.  The lookup moves the receiver toward the light
+ * by its position error / |n . l| (here ~4 mm / |n . l|) and the floor on
+ * |n . l| keeps that under 4 m: the receiver's own tap and the taps deeper
+ * than it see the plate, only the column of taps on the side where its
+ * plane rises toward the light passes it (a third of the tent), so it is
+ * mostly dark.  Without the floor the receiver is moved past the plate and
+ * lit through it. */
+TEST(receiver_beyond_89_94_degrees_under_a_plate_is_dark)
+{
+    geo *g = geo_new();
+    tgi_light dl = make_light(TG_LIGHT_DIRECTIONAL, v3(0, 0, 0), v3(0, -1, 0), 1, 0);
+    static const double cosines[] = { 0.0005, 0.0002, 0.0001, 0.00005 };
+    static const double heights[] = { 6, 10, 16 };
+    size_t k, j;
+    for (j = 0; j < sizeof heights / sizeof heights[0]; j++) {
+        tgi_shadow_map sm;
+        void *mem;
+        memset(g, 0, sizeof *g);
+        rect(g, 1, 0, -8, 8, -8, 8);
+        rect(g, 1, heights[j], -1, 1, -1, 1);
+        exact_map(&sm, &mem, g, &dl, 512);
+        for (k = 0; k < sizeof cosines / sizeof cosines[0]; k++) {
+            double c = cosines[k];
+            tg_real vis = tgi_shadow_visibility(&sm, v3(0.1, 0.2, 0.05), v3(sqrt(1 - c * c), c, 0));
+            CHECK(vis <= TG_R(0.5f), "plate %g m above, |n . l| = %g: visibility %g", heights[j], c, dv(vis));
+        }
+        free(mem);
+    }
+    free(g);
+}
+
 int main(void)
 {
     RUN(occluder_at_the_bounds_near_side_casts_its_shadow);
@@ -631,6 +665,7 @@ int main(void)
     RUN(geometry_at_and_behind_the_light_near_plane);
     RUN(concave_corner_is_not_darkened);
     RUN(offset_stops_half_way_to_the_light);
+    RUN(receiver_beyond_89_94_degrees_under_a_plate_is_dark);
     free(bvh_mem);
     return check_summary();
 }
