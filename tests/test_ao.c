@@ -389,6 +389,162 @@ TEST(ssdo_light_occlusion)
     CHECK(n_far > 0 && worst_far < 2e-3, "lit floor E off by %g", worst_far);
 }
 
+/* Crytek2D's range check: a floor under a plate floating 3 units above it
+ * (radius 1).  Plate pixels next to a floor pixel on screen are above its
+ * tangent plane but 3 units away: out of range, so every floor pixel is
+ * exactly open (AO = 1), the plate's edge on screen as well. */
+TEST(ssao_2d_out_of_range_is_open)
+{
+    static scene s;
+    static outputs o;
+    static const double eye[3] = { -1.5, 9.0, 7.0 }, target[3] = { 0, 0, -1 };
+    ao_pass io;
+    int i, n = 0, edge = 0, closed = 0;
+    memset(&s, 0, sizeof s);
+    add_rect(&s, -BIG, 0, BIG, 2 * BIG, 0, 0, 0, 0, -2 * BIG);  /* floor y = 0, normal +y */
+    add_rect(&s, 0, 3, BIG, BIG, 0, 0, 0, 0, -2 * BIG);         /* plate y = 3, x >= 0 */
+    raster(&s, eye, target, 60.0);
+    io_for(&io, &s, &o, 0);
+    run_ssao_2d(&io, 0, H);
+    io_read(&io);
+    for (i = 0; i < W * H; i++) {
+        int x = i % W;
+        if (s.wrect[i] != 0) continue;
+        n++;
+        if (x + 1 < W && s.wrect[i + 1] == 1) edge++;
+        if (o.ao[i] != TG_ONE) closed++;
+    }
+    printf("# ssao-disk2d under a plate 3 above: %d floor pixels (%d next to the plate), %d not open\n", n, edge, closed);
+    CHECK(n > 100 && edge > 5, "the view must show the floor beside the plate: %d, %d", n, edge);
+    CHECK(closed == 0, "%d floor pixels occluded by a plate 3 radii away", closed);
+}
+
+/* HBAO's falloff W(r) = 1 - r / R (RTR eq. 11.17): a floor beside a plate
+ * at height h < R.  Every sample that raises the horizon of a floor point is
+ * on the plate, at least d = sqrt(h^2 + x^2) away (x: the point's distance
+ * to the plate's edge), so each rise is weighted by at most 1 - d / R; the
+ * rises of one direction add up to at most 1 - sin t (sin h <= 1), and
+ * sin t is odd in the direction (the 8 directions come in opposite pairs),
+ * so the mean over directions is at most 1 - d / R: AO >= d / R.  The
+ * tolerance is one step of the stored AO (unorm8). */
+TEST(hbao_falloff_bounds_far_occlusion)
+{
+    static scene s;
+    static outputs o;
+    static const double eye[3] = { -2.2, 1.7, 1.2 }, target[3] = { 0.3, 0, -0.4 };
+    const double h = 0.8;   /* tgi_hbao_defaults: radius R = 1 */
+    ao_pass io;
+    int i, n = 0, bad = 0;
+    double worst = 1, mean = 0;
+    memset(&s, 0, sizeof s);
+    add_rect(&s, -BIG, 0, BIG, 2 * BIG, 0, 0, 0, 0, -2 * BIG);  /* floor y = 0, normal +y */
+    add_rect(&s, 0, h, BIG, BIG, 0, 0, 0, 0, -2 * BIG);         /* plate y = h, x >= 0 */
+    raster(&s, eye, target, 60.0);
+    io_for(&io, &s, &o, 0);
+    run_hbao(&io, 0, H);
+    io_read(&io);
+    for (i = 0; i < W * H; i++) {
+        double x = s.wpos[i][0], d, bound, a;
+        if (s.wrect[i] != 0 || x >= 0) continue;
+        d = sqrt(h * h + x * x);
+        if (d >= 1) continue;
+        bound = d;
+        a = check_d(o.ao[i]);
+        n++;
+        mean += a;
+        worst = fmin(worst, a - bound);
+        if (a < bound - 1.0 / 255) bad++;
+    }
+    printf("# hbao beside a plate %.1f high: %d floor pixels within the radius, mean ao %.3f, worst ao - bound %.4f\n",
+           h, n, n ? mean / n : 0.0, worst);
+    CHECK(n > 20, "the view must show the floor beside the plate: %d pixels", n);
+    CHECK(bad == 0, "%d floor pixels more occluded than the falloff allows (worst by %g)", bad, -worst);
+}
+
+/* GTAO's bent normal, one slice, on an open plane: both horizons lie on the
+ * tangent plane, the slice sees the half circle gamma -+ pi/2 around the
+ * normal projected into it (gamma: its angle from the view vector v), and
+ * the bent normal is Jimenez et al.'s slice integral
+ *   b = int (sin t d + cos t v) |sin t| cos(t - gamma) dt
+ * (d: the slice's direction across v: the pixel's rotation from
+ * tgi_ao_rotations).  src/ao/gtao.c integrates it in closed form; here a
+ * 4096-step midpoint rule from the stored (decoded) G-buffer normal.  The
+ * result is stored in 2x8-bit octahedral form: every pixel whose exact b
+ * packs to the same code when turned by 0.05 degrees either way must hold
+ * exactly that code. */
+#include "ao/sampling.h"   /* the per-pixel slice rotation */
+
+static void run_gtao1(const ao_pass *io, int y0, int y1)
+{ tgi_gtao_params p; tgi_gtao_defaults(&p); p.slices = 1; tgi_gtao_rows(&p, &io->g, &io->out, y0, y1); }
+
+static uint32_t oct8(const double *b) { return tgi_oct_pack(tg_v3(tg_from_float((float)b[0]), tg_from_float((float)b[1]), tg_from_float((float)b[2])), 8); }
+
+TEST(gtao_open_plane_slice_bent_exact)
+{
+    static scene s;
+    static outputs o;
+    static const double eye[3] = { 0.5, 2.0, 3.0 };   /* open_plane's eye */
+    const double pi = 3.14159265358979, turn = 0.05 * pi / 180;
+    tgi_ao_rot rot[16];
+    ao_pass io;
+    int i, j, n = 0, bad = 0;
+    open_plane(&s);
+    io_for(&io, &s, &o, 0);
+    run_gtao1(&io, 0, H);
+    io_read(&io);
+    tgi_ao_rotations(rot);
+    for (i = 0; i < W * H; i++) {
+        const tgi_ao_rot *r = tgi_ao_rot_at(rot, i % W, i / W);
+        double v[3], nn[3], d[3], ax[3], pn[3], rt[3], up[3], b[3], got[3], na, len, gamma, bs = 0, bc = 0, dv_;
+        tg_vec3 gn;
+        uint32_t code;
+        int robust = 1, k;
+        if (s.sky[i]) continue;
+        gn = tgi_gv_normal(&io.g, (size_t)i);
+        nn[0] = check_d(gn.x); nn[1] = check_d(gn.y); nn[2] = check_d(gn.z);
+        rt[0] = check_d(s.view.right.x); rt[1] = check_d(s.view.right.y); rt[2] = check_d(s.view.right.z);
+        up[0] = check_d(s.view.up.x); up[1] = check_d(s.view.up.y); up[2] = check_d(s.view.up.z);
+        for (j = 0; j < 3; j++) {
+            v[j] = eye[j] - s.wpos[i][j];
+            d[j] = check_d(r->c) * rt[j] - check_d(r->s) * up[j];   /* screen y is down */
+        }
+        norm3(v);
+        dv_ = dot3(d, v);
+        for (j = 0; j < 3; j++) d[j] -= dv_ * v[j];
+        norm3(d);
+        cross3(d, v, ax);
+        na = dot3(nn, ax);
+        for (j = 0; j < 3; j++) pn[j] = nn[j] - na * ax[j];
+        len = sqrt(dot3(pn, pn));
+        if (len < 0.01) continue;
+        gamma = acos(fmax(-1.0, fmin(1.0, dot3(pn, v) / len)));
+        if (dot3(pn, d) < 0) gamma = -gamma;
+        for (j = 0; j < 4096; j++) {
+            double t = gamma - pi / 2 + pi * (j + 0.5) / 4096, w = fabs(sin(t)) * cos(t - gamma);
+            bs += sin(t) * w; bc += cos(t) * w;
+        }
+        for (j = 0; j < 3; j++) b[j] = bs * d[j] + bc * v[j];
+        norm3(b);
+        code = oct8(b);
+        for (k = 0; k < 4; k++) {   /* turned by 0.05 degrees about d and about the slice's axis, either way */
+            double e = (k & 1 ? turn : -turn), q[3], *about = k < 2 ? d : ax, c[3];
+            cross3(about, b, c);
+            for (j = 0; j < 3; j++) q[j] = b[j] + e * c[j];
+            norm3(q);
+            if (oct8(q) != code) robust = 0;
+        }
+        if (!robust) continue;
+        n++;
+        got[0] = check_d(o.bx[i]); got[1] = check_d(o.by[i]); got[2] = check_d(o.bz[i]);
+        {
+            tg_vec3 want = tgi_oct_unpack(code, 8);
+            if (!(got[0] == check_d(want.x) && got[1] == check_d(want.y) && got[2] == check_d(want.z))) bad++;
+        }
+    }
+    printf("# gtao one slice, open plane: %d of %d pixels (those 0.05 deg from a code boundary) off the exact bent normal's code\n", bad, n);
+    CHECK(n > 500 && bad == 0, "%d of %d pixels hold another code than the slice integral's", bad, n);
+}
+
 int main(void)
 {
     uniform_sky[0] = tg_v3(TG_R(3.5449077f), TG_R(3.5449077f), TG_R(3.5449077f));
@@ -399,6 +555,9 @@ int main(void)
     RUN(bentcone_cone_and_far);
     RUN(ssdo_far_and_near);
     RUN(ssdo_light_occlusion);
+    RUN(ssao_2d_out_of_range_is_open);
+    RUN(hbao_falloff_bounds_far_occlusion);
+    RUN(gtao_open_plane_slice_bent_exact);
     free(bvh_mem);
     return check_summary();
 }

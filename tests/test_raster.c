@@ -920,6 +920,35 @@ TEST(depth_only_perspective)
     free(depth);
 }
 
+/* 16-bit depth codes are rounded (src/raster/raster.h: q = round((depth -
+ * lo) 65536 / range)): a flat square at depth 4003 / 16384 (exact in both
+ * number types) with lo = 0, range = 16 is 1000.75 codes deep, stored as
+ * 1001 in every pixel it covers. */
+TEST(depth16_codes_are_rounded)
+{
+    enum { S = 16 };
+    uint16_t code[S * S];
+    tgi_mat4 m;
+    const double depth = 4003.0 / 16384.0, y = 10 - depth;
+    tg_vec3 tri[6];
+    int i, drawn = 0, bad = 0;
+    memset(&m, 0, sizeof m);
+    set_row4(&m, 0, 0.25, 0, 0, 0);   /* clip = (x / 4, z / 4, 10 - y, 1), as depth_only_ortho */
+    set_row4(&m, 1, 0, 0, 0.25, 0);
+    set_row4(&m, 2, 0, -1, 0, 10);
+    set_row4(&m, 3, 0, 0, 0, 1);
+    tri[0] = V(-6, y, -6); tri[1] = V(6, y, -6); tri[2] = V(6, y, 6);
+    tri[3] = V(-6, y, -6); tri[4] = V(6, y, 6); tri[5] = V(-6, y, 6);
+    for (i = 0; i < S * S; i++) code[i] = TG_RASTER_DEPTH16_EMPTY;
+    tgi_raster_depth16(code, S, S, &m, 1, 0, R(16), tri, 2, 0, S);
+    for (i = 0; i < S * S; i++) {
+        drawn += code[i] != TG_RASTER_DEPTH16_EMPTY;
+        bad += code[i] != 1001;
+    }
+    CHECK(drawn == S * S, "the square covers the map: %d of %d", drawn, S * S);
+    CHECK(bad == 0, "%d of %d codes not round(1000.75) = 1001 (first %u)", bad, S * S, (unsigned)code[0]);
+}
+
 int main(void)
 {
     RUN(fill_rule_grid_tiling);
@@ -937,5 +966,6 @@ int main(void)
     RUN(sphere_nearest_and_rows);
     RUN(depth_only_ortho);
     RUN(depth_only_perspective);
+    RUN(depth16_codes_are_rounded);
     return check_summary();
 }

@@ -384,6 +384,64 @@ TEST(deterministic)
     CHECK(memcmp(a.bx, b.bx, sizeof a.bx) == 0, "bent differs");
 }
 
+/* Rays from inside a closed box aimed exactly at the edges its triangles
+ * share (the box's twelve edges and each face's diagonal) and at its
+ * corners: every one must hit.  The box is turned and moved off the axes so
+ * that rounding puts an aimed-at point a hair outside one or more of the
+ * triangles that share it; the 2^-12 edge margin of the prepared triangle
+ * test (src/ao/bvh.c) must catch it on each of the three edges. */
+static void turned_rect(scene *s, double m[3][3], const double c[3], const double p[3], const double u[3],
+                        const double v[3])
+{
+    double q[3][3];
+    int i;
+    for (i = 0; i < 3; i++) {
+        q[0][i] = c[i] + m[i][0] * p[0] + m[i][1] * p[1] + m[i][2] * p[2];
+        q[1][i] = m[i][0] * u[0] + m[i][1] * u[1] + m[i][2] * u[2];
+        q[2][i] = m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2];
+    }
+    add_rect(s, q[0][0], q[0][1], q[0][2], q[1][0], q[1][1], q[1][2], q[2][0], q[2][1], q[2][2]);
+}
+
+TEST(closed_box_edges_hit)
+{
+    static scene s;
+    static const double face[6][3][3] = {  /* the same six faces as closed_box: p, u, v */
+        { { -1, -1, -1 }, { 2, 0, 0 }, { 0, 0, 2 } }, { { -1, 1, -1 }, { 0, 0, 2 }, { 2, 0, 0 } },
+        { { -1, -1, -1 }, { 0, 2, 0 }, { 2, 0, 0 } }, { { -1, -1, 1 }, { 2, 0, 0 }, { 0, 2, 0 } },
+        { { -1, -1, -1 }, { 0, 0, 2 }, { 0, 2, 0 } }, { { 1, -1, -1 }, { 0, 2, 0 }, { 0, 0, 2 } } };
+    static const double centre[3] = { 0.31, -0.17, 0.23 };
+    double m[3][3], ax[3] = { 1, 2, 3 }, ang = 0.7, c = cos(ang), sn = sin(ang);
+    int o, k, e, j, i, rays = 0, missed = 0;
+    norm3(ax);
+    for (i = 0; i < 3; i++)   /* Rodrigues: rotation by ang about ax */
+        for (j = 0; j < 3; j++)
+            m[i][j] = (i == j ? c : 0) + (1 - c) * ax[i] * ax[j] +
+                      sn * (i == j ? 0 : ((j == (i + 1) % 3) ? -ax[3 - i - j] : ax[3 - i - j]));
+    memset(&s, 0, sizeof s);
+    for (k = 0; k < 6; k++) turned_rect(&s, m, centre, face[k][0], face[k][1], face[k][2]);
+    build_bvh(&s);
+    for (o = 0; o < 24; o++) {
+        double org[3];
+        org[0] = RND() * 1.6 - 0.8; org[1] = RND() * 1.6 - 0.8; org[2] = RND() * 1.6 - 0.8;
+        for (i = 0; i < 3; i++) org[i] = centre[i] + m[i][0] * org[0] + m[i][1] * org[1] + m[i][2] * org[2];
+        for (k = 0; k < s.nrect * 2; k++)
+            for (e = 0; e < 3; e++)
+                for (j = 0; j < 16; j++) {  /* j = 0: the corners */
+                    const tg_vec3 *a = &s.tri[3 * k + e], *b = &s.tri[3 * k + (e + 1) % 3];
+                    double f = j / 16.0, d[3];
+                    d[0] = check_d(a->x) + f * (check_d(b->x) - check_d(a->x)) - org[0];
+                    d[1] = check_d(a->y) + f * (check_d(b->y) - check_d(a->y)) - org[1];
+                    d[2] = check_d(a->z) + f * (check_d(b->z) - check_d(a->z)) - org[2];
+                    norm3(d);
+                    rays++;
+                    if (!tgi_bvh_occluded(&bvh, tv(org), tv(d), TG_R(10.0f))) missed++;
+                }
+    }
+    printf("# closed box edges: %d of %d rays at shared edges and corners escaped\n", missed, rays);
+    CHECK(missed == 0, "%d of %d rays escaped the closed box through an edge or corner", missed, rays);
+}
+
 int main(void)
 {
     RUN(ray_triangle_basics);
@@ -396,6 +454,7 @@ int main(void)
     RUN(closed_box);
     RUN(near_field_half);
     RUN(deterministic);
+    RUN(closed_box_edges_hit);
     free(bvh_mem);
     return check_summary();
 }

@@ -619,6 +619,87 @@ TEST(coplanar_ties_keep_the_first_drawn)
     ties_from(grazing, "grazing");
 }
 
+/* Receivers beyond 89.94 degrees (|n . l| below GRAZING_MIN_COS = 0.001 in
+ * src/light/shadowmap.c) facing a light straight above, under a plate 6-16
+ * m over them: a wall point 0.2 m over the floor, its normal 0.0005 to
+ * 0.00005 from horizontal.  The lookup moves the receiver toward the light
+ * by its position error / |n . l| (here ~4 mm / |n . l|) and the floor on
+ * |n . l| keeps that under 4 m: the receiver's own tap and the taps deeper
+ * than it see the plate, only the column of taps on the side where its
+ * plane rises toward the light passes it (a third of the tent), so it is
+ * mostly dark.  Without the floor the receiver is moved past the plate and
+ * lit through it. */
+TEST(receiver_beyond_89_94_degrees_under_a_plate_is_dark)
+{
+    geo *g = geo_new();
+    tgi_light dl = make_light(TG_LIGHT_DIRECTIONAL, v3(0, 0, 0), v3(0, -1, 0), 1, 0);
+    static const double cosines[] = { 0.0005, 0.0002, 0.0001, 0.00005 };
+    static const double heights[] = { 6, 10, 16 };
+    size_t k, j;
+    for (j = 0; j < sizeof heights / sizeof heights[0]; j++) {
+        tgi_shadow_map sm;
+        void *mem;
+        memset(g, 0, sizeof *g);
+        rect(g, 1, 0, -8, 8, -8, 8);
+        rect(g, 1, heights[j], -1, 1, -1, 1);
+        exact_map(&sm, &mem, g, &dl, 512);
+        for (k = 0; k < sizeof cosines / sizeof cosines[0]; k++) {
+            double c = cosines[k];
+            tg_real vis = tgi_shadow_visibility(&sm, v3(0.1, 0.2, 0.05), v3(sqrt(1 - c * c), c, 0));
+            CHECK(vis <= TG_R(0.5f), "plate %g m above, |n . l| = %g: visibility %g", heights[j], c, dv(vis));
+        }
+        free(mem);
+    }
+    free(g);
+}
+
+/* The tent PCF across a straight shadow edge: a plate over half the floor,
+ * lit from straight above, its edge exactly on a texel boundary of the map.
+ * The tent's weights (1 - f, 1, 1, f per axis, normalised by their sum 9)
+ * make a linear ramp of the edge, odd about it: floor points at the same
+ * distance either side of the edge have visibilities adding up to 1. */
+TEST(tent_pcf_is_odd_about_a_shadow_edge)
+{
+    geo *g = geo_new();
+    tgi_light dl = make_light(TG_LIGHT_DIRECTIONAL, v3(0, 0, 0), v3(0, -1, 0), 1, 0);
+    tgi_shadow_map sm;
+    void *mem;
+    double r[3], tb, texel, worst = 0;
+    int a, k, ax = 0, n;
+    memset(g, 0, sizeof *g);
+    rect(g, 1, 0, -8, 8, -8, 8);
+    rect(g, 1, 1, -8, 8, -8, 8);      /* the plate's final bounds: only its extent along r changes */
+    exact_map(&sm, &mem, g, &dl, 256);
+    r[0] = dv(sm.face[0].right.x); r[1] = dv(sm.face[0].right.y); r[2] = dv(sm.face[0].right.z);
+    for (a = 0; a < 3; a++) if (fabs(r[a]) > fabs(r[ax])) ax = a;
+    n = sm.face[0].size;
+    texel = 2.0 / n / dv(sm.ortho_scale);
+    tb = dv(sm.ortho_center_x) + (2.0 * (n / 2 + 3) / n - 1) / dv(sm.ortho_scale);  /* p . r on a texel boundary */
+    free(mem);
+    CHECK(ax != 1 && fabs(fabs(r[ax]) - 1) < 1e-6, "the light's right axis (%g, %g, %g) should be a floor axis", r[0], r[1], r[2]);
+    memset(g, 0, sizeof *g);
+    rect(g, 1, 0, -8, 8, -8, 8);
+    {   /* the plate over p . r >= tb */
+        double lo = r[ax] > 0 ? tb : -8, hi = r[ax] > 0 ? 8 : -tb;
+        if (ax == 0) rect(g, 1, 1, lo, hi, -8, 8);
+        else rect(g, 1, 1, -8, 8, lo, hi);
+    }
+    exact_map(&sm, &mem, g, &dl, 256);
+    sm.filter = TG_SHADOW_PCF_TENT;
+    for (k = 1; k <= 48; k++) {
+        double d = 2.5 * texel * k / 48, pa[3] = { 0.3, 0, 0.3 }, pb[3] = { 0.3, 0, 0.3 }, va, vb;
+        pa[ax] = (tb + d) / r[ax];
+        pb[ax] = (tb - d) / r[ax];
+        va = dv(tgi_shadow_visibility(&sm, v3(pa[0], pa[1], pa[2]), v3(0, 1, 0)));
+        vb = dv(tgi_shadow_visibility(&sm, v3(pb[0], pb[1], pb[2]), v3(0, 1, 0)));
+        worst = fmax(worst, fabs(va + vb - 1));
+        CHECK(fabs(va + vb - 1) <= 2e-3, "%.2f texels either side of the edge: %g + %g", d / texel, va, vb);
+    }
+    printf("# tent PCF across a shadow edge: worst |v(+d) + v(-d) - 1| %.2g\n", worst);
+    free(mem);
+    free(g);
+}
+
 int main(void)
 {
     RUN(occluder_at_the_bounds_near_side_casts_its_shadow);
@@ -631,6 +712,8 @@ int main(void)
     RUN(geometry_at_and_behind_the_light_near_plane);
     RUN(concave_corner_is_not_darkened);
     RUN(offset_stops_half_way_to_the_light);
+    RUN(receiver_beyond_89_94_degrees_under_a_plate_is_dark);
+    RUN(tent_pcf_is_odd_about_a_shadow_edge);
     free(bvh_mem);
     return check_summary();
 }
