@@ -99,11 +99,14 @@ static void print_help(FILE *out)
         "  --aov NAME        output: color depth normal albedo ao bent cone near far\n"
         "                    direct irradiance motion (default color)\n"
         "  --technique NAME  hbil gtao hbao ssao vo ssdo bentcone reference pathtrace\n"
-        "                    (default hbil; pathtrace: the path-traced ground truth)\n"
+        "                    ssilvb (default hbil; pathtrace: the path-traced ground\n"
+        "                    truth; ssilvb: GTAO's slices with a visibility bitmask)\n"
         "  --slices N        horizon slices per pixel, 1..%d (default %d)\n"
         "  --samples N       samples per slice, 1..%d (default %d; pathtrace: paths\n"
         "                    per pixel, default %d)\n"
         "  --radius R        gather radius in world units, 0..%d (default %d)\n"
+        "  --thickness T     ssilvb: surface thickness behind the depth buffer, world\n"
+        "                    units, 0..%d (default: the radius / %d)\n"
         "  --bounces N       light bounces, 0..%d (default %d; pathtrace: the most\n"
         "                    bounces, default %d)\n"
         "  --exposure E      linear exposure before the tonemapper, 0..%d (default 1)\n"
@@ -116,7 +119,7 @@ static void print_help(FILE *out)
         "                    processors, here %d); the image is the same for every N\n",
         TG_DEFAULT_WIDTH, TG_DEFAULT_HEIGHT, TG_MAX_IMAGE_SIDE, (long)TG_MAX_IMAGE_PIXELS,
         TG_MAX_FRAMES, TG_MAX_SLICES, TG_DEFAULT_SLICES, TG_MAX_SAMPLES, TG_DEFAULT_SAMPLES, TG_DEFAULT_PATHTRACE_SAMPLES,
-        TG_MAX_RADIUS, TG_DEFAULT_RADIUS, TG_MAX_BOUNCES, TG_DEFAULT_BOUNCES, TG_DEFAULT_PATHTRACE_BOUNCES, TG_MAX_EXPOSURE,
+        TG_MAX_RADIUS, TG_DEFAULT_RADIUS, TG_MAX_THICKNESS, TG_THICKNESS_RADIUS_DIVISOR, TG_MAX_BOUNCES, TG_DEFAULT_BOUNCES, TG_DEFAULT_PATHTRACE_BOUNCES, TG_MAX_EXPOSURE,
         TG_MIN_SHADOW_MAP, TG_MAX_SHADOW_MAP, TG_MAX_THREADS, tgp_cores());
     fprintf(out,
         "  --no-interleave   full-resolution GI kernel instead of 4x4 interleaved\n"
@@ -312,8 +315,8 @@ typedef struct render_opts {
     int width, height, frames, aov, technique;
     long slices, samples, bounces, shadow_size, threads;
     int shadows;            /* TG_SHADOWS_* */
-    double radius, exposure;
-    int have_radius, have_exposure;
+    double radius, exposure, thickness;
+    int have_radius, have_exposure, have_thickness;
     int interleave, temporal, far_f0, gi_quarter, pcf_tent, explain, quiet;
 } render_opts;
 
@@ -368,7 +371,7 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
     static const char *const names[] = {
         "-o", "--size", "--frames", "--aov", "--technique", "--slices", "--samples",
         "--radius", "--bounces", "--exposure", "--shadow-size", "--fbdev", "--threads",
-        "--shadows"
+        "--shadows", "--thickness"
     };
     const char *a = argv[*i], *v = NULL, *name = NULL;
     char list[512];
@@ -444,6 +447,9 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
     } else if (!strcmp(name, "--radius")) {
         if (real_option(name, v, TG_MAX_RADIUS, &o->radius)) return 1;
         o->have_radius = 1;
+    } else if (!strcmp(name, "--thickness")) {
+        if (real_option(name, v, TG_MAX_THICKNESS, &o->thickness)) return 1;
+        o->have_thickness = 1;
     } else if (!strcmp(name, "--exposure")) {
         if (real_option(name, v, TG_MAX_EXPOSURE, &o->exposure)) return 1;
         o->have_exposure = 1;
@@ -575,6 +581,7 @@ static void make_request(const render_opts *o, tg_request *r)
     if (o->shadow_size > 0) r->shadow_map_size = (int)o->shadow_size;
     if (o->have_radius) r->radius = tg_from_float((float)o->radius);
     if (o->have_exposure) r->exposure = tg_from_float((float)o->exposure);
+    if (o->have_thickness) r->thickness = tg_from_float((float)o->thickness);
     r->interleave = o->interleave;
     r->far_mode = o->far_f0;
     if (o->gi_quarter) r->gi_scale = 2;

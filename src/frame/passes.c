@@ -34,6 +34,7 @@ void tgi_pass_ssao(tg_frame *f, int y0, int y1);
 void tgi_pass_vo(tg_frame *f, int y0, int y1);
 void tgi_pass_hbao(tg_frame *f, int y0, int y1);
 void tgi_pass_gtao(tg_frame *f, int y0, int y1);
+void tgi_pass_ssilvb(tg_frame *f, int y0, int y1);
 void tgi_pass_ssdo(tg_frame *f, int y0, int y1);
 void tgi_pass_bentcone(tg_frame *f, int y0, int y1);
 void tgi_pass_reference(tg_frame *f, int y0, int y1);
@@ -71,6 +72,7 @@ static int runs_ssao(const tg_frame *f) { return technique_runs(f, TG_TECH_SSAO)
 static int runs_vo(const tg_frame *f) { return technique_runs(f, TG_TECH_VO); }
 static int runs_hbao(const tg_frame *f) { return technique_runs(f, TG_TECH_HBAO); }
 static int runs_gtao(const tg_frame *f) { return technique_runs(f, TG_TECH_GTAO); }
+static int runs_ssilvb(const tg_frame *f) { return technique_runs(f, TG_TECH_SSILVB); }
 static int runs_ssdo(const tg_frame *f) { return technique_runs(f, TG_TECH_SSDO); }
 static int runs_bentcone(const tg_frame *f) { return technique_runs(f, TG_TECH_BENTCONE); }
 #endif
@@ -140,6 +142,8 @@ const tgi_pass tgi_passes[] = {
       B(RESULTS), TGI_BOUNCE, ROWS(tgi_pass_hbao) },
     { "GTAO (cosine-weighted horizons in view-vector slices)", runs_gtao,
       B(RESULTS), TGI_BOUNCE, ROWS(tgi_pass_gtao) },
+    { "visibility bitmask (GTAO slices, 32 sectors, constant thickness): AO, bent normal, near field",
+      runs_ssilvb, B(RESULTS) | B(SOURCE), TGI_BOUNCE, ROWS(tgi_pass_ssilvb) },
     { "SSDO (directional occlusion, one indirect bounce, far field)", runs_ssdo,
       B(RESULTS) | B(SOURCE) | B(FAR), TGI_BOUNCE, ROWS(tgi_pass_ssdo) },
     { "bent normals and cones (far field in the cone)", runs_bentcone,

@@ -54,7 +54,7 @@ static int scene_has_shadow_light(const tg_scene *s)
 
 static int technique_gathers_near(tg_technique t)
 {
-    return t == TG_TECH_HBIL || t == TG_TECH_SSDO || t == TG_TECH_REFERENCE;
+    return t == TG_TECH_HBIL || t == TG_TECH_SSDO || t == TG_TECH_REFERENCE || t == TG_TECH_SSILVB;
 }
 
 /* Effects the scene makes possible at all. */
@@ -232,6 +232,13 @@ size_t tg_plan_explain(const tg_plan *plan, char *buf, size_t size)
     else put_effects(&t, plan->effects);
     tgi_text_put(&t, "\nskipped: ");
     put_effects(&t, (~plan->effects) & 63u);
+    if (plan->request.technique == TG_TECH_SSILVB) {   /* the visibility bitmask's surfaces */
+        tgi_text_put(&t, "\nvisibility bitmask: radius ");
+        tgi_text_put_real(&t, plan->request.radius);
+        tgi_text_put(&t, ", thickness ");
+        tgi_text_put_real(&t, plan->request.thickness);
+        tgi_text_put(&t, " (world units)");
+    }
     tgi_text_put(&t, "\npasses:\n");
     put_passes(&t, plan);
     if (plan->request.aovs & (AOV(TG_AOV_COLOR) | AOV(TG_AOV_NEAR) | AOV(TG_AOV_FAR) | AOV(TG_AOV_DIRECT) | AOV(TG_AOV_IRRADIANCE)))
