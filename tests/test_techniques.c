@@ -41,7 +41,7 @@ static const char *groove_under_uniform_sky =
 /* The far field reads these techniques' AO (SSDO and bent cones integrate
  * their own). */
 static const tg_technique far_from_ao[] = {
-    TG_TECH_HBIL, TG_TECH_GTAO, TG_TECH_HBAO, TG_TECH_SSAO, TG_TECH_VO, TG_TECH_REFERENCE
+    TG_TECH_HBIL, TG_TECH_GTAO, TG_TECH_HBAO, TG_TECH_SSAO, TG_TECH_VO, TG_TECH_REFERENCE, TG_TECH_SSILVB
 };
 
 static void uniform_sky_case(tg_technique t, int far_mode, int quarter)
