@@ -632,6 +632,13 @@ typedef struct tg_request {
     tg_real thickness;     /* technique ssilvb: world units, 0..TG_MAX_THICKNESS; -1: unset
                               (radius / TG_THICKNESS_RADIUS_DIVISOR); NaN, the infinities and
                               other negatives are refused */
+    int ao_multibounce;    /* 0 (default) or 1: the ao AOV reads GTAO's multi-bounce fit
+                              (Jimenez et al. 2016, eq. 10; src/ao/ao.h) of the AO with the
+                              pixel's albedo, its Rec. 709 luminance (the AOV has one channel):
+                              what the AO means with the bounces a path tracer adds, for
+                              AO-only output.  The G-buffer then keeps the material index
+                              (+2 bytes a pixel); nothing else changes (colour is composed
+                              from the AO as computed) */
 } tg_request;
 
 /* Every field at its default: 320x240, one frame, colour, HBIL, GI settings unset. */

@@ -127,6 +127,8 @@ static void print_help(FILE *out)
         "  --pcf-tent        16-tap tent shadow-map filtering instead of the 4-tap bilinear\n"
         "  --gi-quarter      GI kernel on a quarter of the pixels (half width and height,\n"
         "                    then a joint bilateral upsample): about 3x faster\n"
+        "  --ao-multibounce  the ao output through GTAO's multi-bounce fit (Jimenez et al.\n"
+        "                    2016, eq. 10) with each pixel's albedo (its luminance)\n"
         "  --far-f0          far field as E0(bent) F0(AO) (HBIL sec. 2.2.3) instead of\n"
         "                    the SH9 cosine lobe restricted to the bent cone (sec. 2.2.4)\n"
         "  --explain         print the frame plan and exit without rendering\n"
@@ -317,7 +319,7 @@ typedef struct render_opts {
     int shadows;            /* TG_SHADOWS_* */
     double radius, exposure, thickness;
     int have_radius, have_exposure, have_thickness;
-    int interleave, temporal, far_f0, gi_quarter, pcf_tent, explain, quiet;
+    int interleave, temporal, far_f0, gi_quarter, pcf_tent, explain, quiet, ao_multibounce;
 } render_opts;
 
 /* "--name=value" or "--name value": the value, or NULL (and the index moved). */
@@ -382,6 +384,7 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
     if (!strcmp(a, "--no-interleave")) { o->interleave = 0; return 0; }
     if (!strcmp(a, "--no-temporal")) { o->temporal = 0; return 0; }
     if (!strcmp(a, "--far-f0")) { o->far_f0 = 1; return 0; }
+    if (!strcmp(a, "--ao-multibounce")) { o->ao_multibounce = 1; return 0; }
     if (!strcmp(a, "--gi-quarter")) { o->gi_quarter = 1; return 0; }
     if (!strcmp(a, "--pcf-bilinear")) { o->pcf_tent = 0; return 0; }   /* the default (kept for scripts) */
     if (!strcmp(a, "--pcf-tent")) { o->pcf_tent = 1; return 0; }
@@ -588,6 +591,7 @@ static void make_request(const render_opts *o, tg_request *r)
     r->shadow_pcf = !o->pcf_tent;
     r->shadow_method = o->shadows;
     r->temporal = o->temporal;
+    r->ao_multibounce = o->ao_multibounce;
 }
 
 static int print_explain(const tg_plan *plan)

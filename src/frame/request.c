@@ -93,7 +93,8 @@ static int switch_outside(const tg_request *r, tg_error *err)
         /* shadow rays trace the reference's BVH (left out by TG_NO_REFERENCE) */
         || int_outside(err, "shadow_method", r->shadow_method, TG_SHADOWS_AUTO,
                        TG_NO_REFERENCE ? TG_SHADOWS_MAPS : TG_SHADOWS_RAYS)
-        || int_outside(err, "game_loop", r->game_loop, 0, 1);
+        || int_outside(err, "game_loop", r->game_loop, 0, 1)
+        || int_outside(err, "ao_multibounce", r->ao_multibounce, 0, 1);
 }
 
 int tgi_request_refused(const tg_request *r, tg_error *err)
