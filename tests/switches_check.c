@@ -129,12 +129,12 @@ TEST(renders_colour_and_ao)
 
 TEST(techniques)
 {
-    static const tg_technique some[] = { TG_TECH_GTAO, TG_TECH_SSAO, TG_TECH_BENTCONE };
+    static const tg_technique some[] = { TG_TECH_GTAO, TG_TECH_SSAO, TG_TECH_BENTCONE, TG_TECH_SSILVB };
     tg_plan plan;
     tg_error err;
     tg_status st;
     int i;
-    for (i = 0; i < 3; i++) {
+    for (i = 0; i < (int)(sizeof some / sizeof some[0]); i++) {
         st = plan_for(scene_plain, some[i], 1u << TG_AOV_AO, 1, &plan, &err);
         if (TG_NO_TECHNIQUES) {
             CHECK(refused(st, &err, "TG_NO_TECHNIQUES"), "%s: status %d", tg_technique_name(some[i]), (int)st);
