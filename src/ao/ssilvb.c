@@ -67,33 +67,15 @@ static slice_prim prim(tg_real th, tg_real cos_g, tg_real sin_g)
 }
 
 typedef struct vb_pixel {
-    int x, y;
-    tg_vec3 pv, nv, vd;   /* view position, normal, unit vector to the eye */
-    tg_real r_px, jitter;
-    int shift;            /* sample offsets are scaled by 2^shift (unit_shift) */
+    tgi_ao_slice_pixel s;           /* ao.h: position, normal, eye vector, radius in pixels, shift */
     tg_real rs, r2, above, thick;   /* radius, its square, the tangent-plane bias, the thickness: scaled */
 } vb_pixel;
 
-/* One slice's frame and its sector boundaries. */
+/* One slice's frame (ao.h) and its sector boundaries. */
 typedef struct vb_slice {
     tg_real gamma, cos_g, sin_g, len;
     tg_real theta0, step;             /* theta_k = theta0 + k step, step = pi / N_b */
 } vb_slice;
-
-/* Q16.16: the power of two 2^e that brings the radius into [0.5, 1] (as in
- * gtao.c), so squared sample distances neither underflow nor saturate.
- * Float needs none. */
-static int unit_shift(tg_real radius)
-{
-    int e = 0;
-#if TG_FIXED
-    while (radius > 0 && radius < TG_R(0.5f) && e < 16) { radius = tg_ldexp(radius, 1); e++; }
-    while (radius > TG_ONE && e > -15) { radius = tg_ldexp(radius, -1); e--; }
-#else
-    (void)radius;
-#endif
-    return e;
-}
 
 static tg_real sector_angle(const vb_slice *sl, int k)
 {
@@ -128,7 +110,7 @@ static tg_real mask_weight(const vb_slice *sl, uint32_t b, tg_real *bs, tg_real 
  * the slice's half circle: u = (theta - gamma) / pi + 1/2. */
 static tg_real half_circle_u(const vb_pixel *px, const vb_slice *sl, tg_vec3 h, tg_real d2, int side)
 {
-    tg_real th = tg_acos(tg_mul(tgi_v3_dot(h, px->vd), tg_rsqrt(d2)));
+    tg_real th = tg_acos(tg_mul(tgi_v3_dot(h, px->s.vd), tg_rsqrt(d2)));
     if (side < 0) th = tg_neg(th);
     return tg_add(tg_mul(tg_sub(th, sl->gamma), TG_INV_PI), TG_R(0.5f));
 }
@@ -139,26 +121,20 @@ static tg_real half_circle_u(const vb_pixel *px, const vb_slice *sl, tg_vec3 h, 
 static void march(const tgi_ssilvb_params *p, const tgi_gview *g, const tgi_rgb *radiance, const vb_pixel *px,
                   const vb_slice *sl, tg_real sdx, tg_real sdy, int side, uint32_t *mask, tg_vec3 *e)
 {
+    tg_vec3 hf;
     int s;
     for (s = 0; s < p->steps; s++) {
-        tg_real t_px = tg_div(tg_mul(tg_add(tg_from_int(s), px->jitter), px->r_px), tg_from_int(p->steps));
-        int qx, qy, j;
-        tg_vec3 hf, hb;
+        int j, got = tgi_ao_slice_sample(g, &px->s, s, p->steps, sdx, sdy, &hf, &j);
+        tg_vec3 hb;
         tg_real d2, db2, uf, ub;
         uint32_t bits, fresh;
-        if (t_px < TG_ONE) continue;
-        qx = tg_to_int(tg_add(tg_add(tg_from_int(px->x), TG_R(0.5f)), tg_mul(sdx, t_px)));
-        qy = tg_to_int(tg_add(tg_add(tg_from_int(px->y), TG_R(0.5f)), tg_mul(sdy, t_px)));
-        if (qx < 0 || qy < 0 || qx >= g->width || qy >= g->height) break;
-        j = (int)tgi_gv_index(g, qx, qy);
-        if (tgi_gv_is_sky(g, j)) continue;
-        hf = tgi_v3_sub(tgi_ao_unproject(g->camera, qx, qy, tgi_gv_depth(g, j)), px->pv);
-        if (px->shift) hf = tg_v3(tg_ldexp(hf.x, px->shift), tg_ldexp(hf.y, px->shift), tg_ldexp(hf.z, px->shift));
+        if (got < 0) break;
+        if (got == 0) continue;
         d2 = tgi_v3_dot(hf, hf);
         if (d2 >= px->r2 || d2 <= 0) continue;
-        if (tgi_v3_dot(hf, px->nv) <= px->above) continue;   /* on or under the tangent plane: no sector */
+        if (tgi_v3_dot(hf, px->s.nv) <= px->above) continue;   /* on or under the tangent plane: no sector */
         /* the back point: the front moved by the thickness away from the eye */
-        hb = tgi_v3_sub(hf, tgi_v3_scale(px->vd, px->thick));
+        hb = tgi_v3_sub(hf, tgi_v3_scale(px->s.vd, px->thick));
         db2 = tgi_v3_dot(hb, hb);
         uf = half_circle_u(px, sl, hf, d2, side);
         ub = db2 > 0 ? half_circle_u(px, sl, hb, db2, side) : (side > 0 ? TG_ONE : 0);
@@ -178,7 +154,7 @@ void tgi_ssilvb_rows(const tgi_ssilvb_params *p, const tgi_gview *g, const tgi_r
     tg_real scos[TG_AO_MAX_SAMPLES], ssin[TG_AO_MAX_SAMPLES];
     tgi_ao_rot rot[16];
     int ns = p->slices < 1 ? 1 : p->slices > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : p->slices, k, x, y;
-    int shift = unit_shift(p->radius);
+    int shift = tgi_ao_unit_shift(p->radius);
     int want_near = tgi_gr_has_near(out) && tgi_rgb_present(radiance);
     tg_real sector = tg_div(TG_PI, tg_from_int(TG_SSILVB_SECTORS));
     for (k = 0; k < ns; k++) {                   /* slice angles over pi */
@@ -196,38 +172,29 @@ void tgi_ssilvb_rows(const tgi_ssilvb_params *p, const tgi_gview *g, const tgi_r
             tg_vec3 bent = tg_v3(0, 0, 0), e = tg_v3(0, 0, 0);
             tgi_ao_write_open(g, out, i);
             if (tgi_gv_is_sky(g, i) || p->radius <= 0 || p->steps < 1) continue;
-            px.x = x; px.y = y;
-            px.pv = tgi_ao_unproject(g->camera, x, y, tgi_gv_depth(g, i));
-            px.nv = tgi_ao_normal_view(g, i);
-            px.vd = tgi_v3_normalize_or(tgi_v3_neg(px.pv), tg_v3(0, 0, TG_R(-1.0f)));
-            px.r_px = tg_div(tg_mul(p->radius, g->camera->pixels_per_unit), tgi_gv_depth(g, i));
-            px.jitter = r->jitter;
-            px.shift = shift;
+            px.s.x = x; px.s.y = y;
+            px.s.pv = tgi_ao_unproject(g->camera, x, y, tgi_gv_depth(g, i));
+            px.s.nv = tgi_ao_normal_view(g, i);
+            px.s.vd = tgi_v3_normalize_or(tgi_v3_neg(px.s.pv), tg_v3(0, 0, TG_R(-1.0f)));
+            px.s.r_px = tg_div(tg_mul(p->radius, g->camera->pixels_per_unit), tgi_gv_depth(g, i));
+            px.s.jitter = r->jitter;
+            px.s.shift = shift;
             px.rs = tg_ldexp(p->radius, shift);
             px.r2 = tg_sqr(px.rs);
-            px.above = tg_add(tg_ldexp(px.pv.z, shift - 10), tg_mul(px.rs, TG_R(0.005f)));
+            px.above = tg_add(tg_ldexp(px.s.pv.z, shift - 10), tg_mul(px.rs, TG_R(0.005f)));
             /* 64 radii behind is as good as infinite (the back angle is then
              * within 1/64 rad of pi) and keeps |h_b|^2 inside Q16.16 */
             px.thick = tg_min(tg_ldexp(tg_max(p->thickness, 0), shift), tg_mul(px.rs, TG_R(64.0f)));
             for (k = 0; k < ns; k++) {
                 tg_real sdx = tg_sub(tg_mul(r->c, scos[k]), tg_mul(r->s, ssin[k]));
                 tg_real sdy = tg_add(tg_mul(r->s, scos[k]), tg_mul(r->c, ssin[k]));
-                tg_vec3 d3 = tg_v3(sdx, tg_neg(sdy), 0), dir, axis, pn;
-                tg_real cos_n, bs = 0, bc = 0, w;
+                tg_real bs = 0, bc = 0, w;
+                tgi_ao_slice f;
                 vb_slice sl;
                 uint32_t mask = 0;
                 tg_vec3 es = tg_v3(0, 0, 0);
-                /* the slice frame, as gtao.c's: direction, axis, normal projected into the slice */
-                dir = tgi_v3_normalize_or(tgi_v3_sub(d3, tgi_v3_scale(px.vd, tgi_v3_dot(d3, px.vd))), d3);
-                axis = tgi_v3_cross(dir, px.vd);
-                pn = tgi_v3_sub(px.nv, tgi_v3_scale(axis, tgi_v3_dot(px.nv, axis)));
-                sl.len = tgi_v3_length(pn);
-                if (sl.len <= TG_R(0.0001f)) continue;
-                cos_n = tg_clamp(tg_div(tgi_v3_dot(pn, px.vd), sl.len), TG_R(-1.0f), TG_ONE);
-                sl.gamma = tg_acos(cos_n);
-                if (tgi_v3_dot(pn, dir) < 0) sl.gamma = tg_neg(sl.gamma);
-                sl.cos_g = tg_cos(sl.gamma);
-                sl.sin_g = tg_sin(sl.gamma);
+                if (!tgi_ao_slice_frame(px.s.nv, px.s.vd, sdx, sdy, &f)) continue;   /* GTAO's slice frame */
+                sl.len = f.len; sl.gamma = f.gamma; sl.cos_g = f.cos_g; sl.sin_g = f.sin_g;
                 sl.theta0 = tg_sub(sl.gamma, TG_HALF_PI);
                 sl.step = sector;
                 march(p, g, radiance, &px, &sl, sdx, sdy, 1, &mask, want_near ? &es : NULL);
@@ -236,7 +203,7 @@ void tgi_ssilvb_rows(const tgi_ssilvb_params *p, const tgi_gview *g, const tgi_r
                 w = mask_weight(&sl, ~mask, &bs, &bc);
                 vis = tg_add(vis, tg_mul(sl.len, w));
                 open = tg_add(open, tg_mul(sl.len, mask_weight(&sl, 0xffffffffu, NULL, NULL)));
-                bent = tgi_v3_add(bent, tgi_v3_scale(tgi_v3_add(tgi_v3_scale(dir, bs), tgi_v3_scale(px.vd, bc)), sl.len));
+                bent = tgi_v3_add(bent, tgi_v3_scale(tgi_v3_add(tgi_v3_scale(f.dir, bs), tgi_v3_scale(px.s.vd, bc)), sl.len));
                 e = tgi_v3_add(e, tgi_v3_scale(es, sl.len));
             }
             /* the slice quadrature as a ratio to the open half circles' (exact 1 with no bit set) */
