@@ -11,9 +11,9 @@
  * Every depth sample is a surface of constant `thickness`: its front point
  * (the depth buffer's) and its back point (the front moved by the thickness
  * away from the eye, along the shading point's view vector) subtend the
- * angles theta_f and theta_b, and the sectors between them are set (the
- * paper's sec. 3, with its rounding: from floor(u_min N_b), ceil((u_max -
- * u_min) N_b) sectors, u the angle mapped to [0, 1] over the half circle).
+ * angles theta_f and theta_b, and the sectors between them are set (with
+ * the paper's rounding: from floor(u_min N_b), ceil((u_max - u_min) N_b)
+ * sectors, u the angle mapped to [0, 1] over the half circle).
  * Light passes behind a thin object; with an infinite thickness the mask is
  * GTAO's (every sector above the highest horizon set).
  *
@@ -28,7 +28,7 @@
  * where no bit is set.  The weight of a mask is summed over its runs of set
  * bits (two A per run), so no per-sector table is needed.
  *
- * Indirect light (the paper's sec. 4): each sample's radiance is gathered
+ * Indirect light (the paper's indirect diffuse): each sample's radiance is gathered
  * over the sectors it occludes that no nearer sample had occluded
  * (b_sample & ~b), times the same cosine weights: the near-field irradiance
  *     E = pi sum_slices len sum_samples L_s w(b_s & ~b) / sum_slices len w(open),
