@@ -27,7 +27,7 @@ SHADOW=${CROSS_SHADOW:-64}
 # A run is the driver's arguments joined by commas (render.c's usage): the
 # same request on x86-64 and on the target, outputs compared file by file.
 RUN=${CROSS_RUN:-"size=$SIZE,frames=$FRAMES,shadow=$SHADOW,aovs=$AOVS,${SCENES// /,}"}
-M0_RUNS=${CROSS_M0_RUNS:-"size=4x3,frames=1,shadow=8,aovs=color,cornell size=6x4,frames=1,shadow=8,aovs=ao+depth+normal,cornell"}
+M0_RUNS=${CROSS_M0_RUNS:-"size=12x9,frames=2,shadow=8,aovs=color,cornell size=24x18,frames=1,shadow=8,aovs=ao+depth+normal,cornell"}
 COUNT_RUN=${CROSS_COUNT_RUN:-"size=160x120,frames=2,shadow=64,aovs=color,cornell"}
 MAKE=${MAKE:-make}
 HOST_CC=${HOST_CC:-cc}
@@ -106,7 +106,7 @@ is_bare() { case $1 in m3|m4f|m0|m0mps2|rv32|rv32f) return 0 ;; *) return 1 ;; e
 target_arena() {
     [ "$MODE" = count ] && { echo "${CROSS_COUNT_ARENA:-14680064}"; return; }
     case $1 in
-        m0) echo "${CROSS_M0_ARENA:-10496}" ;;
+        m0) echo "${CROSS_M0_ARENA:-10272}" ;;
         m3) echo "${CROSS_M3_ARENA:-2097152}" ;;
         m0mps2) echo "${CROSS_M0MPS2_ARENA:-2097152}" ;;
         m4f) echo "${CROSS_M4F_ARENA:-2097152}" ;;
@@ -341,7 +341,7 @@ check_mode() {
                 if is_bare "$t"; then
                     print_counts "$t" "$num" "$dir.log"
                     grep -h '^startup: stack' "$dir.log" | sed "s|^|cross: $t/$num |"
-                    [ "$t" = m0 ] && grep -h 'arena used' "$dir.log" | sed "s|^|cross: $t/$num |"
+                    case $t in m0|m0mps2) grep -h 'arena used' "$dir.log" | sed "s|^|cross: $t/$num |" ;; esac
                 fi
             done
         done

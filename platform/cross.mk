@@ -47,12 +47,13 @@ CROSS_M3_RUNS   ?= $(CROSS_RUN) size=320x240,frames=2,shadow=64,aovs=color,corne
 CROSS_M4F_RUNS  ?= $(CROSS_RUN)
 CROSS_RV32_RUNS ?= $(CROSS_RUN)
 CROSS_M0MPS2_RUNS ?= $(CROSS_RUN)
-# 16 KB of RAM: a full-colour 64x48 frame cannot fit
-CROSS_M0_RUNS   ?= size=24x18,frames=1,shadow=8,aovs=ao+depth+normal,cornell
+# 16 KB of RAM: a full-colour 64x48 frame cannot fit; cornell colour over two
+# frames (reprojection) at 12x9, and AO at 24x18
+CROSS_M0_RUNS   ?= size=12x9,frames=2,shadow=8,aovs=color,cornell size=24x18,frames=1,shadow=8,aovs=ao+depth+normal,cornell
 CROSS_M3_ARENA   ?= 2359296
 CROSS_M4F_ARENA  ?= 2097152
 CROSS_RV32_ARENA ?= 2097152
-CROSS_M0_ARENA   ?= 10496
+CROSS_M0_ARENA   ?= 10272
 CROSS_M0MPS2_ARENA ?= 2097152
 # make cross-count: every frame's instructions (the M0 code on the MPS2 board)
 CROSS_COUNT_RUN   ?= size=160x120,frames=2,shadow=64,aovs=color,cornell

@@ -24,7 +24,7 @@
  *   scene, 3 arena too small (TG_BM_ARENA_BYTES).
  *
  * Memory: one static arena of TG_BM_ARENA_BYTES holds the parsed scene,
- * the frame (tg_plan.total_bytes) and two row buffers; nothing else.
+ * the frame (tg_plan.total_bytes) and one row buffer; nothing else.
  * Cost: where port_insn_count() counts (counter.c), each frame's
  * instructions are printed ("cornell 64x48 fixed frame 2/2: N
  * instructions, P per pixel").
@@ -156,8 +156,9 @@ NOINLINE static int write_ppm(const tg_frame *frame, int w, int h, const char *d
 }
 
 NOINLINE static int write_pfm(const tg_frame *frame, tg_aov aov, int w, int h, const char *dir,
-                     const char *scene, tg_real *row, unsigned char *bytes)
+                     const char *scene, tg_real *row)
 {
+    unsigned char *bytes = (unsigned char *)row; /* converted in place: value i's 4 bytes replace it */
     char path[160], head[48], suffix[24];
     size_t at = 0, i, n;
     int y, bad = 0, f, channels = tg_aov_channels(aov);
@@ -198,6 +199,18 @@ NOINLINE static void log_error(const char *what, const tg_error *err)
 
 static int status_exit(tg_status s) { return s == TG_ERR_MEMORY ? 3 : s == TG_ERR_INPUT ? 2 : 1; }
 
+/* "render: NAME: skipping aov AOV" */
+NOINLINE static void log_skipped(const char *name, tg_aov a)
+{
+    char msg[96];
+    size_t at = 0;
+    cat_str(msg, sizeof msg, &at, "render: ");
+    cat_str(msg, sizeof msg, &at, name);
+    cat_str(msg, sizeof msg, &at, ": skipping aov ");
+    cat_str(msg, sizeof msg, &at, tg_aov_name(a));
+    port_log(msg);
+}
+
 /* Plan with the AOVs the core accepts for this scene: when the whole set
  * cannot be planned, drop one AOV at a time (and say so). */
 NOINLINE static tg_status plan_scene(tg_plan *plan, const tg_scene *scene, const settings *st,
@@ -218,13 +231,7 @@ NOINLINE static tg_status plan_scene(tg_plan *plan, const tg_scene *scene, const
         if (!(req.aovs & bit) || req.aovs == bit) continue;
         req.aovs &= ~bit;
         if (tg_plan_make(plan, scene, &req, err) == TG_OK) {
-            char msg[96];
-            size_t at = 0;
-            cat_str(msg, sizeof msg, &at, "render: ");
-            cat_str(msg, sizeof msg, &at, name);
-            cat_str(msg, sizeof msg, &at, ": skipping aov ");
-            cat_str(msg, sizeof msg, &at, tg_aov_name((tg_aov)a));
-            port_log(msg);
+            log_skipped(name, (tg_aov)a);
             return TG_OK;
         }
         req.aovs |= bit;
@@ -305,8 +312,7 @@ static int render_scene(const char *name, const settings *st)
     tg_frame *frame = 0;
     tg_status s;
     void *frame_memory;
-    tg_real *row;
-    unsigned char *bytes;
+    tg_real *row; /* a row of any AOV, as tg_real, PFM bytes or 8-bit RGB */
     const char *text = tg_builtin_scene(name);
     /* Where instructions are counted the host clock is not read, so that
      * a run's log is the same every time. */
@@ -327,9 +333,8 @@ static int render_scene(const char *name, const settings *st)
     if (s != TG_OK) { log_error(name, &err); return status_exit(s); }
     frame_memory = tg_arena_alloc(&arena, plan.total_bytes);
     row = tg_arena_alloc(&arena, (size_t)st->width * 3u * sizeof(tg_real));
-    bytes = tg_arena_alloc(&arena, (size_t)st->width * 3u * 4u);
-    if (!frame_memory || !row || !bytes) {
-        log_arena_short(name, arena.used, plan.total_bytes + (size_t)st->width * 3u * (sizeof(tg_real) + 4u) + 32u);
+    if (!frame_memory || !row) {
+        log_arena_short(name, arena.used, plan.total_bytes + (size_t)st->width * 3u * sizeof(tg_real) + 32u);
         return 3;
     }
     s = tg_frame_create(&plan, frame_memory, plan.total_bytes, &frame, &err);
@@ -344,11 +349,11 @@ static int render_scene(const char *name, const settings *st)
     else log_scene(name, st, &plan, arena.used, 0, port_clock_cs() - t0);
 
     if ((plan.request.aovs & (1u << TG_AOV_COLOR)) &&
-        write_ppm(frame, st->width, st->height, st->outdir, name, bytes) != 0)
+        write_ppm(frame, st->width, st->height, st->outdir, name, (uint8_t *)row) != 0)
         bad = 1;
     for (a = 0; a < TG_AOV_COUNT; a++)
         if ((plan.request.aovs >> a) & 1u)
-            if (write_pfm(frame, (tg_aov)a, st->width, st->height, st->outdir, name, row, bytes) != 0) bad = 1;
+            if (write_pfm(frame, (tg_aov)a, st->width, st->height, st->outdir, name, row) != 0) bad = 1;
     if (bad) port_log("render: could not write an output file");
     return bad;
 }

@@ -16,6 +16,14 @@
 #define APEX_NEAR TG_R(0.001f)         /* the lookup's own nearest distance (lit nearer) */
 #define PLANE_MAX_TAN TG_R(1.5f)       /* light-plane coordinates kept within 1.5 x the face */
 #define CLIP_SLACK (16 * TG_EPS)       /* the clipping's own rounding */
+/* A function whose locals stay out of its caller's stack frame, so that
+ * they are not on the stack while the caller's other callees run (the
+ * plan runs on the smallest cores' stacks: README "Porting"). */
+#if defined(__GNUC__)
+#define APART __attribute__((noinline))
+#else
+#define APART
+#endif
 
 /* Inside: n . p + d >= -margin. */
 typedef struct halfspace { tg_vec3 n; tg_real d; } halfspace;
@@ -134,31 +142,39 @@ static void image_plane(const tgi_view *v, tg_vec3 p, tg_real *x, tg_real *y)
     *y = tg_clamp(tg_mul(tg_mul(tgi_v3_dot(d, v->up), v->focal_y), inv), TG_R(-2.0f), TG_R(2.0f));
 }
 
-/* Twice the signed area of a projected polygon (shoelace, about its first vertex). */
-static tg_real shoelace(const tg_real *x, const tg_real *y, int n)
+/* Twice the signed area of a projected polygon (shoelace, about its first
+ * vertex), a vertex at a time: no arrays of the polygon's projections on
+ * the stack. */
+typedef struct shoelace { tg_real x0, y0, px, py, s; } shoelace;
+
+static void shoelace_add(shoelace *sl, int i, tg_real x, tg_real y)
 {
-    tg_real s = 0;
-    int i;
-    for (i = 1; i + 1 < n; i++) {
-        tg_real ax = tg_sub(x[i], x[0]), ay = tg_sub(y[i], y[0]);
-        tg_real bx = tg_sub(x[i + 1], x[0]), by = tg_sub(y[i + 1], y[0]);
-        s = tg_add(s, tg_sub(tg_mul(ax, by), tg_mul(ay, bx)));
+    if (i == 0) {
+        sl->x0 = x; sl->y0 = y; sl->s = 0;
+    } else if (i > 1) {
+        tg_real ax = tg_sub(sl->px, sl->x0), ay = tg_sub(sl->py, sl->y0);
+        tg_real bx = tg_sub(x, sl->x0), by = tg_sub(y, sl->y0);
+        sl->s = tg_add(sl->s, tg_sub(tg_mul(ax, by), tg_mul(ay, bx)));
     }
-    return s;
+    sl->px = x; sl->py = y;
 }
 
 /* A polygon's areas: on the image (NDC units^2) and on the light plane. */
 static void areas(const tgi_view *v, const light_face *lf, const tg_vec3 *p, int n,
                   tg_real *cam, tg_real *light)
 {
-    tg_real cx[POLY_MAX], cy[POLY_MAX], lx[POLY_MAX], ly[POLY_MAX];
+    shoelace c, l;
     int i;
+    c.s = l.s = 0;
     for (i = 0; i < n; i++) {
-        image_plane(v, p[i], &cx[i], &cy[i]);
-        light_plane(lf, p[i], &lx[i], &ly[i]);
+        tg_real x, y;
+        image_plane(v, p[i], &x, &y);
+        shoelace_add(&c, i, x, y);
+        light_plane(lf, p[i], &x, &y);
+        shoelace_add(&l, i, x, y);
     }
-    *cam = tg_add(*cam, tg_ldexp(tg_abs(shoelace(cx, cy, n)), -1));
-    *light = tg_add(*light, tg_ldexp(tg_abs(shoelace(lx, ly, n)), -1));
+    *cam = tg_add(*cam, tg_ldexp(tg_abs(c.s), -1));
+    *light = tg_add(*light, tg_ldexp(tg_abs(l.s), -1));
 }
 
 /* ---- the region of one face ---- */
@@ -187,16 +203,15 @@ static void region_add(region *rg, const tgi_view *v, const light_face *lf, cons
 /* The boundary of the intersection of hexahedra hx[0..count): each one's
  * faces cut by the others' half-spaces (grown by margin); every piece left
  * goes to the region.  Exact for convex hexahedra: the intersection is
- * empty exactly when no piece is left. */
+ * empty exactly when no piece is left.  p: room for a polygon (POLY_MAX). */
 static void intersect(region *rg, const hexa *const *hx, int count, tg_real margin,
-                      const tgi_view *v, const light_face *lf)
+                      const tgi_view *v, const light_face *lf, tg_vec3 *p)
 {
     int a, b, face;
     for (a = 0; a < count; a++)
         for (face = 0; face < 6; face++) {
             int axis = face >> 1, side = face & 1, ua = (axis + 1) % 3, wa = (axis + 2) % 3, n = 4, k;
             static const int su[4] = { 0, 1, 1, 0 }, sw[4] = { 0, 0, 1, 1 };
-            tg_vec3 p[POLY_MAX];
             for (k = 0; k < 4; k++) p[k] = hx[a]->c[(side << axis) | (su[k] << ua) | (sw[k] << wa)];
             for (b = 0; b < count && n > 0; b++)
                 if (b != a) n = clip(p, n, hx[b]->h, 6, margin);
@@ -252,32 +267,26 @@ static int lit_and_seen(const tgi_light *l, const tgi_view *v, const tg_vec3 *t)
     return (to_eye > 0 && to_light > 0) || (to_eye < 0 && to_light < 0);
 }
 
-/* The triangles' areas per face: cut to the frustum (and each face's
+/* The triangles' areas on one face: cut to the frustum (and the face's
  * pyramid, both grown by the margin), projected on the image and the light
  * plane, for the triangles facing the camera and the light.  Every
  * triangle that leaves a piece, whichever way it faces (a shading normal
- * may face the light when the triangle does not), marks the face in
- * hit[].  Returns 1 when every triangle was visited (hit[] is then exact). */
-static int triangle_areas(region *rg, int *hit, const light_face *lf, int faces, const tgi_light *l,
-                          const tgi_view *v, const hexa *cam, const tg_vec3 *pos, int tri_count)
+ * may face the light when the triangle does not), sets *hit.  Returns 1
+ * when every triangle was visited (*hit is then exact).  p: room for a
+ * polygon (POLY_MAX). */
+static int triangle_areas(region *rg, int *hit, const light_face *lf, const tgi_light *l,
+                          const tgi_view *v, const hexa *cam, const tg_vec3 *pos, int tri_count, tg_vec3 *p)
 {
-    int stride = tri_count / TG_SHADOW_RULE_TRIANGLES + 1, t, f;
+    int stride = tri_count / TG_SHADOW_RULE_TRIANGLES + 1, t;
+    if (!rg->seen) return stride == 1;
     for (t = 0; t < tri_count; t += stride) {
-        tg_vec3 p[POLY_MAX];
-        int n, weigh = lit_and_seen(l, v, pos + 3 * (size_t)t);
+        int n;
         memcpy(p, pos + 3 * (size_t)t, 3 * sizeof *p);
         n = clip(p, 3, cam->h, 6, CLIP_SLACK);
+        if (n > 0 && lf->perspective) n = clip(p, n, lf->pyramid.h, 6, CLIP_SLACK);
         if (n == 0) continue;
-        for (f = 0; f < faces; f++) {
-            tg_vec3 q[POLY_MAX];
-            int m = n;
-            if (!rg[f].seen) continue;
-            memcpy(q, p, (size_t)n * sizeof *q);
-            if (lf[f].perspective) m = clip(q, n, lf[f].pyramid.h, 6, CLIP_SLACK);
-            if (m == 0) continue;
-            hit[f] = 1;
-            if (weigh) areas(v, &lf[f], q, m, &rg[f].cam, &rg[f].light);
-        }
+        *hit = 1;
+        if (lit_and_seen(l, v, pos + 3 * (size_t)t)) areas(v, lf, p, n, &rg->cam, &rg->light);
     }
     return stride == 1;
 }
@@ -341,10 +350,11 @@ static tg_real nominal_side(const light_face *lf, tg_vec3 lo, tg_vec3 hi)
 void tgi_shadow_map_size_rule(tgi_shadow_need *nd, const tgi_light *l, const tgi_view *view,
                               tg_vec3 lo, tg_vec3 hi, const tg_vec3 *tri_pos, int tri_count)
 {
-    light_face lf[TG_SHADOW_MAX_FACES];
-    region rg[TG_SHADOW_MAX_FACES];
+    light_face lf;
+    region rg;
     hexa box, cam;
     const hexa *hx[3];
+    tg_vec3 poly[POLY_MAX];            /* the polygon being cut, for intersect and triangle_areas in turn */
     tg_real margin, extent = tgi_v3_length(tgi_v3_sub(hi, lo));
     int f, k;
     /* the G-buffer position's error bound at the bounds' deepest corner, and the arithmetic */
@@ -352,26 +362,29 @@ void tgi_shadow_map_size_rule(tgi_shadow_need *nd, const tgi_light *l, const tgi
     for (k = 0; k < 8; k++) zmax = tg_max(zmax, tgi_v3_dot(tgi_v3_sub(corner(lo, hi, k), view->eye), view->forward));
     margin = tg_add(tg_add(tg_ldexp(tg_mul(zmax, tgi_shadow_gbuffer_error(view)), 1), tg_ldexp(extent, -12)),
                     64 * TG_EPS);
-    memset(rg, 0, sizeof rg);
     hexa_box(&box, tgi_v3_sub(lo, tg_v3(margin, margin, margin)), tgi_v3_add(hi, tg_v3(margin, margin, margin)));
     if (!camera_hexa(&cam, view, lo, hi, margin)) return;
     hx[0] = &box; hx[1] = &cam;
+    /* The faces are independent: one at a time, so that one face's frame
+     * and region are on the stack rather than six (the plan runs on the
+     * smallest cores' stacks too: README "Porting"). */
     for (f = 0; f < nd->faces; f++) {
-        light_face_make(&lf[f], l, f, lo, hi, margin);
-        nd->whole_side[f] = nominal_side(&lf[f], lo, hi);
-        hx[2] = &lf[f].pyramid;
-        intersect(&rg[f], hx, lf[f].perspective ? 3 : 2, CLIP_SLACK, view, &lf[f]);
+        memset(&rg, 0, sizeof rg);
+        light_face_make(&lf, l, f, lo, hi, margin);
+        nd->whole_side[f] = nominal_side(&lf, lo, hi);
+        hx[2] = &lf.pyramid;
+        intersect(&rg, hx, lf.perspective ? 3 : 2, CLIP_SLACK, view, &lf, poly);
+        if (tri_pos && tri_count > 0) {
+            /* the receivers' areas replace the region's volume; where every
+             * triangle was visited at its place in this view, a face none of
+             * them reaches is not seen either */
+            int hit = 0;
+            rg.cam = rg.light = 0;
+            if (triangle_areas(&rg, &hit, &lf, l, view, &cam, tri_pos, tri_count, poly) && !nd->objects_move)
+                rg.seen &= hit;
+        }
+        need_merge(nd, f, &rg, &lf, rule_density(&rg, view));
     }
-    if (tri_pos && tri_count > 0) {
-        /* the receivers' areas replace the region's volume; where every
-         * triangle was visited at its place in this view, a face none of
-         * them reaches is not seen either */
-        int hit[TG_SHADOW_MAX_FACES] = { 0, 0, 0, 0, 0, 0 };
-        for (f = 0; f < nd->faces; f++) rg[f].cam = rg[f].light = 0;
-        if (triangle_areas(rg, hit, lf, nd->faces, l, view, &cam, tri_pos, tri_count) && !nd->objects_move)
-            for (f = 0; f < nd->faces; f++) rg[f].seen &= hit[f];
-    }
-    for (f = 0; f < nd->faces; f++) need_merge(nd, f, &rg[f], &lf[f], rule_density(&rg[f], view));
 }
 
 size_t tgi_shadow_map_bytes_for_view(const tgi_light *l, const tgi_view *view, tg_vec3 lo, tg_vec3 hi,
@@ -440,7 +453,7 @@ static void frame_view(tgi_view *v, const tg_scene *s, const tg_request *r, int 
  * as the maps still fit (in steps of 1/16; a texel per pixel leaves 1-2
  * pixel bands along concave corners, where the filter's footprint
  * crosses onto the other surface, README "Shadows"). */
-static void spend_the_budget(tgi_shadow_need *nd, size_t pixels)
+APART static void spend_the_budget(tgi_shadow_need *nd, size_t pixels)
 {
     tgi_shadow_need base = *nd;
     size_t budget, bytes = tgi_shadow_need_bytes(nd);
