@@ -28,6 +28,42 @@ static int fail(const tg_error *err)
     return 1;
 }
 
+/* The game loop's frame: the built-in Cornell box (parsed into
+ * scene_memory), frames of w x h, each reprojecting the last, the camera
+ * set by the program; *memory the block it lives in (malloc).  NULL
+ * (reported) on failure. */
+static tg_frame *start_frame(int w, int h, int frames, void **memory)
+{
+    const char *text = tg_builtin_scene("cornell");
+    tg_arena scene_arena;
+    tg_scene *scene;
+    tg_request req;
+    tg_plan plan;
+    tg_frame *frame = NULL;
+    tg_error err;
+    tg_arena_init(&scene_arena, scene_memory, sizeof scene_memory);
+    if (tg_scene_parse(text, strlen(text), "builtin:cornell", NULL, &scene_arena, &scene, &err) != TG_OK) {
+        fail(&err);
+        return NULL;
+    }
+    tg_request_defaults(&req);
+    req.width = w;
+    req.height = h;
+    req.frames = frames;   /* more than one: each frame reprojects the last */
+    req.game_loop = 1;     /* the program sets the camera */
+    if (tg_plan_make(&plan, scene, &req, &err) != TG_OK) {
+        fail(&err);
+        return NULL;
+    }
+    *memory = malloc(plan.total_bytes);
+    if (!*memory) {
+        fprintf(stderr, "orbit: out of memory (%zu bytes)\n", plan.total_bytes);
+        return NULL;
+    }
+    if (tg_frame_create(&plan, *memory, plan.total_bytes, &frame, &err) != TG_OK) fail(&err);
+    return frame;
+}
+
 /* Frame i's camera: on a circle round the box's centre, swinging 40
  * degrees either side of the open front and rising a little with it. */
 static void orbit_camera(int i, tg_real pos[3], tg_real target[3])
@@ -74,14 +110,10 @@ static int write_frame(const tg_frame *frame, int w, int h, const char *path, fl
 
 int main(int argc, char **argv)
 {
-    const char *text = tg_builtin_scene("cornell"), *prefix = "orbit-";
-    tg_arena scene_arena;
-    tg_scene *scene;
-    tg_request req;
-    tg_plan plan;
+    const char *prefix = "orbit-";
+    void *frame_memory = NULL;
     tg_frame *frame;
     tg_error err;
-    void *frame_memory;
     tg_real up[3] = { 0, TG_ONE, 0 }, pos[3], target[3];
     tg_real fov = tg_mul(TG_R(38.0f), TG_DEG2RAD);
     int frames = PERIOD, w = 320, h = 240, i;
@@ -97,23 +129,9 @@ int main(int argc, char **argv)
         fprintf(stderr, "usage: orbit [-n FRAMES] [-s WIDTHxHEIGHT] [-o PREFIX]\n");
         return 2;
     }
-    tg_arena_init(&scene_arena, scene_memory, sizeof scene_memory);
-    if (tg_scene_parse(text, strlen(text), "builtin:cornell", NULL, &scene_arena, &scene, &err) != TG_OK)
-        return fail(&err);
-    tg_request_defaults(&req);
-    req.width = w;
-    req.height = h;
-    req.frames = frames;   /* more than one: each frame reprojects the last */
-    req.game_loop = 1;     /* the program sets the camera */
-    if (tg_plan_make(&plan, scene, &req, &err) != TG_OK)
-        return fail(&err);
-    frame_memory = malloc(plan.total_bytes);
-    if (!frame_memory) {
-        fprintf(stderr, "orbit: out of memory (%zu bytes)\n", plan.total_bytes);
+    frame = start_frame(w, h, frames, &frame_memory);
+    if (!frame)
         return 1;
-    }
-    if (tg_frame_create(&plan, frame_memory, plan.total_bytes, &frame, &err) != TG_OK)
-        return fail(&err);
 
     for (i = 0; i < frames; i++) { /* the game loop */
         char path[1100];

@@ -9,18 +9,14 @@
  */
 #include <stdlib.h>
 #include "check.h"
+#include "../tools/room_scene.h"
 
 #define W 24
 #define H 18
 
 /* No shadows, no environment, no mesh: what every build can render. */
 static const char scene_plain[] =
-    "camera pos 0 1.5 -4  target 0 1 0  fov 50\n"
-    "material white albedo 0.73 0.73 0.73\n"
-    "material red albedo 0.63 0.065 0.05\n"
-    "quad p0 -2 0 -2  p1 -2 0 2  p2 2 0 2  p3 2 0 -2  material white name floor\n"
-    "quad p0 -2 0 2  p1 -2 3 2  p2 2 3 2  p3 2 0 2  material red name back\n"
-    "box min -0.5 0 -0.5  max 0.5 1 0.5  material white name block\n"
+    TG_ROOM_SCENE
     "light point pos 0 2.8 -1  color 1 0.9 0.8  intensity 10\n";
 /* The same lit by a shadowed light under a sky. */
 static const char scene_rich[] =

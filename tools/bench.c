@@ -572,48 +572,76 @@ static void write_png(FILE *f, const uint8_t *rgb, int w, int h, int channels)
     free(raw); free(z);
 }
 
-#define SHEET_COLS 5
-#define SHEET_TILES 10   /* nine techniques at their default, then the reference */
-static uint8_t *sheet;
-static int sheet_w, sheet_h;
+/* A contact sheet: tiles of opt_w x opt_h pixels in `cols` columns with
+ * 2-pixel gaps, RGB, written as NAME.ppm and NAME.png (png_channels 1: the
+ * grey AO sheet). */
+typedef struct contact_sheet {
+    const char *name;
+    int cols, tiles, png_channels;
+    uint8_t *px;
+    int w, h;
+} contact_sheet;
+
+/* nine techniques at their default, then the reference */
+static contact_sheet ao_sheet = { "contact", 5, 10, 1, NULL, 0, 0 };
+
+/* The sheet's pixels, made on first use. */
+static void sheet_make(contact_sheet *s)
+{
+    if (s->px) return;
+    s->w = s->cols * opt_w + (s->cols + 1) * 2;
+    s->h = (s->tiles / s->cols) * opt_h + (s->tiles / s->cols + 1) * 2;
+    s->px = calloc((size_t)s->w * (size_t)s->h * 3, 1);
+}
+
+/* Byte offset of pixel (x, y) of tile k. */
+static size_t sheet_at(const contact_sheet *s, int k, int x, int y)
+{
+    int x0 = 2 + (k % s->cols) * (opt_w + 2), y0 = 2 + (k / s->cols) * (opt_h + 2);
+    return ((size_t)(y0 + y) * (size_t)s->w + (size_t)(x0 + x)) * 3;
+}
+
+/* Tile k's label, on black in its corner when it fits. */
+static void sheet_label(const contact_sheet *s, int k, const char *label)
+{
+    int x, y;
+    if (opt_h < 24 || (int)strlen(label) * 8 >= opt_w) return;
+    for (y = 0; y < 14; y++)
+        for (x = 0; x < (int)strlen(label) * 8 + 4; x++) {
+            size_t p = sheet_at(s, k, x, y);
+            s->px[p] = s->px[p + 1] = s->px[p + 2] = 0;
+        }
+    draw_text(s->px, s->w, 2 + (k % s->cols) * (opt_w + 2) + 2, 2 + (k / s->cols) * (opt_h + 2) + 2, label, 2);
+}
+
+static void sheet_write(const contact_sheet *s)
+{
+    char path[64];
+    FILE *f;
+    if (!s->px) return;
+    sprintf(path, "%s.ppm", s->name);
+    f = open_out(path, "wb");
+    fprintf(f, "P6\n%d %d\n255\n", s->w, s->h);
+    fwrite(s->px, 1, (size_t)s->w * (size_t)s->h * 3, f);
+    fclose(f);
+    sprintf(path, "%s.png", s->name);
+    f = open_out(path, "wb");
+    write_png(f, s->px, s->w, s->h, s->png_channels);
+    fclose(f);
+}
 
 static void sheet_tile(int k, const float *ao, const char *label)
 {
-    int tx = k % SHEET_COLS, ty = k / SHEET_COLS, x, y;
-    if (!sheet) {
-        sheet_w = SHEET_COLS * opt_w + (SHEET_COLS + 1) * 2;
-        sheet_h = (SHEET_TILES / SHEET_COLS) * opt_h + (SHEET_TILES / SHEET_COLS + 1) * 2;
-        sheet = calloc((size_t)sheet_w * (size_t)sheet_h * 3, 1);
-    }
+    int x, y;
+    sheet_make(&ao_sheet);
     for (y = 0; y < opt_h; y++)
         for (x = 0; x < opt_w; x++) {
             float v = ao[y * opt_w + x];
             int g = (int)(255.0f * (v < 0 ? 0 : v > 1 ? 1 : v) + 0.5f);
-            size_t p = ((size_t)(2 + ty * (opt_h + 2) + y) * (size_t)sheet_w + (size_t)(2 + tx * (opt_w + 2) + x)) * 3;
-            sheet[p] = sheet[p + 1] = sheet[p + 2] = (uint8_t)g;
+            size_t p = sheet_at(&ao_sheet, k, x, y);
+            ao_sheet.px[p] = ao_sheet.px[p + 1] = ao_sheet.px[p + 2] = (uint8_t)g;
         }
-    if (opt_h >= 24 && (int)strlen(label) * 8 < opt_w) {
-        int x0 = 2 + tx * (opt_w + 2), y0 = 2 + ty * (opt_h + 2);
-        for (y = 0; y < 14; y++)
-            for (x = 0; x < (int)strlen(label) * 8 + 4; x++) {
-                size_t p = ((size_t)(y0 + y) * (size_t)sheet_w + (size_t)(x0 + x)) * 3;
-                sheet[p] = sheet[p + 1] = sheet[p + 2] = 0;
-            }
-        draw_text(sheet, sheet_w, x0 + 2, y0 + 2, label, 2);
-    }
-}
-
-static void sheet_write(void)
-{
-    FILE *f;
-    if (!sheet) return;
-    f = open_out("contact.ppm", "wb");
-    fprintf(f, "P6\n%d %d\n255\n", sheet_w, sheet_h);
-    fwrite(sheet, 1, (size_t)sheet_w * (size_t)sheet_h * 3, f);
-    fclose(f);
-    f = open_out("contact.png", "wb");
-    write_png(f, sheet, sheet_w, sheet_h, 1);
-    fclose(f);
+    sheet_label(&ao_sheet, k, label);
 }
 
 /* ------------------------------------------------------------------ */
@@ -726,47 +754,19 @@ static void color_reference(tg_scene *s, const char *name, color_ref *r)
 
 /* The colour sheet: every technique's colour and the path tracer's,
  * tonemapped as the CLI's PPM (exposure 1). */
-#define CSHEET_COLS 4
-#define CSHEET_TILES 12
-static uint8_t *csheet;
-static int csheet_w, csheet_h;
+static contact_sheet color_sheet = { "contact-color", 4, 12, 3, NULL, 0, 0 };
 
 static void color_tile(int k, const float *rgb, const char *label)
 {
-    int tx = k % CSHEET_COLS, ty = k / CSHEET_COLS, x, y, c;
-    if (!csheet) {
-        csheet_w = CSHEET_COLS * opt_w + (CSHEET_COLS + 1) * 2;
-        csheet_h = (CSHEET_TILES / CSHEET_COLS) * opt_h + (CSHEET_TILES / CSHEET_COLS + 1) * 2;
-        csheet = calloc((size_t)csheet_w * (size_t)csheet_h * 3, 1);
-    }
+    int x, y, c;
+    sheet_make(&color_sheet);
     for (y = 0; y < opt_h; y++)
         for (x = 0; x < opt_w; x++)
             for (c = 0; c < 3; c++) {
-                size_t p = ((size_t)(2 + ty * (opt_h + 2) + y) * (size_t)csheet_w + (size_t)(2 + tx * (opt_w + 2) + x)) * 3;
-                csheet[p + (size_t)c] = tgi_tonemap8(tg_from_float(rgb[3 * (y * opt_w + x) + c]));
+                size_t p = sheet_at(&color_sheet, k, x, y);
+                color_sheet.px[p + (size_t)c] = tgi_tonemap8(tg_from_float(rgb[3 * (y * opt_w + x) + c]));
             }
-    if (opt_h >= 24 && (int)strlen(label) * 8 < opt_w) {
-        int x0 = 2 + tx * (opt_w + 2), y0 = 2 + ty * (opt_h + 2);
-        for (y = 0; y < 14; y++)
-            for (x = 0; x < (int)strlen(label) * 8 + 4; x++) {
-                size_t p = ((size_t)(y0 + y) * (size_t)csheet_w + (size_t)(x0 + x)) * 3;
-                csheet[p] = csheet[p + 1] = csheet[p + 2] = 0;
-            }
-        draw_text(csheet, csheet_w, x0 + 2, y0 + 2, label, 2);
-    }
-}
-
-static void color_sheet_write(void)
-{
-    FILE *f;
-    if (!csheet) return;
-    f = open_out("contact-color.ppm", "wb");
-    fprintf(f, "P6\n%d %d\n255\n", csheet_w, csheet_h);
-    fwrite(csheet, 1, (size_t)csheet_w * (size_t)csheet_h * 3, f);
-    fclose(f);
-    f = open_out("contact-color.png", "wb");
-    write_png(f, csheet, csheet_w, csheet_h, 3);
-    fclose(f);
+    sheet_label(&color_sheet, k, label);
 }
 
 /* One technique's colour: converged (HBIL: --color-frames frames in
@@ -1081,7 +1081,7 @@ static int cmd_run(void)
                    c->label, c->slices, c->samples, radius, ms, cpu, e.ao_rmse, e.ao_max, e.bent_deg,
                    isnan(e.near_rel) ? "-" : "", isnan(e.near_rel) ? 0.0 : e.near_rel);
             fflush(stdout);
-            if (!strcmp(NUMBER, "float") && sheet_scene && strcmp(name, sheet_scene) == 0 && c->is_default && c->on_curve && sheet_k < SHEET_TILES - 1)
+            if (!strcmp(NUMBER, "float") && sheet_scene && strcmp(name, sheet_scene) == 0 && c->is_default && c->on_curve && sheet_k < ao_sheet.tiles - 1)
                 sheet_tile(sheet_k++, res.ao, c->label);
             if (!strcmp(NUMBER, "float") && sheet_scene && strcmp(name, sheet_scene) == 0 && ci == ncfg - 1)
                 sheet_tile(sheet_k, ref.ao, "reference");
@@ -1099,8 +1099,8 @@ static int cmd_run(void)
     fclose(csv);
     fclose(ccsv);
     fclose(mcsv);
-    sheet_write();
-    color_sheet_write();
+    sheet_write(&ao_sheet);
+    sheet_write(&color_sheet);
     return 0;
 }
 
@@ -1116,38 +1116,56 @@ typedef struct row {
 static row rows[MAX_ROWS];
 static int nrows;
 
-static void read_rows(const char *number)
+/* DIR/<kind>-<number>.csv, read past its header line; NULL when it is
+ * missing or empty. */
+static FILE *open_rows(const char *kind, const char *number)
 {
     char path[600], line[512];
     FILE *f;
-    snprintf(path, sizeof path, "%s/rows-%s.csv", opt_out, number);
+    snprintf(path, sizeof path, "%s/%s-%s.csv", opt_out, kind, number);
     f = fopen(path, "r");
-    if (!f) return;
-    if (!fgets(line, sizeof line, f)) { fclose(f); return; }
-    while (nrows < MAX_ROWS && fgets(line, sizeof line, f)) {
-        row *r = &rows[nrows];
-        char *fld[16], *p = line;
-        int k = 0;
-        line[strcspn(line, "\r\n")] = '\0';
-        while (k < 16) {
-            fld[k++] = p;
-            p = strchr(p, ',');
-            if (!p) break;
-            *p++ = '\0';
-        }
-        if (k != 15) continue;
-        snprintf(r->scene, sizeof r->scene, "%s", fld[0]);
-        snprintf(r->tech, sizeof r->tech, "%s", fld[1]);
-        r->slices = atoi(fld[2]); r->samples = atoi(fld[3]); r->radius = atof(fld[4]);
-        r->interleave = atoi(fld[5]);
-        snprintf(r->number, sizeof r->number, "%s", fld[6]);
-        r->ms = atof(fld[7]); r->cpu = atof(fld[8]);
-        r->ao_rmse = atof(fld[9]); r->ao_max = atof(fld[10]); r->bent_deg = atof(fld[11]);
-        r->near_rel = fld[12][0] ? atof(fld[12]) : (double)NAN;
-        r->is_default = atoi(fld[13]); r->on_curve = atoi(fld[14]);
-        nrows++;
+    if (f && !fgets(line, sizeof line, f)) {
+        fclose(f);
+        f = NULL;
     }
+    return f;
+}
+
+/* The rows of DIR/<kind>-<number>.csv into a table of *count (at most
+ * MAX_ROWS) rows: parse_row(line, i) fills row i, 1 when the line is one. */
+static void read_csv(const char *kind, const char *number, int *count, int (*parse_row)(char *line, int i))
+{
+    char line[512];
+    FILE *f = open_rows(kind, number);
+    if (!f) return;
+    while (*count < MAX_ROWS && fgets(line, sizeof line, f))
+        if (parse_row(line, *count)) ++*count;
     fclose(f);
+}
+
+static int parse_row(char *line, int i)
+{
+    row *r = &rows[i];
+    char *fld[16], *p = line;
+    int k = 0;
+    line[strcspn(line, "\r\n")] = '\0';
+    while (k < 16) {
+        fld[k++] = p;
+        p = strchr(p, ',');
+        if (!p) break;
+        *p++ = '\0';
+    }
+    if (k != 15) return 0;
+    snprintf(r->scene, sizeof r->scene, "%s", fld[0]);
+    snprintf(r->tech, sizeof r->tech, "%s", fld[1]);
+    r->slices = atoi(fld[2]); r->samples = atoi(fld[3]); r->radius = atof(fld[4]);
+    r->interleave = atoi(fld[5]);
+    snprintf(r->number, sizeof r->number, "%s", fld[6]);
+    r->ms = atof(fld[7]); r->cpu = atof(fld[8]);
+    r->ao_rmse = atof(fld[9]); r->ao_max = atof(fld[10]); r->bent_deg = atof(fld[11]);
+    r->near_rel = fld[12][0] ? atof(fld[12]) : (double)NAN;
+    r->is_default = atoi(fld[13]); r->on_curve = atoi(fld[14]);
+    return 1;
 }
 
 /* Means over scenes of one (technique, setting, number, radius scale) group. */
@@ -1256,11 +1274,35 @@ static const char *tech_colors[] = { "#d62728", "#e377c2", "#ff7f0e", "#1f77b4",
                                      "#bcbd22" };
 #define NTECH 10
 
+/* An SVG plot W x H on white. */
+static void svg_begin(FILE *f, int W, int H)
+{
+    fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" viewBox=\"0 0 %d %d\" font-family=\"sans-serif\" font-size=\"12\">\n", W, H, W, H);
+    fprintf(f, "<rect width=\"%d\" height=\"%d\" fill=\"white\"/>\n", W, H);
+}
+
+/* A plot's vertical grid at 1, 2 and 5 x 10^e, labelled, over log10 x in
+ * [lx0, lx1] drawn from L to W - R (margins L, R, T, B of a W x H plot). */
+static void svg_log_x_grid(FILE *f, double lx0, double lx1, int W, int H, int L, int R, int T, int B)
+{
+    int e, k;
+    for (e = (int)floor(lx0); e <= (int)ceil(lx1); e++) {
+        static const int m[] = { 1, 2, 5 };
+        for (k = 0; k < 3; k++) {
+            double v = m[k] * pow(10, e), x;
+            if (log10(v) < lx0 - 1e-9 || log10(v) > lx1 + 1e-9) continue;
+            x = L + (log10(v) - lx0) / (lx1 - lx0) * (W - L - R);
+            fprintf(f, "<line x1=\"%.1f\" y1=\"%d\" x2=\"%.1f\" y2=\"%d\" stroke=\"#ddd\"/>\n", x, T, x, H - B);
+            fprintf(f, "<text x=\"%.1f\" y=\"%d\" text-anchor=\"middle\">%g</text>\n", x, H - B + 16, v);
+        }
+    }
+}
+
 static void write_svg(void)
 {
     const int W = 860, H = 540, L = 70, R = 150, T = 50, B = 60;
     double xmin = 1e30, xmax = 0, ymax = 0, lx0, lx1, ystep = 1;
-    int j, k, e, yticks = 5;
+    int j, k, yticks = 5;
     FILE *f = open_out("bench.svg", "w");
     for (j = 0; j < npts; j++) {
         if (!pts[j].on_curve) continue;
@@ -1280,22 +1322,12 @@ static void write_svg(void)
     }
 #define PX(ms) (L + (log10(ms) - lx0) / (lx1 - lx0) * (W - L - R))
 #define PY(v) (H - B - (v) / ymax * (H - T - B))
-    fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" viewBox=\"0 0 %d %d\" font-family=\"sans-serif\" font-size=\"12\">\n", W, H, W, H);
-    fprintf(f, "<rect width=\"%d\" height=\"%d\" fill=\"white\"/>\n", W, H);
+    svg_begin(f, W, H);
     fprintf(f, "<text x=\"%d\" y=\"22\" font-size=\"15\" font-weight=\"bold\">tinygi: AO error against time (mean over %s scenes, %dx%d)</text>\n",
             L, "the built-in", opt_w, opt_h);
     fprintf(f, "<text x=\"%d\" y=\"40\" fill=\"#444\">lower left is better; solid = float, dashed = Q16.16 fixed; each line sweeps its technique's samples/slices; grey band = frontier</text>\n", L);
     /* axes and grid */
-    for (e = (int)floor(lx0); e <= (int)ceil(lx1); e++) {
-        static const int m[] = { 1, 2, 5 };
-        for (k = 0; k < 3; k++) {
-            double v = m[k] * pow(10, e), x;
-            if (log10(v) < lx0 - 1e-9 || log10(v) > lx1 + 1e-9) continue;
-            x = PX(v);
-            fprintf(f, "<line x1=\"%.1f\" y1=\"%d\" x2=\"%.1f\" y2=\"%d\" stroke=\"#ddd\"/>\n", x, T, x, H - B);
-            fprintf(f, "<text x=\"%.1f\" y=\"%d\" text-anchor=\"middle\">%g</text>\n", x, H - B + 16, v);
-        }
-    }
+    svg_log_x_grid(f, lx0, lx1, W, H, L, R, T, B);
     for (k = 0; k <= yticks; k++) {
         double v = ystep * k, y = PY(v);
         fprintf(f, "<line x1=\"%d\" y1=\"%.1f\" x2=\"%d\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", L, y, W - R, y);
@@ -1414,21 +1446,11 @@ typedef struct crow {
 static crow crows[MAX_ROWS];
 static int ncrows;
 
-static void read_color_rows(const char *number)
+static int parse_color_row(char *line, int i)
 {
-    char path[600], line[512];
-    FILE *f;
-    snprintf(path, sizeof path, "%s/color-%s.csv", opt_out, number);
-    f = fopen(path, "r");
-    if (!f) return;
-    if (!fgets(line, sizeof line, f)) { fclose(f); return; }
-    while (ncrows < MAX_ROWS && fgets(line, sizeof line, f)) {
-        crow *r = &crows[ncrows];
-        if (sscanf(line, "%31[^,],%31[^,],%d,%7[^,],%lf,%lf,%lf,%lf,%d", r->scene, r->tech, &r->frames, r->number, &r->cpu,
-                   &r->rmse, &r->energy, &r->noise, &r->paths) == 9)
-            ncrows++;
-    }
-    fclose(f);
+    crow *r = &crows[i];
+    return sscanf(line, "%31[^,],%31[^,],%d,%7[^,],%lf,%lf,%lf,%lf,%d", r->scene, r->tech, &r->frames, r->number, &r->cpu,
+                  &r->rmse, &r->energy, &r->noise, &r->paths) == 9;
 }
 
 /* Means over the scenes of one technique and number type. */
@@ -1493,7 +1515,7 @@ static void write_color_svg(void)
 {
     const int W = 760, H = 460, L = 70, R = 30, T = 50, B = 60;
     double xmin = 1e30, xmax = 0, ymax = 0, noise = 0, lx0, lx1;
-    int k, num, e;
+    int k, num;
     cpoint pt[2][COLOR_TECHS];
     int have[2][COLOR_TECHS];
     FILE *f;
@@ -1515,20 +1537,10 @@ static void write_color_svg(void)
 #define CX(ms) (L + (log10(ms) - lx0) / (lx1 - lx0) * (W - L - R))
 #define CY(v) (H - B - (v) / ymax * (H - T - B))
     f = open_out("bench-color.svg", "w");
-    fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" viewBox=\"0 0 %d %d\" font-family=\"sans-serif\" font-size=\"12\">\n", W, H, W, H);
-    fprintf(f, "<rect width=\"%d\" height=\"%d\" fill=\"white\"/>\n", W, H);
+    svg_begin(f, W, H);
     fprintf(f, "<text x=\"%d\" y=\"22\" font-size=\"15\" font-weight=\"bold\">tinygi: colour error against the path tracer (mean over scenes, %dx%d)</text>\n", L, opt_w, opt_h);
     fprintf(f, "<text x=\"%d\" y=\"40\" fill=\"#444\">filled = float, hollow = Q16.16; default settings, HBIL converged; dashed = the path tracer's own noise</text>\n", L);
-    for (e = (int)floor(lx0); e <= (int)ceil(lx1); e++) {
-        static const int m[] = { 1, 2, 5 };
-        for (k = 0; k < 3; k++) {
-            double v = m[k] * pow(10, e), x;
-            if (log10(v) < lx0 - 1e-9 || log10(v) > lx1 + 1e-9) continue;
-            x = CX(v);
-            fprintf(f, "<line x1=\"%.1f\" y1=\"%d\" x2=\"%.1f\" y2=\"%d\" stroke=\"#ddd\"/>\n", x, T, x, H - B);
-            fprintf(f, "<text x=\"%.1f\" y=\"%d\" text-anchor=\"middle\">%g</text>\n", x, H - B + 16, v);
-        }
-    }
+    svg_log_x_grid(f, lx0, lx1, W, H, L, R, T, B);
     for (k = 0; k <= 5; k++) {
         double v = ymax * k / 5, y = CY(v);
         fprintf(f, "<line x1=\"%d\" y1=\"%.1f\" x2=\"%d\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", L, y, W - R, y);
@@ -1557,15 +1569,12 @@ static void write_color_svg(void)
 /* 1 when DIR/multibounce-float.csv or -fixed.csv has a row. */
 static int multibounce_rows_exist(void)
 {
-    char path[600], line[512];
+    char line[512];
     int num, lines = 0;
     for (num = 0; num < 2; num++) {
-        FILE *f;
-        snprintf(path, sizeof path, "%s/multibounce-%s.csv", opt_out, num ? "fixed" : "float");
-        f = fopen(path, "r");
+        FILE *f = open_rows("multibounce", num ? "fixed" : "float");
         if (!f) continue;
         while (fgets(line, sizeof line, f)) lines++;
-        lines--;
         fclose(f);
     }
     return lines > 0;
@@ -1574,14 +1583,11 @@ static int multibounce_rows_exist(void)
 /* The multi-bounce rows (DIR/multibounce-<type>.csv) as a section of bench.md. */
 static void multibounce_report(FILE *md)
 {
-    char path[600], line[512];
+    char line[512];
     int num, first = 1;
     for (num = 0; num < 2; num++) {
-        FILE *f;
-        snprintf(path, sizeof path, "%s/multibounce-%s.csv", opt_out, num ? "fixed" : "float");
-        f = fopen(path, "r");
+        FILE *f = open_rows("multibounce", num ? "fixed" : "float");
         if (!f) continue;
-        if (!fgets(line, sizeof line, f)) { fclose(f); continue; }
         while (fgets(line, sizeof line, f)) {
             char scene[32], ao[32], number[8];
             double v[5];
@@ -1607,10 +1613,10 @@ static int cmd_report(void)
     char buf[64], nb[32];
     nrows = 0;
     ncrows = 0;
-    read_rows("float");
-    read_rows("fixed");
-    read_color_rows("float");
-    read_color_rows("fixed");
+    read_csv("rows", "float", &nrows, parse_row);
+    read_csv("rows", "fixed", &nrows, parse_row);
+    read_csv("color", "float", &ncrows, parse_color_row);
+    read_csv("color", "fixed", &ncrows, parse_color_row);
     if (!nrows && !ncrows && !multibounce_rows_exist()) die("no rows: run `bench run` first", opt_out);
     group_points();
     f = open_out("bench.csv", "w");

@@ -14,6 +14,7 @@
  *                       light (and a sky, unless TG_NO_ENVIRONMENT).
  */
 #include "tinygi.h"
+#include "room_scene.h"
 
 #ifndef TG_SIZE_AO_ONLY
 #define TG_SIZE_AO_ONLY 0
@@ -22,12 +23,7 @@
 #define SIZE_H 48
 
 static const char scene_text[] =
-    "camera pos 0 1.5 -4  target 0 1 0  fov 50\n"
-    "material white albedo 0.73 0.73 0.73\n"
-    "material red albedo 0.63 0.065 0.05\n"
-    "quad p0 -2 0 -2  p1 -2 0 2  p2 2 0 2  p3 2 0 -2  material white name floor\n"
-    "quad p0 -2 0 2  p1 -2 3 2  p2 2 3 2  p3 2 0 2  material red name back\n"
-    "box min -0.5 0 -0.5  max 0.5 1 0.5  material white name block\n"
+    TG_ROOM_SCENE
 #if !TG_SIZE_AO_ONLY
     "light point pos 0 2.8 0  color 1 0.9 0.8  intensity 10  shadows\n"
 #if !defined(TG_NO_ENVIRONMENT) || !TG_NO_ENVIRONMENT

@@ -365,6 +365,19 @@ static const char *join_names(char *buf, size_t size, const char *(*name_of)(int
 
 static const char *aov_name_i(int i) { return tg_aov_name((tg_aov)i); }
 static const char *technique_name_i(int i) { return tg_technique_name((tg_technique)i); }
+
+/* Option `name`'s value v, one of count names (from_name its index, name_of
+ * the names): *out its index, or a usage error listing them. */
+static int name_option(const char *name, const char *v, int (*from_name)(const char *),
+                       const char *(*name_of)(int), int count, int *out)
+{
+    char list[512];
+    *out = from_name(v);
+    if (*out >= 0) return 0;
+    usage_error("option %s: expected one of %s; got '%s'", name, join_names(list, sizeof list, name_of, count), v);
+    return 1;
+}
+
 static const char *builtin_name_i(int i) { return tg_builtin_name(i); }
 
 /* Parse one render option at argv[*i]; 0 ok, 1 usage error (reported). */
@@ -376,7 +389,6 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
         "--shadows", "--thickness"
     };
     const char *a = argv[*i], *v = NULL, *name = NULL;
-    char list[512];
     long l;
     size_t k;
     int matched = 0;
@@ -416,19 +428,9 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
         if (int_option(name, v, 1, TG_MAX_FRAMES, &l)) return 1;
         o->frames = (int)l;
     } else if (!strcmp(name, "--aov")) {
-        o->aov = tg_aov_from_name(v);
-        if (o->aov < 0) {
-            usage_error("option --aov: expected one of %s; got '%s'",
-                        join_names(list, sizeof list, aov_name_i, TG_AOV_COUNT), v);
-            return 1;
-        }
+        return name_option(name, v, tg_aov_from_name, aov_name_i, TG_AOV_COUNT, &o->aov);
     } else if (!strcmp(name, "--technique")) {
-        o->technique = tg_technique_from_name(v);
-        if (o->technique < 0) {
-            usage_error("option --technique: expected one of %s; got '%s'",
-                        join_names(list, sizeof list, technique_name_i, TG_TECH_COUNT), v);
-            return 1;
-        }
+        return name_option(name, v, tg_technique_from_name, technique_name_i, TG_TECH_COUNT, &o->technique);
     } else if (!strcmp(name, "--slices")) {
         return int_option(name, v, 1, TG_MAX_SLICES, &o->slices);
     } else if (!strcmp(name, "--samples")) {

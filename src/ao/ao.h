@@ -25,10 +25,16 @@
 
 #include "../core/vec.h"
 #include "../raster/gview.h"
+#include "../light/sh.h"
 
 /* A radius this large means "unlimited" (ambient occlusion rather than
  * obscurance, RTR sec. 11.3.2). */
 #define TG_AO_INFINITE TG_REAL_MAX
+
+/* The default `bias` of the techniques that test samples against the
+ * occluder's tangent plane (SSAO, SSDO, bent cones): the depth below it that
+ * counts, as a fraction of the radius. */
+#define TG_AO_DEFAULT_BIAS TG_R(0.03f)
 
 /* ---- interreflection (RTR eq. 11.12-11.13) ----
  * k'_A = k_A / (1 - rho_ss (1 - k_A)): AO brightened as if the blocked
@@ -167,6 +173,33 @@ static inline void tgi_ao_write_open(const tgi_gview *g, const tgi_gresult *out,
     if (tgi_gr_has_bent(out)) tgi_gr_set_bent(out, i, tgi_gv_normal(g, i));
     if (tgi_gr_has_cone(out)) tgi_gr_set_cone(out, i, TG_HALF_PI);
     if (tgi_gr_has_near(out)) tgi_gr_set_near(out, i, tg_v3(0, 0, 0));
+}
+
+/* tgi_ao_write_open, and the far field pixel i starts from in the
+ * techniques that compute their own environment term (SSDO, bent cones):
+ * E0 of its normal, 0 on the sky or with no environment (env_sh9 NULL);
+ * nothing when far is absent. */
+static inline void tgi_ao_write_open_far(const tgi_gview *g, const tgi_gresult *out, size_t i,
+                                         const tgi_rgb *far, const tg_vec3 *env_sh9)
+{
+    tgi_ao_write_open(g, out, i);
+    if (tgi_rgb_present(far)) {
+        tg_vec3 e = tg_v3(0, 0, 0);
+        if (!tgi_gv_is_sky(g, i) && env_sh9) e = tgi_sh9_irradiance(env_sh9, tgi_gv_normal(g, i));
+        tgi_rgb_set(far, i, e);
+    }
+}
+
+/* The horizon techniques' view of pixel (x, y) (index i): view position
+ * *pv, view normal *nv, unit vector to the eye *vd; returns the world
+ * radius in pixels at its depth. */
+static inline tg_real tgi_ao_view_at(const tgi_gview *g, int x, int y, size_t i, tg_real radius,
+                                     tg_vec3 *pv, tg_vec3 *nv, tg_vec3 *vd)
+{
+    *pv = tgi_ao_unproject(g->camera, x, y, tgi_gv_depth(g, i));
+    *nv = tgi_ao_normal_view(g, i);
+    *vd = tgi_v3_normalize_or(tgi_v3_neg(*pv), tg_v3(0, 0, TG_R(-1.0f)));
+    return tg_div(tg_mul(radius, g->camera->pixels_per_unit), tgi_gv_depth(g, i));
 }
 
 /* Store a bent normal given in view space (any length) as a world unit

@@ -10,14 +10,13 @@
 
 #if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
 
+/* (far left out: all zero, an absent plane as tgi_rgb_none) */
+static const tgi_bentcone_params bentcone_defaults = { .samples = 8, .steps = 3, .radius = TG_ONE, .bias = TG_AO_DEFAULT_BIAS,
+    .env_sh9 = NULL };
+
 void tgi_bentcone_defaults(tgi_bentcone_params *p)
 {
-    p->samples = 8;
-    p->steps = 3;
-    p->radius = TG_ONE;
-    p->bias = TG_R(0.03f);
-    p->env_sh9 = 0;
-    p->far = tgi_rgb_none();
+    *p = bentcone_defaults;
 }
 
 tg_real tgi_bentcone_aperture(tg_real mean_length)
@@ -80,18 +79,13 @@ void tgi_bentcone_rows(const tgi_bentcone_params *p, const tgi_gview *g, const t
 {
     tg_vec3 dirs[TG_AO_MAX_SAMPLES];
     tgi_ao_rot rot[16];
-    int n = p->samples < 1 ? 1 : p->samples > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : p->samples, k, x, y;
+    int n = tgi_ao_count(p->samples), k, x, y;
     for (k = 0; k < n; k++) dirs[k] = tgi_ao_hemi_uniform(k, n);
     tgi_ao_rotations(rot);
     for (y = y0; y < y1; y++)
         for (x = 0; x < g->width; x++) {
             int i = (int)tgi_gv_index(g, x, y);
-            tgi_ao_write_open(g, out, i);
-            if (tgi_rgb_present(&p->far)) {
-                tg_vec3 e = tg_v3(0, 0, 0);
-                if (!tgi_gv_is_sky(g, i) && p->env_sh9) e = tgi_sh9_irradiance(p->env_sh9, tgi_gv_normal(g, i));
-                tgi_rgb_set(&p->far, i, e);
-            }
+            tgi_ao_write_open_far(g, out, i, &p->far, p->env_sh9);
             if (tgi_gv_is_sky(g, i) || p->radius <= 0) continue;
             bentcone_pixel(p, g, out, dirs, n, tgi_ao_rot_at(rot, x, y), x, y);
         }

@@ -282,13 +282,16 @@ static tg_real box_entry(const tgi_bvh_node *n, const bvh_ray *r, tg_real tmax)
     return tn;
 }
 
-int tgi_bvh_closest(const tgi_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax, tgi_ray_hit *hit)
+/* Walk the tree for the ray o + t d, t in [0, hit->t): every hit nearer
+ * than the nearest so far goes into *hit, children nearer first; with
+ * any_hit the first hit found ends the walk (children in tree order).
+ * 1 when it hit. */
+static inline int bvh_walk(const tgi_bvh *bvh, tg_vec3 o, tg_vec3 d, int any_hit, tgi_ray_hit *hit)
 {
     int32_t stack[TG_BVH_STACK];
     int sp = 0;
     bvh_ray r = ray_make(o, d);
-    hit->t = tmax; hit->u = hit->v = 0; hit->tri = -1;
-    if (bvh->node_count == 0 || box_entry(&bvh->nodes[0], &r, tmax) < 0) return 0;
+    if (bvh->node_count == 0 || box_entry(&bvh->nodes[0], &r, hit->t) < 0) return 0;
     stack[sp++] = 0;
     while (sp > 0) {
         const tgi_bvh_node *n = &bvh->nodes[stack[--sp]];
@@ -297,9 +300,13 @@ int tgi_bvh_closest(const tgi_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax, tgi_
             for (i = 0; i < n->count; i++) {
                 tg_real t, u, w;
                 if (tgi_bvh_tri_hit(&bvh->tris[n->first + i], o, d, hit->t, &t, &u, &w)) {
+                    if (any_hit) return 1;
                     hit->t = t; hit->u = u; hit->v = w; hit->tri = bvh->tri_index[n->first + i];
                 }
             }
+        } else if (any_hit) {
+            if (box_entry(&bvh->nodes[n->first], &r, hit->t) >= 0) stack[sp++] = n->first;
+            if (box_entry(&bvh->nodes[n->first + 1], &r, hit->t) >= 0) stack[sp++] = n->first + 1;
         } else {
             tg_real ta = box_entry(&bvh->nodes[n->first], &r, hit->t);
             tg_real tb = box_entry(&bvh->nodes[n->first + 1], &r, hit->t);
@@ -314,27 +321,17 @@ int tgi_bvh_closest(const tgi_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax, tgi_
     return hit->tri >= 0;
 }
 
+int tgi_bvh_closest(const tgi_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax, tgi_ray_hit *hit)
+{
+    hit->t = tmax; hit->u = hit->v = 0; hit->tri = -1;
+    return bvh_walk(bvh, o, d, 0, hit);
+}
+
 int tgi_bvh_occluded(const tgi_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax)
 {
-    int32_t stack[TG_BVH_STACK];
-    int sp = 0;
-    bvh_ray r = ray_make(o, d);
-    if (bvh->node_count == 0 || box_entry(&bvh->nodes[0], &r, tmax) < 0) return 0;
-    stack[sp++] = 0;
-    while (sp > 0) {
-        const tgi_bvh_node *n = &bvh->nodes[stack[--sp]];
-        if (n->count > 0) {
-            int i;
-            for (i = 0; i < n->count; i++) {
-                tg_real t, u, w;
-                if (tgi_bvh_tri_hit(&bvh->tris[n->first + i], o, d, tmax, &t, &u, &w)) return 1;
-            }
-        } else {
-            if (box_entry(&bvh->nodes[n->first], &r, tmax) >= 0) stack[sp++] = n->first;
-            if (box_entry(&bvh->nodes[n->first + 1], &r, tmax) >= 0) stack[sp++] = n->first + 1;
-        }
-    }
-    return 0;
+    tgi_ray_hit hit;
+    hit.t = tmax; hit.u = hit.v = 0; hit.tri = -1;
+    return bvh_walk(bvh, o, d, 1, &hit);
 }
 
 #define SHADOW_EPS_REL TG_R(0.00006103515625f) /* 2^-14 of a point's coordinates */

@@ -8,11 +8,11 @@
 
 #if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
 
+static const tgi_gtao_params gtao_defaults = { .slices = 4, .steps = 8, .radius = TG_ONE };
+
 void tgi_gtao_defaults(tgi_gtao_params *p)
 {
-    p->slices = 4;
-    p->steps = 8;
-    p->radius = TG_ONE;
+    *p = gtao_defaults;
 }
 
 typedef tgi_ao_slice_pixel gtao_pixel;   /* ao.h: view position, normal, eye vector, radius in pixels */
@@ -87,15 +87,11 @@ static void slice(const tgi_gtao_params *p, const tgi_gview *g, const gtao_pixel
 
 void tgi_gtao_rows(const tgi_gtao_params *p, const tgi_gview *g, const tgi_gresult *out, int y0, int y1)
 {
-    tg_real scos[TG_AO_MAX_SAMPLES], ssin[TG_AO_MAX_SAMPLES];
+    tg_vec3 dirs[TG_AO_MAX_SAMPLES];
     tgi_ao_rot rot[16];
-    int ns = p->slices < 1 ? 1 : p->slices > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : p->slices, k, x, y;
+    int ns = tgi_ao_count(p->slices), k, x, y;
     int shift = tgi_ao_unit_shift(p->radius);
-    for (k = 0; k < ns; k++) {                   /* slice angles over pi */
-        tg_real a = tg_mul(TG_PI, tg_ratio(k, ns));
-        scos[k] = tg_cos(a);
-        ssin[k] = tg_sin(a);
-    }
+    tgi_ao_circle(TG_PI, ns, dirs);              /* slice angles over pi */
     tgi_ao_rotations(rot);
     for (y = y0; y < y1; y++)
         for (x = 0; x < g->width; x++) {
@@ -107,15 +103,13 @@ void tgi_gtao_rows(const tgi_gtao_params *p, const tgi_gview *g, const tgi_gresu
             tgi_ao_write_open(g, out, i);
             if (tgi_gv_is_sky(g, i) || p->radius <= 0 || p->steps < 1) continue;
             px.x = x; px.y = y;
-            px.pv = tgi_ao_unproject(g->camera, x, y, tgi_gv_depth(g, i));
-            px.nv = tgi_ao_normal_view(g, i);
-            px.vd = tgi_v3_normalize_or(tgi_v3_neg(px.pv), tg_v3(0, 0, TG_R(-1.0f)));
-            px.r_px = tg_div(tg_mul(p->radius, g->camera->pixels_per_unit), tgi_gv_depth(g, i));
+            px.r_px = tgi_ao_view_at(g, x, y, i, p->radius, &px.pv, &px.nv, &px.vd);
             px.jitter = r->jitter;
             px.shift = shift;
-            for (k = 0; k < ns; k++)
-                slice(p, g, &px, tg_sub(tg_mul(r->c, scos[k]), tg_mul(r->s, ssin[k])),
-                      tg_add(tg_mul(r->s, scos[k]), tg_mul(r->c, ssin[k])), &vis, &open, &bent);
+            for (k = 0; k < ns; k++) {
+                tg_vec3 sd = tgi_ao_rotate_z(dirs[k], r->c, r->s);
+                slice(p, g, &px, sd.x, sd.y, &vis, &open, &bent);
+            }
             /* outer integral: the slice quadrature as a ratio to the same
              * quadrature of the open hemisphere (exact 1 on any plane) */
             tgi_gr_set_ao(out, i, open > 0 ? tg_saturate(tg_div(vis, open)) : TG_ONE);

@@ -8,12 +8,11 @@
 
 #if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
 
+static const tgi_hbao_params hbao_defaults = { .directions = 8, .steps = 6, .radius = TG_ONE, .angle_bias = TG_R(0.05f) };
+
 void tgi_hbao_defaults(tgi_hbao_params *p)
 {
-    p->directions = 8;
-    p->steps = 6;
-    p->radius = TG_ONE;
-    p->angle_bias = TG_R(0.05f);
+    *p = hbao_defaults;
 }
 
 /* Occlusion (sin h - sin t) W of one screen direction (sdx, sdy). */
@@ -62,15 +61,10 @@ static tg_real direction_occlusion(const tgi_hbao_params *p, const tgi_gview *g,
 
 void tgi_hbao_rows(const tgi_hbao_params *p, const tgi_gview *g, const tgi_gresult *out, int y0, int y1)
 {
-    tg_real dcos[TG_AO_MAX_SAMPLES], dsin[TG_AO_MAX_SAMPLES];
+    tg_vec3 dirs[TG_AO_MAX_SAMPLES];
     tgi_ao_rot rot[16];
-    int nd = p->directions < 1 ? 1 : p->directions > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : p->directions;
-    int k, x, y;
-    for (k = 0; k < nd; k++) {
-        tg_real a = tg_mul(TG_TWO_PI, tg_ratio(k, nd));
-        dcos[k] = tg_cos(a);
-        dsin[k] = tg_sin(a);
-    }
+    int nd = tgi_ao_count(p->directions), k, x, y;
+    tgi_ao_circle(TG_TWO_PI, nd, dirs);
     tgi_ao_rotations(rot);
     for (y = y0; y < y1; y++)
         for (x = 0; x < g->width; x++) {
@@ -80,15 +74,11 @@ void tgi_hbao_rows(const tgi_hbao_params *p, const tgi_gview *g, const tgi_gresu
             tg_real r_px, occ = 0;
             tgi_ao_write_open(g, out, i);
             if (tgi_gv_is_sky(g, i) || p->radius <= 0 || p->steps < 1) continue;
-            pv = tgi_ao_unproject(g->camera, x, y, tgi_gv_depth(g, i));
-            nv = tgi_ao_normal_view(g, i);
-            vd = tgi_v3_normalize_or(tgi_v3_neg(pv), tg_v3(0, 0, TG_R(-1.0f)));
-            r_px = tg_div(tg_mul(p->radius, g->camera->pixels_per_unit), tgi_gv_depth(g, i));
+            r_px = tgi_ao_view_at(g, x, y, i, p->radius, &pv, &nv, &vd);
             if (r_px < TG_ONE) continue;                     /* the radius covers less than a pixel */
             for (k = 0; k < nd; k++) {
-                tg_real sdx = tg_sub(tg_mul(r->c, dcos[k]), tg_mul(r->s, dsin[k]));
-                tg_real sdy = tg_add(tg_mul(r->s, dcos[k]), tg_mul(r->c, dsin[k]));
-                occ = tg_add(occ, direction_occlusion(p, g, pv, nv, vd, sdx, sdy, r_px, r->jitter, x, y));
+                tg_vec3 sd = tgi_ao_rotate_z(dirs[k], r->c, r->s);
+                occ = tg_add(occ, direction_occlusion(p, g, pv, nv, vd, sd.x, sd.y, r_px, r->jitter, x, y));
             }
             tgi_gr_set_ao(out, i, tg_saturate(tg_sub(TG_ONE, tg_div(occ, tg_from_int(nd))))); /* RTR eq. 11.17 */
         }

@@ -22,6 +22,15 @@ void tgi_ao_rotations(tgi_ao_rot rot[16])
     }
 }
 
+void tgi_ao_circle(tg_real span, int n, tg_vec3 dirs[])
+{
+    int k;
+    for (k = 0; k < n; k++) {
+        tg_real a = tg_mul(span, tg_ratio(k, n));
+        dirs[k] = tg_v3(tg_cos(a), tg_sin(a), 0);
+    }
+}
+
 tg_real tgi_ao_golden_frac(int i)
 {
     /* i * 2^32 / phi, wrapped: the fractional part of i / phi in 32 bits

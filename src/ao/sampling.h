@@ -16,6 +16,18 @@
 
 #define TG_AO_MAX_SAMPLES 64   /* per-pixel kernels of the screen-space passes */
 
+/* A per-pixel count (samples, directions, slices) clamped to
+ * 1..TG_AO_MAX_SAMPLES. */
+static inline int tgi_ao_count(int n)
+{
+    return n < 1 ? 1 : n > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : n;
+}
+
+/* n directions in the plane z = 0 at angles span k / n, k = 0..n-1 (HBAO's
+ * directions over 2 pi, GTAO's slices over pi); tgi_ao_rotate_z turns one
+ * by a pixel's rotation. */
+void tgi_ao_circle(tg_real span, int n, tg_vec3 dirs[]);
+
 /* Rotation (cos, sin) and a jitter in (0, 1) for one cell of the 4x4
  * interleaved pattern. */
 typedef struct tgi_ao_rot { tg_real c, s, jitter; } tgi_ao_rot;

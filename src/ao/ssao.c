@@ -8,15 +8,13 @@
 
 #if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
 
+static const tgi_ssao_params ssao_defaults = { .samples = 16, .radius = TG_ONE, .variant = TG_SSAO_HEMISPHERE, .bias = TG_AO_DEFAULT_BIAS };
+
 void tgi_ssao_defaults(tgi_ssao_params *p)
 {
-    p->samples = 16;
-    p->radius = TG_ONE;
-    p->variant = TG_SSAO_HEMISPHERE;
-    p->bias = TG_R(0.03f);
+    *p = ssao_defaults;
 }
 
-static int clamp_samples(int n) { return n < 1 ? 1 : n > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : n; }
 
 /* Kernel of unit-ball offsets (local frame) and their unit directions. */
 static int make_kernel(int variant, int n, tg_vec3 *off, tg_vec3 *dir)
@@ -105,7 +103,7 @@ void tgi_ssao_rows(const tgi_ssao_params *p, const tgi_gview *g, const tgi_gresu
 {
     tg_vec3 off[TG_AO_MAX_SAMPLES], dir[TG_AO_MAX_SAMPLES];
     tgi_ao_rot rot[16];
-    int n = make_kernel(p->variant, clamp_samples(p->samples), off, dir), x, y;
+    int n = make_kernel(p->variant, tgi_ao_count(p->samples), off, dir), x, y;
     tgi_ao_rotations(rot);
     for (y = y0; y < y1; y++)
         for (x = 0; x < g->width; x++) {

@@ -11,18 +11,13 @@
 
 #if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
 
+/* (far and light left out: all zero, absent planes as tgi_rgb_none) */
+static const tgi_ssdo_params ssdo_defaults = { .samples = 16, .radius = TG_ONE, .bias = TG_AO_DEFAULT_BIAS, .bounce = TG_ONE,
+    .env_sh9 = NULL, .lights = NULL, .light_count = 0, .light_steps = 4 };
+
 void tgi_ssdo_defaults(tgi_ssdo_params *p)
 {
-    p->samples = 16;
-    p->radius = TG_ONE;
-    p->bias = TG_R(0.03f);
-    p->bounce = TG_ONE;
-    p->env_sh9 = 0;
-    p->far = tgi_rgb_none();
-    p->lights = 0;
-    p->light_count = 0;
-    p->light_steps = 4;
-    p->light = tgi_rgb_none();
+    *p = ssdo_defaults;
 }
 
 /* Lights with directional occlusion: each light is one more sample
@@ -118,7 +113,7 @@ void tgi_ssdo_rows(const tgi_ssdo_params *p, const tgi_gview *g, const tgi_rgb *
     tg_vec3 dirs[TG_AO_MAX_SAMPLES];
     tg_real steps[TG_AO_MAX_SAMPLES];
     tgi_ao_rot rot[16];
-    int n = p->samples < 1 ? 1 : p->samples > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : p->samples, k, x, y;
+    int n = tgi_ao_count(p->samples), k, x, y;
     for (k = 0; k < n; k++) {
         dirs[k] = tgi_ao_hemi_uniform(k, n);               /* uniform over the hemisphere (Ritschel sec. 3) */
         /* lambda in (0, 1]: van der Corput, decorrelated from the spiral; +1/32 jitter per pixel */
@@ -128,12 +123,7 @@ void tgi_ssdo_rows(const tgi_ssdo_params *p, const tgi_gview *g, const tgi_rgb *
     for (y = y0; y < y1; y++)
         for (x = 0; x < g->width; x++) {
             int i = (int)tgi_gv_index(g, x, y);
-            tgi_ao_write_open(g, out, i);
-            if (tgi_rgb_present(&p->far)) {
-                tg_vec3 e = tg_v3(0, 0, 0);
-                if (!tgi_gv_is_sky(g, i) && p->env_sh9) e = tgi_sh9_irradiance(p->env_sh9, tgi_gv_normal(g, i));
-                tgi_rgb_set(&p->far, i, e);
-            }
+            tgi_ao_write_open_far(g, out, i, &p->far, p->env_sh9);
             if (tgi_rgb_present(&p->light)) { tgi_rgb_set(&p->light, i, tg_v3(0, 0, 0)); }
             if (tgi_gv_is_sky(g, i)) continue;
             if (p->radius <= 0) {                               /* nothing occludes */

@@ -9,12 +9,11 @@
 
 #if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
 
+static const tgi_ssilvb_params ssilvb_defaults = { .slices = 4, .steps = 8, .radius = TG_ONE, .thickness = TG_R(0.5f) };
+
 void tgi_ssilvb_defaults(tgi_ssilvb_params *p)
 {
-    p->slices = 4;
-    p->steps = 8;
-    p->radius = TG_ONE;
-    p->thickness = TG_R(0.5f);
+    *p = ssilvb_defaults;
 }
 
 int tgi_ssilvb_popcount(uint32_t b)
@@ -151,17 +150,13 @@ static void march(const tgi_ssilvb_params *p, const tgi_gview *g, const tgi_rgb 
 void tgi_ssilvb_rows(const tgi_ssilvb_params *p, const tgi_gview *g, const tgi_rgb *radiance,
                      const tgi_gresult *out, int y0, int y1)
 {
-    tg_real scos[TG_AO_MAX_SAMPLES], ssin[TG_AO_MAX_SAMPLES];
+    tg_vec3 dirs[TG_AO_MAX_SAMPLES];
     tgi_ao_rot rot[16];
-    int ns = p->slices < 1 ? 1 : p->slices > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : p->slices, k, x, y;
+    int ns = tgi_ao_count(p->slices), k, x, y;
     int shift = tgi_ao_unit_shift(p->radius);
     int want_near = tgi_gr_has_near(out) && tgi_rgb_present(radiance);
     tg_real sector = tg_div(TG_PI, tg_from_int(TG_SSILVB_SECTORS));
-    for (k = 0; k < ns; k++) {                   /* slice angles over pi */
-        tg_real a = tg_mul(TG_PI, tg_ratio(k, ns));
-        scos[k] = tg_cos(a);
-        ssin[k] = tg_sin(a);
-    }
+    tgi_ao_circle(TG_PI, ns, dirs);              /* slice angles over pi, as GTAO's */
     tgi_ao_rotations(rot);
     for (y = y0; y < y1; y++)
         for (x = 0; x < g->width; x++) {
@@ -173,10 +168,7 @@ void tgi_ssilvb_rows(const tgi_ssilvb_params *p, const tgi_gview *g, const tgi_r
             tgi_ao_write_open(g, out, i);
             if (tgi_gv_is_sky(g, i) || p->radius <= 0 || p->steps < 1) continue;
             px.s.x = x; px.s.y = y;
-            px.s.pv = tgi_ao_unproject(g->camera, x, y, tgi_gv_depth(g, i));
-            px.s.nv = tgi_ao_normal_view(g, i);
-            px.s.vd = tgi_v3_normalize_or(tgi_v3_neg(px.s.pv), tg_v3(0, 0, TG_R(-1.0f)));
-            px.s.r_px = tg_div(tg_mul(p->radius, g->camera->pixels_per_unit), tgi_gv_depth(g, i));
+            px.s.r_px = tgi_ao_view_at(g, x, y, i, p->radius, &px.s.pv, &px.s.nv, &px.s.vd);
             px.s.jitter = r->jitter;
             px.s.shift = shift;
             px.rs = tg_ldexp(p->radius, shift);
@@ -186,8 +178,8 @@ void tgi_ssilvb_rows(const tgi_ssilvb_params *p, const tgi_gview *g, const tgi_r
              * within 1/64 rad of pi) and keeps |h_b|^2 inside Q16.16 */
             px.thick = tg_min(tg_ldexp(tg_max(p->thickness, 0), shift), tg_mul(px.rs, TG_R(64.0f)));
             for (k = 0; k < ns; k++) {
-                tg_real sdx = tg_sub(tg_mul(r->c, scos[k]), tg_mul(r->s, ssin[k]));
-                tg_real sdy = tg_add(tg_mul(r->s, scos[k]), tg_mul(r->c, ssin[k]));
+                tg_vec3 sd = tgi_ao_rotate_z(dirs[k], r->c, r->s);
+                tg_real sdx = sd.x, sdy = sd.y;
                 tg_real bs = 0, bc = 0, w;
                 tgi_ao_slice f;
                 vb_slice sl;

@@ -9,13 +9,11 @@
 
 #if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
 
+static const tgi_vo_params vo_defaults = { .samples = 9, .radius = TG_ONE, .thickness = 0, .use_normal = 1, .area = 0 };
+
 void tgi_vo_defaults(tgi_vo_params *p)
 {
-    p->samples = 9;
-    p->radius = TG_ONE;
-    p->thickness = 0;
-    p->use_normal = 1;
-    p->area = 0;
+    *p = vo_defaults;
 }
 
 /* Integral over [lo, hi] of the visibility g: 1 for z <= z0, falling
@@ -140,7 +138,7 @@ void tgi_vo_rows(const tgi_vo_params *p, const tgi_gview *g, const tgi_gresult *
 {
     tg_real dx[TG_AO_MAX_SAMPLES], dy[TG_AO_MAX_SAMPLES], zs[TG_AO_MAX_SAMPLES];
     tgi_ao_rot rot[16];
-    int n = p->samples < 1 ? 1 : p->samples > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : p->samples, k, x, y;
+    int n = tgi_ao_count(p->samples), k, x, y;
     /* centrally symmetric line pattern: the centre when n is odd, then
      * +- pairs of a Vogel spiral; a tilted plane's depth is linear in x, y,
      * so its errors cancel pairwise (Loos and Sloan sec. 4.5 note the best

@@ -27,11 +27,6 @@
 #include "../light/direct.h"
 
 #if !TG_NO_TECHNIQUES /* the techniques' passes (tinygi.h "FEATURE SWITCHES") */
-static int technique_samples(int n)
-{
-    return n < 1 ? 1 : n > TG_AO_MAX_SAMPLES ? TG_AO_MAX_SAMPLES : n;
-}
-
 /* The environment's SH9 when the plan has a far field, else NULL. */
 static const tg_vec3 *far_sh(const tg_frame *f)
 {
@@ -42,7 +37,7 @@ void tgi_pass_ssao(tg_frame *f, int y0, int y1)
 {
     tgi_ssao_params p;
     tgi_ssao_defaults(&p);
-    p.samples = technique_samples(f->request.samples);
+    p.samples = tgi_ao_count(f->request.samples);
     p.radius = f->request.radius;
     tgi_ssao_rows(&p, &f->full, &f->res, y0, y1);
 }
@@ -51,7 +46,7 @@ void tgi_pass_vo(tg_frame *f, int y0, int y1)
 {
     tgi_vo_params p;
     tgi_vo_defaults(&p);
-    p.samples = technique_samples(f->request.samples);
+    p.samples = tgi_ao_count(f->request.samples);
     p.radius = f->request.radius;
     tgi_vo_rows(&p, &f->full, &f->res, y0, y1);
 }
@@ -60,8 +55,8 @@ void tgi_pass_hbao(tg_frame *f, int y0, int y1)
 {
     tgi_hbao_params p;
     tgi_hbao_defaults(&p);
-    p.directions = technique_samples(2 * f->request.slices);
-    p.steps = technique_samples(f->request.samples);
+    p.directions = tgi_ao_count(2 * f->request.slices);
+    p.steps = tgi_ao_count(f->request.samples);
     p.radius = f->request.radius;
     tgi_hbao_rows(&p, &f->full, &f->res, y0, y1);
 }
@@ -70,8 +65,8 @@ void tgi_pass_gtao(tg_frame *f, int y0, int y1)
 {
     tgi_gtao_params p;
     tgi_gtao_defaults(&p);
-    p.slices = technique_samples(f->request.slices);
-    p.steps = technique_samples(f->request.samples);
+    p.slices = tgi_ao_count(f->request.slices);
+    p.steps = tgi_ao_count(f->request.samples);
     p.radius = f->request.radius;
     tgi_gtao_rows(&p, &f->full, &f->res, y0, y1);
 }
@@ -80,8 +75,8 @@ void tgi_pass_ssilvb(tg_frame *f, int y0, int y1)
 {
     tgi_ssilvb_params p;
     tgi_ssilvb_defaults(&p);
-    p.slices = technique_samples(f->request.slices);
-    p.steps = technique_samples(f->request.samples);
+    p.slices = tgi_ao_count(f->request.slices);
+    p.steps = tgi_ao_count(f->request.samples);
     p.radius = f->request.radius;
     p.thickness = f->request.thickness;
     tgi_ssilvb_rows(&p, &f->full, tgi_frame_source(f), &f->res, y0, y1);
@@ -91,7 +86,7 @@ void tgi_pass_ssdo(tg_frame *f, int y0, int y1)
 {
     tgi_ssdo_params p;
     tgi_ssdo_defaults(&p);
-    p.samples = technique_samples(f->request.samples);
+    p.samples = tgi_ao_count(f->request.samples);
     p.radius = f->request.radius;
     p.env_sh9 = far_sh(f);
     if (p.env_sh9) p.far = f->far;
@@ -102,7 +97,7 @@ void tgi_pass_bentcone(tg_frame *f, int y0, int y1)
 {
     tgi_bentcone_params p;
     tgi_bentcone_defaults(&p);
-    p.samples = technique_samples(f->request.samples);
+    p.samples = tgi_ao_count(f->request.samples);
     p.radius = f->request.radius;
     p.env_sh9 = far_sh(f);
     if (p.env_sh9) p.far = f->far;

@@ -136,15 +136,19 @@ enum {
                                       without history (the rows so marked are contiguous) */
 };
 
+/* A pass's function: over rows [y0, y1) (row-parallel: any split of the
+ * rows gives the same output), or a whole-image step. */
+typedef void tgi_pass_rows_fn(tg_frame *f, int y0, int y1);
+typedef void tgi_pass_step_fn(tg_frame *f);
+
 typedef struct tgi_pass {
     const char *name;                      /* what it computes, in the papers' words */
     int (*needed)(const tg_frame *f);      /* does the plan call for it (f->plan, effects, needs) */
     uint32_t buffers;                      /* TGI_BUF() of every group it reads or writes */
     uint32_t when;                         /* TGI_ON_* and TGI_BOUNCE flags */
     int rows;                              /* enum tgi_pass_rows */
-    void (*run_rows)(tg_frame *f, int y0, int y1);  /* row-parallel: any split of the
-                                                       rows gives the same output */
-    void (*run)(tg_frame *f);              /* TGI_SERIAL */
+    tgi_pass_rows_fn *run_rows;            /* TGI_ROWS_IMAGE, TGI_ROWS_KERNEL */
+    tgi_pass_step_fn *run;                 /* TGI_SERIAL */
 } tgi_pass;
 
 /* The table (passes.c), in the order the passes run. */

@@ -264,20 +264,27 @@ static void group_reproject(layout *l, tg_frame *f)
     (void)l; (void)f;
 }
 
-/* This frame's results at the kernel's resolution (the near field, at full
- * resolution, in a radiance slot). */
-static void group_results(layout *l, tg_frame *f)
+/* Result set k (0 this frame's, 1 last frame's) at the kernel's
+ * resolution: at quarter resolution with its near field, at full
+ * resolution without (the near field is in a radiance slot there). */
+static void take_result_set(layout *l, tg_frame *f, int k, const char *quarter_what, const char *full_what)
 {
     int w, h;
     size_t n;
-    if (!(f->needs & TG_NEED_GI_PASS)) return;
     kernel_size(f, &w, &h, &n);
     if (tgi_frame_quarter(f))
-        take_results(l, &f->half_set[0], n, bent_needed(f), near_field(f),
-                     "quarter-res kernel results: AO [" FMT_AO "], bent [" FMT_BENT "], near [" FMT_RGB "]");
+        take_results(l, &f->half_set[k], n, bent_needed(f), near_field(f), quarter_what);
     else
-        take_results(l, &f->set[0], n, bent_needed(f), 0, bent_needed(f) ? "kernel results: AO [" FMT_AO "], bent normal [" FMT_BENT "]"
-                                                                          : "kernel results: AO [" FMT_AO "]");
+        take_results(l, &f->set[k], n, bent_needed(f), 0, full_what);
+}
+
+/* This frame's results at the kernel's resolution. */
+static void group_results(layout *l, tg_frame *f)
+{
+    if (!(f->needs & TG_NEED_GI_PASS)) return;
+    take_result_set(l, f, 0, "quarter-res kernel results: AO [" FMT_AO "], bent [" FMT_BENT "], near [" FMT_RGB "]",
+                    bent_needed(f) ? "kernel results: AO [" FMT_AO "], bent normal [" FMT_BENT "]"
+                                   : "kernel results: AO [" FMT_AO "]");
 }
 
 static void group_half(layout *l, tg_frame *f)
@@ -308,15 +315,9 @@ static void group_filter(layout *l, tg_frame *f)
  * resolution, in the other radiance slot). */
 static void group_temporal(layout *l, tg_frame *f)
 {
-    int w, h;
-    size_t n;
     if (!(f->needs & TG_NEED_TEMPORAL)) return;
-    kernel_size(f, &w, &h, &n);
-    if (tgi_frame_quarter(f))
-        take_results(l, &f->half_set[1], n, bent_needed(f), near_field(f),
-                     "quarter-res results of last frame (temporal accumulation)");
-    else
-        take_results(l, &f->set[1], n, bent_needed(f), 0, "kernel results of last frame (temporal accumulation)");
+    take_result_set(l, f, 1, "quarter-res results of last frame (temporal accumulation)",
+                    "kernel results of last frame (temporal accumulation)");
 }
 
 static void group_bvh(layout *l, tg_frame *f)

@@ -14,17 +14,29 @@ static const char *const technique_names[TG_TECH_COUNT] = {
     "hbil", "gtao", "hbao", "ssao", "vo", "ssdo", "bentcone", "reference", "pathtrace", "ssilvb"
 };
 
+/* Name i of a table of count names ("?" outside it), and the index of a
+ * name in it (-1 when absent). */
+static const char *name_at(const char *const *names, int count, int i)
+{
+    return (unsigned)i < (unsigned)count ? names[i] : "?";
+}
+
+static int name_index(const char *const *names, int count, const char *name)
+{
+    int i;
+    for (i = 0; i < count; i++)
+        if (strcmp(name, names[i]) == 0) return i;
+    return -1;
+}
+
 const char *tg_aov_name(tg_aov aov)
 {
-    return (unsigned)aov < TG_AOV_COUNT ? aov_names[aov] : "?";
+    return name_at(aov_names, TG_AOV_COUNT, (int)aov);
 }
 
 int tg_aov_from_name(const char *name)
 {
-    int i;
-    for (i = 0; i < TG_AOV_COUNT; i++)
-        if (strcmp(name, aov_names[i]) == 0) return i;
-    return -1;
+    return name_index(aov_names, TG_AOV_COUNT, name);
 }
 
 int tg_aov_channels(tg_aov aov)
@@ -37,13 +49,10 @@ int tg_aov_channels(tg_aov aov)
 
 const char *tg_technique_name(tg_technique t)
 {
-    return (unsigned)t < TG_TECH_COUNT ? technique_names[t] : "?";
+    return name_at(technique_names, TG_TECH_COUNT, (int)t);
 }
 
 int tg_technique_from_name(const char *name)
 {
-    int i;
-    for (i = 0; i < TG_TECH_COUNT; i++)
-        if (strcmp(name, technique_names[i]) == 0) return i;
-    return -1;
+    return name_index(technique_names, TG_TECH_COUNT, name);
 }

@@ -16,34 +16,14 @@
 
 /* ---- the pass functions (one file per family: camera.c, rasterize.c,
  * lighting.c, reprojection.c, hbil_passes.c, resolve.c, compare.c) ---- */
-void tgi_pass_animate(tg_frame *f);
-void tgi_pass_gbuffer(tg_frame *f, int y0, int y1);
-void tgi_pass_motion(tg_frame *f, int y0, int y1);
-void tgi_pass_depth_range(tg_frame *f);
-void tgi_pass_shadow_maps(tg_frame *f);
-void tgi_pass_direct(tg_frame *f, int y0, int y1);
-void tgi_pass_reproject(tg_frame *f, int y0, int y1);
-void tgi_pass_push_pull(tg_frame *f);
-void tgi_pass_reference_bvh(tg_frame *f);
-void tgi_pass_downsample(tg_frame *f, int y0, int y1);
-void tgi_pass_hbil_interleaved(tg_frame *f, int y0, int y1);
-void tgi_pass_hbil_full(tg_frame *f, int y0, int y1);
-void tgi_pass_temporal(tg_frame *f, int y0, int y1);
-void tgi_pass_filter_quarter(tg_frame *f, int y0, int y1);
-void tgi_pass_ssao(tg_frame *f, int y0, int y1);
-void tgi_pass_vo(tg_frame *f, int y0, int y1);
-void tgi_pass_hbao(tg_frame *f, int y0, int y1);
-void tgi_pass_gtao(tg_frame *f, int y0, int y1);
-void tgi_pass_ssilvb(tg_frame *f, int y0, int y1);
-void tgi_pass_ssdo(tg_frame *f, int y0, int y1);
-void tgi_pass_bentcone(tg_frame *f, int y0, int y1);
-void tgi_pass_reference(tg_frame *f, int y0, int y1);
-void tgi_pass_pathtrace_setup(tg_frame *f);
-void tgi_pass_pathtrace(tg_frame *f, int y0, int y1);
+tgi_pass_step_fn tgi_pass_animate, tgi_pass_depth_range, tgi_pass_shadow_maps, tgi_pass_push_pull,
+    tgi_pass_reference_bvh, tgi_pass_pathtrace_setup;
+tgi_pass_rows_fn tgi_pass_gbuffer, tgi_pass_motion, tgi_pass_direct, tgi_pass_reproject,
+    tgi_pass_downsample, tgi_pass_hbil_interleaved, tgi_pass_hbil_full, tgi_pass_temporal,
+    tgi_pass_filter_quarter, tgi_pass_ssao, tgi_pass_vo, tgi_pass_hbao, tgi_pass_gtao, tgi_pass_ssilvb, tgi_pass_ssdo,
+    tgi_pass_bentcone, tgi_pass_reference, tgi_pass_pathtrace, tgi_pass_resolve, tgi_pass_keep_history;
 /* A left-out feature (tinygi.h "FEATURE SWITCHES") has no rows below, so
  * nothing refers to its passes and the linker leaves them out. */
-void tgi_pass_resolve(tg_frame *f, int y0, int y1);
-void tgi_pass_keep_history(tg_frame *f, int y0, int y1);
 
 /* ---- when the plan needs them ---- */
 static int always(const tg_frame *f) { (void)f; return 1; }

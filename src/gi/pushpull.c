@@ -78,39 +78,10 @@ size_t tgi_pushpull_bytes(int w, int h)
     return bytes;
 }
 
-/* Level 1 from the image: the mean of each 2x2 block's values (weight 1
- * when it has one). */
-static void push_image(const tgi_rgb *c, int w, int h, const pp_level *l1)
-{
-    int x, y, dx, dy;
-    for (y = 0; y < l1->h; y++)
-        for (x = 0; x < l1->w; x++) {
-            tg_vec3 s = tg_v3(0, 0, 0);
-            int count = 0;
-            size_t o = (size_t)y * (size_t)l1->w + (size_t)x;
-            for (dy = 0; dy < 2; dy++)
-                for (dx = 0; dx < 2; dx++) {
-                    int fx = 2 * x + dx, fy = 2 * y + dy;
-                    size_t j;
-                    if (fx >= w || fy >= h) continue;
-                    j = (size_t)fy * (size_t)w + (size_t)fx;
-                    if (tgi_rgb_is_hole(c, j)) continue;
-                    s = tgi_v3_add(s, tgi_rgb_get(c, j));
-                    count++;
-                }
-            if (count) {
-                tg_real inv = tg_div(TG_ONE, tg_from_int(count));
-                tgi_rgb_set(&l1->c, o, tgi_v3_scale(s, inv));
-                weight_set(l1->wt, o, TG_ONE);
-            } else {
-                tgi_rgb_set(&l1->c, o, tg_v3(0, 0, 0));
-                weight_set(l1->wt, o, 0);
-            }
-        }
-}
-
-/* Push one level: a 2x2 box over the weighted texels of the finer level. */
-static void push_level(const pp_level *fine, const pp_level *coarse)
+/* Push one level: a 2x2 box over the weighted texels of the finer w x h
+ * level, its values c and weights wt.  Level 0, the image, has no weights
+ * (wt NULL): a value weighs 1, a hole 0, and the value enters unscaled. */
+static void push_level(const tgi_rgb *c, const pp_weight *wt, int w, int h, const pp_level *coarse)
 {
     int x, y, dx, dy;
     for (y = 0; y < coarse->h; y++)
@@ -122,12 +93,18 @@ static void push_level(const pp_level *fine, const pp_level *coarse)
                 for (dx = 0; dx < 2; dx++) {
                     int fx = 2 * x + dx, fy = 2 * y + dy;
                     size_t t;
-                    tg_real wt;
-                    if (fx >= fine->w || fy >= fine->h) continue;
-                    t = (size_t)fy * (size_t)fine->w + (size_t)fx;
-                    wt = weight_get(fine->wt, t);
-                    s = tgi_v3_add(s, tgi_v3_scale(tgi_rgb_get(&fine->c, t), wt));
-                    sw = tg_add(sw, wt);
+                    tg_real wf = TG_ONE;
+                    if (fx >= w || fy >= h) continue;
+                    t = (size_t)fy * (size_t)w + (size_t)fx;
+                    if (wt) {
+                        wf = weight_get(wt, t);
+                        s = tgi_v3_add(s, tgi_v3_scale(tgi_rgb_get(c, t), wf));
+                    } else if (tgi_rgb_is_hole(c, t)) {
+                        continue;
+                    } else {
+                        s = tgi_v3_add(s, tgi_rgb_get(c, t));
+                    }
+                    sw = tg_add(sw, wf);
                 }
             if (sw > 0) {
                 tgi_rgb_set(&coarse->c, o, tgi_v3_scale(s, tg_div(TG_ONE, sw)));   /* weighted mean */
@@ -188,8 +165,8 @@ void tgi_pushpull_fill(int w, int h, const tgi_rgb *c, void *scratch)
         return;
     }
     nl = levels_layout(w, h, (unsigned char *)scratch, lv, &bytes);
-    push_image(c, w, h, &lv[0]);
-    for (k = 1; k < nl; k++) push_level(&lv[k - 1], &lv[k]);
+    push_level(c, NULL, w, h, &lv[0]);
+    for (k = 1; k < nl; k++) push_level(&lv[k - 1].c, lv[k - 1].wt, lv[k - 1].w, lv[k - 1].h, &lv[k]);
     /* the coarsest texel: what weight it has, over black */
     if (weight_get(lv[nl - 1].wt, 0) < TG_ONE) {
         tgi_rgb_set(&lv[nl - 1].c, 0, tgi_v3_scale(tgi_rgb_get(&lv[nl - 1].c, 0), weight_get(lv[nl - 1].wt, 0)));

@@ -16,6 +16,16 @@ static void *part(unsigned char *base, size_t *at, size_t n, size_t size)
     return p;
 }
 
+#if TG_WIDE_STORAGE
+/* A vector plane stored wide: three tg_real planes x, y, z of n elements. */
+static void part_vec3(unsigned char *base, size_t *at, size_t n, tg_real **x, tg_real **y, tg_real **z)
+{
+    *x = (tg_real *)part(base, at, n, sizeof(tg_real));
+    *y = (tg_real *)part(base, at, n, sizeof(tg_real));
+    *z = (tg_real *)part(base, at, n, sizeof(tg_real));
+}
+#endif
+
 size_t tgi_gbuffer_carve(tgi_gbuffer *g, int w, int h, void *mem)
 {
     unsigned char *base = (unsigned char *)mem;
@@ -25,9 +35,7 @@ size_t tgi_gbuffer_carve(tgi_gbuffer *g, int w, int h, void *mem)
     g->height = h;
 #if TG_WIDE_STORAGE
     g->depth = (tg_real *)part(base, &at, n, sizeof(tg_real));
-    g->nx = (tg_real *)part(base, &at, n, sizeof(tg_real));
-    g->ny = (tg_real *)part(base, &at, n, sizeof(tg_real));
-    g->nz = (tg_real *)part(base, &at, n, sizeof(tg_real));
+    part_vec3(base, &at, n, &g->nx, &g->ny, &g->nz);
     g->material = (uint16_t *)part(base, &at, n, sizeof(uint16_t));
 #else
     g->depth = (uint32_t *)part(base, &at, n, sizeof(uint32_t));
@@ -58,9 +66,7 @@ size_t tgi_rgb_carve(tgi_rgb *c, size_t n, void *mem)
     size_t at = 0;
     *c = tgi_rgb_none();
 #if TG_WIDE_STORAGE
-    c->r = (tg_real *)part(base, &at, n, sizeof(tg_real));
-    c->g = (tg_real *)part(base, &at, n, sizeof(tg_real));
-    c->b = (tg_real *)part(base, &at, n, sizeof(tg_real));
+    part_vec3(base, &at, n, &c->r, &c->g, &c->b);
 #else
     c->p = (uint32_t *)part(base, &at, n, sizeof(uint32_t));
 #endif
@@ -74,11 +80,7 @@ size_t tgi_gresult_carve(tgi_gresult *r, size_t n, int bent, int cone, int near,
     memset(r, 0, sizeof *r);
 #if TG_WIDE_STORAGE
     r->ao = (tg_real *)part(base, &at, n, sizeof(tg_real));
-    if (bent) {
-        r->bent_x = (tg_real *)part(base, &at, n, sizeof(tg_real));
-        r->bent_y = (tg_real *)part(base, &at, n, sizeof(tg_real));
-        r->bent_z = (tg_real *)part(base, &at, n, sizeof(tg_real));
-    }
+    if (bent) part_vec3(base, &at, n, &r->bent_x, &r->bent_y, &r->bent_z);
     if (cone) r->cone = (tg_real *)part(base, &at, n, sizeof(tg_real));
 #else
     r->ao = (uint8_t *)part(base, &at, n, 1);
@@ -95,9 +97,7 @@ size_t tgi_prev_carve(tgi_prev_geometry *h, size_t n, void *mem)
     size_t at = 0;
 #if TG_WIDE_STORAGE
     h->depth = (tg_real *)part(base, &at, n, sizeof(tg_real));
-    h->nx = (tg_real *)part(base, &at, n, sizeof(tg_real));
-    h->ny = (tg_real *)part(base, &at, n, sizeof(tg_real));
-    h->nz = (tg_real *)part(base, &at, n, sizeof(tg_real));
+    part_vec3(base, &at, n, &h->nx, &h->ny, &h->nz);
 #else
     h->dn = (uint32_t *)part(base, &at, n, sizeof(uint32_t));
 #endif

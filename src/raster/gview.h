@@ -256,14 +256,22 @@ static inline tg_vec3 tgi_rgb_get(const tgi_rgb *c, size_t i)
 #endif
     return v;
 }
+#if TG_WIDE_STORAGE
+/* A vector stored wide, three tg_real planes, moved on to index `start`
+ * (absent planes stay absent). */
+static inline void tgi_real3_from(tg_real **x, tg_real **y, tg_real **z, size_t start)
+{
+    *x = *x ? *x + start : NULL;
+    *y = *y ? *y + start : NULL;
+    *z = *z ? *z + start : NULL;
+}
+#endif
 /* The plane seen from index `start` on (absent stays absent). */
 static inline tgi_rgb tgi_rgb_from(const tgi_rgb *c, size_t start)
 {
     tgi_rgb s = *c;
 #if TG_WIDE_STORAGE
-    s.r = c->r ? c->r + start : NULL;
-    s.g = c->g ? c->g + start : NULL;
-    s.b = c->b ? c->b + start : NULL;
+    tgi_real3_from(&s.r, &s.g, &s.b, start);
 #else
     s.p = c->p ? c->p + start : NULL;
 #endif
@@ -422,12 +430,10 @@ static inline void tgi_gr_put(const tgi_gresult *r, size_t i, const tgi_gr_value
 /* The results seen from index `start` on (a sub-image of a larger image). */
 static inline tgi_gresult tgi_gresult_from(const tgi_gresult *r, size_t start)
 {
-    tgi_gresult s;
+    tgi_gresult s = *r;
     s.ao = r->ao ? r->ao + start : NULL;
 #if TG_WIDE_STORAGE
-    s.bent_x = r->bent_x ? r->bent_x + start : NULL;
-    s.bent_y = r->bent_y ? r->bent_y + start : NULL;
-    s.bent_z = r->bent_z ? r->bent_z + start : NULL;
+    tgi_real3_from(&s.bent_x, &s.bent_y, &s.bent_z, start);
 #else
     s.bent = r->bent ? r->bent + start : NULL;
 #endif

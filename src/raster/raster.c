@@ -517,35 +517,82 @@ static void bary_make(bary_setup *b, const screen_tri *st, const tri_edges *te)
     }
 }
 
+/* The pixels a triangle covers, row by row (span_row), left to right:
+ * each one's index i in a W-wide image and the edge functions e[] there.
+ *     pixel_walk_begin(&pw, te, W);
+ *     while (pixel_walk_row(&pw, te))
+ *         for (; pw.col < pw.xb; pixel_walk_step(&pw, te)) ...  */
+typedef struct pixel_walk {
+    span_walk sw;
+    int row, col, xb, W;
+    size_t i;
+    int64_t e[3];
+} pixel_walk;
+
+static inline void pixel_walk_begin(pixel_walk *pw, const tri_edges *te, int W)
+{
+    span_begin(&pw->sw, te);
+    pw->row = te->y0 - 1;
+    pw->W = W;
+}
+
+/* Step to the first pixel of the next row that covers any; 0 after the
+ * last row. */
+static inline int pixel_walk_row(pixel_walk *pw, const tri_edges *te)
+{
+    while (++pw->row < te->y1) {
+        int xa;
+        pw->xb = span_row(te, &pw->sw, &xa);
+        if (xa < pw->xb) {
+            pw->col = xa;
+            pw->i = (size_t)pw->row * (size_t)pw->W + (size_t)xa;
+            pw->e[0] = edge_at(te, 0, pw->row, xa);
+            pw->e[1] = edge_at(te, 1, pw->row, xa);
+            pw->e[2] = edge_at(te, 2, pw->row, xa);
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* Step to the next pixel of the row. */
+static inline void pixel_walk_step(pixel_walk *pw, const tri_edges *te)
+{
+    pw->col++;
+    pw->i++;
+    pw->e[0] += te->step_x[0]; pw->e[1] += te->step_x[1]; pw->e[2] += te->step_x[2];
+}
+
+/* The barycentric weights u[] of the pixel whose edge functions are e[]
+ * (unbiased and scaled as bary_make set up); returns their sum. */
+static inline int64_t bary_weights(const bary_setup *b, const tri_edges *te, const int64_t e[3], int64_t u[3])
+{
+    u[0] = ((e[0] - te->bias[0]) << b->ls) >> b->rs;
+    u[1] = ((e[1] - te->bias[1]) << b->ls) >> b->rs;
+    u[2] = ((e[2] - te->bias[2]) << b->ls) >> b->rs;
+    return u[0] + u[1] + u[2];
+}
+
 static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const screen_tri *st, const surface *sfp)
 {
     /* local copies: the stores may alias anything reached through a pointer */
     const tgi_gbuffer g = *gbp;
     const surface sf = *sfp;
     bary_setup b;
-    span_walk sw;
-    int row, col, W = g.width;
+    pixel_walk pw;
     bary_make(&b, st, te);
-    span_begin(&sw, te);
-    for (row = te->y0; row < te->y1; row++) {
-        int64_t e0, e1, e2;
-        int xa, xb = span_row(te, &sw, &xa);
-        size_t i = (size_t)row * (size_t)W + (size_t)xa;
-        if (xb <= xa) continue;
-        e0 = edge_at(te, 0, row, xa); e1 = edge_at(te, 1, row, xa); e2 = edge_at(te, 2, row, xa);
-        for (col = xa; col < xb; col++, i++, e0 += te->step_x[0], e1 += te->step_x[1], e2 += te->step_x[2]) {
-            int64_t u0, u1, u2, su, sq, mx, my, mz;
+    pixel_walk_begin(&pw, te, g.width);
+    while (pixel_walk_row(&pw, te))
+        for (; pw.col < pw.xb; pixel_walk_step(&pw, te)) {
+            size_t i = pw.i;
+            int64_t u[3], su = bary_weights(&b, te, pw.e, u), sq, mx, my, mz;
             tg_real z;
-            u0 = ((e0 - te->bias[0]) << b.ls) >> b.rs;
-            u1 = ((e1 - te->bias[1]) << b.ls) >> b.rs;
-            u2 = ((e2 - te->bias[2]) << b.ls) >> b.rs;
-            su = u0 + u1 + u2;
-            sq = (u0 * b.q[0] + u1 * b.q[1] + u2 * b.q[2]) >> 30; /* su w_min / w */
+            sq = (u[0] * b.q[0] + u[1] * b.q[1] + u[2] * b.q[2]) >> 30; /* su w_min / w */
             if (su <= 0 || sq <= 0) continue;
             z = tgi_sat64((b.wmin * su + sq / 2) / sq);
-            mx = asr64(u0 * b.nq[0][0] + u1 * b.nq[1][0] + u2 * b.nq[2][0], b.sm);
-            my = asr64(u0 * b.nq[0][1] + u1 * b.nq[1][1] + u2 * b.nq[2][1], b.sm);
-            mz = asr64(u0 * b.nq[0][2] + u1 * b.nq[1][2] + u2 * b.nq[2][2], b.sm);
+            mx = asr64(u[0] * b.nq[0][0] + u[1] * b.nq[1][0] + u[2] * b.nq[2][0], b.sm);
+            my = asr64(u[0] * b.nq[0][1] + u[1] * b.nq[1][1] + u[2] * b.nq[2][1], b.sm);
+            mz = asr64(u[0] * b.nq[0][2] + u[1] * b.nq[1][2] + u[2] * b.nq[2][2], b.sm);
 #if TG_WIDE_STORAGE
             {
                 tg_real n[3];
@@ -568,42 +615,29 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
 #endif
             if (g.object) g.object[i] = sf.object;
         }
-    }
 }
 
 static void depth_rows(const depth_out *o, int W, const tri_edges *te, const screen_tri *st, int ortho)
 {
     bary_setup b;
-    span_walk sw;
-    int row, col;
+    pixel_walk pw;
     bary_make(&b, st, te);
-    span_begin(&sw, te);
-    for (row = te->y0; row < te->y1; row++) {
-        int64_t e0, e1, e2;
-        int xa, xb = span_row(te, &sw, &xa);
-        size_t i = (size_t)row * (size_t)W + (size_t)xa;
-        if (xb <= xa) continue;
-        e0 = edge_at(te, 0, row, xa); e1 = edge_at(te, 1, row, xa); e2 = edge_at(te, 2, row, xa);
-        for (col = xa; col < xb; col++, i++,
-             e0 += te->step_x[0], e1 += te->step_x[1], e2 += te->step_x[2]) {
-            int64_t u0, u1, u2, su, v;
-            u0 = ((e0 - te->bias[0]) << b.ls) >> b.rs;
-            u1 = ((e1 - te->bias[1]) << b.ls) >> b.rs;
-            u2 = ((e2 - te->bias[2]) << b.ls) >> b.rs;
-            su = u0 + u1 + u2;
+    pixel_walk_begin(&pw, te, W);
+    while (pixel_walk_row(&pw, te))
+        for (; pw.col < pw.xb; pixel_walk_step(&pw, te)) {
+            int64_t u[3], su = bary_weights(&b, te, pw.e, u), v;
             if (su <= 0) continue;
             if (ortho) {
-                v = u0 * b.z[0] + u1 * b.z[1] + u2 * b.z[2];
+                v = u[0] * b.z[0] + u[1] * b.z[1] + u[2] * b.z[2];
                 v = v >= 0 ? (v + su / 2) / su : -((-v + su / 2) / su);
-                depth_keep(o, i, tgi_sat64(v));
+                depth_keep(o, pw.i, tgi_sat64(v));
             } else {
-                v = (u0 * b.q[0] + u1 * b.q[1] + u2 * b.q[2]) >> 30;
+                v = (u[0] * b.q[0] + u[1] * b.q[1] + u[2] * b.q[2]) >> 30;
                 if (v <= 0) continue;
                 v = (b.wmin * su + v / 2) / v;
-                depth_keep(o, i, tgi_sat64(v));
+                depth_keep(o, pw.i, tgi_sat64(v));
             }
         }
-    }
 }
 
 #else /* float */
