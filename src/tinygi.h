@@ -449,6 +449,9 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
                                            thickness, sized to the scene as the radius is) */
 #define TG_MAX_EXPOSURE 1000            /* linear multiplier before the tonemapper (0 allowed) */
 #define TG_MIN_SHADOW_MAP 8             /* shadow-map texels per side: the PCF footprint */
+#define TG_SHADOW_CLIP_DIVISOR 64       /* a point or spot light's map clips geometry at its near plane
+                                        * / this (not at the near plane: what lies between is drawn at
+                                        * the nearest depth code and shadows, instead of leaking light) */
 #define TG_MAX_SHADOW_MAP 8192          /* ... and the rasterizer's largest side */
 #define TG_DEFAULT_SLICES 2             /* HBIL sec. 3.3: 2 slices per pixel */
 #define TG_HBIL_ROTATIONS 8             /* frames before HBIL's slice angles and march offsets repeat:

@@ -700,6 +700,37 @@ TEST(tent_pcf_is_odd_about_a_shadow_edge)
     free(g);
 }
 
+/* Geometry nearer the light than its map's near plane: a plate 0.8 cm wide
+ * 3 mm under a point light (the near plane: tgi_shadow_near, 5 mm here)
+ * casts a shadow cone of half angle atan(4 / 3): the floor 2 m below is
+ * dark out to 2.67 m from the foot of the light and lit beyond. */
+TEST(plate_nearer_than_the_near_plane_shadows)
+{
+    geo *g = geo_new();
+    tgi_light pl = make_light(TG_LIGHT_POINT, v3(0, 2, 0), v3(0, -1, 0), 1, 0);
+    tgi_shadow_map sm;
+    void *mem;
+    static const double dark[][2] = { { 0, 0 }, { 0.5, 0.3 }, { -1.2, 1.0 }, { 2.0, -1.2 } };
+    static const double lit[][2] = { { 3.5, 0 }, { -3.0, 2.5 }, { 0.5, 4.0 } };
+    size_t k;
+    memset(g, 0, sizeof *g);
+    rect(g, 1, 0, -5, 5, -5, 5);
+    rect(g, 1, 1.997, -0.004, 0.004, -0.004, 0.004);
+    exact_map(&sm, &mem, g, &pl, 512);
+    printf("# near plane %.4f, plate 0.003 under the light\n", dv(tgi_shadow_near(pl.pos, v3(g->lo[0], g->lo[1], g->lo[2]),
+           v3(g->hi[0], g->hi[1], g->hi[2]))));
+    for (k = 0; k < sizeof dark / sizeof dark[0]; k++) {
+        tg_real vis = tgi_shadow_visibility(&sm, v3(dark[k][0], 0, dark[k][1]), v3(0, 1, 0));
+        CHECK(vis <= TG_R(0.02f), "floor (%g, %g) under the plate: visibility %g", dark[k][0], dark[k][1], dv(vis));
+    }
+    for (k = 0; k < sizeof lit / sizeof lit[0]; k++) {
+        tg_real vis = tgi_shadow_visibility(&sm, v3(lit[k][0], 0, lit[k][1]), v3(0, 1, 0));
+        CHECK(vis >= TG_R(0.98f), "floor (%g, %g) beyond the plate's shadow: visibility %g", lit[k][0], lit[k][1], dv(vis));
+    }
+    free(mem);
+    free(g);
+}
+
 int main(void)
 {
     RUN(occluder_at_the_bounds_near_side_casts_its_shadow);
@@ -714,6 +745,7 @@ int main(void)
     RUN(offset_stops_half_way_to_the_light);
     RUN(receiver_beyond_89_94_degrees_under_a_plate_is_dark);
     RUN(tent_pcf_is_odd_about_a_shadow_edge);
+    RUN(plate_nearer_than_the_near_plane_shadows);
     free(bvh_mem);
     return check_summary();
 }

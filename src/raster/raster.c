@@ -216,7 +216,7 @@ enum { PL_LEFT, PL_RIGHT, PL_BOTTOM, PL_TOP, PL_NEAR, PL_FAR, PL_COUNT };
 
 typedef struct clip_ctx {
     int mode;
-    tg_real znear, zfar;          /* G-buffer mode */
+    tg_real znear, zfar;          /* G-buffer mode; perspective depth mode: znear the clip's w */
 } clip_ctx;
 
 #define GUARD_R TG_R(8.0f)
@@ -231,7 +231,7 @@ static inline tg_real plane_distance(const clip_ctx *c, const clip_vertex *v, in
     case PL_TOP: return tg_sub(tg_mul(GUARD_R, v->w), v->y);
     case PL_NEAR:
         if (c->mode == MODE_GBUFFER) return tg_sub(v->w, c->znear);
-        if (c->mode == MODE_PERSPECTIVE) return tg_add(v->z, v->w);
+        if (c->mode == MODE_PERSPECTIVE) return tg_sub(v->w, c->znear);
         return v->z;
     default:
         if (c->mode == MODE_GBUFFER) return tg_sub(c->zfar, v->w);
@@ -250,7 +250,7 @@ static void snap_to_plane(const clip_ctx *c, clip_vertex *v, int p)
     case PL_TOP: v->y = tg_mul(GUARD_R, v->w); break;
     case PL_NEAR:
         if (c->mode == MODE_GBUFFER) v->z = v->w = c->znear;
-        else if (c->mode == MODE_PERSPECTIVE) v->z = tg_neg(v->w);
+        else if (c->mode == MODE_PERSPECTIVE) v->w = c->znear;
         else v->z = 0;
         break;
     default:
@@ -1080,6 +1080,16 @@ static void raster_depth_rows(raster_target *rt, const tgi_mat4 *world_to_clip, 
     tg_vec3 r2 = tg_v3(m[8], m[9], m[10]), r3 = tg_v3(m[12], m[13], m[14]);
     int t, k;
     rt->clip.mode = orthographic ? MODE_ORTHO : MODE_PERSPECTIVE;
+    if (!orthographic) {
+        /* a perspective map's z row is alpha w + beta: its near plane (z = -w)
+         * at w = -beta / (alpha + 1); clipped a TG_SHADOW_CLIP_DIVISOR-th of
+         * that from the light, what lies nearer than the near plane is drawn
+         * at the nearest depth code and shadows (no light leaks past it) */
+        tg_real alpha = tg_div(tgi_v3_dot(r2, r3), tg_max(tgi_v3_dot(r3, r3), TG_EPS));
+        tg_real beta = tg_sub(m[11], tg_mul(alpha, m[15]));
+        tg_real n = tg_div(tg_neg(beta), tg_max(tg_add(alpha, TG_ONE), TG_EPS));
+        rt->clip.znear = tg_max(tg_div(n, tg_from_int(TG_SHADOW_CLIP_DIVISOR)), TG_EPS);
+    }
     for (t = 0; t < tri_count; t++) {
         clip_vertex v[3];
         for (k = 0; k < 3; k++) {
