@@ -350,7 +350,8 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
  * them links to such a library.  What needs a left-out feature is refused
  * with TG_ERR_INPUT and a message naming the switch, e.g. "technique gtao is
  * left out of this build (TG_NO_TECHNIQUES=1)":
- *   TG_NO_TECHNIQUES      GTAO, HBAO, SSAO, VO, SSDO, bent cones (src/ao):
+ *   TG_NO_TECHNIQUES      GTAO, HBAO, SSAO, VO, SSDO, bent cones, the visibility
+ *                         bitmask (src/ao):
  *                         tg_plan_make refuses those techniques.
  *   TG_NO_REFERENCE       the ray-traced reference, its BVH and the path
  *                         tracer: tg_plan_make refuses technique reference.
@@ -441,6 +442,11 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #define TG_MAX_SAMPLES 256              /* horizon samples per slice side */
 #define TG_MAX_BOUNCES 100              /* kernel iterations on a frame without history */
 #define TG_MAX_RADIUS 10000             /* gather radius, world units (0 is allowed) */
+#define TG_MAX_THICKNESS 10000          /* technique ssilvb: surface thickness behind the depth
+                                           buffer, world units (0 allowed: every sample a sheet) */
+#define TG_THICKNESS_RADIUS_DIVISOR 2   /* ... unset (neither request nor scene): the gather
+                                           radius / this (Therrien et al. 2023's constant
+                                           thickness, sized to the scene as the radius is) */
 #define TG_MAX_EXPOSURE 1000            /* linear multiplier before the tonemapper (0 allowed) */
 #define TG_MIN_SHADOW_MAP 8             /* shadow-map texels per side: the PCF footprint */
 #define TG_MAX_SHADOW_MAP 8192          /* ... and the rasterizer's largest side */
@@ -595,6 +601,11 @@ typedef enum tg_technique {
                            colour and irradiance only (AO reads 1), no
                            screen-space effect (the plan's effects are 0),
                            each frame traced anew with the seed frame index + 1 */
+    TG_TECH_SSILVB,     /* screen-space indirect lighting with a visibility bitmask
+                           (Therrien et al. 2023, src/ao/ssilvb.h): GTAO's slices
+                           with 32 sectors and surfaces of a constant thickness
+                           (request.thickness), so light passes behind thin objects;
+                           AO, bent normal and near field */
     TG_TECH_COUNT
 } tg_technique;
 const char *tg_technique_name(tg_technique t);    /* "?" for a value outside the enum */
@@ -651,6 +662,16 @@ typedef struct tg_request {
                               environment per frame ("the game loop" below): the frame keeps
                               a copy of the lights and environment and posed copies of the
                               triangles (72 bytes a triangle) */
+    tg_real thickness;     /* technique ssilvb: world units, 0..TG_MAX_THICKNESS; -1: unset
+                              (radius / TG_THICKNESS_RADIUS_DIVISOR); NaN, the infinities and
+                              other negatives are refused */
+    int ao_multibounce;    /* 0 (default) or 1: the ao AOV reads GTAO's multi-bounce fit
+                              (Jimenez et al. 2016, eq. 10; src/ao/ao.h) of the AO with the
+                              pixel's albedo, its Rec. 709 luminance (the AOV has one channel):
+                              what the AO means with the bounces a path tracer adds, for
+                              AO-only output.  The G-buffer then keeps the material index
+                              (+2 bytes a pixel); nothing else changes (colour is composed
+                              from the AO as computed) */
 } tg_request;
 
 /* Every field at its default: 320x240, one frame, colour, HBIL, GI settings unset. */

@@ -7,7 +7,7 @@
 # AO PFM within 0.02 absolute per pixel.  Renders are deterministic, so on
 # the machine that made the goldens the difference is 0; the slack is for
 # other compilers and targets.  Fixed and float AO must also agree within
-# RMSE 0.02 on every scene.
+# RMSE 0.02 on every scene, HBIL's and the visibility bitmask's (ssilvb).
 # Regenerate after an intended change: `make golden`, then look at them.
 set -u
 cd "$(dirname "$0")/.."
@@ -45,6 +45,19 @@ for s in $scenes; do
         ok "fixed vs float ao $s (rmse $rmse)"
     else
         fail "fixed vs float ao $s" "rmse $rmse > 0.02"
+    fi
+    # the visibility bitmask (no golden: a comparison technique), fixed against float
+    a=$tmp/$s-ssilvb-float.pfm; b=$tmp/$s-ssilvb-fixed.pfm
+    if "$BUILD/tinygi" render builtin:$s --size 80x60 --aov ao --technique ssilvb -o "$a" --quiet &&
+       "$BUILD/tinygi-fixed" render builtin:$s --size 80x60 --aov ao --technique ssilvb -o "$b" --quiet; then
+        rmse=$("$BUILD/tinygi" diff "$a" "$b" --tolerance 1 2>/dev/null | awk '/^rmse/ {print $2}')
+        if awk -v r="$rmse" 'BEGIN { exit !(r != "" && r <= 0.02) }'; then
+            ok "fixed vs float ssilvb ao $s (rmse $rmse)"
+        else
+            fail "fixed vs float ssilvb ao $s" "rmse $rmse > 0.02"
+        fi
+    else
+        fail "fixed vs float ssilvb ao $s: render failed"
     fi
 done
 summary

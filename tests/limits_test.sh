@@ -24,10 +24,10 @@ limit() {
 }
 SIDE=$(limit TG_MAX_IMAGE_SIDE); PIXELS=$(limit TG_MAX_IMAGE_PIXELS); FRAMES=$(limit TG_MAX_FRAMES)
 SLICES=$(limit TG_MAX_SLICES); SAMPLES=$(limit TG_MAX_SAMPLES); BOUNCES=$(limit TG_MAX_BOUNCES)
-RADIUS=$(limit TG_MAX_RADIUS); EXPOSURE=$(limit TG_MAX_EXPOSURE)
+RADIUS=$(limit TG_MAX_RADIUS); EXPOSURE=$(limit TG_MAX_EXPOSURE); THICKNESS=$(limit TG_MAX_THICKNESS)
 SHADOW_MIN=$(limit TG_MIN_SHADOW_MAP); SHADOW_MAX=$(limit TG_MAX_SHADOW_MAP)
 FILE_BYTES=$(limit TG_MAX_FILE_BYTES)
-for v in SIDE PIXELS FRAMES SLICES SAMPLES BOUNCES RADIUS EXPOSURE SHADOW_MIN SHADOW_MAX FILE_BYTES; do
+for v in SIDE PIXELS FRAMES SLICES SAMPLES BOUNCES RADIUS EXPOSURE THICKNESS SHADOW_MIN SHADOW_MAX FILE_BYTES; do
     case ${!v} in ''|*[!0-9]*) fail "header/$v" "cannot read it from src/tinygi.h: '${!v}'" ;; esac
 done
 # the square root of PIXELS (a square image at the pixel limit)
@@ -121,6 +121,7 @@ check_binary() {
     int_limit shadow-size "$SHADOW_MIN" "$SHADOW_MAX"
     real_limit radius "$RADIUS"
     real_limit exposure "$EXPOSURE"
+    real_limit thickness "$THICKNESS"
     # input files: the help and the README say the size limit
     documented file_bytes "$FILE_BYTES"
 

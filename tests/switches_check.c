@@ -182,11 +182,11 @@ TEST(renders_colour_and_ao)
 
 TEST(techniques)
 {
-    static const tg_technique some[] = { TG_TECH_GTAO, TG_TECH_SSAO, TG_TECH_BENTCONE };
+    static const tg_technique some[] = { TG_TECH_GTAO, TG_TECH_SSAO, TG_TECH_BENTCONE, TG_TECH_SSILVB };
     tg_plan plan;
     tg_error err;
     int i;
-    for (i = 0; i < 3; i++) {
+    for (i = 0; i < (int)(sizeof some / sizeof some[0]); i++) {
         const char *name = tg_technique_name(some[i]);
         check_switch(TG_NO_TECHNIQUES, "TG_NO_TECHNIQUES", scene_plain, some[i], TG_AOV_AO, 0, 0, 1, name, &plan, &err);
         if (TG_NO_TECHNIQUES) CHECK(strstr(err.message, name) != NULL, "%s", err.message);

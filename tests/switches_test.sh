@@ -18,7 +18,7 @@ SWITCHES="TECHNIQUES REFERENCE OBJ BUILTIN_SCENES SHADOW_MAPS ENVIRONMENT SCENE_
 # the global symbols (nm) of each switch's left-out files
 pattern() {
     case $1 in
-        TECHNIQUES)     echo ' T tgi_((ssao|vo|hbao|gtao|ssdo|bentcone)_|pass_(ssao|vo|hbao|gtao|ssdo|bentcone)$)' ;;
+        TECHNIQUES)     echo ' T tgi_((ssao|vo|hbao|gtao|ssilvb|ssdo|bentcone)_|pass_(ssao|vo|hbao|gtao|ssilvb|ssdo|bentcone)$)' ;;
         REFERENCE)      echo ' T tgi_(reference_|bvh_|pathtrace_|ray_triangle|pass_reference)' ;;
         OBJ)            echo ' T tgi_obj_' ;;
         BUILTIN_SCENES) echo ' [a-zA-Z] scene_(plane|groove|cornell|spheres|columns)$' ;;

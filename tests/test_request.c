@@ -200,26 +200,30 @@ TEST(aovs_bits_outside_the_list)
     }
 }
 
-static void real_case(const char *field, int is_radius, tg_real v, const char *shown, int expect)
+/* which: 0 exposure, 1 radius, 2 thickness (rendered by the technique that reads it) */
+static void real_case(const char *field, int which, tg_real v, const char *shown, int expect)
 {
     sweep_case c = new_case(field, expect);
-    if (is_radius) c.q.radius = v; else c.q.exposure = v;
+    if (which == 1) c.q.radius = v;
+    else if (which == 2) { c.q.thickness = v; c.q.technique = TG_TECH_SSILVB; }
+    else c.q.exposure = v;
     snprintf(c.value, sizeof c.value, "%s", shown);
     run_case(&c);
 }
 
 TEST(radius_and_exposure_at_their_extremes)
 {
+    static const long max[3] = { TG_MAX_EXPOSURE, TG_MAX_RADIUS, TG_MAX_THICKNESS };
     int k;
-    for (k = 0; k < 2; k++) {
-        const char *f = k ? "radius" : "exposure";
+    for (k = 0; k < 3; k++) {
+        const char *f = k == 2 ? "thickness" : k ? "radius" : "exposure";
         real_case(f, k, TG_REAL_MIN, "most negative", REFUSE);
         real_case(f, k, TG_R(-2.0f), "-2", REFUSE);
         real_case(f, k, TG_R(-0.5f), "-0.5", REFUSE);
         real_case(f, k, 0, "0", ACCEPT);
         real_case(f, k, TG_EPS, "smallest", ACCEPT);
-        real_case(f, k, tg_from_int(k ? TG_MAX_RADIUS : TG_MAX_EXPOSURE), "max", ACCEPT);
-        real_case(f, k, tg_add(tg_from_int(k ? TG_MAX_RADIUS : TG_MAX_EXPOSURE), TG_ONE), "max + 1", REFUSE);
+        real_case(f, k, tg_from_int((int32_t)max[k]), "max", ACCEPT);
+        real_case(f, k, tg_add(tg_from_int((int32_t)max[k]), TG_ONE), "max + 1", REFUSE);
         real_case(f, k, TG_REAL_MAX, "largest", REFUSE);
 #if !TG_FIXED
         real_case(f, k, -HUGE_VALF, "-inf", REFUSE);
@@ -228,6 +232,7 @@ TEST(radius_and_exposure_at_their_extremes)
 #endif
     }
     real_case("radius", 1, TG_R(-1.0f), "-1 (unset)", ACCEPT);
+    real_case("thickness", 2, TG_R(-1.0f), "-1 (unset)", ACCEPT);
     real_case("exposure", 0, TG_R(-1.0f), "-1", REFUSE);
 }
 
@@ -246,6 +251,35 @@ TEST(refusal_names_the_field_and_the_value)
     CHECK(tg_plan_make(&plan, sweep_scene, &q, &err) == TG_ERR_INPUT, "exposure -2.5 refused");
     tg_error_format(&err, msg, sizeof msg);
     CHECK(strcmp(msg, "error: exposure must be 0..1000, got -2.5") == 0, "message: %s", msg);
+}
+
+/* An unset thickness (technique ssilvb) is the resolved radius / TG_THICKNESS_RADIUS_DIVISOR, the
+ * request's or the scene's; a set one is kept. */
+TEST(thickness_unset_follows_the_radius)
+{
+    static const float radii[] = { -1.0f, 0.5f, 3.0f };
+    int k;
+    for (k = 0; k < 3; k++) {
+        rendered r;
+        tg_request q = small_request();
+        q.technique = TG_TECH_SSILVB;
+        q.radius = TG_R(radii[k]);
+        if (!setup(&r, scene_text, &q)) { CHECK(0, "sets up: %s", r.msg); continue; }
+        CHECK(fabs(check_d(r.plan.request.thickness) - check_d(r.plan.request.radius) / TG_THICKNESS_RADIUS_DIVISOR) < 1e-4,
+              "radius %g: thickness %g", check_d(r.plan.request.radius), check_d(r.plan.request.thickness));
+        CHECK(r.plan.request.radius > 0, "a radius");
+        teardown(&r);
+    }
+    {
+        rendered r;
+        tg_request q = small_request();
+        q.technique = TG_TECH_SSILVB;
+        q.thickness = TG_R(0.25f);
+        if (setup(&r, scene_text, &q)) {
+            CHECK(r.plan.request.thickness == TG_R(0.25f), "kept: %g", check_d(r.plan.request.thickness));
+            teardown(&r);
+        } else CHECK(0, "sets up: %s", r.msg);
+    }
 }
 
 /* The scene's gi values are held to the same limits (by the parser, or
@@ -315,6 +349,7 @@ int main(void)
     RUN(image_pixels_at_the_limit);
     RUN(aovs_bits_outside_the_list);
     RUN(radius_and_exposure_at_their_extremes);
+    RUN(thickness_unset_follows_the_radius);
     RUN(refusal_names_the_field_and_the_value);
     RUN(scene_gi_values_have_the_same_limits);
     RUN(aov_rows_outside_the_image_are_refused);

@@ -15,6 +15,10 @@
  *   - GTAO's multi-bounce fit (Jimenez et al. 2016, eq. 10): the cubic as
  *     published, in [AO, 1], 0 at AO 0, 1 at AO 1, growing with albedo and
  *     AO (its accuracy against the path tracer is measured by the bench);
+ *   - request.ao_multibounce: the ao AOV is the published cubic of the AO
+ *     computed without it, with the albedo's Rec. 709 luminance; the colour
+ *     is the same bits; the G-buffer keeps the material only then (the
+ *     default AO plan stays at its bytes); a value past 1 is refused;
  *   - technique pathtrace: a convex object under a uniform sky L (the
  *     furnace) reflects rho L and receives E = pi L at every pixel; its plan
  *     has no screen-space effect; a frame is deterministic and the next
@@ -41,7 +45,7 @@ static const char *groove_under_uniform_sky =
 /* The far field reads these techniques' AO (SSDO and bent cones integrate
  * their own). */
 static const tg_technique far_from_ao[] = {
-    TG_TECH_HBIL, TG_TECH_GTAO, TG_TECH_HBAO, TG_TECH_SSAO, TG_TECH_VO, TG_TECH_REFERENCE
+    TG_TECH_HBIL, TG_TECH_GTAO, TG_TECH_HBAO, TG_TECH_SSAO, TG_TECH_VO, TG_TECH_REFERENCE, TG_TECH_SSILVB
 };
 
 static void uniform_sky_case(tg_technique t, int far_mode, int quarter)
@@ -153,6 +157,79 @@ TEST(gtao_multibounce_fit)
           check_d(tgi_ao_multibounce(TG_R(0.5f), TG_R(0.8f))));
 }
 
+/* The cubic of GTAO eq. 10 in double. */
+static double published_multibounce(double k, double rho)
+{
+    double a = 2.0404 * rho - 0.3324, b = -4.7951 * rho + 0.6417, c = 2.7552 * rho + 0.6903;
+    return fmin(1, fmax(k, ((a * k + b) * k + c) * k));
+}
+
+TEST(ao_multibounce_option_applies_the_fit_to_the_ao_output)
+{
+    const double rho = 0.2126 * 0.6 + 0.7152 * 0.5 + 0.0722 * 0.4;   /* the groove's albedo, luminance */
+    const int w = 48, h = 36, n = 48 * 36;
+    tg_request q = request(w, h, AOVBIT(TG_AOV_AO) | AOVBIT(TG_AOV_DEPTH));
+    rendered plain, fit;
+    double *ao0, *ao1, *depth, worst = 0, gain = 0;
+    unsigned char *c0, *c1;
+    size_t n0, n1;
+    int i, bad = 0, k;
+    q.technique = TG_TECH_GTAO;
+    if (!setup(&plain, groove_under_uniform_sky, &q)) { CHECK(0, "sets up: %s", plain.msg); return; }
+    q.ao_multibounce = 1;
+    if (!setup(&fit, groove_under_uniform_sky, &q)) { CHECK(0, "sets up: %s", fit.msg); teardown(&plain); return; }
+    /* the option carves the material index (2 bytes a pixel) and nothing else */
+    CHECK(fit.plan.total_bytes > plain.plan.total_bytes && fit.plan.total_bytes - plain.plan.total_bytes <= (size_t)(2 * n + 64),
+          "bytes %zu, without the option %zu", fit.plan.total_bytes, plain.plan.total_bytes);
+    for (k = 0; k < fit.plan.buffer_count; k++)
+        if (strstr(fit.plan.buffers[k].name, "G-buffer"))
+            CHECK(strstr(fit.plan.buffers[k].name, "material") && !strstr(fit.plan.buffers[k].name, "no material"),
+                  "the G-buffer keeps the material: %s", fit.plan.buffers[k].name);
+    for (k = 0; k < plain.plan.buffer_count; k++)
+        if (strstr(plain.plan.buffers[k].name, "G-buffer"))
+            CHECK(strstr(plain.plan.buffers[k].name, "no material"), "the default AO plan has none: %s", plain.plan.buffers[k].name);
+    CHECK(tg_frame_render(plain.frame, 0, NULL) == TG_OK && tg_frame_render(fit.frame, 0, NULL) == TG_OK, "renders");
+    ao0 = read_aov(&plain, TG_AOV_AO); ao1 = read_aov(&fit, TG_AOV_AO); depth = read_aov(&fit, TG_AOV_DEPTH);
+    for (i = 0; i < n; i++) {
+        double want = depth[i] == 0 ? ao0[i] : published_multibounce(ao0[i], rho), d = fabs(ao1[i] - want);
+        if (d > worst) worst = d;
+        gain = fmax(gain, ao1[i] - ao0[i]);
+        if (d > (TG_FIXED ? 4e-4 : 1e-5) && bad++ < 3)
+            CHECK(0, "pixel %d: AO %g, fit %g, want %g (albedo luminance %g)", i, ao0[i], ao1[i], want, rho);
+    }
+    printf("# ao multi-bounce on the groove (albedo luminance %.4f): largest |AO' - cubic(AO)| %.2g, brightest gain %.3f\n",
+           rho, worst, gain);
+    CHECK(bad == 0, "%d pixels off the published cubic", bad);
+    CHECK(gain > 0.05, "the fit brightens the occluded pixels (by up to %g)", gain);
+    free(ao0); free(ao1); free(depth);
+    teardown(&plain); teardown(&fit);
+    /* colour is composed from the AO as computed: the same bits with the option */
+    q = request(24, 18, AOVBIT(TG_AOV_COLOR) | AOVBIT(TG_AOV_AO));
+    q.technique = TG_TECH_GTAO;
+    if (!setup(&plain, groove_under_uniform_sky, &q)) { CHECK(0, "colour sets up: %s", plain.msg); return; }
+    q.ao_multibounce = 1;
+    if (!setup(&fit, groove_under_uniform_sky, &q)) { CHECK(0, "colour sets up: %s", fit.msg); teardown(&plain); return; }
+    CHECK(tg_frame_render(plain.frame, 0, NULL) == TG_OK && tg_frame_render(fit.frame, 0, NULL) == TG_OK, "renders");
+    {
+        double *a = read_aov(&plain, TG_AOV_COLOR), *b = read_aov(&fit, TG_AOV_COLOR);
+        CHECK(memcmp(a, b, sizeof(double) * 3 * 24 * 18) == 0, "colour unchanged by the option");
+        free(a); free(b);
+    }
+    c0 = raw_aovs(&plain, &n0); c1 = raw_aovs(&fit, &n1);
+    CHECK(n0 == n1 && memcmp(c0, c1, n0) != 0, "the ao AOV differs");
+    free(c0); free(c1);
+    teardown(&plain); teardown(&fit);
+    /* refusals */
+    q = request(8, 6, AOVBIT(TG_AOV_AO));
+    q.ao_multibounce = 2;
+    CHECK(!setup(&plain, groove_under_uniform_sky, &q) && plain.status == TG_ERR_INPUT && strstr(plain.msg, "ao_multibounce"),
+          "ao_multibounce 2 refused: %s", plain.msg);
+    teardown(&plain);
+    q.ao_multibounce = -1;
+    CHECK(!setup(&plain, groove_under_uniform_sky, &q) && plain.status == TG_ERR_INPUT, "ao_multibounce -1 refused");
+    teardown(&plain);
+}
+
 static const char *furnace_sphere =
     "camera pos 0 0 4  target 0 0 0  fov 40\n"
     "material m albedo 0.8 0.6 0.4 f0 0\n"
@@ -221,6 +298,7 @@ int main(void)
     RUN(uniform_sky_gives_albedo_times_ao_for_every_technique);
     RUN(reference_ao_does_not_depend_on_the_image_size);
     RUN(gtao_multibounce_fit);
+    RUN(ao_multibounce_option_applies_the_fit_to_the_ao_output);
     RUN(pathtrace_furnace_through_the_frame);
     return check_summary();
 }

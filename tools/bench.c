@@ -392,6 +392,8 @@ static void build_sweep(void)
     for (i = 0; i < 6; i++) add("vo", TG_TECH_VO, 2, vo_n[i], 1.0, 0, 1);
     for (i = 0; i < 5; i++) add("ssdo", TG_TECH_SSDO, 2, ssdo_n[i], 1.0, 1, 1);
     for (i = 0; i < 4; i++) add("bentcone", TG_TECH_BENTCONE, 2, bc_n[i], 1.0, 0, 1);
+    /* the visibility bitmask (Therrien et al. 2023): GTAO's slices and samples, the default thickness */
+    for (i = 0; i < 6; i++) add("ssilvb", TG_TECH_SSILVB, ss[i][0], ss[i][1], 1.0, 1, 1);
     /* Ritschel table 1: directional occlusion alone (no bounce) */
     add("ssdo-do", TG_TECH_SSDO, 2, 8, 1.0, 0, 0);
     add("ssdo-do", TG_TECH_SSDO, 2, 16, 1.0, 0, 0);
@@ -406,6 +408,7 @@ static void build_sweep(void)
         add("vo", TG_TECH_VO, 2, 16, rs[i], 0, 0);
         add("ssdo", TG_TECH_SSDO, 2, 16, rs[i], 1, 0);
         add("bentcone", TG_TECH_BENTCONE, 2, 16, rs[i], 0, 0);
+        add("ssilvb", TG_TECH_SSILVB, 2, 16, rs[i], 1, 0);
     }
 }
 
@@ -650,12 +653,12 @@ typedef struct color_config {
     int interleave, gi_scale, converge;   /* converge: HBIL, rendered over --color-frames frames */
 } color_config;
 
-#define COLOR_TECHS 10
+#define COLOR_TECHS 11
 static const color_config color_cfgs[COLOR_TECHS] = {
     { "hbil", TG_TECH_HBIL, 1, 2, 1 }, { "hbil-1x", TG_TECH_HBIL, 1, 1, 1 }, { "hbil-full", TG_TECH_HBIL, 0, 1, 1 },
     { "gtao", TG_TECH_GTAO, 1, 1, 0 }, { "hbao", TG_TECH_HBAO, 1, 1, 0 }, { "ssao", TG_TECH_SSAO, 1, 1, 0 },
     { "vo", TG_TECH_VO, 1, 1, 0 }, { "ssdo", TG_TECH_SSDO, 1, 1, 0 }, { "bentcone", TG_TECH_BENTCONE, 1, 1, 0 },
-    { "reference", TG_TECH_REFERENCE, 1, 1, 0 }
+    { "reference", TG_TECH_REFERENCE, 1, 1, 0 }, { "ssilvb", TG_TECH_SSILVB, 1, 1, 0 }
 };
 
 typedef struct color_ref {
@@ -1230,7 +1233,7 @@ static const point *find_point(const char *tech, const char *number, int slices,
 static const char *setting(const point *p, char *buf, size_t n)
 {
     const char *t = p->tech;
-    if (!strncmp(t, "hbil", 4) || !strcmp(t, "gtao") || !strcmp(t, "hbao"))
+    if (!strncmp(t, "hbil", 4) || !strcmp(t, "gtao") || !strcmp(t, "hbao") || !strcmp(t, "ssilvb"))
         snprintf(buf, n, "%d slice%s x %d", p->slices, p->slices == 1 ? "" : "s", p->samples);
     else snprintf(buf, n, "%d samples", p->samples);
     if (fabs(p->rscale - 1) > 1e-3) {
@@ -1265,9 +1268,11 @@ static int cmp_ms(const void *a, const void *b)
     return x->ms < y->ms ? -1 : x->ms > y->ms;
 }
 
-static const char *tech_names[] = { "hbil", "hbil-1x", "hbil-full", "gtao", "hbao", "ssao", "vo", "ssdo", "bentcone" };
-static const char *tech_colors[] = { "#d62728", "#e377c2", "#ff7f0e", "#1f77b4", "#17becf", "#7f7f7f", "#2ca02c", "#9467bd", "#8c564b" };
-#define NTECH 9
+static const char *tech_names[] = { "hbil", "hbil-1x", "hbil-full", "gtao", "hbao", "ssao", "vo", "ssdo", "bentcone",
+                                    "ssilvb" };
+static const char *tech_colors[] = { "#d62728", "#e377c2", "#ff7f0e", "#1f77b4", "#17becf", "#7f7f7f", "#2ca02c", "#9467bd", "#8c564b",
+                                     "#bcbd22" };
+#define NTECH 10
 
 /* An SVG plot W x H on white. */
 static void svg_begin(FILE *f, int W, int H)

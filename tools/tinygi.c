@@ -99,11 +99,14 @@ static void print_help(FILE *out)
         "  --aov NAME        output: color depth normal albedo ao bent cone near far\n"
         "                    direct irradiance motion (default color)\n"
         "  --technique NAME  hbil gtao hbao ssao vo ssdo bentcone reference pathtrace\n"
-        "                    (default hbil; pathtrace: the path-traced ground truth)\n"
+        "                    ssilvb (default hbil; pathtrace: the path-traced ground\n"
+        "                    truth; ssilvb: GTAO's slices with a visibility bitmask)\n"
         "  --slices N        horizon slices per pixel, 1..%d (default %d)\n"
         "  --samples N       samples per slice, 1..%d (default %d; pathtrace: paths\n"
         "                    per pixel, default %d)\n"
         "  --radius R        gather radius in world units, 0..%d (default %d)\n"
+        "  --thickness T     ssilvb: surface thickness behind the depth buffer, world\n"
+        "                    units, 0..%d (default: the radius / %d)\n"
         "  --bounces N       light bounces, 0..%d (default %d; pathtrace: the most\n"
         "                    bounces, default %d)\n"
         "  --exposure E      linear exposure before the tonemapper, 0..%d (default 1)\n"
@@ -116,7 +119,7 @@ static void print_help(FILE *out)
         "                    processors, here %d); the image is the same for every N\n",
         TG_DEFAULT_WIDTH, TG_DEFAULT_HEIGHT, TG_MAX_IMAGE_SIDE, (long)TG_MAX_IMAGE_PIXELS,
         TG_MAX_FRAMES, TG_MAX_SLICES, TG_DEFAULT_SLICES, TG_MAX_SAMPLES, TG_DEFAULT_SAMPLES, TG_DEFAULT_PATHTRACE_SAMPLES,
-        TG_MAX_RADIUS, TG_DEFAULT_RADIUS, TG_MAX_BOUNCES, TG_DEFAULT_BOUNCES, TG_DEFAULT_PATHTRACE_BOUNCES, TG_MAX_EXPOSURE,
+        TG_MAX_RADIUS, TG_DEFAULT_RADIUS, TG_MAX_THICKNESS, TG_THICKNESS_RADIUS_DIVISOR, TG_MAX_BOUNCES, TG_DEFAULT_BOUNCES, TG_DEFAULT_PATHTRACE_BOUNCES, TG_MAX_EXPOSURE,
         TG_MIN_SHADOW_MAP, TG_MAX_SHADOW_MAP, TG_MAX_THREADS, tgp_cores());
     fprintf(out,
         "  --no-interleave   full-resolution GI kernel instead of 4x4 interleaved\n"
@@ -124,6 +127,8 @@ static void print_help(FILE *out)
         "  --pcf-tent        16-tap tent shadow-map filtering instead of the 4-tap bilinear\n"
         "  --gi-quarter      GI kernel on a quarter of the pixels (half width and height,\n"
         "                    then a joint bilateral upsample): about 3x faster\n"
+        "  --ao-multibounce  the ao output through GTAO's multi-bounce fit (Jimenez et al.\n"
+        "                    2016, eq. 10) with each pixel's albedo (its luminance)\n"
         "  --far-f0          far field as E0(bent) F0(AO) (HBIL sec. 2.2.3) instead of\n"
         "                    the SH9 cosine lobe restricted to the bent cone (sec. 2.2.4)\n"
         "  --explain         print the frame plan and exit without rendering\n"
@@ -312,9 +317,9 @@ typedef struct render_opts {
     int width, height, frames, aov, technique;
     long slices, samples, bounces, shadow_size, threads;
     int shadows;            /* TG_SHADOWS_* */
-    double radius, exposure;
-    int have_radius, have_exposure;
-    int interleave, temporal, far_f0, gi_quarter, pcf_tent, explain, quiet;
+    double radius, exposure, thickness;
+    int have_radius, have_exposure, have_thickness;
+    int interleave, temporal, far_f0, gi_quarter, pcf_tent, explain, quiet, ao_multibounce;
 } render_opts;
 
 /* "--name=value" or "--name value": the value, or NULL (and the index moved). */
@@ -381,7 +386,7 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
     static const char *const names[] = {
         "-o", "--size", "--frames", "--aov", "--technique", "--slices", "--samples",
         "--radius", "--bounces", "--exposure", "--shadow-size", "--fbdev", "--threads",
-        "--shadows"
+        "--shadows", "--thickness"
     };
     const char *a = argv[*i], *v = NULL, *name = NULL;
     long l;
@@ -391,6 +396,7 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
     if (!strcmp(a, "--no-interleave")) { o->interleave = 0; return 0; }
     if (!strcmp(a, "--no-temporal")) { o->temporal = 0; return 0; }
     if (!strcmp(a, "--far-f0")) { o->far_f0 = 1; return 0; }
+    if (!strcmp(a, "--ao-multibounce")) { o->ao_multibounce = 1; return 0; }
     if (!strcmp(a, "--gi-quarter")) { o->gi_quarter = 1; return 0; }
     if (!strcmp(a, "--pcf-bilinear")) { o->pcf_tent = 0; return 0; }   /* the default (kept for scripts) */
     if (!strcmp(a, "--pcf-tent")) { o->pcf_tent = 1; return 0; }
@@ -446,6 +452,9 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
     } else if (!strcmp(name, "--radius")) {
         if (real_option(name, v, TG_MAX_RADIUS, &o->radius)) return 1;
         o->have_radius = 1;
+    } else if (!strcmp(name, "--thickness")) {
+        if (real_option(name, v, TG_MAX_THICKNESS, &o->thickness)) return 1;
+        o->have_thickness = 1;
     } else if (!strcmp(name, "--exposure")) {
         if (real_option(name, v, TG_MAX_EXPOSURE, &o->exposure)) return 1;
         o->have_exposure = 1;
@@ -577,12 +586,14 @@ static void make_request(const render_opts *o, tg_request *r)
     if (o->shadow_size > 0) r->shadow_map_size = (int)o->shadow_size;
     if (o->have_radius) r->radius = tg_from_float((float)o->radius);
     if (o->have_exposure) r->exposure = tg_from_float((float)o->exposure);
+    if (o->have_thickness) r->thickness = tg_from_float((float)o->thickness);
     r->interleave = o->interleave;
     r->far_mode = o->far_f0;
     if (o->gi_quarter) r->gi_scale = 2;
     r->shadow_pcf = !o->pcf_tent;
     r->shadow_method = o->shadows;
     r->temporal = o->temporal;
+    r->ao_multibounce = o->ao_multibounce;
 }
 
 static int print_explain(const tg_plan *plan)

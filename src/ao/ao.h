@@ -210,4 +210,74 @@ static inline void tgi_ao_write_bent_view(const tgi_gview *g, const tgi_gresult 
     tgi_gr_set_bent(out, i, tgi_v3_normalize_or(tgi_ao_dir_to_world(g->camera, bent_view), tgi_gv_normal(g, i)));
 }
 
+/* ---- view-vector slices (GTAO, gtao.c; the visibility bitmask, ssilvb.c) ---- */
+
+/* Q16.16: the power of two 2^e that brings the radius into [0.5, 1], so the
+ * squared sample distances neither underflow (a room 1 mm across) nor
+ * saturate (1 km across).  Float needs none (0). */
+static inline int tgi_ao_unit_shift(tg_real radius)
+{
+    int e = 0;
+#if TG_FIXED
+    while (radius > 0 && radius < TG_R(0.5f) && e < 16) { radius = tg_ldexp(radius, 1); e++; }
+    while (radius > TG_ONE && e > -15) { radius = tg_ldexp(radius, -1); e--; }
+#else
+    (void)radius;
+#endif
+    return e;
+}
+
+/* A pixel marching its slices: (x, y), view position, normal, unit vector
+ * to the eye, the radius in pixels at its depth, its jitter, and the shift
+ * its sample offsets are scaled by (tgi_ao_unit_shift). */
+typedef struct tgi_ao_slice_pixel {
+    int x, y;
+    tg_vec3 pv, nv, vd;
+    tg_real r_px, jitter;
+    int shift;
+} tgi_ao_slice_pixel;
+
+/* Sample s of `steps` along screen direction (sdx, sdy) at distance
+ * (s + jitter) r_px / steps: 1 with *h the view offset of its pixel's
+ * surface from pv (times 2^shift) and *j that pixel's index; 0 to skip it
+ * (within a pixel, or sky); -1 past the screen's edge (the march ends). */
+static inline int tgi_ao_slice_sample(const tgi_gview *g, const tgi_ao_slice_pixel *px, int s, int steps,
+                                      tg_real sdx, tg_real sdy, tg_vec3 *h, int *j)
+{
+    tg_real t_px = tg_div(tg_mul(tg_add(tg_from_int(s), px->jitter), px->r_px), tg_from_int(steps));
+    int qx, qy;
+    if (t_px < TG_ONE) return 0;
+    qx = tg_to_int(tg_add(tg_add(tg_from_int(px->x), TG_R(0.5f)), tg_mul(sdx, t_px)));
+    qy = tg_to_int(tg_add(tg_add(tg_from_int(px->y), TG_R(0.5f)), tg_mul(sdy, t_px)));
+    if (qx < 0 || qy < 0 || qx >= g->width || qy >= g->height) return -1;
+    *j = (int)tgi_gv_index(g, qx, qy);
+    if (tgi_gv_is_sky(g, *j)) return 0;
+    *h = tgi_v3_sub(tgi_ao_unproject(g->camera, qx, qy, tgi_gv_depth(g, *j)), px->pv);
+    if (px->shift) *h = tg_v3(tg_ldexp(h->x, px->shift), tg_ldexp(h->y, px->shift), tg_ldexp(h->z, px->shift));
+    return 1;
+}
+
+/* The slice of screen direction (sdx, sdy) about the view vector vd
+ * (Jimenez et al. 2016): its unit direction in view space, the length of
+ * the normal nv projected into it, and that projection's angle gamma from
+ * vd (positive toward dir), with its cosine and sine.  0 when the
+ * projected normal is too short to have a direction. */
+typedef struct tgi_ao_slice { tg_vec3 dir; tg_real len, gamma, cos_g, sin_g; } tgi_ao_slice;
+static inline int tgi_ao_slice_frame(tg_vec3 nv, tg_vec3 vd, tg_real sdx, tg_real sdy, tgi_ao_slice *sl)
+{
+    tg_vec3 d3 = tg_v3(sdx, tg_neg(sdy), 0), axis, pn;
+    tg_real cos_n;
+    sl->dir = tgi_v3_normalize_or(tgi_v3_sub(d3, tgi_v3_scale(vd, tgi_v3_dot(d3, vd))), d3);
+    axis = tgi_v3_cross(sl->dir, vd);
+    pn = tgi_v3_sub(nv, tgi_v3_scale(axis, tgi_v3_dot(nv, axis)));   /* normal projected into the slice */
+    sl->len = tgi_v3_length(pn);
+    if (sl->len <= TG_R(0.0001f)) return 0;
+    cos_n = tg_clamp(tg_div(tgi_v3_dot(pn, vd), sl->len), TG_R(-1.0f), TG_ONE);
+    sl->gamma = tg_acos(cos_n);
+    if (tgi_v3_dot(pn, sl->dir) < 0) sl->gamma = tg_neg(sl->gamma);
+    sl->cos_g = tg_cos(sl->gamma);
+    sl->sin_g = tg_sin(sl->gamma);
+    return 1;
+}
+
 #endif

@@ -15,27 +15,7 @@ void tgi_gtao_defaults(tgi_gtao_params *p)
     *p = gtao_defaults;
 }
 
-typedef struct gtao_pixel {
-    int x, y;
-    tg_vec3 pv, nv, vd;   /* view position, normal, unit vector to the eye */
-    tg_real r_px, jitter;
-    int shift;            /* sample offsets are scaled by 2^shift (unit_shift) */
-} gtao_pixel;
-
-/* Q16.16: the power of two 2^e that brings the radius into [0.5, 1], so the
- * squared sample distances neither underflow (a room 1 mm across) nor
- * saturate (1 km across).  Float needs none (0: bit-identical to before). */
-static int unit_shift(tg_real radius)
-{
-    int e = 0;
-#if TG_FIXED
-    while (radius > 0 && radius < TG_R(0.5f) && e < 16) { radius = tg_ldexp(radius, 1); e++; }
-    while (radius > TG_ONE && e > -15) { radius = tg_ldexp(radius, -1); e--; }
-#else
-    (void)radius;
-#endif
-    return e;
-}
+typedef tgi_ao_slice_pixel gtao_pixel;   /* ao.h: view position, normal, eye vector, radius in pixels */
 
 /* Largest cos(angle to the view vector) of the samples along screen
  * direction (sdx, sdy); -1 when none is within the radius. */
@@ -44,20 +24,13 @@ static tg_real horizon_cos(const tgi_gtao_params *p, const tgi_gview *g, const g
 {
     tg_real rs = tg_ldexp(p->radius, px->shift), best = TG_R(-1.0f), r2 = tg_sqr(rs);
     tg_real above = tg_add(tg_ldexp(px->pv.z, px->shift - 10), tg_mul(rs, TG_R(0.005f)));
+    tg_vec3 h;
     int s;
     for (s = 0; s < p->steps; s++) {
-        tg_real t_px = tg_div(tg_mul(tg_add(tg_from_int(s), px->jitter), px->r_px), tg_from_int(p->steps));
-        int qx, qy, j;
-        tg_vec3 h;
+        int j, got = tgi_ao_slice_sample(g, px, s, p->steps, sdx, sdy, &h, &j);
         tg_real d2;
-        if (t_px < TG_ONE) continue;
-        qx = tg_to_int(tg_add(tg_add(tg_from_int(px->x), TG_R(0.5f)), tg_mul(sdx, t_px)));
-        qy = tg_to_int(tg_add(tg_add(tg_from_int(px->y), TG_R(0.5f)), tg_mul(sdy, t_px)));
-        if (qx < 0 || qy < 0 || qx >= g->width || qy >= g->height) break;
-        j = (int)tgi_gv_index(g, qx, qy);
-        if (tgi_gv_is_sky(g, j)) continue;
-        h = tgi_v3_sub(tgi_ao_unproject(g->camera, qx, qy, tgi_gv_depth(g, j)), px->pv);
-        if (px->shift) h = tg_v3(tg_ldexp(h.x, px->shift), tg_ldexp(h.y, px->shift), tg_ldexp(h.z, px->shift));
+        if (got < 0) break;
+        if (got == 0) continue;
         d2 = tgi_v3_dot(h, h);
         if (d2 >= r2 || d2 <= 0) continue;
         if (tgi_v3_dot(h, px->nv) <= above) continue;      /* under the tangent plane: clamped anyway */
@@ -93,18 +66,11 @@ static tg_real bent_fc(tg_real th, tg_real cos_g, tg_real sin_g)
 static void slice(const tgi_gtao_params *p, const tgi_gview *g, const gtao_pixel *px, tg_real sdx,
                   tg_real sdy, tg_real *vis, tg_real *open, tg_vec3 *bent)
 {
-    tg_vec3 d3 = tg_v3(sdx, tg_neg(sdy), 0), dir, axis, pn;
-    tg_real len, cos_n, gamma, cos_g, sin_g, h0, h1, bs, bc;
-    dir = tgi_v3_normalize_or(tgi_v3_sub(d3, tgi_v3_scale(px->vd, tgi_v3_dot(d3, px->vd))), d3);
-    axis = tgi_v3_cross(dir, px->vd);
-    pn = tgi_v3_sub(px->nv, tgi_v3_scale(axis, tgi_v3_dot(px->nv, axis)));  /* normal projected into the slice */
-    len = tgi_v3_length(pn);
-    if (len <= TG_R(0.0001f)) return;
-    cos_n = tg_clamp(tg_div(tgi_v3_dot(pn, px->vd), len), TG_R(-1.0f), TG_ONE);
-    gamma = tg_acos(cos_n);
-    if (tgi_v3_dot(pn, dir) < 0) gamma = tg_neg(gamma);
-    cos_g = tg_cos(gamma);
-    sin_g = tg_sin(gamma);
+    tgi_ao_slice sl;
+    tg_vec3 dir;
+    tg_real len, gamma, cos_g, sin_g, h0, h1, bs, bc;
+    if (!tgi_ao_slice_frame(px->nv, px->vd, sdx, sdy, &sl)) return;
+    dir = sl.dir; len = sl.len; gamma = sl.gamma; cos_g = sl.cos_g; sin_g = sl.sin_g;
     h1 = tg_acos(horizon_cos(p, g, px, sdx, sdy));
     h0 = tg_neg(tg_acos(horizon_cos(p, g, px, tg_neg(sdx), tg_neg(sdy))));
     h1 = tg_add(gamma, tg_min(tg_sub(h1, gamma), TG_HALF_PI));            /* clamp to the normal's hemisphere */
@@ -124,7 +90,7 @@ void tgi_gtao_rows(const tgi_gtao_params *p, const tgi_gview *g, const tgi_gresu
     tg_vec3 dirs[TG_AO_MAX_SAMPLES];
     tgi_ao_rot rot[16];
     int ns = tgi_ao_count(p->slices), k, x, y;
-    int shift = unit_shift(p->radius);
+    int shift = tgi_ao_unit_shift(p->radius);
     tgi_ao_circle(TG_PI, ns, dirs);              /* slice angles over pi */
     tgi_ao_rotations(rot);
     for (y = y0; y < y1; y++)

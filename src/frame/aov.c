@@ -9,6 +9,7 @@
 #include <string.h>
 #include "frame_internal.h"
 #include "../light/tonemap.h"
+#include "../ao/ao.h"
 
 /* RGB planes (absent: `fallback`) at pixels [i0, i0 + w) of a packed row. */
 static void row_rgb(const tgi_rgb *c, const tgi_gview *g, int x0, int y, int w, tg_real *out, tg_real fallback)
@@ -43,6 +44,19 @@ static void row_bent(const tg_frame *f, int x0, int y, int w, tg_real *out)
     }
 }
 
+/* The AO as its AOV reads it: with request.ao_multibounce, GTAO's
+ * multi-bounce fit (Jimenez et al. 2016, eq. 10) with the albedo's Rec. 709
+ * luminance, the material's (the AOV has one channel). */
+static tg_real ao_out(const tg_frame *f, size_t i)
+{
+    tg_real ao = tgi_gr_ao(&f->out, i);
+    tg_vec3 a;
+    if (!tgi_frame_ao_multibounce(f) || tgi_gv_is_sky(&f->full, i)) return ao;
+    a = tgi_gv_albedo(&f->full, i);
+    return tgi_ao_multibounce(ao, tg_add(tg_add(tg_mul(TG_R(0.2126f), a.x), tg_mul(TG_R(0.7152f), a.y)),
+                                         tg_mul(TG_R(0.0722f), a.z)));
+}
+
 /* AO (1, open, without a GI pass) or cone (pi/2 without one). */
 static void row_scalar(const tg_frame *f, tg_aov aov, int x0, int y, int w, tg_real *out)
 {
@@ -51,7 +65,7 @@ static void row_scalar(const tg_frame *f, tg_aov aov, int x0, int y, int w, tg_r
     for (x = 0; x < w; x++) {
         size_t i = tgi_gv_index(g, x0 + x, y);
         if (aov == TG_AOV_DEPTH) out[x] = tgi_gv_depth(g, i);
-        else if (aov == TG_AOV_AO) out[x] = f->out.ao ? tgi_gr_ao(&f->out, i) : TG_ONE;
+        else if (aov == TG_AOV_AO) out[x] = f->out.ao ? ao_out(f, i) : TG_ONE;
         else out[x] = f->out.ao ? tgi_gr_cone(&f->out, i) : TG_HALF_PI;
     }
 }

@@ -6,6 +6,7 @@
  *   slices  -> GTAO slices, HBAO directions (2 per slice: a slice has two sides)
  *   samples -> GTAO/HBAO steps per direction, SSAO/VO/SSDO/bent-cone samples
  *   radius  -> every technique's world-space radius
+ *   thickness -> the visibility bitmask's surface thickness (ssilvb)
  * Everything else is the technique's documented default.  SSDO and bent
  * cones compute their own environment term (the plan then runs no far-field
  * pass).  The reference ray traces the scene's triangles through a BVH.
@@ -18,6 +19,7 @@
 #include "../ao/vo.h"
 #include "../ao/hbao.h"
 #include "../ao/gtao.h"
+#include "../ao/ssilvb.h"
 #include "../ao/ssdo.h"
 #include "../ao/bentcone.h"
 #include "../ao/reference.h"
@@ -67,6 +69,17 @@ void tgi_pass_gtao(tg_frame *f, int y0, int y1)
     p.steps = tgi_ao_count(f->request.samples);
     p.radius = f->request.radius;
     tgi_gtao_rows(&p, &f->full, &f->res, y0, y1);
+}
+
+void tgi_pass_ssilvb(tg_frame *f, int y0, int y1)
+{
+    tgi_ssilvb_params p;
+    tgi_ssilvb_defaults(&p);
+    p.slices = tgi_ao_count(f->request.slices);
+    p.steps = tgi_ao_count(f->request.samples);
+    p.radius = f->request.radius;
+    p.thickness = f->request.thickness;
+    tgi_ssilvb_rows(&p, &f->full, tgi_frame_source(f), &f->res, y0, y1);
 }
 
 void tgi_pass_ssdo(tg_frame *f, int y0, int y1)

@@ -196,6 +196,9 @@ const tgi_rgb *tgi_frame_source(const tg_frame *f);
 /* What the radiance slots and results sets hold this frame (frame_internal.h's
  * tg_frame); tg_frame_render calls it first (layout.c). */
 void tgi_frame_begin(tg_frame *f);
+/* request.ao_multibounce with the ao AOV asked: the AOV reads the fit, the
+ * G-buffer keeps the material (plan.c). */
+int tgi_frame_ao_multibounce(const tg_frame *f);
 /* The technique of the plan is HBIL with the interleaved kernel, and at
  * quarter resolution (plan.c). */
 int tgi_frame_interleaved(const tg_frame *f);

@@ -133,7 +133,8 @@ static int reads_material(const tg_frame *f)
                          AOV(TG_AOV_NORMAL) | AOV(TG_AOV_MOTION);
     tg_technique t = f->request.technique;
     return (f->needs & TG_NEED_COMPOSE) || (f->effects & (TG_EFFECT_DIRECT | TG_EFFECT_NEAR | TG_EFFECT_FAR)) ||
-           f->request.aovs == 0 || (f->request.aovs & ~geometric) || t == TG_TECH_SSDO || t == TG_TECH_REFERENCE;
+           f->request.aovs == 0 || (f->request.aovs & ~geometric) || t == TG_TECH_SSDO || t == TG_TECH_REFERENCE ||
+           tgi_frame_ao_multibounce(f);
 }
 /* The resolved results an AOV reads have planes of their own (HBIL filters or upsamples). */
 static int resolves_into_planes(const tg_frame *f)

@@ -11,7 +11,7 @@ static const char *const aov_names[TG_AOV_COUNT] = {
 };
 
 static const char *const technique_names[TG_TECH_COUNT] = {
-    "hbil", "gtao", "hbao", "ssao", "vo", "ssdo", "bentcone", "reference", "pathtrace"
+    "hbil", "gtao", "hbao", "ssao", "vo", "ssdo", "bentcone", "reference", "pathtrace", "ssilvb"
 };
 
 /* Name i of a table of count names ("?" outside it), and the index of a

@@ -20,7 +20,7 @@ tgi_pass_step_fn tgi_pass_animate, tgi_pass_depth_range, tgi_pass_shadow_maps, t
     tgi_pass_reference_bvh, tgi_pass_pathtrace_setup;
 tgi_pass_rows_fn tgi_pass_gbuffer, tgi_pass_motion, tgi_pass_direct, tgi_pass_reproject,
     tgi_pass_downsample, tgi_pass_hbil_interleaved, tgi_pass_hbil_full, tgi_pass_temporal,
-    tgi_pass_filter_quarter, tgi_pass_ssao, tgi_pass_vo, tgi_pass_hbao, tgi_pass_gtao, tgi_pass_ssdo,
+    tgi_pass_filter_quarter, tgi_pass_ssao, tgi_pass_vo, tgi_pass_hbao, tgi_pass_gtao, tgi_pass_ssilvb, tgi_pass_ssdo,
     tgi_pass_bentcone, tgi_pass_reference, tgi_pass_pathtrace, tgi_pass_resolve, tgi_pass_keep_history;
 /* A left-out feature (tinygi.h "FEATURE SWITCHES") has no rows below, so
  * nothing refers to its passes and the linker leaves them out. */
@@ -54,6 +54,7 @@ static int runs_ssao(const tg_frame *f) { return technique_runs(f, TG_TECH_SSAO)
 static int runs_vo(const tg_frame *f) { return technique_runs(f, TG_TECH_VO); }
 static int runs_hbao(const tg_frame *f) { return technique_runs(f, TG_TECH_HBAO); }
 static int runs_gtao(const tg_frame *f) { return technique_runs(f, TG_TECH_GTAO); }
+static int runs_ssilvb(const tg_frame *f) { return technique_runs(f, TG_TECH_SSILVB); }
 static int runs_ssdo(const tg_frame *f) { return technique_runs(f, TG_TECH_SSDO); }
 static int runs_bentcone(const tg_frame *f) { return technique_runs(f, TG_TECH_BENTCONE); }
 #endif
@@ -125,6 +126,8 @@ const tgi_pass tgi_passes[] = {
       B(RESULTS), TGI_BOUNCE, ROWS(tgi_pass_hbao) },
     { "GTAO (cosine-weighted horizons in view-vector slices)", runs_gtao,
       B(RESULTS), TGI_BOUNCE, ROWS(tgi_pass_gtao) },
+    { "visibility bitmask (GTAO slices, 32 sectors, constant thickness): AO, bent normal, near field",
+      runs_ssilvb, B(RESULTS) | B(SOURCE), TGI_BOUNCE, ROWS(tgi_pass_ssilvb) },
     { "SSDO (directional occlusion, one indirect bounce, far field)", runs_ssdo,
       B(RESULTS) | B(SOURCE) | B(FAR), TGI_BOUNCE, ROWS(tgi_pass_ssdo) },
     { "bent normals and cones (far field in the cone)", runs_bentcone,

@@ -55,7 +55,7 @@ static int scene_has_shadow_light(const tg_scene *s)
 
 static int technique_gathers_near(tg_technique t)
 {
-    return t == TG_TECH_HBIL || t == TG_TECH_SSDO || t == TG_TECH_REFERENCE;
+    return t == TG_TECH_HBIL || t == TG_TECH_SSDO || t == TG_TECH_REFERENCE || t == TG_TECH_SSILVB;
 }
 
 /* Effects the scene makes possible at all. */
@@ -238,10 +238,20 @@ size_t tg_plan_explain(const tg_plan *plan, char *buf, size_t size)
     else put_effects(&t, plan->effects);
     tgi_text_put(&t, "\nskipped: ");
     put_effects(&t, (~plan->effects) & 63u);
+    if (plan->request.technique == TG_TECH_SSILVB) {   /* the visibility bitmask's surfaces */
+        tgi_text_put(&t, "\nvisibility bitmask: radius ");
+        tgi_text_put_real(&t, plan->request.radius);
+        tgi_text_put(&t, ", thickness ");
+        tgi_text_put_real(&t, plan->request.thickness);
+        tgi_text_put(&t, " (world units)");
+    }
     tgi_text_put(&t, "\npasses:\n");
     put_passes(&t, plan);
     if (plan->request.aovs & (AOV(TG_AOV_COLOR) | AOV(TG_AOV_NEAR) | AOV(TG_AOV_FAR) | AOV(TG_AOV_DIRECT) | AOV(TG_AOV_IRRADIANCE)))
         tgi_text_put(&t, "on output: exposure, tonemap + sRGB (8-bit views)\n");
+    if (plan->request.ao_multibounce && (plan->request.aovs & AOV(TG_AOV_AO)))
+        tgi_text_put(&t, "on output: ao through GTAO's multi-bounce fit (Jimenez et al. 2016, eq. 10) "
+                         "with the albedo's luminance (the G-buffer keeps the material)\n");
     tgi_text_put(&t, "buffers:\n");
     for (i = 0; i < plan->buffer_count; i++) {
         tgi_text_put(&t, "  ");
@@ -255,6 +265,11 @@ size_t tg_plan_explain(const tg_plan *plan, char *buf, size_t size)
                            TG_NO_REFERENCE ? SIZE_MAX
                            : plan->request.technique == TG_TECH_REFERENCE ? 0 : tgi_bvh_bytes(plan->scene->tri_count));
     return t.at;
+}
+
+int tgi_frame_ao_multibounce(const tg_frame *f)
+{
+    return f->request.ao_multibounce && (f->request.aovs & AOV(TG_AOV_AO)) != 0;
 }
 
 int tgi_frame_interleaved(const tg_frame *f)

@@ -10,7 +10,7 @@
 #include "frame_internal.h"
 #include "../core/error.h"
 
-#define UNSET_RADIUS TG_R(-1.0f)   /* tg_request.radius: the scene's or the default */
+#define UNSET_RADIUS TG_R(-1.0f)   /* tg_request.radius and thickness: the scene's or the default */
 
 void tg_request_defaults(tg_request *r)
 {
@@ -29,6 +29,7 @@ void tg_request_defaults(tg_request *r)
     r->temporal = 1;
     r->exposure = TG_ONE;
     r->shadow_map_size = TG_DEFAULT_SHADOW_MAP;
+    r->thickness = UNSET_RADIUS;
     r->shadow_pcf = 1;   /* bilinear: nearer hard shadows than the tent at the size rule's density */
 }
 
@@ -76,6 +77,7 @@ static int gi_outside(const tg_request *r, tg_error *err)
     if (r->samples > 0 && int_outside(err, "samples", r->samples, 1, TG_MAX_SAMPLES)) return 1;
     if (r->radius != UNSET_RADIUS && real_outside(err, "radius", r->radius, 0, TG_MAX_RADIUS)) return 1;
     if (r->bounces >= 0 && int_outside(err, "bounces", r->bounces, 0, TG_MAX_BOUNCES)) return 1;
+    if (r->thickness != UNSET_RADIUS && real_outside(err, "thickness", r->thickness, 0, TG_MAX_THICKNESS)) return 1;
     return 0;
 }
 
@@ -91,7 +93,8 @@ static int switch_outside(const tg_request *r, tg_error *err)
         /* shadow rays trace the reference's BVH (left out by TG_NO_REFERENCE) */
         || int_outside(err, "shadow_method", r->shadow_method, TG_SHADOWS_AUTO,
                        TG_NO_REFERENCE ? TG_SHADOWS_MAPS : TG_SHADOWS_RAYS)
-        || int_outside(err, "game_loop", r->game_loop, 0, 1);
+        || int_outside(err, "game_loop", r->game_loop, 0, 1)
+        || int_outside(err, "ao_multibounce", r->ao_multibounce, 0, 1);
 }
 
 int tgi_request_refused(const tg_request *r, tg_error *err)
@@ -136,6 +139,7 @@ int tgi_request_resolve(tg_request *r, const tg_scene *s, tg_error *err)
     if (r->samples <= 0) r->samples = s->gi.samples > 0 ? s->gi.samples : TG_DEFAULT_SAMPLES;
     if (r->radius == UNSET_RADIUS) r->radius = s->gi.radius >= 0 ? s->gi.radius : scene_gather_radius(s);
     if (r->bounces < 0) r->bounces = s->gi.bounces >= 0 ? s->gi.bounces : TG_DEFAULT_BOUNCES;
+    if (r->thickness == UNSET_RADIUS) r->thickness = tg_div(r->radius, tg_from_int(TG_THICKNESS_RADIUS_DIVISOR));
     if (r->aovs == 0) r->aovs = 1u << TG_AOV_COLOR;
     if (r->shadow_map_size <= 0) r->shadow_map_size = TG_DEFAULT_SHADOW_MAP;   /* 0: the size rule */
     if (!gi_outside(r, err)) return 0;

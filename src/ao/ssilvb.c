@@ -1,0 +1,211 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * ssilvb.c - horizon search with a visibility bitmask and a thickness
+ * (Therrien et al. 2023), cosine-weighted AO, bent normal and near-field
+ * irradiance in GTAO's view-vector slices.  See ssilvb.h.
+ */
+#include "ssilvb.h"
+#include "sampling.h"
+
+#if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
+
+static const tgi_ssilvb_params ssilvb_defaults = { .slices = 4, .steps = 8, .radius = TG_ONE, .thickness = TG_R(0.5f) };
+
+void tgi_ssilvb_defaults(tgi_ssilvb_params *p)
+{
+    *p = ssilvb_defaults;
+}
+
+int tgi_ssilvb_popcount(uint32_t b)
+{
+    b = b - ((b >> 1) & 0x55555555u);                     /* 2-bit counts */
+    b = (b & 0x33333333u) + ((b >> 2) & 0x33333333u);     /* 4-bit counts */
+    b = (b + (b >> 4)) & 0x0f0f0f0fu;                     /* 8-bit counts */
+    return (int)((b * 0x01010101u) >> 24);
+}
+
+uint32_t tgi_ssilvb_sector_bits(tg_real lo, tg_real hi)
+{
+    tg_real n = tg_from_int(TG_SSILVB_SECTORS), x0, x1;
+    int start, count;
+    lo = tg_saturate(lo);
+    hi = tg_saturate(hi);
+    if (hi < lo) { tg_real t = lo; lo = hi; hi = t; }
+    x0 = tg_mul(lo, n);
+    x1 = tg_mul(hi, n);
+    start = tg_to_int(x0);                                   /* floor(u_min N_b) */
+    count = -tg_to_int(tg_neg(tg_sub(x1, x0)));              /* ceil((u_max - u_min) N_b) */
+    if (start >= TG_SSILVB_SECTORS || count <= 0) return 0;
+    if (count >= TG_SSILVB_SECTORS) return 0xffffffffu << start;
+    return (((uint32_t)1 << count) - 1u) << start;           /* bits past 31 fall off */
+}
+
+/* The slice integrals from 0 to theta (either sign), ssilvb.h:
+ *   a  = int cos(t - g) |sin t|           (the cosine-weighted visibility)
+ *   bs = int sin t cos(t - g) |sin t|     (bent normal along the slice direction)
+ *   bc = int cos t cos(t - g) |sin t|     (bent normal along the view vector)
+ * the positive branch's antiderivatives (gtao.h: a(h), F_s, F_c) minus
+ * their value at 0, times sign(theta).  One sin and one cos. */
+typedef struct slice_prim { tg_real a, bs, bc; } slice_prim;
+
+static slice_prim prim(tg_real th, tg_real cos_g, tg_real sin_g)
+{
+    tg_real s = tg_sin(th), c = tg_cos(th), s2 = tg_sqr(s), c2 = tg_sqr(c);
+    tg_real s3 = tg_mul(s2, s), c3 = tg_mul(c2, c);
+    /* cos(2 th - g) = (c^2 - s^2) cos g + 2 s c sin g */
+    tg_real cos2 = tg_add(tg_mul(tg_sub(c2, s2), cos_g), tg_mul(tg_ldexp(tg_mul(s, c), 1), sin_g));
+    slice_prim r;
+    r.a = tg_ldexp(tg_sub(tg_add(cos_g, tg_mul(tg_ldexp(th, 1), sin_g)), cos2), -2);
+    /* F_s(th) - F_s(0) = cos g s^3/3 + sin g (c^3/3 - c + 2/3) */
+    r.bs = tg_add(tg_mul(cos_g, tg_div(s3, TG_R(3.0f))),
+                  tg_mul(sin_g, tg_add(tg_sub(tg_div(c3, TG_R(3.0f)), c), TG_R(0.666666667f))));
+    /* F_c(th) - F_c(0) = (sin g s^3 - cos g c^3)/3 + cos g / 3 */
+    r.bc = tg_div(tg_add(tg_sub(tg_mul(sin_g, s3), tg_mul(cos_g, c3)), cos_g), TG_R(3.0f));
+    if (th < 0) { r.a = tg_neg(r.a); r.bs = tg_neg(r.bs); r.bc = tg_neg(r.bc); }
+    return r;
+}
+
+typedef struct vb_pixel {
+    tgi_ao_slice_pixel s;           /* ao.h: position, normal, eye vector, radius in pixels, shift */
+    tg_real rs, r2, above, thick;   /* radius, its square, the tangent-plane bias, the thickness: scaled */
+} vb_pixel;
+
+/* One slice's frame (ao.h) and its sector boundaries. */
+typedef struct vb_slice {
+    tg_real gamma, cos_g, sin_g, len;
+    tg_real theta0, step;             /* theta_k = theta0 + k step, step = pi / N_b */
+} vb_slice;
+
+static tg_real sector_angle(const vb_slice *sl, int k)
+{
+    return tg_add(sl->theta0, tg_mul(tg_from_int(k), sl->step));
+}
+
+/* Sum of prim over the runs of set bits of b: the cosine weight (and the
+ * bent integrals when bent is not NULL). */
+static tg_real mask_weight(const vb_slice *sl, uint32_t b, tg_real *bs, tg_real *bc)
+{
+    tg_real w = 0;
+    int k = 0;
+    while (k < TG_SSILVB_SECTORS) {
+        int j;
+        slice_prim p0, p1;
+        if (!((b >> k) & 1u)) { k++; continue; }
+        for (j = k; j < TG_SSILVB_SECTORS && ((b >> j) & 1u); j++) {}
+        p0 = prim(sector_angle(sl, k), sl->cos_g, sl->sin_g);
+        p1 = prim(sector_angle(sl, j), sl->cos_g, sl->sin_g);
+        w = tg_add(w, tg_sub(p1.a, p0.a));
+        if (bs) {
+            *bs = tg_add(*bs, tg_sub(p1.bs, p0.bs));
+            *bc = tg_add(*bc, tg_sub(p1.bc, p0.bc));
+        }
+        k = j;
+    }
+    return w;
+}
+
+/* Signed angle from the view vector (positive toward the slice direction
+ * on side +1) of view offset h, |h|^2 = d2 > 0, mapped to u in [0, 1] over
+ * the slice's half circle: u = (theta - gamma) / pi + 1/2. */
+static tg_real half_circle_u(const vb_pixel *px, const vb_slice *sl, tg_vec3 h, tg_real d2, int side)
+{
+    tg_real th = tg_acos(tg_mul(tgi_v3_dot(h, px->s.vd), tg_rsqrt(d2)));
+    if (side < 0) th = tg_neg(th);
+    return tg_add(tg_mul(tg_sub(th, sl->gamma), TG_INV_PI), TG_R(0.5f));
+}
+
+/* March one side of a slice: set the sectors of every sample's front/back
+ * pair in *mask; with radiance, gather each sample's L over its new sectors
+ * into *e (unnormalised: the caller divides by the open weight). */
+static void march(const tgi_ssilvb_params *p, const tgi_gview *g, const tgi_rgb *radiance, const vb_pixel *px,
+                  const vb_slice *sl, tg_real sdx, tg_real sdy, int side, uint32_t *mask, tg_vec3 *e)
+{
+    tg_vec3 hf;
+    int s;
+    for (s = 0; s < p->steps; s++) {
+        int j, got = tgi_ao_slice_sample(g, &px->s, s, p->steps, sdx, sdy, &hf, &j);
+        tg_vec3 hb;
+        tg_real d2, db2, uf, ub;
+        uint32_t bits, fresh;
+        if (got < 0) break;
+        if (got == 0) continue;
+        d2 = tgi_v3_dot(hf, hf);
+        if (d2 >= px->r2 || d2 <= 0) continue;
+        if (tgi_v3_dot(hf, px->s.nv) <= px->above) continue;   /* on or under the tangent plane: no sector */
+        /* the back point: the front moved by the thickness away from the eye */
+        hb = tgi_v3_sub(hf, tgi_v3_scale(px->s.vd, px->thick));
+        db2 = tgi_v3_dot(hb, hb);
+        uf = half_circle_u(px, sl, hf, d2, side);
+        ub = db2 > 0 ? half_circle_u(px, sl, hb, db2, side) : (side > 0 ? TG_ONE : 0);
+        bits = tgi_ssilvb_sector_bits(tg_min(uf, ub), tg_max(uf, ub));
+        fresh = bits & ~*mask;
+        *mask |= bits;
+        if (fresh && e && tgi_v3_dot(tgi_ao_normal_view(g, j), hf) < 0) {  /* the sender faces the receiver */
+            tg_vec3 l = tgi_rgb_get(radiance, j);
+            *e = tgi_v3_add(*e, tgi_v3_scale(l, mask_weight(sl, fresh, NULL, NULL)));
+        }
+    }
+}
+
+void tgi_ssilvb_rows(const tgi_ssilvb_params *p, const tgi_gview *g, const tgi_rgb *radiance,
+                     const tgi_gresult *out, int y0, int y1)
+{
+    tg_vec3 dirs[TG_AO_MAX_SAMPLES];
+    tgi_ao_rot rot[16];
+    int ns = tgi_ao_count(p->slices), k, x, y;
+    int shift = tgi_ao_unit_shift(p->radius);
+    int want_near = tgi_gr_has_near(out) && tgi_rgb_present(radiance);
+    tg_real sector = tg_div(TG_PI, tg_from_int(TG_SSILVB_SECTORS));
+    tgi_ao_circle(TG_PI, ns, dirs);              /* slice angles over pi, as GTAO's */
+    tgi_ao_rotations(rot);
+    for (y = y0; y < y1; y++)
+        for (x = 0; x < g->width; x++) {
+            int i = (int)tgi_gv_index(g, x, y);
+            const tgi_ao_rot *r = tgi_ao_rot_at(rot, x, y);
+            vb_pixel px;
+            tg_real vis = 0, open = 0;
+            tg_vec3 bent = tg_v3(0, 0, 0), e = tg_v3(0, 0, 0);
+            tgi_ao_write_open(g, out, i);
+            if (tgi_gv_is_sky(g, i) || p->radius <= 0 || p->steps < 1) continue;
+            px.s.x = x; px.s.y = y;
+            px.s.r_px = tgi_ao_view_at(g, x, y, i, p->radius, &px.s.pv, &px.s.nv, &px.s.vd);
+            px.s.jitter = r->jitter;
+            px.s.shift = shift;
+            px.rs = tg_ldexp(p->radius, shift);
+            px.r2 = tg_sqr(px.rs);
+            px.above = tg_add(tg_ldexp(px.s.pv.z, shift - 10), tg_mul(px.rs, TG_R(0.005f)));
+            /* 64 radii behind is as good as infinite (the back angle is then
+             * within 1/64 rad of pi) and keeps |h_b|^2 inside Q16.16 */
+            px.thick = tg_min(tg_ldexp(tg_max(p->thickness, 0), shift), tg_mul(px.rs, TG_R(64.0f)));
+            for (k = 0; k < ns; k++) {
+                tg_vec3 sd = tgi_ao_rotate_z(dirs[k], r->c, r->s);
+                tg_real sdx = sd.x, sdy = sd.y;
+                tg_real bs = 0, bc = 0, w;
+                tgi_ao_slice f;
+                vb_slice sl;
+                uint32_t mask = 0;
+                tg_vec3 es = tg_v3(0, 0, 0);
+                if (!tgi_ao_slice_frame(px.s.nv, px.s.vd, sdx, sdy, &f)) continue;   /* GTAO's slice frame */
+                sl.len = f.len; sl.gamma = f.gamma; sl.cos_g = f.cos_g; sl.sin_g = f.sin_g;
+                sl.theta0 = tg_sub(sl.gamma, TG_HALF_PI);
+                sl.step = sector;
+                march(p, g, radiance, &px, &sl, sdx, sdy, 1, &mask, want_near ? &es : NULL);
+                march(p, g, radiance, &px, &sl, tg_neg(sdx), tg_neg(sdy), -1, &mask, want_near ? &es : NULL);
+                /* visible weight and bent integrals over the runs of clear bits */
+                w = mask_weight(&sl, ~mask, &bs, &bc);
+                vis = tg_add(vis, tg_mul(sl.len, w));
+                open = tg_add(open, tg_mul(sl.len, mask_weight(&sl, 0xffffffffu, NULL, NULL)));
+                bent = tgi_v3_add(bent, tgi_v3_scale(tgi_v3_add(tgi_v3_scale(f.dir, bs), tgi_v3_scale(px.s.vd, bc)), sl.len));
+                e = tgi_v3_add(e, tgi_v3_scale(es, sl.len));
+            }
+            /* the slice quadrature as a ratio to the open half circles' (exact 1 with no bit set) */
+            tgi_gr_set_ao(out, i, open > 0 ? tg_saturate(tg_div(vis, open)) : TG_ONE);
+            tgi_ao_write_bent_view(g, out, i, bent);
+            if (want_near && open > 0) {
+                tg_real k_e = tg_div(TG_PI, open);
+                tgi_gr_set_near(out, i, tg_v3(tg_mul(e.x, k_e), tg_mul(e.y, k_e), tg_mul(e.z, k_e)));
+            }
+        }
+}
+
+#endif /* !TG_NO_TECHNIQUES */

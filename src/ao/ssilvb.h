@@ -1,0 +1,66 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * ssilvb.h - screen-space indirect lighting with a visibility bitmask
+ * (Therrien, Levesque and Gilet 2023, "Screen Space Indirect Lighting with
+ * Visibility Bitmask", arXiv 2301.11376): GTAO's slices (gtao.h) with the
+ * two horizon angles of a slice replaced by a bit field of N_b = 32 sectors
+ * uniformly distributed over the slice's half circle about the normal,
+ * [gamma - pi/2, gamma + pi/2] (gamma: the projected normal's angle from the
+ * view vector, as in gtao.h), bit k for the angles
+ *     gamma - pi/2 + [k, k + 1) pi / N_b.
+ * Every depth sample is a surface of constant `thickness`: its front point
+ * (the depth buffer's) and its back point (the front moved by the thickness
+ * away from the eye, along the shading point's view vector) subtend the
+ * angles theta_f and theta_b, and the sectors between them are set (with
+ * the paper's rounding: from floor(u_min N_b), ceil((u_max - u_min) N_b)
+ * sectors, u the angle mapped to [0, 1] over the half circle).
+ * Light passes behind a thin object; with an infinite thickness the mask is
+ * GTAO's (every sector above the highest horizon set).
+ *
+ * Weighting: tinygi's AO is cosine-weighted (RTR eq. 11.8, the reference in
+ * reference.h), so a sector is weighted by GTAO's inner integral over its
+ * angles, w_k = A(theta_{k+1}) - A(theta_k) with
+ *     A(theta) = int_0^theta cos(t - gamma) |sin t| dt
+ *              = sign(theta) (cos gamma + 2 theta sin gamma - cos(2 theta - gamma)) / 4
+ * (gtao.h's a(h) with its sign), instead of the paper's uniform
+ * 1 - popcount(b) / N_b; ao is, as in gtao.h, the ratio of the slices'
+ * visible weight (times |projected normal|) to their open weight: exactly 1
+ * where no bit is set.  The weight of a mask is summed over its runs of set
+ * bits (two A per run), so no per-sector table is needed.
+ *
+ * Indirect light (the paper's indirect diffuse): each sample's radiance is gathered
+ * over the sectors it occludes that no nearer sample had occluded
+ * (b_sample & ~b), times the same cosine weights: the near-field irradiance
+ *     E = pi sum_slices len sum_samples L_s w(b_s & ~b) / sum_slices len w(open),
+ * exactly pi L under a uniform L that fills the half circles.  A sample seen
+ * from behind (its normal facing away from the shading point) occludes but
+ * sends nothing (its back's radiance is not in the image).  The bent normal
+ * is GTAO's analytic slice integral over the visible runs.
+ */
+#ifndef TG_SSILVB_H
+#define TG_SSILVB_H
+
+#include "ao.h"
+
+#define TG_SSILVB_SECTORS 32   /* N_b: the bits of a uint32_t */
+
+typedef struct tgi_ssilvb_params {
+    int slices;        /* slice directions over pi, 1..TG_AO_MAX_SAMPLES (default 4) */
+    int steps;         /* samples per side of each slice (default 8) */
+    tg_real radius;    /* world units (default 1): samples farther are ignored */
+    tg_real thickness; /* world units (default 0.5): each sample's surface behind its depth */
+} tgi_ssilvb_params;
+
+void tgi_ssilvb_defaults(tgi_ssilvb_params *p);
+/* ao, bent normal, and (when `out` has a near plane and `radiance` is
+ * present) the near-field irradiance from radiance, indexed like g. */
+void tgi_ssilvb_rows(const tgi_ssilvb_params *p, const tgi_gview *g, const tgi_rgb *radiance,
+                     const tgi_gresult *out, int y0, int y1);
+
+/* Sectors [floor(lo N_b), that + ceil((hi - lo) N_b)) of N_b = 32, lo and
+ * hi clamped to [0, 1] (the paper's bit range of a front/back pair). */
+uint32_t tgi_ssilvb_sector_bits(tg_real lo, tg_real hi);
+/* Set bits of a 32-bit mask (portable, no builtin). */
+int tgi_ssilvb_popcount(uint32_t b);
+
+#endif

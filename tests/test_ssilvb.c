@@ -1,0 +1,333 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * test_ssilvb.c - the visibility-bitmask technique (src/ao/ssilvb.h,
+ * Therrien et al. 2023) on the ray-cast G-buffers of tests/ao_fixture.h,
+ * in both number types:
+ *   - the bit range of a front/back pair (the paper's floor/ceil rounding)
+ *     and the portable popcount, exactly;
+ *   - an open plane: ao exactly 1 at every pixel, the bent normal GTAO's;
+ *   - the groove (floor meeting a tall wall): the floor's ao against the
+ *     exact cosine-weighted occlusion of an infinite wall within the radius,
+ *     per pixel, with the bound the 32 sectors allow;
+ *   - a thin plank standing in front of a wall, with a gap behind it larger
+ *     than the thickness: the wall's pixels beside it see light behind the
+ *     plank as the reference does, where GTAO (an infinitely thick depth
+ *     buffer) darkens them;
+ *   - the near field under a uniform radiance L on every sender that faces
+ *     the receiver: E = pi L (1 - ao), the gathered sectors being exactly the
+ *     occluded ones;
+ *   - hard cases (grazing views, depth discontinuities, zero and huge
+ *     thickness, radius 0): finite, ao in [0, 1], E in [0, pi L];
+ *   - deterministic under any row split.
+ */
+#include "check.h"
+#include "ao/ao.h"
+#include "ao/bvh.h"
+#include "ao/reference.h"
+#include "ao/gtao.h"
+#include "ao/ssilvb.h"
+#include <stdlib.h>
+
+#include "ao_fixture.h"
+}
+
+#define PI 3.14159265358979
+
+static void open_plane(scene *s, const double eye[3], const double target[3])
+{
+    memset(s, 0, sizeof *s);
+    add_rect(s, -BIG, 0, BIG, 2 * BIG, 0, 0, 0, 0, -2 * BIG);
+    raster(s, eye, target, 60.0);
+}
+
+static tgi_ssilvb_params vb_params(double radius, double thickness)
+{
+    tgi_ssilvb_params p;
+    tgi_ssilvb_defaults(&p);
+    p.radius = tg_from_float((float)radius);
+    p.thickness = tg_from_float((float)thickness);
+    return p;
+}
+
+static void run_vb(ao_pass *io, const tgi_ssilvb_params *p, int y0, int y1)
+{
+    tgi_ssilvb_rows(p, &io->g, &io->rad, &io->out, y0, y1);
+}
+
+TEST(sector_bits_and_popcount)
+{
+    uint32_t b = 1u;
+    int k, naive;
+    CHECK(tgi_ssilvb_sector_bits(0, 0) == 0, "an empty range sets nothing");
+    CHECK(tgi_ssilvb_sector_bits(TG_ONE, TG_ONE) == 0, "the end of the half circle sets nothing (no shift by 32)");
+    CHECK(tgi_ssilvb_sector_bits(0, TG_ONE) == 0xffffffffu, "the whole half circle");
+    CHECK(tgi_ssilvb_sector_bits(TG_R(0.5f), TG_ONE) == 0xffff0000u, "the upper half: %08x",
+          (unsigned)tgi_ssilvb_sector_bits(TG_R(0.5f), TG_ONE));
+    CHECK(tgi_ssilvb_sector_bits(TG_R(-3.0f), TG_R(0.25f)) == 0x000000ffu, "clamped to [0, 1]");
+    CHECK(tgi_ssilvb_sector_bits(TG_R(0.25f), TG_R(0.2578125f)) == 0x100u, "a range of 1/4 sector sets one: %08x",
+          (unsigned)tgi_ssilvb_sector_bits(TG_R(0.25f), TG_R(0.2578125f)));
+    /* the paper's rounding: start floor(8.5) = 8, ceil(9.75 - 8.5) = 2 sectors */
+    CHECK(tgi_ssilvb_sector_bits(TG_R(0.265625f), TG_R(0.3046875f)) == 0x300u, "%08x",
+          (unsigned)tgi_ssilvb_sector_bits(TG_R(0.265625f), TG_R(0.3046875f)));
+    CHECK(tgi_ssilvb_sector_bits(TG_R(0.3046875f), TG_R(0.265625f)) == 0x300u, "either order");
+    CHECK(tgi_ssilvb_popcount(0) == 0 && tgi_ssilvb_popcount(0xffffffffu) == 32, "popcount ends");
+    for (k = 0; k < 2000; k++) {
+        uint32_t v = b;
+        naive = 0;
+        while (v) { naive += (int)(v & 1u); v >>= 1; }
+        CHECK(tgi_ssilvb_popcount(b) == naive, "popcount %08x: %d, want %d", (unsigned)b, tgi_ssilvb_popcount(b), naive);
+        b = b * 1664525u + 1013904223u;
+    }
+}
+
+TEST(open_plane_is_exactly_open)
+{
+    static const double eyes[3][3] = { { 0.5, 2.0, 3.0 }, { 0.0, 0.3, 4.0 }, { 3.0, 0.08, 0.0 } };
+    static const double target[3] = { 0, 0, -1 };
+    static scene s;
+    static outputs o, g;
+    ao_pass io;
+    tgi_gtao_params gp;
+    int e, i;
+    for (e = 0; e < 3; e++) {   /* from above, low, grazing */
+        tgi_ssilvb_params p = vb_params(1, 0.5);
+        int n = 0, not_one = 0;
+        double worst_bent = 0, worst_gtao = 0;
+        open_plane(&s, eyes[e], target);
+        io_for(&io, &s, &g, 0);
+        tgi_gtao_defaults(&gp);
+        tgi_gtao_rows(&gp, &io.g, &io.out, 0, H);
+        io_read(&io);
+        io_for(&io, &s, &o, 0);
+        run_vb(&io, &p, 0, H);
+        io_read(&io);
+        for (i = 0; i < W * H; i++) {
+            double c, cg;
+            if (s.sky[i]) continue;
+            n++;
+            if (o.ao[i] != TG_ONE) not_one++;
+            c = check_d(o.bx[i]) * check_d(g.bx[i]) + check_d(o.by[i]) * check_d(g.by[i]) + check_d(o.bz[i]) * check_d(g.bz[i]);
+            cg = check_d(g.bx[i]) * check_d(s.nx[i]) + check_d(g.by[i]) * check_d(s.ny[i]) + check_d(g.bz[i]) * check_d(s.nz[i]);
+            worst_bent = fmax(worst_bent, acos(fmin(1.0, c)) * 180 / PI);
+            worst_gtao = fmax(worst_gtao, acos(fmin(1.0, cg)) * 180 / PI);
+        }
+        printf("# open plane, eye %d: %d pixels, %d with ao != 1; bent normal off GTAO's by up to %.2f deg (GTAO's off "
+               "the normal by %.2f: the slice quadrature)\n", e, n, not_one, worst_bent, worst_gtao);
+        CHECK(n > 100, "the plane is seen (%d pixels)", n);
+        CHECK(not_one == 0, "eye %d: %d pixels not exactly 1", e, not_one);
+        /* open half circles: the same integrals as GTAO's, up to the 2x8-bit storage */
+        CHECK(worst_bent < 1.0, "eye %d: bent normal %g deg off GTAO's", e, worst_bent);
+    }
+}
+
+/* Exact cosine-weighted AO of a floor point at distance d from an infinite
+ * wall x = 0 (floor y = 0, x >= 0), rays cut off at r: 1 - (1/pi) int over
+ * the directions that reach the wall within r of cos(theta) d omega.  A
+ * direction (sin t cos f, cos t, sin t sin f), f from the wall's normal
+ * direction -x, reaches it after d / (sin t cos f). */
+static double wall_ao(double d, double r)
+{
+    int it, ip, nt = 400, np = 400;
+    double blocked = 0;
+    if (d >= r) return 1;
+    for (it = 0; it < nt; it++) {
+        double t = (it + 0.5) * (PI / 2) / nt, st = sin(t);
+        for (ip = 0; ip < np; ip++) {
+            double f = -PI / 2 + (ip + 0.5) * PI / np;
+            if (st * cos(f) * r > d) blocked += cos(t) * st;
+        }
+    }
+    return 1 - blocked * (PI / 2 / nt) * (PI / np) / PI;
+}
+
+TEST(groove_against_the_exact_wall)
+{
+    static scene s;
+    static outputs o;
+    ao_pass io;
+    tgi_ssilvb_params p = vb_params(1, 1000);   /* a wall: thicker than anything within reach */
+    int i, n = 0;
+    double se = 0, bias = 0, worst = 0;
+    groove(&s);
+    io_for(&io, &s, &o, 0);
+    run_vb(&io, &p, 0, H);
+    io_read(&io);
+    for (i = 0; i < W * H; i++) {
+        double want, d;
+        if (s.sky[i] || s.wrect[i] != 0 || fabs(s.wpos[i][2]) > 10 || s.wpos[i][0] > 1.5) continue;
+        want = wall_ao(s.wpos[i][0], 1.0);
+        d = check_d(o.ao[i]) - want;
+        se += d * d; bias += d; n++;
+        worst = fmax(worst, fabs(d));
+    }
+    printf("# groove floor within 1.5 of the wall, %d pixels: rmse %.4f, bias %+.4f, worst %.3f against the exact wall\n",
+           n, sqrt(se / n), bias / n, worst);
+    CHECK(n > 100, "floor pixels %d", n);
+    /* 4 slices of 8 steps (gtao's own quadrature error on this groove is
+     * ~0.04) and the paper's rounding, up to one sector (pi/32 of the half
+     * circle) too dark at a horizon */
+    CHECK(sqrt(se / n) < 0.08, "rmse %g", sqrt(se / n));
+    CHECK(fabs(bias / n) < 0.05, "bias %g", bias / n);
+}
+
+/* A wall z = -1 facing the camera, a plank (0.3 wide, tall, no thickness)
+ * standing 0.8 in front of it: light reaches the wall behind the plank. */
+static void plank(scene *s)
+{
+    static const double eye[3] = { 0.0, 0.0, 2.5 }, target[3] = { 0, 0, -1 };
+    memset(s, 0, sizeof *s);
+    add_rect(s, -BIG, -BIG, -1, 2 * BIG, 0, 0, 0, 2 * BIG, 0);   /* the wall, normal +z */
+    add_rect(s, -0.15, -BIG, -0.2, 0.3, 0, 0, 0, 2 * BIG, 0);    /* the plank */
+    raster(s, eye, target, 60.0);
+    build_bvh(s);
+}
+
+TEST(thin_plank_lets_light_through_behind_it)
+{
+    static scene s;
+    static outputs ref, vb, gt;
+    ao_pass io;
+    tgi_reference_params rp;
+    tgi_gtao_params gp;
+    tgi_ssilvb_params p = vb_params(1.5, 0.1);
+    double m_ref = 0, m_vb = 0, m_gt = 0;
+    int i, n = 0;
+    plank(&s);
+    tgi_reference_defaults(&rp);
+    rp.bvh = &bvh; rp.tri_nrm = s.nrm; rp.radius = TG_R(1.5f);
+    io_for(&io, &s, &ref, 0);
+    tgi_reference_rows(&rp, &io.g, &io.rad, &io.out, 0, H);
+    io_read(&io);
+    io_for(&io, &s, &vb, 0);
+    run_vb(&io, &p, 0, H);
+    io_read(&io);
+    tgi_gtao_defaults(&gp);
+    gp.radius = TG_R(1.5f);
+    io_for(&io, &s, &gt, 0);
+    tgi_gtao_rows(&gp, &io.g, &io.out, 0, H);
+    io_read(&io);
+    for (i = 0; i < W * H; i++) {   /* the wall's pixels beside the plank */
+        double x = fabs(s.wpos[i][0]);
+        if (s.sky[i] || s.wrect[i] != 0 || x < 0.2 || x > 0.6 || fabs(s.wpos[i][1]) > 0.8) continue;
+        m_ref += check_d(ref.ao[i]); m_vb += check_d(vb.ao[i]); m_gt += check_d(gt.ao[i]); n++;
+    }
+    m_ref /= n; m_vb /= n; m_gt /= n;
+    printf("# plank 0.3 wide, 0.8 in front of the wall, thickness 0.1, %d wall pixels beside it: mean ao "
+           "reference %.3f, ssilvb %.3f, gtao %.3f\n", n, m_ref, m_vb, m_gt);
+    CHECK(n > 30, "wall pixels beside the plank: %d", n);
+    CHECK(fabs(m_vb - m_ref) < 0.06, "ssilvb %g against the reference %g", m_vb, m_ref);
+    CHECK(m_gt < m_ref - 0.15, "gtao darkens behind the plank: %g against the reference %g", m_gt, m_ref);
+    CHECK(m_vb > m_gt + 0.15, "the bitmask lets light through where gtao does not: %g vs %g", m_vb, m_gt);
+}
+
+TEST(near_field_gathers_the_occluded_sectors)
+{
+    static scene s;
+    static outputs o;
+    static tg_real lr[W * H], lg[W * H], lb[W * H];
+    ao_pass io;
+    tgi_ssilvb_params p = vb_params(1, 0.3);
+    int i, n = 0, occluded = 0;
+    double worst = 0;
+    groove(&s);
+    for (i = 0; i < W * H; i++) { lr[i] = TG_R(0.5f); lg[i] = TG_R(1.0f); lb[i] = TG_R(2.0f); }
+    io_for(&io, &s, &o, 1);
+    io_radiance(&io, lr, lg, lb);
+    run_vb(&io, &p, 0, H);
+    io_read(&io);
+    for (i = 0; i < W * H; i++) {
+        double a = check_d(o.ao[i]), want = PI * (1 - a), d;
+        if (s.sky[i]) continue;
+        n++;
+        if (a < 0.9) occluded++;
+        /* the AO is stored in 8 bits (1/510), the irradiance as RGB9E5 (2^-9 relative) */
+        d = fabs(check_d(o.ng[i]) - want);
+        worst = fmax(worst, d);
+        CHECK(d < PI / 500 + want / 256 + (TG_FIXED ? 3e-3 : 1e-5), "pixel %d: E %g, pi L (1 - ao) %g", i,
+              check_d(o.ng[i]), want);
+        CHECK(fabs(check_d(o.nr[i]) * 2 - check_d(o.ng[i])) < 1e-2 + check_d(o.ng[i]) / 128 &&
+              fabs(check_d(o.nb[i]) - 2 * check_d(o.ng[i])) < 2e-2 + check_d(o.ng[i]) / 128,
+              "pixel %d: E proportional to L per channel", i);
+    }
+    printf("# groove, uniform L on every sender: |E - pi L (1 - ao)| up to %.2g over %d pixels (%d with ao < 0.9)\n",
+           worst, n, occluded);
+    CHECK(occluded > 50, "the groove has occluded pixels: %d", occluded);
+}
+
+TEST(hard_cases_stay_finite)
+{
+    static const double eye_graze[3] = { 3.0, 0.06, 0.4 }, target_graze[3] = { -2, 0.0, -1 };
+    static scene s;
+    static outputs o;
+    static tg_real lr[W * H];
+    static const double thick[] = { 0, 0.05, 1e4 };
+    static const double radii[] = { 0, 0.3, 1000 };
+    ao_pass io;
+    int sc, a, b, i, bad = 0;
+    for (i = 0; i < W * H; i++) lr[i] = TG_ONE;
+    for (sc = 0; sc < 3; sc++) {
+        if (sc == 0) groove(&s);
+        else if (sc == 1) plank(&s);   /* depth discontinuities at the plank's edges */
+        else {
+            memset(&s, 0, sizeof s);
+            add_rect(&s, 0, 0, BIG, BIG, 0, 0, 0, 0, -2 * BIG);
+            add_rect(&s, 0, 0, -BIG, 0, BIG, 0, 0, 0, 2 * BIG);
+            raster(&s, eye_graze, target_graze, 60.0);   /* the floor at a grazing angle */
+        }
+        for (a = 0; a < 3; a++)
+            for (b = 0; b < 3; b++) {
+                tgi_ssilvb_params p = vb_params(radii[b], thick[a]);
+                io_for(&io, &s, &o, 1);
+                io_radiance(&io, lr, lr, lr);
+                run_vb(&io, &p, 0, H);
+                io_read(&io);
+                for (i = 0; i < W * H; i++) {
+                    double ao = check_d(o.ao[i]), e = check_d(o.nr[i]);
+                    double bl = sqrt(check_d(o.bx[i]) * check_d(o.bx[i]) + check_d(o.by[i]) * check_d(o.by[i]) +
+                                     check_d(o.bz[i]) * check_d(o.bz[i]));
+                    if (!(ao >= 0 && ao <= 1) || !(e >= 0 && e <= PI * 1.01) || !(fabs(bl - 1) < 2e-3)) {
+                        if (bad++ < 5)
+                            CHECK(0, "scene %d thickness %g radius %g pixel %d: ao %g, E %g, |bent| %g", sc, thick[a],
+                                  radii[b], i, ao, e, bl);
+                    }
+                    if (b == 0 && ao != 1) bad++;   /* radius 0: nothing is within reach */
+                }
+            }
+    }
+    CHECK(bad == 0, "%d bad values", bad);
+}
+
+TEST(deterministic_under_row_splits)
+{
+    static scene s;
+    static outputs a, b;
+    static tg_real lr[W * H];
+    ao_pass io;
+    tgi_ssilvb_params p = vb_params(1, 0.3);
+    int i;
+    groove(&s);
+    for (i = 0; i < W * H; i++) lr[i] = TG_R(0.7f);
+    io_for(&io, &s, &a, 1);
+    io_radiance(&io, lr, lr, lr);
+    run_vb(&io, &p, 0, H);
+    io_read(&io);
+    io_for(&io, &s, &b, 1);
+    io_radiance(&io, lr, lr, lr);
+    run_vb(&io, &p, 0, 7);
+    run_vb(&io, &p, 7, H);
+    io_read(&io);
+    CHECK(memcmp(a.ao, b.ao, sizeof a.ao) == 0 && memcmp(a.bx, b.bx, sizeof a.bx) == 0 &&
+          memcmp(a.nr, b.nr, sizeof a.nr) == 0, "the same bits under a row split");
+}
+
+int main(void)
+{
+    RUN(sector_bits_and_popcount);
+    RUN(open_plane_is_exactly_open);
+    RUN(groove_against_the_exact_wall);
+    RUN(thin_plank_lets_light_through_behind_it);
+    RUN(near_field_gathers_the_occluded_sectors);
+    RUN(hard_cases_stay_finite);
+    RUN(deterministic_under_row_splits);
+    return check_summary();
+}
