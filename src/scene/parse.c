@@ -394,10 +394,6 @@ typedef tg_status (*statement_fn)(tgi_parser *p, tgi_lexer *lx, const tgi_token 
 
 #define NSPEC(a) ((int)(sizeof(a) / sizeof((a)[0])))
 
-static const key_spec camera_keys[] = {
-    {"pos", K_VEC3, 1}, {"target", K_VEC3, 1}, {"up", K_VEC3, 0},
-    {"fov", K_REAL, 0}, {"near", K_REAL, 0}, {"far", K_REAL, 0}};
-
 static tg_status st_camera(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *v)
 {
     tgi_scene_camera cam;
@@ -428,8 +424,6 @@ static tg_status st_camera(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, co
     if (p->fill) p->scene->camera = cam;
     return TG_OK;
 }
-
-static const key_spec camera_key_keys[] = {{"t", K_REAL, 1}, {"pos", K_VEC3, 1}, {"target", K_VEC3, 1}};
 
 static tg_status st_camera_key(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *v)
 {
@@ -494,10 +488,6 @@ static tg_status st_material(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, 
 /* The object name key, or NULL. */
 static const tgi_token *name_of(const key_val *kv) { return kv->present ? &kv->tok[0] : NULL; }
 
-static const key_spec quad_keys[] = {
-    {"p0", K_VEC3, 1}, {"p1", K_VEC3, 1}, {"p2", K_VEC3, 1}, {"p3", K_VEC3, 1},
-    {"material", K_NAME, 1}, {"name", K_NAME, 0}};
-
 static tg_status st_quad(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *v)
 {
     tg_vec3 q[4], n;
@@ -516,10 +506,6 @@ static tg_status st_quad(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, cons
  * counter-clockwise seen from outside, and their outward normal axes. */
 static const unsigned char box_faces[6][4] = {
     {0, 4, 6, 2}, {5, 1, 3, 7}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
-
-static const key_spec box_keys[] = {
-    {"min", K_VEC3, 1}, {"max", K_VEC3, 1}, {"material", K_NAME, 1},
-    {"inward", K_FLAG, 0}, {"name", K_NAME, 0}};
 
 static tg_status st_box(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *v)
 {
@@ -564,10 +550,6 @@ static void sphere_vertex(tg_vec3 c, tg_real r, int i, int j, int rings, int seg
     *nrm = n;
     *pos = tgi_v3_add(c, tgi_v3_scale(n, r));
 }
-
-static const key_spec sphere_keys[] = {
-    {"center", K_VEC3, 1}, {"radius", K_REAL, 1}, {"material", K_NAME, 1},
-    {"segments", K_INT, 0}, {"name", K_NAME, 0}};
 
 static tg_status st_sphere(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *v)
 {
@@ -622,10 +604,6 @@ static void base_name(const tgi_token *path, char out[TG_MAX_NAME + 1])
     out[n] = '\0';
 }
 
-static const key_spec mesh_keys[] = {
-    {"file", K_PATH, 1}, {"material", K_NAME, 1}, {"translate", K_VEC3, 0},
-    {"scale", K_REAL, 0}, {"rotate", K_ROT, 0}, {"name", K_NAME, 0}};
-
 static tg_status st_mesh(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *v)
 {
     tgi_xform xf;
@@ -652,9 +630,6 @@ static tg_status st_mesh(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, cons
     return tgi_obj_mesh(p, lx, &v[0].tok[0], &xf, mat, objname);
 #endif
 }
-
-static const key_spec object_key_keys[] = {
-    {"name", K_NAME, 1}, {"t", K_REAL, 1}, {"translate", K_VEC3, 0}, {"rotate", K_ROT, 0}};
 
 static tg_status st_object_key(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *v)
 {
@@ -828,9 +803,6 @@ static tg_status int_limit(tgi_parser *p, const tgi_lexer *lx, const key_val *kv
     return limit_tok(p, lx, &kv->tok[0], name, lo, hi);
 }
 
-static const key_spec gi_keys[] = {
-    {"radius", K_REAL, 0}, {"slices", K_INT, 0}, {"samples", K_INT, 0}, {"bounces", K_INT, 0}};
-
 static tg_status st_gi(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *v)
 {
     tgi_gi_settings gi;
@@ -898,6 +870,29 @@ static tg_status st_effects(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, c
     }
     return TG_OK;
 }
+
+/* The statements' keys, in the order each statement reads them in v[]
+ * (key, kind, required). */
+static const key_spec camera_keys[] = {
+    {"pos", K_VEC3, 1}, {"target", K_VEC3, 1}, {"up", K_VEC3, 0},
+    {"fov", K_REAL, 0}, {"near", K_REAL, 0}, {"far", K_REAL, 0}};
+static const key_spec camera_key_keys[] = {{"t", K_REAL, 1}, {"pos", K_VEC3, 1}, {"target", K_VEC3, 1}};
+static const key_spec quad_keys[] = {
+    {"p0", K_VEC3, 1}, {"p1", K_VEC3, 1}, {"p2", K_VEC3, 1}, {"p3", K_VEC3, 1},
+    {"material", K_NAME, 1}, {"name", K_NAME, 0}};
+static const key_spec box_keys[] = {
+    {"min", K_VEC3, 1}, {"max", K_VEC3, 1}, {"material", K_NAME, 1},
+    {"inward", K_FLAG, 0}, {"name", K_NAME, 0}};
+static const key_spec sphere_keys[] = {
+    {"center", K_VEC3, 1}, {"radius", K_REAL, 1}, {"material", K_NAME, 1},
+    {"segments", K_INT, 0}, {"name", K_NAME, 0}};
+static const key_spec mesh_keys[] = {
+    {"file", K_PATH, 1}, {"material", K_NAME, 1}, {"translate", K_VEC3, 0},
+    {"scale", K_REAL, 0}, {"rotate", K_ROT, 0}, {"name", K_NAME, 0}};
+static const key_spec object_key_keys[] = {
+    {"name", K_NAME, 1}, {"t", K_REAL, 1}, {"translate", K_VEC3, 0}, {"rotate", K_ROT, 0}};
+static const key_spec gi_keys[] = {
+    {"radius", K_REAL, 0}, {"slices", K_INT, 0}, {"samples", K_INT, 0}, {"bounces", K_INT, 0}};
 
 /* The statements: keyword, function, the keys the dispatcher parses for it
  * (NULL: it reads its own, after a name or a type), and whether it may
