@@ -262,6 +262,33 @@ TEST(kept_geometry_is_every_pixel_of_the_frame)
     teardown(&r);
 }
 
+/* A room of material "wall" (an inward box) with a lamp quad in its
+ * ceiling and a point light of INTENSITY under it; HEAD (the camera and the
+ * materials) comes before the room, EXTRA (more objects) after its walls.
+ * Set up as setup_checked ("WHAT sets up"). */
+static int lamp_room(rendered *r, const tg_request *q, const char *head, const char *extra,
+                     const char *intensity, const char *what)
+{
+    char text[2048];
+    snprintf(text, sizeof text,
+             "%s"
+             "box min -2 0 -4 max 2 3 2 material wall inward\n"
+             "%s"
+             "quad p0 -0.5 2.99 -0.5  p1 0.5 2.99 -0.5  p2 0.5 2.99 0.5  p3 -0.5 2.99 0.5 material lamp\n"
+             "light point pos 0 2.5 0 color 1 1 1 intensity %s\n",
+             head, extra, intensity);
+    return setup_checked(r, text, q, what);
+}
+
+/* How many of the N values are not finite or outside [lo, hi]. */
+static int out_of_range(const double *v, size_t n, double lo, double hi)
+{
+    size_t i;
+    int bad = 0;
+    for (i = 0; i < n; i++) bad += !(isfinite(v[i]) && v[i] >= lo && v[i] <= hi);
+    return bad;
+}
+
 /* Albedo 1 walls and a bright lamp for many frames: everything stays
  * finite and non-negative (fixed point saturates, never wraps). */
 TEST(white_room_stays_finite)
@@ -269,62 +296,50 @@ TEST(white_room_stays_finite)
     rendered r;
     tg_request q = request(16, 12, AOVBIT(TG_AOV_COLOR) | AOVBIT(TG_AOV_NEAR));
     tg_error err;
-    const char *text =
-        "camera pos 0 1 -3.5 target 0 1 0 fov 60\n"
-        "material wall albedo 1 1 1 f0 0\n"
-        "material lamp albedo 1 1 1 emissive 50 50 50\n"
-        "box min -2 0 -4 max 2 3 2 material wall inward\n"
-        "quad p0 -0.5 2.99 -0.5  p1 0.5 2.99 -0.5  p2 0.5 2.99 0.5  p3 -0.5 2.99 0.5 material lamp\n"
-        "light point pos 0 2.5 0 color 1 1 1 intensity 20\n";
-    int f, bad = 0;
+    int f, bad;
+    double *c, *nf;
     q.frames = 500;
-    if (!setup_checked(&r, text, &q, "white room")) return;
+    if (!lamp_room(&r, &q,
+                   "camera pos 0 1 -3.5 target 0 1 0 fov 60\n"
+                   "material wall albedo 1 1 1 f0 0\n"
+                   "material lamp albedo 1 1 1 emissive 50 50 50\n",
+                   "", "20", "white room"))
+        return;
     for (f = 0; f < q.frames; f++) tg_frame_render(r.frame, f, &err);
-    {
-        double *c = read_aov(&r, TG_AOV_COLOR), *nf = read_aov(&r, TG_AOV_NEAR);
-        size_t i;
-        for (i = 0; i < 16 * 12 * 3; i++) {
-            if (!isfinite(c[i]) || c[i] < 0 || !isfinite(nf[i]) || nf[i] < 0) bad++;
-        }
-        CHECK(bad == 0, "%d non-finite or negative values after 500 frames", bad);
-        CHECK(mean(c, 16 * 12 * 3) > 1.0, "a white room with a bright lamp is bright (%.3f)", mean(c, 16 * 12 * 3));
-        free(c); free(nf);
-    }
+    c = read_aov(&r, TG_AOV_COLOR);
+    nf = read_aov(&r, TG_AOV_NEAR);
+    bad = out_of_range(c, 16 * 12 * 3, 0, HUGE_VAL) + out_of_range(nf, 16 * 12 * 3, 0, HUGE_VAL);
+    CHECK(bad == 0, "%d non-finite or negative values after 500 frames", bad);
+    CHECK(mean(c, 16 * 12 * 3) > 1.0, "a white room with a bright lamp is bright (%.3f)", mean(c, 16 * 12 * 3));
+    free(c); free(nf);
     teardown(&r);
 }
 
-/* A camera cut (a key far from the last) keeps every output finite and
- * the AO in [0, 1]. */
+/* A camera cut (a key far from the last) keeps every output finite, the
+ * colour non-negative and the AO in [0, 1]. */
 TEST(camera_cut_is_finite)
 {
     rendered r;
     tg_request q = request(40, 30, AOVBIT(TG_AOV_COLOR) | AOVBIT(TG_AOV_AO));
     tg_error err;
-    const char *text =
-        "camera pos 0 1 -3.5 target 0 1 0\n"
-        "camera_key t 0 pos 0 1 -3.5 target 0 1 0\n"
-        "camera_key t 1 pos 0 1 -3.5 target 0 1 0\n"
-        "camera_key t 1.01 pos 1.5 2.5 1.5 target -1 0 -2\n"
-        "camera_key t 2 pos 1.5 2.5 1.5 target -1 0 -2\n"
-        "material wall albedo 0.7 0.7 0.7\n"
-        "material lamp albedo 0.5 0.5 0.5 emissive 5 5 5\n"
-        "box min -2 0 -4 max 2 3 2 material wall inward\n"
-        "box min -0.5 0 -0.5 max 0.5 1 0.5 material wall\n"
-        "quad p0 -0.5 2.99 -0.5  p1 0.5 2.99 -0.5  p2 0.5 2.99 0.5  p3 -0.5 2.99 0.5 material lamp\n"
-        "light point pos 0 2.5 0 color 1 1 1 intensity 4\n";
     int f, bad = 0;
     q.frames = 6;
-    if (!setup_checked(&r, text, &q, "cut scene")) return;
+    if (!lamp_room(&r, &q,
+                   "camera pos 0 1 -3.5 target 0 1 0\n"
+                   "camera_key t 0 pos 0 1 -3.5 target 0 1 0\n"
+                   "camera_key t 1 pos 0 1 -3.5 target 0 1 0\n"
+                   "camera_key t 1.01 pos 1.5 2.5 1.5 target -1 0 -2\n"
+                   "camera_key t 2 pos 1.5 2.5 1.5 target -1 0 -2\n"
+                   "material wall albedo 0.7 0.7 0.7\n"
+                   "material lamp albedo 0.5 0.5 0.5 emissive 5 5 5\n",
+                   "box min -0.5 0 -0.5 max 0.5 1 0.5 material wall\n", "4", "cut scene"))
+        return;
     for (f = 0; f < q.frames; f++) {
         double *c, *ao;
-        size_t i;
         tg_frame_render(r.frame, f, &err);
         c = read_aov(&r, TG_AOV_COLOR);
         ao = read_aov(&r, TG_AOV_AO);
-        for (i = 0; i < 40 * 30; i++) {
-            if (!isfinite(c[3 * i]) || !isfinite(c[3 * i + 1]) || !isfinite(c[3 * i + 2]) || c[3 * i] < 0) bad++;
-            if (!(ao[i] >= 0 && ao[i] <= 1)) bad++;
-        }
+        bad += out_of_range(c, 40 * 30 * 3, 0, HUGE_VAL) + out_of_range(ao, 40 * 30, 0, 1);
         free(c); free(ao);
     }
     CHECK(bad == 0, "%d bad values across the cut", bad);

@@ -120,6 +120,26 @@ static void drawn_free(gbuf *g, mesh *m)
     free(m);
 }
 
+/* A view, the mesh built in it and the G-buffer it is drawn into: the
+ * fixture of the tests that rasterize one mesh and read the pixels. */
+typedef struct drawing {
+    tgi_view v;
+    mesh *m;
+    gbuf g;
+} drawing;
+
+static drawing drawing_at(int w, int h, double fov_deg, int aligned)
+{
+    drawing d;
+    memset(&d, 0, sizeof d);
+    d.v = view_make(w, h, fov_deg, aligned);
+    d.m = mesh_new();
+    return d;
+}
+
+static void drawing_draw(drawing *d) { gbuf_draw(&d->g, &d->v, d->m); }
+static void drawing_free(drawing *d) { drawn_free(&d->g, d->m); }
+
 static tg_vec3 view_to_world(const tgi_view *v, double x, double y, double z)
 {
     double p[3];
@@ -371,6 +391,29 @@ TEST(fill_rule_on_pixel_centres)
 /* ---------------------------------------------------------------------- */
 /* the G-buffer path                                                       */
 
+/* The NX by NZ cells of the grid of points P ((NZ + 1) rows of NX + 1
+ * points, x y z each), two triangles a cell (corners 0 1 2 and 0 2 3 going
+ * round it); each triangle's object is its index in m when IDS, else 0. */
+static void add_grid(mesh *m, const tgi_view *v, const double *P, int nx, int nz, int ids)
+{
+    int i, j, k;
+    for (j = 0; j < nz; j++)
+        for (i = 0; i < nx; i++) {
+            const double *c[4];
+            double a[3][3], b[3][3];
+            c[0] = P + 3 * (j * (nx + 1) + i);
+            c[1] = c[0] + 3;
+            c[2] = c[1] + 3 * (nx + 1);
+            c[3] = c[0] + 3 * (nx + 1);
+            for (k = 0; k < 3; k++) {
+                a[0][k] = c[0][k]; a[1][k] = c[1][k]; a[2][k] = c[2][k];
+                b[0][k] = c[0][k]; b[1][k] = c[2][k]; b[2][k] = c[3][k];
+            }
+            add_tri_view(m, v, (const double(*)[3])a, NULL, 0, ids ? m->n : 0);
+            add_tri_view(m, v, (const double(*)[3])b, NULL, 0, ids ? m->n : 0);
+        }
+}
+
 /* A jittered grid of quads on a tilted plane in front of the camera (past
  * the screen edges), distinct object ids: no pixel left as sky, and every
  * pixel clearly inside a triangle holds that triangle's id. */
@@ -388,16 +431,7 @@ TEST(gbuffer_tiling_ids)
             double y = -5 + 10.0 * j / N + ((j > 0 && j < N) ? (rnd() - 0.5) * 0.4 : 0);
             P[j][i][0] = x; P[j][i][1] = y; P[j][i][2] = 4 + 0.3 * x + 0.2 * y;
         }
-    for (j = 0; j < N; j++)
-        for (i = 0; i < N; i++) {
-            double a[3][3], b[3][3];
-            for (k = 0; k < 3; k++) {
-                a[0][k] = P[j][i][k]; a[1][k] = P[j][i + 1][k]; a[2][k] = P[j + 1][i + 1][k];
-                b[0][k] = P[j][i][k]; b[1][k] = P[j + 1][i + 1][k]; b[2][k] = P[j + 1][i][k];
-            }
-            add_tri_view(m, &v, (const double(*)[3])a, NULL, 0, m->n);
-            add_tri_view(m, &v, (const double(*)[3])b, NULL, 0, m->n);
-        }
+    add_grid(m, &v, &P[0][0][0], N, N, 1);
     gbuf_draw(&g, &v, m);
     for (j = 0; j < H; j++)
         for (i = 0; i < W; i++) {
@@ -591,11 +625,9 @@ TEST(depth_plane_and_floor)
 TEST(clipped_tiling_watertight)
 {
     enum { W = 96, H = 72, NX = 12, NZ = 12 };
-    tgi_view v = view_make(W, H, 90, 1);
-    mesh *m = mesh_new();
-    gbuf g;
+    drawing d = drawing_at(W, H, 90, 1);
     static double P[NZ + 1][NX + 1][3];
-    int i, j, k, holes = 0, bad = 0, checked = 0;
+    int i, j, holes = 0, bad = 0, checked = 0;
     for (j = 0; j <= NZ; j++)
         for (i = 0; i <= NX; i++) {
             /* uneven spacing so the near plane and screen edges cut cells anywhere */
@@ -603,89 +635,76 @@ TEST(clipped_tiling_watertight)
             double z = -40 + 440.0 * (j * j) / (NZ * NZ) + ((j > 0 && j < NZ) ? (rnd() - 0.5) * 0.5 : 0);
             P[j][i][0] = x; P[j][i][1] = -1; P[j][i][2] = z;
         }
-    for (j = 0; j < NZ; j++)
-        for (i = 0; i < NX; i++) {
-            double a[3][3], b[3][3];
-            for (k = 0; k < 3; k++) {
-                a[0][k] = P[j][i][k]; a[1][k] = P[j][i + 1][k]; a[2][k] = P[j + 1][i + 1][k];
-                b[0][k] = P[j][i][k]; b[1][k] = P[j + 1][i + 1][k]; b[2][k] = P[j + 1][i][k];
-            }
-            add_tri_view(m, &v, (const double(*)[3])a, NULL, 0, 0);
-            add_tri_view(m, &v, (const double(*)[3])b, NULL, 0, 0);
-        }
-    gbuf_draw(&g, &v, m);
+    add_grid(d.m, &d.v, &P[0][0][0], NX, NZ, 0);
+    drawing_draw(&d);
     for (j = 0; j < H; j++)
         for (i = 0; i < W; i++) {
             double dx, dy, z;
-            pixel_ray(&v, i, j, &dx, &dy);
+            pixel_ray(&d.v, i, j, &dx, &dy);
             if (dy >= 0) continue;
             z = -1.0 / dy;                         /* ray meets y = -1 at view z */
             if (z > 350 || fabs(dx * z) > 250) continue;
             checked++;
-            if (gsky(&g, j * W + i)) { holes++; continue; }
+            if (gsky(&d.g, j * W + i)) { holes++; continue; }
             /* depth changes by 2 z^2 / (H focal_y) per pixel row here; snapping
              * moves vertices by up to 1/32 pixel */
-            if (fabs(gdepth(&g, j * W + i) - z) > (TG_FIXED ? 3e-4 : 5e-5) * z + 0.05 * 2 * z * z / (H * D(v.focal_y))) {
-                if (bad < 3) fprintf(stderr, "  (%d, %d): depth %.6g, want %.6g\n", i, j, gdepth(&g, j * W + i), z);
+            if (fabs(gdepth(&d.g, j * W + i) - z) > (TG_FIXED ? 3e-4 : 5e-5) * z + 0.05 * 2 * z * z / (H * D(d.v.focal_y))) {
+                if (bad < 3) fprintf(stderr, "  (%d, %d): depth %.6g, want %.6g\n", i, j, gdepth(&d.g, j * W + i), z);
                 bad++;
             }
         }
     CHECK(checked > W * H / 3, "checked only %d pixels", checked);
     CHECK(holes == 0, "%d holes in a clipped floor tiling", holes);
     CHECK(bad == 0, "%d floor pixels off the analytic depth", bad);
-    drawn_free(&g, m);
+    drawing_free(&d);
 }
 
 /* Vertex normals interpolate perspective-correctly and come out unit. */
 TEST(normal_interpolation)
 {
     enum { W = 64, H = 48 };
-    tgi_view v = view_at(W, H, 70);
-    mesh *m = mesh_new();
-    gbuf g;
+    drawing d = drawing_at(W, H, 70, 0);
     const double p[3][3] = { { -3, -2, 2 }, { 3, -2, 9 }, { 0, 3, 4 } };
     double n[3][3] = { { -0.6, 0, -0.8 }, { 0.48, 0.6, -0.64 }, { 0, 0.8, -0.6 } };
     int i, j, k, bad = 0, count = 0;
     double worst = 0;
-    add_tri_view(m, &v, p, (const double(*)[3])n, 0, 0);
-    gbuf_draw(&g, &v, m);
+    add_tri_view(d.m, &d.v, p, (const double(*)[3])n, 0, 0);
+    drawing_draw(&d);
     for (j = 0; j < H; j++)
         for (i = 0; i < W; i++) {
-            double b[3], z = ray_tri(&v, i, j, p, b), e[3], len = 0, err = 0;
+            double b[3], z = ray_tri(&d.v, i, j, p, b), e[3], len = 0, err = 0;
             int idx = j * W + i;
             tg_vec3 ew;
-            if (gsky(&g, idx) || z < 0 || b[0] < 0.01 || b[1] < 0.01 || b[2] < 0.01) continue;
+            if (gsky(&d.g, idx) || z < 0 || b[0] < 0.01 || b[1] < 0.01 || b[2] < 0.01) continue;
             for (k = 0; k < 3; k++) e[k] = b[0] * n[0][k] + b[1] * n[1][k] + b[2] * n[2][k];
             len = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-            ew = dir_to_world(&v, e[0] / len, e[1] / len, e[2] / len);
-            err = fabs(D(gnormal(&g, idx).x) - D(ew.x)) + fabs(D(gnormal(&g, idx).y) - D(ew.y)) + fabs(D(gnormal(&g, idx).z) - D(ew.z));
+            ew = dir_to_world(&d.v, e[0] / len, e[1] / len, e[2] / len);
+            err = fabs(D(gnormal(&d.g, idx).x) - D(ew.x)) + fabs(D(gnormal(&d.g, idx).y) - D(ew.y)) + fabs(D(gnormal(&d.g, idx).z) - D(ew.z));
             if (err > worst) worst = err;
             if (err > 0.01) bad++;
             count++;
         }
     CHECK(count > 100 && bad == 0, "%d of %d normals off the perspective-correct value (worst %g)", bad, count, worst);
-    drawn_free(&g, m);
+    drawing_free(&d);
 }
 
 TEST(zero_area_skipped)
 {
     enum { W = 32, H = 24 };
-    tgi_view v = view_at(W, H, 70);
-    mesh *m = mesh_new();
-    gbuf g;
+    drawing d = drawing_at(W, H, 70, 0);
     const double line[3][3] = { { -1, -1, 3 }, { 0, 0, 3 }, { 1, 1, 3 } };
     const double point[3][3] = { { 0.1, 0.1, 3 }, { 0.1, 0.1, 3 }, { 0.1, 0.1, 3 } };
     const double dup[3][3] = { { -1, -1, 3 }, { -1, -1, 3 }, { 1, 0.5, 3 } };
     const double edge_on[3][3] = { { 0, -1, 2 }, { 0, 1, 3 }, { 0, -1, 5 } }; /* plane x = 0 through the eye */
     int i, drawn = 0;
-    add_tri_view(m, &v, line, NULL, 1, 0);
-    add_tri_view(m, &v, point, NULL, 1, 0);
-    add_tri_view(m, &v, dup, NULL, 1, 0);
-    add_tri_view(m, &v, edge_on, NULL, 1, 0);
-    gbuf_draw(&g, &v, m);
-    for (i = 0; i < W * H; i++) drawn += !gsky(&g, i);
+    add_tri_view(d.m, &d.v, line, NULL, 1, 0);
+    add_tri_view(d.m, &d.v, point, NULL, 1, 0);
+    add_tri_view(d.m, &d.v, dup, NULL, 1, 0);
+    add_tri_view(d.m, &d.v, edge_on, NULL, 1, 0);
+    drawing_draw(&d);
+    for (i = 0; i < W * H; i++) drawn += !gsky(&d.g, i);
     CHECK(drawn == 0, "zero-area triangles drew %d pixels", drawn);
-    drawn_free(&g, m);
+    drawing_free(&d);
 }
 
 /* Garbage in (NaN, infinities, the largest values) draws nothing wrong:
@@ -693,36 +712,34 @@ TEST(zero_area_skipped)
 TEST(hostile_coordinates)
 {
     enum { W = 40, H = 30 };
-    tgi_view v = view_at(W, H, 70);
-    mesh *m = mesh_new();
-    gbuf g;
+    drawing d = drawing_at(W, H, 70, 0);
     double big = TG_FIXED ? 32000.0 : 3e38;
     double vals[] = { 0, 1, -1, 5, 1e-30, -3, 0, 2 };
     int t, k, i, bad = 0;
     for (t = 0; t < 400; t++) {
         for (k = 0; k < 3; k++) {
             double c[3];
-            int d;
-            for (d = 0; d < 3; d++) {
+            int a;
+            for (a = 0; a < 3; a++) {
                 int pick = (int)(rng() % 12);
-                c[d] = pick < 8 ? vals[pick] * (1 + rnd()) : pick == 8 ? big : pick == 9 ? -big
+                c[a] = pick < 8 ? vals[pick] * (1 + rnd()) : pick == 8 ? big : pick == 9 ? -big
                      : pick == 10 ? (TG_FIXED ? big : (double)INFINITY) : (TG_FIXED ? -big : (double)NAN);
             }
-            m->pos[3 * m->n + k] = V(c[0], c[1], c[2]);
-            m->nrm[3 * m->n + k] = V(0, 0, -1);
+            d.m->pos[3 * d.m->n + k] = V(c[0], c[1], c[2]);
+            d.m->nrm[3 * d.m->n + k] = V(0, 0, -1);
         }
-        m->mat[m->n] = (uint16_t)(t & 1);
-        m->obj[m->n] = 0;
-        m->n++;
+        d.m->mat[d.m->n] = (uint16_t)(t & 1);
+        d.m->obj[d.m->n] = 0;
+        d.m->n++;
     }
-    gbuf_draw(&g, &v, m);
+    drawing_draw(&d);
     for (i = 0; i < W * H; i++) {
-        double z = gdepth(&g, i);
-        if (gsky(&g, i)) continue;
+        double z = gdepth(&d.g, i);
+        if (gsky(&d.g, i)) continue;
         if (!(z > 0 && z < 1e30)) bad++;
     }
     CHECK(bad == 0, "%d pixels with a non-finite or non-positive depth", bad);
-    drawn_free(&g, m);
+    drawing_free(&d);
 }
 
 /* A closed sphere: nearest wins, normals unit and facing the viewer, and

@@ -388,22 +388,18 @@ static tg_status resolve_material(tgi_parser *p, const tgi_lexer *lx, const key_
 /* the statements                                                        */
 /* ===================================================================== */
 
-typedef tg_status (*statement_fn)(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw);
+/* A statement after its keyword (and, when it has a key table, its keys
+ * parsed into v in the table's order; NULL when it parses its own). */
+typedef tg_status (*statement_fn)(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *v);
 
 #define NSPEC(a) ((int)(sizeof(a) / sizeof((a)[0])))
 
-static tg_status st_camera(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
+static tg_status st_camera(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *v)
 {
-    static const key_spec spec[] = {
-        {"pos", K_VEC3, 1}, {"target", K_VEC3, 1}, {"up", K_VEC3, 0},
-        {"fov", K_REAL, 0}, {"near", K_REAL, 0}, {"far", K_REAL, 0}};
-    key_val v[MAX_SPEC];
     tgi_scene_camera cam;
     tg_status st;
     tg_real fov = TG_R(TG_DEFAULT_FOV);
-    if (p->have_camera)
-        return fail(p, lx, kw->col, "duplicate 'camera' statement; only one is allowed", NULL, NULL);
-    if ((st = parse_keys(p, lx, kw, spec, NSPEC(spec), v))) return st;
+    (void)kw;
     cam.pos = kv_vec3(&v[0]);
     cam.target = kv_vec3(&v[1]);
     if (is_zero_vec(tgi_v3_sub(cam.target, cam.pos)))
@@ -429,14 +425,10 @@ static tg_status st_camera(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     return TG_OK;
 }
 
-static tg_status st_camera_key(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
+static tg_status st_camera_key(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *v)
 {
-    static const key_spec spec[] = {{"t", K_REAL, 1}, {"pos", K_VEC3, 1}, {"target", K_VEC3, 1}};
-    key_val v[MAX_SPEC];
     tgi_camera_key key, *k;
-    tg_status st;
     size_t i;
-    if ((st = parse_keys(p, lx, kw, spec, NSPEC(spec), v))) return st;
     key.t = v[0].v[0];
     key.pos = kv_vec3(&v[1]);
     key.target = kv_vec3(&v[2]);
@@ -456,7 +448,7 @@ static tg_status st_camera_key(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw
     return TG_OK;
 }
 
-static tg_status st_material(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
+static tg_status st_material(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *parsed)
 {
     static const key_spec spec[] = {
         {"albedo", K_VEC3, 1}, {"f0", K_REAL, 0}, {"emissive", K_VEC3, 0}, {"twosided", K_FLAG, 0}};
@@ -467,6 +459,7 @@ static tg_status st_material(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     char buf[48];
     int index;
     int have = tgi_lex_token(lx, &name);
+    (void)parsed;
     if (!have || find_key(spec, NSPEC(spec), &name) >= 0)
         return fail(p, lx, have ? name.col : tgi_lex_eol_col(lx),
                     "'material' expects a name first: material NAME albedo R G B ...", NULL, NULL);
@@ -495,16 +488,11 @@ static tg_status st_material(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
 /* The object name key, or NULL. */
 static const tgi_token *name_of(const key_val *kv) { return kv->present ? &kv->tok[0] : NULL; }
 
-static tg_status st_quad(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
+static tg_status st_quad(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *v)
 {
-    static const key_spec spec[] = {
-        {"p0", K_VEC3, 1}, {"p1", K_VEC3, 1}, {"p2", K_VEC3, 1}, {"p3", K_VEC3, 1},
-        {"material", K_NAME, 1}, {"name", K_NAME, 0}};
-    key_val v[MAX_SPEC];
     tg_vec3 q[4], n;
     tg_status st;
     int i, mat;
-    if ((st = parse_keys(p, lx, kw, spec, NSPEC(spec), v))) return st;
     for (i = 0; i < 4; i++) q[i] = kv_vec3(&v[i]);
     if (!tgi_face_normal(q[0], q[1], q[2], &n) || !tgi_face_normal(q[0], q[2], q[3], &n))
         return fail(p, lx, v[0].tok[0].col,
@@ -519,16 +507,11 @@ static tg_status st_quad(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
 static const unsigned char box_faces[6][4] = {
     {0, 4, 6, 2}, {5, 1, 3, 7}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
 
-static tg_status st_box(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
+static tg_status st_box(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *v)
 {
-    static const key_spec spec[] = {
-        {"min", K_VEC3, 1}, {"max", K_VEC3, 1}, {"material", K_NAME, 1},
-        {"inward", K_FLAG, 0}, {"name", K_NAME, 0}};
-    key_val v[MAX_SPEC];
     tg_vec3 lo, hi, c[8], q[4], n;
     tg_status st;
     int i, f, mat, inward;
-    if ((st = parse_keys(p, lx, kw, spec, NSPEC(spec), v))) return st;
     for (i = 0; i < 3; i++)
         if (!(v[0].v[i] < v[1].v[i]))
             return fail(p, lx, v[1].tok[i].col,
@@ -568,17 +551,12 @@ static void sphere_vertex(tg_vec3 c, tg_real r, int i, int j, int rings, int seg
     *pos = tgi_v3_add(c, tgi_v3_scale(n, r));
 }
 
-static tg_status st_sphere(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
+static tg_status st_sphere(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *v)
 {
-    static const key_spec spec[] = {
-        {"center", K_VEC3, 1}, {"radius", K_REAL, 1}, {"material", K_NAME, 1},
-        {"segments", K_INT, 0}, {"name", K_NAME, 0}};
-    key_val v[MAX_SPEC];
     tg_vec3 c, pa[4], na[4], tp[3], tn[3];
     tg_status st;
     tg_real r;
     int mat, segs = TG_DEFAULT_SPHERE_SEGMENTS, rings, i, j, k;
-    if ((st = parse_keys(p, lx, kw, spec, NSPEC(spec), v))) return st;
     if ((st = check_range(p, lx, &v[1], "radius", 0, TG_REAL_MAX, LO_OPEN, "greater than 0")))
         return st;
     if (v[3].present) {
@@ -626,17 +604,12 @@ static void base_name(const tgi_token *path, char out[TG_MAX_NAME + 1])
     out[n] = '\0';
 }
 
-static tg_status st_mesh(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
+static tg_status st_mesh(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *v)
 {
-    static const key_spec spec[] = {
-        {"file", K_PATH, 1}, {"material", K_NAME, 1}, {"translate", K_VEC3, 0},
-        {"scale", K_REAL, 0}, {"rotate", K_ROT, 0}, {"name", K_NAME, 0}};
-    key_val v[MAX_SPEC];
     tgi_xform xf;
     tg_status st;
     char objname[TG_MAX_NAME + 1];
     int mat;
-    if ((st = parse_keys(p, lx, kw, spec, NSPEC(spec), v))) return st;
     xf.translate = v[2].present ? kv_vec3(&v[2]) : tg_v3(0, 0, 0);
     xf.scale = TG_ONE;
     if ((st = kv_positive(p, lx, &v[3], "scale", &xf.scale))) return st;
@@ -658,18 +631,14 @@ static tg_status st_mesh(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
 #endif
 }
 
-static tg_status st_object_key(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
+static tg_status st_object_key(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *v)
 {
-    static const key_spec spec[] = {
-        {"name", K_NAME, 1}, {"t", K_REAL, 1}, {"translate", K_VEC3, 0}, {"rotate", K_ROT, 0}};
-    key_val v[MAX_SPEC];
     tgi_key key, *k;
     tg_status st;
     uint16_t *own;
     char buf[48];
     int obj;
     size_t i;
-    if ((st = parse_keys(p, lx, kw, spec, NSPEC(spec), v))) return st;
     memset(&key, 0, sizeof key);
     key.t = v[1].v[0];
     if (v[2].present) key.translate = kv_vec3(&v[2]);
@@ -708,7 +677,7 @@ static tg_status check_color(tgi_parser *p, const tgi_lexer *lx, const key_val *
     return check_range(p, lx, kv, key, 0, TG_REAL_MAX, 0, "0 or more");
 }
 
-static tg_status st_light(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
+static tg_status st_light(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *parsed)
 {
     static const key_spec dir_spec[] = {
         {"dir", K_VEC3, 1}, {"color", K_VEC3, 1}, {"intensity", K_REAL, 0}, {"shadows", K_FLAG, 0}};
@@ -722,6 +691,7 @@ static tg_status st_light(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     tgi_token type;
     tg_status st;
     char buf[48];
+    (void)parsed;
     memset(&l, 0, sizeof l);
     if (!tgi_lex_token(lx, &type))
         return fail(p, lx, tgi_lex_eol_col(lx), "'light' expects a type: directional, point or spot", NULL, NULL);
@@ -785,7 +755,7 @@ static tg_status positional(tgi_parser *p, tgi_lexer *lx, const char *what, int 
     return TG_OK;
 }
 
-static tg_status st_env(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
+static tg_status st_env(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *parsed)
 {
     static const key_spec sky_spec[] = {{"sky", K_VEC3, 1}, {"ground", K_VEC3, 1}, {"up", K_VEC3, 0}};
     key_val v[MAX_SPEC];
@@ -795,8 +765,7 @@ static tg_status st_env(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     tg_real num[27];
     char buf[48];
     int i;
-    if (p->have_env)
-        return fail(p, lx, kw->col, "duplicate 'env' statement; only one is allowed", NULL, NULL);
+    (void)parsed;
     memset(&env, 0, sizeof env);
     if (!tgi_lex_peek(lx, &type))
         return fail(p, lx, tgi_lex_eol_col(lx), "'env' expects a type: uniform, sky or sh9", NULL, NULL);
@@ -822,7 +791,6 @@ static tg_status st_env(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     } else
         return fail(p, lx, type.col, "unknown env type '", tgi_tok_str(&type, buf),
                     "'; expected uniform, sky or sh9");
-    p->have_env = 1;
     if (p->fill) p->scene->env = env;
     return TG_OK;
 }
@@ -835,16 +803,11 @@ static tg_status int_limit(tgi_parser *p, const tgi_lexer *lx, const key_val *kv
     return limit_tok(p, lx, &kv->tok[0], name, lo, hi);
 }
 
-static tg_status st_gi(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
+static tg_status st_gi(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *v)
 {
-    static const key_spec spec[] = {
-        {"radius", K_REAL, 0}, {"slices", K_INT, 0}, {"samples", K_INT, 0}, {"bounces", K_INT, 0}};
-    key_val v[MAX_SPEC];
     tgi_gi_settings gi;
     tg_status st;
-    if (p->have_gi)
-        return fail(p, lx, kw->col, "duplicate 'gi' statement; only one is allowed", NULL, NULL);
-    if ((st = parse_keys(p, lx, kw, spec, NSPEC(spec), v))) return st;
+    (void)kw;
     gi.radius = TG_R(-1.0f);
     gi.slices = gi.samples = 0;
     gi.bounces = -1;
@@ -865,7 +828,6 @@ static tg_status st_gi(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
         if ((st = int_limit(p, lx, &v[3], "gi bounces", 0, TG_MAX_BOUNCES))) return st;
         gi.bounces = (int)v[3].i;
     }
-    p->have_gi = 1;
     if (p->fill) p->scene->gi = gi;
     return TG_OK;
 }
@@ -874,7 +836,7 @@ static const struct { const char *word; uint32_t bit; } effect_words[] = {
     {"direct", TG_EFFECT_DIRECT}, {"shadows", TG_EFFECT_SHADOWS}, {"far", TG_EFFECT_FAR},
     {"near", TG_EFFECT_NEAR}, {"ao", TG_EFFECT_AO}, {"reprojection", TG_EFFECT_REPROJECTION}};
 
-static tg_status st_effects(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
+static tg_status st_effects(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *parsed)
 {
     static const char expect[] = "; expected 'auto' or a list of: direct shadows far near ao reprojection";
     tgi_token t;
@@ -882,8 +844,7 @@ static tg_status st_effects(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     char buf[48];
     size_t i;
     int n = 0, is_auto = 0;
-    if (p->have_effects)
-        return fail(p, lx, kw->col, "duplicate 'effects' statement; only one is allowed", NULL, NULL);
+    (void)kw; (void)parsed;
     while (tgi_lex_token(lx, &t)) {
         if (tgi_tok_is(&t, "auto")) {
             if (n > 0) return fail(p, lx, t.col, "'auto' cannot be mixed with a list of effects", NULL, NULL);
@@ -903,7 +864,6 @@ static tg_status st_effects(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
         n++;
     }
     if (n == 0) return fail(p, lx, tgi_lex_eol_col(lx), "'effects' expects a value", expect, NULL);
-    p->have_effects = 1;
     if (p->fill) {
         p->scene->effects_auto = is_auto;
         p->scene->effects = is_auto ? 0 : bits;
@@ -911,11 +871,52 @@ static tg_status st_effects(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw)
     return TG_OK;
 }
 
-static const struct { const char *kw; statement_fn fn; } statements[] = {
-    {"camera", st_camera}, {"camera_key", st_camera_key}, {"material", st_material},
-    {"quad", st_quad}, {"box", st_box}, {"sphere", st_sphere}, {"mesh", st_mesh},
-    {"object_key", st_object_key}, {"light", st_light}, {"env", st_env}, {"gi", st_gi},
-    {"effects", st_effects}};
+/* The statements' keys, in the order each statement reads them in v[]
+ * (key, kind, required). */
+static const key_spec camera_keys[] = {
+    {"pos", K_VEC3, 1}, {"target", K_VEC3, 1}, {"up", K_VEC3, 0},
+    {"fov", K_REAL, 0}, {"near", K_REAL, 0}, {"far", K_REAL, 0}};
+static const key_spec camera_key_keys[] = {{"t", K_REAL, 1}, {"pos", K_VEC3, 1}, {"target", K_VEC3, 1}};
+static const key_spec quad_keys[] = {
+    {"p0", K_VEC3, 1}, {"p1", K_VEC3, 1}, {"p2", K_VEC3, 1}, {"p3", K_VEC3, 1},
+    {"material", K_NAME, 1}, {"name", K_NAME, 0}};
+static const key_spec box_keys[] = {
+    {"min", K_VEC3, 1}, {"max", K_VEC3, 1}, {"material", K_NAME, 1},
+    {"inward", K_FLAG, 0}, {"name", K_NAME, 0}};
+static const key_spec sphere_keys[] = {
+    {"center", K_VEC3, 1}, {"radius", K_REAL, 1}, {"material", K_NAME, 1},
+    {"segments", K_INT, 0}, {"name", K_NAME, 0}};
+static const key_spec mesh_keys[] = {
+    {"file", K_PATH, 1}, {"material", K_NAME, 1}, {"translate", K_VEC3, 0},
+    {"scale", K_REAL, 0}, {"rotate", K_ROT, 0}, {"name", K_NAME, 0}};
+static const key_spec object_key_keys[] = {
+    {"name", K_NAME, 1}, {"t", K_REAL, 1}, {"translate", K_VEC3, 0}, {"rotate", K_ROT, 0}};
+static const key_spec gi_keys[] = {
+    {"radius", K_REAL, 0}, {"slices", K_INT, 0}, {"samples", K_INT, 0}, {"bounces", K_INT, 0}};
+
+/* The statements: keyword, function, the keys the dispatcher parses for it
+ * (NULL: it reads its own, after a name or a type), and whether it may
+ * stand only once in a file. */
+#define KEYS(t) t, NSPEC(t)
+static const struct {
+    const char *kw;
+    statement_fn fn;
+    const key_spec *keys;
+    int nkeys, once;
+} statements[] = {
+    {"camera", st_camera, KEYS(camera_keys), 1},
+    {"camera_key", st_camera_key, KEYS(camera_key_keys), 0},
+    {"material", st_material, NULL, 0, 0},
+    {"quad", st_quad, KEYS(quad_keys), 0},
+    {"box", st_box, KEYS(box_keys), 0},
+    {"sphere", st_sphere, KEYS(sphere_keys), 0},
+    {"mesh", st_mesh, KEYS(mesh_keys), 0},
+    {"object_key", st_object_key, KEYS(object_key_keys), 0},
+    {"light", st_light, NULL, 0, 0},
+    {"env", st_env, NULL, 0, 1},
+    {"gi", st_gi, KEYS(gi_keys), 1},
+    {"effects", st_effects, NULL, 0, 1}};
+#define NSTATEMENTS ((int)(sizeof statements / sizeof statements[0]))
 
 /* ===================================================================== */
 /* the passes                                                            */
@@ -925,7 +926,7 @@ static void reset_counts(tgi_parser *p)
 {
     p->tris = p->materials = p->objects = p->object_keys = p->camera_keys = p->lights = 0;
     p->usemtl_bound = 0;
-    p->have_camera = p->have_env = p->have_gi = p->have_effects = 0;
+    p->have_camera = 0;
 }
 
 static tg_status run_pass(tgi_parser *p, const char *text, size_t size)
@@ -934,8 +935,11 @@ static tg_status run_pass(tgi_parser *p, const char *text, size_t size)
     tgi_token kw;
     tg_status st;
     char buf[48];
+    key_val v[MAX_SPEC];
+    unsigned char seen[NSTATEMENTS];
     size_t i, n = sizeof statements / sizeof statements[0];
     int r;
+    memset(seen, 0, sizeof seen);
     reset_counts(p);
     tgi_lex_init(&lx, text, size, p->file);
     while ((r = tgi_lex_line(&lx, p->err)) > 0) {
@@ -950,7 +954,11 @@ static tg_status run_pass(tgi_parser *p, const char *text, size_t size)
             }
             return TG_ERR_INPUT;
         }
-        if ((st = statements[i].fn(p, &lx, &kw))) return st;
+        if (statements[i].once && seen[i]++)
+            return fail(p, &lx, kw.col, "duplicate '", statements[i].kw, "' statement; only one is allowed");
+        if (statements[i].keys && (st = parse_keys(p, &lx, &kw, statements[i].keys, statements[i].nkeys, v)))
+            return st;
+        if ((st = statements[i].fn(p, &lx, &kw, statements[i].keys ? v : NULL))) return st;
     }
     if (r < 0) return TG_ERR_INPUT;
     if (!p->have_camera && p->camera_keys == 0)

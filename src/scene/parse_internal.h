@@ -31,7 +31,7 @@ typedef struct tgi_parser {
     size_t obj_scratch;                 /* largest (v + vn) count of one OBJ */
     tg_vec3 *scratch;                   /* pass 2: room for obj_scratch vec3 */
     uint16_t *key_owner;                /* pass 2: object of each object key */
-    int have_camera, have_env, have_gi, have_effects;
+    int have_camera;
 } tgi_parser;
 
 /* Set an input error at (file, line, col): message built from up to three
