@@ -706,12 +706,12 @@ TEST(tent_pcf_is_odd_about_a_shadow_edge)
  * dark out to 2.67 m from the foot of the light and lit beyond. */
 TEST(plate_nearer_than_the_near_plane_shadows)
 {
+    static const double dark[][2] = { { 0, 0 }, { 0.5, 0.3 }, { -1.2, 1.0 }, { 2.0, -1.2 } };
+    static const double lit[][2] = { { 3.5, 0 }, { -3.0, 2.5 }, { 0.5, 4.0 } };
     geo *g = geo_new();
     tgi_light pl = make_light(TG_LIGHT_POINT, v3(0, 2, 0), v3(0, -1, 0), 1, 0);
     tgi_shadow_map sm;
     void *mem;
-    static const double dark[][2] = { { 0, 0 }, { 0.5, 0.3 }, { -1.2, 1.0 }, { 2.0, -1.2 } };
-    static const double lit[][2] = { { 3.5, 0 }, { -3.0, 2.5 }, { 0.5, 4.0 } };
     size_t k;
     memset(g, 0, sizeof *g);
     rect(g, 1, 0, -5, 5, -5, 5);

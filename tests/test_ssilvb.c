@@ -54,6 +54,14 @@ static void run_vb(ao_pass *io, const tgi_ssilvb_params *p, int y0, int y1)
     tgi_ssilvb_rows(p, &io->g, &io->rad, &io->out, y0, y1);
 }
 
+/* ssilvb over the whole image of s into o (no near field), read back. */
+static void vb_image(ao_pass *io, scene *s, outputs *o, const tgi_ssilvb_params *p)
+{
+    io_for(io, s, o, 0);
+    run_vb(io, p, 0, H);
+    io_read(io);
+}
+
 TEST(sector_bits_and_popcount)
 {
     uint32_t b = 1u;
@@ -98,9 +106,7 @@ TEST(open_plane_is_exactly_open)
         tgi_gtao_defaults(&gp);
         tgi_gtao_rows(&gp, &io.g, &io.out, 0, H);
         io_read(&io);
-        io_for(&io, &s, &o, 0);
-        run_vb(&io, &p, 0, H);
-        io_read(&io);
+        vb_image(&io, &s, &o, &p);
         for (i = 0; i < W * H; i++) {
             double c, cg;
             if (s.sky[i]) continue;
@@ -149,9 +155,7 @@ TEST(groove_against_the_exact_wall)
     int i, n = 0;
     double se = 0, bias = 0, worst = 0;
     groove(&s);
-    io_for(&io, &s, &o, 0);
-    run_vb(&io, &p, 0, H);
-    io_read(&io);
+    vb_image(&io, &s, &o, &p);
     for (i = 0; i < W * H; i++) {
         double want, d;
         if (s.sky[i] || s.wrect[i] != 0 || fabs(s.wpos[i][2]) > 10 || s.wpos[i][0] > 1.5) continue;
@@ -198,9 +202,7 @@ TEST(thin_plank_lets_light_through_behind_it)
     io_for(&io, &s, &ref, 0);
     tgi_reference_rows(&rp, &io.g, &io.rad, &io.out, 0, H);
     io_read(&io);
-    io_for(&io, &s, &vb, 0);
-    run_vb(&io, &p, 0, H);
-    io_read(&io);
+    vb_image(&io, &s, &vb, &p);
     tgi_gtao_defaults(&gp);
     gp.radius = TG_R(1.5f);
     io_for(&io, &s, &gt, 0);

@@ -33,76 +33,33 @@ static const tg_vec3 *far_sh(const tg_frame *f)
     return (f->effects & TG_EFFECT_FAR) ? f->sh : NULL;
 }
 
-void tgi_pass_ssao(tg_frame *f, int y0, int y1)
-{
-    tgi_ssao_params p;
-    tgi_ssao_defaults(&p);
-    p.samples = tgi_ao_count(f->request.samples);
-    p.radius = f->request.radius;
-    tgi_ssao_rows(&p, &f->full, &f->res, y0, y1);
-}
+/* A comparison technique's pass: its parameters from the technique's
+ * defaults and the request's knobs (KNOBS, statements on p), then its rows
+ * over the full-resolution view (ARGS, the rows function's arguments). */
+#define TECHNIQUE_PASS(NAME, KNOBS, ARGS)                                   \
+    void tgi_pass_##NAME(tg_frame *f, int y0, int y1)                      \
+    {                                                                      \
+        tgi_##NAME##_params p;                                             \
+        tgi_##NAME##_defaults(&p);                                         \
+        p.radius = f->request.radius;                                      \
+        KNOBS                                                              \
+        tgi_##NAME##_rows ARGS;                                            \
+    }
+#define SAMPLES p.samples = tgi_ao_count(f->request.samples);
+#define SLICES_STEPS p.slices = tgi_ao_count(f->request.slices); p.steps = tgi_ao_count(f->request.samples);
+#define FAR_FIELD p.env_sh9 = far_sh(f); if (p.env_sh9) p.far = f->far;
+#define RESULTS (&p, &f->full, &f->res, y0, y1)
+#define SOURCE_RESULTS (&p, &f->full, tgi_frame_source(f), &f->res, y0, y1)
 
-void tgi_pass_vo(tg_frame *f, int y0, int y1)
-{
-    tgi_vo_params p;
-    tgi_vo_defaults(&p);
-    p.samples = tgi_ao_count(f->request.samples);
-    p.radius = f->request.radius;
-    tgi_vo_rows(&p, &f->full, &f->res, y0, y1);
-}
-
-void tgi_pass_hbao(tg_frame *f, int y0, int y1)
-{
-    tgi_hbao_params p;
-    tgi_hbao_defaults(&p);
-    p.directions = tgi_ao_count(2 * f->request.slices);
-    p.steps = tgi_ao_count(f->request.samples);
-    p.radius = f->request.radius;
-    tgi_hbao_rows(&p, &f->full, &f->res, y0, y1);
-}
-
-void tgi_pass_gtao(tg_frame *f, int y0, int y1)
-{
-    tgi_gtao_params p;
-    tgi_gtao_defaults(&p);
-    p.slices = tgi_ao_count(f->request.slices);
-    p.steps = tgi_ao_count(f->request.samples);
-    p.radius = f->request.radius;
-    tgi_gtao_rows(&p, &f->full, &f->res, y0, y1);
-}
-
-void tgi_pass_ssilvb(tg_frame *f, int y0, int y1)
-{
-    tgi_ssilvb_params p;
-    tgi_ssilvb_defaults(&p);
-    p.slices = tgi_ao_count(f->request.slices);
-    p.steps = tgi_ao_count(f->request.samples);
-    p.radius = f->request.radius;
-    p.thickness = f->request.thickness;
-    tgi_ssilvb_rows(&p, &f->full, tgi_frame_source(f), &f->res, y0, y1);
-}
-
-void tgi_pass_ssdo(tg_frame *f, int y0, int y1)
-{
-    tgi_ssdo_params p;
-    tgi_ssdo_defaults(&p);
-    p.samples = tgi_ao_count(f->request.samples);
-    p.radius = f->request.radius;
-    p.env_sh9 = far_sh(f);
-    if (p.env_sh9) p.far = f->far;
-    tgi_ssdo_rows(&p, &f->full, tgi_frame_source(f), &f->res, y0, y1);
-}
-
-void tgi_pass_bentcone(tg_frame *f, int y0, int y1)
-{
-    tgi_bentcone_params p;
-    tgi_bentcone_defaults(&p);
-    p.samples = tgi_ao_count(f->request.samples);
-    p.radius = f->request.radius;
-    p.env_sh9 = far_sh(f);
-    if (p.env_sh9) p.far = f->far;
-    tgi_bentcone_rows(&p, &f->full, &f->res, y0, y1);
-}
+TECHNIQUE_PASS(ssao, SAMPLES, RESULTS)
+TECHNIQUE_PASS(vo, SAMPLES, RESULTS)
+/* HBAO's directions are the slices' two sides */
+TECHNIQUE_PASS(hbao, p.directions = tgi_ao_count(2 * f->request.slices); p.steps = tgi_ao_count(f->request.samples);,
+               RESULTS)
+TECHNIQUE_PASS(gtao, SLICES_STEPS, RESULTS)
+TECHNIQUE_PASS(ssilvb, SLICES_STEPS p.thickness = f->request.thickness;, SOURCE_RESULTS)
+TECHNIQUE_PASS(ssdo, SAMPLES FAR_FIELD, SOURCE_RESULTS)
+TECHNIQUE_PASS(bentcone, SAMPLES FAR_FIELD, RESULTS)
 
 #endif /* !TG_NO_TECHNIQUES */
 
