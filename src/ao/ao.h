@@ -237,6 +237,22 @@ typedef struct tgi_ao_slice_pixel {
     int shift;
 } tgi_ao_slice_pixel;
 
+/* Pixel (x, y) of g, index i, starts open (tgi_ao_write_open); 1 with *px
+ * set up to march its slices (its jitter, the radius's shift),
+ * 0 for sky or a technique that gathers nothing (radius <= 0, steps < 1). */
+static inline int tgi_ao_slice_pixel_at(const tgi_gview *g, const tgi_gresult *out, int x, int y, int i,
+                                        tg_real radius, int steps, tg_real jitter, int shift,
+                                        tgi_ao_slice_pixel *px)
+{
+    tgi_ao_write_open(g, out, (size_t)i);
+    if (tgi_gv_is_sky(g, (size_t)i) || radius <= 0 || steps < 1) return 0;
+    px->x = x; px->y = y;
+    px->r_px = tgi_ao_view_at(g, x, y, (size_t)i, radius, &px->pv, &px->nv, &px->vd);
+    px->jitter = jitter;
+    px->shift = shift;
+    return 1;
+}
+
 /* Sample s of `steps` along screen direction (sdx, sdy) at distance
  * (s + jitter) r_px / steps: 1 with *h the view offset of its pixel's
  * surface from pv (times 2^shift) and *j that pixel's index; 0 to skip it

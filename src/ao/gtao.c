@@ -100,12 +100,7 @@ void tgi_gtao_rows(const tgi_gtao_params *p, const tgi_gview *g, const tgi_gresu
             gtao_pixel px;
             tg_real vis = 0, open = 0;
             tg_vec3 bent = tg_v3(0, 0, 0);
-            tgi_ao_write_open(g, out, i);
-            if (tgi_gv_is_sky(g, i) || p->radius <= 0 || p->steps < 1) continue;
-            px.x = x; px.y = y;
-            px.r_px = tgi_ao_view_at(g, x, y, i, p->radius, &px.pv, &px.nv, &px.vd);
-            px.jitter = r->jitter;
-            px.shift = shift;
+            if (!tgi_ao_slice_pixel_at(g, out, x, y, i, p->radius, p->steps, r->jitter, shift, &px)) continue;
             for (k = 0; k < ns; k++) {
                 tg_vec3 sd = tgi_ao_rotate_z(dirs[k], r->c, r->s);
                 slice(p, g, &px, sd.x, sd.y, &vis, &open, &bent);

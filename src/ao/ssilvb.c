@@ -165,12 +165,7 @@ void tgi_ssilvb_rows(const tgi_ssilvb_params *p, const tgi_gview *g, const tgi_r
             vb_pixel px;
             tg_real vis = 0, open = 0;
             tg_vec3 bent = tg_v3(0, 0, 0), e = tg_v3(0, 0, 0);
-            tgi_ao_write_open(g, out, i);
-            if (tgi_gv_is_sky(g, i) || p->radius <= 0 || p->steps < 1) continue;
-            px.s.x = x; px.s.y = y;
-            px.s.r_px = tgi_ao_view_at(g, x, y, i, p->radius, &px.s.pv, &px.s.nv, &px.s.vd);
-            px.s.jitter = r->jitter;
-            px.s.shift = shift;
+            if (!tgi_ao_slice_pixel_at(g, out, x, y, i, p->radius, p->steps, r->jitter, shift, &px.s)) continue;
             px.rs = tg_ldexp(p->radius, shift);
             px.r2 = tg_sqr(px.rs);
             px.above = tg_add(tg_ldexp(px.s.pv.z, shift - 10), tg_mul(px.rs, TG_R(0.005f)));
