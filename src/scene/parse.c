@@ -873,25 +873,25 @@ static tg_status st_effects(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, c
 
 /* The statements' keys, in the order each statement reads them in v[]
  * (key, kind, required). */
-static const key_spec camera_keys[] = {
+static const key_spec keys_camera[] = {
     {"pos", K_VEC3, 1}, {"target", K_VEC3, 1}, {"up", K_VEC3, 0},
     {"fov", K_REAL, 0}, {"near", K_REAL, 0}, {"far", K_REAL, 0}};
-static const key_spec camera_key_keys[] = {{"t", K_REAL, 1}, {"pos", K_VEC3, 1}, {"target", K_VEC3, 1}};
-static const key_spec quad_keys[] = {
+static const key_spec keys_camera_key[] = {{"t", K_REAL, 1}, {"pos", K_VEC3, 1}, {"target", K_VEC3, 1}};
+static const key_spec keys_quad[] = {
     {"p0", K_VEC3, 1}, {"p1", K_VEC3, 1}, {"p2", K_VEC3, 1}, {"p3", K_VEC3, 1},
     {"material", K_NAME, 1}, {"name", K_NAME, 0}};
-static const key_spec box_keys[] = {
+static const key_spec keys_box[] = {
     {"min", K_VEC3, 1}, {"max", K_VEC3, 1}, {"material", K_NAME, 1},
     {"inward", K_FLAG, 0}, {"name", K_NAME, 0}};
-static const key_spec sphere_keys[] = {
+static const key_spec keys_sphere[] = {
     {"center", K_VEC3, 1}, {"radius", K_REAL, 1}, {"material", K_NAME, 1},
     {"segments", K_INT, 0}, {"name", K_NAME, 0}};
-static const key_spec mesh_keys[] = {
+static const key_spec keys_mesh[] = {
     {"file", K_PATH, 1}, {"material", K_NAME, 1}, {"translate", K_VEC3, 0},
     {"scale", K_REAL, 0}, {"rotate", K_ROT, 0}, {"name", K_NAME, 0}};
-static const key_spec object_key_keys[] = {
+static const key_spec keys_object_key[] = {
     {"name", K_NAME, 1}, {"t", K_REAL, 1}, {"translate", K_VEC3, 0}, {"rotate", K_ROT, 0}};
-static const key_spec gi_keys[] = {
+static const key_spec keys_gi[] = {
     {"radius", K_REAL, 0}, {"slices", K_INT, 0}, {"samples", K_INT, 0}, {"bounces", K_INT, 0}};
 
 /* The statements: keyword, function, the keys the dispatcher parses for it
@@ -904,17 +904,17 @@ static const struct {
     const key_spec *keys;
     int nkeys, once;
 } statements[] = {
-    {"camera", st_camera, KEYS(camera_keys), 1},
-    {"camera_key", st_camera_key, KEYS(camera_key_keys), 0},
+    {"camera", st_camera, KEYS(keys_camera), 1},
+    {"camera_key", st_camera_key, KEYS(keys_camera_key), 0},
     {"material", st_material, NULL, 0, 0},
-    {"quad", st_quad, KEYS(quad_keys), 0},
-    {"box", st_box, KEYS(box_keys), 0},
-    {"sphere", st_sphere, KEYS(sphere_keys), 0},
-    {"mesh", st_mesh, KEYS(mesh_keys), 0},
-    {"object_key", st_object_key, KEYS(object_key_keys), 0},
+    {"quad", st_quad, KEYS(keys_quad), 0},
+    {"box", st_box, KEYS(keys_box), 0},
+    {"sphere", st_sphere, KEYS(keys_sphere), 0},
+    {"mesh", st_mesh, KEYS(keys_mesh), 0},
+    {"object_key", st_object_key, KEYS(keys_object_key), 0},
     {"light", st_light, NULL, 0, 0},
     {"env", st_env, NULL, 0, 1},
-    {"gi", st_gi, KEYS(gi_keys), 1},
+    {"gi", st_gi, KEYS(keys_gi), 1},
     {"effects", st_effects, NULL, 0, 1}};
 #define NSTATEMENTS ((int)(sizeof statements / sizeof statements[0]))
 
