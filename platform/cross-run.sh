@@ -106,7 +106,7 @@ is_bare() { case $1 in m3|m4f|m0|m0mps2|rv32|rv32f) return 0 ;; *) return 1 ;; e
 target_arena() {
     [ "$MODE" = count ] && { echo "${CROSS_COUNT_ARENA:-14680064}"; return; }
     case $1 in
-        m0) echo "${CROSS_M0_ARENA:-10272}" ;;
+        m0) echo "${CROSS_M0_ARENA:-10240}" ;;
         m3) echo "${CROSS_M3_ARENA:-2097152}" ;;
         m0mps2) echo "${CROSS_M0MPS2_ARENA:-2097152}" ;;
         m4f) echo "${CROSS_M4F_ARENA:-2097152}" ;;

@@ -53,7 +53,7 @@ CROSS_M0_RUNS   ?= size=12x9,frames=2,shadow=8,aovs=color,cornell size=24x18,fra
 CROSS_M3_ARENA   ?= 2359296
 CROSS_M4F_ARENA  ?= 2097152
 CROSS_RV32_ARENA ?= 2097152
-CROSS_M0_ARENA   ?= 10272
+CROSS_M0_ARENA   ?= 10240
 CROSS_M0MPS2_ARENA ?= 2097152
 # make cross-count: every frame's instructions (the M0 code on the MPS2 board)
 CROSS_COUNT_RUN   ?= size=160x120,frames=2,shadow=64,aovs=color,cornell
