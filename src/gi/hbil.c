@@ -72,6 +72,12 @@ tg_real tgi_hbil_step_jitter(int i, int j, int rot)
     return tg_mul(rank, TG_R(1.0f / 16.0f));
 }
 
+void tgi_hbil_for_sub_image(tgi_hbil_params *p, int i, int j)
+{
+    p->slice_phi0 = tgi_hbil_slice_phi0(i, j, p->slices, p->rotation);
+    p->step_jitter = tgi_hbil_step_jitter(i, j, p->rotation);
+}
+
 void tgi_hbil_defaults(tgi_hbil_params *p)
 {
     memset(p, 0, sizeof *p);
@@ -587,8 +593,7 @@ void tgi_hbil_interleaved_rows(const tgi_hbil_params *p, const tgi_gview *k, con
                              k->offset_y + j * k->step, k->camera);
             res = tgi_gresult_from(out, o);
             if (radiance) src = tgi_rgb_from(radiance, o);
-            ps.slice_phi0 = tgi_hbil_slice_phi0(i, j, p->slices, p->rotation);
-            ps.step_jitter = tgi_hbil_step_jitter(i, j, p->rotation);
+            tgi_hbil_for_sub_image(&ps, i, j);
             tgi_hbil_rows(&ps, &sub, &src, &res, (y0 - j + 3) / 4, (y1 - j + 3) / 4);
         }
 }

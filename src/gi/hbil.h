@@ -91,6 +91,9 @@ tg_real tgi_hbil_slice_phi0(int i, int j, int slices, int rot);
  * rotation `rot` takes its own eighth of every offset stratum. */
 tg_real tgi_hbil_step_jitter(int i, int j, int rot);
 
+/* p's slice angle and march offset for sub-image (i, j) in p->rotation. */
+void tgi_hbil_for_sub_image(tgi_hbil_params *p, int i, int j);
+
 /* Run the kernel on rows [y0, y1) of the view `g` (its camera is the
  * full-resolution one).  radiance: last frame's diffuse radiance reprojected,
  * indexed like g; NULL or absent = no near field.  out: AO always, the
