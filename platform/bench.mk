@@ -65,7 +65,9 @@ bench-publish:
 #   make bench-frame    whole frames through the CLI, timed: every configuration
 #                       once per round, interleaved, BENCH_ROUNDS rounds, medians
 #                       (min..max) of CPU and wall time, load average at start and end;
-#                       one thread (BENCH_THREADS="1 2" adds configurations)
+#                       one thread (BENCH_THREADS="1 2" adds configurations);
+#                       BENCH_BASELINE=DIR also runs DIR/tinygi[-fixed] (an older
+#                       checkout's build directory) in the same rounds, for before/after
 #   make bench-threads  the same for --threads 1 and 2 (BENCH_THREADS), cornell and
 #                       columns (BENCH_FRAME_SCENES), and the wall-time speed-up of
 #                       each thread count over one, paired round by round
@@ -107,7 +109,7 @@ bench-count: all bench-valgrind
 bench-count-check: bench-valgrind
 	python3 tools/bench_count.py --self-test
 
-BENCH_FRAME_RUN = python3 tools/bench_time.py frame --build $(BUILD) --types "$(BENCH_TYPES)" \
+BENCH_FRAME_RUN = python3 tools/bench_time.py frame --build $(BUILD) $(if $(BENCH_BASELINE),--baseline $(BENCH_BASELINE)) --types "$(BENCH_TYPES)" \
 	  --modes "$(BENCH_MODES)" --frames $(BENCH_FRAMES) --size $(BENCH_FRAME_SIZE) \
 	  --rounds $(or $(BENCH_ROUNDS),5)
 bench-frame: all

@@ -377,11 +377,12 @@ def write_reports(args, results, outdir, header):
 
 
 def describe_source(build):
+    tree = os.path.dirname(os.path.abspath(build))  # the checkout the build directory belongs to
     try:
         rev = subprocess.run(["git", "rev-parse", "--short=12", "HEAD"], stdout=subprocess.PIPE,
-                             stderr=subprocess.DEVNULL, text=True).stdout.strip()
-        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"],
-                               stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True).stdout.strip()
+                             stderr=subprocess.DEVNULL, text=True, cwd=tree).stdout.strip()
+        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], stdout=subprocess.PIPE,
+                               stderr=subprocess.DEVNULL, text=True, cwd=tree).stdout.strip()
     except OSError:
         rev, dirty = "", ""
     cc = subprocess.run([os.environ.get("CC", "cc"), "--version"], stdout=subprocess.PIPE,

@@ -117,19 +117,47 @@ def speedup_lines(configs, samples, threads):
     return lines
 
 
+def baseline_lines(configs, samples, threads, baseline):
+    """CPU time of this build (its first thread count) against --baseline's, per configuration."""
+    if not baseline:
+        return []
+    lines = ["", "Against the baseline build %s (the rows with threads 'before', run with its defaults): "
+             "%s; CPU time this build / baseline, median of the per-round ratios (ratio of the medians)."
+             % (baseline, bench_count.describe_source(baseline)), "",
+             "| scene | mode | type | baseline CPU ms/frame | this CPU ms/frame | ratio |",
+             "| --- | --- | --- | ---: | ---: | ---: |"]
+    index = {cfg: i for i, cfg in enumerate(configs)}
+    for cfg in configs:
+        if cfg[3] != "before":
+            continue
+        old = [s["cpu"] for s in samples[index[cfg]]]
+        new = [s["cpu"] for s in samples[index[cfg[:3] + (threads[0],)]]]
+        ratios = [n / o for n, o in zip(new, old) if o > 0]
+        lines.append("| %s | %s | %s | %.1f | %.1f | %.3f (%.3f) |"
+                     % (cfg[0], cfg[1], cfg[2], statistics.median(old), statistics.median(new),
+                        statistics.median(ratios), statistics.median(new) / statistics.median(old)))
+    return lines
+
+
 def frame_main(args):
     bench_count.check_frame_options(args, "bench_time")
     threads = split_list(args.threads)
     if not threads or not all(re.match(r"^[1-9][0-9]*$", n) for n in threads):
         sys.exit("bench_time: --threads: expected a list of thread counts, got '%s'" % args.threads)
     configs = [(s, m, t, n) for s in args.scenes for m in args.modes for t in args.types for n in threads]
+    if args.baseline:
+        # the same configurations run by an older build, one thread (it may predate --threads)
+        configs += [(s, m, t, "before") for s in args.scenes for m in args.modes for t in args.types]
     tmp = tempfile.mkdtemp(prefix="bench-frame-")
 
     def run_one(cfg):
         scene, mode, ntype, nthreads = cfg
-        binary = os.path.join(args.build, "tinygi" if ntype == "float" else "tinygi-fixed")
+        build = args.baseline if nthreads == "before" else args.build
+        binary = os.path.join(build, "tinygi" if ntype == "float" else "tinygi-fixed")
         cmd = [binary, "render", "builtin:" + scene, "--size", args.size, "--frames", str(args.frames),
-               "--threads", nthreads, "-o", os.path.join(tmp, "out.ppm"), "--quiet"]
+               "-o", os.path.join(tmp, "out.ppm"), "--quiet"]
+        if nthreads != "before":
+            cmd += ["--threads", nthreads]
         if mode == "quarter":
             cmd.append("--gi-quarter")
         t0 = time.monotonic()
@@ -164,6 +192,7 @@ def frame_main(args):
                      "%.2f" % statistics.median(cpu), "%.2f" % min(cpu), "%.2f" % max(cpu),
                      "%.2f" % statistics.median(wall), "%.2f" % min(wall), "%.2f" % max(wall), start, end])
     lines += speedup_lines(configs, samples, threads)
+    lines += baseline_lines(configs, samples, threads, args.baseline)
     out = args.out or os.path.join(args.build, "bench-frame")
     os.makedirs(out, exist_ok=True)
     write_atomic(os.path.join(out, "time.md"), "\n".join(lines) + "\n")
@@ -299,6 +328,7 @@ def main():
     bench_count.add_frame_options(f, "all")
     f.add_argument("--rounds", type=int, default=5)
     f.add_argument("--threads", default="1", help="comma list of thread counts (tinygi --threads)")
+    f.add_argument("--baseline", default="", help="an older build directory whose tinygi runs the same configurations, interleaved")
     r = sub.add_parser("raster")
     r.add_argument("--build", default="build")
     r.add_argument("--sizes", default="320x240,1280x720")
