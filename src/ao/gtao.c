@@ -55,8 +55,8 @@ static tg_real bent_fc(tg_real th, tg_real cos_g, tg_real sin_g)
 
 /* One slice (a tgi_ao_slice_fn, ao.h): its two horizons, clamped to the
  * normal's hemisphere, and the inner integrals between them. */
-static void slice(const void *tech, const tgi_gview *g, const tgi_ao_slice_pixel *px, const tgi_ao_slice *sl,
-                  tg_real sdx, tg_real sdy, tgi_ao_slice_sum *sum)
+static void gtao_slice(const void *tech, const tgi_gview *g, const tgi_ao_slice_pixel *px, const tgi_ao_slice *sl,
+                       tg_real sdx, tg_real sdy, tgi_ao_slice_sum *sum)
 {
     const tgi_gtao_params *p = (const tgi_gtao_params *)tech;
     tg_real gamma = sl->gamma, cos_g = sl->cos_g, sin_g = sl->sin_g, h0, h1;
@@ -75,7 +75,7 @@ static void slice(const void *tech, const tgi_gview *g, const tgi_ao_slice_pixel
 
 void tgi_gtao_rows(const tgi_gtao_params *p, const tgi_gview *g, const tgi_gresult *out, int y0, int y1)
 {
-    const tgi_ao_slices t = { .slices = p->slices, .steps = p->steps, .radius = p->radius, .slice = slice, .tech = p };
+    const tgi_ao_slices t = { .slices = p->slices, .steps = p->steps, .radius = p->radius, .slice = gtao_slice, .tech = p };
     tgi_ao_slices_rows(&t, g, out, y0, y1);
 }
 

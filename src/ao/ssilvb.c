@@ -150,8 +150,8 @@ static void march(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel
 
 /* One slice (a tgi_ao_slice_fn, ao.h): both sides' sectors into one mask,
  * the visible weight and bent integrals over its runs of clear bits. */
-static void slice(const void *tech, const tgi_gview *g, const tgi_ao_slice_pixel *px, const tgi_ao_slice *f,
-                  tg_real sdx, tg_real sdy, tgi_ao_slice_sum *sum)
+static void bitmask_slice(const void *tech, const tgi_gview *g, const tgi_ao_slice_pixel *px, const tgi_ao_slice *f,
+                          tg_real sdx, tg_real sdy, tgi_ao_slice_sum *sum)
 {
     const vb_tech *t = (const vb_tech *)tech;
     vb_slice sl;
@@ -176,7 +176,7 @@ void tgi_ssilvb_rows(const tgi_ssilvb_params *p, const tgi_gview *g, const tgi_r
     tg_real thick = tg_min(tg_ldexp(tg_max(p->thickness, 0), shift), tg_mul(tg_ldexp(p->radius, shift), TG_R(64.0f)));
     const vb_tech vb = { p, radiance, near, thick, tg_div(TG_PI, tg_from_int(TG_SSILVB_SECTORS)) };
     const tgi_ao_slices t = { .slices = p->slices, .steps = p->steps, .radius = p->radius, .near = near,
-                              .slice = slice, .tech = &vb };
+                              .slice = bitmask_slice, .tech = &vb };
     tgi_ao_slices_rows(&t, g, out, y0, y1);
 }
 
