@@ -450,6 +450,31 @@ static void exact_map(tgi_shadow_map *sm, void **mem, const geo *g, const tgi_li
     tgi_shadow_map_render(sm, g->pos, g->n);
 }
 
+/* A plate over a floor, both square and level about the y axis: the floor
+ * at y = 0 and |x|, |z| <= floor_half, the plate at y = height and |x|,
+ * |z| <= plate_half, with light l's exact map of them (exact_map), `size`
+ * texels a side.  plate_scene_free releases it. */
+typedef struct plate_scene {
+    geo *g;
+    tgi_shadow_map sm;
+    void *mem;
+} plate_scene;
+
+static void plate_scene_map(plate_scene *ps, const tgi_light *l, double floor_half, double height,
+                            double plate_half, int size)
+{
+    ps->g = geo_new();
+    rect(ps->g, 1, 0, -floor_half, floor_half, -floor_half, floor_half);
+    rect(ps->g, 1, height, -plate_half, plate_half, -plate_half, plate_half);
+    exact_map(&ps->sm, &ps->mem, ps->g, l, size);
+}
+
+static void plate_scene_free(plate_scene *ps)
+{
+    free(ps->mem);
+    free(ps->g);
+}
+
 /* A floor meeting a wall (x = 0), lit at 80 degrees toward the wall: floor
  * points within the PCF footprint of the corner see the wall in their
  * deeper taps, where the floor's plane continues behind it; a tap is never
@@ -495,20 +520,15 @@ TEST(concave_corner_is_not_darkened)
  * plane would pass the light and everything would be lit). */
 TEST(offset_stops_half_way_to_the_light)
 {
-    geo *g = geo_new();
     tgi_light pl = make_light(TG_LIGHT_POINT, v3(0, 0.02, 0), v3(0, -1, 0), 1, 0);
-    tgi_shadow_map sm;
-    void *mem;
-    memset(g, 0, sizeof *g);
-    rect(g, 1, 0, -2, 2, -2, 2);
-    rect(g, 1, 0.015, -0.2, 0.2, -0.2, 0.2);
-    exact_map(&sm, &mem, g, &pl, 512);
-    CHECK(tgi_shadow_visibility_err(&sm, v3(0.05, 0, 0.03), v3(0, 1, 0), TG_R(0.05f)) <= TG_R(0.02f),
-          "under the plate, position error 5 cm: %g", dv(tgi_shadow_visibility_err(&sm, v3(0.05, 0, 0.03), v3(0, 1, 0), TG_R(0.05f))));
-    CHECK(tgi_shadow_visibility_err(&sm, v3(1.5, 0, 0.3), v3(0, 1, 0), TG_R(0.05f)) >= TG_R(0.98f),
-          "beyond the plate's shadow: %g", dv(tgi_shadow_visibility_err(&sm, v3(1.5, 0, 0.3), v3(0, 1, 0), TG_R(0.05f))));
-    free(mem);
-    free(g);
+    plate_scene ps;
+    tg_real under, beyond;
+    plate_scene_map(&ps, &pl, 2, 0.015, 0.2, 512);
+    under = tgi_shadow_visibility_err(&ps.sm, v3(0.05, 0, 0.03), v3(0, 1, 0), TG_R(0.05f));
+    beyond = tgi_shadow_visibility_err(&ps.sm, v3(1.5, 0, 0.3), v3(0, 1, 0), TG_R(0.05f));
+    CHECK(under <= TG_R(0.02f), "under the plate, position error 5 cm: %g", dv(under));
+    CHECK(beyond >= TG_R(0.98f), "beyond the plate's shadow: %g", dv(beyond));
+    plate_scene_free(&ps);
 }
 
 /* ---- sizes ---- */
@@ -545,34 +565,26 @@ TEST(map_bytes_are_checked)
  * lit.  Both filters, two map sizes. */
 TEST(occluder_at_the_bounds_near_side_casts_its_shadow)
 {
-    geo *g = geo_new();
     tgi_light dl = make_light(TG_LIGHT_DIRECTIONAL, v3(0, 0, 0), v3(0, -1, 0), 1, 0);
     static const int map_sides[2] = { 64, 512 };
     int k, filter;
-    memset(g, 0, sizeof *g);
-    rect(g, 1, 0, -3, 3, -3, 3);
-    rect(g, 1, 1, -0.8, 0.8, -0.8, 0.8);
     for (k = 0; k < 2; k++)
         for (filter = 0; filter < 2; filter++) {
-            tgi_shadow_map sm;
-            void *mem = malloc(tgi_shadow_map_bytes(&dl, map_sides[k]));
+            plate_scene ps;
             double x, z;
             int dark = 0, lit = 0, under = 0, open = 0;
-            if (!mem) { fprintf(stderr, "out of memory\n"); exit(2); }
-            tgi_shadow_map_setup(&sm, &dl, map_sides[k], v3(g->lo[0], g->lo[1], g->lo[2]), v3(g->hi[0], g->hi[1], g->hi[2]), mem);
-            sm.filter = filter;
-            tgi_shadow_map_render(&sm, g->pos, g->n);
+            plate_scene_map(&ps, &dl, 3, 1, 0.8, map_sides[k]);
+            ps.sm.filter = filter;           /* the lookup's: the map itself is the same */
             for (x = -2.5; x <= 2.5; x += 0.25)
                 for (z = -2.5; z <= 2.5; z += 0.25) {
-                    double v = dv(tgi_shadow_visibility(&sm, v3(x, 0, z), v3(0, 1, 0)));
+                    double v = dv(tgi_shadow_visibility(&ps.sm, v3(x, 0, z), v3(0, 1, 0)));
                     if (fabs(x) < 0.5 && fabs(z) < 0.5) { under++; dark += v < 0.01; }
                     if (fabs(x) > 1.2 || fabs(z) > 1.2) { open++; lit += v > 0.99; }
                 }
             CHECK(dark == under, "size %d filter %d: %d of %d floor points under the plate in shadow", map_sides[k], filter, dark, under);
             CHECK(lit == open, "size %d filter %d: %d of %d open floor points lit", map_sides[k], filter, lit, open);
-            free(mem);
+            plate_scene_free(&ps);
         }
-    free(g);
 }
 
 /* Equal depths in the depth test: the first triangle drawn keeps the pixel,
@@ -631,26 +643,20 @@ TEST(coplanar_ties_keep_the_first_drawn)
  * lit through it. */
 TEST(receiver_beyond_89_94_degrees_under_a_plate_is_dark)
 {
-    geo *g = geo_new();
     tgi_light dl = make_light(TG_LIGHT_DIRECTIONAL, v3(0, 0, 0), v3(0, -1, 0), 1, 0);
     static const double cosines[] = { 0.0005, 0.0002, 0.0001, 0.00005 };
     static const double heights[] = { 6, 10, 16 };
     size_t k, j;
     for (j = 0; j < sizeof heights / sizeof heights[0]; j++) {
-        tgi_shadow_map sm;
-        void *mem;
-        memset(g, 0, sizeof *g);
-        rect(g, 1, 0, -8, 8, -8, 8);
-        rect(g, 1, heights[j], -1, 1, -1, 1);
-        exact_map(&sm, &mem, g, &dl, 512);
+        plate_scene ps;
+        plate_scene_map(&ps, &dl, 8, heights[j], 1, 512);
         for (k = 0; k < sizeof cosines / sizeof cosines[0]; k++) {
             double c = cosines[k];
-            tg_real vis = tgi_shadow_visibility(&sm, v3(0.1, 0.2, 0.05), v3(sqrt(1 - c * c), c, 0));
+            tg_real vis = tgi_shadow_visibility(&ps.sm, v3(0.1, 0.2, 0.05), v3(sqrt(1 - c * c), c, 0));
             CHECK(vis <= TG_R(0.5f), "plate %g m above, |n . l| = %g: visibility %g", heights[j], c, dv(vis));
         }
-        free(mem);
+        plate_scene_free(&ps);
     }
-    free(g);
 }
 
 /* The tent PCF across a straight shadow edge: a plate over half the floor,
@@ -660,24 +666,21 @@ TEST(receiver_beyond_89_94_degrees_under_a_plate_is_dark)
  * distance either side of the edge have visibilities adding up to 1. */
 TEST(tent_pcf_is_odd_about_a_shadow_edge)
 {
-    geo *g = geo_new();
     tgi_light dl = make_light(TG_LIGHT_DIRECTIONAL, v3(0, 0, 0), v3(0, -1, 0), 1, 0);
+    plate_scene ps;
     tgi_shadow_map sm;
     void *mem;
+    geo *g = geo_new();
     double r[3], tb, texel, worst = 0;
     int a, k, ax = 0, n;
-    memset(g, 0, sizeof *g);
-    rect(g, 1, 0, -8, 8, -8, 8);
-    rect(g, 1, 1, -8, 8, -8, 8);      /* the plate's final bounds: only its extent along r changes */
-    exact_map(&sm, &mem, g, &dl, 256);
-    r[0] = dv(sm.face[0].right.x); r[1] = dv(sm.face[0].right.y); r[2] = dv(sm.face[0].right.z);
+    plate_scene_map(&ps, &dl, 8, 1, 8, 256);   /* the plate's final bounds: only its extent along r changes */
+    r[0] = dv(ps.sm.face[0].right.x); r[1] = dv(ps.sm.face[0].right.y); r[2] = dv(ps.sm.face[0].right.z);
     for (a = 0; a < 3; a++) if (fabs(r[a]) > fabs(r[ax])) ax = a;
-    n = sm.face[0].size;
-    texel = 2.0 / n / dv(sm.ortho_scale);
-    tb = dv(sm.ortho_center_x) + (2.0 * (n / 2 + 3) / n - 1) / dv(sm.ortho_scale);  /* p . r on a texel boundary */
-    free(mem);
+    n = ps.sm.face[0].size;
+    texel = 2.0 / n / dv(ps.sm.ortho_scale);
+    tb = dv(ps.sm.ortho_center_x) + (2.0 * (n / 2 + 3) / n - 1) / dv(ps.sm.ortho_scale);  /* p . r on a texel boundary */
+    plate_scene_free(&ps);
     CHECK(ax != 1 && fabs(fabs(r[ax]) - 1) < 1e-6, "the light's right axis (%g, %g, %g) should be a floor axis", r[0], r[1], r[2]);
-    memset(g, 0, sizeof *g);
     rect(g, 1, 0, -8, 8, -8, 8);
     {   /* the plate over p . r >= tb */
         double lo = r[ax] > 0 ? tb : -8, hi = r[ax] > 0 ? 8 : -tb;
@@ -708,27 +711,23 @@ TEST(plate_nearer_than_the_near_plane_shadows)
 {
     static const double dark[][2] = { { 0, 0 }, { 0.5, 0.3 }, { -1.2, 1.0 }, { 2.0, -1.2 } };
     static const double lit[][2] = { { 3.5, 0 }, { -3.0, 2.5 }, { 0.5, 4.0 } };
-    geo *g = geo_new();
     tgi_light pl = make_light(TG_LIGHT_POINT, v3(0, 2, 0), v3(0, -1, 0), 1, 0);
-    tgi_shadow_map sm;
-    void *mem;
+    plate_scene ps;
+    const geo *g;
     size_t k;
-    memset(g, 0, sizeof *g);
-    rect(g, 1, 0, -5, 5, -5, 5);
-    rect(g, 1, 1.997, -0.004, 0.004, -0.004, 0.004);
-    exact_map(&sm, &mem, g, &pl, 512);
+    plate_scene_map(&ps, &pl, 5, 1.997, 0.004, 512);
+    g = ps.g;
     printf("# near plane %.4f, plate 0.003 under the light\n", dv(tgi_shadow_near(pl.pos, v3(g->lo[0], g->lo[1], g->lo[2]),
            v3(g->hi[0], g->hi[1], g->hi[2]))));
     for (k = 0; k < sizeof dark / sizeof dark[0]; k++) {
-        tg_real vis = tgi_shadow_visibility(&sm, v3(dark[k][0], 0, dark[k][1]), v3(0, 1, 0));
+        tg_real vis = tgi_shadow_visibility(&ps.sm, v3(dark[k][0], 0, dark[k][1]), v3(0, 1, 0));
         CHECK(vis <= TG_R(0.02f), "floor (%g, %g) under the plate: visibility %g", dark[k][0], dark[k][1], dv(vis));
     }
     for (k = 0; k < sizeof lit / sizeof lit[0]; k++) {
-        tg_real vis = tgi_shadow_visibility(&sm, v3(lit[k][0], 0, lit[k][1]), v3(0, 1, 0));
+        tg_real vis = tgi_shadow_visibility(&ps.sm, v3(lit[k][0], 0, lit[k][1]), v3(0, 1, 0));
         CHECK(vis >= TG_R(0.98f), "floor (%g, %g) beyond the plate's shadow: visibility %g", lit[k][0], lit[k][1], dv(vis));
     }
-    free(mem);
-    free(g);
+    plate_scene_free(&ps);
 }
 
 int main(void)

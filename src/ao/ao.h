@@ -26,6 +26,7 @@
 #include "../core/vec.h"
 #include "../raster/gview.h"
 #include "../light/sh.h"
+#include "sampling.h"
 
 /* A radius this large means "unlimited" (ambient occlusion rather than
  * obscurance, RTR sec. 11.3.2). */
@@ -228,18 +229,22 @@ static inline int tgi_ao_unit_shift(tg_real radius)
 }
 
 /* A pixel marching its slices: (x, y), view position, normal, unit vector
- * to the eye, the radius in pixels at its depth, its jitter, and the shift
- * its sample offsets are scaled by (tgi_ao_unit_shift). */
+ * to the eye, the radius in pixels at its depth, its jitter, the shift its
+ * sample offsets are scaled by (tgi_ao_unit_shift), and, scaled by it, the
+ * radius, its square and the height over the tangent plane below which a
+ * sample counts for nothing. */
 typedef struct tgi_ao_slice_pixel {
     int x, y;
     tg_vec3 pv, nv, vd;
     tg_real r_px, jitter;
     int shift;
+    tg_real rs, r2, above;
 } tgi_ao_slice_pixel;
 
 /* Pixel (x, y) of g, index i, starts open (tgi_ao_write_open); 1 with *px
- * set up to march its slices (its jitter, the radius's shift),
- * 0 for sky or a technique that gathers nothing (radius <= 0, steps < 1). */
+ * set up to march its slices of world radius `radius` (its jitter, the
+ * radius's shift), 0 for sky or a technique that gathers nothing
+ * (radius <= 0, steps < 1). */
 static inline int tgi_ao_slice_pixel_at(const tgi_gview *g, const tgi_gresult *out, int x, int y, int i,
                                         tg_real radius, int steps, tg_real jitter, int shift,
                                         tgi_ao_slice_pixel *px)
@@ -250,15 +255,20 @@ static inline int tgi_ao_slice_pixel_at(const tgi_gview *g, const tgi_gresult *o
     px->r_px = tgi_ao_view_at(g, x, y, (size_t)i, radius, &px->pv, &px->nv, &px->vd);
     px->jitter = jitter;
     px->shift = shift;
+    px->rs = tg_ldexp(radius, shift);
+    px->r2 = tg_sqr(px->rs);
+    px->above = tg_add(tg_ldexp(px->pv.z, shift - 10), tg_mul(px->rs, TG_R(0.005f)));
     return 1;
 }
 
 /* Sample s of `steps` along screen direction (sdx, sdy) at distance
  * (s + jitter) r_px / steps: 1 with *h the view offset of its pixel's
- * surface from pv (times 2^shift) and *j that pixel's index; 0 to skip it
- * (within a pixel, or sky); -1 past the screen's edge (the march ends). */
+ * surface from pv (times 2^shift), *d2 = |h|^2 and *j that pixel's index;
+ * 0 to skip it (within a pixel, sky, not within the radius, or on or under
+ * the tangent plane, where a horizon is clamped anyway); -1 past the
+ * screen's edge (the march ends). */
 static inline int tgi_ao_slice_sample(const tgi_gview *g, const tgi_ao_slice_pixel *px, int s, int steps,
-                                      tg_real sdx, tg_real sdy, tg_vec3 *h, int *j)
+                                      tg_real sdx, tg_real sdy, tg_vec3 *h, tg_real *d2, int *j)
 {
     tg_real t_px = tg_div(tg_mul(tg_add(tg_from_int(s), px->jitter), px->r_px), tg_from_int(steps));
     int qx, qy;
@@ -270,7 +280,9 @@ static inline int tgi_ao_slice_sample(const tgi_gview *g, const tgi_ao_slice_pix
     if (tgi_gv_is_sky(g, *j)) return 0;
     *h = tgi_v3_sub(tgi_ao_unproject(g->camera, qx, qy, tgi_gv_depth(g, *j)), px->pv);
     if (px->shift) *h = tg_v3(tg_ldexp(h->x, px->shift), tg_ldexp(h->y, px->shift), tg_ldexp(h->z, px->shift));
-    return 1;
+    *d2 = tgi_v3_dot(*h, *h);
+    if (*d2 >= px->r2 || *d2 <= 0) return 0;
+    return tgi_v3_dot(*h, px->nv) > px->above;
 }
 
 /* The slice of screen direction (sdx, sdy) about the view vector vd
@@ -294,6 +306,74 @@ static inline int tgi_ao_slice_frame(tg_vec3 nv, tg_vec3 vd, tg_real sdx, tg_rea
     sl->cos_g = tg_cos(sl->gamma);
     sl->sin_g = tg_sin(sl->gamma);
     return 1;
+}
+
+/* What one slice adds before its weight (the length of the normal
+ * projected into it, tgi_ao_slice's len): the cosine-weighted visible arc
+ * and the same arc with open horizons, the bent-normal integrals along the
+ * slice direction and along the view vector, and the near-field irradiance
+ * gathered (unnormalised). */
+typedef struct tgi_ao_slice_sum { tg_real vis, open, bs, bc; tg_vec3 near; } tgi_ao_slice_sum;
+
+/* A technique's slice: march pixel px's slice sl of screen direction
+ * (sdx, sdy) both ways and fill *sum (which starts at zero); `tech` is the
+ * technique's own data (tgi_ao_slices). */
+typedef void (*tgi_ao_slice_fn)(const void *tech, const tgi_gview *g, const tgi_ao_slice_pixel *px,
+                                const tgi_ao_slice *sl, tg_real sdx, tg_real sdy, tgi_ao_slice_sum *sum);
+
+/* A technique of view-vector slices: slices per pixel (tgi_ao_count), samples
+ * per side, world radius, whether it writes the near field, and its slice
+ * with its data. */
+typedef struct tgi_ao_slices {
+    int slices, steps;
+    tg_real radius;
+    int near;
+    tgi_ao_slice_fn slice;
+    const void *tech;
+} tgi_ao_slices;
+
+/* Rows [y0, y1) of a technique of view-vector slices (Jimenez et al. 2016):
+ * each pixel's slices at angles over pi turned by its 4x4 rotation, each
+ * weighted by its projected normal's length; the outer integral as the
+ * ratio of the visible to the open sums (exact 1 where nothing occludes:
+ * GTAO on any plane, the bitmask with no bit set), the bent normal, and
+ * with `near` the near field (pi / open times its sum).
+ * Inline, so each technique's slice is called directly. */
+static inline void tgi_ao_slices_rows(const tgi_ao_slices *t, const tgi_gview *g, const tgi_gresult *out,
+                                      int y0, int y1)
+{
+    tg_vec3 dirs[TG_AO_MAX_SAMPLES];
+    tgi_ao_rot rot[16];
+    int ns = tgi_ao_count(t->slices), k, x, y;
+    int shift = tgi_ao_unit_shift(t->radius);
+    tgi_ao_circle(TG_PI, ns, dirs);              /* slice angles over pi */
+    tgi_ao_rotations(rot);
+    for (y = y0; y < y1; y++)
+        for (x = 0; x < g->width; x++) {
+            int i = (int)tgi_gv_index(g, x, y);
+            const tgi_ao_rot *r = tgi_ao_rot_at(rot, x, y);
+            tgi_ao_slice_pixel px;
+            tg_real vis = 0, open = 0;
+            tg_vec3 bent = tg_v3(0, 0, 0), e = tg_v3(0, 0, 0);
+            if (!tgi_ao_slice_pixel_at(g, out, x, y, i, t->radius, t->steps, r->jitter, shift, &px)) continue;
+            for (k = 0; k < ns; k++) {
+                tg_vec3 sd = tgi_ao_rotate_z(dirs[k], r->c, r->s);
+                tgi_ao_slice sl;
+                tgi_ao_slice_sum sum = { 0, 0, 0, 0, { 0, 0, 0 } };
+                if (!tgi_ao_slice_frame(px.nv, px.vd, sd.x, sd.y, &sl)) continue;
+                t->slice(t->tech, g, &px, &sl, sd.x, sd.y, &sum);
+                vis = tg_add(vis, tg_mul(sl.len, sum.vis));
+                open = tg_add(open, tg_mul(sl.len, sum.open));
+                bent = tgi_v3_add(bent, tgi_v3_scale(tgi_v3_add(tgi_v3_scale(sl.dir, sum.bs), tgi_v3_scale(px.vd, sum.bc)), sl.len));
+                if (t->near) e = tgi_v3_add(e, tgi_v3_scale(sum.near, sl.len));
+            }
+            tgi_gr_set_ao(out, i, open > 0 ? tg_saturate(tg_div(vis, open)) : TG_ONE);
+            tgi_ao_write_bent_view(g, out, i, bent);
+            if (t->near && open > 0) {
+                tg_real k_e = tg_div(TG_PI, open);
+                tgi_gr_set_near(out, i, tg_v3(tg_mul(e.x, k_e), tg_mul(e.y, k_e), tg_mul(e.z, k_e)));
+            }
+        }
 }
 
 #endif

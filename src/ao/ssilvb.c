@@ -5,7 +5,6 @@
  * irradiance in GTAO's view-vector slices.  See ssilvb.h.
  */
 #include "ssilvb.h"
-#include "sampling.h"
 
 #if !TG_NO_TECHNIQUES /* the whole file is left out with TG_NO_TECHNIQUES=1 (tinygi.h "FEATURE SWITCHES") */
 
@@ -65,14 +64,19 @@ static slice_prim prim(tg_real th, tg_real cos_g, tg_real sin_g)
     return r;
 }
 
-typedef struct vb_pixel {
-    tgi_ao_slice_pixel s;           /* ao.h: position, normal, eye vector, radius in pixels, shift */
-    tg_real rs, r2, above, thick;   /* radius, its square, the tangent-plane bias, the thickness: scaled */
-} vb_pixel;
+/* What a slice of the visibility bitmask reads besides the pixel: the
+ * parameters, the radiance the near field gathers (with `near`), and the
+ * thickness scaled by the pixel's shift (tgi_ao_slice_pixel). */
+typedef struct vb_tech {
+    const tgi_ssilvb_params *p;
+    const tgi_rgb *radiance;
+    int near;
+    tg_real thick, sector;            /* sector: pi / N_b */
+} vb_tech;
 
 /* One slice's frame (ao.h) and its sector boundaries. */
 typedef struct vb_slice {
-    tg_real gamma, cos_g, sin_g, len;
+    tg_real gamma, cos_g, sin_g;
     tg_real theta0, step;             /* theta_k = theta0 + k step, step = pi / N_b */
 } vb_slice;
 
@@ -107,9 +111,9 @@ static tg_real mask_weight(const vb_slice *sl, uint32_t b, tg_real *bs, tg_real 
 /* Signed angle from the view vector (positive toward the slice direction
  * on side +1) of view offset h, |h|^2 = d2 > 0, mapped to u in [0, 1] over
  * the slice's half circle: u = (theta - gamma) / pi + 1/2. */
-static tg_real half_circle_u(const vb_pixel *px, const vb_slice *sl, tg_vec3 h, tg_real d2, int side)
+static tg_real half_circle_u(const tgi_ao_slice_pixel *px, const vb_slice *sl, tg_vec3 h, tg_real d2, int side)
 {
-    tg_real th = tg_acos(tg_mul(tgi_v3_dot(h, px->s.vd), tg_rsqrt(d2)));
+    tg_real th = tg_acos(tg_mul(tgi_v3_dot(h, px->vd), tg_rsqrt(d2)));
     if (side < 0) th = tg_neg(th);
     return tg_add(tg_mul(tg_sub(th, sl->gamma), TG_INV_PI), TG_R(0.5f));
 }
@@ -117,23 +121,20 @@ static tg_real half_circle_u(const vb_pixel *px, const vb_slice *sl, tg_vec3 h, 
 /* March one side of a slice: set the sectors of every sample's front/back
  * pair in *mask; with radiance, gather each sample's L over its new sectors
  * into *e (unnormalised: the caller divides by the open weight). */
-static void march(const tgi_ssilvb_params *p, const tgi_gview *g, const tgi_rgb *radiance, const vb_pixel *px,
-                  const vb_slice *sl, tg_real sdx, tg_real sdy, int side, uint32_t *mask, tg_vec3 *e)
+static void march(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel *px, const vb_slice *sl,
+                  tg_real sdx, tg_real sdy, int side, uint32_t *mask, tg_vec3 *e)
 {
-    tg_vec3 hf;
-    int s;
-    for (s = 0; s < p->steps; s++) {
-        int j, got = tgi_ao_slice_sample(g, &px->s, s, p->steps, sdx, sdy, &hf, &j);
-        tg_vec3 hb;
-        tg_real d2, db2, uf, ub;
-        uint32_t bits, fresh;
+    const tgi_rgb *radiance = t->radiance;
+    tg_real thick = t->thick, d2, db2, uf, ub;
+    tg_vec3 hf, hb;
+    uint32_t bits, fresh;
+    int steps = t->p->steps, s, j, got;
+    for (s = 0; s < steps; s++) {
+        got = tgi_ao_slice_sample(g, px, s, steps, sdx, sdy, &hf, &d2, &j);
         if (got < 0) break;
         if (got == 0) continue;
-        d2 = tgi_v3_dot(hf, hf);
-        if (d2 >= px->r2 || d2 <= 0) continue;
-        if (tgi_v3_dot(hf, px->s.nv) <= px->above) continue;   /* on or under the tangent plane: no sector */
         /* the back point: the front moved by the thickness away from the eye */
-        hb = tgi_v3_sub(hf, tgi_v3_scale(px->s.vd, px->thick));
+        hb = tgi_v3_sub(hf, tgi_v3_scale(px->vd, thick));
         db2 = tgi_v3_dot(hb, hb);
         uf = half_circle_u(px, sl, hf, d2, side);
         ub = db2 > 0 ? half_circle_u(px, sl, hb, db2, side) : (side > 0 ? TG_ONE : 0);
@@ -147,60 +148,36 @@ static void march(const tgi_ssilvb_params *p, const tgi_gview *g, const tgi_rgb 
     }
 }
 
+/* One slice (a tgi_ao_slice_fn, ao.h): both sides' sectors into one mask,
+ * the visible weight and bent integrals over its runs of clear bits. */
+static void bitmask_slice(const void *tech, const tgi_gview *g, const tgi_ao_slice_pixel *px, const tgi_ao_slice *f,
+                          tg_real sdx, tg_real sdy, tgi_ao_slice_sum *sum)
+{
+    const vb_tech *t = (const vb_tech *)tech;
+    vb_slice sl;
+    uint32_t mask = 0;
+    sl.gamma = f->gamma; sl.cos_g = f->cos_g; sl.sin_g = f->sin_g;
+    sl.theta0 = tg_sub(f->gamma, TG_HALF_PI);
+    sl.step = t->sector;
+    march(t, g, px, &sl, sdx, sdy, 1, &mask, t->near ? &sum->near : NULL);
+    march(t, g, px, &sl, tg_neg(sdx), tg_neg(sdy), -1, &mask, t->near ? &sum->near : NULL);
+    sum->vis = mask_weight(&sl, ~mask, &sum->bs, &sum->bc);
+    sum->open = mask_weight(&sl, 0xffffffffu, NULL, NULL);
+}
+
 void tgi_ssilvb_rows(const tgi_ssilvb_params *p, const tgi_gview *g, const tgi_rgb *radiance,
                      const tgi_gresult *out, int y0, int y1)
 {
-    tg_vec3 dirs[TG_AO_MAX_SAMPLES];
-    tgi_ao_rot rot[16];
-    int ns = tgi_ao_count(p->slices), k, x, y;
     int shift = tgi_ao_unit_shift(p->radius);
-    int want_near = tgi_gr_has_near(out) && tgi_rgb_present(radiance);
-    tg_real sector = tg_div(TG_PI, tg_from_int(TG_SSILVB_SECTORS));
-    tgi_ao_circle(TG_PI, ns, dirs);              /* slice angles over pi, as GTAO's */
-    tgi_ao_rotations(rot);
-    for (y = y0; y < y1; y++)
-        for (x = 0; x < g->width; x++) {
-            int i = (int)tgi_gv_index(g, x, y);
-            const tgi_ao_rot *r = tgi_ao_rot_at(rot, x, y);
-            vb_pixel px;
-            tg_real vis = 0, open = 0;
-            tg_vec3 bent = tg_v3(0, 0, 0), e = tg_v3(0, 0, 0);
-            if (!tgi_ao_slice_pixel_at(g, out, x, y, i, p->radius, p->steps, r->jitter, shift, &px.s)) continue;
-            px.rs = tg_ldexp(p->radius, shift);
-            px.r2 = tg_sqr(px.rs);
-            px.above = tg_add(tg_ldexp(px.s.pv.z, shift - 10), tg_mul(px.rs, TG_R(0.005f)));
-            /* 64 radii behind is as good as infinite (the back angle is then
-             * within 1/64 rad of pi) and keeps |h_b|^2 inside Q16.16 */
-            px.thick = tg_min(tg_ldexp(tg_max(p->thickness, 0), shift), tg_mul(px.rs, TG_R(64.0f)));
-            for (k = 0; k < ns; k++) {
-                tg_vec3 sd = tgi_ao_rotate_z(dirs[k], r->c, r->s);
-                tg_real sdx = sd.x, sdy = sd.y;
-                tg_real bs = 0, bc = 0, w;
-                tgi_ao_slice f;
-                vb_slice sl;
-                uint32_t mask = 0;
-                tg_vec3 es = tg_v3(0, 0, 0);
-                if (!tgi_ao_slice_frame(px.s.nv, px.s.vd, sdx, sdy, &f)) continue;   /* GTAO's slice frame */
-                sl.len = f.len; sl.gamma = f.gamma; sl.cos_g = f.cos_g; sl.sin_g = f.sin_g;
-                sl.theta0 = tg_sub(sl.gamma, TG_HALF_PI);
-                sl.step = sector;
-                march(p, g, radiance, &px, &sl, sdx, sdy, 1, &mask, want_near ? &es : NULL);
-                march(p, g, radiance, &px, &sl, tg_neg(sdx), tg_neg(sdy), -1, &mask, want_near ? &es : NULL);
-                /* visible weight and bent integrals over the runs of clear bits */
-                w = mask_weight(&sl, ~mask, &bs, &bc);
-                vis = tg_add(vis, tg_mul(sl.len, w));
-                open = tg_add(open, tg_mul(sl.len, mask_weight(&sl, 0xffffffffu, NULL, NULL)));
-                bent = tgi_v3_add(bent, tgi_v3_scale(tgi_v3_add(tgi_v3_scale(f.dir, bs), tgi_v3_scale(px.s.vd, bc)), sl.len));
-                e = tgi_v3_add(e, tgi_v3_scale(es, sl.len));
-            }
-            /* the slice quadrature as a ratio to the open half circles' (exact 1 with no bit set) */
-            tgi_gr_set_ao(out, i, open > 0 ? tg_saturate(tg_div(vis, open)) : TG_ONE);
-            tgi_ao_write_bent_view(g, out, i, bent);
-            if (want_near && open > 0) {
-                tg_real k_e = tg_div(TG_PI, open);
-                tgi_gr_set_near(out, i, tg_v3(tg_mul(e.x, k_e), tg_mul(e.y, k_e), tg_mul(e.z, k_e)));
-            }
-        }
+    int near = tgi_gr_has_near(out) && tgi_rgb_present(radiance);
+    /* the thickness as tgi_ao_slice_pixel scales the radius (rs); 64 radii
+     * behind is as good as infinite (the back angle is then within 1/64 rad
+     * of pi) and keeps |h_b|^2 inside Q16.16 */
+    tg_real thick = tg_min(tg_ldexp(tg_max(p->thickness, 0), shift), tg_mul(tg_ldexp(p->radius, shift), TG_R(64.0f)));
+    const vb_tech vb = { p, radiance, near, thick, tg_div(TG_PI, tg_from_int(TG_SSILVB_SECTORS)) };
+    const tgi_ao_slices t = { .slices = p->slices, .steps = p->steps, .radius = p->radius, .near = near,
+                              .slice = bitmask_slice, .tech = &vb };
+    tgi_ao_slices_rows(&t, g, out, y0, y1);
 }
 
 #endif /* !TG_NO_TECHNIQUES */
