@@ -127,6 +127,13 @@ static int left_out(const tg_plan *p, tg_error *err)
         return refuse_left_out(err, "colour is", NULL, "TG_NO_COLOR",
                                ": the plan asks for light (colour, irradiance, direct, near or far); "
                                "AO, bent normals, cones and the geometry AOVs render");
+    if (TG_NO_GI_QUARTER && t == TG_TECH_HBIL && p->request.interleave && p->request.gi_scale == 2)
+        return refuse_left_out(err, "quarter-resolution GI is", NULL, "TG_NO_GI_QUARTER", ": ask for gi_scale 1");
+    if (TG_NO_TEMPORAL && ((p->effects & TG_EFFECT_REPROJECTION) ||
+                           (tgi_frame_needs(p) & (TG_NEED_TEMPORAL | TG_NEED_MOTION))))
+        return refuse_left_out(err, "history across frames is", NULL, "TG_NO_TEMPORAL",
+                               ": the plan needs temporal accumulation, reprojection of radiance or motion "
+                               "vectors; ask for one frame, or temporal 0 without the near field");
     return 0;
 }
 
