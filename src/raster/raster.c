@@ -45,6 +45,9 @@
                                      TG_MAX_IMAGE_SIDE pixels, 16 sub-pixels each, fit */
 #define DIV_OFFSET (1 << 22)      /* a multiple of 16 above COORD_LIMIT for floor division */
 #define MAX_POLY 12               /* 3 vertices + one per clip plane, with room */
+/* The depth-only raster (tgi_raster_depth, tgi_raster_depth16) is for shadow
+ * maps alone: left out with them (tinygi.h "FEATURE SWITCHES"). */
+#define TGI_RASTER_DEPTH (!TG_NO_SHADOW_MAPS && !TG_NO_COLOR)
 
 #if (GUARD + 1) * (TG_MAX_IMAGE_SIDE / 2) * SUB > COORD_LIMIT || TG_MAX_SHADOW_MAP > TG_MAX_IMAGE_SIDE
 #error "TG_MAX_IMAGE_SIDE or TG_MAX_SHADOW_MAP is beyond the rasterizer's 28.4 coordinates"
@@ -617,6 +620,7 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
         }
 }
 
+#if TGI_RASTER_DEPTH
 static void depth_rows(const depth_out *o, int W, const tri_edges *te, const screen_tri *st, int ortho)
 {
     bary_setup b;
@@ -639,6 +643,7 @@ static void depth_rows(const depth_out *o, int W, const tri_edges *te, const scr
             }
         }
 }
+#endif
 
 #else /* float */
 
@@ -739,6 +744,7 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
     }
 }
 
+#if TGI_RASTER_DEPTH
 static void depth_rows(const depth_out *o, int W, const tri_edges *te, const screen_tri *st, int ortho)
 {
     plane_basis pb;
@@ -769,6 +775,7 @@ static void depth_rows(const depth_out *o, int W, const tri_edges *te, const scr
         }
     }
 }
+#endif
 
 #endif
 
@@ -829,7 +836,10 @@ static void draw_snapped(const raster_target *rt, const clip_vertex *v, const tg
         sf.material = rt->gb->nm ? (uint32_t)rt->material << TGI_MATERIAL_SHIFT : 0;
 #endif
         gbuffer_rows(rt->gb, &te, &st, &sf);
-    } else depth_rows(&rt->dout, rt->width, &te, &st, rt->clip.mode == MODE_ORTHO);
+    }
+#if TGI_RASTER_DEPTH
+    else depth_rows(&rt->dout, rt->width, &te, &st, rt->clip.mode == MODE_ORTHO);
+#endif
 }
 
 /* The common case: a triangle needing no clipping.  Normals come from nrm
@@ -1071,6 +1081,7 @@ void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_
     }
 }
 
+#if TGI_RASTER_DEPTH
 /* Depth-only rows into rt (set up by the callers below). */
 static void raster_depth_rows(raster_target *rt, const tgi_mat4 *world_to_clip, int orthographic,
                               const tg_vec3 *pos, int tri_count)
@@ -1131,3 +1142,4 @@ void tgi_raster_depth16(uint16_t *depth, int width, int height, const tgi_mat4 *
 #endif
     raster_depth_rows(&rt, world_to_clip, orthographic, pos, tri_count);
 }
+#endif /* TGI_RASTER_DEPTH */
