@@ -549,9 +549,14 @@ static inline int pixel_walk_row(pixel_walk *pw, const tri_edges *te)
         if (xa < pw->xb) {
             pw->col = xa;
             pw->i = (size_t)pw->row * (size_t)pw->W + (size_t)xa;
+#if TG_OUTLINE_HELPERS   /* a loop at -Os */
+            int k;
+            for (k = 0; k < 3; k++) pw->e[k] = edge_at(te, k, pw->row, xa);
+#else
             pw->e[0] = edge_at(te, 0, pw->row, xa);
             pw->e[1] = edge_at(te, 1, pw->row, xa);
             pw->e[2] = edge_at(te, 2, pw->row, xa);
+#endif
             return 1;
         }
     }
@@ -563,17 +568,31 @@ static inline void pixel_walk_step(pixel_walk *pw, const tri_edges *te)
 {
     pw->col++;
     pw->i++;
+#if TG_OUTLINE_HELPERS   /* a loop at -Os */
+    {
+        int k;
+        for (k = 0; k < 3; k++) pw->e[k] += te->step_x[k];
+    }
+#else
     pw->e[0] += te->step_x[0]; pw->e[1] += te->step_x[1]; pw->e[2] += te->step_x[2];
+#endif
 }
 
 /* The barycentric weights u[] of the pixel whose edge functions are e[]
  * (unbiased and scaled as bary_make set up); returns their sum. */
 static inline int64_t bary_weights(const bary_setup *b, const tri_edges *te, const int64_t e[3], int64_t u[3])
 {
+#if TG_OUTLINE_HELPERS   /* a loop at -Os, the same integers */
+    int k;
+    int64_t sum = 0;
+    for (k = 0; k < 3; k++) sum += u[k] = ((e[k] - te->bias[k]) << b->ls) >> b->rs;
+    return sum;
+#else
     u[0] = ((e[0] - te->bias[0]) << b->ls) >> b->rs;
     u[1] = ((e[1] - te->bias[1]) << b->ls) >> b->rs;
     u[2] = ((e[2] - te->bias[2]) << b->ls) >> b->rs;
     return u[0] + u[1] + u[2];
+#endif
 }
 
 static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const screen_tri *st, const surface *sfp)
@@ -593,9 +612,18 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
             sq = (u[0] * b.q[0] + u[1] * b.q[1] + u[2] * b.q[2]) >> 30; /* su w_min / w */
             if (su <= 0 || sq <= 0) continue;
             z = tgi_sat64((b.wmin * su + sq / 2) / sq);
+#if TG_OUTLINE_HELPERS   /* one loop for the three components at -Os, the same integers */
+            {
+                int64_t m[3];
+                int c;
+                for (c = 0; c < 3; c++) m[c] = asr64(u[0] * b.nq[0][c] + u[1] * b.nq[1][c] + u[2] * b.nq[2][c], b.sm);
+                mx = m[0]; my = m[1]; mz = m[2];
+            }
+#else
             mx = asr64(u[0] * b.nq[0][0] + u[1] * b.nq[1][0] + u[2] * b.nq[2][0], b.sm);
             my = asr64(u[0] * b.nq[0][1] + u[1] * b.nq[1][1] + u[2] * b.nq[2][1], b.sm);
             mz = asr64(u[0] * b.nq[0][2] + u[1] * b.nq[1][2] + u[2] * b.nq[2][2], b.sm);
+#endif
 #if TG_WIDE_STORAGE
             {
                 tg_real n[3];
