@@ -14,7 +14,8 @@
  *   the other type's header fails to LINK instead of reading garbage.
  * Feature switches TG_NO_TECHNIQUES, TG_NO_REFERENCE, TG_NO_OBJ,
  * TG_NO_BUILTIN_SCENES, TG_NO_SHADOW_MAPS, TG_NO_ENVIRONMENT,
- * TG_NO_SCENE_TEXT, TG_NO_COLOR (0 or 1, for
+ * TG_NO_SCENE_TEXT, TG_NO_COLOR, TG_NO_GI_QUARTER, TG_NO_TEMPORAL,
+ * TG_NO_ANIMATION (0 or 1, for
  * the LIBRARY's build) leave code out of it to save flash: see "FEATURE
  * SWITCHES" below.
  *
@@ -377,6 +378,20 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
  *                         effect or a radiance AOV (colour, irradiance,
  *                         direct, near, far); AO, bent normals, cones and
  *                         the geometry AOVs still render.
+ *   TG_NO_GI_QUARTER      the kernel at quarter resolution (gi_scale 2): its
+ *                         downsample, filter and joint bilateral upsample:
+ *                         tg_plan_make refuses gi_scale 2.
+ *   TG_NO_TEMPORAL        everything that carries a frame's results into
+ *                         the next: temporal accumulation, reprojection of
+ *                         radiance and push/pull, motion vectors, the kept
+ *                         history: tg_plan_make refuses a plan that needs
+ *                         them (frames > 1 with temporal accumulation or
+ *                         the near field, the motion AOV over frames > 1);
+ *                         every frame renders alone, as a first frame does.
+ *   TG_NO_ANIMATION       the scene's keys (interpolated camera and object
+ *                         poses): tg_plan_make refuses a scene with camera
+ *                         or object keys; the program still sets the camera
+ *                         and the objects' transforms (the game loop).
  * README "Flash size" has the .text each configuration takes on a Cortex-M4
  * (`make size-table`).
  */
@@ -403,6 +418,15 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #endif
 #ifndef TG_NO_COLOR
 #define TG_NO_COLOR 0
+#endif
+#ifndef TG_NO_GI_QUARTER
+#define TG_NO_GI_QUARTER 0
+#endif
+#ifndef TG_NO_TEMPORAL
+#define TG_NO_TEMPORAL 0
+#endif
+#ifndef TG_NO_ANIMATION
+#define TG_NO_ANIMATION 0
 #endif
 /* TG_OUTLINE_HELPERS: 1 makes the larger storage helpers every pass calls
  * (src/raster/pack.h: octahedral normals, RGB9E5) one out-of-line copy

@@ -38,6 +38,12 @@ static const char scene_sky_no_far[] =
     "light point pos 0 2.8 -1  color 1 0.9 0.8  intensity 10\n"
     "env uniform 0.3 0.4 0.5\n"
     "effects direct near ao\n";
+/* The plain scene with its box turning and the camera moving (keys). */
+static const char scene_keyed[] =
+    TG_ROOM_SCENE
+    "light point pos 0 2.8 -1  color 1 0.9 0.8  intensity 10\n"
+    "camera_key t 0  pos 0 1.5 -4  target 0 1 0\n"
+    "camera_key t 1  pos 0.5 1.5 -4  target 0 1 0\n";
 /* A mesh from an OBJ file (the io below holds it). */
 static const char scene_mesh[] =
     "camera pos 0 1 -3  target 0 0 0  fov 50\n"
@@ -55,11 +61,12 @@ static int read_mem(void *user, const char *path, const char **data, size_t *siz
 }
 
 #if SWITCHES_PRINT
-/* the scenes' text, for baking: switches_check plain|rich|sky_no_far */
+/* the scenes' text, for baking: switches_check plain|rich|sky_no_far|keyed */
 int main(int argc, char **argv)
 {
     const char *text = argc < 2 ? NULL : !strcmp(argv[1], "plain") ? scene_plain
-                       : !strcmp(argv[1], "rich") ? scene_rich : !strcmp(argv[1], "sky_no_far") ? scene_sky_no_far : NULL;
+                       : !strcmp(argv[1], "rich") ? scene_rich : !strcmp(argv[1], "sky_no_far") ? scene_sky_no_far
+                       : !strcmp(argv[1], "keyed") ? scene_keyed : NULL;
     (void)read_mem; (void)scene_mesh;
     (void)check_current_name; (void)check_current_failures; (void)check_tests_passed; (void)check_tests_failed;
     return text ? fputs(text, stdout) < 0 : 2;
@@ -73,6 +80,7 @@ static tg_arena arena;
 const tg_scene *switches_plain(void);
 const tg_scene *switches_rich(void);
 const tg_scene *switches_sky_no_far(void);
+const tg_scene *switches_keyed(void);
 #endif
 
 static const tg_scene *parse(const char *text, tg_status *st, tg_error *err)
@@ -85,7 +93,8 @@ static const tg_scene *parse(const char *text, tg_status *st, tg_error *err)
     /* refused (TEST(scene_text) checks how): the same scene, baked */
     if (*st == TG_ERR_INPUT && s == NULL) {
         const tg_scene *baked = text == scene_plain ? switches_plain() : text == scene_rich ? switches_rich()
-                                : text == scene_sky_no_far ? switches_sky_no_far() : NULL;
+                                : text == scene_sky_no_far ? switches_sky_no_far()
+                                : text == scene_keyed ? switches_keyed() : NULL;
         if (baked) *st = TG_OK;
         return baked;
     }
@@ -93,7 +102,11 @@ static const tg_scene *parse(const char *text, tg_status *st, tg_error *err)
     return s;
 }
 
-static tg_status plan_for(const char *text, tg_technique t, uint32_t aovs, int frames, tg_plan *plan, tg_error *err)
+/* The request's settings beyond the defaults: gi_scale 2, temporal 0. */
+enum { QUARTER = 1, NO_TEMPORAL = 2 };
+
+static tg_status plan_with(const char *text, tg_technique t, uint32_t aovs, int frames, int settings, tg_plan *plan,
+                           tg_error *err)
 {
     tg_status st;
     tg_request req;
@@ -105,8 +118,19 @@ static tg_status plan_for(const char *text, tg_technique t, uint32_t aovs, int f
     req.frames = frames;
     req.technique = t;
     req.aovs = aovs;
+    if (settings & QUARTER) req.gi_scale = 2;
+    if (settings & NO_TEMPORAL) req.temporal = 0;
     return tg_plan_make(plan, s, &req, err);
 }
+
+static tg_status plan_for(const char *text, tg_technique t, uint32_t aovs, int frames, tg_plan *plan, tg_error *err)
+{
+    return plan_with(text, t, aovs, frames, 0, plan, err);
+}
+
+/* Frames in one request where the build keeps history (TG_NO_TEMPORAL
+ * refuses more than one with temporal accumulation). */
+#define FRAMES(n) (TG_NO_TEMPORAL ? 1 : (n))
 
 /* Render the plan's frames; 1 when every value of `aov` is finite and
  * within [lo, hi]. */
@@ -171,6 +195,11 @@ TEST(renders_colour_and_ao)
     tg_status st = plan_for(scene_plain, TG_TECH_HBIL, 1u << TG_AOV_COLOR, 3, &plan, &err);
     if (TG_NO_COLOR) {
         CHECK(refused(st, &err, "TG_NO_COLOR"), "status %d", (int)st);
+    } else if (TG_NO_TEMPORAL) {
+        CHECK(refused(st, &err, "TG_NO_TEMPORAL"), "status %d", (int)st);
+        CHECK(plan_for(scene_plain, TG_TECH_HBIL, 1u << TG_AOV_COLOR, 1, &plan, &err) == TG_OK, "%s", err.message);
+        CHECK(!(plan.effects & TG_EFFECT_REPROJECTION), "effects %u", (unsigned)plan.effects);
+        CHECK(renders_within(&plan, TG_AOV_COLOR, 0, 1e6), "colour not finite or negative");
     } else {
         CHECK(st == TG_OK, "%s", err.message);
         CHECK(plan.effects & TG_EFFECT_REPROJECTION, "effects %u", (unsigned)plan.effects);
@@ -280,15 +309,63 @@ TEST(color)
     tg_status st;
     int i;
     for (i = 0; i < 4; i++) {
-        st = plan_for(scene_plain, TG_TECH_HBIL, 1u << light[i], 2, &plan, &err);
+        st = plan_for(scene_plain, TG_TECH_HBIL, 1u << light[i], FRAMES(2), &plan, &err);
         if (TG_NO_COLOR) CHECK(refused(st, &err, "TG_NO_COLOR"), "%s: status %d", tg_aov_name(light[i]), (int)st);
         else CHECK(st == TG_OK, "%s: %s", tg_aov_name(light[i]), err.message);
     }
     st = plan_for(scene_plain, TG_TECH_HBIL, (1u << TG_AOV_AO) | (1u << TG_AOV_BENT) | (1u << TG_AOV_DEPTH) |
-                  (1u << TG_AOV_ALBEDO), 2, &plan, &err);
+                  (1u << TG_AOV_ALBEDO), FRAMES(2), &plan, &err);
     CHECK(st == TG_OK, "%s", err.message);
     CHECK(!(plan.effects & (TG_EFFECT_DIRECT | TG_EFFECT_NEAR)), "effects %u", (unsigned)plan.effects);
     CHECK(renders_within(&plan, TG_AOV_BENT, -1, 1), "bent normal outside [-1, 1]");
+}
+
+/* gi_scale 2 (the kernel at quarter resolution) is refused with
+ * TG_NO_GI_QUARTER=1; full resolution renders in every build. */
+TEST(gi_quarter)
+{
+    tg_plan plan;
+    tg_error err;
+    tg_status st = plan_with(scene_plain, TG_TECH_HBIL, 1u << TG_AOV_AO, 1, QUARTER, &plan, &err);
+    if (TG_NO_GI_QUARTER) {
+        CHECK(refused(st, &err, "TG_NO_GI_QUARTER"), "status %d", (int)st);
+    } else {
+        CHECK(st == TG_OK, "%s", err.message);
+        CHECK(renders_within(&plan, TG_AOV_AO, 0, 1), "AO outside [0, 1]");
+    }
+}
+
+/* With TG_NO_TEMPORAL=1 every plan that carries history is refused:
+ * temporal accumulation, motion vectors over frames, the near field's
+ * reprojection; frames without history (temporal 0, AO) still render. */
+TEST(temporal)
+{
+    tg_plan plan;
+    tg_error err;
+    tg_status st = plan_for(scene_plain, TG_TECH_HBIL, 1u << TG_AOV_AO, 3, &plan, &err);
+    if (TG_NO_TEMPORAL) CHECK(refused(st, &err, "TG_NO_TEMPORAL"), "temporal accumulation: status %d", (int)st);
+    else CHECK(st == TG_OK && renders_within(&plan, TG_AOV_AO, 0, 1), "temporal accumulation: %s", err.message);
+    st = plan_with(scene_plain, TG_TECH_HBIL, 1u << TG_AOV_MOTION, 2, NO_TEMPORAL, &plan, &err);
+    if (TG_NO_TEMPORAL) CHECK(refused(st, &err, "TG_NO_TEMPORAL"), "motion: status %d", (int)st);
+    else CHECK(st == TG_OK && renders_within(&plan, TG_AOV_MOTION, -1e6, 1e6), "motion: %s", err.message);
+    st = plan_with(scene_plain, TG_TECH_HBIL, 1u << TG_AOV_AO, 3, NO_TEMPORAL, &plan, &err);
+    CHECK(st == TG_OK, "AO over frames without temporal accumulation: %s", err.message);
+    CHECK(renders_within(&plan, TG_AOV_AO, 0, 1), "AO outside [0, 1]");
+}
+
+/* A scene with keys is refused with TG_NO_ANIMATION=1 (the camera and
+ * objects can still come from the program); else its frames render. */
+TEST(animation)
+{
+    tg_plan plan;
+    tg_error err;
+    tg_status st = plan_for(scene_keyed, TG_TECH_HBIL, 1u << TG_AOV_AO, FRAMES(2), &plan, &err);
+    if (TG_NO_ANIMATION) {
+        CHECK(refused(st, &err, "TG_NO_ANIMATION"), "status %d", (int)st);
+    } else {
+        CHECK(st == TG_OK, "%s", err.message);
+        CHECK(renders_within(&plan, TG_AOV_AO, 0, 1), "AO outside [0, 1]");
+    }
 }
 
 int main(void)
@@ -302,6 +379,9 @@ int main(void)
     RUN(builtin_scenes);
     RUN(scene_text);
     RUN(color);
+    RUN(gi_quarter);
+    RUN(temporal);
+    RUN(animation);
     return check_summary();
 }
 #endif /* !SWITCHES_PRINT */

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # switches_test.sh - the feature switches (tinygi.h "FEATURE SWITCHES"):
-# the core builds and links with each one set alone and with all eight, in
+# the core builds and links with each one set alone and with all of them, in
 # both number types, and tests/switches_check.c then renders what the build
 # keeps and sees what it left out refused (TG_ERR_INPUT naming the switch).
 # A build without scene text renders the same scenes baked into C data by
@@ -14,7 +14,7 @@ cd "$(dirname "$0")/.."
 . tests/shcheck.sh
 sh_host_build
 
-SWITCHES="TECHNIQUES REFERENCE OBJ BUILTIN_SCENES SHADOW_MAPS ENVIRONMENT SCENE_TEXT COLOR"
+SWITCHES="TECHNIQUES REFERENCE OBJ BUILTIN_SCENES SHADOW_MAPS ENVIRONMENT SCENE_TEXT COLOR GI_QUARTER TEMPORAL ANIMATION"
 # the global symbols (nm) of each switch's left-out files
 pattern() {
     case $1 in
@@ -22,10 +22,13 @@ pattern() {
         REFERENCE)      echo ' T tgi_(reference_|bvh_|pathtrace_|ray_triangle|pass_reference)' ;;
         OBJ)            echo ' T tgi_obj_' ;;
         BUILTIN_SCENES) echo ' [a-zA-Z] scene_(plane|groove|cornell|spheres|columns)$' ;;
-        SHADOW_MAPS)    echo ' T tgi_shadow_' ;;
+        SHADOW_MAPS)    echo ' T tgi_(shadow_|raster_depth)' ;;
         ENVIRONMENT)    echo ' T tgi_(sh9_|env_radiance|far_|cone_)' ;;
         SCENE_TEXT)     echo ' T tgi_(lex_|tok_|parse_|obj_)' ;;
-        COLOR)          echo ' T tgi_(direct_rows|pushpull_|reproject_gather|compose_|tonemap_row8|pass_(direct|reproject|push_pull|shadow_maps)$)' ;;
+        COLOR)          echo ' T tgi_(direct_rows|pushpull_|reproject_gather|compose_|tonemap_row8|raster_depth|pass_(direct|reproject|push_pull|shadow_maps)$)' ;;
+        GI_QUARTER)     echo ' T tgi_(downsample_rows|upsample_pixel|pass_(downsample|filter_quarter)$)' ;;
+        TEMPORAL)       echo ' T tgi_(temporal_|motion_|pushpull_|reproject_gather|pass_(temporal|motion|keep_history|reproject|push_pull)$)' ;;
+        ANIMATION)      echo ' T tgi_(anim_camera|anim_object_matrix|q_slerp)$' ;;
     esac
 }
 
@@ -47,7 +50,7 @@ baked_float="" baked_fixed=""
 # shellcheck disable=SC2086
 if $CC $TG_CFLAGS -DSWITCHES_PRINT=1 -Isrc -Itests tests/switches_check.c $BUILD/libtinygi.a $TG_LDLIBS \
        -o "$tmp/print" >"$tmp/print.log" 2>&1; then
-    for scene in plain rich sky_no_far; do
+    for scene in plain rich sky_no_far keyed; do
         "$tmp/print" $scene >"$tmp/$scene.scene" || fail "switches/print $scene" "exit $?"
         for num in float fixed; do
             bake=$BUILD/tinygi-bake; [ $num = fixed ] && bake=$BUILD/tinygi-bake-fixed
@@ -83,7 +86,7 @@ check() {
     done
 }
 
-# each switch alone and all eight, both number types; two builds at a time
+# each switch alone and all of them, both number types; two builds at a time
 configs=""
 for num in float fixed; do
     for sw in $SWITCHES all; do configs="$configs $num-$sw"; done

@@ -16,6 +16,7 @@
  */
 #include "check.h"
 #include "core/real.h"
+#include "core/text.h"
 #include <stdlib.h>
 #include <stdint.h>
 #include <float.h>
@@ -709,9 +710,86 @@ TEST(integer_helpers)
 #endif
 }
 
+/* tgi_text_put_real (error messages, the plan's explanation) as the float
+ * code formats tg_to_float(r): "-", the integer part, up to three decimals
+ * rounded (src/core/text.c).  Q16.16 formats in integers (no soft float in
+ * a small program): every r with |r| < 2^21, every r within 4096 of each
+ * power of two from 2^21 up (where the conversion to float starts to
+ * round, ties included), and 2^20 pseudo-random ones. */
+static void ref_put_real(char *out, tg_real r)
+{
+    float v = tg_to_float(r);
+    uint32_t whole, frac;
+    int e = 0;
+    if (v != v) { strcpy(out, "nan"); return; }
+    if (v < 0) { *out++ = '-'; v = -v; }
+    if (v > 3.402823466e+38f) { strcpy(out, "inf"); return; }
+    while (v >= 1e9f) { v /= 10.0f; e++; }
+    if (e > 0) while (v >= 10.0f) { v /= 10.0f; e++; }
+    whole = (uint32_t)v;
+    frac = (uint32_t)((v - (float)whole) * 1000.0f + 0.5f);
+    if (frac >= 1000u) { whole++; frac -= 1000u; }
+    out += sprintf(out, "%lu", (unsigned long)whole);
+    if (frac) {
+        out += sprintf(out, ".%03lu", (unsigned long)frac);
+        while (out[-1] == '0') *--out = '\0';
+    }
+    if (e > 0) sprintf(out, "e+%d", e);
+}
+
+static int put_real_differs(tg_real r)
+{
+    char got[64], want[64];
+    tgi_text t;
+    tgi_text_init(&t, got, sizeof got);
+    tgi_text_put_real(&t, r);
+    ref_put_real(want, r);
+    if (strcmp(got, want) == 0) return 0;
+    CHECK(0, "tgi_text_put_real(%.9g) gave '%s', the float code '%s'", (double)tg_to_float(r), got, want);
+    return 1;
+}
+
+TEST(text_put_real_as_float)
+{
+    long n = 0;
+    int k, bad = 0;
+    uint32_t lcg = 12345u;
+#if TG_FIXED
+    int32_t i;
+    for (i = -(1 << 21); i <= (1 << 21) && !bad; i++, n++) bad = put_real_differs(i);
+    for (k = 21; k <= 31 && !bad; k++) {
+        int64_t d;
+        for (d = -4096; d <= 4096 && !bad; d++) {
+            int64_t v = ((int64_t)1 << k) + d;
+            if (v > INT32_MAX) break;
+            bad = put_real_differs((tg_real)v) || put_real_differs((tg_real)-v);
+            n += 2;
+        }
+    }
+    bad = bad || put_real_differs(INT32_MIN) || put_real_differs(INT32_MAX);
+    for (k = 0; k < (1 << 20) && !bad; k++, n++) {
+        lcg = lcg * 1664525u + 1013904223u;
+        bad = put_real_differs((tg_real)(int32_t)lcg);
+    }
+#else
+    static const float edge[] = { 0.0f, -0.0f, 0.0005f, 0.9995f, 1e9f, 123456789e3f, 3.4e38f, 1e-30f };
+    for (k = 0; k < (int)(sizeof edge / sizeof edge[0]) && !bad; k++, n++) bad = put_real_differs(edge[k]);
+    for (k = 0; k < (1 << 20) && !bad; k++, n++) {
+        uint32_t b;
+        float f;
+        lcg = lcg * 1664525u + 1013904223u;
+        b = lcg & 0xff7fffffu;   /* finite */
+        memcpy(&f, &b, sizeof f);
+        bad = put_real_differs(f);
+    }
+#endif
+    printf("measured tgi_text_put_real: %ld values as the float code formats them\n", n);
+}
+
 int main(void)
 {
     RUN(isqrt64_exact);
+    RUN(text_put_real_as_float);
     RUN(integer_helpers);
     RUN(sqrt_whole_domain);
     RUN(rsqrt_whole_domain);

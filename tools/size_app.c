@@ -12,7 +12,8 @@
  *   TG_SIZE_AO_ONLY=1   the AO AOV as grey 8, a scene with no light;
  *   otherwise           colour as RGB565, a scene with a shadowed point
  *                       light (and a sky, unless TG_NO_ENVIRONMENT).
- * With TG_NO_SCENE_TEXT=1 the scene is not parsed: tools/size_table.sh
+ * With TG_NO_TEMPORAL=1 it renders frame 0 twice (one frame per request, no
+ * history).  With TG_NO_SCENE_TEXT=1 the scene is not parsed: tools/size_table.sh
  * bakes the same text into C data (tinygi-bake --name tgs_baked_scene) and
  * links it in.  Built on the host with TG_SIZE_PRINT_SCENE=1 it is a
  * program that prints that text, for the baking.
@@ -83,15 +84,19 @@ static void render(void)
     tg_request_defaults(&req);
     req.width = SIZE_W;
     req.height = SIZE_H;
+#if TG_NO_TEMPORAL
+    req.frames = 1;   /* every frame alone: the request is planned once and rendered again */
+#else
     req.frames = 2;
+#endif
 #if TG_SIZE_AO_ONLY
     req.aovs = 1u << TG_AOV_AO;
 #endif
     if (tg_plan_make(&plan, scene, &req, &err) != TG_OK) return;
     memory = tg_arena_alloc(&arena, plan.total_bytes);
     if (tg_frame_create(&plan, memory, plan.total_bytes, &frame, &err) != TG_OK) return;
-    for (i = 0; i < req.frames; i++) {
-        if (tg_frame_render(frame, i, &err) != TG_OK) return;
+    for (i = 0; i < 2; i++) {
+        if (tg_frame_render(frame, TG_NO_TEMPORAL ? 0 : i, &err) != TG_OK) return;
 #if TG_SIZE_AO_ONLY
         tg_frame_write_pixels(frame, TG_AOV_AO, 0, SIZE_H, TG_PIXEL_GREY8, 0, display, SIZE_W);
 #else

@@ -228,6 +228,22 @@ static wreal reduce_half_pi(tg_real x, int *quadrant)
     return shr_round(reduce_q40((int64_t)x * 16777216, k), 10);
 }
 #else
+/* x * 2^40 as an integer, for pi/4 < |x| < 2^22, where it is exact (the
+ * float's ulp is 2^-24 or more).  Compiling for size (TG_OUTLINE_HELPERS,
+ * tinygi.h) it is read from the float's bits: libgcc converts a float to a
+ * 64-bit integer through double, 2 KB of double arithmetic in a program
+ * without an FPU for it; the same integer either way. */
+static int64_t times_2_40(float x)
+{
+#if TG_OUTLINE_HELPERS
+    uint32_t b = tgi_f_bits(x);
+    int64_t m = (int64_t)((b & 0x7fffffu) | 0x800000u) << ((int)((b >> 23) & 255u) - 127 + 17);
+    return (b >> 31) ? -m : m;
+#else
+    return (int64_t)(x * 1099511627776.0f);
+#endif
+}
+
 static wreal reduce_half_pi(tg_real x, int *quadrant)
 {
     float ax = x < 0.0f ? -x : x;
@@ -238,7 +254,7 @@ static wreal reduce_half_pi(tg_real x, int *quadrant)
     k = (int32_t)(x * 0.636619772f + (x >= 0.0f ? 0.5f : -0.5f));
     *quadrant = (int)((uint32_t)k & 3u);
     /* x * 2^40 is an exact integer for |x| > pi/4 */
-    r = reduce_q40((int64_t)(x * 1099511627776.0f), k);
+    r = reduce_q40(times_2_40(x), k);
     return (float)r * (1.0f / 1099511627776.0f);
 }
 #endif

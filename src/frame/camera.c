@@ -46,7 +46,9 @@ static void camera_view(const tg_frame *f, tgi_view *v)
         tgi_view_make(v, d->pos, d->target, d->up, d->fov, s->camera.znear, s->camera.zfar, f->width, f->height);
         return;
     }
+#if !TG_NO_ANIMATION /* the keys are left out with TG_NO_ANIMATION=1 (tinygi.h "FEATURE SWITCHES") */
     if (s->camera_key_count > 0) tgi_anim_camera(s, f->time, &pos, &target);
+#endif
     tgi_view_make(v, pos, target, s->camera.up, s->camera.fov, s->camera.znear, s->camera.zfar,
                   f->width, f->height);
 }
@@ -90,7 +92,11 @@ static int object_posed(const tg_frame *f, int o)
 static void object_now(const tg_frame *f, int o, tgi_mat4 *m)
 {
     if (f->drive.object_set && f->drive.object_set[o].m[15] != 0) *m = f->drive.object_set[o];
+#if TG_NO_ANIMATION /* no keys: at rest (tg_plan_make refuses a scene with keys) */
+    else *m = tgi_m4_identity();
+#else
     else tgi_anim_object_matrix(f->scene, o, f->time, m);
+#endif
 }
 
 /* Every object's pose and motion since the last frame (none on a first

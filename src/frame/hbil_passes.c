@@ -37,10 +37,12 @@ static tgi_gresult without_cone(const tgi_gresult *r)
     return c;
 }
 
+#if !TG_NO_GI_QUARTER /* left out with TG_NO_GI_QUARTER=1 (tinygi.h "FEATURE SWITCHES") */
 void tgi_pass_downsample(tg_frame *f, int y0, int y1)
 {
     tgi_downsample_rows(&f->full, &f->half, tgi_frame_source(f), &f->half_source, y0, y1);
 }
+#endif
 
 /* The kernel on each of the 16 sub-images (i, j) of the kernel's image
  * (HBIL sec. 3.3), each a strided view of the image (no copy): its pixel

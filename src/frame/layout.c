@@ -233,7 +233,7 @@ static void group_direct(layout *l, tg_frame *f)
 static void group_source(layout *l, tg_frame *f)
 {
     int composes = (f->needs & TG_NEED_COMPOSE) != 0, lit = composes || near_field(f);
-    size_t n = f->pixels, mips = !TG_NO_COLOR && reprojects(f) ? tgi_pushpull_bytes(f->width, f->height) : 0;
+    size_t n = f->pixels, mips = !TG_NO_COLOR && !TG_NO_TEMPORAL && reprojects(f) ? tgi_pushpull_bytes(f->width, f->height) : 0;
     if (lit) {
         size_t b = tgi_rgb_carve(&f->slot[0], n, NULL);
         tgi_rgb_carve(&f->slot[0], n, take(l, near_in_slots(f) ? "radiance slot A: E_direct, Lo; last frame's Lo or near field,"

@@ -27,19 +27,23 @@ tgi_pass_rows_fn tgi_pass_gbuffer, tgi_pass_motion, tgi_pass_direct, tgi_pass_re
 
 /* ---- when the plan needs them ---- */
 static int always(const tg_frame *f) { (void)f; return 1; }
-static int wants_motion(const tg_frame *f) { return (f->needs & TG_NEED_MOTION) != 0; }
 static int wants_depth_view(const tg_frame *f) { return (f->request.aovs & AOV(TG_AOV_DEPTH)) != 0; }
+#if !TG_NO_TEMPORAL /* the rows that carry history across frames (tinygi.h "FEATURE SWITCHES") */
+static int wants_motion(const tg_frame *f) { return (f->needs & TG_NEED_MOTION) != 0; }
 static int reprojects(const tg_frame *f) { return (f->effects & TG_EFFECT_REPROJECTION) != 0; }
+static int accumulates(const tg_frame *f) { return (f->needs & TG_NEED_TEMPORAL) != 0; }
+static int keeps_geometry(const tg_frame *f) { return reprojects(f) || accumulates(f); }
+#endif
 #if !TG_NO_COLOR /* the colour passes' rows (tinygi.h "FEATURE SWITCHES") */
 static int casts_shadows(const tg_frame *f) { return (f->effects & TG_EFFECT_SHADOWS) != 0; }
 static int gathers_near(const tg_frame *f) { return (f->effects & TG_EFFECT_NEAR) != 0; }
 /* E_direct: the direct light, or (near field, no light) the 0 the first source is lit with */
 static int lights_directly(const tg_frame *f) { return (f->effects & TG_EFFECT_DIRECT) || gathers_near(f); }
+#if !TG_NO_TEMPORAL
 static int lights_after_history(const tg_frame *f) { return lights_directly(f) && reprojects(f); }
 #endif
+#endif
 static int composes(const tg_frame *f) { return (f->needs & TG_NEED_COMPOSE) != 0; }
-static int accumulates(const tg_frame *f) { return (f->needs & TG_NEED_TEMPORAL) != 0; }
-static int keeps_geometry(const tg_frame *f) { return reprojects(f) || accumulates(f); }
 
 static int technique_runs(const tg_frame *f, tg_technique t)
 {
@@ -48,7 +52,9 @@ static int technique_runs(const tg_frame *f, tg_technique t)
 static int runs_hbil(const tg_frame *f) { return technique_runs(f, TG_TECH_HBIL); }
 static int runs_hbil_interleaved(const tg_frame *f) { return runs_hbil(f) && tgi_frame_interleaved(f); }
 static int runs_hbil_full(const tg_frame *f) { return runs_hbil(f) && !tgi_frame_interleaved(f); }
+#if !TG_NO_GI_QUARTER
 static int runs_hbil_quarter(const tg_frame *f) { return runs_hbil(f) && tgi_frame_quarter(f); }
+#endif
 #if !TG_NO_TECHNIQUES
 static int runs_ssao(const tg_frame *f) { return technique_runs(f, TG_TECH_SSAO); }
 static int runs_vo(const tg_frame *f) { return technique_runs(f, TG_TECH_VO); }
@@ -84,17 +90,21 @@ const tgi_pass tgi_passes[] = {
       B(POSE), 0, SERIAL(tgi_pass_animate) },
     { "rasterize G-buffer (depth, normal, material)", always,
       B(GBUFFER), 0, ROWS(tgi_pass_gbuffer) },
+#if !TG_NO_TEMPORAL
     { "motion vectors", wants_motion,
       B(GBUFFER) | B(MOTION) | B(POSE), 0, ROWS(tgi_pass_motion) },
+#endif
     { "depth range (for the 8-bit depth view)", wants_depth_view,
       B(GBUFFER), 0, SERIAL(tgi_pass_depth_range) },
 #if !TG_NO_COLOR
     { "shadow maps (depth-only raster per shadow light)", casts_shadows,
       B(SHADOW_MAPS) | B(POSE), 0, SERIAL(tgi_pass_shadow_maps) },
+#if !TG_NO_TEMPORAL
     { "reproject last frame's radiance (gather through the depth, z-test)", reprojects,
       B(GBUFFER) | B(POSE) | B(SOURCE) | B(HISTORY), TGI_ON_HISTORY, ROWS(tgi_pass_reproject) },
     { "push/pull hole filling", reprojects,
       B(SOURCE) | B(REPROJECT), TGI_ON_HISTORY, SERIAL(tgi_pass_push_pull) },
+#endif
     { "direct light (Lambert, shadows, spot falloff): E_direct, the near field's first source", lights_directly,
       B(GBUFFER) | B(SHADOW_MAPS) | B(DIRECT) | B(SOURCE), TGI_ON_FIRST_FRAME, ROWS(tgi_pass_direct) },
 #endif
@@ -109,14 +119,18 @@ const tgi_pass tgi_passes[] = {
 #endif
     /* the kernel and what follows it: iterated on a frame without history
      * (gi bounces), each iteration gathering the previous one's radiance */
+#if !TG_NO_GI_QUARTER
     { "downsample to quarter resolution (point samples)", runs_hbil_quarter,
       B(HALF) | B(SOURCE), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_downsample) },
+#endif
     { "HBIL horizon kernel (AO, bent normal, near field), per 4x4 sub-image (strided, in place)", runs_hbil_interleaved,
       B(HALF) | B(SOURCE) | B(RESULTS), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_hbil_interleaved) },
     { "HBIL horizon kernel, full resolution", runs_hbil_full,
       B(RESULTS) | B(SOURCE), TGI_BOUNCE, ROWS(tgi_pass_hbil_full) },
+#if !TG_NO_TEMPORAL
     { "temporal accumulation at the kernel's resolution (history rejected by depth and normal)", accumulates,
       B(HALF) | B(SOURCE) | B(RESULTS) | B(TEMPORAL) | B(HISTORY), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_temporal) },
+#endif
 #if !TG_NO_TECHNIQUES
     { "SSAO (Crytek point samples, normal-oriented hemisphere)", runs_ssao,
       B(RESULTS), TGI_BOUNCE, ROWS(tgi_pass_ssao) },
@@ -137,9 +151,11 @@ const tgi_pass tgi_passes[] = {
     { "reference: ray-traced AO, bent normal and near field", runs_reference,
       B(RESULTS) | B(SOURCE) | B(BVH), TGI_BOUNCE, ROWS(tgi_pass_reference) },
 #endif
+#if !TG_NO_GI_QUARTER
     { "depth/normal-aware 4x4 filter at quarter resolution", runs_hbil_quarter,
       B(HALF) | B(RESULTS) | B(FILTER), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_filter_quarter) },
-#if !TG_NO_COLOR
+#endif
+#if !TG_NO_COLOR && !TG_NO_TEMPORAL
     { "direct light (Lambert, shadows, spot falloff): E_direct", lights_after_history,
       B(GBUFFER) | B(SHADOW_MAPS) | B(DIRECT) | B(SOURCE), TGI_BOUNCE | TGI_ON_HISTORY, ROWS(tgi_pass_direct) },
 #endif
@@ -148,8 +164,10 @@ const tgi_pass tgi_passes[] = {
       B(GBUFFER) | B(DIRECT) | B(SOURCE) | B(RESULTS) | B(HALF) | B(FILTER) | B(FAR) | B(COLOR) | B(IRRADIANCE),
       TGI_BOUNCE, ROWS(tgi_pass_resolve) },
     /* after the bounces */
+#if !TG_NO_TEMPORAL
     { "keep the depth and normal as next frame's history", keeps_geometry,
       B(GBUFFER) | B(HISTORY), 0, ROWS(tgi_pass_keep_history) },
+#endif
 };
 
 const int tgi_pass_count = (int)(sizeof tgi_passes / sizeof tgi_passes[0]);

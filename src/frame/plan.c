@@ -106,6 +106,16 @@ static int refuse_left_out(tg_error *err, const char *head, const char *name, co
     return 1;
 }
 
+/* The scene has keys (camera or objects). */
+static int scene_has_keys(const tg_scene *s)
+{
+    int i;
+    if (s->camera_key_count > 0) return 1;
+    for (i = 0; i < s->object_count; i++)
+        if (s->objects[i].key_count > 0) return 1;
+    return 0;
+}
+
 /* 1 (and the message) when the plan needs a feature this build leaves out. */
 static int left_out(const tg_plan *p, tg_error *err)
 {
@@ -127,6 +137,17 @@ static int left_out(const tg_plan *p, tg_error *err)
         return refuse_left_out(err, "colour is", NULL, "TG_NO_COLOR",
                                ": the plan asks for light (colour, irradiance, direct, near or far); "
                                "AO, bent normals, cones and the geometry AOVs render");
+    if (TG_NO_ANIMATION && scene_has_keys(p->scene))
+        return refuse_left_out(err, "scene keys are", NULL, "TG_NO_ANIMATION",
+                               ": the scene has camera or object keys; set the camera and objects from the "
+                               "program (tg_frame_set_camera, tg_frame_set_object)");
+    if (TG_NO_GI_QUARTER && t == TG_TECH_HBIL && p->request.interleave && p->request.gi_scale == 2)
+        return refuse_left_out(err, "quarter-resolution GI is", NULL, "TG_NO_GI_QUARTER", ": ask for gi_scale 1");
+    if (TG_NO_TEMPORAL && ((p->effects & TG_EFFECT_REPROJECTION) ||
+                           (tgi_frame_needs(p) & (TG_NEED_TEMPORAL | TG_NEED_MOTION))))
+        return refuse_left_out(err, "history across frames is", NULL, "TG_NO_TEMPORAL",
+                               ": the plan needs temporal accumulation, reprojection of radiance or motion "
+                               "vectors; ask for one frame, or temporal 0 without the near field");
     return 0;
 }
 

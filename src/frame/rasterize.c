@@ -27,11 +27,13 @@ void tgi_pass_gbuffer(tg_frame *f, int y0, int y1)
     tgi_raster_gbuffer(&f->gb, &f->view, &mesh, y0, y1);
 }
 
+#if !TG_NO_TEMPORAL /* motion vectors are left out with TG_NO_TEMPORAL=1 (tinygi.h "FEATURE SWITCHES") */
 void tgi_pass_motion(tg_frame *f, int y0, int y1)
 {
     tgi_motion_rows(&f->gb, &f->view, f->index > 0 ? &f->prev_view : &f->view,
                     f->posed_pos ? f->object_delta : NULL, y0, y1);
 }
+#endif
 
 /* The largest depth: scales the 8-bit depth view (needed only for it). */
 void tgi_pass_depth_range(tg_frame *f)

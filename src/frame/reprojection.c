@@ -9,7 +9,8 @@
 #include "../gi/reproject.h"
 #include "../gi/pushpull.h"
 
-#if !TG_NO_COLOR /* radiance reprojection is left out with TG_NO_COLOR=1 (tinygi.h "FEATURE SWITCHES") */
+#if !TG_NO_COLOR && !TG_NO_TEMPORAL /* radiance reprojection is left out with TG_NO_COLOR=1 or
+                                     * TG_NO_TEMPORAL=1 (tinygi.h "FEATURE SWITCHES") */
 
 /* HBIL sec. 3.2: last frame's radiance where this frame's surfaces were,
  * with the paper's depth test. */
@@ -35,8 +36,9 @@ void tgi_pass_push_pull(tg_frame *f)
 
 /* Last frame's geometry for the next frame's depth tests (its Lo stays
  * where compose wrote it, frame_internal.h). */
-#endif /* !TG_NO_COLOR */
+#endif /* !TG_NO_COLOR && !TG_NO_TEMPORAL */
 
+#if !TG_NO_TEMPORAL
 void tgi_pass_keep_history(tg_frame *f, int y0, int y1)
 {
     int x, y;
@@ -44,3 +46,4 @@ void tgi_pass_keep_history(tg_frame *f, int y0, int y1)
         for (x = 0; x < f->width; x++)
             tgi_prev_keep(&f->prev_geometry, (size_t)y * (size_t)f->width + (size_t)x, &f->full, tgi_gv_index(&f->full, x, y));
 }
+#endif /* !TG_NO_TEMPORAL */

@@ -17,6 +17,7 @@
 #include "../light/sh.h"
 #include "../light/compose.h"
 
+#if !TG_NO_TEMPORAL /* left out with TG_NO_TEMPORAL=1 (tinygi.h "FEATURE SWITCHES") */
 /* Exponential accumulation over frames, in place, at the kernel's resolution. */
 void tgi_pass_temporal(tg_frame *f, int y0, int y1)
 {
@@ -27,7 +28,9 @@ void tgi_pass_temporal(tg_frame *f, int y0, int y1)
     tgi_temporal_rows(&p, k, res, tgi_frame_quarter(f) ? &f->half_prev : &f->res_prev, &f->prev_geometry,
                       &f->prev_view, f->frames_rendered == 0, y0, y1);
 }
+#endif
 
+#if !TG_NO_GI_QUARTER /* left out with TG_NO_GI_QUARTER=1 (tinygi.h "FEATURE SWITCHES") */
 /* HBIL sec. 3.3-3.4 at quarter resolution: the filtered results the
  * upsample reads. */
 void tgi_pass_filter_quarter(tg_frame *f, int y0, int y1)
@@ -36,6 +39,7 @@ void tgi_pass_filter_quarter(tg_frame *f, int y0, int y1)
     tgi_denoise_defaults(&p);
     tgi_denoise_rows(&p, &f->half_view, &f->half_res, &f->half_filtered, y0, y1);
 }
+#endif
 
 /* What a row of the resolve needs, fixed per call. */
 typedef struct resolve_ctx {
@@ -65,7 +69,9 @@ static void resolve_ctx_init(resolve_ctx *c, const tg_frame *f)
 static tgi_gr_value results_at(resolve_ctx *c, const tg_frame *f, int x, int y, size_t i)
 {
     if (!c->hbil) return tgi_gr_get(&f->res, i);
+#if !TG_NO_GI_QUARTER
     if (c->quarter) return tgi_upsample_pixel(&f->full, &f->half_view, &f->half_filtered, x, y);
+#endif
     return tgi_denoise_pixel(&c->filter, &f->full, &f->res, &c->walk, x, y);
 }
 

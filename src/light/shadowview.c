@@ -406,7 +406,7 @@ void tgi_shadow_animation_bounds(const tg_scene *s, int frames, tg_vec3 *lo, tg_
     for (o = 0; o < s->object_count; o++) {
         tg_vec3 olo = tg_v3(0, 0, 0), ohi = olo;
         int any = 0;
-        if (!tgi_anim_object_moves(s, o)) continue;
+        if (TG_NO_ANIMATION || !tgi_anim_object_moves(s, o)) continue;   /* no keys with TG_NO_ANIMATION=1 */
         for (t = 0; t < s->tri_count; t++) {       /* the object's rest bounds */
             if (s->tri_object[t] != o) continue;
             for (k = 0; k < 3; k++) {
@@ -420,7 +420,11 @@ void tgi_shadow_animation_bounds(const tg_scene *s, int frames, tg_vec3 *lo, tg_
         if (!any) continue;
         for (frame = 0; frame < frames; frame++) {  /* carried by each frame's pose */
             tgi_mat4 m;
+#if !TG_NO_ANIMATION
             tgi_anim_object_matrix(s, o, tgi_anim_time(s, frame, frames), &m);
+#else
+            m = tgi_m4_identity();
+#endif
             for (k = 0; k < 8; k++) {
                 tg_vec3 p = tgi_m4_point(&m, corner(olo, ohi, k));
                 *lo = tg_v3(tg_min(lo->x, p.x), tg_min(lo->y, p.y), tg_min(lo->z, p.z));
@@ -444,7 +448,11 @@ int tgi_shadow_choose(size_t map_bytes, size_t bvh_bytes, size_t pixels)
 static void frame_view(tgi_view *v, const tg_scene *s, const tg_request *r, int frame)
 {
     tg_vec3 pos = s->camera.pos, target = s->camera.target;
+#if !TG_NO_ANIMATION /* the keys are left out with TG_NO_ANIMATION=1 (tinygi.h "FEATURE SWITCHES") */
     if (s->camera_key_count > 0) tgi_anim_camera(s, tgi_anim_time(s, frame, r->frames), &pos, &target);
+#else
+    (void)frame;
+#endif
     tgi_view_make(v, pos, target, s->camera.up, s->camera.fov, s->camera.znear, s->camera.zfar, r->width, r->height);
 }
 

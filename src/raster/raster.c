@@ -45,6 +45,9 @@
                                      TG_MAX_IMAGE_SIDE pixels, 16 sub-pixels each, fit */
 #define DIV_OFFSET (1 << 22)      /* a multiple of 16 above COORD_LIMIT for floor division */
 #define MAX_POLY 12               /* 3 vertices + one per clip plane, with room */
+/* The depth-only raster (tgi_raster_depth, tgi_raster_depth16) is for shadow
+ * maps alone: left out with them (tinygi.h "FEATURE SWITCHES"). */
+#define TGI_RASTER_DEPTH (!TG_NO_SHADOW_MAPS && !TG_NO_COLOR)
 
 #if (GUARD + 1) * (TG_MAX_IMAGE_SIDE / 2) * SUB > COORD_LIMIT || TG_MAX_SHADOW_MAP > TG_MAX_IMAGE_SIDE
 #error "TG_MAX_IMAGE_SIDE or TG_MAX_SHADOW_MAP is beyond the rasterizer's 28.4 coordinates"
@@ -546,9 +549,14 @@ static inline int pixel_walk_row(pixel_walk *pw, const tri_edges *te)
         if (xa < pw->xb) {
             pw->col = xa;
             pw->i = (size_t)pw->row * (size_t)pw->W + (size_t)xa;
+#if TG_OUTLINE_HELPERS   /* a loop at -Os */
+            int k;
+            for (k = 0; k < 3; k++) pw->e[k] = edge_at(te, k, pw->row, xa);
+#else
             pw->e[0] = edge_at(te, 0, pw->row, xa);
             pw->e[1] = edge_at(te, 1, pw->row, xa);
             pw->e[2] = edge_at(te, 2, pw->row, xa);
+#endif
             return 1;
         }
     }
@@ -560,17 +568,31 @@ static inline void pixel_walk_step(pixel_walk *pw, const tri_edges *te)
 {
     pw->col++;
     pw->i++;
+#if TG_OUTLINE_HELPERS   /* a loop at -Os */
+    {
+        int k;
+        for (k = 0; k < 3; k++) pw->e[k] += te->step_x[k];
+    }
+#else
     pw->e[0] += te->step_x[0]; pw->e[1] += te->step_x[1]; pw->e[2] += te->step_x[2];
+#endif
 }
 
 /* The barycentric weights u[] of the pixel whose edge functions are e[]
  * (unbiased and scaled as bary_make set up); returns their sum. */
 static inline int64_t bary_weights(const bary_setup *b, const tri_edges *te, const int64_t e[3], int64_t u[3])
 {
+#if TG_OUTLINE_HELPERS   /* a loop at -Os, the same integers */
+    int k;
+    int64_t sum = 0;
+    for (k = 0; k < 3; k++) sum += u[k] = ((e[k] - te->bias[k]) << b->ls) >> b->rs;
+    return sum;
+#else
     u[0] = ((e[0] - te->bias[0]) << b->ls) >> b->rs;
     u[1] = ((e[1] - te->bias[1]) << b->ls) >> b->rs;
     u[2] = ((e[2] - te->bias[2]) << b->ls) >> b->rs;
     return u[0] + u[1] + u[2];
+#endif
 }
 
 static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const screen_tri *st, const surface *sfp)
@@ -590,9 +612,18 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
             sq = (u[0] * b.q[0] + u[1] * b.q[1] + u[2] * b.q[2]) >> 30; /* su w_min / w */
             if (su <= 0 || sq <= 0) continue;
             z = tgi_sat64((b.wmin * su + sq / 2) / sq);
+#if TG_OUTLINE_HELPERS   /* one loop for the three components at -Os, the same integers */
+            {
+                int64_t m[3];
+                int c;
+                for (c = 0; c < 3; c++) m[c] = asr64(u[0] * b.nq[0][c] + u[1] * b.nq[1][c] + u[2] * b.nq[2][c], b.sm);
+                mx = m[0]; my = m[1]; mz = m[2];
+            }
+#else
             mx = asr64(u[0] * b.nq[0][0] + u[1] * b.nq[1][0] + u[2] * b.nq[2][0], b.sm);
             my = asr64(u[0] * b.nq[0][1] + u[1] * b.nq[1][1] + u[2] * b.nq[2][1], b.sm);
             mz = asr64(u[0] * b.nq[0][2] + u[1] * b.nq[1][2] + u[2] * b.nq[2][2], b.sm);
+#endif
 #if TG_WIDE_STORAGE
             {
                 tg_real n[3];
@@ -617,6 +648,7 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
         }
 }
 
+#if TGI_RASTER_DEPTH
 static void depth_rows(const depth_out *o, int W, const tri_edges *te, const screen_tri *st, int ortho)
 {
     bary_setup b;
@@ -639,6 +671,7 @@ static void depth_rows(const depth_out *o, int W, const tri_edges *te, const scr
             }
         }
 }
+#endif
 
 #else /* float */
 
@@ -739,6 +772,7 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
     }
 }
 
+#if TGI_RASTER_DEPTH
 static void depth_rows(const depth_out *o, int W, const tri_edges *te, const screen_tri *st, int ortho)
 {
     plane_basis pb;
@@ -769,6 +803,7 @@ static void depth_rows(const depth_out *o, int W, const tri_edges *te, const scr
         }
     }
 }
+#endif
 
 #endif
 
@@ -829,7 +864,10 @@ static void draw_snapped(const raster_target *rt, const clip_vertex *v, const tg
         sf.material = rt->gb->nm ? (uint32_t)rt->material << TGI_MATERIAL_SHIFT : 0;
 #endif
         gbuffer_rows(rt->gb, &te, &st, &sf);
-    } else depth_rows(&rt->dout, rt->width, &te, &st, rt->clip.mode == MODE_ORTHO);
+    }
+#if TGI_RASTER_DEPTH
+    else depth_rows(&rt->dout, rt->width, &te, &st, rt->clip.mode == MODE_ORTHO);
+#endif
 }
 
 /* The common case: a triangle needing no clipping.  Normals come from nrm
@@ -1071,6 +1109,7 @@ void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_
     }
 }
 
+#if TGI_RASTER_DEPTH
 /* Depth-only rows into rt (set up by the callers below). */
 static void raster_depth_rows(raster_target *rt, const tgi_mat4 *world_to_clip, int orthographic,
                               const tg_vec3 *pos, int tri_count)
@@ -1131,3 +1170,4 @@ void tgi_raster_depth16(uint16_t *depth, int width, int height, const tgi_mat4 *
 #endif
     raster_depth_rows(&rt, world_to_clip, orthographic, pos, tri_count);
 }
+#endif /* TGI_RASTER_DEPTH */
