@@ -481,7 +481,10 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #define TG_HBIL_ROTATIONS 8             /* frames before HBIL's slice angles and march offsets repeat:
                                         * each frame takes the next eighth of every stratum, so the
                                         * temporal accumulation (weight 0.2) sees 8 x 32 directions */
-#define TG_DEFAULT_SAMPLES 16
+#define TG_DEFAULT_SAMPLES 32            /* horizon samples per slice side: at most this many, one
+                                        * step apart; a gather that reaches fewer sub-image pixels
+                                        * takes each (cornell at 160x120 over 60 frames: colour RMSE
+                                        * against the path tracer 0.083 with 16, 0.063 with 32) */
 #define TG_DEFAULT_BOUNCES 1
 #define TG_DEFAULT_RADIUS 1             /* world units, for a scene without extent (neither request
                                            nor scene giving one: see TG_RADIUS_ENV_DIVISOR) */

@@ -121,7 +121,6 @@ static void params_for(tgi_hbil_params *p, double radius)
 {
     tgi_hbil_defaults(p);
     p->radius = tg_from_float((float)radius);
-    p->max_radius_px = TG_R(256.0f);
 }
 
 /* The full-resolution view of g (its storage in *gb, storage_fixture.h:
@@ -697,6 +696,41 @@ TEST(rotations_stratify_slice_angles_and_march_offsets)
     CHECK(worst_off < 0.05, "march offsets not stratified: %g of a stratum", worst_off);
 }
 
+/* Neighbouring 4x4 blocks take the march offsets in different sub-images
+ * (no stripes of blocks sampling at the same distances), and each block
+ * still takes all 16 offset strata of its rotation. */
+TEST(blocks_decorrelate_march_offsets)
+{
+    enum { B = 32 };
+    int rot, bx, by, i, j, k, same = 0, pairs = 0, unstratified = 0;
+    for (rot = 0; rot < TG_HBIL_ROTATIONS; rot++)
+        for (by = 0; by < B; by++)
+            for (bx = 0; bx < B; bx++) {
+                int seen[16] = { 0 };
+                for (j = 0; j < 4; j++)
+                    for (i = 0; i < 4; i++) {
+                        double sub = check_d(tgi_hbil_step_jitter(i, j, rot));
+                        double off = check_d(tgi_hbil_block_jitter(tgi_hbil_step_jitter(i, j, rot), bx, by, rot));
+                        double right = check_d(tgi_hbil_block_jitter(tgi_hbil_step_jitter(i, j, rot), bx + 1, by, rot));
+                        double below = check_d(tgi_hbil_block_jitter(tgi_hbil_step_jitter(i, j, rot), bx, by + 1, rot));
+                        double shift = (off - sub) * 16;
+                        CHECK(off >= 0 && off < 1, "block (%d, %d): offset %g outside [0, 1)", bx, by, off);
+                        if (shift < 0) shift += 16;
+                        CHECK(fabs(shift - floor(shift + 0.5)) < 1e-4, "block shift %g not whole sixteenths", shift);
+                        k = (int)floor(off * 16);
+                        if (k >= 0 && k < 16) seen[k]++;
+                        same += fabs(off - right) < 1e-6;
+                        same += fabs(off - below) < 1e-6;
+                        pairs += 2;
+                    }
+                for (k = 0; k < 16; k++) unstratified += seen[k] != 1;
+            }
+    printf("  blocks: %.3f of neighbouring blocks share a sub-image's offset (1/16 = 0.0625 by chance), "
+           "%d unstratified blocks\n", (double)same / pairs, unstratified);
+    CHECK(unstratified == 0, "%d blocks do not take each of the 16 offset strata once", unstratified);
+    CHECK((double)same / pairs < 0.1, "neighbouring blocks share offsets: %.3f", (double)same / pairs);
+}
+
 /* A floor in front of a wall 1.5 high whose top edge stands against the
  * sky, the radius (10) spanning the scene, at 320x240 through the 16
  * strided sub-images with the kernel's defaults, the AO averaged over the
@@ -780,6 +814,7 @@ int main(int argc, char **argv)
     RUN(fixed_and_float_agree);
     RUN(hbil_acos_accuracy);
     RUN(rotations_stratify_slice_angles_and_march_offsets);
+    RUN(blocks_decorrelate_march_offsets);
     RUN(wall_top_sets_the_horizon_at_any_radius);
     return check_summary();
 }

@@ -369,13 +369,13 @@ static void add(const char *label, tg_technique t, int slices, int samples, doub
     c->interleave = strcmp(label, "hbil-full") != 0;
     c->gi_scale = strcmp(label, "hbil") == 0 ? 2 : 1;
     c->near = near;
-    c->is_default = slices == 2 && samples == 16 && rscale == 1.0;
+    c->is_default = slices == TG_DEFAULT_SLICES && samples == TG_DEFAULT_SAMPLES && rscale == 1.0;
     c->on_curve = on_curve;
 }
 
 static void build_sweep(void)
 {
-    static const int ss[][2] = { {1, 4}, {1, 8}, {2, 8}, {2, 16}, {4, 16}, {4, 32} };
+    static const int ss[][2] = { {1, 4}, {1, 8}, {2, 8}, {2, 16}, {2, 32}, {4, 32} };
     static const int ssao_n[] = { 4, 8, 12, 16, 32, 64 }, vo_n[] = { 3, 5, 7, 9, 16, 32 };
     static const int ssdo_n[] = { 4, 8, 16, 32, 64 }, bc_n[] = { 4, 8, 16, 32 };
     static const double rs[] = { 0.5, 2.0 };
@@ -998,8 +998,8 @@ static void pass_breakdown(tg_scene *s, const char *name)
     for (k = 0; k < 4; k++) core += ms_of(&fr.plan, ms, paper[k]);
     snprintf(fname, sizeof fname, "passes-%s.md", NUMBER);
     f = open_out(fname, "w");
-    fprintf(f, "HBIL pass breakdown, %s, scene %s, %dx%d, 2 slices x 16 samples, median of %d (CPU ms of every pass of the plan, in the order the frame runs them; the share of the four passes HBIL sec. 3.5 lists, and the paper's GTX 680 at 1280x720, in the last columns):\n\n",
-            NUMBER, name, opt_w, opt_h, opt_runs);
+    fprintf(f, "HBIL pass breakdown, %s, scene %s, %dx%d, %d slices x %d samples, median of %d (CPU ms of every pass of the plan, in the order the frame runs them; the share of the four passes HBIL sec. 3.5 lists, and the paper's GTX 680 at 1280x720, in the last columns):\n\n",
+            NUMBER, name, opt_w, opt_h, TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES, opt_runs);
     fprintf(f, "| pass | ms (%s) | share | paper |\n|---|---:|---:|---:|\n", NUMBER);
     for (i = 0; i < fr.plan.pass_count && i < MAX_TIMED; i++) {
         int p = -1;
@@ -1388,7 +1388,7 @@ static void write_svg(void)
                     PX(last->ms) + 6, PY(last->ao_rmse) - 5, tech_colors[k], tech_names[k], setting(last, buf, sizeof buf));
     }
     fprintf(f, "<text x=\"%d\" y=\"%d\" fill=\"#444\" font-size=\"11\">big dot: default</text>\n", W - R + 14, T + 14 + 18 * NTECH + 6);
-    fprintf(f, "<text x=\"%d\" y=\"%d\" fill=\"#444\" font-size=\"11\">(2 slices x 16)</text>\n", W - R + 14, T + 14 + 18 * NTECH + 20);
+    fprintf(f, "<text x=\"%d\" y=\"%d\" fill=\"#444\" font-size=\"11\">(%d slices x %d)</text>\n", W - R + 14, T + 14 + 18 * NTECH + 20, TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES);
     fprintf(f, "</svg>\n");
     fclose(f);
 #undef PX
@@ -1490,8 +1490,8 @@ static void color_report(FILE *md)
     }
     fclose(f);
     fprintf(md, "## Colour against the path-traced reference\n\n");
-    fprintf(md, "Each technique at its default setting (2 slices x 16 samples, the scene's radius; HBIL converged over %d frames, the others one frame; `reference`: the ray-traced AO and one-bounce near field, composed like the others) against `--technique pathtrace` (%d paths per pixel in two halves, its default bounces). Colour RMSE over geometry pixels with every channel clamped to [0, 1]; energy: sum Lo / sum Lo_ref (1 = the path tracer's light). The reference's own noise (from its two halves) is a floor under every RMSE. CPU ms: median per frame (converged).\n\n",
-            frames, crows[0].paths);
+    fprintf(md, "Each technique at its default setting (%d slices x %d samples, the scene's radius; HBIL converged over %d frames, the others one frame; `reference`: the ray-traced AO and one-bounce near field, composed like the others) against `--technique pathtrace` (%d paths per pixel in two halves, its default bounces). Colour RMSE over geometry pixels with every channel clamped to [0, 1]; energy: sum Lo / sum Lo_ref (1 = the path tracer's light). The reference's own noise (from its two halves) is a floor under every RMSE. CPU ms: median per frame (converged).\n\n",
+            TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES, frames, crows[0].paths);
     fprintf(md, "| technique | number | CPU ms | colour RMSE | energy (mean) | energy (range over scenes) |\n|---|---|---:|---:|---:|---|\n");
     for (num = 0; num < 2; num++)
         for (k = 0; k < COLOR_TECHS; k++) {
@@ -1634,13 +1634,13 @@ static int cmd_report(void)
     md = open_out("bench.md", "w");
     fprintf(md, "# tinygi accuracy vs time\n\n");
     fprintf(md, "Errors against the ray-traced reference (same radius as an obscurance cut-off); each value is the mean over the built-in scenes (max AO error: the worst pixel of any scene); CPU ms: median process CPU time per whole frame (robust on a busy machine: the plot, the frontier and the claims use it); wall ms: median by the hosted clock.\n\n");
-    fprintf(md, "## Default setting (2 slices x 16 samples, the scene's radius)\n\n");
+    fprintf(md, "## Default setting (%d slices x %d samples, the scene's radius)\n\n", TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES);
     fprintf(md, "| technique | number | CPU ms | wall ms | AO RMSE | AO max | bent deg | near rel. err |\n|---|---|---:|---:|---:|---:|---:|---:|\n");
     for (num = 0; num < 2; num++)
         for (j = 0; j < npts; j++) {
             const point *p = &pts[j];
             if (strcmp(p->number, num ? "fixed" : "float") || !(p->is_default || !strcmp(p->tech, "gtao+ir")) || fabs(p->rscale - 1) > 1e-3) continue;
-            if (!p->is_default && !(p->slices == 2 && p->samples == 16)) continue;
+            if (!p->is_default && !(p->slices == TG_DEFAULT_SLICES && p->samples == TG_DEFAULT_SAMPLES)) continue;
             fmt_near(nb, sizeof nb, p->near_rel);
             fprintf(md, "| %s | %s | %.2f | %.2f | %.4f | %.3f | %.2f | %s |\n", p->tech, p->number, p->ms, p->wall, p->ao_rmse, p->ao_max, p->bent_deg, nb);
         }

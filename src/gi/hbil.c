@@ -84,7 +84,6 @@ void tgi_hbil_defaults(tgi_hbil_params *p)
     p->slices = TG_DEFAULT_SLICES;
     p->samples = TG_DEFAULT_SAMPLES;
     p->radius = TG_ONE;
-    p->max_radius_px = tg_from_int(TG_MAX_IMAGE_SIDE);   /* no cap: the screen bounds the march */
     p->slice_phi0 = tgi_hbil_slice_phi0(0, 0, p->slices, 0);
     p->rejection_a = 0;
     p->rejection_b = TG_R(0.2f);
@@ -205,8 +204,9 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
     /* the world radius projected to image pixels; the 3D test is unclamped */
     r_px = tg_div(tg_mul(c->p->radius, c->ppu), px->z);
     px->radius_units2 = tg_sqr(tg_min(tg_mul(r_px, c->inv_step), HBIL_MAX_RADIUS_UNITS));
-    /* the march ends where the 3D test would reject every sample */
-    px->reach = tg_min(tg_mul(tg_min(r_px, c->p->max_radius_px), c->inv_step), HBIL_MAX_RADIUS_UNITS);
+    /* no cap in pixels: the march ends at the screen's edge (march_side) or
+     * where the 3D test would reject every sample */
+    px->reach = tg_min(tg_mul(r_px, c->inv_step), HBIL_MAX_RADIUS_UNITS);
     return 1;
 }
 
@@ -543,6 +543,15 @@ static void write_open(const hbil_ctx *c, int i)
     if (c->near_field) tgi_gr_set_near(out, i, tg_v3(0, 0, 0));
 }
 
+tg_real tgi_hbil_block_jitter(tg_real sub_image_jitter, int bx, int by, int rot)
+{
+    uint32_t hsh = (uint32_t)bx * 0x8DA6B343u ^ (uint32_t)by * 0xD8163841u ^ (uint32_t)rot * 0xCB1AB31Fu;
+    tg_real j;
+    hsh ^= hsh >> 15; hsh *= 0x2C1B3C6Du; hsh ^= hsh >> 12;
+    j = tg_add(sub_image_jitter, tg_ratio((int)(hsh >> 28), 16));
+    return j >= TG_ONE ? tg_sub(j, TG_ONE) : j;
+}
+
 static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
 {
     const tgi_gresult *out = c->out;
@@ -550,12 +559,10 @@ static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
     hbil_sums acc;
     int s, pat = 0;
     tg_real ao;
+    int X = px->x * c->step + c->g->offset_x, Y = px->y * c->step + c->g->offset_y;
     memset(&acc, 0, sizeof acc);
-    if (c->p->per_pixel_pattern) {
-        int X = px->x * c->step + c->g->offset_x, Y = px->y * c->step + c->g->offset_y;
-        pat = (Y & 3) * 4 + (X & 3);
-    }
-    px->jitter = c->jitter[pat];
+    if (c->p->per_pixel_pattern) pat = (Y & 3) * 4 + (X & 3);
+    px->jitter = tgi_hbil_block_jitter(c->jitter[pat], X >> 2, Y >> 2, c->p->rotation);
     for (s = 0; s < c->slices; s++)
         slice_run(c, px, c->cos_phi[pat][s], c->sin_phi[pat][s], &acc);
     ao = tg_saturate(tg_sub(TG_ONE, tg_div(acc.occlusion, tg_from_int(c->slices))));

@@ -59,9 +59,8 @@
 #include "../raster/gview.h"
 
 typedef struct tgi_hbil_params {
-    int slices, samples;      /* per pixel; defaults 2 and 16; slices clamped to [1, TG_MAX_SLICES] */
-    tg_real radius;           /* world units; projected to pixels, clamped to max_radius_px and the screen */
-    tg_real max_radius_px;    /* in full-res pixels */
+    int slices, samples;      /* per pixel; defaults TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES; slices clamped to [1, TG_MAX_SLICES] */
+    tg_real radius;           /* world units; projected to pixels, the march stops at the screen's edge */
     tg_real slice_phi0;       /* first slice angle of this image (interleaved), radians */
     int per_pixel_pattern;    /* full-res: slice angle from (X & 3, Y & 3), slice_phi0 ignored */
     int rotation;             /* with the pattern: the frame rotation (tgi_hbil_slice_phi0) */
@@ -70,7 +69,7 @@ typedef struct tgi_hbil_params {
     tg_real rejection_a, rejection_b; /* sec. 3.4 t = smoothstep(a, b, -n'.w_i) */
 } tgi_hbil_params;
 
-/* Defaults: 2 slices, 16 samples, radius 1, max radius 128 px, phi0 of
+/* Defaults: 2 slices, 32 samples, radius 1, phi0 of
  * sub-image (0,0), no pattern, rejection a = 0, b = 0.2. */
 void tgi_hbil_defaults(tgi_hbil_params *p);
 
@@ -90,6 +89,18 @@ tg_real tgi_hbil_slice_phi0(int i, int j, int slices, int rot);
  * the near field shows bands the step's length apart.  Each frame
  * rotation `rot` takes its own eighth of every offset stratum. */
 tg_real tgi_hbil_step_jitter(int i, int j, int rot);
+
+/* The march's start offset of the pixel of 4x4 block (bx, by) whose
+ * sub-image starts at `sub_image_jitter` (tgi_hbil_step_jitter): that
+ * offset moved by a whole number of sixteenths hashed from the block and
+ * the rotation, modulo 1.  A block's 16 pixels still take the 16 offset
+ * strata, but neighbouring blocks take them in different sub-images:
+ * with one offset per sub-image, the samples of every block in a row fall
+ * at the same distances, and on a wall seen face-on rows of blocks see the
+ * same points of a bright patch (stripes 4 pixels high that neither the
+ * 4x4 filter nor the temporal accumulation removes; cornell at 160x120
+ * over 60 frames, colour RMSE against the path tracer 0.093 -> 0.083). */
+tg_real tgi_hbil_block_jitter(tg_real sub_image_jitter, int bx, int by, int rot);
 
 /* p's slice angle and march offset for sub-image (i, j) in p->rotation. */
 void tgi_hbil_for_sub_image(tgi_hbil_params *p, int i, int j);
