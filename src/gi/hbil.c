@@ -309,6 +309,39 @@ static inline int floor_small(tg_real a)
 #endif
 }
 
+/* The sample's offset from the pixel, its squared length and its dot with
+ * w_o (march_samples) in a number that does not saturate: Q16.16 in 64
+ * bits (products rounded like tg_mul), float unchanged.  The bounds that
+ * make this exact, in image pixels: the image is at most
+ * TG_MAX_IMAGE_SIDE = 2^13 pixels a side, so |P0 + s| < 2^14 and, with
+ * |q| <= TG_REAL_MAX (tg_mul saturates it), |(P0 + s) q| < 2^45: every
+ * product below fits 64 bits.  A component beyond HBIL_FAR (> the largest
+ * 3D radius, HBIL_MAX_RADIUS_UNITS) is rejected before it is squared: the
+ * saturating sum would have exceeded the radius too.  Below the radius
+ * |d| <= 150, so d.d, w_o.d, dot |dot| and h|h| |d|^2 stay below 32768
+ * and nothing that tg_mul or tg_add would have saturated is kept: the
+ * march takes the same samples and the same horizons in both forms. */
+#if TG_FIXED
+typedef int64_t hbil_wide;
+#define HBIL_FAR ((int64_t)151 << 16)
+static inline hbil_wide wide_mul(hbil_wide a, hbil_wide b) { return tgi_shr_round(a * b, TG_FRAC_BITS); }
+/* a.b summed exactly and rounded once, as tgi_v3_dot */
+static inline hbil_wide wide_dot(hbil_wide ax, hbil_wide ay, hbil_wide az, hbil_wide bx, hbil_wide by, hbil_wide bz)
+{
+    return tgi_shr_round(ax * bx + ay * by + az * bz, TG_FRAC_BITS);
+}
+/* 1 when |d| is beyond the largest radius (fixed only: float squares do not overflow) */
+static inline int wide_far(hbil_wide d) { return (uint64_t)(d + HBIL_FAR) > (uint64_t)(2 * HBIL_FAR); }
+#else
+typedef tg_real hbil_wide;
+static inline hbil_wide wide_mul(hbil_wide a, hbil_wide b) { return a * b; }
+static inline hbil_wide wide_dot(hbil_wide ax, hbil_wide ay, hbil_wide az, hbil_wide bx, hbil_wide by, hbil_wide bz)
+{
+    return ax * bx + ay * by + az * bz;
+}
+static inline int wide_far(hbil_wide d) { (void)d; return 0; }
+#endif
+
 /* The march's per-side constants (march_side). */
 typedef struct hbil_march {
     tg_real p0x, p0y, p0z, z, inv_z, r2, wox, woy, woz;
@@ -334,9 +367,10 @@ static inline void march_samples(const hbil_ctx *c, const hbil_slice *sl, int si
     int k, a = mr->a, sa_major = a * smaj;
     for (k = 1; k <= n; k++) {
         int b0, sa;
-        tg_real f, z1, q, sx, sy, smajor, dx, dy, dz, len2, dot, za, zb;
-        minor = tg_add(minor, dminor);
-        ox = tg_add(ox, dminor);
+        tg_real f, z1, q, sx, sy, smajor, za, zb;
+        hbil_wide dx, dy, dz, len2, dot;
+        minor = (tg_real)((hbil_wide)minor + dminor);           /* |minor|, |ox| < 2^14 px: no saturation */
+        ox = (tg_real)((hbil_wide)ox + dminor);
         a += da;
         sa_major += da * smaj;
         b0 = floor_small(minor);
@@ -358,27 +392,30 @@ static inline void march_samples(const hbil_ctx *c, const hbil_slice *sl, int si
             z1 = sample_depth_edge(c, major_x, a, b0, f, sa, sn);
             if (z1 <= 0) continue;
         }
-        /* view-space offset scaled to image pixels at depth z (see top) */
+        /* view-space offset scaled to image pixels at depth z (see top),
+         * unsaturated (bounds above hbil_wide) */
         q = tg_mul(tg_sub(z1, z), inv_z);
         smajor = tg_from_int(k * da - back);
         sx = major_x ? smajor : ox;
         sy = major_x ? tg_neg(ox) : tg_neg(smajor);
-        dx = tg_add(sx, tg_mul(tg_add(p0x, sx), q));
-        dy = tg_add(sy, tg_mul(tg_add(p0y, sy), q));
-        dz = tg_mul(p0z, q);
-        len2 = tgi_v3_dot(tg_v3(dx, dy, dz), tg_v3(dx, dy, dz));
+        dx = (hbil_wide)sx + wide_mul((hbil_wide)p0x + sx, q);
+        dy = (hbil_wide)sy + wide_mul((hbil_wide)p0y + sy, q);
+        dz = wide_mul(p0z, q);
+        if (wide_far(dx) || wide_far(dy) || wide_far(dz)) continue;   /* beyond the 3D radius */
+        len2 = wide_dot(dx, dy, dz, dx, dy, dz);
         if (len2 > r2) continue;                                /* beyond the 3D radius */
-        dot = tgi_v3_dot(tg_v3(dx, dy, dz), tg_v3(wox, woy, woz));
+        dot = wide_dot(dx, dy, dz, wox, woy, woz);
         /* cos(theta) > horizon, without a division: dot|dot| > h|h| |d|^2 */
-        if (tg_mul(dot, tg_abs(dot)) > tg_mul(hs_tie, len2)) {
-            tg_real len = tg_sqrt(len2);
-            tg_real cn = tg_clamp(tg_div(dot, len), TG_R(-1.0f), TG_ONE); /* HBIL sec. 1.3 */
+        if (wide_mul(dot, dot < 0 ? -dot : dot) > wide_mul(hs_tie, len2)) {
+            tg_real len = tg_sqrt((tg_real)len2);                /* |d| <= 150: d, dot, len2 fit tg_real */
+            tg_real cn = tg_clamp(tg_div((tg_real)dot, len), TG_R(-1.0f), TG_ONE); /* HBIL sec. 1.3 */
             if (cn <= sd->h) continue;
             sd->h = cn;
             sd->hs = tg_mul(cn, tg_abs(cn));
             hs_tie = tg_add(sd->hs, HBIL_TIE);
             if (c->near_field)
-                gather_rise(c, sl, sd, side, cn, tgi_v3_scale(tg_v3(dx, dy, dz), tg_div(TG_ONE, len)),
+                gather_rise(c, sl, sd, side, cn,
+                            tgi_v3_scale(tg_v3((tg_real)dx, (tg_real)dy, (tg_real)dz), tg_div(TG_ONE, len)),
                             f < TG_R(0.5f) ? sa : sa + smin);      /* the nearest pixel */
         }
     }
