@@ -101,6 +101,7 @@ typedef struct hbil_ctx {
     tg_real ppu, inv_ppu, inv_step, pi_over_s;
     tg_real cos_phi[HBIL_PATTERN][TG_MAX_SLICES], sin_phi[HBIL_PATTERN][TG_MAX_SLICES];
     tg_real jitter[HBIL_PATTERN];  /* step_jitter per pattern cell */
+    tg_real rejection_a, rejection_b;
     int near_field;
 } hbil_ctx;
 
@@ -273,7 +274,12 @@ HBIL_NOINLINE static void gather_rise(const hbil_ctx *c, const hbil_slice *sl, h
     ns = tgi_gv_normal(c->g, si);                                /* the sender's normal */
     wi = tgi_v3_add(tgi_v3_add(tgi_v3_scale(v->right, dir.x), tgi_v3_scale(v->up, dir.y)),
                    tgi_v3_scale(v->forward, dir.z));
-    t = tg_smoothstep(c->p->rejection_a, c->p->rejection_b, tg_neg(tgi_v3_dot(ns, wi))); /* HBIL sec. 3.4 */
+    t = tg_neg(tgi_v3_dot(ns, wi));
+    /* HBIL sec. 3.4; outside the ramp without the call (tg_smoothstep gives 0 and 1 there) */
+    if (c->rejection_b > c->rejection_a)
+        t = t <= c->rejection_a ? 0 : t >= c->rejection_b ? TG_ONE : tg_smoothstep(c->rejection_a, c->rejection_b, t);
+    else
+        t = tg_smoothstep(c->rejection_a, c->rejection_b, t);
     if (t != 0) {   /* lerp(L_old, L(x'), 0) is L_old: the sender's radiance is not read */
         l = tgi_rgb_get(c->rad, si);
         sd->lr = tg_lerp(sd->lr, l.x, t);                        /* L_new = lerp(L_old, L(x'), t) */
@@ -310,8 +316,7 @@ static inline int floor_small(tg_real a)
 }
 
 /* The sample's offset from the pixel, its squared length and its dot with
- * w_o (march_samples) in a number that does not saturate: Q16.16 in 64
- * bits (products rounded like tg_mul), float unchanged.  The bounds that
+ * w_o (march_samples) in tgi_wide (core/real.h), which does not saturate.  The bounds that
  * make this exact, in image pixels: the image is at most
  * TG_MAX_IMAGE_SIDE = 2^13 pixels a side, so |P0 + s| < 2^14 and, with
  * |q| <= TG_REAL_MAX (tg_mul saturates it), |(P0 + s) q| < 2^45: every
@@ -322,24 +327,11 @@ static inline int floor_small(tg_real a)
  * and nothing that tg_mul or tg_add would have saturated is kept: the
  * march takes the same samples and the same horizons in both forms. */
 #if TG_FIXED
-typedef int64_t hbil_wide;
 #define HBIL_FAR ((int64_t)151 << 16)
-static inline hbil_wide wide_mul(hbil_wide a, hbil_wide b) { return tgi_shr_round(a * b, TG_FRAC_BITS); }
-/* a.b summed exactly and rounded once, as tgi_v3_dot */
-static inline hbil_wide wide_dot(hbil_wide ax, hbil_wide ay, hbil_wide az, hbil_wide bx, hbil_wide by, hbil_wide bz)
-{
-    return tgi_shr_round(ax * bx + ay * by + az * bz, TG_FRAC_BITS);
-}
 /* 1 when |d| is beyond the largest radius (fixed only: float squares do not overflow) */
-static inline int wide_far(hbil_wide d) { return (uint64_t)(d + HBIL_FAR) > (uint64_t)(2 * HBIL_FAR); }
+static inline int wide_far(tgi_wide d) { return (uint64_t)(d + HBIL_FAR) > (uint64_t)(2 * HBIL_FAR); }
 #else
-typedef tg_real hbil_wide;
-static inline hbil_wide wide_mul(hbil_wide a, hbil_wide b) { return a * b; }
-static inline hbil_wide wide_dot(hbil_wide ax, hbil_wide ay, hbil_wide az, hbil_wide bx, hbil_wide by, hbil_wide bz)
-{
-    return ax * bx + ay * by + az * bz;
-}
-static inline int wide_far(hbil_wide d) { (void)d; return 0; }
+static inline int wide_far(tgi_wide d) { (void)d; return 0; }
 #endif
 
 /* The march's per-side constants (march_side). */
@@ -368,9 +360,9 @@ static inline void march_samples(const hbil_ctx *c, const hbil_slice *sl, int si
     for (k = 1; k <= n; k++) {
         int b0, sa;
         tg_real f, z1, q, sx, sy, smajor, za, zb;
-        hbil_wide dx, dy, dz, len2, dot;
-        minor = (tg_real)((hbil_wide)minor + dminor);           /* |minor|, |ox| < 2^14 px: no saturation */
-        ox = (tg_real)((hbil_wide)ox + dminor);
+        tgi_wide dx, dy, dz, len2, dot;
+        minor = (tg_real)((tgi_wide)minor + dminor);           /* |minor|, |ox| < 2^14 px: no saturation */
+        ox = (tg_real)((tgi_wide)ox + dminor);
         a += da;
         sa_major += da * smaj;
         b0 = floor_small(minor);
@@ -393,20 +385,20 @@ static inline void march_samples(const hbil_ctx *c, const hbil_slice *sl, int si
             if (z1 <= 0) continue;
         }
         /* view-space offset scaled to image pixels at depth z (see top),
-         * unsaturated (bounds above hbil_wide) */
+         * unsaturated (bounds above tgi_wide) */
         q = tg_mul(tg_sub(z1, z), inv_z);
         smajor = tg_from_int(k * da - back);
         sx = major_x ? smajor : ox;
         sy = major_x ? tg_neg(ox) : tg_neg(smajor);
-        dx = (hbil_wide)sx + wide_mul((hbil_wide)p0x + sx, q);
-        dy = (hbil_wide)sy + wide_mul((hbil_wide)p0y + sy, q);
-        dz = wide_mul(p0z, q);
+        dx = (tgi_wide)sx + tgi_wide_mul((tgi_wide)p0x + sx, q);
+        dy = (tgi_wide)sy + tgi_wide_mul((tgi_wide)p0y + sy, q);
+        dz = tgi_wide_mul(p0z, q);
         if (wide_far(dx) || wide_far(dy) || wide_far(dz)) continue;   /* beyond the 3D radius */
-        len2 = wide_dot(dx, dy, dz, dx, dy, dz);
+        len2 = tgi_wide_dot(dx, dy, dz, dx, dy, dz);
         if (len2 > r2) continue;                                /* beyond the 3D radius */
-        dot = wide_dot(dx, dy, dz, wox, woy, woz);
+        dot = tgi_wide_dot(dx, dy, dz, wox, woy, woz);
         /* cos(theta) > horizon, without a division: dot|dot| > h|h| |d|^2 */
-        if (wide_mul(dot, dot < 0 ? -dot : dot) > wide_mul(hs_tie, len2)) {
+        if (tgi_wide_mul(dot, dot < 0 ? -dot : dot) > tgi_wide_mul(hs_tie, len2)) {
             tg_real len = tg_sqrt((tg_real)len2);                /* |d| <= 150: d, dot, len2 fit tg_real */
             tg_real cn = tg_clamp(tg_div((tg_real)dot, len), TG_R(-1.0f), TG_ONE); /* HBIL sec. 1.3 */
             if (cn <= sd->h) continue;
@@ -579,6 +571,8 @@ static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, 
     c->inv_step = tg_ratio(1, c->step);
     c->pi_over_s = tg_div(TG_PI, tg_from_int(c->slices));
     c->near_field = tgi_rgb_present(radiance) && tgi_gr_has_near(out);
+    c->rejection_a = p->rejection_a;
+    c->rejection_b = p->rejection_b;
     npat = p->per_pixel_pattern ? HBIL_PATTERN : 1;
     for (pat = 0; pat < npat; pat++) {
         tg_real phi0 = p->per_pixel_pattern ? tgi_hbil_slice_phi0(pat & 3, pat >> 2, c->slices, p->rotation)
