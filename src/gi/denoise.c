@@ -14,10 +14,14 @@ void tgi_denoise_defaults(tgi_denoise_params *p)
 /* 1-D tap weights (1/2, 1, 1, 1, 1/2); the 2-D weight is their product. */
 static const tg_real tap_w[5] = { TG_R(0.5f), TG_ONE, TG_ONE, TG_ONE, TG_R(0.5f) };
 
+/* The weights' factors are in [0, 1] (up to a rounding): their products
+ * never saturate, so tgi_wide_mul (core/real.h) gives tg_mul's result. */
+static tg_real weight_mul(tg_real a, tg_real b) { return (tg_real)tgi_wide_mul(a, b); }
+
 static tg_real normal_weight(tg_real d)
 {
     d = tg_max(d, 0);
-    d = tg_mul(d, d); d = tg_mul(d, d); d = tg_mul(d, d);   /* (n_i . n_j)^8 */
+    d = weight_mul(d, d); d = weight_mul(d, d); d = weight_mul(d, d);   /* (n_i . n_j)^8 */
     return d;
 }
 
@@ -40,8 +44,8 @@ static tg_real tap_weight(const tgi_denoise_tap *t, tg_real tap, tg_real zi, tg_
     if (t->sky) return 0;
     dz = tg_abs(tg_sub(t->z, zi));
     if (dz >= ztol) return 0;
-    wt = tg_mul(tap, tg_sub(TG_ONE, tg_mul(dz, inv_ztol)));
-    return tg_mul(wt, normal_weight(tgi_v3_dot(ni, t->n)));
+    wt = weight_mul(tap, tg_sub(TG_ONE, weight_mul(dz, inv_ztol)));   /* dz < ztol: dz / ztol in [0, 1] */
+    return weight_mul(wt, normal_weight(tgi_v3_dot(ni, t->n)));
 }
 
 void tgi_denoise_walk_start(tgi_denoise_walk *k)
@@ -83,7 +87,7 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     for (yy = ya; yy <= yb; yy++)
         for (xx = xa; xx <= xb; xx++) {
             const tgi_denoise_tap *t = &k->tap[slot[xx - xa]][yy - y + 2];
-            tg_real wt = tap_weight(t, tg_mul(tap_w[xx - x + 2], tap_w[yy - y + 2]), zi, ni, ztol, inv_ztol);
+            tg_real wt = tap_weight(t, weight_mul(tap_w[xx - x + 2], tap_w[yy - y + 2]), zi, ni, ztol, inv_ztol);
             if (wt <= 0) continue;
             wsum += wt;
             ao += tgi_wide_mul(wt, t->v.ao);
