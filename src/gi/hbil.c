@@ -152,33 +152,43 @@ static const tg_real acos_fit[8] = {
     TG_R(1.5707963050f), TG_R(-0.2145988016f), TG_R(0.0889789874f), TG_R(-0.0501743046f),
     TG_R(0.0308918810f), TG_R(-0.0170881256f), TG_R(0.0066700901f), TG_R(-0.0012624911f)
 };
+/* Products and sums whose results are bounded (each use says why) without
+ * the saturation test (tgi_wide, core/real.h): tg_mul, tg_add and tg_sub
+ * would not saturate there, so these give their results.  In the slice
+ * integrals every operand is a cosine, a sine, an angle in [-pi, pi], a fit
+ * coefficient or a partial sum of the fit (all below 4 in magnitude). */
+static tg_real small_mul(tg_real a, tg_real b) { return (tg_real)tgi_wide_mul(a, b); }
+static tg_real small_add(tg_real a, tg_real b) { return (tg_real)((tgi_wide)a + b); }
+static tg_real small_sub(tg_real a, tg_real b) { return (tg_real)((tgi_wide)a - b); }
+
 tg_real tgi_hbil_acos(tg_real c)
 {
     const tg_real *k = acos_fit;
     tg_real a = tg_min(tg_abs(c), TG_ONE), p, t;
-    /* Horner, written out (gcc keeps a loop of 7 as a loop) */
-    p = tg_add(tg_mul(k[7], a), k[6]);
-    p = tg_add(tg_mul(p, a), k[5]);
-    p = tg_add(tg_mul(p, a), k[4]);
-    p = tg_add(tg_mul(p, a), k[3]);
-    p = tg_add(tg_mul(p, a), k[2]);
-    p = tg_add(tg_mul(p, a), k[1]);
-    p = tg_add(tg_mul(p, a), k[0]);
-    t = tg_mul(tg_sqrt(tg_sub(TG_ONE, a)), p);
-    return c < 0 ? tg_sub(TG_PI, t) : t;
+    /* Horner, written out (gcc keeps a loop of 7 as a loop); |p| < 1.6 */
+    p = small_add(small_mul(k[7], a), k[6]);
+    p = small_add(small_mul(p, a), k[5]);
+    p = small_add(small_mul(p, a), k[4]);
+    p = small_add(small_mul(p, a), k[3]);
+    p = small_add(small_mul(p, a), k[2]);
+    p = small_add(small_mul(p, a), k[1]);
+    p = small_add(small_mul(p, a), k[0]);
+    t = small_mul(tg_sqrt(small_sub(TG_ONE, a)), p);
+    return c < 0 ? small_sub(TG_PI, t) : t;
 }
 
-/* sin(theta)^2 / 2 and (theta - sin cos) / 2 from cos(theta) and the side. */
+/* sin(theta)^2 / 2 and (theta - sin cos) / 2 from cos(theta) and the side
+ * (|c| <= 1, so the operands are small: see small_mul). */
 static tg_real slice_R(tg_real c)
 {
-    return tg_mul(TG_R(0.5f), tg_sub(TG_ONE, tg_mul(c, c)));
+    return small_mul(TG_R(0.5f), small_sub(TG_ONE, small_mul(c, c)));
 }
 static tg_real slice_Q(tg_real c, int side)
 {
     tg_real theta = tgi_hbil_acos(c);
-    tg_real s = tg_sqrt(tg_sub(TG_ONE, tg_mul(c, c)));
+    tg_real s = tg_sqrt(small_sub(TG_ONE, small_mul(c, c)));
     if (side < 0) { theta = tg_neg(theta); s = tg_neg(s); }
-    return tg_mul(TG_R(0.5f), tg_sub(theta, tg_mul(s, c)));
+    return small_mul(TG_R(0.5f), small_sub(theta, small_mul(s, c)));
 }
 static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
 {
@@ -264,16 +274,19 @@ HBIL_NOINLINE static void gather_rise(const hbil_ctx *c, const hbil_slice *sl, h
 {
     const tgi_view *v = c->v;
     tg_real q_new = slice_Q(cos_new, side);
-    /* P(theta) = int_0^theta (n'.w_i') |sin| : the antiderivative of eq. 10 */
-    tg_real p_new = tg_add(tg_mul(sl->nx, q_new), tg_mul(sl->ny, slice_R(cos_new)));
-    tg_real de = tg_max(0, tg_sub(sd->p_old, p_new));         /* HBIL eq. 18 */
+    /* P(theta) = int_0^theta (n'.w_i') |sin| : the antiderivative of eq. 10
+     * (|n'| <= 1, |Q| < 2, R <= 1/2, |P| < 2.5: small_mul) */
+    tg_real p_new = small_add(small_mul(sl->nx, q_new), small_mul(sl->ny, slice_R(cos_new)));
+    tg_real de = tg_max(0, small_sub(sd->p_old, p_new));      /* HBIL eq. 18 */
     tg_vec3 ns, wi, l;
     tg_real t;
     sd->p_old = p_new;
     sd->q = q_new;
     ns = tgi_gv_normal(c->g, si);                                /* the sender's normal */
-    wi = tgi_v3_add(tgi_v3_add(tgi_v3_scale(v->right, dir.x), tgi_v3_scale(v->up, dir.y)),
-                   tgi_v3_scale(v->forward, dir.z));
+    /* unit vectors: the camera's axes and dir (|.| <= 1, small_mul) */
+    wi = tg_v3(small_add(small_add(small_mul(v->right.x, dir.x), small_mul(v->up.x, dir.y)), small_mul(v->forward.x, dir.z)),
+               small_add(small_add(small_mul(v->right.y, dir.x), small_mul(v->up.y, dir.y)), small_mul(v->forward.y, dir.z)),
+               small_add(small_add(small_mul(v->right.z, dir.x), small_mul(v->up.z, dir.y)), small_mul(v->forward.z, dir.z)));
     t = tg_neg(tgi_v3_dot(ns, wi));
     /* HBIL sec. 3.4; outside the ramp without the call (tg_smoothstep gives 0 and 1 there) */
     if (c->rejection_b > c->rejection_a)
@@ -373,9 +386,13 @@ static inline void march_samples(const hbil_ctx *c, const hbil_slice *sl, int si
          * z = za + f (zb - za) za / (zb - f (zb - za)) */
         if ((unsigned)b0 < (unsigned)(bmax - 1)                 /* b0 and b0 + 1 inside */
             && (za = tgi_gv_depth(&g, sa)) > 0 && (zb = tgi_gv_depth(&g, sa + smin)) > 0
-            && tg_abs(tg_sub(za, zb)) < tg_mul(HBIL_LERP_MAX_REL, tg_min(za, zb))) {
-            tg_real zd = tg_sub(zb, za);
-            z1 = tg_add(za, tg_mul(tg_mul(f, zd), tg_div(za, tg_sub(zb, tg_mul(f, zd)))));
+            && (tgi_wide)tg_abs(small_sub(za, zb)) < tgi_wide_mul(HBIL_LERP_MAX_REL, tg_min(za, zb))) {
+            /* 0 < za, zb <= TG_REAL_MAX: zb - za fits, f zd (f in [0, 1)) fits,
+             * zb - f zd lies between za and zb; the comparison above is made
+             * in tgi_wide, so a 3 min(za, zb) beyond TG_REAL_MAX (where tg_mul
+             * saturated) gives the same answer */
+            tg_real zd = (tg_real)((tgi_wide)zb - za), fzd = small_mul(f, zd);
+            z1 = tg_add(za, tg_mul(fzd, tg_div(za, small_sub(zb, fzd))));
         } else {
             int bn = f < TG_R(0.5f) ? b0 : b0 + 1, sn;
             if (bn < 0 || bn >= bmax) break;                    /* the slice leaves the image */
