@@ -160,6 +160,15 @@ static const tg_real acos_fit[8] = {
 static tg_real small_mul(tg_real a, tg_real b) { return (tg_real)tgi_wide_mul(a, b); }
 static tg_real small_add(tg_real a, tg_real b) { return (tg_real)((tgi_wide)a + b); }
 static tg_real small_sub(tg_real a, tg_real b) { return (tg_real)((tgi_wide)a - b); }
+/* an integer below 2^15 in magnitude (an image coordinate or offset) */
+static tg_real small_from_int(int i)
+{
+#if TG_FIXED
+    return (tg_real)((tgi_wide)i * TG_ONE);
+#else
+    return (tg_real)i;
+#endif
+}
 
 tg_real tgi_hbil_acos(tg_real c)
 {
@@ -379,7 +388,7 @@ static inline void march_samples(const hbil_ctx *c, const hbil_slice *sl, int si
         a += da;
         sa_major += da * smaj;
         b0 = floor_small(minor);
-        f = tg_sub(minor, tg_from_int(b0));
+        f = small_sub(minor, small_from_int(b0));               /* image coordinates: < 2^14 */
         sa = sa_major + b0 * smin;
         /* both neighbours surface (depth > 0 is not sky) and close: 1/z
          * interpolated linearly, 1/z = (1-f)/za + f/zb  <=>
@@ -403,8 +412,8 @@ static inline void march_samples(const hbil_ctx *c, const hbil_slice *sl, int si
         }
         /* view-space offset scaled to image pixels at depth z (see top),
          * unsaturated (bounds above tgi_wide) */
-        q = tg_mul(tg_sub(z1, z), inv_z);
-        smajor = tg_from_int(k * da - back);
+        q = tg_mul(small_sub(z1, z), inv_z);                   /* z1, z in (0, TG_REAL_MAX] */
+        smajor = small_from_int(k * da - back);
         sx = major_x ? smajor : ox;
         sy = major_x ? tg_neg(ox) : tg_neg(smajor);
         dx = (tgi_wide)sx + tgi_wide_mul((tgi_wide)p0x + sx, q);
