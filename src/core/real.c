@@ -182,11 +182,32 @@ static wreal w_poly(wreal z, const wreal *c, int n)
 
 #if TG_FIXED
 
-/* sqrt(x) = isqrt(x_raw << 16), rounded: exact to 0.5 ulp. */
+/* sqrt(x) = sqrt(v), v = x_raw 2^16 < 2^47, rounded to nearest: exact to
+ * 0.5 ulp.  v = m 2^-e with m = X 2^60, X in [1, 4), e even; sqrt(X) in
+ * Q30 from the two-step reciprocal (tgi_rsqrt_q30_fast, rel. error 3e-6)
+ * and one Newton step on the residual (X - s^2) / (2 s) = (X - s^2) y / 2,
+ * within a few units of 2^-30; then R = sqrt(v) 2^..., and the integer
+ * tests R^2 - R < v <= R^2 + R (R the nearest integer to sqrt(v)) make it
+ * exact. */
 tg_real tg_sqrt(tg_real x)
 {
+    uint64_t v, x30, y, s, a, r, c;
+    int64_t res;
+    int e;
     if (x <= 0) return 0;
-    return (tg_real)tgi_isqrt_round64((uint64_t)x << 16);
+    v = (uint64_t)x << 16;
+    e = (62 - tgi_bit_length64(v)) & ~1;     /* 15..45: m = v 2^e in [2^60, 2^62) */
+    x30 = (v << e) >> 30;                    /* X in Q30, [2^30, 2^32) */
+    y = tgi_rsqrt_q30_fast(x30);             /* 1/sqrt(X), Q30 */
+    s = (x30 * y) >> 30;                     /* sqrt(X), Q30, < 2^31 */
+    res = (int64_t)(x30 << 30) - (int64_t)(s * s);   /* (X - s^2), Q60 */
+    a = (uint64_t)(res < 0 ? -res : res) >> 30;
+    c = (a * y) >> 31;
+    s = res < 0 ? s - c : s + c;
+    r = s >> (e / 2);                        /* sqrt(v) = sqrt(X) 2^(30 - e/2) */
+    while (r * r + r < v) r++;
+    while (r > 0 && r * r - r >= v) r--;
+    return (tg_real)r;
 }
 
 /* 1/sqrt(x): x_raw = M 2^e, raw = 2^24 / sqrt(x_raw) = 2^(24 - e/2) / sqrt(M). */

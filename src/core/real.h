@@ -36,6 +36,33 @@ static inline uint64_t tgi_isqrt_round64(uint64_t v)
     return v - r * r > r ? r + 1 : r;
 }
 
+/* ---- unsaturated sums and products ----
+ * Where a kernel's values are provably bounded (each use states the bound
+ * next to the code), it may compute in tgi_wide: Q16.16 in 64 bits with
+ * products rounded exactly as tg_mul rounds them but never saturated, and
+ * a dot product summed exactly and rounded once as tgi_v3_dot; in the float
+ * build the same operations in float.  The results equal tg_mul, tg_add and
+ * tgi_v3_dot's whenever those would not have saturated (and no product may
+ * reach 2^62). */
+#if TG_FIXED
+typedef int64_t tgi_wide;
+static inline tgi_wide tgi_wide_mul(tgi_wide a, tgi_wide b) { return tgi_shr_round(a * b, TG_FRAC_BITS); }
+static inline tgi_wide tgi_wide_dot(tgi_wide ax, tgi_wide ay, tgi_wide az, tgi_wide bx, tgi_wide by, tgi_wide bz)
+{
+    return tgi_shr_round(ax * bx + ay * by + az * bz, TG_FRAC_BITS);
+}
+/* back to tg_real, saturating */
+static inline tg_real tgi_wide_real(tgi_wide a) { return tgi_sat64(a); }
+#else
+typedef float tgi_wide;
+static inline tgi_wide tgi_wide_mul(tgi_wide a, tgi_wide b) { return a * b; }
+static inline tgi_wide tgi_wide_dot(tgi_wide ax, tgi_wide ay, tgi_wide az, tgi_wide bx, tgi_wide by, tgi_wide bz)
+{
+    return ax * bx + ay * by + az * bz;
+}
+static inline tg_real tgi_wide_real(tgi_wide a) { return a; }
+#endif
+
 /* ---- the per-pixel reciprocal square root ----
  * Cheaper than tg_rsqrt (two Newton steps instead of three, and no range
  * handling), for the rasterizer's per-pixel normals, whose error stays below

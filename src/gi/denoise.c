@@ -14,10 +14,14 @@ void tgi_denoise_defaults(tgi_denoise_params *p)
 /* 1-D tap weights (1/2, 1, 1, 1, 1/2); the 2-D weight is their product. */
 static const tg_real tap_w[5] = { TG_R(0.5f), TG_ONE, TG_ONE, TG_ONE, TG_R(0.5f) };
 
+/* The weights' factors are in [0, 1] (up to a rounding): their products
+ * never saturate, so tgi_wide_mul (core/real.h) gives tg_mul's result. */
+static tg_real weight_mul(tg_real a, tg_real b) { return (tg_real)tgi_wide_mul(a, b); }
+
 static tg_real normal_weight(tg_real d)
 {
     d = tg_max(d, 0);
-    d = tg_mul(d, d); d = tg_mul(d, d); d = tg_mul(d, d);   /* (n_i . n_j)^8 */
+    d = weight_mul(d, d); d = weight_mul(d, d); d = weight_mul(d, d);   /* (n_i . n_j)^8 */
     return d;
 }
 
@@ -40,8 +44,8 @@ static tg_real tap_weight(const tgi_denoise_tap *t, tg_real tap, tg_real zi, tg_
     if (t->sky) return 0;
     dz = tg_abs(tg_sub(t->z, zi));
     if (dz >= ztol) return 0;
-    wt = tg_mul(tap, tg_sub(TG_ONE, tg_mul(dz, inv_ztol)));
-    return tg_mul(wt, normal_weight(tgi_v3_dot(ni, t->n)));
+    wt = weight_mul(tap, tg_sub(TG_ONE, weight_mul(dz, inv_ztol)));   /* dz < ztol: dz / ztol in [0, 1] */
+    return weight_mul(wt, normal_weight(tgi_v3_dot(ni, t->n)));
 }
 
 void tgi_denoise_walk_start(tgi_denoise_walk *k)
@@ -57,8 +61,14 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     int w = g->width, h = g->height, xx, yy, slot[5], has_bent = tgi_gr_has_bent(r), has_near = tgi_gr_has_near(r);
     int xa = x < 2 ? 0 : x - 2, xb = x + 2 >= w ? w - 1 : x + 2;
     int ya = y < 2 ? 0 : y - 2, yb = y + 2 >= h ? h - 1 : y + 2;
-    tg_real zi, ztol, inv_ztol, wsum = 0, ao = 0;
-    tg_vec3 ni, bent = tg_v3(0, 0, 0), near = tg_v3(0, 0, 0);
+    tg_real zi, ztol, inv_ztol;
+    /* The sums in tgi_wide (core/real.h), unsaturated: every weight is in
+     * (0, 1] and there are at most 25, so wsum <= 9, ao <= 9 and |bent| <= 9
+     * never saturate; the near field is never negative (RGB9E5; the kernel's
+     * gathered sums), so saturating after the last tap gives what a
+     * saturating add after each tap gives. */
+    tgi_wide wsum = 0, ao = 0, bx = 0, by = 0, bz = 0, nr = 0, ng = 0, nb = 0;
+    tg_vec3 ni, bent, near;
     const tgi_denoise_tap *ci;
     tgi_gr_value v;
     if (tgi_gv_is_sky(g, i)) return tgi_gr_get(r, i);
@@ -77,18 +87,31 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     for (yy = ya; yy <= yb; yy++)
         for (xx = xa; xx <= xb; xx++) {
             const tgi_denoise_tap *t = &k->tap[slot[xx - xa]][yy - y + 2];
-            tg_real wt = tap_weight(t, tg_mul(tap_w[xx - x + 2], tap_w[yy - y + 2]), zi, ni, ztol, inv_ztol);
+            tg_real wt = tap_weight(t, weight_mul(tap_w[xx - x + 2], tap_w[yy - y + 2]), zi, ni, ztol, inv_ztol);
             if (wt <= 0) continue;
-            wsum = tg_add(wsum, wt);
-            ao = tg_add(ao, tg_mul(wt, t->v.ao));
-            if (has_bent) bent = tgi_v3_add(bent, tgi_v3_scale(t->v.bent, wt));
-            if (has_near) near = tgi_v3_add(near, tgi_v3_scale(t->v.near, wt));
+            wsum += wt;
+            ao += tgi_wide_mul(wt, t->v.ao);
+            if (has_bent) {
+                bx += tgi_wide_mul(t->v.bent.x, wt);
+                by += tgi_wide_mul(t->v.bent.y, wt);
+                bz += tgi_wide_mul(t->v.bent.z, wt);
+            }
+            if (has_near) {
+                nr += tgi_wide_mul(t->v.near.x, wt);
+                ng += tgi_wide_mul(t->v.near.y, wt);
+                nb += tgi_wide_mul(t->v.near.z, wt);
+            }
         }
     if (wsum <= 0) return tgi_gr_get(r, i);   /* the centre always weighs 1: cannot happen */
-    v.ao = tg_saturate(tg_div(ao, wsum));
-    v.bent = has_bent ? tgi_v3_normalize_or(tg_v3(tg_div(bent.x, wsum), tg_div(bent.y, wsum), tg_div(bent.z, wsum)), ni)
-                      : tg_v3(0, 0, 0);
-    v.near = has_near ? tg_v3(tg_div(near.x, wsum), tg_div(near.y, wsum), tg_div(near.z, wsum)) : tg_v3(0, 0, 0);
+    bent = tg_v3(tgi_wide_real(bx), tgi_wide_real(by), tgi_wide_real(bz));
+    near = tg_v3(tgi_wide_real(nr), tgi_wide_real(ng), tgi_wide_real(nb));
+    v.ao = tg_saturate(tg_div(tgi_wide_real(ao), tgi_wide_real(wsum)));
+    {
+        tg_real ws = tgi_wide_real(wsum);
+        v.bent = has_bent ? tgi_v3_normalize_or(tg_v3(tg_div(bent.x, ws), tg_div(bent.y, ws), tg_div(bent.z, ws)), ni)
+                          : tg_v3(0, 0, 0);
+        v.near = has_near ? tg_v3(tg_div(near.x, ws), tg_div(near.y, ws), tg_div(near.z, ws)) : tg_v3(0, 0, 0);
+    }
     return v;
 }
 

@@ -100,6 +100,7 @@ typedef struct hbil_ctx {
     tg_real ppu, inv_ppu, inv_step, pi_over_s;
     tg_real cos_phi[HBIL_PATTERN][TG_MAX_SLICES], sin_phi[HBIL_PATTERN][TG_MAX_SLICES];
     tg_real jitter[HBIL_PATTERN];  /* step_jitter per pattern cell */
+    tg_real rejection_a, rejection_b;
     int near_field;
 } hbil_ctx;
 
@@ -151,33 +152,52 @@ static const tg_real acos_fit[8] = {
     TG_R(1.5707963050f), TG_R(-0.2145988016f), TG_R(0.0889789874f), TG_R(-0.0501743046f),
     TG_R(0.0308918810f), TG_R(-0.0170881256f), TG_R(0.0066700901f), TG_R(-0.0012624911f)
 };
+/* Products and sums whose results are bounded (each use says why) without
+ * the saturation test (tgi_wide, core/real.h): tg_mul, tg_add and tg_sub
+ * would not saturate there, so these give their results.  In the slice
+ * integrals every operand is a cosine, a sine, an angle in [-pi, pi], a fit
+ * coefficient or a partial sum of the fit (all below 4 in magnitude). */
+static tg_real small_mul(tg_real a, tg_real b) { return (tg_real)tgi_wide_mul(a, b); }
+static tg_real small_add(tg_real a, tg_real b) { return (tg_real)((tgi_wide)a + b); }
+static tg_real small_sub(tg_real a, tg_real b) { return (tg_real)((tgi_wide)a - b); }
+/* an integer below 2^15 in magnitude (an image coordinate or offset) */
+static tg_real small_from_int(int i)
+{
+#if TG_FIXED
+    return (tg_real)((tgi_wide)i * TG_ONE);
+#else
+    return (tg_real)i;
+#endif
+}
+
 tg_real tgi_hbil_acos(tg_real c)
 {
     const tg_real *k = acos_fit;
     tg_real a = tg_min(tg_abs(c), TG_ONE), p, t;
-    /* Horner, written out (gcc keeps a loop of 7 as a loop) */
-    p = tg_add(tg_mul(k[7], a), k[6]);
-    p = tg_add(tg_mul(p, a), k[5]);
-    p = tg_add(tg_mul(p, a), k[4]);
-    p = tg_add(tg_mul(p, a), k[3]);
-    p = tg_add(tg_mul(p, a), k[2]);
-    p = tg_add(tg_mul(p, a), k[1]);
-    p = tg_add(tg_mul(p, a), k[0]);
-    t = tg_mul(tg_sqrt(tg_sub(TG_ONE, a)), p);
-    return c < 0 ? tg_sub(TG_PI, t) : t;
+    /* Horner, written out (gcc keeps a loop of 7 as a loop); |p| < 1.6 */
+    p = small_add(small_mul(k[7], a), k[6]);
+    p = small_add(small_mul(p, a), k[5]);
+    p = small_add(small_mul(p, a), k[4]);
+    p = small_add(small_mul(p, a), k[3]);
+    p = small_add(small_mul(p, a), k[2]);
+    p = small_add(small_mul(p, a), k[1]);
+    p = small_add(small_mul(p, a), k[0]);
+    t = small_mul(tg_sqrt(small_sub(TG_ONE, a)), p);
+    return c < 0 ? small_sub(TG_PI, t) : t;
 }
 
-/* sin(theta)^2 / 2 and (theta - sin cos) / 2 from cos(theta) and the side. */
+/* sin(theta)^2 / 2 and (theta - sin cos) / 2 from cos(theta) and the side
+ * (|c| <= 1, so the operands are small: see small_mul). */
 static tg_real slice_R(tg_real c)
 {
-    return tg_mul(TG_R(0.5f), tg_sub(TG_ONE, tg_mul(c, c)));
+    return small_mul(TG_R(0.5f), small_sub(TG_ONE, small_mul(c, c)));
 }
 static tg_real slice_Q(tg_real c, int side)
 {
     tg_real theta = tgi_hbil_acos(c);
-    tg_real s = tg_sqrt(tg_sub(TG_ONE, tg_mul(c, c)));
+    tg_real s = tg_sqrt(small_sub(TG_ONE, small_mul(c, c)));
     if (side < 0) { theta = tg_neg(theta); s = tg_neg(s); }
-    return tg_mul(TG_R(0.5f), tg_sub(theta, tg_mul(s, c)));
+    return small_mul(TG_R(0.5f), small_sub(theta, small_mul(s, c)));
 }
 static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
 {
@@ -265,17 +285,25 @@ HBIL_NOINLINE static void gather_rise(const hbil_ctx *c, const hbil_slice *sl, h
 {
     const tgi_view *v = c->v;
     tg_real q_new = slice_Q(cos_new, side);
-    /* P(theta) = int_0^theta (n'.w_i') |sin| : the antiderivative of eq. 10 */
-    tg_real p_new = tg_add(tg_mul(sl->nx, q_new), tg_mul(sl->ny, slice_R(cos_new)));
-    tg_real de = tg_max(0, tg_sub(sd->p_old, p_new));         /* HBIL eq. 18 */
+    /* P(theta) = int_0^theta (n'.w_i') |sin| : the antiderivative of eq. 10
+     * (|n'| <= 1, |Q| < 2, R <= 1/2, |P| < 2.5: small_mul) */
+    tg_real p_new = small_add(small_mul(sl->nx, q_new), small_mul(sl->ny, slice_R(cos_new)));
+    tg_real de = tg_max(0, small_sub(sd->p_old, p_new));      /* HBIL eq. 18 */
     tg_vec3 ns, wi, l;
     tg_real t;
     sd->p_old = p_new;
     sd->q = q_new;
     ns = tgi_gv_normal(c->g, si);                                /* the sender's normal */
-    wi = tgi_v3_add(tgi_v3_add(tgi_v3_scale(v->right, dir.x), tgi_v3_scale(v->up, dir.y)),
-                   tgi_v3_scale(v->forward, dir.z));
-    t = tg_smoothstep(c->p->rejection_a, c->p->rejection_b, tg_neg(tgi_v3_dot(ns, wi))); /* HBIL sec. 3.4 */
+    /* unit vectors: the camera's axes and dir (|.| <= 1, small_mul) */
+    wi = tg_v3(small_add(small_add(small_mul(v->right.x, dir.x), small_mul(v->up.x, dir.y)), small_mul(v->forward.x, dir.z)),
+               small_add(small_add(small_mul(v->right.y, dir.x), small_mul(v->up.y, dir.y)), small_mul(v->forward.y, dir.z)),
+               small_add(small_add(small_mul(v->right.z, dir.x), small_mul(v->up.z, dir.y)), small_mul(v->forward.z, dir.z)));
+    t = tg_neg(tgi_v3_dot(ns, wi));
+    /* HBIL sec. 3.4; outside the ramp without the call (tg_smoothstep gives 0 and 1 there) */
+    if (c->rejection_b > c->rejection_a)
+        t = t <= c->rejection_a ? 0 : t >= c->rejection_b ? TG_ONE : tg_smoothstep(c->rejection_a, c->rejection_b, t);
+    else
+        t = tg_smoothstep(c->rejection_a, c->rejection_b, t);
     if (t != 0) {   /* lerp(L_old, L(x'), 0) is L_old: the sender's radiance is not read */
         l = tgi_rgb_get(c->rad, si);
         sd->lr = tg_lerp(sd->lr, l.x, t);                        /* L_new = lerp(L_old, L(x'), t) */
@@ -311,6 +339,25 @@ static inline int floor_small(tg_real a)
 #endif
 }
 
+/* The sample's offset from the pixel, its squared length and its dot with
+ * w_o (march_samples) in tgi_wide (core/real.h), which does not saturate.  The bounds that
+ * make this exact, in image pixels: the image is at most
+ * TG_MAX_IMAGE_SIDE = 2^13 pixels a side, so |P0 + s| < 2^14 and, with
+ * |q| <= TG_REAL_MAX (tg_mul saturates it), |(P0 + s) q| < 2^45: every
+ * product below fits 64 bits.  A component beyond HBIL_FAR (> the largest
+ * 3D radius, HBIL_MAX_RADIUS_UNITS) is rejected before it is squared: the
+ * saturating sum would have exceeded the radius too.  Below the radius
+ * |d| <= 150, so d.d, w_o.d, dot |dot| and h|h| |d|^2 stay below 32768
+ * and nothing that tg_mul or tg_add would have saturated is kept: the
+ * march takes the same samples and the same horizons in both forms. */
+#if TG_FIXED
+#define HBIL_FAR ((int64_t)151 << 16)
+/* 1 when |d| is beyond the largest radius (fixed only: float squares do not overflow) */
+static inline int wide_far(tgi_wide d) { return (uint64_t)(d + HBIL_FAR) > (uint64_t)(2 * HBIL_FAR); }
+#else
+static inline int wide_far(tgi_wide d) { (void)d; return 0; }
+#endif
+
 /* The march's per-side constants (march_side). */
 typedef struct hbil_march {
     tg_real p0x, p0y, p0z, z, inv_z, r2, wox, woy, woz;
@@ -337,22 +384,27 @@ static inline void march_samples(const hbil_ctx *c, const hbil_slice *sl, int si
     int k, a = mr->a, sa_major = a * smaj;
     for (k = 1; k <= n; k++) {
         int b0, sa;
-        tg_real f, z1, q, sx, sy, smajor, dx, dy, dz, len2, dot, za, zb;
-        minor = tg_add(minor, dminor);
-        ox = tg_add(ox, dminor);
+        tg_real f, z1, q, sx, sy, smajor, za, zb;
+        tgi_wide dx, dy, dz, len2, dot;
+        minor = (tg_real)((tgi_wide)minor + dminor);           /* |minor|, |ox| < 2^14 px: no saturation */
+        ox = (tg_real)((tgi_wide)ox + dminor);
         a += da;
         sa_major += da * smaj;
         b0 = floor_small(minor);
-        f = tg_sub(minor, tg_from_int(b0));
+        f = small_sub(minor, small_from_int(b0));               /* image coordinates: < 2^14 */
         sa = sa_major + b0 * smin;
         /* both neighbours surface (depth > 0 is not sky) and close: 1/z
          * interpolated linearly, 1/z = (1-f)/za + f/zb  <=>
          * z = za + f (zb - za) za / (zb - f (zb - za)) */
         if ((unsigned)b0 < (unsigned)(bmax - 1)                 /* b0 and b0 + 1 inside */
             && (za = tgi_gv_depth(&g, sa)) > 0 && (zb = tgi_gv_depth(&g, sa + smin)) > 0
-            && tg_abs(tg_sub(za, zb)) < tg_mul(HBIL_LERP_MAX_REL, tg_min(za, zb))) {
-            tg_real zd = tg_sub(zb, za);
-            z1 = tg_add(za, tg_mul(tg_mul(f, zd), tg_div(za, tg_sub(zb, tg_mul(f, zd)))));
+            && (tgi_wide)tg_abs(small_sub(za, zb)) < tgi_wide_mul(HBIL_LERP_MAX_REL, tg_min(za, zb))) {
+            /* 0 < za, zb <= TG_REAL_MAX: zb - za fits, f zd (f in [0, 1)) fits,
+             * zb - f zd lies between za and zb; the comparison above is made
+             * in tgi_wide, so a 3 min(za, zb) beyond TG_REAL_MAX (where tg_mul
+             * saturated) gives the same answer */
+            tg_real zd = (tg_real)((tgi_wide)zb - za), fzd = small_mul(f, zd);
+            z1 = tg_add(za, tg_mul(fzd, tg_div(za, small_sub(zb, fzd))));
         } else {
             int bn = f < TG_R(0.5f) ? b0 : b0 + 1, sn;
             if (bn < 0 || bn >= bmax) break;                    /* the slice leaves the image */
@@ -361,28 +413,31 @@ static inline void march_samples(const hbil_ctx *c, const hbil_slice *sl, int si
             z1 = sample_depth_edge(c, major_x, a, b0, f, sa, sn);
             if (z1 <= 0) continue;
         }
-        /* view-space offset scaled to image pixels at depth z (see top) */
-        q = tg_mul(tg_sub(z1, z), inv_z);
-        smajor = tg_from_int(k * da - back);
+        /* view-space offset scaled to image pixels at depth z (see top),
+         * unsaturated (bounds above tgi_wide) */
+        q = tg_mul(small_sub(z1, z), inv_z);                   /* z1, z in (0, TG_REAL_MAX] */
+        smajor = small_from_int(k * da - back);
         sx = major_x ? smajor : ox;
         sy = major_x ? tg_neg(ox) : tg_neg(smajor);
-        dx = tg_add(sx, tg_mul(tg_add(p0x, sx), q));
-        dy = tg_add(sy, tg_mul(tg_add(p0y, sy), q));
-        dz = tg_mul(p0z, q);
-        len2 = tgi_v3_dot(tg_v3(dx, dy, dz), tg_v3(dx, dy, dz));
+        dx = (tgi_wide)sx + tgi_wide_mul((tgi_wide)p0x + sx, q);
+        dy = (tgi_wide)sy + tgi_wide_mul((tgi_wide)p0y + sy, q);
+        dz = tgi_wide_mul(p0z, q);
+        if (wide_far(dx) || wide_far(dy) || wide_far(dz)) continue;   /* beyond the 3D radius */
+        len2 = tgi_wide_dot(dx, dy, dz, dx, dy, dz);
         if (len2 > r2) continue;                                /* beyond the 3D radius */
-        dot = tgi_v3_dot(tg_v3(dx, dy, dz), tg_v3(wox, woy, woz));
+        dot = tgi_wide_dot(dx, dy, dz, wox, woy, woz);
         /* cos(theta) > horizon, without a division: dot|dot| > h|h| |d|^2 */
-        if (tg_mul(dot, tg_abs(dot)) > tg_mul(hs_tie, len2)) {
-            tg_real len = tg_sqrt(len2);
-            tg_real cn = tg_clamp(tg_div(dot, len), TG_R(-1.0f), TG_ONE); /* HBIL sec. 1.3 */
+        if (tgi_wide_mul(dot, dot < 0 ? -dot : dot) > tgi_wide_mul(hs_tie, len2)) {
+            tg_real len = tg_sqrt((tg_real)len2);                /* |d| <= 150: d, dot, len2 fit tg_real */
+            tg_real cn = tg_clamp(tg_div((tg_real)dot, len), TG_R(-1.0f), TG_ONE); /* HBIL sec. 1.3 */
             if (cn <= sd->h) continue;
             sd->h = cn;
             sd->peak_a = a;
             sd->hs = tg_mul(cn, tg_abs(cn));
             hs_tie = tg_add(sd->hs, HBIL_TIE);
             if (c->near_field)
-                gather_rise(c, sl, sd, side, cn, tgi_v3_scale(tg_v3(dx, dy, dz), tg_div(TG_ONE, len)),
+                gather_rise(c, sl, sd, side, cn,
+                            tgi_v3_scale(tg_v3((tg_real)dx, (tg_real)dy, (tg_real)dz), tg_div(TG_ONE, len)),
                             f < TG_R(0.5f) ? sa : sa + smin);      /* the nearest pixel */
         }
     }
@@ -600,6 +655,8 @@ static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, 
     c->inv_step = tg_ratio(1, c->step);
     c->pi_over_s = tg_div(TG_PI, tg_from_int(c->slices));
     c->near_field = tgi_rgb_present(radiance) && tgi_gr_has_near(out);
+    c->rejection_a = p->rejection_a;
+    c->rejection_b = p->rejection_b;
     npat = p->per_pixel_pattern ? HBIL_PATTERN : 1;
     for (pat = 0; pat < npat; pat++) {
         tg_real phi0 = p->per_pixel_pattern ? tgi_hbil_slice_phi0(pat & 3, pat >> 2, c->slices, p->rotation)
