@@ -384,8 +384,10 @@ static void build_sweep(void)
     for (i = 0; i < 6; i++) add("hbil", TG_TECH_HBIL, ss[i][0], ss[i][1], 1.0, 1, 1);
     add("hbil-1x", TG_TECH_HBIL, 1, 8, 1.0, 1, 1);
     add("hbil-1x", TG_TECH_HBIL, 2, 16, 1.0, 1, 1);
+    add("hbil-1x", TG_TECH_HBIL, TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES, 1.0, 1, 1);
     add("hbil-full", TG_TECH_HBIL, 1, 8, 1.0, 1, 1);
     add("hbil-full", TG_TECH_HBIL, 2, 16, 1.0, 1, 1);
+    add("hbil-full", TG_TECH_HBIL, TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES, 1.0, 1, 1);
     for (i = 0; i < 6; i++) add("gtao", TG_TECH_GTAO, ss[i][0], ss[i][1], 1.0, 0, 1);
     for (i = 0; i < 6; i++) add("hbao", TG_TECH_HBAO, ss[i][0], ss[i][1], 1.0, 0, 1);
     for (i = 0; i < 6; i++) add("ssao", TG_TECH_SSAO, 2, ssao_n[i], 1.0, 0, 1);
