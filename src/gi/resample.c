@@ -105,14 +105,16 @@ static const tg_real near_dir[16][2] = {
 typedef struct near_pixel {
     int x, y, shift;
     tg_vec3 pv, nv, vd;
-    tg_real np, kx, ky, ax, ay, above, r2;
+    tg_real np, kx, ky, ax, ay, nax, nay, nr, above, r2;
 } near_pixel;
 
 /* The largest cos(angle to the view vector) of the samples 1 to
  * TG_QUARTER_NEAR_TAPS pixels along the screen direction (ux, uy) / 256
  * (y down) that lie above the tangent plane and within the radius; -1 when
  * none.  The taps step in 1/256 pixel, integers alike in both number
- * types; the view position of a tap is its depth times its ray. */
+ * types; a tap's view position is its depth z times its ray r, so its
+ * height over the tangent plane is z (n . r) - n . p, n . r changing by
+ * n.x ax, -n.y ay a pixel. */
 static tg_real near_horizon_cos(const tgi_gview *g, const near_pixel *q, int ux, int uy)
 {
     tg_real best = TG_R(-1.0f);
@@ -120,7 +122,7 @@ static tg_real near_horizon_cos(const tgi_gview *g, const near_pixel *q, int ux,
     for (t = 1; t <= TG_QUARTER_NEAR_TAPS; t++) {
         int sx = q->x * 256 + 128 + t * ux, sy = q->y * 256 + 128 + t * uy, dx, dy;
         size_t j;
-        tg_real z, rx, ry, d2;
+        tg_real z, d2;
         tg_vec3 h;
         if (sx < 0 || sy < 0 || (sx >> 8) >= g->width || (sy >> 8) >= g->height) break;
         j = tgi_gv_index(g, sx >> 8, sy >> 8);
@@ -128,10 +130,11 @@ static tg_real near_horizon_cos(const tgi_gview *g, const near_pixel *q, int ux,
         z = tgi_gv_depth(g, j);
         dx = (sx >> 8) - q->x;
         dy = (sy >> 8) - q->y;
-        rx = tg_add(q->kx, tg_mul(tg_from_int(dx), q->ax));
-        ry = tg_sub(q->ky, tg_mul(tg_from_int(dy), q->ay));
-        h = tg_v3(tg_sub(tg_mul(z, rx), q->pv.x), tg_sub(tg_mul(z, ry), q->pv.y), tg_sub(z, q->pv.z));
-        if (tgi_v3_dot(h, q->nv) <= q->above) continue;          /* on or under the tangent plane */
+        if (tg_sub(tg_mul(z, tg_add(q->nr, tg_sub(tg_mul(tg_from_int(dx), q->nax), tg_mul(tg_from_int(dy), q->nay)))),
+                   q->np) <= q->above)
+            continue;                                              /* on or under the tangent plane */
+        h = tg_v3(tg_sub(tg_mul(z, tg_add(q->kx, tg_mul(tg_from_int(dx), q->ax))), q->pv.x),
+                  tg_sub(tg_mul(z, tg_sub(q->ky, tg_mul(tg_from_int(dy), q->ay))), q->pv.y), tg_sub(z, q->pv.z));
         if (q->shift) h = tg_v3(tg_ldexp(h.x, q->shift), tg_ldexp(h.y, q->shift), tg_ldexp(h.z, q->shift));
         d2 = tgi_v3_dot(h, h);
         if (d2 >= q->r2 || d2 <= 0) continue;                      /* beyond the gather radius */
@@ -163,6 +166,10 @@ static tg_real near_horizon_ao(const tgi_gview *full, int x, int y, size_t i, tg
     q.ky = tg_div(tg_from_int(v->height - 2 * y - 1), hfy);
     q.ax = tg_div(TG_R(2.0f), wfx);
     q.ay = tg_div(TG_R(2.0f), hfy);
+    q.nax = tg_mul(q.nv.x, q.ax);
+    q.nay = tg_mul(q.nv.y, q.ay);
+    q.nr = tg_add(tg_add(tg_mul(q.nv.x, q.kx), tg_mul(q.nv.y, q.ky)), q.nv.z);
+    q.np = tgi_v3_dot(q.nv, q.pv);
     q.shift = tgi_ao_unit_shift(radius);
     q.r2 = tg_sqr(tg_ldexp(radius, q.shift));
     q.above = tg_add(tg_ldexp(q.pv.z, -10), tg_mul(radius, TG_R(0.005f)));
@@ -174,9 +181,12 @@ static tg_real near_horizon_ao(const tgi_gview *full, int x, int y, size_t i, tg
     }
     if (!found) return TG_ONE;
     for (k = 0; k < 2; k++) {
+        tg_real o;
         if (!tgi_ao_slice_frame(q.nv, q.vd, k ? tg_neg(d[1]) : d[0], k ? d[0] : d[1], &sl)) continue;
-        vis = tg_add(vis, tg_mul(sl.len, tgi_ao_slice_arc(&sl, c1[k], c0[k], &h1, &h0)));
-        open = tg_add(open, tg_mul(sl.len, tg_add(sl.cos_g, tg_mul(sl.gamma, sl.sin_g))));
+        o = tg_mul(sl.len, tg_add(sl.cos_g, tg_mul(sl.gamma, sl.sin_g)));
+        open = tg_add(open, o);
+        /* a slice without a horizon sees its open arc */
+        vis = tg_add(vis, c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f) ? tg_mul(sl.len, tgi_ao_slice_arc(&sl, c1[k], c0[k], &h1, &h0)) : o);
     }
     return open > 0 ? tg_saturate(tg_div(vis, open)) : TG_ONE;
 }
