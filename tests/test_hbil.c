@@ -806,7 +806,7 @@ TEST(wall_top_sets_the_horizon_at_any_radius)
  * the half-res samples lie 8 full-res pixels apart and the wall fills a few
  * pixels of the horizon, against the ray-traced AO.  The upsampled AO alone
  * misses the wall there (too bright); the full-resolution near horizon
- * (TG_QUARTER_NEAR_TAPS) finds it. */
+ * (TG_QUARTER_NEAR_REACH) finds it. */
 TEST(quarter_resolution_keeps_the_contact_shadow)
 {
     static const quad floor_q = { { 0, 0, -20 }, { 20, 0, 0 }, { 0, 0, 40 }, 1 };

@@ -13,6 +13,16 @@
  * bend, bent - normal, added to this pixel's own normal and kept in its
  * hemisphere.  Sky pixels get AO 1, the normal
  * as bent normal (0 on sky) and no near field.
+ *
+ * The near horizon: the half-res kernel's samples lie 8 full-res pixels
+ * apart (4x4 sub-images of the half-res image), so an occluder a few
+ * pixels wide (a sphere's or a column's foot, a room's corner) gets one or
+ * two samples a side and its horizon is missed: the upsampled AO is too
+ * bright there.  Each full-res pixel also marches its own two slices a few
+ * pixels (TG_QUARTER_NEAR_REACH) and the AO under those near horizons,
+ * an upper bound of the true AO as the upsampled one is, caps it: AO =
+ * min(upsampled, near).  The bent normal and the near field stay the
+ * upsampled ones.
  */
 #include "resample.h"
 #include "../ao/ao.h"
@@ -108,10 +118,10 @@ typedef struct near_pixel {
     tg_real np, kx, ky, ax, ay, nax, nay, nr, above, r2;
 } near_pixel;
 
-/* The largest cos(angle to the view vector) of the samples 1 to
- * TG_QUARTER_NEAR_TAPS pixels along the screen direction (ux, uy) / 256
- * (y down) that lie above the tangent plane and within the radius; -1 when
- * none.  The taps step in 1/256 pixel, integers alike in both number
+/* The largest cos(angle to the view vector) of the samples 1, 2, 3, 4, 6,
+ * 9, 13 ... (from 4 on, each 1.5 times the last) up to TG_QUARTER_NEAR_REACH pixels
+ * along the screen direction (ux, uy) / 256 (y down) that lie above the
+ * tangent plane and within the radius; -1 when none.  The taps step in 1/256 pixel, integers alike in both number
  * types; a tap's view position is its depth z times its ray r, so its
  * height over the tangent plane is z (n . r) - n . p, n . r changing by
  * n.x ax, -n.y ay a pixel. */
@@ -119,7 +129,7 @@ static tg_real near_horizon_cos(const tgi_gview *g, const near_pixel *q, int ux,
 {
     tg_real best = TG_R(-1.0f);
     int t;
-    for (t = 1; t <= TG_QUARTER_NEAR_TAPS; t++) {
+    for (t = 1; t <= TG_QUARTER_NEAR_REACH; t += t < 4 ? 1 : t / 2) {
         int sx = q->x * 256 + 128 + t * ux, sy = q->y * 256 + 128 + t * uy, dx, dy;
         size_t j;
         tg_real z, d2;
@@ -145,9 +155,8 @@ static tg_real near_horizon_cos(const tgi_gview *g, const near_pixel *q, int ux,
 
 /* The near horizon of surface pixel (x, y), index i: the AO (cosine-
  * weighted, RTR eq. 11.18, the slices weighted as GTAO's, src/ao/ao.h)
- * under the horizons of the full-resolution pixels 1 to
- * TG_QUARTER_NEAR_TAPS away along its two slices, both sides, within the
- * gather radius.  It sees only occluders the whole horizon sees too, so it
+ * under the horizons of full-resolution pixels up to TG_QUARTER_NEAR_REACH
+ * away along its two slices, both sides, within the gather radius.  It sees only occluders the whole horizon sees too, so it
  * is an upper bound of the AO, as the upsampled one is; 1 (without the
  * integrals) when no sample rises above the tangent plane. */
 static tg_real near_horizon_ao(const tgi_gview *full, int x, int y, size_t i, tg_real radius)
