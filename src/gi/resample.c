@@ -168,7 +168,7 @@ static tg_real near_horizon_ao(const tgi_gview *full, int x, int y, size_t i, tg
     near_pixel q;
     tgi_ao_slice sl;
     int k, found = 0;
-    if (radius <= 0) return TG_ONE;
+    if (TG_QUARTER_NEAR_REACH < 1 || radius <= 0) return TG_ONE;
     q.x = x; q.y = y;
     (void)tgi_ao_view_at(full, x, y, i, radius, &q.pv, &q.nv, &q.vd);
     q.kx = tg_div(tg_from_int(2 * x + 1 - v->width), wfx);        /* tgi_ao_unproject's ray */
