@@ -119,12 +119,13 @@ typedef struct near_pixel {
 } near_pixel;
 
 /* The largest cos(angle to the view vector) of the samples 1, 2, 3, 4, 6,
- * 9, 13 ... (from 4 on, each 1.5 times the last) up to TG_QUARTER_NEAR_REACH pixels
- * along the screen direction (ux, uy) / 256 (y down) that lie above the
- * tangent plane and within the radius; -1 when none.  The taps step in 1/256 pixel, integers alike in both number
- * types; a tap's view position is its depth z times its ray r, so its
- * height over the tangent plane is z (n . r) - n . p, n . r changing by
- * n.x ax, -n.y ay a pixel. */
+ * 9, 13 ... pixels away (from 4 on, each 1.5 times the last) up to
+ * TG_QUARTER_NEAR_REACH along the screen direction (ux, uy) / 256 (y down)
+ * that lie above the tangent plane and within the radius; -1 when none.
+ * The samples step in 1/256 pixel, integers alike in both number types; a
+ * sample's view position is its depth z times its ray r, so its height
+ * over the tangent plane is z (n . r) - n . p, n . r changing by n.x ax and
+ * -n.y ay a pixel. */
 static tg_real near_horizon_cos(const tgi_gview *g, const near_pixel *q, int ux, int uy)
 {
     tg_real best = TG_R(-1.0f);
@@ -156,9 +157,10 @@ static tg_real near_horizon_cos(const tgi_gview *g, const near_pixel *q, int ux,
 /* The near horizon of surface pixel (x, y), index i: the AO (cosine-
  * weighted, RTR eq. 11.18, the slices weighted as GTAO's, src/ao/ao.h)
  * under the horizons of full-resolution pixels up to TG_QUARTER_NEAR_REACH
- * away along its two slices, both sides, within the gather radius.  It sees only occluders the whole horizon sees too, so it
- * is an upper bound of the AO, as the upsampled one is; 1 (without the
- * integrals) when no sample rises above the tangent plane. */
+ * away along its two slices, both sides, within the gather radius.  It
+ * sees only occluders the whole horizon sees too, so it is an upper bound
+ * of the AO, as the upsampled one is; 1 (without the integrals) when no
+ * sample rises above the tangent plane. */
 static tg_real near_horizon_ao(const tgi_gview *full, int x, int y, size_t i, tg_real radius)
 {
     const tgi_view *v = full->camera;
@@ -195,7 +197,8 @@ static tg_real near_horizon_ao(const tgi_gview *full, int x, int y, size_t i, tg
         o = tg_mul(sl.len, tg_add(sl.cos_g, tg_mul(sl.gamma, sl.sin_g)));
         open = tg_add(open, o);
         /* a slice without a horizon sees its open arc */
-        vis = tg_add(vis, c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f) ? tg_mul(sl.len, tgi_ao_slice_arc(&sl, c1[k], c0[k], &h1, &h0)) : o);
+        if (c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f)) o = tg_mul(sl.len, tgi_ao_slice_arc(&sl, c1[k], c0[k], &h1, &h0));
+        vis = tg_add(vis, o);
     }
     return open > 0 ? tg_saturate(tg_div(vis, open)) : TG_ONE;
 }
