@@ -485,6 +485,13 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
                                         * step apart; a gather that reaches fewer sub-image pixels
                                         * takes each (cornell at 160x120 over 60 frames: colour RMSE
                                         * against the path tracer 0.083 with 16, 0.063 with 32) */
+#if !defined(TG_QUARTER_NEAR_REACH)
+#define TG_QUARTER_NEAR_REACH 16        /* [policy] --gi-quarter: full-resolution horizon samples per
+                                        * slice side 1, 2, 3, 4, 6, 9, 13 pixels away (from 4 on, 1.5
+                                        * times the last) up to this many, that the upsampled AO may
+                                        * not be brighter than (src/gi/resample.c); 0: none, the
+                                        * upsample alone */
+#endif
 #define TG_DEFAULT_BOUNCES 1
 #define TG_DEFAULT_RADIUS 1             /* world units, for a scene without extent (neither request
                                            nor scene giving one: see TG_RADIUS_ENV_DIVISOR) */

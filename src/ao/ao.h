@@ -308,6 +308,27 @@ static inline int tgi_ao_slice_frame(tg_vec3 nv, tg_vec3 vd, tg_real sdx, tg_rea
     return 1;
 }
 
+/* a(h): the inner integral of RTR eq. 11.18 from 0 to h (either sign of h),
+ * for the slice's normal angle gamma. */
+static inline tg_real tgi_ao_inner_arc(tg_real h, tg_real gamma, tg_real cos_g, tg_real sin_g)
+{
+    tg_real t = tg_sub(tg_add(cos_g, tg_mul(tg_ldexp(h, 1), sin_g)), tg_cos(tg_sub(tg_ldexp(h, 1), gamma)));
+    return tg_ldexp(t, -2);
+}
+
+/* The cosine-weighted visible arc of slice sl (RTR eq. 11.18, inner
+ * integral on both sides) under the horizons of cosines c1 (along the
+ * slice's direction) and c0 (against it), -1 for none; *h1, *h0 get the
+ * horizon angles from the view vector, clamped to the normal's hemisphere.
+ * With no horizon the arc is the open one, cos g + g sin g. */
+static inline tg_real tgi_ao_slice_arc(const tgi_ao_slice *sl, tg_real c1, tg_real c0, tg_real *h1, tg_real *h0)
+{
+    tg_real gamma = sl->gamma;
+    *h1 = tg_add(gamma, tg_min(tg_sub(tg_acos(c1), gamma), TG_HALF_PI));            /* clamp to the normal's hemisphere */
+    *h0 = tg_add(gamma, tg_max(tg_sub(tg_neg(tg_acos(c0)), gamma), tg_neg(TG_HALF_PI)));
+    return tg_add(tgi_ao_inner_arc(*h0, gamma, sl->cos_g, sl->sin_g), tgi_ao_inner_arc(*h1, gamma, sl->cos_g, sl->sin_g));
+}
+
 /* What one slice adds before its weight (the length of the normal
  * projected into it, tgi_ao_slice's len): the cosine-weighted visible arc
  * and the same arc with open horizons, the bent-normal integrals along the

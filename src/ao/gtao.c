@@ -32,13 +32,6 @@ static tg_real horizon_cos(const tgi_gtao_params *p, const tgi_gview *g, const t
     return best;
 }
 
-/* a(h): the inner integral of eq. 11.18 from 0 to h (either sign of h). */
-static tg_real inner_arc(tg_real h, tg_real gamma, tg_real cos_g, tg_real sin_g)
-{
-    tg_real t = tg_sub(tg_add(cos_g, tg_mul(tg_ldexp(h, 1), sin_g)), tg_cos(tg_sub(tg_ldexp(h, 1), gamma)));
-    return tg_ldexp(t, -2);
-}
-
 /* Antiderivatives of the slice bent-normal integrands (see gtao.h). */
 static tg_real bent_fs(tg_real th, tg_real cos_g, tg_real sin_g)
 {
@@ -60,12 +53,8 @@ static void gtao_slice(const void *tech, const tgi_gview *g, const tgi_ao_slice_
 {
     const tgi_gtao_params *p = (const tgi_gtao_params *)tech;
     tg_real gamma = sl->gamma, cos_g = sl->cos_g, sin_g = sl->sin_g, h0, h1;
-    h1 = tg_acos(horizon_cos(p, g, px, sdx, sdy));
-    h0 = tg_neg(tg_acos(horizon_cos(p, g, px, tg_neg(sdx), tg_neg(sdy))));
-    h1 = tg_add(gamma, tg_min(tg_sub(h1, gamma), TG_HALF_PI));            /* clamp to the normal's hemisphere */
-    h0 = tg_add(gamma, tg_max(tg_sub(h0, gamma), tg_neg(TG_HALF_PI)));
-    /* RTR eq. 11.18, inner integral on both sides */
-    sum->vis = tg_add(inner_arc(h0, gamma, cos_g, sin_g), inner_arc(h1, gamma, cos_g, sin_g));
+    sum->vis = tgi_ao_slice_arc(sl, horizon_cos(p, g, px, sdx, sdy), horizon_cos(p, g, px, tg_neg(sdx), tg_neg(sdy)),
+                                &h1, &h0);
     /* the same slice with open horizons (gamma -+ pi/2): cos g + g sin g */
     sum->open = tg_add(cos_g, tg_mul(gamma, sin_g));
     /* bent normal in the slice: F(h1) + F(h0) - 2 F(0), F_s(0) = -2/3 sin g, F_c(0) = -cos g / 3 */

@@ -70,7 +70,7 @@ static tgi_gr_value results_at(resolve_ctx *c, const tg_frame *f, int x, int y, 
 {
     if (!c->hbil) return tgi_gr_get(&f->res, i);
 #if !TG_NO_GI_QUARTER
-    if (c->quarter) return tgi_upsample_pixel(&f->full, &f->half_view, &f->half_filtered, x, y);
+    if (c->quarter) return tgi_upsample_pixel(&f->full, &f->half_view, &f->half_filtered, f->request.radius, x, y);
 #endif
     return tgi_denoise_pixel(&c->filter, &f->full, &f->res, &c->walk, x, y);
 }

@@ -13,8 +13,19 @@
  * bend, bent - normal, added to this pixel's own normal and kept in its
  * hemisphere.  Sky pixels get AO 1, the normal
  * as bent normal (0 on sky) and no near field.
+ *
+ * The near horizon: the half-res kernel's samples lie 8 full-res pixels
+ * apart (4x4 sub-images of the half-res image), so an occluder a few
+ * pixels wide (a sphere's or a column's foot, a room's corner) gets one or
+ * two samples a side and its horizon is missed: the upsampled AO is too
+ * bright there.  Each full-res pixel also marches its own two slices a few
+ * pixels (TG_QUARTER_NEAR_REACH) and the AO under those near horizons,
+ * an upper bound of the true AO as the upsampled one is, caps it: AO =
+ * min(upsampled, near).  The bent normal and the near field stay the
+ * upsampled ones.
  */
 #include "resample.h"
+#include "../ao/ao.h"
 
 void tgi_half_size(int w, int h, int *hw, int *hh)
 {
@@ -80,7 +91,120 @@ static void bilinear_taps(const tgi_gview *half, int x, int y, size_t tap[4], tg
     wt[3] = ((x & 1) && (y & 1)) ? tg_mul(h, h) : 0;
 }
 
-tgi_gr_value tgi_upsample_pixel(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *hr, int x, int y)
+/* The near horizon's slice directions: cell (x & 3, y & 3) of a 4x4 block
+ * takes the screen direction (cos a, sin a), a = (b + 1/2) pi / 32 with b
+ * the cell's rank in the 4x4 Bayer order (src/ao/sampling.c), and the one
+ * at right angles to it: a block's 16 cells x 2 slices cover [0, pi) every
+ * pi / 32, neighbours far apart. */
+static const tg_real near_dir[16][2] = {
+    { TG_R(0.9987955f), TG_R(0.0490677f) }, { TG_R(0.6715590f), TG_R(0.7409511f) },
+    { TG_R(0.9700313f), TG_R(0.2429802f) }, { TG_R(0.5141027f), TG_R(0.8577286f) },
+    { TG_R(0.3368899f), TG_R(0.9415441f) }, { TG_R(0.9039893f), TG_R(0.4275551f) },
+    { TG_R(0.1467305f), TG_R(0.9891765f) }, { TG_R(0.8032075f), TG_R(0.5956993f) },
+    { TG_R(0.9415441f), TG_R(0.3368899f) }, { TG_R(0.4275551f), TG_R(0.9039893f) },
+    { TG_R(0.9891765f), TG_R(0.1467305f) }, { TG_R(0.5956993f), TG_R(0.8032075f) },
+    { TG_R(0.0490677f), TG_R(0.9987955f) }, { TG_R(0.7409511f), TG_R(0.6715590f) },
+    { TG_R(0.2429802f), TG_R(0.9700313f) }, { TG_R(0.8577286f), TG_R(0.5141027f) }
+};
+
+/* A pixel's near horizon: its view position p, normal n and unit vector
+ * to the eye, n . p, its view ray (kx, ky, 1) and the ray's change per
+ * pixel, the height over the tangent plane below which a sample counts
+ * for nothing (as tgi_ao_slice_pixel's), the squared gather radius and its
+ * shift (tgi_ao_unit_shift: the offsets are scaled by 2^shift). */
+typedef struct near_pixel {
+    int x, y, shift;
+    tg_vec3 pv, nv, vd;
+    tg_real np, kx, ky, ax, ay, nax, nay, nr, above, r2;
+} near_pixel;
+
+/* The largest cos(angle to the view vector) of the samples 1, 2, 3, 4, 6,
+ * 9, 13 ... pixels away (from 4 on, each 1.5 times the last) up to
+ * TG_QUARTER_NEAR_REACH along the screen direction (ux, uy) / 256 (y down)
+ * that lie above the tangent plane and within the radius; -1 when none.
+ * The samples step in 1/256 pixel, integers alike in both number types; a
+ * sample's view position is its depth z times its ray r, so its height
+ * over the tangent plane is z (n . r) - n . p, n . r changing by n.x ax and
+ * -n.y ay a pixel. */
+static tg_real near_horizon_cos(const tgi_gview *g, const near_pixel *q, int ux, int uy)
+{
+    tg_real best = TG_R(-1.0f);
+    int t;
+    for (t = 1; t <= TG_QUARTER_NEAR_REACH; t += t < 4 ? 1 : t / 2) {
+        int sx = q->x * 256 + 128 + t * ux, sy = q->y * 256 + 128 + t * uy, dx, dy;
+        size_t j;
+        tg_real z, d2;
+        tg_vec3 h;
+        if (sx < 0 || sy < 0 || (sx >> 8) >= g->width || (sy >> 8) >= g->height) break;
+        j = tgi_gv_index(g, sx >> 8, sy >> 8);
+        if (tgi_gv_is_sky(g, j)) continue;
+        z = tgi_gv_depth(g, j);
+        dx = (sx >> 8) - q->x;
+        dy = (sy >> 8) - q->y;
+        if (tg_sub(tg_mul(z, tg_add(q->nr, tg_sub(tg_mul(tg_from_int(dx), q->nax), tg_mul(tg_from_int(dy), q->nay)))),
+                   q->np) <= q->above)
+            continue;                                              /* on or under the tangent plane */
+        h = tg_v3(tg_sub(tg_mul(z, tg_add(q->kx, tg_mul(tg_from_int(dx), q->ax))), q->pv.x),
+                  tg_sub(tg_mul(z, tg_sub(q->ky, tg_mul(tg_from_int(dy), q->ay))), q->pv.y), tg_sub(z, q->pv.z));
+        if (q->shift) h = tg_v3(tg_ldexp(h.x, q->shift), tg_ldexp(h.y, q->shift), tg_ldexp(h.z, q->shift));
+        d2 = tgi_v3_dot(h, h);
+        if (d2 >= q->r2 || d2 <= 0) continue;                      /* beyond the gather radius */
+        best = tg_max(best, tg_mul(tgi_v3_dot(h, q->vd), tg_rsqrt(d2)));
+    }
+    return best;
+}
+
+/* The near horizon of surface pixel (x, y), index i: the AO (cosine-
+ * weighted, RTR eq. 11.18, the slices weighted as GTAO's, src/ao/ao.h)
+ * under the horizons of full-resolution pixels up to TG_QUARTER_NEAR_REACH
+ * away along its two slices, both sides, within the gather radius.  It
+ * sees only occluders the whole horizon sees too, so it is an upper bound
+ * of the AO, as the upsampled one is; 1 (without the integrals) when no
+ * sample rises above the tangent plane. */
+static tg_real near_horizon_ao(const tgi_gview *full, int x, int y, size_t i, tg_real radius)
+{
+    const tgi_view *v = full->camera;
+    const tg_real *d = near_dir[(x & 3) + ((y & 3) << 2)];
+    tg_real c1[2], c0[2], vis = 0, open = 0, h1, h0, wfx = tg_mul(tg_from_int(v->width), v->focal_x),
+            hfy = tg_mul(tg_from_int(v->height), v->focal_y);
+    near_pixel q;
+    tgi_ao_slice sl;
+    int k, found = 0;
+    if (TG_QUARTER_NEAR_REACH < 1 || radius <= 0) return TG_ONE;
+    q.x = x; q.y = y;
+    (void)tgi_ao_view_at(full, x, y, i, radius, &q.pv, &q.nv, &q.vd);
+    q.kx = tg_div(tg_from_int(2 * x + 1 - v->width), wfx);        /* tgi_ao_unproject's ray */
+    q.ky = tg_div(tg_from_int(v->height - 2 * y - 1), hfy);
+    q.ax = tg_div(TG_R(2.0f), wfx);
+    q.ay = tg_div(TG_R(2.0f), hfy);
+    q.nax = tg_mul(q.nv.x, q.ax);
+    q.nay = tg_mul(q.nv.y, q.ay);
+    q.nr = tg_add(tg_add(tg_mul(q.nv.x, q.kx), tg_mul(q.nv.y, q.ky)), q.nv.z);
+    q.np = tgi_v3_dot(q.nv, q.pv);
+    q.shift = tgi_ao_unit_shift(radius);
+    q.r2 = tg_sqr(tg_ldexp(radius, q.shift));
+    q.above = tg_add(tg_ldexp(q.pv.z, -10), tg_mul(radius, TG_R(0.005f)));
+    for (k = 0; k < 2; k++) {   /* the cell's direction and the one at right angles */
+        int ux = tg_round_int(tg_ldexp(k ? tg_neg(d[1]) : d[0], 8)), uy = tg_round_int(tg_ldexp(k ? d[0] : d[1], 8));
+        c1[k] = near_horizon_cos(full, &q, ux, uy);
+        c0[k] = near_horizon_cos(full, &q, -ux, -uy);
+        found |= c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f);
+    }
+    if (!found) return TG_ONE;
+    for (k = 0; k < 2; k++) {
+        tg_real o;
+        if (!tgi_ao_slice_frame(q.nv, q.vd, k ? tg_neg(d[1]) : d[0], k ? d[0] : d[1], &sl)) continue;
+        o = tg_mul(sl.len, tg_add(sl.cos_g, tg_mul(sl.gamma, sl.sin_g)));
+        open = tg_add(open, o);
+        /* a slice without a horizon sees its open arc */
+        if (c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f)) o = tg_mul(sl.len, tgi_ao_slice_arc(&sl, c1[k], c0[k], &h1, &h0));
+        vis = tg_add(vis, o);
+    }
+    return open > 0 ? tg_saturate(tg_div(vis, open)) : TG_ONE;
+}
+
+tgi_gr_value tgi_upsample_pixel(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *hr, tg_real radius,
+                                int x, int y)
 {
     size_t i = tgi_gv_index(full, x, y), tap[4];
     tg_real wt[4], sum = 0, ao = 0, floor_w = TG_R(0.015625f);
@@ -112,7 +236,9 @@ tgi_gr_value tgi_upsample_pixel(const tgi_gview *full, const tgi_gview *half, co
         }
     }
     if (sum <= 0) return upsample_open(full, i);   /* only sky around: treat as open */
-    v.ao = tg_saturate(tg_div(ao, sum));
+    /* the upsampled AO misses what lies between the half-res samples (a
+     * contact shadow a few pixels wide): the near horizon's is the lower */
+    v.ao = tg_min(tg_saturate(tg_div(ao, sum)), near_horizon_ao(full, x, y, i, radius));
     v.bent = n;
     if (want_bent) {
         tg_vec3 b = tgi_v3_add(n, tg_v3(tg_div(bend.x, sum), tg_div(bend.y, sum), tg_div(bend.z, sum)));
@@ -126,14 +252,14 @@ tgi_gr_value tgi_upsample_pixel(const tgi_gview *full, const tgi_gview *half, co
     return v;
 }
 
-void tgi_upsample_rows(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res,
+void tgi_upsample_rows(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res, tg_real radius,
                        const tgi_gresult *out, int y0, int y1)
 {
     int x, y;
     if (y1 > full->height) y1 = full->height;
     for (y = y0; y < y1; y++)
         for (x = 0; x < full->width; x++) {
-            tgi_gr_value v = tgi_upsample_pixel(full, half, half_res, x, y);
+            tgi_gr_value v = tgi_upsample_pixel(full, half, half_res, radius, x, y);
             tgi_gr_put(out, tgi_gv_index(full, x, y), &v);
         }
 }

@@ -21,9 +21,12 @@ void tgi_downsample_rows(const tgi_gview *full, const tgi_gbuffer *half, const t
 
 /* The upsampled results at full-res pixel (x, y) from the half-res results
  * half_res (indexed like the view half), guided by both views' depth and
- * normals; and full-res rows [y0, y1) of them into out. */
-tgi_gr_value tgi_upsample_pixel(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res, int x, int y);
-void tgi_upsample_rows(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res,
+ * normals, the AO no more than the near horizon's within
+ * TG_QUARTER_NEAR_REACH full-res pixels (gather radius `radius`, world
+ * units); and full-res rows [y0, y1) of them into out. */
+tgi_gr_value tgi_upsample_pixel(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res,
+                                tg_real radius, int x, int y);
+void tgi_upsample_rows(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res, tg_real radius,
                        const tgi_gresult *out, int y0, int y1);
 
 #endif
