@@ -368,11 +368,19 @@ typedef struct hbil_march {
 } hbil_march;
 
 /* The samples of one side; major_x is a constant in each of the two
- * copies (march_side), so the axis choice costs nothing per sample. */
+ * copies (MARCH_SAMPLES), so the axis choice costs nothing per sample.
+ * Compiling for size (TG_OUTLINE_HELPERS, tinygi.h) there is one copy, out
+ * of line, that tests major_x at each use: the same arithmetic, the same
+ * samples and horizons. */
+#if TG_OUTLINE_HELPERS
+HBIL_NOINLINE static void march_samples(
+#else
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-static inline void march_samples(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_side *sd,
+static inline void march_samples(
+#endif
+                                 const hbil_ctx *c, const hbil_slice *sl, int side, hbil_side *sd,
                                  const hbil_march *mr, const int major_x)
 {
     const tgi_gview g = *c->g;   /* a local copy: its fields stay in registers */
@@ -443,6 +451,17 @@ static inline void march_samples(const hbil_ctx *c, const hbil_slice *sl, int si
     }
 }
 
+/* march_samples along the major axis major_x: a copy per axis, or the one copy */
+#if TG_OUTLINE_HELPERS
+#define MARCH_SAMPLES(c, sl, side, sd, mr, major_x) march_samples(c, sl, side, sd, mr, major_x)
+#else
+#define MARCH_SAMPLES(c, sl, side, sd, mr, major_x) \
+    do { \
+        if (major_x) march_samples(c, sl, side, sd, mr, 1); \
+        else march_samples(c, sl, side, sd, mr, 0); \
+    } while (0)
+#endif
+
 /* Samples at p0 + k step pixels from the pixel, k = 1..n, along the
  * march *mr that march_side set up. */
 static void march_run(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_side *sd, const hbil_march *mr,
@@ -457,8 +476,7 @@ static void march_run(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_si
     r.ox = tg_mul(mr->slope, tg_from_int(p0));
     r.minor = tg_add(tg_sub(mr->minor, mr->ox), r.ox);
     r.dminor = tg_mul(mr->slope, tg_from_int(step));
-    if (major_x) march_samples(c, sl, side, sd, &r, 1);
-    else march_samples(c, sl, side, sd, &r, 0);
+    MARCH_SAMPLES(c, sl, side, sd, &r, major_x);
 }
 
 /* More samples on a side marched in steps of m > 1 pixels (*mr as
@@ -528,8 +546,7 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     mr.ox = tg_mul(slope, tg_from_int(-o));
     mr.minor = tg_add(major_x ? tg_from_int(px->y) : tg_from_int(px->x), mr.ox);
     mr.dminor = tg_mul(slope, tg_from_int(m));
-    if (major_x) march_samples(c, sl, side, sd, &mr, 1);
-    else march_samples(c, sl, side, sd, &mr, 0);
+    MARCH_SAMPLES(c, sl, side, sd, &mr, major_x);
     if (m > 1) march_between(c, sl, side, sd, &mr, major_x);
 }
 
