@@ -44,6 +44,15 @@
 #define HBIL_NOINLINE
 #endif
 
+/* Whether the kernel gathers the near field (ctx_init): never in a build
+ * with TG_NO_COLOR (tinygi.h "FEATURE SWITCHES"; the plan refuses the near
+ * effect there), whose gather is then left out. */
+#if TG_NO_COLOR
+#define NEAR_FIELD(c) 0
+#else
+#define NEAR_FIELD(c) ((c)->near_field)
+#endif
+
 static const uint8_t slice_rank4[4][4] = {
     { 0, 8, 2, 10 }, { 12, 4, 14, 6 }, { 3, 11, 1, 9 }, { 15, 7, 13, 5 }
 };
@@ -443,7 +452,7 @@ static inline void march_samples(
             sd->peak_a = a;
             sd->hs = tg_mul(cn, tg_abs(cn));
             hs_tie = tg_add(sd->hs, HBIL_TIE);
-            if (c->near_field)
+            if (NEAR_FIELD(c))
                 gather_rise(c, sl, sd, side, cn,
                             tgi_v3_scale(tg_v3((tg_real)dx, (tg_real)dy, (tg_real)dz), tg_div(TG_ONE, len)),
                             f < TG_R(0.5f) ? sa : sa + smin);      /* the nearest pixel */
@@ -590,8 +599,8 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
     march_side(c, px, &sl, ux, uy, 1, &front);
     march_side(c, px, &sl, ux, uy, -1, &back);
     /* Q at the found horizons: the near field's gather kept them */
-    q1 = c->near_field || front.h == h1i ? front.q : slice_Q(front.h, 1);
-    q0 = c->near_field || back.h == h0i ? back.q : slice_Q(back.h, -1);
+    q1 = NEAR_FIELD(c) || front.h == h1i ? front.q : slice_Q(front.h, 1);
+    q0 = NEAR_FIELD(c) || back.h == h0i ? back.q : slice_Q(back.h, -1);
     r1 = slice_R(front.h); r0 = slice_R(back.h);
     /* AO_i = P(theta1) + P(theta0) (eq. 10-11 with |sin|); open minus found */
     acc->occlusion = tg_add(acc->occlusion,
@@ -612,7 +621,7 @@ static void write_open(const hbil_ctx *c, int i)
     tgi_gr_set_ao(out, i, TG_ONE);
     if (tgi_gr_has_bent(out)) tgi_gr_set_bent(out, i, tgi_gv_normal(c->g, i));
     if (tgi_gr_has_cone(out)) tgi_gr_set_cone(out, i, TG_HALF_PI);
-    if (c->near_field) tgi_gr_set_near(out, i, tg_v3(0, 0, 0));
+    if (NEAR_FIELD(c)) tgi_gr_set_near(out, i, tg_v3(0, 0, 0));
 }
 
 tg_real tgi_hbil_block_jitter(tg_real sub_image_jitter, int bx, int by, int rot)
@@ -648,7 +657,7 @@ static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
                                tgi_v3_scale(v->forward, acc.bent_delta.z));
         tgi_gr_set_bent(out, i, tgi_v3_normalize_or(tgi_v3_add(tgi_v3_scale(nw, tg_from_int(c->slices)), dw), nw));
     }
-    if (c->near_field)   /* eq. 16-18; the receiver's (1 - F0) of eq. 19 is applied where Lo is composed */
+    if (NEAR_FIELD(c))   /* eq. 16-18; the receiver's (1 - F0) of eq. 19 is applied where Lo is composed */
         tgi_gr_set_near(out, i, tg_v3(tg_mul(acc.er, c->pi_over_s), tg_mul(acc.eg, c->pi_over_s),
                                       tg_mul(acc.eb, c->pi_over_s)));
 }
