@@ -407,6 +407,7 @@ const tgi_gview *tgi_frame_kernel(const tg_frame *f, const tgi_gresult **res, co
     return quarter ? &f->half_view : &f->full;
 }
 
+#if !TG_NO_COLOR
 /* The plane under a colour plane's first pointer (push/pull's scratch). */
 static void *plane_memory(const tgi_rgb *c)
 {
@@ -416,6 +417,7 @@ static void *plane_memory(const tgi_rgb *c)
     return c->p;
 #endif
 }
+#endif
 
 /* This frame's results: set t of two (temporal accumulation), else the one. */
 static void results_roles(const tgi_gresult *set, int t, tgi_gresult *res, tgi_gresult *prev)
@@ -427,10 +429,14 @@ static void results_roles(const tgi_gresult *set, int t, tgi_gresult *res, tgi_g
 
 void tgi_frame_begin(tg_frame *f)
 {
-    int t = f->frames_rendered & 1, two = tgi_rgb_present(&f->slot[1]);
+    int t = f->frames_rendered & 1;
+#if !TG_NO_COLOR /* without colour (tinygi.h "FEATURE SWITCHES") the radiance planes stay none, as carved */
+    int two = tgi_rgb_present(&f->slot[1]);
     const tgi_rgb *lo = two ? &f->slot[1 - t] : &f->slot[0], *hist = two ? &f->slot[t] : &f->slot[0];
+#endif
     results_roles(f->set, t, &f->res, &f->res_prev);
     results_roles(f->half_set, t, &f->half_res, &f->half_prev);
+#if !TG_NO_COLOR
     if (two) { f->res.near = f->slot[t]; f->res_prev.near = f->slot[1 - t]; }
     f->color = (f->needs & TG_NEED_COMPOSE) ? *lo : tgi_rgb_none();
     if (!direct_own(f)) f->direct = (f->effects & (TG_EFFECT_DIRECT | TG_EFFECT_NEAR)) ? *lo : tgi_rgb_none();
@@ -438,6 +444,7 @@ void tgi_frame_begin(tg_frame *f)
     f->pushpull_mips = reprojects(f) ? plane_memory(hist) : NULL;
     f->source = tgi_rgb_none();
     if (near_field(f)) f->source = f->has_history ? f->bounce_source : tgi_rgb_lit_by(&f->direct, &f->gb);
+#endif
     if (!resolves_into_planes(f)) f->out = f->res;
 }
 
