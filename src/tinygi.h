@@ -373,7 +373,9 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
  *                         host (tinygi-bake, tools/scene_bake.c).
  *   TG_NO_COLOR           everything after AO that makes colour: direct
  *                         light, shadow maps, reprojection of radiance and
- *                         push/pull, composition: tg_plan_make refuses a
+ *                         push/pull, composition, the kernel's near-field
+ *                         gather, the radiance AOVs' readout (they read
+ *                         0) and planes: tg_plan_make refuses a
  *                         plan with the direct, near, far or reprojection
  *                         effect or a radiance AOV (colour, irradiance,
  *                         direct, near, far); AO, bent normals, cones and
@@ -430,9 +432,11 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #endif
 /* TG_OUTLINE_HELPERS: 1 makes the larger storage helpers every pass calls
  * (src/raster/pack.h: octahedral normals, RGB9E5) one out-of-line copy
- * instead of one per file; the default is on when compiling for size (-Os),
- * where the compiler keeps a static copy in each file; the same bits either
- * way. */
+ * instead of one per file, the rasterizer's per-pixel weights loops, and
+ * the HBIL horizon march (src/gi/hbil.c) one out-of-line copy for both
+ * major axes instead of one inlined copy per axis and caller; the default
+ * is on when compiling for size (-Os, __OPTIMIZE_SIZE__), where the
+ * compiler keeps a static copy in each file; the same bits either way. */
 #ifndef TG_OUTLINE_HELPERS
 #ifdef __OPTIMIZE_SIZE__
 #define TG_OUTLINE_HELPERS 1
