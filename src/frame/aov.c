@@ -38,7 +38,7 @@ static void row_bent(const tg_frame *f, int x0, int y, int w, tg_real *out)
 {
     const tgi_gview *g = &f->full;
     int x;
-    if (!tgi_gr_has_bent(&f->out)) { row_vec(g, tgi_gv_normal, x0, y, w, out); return; }
+    if (TG_NO_BENT_NORMALS || !tgi_gr_has_bent(&f->out)) { row_vec(g, tgi_gv_normal, x0, y, w, out); return; }
     for (x = 0; x < w; x++) {
         size_t i = tgi_gv_index(g, x0 + x, y);
         tg_vec3 v = tgi_gv_is_sky(g, i) ? tg_v3(0, 0, 0) : tgi_gr_bent(&f->out, i);
@@ -68,7 +68,7 @@ static void row_scalar(const tg_frame *f, tg_aov aov, int x0, int y, int w, tg_r
         size_t i = tgi_gv_index(g, x0 + x, y);
         if (aov == TG_AOV_DEPTH) out[x] = tgi_gv_depth(g, i);
         else if (aov == TG_AOV_AO) out[x] = f->out.ao ? ao_out(f, i) : TG_ONE;
-        else out[x] = f->out.ao ? tgi_gr_cone(&f->out, i) : TG_HALF_PI;
+        else out[x] = !TG_NO_BENT_NORMALS && f->out.ao ? tgi_gr_cone(&f->out, i) : TG_HALF_PI;
     }
 }
 

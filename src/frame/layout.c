@@ -123,7 +123,7 @@ static int reprojects(const tg_frame *f) { return (f->effects & TG_EFFECT_REPROJ
 static int near_in_slots(const tg_frame *f) { return near_field(f) && !tgi_frame_quarter(f); }
 static int wants_aov(const tg_frame *f, tg_aov a) { return (f->request.aovs & AOV(a)) != 0; }
 static int direct_own(const tg_frame *f) { return (f->effects & TG_EFFECT_DIRECT) && wants_aov(f, TG_AOV_DIRECT); }
-static int bent_needed(const tg_frame *f) { return (f->needs & TG_NEED_BENT) != 0; }
+static int bent_needed(const tg_frame *f) { return !TG_NO_BENT_NORMALS && (f->needs & TG_NEED_BENT) != 0; }
 /* Some pass or output reads a surface's material (albedo, F0, emissive):
  * light, compose, the techniques that light, any output but those of the
  * geometry and the occlusion.  Else the G-buffer keeps no material. */
@@ -349,7 +349,7 @@ static void group_far(layout *l, tg_frame *f)
  * read their results as they are). */
 static void group_color(layout *l, tg_frame *f)
 {
-    int ao = wants_aov(f, TG_AOV_AO) || wants_aov(f, TG_AOV_CONE), bent = wants_aov(f, TG_AOV_BENT);
+    int ao = wants_aov(f, TG_AOV_AO) || wants_aov(f, TG_AOV_CONE), bent = !TG_NO_BENT_NORMALS && wants_aov(f, TG_AOV_BENT);
     int near = wants_aov(f, TG_AOV_NEAR) && near_field(f);
     if (!resolves_into_planes(f) || !(ao || bent || near)) return;
     take_results(l, &f->out, f->pixels, bent, near, "filtered results for the AOVs asked [" FMT_AO ", " FMT_BENT ", " FMT_RGB "]");

@@ -58,7 +58,7 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
                                tgi_denoise_walk *k, int x, int y)
 {
     size_t i = tgi_gv_index(g, x, y);
-    int w = g->width, h = g->height, xx, yy, slot[5], has_bent = tgi_gr_has_bent(r), has_near = !TG_NO_COLOR && tgi_gr_has_near(r);
+    int w = g->width, h = g->height, xx, yy, slot[5], has_bent = !TG_NO_BENT_NORMALS && tgi_gr_has_bent(r), has_near = !TG_NO_COLOR && tgi_gr_has_near(r);
     int xa = x < 2 ? 0 : x - 2, xb = x + 2 >= w ? w - 1 : x + 2;
     int ya = y < 2 ? 0 : y - 2, yb = y + 2 >= h ? h - 1 : y + 2;
     tg_real zi, ztol, inv_ztol;
@@ -67,7 +67,8 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
      * never saturate; the near field is never negative (RGB9E5; the kernel's
      * gathered sums), so saturating after the last tap gives what a
      * saturating add after each tap gives.  A build with TG_NO_COLOR
-     * (tinygi.h "FEATURE SWITCHES") has no near field: its sums are left out. */
+     * (tinygi.h "FEATURE SWITCHES") has no near field, one with
+     * TG_NO_BENT_NORMALS no bent normal: their sums are left out. */
     tgi_wide wsum = 0, ao = 0, bx = 0, by = 0, bz = 0, nr = 0, ng = 0, nb = 0;
     tg_vec3 ni, bent, near;
     const tgi_denoise_tap *ci;

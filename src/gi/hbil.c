@@ -44,6 +44,12 @@
 #define HBIL_NOINLINE
 #endif
 
+/* Whether the kernel writes bent normals and cone apertures: never in a
+ * build with TG_NO_BENT_NORMALS (tinygi.h "FEATURE SWITCHES"; the plan
+ * refuses what reads them), whose code is then left out. */
+#define HAS_BENT(out) (!TG_NO_BENT_NORMALS && tgi_gr_has_bent(out))
+#define HAS_CONE(out) (!TG_NO_BENT_NORMALS && tgi_gr_has_cone(out))
+
 /* Whether the kernel gathers the near field (ctx_init): never in a build
  * with TG_NO_COLOR (tinygi.h "FEATURE SWITCHES"; the plan refuses the near
  * effect there), whose gather is then left out. */
@@ -607,7 +613,7 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
         tg_add(tg_sub(p1i, tg_add(tg_mul(sl.nx, q1), tg_mul(sl.ny, r1))),
                tg_sub(p0i, tg_add(tg_mul(sl.nx, q0), tg_mul(sl.ny, r0)))));
     /* eq. 5-6: n~x = Q1 + Q0, n~y = R1 + R0; B = D n~x + w_o n~y */
-    acc->bent_delta = tgi_v3_add(acc->bent_delta, tgi_v3_add(
+    if (!TG_NO_BENT_NORMALS) acc->bent_delta = tgi_v3_add(acc->bent_delta, tgi_v3_add(
         tgi_v3_scale(sl.d, tg_sub(tg_add(q1, q0), tg_add(q1i, q0i))),
         tgi_v3_scale(px->wo, tg_sub(tg_add(r1, r0), tg_add(r1i, r0i)))));
     acc->er = tg_add(acc->er, tg_add(front.er, back.er));
@@ -619,8 +625,8 @@ static void write_open(const hbil_ctx *c, int i)
 {
     const tgi_gresult *out = c->out;
     tgi_gr_set_ao(out, i, TG_ONE);
-    if (tgi_gr_has_bent(out)) tgi_gr_set_bent(out, i, tgi_gv_normal(c->g, i));
-    if (tgi_gr_has_cone(out)) tgi_gr_set_cone(out, i, TG_HALF_PI);
+    if (HAS_BENT(out)) tgi_gr_set_bent(out, i, tgi_gv_normal(c->g, i));
+    if (HAS_CONE(out)) tgi_gr_set_cone(out, i, TG_HALF_PI);
     if (NEAR_FIELD(c)) tgi_gr_set_near(out, i, tg_v3(0, 0, 0));
 }
 
@@ -648,8 +654,8 @@ static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
         slice_run(c, px, c->cos_phi[pat][s], c->sin_phi[pat][s], &acc);
     ao = tg_saturate(tg_sub(TG_ONE, tg_div(acc.occlusion, tg_from_int(c->slices))));
     tgi_gr_set_ao(out, i, ao);
-    if (tgi_gr_has_cone(out)) tgi_gr_set_cone(out, i, tgi_cone_angle_from_ao(ao));   /* not eq. 12: sh.h */
-    if (tgi_gr_has_bent(out)) {
+    if (HAS_CONE(out)) tgi_gr_set_cone(out, i, tgi_cone_angle_from_ao(ao));   /* not eq. 12: sh.h */
+    if (HAS_BENT(out)) {
         /* eq. 6: summed unnormalised over slices, normalised once (in world space) */
         tg_vec3 nw = tgi_gv_normal(c->g, i);
         tg_vec3 dw = tgi_v3_add(tgi_v3_add(tgi_v3_scale(v->right, acc.bent_delta.x),
