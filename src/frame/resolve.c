@@ -68,7 +68,7 @@ static void resolve_ctx_init(resolve_ctx *c, const tg_frame *f)
  * them: HBIL's filtered (or upsampled), another technique's as they are. */
 static tgi_gr_value results_at(resolve_ctx *c, const tg_frame *f, int x, int y, size_t i)
 {
-    if (!c->hbil) return tgi_gr_get(&f->res, i);
+    if (!c->hbil) return tgi_gr_get_kept(&f->res, i);
 #if !TG_NO_GI_QUARTER
     if (c->quarter) return tgi_upsample_pixel(&f->full, &f->half_view, &f->half_filtered, x, y);
 #endif
@@ -112,7 +112,7 @@ void tgi_pass_resolve(tg_frame *f, int y0, int y1)
 #endif
             v.ao = TG_ONE; v.bent = v.near = tg_v3(0, 0, 0);
             if (c.gi) v = results_at(&c, f, x, y, i);
-            if (c.hbil) tgi_gr_put(&f->out, i, &v);   /* the filtered results an AOV asks for */
+            if (c.hbil) tgi_gr_put_kept(&f->out, i, &v);   /* the filtered results an AOV asks for */
 #if !TG_NO_COLOR /* without colour (the plan refuses the far field and composition) nothing else */
             if (tgi_gv_is_sky(&f->full, i)) {
                 if (c.far_own) tgi_rgb_set(c.far_own, i, tg_v3(0, 0, 0));

@@ -33,7 +33,7 @@ static void tap_load(tgi_denoise_tap *t, const tgi_gview *g, const tgi_gresult *
     if (t->sky) return;
     t->z = tgi_gv_depth(g, j);
     t->n = tgi_gv_normal(g, j);
-    t->v = tgi_gr_get(r, j);
+    t->v = tgi_gr_get_kept(r, j);
 }
 
 /* Weight of tap t for the centre (depth zi, normal ni): depth and normal
@@ -73,7 +73,7 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     tg_vec3 ni, bent, near;
     const tgi_denoise_tap *ci;
     tgi_gr_value v;
-    if (tgi_gv_is_sky(g, i)) return tgi_gr_get(r, i);
+    if (tgi_gv_is_sky(g, i)) return tgi_gr_get_kept(r, i);
     /* the window's columns decoded once: those of the last pixel are kept */
     if (k->y != y || xa < k->lo) { k->y = y; k->lo = k->next = xa; }
     for (; k->next <= xb; k->next++)
@@ -104,7 +104,7 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
                 nb += tgi_wide_mul(t->v.near.z, wt);
             }
         }
-    if (wsum <= 0) return tgi_gr_get(r, i);   /* the centre always weighs 1: cannot happen */
+    if (wsum <= 0) return tgi_gr_get_kept(r, i);   /* the centre always weighs 1: cannot happen */
     bent = tg_v3(tgi_wide_real(bx), tgi_wide_real(by), tgi_wide_real(bz));
     near = tg_v3(tgi_wide_real(nr), tgi_wide_real(ng), tgi_wide_real(nb));
     v.ao = tg_saturate(tg_div(tgi_wide_real(ao), tgi_wide_real(wsum)));
@@ -128,6 +128,6 @@ void tgi_denoise_rows(const tgi_denoise_params *p, const tgi_gview *g, const tgi
     for (y = y0; y < y1; y++)
         for (x = 0; x < g->width; x++) {
             tgi_gr_value v = tgi_denoise_pixel(p, g, r, &k, x, y);
-            tgi_gr_put(out, tgi_gv_index(g, x, y), &v);
+            tgi_gr_put_kept(out, tgi_gv_index(g, x, y), &v);
         }
 }
