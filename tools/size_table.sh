@@ -56,7 +56,7 @@ CONFIGS=(
     "HBIL colour, direct light, shadows, sky (no techniques, reference, OBJ, built-in scenes)|$LEAN|colour"
     "HBIL colour, direct light, shadows (the same without environment)|$LEAN -DTG_NO_ENVIRONMENT=1|colour"
     "HBIL colour, direct light, shadows, baked scene (the same without scene text)|$BAKED|colour"
-    "AO only, baked scene (the same without colour and shadow maps)|$AO|ao"
+    "AO only, baked scene (the same without colour, shadow maps and bent normals)|$AO|ao"
     "HBIL colour, direct light, shadows, baked scene, each frame alone (also no quarter resolution, temporal, keys)|$BAKED $ALONE|colour"
     "AO only, baked scene, each frame alone (every switch set)|$AO $ALONE|ao"
 )
