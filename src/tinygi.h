@@ -15,7 +15,7 @@
  * Feature switches TG_NO_TECHNIQUES, TG_NO_REFERENCE, TG_NO_OBJ,
  * TG_NO_BUILTIN_SCENES, TG_NO_SHADOW_MAPS, TG_NO_ENVIRONMENT,
  * TG_NO_SCENE_TEXT, TG_NO_COLOR, TG_NO_GI_QUARTER, TG_NO_TEMPORAL,
- * TG_NO_ANIMATION (0 or 1, for
+ * TG_NO_ANIMATION, TG_NO_BENT_NORMALS (0 or 1, for
  * the LIBRARY's build) leave code out of it to save flash: see "FEATURE
  * SWITCHES" below.
  *
@@ -373,7 +373,9 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
  *                         host (tinygi-bake, tools/scene_bake.c).
  *   TG_NO_COLOR           everything after AO that makes colour: direct
  *                         light, shadow maps, reprojection of radiance and
- *                         push/pull, composition: tg_plan_make refuses a
+ *                         push/pull, composition, the kernel's near-field
+ *                         gather, the radiance AOVs' readout (they read
+ *                         0) and planes: tg_plan_make refuses a
  *                         plan with the direct, near, far or reprojection
  *                         effect or a radiance AOV (colour, irradiance,
  *                         direct, near, far); AO, bent normals, cones and
@@ -392,6 +394,10 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
  *                         poses): tg_plan_make refuses a scene with camera
  *                         or object keys; the program still sets the camera
  *                         and the objects' transforms (the game loop).
+ *   TG_NO_BENT_NORMALS    the kernel's bent normals and cone apertures:
+ *                         their sums, filtering, storage and readout:
+ *                         tg_plan_make refuses the bent and cone AOVs and
+ *                         the far field (lit in the bent cone); AO renders.
  * README "Flash size" has the .text each configuration takes on a Cortex-M4
  * (`make size-table`).
  */
@@ -428,11 +434,16 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #ifndef TG_NO_ANIMATION
 #define TG_NO_ANIMATION 0
 #endif
+#ifndef TG_NO_BENT_NORMALS
+#define TG_NO_BENT_NORMALS 0
+#endif
 /* TG_OUTLINE_HELPERS: 1 makes the larger storage helpers every pass calls
  * (src/raster/pack.h: octahedral normals, RGB9E5) one out-of-line copy
- * instead of one per file; the default is on when compiling for size (-Os),
- * where the compiler keeps a static copy in each file; the same bits either
- * way. */
+ * instead of one per file, the rasterizer's per-pixel weights loops, and
+ * the HBIL horizon march (src/gi/hbil.c) one out-of-line copy for both
+ * major axes instead of one inlined copy per axis and caller; the default
+ * is on when compiling for size (-Os, __OPTIMIZE_SIZE__), where the
+ * compiler keeps a static copy in each file; the same bits either way. */
 #ifndef TG_OUTLINE_HELPERS
 #ifdef __OPTIMIZE_SIZE__
 #define TG_OUTLINE_HELPERS 1

@@ -169,7 +169,8 @@ static int refused(tg_status st, const tg_error *err, const char *sw)
 
 /* text planned for technique t and one AOV, aov: with the switch sw
  * compiled out (off) refused with a message naming it, and so is light
- * (direct, far, colour) without colour (TG_NO_COLOR); else planned, with
+ * (direct, far, colour) without colour (TG_NO_COLOR), and the far field
+ * without bent normals (TG_NO_BENT_NORMALS); else planned, with
  * `effect` among the plan's effects (0: none asked), rendering aov within
  * [lo, hi].  The status, plan and error are the caller's to check further. */
 static tg_status check_switch(int off, const char *sw, const char *text, tg_technique t, tg_aov aov,
@@ -180,6 +181,8 @@ static tg_status check_switch(int off, const char *sw, const char *text, tg_tech
         CHECK(refused(st, err, sw), "%s: status %d", what, (int)st);
     } else if (TG_NO_COLOR && (aov == TG_AOV_DIRECT || aov == TG_AOV_FAR || aov == TG_AOV_COLOR)) {
         CHECK(refused(st, err, "TG_NO_COLOR"), "%s: status %d", what, (int)st);
+    } else if (TG_NO_BENT_NORMALS && aov == TG_AOV_FAR) {   /* lit in the bent cone */
+        CHECK(refused(st, err, "TG_NO_BENT_NORMALS"), "%s: status %d", what, (int)st);
     } else {
         CHECK(st == TG_OK, "%s: %s", what, err->message);
         if (effect) CHECK(plan->effects & effect, "%s: effects %u", what, (unsigned)plan->effects);
@@ -300,7 +303,8 @@ TEST(scene_text)
 }
 
 /* Colour and every light AOV are refused with TG_NO_COLOR=1; AO, bent
- * normals and the geometry AOVs (here of the lit scene) render. */
+ * normals (unless TG_NO_BENT_NORMALS) and the geometry AOVs (here of the
+ * lit scene) render. */
 TEST(color)
 {
     static const tg_aov light[] = { TG_AOV_COLOR, TG_AOV_IRRADIANCE, TG_AOV_DIRECT, TG_AOV_NEAR };
@@ -313,11 +317,42 @@ TEST(color)
         if (TG_NO_COLOR) CHECK(refused(st, &err, "TG_NO_COLOR"), "%s: status %d", tg_aov_name(light[i]), (int)st);
         else CHECK(st == TG_OK, "%s: %s", tg_aov_name(light[i]), err.message);
     }
-    st = plan_for(scene_plain, TG_TECH_HBIL, (1u << TG_AOV_AO) | (1u << TG_AOV_BENT) | (1u << TG_AOV_DEPTH) |
-                  (1u << TG_AOV_ALBEDO), FRAMES(2), &plan, &err);
+    st = plan_for(scene_plain, TG_TECH_HBIL, (1u << TG_AOV_AO) | (TG_NO_BENT_NORMALS ? 0 : 1u << TG_AOV_BENT) |
+                  (1u << TG_AOV_DEPTH) | (1u << TG_AOV_ALBEDO), FRAMES(2), &plan, &err);
     CHECK(st == TG_OK, "%s", err.message);
     CHECK(!(plan.effects & (TG_EFFECT_DIRECT | TG_EFFECT_NEAR)), "effects %u", (unsigned)plan.effects);
-    CHECK(renders_within(&plan, TG_AOV_BENT, -1, 1), "bent normal outside [-1, 1]");
+    if (!TG_NO_BENT_NORMALS) CHECK(renders_within(&plan, TG_AOV_BENT, -1, 1), "bent normal outside [-1, 1]");
+    CHECK(renders_within(&plan, TG_AOV_AO, 0, 1), "AO outside [0, 1]");
+    /* the radiance AOVs of an AO plan read 0 (without colour: their planes are never there) */
+    CHECK(renders_within(&plan, TG_AOV_COLOR, 0, 0), "colour of an AO plan is not 0");
+    CHECK(renders_within(&plan, TG_AOV_NEAR, 0, 0), "near field of an AO plan is not 0");
+}
+
+/* The bent and cone AOVs, and the far field lit in the bent cone, are
+ * refused with TG_NO_BENT_NORMALS=1; AO renders (the same bits in every
+ * build: ao_digest below). */
+TEST(bent_normals)
+{
+    static const tg_aov bent[] = { TG_AOV_BENT, TG_AOV_CONE };
+    tg_plan plan;
+    tg_error err;
+    tg_status st;
+    int i;
+    for (i = 0; i < 2; i++) {
+        st = plan_for(scene_plain, TG_TECH_HBIL, 1u << bent[i], 1, &plan, &err);
+        if (TG_NO_BENT_NORMALS) {
+            CHECK(refused(st, &err, "TG_NO_BENT_NORMALS"), "%s: status %d", tg_aov_name(bent[i]), (int)st);
+        } else {
+            CHECK(st == TG_OK, "%s: %s", tg_aov_name(bent[i]), err.message);
+            CHECK(renders_within(&plan, bent[i], bent[i] == TG_AOV_CONE ? 0 : -1, bent[i] == TG_AOV_CONE ? 1.571 : 1),
+                  "%s out of range", tg_aov_name(bent[i]));
+        }
+    }
+    if (!TG_NO_ENVIRONMENT && !TG_NO_COLOR)   /* else refused first for the env or the light */
+        check_switch(TG_NO_BENT_NORMALS, "TG_NO_BENT_NORMALS", scene_rich, TG_TECH_HBIL, TG_AOV_FAR, TG_EFFECT_FAR,
+                     0, 1e6, "far", &plan, &err);
+    CHECK(plan_for(scene_plain, TG_TECH_HBIL, 1u << TG_AOV_AO, 1, &plan, &err) == TG_OK, "%s", err.message);
+    CHECK(renders_within(&plan, TG_AOV_AO, 0, 1), "AO outside [0, 1]");
 }
 
 /* gi_scale 2 (the kernel at quarter resolution) is refused with
@@ -368,8 +403,38 @@ TEST(animation)
     }
 }
 
+/* FNV-1a of the AO AOV's values of scene_plain (HBIL, one frame), printed
+ * as "ao-digest HEX": tests/switches_test.sh checks that every build of a
+ * number type prints the same, so no switch changes what it keeps. */
+static void ao_digest(void)
+{
+    tg_plan plan;
+    tg_error err;
+    tg_frame *f = NULL;
+    tg_real row[W];
+    uint32_t h = 2166136261u;
+    void *mem;
+    int x, y, ok;
+    ok = plan_for(scene_plain, TG_TECH_HBIL, 1u << TG_AOV_AO, 1, &plan, &err) == TG_OK;
+    mem = ok ? malloc(plan.total_bytes) : NULL;
+    ok = mem && tg_frame_create(&plan, mem, plan.total_bytes, &f, &err) == TG_OK && tg_frame_render(f, 0, &err) == TG_OK;
+    for (y = 0; ok && y < H; y++) {
+        ok = tg_frame_aov_row(f, TG_AOV_AO, y, row) == TG_OK;
+        for (x = 0; x < W; x++) {
+            unsigned char b[sizeof(tg_real)];
+            size_t k;
+            memcpy(b, &row[x], sizeof b);
+            for (k = 0; k < sizeof b; k++) h = (h ^ b[k]) * 16777619u;
+        }
+    }
+    free(mem);
+    if (ok) printf("ao-digest %08lx\n", (unsigned long)h);
+    else printf("ao-digest none: %s\n", err.message);
+}
+
 int main(void)
 {
+    ao_digest();
     RUN(renders_colour_and_ao);
     RUN(techniques);
     RUN(reference);
@@ -382,6 +447,7 @@ int main(void)
     RUN(gi_quarter);
     RUN(temporal);
     RUN(animation);
+    RUN(bent_normals);
     return check_summary();
 }
 #endif /* !SWITCHES_PRINT */

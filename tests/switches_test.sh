@@ -14,8 +14,9 @@ cd "$(dirname "$0")/.."
 . tests/shcheck.sh
 sh_host_build
 
-SWITCHES="TECHNIQUES REFERENCE OBJ BUILTIN_SCENES SHADOW_MAPS ENVIRONMENT SCENE_TEXT COLOR GI_QUARTER TEMPORAL ANIMATION"
-# the global symbols (nm) of each switch's left-out files
+SWITCHES="TECHNIQUES REFERENCE OBJ BUILTIN_SCENES SHADOW_MAPS ENVIRONMENT SCENE_TEXT COLOR GI_QUARTER TEMPORAL ANIMATION BENT_NORMALS"
+# the global symbols (nm) of each switch's left-out files, and (COLOR) the
+# HBIL kernel's near-field gather, a local function left out of a kept file
 pattern() {
     case $1 in
         TECHNIQUES)     echo ' T tgi_((ssao|vo|hbao|gtao|ssilvb|ssdo|bentcone)_|pass_(ssao|vo|hbao|gtao|ssilvb|ssdo|bentcone)$)' ;;
@@ -25,16 +26,22 @@ pattern() {
         SHADOW_MAPS)    echo ' T tgi_(shadow_|raster_depth)' ;;
         ENVIRONMENT)    echo ' T tgi_(sh9_|env_radiance|far_|cone_)' ;;
         SCENE_TEXT)     echo ' T tgi_(lex_|tok_|parse_|obj_)' ;;
-        COLOR)          echo ' T tgi_(direct_rows|pushpull_|reproject_gather|compose_|tonemap_row8|raster_depth|pass_(direct|reproject|push_pull|shadow_maps)$)' ;;
+        COLOR)          echo ' T tgi_(direct_rows|pushpull_|reproject_gather|compose_|tonemap_row8|raster_depth|pass_(direct|reproject|push_pull|shadow_maps)$)| t gather_rise$' ;;
         GI_QUARTER)     echo ' T tgi_(downsample_rows|upsample_pixel|pass_(downsample|filter_quarter)$)' ;;
         TEMPORAL)       echo ' T tgi_(temporal_|motion_|pushpull_|reproject_gather|pass_(temporal|motion|keep_history|reproject|push_pull)$)' ;;
         ANIMATION)      echo ' T tgi_(anim_camera|anim_object_matrix|q_slerp)$' ;;
+        # no file: the kernel's and the frame's bent-normal storage, a local
+        # (static inline) function at -O0; the techniques keep their own
+        # (TG_NO_TECHNIQUES, TG_NO_REFERENCE), so it is checked with them gone
+        BENT_NORMALS)   echo ' t tgi_gr_set_bent$' ;;
     esac
 }
 
 # the full CLI links every feature: each pattern must find something there
+# (BENT_NORMALS's static function is inlined at -O2: a switch build keeping
+# it, below)
 full=$BUILD/tinygi
-for sw in $SWITCHES; do
+for sw in ${SWITCHES% BENT_NORMALS}; do
     n=$(nm "$full" 2>/dev/null | grep -cE "$(pattern "$sw")")
     if [ "$n" -gt 0 ]; then ok "switches/full-cli-has-$sw"; else fail "switches/full-cli-has-$sw" "pattern finds nothing in $full"; fi
 done
@@ -80,6 +87,9 @@ check() {
     if "$tmp/$name" >"$tmp/$name.out" 2>&1; then ok "switches/$name: renders, refuses what is left out"
     else fail "switches/$name: run" "$(grep -v '^ok' "$tmp/$name.out" | head -n 8)"; fi
     for sw in "$@"; do
+        case $sw in BENT_NORMALS)
+            case " $* " in *" TECHNIQUES "*" REFERENCE "*) ;; *) continue ;; esac ;;
+        esac
         left=$(nm "$tmp/$name" | grep -E "$(pattern "$sw")" | head -n 3 | tr '\n' ' ')
         if [ -z "$left" ]; then ok "switches/$name: nothing of TG_NO_$sw linked"
         else fail "switches/$name: nothing of TG_NO_$sw linked" "still there: $left"; fi
@@ -104,5 +114,25 @@ wait
 for c in $configs; do
     # shellcheck disable=SC2046
     check "$c" $(switches_of "$c")
+done
+
+# BENT_NORMALS's pattern finds the function in a build that keeps bent normals
+for num in float fixed; do
+    n=$(nm "$tmp/$num-TECHNIQUES" 2>/dev/null | grep -cE "$(pattern BENT_NORMALS)")
+    if [ "$n" -gt 0 ]; then ok "switches/$num-TECHNIQUES has BENT_NORMALS's pattern"
+    else fail "switches/$num-TECHNIQUES has BENT_NORMALS's pattern" "nothing in $tmp/$num-TECHNIQUES"; fi
+done
+
+# every build of a number type renders the same AO, bit for bit
+for num in float fixed; do
+    want=$(grep -m 1 '^ao-digest' "$tmp/$num-TECHNIQUES.out")
+    differ=""
+    for sw in $SWITCHES all; do
+        got=$(grep -m 1 '^ao-digest' "$tmp/$num-$sw.out")
+        [ "$got" = "$want" ] || differ="$differ $sw ($got)"
+    done
+    case $want in "ao-digest "[0-9a-f]*) ;; *) differ="no digest: $want" ;; esac
+    if [ -z "$differ" ]; then ok "switches/$num: every build renders the same AO ($want)"
+    else fail "switches/$num: every build renders the same AO" "$want; differ:$differ"; fi
 done
 summary

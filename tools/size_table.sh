@@ -47,7 +47,7 @@ FPU="-mfpu=fpv4-sp-d16 -mfloat-abi=hard"
 SECTIONS="-ffunction-sections -fdata-sections"
 LEAN="-DTG_NO_TECHNIQUES=1 -DTG_NO_REFERENCE=1 -DTG_NO_OBJ=1 -DTG_NO_BUILTIN_SCENES=1"
 BAKED="$LEAN -DTG_NO_ENVIRONMENT=1 -DTG_NO_SCENE_TEXT=1"
-AO="$BAKED -DTG_NO_SHADOW_MAPS=1 -DTG_NO_COLOR=1"
+AO="$BAKED -DTG_NO_SHADOW_MAPS=1 -DTG_NO_COLOR=1 -DTG_NO_BENT_NORMALS=1"
 ALONE="-DTG_NO_GI_QUARTER=1 -DTG_NO_TEMPORAL=1 -DTG_NO_ANIMATION=1"
 
 # configurations: name | switches | what size_app asks for
@@ -56,7 +56,7 @@ CONFIGS=(
     "HBIL colour, direct light, shadows, sky (no techniques, reference, OBJ, built-in scenes)|$LEAN|colour"
     "HBIL colour, direct light, shadows (the same without environment)|$LEAN -DTG_NO_ENVIRONMENT=1|colour"
     "HBIL colour, direct light, shadows, baked scene (the same without scene text)|$BAKED|colour"
-    "AO only, baked scene (the same without colour and shadow maps)|$AO|ao"
+    "AO only, baked scene (the same without colour, shadow maps and bent normals)|$AO|ao"
     "HBIL colour, direct light, shadows, baked scene, each frame alone (also no quarter resolution, temporal, keys)|$BAKED $ALONE|colour"
     "AO only, baked scene, each frame alone (every switch set)|$AO $ALONE|ao"
 )

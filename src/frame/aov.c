@@ -11,6 +11,7 @@
 #include "../light/tonemap.h"
 #include "../ao/ao.h"
 
+#if !TG_NO_COLOR /* the radiance AOVs read 0 in a build without colour (aov_span) */
 /* RGB planes (absent: `fallback`) at pixels [i0, i0 + w) of a packed row. */
 static void row_rgb(const tgi_rgb *c, const tgi_gview *g, int x0, int y, int w, tg_real *out, tg_real fallback)
 {
@@ -20,6 +21,7 @@ static void row_rgb(const tgi_rgb *c, const tgi_gview *g, int x0, int y, int w, 
         out[3 * x + 0] = v.x; out[3 * x + 1] = v.y; out[3 * x + 2] = v.z;
     }
 }
+#endif
 
 /* A G-buffer vector (normal or albedo) of pixels [x0, x0 + w) of row y; 0 on sky. */
 static void row_vec(const tgi_gview *g, tg_vec3 (*get)(const tgi_gview *, size_t), int x0, int y, int w, tg_real *out)
@@ -36,7 +38,7 @@ static void row_bent(const tg_frame *f, int x0, int y, int w, tg_real *out)
 {
     const tgi_gview *g = &f->full;
     int x;
-    if (!tgi_gr_has_bent(&f->out)) { row_vec(g, tgi_gv_normal, x0, y, w, out); return; }
+    if (TG_NO_BENT_NORMALS || !tgi_gr_has_bent(&f->out)) { row_vec(g, tgi_gv_normal, x0, y, w, out); return; }
     for (x = 0; x < w; x++) {
         size_t i = tgi_gv_index(g, x0 + x, y);
         tg_vec3 v = tgi_gv_is_sky(g, i) ? tg_v3(0, 0, 0) : tgi_gr_bent(&f->out, i);
@@ -66,10 +68,11 @@ static void row_scalar(const tg_frame *f, tg_aov aov, int x0, int y, int w, tg_r
         size_t i = tgi_gv_index(g, x0 + x, y);
         if (aov == TG_AOV_DEPTH) out[x] = tgi_gv_depth(g, i);
         else if (aov == TG_AOV_AO) out[x] = f->out.ao ? ao_out(f, i) : TG_ONE;
-        else out[x] = f->out.ao ? tgi_gr_cone(&f->out, i) : TG_HALF_PI;
+        else out[x] = !TG_NO_BENT_NORMALS && f->out.ao ? tgi_gr_cone(&f->out, i) : TG_HALF_PI;
     }
 }
 
+#if !TG_NO_TEMPORAL /* no motion vectors with TG_NO_TEMPORAL: the AOV reads 0 (aov_span) */
 /* Motion: the offset to last frame's position, z = validity. */
 static void row_motion(const tg_frame *f, int x0, int y, int w, tg_real *out)
 {
@@ -85,29 +88,46 @@ static void row_motion(const tg_frame *f, int x0, int y, int w, tg_real *out)
         out[3 * x + 2] = valid ? TG_ONE : 0;
     }
 }
+#endif
 
+#if !TG_NO_COLOR
 /* E_direct as its AOV reads it: its own plane when asked (else it lives in a
  * radiance slot, composed over; frame_internal.h), NULL otherwise. */
 static const tgi_rgb *direct_plane(const tg_frame *f)
 {
     return (f->effects & TG_EFFECT_DIRECT) && (f->request.aovs & (1u << TG_AOV_DIRECT)) ? &f->direct : NULL;
 }
+#endif
 
-/* Pixels [x0, x0 + w) of row y. */
+/* Pixels [x0, x0 + w) of row y.  In a build with TG_NO_COLOR or
+ * TG_NO_TEMPORAL (tinygi.h "FEATURE SWITCHES") the planes of the AOVs it
+ * leaves out are never there: they read 0, as an absent plane reads. */
 static void aov_span(const tg_frame *f, tg_aov aov, int y, int x0, int w, tg_real *out)
 {
     const tgi_gview *g = &f->full;
     switch (aov) {
+#if TG_NO_COLOR
+    case TG_AOV_COLOR: case TG_AOV_NEAR: case TG_AOV_FAR: case TG_AOV_DIRECT: case TG_AOV_IRRADIANCE:
+        memset(out, 0, 3 * (size_t)w * sizeof(tg_real));
+        break;
+#else
     case TG_AOV_COLOR: row_rgb(&f->color, g, x0, y, w, out, 0); break;
+#endif
     case TG_AOV_DEPTH: case TG_AOV_AO: case TG_AOV_CONE: row_scalar(f, aov, x0, y, w, out); break;
     case TG_AOV_NORMAL: row_vec(g, tgi_gv_normal, x0, y, w, out); break;
     case TG_AOV_ALBEDO: row_vec(g, tgi_gv_albedo, x0, y, w, out); break;
     case TG_AOV_BENT: row_bent(f, x0, y, w, out); break;
+#if !TG_NO_COLOR
     case TG_AOV_NEAR: row_rgb(&f->out.near, g, x0, y, w, out, 0); break;
     case TG_AOV_FAR: row_rgb(&f->far, g, x0, y, w, out, 0); break;
     case TG_AOV_DIRECT: row_rgb(direct_plane(f), g, x0, y, w, out, 0); break;
     case TG_AOV_IRRADIANCE: row_rgb(&f->irradiance, g, x0, y, w, out, 0); break;
+#endif
+#if TG_NO_TEMPORAL
+    case TG_AOV_MOTION: memset(out, 0, 3 * (size_t)w * sizeof(tg_real)); break;
+#else
     case TG_AOV_MOTION: row_motion(f, x0, y, w, out); break;
+#endif
     default: memset(out, 0, (size_t)w * sizeof(tg_real)); break;
     }
 }

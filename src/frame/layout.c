@@ -123,7 +123,7 @@ static int reprojects(const tg_frame *f) { return (f->effects & TG_EFFECT_REPROJ
 static int near_in_slots(const tg_frame *f) { return near_field(f) && !tgi_frame_quarter(f); }
 static int wants_aov(const tg_frame *f, tg_aov a) { return (f->request.aovs & AOV(a)) != 0; }
 static int direct_own(const tg_frame *f) { return (f->effects & TG_EFFECT_DIRECT) && wants_aov(f, TG_AOV_DIRECT); }
-static int bent_needed(const tg_frame *f) { return (f->needs & TG_NEED_BENT) != 0; }
+static int bent_needed(const tg_frame *f) { return !TG_NO_BENT_NORMALS && (f->needs & TG_NEED_BENT) != 0; }
 /* Some pass or output reads a surface's material (albedo, F0, emissive):
  * light, compose, the techniques that light, any output but those of the
  * geometry and the occlusion.  Else the G-buffer keeps no material. */
@@ -142,7 +142,10 @@ static int resolves_into_planes(const tg_frame *f)
     return (f->needs & TG_NEED_GI_PASS) && f->request.technique == TG_TECH_HBIL;
 }
 
-/* ---- the groups ---- */
+/* ---- the groups ----
+ * A group whose effect a feature switch leaves out (tinygi.h "FEATURE
+ * SWITCHES"; the plan refuses what would need it) returns first, so its
+ * body is not compiled into that build. */
 
 static void group_pose(layout *l, tg_frame *f)
 {
@@ -172,7 +175,7 @@ static void group_gbuffer(layout *l, tg_frame *f)
 
 static void group_motion(layout *l, tg_frame *f)
 {
-    if (!(f->needs & TG_NEED_MOTION)) return;
+    if (TG_NO_TEMPORAL || !(f->needs & TG_NEED_MOTION)) return;
     f->gb.motion_x = take_real(l, "motion vectors [2 x tg_real]", f->pixels);
     f->gb.motion_y = take_real(l, "motion vectors [2 x tg_real]", f->pixels);
 }
@@ -196,7 +199,7 @@ static void group_shadow_maps(layout *l, tg_frame *f)
 {
     const tg_scene *s = f->scene;
     int i, rays = 0, reference = f->request.technique == TG_TECH_REFERENCE;
-    if (!(f->effects & TG_EFFECT_SHADOWS)) return;
+    if (TG_NO_SHADOW_MAPS || !(f->effects & TG_EFFECT_SHADOWS)) return;
     f->shadow_maps = (tgi_shadow_map *)take(l, "shadow map descriptors", (size_t)s->light_count, sizeof(tgi_shadow_map));
     f->shadow_ptrs = (const tgi_shadow_map **)take(l, "shadow map descriptors", (size_t)s->light_count, sizeof(void *));
     for (i = 0; i < s->light_count; i++) {
@@ -224,7 +227,7 @@ static void group_shadow_maps(layout *l, tg_frame *f)
 /* E_direct's own plane: only when its AOV is asked (else it lives in a slot). */
 static void group_direct(layout *l, tg_frame *f)
 {
-    if (direct_own(f)) take_rgb(l, "direct irradiance E_direct [" FMT_RGB "]", f->pixels, &f->direct);
+    if (!TG_NO_COLOR && direct_own(f)) take_rgb(l, "direct irradiance E_direct [" FMT_RGB "]", f->pixels, &f->direct);
 }
 
 /* The radiance slots (frame_internal.h): the lit slot (E_direct and Lo, or
@@ -234,6 +237,7 @@ static void group_source(layout *l, tg_frame *f)
 {
     int composes = (f->needs & TG_NEED_COMPOSE) != 0, lit = composes || near_field(f);
     size_t n = f->pixels, mips = !TG_NO_COLOR && !TG_NO_TEMPORAL && reprojects(f) ? tgi_pushpull_bytes(f->width, f->height) : 0;
+    if (TG_NO_COLOR) return;
     if (lit) {
         size_t b = tgi_rgb_carve(&f->slot[0], n, NULL);
         tgi_rgb_carve(&f->slot[0], n, take(l, near_in_slots(f) ? "radiance slot A: E_direct, Lo; last frame's Lo or near field,"
@@ -253,7 +257,7 @@ static void group_source(layout *l, tg_frame *f)
 /* Last frame's geometry: reprojection's and temporal accumulation's depth test. */
 static void group_history(layout *l, tg_frame *f)
 {
-    if (!reprojects(f) && !(f->needs & TG_NEED_TEMPORAL)) return;
+    if (TG_NO_TEMPORAL || (!reprojects(f) && !(f->needs & TG_NEED_TEMPORAL))) return;
     tgi_prev_carve(&f->prev_geometry, f->pixels,
                    take(l, "last frame's depth and normal [" FMT_PREV "]", tgi_prev_carve(&f->prev_geometry, f->pixels, NULL), 1));
 }
@@ -291,7 +295,7 @@ static void group_half(layout *l, tg_frame *f)
 {
     int w, h;
     size_t n;
-    if (!tgi_frame_quarter(f)) return;
+    if (TG_NO_GI_QUARTER || !tgi_frame_quarter(f)) return;
     kernel_size(f, &w, &h, &n);
     if (reads_material(f))
         take_gbuffer_planes(l, &f->half, f->scene, w, h, 1, "quarter-res G-buffer [" FMT_G "]");
@@ -305,7 +309,7 @@ static void group_filter(layout *l, tg_frame *f)
 {
     int w, h;
     size_t n;
-    if (!tgi_frame_quarter(f)) return;
+    if (TG_NO_GI_QUARTER || !tgi_frame_quarter(f)) return;
     kernel_size(f, &w, &h, &n);
     take_results(l, &f->half_filtered, n, bent_needed(f), near_field(f),
                  "quarter-res filtered results: AO, bent, near [" FMT_AO ", " FMT_BENT ", " FMT_RGB "]");
@@ -315,7 +319,7 @@ static void group_filter(layout *l, tg_frame *f)
  * resolution, in the other radiance slot). */
 static void group_temporal(layout *l, tg_frame *f)
 {
-    if (!(f->needs & TG_NEED_TEMPORAL)) return;
+    if (TG_NO_TEMPORAL || !(f->needs & TG_NEED_TEMPORAL)) return;
     take_result_set(l, f, 1, "quarter-res results of last frame (temporal accumulation)",
                     "kernel results of last frame (temporal accumulation)");
 }
@@ -337,7 +341,7 @@ static void group_bvh(layout *l, tg_frame *f)
 static void group_far(layout *l, tg_frame *f)
 {
     int technique_far = f->request.technique == TG_TECH_SSDO || f->request.technique == TG_TECH_BENTCONE;
-    if ((f->effects & TG_EFFECT_FAR) && (technique_far || wants_aov(f, TG_AOV_FAR)))
+    if (!TG_NO_COLOR && (f->effects & TG_EFFECT_FAR) && (technique_far || wants_aov(f, TG_AOV_FAR)))
         take_rgb(l, "far-field irradiance E_far [" FMT_RGB "]", f->pixels, &f->far);
 }
 
@@ -345,7 +349,7 @@ static void group_far(layout *l, tg_frame *f)
  * read their results as they are). */
 static void group_color(layout *l, tg_frame *f)
 {
-    int ao = wants_aov(f, TG_AOV_AO) || wants_aov(f, TG_AOV_CONE), bent = wants_aov(f, TG_AOV_BENT);
+    int ao = wants_aov(f, TG_AOV_AO) || wants_aov(f, TG_AOV_CONE), bent = !TG_NO_BENT_NORMALS && wants_aov(f, TG_AOV_BENT);
     int near = wants_aov(f, TG_AOV_NEAR) && near_field(f);
     if (!resolves_into_planes(f) || !(ao || bent || near)) return;
     take_results(l, &f->out, f->pixels, bent, near, "filtered results for the AOVs asked [" FMT_AO ", " FMT_BENT ", " FMT_RGB "]");
@@ -354,7 +358,7 @@ static void group_color(layout *l, tg_frame *f)
 
 static void group_irradiance(layout *l, tg_frame *f)
 {
-    if ((f->needs & TG_NEED_COMPOSE) && wants_aov(f, TG_AOV_IRRADIANCE))
+    if (!TG_NO_COLOR && (f->needs & TG_NEED_COMPOSE) && wants_aov(f, TG_AOV_IRRADIANCE))
         take_rgb(l, "total irradiance [" FMT_RGB "]", f->pixels, &f->irradiance);
 }
 
@@ -403,6 +407,7 @@ const tgi_gview *tgi_frame_kernel(const tg_frame *f, const tgi_gresult **res, co
     return quarter ? &f->half_view : &f->full;
 }
 
+#if !TG_NO_COLOR
 /* The plane under a colour plane's first pointer (push/pull's scratch). */
 static void *plane_memory(const tgi_rgb *c)
 {
@@ -412,6 +417,7 @@ static void *plane_memory(const tgi_rgb *c)
     return c->p;
 #endif
 }
+#endif
 
 /* This frame's results: set t of two (temporal accumulation), else the one. */
 static void results_roles(const tgi_gresult *set, int t, tgi_gresult *res, tgi_gresult *prev)
@@ -423,10 +429,14 @@ static void results_roles(const tgi_gresult *set, int t, tgi_gresult *res, tgi_g
 
 void tgi_frame_begin(tg_frame *f)
 {
-    int t = f->frames_rendered & 1, two = tgi_rgb_present(&f->slot[1]);
+    int t = f->frames_rendered & 1;
+#if !TG_NO_COLOR /* without colour (tinygi.h "FEATURE SWITCHES") the radiance planes stay none, as carved */
+    int two = tgi_rgb_present(&f->slot[1]);
     const tgi_rgb *lo = two ? &f->slot[1 - t] : &f->slot[0], *hist = two ? &f->slot[t] : &f->slot[0];
+#endif
     results_roles(f->set, t, &f->res, &f->res_prev);
     results_roles(f->half_set, t, &f->half_res, &f->half_prev);
+#if !TG_NO_COLOR
     if (two) { f->res.near = f->slot[t]; f->res_prev.near = f->slot[1 - t]; }
     f->color = (f->needs & TG_NEED_COMPOSE) ? *lo : tgi_rgb_none();
     if (!direct_own(f)) f->direct = (f->effects & (TG_EFFECT_DIRECT | TG_EFFECT_NEAR)) ? *lo : tgi_rgb_none();
@@ -434,6 +444,7 @@ void tgi_frame_begin(tg_frame *f)
     f->pushpull_mips = reprojects(f) ? plane_memory(hist) : NULL;
     f->source = tgi_rgb_none();
     if (near_field(f)) f->source = f->has_history ? f->bounce_source : tgi_rgb_lit_by(&f->direct, &f->gb);
+#endif
     if (!resolves_into_planes(f)) f->out = f->res;
 }
 

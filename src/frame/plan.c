@@ -137,6 +137,10 @@ static int left_out(const tg_plan *p, tg_error *err)
         return refuse_left_out(err, "colour is", NULL, "TG_NO_COLOR",
                                ": the plan asks for light (colour, irradiance, direct, near or far); "
                                "AO, bent normals, cones and the geometry AOVs render");
+    if (TG_NO_BENT_NORMALS && (tgi_frame_needs(p) & (TG_NEED_BENT | TG_NEED_CONE)))
+        return refuse_left_out(err, "bent normals are", NULL, "TG_NO_BENT_NORMALS",
+                               ": the plan asks for the bent or cone AOV, or the far field (lit in the bent "
+                               "cone); ask for ao");
     if (TG_NO_ANIMATION && scene_has_keys(p->scene))
         return refuse_left_out(err, "scene keys are", NULL, "TG_NO_ANIMATION",
                                ": the scene has camera or object keys; set the camera and objects from the "

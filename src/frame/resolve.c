@@ -68,13 +68,14 @@ static void resolve_ctx_init(resolve_ctx *c, const tg_frame *f)
  * them: HBIL's filtered (or upsampled), another technique's as they are. */
 static tgi_gr_value results_at(resolve_ctx *c, const tg_frame *f, int x, int y, size_t i)
 {
-    if (!c->hbil) return tgi_gr_get(&f->res, i);
+    if (!c->hbil) return tgi_gr_get_kept(&f->res, i);
 #if !TG_NO_GI_QUARTER
     if (c->quarter) return tgi_upsample_pixel(&f->full, &f->half_view, &f->half_filtered, f->request.radius, x, y);
 #endif
     return tgi_denoise_pixel(&c->filter, &f->full, &f->res, &c->walk, x, y);
 }
 
+#if !TG_NO_COLOR /* a build with TG_NO_COLOR (tinygi.h "FEATURE SWITCHES") composes nothing */
 /* E = E_direct + E_far + E_near (HBIL sec. 2.3) of a surface pixel. */
 static tg_vec3 irradiance_at(const resolve_ctx *c, const tg_frame *f, size_t i, const tgi_gr_value *v)
 {
@@ -92,23 +93,30 @@ static tg_vec3 irradiance_at(const resolve_ctx *c, const tg_frame *f, size_t i, 
     if (c->gi && (f->effects & TG_EFFECT_NEAR)) e = tgi_v3_add(e, v->near);
     return e;
 }
+#endif
 
 void tgi_pass_resolve(tg_frame *f, int y0, int y1)
 {
     resolve_ctx c;
-    int x, y, compose = (f->needs & TG_NEED_COMPOSE) != 0;
+    int x, y;
+#if !TG_NO_COLOR
+    int compose = (f->needs & TG_NEED_COMPOSE) != 0;
+#endif
     resolve_ctx_init(&c, f);
     for (y = y0; y < y1; y++)
         for (x = 0; x < f->width; x++) {
             size_t i = tgi_gv_index(&f->full, x, y);
             tgi_gr_value v;
+#if !TG_NO_COLOR
             tg_vec3 e;
+#endif
             v.ao = TG_ONE; v.bent = v.near = tg_v3(0, 0, 0);
             if (c.gi) v = results_at(&c, f, x, y, i);
-            if (c.hbil) tgi_gr_put(&f->out, i, &v);   /* the filtered results an AOV asks for */
+            if (c.hbil) tgi_gr_put_kept(&f->out, i, &v);   /* the filtered results an AOV asks for */
+#if !TG_NO_COLOR /* without colour (the plan refuses the far field and composition) nothing else */
             if (tgi_gv_is_sky(&f->full, i)) {
                 if (c.far_own) tgi_rgb_set(c.far_own, i, tg_v3(0, 0, 0));
-                if (TG_NO_COLOR || !compose) continue;   /* no composition with TG_NO_COLOR=1 */
+                if (!compose) continue;
                 tgi_rgb_set(c.lo, i, tgi_compose_sky(&f->view, &f->scene->env, x, y));
                 if (tgi_rgb_present(&f->irradiance)) tgi_rgb_set(&f->irradiance, i, tg_v3(0, 0, 0));
                 continue;
@@ -117,5 +125,6 @@ void tgi_pass_resolve(tg_frame *f, int y0, int y1)
             if (!compose) continue;
             if (tgi_rgb_present(&f->irradiance)) tgi_rgb_set(&f->irradiance, i, e);
             tgi_rgb_set(c.lo, i, tgi_gv_lit(&f->full, i, e));   /* HBIL eq. 14, 19 */
+#endif
         }
 }

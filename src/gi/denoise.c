@@ -33,7 +33,7 @@ static void tap_load(tgi_denoise_tap *t, const tgi_gview *g, const tgi_gresult *
     if (t->sky) return;
     t->z = tgi_gv_depth(g, j);
     t->n = tgi_gv_normal(g, j);
-    t->v = tgi_gr_get(r, j);
+    t->v = tgi_gr_get_kept(r, j);
 }
 
 /* Weight of tap t for the centre (depth zi, normal ni): depth and normal
@@ -58,7 +58,7 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
                                tgi_denoise_walk *k, int x, int y)
 {
     size_t i = tgi_gv_index(g, x, y);
-    int w = g->width, h = g->height, xx, yy, slot[5], has_bent = tgi_gr_has_bent(r), has_near = tgi_gr_has_near(r);
+    int w = g->width, h = g->height, xx, yy, slot[5], has_bent = !TG_NO_BENT_NORMALS && tgi_gr_has_bent(r), has_near = !TG_NO_COLOR && tgi_gr_has_near(r);
     int xa = x < 2 ? 0 : x - 2, xb = x + 2 >= w ? w - 1 : x + 2;
     int ya = y < 2 ? 0 : y - 2, yb = y + 2 >= h ? h - 1 : y + 2;
     tg_real zi, ztol, inv_ztol;
@@ -66,12 +66,14 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
      * (0, 1] and there are at most 25, so wsum <= 9, ao <= 9 and |bent| <= 9
      * never saturate; the near field is never negative (RGB9E5; the kernel's
      * gathered sums), so saturating after the last tap gives what a
-     * saturating add after each tap gives. */
+     * saturating add after each tap gives.  A build with TG_NO_COLOR
+     * (tinygi.h "FEATURE SWITCHES") has no near field, one with
+     * TG_NO_BENT_NORMALS no bent normal: their sums are left out. */
     tgi_wide wsum = 0, ao = 0, bx = 0, by = 0, bz = 0, nr = 0, ng = 0, nb = 0;
     tg_vec3 ni, bent, near;
     const tgi_denoise_tap *ci;
     tgi_gr_value v;
-    if (tgi_gv_is_sky(g, i)) return tgi_gr_get(r, i);
+    if (tgi_gv_is_sky(g, i)) return tgi_gr_get_kept(r, i);
     /* the window's columns decoded once: those of the last pixel are kept */
     if (k->y != y || xa < k->lo) { k->y = y; k->lo = k->next = xa; }
     for (; k->next <= xb; k->next++)
@@ -102,7 +104,7 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
                 nb += tgi_wide_mul(t->v.near.z, wt);
             }
         }
-    if (wsum <= 0) return tgi_gr_get(r, i);   /* the centre always weighs 1: cannot happen */
+    if (wsum <= 0) return tgi_gr_get_kept(r, i);   /* the centre always weighs 1: cannot happen */
     bent = tg_v3(tgi_wide_real(bx), tgi_wide_real(by), tgi_wide_real(bz));
     near = tg_v3(tgi_wide_real(nr), tgi_wide_real(ng), tgi_wide_real(nb));
     v.ao = tg_saturate(tg_div(tgi_wide_real(ao), tgi_wide_real(wsum)));
@@ -126,6 +128,6 @@ void tgi_denoise_rows(const tgi_denoise_params *p, const tgi_gview *g, const tgi
     for (y = y0; y < y1; y++)
         for (x = 0; x < g->width; x++) {
             tgi_gr_value v = tgi_denoise_pixel(p, g, r, &k, x, y);
-            tgi_gr_put(out, tgi_gv_index(g, x, y), &v);
+            tgi_gr_put_kept(out, tgi_gv_index(g, x, y), &v);
         }
 }

@@ -28,6 +28,26 @@ typedef struct tgi_denoise_params {
 
 void tgi_denoise_defaults(tgi_denoise_params *p);
 
+/* tgi_gr_get and tgi_gr_put (raster/gview.h) for the channels the build
+ * keeps: a build with TG_NO_BENT_NORMALS has no bent normal, one with
+ * TG_NO_COLOR no near field (tinygi.h "FEATURE SWITCHES"; the plan never
+ * gives results those planes), and their storage code is not compiled in.
+ * The same values as tgi_gr_get and tgi_gr_put otherwise. */
+static inline tgi_gr_value tgi_gr_get_kept(const tgi_gresult *r, size_t i)
+{
+    tgi_gr_value v;
+    v.ao = r->ao ? tgi_gr_ao(r, i) : TG_ONE;
+    v.bent = !TG_NO_BENT_NORMALS && tgi_gr_has_bent(r) ? tgi_gr_bent(r, i) : tg_v3(0, 0, 0);
+    v.near = !TG_NO_COLOR && tgi_gr_has_near(r) ? tgi_gr_near(r, i) : tg_v3(0, 0, 0);
+    return v;
+}
+static inline void tgi_gr_put_kept(const tgi_gresult *r, size_t i, const tgi_gr_value *v)
+{
+    if (r->ao) tgi_gr_set_ao(r, i, v->ao);
+    if (!TG_NO_BENT_NORMALS && tgi_gr_has_bent(r)) tgi_gr_set_bent(r, i, v->bent);
+    if (!TG_NO_COLOR && tgi_gr_has_near(r)) tgi_gr_set_near(r, i, v->near);
+}
+
 /* A pixel's taps as the filter reads them: decoded once. */
 typedef struct tgi_denoise_tap {
     int sky;

@@ -44,6 +44,21 @@
 #define HBIL_NOINLINE
 #endif
 
+/* Whether the kernel writes bent normals and cone apertures: never in a
+ * build with TG_NO_BENT_NORMALS (tinygi.h "FEATURE SWITCHES"; the plan
+ * refuses what reads them), whose code is then left out. */
+#define HAS_BENT(out) (!TG_NO_BENT_NORMALS && tgi_gr_has_bent(out))
+#define HAS_CONE(out) (!TG_NO_BENT_NORMALS && tgi_gr_has_cone(out))
+
+/* Whether the kernel gathers the near field (ctx_init): never in a build
+ * with TG_NO_COLOR (tinygi.h "FEATURE SWITCHES"; the plan refuses the near
+ * effect there), whose gather is then left out. */
+#if TG_NO_COLOR
+#define NEAR_FIELD(c) 0
+#else
+#define NEAR_FIELD(c) ((c)->near_field)
+#endif
+
 static const uint8_t slice_rank4[4][4] = {
     { 0, 8, 2, 10 }, { 12, 4, 14, 6 }, { 3, 11, 1, 9 }, { 15, 7, 13, 5 }
 };
@@ -368,11 +383,19 @@ typedef struct hbil_march {
 } hbil_march;
 
 /* The samples of one side; major_x is a constant in each of the two
- * copies (march_side), so the axis choice costs nothing per sample. */
+ * copies (MARCH_SAMPLES), so the axis choice costs nothing per sample.
+ * Compiling for size (TG_OUTLINE_HELPERS, tinygi.h) there is one copy, out
+ * of line, that tests major_x at each use: the same arithmetic, the same
+ * samples and horizons. */
+#if TG_OUTLINE_HELPERS
+HBIL_NOINLINE static void march_samples(
+#else
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-static inline void march_samples(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_side *sd,
+static inline void march_samples(
+#endif
+                                 const hbil_ctx *c, const hbil_slice *sl, int side, hbil_side *sd,
                                  const hbil_march *mr, const int major_x)
 {
     const tgi_gview g = *c->g;   /* a local copy: its fields stay in registers */
@@ -435,13 +458,24 @@ static inline void march_samples(const hbil_ctx *c, const hbil_slice *sl, int si
             sd->peak_a = a;
             sd->hs = tg_mul(cn, tg_abs(cn));
             hs_tie = tg_add(sd->hs, HBIL_TIE);
-            if (c->near_field)
+            if (NEAR_FIELD(c))
                 gather_rise(c, sl, sd, side, cn,
                             tgi_v3_scale(tg_v3((tg_real)dx, (tg_real)dy, (tg_real)dz), tg_div(TG_ONE, len)),
                             f < TG_R(0.5f) ? sa : sa + smin);      /* the nearest pixel */
         }
     }
 }
+
+/* march_samples along the major axis major_x: a copy per axis, or the one copy */
+#if TG_OUTLINE_HELPERS
+#define MARCH_SAMPLES(c, sl, side, sd, mr, major_x) march_samples(c, sl, side, sd, mr, major_x)
+#else
+#define MARCH_SAMPLES(c, sl, side, sd, mr, major_x) \
+    do { \
+        if (major_x) march_samples(c, sl, side, sd, mr, 1); \
+        else march_samples(c, sl, side, sd, mr, 0); \
+    } while (0)
+#endif
 
 /* Samples at p0 + k step pixels from the pixel, k = 1..n, along the
  * march *mr that march_side set up. */
@@ -457,8 +491,7 @@ static void march_run(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_si
     r.ox = tg_mul(mr->slope, tg_from_int(p0));
     r.minor = tg_add(tg_sub(mr->minor, mr->ox), r.ox);
     r.dminor = tg_mul(mr->slope, tg_from_int(step));
-    if (major_x) march_samples(c, sl, side, sd, &r, 1);
-    else march_samples(c, sl, side, sd, &r, 0);
+    MARCH_SAMPLES(c, sl, side, sd, &r, major_x);
 }
 
 /* More samples on a side marched in steps of m > 1 pixels (*mr as
@@ -528,8 +561,7 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     mr.ox = tg_mul(slope, tg_from_int(-o));
     mr.minor = tg_add(major_x ? tg_from_int(px->y) : tg_from_int(px->x), mr.ox);
     mr.dminor = tg_mul(slope, tg_from_int(m));
-    if (major_x) march_samples(c, sl, side, sd, &mr, 1);
-    else march_samples(c, sl, side, sd, &mr, 0);
+    MARCH_SAMPLES(c, sl, side, sd, &mr, major_x);
     if (m > 1) march_between(c, sl, side, sd, &mr, major_x);
 }
 
@@ -573,15 +605,15 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
     march_side(c, px, &sl, ux, uy, 1, &front);
     march_side(c, px, &sl, ux, uy, -1, &back);
     /* Q at the found horizons: the near field's gather kept them */
-    q1 = c->near_field || front.h == h1i ? front.q : slice_Q(front.h, 1);
-    q0 = c->near_field || back.h == h0i ? back.q : slice_Q(back.h, -1);
+    q1 = NEAR_FIELD(c) || front.h == h1i ? front.q : slice_Q(front.h, 1);
+    q0 = NEAR_FIELD(c) || back.h == h0i ? back.q : slice_Q(back.h, -1);
     r1 = slice_R(front.h); r0 = slice_R(back.h);
     /* AO_i = P(theta1) + P(theta0) (eq. 10-11 with |sin|); open minus found */
     acc->occlusion = tg_add(acc->occlusion,
         tg_add(tg_sub(p1i, tg_add(tg_mul(sl.nx, q1), tg_mul(sl.ny, r1))),
                tg_sub(p0i, tg_add(tg_mul(sl.nx, q0), tg_mul(sl.ny, r0)))));
     /* eq. 5-6: n~x = Q1 + Q0, n~y = R1 + R0; B = D n~x + w_o n~y */
-    acc->bent_delta = tgi_v3_add(acc->bent_delta, tgi_v3_add(
+    if (!TG_NO_BENT_NORMALS) acc->bent_delta = tgi_v3_add(acc->bent_delta, tgi_v3_add(
         tgi_v3_scale(sl.d, tg_sub(tg_add(q1, q0), tg_add(q1i, q0i))),
         tgi_v3_scale(px->wo, tg_sub(tg_add(r1, r0), tg_add(r1i, r0i)))));
     acc->er = tg_add(acc->er, tg_add(front.er, back.er));
@@ -593,9 +625,9 @@ static void write_open(const hbil_ctx *c, int i)
 {
     const tgi_gresult *out = c->out;
     tgi_gr_set_ao(out, i, TG_ONE);
-    if (tgi_gr_has_bent(out)) tgi_gr_set_bent(out, i, tgi_gv_normal(c->g, i));
-    if (tgi_gr_has_cone(out)) tgi_gr_set_cone(out, i, TG_HALF_PI);
-    if (c->near_field) tgi_gr_set_near(out, i, tg_v3(0, 0, 0));
+    if (HAS_BENT(out)) tgi_gr_set_bent(out, i, tgi_gv_normal(c->g, i));
+    if (HAS_CONE(out)) tgi_gr_set_cone(out, i, TG_HALF_PI);
+    if (NEAR_FIELD(c)) tgi_gr_set_near(out, i, tg_v3(0, 0, 0));
 }
 
 tg_real tgi_hbil_block_jitter(tg_real sub_image_jitter, int bx, int by, int rot)
@@ -622,8 +654,8 @@ static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
         slice_run(c, px, c->cos_phi[pat][s], c->sin_phi[pat][s], &acc);
     ao = tg_saturate(tg_sub(TG_ONE, tg_div(acc.occlusion, tg_from_int(c->slices))));
     tgi_gr_set_ao(out, i, ao);
-    if (tgi_gr_has_cone(out)) tgi_gr_set_cone(out, i, tgi_cone_angle_from_ao(ao));   /* not eq. 12: sh.h */
-    if (tgi_gr_has_bent(out)) {
+    if (HAS_CONE(out)) tgi_gr_set_cone(out, i, tgi_cone_angle_from_ao(ao));   /* not eq. 12: sh.h */
+    if (HAS_BENT(out)) {
         /* eq. 6: summed unnormalised over slices, normalised once (in world space) */
         tg_vec3 nw = tgi_gv_normal(c->g, i);
         tg_vec3 dw = tgi_v3_add(tgi_v3_add(tgi_v3_scale(v->right, acc.bent_delta.x),
@@ -631,7 +663,7 @@ static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
                                tgi_v3_scale(v->forward, acc.bent_delta.z));
         tgi_gr_set_bent(out, i, tgi_v3_normalize_or(tgi_v3_add(tgi_v3_scale(nw, tg_from_int(c->slices)), dw), nw));
     }
-    if (c->near_field)   /* eq. 16-18; the receiver's (1 - F0) of eq. 19 is applied where Lo is composed */
+    if (NEAR_FIELD(c))   /* eq. 16-18; the receiver's (1 - F0) of eq. 19 is applied where Lo is composed */
         tgi_gr_set_near(out, i, tg_v3(tg_mul(acc.er, c->pi_over_s), tg_mul(acc.eg, c->pi_over_s),
                                       tg_mul(acc.eb, c->pi_over_s)));
 }
