@@ -19,8 +19,9 @@
  *      skips zero-area triangles.  Normals are read only after culling.
  *   4. bounding box (clamped to the image, then to rows [y0, y1)), exact
  *      64-bit integer edge functions with the top-left fill rule; each row's
- *      covered run is found by stepping them, so the pixel loop has no
- *      coverage test.
+ *      covered run is found from them (span_walk: tested across a narrow
+ *      box, carried down the rows as exact integer bounds in a wide one),
+ *      so the pixel loop has no coverage test.
  *   5. per covered pixel: perspective-correct 1/w (depth = 1 / interpolated
  *      1/w) and normal (n/w interpolated), depth test on linear depth
  *      (nearest wins); where it passes, depth, packed normal with the
@@ -134,7 +135,7 @@ static inline int64_t signed_area2(const int32_t *x, const int32_t *y)
 /* The covered pixels of a row form one run (the triangle is convex): the
  * pixels x0 + k, 0 <= k <= last, where every edge function
  * E_i = c_i + k step_x_i (c_i its value at the row's first pixel) is
- * >= 0.  A box at most SPAN_NARROW + 1 pixels wide has its row's pixels
+ * >= 0.  A box at most SPAN_NARROW pixels wide has its row's pixels
  * tested from the left side, all edges at once.  In a wider one each edge
  * bounds k instead: one with step_x_i > 0 (a left edge) from below,
  * k >= -floor(c_i / step_x_i), one with step_x_i < 0 (a right edge) from
@@ -147,7 +148,10 @@ static inline int64_t signed_area2(const int32_t *x, const int32_t *y)
  * bound that never binds, and empties the rows where its E_i < 0.  (Testing
  * a wide box pixel by pixel costs its width a row and mispredicts where
  * each run ends; walking each edge's boundary from the row above with
- * short loops mispredicts more.) */
+ * short loops mispredicts more.)  The Q16.16 build (SPAN_WALKS 0) tests
+ * every box pixel by pixel: with its longer pixel loop the walks' state
+ * measured more instructions there (callgrind on tools/bench_raster.c:
+ * +2% at 320x240, none fewer at 1280x720). */
 typedef struct edge_walk {
     int64_t n;                    /* floor(c / D) */
     int64_t m;                    /* c - n D - D, in [-D, 0) */
@@ -156,14 +160,15 @@ typedef struct edge_walk {
 
 typedef struct span_walk {
     int64_t e[3];                 /* E_i at the centre of pixel (x0, row) */
-    int wide;                     /* the box is wider than SPAN_NARROW + 1: w[] walk */
+    int wide;                     /* the box is wider than SPAN_NARROW: w[] walk */
     int64_t eh, eh_step;          /* a horizontal edge's E_i there and its step_y (or 0, 0) */
     int64_t pair_left;            /* -1: the pair are left edges (lower bounds); 0: right */
     int64_t last;                 /* the box's last k */
     edge_walk w[3];               /* the single edge, then the pair */
 } span_walk;
 
-#define SPAN_NARROW 6
+#define SPAN_NARROW 7              /* widest box tested pixel by pixel */
+#define SPAN_WALKS !TG_FIXED       /* wider boxes walk their edges */
 
 /* floor(a / b) for b > 0 (one division: the quotient and the remainder). */
 static inline int64_t floor_div64(int64_t a, int64_t b)
@@ -221,7 +226,7 @@ static inline void span_begin(span_walk *sw, const tri_edges *te)
     sw->e[0] = te->e[0] + dy * te->step_y[0];
     sw->e[1] = te->e[1] + dy * te->step_y[1];
     sw->e[2] = te->e[2] + dy * te->step_y[2];
-    sw->wide = te->x1 - te->x0 > SPAN_NARROW + 1;
+    sw->wide = SPAN_WALKS && te->x1 - te->x0 > SPAN_NARROW;
     if (sw->wide) span_begin_walks(sw, te);
 }
 
