@@ -76,10 +76,14 @@ static inline tg_real tgi_depth_unpack(uint32_t bits)
 }
 static inline float tgi_abs_bits(float v)
 {
+#if defined(__GNUC__)
+    return __builtin_fabsf(v);        /* an and in the float registers, no libm */
+#else
     tgi_f32_bits b;
     b.f = v;
     b.u &= 0x7FFFFFFFu;
     return b.f;
+#endif
 }
 #endif
 

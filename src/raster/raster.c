@@ -19,9 +19,8 @@
  *      skips zero-area triangles.  Normals are read only after culling.
  *   4. bounding box (clamped to the image, then to rows [y0, y1)), exact
  *      64-bit integer edge functions with the top-left fill rule; each row's
- *      covered run is found from them (span_walk: tested across a narrow
- *      box, carried down the rows as exact integer bounds in a wide one),
- *      so the pixel loop has no coverage test.
+ *      covered run is found by stepping them, so the pixel loop has no
+ *      coverage test.
  *   5. per covered pixel: perspective-correct 1/w (depth = 1 / interpolated
  *      1/w) and normal (n/w interpolated), depth test on linear depth
  *      (nearest wins); where it passes, depth, packed normal with the
@@ -133,91 +132,13 @@ static inline int64_t signed_area2(const int32_t *x, const int32_t *y)
 }
 
 /* The covered pixels of a row form one run (the triangle is convex): the
- * pixels x0 + k, 0 <= k <= last, where every edge function
- * E_i = c_i + k step_x_i (c_i its value at the row's first pixel) is
- * >= 0.  A box at most SPAN_NARROW pixels wide has its row's pixels
- * tested from the left side, all edges at once.  In a wider one each edge
- * bounds k instead: one with step_x_i > 0 (a left edge) from below,
- * k >= -floor(c_i / step_x_i), one with step_x_i < 0 (a right edge) from
- * above, k <= floor(c_i / -step_x_i).  Each floor n_i = floor(c_i / D_i),
- * D_i = |step_x_i|, is carried down the rows exactly in integers (c_i grows
- * by step_y_i a row: n_i by floor(step_y_i / D_i) and its remainder's
- * carry), so a row costs a few additions and no branch however wide it is.
- * A triangle has one left and two right edges or the reverse (the single
- * edge and the pair); a horizontal edge (step_x_i = 0) joins the pair as a
- * bound that never binds, and empties the rows where its E_i < 0.  (Testing
- * a wide box pixel by pixel costs its width a row and mispredicts where
- * each run ends; walking each edge's boundary from the row above with
- * short loops mispredicts more.)  The Q16.16 build (SPAN_WALKS 0) tests
- * every box pixel by pixel: with its longer pixel loop the walks' state
- * measured more instructions there (callgrind on tools/bench_raster.c:
- * +2% at 320x240, none fewer at 1280x720). */
-typedef struct edge_walk {
-    int64_t n;                    /* floor(c / D) */
-    int64_t m;                    /* c - n D - D, in [-D, 0) */
-    int64_t d, ry, qy1;           /* D; step_y = qy D + ry, 0 <= ry < D; qy + 1 */
-} edge_walk;
-
+ * row's pixels are tested from the box's left side, all edges at once, and
+ * the edge values step down a row at a time.  (Walking each edge's
+ * boundary from the row above instead executes fewer instructions on wide
+ * rows, but its many short loops mispredict more: measured slower.) */
 typedef struct span_walk {
     int64_t e[3];                 /* E_i at the centre of pixel (x0, row) */
-    int wide;                     /* the box is wider than SPAN_NARROW: w[] walk */
-    int64_t eh, eh_step;          /* a horizontal edge's E_i there and its step_y (or 0, 0) */
-    int64_t pair_left;            /* -1: the pair are left edges (lower bounds); 0: right */
-    int64_t last;                 /* the box's last k */
-    edge_walk w[3];               /* the single edge, then the pair */
 } span_walk;
-
-#define SPAN_NARROW 7              /* widest box tested pixel by pixel */
-#define SPAN_WALKS !TG_FIXED       /* wider boxes walk their edges */
-
-/* floor(a / b) for b > 0 (one division: the quotient and the remainder). */
-static inline int64_t floor_div64(int64_t a, int64_t b)
-{
-    int64_t q = a / b;
-    return q - (a % b < 0);
-}
-
-/* Edge i of te from row te->y0 on. */
-static inline void edge_walk_begin(edge_walk *w, const tri_edges *te, int i, int64_t c)
-{
-    int64_t a = te->step_x[i];
-    int32_t ady = (int32_t)((a < 0 ? -a : a) / SUB), dx = (int32_t)(te->step_y[i] / SUB), q;
-    if (ady == 0) {               /* horizontal: a pair edge that never binds */
-        w->n = (int64_t)1 << 60;
-        w->m = -1;
-        w->d = 1;
-        w->ry = 0;
-        w->qy1 = 1;
-        return;
-    }
-    w->d = (int64_t)ady * SUB;
-    w->n = floor_div64(c, w->d);
-    w->m = c - w->n * w->d - w->d;
-    q = dx / ady;                 /* floor(step_y / D) = floor(dx / |dy|), in 32 bits */
-    q -= dx % ady < 0;
-    w->qy1 = (int64_t)q + 1;
-    w->ry = (int64_t)(dx - q * ady) * SUB;
-}
-
-/* The edge walks of a wide box (span_begin). */
-#if defined(__GNUC__)
-__attribute__((noinline))
-#endif
-static void span_begin_walks(span_walk *sw, const tri_edges *te)
-{
-    int left = (te->step_x[0] > 0) + (te->step_x[1] > 0) + (te->step_x[2] > 0), s, h;
-    sw->pair_left = left == 2 ? -1 : 0;
-    /* the single edge: the only right edge, or the only left one */
-    if (left == 2) s = te->step_x[0] < 0 ? 0 : te->step_x[1] < 0 ? 1 : 2;
-    else s = te->step_x[0] > 0 ? 0 : te->step_x[1] > 0 ? 1 : 2;
-    sw->last = te->x1 - te->x0 - 1;
-    h = te->step_x[0] == 0 ? 0 : te->step_x[1] == 0 ? 1 : te->step_x[2] == 0 ? 2 : -1;
-    sw->eh = h < 0 ? 0 : sw->e[h];
-    sw->eh_step = h < 0 ? 0 : te->step_y[h];
-    edge_walk_begin(&sw->w[0], te, s, sw->e[s]);
-    edge_walk_begin(&sw->w[1], te, s == 0 ? 1 : 0, sw->e[s == 0 ? 1 : 0]);
-    edge_walk_begin(&sw->w[2], te, s == 2 ? 1 : 2, sw->e[s == 2 ? 1 : 2]);
-}
 
 /* Start at row te->y0. */
 static inline void span_begin(span_walk *sw, const tri_edges *te)
@@ -226,46 +147,18 @@ static inline void span_begin(span_walk *sw, const tri_edges *te)
     sw->e[0] = te->e[0] + dy * te->step_y[0];
     sw->e[1] = te->e[1] + dy * te->step_y[1];
     sw->e[2] = te->e[2] + dy * te->step_y[2];
-    sw->wide = SPAN_WALKS && te->x1 - te->x0 > SPAN_NARROW;
-    if (sw->wide) span_begin_walks(sw, te);
-}
-
-/* Edge walk w down one row: c grows by step_y; the remainder's carry by
- * its sign, no branch. */
-static inline void edge_walk_step(edge_walk *w)
-{
-    int64_t m = w->m + w->ry, keep = m >> 63;   /* -1: no carry */
-    w->m = m - (w->d & ~keep);
-    w->n += w->qy1 + keep;
 }
 
 /* The run [*xa, returned end) of this row (empty when end <= *xa); moves
  * on to the next row. */
 static inline int span_row(const tri_edges *te, span_walk *sw, int *xa)
 {
-    int x;
-    if (!sw->wide) {
-        int64_t e0 = sw->e[0], e1 = sw->e[1], e2 = sw->e[2];
-        const int64_t s0 = te->step_x[0], s1 = te->step_x[1], s2 = te->step_x[2];
-        int x1 = te->x1;
-        x = te->x0;
-        while (x < x1 && (e0 | e1 | e2) < 0) { e0 += s0; e1 += s1; e2 += s2; x++; }
-        *xa = x;
-        while (x < x1 && (e0 | e1 | e2) >= 0) { e0 += s0; e1 += s1; e2 += s2; x++; }
-    } else {
-        int64_t n0 = sw->w[0].n, pair = sw->w[1].n < sw->w[2].n ? sw->w[1].n : sw->w[2].n;
-        int64_t swap = (pair ^ n0) & sw->pair_left, lo = -(n0 ^ swap), hi = pair ^ swap;
-        if (lo < 0) lo = 0;
-        if (lo > sw->last + 1) lo = sw->last + 1;
-        if (hi > sw->last) hi = sw->last;
-        if (hi < -1 || sw->eh < 0) hi = -1;
-        sw->eh += sw->eh_step;
-        edge_walk_step(&sw->w[0]);
-        edge_walk_step(&sw->w[1]);
-        edge_walk_step(&sw->w[2]);
-        *xa = te->x0 + (int)lo;
-        x = te->x0 + (int)hi + 1;
-    }
+    int64_t e0 = sw->e[0], e1 = sw->e[1], e2 = sw->e[2];
+    const int64_t s0 = te->step_x[0], s1 = te->step_x[1], s2 = te->step_x[2];
+    int x = te->x0, x1 = te->x1;
+    while (x < x1 && (e0 | e1 | e2) < 0) { e0 += s0; e1 += s1; e2 += s2; x++; }
+    *xa = x;
+    while (x < x1 && (e0 | e1 | e2) >= 0) { e0 += s0; e1 += s1; e2 += s2; x++; }
     sw->e[0] += te->step_y[0];
     sw->e[1] += te->step_y[1];
     sw->e[2] += te->step_y[2];
