@@ -388,6 +388,83 @@ TEST(fill_rule_on_pixel_centres)
     }
 }
 
+/* The fill rule restated pixel by pixel, independently of the rasterizer's
+ * row walks: pixel (x, y) is covered when its centre (16 x + 8, 16 y + 8)
+ * is strictly inside every edge, or on an edge that is a top or a left one
+ * (y down: an edge going up, or a horizontal one going right, once the
+ * triangle is ordered with positive area). */
+static int brute_covers(const int32_t *t, int64_t px, int64_t py)
+{
+    int64_t x[3], y[3], area;
+    int i;
+    for (i = 0; i < 3; i++) { x[i] = t[2 * i]; y[i] = t[2 * i + 1]; }
+    area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+    if (area == 0) return 0;
+    if (area < 0) {
+        int64_t s = x[1]; x[1] = x[2]; x[2] = s;
+        s = y[1]; y[1] = y[2]; y[2] = s;
+    }
+    for (i = 0; i < 3; i++) {
+        int64_t ax = x[(i + 1) % 3], ay = y[(i + 1) % 3], dx = x[(i + 2) % 3] - ax, dy = y[(i + 2) % 3] - ay;
+        int64_t e = dx * (py - ay) - dy * (px - ax);
+        if (e < 0 || (e == 0 && !(dy < 0 || (dy == 0 && dx > 0)))) return 0;
+    }
+    return 1;
+}
+
+/* One random vertex coordinate (28.4) of the kinds the row walks treat
+ * apart: near the screen, on pixel centres (fill-rule ties), far off it
+ * (up to the documented +-2^19). */
+static int32_t brute_coord(int side16, int32_t near, int kind)
+{
+    switch (kind) {
+    case 0: return (int32_t)(rng() % (uint32_t)(side16 + 128)) - 64;            /* anywhere near */
+    case 1: return 16 * (int32_t)(rng() % (uint32_t)(side16 / 16 + 4)) - 24;    /* a pixel centre */
+    case 2: return near + (int32_t)(rng() % 41) - 20;                           /* a small or thin one */
+    case 3: return near + (int32_t)(rng() % 2001) - 1000;                       /* tens of pixels */
+    default: return (int32_t)(rng() % (1u << 20)) - (1 << 19);                  /* huge */
+    }
+}
+
+/* Random triangles, one at a time (tgi_raster_coverage_count), against
+ * brute_covers at every pixel: the same pixels exactly, whatever the
+ * triangle's size, shape, winding or row range. */
+TEST(fill_rule_matches_brute_force)
+{
+    enum { W = 45, H = 37, TRIS = 12000 };
+    static uint16_t count[W * H];
+    int t, bad = 0;
+    for (t = 0; t < TRIS && bad < 5; t++) {
+        int32_t tri[6];
+        int k, x, y, y0 = 0, y1 = H, kind = (int)(rng() % 5);
+        for (k = 0; k < 3; k++) {
+            int kk = k == 0 || kind >= 4 ? kind : (int)(rng() % 5);
+            tri[2 * k] = brute_coord(W * 16, k ? tri[0] : W * 8, kk == 2 || kk == 3 ? kk : kind == 4 ? 4 : kk);
+            tri[2 * k + 1] = brute_coord(H * 16, k ? tri[1] : H * 8, kk == 2 || kk == 3 ? kk : kind == 4 ? 4 : kk);
+        }
+        switch (rng() % 8) {   /* degenerate and axis-aligned ones */
+        case 0: tri[4] = tri[0]; tri[5] = tri[1]; break;                          /* two vertices coincide */
+        case 1: tri[4] = 2 * tri[2] - tri[0]; tri[5] = 2 * tri[3] - tri[1]; break; /* collinear */
+        case 2: tri[3] = tri[1]; break;                                           /* a horizontal edge */
+        case 3: tri[2] = tri[0]; break;                                           /* a vertical edge */
+        case 4: tri[4] = tri[2] + (tri[2] - tri[0]) / 7 + 1; tri[5] = tri[3] + (tri[3] - tri[1]) / 7; break; /* a sliver */
+        default: break;
+        }
+        for (k = 0; k < 6; k++) tri[k] = tri[k] < -(1 << 19) ? -(1 << 19) : tri[k] > (1 << 19) ? 1 << 19 : tri[k];
+        if (rng() % 4 == 0) { y0 = (int)(rng() % H); y1 = y0 + (int)(rng() % (H - y0 + 1)); }
+        memset(count, 0, sizeof count);
+        tgi_raster_coverage_count(count, W, H, tri, 1, y0, y1);
+        for (y = 0; y < H; y++)
+            for (x = 0; x < W; x++) {
+                int want = y >= y0 && y < y1 && brute_covers(tri, 16 * x + 8, 16 * y + 8);
+                if (count[y * W + x] != want && bad++ < 5)
+                    CHECK(0, "triangle %d (%d %d, %d %d, %d %d)/16, rows [%d, %d): pixel (%d, %d) covered %d, want %d",
+                          t, tri[0], tri[1], tri[2], tri[3], tri[4], tri[5], y0, y1, x, y, count[y * W + x], want);
+            }
+    }
+    CHECK(bad == 0, "%d pixels differ", bad);
+}
+
 /* ---------------------------------------------------------------------- */
 /* the G-buffer path                                                       */
 
@@ -971,6 +1048,7 @@ int main(void)
     RUN(fill_rule_grid_tiling);
     RUN(fill_rule_random_fans);
     RUN(fill_rule_on_pixel_centres);
+    RUN(fill_rule_matches_brute_force);
     RUN(gbuffer_tiling_ids);
     RUN(front_back_twosided);
     RUN(near_plane_clipping);

@@ -74,6 +74,17 @@ static inline tg_real tgi_depth_unpack(uint32_t bits)
     b.u = bits;
     return b.f;
 }
+static inline float tgi_abs_bits(float v)
+{
+#if defined(__GNUC__)
+    return __builtin_fabsf(v);        /* an and in the float registers, no libm */
+#else
+    tgi_f32_bits b;
+    b.f = v;
+    b.u &= 0x7FFFFFFFu;
+    return b.f;
+#endif
+}
 #endif
 
 /* ---- octahedral unit vectors ---- */
@@ -119,7 +130,9 @@ static inline uint32_t tgi_oct_pack(tg_vec3 m, int bits)
 #if TG_FIXED
     return tgi_oct_pack64(m.x, m.y, m.z, bits);
 #else
-    float ax = m.x < 0 ? -m.x : m.x, ay = m.y < 0 ? -m.y : m.y, l1 = ax + ay + (m.z < 0 ? -m.z : m.z);
+    /* |.| by the sign bit (three ands): unlike v < 0 ? -v : v it makes -0
+     * into +0, which changes no bit below (l1, 1 - ax r) */
+    float ax = tgi_abs_bits(m.x), ay = tgi_abs_bits(m.y), l1 = ax + ay + tgi_abs_bits(m.z);
     float x, y, r;
     if (!(l1 > 0.0f) || l1 > TG_REAL_MAX) return tgi_oct_pack(tg_v3(0, 0, TG_ONE), bits);
     r = 1.0f / l1;
