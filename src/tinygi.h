@@ -132,33 +132,32 @@ static inline tg_real tg_neg(tg_real a) { return -a; }
  * its own. */
 int64_t tgi_shr_round_q16(int64_t p, int s);
 int32_t tgi_div_q16(int32_t a, int32_t b);
-static inline int64_t tgi_shr_round(int64_t p, int s)
+static inline int64_t tgi_shr_round_inline(int64_t p, int s)
 {
-#if TG_OUTLINE_HELPERS
-    return tgi_shr_round_q16(p, s);
-#else
     int64_t half = (int64_t)1 << (s - 1);
     return p >= 0 ? (p + half) >> s : -((-p + half) >> s);
-#endif
 }
+#if TG_OUTLINE_HELPERS
+#define TGI_Q16_HELPER(name) tgi_##name##_q16     /* the library's one copy */
+#else
+#define TGI_Q16_HELPER(name) tgi_##name##_inline  /* inline, in each caller */
+#endif
+static inline int64_t tgi_shr_round(int64_t p, int s) { return TGI_Q16_HELPER(shr_round)(p, s); }
 static inline tg_real tg_mul(tg_real a, tg_real b)
 {
     return tgi_sat64(tgi_shr_round((int64_t)a * b, TG_FRAC_BITS));
 }
 /* Division saturates; x/0 gives +-TG_REAL_MAX by the sign of x, 0/0 gives 0. */
-static inline tg_real tg_div(tg_real a, tg_real b)
+static inline tg_real tgi_div_inline(tg_real a, tg_real b)
 {
-#if TG_OUTLINE_HELPERS
-    return tgi_div_q16(a, b);
-#else
     int64_t n;
     if (b == 0) return a > 0 ? TG_REAL_MAX : a < 0 ? TG_REAL_MIN : 0;
     n = (int64_t)a * 65536;
     if ((n >= 0) == (b > 0)) n += (b > 0 ? b : -(int64_t)b) / 2;
     else n -= (b > 0 ? b : -(int64_t)b) / 2;
     return tgi_sat64(n / b);
-#endif
 }
+static inline tg_real tg_div(tg_real a, tg_real b) { return TGI_Q16_HELPER(div)(a, b); }
 static inline tg_real tg_from_int(int32_t i) { return tgi_sat64((int64_t)i * 65536); }
 /* Floor to integer. */
 static inline int32_t tg_to_int(tg_real a) { return (int32_t)(a >= 0 ? a >> 16 : -((-(int64_t)a + 65535) >> 16)); }

@@ -100,21 +100,8 @@ static const uint32_t rsqrt_seed[48] = {
 #if TG_FIXED
 /* tinygi.h's tgi_shr_round and tg_div, once, for builds that compile for
  * size (TG_OUTLINE_HELPERS); the same statements. */
-int64_t tgi_shr_round_q16(int64_t p, int s)
-{
-    int64_t half = (int64_t)1 << (s - 1);
-    return p >= 0 ? (p + half) >> s : -((-p + half) >> s);
-}
-
-int32_t tgi_div_q16(int32_t a, int32_t b)
-{
-    int64_t n;
-    if (b == 0) return a > 0 ? TG_REAL_MAX : a < 0 ? TG_REAL_MIN : 0;
-    n = (int64_t)a * 65536;
-    if ((n >= 0) == (b > 0)) n += (b > 0 ? b : -(int64_t)b) / 2;
-    else n -= (b > 0 ? b : -(int64_t)b) / 2;
-    return tgi_sat64(n / b);
-}
+int64_t tgi_shr_round_q16(int64_t p, int s) { return tgi_shr_round_inline(p, s); }
+int32_t tgi_div_q16(int32_t a, int32_t b) { return tgi_div_inline(a, b); }
 #endif
 
 /* v > 0 as M 2^e: returns M in Q32 (M in [1/4, 1)) and an even e. */
