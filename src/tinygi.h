@@ -95,6 +95,14 @@ extern "C" {
 #ifndef TG_FIXED
 #define TG_FIXED 0
 #endif
+/* TG_OUTLINE_HELPERS: see "FEATURE SWITCHES" below; on at -Os. */
+#ifndef TG_OUTLINE_HELPERS
+#ifdef __OPTIMIZE_SIZE__
+#define TG_OUTLINE_HELPERS 1
+#else
+#define TG_OUTLINE_HELPERS 0
+#endif
+#endif
 
 #if TG_FIXED
 
@@ -117,18 +125,30 @@ static inline tg_real tgi_sat64(int64_t v)
 static inline tg_real tg_add(tg_real a, tg_real b) { return tgi_sat64((int64_t)a + b); }
 static inline tg_real tg_sub(tg_real a, tg_real b) { return tgi_sat64((int64_t)a - b); }
 static inline tg_real tg_neg(tg_real a) { return -a; }
-/* Round-half-away-from-zero shift; avoids right-shifting negative values. */
-static inline int64_t tgi_shr_round(int64_t p, int s)
+/* Round-half-away-from-zero shift; avoids right-shifting negative values.
+ * tgi_shr_round_q16 and tgi_div_q16 (src/core/real.c, always in the Q16.16
+ * library) are the same code out of line: compiling for size
+ * (TG_OUTLINE_HELPERS) every file calls that one copy instead of keeping
+ * its own. */
+int64_t tgi_shr_round_q16(int64_t p, int s);
+int32_t tgi_div_q16(int32_t a, int32_t b);
+static inline int64_t tgi_shr_round_inline(int64_t p, int s)
 {
     int64_t half = (int64_t)1 << (s - 1);
     return p >= 0 ? (p + half) >> s : -((-p + half) >> s);
 }
+#if TG_OUTLINE_HELPERS
+#define TGI_Q16_HELPER(name) tgi_##name##_q16     /* the library's one copy */
+#else
+#define TGI_Q16_HELPER(name) tgi_##name##_inline  /* inline, in each caller */
+#endif
+static inline int64_t tgi_shr_round(int64_t p, int s) { return TGI_Q16_HELPER(shr_round)(p, s); }
 static inline tg_real tg_mul(tg_real a, tg_real b)
 {
     return tgi_sat64(tgi_shr_round((int64_t)a * b, TG_FRAC_BITS));
 }
 /* Division saturates; x/0 gives +-TG_REAL_MAX by the sign of x, 0/0 gives 0. */
-static inline tg_real tg_div(tg_real a, tg_real b)
+static inline tg_real tgi_div_inline(tg_real a, tg_real b)
 {
     int64_t n;
     if (b == 0) return a > 0 ? TG_REAL_MAX : a < 0 ? TG_REAL_MIN : 0;
@@ -137,6 +157,7 @@ static inline tg_real tg_div(tg_real a, tg_real b)
     else n -= (b > 0 ? b : -(int64_t)b) / 2;
     return tgi_sat64(n / b);
 }
+static inline tg_real tg_div(tg_real a, tg_real b) { return TGI_Q16_HELPER(div)(a, b); }
 static inline tg_real tg_from_int(int32_t i) { return tgi_sat64((int64_t)i * 65536); }
 /* Floor to integer. */
 static inline int32_t tg_to_int(tg_real a) { return (int32_t)(a >= 0 ? a >> 16 : -((-(int64_t)a + 65535) >> 16)); }
@@ -441,16 +462,12 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
  * (src/raster/pack.h: octahedral normals, RGB9E5) one out-of-line copy
  * instead of one per file, the rasterizer's per-pixel weights loops, and
  * the HBIL horizon march (src/gi/hbil.c) one out-of-line copy for both
- * major axes instead of one inlined copy per axis and caller; the default
+ * major axes instead of one inlined copy per axis and caller, and Q16.16's
+ * rounding shift and division (tgi_shr_round, tg_div) calls to one copy in
+ * the library instead of a static copy in each file; the default
  * is on when compiling for size (-Os, __OPTIMIZE_SIZE__), where the
  * compiler keeps a static copy in each file; the same bits either way. */
-#ifndef TG_OUTLINE_HELPERS
-#ifdef __OPTIMIZE_SIZE__
-#define TG_OUTLINE_HELPERS 1
-#else
-#define TG_OUTLINE_HELPERS 0
-#endif
-#endif
+/* (its default is set before the number type, which uses it) */
 /* ======================================================================= */
 
 /* ==== LIMITS AND DEFAULTS ================================================

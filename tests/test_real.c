@@ -160,6 +160,10 @@ TEST(sqrt_whole_domain)
             if (i > 0 && !((2 * r - 1) * (2 * r - 1) <= 4 * v && 4 * v <= (2 * r + 1) * (2 * r + 1))) {
                 if (bad++ < 5) fprintf(stderr, "sqrt raw %lld -> %llu\n", (long long)i, (unsigned long long)r);
             }
+            /* the size build's tg_sqrt (TG_OUTLINE_HELPERS, real.c) gives the same */
+            if (tgi_isqrt_round64(v) != r && bad++ < 5)
+                fprintf(stderr, "size-build sqrt raw %lld -> %llu, not %llu\n", (long long)i,
+                        (unsigned long long)tgi_isqrt_round64(v), (unsigned long long)r);
             measure(&s, (tg_real)r, sqrt(check_exact((tg_real)i)), check_exact((tg_real)i), 0, 0);
         }
         /* and the top end exactly */
@@ -184,6 +188,36 @@ static int isqrt_ok(uint64_t v, uint32_t r)
     if ((uint64_t)r * r > v) return 0;
     return r1 == ((uint64_t)1 << 32) || r1 * r1 > v;
 }
+
+#if TG_FIXED
+/* The size build's out-of-line rounding shift and division (tinygi.h,
+ * TG_OUTLINE_HELPERS) against the inline ones every other build uses:
+ * edges (0, +-1, the extremes, division by 0) and random operands. */
+TEST(outline_div_and_shift_match_inline)
+{
+    static const int32_t edge[] = { 0, 1, -1, 2, -2, 32767, 32768, -32768, 65535, 65536, -65536,
+                                    INT32_MAX, -INT32_MAX, INT32_MIN, INT32_MAX - 1, 123456789 };
+    uint64_t v = 0x9e3779b97f4a7c15ull;
+    long bad = 0;
+    int i, j, n = (int)(sizeof edge / sizeof edge[0]);
+    for (i = 0; i < n; i++)
+        for (j = 0; j < n; j++)
+            if (tgi_div_q16(edge[i], edge[j]) != tg_div(edge[i], edge[j])) bad++;
+    for (i = 0; i < 4000000; i++) {
+        int32_t a, b;
+        int64_t p;
+        int sh;
+        v ^= v << 13; v ^= v >> 7; v ^= v << 17;
+        a = (int32_t)(uint32_t)v >> (int)(v >> 59);        /* all magnitudes */
+        b = (int32_t)(uint32_t)(v >> 32) >> (int)((v >> 40) & 31);
+        p = (int64_t)v >> (int)((v >> 33) & 31);
+        sh = 1 + (int)((v >> 20) % 62);
+        if (tgi_div_q16(a, b) != tg_div(a, b)) bad++;
+        if (tgi_shr_round_q16(p, sh) != tgi_shr_round(p, sh)) bad++;
+    }
+    CHECK(bad == 0, "%ld out-of-line results differ from the inline ones", bad);
+}
+#endif
 
 TEST(isqrt64_exact)
 {
@@ -789,6 +823,9 @@ TEST(text_put_real_as_float)
 int main(void)
 {
     RUN(isqrt64_exact);
+#if TG_FIXED
+    RUN(outline_div_and_shift_match_inline);
+#endif
     RUN(text_put_real_as_float);
     RUN(integer_helpers);
     RUN(sqrt_whole_domain);

@@ -97,6 +97,13 @@ static const uint32_t rsqrt_seed[48] = {
     1142787899, 1132807028, 1123083182, 1113605518, 1104363818, 1095348453, 1086550331, 1077960865
 };
 
+#if TG_FIXED
+/* tinygi.h's tgi_shr_round and tg_div, once, for builds that compile for
+ * size (TG_OUTLINE_HELPERS); the same statements. */
+int64_t tgi_shr_round_q16(int64_t p, int s) { return tgi_shr_round_inline(p, s); }
+int32_t tgi_div_q16(int32_t a, int32_t b) { return tgi_div_inline(a, b); }
+#endif
+
 /* v > 0 as M 2^e: returns M in Q32 (M in [1/4, 1)) and an even e. */
 static uint64_t mantissa_even(uint64_t v, int *e)
 {
@@ -189,6 +196,16 @@ static wreal w_poly(wreal z, const wreal *c, int n)
  * within a few units of 2^-30; then R = sqrt(v) 2^..., and the integer
  * tests R^2 - R < v <= R^2 + R (R the nearest integer to sqrt(v)) make it
  * exact. */
+#if TG_OUTLINE_HELPERS
+/* Compiling for size (tinygi.h): the same rounded-to-nearest sqrt(v) from
+ * the integer square root the vector lengths already link, without the
+ * fast path's own code.  floor r, then r + 1 when v - r^2 > r, that is
+ * when sqrt(v) >= r + 1/2: the same R as the tests below. */
+tg_real tg_sqrt(tg_real x)
+{
+    return x <= 0 ? 0 : (tg_real)tgi_isqrt_round64((uint64_t)x << 16);
+}
+#else
 tg_real tg_sqrt(tg_real x)
 {
     uint64_t v, x30, y, s, a, r, c;
@@ -209,6 +226,7 @@ tg_real tg_sqrt(tg_real x)
     while (r > 0 && r * r - r >= v) r--;
     return (tg_real)r;
 }
+#endif
 
 /* 1/sqrt(x): x_raw = M 2^e, raw = 2^24 / sqrt(x_raw) = 2^(24 - e/2) / sqrt(M). */
 tg_real tg_rsqrt(tg_real x)

@@ -56,6 +56,7 @@ static void camera_view(const tg_frame *f, tgi_view *v)
 /* A jump the history cannot follow: the eye moved further than
  * TG_CUT_DISTANCE times the scene's size, or the view turned by more than
  * the vertical fov. */
+#if !(TG_NO_COLOR && TG_NO_TEMPORAL)
 static int camera_cut(const tg_scene *s, const tgi_view *before, const tgi_view *now)
 {
     tg_real size = tgi_v3_length(tgi_v3_sub(s->bounds_max, s->bounds_min));
@@ -63,6 +64,7 @@ static int camera_cut(const tg_scene *s, const tgi_view *before, const tgi_view 
     if (moved > tg_mul(TG_R(TG_CUT_DISTANCE), size)) return 1;
     return tgi_v3_dot(before->forward, now->forward) < tg_cos(now->fov_y);
 }
+#endif
 
 /* The frame renders as a first frame: no reprojection, the temporal filter
  * restarts, the full bounce count (tg_frame_render counted them before this
@@ -130,7 +132,12 @@ void tgi_pass_animate(tg_frame *f)
     f->prev_time = f->time;
     f->time = (f->drive.set & TGI_SET_TIME) ? f->drive.time : tgi_anim_time(s, f->index, f->request.frames);
     camera_view(f, &f->view);
+#if !(TG_NO_COLOR && TG_NO_TEMPORAL)
+    /* (without colour and temporal accumulation, tinygi.h "FEATURE SWITCHES",
+     * nothing carries over between frames, so a jump changes nothing a frame
+     * shows: the test is left out with them) */
     if (!first && camera_cut(s, &f->prev_view, &f->view)) first = 1;
+#endif
     if (first) drop_history(f);
     f->drive.cut = 0;
     f->drive.reprojected = !first && keeps_history(f);
