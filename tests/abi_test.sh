@@ -5,7 +5,8 @@
 # path) as C99 and as C++, a C++ program links against both libraries
 # (extern "C") and renders, and a program built with one number type's header
 # fails to LINK against the other type's library (the symbols carry _f32 or
-# _q16) instead of reading Q16.16 numbers as floats.
+# _q16) instead of reading Q16.16 numbers as floats.  A program compiled at
+# -Os (the header's TG_OUTLINE_HELPERS) links against the library as built.
 set -u
 cd "$(dirname "$0")/.."
 . tests/shcheck.sh
@@ -44,7 +45,8 @@ int main(void)
     if (!mem || tg_frame_create(&plan, mem, plan.total_bytes, &frame, &err) != TG_OK) return 5;
     if (tg_frame_render(frame, 0, &err) != TG_OK) return 6;
     tg_frame_aov_row(frame, TG_AOV_AO, 3, row);
-    printf("ao %.3f %s\n", (double)tg_to_float(row[4]), TG_NUMBER_NAME);
+    /* through tg_div and tg_mul: at -Os out-of-line calls into the library */
+    printf("ao %.3f %s\n", (double)tg_to_float(tg_mul(tg_div(row[4], tg_from_int(3)), tg_from_int(3))), TG_NUMBER_NAME);
     free(mem);
     return tg_to_float(row[4]) > 0.5f && tg_to_float(row[4]) <= 1.0f ? 0 : 7;
 }
@@ -65,6 +67,12 @@ for num in float fixed; do
     if $CXX -std=c++11 -Wall -Wextra -Werror $def -I"$tmp/inc" "$tmp/prog.cpp" "$lib" -o "$tmp/progxx-$num" $ldflags 2>"$tmp/err" \
         && "$tmp/progxx-$num" >"$tmp/out"; then ok "$num: C++ program links (extern \"C\") and renders ($(cat "$tmp/out"))"
     else fail "$num: C++ program links (extern \"C\") and renders" "$(head -c 300 "$tmp/err")"; fi
+    # compiled for size, the header calls the library's one copy of Q16.16's
+    # shift and division (TG_OUTLINE_HELPERS): a library built at any level has it
+    if $CC -std=c99 -Os -Wall -Werror $def -I"$tmp/inc" "$tmp/prog.c" "$lib" -o "$tmp/prog-os-$num" $ldflags 2>"$tmp/err" \
+        && "$tmp/prog-os-$num" >"$tmp/out-os" && cmp -s "$tmp/out" "$tmp/out-os"; then
+        ok "$num: the program compiled at -Os links and prints the same ($(cat "$tmp/out-os"))"
+    else fail "$num: the program compiled at -Os links and prints the same" "$(head -c 300 "$tmp/err")"; fi
     # the mismatch: this type's header, the other type's library
     if $CC -std=c99 $def -I"$tmp/inc" "$tmp/prog.c" "$other" -o "$tmp/mix" $ldflags 2>"$tmp/err"; then
         fail "$num header with $(basename "$other"): the link must fail"
