@@ -210,8 +210,8 @@ TEST(outline_div_and_shift_match_inline)
         v ^= v << 13; v ^= v >> 7; v ^= v << 17;
         a = (int32_t)(uint32_t)v >> (int)(v >> 59);        /* all magnitudes */
         b = (int32_t)(uint32_t)(v >> 32) >> (int)((v >> 40) & 31);
-        p = (int64_t)v >> (int)((v >> 33) & 31);
-        sh = 1 + (int)((v >> 20) % 62);
+        p = (int64_t)v >> (2 + (int)((v >> 33) & 31));     /* |p| < 2^61, as every caller's is */
+        sh = 1 + (int)((v >> 20) % 61);                    /* p + 2^(sh-1) stays below 2^62 */
         if (tgi_div_q16(a, b) != tg_div(a, b)) bad++;
         if (tgi_shr_round_q16(p, sh) != tgi_shr_round(p, sh)) bad++;
     }
