@@ -152,16 +152,20 @@ typedef struct hbil_slice {
     tg_real nx, ny;         /* n' */
 } hbil_slice;
 
-static tg_real full_x(const hbil_ctx *c, int x)
+/* Full-res screen position (pixels from the centre, y up) of pixel x or
+ * row y of the view g (the kernel's image or the fine one). */
+static tg_real view_x(const hbil_ctx *c, const tgi_gview *g, int x)
 {
-    int X2 = 2 * (x * c->step + c->g->offset_x) + 1 - c->full_w;
+    int X2 = 2 * (x * g->step + g->offset_x) + 1 - c->full_w;
     return tg_ratio(X2, 2);
 }
-static tg_real full_y(const hbil_ctx *c, int y)
+static tg_real view_y(const hbil_ctx *c, const tgi_gview *g, int y)
 {
-    int Y2 = c->full_h - 2 * (y * c->step + c->g->offset_y) - 1;
+    int Y2 = c->full_h - 2 * (y * g->step + g->offset_y) - 1;
     return tg_ratio(Y2, 2);
 }
+static tg_real full_x(const hbil_ctx *c, int x) { return view_x(c, c->g, x); }
+static tg_real full_y(const hbil_ctx *c, int y) { return view_y(c, c->g, y); }
 
 /* acos for the horizon angles: sqrt(1 - a) times a degree-7 polynomial in
  * a = |c| (Hastings' fit, |error| <= 2e-8 on [0, 1]; acos(-a) = pi -
@@ -269,25 +273,26 @@ static void slice_screen_dir(const hbil_ctx *c, const hbil_pixel *px, tg_vec3 d,
  * nearest pixel's tangent plane is extended to the ray through the
  * continuous position; 0 (skip the sample) when that ray misses the plane
  * or lands far from the nearest pixel. */
-HBIL_COLD static tg_real sample_depth_edge(const hbil_ctx *c, int major_x, int a, int b0, tg_real f, int sa, int sn)
+HBIL_COLD static tg_real sample_depth_edge(const hbil_ctx *c, const tgi_gview *g, int major_x, int a, int b0,
+                                           tg_real f, int sa, int sn)
 {
     const tgi_view *v = c->v;
-    tg_real zn = tgi_gv_depth(c->g, sn), gn, gc, X, Y, Xn, Yn, ratio;
+    tg_real zn = tgi_gv_depth(g, sn), gn, gc, X, Y, Xn, Yn, ratio;
     int bn;
     tg_vec3 nw, n;
     /* tangent plane of the nearest pixel: z = zn (n.ray_n) / (n.ray_c), ray = (X/ppu, Y/ppu, 1) */
-    nw = tgi_gv_normal(c->g, sn);
+    nw = tgi_gv_normal(g, sn);
     n = tg_v3(tgi_v3_dot(nw, v->right), tgi_v3_dot(nw, v->up), tgi_v3_dot(nw, v->forward));
     bn = sn == sa ? b0 : b0 + 1;
     if (major_x) {
-        X = full_x(c, a);
-        Yn = full_y(c, bn);
-        Y = tg_sub(full_y(c, b0), tg_mul(f, tg_from_int(c->step)));
+        X = view_x(c, g, a);
+        Yn = view_y(c, g, bn);
+        Y = tg_sub(view_y(c, g, b0), tg_mul(f, tg_from_int(g->step)));
         Xn = X;
     } else {
-        Y = full_y(c, a);
-        Xn = full_x(c, bn);
-        X = tg_add(full_x(c, b0), tg_mul(f, tg_from_int(c->step)));
+        Y = view_y(c, g, a);
+        Xn = view_x(c, g, bn);
+        X = tg_add(view_x(c, g, b0), tg_mul(f, tg_from_int(g->step)));
         Yn = Y;
     }
     gn = tg_add(tg_add(tg_mul(n.x, tg_mul(Xn, c->inv_ppu)), tg_mul(n.y, tg_mul(Yn, c->inv_ppu))), n.z);
@@ -442,7 +447,7 @@ static inline void march_samples(
             if (bn < 0 || bn >= bmax) break;                    /* the slice leaves the image */
             sn = bn == b0 ? sa : sa + smin;
             if (tgi_gv_is_sky(&g, sn) || tgi_gv_depth(&g, sn) <= 0) continue;  /* sky never occludes */
-            z1 = sample_depth_edge(c, major_x, a, b0, f, sa, sn);
+            z1 = sample_depth_edge(c, &g, major_x, a, b0, f, sa, sn);
             if (z1 <= 0) continue;
         }
         /* view-space offset scaled to image pixels at depth z (see top),
@@ -551,12 +556,14 @@ static void fine_sample(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_
         && (tgi_wide)tg_abs(small_sub(za, zb)) < tgi_wide_mul(HBIL_LERP_MAX_REL, tg_min(za, zb))) {
         tg_real zd = (tg_real)((tgi_wide)zb - za), fzd = small_mul(f, zd);   /* as in march_samples */
         z1 = tg_add(za, tg_mul(fzd, tg_div(za, small_sub(zb, fzd))));
-    } else {
-        if (f >= TG_R(0.5f) && sj != si) { si = sj; za = zb; }
-        else minor = small_from_int(b0);
-        if (f >= TG_R(0.5f) && si == sj) minor = small_from_int(b0 + 1);
-        if (tgi_gv_is_sky(fg, si) || za <= 0) return;              /* sky never occludes */
-        z1 = za;
+    } else {                                                        /* as in march_samples */
+        const int nb = f >= TG_R(0.5f);
+        int sn = nb ? sj : si;
+        if (nb && sj == si) return;                                 /* outside the image */
+        if (tgi_gv_is_sky(fg, sn) || tgi_gv_depth(fg, sn) <= 0) return;   /* sky never occludes */
+        z1 = sample_depth_edge(c, fg, major_x, fa, fb, f, si, sn);
+        if (z1 <= 0) return;
+        si = sn;
     }
     q = tg_mul(small_sub(z1, mr->z), mr->inv_z);
     sx = major_x ? tg_ratio(t * dir, c->fine_ratio) : tg_mul(minor, c->inv_fine_ratio);
