@@ -538,8 +538,15 @@ HBIL_NOINLINE static void march_between(const hbil_ctx *c, const hbil_slice *sl,
  * the minor axis between two close surface pixels as in march_samples,
  * else the nearest pixel.  A fine pixel is 1 / fine_ratio of the march's
  * unit (the sub-image's pixel); (fa0, fb0) is the pixel in the fine image. */
-static void fine_sample(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_side *sd,
-                        const hbil_march *mr, int major_x, int fa0, int fb0, int t, int dir)
+typedef struct hbil_fine_best {
+    tg_real h, hs;          /* the highest horizon the fine samples found, h|h| */
+    tgi_wide dx, dy, dz;    /* its offset (march units) */
+    tg_real len;            /* |d| */
+    int si;                 /* its pixel in the fine image; -1: none above the side's */
+} hbil_fine_best;
+
+static void fine_sample(const hbil_ctx *c, hbil_fine_best *best, const hbil_march *mr, int major_x,
+                        int fa0, int fb0, int t, int dir)
 {
     const tgi_gview *fg = c->fine;
     const int fa = fa0 + t * dir, bmax = major_x ? fg->height : fg->width;
@@ -576,15 +583,15 @@ static void fine_sample(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_
     len2 = tgi_wide_dot(dx, dy, dz, dx, dy, dz);
     if (len2 > mr->r2 || len2 <= 0) return;
     dot = tgi_wide_dot(dx, dy, dz, mr->wox, mr->woy, mr->woz);
-    if (tgi_wide_mul(dot, dot < 0 ? -dot : dot) <= tgi_wide_mul(tg_add(sd->hs, HBIL_TIE), len2)) return;
+    if (tgi_wide_mul(dot, dot < 0 ? -dot : dot) <= tgi_wide_mul(tg_add(best->hs, HBIL_TIE), len2)) return;
     len = tg_sqrt((tg_real)len2);
     cn = tg_clamp(tg_div((tg_real)dot, len), TG_R(-1.0f), TG_ONE);   /* HBIL sec. 1.3 */
-    if (cn <= sd->h) return;
-    sd->h = cn;
-    sd->hs = tg_mul(cn, tg_abs(cn));
-    if (NEAR_FIELD(c))
-        gather_rise(c, sl, sd, side, cn, tgi_v3_scale(tg_v3((tg_real)dx, (tg_real)dy, (tg_real)dz), tg_div(TG_ONE, len)),
-                    fg, c->fine_rad, si);
+    if (cn <= best->h) return;
+    best->h = cn;
+    best->hs = tg_mul(cn, tg_abs(cn));
+    best->dx = dx; best->dy = dy; best->dz = dz;
+    best->len = len;
+    best->si = si;
 }
 
 /* The interleaved kernel marches a 4x4 sub-image, whose pixels are 4
@@ -615,12 +622,25 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
     const int room = dir > 0 ? (major_x ? fg->width : fg->height) - 1 - fa0 : fa0;       /* fine pixels to the edge */
     const int sub_room = dir > 0 ? (major_x ? c->g->width : c->g->height) - 1 - a0 : a0;
     const tg_real ext = tg_mul(mr->extent, tg_from_int(r));                            /* fine pixels */
+    hbil_fine_best best;
     int t;
+    best.h = sd->h;
+    best.hs = sd->hs;
+    best.si = -1;
     if (sd->peak_a >= 0)
         for (t = r * (sd->peak_a - a0) * dir + 1; t % r != 0 && t <= room && tg_from_int(t) <= ext; t++)
-            fine_sample(c, sl, side, sd, mr, major_x, fa0, fb0, t, dir);
+            fine_sample(c, &best, mr, major_x, fa0, fb0, t, dir);
     if (room > r * sub_room && tg_from_int(room) <= ext)
-        fine_sample(c, sl, side, sd, mr, major_x, fa0, fb0, room, dir);
+        fine_sample(c, &best, mr, major_x, fa0, fb0, room, dir);
+    if (best.si < 0) return;
+    /* one raise to the highest: the band it closes lies within a few
+     * pixels of the sub-image's samples, gathered from that pixel */
+    sd->h = best.h;
+    sd->hs = best.hs;
+    if (NEAR_FIELD(c))
+        gather_rise(c, sl, sd, side, best.h,
+                    tgi_v3_scale(tg_v3((tg_real)best.dx, (tg_real)best.dy, (tg_real)best.dz), tg_div(TG_ONE, best.len)),
+                    fg, c->fine_rad, best.si);
 }
 
 /* March one side (+1 along D, -1 against) and raise its horizon.  Indices
