@@ -396,6 +396,44 @@ typedef struct hbil_march {
     int back;                      /* o dir: sample k stands k da - back from the pixel */
 } hbil_march;
 
+/* The sample at screen offset (sx, sy) from the pixel (image pixels, y
+ * up) and depth z1 (> 0), for the side whose horizon is h with h|h| +
+ * HBIL_TIE = hs_tie: its cosine from w_o when it lies within the 3D radius
+ * and above the horizon, else HBIL_NOT_ABOVE; d, len: its view-space offset
+ * d = s + q (P0 + s), q = (z1 - z) / z, in tgi_wide (see above), and
+ * |d|.  One copy for the march and the fine samples when compiling for
+ * size (TG_OUTLINE_HELPERS), inlined into each otherwise. */
+#define HBIL_NOT_ABOVE TG_R(-2.0f)
+#if TG_OUTLINE_HELPERS
+#define HBIL_SAMPLE_INLINE HBIL_NOINLINE
+#elif defined(__GNUC__)
+#define HBIL_SAMPLE_INLINE inline __attribute__((always_inline))
+#else
+#define HBIL_SAMPLE_INLINE inline
+#endif
+static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, tg_real sx, tg_real sy, tg_real h, tg_real hs_tie,
+                          tgi_wide d[3], tg_real *len)
+{
+    const tg_real q = tg_mul(small_sub(z1, mr->z), mr->inv_z);   /* z1, z in (0, TG_REAL_MAX] */
+    tgi_wide dx, dy, dz, len2, dot;
+    tg_real cn;
+    dx = (tgi_wide)sx + tgi_wide_mul((tgi_wide)mr->p0x + sx, q);
+    dy = (tgi_wide)sy + tgi_wide_mul((tgi_wide)mr->p0y + sy, q);
+    dz = tgi_wide_mul(mr->p0z, q);
+    if (wide_far(dx) || wide_far(dy) || wide_far(dz)) return HBIL_NOT_ABOVE;   /* beyond the 3D radius */
+    len2 = tgi_wide_dot(dx, dy, dz, dx, dy, dz);
+    if (len2 > mr->r2) return HBIL_NOT_ABOVE;                                 /* beyond the 3D radius */
+    dot = tgi_wide_dot(dx, dy, dz, mr->wox, mr->woy, mr->woz);
+    /* cos(theta) > horizon, without a division: dot|dot| > h|h| |d|^2 */
+    if (tgi_wide_mul(dot, dot < 0 ? -dot : dot) <= tgi_wide_mul(hs_tie, len2)) return HBIL_NOT_ABOVE;
+    *len = tg_sqrt((tg_real)len2);                               /* |d| <= 150: d, dot, len2 fit tg_real */
+    cn = tg_clamp(tg_div((tg_real)dot, *len), TG_R(-1.0f), TG_ONE); /* HBIL sec. 1.3 */
+    if (cn <= h) return HBIL_NOT_ABOVE;
+    d[0] = dx; d[1] = dy; d[2] = dz;
+    return cn;
+}
+
+
 /* The samples of one side; major_x is a constant in each of the two
  * copies (MARCH_SAMPLES), so the axis choice costs nothing per sample.
  * Compiling for size (TG_OUTLINE_HELPERS, tinygi.h) there is one copy, out
@@ -414,15 +452,15 @@ static inline void march_samples(
 {
     const tgi_gview g = *c->g;   /* a local copy: its fields stay in registers */
     const int smaj = mr->smaj, smin = mr->smin, bmax = mr->bmax, da = mr->da, n = mr->n;
-    const tg_real p0x = mr->p0x, p0y = mr->p0y, p0z = mr->p0z, z = mr->z, inv_z = mr->inv_z, r2 = mr->r2;
-    const tg_real wox = mr->wox, woy = mr->woy, woz = mr->woz, dminor = mr->dminor;
-    const int back = mr->back;
+    const hbil_march m = *mr;    /* a local copy, as g */
+    const tg_real dminor = m.dminor;
+    const int back = m.back;
     tg_real minor = mr->minor, ox = mr->ox, hs_tie = tg_add(sd->hs, HBIL_TIE);
     int k, a = mr->a, sa_major = a * smaj;
     for (k = 1; k <= n; k++) {
         int b0, sa;
-        tg_real f, z1, q, sx, sy, smajor, za, zb;
-        tgi_wide dx, dy, dz, len2, dot;
+        tg_real f, z1, sx, sy, smajor, za, zb, cn, len;
+        tgi_wide d[3];
         minor = (tg_real)((tgi_wide)minor + dminor);           /* |minor|, |ox| < 2^14 px: no saturation */
         ox = (tg_real)((tgi_wide)ox + dminor);
         a += da;
@@ -450,33 +488,19 @@ static inline void march_samples(
             z1 = sample_depth_edge(c, &g, major_x, a, b0, f, sa, sn);
             if (z1 <= 0) continue;
         }
-        /* view-space offset scaled to image pixels at depth z (see top),
-         * unsaturated (bounds above tgi_wide) */
-        q = tg_mul(small_sub(z1, z), inv_z);                   /* z1, z in (0, TG_REAL_MAX] */
         smajor = small_from_int(k * da - back);
         sx = major_x ? smajor : ox;
         sy = major_x ? tg_neg(ox) : tg_neg(smajor);
-        dx = (tgi_wide)sx + tgi_wide_mul((tgi_wide)p0x + sx, q);
-        dy = (tgi_wide)sy + tgi_wide_mul((tgi_wide)p0y + sy, q);
-        dz = tgi_wide_mul(p0z, q);
-        if (wide_far(dx) || wide_far(dy) || wide_far(dz)) continue;   /* beyond the 3D radius */
-        len2 = tgi_wide_dot(dx, dy, dz, dx, dy, dz);
-        if (len2 > r2) continue;                                /* beyond the 3D radius */
-        dot = tgi_wide_dot(dx, dy, dz, wox, woy, woz);
-        /* cos(theta) > horizon, without a division: dot|dot| > h|h| |d|^2 */
-        if (tgi_wide_mul(dot, dot < 0 ? -dot : dot) > tgi_wide_mul(hs_tie, len2)) {
-            tg_real len = tg_sqrt((tg_real)len2);                /* |d| <= 150: d, dot, len2 fit tg_real */
-            tg_real cn = tg_clamp(tg_div((tg_real)dot, len), TG_R(-1.0f), TG_ONE); /* HBIL sec. 1.3 */
-            if (cn <= sd->h) continue;
-            sd->h = cn;
-            sd->peak_a = a;
-            sd->hs = tg_mul(cn, tg_abs(cn));
-            hs_tie = tg_add(sd->hs, HBIL_TIE);
-            if (NEAR_FIELD(c))
-                gather_rise(c, sl, sd, side, cn,
-                            tgi_v3_scale(tg_v3((tg_real)dx, (tg_real)dy, (tg_real)dz), tg_div(TG_ONE, len)),
-                            c->g, c->rad, f < TG_R(0.5f) ? sa : sa + smin);   /* the nearest pixel */
-        }
+        cn = sample_cos(&m, z1, sx, sy, sd->h, hs_tie, d, &len);
+        if (cn == HBIL_NOT_ABOVE) continue;
+        sd->h = cn;
+        sd->peak_a = a;
+        sd->hs = tg_mul(cn, tg_abs(cn));
+        hs_tie = tg_add(sd->hs, HBIL_TIE);
+        if (NEAR_FIELD(c))
+            gather_rise(c, sl, sd, side, cn,
+                        tgi_v3_scale(tg_v3((tg_real)d[0], (tg_real)d[1], (tg_real)d[2]), tg_div(TG_ONE, len)),
+                        c->g, c->rad, f < TG_R(0.5f) ? sa : sa + smin);   /* the nearest pixel */
     }
 }
 
@@ -533,6 +557,7 @@ HBIL_NOINLINE static void march_between(const hbil_ctx *c, const hbil_slice *sl,
     if (k > 0) march_run(c, sl, side, sd, mr, major_x, p, 1, k);
 }
 
+#if !TG_NO_FINE_HORIZON /* left out with TG_NO_FINE_HORIZON=1 (tinygi.h "FEATURE SWITCHES") */
 /* One sample of the fine image, t fine pixels from the pixel along the
  * major axis (toward dir): on the slice's line, 1/z interpolated across
  * the minor axis between two close surface pixels as in march_samples,
@@ -550,9 +575,9 @@ static void fine_sample(const hbil_ctx *c, hbil_fine_best *best, const hbil_marc
 {
     const tgi_gview *fg = c->fine;
     const int fa = fa0 + t * dir, bmax = major_x ? fg->height : fg->width;
-    tg_real minor = tg_mul(mr->slope, tg_from_int(t)), f, z1, za, zb, q, sx, sy, len, cn;
+    tg_real minor = tg_mul(mr->slope, tg_from_int(t)), f, z1, za, zb, sx, sy, len, cn;
     int b0 = floor_small(minor), fb = fb0 + b0, si, sj;
-    tgi_wide dx, dy, dz, len2, dot;
+    tgi_wide d[3];
     f = small_sub(minor, small_from_int(b0));
     if (fb < 0 || fb >= bmax) return;                               /* the slice leaves the image */
     si = (int)(major_x ? tgi_gv_index(fg, fa, fb) : tgi_gv_index(fg, fb, fa));
@@ -572,24 +597,13 @@ static void fine_sample(const hbil_ctx *c, hbil_fine_best *best, const hbil_marc
         if (z1 <= 0) return;
         si = sn;
     }
-    q = tg_mul(small_sub(z1, mr->z), mr->inv_z);
     sx = major_x ? tg_ratio(t * dir, c->fine_ratio) : tg_mul(minor, c->inv_fine_ratio);
     sy = major_x ? tg_neg(tg_mul(minor, c->inv_fine_ratio)) : tg_ratio(-t * dir, c->fine_ratio);
-    /* as in march_samples (the bounds above tgi_wide there) */
-    dx = (tgi_wide)sx + tgi_wide_mul((tgi_wide)mr->p0x + sx, q);
-    dy = (tgi_wide)sy + tgi_wide_mul((tgi_wide)mr->p0y + sy, q);
-    dz = tgi_wide_mul(mr->p0z, q);
-    if (wide_far(dx) || wide_far(dy) || wide_far(dz)) return;
-    len2 = tgi_wide_dot(dx, dy, dz, dx, dy, dz);
-    if (len2 > mr->r2 || len2 <= 0) return;
-    dot = tgi_wide_dot(dx, dy, dz, mr->wox, mr->woy, mr->woz);
-    if (tgi_wide_mul(dot, dot < 0 ? -dot : dot) <= tgi_wide_mul(tg_add(best->hs, HBIL_TIE), len2)) return;
-    len = tg_sqrt((tg_real)len2);
-    cn = tg_clamp(tg_div((tg_real)dot, len), TG_R(-1.0f), TG_ONE);   /* HBIL sec. 1.3 */
-    if (cn <= best->h) return;
+    cn = sample_cos(mr, z1, sx, sy, best->h, tg_add(best->hs, HBIL_TIE), d, &len);
+    if (cn == HBIL_NOT_ABOVE) return;
     best->h = cn;
     best->hs = tg_mul(cn, tg_abs(cn));
-    best->dx = dx; best->dy = dy; best->dz = dz;
+    best->dx = d[0]; best->dy = d[1]; best->dz = d[2];
     best->len = len;
     best->si = si;
 }
@@ -643,6 +657,8 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
                     fg, c->fine_rad, best.si);
 }
 
+#endif /* !TG_NO_FINE_HORIZON */
+
 /* March one side (+1 along D, -1 against) and raise its horizon.  Indices
  * run along the major axis a (stride smaj) and the minor axis b (smin);
  * the sample's screen offset s (image pixels, y up) gives the view-space
@@ -687,7 +703,9 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     mr.dminor = tg_mul(slope, tg_from_int(m));
     MARCH_SAMPLES(c, sl, side, sd, &mr, major_x);
     if (m > 1) march_between(c, sl, side, sd, &mr, major_x);
+#if !TG_NO_FINE_HORIZON
     if (c->fine) refine_fine(c, px, sl, side, sd, &mr, major_x);
+#endif
 }
 
 static void side_init(hbil_side *sd, tg_real h, tg_real q_open, tg_real p_open)
