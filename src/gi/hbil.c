@@ -402,9 +402,10 @@ typedef struct hbil_march {
  * and above the horizon, else HBIL_NOT_ABOVE; d, len: its view-space offset
  * d = s + q (P0 + s), q = (z1 - z) / z, in tgi_wide (see above), and
  * |d|.  One copy for the march and the fine samples when compiling for
- * size (TG_OUTLINE_HELPERS), inlined into each otherwise. */
+ * size (TG_OUTLINE_HELPERS), inlined into each otherwise (and into the
+ * march alone without the fine samples, TG_NO_FINE_HORIZON). */
 #define HBIL_NOT_ABOVE TG_R(-2.0f)
-#if TG_OUTLINE_HELPERS
+#if TG_OUTLINE_HELPERS && !TG_NO_FINE_HORIZON
 #define HBIL_SAMPLE_INLINE HBIL_NOINLINE
 #elif defined(__GNUC__)
 #define HBIL_SAMPLE_INLINE inline __attribute__((always_inline))
@@ -833,6 +834,7 @@ static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, 
     c->rejection_a = p->rejection_a;
     c->rejection_b = p->rejection_b;
     c->fine = 0;
+#if !TG_NO_FINE_HORIZON
     c->fine_rad = 0;
     if (p->fine && p->fine->step > 0 && g->step % p->fine->step == 0 && g->step / p->fine->step >= 4) {
         c->fine = p->fine;
@@ -842,6 +844,7 @@ static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, 
         c->fine_j = (g->offset_y - p->fine->offset_y) / p->fine->step;
         if (c->near_field && p->fine_radiance && tgi_rgb_present(p->fine_radiance)) c->fine_rad = p->fine_radiance;
     }
+#endif
     npat = p->per_pixel_pattern ? HBIL_PATTERN : 1;
     for (pat = 0; pat < npat; pat++) {
         tg_real phi0 = p->per_pixel_pattern ? tgi_hbil_slice_phi0(pat & 3, pat >> 2, c->slices, p->rotation)
