@@ -15,7 +15,7 @@
  * Feature switches TG_NO_TECHNIQUES, TG_NO_REFERENCE, TG_NO_OBJ,
  * TG_NO_BUILTIN_SCENES, TG_NO_SHADOW_MAPS, TG_NO_ENVIRONMENT,
  * TG_NO_SCENE_TEXT, TG_NO_COLOR, TG_NO_GI_QUARTER, TG_NO_TEMPORAL,
- * TG_NO_ANIMATION, TG_NO_BENT_NORMALS (0 or 1, for
+ * TG_NO_ANIMATION, TG_NO_BENT_NORMALS, TG_NO_FINE_HORIZON (0 or 1, for
  * the LIBRARY's build) leave code out of it to save flash: see "FEATURE
  * SWITCHES" below.
  *
@@ -419,6 +419,11 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
  *                         their sums, filtering, storage and readout:
  *                         tg_plan_make refuses the bent and cone AOVs and
  *                         the far field (lit in the bent cone); AO renders.
+ *   TG_NO_FINE_HORIZON    the interleaved kernel's horizons refined on the
+ *                         full-resolution pixels (src/gi/hbil.c,
+ *                         refine_fine; about 1 KB): nothing is refused, but
+ *                         the AO and light differ, the horizons set by the
+ *                         sub-images' samples alone (README "Flash size").
  * README "Flash size" has the .text each configuration takes on a Cortex-M4
  * (`make size-table`).
  */
@@ -457,6 +462,9 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #endif
 #ifndef TG_NO_BENT_NORMALS
 #define TG_NO_BENT_NORMALS 0
+#endif
+#ifndef TG_NO_FINE_HORIZON
+#define TG_NO_FINE_HORIZON 0
 #endif
 /* TG_OUTLINE_HELPERS: 1 makes the larger storage helpers every pass calls
  * (src/raster/pack.h: octahedral normals, RGB9E5) one out-of-line copy

@@ -229,6 +229,7 @@ static void run_strided(const gbuf *g, double radius, result *r)
             if (sub.width == 0 || sub.height == 0) continue;
             params_for(&p, radius);
             p.slice_phi0 = tgi_hbil_slice_phi0(i, j, p.slices, 0);
+            p.fine = &full;   /* as tgi_hbil_interleaved_rows */
             tgi_hbil_rows(&p, &sub, NULL, &o, 0, sub.height);
         }
     results_read(&all, (size_t)g->w * g->h, r);
@@ -750,7 +751,10 @@ TEST(blocks_decorrelate_march_offsets)
  * sub-images a strided view with its own slice angles and march offsets in
  * frame rotation rot, the results into *all (indexed like k), no near field
  * and no cap on the march but the screen. */
-static void kernel_sub_images(const tgi_gview *k, double radius, int rot, tgi_gresult *all)
+/* The frame's interleaved pass on the image k (tgi_pass_hbil_interleaved):
+ * its 16 strided sub-images; fine: the image the horizons are refined on
+ * (gi/hbil.c refine_fine), NULL for none. */
+static void kernel_sub_images_on(const tgi_gview *k, const tgi_gview *fine, double radius, int rot, tgi_gresult *all)
 {
     int ii, jj;
     for (jj = 0; jj < 4; jj++)
@@ -762,12 +766,24 @@ static void kernel_sub_images(const tgi_gview *k, double radius, int rot, tgi_gr
             if (sub.width == 0 || sub.height == 0) continue;
             params_for(&p, radius);
             p.rotation = rot;
+            p.fine = fine;
             tgi_hbil_for_sub_image(&p, ii, jj);
             tgi_hbil_rows(&p, &sub, NULL, &o, 0, sub.height);
         }
 }
 
-TEST(wall_top_sets_the_horizon_at_any_radius)
+static void kernel_sub_images(const tgi_gview *k, double radius, int rot, tgi_gresult *all)
+{
+    kernel_sub_images_on(k, k, radius, rot, all);
+}
+
+/* A floor before a wall 1.5 high whose top is a silhouette against the
+ * sky, radius 10: the floor's horizon toward the wall is the wall's last
+ * pixel.  The interleaved kernel's AO (the 8 frame rotations averaged as
+ * the frame's accumulation does) on the floor pixels within 3 of the wall
+ * against the ray-traced AO: RMSE, bias and the worst pixel.  refine: the
+ * horizons refined on the full-resolution pixels (gi/hbil.c refine_fine). */
+static void wall_top_error(int w, int h, int refine, double *rmse_out, double *bias_out, double *worst_out, int *cnt_out)
 {
     static const quad floor_q = { { 0, 0, -20 }, { 20, 0, 0 }, { 0, 0, 40 }, 1 };
     static const quad wall_q = { { 0, 0, -20 }, { 0, 1.5, 0 }, { 0, 0, 40 }, 1 };
@@ -782,18 +798,18 @@ TEST(wall_top_sets_the_horizon_at_any_radius)
     size_t i, n;
     int rot, cnt = 0;
     s.n = 2; s.q[0] = floor_q; s.q[1] = wall_q;
-    gbuf_make(&g, &s, 320, 240, eye, target, up);
+    gbuf_make(&g, &s, w, h, eye, target, up);
     n = (size_t)g.w * g.h;
     sum = calloc(n, sizeof(double));
     result_alloc(&r, n);
     view_of(&g, &gb, &full);
     for (rot = 0; rot < TG_HBIL_ROTATIONS; rot++) {
         tgi_gresult all = results_of(n, 0);
-        kernel_sub_images(&full, radius, rot, &all);
+        kernel_sub_images_on(&full, refine ? &full : NULL, radius, rot, &all);
         results_read(&all, n, &r);
         for (i = 0; i < n; i++) sum[i] += check_d(r.ao[i]) / TG_HBIL_ROTATIONS;
     }
-    for (i = 0; i < n; i += 7) {
+    for (i = 0; i < n; i += (w > 200 ? 7 : 1)) {
         double pos[3], d;
         if (g.face[i] != 0 || g.px[i] > 3 || fabs(g.pz[i]) > 3) continue;
         pos[0] = g.px[i]; pos[1] = g.py[i]; pos[2] = g.pz[i];
@@ -801,15 +817,44 @@ TEST(wall_top_sets_the_horizon_at_any_radius)
         se += d * d; bias += d; cnt++;
         worst = fmax(worst, fabs(d));
     }
-    printf("  floor before a wall 1.5 high, radius 10, %d pixels: rmse %.4f, bias %+.4f, worst %.3f against ray-traced\n",
-           cnt, sqrt(se / cnt), bias / cnt, worst);
-    CHECK(cnt > 300, "floor pixels %d", cnt);
-    CHECK(fabs(bias / cnt) < 0.014, "bias %+.4f (the AO too bright: horizons missed)", bias / cnt);
-    CHECK(sqrt(se / cnt) < 0.025, "rmse %.4f", sqrt(se / cnt));
     sf_gbuffer_free(&gb);
     result_free(&r);
     gbuf_free(&g);
     free(sum);
+    *rmse_out = cnt ? sqrt(se / cnt) : 0;
+    *bias_out = cnt ? bias / cnt : 0;
+    *worst_out = worst;
+    *cnt_out = cnt;
+}
+
+TEST(wall_top_sets_the_horizon_at_any_radius)
+{
+    double rmse, bias, worst;
+    int cnt;
+    wall_top_error(320, 240, 1, &rmse, &bias, &worst, &cnt);
+    printf("  floor before a wall 1.5 high, radius 10, %d pixels: rmse %.4f, bias %+.4f, worst %.3f against ray-traced\n",
+           cnt, rmse, bias, worst);
+    CHECK(cnt > 300, "floor pixels %d", cnt);
+    CHECK(fabs(bias) < 0.014, "bias %+.4f (the AO too bright: horizons missed)", bias);
+    CHECK(rmse < 0.025, "rmse %.4f", rmse);
+}
+
+/* The same wall at 160x120, where the sub-images' pixels are 4 image
+ * pixels apart and the wall's top is 1.5 of them past the last sample on
+ * it on average: without the refinement the AO is too bright (measured
+ * +0.02 and more); with it the bias is that of the full-resolution march. */
+TEST(interleaved_horizon_finds_the_wall_top_pixel)
+{
+    double rmse[2], bias[2], worst[2];
+    int cnt[2], k;
+    for (k = 0; k < 2; k++) {
+        wall_top_error(160, 120, k, &rmse[k], &bias[k], &worst[k], &cnt[k]);
+        printf("  160x120, %s: %d pixels, rmse %.4f, bias %+.4f, worst %.3f against ray-traced\n",
+               k ? "refined on the image's pixels" : "sub-image samples only", cnt[k], rmse[k], bias[k], worst[k]);
+    }
+    CHECK(cnt[1] > 300, "floor pixels %d", cnt[1]);
+    CHECK(fabs(bias[1]) < 0.01, "bias %+.4f (the AO too bright: the wall's top missed)", bias[1]);
+    CHECK(rmse[1] < 0.025, "rmse %.4f", rmse[1]);
 }
 
 /* --gi-quarter's contact shadow: a floor at the foot of a wall 0.4 high,
@@ -891,6 +936,7 @@ int main(int argc, char **argv)
     RUN(rotations_stratify_slice_angles_and_march_offsets);
     RUN(blocks_decorrelate_march_offsets);
     RUN(wall_top_sets_the_horizon_at_any_radius);
+    RUN(interleaved_horizon_finds_the_wall_top_pixel);
     RUN(quarter_resolution_keeps_the_contact_shadow);
     return check_summary();
 }

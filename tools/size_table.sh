@@ -58,7 +58,7 @@ CONFIGS=(
     "HBIL colour, direct light, shadows, baked scene (the same without scene text)|$BAKED|colour"
     "AO only, baked scene (the same without colour, shadow maps and bent normals)|$AO|ao"
     "HBIL colour, direct light, shadows, baked scene, each frame alone (also no quarter resolution, temporal, keys)|$BAKED $ALONE|colour"
-    "AO only, baked scene, each frame alone (every switch set)|$AO $ALONE|ao"
+    "AO only, baked scene, each frame alone (every switch set)|$AO $ALONE -DTG_NO_FINE_HORIZON=1|ao"
 )
 NUMS=${SIZE_NUMS:-fixed soft fpu}
 ROWS=${SIZE_ROWS:-${!CONFIGS[*]}}

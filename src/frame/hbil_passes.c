@@ -58,7 +58,15 @@ void tgi_pass_hbil_interleaved(tg_frame *f, int y0, int y1)
     const tgi_rgb *source;
     const tgi_gview *k = tgi_frame_kernel(f, &res, &source);
     int i, j;
+#if !TG_NO_FINE_HORIZON
+    tgi_rgb fine_src = *tgi_frame_source(f);
+#endif
     hbil_params(f, &p);
+#if !TG_NO_FINE_HORIZON
+    fine_src.lit_rounded = 1;   /* as src below */
+    p.fine = &f->full;          /* the horizons are refined on the full-resolution pixels (gi/hbil.c) */
+    p.fine_radiance = &fine_src;
+#endif
     for (j = 0; j < 4; j++)
         for (i = 0; i < 4; i++) {
             tgi_hbil_params ps = p;

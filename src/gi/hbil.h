@@ -67,6 +67,11 @@ typedef struct tgi_hbil_params {
     tg_real step_jitter;      /* in [0, 1): this image's samples start that fraction of a march
                                * step nearer (interleaved; from (X & 3, Y & 3) with the pattern) */
     tg_real rejection_a, rejection_b; /* sec. 3.4 t = smoothstep(a, b, -n'.w_i) */
+    const tgi_gview *fine; /* interleaved: the image the 4x4 sub-image is taken from (its
+                               * pixel (x, y) is fine's (4x + i, 4y + j)); the horizon on
+                               * each side is refined there (hbil.c, refine_fine); NULL: none */
+    const tgi_rgb *fine_radiance; /* the radiance indexed like fine; NULL: the refinement's
+                               * bands take the radiance gathered before them */
 } tgi_hbil_params;
 
 /* Defaults: 2 slices, 32 samples, radius 1, phi0 of
