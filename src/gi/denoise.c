@@ -92,11 +92,9 @@ static void tap_weights(const tgi_denoise_walk *k, const tg_real *spatial, tg_re
 
 void tgi_denoise_walk_start(tgi_denoise_walk *k)
 {
-    int j;
     memset(k, 0, sizeof *k);
     k->y = -1;
     k->lo = k->next = 0;
-    for (j = 0; j < TGI_DENOISE_TAPS; j++) k->v[j][TGI_DENOISE_SUMS - 1] = TG_ONE;
 }
 
 tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, const tgi_gresult *r,
@@ -112,11 +110,11 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
      * never saturate; the near field is never negative (RGB9E5; the kernel's
      * gathered sums), so saturating after the last tap gives what a
      * saturating add after each tap gives.  In the order of the taps (rows,
-     * then columns), each channel its own sum: the last is the weights'
-     * (the walk's value 1).  A build with TG_NO_COLOR (tinygi.h "FEATURE
+     * then columns), each of the walk's values its own sum, then the
+     * weights' (sum[7]).  A build with TG_NO_COLOR (tinygi.h "FEATURE
      * SWITCHES") has no near field, one with TG_NO_BENT_NORMALS no bent
      * normal: their values are 0 and their sums not used. */
-    tgi_wide sum[TGI_DENOISE_SUMS];
+    tgi_wide sum[TGI_DENOISE_VALUES + 1];
     tg_vec3 ni, bent, near;
     tgi_gr_value v;
     if (tgi_gv_is_sky(g, i)) return tgi_gr_get_kept(r, i);
@@ -132,7 +130,7 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     inv_ztol = tg_div(TG_ONE, ztol);
     tap_weights(k, spatial_w[x % 5], zi, ni, ztol, inv_ztol, wt);
     for (xx = xa; xx <= xb; xx++) slot[xx - xa] = xx % 5;
-    for (c = 0; c < TGI_DENOISE_SUMS; c++) sum[c] = 0;
+    for (c = 0; c <= TGI_DENOISE_VALUES; c++) sum[c] = 0;
     for (yy = ya; yy <= yb; yy++)
         for (xx = xa; xx <= xb; xx++) {
             int j = (yy - y + 2) * 5 + slot[xx - xa];
@@ -144,9 +142,9 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
             sum[0] += tgi_wide_mul(tv[0], wj); sum[1] += tgi_wide_mul(tv[1], wj);
             sum[2] += tgi_wide_mul(tv[2], wj); sum[3] += tgi_wide_mul(tv[3], wj);
             sum[4] += tgi_wide_mul(tv[4], wj); sum[5] += tgi_wide_mul(tv[5], wj);
-            sum[6] += tgi_wide_mul(tv[6], wj); sum[7] += tgi_wide_mul(tv[7], wj);
+            sum[6] += tgi_wide_mul(tv[6], wj); sum[7] += wj;   /* the weights' sum */
         }
-    ws = tgi_wide_real(sum[TGI_DENOISE_SUMS - 1]);
+    ws = tgi_wide_real(sum[TGI_DENOISE_VALUES]);
     if (ws <= 0) return tgi_gr_get_kept(r, i);   /* the centre always weighs 1: cannot happen */
     bent = tg_v3(tgi_wide_real(sum[1]), tgi_wide_real(sum[2]), tgi_wide_real(sum[3]));
     near = tg_v3(tgi_wide_real(sum[4]), tgi_wide_real(sum[5]), tgi_wide_real(sum[6]));

@@ -52,17 +52,19 @@ static inline void tgi_gr_put_kept(const tgi_gresult *r, size_t i, const tgi_gr_
  * before it are not decoded again (each pixel once per row instead of 25
  * times).  Any order of calls gives the same values; along a row (x
  * increasing) is the fast one.  Tap (column xx, row yy) is entry
- * (yy - y + 2) * 5 + xx % 5 of the planes below, laid out channel by channel
- * so that the weights of all taps and the sums of all channels are loops
- * over contiguous values (TGI_DENOISE_TAPS rounds 25 up to a multiple of 4;
- * the entries past 25 stay 0). */
+ * (yy - y + 2) * 5 + xx % 5 of the planes below, one plane per value, so
+ * that the weights of all taps are one loop over contiguous values and a
+ * tap's sums read contiguous values (denoise.c; TGI_DENOISE_TAPS rounds 25
+ * up to a multiple of 4, the entries past 25 stay 0). */
 #define TGI_DENOISE_TAPS 28
-#define TGI_DENOISE_SUMS 8          /* AO, bent normal x y z, near field r g b, 1 (the weight's own sum) */
+#define TGI_DENOISE_VALUES 7        /* AO, bent normal x y z, near field r g b */
 typedef struct tgi_denoise_walk {
     int y, lo, next;                /* row y's columns [lo, next) are decoded */
     tg_real z[TGI_DENOISE_TAPS];    /* view depth; 0 on sky, which no centre's depth test passes */
     tg_real nx[TGI_DENOISE_TAPS], ny[TGI_DENOISE_TAPS], nz[TGI_DENOISE_TAPS];   /* G-buffer normal (0 on sky) */
-    tg_real v[TGI_DENOISE_TAPS][TGI_DENOISE_SUMS];   /* the kept results as tgi_gr_get_kept reads them, then 1 */
+    /* the kept results as tgi_gr_get_kept reads them; an 8th value, unused
+     * (0), makes an entry two of the float build's vectors of 4 */
+    tg_real v[TGI_DENOISE_TAPS][TGI_DENOISE_VALUES + 1];
 } tgi_denoise_walk;
 
 void tgi_denoise_walk_start(tgi_denoise_walk *k);
