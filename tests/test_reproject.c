@@ -269,6 +269,112 @@ TEST(filter_preserves_range_and_constants)
     sf_results_free(&filtered);
 }
 
+/* The filter of a pixel, straight from its formula (denoise.h): every tap
+ * of the 5x5 window in the image, not sky, with |z_j - z_i| < tol z_i,
+ * weighs w_x w_y (1 - |z_j - z_i| / (tol z_i)) max(0, n_i . n_j)^8, the
+ * products rounded as tg_mul rounds them and the sums in tgi_wide, in the
+ * order of the taps (rows, then columns). */
+static tgi_gr_value filter_formula(const tgi_denoise_params *p, const tgi_gview *g, const tgi_gresult *r, int x, int y)
+{
+    static const float tap_w[5] = { 0.5f, 1, 1, 1, 0.5f };
+    size_t i = tgi_gv_index(g, x, y);
+    tgi_wide ws = 0, ao = 0, b[3] = { 0, 0, 0 }, e[3] = { 0, 0, 0 };
+    tg_real zi, ztol, inv, wsr;
+    tg_vec3 ni;
+    tgi_gr_value v;
+    int xx, yy, c;
+    if (tgi_gv_is_sky(g, i)) return tgi_gr_get_kept(r, i);
+    zi = tgi_gv_depth(g, i);
+    ni = tgi_gv_normal(g, i);
+    ztol = tg_mul(p->depth_tolerance, zi);
+    inv = tg_div(TG_ONE, ztol);
+    for (yy = y - 2; yy <= y + 2; yy++)
+        for (xx = x - 2; xx <= x + 2; xx++) {
+            size_t j;
+            tg_real dz, wt, d;
+            tgi_gr_value t;
+            if (xx < 0 || yy < 0 || xx >= g->width || yy >= g->height) continue;
+            j = tgi_gv_index(g, xx, yy);
+            if (tgi_gv_is_sky(g, j)) continue;
+            dz = tg_abs(tg_sub(tgi_gv_depth(g, j), zi));
+            if (dz >= ztol) continue;
+            wt = tg_mul(tg_mul(tg_from_float(tap_w[xx - x + 2]), tg_from_float(tap_w[yy - y + 2])),
+                        tg_sub(TG_ONE, tg_mul(dz, inv)));
+            d = tg_max(tgi_v3_dot(ni, tgi_gv_normal(g, j)), 0);
+            d = tg_mul(d, d); d = tg_mul(d, d); d = tg_mul(d, d);
+            wt = tg_mul(wt, d);
+            if (wt <= 0) continue;
+            t = tgi_gr_get_kept(r, j);
+            ws += wt;
+            ao += tgi_wide_mul(wt, t.ao);
+            for (c = 0; c < 3; c++) b[c] += tgi_wide_mul((&t.bent.x)[c], wt);
+            for (c = 0; c < 3; c++) e[c] += tgi_wide_mul((&t.near.x)[c], wt);
+        }
+    wsr = tgi_wide_real(ws);
+    v.ao = tg_saturate(tg_div(tgi_wide_real(ao), wsr));
+    v.bent = tgi_v3_normalize_or(tg_v3(tg_div(tgi_wide_real(b[0]), wsr), tg_div(tgi_wide_real(b[1]), wsr),
+                                       tg_div(tgi_wide_real(b[2]), wsr)), ni);
+    v.near = tg_v3(tg_div(tgi_wide_real(e[0]), wsr), tg_div(tgi_wide_real(e[1]), wsr), tg_div(tgi_wide_real(e[2]), wsr));
+    return v;
+}
+
+static int same_value(tgi_gr_value a, tgi_gr_value b)
+{
+    return a.ao == b.ao && a.bent.x == b.bent.x && a.bent.y == b.bent.y && a.bent.z == b.bent.z &&
+           a.near.x == b.near.x && a.near.y == b.near.y && a.near.z == b.near.z;
+}
+
+/* The filter gives its formula's values exactly (filter_formula), for any
+ * order of calls on one walk: along rows, down columns, backwards.  The
+ * G-buffer has depth steps, sky pixels and normals that vary per pixel; the
+ * results vary per pixel in every channel. */
+TEST(filter_is_its_formula_in_any_order)
+{
+    tgi_view v = make_view(0.3f, 0.5f, 2.0f);
+    static tgi_gbuffer gf;
+    tgi_gview g;
+    tgi_gresult r;
+    tgi_denoise_params p;
+    tgi_denoise_walk k;
+    int i, x, y, order, bad = 0, filtered = 0;
+    if (!gf.depth) sf_gbuffer_alloc(&gf, W, H, NULL, 0);
+    for (i = 0; i < N; i++) {
+        int x0 = i % W, y0 = i / W, sky = (x0 * 7 + y0 * 3) % 29 == 0 || (x0 < 3 && y0 < 4);
+        float z = 2.0f + 0.04f * (float)(x0 % 4) + 0.03f * (float)(y0 % 3) + (x0 > W / 2 ? 0.6f : 0.0f);
+        tg_vec3 n = tgi_v3_normalize(tg_v3(tg_from_float(0.3f * (float)((x0 * 5 + y0) % 7 - 3)), TG_ONE,
+                                           tg_from_float(0.2f * (float)((y0 * 3 + x0) % 5 - 2))));
+        sf_gbuffer_set(&gf, (size_t)i, sky ? 0 : tg_from_float(z), n, 0);
+    }
+    g = sf_view(&gf, &v);
+    sf_results_alloc(&r, N, 1, 0, 1);
+    for (i = 0; i < N; i++) {
+        tgi_gr_set_ao(&r, (size_t)i, tg_from_float((float)((i * 37) % 256) / 255.0f));
+        tgi_gr_set_bent(&r, (size_t)i, tgi_v3_normalize(tg_v3(tg_from_float(0.1f * (float)(i % 9 - 4)), TG_ONE,
+                                                                tg_from_float(0.1f * (float)(i % 5 - 2)))));
+        tgi_gr_set_near(&r, (size_t)i, tg_v3(tg_from_float(0.05f * (float)(i % 11)), tg_from_float(0.3f),
+                                             tg_from_float(0.02f * (float)(i % 13))));
+    }
+    tgi_denoise_defaults(&p);
+    for (order = 0; order < 3; order++) {
+        tgi_denoise_walk_start(&k);
+        for (i = 0; i < N; i++) {
+            tgi_gr_value got, want;
+            x = order == 1 ? i / H : order == 2 ? W - 1 - i % W : i % W;
+            y = order == 1 ? i % H : order == 2 ? H - 1 - i / W : i / W;
+            got = tgi_denoise_pixel(&p, &g, &r, &k, x, y);
+            want = filter_formula(&p, &g, &r, x, y);
+            if (!same_value(got, want)) {
+                if (bad < 5) printf("# order %d pixel (%d, %d): ao %g, formula %g\n", order, x, y, check_d(got.ao), check_d(want.ao));
+                bad++;
+            }
+            if (order == 0 && !same_value(got, tgi_gr_get_kept(&r, tgi_gv_index(&g, x, y)))) filtered++;
+        }
+    }
+    CHECK(bad == 0, "%d pixels differ from the filter's formula", bad);
+    CHECK(filtered > N / 2, "the filter changed only %d of %d pixels", filtered, N);
+    sf_results_free(&r);
+}
+
 /* Temporal accumulation with a static view: an input alternating between
  * 0.25 and 0.75 frame by frame settles at 0.5 +- 0.028 (alpha 0.2: the
  * fixed points (0.16 b + 0.2 a) / 0.36), the frames' results alternating
@@ -594,6 +700,7 @@ int main(void)
     RUN(teleport_is_finite_and_hole_free);
     RUN(pushpull_fills_within_range);
     RUN(filter_preserves_range_and_constants);
+    RUN(filter_is_its_formula_in_any_order);
     RUN(temporal_accumulates_and_rejects);
     RUN(gather_depth_test_has_a_five_percent_tolerance);
     RUN(gather_out_of_image_history_is_a_hole);

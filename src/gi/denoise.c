@@ -11,45 +11,88 @@ void tgi_denoise_defaults(tgi_denoise_params *p)
     p->depth_tolerance = TG_R(0.1f);
 }
 
-/* 1-D tap weights (1/2, 1, 1, 1, 1/2); the 2-D weight is their product. */
-static const tg_real tap_w[5] = { TG_R(0.5f), TG_ONE, TG_ONE, TG_ONE, TG_R(0.5f) };
+/* The 2-D tap weights, the products of the 1-D ones (1/2, 1, 1, 1, 1/2):
+ * 1/4, 1/2 or 1, exact in both number types.  In the walk's layout
+ * (denoise.h: tap (xx, yy) at (yy - y + 2) * 5 + xx % 5), for a centre in
+ * column x with x % 5 = phase: slot s holds window column (s - phase + 2)
+ * mod 5, whose 1-D weight is 1/2 in the first and last column.  PHASE lists
+ * a middle row's five slots, then the outer rows' (half those). */
+#define W_H TG_R(0.5f)
+#define W_Q TG_R(0.25f)
+#define W_1 TG_ONE
+#define PHASE(a, b, c, d, e, ha, hb, hc, hd, he) \
+    { ha, hb, hc, hd, he, a, b, c, d, e, a, b, c, d, e, a, b, c, d, e, ha, hb, hc, hd, he, 0, 0, 0 }
+static const tg_real spatial_w[5][TGI_DENOISE_TAPS] = {
+    PHASE(W_1, W_1, W_H, W_H, W_1, W_H, W_H, W_Q, W_Q, W_H),   /* x % 5 = 0: window columns 3 4 0 1 2 in slots 0..4 */
+    PHASE(W_1, W_1, W_1, W_H, W_H, W_H, W_H, W_H, W_Q, W_Q),   /* 1: columns 2 3 4 0 1 */
+    PHASE(W_H, W_1, W_1, W_1, W_H, W_Q, W_H, W_H, W_H, W_Q),   /* 2: columns 0 1 2 3 4 */
+    PHASE(W_H, W_H, W_1, W_1, W_1, W_Q, W_Q, W_H, W_H, W_H),   /* 3: columns 4 0 1 2 3 */
+    PHASE(W_1, W_H, W_H, W_1, W_1, W_H, W_Q, W_Q, W_H, W_H),   /* 4: columns 1 2 3 4 0 */
+};
+#undef PHASE
 
 /* The weights' factors are in [0, 1] (up to a rounding): their products
  * never saturate, so tgi_wide_mul (core/real.h) gives tg_mul's result. */
 static tg_real weight_mul(tg_real a, tg_real b) { return (tg_real)tgi_wide_mul(a, b); }
 
+/* max(0, n_i . n_j)^8; the clamp as (d + |d|) / 2 (exact in both number
+ * types: 2d or 0 halved) so that the loop over the taps has no branch. */
 static tg_real normal_weight(tg_real d)
 {
-    d = tg_max(d, 0);
+    d = (d + tg_abs(d)) / 2;
     d = weight_mul(d, d); d = weight_mul(d, d); d = weight_mul(d, d);   /* (n_i . n_j)^8 */
     return d;
 }
 
-/* Pixel (xx, yy) of g decoded into its tap slot. */
-static void tap_load(tgi_denoise_tap *t, const tgi_gview *g, const tgi_gresult *r, int xx, int yy)
+/* Pixel (xx, yy) of g decoded into entry j of the walk; has_bent, has_near:
+ * what tgi_gr_get_kept reads of r. */
+static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_gresult *r, int has_bent, int has_near,
+                     int xx, int yy)
 {
-    size_t j = tgi_gv_index(g, xx, yy);
-    t->sky = tgi_gv_is_sky(g, j);
-    if (t->sky) return;
-    t->z = tgi_gv_depth(g, j);
-    t->n = tgi_gv_normal(g, j);
-    t->v = tgi_gr_get_kept(r, j);
+    size_t i = tgi_gv_index(g, xx, yy);
+    tg_real *v = k->v[j];
+    tg_vec3 n, b, e;
+    if (tgi_gv_is_sky(g, i)) {
+        k->z[j] = k->nx[j] = k->ny[j] = k->nz[j] = 0;
+        v[0] = v[1] = v[2] = v[3] = v[4] = v[5] = v[6] = 0;
+        return;
+    }
+    n = tgi_gv_normal(g, i);
+    b = has_bent ? tgi_gr_bent(r, i) : tg_v3(0, 0, 0);
+    e = has_near ? tgi_gr_near(r, i) : tg_v3(0, 0, 0);
+    k->z[j] = tgi_gv_depth(g, i);
+    k->nx[j] = n.x; k->ny[j] = n.y; k->nz[j] = n.z;
+    v[0] = r->ao ? tgi_gr_ao(r, i) : TG_ONE;
+    v[1] = b.x; v[2] = b.y; v[3] = b.z;
+    v[4] = e.x; v[5] = e.y; v[6] = e.z;
 }
 
-/* Weight of tap t for the centre (depth zi, normal ni): depth and normal
- * aware; 0 for sky and for a depth step of tol zi or more. */
-static tg_real tap_weight(const tgi_denoise_tap *t, tg_real tap, tg_real zi, tg_vec3 ni, tg_real ztol, tg_real inv_ztol)
+/* The weight of every entry of the walk for the centre (depth zi, normal
+ * ni): the 2-D tap weight times depth and normal awareness; 0 for a depth
+ * step of tol zi or more, so for sky (depth 0).  No branch, so that the loop
+ * runs over contiguous values (vector operations): every entry's weight is
+ * computed (from finite values: the walk starts zeroed), the window's and
+ * the others alike, then multiplied by 1 or 0 (the plain product is w or 0
+ * in either number type). */
+static void tap_weights(const tgi_denoise_walk *k, const tg_real *spatial, tg_real zi, tg_vec3 ni, tg_real ztol,
+                        tg_real inv_ztol, tg_real *wt)
 {
-    tg_real dz, wt;
-    if (t->sky) return 0;
-    dz = tg_abs(tg_sub(t->z, zi));
-    if (dz >= ztol) return 0;
-    wt = weight_mul(tap, tg_sub(TG_ONE, weight_mul(dz, inv_ztol)));   /* dz < ztol: dz / ztol in [0, 1] */
-    return weight_mul(wt, normal_weight(tgi_v3_dot(ni, t->n)));
+    tg_real kept[TGI_DENOISE_TAPS];
+    int j;
+    for (j = 0; j < TGI_DENOISE_TAPS; j++) {
+        /* depths are never negative: their difference never saturates */
+        tg_real dz = tg_abs(k->z[j] - zi), w;
+        tg_real dzc = tg_min(dz, ztol);   /* = dz where the weight is kept: dz / ztol in [0, 1] */
+        kept[j] = dz < ztol ? 1 : 0;
+        w = weight_mul(spatial[j], TG_ONE - weight_mul(dzc, inv_ztol));   /* in [0, 1]: never saturates */
+        wt[j] = weight_mul(w, normal_weight(tgi_v3_dot(ni, tg_v3(k->nx[j], k->ny[j], k->nz[j]))));
+    }
+    for (j = 0; j < TGI_DENOISE_TAPS; j++) wt[j] *= kept[j];
 }
 
 void tgi_denoise_walk_start(tgi_denoise_walk *k)
 {
+    memset(k, 0, sizeof *k);
     k->y = -1;
     k->lo = k->next = 0;
 }
@@ -58,62 +101,57 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
                                tgi_denoise_walk *k, int x, int y)
 {
     size_t i = tgi_gv_index(g, x, y);
-    int w = g->width, h = g->height, xx, yy, slot[5], has_bent = !TG_NO_BENT_NORMALS && tgi_gr_has_bent(r), has_near = !TG_NO_COLOR && tgi_gr_has_near(r);
+    int w = g->width, h = g->height, xx, yy, c, slot[5], has_bent = !TG_NO_BENT_NORMALS && tgi_gr_has_bent(r), has_near = !TG_NO_COLOR && tgi_gr_has_near(r);
     int xa = x < 2 ? 0 : x - 2, xb = x + 2 >= w ? w - 1 : x + 2;
     int ya = y < 2 ? 0 : y - 2, yb = y + 2 >= h ? h - 1 : y + 2;
-    tg_real zi, ztol, inv_ztol;
+    tg_real zi, ztol, inv_ztol, ws, wt[TGI_DENOISE_TAPS];
     /* The sums in tgi_wide (core/real.h), unsaturated: every weight is in
      * (0, 1] and there are at most 25, so wsum <= 9, ao <= 9 and |bent| <= 9
      * never saturate; the near field is never negative (RGB9E5; the kernel's
      * gathered sums), so saturating after the last tap gives what a
-     * saturating add after each tap gives.  A build with TG_NO_COLOR
-     * (tinygi.h "FEATURE SWITCHES") has no near field, one with
-     * TG_NO_BENT_NORMALS no bent normal: their sums are left out. */
-    tgi_wide wsum = 0, ao = 0, bx = 0, by = 0, bz = 0, nr = 0, ng = 0, nb = 0;
+     * saturating add after each tap gives.  In the order of the taps (rows,
+     * then columns), each of the walk's values its own sum, then the
+     * weights' (sum[7]).  A build with TG_NO_COLOR (tinygi.h "FEATURE
+     * SWITCHES") has no near field, one with TG_NO_BENT_NORMALS no bent
+     * normal: their values are 0 and their sums not used. */
+    tgi_wide sum[TGI_DENOISE_VALUES + 1];
     tg_vec3 ni, bent, near;
-    const tgi_denoise_tap *ci;
     tgi_gr_value v;
     if (tgi_gv_is_sky(g, i)) return tgi_gr_get_kept(r, i);
     /* the window's columns decoded once: those of the last pixel are kept */
     if (k->y != y || xa < k->lo) { k->y = y; k->lo = k->next = xa; }
     for (; k->next <= xb; k->next++)
         for (yy = ya; yy <= yb; yy++)
-            tap_load(&k->tap[k->next % 5][yy - y + 2], g, r, k->next, yy);
+            tap_load(k, (yy - y + 2) * 5 + k->next % 5, g, r, has_bent, has_near, k->next, yy);
     if (k->next - k->lo > 5) k->lo = k->next - 5;
-    ci = &k->tap[x % 5][2];
-    zi = ci->z;
-    ni = ci->n;
+    zi = k->z[2 * 5 + x % 5];
+    ni = tg_v3(k->nx[2 * 5 + x % 5], k->ny[2 * 5 + x % 5], k->nz[2 * 5 + x % 5]);
     ztol = tg_mul(p->depth_tolerance, zi);
     inv_ztol = tg_div(TG_ONE, ztol);
+    tap_weights(k, spatial_w[x % 5], zi, ni, ztol, inv_ztol, wt);
     for (xx = xa; xx <= xb; xx++) slot[xx - xa] = xx % 5;
+    for (c = 0; c <= TGI_DENOISE_VALUES; c++) sum[c] = 0;
     for (yy = ya; yy <= yb; yy++)
         for (xx = xa; xx <= xb; xx++) {
-            const tgi_denoise_tap *t = &k->tap[slot[xx - xa]][yy - y + 2];
-            tg_real wt = tap_weight(t, weight_mul(tap_w[xx - x + 2], tap_w[yy - y + 2]), zi, ni, ztol, inv_ztol);
-            if (wt <= 0) continue;
-            wsum += wt;
-            ao += tgi_wide_mul(wt, t->v.ao);
-            if (has_bent) {
-                bx += tgi_wide_mul(t->v.bent.x, wt);
-                by += tgi_wide_mul(t->v.bent.y, wt);
-                bz += tgi_wide_mul(t->v.bent.z, wt);
-            }
-            if (has_near) {
-                nr += tgi_wide_mul(t->v.near.x, wt);
-                ng += tgi_wide_mul(t->v.near.y, wt);
-                nb += tgi_wide_mul(t->v.near.z, wt);
-            }
+            int j = (yy - y + 2) * 5 + slot[xx - xa];
+            const tg_real *tv = k->v[j];
+            tg_real wj = wt[j];
+            if (wj <= 0) continue;
+            /* written out: straight-line code the compiler keeps in registers
+             * (Q16.16) or turns into vector operations (float) */
+            sum[0] += tgi_wide_mul(tv[0], wj); sum[1] += tgi_wide_mul(tv[1], wj);
+            sum[2] += tgi_wide_mul(tv[2], wj); sum[3] += tgi_wide_mul(tv[3], wj);
+            sum[4] += tgi_wide_mul(tv[4], wj); sum[5] += tgi_wide_mul(tv[5], wj);
+            sum[6] += tgi_wide_mul(tv[6], wj); sum[7] += wj;   /* the weights' sum */
         }
-    if (wsum <= 0) return tgi_gr_get_kept(r, i);   /* the centre always weighs 1: cannot happen */
-    bent = tg_v3(tgi_wide_real(bx), tgi_wide_real(by), tgi_wide_real(bz));
-    near = tg_v3(tgi_wide_real(nr), tgi_wide_real(ng), tgi_wide_real(nb));
-    v.ao = tg_saturate(tg_div(tgi_wide_real(ao), tgi_wide_real(wsum)));
-    {
-        tg_real ws = tgi_wide_real(wsum);
-        v.bent = has_bent ? tgi_v3_normalize_or(tg_v3(tg_div(bent.x, ws), tg_div(bent.y, ws), tg_div(bent.z, ws)), ni)
-                          : tg_v3(0, 0, 0);
-        v.near = has_near ? tg_v3(tg_div(near.x, ws), tg_div(near.y, ws), tg_div(near.z, ws)) : tg_v3(0, 0, 0);
-    }
+    ws = tgi_wide_real(sum[TGI_DENOISE_VALUES]);
+    if (ws <= 0) return tgi_gr_get_kept(r, i);   /* the centre always weighs 1: cannot happen */
+    bent = tg_v3(tgi_wide_real(sum[1]), tgi_wide_real(sum[2]), tgi_wide_real(sum[3]));
+    near = tg_v3(tgi_wide_real(sum[4]), tgi_wide_real(sum[5]), tgi_wide_real(sum[6]));
+    v.ao = tg_saturate(tg_div(tgi_wide_real(sum[0]), ws));
+    v.bent = has_bent ? tgi_v3_normalize_or(tg_v3(tg_div(bent.x, ws), tg_div(bent.y, ws), tg_div(bent.z, ws)), ni)
+                      : tg_v3(0, 0, 0);
+    v.near = has_near ? tg_v3(tg_div(near.x, ws), tg_div(near.y, ws), tg_div(near.z, ws)) : tg_v3(0, 0, 0);
     return v;
 }
 

@@ -48,21 +48,23 @@ static inline void tgi_gr_put_kept(const tgi_gresult *r, size_t i, const tgi_gr_
     if (!TG_NO_COLOR && tgi_gr_has_near(r)) tgi_gr_set_near(r, i, v->near);
 }
 
-/* A pixel's taps as the filter reads them: decoded once. */
-typedef struct tgi_denoise_tap {
-    int sky;
-    tg_real z;
-    tg_vec3 n;
-    tgi_gr_value v;            /* as tgi_gr_get reads it */
-} tgi_denoise_tap;
-
 /* The 5x5 window along a row: the columns a pixel shares with the pixel
  * before it are not decoded again (each pixel once per row instead of 25
  * times).  Any order of calls gives the same values; along a row (x
- * increasing) is the fast one. */
+ * increasing) is the fast one.  Tap (column xx, row yy) is entry
+ * (yy - y + 2) * 5 + xx % 5 of the planes below, one plane per value, so
+ * that the weights of all taps are one loop over contiguous values and a
+ * tap's sums read contiguous values (denoise.c; TGI_DENOISE_TAPS rounds 25
+ * up to a multiple of 4, the entries past 25 stay 0). */
+#define TGI_DENOISE_TAPS 28
+#define TGI_DENOISE_VALUES 7        /* AO, bent normal x y z, near field r g b */
 typedef struct tgi_denoise_walk {
     int y, lo, next;                /* row y's columns [lo, next) are decoded */
-    tgi_denoise_tap tap[5][5];      /* [column % 5][row - y + 2] */
+    tg_real z[TGI_DENOISE_TAPS];    /* view depth; 0 on sky, which no centre's depth test passes */
+    tg_real nx[TGI_DENOISE_TAPS], ny[TGI_DENOISE_TAPS], nz[TGI_DENOISE_TAPS];   /* G-buffer normal (0 on sky) */
+    /* the kept results as tgi_gr_get_kept reads them; an 8th value, unused
+     * (0), makes an entry two of the float build's vectors of 4 */
+    tg_real v[TGI_DENOISE_TAPS][TGI_DENOISE_VALUES + 1];
 } tgi_denoise_walk;
 
 void tgi_denoise_walk_start(tgi_denoise_walk *k);
