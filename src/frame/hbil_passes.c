@@ -72,7 +72,6 @@ void tgi_pass_hbil_interleaved(tg_frame *f, int y0, int y1)
             out = without_cone(res);
             out = tgi_gresult_from(&out, o);
             src = tgi_rgb_from(source, o);
-            src.lit_rounded = 1;   /* read as the plane it once was copied into */
             tgi_hbil_for_sub_image(&ps, i, j);
             tgi_hbil_rows(&ps, &sub, &src, &out, (y0 - j + 3) / 4, (y1 - j + 3) / 4);
         }

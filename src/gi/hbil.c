@@ -158,14 +158,16 @@ static tg_real full_y(const hbil_ctx *c, int y)
     return tg_ratio(Y2, 2);
 }
 
-/* acos for the horizon angles: sqrt(1 - a) times a degree-7 polynomial in
- * a = |c| (Hastings' fit, |error| <= 2e-8 on [0, 1]; acos(-a) = pi -
- * acos(a)): one square root and 8 terms where tg_acos's series takes 11 and
- * its wide arithmetic.  The error against tg_acos is measured by
- * tests/test_hbil.c (hbil_acos_accuracy). */
-static const tg_real acos_fit[8] = {
-    TG_R(1.5707963050f), TG_R(-0.2145988016f), TG_R(0.0889789874f), TG_R(-0.0501743046f),
-    TG_R(0.0308918810f), TG_R(-0.0170881256f), TG_R(0.0066700901f), TG_R(-0.0012624911f)
+/* Q(theta) = (theta - sin(theta) cos(theta)) / 2 for the front side, from
+ * c = cos(theta): with a = |c|, Q = sqrt(1 - a) g(a), g analytic on [0, 1]
+ * (acos(a) = sqrt(1 - a) p(a) and a sin = sqrt(1 - a) a sqrt(1 + a)), so
+ * one square root and a degree-6 polynomial (Chebyshev fit of g, |error|
+ * <= 6e-8 on [0, 1]) give theta and its sine term together where acos and
+ * sin each took a square root; Q(-a) = pi/2 - Q(a).  The error against
+ * libm is measured by tests/test_hbil.c (hbil_slice_q_accuracy). */
+static const tg_real slice_q_fit[7] = {
+    TG_R(0.7853982160f), TG_R(-0.6073061101f), TG_R(-0.2053898813f), TG_R(0.0365542198f),
+    TG_R(-0.0126462398f), TG_R(0.0041426349f), TG_R(-0.0007528721f)
 };
 /* Products and sums whose results are bounded (each use says why) without
  * the saturation test (tgi_wide, core/real.h): tg_mul, tg_add and tg_sub
@@ -185,34 +187,32 @@ static tg_real small_from_int(int i)
 #endif
 }
 
-tg_real tgi_hbil_acos(tg_real c)
+tg_real tgi_hbil_slice_q(tg_real c)
 {
-    const tg_real *k = acos_fit;
+    const tg_real *k = slice_q_fit;
     tg_real a = tg_min(tg_abs(c), TG_ONE), p, t;
-    /* Horner, written out (gcc keeps a loop of 7 as a loop); |p| < 1.6 */
-    p = small_add(small_mul(k[7], a), k[6]);
-    p = small_add(small_mul(p, a), k[5]);
+    /* Horner, written out (gcc keeps a loop as a loop); |p| < 0.8 */
+    p = small_add(small_mul(k[6], a), k[5]);
     p = small_add(small_mul(p, a), k[4]);
     p = small_add(small_mul(p, a), k[3]);
     p = small_add(small_mul(p, a), k[2]);
     p = small_add(small_mul(p, a), k[1]);
     p = small_add(small_mul(p, a), k[0]);
     t = small_mul(tg_sqrt(small_sub(TG_ONE, a)), p);
-    return c < 0 ? small_sub(TG_PI, t) : t;
+    return c < 0 ? small_sub(TG_HALF_PI, t) : t;
 }
 
 /* sin(theta)^2 / 2 and (theta - sin cos) / 2 from cos(theta) and the side
- * (|c| <= 1, so the operands are small: see small_mul). */
+ * (|c| <= 1, so the operands are small: see small_mul); on the back side
+ * theta and sin change sign, and Q with them. */
 static tg_real slice_R(tg_real c)
 {
     return small_mul(TG_R(0.5f), small_sub(TG_ONE, small_mul(c, c)));
 }
 static tg_real slice_Q(tg_real c, int side)
 {
-    tg_real theta = tgi_hbil_acos(c);
-    tg_real s = tg_sqrt(small_sub(TG_ONE, small_mul(c, c)));
-    if (side < 0) { theta = tg_neg(theta); s = tg_neg(s); }
-    return small_mul(TG_R(0.5f), small_sub(theta, small_mul(s, c)));
+    tg_real q = tgi_hbil_slice_q(c);
+    return side < 0 ? tg_neg(q) : q;
 }
 static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
 {
@@ -594,7 +594,7 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
     /* horizons initialised on the tangent plane (sec. 2.1): cos = -/+ n_x/|n'| */
     h1i = tg_clamp(tg_mul(tg_neg(sl.nx), inv_len_n), TG_R(-1.0f), TG_ONE);
     h0i = tg_neg(h1i);
-    /* Q(-c, -1) = Q(c, 1) - pi/2 and R(-c) = R(c): one acos for both sides */
+    /* Q(-c, -1) = Q(c, 1) - pi/2 and R(-c) = R(c): one fit for both sides */
     q1i = slice_Q(h1i, 1); q0i = tg_sub(q1i, TG_HALF_PI);
     r1i = slice_R(h1i); r0i = r1i;
     p1i = tg_add(tg_mul(sl.nx, q1i), tg_mul(sl.ny, r1i));
