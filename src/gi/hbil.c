@@ -187,6 +187,23 @@ static tg_real small_from_int(int i)
 #endif
 }
 
+/* sqrt(x) for x in [0, 1] (the fit's sqrt(1 - a)): in float the two-step
+ * reciprocal square root (core/real.h, rel. error < 5e-6) times x and one
+ * Newton step on the residual (as tg_sqrt ends), without tg_sqrt's third
+ * step and range tests; Q16.16 keeps tg_sqrt (exactly rounded). */
+static tg_real unit_sqrt(tg_real x)
+{
+#if TG_FIXED
+    return tg_sqrt(x);
+#else
+    float r, s;
+    if (!(x > 0.0f)) return 0.0f;
+    r = tgi_rsqrt_fast(x);
+    s = x * r;
+    return s + 0.5f * r * (x - s * s);
+#endif
+}
+
 tg_real tgi_hbil_slice_q(tg_real c)
 {
     const tg_real *k = slice_q_fit;
@@ -198,7 +215,7 @@ tg_real tgi_hbil_slice_q(tg_real c)
     p = small_add(small_mul(p, a), k[2]);
     p = small_add(small_mul(p, a), k[1]);
     p = small_add(small_mul(p, a), k[0]);
-    t = small_mul(tg_sqrt(small_sub(TG_ONE, a)), p);
+    t = small_mul(unit_sqrt(small_sub(TG_ONE, a)), p);
     return c < 0 ? small_sub(TG_HALF_PI, t) : t;
 }
 
