@@ -26,8 +26,9 @@
  * plane must not raise the horizon through rounding. */
 #define HBIL_TIE TG_R(0.00024414f)
 /* Depth is interpolated across the minor axis only between pixels whose
- * depths differ by less than this fraction of the nearer one. */
-#define HBIL_LERP_MAX_REL TG_R(3.0f)
+ * depths differ by less than this fraction of the nearer one: |za - zb| <
+ * 3 min(za, zb), i.e. (both > 0) za < 4 zb and zb < 4 za, tested so. */
+#define HBIL_LERP_MAX_RATIO TG_R(4.0f)
 /* The 3D radius test works on squared lengths in image pixels: capped so
  * the square stays inside Q16.16. */
 #define HBIL_MAX_RADIUS_UNITS TG_R(150.0f)
@@ -390,6 +391,18 @@ static inline int wide_far(tgi_wide d) { return (uint64_t)(d + HBIL_FAR) > (uint
 static inline int wide_far(tgi_wide d) { (void)d; return 0; }
 #endif
 
+/* |d| of a tgi_wide: in float an and in the float registers (tgi_abs_bits,
+ * raster/pack.h) where the conditional negation takes a compare and three
+ * mask operations. */
+static inline tgi_wide wide_abs(tgi_wide d)
+{
+#if TG_FIXED
+    return d < 0 ? -d : d;
+#else
+    return tgi_abs_bits(d);
+#endif
+}
+
 /* The march's per-side constants (march_side). */
 typedef struct hbil_march {
     tg_real p0x, p0y, p0z, z, inv_z, r2, wox, woy, woz;
@@ -421,13 +434,17 @@ static inline void march_samples(
     const tg_real wox = mr->wox, woy = mr->woy, woz = mr->woz, dminor = mr->dminor;
     const int back = mr->back;
     tg_real minor = mr->minor, ox = mr->ox, hs_tie = tg_add(sd->hs, HBIL_TIE);
+    /* the major offset k da - back of sample k, stepped (whole pixels < 2^14: exact) */
+    tg_real smajor = small_from_int(-back);
+    const tg_real dmajor = small_from_int(da);
     int k, a = mr->a, sa_major = a * smaj;
     for (k = 1; k <= n; k++) {
         int b0, sa;
-        tg_real f, z1, q, sx, sy, smajor, za, zb;
+        tg_real f, z1, q, sx, sy, za, zb;
         tgi_wide dx, dy, dz, len2, dot;
         minor = (tg_real)((tgi_wide)minor + dminor);           /* |minor|, |ox| < 2^14 px: no saturation */
         ox = (tg_real)((tgi_wide)ox + dminor);
+        smajor = (tg_real)((tgi_wide)smajor + dmajor);
         a += da;
         sa_major += da * smaj;
         b0 = floor_small(minor);
@@ -437,12 +454,13 @@ static inline void march_samples(
          * interpolated linearly, 1/z = (1-f)/za + f/zb  <=>
          * z = za + f (zb - za) za / (zb - f (zb - za)) */
         if ((unsigned)b0 < (unsigned)(bmax - 1)                 /* b0 and b0 + 1 inside */
-            && (za = tgi_gv_depth(&g, sa)) > 0 && (zb = tgi_gv_depth(&g, sa + smin)) > 0
-            && (tgi_wide)tg_abs(small_sub(za, zb)) < tgi_wide_mul(HBIL_LERP_MAX_REL, tg_min(za, zb))) {
-            /* 0 < za, zb <= TG_REAL_MAX: zb - za fits, f zd (f in [0, 1)) fits,
-             * zb - f zd lies between za and zb; the comparison above is made
-             * in tgi_wide, so a 3 min(za, zb) beyond TG_REAL_MAX (where tg_mul
-             * saturated) gives the same answer */
+            && (za = tgi_gv_depth(&g, sa)) > 0 && (zb = tgi_gv_depth(&g, sa + smin),
+                tgi_wide_mul(HBIL_LERP_MAX_RATIO, zb) > za && tgi_wide_mul(HBIL_LERP_MAX_RATIO, za) > zb)) {
+            /* za > 0 and 4 zb > za: zb > 0 (not sky).  0 < za, zb <=
+             * TG_REAL_MAX: zb - za fits, f zd (f in [0, 1)) fits, zb - f zd
+             * lies between za and zb; the comparisons above are made in
+             * tgi_wide, so a 4 z beyond TG_REAL_MAX (where tg_mul saturated)
+             * gives the same answer */
             tg_real zd = (tg_real)((tgi_wide)zb - za), fzd = small_mul(f, zd);
             z1 = tg_add(za, tg_mul(fzd, tg_div(za, small_sub(zb, fzd))));
         } else {
@@ -456,7 +474,6 @@ static inline void march_samples(
         /* view-space offset scaled to image pixels at depth z (see top),
          * unsaturated (bounds above tgi_wide) */
         q = tg_mul(small_sub(z1, z), inv_z);                   /* z1, z in (0, TG_REAL_MAX] */
-        smajor = small_from_int(k * da - back);
         sx = major_x ? smajor : ox;
         sy = major_x ? tg_neg(ox) : tg_neg(smajor);
         dx = (tgi_wide)sx + tgi_wide_mul((tgi_wide)p0x + sx, q);
@@ -467,7 +484,7 @@ static inline void march_samples(
         if (len2 > r2) continue;                                /* beyond the 3D radius */
         dot = tgi_wide_dot(dx, dy, dz, wox, woy, woz);
         /* cos(theta) > horizon, without a division: dot|dot| > h|h| |d|^2 */
-        if (tgi_wide_mul(dot, dot < 0 ? -dot : dot) > tgi_wide_mul(hs_tie, len2)) {
+        if (tgi_wide_mul(dot, wide_abs(dot)) > tgi_wide_mul(hs_tie, len2)) {
             tg_real len = tg_sqrt((tg_real)len2);                /* |d| <= 150: d, dot, len2 fit tg_real */
             tg_real cn = tg_clamp(tg_div((tg_real)dot, len), TG_R(-1.0f), TG_ONE); /* HBIL sec. 1.3 */
             if (cn <= sd->h) continue;
