@@ -403,6 +403,29 @@ static inline tgi_wide wide_abs(tgi_wide d)
 #endif
 }
 
+/* The cosine dot / |d| of a sample that passed the horizon test, clamped
+ * to [-1, 1], and 1 / |d| (|d| <= 150: d, dot and len2 = |d|^2 fit
+ * tg_real).  Float: one reciprocal square root, the two-step one of
+ * core/real.h and a third Newton step (tg_sqrt and two divisions before).
+ * Q16.16 keeps the square root and divides (1/|d| >= 1/150 holds too few
+ * bits for the cosine as a product). */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline tg_real horizon_cos(tg_real dot, tg_real len2, tg_real *inv_len)
+{
+#if TG_FIXED
+    tg_real len = tg_sqrt(len2);
+    *inv_len = tg_div(TG_ONE, len);
+    return tg_clamp(tg_div(dot, len), TG_R(-1.0f), TG_ONE);
+#else
+    float r = tgi_rsqrt_fast(len2);
+    r = r * (1.5f - 0.5f * len2 * r * r);
+    *inv_len = r;
+    return tg_clamp(dot * r, -1.0f, 1.0f);
+#endif
+}
+
 /* The march's per-side constants (march_side). */
 typedef struct hbil_march {
     tg_real p0x, p0y, p0z, z, inv_z, r2, wox, woy, woz;
@@ -485,8 +508,7 @@ static inline void march_samples(
         dot = tgi_wide_dot(dx, dy, dz, wox, woy, woz);
         /* cos(theta) > horizon, without a division: dot|dot| > h|h| |d|^2 */
         if (tgi_wide_mul(dot, wide_abs(dot)) > tgi_wide_mul(hs_tie, len2)) {
-            tg_real len = tg_sqrt((tg_real)len2);                /* |d| <= 150: d, dot, len2 fit tg_real */
-            tg_real cn = tg_clamp(tg_div((tg_real)dot, len), TG_R(-1.0f), TG_ONE); /* HBIL sec. 1.3 */
+            tg_real inv_len, cn = horizon_cos((tg_real)dot, (tg_real)len2, &inv_len);  /* HBIL sec. 1.3 */
             if (cn <= sd->h) continue;
             sd->h = cn;
             sd->peak_a = a;
@@ -494,7 +516,7 @@ static inline void march_samples(
             hs_tie = tg_add(sd->hs, HBIL_TIE);
             if (NEAR_FIELD(c))
                 gather_rise(c, sl, sd, side, cn,
-                            tgi_v3_scale(tg_v3((tg_real)dx, (tg_real)dy, (tg_real)dz), tg_div(TG_ONE, len)),
+                            tgi_v3_scale(tg_v3((tg_real)dx, (tg_real)dy, (tg_real)dz), inv_len),
                             f < TG_R(0.5f) ? sa : sa + smin);      /* the nearest pixel */
         }
     }
