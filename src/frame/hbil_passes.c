@@ -58,14 +58,10 @@ void tgi_pass_hbil_interleaved(tg_frame *f, int y0, int y1)
     const tgi_rgb *source;
     const tgi_gview *k = tgi_frame_kernel(f, &res, &source);
     int i, j;
-#if !TG_NO_FINE_HORIZON
-    tgi_rgb fine_src = *tgi_frame_source(f);
-#endif
     hbil_params(f, &p);
 #if !TG_NO_FINE_HORIZON
-    fine_src.lit_rounded = 1;   /* as src below */
     p.fine = &f->full;          /* the horizons are refined on the full-resolution pixels (gi/hbil.c) */
-    p.fine_radiance = &fine_src;
+    p.fine_radiance = tgi_frame_source(f);
 #endif
     for (j = 0; j < 4; j++)
         for (i = 0; i < 4; i++) {
@@ -80,7 +76,6 @@ void tgi_pass_hbil_interleaved(tg_frame *f, int y0, int y1)
             out = without_cone(res);
             out = tgi_gresult_from(&out, o);
             src = tgi_rgb_from(source, o);
-            src.lit_rounded = 1;   /* read as the plane it once was copied into */
             tgi_hbil_for_sub_image(&ps, i, j);
             tgi_hbil_rows(&ps, &sub, &src, &out, (y0 - j + 3) / 4, (y1 - j + 3) / 4);
         }

@@ -26,8 +26,9 @@
  * plane must not raise the horizon through rounding. */
 #define HBIL_TIE TG_R(0.00024414f)
 /* Depth is interpolated across the minor axis only between pixels whose
- * depths differ by less than this fraction of the nearer one. */
-#define HBIL_LERP_MAX_REL TG_R(3.0f)
+ * depths differ by less than this fraction of the nearer one: |za - zb| <
+ * 3 min(za, zb), i.e. (both > 0) za < 4 zb and zb < 4 za, tested so. */
+#define HBIL_LERP_MAX_RATIO TG_R(4.0f)
 /* The 3D radius test works on squared lengths in image pixels: capped so
  * the square stays inside Q16.16. */
 #define HBIL_MAX_RADIUS_UNITS TG_R(150.0f)
@@ -167,14 +168,16 @@ static tg_real view_y(const hbil_ctx *c, const tgi_gview *g, int y)
 static tg_real full_x(const hbil_ctx *c, int x) { return view_x(c, c->g, x); }
 static tg_real full_y(const hbil_ctx *c, int y) { return view_y(c, c->g, y); }
 
-/* acos for the horizon angles: sqrt(1 - a) times a degree-7 polynomial in
- * a = |c| (Hastings' fit, |error| <= 2e-8 on [0, 1]; acos(-a) = pi -
- * acos(a)): one square root and 8 terms where tg_acos's series takes 11 and
- * its wide arithmetic.  The error against tg_acos is measured by
- * tests/test_hbil.c (hbil_acos_accuracy). */
-static const tg_real acos_fit[8] = {
-    TG_R(1.5707963050f), TG_R(-0.2145988016f), TG_R(0.0889789874f), TG_R(-0.0501743046f),
-    TG_R(0.0308918810f), TG_R(-0.0170881256f), TG_R(0.0066700901f), TG_R(-0.0012624911f)
+/* Q(theta) = (theta - sin(theta) cos(theta)) / 2 for the front side, from
+ * c = cos(theta): with a = |c|, Q = sqrt(1 - a) g(a), g analytic on [0, 1]
+ * (acos(a) = sqrt(1 - a) p(a) and a sin = sqrt(1 - a) a sqrt(1 + a)), so
+ * one square root and a degree-6 polynomial (Chebyshev fit of g, |error|
+ * <= 6e-8 on [0, 1]) give theta and its sine term together where acos and
+ * sin each took a square root; Q(-a) = pi/2 - Q(a).  The error against
+ * libm is measured by tests/test_hbil.c (hbil_slice_q_accuracy). */
+static const tg_real slice_q_fit[7] = {
+    TG_R(0.7853982160f), TG_R(-0.6073061101f), TG_R(-0.2053898813f), TG_R(0.0365542198f),
+    TG_R(-0.0126462398f), TG_R(0.0041426349f), TG_R(-0.0007528721f)
 };
 /* Products and sums whose results are bounded (each use says why) without
  * the saturation test (tgi_wide, core/real.h): tg_mul, tg_add and tg_sub
@@ -194,34 +197,49 @@ static tg_real small_from_int(int i)
 #endif
 }
 
-tg_real tgi_hbil_acos(tg_real c)
+/* sqrt(x) for x in [0, 1] (the fit's sqrt(1 - a)): in float the two-step
+ * reciprocal square root (core/real.h, rel. error < 5e-6) times x and one
+ * Newton step on the residual (as tg_sqrt ends), without tg_sqrt's third
+ * step and range tests; Q16.16 keeps tg_sqrt (exactly rounded). */
+static tg_real unit_sqrt(tg_real x)
 {
-    const tg_real *k = acos_fit;
+#if TG_FIXED
+    return tg_sqrt(x);
+#else
+    float r, s;
+    if (!(x > 0.0f)) return 0.0f;
+    r = tgi_rsqrt_fast(x);
+    s = x * r;
+    return s + 0.5f * r * (x - s * s);
+#endif
+}
+
+tg_real tgi_hbil_slice_q(tg_real c)
+{
+    const tg_real *k = slice_q_fit;
     tg_real a = tg_min(tg_abs(c), TG_ONE), p, t;
-    /* Horner, written out (gcc keeps a loop of 7 as a loop); |p| < 1.6 */
-    p = small_add(small_mul(k[7], a), k[6]);
-    p = small_add(small_mul(p, a), k[5]);
+    /* Horner, written out (gcc keeps a loop as a loop); |p| < 0.8 */
+    p = small_add(small_mul(k[6], a), k[5]);
     p = small_add(small_mul(p, a), k[4]);
     p = small_add(small_mul(p, a), k[3]);
     p = small_add(small_mul(p, a), k[2]);
     p = small_add(small_mul(p, a), k[1]);
     p = small_add(small_mul(p, a), k[0]);
-    t = small_mul(tg_sqrt(small_sub(TG_ONE, a)), p);
-    return c < 0 ? small_sub(TG_PI, t) : t;
+    t = small_mul(unit_sqrt(small_sub(TG_ONE, a)), p);
+    return c < 0 ? small_sub(TG_HALF_PI, t) : t;
 }
 
 /* sin(theta)^2 / 2 and (theta - sin cos) / 2 from cos(theta) and the side
- * (|c| <= 1, so the operands are small: see small_mul). */
+ * (|c| <= 1, so the operands are small: see small_mul); on the back side
+ * theta and sin change sign, and Q with them. */
 static tg_real slice_R(tg_real c)
 {
     return small_mul(TG_R(0.5f), small_sub(TG_ONE, small_mul(c, c)));
 }
 static tg_real slice_Q(tg_real c, int side)
 {
-    tg_real theta = tgi_hbil_acos(c);
-    tg_real s = tg_sqrt(small_sub(TG_ONE, small_mul(c, c)));
-    if (side < 0) { theta = tg_neg(theta); s = tg_neg(s); }
-    return small_mul(TG_R(0.5f), small_sub(theta, small_mul(s, c)));
+    tg_real q = tgi_hbil_slice_q(c);
+    return side < 0 ? tg_neg(q) : q;
 }
 static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
 {
@@ -387,6 +405,41 @@ static inline int wide_far(tgi_wide d) { return (uint64_t)(d + HBIL_FAR) > (uint
 static inline int wide_far(tgi_wide d) { (void)d; return 0; }
 #endif
 
+/* |d| of a tgi_wide: in float an and in the float registers (tgi_abs_bits,
+ * raster/pack.h) where the conditional negation takes a compare and three
+ * mask operations. */
+static inline tgi_wide wide_abs(tgi_wide d)
+{
+#if TG_FIXED
+    return d < 0 ? -d : d;
+#else
+    return tgi_abs_bits(d);
+#endif
+}
+
+/* The cosine dot / |d| of a sample that passed the horizon test, clamped
+ * to [-1, 1], and 1 / |d| (|d| <= 150: d, dot and len2 = |d|^2 fit
+ * tg_real).  Float: one reciprocal square root, the two-step one of
+ * core/real.h and a third Newton step (tg_sqrt and two divisions before).
+ * Q16.16 keeps the square root and divides (1/|d| >= 1/150 holds too few
+ * bits for the cosine as a product). */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline tg_real horizon_cos(tg_real dot, tg_real len2, tg_real *inv_len)
+{
+#if TG_FIXED
+    tg_real len = tg_sqrt(len2);
+    *inv_len = tg_div(TG_ONE, len);
+    return tg_clamp(tg_div(dot, len), TG_R(-1.0f), TG_ONE);
+#else
+    float r = tgi_rsqrt_fast(len2);
+    r = r * (1.5f - 0.5f * len2 * r * r);
+    *inv_len = r;
+    return tg_clamp(dot * r, -1.0f, 1.0f);
+#endif
+}
+
 /* The march's per-side constants (march_side). */
 typedef struct hbil_march {
     tg_real p0x, p0y, p0z, z, inv_z, r2, wox, woy, woz;
@@ -399,9 +452,9 @@ typedef struct hbil_march {
 /* The sample at screen offset (sx, sy) from the pixel (image pixels, y
  * up) and depth z1 (> 0), for the side whose horizon is h with h|h| +
  * HBIL_TIE = hs_tie: its cosine from w_o when it lies within the 3D radius
- * and above the horizon, else HBIL_NOT_ABOVE; d, len: its view-space offset
- * d = s + q (P0 + s), q = (z1 - z) / z, in tgi_wide (see above), and
- * |d|.  One copy for the march and the fine samples when compiling for
+ * and above the horizon, else HBIL_NOT_ABOVE; d, inv_len: its view-space
+ * offset d = s + q (P0 + s), q = (z1 - z) / z, in tgi_wide (see above),
+ * and 1 / |d|.  One copy for the march and the fine samples when compiling for
  * size (TG_OUTLINE_HELPERS), inlined into each otherwise (and into the
  * march alone without the fine samples, TG_NO_FINE_HORIZON). */
 #define HBIL_NOT_ABOVE TG_R(-2.0f)
@@ -413,7 +466,7 @@ typedef struct hbil_march {
 #define HBIL_SAMPLE_INLINE inline
 #endif
 static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, tg_real sx, tg_real sy, tg_real h, tg_real hs_tie,
-                          tgi_wide d[3], tg_real *len)
+                          tgi_wide d[3], tg_real *inv_len)
 {
     const tg_real q = tg_mul(small_sub(z1, mr->z), mr->inv_z);   /* z1, z in (0, TG_REAL_MAX] */
     tgi_wide dx, dy, dz, len2, dot;
@@ -426,9 +479,8 @@ static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, t
     if (len2 > mr->r2) return HBIL_NOT_ABOVE;                                 /* beyond the 3D radius */
     dot = tgi_wide_dot(dx, dy, dz, mr->wox, mr->woy, mr->woz);
     /* cos(theta) > horizon, without a division: dot|dot| > h|h| |d|^2 */
-    if (tgi_wide_mul(dot, dot < 0 ? -dot : dot) <= tgi_wide_mul(hs_tie, len2)) return HBIL_NOT_ABOVE;
-    *len = tg_sqrt((tg_real)len2);                               /* |d| <= 150: d, dot, len2 fit tg_real */
-    cn = tg_clamp(tg_div((tg_real)dot, *len), TG_R(-1.0f), TG_ONE); /* HBIL sec. 1.3 */
+    if (tgi_wide_mul(dot, wide_abs(dot)) <= tgi_wide_mul(hs_tie, len2)) return HBIL_NOT_ABOVE;
+    cn = horizon_cos((tg_real)dot, (tg_real)len2, inv_len);     /* HBIL sec. 1.3; |d| <= 150: d, dot, len2 fit tg_real */
     if (cn <= h) return HBIL_NOT_ABOVE;
     d[0] = dx; d[1] = dy; d[2] = dz;
     return cn;
@@ -457,13 +509,17 @@ static inline void march_samples(
     const tg_real dminor = m.dminor;
     const int back = m.back;
     tg_real minor = mr->minor, ox = mr->ox, hs_tie = tg_add(sd->hs, HBIL_TIE);
+    /* the major offset k da - back of sample k, stepped (whole pixels < 2^14: exact) */
+    tg_real smajor = small_from_int(-back);
+    const tg_real dmajor = small_from_int(da);
     int k, a = mr->a, sa_major = a * smaj;
     for (k = 1; k <= n; k++) {
         int b0, sa;
-        tg_real f, z1, sx, sy, smajor, za, zb, cn, len;
+        tg_real f, z1, sx, sy, za, zb, cn, inv_len;
         tgi_wide d[3];
         minor = (tg_real)((tgi_wide)minor + dminor);           /* |minor|, |ox| < 2^14 px: no saturation */
         ox = (tg_real)((tgi_wide)ox + dminor);
+        smajor = (tg_real)((tgi_wide)smajor + dmajor);
         a += da;
         sa_major += da * smaj;
         b0 = floor_small(minor);
@@ -473,12 +529,13 @@ static inline void march_samples(
          * interpolated linearly, 1/z = (1-f)/za + f/zb  <=>
          * z = za + f (zb - za) za / (zb - f (zb - za)) */
         if ((unsigned)b0 < (unsigned)(bmax - 1)                 /* b0 and b0 + 1 inside */
-            && (za = tgi_gv_depth(&g, sa)) > 0 && (zb = tgi_gv_depth(&g, sa + smin)) > 0
-            && (tgi_wide)tg_abs(small_sub(za, zb)) < tgi_wide_mul(HBIL_LERP_MAX_REL, tg_min(za, zb))) {
-            /* 0 < za, zb <= TG_REAL_MAX: zb - za fits, f zd (f in [0, 1)) fits,
-             * zb - f zd lies between za and zb; the comparison above is made
-             * in tgi_wide, so a 3 min(za, zb) beyond TG_REAL_MAX (where tg_mul
-             * saturated) gives the same answer */
+            && (za = tgi_gv_depth(&g, sa)) > 0 && (zb = tgi_gv_depth(&g, sa + smin),
+                tgi_wide_mul(HBIL_LERP_MAX_RATIO, zb) > za && tgi_wide_mul(HBIL_LERP_MAX_RATIO, za) > zb)) {
+            /* za > 0 and 4 zb > za: zb > 0 (not sky).  0 < za, zb <=
+             * TG_REAL_MAX: zb - za fits, f zd (f in [0, 1)) fits, zb - f zd
+             * lies between za and zb; the comparisons above are made in
+             * tgi_wide, so a 4 z beyond TG_REAL_MAX (where tg_mul saturated)
+             * gives the same answer */
             tg_real zd = (tg_real)((tgi_wide)zb - za), fzd = small_mul(f, zd);
             z1 = tg_add(za, tg_mul(fzd, tg_div(za, small_sub(zb, fzd))));
         } else {
@@ -489,18 +546,16 @@ static inline void march_samples(
             z1 = sample_depth_edge(c, &g, major_x, a, b0, f, sa, sn);
             if (z1 <= 0) continue;
         }
-        smajor = small_from_int(k * da - back);
         sx = major_x ? smajor : ox;
         sy = major_x ? tg_neg(ox) : tg_neg(smajor);
-        cn = sample_cos(&m, z1, sx, sy, sd->h, hs_tie, d, &len);
+        cn = sample_cos(&m, z1, sx, sy, sd->h, hs_tie, d, &inv_len);
         if (cn == HBIL_NOT_ABOVE) continue;
         sd->h = cn;
         sd->peak_a = a;
         sd->hs = tg_mul(cn, tg_abs(cn));
         hs_tie = tg_add(sd->hs, HBIL_TIE);
         if (NEAR_FIELD(c))
-            gather_rise(c, sl, sd, side, cn,
-                        tgi_v3_scale(tg_v3((tg_real)d[0], (tg_real)d[1], (tg_real)d[2]), tg_div(TG_ONE, len)),
+            gather_rise(c, sl, sd, side, cn, tgi_v3_scale(tg_v3((tg_real)d[0], (tg_real)d[1], (tg_real)d[2]), inv_len),
                         c->g, c->rad, f < TG_R(0.5f) ? sa : sa + smin);   /* the nearest pixel */
     }
 }
@@ -567,7 +622,7 @@ HBIL_NOINLINE static void march_between(const hbil_ctx *c, const hbil_slice *sl,
 typedef struct hbil_fine_best {
     tg_real h, hs;          /* the highest horizon the fine samples found, h|h| */
     tgi_wide dx, dy, dz;    /* its offset (march units) */
-    tg_real len;            /* |d| */
+    tg_real inv_len;        /* 1 / |d| */
     int si;                 /* its pixel in the fine image; -1: none above the side's */
 } hbil_fine_best;
 
@@ -576,7 +631,7 @@ static void fine_sample(const hbil_ctx *c, hbil_fine_best *best, const hbil_marc
 {
     const tgi_gview *fg = c->fine;
     const int fa = fa0 + t * dir, bmax = major_x ? fg->height : fg->width;
-    tg_real minor = tg_mul(mr->slope, tg_from_int(t)), f, z1, za, zb, sx, sy, len, cn;
+    tg_real minor = tg_mul(mr->slope, tg_from_int(t)), f, z1, za, zb, sx, sy, inv_len, cn;
     int b0 = floor_small(minor), fb = fb0 + b0, si, sj;
     tgi_wide d[3];
     f = small_sub(minor, small_from_int(b0));
@@ -585,8 +640,8 @@ static void fine_sample(const hbil_ctx *c, hbil_fine_best *best, const hbil_marc
     sj = fb + 1 < bmax ? (int)(major_x ? tgi_gv_index(fg, fa, fb + 1) : tgi_gv_index(fg, fb + 1, fa)) : si;
     za = tgi_gv_depth(fg, si);
     zb = tgi_gv_depth(fg, sj);
-    if (sj != si && za > 0 && zb > 0
-        && (tgi_wide)tg_abs(small_sub(za, zb)) < tgi_wide_mul(HBIL_LERP_MAX_REL, tg_min(za, zb))) {
+    if (sj != si && za > 0                                          /* and close: as in march_samples */
+        && tgi_wide_mul(HBIL_LERP_MAX_RATIO, zb) > za && tgi_wide_mul(HBIL_LERP_MAX_RATIO, za) > zb) {
         tg_real zd = (tg_real)((tgi_wide)zb - za), fzd = small_mul(f, zd);   /* as in march_samples */
         z1 = tg_add(za, tg_mul(fzd, tg_div(za, small_sub(zb, fzd))));
     } else {                                                        /* as in march_samples */
@@ -600,12 +655,12 @@ static void fine_sample(const hbil_ctx *c, hbil_fine_best *best, const hbil_marc
     }
     sx = major_x ? tg_ratio(t * dir, c->fine_ratio) : tg_mul(minor, c->inv_fine_ratio);
     sy = major_x ? tg_neg(tg_mul(minor, c->inv_fine_ratio)) : tg_ratio(-t * dir, c->fine_ratio);
-    cn = sample_cos(mr, z1, sx, sy, best->h, tg_add(best->hs, HBIL_TIE), d, &len);
+    cn = sample_cos(mr, z1, sx, sy, best->h, tg_add(best->hs, HBIL_TIE), d, &inv_len);
     if (cn == HBIL_NOT_ABOVE) return;
     best->h = cn;
     best->hs = tg_mul(cn, tg_abs(cn));
     best->dx = d[0]; best->dy = d[1]; best->dz = d[2];
-    best->len = len;
+    best->inv_len = inv_len;
     best->si = si;
 }
 
@@ -654,7 +709,7 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
     sd->hs = best.hs;
     if (NEAR_FIELD(c))
         gather_rise(c, sl, sd, side, best.h,
-                    tgi_v3_scale(tg_v3((tg_real)best.dx, (tg_real)best.dy, (tg_real)best.dz), tg_div(TG_ONE, best.len)),
+                    tgi_v3_scale(tg_v3((tg_real)best.dx, (tg_real)best.dy, (tg_real)best.dz), best.inv_len),
                     fg, c->fine_rad, best.si);
 }
 
@@ -738,7 +793,7 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
     /* horizons initialised on the tangent plane (sec. 2.1): cos = -/+ n_x/|n'| */
     h1i = tg_clamp(tg_mul(tg_neg(sl.nx), inv_len_n), TG_R(-1.0f), TG_ONE);
     h0i = tg_neg(h1i);
-    /* Q(-c, -1) = Q(c, 1) - pi/2 and R(-c) = R(c): one acos for both sides */
+    /* Q(-c, -1) = Q(c, 1) - pi/2 and R(-c) = R(c): one fit for both sides */
     q1i = slice_Q(h1i, 1); q0i = tg_sub(q1i, TG_HALF_PI);
     r1i = slice_R(h1i); r0i = r1i;
     p1i = tg_add(tg_mul(sl.nx, q1i), tg_mul(sl.ny, r1i));

@@ -126,8 +126,10 @@ void tgi_hbil_rows(const tgi_hbil_params *p, const tgi_gview *g, const tgi_rgb *
 void tgi_hbil_interleaved_rows(const tgi_hbil_params *p, const tgi_gview *k, const tgi_gbuffer *split,
                                const tgi_rgb *radiance, const tgi_gresult *out, int y0, int y1);
 
-/* acos(c), c in [-1, 1] (clamped), as the kernel's horizon angles use it
- * (a cheaper fit than tg_acos; error in tests/test_hbil.c). */
-tg_real tgi_hbil_acos(tg_real c);
+/* Q(theta) = (theta - sin(theta) cos(theta)) / 2 from c = cos(theta), c in
+ * [-1, 1] (clamped), theta = acos(c) in [0, pi]: the horizon's slice
+ * integral (eq. 10-11) as the kernel evaluates it (one square root and a
+ * polynomial; error in tests/test_hbil.c). */
+tg_real tgi_hbil_slice_q(tg_real c);
 
 #endif

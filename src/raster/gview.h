@@ -233,8 +233,6 @@ typedef struct tgi_rgb {
 #endif
     const tgi_gbuffer *lit;        /* non-NULL: reads are tgi_gb_lit of these surfaces */
     size_t lit_at;                 /* pixel i of the plane is pixel lit_at + i of lit */
-    int lit_rounded;               /* lit reads rounded to the plane's format, as a copy
-                                      of the lit values into such a plane would hold them */
 } tgi_rgb;
 
 #if TG_WIDE_STORAGE
@@ -250,11 +248,7 @@ static inline tg_vec3 tgi_rgb_get(const tgi_rgb *c, size_t i)
 {
     tg_vec3 v = tgi_rgb_stored(c, i);
     if (!c->lit) return v;
-    v = tgi_gb_lit(c->lit, c->lit_at + i, v);
-#if !TG_WIDE_STORAGE
-    if (c->lit_rounded) v = tgi_rgb9e5_unpack(tgi_rgb9e5_pack(v));
-#endif
-    return v;
+    return tgi_gb_lit(c->lit, c->lit_at + i, v);
 }
 #if TG_WIDE_STORAGE
 /* A vector stored wide, three tg_real planes, moved on to index `start`
