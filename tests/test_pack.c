@@ -107,6 +107,67 @@ TEST(octahedral_normals)
     CHECK(tgi_oct_pack(tg_v3(0, 0, 0), 8) == tgi_oct_pack(tg_v3(0, 0, TG_ONE), 8), "the zero vector packs as +z");
 }
 
+/* src/raster/pack.h's unpack before the magnitudes were computed directly
+ * (as of commit fb8a8d5): the oracle the faster one must equal bit for bit
+ * on every word (the G-buffer's and the goldens' normals). */
+#if TG_FIXED
+static tg_real oracle_oct_scale(int32_t c, uint64_t r, int shift)
+{
+    uint64_t a = (uint64_t)(c < 0 ? -(int64_t)c : c) * r >> shift;
+    return c < 0 ? -(tg_real)a : (tg_real)a;
+}
+#endif
+static tg_vec3 oracle_oct_unpack(uint32_t w, int bits)
+{
+    int32_t q = (int32_t)((1u << bits) - 2), mask = (int32_t)((1u << bits) - 1);
+    int32_t x = 2 * (int32_t)(w & (uint32_t)mask) - q, y = 2 * (int32_t)((w >> bits) & (uint32_t)mask) - q;
+    int32_t ax = x < 0 ? -x : x, ay = y < 0 ? -y : y, z = q - ax - ay;
+    tg_vec3 n;
+    if (z < 0) {
+        int32_t fx = (q - ay) * (x < 0 ? -1 : 1), fy = (q - ax) * (y < 0 ? -1 : 1);
+        x = fx; y = fy;
+    }
+#if TG_FIXED
+    {
+        uint64_t len2 = (uint64_t)((int64_t)x * x + (int64_t)y * y + (int64_t)z * z), r;
+        int b = tgi_bit_length64(len2), k = (32 - b) >> 1, shift = 29 - k;
+        r = tgi_rsqrt_q30_fast(len2 << (2 * k));
+        n.x = oracle_oct_scale(x, r, shift);
+        n.y = oracle_oct_scale(y, r, shift);
+        n.z = oracle_oct_scale(z, r, shift);
+    }
+#else
+    {
+        float fx = (float)x, fy = (float)y, fz = (float)z;
+        float r = tgi_rsqrt_fast(fx * fx + fy * fy + fz * fz);
+        n.x = fx * r; n.y = fy * r; n.z = fz * r;
+    }
+#endif
+    return n;
+}
+
+/* Every word of 2x4, 2x8 and 2x11 bits (2x15 at a stride) decodes to the
+ * oracle's bits, with the coordinate 2^bits - 1 the encoder never writes. */
+TEST(octahedral_unpack_matches_oracle)
+{
+    static const int widths[4] = { 4, 8, 11, 15 };
+    int k;
+    for (k = 0; k < 4; k++) {
+        int bits = widths[k];
+        uint64_t w, n = (uint64_t)1 << (2 * bits), step = bits > 12 ? 4099u : 1u;
+        long bad = 0, count = 0;
+        for (w = 0; w < n; w += step) {
+            tg_vec3 a = tgi_oct_unpack((uint32_t)w, bits), b = oracle_oct_unpack((uint32_t)w, bits);
+            count++;
+            if (memcmp(&a.x, &b.x, sizeof a.x) || memcmp(&a.y, &b.y, sizeof a.y) || memcmp(&a.z, &b.z, sizeof a.z)) {
+                if (bad++ < 5) fprintf(stderr, "2x%d word 0x%x: (%g %g %g), oracle (%g %g %g)\n", bits, (unsigned)w,
+                                       dv(a.x), dv(a.y), dv(a.z), dv(b.x), dv(b.y), dv(b.z));
+            }
+        }
+        CHECK(bad == 0 && count >= 256, "2x%d: %ld of %ld words differ from the oracle", bits, bad, count);
+    }
+}
+
 /* RGB9E5: within half a step of the largest channel's exponent, the same
  * words in both builds, saturating, never negative or non-finite. */
 TEST(shared_exponent_rgb)
@@ -219,6 +280,7 @@ int main(void)
     RUN(depth_is_binary32_in_both_builds);
     RUN(depth_round_trip_and_order);
     RUN(octahedral_normals);
+    RUN(octahedral_unpack_matches_oracle);
     RUN(shared_exponent_rgb);
     RUN(unorm8_ao);
     RUN(geometry_gbuffer_without_material);

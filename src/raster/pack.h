@@ -146,11 +146,8 @@ static inline uint32_t tgi_oct_pack(tg_vec3 m, int bits)
 }
 
 #if TG_FIXED
-static inline tg_real tgi_oct_scale(int32_t c, uint64_t r, int shift)
-{
-    uint64_t a = (uint64_t)(c < 0 ? -(int64_t)c : c) * r >> shift;
-    return c < 0 ? -(tg_real)a : (tg_real)a;
-}
+/* sign(c) m for a magnitude m < 2^31: c's sign on |c| / |.| */
+static inline tg_real tgi_oct_signed(uint64_t m, int32_t c) { return c < 0 ? -(tg_real)m : (tg_real)m; }
 #endif
 
 /* Unit vector of two `bits`-bit octahedral coordinates.  The fold and the
@@ -168,14 +165,17 @@ static inline tg_vec3 tgi_oct_unpack_inline(uint32_t w, int bits)
     }
 #if TG_FIXED
     {
-        /* 1/|(x, y, z)| by the integer rsqrt: |.|^2 < 3 2^(2 bits), x30 in [2^30, 2^32) */
-        uint64_t len2 = (uint64_t)((int64_t)x * x + (int64_t)y * y + (int64_t)z * z), r;
+        /* 1/|(x, y, z)| by the integer rsqrt: |x| + |y| + |z| = q, so
+         * q^2 / 3 <= |.|^2 <= q^2 < 2^32 (below 3 2^30 with the coordinate
+         * 2^bits - 1 the encoder never writes, bits <= 15); x30 in [2^30, 2^32) */
+        uint32_t mx = (uint32_t)(x < 0 ? -x : x), my = (uint32_t)(y < 0 ? -y : y), mz = (uint32_t)(z < 0 ? -z : z);
+        uint32_t len2 = mx * mx + my * my + mz * mz;
         int b = tgi_bit_length64(len2), k = (32 - b) >> 1, shift = 29 - k;
-        r = tgi_rsqrt_q30_fast(len2 << (2 * k));
-        /* component c / |.| in Q16.16: c r 2^-shift, truncated toward 0 (odd in c) */
-        n.x = tgi_oct_scale(x, r, shift);
-        n.y = tgi_oct_scale(y, r, shift);
-        n.z = tgi_oct_scale(z, r, shift);
+        uint64_t r = tgi_rsqrt_q30_fast((uint64_t)len2 << (2 * k));
+        /* component c / |.| in Q16.16: |c| r 2^-shift, truncated toward 0 (odd in c) */
+        n.x = tgi_oct_signed((mx * r) >> shift, x);
+        n.y = tgi_oct_signed((my * r) >> shift, y);
+        n.z = tgi_oct_signed((mz * r) >> shift, z);
     }
 #else
     {
