@@ -58,6 +58,43 @@ TEST(depth_round_trip_and_order)
 #endif
 }
 
+#if TG_FIXED
+/* Every binary32 word (a stride through all 2^32, and each exponent's
+ * significands at the rounding points) reads back as z 2^16 rounded to
+ * nearest, ties up, saturated: 0 below 2^-17, TG_REAL_MAX from 2^15
+ * (infinities and NaN too), the sign ignored. */
+static int64_t depth_word_q16(uint32_t b)
+{
+    int e = (int)((b >> 23) & 0xFF);
+    double z = ldexp((double)((b & 0x7FFFFFu) | 0x800000u), e - 150), r = floor(z * 65536.0 + 0.5);
+    if (e == 0 && (b & 0x7FFFFFFFu) == 0) return 0;
+    return e >= 142 || r > (double)TG_REAL_MAX ? TG_REAL_MAX : (int64_t)r;
+}
+
+TEST(depth_unpack_every_word)
+{
+    uint64_t b;
+    uint32_t e, k;
+    long bad = 0, n = 0;
+    for (b = 0; b <= 0xFFFFFFFFu; b += 97) {
+        n++;
+        if (tgi_depth_unpack((uint32_t)b) != depth_word_q16((uint32_t)b) && bad++ < 5)
+            fprintf(stderr, "depth word 0x%08x -> %ld\n", (unsigned)b, (long)tgi_depth_unpack((uint32_t)b));
+    }
+    for (e = 0; e < 256; e++)
+        for (k = 0; k < 24; k++) {
+            uint32_t half = 1u << k, m[4] = { half - 1, half, half + 1, 0x7FFFFFu }, i;
+            for (i = 0; i < 4; i++) {
+                uint32_t w = (e << 23) | (m[i] & 0x7FFFFFu);
+                n++;
+                if (tgi_depth_unpack(w) != depth_word_q16(w) && bad++ < 5)
+                    fprintf(stderr, "depth word 0x%08x -> %ld\n", (unsigned)w, (long)tgi_depth_unpack(w));
+            }
+        }
+    CHECK(bad == 0, "%ld of %ld depth words read back wrong", bad, n);
+}
+#endif
+
 static double angle_deg(tg_vec3 a, double bx, double by, double bz)
 {
     double d = (dv(a.x) * bx + dv(a.y) * by + dv(a.z) * bz) /
@@ -279,6 +316,9 @@ int main(void)
 {
     RUN(depth_is_binary32_in_both_builds);
     RUN(depth_round_trip_and_order);
+#if TG_FIXED
+    RUN(depth_unpack_every_word);
+#endif
     RUN(octahedral_normals);
     RUN(octahedral_unpack_matches_oracle);
     RUN(shared_exponent_rgb);

@@ -50,14 +50,12 @@ static inline uint32_t tgi_depth_pack(tg_real z)
 }
 static inline tg_real tgi_depth_unpack(uint32_t bits)
 {
-    int e = (int)((bits >> 23) & 0xFF) - 127, s;
-    uint32_t m = (bits & 0x7FFFFFu) | 0x800000u;   /* z = m 2^(e - 23), Q16.16 raw m 2^(e - 7) */
-    if (bits == 0) return 0;
-    s = e - 7;
-    if (s >= 8) return TG_REAL_MAX;                /* >= 2^15: beyond Q16.16 */
-    if (s >= 0) return (tg_real)(m << s);
-    if (s < -24) return 0;
-    return (tg_real)((m + (1u << (-s - 1))) >> -s);
+    /* z = m 2^(e - 150), e the biased exponent field, m the 24-bit
+     * significand: Q16.16 raw m 2^(e - 134), rounded to nearest, from
+     * m 2^(e - 110) (e in [110, 142): below 2^55) rounded at bit 24 */
+    uint32_t e = (bits >> 23) & 0xFF, m = (bits & 0x7FFFFFu) | 0x800000u;
+    if (e - 110u >= 32u) return e >= 142u ? TG_REAL_MAX : 0;   /* >= 2^15: beyond Q16.16; < 2^-17 (and 0: sky) */
+    return (tg_real)((((uint64_t)m << (e - 110u)) + (1u << 23)) >> 24);
 }
 #else
 typedef union tgi_f32_bits { float f; uint32_t u; } tgi_f32_bits;
