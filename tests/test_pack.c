@@ -257,6 +257,27 @@ TEST(shared_exponent_rgb)
 #endif
 }
 
+/* Every mantissa and exponent of a channel reads back as m 2^(e - 24):
+ * exactly in float, rounded to nearest (ties up) and saturated in Q16.16. */
+TEST(shared_exponent_every_channel)
+{
+    uint32_t m, e;
+    long bad = 0;
+    for (e = 0; e < 32; e++)
+        for (m = 0; m < 512; m++) {
+            tg_vec3 c = tgi_rgb9e5_unpack(m | ((511u - m) << 9) | (m << 18) | (e << 27));
+            double want = ldexp((double)m, (int)e - 24), want2 = ldexp((double)(511u - m), (int)e - 24);
+#if TG_FIXED
+            want = floor(want * 65536.0 + 0.5); want2 = floor(want2 * 65536.0 + 0.5);
+            if (want > (double)TG_REAL_MAX) want = (double)TG_REAL_MAX;
+            if (want2 > (double)TG_REAL_MAX) want2 = (double)TG_REAL_MAX;
+#endif
+            if (((double)c.x != want || (double)c.y != want2 || (double)c.z != want) && bad++ < 5)
+                fprintf(stderr, "rgb9e5 m %u e %u: %g %g %g\n", (unsigned)m, (unsigned)e, dv(c.x), dv(c.y), dv(c.z));
+        }
+    CHECK(bad == 0, "%ld channel values read back wrong", bad);
+}
+
 TEST(unorm8_ao)
 {
     int q, ok = 1;
@@ -322,6 +343,7 @@ int main(void)
     RUN(octahedral_normals);
     RUN(octahedral_unpack_matches_oracle);
     RUN(shared_exponent_rgb);
+    RUN(shared_exponent_every_channel);
     RUN(unorm8_ao);
     RUN(geometry_gbuffer_without_material);
     return check_summary();

@@ -205,10 +205,11 @@ static inline uint32_t tgi_rgb9e5_pack_inline(tg_vec3 c)
     return tgi_rgb9e5_mant(c.x, e) | (tgi_rgb9e5_mant(c.y, e) << 9) | (tgi_rgb9e5_mant(c.z, e) << 18)
            | ((uint32_t)e << 27);
 }
+/* Q16.16 raw m 2^(e - 8), rounded to nearest: m 2^e (< 2^40) rounded at bit 8, saturated */
 static inline tg_real tgi_rgb9e5_chan(uint32_t m, int e)
 {
-    if (e >= 8) return (uint64_t)m << (e - 8) > (uint64_t)TG_REAL_MAX ? TG_REAL_MAX : (tg_real)(m << (e - 8));
-    return (tg_real)((m + (1u << (7 - e))) >> (8 - e));
+    uint64_t v = (((uint64_t)m << e) + 128u) >> 8;
+    return v > (uint64_t)TG_REAL_MAX ? TG_REAL_MAX : (tg_real)v;
 }
 #else
 static inline float tgi_pow2f(int k) { tgi_f32_bits b; b.u = (uint32_t)(k + 127) << 23; return b.f; }
