@@ -192,8 +192,9 @@ static wreal w_poly(wreal z, const wreal *c, int n)
 /* sqrt(x) = sqrt(v), v = x_raw 2^16 < 2^47, rounded to nearest: exact to
  * 0.5 ulp.  v = m 4^-h with m = X 2^60, X in [1, 4); sqrt(X) in Q30 from a
  * quadratic on X's interval of width 1/32 (sqrt_quad below, within 2^-24),
- * R = that 2^-h rounded (within 1/2 of sqrt(v)), then the integer tests
- * R^2 - R < v <= R^2 + R (R the nearest integer to sqrt(v)) make it exact. */
+ * times 2^-h within 0.52 of sqrt(v) (h >= 7), so that rounded is within 1
+ * of R, the nearest integer to sqrt(v); then one step of the integer tests
+ * R^2 - R < v <= R^2 + R makes it exact. */
 #if TG_OUTLINE_HELPERS
 /* Compiling for size (tinygi.h): the same rounded-to-nearest sqrt(v) from
  * the integer square root the vector lengths already link, without the
