@@ -58,6 +58,43 @@ TEST(depth_round_trip_and_order)
 #endif
 }
 
+#if TG_FIXED
+/* Every binary32 word (a stride through all 2^32, and each exponent's
+ * significands at the rounding points) reads back as z 2^16 rounded to
+ * nearest, ties up, saturated: 0 below 2^-17, TG_REAL_MAX from 2^15
+ * (infinities and NaN too), the sign ignored. */
+static int64_t depth_word_q16(uint32_t b)
+{
+    int e = (int)((b >> 23) & 0xFF);
+    double z = ldexp((double)((b & 0x7FFFFFu) | 0x800000u), e - 150), r = floor(z * 65536.0 + 0.5);
+    if (e == 0 && (b & 0x7FFFFFFFu) == 0) return 0;
+    return e >= 142 || r > (double)TG_REAL_MAX ? TG_REAL_MAX : (int64_t)r;
+}
+
+TEST(depth_unpack_every_word)
+{
+    uint64_t b;
+    uint32_t e, k;
+    long bad = 0, n = 0;
+    for (b = 0; b <= 0xFFFFFFFFu; b += 97) {
+        n++;
+        if (tgi_depth_unpack((uint32_t)b) != depth_word_q16((uint32_t)b) && bad++ < 5)
+            fprintf(stderr, "depth word 0x%08x -> %ld\n", (unsigned)b, (long)tgi_depth_unpack((uint32_t)b));
+    }
+    for (e = 0; e < 256; e++)
+        for (k = 0; k < 24; k++) {
+            uint32_t half = 1u << k, m[4] = { half - 1, half, half + 1, 0x7FFFFFu }, i;
+            for (i = 0; i < 4; i++) {
+                uint32_t w = (e << 23) | (m[i] & 0x7FFFFFu);
+                n++;
+                if (tgi_depth_unpack(w) != depth_word_q16(w) && bad++ < 5)
+                    fprintf(stderr, "depth word 0x%08x -> %ld\n", (unsigned)w, (long)tgi_depth_unpack(w));
+            }
+        }
+    CHECK(bad == 0, "%ld of %ld depth words read back wrong", bad, n);
+}
+#endif
+
 static double angle_deg(tg_vec3 a, double bx, double by, double bz)
 {
     double d = (dv(a.x) * bx + dv(a.y) * by + dv(a.z) * bz) /
@@ -105,6 +142,67 @@ TEST(octahedral_normals)
     CHECK(tgi_oct_pack(tg_v3(TG_R(-0.5f), TG_R(0.25f), TG_R(-0.25f)), 8) == (32u | (191u << 8)),
           "(-0.5, 0.25, -0.25) packs as 0x%x", (unsigned)tgi_oct_pack(tg_v3(TG_R(-0.5f), TG_R(0.25f), TG_R(-0.25f)), 8));
     CHECK(tgi_oct_pack(tg_v3(0, 0, 0), 8) == tgi_oct_pack(tg_v3(0, 0, TG_ONE), 8), "the zero vector packs as +z");
+}
+
+/* src/raster/pack.h's unpack before the magnitudes were computed directly
+ * (as of commit fb8a8d5): the oracle the faster one must equal bit for bit
+ * on every word (the G-buffer's and the goldens' normals). */
+#if TG_FIXED
+static tg_real oracle_oct_scale(int32_t c, uint64_t r, int shift)
+{
+    uint64_t a = (uint64_t)(c < 0 ? -(int64_t)c : c) * r >> shift;
+    return c < 0 ? -(tg_real)a : (tg_real)a;
+}
+#endif
+static tg_vec3 oracle_oct_unpack(uint32_t w, int bits)
+{
+    int32_t q = (int32_t)((1u << bits) - 2), mask = (int32_t)((1u << bits) - 1);
+    int32_t x = 2 * (int32_t)(w & (uint32_t)mask) - q, y = 2 * (int32_t)((w >> bits) & (uint32_t)mask) - q;
+    int32_t ax = x < 0 ? -x : x, ay = y < 0 ? -y : y, z = q - ax - ay;
+    tg_vec3 n;
+    if (z < 0) {
+        int32_t fx = (q - ay) * (x < 0 ? -1 : 1), fy = (q - ax) * (y < 0 ? -1 : 1);
+        x = fx; y = fy;
+    }
+#if TG_FIXED
+    {
+        uint64_t len2 = (uint64_t)((int64_t)x * x + (int64_t)y * y + (int64_t)z * z), r;
+        int b = tgi_bit_length64(len2), k = (32 - b) >> 1, shift = 29 - k;
+        r = tgi_rsqrt_q30_fast(len2 << (2 * k));
+        n.x = oracle_oct_scale(x, r, shift);
+        n.y = oracle_oct_scale(y, r, shift);
+        n.z = oracle_oct_scale(z, r, shift);
+    }
+#else
+    {
+        float fx = (float)x, fy = (float)y, fz = (float)z;
+        float r = tgi_rsqrt_fast(fx * fx + fy * fy + fz * fz);
+        n.x = fx * r; n.y = fy * r; n.z = fz * r;
+    }
+#endif
+    return n;
+}
+
+/* Every word of 2x4, 2x8 and 2x11 bits (2x15 at a stride) decodes to the
+ * oracle's bits, with the coordinate 2^bits - 1 the encoder never writes. */
+TEST(octahedral_unpack_matches_oracle)
+{
+    static const int widths[4] = { 4, 8, 11, 15 };
+    int k;
+    for (k = 0; k < 4; k++) {
+        int bits = widths[k];
+        uint64_t w, n = (uint64_t)1 << (2 * bits), step = bits > 12 ? 4099u : 1u;
+        long bad = 0, count = 0;
+        for (w = 0; w < n; w += step) {
+            tg_vec3 a = tgi_oct_unpack((uint32_t)w, bits), b = oracle_oct_unpack((uint32_t)w, bits);
+            count++;
+            if (memcmp(&a.x, &b.x, sizeof a.x) || memcmp(&a.y, &b.y, sizeof a.y) || memcmp(&a.z, &b.z, sizeof a.z)) {
+                if (bad++ < 5) fprintf(stderr, "2x%d word 0x%x: (%g %g %g), oracle (%g %g %g)\n", bits, (unsigned)w,
+                                       dv(a.x), dv(a.y), dv(a.z), dv(b.x), dv(b.y), dv(b.z));
+            }
+        }
+        CHECK(bad == 0 && count >= 256, "2x%d: %ld of %ld words differ from the oracle", bits, bad, count);
+    }
 }
 
 /* RGB9E5: within half a step of the largest channel's exponent, the same
@@ -157,6 +255,27 @@ TEST(shared_exponent_rgb)
               "NaN stores 0, infinity saturates");
     }
 #endif
+}
+
+/* Every mantissa and exponent of a channel reads back as m 2^(e - 24):
+ * exactly in float, rounded to nearest (ties up) and saturated in Q16.16. */
+TEST(shared_exponent_every_channel)
+{
+    uint32_t m, e;
+    long bad = 0;
+    for (e = 0; e < 32; e++)
+        for (m = 0; m < 512; m++) {
+            tg_vec3 c = tgi_rgb9e5_unpack(m | ((511u - m) << 9) | (m << 18) | (e << 27));
+            double want = ldexp((double)m, (int)e - 24), want2 = ldexp((double)(511u - m), (int)e - 24);
+#if TG_FIXED
+            want = floor(want * 65536.0 + 0.5); want2 = floor(want2 * 65536.0 + 0.5);
+            if (want > (double)TG_REAL_MAX) want = (double)TG_REAL_MAX;
+            if (want2 > (double)TG_REAL_MAX) want2 = (double)TG_REAL_MAX;
+#endif
+            if (((double)c.x != want || (double)c.y != want2 || (double)c.z != want) && bad++ < 5)
+                fprintf(stderr, "rgb9e5 m %u e %u: %g %g %g\n", (unsigned)m, (unsigned)e, dv(c.x), dv(c.y), dv(c.z));
+        }
+    CHECK(bad == 0, "%ld channel values read back wrong", bad);
 }
 
 TEST(unorm8_ao)
@@ -218,8 +337,13 @@ int main(void)
 {
     RUN(depth_is_binary32_in_both_builds);
     RUN(depth_round_trip_and_order);
+#if TG_FIXED
+    RUN(depth_unpack_every_word);
+#endif
     RUN(octahedral_normals);
+    RUN(octahedral_unpack_matches_oracle);
     RUN(shared_exponent_rgb);
+    RUN(shared_exponent_every_channel);
     RUN(unorm8_ao);
     RUN(geometry_gbuffer_without_material);
     return check_summary();

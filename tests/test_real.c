@@ -181,6 +181,31 @@ TEST(sqrt_whole_domain)
     CHECK(tg_sqrt(TG_R(4.0f)) == TG_R(2.0f), "sqrt(4) exact");
 }
 
+#if TG_FIXED
+/* The rounding boundaries of the Q16.16 sqrt: sqrt(v), v = x_raw 2^16, is
+ * R + 1/2 between the neighbouring x_raw floor((R + 1/2)^2 2^-16) and the
+ * next, for every R the range holds, so those two must give R and R + 1
+ * (tg_sqrt's quadratic estimate is furthest off at the top of the range,
+ * where one step of the final correction has to do it). */
+TEST(sqrt_rounding_boundaries)
+{
+    uint64_t r;
+    long bad = 0;
+    for (r = 256; (r + 1) * (r + 1) <= ((uint64_t)INT32_MAX << 16); r++) {
+        uint64_t b = r * r + r;                        /* floor((r + 1/2)^2) */
+        int64_t lo = (int64_t)(b >> 16), k;            /* lo 2^16 <= b < (r + 1/2)^2 <= (lo + 1) 2^16 */
+        for (k = lo; k <= lo + 1 && k <= INT32_MAX; k++) {
+            uint64_t v = (uint64_t)k << 16, q = (uint64_t)tg_sqrt((tg_real)k);
+            if (!((2 * q - 1) * (2 * q - 1) <= 4 * v && 4 * v <= (2 * q + 1) * (2 * q + 1)) && bad++ < 5)
+                fprintf(stderr, "sqrt near (%llu + 1/2)^2: raw %lld -> %llu\n", (unsigned long long)r,
+                        (long long)k, (unsigned long long)q);
+        }
+    }
+    CHECK(bad == 0, "%ld sqrt results near rounding boundaries not correctly rounded", bad);
+    CHECK(r > 11800000, "boundaries up to the top of the range (%llu)", (unsigned long long)r);
+}
+#endif
+
 /* floor(sqrt(v)) for 64-bit v: r^2 <= v < (r+1)^2 */
 static int isqrt_ok(uint64_t v, uint32_t r)
 {
@@ -829,6 +854,9 @@ int main(void)
     RUN(text_put_real_as_float);
     RUN(integer_helpers);
     RUN(sqrt_whole_domain);
+#if TG_FIXED
+    RUN(sqrt_rounding_boundaries);
+#endif
     RUN(rsqrt_whole_domain);
     RUN(sin_cos_whole_domain);
     RUN(tan_domain);

@@ -50,14 +50,12 @@ static inline uint32_t tgi_depth_pack(tg_real z)
 }
 static inline tg_real tgi_depth_unpack(uint32_t bits)
 {
-    int e = (int)((bits >> 23) & 0xFF) - 127, s;
-    uint32_t m = (bits & 0x7FFFFFu) | 0x800000u;   /* z = m 2^(e - 23), Q16.16 raw m 2^(e - 7) */
-    if (bits == 0) return 0;
-    s = e - 7;
-    if (s >= 8) return TG_REAL_MAX;                /* >= 2^15: beyond Q16.16 */
-    if (s >= 0) return (tg_real)(m << s);
-    if (s < -24) return 0;
-    return (tg_real)((m + (1u << (-s - 1))) >> -s);
+    /* z = m 2^(e - 150), e the biased exponent field, m the 24-bit
+     * significand: Q16.16 raw m 2^(e - 134), rounded to nearest, from
+     * m 2^(e - 110) (e in [110, 142): below 2^55) rounded at bit 24 */
+    uint32_t e = (bits >> 23) & 0xFF, m = (bits & 0x7FFFFFu) | 0x800000u;
+    if (e - 110u >= 32u) return e >= 142u ? TG_REAL_MAX : 0;   /* >= 2^15: beyond Q16.16; < 2^-17 (and 0: sky) */
+    return (tg_real)((((uint64_t)m << (e - 110u)) + (1u << 23)) >> 24);
 }
 #else
 typedef union tgi_f32_bits { float f; uint32_t u; } tgi_f32_bits;
@@ -146,11 +144,8 @@ static inline uint32_t tgi_oct_pack(tg_vec3 m, int bits)
 }
 
 #if TG_FIXED
-static inline tg_real tgi_oct_scale(int32_t c, uint64_t r, int shift)
-{
-    uint64_t a = (uint64_t)(c < 0 ? -(int64_t)c : c) * r >> shift;
-    return c < 0 ? -(tg_real)a : (tg_real)a;
-}
+/* sign(c) m for a magnitude m < 2^31: c's sign on |c| / |.| */
+static inline tg_real tgi_oct_signed(uint64_t m, int32_t c) { return c < 0 ? -(tg_real)m : (tg_real)m; }
 #endif
 
 /* Unit vector of two `bits`-bit octahedral coordinates.  The fold and the
@@ -168,14 +163,17 @@ static inline tg_vec3 tgi_oct_unpack_inline(uint32_t w, int bits)
     }
 #if TG_FIXED
     {
-        /* 1/|(x, y, z)| by the integer rsqrt: |.|^2 < 3 2^(2 bits), x30 in [2^30, 2^32) */
-        uint64_t len2 = (uint64_t)((int64_t)x * x + (int64_t)y * y + (int64_t)z * z), r;
+        /* 1/|(x, y, z)| by the integer rsqrt: |x| + |y| + |z| = q, so
+         * q^2 / 3 <= |.|^2 <= q^2 < 2^32 (below 3 2^30 with the coordinate
+         * 2^bits - 1 the encoder never writes, bits <= 15); x30 in [2^30, 2^32) */
+        uint32_t mx = (uint32_t)(x < 0 ? -x : x), my = (uint32_t)(y < 0 ? -y : y), mz = (uint32_t)(z < 0 ? -z : z);
+        uint32_t len2 = mx * mx + my * my + mz * mz;
         int b = tgi_bit_length64(len2), k = (32 - b) >> 1, shift = 29 - k;
-        r = tgi_rsqrt_q30_fast(len2 << (2 * k));
-        /* component c / |.| in Q16.16: c r 2^-shift, truncated toward 0 (odd in c) */
-        n.x = tgi_oct_scale(x, r, shift);
-        n.y = tgi_oct_scale(y, r, shift);
-        n.z = tgi_oct_scale(z, r, shift);
+        uint64_t r = tgi_rsqrt_q30_fast((uint64_t)len2 << (2 * k));
+        /* component c / |.| in Q16.16: |c| r 2^-shift, truncated toward 0 (odd in c) */
+        n.x = tgi_oct_signed((mx * r) >> shift, x);
+        n.y = tgi_oct_signed((my * r) >> shift, y);
+        n.z = tgi_oct_signed((mz * r) >> shift, z);
     }
 #else
     {
@@ -207,10 +205,11 @@ static inline uint32_t tgi_rgb9e5_pack_inline(tg_vec3 c)
     return tgi_rgb9e5_mant(c.x, e) | (tgi_rgb9e5_mant(c.y, e) << 9) | (tgi_rgb9e5_mant(c.z, e) << 18)
            | ((uint32_t)e << 27);
 }
+/* Q16.16 raw m 2^(e - 8), rounded to nearest: m 2^e (< 2^40) rounded at bit 8, saturated */
 static inline tg_real tgi_rgb9e5_chan(uint32_t m, int e)
 {
-    if (e >= 8) return (uint64_t)m << (e - 8) > (uint64_t)TG_REAL_MAX ? TG_REAL_MAX : (tg_real)(m << (e - 8));
-    return (tg_real)((m + (1u << (7 - e))) >> (8 - e));
+    uint64_t v = (((uint64_t)m << e) + 128u) >> 8;
+    return v > (uint64_t)TG_REAL_MAX ? TG_REAL_MAX : (tg_real)v;
 }
 #else
 static inline float tgi_pow2f(int k) { tgi_f32_bits b; b.u = (uint32_t)(k + 127) << 23; return b.f; }
