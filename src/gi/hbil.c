@@ -626,7 +626,16 @@ typedef struct hbil_fine_best {
     int si;                 /* its pixel in the fine image; -1: none above the side's */
 } hbil_fine_best;
 
-static void fine_sample(const hbil_ctx *c, hbil_fine_best *best, const hbil_march *mr, int major_x,
+/* inlined into refine_fine's two calls (their set-up cost as much as a
+ * sample), one copy when compiling for size */
+#if TG_OUTLINE_HELPERS
+#define HBIL_FINE_INLINE HBIL_NOINLINE
+#elif defined(__GNUC__)
+#define HBIL_FINE_INLINE inline __attribute__((always_inline))
+#else
+#define HBIL_FINE_INLINE inline
+#endif
+static HBIL_FINE_INLINE void fine_sample(const hbil_ctx *c, hbil_fine_best *best, const hbil_march *mr, int major_x,
                         int fa0, int fb0, int t, int dir)
 {
     const tgi_gview *fg = c->fine;
@@ -637,7 +646,7 @@ static void fine_sample(const hbil_ctx *c, hbil_fine_best *best, const hbil_marc
     f = small_sub(minor, small_from_int(b0));
     if (fb < 0 || fb >= bmax) return;                               /* the slice leaves the image */
     si = (int)(major_x ? tgi_gv_index(fg, fa, fb) : tgi_gv_index(fg, fb, fa));
-    sj = fb + 1 < bmax ? (int)(major_x ? tgi_gv_index(fg, fa, fb + 1) : tgi_gv_index(fg, fb + 1, fa)) : si;
+    sj = fb + 1 < bmax ? si + (major_x ? fg->row_stride : fg->pixel_stride) : si;   /* the next along the minor axis */
     za = tgi_gv_depth(fg, si);
     zb = tgi_gv_depth(fg, sj);
     if (sj != si && za > 0                                          /* and close: as in march_samples */
@@ -653,8 +662,9 @@ static void fine_sample(const hbil_ctx *c, hbil_fine_best *best, const hbil_marc
         if (z1 <= 0) return;
         si = sn;
     }
-    sx = major_x ? tg_ratio(t * dir, c->fine_ratio) : tg_mul(minor, c->inv_fine_ratio);
-    sy = major_x ? tg_neg(tg_mul(minor, c->inv_fine_ratio)) : tg_ratio(-t * dir, c->fine_ratio);
+    /* fine pixels to the march's units: times 1/4 or 1/8, exact */
+    sx = tg_mul(major_x ? small_from_int(t * dir) : minor, c->inv_fine_ratio);
+    sy = tg_mul(major_x ? tg_neg(minor) : small_from_int(-t * dir), c->inv_fine_ratio);
     cn = sample_cos(mr, z1, sx, sy, best->h, tg_add(best->hs, HBIL_TIE), d, &inv_len);
     if (cn == HBIL_NOT_ABOVE) return;
     best->h = cn;
