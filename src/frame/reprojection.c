@@ -28,10 +28,18 @@ void tgi_pass_reproject(tg_frame *f, int y0, int y1)
     tgi_reproject_gather_rows(&io, y0, y1);
 }
 
-/* ...then fill the holes by push/pull (Kraus 2009). */
-void tgi_pass_push_pull(tg_frame *f)
+/* ...then fill the holes by push/pull (Kraus 2009): level 1 over rows, the
+ * coarser levels as one step, the holes over rows (pushpull.h). */
+void tgi_pass_push_pull_down(tg_frame *f, int y0, int y1)
 {
-    tgi_pushpull_fill(f->width, f->height, &f->bounce_source, f->pushpull_mips);
+    tgi_pushpull_push_rows(f->width, f->height, &f->bounce_source, f->pushpull_mips, y0, y1);
+}
+
+void tgi_pass_push_pull(tg_frame *f) { tgi_pushpull_levels(f->width, f->height, f->pushpull_mips); }
+
+void tgi_pass_push_pull_fill(tg_frame *f, int y0, int y1)
+{
+    tgi_pushpull_fill_rows(f->width, f->height, &f->bounce_source, f->pushpull_mips, y0, y1);
 }
 
 /* Last frame's geometry for the next frame's depth tests (its Lo stays
