@@ -49,9 +49,13 @@ void tgi_pass_push_pull_fill(tg_frame *f, int y0, int y1)
 #if !TG_NO_TEMPORAL
 void tgi_pass_keep_history(tg_frame *f, int y0, int y1)
 {
-    int x, y;
-    for (y = y0; y < y1; y++)
-        for (x = 0; x < f->width; x++)
-            tgi_prev_keep(&f->prev_geometry, (size_t)y * (size_t)f->width + (size_t)x, &f->full, tgi_gv_index(&f->full, x, y));
+    /* locals: the stores into the history cannot change them, so they stay in registers */
+    tgi_gview g = f->full;
+    tgi_prev_geometry h = f->prev_geometry;
+    int x, y, w = f->width;
+    for (y = y0; y < y1; y++) {
+        size_t j = (size_t)y * (size_t)w;
+        for (x = 0; x < w; x++, j++) tgi_prev_keep(&h, j, &g, tgi_gv_index(&g, x, y));
+    }
 }
 #endif /* !TG_NO_TEMPORAL */

@@ -27,9 +27,15 @@ static int history_pixel(const tgi_reproject_io *io, const tgi_view *view, const
     return hz > 0 && tg_abs(tg_sub(z, hz)) <= tg_mul(tol, hz);   /* the z-test of HBIL sec. 3.2 */
 }
 
-void tgi_reproject_gather_rows(const tgi_reproject_io *io, int y0, int y1)
+void tgi_reproject_gather_rows(const tgi_reproject_io *io_in, int y0, int y1)
 {
-    const tgi_gview *g = io->g;
+    /* locals: the stores into `out` cannot change them, so they stay in registers along the row */
+    tgi_reproject_io iol = *io_in;
+    tgi_gview gl = *io_in->g;
+    tgi_prev_geometry hl;
+    tgi_rgb outl = *io_in->out, prevl;
+    const tgi_reproject_io *io = &iol;
+    const tgi_gview *g = &gl;
     tg_real tol = io->depth_tolerance > 0 ? io->depth_tolerance : TG_R(0.05f);
     tgi_view view, before;
     int x, y;
@@ -40,6 +46,9 @@ void tgi_reproject_gather_rows(const tgi_reproject_io *io, int y0, int y1)
             for (x = 0; x < g->width; x++) tgi_rgb_set_hole(io->out, tgi_gv_index(g, x, y));
         return;
     }
+    prevl = *io_in->prev;
+    hl = *io_in->prev_geometry;
+    iol.g = &gl; iol.prev_geometry = &hl; iol.out = &outl; iol.prev = &prevl;
     view = *g->camera;
     before = *io->prev_view;
     for (y = y0; y < y1; y++)

@@ -39,13 +39,25 @@ static int history_at(const tgi_temporal_params *p, const tgi_gview *g, const tg
     return tgi_v3_dot(tgi_prev_normal(h, full), n) >= p->history_normal_cos;
 }
 
-void tgi_temporal_rows(const tgi_temporal_params *p, const tgi_gview *g, const tgi_gresult *r, const tgi_gresult *prev,
-                       const tgi_prev_geometry *prev_geometry, const tgi_view *prev_view, int reset, int y0, int y1)
+void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_in, const tgi_gresult *r_in,
+                       const tgi_gresult *prev_in, const tgi_prev_geometry *prev_geometry, const tgi_view *prev_view,
+                       int reset, int y0, int y1)
 {
+    /* locals: no store into the results (bytes, which may alias anything)
+     * can change them, so they stay in registers along the row */
+    tgi_temporal_params pl;
+    tgi_gview gl;
+    tgi_gresult rl, prevl;
+    tgi_prev_geometry hl;
     tgi_view view, before;
-    tg_real alpha = p->alpha;
+    const tgi_temporal_params *p = &pl;
+    const tgi_gview *g = &gl;
+    const tgi_gresult *r = &rl, *prev = &prevl;
+    tg_real alpha;
     int x, y;
     if (reset || !prev_view) return;
+    pl = *params; gl = *view_in; rl = *r_in; prevl = *prev_in; hl = *prev_geometry;
+    alpha = p->alpha;
     if (y0 < 0) y0 = 0;
     if (y1 > g->height) y1 = g->height;
     view = *g->camera;
@@ -58,7 +70,7 @@ void tgi_temporal_rows(const tgi_temporal_params *p, const tgi_gview *g, const t
             tg_vec3 n;
             if (tgi_gv_is_sky(g, i)) continue;
             n = tgi_gv_normal(g, i);
-            if (!history_at(p, g, prev_geometry, &view, &before, x * g->step + g->offset_x, fy, tgi_gv_depth(g, i), n,
+            if (!history_at(p, g, &hl, &view, &before, x * g->step + g->offset_x, fy, tgi_gv_depth(g, i), n,
                             &s))
                 continue;
             v = tgi_gr_get(r, i);
