@@ -26,9 +26,9 @@ pattern() {
         SHADOW_MAPS)    echo ' T tgi_(shadow_|raster_depth)' ;;
         ENVIRONMENT)    echo ' T tgi_(sh9_|env_radiance|far_|cone_)' ;;
         SCENE_TEXT)     echo ' T tgi_(lex_|tok_|parse_|obj_)' ;;
-        COLOR)          echo ' T tgi_(direct_rows|pushpull_|reproject_gather|compose_|tonemap_row8|raster_depth|pass_(direct|reproject|push_pull|shadow_maps)$)| t gather_rise$' ;;
+        COLOR)          echo ' T tgi_(direct_rows|pushpull_|reproject_gather|compose_|tonemap_row8|raster_depth|pass_(direct|reproject|push_pull(_down|_fill)?|shadow_maps)$)| t gather_rise$' ;;
         GI_QUARTER)     echo ' T tgi_(downsample_rows|upsample_pixel|pass_(downsample|filter_quarter)$)' ;;
-        TEMPORAL)       echo ' T tgi_(temporal_|motion_|pushpull_|reproject_gather|pass_(temporal|motion|keep_history|reproject|push_pull)$)' ;;
+        TEMPORAL)       echo ' T tgi_(temporal_|motion_|pushpull_|reproject_gather|pass_(temporal|motion|keep_history|reproject|push_pull(_down|_fill)?)$)' ;;
         ANIMATION)      echo ' T tgi_(anim_camera|anim_object_matrix|q_slerp)$' ;;
         # no file: the HBIL kernel's refinement on the fine image (local functions)
         FINE_HORIZON)   echo ' t (refine_fine|fine_sample)' ;;

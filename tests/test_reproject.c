@@ -692,6 +692,46 @@ TEST(pushpull_ramp_takes_the_bilinear_sample)
     free(s);
 }
 
+/* push/pull's row-parallel steps (pushpull.h) over any split of the rows,
+ * in any order, give the whole-image fill's bits: level-1 rows owned by the
+ * range holding their first image row, odd boundaries and one-row ranges
+ * included, odd sizes (the last level-1 row from one image row). */
+TEST(pushpull_rows_equal_the_whole_image_in_any_split)
+{
+    enum { SW = 13, SH = 11 };
+    static const int cuts[][6] = { { 0, 11, 11, 11, 11, 11 }, { 0, 1, 2, 3, 7, 11 }, { 0, 5, 6, 9, 10, 11 },
+                                   { 0, 4, 8, 11, 11, 11 } };
+    tgi_rgb whole, part;
+    void *s = malloc(tgi_pushpull_bytes(SW, SH));
+    int c, k, i, differ = 0, holes_before = 0;
+    sf_rgb_alloc(&whole, SW * SH);
+    sf_rgb_alloc(&part, SW * SH);
+    for (c = 0; c < (int)(sizeof cuts / sizeof cuts[0]); c++) {
+        for (i = 0; i < SW * SH; i++) {
+            int valid = (i * 7 + c) % 5 < 2 || i == SW * SH - 1;
+            tg_vec3 v = tg_v3(tg_from_float(0.5f + (float)(i % 13) * 0.125f), tg_from_float((float)(i % 3)), TG_ONE);
+            if (valid) { tgi_rgb_set(&whole, (size_t)i, v); tgi_rgb_set(&part, (size_t)i, v); }
+            else { tgi_rgb_set_hole(&whole, (size_t)i); tgi_rgb_set_hole(&part, (size_t)i); holes_before++; }
+        }
+        tgi_pushpull_fill(SW, SH, &whole, s);
+        memset(s, 0x5A, tgi_pushpull_bytes(SW, SH));   /* no level left over from the whole fill */
+        for (k = 4; k >= 0; k--) tgi_pushpull_push_rows(SW, SH, &part, s, cuts[c][k], cuts[c][k + 1]);   /* last range first */
+        tgi_pushpull_levels(SW, SH, s);
+        for (k = 0; k < 5; k++) tgi_pushpull_fill_rows(SW, SH, &part, s, cuts[c][k], cuts[c][k + 1]);
+#if TG_WIDE_STORAGE
+        for (i = 0; i < SW * SH; i++)
+            differ += whole.r[i] != part.r[i] || whole.g[i] != part.g[i] || whole.b[i] != part.b[i];
+#else
+        for (i = 0; i < SW * SH; i++) differ += whole.p[i] != part.p[i];   /* the stored words */
+#endif
+    }
+    CHECK(holes_before > 0, "the images have holes");
+    CHECK(differ == 0, "%d pixels differ between the row ranges and the whole image", differ);
+    sf_rgb_free(&whole);
+    sf_rgb_free(&part);
+    free(s);
+}
+
 int main(void)
 {
     RUN(static_view_is_identity);
@@ -708,5 +748,6 @@ int main(void)
     RUN(temporal_blends_with_exact_weights);
     RUN(temporal_out_of_image_history_on_a_sub_image);
     RUN(pushpull_ramp_takes_the_bilinear_sample);
+    RUN(pushpull_rows_equal_the_whole_image_in_any_split);
     return check_summary();
 }

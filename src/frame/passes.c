@@ -18,7 +18,8 @@
  * lighting.c, reprojection.c, hbil_passes.c, resolve.c, compare.c) ---- */
 tgi_pass_step_fn tgi_pass_animate, tgi_pass_depth_range, tgi_pass_shadow_maps, tgi_pass_push_pull,
     tgi_pass_reference_bvh, tgi_pass_pathtrace_setup;
-tgi_pass_rows_fn tgi_pass_gbuffer, tgi_pass_motion, tgi_pass_direct, tgi_pass_reproject,
+tgi_pass_rows_fn tgi_pass_gbuffer, tgi_pass_motion, tgi_pass_direct, tgi_pass_reproject, tgi_pass_push_pull_down,
+    tgi_pass_push_pull_fill,
     tgi_pass_downsample, tgi_pass_hbil_interleaved, tgi_pass_hbil_full, tgi_pass_temporal,
     tgi_pass_filter_quarter, tgi_pass_ssao, tgi_pass_vo, tgi_pass_hbao, tgi_pass_gtao, tgi_pass_ssilvb, tgi_pass_ssdo,
     tgi_pass_bentcone, tgi_pass_reference, tgi_pass_pathtrace, tgi_pass_resolve, tgi_pass_keep_history;
@@ -102,8 +103,12 @@ const tgi_pass tgi_passes[] = {
 #if !TG_NO_TEMPORAL
     { "reproject last frame's radiance (gather through the depth, z-test)", reprojects,
       B(GBUFFER) | B(POSE) | B(SOURCE) | B(HISTORY), TGI_ON_HISTORY, ROWS(tgi_pass_reproject) },
-    { "push/pull hole filling", reprojects,
+    { "push/pull hole filling: level 1, the 2x2 means of the valid pixels", reprojects,
+      B(SOURCE) | B(REPROJECT), TGI_ON_HISTORY, ROWS(tgi_pass_push_pull_down) },
+    { "push/pull hole filling: the coarser levels pushed, then pulled back to level 1", reprojects,
       B(SOURCE) | B(REPROJECT), TGI_ON_HISTORY, SERIAL(tgi_pass_push_pull) },
+    { "push/pull hole filling: the holes from level 1 (bilinear)", reprojects,
+      B(SOURCE) | B(REPROJECT), TGI_ON_HISTORY, ROWS(tgi_pass_push_pull_fill) },
 #endif
     { "direct light (Lambert, shadows, spot falloff): E_direct, the near field's first source", lights_directly,
       B(GBUFFER) | B(SHADOW_MAPS) | B(DIRECT) | B(SOURCE), TGI_ON_FIRST_FRAME, ROWS(tgi_pass_direct) },

@@ -28,10 +28,18 @@ void tgi_pass_reproject(tg_frame *f, int y0, int y1)
     tgi_reproject_gather_rows(&io, y0, y1);
 }
 
-/* ...then fill the holes by push/pull (Kraus 2009). */
-void tgi_pass_push_pull(tg_frame *f)
+/* ...then fill the holes by push/pull (Kraus 2009): level 1 over rows, the
+ * coarser levels as one step, the holes over rows (pushpull.h). */
+void tgi_pass_push_pull_down(tg_frame *f, int y0, int y1)
 {
-    tgi_pushpull_fill(f->width, f->height, &f->bounce_source, f->pushpull_mips);
+    tgi_pushpull_push_rows(f->width, f->height, &f->bounce_source, f->pushpull_mips, y0, y1);
+}
+
+void tgi_pass_push_pull(tg_frame *f) { tgi_pushpull_levels(f->width, f->height, f->pushpull_mips); }
+
+void tgi_pass_push_pull_fill(tg_frame *f, int y0, int y1)
+{
+    tgi_pushpull_fill_rows(f->width, f->height, &f->bounce_source, f->pushpull_mips, y0, y1);
 }
 
 /* Last frame's geometry for the next frame's depth tests (its Lo stays
@@ -41,9 +49,13 @@ void tgi_pass_push_pull(tg_frame *f)
 #if !TG_NO_TEMPORAL
 void tgi_pass_keep_history(tg_frame *f, int y0, int y1)
 {
-    int x, y;
-    for (y = y0; y < y1; y++)
-        for (x = 0; x < f->width; x++)
-            tgi_prev_keep(&f->prev_geometry, (size_t)y * (size_t)f->width + (size_t)x, &f->full, tgi_gv_index(&f->full, x, y));
+    /* locals: the stores into the history cannot change them, so they stay in registers */
+    tgi_gview g = f->full;
+    tgi_prev_geometry h = f->prev_geometry;
+    int x, y, w = f->width;
+    for (y = y0; y < y1; y++) {
+        size_t j = (size_t)y * (size_t)w;
+        for (x = 0; x < w; x++, j++) tgi_prev_keep(&h, j, &g, tgi_gv_index(&g, x, y));
+    }
 }
 #endif /* !TG_NO_TEMPORAL */

@@ -80,34 +80,51 @@ size_t tgi_pushpull_bytes(int w, int h)
     return bytes;
 }
 
+/* Texel t of a colour plane as tgi_rgb_get reads it; the levels are never
+ * lit (tgi_rgb_carve), so the common case is the stored word decoded inline. */
+static inline tg_vec3 texel(const tgi_rgb *c, size_t t)
+{
+    return c->lit ? tgi_rgb_get(c, t) : tgi_rgb_stored(c, t);
+}
+
+/* One tap of the 2x2 box: the finer texel t added to *s with its weight
+ * (level 0, wt NULL: 1 for a value, skipped for a hole). */
+static inline void push_tap(const tgi_rgb *c, const pp_weight *wt, size_t t, tg_vec3 *s, tg_real *sw)
+{
+    tg_real wf = TG_ONE;
+    if (wt) {
+        wf = weight_get(wt, t);
+        *s = tgi_v3_add(*s, tgi_v3_scale(texel(c, t), wf));
+    } else if (tgi_rgb_is_hole(c, t)) {
+        return;
+    } else {
+        *s = tgi_v3_add(*s, texel(c, t));
+    }
+    *sw = tg_add(*sw, wf);
+}
+
 /* Push one level: a 2x2 box over the weighted texels of the finer w x h
  * level, its values c and weights wt.  Level 0, the image, has no weights
- * (wt NULL): a value weighs 1, a hole 0, and the value enters unscaled. */
-static void push_level(const tgi_rgb *c, const pp_weight *wt, int w, int h, const pp_level *coarse)
+ * (wt NULL): a value weighs 1, a hole 0, and the value enters unscaled.
+ * The taps in the order (0,0) (1,0) (0,1) (1,1); those past the finer
+ * level's last row or column are left out.  Coarse rows [cy0, cy1). */
+static void push_level(const tgi_rgb *c, const pp_weight *wt, int w, int h, const pp_level *coarse, int cy0, int cy1)
 {
-    int x, y, dx, dy;
-    for (y = 0; y < coarse->h; y++)
-        for (x = 0; x < coarse->w; x++) {
+    int x, y;
+    for (y = cy0; y < cy1; y++) {
+        size_t r0 = (size_t)(2 * y) * (size_t)w, r1 = r0 + (size_t)w, o = (size_t)y * (size_t)coarse->w;
+        int second_row = 2 * y + 1 < h;
+        for (x = 0; x < coarse->w; x++, o++) {
             tg_vec3 s = tg_v3(0, 0, 0);
             tg_real sw = 0;
-            size_t o = (size_t)y * (size_t)coarse->w + (size_t)x;
-            for (dy = 0; dy < 2; dy++)
-                for (dx = 0; dx < 2; dx++) {
-                    int fx = 2 * x + dx, fy = 2 * y + dy;
-                    size_t t;
-                    tg_real wf = TG_ONE;
-                    if (fx >= w || fy >= h) continue;
-                    t = (size_t)fy * (size_t)w + (size_t)fx;
-                    if (wt) {
-                        wf = weight_get(wt, t);
-                        s = tgi_v3_add(s, tgi_v3_scale(tgi_rgb_get(c, t), wf));
-                    } else if (tgi_rgb_is_hole(c, t)) {
-                        continue;
-                    } else {
-                        s = tgi_v3_add(s, tgi_rgb_get(c, t));
-                    }
-                    sw = tg_add(sw, wf);
-                }
+            size_t fx = (size_t)(2 * x);
+            int second_column = 2 * x + 1 < w;
+            push_tap(c, wt, r0 + fx, &s, &sw);
+            if (second_column) push_tap(c, wt, r0 + fx + 1, &s, &sw);
+            if (second_row) {
+                push_tap(c, wt, r1 + fx, &s, &sw);
+                if (second_column) push_tap(c, wt, r1 + fx + 1, &s, &sw);
+            }
             if (sw > 0) {
                 tgi_rgb_set(&coarse->c, o, tgi_v3_scale(s, tg_div(TG_ONE, sw)));   /* weighted mean */
                 weight_set(coarse->wt, o, tg_min(sw, TG_ONE));                     /* Kraus: clamped to 1 */
@@ -116,25 +133,53 @@ static void push_level(const tgi_rgb *c, const pp_weight *wt, int w, int h, cons
                 weight_set(coarse->wt, o, 0);
             }
         }
+    }
 }
 
-/* Bilinear sample of a coarse level at the centre of fine texel (x, y). */
-static tg_vec3 upsample(const pp_level *coarse, int x, int y)
+/* Bilinear samples of a coarse level at the centres of one row y of the
+ * finer level: fine centre (x + 0.5) / 2 - 0.5 in coarse texel units, so
+ * the taps are coarse columns (x - 1) >> 1 and the one after (clamped to
+ * the level), weights 0.75 / 0.25 by parity.  Fine texels 2k + 1 and
+ * 2k + 2 read the same four coarse texels: they are decoded once. */
+typedef struct pp_row_sampler {
+    const pp_level *coarse;
+    size_t r0, r1;            /* the two coarse rows' first texels */
+    tg_real wxy[2][2][2];     /* [x parity][x tap][y tap]: wx * wy */
+    int cx;                   /* the column whose texels q holds; -2: none */
+    tg_vec3 q[4];             /* (x0,y0) (x1,y0) (x0,y1) (x1,y1) */
+} pp_row_sampler;
+
+static void row_sampler_start(pp_row_sampler *rs, const pp_level *coarse, int y)
 {
-    /* fine centre (x + 0.5) / 2 - 0.5 in coarse texel units */
-    int cx = (x - 1) >> 1, cy = (y - 1) >> 1, i;
-    tg_real fx = (x & 1) ? TG_R(0.25f) : TG_R(0.75f), fy = (y & 1) ? TG_R(0.25f) : TG_R(0.75f);
-    int xs[2], ys[2];
-    tg_real wx[2], wy[2];
-    tg_vec3 out = tg_v3(0, 0, 0);
-    xs[0] = cx < 0 ? 0 : cx; xs[1] = cx + 1 >= coarse->w ? coarse->w - 1 : cx + 1;
-    ys[0] = cy < 0 ? 0 : cy; ys[1] = cy + 1 >= coarse->h ? coarse->h - 1 : cy + 1;
-    wx[0] = tg_sub(TG_ONE, fx); wx[1] = fx;
+    int cy = (y - 1) >> 1, p, k;
+    int y0 = cy < 0 ? 0 : cy, y1 = cy + 1 >= coarse->h ? coarse->h - 1 : cy + 1;
+    tg_real fy = (y & 1) ? TG_R(0.25f) : TG_R(0.75f), wy[2];
     wy[0] = tg_sub(TG_ONE, fy); wy[1] = fy;
-    for (i = 0; i < 4; i++) {
-        size_t t = (size_t)ys[i >> 1] * (size_t)coarse->w + (size_t)xs[i & 1];
-        out = tgi_v3_add(out, tgi_v3_scale(tgi_rgb_get(&coarse->c, t), tg_mul(wx[i & 1], wy[i >> 1])));
+    rs->coarse = coarse;
+    rs->r0 = (size_t)y0 * (size_t)coarse->w;
+    rs->r1 = (size_t)y1 * (size_t)coarse->w;
+    for (p = 0; p < 2; p++) {
+        tg_real fx = p ? TG_R(0.25f) : TG_R(0.75f), wx[2];
+        wx[0] = tg_sub(TG_ONE, fx); wx[1] = fx;
+        for (k = 0; k < 4; k++) rs->wxy[p][k & 1][k >> 1] = tg_mul(wx[k & 1], wy[k >> 1]);
     }
+    rs->cx = -2;
+}
+
+static inline tg_vec3 row_sample(pp_row_sampler *rs, int x)
+{
+    int cx = (x - 1) >> 1, p = x & 1, k;
+    tg_vec3 out = tg_v3(0, 0, 0);
+    if (cx != rs->cx) {
+        const tgi_rgb *c = &rs->coarse->c;
+        size_t x0 = (size_t)(cx < 0 ? 0 : cx), x1 = (size_t)(cx + 1 >= rs->coarse->w ? rs->coarse->w - 1 : cx + 1);
+        rs->q[0] = texel(c, rs->r0 + x0);
+        rs->q[1] = texel(c, rs->r0 + x1);
+        rs->q[2] = texel(c, rs->r1 + x0);
+        rs->q[3] = texel(c, rs->r1 + x1);
+        rs->cx = cx;
+    }
+    for (k = 0; k < 4; k++) out = tgi_v3_add(out, tgi_v3_scale(rs->q[k], rs->wxy[p][k & 1][k >> 1]));
     return out;
 }
 
@@ -142,43 +187,83 @@ static tg_vec3 upsample(const pp_level *coarse, int x, int y)
 static void pull_level(const pp_level *fine, const pp_level *coarse)
 {
     int x, y;
-    for (y = 0; y < fine->h; y++)
-        for (x = 0; x < fine->w; x++) {
-            size_t t = (size_t)y * (size_t)fine->w + (size_t)x;
+    pp_row_sampler rs;
+    for (y = 0; y < fine->h; y++) {
+        size_t t = (size_t)y * (size_t)fine->w;
+        row_sampler_start(&rs, coarse, y);
+        for (x = 0; x < fine->w; x++, t++) {
             tg_real wt = weight_get(fine->wt, t);
             tg_vec3 c, up;
             if (wt >= TG_ONE) continue;
-            c = tgi_rgb_get(&fine->c, t);
-            up = upsample(coarse, x, y);
+            c = texel(&fine->c, t);
+            up = row_sample(&rs, x);
             c = tg_v3(tg_lerp(up.x, c.x, wt), tg_lerp(up.y, c.y, wt), tg_lerp(up.z, c.z, wt));  /* w c + (1 - w) c_up */
             tgi_rgb_set(&fine->c, t, c);
             weight_set(fine->wt, t, TG_ONE);
         }
+    }
 }
 
-void tgi_pushpull_fill(int w, int h, const tgi_rgb *c, void *scratch)
+/* The chain of the w x h image carved from scratch (levels 1.. in lv[0..]);
+ * their count, 0 for an empty or 1 x 1 image. */
+static int levels_of(int w, int h, void *scratch, pp_level *lv)
+{
+    size_t bytes;
+    if (w <= 0 || h <= 0 || (w == 1 && h == 1)) return 0;
+    return levels_layout(w, h, (unsigned char *)scratch, lv, &bytes);
+}
+
+void tgi_pushpull_push_rows(int w, int h, const tgi_rgb *c, void *scratch, int y0, int y1)
 {
     pp_level lv[MAX_LEVELS];
-    size_t bytes, i;
-    int nl, k, x, y;
-    if (w <= 0 || h <= 0) return;
-    if (w == 1 && h == 1) {
-        if (tgi_rgb_is_hole(c, 0)) tgi_rgb_set(c, 0, tg_v3(0, 0, 0));
-        return;
-    }
-    nl = levels_layout(w, h, (unsigned char *)scratch, lv, &bytes);
-    push_level(c, NULL, w, h, &lv[0]);
-    for (k = 1; k < nl; k++) push_level(&lv[k - 1].c, lv[k - 1].wt, lv[k - 1].w, lv[k - 1].h, &lv[k]);
+    if (!levels_of(w, h, scratch, lv)) return;
+    if (y0 < 0) y0 = 0;
+    if (y1 > h) y1 = h;
+    if (y0 >= y1) return;
+    push_level(c, NULL, w, h, &lv[0], (y0 + 1) >> 1, (y1 + 1) >> 1);   /* the level-1 rows y with y0 <= 2y < y1 */
+}
+
+void tgi_pushpull_levels(int w, int h, void *scratch)
+{
+    pp_level lv[MAX_LEVELS];
+    int nl = levels_of(w, h, scratch, lv), k;
+    if (!nl) return;
+    for (k = 1; k < nl; k++) push_level(&lv[k - 1].c, lv[k - 1].wt, lv[k - 1].w, lv[k - 1].h, &lv[k], 0, lv[k].h);
     /* the coarsest texel: what weight it has, over black */
     if (weight_get(lv[nl - 1].wt, 0) < TG_ONE) {
         tgi_rgb_set(&lv[nl - 1].c, 0, tgi_v3_scale(tgi_rgb_get(&lv[nl - 1].c, 0), weight_get(lv[nl - 1].wt, 0)));
         weight_set(lv[nl - 1].wt, 0, TG_ONE);
     }
     for (k = nl - 2; k >= 0; k--) pull_level(&lv[k], &lv[k + 1]);
-    /* level 0: holes take the upsampled level 1 */
-    for (i = 0, y = 0; y < h; y++)
+}
+
+void tgi_pushpull_fill_rows(int w, int h, const tgi_rgb *c, void *scratch, int y0, int y1)
+{
+    pp_level lv[MAX_LEVELS];
+    size_t i;
+    int x, y;
+    if (y0 < 0) y0 = 0;
+    if (y1 > h) y1 = h;
+    if (w <= 0 || y0 >= y1) return;
+    if (w == 1 && h == 1) {
+        if (tgi_rgb_is_hole(c, 0)) tgi_rgb_set(c, 0, tg_v3(0, 0, 0));
+        return;
+    }
+    levels_of(w, h, scratch, lv);
+    /* the holes take the upsampled level 1 */
+    for (y = y0, i = (size_t)y0 * (size_t)w; y < y1; y++) {
+        pp_row_sampler rs;
+        row_sampler_start(&rs, &lv[0], y);
         for (x = 0; x < w; x++, i++)
-            if (tgi_rgb_is_hole(c, i)) tgi_rgb_set(c, i, upsample(&lv[0], x, y));
+            if (tgi_rgb_is_hole(c, i)) tgi_rgb_set(c, i, row_sample(&rs, x));
+    }
+}
+
+void tgi_pushpull_fill(int w, int h, const tgi_rgb *c, void *scratch)
+{
+    tgi_pushpull_push_rows(w, h, c, scratch, 0, h);
+    tgi_pushpull_levels(w, h, scratch);
+    tgi_pushpull_fill_rows(w, h, c, scratch, 0, h);
 }
 
 #endif /* !TG_NO_COLOR */

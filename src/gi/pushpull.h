@@ -21,7 +21,19 @@
 
 size_t tgi_pushpull_bytes(int w, int h);   /* SIZE_MAX when that does not fit */
 
-/* Fill the holes (tgi_rgb_is_hole) of the w x h packed image c. */
+/* Fill the holes (tgi_rgb_is_hole) of the w x h packed image c: the three
+ * steps below over all rows. */
 void tgi_pushpull_fill(int w, int h, const tgi_rgb *c, void *scratch);
+
+/* The same in three steps, the first and last row-parallel (any split of
+ * the rows gives the same bits):
+ *   push_rows  level 1 from image rows [y0, y1): each level-1 row y with
+ *              y0 <= 2y < y1 (it reads image rows 2y and 2y + 1);
+ *   levels     the coarser levels pushed, then pulled back to level 1
+ *              (a whole-image step, under a third of the work: README "Performance");
+ *   fill_rows  the holes of image rows [y0, y1) from level 1. */
+void tgi_pushpull_push_rows(int w, int h, const tgi_rgb *c, void *scratch, int y0, int y1);
+void tgi_pushpull_levels(int w, int h, void *scratch);
+void tgi_pushpull_fill_rows(int w, int h, const tgi_rgb *c, void *scratch, int y0, int y1);
 
 #endif

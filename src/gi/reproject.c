@@ -9,14 +9,16 @@
 
 #if !TG_NO_COLOR /* the whole file is left out with TG_NO_COLOR=1 (tinygi.h "FEATURE SWITCHES") */
 
-/* Last frame's pixel holding this surface: 1 and *s when its depth agrees. */
-static int history_pixel(const tgi_reproject_io *io, int x, int y, size_t i, tg_real tol, size_t *s)
+/* Last frame's pixel holding this surface: 1 and *s when its depth agrees.
+ * view and prev_view are the caller's copies (locals: the stores into `out`
+ * cannot change them, so their fields stay in registers along the row). */
+static int history_pixel(const tgi_reproject_io *io, const tgi_view *view, const tgi_view *prev_view,
+                         const tgi_mat4 *delta, int x, int y, tg_real depth, tg_real tol, size_t *s)
 {
     const tgi_gview *g = io->g;
-    const tgi_mat4 *delta = io->object && io->object[i] != 0xFFFF ? &io->object_delta[io->object[i]] : NULL;
     tg_real px, py, z, hz;
     int sx, sy;
-    if (!tgi_motion_prev_position(g->camera, io->prev_view, delta, x, y, tgi_gv_depth(g, i), &px, &py, &z)) return 0;
+    if (!tgi_motion_prev_position_inline(view, prev_view, delta, x, y, depth, &px, &py, &z)) return 0;
     sx = tg_to_int(px);
     sy = tg_to_int(py);
     if (sx < 0 || sy < 0 || sx >= g->width || sy >= g->height) return 0;
@@ -25,17 +27,35 @@ static int history_pixel(const tgi_reproject_io *io, int x, int y, size_t i, tg_
     return hz > 0 && tg_abs(tg_sub(z, hz)) <= tg_mul(tol, hz);   /* the z-test of HBIL sec. 3.2 */
 }
 
-void tgi_reproject_gather_rows(const tgi_reproject_io *io, int y0, int y1)
+void tgi_reproject_gather_rows(const tgi_reproject_io *io_in, int y0, int y1)
 {
-    const tgi_gview *g = io->g;
+    /* locals: the stores into `out` cannot change them, so they stay in registers along the row */
+    tgi_reproject_io iol = *io_in;
+    tgi_gview gl = *io_in->g;
+    tgi_prev_geometry hl;
+    tgi_rgb outl = *io_in->out, prevl;
+    const tgi_reproject_io *io = &iol;
+    const tgi_gview *g = &gl;
     tg_real tol = io->depth_tolerance > 0 ? io->depth_tolerance : TG_R(0.05f);
-    int x, y, history = tgi_rgb_present(io->prev);
+    tgi_view view, before;
+    int x, y;
     if (y0 < 0) y0 = 0;
     if (y1 > g->height) y1 = g->height;
+    if (!tgi_rgb_present(io->prev)) {     /* no history: every pixel a hole */
+        for (y = y0; y < y1; y++)
+            for (x = 0; x < g->width; x++) tgi_rgb_set_hole(io->out, tgi_gv_index(g, x, y));
+        return;
+    }
+    prevl = *io_in->prev;
+    hl = *io_in->prev_geometry;
+    iol.g = &gl; iol.prev_geometry = &hl; iol.out = &outl; iol.prev = &prevl;
+    view = *g->camera;
+    before = *io->prev_view;
     for (y = y0; y < y1; y++)
         for (x = 0; x < g->width; x++) {
             size_t i = tgi_gv_index(g, x, y), s;
-            if (history && !tgi_gv_is_sky(g, i) && history_pixel(io, x, y, i, tol, &s))
+            const tgi_mat4 *delta = io->object && io->object[i] != 0xFFFF ? &io->object_delta[io->object[i]] : NULL;
+            if (!tgi_gv_is_sky(g, i) && history_pixel(io, &view, &before, delta, x, y, tgi_gv_depth(g, i), tol, &s))
                 tgi_rgb_copy(io->out, i, io->prev, s);
             else
                 tgi_rgb_set_hole(io->out, i);

@@ -9,14 +9,7 @@
 int tgi_motion_prev_position(const tgi_view *cur, const tgi_view *prev, const tgi_mat4 *delta,
                              int x, int y, tg_real depth, tg_real *px, tg_real *py, tg_real *prev_z)
 {
-    tg_real sx = tg_add(tg_from_int(x), TG_R(0.5f)), sy = tg_add(tg_from_int(y), TG_R(0.5f));
-    tg_vec3 p = tgi_view_view_to_world(cur, tgi_view_unproject(cur, sx, sy, depth)), pv;
-    if (delta) p = tgi_m4_point(delta, p);
-    pv = tgi_view_world_to_view(prev, p);
-    *prev_z = pv.z;
-    if (pv.z <= TG_R(0.0001f)) return 0;
-    tgi_view_project(prev, pv, px, py);
-    return 1;
+    return tgi_motion_prev_position_inline(cur, prev, delta, x, y, depth, px, py, prev_z);
 }
 
 void tgi_motion_rows(tgi_gbuffer *gb, const tgi_view *cur, const tgi_view *prev,

@@ -16,20 +16,6 @@
 /* Below this sine of the angle between `up` and the view direction the up
  * vector is treated as degenerate. */
 #define VIEW_DEGENERATE_UP TG_R(0.0009765625f)
-/* Smallest depth project() divides by. */
-#define VIEW_MIN_DEPTH TG_R(0.0000152587890625f)
-
-/* a * b / c with one rounding (c > 0). */
-static tg_real mul_div(tg_real a, tg_real b, tg_real c)
-{
-#if TG_FIXED
-    int64_t p = (int64_t)a * b, h = c / 2;
-    return tgi_sat64(p >= 0 ? (p + h) / c : -((-p + h) / c));
-#else
-    return tg_clamp(a * b / c, TG_REAL_MIN, TG_REAL_MAX);
-#endif
-}
-
 /* The up vector actually used: `up` unless (nearly) parallel to `forward`,
  * then world +Y, and when forward itself is (nearly) vertical the limit of
  * tilting a level camera: -Z looking down, +Z looking up.  This choice
@@ -90,41 +76,16 @@ void tgi_view_make(tgi_view *v, tg_vec3 eye, tg_vec3 target, tg_vec3 up,
     v->zfar = zfar;
 }
 
-tg_vec3 tgi_view_dir_to_view(const tgi_view *v, tg_vec3 d)
-{
-    return tg_v3(tgi_v3_dot(d, v->right), tgi_v3_dot(d, v->up), tgi_v3_dot(d, v->forward));
-}
+tg_vec3 tgi_view_dir_to_view(const tgi_view *v, tg_vec3 d) { return tgi_view_dir_to_view_inline(v, d); }
 
-tg_vec3 tgi_view_world_to_view(const tgi_view *v, tg_vec3 p)
-{
-    return tgi_view_dir_to_view(v, tgi_v3_sub(p, v->eye));
-}
+tg_vec3 tgi_view_world_to_view(const tgi_view *v, tg_vec3 p) { return tgi_view_world_to_view_inline(v, p); }
 
-tg_vec3 tgi_view_dir_to_world(const tgi_view *v, tg_vec3 d)
-{
-    tg_vec3 r;
-    r.x = tgi_v3_dot(tg_v3(v->right.x, v->up.x, v->forward.x), d);
-    r.y = tgi_v3_dot(tg_v3(v->right.y, v->up.y, v->forward.y), d);
-    r.z = tgi_v3_dot(tg_v3(v->right.z, v->up.z, v->forward.z), d);
-    return r;
-}
-
-tg_vec3 tgi_view_view_to_world(const tgi_view *v, tg_vec3 p)
-{
-    return tgi_v3_add(v->eye, tgi_view_dir_to_world(v, p));
-}
+tg_vec3 tgi_view_dir_to_world(const tgi_view *v, tg_vec3 d) { return tgi_view_dir_to_world_inline(v, d); }
+tg_vec3 tgi_view_view_to_world(const tgi_view *v, tg_vec3 p) { return tgi_view_view_to_world_inline(v, p); }
 
 tg_vec3 tgi_view_unproject(const tgi_view *v, tg_real sx, tg_real sy, tg_real depth)
 {
-    tg_real cx = tg_ldexp(tg_from_int(v->width), -1), cy = tg_ldexp(tg_from_int(v->height), -1);
-    return tg_v3(mul_div(tg_sub(sx, cx), depth, v->pixels_per_unit),
-                 mul_div(tg_sub(cy, sy), depth, v->pixels_per_unit), depth);
+    return tgi_view_unproject_inline(v, sx, sy, depth);
 }
 
-void tgi_view_project(const tgi_view *v, tg_vec3 pv, tg_real *sx, tg_real *sy)
-{
-    tg_real z = tg_max(pv.z, VIEW_MIN_DEPTH);
-    tg_real cx = tg_ldexp(tg_from_int(v->width), -1), cy = tg_ldexp(tg_from_int(v->height), -1);
-    *sx = tg_add(cx, mul_div(pv.x, v->pixels_per_unit, z));
-    *sy = tg_sub(cy, mul_div(pv.y, v->pixels_per_unit, z));
-}
+void tgi_view_project(const tgi_view *v, tg_vec3 pv, tg_real *sx, tg_real *sy) { tgi_view_project_inline(v, pv, sx, sy); }
