@@ -45,6 +45,9 @@ void tgi_pass_filter_quarter(tg_frame *f, int y0, int y1)
 typedef struct resolve_ctx {
     tgi_denoise_params filter;
     tgi_denoise_walk walk;        /* the filter's decoded window along the row */
+#if !TG_NO_GI_QUARTER
+    tgi_upsample_plan up;         /* or the upsample's, fixed per frame */
+#endif
     int gi, hbil, quarter, far_mode, far_inline;
     const tgi_rgb *lo;            /* where Lo goes: this frame's colour, or the next bounce's source */
     const tgi_rgb *far_own;       /* E_far's plane, written here (its AOV) */
@@ -58,6 +61,9 @@ static void resolve_ctx_init(resolve_ctx *c, const tg_frame *f)
     c->gi = (f->needs & TG_NEED_GI_PASS) != 0;
     c->hbil = c->gi && f->request.technique == TG_TECH_HBIL;
     c->quarter = tgi_frame_quarter(f);
+#if !TG_NO_GI_QUARTER
+    if (c->hbil && c->quarter) tgi_upsample_start(&c->up, &f->full, &f->half_view, &f->half_filtered, f->request.radius);
+#endif
     c->far_mode = f->request.far_mode ? TG_FAR_CUBE_F0 : TG_FAR_CONE_SH;
     c->far_inline = (f->effects & TG_EFFECT_FAR) && !technique_far;
     c->far_own = c->far_inline && tgi_rgb_present(&f->far) ? &f->far : NULL;
@@ -70,7 +76,7 @@ static tgi_gr_value results_at(resolve_ctx *c, const tg_frame *f, int x, int y, 
 {
     if (!c->hbil) return tgi_gr_get_kept(&f->res, i);
 #if !TG_NO_GI_QUARTER
-    if (c->quarter) return tgi_upsample_pixel(&f->full, &f->half_view, &f->half_filtered, f->request.radius, x, y);
+    if (c->quarter) return tgi_upsample_at(&c->up, x, y);
 #endif
     return tgi_denoise_pixel(&c->filter, &f->full, &f->res, &c->walk, x, y);
 }

@@ -107,87 +107,123 @@ static const tg_real near_dir[16][2] = {
     { TG_R(0.2429802f), TG_R(0.9700313f) }, { TG_R(0.8577286f), TG_R(0.5141027f) }
 };
 
+/* The near horizon's sample distances along a side, in pixels: 1, 2, 3, 4,
+ * then each 1.5 times the last (those up to TG_QUARTER_NEAR_REACH). */
+static const int near_t[TGI_NEAR_STEPS_MAX] = { 1, 2, 3, 4, 6, 9, 13, 19, 28, 42, 63, 94, 141, 211, 316, 474 };
+#if TG_QUARTER_NEAR_REACH >= 711
+#error "TG_QUARTER_NEAR_REACH: the near horizon keeps at most TGI_NEAR_STEPS_MAX samples a side (src/gi/resample.h)"
+#endif
+
+void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res,
+                        tg_real radius)
+{
+    const tgi_view *v = full->camera;
+    int c, k, n;
+    u->full = full; u->half = half; u->res = half_res;
+    u->steps = 0;
+    if (TG_QUARTER_NEAR_REACH < 1 || radius <= 0) return;
+    while (u->steps < TGI_NEAR_STEPS_MAX && near_t[u->steps] <= TG_QUARTER_NEAR_REACH) u->steps++;
+    u->wfx = tg_mul(tg_from_int(v->width), v->focal_x);
+    u->hfy = tg_mul(tg_from_int(v->height), v->focal_y);
+    u->ax = tg_div(TG_R(2.0f), u->wfx);
+    u->ay = tg_div(TG_R(2.0f), u->hfy);
+    u->shift = tgi_ao_unit_shift(radius);
+    u->r2 = tg_sqr(tg_ldexp(radius, u->shift));
+    u->above_r = tg_mul(radius, TG_R(0.005f));
+    /* sample t of side s of a cell's slices along the screen direction
+     * (ux, uy) / 256 (y down), stepping in 1/256 pixel from the pixel's centre
+     * (integers alike in both number types): the pixel
+     * floor((128 + t u) / 256) away, the shift kept to non-negative numbers */
+    for (c = 0; c < 16; c++)
+        for (k = 0; k < 2; k++) {
+            const tg_real *d = near_dir[c];
+            int ux = tg_round_int(tg_ldexp(k ? tg_neg(d[1]) : d[0], 8)), uy = tg_round_int(tg_ldexp(k ? d[0] : d[1], 8));
+            for (n = 0; n < u->steps; n++) {
+                int t = near_t[n], far = 256 * (t + 1);
+                u->off[c][2 * k][n][0] = (short)(((128 + t * ux + far) >> 8) - (t + 1));
+                u->off[c][2 * k][n][1] = (short)(((128 + t * uy + far) >> 8) - (t + 1));
+                u->off[c][2 * k + 1][n][0] = (short)(((128 - t * ux + far) >> 8) - (t + 1));
+                u->off[c][2 * k + 1][n][1] = (short)(((128 - t * uy + far) >> 8) - (t + 1));
+            }
+        }
+}
+
 /* A pixel's near horizon: its view position p, normal n and unit vector
- * to the eye, n . p, its view ray (kx, ky, 1) and the ray's change per
- * pixel, the height over the tangent plane below which a sample counts
- * for nothing (as tgi_ao_slice_pixel's), the squared gather radius and its
- * shift (tgi_ao_unit_shift: the offsets are scaled by 2^shift). */
+ * to the eye, n . p, its view ray (kx, ky, 1), n . (kx, ky, 1), the change
+ * of n . ray per pixel (n.x ax, n.y ay), and the height over the tangent
+ * plane below which a sample counts for nothing (as tgi_ao_slice_pixel's). */
 typedef struct near_pixel {
-    int x, y, shift;
+    int x, y;
     tg_vec3 pv, nv, vd;
-    tg_real np, kx, ky, ax, ay, nax, nay, nr, above, r2;
+    tg_real np, kx, ky, nax, nay, nr, above;
 } near_pixel;
 
-/* The largest cos(angle to the view vector) of the samples 1, 2, 3, 4, 6,
- * 9, 13 ... pixels away (from 4 on, each 1.5 times the last) up to
- * TG_QUARTER_NEAR_REACH along the screen direction (ux, uy) / 256 (y down)
- * that lie above the tangent plane and within the radius; -1 when none.
- * The samples step in 1/256 pixel, integers alike in both number types; a
- * sample's view position is its depth z times its ray r, so its height
- * over the tangent plane is z (n . r) - n . p, n . r changing by n.x ax and
- * -n.y ay a pixel. */
-static tg_real near_horizon_cos(const tgi_gview *g, const near_pixel *q, int ux, int uy)
+/* The largest cos(angle to the view vector) of the samples off[0..steps)
+ * (pixel offsets from q, tgi_upsample_start's) that lie above the tangent
+ * plane and within the radius; -1 when none; the march ends at the
+ * screen's edge.  A sample's view position is its depth z times its ray r,
+ * so its height over the tangent plane is z (n . r) - n . p, n . r changing
+ * by n.x ax and -n.y ay a pixel. */
+static tg_real near_horizon_cos(const tgi_upsample_plan *u, const near_pixel *q, const short (*off)[2])
 {
+    const tgi_gview *g = u->full;
     tg_real best = TG_R(-1.0f);
-    int t;
-    for (t = 1; t <= TG_QUARTER_NEAR_REACH; t += t < 4 ? 1 : t / 2) {
-        int sx = q->x * 256 + 128 + t * ux, sy = q->y * 256 + 128 + t * uy, dx, dy;
+    int n;
+    for (n = 0; n < u->steps; n++) {
+        int dx = off[n][0], dy = off[n][1], sx = q->x + dx, sy = q->y + dy;
         size_t j;
-        tg_real z, d2;
+        tg_real z, d2, fdx, fdy;
         tg_vec3 h;
-        if (sx < 0 || sy < 0 || (sx >> 8) >= g->width || (sy >> 8) >= g->height) break;
-        j = tgi_gv_index(g, sx >> 8, sy >> 8);
+        if ((unsigned)sx >= (unsigned)g->width || (unsigned)sy >= (unsigned)g->height) break;
+        j = tgi_gv_index(g, sx, sy);
         if (tgi_gv_is_sky(g, j)) continue;
         z = tgi_gv_depth(g, j);
-        dx = (sx >> 8) - q->x;
-        dy = (sy >> 8) - q->y;
-        if (tg_sub(tg_mul(z, tg_add(q->nr, tg_sub(tg_mul(tg_from_int(dx), q->nax), tg_mul(tg_from_int(dy), q->nay)))),
-                   q->np) <= q->above)
+        fdx = tg_from_int(dx);
+        fdy = tg_from_int(dy);
+        if (tg_sub(tg_mul(z, tg_add(q->nr, tg_sub(tg_mul(fdx, q->nax), tg_mul(fdy, q->nay)))), q->np) <= q->above)
             continue;                                              /* on or under the tangent plane */
-        h = tg_v3(tg_sub(tg_mul(z, tg_add(q->kx, tg_mul(tg_from_int(dx), q->ax))), q->pv.x),
-                  tg_sub(tg_mul(z, tg_sub(q->ky, tg_mul(tg_from_int(dy), q->ay))), q->pv.y), tg_sub(z, q->pv.z));
-        if (q->shift) h = tg_v3(tg_ldexp(h.x, q->shift), tg_ldexp(h.y, q->shift), tg_ldexp(h.z, q->shift));
+        h = tg_v3(tg_sub(tg_mul(z, tg_add(q->kx, tg_mul(fdx, u->ax))), q->pv.x),
+                  tg_sub(tg_mul(z, tg_sub(q->ky, tg_mul(fdy, u->ay))), q->pv.y), tg_sub(z, q->pv.z));
+        if (u->shift) h = tg_v3(tg_ldexp(h.x, u->shift), tg_ldexp(h.y, u->shift), tg_ldexp(h.z, u->shift));
         d2 = tgi_v3_dot(h, h);
-        if (d2 >= q->r2 || d2 <= 0) continue;                      /* beyond the gather radius */
+        if (d2 >= u->r2 || d2 <= 0) continue;                      /* beyond the gather radius */
         best = tg_max(best, tg_mul(tgi_v3_dot(h, q->vd), tg_rsqrt(d2)));
     }
     return best;
 }
 
-/* The near horizon of surface pixel (x, y), index i: the AO (cosine-
- * weighted, RTR eq. 11.18, the slices weighted as GTAO's, src/ao/ao.h)
- * under the horizons of full-resolution pixels up to TG_QUARTER_NEAR_REACH
- * away along its two slices, both sides, within the gather radius.  It
- * sees only occluders the whole horizon sees too, so it is an upper bound
- * of the AO, as the upsampled one is; 1 (without the integrals) when no
- * sample rises above the tangent plane. */
-static tg_real near_horizon_ao(const tgi_gview *full, int x, int y, size_t i, tg_real radius)
+/* The near horizon of surface pixel (x, y), index i, world normal n: the
+ * AO (cosine-weighted, RTR eq. 11.18, the slices weighted as GTAO's,
+ * src/ao/ao.h) under the horizons of full-resolution pixels up to
+ * TG_QUARTER_NEAR_REACH away along its two slices, both sides, within the
+ * gather radius.  It sees only occluders the whole horizon sees too, so it
+ * is an upper bound of the AO, as the upsampled one is; 1 (without the
+ * integrals) when no sample rises above the tangent plane. */
+static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t i, tg_vec3 n)
 {
-    const tgi_view *v = full->camera;
-    const tg_real *d = near_dir[(x & 3) + ((y & 3) << 2)];
-    tg_real c1[2], c0[2], vis = 0, open = 0, h1, h0, wfx = tg_mul(tg_from_int(v->width), v->focal_x),
-            hfy = tg_mul(tg_from_int(v->height), v->focal_y);
+    const tgi_gview *full = u->full;
+    int cell = (x & 3) + ((y & 3) << 2);
+    const tg_real *d = near_dir[cell];
+    tg_real c1[2], c0[2], vis = 0, open = 0, h1, h0, z;
     near_pixel q;
     tgi_ao_slice sl;
     int k, found = 0;
-    if (TG_QUARTER_NEAR_REACH < 1 || radius <= 0) return TG_ONE;
+    if (u->steps < 1) return TG_ONE;
     q.x = x; q.y = y;
-    (void)tgi_ao_view_at(full, x, y, i, radius, &q.pv, &q.nv, &q.vd);
-    q.kx = tg_div(tg_from_int(2 * x + 1 - v->width), wfx);        /* tgi_ao_unproject's ray */
-    q.ky = tg_div(tg_from_int(v->height - 2 * y - 1), hfy);
-    q.ax = tg_div(TG_R(2.0f), wfx);
-    q.ay = tg_div(TG_R(2.0f), hfy);
-    q.nax = tg_mul(q.nv.x, q.ax);
-    q.nay = tg_mul(q.nv.y, q.ay);
+    q.kx = tg_div(tg_from_int(2 * x + 1 - full->camera->width), u->wfx);   /* tgi_ao_unproject's ray */
+    q.ky = tg_div(tg_from_int(full->camera->height - 2 * y - 1), u->hfy);
+    z = tgi_gv_depth(full, i);                                   /* tgi_ao_view_at's view of the pixel */
+    q.pv = tg_v3(tg_mul(q.kx, z), tg_mul(q.ky, z), z);
+    q.nv = tgi_ao_dir_to_view(full->camera, n);
+    q.vd = tgi_v3_normalize_or(tgi_v3_neg(q.pv), tg_v3(0, 0, TG_R(-1.0f)));
+    q.nax = tg_mul(q.nv.x, u->ax);
+    q.nay = tg_mul(q.nv.y, u->ay);
     q.nr = tg_add(tg_add(tg_mul(q.nv.x, q.kx), tg_mul(q.nv.y, q.ky)), q.nv.z);
     q.np = tgi_v3_dot(q.nv, q.pv);
-    q.shift = tgi_ao_unit_shift(radius);
-    q.r2 = tg_sqr(tg_ldexp(radius, q.shift));
-    q.above = tg_add(tg_ldexp(q.pv.z, -10), tg_mul(radius, TG_R(0.005f)));
+    q.above = tg_add(tg_ldexp(q.pv.z, -10), u->above_r);
     for (k = 0; k < 2; k++) {   /* the cell's direction and the one at right angles */
-        int ux = tg_round_int(tg_ldexp(k ? tg_neg(d[1]) : d[0], 8)), uy = tg_round_int(tg_ldexp(k ? d[0] : d[1], 8));
-        c1[k] = near_horizon_cos(full, &q, ux, uy);
-        c0[k] = near_horizon_cos(full, &q, -ux, -uy);
+        c1[k] = near_horizon_cos(u, &q, u->off[cell][2 * k]);
+        c0[k] = near_horizon_cos(u, &q, u->off[cell][2 * k + 1]);
         found |= c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f);
     }
     if (!found) return TG_ONE;
@@ -203,9 +239,10 @@ static tg_real near_horizon_ao(const tgi_gview *full, int x, int y, size_t i, tg
     return open > 0 ? tg_saturate(tg_div(vis, open)) : TG_ONE;
 }
 
-tgi_gr_value tgi_upsample_pixel(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *hr, tg_real radius,
-                                int x, int y)
+tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, int x, int y)
 {
+    const tgi_gview *full = u->full, *half = u->half;
+    const tgi_gresult *hr = u->res;
     size_t i = tgi_gv_index(full, x, y), tap[4];
     tg_real wt[4], sum = 0, ao = 0, floor_w = TG_R(0.015625f);
     tg_vec3 n, bend = tg_v3(0, 0, 0), near = tg_v3(0, 0, 0);
@@ -238,7 +275,7 @@ tgi_gr_value tgi_upsample_pixel(const tgi_gview *full, const tgi_gview *half, co
     if (sum <= 0) return upsample_open(full, i);   /* only sky around: treat as open */
     /* the upsampled AO misses what lies between the half-res samples (a
      * contact shadow a few pixels wide): the near horizon's is the lower */
-    v.ao = tg_min(tg_saturate(tg_div(ao, sum)), near_horizon_ao(full, x, y, i, radius));
+    v.ao = tg_min(tg_saturate(tg_div(ao, sum)), near_horizon_ao(u, x, y, i, n));
     v.bent = n;
     if (want_bent) {
         tg_vec3 b = tgi_v3_add(n, tg_v3(tg_div(bend.x, sum), tg_div(bend.y, sum), tg_div(bend.z, sum)));
@@ -252,14 +289,24 @@ tgi_gr_value tgi_upsample_pixel(const tgi_gview *full, const tgi_gview *half, co
     return v;
 }
 
+tgi_gr_value tgi_upsample_pixel(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res,
+                                tg_real radius, int x, int y)
+{
+    tgi_upsample_plan u;
+    tgi_upsample_start(&u, full, half, half_res, radius);
+    return tgi_upsample_at(&u, x, y);
+}
+
 void tgi_upsample_rows(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res, tg_real radius,
                        const tgi_gresult *out, int y0, int y1)
 {
+    tgi_upsample_plan u;
     int x, y;
     if (y1 > full->height) y1 = full->height;
+    tgi_upsample_start(&u, full, half, half_res, radius);
     for (y = y0; y < y1; y++)
         for (x = 0; x < full->width; x++) {
-            tgi_gr_value v = tgi_upsample_pixel(full, half, half_res, radius, x, y);
+            tgi_gr_value v = tgi_upsample_at(&u, x, y);
             tgi_gr_put(out, tgi_gv_index(full, x, y), &v);
         }
 }

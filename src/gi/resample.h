@@ -19,6 +19,30 @@ void tgi_half_size(int w, int h, int *hw, int *hh);
 void tgi_downsample_rows(const tgi_gview *full, const tgi_gbuffer *half, const tgi_rgb *src,
                          const tgi_rgb *half_src, int y0, int y1);
 
+/* Samples a side of the near horizon at most (src/gi/resample.c). */
+#define TGI_NEAR_STEPS_MAX 16
+
+/* What the upsample of a frame keeps fixed: the views and the half-res
+ * results, the gather radius, the camera's per-pixel ray steps, the
+ * radius's shift (tgi_ao_unit_shift) and, scaled by it, its square, and
+ * the near horizon's samples a side with their pixel offsets (dx, dy) for
+ * each cell of a 4x4 block and each of its two slices' two sides. */
+typedef struct tgi_upsample_plan {
+    const tgi_gview *full, *half;
+    const tgi_gresult *res;
+    tg_real wfx, hfy, ax, ay, r2, above_r;
+    int shift, steps;
+    short off[16][4][TGI_NEAR_STEPS_MAX][2];
+} tgi_upsample_plan;
+
+/* The plan of upsampling half_res (indexed like the view half) to full with
+ * gather radius `radius` (world units). */
+void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res,
+                        tg_real radius);
+
+/* tgi_upsample_pixel under plan u. */
+tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, int x, int y);
+
 /* The upsampled results at full-res pixel (x, y) from the half-res results
  * half_res (indexed like the view half), guided by both views' depth and
  * normals, the AO no more than the near horizon's within
