@@ -192,22 +192,35 @@ static tg_real near_horizon_cos(const tgi_upsample_plan *u, const near_pixel *q,
     return best;
 }
 
+/* How much the near horizon's AO is known to stay above the upsampled AO
+ * before its integrals are skipped (tgi_upsample_at): more than the
+ * rounding of either number type in the integrals and the bound. */
+#define NEAR_BOUND_MARGIN TG_R(0.015625f)
+
 /* The near horizon of surface pixel (x, y), index i, world normal n: the
  * AO (cosine-weighted, RTR eq. 11.18, the slices weighted as GTAO's,
  * src/ao/ao.h) under the horizons of full-resolution pixels up to
  * TG_QUARTER_NEAR_REACH away along its two slices, both sides, within the
  * gather radius.  It sees only occluders the whole horizon sees too, so it
  * is an upper bound of the AO, as the upsampled one is; 1 (without the
- * integrals) when no sample rises above the tangent plane. */
-static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t i, tg_vec3 n)
+ * integrals) when no sample rises above the tangent plane, or when a lower
+ * bound of it is above `ao` (the upsampled AO it caps) by more than
+ * NEAR_BOUND_MARGIN.
+ * The bound: with u = h - gamma, a slice's arc lost to a horizon at angle
+ * theta = acos c from the view vector, the integral of |sin h| cos u over
+ * u from theta - gamma to pi/2, is at most 1 - sin(theta - gamma) (and on
+ * the other side 1 - sin(theta + gamma)); its open arc cos g + g sin g is
+ * at least cos g + sin^2 g; so AO = 1 - sum len lost / sum len open is at
+ * least 1 - sum len (lost bound) / sum len (open bound), without an angle. */
+static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t i, tg_vec3 n, tg_real ao)
 {
     const tgi_gview *full = u->full;
     int cell = (x & 3) + ((y & 3) << 2);
     const tg_real *d = near_dir[cell];
-    tg_real c1[2], c0[2], vis = 0, open = 0, h1, h0, z;
+    tg_real c1[2], c0[2], cos_n[2], vis = 0, open = 0, h1, h0, z, lost_b = 0, open_b = 0;
     near_pixel q;
-    tgi_ao_slice sl;
-    int k, found = 0;
+    tgi_ao_slice sl[2];
+    int k, found = 0, plane[2], toward[2];
     if (u->steps < 1) return TG_ONE;
     q.x = x; q.y = y;
     q.kx = tg_div(tg_from_int(2 * x + 1 - full->camera->width), u->wfx);   /* tgi_ao_unproject's ray */
@@ -228,12 +241,29 @@ static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t 
     }
     if (!found) return TG_ONE;
     for (k = 0; k < 2; k++) {
+        tg_real cg, sg, lost = 0;
+        plane[k] = tgi_ao_slice_plane(q.nv, q.vd, k ? tg_neg(d[1]) : d[0], k ? d[0] : d[1], &sl[k], &cos_n[k], &toward[k]);
+        if (!plane[k]) continue;
+        cg = cos_n[k];
+        sg = tg_sqrt(tg_max(0, tg_sub(TG_ONE, tg_sqr(cg))));
+        if (!toward[k]) sg = tg_neg(sg);
+        if (c1[k] > TG_R(-1.0f))
+            lost = tg_sub(TG_ONE, tg_sub(tg_mul(tg_sqrt(tg_max(0, tg_sub(TG_ONE, tg_sqr(c1[k])))), cg), tg_mul(c1[k], sg)));
+        if (c0[k] > TG_R(-1.0f))
+            lost = tg_add(lost, tg_sub(TG_ONE, tg_add(tg_mul(tg_sqrt(tg_max(0, tg_sub(TG_ONE, tg_sqr(c0[k])))), cg),
+                                                      tg_mul(c0[k], sg))));
+        lost_b = tg_add(lost_b, tg_mul(sl[k].len, tg_max(0, lost)));
+        open_b = tg_add(open_b, tg_mul(sl[k].len, tg_add(cg, tg_sqr(sg))));
+    }
+    if (open_b > 0 && tg_sub(tg_sub(TG_ONE, tg_div(lost_b, open_b)), NEAR_BOUND_MARGIN) >= ao) return TG_ONE;
+    for (k = 0; k < 2; k++) {
         tg_real o;
-        if (!tgi_ao_slice_frame(q.nv, q.vd, k ? tg_neg(d[1]) : d[0], k ? d[0] : d[1], &sl)) continue;
-        o = tg_mul(sl.len, tg_add(sl.cos_g, tg_mul(sl.gamma, sl.sin_g)));
+        if (!plane[k]) continue;
+        tgi_ao_slice_angle(&sl[k], cos_n[k], toward[k]);
+        o = tg_mul(sl[k].len, tg_add(sl[k].cos_g, tg_mul(sl[k].gamma, sl[k].sin_g)));
         open = tg_add(open, o);
         /* a slice without a horizon sees its open arc */
-        if (c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f)) o = tg_mul(sl.len, tgi_ao_slice_arc(&sl, c1[k], c0[k], &h1, &h0));
+        if (c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f)) o = tg_mul(sl[k].len, tgi_ao_slice_arc(&sl[k], c1[k], c0[k], &h1, &h0));
         vis = tg_add(vis, o);
     }
     return open > 0 ? tg_saturate(tg_div(vis, open)) : TG_ONE;
@@ -275,7 +305,8 @@ tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, int x, int y)
     if (sum <= 0) return upsample_open(full, i);   /* only sky around: treat as open */
     /* the upsampled AO misses what lies between the half-res samples (a
      * contact shadow a few pixels wide): the near horizon's is the lower */
-    v.ao = tg_min(tg_saturate(tg_div(ao, sum)), near_horizon_ao(u, x, y, i, n));
+    v.ao = tg_saturate(tg_div(ao, sum));
+    v.ao = tg_min(v.ao, near_horizon_ao(u, x, y, i, n, v.ao));
     v.bent = n;
     if (want_bent) {
         tg_vec3 b = tgi_v3_add(n, tg_v3(tg_div(bend.x, sum), tg_div(bend.y, sum), tg_div(bend.z, sum)));
