@@ -107,22 +107,20 @@ static const tg_real near_dir[16][2] = {
     { TG_R(0.2429802f), TG_R(0.9700313f) }, { TG_R(0.8577286f), TG_R(0.5141027f) }
 };
 
-/* The near horizon's sample distances along a side, in pixels: 1, 2, 3, 4,
- * then each 1.5 times the last (those up to TG_QUARTER_NEAR_REACH). */
-static const int near_t[TGI_NEAR_STEPS_MAX] = { 1, 2, 3, 4, 6, 9, 13, 19, 28, 42, 63, 94, 141, 211, 316, 474 };
-#if TG_QUARTER_NEAR_REACH >= 711
-#error "TG_QUARTER_NEAR_REACH: the near horizon keeps at most TGI_NEAR_STEPS_MAX samples a side (src/gi/resample.h)"
-#endif
+/* The near horizon's sample distances along a side, in pixels (resample.h's
+ * TGI_NEAR_STEPS of them). */
+static const int near_t[16] = { 1, 2, 3, 4, 6, 9, 13, 19, 28, 42, 63, 94, 141, 211, 316, 474 };
 
 void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res,
                         tg_real radius)
 {
     const tgi_view *v = full->camera;
-    int c, k, n;
+    int c, k, n, e;
     u->full = full; u->half = half; u->res = half_res;
     u->steps = 0;
+    u->reach = 0;
     if (TG_QUARTER_NEAR_REACH < 1 || radius <= 0) return;
-    while (u->steps < TGI_NEAR_STEPS_MAX && near_t[u->steps] <= TG_QUARTER_NEAR_REACH) u->steps++;
+    u->steps = TGI_NEAR_STEPS;
     u->wfx = tg_mul(tg_from_int(v->width), v->focal_x);
     u->hfy = tg_mul(tg_from_int(v->height), v->focal_y);
     u->ax = tg_div(TG_R(2.0f), u->wfx);
@@ -130,21 +128,27 @@ void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_g
     u->shift = tgi_ao_unit_shift(radius);
     u->r2 = tg_sqr(tg_ldexp(radius, u->shift));
     u->above_r = tg_mul(radius, TG_R(0.005f));
-    /* sample t of side s of a cell's slices along the screen direction
-     * (ux, uy) / 256 (y down), stepping in 1/256 pixel from the pixel's centre
-     * (integers alike in both number types): the pixel
-     * floor((128 + t u) / 256) away, the shift kept to non-negative numbers */
+    /* sample t of side e (k's direction, then against it) of a cell's slice k
+     * along the screen direction (ux, uy) / 256 (y down), stepping in 1/256
+     * pixel from the pixel's centre (integers alike in both number types):
+     * the pixel floor((128 + t u) / 256) away, the shift kept to non-negative
+     * numbers */
     for (c = 0; c < 16; c++)
         for (k = 0; k < 2; k++) {
             const tg_real *d = near_dir[c];
             int ux = tg_round_int(tg_ldexp(k ? tg_neg(d[1]) : d[0], 8)), uy = tg_round_int(tg_ldexp(k ? d[0] : d[1], 8));
-            for (n = 0; n < u->steps; n++) {
-                int t = near_t[n], far = 256 * (t + 1);
-                u->off[c][2 * k][n][0] = (short)(((128 + t * ux + far) >> 8) - (t + 1));
-                u->off[c][2 * k][n][1] = (short)(((128 + t * uy + far) >> 8) - (t + 1));
-                u->off[c][2 * k + 1][n][0] = (short)(((128 - t * ux + far) >> 8) - (t + 1));
-                u->off[c][2 * k + 1][n][1] = (short)(((128 - t * uy + far) >> 8) - (t + 1));
-            }
+            for (e = 0; e < 2; e++)
+                for (n = 0; n < u->steps; n++) {
+                    tgi_near_step *st = &u->step[c][2 * k + e][n];
+                    int t = near_t[n], far = 256 * (t + 1), sx = e ? -ux : ux, sy = e ? -uy : uy;
+                    st->dx = ((128 + t * sx + far) >> 8) - (t + 1);
+                    st->dy = ((128 + t * sy + far) >> 8) - (t + 1);
+                    st->di = (ptrdiff_t)st->dy * full->row_stride + (ptrdiff_t)st->dx * full->pixel_stride;
+                    st->fdx = tg_from_int(st->dx);
+                    st->fdy = tg_from_int(st->dy);
+                    if (st->dx > u->reach || -st->dx > u->reach) u->reach = st->dx > 0 ? st->dx : -st->dx;
+                    if (st->dy > u->reach || -st->dy > u->reach) u->reach = st->dy > 0 ? st->dy : -st->dy;
+                }
         }
 }
 
@@ -158,38 +162,54 @@ typedef struct near_pixel {
     tg_real np, kx, ky, nax, nay, nr, above;
 } near_pixel;
 
-/* The largest cos(angle to the view vector) of the samples off[0..steps)
- * (pixel offsets from q, tgi_upsample_start's) that lie above the tangent
- * plane and within the radius; -1 when none; the march ends at the
- * screen's edge.  A sample's view position is its depth z times its ray r,
- * so its height over the tangent plane is z (n . r) - n . p, n . r changing
- * by n.x ax and -n.y ay a pixel. */
-static tg_real near_horizon_cos(const tgi_upsample_plan *u, const near_pixel *q, const short (*off)[2])
+/* The largest cos(angle to the view vector) of the samples st[0..steps)
+ * of pixel q (index i) that lie above the tangent plane and within the
+ * radius; -1 when none; the march ends at the screen's edge (`inside`: no
+ * sample can reach it).  A sample's view position is its depth z times its
+ * ray r, so its height over the tangent plane is z (n . r) - n . p, n . r
+ * changing by n.x ax and -n.y ay a pixel. */
+static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, const near_pixel *q, size_t i,
+                                       const tgi_near_step *st, int inside)
 {
     const tgi_gview *g = u->full;
     tg_real best = TG_R(-1.0f);
-    int n;
-    for (n = 0; n < u->steps; n++) {
-        int dx = off[n][0], dy = off[n][1], sx = q->x + dx, sy = q->y + dy;
-        size_t j;
-        tg_real z, d2, fdx, fdy;
+    int n, steps = u->steps;
+    for (n = 0; n < steps; n++, st++) {
+        size_t j = (size_t)((ptrdiff_t)i + st->di);   /* tgi_gv_index(g, x + dx, y + dy) */
+        tg_real z, d2;
         tg_vec3 h;
-        if ((unsigned)sx >= (unsigned)g->width || (unsigned)sy >= (unsigned)g->height) break;
-        j = tgi_gv_index(g, sx, sy);
+        if (!inside && ((unsigned)(q->x + st->dx) >= (unsigned)g->width || (unsigned)(q->y + st->dy) >= (unsigned)g->height))
+            break;
         if (tgi_gv_is_sky(g, j)) continue;
         z = tgi_gv_depth(g, j);
-        fdx = tg_from_int(dx);
-        fdy = tg_from_int(dy);
-        if (tg_sub(tg_mul(z, tg_add(q->nr, tg_sub(tg_mul(fdx, q->nax), tg_mul(fdy, q->nay)))), q->np) <= q->above)
+        if (tg_sub(tg_mul(z, tg_add(q->nr, tg_sub(tg_mul(st->fdx, q->nax), tg_mul(st->fdy, q->nay)))), q->np) <= q->above)
             continue;                                              /* on or under the tangent plane */
-        h = tg_v3(tg_sub(tg_mul(z, tg_add(q->kx, tg_mul(fdx, u->ax))), q->pv.x),
-                  tg_sub(tg_mul(z, tg_sub(q->ky, tg_mul(fdy, u->ay))), q->pv.y), tg_sub(z, q->pv.z));
+        h = tg_v3(tg_sub(tg_mul(z, tg_add(q->kx, tg_mul(st->fdx, u->ax))), q->pv.x),
+                  tg_sub(tg_mul(z, tg_sub(q->ky, tg_mul(st->fdy, u->ay))), q->pv.y), tg_sub(z, q->pv.z));
         if (u->shift) h = tg_v3(tg_ldexp(h.x, u->shift), tg_ldexp(h.y, u->shift), tg_ldexp(h.z, u->shift));
         d2 = tgi_v3_dot(h, h);
         if (d2 >= u->r2 || d2 <= 0) continue;                      /* beyond the gather radius */
         best = tg_max(best, tg_mul(tgi_v3_dot(h, q->vd), tg_rsqrt(d2)));
     }
     return best;
+}
+
+/* near_horizon_cos of the four sides of pixel q's slices into c1[k], c0[k]. */
+static void near_horizon_sides(const tgi_upsample_plan *u, const near_pixel *q, size_t i, int cell,
+                               tg_real c1[2], tg_real c0[2])
+{
+    const tgi_gview *g = u->full;
+    int k;
+    if (q->x >= u->reach && q->y >= u->reach && q->x + u->reach < g->width && q->y + u->reach < g->height)
+        for (k = 0; k < 2; k++) {
+            c1[k] = near_horizon_cos(u, q, i, u->step[cell][2 * k], 1);
+            c0[k] = near_horizon_cos(u, q, i, u->step[cell][2 * k + 1], 1);
+        }
+    else
+        for (k = 0; k < 2; k++) {
+            c1[k] = near_horizon_cos(u, q, i, u->step[cell][2 * k], 0);
+            c0[k] = near_horizon_cos(u, q, i, u->step[cell][2 * k + 1], 0);
+        }
 }
 
 /* How much the near horizon's AO is known to stay above the upsampled AO
@@ -234,11 +254,8 @@ static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t 
     q.nr = tg_add(tg_add(tg_mul(q.nv.x, q.kx), tg_mul(q.nv.y, q.ky)), q.nv.z);
     q.np = tgi_v3_dot(q.nv, q.pv);
     q.above = tg_add(tg_ldexp(q.pv.z, -10), u->above_r);
-    for (k = 0; k < 2; k++) {   /* the cell's direction and the one at right angles */
-        c1[k] = near_horizon_cos(u, &q, u->off[cell][2 * k]);
-        c0[k] = near_horizon_cos(u, &q, u->off[cell][2 * k + 1]);
-        found |= c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f);
-    }
+    near_horizon_sides(u, &q, i, cell, c1, c0);   /* the cell's direction and the one at right angles */
+    for (k = 0; k < 2; k++) found |= c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f);
     if (!found) return TG_ONE;
     for (k = 0; k < 2; k++) {
         tg_real cg, sg, lost = 0;

@@ -19,20 +19,39 @@ void tgi_half_size(int w, int h, int *hw, int *hh);
 void tgi_downsample_rows(const tgi_gview *full, const tgi_gbuffer *half, const tgi_rgb *src,
                          const tgi_rgb *half_src, int y0, int y1);
 
-/* Samples a side of the near horizon at most (src/gi/resample.c). */
-#define TGI_NEAR_STEPS_MAX 16
+/* Samples a side of the near horizon: those of 1, 2, 3, 4, 6, 9, 13, 19,
+ * 28, 42, 63, 94, 141, 211, 316, 474 pixels away (from 4 on, each 1.5 times
+ * the last) up to TG_QUARTER_NEAR_REACH (src/gi/resample.c); at least 1 to
+ * size the plan's tables. */
+#define TGI_NEAR_STEPS_OF(r) ((r) >= 1) + ((r) >= 2) + ((r) >= 3) + ((r) >= 4) + ((r) >= 6) + ((r) >= 9) + \
+    ((r) >= 13) + ((r) >= 19) + ((r) >= 28) + ((r) >= 42) + ((r) >= 63) + ((r) >= 94) + ((r) >= 141) + \
+    ((r) >= 211) + ((r) >= 316) + ((r) >= 474)
+#define TGI_NEAR_STEPS (TG_QUARTER_NEAR_REACH >= 1 ? (TGI_NEAR_STEPS_OF(TG_QUARTER_NEAR_REACH)) : 1)
+#if TG_QUARTER_NEAR_REACH >= 711
+#error "TG_QUARTER_NEAR_REACH: the near horizon takes at most 16 samples a side, up to 474 pixels"
+#endif
+
+/* A near-horizon sample of a pixel: its offset (dx, dy) in pixels, the
+ * same as numbers, and the change of the view's index (tgi_gv_index). */
+typedef struct tgi_near_step {
+    int dx, dy;
+    ptrdiff_t di;
+    tg_real fdx, fdy;
+} tgi_near_step;
 
 /* What the upsample of a frame keeps fixed: the views and the half-res
- * results, the gather radius, the camera's per-pixel ray steps, the
- * radius's shift (tgi_ao_unit_shift) and, scaled by it, its square, and
- * the near horizon's samples a side with their pixel offsets (dx, dy) for
- * each cell of a 4x4 block and each of its two slices' two sides. */
+ * results, the camera's per-pixel ray steps, the radius's shift
+ * (tgi_ao_unit_shift) and, scaled by it, its square, the height over a
+ * tangent plane that a sample must pass besides the depth's (as a part of
+ * the radius), and the near horizon's samples a side (0: none), for each
+ * cell of a 4x4 block and each of its two slices' two sides, with the
+ * farthest any of them lies on either axis. */
 typedef struct tgi_upsample_plan {
     const tgi_gview *full, *half;
     const tgi_gresult *res;
     tg_real wfx, hfy, ax, ay, r2, above_r;
-    int shift, steps;
-    short off[16][4][TGI_NEAR_STEPS_MAX][2];
+    int shift, steps, reach;
+    tgi_near_step step[16][4][TGI_NEAR_STEPS];
 } tgi_upsample_plan;
 
 /* The plan of upsampling half_res (indexed like the view half) to full with
