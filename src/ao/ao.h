@@ -289,36 +289,22 @@ static inline int tgi_ao_slice_sample(const tgi_gview *g, const tgi_ao_slice_pix
  * (Jimenez et al. 2016): its unit direction in view space, the length of
  * the normal nv projected into it, and that projection's angle gamma from
  * vd (positive toward dir), with its cosine and sine.  0 when the
- * projected normal is too short to have a direction.
- * In two steps: tgi_ao_slice_plane gives dir, len, cos gamma (*cos_n) and
- * the sign of gamma (*toward: 1 for positive), tgi_ao_slice_angle the rest. */
+ * projected normal is too short to have a direction. */
 typedef struct tgi_ao_slice { tg_vec3 dir; tg_real len, gamma, cos_g, sin_g; } tgi_ao_slice;
-static inline int tgi_ao_slice_plane(tg_vec3 nv, tg_vec3 vd, tg_real sdx, tg_real sdy, tgi_ao_slice *sl,
-                                     tg_real *cos_n, int *toward)
+static inline int tgi_ao_slice_frame(tg_vec3 nv, tg_vec3 vd, tg_real sdx, tg_real sdy, tgi_ao_slice *sl)
 {
     tg_vec3 d3 = tg_v3(sdx, tg_neg(sdy), 0), axis, pn;
+    tg_real cos_n;
     sl->dir = tgi_v3_normalize_or(tgi_v3_sub(d3, tgi_v3_scale(vd, tgi_v3_dot(d3, vd))), d3);
     axis = tgi_v3_cross(sl->dir, vd);
     pn = tgi_v3_sub(nv, tgi_v3_scale(axis, tgi_v3_dot(nv, axis)));   /* normal projected into the slice */
     sl->len = tgi_v3_length(pn);
     if (sl->len <= TG_R(0.0001f)) return 0;
-    *cos_n = tg_clamp(tg_div(tgi_v3_dot(pn, vd), sl->len), TG_R(-1.0f), TG_ONE);
-    *toward = !(tgi_v3_dot(pn, sl->dir) < 0);
-    return 1;
-}
-static inline void tgi_ao_slice_angle(tgi_ao_slice *sl, tg_real cos_n, int toward)
-{
+    cos_n = tg_clamp(tg_div(tgi_v3_dot(pn, vd), sl->len), TG_R(-1.0f), TG_ONE);
     sl->gamma = tg_acos(cos_n);
-    if (!toward) sl->gamma = tg_neg(sl->gamma);
+    if (tgi_v3_dot(pn, sl->dir) < 0) sl->gamma = tg_neg(sl->gamma);
     sl->cos_g = tg_cos(sl->gamma);
     sl->sin_g = tg_sin(sl->gamma);
-}
-static inline int tgi_ao_slice_frame(tg_vec3 nv, tg_vec3 vd, tg_real sdx, tg_real sdy, tgi_ao_slice *sl)
-{
-    tg_real cos_n;
-    int toward;
-    if (!tgi_ao_slice_plane(nv, vd, sdx, sdy, sl, &cos_n, &toward)) return 0;
-    tgi_ao_slice_angle(sl, cos_n, toward);
     return 1;
 }
 

@@ -212,35 +212,67 @@ static void near_horizon_sides(const tgi_upsample_plan *u, const near_pixel *q, 
         }
 }
 
-/* How much the near horizon's AO is known to stay above the upsampled AO
- * before its integrals are skipped (tgi_upsample_at): more than the
- * rounding of either number type in the integrals and the bound. */
+/* How much a lower bound of the near horizon's AO must stay above the
+ * upsampled AO for its integrals to be skipped (near_horizon_ao): more than
+ * the rounding of either number type in the integrals and the bound. */
 #define NEAR_BOUND_MARGIN TG_R(0.015625f)
+
+/* A lower bound of the AO near_horizon_ao integrates, from the horizons'
+ * cosines c1[k], c0[k] of pixel q's slices k (screen directions d and the
+ * one at right angles), with no angle taken; -1 where the bound does not
+ * hold (a normal facing away from the eye or nearly at right angles to a
+ * slice).  In slice k (unit direction s_k in view space, at right angles to
+ * the view vector v) the normal projects to length len = |(n.s, n.v)|,
+ * at angle g from v, cos g = n.v / len, sin g = n.s / len.  With u = h - g,
+ * the arc a horizon at angle t = acos c from v takes from its side, the
+ * integral of |sin h| cos u over u from t - g to pi/2 (RTR eq. 11.18's inner
+ * integral), is at most 1 - sin(t - g) (against the direction 1 - sin(t + g));
+ * the open arc cos g + g sin g is at least cos g + sin^2 g; so the AO,
+ * 1 - sum len lost / sum len open, is at least
+ * 1 - sum len (lost's bound) / sum len (open's bound). */
+static tg_real near_horizon_bound(const near_pixel *q, const tg_real *d, const tg_real c1[2], const tg_real c0[2])
+{
+    tg_real nv_v = tgi_v3_dot(q->nv, q->vd), lost = 0, open = 0;
+    int k;
+    if (nv_v <= 0) return TG_R(-1.0f);
+    for (k = 0; k < 2; k++) {
+        tg_vec3 d3 = k ? tg_v3(tg_neg(d[1]), tg_neg(d[0]), 0) : tg_v3(d[0], tg_neg(d[1]), 0);  /* (sdx, -sdy, 0) */
+        tg_real dv = tgi_v3_dot(d3, q->vd), perp = tg_sub(tgi_v3_dot(d3, d3), tg_sqr(dv)), nv_s, len, l;
+        if (perp <= TG_R(0.01f)) return TG_R(-1.0f);
+        nv_s = tg_mul(tg_sub(tgi_v3_dot(q->nv, d3), tg_mul(nv_v, dv)), tg_rsqrt(perp));   /* n . s_k */
+        len = tg_sqrt(tg_add(tg_sqr(nv_v), tg_sqr(nv_s)));
+        if (len <= TG_R(0.01f)) return TG_R(-1.0f);
+        if (c1[k] > TG_R(-1.0f)) {   /* len (1 - sin(t - g)) */
+            l = tg_sub(len, tg_sub(tg_mul(tg_sqrt(tg_max(0, tg_sub(TG_ONE, tg_sqr(c1[k])))), nv_v), tg_mul(c1[k], nv_s)));
+            lost = tg_add(lost, tg_max(0, l));
+        }
+        if (c0[k] > TG_R(-1.0f)) {   /* len (1 - sin(t + g)) */
+            l = tg_sub(len, tg_add(tg_mul(tg_sqrt(tg_max(0, tg_sub(TG_ONE, tg_sqr(c0[k])))), nv_v), tg_mul(c0[k], nv_s)));
+            lost = tg_add(lost, tg_max(0, l));
+        }
+        open = tg_add(open, tg_add(nv_v, tg_div(tg_sqr(nv_s), len)));   /* len (cos g + sin^2 g) */
+    }
+    return tg_sub(TG_ONE, tg_div(lost, open));
+}
 
 /* The near horizon of surface pixel (x, y), index i, world normal n: the
  * AO (cosine-weighted, RTR eq. 11.18, the slices weighted as GTAO's,
  * src/ao/ao.h) under the horizons of full-resolution pixels up to
  * TG_QUARTER_NEAR_REACH away along its two slices, both sides, within the
  * gather radius.  It sees only occluders the whole horizon sees too, so it
- * is an upper bound of the AO, as the upsampled one is; 1 (without the
- * integrals) when no sample rises above the tangent plane, or when a lower
- * bound of it is above `ao` (the upsampled AO it caps) by more than
- * NEAR_BOUND_MARGIN.
- * The bound: with u = h - gamma, a slice's arc lost to a horizon at angle
- * theta = acos c from the view vector, the integral of |sin h| cos u over
- * u from theta - gamma to pi/2, is at most 1 - sin(theta - gamma) (and on
- * the other side 1 - sin(theta + gamma)); its open arc cos g + g sin g is
- * at least cos g + sin^2 g; so AO = 1 - sum len lost / sum len open is at
- * least 1 - sum len (lost bound) / sum len (open bound), without an angle. */
+ * is an upper bound of the AO, as the upsampled one is.  1 (without the
+ * integrals) when no sample rises above the tangent plane, or when its lower
+ * bound (near_horizon_bound) is above `ao`, the upsampled AO it caps, by
+ * more than NEAR_BOUND_MARGIN: either way no lower than `ao`. */
 static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t i, tg_vec3 n, tg_real ao)
 {
     const tgi_gview *full = u->full;
     int cell = (x & 3) + ((y & 3) << 2);
     const tg_real *d = near_dir[cell];
-    tg_real c1[2], c0[2], cos_n[2], vis = 0, open = 0, h1, h0, z, lost_b = 0, open_b = 0;
+    tg_real c1[2], c0[2], vis = 0, open = 0, h1, h0, z;
     near_pixel q;
-    tgi_ao_slice sl[2];
-    int k, found = 0, plane[2], toward[2];
+    tgi_ao_slice sl;
+    int k, found = 0;
     if (u->steps < 1) return TG_ONE;
     q.x = x; q.y = y;
     q.kx = tg_div(tg_from_int(2 * x + 1 - full->camera->width), u->wfx);   /* tgi_ao_unproject's ray */
@@ -257,30 +289,14 @@ static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t 
     near_horizon_sides(u, &q, i, cell, c1, c0);   /* the cell's direction and the one at right angles */
     for (k = 0; k < 2; k++) found |= c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f);
     if (!found) return TG_ONE;
-    for (k = 0; k < 2; k++) {
-        tg_real cg, sg, lost = 0;
-        plane[k] = tgi_ao_slice_plane(q.nv, q.vd, k ? tg_neg(d[1]) : d[0], k ? d[0] : d[1], &sl[k], &cos_n[k], &toward[k]);
-        if (!plane[k]) continue;
-        cg = cos_n[k];
-        sg = tg_sqrt(tg_max(0, tg_sub(TG_ONE, tg_sqr(cg))));
-        if (!toward[k]) sg = tg_neg(sg);
-        if (c1[k] > TG_R(-1.0f))
-            lost = tg_sub(TG_ONE, tg_sub(tg_mul(tg_sqrt(tg_max(0, tg_sub(TG_ONE, tg_sqr(c1[k])))), cg), tg_mul(c1[k], sg)));
-        if (c0[k] > TG_R(-1.0f))
-            lost = tg_add(lost, tg_sub(TG_ONE, tg_add(tg_mul(tg_sqrt(tg_max(0, tg_sub(TG_ONE, tg_sqr(c0[k])))), cg),
-                                                      tg_mul(c0[k], sg))));
-        lost_b = tg_add(lost_b, tg_mul(sl[k].len, tg_max(0, lost)));
-        open_b = tg_add(open_b, tg_mul(sl[k].len, tg_add(cg, tg_sqr(sg))));
-    }
-    if (open_b > 0 && tg_sub(tg_sub(TG_ONE, tg_div(lost_b, open_b)), NEAR_BOUND_MARGIN) >= ao) return TG_ONE;
+    if (tg_sub(near_horizon_bound(&q, d, c1, c0), NEAR_BOUND_MARGIN) >= ao) return TG_ONE;
     for (k = 0; k < 2; k++) {
         tg_real o;
-        if (!plane[k]) continue;
-        tgi_ao_slice_angle(&sl[k], cos_n[k], toward[k]);
-        o = tg_mul(sl[k].len, tg_add(sl[k].cos_g, tg_mul(sl[k].gamma, sl[k].sin_g)));
+        if (!tgi_ao_slice_frame(q.nv, q.vd, k ? tg_neg(d[1]) : d[0], k ? d[0] : d[1], &sl)) continue;
+        o = tg_mul(sl.len, tg_add(sl.cos_g, tg_mul(sl.gamma, sl.sin_g)));
         open = tg_add(open, o);
         /* a slice without a horizon sees its open arc */
-        if (c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f)) o = tg_mul(sl[k].len, tgi_ao_slice_arc(&sl[k], c1[k], c0[k], &h1, &h0));
+        if (c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f)) o = tg_mul(sl.len, tgi_ao_slice_arc(&sl, c1[k], c0[k], &h1, &h0));
         vis = tg_add(vis, o);
     }
     return open > 0 ? tg_saturate(tg_div(vis, open)) : TG_ONE;
