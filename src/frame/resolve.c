@@ -47,6 +47,7 @@ typedef struct resolve_ctx {
     tgi_denoise_walk walk;        /* the filter's decoded window along the row */
 #if !TG_NO_GI_QUARTER
     tgi_upsample_plan up;         /* or the upsample's, fixed per frame */
+    tgi_upsample_walk up_walk;    /* and the half-res pixels it decoded */
 #endif
     int gi, hbil, quarter, far_mode, far_inline;
     const tgi_rgb *lo;            /* where Lo goes: this frame's colour, or the next bounce's source */
@@ -62,7 +63,10 @@ static void resolve_ctx_init(resolve_ctx *c, const tg_frame *f)
     c->hbil = c->gi && f->request.technique == TG_TECH_HBIL;
     c->quarter = tgi_frame_quarter(f);
 #if !TG_NO_GI_QUARTER
-    if (c->hbil && c->quarter) tgi_upsample_start(&c->up, &f->full, &f->half_view, &f->half_filtered, f->request.radius);
+    if (c->hbil && c->quarter) {
+        tgi_upsample_start(&c->up, &f->full, &f->half_view, &f->half_filtered, f->request.radius);
+        tgi_upsample_walk_start(&c->up_walk);
+    }
 #endif
     c->far_mode = f->request.far_mode ? TG_FAR_CUBE_F0 : TG_FAR_CONE_SH;
     c->far_inline = (f->effects & TG_EFFECT_FAR) && !technique_far;
@@ -76,7 +80,7 @@ static tgi_gr_value results_at(resolve_ctx *c, const tg_frame *f, int x, int y, 
 {
     if (!c->hbil) return tgi_gr_get_kept(&f->res, i);
 #if !TG_NO_GI_QUARTER
-    if (c->quarter) return tgi_upsample_at(&c->up, x, y);
+    if (c->quarter) return tgi_upsample_at(&c->up, &c->up_walk, x, y);
 #endif
     return tgi_denoise_pixel(&c->filter, &f->full, &f->res, &c->walk, x, y);
 }

@@ -302,38 +302,64 @@ static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t 
     return open > 0 ? tg_saturate(tg_div(vis, open)) : TG_ONE;
 }
 
-tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, int x, int y)
+/* Half-res pixel j decoded into slot t of the walk (once per pixel while
+ * the row's pixels share it): sky, depth, normal, AO, bend (bent -
+ * normal) and near field where the results carry them. */
+static const tgi_upsample_tap *upsample_tap(const tgi_upsample_plan *u, tgi_upsample_walk *w, int t, size_t j)
+{
+    tgi_upsample_tap *c = &w->tap[t];
+    if (c->index == j) return c;
+    c->index = j;
+    c->sky = tgi_gv_is_sky(u->half, j);
+    if (c->sky) return c;
+    c->z = tgi_gv_depth(u->half, j);
+    c->n = tgi_gv_normal(u->half, j);
+    c->ao = tgi_gr_ao(u->res, j);
+    if (tgi_gr_has_bent(u->res)) {   /* the bend (bent - normal) is what carries over (Klehm sec. 3.4) */
+        tg_vec3 b = tgi_gr_bent(u->res, j);
+        c->bend = tg_v3(tg_sub(b.x, c->n.x), tg_sub(b.y, c->n.y), tg_sub(b.z, c->n.z));
+    }
+    if (tgi_gr_has_near(u->res)) c->near = tgi_gr_near(u->res, j);
+    return c;
+}
+
+void tgi_upsample_walk_start(tgi_upsample_walk *w)
+{
+    int t;
+    for (t = 0; t < 4; t++) w->tap[t].index = (size_t)-1;
+}
+
+tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk, int x, int y)
 {
     const tgi_gview *full = u->full, *half = u->half;
     const tgi_gresult *hr = u->res;
     size_t i = tgi_gv_index(full, x, y), tap[4];
-    tg_real wt[4], sum = 0, ao = 0, floor_w = TG_R(0.015625f);
+    tg_real wt[4], sum = 0, ao = 0, floor_w = TG_R(0.015625f), z;
     tg_vec3 n, bend = tg_v3(0, 0, 0), near = tg_v3(0, 0, 0);
     int k, want_bent = tgi_gr_has_bent(hr), want_near = tgi_gr_has_near(hr);
     tgi_gr_value v;
     if (tgi_gv_is_sky(full, i)) return upsample_open(full, i);
     n = tgi_gv_normal(full, i);
+    z = tgi_gv_depth(full, i);
     bilinear_taps(half, x, y, tap, wt);
     for (k = 0; k < 4; k++) {
-        size_t j = tap[k];
+        const tgi_upsample_tap *c;
         tg_real w;
-        tg_vec3 nj;
         if (wt[k] == 0) continue;
-        if (tgi_gv_is_sky(half, j)) continue;
-        nj = tgi_gv_normal(half, j);
-        w = tg_mul(wt[k], tg_max(floor_w, tg_mul(upsample_depth_weight(tgi_gv_depth(full, i), tgi_gv_depth(half, j)),
-                                                  upsample_normal_weight(n, nj))));
+        /* tap k is half-res pixel (X0 or X1, Y0 or Y1): a slot per parity of
+         * its coordinates, the two of a pixel's taps on an axis differ in it */
+        c = upsample_tap(u, walk, (((x >> 1) + (k & 1 ? x & 1 : 0)) & 1) + ((((y >> 1) + (k & 2 ? y & 1 : 0)) & 1) << 1),
+                         tap[k]);
+        if (c->sky) continue;
+        w = tg_mul(wt[k], tg_max(floor_w, tg_mul(upsample_depth_weight(z, c->z), upsample_normal_weight(n, c->n))));
         sum = tg_add(sum, w);
-        ao = tg_add(ao, tg_mul(w, tgi_gr_ao(hr, j)));
-        if (want_bent) {   /* the bend (bent - normal) is what carries over (Klehm sec. 3.4) */
-            tg_vec3 b = tgi_gr_bent(hr, j);
-            bend = tg_v3(tg_add(bend.x, tg_mul(w, tg_sub(b.x, nj.x))), tg_add(bend.y, tg_mul(w, tg_sub(b.y, nj.y))),
-                         tg_add(bend.z, tg_mul(w, tg_sub(b.z, nj.z))));
-        }
-        if (want_near) {
-            tg_vec3 e = tgi_gr_near(hr, j);
-            near = tg_v3(tg_add(near.x, tg_mul(w, e.x)), tg_add(near.y, tg_mul(w, e.y)), tg_add(near.z, tg_mul(w, e.z)));
-        }
+        ao = tg_add(ao, tg_mul(w, c->ao));
+        if (want_bent)
+            bend = tg_v3(tg_add(bend.x, tg_mul(w, c->bend.x)), tg_add(bend.y, tg_mul(w, c->bend.y)),
+                         tg_add(bend.z, tg_mul(w, c->bend.z)));
+        if (want_near)
+            near = tg_v3(tg_add(near.x, tg_mul(w, c->near.x)), tg_add(near.y, tg_mul(w, c->near.y)),
+                         tg_add(near.z, tg_mul(w, c->near.z)));
     }
     if (sum <= 0) return upsample_open(full, i);   /* only sky around: treat as open */
     /* the upsampled AO misses what lies between the half-res samples (a
@@ -357,20 +383,24 @@ tgi_gr_value tgi_upsample_pixel(const tgi_gview *full, const tgi_gview *half, co
                                 tg_real radius, int x, int y)
 {
     tgi_upsample_plan u;
+    tgi_upsample_walk w;
     tgi_upsample_start(&u, full, half, half_res, radius);
-    return tgi_upsample_at(&u, x, y);
+    tgi_upsample_walk_start(&w);
+    return tgi_upsample_at(&u, &w, x, y);
 }
 
 void tgi_upsample_rows(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res, tg_real radius,
                        const tgi_gresult *out, int y0, int y1)
 {
     tgi_upsample_plan u;
+    tgi_upsample_walk w;
     int x, y;
     if (y1 > full->height) y1 = full->height;
     tgi_upsample_start(&u, full, half, half_res, radius);
+    tgi_upsample_walk_start(&w);
     for (y = y0; y < y1; y++)
         for (x = 0; x < full->width; x++) {
-            tgi_gr_value v = tgi_upsample_at(&u, x, y);
+            tgi_gr_value v = tgi_upsample_at(&u, &w, x, y);
             tgi_gr_put(out, tgi_gv_index(full, x, y), &v);
         }
 }

@@ -59,8 +59,20 @@ typedef struct tgi_upsample_plan {
 void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res,
                         tg_real radius);
 
-/* tgi_upsample_pixel under plan u. */
-tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, int x, int y);
+/* A half-res pixel as the upsample reads it (resample.c), and the last four
+ * a walk along the full-res rows read (index (size_t)-1: none). */
+typedef struct tgi_upsample_tap {
+    size_t index;
+    int sky;
+    tg_real z, ao;
+    tg_vec3 n, bend, near;
+} tgi_upsample_tap;
+typedef struct tgi_upsample_walk { tgi_upsample_tap tap[4]; } tgi_upsample_walk;
+void tgi_upsample_walk_start(tgi_upsample_walk *w);
+
+/* tgi_upsample_pixel under plan u, reusing what walk w (started with
+ * tgi_upsample_walk_start, any pixel order) has decoded. */
+tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *w, int x, int y);
 
 /* The upsampled results at full-res pixel (x, y) from the half-res results
  * half_res (indexed like the view half), guided by both views' depth and
