@@ -217,29 +217,17 @@ static void near_horizon_sides(const tgi_upsample_plan *u, const near_pixel *q, 
  * the rounding of either number type in the integrals and the bound. */
 #define NEAR_BOUND_MARGIN TG_R(0.015625f)
 
-/* A lower bound of the AO near_horizon_ao integrates, from the horizons'
- * cosines c1[k], c0[k] of pixel q's slices k (screen directions d and the
- * one at right angles), with no angle taken; -1 where the bound does not
- * hold (a normal facing away from the eye or nearly at right angles to a
- * slice).  In slice k (unit direction s_k in view space, at right angles to
- * the view vector v) the normal projects to length len = |(n.s, n.v)|,
- * at angle g from v, cos g = n.v / len, sin g = n.s / len.  With u = h - g,
- * the arc a horizon at angle t = acos c from v takes from its side, the
- * integral of |sin h| cos u over u from t - g to pi/2 (RTR eq. 11.18's inner
- * integral), is at most 1 - sin(t - g) (against the direction 1 - sin(t + g));
- * the open arc cos g + g sin g is at least cos g + sin^2 g; so the AO,
- * 1 - sum len lost / sum len open, is at least
- * 1 - sum len (lost's bound) / sum len (open's bound). */
-static tg_real near_horizon_bound(const near_pixel *q, const tg_real *d, const tg_real c1[2], const tg_real c0[2])
+tg_real tgi_near_horizon_bound(tg_vec3 nv, tg_vec3 vd, tg_real sdx, tg_real sdy, const tg_real c1[2],
+                                const tg_real c0[2])
 {
-    tg_real nv_v = tgi_v3_dot(q->nv, q->vd), lost = 0, open = 0;
+    tg_real nv_v = tgi_v3_dot(nv, vd), lost = 0, open = 0;
     int k;
     if (nv_v <= 0) return TG_R(-1.0f);
     for (k = 0; k < 2; k++) {
-        tg_vec3 d3 = k ? tg_v3(tg_neg(d[1]), tg_neg(d[0]), 0) : tg_v3(d[0], tg_neg(d[1]), 0);  /* (sdx, -sdy, 0) */
-        tg_real dv = tgi_v3_dot(d3, q->vd), perp = tg_sub(tgi_v3_dot(d3, d3), tg_sqr(dv)), nv_s, len, l;
+        tg_vec3 d3 = k ? tg_v3(tg_neg(sdy), tg_neg(sdx), 0) : tg_v3(sdx, tg_neg(sdy), 0);   /* the slice's (x, -y, 0) */
+        tg_real dv = tgi_v3_dot(d3, vd), perp = tg_sub(tgi_v3_dot(d3, d3), tg_sqr(dv)), nv_s, len, l;
         if (perp <= TG_R(0.01f)) return TG_R(-1.0f);
-        nv_s = tg_mul(tg_sub(tgi_v3_dot(q->nv, d3), tg_mul(nv_v, dv)), tg_rsqrt(perp));   /* n . s_k */
+        nv_s = tg_mul(tg_sub(tgi_v3_dot(nv, d3), tg_mul(nv_v, dv)), tg_rsqrt(perp));   /* n . s_k */
         len = tg_sqrt(tg_add(tg_sqr(nv_v), tg_sqr(nv_s)));
         if (len <= TG_R(0.01f)) return TG_R(-1.0f);
         if (c1[k] > TG_R(-1.0f)) {   /* len (1 - sin(t - g)) */
@@ -262,7 +250,7 @@ static tg_real near_horizon_bound(const near_pixel *q, const tg_real *d, const t
  * gather radius.  It sees only occluders the whole horizon sees too, so it
  * is an upper bound of the AO, as the upsampled one is.  1 (without the
  * integrals) when no sample rises above the tangent plane, or when its lower
- * bound (near_horizon_bound) is above `ao`, the upsampled AO it caps, by
+ * bound (tgi_near_horizon_bound) is above `ao`, the upsampled AO it caps, by
  * more than NEAR_BOUND_MARGIN: either way no lower than `ao`. */
 static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t i, tg_vec3 n, tg_real ao)
 {
@@ -289,7 +277,7 @@ static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t 
     near_horizon_sides(u, &q, i, cell, c1, c0);   /* the cell's direction and the one at right angles */
     for (k = 0; k < 2; k++) found |= c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f);
     if (!found) return TG_ONE;
-    if (tg_sub(near_horizon_bound(&q, d, c1, c0), NEAR_BOUND_MARGIN) >= ao) return TG_ONE;
+    if (tg_sub(tgi_near_horizon_bound(q.nv, q.vd, d[0], d[1], c1, c0), NEAR_BOUND_MARGIN) >= ao) return TG_ONE;
     for (k = 0; k < 2; k++) {
         tg_real o;
         if (!tgi_ao_slice_frame(q.nv, q.vd, k ? tg_neg(d[1]) : d[0], k ? d[0] : d[1], &sl)) continue;

@@ -74,6 +74,25 @@ void tgi_upsample_walk_start(tgi_upsample_walk *w);
  * tgi_upsample_walk_start, any pixel order) has decoded. */
 tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *w, int x, int y);
 
+/* A lower bound of the near horizon's AO (resample.c) at a pixel of view
+ * normal nv and unit vector to the eye vd, with no angle taken: its slices
+ * of screen directions (sdx, sdy) and (-sdy, sdx) (y down) see horizons of
+ * cosines c1[k] along and c0[k] against their direction (-1: none), the
+ * AO the cosine-weighted arcs (RTR eq. 11.18, the slices weighted as
+ * GTAO's, src/ao/ao.h) leave.  In slice k (unit direction s in view space,
+ * at right angles to vd) the normal projects to length len = |(n.s, n.v)|
+ * at angle g from v, cos g = n.v / len, sin g = n.s / len.  With u = h - g,
+ * the arc a horizon at angle t = acos c from v takes from its side, the
+ * integral of |sin h| cos u over u from t - g to pi/2 (the inner integral),
+ * is at most 1 - sin(t - g) (against the direction 1 - sin(t + g)); the
+ * open arc cos g + g sin g is at least cos g + sin^2 g; so the AO,
+ * 1 - sum len lost / sum len open, is at least
+ * 1 - sum len (lost's bound) / sum len (open's bound).  -1 where that does
+ * not hold: a normal facing away from the eye (n.v <= 0) or nearly at right
+ * angles to a slice (len <= 0.01). */
+tg_real tgi_near_horizon_bound(tg_vec3 nv, tg_vec3 vd, tg_real sdx, tg_real sdy, const tg_real c1[2],
+                               const tg_real c0[2]);
+
 /* The upsampled results at full-res pixel (x, y) from the half-res results
  * half_res (indexed like the view half), guided by both views' depth and
  * normals, the AO no more than the near horizon's within
