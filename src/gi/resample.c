@@ -139,15 +139,13 @@ void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_g
             int ux = tg_round_int(tg_ldexp(k ? tg_neg(d[1]) : d[0], 8)), uy = tg_round_int(tg_ldexp(k ? d[0] : d[1], 8));
             for (e = 0; e < 2; e++)
                 for (n = 0; n < u->steps; n++) {
-                    tgi_near_step *st = &u->step[c][2 * k + e][n];
+                    signed char *o = u->off[c][2 * k + e][n];
                     int t = near_t[n], far = 256 * (t + 1), sx = e ? -ux : ux, sy = e ? -uy : uy;
-                    st->dx = ((128 + t * sx + far) >> 8) - (t + 1);
-                    st->dy = ((128 + t * sy + far) >> 8) - (t + 1);
-                    st->di = (ptrdiff_t)st->dy * full->row_stride + (ptrdiff_t)st->dx * full->pixel_stride;
-                    st->fdx = tg_from_int(st->dx);
-                    st->fdy = tg_from_int(st->dy);
-                    if (st->dx > u->reach || -st->dx > u->reach) u->reach = st->dx > 0 ? st->dx : -st->dx;
-                    if (st->dy > u->reach || -st->dy > u->reach) u->reach = st->dy > 0 ? st->dy : -st->dy;
+                    int dx = ((128 + t * sx + far) >> 8) - (t + 1), dy = ((128 + t * sy + far) >> 8) - (t + 1);
+                    o[0] = (signed char)dx;
+                    o[1] = (signed char)dy;
+                    if (dx > u->reach || -dx > u->reach) u->reach = dx > 0 ? dx : -dx;
+                    if (dy > u->reach || -dy > u->reach) u->reach = dy > 0 ? dy : -dy;
                 }
         }
 }
@@ -162,30 +160,33 @@ typedef struct near_pixel {
     tg_real np, kx, ky, nax, nay, nr, above;
 } near_pixel;
 
-/* The largest cos(angle to the view vector) of the samples st[0..steps)
- * of pixel q (index i) that lie above the tangent plane and within the
- * radius; -1 when none; the march ends at the screen's edge (`inside`: no
- * sample can reach it).  A sample's view position is its depth z times its
- * ray r, so its height over the tangent plane is z (n . r) - n . p, n . r
- * changing by n.x ax and -n.y ay a pixel. */
-static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, const near_pixel *q, size_t i,
-                                       const tgi_near_step *st, int inside)
+/* The largest cos(angle to the view vector) of the samples off[0..steps)
+ * (pixel offsets) of pixel q that lie above the tangent plane and within
+ * the radius; -1 when none; the march ends at the screen's edge (`inside`:
+ * no sample can reach it).  A sample's view position is its depth z times
+ * its ray r, so its height over the tangent plane is z (n . r) - n . p,
+ * n . r changing by n.x ax and -n.y ay a pixel. */
+static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, const near_pixel *q, const signed char (*off)[2],
+                                       int inside)
 {
     const tgi_gview *g = u->full;
     tg_real best = TG_R(-1.0f);
     int n, steps = u->steps;
-    for (n = 0; n < steps; n++, st++) {
-        size_t j = (size_t)((ptrdiff_t)i + st->di);   /* tgi_gv_index(g, x + dx, y + dy) */
-        tg_real z, d2;
+    for (n = 0; n < steps; n++) {
+        int sx = q->x + off[n][0], sy = q->y + off[n][1];
+        size_t j;
+        tg_real z, d2, fdx, fdy;
         tg_vec3 h;
-        if (!inside && ((unsigned)(q->x + st->dx) >= (unsigned)g->width || (unsigned)(q->y + st->dy) >= (unsigned)g->height))
-            break;
+        if (!inside && ((unsigned)sx >= (unsigned)g->width || (unsigned)sy >= (unsigned)g->height)) break;
+        j = tgi_gv_index(g, sx, sy);
         if (tgi_gv_is_sky(g, j)) continue;
         z = tgi_gv_depth(g, j);
-        if (tg_sub(tg_mul(z, tg_add(q->nr, tg_sub(tg_mul(st->fdx, q->nax), tg_mul(st->fdy, q->nay)))), q->np) <= q->above)
+        fdx = tg_from_int(off[n][0]);
+        fdy = tg_from_int(off[n][1]);
+        if (tg_sub(tg_mul(z, tg_add(q->nr, tg_sub(tg_mul(fdx, q->nax), tg_mul(fdy, q->nay)))), q->np) <= q->above)
             continue;                                              /* on or under the tangent plane */
-        h = tg_v3(tg_sub(tg_mul(z, tg_add(q->kx, tg_mul(st->fdx, u->ax))), q->pv.x),
-                  tg_sub(tg_mul(z, tg_sub(q->ky, tg_mul(st->fdy, u->ay))), q->pv.y), tg_sub(z, q->pv.z));
+        h = tg_v3(tg_sub(tg_mul(z, tg_add(q->kx, tg_mul(fdx, u->ax))), q->pv.x),
+                  tg_sub(tg_mul(z, tg_sub(q->ky, tg_mul(fdy, u->ay))), q->pv.y), tg_sub(z, q->pv.z));
         if (u->shift) h = tg_v3(tg_ldexp(h.x, u->shift), tg_ldexp(h.y, u->shift), tg_ldexp(h.z, u->shift));
         d2 = tgi_v3_dot(h, h);
         if (d2 >= u->r2 || d2 <= 0) continue;                      /* beyond the gather radius */
@@ -195,20 +196,20 @@ static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, const near_pi
 }
 
 /* near_horizon_cos of the four sides of pixel q's slices into c1[k], c0[k]. */
-static void near_horizon_sides(const tgi_upsample_plan *u, const near_pixel *q, size_t i, int cell,
+static void near_horizon_sides(const tgi_upsample_plan *u, const near_pixel *q, int cell,
                                tg_real c1[2], tg_real c0[2])
 {
     const tgi_gview *g = u->full;
     int k;
     if (q->x >= u->reach && q->y >= u->reach && q->x + u->reach < g->width && q->y + u->reach < g->height)
         for (k = 0; k < 2; k++) {
-            c1[k] = near_horizon_cos(u, q, i, u->step[cell][2 * k], 1);
-            c0[k] = near_horizon_cos(u, q, i, u->step[cell][2 * k + 1], 1);
+            c1[k] = near_horizon_cos(u, q, u->off[cell][2 * k], 1);
+            c0[k] = near_horizon_cos(u, q, u->off[cell][2 * k + 1], 1);
         }
     else
         for (k = 0; k < 2; k++) {
-            c1[k] = near_horizon_cos(u, q, i, u->step[cell][2 * k], 0);
-            c0[k] = near_horizon_cos(u, q, i, u->step[cell][2 * k + 1], 0);
+            c1[k] = near_horizon_cos(u, q, u->off[cell][2 * k], 0);
+            c0[k] = near_horizon_cos(u, q, u->off[cell][2 * k + 1], 0);
         }
 }
 
@@ -274,7 +275,7 @@ static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t 
     q.nr = tg_add(tg_add(tg_mul(q.nv.x, q.kx), tg_mul(q.nv.y, q.ky)), q.nv.z);
     q.np = tgi_v3_dot(q.nv, q.pv);
     q.above = tg_add(tg_ldexp(q.pv.z, -10), u->above_r);
-    near_horizon_sides(u, &q, i, cell, c1, c0);   /* the cell's direction and the one at right angles */
+    near_horizon_sides(u, &q, cell, c1, c0);   /* the cell's direction and the one at right angles */
     for (k = 0; k < 2; k++) found |= c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f);
     if (!found) return TG_ONE;
     if (tg_sub(tgi_near_horizon_bound(q.nv, q.vd, d[0], d[1], c1, c0), NEAR_BOUND_MARGIN) >= ao) return TG_ONE;

@@ -27,31 +27,25 @@ void tgi_downsample_rows(const tgi_gview *full, const tgi_gbuffer *half, const t
     ((r) >= 13) + ((r) >= 19) + ((r) >= 28) + ((r) >= 42) + ((r) >= 63) + ((r) >= 94) + ((r) >= 141) + \
     ((r) >= 211) + ((r) >= 316) + ((r) >= 474)
 #define TGI_NEAR_STEPS (TG_QUARTER_NEAR_REACH >= 1 ? (TGI_NEAR_STEPS_OF(TG_QUARTER_NEAR_REACH)) : 1)
-#if TG_QUARTER_NEAR_REACH >= 711
-#error "TG_QUARTER_NEAR_REACH: the near horizon takes at most 16 samples a side, up to 474 pixels"
+#if TG_QUARTER_NEAR_REACH >= 141
+#error "TG_QUARTER_NEAR_REACH: the near horizon's offsets are kept in a byte (at most 140, samples up to 94 pixels away)"
 #endif
-
-/* A near-horizon sample of a pixel: its offset (dx, dy) in pixels, the
- * same as numbers, and the change of the view's index (tgi_gv_index). */
-typedef struct tgi_near_step {
-    int dx, dy;
-    ptrdiff_t di;
-    tg_real fdx, fdy;
-} tgi_near_step;
 
 /* What the upsample of a frame keeps fixed: the views and the half-res
  * results, the camera's per-pixel ray steps, the radius's shift
  * (tgi_ao_unit_shift) and, scaled by it, its square, the height over a
  * tangent plane that a sample must pass besides the depth's (as a part of
- * the radius), and the near horizon's samples a side (0: none), for each
- * cell of a 4x4 block and each of its two slices' two sides, with the
- * farthest any of them lies on either axis. */
+ * the radius), and the near horizon's samples a side (0: none) as pixel
+ * offsets (dx, dy), for each cell of a 4x4 block and each of its two
+ * slices' two sides, with the farthest any of them lies on either axis
+ * (896 bytes with the default reach: the plan shares the resolve's stack
+ * with the 4x4 filter's window, src/frame/resolve.c). */
 typedef struct tgi_upsample_plan {
     const tgi_gview *full, *half;
     const tgi_gresult *res;
     tg_real wfx, hfy, ax, ay, r2, above_r;
     int shift, steps, reach;
-    tgi_near_step step[16][4][TGI_NEAR_STEPS];
+    signed char off[16][4][TGI_NEAR_STEPS][2];
 } tgi_upsample_plan;
 
 /* The plan of upsampling half_res (indexed like the view half) to full with
