@@ -526,7 +526,7 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
                                         * slice side 1, 2, 3, 4, 6, 9, 13 pixels away (from 4 on, 1.5
                                         * times the last) up to this many, that the upsampled AO may
                                         * not be brighter than (src/gi/resample.c); 0: none, the
-                                        * upsample alone */
+                                        * upsample alone; at most 140 (the offsets are bytes) */
 #endif
 #define TG_DEFAULT_BOUNCES 1
 #define TG_DEFAULT_RADIUS 1             /* world units, for a scene without extent (neither request

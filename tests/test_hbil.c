@@ -23,6 +23,7 @@
 #include "gi/hbil.h"
 #include "gi/interleave.h"
 #include "gi/resample.h"
+#include "ao/ao.h"
 
 #define DEG (3.14159265358979 / 180.0)
 
@@ -867,6 +868,71 @@ TEST(interleaved_horizon_finds_the_wall_top_pixel)
  * pixels of the horizon, against the ray-traced AO.  The upsampled AO alone
  * misses the wall there (too bright); the full-resolution near horizon
  * (TG_QUARTER_NEAR_REACH) finds it. */
+/* The near horizon's lower bound (tgi_near_horizon_bound), by which the
+ * upsample skips the near horizon's integrals where it cannot cap the
+ * upsampled AO: over random normals facing the eye, slices and horizons,
+ * never above the AO the integrals give (ao.h's slice frame and arcs, the
+ * slices weighted by their projected normal's length, as resample.c's
+ * near_horizon_ao), by less than a quarter of the margin resample.c keeps
+ * (1/64); 1 with no horizon; and within 0.5 of it in most cases (random
+ * horizons, most of them far higher than a surface's). */
+TEST(near_horizon_bound_stays_below_the_integral)
+{
+    unsigned seed = 12345u;
+    int t, held = 0, close = 0, trials = 20000;
+    double worst = -2;
+    for (t = 0; t < trials; t++) {
+        double v[3], nrm[3], a, lv, ln, vis = 0, open = 0, exact, bound;
+        tg_real c1[2], c0[2], sdx, sdy;
+        tg_vec3 nv, vd;
+        int k;
+        for (k = 0; k < 3; k++) { seed = seed * 1103515245u + 12345u; v[k] = (seed >> 8) / 16777216.0 * 2 - 1; }
+        v[2] = -0.5 - fabs(v[2]);                                /* toward the eye: the view looks along +z */
+        for (k = 0; k < 3; k++) { seed = seed * 1103515245u + 12345u; nrm[k] = (seed >> 8) / 16777216.0 * 2 - 1; }
+        lv = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        ln = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+        if (ln < 0.1) continue;
+        if ((nrm[0] * v[0] + nrm[1] * v[1] + nrm[2] * v[2]) / (ln * lv) < 0.05) {   /* face the eye */
+            for (k = 0; k < 3; k++) nrm[k] = -nrm[k];
+            if ((nrm[0] * v[0] + nrm[1] * v[1] + nrm[2] * v[2]) / (ln * lv) < 0.05) continue;
+        }
+        vd = tg_v3(tg_from_float((float)(v[0] / lv)), tg_from_float((float)(v[1] / lv)), tg_from_float((float)(v[2] / lv)));
+        nv = tg_v3(tg_from_float((float)(nrm[0] / ln)), tg_from_float((float)(nrm[1] / ln)), tg_from_float((float)(nrm[2] / ln)));
+        seed = seed * 1103515245u + 12345u;
+        a = (seed >> 8) / 16777216.0 * 3.14159265358979;
+        sdx = tg_from_float((float)cos(a));
+        sdy = tg_from_float((float)sin(a));
+        for (k = 0; k < 4; k++) {
+            tg_real *c = k < 2 ? &c1[k] : &c0[k - 2];
+            seed = seed * 1103515245u + 12345u;
+            *c = (seed >> 8) % 10 < 3 ? TG_R(-1.0f) : tg_from_float((float)(((seed >> 8) % 100000) / 50000.0 - 1));
+        }
+        for (k = 0; k < 2; k++) {
+            tgi_ao_slice sl;
+            tg_real h1, h0, o;
+            if (!tgi_ao_slice_frame(nv, vd, k ? tg_neg(sdy) : sdx, k ? sdx : sdy, &sl)) continue;
+            o = tg_mul(sl.len, tg_add(sl.cos_g, tg_mul(sl.gamma, sl.sin_g)));
+            open += check_d(o);
+            if (c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f)) o = tg_mul(sl.len, tgi_ao_slice_arc(&sl, c1[k], c0[k], &h1, &h0));
+            vis += check_d(o);
+        }
+        bound = check_d(tgi_near_horizon_bound(nv, vd, sdx, sdy, c1, c0));
+        if (bound <= -1 || open <= 0) continue;
+        exact = vis / open;
+        held++;
+        if (bound - exact > worst) worst = bound - exact;
+        if (exact - bound < 0.5) close++;
+    }
+    CHECK(held > trials / 2, "the bound holds for %d of %d cases", held, trials);
+    CHECK(worst <= 0.015625 / 4, "bound above the integral by %g", worst);
+    CHECK(close > held / 2, "bound within 0.5 of the integral in only %d of %d cases", close, held);
+    {
+        tg_real none[2] = { TG_R(-1.0f), TG_R(-1.0f) };
+        CHECK_NEAR(check_d(tgi_near_horizon_bound(tg_v3(0, 0, TG_R(-1.0f)), tg_v3(0, TG_R(0.6f), TG_R(-0.8f)), TG_ONE, 0,
+                                                  none, none)), 1.0, 1e-6);
+    }
+}
+
 TEST(quarter_resolution_keeps_the_contact_shadow)
 {
     static const quad floor_q = { { 0, 0, -20 }, { 20, 0, 0 }, { 0, 0, 40 }, 1 };
@@ -939,6 +1005,7 @@ int main(int argc, char **argv)
     RUN(blocks_decorrelate_march_offsets);
     RUN(wall_top_sets_the_horizon_at_any_radius);
     RUN(interleaved_horizon_finds_the_wall_top_pixel);
+    RUN(near_horizon_bound_stays_below_the_integral);
     RUN(quarter_resolution_keeps_the_contact_shadow);
     return check_summary();
 }

@@ -44,7 +44,15 @@ void tgi_pass_filter_quarter(tg_frame *f, int y0, int y1)
 /* What a row of the resolve needs, fixed per call. */
 typedef struct resolve_ctx {
     tgi_denoise_params filter;
-    tgi_denoise_walk walk;        /* the filter's decoded window along the row */
+    union {                       /* one or the other, sharing the stack: */
+        tgi_denoise_walk walk;    /* the filter's decoded window along the row */
+#if !TG_NO_GI_QUARTER
+        struct {
+            tgi_upsample_plan plan;   /* or the upsample's plan, fixed per frame, */
+            tgi_upsample_walk walk;   /* and the half-res pixels it decoded */
+        } up;
+#endif
+    } r;
     int gi, hbil, quarter, far_mode, far_inline;
     const tgi_rgb *lo;            /* where Lo goes: this frame's colour, or the next bounce's source */
     const tgi_rgb *far_own;       /* E_far's plane, written here (its AOV) */
@@ -54,10 +62,16 @@ static void resolve_ctx_init(resolve_ctx *c, const tg_frame *f)
 {
     int technique_far = f->request.technique == TG_TECH_SSDO || f->request.technique == TG_TECH_BENTCONE;
     tgi_denoise_defaults(&c->filter);
-    tgi_denoise_walk_start(&c->walk);
     c->gi = (f->needs & TG_NEED_GI_PASS) != 0;
     c->hbil = c->gi && f->request.technique == TG_TECH_HBIL;
     c->quarter = tgi_frame_quarter(f);
+#if !TG_NO_GI_QUARTER
+    if (c->hbil && c->quarter) {
+        tgi_upsample_start(&c->r.up.plan, &f->full, &f->half_view, &f->half_filtered, f->request.radius);
+        tgi_upsample_walk_start(&c->r.up.walk);
+    } else
+#endif
+        tgi_denoise_walk_start(&c->r.walk);
     c->far_mode = f->request.far_mode ? TG_FAR_CUBE_F0 : TG_FAR_CONE_SH;
     c->far_inline = (f->effects & TG_EFFECT_FAR) && !technique_far;
     c->far_own = c->far_inline && tgi_rgb_present(&f->far) ? &f->far : NULL;
@@ -70,9 +84,9 @@ static tgi_gr_value results_at(resolve_ctx *c, const tg_frame *f, int x, int y, 
 {
     if (!c->hbil) return tgi_gr_get_kept(&f->res, i);
 #if !TG_NO_GI_QUARTER
-    if (c->quarter) return tgi_upsample_pixel(&f->full, &f->half_view, &f->half_filtered, f->request.radius, x, y);
+    if (c->quarter) return tgi_upsample_at(&c->r.up.plan, &c->r.up.walk, x, y);
 #endif
-    return tgi_denoise_pixel(&c->filter, &f->full, &f->res, &c->walk, x, y);
+    return tgi_denoise_pixel(&c->filter, &f->full, &f->res, &c->r.walk, x, y);
 }
 
 #if !TG_NO_COLOR /* a build with TG_NO_COLOR (tinygi.h "FEATURE SWITCHES") composes nothing */

@@ -107,90 +107,178 @@ static const tg_real near_dir[16][2] = {
     { TG_R(0.2429802f), TG_R(0.9700313f) }, { TG_R(0.8577286f), TG_R(0.5141027f) }
 };
 
+/* The near horizon's sample distances along a side, in pixels (resample.h's
+ * TGI_NEAR_STEPS of them). */
+static const int near_t[16] = { 1, 2, 3, 4, 6, 9, 13, 19, 28, 42, 63, 94, 141, 211, 316, 474 };
+
+void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res,
+                        tg_real radius)
+{
+    const tgi_view *v = full->camera;
+    int c, k, n, e;
+    u->full = full; u->half = half; u->res = half_res;
+    u->steps = 0;
+    u->reach = 0;
+    if (TG_QUARTER_NEAR_REACH < 1 || radius <= 0) return;
+    u->steps = TGI_NEAR_STEPS;
+    u->wfx = tg_mul(tg_from_int(v->width), v->focal_x);
+    u->hfy = tg_mul(tg_from_int(v->height), v->focal_y);
+    u->ax = tg_div(TG_R(2.0f), u->wfx);
+    u->ay = tg_div(TG_R(2.0f), u->hfy);
+    u->shift = tgi_ao_unit_shift(radius);
+    u->r2 = tg_sqr(tg_ldexp(radius, u->shift));
+    u->above_r = tg_mul(radius, TG_R(0.005f));
+    /* sample t of side e (k's direction, then against it) of a cell's slice k
+     * along the screen direction (ux, uy) / 256 (y down), stepping in 1/256
+     * pixel from the pixel's centre (integers alike in both number types):
+     * the pixel floor((128 + t u) / 256) away, the shift kept to non-negative
+     * numbers */
+    for (c = 0; c < 16; c++)
+        for (k = 0; k < 2; k++) {
+            const tg_real *d = near_dir[c];
+            int ux = tg_round_int(tg_ldexp(k ? tg_neg(d[1]) : d[0], 8)), uy = tg_round_int(tg_ldexp(k ? d[0] : d[1], 8));
+            for (e = 0; e < 2; e++)
+                for (n = 0; n < u->steps; n++) {
+                    signed char *o = u->off[c][2 * k + e][n];
+                    int t = near_t[n], far = 256 * (t + 1), sx = e ? -ux : ux, sy = e ? -uy : uy;
+                    int dx = ((128 + t * sx + far) >> 8) - (t + 1), dy = ((128 + t * sy + far) >> 8) - (t + 1);
+                    o[0] = (signed char)dx;
+                    o[1] = (signed char)dy;
+                    if (dx > u->reach || -dx > u->reach) u->reach = dx > 0 ? dx : -dx;
+                    if (dy > u->reach || -dy > u->reach) u->reach = dy > 0 ? dy : -dy;
+                }
+        }
+}
+
 /* A pixel's near horizon: its view position p, normal n and unit vector
- * to the eye, n . p, its view ray (kx, ky, 1) and the ray's change per
- * pixel, the height over the tangent plane below which a sample counts
- * for nothing (as tgi_ao_slice_pixel's), the squared gather radius and its
- * shift (tgi_ao_unit_shift: the offsets are scaled by 2^shift). */
+ * to the eye, n . p, its view ray (kx, ky, 1), n . (kx, ky, 1), the change
+ * of n . ray per pixel (n.x ax, n.y ay), and the height over the tangent
+ * plane below which a sample counts for nothing (as tgi_ao_slice_pixel's). */
 typedef struct near_pixel {
-    int x, y, shift;
+    int x, y;
     tg_vec3 pv, nv, vd;
-    tg_real np, kx, ky, ax, ay, nax, nay, nr, above, r2;
+    tg_real np, kx, ky, nax, nay, nr, above;
 } near_pixel;
 
-/* The largest cos(angle to the view vector) of the samples 1, 2, 3, 4, 6,
- * 9, 13 ... pixels away (from 4 on, each 1.5 times the last) up to
- * TG_QUARTER_NEAR_REACH along the screen direction (ux, uy) / 256 (y down)
- * that lie above the tangent plane and within the radius; -1 when none.
- * The samples step in 1/256 pixel, integers alike in both number types; a
- * sample's view position is its depth z times its ray r, so its height
- * over the tangent plane is z (n . r) - n . p, n . r changing by n.x ax and
- * -n.y ay a pixel. */
-static tg_real near_horizon_cos(const tgi_gview *g, const near_pixel *q, int ux, int uy)
+/* The largest cos(angle to the view vector) of the samples off[0..steps)
+ * (pixel offsets) of pixel q that lie above the tangent plane and within
+ * the radius; -1 when none; the march ends at the screen's edge (`inside`:
+ * no sample can reach it).  A sample's view position is its depth z times
+ * its ray r, so its height over the tangent plane is z (n . r) - n . p,
+ * n . r changing by n.x ax and -n.y ay a pixel. */
+static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, const near_pixel *q, const signed char (*off)[2],
+                                       int inside)
 {
+    const tgi_gview *g = u->full;
     tg_real best = TG_R(-1.0f);
-    int t;
-    for (t = 1; t <= TG_QUARTER_NEAR_REACH; t += t < 4 ? 1 : t / 2) {
-        int sx = q->x * 256 + 128 + t * ux, sy = q->y * 256 + 128 + t * uy, dx, dy;
+    int n, steps = u->steps;
+    for (n = 0; n < steps; n++) {
+        int sx = q->x + off[n][0], sy = q->y + off[n][1];
         size_t j;
-        tg_real z, d2;
+        tg_real z, d2, fdx, fdy;
         tg_vec3 h;
-        if (sx < 0 || sy < 0 || (sx >> 8) >= g->width || (sy >> 8) >= g->height) break;
-        j = tgi_gv_index(g, sx >> 8, sy >> 8);
+        if (!inside && ((unsigned)sx >= (unsigned)g->width || (unsigned)sy >= (unsigned)g->height)) break;
+        j = tgi_gv_index(g, sx, sy);
         if (tgi_gv_is_sky(g, j)) continue;
         z = tgi_gv_depth(g, j);
-        dx = (sx >> 8) - q->x;
-        dy = (sy >> 8) - q->y;
-        if (tg_sub(tg_mul(z, tg_add(q->nr, tg_sub(tg_mul(tg_from_int(dx), q->nax), tg_mul(tg_from_int(dy), q->nay)))),
-                   q->np) <= q->above)
+        fdx = tg_from_int(off[n][0]);
+        fdy = tg_from_int(off[n][1]);
+        if (tg_sub(tg_mul(z, tg_add(q->nr, tg_sub(tg_mul(fdx, q->nax), tg_mul(fdy, q->nay)))), q->np) <= q->above)
             continue;                                              /* on or under the tangent plane */
-        h = tg_v3(tg_sub(tg_mul(z, tg_add(q->kx, tg_mul(tg_from_int(dx), q->ax))), q->pv.x),
-                  tg_sub(tg_mul(z, tg_sub(q->ky, tg_mul(tg_from_int(dy), q->ay))), q->pv.y), tg_sub(z, q->pv.z));
-        if (q->shift) h = tg_v3(tg_ldexp(h.x, q->shift), tg_ldexp(h.y, q->shift), tg_ldexp(h.z, q->shift));
+        h = tg_v3(tg_sub(tg_mul(z, tg_add(q->kx, tg_mul(fdx, u->ax))), q->pv.x),
+                  tg_sub(tg_mul(z, tg_sub(q->ky, tg_mul(fdy, u->ay))), q->pv.y), tg_sub(z, q->pv.z));
+        if (u->shift) h = tg_v3(tg_ldexp(h.x, u->shift), tg_ldexp(h.y, u->shift), tg_ldexp(h.z, u->shift));
         d2 = tgi_v3_dot(h, h);
-        if (d2 >= q->r2 || d2 <= 0) continue;                      /* beyond the gather radius */
+        if (d2 >= u->r2 || d2 <= 0) continue;                      /* beyond the gather radius */
         best = tg_max(best, tg_mul(tgi_v3_dot(h, q->vd), tg_rsqrt(d2)));
     }
     return best;
 }
 
-/* The near horizon of surface pixel (x, y), index i: the AO (cosine-
- * weighted, RTR eq. 11.18, the slices weighted as GTAO's, src/ao/ao.h)
- * under the horizons of full-resolution pixels up to TG_QUARTER_NEAR_REACH
- * away along its two slices, both sides, within the gather radius.  It
- * sees only occluders the whole horizon sees too, so it is an upper bound
- * of the AO, as the upsampled one is; 1 (without the integrals) when no
- * sample rises above the tangent plane. */
-static tg_real near_horizon_ao(const tgi_gview *full, int x, int y, size_t i, tg_real radius)
+/* near_horizon_cos of the four sides of pixel q's slices into c1[k], c0[k]. */
+static void near_horizon_sides(const tgi_upsample_plan *u, const near_pixel *q, int cell,
+                               tg_real c1[2], tg_real c0[2])
 {
-    const tgi_view *v = full->camera;
-    const tg_real *d = near_dir[(x & 3) + ((y & 3) << 2)];
-    tg_real c1[2], c0[2], vis = 0, open = 0, h1, h0, wfx = tg_mul(tg_from_int(v->width), v->focal_x),
-            hfy = tg_mul(tg_from_int(v->height), v->focal_y);
+    const tgi_gview *g = u->full;
+    int k;
+    if (q->x >= u->reach && q->y >= u->reach && q->x + u->reach < g->width && q->y + u->reach < g->height)
+        for (k = 0; k < 2; k++) {
+            c1[k] = near_horizon_cos(u, q, u->off[cell][2 * k], 1);
+            c0[k] = near_horizon_cos(u, q, u->off[cell][2 * k + 1], 1);
+        }
+    else
+        for (k = 0; k < 2; k++) {
+            c1[k] = near_horizon_cos(u, q, u->off[cell][2 * k], 0);
+            c0[k] = near_horizon_cos(u, q, u->off[cell][2 * k + 1], 0);
+        }
+}
+
+/* How much a lower bound of the near horizon's AO must stay above the
+ * upsampled AO for its integrals to be skipped (near_horizon_ao): more than
+ * the rounding of either number type in the integrals and the bound. */
+#define NEAR_BOUND_MARGIN TG_R(0.015625f)
+
+tg_real tgi_near_horizon_bound(tg_vec3 nv, tg_vec3 vd, tg_real sdx, tg_real sdy, const tg_real c1[2],
+                                const tg_real c0[2])
+{
+    tg_real nv_v = tgi_v3_dot(nv, vd), lost = 0, open = 0;
+    int k;
+    if (nv_v <= 0) return TG_R(-1.0f);
+    for (k = 0; k < 2; k++) {
+        tg_vec3 d3 = k ? tg_v3(tg_neg(sdy), tg_neg(sdx), 0) : tg_v3(sdx, tg_neg(sdy), 0);   /* the slice's (x, -y, 0) */
+        tg_real dv = tgi_v3_dot(d3, vd), perp = tg_sub(tgi_v3_dot(d3, d3), tg_sqr(dv)), nv_s, len, l;
+        if (perp <= TG_R(0.01f)) return TG_R(-1.0f);
+        nv_s = tg_mul(tg_sub(tgi_v3_dot(nv, d3), tg_mul(nv_v, dv)), tg_rsqrt(perp));   /* n . s_k */
+        len = tg_sqrt(tg_add(tg_sqr(nv_v), tg_sqr(nv_s)));
+        if (len <= TG_R(0.01f)) return TG_R(-1.0f);
+        if (c1[k] > TG_R(-1.0f)) {   /* len (1 - sin(t - g)) */
+            l = tg_sub(len, tg_sub(tg_mul(tg_sqrt(tg_max(0, tg_sub(TG_ONE, tg_sqr(c1[k])))), nv_v), tg_mul(c1[k], nv_s)));
+            lost = tg_add(lost, tg_max(0, l));
+        }
+        if (c0[k] > TG_R(-1.0f)) {   /* len (1 - sin(t + g)) */
+            l = tg_sub(len, tg_add(tg_mul(tg_sqrt(tg_max(0, tg_sub(TG_ONE, tg_sqr(c0[k])))), nv_v), tg_mul(c0[k], nv_s)));
+            lost = tg_add(lost, tg_max(0, l));
+        }
+        open = tg_add(open, tg_add(nv_v, tg_div(tg_sqr(nv_s), len)));   /* len (cos g + sin^2 g) */
+    }
+    return tg_sub(TG_ONE, tg_div(lost, open));
+}
+
+/* The near horizon of surface pixel (x, y), index i, world normal n: the
+ * AO (cosine-weighted, RTR eq. 11.18, the slices weighted as GTAO's,
+ * src/ao/ao.h) under the horizons of full-resolution pixels up to
+ * TG_QUARTER_NEAR_REACH away along its two slices, both sides, within the
+ * gather radius.  It sees only occluders the whole horizon sees too, so it
+ * is an upper bound of the AO, as the upsampled one is.  1 (without the
+ * integrals) when no sample rises above the tangent plane, or when its lower
+ * bound (tgi_near_horizon_bound) is above `ao`, the upsampled AO it caps, by
+ * more than NEAR_BOUND_MARGIN: either way no lower than `ao`. */
+static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t i, tg_vec3 n, tg_real ao)
+{
+    const tgi_gview *full = u->full;
+    int cell = (x & 3) + ((y & 3) << 2);
+    const tg_real *d = near_dir[cell];
+    tg_real c1[2], c0[2], vis = 0, open = 0, h1, h0, z;
     near_pixel q;
     tgi_ao_slice sl;
     int k, found = 0;
-    if (TG_QUARTER_NEAR_REACH < 1 || radius <= 0) return TG_ONE;
+    if (u->steps < 1) return TG_ONE;
     q.x = x; q.y = y;
-    (void)tgi_ao_view_at(full, x, y, i, radius, &q.pv, &q.nv, &q.vd);
-    q.kx = tg_div(tg_from_int(2 * x + 1 - v->width), wfx);        /* tgi_ao_unproject's ray */
-    q.ky = tg_div(tg_from_int(v->height - 2 * y - 1), hfy);
-    q.ax = tg_div(TG_R(2.0f), wfx);
-    q.ay = tg_div(TG_R(2.0f), hfy);
-    q.nax = tg_mul(q.nv.x, q.ax);
-    q.nay = tg_mul(q.nv.y, q.ay);
+    q.kx = tg_div(tg_from_int(2 * x + 1 - full->camera->width), u->wfx);   /* tgi_ao_unproject's ray */
+    q.ky = tg_div(tg_from_int(full->camera->height - 2 * y - 1), u->hfy);
+    z = tgi_gv_depth(full, i);                                   /* tgi_ao_view_at's view of the pixel */
+    q.pv = tg_v3(tg_mul(q.kx, z), tg_mul(q.ky, z), z);
+    q.nv = tgi_ao_dir_to_view(full->camera, n);
+    q.vd = tgi_v3_normalize_or(tgi_v3_neg(q.pv), tg_v3(0, 0, TG_R(-1.0f)));
+    q.nax = tg_mul(q.nv.x, u->ax);
+    q.nay = tg_mul(q.nv.y, u->ay);
     q.nr = tg_add(tg_add(tg_mul(q.nv.x, q.kx), tg_mul(q.nv.y, q.ky)), q.nv.z);
     q.np = tgi_v3_dot(q.nv, q.pv);
-    q.shift = tgi_ao_unit_shift(radius);
-    q.r2 = tg_sqr(tg_ldexp(radius, q.shift));
-    q.above = tg_add(tg_ldexp(q.pv.z, -10), tg_mul(radius, TG_R(0.005f)));
-    for (k = 0; k < 2; k++) {   /* the cell's direction and the one at right angles */
-        int ux = tg_round_int(tg_ldexp(k ? tg_neg(d[1]) : d[0], 8)), uy = tg_round_int(tg_ldexp(k ? d[0] : d[1], 8));
-        c1[k] = near_horizon_cos(full, &q, ux, uy);
-        c0[k] = near_horizon_cos(full, &q, -ux, -uy);
-        found |= c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f);
-    }
+    q.above = tg_add(tg_ldexp(q.pv.z, -10), u->above_r);
+    near_horizon_sides(u, &q, cell, c1, c0);   /* the cell's direction and the one at right angles */
+    for (k = 0; k < 2; k++) found |= c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f);
     if (!found) return TG_ONE;
+    if (tg_sub(tgi_near_horizon_bound(q.nv, q.vd, d[0], d[1], c1, c0), NEAR_BOUND_MARGIN) >= ao) return TG_ONE;
     for (k = 0; k < 2; k++) {
         tg_real o;
         if (!tgi_ao_slice_frame(q.nv, q.vd, k ? tg_neg(d[1]) : d[0], k ? d[0] : d[1], &sl)) continue;
@@ -203,42 +291,70 @@ static tg_real near_horizon_ao(const tgi_gview *full, int x, int y, size_t i, tg
     return open > 0 ? tg_saturate(tg_div(vis, open)) : TG_ONE;
 }
 
-tgi_gr_value tgi_upsample_pixel(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *hr, tg_real radius,
-                                int x, int y)
+/* Half-res pixel j decoded into slot t of the walk (once per pixel while
+ * the row's pixels share it): sky, depth, normal, AO, bend (bent -
+ * normal) and near field where the results carry them. */
+static const tgi_upsample_tap *upsample_tap(const tgi_upsample_plan *u, tgi_upsample_walk *w, int t, size_t j)
 {
+    tgi_upsample_tap *c = &w->tap[t];
+    if (c->index == j) return c;
+    c->index = j;
+    c->sky = tgi_gv_is_sky(u->half, j);
+    if (c->sky) return c;
+    c->z = tgi_gv_depth(u->half, j);
+    c->n = tgi_gv_normal(u->half, j);
+    c->ao = tgi_gr_ao(u->res, j);
+    if (tgi_gr_has_bent(u->res)) {   /* the bend (bent - normal) is what carries over (Klehm sec. 3.4) */
+        tg_vec3 b = tgi_gr_bent(u->res, j);
+        c->bend = tg_v3(tg_sub(b.x, c->n.x), tg_sub(b.y, c->n.y), tg_sub(b.z, c->n.z));
+    }
+    if (tgi_gr_has_near(u->res)) c->near = tgi_gr_near(u->res, j);
+    return c;
+}
+
+void tgi_upsample_walk_start(tgi_upsample_walk *w)
+{
+    int t;
+    for (t = 0; t < 4; t++) w->tap[t].index = (size_t)-1;
+}
+
+tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk, int x, int y)
+{
+    const tgi_gview *full = u->full, *half = u->half;
+    const tgi_gresult *hr = u->res;
     size_t i = tgi_gv_index(full, x, y), tap[4];
-    tg_real wt[4], sum = 0, ao = 0, floor_w = TG_R(0.015625f);
+    tg_real wt[4], sum = 0, ao = 0, floor_w = TG_R(0.015625f), z;
     tg_vec3 n, bend = tg_v3(0, 0, 0), near = tg_v3(0, 0, 0);
     int k, want_bent = tgi_gr_has_bent(hr), want_near = tgi_gr_has_near(hr);
     tgi_gr_value v;
     if (tgi_gv_is_sky(full, i)) return upsample_open(full, i);
     n = tgi_gv_normal(full, i);
+    z = tgi_gv_depth(full, i);
     bilinear_taps(half, x, y, tap, wt);
     for (k = 0; k < 4; k++) {
-        size_t j = tap[k];
+        const tgi_upsample_tap *c;
         tg_real w;
-        tg_vec3 nj;
         if (wt[k] == 0) continue;
-        if (tgi_gv_is_sky(half, j)) continue;
-        nj = tgi_gv_normal(half, j);
-        w = tg_mul(wt[k], tg_max(floor_w, tg_mul(upsample_depth_weight(tgi_gv_depth(full, i), tgi_gv_depth(half, j)),
-                                                  upsample_normal_weight(n, nj))));
+        /* tap k is half-res pixel (X0 or X1, Y0 or Y1): a slot per parity of
+         * its coordinates, the two of a pixel's taps on an axis differ in it */
+        c = upsample_tap(u, walk, (((x >> 1) + (k & 1 ? x & 1 : 0)) & 1) + ((((y >> 1) + (k & 2 ? y & 1 : 0)) & 1) << 1),
+                         tap[k]);
+        if (c->sky) continue;
+        w = tg_mul(wt[k], tg_max(floor_w, tg_mul(upsample_depth_weight(z, c->z), upsample_normal_weight(n, c->n))));
         sum = tg_add(sum, w);
-        ao = tg_add(ao, tg_mul(w, tgi_gr_ao(hr, j)));
-        if (want_bent) {   /* the bend (bent - normal) is what carries over (Klehm sec. 3.4) */
-            tg_vec3 b = tgi_gr_bent(hr, j);
-            bend = tg_v3(tg_add(bend.x, tg_mul(w, tg_sub(b.x, nj.x))), tg_add(bend.y, tg_mul(w, tg_sub(b.y, nj.y))),
-                         tg_add(bend.z, tg_mul(w, tg_sub(b.z, nj.z))));
-        }
-        if (want_near) {
-            tg_vec3 e = tgi_gr_near(hr, j);
-            near = tg_v3(tg_add(near.x, tg_mul(w, e.x)), tg_add(near.y, tg_mul(w, e.y)), tg_add(near.z, tg_mul(w, e.z)));
-        }
+        ao = tg_add(ao, tg_mul(w, c->ao));
+        if (want_bent)
+            bend = tg_v3(tg_add(bend.x, tg_mul(w, c->bend.x)), tg_add(bend.y, tg_mul(w, c->bend.y)),
+                         tg_add(bend.z, tg_mul(w, c->bend.z)));
+        if (want_near)
+            near = tg_v3(tg_add(near.x, tg_mul(w, c->near.x)), tg_add(near.y, tg_mul(w, c->near.y)),
+                         tg_add(near.z, tg_mul(w, c->near.z)));
     }
     if (sum <= 0) return upsample_open(full, i);   /* only sky around: treat as open */
     /* the upsampled AO misses what lies between the half-res samples (a
      * contact shadow a few pixels wide): the near horizon's is the lower */
-    v.ao = tg_min(tg_saturate(tg_div(ao, sum)), near_horizon_ao(full, x, y, i, radius));
+    v.ao = tg_saturate(tg_div(ao, sum));
+    v.ao = tg_min(v.ao, near_horizon_ao(u, x, y, i, n, v.ao));
     v.bent = n;
     if (want_bent) {
         tg_vec3 b = tgi_v3_add(n, tg_v3(tg_div(bend.x, sum), tg_div(bend.y, sum), tg_div(bend.z, sum)));
@@ -252,14 +368,28 @@ tgi_gr_value tgi_upsample_pixel(const tgi_gview *full, const tgi_gview *half, co
     return v;
 }
 
+tgi_gr_value tgi_upsample_pixel(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res,
+                                tg_real radius, int x, int y)
+{
+    tgi_upsample_plan u;
+    tgi_upsample_walk w;
+    tgi_upsample_start(&u, full, half, half_res, radius);
+    tgi_upsample_walk_start(&w);
+    return tgi_upsample_at(&u, &w, x, y);
+}
+
 void tgi_upsample_rows(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res, tg_real radius,
                        const tgi_gresult *out, int y0, int y1)
 {
+    tgi_upsample_plan u;
+    tgi_upsample_walk w;
     int x, y;
     if (y1 > full->height) y1 = full->height;
+    tgi_upsample_start(&u, full, half, half_res, radius);
+    tgi_upsample_walk_start(&w);
     for (y = y0; y < y1; y++)
         for (x = 0; x < full->width; x++) {
-            tgi_gr_value v = tgi_upsample_pixel(full, half, half_res, radius, x, y);
+            tgi_gr_value v = tgi_upsample_at(&u, &w, x, y);
             tgi_gr_put(out, tgi_gv_index(full, x, y), &v);
         }
 }
