@@ -440,6 +440,24 @@ static inline tg_real horizon_cos(tg_real dot, tg_real len2, tg_real *inv_len)
 #endif
 }
 
+/* Whether the depths za > 0 and zb of two neighbours across the minor
+ * axis are close enough to interpolate between (HBIL_LERP_MAX_RATIO; zb
+ * > 0 follows), compared in tgi_wide, so a 4 z beyond TG_REAL_MAX (where
+ * tg_mul saturated) gives the same answer. */
+static inline int depths_close(tg_real za, tg_real zb)
+{
+    return tgi_wide_mul(HBIL_LERP_MAX_RATIO, zb) > za && tgi_wide_mul(HBIL_LERP_MAX_RATIO, za) > zb;
+}
+
+/* The depth at fraction f in [0, 1) from za to zb, 1/z linear:
+ * z = za + f (zb - za) za / (zb - f (zb - za)).  0 < za, zb <=
+ * TG_REAL_MAX: zb - za fits, f zd fits, zb - f zd lies between them. */
+static inline tg_real lerp_inverse_depth(tg_real za, tg_real zb, tg_real f)
+{
+    tg_real zd = (tg_real)((tgi_wide)zb - za), fzd = small_mul(f, zd);
+    return tg_add(za, tg_mul(fzd, tg_div(za, small_sub(zb, fzd))));
+}
+
 /* The march's per-side constants (march_side). */
 typedef struct hbil_march {
     tg_real p0x, p0y, p0z, z, inv_z, r2, wox, woy, woz;
@@ -529,15 +547,8 @@ static inline void march_samples(
          * interpolated linearly, 1/z = (1-f)/za + f/zb  <=>
          * z = za + f (zb - za) za / (zb - f (zb - za)) */
         if ((unsigned)b0 < (unsigned)(bmax - 1)                 /* b0 and b0 + 1 inside */
-            && (za = tgi_gv_depth(&g, sa)) > 0 && (zb = tgi_gv_depth(&g, sa + smin),
-                tgi_wide_mul(HBIL_LERP_MAX_RATIO, zb) > za && tgi_wide_mul(HBIL_LERP_MAX_RATIO, za) > zb)) {
-            /* za > 0 and 4 zb > za: zb > 0 (not sky).  0 < za, zb <=
-             * TG_REAL_MAX: zb - za fits, f zd (f in [0, 1)) fits, zb - f zd
-             * lies between za and zb; the comparisons above are made in
-             * tgi_wide, so a 4 z beyond TG_REAL_MAX (where tg_mul saturated)
-             * gives the same answer */
-            tg_real zd = (tg_real)((tgi_wide)zb - za), fzd = small_mul(f, zd);
-            z1 = tg_add(za, tg_mul(fzd, tg_div(za, small_sub(zb, fzd))));
+            && (za = tgi_gv_depth(&g, sa)) > 0 && depths_close(za, zb = tgi_gv_depth(&g, sa + smin))) {
+            z1 = lerp_inverse_depth(za, zb, f);
         } else {
             int bn = f < TG_R(0.5f) ? b0 : b0 + 1, sn;
             if (bn < 0 || bn >= bmax) break;                    /* the slice leaves the image */
@@ -614,11 +625,7 @@ HBIL_NOINLINE static void march_between(const hbil_ctx *c, const hbil_slice *sl,
 }
 
 #if !TG_NO_FINE_HORIZON /* left out with TG_NO_FINE_HORIZON=1 (tinygi.h "FEATURE SWITCHES") */
-/* One sample of the fine image, t fine pixels from the pixel along the
- * major axis (toward dir): on the slice's line, 1/z interpolated across
- * the minor axis between two close surface pixels as in march_samples,
- * else the nearest pixel.  A fine pixel is 1 / fine_ratio of the march's
- * unit (the sub-image's pixel); (fa0, fb0) is the pixel in the fine image. */
+/* The highest of refine_fine's samples. */
 typedef struct hbil_fine_best {
     tg_real h, hs;          /* the highest horizon the fine samples found, h|h| */
     tgi_wide dx, dy, dz;    /* its offset (march units) */
@@ -626,8 +633,14 @@ typedef struct hbil_fine_best {
     int si;                 /* its pixel in the fine image; -1: none above the side's */
 } hbil_fine_best;
 
-/* inlined into refine_fine's two calls (their set-up cost as much as a
- * sample), one copy when compiling for size */
+/* One sample of the fine image, t fine pixels from the pixel along the
+ * major axis (toward dir), on the slice's line: 1/z interpolated across
+ * the minor axis between two close surface pixels, else the nearest
+ * pixel's tangent plane, as in march_samples; kept in *best when it is
+ * above best's horizon.  A fine pixel is 1 / fine_ratio of the march's
+ * unit (the sub-image's pixel); (fa0, fb0) is the pixel in the fine
+ * image.  Inlined into refine_fine's two calls (their set-up cost as
+ * much as a sample), one copy when compiling for size. */
 #if TG_OUTLINE_HELPERS
 #define HBIL_FINE_INLINE HBIL_NOINLINE
 #elif defined(__GNUC__)
@@ -649,10 +662,8 @@ static HBIL_FINE_INLINE void fine_sample(const hbil_ctx *c, hbil_fine_best *best
     sj = fb + 1 < bmax ? si + (major_x ? fg->row_stride : fg->pixel_stride) : si;   /* the next along the minor axis */
     za = tgi_gv_depth(fg, si);
     zb = tgi_gv_depth(fg, sj);
-    if (sj != si && za > 0                                          /* and close: as in march_samples */
-        && tgi_wide_mul(HBIL_LERP_MAX_RATIO, zb) > za && tgi_wide_mul(HBIL_LERP_MAX_RATIO, za) > zb) {
-        tg_real zd = (tg_real)((tgi_wide)zb - za), fzd = small_mul(f, zd);   /* as in march_samples */
-        z1 = tg_add(za, tg_mul(fzd, tg_div(za, small_sub(zb, fzd))));
+    if (sj != si && za > 0 && depths_close(za, zb)) {              /* as in march_samples */
+        z1 = lerp_inverse_depth(za, zb, f);
     } else {                                                        /* as in march_samples */
         const int nb = f >= TG_R(0.5f);
         int sn = nb ? sj : si;
@@ -687,11 +698,11 @@ static HBIL_FINE_INLINE void fine_sample(const hbil_ctx *c, hbil_fine_best *best
  * horizon is such an edge (builtin:cornell at 160x120, AO against the
  * ray-traced reference: +0.030 on average; without interleaving +0.008).
  * So the fine pixels after the sample that set the horizon (up to the
- * next sub-image pixel) and the
- * fine image's last pixel within the march's extent are samples too.  (The
- * fine pixels before the first sample were tried as well: darker contact
- * shadows, better on builtin:columns and groove, worse on spheres at
- * 320x240 than without them.) */
+ * next sub-image pixel) and the fine image's last pixel within the
+ * march's extent are samples too.  (The fine pixels before the first
+ * sample were tried as well: darker contact shadows, better on
+ * builtin:columns and groove, worse on spheres at 320x240 than without
+ * them.) */
 HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice *sl, int side,
                                       hbil_side *sd, const hbil_march *mr, int major_x)
 {
