@@ -29,9 +29,17 @@
  * depths differ by less than this fraction of the nearer one: |za - zb| <
  * 3 min(za, zb), i.e. (both > 0) za < 4 zb and zb < 4 za, tested so. */
 #define HBIL_LERP_MAX_RATIO TG_R(4.0f)
-/* The 3D radius test works on squared lengths in image pixels: capped so
- * the square stays inside Q16.16. */
-#define HBIL_MAX_RADIUS_UNITS TG_R(150.0f)
+/* The 3D radius test works on lengths in the march's units (the view's
+ * pixels at the pixel's depth), squared in tgi_wide (core/real.h): capped
+ * at 2^14, twice the largest image side (TG_MAX_IMAGE_SIDE), so that a
+ * sample anywhere on the screen is within it whenever the world radius
+ * says so, and |d|^2 <= 3 2^28 fits tgi_wide's 64 bits in Q16.16.  (It was
+ * 150, so that the square fitted tg_real: a radius wider than 150 of the
+ * march's pixels was cut to 150, and the room-wide radius of
+ * builtin:cornell lost its far walls at 1280x960, or at 320x240 without
+ * the interleave: AO +0.14 too bright; test
+ * full_resolution_radius_beyond_150_pixels.) */
+#define HBIL_MAX_RADIUS_UNITS TG_R(16384.0f)
 
 /* The rare paths stay out of the march loop (register pressure).  The
  * gather is not rare (a third of the samples raise the horizon in a
@@ -142,7 +150,7 @@ typedef struct hbil_pixel {
     tg_real z, inv_z;
     tg_vec3 wo, wx, wy;     /* local camera frame, sec. 1.1 */
     tg_vec3 n;              /* view-space normal with n.w_o >= HBIL_MIN_NDOTV */
-    tg_real radius_units2;  /* (3D radius in image pixels at depth z)^2 */
+    tgi_wide radius_units2; /* (3D radius in image pixels at depth z)^2 */
     tg_real reach;          /* march extent, image pixels */
     tg_real jitter;         /* the samples start this fraction of a step nearer */
 } hbil_pixel;
@@ -265,10 +273,10 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
         px->n = tgi_v3_normalize_or(tgi_v3_add(px->n, tgi_v3_scale(px->wo, tg_sub(HBIL_MIN_NDOTV, ndv))), px->wo);
     /* the world radius projected to image pixels; the 3D test is unclamped */
     r_px = tg_div(tg_mul(c->p->radius, c->ppu), px->z);
-    px->radius_units2 = tg_sqr(tg_min(tg_mul(r_px, c->inv_step), HBIL_MAX_RADIUS_UNITS));
-    /* no cap in pixels: the march ends at the screen's edge (march_side) or
-     * where the 3D test would reject every sample */
+    /* no other cap in pixels: the march ends at the screen's edge
+     * (march_side) or where the 3D test would reject every sample */
     px->reach = tg_min(tg_mul(r_px, c->inv_step), HBIL_MAX_RADIUS_UNITS);
+    px->radius_units2 = tgi_wide_mul(px->reach, px->reach);
     return 1;
 }
 
@@ -394,11 +402,10 @@ static inline int floor_small(tg_real a)
  * product below fits 64 bits.  A component beyond HBIL_FAR (> the largest
  * 3D radius, HBIL_MAX_RADIUS_UNITS) is rejected before it is squared: the
  * saturating sum would have exceeded the radius too.  Below the radius
- * |d| <= 150, so d.d, w_o.d, dot |dot| and h|h| |d|^2 stay below 32768
- * and nothing that tg_mul or tg_add would have saturated is kept: the
- * march takes the same samples and the same horizons in both forms. */
+ * |d| <= 2^14, so d.d <= 3 2^28 and dot |dot|, h|h| |d|^2 < 2^30 (2^46 as
+ * Q16.16 integers): every product fits 64 bits. */
 #if TG_FIXED
-#define HBIL_FAR ((int64_t)151 << 16)
+#define HBIL_FAR (((int64_t)16384 + 1) << 16)
 /* 1 when |d| is beyond the largest radius (fixed only: float squares do not overflow) */
 static inline int wide_far(tgi_wide d) { return (uint64_t)(d + HBIL_FAR) > (uint64_t)(2 * HBIL_FAR); }
 #else
@@ -418,10 +425,10 @@ static inline tgi_wide wide_abs(tgi_wide d)
 }
 
 /* The cosine dot / |d| of a sample that passed the horizon test, clamped
- * to [-1, 1], and 1 / |d| (|d| <= 150: d, dot and len2 = |d|^2 fit
+ * to [-1, 1], and 1 / |d| (in Q16.16 |d| < 128 here: d, dot and len2 = |d|^2 fit
  * tg_real).  Float: one reciprocal square root, the two-step one of
  * core/real.h and a third Newton step (tg_sqrt and two divisions before).
- * Q16.16 keeps the square root and divides (1/|d| >= 1/150 holds too few
+ * Q16.16 keeps the square root and divides (1/|d| > 1/128 holds too few
  * bits for the cosine as a product). */
 #if defined(__GNUC__)
 __attribute__((always_inline))
@@ -460,7 +467,8 @@ static inline tg_real lerp_inverse_depth(tg_real za, tg_real zb, tg_real f)
 
 /* The march's per-side constants (march_side). */
 typedef struct hbil_march {
-    tg_real p0x, p0y, p0z, z, inv_z, r2, wox, woy, woz;
+    tg_real p0x, p0y, p0z, z, inv_z, wox, woy, woz;
+    tgi_wide r2;                   /* the 3D radius squared, march units */
     tg_real minor, dminor, ox;     /* ox: the minor offset before the first sample */
     tg_real slope, extent;         /* minor per major pixel; the march's extent, major pixels */
     int a, da, n, smaj, smin, bmax;
@@ -471,8 +479,9 @@ typedef struct hbil_march {
  * up) and depth z1 (> 0), for the side whose horizon is h with h|h| +
  * HBIL_TIE = hs_tie: its cosine from w_o when it lies within the 3D radius
  * and above the horizon, else HBIL_NOT_ABOVE; d, inv_len: its view-space
- * offset d = s + q (P0 + s), q = (z1 - z) / z, in tgi_wide (see above),
- * and 1 / |d|.  One copy for the march and the fine samples when compiling for
+ * offset d = s + q (P0 + s), q = (z1 - z) / z, in tgi_wide (see above;
+ * in Q16.16 halved until |d| < 128 when longer), and 1 / |d|: d inv_len is
+ * the unit vector toward the sample.  One copy for the march and the fine samples when compiling for
  * size (TG_OUTLINE_HELPERS), inlined into each otherwise (and into the
  * march alone without the fine samples, TG_NO_FINE_HORIZON). */
 #define HBIL_NOT_ABOVE TG_R(-2.0f)
@@ -498,7 +507,16 @@ static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, t
     dot = tgi_wide_dot(dx, dy, dz, mr->wox, mr->woy, mr->woz);
     /* cos(theta) > horizon, without a division: dot|dot| > h|h| |d|^2 */
     if (tgi_wide_mul(dot, wide_abs(dot)) <= tgi_wide_mul(hs_tie, len2)) return HBIL_NOT_ABOVE;
-    cn = horizon_cos((tg_real)dot, (tg_real)len2, inv_len);     /* HBIL sec. 1.3; |d| <= 150: d, dot, len2 fit tg_real */
+#if TG_FIXED
+    if (len2 >= ((tgi_wide)1 << 30)) {   /* |d| >= 128: |d|^2 beyond tg_real; the cosine and the direction are scale-free */
+        int k = 1;
+        while ((len2 >> 2 * k) >= ((tgi_wide)1 << 30)) k++;
+        dx = tgi_shr_round(dx, k); dy = tgi_shr_round(dy, k); dz = tgi_shr_round(dz, k);
+        dot = tgi_shr_round(dot, k);
+        len2 = tgi_shr_round(len2, 2 * k);
+    }
+#endif
+    cn = horizon_cos((tg_real)dot, (tg_real)len2, inv_len);     /* HBIL sec. 1.3; d, dot, len2 fit tg_real here */
     if (cn <= h) return HBIL_NOT_ABOVE;
     d[0] = dx; d[1] = dy; d[2] = dz;
     return cn;
