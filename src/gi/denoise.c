@@ -31,6 +31,21 @@ static const tg_real spatial_w[5][TGI_DENOISE_TAPS] = {
 };
 #undef PHASE
 
+#if TG_FIXED
+/* Q16.16 products without tg_mul's sign test and saturation, giving its
+ * integers where the bounds stated at each use hold.  mul_pos: a b >= 0 and
+ * below 2^63 - 2^15, rounded as tgi_shr_round rounds a non-negative product.
+ * round_q16: tgi_shr_round(p, 16) for any |p| < 2^62, without a branch: the
+ * offset 2^62 (a multiple of 2^16) makes the shifted value non-negative, and
+ * subtracting 1 from a negative p before adding the half turns the floor
+ * into tgi_shr_round's rounding of -p (ceil((p - 2^15) / 2^16) =
+ * floor((p + 2^15 - 1) / 2^16)). */
+static inline uint64_t mul_pos(uint64_t a, uint64_t b) { return (a * b + 32768u) >> 16; }
+static inline int64_t round_q16(int64_t p)
+{
+    return (int64_t)(((uint64_t)p + ((uint64_t)1 << 62) + 32768u - (uint64_t)(p < 0)) >> 16) - ((int64_t)1 << 46);
+}
+#else
 /* The weights' factors are in [0, 1] (up to a rounding): their products
  * never saturate, so tgi_wide_mul (core/real.h) gives tg_mul's result. */
 static tg_real weight_mul(tg_real a, tg_real b) { return (tg_real)tgi_wide_mul(a, b); }
@@ -43,6 +58,7 @@ static tg_real normal_weight(tg_real d)
     d = weight_mul(d, d); d = weight_mul(d, d); d = weight_mul(d, d);   /* (n_i . n_j)^8 */
     return d;
 }
+#endif
 
 /* Pixel (xx, yy) of g decoded into entry j of the walk; has_bent, has_near:
  * what tgi_gr_get_kept reads of r. */
@@ -67,6 +83,32 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
     v[4] = e.x; v[5] = e.y; v[6] = e.z;
 }
 
+#if TG_FIXED
+/* tap_weights below in Q16.16, giving the same sums: the same integers for
+ * every weight that is positive, 0 for those it gives <= 0, which the sums
+ * skip alike.  Where the weight is kept, dz < ztol, so ztol > 0, inv_ztol > 0
+ * and dz / ztol in [0, 1 + a rounding]; 1 - dz / ztol is clamped at 0 (a
+ * negative one gives a weight <= 0).  Every factor is then non-negative:
+ * the spatial weight <= 1, the normals' components within [-1, 1], so the
+ * dot d <= 3 and the weight <= d^8 < 2^13 (2^29 in Q16.16).  The
+ * dot's rounding: tgi_shr_round of a sum s <= 0 is <= 0 (clamped to 0), of
+ * s > 0 it is mul_pos's.  Only the 25 entries of the window. */
+static void tap_weights(const tgi_denoise_walk *k, const tg_real *spatial, tg_real zi, tg_vec3 ni, tg_real ztol,
+                        tg_real inv_ztol, tg_real *wt)
+{
+    int j;
+    for (j = 0; j < 5 * 5; j++) {
+        tg_real dz = tg_abs(k->z[j] - zi);   /* depths are never negative: no overflow */
+        int64_t omt = TG_ONE - (int64_t)mul_pos((uint64_t)dz, (uint64_t)inv_ztol);   /* 1 - dz / ztol */
+        int64_t s = (int64_t)ni.x * k->nx[j] + (int64_t)ni.y * k->ny[j] + (int64_t)ni.z * k->nz[j];
+        uint64_t d = s > 0 ? ((uint64_t)s + 32768u) >> 16 : 0, w;
+        omt = dz < ztol && omt > 0 ? omt : 0;
+        w = mul_pos((uint64_t)spatial[j], (uint64_t)omt);
+        d = mul_pos(d, d); d = mul_pos(d, d); d = mul_pos(d, d);   /* max(0, n_i . n_j)^8 */
+        wt[j] = (tg_real)mul_pos(w, d);
+    }
+}
+#else
 /* The weight of every entry of the walk for the centre (depth zi, normal
  * ni): the 2-D tap weight times depth and normal awareness; 0 for a depth
  * step of tol zi or more, so for sky (depth 0).  No branch, so that the loop
@@ -89,6 +131,8 @@ static void tap_weights(const tgi_denoise_walk *k, const tg_real *spatial, tg_re
     }
     for (j = 0; j < TGI_DENOISE_TAPS; j++) wt[j] *= kept[j];
 }
+
+#endif
 
 void tgi_denoise_walk_start(tgi_denoise_walk *k)
 {
@@ -139,10 +183,18 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
             if (wj <= 0) continue;
             /* written out: straight-line code the compiler keeps in registers
              * (Q16.16) or turns into vector operations (float) */
+#if TG_FIXED
+            /* |tv| < 2^31, 0 < wj < 2^29: round_q16 gives tgi_wide_mul's integers */
+            sum[0] += round_q16((int64_t)tv[0] * wj); sum[1] += round_q16((int64_t)tv[1] * wj);
+            sum[2] += round_q16((int64_t)tv[2] * wj); sum[3] += round_q16((int64_t)tv[3] * wj);
+            sum[4] += round_q16((int64_t)tv[4] * wj); sum[5] += round_q16((int64_t)tv[5] * wj);
+            sum[6] += round_q16((int64_t)tv[6] * wj); sum[7] += wj;   /* the weights' sum */
+#else
             sum[0] += tgi_wide_mul(tv[0], wj); sum[1] += tgi_wide_mul(tv[1], wj);
             sum[2] += tgi_wide_mul(tv[2], wj); sum[3] += tgi_wide_mul(tv[3], wj);
             sum[4] += tgi_wide_mul(tv[4], wj); sum[5] += tgi_wide_mul(tv[5], wj);
             sum[6] += tgi_wide_mul(tv[6], wj); sum[7] += wj;   /* the weights' sum */
+#endif
         }
     ws = tgi_wide_real(sum[TGI_DENOISE_VALUES]);
     if (ws <= 0) return tgi_gr_get_kept(r, i);   /* the centre always weighs 1: cannot happen */
