@@ -35,15 +35,17 @@ static const tg_real spatial_w[5][TGI_DENOISE_TAPS] = {
 /* Q16.16 products without tg_mul's sign test and saturation, giving its
  * integers where the bounds stated at each use hold.  mul_pos: a b >= 0 and
  * below 2^63 - 2^15, rounded as tgi_shr_round rounds a non-negative product.
- * round_q16: tgi_shr_round(p, 16) for any |p| < 2^62, without a branch: the
- * offset 2^62 (a multiple of 2^16) makes the shifted value non-negative, and
- * subtracting 1 from a negative p before adding the half turns the floor
- * into tgi_shr_round's rounding of -p (ceil((p - 2^15) / 2^16) =
- * floor((p + 2^15 - 1) / 2^16)). */
+ * round_q16_biased: tgi_shr_round(p, 16) + 2^46 for any |p| < 2^62, without
+ * a branch: the offset 2^62 (a multiple of 2^16) makes the shifted value
+ * non-negative, and subtracting 1 from a negative p before adding the half
+ * turns the floor into tgi_shr_round's rounding of -p (ceil((p - 2^15) /
+ * 2^16) = floor((p + 2^15 - 1) / 2^16)); a sum of n of them, less n 2^46, is
+ * the sum of the rounded products. */
 static inline uint64_t mul_pos(uint64_t a, uint64_t b) { return (a * b + 32768u) >> 16; }
-static inline int64_t round_q16(int64_t p)
+#define ROUND_BIAS ((int64_t)1 << 46)
+static inline int64_t round_q16_biased(int64_t p)
 {
-    return (int64_t)(((uint64_t)p + ((uint64_t)1 << 62) + 32768u - (uint64_t)(p < 0)) >> 16) - ((int64_t)1 << 46);
+    return (int64_t)(((uint64_t)p + ((uint64_t)1 << 62) + 32768u - (uint64_t)(p < 0)) >> 16);
 }
 #else
 /* The weights' factors are in [0, 1] (up to a rounding): their products
@@ -159,6 +161,9 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
      * SWITCHES") has no near field, one with TG_NO_BENT_NORMALS no bent
      * normal: their values are 0 and their sums not used. */
     tgi_wide sum[TGI_DENOISE_VALUES + 1];
+#if TG_FIXED
+    int64_t bias = 0;   /* the sums' bias, ROUND_BIAS a tap */
+#endif
     tg_vec3 ni, bent, near;
     tgi_gr_value v;
     if (tgi_gv_is_sky(g, i)) return tgi_gr_get_kept(r, i);
@@ -184,11 +189,13 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
             /* written out: straight-line code the compiler keeps in registers
              * (Q16.16) or turns into vector operations (float) */
 #if TG_FIXED
-            /* |tv| < 2^31, 0 < wj < 2^29: round_q16 gives tgi_wide_mul's integers */
-            sum[0] += round_q16((int64_t)tv[0] * wj); sum[1] += round_q16((int64_t)tv[1] * wj);
-            sum[2] += round_q16((int64_t)tv[2] * wj); sum[3] += round_q16((int64_t)tv[3] * wj);
-            sum[4] += round_q16((int64_t)tv[4] * wj); sum[5] += round_q16((int64_t)tv[5] * wj);
-            sum[6] += round_q16((int64_t)tv[6] * wj); sum[7] += wj;   /* the weights' sum */
+            /* |tv| < 2^31, 0 < wj < 2^29: tgi_wide_mul's integers, each
+             * biased by 2^46 (at most 25 of them: < 2^51) */
+            sum[0] += round_q16_biased((int64_t)tv[0] * wj); sum[1] += round_q16_biased((int64_t)tv[1] * wj);
+            sum[2] += round_q16_biased((int64_t)tv[2] * wj); sum[3] += round_q16_biased((int64_t)tv[3] * wj);
+            sum[4] += round_q16_biased((int64_t)tv[4] * wj); sum[5] += round_q16_biased((int64_t)tv[5] * wj);
+            sum[6] += round_q16_biased((int64_t)tv[6] * wj); sum[7] += wj;   /* the weights' sum */
+            bias += ROUND_BIAS;
 #else
             sum[0] += tgi_wide_mul(tv[0], wj); sum[1] += tgi_wide_mul(tv[1], wj);
             sum[2] += tgi_wide_mul(tv[2], wj); sum[3] += tgi_wide_mul(tv[3], wj);
@@ -196,6 +203,9 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
             sum[6] += tgi_wide_mul(tv[6], wj); sum[7] += wj;   /* the weights' sum */
 #endif
         }
+#if TG_FIXED
+    for (c = 0; c < TGI_DENOISE_VALUES; c++) sum[c] -= bias;
+#endif
     ws = tgi_wide_real(sum[TGI_DENOISE_VALUES]);
     if (ws <= 0) return tgi_gr_get_kept(r, i);   /* the centre always weighs 1: cannot happen */
     bent = tg_v3(tgi_wide_real(sum[1]), tgi_wide_real(sum[2]), tgi_wide_real(sum[3]));
