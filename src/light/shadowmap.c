@@ -536,76 +536,58 @@ static inline int lit_perspective(tg_real num, tg_real a, tg_real den)
 }
 
 /* The common case of pcf(): a 16-bit face, the footprint inside it; the
- * codes compared as read back (the bias folded into the read-back). */
-#if TG_FIXED
-/* pcf16_inside below in Q16.16 without its saturating adds, giving the same
- * tests: the sums in 64 bits, clamped only where tg_add's saturation could
- * change the result (a read-back depth above TG_REAL_MAX, a den below
- * TG_REAL_MIN: a den above TG_REAL_MAX gives den_c either way; an ortho
- * depth below TG_REAL_MIN passes either way); row_lit, at most 4 weights in
- * [0, 1], never saturates. */
-static tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *q, int i0, int j0, int taps,
-                            const uint16_t *depth, const tg_real *wx, const tg_real *wy,
-                            const tg_real *dx, const tg_real *dy, int perspective)
-{
-    const uint16_t *row = depth + fc->offset + (size_t)j0 * (size_t)fc->size + (size_t)i0;
-    tg_real lit = 0, lo_bias = tg_add(fc->depth_lo, q->bias), range = fc->depth_range;
-    int64_t lim = (int64_t)q->num * 65536 + 32768;   /* lit_perspective's bound */
-    int i, j;
-    for (j = 0; j < taps; j++, row += fc->size) {
-        tg_real row_lit = 0;
-        if (perspective) {
-            tg_real den_row = tg_add(q->den_c, dy[j]);
-            for (i = 0; i < taps; i++) {
-                int64_t den = (int64_t)den_row + dx[i], a = (int64_t)lo_bias + (((int64_t)range * row[i] + 32768) >> 16);
-                den = den < q->den_c ? den : q->den_c;
-                den = den > TG_REAL_MIN ? den : TG_REAL_MIN;
-                a = a < TG_REAL_MAX ? a : TG_REAL_MAX;   /* depth16_plus; never below lo_bias >= TG_REAL_MIN */
-                row_lit += a * den <= lim ? wx[i] : 0;
-            }
-        } else {                            /* base + min(dx + dy, 0) <= stored, as two tests */
-            tg_real base_row = tg_add(q->base, dy[j]);
-            for (i = 0; i < taps; i++) {
-                int64_t stored = (int64_t)fc->depth_lo + (((int64_t)range * row[i] + 32768) >> 16);
-                int64_t b = (int64_t)base_row + dx[i];
-                stored = stored < TG_REAL_MAX ? stored : TG_REAL_MAX;
-                b = b < TG_REAL_MAX ? b : TG_REAL_MAX;
-                row_lit += b <= stored || q->base <= stored ? wx[i] : 0;
-            }
-        }
-        lit = tg_add(lit, tg_mul(row_lit, wy[j]));
-    }
-    return lit;
-}
-#else
+ * codes compared as read back (the bias folded into the read-back).  In
+ * Q16.16 without the saturating adds, giving the same tests: the sums in 64
+ * bits, clamped only where tg_add's saturation could change the result (a
+ * read-back depth above TG_REAL_MAX, a den below TG_REAL_MIN: a den above
+ * TG_REAL_MAX gives den_c either way; an ortho depth below TG_REAL_MIN passes
+ * either way); row_lit, at most 4 weights in [0, 1], never saturates. */
 static tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *q, int i0, int j0, int taps,
                             const uint16_t *depth, const tg_real *wx, const tg_real *wy,
                             const tg_real *dx, const tg_real *dy, int perspective)
 {
     const uint16_t *row = depth + fc->offset + (size_t)j0 * (size_t)fc->size + (size_t)i0;
     tg_real lit = 0, lo_bias = tg_add(fc->depth_lo, q->bias);
+#if TG_FIXED
+    int64_t lim = (int64_t)q->num * 65536 + 32768;   /* lit_perspective's bound */
+#endif
     int i, j;
     for (j = 0; j < taps; j++, row += fc->size) {
         tg_real row_lit = 0;
         if (perspective) {
             tg_real den_row = tg_add(q->den_c, dy[j]);
             for (i = 0; i < taps; i++) {
+#if TG_FIXED
+                int64_t den = (int64_t)den_row + dx[i];
+                int64_t a = (int64_t)lo_bias + (((int64_t)fc->depth_range * row[i] + 32768) >> 16);
+                den = den < q->den_c ? den : q->den_c;
+                den = den > TG_REAL_MIN ? den : TG_REAL_MIN;
+                a = a < TG_REAL_MAX ? a : TG_REAL_MAX;   /* depth16_plus; never below lo_bias >= TG_REAL_MIN */
+                row_lit += a * den <= lim ? wx[i] : 0;
+#else
                 tg_real den = tg_min(tg_add(den_row, dx[i]), q->den_c);
                 if (lit_perspective(q->num, depth16_plus(fc, row[i], lo_bias), den)) row_lit = tg_add(row_lit, wx[i]);
+#endif
             }
         } else {                            /* base + min(dx + dy, 0) <= stored, as two tests */
             tg_real base_row = tg_add(q->base, dy[j]);
             for (i = 0; i < taps; i++) {
+#if TG_FIXED
+                int64_t stored = (int64_t)fc->depth_lo + (((int64_t)fc->depth_range * row[i] + 32768) >> 16);
+                int64_t b = (int64_t)base_row + dx[i];
+                stored = stored < TG_REAL_MAX ? stored : TG_REAL_MAX;
+                b = b < TG_REAL_MAX ? b : TG_REAL_MAX;
+                row_lit += b <= stored || q->base <= stored ? wx[i] : 0;
+#else
                 tg_real stored = depth16(fc, row[i]);
                 if (tg_add(base_row, dx[i]) <= stored || q->base <= stored) row_lit = tg_add(row_lit, wx[i]);
+#endif
             }
         }
         lit = tg_add(lit, tg_mul(row_lit, wy[j]));
     }
     return lit;
 }
-
-#endif
 
 /* PCF over the prepared lookup: continuous texel position (rows top to
  * bottom), then the footprint:
