@@ -6,6 +6,12 @@
 #include "../tinygi.h"
 #include "denoise.h"
 
+/* Q16_WIDE: the Q16.16 paths below that compute in 64 bits without tg_mul's
+ * and tg_add's saturation tests (each states its bounds), giving the same
+ * integers as the generic code; a size build (TG_OUTLINE_HELPERS, tinygi.h)
+ * keeps the generic code, which is smaller. */
+#define Q16_WIDE (TG_FIXED && !TG_OUTLINE_HELPERS)
+
 void tgi_denoise_defaults(tgi_denoise_params *p)
 {
     p->depth_tolerance = TG_R(0.1f);
@@ -31,7 +37,7 @@ static const tg_real spatial_w[5][TGI_DENOISE_TAPS] = {
 };
 #undef PHASE
 
-#if TG_FIXED
+#if Q16_WIDE
 /* Q16.16 products without tg_mul's sign test and saturation, giving its
  * integers where the bounds stated at each use hold.  mul_pos: a b >= 0 and
  * below 2^63 - 2^15, rounded as tgi_shr_round rounds a non-negative product.
@@ -85,7 +91,7 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
     v[4] = e.x; v[5] = e.y; v[6] = e.z;
 }
 
-#if TG_FIXED
+#if Q16_WIDE
 /* tap_weights below in Q16.16, giving the same sums: the same integers for
  * every weight that is positive, 0 for those it gives <= 0, which the sums
  * skip alike.  Where the weight is kept, dz < ztol, so ztol > 0, inv_ztol > 0
@@ -161,7 +167,7 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
      * SWITCHES") has no near field, one with TG_NO_BENT_NORMALS no bent
      * normal: their values are 0 and their sums not used. */
     tgi_wide sum[TGI_DENOISE_VALUES + 1];
-#if TG_FIXED
+#if Q16_WIDE
     int64_t bias = 0;   /* the sums' bias, ROUND_BIAS a tap */
 #endif
     tg_vec3 ni, bent, near;
@@ -188,7 +194,7 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
             if (wj <= 0) continue;
             /* written out: straight-line code the compiler keeps in registers
              * (Q16.16) or turns into vector operations (float) */
-#if TG_FIXED
+#if Q16_WIDE
             /* |tv| < 2^31, 0 < wj < 2^29: tgi_wide_mul's integers, each
              * biased by 2^46 (at most 25 of them: < 2^51) */
             sum[0] += round_q16_biased((int64_t)tv[0] * wj); sum[1] += round_q16_biased((int64_t)tv[1] * wj);
@@ -203,7 +209,7 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
             sum[6] += tgi_wide_mul(tv[6], wj); sum[7] += wj;   /* the weights' sum */
 #endif
         }
-#if TG_FIXED
+#if Q16_WIDE
     for (c = 0; c < TGI_DENOISE_VALUES; c++) sum[c] -= bias;
 #endif
     ws = tgi_wide_real(sum[TGI_DENOISE_VALUES]);

@@ -11,6 +11,12 @@
 #include "shadowmap.h"
 #include "../raster/raster.h"
 
+/* Q16_WIDE: the Q16.16 paths below that compute in 64 bits without tg_mul's
+ * and tg_add's saturation tests (each states its bounds), giving the same
+ * integers as the generic code; a size build (TG_OUTLINE_HELPERS, tinygi.h)
+ * keeps the generic code, which is smaller. */
+#define Q16_WIDE (TG_FIXED && !TG_OUTLINE_HELPERS)
+
 #if !TG_NO_SHADOW_MAPS /* the whole file is left out with TG_NO_SHADOW_MAPS=1 (tinygi.h "FEATURE SWITCHES") */
 
 #define SPOT_MAX_ANGLE TG_R(1.3962634f) /* 80 degrees */
@@ -528,7 +534,7 @@ static void fetch_taps(const tgi_shadow_map *sm, const tgi_shadow_face *fc, int 
  * below it passes both). */
 static inline int lit_perspective(tg_real num, tg_real a, tg_real den)
 {
-#if TG_FIXED
+#if Q16_WIDE
     return (int64_t)a * den <= (int64_t)num * 65536 + 32768;
 #else
     return num >= tg_mul(a, den);
@@ -548,7 +554,7 @@ static tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *q, int i0, 
 {
     const uint16_t *row = depth + fc->offset + (size_t)j0 * (size_t)fc->size + (size_t)i0;
     tg_real lit = 0, lo_bias = tg_add(fc->depth_lo, q->bias);
-#if TG_FIXED
+#if Q16_WIDE
     int64_t lim = (int64_t)q->num * 65536 + 32768;   /* lit_perspective's bound */
 #endif
     int i, j;
@@ -557,7 +563,7 @@ static tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *q, int i0, 
         if (perspective) {
             tg_real den_row = tg_add(q->den_c, dy[j]);
             for (i = 0; i < taps; i++) {
-#if TG_FIXED
+#if Q16_WIDE
                 int64_t den = (int64_t)den_row + dx[i];
                 int64_t a = (int64_t)lo_bias + (((int64_t)fc->depth_range * row[i] + 32768) >> 16);
                 den = den < q->den_c ? den : q->den_c;
@@ -572,7 +578,7 @@ static tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *q, int i0, 
         } else {                            /* base + min(dx + dy, 0) <= stored, as two tests */
             tg_real base_row = tg_add(q->base, dy[j]);
             for (i = 0; i < taps; i++) {
-#if TG_FIXED
+#if Q16_WIDE
                 int64_t stored = (int64_t)fc->depth_lo + (((int64_t)fc->depth_range * row[i] + 32768) >> 16);
                 int64_t b = (int64_t)base_row + dx[i];
                 stored = stored < TG_REAL_MAX ? stored : TG_REAL_MAX;
