@@ -274,12 +274,27 @@ TEST(filter_preserves_range_and_constants)
  * weighs w_x w_y (1 - |z_j - z_i| / (tol z_i)) max(0, n_i . n_j)^8, the
  * products rounded as tg_mul rounds them and the sums in tgi_wide, in the
  * order of the taps (rows, then columns). */
+/* The filter's weighted average: in float the sum of products over the
+ * weights' sum; in Q16.16 the products exact (Q32) and one rounding, half
+ * away from zero, in the division. */
+#if TG_FIXED
+static tgi_wide formula_product(tg_real v, tg_real w) { return (tgi_wide)v * w; }
+static tg_real formula_average(tgi_wide s, tgi_wide ws)
+{
+    tgi_wide q = (s < 0 ? -s : s) * 2 / ws, r = (q + 1) / 2;   /* round(|s| / ws), halves up */
+    return (tg_real)(s < 0 ? -r : r);
+}
+#else
+static tgi_wide formula_product(tg_real v, tg_real w) { return tgi_wide_mul(v, w); }
+static tg_real formula_average(tgi_wide s, tgi_wide ws) { return tg_div(s, ws); }
+#endif
+
 static tgi_gr_value filter_formula(const tgi_denoise_params *p, const tgi_gview *g, const tgi_gresult *r, int x, int y)
 {
     static const float tap_w[5] = { 0.5f, 1, 1, 1, 0.5f };
     size_t i = tgi_gv_index(g, x, y);
     tgi_wide ws = 0, ao = 0, b[3] = { 0, 0, 0 }, e[3] = { 0, 0, 0 };
-    tg_real zi, ztol, inv, wsr;
+    tg_real zi, ztol, inv;
     tg_vec3 ni;
     tgi_gr_value v;
     int xx, yy, c;
@@ -301,20 +316,22 @@ static tgi_gr_value filter_formula(const tgi_denoise_params *p, const tgi_gview 
             wt = tg_mul(tg_mul(tg_from_float(tap_w[xx - x + 2]), tg_from_float(tap_w[yy - y + 2])),
                         tg_sub(TG_ONE, tg_mul(dz, inv)));
             d = tg_max(tgi_v3_dot(ni, tgi_gv_normal(g, j)), 0);
+#if TG_FIXED
+            d = tg_min(d, 2 * TG_ONE);   /* never reached by unit normals */
+#endif
             d = tg_mul(d, d); d = tg_mul(d, d); d = tg_mul(d, d);
             wt = tg_mul(wt, d);
             if (wt <= 0) continue;
             t = tgi_gr_get_kept(r, j);
             ws += wt;
-            ao += tgi_wide_mul(wt, t.ao);
-            for (c = 0; c < 3; c++) b[c] += tgi_wide_mul((&t.bent.x)[c], wt);
-            for (c = 0; c < 3; c++) e[c] += tgi_wide_mul((&t.near.x)[c], wt);
+            ao += formula_product(t.ao, wt);
+            for (c = 0; c < 3; c++) b[c] += formula_product((&t.bent.x)[c], wt);
+            for (c = 0; c < 3; c++) e[c] += formula_product((&t.near.x)[c], wt);
         }
-    wsr = tgi_wide_real(ws);
-    v.ao = tg_saturate(tg_div(tgi_wide_real(ao), wsr));
-    v.bent = tgi_v3_normalize_or(tg_v3(tg_div(tgi_wide_real(b[0]), wsr), tg_div(tgi_wide_real(b[1]), wsr),
-                                       tg_div(tgi_wide_real(b[2]), wsr)), ni);
-    v.near = tg_v3(tg_div(tgi_wide_real(e[0]), wsr), tg_div(tgi_wide_real(e[1]), wsr), tg_div(tgi_wide_real(e[2]), wsr));
+    v.ao = tg_saturate(formula_average(ao, ws));
+    v.bent = tgi_v3_normalize_or(tg_v3(formula_average(b[0], ws), formula_average(b[1], ws),
+                                       formula_average(b[2], ws)), ni);
+    v.near = tg_v3(formula_average(e[0], ws), formula_average(e[1], ws), formula_average(e[2], ws));
     return v;
 }
 

@@ -6,6 +6,12 @@
 #include "../tinygi.h"
 #include "denoise.h"
 
+/* Q16_WIDE: the Q16.16 paths below that compute in 64 bits without tg_mul's
+ * and tg_add's saturation tests (each states its bounds), giving the same
+ * integers as the generic code; a size build (TG_OUTLINE_HELPERS, tinygi.h)
+ * keeps the generic code, which is smaller. */
+#define Q16_WIDE (TG_FIXED && !TG_OUTLINE_HELPERS)
+
 void tgi_denoise_defaults(tgi_denoise_params *p)
 {
     p->depth_tolerance = TG_R(0.1f);
@@ -31,18 +37,30 @@ static const tg_real spatial_w[5][TGI_DENOISE_TAPS] = {
 };
 #undef PHASE
 
+#if Q16_WIDE
+/* Q16.16 products without tg_mul's sign test and saturation, giving its
+ * integers where the bounds stated at each use hold: a b >= 0 and below
+ * 2^63 - 2^15, rounded as tgi_shr_round rounds a non-negative product. */
+static inline uint64_t mul_pos(uint64_t a, uint64_t b) { return (a * b + 32768u) >> 16; }
+#else
 /* The weights' factors are in [0, 1] (up to a rounding): their products
  * never saturate, so tgi_wide_mul (core/real.h) gives tg_mul's result. */
 static tg_real weight_mul(tg_real a, tg_real b) { return (tg_real)tgi_wide_mul(a, b); }
 
 /* max(0, n_i . n_j)^8; the clamp as (d + |d|) / 2 (exact in both number
- * types: 2d or 0 halved) so that the loop over the taps has no branch. */
+ * types: 2d or 0 halved) so that the loop over the taps has no branch.  In
+ * Q16.16 the dot also clamped at 2 (unit normals never reach it), which
+ * bounds the weights for the sums' products (tgi_denoise_pixel). */
 static tg_real normal_weight(tg_real d)
 {
     d = (d + tg_abs(d)) / 2;
+#if TG_FIXED
+    d = tg_min(d, 2 * TG_ONE);
+#endif
     d = weight_mul(d, d); d = weight_mul(d, d); d = weight_mul(d, d);   /* (n_i . n_j)^8 */
     return d;
 }
+#endif
 
 /* Pixel (xx, yy) of g decoded into entry j of the walk; has_bent, has_near:
  * what tgi_gr_get_kept reads of r. */
@@ -67,6 +85,34 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
     v[4] = e.x; v[5] = e.y; v[6] = e.z;
 }
 
+#if Q16_WIDE
+/* tap_weights below in Q16.16, giving the same sums: the same integers for
+ * every weight that is positive, 0 for those it gives <= 0, which the sums
+ * skip alike.  Where the weight is kept, dz < ztol, so ztol > 0, inv_ztol > 0
+ * and dz / ztol in [0, 1 + a rounding]; 1 - dz / ztol is clamped at 0 (a
+ * negative one gives a weight <= 0).  Every factor is then non-negative:
+ * the spatial weight <= 1 and the dot clamped at 2 (normal_weight), so the
+ * weight <= 2^8 (2^24 in Q16.16).  The dot's rounding: tgi_shr_round of a
+ * sum s <= 0 is <= 0 (clamped to 0), of s > 0 it is mul_pos's; the normals'
+ * components are within [-1, 1], so |s| < 2^34.  Only the 25 entries of the
+ * window. */
+static void tap_weights(const tgi_denoise_walk *k, const tg_real *spatial, tg_real zi, tg_vec3 ni, tg_real ztol,
+                        tg_real inv_ztol, tg_real *wt)
+{
+    int j;
+    for (j = 0; j < 5 * 5; j++) {
+        tg_real dz = tg_abs(k->z[j] - zi);   /* depths are never negative: no overflow */
+        int64_t omt = TG_ONE - (int64_t)mul_pos((uint64_t)dz, (uint64_t)inv_ztol);   /* 1 - dz / ztol */
+        int64_t s = (int64_t)ni.x * k->nx[j] + (int64_t)ni.y * k->ny[j] + (int64_t)ni.z * k->nz[j];
+        uint64_t d = s > 0 ? ((uint64_t)s + 32768u) >> 16 : 0, w;
+        d = d < 2 * TG_ONE ? d : 2 * TG_ONE;
+        omt = dz < ztol && omt > 0 ? omt : 0;
+        w = mul_pos((uint64_t)spatial[j], (uint64_t)omt);
+        d = mul_pos(d, d); d = mul_pos(d, d); d = mul_pos(d, d);   /* max(0, n_i . n_j)^8 */
+        wt[j] = (tg_real)mul_pos(w, d);
+    }
+}
+#else
 /* The weight of every entry of the walk for the centre (depth zi, normal
  * ni): the 2-D tap weight times depth and normal awareness; 0 for a depth
  * step of tol zi or more, so for sky (depth 0).  No branch, so that the loop
@@ -90,6 +136,20 @@ static void tap_weights(const tgi_denoise_walk *k, const tg_real *spatial, tg_re
     for (j = 0; j < TGI_DENOISE_TAPS; j++) wt[j] *= kept[j];
 }
 
+#endif
+
+/* A value's filtered result: its sum over the weights' sum ws > 0 (see
+ * tgi_denoise_pixel); in Q16.16 the sum is Q32, rounded half away from zero
+ * as tg_div rounds. */
+static tg_real average(tgi_wide sum, tgi_wide ws)
+{
+#if TG_FIXED
+    return tgi_sat64((sum >= 0 ? sum + ws / 2 : sum - ws / 2) / ws);
+#else
+    return tg_div(sum, ws);
+#endif
+}
+
 void tgi_denoise_walk_start(tgi_denoise_walk *k)
 {
     memset(k, 0, sizeof *k);
@@ -104,18 +164,19 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     int w = g->width, h = g->height, xx, yy, c, slot[5], has_bent = !TG_NO_BENT_NORMALS && tgi_gr_has_bent(r), has_near = !TG_NO_COLOR && tgi_gr_has_near(r);
     int xa = x < 2 ? 0 : x - 2, xb = x + 2 >= w ? w - 1 : x + 2;
     int ya = y < 2 ? 0 : y - 2, yb = y + 2 >= h ? h - 1 : y + 2;
-    tg_real zi, ztol, inv_ztol, ws, wt[TGI_DENOISE_TAPS];
-    /* The sums in tgi_wide (core/real.h), unsaturated: every weight is in
-     * (0, 1] and there are at most 25, so wsum <= 9, ao <= 9 and |bent| <= 9
-     * never saturate; the near field is never negative (RGB9E5; the kernel's
-     * gathered sums), so saturating after the last tap gives what a
-     * saturating add after each tap gives.  In the order of the taps (rows,
+    tg_real zi, ztol, inv_ztol, wt[TGI_DENOISE_TAPS];
+    /* The sums in tgi_wide (core/real.h), in the order of the taps (rows,
      * then columns), each of the walk's values its own sum, then the
-     * weights' (sum[7]).  A build with TG_NO_COLOR (tinygi.h "FEATURE
-     * SWITCHES") has no near field, one with TG_NO_BENT_NORMALS no bent
-     * normal: their values are 0 and their sums not used. */
-    tgi_wide sum[TGI_DENOISE_VALUES + 1];
-    tg_vec3 ni, bent, near;
+     * weights' (sum[7]); the filtered value is a sum over the weights' sum
+     * (average).  In float the products tgi_wide_mul's; in Q16.16 exact,
+     * Q32, with one rounding in the division: |value| < 2^31 and 0 < weight
+     * <= 2^24 (normal_weight), so a product < 2^55 and 25 of them < 2^60,
+     * and the weighted average of values in the range stays in it.  A build
+     * with TG_NO_COLOR (tinygi.h "FEATURE SWITCHES") has no near field, one
+     * with TG_NO_BENT_NORMALS no bent normal: their values are 0 and their
+     * sums not used. */
+    tgi_wide sum[TGI_DENOISE_VALUES + 1], ws;
+    tg_vec3 ni;
     tgi_gr_value v;
     if (tgi_gv_is_sky(g, i)) return tgi_gr_get_kept(r, i);
     /* the window's columns decoded once: those of the last pixel are kept */
@@ -139,19 +200,24 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
             if (wj <= 0) continue;
             /* written out: straight-line code the compiler keeps in registers
              * (Q16.16) or turns into vector operations (float) */
+#if TG_FIXED
+            sum[0] += (int64_t)tv[0] * wj; sum[1] += (int64_t)tv[1] * wj;
+            sum[2] += (int64_t)tv[2] * wj; sum[3] += (int64_t)tv[3] * wj;
+            sum[4] += (int64_t)tv[4] * wj; sum[5] += (int64_t)tv[5] * wj;
+            sum[6] += (int64_t)tv[6] * wj; sum[7] += wj;   /* the weights' sum */
+#else
             sum[0] += tgi_wide_mul(tv[0], wj); sum[1] += tgi_wide_mul(tv[1], wj);
             sum[2] += tgi_wide_mul(tv[2], wj); sum[3] += tgi_wide_mul(tv[3], wj);
             sum[4] += tgi_wide_mul(tv[4], wj); sum[5] += tgi_wide_mul(tv[5], wj);
             sum[6] += tgi_wide_mul(tv[6], wj); sum[7] += wj;   /* the weights' sum */
+#endif
         }
-    ws = tgi_wide_real(sum[TGI_DENOISE_VALUES]);
+    ws = sum[TGI_DENOISE_VALUES];
     if (ws <= 0) return tgi_gr_get_kept(r, i);   /* the centre always weighs 1: cannot happen */
-    bent = tg_v3(tgi_wide_real(sum[1]), tgi_wide_real(sum[2]), tgi_wide_real(sum[3]));
-    near = tg_v3(tgi_wide_real(sum[4]), tgi_wide_real(sum[5]), tgi_wide_real(sum[6]));
-    v.ao = tg_saturate(tg_div(tgi_wide_real(sum[0]), ws));
-    v.bent = has_bent ? tgi_v3_normalize_or(tg_v3(tg_div(bent.x, ws), tg_div(bent.y, ws), tg_div(bent.z, ws)), ni)
+    v.ao = tg_saturate(average(sum[0], ws));
+    v.bent = has_bent ? tgi_v3_normalize_or(tg_v3(average(sum[1], ws), average(sum[2], ws), average(sum[3], ws)), ni)
                       : tg_v3(0, 0, 0);
-    v.near = has_near ? tg_v3(tg_div(near.x, ws), tg_div(near.y, ws), tg_div(near.z, ws)) : tg_v3(0, 0, 0);
+    v.near = has_near ? tg_v3(average(sum[4], ws), average(sum[5], ws), average(sum[6], ws)) : tg_v3(0, 0, 0);
     return v;
 }
 

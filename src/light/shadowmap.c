@@ -11,6 +11,12 @@
 #include "shadowmap.h"
 #include "../raster/raster.h"
 
+/* Q16_WIDE: the Q16.16 paths below that compute in 64 bits without tg_mul's
+ * and tg_add's saturation tests (each states its bounds), giving the same
+ * integers as the generic code; a size build (TG_OUTLINE_HELPERS, tinygi.h)
+ * keeps the generic code, which is smaller. */
+#define Q16_WIDE (TG_FIXED && !TG_OUTLINE_HELPERS)
+
 #if !TG_NO_SHADOW_MAPS /* the whole file is left out with TG_NO_SHADOW_MAPS=1 (tinygi.h "FEATURE SWITCHES") */
 
 #define SPOT_MAX_ANGLE TG_R(1.3962634f) /* 80 degrees */
@@ -519,28 +525,69 @@ static void fetch_taps(const tgi_shadow_map *sm, const tgi_shadow_face *fc, int 
     }
 }
 
+/* A perspective tap's test num >= tg_mul(a, den) (num < 0, as
+ * prepare_perspective leaves it).  In Q16.16 without the product's rounding
+ * and saturation: for P = a den and an integer num <= -1, num >=
+ * tgi_shr_round(P, 16) exactly when P <= num 2^16 + 2^15 (P >= 0 fails both;
+ * P < 0: -num <= floor((-P + 2^15) / 2^16) iff -num 2^16 <= -P + 2^15), and
+ * saturation changes neither side (a product above the range fails both, one
+ * below it passes both). */
+static inline int lit_perspective(tg_real num, tg_real a, tg_real den)
+{
+#if Q16_WIDE
+    return (int64_t)a * den <= (int64_t)num * 65536 + 32768;
+#else
+    return num >= tg_mul(a, den);
+#endif
+}
+
 /* The common case of pcf(): a 16-bit face, the footprint inside it; the
- * codes compared as read back (the bias folded into the read-back). */
+ * codes compared as read back (the bias folded into the read-back).  In
+ * Q16.16 without the saturating adds, giving the same tests: the sums in 64
+ * bits, clamped only where tg_add's saturation could change the result (a
+ * read-back depth above TG_REAL_MAX, a den below TG_REAL_MIN: a den above
+ * TG_REAL_MAX gives den_c either way; an ortho depth below TG_REAL_MIN passes
+ * either way); row_lit, at most 4 weights in [0, 1], never saturates. */
 static tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *q, int i0, int j0, int taps,
                             const uint16_t *depth, const tg_real *wx, const tg_real *wy,
                             const tg_real *dx, const tg_real *dy, int perspective)
 {
     const uint16_t *row = depth + fc->offset + (size_t)j0 * (size_t)fc->size + (size_t)i0;
     tg_real lit = 0, lo_bias = tg_add(fc->depth_lo, q->bias);
+#if Q16_WIDE
+    int64_t lim = (int64_t)q->num * 65536 + 32768;   /* lit_perspective's bound */
+#endif
     int i, j;
     for (j = 0; j < taps; j++, row += fc->size) {
         tg_real row_lit = 0;
         if (perspective) {
             tg_real den_row = tg_add(q->den_c, dy[j]);
             for (i = 0; i < taps; i++) {
+#if Q16_WIDE
+                int64_t den = (int64_t)den_row + dx[i];
+                int64_t a = (int64_t)lo_bias + (((int64_t)fc->depth_range * row[i] + 32768) >> 16);
+                den = den < q->den_c ? den : q->den_c;
+                den = den > TG_REAL_MIN ? den : TG_REAL_MIN;
+                a = a < TG_REAL_MAX ? a : TG_REAL_MAX;   /* depth16_plus; never below lo_bias >= TG_REAL_MIN */
+                row_lit += a * den <= lim ? wx[i] : 0;
+#else
                 tg_real den = tg_min(tg_add(den_row, dx[i]), q->den_c);
-                if (q->num >= tg_mul(depth16_plus(fc, row[i], lo_bias), den)) row_lit = tg_add(row_lit, wx[i]);
+                if (lit_perspective(q->num, depth16_plus(fc, row[i], lo_bias), den)) row_lit = tg_add(row_lit, wx[i]);
+#endif
             }
         } else {                            /* base + min(dx + dy, 0) <= stored, as two tests */
             tg_real base_row = tg_add(q->base, dy[j]);
             for (i = 0; i < taps; i++) {
+#if Q16_WIDE
+                int64_t stored = (int64_t)fc->depth_lo + (((int64_t)fc->depth_range * row[i] + 32768) >> 16);
+                int64_t b = (int64_t)base_row + dx[i];
+                stored = stored < TG_REAL_MAX ? stored : TG_REAL_MAX;
+                b = b < TG_REAL_MAX ? b : TG_REAL_MAX;
+                row_lit += b <= stored || q->base <= stored ? wx[i] : 0;
+#else
                 tg_real stored = depth16(fc, row[i]);
                 if (tg_add(base_row, dx[i]) <= stored || q->base <= stored) row_lit = tg_add(row_lit, wx[i]);
+#endif
             }
         }
         lit = tg_add(lit, tg_mul(row_lit, wy[j]));
@@ -592,7 +639,7 @@ static tg_real pcf(const tgi_shadow_map *sm, const lookup *q)
             tg_real den_row = tg_add(q->den_c, dy[j]);
             for (i = 0; i < taps; i++) {
                 tg_real den = tg_min(tg_add(den_row, dx[i]), q->den_c);
-                if (q->num >= tg_mul(tg_add(st[j][i], q->bias), den)) row_lit = tg_add(row_lit, wx[i]);
+                if (lit_perspective(q->num, tg_add(st[j][i], q->bias), den)) row_lit = tg_add(row_lit, wx[i]);
             }
         } else {                            /* base + min(dx + dy, 0) <= stored, as two tests */
             tg_real base_row = tg_add(q->base, dy[j]);
