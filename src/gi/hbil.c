@@ -40,9 +40,11 @@
 #if defined(__GNUC__)
 #define HBIL_COLD __attribute__((noinline, cold))
 #define HBIL_NOINLINE __attribute__((noinline))
+#define HBIL_INLINE inline __attribute__((always_inline))
 #else
 #define HBIL_COLD
 #define HBIL_NOINLINE
+#define HBIL_INLINE inline
 #endif
 
 /* Whether the kernel writes bent normals and cone apertures: never in a
@@ -345,14 +347,30 @@ HBIL_COLD static tg_real sample_depth_edge(const hbil_ctx *c, const tgi_gview *g
 /* a value past which f|f| is not formed (Q16.16 times |n| < 2^11: |f| < 2^28 for |w_i| < 2) */
 #define HBIL_FACING_MAX ((int64_t)1 << 30)
 #endif
-static tg_real rejection_weight(const hbil_ctx *c, const tgi_gview *g, int si, tg_vec3 dir)
+/* t from the sender's unit normal ns (the ramp; HBIL sec. 3.4) */
+static tg_real rejection_ramp(const hbil_ctx *c, tg_vec3 ns, tg_vec3 dir)
 {
     const tgi_view *v = c->v;
-    tg_vec3 wi;
     tg_real t;
-#if !TG_WIDE_STORAGE
+    /* unit vectors: the camera's axes and dir (|.| <= 1, small_mul) */
+    tg_vec3 wi = tg_v3(small_add(small_add(small_mul(v->right.x, dir.x), small_mul(v->up.x, dir.y)), small_mul(v->forward.x, dir.z)),
+                       small_add(small_add(small_mul(v->right.y, dir.x), small_mul(v->up.y, dir.y)), small_mul(v->forward.y, dir.z)),
+                       small_add(small_add(small_mul(v->right.z, dir.x), small_mul(v->up.z, dir.y)), small_mul(v->forward.z, dir.z)));
+    t = tg_neg(tgi_v3_dot(ns, wi));
+    /* outside the ramp without the call (tg_smoothstep gives 0 and 1 there) */
+    if (c->rejection_b > c->rejection_a)
+        return t <= c->rejection_a ? 0 : t >= c->rejection_b ? TG_ONE : tg_smoothstep(c->rejection_a, c->rejection_b, t);
+    return tg_smoothstep(c->rejection_a, c->rejection_b, t);
+}
+
+static tg_real rejection_weight(const hbil_ctx *c, const tgi_gview *g, int si, tg_vec3 dir)
+{
+#if TG_WIDE_STORAGE
+    return rejection_ramp(c, tgi_gv_normal(g, si), dir);
+#else
+    const tgi_oct_dir n = tgi_gv_normal_dir(g, si);
     if (c->reject_fast) {
-        const tgi_oct_dir n = tgi_gv_normal_dir(g, si);
+        const tgi_view *v = c->v;
         const int32_t n2 = n.x * n.x + n.y * n.y + n.z * n.z;      /* |n|^2 <= q^2 < 2^22 */
 #if TG_FIXED
         /* w_i unrounded, Q32 (|camera axis| <= 1: each product < 2^47 for
@@ -375,16 +393,21 @@ static tg_real rejection_weight(const hbil_ctx *c, const tgi_gview *g, int si, t
         if (ff >= c->reject_hi2 * (float)n2) return TG_ONE;
 #endif
     }
+#if TG_OUTLINE_HELPERS
+    return rejection_ramp(c, tgi_gv_normal(g, si), dir);   /* the one copy of the unpack when compiling for size */
+#else
+    return rejection_ramp(c, tgi_oct_unit(n), dir);          /* tgi_gv_normal(g, si) without decoding it again */
 #endif
-    /* unit vectors: the camera's axes and dir (|.| <= 1, small_mul) */
-    wi = tg_v3(small_add(small_add(small_mul(v->right.x, dir.x), small_mul(v->up.x, dir.y)), small_mul(v->forward.x, dir.z)),
-               small_add(small_add(small_mul(v->right.y, dir.x), small_mul(v->up.y, dir.y)), small_mul(v->forward.y, dir.z)),
-               small_add(small_add(small_mul(v->right.z, dir.x), small_mul(v->up.z, dir.y)), small_mul(v->forward.z, dir.z)));
-    t = tg_neg(tgi_v3_dot(tgi_gv_normal(g, si), wi));
-    /* outside the ramp without the call (tg_smoothstep gives 0 and 1 there) */
-    if (c->rejection_b > c->rejection_a)
-        return t <= c->rejection_a ? 0 : t >= c->rejection_b ? TG_ONE : tg_smoothstep(c->rejection_a, c->rejection_b, t);
-    return tg_smoothstep(c->rejection_a, c->rejection_b, t);
+#endif
+}
+
+/* L_old + (L - L_old) t, as tg_lerp, for t in [0, 1] (rejection_weight):
+ * the product is at most |L - L_old|, so it does not saturate (small_mul),
+ * and at t = 1 it is L - L_old itself. */
+static HBIL_INLINE tg_real radiance_lerp(tg_real a, tg_real b, tg_real t)
+{
+    const tg_real d = tg_sub(b, a);
+    return tg_add(a, t == TG_ONE ? d : small_mul(d, t));
 }
 
 /* A raised horizon: gather L(x') over the band it closes (eq. 18-19, sec.
@@ -405,9 +428,9 @@ HBIL_NOINLINE static void gather_rise(const hbil_ctx *c, const hbil_slice *sl, h
         tg_real t = rejection_weight(c, g, si, dir);
         if (t != 0) {   /* lerp(L_old, L(x'), 0) is L_old: the sender's radiance is not read */
             tg_vec3 l = tgi_rgb_get(rad, si);
-            sd->lr = tg_lerp(sd->lr, l.x, t);                    /* L_new = lerp(L_old, L(x'), t) */
-            sd->lg = tg_lerp(sd->lg, l.y, t);
-            sd->lb = tg_lerp(sd->lb, l.z, t);
+            sd->lr = radiance_lerp(sd->lr, l.x, t);              /* L_new = lerp(L_old, L(x'), t) */
+            sd->lg = radiance_lerp(sd->lg, l.y, t);
+            sd->lb = radiance_lerp(sd->lb, l.z, t);
         }
     }
     sd->er = tg_add(sd->er, tg_mul(sd->lr, de));

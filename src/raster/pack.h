@@ -166,12 +166,10 @@ static inline tgi_oct_dir tgi_oct_fold(uint32_t w, int bits)
     return d;
 }
 
-/* Unit vector of two `bits`-bit octahedral coordinates: the fold
- * (tgi_oct_fold) and the lengths are integers; only the final
- * normalisation is in the number type. */
-static inline tg_vec3 tgi_oct_unpack_inline(uint32_t w, int bits)
+/* The unit vector of an octahedral direction (tgi_oct_fold): the lengths
+ * are integers; only the final normalisation is in the number type. */
+static inline tg_vec3 tgi_oct_unit(tgi_oct_dir d)
 {
-    tgi_oct_dir d = tgi_oct_fold(w, bits);
     int32_t x = d.x, y = d.y, z = d.z;
     tg_vec3 n;
 #if TG_FIXED
@@ -197,6 +195,9 @@ static inline tg_vec3 tgi_oct_unpack_inline(uint32_t w, int bits)
 #endif
     return n;
 }
+
+/* Unit vector of two `bits`-bit octahedral coordinates. */
+static inline tg_vec3 tgi_oct_unpack_inline(uint32_t w, int bits) { return tgi_oct_unit(tgi_oct_fold(w, bits)); }
 
 /* ---- RGB9E5: shared-exponent radiance ---- */
 #define TGI_RGB9E5_INVALID 0xF8000000u    /* exponent 31, mantissas 0: "no value" */
