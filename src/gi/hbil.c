@@ -381,16 +381,16 @@ static tg_real rejection_weight(const hbil_ctx *c, const tgi_gview *g, int si, t
         const int64_t f = -((n.x * wx + n.y * wy + n.z * wz) / 65536);
         if (f < HBIL_FACING_MAX && f > -HBIL_FACING_MAX) {
             const int64_t ff = f < 0 ? -f * f : f * f;             /* < 2^60; x|x| |n|^2 < 2^34 2^22 */
+            if (ff >= c->reject_hi2 * n2) return TG_ONE;         /* the common case first */
             if (ff <= c->reject_lo2 * n2) return 0;
-            if (ff >= c->reject_hi2 * n2) return TG_ONE;
         }
 #else
         const float f = -((float)n.x * (v->right.x * dir.x + v->up.x * dir.y + v->forward.x * dir.z)
                           + (float)n.y * (v->right.y * dir.x + v->up.y * dir.y + v->forward.y * dir.z)
                           + (float)n.z * (v->right.z * dir.x + v->up.z * dir.y + v->forward.z * dir.z));
         const float ff = f * (f < 0.0f ? -f : f);
-        if (ff <= c->reject_lo2 * (float)n2) return 0;
         if (ff >= c->reject_hi2 * (float)n2) return TG_ONE;
+        if (ff <= c->reject_lo2 * (float)n2) return 0;
 #endif
     }
 #if TG_OUTLINE_HELPERS
