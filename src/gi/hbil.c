@@ -331,23 +331,15 @@ HBIL_COLD static tg_real sample_depth_edge(const hbil_ctx *c, const tgi_gview *g
     return tg_mul(zn, ratio);
 }
 
-/* HBIL sec. 3.4's weight t = smoothstep(a, b, -n_s.w_i) of the sender, pixel
- * si of g, seen along dir (view space; w_i is dir in world space).  The
- * sender's normal n_s is stored as an octahedral direction n (tgi_gv_normal_dir)
- * and n_s = n / |n|: outside the ramp, where t is 0 or 1, the sign of
- * f - x |n| tells, for f = -n.w_i and x the ramp's end, without the
- * normalisation: f|f| against x|x| |n|^2 (reject_lo2, reject_hi2; |n|^2 <
- * 2^22 is exact in both types).  The ends are moved out by
- * HBIL_REJECT_MARGIN, far above the error of the t computed with n_s
- * (below 2e-4 in Q16.16, with the normal's quantisation and the roundings
- * of w_i, and 1e-5 in float), so the tests answer only where that t is
- * beyond the end too: the weights are the ones computed with n_s. */
+/* The margin of rejection_weight's tests (below), and in Q16.16 the value of
+ * f past which f|f| is not formed (|f| < 2^28 for |n| < 2^11, |w_i| < 2). */
 #define HBIL_REJECT_MARGIN TG_R(0.0009765625f)   /* 2^-10 */
 #if TG_FIXED
-/* a value past which f|f| is not formed (Q16.16 times |n| < 2^11: |f| < 2^28 for |w_i| < 2) */
 #define HBIL_FACING_MAX ((int64_t)1 << 30)
 #endif
-/* t from the sender's unit normal ns (the ramp; HBIL sec. 3.4) */
+
+/* HBIL sec. 3.4's weight t = smoothstep(a, b, -n_s.w_i) of a sender with
+ * the unit normal n_s seen along dir (view space; w_i is dir in world space). */
 static tg_real rejection_ramp(const hbil_ctx *c, tg_vec3 ns, tg_vec3 dir)
 {
     const tgi_view *v = c->v;
@@ -363,12 +355,37 @@ static tg_real rejection_ramp(const hbil_ctx *c, tg_vec3 ns, tg_vec3 dir)
     return tg_smoothstep(c->rejection_a, c->rejection_b, t);
 }
 
-static tg_real rejection_weight(const hbil_ctx *c, const tgi_gview *g, int si, tg_vec3 dir)
+#if !TG_WIDE_STORAGE
+#if !TG_NO_COLOR
+/* The ramp's ends for rejection_weight's tests (ctx_init); ends within
+ * [-2, 2]: x|x| |n|^2 stays below 2^56 in Q16.16. */
+static void rejection_init(hbil_ctx *c, tg_real a, tg_real b)
 {
-#if TG_WIDE_STORAGE
-    return rejection_ramp(c, tgi_gv_normal(g, si), dir);
+    const tg_real lo = tg_sub(a, HBIL_REJECT_MARGIN), hi = tg_add(b, HBIL_REJECT_MARGIN);
+    c->rejection_a = a;
+    c->rejection_b = b;
+    c->reject_fast = b > a && lo >= TG_R(-2.0f) && hi <= TG_R(2.0f);
+    c->reject_lo2 = (tgi_wide)lo * (lo < 0 ? -(tgi_wide)lo : lo);
+    c->reject_hi2 = (tgi_wide)hi * (hi < 0 ? -(tgi_wide)hi : hi);
+}
+#endif
+
+/* rejection_ramp's t for a sender whose normal is stored as the octahedral
+ * direction n (tgi_gv_normal_dir), n_s = n / |n|.  Outside the ramp, where t
+ * is 0 or 1, the sign of f - x |n| tells, for f = -n.w_i and x the ramp's
+ * end, without the normalisation: f|f| against x|x| |n|^2 (reject_lo2,
+ * reject_hi2; |n|^2 < 2^22 is exact in both types).  The ends are moved out
+ * by HBIL_REJECT_MARGIN, far above the error of the t computed with n_s
+ * (below 2e-4 in Q16.16, with the normal's quantisation and the roundings of
+ * w_i, and 1e-5 in float), so the tests answer only where that t is beyond
+ * the end too: the weights are rejection_ramp's (tests/test_hbil.c,
+ * rejection_tests_keep_the_weights). */
+#if TG_OUTLINE_HELPERS
+static tg_real rejection_weight(const hbil_ctx *c, tgi_oct_dir n, tg_vec3 dir)
 #else
-    const tgi_oct_dir n = tgi_gv_normal_dir(g, si);
+static HBIL_INLINE tg_real rejection_weight(const hbil_ctx *c, tgi_oct_dir n, tg_vec3 dir)   /* in gather_rise */
+#endif
+{
     if (c->reject_fast) {
         const tgi_view *v = c->v;
         const int32_t n2 = n.x * n.x + n.y * n.y + n.z * n.z;      /* |n|^2 <= q^2 < 2^22 */
@@ -393,13 +410,21 @@ static tg_real rejection_weight(const hbil_ctx *c, const tgi_gview *g, int si, t
         if (ff <= c->reject_lo2 * (float)n2) return 0;
 #endif
     }
-#if TG_OUTLINE_HELPERS
-    return rejection_ramp(c, tgi_gv_normal(g, si), dir);   /* the one copy of the unpack when compiling for size */
-#else
-    return rejection_ramp(c, tgi_oct_unit(n), dir);          /* tgi_gv_normal(g, si) without decoding it again */
-#endif
-#endif
+    return rejection_ramp(c, tgi_oct_unit(n), dir);   /* tgi_gv_normal's n_s, the word decoded once */
 }
+
+#if !TG_NO_COLOR
+tg_real tgi_hbil_rejection_weight(const tgi_view *v, tg_real a, tg_real b, tgi_oct_dir n, tg_vec3 dir, int tests)
+{
+    hbil_ctx c;
+    memset(&c, 0, sizeof c);
+    c.v = v;
+    rejection_init(&c, a, b);
+    if (!tests) c.reject_fast = 0;
+    return rejection_weight(&c, n, dir);
+}
+#endif
+#endif /* !TG_WIDE_STORAGE */
 
 /* L_old + (L - L_old) t, as tg_lerp, for t in [0, 1] (rejection_weight):
  * the product is at most |L - L_old|, so it does not saturate (small_mul),
@@ -425,7 +450,11 @@ HBIL_NOINLINE static void gather_rise(const hbil_ctx *c, const hbil_slice *sl, h
     sd->p_old = p_new;
     sd->q = q_new;
     if (rad) {
-        tg_real t = rejection_weight(c, g, si, dir);
+#if TG_WIDE_STORAGE
+        tg_real t = rejection_ramp(c, tgi_gv_normal(g, si), dir);
+#else
+        tg_real t = rejection_weight(c, tgi_gv_normal_dir(g, si), dir);
+#endif
         if (t != 0) {   /* lerp(L_old, L(x'), 0) is L_old: the sender's radiance is not read */
             tg_vec3 l = tgi_rgb_get(rad, si);
             sd->lr = radiance_lerp(sd->lr, l.x, t);              /* L_new = lerp(L_old, L(x'), t) */
@@ -983,15 +1012,13 @@ static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, 
     c->inv_step = tg_ratio(1, c->step);
     c->pi_over_s = tg_div(TG_PI, tg_from_int(c->slices));
     c->near_field = tgi_rgb_present(radiance) && tgi_gr_has_near(out);
+#if !TG_WIDE_STORAGE && !TG_NO_COLOR
+    rejection_init(c, p->rejection_a, p->rejection_b);
+#else
     c->rejection_a = p->rejection_a;
     c->rejection_b = p->rejection_b;
-    {
-        /* ends within [-2, 2]: x|x| |n|^2 stays below 2^56 in Q16.16 */
-        const tg_real lo = tg_sub(c->rejection_a, HBIL_REJECT_MARGIN), hi = tg_add(c->rejection_b, HBIL_REJECT_MARGIN);
-        c->reject_fast = c->rejection_b > c->rejection_a && lo >= TG_R(-2.0f) && hi <= TG_R(2.0f);
-        c->reject_lo2 = (tgi_wide)lo * (lo < 0 ? -(tgi_wide)lo : lo);
-        c->reject_hi2 = (tgi_wide)hi * (hi < 0 ? -(tgi_wide)hi : hi);
-    }
+    c->reject_fast = 0;
+#endif
     c->fine = 0;
 #if !TG_NO_FINE_HORIZON
     c->fine_rad = 0;

@@ -168,7 +168,7 @@ static inline tgi_oct_dir tgi_oct_fold(uint32_t w, int bits)
 
 /* The unit vector of an octahedral direction (tgi_oct_fold): the lengths
  * are integers; only the final normalisation is in the number type. */
-static inline tg_vec3 tgi_oct_unit(tgi_oct_dir d)
+static inline tg_vec3 tgi_oct_unit_inline(tgi_oct_dir d)
 {
     int32_t x = d.x, y = d.y, z = d.z;
     tg_vec3 n;
@@ -197,7 +197,7 @@ static inline tg_vec3 tgi_oct_unit(tgi_oct_dir d)
 }
 
 /* Unit vector of two `bits`-bit octahedral coordinates. */
-static inline tg_vec3 tgi_oct_unpack_inline(uint32_t w, int bits) { return tgi_oct_unit(tgi_oct_fold(w, bits)); }
+static inline tg_vec3 tgi_oct_unpack_inline(uint32_t w, int bits) { return tgi_oct_unit_inline(tgi_oct_fold(w, bits)); }
 
 /* ---- RGB9E5: shared-exponent radiance ---- */
 #define TGI_RGB9E5_INVALID 0xF8000000u    /* exponent 31, mantissas 0: "no value" */
@@ -269,10 +269,12 @@ static inline tg_vec3 tgi_rgb9e5_unpack_inline(uint32_t w)
  * on at -Os) one copy in pack.c instead of one in each file that calls
  * them: the same code, the same bits. */
 #if TG_OUTLINE_HELPERS
+tg_vec3 tgi_oct_unit(tgi_oct_dir d);
 tg_vec3 tgi_oct_unpack(uint32_t w, int bits);
 uint32_t tgi_rgb9e5_pack(tg_vec3 c);
 tg_vec3 tgi_rgb9e5_unpack(uint32_t w);
 #else
+static inline tg_vec3 tgi_oct_unit(tgi_oct_dir d) { return tgi_oct_unit_inline(d); }
 static inline tg_vec3 tgi_oct_unpack(uint32_t w, int bits) { return tgi_oct_unpack_inline(w, bits); }
 static inline uint32_t tgi_rgb9e5_pack(tg_vec3 c) { return tgi_rgb9e5_pack_inline(c); }
 static inline tg_vec3 tgi_rgb9e5_unpack(uint32_t w) { return tgi_rgb9e5_unpack_inline(w); }
