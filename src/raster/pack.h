@@ -152,7 +152,14 @@ static inline tg_real tgi_oct_signed(uint64_t m, int32_t c) { return c < 0 ? -(t
  * normalisation: integers (the same in both builds) with |x| + |y| + |z| =
  * q = 2^bits - 2, so q^2 / 3 <= |.|^2 <= q^2. */
 typedef struct tgi_oct_dir { int32_t x, y, z; } tgi_oct_dir;
-static inline tgi_oct_dir tgi_oct_fold(uint32_t w, int bits)
+/* (the two parts of tgi_oct_unpack_inline always inline: its callers
+ * compile as they did when it was one function) */
+#if defined(__GNUC__)
+#define TGI_OCT_INLINE inline __attribute__((always_inline))
+#else
+#define TGI_OCT_INLINE inline
+#endif
+static TGI_OCT_INLINE tgi_oct_dir tgi_oct_fold(uint32_t w, int bits)
 {
     int32_t q = (int32_t)((1u << bits) - 2), mask = (int32_t)((1u << bits) - 1);
     int32_t x = 2 * (int32_t)(w & (uint32_t)mask) - q, y = 2 * (int32_t)((w >> bits) & (uint32_t)mask) - q;
@@ -168,7 +175,7 @@ static inline tgi_oct_dir tgi_oct_fold(uint32_t w, int bits)
 
 /* The unit vector of an octahedral direction (tgi_oct_fold): the lengths
  * are integers; only the final normalisation is in the number type. */
-static inline tg_vec3 tgi_oct_unit_inline(tgi_oct_dir d)
+static TGI_OCT_INLINE tg_vec3 tgi_oct_unit_inline(tgi_oct_dir d)
 {
     int32_t x = d.x, y = d.y, z = d.z;
     tg_vec3 n;
