@@ -615,6 +615,71 @@ TEST(hbil_slice_q_accuracy)
     CHECK(worst <= (TG_FIXED ? 4.0 / 65536.0 : 1e-6), "Q error %g at %g", worst, at);
 }
 
+#if !TG_WIDE_STORAGE && !TG_NO_COLOR
+/* The near field's weight t = smoothstep(a, b, -n_s.w_i) (HBIL sec. 3.4):
+ * the kernel's tests that answer t = 0 or 1 without normalising the
+ * sender's stored normal (gi/hbil.c rejection_weight) give the weights of
+ * the unit normal bit for bit.  The 8-bit and the 11-bit octahedral words
+ * at a stride, seen from a tilted camera along directions whose
+ * -n_s.w_i lies at the ramp's ends, 2^-20 .. 2^-9 (the tests' margin is
+ * 2^-10) and 0.01 to either side of them, and at random; the paper's ramp
+ * (0, 0.2) and one 2^-12 wide off zero, steep enough that a Q16.16 step
+ * changes t.  Without the margin (HBIL_REJECT_MARGIN 0) the weights near
+ * the ends differ in both builds. */
+TEST(rejection_tests_keep_the_weights)
+{
+    static const double offsets[] = { 0, 1.0 / 1048576, 1.0 / 65536, 1.0 / 4096, 1.0 / 1024, 1.0 / 512, 0.01 };
+    static const double ramps[2][2] = { { 0.0, 0.2 }, { 0.3, 0.3 + 1.0 / 4096 } };
+    static const int widths[2] = { 8, 11 };
+    tgi_view view;
+    double r[3], u[3], f[3];
+    unsigned seed = 12345u;
+    long count = 0, bad = 0, at_ends = 0;
+    int k, ramp;
+    tgi_view_make(&view, tv(1.0, 2.0, 3.0), tv(-0.3, 0.1, -0.7), tv(0.1, 1.0, 0.2), tg_from_float((float)(60 * DEG)),
+                  TG_R(0.05f), TG_R(1000.0f), 64, 48);
+    vd(view.right, r); vd(view.up, u); vd(view.forward, f);
+    for (ramp = 0; ramp < 2; ramp++) {
+        const tg_real a = tg_from_float((float)ramps[ramp][0]), b = tg_from_float((float)ramps[ramp][1]);
+        for (k = 0; k < 2; k++) {
+            const int bits = widths[k];
+            const uint32_t words = 1u << (2 * bits), stride = bits > 8 ? 509u : 3u;
+            uint32_t w;
+            for (w = 0; w < words; w += stride) {
+                tgi_oct_dir n = tgi_oct_fold(w, bits);
+                double ns[3] = { n.x, n.y, n.z }, e[3] = { 1, 0, 0 }, p[3], q[3];
+                int end, o, sign;
+                norm3(ns);
+                if (fabs(ns[0]) > 0.5) { e[0] = 0; e[1] = 1; }
+                cross3(ns, e, p); norm3(p);                       /* p, q: perpendicular to n_s */
+                cross3(ns, p, q);
+                for (end = 0; end < 3; end++)
+                    for (o = 0; o < (int)(sizeof offsets / sizeof offsets[0]); o++)
+                        for (sign = -1; sign <= 1; sign += 2) {
+                            /* w_i with -n_s.w_i = tt, then dir = w_i in view space */
+                            double tt = end < 2 ? ramps[ramp][end] + sign * offsets[o] : 2 * check_rnd(&seed) - 1;
+                            double phi = 2 * CHECK_PI * check_rnd(&seed), s = sqrt(1 - tt * tt), wi[3];
+                            tg_vec3 dir;
+                            tg_real t1, t0;
+                            int j;
+                            for (j = 0; j < 3; j++) wi[j] = -tt * ns[j] + s * (cos(phi) * p[j] + sin(phi) * q[j]);
+                            dir = tv(dot3(wi, r), dot3(wi, u), dot3(wi, f));
+                            t1 = tgi_hbil_rejection_weight(&view, a, b, n, dir, 1);
+                            t0 = tgi_hbil_rejection_weight(&view, a, b, n, dir, 0);
+                            count++;
+                            at_ends += end < 2 && offsets[o] < 0.001;
+                            if (memcmp(&t1, &t0, sizeof t1) && bad++ < 5)
+                                fprintf(stderr, "2x%d word 0x%x, -n.w %.9f: t %.9g with the tests, %.9g without\n", bits,
+                                        (unsigned)w, tt, check_exact(t1), check_exact(t0));
+                        }
+            }
+        }
+    }
+    printf("  rejection weights: %ld directions (%ld within 2^-10 of a ramp's end), %ld differ\n", count, at_ends, bad);
+    CHECK(bad == 0 && count > 1000000, "%ld of %ld weights differ from the unit normal's", bad, count);
+}
+#endif
+
 /* Fixed and float agree: the float run writes its AO next to its binary, the
  * fixed run (tests/run.sh runs float first) reads and compares. */
 static const char *argv0 = "";
@@ -1042,6 +1107,9 @@ int main(int argc, char **argv)
     RUN(gather_radius_sized_to_the_scene);
     RUN(fixed_and_float_agree);
     RUN(hbil_slice_q_accuracy);
+#if !TG_WIDE_STORAGE && !TG_NO_COLOR
+    RUN(rejection_tests_keep_the_weights);
+#endif
     RUN(rotations_stratify_slice_angles_and_march_offsets);
     RUN(blocks_decorrelate_march_offsets);
     RUN(wall_top_sets_the_horizon_at_any_radius);

@@ -48,9 +48,11 @@
 #if defined(__GNUC__)
 #define HBIL_COLD __attribute__((noinline, cold))
 #define HBIL_NOINLINE __attribute__((noinline))
+#define HBIL_INLINE inline __attribute__((always_inline))
 #else
 #define HBIL_COLD
 #define HBIL_NOINLINE
+#define HBIL_INLINE inline
 #endif
 
 /* Whether the kernel writes bent normals and cone apertures: never in a
@@ -125,6 +127,8 @@ typedef struct hbil_ctx {
     tg_real cos_phi[HBIL_PATTERN][TG_MAX_SLICES], sin_phi[HBIL_PATTERN][TG_MAX_SLICES];
     tg_real jitter[HBIL_PATTERN];  /* step_jitter per pattern cell */
     tg_real rejection_a, rejection_b;
+    int reject_fast;            /* rejection_weight's tests without the normalisation apply */
+    tgi_wide reject_lo2, reject_hi2;  /* x|x| of the ramp's ends moved out by HBIL_REJECT_MARGIN */
     int near_field;
     const tgi_gview *fine;      /* tgi_hbil_params.fine; the sub-image is (fine_i, fine_j) in it */
     const tgi_rgb *fine_rad;    /* its radiance, or NULL */
@@ -222,7 +226,7 @@ static tg_real unit_sqrt(tg_real x)
 #endif
 }
 
-tg_real tgi_hbil_slice_q(tg_real c)
+static inline tg_real slice_q_eval(tg_real c)
 {
     const tg_real *k = slice_q_fit;
     tg_real a = tg_min(tg_abs(c), TG_ONE), p, t;
@@ -236,6 +240,7 @@ tg_real tgi_hbil_slice_q(tg_real c)
     t = small_mul(unit_sqrt(small_sub(TG_ONE, a)), p);
     return c < 0 ? small_sub(TG_HALF_PI, t) : t;
 }
+tg_real tgi_hbil_slice_q(tg_real c) { return slice_q_eval(c); }
 
 /* sin(theta)^2 / 2 and (theta - sin cos) / 2 from cos(theta) and the side
  * (|c| <= 1, so the operands are small: see small_mul); on the back side
@@ -246,7 +251,11 @@ static tg_real slice_R(tg_real c)
 }
 static tg_real slice_Q(tg_real c, int side)
 {
-    tg_real q = tgi_hbil_slice_q(c);
+#if TG_OUTLINE_HELPERS
+    tg_real q = tgi_hbil_slice_q(c);   /* one copy when compiling for size */
+#else
+    tg_real q = slice_q_eval(c);
+#endif
     return side < 0 ? tg_neg(q) : q;
 }
 static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
@@ -330,6 +339,110 @@ HBIL_COLD static tg_real sample_depth_edge(const hbil_ctx *c, const tgi_gview *g
     return tg_mul(zn, ratio);
 }
 
+/* The margin of rejection_weight's tests (below), and in Q16.16 the value of
+ * f past which f|f| is not formed (|f| < 2^28 for |n| < 2^11, |w_i| < 2). */
+#define HBIL_REJECT_MARGIN TG_R(0.0009765625f)   /* 2^-10 */
+#if TG_FIXED
+#define HBIL_FACING_MAX ((int64_t)1 << 30)
+#endif
+
+/* HBIL sec. 3.4's weight t = smoothstep(a, b, -n_s.w_i) of a sender with
+ * the unit normal n_s seen along dir (view space; w_i is dir in world space). */
+static tg_real rejection_ramp(const hbil_ctx *c, tg_vec3 ns, tg_vec3 dir)
+{
+    const tgi_view *v = c->v;
+    tg_real t;
+    /* unit vectors: the camera's axes and dir (|.| <= 1, small_mul) */
+    tg_vec3 wi = tg_v3(small_add(small_add(small_mul(v->right.x, dir.x), small_mul(v->up.x, dir.y)), small_mul(v->forward.x, dir.z)),
+                       small_add(small_add(small_mul(v->right.y, dir.x), small_mul(v->up.y, dir.y)), small_mul(v->forward.y, dir.z)),
+                       small_add(small_add(small_mul(v->right.z, dir.x), small_mul(v->up.z, dir.y)), small_mul(v->forward.z, dir.z)));
+    t = tg_neg(tgi_v3_dot(ns, wi));
+    /* outside the ramp without the call (tg_smoothstep gives 0 and 1 there) */
+    if (c->rejection_b > c->rejection_a)
+        return t <= c->rejection_a ? 0 : t >= c->rejection_b ? TG_ONE : tg_smoothstep(c->rejection_a, c->rejection_b, t);
+    return tg_smoothstep(c->rejection_a, c->rejection_b, t);
+}
+
+#if !TG_WIDE_STORAGE
+#if !TG_NO_COLOR
+/* The ramp's ends for rejection_weight's tests (ctx_init); ends within
+ * [-2, 2]: x|x| |n|^2 stays below 2^56 in Q16.16. */
+static void rejection_init(hbil_ctx *c, tg_real a, tg_real b)
+{
+    const tg_real lo = tg_sub(a, HBIL_REJECT_MARGIN), hi = tg_add(b, HBIL_REJECT_MARGIN);
+    c->rejection_a = a;
+    c->rejection_b = b;
+    c->reject_fast = b > a && lo >= TG_R(-2.0f) && hi <= TG_R(2.0f);
+    c->reject_lo2 = (tgi_wide)lo * (lo < 0 ? -(tgi_wide)lo : lo);
+    c->reject_hi2 = (tgi_wide)hi * (hi < 0 ? -(tgi_wide)hi : hi);
+}
+#endif
+
+/* rejection_ramp's t for a sender whose normal is stored as the octahedral
+ * direction n (tgi_gv_normal_dir), n_s = n / |n|.  Outside the ramp, where t
+ * is 0 or 1, the sign of f - x |n| tells, for f = -n.w_i and x the ramp's
+ * end, without the normalisation: f|f| against x|x| |n|^2 (reject_lo2,
+ * reject_hi2; |n|^2 < 2^22 is exact in both types).  The ends are moved out
+ * by HBIL_REJECT_MARGIN, far above the error of the t computed with n_s
+ * (below 2e-4 in Q16.16, with the normal's quantisation and the roundings of
+ * w_i, and 1e-5 in float), so the tests answer only where that t is beyond
+ * the end too: the weights are rejection_ramp's (tests/test_hbil.c,
+ * rejection_tests_keep_the_weights). */
+#if TG_OUTLINE_HELPERS
+static tg_real rejection_weight(const hbil_ctx *c, tgi_oct_dir n, tg_vec3 dir)
+#else
+static HBIL_INLINE tg_real rejection_weight(const hbil_ctx *c, tgi_oct_dir n, tg_vec3 dir)   /* in gather_rise */
+#endif
+{
+    if (c->reject_fast) {
+        const tgi_view *v = c->v;
+        const int32_t n2 = n.x * n.x + n.y * n.y + n.z * n.z;      /* |n|^2 <= q^2 < 2^22 */
+#if TG_FIXED
+        /* w_i unrounded, Q32 (|camera axis| <= 1: each product < 2^47 for
+         * any dir), and -n.w_i exactly (|n| < 2^11: < 2^62), to Q16.16 */
+        const int64_t wx = (int64_t)v->right.x * dir.x + (int64_t)v->up.x * dir.y + (int64_t)v->forward.x * dir.z;
+        const int64_t wy = (int64_t)v->right.y * dir.x + (int64_t)v->up.y * dir.y + (int64_t)v->forward.y * dir.z;
+        const int64_t wz = (int64_t)v->right.z * dir.x + (int64_t)v->up.z * dir.y + (int64_t)v->forward.z * dir.z;
+        const int64_t f = -((n.x * wx + n.y * wy + n.z * wz) / 65536);
+        if (f < HBIL_FACING_MAX && f > -HBIL_FACING_MAX) {
+            const int64_t ff = f < 0 ? -f * f : f * f;             /* < 2^60; x|x| |n|^2 < 2^34 2^22 */
+            if (ff >= c->reject_hi2 * n2) return TG_ONE;         /* the common case first */
+            if (ff <= c->reject_lo2 * n2) return 0;
+        }
+#else
+        const float f = -((float)n.x * (v->right.x * dir.x + v->up.x * dir.y + v->forward.x * dir.z)
+                          + (float)n.y * (v->right.y * dir.x + v->up.y * dir.y + v->forward.y * dir.z)
+                          + (float)n.z * (v->right.z * dir.x + v->up.z * dir.y + v->forward.z * dir.z));
+        const float ff = f * (f < 0.0f ? -f : f);
+        if (ff >= c->reject_hi2 * (float)n2) return TG_ONE;
+        if (ff <= c->reject_lo2 * (float)n2) return 0;
+#endif
+    }
+    return rejection_ramp(c, tgi_oct_unit(n), dir);   /* tgi_gv_normal's n_s, the word decoded once */
+}
+
+#if !TG_NO_COLOR
+tg_real tgi_hbil_rejection_weight(const tgi_view *v, tg_real a, tg_real b, tgi_oct_dir n, tg_vec3 dir, int tests)
+{
+    hbil_ctx c;
+    memset(&c, 0, sizeof c);
+    c.v = v;
+    rejection_init(&c, a, b);
+    if (!tests) c.reject_fast = 0;
+    return rejection_weight(&c, n, dir);
+}
+#endif
+#endif /* !TG_WIDE_STORAGE */
+
+/* L_old + (L - L_old) t, as tg_lerp, for t in [0, 1] (rejection_weight):
+ * the product is at most |L - L_old|, so it does not saturate (small_mul),
+ * and at t = 1 it is L - L_old itself. */
+static HBIL_INLINE tg_real radiance_lerp(tg_real a, tg_real b, tg_real t)
+{
+    const tg_real d = tg_sub(b, a);
+    return tg_add(a, t == TG_ONE ? d : small_mul(d, t));
+}
+
 /* A raised horizon: gather L(x') over the band it closes (eq. 18-19, sec.
  * 3.4).  The sender is pixel si of g, its radiance pixel si of rad; a
  * sample of the fine image without its radiance (refine_fine) passes rad
@@ -337,7 +450,6 @@ HBIL_COLD static tg_real sample_depth_edge(const hbil_ctx *c, const tgi_gview *g
 HBIL_NOINLINE static void gather_rise(const hbil_ctx *c, const hbil_slice *sl, hbil_side *sd, int side,
                         tg_real cos_new, tg_vec3 dir, const tgi_gview *g, const tgi_rgb *rad, int si)
 {
-    const tgi_view *v = c->v;
     tg_real q_new = slice_Q(cos_new, side);
     /* P(theta) = int_0^theta (n'.w_i') |sin| : the antiderivative of eq. 10
      * (|n'| <= 1, |Q| < 2, R <= 1/2, |P| < 2.5: small_mul) */
@@ -346,23 +458,16 @@ HBIL_NOINLINE static void gather_rise(const hbil_ctx *c, const hbil_slice *sl, h
     sd->p_old = p_new;
     sd->q = q_new;
     if (rad) {
-        tg_vec3 ns = tgi_gv_normal(g, si), wi, l;               /* the sender's normal */
-        tg_real t;
-        /* unit vectors: the camera's axes and dir (|.| <= 1, small_mul) */
-        wi = tg_v3(small_add(small_add(small_mul(v->right.x, dir.x), small_mul(v->up.x, dir.y)), small_mul(v->forward.x, dir.z)),
-                   small_add(small_add(small_mul(v->right.y, dir.x), small_mul(v->up.y, dir.y)), small_mul(v->forward.y, dir.z)),
-                   small_add(small_add(small_mul(v->right.z, dir.x), small_mul(v->up.z, dir.y)), small_mul(v->forward.z, dir.z)));
-        t = tg_neg(tgi_v3_dot(ns, wi));
-        /* HBIL sec. 3.4; outside the ramp without the call (tg_smoothstep gives 0 and 1 there) */
-        if (c->rejection_b > c->rejection_a)
-            t = t <= c->rejection_a ? 0 : t >= c->rejection_b ? TG_ONE : tg_smoothstep(c->rejection_a, c->rejection_b, t);
-        else
-            t = tg_smoothstep(c->rejection_a, c->rejection_b, t);
+#if TG_WIDE_STORAGE
+        tg_real t = rejection_ramp(c, tgi_gv_normal(g, si), dir);
+#else
+        tg_real t = rejection_weight(c, tgi_gv_normal_dir(g, si), dir);
+#endif
         if (t != 0) {   /* lerp(L_old, L(x'), 0) is L_old: the sender's radiance is not read */
-            l = tgi_rgb_get(rad, si);
-            sd->lr = tg_lerp(sd->lr, l.x, t);                    /* L_new = lerp(L_old, L(x'), t) */
-            sd->lg = tg_lerp(sd->lg, l.y, t);
-            sd->lb = tg_lerp(sd->lb, l.z, t);
+            tg_vec3 l = tgi_rgb_get(rad, si);
+            sd->lr = radiance_lerp(sd->lr, l.x, t);              /* L_new = lerp(L_old, L(x'), t) */
+            sd->lg = radiance_lerp(sd->lg, l.y, t);
+            sd->lb = radiance_lerp(sd->lb, l.z, t);
         }
     }
     sd->er = tg_add(sd->er, tg_mul(sd->lr, de));
@@ -925,8 +1030,13 @@ static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, 
     c->inv_step = tg_ratio(1, c->step);
     c->pi_over_s = tg_div(TG_PI, tg_from_int(c->slices));
     c->near_field = tgi_rgb_present(radiance) && tgi_gr_has_near(out);
+#if !TG_WIDE_STORAGE && !TG_NO_COLOR
+    rejection_init(c, p->rejection_a, p->rejection_b);
+#else
     c->rejection_a = p->rejection_a;
     c->rejection_b = p->rejection_b;
+    c->reject_fast = 0;
+#endif
     c->fine = 0;
 #if !TG_NO_FINE_HORIZON
     c->fine_rad = 0;

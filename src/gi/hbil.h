@@ -132,4 +132,13 @@ void tgi_hbil_interleaved_rows(const tgi_hbil_params *p, const tgi_gview *k, con
  * polynomial; error in tests/test_hbil.c). */
 tg_real tgi_hbil_slice_q(tg_real c);
 
+#if !TG_WIDE_STORAGE && !TG_NO_COLOR
+/* The near field's weight t = smoothstep(a, b, -n_s.w_i) (HBIL sec. 3.4) of
+ * a sender whose normal is the octahedral direction n (raster/pack.h), seen
+ * along the view-space unit vector dir from camera v, as the kernel
+ * computes it (`tests` 1: with its tests that skip the normalisation where
+ * t is 0 or 1; 0: always through the unit normal). */
+tg_real tgi_hbil_rejection_weight(const tgi_view *v, tg_real a, tg_real b, tgi_oct_dir n, tg_vec3 dir, int tests);
+#endif
+
 #endif

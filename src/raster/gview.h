@@ -69,6 +69,13 @@ static inline tg_vec3 tgi_gv_normal(const tgi_gview *v, size_t i)
     if (!v->store.nm) return tgi_oct_unpack(v->store.n8[i], 8);
     return tgi_oct_unpack(v->store.nm[i] & TGI_NORMAL_MASK, TGI_NORMAL_BITS);
 }
+/* The normal as its octahedral direction before the normalisation
+ * (tgi_oct_fold): tgi_gv_normal is this over its length. */
+static inline tgi_oct_dir tgi_gv_normal_dir(const tgi_gview *v, size_t i)
+{
+    if (!v->store.nm) return tgi_oct_fold(v->store.n8[i], 8);
+    return tgi_oct_fold(v->store.nm[i] & TGI_NORMAL_MASK, TGI_NORMAL_BITS);
+}
 static inline int tgi_gv_material_index(const tgi_gview *v, size_t i)
 {
     return v->store.nm ? (int)(v->store.nm[i] >> TGI_MATERIAL_SHIFT) : 0;

@@ -148,19 +148,37 @@ static inline uint32_t tgi_oct_pack(tg_vec3 m, int bits)
 static inline tg_real tgi_oct_signed(uint64_t m, int32_t c) { return c < 0 ? -(tg_real)m : (tg_real)m; }
 #endif
 
-/* Unit vector of two `bits`-bit octahedral coordinates.  The fold and the
- * lengths are integers (the same in both builds); only the final
- * normalisation is in the number type. */
-static inline tg_vec3 tgi_oct_unpack_inline(uint32_t w, int bits)
+/* The direction of two `bits`-bit octahedral coordinates before its
+ * normalisation: integers (the same in both builds) with |x| + |y| + |z| =
+ * q = 2^bits - 2, so q^2 / 3 <= |.|^2 <= q^2. */
+typedef struct tgi_oct_dir { int32_t x, y, z; } tgi_oct_dir;
+/* (the two parts of tgi_oct_unpack_inline always inline: its callers
+ * compile as they did when it was one function) */
+#if defined(__GNUC__)
+#define TGI_OCT_INLINE inline __attribute__((always_inline))
+#else
+#define TGI_OCT_INLINE inline
+#endif
+static TGI_OCT_INLINE tgi_oct_dir tgi_oct_fold(uint32_t w, int bits)
 {
     int32_t q = (int32_t)((1u << bits) - 2), mask = (int32_t)((1u << bits) - 1);
     int32_t x = 2 * (int32_t)(w & (uint32_t)mask) - q, y = 2 * (int32_t)((w >> bits) & (uint32_t)mask) - q;
     int32_t ax = x < 0 ? -x : x, ay = y < 0 ? -y : y, z = q - ax - ay;
-    tg_vec3 n;
+    tgi_oct_dir d;
     if (z < 0) {                      /* the folded lower half */
         int32_t fx = (q - ay) * (x < 0 ? -1 : 1), fy = (q - ax) * (y < 0 ? -1 : 1);
         x = fx; y = fy;
     }
+    d.x = x; d.y = y; d.z = z;
+    return d;
+}
+
+/* The unit vector of an octahedral direction (tgi_oct_fold): the lengths
+ * are integers; only the final normalisation is in the number type. */
+static TGI_OCT_INLINE tg_vec3 tgi_oct_unit_inline(tgi_oct_dir d)
+{
+    int32_t x = d.x, y = d.y, z = d.z;
+    tg_vec3 n;
 #if TG_FIXED
     {
         /* 1/|(x, y, z)| by the integer rsqrt: |x| + |y| + |z| = q, so
@@ -184,6 +202,9 @@ static inline tg_vec3 tgi_oct_unpack_inline(uint32_t w, int bits)
 #endif
     return n;
 }
+
+/* Unit vector of two `bits`-bit octahedral coordinates. */
+static inline tg_vec3 tgi_oct_unpack_inline(uint32_t w, int bits) { return tgi_oct_unit_inline(tgi_oct_fold(w, bits)); }
 
 /* ---- RGB9E5: shared-exponent radiance ---- */
 #define TGI_RGB9E5_INVALID 0xF8000000u    /* exponent 31, mantissas 0: "no value" */
@@ -255,10 +276,12 @@ static inline tg_vec3 tgi_rgb9e5_unpack_inline(uint32_t w)
  * on at -Os) one copy in pack.c instead of one in each file that calls
  * them: the same code, the same bits. */
 #if TG_OUTLINE_HELPERS
+tg_vec3 tgi_oct_unit(tgi_oct_dir d);
 tg_vec3 tgi_oct_unpack(uint32_t w, int bits);
 uint32_t tgi_rgb9e5_pack(tg_vec3 c);
 tg_vec3 tgi_rgb9e5_unpack(uint32_t w);
 #else
+static inline tg_vec3 tgi_oct_unit(tgi_oct_dir d) { return tgi_oct_unit_inline(d); }
 static inline tg_vec3 tgi_oct_unpack(uint32_t w, int bits) { return tgi_oct_unpack_inline(w, bits); }
 static inline uint32_t tgi_rgb9e5_pack(tg_vec3 c) { return tgi_rgb9e5_pack_inline(c); }
 static inline tg_vec3 tgi_rgb9e5_unpack(uint32_t w) { return tgi_rgb9e5_unpack_inline(w); }
