@@ -375,14 +375,28 @@ static int march_steps(const hbil_ctx *c, tg_real extent, int *n)
 }
 
 /* Floor of a finite value well inside the int range (the march's minor
- * coordinate): tg_to_int without its NaN and saturation tests. */
+ * coordinate): tg_to_int without its NaN and saturation tests; in Q16.16
+ * the integer part of the raw value offset by 2^31 into the unsigned
+ * range, without tg_to_int's branch on the sign. */
 static inline int floor_small(tg_real a)
 {
 #if TG_FIXED
-    return tg_to_int(a);
+    return (int)(((uint32_t)a + 0x80000000u) >> 16) - 32768;
 #else
     int i = (int)a;
     return (tg_real)i > a ? i - 1 : i;
+#endif
+}
+
+/* a - floor_small(a) (b0 = floor_small(a)), in [0, 1): the raw value's
+ * fraction bits in Q16.16. */
+static inline tg_real frac_small(tg_real a, int b0)
+{
+#if TG_FIXED
+    (void)b0;
+    return a & 0xFFFF;
+#else
+    return a - (tg_real)b0;
 #endif
 }
 
@@ -429,9 +443,12 @@ __attribute__((always_inline))
 static inline tg_real horizon_cos(tg_real dot, tg_real len2, tg_real *inv_len)
 {
 #if TG_FIXED
+    /* len2 > 0 (a sample with d = 0 has dot = 0 and fails the horizon
+     * test), so len >= 256 (2^-8): 1/len <= 256 and |dot / len| <= 1 plus
+     * rounding fit tg_real, and tgi_div_pos gives tg_div's quotients */
     tg_real len = tg_sqrt(len2);
-    *inv_len = tg_div(TG_ONE, len);
-    return tg_clamp(tg_div(dot, len), TG_R(-1.0f), TG_ONE);
+    *inv_len = tgi_div_pos(TG_ONE, len);
+    return tg_clamp(tgi_div_pos(dot, len), TG_R(-1.0f), TG_ONE);
 #else
     float r = tgi_rsqrt_fast(len2);
     r = r * (1.5f - 0.5f * len2 * r * r);
@@ -451,11 +468,14 @@ static inline int depths_close(tg_real za, tg_real zb)
 
 /* The depth at fraction f in [0, 1) from za to zb, 1/z linear:
  * z = za + f (zb - za) za / (zb - f (zb - za)).  0 < za, zb <=
- * TG_REAL_MAX: zb - za fits, f zd fits, zb - f zd lies between them. */
+ * TG_REAL_MAX, close (depths_close): zb - za fits, f zd fits, zb - f zd
+ * lies between them (> 0), so za / (zb - f zd) < 4 (tgi_div_pos) and its
+ * product with f zd stays below 2^50 in tgi_wide: the same depth as
+ * tg_mul and tg_add wherever they would not have saturated. */
 static inline tg_real lerp_inverse_depth(tg_real za, tg_real zb, tg_real f)
 {
     tg_real zd = (tg_real)((tgi_wide)zb - za), fzd = small_mul(f, zd);
-    return tg_add(za, tg_mul(fzd, tg_div(za, small_sub(zb, fzd))));
+    return tgi_wide_real((tgi_wide)za + tgi_wide_mul(fzd, tgi_div_pos(za, small_sub(zb, fzd))));
 }
 
 /* The march's per-side constants (march_side). */
@@ -541,7 +561,7 @@ static inline void march_samples(
         a += da;
         sa_major += da * smaj;
         b0 = floor_small(minor);
-        f = small_sub(minor, small_from_int(b0));               /* image coordinates: < 2^14 */
+        f = frac_small(minor, b0);
         sa = sa_major + b0 * smin;
         /* both neighbours surface (depth > 0 is not sky) and close: 1/z
          * interpolated linearly, 1/z = (1-f)/za + f/zb  <=>
@@ -656,7 +676,7 @@ static HBIL_FINE_INLINE void fine_sample(const hbil_ctx *c, hbil_fine_best *best
     tg_real minor = tg_mul(mr->slope, tg_from_int(t)), f, z1, za, zb, sx, sy, inv_len, cn;
     int b0 = floor_small(minor), fb = fb0 + b0, si, sj;
     tgi_wide d[3];
-    f = small_sub(minor, small_from_int(b0));
+    f = frac_small(minor, b0);
     if (fb < 0 || fb >= bmax) return;                               /* the slice leaves the image */
     si = (int)(major_x ? tgi_gv_index(fg, fa, fb) : tgi_gv_index(fg, fb, fa));
     sj = fb + 1 < bmax ? si + (major_x ? fg->row_stride : fg->pixel_stride) : si;   /* the next along the minor axis */
