@@ -405,18 +405,27 @@ static inline tg_real frac_small(tg_real a, int b0)
  * make this exact, in image pixels: the image is at most
  * TG_MAX_IMAGE_SIDE = 2^13 pixels a side, so |P0 + s| < 2^14 and, with
  * |q| <= TG_REAL_MAX (tg_mul saturates it), |(P0 + s) q| < 2^45: every
- * product below fits 64 bits.  A component beyond HBIL_FAR (> the largest
- * 3D radius, HBIL_MAX_RADIUS_UNITS) is rejected before it is squared: the
- * saturating sum would have exceeded the radius too.  Below the radius
- * |d| <= 150, so d.d, w_o.d, dot |dot| and h|h| |d|^2 stay below 32768
- * and nothing that tg_mul or tg_add would have saturated is kept: the
- * march takes the same samples and the same horizons in both forms. */
+ * product below fits 64 bits.  A sample with a component outside
+ * [-HBIL_FAR, HBIL_FAR) (256 > the largest 3D radius,
+ * HBIL_MAX_RADIUS_UNITS) is rejected before it is squared (the saturating
+ * sum would have exceeded the radius too); within it the squares sum below
+ * 2^50 and one with a component in (150, 256) fails the radius test.
+ * Below the radius |d| <= 150, so d.d, w_o.d, dot |dot| and h|h| |d|^2
+ * stay below 32768 and nothing that tg_mul or tg_add would have saturated
+ * is kept: the march takes the same samples and the same horizons in both
+ * forms. */
 #if TG_FIXED
-#define HBIL_FAR ((int64_t)151 << 16)
-/* 1 when |d| is beyond the largest radius (fixed only: float squares do not overflow) */
-static inline int wide_far(tgi_wide d) { return (uint64_t)(d + HBIL_FAR) > (uint64_t)(2 * HBIL_FAR); }
+#define HBIL_FAR ((int64_t)1 << 24)
+/* 1 when a component of d is beyond HBIL_FAR (fixed only: float squares
+ * do not overflow): the three offset by HBIL_FAR are in [0, 2 HBIL_FAR)
+ * as unsigned (a negative one wraps high) unless a bit at or above
+ * 2 HBIL_FAR is set in one of them, so one test for the three */
+static inline int wide_far(tgi_wide dx, tgi_wide dy, tgi_wide dz)
+{
+    return (((uint64_t)(dx + HBIL_FAR) | (uint64_t)(dy + HBIL_FAR) | (uint64_t)(dz + HBIL_FAR)) >> 25) != 0;
+}
 #else
-static inline int wide_far(tgi_wide d) { (void)d; return 0; }
+static inline int wide_far(tgi_wide dx, tgi_wide dy, tgi_wide dz) { (void)dx; (void)dy; (void)dz; return 0; }
 #endif
 
 /* |d| of a tgi_wide: in float an and in the float registers (tgi_abs_bits,
@@ -512,7 +521,7 @@ static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, t
     dx = (tgi_wide)sx + tgi_wide_mul((tgi_wide)mr->p0x + sx, q);
     dy = (tgi_wide)sy + tgi_wide_mul((tgi_wide)mr->p0y + sy, q);
     dz = tgi_wide_mul(mr->p0z, q);
-    if (wide_far(dx) || wide_far(dy) || wide_far(dz)) return HBIL_NOT_ABOVE;   /* beyond the 3D radius */
+    if (wide_far(dx, dy, dz)) return HBIL_NOT_ABOVE;                          /* beyond the 3D radius */
     len2 = tgi_wide_dot(dx, dy, dz, dx, dy, dz);
     if (len2 > mr->r2) return HBIL_NOT_ABOVE;                                 /* beyond the 3D radius */
     dot = tgi_wide_dot(dx, dy, dz, mr->wox, mr->woy, mr->woz);
@@ -673,7 +682,8 @@ static HBIL_FINE_INLINE void fine_sample(const hbil_ctx *c, hbil_fine_best *best
 {
     const tgi_gview *fg = c->fine;
     const int fa = fa0 + t * dir, bmax = major_x ? fg->height : fg->width;
-    tg_real minor = tg_mul(mr->slope, tg_from_int(t)), f, z1, za, zb, sx, sy, inv_len, cn;
+    /* |slope| <= 1, t and the fine pixels below 2^14, times 1/4 or 1/8: small_mul */
+    tg_real minor = small_mul(mr->slope, small_from_int(t)), f, z1, za, zb, sx, sy, inv_len, cn;
     int b0 = floor_small(minor), fb = fb0 + b0, si, sj;
     tgi_wide d[3];
     f = frac_small(minor, b0);
@@ -694,8 +704,8 @@ static HBIL_FINE_INLINE void fine_sample(const hbil_ctx *c, hbil_fine_best *best
         si = sn;
     }
     /* fine pixels to the march's units: times 1/4 or 1/8, exact */
-    sx = tg_mul(major_x ? small_from_int(t * dir) : minor, c->inv_fine_ratio);
-    sy = tg_mul(major_x ? tg_neg(minor) : small_from_int(-t * dir), c->inv_fine_ratio);
+    sx = small_mul(major_x ? small_from_int(t * dir) : minor, c->inv_fine_ratio);
+    sy = small_mul(major_x ? tg_neg(minor) : small_from_int(-t * dir), c->inv_fine_ratio);
     cn = sample_cos(mr, z1, sx, sy, best->h, tg_add(best->hs, HBIL_TIE), d, &inv_len);
     if (cn == HBIL_NOT_ABOVE) return;
     best->h = cn;
@@ -738,10 +748,12 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
     best.h = sd->h;
     best.hs = sd->hs;
     best.si = -1;
-    if (sd->peak_a >= 0)
-        for (t = r * (sd->peak_a - a0) * dir + 1; t % r != 0 && t <= room && tg_from_int(t) <= ext; t++)
+    if (sd->peak_a >= 0) {
+        const int t0 = r * (sd->peak_a - a0) * dir;                     /* up to the next sub-image pixel, t0 + r */
+        for (t = t0 + 1; t < t0 + r && t <= room && small_from_int(t) <= ext; t++)
             fine_sample(c, &best, mr, major_x, fa0, fb0, t, dir);
-    if (room > r * sub_room && tg_from_int(room) <= ext)
+    }
+    if (room > r * sub_room && small_from_int(room) <= ext)
         fine_sample(c, &best, mr, major_x, fa0, fb0, room, dir);
     if (best.si < 0) return;
     /* one raise to the highest: the band it closes lies within a few
