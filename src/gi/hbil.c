@@ -540,6 +540,17 @@ static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, t
 }
 
 
+/* The unit direction d / |d| of a sample that raised the horizon, and
+ * h|h| + HBIL_TIE of its cosine h: |d_i| <= |d| <= 150 and 1/|d| <= 256
+ * give products of at most 1 (plus rounding), |h| <= 1: small_mul and
+ * small_add (tg_mul and tg_add would not saturate). */
+static inline tg_vec3 sample_dir(const tgi_wide d[3], tg_real inv_len)
+{
+    return tg_v3(small_mul((tg_real)d[0], inv_len), small_mul((tg_real)d[1], inv_len), small_mul((tg_real)d[2], inv_len));
+}
+static inline tg_real horizon_sq(tg_real h) { return small_mul(h, tg_abs(h)); }
+static inline tg_real horizon_tie(tg_real hs) { return small_add(hs, HBIL_TIE); }
+
 /* The samples of one side; major_x is a constant in each of the two
  * copies (MARCH_SAMPLES), so the axis choice costs nothing per sample.
  * Compiling for size (TG_OUTLINE_HELPERS, tinygi.h) there is one copy, out
@@ -561,7 +572,7 @@ static inline void march_samples(
     const hbil_march m = *mr;    /* a local copy, as g */
     const tg_real dminor = m.dminor;
     const int back = m.back;
-    tg_real minor = mr->minor, ox = mr->ox, hs_tie = tg_add(sd->hs, HBIL_TIE);
+    tg_real minor = mr->minor, ox = mr->ox, hs_tie = horizon_tie(sd->hs);
     /* the major offset k da - back of sample k, stepped (whole pixels < 2^14: exact) */
     tg_real smajor = small_from_int(-back);
     const tg_real dmajor = small_from_int(da);
@@ -598,10 +609,10 @@ static inline void march_samples(
         if (cn == HBIL_NOT_ABOVE) continue;
         sd->h = cn;
         sd->peak_a = a;
-        sd->hs = tg_mul(cn, tg_abs(cn));
-        hs_tie = tg_add(sd->hs, HBIL_TIE);
+        sd->hs = horizon_sq(cn);
+        hs_tie = horizon_tie(sd->hs);
         if (NEAR_FIELD(c))
-            gather_rise(c, sl, sd, side, cn, tgi_v3_scale(tg_v3((tg_real)d[0], (tg_real)d[1], (tg_real)d[2]), inv_len),
+            gather_rise(c, sl, sd, side, cn, sample_dir(d, inv_len),
                         c->g, c->rad, f < TG_R(0.5f) ? sa : sa + smin);   /* the nearest pixel */
     }
 }
@@ -663,7 +674,7 @@ HBIL_NOINLINE static void march_between(const hbil_ctx *c, const hbil_slice *sl,
 /* The highest of refine_fine's samples. */
 typedef struct hbil_fine_best {
     tg_real h, hs;          /* the highest horizon the fine samples found, h|h| */
-    tgi_wide dx, dy, dz;    /* its offset (march units) */
+    tgi_wide d[3];          /* its offset (march units) */
     tg_real inv_len;        /* 1 / |d| */
     int si;                 /* its pixel in the fine image; -1: none above the side's */
 } hbil_fine_best;
@@ -712,11 +723,11 @@ static HBIL_FINE_INLINE void fine_sample(const hbil_ctx *c, hbil_fine_best *best
     /* fine pixels to the march's units: times 1/4 or 1/8, exact */
     sx = small_mul(major_x ? small_from_int(t * dir) : minor, c->inv_fine_ratio);
     sy = small_mul(major_x ? tg_neg(minor) : small_from_int(-t * dir), c->inv_fine_ratio);
-    cn = sample_cos(mr, z1, sx, sy, best->h, tg_add(best->hs, HBIL_TIE), d, &inv_len);
+    cn = sample_cos(mr, z1, sx, sy, best->h, horizon_tie(best->hs), d, &inv_len);
     if (cn == HBIL_NOT_ABOVE) return;
     best->h = cn;
-    best->hs = tg_mul(cn, tg_abs(cn));
-    best->dx = d[0]; best->dy = d[1]; best->dz = d[2];
+    best->hs = horizon_sq(cn);
+    best->d[0] = d[0]; best->d[1] = d[1]; best->d[2] = d[2];
     best->inv_len = inv_len;
     best->si = si;
 }
@@ -768,7 +779,7 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
     sd->hs = best.hs;
     if (NEAR_FIELD(c))
         gather_rise(c, sl, sd, side, best.h,
-                    tgi_v3_scale(tg_v3((tg_real)best.dx, (tg_real)best.dy, (tg_real)best.dz), best.inv_len),
+                    sample_dir(best.d, best.inv_len),
                     fg, c->fine_rad, best.si);
 }
 
