@@ -493,13 +493,20 @@ static inline tg_real lerp_inverse_depth(tg_real za, tg_real zb, tg_real f)
     return tgi_wide_real((tgi_wide)za + tgi_wide_mul(fzd, tgi_div_pos(za, small_sub(zb, fzd))));
 }
 
+/* A run of samples along a side: march_side's, or march_between's
+ * (march_run), which march_samples reads in place of copies of the whole
+ * hbil_march. */
+typedef struct hbil_run {
+    tg_real minor, dminor, ox;     /* ox: the minor offset before the first sample */
+    int a, da, n;
+    int back;                      /* o dir: sample k stands k da - back from the pixel */
+} hbil_run;
 /* The march's per-side constants (march_side). */
 typedef struct hbil_march {
     tg_real p0x, p0y, p0z, z, inv_z, r2, wox, woy, woz;
-    tg_real minor, dminor, ox;     /* ox: the minor offset before the first sample */
     tg_real slope, extent;         /* minor per major pixel; the march's extent, major pixels */
-    int a, da, n, smaj, smin, bmax;
-    int back;                      /* o dir: sample k stands k da - back from the pixel */
+    int smaj, smin, bmax;
+    hbil_run run;                  /* the side's own samples */
 } hbil_march;
 
 /* The sample at screen offset (sx, sy) from the pixel (image pixels, y
@@ -565,18 +572,17 @@ __attribute__((always_inline))
 static inline void march_samples(
 #endif
                                  const hbil_ctx *c, const hbil_slice *sl, int side, hbil_side *sd,
-                                 const hbil_march *mr, const int major_x)
+                                 const hbil_march *mr, const hbil_run *run, const int major_x)
 {
-    const tgi_gview g = *c->g;   /* a local copy: its fields stay in registers */
-    const int smaj = mr->smaj, smin = mr->smin, bmax = mr->bmax, da = mr->da, n = mr->n;
-    const hbil_march m = *mr;    /* a local copy, as g */
-    const tg_real dminor = m.dminor;
-    const int back = m.back;
-    tg_real minor = mr->minor, ox = mr->ox, hs_tie = horizon_tie(sd->hs);
+    const tgi_gview *const g = c->g;
+    const int smaj = mr->smaj, smin = mr->smin, bmax = mr->bmax, da = run->da, n = run->n;
+    const tg_real dminor = run->dminor;
+    const int back = run->back;
+    tg_real minor = run->minor, ox = run->ox, hs_tie = horizon_tie(sd->hs);
     /* the major offset k da - back of sample k, stepped (whole pixels < 2^14: exact) */
     tg_real smajor = small_from_int(-back);
     const tg_real dmajor = small_from_int(da);
-    int k, a = mr->a, sa_major = a * smaj;
+    int k, a = run->a, sa_major = a * smaj;
     for (k = 1; k <= n; k++) {
         int b0, sa;
         tg_real f, z1, sx, sy, za, zb, cn, inv_len;
@@ -593,19 +599,19 @@ static inline void march_samples(
          * interpolated linearly, 1/z = (1-f)/za + f/zb  <=>
          * z = za + f (zb - za) za / (zb - f (zb - za)) */
         if ((unsigned)b0 < (unsigned)(bmax - 1)                 /* b0 and b0 + 1 inside */
-            && (za = tgi_gv_depth(&g, sa)) > 0 && depths_close(za, zb = tgi_gv_depth(&g, sa + smin))) {
+            && (za = tgi_gv_depth(g, sa)) > 0 && depths_close(za, zb = tgi_gv_depth(g, sa + smin))) {
             z1 = lerp_inverse_depth(za, zb, f);
         } else {
             int bn = f < TG_R(0.5f) ? b0 : b0 + 1, sn;
             if (bn < 0 || bn >= bmax) break;                    /* the slice leaves the image */
             sn = bn == b0 ? sa : sa + smin;
-            if (tgi_gv_is_sky(&g, sn) || tgi_gv_depth(&g, sn) <= 0) continue;  /* sky never occludes */
-            z1 = sample_depth_edge(c, &g, major_x, a, b0, f, sa, sn);
+            if (tgi_gv_is_sky(g, sn) || tgi_gv_depth(g, sn) <= 0) continue;  /* sky never occludes */
+            z1 = sample_depth_edge(c, g, major_x, a, b0, f, sa, sn);
             if (z1 <= 0) continue;
         }
         sx = major_x ? smajor : ox;
         sy = major_x ? tg_neg(ox) : tg_neg(smajor);
-        cn = sample_cos(&m, z1, sx, sy, sd->h, hs_tie, d, &inv_len);
+        cn = sample_cos(mr, z1, sx, sy, sd->h, hs_tie, d, &inv_len);
         if (cn == HBIL_NOT_ABOVE) continue;
         sd->h = cn;
         sd->peak_a = a;
@@ -619,12 +625,12 @@ static inline void march_samples(
 
 /* march_samples along the major axis major_x: a copy per axis, or the one copy */
 #if TG_OUTLINE_HELPERS
-#define MARCH_SAMPLES(c, sl, side, sd, mr, major_x) march_samples(c, sl, side, sd, mr, major_x)
+#define MARCH_SAMPLES(c, sl, side, sd, mr, run, major_x) march_samples(c, sl, side, sd, mr, run, major_x)
 #else
-#define MARCH_SAMPLES(c, sl, side, sd, mr, major_x) \
+#define MARCH_SAMPLES(c, sl, side, sd, mr, run, major_x) \
     do { \
-        if (major_x) march_samples(c, sl, side, sd, mr, 1); \
-        else march_samples(c, sl, side, sd, mr, 0); \
+        if (major_x) march_samples(c, sl, side, sd, mr, run, 1); \
+        else march_samples(c, sl, side, sd, mr, run, 0); \
     } while (0)
 #endif
 
@@ -633,16 +639,16 @@ static inline void march_samples(
 static void march_run(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_side *sd, const hbil_march *mr,
                       int major_x, int p0, int step, int n)
 {
-    hbil_march r = *mr;
-    const int dir = mr->da < 0 ? -1 : 1;
+    hbil_run r;
+    const int dir = mr->run.da < 0 ? -1 : 1;
     r.n = n;
     r.da = step * dir;
     r.back = -p0 * dir;
-    r.a = mr->a + mr->back - r.back;
+    r.a = mr->run.a + mr->run.back - r.back;
     r.ox = tg_mul(mr->slope, tg_from_int(p0));
-    r.minor = tg_add(tg_sub(mr->minor, mr->ox), r.ox);
+    r.minor = tg_add(tg_sub(mr->run.minor, mr->run.ox), r.ox);
     r.dminor = tg_mul(mr->slope, tg_from_int(step));
-    MARCH_SAMPLES(c, sl, side, sd, &r, major_x);
+    MARCH_SAMPLES(c, sl, side, sd, mr, &r, major_x);
 }
 
 /* More samples on a side marched in steps of m > 1 pixels (*mr as
@@ -657,9 +663,9 @@ static void march_run(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_si
 HBIL_NOINLINE static void march_between(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_side *sd,
                                         const hbil_march *mr, int major_x)
 {
-    const int dir = mr->da < 0 ? -1 : 1, m = mr->da * dir, a0 = mr->a + mr->back;
+    const int dir = mr->run.da < 0 ? -1 : 1, m = mr->run.da * dir, a0 = mr->run.a + mr->run.back;
     const int room = dir > 0 ? (major_x ? c->g->width : c->g->height) - 1 - a0 : a0;  /* pixels to the edge */
-    const int last = mr->n * m - mr->back * dir;                 /* the last sample's distance */
+    const int last = mr->run.n * m - mr->run.back * dir;                 /* the last sample's distance */
     int p, k;
     if (last < room && tg_from_int(room) <= mr->extent) march_run(c, sl, side, sd, mr, major_x, last, room - last, 1);
     if (sd->peak_a < 0) return;
@@ -754,7 +760,7 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
                                       hbil_side *sd, const hbil_march *mr, int major_x)
 {
     const tgi_gview *fg = c->fine;
-    const int dir = mr->da < 0 ? -1 : 1, a0 = mr->a + mr->back, r = c->fine_ratio;
+    const int dir = mr->run.da < 0 ? -1 : 1, a0 = mr->run.a + mr->run.back, r = c->fine_ratio;
     const int fa0 = r * a0 + (major_x ? c->fine_i : c->fine_j);
     const int fb0 = r * (major_x ? px->y : px->x) + (major_x ? c->fine_j : c->fine_i);
     const int room = dir > 0 ? (major_x ? fg->width : fg->height) - 1 - fa0 : fa0;       /* fine pixels to the edge */
@@ -815,19 +821,19 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     if (side < 0) slope = tg_neg(slope);
     mr.slope = slope;
     mr.extent = tg_mul(px->reach, umaj);
-    m = march_steps(c, mr.extent, &mr.n);
+    m = march_steps(c, mr.extent, &mr.run.n);
     o = tg_to_int(tg_mul(px->jitter, tg_from_int(m)));           /* sample k at k m - o pixels */
     if (o < 0 || o >= m) o = 0;
-    mr.da = m * dir;
-    mr.a = major_x ? px->x : px->y;
-    kmax = ((mr.da > 0 ? amax - 1 - mr.a : mr.a) + o) / m;        /* never past the screen edge */
-    if (mr.n > kmax) mr.n = kmax;
-    mr.back = o * dir;
-    mr.a -= mr.back;
-    mr.ox = tg_mul(slope, tg_from_int(-o));
-    mr.minor = tg_add(major_x ? tg_from_int(px->y) : tg_from_int(px->x), mr.ox);
-    mr.dminor = tg_mul(slope, tg_from_int(m));
-    MARCH_SAMPLES(c, sl, side, sd, &mr, major_x);
+    mr.run.da = m * dir;
+    mr.run.a = major_x ? px->x : px->y;
+    kmax = ((mr.run.da > 0 ? amax - 1 - mr.run.a : mr.run.a) + o) / m;   /* never past the screen edge */
+    if (mr.run.n > kmax) mr.run.n = kmax;
+    mr.run.back = o * dir;
+    mr.run.a -= mr.run.back;
+    mr.run.ox = tg_mul(slope, tg_from_int(-o));
+    mr.run.minor = tg_add(major_x ? tg_from_int(px->y) : tg_from_int(px->x), mr.run.ox);
+    mr.run.dminor = tg_mul(slope, tg_from_int(m));
+    MARCH_SAMPLES(c, sl, side, sd, &mr, &mr.run, major_x);
     if (m > 1) march_between(c, sl, side, sd, &mr, major_x);
 #if !TG_NO_FINE_HORIZON
     if (c->fine) refine_fine(c, px, sl, side, sd, &mr, major_x);
