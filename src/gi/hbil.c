@@ -363,13 +363,14 @@ HBIL_NOINLINE static void gather_rise(const hbil_ctx *c, const hbil_slice *sl, h
 }
 
 /* Whole-pixel steps along the major axis: `samples` steps of m pixels
- * reach the extent; returns m and sets *n, the count of steps. */
+ * reach the extent; returns m and sets *n, the count of steps.  The
+ * divisors are counts >= 1: the quotients fit (tgi_div_pos). */
 static int march_steps(const hbil_ctx *c, tg_real extent, int *n)
 {
-    int m = tg_to_int(tg_div(extent, tg_from_int(c->samples)));
+    int m = tg_to_int(tgi_div_pos(extent, tg_from_int(c->samples)));
     if (tg_from_int(m * c->samples) < extent) m++;
     if (m < 1) m = 1;
-    *n = tg_to_int(tg_div(extent, tg_from_int(m)));
+    *n = tg_to_int(tgi_div_pos(extent, tg_from_int(m)));
     if (*n > c->samples) *n = c->samples;
     return m;
 }
@@ -804,7 +805,8 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     const int major_x = tg_abs(ux) >= tg_abs(uy);
     const int amax = major_x ? w : h;
     const tg_real umaj = major_x ? tg_abs(ux) : tg_abs(uy);
-    tg_real slope = tg_div(major_x ? uy : ux, umaj == 0 ? TG_ONE : umaj);
+    /* |minor| <= umaj: |slope| <= 1 (tgi_div_pos, umaj > 0 or 1) */
+    tg_real slope = tgi_div_pos(major_x ? uy : ux, umaj == 0 ? TG_ONE : umaj);
     int dir = ((major_x ? ux : uy) < 0 ? -1 : 1) * side;
     int m, kmax, o;
     hbil_march mr;
