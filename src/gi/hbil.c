@@ -646,9 +646,9 @@ static void march_run(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_si
     r.da = step * dir;
     r.back = -p0 * dir;
     r.a = mr->run.a + mr->run.back - r.back;
-    r.ox = tg_mul(mr->slope, tg_from_int(p0));
-    r.minor = tg_add(tg_sub(mr->run.minor, mr->run.ox), r.ox);
-    r.dminor = tg_mul(mr->slope, tg_from_int(step));
+    r.ox = small_mul(mr->slope, small_from_int(p0));                 /* as in march_side */
+    r.minor = small_add(small_sub(mr->run.minor, mr->run.ox), r.ox);
+    r.dminor = small_mul(mr->slope, small_from_int(step));
     MARCH_SAMPLES(c, sl, side, sd, mr, &r, major_x);
 }
 
@@ -766,7 +766,7 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
     const int fb0 = r * (major_x ? px->y : px->x) + (major_x ? c->fine_j : c->fine_i);
     const int room = dir > 0 ? (major_x ? fg->width : fg->height) - 1 - fa0 : fa0;       /* fine pixels to the edge */
     const int sub_room = dir > 0 ? (major_x ? c->g->width : c->g->height) - 1 - a0 : a0;
-    const tg_real ext = tg_mul(mr->extent, tg_from_int(r));                            /* fine pixels */
+    const tg_real ext = small_mul(mr->extent, small_from_int(r));                      /* fine pixels, <= 1200 */
     hbil_fine_best best;
     int t;
     best.h = sd->h;
@@ -813,18 +813,21 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     mr.smaj = major_x ? ps : rs;
     mr.smin = major_x ? rs : ps;
     mr.bmax = major_x ? h : w;
-    mr.p0x = tg_mul(px->X, c->inv_step);
-    mr.p0y = tg_mul(px->Y, c->inv_step);
-    mr.p0z = tg_mul(c->ppu, c->inv_step);
+    /* the per-side products and sums below are small (small_mul): screen
+     * positions < 2^13 and ppu times 1/step <= 1, the reach in [0, 150]
+     * (radius >= 0) times |u| <= 1, minor offsets < 2^14 times |slope| <= 1 */
+    mr.p0x = small_mul(px->X, c->inv_step);
+    mr.p0y = small_mul(px->Y, c->inv_step);
+    mr.p0z = small_mul(c->ppu, c->inv_step);
     mr.z = px->z;
     mr.inv_z = px->inv_z;
     mr.r2 = px->radius_units2;
     mr.wox = px->wo.x; mr.woy = px->wo.y; mr.woz = px->wo.z;
     if (side < 0) slope = tg_neg(slope);
     mr.slope = slope;
-    mr.extent = tg_mul(px->reach, umaj);
+    mr.extent = small_mul(px->reach, umaj);
     m = march_steps(c, mr.extent, &mr.run.n);
-    o = tg_to_int(tg_mul(px->jitter, tg_from_int(m)));           /* sample k at k m - o pixels */
+    o = tg_to_int(small_mul(px->jitter, small_from_int(m)));     /* sample k at k m - o pixels */
     if (o < 0 || o >= m) o = 0;
     mr.run.da = m * dir;
     mr.run.a = major_x ? px->x : px->y;
@@ -832,9 +835,9 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     if (mr.run.n > kmax) mr.run.n = kmax;
     mr.run.back = o * dir;
     mr.run.a -= mr.run.back;
-    mr.run.ox = tg_mul(slope, tg_from_int(-o));
-    mr.run.minor = tg_add(major_x ? tg_from_int(px->y) : tg_from_int(px->x), mr.run.ox);
-    mr.run.dminor = tg_mul(slope, tg_from_int(m));
+    mr.run.ox = small_mul(slope, small_from_int(-o));
+    mr.run.minor = small_add(small_from_int(major_x ? px->y : px->x), mr.run.ox);
+    mr.run.dminor = small_mul(slope, small_from_int(m));
     MARCH_SAMPLES(c, sl, side, sd, &mr, &mr.run, major_x);
     if (m > 1) march_between(c, sl, side, sd, &mr, major_x);
 #if !TG_NO_FINE_HORIZON
