@@ -70,7 +70,10 @@ bench-publish:
 #                       checkout's build directory) in the same rounds, for before/after
 #   make bench-threads  the same for --threads 1 and 2 (BENCH_THREADS), cornell and
 #                       columns (BENCH_FRAME_SCENES), and the wall-time speed-up of
-#                       each thread count over one, paired round by round
+#                       each thread count over one, paired round by round, of the
+#                       whole run and of its steady frames (each configuration run
+#                       again with --frames 1: the difference is the N - 1 frames
+#                       after the first, without start-up and written image)
 #   make bench-raster   the 49,728-triangle sphere at 320x240 and 1280x720, float and
 #                       Q16.16, timed the same way, Mtri/s, and callgrind's count per
 #                       frame; BENCH_PEERS="CMD;CMD" adds programs that print the same
@@ -118,7 +121,7 @@ bench-frame: all
 # one thread against two: the pool's speed-up in wall time (platform/hosted/threads.c)
 bench-threads: all
 	$(BENCH_FRAME_RUN) --scenes "$(or $(BENCH_FRAME_SCENES),cornell columns)" \
-	  --threads "$(or $(BENCH_THREADS),1 2)" --out $(BUILD)/bench-threads
+	  --threads "$(or $(BENCH_THREADS),1 2)" --steady --out $(BUILD)/bench-threads
 
 bench-raster: $(BUILD)/bench_raster $(BUILD)/bench_raster-fixed bench-valgrind
 	BENCH_PEERS="$(BENCH_PEERS)" python3 tools/bench_time.py raster --build $(BUILD) \

@@ -842,6 +842,47 @@ TEST(wall_top_sets_the_horizon_at_any_radius)
     CHECK(rmse < 0.025, "rmse %.4f", rmse);
 }
 
+/* A radius that spans more image pixels than the march's 3D test once held
+ * (150: its square had to fit Q16.16): a floor before a wall 4 high,
+ * radius 20, seen by the full-resolution kernel at 320x240, on the floor
+ * pixels 3 to 6 from the wall, where the wall stands 300-700 pixels' worth
+ * away in 3D at the pixel's depth.  With the old cap every sample past 150
+ * was out of the radius: the wall was never seen and the AO there came out
+ * +0.1 too bright (measured +0.104); the horizon must find it at any
+ * distance the radius allows. */
+TEST(full_resolution_radius_beyond_150_pixels)
+{
+    static const quad floor_q = { { 0, 0, -20 }, { 20, 0, 0 }, { 0, 0, 40 }, 1 };
+    static const quad wall_q = { { 0, 0, -20 }, { 0, 4, 0 }, { 0, 0, 40 }, 1 };
+    double eye[3] = { 10, 3, 0 }, target[3] = { 0, 1.5, 0 }, up[3] = { 0, 1, 0 };
+    double nrm[3] = { 0, 1, 0 }, se = 0, bias = 0;
+    const double radius = 20;
+    scene s;
+    gbuf g;
+    result r;
+    size_t i, n;
+    int cnt = 0;
+    s.n = 2; s.q[0] = floor_q; s.q[1] = wall_q;
+    gbuf_make(&g, &s, 320, 240, eye, target, up);
+    n = (size_t)g.w * g.h;
+    result_alloc(&r, n);
+    run_full(&g, radius, 0, &r);
+    for (i = 0; i < n; i += 3) {
+        double pos[3], d;
+        if (g.face[i] != 0 || g.px[i] < 3 || g.px[i] > 6 || fabs(g.pz[i]) > 3) continue;
+        pos[0] = g.px[i]; pos[1] = g.py[i]; pos[2] = g.pz[i];
+        d = check_d(r.ao[i]) - reference_ao(&s, pos, nrm, radius);
+        se += d * d; bias += d; cnt++;
+    }
+    printf("  floor 3-6 from a wall 4 high, radius 20, 320x240 full resolution, %d pixels: rmse %.4f, bias %+.4f\n",
+           cnt, cnt ? sqrt(se / cnt) : 0, cnt ? bias / cnt : 0);
+    CHECK(cnt > 300, "floor pixels %d", cnt);
+    CHECK(fabs(bias / cnt) < 0.02, "bias %+.4f (the AO too bright: the wall beyond the march's cap)", bias / cnt);
+    CHECK(sqrt(se / cnt) < 0.05, "rmse %.4f", sqrt(se / cnt));
+    result_free(&r);
+    gbuf_free(&g);
+}
+
 /* The same wall at 160x120, where the sub-images' pixels are 4 image
  * pixels apart and the wall's top is 1.5 of them past the last sample on
  * it on average: without the refinement the AO is too bright (measured
@@ -1004,6 +1045,7 @@ int main(int argc, char **argv)
     RUN(rotations_stratify_slice_angles_and_march_offsets);
     RUN(blocks_decorrelate_march_offsets);
     RUN(wall_top_sets_the_horizon_at_any_radius);
+    RUN(full_resolution_radius_beyond_150_pixels);
     RUN(interleaved_horizon_finds_the_wall_top_pixel);
     RUN(near_horizon_bound_stays_below_the_integral);
     RUN(quarter_resolution_keeps_the_contact_shadow);

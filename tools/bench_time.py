@@ -94,22 +94,22 @@ def csv_text(header, rows):
 
 # ---- frame ------------------------------------------------------------------
 
-def speedup_lines(configs, samples, threads):
-    """Wall-time speed-up of each thread count over the first, per scene, mode and type."""
+def speedup_lines(configs, samples, threads, key="wall", what="wall time"):
+    """Speed-up in samples[key] of each thread count over the first, per scene, mode and type."""
     if len(threads) < 2:
         return []
-    lines = ["", "Speed-up in wall time over %s thread%s: median of the per-round ratios (ratio of "
-             "the medians)." % (threads[0], "" if threads[0] == "1" else "s"), "",
+    lines = ["", "Speed-up in %s over %s thread%s: median of the per-round ratios (ratio of "
+             "the medians)." % (what, threads[0], "" if threads[0] == "1" else "s"), "",
              "| scene | mode | type | " + " | ".join("%s threads" % n for n in threads[1:]) + " |",
              "| --- | --- | --- | " + " | ".join("---:" for _ in threads[1:]) + " |"]
     index = {cfg: i for i, cfg in enumerate(configs)}
     for cfg in configs:
         if cfg[3] != threads[0]:
             continue
-        base = [s["wall"] for s in samples[index[cfg]]]
+        base = [s[key] for s in samples[index[cfg]]]
         cells = []
         for n in threads[1:]:
-            other = [s["wall"] for s in samples[index[cfg[:3] + (n,)]]]
+            other = [s[key] for s in samples[index[cfg[:3] + (n,)]]]
             ratios = [b / o for b, o in zip(base, other) if o > 0]
             cells.append("%.2fx (%.2fx)" % (statistics.median(ratios),
                                             statistics.median(base) / statistics.median(other)))
@@ -139,6 +139,18 @@ def baseline_lines(configs, samples, threads, baseline):
     return lines
 
 
+def run_timed(cmd):
+    """Run cmd; (CPU seconds of the child and its threads, wall seconds)."""
+    t0 = time.monotonic()
+    proc = subprocess.Popen(cmd)
+    _, status, ru = os.wait4(proc.pid, 0)
+    wall = time.monotonic() - t0
+    code = os.waitstatus_to_exitcode(status)
+    if code != 0:
+        sys.exit("bench_time: %s failed (%d)" % (" ".join(cmd), code))
+    return ru.ru_utime + ru.ru_stime, wall
+
+
 def frame_main(args):
     bench_count.check_frame_options(args, "bench_time")
     threads = split_list(args.threads)
@@ -160,14 +172,16 @@ def frame_main(args):
             cmd += ["--threads", nthreads]
         if mode == "quarter":
             cmd.append("--gi-quarter")
-        t0 = time.monotonic()
-        proc = subprocess.Popen(cmd)
-        _, status, ru = os.wait4(proc.pid, 0)
-        wall = time.monotonic() - t0
-        proc.returncode = os.waitstatus_to_exitcode(status)
-        if proc.returncode != 0:
-            sys.exit("bench_time: %s failed (%d)" % (" ".join(cmd), proc.returncode))
-        return {"cpu": (ru.ru_utime + ru.ru_stime) * 1e3 / args.frames, "wall": wall * 1e3 / args.frames}
+        cpu, wall = run_timed(cmd)
+        sample = {"cpu": cpu * 1e3 / args.frames, "wall": wall * 1e3 / args.frames}
+        if args.steady and args.frames > 1:
+            # the same run with one frame: what is left is the N - 1 steady frames alone
+            one = list(cmd)
+            one[one.index("--frames") + 1] = "1"
+            cpu1, wall1 = run_timed(one)
+            sample["steady_cpu"] = (cpu - cpu1) * 1e3 / (args.frames - 1)
+            sample["steady_wall"] = (wall - wall1) * 1e3 / (args.frames - 1)
+        return sample
 
     start = loadavg()
     print("bench-frame: %d configurations x %d rounds, %s, %d frames; load average at start %s"
@@ -179,26 +193,41 @@ def frame_main(args):
     lines = ["# make bench-frame", "",
              "%s; %s, %d frames a run, %d rounds interleaved; load average %s at start, %s at end."
              % (bench_count.describe_source(args.build), args.size, args.frames, args.rounds, start, end), "",
-             "ms per frame, median (min..max) over the rounds; CPU = user + system time of the process.", "",
-             "| scene | mode | type | threads | CPU ms/frame | wall ms/frame |",
-             "| --- | --- | --- | ---: | ---: | ---: |"]
+             "ms per frame, median (min..max) over the rounds; CPU = user + system time of the process."
+             + (" Steady: the run's time less that of the same run with --frames 1, over the N - 1 frames"
+                " it leaves (no start-up, first frame or written image)." if args.steady else ""), "",
+             "| scene | mode | type | threads | CPU ms/frame | wall ms/frame |"
+             + (" steady CPU ms/frame | steady wall ms/frame |" if args.steady else ""),
+             "| --- | --- | --- | ---: | ---: | ---: |" + (" ---: | ---: |" if args.steady else "")]
     rows = []
     for i, (scene, mode, ntype, nthreads) in enumerate(configs):
         cpu = [s["cpu"] for s in samples[i]]
         wall = [s["wall"] for s in samples[i]]
-        lines.append("| %s | %s | %s | %s | %s | %s |" % (scene, mode, ntype, nthreads, med_range(cpu, "%.1f"),
-                                                          med_range(wall, "%.1f")))
+        steady = ""
+        if args.steady and "steady_wall" in samples[i][0]:
+            steady = " %s | %s |" % (med_range([s["steady_cpu"] for s in samples[i]], "%.1f"),
+                                     med_range([s["steady_wall"] for s in samples[i]], "%.1f"))
+        elif args.steady:
+            steady = " - | - |"
+        lines.append("| %s | %s | %s | %s | %s | %s |%s" % (scene, mode, ntype, nthreads, med_range(cpu, "%.1f"),
+                                                            med_range(wall, "%.1f"), steady))
         rows.append([scene, mode, ntype, nthreads, args.size, args.frames, len(cpu),
                      "%.2f" % statistics.median(cpu), "%.2f" % min(cpu), "%.2f" % max(cpu),
-                     "%.2f" % statistics.median(wall), "%.2f" % min(wall), "%.2f" % max(wall), start, end])
+                     "%.2f" % statistics.median(wall), "%.2f" % min(wall), "%.2f" % max(wall), start, end]
+                    + (["%.2f" % statistics.median([s["steady_cpu"] for s in samples[i]]),
+                        "%.2f" % statistics.median([s["steady_wall"] for s in samples[i]])]
+                       if "steady_wall" in samples[i][0] else ["", ""]))
     lines += speedup_lines(configs, samples, threads)
+    if args.steady and args.frames > 1:
+        lines += speedup_lines(configs, samples, threads, "steady_wall", "the steady frames' wall time")
     lines += baseline_lines(configs, samples, threads, args.baseline)
     out = args.out or os.path.join(args.build, "bench-frame")
     os.makedirs(out, exist_ok=True)
     write_atomic(os.path.join(out, "time.md"), "\n".join(lines) + "\n")
     write_atomic(os.path.join(out, "time.csv"), csv_text(
         ["scene", "mode", "type", "threads", "size", "frames", "rounds", "cpu_ms_median", "cpu_ms_min", "cpu_ms_max",
-         "wall_ms_median", "wall_ms_min", "wall_ms_max", "load_start", "load_end"], rows))
+         "wall_ms_median", "wall_ms_min", "wall_ms_max", "load_start", "load_end",
+         "steady_cpu_ms_median", "steady_wall_ms_median"], rows))
     print()
     print("\n".join(lines))
     print("\nload average at end %s; wrote %s/time.md and time.csv" % (end, out))
@@ -328,6 +357,8 @@ def main():
     bench_count.add_frame_options(f, "all")
     f.add_argument("--rounds", type=int, default=5)
     f.add_argument("--threads", default="1", help="comma list of thread counts (tinygi --threads)")
+    f.add_argument("--steady", action="store_true",
+                   help="also run each configuration with --frames 1: the difference is the N - 1 steady frames alone")
     f.add_argument("--baseline", default="", help="an older build directory whose tinygi runs the same configurations, interleaved")
     r = sub.add_parser("raster")
     r.add_argument("--build", default="build")

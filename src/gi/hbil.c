@@ -29,9 +29,17 @@
  * depths differ by less than this fraction of the nearer one: |za - zb| <
  * 3 min(za, zb), i.e. (both > 0) za < 4 zb and zb < 4 za, tested so. */
 #define HBIL_LERP_MAX_RATIO TG_R(4.0f)
-/* The 3D radius test works on squared lengths in image pixels: capped so
- * the square stays inside Q16.16. */
-#define HBIL_MAX_RADIUS_UNITS TG_R(150.0f)
+/* The 3D radius test works on lengths in the march's units (the view's
+ * pixels at the pixel's depth), squared in tgi_wide (core/real.h): capped
+ * at 2^14, twice the largest image side (TG_MAX_IMAGE_SIDE), so that a
+ * sample anywhere on the screen is within it whenever the world radius
+ * says so, and |d|^2 <= 3 2^28 fits tgi_wide's 64 bits in Q16.16.  (It was
+ * 150, so that the square fitted tg_real: a radius wider than 150 of the
+ * march's pixels was cut to 150, and the room-wide radius of
+ * builtin:cornell lost its far walls at 1280x960, or at 320x240 without
+ * the interleave: AO +0.14 too bright; test
+ * full_resolution_radius_beyond_150_pixels.) */
+#define HBIL_MAX_RADIUS_UNITS TG_R(16384.0f)
 
 /* The rare paths stay out of the march loop (register pressure).  The
  * gather is not rare (a third of the samples raise the horizon in a
@@ -142,7 +150,7 @@ typedef struct hbil_pixel {
     tg_real z, inv_z;
     tg_vec3 wo, wx, wy;     /* local camera frame, sec. 1.1 */
     tg_vec3 n;              /* view-space normal with n.w_o >= HBIL_MIN_NDOTV */
-    tg_real radius_units2;  /* (3D radius in image pixels at depth z)^2 */
+    tgi_wide radius_units2; /* (3D radius in image pixels at depth z)^2 */
     tg_real reach;          /* march extent, image pixels */
     tg_real jitter;         /* the samples start this fraction of a step nearer */
 } hbil_pixel;
@@ -265,10 +273,10 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
         px->n = tgi_v3_normalize_or(tgi_v3_add(px->n, tgi_v3_scale(px->wo, tg_sub(HBIL_MIN_NDOTV, ndv))), px->wo);
     /* the world radius projected to image pixels; the 3D test is unclamped */
     r_px = tg_div(tg_mul(c->p->radius, c->ppu), px->z);
-    px->radius_units2 = tg_sqr(tg_min(tg_mul(r_px, c->inv_step), HBIL_MAX_RADIUS_UNITS));
-    /* no cap in pixels: the march ends at the screen's edge (march_side) or
-     * where the 3D test would reject every sample */
+    /* no other cap in pixels: the march ends at the screen's edge
+     * (march_side) or where the 3D test would reject every sample */
     px->reach = tg_min(tg_mul(r_px, c->inv_step), HBIL_MAX_RADIUS_UNITS);
+    px->radius_units2 = tgi_wide_mul(px->reach, px->reach);
     return 1;
 }
 
@@ -406,24 +414,23 @@ static inline tg_real frac_small(tg_real a, int b0)
  * make this exact, in image pixels: the image is at most
  * TG_MAX_IMAGE_SIDE = 2^13 pixels a side, so |P0 + s| < 2^14 and, with
  * |q| <= TG_REAL_MAX (tg_mul saturates it), |(P0 + s) q| < 2^45: every
- * product below fits 64 bits.  A sample with a component outside
- * [-HBIL_FAR, HBIL_FAR) (256 > the largest 3D radius,
- * HBIL_MAX_RADIUS_UNITS) is rejected before it is squared (the saturating
- * sum would have exceeded the radius too); within it the squares sum below
- * 2^50 and one with a component in (150, 256) fails the radius test.
- * Below the radius |d| <= 150, so d.d, w_o.d, dot |dot| and h|h| |d|^2
- * stay below 32768 and nothing that tg_mul or tg_add would have saturated
- * is kept: the march takes the same samples and the same horizons in both
- * forms. */
+ * product below fits 64 bits.  A component beyond HBIL_FAR (> the largest
+ * 3D radius, HBIL_MAX_RADIUS_UNITS) is rejected before it is squared: the
+ * saturating sum would have exceeded the radius too.  Below the radius
+ * |d| <= 2^14, so d.d <= 3 2^28 and dot |dot|, h|h| |d|^2 < 2^30 (2^46 as
+ * Q16.16 integers): every product fits 64 bits. */
 #if TG_FIXED
-#define HBIL_FAR ((int64_t)1 << 24)
+#define HBIL_FAR (((int64_t)16384 + 1) << 16)
 /* 1 when a component of d is beyond HBIL_FAR (fixed only: float squares
- * do not overflow): the three offset by HBIL_FAR are in [0, 2 HBIL_FAR)
- * as unsigned (a negative one wraps high) unless a bit at or above
- * 2 HBIL_FAR is set in one of them, so one test for the three */
+ * do not overflow).  First one test for the three: offset by 2^30 (16384)
+ * they are all below 2^31 as unsigned (a negative one wraps high) unless
+ * one is outside [-16384, 16384); only then the exact test per component */
 static inline int wide_far(tgi_wide dx, tgi_wide dy, tgi_wide dz)
 {
-    return (((uint64_t)(dx + HBIL_FAR) | (uint64_t)(dy + HBIL_FAR) | (uint64_t)(dz + HBIL_FAR)) >> 25) != 0;
+    const tgi_wide near = (tgi_wide)1 << 30;
+    if ((((uint64_t)(dx + near) | (uint64_t)(dy + near) | (uint64_t)(dz + near)) >> 31) == 0) return 0;
+    return (uint64_t)(dx + HBIL_FAR) > (uint64_t)(2 * HBIL_FAR) || (uint64_t)(dy + HBIL_FAR) > (uint64_t)(2 * HBIL_FAR)
+        || (uint64_t)(dz + HBIL_FAR) > (uint64_t)(2 * HBIL_FAR);
 }
 #else
 static inline int wide_far(tgi_wide dx, tgi_wide dy, tgi_wide dz) { (void)dx; (void)dy; (void)dz; return 0; }
@@ -442,11 +449,11 @@ static inline tgi_wide wide_abs(tgi_wide d)
 }
 
 /* The cosine dot / |d| of a sample that passed the horizon test, clamped
- * to [-1, 1], and 1 / |d| (|d| <= 150: d, dot and len2 = |d|^2 fit
+ * to [-1, 1], and 1 / |d| (in Q16.16 |d| < 128 here: d, dot and len2 = |d|^2 fit
  * tg_real).  Float: one reciprocal square root, the two-step one of
  * core/real.h and a third Newton step (tg_sqrt and two divisions before).
  * Q16.16: the same reciprocal square root in integers, Q30 with its
- * exponent (1/|d| >= 1/150 in Q16.16 holds too few bits for the cosine as
+ * exponent (1/|d| > 1/128 in Q16.16 holds too few bits for the cosine as
  * a product, the Q30 one 22 or more), rel. error 3.2e-6 (core/real.h):
  * the cosine within 0.71 of a unit of 2^-16 of dot / |d| (tg_sqrt and two
  * divisions before, whose rounded |d| erred up to 2^-9 relative at the
@@ -458,7 +465,7 @@ static inline tg_real horizon_cos(tg_real dot, tg_real len2, tg_real *inv_len)
 {
 #if TG_FIXED
     /* len2 = L 2^-16 with 0 < L < 2^31 (a sample with d = 0 has dot = 0
-     * and fails the horizon test): L 2^e = X 2^30, X in [1, 4), e even
+     * and fails the horizon test; sample_cos halves a longer d): L 2^e = X 2^30, X in [1, 4), e even
      * in [0, 30], so 1/|d| = rsqrt(X) 2^(e/2 - 7) = y 2^(e/2 - 37) for y
      * = rsqrt(X) in Q30 (<= 2^30); |dot| < 2^24, dot y < 2^54 */
     const int e = (32 - tgi_bit_length64((uint32_t)len2)) & ~1;
@@ -504,7 +511,8 @@ typedef struct hbil_run {
 } hbil_run;
 /* The march's per-side constants (march_side). */
 typedef struct hbil_march {
-    tg_real p0x, p0y, p0z, z, inv_z, r2, wox, woy, woz;
+    tg_real p0x, p0y, p0z, z, inv_z, wox, woy, woz;
+    tgi_wide r2;                   /* the 3D radius squared, march units */
     tg_real slope, extent;         /* minor per major pixel; the march's extent, major pixels */
     int smaj, smin, bmax;
     hbil_run run;                  /* the side's own samples */
@@ -514,8 +522,9 @@ typedef struct hbil_march {
  * up) and depth z1 (> 0), for the side whose horizon is h with h|h| +
  * HBIL_TIE = hs_tie: its cosine from w_o when it lies within the 3D radius
  * and above the horizon, else HBIL_NOT_ABOVE; d, inv_len: its view-space
- * offset d = s + q (P0 + s), q = (z1 - z) / z, in tgi_wide (see above),
- * and 1 / |d|.  One copy for the march and the fine samples when compiling for
+ * offset d = s + q (P0 + s), q = (z1 - z) / z, in tgi_wide (see above;
+ * in Q16.16 halved until |d| < 128 when longer), and 1 / |d|: d inv_len is
+ * the unit vector toward the sample.  One copy for the march and the fine samples when compiling for
  * size (TG_OUTLINE_HELPERS), inlined into each otherwise (and into the
  * march alone without the fine samples, TG_NO_FINE_HORIZON). */
 #define HBIL_NOT_ABOVE TG_R(-2.0f)
@@ -541,7 +550,16 @@ static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, t
     dot = tgi_wide_dot(dx, dy, dz, mr->wox, mr->woy, mr->woz);
     /* cos(theta) > horizon, without a division: dot|dot| > h|h| |d|^2 */
     if (tgi_wide_mul(dot, wide_abs(dot)) <= tgi_wide_mul(hs_tie, len2)) return HBIL_NOT_ABOVE;
-    cn = horizon_cos((tg_real)dot, (tg_real)len2, inv_len);     /* HBIL sec. 1.3; |d| <= 150: d, dot, len2 fit tg_real */
+#if TG_FIXED
+    if (len2 >= ((tgi_wide)1 << 30)) {   /* |d| >= 128: |d|^2 beyond tg_real; the cosine and the direction are scale-free */
+        int k = 1;
+        while ((len2 >> 2 * k) >= ((tgi_wide)1 << 30)) k++;
+        dx = tgi_shr_round(dx, k); dy = tgi_shr_round(dy, k); dz = tgi_shr_round(dz, k);
+        dot = tgi_shr_round(dot, k);
+        len2 = tgi_shr_round(len2, 2 * k);
+    }
+#endif
+    cn = horizon_cos((tg_real)dot, (tg_real)len2, inv_len);     /* HBIL sec. 1.3; d, dot, len2 fit tg_real here */
     if (cn <= h) return HBIL_NOT_ABOVE;
     d[0] = dx; d[1] = dy; d[2] = dz;
     return cn;
@@ -549,9 +567,10 @@ static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, t
 
 
 /* The unit direction d / |d| of a sample that raised the horizon, and
- * h|h| + HBIL_TIE of its cosine h: |d_i| <= |d| <= 150 and 1/|d| <= 256
- * give products of at most 1 (plus rounding), |h| <= 1: small_mul and
- * small_add (tg_mul and tg_add would not saturate). */
+ * h|h| + HBIL_TIE of its cosine h: |d_i| <= |d| (< 128 in Q16.16, as
+ * sample_cos leaves it) and 1/|d| <= 256 give products of at most 1 (plus
+ * rounding), |h| <= 1: small_mul and small_add (tg_mul and tg_add would
+ * not saturate). */
 static inline tg_vec3 sample_dir(const tgi_wide d[3], tg_real inv_len)
 {
     return tg_v3(small_mul((tg_real)d[0], inv_len), small_mul((tg_real)d[1], inv_len), small_mul((tg_real)d[2], inv_len));
@@ -766,7 +785,7 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
     const int fb0 = r * (major_x ? px->y : px->x) + (major_x ? c->fine_j : c->fine_i);
     const int room = dir > 0 ? (major_x ? fg->width : fg->height) - 1 - fa0 : fa0;       /* fine pixels to the edge */
     const int sub_room = dir > 0 ? (major_x ? c->g->width : c->g->height) - 1 - a0 : a0;
-    const tg_real ext = small_mul(mr->extent, small_from_int(r));                      /* fine pixels, <= 1200 */
+    const tg_real ext = tg_mul(mr->extent, tg_from_int(r));                            /* fine pixels */
     hbil_fine_best best;
     int t;
     best.h = sd->h;
@@ -814,8 +833,9 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     mr.smin = major_x ? rs : ps;
     mr.bmax = major_x ? h : w;
     /* the per-side products and sums below are small (small_mul): screen
-     * positions < 2^13 and ppu times 1/step <= 1, the reach in [0, 150]
-     * (radius >= 0) times |u| <= 1, minor offsets < 2^14 times |slope| <= 1 */
+     * positions < 2^13 and ppu times 1/step <= 1, the reach in [0, 2^14]
+     * (radius >= 0, HBIL_MAX_RADIUS_UNITS) times |u| <= 1, offsets below
+     * 2^14 times |slope| <= 1 */
     mr.p0x = small_mul(px->X, c->inv_step);
     mr.p0y = small_mul(px->Y, c->inv_step);
     mr.p0z = small_mul(c->ppu, c->inv_step);

@@ -1,0 +1,164 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""screen_limits.py - what screen space cannot see: HBIL's AO error split
+into the part any kernel on one depth layer shares and the part that is the
+kernel's own.
+
+    python3 tools/screen_limits.py [--build build] [--scenes spheres,columns,cornell]
+        [--size 160x120] [--frames 8] [--out build/screen-limits]
+
+For every scene it renders, with BUILD/tinygi (float):
+
+  reference   --technique reference --aov ao: ray-traced AO on the BVH, 256
+              directions a pixel, the same cut-off distance as the kernel's
+              radius; it sees every surface of the scene, on screen or not;
+  hbil        --aov ao --frames N: the default (4x4-interleaved kernel, 2
+              slices x 32 samples), after N frames of temporal accumulation;
+  one layer   --aov ao --no-interleave --slices 8 --samples 128: the
+              full-resolution kernel with 4x the slices and samples a
+              side: the horizon over the depth buffer as a height field (each
+              pixel's surface taken as infinitely thick), as closely as the
+              kernel gets to it; what any estimator that reads one depth
+              layer converges to;
+  depth       --aov depth: the geometry mask (depth 0 is sky).
+
+and reports over the geometry pixels the RMSE and the mean difference
+(bias) of hbil and of one layer against the reference.  What one layer
+misses, hbil misses too: hidden surfaces (the floor under a sphere, the far
+side of a column) and surfaces off the screen (the room's walls between the
+camera and the image's edge).  The rest, hbil against one layer, is the
+interleaved kernel's own error.
+
+Results: OUT/screen-limits.md (the table) and OUT/screen-limits.png: a row
+per scene of reference | hbil | one layer | hbil - reference | one layer -
+reference, the differences red where brighter (less occluded) than the
+reference and blue where darker, full colour at +-0.25.
+"""
+import argparse
+import math
+import os
+import struct
+import subprocess
+import sys
+import zlib
+
+DIFF_FULL_SCALE = 0.25
+
+
+def read_pfm(path):
+    """One-channel PFM -> (w, h, rows top to bottom)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    kind, dims, scale, body = data.split(b"\n", 3)
+    if kind != b"Pf":
+        sys.exit("screen_limits: %s: expected a one-channel PFM" % path)
+    w, h = map(int, dims.split())
+    order = "<" if float(scale) < 0 else ">"
+    v = struct.unpack(order + "%df" % (w * h), body[:4 * w * h])
+    rows = [list(v[y * w:(y + 1) * w]) for y in range(h)]
+    rows.reverse()   # PFM rows run bottom to top
+    return w, h, rows
+
+
+def write_png(path, w, h, rgb_rows):
+    """8-bit RGB PNG from rows of (r, g, b) byte triples."""
+    raw = b"".join(b"\0" + bytes(c for px in row for c in px) for row in rgb_rows)
+
+    def chunk(tag, body):
+        return struct.pack(">I", len(body)) + tag + body + struct.pack(">I", zlib.crc32(tag + body) & 0xffffffff)
+    png = (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0))
+           + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+    tmp = path + ".tmp"
+    with open(tmp, "wb") as f:
+        f.write(png)
+    os.replace(tmp, path)
+
+
+def grey(v):
+    c = int(round(255 * max(0.0, min(1.0, v))))
+    return (c, c, c)
+
+
+def signed(d):
+    """red: brighter than the reference, blue: darker; full at DIFF_FULL_SCALE."""
+    t = max(-1.0, min(1.0, d / DIFF_FULL_SCALE))
+    c = int(round(255 * abs(t)))
+    return (c, 0, 0) if t > 0 else (0, 0, c)
+
+
+def error(a, ref, depth):
+    se = bias = 0.0
+    n = 0
+    for ra, rr, rd in zip(a, ref, depth):
+        for x, y, z in zip(ra, rr, rd):
+            if z <= 0:
+                continue
+            se += (x - y) ** 2
+            bias += x - y
+            n += 1
+    return (math.sqrt(se / n), bias / n) if n else (0.0, 0.0)
+
+
+def render(exe, scene, size, out, extra):
+    cmd = [exe, "render", "builtin:" + scene, "--size", size, "-o", out] + extra
+    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True)
+    if r.returncode != 0:
+        sys.exit("screen_limits: %s failed: %s" % (" ".join(cmd), r.stderr.strip()))
+    return " ".join(cmd)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--build", default="build")
+    ap.add_argument("--scenes", default="spheres,columns,cornell")
+    ap.add_argument("--size", default="160x120")
+    ap.add_argument("--frames", type=int, default=8)
+    ap.add_argument("--out", default=os.path.join("build", "screen-limits"))
+    args = ap.parse_args()
+    exe = os.path.join(args.build, "tinygi")
+    if not os.access(exe, os.X_OK):
+        sys.exit("screen_limits: %s: not built (make first)" % exe)
+    os.makedirs(args.out, exist_ok=True)
+    runs = {
+        "reference": ["--technique", "reference", "--aov", "ao"],
+        "hbil": ["--aov", "ao", "--frames", str(args.frames)],
+        "one layer": ["--aov", "ao", "--no-interleave", "--slices", "8", "--samples", "128"],
+        "depth": ["--aov", "depth"],
+    }
+    table = ["| scene | hbil: RMSE / bias | one layer: RMSE / bias | hbil against one layer: RMSE |",
+             "| --- | --- | --- | --- |"]
+    sheet = []
+    for scene in args.scenes.split(","):
+        img = {}
+        for name, extra in runs.items():
+            path = os.path.join(args.out, "%s-%s.pfm" % (scene, name.replace(" ", "-")))
+            render(exe, scene, args.size, path, extra)
+            img[name] = read_pfm(path)
+        w, h = img["depth"][0], img["depth"][1]
+        ref, hb, one, dep = img["reference"][2], img["hbil"][2], img["one layer"][2], img["depth"][2]
+        e_h, e_o, e_ho = error(hb, ref, dep), error(one, ref, dep), error(hb, one, dep)
+        table.append("| %s | %.3f / %+.3f | %.3f / %+.3f | %.3f |" % (scene, e_h[0], e_h[1], e_o[0], e_o[1], e_ho[0]))
+        print("%-8s hbil %.3f / %+.3f   one layer %.3f / %+.3f   hbil vs one layer %.3f"
+              % (scene, e_h[0], e_h[1], e_o[0], e_o[1], e_ho[0]))
+        gap = [(255, 255, 255)] * 4
+        for y in range(h):
+            row = []
+            for panel in (ref, hb, one):
+                row += [grey(v) if d > 0 else (40, 40, 40) for v, d in zip(panel[y], dep[y])] + gap
+            for panel in (hb, one):
+                row += [signed(v - r) if d > 0 else (40, 40, 40) for v, r, d in zip(panel[y], ref[y], dep[y])] + gap
+            sheet.append(row[:-4])
+        sheet += [[(255, 255, 255)] * (5 * w + 16)] * 4
+    sheet = sheet[:-4]
+    write_png(os.path.join(args.out, "screen-limits.png"), len(sheet[0]), len(sheet), sheet)
+    md = ["# What screen space cannot see", "",
+          "`python3 tools/screen_limits.py --size %s --frames %d` (AO against `--technique reference`, "
+          "over geometry pixels; one layer: `--no-interleave --slices 8 --samples 128`)." % (args.size, args.frames),
+          ""] + table
+    with open(os.path.join(args.out, "screen-limits.md"), "w") as f:
+        f.write("\n".join(md) + "\n")
+    print("screen_limits: wrote %s/screen-limits.md and screen-limits.png" % args.out)
+
+
+if __name__ == "__main__":
+    main()
