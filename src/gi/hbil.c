@@ -427,8 +427,10 @@ static inline tg_real frac_small(tg_real a, int b0)
  * one is outside [-16384, 16384); only then the exact test per component */
 static inline int wide_far(tgi_wide dx, tgi_wide dy, tgi_wide dz)
 {
+#if !TG_OUTLINE_HELPERS   /* compiling for size: the exact test alone */
     const tgi_wide near = (tgi_wide)1 << 30;
     if ((((uint64_t)(dx + near) | (uint64_t)(dy + near) | (uint64_t)(dz + near)) >> 31) == 0) return 0;
+#endif
     return (uint64_t)(dx + HBIL_FAR) > (uint64_t)(2 * HBIL_FAR) || (uint64_t)(dy + HBIL_FAR) > (uint64_t)(2 * HBIL_FAR)
         || (uint64_t)(dz + HBIL_FAR) > (uint64_t)(2 * HBIL_FAR);
 }
