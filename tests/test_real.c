@@ -242,6 +242,30 @@ TEST(outline_div_and_shift_match_inline)
     }
     CHECK(bad == 0, "%ld out-of-line results differ from the inline ones", bad);
 }
+
+/* tgi_div_pos (core/real.h) is tg_div for b > 0 wherever the quotient
+ * fits tg_real (tg_div does not saturate), including the halves that round
+ * away from zero. */
+TEST(div_pos_matches_div)
+{
+    uint64_t v = 0x2545f4914f6cdd1dull;
+    long bad = 0, n = 0;
+    int i;
+    for (i = 0; i < 4000000; i++) {
+        int64_t a, q;
+        int32_t b;
+        v ^= v << 13; v ^= v >> 7; v ^= v << 17;
+        a = (int64_t)(int32_t)(uint32_t)v >> (int)(v >> 59);
+        b = (int32_t)((uint32_t)(v >> 32) >> (1 + (int)((v >> 40) % 31)));   /* 0 .. 2^31 - 1 */
+        if (b <= 0) continue;
+        if (i & 1) a = (a / 65536) * b + ((v >> 20) & 1 ? b / 2 : -(b / 2));   /* a tie: a 2^16 / b = k + 1/2 */
+        q = ((a < 0 ? -a : a) * 65536 + b / 2) / b;
+        if (q > INT32_MAX || a > INT32_MAX || a < -INT32_MAX) continue;
+        n++;
+        if (tgi_div_pos((tg_real)a, b) != tg_div((tg_real)a, b)) bad++;
+    }
+    CHECK(n > 1000000 && bad == 0, "%ld of %ld quotients differ from tg_div", bad, n);
+}
 #endif
 
 TEST(isqrt64_exact)
@@ -850,6 +874,7 @@ int main(void)
     RUN(isqrt64_exact);
 #if TG_FIXED
     RUN(outline_div_and_shift_match_inline);
+    RUN(div_pos_matches_div);
 #endif
     RUN(text_put_real_as_float);
     RUN(integer_helpers);

@@ -53,6 +53,19 @@ static inline tgi_wide tgi_wide_dot(tgi_wide ax, tgi_wide ay, tgi_wide az, tgi_w
 }
 /* back to tg_real, saturating */
 static inline tg_real tgi_wide_real(tgi_wide a) { return tgi_sat64(a); }
+/* a / b rounded as tg_div rounds it (half away from zero), for b > 0
+ * where the quotient fits tg_real (each use states why): tg_div without
+ * its zero, sign and saturation tests; compiling for size
+ * (TG_OUTLINE_HELPERS) the library's one tg_div, the same quotient. */
+static inline tg_real tgi_div_pos(tg_real a, tg_real b)
+{
+#if TG_OUTLINE_HELPERS
+    return tgi_div_q16(a, b);
+#else
+    int64_t n = (int64_t)a * 65536, half = (int64_t)((uint32_t)b >> 1);
+    return (tg_real)((n >= 0 ? n + half : n - half) / b);
+#endif
+}
 #else
 typedef float tgi_wide;
 static inline tgi_wide tgi_wide_mul(tgi_wide a, tgi_wide b) { return a * b; }
@@ -61,6 +74,7 @@ static inline tgi_wide tgi_wide_dot(tgi_wide ax, tgi_wide ay, tgi_wide az, tgi_w
     return ax * bx + ay * by + az * bz;
 }
 static inline tg_real tgi_wide_real(tgi_wide a) { return a; }
+static inline tg_real tgi_div_pos(tg_real a, tg_real b) { return a / b; }
 #endif
 
 /* ---- the per-pixel reciprocal square root ----

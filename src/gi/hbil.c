@@ -476,26 +476,41 @@ HBIL_NOINLINE static void gather_rise(const hbil_ctx *c, const hbil_slice *sl, h
 }
 
 /* Whole-pixel steps along the major axis: `samples` steps of m pixels
- * reach the extent; returns m and sets *n, the count of steps. */
+ * reach the extent; returns m and sets *n, the count of steps.  The
+ * divisors are counts >= 1: the quotients fit (tgi_div_pos). */
 static int march_steps(const hbil_ctx *c, tg_real extent, int *n)
 {
-    int m = tg_to_int(tg_div(extent, tg_from_int(c->samples)));
+    int m = tg_to_int(tgi_div_pos(extent, tg_from_int(c->samples)));
     if (tg_from_int(m * c->samples) < extent) m++;
     if (m < 1) m = 1;
-    *n = tg_to_int(tg_div(extent, tg_from_int(m)));
+    *n = tg_to_int(tgi_div_pos(extent, tg_from_int(m)));
     if (*n > c->samples) *n = c->samples;
     return m;
 }
 
 /* Floor of a finite value well inside the int range (the march's minor
- * coordinate): tg_to_int without its NaN and saturation tests. */
+ * coordinate): tg_to_int without its NaN and saturation tests; in Q16.16
+ * the integer part of the raw value offset by 2^31 into the unsigned
+ * range, without tg_to_int's branch on the sign. */
 static inline int floor_small(tg_real a)
 {
 #if TG_FIXED
-    return tg_to_int(a);
+    return (int)(((uint32_t)a + 0x80000000u) >> 16) - 32768;
 #else
     int i = (int)a;
     return (tg_real)i > a ? i - 1 : i;
+#endif
+}
+
+/* a - floor_small(a) (b0 = floor_small(a)), in [0, 1): the raw value's
+ * fraction bits in Q16.16. */
+static inline tg_real frac_small(tg_real a, int b0)
+{
+#if TG_FIXED
+    (void)b0;
+    return a & 0xFFFF;
+#else
+    return a - (tg_real)b0;
 #endif
 }
 
@@ -511,10 +526,21 @@ static inline int floor_small(tg_real a)
  * Q16.16 integers): every product fits 64 bits. */
 #if TG_FIXED
 #define HBIL_FAR (((int64_t)16384 + 1) << 16)
-/* 1 when |d| is beyond the largest radius (fixed only: float squares do not overflow) */
-static inline int wide_far(tgi_wide d) { return (uint64_t)(d + HBIL_FAR) > (uint64_t)(2 * HBIL_FAR); }
+/* 1 when a component of d is beyond HBIL_FAR (fixed only: float squares
+ * do not overflow).  First one test for the three: offset by 2^30 (16384)
+ * they are all below 2^31 as unsigned (a negative one wraps high) unless
+ * one is outside [-16384, 16384); only then the exact test per component */
+static inline int wide_far(tgi_wide dx, tgi_wide dy, tgi_wide dz)
+{
+#if !TG_OUTLINE_HELPERS   /* compiling for size: the exact test alone */
+    const tgi_wide near = (tgi_wide)1 << 30;
+    if ((((uint64_t)(dx + near) | (uint64_t)(dy + near) | (uint64_t)(dz + near)) >> 31) == 0) return 0;
+#endif
+    return (uint64_t)(dx + HBIL_FAR) > (uint64_t)(2 * HBIL_FAR) || (uint64_t)(dy + HBIL_FAR) > (uint64_t)(2 * HBIL_FAR)
+        || (uint64_t)(dz + HBIL_FAR) > (uint64_t)(2 * HBIL_FAR);
+}
 #else
-static inline int wide_far(tgi_wide d) { (void)d; return 0; }
+static inline int wide_far(tgi_wide dx, tgi_wide dy, tgi_wide dz) { (void)dx; (void)dy; (void)dz; return 0; }
 #endif
 
 /* |d| of a tgi_wide: in float an and in the float registers (tgi_abs_bits,
@@ -533,17 +559,26 @@ static inline tgi_wide wide_abs(tgi_wide d)
  * to [-1, 1], and 1 / |d| (in Q16.16 |d| < 128 here: d, dot and len2 = |d|^2 fit
  * tg_real).  Float: one reciprocal square root, the two-step one of
  * core/real.h and a third Newton step (tg_sqrt and two divisions before).
- * Q16.16 keeps the square root and divides (1/|d| > 1/128 holds too few
- * bits for the cosine as a product). */
+ * Q16.16: the same reciprocal square root in integers, Q30 with its
+ * exponent (1/|d| > 1/128 in Q16.16 holds too few bits for the cosine as
+ * a product, the Q30 one 22 or more), rel. error 3.2e-6 (core/real.h):
+ * the cosine within 0.71 of a unit of 2^-16 of dot / |d| (tg_sqrt and two
+ * divisions before, whose rounded |d| erred up to 2^-9 relative at the
+ * shortest). */
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
 static inline tg_real horizon_cos(tg_real dot, tg_real len2, tg_real *inv_len)
 {
 #if TG_FIXED
-    tg_real len = tg_sqrt(len2);
-    *inv_len = tg_div(TG_ONE, len);
-    return tg_clamp(tg_div(dot, len), TG_R(-1.0f), TG_ONE);
+    /* len2 = L 2^-16 with 0 < L < 2^31 (a sample with d = 0 has dot = 0
+     * and fails the horizon test; sample_cos halves a longer d): L 2^e = X 2^30, X in [1, 4), e even
+     * in [0, 30], so 1/|d| = rsqrt(X) 2^(e/2 - 7) = y 2^(e/2 - 37) for y
+     * = rsqrt(X) in Q30 (<= 2^30); |dot| < 2^24, dot y < 2^54 */
+    const int e = (32 - tgi_bit_length64((uint32_t)len2)) & ~1;
+    const int64_t y = (int64_t)tgi_rsqrt_q30_fast((uint64_t)(uint32_t)len2 << e);
+    *inv_len = (tg_real)tgi_shr_round(y, 21 - e / 2);                 /* <= 256: 2^24 */
+    return tg_clamp((tg_real)tgi_shr_round(dot * y, 37 - e / 2), TG_R(-1.0f), TG_ONE);
 #else
     float r = tgi_rsqrt_fast(len2);
     r = r * (1.5f - 0.5f * len2 * r * r);
@@ -563,21 +598,31 @@ static inline int depths_close(tg_real za, tg_real zb)
 
 /* The depth at fraction f in [0, 1) from za to zb, 1/z linear:
  * z = za + f (zb - za) za / (zb - f (zb - za)).  0 < za, zb <=
- * TG_REAL_MAX: zb - za fits, f zd fits, zb - f zd lies between them. */
+ * TG_REAL_MAX, close (depths_close): zb - za fits, f zd fits, zb - f zd
+ * lies between them (> 0), so za / (zb - f zd) < 4 (tgi_div_pos) and its
+ * product with f zd stays below 2^50 in tgi_wide: the same depth as
+ * tg_mul and tg_add wherever they would not have saturated. */
 static inline tg_real lerp_inverse_depth(tg_real za, tg_real zb, tg_real f)
 {
     tg_real zd = (tg_real)((tgi_wide)zb - za), fzd = small_mul(f, zd);
-    return tg_add(za, tg_mul(fzd, tg_div(za, small_sub(zb, fzd))));
+    return tgi_wide_real((tgi_wide)za + tgi_wide_mul(fzd, tgi_div_pos(za, small_sub(zb, fzd))));
 }
 
+/* A run of samples along a side: march_side's, or march_between's
+ * (march_run), which march_samples reads in place of copies of the whole
+ * hbil_march. */
+typedef struct hbil_run {
+    tg_real minor, dminor, ox;     /* ox: the minor offset before the first sample */
+    int a, da, n;
+    int back;                      /* o dir: sample k stands k da - back from the pixel */
+} hbil_run;
 /* The march's per-side constants (march_side). */
 typedef struct hbil_march {
     tg_real p0x, p0y, p0z, z, inv_z, wox, woy, woz;
     tgi_wide r2;                   /* the 3D radius squared, march units */
-    tg_real minor, dminor, ox;     /* ox: the minor offset before the first sample */
     tg_real slope, extent;         /* minor per major pixel; the march's extent, major pixels */
-    int a, da, n, smaj, smin, bmax;
-    int back;                      /* o dir: sample k stands k da - back from the pixel */
+    int smaj, smin, bmax;
+    hbil_run run;                  /* the side's own samples */
 } hbil_march;
 
 /* The sample at screen offset (sx, sy) from the pixel (image pixels, y
@@ -606,7 +651,7 @@ static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, t
     dx = (tgi_wide)sx + tgi_wide_mul((tgi_wide)mr->p0x + sx, q);
     dy = (tgi_wide)sy + tgi_wide_mul((tgi_wide)mr->p0y + sy, q);
     dz = tgi_wide_mul(mr->p0z, q);
-    if (wide_far(dx) || wide_far(dy) || wide_far(dz)) return HBIL_NOT_ABOVE;   /* beyond the 3D radius */
+    if (wide_far(dx, dy, dz)) return HBIL_NOT_ABOVE;                          /* beyond the 3D radius */
     len2 = tgi_wide_dot(dx, dy, dz, dx, dy, dz);
     if (len2 > mr->r2) return HBIL_NOT_ABOVE;                                 /* beyond the 3D radius */
     dot = tgi_wide_dot(dx, dy, dz, mr->wox, mr->woy, mr->woz);
@@ -628,6 +673,18 @@ static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, t
 }
 
 
+/* The unit direction d / |d| of a sample that raised the horizon, and
+ * h|h| + HBIL_TIE of its cosine h: |d_i| <= |d| (< 128 in Q16.16, as
+ * sample_cos leaves it) and 1/|d| <= 256 give products of at most 1 (plus
+ * rounding), |h| <= 1: small_mul and small_add (tg_mul and tg_add would
+ * not saturate). */
+static inline tg_vec3 sample_dir(const tgi_wide d[3], tg_real inv_len)
+{
+    return tg_v3(small_mul((tg_real)d[0], inv_len), small_mul((tg_real)d[1], inv_len), small_mul((tg_real)d[2], inv_len));
+}
+static inline tg_real horizon_sq(tg_real h) { return small_mul(h, tg_abs(h)); }
+static inline tg_real horizon_tie(tg_real hs) { return small_add(hs, HBIL_TIE); }
+
 /* The samples of one side; major_x is a constant in each of the two
  * copies (MARCH_SAMPLES), so the axis choice costs nothing per sample.
  * Compiling for size (TG_OUTLINE_HELPERS, tinygi.h) there is one copy, out
@@ -642,18 +699,17 @@ __attribute__((always_inline))
 static inline void march_samples(
 #endif
                                  const hbil_ctx *c, const hbil_slice *sl, int side, hbil_side *sd,
-                                 const hbil_march *mr, const int major_x)
+                                 const hbil_march *mr, const hbil_run *run, const int major_x)
 {
-    const tgi_gview g = *c->g;   /* a local copy: its fields stay in registers */
-    const int smaj = mr->smaj, smin = mr->smin, bmax = mr->bmax, da = mr->da, n = mr->n;
-    const hbil_march m = *mr;    /* a local copy, as g */
-    const tg_real dminor = m.dminor;
-    const int back = m.back;
-    tg_real minor = mr->minor, ox = mr->ox, hs_tie = tg_add(sd->hs, HBIL_TIE);
+    const tgi_gview *const g = c->g;
+    const int smaj = mr->smaj, smin = mr->smin, bmax = mr->bmax, da = run->da, n = run->n;
+    const tg_real dminor = run->dminor;
+    const int back = run->back;
+    tg_real minor = run->minor, ox = run->ox, hs_tie = horizon_tie(sd->hs);
     /* the major offset k da - back of sample k, stepped (whole pixels < 2^14: exact) */
     tg_real smajor = small_from_int(-back);
     const tg_real dmajor = small_from_int(da);
-    int k, a = mr->a, sa_major = a * smaj;
+    int k, a = run->a, sa_major = a * smaj;
     for (k = 1; k <= n; k++) {
         int b0, sa;
         tg_real f, z1, sx, sy, za, zb, cn, inv_len;
@@ -664,44 +720,44 @@ static inline void march_samples(
         a += da;
         sa_major += da * smaj;
         b0 = floor_small(minor);
-        f = small_sub(minor, small_from_int(b0));               /* image coordinates: < 2^14 */
+        f = frac_small(minor, b0);
         sa = sa_major + b0 * smin;
         /* both neighbours surface (depth > 0 is not sky) and close: 1/z
          * interpolated linearly, 1/z = (1-f)/za + f/zb  <=>
          * z = za + f (zb - za) za / (zb - f (zb - za)) */
         if ((unsigned)b0 < (unsigned)(bmax - 1)                 /* b0 and b0 + 1 inside */
-            && (za = tgi_gv_depth(&g, sa)) > 0 && depths_close(za, zb = tgi_gv_depth(&g, sa + smin))) {
+            && (za = tgi_gv_depth(g, sa)) > 0 && depths_close(za, zb = tgi_gv_depth(g, sa + smin))) {
             z1 = lerp_inverse_depth(za, zb, f);
         } else {
             int bn = f < TG_R(0.5f) ? b0 : b0 + 1, sn;
             if (bn < 0 || bn >= bmax) break;                    /* the slice leaves the image */
             sn = bn == b0 ? sa : sa + smin;
-            if (tgi_gv_is_sky(&g, sn) || tgi_gv_depth(&g, sn) <= 0) continue;  /* sky never occludes */
-            z1 = sample_depth_edge(c, &g, major_x, a, b0, f, sa, sn);
+            if (tgi_gv_is_sky(g, sn) || tgi_gv_depth(g, sn) <= 0) continue;  /* sky never occludes */
+            z1 = sample_depth_edge(c, g, major_x, a, b0, f, sa, sn);
             if (z1 <= 0) continue;
         }
         sx = major_x ? smajor : ox;
         sy = major_x ? tg_neg(ox) : tg_neg(smajor);
-        cn = sample_cos(&m, z1, sx, sy, sd->h, hs_tie, d, &inv_len);
+        cn = sample_cos(mr, z1, sx, sy, sd->h, hs_tie, d, &inv_len);
         if (cn == HBIL_NOT_ABOVE) continue;
         sd->h = cn;
         sd->peak_a = a;
-        sd->hs = tg_mul(cn, tg_abs(cn));
-        hs_tie = tg_add(sd->hs, HBIL_TIE);
+        sd->hs = horizon_sq(cn);
+        hs_tie = horizon_tie(sd->hs);
         if (NEAR_FIELD(c))
-            gather_rise(c, sl, sd, side, cn, tgi_v3_scale(tg_v3((tg_real)d[0], (tg_real)d[1], (tg_real)d[2]), inv_len),
+            gather_rise(c, sl, sd, side, cn, sample_dir(d, inv_len),
                         c->g, c->rad, f < TG_R(0.5f) ? sa : sa + smin);   /* the nearest pixel */
     }
 }
 
 /* march_samples along the major axis major_x: a copy per axis, or the one copy */
 #if TG_OUTLINE_HELPERS
-#define MARCH_SAMPLES(c, sl, side, sd, mr, major_x) march_samples(c, sl, side, sd, mr, major_x)
+#define MARCH_SAMPLES(c, sl, side, sd, mr, run, major_x) march_samples(c, sl, side, sd, mr, run, major_x)
 #else
-#define MARCH_SAMPLES(c, sl, side, sd, mr, major_x) \
+#define MARCH_SAMPLES(c, sl, side, sd, mr, run, major_x) \
     do { \
-        if (major_x) march_samples(c, sl, side, sd, mr, 1); \
-        else march_samples(c, sl, side, sd, mr, 0); \
+        if (major_x) march_samples(c, sl, side, sd, mr, run, 1); \
+        else march_samples(c, sl, side, sd, mr, run, 0); \
     } while (0)
 #endif
 
@@ -710,16 +766,16 @@ static inline void march_samples(
 static void march_run(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_side *sd, const hbil_march *mr,
                       int major_x, int p0, int step, int n)
 {
-    hbil_march r = *mr;
-    const int dir = mr->da < 0 ? -1 : 1;
+    hbil_run r;
+    const int dir = mr->run.da < 0 ? -1 : 1;
     r.n = n;
     r.da = step * dir;
     r.back = -p0 * dir;
-    r.a = mr->a + mr->back - r.back;
-    r.ox = tg_mul(mr->slope, tg_from_int(p0));
-    r.minor = tg_add(tg_sub(mr->minor, mr->ox), r.ox);
-    r.dminor = tg_mul(mr->slope, tg_from_int(step));
-    MARCH_SAMPLES(c, sl, side, sd, &r, major_x);
+    r.a = mr->run.a + mr->run.back - r.back;
+    r.ox = small_mul(mr->slope, small_from_int(p0));                 /* as in march_side */
+    r.minor = small_add(small_sub(mr->run.minor, mr->run.ox), r.ox);
+    r.dminor = small_mul(mr->slope, small_from_int(step));
+    MARCH_SAMPLES(c, sl, side, sd, mr, &r, major_x);
 }
 
 /* More samples on a side marched in steps of m > 1 pixels (*mr as
@@ -734,9 +790,9 @@ static void march_run(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_si
 HBIL_NOINLINE static void march_between(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_side *sd,
                                         const hbil_march *mr, int major_x)
 {
-    const int dir = mr->da < 0 ? -1 : 1, m = mr->da * dir, a0 = mr->a + mr->back;
+    const int dir = mr->run.da < 0 ? -1 : 1, m = mr->run.da * dir, a0 = mr->run.a + mr->run.back;
     const int room = dir > 0 ? (major_x ? c->g->width : c->g->height) - 1 - a0 : a0;  /* pixels to the edge */
-    const int last = mr->n * m - mr->back * dir;                 /* the last sample's distance */
+    const int last = mr->run.n * m - mr->run.back * dir;                 /* the last sample's distance */
     int p, k;
     if (last < room && tg_from_int(room) <= mr->extent) march_run(c, sl, side, sd, mr, major_x, last, room - last, 1);
     if (sd->peak_a < 0) return;
@@ -751,7 +807,7 @@ HBIL_NOINLINE static void march_between(const hbil_ctx *c, const hbil_slice *sl,
 /* The highest of refine_fine's samples. */
 typedef struct hbil_fine_best {
     tg_real h, hs;          /* the highest horizon the fine samples found, h|h| */
-    tgi_wide dx, dy, dz;    /* its offset (march units) */
+    tgi_wide d[3];          /* its offset (march units) */
     tg_real inv_len;        /* 1 / |d| */
     int si;                 /* its pixel in the fine image; -1: none above the side's */
 } hbil_fine_best;
@@ -776,10 +832,11 @@ static HBIL_FINE_INLINE void fine_sample(const hbil_ctx *c, hbil_fine_best *best
 {
     const tgi_gview *fg = c->fine;
     const int fa = fa0 + t * dir, bmax = major_x ? fg->height : fg->width;
-    tg_real minor = tg_mul(mr->slope, tg_from_int(t)), f, z1, za, zb, sx, sy, inv_len, cn;
+    /* |slope| <= 1, t and the fine pixels below 2^14, times 1/4 or 1/8: small_mul */
+    tg_real minor = small_mul(mr->slope, small_from_int(t)), f, z1, za, zb, sx, sy, inv_len, cn;
     int b0 = floor_small(minor), fb = fb0 + b0, si, sj;
     tgi_wide d[3];
-    f = small_sub(minor, small_from_int(b0));
+    f = frac_small(minor, b0);
     if (fb < 0 || fb >= bmax) return;                               /* the slice leaves the image */
     si = (int)(major_x ? tgi_gv_index(fg, fa, fb) : tgi_gv_index(fg, fb, fa));
     sj = fb + 1 < bmax ? si + (major_x ? fg->row_stride : fg->pixel_stride) : si;   /* the next along the minor axis */
@@ -797,13 +854,13 @@ static HBIL_FINE_INLINE void fine_sample(const hbil_ctx *c, hbil_fine_best *best
         si = sn;
     }
     /* fine pixels to the march's units: times 1/4 or 1/8, exact */
-    sx = tg_mul(major_x ? small_from_int(t * dir) : minor, c->inv_fine_ratio);
-    sy = tg_mul(major_x ? tg_neg(minor) : small_from_int(-t * dir), c->inv_fine_ratio);
-    cn = sample_cos(mr, z1, sx, sy, best->h, tg_add(best->hs, HBIL_TIE), d, &inv_len);
+    sx = small_mul(major_x ? small_from_int(t * dir) : minor, c->inv_fine_ratio);
+    sy = small_mul(major_x ? tg_neg(minor) : small_from_int(-t * dir), c->inv_fine_ratio);
+    cn = sample_cos(mr, z1, sx, sy, best->h, horizon_tie(best->hs), d, &inv_len);
     if (cn == HBIL_NOT_ABOVE) return;
     best->h = cn;
-    best->hs = tg_mul(cn, tg_abs(cn));
-    best->dx = d[0]; best->dy = d[1]; best->dz = d[2];
+    best->hs = horizon_sq(cn);
+    best->d[0] = d[0]; best->d[1] = d[1]; best->d[2] = d[2];
     best->inv_len = inv_len;
     best->si = si;
 }
@@ -830,7 +887,7 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
                                       hbil_side *sd, const hbil_march *mr, int major_x)
 {
     const tgi_gview *fg = c->fine;
-    const int dir = mr->da < 0 ? -1 : 1, a0 = mr->a + mr->back, r = c->fine_ratio;
+    const int dir = mr->run.da < 0 ? -1 : 1, a0 = mr->run.a + mr->run.back, r = c->fine_ratio;
     const int fa0 = r * a0 + (major_x ? c->fine_i : c->fine_j);
     const int fb0 = r * (major_x ? px->y : px->x) + (major_x ? c->fine_j : c->fine_i);
     const int room = dir > 0 ? (major_x ? fg->width : fg->height) - 1 - fa0 : fa0;       /* fine pixels to the edge */
@@ -841,10 +898,12 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
     best.h = sd->h;
     best.hs = sd->hs;
     best.si = -1;
-    if (sd->peak_a >= 0)
-        for (t = r * (sd->peak_a - a0) * dir + 1; t % r != 0 && t <= room && tg_from_int(t) <= ext; t++)
+    if (sd->peak_a >= 0) {
+        const int t0 = r * (sd->peak_a - a0) * dir;                     /* up to the next sub-image pixel, t0 + r */
+        for (t = t0 + 1; t < t0 + r && t <= room && small_from_int(t) <= ext; t++)
             fine_sample(c, &best, mr, major_x, fa0, fb0, t, dir);
-    if (room > r * sub_room && tg_from_int(room) <= ext)
+    }
+    if (room > r * sub_room && small_from_int(room) <= ext)
         fine_sample(c, &best, mr, major_x, fa0, fb0, room, dir);
     if (best.si < 0) return;
     /* one raise to the highest: the band it closes lies within a few
@@ -853,7 +912,7 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
     sd->hs = best.hs;
     if (NEAR_FIELD(c))
         gather_rise(c, sl, sd, side, best.h,
-                    tgi_v3_scale(tg_v3((tg_real)best.dx, (tg_real)best.dy, (tg_real)best.dz), best.inv_len),
+                    sample_dir(best.d, best.inv_len),
                     fg, c->fine_rad, best.si);
 }
 
@@ -872,36 +931,41 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     const int major_x = tg_abs(ux) >= tg_abs(uy);
     const int amax = major_x ? w : h;
     const tg_real umaj = major_x ? tg_abs(ux) : tg_abs(uy);
-    tg_real slope = tg_div(major_x ? uy : ux, umaj == 0 ? TG_ONE : umaj);
+    /* |minor| <= umaj: |slope| <= 1 (tgi_div_pos, umaj > 0 or 1) */
+    tg_real slope = tgi_div_pos(major_x ? uy : ux, umaj == 0 ? TG_ONE : umaj);
     int dir = ((major_x ? ux : uy) < 0 ? -1 : 1) * side;
     int m, kmax, o;
     hbil_march mr;
     mr.smaj = major_x ? ps : rs;
     mr.smin = major_x ? rs : ps;
     mr.bmax = major_x ? h : w;
-    mr.p0x = tg_mul(px->X, c->inv_step);
-    mr.p0y = tg_mul(px->Y, c->inv_step);
-    mr.p0z = tg_mul(c->ppu, c->inv_step);
+    /* the per-side products and sums below are small (small_mul): screen
+     * positions < 2^13 and ppu times 1/step <= 1, the reach in [0, 2^14]
+     * (radius >= 0, HBIL_MAX_RADIUS_UNITS) times |u| <= 1, offsets below
+     * 2^14 times |slope| <= 1 */
+    mr.p0x = small_mul(px->X, c->inv_step);
+    mr.p0y = small_mul(px->Y, c->inv_step);
+    mr.p0z = small_mul(c->ppu, c->inv_step);
     mr.z = px->z;
     mr.inv_z = px->inv_z;
     mr.r2 = px->radius_units2;
     mr.wox = px->wo.x; mr.woy = px->wo.y; mr.woz = px->wo.z;
     if (side < 0) slope = tg_neg(slope);
     mr.slope = slope;
-    mr.extent = tg_mul(px->reach, umaj);
-    m = march_steps(c, mr.extent, &mr.n);
-    o = tg_to_int(tg_mul(px->jitter, tg_from_int(m)));           /* sample k at k m - o pixels */
+    mr.extent = small_mul(px->reach, umaj);
+    m = march_steps(c, mr.extent, &mr.run.n);
+    o = tg_to_int(small_mul(px->jitter, small_from_int(m)));     /* sample k at k m - o pixels */
     if (o < 0 || o >= m) o = 0;
-    mr.da = m * dir;
-    mr.a = major_x ? px->x : px->y;
-    kmax = ((mr.da > 0 ? amax - 1 - mr.a : mr.a) + o) / m;        /* never past the screen edge */
-    if (mr.n > kmax) mr.n = kmax;
-    mr.back = o * dir;
-    mr.a -= mr.back;
-    mr.ox = tg_mul(slope, tg_from_int(-o));
-    mr.minor = tg_add(major_x ? tg_from_int(px->y) : tg_from_int(px->x), mr.ox);
-    mr.dminor = tg_mul(slope, tg_from_int(m));
-    MARCH_SAMPLES(c, sl, side, sd, &mr, major_x);
+    mr.run.da = m * dir;
+    mr.run.a = major_x ? px->x : px->y;
+    kmax = ((mr.run.da > 0 ? amax - 1 - mr.run.a : mr.run.a) + o) / m;   /* never past the screen edge */
+    if (mr.run.n > kmax) mr.run.n = kmax;
+    mr.run.back = o * dir;
+    mr.run.a -= mr.run.back;
+    mr.run.ox = small_mul(slope, small_from_int(-o));
+    mr.run.minor = small_add(small_from_int(major_x ? px->y : px->x), mr.run.ox);
+    mr.run.dminor = small_mul(slope, small_from_int(m));
+    MARCH_SAMPLES(c, sl, side, sd, &mr, &mr.run, major_x);
     if (m > 1) march_between(c, sl, side, sd, &mr, major_x);
 #if !TG_NO_FINE_HORIZON
     if (c->fine) refine_fine(c, px, sl, side, sd, &mr, major_x);
