@@ -147,14 +147,17 @@ static inline tg_real tg_mul(tg_real a, tg_real b)
 {
     return tgi_sat64(tgi_shr_round((int64_t)a * b, TG_FRAC_BITS));
 }
-/* Division saturates; x/0 gives +-TG_REAL_MAX by the sign of x, 0/0 gives 0. */
+/* Division rounds to nearest, halves away from zero, for every sign of a
+ * and b (half |b| moves a 2^16 away from zero, then C's division truncates
+ * toward it); it saturates; x/0 gives +-TG_REAL_MAX by the sign of x, 0/0
+ * gives 0. */
 static inline tg_real tgi_div_inline(tg_real a, tg_real b)
 {
-    int64_t n;
+    int64_t n, half;
     if (b == 0) return a > 0 ? TG_REAL_MAX : a < 0 ? TG_REAL_MIN : 0;
     n = (int64_t)a * 65536;
-    if ((n >= 0) == (b > 0)) n += (b > 0 ? b : -(int64_t)b) / 2;
-    else n -= (b > 0 ? b : -(int64_t)b) / 2;
+    half = (b > 0 ? b : -(int64_t)b) / 2;
+    n += n >= 0 ? half : -half;
     return tgi_sat64(n / b);
 }
 static inline tg_real tg_div(tg_real a, tg_real b) { return TGI_Q16_HELPER(div)(a, b); }

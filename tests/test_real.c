@@ -243,6 +243,42 @@ TEST(outline_div_and_shift_match_inline)
     CHECK(bad == 0, "%ld out-of-line results differ from the inline ones", bad);
 }
 
+/* tg_div rounds to nearest, halves away from zero, whatever the signs: in
+ * Q16.16 a/b is the integer nearest a 2^16 / b, and the four sign cases are
+ * the same magnitude.  It added half the divisor toward the wrong side
+ * when b < 0: tg_div(-1, -2) gave 0.5 - 2^-16 and tg_div(3, -2) gave
+ * -1.5 + 2^-16, one unit off on exact quotients (found by the
+ * fixedmarch12 work; sample_depth_edge divides two negatives). */
+TEST(div_rounds_alike_for_every_sign)
+{
+#if TG_FIXED
+    unsigned seed = 2024u;
+    long bad = 0, n = 0;
+    int i;
+    CHECK(tg_div(tg_neg(TG_ONE), TG_R(-2.0f)) == TG_R(0.5f), "-1 / -2 = %d / 65536", tg_div(tg_neg(TG_ONE), TG_R(-2.0f)));
+    CHECK(tg_div(TG_R(3.0f), TG_R(-2.0f)) == TG_R(-1.5f), "3 / -2 = %d / 65536", tg_div(TG_R(3.0f), TG_R(-2.0f)));
+    CHECK(tg_div(3, -2) == -98304, "3 ulp / -2 ulp = %d (1.5 = 98304)", tg_div(3, -2));
+    for (i = 0; i < 2000000; i++) {
+        int32_t a, b;
+        int64_t num, q, want;
+        seed = seed * 1103515245u + 12345u; a = (int32_t)(seed >> 1) >> (seed % 20);
+        seed = seed * 1103515245u + 12345u; b = (int32_t)(seed >> 1) >> (seed % 28);
+        if (seed & 1) a = -a;
+        if (seed & 2) b = -b;
+        if (b == 0) continue;
+        num = (int64_t)a * 65536;
+        q = (num < 0 ? -num : num) / (b < 0 ? -(int64_t)b : b);                  /* |a 2^16 / b|, floor */
+        if (2 * ((num < 0 ? -num : num) - q * (b < 0 ? -(int64_t)b : b)) >= (b < 0 ? -(int64_t)b : b)) q++;  /* half away */
+        want = ((num < 0) != (b < 0)) ? -q : q;
+        if (want > TG_REAL_MAX) want = TG_REAL_MAX;
+        if (want < TG_REAL_MIN) want = TG_REAL_MIN;
+        n++;
+        if (tg_div(a, b) != (tg_real)want || tgi_div_q16(a, b) != (tg_real)want) bad++;
+    }
+    CHECK(n > 1000000 && bad == 0, "%ld of %ld quotients not rounded to nearest", bad, n);
+#endif
+}
+
 /* tgi_div_pos (core/real.h) is tg_div for b > 0 wherever the quotient
  * fits tg_real (tg_div does not saturate), including the halves that round
  * away from zero. */
@@ -874,6 +910,7 @@ int main(void)
     RUN(isqrt64_exact);
 #if TG_FIXED
     RUN(outline_div_and_shift_match_inline);
+    RUN(div_rounds_alike_for_every_sign);
     RUN(div_pos_matches_div);
 #endif
     RUN(text_put_real_as_float);
