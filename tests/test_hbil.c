@@ -851,12 +851,42 @@ static void kernel_sub_images(const tgi_gview *k, double radius, int rot, tgi_gr
  * the frame's accumulation does) on the floor pixels within 3 of the wall
  * against the ray-traced AO: RMSE, bias and the worst pixel.  refine: the
  * horizons refined on the full-resolution pixels (gi/hbil.c refine_fine). */
-static void wall_top_error(int w, int h, int refine, double *rmse_out, double *bias_out, double *worst_out, int *cnt_out)
+/* A floor (y = 0, x >= 0) before a wall `height` high standing at x = 0. */
+static void floor_and_wall(scene *s, double height)
 {
     static const quad floor_q = { { 0, 0, -20 }, { 20, 0, 0 }, { 0, 0, 40 }, 1 };
-    static const quad wall_q = { { 0, 0, -20 }, { 0, 1.5, 0 }, { 0, 0, 40 }, 1 };
-    double eye[3] = { 6, 2.2, 0 }, target[3] = { 0, 0.5, 0 }, up[3] = { 0, 1, 0 };
-    double nrm[3] = { 0, 1, 0 }, se = 0, bias = 0, worst = 0, *sum;
+    quad wall_q = { { 0, 0, -20 }, { 0, 0, 0 }, { 0, 0, 40 }, 1 };
+    wall_q.e1[1] = height;
+    s->n = 2; s->q[0] = floor_q; s->q[1] = wall_q;
+}
+
+/* AO ao[] (one value a pixel of g) against the ray-traced AO of scene s at
+ * radius `radius`, over every `stride`-th pixel of the floor between x0 and
+ * x1 from the wall and within 3 of the middle: RMSE, bias, worst pixel and
+ * the count. */
+static void floor_ao_error(const gbuf *g, const scene *s, const double *ao, double radius, double x0, double x1,
+                           int stride, double *rmse_out, double *bias_out, double *worst_out, int *cnt_out)
+{
+    double nrm[3] = { 0, 1, 0 }, se = 0, bias = 0, worst = 0;
+    size_t i, n = (size_t)g->w * g->h;
+    int cnt = 0;
+    for (i = 0; i < n; i += (size_t)stride) {
+        double pos[3], d;
+        if (g->face[i] != 0 || g->px[i] < x0 || g->px[i] > x1 || fabs(g->pz[i]) > 3) continue;
+        pos[0] = g->px[i]; pos[1] = g->py[i]; pos[2] = g->pz[i];
+        d = ao[i] - reference_ao(s, pos, nrm, radius);
+        se += d * d; bias += d; cnt++;
+        worst = fmax(worst, fabs(d));
+    }
+    *rmse_out = cnt ? sqrt(se / cnt) : 0;
+    *bias_out = cnt ? bias / cnt : 0;
+    *worst_out = worst;
+    *cnt_out = cnt;
+}
+
+static void wall_top_error(int w, int h, int refine, double *rmse_out, double *bias_out, double *worst_out, int *cnt_out)
+{
+    double eye[3] = { 6, 2.2, 0 }, target[3] = { 0, 0.5, 0 }, up[3] = { 0, 1, 0 }, *sum;
     const double radius = 10;
     scene s;
     gbuf g;
@@ -864,8 +894,8 @@ static void wall_top_error(int w, int h, int refine, double *rmse_out, double *b
     tgi_gview full;
     result r;
     size_t i, n;
-    int rot, cnt = 0;
-    s.n = 2; s.q[0] = floor_q; s.q[1] = wall_q;
+    int rot;
+    floor_and_wall(&s, 1.5);
     gbuf_make(&g, &s, w, h, eye, target, up);
     n = (size_t)g.w * g.h;
     sum = calloc(n, sizeof(double));
@@ -877,22 +907,11 @@ static void wall_top_error(int w, int h, int refine, double *rmse_out, double *b
         results_read(&all, n, &r);
         for (i = 0; i < n; i++) sum[i] += check_d(r.ao[i]) / TG_HBIL_ROTATIONS;
     }
-    for (i = 0; i < n; i += (w > 200 ? 7 : 1)) {
-        double pos[3], d;
-        if (g.face[i] != 0 || g.px[i] > 3 || fabs(g.pz[i]) > 3) continue;
-        pos[0] = g.px[i]; pos[1] = g.py[i]; pos[2] = g.pz[i];
-        d = sum[i] - reference_ao(&s, pos, nrm, radius);
-        se += d * d; bias += d; cnt++;
-        worst = fmax(worst, fabs(d));
-    }
+    floor_ao_error(&g, &s, sum, radius, -1, 3, w > 200 ? 7 : 1, rmse_out, bias_out, worst_out, cnt_out);
     sf_gbuffer_free(&gb);
     result_free(&r);
     gbuf_free(&g);
     free(sum);
-    *rmse_out = cnt ? sqrt(se / cnt) : 0;
-    *bias_out = cnt ? bias / cnt : 0;
-    *worst_out = worst;
-    *cnt_out = cnt;
 }
 
 TEST(wall_top_sets_the_horizon_at_any_radius)
@@ -917,33 +936,27 @@ TEST(wall_top_sets_the_horizon_at_any_radius)
  * distance the radius allows. */
 TEST(full_resolution_radius_beyond_150_pixels)
 {
-    static const quad floor_q = { { 0, 0, -20 }, { 20, 0, 0 }, { 0, 0, 40 }, 1 };
-    static const quad wall_q = { { 0, 0, -20 }, { 0, 4, 0 }, { 0, 0, 40 }, 1 };
-    double eye[3] = { 10, 3, 0 }, target[3] = { 0, 1.5, 0 }, up[3] = { 0, 1, 0 };
-    double nrm[3] = { 0, 1, 0 }, se = 0, bias = 0;
+    double eye[3] = { 10, 3, 0 }, target[3] = { 0, 1.5, 0 }, up[3] = { 0, 1, 0 }, *ao, rmse, bias, worst;
     const double radius = 20;
     scene s;
     gbuf g;
     result r;
     size_t i, n;
-    int cnt = 0;
-    s.n = 2; s.q[0] = floor_q; s.q[1] = wall_q;
+    int cnt;
+    floor_and_wall(&s, 4);
     gbuf_make(&g, &s, 320, 240, eye, target, up);
     n = (size_t)g.w * g.h;
     result_alloc(&r, n);
     run_full(&g, radius, 0, &r);
-    for (i = 0; i < n; i += 3) {
-        double pos[3], d;
-        if (g.face[i] != 0 || g.px[i] < 3 || g.px[i] > 6 || fabs(g.pz[i]) > 3) continue;
-        pos[0] = g.px[i]; pos[1] = g.py[i]; pos[2] = g.pz[i];
-        d = check_d(r.ao[i]) - reference_ao(&s, pos, nrm, radius);
-        se += d * d; bias += d; cnt++;
-    }
+    ao = malloc(n * sizeof(double));
+    for (i = 0; i < n; i++) ao[i] = check_d(r.ao[i]);
+    floor_ao_error(&g, &s, ao, radius, 3, 6, 3, &rmse, &bias, &worst, &cnt);
     printf("  floor 3-6 from a wall 4 high, radius 20, 320x240 full resolution, %d pixels: rmse %.4f, bias %+.4f\n",
-           cnt, cnt ? sqrt(se / cnt) : 0, cnt ? bias / cnt : 0);
+           cnt, rmse, bias);
     CHECK(cnt > 300, "floor pixels %d", cnt);
-    CHECK(fabs(bias / cnt) < 0.02, "bias %+.4f (the AO too bright: the wall beyond the march's cap)", bias / cnt);
-    CHECK(sqrt(se / cnt) < 0.05, "rmse %.4f", sqrt(se / cnt));
+    CHECK(fabs(bias) < 0.02, "bias %+.4f (the AO too bright: the wall beyond the march's cap)", bias);
+    CHECK(rmse < 0.05, "rmse %.4f", rmse);
+    free(ao);
     result_free(&r);
     gbuf_free(&g);
 }
