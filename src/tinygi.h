@@ -147,16 +147,20 @@ static inline tg_real tg_mul(tg_real a, tg_real b)
 {
     return tgi_sat64(tgi_shr_round((int64_t)a * b, TG_FRAC_BITS));
 }
+/* n / d for d > 0, rounded to nearest, halves away from zero (half d
+ * moves n away from zero, then C's division truncates toward it): the
+ * rounding of every Q16.16 division (core/real.h tgi_div_pos,
+ * gi/denoise.c's averages; tg_div below the same for either sign). */
+static inline int64_t tgi_div_round(int64_t n, int64_t d) { return (n >= 0 ? n + d / 2 : n - d / 2) / d; }
 /* Division rounds to nearest, halves away from zero, for every sign of a
- * and b (half |b| moves a 2^16 away from zero, then C's division truncates
- * toward it); it saturates; x/0 gives +-TG_REAL_MAX by the sign of x, 0/0
- * gives 0. */
+ * and b (a / b = -a / -b); it saturates; x/0 gives +-TG_REAL_MAX by the
+ * sign of x, 0/0 gives 0. */
 static inline tg_real tgi_div_inline(tg_real a, tg_real b)
 {
     int64_t n, half;
     if (b == 0) return a > 0 ? TG_REAL_MAX : a < 0 ? TG_REAL_MIN : 0;
     n = (int64_t)a * 65536;
-    half = (b > 0 ? b : -(int64_t)b) / 2;
+    half = (b > 0 ? b : -(int64_t)b) / 2;   /* tgi_div_round for either sign of b, in one division */
     n += n >= 0 ? half : -half;
     return tgi_sat64(n / b);
 }

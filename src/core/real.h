@@ -62,8 +62,7 @@ static inline tg_real tgi_div_pos(tg_real a, tg_real b)
 #if TG_OUTLINE_HELPERS
     return tgi_div_q16(a, b);
 #else
-    int64_t n = (int64_t)a * 65536, half = (int64_t)((uint32_t)b >> 1);
-    return (tg_real)((n >= 0 ? n + half : n - half) / b);
+    return (tg_real)tgi_div_round((int64_t)a * 65536, b);
 #endif
 }
 #else

@@ -144,7 +144,7 @@ static void tap_weights(const tgi_denoise_walk *k, const tg_real *spatial, tg_re
 static tg_real average(tgi_wide sum, tgi_wide ws)
 {
 #if TG_FIXED
-    return tgi_sat64((sum >= 0 ? sum + ws / 2 : sum - ws / 2) / ws);
+    return tgi_sat64(tgi_div_round(sum, ws));
 #else
     return tg_div(sum, ws);
 #endif
