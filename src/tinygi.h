@@ -511,6 +511,8 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #define TG_MAX_RADIUS 10000             /* gather radius, world units (0 is allowed) */
 #define TG_MAX_THICKNESS 10000          /* technique ssilvb: surface thickness behind the depth
                                            buffer, world units (0 allowed: every sample a sheet) */
+#define TG_MAX_DEPTH_LAYERS 2           /* technique ssilvb: the depth buffer and the nearest
+                                           back face behind it (request.depth_layers) */
 #define TG_THICKNESS_RADIUS_DIVISOR 2   /* ... unset (neither request nor scene): the gather
                                            radius / this (Therrien et al. 2023's constant
                                            thickness, sized to the scene as the radius is) */
@@ -685,6 +687,8 @@ typedef enum tg_technique {
                            (Therrien et al. 2023, src/ao/ssilvb.h): GTAO's slices
                            with 32 sectors and surfaces of a constant thickness
                            (request.thickness), so light passes behind thin objects;
+                           with request.depth_layers 2 a surface ends at the nearest
+                           back face behind it instead (the thickness where none);
                            AO, bent normal and near field */
     TG_TECH_COUNT
 } tg_technique;
@@ -752,6 +756,12 @@ typedef struct tg_request {
                               AO-only output.  The G-buffer then keeps the material index
                               (+2 bytes a pixel); nothing else changes (colour is composed
                               from the AO as computed) */
+    int depth_layers;      /* 0 or 1 (default): one depth layer, the depth buffer;
+                              2 (technique ssilvb alone, TG_MAX_DEPTH_LAYERS): the rasterizer
+                              also keeps the view depth of the nearest back face at each pixel
+                              (+4 bytes a pixel), and the visibility bitmask takes a surface
+                              as solid from the depth buffer to that back face (a closed
+                              object's true thickness) rather than request.thickness */
 } tg_request;
 
 /* Every field at its default: 320x240, one frame, colour, HBIL, GI settings unset. */

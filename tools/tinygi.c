@@ -107,6 +107,8 @@ static void print_help(FILE *out)
         "  --radius R        gather radius in world units, 0..%d (default %d)\n"
         "  --thickness T     ssilvb: surface thickness behind the depth buffer, world\n"
         "                    units, 0..%d (default: the radius / %d)\n"
+        "  --depth-layers N  ssilvb: 2 also keeps the nearest back face's depth, where\n"
+        "                    a closed object ends (default 1: the depth buffer alone)\n"
         "  --bounces N       light bounces, 0..%d (default %d; pathtrace: the most\n"
         "                    bounces, default %d)\n"
         "  --exposure E      linear exposure before the tonemapper, 0..%d (default 1)\n"
@@ -315,7 +317,7 @@ typedef struct render_opts {
     const char *scene;
     const char *output;
     int width, height, frames, aov, technique;
-    long slices, samples, bounces, shadow_size, threads;
+    long slices, samples, bounces, shadow_size, threads, depth_layers;
     int shadows;            /* TG_SHADOWS_* */
     double radius, exposure, thickness;
     int have_radius, have_exposure, have_thickness;
@@ -386,7 +388,7 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
     static const char *const names[] = {
         "-o", "--size", "--frames", "--aov", "--technique", "--slices", "--samples",
         "--radius", "--bounces", "--exposure", "--shadow-size", "--fbdev", "--threads",
-        "--shadows", "--thickness"
+        "--shadows", "--thickness", "--depth-layers"
     };
     const char *a = argv[*i], *v = NULL, *name = NULL;
     long l;
@@ -447,6 +449,8 @@ static int render_option(int argc, char **argv, int *i, render_opts *o)
             return 1;
         }
         o->shadows = (int)k;   /* TG_SHADOWS_AUTO, _MAPS, _RAYS */
+    } else if (!strcmp(name, "--depth-layers")) {
+        return int_option(name, v, 1, TG_MAX_DEPTH_LAYERS, &o->depth_layers);
     } else if (!strcmp(name, "--threads")) {
         return int_option(name, v, 1, TG_MAX_THREADS, &o->threads);
     } else if (!strcmp(name, "--radius")) {
@@ -587,6 +591,7 @@ static void make_request(const render_opts *o, tg_request *r)
     if (o->have_radius) r->radius = tg_from_float((float)o->radius);
     if (o->have_exposure) r->exposure = tg_from_float((float)o->exposure);
     if (o->have_thickness) r->thickness = tg_from_float((float)o->thickness);
+    if (o->depth_layers > 0) r->depth_layers = (int)o->depth_layers;
     r->interleave = o->interleave;
     r->far_mode = o->far_f0;
     if (o->gi_quarter) r->gi_scale = 2;

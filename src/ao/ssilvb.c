@@ -72,6 +72,7 @@ typedef struct vb_tech {
     const tgi_rgb *radiance;
     int near;
     tg_real thick, sector;            /* sector: pi / N_b */
+    tg_real thick_max;                /* 64 radii (scaled): as good as infinite */
 } vb_tech;
 
 /* One slice's frame (ao.h) and its sector boundaries. */
@@ -118,6 +119,32 @@ static tg_real half_circle_u(const tgi_ao_slice_pixel *px, const vb_slice *sl, t
     return tg_add(tg_mul(tg_sub(th, sl->gamma), TG_INV_PI), TG_R(0.5f));
 }
 
+/* The back point of the sample at pixel j whose front point is hf (both
+ * as offsets from the pixel, scaled by its shift).  Where the G-buffer has
+ * a second depth layer (tgi_gv_back_depth) with a back face at zb >= zf,
+ * the front's own depth, the surface ends where the sample's view ray
+ * leaves it: P_b = P_f zb / zf, so h_b = h_f + (P_f / zf) (zb - zf) 2^shift,
+ * and P_f / zf = (x / z, y / z, 1) stays near 1 (the camera's field of
+ * view).  Elsewhere (no back face, a back face in front of the surface,
+ * or one more than 64 radii behind it) the front moves by the constant
+ * thickness away from the eye. */
+static tg_vec3 back_point(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel *px, tg_vec3 hf, int j)
+{
+    tg_real zb = tgi_gv_back_depth(g, (size_t)j), zf, dz;
+    if (zb > 0) {
+        zf = tgi_gv_depth(g, (size_t)j);
+        dz = tg_ldexp(tg_sub(zb, zf), px->shift);
+        if (dz >= 0 && dz < t->thick_max) {
+            tg_vec3 pf = tgi_v3_add(px->shift ? tg_v3(tg_ldexp(hf.x, -px->shift), tg_ldexp(hf.y, -px->shift),
+                                                      tg_ldexp(hf.z, -px->shift))
+                                              : hf, px->pv);
+            tg_vec3 ray = tg_v3(tg_div(pf.x, zf), tg_div(pf.y, zf), tg_div(pf.z, zf));
+            return tgi_v3_add(hf, tgi_v3_scale(ray, dz));
+        }
+    }
+    return tgi_v3_sub(hf, tgi_v3_scale(px->vd, t->thick));
+}
+
 /* March one side of a slice: set the sectors of every sample's front/back
  * pair in *mask; with radiance, gather each sample's L over its new sectors
  * into *e (unnormalised: the caller divides by the open weight). */
@@ -125,7 +152,7 @@ static void march(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel
                   tg_real sdx, tg_real sdy, int side, uint32_t *mask, tg_vec3 *e)
 {
     const tgi_rgb *radiance = t->radiance;
-    tg_real thick = t->thick, d2, db2, uf, ub;
+    tg_real d2, db2, uf, ub;
     tg_vec3 hf, hb;
     uint32_t bits, fresh;
     int steps = t->p->steps, s, j, got;
@@ -133,8 +160,7 @@ static void march(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel
         got = tgi_ao_slice_sample(g, px, s, steps, sdx, sdy, &hf, &d2, &j);
         if (got < 0) break;
         if (got == 0) continue;
-        /* the back point: the front moved by the thickness away from the eye */
-        hb = tgi_v3_sub(hf, tgi_v3_scale(px->vd, thick));
+        hb = back_point(t, g, px, hf, j);
         db2 = tgi_v3_dot(hb, hb);
         uf = half_circle_u(px, sl, hf, d2, side);
         ub = db2 > 0 ? half_circle_u(px, sl, hb, db2, side) : (side > 0 ? TG_ONE : 0);
@@ -173,8 +199,9 @@ void tgi_ssilvb_rows(const tgi_ssilvb_params *p, const tgi_gview *g, const tgi_r
     /* the thickness as tgi_ao_slice_pixel scales the radius (rs); 64 radii
      * behind is as good as infinite (the back angle is then within 1/64 rad
      * of pi) and keeps |h_b|^2 inside Q16.16 */
-    tg_real thick = tg_min(tg_ldexp(tg_max(p->thickness, 0), shift), tg_mul(tg_ldexp(p->radius, shift), TG_R(64.0f)));
-    const vb_tech vb = { p, radiance, near, thick, tg_div(TG_PI, tg_from_int(TG_SSILVB_SECTORS)) };
+    tg_real thick_max = tg_mul(tg_ldexp(p->radius, shift), TG_R(64.0f));
+    tg_real thick = tg_min(tg_ldexp(tg_max(p->thickness, 0), shift), thick_max);
+    const vb_tech vb = { p, radiance, near, thick, tg_div(TG_PI, tg_from_int(TG_SSILVB_SECTORS)), thick_max };
     const tgi_ao_slices t = { .slices = p->slices, .steps = p->steps, .radius = p->radius, .near = near,
                               .slice = bitmask_slice, .tech = &vb };
     tgi_ao_slices_rows(&t, g, out, y0, y1);

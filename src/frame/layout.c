@@ -64,6 +64,7 @@ static void *take(layout *l, const char *name, size_t count, size_t elem)
 #define FMT_AO "tg_real"
 #define FMT_BENT "3 x tg_real"
 #define FMT_PREV "tg_real depth and normal"
+#define FMT_BACK "tg_real"
 #else
 #define FMT_G "32-bit float depth (0: sky); octahedral 2x11 normal + 10-bit material index"
 #define FMT_G_GEOMETRY "32-bit float depth (0: sky); octahedral 2x8 normal"
@@ -71,6 +72,7 @@ static void *take(layout *l, const char *name, size_t count, size_t elem)
 #define FMT_AO "8 bits"
 #define FMT_BENT "octahedral 2x8"
 #define FMT_PREV "16-bit float depth + octahedral 2x8 normal"
+#define FMT_BACK "32-bit float, 0: none"
 #endif
 
 static tg_real *take_real(layout *l, const char *name, size_t n)
@@ -171,6 +173,11 @@ static void group_gbuffer(layout *l, tg_frame *f)
     else
         take_gbuffer_planes(l, &f->gb, f->scene, f->width, f->height, 0, "G-buffer, no material [" FMT_G_GEOMETRY "]");
     if (f->needs & TG_NEED_POSE) f->gb.object = (uint16_t *)take(l, "G-buffer object id [16 bits]", f->pixels, 2);
+    /* the second depth layer: the visibility bitmask's thickness (request.c
+     * refuses depth_layers 2 for every other technique) */
+    if (!TG_NO_TECHNIQUES && f->request.depth_layers >= 2 && (f->needs & TG_NEED_GI_PASS))
+        f->gb.back_depth = (void *)take(l, "G-buffer back-face depth, the second layer [" FMT_BACK "]", f->pixels,
+                                        sizeof *f->gb.back_depth);
 }
 
 static void group_motion(layout *l, tg_frame *f)

@@ -268,7 +268,8 @@ size_t tg_plan_explain(const tg_plan *plan, char *buf, size_t size)
         tgi_text_put_real(&t, plan->request.radius);
         tgi_text_put(&t, ", thickness ");
         tgi_text_put_real(&t, plan->request.thickness);
-        tgi_text_put(&t, " (world units)");
+        tgi_text_put(&t, plan->request.depth_layers >= 2 ? " (world units) where no back face ends a surface (two depth layers)"
+                                                         : " (world units)");
     }
     tgi_text_put(&t, "\npasses:\n");
     put_passes(&t, plan);

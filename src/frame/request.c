@@ -81,6 +81,15 @@ static int gi_outside(const tg_request *r, tg_error *err)
     return 0;
 }
 
+/* A second depth layer that the technique would not read. */
+static int depth_layers_unread(const tg_request *r, tg_error *err)
+{
+    if (r->depth_layers < 2 || r->technique == TG_TECH_SSILVB) return 0;
+    tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "depth_layers 2 is read by technique ssilvb alone, got technique ");
+    tgi_error_append(err, tg_technique_name(r->technique));
+    return 1;
+}
+
 /* The switches: each takes exactly the values documented in tinygi.h. */
 static int switch_outside(const tg_request *r, tg_error *err)
 {
@@ -94,7 +103,9 @@ static int switch_outside(const tg_request *r, tg_error *err)
         || int_outside(err, "shadow_method", r->shadow_method, TG_SHADOWS_AUTO,
                        TG_NO_REFERENCE ? TG_SHADOWS_MAPS : TG_SHADOWS_RAYS)
         || int_outside(err, "game_loop", r->game_loop, 0, 1)
-        || int_outside(err, "ao_multibounce", r->ao_multibounce, 0, 1);
+        || int_outside(err, "ao_multibounce", r->ao_multibounce, 0, 1)
+        || int_outside(err, "depth_layers", r->depth_layers, 0, TG_MAX_DEPTH_LAYERS)
+        || depth_layers_unread(r, err);
 }
 
 int tgi_request_refused(const tg_request *r, tg_error *err)

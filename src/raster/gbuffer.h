@@ -47,6 +47,12 @@ typedef struct tgi_gbuffer {
     const tgi_material *materials;/* the scene's material table */
     int has_emissive;             /* some material of the table emits */
     uint16_t *object;             /* object index per pixel (objects move); NULL if unused */
+#if TG_WIDE_STORAGE
+    tg_real *back_depth;          /* the second depth layer: view depth of the nearest */
+#else
+    uint32_t *back_depth;         /* back face (binary32 bits as depth); 0 where none;
+                                     NULL unless planned (request.depth_layers 2) */
+#endif
     tg_real *motion_x, *motion_y; /* previous-frame screen position of this pixel's surface
                                      (continuous pixel coordinates); NULL unless planned */
 } tgi_gbuffer;

@@ -81,6 +81,21 @@ static inline int tgi_gv_material_index(const tgi_gview *v, size_t i)
     return v->store.nm ? (int)(v->store.nm[i] >> TGI_MATERIAL_SHIFT) : 0;
 }
 #endif
+/* The second depth layer (request.depth_layers 2): the view depth of the
+ * nearest back face at the pixel (a one-sided triangle facing away, or
+ * either face of a twosided one), where a closed object the depth buffer
+ * sees ends; 0 where no back face was drawn or the frame has no second
+ * layer. */
+static inline tg_real tgi_gv_back_depth(const tgi_gview *v, size_t i)
+{
+    if (!v->store.back_depth) return 0;
+#if TG_WIDE_STORAGE
+    return v->store.back_depth[i];
+#else
+    return tgi_depth_unpack(v->store.back_depth[i]);
+#endif
+}
+
 /* 1 when the storage holds a material per pixel (not so in an AO-only frame). */
 static inline int tgi_gb_has_material(const tgi_gbuffer *g)
 {
@@ -145,7 +160,7 @@ static inline tgi_gbuffer tgi_gbuffer_from(const tgi_gbuffer *g, size_t start)
 #else
     TGI_FROM(depth); TGI_FROM(nm); TGI_FROM(n8);
 #endif
-    TGI_FROM(object); TGI_FROM(motion_x); TGI_FROM(motion_y);
+    TGI_FROM(object); TGI_FROM(motion_x); TGI_FROM(motion_y); TGI_FROM(back_depth);
 #undef TGI_FROM
     return s;
 }

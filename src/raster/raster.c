@@ -48,6 +48,11 @@
 /* The depth-only raster (tgi_raster_depth, tgi_raster_depth16) is for shadow
  * maps alone: left out with them (tinygi.h "FEATURE SWITCHES"). */
 #define TGI_RASTER_DEPTH (!TG_NO_SHADOW_MAPS && !TG_NO_COLOR)
+/* The G-buffer's second depth layer (tgi_gbuffer.back_depth) is read by
+ * the visibility bitmask alone: left out with the techniques. */
+#define TGI_RASTER_BACK_LAYER (!TG_NO_TECHNIQUES)
+/* Depth-only rows serve both. */
+#define TGI_RASTER_DEPTH_ROWS (TGI_RASTER_DEPTH || TGI_RASTER_BACK_LAYER)
 
 #if (GUARD + 1) * (TG_MAX_IMAGE_SIDE / 2) * SUB > COORD_LIMIT || TG_MAX_SHADOW_MAP > TG_MAX_IMAGE_SIDE
 #error "TG_MAX_IMAGE_SIDE or TG_MAX_SHADOW_MAP is beyond the rasterizer's 28.4 coordinates"
@@ -414,6 +419,7 @@ void tgi_gbuffer_clear_rows(tgi_gbuffer *gb, int y0, int y1)
     n = (size_t)(y1 - y0) * (size_t)gb->width;
     memset(gb->depth + a, 0, n * sizeof *gb->depth);
     if (gb->object) memset(gb->object + a, 0xFF, n * sizeof(uint16_t));
+    if (gb->back_depth) memset(gb->back_depth + a, 0, n * sizeof *gb->back_depth);
 }
 
 /* What every pixel of one triangle shares. */
@@ -435,10 +441,16 @@ static void put_nm(const tgi_gbuffer *g, size_t i, uint32_t w)
 
 /* Depth-only output: 32-bit depths (tg_real), or 16-bit codes of the depth
  * range [lo, lo + range): q = round((depth - lo) 65536 / range), clamped to
- * [0, TG_RASTER_DEPTH16_EMPTY - 1]; the nearest code is kept. */
+ * [0, TG_RASTER_DEPTH16_EMPTY - 1]; or the G-buffer's back-face layer in
+ * its depth's format (0: none); the nearest is kept. */
 typedef struct depth_out {
     tg_real *d32;
     uint16_t *d16;
+#if TG_WIDE_STORAGE
+    tg_real *back;
+#else
+    uint32_t *back;
+#endif
     tg_real lo;
 #if TG_FIXED
     int64_t range, recip;         /* raw Q16.16 range (>= 1); 2^48 / range */
@@ -464,12 +476,21 @@ static inline uint16_t depth_code(const depth_out *o, tg_real z)
     return (uint16_t)(q < TG_RASTER_DEPTH16_EMPTY ? q : TG_RASTER_DEPTH16_EMPTY - 1);
 }
 
-/* Keep depth z at texel i when nearer than what is there. */
+/* Keep depth z (> 0 in the back layer) at texel i when nearer than what is there. */
 static inline void depth_keep(const depth_out *o, size_t i, tg_real z)
 {
     if (o->d16) {
         uint16_t q = depth_code(o, z);
         if (q < o->d16[i]) o->d16[i] = q;
+#if TGI_RASTER_BACK_LAYER
+    } else if (o->back) {
+#if TG_WIDE_STORAGE
+        if (!(o->back[i] > 0) || z < o->back[i]) o->back[i] = z;
+#else
+        uint32_t zb = tgi_depth_pack(z);   /* binary32 words order like the depths */
+        if (!o->back[i] || zb < o->back[i]) o->back[i] = zb;
+#endif
+#endif
     } else if (z < o->d32[i]) {
         o->d32[i] = z;
     }
@@ -648,7 +669,7 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
         }
 }
 
-#if TGI_RASTER_DEPTH
+#if TGI_RASTER_DEPTH_ROWS
 static void depth_rows(const depth_out *o, int W, const tri_edges *te, const screen_tri *st, int ortho)
 {
     bary_setup b;
@@ -772,7 +793,7 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
     }
 }
 
-#if TGI_RASTER_DEPTH
+#if TGI_RASTER_DEPTH_ROWS
 static void depth_rows(const depth_out *o, int W, const tri_edges *te, const screen_tri *st, int ortho)
 {
     plane_basis pb;
@@ -797,7 +818,7 @@ static void depth_rows(const depth_out *o, int W, const tri_edges *te, const scr
             if (ortho) {
                 depth_keep(o, i, a);
             } else if (a > 0.0f) {
-                if (o->d16) depth_keep(o, i, wmin / a);
+                if (o->d16 || o->back) depth_keep(o, i, wmin / a);
                 else if (wmin < a * o->d32[i]) o->d32[i] = wmin / a;
             }
         }
@@ -819,7 +840,8 @@ typedef struct raster_target {
     uint16_t object;
     const tg_vec3 *tri_nrm;       /* its three vertex normals */
     int cull_back, flip_back;     /* G-buffer: one-sided / twosided */
-    depth_out dout;               /* depth-only mode */
+    int back_layer;               /* G-buffer: drawing the back faces' layer (dout.back) */
+    depth_out dout;               /* depth-only mode, and the G-buffer's back-face layer */
 } raster_target;
 
 /* A clip-space vertex (inside the guard band, w > 0) to 28.4 screen
@@ -841,6 +863,7 @@ static void draw_snapped(const raster_target *rt, const clip_vertex *v, const tg
     screen_tri st;
     tri_edges te;
     int k;
+    const int surface_out = rt->gb && !rt->back_layer;
     for (k = 0; k < 3; k++) { st.x[k] = sx[idx[k]]; st.y[k] = sy[idx[k]]; }
     if (!edges_setup(&te, st.x, st.y, area2, rt->width, rt->row0, rt->row1)) return;
     for (k = 0; k < 3; k++) {
@@ -848,12 +871,12 @@ static void draw_snapped(const raster_target *rt, const clip_vertex *v, const tg
         st.w[k] = c->w;
         st.z[k] = c->z;
         st.iw[k] = iw[idx[k]];
-        if (rt->gb) {
+        if (surface_out) {
             tg_vec3 n = nrm ? nrm[idx[k]] : c->n;
             st.n[k] = flip ? tgi_v3_neg(n) : n;
         }
     }
-    if (rt->gb) {
+    if (surface_out) {
         surface sf;
         sf.object = rt->object;
         sf.fallback_normal = flip ? tgi_v3_neg(rt->tri_nrm[0]) : rt->tri_nrm[0];
@@ -865,7 +888,7 @@ static void draw_snapped(const raster_target *rt, const clip_vertex *v, const tg
 #endif
         gbuffer_rows(rt->gb, &te, &st, &sf);
     }
-#if TGI_RASTER_DEPTH
+#if TGI_RASTER_DEPTH_ROWS
     else depth_rows(&rt->dout, rt->width, &te, &st, rt->clip.mode == MODE_ORTHO);
 #endif
 }
@@ -883,7 +906,7 @@ static void draw_triangle(const raster_target *rt, const clip_vertex *v, const t
     area2 = signed_area2(sx, sy);
     if (area2 == 0) return;                       /* zero area */
     front = area2 < 0;                            /* counter-clockwise as seen, y down */
-    if (rt->gb && !front && rt->cull_back) return;
+    if (rt->gb && (rt->back_layer ? front : !front) && rt->cull_back) return;
     draw_snapped(rt, v, nrm, sx, sy, iw, front ? order_front : order_back, front ? -area2 : area2,
                  rt->gb && !front && rt->flip_back);
 }
@@ -906,7 +929,7 @@ static void draw_polygon(const raster_target *rt, const clip_vertex *poly, int n
     }
     if (total == 0) return;
     front = total < 0;
-    if (rt->gb && !front && rt->cull_back) return;
+    if (rt->gb && (rt->back_layer ? front : !front) && rt->cull_back) return;
     flip = rt->gb && !front && rt->flip_back;
     for (i = 1; i + 1 < n; i++) {
         int idx[3];
@@ -1055,7 +1078,28 @@ static inline void vertex_fetch(vertex_cache *c, const raster_target *rt, const 
     tv->flags &= o->flags;
 }
 
-/* Triangle t: reject, cull, draw (clipped if needed). */
+#if TGI_RASTER_BACK_LAYER
+/* Triangle t into the back-face layer (rt->dout.back): a one-sided
+ * triangle facing away, or either face of a twosided one (a sheet is its
+ * own back); the nearest such depth is kept.  front, area2: its facing and
+ * signed area when all its vertices are inside (tv->flags & V_INSIDE). */
+static void back_triangle(raster_target *rt, tri_vertices *tv, int front, int64_t area2)
+{
+    static const int order_front[3] = { 0, 2, 1 }, order_back[3] = { 0, 1, 2 };
+    rt->back_layer = 1;
+    if (!(tv->flags & V_INSIDE)) {
+        tv->v[0].n = tv->v[1].n = tv->v[2].n = tg_v3(0, 0, 0);   /* the clipper carries them along */
+        draw_clip_tri(rt, tv->v, NULL);
+    }
+    else if (!front || !rt->cull_back)
+        draw_snapped(rt, tv->v, NULL, tv->sx, tv->sy, tv->iw, front ? order_front : order_back,
+                     front ? -area2 : area2, 0);
+    rt->back_layer = 0;
+}
+#endif
+
+/* Triangle t: reject, cull, draw (clipped if needed); into the back-face
+ * layer too when the G-buffer has one. */
 static void gbuffer_triangle(raster_target *rt, tri_vertices *tv, const tgi_raster_mesh *mesh, int t)
 {
     static const int order_front[3] = { 0, 2, 1 }, order_back[3] = { 0, 1, 2 };
@@ -1063,13 +1107,19 @@ static void gbuffer_triangle(raster_target *rt, tri_vertices *tv, const tgi_rast
     int64_t area2 = 0;
     if (tv->flags & V_OFF_SIDE) return;           /* wholly off one side of the screen */
     twosided = mesh->materials[mesh->tri_material[t]].twosided;
+    rt->cull_back = !twosided;
     if (tv->flags & V_INSIDE) {
         area2 = signed_area2(tv->sx, tv->sy);
         front = area2 < 0;                        /* counter-clockwise as seen, y down */
-        if (area2 == 0 || (!front && !twosided)) return;   /* zero area, culled */
+        if (area2 == 0) return;                   /* zero area */
+        if (!front && !twosided) {                /* culled */
+#if TGI_RASTER_BACK_LAYER
+            if (rt->dout.back) back_triangle(rt, tv, front, area2);
+#endif
+            return;
+        }
     }
     rt->material = mesh->tri_material[t];
-    rt->cull_back = !twosided;
     rt->flip_back = twosided;
     rt->object = mesh->tri_object ? mesh->tri_object[t] : 0;
     rt->tri_nrm = mesh->nrm + 3 * t;
@@ -1078,6 +1128,9 @@ static void gbuffer_triangle(raster_target *rt, tri_vertices *tv, const tgi_rast
                      front ? -area2 : area2, !front && twosided);
     else
         draw_clip_tri(rt, tv->v, rt->tri_nrm);
+#if TGI_RASTER_BACK_LAYER
+    if (rt->dout.back && (twosided || !(tv->flags & V_INSIDE))) back_triangle(rt, tv, front, area2);
+#endif
 }
 
 void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_mesh *mesh, int y0, int y1)
@@ -1092,6 +1145,9 @@ void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_
     rt.clip.znear = view->znear > 0 ? view->znear : TG_EPS;
     rt.clip.zfar = view->zfar > rt.clip.znear ? view->zfar : tg_add(rt.clip.znear, TG_ONE);
     rt.gb = gb;
+#if TGI_RASTER_BACK_LAYER
+    rt.dout.back = gb->back_depth;
+#endif
     vf.eye = view->eye;
     vf.rx = tgi_v3_scale(view->right, view->focal_x);
     vf.ry = tgi_v3_scale(view->up, view->focal_y);
