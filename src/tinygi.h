@@ -511,8 +511,9 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #define TG_MAX_RADIUS 10000             /* gather radius, world units (0 is allowed) */
 #define TG_MAX_THICKNESS 10000          /* technique ssilvb: surface thickness behind the depth
                                            buffer, world units (0 allowed: every sample a sheet) */
-#define TG_MAX_DEPTH_LAYERS 2           /* technique ssilvb: the depth buffer and the nearest
-                                           back face behind it (request.depth_layers) */
+#define TG_MAX_DEPTH_LAYERS 3           /* technique ssilvb: the depth buffer, the nearest back
+                                           face behind it and the nearest surface behind that
+                                           (request.depth_layers) */
 #define TG_THICKNESS_RADIUS_DIVISOR 2   /* ... unset (neither request nor scene): the gather
                                            radius / this (Therrien et al. 2023's constant
                                            thickness, sized to the scene as the radius is) */

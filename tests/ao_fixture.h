@@ -29,6 +29,9 @@ typedef struct scene {
     uint8_t sky[W * H];
     double wpos[W * H][3];   /* world position per pixel (hosted, for picking pixels) */
     int wrect[W * H];        /* which rectangle, -1 sky */
+    double back[W * H];      /* the nearest back face's depth (the rectangle's normal u x v
+                                pointing away from the eye), 0: none */
+    double behind[W * H];    /* the nearest surface beyond it, 0: none (raster.h's layers) */
 } scene;
 
 static void cross3(const double *a, const double *b, double *c)
@@ -84,8 +87,10 @@ static void raster(scene *s, const double eye[3], const double target[3], double
     norm3(f); cross3(f, up, r); norm3(r); cross3(r, f, u);
     for (y = 0; y < H; y++)
         for (x = 0; x < W; x++) {
-            int i = y * W + x, best = -1;
+            int i = y * W + x, best = -1, nhit = 0, h;
             double ndx = (2.0 * x + 1 - W) / W, ndy = (H - 2.0 * y - 1) / H, d[3], bt = 1e30, bn[3] = { 0, 0, 0 };
+            double hit_t[MAXRECT];
+            int hit_back[MAXRECT];
             for (j = 0; j < 3; j++) d[j] = f[j] + r[j] * ndx / fx + u[j] * ndy / fy; /* view z of d is 1 */
             for (k = 0; k < s->nrect; k++) {
                 const rect *q = &s->r[k];
@@ -94,14 +99,22 @@ static void raster(scene *s, const double eye[3], const double target[3], double
                 if (fabs(dot3(n, d)) < 1e-12) continue;
                 for (j = 0; j < 3; j++) w[j] = q->p[j] - eye[j];
                 t = dot3(n, w) / dot3(n, d);
-                if (t <= 1e-6 || t >= bt) continue;
+                if (t <= 1e-6) continue;
                 for (j = 0; j < 3; j++) hp[j] = eye[j] + t * d[j] - q->p[j];
                 a = dot3(hp, q->u) / uu; b = dot3(hp, q->v) / vv;
                 if (a < 0 || a > 1 || b < 0 || b > 1) continue;
+                hit_t[nhit] = t; hit_back[nhit++] = dot3(n, d) > 0;
+                if (t >= bt) continue;
                 bt = t; best = k;
                 if (dot3(n, d) > 0) { n[0] = -n[0]; n[1] = -n[1]; n[2] = -n[2]; }
                 bn[0] = n[0]; bn[1] = n[1]; bn[2] = n[2];
             }
+            s->back[i] = s->behind[i] = 0;
+            for (h = 0; h < nhit; h++)
+                if (hit_back[h] && (s->back[i] == 0 || hit_t[h] < s->back[i])) s->back[i] = hit_t[h];
+            for (h = 0; h < nhit; h++)
+                if (s->back[i] > 0 && hit_t[h] > s->back[i] && (s->behind[i] == 0 || hit_t[h] < s->behind[i]))
+                    s->behind[i] = hit_t[h];
             s->wrect[i] = best;
             s->sky[i] = best < 0;
             s->depth[i] = best < 0 ? 0 : tg_from_float((float)bt);

@@ -927,6 +927,156 @@ static void set_row4(tgi_mat4 *m, int r, double a, double b, double c, double d)
     m->m[r * 4 + 0] = R(a); m->m[r * 4 + 1] = R(b); m->m[r * 4 + 2] = R(c); m->m[r * 4 + 3] = R(d);
 }
 
+/* Quad q (a planar convex loop, any order) facing outward along `out`
+ * (view coordinates), as two triangles of `material`. */
+static void add_quad_out(mesh *m, const tgi_view *v, double q[4][3], const double out[3], int material)
+{
+    double e1[3], e2[3], c[3], t[3][3], r[4][3];
+    int k, j, rev;
+    for (k = 0; k < 3; k++) { e1[k] = q[1][k] - q[0][k]; e2[k] = q[2][k] - q[0][k]; }
+    c[0] = e1[1] * e2[2] - e1[2] * e2[1]; c[1] = e1[2] * e2[0] - e1[0] * e2[2]; c[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    /* the view basis is left-handed: a front face's e1 x e2 points away from the viewer */
+    rev = c[0] * out[0] + c[1] * out[1] + c[2] * out[2] > 0;
+    for (k = 0; k < 4; k++) for (j = 0; j < 3; j++) r[k][j] = q[rev ? 3 - k : k][j];
+    for (j = 0; j < 3; j++) { t[0][j] = r[0][j]; t[1][j] = r[1][j]; t[2][j] = r[2][j]; }
+    add_tri_view(m, v, (const double (*)[3])t, NULL, material, 0);
+    for (j = 0; j < 3; j++) { t[1][j] = r[2][j]; t[2][j] = r[3][j]; }
+    add_tri_view(m, v, (const double (*)[3])t, NULL, material, 0);
+}
+
+/* The layers the ray through pixel (px, py) meets in layers_scene: the box
+ * [-1, 1] x [-1, 1] x [4, 6] (view coordinates) in front of the wall z = 9:
+ * front depth, back-face depth (0: none) and the depth behind it (0: none). */
+static void layers_exact(const tgi_view *v, double px, double py, double z[3])
+{
+    double d[3], tn = 0, tf = 1e30;
+    const double lo[3] = { -1, -1, 4 }, hi[3] = { 1, 1, 6 };
+    int k;
+    d[0] = ((px + 0.5) / v->width * 2.0 - 1.0) / D(v->focal_x);
+    d[1] = (1.0 - (py + 0.5) / v->height * 2.0) / D(v->focal_y);
+    d[2] = 1.0;
+    for (k = 0; k < 3; k++) {
+        double t0 = lo[k] / d[k], t1 = hi[k] / d[k], a = t0 < t1 ? t0 : t1, b = t0 < t1 ? t1 : t0;
+        if (a > tn) tn = a;
+        if (b < tf) tf = b;
+    }
+    if (tn < tf) { z[0] = tn; z[1] = tf; z[2] = 9; }
+    else { z[0] = 9; z[1] = 0; z[2] = 0; }
+}
+
+static void layers_scene(mesh *m, const tgi_view *v)
+{
+    const double lo[3] = { -1, -1, 4 }, hi[3] = { 1, 1, 6 };
+    double q[4][3], out[3];
+    int a, side, k;
+    for (a = 0; a < 3; a++)           /* the box's six faces, outward */
+        for (side = 0; side < 2; side++) {
+            int u = (a + 1) % 3, w = (a + 2) % 3;
+            for (k = 0; k < 4; k++) {
+                q[k][a] = side ? hi[a] : lo[a];
+                q[k][u] = (k == 1 || k == 2) ? hi[u] : lo[u];
+                q[k][w] = k >= 2 ? hi[w] : lo[w];
+            }
+            out[0] = out[1] = out[2] = 0;
+            out[a] = side ? 1 : -1;
+            add_quad_out(m, v, q, out, 0);
+        }
+    {   /* the wall, one-sided, facing the camera */
+        double wall[4][3] = { { -40, -40, 9 }, { 40, -40, 9 }, { 40, 40, 9 }, { -40, 40, 9 } };
+        const double toward[3] = { 0, 0, -1 };
+        add_quad_out(m, v, wall, toward, 0);
+    }
+}
+
+/* The G-buffer's second and third depth layers (request.depth_layers,
+ * raster.h): a closed box in front of a wall, against the ray cast of
+ * every pixel away from the box's outline: the back layer is the box's
+ * far side (the exit of the ray: its back face or a side), the third the
+ * wall behind it, and both are empty where the ray meets the wall alone
+ * (a one-sided wall has no back face); a twosided sheet is its own back
+ * face; the layers are the same drawn in two row ranges as in one. */
+TEST(back_and_behind_layers)
+{
+    enum { W = 80, H = 60 };
+    tgi_view v = view_make(W, H, 60, 1);
+    mesh *m = mesh_new();
+    gbuf g, split;
+    int i, j, k, bad = 0, box_px = 0, wall_px = 0, diff = 0;
+    double worst = 0;
+    layers_scene(m, &v);
+    gbuf_alloc(&g, W, H);
+    gbuf_alloc(&split, W, H);
+    g.gb.back_depth = sf_calloc((size_t)W * H, sizeof *g.gb.back_depth);
+    g.gb.behind_depth = sf_calloc((size_t)W * H, sizeof *g.gb.behind_depth);
+    split.gb.back_depth = sf_calloc((size_t)W * H, sizeof *split.gb.back_depth);
+    split.gb.behind_depth = sf_calloc((size_t)W * H, sizeof *split.gb.behind_depth);
+    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    tgi_raster_gbuffer(&split.gb, &v, mesh_rm(m), 0, H / 3);
+    tgi_raster_gbuffer(&split.gb, &v, mesh_rm(m), H / 3, H);
+    for (j = 1; j < H - 1; j++)
+        for (i = 1; i < W - 1; i++) {
+            tgi_gview gv = sf_view(&g.gb, NULL);
+            double z[3], zn[4][3], got[3];
+            size_t idx = (size_t)j * W + (size_t)i;
+            int q, outline = 0;
+            layers_exact(&v, i, j, z);
+            layers_exact(&v, i + 1, j, zn[0]);
+            layers_exact(&v, i, j + 1, zn[1]);
+            layers_exact(&v, i - 1, j, zn[2]);
+            layers_exact(&v, i, j - 1, zn[3]);
+            for (q = 0; q < 4; q++) outline |= (zn[q][1] > 0) != (z[1] > 0);
+            if (outline) continue;   /* away from the outline: the neighbours meet the same layers */
+            got[0] = D(tgi_gv_depth(&gv, idx));
+            got[1] = D(tgi_gv_back_depth(&gv, idx));
+            got[2] = D(tgi_gv_behind_depth(&gv, idx));
+            if (z[1] > 0) box_px++; else wall_px++;
+            for (k = 0; k < 3; k++) {
+                double slope = 0, tol, err = fabs(got[k] - z[k]);
+                for (q = 0; q < 4; q++) if (fabs(zn[q][k] - z[k]) > slope) slope = fabs(zn[q][k] - z[k]);
+                /* the number type's precision, and the depth change over the
+                 * vertices' snapping (1/32 pixel) on a slope */
+                tol = (TG_FIXED ? 2e-4 : 2e-5) * z[k] + 0.05 * slope + (TG_FIXED ? 2e-3 : 1e-5);
+                if (z[k] == 0 ? got[k] != 0 : err > tol) {
+                    if (bad < 4) fprintf(stderr, "pixel (%d, %d) layer %d: %.6g, exact %.6g\n", i, j, k, got[k], z[k]);
+                    bad++;
+                }
+                if (z[k] > 0 && err > worst) worst = err;
+            }
+        }
+    for (i = 0; i < W * H; i++) {
+        tgi_gview a = sf_view(&g.gb, NULL), b = sf_view(&split.gb, NULL);
+        if (tgi_gv_back_depth(&a, (size_t)i) != tgi_gv_back_depth(&b, (size_t)i) ||
+            tgi_gv_behind_depth(&a, (size_t)i) != tgi_gv_behind_depth(&b, (size_t)i))
+            diff++;
+    }
+    printf("# box in front of a wall, %dx%d: %d box and %d wall pixels, worst depth error %.2g\n", W, H, box_px,
+           wall_px, worst);
+    CHECK(box_px > 200 && wall_px > 1000, "pixels: %d on the box, %d on the wall alone", box_px, wall_px);
+    CHECK(bad == 0, "%d layer depths off the ray cast", bad);
+    CHECK(diff == 0, "%d pixels differ drawn in two row ranges", diff);
+    free(g.gb.back_depth); free(g.gb.behind_depth); free(split.gb.back_depth); free(split.gb.behind_depth);
+    gbuf_free(&g);
+    gbuf_free(&split);
+
+    /* a twosided sheet at depth 3 before the wall: its own back face */
+    m->n = 0;
+    {
+        double sheet[4][3] = { { -30, -30, 3 }, { 30, -30, 3 }, { 30, 30, 3 }, { -30, 30, 3 } };
+        const double away[3] = { 0, 0, 1 };
+        add_quad_out(m, &v, sheet, away, 1);   /* material 1: twosided, seen from its back */
+    }
+    gbuf_alloc(&g, W, H);
+    g.gb.back_depth = sf_calloc((size_t)W * H, sizeof *g.gb.back_depth);
+    tgi_raster_gbuffer(&g.gb, &v, mesh_rm(m), 0, H);
+    for (i = 0, bad = 0; i < W * H; i++) {
+        tgi_gview gv = sf_view(&g.gb, NULL);
+        if (tgi_gv_back_depth(&gv, (size_t)i) != tgi_gv_depth(&gv, (size_t)i) || tgi_gv_is_sky(&gv, (size_t)i)) bad++;
+    }
+    CHECK(bad == 0, "twosided sheet: %d pixels whose back layer is not the sheet", bad);
+    free(g.gb.back_depth);
+    drawn_free(&g, m);
+}
+
 TEST(depth_only_ortho)
 {
     enum { S = 48 };
@@ -1059,6 +1209,7 @@ int main(void)
     RUN(zero_area_skipped);
     RUN(hostile_coordinates);
     RUN(sphere_nearest_and_rows);
+    RUN(back_and_behind_layers);
     RUN(depth_only_ortho);
     RUN(depth_only_perspective);
     RUN(depth16_codes_are_rounded);

@@ -16,8 +16,12 @@
  *   - the near field under a uniform radiance L on every sender that faces
  *     the receiver: E = pi L (1 - ao), the gathered sectors being exactly the
  *     occluded ones;
+ *   - further depth layers (the nearest back face, the surface behind
+ *     it): a box floating over a floor in front of a wall, the floor's ao
+ *     nearer the ray-cast reference with each layer;
  *   - hard cases (grazing views, depth discontinuities, zero and huge
- *     thickness, radius 0): finite, ao in [0, 1], E in [0, pi L];
+ *     thickness, radius 0, one and three layers): finite, ao in [0, 1], E
+ *     in [0, pi L];
  *   - deterministic under any row split.
  */
 #include "check.h"
@@ -256,6 +260,112 @@ TEST(near_field_gathers_the_occluded_sectors)
     CHECK(occluded > 50, "the groove has occluded pixels: %d", occluded);
 }
 
+/* ---- further depth layers (request.depth_layers, raster.h) ---- */
+
+/* The box [lo, hi] as six rectangles facing outward (normal u x v). */
+static void add_box(scene *s, const double lo[3], const double hi[3])
+{
+    int a, side, k;
+    for (a = 0; a < 3; a++)
+        for (side = 0; side < 2; side++) {
+            int u = (a + 1) % 3, w = (a + 2) % 3;
+            double p[3], eu[3] = { 0, 0, 0 }, ev[3] = { 0, 0, 0 }, n[3];
+            for (k = 0; k < 3; k++) p[k] = lo[k];
+            p[a] = side ? hi[a] : lo[a];
+            eu[u] = hi[u] - lo[u];
+            ev[w] = hi[w] - lo[w];
+            cross3(eu, ev, n);
+            if ((n[a] > 0) != (side == 1)) {   /* swap to face outward */
+                double t[3];
+                memcpy(t, eu, sizeof t); memcpy(eu, ev, sizeof t); memcpy(ev, t, sizeof t);
+            }
+            add_rect(s, p[0], p[1], p[2], eu[0], eu[1], eu[2], ev[0], ev[1], ev[2]);
+        }
+}
+
+/* A box floating over a floor, 0.3 in front of a wall, seen from above
+ * and in front. */
+static void floating_box(scene *s)
+{
+    static const double eye[3] = { 0.3, 1.7, 2.4 }, target[3] = { 0, 0.2, -1.2 };
+    static const double lo[3] = { -0.5, 0.35, -1.6 }, hi[3] = { 0.5, 1.05, -0.6 };
+    memset(s, 0, sizeof *s);
+    add_rect(s, -BIG, 0, BIG, 2 * BIG, 0, 0, 0, 0, -2 * BIG);   /* floor, normal +y */
+    add_rect(s, -BIG, 0, -1.9, 2 * BIG, 0, 0, 0, BIG, 0);       /* wall, normal +z */
+    add_box(s, lo, hi);
+    raster(s, eye, target, 60.0);
+    build_bvh(s);
+}
+
+/* The ray-cast G-buffer's further layers (scene.back, .behind) in the
+ * build's storage, planes the view io->g then reads. */
+static void io_with_layers(ao_pass *io, const scene *s, int layers)
+{
+#if TG_WIDE_STORAGE
+    static tg_real back[W * H], behind[W * H];
+#else
+    static uint32_t back[W * H], behind[W * H];
+#endif
+    int i;
+    for (i = 0; i < W * H; i++) {
+        tg_real b = tg_from_float((float)s->back[i]), c = tg_from_float((float)s->behind[i]);
+#if TG_WIDE_STORAGE
+        back[i] = b; behind[i] = c;
+#else
+        back[i] = s->back[i] > 0 ? tgi_depth_pack(b) : 0;
+        behind[i] = s->behind[i] > 0 ? tgi_depth_pack(c) : 0;
+#endif
+    }
+    io->g.store.back_depth = back;
+    io->g.store.behind_depth = layers >= 3 ? behind : NULL;
+}
+
+/* A box floating over the floor in front of a wall, the floor's ao
+ * against the ray-cast reference: the depth buffer alone takes the box as
+ * solid from its front to infinity (the floor beside and under it too
+ * dark); with its back faces (two layers) the box ends where it ends, but
+ * the wall hidden behind it is gone (too bright); with the surface behind
+ * the back faces (three) the wall is there again.  Each layer brings the
+ * floor nearer the reference, and three are within the bound. */
+TEST(depth_layers_against_the_reference)
+{
+    static scene s;
+    static outputs ref, o[3];
+    ao_pass io;
+    tgi_reference_params rp;
+    tgi_ssilvb_params p = vb_params(1.2, 1e4);
+    double err[3] = { 0, 0, 0 }, bias[3] = { 0, 0, 0 };
+    int i, k, n = 0;
+    floating_box(&s);
+    p.slices = 8;
+    p.steps = 32;
+    rp = reference_params(&s, TG_R(1.2f));
+    rp.samples = 1024;
+    reference_run(&io, &rp, &s, &ref);
+    for (k = 0; k < 3; k++) {
+        io_for(&io, &s, &o[k], 0);
+        if (k > 0) io_with_layers(&io, &s, k + 1);
+        run_vb(&io, &p, 0, H);
+        io_read(&io);
+    }
+    for (i = 0; i < W * H; i++) {   /* the floor near the box */
+        if (s.sky[i] || s.wrect[i] != 0 || fabs(s.wpos[i][0]) > 1.6 || s.wpos[i][2] > 0.6) continue;
+        for (k = 0; k < 3; k++) {
+            double e = check_d(o[k].ao[i]) - check_d(ref.ao[i]);
+            err[k] += e * e;
+            bias[k] += e;
+        }
+        n++;
+    }
+    for (k = 0; k < 3; k++) { err[k] = sqrt(err[k] / n); bias[k] /= n; }
+    printf("# a box floating over the floor, %d floor pixels near it, ao against the reference, rmse / bias: "
+           "one layer %.3f / %+.3f, two %.3f / %+.3f, three %.3f / %+.3f\n", n, err[0], bias[0], err[1], bias[1],
+           err[2], bias[2]);
+    CHECK(n > 300, "floor pixels near the box: %d", n);
+    CHECK(err[1] < 0.8 * err[0] && err[2] < 0.8 * err[1], "each layer closer: %g, %g, %g", err[0], err[1], err[2]);
+    CHECK(err[2] < 0.05 && fabs(bias[2]) < 0.02, "three layers: rmse %g, bias %g", err[2], bias[2]);
+}
+
 TEST(hard_cases_stay_finite)
 {
     static const double eye_graze[3] = { 3.0, 0.06, 0.4 }, target_graze[3] = { -2, 0.0, -1 };
@@ -265,7 +375,7 @@ TEST(hard_cases_stay_finite)
     static const double thick[] = { 0, 0.05, 1e4 };
     static const double radii[] = { 0, 0.3, 1000 };
     ao_pass io;
-    int sc, a, b, i, bad = 0;
+    int sc, a, b, i, layers, bad = 0;
     for (i = 0; i < W * H; i++) lr[i] = TG_ONE;
     for (sc = 0; sc < 3; sc++) {
         if (sc == 0) groove(&s);
@@ -276,10 +386,12 @@ TEST(hard_cases_stay_finite)
             add_rect(&s, 0, 0, -BIG, 0, BIG, 0, 0, 0, 2 * BIG);
             raster(&s, eye_graze, target_graze, 60.0);   /* the floor at a grazing angle */
         }
-        for (a = 0; a < 3; a++)
+        for (a = 0; a < 6; a++)   /* one depth layer, then three */
             for (b = 0; b < 3; b++) {
-                tgi_ssilvb_params p = vb_params(radii[b], thick[a]);
+                tgi_ssilvb_params p = vb_params(radii[b], thick[a % 3]);
+                layers = a < 3 ? 1 : 3;
                 io_for(&io, &s, &o, 1);
+                if (layers > 1) io_with_layers(&io, &s, layers);
                 io_radiance(&io, lr, lr, lr);
                 run_vb(&io, &p, 0, H);
                 io_read(&io);
@@ -289,8 +401,8 @@ TEST(hard_cases_stay_finite)
                                      check_d(o.bz[i]) * check_d(o.bz[i]));
                     if (!(ao >= 0 && ao <= 1) || !(e >= 0 && e <= PI * 1.01) || !(fabs(bl - 1) < 2e-3)) {
                         if (bad++ < 5)
-                            CHECK(0, "scene %d thickness %g radius %g pixel %d: ao %g, E %g, |bent| %g", sc, thick[a],
-                                  radii[b], i, ao, e, bl);
+                            CHECK(0, "scene %d, %d layers, thickness %g radius %g pixel %d: ao %g, E %g, |bent| %g", sc,
+                                  layers, thick[a % 3], radii[b], i, ao, e, bl);
                     }
                     if (b == 0 && ao != 1) bad++;   /* radius 0: nothing is within reach */
                 }
@@ -328,6 +440,7 @@ int main(void)
     RUN(open_plane_is_exactly_open);
     RUN(groove_against_the_exact_wall);
     RUN(thin_plank_lets_light_through_behind_it);
+    RUN(depth_layers_against_the_reference);
     RUN(near_field_gathers_the_occluded_sectors);
     RUN(hard_cases_stay_finite);
     RUN(deterministic_under_row_splits);

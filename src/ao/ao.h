@@ -261,14 +261,14 @@ static inline int tgi_ao_slice_pixel_at(const tgi_gview *g, const tgi_gresult *o
     return 1;
 }
 
-/* Sample s of `steps` along screen direction (sdx, sdy) at distance
- * (s + jitter) r_px / steps: 1 with *h the view offset of its pixel's
- * surface from pv (times 2^shift), *d2 = |h|^2 and *j that pixel's index;
- * 0 to skip it (within a pixel, sky, not within the radius, or on or under
- * the tangent plane, where a horizon is clamped anyway); -1 past the
- * screen's edge (the march ends). */
-static inline int tgi_ao_slice_sample(const tgi_gview *g, const tgi_ao_slice_pixel *px, int s, int steps,
-                                      tg_real sdx, tg_real sdy, tg_vec3 *h, tg_real *d2, int *j)
+/* The pixel of sample s of `steps` along screen direction (sdx, sdy) at
+ * distance (s + jitter) r_px / steps: 1 with *h the view offset of its
+ * surface from pv (times 2^shift) and *j its index (and, when ray is not
+ * NULL, its view ray per unit of depth, tgi_ao_unproject at depth 1); 0 to
+ * skip it (within a pixel, or sky); -1 past the screen's edge (the march
+ * ends). */
+static inline int tgi_ao_slice_point(const tgi_gview *g, const tgi_ao_slice_pixel *px, int s, int steps,
+                                     tg_real sdx, tg_real sdy, tg_vec3 *h, int *j, tg_vec3 *ray)
 {
     tg_real t_px = tg_div(tg_mul(tg_add(tg_from_int(s), px->jitter), px->r_px), tg_from_int(steps));
     int qx, qy;
@@ -280,6 +280,18 @@ static inline int tgi_ao_slice_sample(const tgi_gview *g, const tgi_ao_slice_pix
     if (tgi_gv_is_sky(g, *j)) return 0;
     *h = tgi_v3_sub(tgi_ao_unproject(g->camera, qx, qy, tgi_gv_depth(g, *j)), px->pv);
     if (px->shift) *h = tg_v3(tg_ldexp(h->x, px->shift), tg_ldexp(h->y, px->shift), tg_ldexp(h->z, px->shift));
+    if (ray) *ray = tgi_ao_unproject(g->camera, qx, qy, TG_ONE);
+    return 1;
+}
+
+/* Sample s as tgi_ao_slice_point gives it, also with *d2 = |h|^2, and 0
+ * when not within the radius or on or under the tangent plane (where a
+ * horizon is clamped anyway). */
+static inline int tgi_ao_slice_sample(const tgi_gview *g, const tgi_ao_slice_pixel *px, int s, int steps,
+                                      tg_real sdx, tg_real sdy, tg_vec3 *h, tg_real *d2, int *j)
+{
+    int got = tgi_ao_slice_point(g, px, s, steps, sdx, sdy, h, j, NULL);
+    if (got <= 0) return got;
     *d2 = tgi_v3_dot(*h, *h);
     if (*d2 >= px->r2 || *d2 <= 0) return 0;
     return tgi_v3_dot(*h, px->nv) > px->above;

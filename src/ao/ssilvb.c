@@ -109,7 +109,7 @@ static tg_real mask_weight(const vb_slice *sl, uint32_t b, tg_real *bs, tg_real 
     return w;
 }
 
-/* Signed angle from the view vector (positive toward the slice direction
+/* The signed angle from the view vector (positive toward the slice direction
  * on side +1) of view offset h, |h|^2 = d2 > 0, mapped to u in [0, 1] over
  * the slice's half circle: u = (theta - gamma) / pi + 1/2. */
 static tg_real half_circle_u(const tgi_ao_slice_pixel *px, const vb_slice *sl, tg_vec3 h, tg_real d2, int side)
@@ -119,30 +119,18 @@ static tg_real half_circle_u(const tgi_ao_slice_pixel *px, const vb_slice *sl, t
     return tg_add(tg_mul(tg_sub(th, sl->gamma), TG_INV_PI), TG_R(0.5f));
 }
 
-/* The back point of the sample at pixel j whose front point is hf (both
- * as offsets from the pixel, scaled by its shift).  Where the G-buffer has
- * a second depth layer (tgi_gv_back_depth) with a back face at zb >= zf,
- * the front's own depth, the surface ends where the sample's view ray
- * leaves it: P_b = P_f zb / zf, so h_b = h_f + (P_f / zf) (zb - zf) 2^shift,
- * and P_f / zf = (x / z, y / z, 1) stays near 1 (the camera's field of
- * view).  Elsewhere (no back face, a back face in front of the surface,
- * or one more than 64 radii behind it) the front moves by the constant
- * thickness away from the eye. */
-static tg_vec3 back_point(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel *px, tg_vec3 hf, int j)
+/* The new sectors of a sample (bits) into *mask; with e, its pixel j's
+ * radiance L over the new ones gathered into *e when the sender, at front
+ * offset hf, faces the receiver. */
+static void take_sectors(const vb_tech *t, const tgi_gview *g, const vb_slice *sl, uint32_t bits, int j, tg_vec3 hf,
+                         uint32_t *mask, tg_vec3 *e)
 {
-    tg_real zb = tgi_gv_back_depth(g, (size_t)j), zf, dz;
-    if (zb > 0) {
-        zf = tgi_gv_depth(g, (size_t)j);
-        dz = tg_ldexp(tg_sub(zb, zf), px->shift);
-        if (dz >= 0 && dz < t->thick_max) {
-            tg_vec3 pf = tgi_v3_add(px->shift ? tg_v3(tg_ldexp(hf.x, -px->shift), tg_ldexp(hf.y, -px->shift),
-                                                      tg_ldexp(hf.z, -px->shift))
-                                              : hf, px->pv);
-            tg_vec3 ray = tg_v3(tg_div(pf.x, zf), tg_div(pf.y, zf), tg_div(pf.z, zf));
-            return tgi_v3_add(hf, tgi_v3_scale(ray, dz));
-        }
+    uint32_t fresh = bits & ~*mask;
+    *mask |= bits;
+    if (fresh && e && tgi_v3_dot(tgi_ao_normal_view(g, j), hf) < 0) {  /* the sender faces the receiver */
+        tg_vec3 l = tgi_rgb_get(t->radiance, j);
+        *e = tgi_v3_add(*e, tgi_v3_scale(l, mask_weight(sl, fresh, NULL, NULL)));
     }
-    return tgi_v3_sub(hf, tgi_v3_scale(px->vd, t->thick));
 }
 
 /* March one side of a slice: set the sectors of every sample's front/back
@@ -151,25 +139,100 @@ static tg_vec3 back_point(const vb_tech *t, const tgi_gview *g, const tgi_ao_sli
 static void march(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel *px, const vb_slice *sl,
                   tg_real sdx, tg_real sdy, int side, uint32_t *mask, tg_vec3 *e)
 {
-    const tgi_rgb *radiance = t->radiance;
-    tg_real d2, db2, uf, ub;
+    tg_real thick = t->thick, d2, db2, uf, ub;
     tg_vec3 hf, hb;
-    uint32_t bits, fresh;
     int steps = t->p->steps, s, j, got;
     for (s = 0; s < steps; s++) {
         got = tgi_ao_slice_sample(g, px, s, steps, sdx, sdy, &hf, &d2, &j);
         if (got < 0) break;
         if (got == 0) continue;
-        hb = back_point(t, g, px, hf, j);
+        /* the back point: the front moved by the thickness away from the eye */
+        hb = tgi_v3_sub(hf, tgi_v3_scale(px->vd, thick));
         db2 = tgi_v3_dot(hb, hb);
         uf = half_circle_u(px, sl, hf, d2, side);
         ub = db2 > 0 ? half_circle_u(px, sl, hb, db2, side) : (side > 0 ? TG_ONE : 0);
-        bits = tgi_ssilvb_sector_bits(tg_min(uf, ub), tg_max(uf, ub));
-        fresh = bits & ~*mask;
-        *mask |= bits;
-        if (fresh && e && tgi_v3_dot(tgi_ao_normal_view(g, j), hf) < 0) {  /* the sender faces the receiver */
-            tg_vec3 l = tgi_rgb_get(radiance, j);
-            *e = tgi_v3_add(*e, tgi_v3_scale(l, mask_weight(sl, fresh, NULL, NULL)));
+        take_sectors(t, g, sl, tgi_ssilvb_sector_bits(tg_min(uf, ub), tg_max(uf, ub)), j, hf, mask, e);
+    }
+}
+
+/* The sectors of the solid segment from offset a to offset b (scaled by
+ * the pixel's shift, as the samples are) where it lies within the radius,
+ * |p|^2 < r2: the segment p = a + u t, u = (b - a) / |b - a|, 0 <= t <= |b
+ * - a|, meets the sphere where t^2 + 2 (a.u) t + |a|^2 - r2 = 0.  In units
+ * of the radius (rs in [0.5, 1], tgi_ao_unit_shift), a segment longer
+ * than 64 radii (t->thick_max) is cut there (as good as infinite), so one
+ * that can reach the sphere has |a| < rs + |b - a| <= 65 and (a.u)^2 and
+ * |a|^2 stay inside Q16.16.  0 when no part is within the radius above
+ * the tangent plane. */
+static uint32_t segment_sectors(const vb_tech *t, const tgi_ao_slice_pixel *px, const vb_slice *sl, tg_vec3 a, tg_vec3 b,
+                                int side)
+{
+    tg_vec3 ab = tgi_v3_sub(b, a), u;
+    tg_real len2 = tgi_v3_dot(ab, ab), len, d2 = tgi_v3_dot(a, a), reach, au, disc, root, t0, t1, ua, ub;
+    if (!(len2 > 0)) return 0;
+    len = tg_min(tg_sqrt(len2), t->thick_max);
+    reach = tg_add(px->rs, len);
+    if (d2 >= tg_sqr(reach)) return 0;                                /* cannot reach the sphere */
+    u = tgi_v3_scale(ab, tg_rsqrt(len2));
+    au = tgi_v3_dot(a, u);
+    disc = tg_sub(tg_sqr(au), tg_sub(d2, px->r2));
+    if (!(disc > 0)) return 0;
+    root = tg_sqrt(disc);
+    t0 = tg_max(tg_sub(tg_neg(au), root), 0);
+    t1 = tg_min(tg_add(tg_neg(au), root), len);
+    if (!(t0 < t1)) return 0;
+    a = tgi_v3_add(a, tgi_v3_scale(u, t0));
+    b = tgi_v3_add(a, tgi_v3_scale(u, tg_sub(t1, t0)));
+    if (tgi_v3_dot(a, px->nv) <= px->above && tgi_v3_dot(b, px->nv) <= px->above) return 0;   /* under the tangent plane */
+    d2 = tgi_v3_dot(a, a);
+    len2 = tgi_v3_dot(b, b);
+    if (!(d2 > 0) || !(len2 > 0)) return 0;
+    ua = half_circle_u(px, sl, a, d2, side);
+    ub = half_circle_u(px, sl, b, len2, side);
+    return tgi_ssilvb_sector_bits(tg_min(ua, ub), tg_max(ua, ub));
+}
+
+/* The depth z at the sample's pixel as an offset from the pixel: its
+ * front offset hf moved along the pixel's view ray (per unit of depth)
+ * by z - zf, scaled by the shift; 0 (and *h unset) when z is not beyond
+ * zf or more than 64 radii beyond. */
+static int layer_point(const vb_tech *t, const tgi_ao_slice_pixel *px, tg_vec3 hf, tg_vec3 ray, tg_real zf, tg_real z,
+                       tg_vec3 *h)
+{
+    tg_real dz = tg_ldexp(tg_sub(z, zf), px->shift);
+    if (!(z > 0) || dz < 0 || dz >= t->thick_max) return 0;
+    *h = tgi_v3_add(hf, tgi_v3_scale(ray, dz));
+    return 1;
+}
+
+/* march with the G-buffer's further depth layers (request.depth_layers >=
+ * 2): a sample's surface is solid from its front, the depth buffer's, to
+ * the nearest back face behind it on the pixel's view ray
+ * (tgi_gv_back_depth: a closed object's true thickness) or, where there
+ * is none, to the constant thickness; and, with a third layer, solid
+ * again from the surface behind that back face (tgi_gv_behind_depth) on,
+ * 64 radii deep, as the depth buffer's own surfaces are taken without
+ * layers.  Each segment counts where it lies within the radius (the
+ * ray-traced reference's cut-off), not where its front point does.  The
+ * hidden surface occludes and gathers nothing (its radiance is unknown). */
+static void march_layers(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel *px, const vb_slice *sl,
+                         tg_real sdx, tg_real sdy, int side, uint32_t *mask, tg_vec3 *e)
+{
+    tg_real zf;
+    tg_vec3 hf, hb, h3, h3end, ray;
+    int steps = t->p->steps, s, j, got;
+    for (s = 0; s < steps; s++) {
+        got = tgi_ao_slice_point(g, px, s, steps, sdx, sdy, &hf, &j, &ray);
+        if (got < 0) break;
+        if (got == 0) continue;
+        zf = tgi_gv_depth(g, (size_t)j);
+        if (!layer_point(t, px, hf, ray, zf, tgi_gv_back_depth(g, (size_t)j), &hb))
+            hb = tgi_v3_add(hf, tgi_v3_scale(ray, t->thick_max));   /* no back face: a boundary, solid behind */
+        take_sectors(t, g, sl, segment_sectors(t, px, sl, hf, hb, side), j, hf, mask,
+                     tgi_v3_dot(hf, hf) < px->r2 ? e : NULL);   /* a sender within the radius */
+        if (layer_point(t, px, hf, ray, zf, tgi_gv_behind_depth(g, (size_t)j), &h3)) {
+            h3end = tgi_v3_add(h3, tgi_v3_scale(ray, t->thick));
+            *mask |= segment_sectors(t, px, sl, h3, h3end, side);
         }
     }
 }
@@ -185,8 +248,13 @@ static void bitmask_slice(const void *tech, const tgi_gview *g, const tgi_ao_sli
     sl.gamma = f->gamma; sl.cos_g = f->cos_g; sl.sin_g = f->sin_g;
     sl.theta0 = tg_sub(f->gamma, TG_HALF_PI);
     sl.step = t->sector;
-    march(t, g, px, &sl, sdx, sdy, 1, &mask, t->near ? &sum->near : NULL);
-    march(t, g, px, &sl, tg_neg(sdx), tg_neg(sdy), -1, &mask, t->near ? &sum->near : NULL);
+    if (g->store.back_depth) {
+        march_layers(t, g, px, &sl, sdx, sdy, 1, &mask, t->near ? &sum->near : NULL);
+        march_layers(t, g, px, &sl, tg_neg(sdx), tg_neg(sdy), -1, &mask, t->near ? &sum->near : NULL);
+    } else {
+        march(t, g, px, &sl, sdx, sdy, 1, &mask, t->near ? &sum->near : NULL);
+        march(t, g, px, &sl, tg_neg(sdx), tg_neg(sdy), -1, &mask, t->near ? &sum->near : NULL);
+    }
     sum->vis = mask_weight(&sl, ~mask, &sum->bs, &sum->bc);
     sum->open = mask_weight(&sl, 0xffffffffu, NULL, NULL);
 }

@@ -178,6 +178,9 @@ static void group_gbuffer(layout *l, tg_frame *f)
     if (!TG_NO_TECHNIQUES && f->request.depth_layers >= 2 && (f->needs & TG_NEED_GI_PASS))
         f->gb.back_depth = (void *)take(l, "G-buffer back-face depth, the second layer [" FMT_BACK "]", f->pixels,
                                         sizeof *f->gb.back_depth);
+    if (!TG_NO_TECHNIQUES && f->request.depth_layers >= 3 && (f->needs & TG_NEED_GI_PASS))
+        f->gb.behind_depth = (void *)take(l, "G-buffer depth behind the back face, the third layer [" FMT_BACK "]",
+                                          f->pixels, sizeof *f->gb.behind_depth);
 }
 
 static void group_motion(layout *l, tg_frame *f)

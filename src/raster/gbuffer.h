@@ -48,10 +48,13 @@ typedef struct tgi_gbuffer {
     int has_emissive;             /* some material of the table emits */
     uint16_t *object;             /* object index per pixel (objects move); NULL if unused */
 #if TG_WIDE_STORAGE
-    tg_real *back_depth;          /* the second depth layer: view depth of the nearest */
+    tg_real *back_depth, *behind_depth;
 #else
-    uint32_t *back_depth;         /* back face (binary32 bits as depth); 0 where none;
-                                     NULL unless planned (request.depth_layers 2) */
+    uint32_t *back_depth;         /* the second depth layer: view depth of the nearest back
+                                     face (binary32 bits, as depth); 0 where none; NULL
+                                     unless planned (request.depth_layers >= 2) */
+    uint32_t *behind_depth;       /* the third: the nearest surface behind that back face
+                                     (request.depth_layers 3); 0 where none */
 #endif
     tg_real *motion_x, *motion_y; /* previous-frame screen position of this pixel's surface
                                      (continuous pixel coordinates); NULL unless planned */

@@ -95,6 +95,18 @@ static inline tg_real tgi_gv_back_depth(const tgi_gview *v, size_t i)
     return tgi_depth_unpack(v->store.back_depth[i]);
 #endif
 }
+/* The third (request.depth_layers 3): the view depth of the nearest
+ * surface (either facing) behind that back face, where the space a closed
+ * object's back leaves open ends (the floor under a sphere); 0 where none. */
+static inline tg_real tgi_gv_behind_depth(const tgi_gview *v, size_t i)
+{
+    if (!v->store.behind_depth) return 0;
+#if TG_WIDE_STORAGE
+    return v->store.behind_depth[i];
+#else
+    return tgi_depth_unpack(v->store.behind_depth[i]);
+#endif
+}
 
 /* 1 when the storage holds a material per pixel (not so in an AO-only frame). */
 static inline int tgi_gb_has_material(const tgi_gbuffer *g)
@@ -160,7 +172,7 @@ static inline tgi_gbuffer tgi_gbuffer_from(const tgi_gbuffer *g, size_t start)
 #else
     TGI_FROM(depth); TGI_FROM(nm); TGI_FROM(n8);
 #endif
-    TGI_FROM(object); TGI_FROM(motion_x); TGI_FROM(motion_y); TGI_FROM(back_depth);
+    TGI_FROM(object); TGI_FROM(motion_x); TGI_FROM(motion_y); TGI_FROM(back_depth); TGI_FROM(behind_depth);
 #undef TGI_FROM
     return s;
 }

@@ -420,6 +420,7 @@ void tgi_gbuffer_clear_rows(tgi_gbuffer *gb, int y0, int y1)
     memset(gb->depth + a, 0, n * sizeof *gb->depth);
     if (gb->object) memset(gb->object + a, 0xFF, n * sizeof(uint16_t));
     if (gb->back_depth) memset(gb->back_depth + a, 0, n * sizeof *gb->back_depth);
+    if (gb->behind_depth) memset(gb->behind_depth + a, 0, n * sizeof *gb->behind_depth);
 }
 
 /* What every pixel of one triangle shares. */
@@ -447,9 +448,9 @@ typedef struct depth_out {
     tg_real *d32;
     uint16_t *d16;
 #if TG_WIDE_STORAGE
-    tg_real *back;
+    tg_real *back, *behind;
 #else
-    uint32_t *back;
+    uint32_t *back, *behind;      /* behind: kept only beyond back[i] (the third layer) */
 #endif
     tg_real lo;
 #if TG_FIXED
@@ -483,11 +484,18 @@ static inline void depth_keep(const depth_out *o, size_t i, tg_real z)
         uint16_t q = depth_code(o, z);
         if (q < o->d16[i]) o->d16[i] = q;
 #if TGI_RASTER_BACK_LAYER
+    } else if (o->behind) {
+#if TG_WIDE_STORAGE
+        if (o->back[i] > 0 && z > o->back[i] && (!(o->behind[i] > 0) || z < o->behind[i])) o->behind[i] = z;
+#else
+        uint32_t zb = tgi_depth_pack(z);   /* binary32 words order like the depths */
+        if (o->back[i] && zb > o->back[i] && (!o->behind[i] || zb < o->behind[i])) o->behind[i] = zb;
+#endif
     } else if (o->back) {
 #if TG_WIDE_STORAGE
         if (!(o->back[i] > 0) || z < o->back[i]) o->back[i] = z;
 #else
-        uint32_t zb = tgi_depth_pack(z);   /* binary32 words order like the depths */
+        uint32_t zb = tgi_depth_pack(z);
         if (!o->back[i] || zb < o->back[i]) o->back[i] = zb;
 #endif
 #endif
@@ -1086,6 +1094,7 @@ static inline void vertex_fetch(vertex_cache *c, const raster_target *rt, const 
 static void back_triangle(raster_target *rt, tri_vertices *tv, int front, int64_t area2)
 {
     static const int order_front[3] = { 0, 2, 1 }, order_back[3] = { 0, 1, 2 };
+    if ((tv->flags & V_INSIDE) && area2 == 0) return;   /* zero area */
     rt->back_layer = 1;
     if (!(tv->flags & V_INSIDE)) {
         tv->v[0].n = tv->v[1].n = tv->v[2].n = tg_v3(0, 0, 0);   /* the clipper carries them along */
@@ -1163,6 +1172,22 @@ void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_
         vertex_fetch(&cache, &rt, &vf, mesh->pos[3 * t + 2], &tv, 2);
         gbuffer_triangle(&rt, &tv, mesh, t);
     }
+#if TGI_RASTER_BACK_LAYER
+    /* the third layer, once these rows' back faces are all drawn: every
+     * triangle, either facing, beyond the back face */
+    if (!gb->behind_depth || !gb->back_depth) return;
+    rt.dout.behind = gb->behind_depth;
+    rt.cull_back = 0;
+    for (t = 0; t < mesh->tri_count; t++) {
+        tri_vertices tv;
+        tv.flags = ~0;
+        vertex_fetch(&cache, &rt, &vf, mesh->pos[3 * t], &tv, 0);
+        vertex_fetch(&cache, &rt, &vf, mesh->pos[3 * t + 1], &tv, 1);
+        vertex_fetch(&cache, &rt, &vf, mesh->pos[3 * t + 2], &tv, 2);
+        if (!(tv.flags & V_OFF_SIDE)) back_triangle(&rt, &tv, tv.flags & V_INSIDE ? signed_area2(tv.sx, tv.sy) < 0 : 0,
+                                                    tv.flags & V_INSIDE ? signed_area2(tv.sx, tv.sy) : 0);
+    }
+#endif
 }
 
 #if TGI_RASTER_DEPTH
