@@ -167,6 +167,10 @@ check_binary() {
     refused "$tag/opt_threads_zero" "${U}option --threads: must be 1\\.\\.$MAX_THREADS, got 0\$" render builtin:cornell --threads 0
     refused "$tag/opt_threads_limit" "${U}option --threads: must be 1\\.\\.$MAX_THREADS, got $((MAX_THREADS + 1))\$" \
         render builtin:cornell --threads $((MAX_THREADS + 1))
+    refused "$tag/opt_depth_layers" "${U}option --depth-layers: must be 1\\.\\.3, got 4\$" \
+        render builtin:cornell --technique ssilvb --depth-layers 4
+    refused "$tag/opt_depth_layers_unread" "error: depth_layers must be 0\\.\\.1 for technique hbil .*got 2\$" \
+        render builtin:cornell --depth-layers 2
     refused "$tag/opt_unknown" "${U}unknown option '--sparkle'" render builtin:cornell --sparkle
     ONCE=1 refused "$tag/opt_missing_value" "${U}option --frames: missing value" render builtin:cornell --frames
     ONCE=1 refused "$tag/opt_extension" "${U}option -o: expected a file name ending in .ppm, .png or .pfm" render builtin:cornell -o "$O/out.jpg"

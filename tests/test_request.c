@@ -164,6 +164,8 @@ TEST(every_int_field_at_its_extremes)
     SWEEP_INT(temporal, "temporal", { -1, REFUSE }, { 0, ACCEPT }, { 1, ACCEPT }, { 2, REFUSE }, { INT_MAX, REFUSE });
     SWEEP_INT(far_mode, "far_mode", { -1, REFUSE }, { 0, ACCEPT }, { 1, ACCEPT }, { 2, REFUSE }, { INT_MAX, REFUSE });
     SWEEP_INT(shadow_pcf, "shadow_pcf", { -1, REFUSE }, { 0, ACCEPT }, { 1, ACCEPT }, { 2, REFUSE }, { INT_MAX, REFUSE });
+    SWEEP_INT(depth_layers, "depth_layers", { INT_MIN, REFUSE }, { -1, REFUSE }, { 0, ACCEPT }, { 1, ACCEPT },
+              { 2, REFUSE }, { TG_MAX_DEPTH_LAYERS, REFUSE }, { INT_MAX, REFUSE });   /* technique hbil */
     SWEEP_INT(shadow_map_size, "shadow_map_size", { INT_MIN, ACCEPT }, { 0, ACCEPT }, { 1, REFUSE },
               { TG_MIN_SHADOW_MAP - 1, REFUSE }, { TG_MIN_SHADOW_MAP, ACCEPT }, { TG_MAX_SHADOW_MAP, ACCEPT },
               { TG_MAX_SHADOW_MAP + 1, REFUSE }, { 13378, REFUSE }, { 1518500250, REFUSE }, { INT_MAX, REFUSE });
@@ -282,6 +284,45 @@ TEST(thickness_unset_follows_the_radius)
     }
 }
 
+/* Further depth layers (technique ssilvb): accepted up to
+ * TG_MAX_DEPTH_LAYERS, and each a plane of 4 bytes a pixel in the plan
+ * only when asked, rendered finite. */
+TEST(depth_layers_are_planned_only_when_asked)
+{
+    size_t bytes[TG_MAX_DEPTH_LAYERS + 1];
+    int layers, b;
+    for (layers = 1; layers <= TG_MAX_DEPTH_LAYERS + 1; layers++) {
+        rendered r;
+        tg_request q = small_request();
+        int back = 0, behind = 0;
+        q.technique = TG_TECH_SSILVB;
+        q.depth_layers = layers;
+        if (layers > TG_MAX_DEPTH_LAYERS) {
+            CHECK(!setup(&r, scene_text, &q) && strstr(r.msg, "depth_layers must be"), "%d layers: %s", layers, r.msg);
+            teardown(&r);
+            continue;
+        }
+        if (!setup(&r, scene_text, &q)) { CHECK(0, "%d layers: %s", layers, r.msg); continue; }
+        for (b = 0; b < r.plan.buffer_count; b++) {
+            back += strstr(r.plan.buffers[b].name, "back-face depth") != NULL;
+            behind += strstr(r.plan.buffers[b].name, "behind the back face") != NULL;
+        }
+        bytes[layers] = r.plan.total_bytes;
+        CHECK(back == (layers >= 2) && behind == (layers >= 3), "%d layers: back-face plane %d, behind %d", layers,
+              back, behind);
+        if (layers > 1) {
+            size_t want = bytes[1] + (size_t)(layers - 1) * 4 * (size_t)q.width * (size_t)q.height;
+            CHECK(bytes[layers] >= want && bytes[layers] <= want + 64 * (size_t)layers,
+                  "%d layers: %.0f bytes, one layer %.0f", layers, (double)bytes[layers], (double)bytes[1]);
+        }
+        {
+            tg_error err;
+            CHECK(tg_frame_render(r.frame, 0, &err) == TG_OK && all_finite(&r), "%d layers: rendered finite", layers);
+        }
+        teardown(&r);
+    }
+}
+
 /* The scene's gi values are held to the same limits (by the parser, or
  * else by the plan), with the same words. */
 TEST(scene_gi_values_have_the_same_limits)
@@ -350,6 +391,7 @@ int main(void)
     RUN(aovs_bits_outside_the_list);
     RUN(radius_and_exposure_at_their_extremes);
     RUN(thickness_unset_follows_the_radius);
+    RUN(depth_layers_are_planned_only_when_asked);
     RUN(refusal_names_the_field_and_the_value);
     RUN(scene_gi_values_have_the_same_limits);
     RUN(aov_rows_outside_the_image_are_refused);

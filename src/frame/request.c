@@ -85,8 +85,10 @@ static int gi_outside(const tg_request *r, tg_error *err)
 static int depth_layers_unread(const tg_request *r, tg_error *err)
 {
     if (r->depth_layers < 2 || r->technique == TG_TECH_SSILVB) return 0;
-    tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "depth_layers 2 is read by technique ssilvb alone, got technique ");
+    tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "depth_layers must be 0..1 for technique ");
     tgi_error_append(err, tg_technique_name(r->technique));
+    tgi_error_append(err, " (further layers are read by technique ssilvb alone), got ");
+    tgi_error_append_int(err, r->depth_layers);
     return 1;
 }
 
