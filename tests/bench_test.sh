@@ -13,13 +13,13 @@
 #    rows all have their header's column count;
 #  - bench.svg: well-formed XML (python3 or xmllint when present, else a tag
 #    balance check), one polyline per technique, no NaN coordinates;
-#  - contact.ppm: P6 header and exact byte size of a 5x2 sheet; contact.png:
+#  - contact.ppm: P6 header and exact byte size of a 5x3 sheet; contact.png:
 #    PNG signature and the same size in IHDR, 8-bit greyscale;
 #  - colour against the path tracer: color-float.csv / color-fixed.csv /
-#    bench-color.csv, one row per scene and technique (eleven), RMSE in [0, 1],
+#    bench-color.csv, one row per scene and technique (twelve), RMSE in [0, 1],
 #    energy > 0, the reference's noise >= 0, deterministic; bench.md's colour
 #    section; bench-color.svg parses, a dot per technique and number type;
-#    contact-color.png: a 4x3 sheet, 8-bit RGB;
+#    contact-color.png: a 5x3 sheet, 8-bit RGB;
 #  - multi-bounce AO: multibounce-float.csv / -fixed.csv, two AO sources per
 #    scene, RMSEs in [0, 1], biases in [-1, 1]; bench.md's section;
 #  - bad usage exits 2.
@@ -68,8 +68,8 @@ bad=$(awk -F, 'NR > 1 {
 expect "every row finite and in range${bad:+: $bad}" test -z "$bad"
 near_techs=$(awk -F, 'NR > 1 && $13 != "" {print $2}' "$T/o/bench.csv" | sort -u | tr '\n' ' ')
 expect "near error for hbil, ssdo, gtao+ir, ssilvb only ($near_techs)" \
-    test "$near_techs" = "gtao+ir hbil hbil-1x hbil-full ssdo ssilvb "
-for t in hbil hbil-1x hbil-full gtao hbao ssao vo ssdo bentcone ssdo-do gtao+ir ssilvb; do
+    test "$near_techs" = "gtao+ir hbil hbil-1x hbil-full ssdo ssilvb ssilvb-3l "
+for t in hbil hbil-1x hbil-full gtao hbao ssao vo ssdo bentcone ssdo-do gtao+ir ssilvb ssilvb-3l; do
     expect "technique $t in the table" grep -q "^[a-z]*,$t," "$T/o/bench.csv"
 done
 
@@ -86,8 +86,8 @@ for f in color-float.csv color-fixed.csv bench-color.csv; do
     expect "$f header" test "$(head -n 1 "$T/o/$f" 2>/dev/null)" = "$cheader"
 done
 cf=$(($(wc -l <"$T/o/color-float.csv") - 1)); cb=$(($(wc -l <"$T/o/bench-color.csv") - 1))
-expect "colour rows: 2 scenes x 11 techniques ($cf)" test "$cf" -eq 22
-expect "bench-color.csv has both number types ($cb)" test "$cb" -eq 44
+expect "colour rows: 2 scenes x 12 techniques ($cf)" test "$cf" -eq 24
+expect "bench-color.csv has both number types ($cb)" test "$cb" -eq 48
 bad=$(awk -F, 'NR > 1 {
     num = "^-?[0-9]+(\\.[0-9]+)?$"
     if (NF != 9) { print "fields " NR; next }
@@ -138,11 +138,11 @@ else
 fi
 expect "bench.svg: <svg ... </svg>" sh -c "head -n 1 '$svg' | grep -q '^<svg' && tail -n 1 '$svg' | grep -q '^</svg>'"
 lines=$(grep -c '<polyline fill="none" stroke="#[0-9a-f]*" stroke-width="2"' "$svg")
-expect "bench.svg: a polyline per technique and number type ($lines)" test "$lines" -eq 20
+expect "bench.svg: a polyline per technique and number type ($lines)" test "$lines" -eq 22
 expect "bench.svg: no NaN/inf coordinates" sh -c "! grep -qi 'nan\|inf' '$svg'"
 
-# contact sheet: 5x2 tiles (nine techniques and the reference) with 2-pixel borders
-cw=$((5 * W + 12)); ch=$((2 * H + 6))
+# contact sheet: 5x3 tiles (eleven techniques and the reference) with 2-pixel borders
+cw=$((5 * W + 12)); ch=$((3 * H + 8))
 ppm="$T/o/contact.ppm"
 expect "contact.ppm header" test "$(head -c 20 "$ppm" | tr '\n' ' ' | cut -d' ' -f1-4)" = "P6 $cw $ch 255"
 hdr=$(printf 'P6\n%d %d\n255\n' $cw $ch | wc -c)
@@ -161,9 +161,9 @@ if command -v python3 >/dev/null 2>&1; then
     expect "bench-color.svg parses (python3)" python3 -c "import sys, xml.dom.minidom; xml.dom.minidom.parse(sys.argv[1])" "$csvg"
 fi
 dots=$(grep -c '<circle' "$csvg")
-expect "bench-color.svg: a dot per technique and number type ($dots)" test "$dots" -eq 22
+expect "bench-color.svg: a dot per technique and number type ($dots)" test "$dots" -eq 24
 expect "bench-color.svg: no NaN/inf" sh -c "! grep -qi 'nan\|inf' '$csvg'"
-png_is "$T/o/contact-color.png" $((4 * W + 10)) $((3 * H + 8)) 2
+png_is "$T/o/contact-color.png" $((5 * W + 12)) $((3 * H + 8)) 2
 
 # usage
 "$F" >/dev/null 2>&1; expect "no command: exit 2" test $? -eq 2

@@ -358,6 +358,10 @@ typedef struct config {
     int is_default, on_curve;
 } config;
 
+/* The request's depth layers for a curve: "ssilvb-3l" is the visibility
+ * bitmask with the G-buffer's back faces and the surfaces behind them. */
+static int label_layers(const char *label) { return strcmp(label, "ssilvb-3l") == 0 ? 3 : 1; }
+
 #define MAXCFG 96
 static config cfgs[MAXCFG];
 static int ncfg;
@@ -396,6 +400,8 @@ static void build_sweep(void)
     for (i = 0; i < 4; i++) add("bentcone", TG_TECH_BENTCONE, 2, bc_n[i], 1.0, 0, 1);
     /* the visibility bitmask (Therrien et al. 2023): GTAO's slices and samples, the default thickness */
     for (i = 0; i < 6; i++) add("ssilvb", TG_TECH_SSILVB, ss[i][0], ss[i][1], 1.0, 1, 1);
+    /* ... with three depth layers (request.depth_layers 3) */
+    for (i = 0; i < 6; i++) add("ssilvb-3l", TG_TECH_SSILVB, ss[i][0], ss[i][1], 1.0, 1, 1);
     /* Ritschel table 1: directional occlusion alone (no bounce) */
     add("ssdo-do", TG_TECH_SSDO, 2, 8, 1.0, 0, 0);
     add("ssdo-do", TG_TECH_SSDO, 2, 16, 1.0, 0, 0);
@@ -447,6 +453,7 @@ static double run_config(tg_scene *s, const config *c, double radius, result *ou
     q = base_request(c->tech, c->slices, c->samples, radius, aovs);
     q.interleave = c->interleave;
     q.gi_scale = c->gi_scale;
+    q.depth_layers = label_layers(c->label);
     if (!frame_open(&fr, s, &q)) die("frame", c->label);
     tg_frame_render(fr.frame, 0, &err);
     memset(out, 0, sizeof *out);
@@ -585,7 +592,7 @@ typedef struct contact_sheet {
 } contact_sheet;
 
 /* nine techniques at their default, then the reference */
-static contact_sheet ao_sheet = { "contact", 5, 10, 1, NULL, 0, 0 };
+static contact_sheet ao_sheet = { "contact", 5, 15, 1, NULL, 0, 0 };
 
 /* The sheet's pixels, made on first use. */
 static void sheet_make(contact_sheet *s)
@@ -655,12 +662,13 @@ typedef struct color_config {
     int interleave, gi_scale, converge;   /* converge: HBIL, rendered over --color-frames frames */
 } color_config;
 
-#define COLOR_TECHS 11
+#define COLOR_TECHS 12
 static const color_config color_cfgs[COLOR_TECHS] = {
     { "hbil", TG_TECH_HBIL, 1, 2, 1 }, { "hbil-1x", TG_TECH_HBIL, 1, 1, 1 }, { "hbil-full", TG_TECH_HBIL, 0, 1, 1 },
     { "gtao", TG_TECH_GTAO, 1, 1, 0 }, { "hbao", TG_TECH_HBAO, 1, 1, 0 }, { "ssao", TG_TECH_SSAO, 1, 1, 0 },
     { "vo", TG_TECH_VO, 1, 1, 0 }, { "ssdo", TG_TECH_SSDO, 1, 1, 0 }, { "bentcone", TG_TECH_BENTCONE, 1, 1, 0 },
-    { "reference", TG_TECH_REFERENCE, 1, 1, 0 }, { "ssilvb", TG_TECH_SSILVB, 1, 1, 0 }
+    { "reference", TG_TECH_REFERENCE, 1, 1, 0 }, { "ssilvb", TG_TECH_SSILVB, 1, 1, 0 },
+    { "ssilvb-3l", TG_TECH_SSILVB, 1, 1, 0 }
 };
 
 typedef struct color_ref {
@@ -756,7 +764,7 @@ static void color_reference(tg_scene *s, const char *name, color_ref *r)
 
 /* The colour sheet: every technique's colour and the path tracer's,
  * tonemapped as the CLI's PPM (exposure 1). */
-static contact_sheet color_sheet = { "contact-color", 4, 12, 3, NULL, 0, 0 };
+static contact_sheet color_sheet = { "contact-color", 5, 15, 3, NULL, 0, 0 };
 
 static void color_tile(int k, const float *rgb, const char *label)
 {
@@ -784,6 +792,7 @@ static float *color_run(tg_scene *s, const color_config *c, double radius, doubl
     q.frames = frames + opt_runs;
     q.interleave = c->interleave;
     q.gi_scale = c->gi_scale;
+    q.depth_layers = label_layers(c->label);
     if (c->tech == TG_TECH_REFERENCE) q.samples = opt_ref_samples;
     if (!frame_open(&fr, s, &q)) die("colour frame", c->label);
     for (k = 0; k < frames; k++) tg_frame_render(fr.frame, k, &err);
@@ -1235,7 +1244,7 @@ static const point *find_point(const char *tech, const char *number, int slices,
 static const char *setting(const point *p, char *buf, size_t n)
 {
     const char *t = p->tech;
-    if (!strncmp(t, "hbil", 4) || !strcmp(t, "gtao") || !strcmp(t, "hbao") || !strcmp(t, "ssilvb"))
+    if (!strncmp(t, "hbil", 4) || !strcmp(t, "gtao") || !strcmp(t, "hbao") || !strncmp(t, "ssilvb", 6))
         snprintf(buf, n, "%d slice%s x %d", p->slices, p->slices == 1 ? "" : "s", p->samples);
     else snprintf(buf, n, "%d samples", p->samples);
     if (fabs(p->rscale - 1) > 1e-3) {
@@ -1271,10 +1280,10 @@ static int cmp_ms(const void *a, const void *b)
 }
 
 static const char *tech_names[] = { "hbil", "hbil-1x", "hbil-full", "gtao", "hbao", "ssao", "vo", "ssdo", "bentcone",
-                                    "ssilvb" };
+                                    "ssilvb", "ssilvb-3l" };
 static const char *tech_colors[] = { "#d62728", "#e377c2", "#ff7f0e", "#1f77b4", "#17becf", "#7f7f7f", "#2ca02c", "#9467bd", "#8c564b",
-                                     "#bcbd22" };
-#define NTECH 10
+                                     "#bcbd22", "#393b79" };
+#define NTECH 11
 
 /* An SVG plot W x H on white. */
 static void svg_begin(FILE *f, int W, int H)
