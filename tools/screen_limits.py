@@ -20,19 +20,27 @@ For every scene it renders, with BUILD/tinygi (float):
               pixel's surface taken as infinitely thick), as closely as the
               kernel gets to it; what any estimator that reads one depth
               layer converges to;
+  three layers --technique ssilvb --depth-layers 3 --slices 8 --samples
+              128: the visibility bitmask over the depth buffer, the nearest
+              back face behind it and the surface behind that (the
+              rasterizer's further layers, raster.h): each sample solid from
+              its front to its back face, open behind it, solid again from
+              the next surface on; what the hidden surfaces cost one layer;
   depth       --aov depth: the geometry mask (depth 0 is sky).
 
 and reports over the geometry pixels the RMSE and the mean difference
-(bias) of hbil and of one layer against the reference.  What one layer
-misses, hbil misses too: hidden surfaces (the floor under a sphere, the far
-side of a column) and surfaces off the screen (the room's walls between the
-camera and the image's edge).  The rest, hbil against one layer, is the
-interleaved kernel's own error.
+(bias) of hbil, of one layer and of three layers against the reference.
+What one layer misses, hbil misses too: hidden surfaces (the floor under a
+sphere, the far side of a column) and surfaces off the screen (the room's
+walls between the camera and the image's edge).  The rest, hbil against one
+layer, is the interleaved kernel's own error.  Three layers give back the
+hidden surfaces; the surfaces off the screen stay missing.
 
 Results: OUT/screen-limits.md (the table) and OUT/screen-limits.png: a row
-per scene of reference | hbil | one layer | hbil - reference | one layer -
-reference, the differences red where brighter (less occluded) than the
-reference and blue where darker, full colour at +-0.25.
+per scene of reference | hbil | one layer | three layers | hbil - reference
+| one layer - reference | three layers - reference, the differences red
+where brighter (less occluded) than the reference and blue where darker,
+full colour at +-0.25.
 """
 import argparse
 import math
@@ -123,10 +131,13 @@ def main():
         "reference": ["--technique", "reference", "--aov", "ao"],
         "hbil": ["--aov", "ao", "--frames", str(args.frames)],
         "one layer": ["--aov", "ao", "--no-interleave", "--slices", "8", "--samples", "128"],
+        "three layers": ["--aov", "ao", "--technique", "ssilvb", "--depth-layers", "3", "--slices", "8",
+                         "--samples", "128"],
         "depth": ["--aov", "depth"],
     }
-    table = ["| scene | hbil: RMSE / bias | one layer: RMSE / bias | hbil against one layer: RMSE |",
-             "| --- | --- | --- | --- |"]
+    table = ["| scene | hbil: RMSE / bias | one layer: RMSE / bias | hbil against one layer: RMSE "
+             "| three layers: RMSE / bias |",
+             "| --- | --- | --- | --- | --- |"]
     sheet = []
     for scene in args.scenes.split(","):
         img = {}
@@ -136,24 +147,28 @@ def main():
             img[name] = read_pfm(path)
         w, h = img["depth"][0], img["depth"][1]
         ref, hb, one, dep = img["reference"][2], img["hbil"][2], img["one layer"][2], img["depth"][2]
+        three = img["three layers"][2]
         e_h, e_o, e_ho = error(hb, ref, dep), error(one, ref, dep), error(hb, one, dep)
-        table.append("| %s | %.3f / %+.3f | %.3f / %+.3f | %.3f |" % (scene, e_h[0], e_h[1], e_o[0], e_o[1], e_ho[0]))
-        print("%-8s hbil %.3f / %+.3f   one layer %.3f / %+.3f   hbil vs one layer %.3f"
-              % (scene, e_h[0], e_h[1], e_o[0], e_o[1], e_ho[0]))
+        e_3 = error(three, ref, dep)
+        table.append("| %s %s | %.3f / %+.3f | %.3f / %+.3f | %.3f | %.3f / %+.3f |"
+                     % (scene, args.size, e_h[0], e_h[1], e_o[0], e_o[1], e_ho[0], e_3[0], e_3[1]))
+        print("%-8s hbil %.3f / %+.3f   one layer %.3f / %+.3f   hbil vs one layer %.3f   three layers %.3f / %+.3f"
+              % (scene, e_h[0], e_h[1], e_o[0], e_o[1], e_ho[0], e_3[0], e_3[1]))
         gap = [(255, 255, 255)] * 4
         for y in range(h):
             row = []
-            for panel in (ref, hb, one):
+            for panel in (ref, hb, one, three):
                 row += [grey(v) if d > 0 else (40, 40, 40) for v, d in zip(panel[y], dep[y])] + gap
-            for panel in (hb, one):
+            for panel in (hb, one, three):
                 row += [signed(v - r) if d > 0 else (40, 40, 40) for v, r, d in zip(panel[y], ref[y], dep[y])] + gap
             sheet.append(row[:-4])
-        sheet += [[(255, 255, 255)] * (5 * w + 16)] * 4
+        sheet += [[(255, 255, 255)] * (7 * w + 24)] * 4
     sheet = sheet[:-4]
     write_png(os.path.join(args.out, "screen-limits.png"), len(sheet[0]), len(sheet), sheet)
     md = ["# What screen space cannot see", "",
           "`python3 tools/screen_limits.py --size %s --frames %d` (AO against `--technique reference`, "
-          "over geometry pixels; one layer: `--no-interleave --slices 8 --samples 128`)." % (args.size, args.frames),
+          "over geometry pixels; one layer: `--no-interleave --slices 8 --samples 128`; three layers: "
+          "`--technique ssilvb --depth-layers 3 --slices 8 --samples 128`)." % (args.size, args.frames),
           ""] + table
     with open(os.path.join(args.out, "screen-limits.md"), "w") as f:
         f.write("\n".join(md) + "\n")
