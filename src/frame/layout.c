@@ -173,14 +173,16 @@ static void group_gbuffer(layout *l, tg_frame *f)
     else
         take_gbuffer_planes(l, &f->gb, f->scene, f->width, f->height, 0, "G-buffer, no material [" FMT_G_GEOMETRY "]");
     if (f->needs & TG_NEED_POSE) f->gb.object = (uint16_t *)take(l, "G-buffer object id [16 bits]", f->pixels, 2);
-    /* the second depth layer: the visibility bitmask's thickness (request.c
-     * refuses depth_layers 2 for every other technique) */
-    if (!TG_NO_TECHNIQUES && f->request.depth_layers >= 2 && (f->needs & TG_NEED_GI_PASS))
+#if TGI_DEPTH_LAYERS
+    /* the further depth layers: the visibility bitmask's surfaces (request.c
+     * refuses depth_layers 2 and 3 for every other technique) */
+    if (f->request.depth_layers >= 2 && (f->needs & TG_NEED_GI_PASS))
         f->gb.back_depth = (void *)take(l, "G-buffer back-face depth, the second layer [" FMT_BACK "]", f->pixels,
                                         sizeof *f->gb.back_depth);
-    if (!TG_NO_TECHNIQUES && f->request.depth_layers >= 3 && (f->needs & TG_NEED_GI_PASS))
+    if (f->request.depth_layers >= 3 && (f->needs & TG_NEED_GI_PASS))
         f->gb.behind_depth = (void *)take(l, "G-buffer depth behind the back face, the third layer [" FMT_BACK "]",
                                           f->pixels, sizeof *f->gb.behind_depth);
+#endif
 }
 
 static void group_motion(layout *l, tg_frame *f)

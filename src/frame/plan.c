@@ -268,8 +268,14 @@ size_t tg_plan_explain(const tg_plan *plan, char *buf, size_t size)
         tgi_text_put_real(&t, plan->request.radius);
         tgi_text_put(&t, ", thickness ");
         tgi_text_put_real(&t, plan->request.thickness);
-        tgi_text_put(&t, plan->request.depth_layers >= 2 ? " (world units) where no back face ends a surface (two depth layers)"
-                                                         : " (world units)");
+        tgi_text_put(&t, " (world units)");
+#if !TG_NO_TECHNIQUES
+        if (plan->request.depth_layers >= 2)
+            put_number_line(&t, "; depth layers ", (size_t)plan->request.depth_layers,
+                            plan->request.depth_layers >= 3 ? ": a surface ends at its back face, and the thickness is "
+                                                              "that of the surface behind it"
+                                                            : ": a surface ends at its back face (the thickness unused)");
+#endif
     }
     tgi_text_put(&t, "\npasses:\n");
     put_passes(&t, plan);

@@ -81,33 +81,51 @@ static int gi_outside(const tg_request *r, tg_error *err)
     return 0;
 }
 
-/* A second depth layer that the technique would not read. */
+/* More than one depth layer for a technique that does not read them. */
 static int depth_layers_unread(const tg_request *r, tg_error *err)
 {
+#if TG_NO_TECHNIQUES
+    (void)r; (void)err;   /* one layer at most (int_switches) */
+    return 0;
+#else
     if (r->depth_layers < 2 || r->technique == TG_TECH_SSILVB) return 0;
     tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "depth_layers must be 0..1 for technique ");
     tgi_error_append(err, tg_technique_name(r->technique));
     tgi_error_append(err, " (further layers are read by technique ssilvb alone), got ");
     tgi_error_append_int(err, r->depth_layers);
     return 1;
+#endif
 }
 
-/* The switches: each takes exactly the values documented in tinygi.h. */
+/* The int switches, each with exactly the values documented in tinygi.h
+ * (a table: one loop is smaller than a call each in the smallest builds). */
+typedef struct int_switch {
+    const char *name;
+    unsigned short offset;        /* of the int field in tg_request */
+    signed char lo, hi;
+} int_switch;
+#define SWITCH(f, lo, hi) { #f, (unsigned short)offsetof(tg_request, f), lo, hi }
+static const int_switch int_switches[] = {
+    SWITCH(interleave, 0, 1), SWITCH(gi_scale, 1, 2), SWITCH(temporal, 0, 1), SWITCH(far_mode, 0, 1),
+    SWITCH(shadow_pcf, 0, 1),
+    /* shadow rays trace the reference's BVH (left out by TG_NO_REFERENCE) */
+    SWITCH(shadow_method, TG_SHADOWS_AUTO, TG_NO_REFERENCE ? TG_SHADOWS_MAPS : TG_SHADOWS_RAYS),
+    SWITCH(game_loop, 0, 1), SWITCH(ao_multibounce, 0, 1),
+    /* further layers are read by the visibility bitmask (left out by TG_NO_TECHNIQUES) */
+    SWITCH(depth_layers, 0, TG_NO_TECHNIQUES ? 1 : TG_MAX_DEPTH_LAYERS)
+};
+#undef SWITCH
+
 static int switch_outside(const tg_request *r, tg_error *err)
 {
-    return int_outside(err, "technique", (long)r->technique, 0, TG_TECH_COUNT - 1)
-        || int_outside(err, "interleave", r->interleave, 0, 1)
-        || int_outside(err, "gi_scale", r->gi_scale, 1, 2)
-        || int_outside(err, "temporal", r->temporal, 0, 1)
-        || int_outside(err, "far_mode", r->far_mode, 0, 1)
-        || int_outside(err, "shadow_pcf", r->shadow_pcf, 0, 1)
-        /* shadow rays trace the reference's BVH (left out by TG_NO_REFERENCE) */
-        || int_outside(err, "shadow_method", r->shadow_method, TG_SHADOWS_AUTO,
-                       TG_NO_REFERENCE ? TG_SHADOWS_MAPS : TG_SHADOWS_RAYS)
-        || int_outside(err, "game_loop", r->game_loop, 0, 1)
-        || int_outside(err, "ao_multibounce", r->ao_multibounce, 0, 1)
-        || int_outside(err, "depth_layers", r->depth_layers, 0, TG_MAX_DEPTH_LAYERS)
-        || depth_layers_unread(r, err);
+    size_t k;
+    if (int_outside(err, "technique", (long)r->technique, 0, TG_TECH_COUNT - 1)) return 1;
+    for (k = 0; k < sizeof int_switches / sizeof int_switches[0]; k++) {
+        const int_switch *w = &int_switches[k];
+        if (int_outside(err, w->name, *(const int *)(const void *)((const char *)r + w->offset), w->lo, w->hi))
+            return 1;
+    }
+    return depth_layers_unread(r, err);
 }
 
 int tgi_request_refused(const tg_request *r, tg_error *err)

@@ -25,6 +25,11 @@
 #define TG_WIDE_STORAGE 0
 #endif
 
+/* The further depth layers (request.depth_layers, back_depth and
+ * behind_depth below) are read by the visibility bitmask alone: left out
+ * with the techniques (tinygi.h "FEATURE SWITCHES"). */
+#define TGI_DEPTH_LAYERS (!TG_NO_TECHNIQUES)
+
 #define TGI_NORMAL_BITS 11                 /* per octahedral coordinate */
 #define TGI_MATERIAL_SHIFT (2 * TGI_NORMAL_BITS)
 #define TGI_NORMAL_MASK ((1u << TGI_MATERIAL_SHIFT) - 1u)
@@ -47,9 +52,9 @@ typedef struct tgi_gbuffer {
     const tgi_material *materials;/* the scene's material table */
     int has_emissive;             /* some material of the table emits */
     uint16_t *object;             /* object index per pixel (objects move); NULL if unused */
-#if TG_WIDE_STORAGE
+#if TGI_DEPTH_LAYERS && TG_WIDE_STORAGE
     tg_real *back_depth, *behind_depth;
-#else
+#elif TGI_DEPTH_LAYERS
     uint32_t *back_depth;         /* the second depth layer: view depth of the nearest back
                                      face (binary32 bits, as depth); 0 where none; NULL
                                      unless planned (request.depth_layers >= 2) */

@@ -86,27 +86,18 @@ static inline int tgi_gv_material_index(const tgi_gview *v, size_t i)
  * either face of a twosided one), where a closed object the depth buffer
  * sees ends; 0 where no back face was drawn or the frame has no second
  * layer. */
-static inline tg_real tgi_gv_back_depth(const tgi_gview *v, size_t i)
-{
-    if (!v->store.back_depth) return 0;
-#if TG_WIDE_STORAGE
-    return v->store.back_depth[i];
+#if !TGI_DEPTH_LAYERS
+#define TGI_LAYER_DEPTH(v, plane, i) ((void)(v), (void)(i), (tg_real)0)   /* left out (gbuffer.h) */
+#elif TG_WIDE_STORAGE
+#define TGI_LAYER_DEPTH(v, plane, i) ((v)->store.plane ? (v)->store.plane[i] : 0)
 #else
-    return tgi_depth_unpack(v->store.back_depth[i]);
+#define TGI_LAYER_DEPTH(v, plane, i) ((v)->store.plane ? tgi_depth_unpack((v)->store.plane[i]) : 0)
 #endif
-}
+static inline tg_real tgi_gv_back_depth(const tgi_gview *v, size_t i) { return TGI_LAYER_DEPTH(v, back_depth, i); }
 /* The third (request.depth_layers 3): the view depth of the nearest
  * surface (either facing) behind that back face, where the space a closed
  * object's back leaves open ends (the floor under a sphere); 0 where none. */
-static inline tg_real tgi_gv_behind_depth(const tgi_gview *v, size_t i)
-{
-    if (!v->store.behind_depth) return 0;
-#if TG_WIDE_STORAGE
-    return v->store.behind_depth[i];
-#else
-    return tgi_depth_unpack(v->store.behind_depth[i]);
-#endif
-}
+static inline tg_real tgi_gv_behind_depth(const tgi_gview *v, size_t i) { return TGI_LAYER_DEPTH(v, behind_depth, i); }
 
 /* 1 when the storage holds a material per pixel (not so in an AO-only frame). */
 static inline int tgi_gb_has_material(const tgi_gbuffer *g)
@@ -172,7 +163,10 @@ static inline tgi_gbuffer tgi_gbuffer_from(const tgi_gbuffer *g, size_t start)
 #else
     TGI_FROM(depth); TGI_FROM(nm); TGI_FROM(n8);
 #endif
-    TGI_FROM(object); TGI_FROM(motion_x); TGI_FROM(motion_y); TGI_FROM(back_depth); TGI_FROM(behind_depth);
+    TGI_FROM(object); TGI_FROM(motion_x); TGI_FROM(motion_y);
+#if TGI_DEPTH_LAYERS
+    TGI_FROM(back_depth); TGI_FROM(behind_depth);
+#endif
 #undef TGI_FROM
     return s;
 }

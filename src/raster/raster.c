@@ -50,7 +50,7 @@
 #define TGI_RASTER_DEPTH (!TG_NO_SHADOW_MAPS && !TG_NO_COLOR)
 /* The G-buffer's second depth layer (tgi_gbuffer.back_depth) is read by
  * the visibility bitmask alone: left out with the techniques. */
-#define TGI_RASTER_BACK_LAYER (!TG_NO_TECHNIQUES)
+#define TGI_RASTER_BACK_LAYER TGI_DEPTH_LAYERS
 /* Depth-only rows serve both. */
 #define TGI_RASTER_DEPTH_ROWS (TGI_RASTER_DEPTH || TGI_RASTER_BACK_LAYER)
 
@@ -419,8 +419,10 @@ void tgi_gbuffer_clear_rows(tgi_gbuffer *gb, int y0, int y1)
     n = (size_t)(y1 - y0) * (size_t)gb->width;
     memset(gb->depth + a, 0, n * sizeof *gb->depth);
     if (gb->object) memset(gb->object + a, 0xFF, n * sizeof(uint16_t));
+#if TGI_RASTER_BACK_LAYER
     if (gb->back_depth) memset(gb->back_depth + a, 0, n * sizeof *gb->back_depth);
     if (gb->behind_depth) memset(gb->behind_depth + a, 0, n * sizeof *gb->behind_depth);
+#endif
 }
 
 /* What every pixel of one triangle shares. */
@@ -447,9 +449,9 @@ static void put_nm(const tgi_gbuffer *g, size_t i, uint32_t w)
 typedef struct depth_out {
     tg_real *d32;
     uint16_t *d16;
-#if TG_WIDE_STORAGE
+#if TGI_RASTER_BACK_LAYER && TG_WIDE_STORAGE
     tg_real *back, *behind;
-#else
+#elif TGI_RASTER_BACK_LAYER
     uint32_t *back, *behind;      /* behind: kept only beyond back[i] (the third layer) */
 #endif
     tg_real lo;
@@ -459,6 +461,11 @@ typedef struct depth_out {
     float scale;                  /* 65536 / range */
 #endif
 } depth_out;
+#if TGI_RASTER_BACK_LAYER
+#define KEEPS_BACK(o) ((o)->back != NULL)
+#else
+#define KEEPS_BACK(o) 0
+#endif
 
 static inline uint16_t depth_code(const depth_out *o, tg_real z)
 {
@@ -826,7 +833,7 @@ static void depth_rows(const depth_out *o, int W, const tri_edges *te, const scr
             if (ortho) {
                 depth_keep(o, i, a);
             } else if (a > 0.0f) {
-                if (o->d16 || o->back) depth_keep(o, i, wmin / a);
+                if (o->d16 || KEEPS_BACK(o)) depth_keep(o, i, wmin / a);
                 else if (wmin < a * o->d32[i]) o->d32[i] = wmin / a;
             }
         }
@@ -848,9 +855,22 @@ typedef struct raster_target {
     uint16_t object;
     const tg_vec3 *tri_nrm;       /* its three vertex normals */
     int cull_back, flip_back;     /* G-buffer: one-sided / twosided */
+#if TGI_RASTER_BACK_LAYER
     int back_layer;               /* G-buffer: drawing the back faces' layer (dout.back) */
+#endif
     depth_out dout;               /* depth-only mode, and the G-buffer's back-face layer */
 } raster_target;
+
+/* Whether the G-buffer culls a triangle of facing `front`: a one-sided
+ * back face, or a front face when drawing the back-face layer; and whether
+ * it writes the surface (not in the back-face layer). */
+#if TGI_RASTER_BACK_LAYER
+#define FACE_CULLED(rt, front) ((rt)->gb && ((rt)->back_layer ? (front) : !(front)) && (rt)->cull_back)
+#define SURFACE_OUT(rt) ((rt)->gb && !(rt)->back_layer)
+#else
+#define FACE_CULLED(rt, front) ((rt)->gb && !(front) && (rt)->cull_back)
+#define SURFACE_OUT(rt) ((rt)->gb != NULL)
+#endif
 
 /* A clip-space vertex (inside the guard band, w > 0) to 28.4 screen
  * coordinates.  Every path snaps through here, so a vertex shared by two
@@ -871,7 +891,6 @@ static void draw_snapped(const raster_target *rt, const clip_vertex *v, const tg
     screen_tri st;
     tri_edges te;
     int k;
-    const int surface_out = rt->gb && !rt->back_layer;
     for (k = 0; k < 3; k++) { st.x[k] = sx[idx[k]]; st.y[k] = sy[idx[k]]; }
     if (!edges_setup(&te, st.x, st.y, area2, rt->width, rt->row0, rt->row1)) return;
     for (k = 0; k < 3; k++) {
@@ -879,12 +898,12 @@ static void draw_snapped(const raster_target *rt, const clip_vertex *v, const tg
         st.w[k] = c->w;
         st.z[k] = c->z;
         st.iw[k] = iw[idx[k]];
-        if (surface_out) {
+        if (SURFACE_OUT(rt)) {
             tg_vec3 n = nrm ? nrm[idx[k]] : c->n;
             st.n[k] = flip ? tgi_v3_neg(n) : n;
         }
     }
-    if (surface_out) {
+    if (SURFACE_OUT(rt)) {
         surface sf;
         sf.object = rt->object;
         sf.fallback_normal = flip ? tgi_v3_neg(rt->tri_nrm[0]) : rt->tri_nrm[0];
@@ -914,7 +933,7 @@ static void draw_triangle(const raster_target *rt, const clip_vertex *v, const t
     area2 = signed_area2(sx, sy);
     if (area2 == 0) return;                       /* zero area */
     front = area2 < 0;                            /* counter-clockwise as seen, y down */
-    if (rt->gb && (rt->back_layer ? front : !front) && rt->cull_back) return;
+    if (FACE_CULLED(rt, front)) return;
     draw_snapped(rt, v, nrm, sx, sy, iw, front ? order_front : order_back, front ? -area2 : area2,
                  rt->gb && !front && rt->flip_back);
 }
@@ -937,7 +956,7 @@ static void draw_polygon(const raster_target *rt, const clip_vertex *poly, int n
     }
     if (total == 0) return;
     front = total < 0;
-    if (rt->gb && (rt->back_layer ? front : !front) && rt->cull_back) return;
+    if (FACE_CULLED(rt, front)) return;
     flip = rt->gb && !front && rt->flip_back;
     for (i = 1; i + 1 < n; i++) {
         int idx[3];
@@ -1086,6 +1105,16 @@ static inline void vertex_fetch(vertex_cache *c, const raster_target *rt, const 
     tv->flags &= o->flags;
 }
 
+/* Triangle t's three vertices, through the cache. */
+static inline void triangle_fetch(vertex_cache *c, const raster_target *rt, const view_frame *vf,
+                                  const tgi_raster_mesh *mesh, int t, tri_vertices *tv)
+{
+    tv->flags = ~0;
+    vertex_fetch(c, rt, vf, mesh->pos[3 * t], tv, 0);
+    vertex_fetch(c, rt, vf, mesh->pos[3 * t + 1], tv, 1);
+    vertex_fetch(c, rt, vf, mesh->pos[3 * t + 2], tv, 2);
+}
+
 #if TGI_RASTER_BACK_LAYER
 /* Triangle t into the back-face layer (rt->dout.back): a one-sided
  * triangle facing away, or either face of a twosided one (a sheet is its
@@ -1116,19 +1145,18 @@ static void gbuffer_triangle(raster_target *rt, tri_vertices *tv, const tgi_rast
     int64_t area2 = 0;
     if (tv->flags & V_OFF_SIDE) return;           /* wholly off one side of the screen */
     twosided = mesh->materials[mesh->tri_material[t]].twosided;
-    rt->cull_back = !twosided;
     if (tv->flags & V_INSIDE) {
         area2 = signed_area2(tv->sx, tv->sy);
         front = area2 < 0;                        /* counter-clockwise as seen, y down */
-        if (area2 == 0) return;                   /* zero area */
-        if (!front && !twosided) {                /* culled */
+        if (area2 == 0 || (!front && !twosided)) {   /* zero area, culled */
 #if TGI_RASTER_BACK_LAYER
-            if (rt->dout.back) back_triangle(rt, tv, front, area2);
+            if (area2 != 0 && rt->dout.back) back_triangle(rt, tv, front, area2);   /* a back face */
 #endif
             return;
         }
     }
     rt->material = mesh->tri_material[t];
+    rt->cull_back = !twosided;
     rt->flip_back = twosided;
     rt->object = mesh->tri_object ? mesh->tri_object[t] : 0;
     rt->tri_nrm = mesh->nrm + 3 * t;
@@ -1166,10 +1194,7 @@ void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_
     vertex_cache_init(&cache, &rt, &vf);
     for (t = 0; t < mesh->tri_count; t++) {
         tri_vertices tv;
-        tv.flags = ~0;
-        vertex_fetch(&cache, &rt, &vf, mesh->pos[3 * t], &tv, 0);
-        vertex_fetch(&cache, &rt, &vf, mesh->pos[3 * t + 1], &tv, 1);
-        vertex_fetch(&cache, &rt, &vf, mesh->pos[3 * t + 2], &tv, 2);
+        triangle_fetch(&cache, &rt, &vf, mesh, t, &tv);
         gbuffer_triangle(&rt, &tv, mesh, t);
     }
 #if TGI_RASTER_BACK_LAYER
@@ -1180,10 +1205,7 @@ void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_
     rt.cull_back = 0;
     for (t = 0; t < mesh->tri_count; t++) {
         tri_vertices tv;
-        tv.flags = ~0;
-        vertex_fetch(&cache, &rt, &vf, mesh->pos[3 * t], &tv, 0);
-        vertex_fetch(&cache, &rt, &vf, mesh->pos[3 * t + 1], &tv, 1);
-        vertex_fetch(&cache, &rt, &vf, mesh->pos[3 * t + 2], &tv, 2);
+        triangle_fetch(&cache, &rt, &vf, mesh, t, &tv);
         if (!(tv.flags & V_OFF_SIDE)) back_triangle(&rt, &tv, tv.flags & V_INSIDE ? signed_area2(tv.sx, tv.sy) < 0 : 0,
                                                     tv.flags & V_INSIDE ? signed_area2(tv.sx, tv.sy) : 0);
     }
