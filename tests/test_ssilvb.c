@@ -366,6 +366,35 @@ TEST(depth_layers_against_the_reference)
     CHECK(err[2] < 0.05 && fabs(bias[2]) < 0.02, "three layers: rmse %g, bias %g", err[2], bias[2]);
 }
 
+/* Every surface a twosided sheet (its back face at its own depth, as the
+ * rasterizer's back layer holds one): the constant thickness stands in,
+ * as without layers, and the groove's floor sees the wall as the exact
+ * one-layer test above does (a sheet taken as no thickness would occlude
+ * nothing: ao 1 everywhere). */
+TEST(twosided_sheets_keep_the_constant_thickness)
+{
+    static scene s;
+    static outputs o;
+    ao_pass io;
+    tgi_ssilvb_params p = vb_params(1, 1000);
+    int i, n = 0;
+    double se = 0;
+    groove(&s);
+    for (i = 0; i < W * H; i++) { s.back[i] = s.sky[i] ? 0 : check_d(s.depth[i]); s.behind[i] = 0; }
+    io_for(&io, &s, &o, 0);
+    io_with_layers(&io, &s, 2);
+    run_vb(&io, &p, 0, H);
+    io_read(&io);
+    for (i = 0; i < W * H; i++) {
+        double d;
+        if (s.sky[i] || s.wrect[i] != 0 || fabs(s.wpos[i][2]) > 10 || s.wpos[i][0] > 1.5) continue;
+        d = check_d(o.ao[i]) - wall_ao(s.wpos[i][0], 1.0);
+        se += d * d; n++;
+    }
+    printf("# groove of twosided sheets, %d floor pixels: rmse %.4f against the exact wall\n", n, sqrt(se / n));
+    CHECK(n > 100 && sqrt(se / n) < 0.08, "%d pixels, rmse %g", n, sqrt(se / n));
+}
+
 TEST(hard_cases_stay_finite)
 {
     static const double eye_graze[3] = { 3.0, 0.06, 0.4 }, target_graze[3] = { -2, 0.0, -1 };
@@ -441,6 +470,7 @@ int main(void)
     RUN(groove_against_the_exact_wall);
     RUN(thin_plank_lets_light_through_behind_it);
     RUN(depth_layers_against_the_reference);
+    RUN(twosided_sheets_keep_the_constant_thickness);
     RUN(near_field_gathers_the_occluded_sectors);
     RUN(hard_cases_stay_finite);
     RUN(deterministic_under_row_splits);

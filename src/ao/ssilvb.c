@@ -195,30 +195,35 @@ static uint32_t segment_sectors(const vb_tech *t, const tgi_ao_slice_pixel *px, 
 /* The depth z at the sample's pixel as an offset from the pixel: its
  * front offset hf moved along the pixel's view ray (per unit of depth)
  * by z - zf, scaled by the shift; 0 (and *h unset) when z is not beyond
- * zf or more than 64 radii beyond. */
+ * zf (none, a back face in front of the surface, or the surface's own:
+ * a sheet) or more than 64 radii beyond. */
 static int layer_point(const vb_tech *t, const tgi_ao_slice_pixel *px, tg_vec3 hf, tg_vec3 ray, tg_real zf, tg_real z,
                        tg_vec3 *h)
 {
     tg_real dz = tg_ldexp(tg_sub(z, zf), px->shift);
-    if (!(z > 0) || dz < 0 || dz >= t->thick_max) return 0;
+    if (!(z > zf) || dz <= 0 || dz >= t->thick_max) return 0;
     *h = tgi_v3_add(hf, tgi_v3_scale(ray, dz));
     return 1;
 }
 
 /* march with the G-buffer's further depth layers (request.depth_layers >=
- * 2): a sample's surface is solid from its front, the depth buffer's, to
- * the nearest back face behind it on the pixel's view ray
- * (tgi_gv_back_depth: a closed object's true thickness) or, where there
- * is none, to the constant thickness; and, with a third layer, solid
- * again from the surface behind that back face (tgi_gv_behind_depth) on,
- * 64 radii deep, as the depth buffer's own surfaces are taken without
- * layers.  Each segment counts where it lies within the radius (the
- * ray-traced reference's cut-off), not where its front point does.  The
- * hidden surface occludes and gathers nothing (its radiance is unknown). */
+ * 2): a sample's surface is solid along the pixel's view ray from its
+ * front, the depth buffer's, to the nearest back face behind it
+ * (tgi_gv_back_depth: a closed object's true thickness); where there is
+ * none (a one-sided surface: a boundary, like a room's wall) to 64 radii
+ * (as good as infinite); where the back face is the surface's own (a
+ * twosided sheet, which has no thickness to find) for the constant
+ * thickness, as without layers.  With a third layer it is solid again
+ * from the surface behind that back face (tgi_gv_behind_depth) for the
+ * constant thickness.  Each segment counts where it lies within the
+ * radius (the ray-traced reference's cut-off), not where its front point
+ * does.  The hidden surface occludes and gathers nothing (its radiance is
+ * unknown).  Between two samples a surface thinner than their spacing
+ * occludes only where sampled, as with the paper's constant thickness. */
 static void march_layers(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel *px, const vb_slice *sl,
                          tg_real sdx, tg_real sdy, int side, uint32_t *mask, tg_vec3 *e)
 {
-    tg_real zf;
+    tg_real zf, zb;
     tg_vec3 hf, hb, h3, h3end, ray;
     int steps = t->p->steps, s, j, got;
     for (s = 0; s < steps; s++) {
@@ -226,8 +231,9 @@ static void march_layers(const vb_tech *t, const tgi_gview *g, const tgi_ao_slic
         if (got < 0) break;
         if (got == 0) continue;
         zf = tgi_gv_depth(g, (size_t)j);
-        if (!layer_point(t, px, hf, ray, zf, tgi_gv_back_depth(g, (size_t)j), &hb))
-            hb = tgi_v3_add(hf, tgi_v3_scale(ray, t->thick_max));   /* no back face: a boundary, solid behind */
+        zb = tgi_gv_back_depth(g, (size_t)j);
+        if (!layer_point(t, px, hf, ray, zf, zb, &hb))                /* a sheet, or no back face: a boundary */
+            hb = tgi_v3_add(hf, tgi_v3_scale(ray, zb == zf ? t->thick : t->thick_max));
         take_sectors(t, g, sl, segment_sectors(t, px, sl, hf, hb, side), j, hf, mask,
                      tgi_v3_dot(hf, hf) < px->r2 ? e : NULL);   /* a sender within the radius */
         if (layer_point(t, px, hf, ray, zf, tgi_gv_behind_depth(g, (size_t)j), &h3)) {
