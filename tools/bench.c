@@ -489,7 +489,8 @@ static const char *glyph(char ch)
     case 'p': return "110101110100100"; case 'r': return "110101110101101";
     case 's': return "011100010001110"; case 't': return "111010010010010";
     case 'u': return "101101101101111"; case 'v': return "101101101101010";
-    case '1': return "010110010010111"; case 'x': return "000101010101000";
+    case '1': return "010110010010111"; case '3': return "111001011001111";
+    case 'x': return "000101010101000";
     case '-': return "000000111000000"; case '+': return "000010111010000";
     default: return "000000000000000";
     }
