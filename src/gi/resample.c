@@ -155,10 +155,62 @@ void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_g
  * of n . ray per pixel (n.x ax, n.y ay), and the height over the tangent
  * plane below which a sample counts for nothing (as tgi_ao_slice_pixel's). */
 typedef struct near_pixel {
-    int x, y;
+    int x, y, has_vd;
     tg_vec3 pv, nv, vd;
     tg_real np, kx, ky, nax, nay, nr, above;
+#if TG_FIXED
+    int plane_wide;       /* near_plane_start: the tangent-plane test in one 64-bit compare */
+    int64_t plane_lim;
+#endif
 } near_pixel;
+
+/* The unit vector to the eye, normalised the first time a sample needs it
+ * (most pixels have none above their tangent plane: near_horizon_ao). */
+static tg_vec3 near_vd(near_pixel *q)
+{
+    if (!q->has_vd) {
+        q->vd = tgi_v3_normalize_or(tgi_v3_neg(q->pv), tg_v3(0, 0, TG_R(-1.0f)));
+        q->has_vd = 1;
+    }
+    return q->vd;
+}
+
+#if TG_FIXED
+/* The tangent-plane test of near_under_plane without its saturation tests,
+ * for offsets up to `reach` pixels on either axis.  The saturating form is
+ * D = sat(sat(P) - np) <= above with P = z i rounded (tg_mul) and i = nr +
+ * (ox nax - oy nay).  When |nr| + reach (|nax| + |nay|) <= TG_REAL_MAX no
+ * part of i saturates (plane_wide): i is the exact sum, z i < 2^62 fits
+ * 64 bits.  sat is monotone, so for above < TG_REAL_MAX, D <= above iff
+ * sat(P) <= T = above + np (exact, 64 bits), which holds always when T >=
+ * TG_REAL_MAX, never when T < TG_REAL_MIN (sat(P) >= TG_REAL_MIN), else iff
+ * P <= T; and P, z i rounded half away from zero, is <= T iff z i <= T 2^16
+ * + 2^15 - 1 (z i >= 0) or <= T 2^16 + 2^15 (z i < 0), the one bound
+ * T 2^16 + 2^15 - 1 + (T < 0) serving both (a z i of the other sign than T
+ * is on the same side of either).  above = TG_REAL_MAX: every sample is
+ * under (D <= TG_REAL_MAX). */
+static void near_plane_start(near_pixel *q, int reach)
+{
+    const int64_t t = (int64_t)q->above + q->np;
+    q->plane_wide = (int64_t)tg_abs(q->nr) + (int64_t)reach * ((int64_t)tg_abs(q->nax) + tg_abs(q->nay)) <= TG_REAL_MAX;
+    if (q->above >= TG_REAL_MAX || t >= TG_REAL_MAX) q->plane_lim = INT64_MAX;
+    else if (t < TG_REAL_MIN) q->plane_lim = INT64_MIN;
+    else q->plane_lim = t * 65536 + 32767 + (t < 0);
+}
+#endif
+
+/* Whether the sample at depth z, (ox, oy) pixels from pixel q, lies on or
+ * under q's tangent plane, as high as q->above over it at most: its height
+ * z (n . r) - n . p (near_horizon_cos).  Q16.16: near_plane_start's
+ * compare, the same answer, where it applies. */
+static inline int near_under_plane(const near_pixel *q, tg_real z, int ox, int oy)
+{
+#if TG_FIXED
+    if (q->plane_wide) return (int64_t)z * ((int64_t)q->nr + (int64_t)ox * q->nax - (int64_t)oy * q->nay) <= q->plane_lim;
+#endif
+    return tg_sub(tg_mul(z, tg_add(q->nr, tg_sub(tg_mul(tg_from_int(ox), q->nax), tg_mul(tg_from_int(oy), q->nay)))),
+                  q->np) <= q->above;
+}
 
 /* The largest cos(angle to the view vector) of the samples off[0..steps)
  * (pixel offsets) of pixel q that lie above the tangent plane and within
@@ -166,7 +218,10 @@ typedef struct near_pixel {
  * no sample can reach it).  A sample's view position is its depth z times
  * its ray r, so its height over the tangent plane is z (n . r) - n . p,
  * n . r changing by n.x ax and -n.y ay a pixel. */
-static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, const near_pixel *q, const signed char (*off)[2],
+#if defined(__GNUC__)
+__attribute__((always_inline))   /* a copy for each `inside`, the test gone from the loop */
+#endif
+static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q, const signed char (*off)[2],
                                        int inside)
 {
     const tgi_gview *g = u->full;
@@ -181,22 +236,21 @@ static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, const near_pi
         j = tgi_gv_index(g, sx, sy);
         if (tgi_gv_is_sky(g, j)) continue;
         z = tgi_gv_depth(g, j);
+        if (near_under_plane(q, z, off[n][0], off[n][1])) continue;
         fdx = tg_from_int(off[n][0]);
         fdy = tg_from_int(off[n][1]);
-        if (tg_sub(tg_mul(z, tg_add(q->nr, tg_sub(tg_mul(fdx, q->nax), tg_mul(fdy, q->nay)))), q->np) <= q->above)
-            continue;                                              /* on or under the tangent plane */
         h = tg_v3(tg_sub(tg_mul(z, tg_add(q->kx, tg_mul(fdx, u->ax))), q->pv.x),
                   tg_sub(tg_mul(z, tg_sub(q->ky, tg_mul(fdy, u->ay))), q->pv.y), tg_sub(z, q->pv.z));
         if (u->shift) h = tg_v3(tg_ldexp(h.x, u->shift), tg_ldexp(h.y, u->shift), tg_ldexp(h.z, u->shift));
         d2 = tgi_v3_dot(h, h);
         if (d2 >= u->r2 || d2 <= 0) continue;                      /* beyond the gather radius */
-        best = tg_max(best, tg_mul(tgi_v3_dot(h, q->vd), tg_rsqrt(d2)));
+        best = tg_max(best, tg_mul(tgi_v3_dot(h, near_vd(q)), tg_rsqrt(d2)));
     }
     return best;
 }
 
 /* near_horizon_cos of the four sides of pixel q's slices into c1[k], c0[k]. */
-static void near_horizon_sides(const tgi_upsample_plan *u, const near_pixel *q, int cell,
+static void near_horizon_sides(const tgi_upsample_plan *u, near_pixel *q, int cell,
                                tg_real c1[2], tg_real c0[2])
 {
     const tgi_gview *g = u->full;
@@ -269,15 +323,19 @@ static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t 
     z = tgi_gv_depth(full, i);                                   /* tgi_ao_view_at's view of the pixel */
     q.pv = tg_v3(tg_mul(q.kx, z), tg_mul(q.ky, z), z);
     q.nv = tgi_ao_dir_to_view(full->camera, n);
-    q.vd = tgi_v3_normalize_or(tgi_v3_neg(q.pv), tg_v3(0, 0, TG_R(-1.0f)));
+    q.has_vd = 0;
     q.nax = tg_mul(q.nv.x, u->ax);
     q.nay = tg_mul(q.nv.y, u->ay);
     q.nr = tg_add(tg_add(tg_mul(q.nv.x, q.kx), tg_mul(q.nv.y, q.ky)), q.nv.z);
     q.np = tgi_v3_dot(q.nv, q.pv);
     q.above = tg_add(tg_ldexp(q.pv.z, -10), u->above_r);
+#if TG_FIXED
+    near_plane_start(&q, u->reach);
+#endif
     near_horizon_sides(u, &q, cell, c1, c0);   /* the cell's direction and the one at right angles */
     for (k = 0; k < 2; k++) found |= c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f);
     if (!found) return TG_ONE;
+    near_vd(&q);
     if (tg_sub(tgi_near_horizon_bound(q.nv, q.vd, d[0], d[1], c1, c0), NEAR_BOUND_MARGIN) >= ao) return TG_ONE;
     for (k = 0; k < 2; k++) {
         tg_real o;
