@@ -154,14 +154,18 @@ void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_g
  * to the eye, n . p, its view ray (kx, ky, 1), n . (kx, ky, 1), the change
  * of n . ray per pixel (n.x ax, n.y ay), and the height over the tangent
  * plane below which a sample counts for nothing (as tgi_ao_slice_pixel's). */
+typedef struct near_plane {
+    tg_real np, nax, nay, nr, above;
+#if TG_FIXED
+    int wide;             /* near_plane_start: the tangent-plane test in one 64-bit compare */
+    int64_t lim;
+#endif
+} near_plane;
 typedef struct near_pixel {
     int x, y, has_vd;
     tg_vec3 pv, nv, vd;
-    tg_real np, kx, ky, nax, nay, nr, above;
-#if TG_FIXED
-    int plane_wide;       /* near_plane_start: the tangent-plane test in one 64-bit compare */
-    int64_t plane_lim;
-#endif
+    tg_real kx, ky;
+    near_plane pl;
 } near_pixel;
 
 /* The unit vector to the eye, normalised the first time a sample needs it
@@ -180,7 +184,7 @@ static tg_vec3 near_vd(near_pixel *q)
  * for offsets up to `reach` pixels on either axis.  The saturating form is
  * D = sat(sat(P) - np) <= above with P = z i rounded (tg_mul) and i = nr +
  * (ox nax - oy nay).  When |nr| + reach (|nax| + |nay|) <= TG_REAL_MAX no
- * part of i saturates (plane_wide): i is the exact sum, z i < 2^62 fits
+ * part of i saturates (wide): i is the exact sum, z i < 2^62 fits
  * 64 bits.  sat is monotone, so for above < TG_REAL_MAX, D <= above iff
  * sat(P) <= T = above + np (exact, 64 bits), which holds always when T >=
  * TG_REAL_MAX, never when T < TG_REAL_MIN (sat(P) >= TG_REAL_MIN), else iff
@@ -189,28 +193,36 @@ static tg_vec3 near_vd(near_pixel *q)
  * T 2^16 + 2^15 - 1 + (T < 0) serving both (a z i of the other sign than T
  * is on the same side of either).  above = TG_REAL_MAX: every sample is
  * under (D <= TG_REAL_MAX). */
-static void near_plane_start(near_pixel *q, int reach)
+static void near_plane_start(near_plane *pl, int reach)
 {
-    const int64_t t = (int64_t)q->above + q->np;
-    q->plane_wide = (int64_t)tg_abs(q->nr) + (int64_t)reach * ((int64_t)tg_abs(q->nax) + tg_abs(q->nay)) <= TG_REAL_MAX;
-    if (q->above >= TG_REAL_MAX || t >= TG_REAL_MAX) q->plane_lim = INT64_MAX;
-    else if (t < TG_REAL_MIN) q->plane_lim = INT64_MIN;
-    else q->plane_lim = t * 65536 + 32767 + (t < 0);
+    const int64_t t = (int64_t)pl->above + pl->np;
+    pl->wide = (int64_t)tg_abs(pl->nr) + (int64_t)reach * ((int64_t)tg_abs(pl->nax) + tg_abs(pl->nay)) <= TG_REAL_MAX;
+    if (pl->above >= TG_REAL_MAX || t >= TG_REAL_MAX) pl->lim = INT64_MAX;
+    else if (t < TG_REAL_MIN) pl->lim = INT64_MIN;
+    else pl->lim = t * 65536 + 32767 + (t < 0);
 }
 #endif
 
 /* Whether the sample at depth z, (ox, oy) pixels from pixel q, lies on or
  * under q's tangent plane, as high as q->above over it at most: its height
- * z (n . r) - n . p (near_horizon_cos).  Q16.16: near_plane_start's
- * compare, the same answer, where it applies. */
-static inline int near_under_plane(const near_pixel *q, tg_real z, int ox, int oy)
+ * z (n . r) - n . p (near_horizon_cos).  Q16.16 with `wide` (a constant in
+ * each copy of the march: pl->wide, NEAR_WIDE): near_plane_start's
+ * compare, the same answer. */
+static inline int near_under_plane(const near_plane *pl, tg_real z, int ox, int oy, const int wide)
 {
 #if TG_FIXED
-    if (q->plane_wide) return (int64_t)z * ((int64_t)q->nr + (int64_t)ox * q->nax - (int64_t)oy * q->nay) <= q->plane_lim;
+    if (wide) return (int64_t)z * ((int64_t)pl->nr + (int64_t)ox * pl->nax - (int64_t)oy * pl->nay) <= pl->lim;
+#else
+    (void)wide;
 #endif
-    return tg_sub(tg_mul(z, tg_add(q->nr, tg_sub(tg_mul(tg_from_int(ox), q->nax), tg_mul(tg_from_int(oy), q->nay)))),
-                  q->np) <= q->above;
+    return tg_sub(tg_mul(z, tg_add(pl->nr, tg_sub(tg_mul(tg_from_int(ox), pl->nax), tg_mul(tg_from_int(oy), pl->nay)))),
+                  pl->np) <= pl->above;
 }
+#if TG_FIXED
+#define NEAR_WIDE(q) ((q)->pl.wide)
+#else
+#define NEAR_WIDE(q) 0
+#endif
 
 /* The largest cos(angle to the view vector) of the samples off[0..steps)
  * (pixel offsets) of pixel q that lie above the tangent plane and within
@@ -219,16 +231,17 @@ static inline int near_under_plane(const near_pixel *q, tg_real z, int ox, int o
  * its ray r, so its height over the tangent plane is z (n . r) - n . p,
  * n . r changing by n.x ax and -n.y ay a pixel. */
 #if defined(__GNUC__)
-__attribute__((always_inline))   /* a copy for each `inside`, the test gone from the loop */
+__attribute__((always_inline))   /* a copy for each `inside` and `wide`, their tests gone from the loop */
 #endif
 static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q, const signed char (*off)[2],
-                                       int inside)
+                                       const int inside, const int wide)
 {
     const tgi_gview *g = u->full;
+    const int x = q->x, y = q->y;
     tg_real best = TG_R(-1.0f);
     int n, steps = u->steps;
     for (n = 0; n < steps; n++) {
-        int sx = q->x + off[n][0], sy = q->y + off[n][1];
+        int sx = x + off[n][0], sy = y + off[n][1];
         size_t j;
         tg_real z, d2, fdx, fdy;
         tg_vec3 h;
@@ -236,7 +249,7 @@ static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q
         j = tgi_gv_index(g, sx, sy);
         if (tgi_gv_is_sky(g, j)) continue;
         z = tgi_gv_depth(g, j);
-        if (near_under_plane(q, z, off[n][0], off[n][1])) continue;
+        if (near_under_plane(&q->pl, z, off[n][0], off[n][1], wide)) continue;
         fdx = tg_from_int(off[n][0]);
         fdy = tg_from_int(off[n][1]);
         h = tg_v3(tg_sub(tg_mul(z, tg_add(q->kx, tg_mul(fdx, u->ax))), q->pv.x),
@@ -250,21 +263,31 @@ static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q
 }
 
 /* near_horizon_cos of the four sides of pixel q's slices into c1[k], c0[k]. */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void near_sides_with(const tgi_upsample_plan *u, near_pixel *q, int cell, tg_real c1[2], tg_real c0[2],
+                                   const int inside, const int wide)
+{
+    int k;
+    for (k = 0; k < 2; k++) {
+        c1[k] = near_horizon_cos(u, q, u->off[cell][2 * k], inside, wide);
+        c0[k] = near_horizon_cos(u, q, u->off[cell][2 * k + 1], inside, wide);
+    }
+}
 static void near_horizon_sides(const tgi_upsample_plan *u, near_pixel *q, int cell,
                                tg_real c1[2], tg_real c0[2])
 {
     const tgi_gview *g = u->full;
-    int k;
-    if (q->x >= u->reach && q->y >= u->reach && q->x + u->reach < g->width && q->y + u->reach < g->height)
-        for (k = 0; k < 2; k++) {
-            c1[k] = near_horizon_cos(u, q, u->off[cell][2 * k], 1);
-            c0[k] = near_horizon_cos(u, q, u->off[cell][2 * k + 1], 1);
-        }
-    else
-        for (k = 0; k < 2; k++) {
-            c1[k] = near_horizon_cos(u, q, u->off[cell][2 * k], 0);
-            c0[k] = near_horizon_cos(u, q, u->off[cell][2 * k + 1], 0);
-        }
+    const int inside = q->x >= u->reach && q->y >= u->reach && q->x + u->reach < g->width && q->y + u->reach < g->height;
+    if (NEAR_WIDE(q)) {   /* Q16.16 only */
+        if (inside) near_sides_with(u, q, cell, c1, c0, 1, 1);
+        else near_sides_with(u, q, cell, c1, c0, 0, 1);
+    } else if (inside) {
+        near_sides_with(u, q, cell, c1, c0, 1, 0);
+    } else {
+        near_sides_with(u, q, cell, c1, c0, 0, 0);
+    }
 }
 
 /* How much a lower bound of the near horizon's AO must stay above the
@@ -324,13 +347,13 @@ static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t 
     q.pv = tg_v3(tg_mul(q.kx, z), tg_mul(q.ky, z), z);
     q.nv = tgi_ao_dir_to_view(full->camera, n);
     q.has_vd = 0;
-    q.nax = tg_mul(q.nv.x, u->ax);
-    q.nay = tg_mul(q.nv.y, u->ay);
-    q.nr = tg_add(tg_add(tg_mul(q.nv.x, q.kx), tg_mul(q.nv.y, q.ky)), q.nv.z);
-    q.np = tgi_v3_dot(q.nv, q.pv);
-    q.above = tg_add(tg_ldexp(q.pv.z, -10), u->above_r);
+    q.pl.nax = tg_mul(q.nv.x, u->ax);
+    q.pl.nay = tg_mul(q.nv.y, u->ay);
+    q.pl.nr = tg_add(tg_add(tg_mul(q.nv.x, q.kx), tg_mul(q.nv.y, q.ky)), q.nv.z);
+    q.pl.np = tgi_v3_dot(q.nv, q.pv);
+    q.pl.above = tg_add(tg_ldexp(q.pv.z, -10), u->above_r);
 #if TG_FIXED
-    near_plane_start(&q, u->reach);
+    near_plane_start(&q.pl, u->reach);
 #endif
     near_horizon_sides(u, &q, cell, c1, c0);   /* the cell's direction and the one at right angles */
     for (k = 0; k < 2; k++) found |= c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f);
