@@ -56,13 +56,15 @@ static tg_real upsample_normal_weight(tg_vec3 n, tg_vec3 m)
     return tg_mul(d, d);
 }
 
-/* 1 - |z_j - z| / (0.1 z), clamped to [0, 1]. */
+/* 1 - |z_j - z| / (0.1 z), clamped to [0, 1]: |0.1 z| < |z| (tg_mul's
+ * product, never saturating), the quotient of 0 <= |z_j - z| < 0.1 z
+ * within [0, 1) (tgi_div_pos). */
 static tg_real upsample_depth_weight(tg_real z, tg_real zj)
 {
-    tg_real tol = tg_mul(z, TG_R(0.1f));
+    tg_real tol = (tg_real)tgi_wide_mul(z, TG_R(0.1f));
     tg_real dz = tg_abs(tg_sub(zj, z));
     if (tol <= 0 || dz >= tol) return 0;
-    return tg_sub(TG_ONE, tg_div(dz, tol));
+    return (tg_real)((tgi_wide)TG_ONE - tgi_div_pos(dz, tol));
 }
 
 /* Sky, or only sky around: open (AO 1, the normal as bent normal, no near field). */
@@ -85,10 +87,11 @@ static void bilinear_taps(const tgi_gview *half, int x, int y, size_t tap[4], tg
     if (Y1 >= half->height) Y1 = half->height - 1;
     tap[0] = tgi_gv_index(half, X0, Y0); tap[1] = tgi_gv_index(half, X1, Y0);
     tap[2] = tgi_gv_index(half, X0, Y1); tap[3] = tgi_gv_index(half, X1, Y1);
-    wt[0] = tg_mul((x & 1) ? h : TG_ONE, (y & 1) ? h : TG_ONE);
-    wt[1] = (x & 1) ? tg_mul(h, (y & 1) ? h : TG_ONE) : 0;
-    wt[2] = (y & 1) ? tg_mul((x & 1) ? h : TG_ONE, h) : 0;
-    wt[3] = ((x & 1) && (y & 1)) ? tg_mul(h, h) : 0;
+    /* products of 1 and 1/2 (exact, tgi_wide) */
+    wt[0] = (tg_real)tgi_wide_mul((x & 1) ? h : TG_ONE, (y & 1) ? h : TG_ONE);
+    wt[1] = (x & 1) ? (tg_real)tgi_wide_mul(h, (y & 1) ? h : TG_ONE) : 0;
+    wt[2] = (y & 1) ? (tg_real)tgi_wide_mul((x & 1) ? h : TG_ONE, h) : 0;
+    wt[3] = ((x & 1) && (y & 1)) ? (tg_real)tgi_wide_mul(h, h) : 0;
 }
 
 /* The near horizon's slice directions: cell (x & 3, y & 3) of a 4x4 block
@@ -421,7 +424,10 @@ tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk
         c = upsample_tap(u, walk, (((x >> 1) + (k & 1 ? x & 1 : 0)) & 1) + ((((y >> 1) + (k & 2 ? y & 1 : 0)) & 1) << 1),
                          tap[k]);
         if (c->sky) continue;
-        w = tg_mul(wt[k], tg_max(floor_w, tg_mul(upsample_depth_weight(z, c->z), upsample_normal_weight(n, c->n))));
+        /* the depth weight within [0, 1] and the bilinear one within (0, 1]
+         * keep each product within its other factor (tgi_wide) */
+        w = (tg_real)tgi_wide_mul(wt[k], tg_max(floor_w, (tg_real)tgi_wide_mul(upsample_depth_weight(z, c->z),
+                                                                               upsample_normal_weight(n, c->n))));
         sum = tg_add(sum, w);
         ao = tg_add(ao, tg_mul(w, c->ao));
         if (want_bent)
