@@ -227,6 +227,20 @@ static inline int near_under_plane(const near_plane *pl, tg_real z, int ox, int 
 #define NEAR_WIDE(q) 0
 #endif
 
+int tgi_near_under_plane(tg_real nr, tg_real nax, tg_real nay, tg_real np, tg_real above, int reach, tg_real z, int ox,
+                         int oy, int fast)
+{
+    near_plane pl;
+    pl.nr = nr; pl.nax = nax; pl.nay = nay; pl.np = np; pl.above = above;
+#if TG_FIXED
+    near_plane_start(&pl, reach);
+    if (fast && pl.wide) return near_under_plane(&pl, z, ox, oy, 1);
+#else
+    (void)reach; (void)fast;
+#endif
+    return near_under_plane(&pl, z, ox, oy, 0);
+}
+
 /* The largest cos(angle to the view vector) of the samples off[0..steps)
  * (pixel offsets) of pixel q that lie above the tangent plane and within
  * the radius; -1 when none; the march ends at the screen's edge (`inside`:
