@@ -47,13 +47,27 @@ void tgi_downsample_rows(const tgi_gview *full, const tgi_gbuffer *half, const t
         }
 }
 
-/* (n . m)^4 for unit normals, 0 when they face apart. */
+/* (n . m)^4 for unit normals, 0 when they face apart.  The packed
+ * G-buffer's normals (tgi_gv_normal: tgi_oct_unit, raster/pack.h, each
+ * component |c| / |.| times a reciprocal square root within 3.2e-6) have
+ * components within 1 + 2^-16: each product, the dot (within 4), its
+ * square and its square's square (within 256) stay far below the range, so
+ * tgi_wide (core/real.h) gives tg_mul's and tg_add's results without their
+ * saturation tests; with TG_WIDE_STORAGE (normals as stored) Q16.16 keeps
+ * the saturating form. */
 static tg_real upsample_normal_weight(tg_vec3 n, tg_vec3 m)
 {
+#if TG_FIXED && TG_WIDE_STORAGE
     tg_real d = tg_add(tg_add(tg_mul(n.x, m.x), tg_mul(n.y, m.y)), tg_mul(n.z, m.z));
     if (d <= 0) return 0;
     d = tg_mul(d, d);
     return tg_mul(d, d);
+#else
+    tgi_wide d = tgi_wide_mul(n.x, m.x) + tgi_wide_mul(n.y, m.y) + tgi_wide_mul(n.z, m.z);
+    if (d <= 0) return 0;
+    d = tgi_wide_mul(d, d);
+    return (tg_real)tgi_wide_mul(d, d);
+#endif
 }
 
 /* 1 - |z_j - z| / (0.1 z), clamped to [0, 1]: |0.1 z| < |z| (tg_mul's
@@ -65,6 +79,24 @@ static tg_real upsample_depth_weight(tg_real z, tg_real zj)
     tg_real dz = tg_abs(tg_sub(zj, z));
     if (tol <= 0 || dz >= tol) return 0;
     return (tg_real)((tgi_wide)TG_ONE - tgi_div_pos(dz, tol));
+}
+
+/* acc + w v, the sum of a tap's weight w > 0 times a value v, over the
+ * taps (upsample_at; tgi_wide_real gives the sum).  Q16.16: the running
+ * sum of tg_add and tg_mul saturates at each step; for 0 < w <= 1 and v >=
+ * 0 (AO, radiance) the product is within [0, v] (tg_mul's rounding, no
+ * saturation) and, the sum only growing, its saturation can wait to the end
+ * (acc never goes below TG_REAL_MIN: a saturated step puts it back in
+ * range, a product of this kind adds to it); any other tap saturates the
+ * sum so far and adds its product saturating, as tg_add and tg_mul. */
+static inline tgi_wide tap_add(tgi_wide acc, tg_real w, tg_real v)
+{
+#if TG_FIXED
+    if (w <= TG_ONE && v >= 0) return acc + (((int64_t)w * v + 32768) >> 16);
+    return tg_add(tgi_sat64(acc), tg_mul(w, v));
+#else
+    return acc + tgi_wide_mul(w, v);
+#endif
 }
 
 /* Sky, or only sky around: open (AO 1, the normal as bent normal, no near field). */
@@ -421,8 +453,9 @@ tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk
     const tgi_gview *full = u->full, *half = u->half;
     const tgi_gresult *hr = u->res;
     size_t i = tgi_gv_index(full, x, y), tap[4];
-    tg_real wt[4], sum = 0, ao = 0, floor_w = TG_R(0.015625f), z;
-    tg_vec3 n, bend = tg_v3(0, 0, 0), near = tg_v3(0, 0, 0);
+    tg_real wt[4], sum, ao, floor_w = TG_R(0.015625f), z;
+    tgi_wide sum_w = 0, ao_w = 0, near_w[3] = { 0, 0, 0 };   /* tap_add's sums */
+    tg_vec3 n, bend = tg_v3(0, 0, 0), near;
     int k, want_bent = tgi_gr_has_bent(hr), want_near = tgi_gr_has_near(hr);
     tgi_gr_value v;
     if (tgi_gv_is_sky(full, i)) return upsample_open(full, i);
@@ -442,15 +475,20 @@ tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk
          * keep each product within its other factor (tgi_wide) */
         w = (tg_real)tgi_wide_mul(wt[k], tg_max(floor_w, (tg_real)tgi_wide_mul(upsample_depth_weight(z, c->z),
                                                                                upsample_normal_weight(n, c->n))));
-        sum = tg_add(sum, w);
-        ao = tg_add(ao, tg_mul(w, c->ao));
+        sum_w = tap_add(sum_w, w, TG_ONE);
+        ao_w = tap_add(ao_w, w, c->ao);
         if (want_bent)
             bend = tg_v3(tg_add(bend.x, tg_mul(w, c->bend.x)), tg_add(bend.y, tg_mul(w, c->bend.y)),
                          tg_add(bend.z, tg_mul(w, c->bend.z)));
-        if (want_near)
-            near = tg_v3(tg_add(near.x, tg_mul(w, c->near.x)), tg_add(near.y, tg_mul(w, c->near.y)),
-                         tg_add(near.z, tg_mul(w, c->near.z)));
+        if (want_near) {
+            near_w[0] = tap_add(near_w[0], w, c->near.x);
+            near_w[1] = tap_add(near_w[1], w, c->near.y);
+            near_w[2] = tap_add(near_w[2], w, c->near.z);
+        }
     }
+    sum = tgi_wide_real(sum_w);
+    ao = tgi_wide_real(ao_w);
+    near = tg_v3(tgi_wide_real(near_w[0]), tgi_wide_real(near_w[1]), tgi_wide_real(near_w[2]));
     if (sum <= 0) return upsample_open(full, i);   /* only sky around: treat as open */
     /* the upsampled AO misses what lies between the half-res samples (a
      * contact shadow a few pixels wide): the near horizon's is the lower */
