@@ -16,17 +16,17 @@ void tgi_temporal_defaults(tgi_temporal_params *p)
 
 /* Where last frame's results hold this pixel's surface (normal n, depth z
  * now): 1 and *s (indexed like g) when last frame's depth and normal agree
- * (the history is accepted).  view and prev_view are the caller's copies
+ * (the history is accepted).  The cameras of cams are the caller's copies
  * (locals: no store through the result planes can change them, so their
  * fields stay in registers along the row). */
 static int history_at(const tgi_temporal_params *p, const tgi_gview *g, const tgi_prev_geometry *h,
-                      const tgi_view *view, const tgi_view *prev_view, int fx, int fy, tg_real depth, tg_vec3 n,
-                      size_t *s)
+                      const tgi_motion_pair *cams, int fx, int fy, tg_real depth, tg_vec3 n, size_t *s)
 {
+    const tgi_view *view = cams->cur;
     int px, py, sx, sy;
     tg_real mx, my, z, hz;
     size_t full;
-    if (!tgi_motion_prev_position_inline(view, prev_view, NULL, fx, fy, depth, &mx, &my, &z)) return 0;
+    if (!tgi_motion_prev_position_pair(cams, NULL, fx, fy, depth, &mx, &my, &z)) return 0;
     px = tg_to_int(mx); py = tg_to_int(my);
     if (px < 0 || py < 0 || px >= view->width || py >= view->height) return 0;
     sx = (px - g->offset_x) / g->step;    /* the pixel of g standing for the full-res pixel's block */
@@ -50,6 +50,7 @@ void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_
     tgi_gresult rl, prevl;
     tgi_prev_geometry hl;
     tgi_view view, before;
+    tgi_motion_pair cams;
     const tgi_temporal_params *p = &pl;
     const tgi_gview *g = &gl;
     const tgi_gresult *r = &rl, *prev = &prevl;
@@ -62,6 +63,7 @@ void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_
     if (y1 > g->height) y1 = g->height;
     view = *g->camera;
     before = *prev_view;
+    tgi_motion_pair_start(&cams, &view, &before);
     for (y = y0; y < y1; y++) {
         int fy = y * g->step + g->offset_y;
         for (x = 0; x < g->width; x++) {
@@ -70,8 +72,7 @@ void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_
             tg_vec3 n;
             if (tgi_gv_is_sky(g, i)) continue;
             n = tgi_gv_normal(g, i);
-            if (!history_at(p, g, &hl, &view, &before, x * g->step + g->offset_x, fy, tgi_gv_depth(g, i), n,
-                            &s))
+            if (!history_at(p, g, &hl, &cams, x * g->step + g->offset_x, fy, tgi_gv_depth(g, i), n, &s))
                 continue;
             v = tgi_gr_get(r, i);
             h = tgi_gr_get(prev, s);
