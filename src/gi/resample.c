@@ -81,24 +81,6 @@ static tg_real upsample_depth_weight(tg_real z, tg_real zj)
     return (tg_real)((tgi_wide)TG_ONE - tgi_div_pos(dz, tol));
 }
 
-/* acc + w v, the sum of a tap's weight w > 0 times a value v, over the
- * taps (upsample_at; tgi_wide_real gives the sum).  Q16.16: the running
- * sum of tg_add and tg_mul saturates at each step; for 0 < w <= 1 and v >=
- * 0 (AO, radiance) the product is within [0, v] (tg_mul's rounding, no
- * saturation) and, the sum only growing, its saturation can wait to the end
- * (acc never goes below TG_REAL_MIN: a saturated step puts it back in
- * range, a product of this kind adds to it); any other tap saturates the
- * sum so far and adds its product saturating, as tg_add and tg_mul. */
-static inline tgi_wide tap_add(tgi_wide acc, tg_real w, tg_real v)
-{
-#if TG_FIXED
-    if (w <= TG_ONE && v >= 0) return acc + (((int64_t)w * v + 32768) >> 16);
-    return tg_add(tgi_sat64(acc), tg_mul(w, v));
-#else
-    return acc + tgi_wide_mul(w, v);
-#endif
-}
-
 /* Sky, or only sky around: open (AO 1, the normal as bent normal, no near field). */
 static tgi_gr_value upsample_open(const tgi_gview *full, size_t i)
 {
@@ -454,7 +436,7 @@ tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk
     const tgi_gresult *hr = u->res;
     size_t i = tgi_gv_index(full, x, y), tap[4];
     tg_real wt[4], sum, ao, floor_w = TG_R(0.015625f), z;
-    tgi_wide sum_w = 0, ao_w = 0, near_w[3] = { 0, 0, 0 };   /* tap_add's sums */
+    tgi_wide sum_w = 0, ao_w = 0, near_w[3] = { 0, 0, 0 };   /* running sums (tgi_wide_add_weighted) */
     tg_vec3 n, bend = tg_v3(0, 0, 0), near;
     int k, want_bent = tgi_gr_has_bent(hr), want_near = tgi_gr_has_near(hr);
     tgi_gr_value v;
@@ -475,15 +457,15 @@ tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk
          * keep each product within its other factor (tgi_wide) */
         w = (tg_real)tgi_wide_mul(wt[k], tg_max(floor_w, (tg_real)tgi_wide_mul(upsample_depth_weight(z, c->z),
                                                                                upsample_normal_weight(n, c->n))));
-        sum_w = tap_add(sum_w, w, TG_ONE);
-        ao_w = tap_add(ao_w, w, c->ao);
+        sum_w = tgi_wide_add_weighted(sum_w, w, TG_ONE);
+        ao_w = tgi_wide_add_weighted(ao_w, w, c->ao);
         if (want_bent)
             bend = tg_v3(tg_add(bend.x, tg_mul(w, c->bend.x)), tg_add(bend.y, tg_mul(w, c->bend.y)),
                          tg_add(bend.z, tg_mul(w, c->bend.z)));
         if (want_near) {
-            near_w[0] = tap_add(near_w[0], w, c->near.x);
-            near_w[1] = tap_add(near_w[1], w, c->near.y);
-            near_w[2] = tap_add(near_w[2], w, c->near.z);
+            near_w[0] = tgi_wide_add_weighted(near_w[0], w, c->near.x);
+            near_w[1] = tgi_wide_add_weighted(near_w[1], w, c->near.y);
+            near_w[2] = tgi_wide_add_weighted(near_w[2], w, c->near.z);
         }
     }
     sum = tgi_wide_real(sum_w);
