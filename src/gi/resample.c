@@ -310,7 +310,8 @@ static void near_horizon_sides(const tgi_upsample_plan *u, near_pixel *q, int ce
                                tg_real c1[2], tg_real c0[2])
 {
     const tgi_gview *g = u->full;
-    const int inside = q->x >= u->reach && q->y >= u->reach && q->x + u->reach < g->width && q->y + u->reach < g->height;
+    const int inside = q->x >= u->reach && q->y >= u->reach && q->x + u->reach < g->width
+                       && q->y + u->reach < g->height;
     if (NEAR_WIDE(q)) {   /* Q16.16 only */
         if (inside) near_sides_with(u, q, cell, c1, c0, 1, 1);
         else near_sides_with(u, q, cell, c1, c0, 0, 1);

@@ -39,6 +39,24 @@ static int history_at(const tgi_temporal_params *p, const tgi_gview *g, const tg
     return tgi_v3_dot(tgi_prev_normal(h, full), n) >= p->history_normal_cos;
 }
 
+/* tg_lerp(a, b, t): in Q16.16 for t within [0, 1] and |b - a| within
+ * range (tg_sub would not saturate) the product (b - a) t rounds to within
+ * |b - a| (tg_mul, not saturating) and a plus it lies between a and b
+ * (tg_add, not saturating): the same integers without the tests. */
+static inline tg_real lerp_unit(tg_real a, tg_real b, tg_real t)
+{
+#if TG_FIXED
+    const int64_t d = (int64_t)b - a;
+    if ((uint32_t)t <= (uint32_t)TG_ONE && d >= TG_REAL_MIN && d <= TG_REAL_MAX)
+        return (tg_real)(a + tgi_shr_round(d * t, 16));
+#endif
+    return tg_lerp(a, b, t);
+}
+static inline tg_vec3 lerp_unit3(tg_vec3 a, tg_vec3 b, tg_real t)
+{
+    return tg_v3(lerp_unit(a.x, b.x, t), lerp_unit(a.y, b.y, t), lerp_unit(a.z, b.z, t));
+}
+
 void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_in, const tgi_gresult *r_in,
                        const tgi_gresult *prev_in, const tgi_prev_geometry *prev_geometry, const tgi_view *prev_view,
                        int reset, int y0, int y1)
@@ -76,9 +94,9 @@ void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_
                 continue;
             v = tgi_gr_get(r, i);
             h = tgi_gr_get(prev, s);
-            v.ao = tg_lerp(h.ao, v.ao, alpha);                          /* exponential average */
-            v.bent = tgi_v3_normalize_or(tgi_v3_lerp(h.bent, v.bent, alpha), n);
-            v.near = tgi_v3_lerp(h.near, v.near, alpha);
+            v.ao = lerp_unit(h.ao, v.ao, alpha);                        /* exponential average */
+            v.bent = tgi_v3_normalize_or(lerp_unit3(h.bent, v.bent, alpha), n);
+            v.near = lerp_unit3(h.near, v.near, alpha);
             tgi_gr_put(r, i, &v);
         }
     }

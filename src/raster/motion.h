@@ -102,9 +102,12 @@ static inline int tgi_motion_prev_position_pair(const tgi_motion_pair *m, const 
         const tg_real vx = tgi_view_mul_div((tg_real)((2 * x + 1 - c->width) * 32768), depth, c->pixels_per_unit);
         const tg_real vy = tgi_view_mul_div((tg_real)((c->height - 2 * y - 1) * 32768), depth, c->pixels_per_unit);
         if ((int64_t)tg_abs(vx) + tg_abs(vy) + depth <= m->v_max) {
-            const int64_t dx = c->eye.x - (int64_t)p->eye.x + tgi_shr_round((int64_t)c->right.x * vx + (int64_t)c->up.x * vy + (int64_t)c->forward.x * depth, 16);
-            const int64_t dy = c->eye.y - (int64_t)p->eye.y + tgi_shr_round((int64_t)c->right.y * vx + (int64_t)c->up.y * vy + (int64_t)c->forward.y * depth, 16);
-            const int64_t dz = c->eye.z - (int64_t)p->eye.z + tgi_shr_round((int64_t)c->right.z * vx + (int64_t)c->up.z * vy + (int64_t)c->forward.z * depth, 16);
+            const int64_t rx = (int64_t)c->right.x * vx + (int64_t)c->up.x * vy + (int64_t)c->forward.x * depth;
+            const int64_t ry = (int64_t)c->right.y * vx + (int64_t)c->up.y * vy + (int64_t)c->forward.y * depth;
+            const int64_t rz = (int64_t)c->right.z * vx + (int64_t)c->up.z * vy + (int64_t)c->forward.z * depth;
+            const int64_t dx = c->eye.x - (int64_t)p->eye.x + tgi_shr_round(rx, 16);   /* world - prev eye */
+            const int64_t dy = c->eye.y - (int64_t)p->eye.y + tgi_shr_round(ry, 16);
+            const int64_t dz = c->eye.z - (int64_t)p->eye.z + tgi_shr_round(rz, 16);
             tg_vec3 pv;
             pv.x = (tg_real)tgi_shr_round(dx * p->right.x + dy * p->right.y + dz * p->right.z, 16);
             pv.y = (tg_real)tgi_shr_round(dx * p->up.x + dy * p->up.y + dz * p->up.z, 16);
