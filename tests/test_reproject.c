@@ -808,6 +808,33 @@ TEST(motion_pair_gives_the_saturating_map)
 }
 #endif
 
+#if TG_FIXED
+/* The exponential average's blend (tgi_temporal_lerp) is tg_lerp's, to
+ * the bit (float: it is tg_lerp): random history, current value and weight, from 2^-16 to the
+ * whole range and past it for the weight (where the blend saturates). */
+TEST(temporal_blend_is_tg_lerp)
+{
+    unsigned seed = 4242;
+    long count = 0, bad = 0, i;
+    for (i = 0; i < 3000000; i++) {
+        const int kind = (int)(check_rnd(&seed) * 3);
+        const double span = kind == 0 ? 2 : kind == 1 ? 300 : 32767;
+        const tg_real h = tg_from_float((float)((2 * check_rnd(&seed) - 1) * span));
+        const tg_real v = check_rnd(&seed) < 0.02 ? (check_rnd(&seed) < 0.5 ? TG_REAL_MAX : TG_REAL_MIN)
+                                                  : tg_from_float((float)((2 * check_rnd(&seed) - 1) * span));
+        const tg_real t = check_rnd(&seed) < 0.9 ? tg_from_float((float)check_rnd(&seed))
+                                                 : tg_from_float((float)((2 * check_rnd(&seed) - 1) * 8));
+        const tg_real a = tgi_temporal_lerp(h, v, t), b = tg_lerp(h, v, t);
+        count++;
+        if (memcmp(&a, &b, sizeof a) && bad++ < 5)
+            fprintf(stderr, "h %.9g v %.9g t %.9g: %.9g blended, %.9g tg_lerp\n", check_d(h), check_d(v), check_d(t),
+                    check_d(a), check_d(b));
+    }
+    printf("  temporal blends: %ld, %ld differ from tg_lerp\n", count, bad);
+    CHECK(bad == 0, "%ld of %ld blends differ from tg_lerp", bad, count);
+}
+#endif
+
 int main(void)
 {
     RUN(static_view_is_identity);
@@ -825,6 +852,9 @@ int main(void)
     RUN(temporal_out_of_image_history_on_a_sub_image);
     RUN(pushpull_ramp_takes_the_bilinear_sample);
     RUN(pushpull_rows_equal_the_whole_image_in_any_split);
+#if TG_FIXED
+    RUN(temporal_blend_is_tg_lerp);
+#endif
 #if TG_FIXED
     RUN(motion_pair_gives_the_saturating_map);
 #endif

@@ -57,6 +57,8 @@ static inline tg_vec3 lerp_unit3(tg_vec3 a, tg_vec3 b, tg_real t)
     return tg_v3(lerp_unit(a.x, b.x, t), lerp_unit(a.y, b.y, t), lerp_unit(a.z, b.z, t));
 }
 
+tg_real tgi_temporal_lerp(tg_real h, tg_real v, tg_real t) { return lerp_unit(h, v, t); }
+
 void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_in, const tgi_gresult *r_in,
                        const tgi_gresult *prev_in, const tgi_prev_geometry *prev_geometry, const tgi_view *prev_view,
                        int reset, int y0, int y1)
