@@ -680,6 +680,65 @@ TEST(rejection_tests_keep_the_weights)
 }
 #endif
 
+#if TG_FIXED
+/* The near horizon's tangent-plane test in one 64-bit compare (resample.c
+ * near_plane_start) gives the saturating expression's answer: random
+ * pixels (plane terms from a few units to the whole range, where products
+ * and sums saturate), samples and depths, and the compare's edges (z i at
+ * T 2^16 + 2^15 - 1 + (T < 0) and one either side, for T of either sign,
+ * near and at the range's ends, above = TG_REAL_MAX). */
+static tg_real plane_term(unsigned *seed)
+{
+    double r = 2 * check_rnd(seed) - 1;
+    switch ((int)(check_rnd(seed) * 4)) {
+    case 0: return tg_from_float((float)(r * 4));
+    case 1: return tg_from_float((float)(r * 0.01));
+    case 2: return (tg_real)(r * 2147483647.0);
+    default: return check_rnd(seed) < 0.5 ? TG_REAL_MAX : TG_REAL_MIN;
+    }
+}
+TEST(near_plane_test_is_the_saturating_one)
+{
+    unsigned seed = 12345;
+    long count = 0, fast = 0, edges = 0, bad = 0, i;
+    static const tg_real ts[] = { 0, 1, -1, 2, -2, 65535, -65536, 1000000, -1000000, TG_REAL_MAX - 1, TG_REAL_MIN,
+                                  TG_REAL_MIN + 1, TG_REAL_MAX - 2 };
+    for (i = 0; i < 2000000; i++) {
+        const int reach = check_rnd(&seed) < 0.5 ? 16 : 140;
+        const tg_real nr = plane_term(&seed), nax = plane_term(&seed), nay = plane_term(&seed);
+        const tg_real np = plane_term(&seed), above = check_rnd(&seed) < 0.01 ? TG_REAL_MAX : plane_term(&seed);
+        const tg_real z = (tg_real)(check_rnd(&seed) * (check_rnd(&seed) < 0.5 ? 2147483647.0 : 65536.0 * 64));
+        const int ox = (int)(check_rnd(&seed) * (2 * reach + 1)) - reach, oy = (int)(check_rnd(&seed) * (2 * reach + 1)) - reach;
+        const int a = tgi_near_under_plane(nr, nax, nay, np, above, reach, z, ox, oy, 1);
+        const int b = tgi_near_under_plane(nr, nax, nay, np, above, reach, z, ox, oy, 0);
+        count++;
+        fast += (int64_t)tg_abs(nr) + (int64_t)reach * ((int64_t)tg_abs(nax) + tg_abs(nay)) <= TG_REAL_MAX;
+        if (a != b && bad++ < 5)
+            fprintf(stderr, "nr %d nax %d nay %d np %d above %d z %d (%d, %d): %d fast, %d saturating\n", (int)nr, (int)nax,
+                    (int)nay, (int)np, (int)above, (int)z, ox, oy, a, b);
+    }
+    /* i = nr = +-2^-16 (nax = nay = 0): z i = +-z; np = 0, so T = above */
+    for (i = 0; i < (long)(sizeof ts / sizeof ts[0]); i++) {
+        const int64_t t = ts[i], edge = t * 65536 + 32767 + (t < 0);
+        int sign, d;
+        for (sign = -1; sign <= 1; sign += 2)
+            for (d = -1; d <= 1; d++) {
+                const int64_t zz = sign * (edge + d);
+                int a, b;
+                if (zz < 0 || zz > TG_REAL_MAX) continue;
+                a = tgi_near_under_plane(sign, 0, 0, 0, (tg_real)t, 16, (tg_real)zz, 3, -2, 1);
+                b = tgi_near_under_plane(sign, 0, 0, 0, (tg_real)t, 16, (tg_real)zz, 3, -2, 0);
+                edges++;
+                if (a != b && bad++ < 10)
+                    fprintf(stderr, "edge: T %ld, z i %ld: %d fast, %d saturating\n", (long)t, (long)(sign * zz), a, b);
+            }
+    }
+    printf("  tangent-plane tests: %ld random (%ld by the compare), %ld at its edges, %ld differ\n", count, fast, edges, bad);
+    CHECK(bad == 0 && fast > count / 8 && fast < count && edges >= 15, "%ld of %ld tests differ (%ld by the compare)", bad,
+          count + edges, fast);
+}
+#endif
+
 /* Fixed and float agree: the float run writes its AO next to its binary, the
  * fixed run (tests/run.sh runs float first) reads and compares. */
 static const char *argv0 = "";
@@ -1129,6 +1188,9 @@ int main(int argc, char **argv)
     RUN(full_resolution_radius_beyond_150_pixels);
     RUN(interleaved_horizon_finds_the_wall_top_pixel);
     RUN(near_horizon_bound_stays_below_the_integral);
+#if TG_FIXED
+    RUN(near_plane_test_is_the_saturating_one);
+#endif
     RUN(quarter_resolution_keeps_the_contact_shadow);
     return check_summary();
 }

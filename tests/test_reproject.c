@@ -17,6 +17,7 @@
 #include "gi/pushpull.h"
 #include "gi/denoise.h"
 #include "gi/temporal.h"
+#include "raster/motion.h"
 
 #define W 37
 #define H 23
@@ -749,6 +750,91 @@ TEST(pushpull_rows_equal_the_whole_image_in_any_split)
     free(s);
 }
 
+#if TG_FIXED
+/* The map to the previous camera without saturation tests
+ * (tgi_motion_prev_position_pair under tgi_motion_pair_start's bound, used
+ * by temporal.c and reproject.c) gives the saturating map's bits
+ * (tgi_motion_prev_position, motion.c): random camera pairs (eyes from the
+ * origin to 30000 units away, small moves and cuts), image sizes up to
+ * 8192 a side, pixels anywhere in them and depths from 2^-16 to the whole
+ * range; both sides of the bound (the fast sums and the fallback) taken. */
+TEST(motion_pair_gives_the_saturating_map)
+{
+    unsigned seed = 777;
+    long count = 0, fast = 0, front = 0, bad = 0, i;
+    for (i = 0; i < 400000; i++) {
+        const double far = check_rnd(&seed) < 0.5 ? 10 : check_rnd(&seed) < 0.5 ? 3000 : 30000;
+        const int w = check_rnd(&seed) < 0.5 ? 1 + (int)(check_rnd(&seed) * 400) : 1 + (int)(check_rnd(&seed) * 8192);
+        const int h = 1 + (int)(check_rnd(&seed) * (check_rnd(&seed) < 0.5 ? 300 : 8192));
+        const double ex = (2 * check_rnd(&seed) - 1) * far, ey = (2 * check_rnd(&seed) - 1) * far,
+                     ez = (2 * check_rnd(&seed) - 1) * far, move = check_rnd(&seed) < 0.7 ? 0.3 : far;
+        tgi_view cur, before;
+        tgi_motion_pair m;
+        tg_real px0, py0, z0, px1, py1, z1, depth;
+        int x, y, r0, r1;
+        tgi_view_make(&cur, tg_v3(tg_from_float((float)ex), tg_from_float((float)ey), tg_from_float((float)ez)),
+                      tg_v3(tg_from_float((float)(ex + 2 * check_rnd(&seed) - 1)), tg_from_float((float)(ey + 2 * check_rnd(&seed) - 1)),
+                            tg_from_float((float)(ez + 2 * check_rnd(&seed) - 1))),
+                      tg_v3(0, TG_ONE, 0), tg_from_float((float)(0.2 + 2.5 * check_rnd(&seed))), TG_R(0.05f), TG_R(1000.0f), w, h);
+        tgi_view_make(&before, tg_v3(tg_from_float((float)(ex + move * (2 * check_rnd(&seed) - 1))), tg_from_float((float)(ey + move * (2 * check_rnd(&seed) - 1))),
+                                   tg_from_float((float)(ez + move * (2 * check_rnd(&seed) - 1)))),
+                      tg_v3(tg_from_float((float)(ex + 2 * check_rnd(&seed) - 1)), tg_from_float((float)(ey + 2 * check_rnd(&seed) - 1)),
+                            tg_from_float((float)(ez + 2 * check_rnd(&seed) - 1))),
+                      tg_v3(0, TG_ONE, 0), tg_from_float((float)(0.2 + 2.5 * check_rnd(&seed))), TG_R(0.05f), TG_R(1000.0f), w, h);
+        tgi_motion_pair_start(&m, &cur, &before);
+        x = (int)(check_rnd(&seed) * w);
+        y = (int)(check_rnd(&seed) * h);
+        depth = check_rnd(&seed) < 0.3 ? (tg_real)(1 + check_rnd(&seed) * 65536)
+              : check_rnd(&seed) < 0.5 ? tg_from_float((float)(check_rnd(&seed) * 100))
+                                       : (tg_real)(check_rnd(&seed) * 2147483647.0);
+        px0 = py0 = z0 = px1 = py1 = z1 = 12345;
+        r0 = tgi_motion_prev_position(&cur, &before, NULL, x, y, depth, &px0, &py0, &z0);
+        r1 = tgi_motion_prev_position_pair(&m, NULL, x, y, depth, &px1, &py1, &z1);
+        {
+            const tg_real vx = tgi_view_mul_div((tg_real)((2 * x + 1 - w) * 32768), depth, cur.pixels_per_unit);
+            const tg_real vy = tgi_view_mul_div((tg_real)((h - 2 * y - 1) * 32768), depth, cur.pixels_per_unit);
+            fast += (int64_t)tg_abs(vx) + tg_abs(vy) + depth <= m.v_max;
+        }
+        count++;
+        front += r0;
+        if ((r0 != r1 || z0 != z1 || (r0 && (px0 != px1 || py0 != py1))) && bad++ < 5)
+            fprintf(stderr, "%dx%d (%d, %d) depth %d: %d (%d, %d, %d) saturating, %d (%d, %d, %d) pair\n", w, h, x, y,
+                    (int)depth, r0, (int)px0, (int)py0, (int)z0, r1, (int)px1, (int)py1, (int)z1);
+    }
+    printf("  motion: %ld points (%ld in front of the previous camera, %ld by the sums without tests), %ld differ\n",
+           count, front, fast, bad);
+    CHECK(bad == 0 && fast > count / 4 && fast < count - count / 10 && front > count / 4, "%ld of %ld differ (%ld fast)",
+          bad, count, fast);
+}
+#endif
+
+#if TG_FIXED
+/* The exponential average's blend (tgi_temporal_lerp) is tg_lerp's, to
+ * the bit (float: it is tg_lerp): random history, current value and weight, from 2^-16 to the
+ * whole range and past it for the weight (where the blend saturates). */
+TEST(temporal_blend_is_tg_lerp)
+{
+    unsigned seed = 4242;
+    long count = 0, bad = 0, i;
+    for (i = 0; i < 3000000; i++) {
+        const int kind = (int)(check_rnd(&seed) * 3);
+        const double span = kind == 0 ? 2 : kind == 1 ? 300 : 32767;
+        const tg_real h = tg_from_float((float)((2 * check_rnd(&seed) - 1) * span));
+        const tg_real v = check_rnd(&seed) < 0.02 ? (check_rnd(&seed) < 0.5 ? TG_REAL_MAX : TG_REAL_MIN)
+                                                  : tg_from_float((float)((2 * check_rnd(&seed) - 1) * span));
+        const tg_real t = check_rnd(&seed) < 0.9 ? tg_from_float((float)check_rnd(&seed))
+                                                 : tg_from_float((float)((2 * check_rnd(&seed) - 1) * 8));
+        const tg_real a = tgi_temporal_lerp(h, v, t), b = tg_lerp(h, v, t);
+        count++;
+        if (memcmp(&a, &b, sizeof a) && bad++ < 5)
+            fprintf(stderr, "h %.9g v %.9g t %.9g: %.9g blended, %.9g tg_lerp\n", check_d(h), check_d(v), check_d(t),
+                    check_d(a), check_d(b));
+    }
+    printf("  temporal blends: %ld, %ld differ from tg_lerp\n", count, bad);
+    CHECK(bad == 0, "%ld of %ld blends differ from tg_lerp", bad, count);
+}
+#endif
+
 int main(void)
 {
     RUN(static_view_is_identity);
@@ -766,5 +852,11 @@ int main(void)
     RUN(temporal_out_of_image_history_on_a_sub_image);
     RUN(pushpull_ramp_takes_the_bilinear_sample);
     RUN(pushpull_rows_equal_the_whole_image_in_any_split);
+#if TG_FIXED
+    RUN(temporal_blend_is_tg_lerp);
+#endif
+#if TG_FIXED
+    RUN(motion_pair_gives_the_saturating_map);
+#endif
     return check_summary();
 }

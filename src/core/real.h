@@ -76,6 +76,24 @@ static inline tg_real tgi_wide_real(tgi_wide a) { return a; }
 static inline tg_real tgi_div_pos(tg_real a, tg_real b) { return a / b; }
 #endif
 
+/* acc + w v, a running weighted sum in tgi_wide (tgi_wide_real gives its
+ * value), for weights w within [0, 1].  Q16.16: tg_add's running sum of
+ * tg_mul's products saturates at each step; for 0 <= w <= 1 and v >= 0 the
+ * product is within [0, v] (tg_mul's rounding, never saturating) and the
+ * sum only grows, so its saturation can wait to the end (acc never goes
+ * below TG_REAL_MIN: a saturated step puts it back in range, a product of
+ * this kind adds to it); any other term saturates the sum so far and adds
+ * its product saturating, as tg_add and tg_mul do.  Float: acc + w v. */
+#if TG_FIXED
+static inline tgi_wide tgi_wide_add_weighted(tgi_wide acc, tg_real w, tg_real v)
+{
+    if ((uint32_t)w <= (uint32_t)TG_ONE && v >= 0) return acc + (((int64_t)w * v + 32768) >> 16);
+    return tg_add(tgi_sat64(acc), tg_mul(w, v));
+}
+#else
+static inline tgi_wide tgi_wide_add_weighted(tgi_wide acc, tg_real w, tg_real v) { return acc + w * v; }
+#endif
+
 /* ---- the per-pixel reciprocal square root ----
  * Cheaper than tg_rsqrt (two Newton steps instead of three, and no range
  * handling), for the rasterizer's per-pixel normals, whose error stays below

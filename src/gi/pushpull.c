@@ -89,6 +89,9 @@ static inline tg_vec3 texel(const tgi_rgb *c, size_t t)
 
 /* One tap of the 2x2 box: the finer texel t added to *s with its weight
  * (level 0, wt NULL: 1 for a value, skipped for a hole). */
+#if defined(__GNUC__)
+__attribute__((always_inline))   /* all four taps inline in push_level (gcc inlined some) */
+#endif
 static inline void push_tap(const tgi_rgb *c, const pp_weight *wt, size_t t, tg_vec3 *s, tg_real *sw)
 {
     tg_real wf = TG_ONE;
@@ -166,10 +169,13 @@ static void row_sampler_start(pp_row_sampler *rs, const pp_level *coarse, int y)
     rs->cx = -2;
 }
 
+#if defined(__GNUC__)
+__attribute__((always_inline))   /* inline in the fill and pull loops, as before its sums grew */
+#endif
 static inline tg_vec3 row_sample(pp_row_sampler *rs, int x)
 {
     int cx = (x - 1) >> 1, p = x & 1, k;
-    tg_vec3 out = tg_v3(0, 0, 0);
+    tgi_wide ox = 0, oy = 0, oz = 0;
     if (cx != rs->cx) {
         const tgi_rgb *c = &rs->coarse->c;
         size_t x0 = (size_t)(cx < 0 ? 0 : cx), x1 = (size_t)(cx + 1 >= rs->coarse->w ? rs->coarse->w - 1 : cx + 1);
@@ -179,8 +185,14 @@ static inline tg_vec3 row_sample(pp_row_sampler *rs, int x)
         rs->q[3] = texel(c, rs->r1 + x1);
         rs->cx = cx;
     }
-    for (k = 0; k < 4; k++) out = tgi_v3_add(out, tgi_v3_scale(rs->q[k], rs->wxy[p][k & 1][k >> 1]));
-    return out;
+    /* the bilinear weights within [0, 1]: running sums of tgi_wide_add_weighted (core/real.h) */
+    for (k = 0; k < 4; k++) {
+        const tg_real wk = rs->wxy[p][k & 1][k >> 1];
+        ox = tgi_wide_add_weighted(ox, wk, rs->q[k].x);
+        oy = tgi_wide_add_weighted(oy, wk, rs->q[k].y);
+        oz = tgi_wide_add_weighted(oz, wk, rs->q[k].z);
+    }
+    return tg_v3(tgi_wide_real(ox), tgi_wide_real(oy), tgi_wide_real(oz));
 }
 
 /* Pull one level: complete texels of weight < 1 from the coarser level. */

@@ -10,15 +10,16 @@
 #if !TG_NO_COLOR /* the whole file is left out with TG_NO_COLOR=1 (tinygi.h "FEATURE SWITCHES") */
 
 /* Last frame's pixel holding this surface: 1 and *s when its depth agrees.
- * view and prev_view are the caller's copies (locals: the stores into `out`
- * cannot change them, so their fields stay in registers along the row). */
-static int history_pixel(const tgi_reproject_io *io, const tgi_view *view, const tgi_view *prev_view,
-                         const tgi_mat4 *delta, int x, int y, tg_real depth, tg_real tol, size_t *s)
+ * The cameras of cams are the caller's copies (locals: the stores into
+ * `out` cannot change them, so their fields stay in registers along the
+ * row). */
+static int history_pixel(const tgi_reproject_io *io, const tgi_motion_pair *cams, const tgi_mat4 *delta, int x, int y,
+                         tg_real depth, tg_real tol, size_t *s)
 {
     const tgi_gview *g = io->g;
     tg_real px, py, z, hz;
     int sx, sy;
-    if (!tgi_motion_prev_position_inline(view, prev_view, delta, x, y, depth, &px, &py, &z)) return 0;
+    if (!tgi_motion_prev_position_pair(cams, delta, x, y, depth, &px, &py, &z)) return 0;
     sx = tg_to_int(px);
     sy = tg_to_int(py);
     if (sx < 0 || sy < 0 || sx >= g->width || sy >= g->height) return 0;
@@ -38,6 +39,7 @@ void tgi_reproject_gather_rows(const tgi_reproject_io *io_in, int y0, int y1)
     const tgi_gview *g = &gl;
     tg_real tol = io->depth_tolerance > 0 ? io->depth_tolerance : TG_R(0.05f);
     tgi_view view, before;
+    tgi_motion_pair cams;
     int x, y;
     if (y0 < 0) y0 = 0;
     if (y1 > g->height) y1 = g->height;
@@ -51,11 +53,12 @@ void tgi_reproject_gather_rows(const tgi_reproject_io *io_in, int y0, int y1)
     iol.g = &gl; iol.prev_geometry = &hl; iol.out = &outl; iol.prev = &prevl;
     view = *g->camera;
     before = *io->prev_view;
+    tgi_motion_pair_start(&cams, &view, &before);
     for (y = y0; y < y1; y++)
         for (x = 0; x < g->width; x++) {
             size_t i = tgi_gv_index(g, x, y), s;
             const tgi_mat4 *delta = io->object && io->object[i] != 0xFFFF ? &io->object_delta[io->object[i]] : NULL;
-            if (!tgi_gv_is_sky(g, i) && history_pixel(io, &view, &before, delta, x, y, tgi_gv_depth(g, i), tol, &s))
+            if (!tgi_gv_is_sky(g, i) && history_pixel(io, &cams, delta, x, y, tgi_gv_depth(g, i), tol, &s))
                 tgi_rgb_copy(io->out, i, io->prev, s);
             else
                 tgi_rgb_set_hole(io->out, i);

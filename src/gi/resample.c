@@ -47,22 +47,38 @@ void tgi_downsample_rows(const tgi_gview *full, const tgi_gbuffer *half, const t
         }
 }
 
-/* (n . m)^4 for unit normals, 0 when they face apart. */
+/* (n . m)^4 for unit normals, 0 when they face apart.  The packed
+ * G-buffer's normals (tgi_gv_normal: tgi_oct_unit, raster/pack.h, each
+ * component |c| / |.| times a reciprocal square root within 3.2e-6) have
+ * components within 1 + 2^-16: each product, the dot (within 4), its
+ * square and its square's square (within 256) stay far below the range, so
+ * tgi_wide (core/real.h) gives tg_mul's and tg_add's results without their
+ * saturation tests; with TG_WIDE_STORAGE (normals as stored) Q16.16 keeps
+ * the saturating form. */
 static tg_real upsample_normal_weight(tg_vec3 n, tg_vec3 m)
 {
+#if TG_FIXED && TG_WIDE_STORAGE
     tg_real d = tg_add(tg_add(tg_mul(n.x, m.x), tg_mul(n.y, m.y)), tg_mul(n.z, m.z));
     if (d <= 0) return 0;
     d = tg_mul(d, d);
     return tg_mul(d, d);
+#else
+    tgi_wide d = tgi_wide_mul(n.x, m.x) + tgi_wide_mul(n.y, m.y) + tgi_wide_mul(n.z, m.z);
+    if (d <= 0) return 0;
+    d = tgi_wide_mul(d, d);
+    return (tg_real)tgi_wide_mul(d, d);
+#endif
 }
 
-/* 1 - |z_j - z| / (0.1 z), clamped to [0, 1]. */
+/* 1 - |z_j - z| / (0.1 z), clamped to [0, 1]: |0.1 z| < |z| (tg_mul's
+ * product, never saturating), the quotient of 0 <= |z_j - z| < 0.1 z
+ * within [0, 1) (tgi_div_pos). */
 static tg_real upsample_depth_weight(tg_real z, tg_real zj)
 {
-    tg_real tol = tg_mul(z, TG_R(0.1f));
+    tg_real tol = (tg_real)tgi_wide_mul(z, TG_R(0.1f));
     tg_real dz = tg_abs(tg_sub(zj, z));
     if (tol <= 0 || dz >= tol) return 0;
-    return tg_sub(TG_ONE, tg_div(dz, tol));
+    return (tg_real)((tgi_wide)TG_ONE - tgi_div_pos(dz, tol));
 }
 
 /* Sky, or only sky around: open (AO 1, the normal as bent normal, no near field). */
@@ -85,10 +101,11 @@ static void bilinear_taps(const tgi_gview *half, int x, int y, size_t tap[4], tg
     if (Y1 >= half->height) Y1 = half->height - 1;
     tap[0] = tgi_gv_index(half, X0, Y0); tap[1] = tgi_gv_index(half, X1, Y0);
     tap[2] = tgi_gv_index(half, X0, Y1); tap[3] = tgi_gv_index(half, X1, Y1);
-    wt[0] = tg_mul((x & 1) ? h : TG_ONE, (y & 1) ? h : TG_ONE);
-    wt[1] = (x & 1) ? tg_mul(h, (y & 1) ? h : TG_ONE) : 0;
-    wt[2] = (y & 1) ? tg_mul((x & 1) ? h : TG_ONE, h) : 0;
-    wt[3] = ((x & 1) && (y & 1)) ? tg_mul(h, h) : 0;
+    /* products of 1 and 1/2 (exact, tgi_wide) */
+    wt[0] = (tg_real)tgi_wide_mul((x & 1) ? h : TG_ONE, (y & 1) ? h : TG_ONE);
+    wt[1] = (x & 1) ? (tg_real)tgi_wide_mul(h, (y & 1) ? h : TG_ONE) : 0;
+    wt[2] = (y & 1) ? (tg_real)tgi_wide_mul((x & 1) ? h : TG_ONE, h) : 0;
+    wt[3] = ((x & 1) && (y & 1)) ? (tg_real)tgi_wide_mul(h, h) : 0;
 }
 
 /* The near horizon's slice directions: cell (x & 3, y & 3) of a 4x4 block
@@ -154,11 +171,89 @@ void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_g
  * to the eye, n . p, its view ray (kx, ky, 1), n . (kx, ky, 1), the change
  * of n . ray per pixel (n.x ax, n.y ay), and the height over the tangent
  * plane below which a sample counts for nothing (as tgi_ao_slice_pixel's). */
+typedef struct near_plane {
+    tg_real np, nax, nay, nr, above;
+#if TG_FIXED
+    int wide;             /* near_plane_start: the tangent-plane test in one 64-bit compare */
+    int64_t lim;
+#endif
+} near_plane;
 typedef struct near_pixel {
-    int x, y;
+    int x, y, has_vd;
     tg_vec3 pv, nv, vd;
-    tg_real np, kx, ky, nax, nay, nr, above;
+    tg_real kx, ky;
+    near_plane pl;
 } near_pixel;
+
+/* The unit vector to the eye, normalised the first time a sample needs it
+ * (most pixels have none above their tangent plane: near_horizon_ao). */
+static tg_vec3 near_vd(near_pixel *q)
+{
+    if (!q->has_vd) {
+        q->vd = tgi_v3_normalize_or(tgi_v3_neg(q->pv), tg_v3(0, 0, TG_R(-1.0f)));
+        q->has_vd = 1;
+    }
+    return q->vd;
+}
+
+#if TG_FIXED
+/* The tangent-plane test of near_under_plane without its saturation tests,
+ * for offsets up to `reach` pixels on either axis.  The saturating form is
+ * D = sat(sat(P) - np) <= above with P = z i rounded (tg_mul) and i = nr +
+ * (ox nax - oy nay).  When |nr| + reach (|nax| + |nay|) <= TG_REAL_MAX no
+ * part of i saturates (wide): i is the exact sum, z i < 2^62 fits
+ * 64 bits.  sat is monotone, so for above < TG_REAL_MAX, D <= above iff
+ * sat(P) <= T = above + np (exact, 64 bits), which holds always when T >=
+ * TG_REAL_MAX, never when T < TG_REAL_MIN (sat(P) >= TG_REAL_MIN), else iff
+ * P <= T; and P, z i rounded half away from zero, is <= T iff z i <= T 2^16
+ * + 2^15 - 1 (z i >= 0) or <= T 2^16 + 2^15 (z i < 0), the one bound
+ * T 2^16 + 2^15 - 1 + (T < 0) serving both (a z i of the other sign than T
+ * is on the same side of either).  above = TG_REAL_MAX: every sample is
+ * under (D <= TG_REAL_MAX). */
+static void near_plane_start(near_plane *pl, int reach)
+{
+    const int64_t t = (int64_t)pl->above + pl->np;
+    pl->wide = (int64_t)tg_abs(pl->nr) + (int64_t)reach * ((int64_t)tg_abs(pl->nax) + tg_abs(pl->nay)) <= TG_REAL_MAX;
+    if (pl->above >= TG_REAL_MAX || t >= TG_REAL_MAX) pl->lim = INT64_MAX;
+    else if (t < TG_REAL_MIN) pl->lim = INT64_MIN;
+    else pl->lim = t * 65536 + 32767 + (t < 0);
+}
+#endif
+
+/* Whether the sample at depth z, (ox, oy) pixels from pixel q, lies on or
+ * under q's tangent plane, as high as q->above over it at most: its height
+ * z (n . r) - n . p (near_horizon_cos).  Q16.16 with `wide` (a constant in
+ * each copy of the march: pl->wide, NEAR_WIDE): near_plane_start's
+ * compare, the same answer. */
+static inline int near_under_plane(const near_plane *pl, tg_real z, int ox, int oy, const int wide)
+{
+#if TG_FIXED
+    if (wide) return (int64_t)z * ((int64_t)pl->nr + (int64_t)ox * pl->nax - (int64_t)oy * pl->nay) <= pl->lim;
+#else
+    (void)wide;
+#endif
+    return tg_sub(tg_mul(z, tg_add(pl->nr, tg_sub(tg_mul(tg_from_int(ox), pl->nax), tg_mul(tg_from_int(oy), pl->nay)))),
+                  pl->np) <= pl->above;
+}
+#if TG_FIXED
+#define NEAR_WIDE(q) ((q)->pl.wide)
+#else
+#define NEAR_WIDE(q) 0
+#endif
+
+int tgi_near_under_plane(tg_real nr, tg_real nax, tg_real nay, tg_real np, tg_real above, int reach, tg_real z, int ox,
+                         int oy, int fast)
+{
+    near_plane pl;
+    pl.nr = nr; pl.nax = nax; pl.nay = nay; pl.np = np; pl.above = above;
+#if TG_FIXED
+    near_plane_start(&pl, reach);
+    if (fast && pl.wide) return near_under_plane(&pl, z, ox, oy, 1);
+#else
+    (void)reach; (void)fast;
+#endif
+    return near_under_plane(&pl, z, ox, oy, 0);
+}
 
 /* The largest cos(angle to the view vector) of the samples off[0..steps)
  * (pixel offsets) of pixel q that lie above the tangent plane and within
@@ -166,14 +261,18 @@ typedef struct near_pixel {
  * no sample can reach it).  A sample's view position is its depth z times
  * its ray r, so its height over the tangent plane is z (n . r) - n . p,
  * n . r changing by n.x ax and -n.y ay a pixel. */
-static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, const near_pixel *q, const signed char (*off)[2],
-                                       int inside)
+#if defined(__GNUC__)
+__attribute__((always_inline))   /* a copy for each `inside` and `wide`, their tests gone from the loop */
+#endif
+static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q, const signed char (*off)[2],
+                                       const int inside, const int wide)
 {
     const tgi_gview *g = u->full;
+    const int x = q->x, y = q->y;
     tg_real best = TG_R(-1.0f);
     int n, steps = u->steps;
     for (n = 0; n < steps; n++) {
-        int sx = q->x + off[n][0], sy = q->y + off[n][1];
+        int sx = x + off[n][0], sy = y + off[n][1];
         size_t j;
         tg_real z, d2, fdx, fdy;
         tg_vec3 h;
@@ -181,36 +280,46 @@ static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, const near_pi
         j = tgi_gv_index(g, sx, sy);
         if (tgi_gv_is_sky(g, j)) continue;
         z = tgi_gv_depth(g, j);
+        if (near_under_plane(&q->pl, z, off[n][0], off[n][1], wide)) continue;
         fdx = tg_from_int(off[n][0]);
         fdy = tg_from_int(off[n][1]);
-        if (tg_sub(tg_mul(z, tg_add(q->nr, tg_sub(tg_mul(fdx, q->nax), tg_mul(fdy, q->nay)))), q->np) <= q->above)
-            continue;                                              /* on or under the tangent plane */
         h = tg_v3(tg_sub(tg_mul(z, tg_add(q->kx, tg_mul(fdx, u->ax))), q->pv.x),
                   tg_sub(tg_mul(z, tg_sub(q->ky, tg_mul(fdy, u->ay))), q->pv.y), tg_sub(z, q->pv.z));
         if (u->shift) h = tg_v3(tg_ldexp(h.x, u->shift), tg_ldexp(h.y, u->shift), tg_ldexp(h.z, u->shift));
         d2 = tgi_v3_dot(h, h);
         if (d2 >= u->r2 || d2 <= 0) continue;                      /* beyond the gather radius */
-        best = tg_max(best, tg_mul(tgi_v3_dot(h, q->vd), tg_rsqrt(d2)));
+        best = tg_max(best, tg_mul(tgi_v3_dot(h, near_vd(q)), tg_rsqrt(d2)));
     }
     return best;
 }
 
 /* near_horizon_cos of the four sides of pixel q's slices into c1[k], c0[k]. */
-static void near_horizon_sides(const tgi_upsample_plan *u, const near_pixel *q, int cell,
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void near_sides_with(const tgi_upsample_plan *u, near_pixel *q, int cell, tg_real c1[2], tg_real c0[2],
+                                   const int inside, const int wide)
+{
+    int k;
+    for (k = 0; k < 2; k++) {
+        c1[k] = near_horizon_cos(u, q, u->off[cell][2 * k], inside, wide);
+        c0[k] = near_horizon_cos(u, q, u->off[cell][2 * k + 1], inside, wide);
+    }
+}
+static void near_horizon_sides(const tgi_upsample_plan *u, near_pixel *q, int cell,
                                tg_real c1[2], tg_real c0[2])
 {
     const tgi_gview *g = u->full;
-    int k;
-    if (q->x >= u->reach && q->y >= u->reach && q->x + u->reach < g->width && q->y + u->reach < g->height)
-        for (k = 0; k < 2; k++) {
-            c1[k] = near_horizon_cos(u, q, u->off[cell][2 * k], 1);
-            c0[k] = near_horizon_cos(u, q, u->off[cell][2 * k + 1], 1);
-        }
-    else
-        for (k = 0; k < 2; k++) {
-            c1[k] = near_horizon_cos(u, q, u->off[cell][2 * k], 0);
-            c0[k] = near_horizon_cos(u, q, u->off[cell][2 * k + 1], 0);
-        }
+    const int inside = q->x >= u->reach && q->y >= u->reach && q->x + u->reach < g->width
+                       && q->y + u->reach < g->height;
+    if (NEAR_WIDE(q)) {   /* Q16.16 only */
+        if (inside) near_sides_with(u, q, cell, c1, c0, 1, 1);
+        else near_sides_with(u, q, cell, c1, c0, 0, 1);
+    } else if (inside) {
+        near_sides_with(u, q, cell, c1, c0, 1, 0);
+    } else {
+        near_sides_with(u, q, cell, c1, c0, 0, 0);
+    }
 }
 
 /* How much a lower bound of the near horizon's AO must stay above the
@@ -269,15 +378,19 @@ static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t 
     z = tgi_gv_depth(full, i);                                   /* tgi_ao_view_at's view of the pixel */
     q.pv = tg_v3(tg_mul(q.kx, z), tg_mul(q.ky, z), z);
     q.nv = tgi_ao_dir_to_view(full->camera, n);
-    q.vd = tgi_v3_normalize_or(tgi_v3_neg(q.pv), tg_v3(0, 0, TG_R(-1.0f)));
-    q.nax = tg_mul(q.nv.x, u->ax);
-    q.nay = tg_mul(q.nv.y, u->ay);
-    q.nr = tg_add(tg_add(tg_mul(q.nv.x, q.kx), tg_mul(q.nv.y, q.ky)), q.nv.z);
-    q.np = tgi_v3_dot(q.nv, q.pv);
-    q.above = tg_add(tg_ldexp(q.pv.z, -10), u->above_r);
+    q.has_vd = 0;
+    q.pl.nax = tg_mul(q.nv.x, u->ax);
+    q.pl.nay = tg_mul(q.nv.y, u->ay);
+    q.pl.nr = tg_add(tg_add(tg_mul(q.nv.x, q.kx), tg_mul(q.nv.y, q.ky)), q.nv.z);
+    q.pl.np = tgi_v3_dot(q.nv, q.pv);
+    q.pl.above = tg_add(tg_ldexp(q.pv.z, -10), u->above_r);
+#if TG_FIXED
+    near_plane_start(&q.pl, u->reach);
+#endif
     near_horizon_sides(u, &q, cell, c1, c0);   /* the cell's direction and the one at right angles */
     for (k = 0; k < 2; k++) found |= c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f);
     if (!found) return TG_ONE;
+    near_vd(&q);
     if (tg_sub(tgi_near_horizon_bound(q.nv, q.vd, d[0], d[1], c1, c0), NEAR_BOUND_MARGIN) >= ao) return TG_ONE;
     for (k = 0; k < 2; k++) {
         tg_real o;
@@ -323,8 +436,9 @@ tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk
     const tgi_gview *full = u->full, *half = u->half;
     const tgi_gresult *hr = u->res;
     size_t i = tgi_gv_index(full, x, y), tap[4];
-    tg_real wt[4], sum = 0, ao = 0, floor_w = TG_R(0.015625f), z;
-    tg_vec3 n, bend = tg_v3(0, 0, 0), near = tg_v3(0, 0, 0);
+    tg_real wt[4], sum, ao, floor_w = TG_R(0.015625f), z;
+    tgi_wide sum_w = 0, ao_w = 0, near_w[3] = { 0, 0, 0 };   /* running sums (tgi_wide_add_weighted) */
+    tg_vec3 n, bend = tg_v3(0, 0, 0), near;
     int k, want_bent = tgi_gr_has_bent(hr), want_near = tgi_gr_has_near(hr);
     tgi_gr_value v;
     if (tgi_gv_is_sky(full, i)) return upsample_open(full, i);
@@ -340,16 +454,24 @@ tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk
         c = upsample_tap(u, walk, (((x >> 1) + (k & 1 ? x & 1 : 0)) & 1) + ((((y >> 1) + (k & 2 ? y & 1 : 0)) & 1) << 1),
                          tap[k]);
         if (c->sky) continue;
-        w = tg_mul(wt[k], tg_max(floor_w, tg_mul(upsample_depth_weight(z, c->z), upsample_normal_weight(n, c->n))));
-        sum = tg_add(sum, w);
-        ao = tg_add(ao, tg_mul(w, c->ao));
+        /* the depth weight within [0, 1] and the bilinear one within (0, 1]
+         * keep each product within its other factor (tgi_wide) */
+        w = (tg_real)tgi_wide_mul(wt[k], tg_max(floor_w, (tg_real)tgi_wide_mul(upsample_depth_weight(z, c->z),
+                                                                               upsample_normal_weight(n, c->n))));
+        sum_w = tgi_wide_add_weighted(sum_w, w, TG_ONE);
+        ao_w = tgi_wide_add_weighted(ao_w, w, c->ao);
         if (want_bent)
             bend = tg_v3(tg_add(bend.x, tg_mul(w, c->bend.x)), tg_add(bend.y, tg_mul(w, c->bend.y)),
                          tg_add(bend.z, tg_mul(w, c->bend.z)));
-        if (want_near)
-            near = tg_v3(tg_add(near.x, tg_mul(w, c->near.x)), tg_add(near.y, tg_mul(w, c->near.y)),
-                         tg_add(near.z, tg_mul(w, c->near.z)));
+        if (want_near) {
+            near_w[0] = tgi_wide_add_weighted(near_w[0], w, c->near.x);
+            near_w[1] = tgi_wide_add_weighted(near_w[1], w, c->near.y);
+            near_w[2] = tgi_wide_add_weighted(near_w[2], w, c->near.z);
+        }
     }
+    sum = tgi_wide_real(sum_w);
+    ao = tgi_wide_real(ao_w);
+    near = tg_v3(tgi_wide_real(near_w[0]), tgi_wide_real(near_w[1]), tgi_wide_real(near_w[2]));
     if (sum <= 0) return upsample_open(full, i);   /* only sky around: treat as open */
     /* the upsampled AO misses what lies between the half-res samples (a
      * contact shadow a few pixels wide): the near horizon's is the lower */

@@ -87,6 +87,15 @@ tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *w, i
 tg_real tgi_near_horizon_bound(tg_vec3 nv, tg_vec3 vd, tg_real sdx, tg_real sdy, const tg_real c1[2],
                                const tg_real c0[2]);
 
+/* The near horizon's test whether a sample at depth z, (ox, oy) pixels
+ * from a pixel (|ox|, |oy| <= reach), lies on or under its tangent plane
+ * (resample.c near_under_plane: z (nr + ox nax - oy nay) - np <= above),
+ * with `fast` the Q16.16 compare of near_plane_start where it applies,
+ * else the saturating expression: for tests/test_hbil.c, which has both
+ * give the same answers. */
+int tgi_near_under_plane(tg_real nr, tg_real nax, tg_real nay, tg_real np, tg_real above, int reach, tg_real z, int ox,
+                         int oy, int fast);
+
 /* The upsampled results at full-res pixel (x, y) from the half-res results
  * half_res (indexed like the view half), guided by both views' depth and
  * normals, the AO no more than the near horizon's within

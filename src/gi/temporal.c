@@ -16,17 +16,17 @@ void tgi_temporal_defaults(tgi_temporal_params *p)
 
 /* Where last frame's results hold this pixel's surface (normal n, depth z
  * now): 1 and *s (indexed like g) when last frame's depth and normal agree
- * (the history is accepted).  view and prev_view are the caller's copies
+ * (the history is accepted).  The cameras of cams are the caller's copies
  * (locals: no store through the result planes can change them, so their
  * fields stay in registers along the row). */
 static int history_at(const tgi_temporal_params *p, const tgi_gview *g, const tgi_prev_geometry *h,
-                      const tgi_view *view, const tgi_view *prev_view, int fx, int fy, tg_real depth, tg_vec3 n,
-                      size_t *s)
+                      const tgi_motion_pair *cams, int fx, int fy, tg_real depth, tg_vec3 n, size_t *s)
 {
+    const tgi_view *view = cams->cur;
     int px, py, sx, sy;
     tg_real mx, my, z, hz;
     size_t full;
-    if (!tgi_motion_prev_position_inline(view, prev_view, NULL, fx, fy, depth, &mx, &my, &z)) return 0;
+    if (!tgi_motion_prev_position_pair(cams, NULL, fx, fy, depth, &mx, &my, &z)) return 0;
     px = tg_to_int(mx); py = tg_to_int(my);
     if (px < 0 || py < 0 || px >= view->width || py >= view->height) return 0;
     sx = (px - g->offset_x) / g->step;    /* the pixel of g standing for the full-res pixel's block */
@@ -39,6 +39,26 @@ static int history_at(const tgi_temporal_params *p, const tgi_gview *g, const tg
     return tgi_v3_dot(tgi_prev_normal(h, full), n) >= p->history_normal_cos;
 }
 
+/* tg_lerp(a, b, t): in Q16.16 for t within [0, 1] and |b - a| within
+ * range (tg_sub would not saturate) the product (b - a) t rounds to within
+ * |b - a| (tg_mul, not saturating) and a plus it lies between a and b
+ * (tg_add, not saturating): the same integers without the tests. */
+static inline tg_real lerp_unit(tg_real a, tg_real b, tg_real t)
+{
+#if TG_FIXED
+    const int64_t d = (int64_t)b - a;
+    if ((uint32_t)t <= (uint32_t)TG_ONE && d >= TG_REAL_MIN && d <= TG_REAL_MAX)
+        return (tg_real)(a + tgi_shr_round(d * t, 16));
+#endif
+    return tg_lerp(a, b, t);
+}
+static inline tg_vec3 lerp_unit3(tg_vec3 a, tg_vec3 b, tg_real t)
+{
+    return tg_v3(lerp_unit(a.x, b.x, t), lerp_unit(a.y, b.y, t), lerp_unit(a.z, b.z, t));
+}
+
+tg_real tgi_temporal_lerp(tg_real h, tg_real v, tg_real t) { return lerp_unit(h, v, t); }
+
 void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_in, const tgi_gresult *r_in,
                        const tgi_gresult *prev_in, const tgi_prev_geometry *prev_geometry, const tgi_view *prev_view,
                        int reset, int y0, int y1)
@@ -50,6 +70,7 @@ void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_
     tgi_gresult rl, prevl;
     tgi_prev_geometry hl;
     tgi_view view, before;
+    tgi_motion_pair cams;
     const tgi_temporal_params *p = &pl;
     const tgi_gview *g = &gl;
     const tgi_gresult *r = &rl, *prev = &prevl;
@@ -62,6 +83,7 @@ void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_
     if (y1 > g->height) y1 = g->height;
     view = *g->camera;
     before = *prev_view;
+    tgi_motion_pair_start(&cams, &view, &before);
     for (y = y0; y < y1; y++) {
         int fy = y * g->step + g->offset_y;
         for (x = 0; x < g->width; x++) {
@@ -70,14 +92,13 @@ void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_
             tg_vec3 n;
             if (tgi_gv_is_sky(g, i)) continue;
             n = tgi_gv_normal(g, i);
-            if (!history_at(p, g, &hl, &view, &before, x * g->step + g->offset_x, fy, tgi_gv_depth(g, i), n,
-                            &s))
+            if (!history_at(p, g, &hl, &cams, x * g->step + g->offset_x, fy, tgi_gv_depth(g, i), n, &s))
                 continue;
             v = tgi_gr_get(r, i);
             h = tgi_gr_get(prev, s);
-            v.ao = tg_lerp(h.ao, v.ao, alpha);                          /* exponential average */
-            v.bent = tgi_v3_normalize_or(tgi_v3_lerp(h.bent, v.bent, alpha), n);
-            v.near = tgi_v3_lerp(h.near, v.near, alpha);
+            v.ao = lerp_unit(h.ao, v.ao, alpha);                        /* exponential average */
+            v.bent = tgi_v3_normalize_or(lerp_unit3(h.bent, v.bent, alpha), n);
+            v.near = lerp_unit3(h.near, v.near, alpha);
             tgi_gr_put(r, i, &v);
         }
     }

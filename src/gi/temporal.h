@@ -34,4 +34,10 @@ void tgi_temporal_defaults(tgi_temporal_params *p);
 void tgi_temporal_rows(const tgi_temporal_params *p, const tgi_gview *g, const tgi_gresult *r, const tgi_gresult *prev,
                        const tgi_prev_geometry *prev_geometry, const tgi_view *prev_view, int reset, int y0, int y1);
 
+/* The exponential average's blend h + (v - h) t as tgi_temporal_rows
+ * computes it (temporal.c lerp_unit: tg_lerp's integers, in Q16.16
+ * without its saturation tests where they cannot act); for
+ * tests/test_reproject.c, which compares it with tg_lerp. */
+tg_real tgi_temporal_lerp(tg_real h, tg_real v, tg_real t);
+
 #endif
