@@ -107,8 +107,9 @@ static void print_help(FILE *out)
         "  --radius R        gather radius in world units, 0..%d (default %d)\n"
         "  --thickness T     ssilvb: surface thickness behind the depth buffer, world\n"
         "                    units, 0..%d (default: the radius / %d)\n"
-        "  --depth-layers N  ssilvb: 2 also keeps the nearest back face's depth, where\n"
-        "                    a closed object ends (default 1: the depth buffer alone)\n"
+        "  --depth-layers N  ssilvb, 1..%d: 2 also keeps the nearest back face's depth,\n"
+        "                    where a closed object ends, 3 also the surface behind it\n"
+        "                    (default 1: the depth buffer alone)\n"
         "  --bounces N       light bounces, 0..%d (default %d; pathtrace: the most\n"
         "                    bounces, default %d)\n"
         "  --exposure E      linear exposure before the tonemapper, 0..%d (default 1)\n"
@@ -121,7 +122,7 @@ static void print_help(FILE *out)
         "                    processors, here %d); the image is the same for every N\n",
         TG_DEFAULT_WIDTH, TG_DEFAULT_HEIGHT, TG_MAX_IMAGE_SIDE, (long)TG_MAX_IMAGE_PIXELS,
         TG_MAX_FRAMES, TG_MAX_SLICES, TG_DEFAULT_SLICES, TG_MAX_SAMPLES, TG_DEFAULT_SAMPLES, TG_DEFAULT_PATHTRACE_SAMPLES,
-        TG_MAX_RADIUS, TG_DEFAULT_RADIUS, TG_MAX_THICKNESS, TG_THICKNESS_RADIUS_DIVISOR, TG_MAX_BOUNCES, TG_DEFAULT_BOUNCES, TG_DEFAULT_PATHTRACE_BOUNCES, TG_MAX_EXPOSURE,
+        TG_MAX_RADIUS, TG_DEFAULT_RADIUS, TG_MAX_THICKNESS, TG_THICKNESS_RADIUS_DIVISOR, TG_MAX_DEPTH_LAYERS, TG_MAX_BOUNCES, TG_DEFAULT_BOUNCES, TG_DEFAULT_PATHTRACE_BOUNCES, TG_MAX_EXPOSURE,
         TG_MIN_SHADOW_MAP, TG_MAX_SHADOW_MAP, TG_MAX_THREADS, tgp_cores());
     fprintf(out,
         "  --no-interleave   full-resolution GI kernel instead of 4x4 interleaved\n"
