@@ -688,8 +688,8 @@ typedef enum tg_technique {
                            (Therrien et al. 2023, src/ao/ssilvb.h): GTAO's slices
                            with 32 sectors and surfaces of a constant thickness
                            (request.thickness), so light passes behind thin objects;
-                           with request.depth_layers 2 a surface ends at the nearest
-                           back face behind it instead (the thickness where none);
+                           with request.depth_layers 2 or 3 a surface ends at the
+                           nearest back face behind it instead (see depth_layers);
                            AO, bent normal and near field */
     TG_TECH_COUNT
 } tg_technique;
@@ -758,11 +758,16 @@ typedef struct tg_request {
                               (+2 bytes a pixel); nothing else changes (colour is composed
                               from the AO as computed) */
     int depth_layers;      /* 0 or 1 (default): one depth layer, the depth buffer;
-                              2 (technique ssilvb alone, TG_MAX_DEPTH_LAYERS): the rasterizer
-                              also keeps the view depth of the nearest back face at each pixel
-                              (+4 bytes a pixel), and the visibility bitmask takes a surface
-                              as solid from the depth buffer to that back face (a closed
-                              object's true thickness) rather than request.thickness */
+                              2 (technique ssilvb alone): the rasterizer also keeps the view
+                              depth of the nearest back face at each pixel (+4 bytes a pixel),
+                              and the visibility bitmask takes a surface as solid from the
+                              depth buffer to that back face (a closed object's true
+                              thickness), to infinity where there is none (a one-sided
+                              boundary), for request.thickness where it is the surface's own
+                              (a twosided sheet); 3 (TG_MAX_DEPTH_LAYERS): also the nearest
+                              surface behind that back face (+4 bytes a pixel), solid again
+                              from there for request.thickness.  Other values are refused, and
+                              2 or 3 with any other technique */
 } tg_request;
 
 /* Every field at its default: 320x240, one frame, colour, HBIL, GI settings unset. */
