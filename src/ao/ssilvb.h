@@ -17,6 +17,17 @@
  * Light passes behind a thin object; with an infinite thickness the mask is
  * GTAO's (every sector above the highest horizon set).
  *
+ * Further depth layers (request.depth_layers 2, 3; the G-buffer's
+ * tgi_gv_back_depth, tgi_gv_behind_depth, raster.h): the back point is
+ * where the sample's own view ray leaves the surface, at the nearest back
+ * face behind it (P_b = P_f z_b / z_f), infinitely far where there is no
+ * back face (a one-sided boundary), the constant thickness where the back
+ * face is the surface's own (a twosided sheet); with a third layer the
+ * surface behind that back face is solid again for the constant
+ * thickness.  Each solid segment sets its sectors where it lies within
+ * the radius (the reference's cut-off), clipped to the sphere, not where
+ * its front point does (ssilvb.c, march_layers).
+ *
  * Weighting: tinygi's AO is cosine-weighted (RTR eq. 11.8, the reference in
  * reference.h), so a sector is weighted by GTAO's inner integral over its
  * angles, w_k = A(theta_{k+1}) - A(theta_k) with
