@@ -278,9 +278,14 @@ static inline int tgi_ao_slice_point(const tgi_gview *g, const tgi_ao_slice_pixe
     if (qx < 0 || qy < 0 || qx >= g->width || qy >= g->height) return -1;
     *j = (int)tgi_gv_index(g, qx, qy);
     if (tgi_gv_is_sky(g, *j)) return 0;
-    *h = tgi_v3_sub(tgi_ao_unproject(g->camera, qx, qy, tgi_gv_depth(g, *j)), px->pv);
+    if (ray) {   /* the surface is the ray at its depth: tgi_ao_unproject's products, the same bits */
+        tg_real z = tgi_gv_depth(g, *j);
+        *ray = tgi_ao_unproject(g->camera, qx, qy, TG_ONE);
+        *h = tgi_v3_sub(tg_v3(tg_mul(ray->x, z), tg_mul(ray->y, z), z), px->pv);
+    } else {
+        *h = tgi_v3_sub(tgi_ao_unproject(g->camera, qx, qy, tgi_gv_depth(g, *j)), px->pv);
+    }
     if (px->shift) *h = tg_v3(tg_ldexp(h->x, px->shift), tg_ldexp(h->y, px->shift), tg_ldexp(h->z, px->shift));
-    if (ray) *ray = tgi_ao_unproject(g->camera, qx, qy, TG_ONE);
     return 1;
 }
 

@@ -168,12 +168,13 @@ static uint32_t segment_sectors(const vb_tech *t, const tgi_ao_slice_pixel *px, 
                                 int side)
 {
     tg_vec3 ab = tgi_v3_sub(b, a), u;
-    tg_real len2 = tgi_v3_dot(ab, ab), len, d2 = tgi_v3_dot(a, a), reach, au, disc, root, t0, t1, ua, ub;
+    tg_real len2 = tgi_v3_dot(ab, ab), inv_len, len, d2 = tgi_v3_dot(a, a), reach, au, disc, root, t0, t1, ua, ub;
     if (!(len2 > 0)) return 0;
-    len = tg_min(tg_sqrt(len2), t->thick_max);
+    inv_len = tg_rsqrt(len2);
+    len = tg_min(tg_mul(len2, inv_len), t->thick_max);                 /* |b - a|, one root for it and u */
     reach = tg_add(px->rs, len);
     if (d2 >= tg_sqr(reach)) return 0;                                /* cannot reach the sphere */
-    u = tgi_v3_scale(ab, tg_rsqrt(len2));
+    u = tgi_v3_scale(ab, inv_len);
     au = tgi_v3_dot(a, u);
     disc = tg_sub(tg_sqr(au), tg_sub(d2, px->r2));
     if (!(disc > 0)) return 0;

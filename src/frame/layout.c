@@ -176,10 +176,11 @@ static void group_gbuffer(layout *l, tg_frame *f)
 #if TGI_DEPTH_LAYERS
     /* the further depth layers: the visibility bitmask's surfaces (request.c
      * refuses depth_layers 2 and 3 for every other technique) */
-    if (f->request.depth_layers >= 2 && (f->needs & TG_NEED_GI_PASS))
+    if (!(f->needs & TG_NEED_GI_PASS)) return;
+    if (f->request.depth_layers >= 2)
         f->gb.back_depth = (void *)take(l, "G-buffer back-face depth, the second layer [" FMT_BACK "]", f->pixels,
                                         sizeof *f->gb.back_depth);
-    if (f->request.depth_layers >= 3 && (f->needs & TG_NEED_GI_PASS))
+    if (f->request.depth_layers >= 3)
         f->gb.behind_depth = (void *)take(l, "G-buffer depth behind the back face, the third layer [" FMT_BACK "]",
                                           f->pixels, sizeof *f->gb.behind_depth);
 #endif

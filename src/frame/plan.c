@@ -272,9 +272,10 @@ size_t tg_plan_explain(const tg_plan *plan, char *buf, size_t size)
 #if !TG_NO_TECHNIQUES
         if (plan->request.depth_layers >= 2)
             put_number_line(&t, "; depth layers ", (size_t)plan->request.depth_layers,
-                            plan->request.depth_layers >= 3 ? ": a surface ends at its back face, and the thickness is "
-                                                              "that of the surface behind it"
-                                                            : ": a surface ends at its back face (the thickness unused)");
+                            plan->request.depth_layers >= 3 ? ": a surface ends at its back face; the thickness is a "
+                                                              "twosided sheet's and that of the surface behind"
+                                                            : ": a surface ends at its back face; the thickness is a "
+                                                              "twosided sheet's");
 #endif
     }
     tgi_text_put(&t, "\npasses:\n");

@@ -1205,9 +1205,11 @@ void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_
     rt.cull_back = 0;
     for (t = 0; t < mesh->tri_count; t++) {
         tri_vertices tv;
+        int64_t area2;
         triangle_fetch(&cache, &rt, &vf, mesh, t, &tv);
-        if (!(tv.flags & V_OFF_SIDE)) back_triangle(&rt, &tv, tv.flags & V_INSIDE ? signed_area2(tv.sx, tv.sy) < 0 : 0,
-                                                    tv.flags & V_INSIDE ? signed_area2(tv.sx, tv.sy) : 0);
+        if (tv.flags & V_OFF_SIDE) continue;
+        area2 = tv.flags & V_INSIDE ? signed_area2(tv.sx, tv.sy) : 0;
+        back_triangle(&rt, &tv, area2 < 0, area2);
     }
 #endif
 }
