@@ -289,6 +289,20 @@ static inline int tgi_ao_slice_point(const tgi_gview *g, const tgi_ao_slice_pixe
     return 1;
 }
 
+/* The distance in pixels from pixel px's centre along screen direction
+ * (sdx, sdy) (a unit vector) to the image's edge: where a march along it
+ * leaves the screen. */
+static inline tg_real tgi_ao_screen_reach(const tgi_gview *g, const tgi_ao_slice_pixel *px, tg_real sdx, tg_real sdy)
+{
+    tg_real cx = tg_add(tg_from_int(px->x), TG_R(0.5f)), cy = tg_add(tg_from_int(px->y), TG_R(0.5f));
+    tg_real rx = TG_REAL_MAX, ry = TG_REAL_MAX;
+    if (sdx > 0) rx = tg_div(tg_sub(tg_from_int(g->width), cx), sdx);
+    else if (sdx < 0) rx = tg_div(cx, tg_neg(sdx));
+    if (sdy > 0) ry = tg_div(tg_sub(tg_from_int(g->height), cy), sdy);
+    else if (sdy < 0) ry = tg_div(cy, tg_neg(sdy));
+    return tg_min(rx, ry);
+}
+
 /* Sample s as tgi_ao_slice_point gives it, also with *d2 = |h|^2, and 0
  * when not within the radius or on or under the tangent plane (where a
  * horizon is clamped anyway). */
@@ -360,14 +374,16 @@ typedef void (*tgi_ao_slice_fn)(const void *tech, const tgi_gview *g, const tgi_
                                 const tgi_ao_slice *sl, tg_real sdx, tg_real sdy, tgi_ao_slice_sum *sum);
 
 /* A technique of view-vector slices: slices per pixel (tgi_ao_count), samples
- * per side, world radius, whether it writes the near field, and its slice
- * with its data. */
+ * per side, world radius, whether it writes the near field, its slice with
+ * its data, and the 4x4 pattern of rotations and march offsets its pixels
+ * take (pixel (x, y) the cell (x & 3) + 4 (y & 3); NULL: tgi_ao_rotations'). */
 typedef struct tgi_ao_slices {
     int slices, steps;
     tg_real radius;
     int near;
     tgi_ao_slice_fn slice;
     const void *tech;
+    const tgi_ao_rot *pattern;
 } tgi_ao_slices;
 
 /* Rows [y0, y1) of a technique of view-vector slices (Jimenez et al. 2016):
@@ -381,11 +397,15 @@ static inline void tgi_ao_slices_rows(const tgi_ao_slices *t, const tgi_gview *g
                                       int y0, int y1)
 {
     tg_vec3 dirs[TG_AO_MAX_SAMPLES];
-    tgi_ao_rot rot[16];
+    tgi_ao_rot own[16];
+    const tgi_ao_rot *rot = t->pattern;
     int ns = tgi_ao_count(t->slices), k, x, y;
     int shift = tgi_ao_unit_shift(t->radius);
     tgi_ao_circle(TG_PI, ns, dirs);              /* slice angles over pi */
-    tgi_ao_rotations(rot);
+    if (!rot) {
+        tgi_ao_rotations(own);
+        rot = own;
+    }
     for (y = y0; y < y1; y++)
         for (x = 0; x < g->width; x++) {
             int i = (int)tgi_gv_index(g, x, y);

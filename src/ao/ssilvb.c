@@ -73,6 +73,7 @@ typedef struct vb_tech {
     int near;
     tg_real thick, sector;            /* sector: pi / N_b */
     tg_real thick_max;                /* 64 radii (scaled): as good as infinite */
+    int to_edge;                      /* tgi_ssilvb_params.to_edge */
 } vb_tech;
 
 /* One slice's frame (ao.h) and its sector boundaries. */
@@ -224,19 +225,30 @@ static int layer_point(const vb_tech *t, const tgi_ao_slice_pixel *px, tg_vec3 h
 static void march_layers(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel *px, const vb_slice *sl,
                          tg_real sdx, tg_real sdy, int side, uint32_t *mask, tg_vec3 *e)
 {
-    tg_real zf, zb;
+    tg_real zf, zb, d2, uf;
     tg_vec3 hf, hb, h3, h3end, ray;
     int steps = t->p->steps, s, j, got;
+    tgi_ao_slice_pixel on_screen = *px;
+    if (t->to_edge) on_screen.r_px = tg_min(px->r_px, tgi_ao_screen_reach(g, px, sdx, sdy));
     for (s = 0; s < steps; s++) {
-        got = tgi_ao_slice_point(g, px, s, steps, sdx, sdy, &hf, &j, &ray);
+        got = tgi_ao_slice_point(g, &on_screen, s, steps, sdx, sdy, &hf, &j, &ray);
         if (got < 0) break;
         if (got == 0) continue;
         zf = tgi_gv_depth(g, (size_t)j);
         zb = tgi_gv_back_depth(g, (size_t)j);
-        if (!layer_point(t, px, hf, ray, zf, zb, &hb))                /* a sheet, or no back face: a boundary */
+        d2 = tgi_v3_dot(hf, hf);
+        if (!layer_point(t, px, hf, ray, zf, zb, &hb)) {              /* a sheet, or no back face: a boundary */
+            if (zb != zf && d2 < px->r2 && d2 > 0 && tgi_v3_dot(hf, px->nv) > px->above) {
+                uf = half_circle_u(px, sl, hf, d2, side);
+                take_sectors(t, g, sl, side > 0 ? tgi_ssilvb_sector_bits(uf, TG_ONE) : tgi_ssilvb_sector_bits(0, uf),
+                             j, hf, mask, e);
+                goto behind;
+            }
             hb = tgi_v3_add(hf, tgi_v3_scale(ray, zb == zf ? t->thick : t->thick_max));
+        }
         take_sectors(t, g, sl, segment_sectors(t, px, sl, hf, hb, side), j, hf, mask,
-                     tgi_v3_dot(hf, hf) < px->r2 ? e : NULL);   /* a sender within the radius */
+                     d2 < px->r2 ? e : NULL);   /* a sender within the radius */
+    behind:
         if (layer_point(t, px, hf, ray, zf, tgi_gv_behind_depth(g, (size_t)j), &h3)) {
             h3end = tgi_v3_add(h3, tgi_v3_scale(ray, t->thick));
             *mask |= segment_sectors(t, px, sl, h3, h3end, side);
@@ -276,9 +288,10 @@ void tgi_ssilvb_rows(const tgi_ssilvb_params *p, const tgi_gview *g, const tgi_r
      * of pi) and keeps |h_b|^2 inside Q16.16 */
     tg_real thick_max = tg_mul(tg_ldexp(p->radius, shift), TG_R(64.0f));
     tg_real thick = tg_min(tg_ldexp(tg_max(p->thickness, 0), shift), thick_max);
-    const vb_tech vb = { p, radiance, near, thick, tg_div(TG_PI, tg_from_int(TG_SSILVB_SECTORS)), thick_max };
+    const vb_tech vb = { p, radiance, near, thick, tg_div(TG_PI, tg_from_int(TG_SSILVB_SECTORS)), thick_max,
+                         p->to_edge };
     const tgi_ao_slices t = { .slices = p->slices, .steps = p->steps, .radius = p->radius, .near = near,
-                              .slice = bitmask_slice, .tech = &vb };
+                              .slice = bitmask_slice, .tech = &vb, .pattern = p->pattern };
     tgi_ao_slices_rows(&t, g, out, y0, y1);
 }
 

@@ -60,6 +60,12 @@ typedef struct tgi_ssilvb_params {
     int steps;         /* samples per side of each slice (default 8) */
     tg_real radius;    /* world units (default 1): samples farther are ignored */
     tg_real thickness; /* world units (default 0.5): each sample's surface behind its depth */
+    const tgi_ao_rot *pattern; /* the 4x4 cells' slice rotations and march offsets (tgi_ao_slices);
+                                * NULL (default): tgi_ao_rotations', the same every frame.  HBIL
+                                * over depth layers passes its interleaved angles, turned every
+                                * frame (hbil_passes.c) */
+    int to_edge;       /* 1: a side's samples spread over the part of the radius on the screen
+                        * (HBIL's march, none wasted past the edge); 0 (default): over the radius */
 } tgi_ssilvb_params;
 
 void tgi_ssilvb_defaults(tgi_ssilvb_params *p);

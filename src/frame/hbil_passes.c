@@ -9,12 +9,15 @@
  * slice angles, the results are merged back, filtered over the 4x4
  * neighbourhood (sec. 3.4), brought up to full resolution (quarter) and,
  * across frames, accumulated.  With interleave off the kernel runs on the
- * full-resolution view with the same 32 directions per 4x4 block.
+ * full-resolution view with the same 32 directions per 4x4 block.  Over
+ * further depth layers the kernel is the visibility bitmask, at full
+ * resolution with the interleaved angles (tgi_pass_hbil_layers).
  */
 #include "frame_internal.h"
 #include "../gi/hbil.h"
 #include "../gi/interleave.h"
 #include "../gi/resample.h"
+#include "../ao/ssilvb.h"
 
 static void hbil_params(const tg_frame *f, tgi_hbil_params *p)
 {
@@ -80,6 +83,42 @@ void tgi_pass_hbil_interleaved(tg_frame *f, int y0, int y1)
             tgi_hbil_rows(&ps, &sub, &src, &out, (y0 - j + 3) / 4, (y1 - j + 3) / 4);
         }
 }
+
+#if TGI_DEPTH_LAYERS /* left out with TG_NO_TECHNIQUES=1 (the bitmask's file with it) */
+/* HBIL over the G-buffer's further depth layers (request.depth_layers 2, 3):
+ * the horizon of each slice side becomes the visibility bitmask of
+ * Therrien et al. 2023 (ao/ssilvb.h), which takes a sample as solid from
+ * its front to its back face and open behind it, where a horizon takes
+ * everything under it as solid.  It runs at full resolution, each pixel
+ * with the slice angles and march offsets of its 4x4 sub-image (HBIL sec.
+ * 3.3, tgi_hbil_slice_phi0, tgi_hbil_step_jitter) for this frame's
+ * rotation, so the 4x4 filter and the temporal accumulation that follow
+ * see the same 16 x slices directions a block, turned every frame, as
+ * with the horizon kernel.  Writes AO, bent normal and near field. */
+void tgi_pass_hbil_layers(tg_frame *f, int y0, int y1)
+{
+    tgi_hbil_params h;
+    tgi_ssilvb_params p;
+    tgi_ao_rot pattern[16];
+    tgi_gresult res = without_cone(&f->res);
+    int k;
+    hbil_params(f, &h);
+    for (k = 0; k < 16; k++) {
+        tg_real phi = tgi_hbil_slice_phi0(k & 3, k >> 2, h.slices, h.rotation);
+        pattern[k].c = tg_cos(phi);
+        pattern[k].s = tg_sin(phi);
+        pattern[k].jitter = tgi_hbil_step_jitter(k & 3, k >> 2, h.rotation);
+    }
+    tgi_ssilvb_defaults(&p);
+    p.slices = tgi_ao_count(h.slices);
+    p.steps = tgi_ao_count(h.samples);
+    p.radius = h.radius;
+    p.thickness = f->request.thickness;
+    p.pattern = pattern;
+    p.to_edge = 1;
+    tgi_ssilvb_rows(&p, &f->full, tgi_frame_source(f), &res, y0, y1);
+}
+#endif
 
 void tgi_pass_hbil_full(tg_frame *f, int y0, int y1)
 {

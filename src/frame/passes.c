@@ -20,7 +20,7 @@ tgi_pass_step_fn tgi_pass_animate, tgi_pass_depth_range, tgi_pass_shadow_maps, t
     tgi_pass_reference_bvh, tgi_pass_pathtrace_setup;
 tgi_pass_rows_fn tgi_pass_gbuffer, tgi_pass_motion, tgi_pass_direct, tgi_pass_reproject, tgi_pass_push_pull_down,
     tgi_pass_push_pull_fill,
-    tgi_pass_downsample, tgi_pass_hbil_interleaved, tgi_pass_hbil_full, tgi_pass_temporal,
+    tgi_pass_downsample, tgi_pass_hbil_interleaved, tgi_pass_hbil_full, tgi_pass_hbil_layers, tgi_pass_temporal,
     tgi_pass_filter_quarter, tgi_pass_ssao, tgi_pass_vo, tgi_pass_hbao, tgi_pass_gtao, tgi_pass_ssilvb, tgi_pass_ssdo,
     tgi_pass_bentcone, tgi_pass_reference, tgi_pass_pathtrace, tgi_pass_resolve, tgi_pass_keep_history;
 /* A left-out feature (tinygi.h "FEATURE SWITCHES") has no rows below, so
@@ -51,8 +51,16 @@ static int technique_runs(const tg_frame *f, tg_technique t)
     return (f->needs & TG_NEED_GI_PASS) && f->request.technique == t;
 }
 static int runs_hbil(const tg_frame *f) { return technique_runs(f, TG_TECH_HBIL); }
-static int runs_hbil_interleaved(const tg_frame *f) { return runs_hbil(f) && tgi_frame_interleaved(f); }
-static int runs_hbil_full(const tg_frame *f) { return runs_hbil(f) && !tgi_frame_interleaved(f); }
+/* over further depth layers HBIL's kernel is the visibility bitmask (hbil_passes.c) */
+static int reads_layers(const tg_frame *f) { return TGI_DEPTH_LAYERS && f->request.depth_layers >= 2; }
+static int runs_hbil_interleaved(const tg_frame *f)
+{
+    return runs_hbil(f) && tgi_frame_interleaved(f) && !reads_layers(f);
+}
+static int runs_hbil_full(const tg_frame *f) { return runs_hbil(f) && !tgi_frame_interleaved(f) && !reads_layers(f); }
+#if TGI_DEPTH_LAYERS
+static int runs_hbil_layers(const tg_frame *f) { return runs_hbil(f) && reads_layers(f); }
+#endif
 #if !TG_NO_GI_QUARTER
 static int runs_hbil_quarter(const tg_frame *f) { return runs_hbil(f) && tgi_frame_quarter(f); }
 #endif
@@ -132,6 +140,11 @@ const tgi_pass tgi_passes[] = {
       B(HALF) | B(SOURCE) | B(RESULTS), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_hbil_interleaved) },
     { "HBIL horizon kernel, full resolution", runs_hbil_full,
       B(RESULTS) | B(SOURCE), TGI_BOUNCE, ROWS(tgi_pass_hbil_full) },
+#if TGI_DEPTH_LAYERS
+    { "HBIL over the depth layers: visibility bitmask (32 sectors, a sample solid to its back face), "
+      "full resolution, the 4x4 sub-images' angles", runs_hbil_layers,
+      B(RESULTS) | B(SOURCE), TGI_BOUNCE, ROWS(tgi_pass_hbil_layers) },
+#endif
 #if !TG_NO_TEMPORAL
     { "temporal accumulation at the kernel's resolution (history rejected by depth and normal)", accumulates,
       B(HALF) | B(SOURCE) | B(RESULTS) | B(TEMPORAL) | B(HISTORY), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_temporal) },

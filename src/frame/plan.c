@@ -263,7 +263,8 @@ size_t tg_plan_explain(const tg_plan *plan, char *buf, size_t size)
     else put_effects(&t, plan->effects);
     tgi_text_put(&t, "\nskipped: ");
     put_effects(&t, (~plan->effects) & 63u);
-    if (plan->request.technique == TG_TECH_SSILVB) {   /* the visibility bitmask's surfaces */
+    if (plan->request.technique == TG_TECH_SSILVB ||
+        (plan->request.technique == TG_TECH_HBIL && plan->request.depth_layers >= 2)) {   /* the bitmask's surfaces */
         tgi_text_put(&t, "\nvisibility bitmask: radius ");
         tgi_text_put_real(&t, plan->request.radius);
         tgi_text_put(&t, ", thickness ");

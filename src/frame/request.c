@@ -81,17 +81,21 @@ static int gi_outside(const tg_request *r, tg_error *err)
     return 0;
 }
 
-/* More than one depth layer for a technique that does not read them. */
+/* More than one depth layer for a technique that does not read them: the
+ * visibility bitmask (ssilvb) and HBIL's kernel over them at full
+ * resolution (not --gi-quarter's half-resolution image, which has one). */
 static int depth_layers_unread(const tg_request *r, tg_error *err)
 {
 #if TG_NO_TECHNIQUES
     (void)r; (void)err;   /* one layer at most (int_switches) */
     return 0;
 #else
-    if (r->depth_layers < 2 || r->technique == TG_TECH_SSILVB) return 0;
+    int quarter = r->technique == TG_TECH_HBIL && r->interleave && r->gi_scale == 2;
+    if (r->depth_layers < 2 || r->technique == TG_TECH_SSILVB || (r->technique == TG_TECH_HBIL && !quarter)) return 0;
     tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "depth_layers must be 0..1 for technique ");
     tgi_error_append(err, tg_technique_name(r->technique));
-    tgi_error_append(err, " (further layers are read by technique ssilvb alone), got ");
+    tgi_error_append(err, quarter ? " with gi_scale 2" : "");
+    tgi_error_append(err, " (further layers are read by techniques hbil and ssilvb at full resolution), got ");
     tgi_error_append_int(err, r->depth_layers);
     return 1;
 #endif
