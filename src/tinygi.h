@@ -758,7 +758,7 @@ typedef struct tg_request {
                               (+2 bytes a pixel); nothing else changes (colour is composed
                               from the AO as computed) */
     int depth_layers;      /* 0 or 1 (default): one depth layer, the depth buffer;
-                              2 (technique ssilvb alone): the rasterizer also keeps the view
+                              2 (techniques ssilvb and hbil): the rasterizer also keeps the view
                               depth of the nearest back face at each pixel (+4 bytes a pixel),
                               and the visibility bitmask takes a surface as solid from the
                               depth buffer to that back face (a closed object's true
@@ -766,8 +766,15 @@ typedef struct tg_request {
                               boundary), for request.thickness where it is the surface's own
                               (a twosided sheet); 3 (TG_MAX_DEPTH_LAYERS): also the nearest
                               surface behind that back face (+4 bytes a pixel), solid again
-                              from there for request.thickness.  Other values are refused, and
-                              2 or 3 with any other technique */
+                              from there for request.thickness.  With technique hbil the
+                              kernel is then that visibility bitmask (a one-sided boundary's
+                              sample closing its side down to the tangent plane, as a horizon
+                              does), at full resolution with the 4x4 sub-images' slice angles
+                              and march offsets turned every frame, the samples spread over the
+                              part of the radius on the screen; HBIL's filter and temporal
+                              accumulation follow as usual (src/frame/hbil_passes.c).  Other
+                              values are refused, and 2 or 3 with any other technique or with
+                              hbil at gi_scale 2 (its half-resolution image has one layer) */
 } tg_request;
 
 /* Every field at its default: 320x240, one frame, colour, HBIL, GI settings unset. */

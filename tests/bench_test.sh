@@ -16,7 +16,7 @@
 #  - contact.ppm: P6 header and exact byte size of a 5x3 sheet; contact.png:
 #    PNG signature and the same size in IHDR, 8-bit greyscale;
 #  - colour against the path tracer: color-float.csv / color-fixed.csv /
-#    bench-color.csv, one row per scene and technique (twelve), RMSE in [0, 1],
+#    bench-color.csv, one row per scene and technique (thirteen), RMSE in [0, 1],
 #    energy > 0, the reference's noise >= 0, deterministic; bench.md's colour
 #    section; bench-color.svg parses, a dot per technique and number type;
 #    contact-color.png: a 5x3 sheet, 8-bit RGB;
@@ -68,8 +68,8 @@ bad=$(awk -F, 'NR > 1 {
 expect "every row finite and in range${bad:+: $bad}" test -z "$bad"
 near_techs=$(awk -F, 'NR > 1 && $13 != "" {print $2}' "$T/o/bench.csv" | sort -u | tr '\n' ' ')
 expect "near error for hbil, ssdo, gtao+ir, ssilvb only ($near_techs)" \
-    test "$near_techs" = "gtao+ir hbil hbil-1x hbil-full ssdo ssilvb ssilvb-3l "
-for t in hbil hbil-1x hbil-full gtao hbao ssao vo ssdo bentcone ssdo-do gtao+ir ssilvb ssilvb-3l; do
+    test "$near_techs" = "gtao+ir hbil hbil-1x hbil-3l hbil-full ssdo ssilvb ssilvb-3l "
+for t in hbil hbil-1x hbil-full hbil-3l gtao hbao ssao vo ssdo bentcone ssdo-do gtao+ir ssilvb ssilvb-3l; do
     expect "technique $t in the table" grep -q "^[a-z]*,$t," "$T/o/bench.csv"
 done
 
@@ -86,8 +86,8 @@ for f in color-float.csv color-fixed.csv bench-color.csv; do
     expect "$f header" test "$(head -n 1 "$T/o/$f" 2>/dev/null)" = "$cheader"
 done
 cf=$(($(wc -l <"$T/o/color-float.csv") - 1)); cb=$(($(wc -l <"$T/o/bench-color.csv") - 1))
-expect "colour rows: 2 scenes x 12 techniques ($cf)" test "$cf" -eq 24
-expect "bench-color.csv has both number types ($cb)" test "$cb" -eq 48
+expect "colour rows: 2 scenes x 13 techniques ($cf)" test "$cf" -eq 26
+expect "bench-color.csv has both number types ($cb)" test "$cb" -eq 52
 bad=$(awk -F, 'NR > 1 {
     num = "^-?[0-9]+(\\.[0-9]+)?$"
     if (NF != 9) { print "fields " NR; next }
@@ -99,7 +99,7 @@ bad=$(awk -F, 'NR > 1 {
     if ($2 ~ /^hbil/ && $3 != 2) print "hbil frames: line " NR
 }' "$T/o/bench-color.csv")
 expect "every colour row finite and in range${bad:+: $bad}" test -z "$bad"
-for t in hbil hbil-1x hbil-full gtao hbao ssao vo ssdo bentcone reference; do
+for t in hbil hbil-1x hbil-full hbil-3l gtao hbao ssao vo ssdo bentcone reference; do
     expect "colour of $t" grep -q "^[a-z]*,$t,.*,float," "$T/o/bench-color.csv"
 done
 
@@ -138,10 +138,10 @@ else
 fi
 expect "bench.svg: <svg ... </svg>" sh -c "head -n 1 '$svg' | grep -q '^<svg' && tail -n 1 '$svg' | grep -q '^</svg>'"
 lines=$(grep -c '<polyline fill="none" stroke="#[0-9a-f]*" stroke-width="2"' "$svg")
-expect "bench.svg: a polyline per technique and number type ($lines)" test "$lines" -eq 22
+expect "bench.svg: a polyline per technique and number type ($lines)" test "$lines" -eq 24
 expect "bench.svg: no NaN/inf coordinates" sh -c "! grep -qi 'nan\|inf' '$svg'"
 
-# contact sheet: 5x3 tiles (eleven techniques and the reference) with 2-pixel borders
+# contact sheet: 5x3 tiles (twelve techniques and the reference) with 2-pixel borders
 cw=$((5 * W + 12)); ch=$((3 * H + 8))
 ppm="$T/o/contact.ppm"
 expect "contact.ppm header" test "$(head -c 20 "$ppm" | tr '\n' ' ' | cut -d' ' -f1-4)" = "P6 $cw $ch 255"
@@ -161,7 +161,7 @@ if command -v python3 >/dev/null 2>&1; then
     expect "bench-color.svg parses (python3)" python3 -c "import sys, xml.dom.minidom; xml.dom.minidom.parse(sys.argv[1])" "$csvg"
 fi
 dots=$(grep -c '<circle' "$csvg")
-expect "bench-color.svg: a dot per technique and number type ($dots)" test "$dots" -eq 24
+expect "bench-color.svg: a dot per technique and number type ($dots)" test "$dots" -eq 26
 expect "bench-color.svg: no NaN/inf" sh -c "! grep -qi 'nan\|inf' '$csvg'"
 png_is "$T/o/contact-color.png" $((5 * W + 12)) $((3 * H + 8)) 2
 

@@ -165,7 +165,8 @@ TEST(every_int_field_at_its_extremes)
     SWEEP_INT(far_mode, "far_mode", { -1, REFUSE }, { 0, ACCEPT }, { 1, ACCEPT }, { 2, REFUSE }, { INT_MAX, REFUSE });
     SWEEP_INT(shadow_pcf, "shadow_pcf", { -1, REFUSE }, { 0, ACCEPT }, { 1, ACCEPT }, { 2, REFUSE }, { INT_MAX, REFUSE });
     SWEEP_INT(depth_layers, "depth_layers", { INT_MIN, REFUSE }, { -1, REFUSE }, { 0, ACCEPT }, { 1, ACCEPT },
-              { 2, REFUSE }, { TG_MAX_DEPTH_LAYERS, REFUSE }, { INT_MAX, REFUSE });   /* technique hbil */
+              { 2, ACCEPT }, { TG_MAX_DEPTH_LAYERS, ACCEPT }, { TG_MAX_DEPTH_LAYERS + 1, REFUSE },
+              { INT_MAX, REFUSE });   /* technique hbil, read at full resolution */
     SWEEP_INT(shadow_map_size, "shadow_map_size", { INT_MIN, ACCEPT }, { 0, ACCEPT }, { 1, REFUSE },
               { TG_MIN_SHADOW_MAP - 1, REFUSE }, { TG_MIN_SHADOW_MAP, ACCEPT }, { TG_MAX_SHADOW_MAP, ACCEPT },
               { TG_MAX_SHADOW_MAP + 1, REFUSE }, { 13378, REFUSE }, { 1518500250, REFUSE }, { INT_MAX, REFUSE });
@@ -284,18 +285,19 @@ TEST(thickness_unset_follows_the_radius)
     }
 }
 
-/* Further depth layers (technique ssilvb): accepted up to
+/* Further depth layers (techniques ssilvb and hbil): accepted up to
  * TG_MAX_DEPTH_LAYERS, and each a plane of 4 bytes a pixel in the plan
- * only when asked, rendered finite. */
-TEST(depth_layers_are_planned_only_when_asked)
+ * only when asked, rendered finite; HBIL's kernel over them is the
+ * bitmask's pass, not the horizon kernel's. */
+static void layers_planned(tg_technique technique)
 {
     size_t bytes[TG_MAX_DEPTH_LAYERS + 1];
     int layers, b;
     for (layers = 1; layers <= TG_MAX_DEPTH_LAYERS + 1; layers++) {
         rendered r;
         tg_request q = small_request();
-        int back = 0, behind = 0;
-        q.technique = TG_TECH_SSILVB;
+        int back = 0, behind = 0, horizon = 0, bitmask = 0;
+        q.technique = technique;
         q.depth_layers = layers;
         if (layers > TG_MAX_DEPTH_LAYERS) {
             CHECK(!setup(&r, scene_text, &q) && strstr(r.msg, "depth_layers must be"), "%d layers: %s", layers, r.msg);
@@ -307,6 +309,13 @@ TEST(depth_layers_are_planned_only_when_asked)
             back += strstr(r.plan.buffers[b].name, "back-face depth") != NULL;
             behind += strstr(r.plan.buffers[b].name, "behind the back face") != NULL;
         }
+        for (b = 0; b < r.plan.pass_count; b++) {
+            horizon += strstr(r.plan.passes[b], "HBIL horizon kernel") != NULL;
+            bitmask += strstr(r.plan.passes[b], "HBIL over the depth layers") != NULL;
+        }
+        if (technique == TG_TECH_HBIL)
+            CHECK(horizon == (layers < 2) && bitmask == (layers >= 2), "%d layers: horizon kernel %d, bitmask %d",
+                  layers, horizon, bitmask);
         bytes[layers] = r.plan.total_bytes;
         CHECK(back == (layers >= 2) && behind == (layers >= 3), "%d layers: back-face plane %d, behind %d", layers,
               back, behind);
@@ -319,6 +328,26 @@ TEST(depth_layers_are_planned_only_when_asked)
             tg_error err;
             CHECK(tg_frame_render(r.frame, 0, &err) == TG_OK && all_finite(&r), "%d layers: rendered finite", layers);
         }
+        teardown(&r);
+    }
+}
+
+TEST(depth_layers_are_planned_only_when_asked)
+{
+    static const tg_technique unread[] = { TG_TECH_GTAO, TG_TECH_SSAO, TG_TECH_REFERENCE, TG_TECH_PATHTRACE };
+    size_t k;
+    layers_planned(TG_TECH_SSILVB);
+    layers_planned(TG_TECH_HBIL);
+    /* refused where nothing reads them: other techniques, and --gi-quarter's
+     * half-resolution kernel (one layer) */
+    for (k = 0; k < sizeof unread / sizeof unread[0] + 1; k++) {
+        rendered r;
+        tg_request q = small_request();
+        q.depth_layers = 2;
+        if (k < sizeof unread / sizeof unread[0]) q.technique = unread[k];
+        else q.gi_scale = 2;
+        CHECK(!setup(&r, scene_text, &q) && strstr(r.msg, "depth_layers must be 0..1 for technique "),
+              "%s%s: %s", tg_technique_name(q.technique), q.gi_scale == 2 ? " quarter" : "", r.msg);
         teardown(&r);
     }
 }

@@ -359,8 +359,12 @@ typedef struct config {
 } config;
 
 /* The request's depth layers for a curve: "ssilvb-3l" is the visibility
- * bitmask with the G-buffer's back faces and the surfaces behind them. */
-static int label_layers(const char *label) { return strcmp(label, "ssilvb-3l") == 0 ? 3 : 1; }
+ * bitmask with the G-buffer's back faces and the surfaces behind them,
+ * "hbil-3l" HBIL over them (its kernel that bitmask, at full resolution). */
+static int label_layers(const char *label)
+{
+    return strcmp(label, "ssilvb-3l") == 0 || strcmp(label, "hbil-3l") == 0 ? 3 : 1;
+}
 
 #define MAXCFG 96
 static config cfgs[MAXCFG];
@@ -392,6 +396,10 @@ static void build_sweep(void)
     add("hbil-full", TG_TECH_HBIL, 1, 8, 1.0, 1, 1);
     add("hbil-full", TG_TECH_HBIL, 2, 16, 1.0, 1, 1);
     add("hbil-full", TG_TECH_HBIL, TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES, 1.0, 1, 1);
+    /* HBIL over three depth layers (request.depth_layers 3) */
+    add("hbil-3l", TG_TECH_HBIL, 1, 8, 1.0, 1, 1);
+    add("hbil-3l", TG_TECH_HBIL, 2, 16, 1.0, 1, 1);
+    add("hbil-3l", TG_TECH_HBIL, TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES, 1.0, 1, 1);
     for (i = 0; i < 6; i++) add("gtao", TG_TECH_GTAO, ss[i][0], ss[i][1], 1.0, 0, 1);
     for (i = 0; i < 6; i++) add("hbao", TG_TECH_HBAO, ss[i][0], ss[i][1], 1.0, 0, 1);
     for (i = 0; i < 6; i++) add("ssao", TG_TECH_SSAO, 2, ssao_n[i], 1.0, 0, 1);
@@ -663,13 +671,13 @@ typedef struct color_config {
     int interleave, gi_scale, converge;   /* converge: HBIL, rendered over --color-frames frames */
 } color_config;
 
-#define COLOR_TECHS 12
+#define COLOR_TECHS 13
 static const color_config color_cfgs[COLOR_TECHS] = {
     { "hbil", TG_TECH_HBIL, 1, 2, 1 }, { "hbil-1x", TG_TECH_HBIL, 1, 1, 1 }, { "hbil-full", TG_TECH_HBIL, 0, 1, 1 },
     { "gtao", TG_TECH_GTAO, 1, 1, 0 }, { "hbao", TG_TECH_HBAO, 1, 1, 0 }, { "ssao", TG_TECH_SSAO, 1, 1, 0 },
     { "vo", TG_TECH_VO, 1, 1, 0 }, { "ssdo", TG_TECH_SSDO, 1, 1, 0 }, { "bentcone", TG_TECH_BENTCONE, 1, 1, 0 },
     { "reference", TG_TECH_REFERENCE, 1, 1, 0 }, { "ssilvb", TG_TECH_SSILVB, 1, 1, 0 },
-    { "ssilvb-3l", TG_TECH_SSILVB, 1, 1, 0 }
+    { "ssilvb-3l", TG_TECH_SSILVB, 1, 1, 0 }, { "hbil-3l", TG_TECH_HBIL, 1, 1, 1 }
 };
 
 typedef struct color_ref {
@@ -1281,10 +1289,10 @@ static int cmp_ms(const void *a, const void *b)
 }
 
 static const char *tech_names[] = { "hbil", "hbil-1x", "hbil-full", "gtao", "hbao", "ssao", "vo", "ssdo", "bentcone",
-                                    "ssilvb", "ssilvb-3l" };
+                                    "ssilvb", "ssilvb-3l", "hbil-3l" };
 static const char *tech_colors[] = { "#d62728", "#e377c2", "#ff7f0e", "#1f77b4", "#17becf", "#7f7f7f", "#2ca02c", "#9467bd", "#8c564b",
-                                     "#bcbd22", "#393b79" };
-#define NTECH 11
+                                     "#bcbd22", "#393b79", "#8b0000" };
+#define NTECH 12
 
 /* An SVG plot W x H on white. */
 static void svg_begin(FILE *f, int W, int H)

@@ -20,6 +20,10 @@ For every scene it renders, with BUILD/tinygi (float):
               pixel's surface taken as infinitely thick), as closely as the
               kernel gets to it; what any estimator that reads one depth
               layer converges to;
+  hbil three layers  --aov ao --frames N --depth-layers 3: HBIL as a frame
+              gives it over three depth layers (its kernel the visibility
+              bitmask below at the default 2 slices x 32 samples, the 4x4
+              sub-images' angles, filter and temporal accumulation);
   three layers --technique ssilvb --depth-layers 3 --slices 8 --samples
               128: the visibility bitmask over the depth buffer, the nearest
               back face behind it and the surface behind that (the
@@ -29,7 +33,8 @@ For every scene it renders, with BUILD/tinygi (float):
   depth       --aov depth: the geometry mask (depth 0 is sky).
 
 and reports over the geometry pixels the RMSE and the mean difference
-(bias) of hbil, of one layer and of three layers against the reference.
+(bias) of hbil, of one layer, of hbil over three layers and of three
+layers against the reference.
 What one layer misses, hbil misses too: hidden surfaces (the floor under a
 sphere, the far side of a column) and surfaces off the screen (the room's
 walls between the camera and the image's edge).  The rest, hbil against one
@@ -37,8 +42,9 @@ layer, is the interleaved kernel's own error.  Three layers give back the
 hidden surfaces; the surfaces off the screen stay missing.
 
 Results: OUT/screen-limits.md (the table) and OUT/screen-limits.png: a row
-per scene of reference | hbil | one layer | three layers | hbil - reference
-| one layer - reference | three layers - reference, the differences red
+per scene of reference | hbil | one layer | hbil three layers | three layers
+| hbil - reference | one layer - reference | hbil three layers - reference
+| three layers - reference, the differences red
 where brighter (less occluded) than the reference and blue where darker,
 full colour at +-0.25.
 """
@@ -131,13 +137,14 @@ def main():
         "reference": ["--technique", "reference", "--aov", "ao"],
         "hbil": ["--aov", "ao", "--frames", str(args.frames)],
         "one layer": ["--aov", "ao", "--no-interleave", "--slices", "8", "--samples", "128"],
+        "hbil three layers": ["--aov", "ao", "--frames", str(args.frames), "--depth-layers", "3"],
         "three layers": ["--aov", "ao", "--technique", "ssilvb", "--depth-layers", "3", "--slices", "8",
                          "--samples", "128"],
         "depth": ["--aov", "depth"],
     }
     table = ["| scene | hbil: RMSE / bias | one layer: RMSE / bias | hbil against one layer: RMSE "
-             "| three layers: RMSE / bias |",
-             "| --- | --- | --- | --- | --- |"]
+             "| hbil, three layers: RMSE / bias | three layers: RMSE / bias |",
+             "| --- | --- | --- | --- | --- | --- |"]
     sheet = []
     for scene in args.scenes.split(","):
         img = {}
@@ -147,28 +154,30 @@ def main():
             img[name] = read_pfm(path)
         w, h = img["depth"][0], img["depth"][1]
         ref, hb, one, dep = img["reference"][2], img["hbil"][2], img["one layer"][2], img["depth"][2]
-        three = img["three layers"][2]
+        three, hb3 = img["three layers"][2], img["hbil three layers"][2]
         e_h, e_o, e_ho = error(hb, ref, dep), error(one, ref, dep), error(hb, one, dep)
-        e_3 = error(three, ref, dep)
-        table.append("| %s %s | %.3f / %+.3f | %.3f / %+.3f | %.3f | %.3f / %+.3f |"
-                     % (scene, args.size, e_h[0], e_h[1], e_o[0], e_o[1], e_ho[0], e_3[0], e_3[1]))
-        print("%-8s hbil %.3f / %+.3f   one layer %.3f / %+.3f   hbil vs one layer %.3f   three layers %.3f / %+.3f"
-              % (scene, e_h[0], e_h[1], e_o[0], e_o[1], e_ho[0], e_3[0], e_3[1]))
+        e_3, e_h3 = error(three, ref, dep), error(hb3, ref, dep)
+        table.append("| %s %s | %.3f / %+.3f | %.3f / %+.3f | %.3f | %.3f / %+.3f | %.3f / %+.3f |"
+                     % (scene, args.size, e_h[0], e_h[1], e_o[0], e_o[1], e_ho[0], e_h3[0], e_h3[1], e_3[0], e_3[1]))
+        print("%-8s hbil %.3f / %+.3f   one layer %.3f / %+.3f   hbil vs one layer %.3f   hbil three layers "
+              "%.3f / %+.3f   three layers %.3f / %+.3f"
+              % (scene, e_h[0], e_h[1], e_o[0], e_o[1], e_ho[0], e_h3[0], e_h3[1], e_3[0], e_3[1]))
         gap = [(255, 255, 255)] * 4
         for y in range(h):
             row = []
-            for panel in (ref, hb, one, three):
+            for panel in (ref, hb, one, hb3, three):
                 row += [grey(v) if d > 0 else (40, 40, 40) for v, d in zip(panel[y], dep[y])] + gap
-            for panel in (hb, one, three):
+            for panel in (hb, one, hb3, three):
                 row += [signed(v - r) if d > 0 else (40, 40, 40) for v, r, d in zip(panel[y], ref[y], dep[y])] + gap
             sheet.append(row[:-4])
-        sheet += [[(255, 255, 255)] * (7 * w + 24)] * 4
+        sheet += [[(255, 255, 255)] * (9 * w + 32)] * 4
     sheet = sheet[:-4]
     write_png(os.path.join(args.out, "screen-limits.png"), len(sheet[0]), len(sheet), sheet)
     md = ["# What screen space cannot see", "",
           "`python3 tools/screen_limits.py --size %s --frames %d` (AO against `--technique reference`, "
-          "over geometry pixels; one layer: `--no-interleave --slices 8 --samples 128`; three layers: "
-          "`--technique ssilvb --depth-layers 3 --slices 8 --samples 128`)." % (args.size, args.frames),
+          "over geometry pixels; one layer: `--no-interleave --slices 8 --samples 128`; hbil, three layers: "
+          "`--frames %d --depth-layers 3`; three layers: `--technique ssilvb --depth-layers 3 --slices 8 "
+          "--samples 128`)." % (args.size, args.frames, args.frames),
           ""] + table
     with open(os.path.join(args.out, "screen-limits.md"), "w") as f:
         f.write("\n".join(md) + "\n")
