@@ -4,7 +4,8 @@
  * requests that push the numerics (grazing planes, geometry through the
  * near plane and behind the camera, degenerate triangles, extreme fov,
  * near/far and scale, tiny and odd framebuffers, many frames, camera cuts,
- * fast motion), each rendered with every technique in this number type.
+ * fast motion), each rendered with every technique in this number type
+ * (and HBIL and the bitmask over three depth layers).
  * For every frame and every technique:
  *   - every AOV value is finite; depth >= 0;
  *   - AO in [0, 1]; cone in [0, pi/2];
@@ -70,21 +71,24 @@ typedef struct hard_case {
     const char *mesh;     /* the OBJ text every mesh path reads (NULL: none) */
 } hard_case;
 
-/* Run a case with technique t twice; check every frame of the first run and
- * the bits of both runs' last frames.  Returns 1 when it rendered. */
-static int run_technique(const hard_case *c, int t)
+/* Run a case with technique t over `layers` depth layers twice; check
+ * every frame of the first run and the bits of both runs' last frames.
+ * Returns 1 when it rendered. */
+static int run_layers(const hard_case *c, int t, int layers)
 {
     rendered a, b;
     tg_request q;
     tg_error err;
     int f, ok_a, ok_b, rendered_ok = 0;
-    char why[256] = "";
+    char why[256] = "", tname[64];
+    snprintf(tname, sizeof tname, "%s%s", tg_technique_name((tg_technique)t), layers > 1 ? " over 3 layers" : "");
     tg_request_defaults(&q);
     q.width = c->width ? c->width : 16;
     q.height = c->height ? c->height : 12;
     q.frames = c->frames ? c->frames : 1;
     q.aovs = ALL_AOVS;
     q.technique = (tg_technique)t;
+    q.depth_layers = layers;
     q.shadow_map_size = 32;
     q.samples = c->samples ? c->samples : (t == TG_TECH_REFERENCE ? 16 : 0);
     q.slices = c->slices;
@@ -95,26 +99,26 @@ static int run_technique(const hard_case *c, int t)
     fixture_mesh_text = NULL;
     if (!ok_a || !ok_b) {
         int refused = TG_FIXED && c->may_refuse && a.status == TG_ERR_INPUT && strstr(a.msg, "error: ") && strlen(a.msg) > 20;
-        CHECK(refused, "%s / %s: setup failed (%d): %s", c->name, tg_technique_name((tg_technique)t), (int)a.status, a.msg);
+        CHECK(refused, "%s / %s: setup failed (%d): %s", c->name, tname, (int)a.status, a.msg);
         teardown(&a); teardown(&b);
         return 0;
     }
     for (f = 0; f < q.frames; f++) {
         tg_status sa = tg_frame_render(a.frame, f, &err), sb = tg_frame_render(b.frame, f, &err);
         int bad;
-        CHECK(sa == TG_OK && sb == TG_OK, "%s / %s: frame %d render failed", c->name, tg_technique_name((tg_technique)t), f);
+        CHECK(sa == TG_OK && sb == TG_OK, "%s / %s: frame %d render failed", c->name, tname, f);
         if (sa != TG_OK || sb != TG_OK) break;
         /* checking every frame of a long run costs more than rendering it */
         if (f < 8 || f == q.frames - 1 || f % 97 == 0) {
             bad = frame_violations(&a, why, sizeof why);
             CHECK(bad == 0, "%s / %s frame %d: %d violations, first: %s", c->name,
-                  tg_technique_name((tg_technique)t), f, bad, why);
+                  tname, f, bad, why);
             if (bad) break;
         }
         if (f == q.frames - 1) {
             size_t na, nb;
             unsigned char *ra = raw_aovs(&a, &na), *rb = raw_aovs(&b, &nb);
-            CHECK(na == nb && memcmp(ra, rb, na) == 0, "%s / %s: two runs differ", c->name, tg_technique_name((tg_technique)t));
+            CHECK(na == nb && memcmp(ra, rb, na) == 0, "%s / %s: two runs differ", c->name, tname);
             free(ra); free(rb);
             rendered_ok = 1;
         }
@@ -123,10 +127,18 @@ static int run_technique(const hard_case *c, int t)
     return rendered_ok;
 }
 
+static int run_technique(const hard_case *c, int t) { return run_layers(c, t, 1); }
+
+/* Every technique, and the two that read further depth layers over three
+ * (HBIL's kernel then the visibility bitmask). */
 static void run_case(const hard_case *c)
 {
     int t;
     for (t = 0; t < TG_TECH_COUNT; t++) run_technique(c, t);
+#if !TG_NO_TECHNIQUES
+    run_layers(c, TG_TECH_HBIL, 3);
+    run_layers(c, TG_TECH_SSILVB, 3);
+#endif
 }
 
 /* ---- scenes ---- */
