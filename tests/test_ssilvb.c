@@ -366,6 +366,31 @@ TEST(depth_layers_against_the_reference)
     CHECK(err[2] < 0.05 && fabs(bias[2]) < 0.02, "three layers: rmse %g, bias %g", err[2], bias[2]);
 }
 
+/* The groove's floor within 1.5 of the wall with the scene's further
+ * layers (s->back, s->behind) against the exact wall (radius 1): the
+ * pixels counted, *rmse and *bias. */
+static int groove_floor_with_layers(scene *s, const tgi_ssilvb_params *p, int layers, double *rmse,
+                                    double *bias)
+{
+    static outputs o;
+    ao_pass io;
+    int i, n = 0;
+    double se = 0, sum = 0;
+    io_for(&io, s, &o, 0);
+    io_with_layers(&io, s, layers);
+    run_vb(&io, p, 0, H);
+    io_read(&io);
+    for (i = 0; i < W * H; i++) {
+        double d;
+        if (s->sky[i] || s->wrect[i] != 0 || fabs(s->wpos[i][2]) > 10 || s->wpos[i][0] > 1.5) continue;
+        d = check_d(o.ao[i]) - wall_ao(s->wpos[i][0], 1.0);
+        se += d * d; sum += d; n++;
+    }
+    *rmse = n ? sqrt(se / n) : 1;
+    *bias = n ? sum / n : 1;
+    return n;
+}
+
 /* Every surface a twosided sheet (its back face at its own depth, as the
  * rasterizer's back layer holds one): the constant thickness stands in,
  * as without layers, and the groove's floor sees the wall as the exact
@@ -374,25 +399,14 @@ TEST(depth_layers_against_the_reference)
 TEST(twosided_sheets_keep_the_constant_thickness)
 {
     static scene s;
-    static outputs o;
-    ao_pass io;
     tgi_ssilvb_params p = vb_params(1, 1000);
-    int i, n = 0;
-    double se = 0;
+    int i, n;
+    double rmse, bias;
     groove(&s);
     for (i = 0; i < W * H; i++) { s.back[i] = s.sky[i] ? 0 : check_d(s.depth[i]); s.behind[i] = 0; }
-    io_for(&io, &s, &o, 0);
-    io_with_layers(&io, &s, 2);
-    run_vb(&io, &p, 0, H);
-    io_read(&io);
-    for (i = 0; i < W * H; i++) {
-        double d;
-        if (s.sky[i] || s.wrect[i] != 0 || fabs(s.wpos[i][2]) > 10 || s.wpos[i][0] > 1.5) continue;
-        d = check_d(o.ao[i]) - wall_ao(s.wpos[i][0], 1.0);
-        se += d * d; n++;
-    }
-    printf("# groove of twosided sheets, %d floor pixels: rmse %.4f against the exact wall\n", n, sqrt(se / n));
-    CHECK(n > 100 && sqrt(se / n) < 0.08, "%d pixels, rmse %g", n, sqrt(se / n));
+    n = groove_floor_with_layers(&s, &p, 2, &rmse, &bias);
+    printf("# groove of twosided sheets, %d floor pixels: rmse %.4f against the exact wall\n", n, rmse);
+    CHECK(n > 100 && rmse < 0.08, "%d pixels, rmse %g", n, rmse);
 }
 
 /* The groove again with further layers, its surfaces one-sided (no back
@@ -407,27 +421,15 @@ TEST(twosided_sheets_keep_the_constant_thickness)
 TEST(one_sided_boundaries_close_like_a_horizon)
 {
     static scene s;
-    static outputs o;
-    ao_pass io;
     tgi_ssilvb_params p = vb_params(1, 0.1);   /* a thin constant thickness: the layers decide */
-    int i, n = 0;
-    double se = 0, bias = 0;
+    int i, n;
+    double rmse, bias;
     groove(&s);
     for (i = 0; i < W * H; i++) { s.back[i] = 0; s.behind[i] = 0; }
-    io_for(&io, &s, &o, 0);
-    io_with_layers(&io, &s, 3);
-    run_vb(&io, &p, 0, H);
-    io_read(&io);
-    for (i = 0; i < W * H; i++) {
-        double d;
-        if (s.sky[i] || s.wrect[i] != 0 || fabs(s.wpos[i][2]) > 10 || s.wpos[i][0] > 1.5) continue;
-        d = check_d(o.ao[i]) - wall_ao(s.wpos[i][0], 1.0);
-        se += d * d; bias += d; n++;
-    }
+    n = groove_floor_with_layers(&s, &p, 3, &rmse, &bias);
     printf("# groove of one-sided boundaries, three layers, %d floor pixels: rmse %.4f, bias %+.4f against the exact "
-           "wall\n", n, sqrt(se / n), bias / n);
-    CHECK(n > 100 && sqrt(se / n) < 0.06 && fabs(bias / n) < 0.014, "%d pixels, rmse %g, bias %g", n, sqrt(se / n),
-          bias / n);
+           "wall\n", n, rmse, bias);
+    CHECK(n > 100 && rmse < 0.06 && fabs(bias) < 0.014, "%d pixels, rmse %g, bias %g", n, rmse, bias);
 }
 
 /* tgi_ssilvb_params.to_edge (HBIL over the layers, hbil_passes.c): with a
