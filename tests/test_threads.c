@@ -240,12 +240,13 @@ TEST(moving_scene_every_technique_same_bits)
         snprintf(what, sizeof what, "moving scene, %s", tg_technique_name(q.technique));
         same_with_every_pool(what, moving, &q);
     }
-    for (cfg = 0; cfg < 3; cfg++) { /* HBIL: quarter, full-resolution kernel, no temporal */
+    for (cfg = 0; cfg < 4; cfg++) { /* HBIL: quarter, full-resolution kernel, no temporal, three depth layers */
         tg_request q = request(W, H, ALL_AOVS);
         q.frames = 4;
         if (cfg == 0) q.gi_scale = 2;
         if (cfg == 1) q.interleave = 0;
         if (cfg == 2) { q.temporal = 0; q.gi_scale = 2; q.shadow_pcf = 0; }
+        if (cfg == 3) q.depth_layers = TG_NO_TECHNIQUES ? 1 : 3;
         snprintf(what, sizeof what, "moving scene, hbil configuration %d", cfg);
         same_with_every_pool(what, moving, &q);
     }
