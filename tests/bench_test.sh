@@ -171,4 +171,10 @@ png_is "$T/o/contact-color.png" $((5 * W + 12)) $((3 * H + 8)) 2
 "$F" frobnicate --out "$T/x" >/dev/null 2>&1; expect "unknown command: exit 2" test $? -eq 2
 "$F" report --out "$T/empty" >/dev/null 2>&1; expect "report without rows: exit 2" test $? -eq 2
 "$F" run --pt-samples 1 --out "$T/x" >/dev/null 2>&1; expect "bad pt-samples: exit 2" test $? -eq 2
+"$F" run --pt-samples 1000 --out "$T/x" >/dev/null 2>&1; expect "pt-samples past 512 not a multiple of 512: exit 2" test $? -eq 2
+
+# a reference of more paths than a frame takes: traced over frames (two halves of two)
+"$F" run --size 16x12 --runs 1 --scenes cornell --pt-samples 1024 --color-frames 2 --only color --out "$T/big" >/dev/null 2>&1
+expect "--pt-samples 1024: traced, every row says 1024 paths" \
+    sh -c "test \$(awk -F, 'NR > 1 && \$9 != 1024' '$T/big/color-float.csv' | wc -l) -eq 0 && test \$(wc -l <'$T/big/color-float.csv') -gt 1"
 summary

@@ -21,11 +21,14 @@
  * --color-frames frames, the others one frame; plus "reference", the
  * ray-traced AO and one-bounce near field composed like the others) against
  * the path-traced reference (technique pathtrace, --pt-samples paths per
- * pixel, its default bounces; cached per scene): colour RMSE over geometry
+ * pixel, default 1024, in frames of at most TG_MAX_SAMPLES paths, each
+ * frame index drawing other paths; its default bounces; cached per scene):
+ * colour RMSE over geometry
  * pixels with every channel clamped to [0, 1], and the energy ratio
  * sum Lo / sum Lo_ref (unclamped).  The reference is traced as two halves
  * with different seeds: their difference gives its own noise (RMSE of the
- * average), the floor under every technique's colour RMSE.  Written to
+ * average), the floor under every technique's colour RMSE, and the report
+ * also gives each RMSE with it removed (noise_removed).  Written to
  * DIR/color-<type>.csv; the report adds bench-color.csv, a section of
  * bench.md, bench-color.svg (colour RMSE against ms) and, from the float
  * run, contact-color.ppm/.png (every technique's colour beside the path
@@ -70,7 +73,7 @@
 /* ------------------------------------------------------------------ */
 /* options */
 
-static int opt_w = 160, opt_h = 120, opt_runs = 5, opt_ref_samples = 256, opt_pt_samples = 256, opt_color_frames = 60;
+static int opt_w = 160, opt_h = 120, opt_runs = 5, opt_ref_samples = 256, opt_pt_samples = 1024, opt_color_frames = 60;
 static const char *opt_out = "build/bench";
 static char opt_scenes[256] = "";
 static char opt_only[32] = "";     /* "": everything; "color" or "multibounce": that part alone */
@@ -730,27 +733,45 @@ static int load_color_ref(const char *path, color_ref *r, int n)
     return ok;
 }
 
+/* The mean colour of frames [f0, f0 + count) of an open path-tracing frame
+ * (each frame index draws other paths), malloc'd. */
+static float *path_traced_mean(frame_run *fr, int f0, int count)
+{
+    int n = opt_w * opt_h, i, k;
+    tg_error err;
+    float *sum = NULL;
+    for (k = 0; k < count; k++) {
+        float *c;
+        tg_frame_render(fr->frame, f0 + k, &err);
+        c = read_aov(fr->frame, TG_AOV_COLOR, opt_w, opt_h);
+        if (!sum) { sum = c; continue; }
+        for (i = 0; i < 3 * n; i++) sum[i] += c[i];
+        free(c);
+    }
+    for (i = 0; i < 3 * n; i++) sum[i] /= (float)count;
+    return sum;
+}
+
 /* The path tracer's colour for a scene, as two halves of --pt-samples paths
- * (frame indices 0 and 1 draw different paths), averaged; cached. */
+ * (each half frames of at most TG_MAX_SAMPLES paths, every frame index
+ * drawing other paths), averaged; cached. */
 static void color_reference(tg_scene *s, const char *name, color_ref *r)
 {
     char path[700], dir[620];
     int n = opt_w * opt_h, i, half = opt_pt_samples / 2;
+    int per_frame = half < TG_MAX_SAMPLES ? half : TG_MAX_SAMPLES, frames = half / per_frame;
     frame_run fr;
-    tg_error err;
     tg_request q;
     float *a, *b;
     double t0, e;
     FILE *f;
     snprintf(path, sizeof path, "%s/ref/%s-%dx%d-pt%d.bin", opt_out, name, opt_w, opt_h, opt_pt_samples);
     if (load_color_ref(path, r, n)) return;
-    q = base_request(TG_TECH_PATHTRACE, 0, half, -1, AOVBIT(TG_AOV_COLOR));
+    q = base_request(TG_TECH_PATHTRACE, 0, per_frame, -1, AOVBIT(TG_AOV_COLOR));
     if (!frame_open(&fr, s, &q)) die("path-traced reference frame", name);
     t0 = cpu_seconds();
-    tg_frame_render(fr.frame, 0, &err);
-    a = read_aov(fr.frame, TG_AOV_COLOR, opt_w, opt_h);
-    tg_frame_render(fr.frame, 1, &err);
-    b = read_aov(fr.frame, TG_AOV_COLOR, opt_w, opt_h);
+    a = path_traced_mean(&fr, 0, frames);
+    b = path_traced_mean(&fr, frames, frames);
     r->sky = read_sky(fr.frame, n);
     printf("  path-traced reference %s (%d paths, %d bounces): %.0f ms CPU\n", name, 2 * half,
            fr.plan.request.bounces, (cpu_seconds() - t0) * 1e3);
@@ -795,7 +816,7 @@ static float *color_run(tg_scene *s, const color_config *c, double radius, doubl
     double u[MAX_RUNS];
     frame_run fr;
     tg_error err;
-    tg_request q = base_request(c->tech, 2, 16, radius, AOVBIT(TG_AOV_COLOR));
+    tg_request q = base_request(c->tech, TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES, radius, AOVBIT(TG_AOV_COLOR));
     int k, frames = c->converge ? opt_color_frames : 1;
     float *rgb;
     q.frames = frames + opt_runs;
@@ -1473,8 +1494,17 @@ static int parse_color_row(char *line, int i)
                   &r->rmse, &r->energy, &r->noise, &r->paths) == 9;
 }
 
-/* Means over the scenes of one technique and number type. */
-typedef struct cpoint { double cpu, rmse, energy, noise, emin, emax; int scenes, frames; } cpoint;
+/* An RMSE against a noisy reference without the reference's own noise:
+ * the two add in squares, so sqrt(rmse^2 - noise^2) estimates the RMSE
+ * against the converged image (0 where the noise is the larger). */
+static double noise_removed(double rmse, double noise)
+{
+    return rmse > noise ? sqrt(rmse * rmse - noise * noise) : 0;
+}
+
+/* Means over the scenes of one technique and number type (clean: of
+ * noise_removed). */
+typedef struct cpoint { double cpu, rmse, clean, energy, noise, emin, emax; int scenes, frames; } cpoint;
 
 static int color_point(const char *tech, const char *number, cpoint *p)
 {
@@ -1485,13 +1515,14 @@ static int color_point(const char *tech, const char *number, cpoint *p)
         const crow *r = &crows[i];
         if (strcmp(r->tech, tech) || strcmp(r->number, number)) continue;
         p->cpu += r->cpu; p->rmse += r->rmse; p->energy += r->energy; p->noise += r->noise;
+        p->clean += noise_removed(r->rmse, r->noise);
         if (r->energy < p->emin) p->emin = r->energy;
         if (r->energy > p->emax) p->emax = r->energy;
         p->frames = r->frames;
         p->scenes++;
     }
     if (!p->scenes) return 0;
-    p->cpu /= p->scenes; p->rmse /= p->scenes; p->energy /= p->scenes; p->noise /= p->scenes;
+    p->cpu /= p->scenes; p->rmse /= p->scenes; p->clean /= p->scenes; p->energy /= p->scenes; p->noise /= p->scenes;
     return 1;
 }
 
@@ -1510,21 +1541,23 @@ static void color_report(FILE *md)
     }
     fclose(f);
     fprintf(md, "## Colour against the path-traced reference\n\n");
-    fprintf(md, "Each technique at its default setting (%d slices x %d samples, the scene's radius; HBIL converged over %d frames, the others one frame; `reference`: the ray-traced AO and one-bounce near field, composed like the others) against `--technique pathtrace` (%d paths per pixel in two halves, its default bounces). Colour RMSE over geometry pixels with every channel clamped to [0, 1]; energy: sum Lo / sum Lo_ref (1 = the path tracer's light). The reference's own noise (from its two halves) is a floor under every RMSE. CPU ms: median per frame (converged).\n\n",
+    fprintf(md, "Each technique at its default setting (%d slices x %d samples, the scene's radius; HBIL converged over %d frames, the others one frame; `reference`: the ray-traced AO and one-bounce near field, composed like the others) against `--technique pathtrace` (%d paths per pixel in two halves, its default bounces). Colour RMSE over geometry pixels with every channel clamped to [0, 1]; energy: sum Lo / sum Lo_ref (1 = the path tracer's light). The reference's own noise (from its two halves) is a floor under every RMSE; `noise removed` is sqrt(RMSE^2 - noise^2), the error's estimate against the converged image (0 where the noise is larger). CPU ms: median per frame (converged).\n\n",
             TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES, frames, crows[0].paths);
-    fprintf(md, "| technique | number | CPU ms | colour RMSE | energy (mean) | energy (range over scenes) |\n|---|---|---:|---:|---:|---|\n");
+    fprintf(md, "| technique | number | CPU ms | colour RMSE | noise removed | energy (mean) | energy (range over scenes) |\n"
+                "|---|---|---:|---:|---:|---:|---|\n");
     for (num = 0; num < 2; num++)
         for (k = 0; k < COLOR_TECHS; k++) {
             cpoint p;
             if (!color_point(color_cfgs[k].label, num ? "fixed" : "float", &p)) continue;
-            fprintf(md, "| %s | %s | %.2f | %.4f | %.3f | %.3f..%.3f |\n", color_cfgs[k].label, num ? "fixed" : "float", p.cpu,
-                    p.rmse, p.energy, p.emin, p.emax);
+            fprintf(md, "| %s | %s | %.2f | %.4f | %.4f | %.3f | %.3f..%.3f |\n", color_cfgs[k].label, num ? "fixed" : "float",
+                    p.cpu, p.rmse, p.clean, p.energy, p.emin, p.emax);
         }
-    fprintf(md, "\n| scene | technique | number | frames | CPU ms | colour RMSE | energy | reference noise |\n|---|---|---|---:|---:|---:|---:|---:|\n");
+    fprintf(md, "\n| scene | technique | number | frames | CPU ms | colour RMSE | noise removed | energy | reference noise |\n"
+                "|---|---|---|---:|---:|---:|---:|---:|---:|\n");
     for (i = 0; i < ncrows; i++) {
         const crow *r = &crows[i];
-        fprintf(md, "| %s | %s | %s | %d | %.2f | %.4f | %.3f | %.4f |\n", r->scene, r->tech, r->number, r->frames, r->cpu,
-                r->rmse, r->energy, r->noise);
+        fprintf(md, "| %s | %s | %s | %d | %.2f | %.4f | %.4f | %.3f | %.4f |\n", r->scene, r->tech, r->number, r->frames,
+                r->cpu, r->rmse, noise_removed(r->rmse, r->noise), r->energy, r->noise);
     }
     fprintf(md, "\n");
 }
@@ -1739,7 +1772,12 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--out")) opt_out = v;
         else if (!strcmp(a, "--ref-samples")) { opt_ref_samples = atoi(v); if (opt_ref_samples < 17 || opt_ref_samples > 256) die("ref-samples must be 17..256", v); }
         else if (!strcmp(a, "--scenes")) snprintf(opt_scenes, sizeof opt_scenes, "%s", v);
-        else if (!strcmp(a, "--pt-samples")) { opt_pt_samples = atoi(v); if (opt_pt_samples < 2 || opt_pt_samples > 2 * TG_MAX_SAMPLES) die("pt-samples must be 2..512", v); }
+        else if (!strcmp(a, "--pt-samples")) {
+            opt_pt_samples = atoi(v);
+            if (opt_pt_samples < 2 || opt_pt_samples > 16 * TG_MAX_SAMPLES ||
+                (opt_pt_samples > 2 * TG_MAX_SAMPLES && opt_pt_samples % (2 * TG_MAX_SAMPLES)))
+                die("pt-samples must be 2..512, or a multiple of 512 up to 4096", v);
+        }
         else if (!strcmp(a, "--only")) {
             if (strcmp(v, "color") && strcmp(v, "multibounce")) die("--only takes color or multibounce", v);
             snprintf(opt_only, sizeof opt_only, "%s", v);
