@@ -174,8 +174,9 @@ static void group_gbuffer(layout *l, tg_frame *f)
         take_gbuffer_planes(l, &f->gb, f->scene, f->width, f->height, 0, "G-buffer, no material [" FMT_G_GEOMETRY "]");
     if (f->needs & TG_NEED_POSE) f->gb.object = (uint16_t *)take(l, "G-buffer object id [16 bits]", f->pixels, 2);
 #if TGI_DEPTH_LAYERS
-    /* the further depth layers: the visibility bitmask's surfaces (request.c
-     * refuses depth_layers 2 and 3 for every other technique) */
+    /* the further depth layers: the visibility bitmask's surfaces, technique
+     * ssilvb's or HBIL's kernel over them (request.c refuses depth_layers 2
+     * and 3 for every other technique and for --gi-quarter) */
     if (!(f->needs & TG_NEED_GI_PASS)) return;
     if (f->request.depth_layers >= 2)
         f->gb.back_depth = (void *)take(l, "G-buffer back-face depth, the second layer [" FMT_BACK "]", f->pixels,
