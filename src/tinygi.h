@@ -543,6 +543,9 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
                                            nor scene giving one: see TG_RADIUS_ENV_DIVISOR) */
 #define TG_RADIUS_ENV_DIVISOR 30        /* a scene without a gi radius gets its bounds' diagonal
                                            without an environment, diagonal / this with one */
+#define TG_RADIUS_LAYERS_DIVISOR 6      /* ... and diagonal / this with one over further depth
+                                           layers (request.depth_layers >= 2), which hold what a
+                                           local radius keeps one layer from taking as solid */
 #define TG_DEFAULT_SHADOW_MAP 0         /* texels per side; 0: each face by the size rule,
                                            about one texel per image pixel (README "Shadows") */
 /* the path-traced reference (technique pathtrace: samples = paths per pixel,

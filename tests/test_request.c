@@ -352,6 +352,38 @@ TEST(depth_layers_are_planned_only_when_asked)
     }
 }
 
+/* A scene with an environment and no gi radius: over further depth layers
+ * its radius is the bounds' diagonal / TG_RADIUS_LAYERS_DIVISOR (6), on
+ * one layer / TG_RADIUS_ENV_DIVISOR (30), for both techniques that read
+ * layers; a radius the scene or the request gives is kept. */
+TEST(gather_radius_reaches_further_over_depth_layers)
+{
+    static const char *text =
+        "camera pos 1 2 -5 target 1 2 0\n"
+        "material m albedo 0.5 0.5 0.5\n"
+        "box min -1 0 0  max 2 4 12  material m\n"   /* diagonal 13 */
+        "env uniform 1 1 1\n";
+    static const tg_technique reads[] = { TG_TECH_HBIL, TG_TECH_SSILVB };
+    int k, layers;
+    for (k = 0; k < 2; k++)
+        for (layers = 1; layers <= TG_MAX_DEPTH_LAYERS; layers++) {
+            rendered r;
+            tg_request q = small_request();
+            double want = 13.0 / (layers >= 2 && !TG_NO_TECHNIQUES ? TG_RADIUS_LAYERS_DIVISOR : TG_RADIUS_ENV_DIVISOR);
+            q.technique = reads[k];
+            q.depth_layers = TG_NO_TECHNIQUES ? 1 : layers;
+            if (!setup_checked(&r, text, &q, "the scene")) continue;
+            CHECK(fabs(check_d(r.plan.request.radius) - want) < 1e-3 * want, "%s, %d layers: radius %g, want %g",
+                  tg_technique_name(reads[k]), layers, check_d(r.plan.request.radius), want);
+            teardown(&r);
+            q.radius = TG_R(0.75f);
+            if (!setup_checked(&r, text, &q, "the scene, a radius asked")) continue;
+            CHECK(r.plan.request.radius == TG_R(0.75f), "%s, %d layers: the request's radius kept",
+                  tg_technique_name(reads[k]), layers);
+            teardown(&r);
+        }
+}
+
 /* The scene's gi values are held to the same limits (by the parser, or
  * else by the plan), with the same words. */
 TEST(scene_gi_values_have_the_same_limits)
@@ -421,6 +453,7 @@ int main(void)
     RUN(radius_and_exposure_at_their_extremes);
     RUN(thickness_unset_follows_the_radius);
     RUN(depth_layers_are_planned_only_when_asked);
+    RUN(gather_radius_reaches_further_over_depth_layers);
     RUN(refusal_names_the_field_and_the_value);
     RUN(scene_gi_values_have_the_same_limits);
     RUN(aov_rows_outside_the_image_are_refused);

@@ -32,6 +32,12 @@ For every scene it renders, with BUILD/tinygi (float):
               the next surface on; what the hidden surfaces cost one layer;
   depth       --aov depth: the geometry mask (depth 0 is sky).
 
+Over further depth layers a scene without a gi radius gets a longer one
+(its diagonal / 6 with an environment, TG_RADIUS_LAYERS_DIVISOR, against /
+30 on one layer; `--explain` prints it): the two layered columns are
+compared with the reference at their own radius (a second reference run
+where it differs).
+
 and reports over the geometry pixels the RMSE and the mean difference
 (bias) of hbil, of one layer, of hbil over three layers and of three
 layers against the reference.
@@ -113,6 +119,16 @@ def error(a, ref, depth):
     return (math.sqrt(se / n), bias / n) if n else (0.0, 0.0)
 
 
+def gather_radius(exe, scene, size, extra):
+    """The radius the plan takes (`--explain`'s 'gather radius R')."""
+    cmd = [exe, "render", "builtin:" + scene, "--size", size, "--explain"] + extra
+    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True)
+    for line in r.stdout.splitlines():
+        if line.startswith("gather radius "):
+            return line.split()[2]
+    sys.exit("screen_limits: %s: no gather radius in the plan" % " ".join(cmd))
+
+
 def render(exe, scene, size, out, extra):
     cmd = [exe, "render", "builtin:" + scene, "--size", size, "-o", out] + extra
     r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True)
@@ -142,23 +158,27 @@ def main():
                          "--samples", "128"],
         "depth": ["--aov", "depth"],
     }
-    table = ["| scene | hbil: RMSE / bias | one layer: RMSE / bias | hbil against one layer: RMSE "
-             "| hbil, three layers: RMSE / bias | three layers: RMSE / bias |",
-             "| --- | --- | --- | --- | --- | --- |"]
+    table = ["| scene | radius: one layer / three | hbil: RMSE / bias | one layer: RMSE / bias "
+             "| hbil against one layer: RMSE | hbil, three layers: RMSE / bias | three layers: RMSE / bias |",
+             "| --- | --- | --- | --- | --- | --- | --- |"]
     sheet = []
     for scene in args.scenes.split(","):
         img = {}
+        r1 = gather_radius(exe, scene, args.size, [])
+        r3 = gather_radius(exe, scene, args.size, ["--depth-layers", "3"])
+        runs["reference, layers"] = ["--technique", "reference", "--aov", "ao", "--radius", r3]
         for name, extra in runs.items():
             path = os.path.join(args.out, "%s-%s.pfm" % (scene, name.replace(" ", "-")))
             render(exe, scene, args.size, path, extra)
             img[name] = read_pfm(path)
         w, h = img["depth"][0], img["depth"][1]
         ref, hb, one, dep = img["reference"][2], img["hbil"][2], img["one layer"][2], img["depth"][2]
-        three, hb3 = img["three layers"][2], img["hbil three layers"][2]
+        three, hb3, ref3 = img["three layers"][2], img["hbil three layers"][2], img["reference, layers"][2]
         e_h, e_o, e_ho = error(hb, ref, dep), error(one, ref, dep), error(hb, one, dep)
-        e_3, e_h3 = error(three, ref, dep), error(hb3, ref, dep)
-        table.append("| %s %s | %.3f / %+.3f | %.3f / %+.3f | %.3f | %.3f / %+.3f | %.3f / %+.3f |"
-                     % (scene, args.size, e_h[0], e_h[1], e_o[0], e_o[1], e_ho[0], e_h3[0], e_h3[1], e_3[0], e_3[1]))
+        e_3, e_h3 = error(three, ref3, dep), error(hb3, ref3, dep)
+        table.append("| %s %s | %s / %s | %.3f / %+.3f | %.3f / %+.3f | %.3f | %.3f / %+.3f | %.3f / %+.3f |"
+                     % (scene, args.size, r1, r3, e_h[0], e_h[1], e_o[0], e_o[1], e_ho[0], e_h3[0], e_h3[1], e_3[0],
+                        e_3[1]))
         print("%-8s hbil %.3f / %+.3f   one layer %.3f / %+.3f   hbil vs one layer %.3f   hbil three layers "
               "%.3f / %+.3f   three layers %.3f / %+.3f"
               % (scene, e_h[0], e_h[1], e_o[0], e_o[1], e_ho[0], e_h3[0], e_h3[1], e_3[0], e_3[1]))
@@ -167,8 +187,8 @@ def main():
             row = []
             for panel in (ref, hb, one, hb3, three):
                 row += [grey(v) if d > 0 else (40, 40, 40) for v, d in zip(panel[y], dep[y])] + gap
-            for panel in (hb, one, hb3, three):
-                row += [signed(v - r) if d > 0 else (40, 40, 40) for v, r, d in zip(panel[y], ref[y], dep[y])] + gap
+            for panel, against in ((hb, ref), (one, ref), (hb3, ref3), (three, ref3)):
+                row += [signed(v - r) if d > 0 else (40, 40, 40) for v, r, d in zip(panel[y], against[y], dep[y])] + gap
             sheet.append(row[:-4])
         sheet += [[(255, 255, 255)] * (9 * w + 32)] * 4
     sheet = sheet[:-4]
@@ -177,7 +197,8 @@ def main():
           "`python3 tools/screen_limits.py --size %s --frames %d` (AO against `--technique reference`, "
           "over geometry pixels; one layer: `--no-interleave --slices 8 --samples 128`; hbil, three layers: "
           "`--frames %d --depth-layers 3`; three layers: `--technique ssilvb --depth-layers 3 --slices 8 "
-          "--samples 128`)." % (args.size, args.frames, args.frames),
+          "--samples 128`; the layered columns against the reference at their own radius)."
+          % (args.size, args.frames, args.frames),
           ""] + table
     with open(os.path.join(args.out, "screen-limits.md"), "w") as f:
         f.write("\n".join(md) + "\n")

@@ -263,6 +263,12 @@ size_t tg_plan_explain(const tg_plan *plan, char *buf, size_t size)
     else put_effects(&t, plan->effects);
     tgi_text_put(&t, "\nskipped: ");
     put_effects(&t, (~plan->effects) & 63u);
+    if (plan->request.technique != TG_TECH_PATHTRACE) {   /* the radius a scene without one gets is sized to it */
+        tgi_text_put(&t, "\ngather radius ");
+        tgi_text_put_real(&t, plan->request.radius);
+        put_number_line(&t, " (world units), slices ", (size_t)plan->request.slices, ", samples ");
+        put_number_line(&t, "", (size_t)plan->request.samples, "");
+    }
     if (plan->request.technique == TG_TECH_SSILVB ||
         (plan->request.technique == TG_TECH_HBIL && plan->request.depth_layers >= 2)) {   /* the bitmask's surfaces */
         tgi_text_put(&t, "\nvisibility bitmask: radius ");

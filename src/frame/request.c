@@ -149,15 +149,22 @@ int tgi_request_refused(const tg_request *r, tg_error *err)
  * (HBIL eq. 15-17): a radius shorter than the scene drops the light of
  * every surface beyond it, so it spans the scene (its bounds' diagonal;
  * the screen bounds the march).  With an environment, directions with
- * nothing within the radius see the sky instead, and a local radius
- * (diagonal / TG_RADIUS_ENV_DIVISOR) keeps a foreground object from
- * occluding, in the depth buffer, what lies far behind it.  A scene
- * without extent gets TG_DEFAULT_RADIUS. */
-static tg_real scene_gather_radius(const tg_scene *s)
+ * nothing within the radius see the sky instead (the environment's ground
+ * too, where the scene's own lit floor is what a path would meet), and a
+ * local radius (diagonal / TG_RADIUS_ENV_DIVISOR) keeps a foreground
+ * object from occluding, in the depth buffer, what lies far behind it.
+ * Over further depth layers what lies behind an object is held, and the
+ * radius reaches further (diagonal / TG_RADIUS_LAYERS_DIVISOR): as far as
+ * the AO of the open scenes stays as close to the reference as on the
+ * local radius, off-screen occluders being what a longer one then misses
+ * (README "HBIL over further depth layers").  A scene without extent gets
+ * TG_DEFAULT_RADIUS. */
+static tg_real scene_gather_radius(const tg_scene *s, int depth_layers)
 {
     tg_real d = tgi_v3_length(tgi_v3_sub(s->bounds_max, s->bounds_min));
     if (d <= 0) return tg_from_int(TG_DEFAULT_RADIUS);
-    if (s->env.type != TG_ENV_NONE) d = tg_div(d, tg_from_int(TG_RADIUS_ENV_DIVISOR));
+    if (s->env.type != TG_ENV_NONE)
+        d = tg_div(d, tg_from_int(depth_layers >= 2 ? TG_RADIUS_LAYERS_DIVISOR : TG_RADIUS_ENV_DIVISOR));
     return tg_min(d, tg_from_int(TG_MAX_RADIUS));
 }
 
@@ -172,7 +179,7 @@ int tgi_request_resolve(tg_request *r, const tg_scene *s, tg_error *err)
     }
     if (r->slices <= 0) r->slices = s->gi.slices > 0 ? s->gi.slices : TG_DEFAULT_SLICES;
     if (r->samples <= 0) r->samples = s->gi.samples > 0 ? s->gi.samples : TG_DEFAULT_SAMPLES;
-    if (r->radius == UNSET_RADIUS) r->radius = s->gi.radius >= 0 ? s->gi.radius : scene_gather_radius(s);
+    if (r->radius == UNSET_RADIUS) r->radius = s->gi.radius >= 0 ? s->gi.radius : scene_gather_radius(s, r->depth_layers);
     if (r->bounces < 0) r->bounces = s->gi.bounces >= 0 ? s->gi.bounces : TG_DEFAULT_BOUNCES;
     if (r->thickness == UNSET_RADIUS) r->thickness = tg_div(r->radius, tg_from_int(TG_THICKNESS_RADIUS_DIVISOR));
     if (r->aovs == 0) r->aovs = 1u << TG_AOV_COLOR;
