@@ -40,6 +40,10 @@
  * the interleave: AO +0.14 too bright; test
  * full_resolution_radius_beyond_150_pixels.) */
 #define HBIL_MAX_RADIUS_UNITS TG_R(16384.0f)
+/* A march whose extent is longer than the image's smaller side over this
+ * (a quarter: a room-wide radius, not an object's) refines its horizon on
+ * more of the fine image's pixels (refine_fine). */
+#define HBIL_LONG_REACH 4
 
 /* The rare paths stay out of the march loop (register pressure).  The
  * gather is not rare (a third of the samples raise the horizon in a
@@ -135,6 +139,7 @@ typedef struct hbil_ctx {
     int fine_i, fine_j;         /* pixel (x, y) is fine's (x fine_ratio + fine_i, y fine_ratio + fine_j) */
     int fine_ratio;             /* 4, or 8 for a sub-image of --gi-quarter's half-res image */
     tg_real inv_fine_ratio;
+    tg_real long_reach;         /* HBIL_LONG_REACH in the march's units (refine_fine) */
 } hbil_ctx;
 
 /* One side of one slice: the horizon and the radiance gathered under it. */
@@ -893,14 +898,25 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
     const int room = dir > 0 ? (major_x ? fg->width : fg->height) - 1 - fa0 : fa0;       /* fine pixels to the edge */
     const int sub_room = dir > 0 ? (major_x ? c->g->width : c->g->height) - 1 - a0 : a0;
     const tg_real ext = tg_mul(mr->extent, tg_from_int(r));                            /* fine pixels */
+    const int long_reach = mr->extent > c->long_reach;
     hbil_fine_best best;
-    int t;
+    int t, w0 = 0;
     best.h = sd->h;
     best.hs = sd->hs;
     best.si = -1;
     if (sd->peak_a >= 0) {
-        const int t0 = r * (sd->peak_a - a0) * dir;                     /* up to the next sub-image pixel, t0 + r */
-        for (t = t0 + 1; t < t0 + r && t <= room && small_from_int(t) <= ext; t++)
+        /* the fine pixels after the peak's sample up to the next sub-image
+         * pixel, t0 + r, and with a long reach those after the sub-image
+         * pixel before it too, from t0 - r (or the first fine pixel) on */
+        const int t0 = r * (sd->peak_a - a0) * dir;
+        w0 = !long_reach ? t0 + 1 : t0 - r + 1 > 1 ? t0 - r + 1 : 1;
+        for (t = w0; t < t0 + r && t <= room && small_from_int(t) <= ext; t++)
+            if (t != t0) fine_sample(c, &best, mr, major_x, fa0, fb0, t, dir);
+    }
+    if (long_reach) {   /* and those before the first sample the window above did not take */
+        const int first = r * (mr->run.da - mr->run.back) * dir;
+        const int stop = sd->peak_a >= 0 && w0 < first ? w0 : first;
+        for (t = 1; t < stop && t <= room && small_from_int(t) <= ext; t++)
             fine_sample(c, &best, mr, major_x, fa0, fb0, t, dir);
     }
     if (room > r * sub_room && small_from_int(room) <= ext)
@@ -1108,6 +1124,7 @@ static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, 
         c->fine = p->fine;
         c->fine_ratio = g->step / p->fine->step;
         c->inv_fine_ratio = tg_ratio(1, c->fine_ratio);
+        c->long_reach = tg_ratio(c->full_w < c->full_h ? c->full_w : c->full_h, HBIL_LONG_REACH * c->step);
         c->fine_i = (g->offset_x - p->fine->offset_x) / p->fine->step;
         c->fine_j = (g->offset_y - p->fine->offset_y) / p->fine->step;
         if (c->near_field && p->fine_radiance && tgi_rgb_present(p->fine_radiance)) c->fine_rad = p->fine_radiance;
