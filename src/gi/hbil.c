@@ -884,10 +884,23 @@ static HBIL_FINE_INLINE void fine_sample(const hbil_ctx *c, hbil_fine_best *best
  * ray-traced reference: +0.030 on average; without interleaving +0.008).
  * So the fine pixels after the sample that set the horizon (up to the
  * next sub-image pixel) and the fine image's last pixel within the
- * march's extent are samples too.  (The fine pixels before the first
- * sample were tried as well: darker contact shadows, better on
- * builtin:columns and groove, worse on spheres at 320x240 than without
- * them.) */
+ * march's extent are samples too.
+ *
+ * A long reach (a march past a quarter of the image's smaller side,
+ * HBIL_LONG_REACH: a room-wide radius, as builtin:cornell's, whose
+ * horizons are walls running across the screen) also takes the fine
+ * pixels before the first sample, where a wall seen nearly edge-on rises
+ * beside the pixel (a room's corners at the screen's edges; the back
+ * wall beside a block), and those after the sub-image pixel before the
+ * peak's sample, where a horizon that peaks between two samples (an
+ * edge) lies when the later sample set it: cornell's AO against the
+ * ray-traced reference at 160x120, --gi-quarter +0.016 -> +0.009, every
+ * pixel +0.012 -> +0.008.  A short reach (an object's radius) does not:
+ * there the upsample's near horizon (gi/resample.c) stands for the first
+ * pixels, and more of them deepen what one depth layer overstates (a
+ * silhouette taken as infinitely thick): the pixels before the first
+ * sample at every reach took --gi-quarter on builtin:spheres at 320x240
+ * from -0.010 to -0.015, columns at 160x120 from +0.001 to -0.015. */
 HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice *sl, int side,
                                       hbil_side *sd, const hbil_march *mr, int major_x)
 {
