@@ -913,25 +913,27 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
     const tg_real ext = tg_mul(mr->extent, tg_from_int(r));                            /* fine pixels */
     const int long_reach = mr->extent > c->long_reach;
     hbil_fine_best best;
-    int t, w0 = 0;
+    int t, t0 = -1, k, span[2][2] = { { 0, 0 }, { 0, 0 } };   /* fine pixels [span[k][0], span[k][1]) */
     best.h = sd->h;
     best.hs = sd->hs;
     best.si = -1;
+    best.d[0] = best.d[1] = best.d[2] = 0;   /* read only with si >= 0, but gcc cannot tell */
     if (sd->peak_a >= 0) {
-        /* the fine pixels after the peak's sample up to the next sub-image
-         * pixel, t0 + r, and with a long reach those after the sub-image
-         * pixel before it too, from t0 - r (or the first fine pixel) on */
-        const int t0 = r * (sd->peak_a - a0) * dir;
-        w0 = !long_reach ? t0 + 1 : t0 - r + 1 > 1 ? t0 - r + 1 : 1;
-        for (t = w0; t < t0 + r && t <= room && small_from_int(t) <= ext; t++)
-            if (t != t0) fine_sample(c, &best, mr, major_x, fa0, fb0, t, dir);
+        /* the fine pixels after the peak's sample t0 up to the next
+         * sub-image pixel, t0 + r, and with a long reach those after the
+         * sub-image pixel before it too, from t0 - r (or the first) on */
+        t0 = r * (sd->peak_a - a0) * dir;
+        span[1][0] = !long_reach ? t0 + 1 : t0 - r + 1 > 1 ? t0 - r + 1 : 1;
+        span[1][1] = t0 + r;
     }
-    if (long_reach) {   /* and those before the first sample the window above did not take */
+    if (long_reach) {   /* and those before the first sample the peak's span does not take */
         const int first = r * (mr->run.da - mr->run.back) * dir;
-        const int stop = sd->peak_a >= 0 && w0 < first ? w0 : first;
-        for (t = 1; t < stop && t <= room && small_from_int(t) <= ext; t++)
-            fine_sample(c, &best, mr, major_x, fa0, fb0, t, dir);
+        span[0][0] = 1;
+        span[0][1] = t0 >= 0 && span[1][0] < first ? span[1][0] : first;
     }
+    for (k = 1; k >= 0; k--)   /* the peak's span first */
+        for (t = span[k][0]; t < span[k][1] && t <= room && small_from_int(t) <= ext; t++)
+            if (t != t0) fine_sample(c, &best, mr, major_x, fa0, fb0, t, dir);
     if (room > r * sub_room && small_from_int(room) <= ext)
         fine_sample(c, &best, mr, major_x, fa0, fb0, room, dir);
     if (best.si < 0) return;
