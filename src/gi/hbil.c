@@ -40,6 +40,10 @@
  * the interleave: AO +0.14 too bright; test
  * full_resolution_radius_beyond_150_pixels.) */
 #define HBIL_MAX_RADIUS_UNITS TG_R(16384.0f)
+/* A march whose extent is longer than the image's smaller side over this
+ * (a quarter: a room-wide radius, not an object's) refines its horizon on
+ * more of the fine image's pixels (refine_fine). */
+#define HBIL_LONG_REACH 4
 
 /* The rare paths stay out of the march loop (register pressure).  The
  * gather is not rare (a third of the samples raise the horizon in a
@@ -135,6 +139,7 @@ typedef struct hbil_ctx {
     int fine_i, fine_j;         /* pixel (x, y) is fine's (x fine_ratio + fine_i, y fine_ratio + fine_j) */
     int fine_ratio;             /* 4, or 8 for a sub-image of --gi-quarter's half-res image */
     tg_real inv_fine_ratio;
+    tg_real long_reach;         /* HBIL_LONG_REACH in the march's units (refine_fine) */
 } hbil_ctx;
 
 /* One side of one slice: the horizon and the radiance gathered under it. */
@@ -879,10 +884,23 @@ static HBIL_FINE_INLINE void fine_sample(const hbil_ctx *c, hbil_fine_best *best
  * ray-traced reference: +0.030 on average; without interleaving +0.008).
  * So the fine pixels after the sample that set the horizon (up to the
  * next sub-image pixel) and the fine image's last pixel within the
- * march's extent are samples too.  (The fine pixels before the first
- * sample were tried as well: darker contact shadows, better on
- * builtin:columns and groove, worse on spheres at 320x240 than without
- * them.) */
+ * march's extent are samples too.
+ *
+ * A long reach (a march past a quarter of the image's smaller side,
+ * HBIL_LONG_REACH: a room-wide radius, as builtin:cornell's, whose
+ * horizons are walls running across the screen) also takes the fine
+ * pixels before the first sample, where a wall seen nearly edge-on rises
+ * beside the pixel (a room's corners at the screen's edges; the back
+ * wall beside a block), and those after the sub-image pixel before the
+ * peak's sample, where a horizon that peaks between two samples (an
+ * edge) lies when the later sample set it: cornell's AO against the
+ * ray-traced reference at 160x120, --gi-quarter +0.016 -> +0.009, every
+ * pixel +0.012 -> +0.008.  A short reach (an object's radius) does not:
+ * there the upsample's near horizon (gi/resample.c) stands for the first
+ * pixels, and more of them deepen what one depth layer overstates (a
+ * silhouette taken as infinitely thick): the pixels before the first
+ * sample at every reach took --gi-quarter on builtin:spheres at 320x240
+ * from -0.010 to -0.015, columns at 160x120 from +0.001 to -0.015. */
 HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice *sl, int side,
                                       hbil_side *sd, const hbil_march *mr, int major_x)
 {
@@ -893,16 +911,29 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
     const int room = dir > 0 ? (major_x ? fg->width : fg->height) - 1 - fa0 : fa0;       /* fine pixels to the edge */
     const int sub_room = dir > 0 ? (major_x ? c->g->width : c->g->height) - 1 - a0 : a0;
     const tg_real ext = tg_mul(mr->extent, tg_from_int(r));                            /* fine pixels */
+    const int long_reach = mr->extent > c->long_reach;
     hbil_fine_best best;
-    int t;
+    int t, t0 = -1, k, span[2][2] = { { 0, 0 }, { 0, 0 } };   /* fine pixels [span[k][0], span[k][1]) */
     best.h = sd->h;
     best.hs = sd->hs;
     best.si = -1;
+    best.d[0] = best.d[1] = best.d[2] = 0;   /* read only with si >= 0, but gcc cannot tell */
     if (sd->peak_a >= 0) {
-        const int t0 = r * (sd->peak_a - a0) * dir;                     /* up to the next sub-image pixel, t0 + r */
-        for (t = t0 + 1; t < t0 + r && t <= room && small_from_int(t) <= ext; t++)
-            fine_sample(c, &best, mr, major_x, fa0, fb0, t, dir);
+        /* the fine pixels after the peak's sample t0 up to the next
+         * sub-image pixel, t0 + r, and with a long reach those after the
+         * sub-image pixel before it too, from t0 - r (or the first) on */
+        t0 = r * (sd->peak_a - a0) * dir;
+        span[1][0] = !long_reach ? t0 + 1 : t0 - r + 1 > 1 ? t0 - r + 1 : 1;
+        span[1][1] = t0 + r;
     }
+    if (long_reach) {   /* and those before the first sample the peak's span does not take */
+        const int first = r * (mr->run.da - mr->run.back) * dir;
+        span[0][0] = 1;
+        span[0][1] = t0 >= 0 && span[1][0] < first ? span[1][0] : first;
+    }
+    for (k = 1; k >= 0; k--)   /* the peak's span first */
+        for (t = span[k][0]; t < span[k][1] && t <= room && small_from_int(t) <= ext; t++)
+            if (t != t0) fine_sample(c, &best, mr, major_x, fa0, fb0, t, dir);
     if (room > r * sub_room && small_from_int(room) <= ext)
         fine_sample(c, &best, mr, major_x, fa0, fb0, room, dir);
     if (best.si < 0) return;
@@ -1108,6 +1139,7 @@ static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, 
         c->fine = p->fine;
         c->fine_ratio = g->step / p->fine->step;
         c->inv_fine_ratio = tg_ratio(1, c->fine_ratio);
+        c->long_reach = tg_ratio(c->full_w < c->full_h ? c->full_w : c->full_h, HBIL_LONG_REACH * c->step);
         c->fine_i = (g->offset_x - p->fine->offset_x) / p->fine->step;
         c->fine_j = (g->offset_y - p->fine->offset_y) / p->fine->step;
         if (c->near_field && p->fine_radiance && tgi_rgb_present(p->fine_radiance)) c->fine_rad = p->fine_radiance;
