@@ -28,7 +28,8 @@ void tgi_denoise_defaults(tgi_denoise_params *p)
 #define W_1 TG_ONE
 #define PHASE(a, b, c, d, e, ha, hb, hc, hd, he) \
     { ha, hb, hc, hd, he, a, b, c, d, e, a, b, c, d, e, a, b, c, d, e, ha, hb, hc, hd, he, 0, 0, 0 }
-static const tg_real spatial_w[5][TGI_DENOISE_TAPS] = {
+#define PIXEL_TAPS 28   /* a pixel's 25 entries of the walk and the 3 after them (denoise.h) */
+static const tg_real spatial_w[5][PIXEL_TAPS] = {
     PHASE(W_1, W_1, W_H, W_H, W_1, W_H, W_H, W_Q, W_Q, W_H),   /* x % 5 = 0: window columns 3 4 0 1 2 in slots 0..4 */
     PHASE(W_1, W_1, W_1, W_H, W_H, W_H, W_H, W_H, W_Q, W_Q),   /* 1: columns 2 3 4 0 1 */
     PHASE(W_H, W_1, W_1, W_1, W_H, W_Q, W_H, W_H, W_H, W_Q),   /* 2: columns 0 1 2 3 4 */
@@ -86,31 +87,48 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
 }
 
 #if Q16_WIDE
-/* tap_weights below in Q16.16, giving the same sums: the same integers for
- * every weight that is positive, 0 for those it gives <= 0, which the sums
- * skip alike.  Where the weight is kept, dz < ztol, so ztol > 0, inv_ztol > 0
- * and dz / ztol in [0, 1 + a rounding]; 1 - dz / ztol is clamped at 0 (a
- * negative one gives a weight <= 0).  Every factor is then non-negative:
- * the spatial weight <= 1 and the dot clamped at 2 (normal_weight), so the
- * weight <= 2^8 (2^24 in Q16.16).  The dot's rounding: tgi_shr_round of a
- * sum s <= 0 is <= 0 (clamped to 0), of s > 0 it is mul_pos's; the normals'
- * components are within [-1, 1], so |s| < 2^34.  Only the 25 entries of the
- * window. */
-static void tap_weights(const tgi_denoise_walk *k, const tg_real *spatial, tg_real zi, tg_vec3 ni, tg_real ztol,
-                        tg_real inv_ztol, tg_real *wt)
+/* The weights of tap_weights below (the float build's) in Q16.16 and the
+ * sums of tgi_denoise_pixel in one pass over the window's entries, the set
+ * bits of `window` (bit j: entry j).  The same integers for every weight
+ * that is positive; an entry whose weight is <= 0 adds nothing, so the
+ * tests below leave it out as soon as one of its factors is 0.  Where the
+ * weight is kept, dz < ztol, so ztol > 0, inv_ztol > 0 and dz / ztol in
+ * [0, 1 + a rounding]; 1 - dz / ztol is kept only when positive.  Every
+ * factor is then non-negative: the spatial weight <= 1 and the dot clamped
+ * at 2 (normal_weight), so the weight <= 2^8 (2^24 in Q16.16).  The dot's
+ * rounding: tgi_shr_round of a sum s <= 0 is <= 0 (the normal weight 0),
+ * of s > 0 it is mul_pos's; the normals' components are within [-1, 1], so
+ * |s| < 2^34.  The sums are exact integers (tgi_denoise_pixel bounds them
+ * below 2^60), so the order of the entries, here the walk's and not the
+ * window's rows and columns, gives the same sums. */
+static void weigh_and_sum(const tgi_denoise_walk *k, int o, const tg_real *spatial, tg_real zi, tg_vec3 ni,
+                          tg_real ztol, tg_real inv_ztol, uint32_t window, int64_t *sum)
 {
-    int j;
-    for (j = 0; j < 5 * 5; j++) {
-        tg_real dz = tg_abs(k->z[j] - zi);   /* depths are never negative: no overflow */
-        int64_t omt = TG_ONE - (int64_t)mul_pos((uint64_t)dz, (uint64_t)inv_ztol);   /* 1 - dz / ztol */
-        int64_t s = (int64_t)ni.x * k->nx[j] + (int64_t)ni.y * k->ny[j] + (int64_t)ni.z * k->nz[j];
-        uint64_t d = s > 0 ? ((uint64_t)s + 32768u) >> 16 : 0, w;
+    int64_t s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0, s6 = 0, sw = 0;
+    int j, e;
+    for (j = 0, e = o; window; j++, e++, window >>= 1) {
+        tg_real dz, wj;
+        int64_t omt, s;
+        uint64_t d;
+        const tg_real *tv;
+        if (!(window & 1)) continue;
+        dz = tg_abs(k->z[e] - zi);   /* depths are never negative: no overflow */
+        if (dz >= ztol) continue;
+        omt = TG_ONE - (int64_t)mul_pos((uint64_t)dz, (uint64_t)inv_ztol);   /* 1 - dz / ztol */
+        if (omt <= 0) continue;
+        s = (int64_t)ni.x * k->nx[e] + (int64_t)ni.y * k->ny[e] + (int64_t)ni.z * k->nz[e];
+        if (s <= 0) continue;
+        d = ((uint64_t)s + 32768u) >> 16;
         d = d < 2 * TG_ONE ? d : 2 * TG_ONE;
-        omt = dz < ztol && omt > 0 ? omt : 0;
-        w = mul_pos((uint64_t)spatial[j], (uint64_t)omt);
         d = mul_pos(d, d); d = mul_pos(d, d); d = mul_pos(d, d);   /* max(0, n_i . n_j)^8 */
-        wt[j] = (tg_real)mul_pos(w, d);
+        wj = (tg_real)mul_pos(mul_pos((uint64_t)spatial[j], (uint64_t)omt), d);
+        tv = k->v[e];
+        s0 += (int64_t)tv[0] * wj; s1 += (int64_t)tv[1] * wj;
+        s2 += (int64_t)tv[2] * wj; s3 += (int64_t)tv[3] * wj;
+        s4 += (int64_t)tv[4] * wj; s5 += (int64_t)tv[5] * wj;
+        s6 += (int64_t)tv[6] * wj; sw += wj;   /* the weights' sum */
     }
+    sum[0] = s0; sum[1] = s1; sum[2] = s2; sum[3] = s3; sum[4] = s4; sum[5] = s5; sum[6] = s6; sum[7] = sw;
 }
 #else
 /* The weight of every entry of the walk for the centre (depth zi, normal
@@ -120,20 +138,20 @@ static void tap_weights(const tgi_denoise_walk *k, const tg_real *spatial, tg_re
  * computed (from finite values: the walk starts zeroed), the window's and
  * the others alike, then multiplied by 1 or 0 (the plain product is w or 0
  * in either number type). */
-static void tap_weights(const tgi_denoise_walk *k, const tg_real *spatial, tg_real zi, tg_vec3 ni, tg_real ztol,
-                        tg_real inv_ztol, tg_real *wt)
+static void tap_weights(const tgi_denoise_walk *k, int o, const tg_real *spatial, tg_real zi, tg_vec3 ni,
+                        tg_real ztol, tg_real inv_ztol, tg_real *wt)
 {
-    tg_real kept[TGI_DENOISE_TAPS];
+    tg_real kept[PIXEL_TAPS];
     int j;
-    for (j = 0; j < TGI_DENOISE_TAPS; j++) {
+    for (j = 0; j < PIXEL_TAPS; j++) {
         /* depths are never negative: their difference never saturates */
-        tg_real dz = tg_abs(k->z[j] - zi), w;
+        tg_real dz = tg_abs(k->z[o + j] - zi), w;
         tg_real dzc = tg_min(dz, ztol);   /* = dz where the weight is kept: dz / ztol in [0, 1] */
         kept[j] = dz < ztol ? 1 : 0;
         w = weight_mul(spatial[j], TG_ONE - weight_mul(dzc, inv_ztol));   /* in [0, 1]: never saturates */
-        wt[j] = weight_mul(w, normal_weight(tgi_v3_dot(ni, tg_v3(k->nx[j], k->ny[j], k->nz[j]))));
+        wt[j] = weight_mul(w, normal_weight(tgi_v3_dot(ni, tg_v3(k->nx[o + j], k->ny[o + j], k->nz[o + j]))));
     }
-    for (j = 0; j < TGI_DENOISE_TAPS; j++) wt[j] *= kept[j];
+    for (j = 0; j < PIXEL_TAPS; j++) wt[j] *= kept[j];
 }
 
 #endif
@@ -153,7 +171,8 @@ static tg_real average(tgi_wide sum, tgi_wide ws)
 void tgi_denoise_walk_start(tgi_denoise_walk *k)
 {
     memset(k, 0, sizeof *k);
-    k->y = -1;
+    k->base = -1;                       /* set by the first pixel */
+    k->band = -2 * TGI_DENOISE_BAND;    /* none: a band starts at row -(TGI_DENOISE_BAND - 1) or later */
     k->lo = k->next = 0;
 }
 
@@ -161,10 +180,14 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
                                tgi_denoise_walk *k, int x, int y)
 {
     size_t i = tgi_gv_index(g, x, y);
-    int w = g->width, h = g->height, xx, yy, c, slot[5], has_bent = !TG_NO_BENT_NORMALS && tgi_gr_has_bent(r), has_near = !TG_NO_COLOR && tgi_gr_has_near(r);
+    int w = g->width, h = g->height, xx, yy, band, o, has_bent = !TG_NO_BENT_NORMALS && tgi_gr_has_bent(r), has_near = !TG_NO_COLOR && tgi_gr_has_near(r);
     int xa = x < 2 ? 0 : x - 2, xb = x + 2 >= w ? w - 1 : x + 2;
     int ya = y < 2 ? 0 : y - 2, yb = y + 2 >= h ? h - 1 : y + 2;
-    tg_real zi, ztol, inv_ztol, wt[TGI_DENOISE_TAPS];
+    tg_real zi, ztol, inv_ztol;
+#if !Q16_WIDE
+    tg_real wt[PIXEL_TAPS];
+    int c, slot[5];
+#endif
     /* The sums in tgi_wide (core/real.h), in the order of the taps (rows,
      * then columns), each of the walk's values its own sum, then the
      * weights' (sum[7]); the filtered value is a sum over the weights' sum
@@ -179,23 +202,37 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     tg_vec3 ni;
     tgi_gr_value v;
     if (tgi_gv_is_sky(g, i)) return tgi_gr_get_kept(r, i);
-    /* the window's columns decoded once: those of the last pixel are kept */
-    if (k->y != y || xa < k->lo) { k->y = y; k->lo = k->next = xa; }
-    for (; k->next <= xb; k->next++)
-        for (yy = ya; yy <= yb; yy++)
-            tap_load(k, (yy - y + 2) * 5 + k->next % 5, g, r, has_bent, has_near, k->next, yy);
+    /* the band's columns decoded once: those of the last pixels are kept */
+    if (k->base < 0) k->base = y;
+    band = tgi_denoise_band_of(k->base, y);
+    if (k->band != band || xa < k->lo) { k->band = band; k->lo = k->next = xa; }
+    if (k->next <= xb) {
+        int ra = band < 2 ? 0 : band - 2, rb = band + TGI_DENOISE_BAND + 1 >= h ? h - 1 : band + TGI_DENOISE_BAND + 1;
+        for (; k->next <= xb; k->next++)
+            for (yy = ra; yy <= rb; yy++)
+                tap_load(k, (yy - band + 2) * 5 + k->next % 5, g, r, has_bent, has_near, k->next, yy);
+    }
     if (k->next - k->lo > 5) k->lo = k->next - 5;
-    zi = k->z[2 * 5 + x % 5];
-    ni = tg_v3(k->nx[2 * 5 + x % 5], k->ny[2 * 5 + x % 5], k->nz[2 * 5 + x % 5]);
+    o = (y - band) * 5;   /* the pixel's entries: tap (xx, yy) at o + (yy - y + 2) * 5 + xx % 5 */
+    zi = k->z[o + 2 * 5 + x % 5];
+    ni = tg_v3(k->nx[o + 2 * 5 + x % 5], k->ny[o + 2 * 5 + x % 5], k->nz[o + 2 * 5 + x % 5]);
     ztol = tg_mul(p->depth_tolerance, zi);
     inv_ztol = tg_div(TG_ONE, ztol);
-    tap_weights(k, spatial_w[x % 5], zi, ni, ztol, inv_ztol, wt);
+#if Q16_WIDE
+    {   /* the window's entries: its rows' slots of its columns (all 25 inside the image) */
+        uint32_t slots = 0, window = 0;
+        for (xx = xa; xx <= xb; xx++) slots |= 1u << (xx % 5);
+        for (yy = ya; yy <= yb; yy++) window |= slots << ((yy - y + 2) * 5);
+        weigh_and_sum(k, o, spatial_w[x % 5], zi, ni, ztol, inv_ztol, window, sum);
+    }
+#else
+    tap_weights(k, o, spatial_w[x % 5], zi, ni, ztol, inv_ztol, wt);
     for (xx = xa; xx <= xb; xx++) slot[xx - xa] = xx % 5;
     for (c = 0; c <= TGI_DENOISE_VALUES; c++) sum[c] = 0;
     for (yy = ya; yy <= yb; yy++)
         for (xx = xa; xx <= xb; xx++) {
             int j = (yy - y + 2) * 5 + slot[xx - xa];
-            const tg_real *tv = k->v[j];
+            const tg_real *tv = k->v[o + j];
             tg_real wj = wt[j];
             if (wj <= 0) continue;
             /* written out: straight-line code the compiler keeps in registers
@@ -212,6 +249,7 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
             sum[6] += tgi_wide_mul(tv[6], wj); sum[7] += wj;   /* the weights' sum */
 #endif
         }
+#endif
     ws = sum[TGI_DENOISE_VALUES];
     if (ws <= 0) return tgi_gr_get_kept(r, i);   /* the centre always weighs 1: cannot happen */
     v.ao = tg_saturate(average(sum[0], ws));
@@ -225,13 +263,16 @@ void tgi_denoise_rows(const tgi_denoise_params *p, const tgi_gview *g, const tgi
                       int y0, int y1)
 {
     tgi_denoise_walk k;
-    int x, y;
+    int x, y, yy, end;
     if (y0 < 0) y0 = 0;
     if (y1 > g->height) y1 = g->height;
     tgi_denoise_walk_start(&k);
-    for (y = y0; y < y1; y++)
-        for (x = 0; x < g->width; x++) {
-            tgi_gr_value v = tgi_denoise_pixel(p, g, r, &k, x, y);
-            tgi_gr_put_kept(out, tgi_gv_index(g, x, y), &v);
-        }
+    for (y = y0; y < y1; y = end) {     /* band by band, column by column */
+        end = tgi_denoise_band(&k, y, y1);
+        for (x = 0; x < g->width; x++)
+            for (yy = y; yy < end; yy++) {
+                tgi_gr_value v = tgi_denoise_pixel(p, g, r, &k, x, yy);
+                tgi_gr_put_kept(out, tgi_gv_index(g, x, yy), &v);
+            }
+    }
 }
