@@ -142,14 +142,10 @@ void tgi_pass_resolve(tg_frame *f, int y0, int y1)
     resolve_ctx c;
     int x, y, yy, end, compose = (f->needs & TG_NEED_COMPOSE) != 0;
     resolve_ctx_init(&c, f);
-    if (c.hbil && !c.quarter) {   /* the filter's order: band by band, column by column (denoise.h) */
-        for (y = y0; y < y1; y = end) {
-            end = tgi_denoise_band(&c.r.walk, y, y1);
-            for (x = 0; x < f->width; x++)
-                for (yy = y; yy < end; yy++) resolve_pixel(&c, f, compose, x, yy);
-        }
-        return;
+    /* the filter's order: band by band, column by column (denoise.h); else row by row */
+    for (y = y0; y < y1; y = end) {
+        end = c.hbil && !c.quarter ? tgi_denoise_band(&c.r.walk, y, y1) : y + 1;
+        for (x = 0; x < f->width; x++)
+            for (yy = y; yy < end; yy++) resolve_pixel(&c, f, compose, x, yy);
     }
-    for (y = y0; y < y1; y++)
-        for (x = 0; x < f->width; x++) resolve_pixel(&c, f, compose, x, y);
 }

@@ -38,6 +38,20 @@ static const tg_real spatial_w[5][PIXEL_TAPS] = {
 };
 #undef PHASE
 
+#if !Q16_WIDE
+/* The entries of a whole window in the order of the sums (rows, then
+ * columns), for a centre in column x with x % 5 = phase: row r's columns
+ * x - 2 .. x + 2 are slots (phase + 3 .. phase + 7) % 5. */
+#define ROW(r, a, b, c, d, e) 5 * r + a, 5 * r + b, 5 * r + c, 5 * r + d, 5 * r + e
+#define ORDER(a, b, c, d, e) { ROW(0, a, b, c, d, e), ROW(1, a, b, c, d, e), ROW(2, a, b, c, d, e), \
+                               ROW(3, a, b, c, d, e), ROW(4, a, b, c, d, e) }
+static const unsigned char window_order[5][25] = {
+    ORDER(3, 4, 0, 1, 2), ORDER(4, 0, 1, 2, 3), ORDER(0, 1, 2, 3, 4), ORDER(1, 2, 3, 4, 0), ORDER(2, 3, 4, 0, 1),
+};
+#undef ORDER
+#undef ROW
+#endif
+
 #if Q16_WIDE
 /* Q16.16 products without tg_mul's sign test and saturation, giving its
  * integers where the bounds stated at each use hold: a b >= 0 and below
@@ -186,7 +200,9 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     tg_real zi, ztol, inv_ztol;
 #if !Q16_WIDE
     tg_real wt[PIXEL_TAPS];
-    int c, slot[5];
+    const unsigned char *order;
+    unsigned char part[25];
+    int c, t, taps = 0;
 #endif
     /* The sums in tgi_wide (core/real.h), in the order of the taps (rows,
      * then columns), each of the walk's values its own sum, then the
@@ -227,28 +243,34 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     }
 #else
     tap_weights(k, o, spatial_w[x % 5], zi, ni, ztol, inv_ztol, wt);
-    for (xx = xa; xx <= xb; xx++) slot[xx - xa] = xx % 5;
+    if (xb - xa == 4 && yb - ya == 4) {
+        order = window_order[x % 5];   /* the whole window */
+        taps = 25;
+    } else {                           /* the window's part inside the image */
+        for (yy = ya; yy <= yb; yy++)
+            for (xx = xa; xx <= xb; xx++) part[taps++] = (unsigned char)((yy - y + 2) * 5 + xx % 5);
+        order = part;
+    }
     for (c = 0; c <= TGI_DENOISE_VALUES; c++) sum[c] = 0;
-    for (yy = ya; yy <= yb; yy++)
-        for (xx = xa; xx <= xb; xx++) {
-            int j = (yy - y + 2) * 5 + slot[xx - xa];
-            const tg_real *tv = k->v[o + j];
-            tg_real wj = wt[j];
-            if (wj <= 0) continue;
-            /* written out: straight-line code the compiler keeps in registers
-             * (Q16.16) or turns into vector operations (float) */
+    for (t = 0; t < taps; t++) {
+        int j = order[t];
+        const tg_real *tv = k->v[o + j];
+        tg_real wj = wt[j];
+        if (wj <= 0) continue;
+        /* written out: straight-line code the compiler keeps in registers
+         * (Q16.16) or turns into vector operations (float) */
 #if TG_FIXED
-            sum[0] += (int64_t)tv[0] * wj; sum[1] += (int64_t)tv[1] * wj;
-            sum[2] += (int64_t)tv[2] * wj; sum[3] += (int64_t)tv[3] * wj;
-            sum[4] += (int64_t)tv[4] * wj; sum[5] += (int64_t)tv[5] * wj;
-            sum[6] += (int64_t)tv[6] * wj; sum[7] += wj;   /* the weights' sum */
+        sum[0] += (int64_t)tv[0] * wj; sum[1] += (int64_t)tv[1] * wj;
+        sum[2] += (int64_t)tv[2] * wj; sum[3] += (int64_t)tv[3] * wj;
+        sum[4] += (int64_t)tv[4] * wj; sum[5] += (int64_t)tv[5] * wj;
+        sum[6] += (int64_t)tv[6] * wj; sum[7] += wj;   /* the weights' sum */
 #else
-            sum[0] += tgi_wide_mul(tv[0], wj); sum[1] += tgi_wide_mul(tv[1], wj);
-            sum[2] += tgi_wide_mul(tv[2], wj); sum[3] += tgi_wide_mul(tv[3], wj);
-            sum[4] += tgi_wide_mul(tv[4], wj); sum[5] += tgi_wide_mul(tv[5], wj);
-            sum[6] += tgi_wide_mul(tv[6], wj); sum[7] += wj;   /* the weights' sum */
+        sum[0] += tgi_wide_mul(tv[0], wj); sum[1] += tgi_wide_mul(tv[1], wj);
+        sum[2] += tgi_wide_mul(tv[2], wj); sum[3] += tgi_wide_mul(tv[3], wj);
+        sum[4] += tgi_wide_mul(tv[4], wj); sum[5] += tgi_wide_mul(tv[5], wj);
+        sum[6] += tgi_wide_mul(tv[6], wj); sum[7] += wj;   /* the weights' sum */
 #endif
-        }
+    }
 #endif
     ws = sum[TGI_DENOISE_VALUES];
     if (ws <= 0) return tgi_gr_get_kept(r, i);   /* the centre always weighs 1: cannot happen */
