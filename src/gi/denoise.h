@@ -51,8 +51,8 @@ static inline void tgi_gr_put_kept(const tgi_gresult *r, size_t i, const tgi_gr_
 /* The 5x5 windows of a band of TGI_DENOISE_BAND rows, walked along the
  * band: the columns a pixel shares with the pixels before it are not
  * decoded again, in its own row nor in the band's other rows (each pixel
- * (TGI_DENOISE_BAND + 4) / TGI_DENOISE_BAND times per band instead of 25
- * times).  The bands are the rows base + TGI_DENOISE_BAND b, base the first
+ * (TGI_DENOISE_BAND + 4) / TGI_DENOISE_BAND times instead of 5, once for
+ * each row whose window holds it).  The bands are the rows base + TGI_DENOISE_BAND b, base the first
  * row the walk is asked for.  Any order of calls gives the same values; the
  * fast one is band by band, in each band column by column (x increasing),
  * the band's rows in any order (tgi_denoise_band gives a band's rows).
@@ -62,7 +62,12 @@ static inline void tgi_gr_put_kept(const tgi_gresult *r, size_t i, const tgi_gr_
  * taps one loop over contiguous values and a tap's sums read contiguous
  * values (TGI_DENOISE_TAPS: the band's entries and 3 more, which stay 0,
  * so that a pixel's entries and the 3 after them are 28, a multiple of 4). */
-#define TGI_DENOISE_BAND 4
+#ifndef TGI_DENOISE_BAND
+/* 4 rows: the walk is 2080 bytes of stack, 1360 with 1 row (a build for
+ * size, TG_OUTLINE_HELPERS, keeps that: README "Porting"); 8 rows would
+ * save half a decode more a pixel for 3 KB. */
+#define TGI_DENOISE_BAND (TG_OUTLINE_HELPERS ? 1 : 4)
+#endif
 #define TGI_DENOISE_TAPS ((TGI_DENOISE_BAND + 4) * 5 + 3)
 #define TGI_DENOISE_VALUES 7        /* AO, bent normal x y z, near field r g b */
 typedef struct tgi_denoise_walk {
