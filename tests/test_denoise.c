@@ -6,7 +6,8 @@
  * against the filter's formula, in rows, columns and backwards).
  *
  * Inputs: random G-buffers (depth steps across the depth tolerance, sky
- * pixels, normals facing every way) and random results in every channel.
+ * pixels, normals facing every way, planes whose pixels share a normal)
+ * and random results in every channel.
  */
 #include "check.h"
 #include "storage_fixture.h"
@@ -48,7 +49,11 @@ TEST(bands_are_aligned_to_the_first_row)
 
 static void random_inputs(tgi_gbuffer *gb, tgi_gresult *r)
 {
+    tg_vec3 planes[3];
     int i;
+    planes[0] = tg_v3(0, TG_ONE, 0);
+    planes[1] = tgi_v3_normalize(tg_v3(TG_R(0.3f), TG_ONE, TG_R(-0.2f)));
+    planes[2] = tgi_v3_normalize(tg_v3(TG_R(-0.6f), TG_R(0.5f), TG_R(0.4f)));
     for (i = 0; i < N; i++) {
         int x = i % W, y = i / W, sky = rng() % 13 == 0;
         /* piecewise depths: steps of 0-20% between blocks, a slope within */
@@ -56,6 +61,7 @@ static void random_inputs(tgi_gbuffer *gb, tgi_gresult *r)
         tg_vec3 n = tgi_v3_normalize(tg_v3(tg_from_float(2 * frand() - 1), tg_from_float(2 * frand() - 1),
                                            tg_from_float(2 * frand() - 1)));
         if (rng() % 3) n = tgi_v3_normalize(tg_v3(tg_from_float(0.2f * frand()), TG_ONE, tg_from_float(0.2f * frand())));
+        if ((x / 4 + y / 3) % 3 == 0) n = planes[(x / 8 + y / 6) % 3];   /* planes: neighbours share the normal */
         sf_gbuffer_set(gb, (size_t)i, sky ? 0 : tg_from_float(z), n, 0);
         tgi_gr_set_ao(r, (size_t)i, tg_from_float(frand()));
         tgi_gr_set_bent(r, (size_t)i, tgi_v3_normalize(tg_v3(tg_from_float(2 * frand() - 1), tg_from_float(frand()),

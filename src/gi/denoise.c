@@ -79,6 +79,20 @@ static tg_real normal_weight(tg_real d)
 
 /* Pixel (xx, yy) of g decoded into entry j of the walk; has_bent, has_near:
  * what tgi_gr_get_kept reads of r. */
+#if TG_FIXED
+/* A normal as one word, equal for two normals exactly when they are equal:
+ * its components in 21 bits each when all are within [-2^20, 2^20) (unit
+ * normals are within [-2^16, 2^16]), else `other` (UINT64_MAX for a tap,
+ * UINT64_MAX - 1 for a centre: the two never match, nor match a normal in
+ * range, whose word is below 2^63). */
+static inline uint64_t normal_key(tg_vec3 n, uint64_t other)
+{
+    uint64_t x = (uint64_t)((int64_t)n.x + (1 << 20)), y = (uint64_t)((int64_t)n.y + (1 << 20)),
+             z = (uint64_t)((int64_t)n.z + (1 << 20));
+    return (x | y | z) >> 21 ? other : x << 42 | y << 21 | z;
+}
+#endif
+
 static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_gresult *r, int has_bent, int has_near,
                      int xx, int yy)
 {
@@ -88,9 +102,15 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
     if (tgi_gv_is_sky(g, i)) {
         k->z[j] = k->nx[j] = k->ny[j] = k->nz[j] = 0;
         v[0] = v[1] = v[2] = v[3] = v[4] = v[5] = v[6] = 0;
+#if TG_FIXED
+        k->nkey[j] = normal_key(tg_v3(0, 0, 0), UINT64_MAX);
+#endif
         return;
     }
     n = tgi_gv_normal(g, i);
+#if TG_FIXED
+    k->nkey[j] = normal_key(n, UINT64_MAX);
+#endif
     b = has_bent ? tgi_gr_bent(r, i) : tg_v3(0, 0, 0);
     e = has_near ? tgi_gr_near(r, i) : tg_v3(0, 0, 0);
     k->z[j] = tgi_gv_depth(g, i);
@@ -115,14 +135,27 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
  * |s| < 2^34.  The sums are exact integers (tgi_denoise_pixel bounds them
  * below 2^60), so the order of the entries, here the walk's and not the
  * window's rows and columns, gives the same sums. */
+/* max(0, a . b)^8 (normal_weight's) */
+static inline uint64_t normal_d8(tg_vec3 a, tg_vec3 b)
+{
+    int64_t s = (int64_t)a.x * b.x + (int64_t)a.y * b.y + (int64_t)a.z * b.z;
+    uint64_t d;
+    if (s <= 0) return 0;
+    d = ((uint64_t)s + 32768u) >> 16;
+    d = d < 2 * TG_ONE ? d : 2 * TG_ONE;
+    d = mul_pos(d, d); d = mul_pos(d, d);
+    return mul_pos(d, d);
+}
+
 static void weigh_and_sum(const tgi_denoise_walk *k, int o, const tg_real *spatial, tg_real zi, tg_vec3 ni,
                           tg_real ztol, tg_real inv_ztol, uint32_t window, int64_t *sum)
 {
     int64_t s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0, s6 = 0, sw = 0;
+    uint64_t key = normal_key(ni, UINT64_MAX - 1), same = normal_d8(ni, ni);
     int j, e;
     for (j = 0, e = o; window; j++, e++, window >>= 1) {
         tg_real dz, wj;
-        int64_t omt, s;
+        int64_t omt;
         uint64_t d;
         const tg_real *tv;
         if (!(window & 1)) continue;
@@ -130,11 +163,10 @@ static void weigh_and_sum(const tgi_denoise_walk *k, int o, const tg_real *spati
         if (dz >= ztol) continue;
         omt = TG_ONE - (int64_t)mul_pos((uint64_t)dz, (uint64_t)inv_ztol);   /* 1 - dz / ztol */
         if (omt <= 0) continue;
-        s = (int64_t)ni.x * k->nx[e] + (int64_t)ni.y * k->ny[e] + (int64_t)ni.z * k->nz[e];
-        if (s <= 0) continue;
-        d = ((uint64_t)s + 32768u) >> 16;
-        d = d < 2 * TG_ONE ? d : 2 * TG_ONE;
-        d = mul_pos(d, d); d = mul_pos(d, d); d = mul_pos(d, d);   /* max(0, n_i . n_j)^8 */
+        /* the normal weight: the centre's own for a normal equal to it (the
+         * common case: a plane's pixels share their normal) */
+        d = k->nkey[e] == key ? same : normal_d8(ni, tg_v3(k->nx[e], k->ny[e], k->nz[e]));
+        if (d == 0) continue;
         wj = (tg_real)mul_pos(mul_pos((uint64_t)spatial[j], (uint64_t)omt), d);
         tv = k->v[e];
         s0 += (int64_t)tv[0] * wj; s1 += (int64_t)tv[1] * wj;
