@@ -268,9 +268,12 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     inv_ztol = tg_div(TG_ONE, ztol);
 #if Q16_WIDE
     {   /* the window's entries: its rows' slots of its columns (all 25 inside the image) */
-        uint32_t slots = 0, window = 0;
-        for (xx = xa; xx <= xb; xx++) slots |= 1u << (xx % 5);
-        for (yy = ya; yy <= yb; yy++) window |= slots << ((yy - y + 2) * 5);
+        uint32_t slots = 0, window = (1u << 25) - 1;
+        if (xb - xa < 4 || yb - ya < 4) {
+            window = 0;
+            for (xx = xa; xx <= xb; xx++) slots |= 1u << (xx % 5);
+            for (yy = ya; yy <= yb; yy++) window |= slots << ((yy - y + 2) * 5);
+        }
         weigh_and_sum(k, o, spatial_w[x % 5], zi, ni, ztol, inv_ztol, window, sum);
     }
 #else
