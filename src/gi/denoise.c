@@ -5,6 +5,7 @@
  */
 #include "../tinygi.h"
 #include "denoise.h"
+#include "../core/unit.h"
 
 /* Q16_WIDE: the Q16.16 paths below that compute in 64 bits without tg_mul's
  * and tg_add's saturation tests (each states its bounds), giving the same
@@ -214,6 +215,13 @@ static tg_real average(tgi_wide sum, tgi_wide ws)
 #endif
 }
 
+/* The filtered bent normal made unit again (out of line: inlined, its
+ * registers cost the filter's loop more than the call). */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static tg_vec3 bent_unit(tg_vec3 b, tg_vec3 fallback) { return tgi_v3_unit_or(b, fallback); }
+
 void tgi_denoise_walk_start(tgi_denoise_walk *k)
 {
     memset(k, 0, sizeof *k);
@@ -310,7 +318,7 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     ws = sum[TGI_DENOISE_VALUES];
     if (ws <= 0) return tgi_gr_get_kept(r, i);   /* the centre always weighs 1: cannot happen */
     v.ao = tg_saturate(average(sum[0], ws));
-    v.bent = has_bent ? tgi_v3_normalize_or(tg_v3(average(sum[1], ws), average(sum[2], ws), average(sum[3], ws)), ni)
+    v.bent = has_bent ? bent_unit(tg_v3(average(sum[1], ws), average(sum[2], ws), average(sum[3], ws)), ni)
                       : tg_v3(0, 0, 0);
     v.near = has_near ? tg_v3(average(sum[4], ws), average(sum[5], ws), average(sum[6], ws)) : tg_v3(0, 0, 0);
     return v;
