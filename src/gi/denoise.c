@@ -126,7 +126,8 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
  * sums of tgi_denoise_pixel in one pass over the window's entries, the set
  * bits of `window` (bit j: entry j).  The same integers for every weight
  * that is positive; an entry whose weight is <= 0 adds nothing, so the
- * tests below leave it out as soon as one of its factors is 0.  Where the
+ * tests below leave it out as soon as one of its factors is 0 (whole: all
+ * 25 entries, window unused).  Where the
  * weight is kept, dz < ztol, so ztol > 0, inv_ztol > 0 and dz / ztol in
  * [0, 1 + a rounding]; 1 - dz / ztol is kept only when positive.  Every
  * factor is then non-negative: the spatial weight <= 1 and the dot clamped
@@ -148,32 +149,38 @@ static inline uint64_t normal_d8(tg_vec3 a, tg_vec3 b)
     return mul_pos(d, d);
 }
 
-static void weigh_and_sum(const tgi_denoise_walk *k, int o, const tg_real *spatial, tg_real zi, tg_vec3 ni,
-                          tg_real ztol, tg_real inv_ztol, uint32_t window, int64_t *sum)
+#if defined(__GNUC__)
+#define DENOISE_INLINE inline __attribute__((always_inline))   /* whole: a constant in each copy */
+#else
+#define DENOISE_INLINE inline
+#endif
+static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const tg_real *spatial, tg_real zi,
+                                         tg_vec3 ni, tg_real ztol, tg_real inv_ztol, uint32_t window, int whole,
+                                         int64_t *sum)
 {
     int64_t s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0, s6 = 0, sw = 0;
     uint64_t key = normal_key(ni, UINT64_MAX - 1), same = normal_d8(ni, ni);
     int j, e;
-    for (j = 0, e = o; window; j++, e++, window >>= 1) {
-        tg_real dz, wj;
-        int64_t omt;
+    for (j = 0, e = o; whole ? j < 5 * 5 : window != 0; j++, e++, window >>= 1) {
+        tg_real dz;
+        int64_t omt, wj;
         uint64_t d;
         const tg_real *tv;
-        if (!(window & 1)) continue;
+        if (!whole && !(window & 1)) continue;
         dz = tg_abs(k->z[e] - zi);   /* depths are never negative: no overflow */
         if (dz >= ztol) continue;
         omt = TG_ONE - (int64_t)mul_pos((uint64_t)dz, (uint64_t)inv_ztol);   /* 1 - dz / ztol */
         if (omt <= 0) continue;
         /* the normal weight: the centre's own for a normal equal to it (the
-         * common case: a plane's pixels share their normal) */
+         * common case: a plane's pixels share their normal); a weight 0
+         * (normals apart) adds 0 */
         d = k->nkey[e] == key ? same : normal_d8(ni, tg_v3(k->nx[e], k->ny[e], k->nz[e]));
-        if (d == 0) continue;
-        wj = (tg_real)mul_pos(mul_pos((uint64_t)spatial[j], (uint64_t)omt), d);
+        wj = (int64_t)mul_pos(mul_pos((uint64_t)spatial[j], (uint64_t)omt), d);
         tv = k->v[e];
-        s0 += (int64_t)tv[0] * wj; s1 += (int64_t)tv[1] * wj;
-        s2 += (int64_t)tv[2] * wj; s3 += (int64_t)tv[3] * wj;
-        s4 += (int64_t)tv[4] * wj; s5 += (int64_t)tv[5] * wj;
-        s6 += (int64_t)tv[6] * wj; sw += wj;   /* the weights' sum */
+        s0 += tv[0] * wj; s1 += tv[1] * wj;
+        s2 += tv[2] * wj; s3 += tv[3] * wj;
+        s4 += tv[4] * wj; s5 += tv[5] * wj;
+        s6 += tv[6] * wj; sw += wj;   /* the weights' sum */
     }
     sum[0] = s0; sum[1] = s1; sum[2] = s2; sum[3] = s3; sum[4] = s4; sum[5] = s5; sum[6] = s6; sum[7] = sw;
 }
@@ -275,14 +282,13 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     ztol = tg_mul(p->depth_tolerance, zi);
     inv_ztol = tg_div(TG_ONE, ztol);
 #if Q16_WIDE
-    {   /* the window's entries: its rows' slots of its columns (all 25 inside the image) */
-        uint32_t slots = 0, window = (1u << 25) - 1;
-        if (xb - xa < 4 || yb - ya < 4) {
-            window = 0;
-            for (xx = xa; xx <= xb; xx++) slots |= 1u << (xx % 5);
-            for (yy = ya; yy <= yb; yy++) window |= slots << ((yy - y + 2) * 5);
-        }
-        weigh_and_sum(k, o, spatial_w[x % 5], zi, ni, ztol, inv_ztol, window, sum);
+    if (xb - xa == 4 && yb - ya == 4) {   /* the whole window: every entry */
+        weigh_and_sum(k, o, spatial_w[x % 5], zi, ni, ztol, inv_ztol, 0, 1, sum);
+    } else {   /* the window's entries inside the image: its rows' slots of its columns */
+        uint32_t slots = 0, window = 0;
+        for (xx = xa; xx <= xb; xx++) slots |= 1u << (xx % 5);
+        for (yy = ya; yy <= yb; yy++) window |= slots << ((yy - y + 2) * 5);
+        weigh_and_sum(k, o, spatial_w[x % 5], zi, ni, ztol, inv_ztol, window, 0, sum);
     }
 #else
     tap_weights(k, o, spatial_w[x % 5], zi, ni, ztol, inv_ztol, wt);
