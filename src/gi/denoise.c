@@ -103,6 +103,7 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
     if (tgi_gv_is_sky(g, i)) {
         k->z[j] = k->nx[j] = k->ny[j] = k->nz[j] = 0;
         v[0] = v[1] = v[2] = v[3] = v[4] = v[5] = v[6] = 0;
+        v[7] = TG_FIXED ? 0 : TG_ONE;
 #if TG_FIXED
         k->nkey[j] = normal_key(tg_v3(0, 0, 0), UINT64_MAX);
 #endif
@@ -119,6 +120,7 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
     v[0] = r->ao ? tgi_gr_ao(r, i) : TG_ONE;
     v[1] = b.x; v[2] = b.y; v[3] = b.z;
     v[4] = e.x; v[5] = e.y; v[6] = e.z;
+    v[7] = TG_FIXED ? 0 : TG_ONE;
 }
 
 #if Q16_WIDE
@@ -314,10 +316,7 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
         sum[4] += (int64_t)tv[4] * wj; sum[5] += (int64_t)tv[5] * wj;
         sum[6] += (int64_t)tv[6] * wj; sum[7] += wj;   /* the weights' sum */
 #else
-        sum[0] += tgi_wide_mul(tv[0], wj); sum[1] += tgi_wide_mul(tv[1], wj);
-        sum[2] += tgi_wide_mul(tv[2], wj); sum[3] += tgi_wide_mul(tv[3], wj);
-        sum[4] += tgi_wide_mul(tv[4], wj); sum[5] += tgi_wide_mul(tv[5], wj);
-        sum[6] += tgi_wide_mul(tv[6], wj); sum[7] += wj;   /* the weights' sum */
+        for (c = 0; c <= TGI_DENOISE_VALUES; c++) sum[c] += tv[c] * wj;   /* sum[7]: 1 wj, the weights' sum */
 #endif
     }
 #endif

@@ -77,8 +77,9 @@ typedef struct tgi_denoise_walk {
 #if TG_FIXED
     uint64_t nkey[TGI_DENOISE_TAPS];    /* the normal as one word (denoise.c normal_key) */
 #endif
-    /* the kept results as tgi_gr_get_kept reads them; an 8th value, unused
-     * (0), makes an entry two of the float build's vectors of 4 */
+    /* the kept results as tgi_gr_get_kept reads them; an 8th value makes an
+     * entry two of the float build's vectors of 4: 1 there (a tap's weight
+     * times it is its weight, the weights' sum), unused (0) in Q16.16 */
     tg_real v[TGI_DENOISE_TAPS][TGI_DENOISE_VALUES + 1];
 } tgi_denoise_walk;
 
