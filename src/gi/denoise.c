@@ -78,9 +78,7 @@ static tg_real normal_weight(tg_real d)
 }
 #endif
 
-/* Pixel (xx, yy) of g decoded into entry j of the walk; has_bent, has_near:
- * what tgi_gr_get_kept reads of r. */
-#if TG_FIXED
+#if Q16_WIDE
 /* A normal as one word, equal for two normals exactly when they are equal:
  * its components in 21 bits each when all are within [-2^20, 2^20) (unit
  * normals are within [-2^16, 2^16]), else `other` (UINT64_MAX for a tap,
@@ -94,6 +92,8 @@ static inline uint64_t normal_key(tg_vec3 n, uint64_t other)
 }
 #endif
 
+/* Pixel (xx, yy) of g decoded into entry j of the walk; has_bent, has_near:
+ * what tgi_gr_get_kept reads of r. */
 static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_gresult *r, int has_bent, int has_near,
                      int xx, int yy)
 {
@@ -104,13 +104,13 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
         k->z[j] = k->nx[j] = k->ny[j] = k->nz[j] = 0;
         v[0] = v[1] = v[2] = v[3] = v[4] = v[5] = v[6] = 0;
         v[7] = TG_FIXED ? 0 : TG_ONE;
-#if TG_FIXED
+#if Q16_WIDE
         k->nkey[j] = normal_key(tg_v3(0, 0, 0), UINT64_MAX);
 #endif
         return;
     }
     n = tgi_gv_normal(g, i);
-#if TG_FIXED
+#if Q16_WIDE
     k->nkey[j] = normal_key(n, UINT64_MAX);
 #endif
     b = has_bent ? tgi_gr_bent(r, i) : tg_v3(0, 0, 0);

@@ -63,9 +63,10 @@ static inline void tgi_gr_put_kept(const tgi_gresult *r, size_t i, const tgi_gr_
  * values (TGI_DENOISE_TAPS: the band's entries and 3 more, which stay 0,
  * so that a pixel's entries and the 3 after them are 28, a multiple of 4). */
 #ifndef TGI_DENOISE_BAND
-/* 4 rows: the walk is 2080 bytes of stack, 1360 with 1 row (a build for
- * size, TG_OUTLINE_HELPERS, keeps that: README "Porting"); 8 rows would
- * save half a decode more a pixel for 3 KB. */
+/* 4 rows: the walk is 2080 bytes of stack in float, 2424 in Q16.16 (its
+ * normals' words), 1360 with 1 row (a build for size, TG_OUTLINE_HELPERS,
+ * keeps that, as before: README "Porting"); 8 rows would save half a
+ * decode more a pixel for 1 KB more. */
 #define TGI_DENOISE_BAND (TG_OUTLINE_HELPERS ? 1 : 4)
 #endif
 #define TGI_DENOISE_TAPS ((TGI_DENOISE_BAND + 4) * 5 + 3)
@@ -74,7 +75,7 @@ typedef struct tgi_denoise_walk {
     int base, band, lo, next;       /* the band's first row; its columns [lo, next) are decoded */
     tg_real z[TGI_DENOISE_TAPS];    /* view depth; 0 on sky, which no centre's depth test passes */
     tg_real nx[TGI_DENOISE_TAPS], ny[TGI_DENOISE_TAPS], nz[TGI_DENOISE_TAPS];   /* G-buffer normal (0 on sky) */
-#if TG_FIXED
+#if TG_FIXED && !TG_OUTLINE_HELPERS
     uint64_t nkey[TGI_DENOISE_TAPS];    /* the normal as one word (denoise.c normal_key) */
 #endif
     /* the kept results as tgi_gr_get_kept reads them; an 8th value makes an
