@@ -694,6 +694,64 @@ TEST(point_cube_faces_meet_without_seams)
     shadow_filter = TG_SHADOW_PCF_TENT;
 }
 
+/* The bent cone's far field (sh.c) as its formula reads with tg_mul, tg_sub,
+ * tgi_v3_dot and tg_add (HBIL sec. 2.2.4), to check the Q16.16 path that
+ * skips the saturation tests where the weights are bounded. */
+static tg_vec3 cone_formula(const tg_vec3 sh[9], tg_vec3 n, tg_real ao)
+{
+    tg_real t = tgi_cone_cos_from_ao(ao), omt2 = tg_saturate(ao), x = n.x, y = n.y, z = n.z, e[3];
+    tg_real t2 = tg_sub(TG_ONE, omt2), t3 = tg_mul(t2, t), t4 = tg_mul(t2, t2);
+    tg_real c0 = tg_mul(TG_R(0.886226925f), omt2), c1 = tg_mul(TG_R(1.023326708f), tg_sub(TG_ONE, t3));
+    tg_real c2 = tg_mul(TG_R(0.247707956f), tg_sub(tg_mul(TG_R(3.0f), tg_sub(TG_ONE, t4)), tg_mul(TG_R(2.0f), omt2)));
+    tg_real c2x = tg_mul(c2, TG_R(3.464101615f)), w[9];
+    int c, k;
+    w[0] = c0; w[1] = tg_mul(c1, y); w[2] = tg_mul(c1, z); w[3] = tg_mul(c1, x);
+    w[4] = tg_mul(c2x, tg_mul(x, y)); w[5] = tg_mul(c2x, tg_mul(y, z));
+    w[6] = tg_mul(c2, tg_sub(tg_mul(TG_R(3.0f), tg_mul(z, z)), TG_ONE)); w[7] = tg_mul(c2x, tg_mul(z, x));
+    w[8] = tg_mul(tg_mul(c2, TG_R(1.732050808f)), tg_sub(tg_mul(x, x), tg_mul(y, y)));
+    for (c = 0; c < 3; c++) {
+        tg_real sum = 0;
+        for (k = 0; k < 9; k += 3)
+            sum = tg_add(sum, tgi_v3_dot(tg_v3(w[k], w[k + 1], w[k + 2]),
+                                         tg_v3((&sh[k].x)[c], (&sh[k + 1].x)[c], (&sh[k + 2].x)[c])));
+        e[c] = tg_max(sum, 0);
+    }
+    return tg_v3(e[0], e[1], e[2]);
+}
+
+/* tgi_sh9_irradiance_bent_cone gives its formula's bits: 3e6 random axes
+ * (unit, and up to 512 long: the bounded path and the saturating one), AO
+ * over [-0.5, 1.5] and SH9 coefficients from small to the range's ends. */
+TEST(bent_cone_far_field_is_its_formula)
+{
+    uint64_t v = 0x853C49E6748FEA9Bull;
+    tg_vec3 sh[9];
+    long i, bad = 0;
+    int k;
+    for (i = 0; i < 3000000; i++) {
+        tg_vec3 n, got, want;
+        tg_real ao;
+        uint32_t r[5];
+        for (k = 0; k < 5; k++) { v ^= v << 13; v ^= v >> 7; v ^= v << 17; r[k] = (uint32_t)(v >> 32); }
+        if (i % 1000 == 0)   /* a new environment: coefficients up to 2^(0..30) ulps, or the range's ends */
+            for (k = 0; k < 27; k++) {
+                uint64_t u;
+                v ^= v << 13; v ^= v >> 7; v ^= v << 17; u = v;
+                (&sh[k / 3].x)[k % 3] = (i / 1000) % 5 == 4 ? ((u & 1) ? TG_REAL_MAX : TG_REAL_MIN)
+                                      : tg_from_float((float)((int32_t)(uint32_t)(u >> 32) >> (int)(u % 31)) / 65536.0f);
+            }
+        n = tg_v3(tg_from_float((float)(int32_t)r[0] / 2147483648.0f), tg_from_float((float)(int32_t)r[1] / 2147483648.0f),
+                  tg_from_float((float)(int32_t)r[2] / 2147483648.0f));
+        if (r[3] % 4) n = tgi_v3_normalize_or(n, tg_v3(0, TG_ONE, 0));
+        else n = tgi_v3_scale(n, tg_from_int(r[3] % 8 == 0 ? 1 << (r[3] >> 4) % 10 : 1 + (int)(r[3] % 7)));   /* up to 512 */
+        ao = tg_from_float(2.0f * (float)(r[4] & 0xFFFF) / 65536.0f - 0.5f);
+        got = tgi_sh9_irradiance_bent_cone(sh, n, ao);
+        want = cone_formula(sh, n, ao);
+        bad += got.x != want.x || got.y != want.y || got.z != want.z;
+    }
+    CHECK(bad == 0, "%ld of 3e6 far-field irradiances differ from the formula", bad);
+}
+
 int main(void)
 {
     RUN(directional_incidence);
@@ -707,5 +765,6 @@ int main(void)
     RUN(sky_pixels_see_along_their_centre_ray);
     RUN(srgb_table_matches_formula);
     RUN(tonemap_monotone_zero_and_saturating);
+    RUN(bent_cone_far_field_is_its_formula);
     return check_summary();
 }

@@ -17,6 +17,7 @@
 #include "check.h"
 #include "core/real.h"
 #include "core/text.h"
+#include "core/unit.h"
 #include <stdlib.h>
 #include <stdint.h>
 #include <float.h>
@@ -325,6 +326,71 @@ TEST(isqrt64_exact)
     }
     for (k = 0; k < 2000000; k++) if (!isqrt_ok(k, tgi_isqrt64(k))) bad++;
     CHECK(bad == 0, "%ld wrong integer square roots", bad);
+}
+
+#if TG_FIXED
+/* unit.h's square root against tgi_isqrt64 over its whole domain [2^60,
+ * 3 2^62]: its ends, every square k^2 and its neighbours there (a step of
+ * 1/2^20 of the range), and 4e6 random values. */
+TEST(isqrt64_upper_matches)
+{
+    uint64_t lo = (uint64_t)1 << 60, hi = 3 * ((uint64_t)1 << 62), k, v = 0x9E3779B97F4A7C15ull;
+    long i, n = 0, bad = 0;
+    for (k = 1u << 30; k * k <= hi; k += 1 + (k >> 20)) {   /* squares and their neighbours */
+        uint64_t sq = k * k, w;
+        for (w = sq - 1; w <= sq + 1; w++)
+            if (w >= lo && w <= hi) { n++; bad += tgi_isqrt64_upper(w) != tgi_isqrt64(w); }
+    }
+    bad += tgi_isqrt64_upper(lo) != tgi_isqrt64(lo);
+    bad += tgi_isqrt64_upper(hi) != tgi_isqrt64(hi);
+    for (i = 0; i < 4000000; i++) {
+        uint64_t w;
+        v ^= v << 13; v ^= v >> 7; v ^= v << 17;
+        w = lo + v % (hi - lo + 1);
+        n++;
+        bad += tgi_isqrt64_upper(w) != tgi_isqrt64(w);
+    }
+    CHECK(n > 5000000 && bad == 0, "%ld of %ld roots differ from tgi_isqrt64", bad, n);
+}
+#endif
+
+/* tgi_v3_unit_or gives tgi_v3_normalize_or's bits: 6e6 random vectors
+ * with components of random magnitude (from a few ulps to the range's
+ * ends, each component its own), axis-aligned ones, the zero vector (the
+ * fallback) and the range's corners. */
+TEST(unit_or_matches_normalize_or)
+{
+    uint64_t v = 0x2545F4914F6CDD1Dull;
+    long i, bad = 0;
+    tg_vec3 fb = tg_v3(TG_R(0.25f), 0, TG_R(-0.5f)), a, u, w;
+    static const tg_real ends[] = { TG_REAL_MAX, TG_REAL_MIN, 0, 1, -1, TG_ONE, TG_R(-0.5f) };
+    int x, y, z;
+    for (x = 0; x < 7; x++)
+        for (y = 0; y < 7; y++)
+            for (z = 0; z < 7; z++) {
+                a = tg_v3(ends[x], ends[y], ends[z]);
+                u = tgi_v3_unit_or(a, fb); w = tgi_v3_normalize_or(a, fb);
+                bad += u.x != w.x || u.y != w.y || u.z != w.z;
+            }
+    for (i = 0; i < 6000000; i++) {
+        tg_real c[3];
+        int j;
+        for (j = 0; j < 3; j++) {
+            uint32_t r;
+            v ^= v << 13; v ^= v >> 7; v ^= v << 17;
+            r = (uint32_t)(v >> 32);
+#if TG_FIXED
+            c[j] = (tg_real)((int32_t)r >> (int)(v % 32));       /* every magnitude */
+#else
+            c[j] = (float)(int32_t)r * tg_ldexp(1.0f, (int)(v % 80) - 70);
+#endif
+            if ((v >> 8) % 7 == 0) c[j] = 0;                      /* axis-aligned and zero vectors */
+        }
+        a = tg_v3(c[0], c[1], c[2]);
+        u = tgi_v3_unit_or(a, fb); w = tgi_v3_normalize_or(a, fb);
+        bad += u.x != w.x || u.y != w.y || u.z != w.z;
+    }
+    CHECK(bad == 0, "%ld vectors normalised differently", bad);
 }
 
 TEST(rsqrt_whole_domain)
@@ -908,6 +974,10 @@ TEST(text_put_real_as_float)
 int main(void)
 {
     RUN(isqrt64_exact);
+#if TG_FIXED
+    RUN(isqrt64_upper_matches);
+#endif
+    RUN(unit_or_matches_normalize_or);
 #if TG_FIXED
     RUN(outline_div_and_shift_match_inline);
     RUN(div_rounds_alike_for_every_sign);

@@ -109,36 +109,43 @@ static tg_vec3 irradiance_at(const resolve_ctx *c, const tg_frame *f, size_t i, 
 }
 #endif
 
+/* Pixel (x, y): its GI results, their AOV, E and Lo. */
+static void resolve_pixel(resolve_ctx *c, tg_frame *f, int compose, int x, int y)
+{
+    size_t i = tgi_gv_index(&f->full, x, y);
+    tgi_gr_value v;
+#if !TG_NO_COLOR
+    tg_vec3 e;
+#else
+    (void)compose;
+#endif
+    v.ao = TG_ONE; v.bent = v.near = tg_v3(0, 0, 0);
+    if (c->gi) v = results_at(c, f, x, y, i);
+    if (c->hbil) tgi_gr_put_kept(&f->out, i, &v);   /* the filtered results an AOV asks for */
+#if !TG_NO_COLOR /* without colour (the plan refuses the far field and composition) nothing else */
+    if (tgi_gv_is_sky(&f->full, i)) {
+        if (c->far_own) tgi_rgb_set(c->far_own, i, tg_v3(0, 0, 0));
+        if (!compose) return;
+        tgi_rgb_set(c->lo, i, tgi_compose_sky(&f->view, &f->scene->env, x, y));
+        if (tgi_rgb_present(&f->irradiance)) tgi_rgb_set(&f->irradiance, i, tg_v3(0, 0, 0));
+        return;
+    }
+    e = irradiance_at(c, f, i, &v);
+    if (!compose) return;
+    if (tgi_rgb_present(&f->irradiance)) tgi_rgb_set(&f->irradiance, i, e);
+    tgi_rgb_set(c->lo, i, tgi_gv_lit(&f->full, i, e));   /* HBIL eq. 14, 19 */
+#endif
+}
+
 void tgi_pass_resolve(tg_frame *f, int y0, int y1)
 {
     resolve_ctx c;
-    int x, y;
-#if !TG_NO_COLOR
-    int compose = (f->needs & TG_NEED_COMPOSE) != 0;
-#endif
+    int x, y, yy, end, compose = (f->needs & TG_NEED_COMPOSE) != 0;
     resolve_ctx_init(&c, f);
-    for (y = y0; y < y1; y++)
-        for (x = 0; x < f->width; x++) {
-            size_t i = tgi_gv_index(&f->full, x, y);
-            tgi_gr_value v;
-#if !TG_NO_COLOR
-            tg_vec3 e;
-#endif
-            v.ao = TG_ONE; v.bent = v.near = tg_v3(0, 0, 0);
-            if (c.gi) v = results_at(&c, f, x, y, i);
-            if (c.hbil) tgi_gr_put_kept(&f->out, i, &v);   /* the filtered results an AOV asks for */
-#if !TG_NO_COLOR /* without colour (the plan refuses the far field and composition) nothing else */
-            if (tgi_gv_is_sky(&f->full, i)) {
-                if (c.far_own) tgi_rgb_set(c.far_own, i, tg_v3(0, 0, 0));
-                if (!compose) continue;
-                tgi_rgb_set(c.lo, i, tgi_compose_sky(&f->view, &f->scene->env, x, y));
-                if (tgi_rgb_present(&f->irradiance)) tgi_rgb_set(&f->irradiance, i, tg_v3(0, 0, 0));
-                continue;
-            }
-            e = irradiance_at(&c, f, i, &v);
-            if (!compose) continue;
-            if (tgi_rgb_present(&f->irradiance)) tgi_rgb_set(&f->irradiance, i, e);
-            tgi_rgb_set(c.lo, i, tgi_gv_lit(&f->full, i, e));   /* HBIL eq. 14, 19 */
-#endif
-        }
+    /* the filter's order: band by band, column by column (denoise.h); else row by row */
+    for (y = y0; y < y1; y = end) {
+        end = c.hbil && !c.quarter ? tgi_denoise_band(&c.r.walk, y, y1) : y + 1;
+        for (x = 0; x < f->width; x++)
+            for (yy = y; yy < end; yy++) resolve_pixel(&c, f, compose, x, yy);
+    }
 }

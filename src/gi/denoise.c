@@ -5,6 +5,7 @@
  */
 #include "../tinygi.h"
 #include "denoise.h"
+#include "../core/unit.h"
 
 /* Q16_WIDE: the Q16.16 paths below that compute in 64 bits without tg_mul's
  * and tg_add's saturation tests (each states its bounds), giving the same
@@ -28,7 +29,8 @@ void tgi_denoise_defaults(tgi_denoise_params *p)
 #define W_1 TG_ONE
 #define PHASE(a, b, c, d, e, ha, hb, hc, hd, he) \
     { ha, hb, hc, hd, he, a, b, c, d, e, a, b, c, d, e, a, b, c, d, e, ha, hb, hc, hd, he, 0, 0, 0 }
-static const tg_real spatial_w[5][TGI_DENOISE_TAPS] = {
+#define PIXEL_TAPS 28   /* a pixel's 25 entries of the walk and the 3 after them (denoise.h) */
+static const tg_real spatial_w[5][PIXEL_TAPS] = {
     PHASE(W_1, W_1, W_H, W_H, W_1, W_H, W_H, W_Q, W_Q, W_H),   /* x % 5 = 0: window columns 3 4 0 1 2 in slots 0..4 */
     PHASE(W_1, W_1, W_1, W_H, W_H, W_H, W_H, W_H, W_Q, W_Q),   /* 1: columns 2 3 4 0 1 */
     PHASE(W_H, W_1, W_1, W_1, W_H, W_Q, W_H, W_H, W_H, W_Q),   /* 2: columns 0 1 2 3 4 */
@@ -36,6 +38,20 @@ static const tg_real spatial_w[5][TGI_DENOISE_TAPS] = {
     PHASE(W_1, W_H, W_H, W_1, W_1, W_H, W_Q, W_Q, W_H, W_H),   /* 4: columns 1 2 3 4 0 */
 };
 #undef PHASE
+
+#if !Q16_WIDE
+/* The entries of a whole window in the order of the sums (rows, then
+ * columns), for a centre in column x with x % 5 = phase: row r's columns
+ * x - 2 .. x + 2 are slots (phase + 3 .. phase + 7) % 5. */
+#define ROW(r, a, b, c, d, e) 5 * r + a, 5 * r + b, 5 * r + c, 5 * r + d, 5 * r + e
+#define ORDER(a, b, c, d, e) { ROW(0, a, b, c, d, e), ROW(1, a, b, c, d, e), ROW(2, a, b, c, d, e), \
+                               ROW(3, a, b, c, d, e), ROW(4, a, b, c, d, e) }
+static const unsigned char window_order[5][25] = {
+    ORDER(3, 4, 0, 1, 2), ORDER(4, 0, 1, 2, 3), ORDER(0, 1, 2, 3, 4), ORDER(1, 2, 3, 4, 0), ORDER(2, 3, 4, 0, 1),
+};
+#undef ORDER
+#undef ROW
+#endif
 
 #if Q16_WIDE
 /* Q16.16 products without tg_mul's sign test and saturation, giving its
@@ -62,6 +78,20 @@ static tg_real normal_weight(tg_real d)
 }
 #endif
 
+#if Q16_WIDE
+/* A normal as one word, equal for two normals exactly when they are equal:
+ * its components in 21 bits each when all are within [-2^20, 2^20) (unit
+ * normals are within [-2^16, 2^16]), else `other` (UINT64_MAX for a tap,
+ * UINT64_MAX - 1 for a centre: the two never match, nor match a normal in
+ * range, whose word is below 2^63). */
+static inline uint64_t normal_key(tg_vec3 n, uint64_t other)
+{
+    uint64_t x = (uint64_t)((int64_t)n.x + (1 << 20)), y = (uint64_t)((int64_t)n.y + (1 << 20)),
+             z = (uint64_t)((int64_t)n.z + (1 << 20));
+    return (x | y | z) >> 21 ? other : x << 42 | y << 21 | z;
+}
+#endif
+
 /* Pixel (xx, yy) of g decoded into entry j of the walk; has_bent, has_near:
  * what tgi_gr_get_kept reads of r. */
 static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_gresult *r, int has_bent, int has_near,
@@ -73,9 +103,16 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
     if (tgi_gv_is_sky(g, i)) {
         k->z[j] = k->nx[j] = k->ny[j] = k->nz[j] = 0;
         v[0] = v[1] = v[2] = v[3] = v[4] = v[5] = v[6] = 0;
+        v[7] = TG_FIXED ? 0 : TG_ONE;
+#if Q16_WIDE
+        k->nkey[j] = normal_key(tg_v3(0, 0, 0), UINT64_MAX);
+#endif
         return;
     }
     n = tgi_gv_normal(g, i);
+#if Q16_WIDE
+    k->nkey[j] = normal_key(n, UINT64_MAX);
+#endif
     b = has_bent ? tgi_gr_bent(r, i) : tg_v3(0, 0, 0);
     e = has_near ? tgi_gr_near(r, i) : tg_v3(0, 0, 0);
     k->z[j] = tgi_gv_depth(g, i);
@@ -83,34 +120,71 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
     v[0] = r->ao ? tgi_gr_ao(r, i) : TG_ONE;
     v[1] = b.x; v[2] = b.y; v[3] = b.z;
     v[4] = e.x; v[5] = e.y; v[6] = e.z;
+    v[7] = TG_FIXED ? 0 : TG_ONE;
 }
 
 #if Q16_WIDE
-/* tap_weights below in Q16.16, giving the same sums: the same integers for
- * every weight that is positive, 0 for those it gives <= 0, which the sums
- * skip alike.  Where the weight is kept, dz < ztol, so ztol > 0, inv_ztol > 0
- * and dz / ztol in [0, 1 + a rounding]; 1 - dz / ztol is clamped at 0 (a
- * negative one gives a weight <= 0).  Every factor is then non-negative:
- * the spatial weight <= 1 and the dot clamped at 2 (normal_weight), so the
- * weight <= 2^8 (2^24 in Q16.16).  The dot's rounding: tgi_shr_round of a
- * sum s <= 0 is <= 0 (clamped to 0), of s > 0 it is mul_pos's; the normals'
- * components are within [-1, 1], so |s| < 2^34.  Only the 25 entries of the
- * window. */
-static void tap_weights(const tgi_denoise_walk *k, const tg_real *spatial, tg_real zi, tg_vec3 ni, tg_real ztol,
-                        tg_real inv_ztol, tg_real *wt)
+/* The weights of tap_weights below (the float build's) in Q16.16 and the
+ * sums of tgi_denoise_pixel in one pass over the window's entries, the set
+ * bits of `window` (bit j: entry j).  The same integers for every weight
+ * that is positive; an entry whose weight is <= 0 adds nothing, so the
+ * tests below leave it out as soon as one of its factors is 0 (whole: all
+ * 25 entries, window unused).  Where the
+ * weight is kept, dz < ztol, so ztol > 0, inv_ztol > 0 and dz / ztol in
+ * [0, 1 + a rounding]; 1 - dz / ztol is kept only when positive.  Every
+ * factor is then non-negative: the spatial weight <= 1 and the dot clamped
+ * at 2 (normal_weight), so the weight <= 2^8 (2^24 in Q16.16).  The dot's
+ * rounding: tgi_shr_round of a sum s <= 0 is <= 0 (the normal weight 0),
+ * of s > 0 it is mul_pos's; the normals' components are within [-1, 1], so
+ * |s| < 2^34.  The sums are exact integers (tgi_denoise_pixel bounds them
+ * below 2^60), so the order of the entries, here the walk's and not the
+ * window's rows and columns, gives the same sums. */
+/* max(0, a . b)^8 (normal_weight's) */
+static inline uint64_t normal_d8(tg_vec3 a, tg_vec3 b)
 {
-    int j;
-    for (j = 0; j < 5 * 5; j++) {
-        tg_real dz = tg_abs(k->z[j] - zi);   /* depths are never negative: no overflow */
-        int64_t omt = TG_ONE - (int64_t)mul_pos((uint64_t)dz, (uint64_t)inv_ztol);   /* 1 - dz / ztol */
-        int64_t s = (int64_t)ni.x * k->nx[j] + (int64_t)ni.y * k->ny[j] + (int64_t)ni.z * k->nz[j];
-        uint64_t d = s > 0 ? ((uint64_t)s + 32768u) >> 16 : 0, w;
-        d = d < 2 * TG_ONE ? d : 2 * TG_ONE;
-        omt = dz < ztol && omt > 0 ? omt : 0;
-        w = mul_pos((uint64_t)spatial[j], (uint64_t)omt);
-        d = mul_pos(d, d); d = mul_pos(d, d); d = mul_pos(d, d);   /* max(0, n_i . n_j)^8 */
-        wt[j] = (tg_real)mul_pos(w, d);
+    int64_t s = (int64_t)a.x * b.x + (int64_t)a.y * b.y + (int64_t)a.z * b.z;
+    uint64_t d;
+    if (s <= 0) return 0;
+    d = ((uint64_t)s + 32768u) >> 16;
+    d = d < 2 * TG_ONE ? d : 2 * TG_ONE;
+    d = mul_pos(d, d); d = mul_pos(d, d);
+    return mul_pos(d, d);
+}
+
+#if defined(__GNUC__)
+#define DENOISE_INLINE inline __attribute__((always_inline))   /* whole: a constant in each copy */
+#else
+#define DENOISE_INLINE inline
+#endif
+static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const tg_real *spatial, tg_real zi,
+                                         tg_vec3 ni, tg_real ztol, tg_real inv_ztol, uint32_t window, int whole,
+                                         int64_t *sum)
+{
+    int64_t s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0, s6 = 0, sw = 0;
+    uint64_t key = normal_key(ni, UINT64_MAX - 1), same = normal_d8(ni, ni);
+    int j, e;
+    for (j = 0, e = o; whole ? j < 5 * 5 : window != 0; j++, e++, window >>= 1) {
+        tg_real dz;
+        int64_t omt, wj;
+        uint64_t d;
+        const tg_real *tv;
+        if (!whole && !(window & 1)) continue;
+        dz = tg_abs(k->z[e] - zi);   /* depths are never negative: no overflow */
+        if (dz >= ztol) continue;
+        omt = TG_ONE - (int64_t)mul_pos((uint64_t)dz, (uint64_t)inv_ztol);   /* 1 - dz / ztol */
+        if (omt <= 0) continue;
+        /* the normal weight: the centre's own for a normal equal to it (the
+         * common case: a plane's pixels share their normal); a weight 0
+         * (normals apart) adds 0 */
+        d = k->nkey[e] == key ? same : normal_d8(ni, tg_v3(k->nx[e], k->ny[e], k->nz[e]));
+        wj = (int64_t)mul_pos(mul_pos((uint64_t)spatial[j], (uint64_t)omt), d);
+        tv = k->v[e];
+        s0 += tv[0] * wj; s1 += tv[1] * wj;
+        s2 += tv[2] * wj; s3 += tv[3] * wj;
+        s4 += tv[4] * wj; s5 += tv[5] * wj;
+        s6 += tv[6] * wj; sw += wj;   /* the weights' sum */
     }
+    sum[0] = s0; sum[1] = s1; sum[2] = s2; sum[3] = s3; sum[4] = s4; sum[5] = s5; sum[6] = s6; sum[7] = sw;
 }
 #else
 /* The weight of every entry of the walk for the centre (depth zi, normal
@@ -120,20 +194,20 @@ static void tap_weights(const tgi_denoise_walk *k, const tg_real *spatial, tg_re
  * computed (from finite values: the walk starts zeroed), the window's and
  * the others alike, then multiplied by 1 or 0 (the plain product is w or 0
  * in either number type). */
-static void tap_weights(const tgi_denoise_walk *k, const tg_real *spatial, tg_real zi, tg_vec3 ni, tg_real ztol,
-                        tg_real inv_ztol, tg_real *wt)
+static void tap_weights(const tgi_denoise_walk *k, int o, const tg_real *spatial, tg_real zi, tg_vec3 ni,
+                        tg_real ztol, tg_real inv_ztol, tg_real *wt)
 {
-    tg_real kept[TGI_DENOISE_TAPS];
+    tg_real kept[PIXEL_TAPS];
     int j;
-    for (j = 0; j < TGI_DENOISE_TAPS; j++) {
+    for (j = 0; j < PIXEL_TAPS; j++) {
         /* depths are never negative: their difference never saturates */
-        tg_real dz = tg_abs(k->z[j] - zi), w;
+        tg_real dz = tg_abs(k->z[o + j] - zi), w;
         tg_real dzc = tg_min(dz, ztol);   /* = dz where the weight is kept: dz / ztol in [0, 1] */
         kept[j] = dz < ztol ? 1 : 0;
         w = weight_mul(spatial[j], TG_ONE - weight_mul(dzc, inv_ztol));   /* in [0, 1]: never saturates */
-        wt[j] = weight_mul(w, normal_weight(tgi_v3_dot(ni, tg_v3(k->nx[j], k->ny[j], k->nz[j]))));
+        wt[j] = weight_mul(w, normal_weight(tgi_v3_dot(ni, tg_v3(k->nx[o + j], k->ny[o + j], k->nz[o + j]))));
     }
-    for (j = 0; j < TGI_DENOISE_TAPS; j++) wt[j] *= kept[j];
+    for (j = 0; j < PIXEL_TAPS; j++) wt[j] *= kept[j];
 }
 
 #endif
@@ -150,10 +224,18 @@ static tg_real average(tgi_wide sum, tgi_wide ws)
 #endif
 }
 
+/* The filtered bent normal made unit again (out of line: inlined, its
+ * registers cost the filter's loop more than the call). */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static tg_vec3 bent_unit(tg_vec3 b, tg_vec3 fallback) { return tgi_v3_unit_or(b, fallback); }
+
 void tgi_denoise_walk_start(tgi_denoise_walk *k)
 {
     memset(k, 0, sizeof *k);
-    k->y = -1;
+    k->base = -1;                       /* set by the first pixel */
+    k->band = -2 * TGI_DENOISE_BAND;    /* none: a band starts at row -(TGI_DENOISE_BAND - 1) or later */
     k->lo = k->next = 0;
 }
 
@@ -161,10 +243,16 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
                                tgi_denoise_walk *k, int x, int y)
 {
     size_t i = tgi_gv_index(g, x, y);
-    int w = g->width, h = g->height, xx, yy, c, slot[5], has_bent = !TG_NO_BENT_NORMALS && tgi_gr_has_bent(r), has_near = !TG_NO_COLOR && tgi_gr_has_near(r);
+    int w = g->width, h = g->height, xx, yy, band, o, has_bent = !TG_NO_BENT_NORMALS && tgi_gr_has_bent(r), has_near = !TG_NO_COLOR && tgi_gr_has_near(r);
     int xa = x < 2 ? 0 : x - 2, xb = x + 2 >= w ? w - 1 : x + 2;
     int ya = y < 2 ? 0 : y - 2, yb = y + 2 >= h ? h - 1 : y + 2;
-    tg_real zi, ztol, inv_ztol, wt[TGI_DENOISE_TAPS];
+    tg_real zi, ztol, inv_ztol;
+#if !Q16_WIDE
+    tg_real wt[PIXEL_TAPS];
+    const unsigned char *order;
+    unsigned char part[25];
+    int c, t, taps = 0;
+#endif
     /* The sums in tgi_wide (core/real.h), in the order of the taps (rows,
      * then columns), each of the walk's values its own sum, then the
      * weights' (sum[7]); the filtered value is a sum over the weights' sum
@@ -179,43 +267,63 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     tg_vec3 ni;
     tgi_gr_value v;
     if (tgi_gv_is_sky(g, i)) return tgi_gr_get_kept(r, i);
-    /* the window's columns decoded once: those of the last pixel are kept */
-    if (k->y != y || xa < k->lo) { k->y = y; k->lo = k->next = xa; }
-    for (; k->next <= xb; k->next++)
-        for (yy = ya; yy <= yb; yy++)
-            tap_load(k, (yy - y + 2) * 5 + k->next % 5, g, r, has_bent, has_near, k->next, yy);
+    /* the band's columns decoded once: those of the last pixels are kept */
+    if (k->base < 0) k->base = y;
+    band = tgi_denoise_band_of(k->base, y);
+    if (k->band != band || xa < k->lo) { k->band = band; k->lo = k->next = xa; }
+    if (k->next <= xb) {
+        int ra = band < 2 ? 0 : band - 2, rb = band + TGI_DENOISE_BAND + 1 >= h ? h - 1 : band + TGI_DENOISE_BAND + 1;
+        for (; k->next <= xb; k->next++)
+            for (yy = ra; yy <= rb; yy++)
+                tap_load(k, (yy - band + 2) * 5 + k->next % 5, g, r, has_bent, has_near, k->next, yy);
+    }
     if (k->next - k->lo > 5) k->lo = k->next - 5;
-    zi = k->z[2 * 5 + x % 5];
-    ni = tg_v3(k->nx[2 * 5 + x % 5], k->ny[2 * 5 + x % 5], k->nz[2 * 5 + x % 5]);
+    o = (y - band) * 5;   /* the pixel's entries: tap (xx, yy) at o + (yy - y + 2) * 5 + xx % 5 */
+    zi = k->z[o + 2 * 5 + x % 5];
+    ni = tg_v3(k->nx[o + 2 * 5 + x % 5], k->ny[o + 2 * 5 + x % 5], k->nz[o + 2 * 5 + x % 5]);
     ztol = tg_mul(p->depth_tolerance, zi);
     inv_ztol = tg_div(TG_ONE, ztol);
-    tap_weights(k, spatial_w[x % 5], zi, ni, ztol, inv_ztol, wt);
-    for (xx = xa; xx <= xb; xx++) slot[xx - xa] = xx % 5;
-    for (c = 0; c <= TGI_DENOISE_VALUES; c++) sum[c] = 0;
-    for (yy = ya; yy <= yb; yy++)
-        for (xx = xa; xx <= xb; xx++) {
-            int j = (yy - y + 2) * 5 + slot[xx - xa];
-            const tg_real *tv = k->v[j];
-            tg_real wj = wt[j];
-            if (wj <= 0) continue;
-            /* written out: straight-line code the compiler keeps in registers
-             * (Q16.16) or turns into vector operations (float) */
-#if TG_FIXED
-            sum[0] += (int64_t)tv[0] * wj; sum[1] += (int64_t)tv[1] * wj;
-            sum[2] += (int64_t)tv[2] * wj; sum[3] += (int64_t)tv[3] * wj;
-            sum[4] += (int64_t)tv[4] * wj; sum[5] += (int64_t)tv[5] * wj;
-            sum[6] += (int64_t)tv[6] * wj; sum[7] += wj;   /* the weights' sum */
+#if Q16_WIDE
+    if (xb - xa == 4 && yb - ya == 4) {   /* the whole window: every entry */
+        weigh_and_sum(k, o, spatial_w[x % 5], zi, ni, ztol, inv_ztol, 0, 1, sum);
+    } else {   /* the window's entries inside the image: its rows' slots of its columns */
+        uint32_t slots = 0, window = 0;
+        for (xx = xa; xx <= xb; xx++) slots |= 1u << (xx % 5);
+        for (yy = ya; yy <= yb; yy++) window |= slots << ((yy - y + 2) * 5);
+        weigh_and_sum(k, o, spatial_w[x % 5], zi, ni, ztol, inv_ztol, window, 0, sum);
+    }
 #else
-            sum[0] += tgi_wide_mul(tv[0], wj); sum[1] += tgi_wide_mul(tv[1], wj);
-            sum[2] += tgi_wide_mul(tv[2], wj); sum[3] += tgi_wide_mul(tv[3], wj);
-            sum[4] += tgi_wide_mul(tv[4], wj); sum[5] += tgi_wide_mul(tv[5], wj);
-            sum[6] += tgi_wide_mul(tv[6], wj); sum[7] += wj;   /* the weights' sum */
+    tap_weights(k, o, spatial_w[x % 5], zi, ni, ztol, inv_ztol, wt);
+    if (xb - xa == 4 && yb - ya == 4) {
+        order = window_order[x % 5];   /* the whole window */
+        taps = 25;
+    } else {                           /* the window's part inside the image */
+        for (yy = ya; yy <= yb; yy++)
+            for (xx = xa; xx <= xb; xx++) part[taps++] = (unsigned char)((yy - y + 2) * 5 + xx % 5);
+        order = part;
+    }
+    for (c = 0; c <= TGI_DENOISE_VALUES; c++) sum[c] = 0;
+    for (t = 0; t < taps; t++) {
+        int j = order[t];
+        const tg_real *tv = k->v[o + j];
+        tg_real wj = wt[j];
+        if (wj <= 0) continue;
+        /* written out: straight-line code the compiler keeps in registers
+         * (Q16.16) or turns into vector operations (float) */
+#if TG_FIXED
+        sum[0] += (int64_t)tv[0] * wj; sum[1] += (int64_t)tv[1] * wj;
+        sum[2] += (int64_t)tv[2] * wj; sum[3] += (int64_t)tv[3] * wj;
+        sum[4] += (int64_t)tv[4] * wj; sum[5] += (int64_t)tv[5] * wj;
+        sum[6] += (int64_t)tv[6] * wj; sum[7] += wj;   /* the weights' sum */
+#else
+        for (c = 0; c <= TGI_DENOISE_VALUES; c++) sum[c] += tv[c] * wj;   /* sum[7]: 1 wj, the weights' sum */
 #endif
-        }
+    }
+#endif
     ws = sum[TGI_DENOISE_VALUES];
     if (ws <= 0) return tgi_gr_get_kept(r, i);   /* the centre always weighs 1: cannot happen */
     v.ao = tg_saturate(average(sum[0], ws));
-    v.bent = has_bent ? tgi_v3_normalize_or(tg_v3(average(sum[1], ws), average(sum[2], ws), average(sum[3], ws)), ni)
+    v.bent = has_bent ? bent_unit(tg_v3(average(sum[1], ws), average(sum[2], ws), average(sum[3], ws)), ni)
                       : tg_v3(0, 0, 0);
     v.near = has_near ? tg_v3(average(sum[4], ws), average(sum[5], ws), average(sum[6], ws)) : tg_v3(0, 0, 0);
     return v;
@@ -225,13 +333,16 @@ void tgi_denoise_rows(const tgi_denoise_params *p, const tgi_gview *g, const tgi
                       int y0, int y1)
 {
     tgi_denoise_walk k;
-    int x, y;
+    int x, y, yy, end;
     if (y0 < 0) y0 = 0;
     if (y1 > g->height) y1 = g->height;
     tgi_denoise_walk_start(&k);
-    for (y = y0; y < y1; y++)
-        for (x = 0; x < g->width; x++) {
-            tgi_gr_value v = tgi_denoise_pixel(p, g, r, &k, x, y);
-            tgi_gr_put_kept(out, tgi_gv_index(g, x, y), &v);
-        }
+    for (y = y0; y < y1; y = end) {     /* band by band, column by column */
+        end = tgi_denoise_band(&k, y, y1);
+        for (x = 0; x < g->width; x++)
+            for (yy = y; yy < end; yy++) {
+                tgi_gr_value v = tgi_denoise_pixel(p, g, r, &k, x, yy);
+                tgi_gr_put_kept(out, tgi_gv_index(g, x, yy), &v);
+            }
+    }
 }

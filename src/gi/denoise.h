@@ -48,24 +48,55 @@ static inline void tgi_gr_put_kept(const tgi_gresult *r, size_t i, const tgi_gr_
     if (!TG_NO_COLOR && tgi_gr_has_near(r)) tgi_gr_set_near(r, i, v->near);
 }
 
-/* The 5x5 window along a row: the columns a pixel shares with the pixel
- * before it are not decoded again (each pixel once per row instead of 25
- * times).  Any order of calls gives the same values; along a row (x
- * increasing) is the fast one.  Tap (column xx, row yy) is entry
- * (yy - y + 2) * 5 + xx % 5 of the planes below, one plane per value, so
- * that the weights of all taps are one loop over contiguous values and a
- * tap's sums read contiguous values (denoise.c; TGI_DENOISE_TAPS rounds 25
- * up to a multiple of 4, the entries past 25 stay 0). */
-#define TGI_DENOISE_TAPS 28
+/* The 5x5 windows of a band of TGI_DENOISE_BAND rows, walked along the
+ * band: the columns a pixel shares with the pixels before it are not
+ * decoded again, in its own row nor in the band's other rows (each pixel
+ * (TGI_DENOISE_BAND + 4) / TGI_DENOISE_BAND times instead of 5, once for
+ * each row whose window holds it).  The bands are the rows base + TGI_DENOISE_BAND b, base the first
+ * row the walk is asked for.  Any order of calls gives the same values; the
+ * fast one is band by band, in each band column by column (x increasing),
+ * the band's rows in any order (tgi_denoise_band gives a band's rows).
+ * Tap (column xx, row yy) is entry (yy - band + 2) * 5 + xx % 5 of the
+ * planes below, one plane per value, so that a pixel's 25 taps are
+ * contiguous entries (from (y - band) * 5: denoise.c), the weights of all
+ * taps one loop over contiguous values and a tap's sums read contiguous
+ * values (TGI_DENOISE_TAPS: the band's entries and 3 more, which stay 0,
+ * so that a pixel's entries and the 3 after them are 28, a multiple of 4). */
+#ifndef TGI_DENOISE_BAND
+/* 4 rows: the walk is 2080 bytes of stack in float, 2424 in Q16.16 (its
+ * normals' words), 1360 with 1 row (a build for size, TG_OUTLINE_HELPERS,
+ * keeps that, as before: README "Porting"); 8 rows would save half a
+ * decode more a pixel for 1 KB more. */
+#define TGI_DENOISE_BAND (TG_OUTLINE_HELPERS ? 1 : 4)
+#endif
+#define TGI_DENOISE_TAPS ((TGI_DENOISE_BAND + 4) * 5 + 3)
 #define TGI_DENOISE_VALUES 7        /* AO, bent normal x y z, near field r g b */
 typedef struct tgi_denoise_walk {
-    int y, lo, next;                /* row y's columns [lo, next) are decoded */
+    int base, band, lo, next;       /* the band's first row; its columns [lo, next) are decoded */
     tg_real z[TGI_DENOISE_TAPS];    /* view depth; 0 on sky, which no centre's depth test passes */
     tg_real nx[TGI_DENOISE_TAPS], ny[TGI_DENOISE_TAPS], nz[TGI_DENOISE_TAPS];   /* G-buffer normal (0 on sky) */
-    /* the kept results as tgi_gr_get_kept reads them; an 8th value, unused
-     * (0), makes an entry two of the float build's vectors of 4 */
+#if TG_FIXED && !TG_OUTLINE_HELPERS
+    uint64_t nkey[TGI_DENOISE_TAPS];    /* the normal as one word (denoise.c normal_key) */
+#endif
+    /* the kept results as tgi_gr_get_kept reads them; an 8th value makes an
+     * entry two of the float build's vectors of 4: 1 there (a tap's weight
+     * times it is its weight, the weights' sum), unused (0) in Q16.16 */
     tg_real v[TGI_DENOISE_TAPS][TGI_DENOISE_VALUES + 1];
 } tgi_denoise_walk;
+
+/* The first row of the band of row y (bands from row base), and the end
+ * of the band of row y within y1: rows [y, end) are the rows to filter
+ * together, column by column, for the fewest decodes. */
+static inline int tgi_denoise_band_of(int base, int y)
+{
+    int m = (y - base) % TGI_DENOISE_BAND;
+    return y - (m < 0 ? m + TGI_DENOISE_BAND : m);
+}
+static inline int tgi_denoise_band(const tgi_denoise_walk *k, int y, int y1)
+{
+    int end = tgi_denoise_band_of(k->base < 0 ? y : k->base, y) + TGI_DENOISE_BAND;
+    return end < y1 ? end : y1;
+}
 
 void tgi_denoise_walk_start(tgi_denoise_walk *k);
 

@@ -6,6 +6,7 @@
 #include "../tinygi.h"
 #include "temporal.h"
 #include "../raster/motion.h"
+#include "../core/unit.h"
 
 void tgi_temporal_defaults(tgi_temporal_params *p)
 {
@@ -97,7 +98,7 @@ void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_
             v = tgi_gr_get(r, i);
             h = tgi_gr_get(prev, s);
             v.ao = lerp_unit(h.ao, v.ao, alpha);                        /* exponential average */
-            v.bent = tgi_v3_normalize_or(lerp_unit3(h.bent, v.bent, alpha), n);
+            v.bent = tgi_v3_unit_or(lerp_unit3(h.bent, v.bent, alpha), n);
             v.near = lerp_unit3(h.near, v.near, alpha);
             tgi_gr_put(r, i, &v);
         }

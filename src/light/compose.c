@@ -5,6 +5,7 @@
  */
 #include "compose.h"
 #include "sh.h"
+#include "../core/unit.h"
 
 #if !TG_NO_COLOR /* the whole file is left out with TG_NO_COLOR=1 (tinygi.h "FEATURE SWITCHES") */
 
@@ -13,7 +14,7 @@ static tg_vec3 pixel_ray(const tgi_view *view, int x, int y)
 {
     tg_vec3 pv = tgi_view_unproject(view, tg_add(tg_from_int(x), TG_R(0.5f)),
                                    tg_add(tg_from_int(y), TG_R(0.5f)), TG_ONE);
-    return tgi_view_dir_to_world(view, tgi_v3_normalize_or(pv, tg_v3(0, 0, TG_ONE)));
+    return tgi_view_dir_to_world(view, tgi_v3_unit_or(pv, tg_v3(0, 0, TG_ONE)));
 }
 
 tg_vec3 tgi_compose_sky(const tgi_view *view, const tgi_env *env, int x, int y)

@@ -83,8 +83,13 @@ void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_coun
     int first, k, x, y, w = g->width;
     tg_real half_w = tg_ldexp(tg_from_int(view->width), -1), half_h = tg_ldexp(tg_from_int(view->height), -1);
     tg_real position_error = tgi_shadow_gbuffer_error(view); /* per unit depth */
-    for (y = y0; y < y1; y++)
-        for (x = 0; x < w; x++) tgi_rgb_set(e_out, tgi_gv_index(g, x, y), tg_v3(0, 0, 0));
+    /* E starts at 0: the first chunk of lights writes every pixel (a plane
+     * read lit would add its surfaces' emission to what it reads: then the
+     * zeros are written first and read back, as the later chunks read) */
+    int fresh = !e_out->lit;
+    if (!fresh || light_count == 0)
+        for (y = y0; y < y1; y++)
+            for (x = 0; x < w; x++) tgi_rgb_set(e_out, tgi_gv_index(g, x, y), tg_v3(0, 0, 0));
     for (first = 0; first < light_count; first += LIGHT_CHUNK) {
         int count = light_count - first < LIGHT_CHUNK ? light_count - first : LIGHT_CHUNK;
         for (k = 0; k < count; k++)
@@ -97,11 +102,14 @@ void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_coun
                 size_t i = tgi_gv_index(g, x, y);
                 tg_vec3 n, p, e;
                 tg_real kx;
-                if (tgi_gv_is_sky(g, i)) continue;
+                if (tgi_gv_is_sky(g, i)) {
+                    if (fresh && first == 0) tgi_rgb_set(e_out, i, tg_v3(0, 0, 0));
+                    continue;
+                }
                 n = tgi_gv_normal(g, i);
                 kx = tg_div(tg_sub(tg_add(tg_from_int(x), TG_R(0.5f)), half_w), view->pixels_per_unit);
                 p = tgi_v3_add(view->eye, tgi_v3_scale(tgi_v3_add(row_dir, tgi_v3_scale(view->right, kx)), tgi_gv_depth(g, i)));
-                e = tgi_rgb_get(e_out, i);
+                e = fresh && first == 0 ? tg_v3(0, 0, 0) : tgi_rgb_get(e_out, i);   /* the stored 0 reads back as 0 */
                 for (k = 0; k < count; k++) {
                     tg_real inv, f = light_factor(&pl[k], p, n, &inv);
                     if (f <= 0) continue;

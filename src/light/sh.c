@@ -57,20 +57,48 @@ void tgi_sh9_from_env(const tgi_env *env, tg_vec3 sh[9])
     }
 }
 
+/* Q16_WIDE: the Q16.16 paths below that compute without tg_mul's and
+ * tg_sub's saturation tests where their operands are bounded (each states
+ * its bounds), giving the same integers; a size build (TG_OUTLINE_HELPERS,
+ * tinygi.h) keeps the generic code, which is smaller. */
+#define Q16_WIDE (TG_FIXED && !TG_OUTLINE_HELPERS)
+
+#if Q16_WIDE
+/* a b and a - b where the caller bounds the result within the range: tg_mul
+ * and tg_sub's integers (tgi_wide_mul rounds as tg_mul rounds) */
+static inline tg_real mul_in(tg_real a, tg_real b, int in_range) { return in_range ? (tg_real)tgi_wide_mul(a, b) : tg_mul(a, b); }
+static inline tg_real sub_in(tg_real a, tg_real b, int in_range) { return in_range ? a - b : tg_sub(a, b); }
+#if defined(__GNUC__)
+#define SH_INLINE inline __attribute__((always_inline))   /* in_range a constant in each copy */
+#else
+#define SH_INLINE inline
+#endif
+#else
+#define mul_in(a, b, in_range) tg_mul(a, b)
+#define sub_in(a, b, in_range) tg_sub(a, b)
+#define SH_INLINE inline
+#endif
+
 /* HBIL sec. 2.2.4 evaluation: the per-coefficient weights for normal n and
  * band weights c0, c1, c2 (computed once, shared by the three channels):
  *   E = c0 L00 + c1 (y L1-1 + z L10 + x L11) + c2 L20 (3z^2 - 1)
- *     + c2 sqrt(3) L22 (x^2 - y^2) + 2 sqrt(3) c2 (xy L2-2 + yz L2-1 + zx L21) */
-static tg_vec3 sh_eval_rgb(const tg_vec3 sh[9], tg_vec3 n, tg_real c0, tg_real c1, tg_real c2)
+ *     + c2 sqrt(3) L22 (x^2 - y^2) + 2 sqrt(3) c2 (xy L2-2 + yz L2-1 + zx L21)
+ * in_range: |x|, |y|, |z| <= 2 and |c0|, |c1|, |c2| <= 4, so that every
+ * weight and its factors stay within 64 (c2x z x: 2 sqrt(3) 4 2 2), no
+ * product or difference saturates (a constant where inlined). */
+static SH_INLINE tg_vec3 sh_eval_in(const tg_vec3 sh[9], tg_vec3 n, tg_real c0, tg_real c1, tg_real c2, int in_range)
 {
-    tg_real x = n.x, y = n.y, z = n.z, c2x = tg_mul(c2, TWO_SQRT3);
+    tg_real x = n.x, y = n.y, z = n.z, c2x = mul_in(c2, TWO_SQRT3, in_range);
+    (void)in_range;   /* unused by the generic code */
     /* the nine weights in three triples; each channel is then three dot
      * products (64-bit accumulation in fixed point, one rounding each) */
-    tg_vec3 w0 = tg_v3(c0, tg_mul(c1, y), tg_mul(c1, z));
-    tg_vec3 w1 = tg_v3(tg_mul(c1, x), tg_mul(c2x, tg_mul(x, y)), tg_mul(c2x, tg_mul(y, z)));
-    tg_vec3 w2 = tg_v3(tg_mul(c2, tg_sub(tg_mul(TG_R(3.0f), tg_mul(z, z)), TG_ONE)),
-                       tg_mul(c2x, tg_mul(z, x)),
-                       tg_mul(tg_mul(c2, SQRT3), tg_sub(tg_mul(x, x), tg_mul(y, y))));
+    tg_vec3 w0 = tg_v3(c0, mul_in(c1, y, in_range), mul_in(c1, z, in_range));
+    tg_vec3 w1 = tg_v3(mul_in(c1, x, in_range), mul_in(c2x, mul_in(x, y, in_range), in_range),
+                       mul_in(c2x, mul_in(y, z, in_range), in_range));
+    tg_vec3 w2 = tg_v3(mul_in(c2, sub_in(mul_in(TG_R(3.0f), mul_in(z, z, in_range), in_range), TG_ONE, in_range), in_range),
+                       mul_in(c2x, mul_in(z, x, in_range), in_range),
+                       mul_in(mul_in(c2, SQRT3, in_range), sub_in(mul_in(x, x, in_range), mul_in(y, y, in_range), in_range),
+                              in_range));
     tg_real er = tg_add(tg_add(tgi_v3_dot(w0, tg_v3(sh[0].x, sh[1].x, sh[2].x)),
                                tgi_v3_dot(w1, tg_v3(sh[3].x, sh[4].x, sh[5].x))),
                         tgi_v3_dot(w2, tg_v3(sh[6].x, sh[7].x, sh[8].x)));
@@ -83,6 +111,17 @@ static tg_vec3 sh_eval_rgb(const tg_vec3 sh[9], tg_vec3 n, tg_real c0, tg_real c
     return tg_v3(tg_max(er, 0), tg_max(eg, 0), tg_max(eb, 0));
 }
 
+static tg_vec3 sh_eval_rgb(const tg_vec3 sh[9], tg_vec3 n, tg_real c0, tg_real c1, tg_real c2)
+{
+#if Q16_WIDE
+    if ((uint32_t)(n.x + 2 * TG_ONE) <= 4u * TG_ONE && (uint32_t)(n.y + 2 * TG_ONE) <= 4u * TG_ONE &&
+        (uint32_t)(n.z + 2 * TG_ONE) <= 4u * TG_ONE && (uint32_t)(c0 + 4 * TG_ONE) <= 8u * TG_ONE &&
+        (uint32_t)(c1 + 4 * TG_ONE) <= 8u * TG_ONE && (uint32_t)(c2 + 4 * TG_ONE) <= 8u * TG_ONE)
+        return sh_eval_in(sh, n, c0, c1, c2, 1);
+#endif
+    return sh_eval_in(sh, n, c0, c1, c2, 0);
+}
+
 tg_vec3 tgi_sh9_irradiance(const tg_vec3 sh[9], tg_vec3 n)
 {
     /* Ramamoorthi-Hanrahan eq. 13 = HBIL sec. 2.2.4 with t = cos(pi/2) = 0 */
@@ -93,11 +132,13 @@ tg_vec3 tgi_sh9_irradiance(const tg_vec3 sh[9], tg_vec3 n)
  * caller has it, e.g. AO itself). */
 static tg_vec3 irradiance_in_cone(const tg_vec3 sh[9], tg_vec3 axis, tg_real t, tg_real one_minus_t2)
 {
-    tg_real t2 = tg_sub(TG_ONE, one_minus_t2), t3 = tg_mul(t2, t), t4 = tg_mul(t2, t2);
-    tg_real c0 = tg_mul(CONE_C0, one_minus_t2);                          /* HBIL 2.2.4 c0 */
-    tg_real c1 = tg_mul(CONE_C1, tg_sub(TG_ONE, t3));                    /* HBIL 2.2.4 c1 */
-    tg_real c2 = tg_mul(CONE_C2, tg_sub(tg_mul(TG_R(3.0f), tg_sub(TG_ONE, t4)),
-                                        tg_mul(TG_R(2.0f), one_minus_t2))); /* HBIL 2.2.4 c2 */
+    /* t and 1 - t^2 within [0, 1] (both callers): every product and
+     * difference below within [-2, 3], none saturates */
+    tg_real t2 = sub_in(TG_ONE, one_minus_t2, 1), t3 = mul_in(t2, t, 1), t4 = mul_in(t2, t2, 1);
+    tg_real c0 = mul_in(CONE_C0, one_minus_t2, 1);                        /* HBIL 2.2.4 c0 */
+    tg_real c1 = mul_in(CONE_C1, sub_in(TG_ONE, t3, 1), 1);              /* HBIL 2.2.4 c1 */
+    tg_real c2 = mul_in(CONE_C2, sub_in(mul_in(TG_R(3.0f), sub_in(TG_ONE, t4, 1), 1),
+                                        mul_in(TG_R(2.0f), one_minus_t2, 1), 1), 1); /* HBIL 2.2.4 c2 */
     return sh_eval_rgb(sh, axis, c0, c1, c2);
 }
 
