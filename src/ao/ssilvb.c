@@ -208,12 +208,30 @@ static int layer_point(const vb_tech *t, const tgi_ao_slice_pixel *px, tg_vec3 h
     return 1;
 }
 
+/* The sectors of a sample with no back face behind it (a one-sided
+ * boundary, like a room's wall; front offset hf, |hf|^2 = d2): within the
+ * radius and above the tangent plane, from its angle down to the end of
+ * its side, as a horizon closes them (the surface between it and the
+ * tangent plane is there too: the depth buffer's, seen from the pixel);
+ * otherwise its view ray's segment to 64 radii where it enters the
+ * radius. */
+static uint32_t boundary_sectors(const vb_tech *t, const tgi_ao_slice_pixel *px, const vb_slice *sl, tg_vec3 hf,
+                                 tg_vec3 ray, tg_real d2, int side)
+{
+    tg_real uf;
+    if (!(d2 < px->r2 && d2 > 0 && tgi_v3_dot(hf, px->nv) > px->above))
+        return segment_sectors(t, px, sl, hf, tgi_v3_add(hf, tgi_v3_scale(ray, t->thick_max)), side);
+    uf = half_circle_u(px, sl, hf, d2, side);
+    return side > 0 ? tgi_ssilvb_sector_bits(uf, TG_ONE) : tgi_ssilvb_sector_bits(0, uf);
+}
+
 /* march with the G-buffer's further depth layers (request.depth_layers >=
  * 2): a sample's surface is solid along the pixel's view ray from its
  * front, the depth buffer's, to the nearest back face behind it
  * (tgi_gv_back_depth: a closed object's true thickness); where there is
- * none (a one-sided surface: a boundary, like a room's wall) to 64 radii
- * (as good as infinite); where the back face is the surface's own (a
+ * none (a one-sided surface: a boundary, like a room's wall) it closes its
+ * side down to the tangent plane as a horizon does (boundary_sectors);
+ * where the back face is the surface's own (a
  * twosided sheet, which has no thickness to find) for the constant
  * thickness, as without layers.  With a third layer it is solid again
  * from the surface behind that back face (tgi_gv_behind_depth) for the
@@ -221,13 +239,16 @@ static int layer_point(const vb_tech *t, const tgi_ao_slice_pixel *px, tg_vec3 h
  * radius (the ray-traced reference's cut-off), not where its front point
  * does.  The hidden surface occludes and gathers nothing (its radiance is
  * unknown).  Between two samples a surface thinner than their spacing
- * occludes only where sampled, as with the paper's constant thickness. */
+ * occludes only where sampled, as with the paper's constant thickness.
+ * With t->to_edge the samples spread over the part of the radius on the
+ * screen (tgi_ao_screen_reach). */
 static void march_layers(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel *px, const vb_slice *sl,
                          tg_real sdx, tg_real sdy, int side, uint32_t *mask, tg_vec3 *e)
 {
-    tg_real zf, zb, d2, uf;
+    tg_real zf, zb, d2;
     tg_vec3 hf, hb, h3, h3end, ray;
     int steps = t->p->steps, s, j, got;
+    uint32_t bits;
     tgi_ao_slice_pixel on_screen = *px;
     if (t->to_edge) on_screen.r_px = tg_min(px->r_px, tgi_ao_screen_reach(g, px, sdx, sdy));
     for (s = 0; s < steps; s++) {
@@ -237,18 +258,13 @@ static void march_layers(const vb_tech *t, const tgi_gview *g, const tgi_ao_slic
         zf = tgi_gv_depth(g, (size_t)j);
         zb = tgi_gv_back_depth(g, (size_t)j);
         d2 = tgi_v3_dot(hf, hf);
-        if (!layer_point(t, px, hf, ray, zf, zb, &hb)) {              /* a sheet, or no back face: a boundary */
-            if (zb != zf && d2 < px->r2 && d2 > 0 && tgi_v3_dot(hf, px->nv) > px->above) {
-                uf = half_circle_u(px, sl, hf, d2, side);
-                take_sectors(t, g, sl, side > 0 ? tgi_ssilvb_sector_bits(uf, TG_ONE) : tgi_ssilvb_sector_bits(0, uf),
-                             j, hf, mask, e);
-                goto behind;
-            }
-            hb = tgi_v3_add(hf, tgi_v3_scale(ray, zb == zf ? t->thick : t->thick_max));
-        }
-        take_sectors(t, g, sl, segment_sectors(t, px, sl, hf, hb, side), j, hf, mask,
-                     d2 < px->r2 ? e : NULL);   /* a sender within the radius */
-    behind:
+        if (layer_point(t, px, hf, ray, zf, zb, &hb))                 /* solid to its back face */
+            bits = segment_sectors(t, px, sl, hf, hb, side);
+        else if (zb == zf)                                            /* a twosided sheet: the thickness */
+            bits = segment_sectors(t, px, sl, hf, tgi_v3_add(hf, tgi_v3_scale(ray, t->thick)), side);
+        else                                                          /* no back face: a boundary */
+            bits = boundary_sectors(t, px, sl, hf, ray, d2, side);
+        take_sectors(t, g, sl, bits, j, hf, mask, d2 < px->r2 ? e : NULL);   /* a sender within the radius */
         if (layer_point(t, px, hf, ray, zf, tgi_gv_behind_depth(g, (size_t)j), &h3)) {
             h3end = tgi_v3_add(h3, tgi_v3_scale(ray, t->thick));
             *mask |= segment_sectors(t, px, sl, h3, h3end, side);
