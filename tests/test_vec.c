@@ -329,6 +329,41 @@ TEST(length_of_tiny_and_thin)
     }
 }
 
+/* Q16.16: three products of values at the range's ends sum past 2^63; the
+ * dot product saturates to the sign of the exact sum instead of wrapping
+ * (which gave TG_REAL_MIN for three positive products of 2^62, and is
+ * undefined in C), and is the plain sum's bits wherever that fits. */
+TEST(dot_product_at_the_range_ends)
+{
+#if TG_FIXED
+    const tg_real lo = TG_REAL_MIN, hi = TG_REAL_MAX;
+    uint64_t v = 0x9E3779B97F4A7C15u;
+    long differ = 0;
+    int i;
+    CHECK(tgi_v3_dot(tg_v3(lo, lo, lo), tg_v3(lo, lo, lo)) == hi, "three products of 2^62: %ld",
+          (long)tgi_v3_dot(tg_v3(lo, lo, lo), tg_v3(lo, lo, lo)));
+    CHECK(tgi_v3_dot(tg_v3(lo, lo, lo), tg_v3(hi, hi, hi)) == lo, "three products of -2^62: %ld",
+          (long)tgi_v3_dot(tg_v3(lo, lo, lo), tg_v3(hi, hi, hi)));
+    CHECK(tgi_v3_dot(tg_v3(lo, lo, hi), tg_v3(lo, lo, lo)) == hi, "2^62 + 2^62 - (2^62 - 2^31)");
+    /* two products of 2^62 cancelling, and a small third: its own value */
+    CHECK(tgi_v3_dot(tg_v3(hi, lo, 7), tg_v3(hi, hi, TG_ONE)) == tgi_v3_dot(tg_v3(0, 0, 7), tg_v3(0, 0, TG_ONE)) +
+          tgi_v3_dot(tg_v3(hi, lo, 0), tg_v3(hi, hi, 0)), "cancelling products: %ld",
+          (long)tgi_v3_dot(tg_v3(hi, lo, 7), tg_v3(hi, hi, TG_ONE)));
+    for (i = 0; i < 1000000; i++) {   /* components within 2^30: the plain sum fits */
+        int32_t c[6];
+        int k;
+        int64_t sum = 0;
+        for (k = 0; k < 6; k++) {
+            v ^= v << 13; v ^= v >> 7; v ^= v << 17;
+            c[k] = (int32_t)(uint32_t)(v >> 32) / (1 << (int)(v % 3));
+        }
+        for (k = 0; k < 3; k++) sum += (int64_t)c[k] * c[k + 3];
+        differ += tgi_v3_dot(tg_v3(c[0], c[1], c[2]), tg_v3(c[3], c[4], c[5])) != tgi_sat64(tgi_shr_round(sum, TG_FRAC_BITS));
+    }
+    CHECK(differ == 0, "%ld of 1e6 dot products differ from the plain sum", differ);
+#endif
+}
+
 int main(void)
 {
     RUN(length_exact);
@@ -339,5 +374,6 @@ int main(void)
     RUN(quaternions);
     RUN(slerp_is_angle_linear_below_the_nlerp_switch);
     RUN(length_of_tiny_and_thin);
+    RUN(dot_product_at_the_range_ends);
     return check_summary();
 }
