@@ -203,5 +203,8 @@ int tgi_frame_ao_multibounce(const tg_frame *f);
  * quarter resolution (plan.c). */
 int tgi_frame_interleaved(const tg_frame *f);
 int tgi_frame_quarter(const tg_frame *f);
+/* HBIL's kernel on --gi-quarter's half-resolution image (the request's
+ * technique, interleave and gi_scale; request.c refuses the depth layers there) */
+int tgi_request_quarter(const tg_request *r);
 
 #endif

@@ -317,7 +317,12 @@ int tgi_frame_interleaved(const tg_frame *f)
     return f->request.technique == TG_TECH_HBIL && f->request.interleave;
 }
 
+int tgi_request_quarter(const tg_request *r)
+{
+    return r->technique == TG_TECH_HBIL && r->interleave && r->gi_scale == 2;
+}
+
 int tgi_frame_quarter(const tg_frame *f)
 {
-    return tgi_frame_interleaved(f) && f->request.gi_scale == 2;
+    return tgi_request_quarter(&f->request);
 }

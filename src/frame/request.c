@@ -90,7 +90,7 @@ static int depth_layers_unread(const tg_request *r, tg_error *err)
     (void)r; (void)err;   /* one layer at most (int_switches) */
     return 0;
 #else
-    int quarter = r->technique == TG_TECH_HBIL && r->interleave && r->gi_scale == 2;
+    int quarter = tgi_request_quarter(r);
     if (r->depth_layers < 2 || r->technique == TG_TECH_SSILVB || (r->technique == TG_TECH_HBIL && !quarter)) return 0;
     tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "depth_layers must be 0..1 for technique ");
     tgi_error_append(err, tg_technique_name(r->technique));
