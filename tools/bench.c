@@ -810,13 +810,15 @@ static void color_tile(int k, const float *rgb, const char *label)
 }
 
 /* One technique's colour: converged (HBIL: --color-frames frames in
- * sequence), then opt_runs more frames timed.  Returns the colour. */
-static float *color_run(tg_scene *s, const color_config *c, double radius, double *cpu_ms)
+ * sequence), then opt_runs more frames timed.  Returns the colour.  The
+ * radius is the one the plan gives the request, as a user gets it (over
+ * further depth layers a scene without its own gets a longer one). */
+static float *color_run(tg_scene *s, const color_config *c, double *cpu_ms)
 {
     double u[MAX_RUNS];
     frame_run fr;
     tg_error err;
-    tg_request q = base_request(c->tech, TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES, radius, AOVBIT(TG_AOV_COLOR));
+    tg_request q = base_request(c->tech, TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES, -1, AOVBIT(TG_AOV_COLOR));
     int k, frames = c->converge ? opt_color_frames : 1;
     float *rgb;
     q.frames = frames + opt_runs;
@@ -838,7 +840,7 @@ static float *color_run(tg_scene *s, const color_config *c, double radius, doubl
 }
 
 /* Every technique's colour on one scene against the path tracer's. */
-static void color_rows(tg_scene *s, const char *name, double radius, FILE *csv, int tiles)
+static void color_rows(tg_scene *s, const char *name, FILE *csv, int tiles)
 {
     int k, n = opt_w * opt_h;
     color_ref ref;
@@ -846,7 +848,7 @@ static void color_rows(tg_scene *s, const char *name, double radius, FILE *csv, 
     color_reference(s, name, &ref);
     {   /* any technique's frame has the same sky */
         frame_run fr;
-        tg_request q = base_request(TG_TECH_SSAO, 2, 4, radius, AOVBIT(TG_AOV_AO));
+        tg_request q = base_request(TG_TECH_SSAO, 2, 4, -1, AOVBIT(TG_AOV_AO));
         tg_error err;
         if (!frame_open(&fr, s, &q)) die("frame", name);
         tg_frame_render(fr.frame, 0, &err);
@@ -856,7 +858,7 @@ static void color_rows(tg_scene *s, const char *name, double radius, FILE *csv, 
     for (k = 0; k < COLOR_TECHS; k++) {
         const color_config *c = &color_cfgs[k];
         double cpu, rmse, energy;
-        float *rgb = color_run(s, c, radius, &cpu);
+        float *rgb = color_run(s, c, &cpu);
         color_errors(rgb, sky, ref.rgb, ref.sky, n, &rmse, &energy);
         fprintf(csv, "%s,%s,%d,%s,%.4f,%.6f,%.6f,%.6f,%d\n", name, c->label, c->converge ? opt_color_frames : 1, NUMBER, cpu,
                 rmse, energy, ref.noise, 2 * (opt_pt_samples / 2));
@@ -1133,7 +1135,7 @@ static int cmd_run(void)
             pass_breakdown(s, name);
         if (!color_scene) color_scene = name;
         if (strcmp(opt_only, "multibounce"))
-            color_rows(s, name, r0, ccsv, !strcmp(NUMBER, "float") && strcmp(name, color_scene) == 0);
+            color_rows(s, name, ccsv, !strcmp(NUMBER, "float") && strcmp(name, color_scene) == 0);
         if (strcmp(opt_only, "color")) multibounce_rows(name, r0, mcsv);
         free(mem);
     }
@@ -1541,7 +1543,7 @@ static void color_report(FILE *md)
     }
     fclose(f);
     fprintf(md, "## Colour against the path-traced reference\n\n");
-    fprintf(md, "Each technique at its default setting (%d slices x %d samples, the scene's radius; HBIL converged over %d frames, the others one frame; `reference`: the ray-traced AO and one-bounce near field, composed like the others) against `--technique pathtrace` (%d paths per pixel in two halves, its default bounces). Colour RMSE over geometry pixels with every channel clamped to [0, 1]; energy: sum Lo / sum Lo_ref (1 = the path tracer's light). The reference's own noise (from its two halves) is a floor under every RMSE; `noise removed` is sqrt(RMSE^2 - noise^2), the error's estimate against the converged image (0 where the noise is larger). CPU ms: median per frame (converged).\n\n",
+    fprintf(md, "Each technique at its default setting (%d slices x %d samples, the radius its plan gives it: the scene's, over three depth layers a longer one where the scene has an environment and no radius of its own; HBIL converged over %d frames, the others one frame; `reference`: the ray-traced AO and one-bounce near field, composed like the others) against `--technique pathtrace` (%d paths per pixel in two halves, its default bounces). Colour RMSE over geometry pixels with every channel clamped to [0, 1]; energy: sum Lo / sum Lo_ref (1 = the path tracer's light). The reference's own noise (from its two halves) is a floor under every RMSE; `noise removed` is sqrt(RMSE^2 - noise^2), the error's estimate against the converged image (0 where the noise is larger). CPU ms: median per frame (converged).\n\n",
             TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES, frames, crows[0].paths);
     fprintf(md, "| technique | number | CPU ms | colour RMSE | noise removed | energy (mean) | energy (range over scenes) |\n"
                 "|---|---|---:|---:|---:|---:|---|\n");
