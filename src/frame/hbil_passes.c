@@ -100,7 +100,10 @@ void tgi_pass_hbil_layers(tg_frame *f, int y0, int y1)
     tgi_hbil_params h;
     tgi_ssilvb_params p;
     tgi_ao_rot pattern[16];
-    tgi_gresult res = without_cone(&f->res);
+    const tgi_gresult *kres;
+    const tgi_rgb *source;
+    const tgi_gview *g = tgi_frame_kernel(f, &kres, &source);
+    tgi_gresult res = without_cone(kres);
     int k;
     hbil_params(f, &h);
     for (k = 0; k < 16; k++) {
@@ -116,7 +119,7 @@ void tgi_pass_hbil_layers(tg_frame *f, int y0, int y1)
     p.thickness = f->request.thickness;
     p.pattern = pattern;
     p.to_edge = 1;
-    tgi_ssilvb_rows(&p, &f->full, tgi_frame_source(f), &res, y0, y1);
+    tgi_ssilvb_rows(&p, g, source, &res, y0, y1);
 }
 #endif
 

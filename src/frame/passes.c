@@ -142,8 +142,8 @@ const tgi_pass tgi_passes[] = {
       B(RESULTS) | B(SOURCE), TGI_BOUNCE, ROWS(tgi_pass_hbil_full) },
 #if TGI_DEPTH_LAYERS
     { "HBIL over the depth layers: visibility bitmask (32 sectors, a sample solid to its back face), "
-      "full resolution, the 4x4 sub-images' angles", runs_hbil_layers,
-      B(RESULTS) | B(SOURCE), TGI_BOUNCE, ROWS(tgi_pass_hbil_layers) },
+      "at the kernel's resolution, the 4x4 sub-images' angles", runs_hbil_layers,
+      B(HALF) | B(RESULTS) | B(SOURCE), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_hbil_layers) },
 #endif
 #if !TG_NO_TEMPORAL
     { "temporal accumulation at the kernel's resolution (history rejected by depth and normal)", accumulates,
