@@ -135,7 +135,9 @@ void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_g
     int c, k, n, e;
     u->full = full; u->half = half; u->res = half_res;
     u->steps = 0;
-    u->layers = TGI_DEPTH_LAYERS && full->store.back_depth != NULL;
+#if TGI_DEPTH_LAYERS
+    u->layers = full->store.back_depth != NULL;
+#endif
     u->reach = 0;
     if (TG_QUARTER_NEAR_REACH < 1 || radius <= 0) return;
     u->steps = TGI_NEAR_STEPS;
