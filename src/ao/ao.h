@@ -192,8 +192,9 @@ static inline void tgi_ao_write_open_far(const tgi_gview *g, const tgi_gresult *
 }
 
 /* The horizon techniques' view of pixel (x, y) (index i): view position
- * *pv, view normal *nv, unit vector to the eye *vd; returns the world
- * radius in pixels at its depth. */
+ * *pv, view normal *nv, unit vector to the eye *vd (at the full-resolution
+ * pixel it stands for: gview.h's step and offset); returns the world
+ * radius in the view's pixels at its depth. */
 static inline tg_real tgi_ao_view_at(const tgi_gview *g, int x, int y, size_t i, tg_real radius,
                                      tg_vec3 *pv, tg_vec3 *nv, tg_vec3 *vd)
 {
@@ -263,8 +264,9 @@ static inline int tgi_ao_slice_pixel_at(const tgi_gview *g, const tgi_gresult *o
 }
 
 /* The pixel of sample s of `steps` along screen direction (sdx, sdy) at
- * distance (s + jitter) r_px / steps: 1 with *h the view offset of its
- * surface from pv (times 2^shift) and *j its index (and, when ray is not
+ * distance (s + jitter) r_px / steps (the view's pixels): 1 with *h the
+ * view offset of its surface from pv (times 2^shift; at the full-resolution
+ * pixel it stands for) and *j its index (and, when ray is not
  * NULL, its view ray per unit of depth, tgi_ao_unproject at depth 1); 0 to
  * skip it (within a pixel, or sky); -1 past the screen's edge (the march
  * ends). */

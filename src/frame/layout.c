@@ -176,7 +176,8 @@ static void group_gbuffer(layout *l, tg_frame *f)
 #if TGI_DEPTH_LAYERS
     /* the further depth layers: the visibility bitmask's surfaces, technique
      * ssilvb's or HBIL's kernel over them (request.c refuses depth_layers 2
-     * and 3 for every other technique and for --gi-quarter) */
+     * and 3 for every other technique; with --gi-quarter group_half adds
+     * the half-resolution image's) */
     if (!(f->needs & TG_NEED_GI_PASS)) return;
     if (f->request.depth_layers >= 2)
         f->gb.back_depth = (void *)take(l, "G-buffer back-face depth, the second layer [" FMT_BACK "]", f->pixels,

@@ -51,7 +51,8 @@ static int technique_runs(const tg_frame *f, tg_technique t)
     return (f->needs & TG_NEED_GI_PASS) && f->request.technique == t;
 }
 static int runs_hbil(const tg_frame *f) { return technique_runs(f, TG_TECH_HBIL); }
-/* over further depth layers HBIL's kernel is the visibility bitmask (hbil_passes.c) */
+/* over further depth layers HBIL's kernel is the visibility bitmask, on the
+ * kernel's image (full, or half resolution with --gi-quarter: hbil_passes.c) */
 static int reads_layers(const tg_frame *f) { return TGI_DEPTH_LAYERS && f->request.depth_layers >= 2; }
 static int runs_hbil_interleaved(const tg_frame *f)
 {

@@ -22,7 +22,14 @@
  * pixels (TG_QUARTER_NEAR_REACH) and the AO under those near horizons,
  * an upper bound of the true AO as the upsampled one is, caps it: AO =
  * min(upsampled, near).  The bent normal and the near field stay the
- * upsampled ones.
+ * upsampled ones.  Over further depth layers (the kernel the visibility
+ * bitmask, which leaves open what lies behind a closed object's back
+ * face) a horizon is such a bound only where what it takes as solid is:
+ * the near horizon takes a sample only where it is solid down to the
+ * tangent plane (near_solid_below), else it would close the floor under
+ * a sphere that the layers see open (spheres 160x120, --gi-quarter over
+ * three layers: RMSE 0.112 with every sample, 0.043 so, 0.045 without
+ * the near horizon).
  */
 #include "resample.h"
 #include "../ao/ao.h"
