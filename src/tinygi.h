@@ -772,12 +772,14 @@ typedef struct tg_request {
                               from there for request.thickness.  With technique hbil the
                               kernel is then that visibility bitmask (a one-sided boundary's
                               sample closing its side down to the tangent plane, as a horizon
-                              does), at full resolution with the 4x4 sub-images' slice angles
-                              and march offsets turned every frame, the samples spread over the
-                              part of the radius on the screen; HBIL's filter and temporal
-                              accumulation follow as usual (src/frame/hbil_passes.c).  Other
-                              values are refused, and 2 or 3 with any other technique or with
-                              hbil at gi_scale 2 (its half-resolution image has one layer) */
+                              does), on the kernel's image (full resolution, or at gi_scale 2
+                              the half-resolution one, its layers point-sampled down with its
+                              depth: +4 bytes a half-resolution pixel each) with the 4x4
+                              sub-images' slice angles and march offsets turned every frame, the
+                              samples spread over the part of the radius on the screen; HBIL's
+                              filter, upsample and temporal accumulation follow as usual
+                              (src/frame/hbil_passes.c).  Other values are refused, and 2 or 3
+                              with any other technique */
 } tg_request;
 
 /* Every field at its default: 320x240, one frame, colour, HBIL, GI settings unset. */

@@ -171,8 +171,6 @@ check_binary() {
         render builtin:cornell --technique ssilvb --depth-layers 4
     refused "$tag/opt_depth_layers_unread" "error: depth_layers must be 0\\.\\.1 for technique gtao .*got 2\$" \
         render builtin:cornell --technique gtao --depth-layers 2
-    refused "$tag/opt_depth_layers_quarter" "error: depth_layers must be 0\\.\\.1 for technique hbil with gi_scale 2 .*got 3\$" \
-        render builtin:cornell --gi-quarter --depth-layers 3
     refused "$tag/opt_unknown" "${U}unknown option '--sparkle'" render builtin:cornell --sparkle
     ONCE=1 refused "$tag/opt_missing_value" "${U}option --frames: missing value" render builtin:cornell --frames
     ONCE=1 refused "$tag/opt_extension" "${U}option -o: expected a file name ending in .ppm, .png or .pfm" render builtin:cornell -o "$O/out.jpg"
@@ -254,6 +252,11 @@ check_binary() {
     expect "$tag/render_gi_quarter_far_f0" [ "$rc" -eq 0 -a -s "$O/q.ppm" ]
     run render builtin:spheres --size 17x13 --gi-quarter --explain
     expect "$tag/explain_gi_quarter_lists_upsample" grep -q "upsample" "$T/out"
+    run render builtin:spheres --size 17x13 --gi-quarter --depth-layers 3 --explain
+    expect "$tag/explain_gi_quarter_lists_the_half_layers" eval "grep -q 'quarter-res back-face depth' '$T/out' &&
+        grep -q 'quarter-res depth behind the back face' '$T/out'"
+    run render builtin:spheres --size 17x13 --gi-quarter --depth-layers 3 --frames 2 -o "$O/ql.ppm" --quiet
+    expect "$tag/render_gi_quarter_depth_layers" [ "$rc" -eq 0 -a -s "$O/ql.ppm" ]
     run render builtin:cornell --size=16x12 --frames=2 --aov=depth -o "$O/eq.pfm" --quiet
     expect "$tag/render_option_equals_form" [ "$rc" -eq 0 -a "$(head -c 2 "$O/eq.pfm" 2>/dev/null)" = Pf ]
     run render builtin:cornell --size 16x12 --frames 3 -o "$O/np.ppm"

@@ -11,6 +11,7 @@
 #include <float.h>
 #include <limits.h>
 #include "frame_fixture.h"
+#include "gi/resample.h"
 
 /* Every effect and both kinds of shadow map: a point light (six faces) and
  * a spot, an environment, an emissive material. */
@@ -285,29 +286,35 @@ TEST(thickness_unset_follows_the_radius)
     }
 }
 
-/* Further depth layers (techniques ssilvb and hbil): accepted up to
- * TG_MAX_DEPTH_LAYERS, and each a plane of 4 bytes a pixel in the plan
- * only when asked, rendered finite; HBIL's kernel over them is the
- * bitmask's pass, not the horizon kernel's. */
-static void layers_planned(tg_technique technique)
+/* Further depth layers (techniques ssilvb and hbil, and hbil at quarter
+ * resolution): accepted up to TG_MAX_DEPTH_LAYERS, and each a plane of 4
+ * bytes a pixel in the plan only when asked (at quarter resolution also
+ * one of the half-resolution image's pixels), rendered finite; HBIL's
+ * kernel over them is the bitmask's pass, not the horizon kernel's. */
+static void layers_planned(tg_technique technique, int gi_scale)
 {
     size_t bytes[TG_MAX_DEPTH_LAYERS + 1];
     int layers, b;
     for (layers = 1; layers <= TG_MAX_DEPTH_LAYERS + 1; layers++) {
         rendered r;
         tg_request q = small_request();
-        int back = 0, behind = 0, horizon = 0, bitmask = 0;
+        int back = 0, behind = 0, half_back = 0, half_behind = 0, horizon = 0, bitmask = 0, hw, hh;
         q.technique = technique;
         q.depth_layers = layers;
+        q.gi_scale = gi_scale;
+        tgi_half_size(q.width, q.height, &hw, &hh);
         if (layers > TG_MAX_DEPTH_LAYERS) {
             CHECK(!setup(&r, scene_text, &q) && strstr(r.msg, "depth_layers must be"), "%d layers: %s", layers, r.msg);
             teardown(&r);
             continue;
         }
-        if (!setup(&r, scene_text, &q)) { CHECK(0, "%d layers: %s", layers, r.msg); continue; }
+        if (!setup(&r, scene_text, &q)) { CHECK(0, "%d layers, gi_scale %d: %s", layers, gi_scale, r.msg); continue; }
         for (b = 0; b < r.plan.buffer_count; b++) {
-            back += strstr(r.plan.buffers[b].name, "back-face depth") != NULL;
-            behind += strstr(r.plan.buffers[b].name, "behind the back face") != NULL;
+            int half = strstr(r.plan.buffers[b].name, "quarter-res") != NULL;
+            back += !half && strstr(r.plan.buffers[b].name, "back-face depth") != NULL;
+            behind += !half && strstr(r.plan.buffers[b].name, "behind the back face") != NULL;
+            half_back += half && strstr(r.plan.buffers[b].name, "back-face depth") != NULL;
+            half_behind += half && strstr(r.plan.buffers[b].name, "behind the back face") != NULL;
         }
         for (b = 0; b < r.plan.pass_count; b++) {
             horizon += strstr(r.plan.passes[b], "HBIL horizon kernel") != NULL;
@@ -319,9 +326,13 @@ static void layers_planned(tg_technique technique)
         bytes[layers] = r.plan.total_bytes;
         CHECK(back == (layers >= 2) && behind == (layers >= 3), "%d layers: back-face plane %d, behind %d", layers,
               back, behind);
+        CHECK(half_back == (gi_scale == 2 && layers >= 2) && half_behind == (gi_scale == 2 && layers >= 3),
+              "%d layers, gi_scale %d: quarter-res back-face plane %d, behind %d", layers, gi_scale, half_back,
+              half_behind);
         if (layers > 1) {
-            size_t want = bytes[1] + (size_t)(layers - 1) * 4 * (size_t)q.width * (size_t)q.height;
-            CHECK(bytes[layers] >= want && bytes[layers] <= want + 64 * (size_t)layers,
+            size_t px = (size_t)q.width * (size_t)q.height + (gi_scale == 2 ? (size_t)hw * (size_t)hh : 0);
+            size_t want = bytes[1] + (size_t)(layers - 1) * 4 * px;
+            CHECK(bytes[layers] >= want && bytes[layers] <= want + 128 * (size_t)layers,
                   "%d layers: %.0f bytes, one layer %.0f", layers, (double)bytes[layers], (double)bytes[1]);
         }
         {
@@ -336,18 +347,17 @@ TEST(depth_layers_are_planned_only_when_asked)
 {
     static const tg_technique unread[] = { TG_TECH_GTAO, TG_TECH_SSAO, TG_TECH_REFERENCE, TG_TECH_PATHTRACE };
     size_t k;
-    layers_planned(TG_TECH_SSILVB);
-    layers_planned(TG_TECH_HBIL);
-    /* refused where nothing reads them: other techniques, and --gi-quarter's
-     * half-resolution kernel (one layer) */
-    for (k = 0; k < sizeof unread / sizeof unread[0] + 1; k++) {
+    layers_planned(TG_TECH_SSILVB, 1);
+    layers_planned(TG_TECH_HBIL, 1);
+    layers_planned(TG_TECH_HBIL, 2);   /* --gi-quarter: the half-resolution image's layers too */
+    /* refused where nothing reads them: the other techniques */
+    for (k = 0; k < sizeof unread / sizeof unread[0]; k++) {
         rendered r;
         tg_request q = small_request();
         q.depth_layers = 2;
-        if (k < sizeof unread / sizeof unread[0]) q.technique = unread[k];
-        else q.gi_scale = 2;
+        q.technique = unread[k];
         CHECK(!setup(&r, scene_text, &q) && strstr(r.msg, "depth_layers must be 0..1 for technique "),
-              "%s%s: %s", tg_technique_name(q.technique), q.gi_scale == 2 ? " quarter" : "", r.msg);
+              "%s: %s", tg_technique_name(q.technique), r.msg);
         teardown(&r);
     }
 }
@@ -355,7 +365,8 @@ TEST(depth_layers_are_planned_only_when_asked)
 /* A scene with an environment and no gi radius: over further depth layers
  * its radius is the bounds' diagonal / TG_RADIUS_LAYERS_DIVISOR (6), on
  * one layer / TG_RADIUS_ENV_DIVISOR (30), for both techniques that read
- * layers; a radius the scene or the request gives is kept. */
+ * layers and for HBIL at quarter resolution; a radius the scene or the
+ * request gives is kept. */
 TEST(gather_radius_reaches_further_over_depth_layers)
 {
     static const char *text =
@@ -363,18 +374,19 @@ TEST(gather_radius_reaches_further_over_depth_layers)
         "material m albedo 0.5 0.5 0.5\n"
         "box min -1 0 0  max 2 4 12  material m\n"   /* diagonal 13 */
         "env uniform 1 1 1\n";
-    static const tg_technique reads[] = { TG_TECH_HBIL, TG_TECH_SSILVB };
+    static const tg_technique reads[] = { TG_TECH_HBIL, TG_TECH_SSILVB, TG_TECH_HBIL };   /* the last at gi_scale 2 */
     int k, layers;
-    for (k = 0; k < 2; k++)
+    for (k = 0; k < 3; k++)
         for (layers = 1; layers <= TG_MAX_DEPTH_LAYERS; layers++) {
             rendered r;
             tg_request q = small_request();
             double want = 13.0 / (layers >= 2 && !TG_NO_TECHNIQUES ? TG_RADIUS_LAYERS_DIVISOR : TG_RADIUS_ENV_DIVISOR);
             q.technique = reads[k];
+            q.gi_scale = k == 2 ? 2 : 1;
             q.depth_layers = TG_NO_TECHNIQUES ? 1 : layers;
             if (!setup_checked(&r, text, &q, "the scene")) continue;
-            CHECK(fabs(check_d(r.plan.request.radius) - want) < 1e-3 * want, "%s, %d layers: radius %g, want %g",
-                  tg_technique_name(reads[k]), layers, check_d(r.plan.request.radius), want);
+            CHECK(fabs(check_d(r.plan.request.radius) - want) < 1e-3 * want, "%s%s, %d layers: radius %g, want %g",
+                  tg_technique_name(reads[k]), k == 2 ? " quarter" : "", layers, check_d(r.plan.request.radius), want);
             teardown(&r);
             q.radius = TG_R(0.75f);
             if (!setup_checked(&r, text, &q, "the scene, a radius asked")) continue;

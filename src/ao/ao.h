@@ -192,15 +192,17 @@ static inline void tgi_ao_write_open_far(const tgi_gview *g, const tgi_gresult *
 }
 
 /* The horizon techniques' view of pixel (x, y) (index i): view position
- * *pv, view normal *nv, unit vector to the eye *vd; returns the world
- * radius in pixels at its depth. */
+ * *pv, view normal *nv, unit vector to the eye *vd (at the full-resolution
+ * pixel it stands for: gview.h's step and offset); returns the world
+ * radius in the view's pixels at its depth. */
 static inline tg_real tgi_ao_view_at(const tgi_gview *g, int x, int y, size_t i, tg_real radius,
                                      tg_vec3 *pv, tg_vec3 *nv, tg_vec3 *vd)
 {
-    *pv = tgi_ao_unproject(g->camera, x, y, tgi_gv_depth(g, i));
+    tg_real r_px = tg_div(tg_mul(radius, g->camera->pixels_per_unit), tgi_gv_depth(g, i));
+    *pv = tgi_ao_unproject(g->camera, x * g->step + g->offset_x, y * g->step + g->offset_y, tgi_gv_depth(g, i));
     *nv = tgi_ao_normal_view(g, i);
     *vd = tgi_v3_normalize_or(tgi_v3_neg(*pv), tg_v3(0, 0, TG_R(-1.0f)));
-    return tg_div(tg_mul(radius, g->camera->pixels_per_unit), tgi_gv_depth(g, i));
+    return g->step > 1 ? tg_div(r_px, tg_from_int(g->step)) : r_px;   /* in the view's pixels */
 }
 
 /* Store a bent normal given in view space (any length) as a world unit
@@ -262,8 +264,9 @@ static inline int tgi_ao_slice_pixel_at(const tgi_gview *g, const tgi_gresult *o
 }
 
 /* The pixel of sample s of `steps` along screen direction (sdx, sdy) at
- * distance (s + jitter) r_px / steps: 1 with *h the view offset of its
- * surface from pv (times 2^shift) and *j its index (and, when ray is not
+ * distance (s + jitter) r_px / steps (the view's pixels): 1 with *h the
+ * view offset of its surface from pv (times 2^shift; at the full-resolution
+ * pixel it stands for) and *j its index (and, when ray is not
  * NULL, its view ray per unit of depth, tgi_ao_unproject at depth 1); 0 to
  * skip it (within a pixel, or sky); -1 past the screen's edge (the march
  * ends). */
@@ -278,6 +281,8 @@ static inline int tgi_ao_slice_point(const tgi_gview *g, const tgi_ao_slice_pixe
     if (qx < 0 || qy < 0 || qx >= g->width || qy >= g->height) return -1;
     *j = (int)tgi_gv_index(g, qx, qy);
     if (tgi_gv_is_sky(g, *j)) return 0;
+    qx = qx * g->step + g->offset_x;   /* the full-resolution pixel it stands for */
+    qy = qy * g->step + g->offset_y;
     if (ray) {   /* the surface is the ray at its depth: tgi_ao_unproject's products, the same bits */
         tg_real z = tgi_gv_depth(g, *j);
         *ray = tgi_ao_unproject(g->camera, qx, qy, TG_ONE);

@@ -204,7 +204,7 @@ int tgi_frame_ao_multibounce(const tg_frame *f);
 int tgi_frame_interleaved(const tg_frame *f);
 int tgi_frame_quarter(const tg_frame *f);
 /* HBIL's kernel on --gi-quarter's half-resolution image (the request's
- * technique, interleave and gi_scale; request.c refuses the depth layers there) */
+ * technique, interleave and gi_scale) */
 int tgi_request_quarter(const tg_request *r);
 
 #endif

@@ -10,8 +10,9 @@
  * neighbourhood (sec. 3.4), brought up to full resolution (quarter) and,
  * across frames, accumulated.  With interleave off the kernel runs on the
  * full-resolution view with the same 32 directions per 4x4 block.  Over
- * further depth layers the kernel is the visibility bitmask, at full
- * resolution with the interleaved angles (tgi_pass_hbil_layers).
+ * further depth layers the kernel is the visibility bitmask on the
+ * kernel's image (full resolution, or the half-resolution copy with its
+ * layers) with the interleaved angles (tgi_pass_hbil_layers).
  */
 #include "frame_internal.h"
 #include "../gi/hbil.h"
@@ -89,18 +90,24 @@ void tgi_pass_hbil_interleaved(tg_frame *f, int y0, int y1)
  * the horizon of each slice side becomes the visibility bitmask of
  * Therrien et al. 2023 (ao/ssilvb.h), which takes a sample as solid from
  * its front to its back face and open behind it, where a horizon takes
- * everything under it as solid.  It runs at full resolution, each pixel
+ * everything under it as solid.  It runs on the kernel's image (the
+ * full-resolution view, or with --gi-quarter the half-resolution copy,
+ * whose layers are point-sampled down with its depth), each pixel of it
  * with the slice angles and march offsets of its 4x4 sub-image (HBIL sec.
  * 3.3, tgi_hbil_slice_phi0, tgi_hbil_step_jitter) for this frame's
- * rotation, so the 4x4 filter and the temporal accumulation that follow
- * see the same 16 x slices directions a block, turned every frame, as
- * with the horizon kernel.  Writes AO, bent normal and near field. */
+ * rotation, so the 4x4 filter (at quarter resolution, then the upsample)
+ * and the temporal accumulation that follow see the same 16 x slices
+ * directions a block, turned every frame, as with the horizon kernel.
+ * Writes AO, bent normal and near field at the kernel's resolution. */
 void tgi_pass_hbil_layers(tg_frame *f, int y0, int y1)
 {
     tgi_hbil_params h;
     tgi_ssilvb_params p;
     tgi_ao_rot pattern[16];
-    tgi_gresult res = without_cone(&f->res);
+    const tgi_gresult *kres;
+    const tgi_rgb *source;
+    const tgi_gview *g = tgi_frame_kernel(f, &kres, &source);
+    tgi_gresult res = without_cone(kres);
     int k;
     hbil_params(f, &h);
     for (k = 0; k < 16; k++) {
@@ -116,7 +123,7 @@ void tgi_pass_hbil_layers(tg_frame *f, int y0, int y1)
     p.thickness = f->request.thickness;
     p.pattern = pattern;
     p.to_edge = 1;
-    tgi_ssilvb_rows(&p, &f->full, tgi_frame_source(f), &res, y0, y1);
+    tgi_ssilvb_rows(&p, g, source, &res, y0, y1);
 }
 #endif
 

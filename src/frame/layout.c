@@ -176,7 +176,8 @@ static void group_gbuffer(layout *l, tg_frame *f)
 #if TGI_DEPTH_LAYERS
     /* the further depth layers: the visibility bitmask's surfaces, technique
      * ssilvb's or HBIL's kernel over them (request.c refuses depth_layers 2
-     * and 3 for every other technique and for --gi-quarter) */
+     * and 3 for every other technique; with --gi-quarter group_half adds
+     * the half-resolution image's) */
     if (!(f->needs & TG_NEED_GI_PASS)) return;
     if (f->request.depth_layers >= 2)
         f->gb.back_depth = (void *)take(l, "G-buffer back-face depth, the second layer [" FMT_BACK "]", f->pixels,
@@ -316,6 +317,15 @@ static void group_half(layout *l, tg_frame *f)
     else
         take_gbuffer_planes(l, &f->half, f->scene, w, h, 0, "quarter-res G-buffer, no material [" FMT_G_GEOMETRY "]");
     if (near_field(f)) take_rgb(l, "quarter-res source radiance [" FMT_RGB "]", n, &f->half_source);
+#if TGI_DEPTH_LAYERS
+    /* HBIL's kernel over the further depth layers reads them at its resolution */
+    if (f->request.depth_layers >= 2)
+        f->half.back_depth = (void *)take(l, "quarter-res back-face depth, the second layer [" FMT_BACK "]", n,
+                                          sizeof *f->half.back_depth);
+    if (f->request.depth_layers >= 3)
+        f->half.behind_depth = (void *)take(l, "quarter-res depth behind the back face, the third layer [" FMT_BACK "]",
+                                            n, sizeof *f->half.behind_depth);
+#endif
 }
 
 /* The filtered quarter-res results the upsample reads. */

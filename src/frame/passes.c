@@ -51,7 +51,8 @@ static int technique_runs(const tg_frame *f, tg_technique t)
     return (f->needs & TG_NEED_GI_PASS) && f->request.technique == t;
 }
 static int runs_hbil(const tg_frame *f) { return technique_runs(f, TG_TECH_HBIL); }
-/* over further depth layers HBIL's kernel is the visibility bitmask (hbil_passes.c) */
+/* over further depth layers HBIL's kernel is the visibility bitmask, on the
+ * kernel's image (full, or half resolution with --gi-quarter: hbil_passes.c) */
 static int reads_layers(const tg_frame *f) { return TGI_DEPTH_LAYERS && f->request.depth_layers >= 2; }
 static int runs_hbil_interleaved(const tg_frame *f)
 {
@@ -142,8 +143,8 @@ const tgi_pass tgi_passes[] = {
       B(RESULTS) | B(SOURCE), TGI_BOUNCE, ROWS(tgi_pass_hbil_full) },
 #if TGI_DEPTH_LAYERS
     { "HBIL over the depth layers: visibility bitmask (32 sectors, a sample solid to its back face), "
-      "full resolution, the 4x4 sub-images' angles", runs_hbil_layers,
-      B(RESULTS) | B(SOURCE), TGI_BOUNCE, ROWS(tgi_pass_hbil_layers) },
+      "at the kernel's resolution, the 4x4 sub-images' angles", runs_hbil_layers,
+      B(HALF) | B(RESULTS) | B(SOURCE), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_hbil_layers) },
 #endif
 #if !TG_NO_TEMPORAL
     { "temporal accumulation at the kernel's resolution (history rejected by depth and normal)", accumulates,

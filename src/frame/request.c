@@ -82,20 +82,19 @@ static int gi_outside(const tg_request *r, tg_error *err)
 }
 
 /* More than one depth layer for a technique that does not read them: the
- * visibility bitmask (ssilvb) and HBIL's kernel over them at full
- * resolution (not --gi-quarter's half-resolution image, which has one). */
+ * visibility bitmask (ssilvb) and HBIL's kernel over them (at full
+ * resolution, or with --gi-quarter on the half-resolution image, whose
+ * layers are point-sampled down as its depth is). */
 static int depth_layers_unread(const tg_request *r, tg_error *err)
 {
 #if TG_NO_TECHNIQUES
     (void)r; (void)err;   /* one layer at most (int_switches) */
     return 0;
 #else
-    int quarter = tgi_request_quarter(r);
-    if (r->depth_layers < 2 || r->technique == TG_TECH_SSILVB || (r->technique == TG_TECH_HBIL && !quarter)) return 0;
+    if (r->depth_layers < 2 || r->technique == TG_TECH_SSILVB || r->technique == TG_TECH_HBIL) return 0;
     tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "depth_layers must be 0..1 for technique ");
     tgi_error_append(err, tg_technique_name(r->technique));
-    tgi_error_append(err, quarter ? " with gi_scale 2" : "");
-    tgi_error_append(err, " (further layers are read by techniques hbil and ssilvb at full resolution), got ");
+    tgi_error_append(err, " (further layers are read by techniques hbil and ssilvb), got ");
     tgi_error_append_int(err, r->depth_layers);
     return 1;
 #endif

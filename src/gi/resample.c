@@ -22,7 +22,14 @@
  * pixels (TG_QUARTER_NEAR_REACH) and the AO under those near horizons,
  * an upper bound of the true AO as the upsampled one is, caps it: AO =
  * min(upsampled, near).  The bent normal and the near field stay the
- * upsampled ones.
+ * upsampled ones.  Over further depth layers (the kernel the visibility
+ * bitmask, which leaves open what lies behind a closed object's back
+ * face) a horizon is such a bound only where what it takes as solid is:
+ * the near horizon takes a sample only where it is solid down to the
+ * tangent plane (near_solid_below), else it would close the floor under
+ * a sphere that the layers see open (spheres 160x120, --gi-quarter over
+ * three layers: RMSE 0.112 with every sample, 0.043 so, 0.045 without
+ * the near horizon).
  */
 #include "resample.h"
 #include "../ao/ao.h"
@@ -135,6 +142,9 @@ void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_g
     int c, k, n, e;
     u->full = full; u->half = half; u->res = half_res;
     u->steps = 0;
+#if TGI_DEPTH_LAYERS
+    u->layers = full->store.back_depth != NULL;
+#endif
     u->reach = 0;
     if (TG_QUARTER_NEAR_REACH < 1 || radius <= 0) return;
     u->steps = TGI_NEAR_STEPS;
@@ -255,6 +265,21 @@ int tgi_near_under_plane(tg_real nr, tg_real nax, tg_real nay, tg_real np, tg_re
     return near_under_plane(&pl, z, ox, oy, 0);
 }
 
+#if TGI_DEPTH_LAYERS
+/* Over further depth layers, whether a sample above pixel q's tangent
+ * plane, at depth z with its nearest back face at zb (0: none), is solid
+ * down to that plane, so that its horizon bounds the occlusion from below
+ * as on one layer: a one-sided boundary (no back face behind it, as
+ * ssilvb.c's boundary_sectors) is; a closed object is where its back face,
+ * on the sample's view ray, lies on or under the plane (the segment from
+ * front to back then crosses every angle from the front's down to the
+ * plane); a twosided sheet (zb = z) of unknown thickness is not. */
+static inline int near_solid_below(const near_pixel *q, tg_real zb, tg_real z, const signed char off[2], const int wide)
+{
+    return !(zb >= z) || near_under_plane(&q->pl, zb, off[0], off[1], wide);
+}
+#endif
+
 /* The largest cos(angle to the view vector) of the samples off[0..steps)
  * (pixel offsets) of pixel q that lie above the tangent plane and within
  * the radius; -1 when none; the march ends at the screen's edge (`inside`:
@@ -281,6 +306,9 @@ static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q
         if (tgi_gv_is_sky(g, j)) continue;
         z = tgi_gv_depth(g, j);
         if (near_under_plane(&q->pl, z, off[n][0], off[n][1], wide)) continue;
+#if TGI_DEPTH_LAYERS
+        if (u->layers && !near_solid_below(q, tgi_gv_back_depth(g, j), z, off[n], wide)) continue;
+#endif
         fdx = tg_from_int(off[n][0]);
         fdy = tg_from_int(off[n][1]);
         h = tg_v3(tg_sub(tg_mul(z, tg_add(q->kx, tg_mul(fdx, u->ax))), q->pv.x),

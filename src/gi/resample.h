@@ -45,6 +45,9 @@ typedef struct tgi_upsample_plan {
     const tgi_gresult *res;
     tg_real wfx, hfy, ax, ay, r2, above_r;
     int shift, steps, reach;
+#if TGI_DEPTH_LAYERS
+    int layers;           /* full has further depth layers: the near horizon takes only what is solid below it */
+#endif
     signed char off[16][4][TGI_NEAR_STEPS][2];
 } tgi_upsample_plan;
 

@@ -225,6 +225,10 @@ static inline void tgi_gview_copy_pixel(const tgi_gbuffer *dst, size_t j, const 
     if (dst->nm) dst->nm[j] = src->store.nm[i];   /* dst has src's planes */
     else dst->n8[j] = src->store.n8[i];
 #endif
+#if TGI_DEPTH_LAYERS   /* the further depth layers where dst has them (src has them then) */
+    if (dst->back_depth) dst->back_depth[j] = src->store.back_depth[i];
+    if (dst->behind_depth) dst->behind_depth[j] = src->store.behind_depth[i];
+#endif
 }
 
 /* ---- the light a diffuse surface sends ---- */
