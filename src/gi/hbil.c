@@ -817,14 +817,17 @@ typedef struct hbil_fine_best {
     int si;                 /* its pixel in the fine image; -1: none above the side's */
 } hbil_fine_best;
 
-/* One sample of the fine image, t fine pixels from the pixel along the
- * major axis (toward dir), on the slice's line: 1/z interpolated across
- * the minor axis between two close surface pixels, else the nearest
- * pixel's tangent plane, as in march_samples; kept in *best when it is
- * above best's horizon.  A fine pixel is 1 / fine_ratio of the march's
- * unit (the sub-image's pixel); (fa0, fb0) is the pixel in the fine
- * image.  Inlined into refine_fine's two calls (their set-up cost as
- * much as a sample), one copy when compiling for size. */
+/* The samples of the fine image t = lo .. hi - 1 fine pixels from the
+ * pixel along the major axis (toward dir), on the slice's line: 1/z
+ * interpolated across the minor axis between two close surface pixels,
+ * else the nearest pixel's tangent plane, as in march_samples; each kept
+ * in *best when it is above best's horizon.  A fine pixel is 1 /
+ * fine_ratio of the march's unit (the sub-image's pixel); (fa0, fb0) is
+ * the pixel in the fine image.  The major index is stepped, the minor
+ * offset taken anew at each t (slope t, as one product), so every sample
+ * is the one a sample taken alone would be.  Inlined into refine_fine's
+ * one call (its set-up cost as much as a sample), one copy when compiling
+ * for size. */
 #if TG_OUTLINE_HELPERS
 #define HBIL_FINE_INLINE HBIL_NOINLINE
 #elif defined(__GNUC__)
@@ -832,42 +835,53 @@ typedef struct hbil_fine_best {
 #else
 #define HBIL_FINE_INLINE inline
 #endif
-static HBIL_FINE_INLINE void fine_sample(const hbil_ctx *c, hbil_fine_best *best, const hbil_march *mr, int major_x,
-                        int fa0, int fb0, int t, int dir)
+static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, const hbil_march *mr, int major_x,
+                                      int fa0, int fb0, int lo, int hi, int dir)
 {
     const tgi_gview *fg = c->fine;
-    const int fa = fa0 + t * dir, bmax = major_x ? fg->height : fg->width;
-    /* |slope| <= 1, t and the fine pixels below 2^14, times 1/4 or 1/8: small_mul */
-    tg_real minor = small_mul(mr->slope, small_from_int(t)), f, z1, za, zb, sx, sy, inv_len, cn;
-    int b0 = floor_small(minor), fb = fb0 + b0, si, sj;
-    tgi_wide d[3];
-    f = frac_small(minor, b0);
-    if (fb < 0 || fb >= bmax) return;                               /* the slice leaves the image */
-    si = (int)(major_x ? tgi_gv_index(fg, fa, fb) : tgi_gv_index(fg, fb, fa));
-    sj = fb + 1 < bmax ? si + (major_x ? fg->row_stride : fg->pixel_stride) : si;   /* the next along the minor axis */
-    za = tgi_gv_depth(fg, si);
-    zb = tgi_gv_depth(fg, sj);
-    if (sj != si && za > 0 && depths_close(za, zb)) {              /* as in march_samples */
-        z1 = lerp_inverse_depth(za, zb, f);
-    } else {                                                        /* as in march_samples */
-        const int nb = f >= TG_R(0.5f);
-        int sn = nb ? sj : si;
-        if (nb && sj == si) return;                                 /* outside the image */
-        if (tgi_gv_is_sky(fg, sn) || tgi_gv_depth(fg, sn) <= 0) return;   /* sky never occludes */
-        z1 = sample_depth_edge(c, fg, major_x, fa, fb, f, si, sn);
-        if (z1 <= 0) return;
-        si = sn;
+    const int bmax = major_x ? fg->height : fg->width;
+    const size_t smaj = (size_t)(major_x ? fg->pixel_stride : fg->row_stride);
+    const size_t smin = (size_t)(major_x ? fg->row_stride : fg->pixel_stride);
+    const size_t dmaj = dir > 0 ? smaj : (size_t)0 - smaj;     /* modulo 2^N: the sums are the indices */
+    const tg_real slope = mr->slope, inv_r = c->inv_fine_ratio;
+    tg_real h = best->h, hs_tie = horizon_tie(best->hs);
+    int t, fa = fa0 + lo * dir;
+    size_t ia = (size_t)fa * smaj;
+    for (t = lo; t < hi; t++, fa += dir, ia += dmaj) {
+        /* |slope| <= 1, t and the fine pixels below 2^14, times 1/4 or 1/8: small_mul */
+        const tg_real minor = small_mul(slope, small_from_int(t));
+        const int b0 = floor_small(minor), fb = fb0 + b0;
+        tg_real f, z1, za, zb, sx, sy, inv_len, cn;
+        size_t si;
+        tgi_wide d[3];
+        if ((unsigned)fb >= (unsigned)bmax) continue;                  /* the slice leaves the image */
+        f = frac_small(minor, b0);
+        si = ia + (size_t)fb * smin;
+        za = tgi_gv_depth(fg, si);
+        if (fb + 1 < bmax && za > 0 && depths_close(za, zb = tgi_gv_depth(fg, si + smin))) {   /* as in march_samples */
+            z1 = lerp_inverse_depth(za, zb, f);
+        } else {                                                        /* as in march_samples */
+            const int nb = f >= TG_R(0.5f);
+            size_t sn = nb ? si + smin : si;
+            if (nb && fb + 1 >= bmax) continue;                         /* outside the image */
+            if (tgi_gv_is_sky(fg, sn) || tgi_gv_depth(fg, sn) <= 0) continue;   /* sky never occludes */
+            z1 = sample_depth_edge(c, fg, major_x, fa, fb, f, (int)si, (int)sn);
+            if (z1 <= 0) continue;
+            si = sn;
+        }
+        /* fine pixels to the march's units: times 1/4 or 1/8, exact */
+        sx = small_mul(major_x ? small_from_int(t * dir) : minor, inv_r);
+        sy = small_mul(major_x ? tg_neg(minor) : small_from_int(-t * dir), inv_r);
+        cn = sample_cos(mr, z1, sx, sy, h, hs_tie, d, &inv_len);
+        if (cn == HBIL_NOT_ABOVE) continue;
+        h = cn;
+        best->h = cn;
+        best->hs = horizon_sq(cn);
+        hs_tie = horizon_tie(best->hs);
+        best->d[0] = d[0]; best->d[1] = d[1]; best->d[2] = d[2];
+        best->inv_len = inv_len;
+        best->si = (int)si;
     }
-    /* fine pixels to the march's units: times 1/4 or 1/8, exact */
-    sx = small_mul(major_x ? small_from_int(t * dir) : minor, c->inv_fine_ratio);
-    sy = small_mul(major_x ? tg_neg(minor) : small_from_int(-t * dir), c->inv_fine_ratio);
-    cn = sample_cos(mr, z1, sx, sy, best->h, horizon_tie(best->hs), d, &inv_len);
-    if (cn == HBIL_NOT_ABOVE) return;
-    best->h = cn;
-    best->hs = horizon_sq(cn);
-    best->d[0] = d[0]; best->d[1] = d[1]; best->d[2] = d[2];
-    best->inv_len = inv_len;
-    best->si = si;
 }
 
 /* The interleaved kernel marches a 4x4 sub-image, whose pixels are 4
@@ -913,11 +927,12 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
     const tg_real ext = tg_mul(mr->extent, tg_from_int(r));                            /* fine pixels */
     const int long_reach = mr->extent > c->long_reach;
     hbil_fine_best best;
-    int t, t0 = -1, k, span[2][2] = { { 0, 0 }, { 0, 0 } };   /* fine pixels [span[k][0], span[k][1]) */
+    int t0 = -1, k, span[2][2] = { { 0, 0 }, { 0, 0 } };   /* fine pixels [span[k][0], span[k][1]) */
     best.h = sd->h;
     best.hs = sd->hs;
     best.si = -1;
     best.d[0] = best.d[1] = best.d[2] = 0;   /* read only with si >= 0, but gcc cannot tell */
+    best.inv_len = 0;
     if (sd->peak_a >= 0) {
         /* the fine pixels after the peak's sample t0 up to the next
          * sub-image pixel, t0 + r, and with a long reach those after the
@@ -931,11 +946,20 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
         span[0][0] = 1;
         span[0][1] = t0 >= 0 && span[1][0] < first ? span[1][0] : first;
     }
-    for (k = 1; k >= 0; k--)   /* the peak's span first */
-        for (t = span[k][0]; t < span[k][1] && t <= room && small_from_int(t) <= ext; t++)
-            if (t != t0) fine_sample(c, &best, mr, major_x, fa0, fb0, t, dir);
-    if (room > r * sub_room && small_from_int(room) <= ext)
-        fine_sample(c, &best, mr, major_x, fa0, fb0, room, dir);
+    {
+        /* the runs in the order of before: the peak's span without t0, the
+         * span before the first sample, the screen's last pixel; each ends
+         * at the screen's edge (room) and at the extent (small_from_int(t)
+         * <= ext: t <= floor(ext), ext >= 0) */
+        const int tmax = ext < 0 ? -1 : tg_to_int(ext) < room ? tg_to_int(ext) : room;
+        int lo[4], hi[4];
+        lo[0] = span[1][0]; hi[0] = t0 >= 0 && t0 < span[1][1] ? t0 : span[1][1];
+        lo[1] = t0 >= 0 && t0 + 1 > span[1][0] ? t0 + 1 : span[1][0]; hi[1] = span[1][1];
+        lo[2] = span[0][0]; hi[2] = span[0][1];
+        lo[3] = room; hi[3] = room > r * sub_room ? room + 1 : room;
+        for (k = 0; k < 4; k++)
+            fine_run(c, &best, mr, major_x, fa0, fb0, lo[k], hi[k] <= tmax ? hi[k] : tmax + 1, dir);
+    }
     if (best.si < 0) return;
     /* one raise to the highest: the band it closes lies within a few
      * pixels of the sub-image's samples, gathered from that pixel */
