@@ -856,7 +856,11 @@ static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, c
     tg_real h = best->h, hs_tie = horizon_tie(best->hs);
     int t, fa = fa0 + lo * dir;
     size_t ia = (size_t)fa * smaj;
-    for (t = lo; t < hi; t++, fa += dir, ia += dmaj) {
+    /* t dir / r, the major offset in the march's units, stepped: multiples
+     * of 1/4 or 1/8 below 2^14, exact in both types */
+    const tg_real dtm = small_mul(small_from_int(dir), inv_r);
+    tg_real tm = small_mul(small_from_int(lo * dir), inv_r);
+    for (t = lo; t < hi; t++, fa += dir, ia += dmaj, tm = small_add(tm, dtm)) {
         /* |slope| <= 1, t and the fine pixels below 2^14, times 1/4 or 1/8: small_mul */
         const tg_real minor = small_mul(slope, small_from_int(t));
         const int b0 = floor_small(minor), fb = fb0 + b0;
@@ -879,8 +883,8 @@ static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, c
             si = sn;
         }
         /* fine pixels to the march's units: times 1/4 or 1/8, exact */
-        sx = small_mul(major_x ? small_from_int(t * dir) : minor, inv_r);
-        sy = small_mul(major_x ? tg_neg(minor) : small_from_int(-t * dir), inv_r);
+        sx = major_x ? tm : small_mul(minor, inv_r);
+        sy = major_x ? small_mul(tg_neg(minor), inv_r) : tg_neg(tm);
         cn = sample_cos(mr, z1, sx, sy, h, hs_tie, d, &inv_len);
         if (cn == HBIL_NOT_ABOVE) continue;
         h = cn;
@@ -966,8 +970,15 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
         lo[1] = t0 >= 0 && t0 + 1 > span[1][0] ? t0 + 1 : span[1][0]; hi[1] = span[1][1];
         lo[2] = span[0][0]; hi[2] = span[0][1];
         lo[3] = room; hi[3] = room > r * sub_room ? room + 1 : room;
-        for (k = 0; k < 4; k++)
-            fine_run(c, &best, mr, major_x, fa0, fb0, lo[k], hi[k] <= tmax ? hi[k] : tmax + 1, dir);
+        for (k = 0; k < 4; k++) {
+            const int end = hi[k] <= tmax ? hi[k] : tmax + 1;
+#if TG_OUTLINE_HELPERS
+            fine_run(c, &best, mr, major_x, fa0, fb0, lo[k], end, dir);
+#else       /* a copy per axis, as MARCH_SAMPLES */
+            if (major_x) fine_run(c, &best, mr, 1, fa0, fb0, lo[k], end, dir);
+            else fine_run(c, &best, mr, 0, fa0, fb0, lo[k], end, dir);
+#endif
+        }
     }
     if (best.si < 0) return;
     /* one raise to the highest: the band it closes lies within a few
