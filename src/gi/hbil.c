@@ -448,6 +448,42 @@ static HBIL_INLINE tg_real radiance_lerp(tg_real a, tg_real b, tg_real t)
     return tg_add(a, t == TG_ONE ? d : small_mul(d, t));
 }
 
+/* Q16.16, the same with a and b in [0, TG_REAL_MAX] (radiance, the common
+ * case: gather_rise tests it): b - a fits and a + (b - a) t lies between
+ * a and b, so neither tg_sub nor tg_add would saturate. */
+static HBIL_INLINE tg_real radiance_lerp_pos(tg_real a, tg_real b, tg_real t)
+{
+    const tg_real d = small_sub(b, a);
+    return small_add(a, t == TG_ONE ? d : small_mul(d, t));
+}
+
+/* Q16.16: 1 when the six values are all >= 0 (their or has no sign bit);
+ * float: 0, the plain arithmetic is the same either way. */
+static inline int all_nonneg(tg_real a, tg_real b, tg_real c, tg_real d, tg_real e, tg_real f)
+{
+#if TG_FIXED
+    return (a | b | c | d | e | f) >= 0;
+#else
+    (void)a; (void)b; (void)c; (void)d; (void)e; (void)f;
+    return 0;
+#endif
+}
+
+/* s + l de, as tg_add(s, tg_mul(l, de)), for s, l in [0, TG_REAL_MAX] and
+ * de in [0, 5) (the band's dE, |P| < 2.5): the product is l de rounded
+ * (>= 0, below 2^51 as an integer) and both tg_mul and tg_add saturate
+ * only at TG_REAL_MAX, so one saturation of the sum gives the same (a
+ * saturated product saturates the sum too). */
+static HBIL_INLINE tg_real near_sum_pos(tg_real s, tg_real l, tg_real de)
+{
+#if TG_FIXED
+    const int64_t v = (int64_t)s + (((int64_t)l * de + 32768) >> 16);
+    return v > (int64_t)TG_REAL_MAX ? TG_REAL_MAX : (tg_real)v;
+#else
+    return s + l * de;
+#endif
+}
+
 /* A raised horizon: gather L(x') over the band it closes (eq. 18-19, sec.
  * 3.4).  The sender is pixel si of g, its radiance pixel si of rad; a
  * sample of the fine image without its radiance (refine_fine) passes rad
@@ -479,14 +515,26 @@ static HBIL_GATHER_INLINE void gather_rise(const hbil_ctx *c, const hbil_slice *
 #endif
         if (t != 0) {   /* lerp(L_old, L(x'), 0) is L_old: the sender's radiance is not read */
             tg_vec3 l = tgi_rgb_get(rad, si);
-            sd->lr = radiance_lerp(sd->lr, l.x, t);              /* L_new = lerp(L_old, L(x'), t) */
-            sd->lg = radiance_lerp(sd->lg, l.y, t);
-            sd->lb = radiance_lerp(sd->lb, l.z, t);
+            if (all_nonneg(sd->lr, sd->lg, sd->lb, l.x, l.y, l.z)) {
+                sd->lr = radiance_lerp_pos(sd->lr, l.x, t);
+                sd->lg = radiance_lerp_pos(sd->lg, l.y, t);
+                sd->lb = radiance_lerp_pos(sd->lb, l.z, t);
+            } else {
+                sd->lr = radiance_lerp(sd->lr, l.x, t);              /* L_new = lerp(L_old, L(x'), t) */
+                sd->lg = radiance_lerp(sd->lg, l.y, t);
+                sd->lb = radiance_lerp(sd->lb, l.z, t);
+            }
         }
     }
-    sd->er = tg_add(sd->er, tg_mul(sd->lr, de));
-    sd->eg = tg_add(sd->eg, tg_mul(sd->lg, de));
-    sd->eb = tg_add(sd->eb, tg_mul(sd->lb, de));
+    if (all_nonneg(sd->er, sd->eg, sd->eb, sd->lr, sd->lg, sd->lb)) {   /* de >= 0 too */
+        sd->er = near_sum_pos(sd->er, sd->lr, de);
+        sd->eg = near_sum_pos(sd->eg, sd->lg, de);
+        sd->eb = near_sum_pos(sd->eb, sd->lb, de);
+    } else {
+        sd->er = tg_add(sd->er, tg_mul(sd->lr, de));
+        sd->eg = tg_add(sd->eg, tg_mul(sd->lg, de));
+        sd->eb = tg_add(sd->eb, tg_mul(sd->lb, de));
+    }
 }
 
 /* Whole-pixel steps along the major axis: `samples` steps of m pixels
