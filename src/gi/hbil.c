@@ -874,8 +874,9 @@ typedef struct hbil_fine_best {
     int si;                 /* its pixel in the fine image; -1: none above the side's */
 } hbil_fine_best;
 
-/* The samples of the fine image t = lo .. hi - 1 fine pixels from the
- * pixel along the major axis (toward dir), on the slice's line: 1/z
+/* The samples of the fine image t = los[k] .. his[k] - 1 (k < runs, runs
+ * not empty, in order) fine pixels from the pixel along the major axis
+ * (toward dir), on the slice's line: 1/z
  * interpolated across the minor axis between two close surface pixels,
  * else the nearest pixel's tangent plane, as in march_samples; each kept
  * in *best when it is above best's horizon.  A fine pixel is 1 /
@@ -883,8 +884,8 @@ typedef struct hbil_fine_best {
  * the pixel in the fine image.  The major index is stepped, the minor
  * offset taken anew at each t (slope t, as one product), so every sample
  * is the one a sample taken alone would be.  Inlined into refine_fine's
- * one call (its set-up cost as much as a sample), one copy when compiling
- * for size. */
+ * call (its set-up, once for all the runs, costs as much as a sample), one
+ * copy when compiling for size. */
 #if TG_OUTLINE_HELPERS
 #define HBIL_FINE_INLINE HBIL_NOINLINE
 #elif defined(__GNUC__)
@@ -893,7 +894,7 @@ typedef struct hbil_fine_best {
 #define HBIL_FINE_INLINE inline
 #endif
 static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, const hbil_march *mr, int major_x,
-                                      int fa0, int fb0, int lo, int hi, int dir)
+                                      int fa0, int fb0, const int *los, const int *his, int runs, int dir)
 {
     const tgi_gview *fg = c->fine;
     const int bmax = major_x ? fg->height : fg->width;
@@ -901,47 +902,51 @@ static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, c
     const size_t smin = (size_t)(major_x ? fg->row_stride : fg->pixel_stride);
     const size_t dmaj = dir > 0 ? smaj : (size_t)0 - smaj;     /* modulo 2^N: the sums are the indices */
     const tg_real slope = mr->slope, inv_r = c->inv_fine_ratio;
-    tg_real h = best->h, hs_tie = horizon_tie(best->hs);
-    int t, fa = fa0 + lo * dir;
-    size_t ia = (size_t)fa * smaj;
     /* t dir / r, the major offset in the march's units, stepped: multiples
      * of 1/4 or 1/8 below 2^14, exact in both types */
     const tg_real dtm = small_mul(small_from_int(dir), inv_r);
-    tg_real tm = small_mul(small_from_int(lo * dir), inv_r);
-    for (t = lo; t < hi; t++, fa += dir, ia += dmaj, tm = small_add(tm, dtm)) {
-        /* |slope| <= 1, t and the fine pixels below 2^14, times 1/4 or 1/8: small_mul */
-        const tg_real minor = small_mul(slope, small_from_int(t));
-        const int b0 = floor_small(minor), fb = fb0 + b0;
-        tg_real f, z1, za, zb, sx, sy, inv_len, cn;
-        size_t si;
-        tgi_wide d[3];
-        if ((unsigned)fb >= (unsigned)bmax) continue;                  /* the slice leaves the image */
-        f = frac_small(minor, b0);
-        si = ia + (size_t)fb * smin;
-        za = tgi_gv_depth(fg, si);
-        if (fb + 1 < bmax && za > 0 && depths_close(za, zb = tgi_gv_depth(fg, si + smin))) {   /* as in march_samples */
-            z1 = lerp_inverse_depth(za, zb, f);
-        } else {                                                        /* as in march_samples */
-            const int nb = f >= TG_R(0.5f);
-            size_t sn = nb ? si + smin : si;
-            if (nb && fb + 1 >= bmax) continue;                         /* outside the image */
-            if (tgi_gv_is_sky(fg, sn) || tgi_gv_depth(fg, sn) <= 0) continue;   /* sky never occludes */
-            z1 = sample_depth_edge(c, fg, major_x, fa, fb, f, (int)si, (int)sn);
-            if (z1 <= 0) continue;
-            si = sn;
+    tg_real h = best->h, hs_tie = horizon_tie(best->hs);
+    int run;
+    for (run = 0; run < runs; run++) {
+        const int lo = los[run], hi = his[run];
+        int t, fa = fa0 + lo * dir;
+        size_t ia = (size_t)fa * smaj;
+        tg_real tm = small_mul(small_from_int(lo * dir), inv_r);
+        for (t = lo; t < hi; t++, fa += dir, ia += dmaj, tm = small_add(tm, dtm)) {
+            /* |slope| <= 1, t and the fine pixels below 2^14, times 1/4 or 1/8: small_mul */
+            const tg_real minor = small_mul(slope, small_from_int(t));
+            const int b0 = floor_small(minor), fb = fb0 + b0;
+            tg_real f, z1, za, zb, sx, sy, inv_len, cn;
+            size_t si;
+            tgi_wide d[3];
+            if ((unsigned)fb >= (unsigned)bmax) continue;                  /* the slice leaves the image */
+            f = frac_small(minor, b0);
+            si = ia + (size_t)fb * smin;
+            za = tgi_gv_depth(fg, si);
+            if (fb + 1 < bmax && za > 0 && depths_close(za, zb = tgi_gv_depth(fg, si + smin))) {   /* as in march_samples */
+                z1 = lerp_inverse_depth(za, zb, f);
+            } else {                                                        /* as in march_samples */
+                const int nb = f >= TG_R(0.5f);
+                size_t sn = nb ? si + smin : si;
+                if (nb && fb + 1 >= bmax) continue;                         /* outside the image */
+                if (tgi_gv_is_sky(fg, sn) || tgi_gv_depth(fg, sn) <= 0) continue;   /* sky never occludes */
+                z1 = sample_depth_edge(c, fg, major_x, fa, fb, f, (int)si, (int)sn);
+                if (z1 <= 0) continue;
+                si = sn;
+            }
+            /* fine pixels to the march's units: times 1/4 or 1/8, exact */
+            sx = major_x ? tm : small_mul(minor, inv_r);
+            sy = major_x ? small_mul(tg_neg(minor), inv_r) : tg_neg(tm);
+            cn = sample_cos(mr, z1, sx, sy, h, hs_tie, d, &inv_len);
+            if (cn == HBIL_NOT_ABOVE) continue;
+            h = cn;
+            best->h = cn;
+            best->hs = horizon_sq(cn);
+            hs_tie = horizon_tie(best->hs);
+            best->d[0] = d[0]; best->d[1] = d[1]; best->d[2] = d[2];
+            best->inv_len = inv_len;
+            best->si = (int)si;
         }
-        /* fine pixels to the march's units: times 1/4 or 1/8, exact */
-        sx = major_x ? tm : small_mul(minor, inv_r);
-        sy = major_x ? small_mul(tg_neg(minor), inv_r) : tg_neg(tm);
-        cn = sample_cos(mr, z1, sx, sy, h, hs_tie, d, &inv_len);
-        if (cn == HBIL_NOT_ABOVE) continue;
-        h = cn;
-        best->h = cn;
-        best->hs = horizon_sq(cn);
-        hs_tie = horizon_tie(best->hs);
-        best->d[0] = d[0]; best->d[1] = d[1]; best->d[2] = d[2];
-        best->inv_len = inv_len;
-        best->si = (int)si;
     }
 }
 
@@ -1018,13 +1023,19 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
         lo[1] = t0 >= 0 && t0 + 1 > span[1][0] ? t0 + 1 : span[1][0]; hi[1] = span[1][1];
         lo[2] = span[0][0]; hi[2] = span[0][1];
         lo[3] = room; hi[3] = room > r * sub_room ? room + 1 : room;
-        for (k = 0; k < 4; k++) {
+        int n = 0;
+        for (k = 0; k < 4; k++) {   /* the runs that are not empty, in order */
             const int end = hi[k] <= tmax ? hi[k] : tmax + 1;
+            if (lo[k] >= end) continue;
+            lo[n] = lo[k];
+            hi[n++] = end;
+        }
+        if (n > 0) {
 #if TG_OUTLINE_HELPERS
-            fine_run(c, &best, mr, major_x, fa0, fb0, lo[k], end, dir);
+            fine_run(c, &best, mr, major_x, fa0, fb0, lo, hi, n, dir);
 #else       /* a copy per axis, as MARCH_SAMPLES */
-            if (major_x) fine_run(c, &best, mr, 1, fa0, fb0, lo[k], end, dir);
-            else fine_run(c, &best, mr, 0, fa0, fb0, lo[k], end, dir);
+            if (major_x) fine_run(c, &best, mr, 1, fa0, fb0, lo, hi, n, dir);
+            else fine_run(c, &best, mr, 0, fa0, fb0, lo, hi, n, dir);
 #endif
         }
     }
