@@ -14,6 +14,8 @@
 #   make compilers        gcc and clang builds render the same files, bit for bit
 #   make size-table       Cortex-M4 .text per configuration of the feature
 #                         switches (TG_NO_* in src/tinygi.h; platform/cross.mk)
+#   make size-check       fails if the colour or AO-only program is over its
+#                         flash budget (48 / 24 KB; tools/size_check.sh)
 #   make clean
 #
 # Standard variables are honoured: CC, CFLAGS (default -O2), CPPFLAGS,

@@ -14,6 +14,8 @@
 #                         feature switches, as README "Flash size" shows it
 #                         (tools/size_table.sh; SIZE_LTO=1 adds -flto,
 #                         SIZE_TOP=N lists the N largest functions)
+#   make size-check       the flash budgets (colour program <= 48 KB, AO-only
+#                         <= 24 KB of .text, Q16.16 -flto; tools/size_check.sh)
 #   make cross CROSS_TARGETS="s390x m3"   a subset (x86_64 always runs)
 #
 # Targets: x86_64 (reference), i686 (-msse2 -mfpmath=sse), s390x and
@@ -78,7 +80,9 @@ cross-count:
 cross-install:
 	@bash platform/cross-install.sh
 
-.PHONY: size-table
+.PHONY: size-table size-check
+size-check: $(BAKE_float) $(BAKE_fixed)
+	@MAKE="$(MAKE)" SIZE_BAKE="$(BAKE_float) $(BAKE_fixed)" bash tools/size_check.sh
 SIZE_LTO ?= 0
 SIZE_TOP ?= 0
 size-table: $(BAKE_float) $(BAKE_fixed)

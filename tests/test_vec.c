@@ -349,6 +349,11 @@ TEST(dot_product_at_the_range_ends)
     CHECK(tgi_v3_dot(tg_v3(hi, lo, 7), tg_v3(hi, hi, TG_ONE)) == tgi_v3_dot(tg_v3(0, 0, 7), tg_v3(0, 0, TG_ONE)) +
           tgi_v3_dot(tg_v3(hi, lo, 0), tg_v3(hi, hi, 0)), "cancelling products: %ld",
           (long)tgi_v3_dot(tg_v3(hi, lo, 7), tg_v3(hi, hi, TG_ONE)));
+    /* the first two past 2^62, the third of the other sign: the exact sum, 1 */
+    CHECK(tgi_v3_dot(tg_v3(hi, TG_ONE, hi), tg_v3(hi, TG_ONE, lo)) == TG_ONE, "past 2^62 and back: %ld",
+          (long)tgi_v3_dot(tg_v3(hi, TG_ONE, hi), tg_v3(hi, TG_ONE, lo)));
+    CHECK(tgi_v3_dot(tg_v3(lo, -TG_ONE, lo), tg_v3(hi, TG_ONE, lo)) == -TG_ONE, "past -2^62 and back: %ld",
+          (long)tgi_v3_dot(tg_v3(lo, -TG_ONE, lo), tg_v3(hi, TG_ONE, lo)));
     for (i = 0; i < 1000000; i++) {   /* components within 2^30: the plain sum fits */
         int32_t c[6];
         int k;

@@ -27,26 +27,20 @@ static inline tg_real tgi_v3_max_abs(tg_vec3 v) { return tg_max(tg_abs(v.x), tg_
 static inline tg_vec3 tgi_v3_lerp(tg_vec3 a, tg_vec3 b, tg_real t) { return tg_v3(tg_lerp(a.x, b.x, t), tg_lerp(a.y, b.y, t), tg_lerp(a.z, b.z, t)); }
 
 #if TG_FIXED
-/* a + b saturated at the 64-bit limits (C's signed overflow is undefined). */
-static inline int64_t tgi_add64_sat(int64_t a, int64_t b)
-{
-    if (b > 0 ? a > INT64_MAX - b : a < INT64_MIN - b) return b > 0 ? INT64_MAX : INT64_MIN;
-    return a + b;
-}
 /* The three products summed in 64 bits and rounded once.  A product of two
- * Q16.16 values reaches 2^62, so the sum can pass 2^63 (saturated weights
- * against coefficients at the range's ends): two products of opposite
- * signs are added first, so a partial sum overflows only where the whole
- * sum does, and a sum past 2^62 (past tg_real's range by 2^15 anyway)
- * saturates.  Wherever the sum fits, the same bits as the plain sum. */
+ * values in [-TG_REAL_MAX, TG_REAL_MAX] is under 2^62, so the first two sum
+ * to s without overflow (|s| < 2^63 - 2^33), but the third, r, can take the
+ * sum past 2^63 (saturated weights against coefficients at the range's
+ * ends).  That needs |s| > 2^62 and r of s's sign, when the whole sum is
+ * past 2^62 as s is, and either rounds to far past tg_real's range: s
+ * alone is then rounded (and saturates).  Wherever the sum fits, the same
+ * bits as the plain sum (tests/test_vec.c dot_product_at_the_range_ends). */
 static inline tg_real tgi_v3_dot(tg_vec3 a, tg_vec3 b)
 {
     const int64_t big = (int64_t)1 << 62;
-    int64_t p = (int64_t)a.x * b.x, q = (int64_t)a.y * b.y, r = (int64_t)a.z * b.z, s;
-    if ((p < 0) == (q < 0)) { s = q; q = r; r = s; }   /* p and q of opposite signs if any two are */
-    s = tgi_add64_sat(tgi_add64_sat(p, q), r);
-    s = s > big ? big : s < -big ? -big : s;
-    return tgi_sat64(tgi_shr_round(s, TG_FRAC_BITS));
+    int64_t s = (int64_t)a.x * b.x + (int64_t)a.y * b.y, r = (int64_t)a.z * b.z;
+    if ((s > big || s < -big) && (s < 0) == (r < 0)) r = 0;   /* s alone is past 2^62 too */
+    return tgi_sat64(tgi_shr_round(s + r, TG_FRAC_BITS));
 }
 #else
 static inline tg_real tgi_v3_dot(tg_vec3 a, tg_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
