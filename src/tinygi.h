@@ -542,10 +542,13 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #define TG_DEFAULT_RADIUS 1             /* world units, for a scene without extent (neither request
                                            nor scene giving one: see TG_RADIUS_ENV_DIVISOR) */
 #define TG_RADIUS_ENV_DIVISOR 30        /* a scene without a gi radius gets its bounds' diagonal
-                                           without an environment, diagonal / this with one */
-#define TG_RADIUS_LAYERS_DIVISOR 6      /* ... and diagonal / this with one over further depth
-                                           layers (request.depth_layers >= 2), which hold what a
-                                           local radius keeps one layer from taking as solid */
+                                           without an environment, diagonal / this with one for AO
+                                           alone (no colour, near, far, irradiance) on one layer */
+#define TG_RADIUS_LIGHT_DIVISOR 6       /* ... and diagonal / this with one for light (colour, near,
+                                           far, irradiance: a surface taken as solid sends its own
+                                           light) or over further depth layers (depth_layers >= 2),
+                                           which hold what a local radius keeps one layer from
+                                           taking as solid */
 #define TG_DEFAULT_SHADOW_MAP 0         /* texels per side; 0: each face by the size rule,
                                            about one texel per image pixel (README "Shadows") */
 /* the path-traced reference (technique pathtrace: samples = paths per pixel,

@@ -362,12 +362,13 @@ TEST(depth_layers_are_planned_only_when_asked)
     }
 }
 
-/* A scene with an environment and no gi radius: over further depth layers
- * its radius is the bounds' diagonal / TG_RADIUS_LAYERS_DIVISOR (6), on
- * one layer / TG_RADIUS_ENV_DIVISOR (30), for both techniques that read
- * layers and for HBIL at quarter resolution; a radius the scene or the
- * request gives is kept. */
-TEST(gather_radius_reaches_further_over_depth_layers)
+/* A scene with an environment and no gi radius: for light (colour, near,
+ * far, irradiance) or over further depth layers its radius is the bounds'
+ * diagonal / TG_RADIUS_LIGHT_DIVISOR (6), for AO alone on one layer /
+ * TG_RADIUS_ENV_DIVISOR (30), for both techniques that read layers and
+ * for HBIL at quarter resolution; a radius the scene or the request gives
+ * is kept. */
+TEST(gather_radius_reaches_further_for_light_and_over_depth_layers)
 {
     static const char *text =
         "camera pos 1 2 -5 target 1 2 0\n"
@@ -375,25 +376,34 @@ TEST(gather_radius_reaches_further_over_depth_layers)
         "box min -1 0 0  max 2 4 12  material m\n"   /* diagonal 13 */
         "env uniform 1 1 1\n";
     static const tg_technique reads[] = { TG_TECH_HBIL, TG_TECH_SSILVB, TG_TECH_HBIL };   /* the last at gi_scale 2 */
-    int k, layers;
-    for (k = 0; k < 3; k++)
-        for (layers = 1; layers <= TG_MAX_DEPTH_LAYERS; layers++) {
-            rendered r;
-            tg_request q = small_request();
-            double want = 13.0 / (layers >= 2 && !TG_NO_TECHNIQUES ? TG_RADIUS_LAYERS_DIVISOR : TG_RADIUS_ENV_DIVISOR);
-            q.technique = reads[k];
-            q.gi_scale = k == 2 ? 2 : 1;
-            q.depth_layers = TG_NO_TECHNIQUES ? 1 : layers;
-            if (!setup_checked(&r, text, &q, "the scene")) continue;
-            CHECK(fabs(check_d(r.plan.request.radius) - want) < 1e-3 * want, "%s%s, %d layers: radius %g, want %g",
-                  tg_technique_name(reads[k]), k == 2 ? " quarter" : "", layers, check_d(r.plan.request.radius), want);
-            teardown(&r);
-            q.radius = TG_R(0.75f);
-            if (!setup_checked(&r, text, &q, "the scene, a radius asked")) continue;
-            CHECK(r.plan.request.radius == TG_R(0.75f), "%s, %d layers: the request's radius kept",
-                  tg_technique_name(reads[k]), layers);
-            teardown(&r);
-        }
+    static const uint32_t outputs[] = { AOVBIT(TG_AOV_AO) | AOVBIT(TG_AOV_BENT) | AOVBIT(TG_AOV_CONE) | AOVBIT(TG_AOV_DEPTH),
+                                        AOVBIT(TG_AOV_COLOR), AOVBIT(TG_AOV_NEAR), AOVBIT(TG_AOV_FAR),
+                                        AOVBIT(TG_AOV_IRRADIANCE) | AOVBIT(TG_AOV_AO), 0 /* colour */ };
+    int k, layers, o;
+    for (o = 0; o < (int)(sizeof outputs / sizeof outputs[0]); o++)
+        for (k = 0; k < 3; k++)
+            for (layers = 1; layers <= TG_MAX_DEPTH_LAYERS; layers++) {
+                rendered r;
+                tg_request q = small_request();
+                int light = o > 0 && !TG_NO_COLOR;
+                double want = 13.0 / ((layers >= 2 && !TG_NO_TECHNIQUES) || light ? TG_RADIUS_LIGHT_DIVISOR
+                                                                                   : TG_RADIUS_ENV_DIVISOR);
+                if (o > 0 && TG_NO_COLOR) continue;
+                q.aovs = outputs[o];
+                q.technique = reads[k];
+                q.gi_scale = k == 2 ? 2 : 1;
+                q.depth_layers = TG_NO_TECHNIQUES ? 1 : layers;
+                if (!setup_checked(&r, text, &q, "the scene")) continue;
+                CHECK(fabs(check_d(r.plan.request.radius) - want) < 1e-3 * want, "%s%s, %d layers, outputs %#x: radius %g, want %g",
+                      tg_technique_name(reads[k]), k == 2 ? " quarter" : "", layers, (unsigned)outputs[o],
+                      check_d(r.plan.request.radius), want);
+                teardown(&r);
+                q.radius = TG_R(0.75f);
+                if (!setup_checked(&r, text, &q, "the scene, a radius asked")) continue;
+                CHECK(r.plan.request.radius == TG_R(0.75f), "%s, %d layers: the request's radius kept",
+                      tg_technique_name(reads[k]), layers);
+                teardown(&r);
+            }
 }
 
 /* The scene's gi values are held to the same limits (by the parser, or
@@ -465,7 +475,7 @@ int main(void)
     RUN(radius_and_exposure_at_their_extremes);
     RUN(thickness_unset_follows_the_radius);
     RUN(depth_layers_are_planned_only_when_asked);
-    RUN(gather_radius_reaches_further_over_depth_layers);
+    RUN(gather_radius_reaches_further_for_light_and_over_depth_layers);
     RUN(refusal_names_the_field_and_the_value);
     RUN(scene_gi_values_have_the_same_limits);
     RUN(aov_rows_outside_the_image_are_refused);

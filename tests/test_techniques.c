@@ -159,7 +159,7 @@ static void ao_against(const char *scene, tg_request q, const double *ref, doubl
 
 /* HBIL on `spheres` at 80x60 (at gi_scale `scale`), 8 frames, one layer
  * and three against the reference, all at the scene's one-layer radius
- * (the layers would reach further: TG_RADIUS_LAYERS_DIVISOR): RMSE and
+ * (the layers would reach further: TG_RADIUS_LIGHT_DIVISOR): RMSE and
  * bias r[0], b[0] on one layer, r[1], b[1] on three. */
 static void spheres_layers_against_the_reference(int scale, double r[2], double b[2])
 {

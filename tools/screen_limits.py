@@ -33,7 +33,7 @@ For every scene it renders, with BUILD/tinygi (float):
   depth       --aov depth: the geometry mask (depth 0 is sky).
 
 Over further depth layers a scene without a gi radius gets a longer one
-(its diagonal / 6 with an environment, TG_RADIUS_LAYERS_DIVISOR, against /
+(its diagonal / 6 with an environment, TG_RADIUS_LIGHT_DIVISOR, against /
 30 on one layer; `--explain` prints it): the two layered columns are
 compared with the reference at their own radius (a second reference run
 where it differs).

@@ -498,8 +498,9 @@ static HBIL_INLINE tg_real near_sum_pos(tg_real s, tg_real l, tg_real de)
 #define HBIL_GATHER_INLINE HBIL_INLINE
 #endif
 static HBIL_GATHER_INLINE void gather_rise(const hbil_ctx *c, const hbil_slice *sl, hbil_side *sd, int side,
-                        tg_real cos_new, tg_vec3 dir, const tgi_gview *g, const tgi_rgb *rad, int si)
+                        tg_real cos_new, tg_vec3 dir, const tgi_gview *g, const tgi_rgb *rad, int si, int trapezoid)
 {
+    tg_real br = sd->lr, bg = sd->lg, bb = sd->lb;
     tg_real q_new = slice_Q(cos_new, side);
     /* P(theta) = int_0^theta (n'.w_i') |sin| : the antiderivative of eq. 10
      * (|n'| <= 1, |Q| < 2, R <= 1/2, |P| < 2.5: small_mul) */
@@ -526,14 +527,21 @@ static HBIL_GATHER_INLINE void gather_rise(const hbil_ctx *c, const hbil_slice *
             }
         }
     }
-    if (all_nonneg(sd->er, sd->eg, sd->eb, sd->lr, sd->lg, sd->lb)) {   /* de >= 0 too */
-        sd->er = near_sum_pos(sd->er, sd->lr, de);
-        sd->eg = near_sum_pos(sd->eg, sd->lg, de);
-        sd->eb = near_sum_pos(sd->eb, sd->lb, de);
+    if (trapezoid) {
+        br = tg_mul(tg_add(br, sd->lr), TG_R(0.5f));
+        bg = tg_mul(tg_add(bg, sd->lg), TG_R(0.5f));
+        bb = tg_mul(tg_add(bb, sd->lb), TG_R(0.5f));
     } else {
-        sd->er = tg_add(sd->er, tg_mul(sd->lr, de));
-        sd->eg = tg_add(sd->eg, tg_mul(sd->lg, de));
-        sd->eb = tg_add(sd->eb, tg_mul(sd->lb, de));
+        br = sd->lr; bg = sd->lg; bb = sd->lb;
+    }
+    if (all_nonneg(sd->er, sd->eg, sd->eb, br, bg, bb)) {   /* de >= 0 too */
+        sd->er = near_sum_pos(sd->er, br, de);
+        sd->eg = near_sum_pos(sd->eg, bg, de);
+        sd->eb = near_sum_pos(sd->eb, bb, de);
+    } else {
+        sd->er = tg_add(sd->er, tg_mul(br, de));
+        sd->eg = tg_add(sd->eg, tg_mul(bg, de));
+        sd->eb = tg_add(sd->eb, tg_mul(bb, de));
     }
 }
 
@@ -771,9 +779,10 @@ static inline void march_samples(
     /* the major offset k da - back of sample k, stepped (whole pixels < 2^14: exact) */
     tg_real smajor = small_from_int(-back);
     const tg_real dmajor = small_from_int(da);
-    int k, a = run->a, sa_major = a * smaj;
+    int k, a = run->a, sa_major = a * smaj, rose = 0;
     for (k = 1; k <= n; k++) {
-        int b0, sa;
+        int b0, sa, after_rise = rose;
+        rose = 0;
         tg_real f, z1, sx, sy, za, zb, cn, inv_len;
         tgi_wide d[3];
         minor = (tg_real)((tgi_wide)minor + dminor);           /* |minor|, |ox| < 2^14 px: no saturation */
@@ -808,7 +817,8 @@ static inline void march_samples(
         hs_tie = horizon_tie(sd->hs);
         if (NEAR_FIELD(c))
             gather_rise(c, sl, sd, side, cn, sample_dir(d, inv_len),
-                        c->g, c->rad, f < TG_R(0.5f) ? sa : sa + smin);   /* the nearest pixel */
+                        c->g, c->rad, f < TG_R(0.5f) ? sa : sa + smin, after_rise);   /* the nearest pixel */
+        rose = 1;
     }
 }
 
@@ -856,7 +866,10 @@ HBIL_NOINLINE static void march_between(const hbil_ctx *c, const hbil_slice *sl,
     const int room = dir > 0 ? (major_x ? c->g->width : c->g->height) - 1 - a0 : a0;  /* pixels to the edge */
     const int last = mr->run.n * m - mr->run.back * dir;                 /* the last sample's distance */
     int p, k;
-    if (last < room && tg_from_int(room) <= mr->extent) march_run(c, sl, side, sd, mr, major_x, last, room - last, 1);
+    /* room > 0: a side with no sample (n = 0, the offset put the first
+     * past the edge) has last = -o, and a pixel on the edge would sample
+     * itself (test open_plane_long_radius) */
+    if (room > 0 && last < room && tg_from_int(room) <= mr->extent) march_run(c, sl, side, sd, mr, major_x, last, room - last, 1);
     if (sd->peak_a < 0) return;
     p = (sd->peak_a - a0) * dir;
     k = m - 1;
@@ -1047,7 +1060,7 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
     if (NEAR_FIELD(c))
         gather_rise(c, sl, sd, side, best.h,
                     sample_dir(best.d, best.inv_len),
-                    fg, c->fine_rad, best.si);
+                    fg, c->fine_rad, best.si, 0);
 }
 
 #endif /* !TG_NO_FINE_HORIZON */
