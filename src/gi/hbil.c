@@ -213,6 +213,18 @@ static tg_real small_from_int(int i)
     return (tg_real)i;
 #endif
 }
+/* small_mul(a, small_from_int(i)) where the product a i is small (each use
+ * says why): in Q16.16 the raw product a i 2^16 is a multiple of 2^16, so
+ * its rounding shift is exact and the result is the integer product a i,
+ * without the rounding; float multiplies by (float)i as before. */
+static inline tg_real small_mul_int(tg_real a, int i)
+{
+#if TG_FIXED
+    return (tg_real)((tgi_wide)a * i);
+#else
+    return small_mul(a, small_from_int(i));
+#endif
+}
 
 /* sqrt(x) for x in [0, 1] (the fit's sqrt(1 - a)): in float the two-step
  * reciprocal square root (core/real.h, rel. error < 5e-6) times x and one
@@ -617,6 +629,34 @@ static inline tgi_wide wide_abs(tgi_wide d)
 #endif
 }
 
+/* tgi_wide_dot(d, d): in Q16.16 the exact sum of squares is >= 0 (below
+ * 3 2^60: each |d_i| <= HBIL_FAR < 2^31 after wide_far), where
+ * tgi_shr_round is (s + 2^15) >> 16: the same value without its sign test. */
+static inline tgi_wide wide_len2(tgi_wide dx, tgi_wide dy, tgi_wide dz)
+{
+#if TG_FIXED
+    return (tgi_wide)(((uint64_t)(dx * dx + dy * dy + dz * dz) + 32768u) >> 16);
+#else
+    return tgi_wide_dot(dx, dy, dz, dx, dy, dz);
+#endif
+}
+
+/* tgi_wide_mul(a, b) <= tgi_wide_mul(c, d) (the horizon test).  In Q16.16
+ * the rounding (tgi_shr_round) does not decrease: a b <= c d exactly
+ * implies the rounded products compare so too, and only a b > c d needs
+ * them rounded (equal when both round to one value).  The products stay
+ * below 2^62 (sample_cos's bounds: dot |dot|, h|h| |d|^2 < 2^46 as
+ * integers times 2^16). */
+static inline int wide_products_le(tgi_wide a, tgi_wide b, tgi_wide c, tgi_wide d)
+{
+#if TG_FIXED
+    const int64_t p = a * b, q = c * d;
+    return p <= q || tgi_shr_round(p, TG_FRAC_BITS) <= tgi_shr_round(q, TG_FRAC_BITS);
+#else
+    return tgi_wide_mul(a, b) <= tgi_wide_mul(c, d);
+#endif
+}
+
 /* The cosine dot / |d| of a sample that passed the horizon test, clamped
  * to [-1, 1], and 1 / |d| (in Q16.16 |d| < 128 here: d, dot and len2 = |d|^2 fit
  * tg_real).  Float: one reciprocal square root, the two-step one of
@@ -655,7 +695,12 @@ static inline tg_real horizon_cos(tg_real dot, tg_real len2, tg_real *inv_len)
  * tg_mul saturated) gives the same answer. */
 static inline int depths_close(tg_real za, tg_real zb)
 {
+#if TG_FIXED
+    /* tgi_wide_mul(TG_R(4), z) = (4 2^16 z) 2^-16 rounded = 4 z exactly */
+    return (tgi_wide)zb * 4 > za && (tgi_wide)za * 4 > zb;
+#else
     return tgi_wide_mul(HBIL_LERP_MAX_RATIO, zb) > za && tgi_wide_mul(HBIL_LERP_MAX_RATIO, za) > zb;
+#endif
 }
 
 /* The depth at fraction f in [0, 1) from za to zb, 1/z linear:
@@ -667,7 +712,16 @@ static inline int depths_close(tg_real za, tg_real zb)
 static inline tg_real lerp_inverse_depth(tg_real za, tg_real zb, tg_real f)
 {
     tg_real zd = (tg_real)((tgi_wide)zb - za), fzd = small_mul(f, zd);
-    return tgi_wide_real((tgi_wide)za + tgi_wide_mul(fzd, tgi_div_pos(za, small_sub(zb, fzd))));
+#if TG_FIXED && !TG_OUTLINE_HELPERS
+    /* tgi_div_pos for a numerator >= 0 (za > 0) and a divisor > 0: the
+     * rounding's half divisor is a shift, the quotient unsigned (the same
+     * truncation of a non-negative quotient) */
+    const uint64_t den = (uint64_t)(uint32_t)small_sub(zb, fzd);
+    const tg_real ratio = (tg_real)((((uint64_t)(uint32_t)za << 16) + (den >> 1)) / den);
+#else
+    const tg_real ratio = tgi_div_pos(za, small_sub(zb, fzd));
+#endif
+    return tgi_wide_real((tgi_wide)za + tgi_wide_mul(fzd, ratio));
 }
 
 /* A run of samples along a side: march_side's, or march_between's
@@ -714,11 +768,11 @@ static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, t
     dy = (tgi_wide)sy + tgi_wide_mul((tgi_wide)mr->p0y + sy, q);
     dz = tgi_wide_mul(mr->p0z, q);
     if (wide_far(dx, dy, dz)) return HBIL_NOT_ABOVE;                          /* beyond the 3D radius */
-    len2 = tgi_wide_dot(dx, dy, dz, dx, dy, dz);
+    len2 = wide_len2(dx, dy, dz);
     if (len2 > mr->r2) return HBIL_NOT_ABOVE;                                 /* beyond the 3D radius */
     dot = tgi_wide_dot(dx, dy, dz, mr->wox, mr->woy, mr->woz);
     /* cos(theta) > horizon, without a division: dot|dot| > h|h| |d|^2 */
-    if (tgi_wide_mul(dot, wide_abs(dot)) <= tgi_wide_mul(hs_tie, len2)) return HBIL_NOT_ABOVE;
+    if (wide_products_le(dot, wide_abs(dot), hs_tie, len2)) return HBIL_NOT_ABOVE;
 #if TG_FIXED
     if (len2 >= ((tgi_wide)1 << 30)) {   /* |d| >= 128: |d|^2 beyond tg_real; the cosine and the direction are scale-free */
         int k = 1;
@@ -834,9 +888,9 @@ static void march_run(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_si
     r.da = step * dir;
     r.back = -p0 * dir;
     r.a = mr->run.a + mr->run.back - r.back;
-    r.ox = small_mul(mr->slope, small_from_int(p0));                 /* as in march_side */
+    r.ox = small_mul_int(mr->slope, p0);                 /* as in march_side */
     r.minor = small_add(small_sub(mr->run.minor, mr->run.ox), r.ox);
-    r.dminor = small_mul(mr->slope, small_from_int(step));
+    r.dminor = small_mul_int(mr->slope, step);
     MARCH_SAMPLES(c, sl, side, sd, mr, &r, major_x);
 }
 
@@ -914,7 +968,7 @@ static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, c
         tg_real tm = small_mul(small_from_int(lo * dir), inv_r);
         for (t = lo; t < hi; t++, fa += dir, ia += dmaj, tm = small_add(tm, dtm)) {
             /* |slope| <= 1, t and the fine pixels below 2^14, times 1/4 or 1/8: small_mul */
-            const tg_real minor = small_mul(slope, small_from_int(t));
+            const tg_real minor = small_mul_int(slope, t);
             const int b0 = floor_small(minor), fb = fb0 + b0;
             tg_real f, z1, za, zb, sx, sy, inv_len, cn;
             size_t si;
@@ -1096,9 +1150,9 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     if (mr.run.n > kmax) mr.run.n = kmax;
     mr.run.back = o * dir;
     mr.run.a -= mr.run.back;
-    mr.run.ox = small_mul(slope, small_from_int(-o));
+    mr.run.ox = small_mul_int(slope, -o);
     mr.run.minor = small_add(small_from_int(major_x ? px->y : px->x), mr.run.ox);
-    mr.run.dminor = small_mul(slope, small_from_int(m));
+    mr.run.dminor = small_mul_int(slope, m);
     MARCH_SAMPLES(c, sl, side, sd, &mr, &mr.run, major_x);
     if (m > 1) march_between(c, sl, side, sd, &mr, major_x);
 #if !TG_NO_FINE_HORIZON
