@@ -229,11 +229,12 @@ static inline tg_real small_mul_int(tg_real a, int i)
 /* sqrt(x) for x in [0, 1] (the fit's sqrt(1 - a)): in float the two-step
  * reciprocal square root (core/real.h, rel. error < 5e-6) times x and one
  * Newton step on the residual (as tg_sqrt ends), without tg_sqrt's third
- * step and range tests; Q16.16 keeps tg_sqrt (exactly rounded). */
+ * step and range tests; Q16.16 keeps tg_sqrt's exactly rounded result
+ * (tgi_sqrt_unit, core/real.h: the same bits inline for [0, 1]). */
 static tg_real unit_sqrt(tg_real x)
 {
 #if TG_FIXED
-    return tg_sqrt(x);
+    return tgi_sqrt_unit(x);                  /* tg_sqrt's bits, inline */
 #else
     float r, s;
     if (!(x > 0.0f)) return 0.0f;
