@@ -280,21 +280,6 @@ TEST(div_rounds_alike_for_every_sign)
 #endif
 }
 
-#if TG_FIXED
-/* tgi_sqrt_unit (core/real.h) is tg_sqrt on [0, 1], every Q16.16 value
- * (and what is outside answers as tg_sqrt does at the ends). */
-TEST(sqrt_unit_matches_sqrt)
-{
-    long bad = 0;
-    tg_real x;
-    for (x = -4; x <= TG_ONE; x++)
-        if (tgi_sqrt_unit(x) != tg_sqrt(x)) {
-            if (bad++ < 4) printf("  x %ld: %ld vs tg_sqrt %ld\n", (long)x, (long)tgi_sqrt_unit(x), (long)tg_sqrt(x));
-        }
-    CHECK(bad == 0, "tgi_sqrt_unit differs from tg_sqrt at %ld values", bad);
-}
-#endif
-
 /* tgi_div_pos (core/real.h) is tg_div for b > 0 wherever the quotient
  * fits tg_real (tg_div does not saturate), including the halves that round
  * away from zero. */
@@ -997,7 +982,6 @@ int main(void)
     RUN(outline_div_and_shift_match_inline);
     RUN(div_rounds_alike_for_every_sign);
     RUN(div_pos_matches_div);
-    RUN(sqrt_unit_matches_sqrt);
 #endif
     RUN(text_put_real_as_float);
     RUN(integer_helpers);

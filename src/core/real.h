@@ -112,37 +112,6 @@ static inline uint64_t tgi_rsqrt_q30_fast(uint64_t x30)
     t = (((y * y) >> 30) * x30) >> 30;
     return (y * ((3u << 30) - t)) >> 31;
 }
-
-/* tg_sqrt(x) for x in [0, TG_ONE] (a unit interval's square roots: the
- * HBIL slice integral's sqrt(1 - |cos|)), inline and without tg_sqrt's
- * range steps; the same bits (tests/test_real.c sqrt_unit_matches_sqrt,
- * every x).  v = x 2^16 < 2^32 (x = TG_ONE answers 1 first) is shifted by
- * an even e into X30 = v 2^e in [2^30, 2^32), X = X30 2^-30 in [1, 4): with
- * y = 2^30 / sqrt(X) from tgi_rsqrt_q30_fast (rel. error 3.2e-6, measured
- * below), sqrt(v) = X30 y 2^-(45 + e/2), X30 y < 2^62, rounded within
- * 65536 * 3.2e-6 + 1/2 < 1 of sqrt(v), so within 1 of R, the integer
- * nearest sqrt(v) (never a tie: (R + 1/2)^2 is not an integer); the test
- * R^2 - R < v <= R^2 + R then steps to R, tg_sqrt's exactly rounded
- * result.  Compiling for size: tg_sqrt itself. */
-static inline tg_real tgi_sqrt_unit(tg_real x)
-{
-#if TG_OUTLINE_HELPERS
-    return tg_sqrt(x);
-#else
-    uint64_t v, x30, r, r2;
-    int e;
-    if (x <= 0) return 0;
-    if (x >= TG_ONE) return TG_ONE;
-    v = (uint64_t)(uint32_t)x << 16;                      /* [2^16, 2^32) */
-    e = (32 - tgi_bit_length64(v)) & ~1;                  /* 0 .. 14 */
-    x30 = v << e;
-    r = (x30 * tgi_rsqrt_q30_fast(x30) + ((uint64_t)1 << (44 + e / 2))) >> (45 + e / 2);
-    r2 = r * r;
-    if (r2 + r < v) r++;
-    else if (r2 - r >= v) r--;
-    return (tg_real)r;
-#endif
-}
 #else
 /* 1/sqrt(x) for a normal float x > 0: bit-trick seed (within 0.18% after
  * the first step) and two Newton steps, rel. error < 5e-6. */

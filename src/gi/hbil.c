@@ -159,6 +159,7 @@ typedef struct hbil_pixel {
     tg_real z, inv_z;
     tg_vec3 wo, wx, wy;     /* local camera frame, sec. 1.1 */
     tg_vec3 n;              /* view-space normal with n.w_o >= HBIL_MIN_NDOTV */
+    tg_real ndv;            /* n.w_o (every slice's n'_y) */
     tgi_wide radius_units2; /* (3D radius in image pixels at depth z)^2 */
     tg_real reach;          /* march extent, image pixels */
     tg_real jitter;         /* the samples start this fraction of a step nearer */
@@ -217,24 +218,30 @@ static tg_real small_from_int(int i)
  * says why): in Q16.16 the raw product a i 2^16 is a multiple of 2^16, so
  * its rounding shift is exact and the result is the integer product a i,
  * without the rounding; float multiplies by (float)i as before. */
-static inline tg_real small_mul_int(tg_real a, int i)
-{
+/* tgi_v3_scale, tgi_v3_add and tgi_v3_dot of small vectors (each use says
+ * why): the same products, sums and one rounding of the dot's exact sum,
+ * without the saturation tests (and the dot's test past 2^62).  Float
+ * keeps the calls it had (macros, the same source: the same code). */
 #if TG_FIXED
-    return (tg_real)((tgi_wide)a * i);
+static inline tg_real small_mul_int(tg_real a, int i) { return (tg_real)((tgi_wide)a * i); }
+static inline tg_vec3 small_v3_scale(tg_vec3 a, tg_real s) { return tg_v3(small_mul(a.x, s), small_mul(a.y, s), small_mul(a.z, s)); }
+static inline tg_vec3 small_v3_add(tg_vec3 a, tg_vec3 b) { return tg_v3(small_add(a.x, b.x), small_add(a.y, b.y), small_add(a.z, b.z)); }
+static inline tg_real small_dot(tg_vec3 a, tg_vec3 b) { return (tg_real)tgi_wide_dot(a.x, a.y, a.z, b.x, b.y, b.z); }
 #else
-    return small_mul(a, small_from_int(i));
+#define small_mul_int(a, i) small_mul(a, small_from_int(i))
+#define small_v3_scale tgi_v3_scale
+#define small_v3_add tgi_v3_add
+#define small_dot tgi_v3_dot
 #endif
-}
 
 /* sqrt(x) for x in [0, 1] (the fit's sqrt(1 - a)): in float the two-step
  * reciprocal square root (core/real.h, rel. error < 5e-6) times x and one
  * Newton step on the residual (as tg_sqrt ends), without tg_sqrt's third
- * step and range tests; Q16.16 keeps tg_sqrt's exactly rounded result
- * (tgi_sqrt_unit, core/real.h: the same bits inline for [0, 1]). */
+ * step and range tests; Q16.16 keeps tg_sqrt (exactly rounded). */
 static tg_real unit_sqrt(tg_real x)
 {
 #if TG_FIXED
-    return tgi_sqrt_unit(x);                  /* tg_sqrt's bits, inline */
+    return tg_sqrt(x);
 #else
     float r, s;
     if (!(x > 0.0f)) return 0.0f;
@@ -298,6 +305,7 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
     ndv = tgi_v3_dot(px->n, px->wo);
     if (ndv < HBIL_MIN_NDOTV)
         px->n = tgi_v3_normalize_or(tgi_v3_add(px->n, tgi_v3_scale(px->wo, tg_sub(HBIL_MIN_NDOTV, ndv))), px->wo);
+    px->ndv = tgi_v3_dot(px->n, px->wo);
     /* the world radius projected to image pixels; the 3D test is unclamped */
     r_px = tg_div(tg_mul(c->p->radius, c->ppu), px->z);
     /* no other cap in pixels: the march ends at the screen's edge
@@ -633,14 +641,14 @@ static inline tgi_wide wide_abs(tgi_wide d)
 /* tgi_wide_dot(d, d): in Q16.16 the exact sum of squares is >= 0 (below
  * 3 2^60: each |d_i| <= HBIL_FAR < 2^31 after wide_far), where
  * tgi_shr_round is (s + 2^15) >> 16: the same value without its sign test. */
+#if TG_FIXED
 static inline tgi_wide wide_len2(tgi_wide dx, tgi_wide dy, tgi_wide dz)
 {
-#if TG_FIXED
     return (tgi_wide)(((uint64_t)(dx * dx + dy * dy + dz * dz) + 32768u) >> 16);
-#else
-    return tgi_wide_dot(dx, dy, dz, dx, dy, dz);
-#endif
 }
+#else
+#define wide_len2(dx, dy, dz) tgi_wide_dot(dx, dy, dz, dx, dy, dz)
+#endif
 
 /* tgi_wide_mul(a, b) <= tgi_wide_mul(c, d) (the horizon test).  In Q16.16
  * the rounding (tgi_shr_round) does not decrease: a b <= c d exactly
@@ -648,15 +656,15 @@ static inline tgi_wide wide_len2(tgi_wide dx, tgi_wide dy, tgi_wide dz)
  * them rounded (equal when both round to one value).  The products stay
  * below 2^62 (sample_cos's bounds: dot |dot|, h|h| |d|^2 < 2^46 as
  * integers times 2^16). */
+#if TG_FIXED
 static inline int wide_products_le(tgi_wide a, tgi_wide b, tgi_wide c, tgi_wide d)
 {
-#if TG_FIXED
     const int64_t p = a * b, q = c * d;
     return p <= q || tgi_shr_round(p, TG_FRAC_BITS) <= tgi_shr_round(q, TG_FRAC_BITS);
-#else
-    return tgi_wide_mul(a, b) <= tgi_wide_mul(c, d);
-#endif
 }
+#else
+#define wide_products_le(a, b, c, d) (tgi_wide_mul(a, b) <= tgi_wide_mul(c, d))
+#endif
 
 /* The cosine dot / |d| of a sample that passed the horizon test, clamped
  * to [-1, 1], and 1 / |d| (in Q16.16 |d| < 128 here: d, dot and len2 = |d|^2 fit
@@ -1166,7 +1174,7 @@ static void side_init(hbil_side *sd, tg_real h, tg_real q_open, tg_real p_open)
     memset(sd, 0, sizeof *sd);
     sd->peak_a = -1;
     sd->h = h;
-    sd->hs = tg_mul(h, tg_abs(h));
+    sd->hs = horizon_sq(h);     /* |h| <= 1 */
     sd->q = q_open;
     sd->p_old = p_open;
 }
@@ -1182,19 +1190,23 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
     hbil_slice sl;
     hbil_side front, back;
     tg_real inv_len_n, h1i, h0i, ux, uy, q1, q0, q1i, q0i, r1, r0, r1i, r0i, p1i, p0i;
-    sl.d = tgi_v3_add(tgi_v3_scale(px->wx, cphi), tgi_v3_scale(px->wy, sphi)); /* HBIL sec. 1.2 D(phi) */
-    sl.nx = tgi_v3_dot(px->n, sl.d);                           /* HBIL eq. 2 */
-    sl.ny = tgi_v3_dot(px->n, px->wo);
+    /* the frame's vectors w_x, w_y, w_o and n are unit (|component| <= 1
+     * and a rounding), cos and sin at most 1: D's components below 2, n'
+     * below 4, their products and sums small (small_mul, small_dot) */
+    sl.d = small_v3_add(small_v3_scale(px->wx, cphi), small_v3_scale(px->wy, sphi)); /* HBIL sec. 1.2 D(phi) */
+    sl.nx = small_dot(px->n, sl.d);                            /* HBIL eq. 2 */
+    sl.ny = px->ndv;
     /* |n'|^2 >= ny^2 > 0 (ny >= HBIL_MIN_NDOTV) */
-    inv_len_n = tg_rsqrt(tg_max(tg_add(tg_mul(sl.nx, sl.nx), tg_mul(sl.ny, sl.ny)), tg_mul(sl.ny, sl.ny)));
+    inv_len_n = tg_rsqrt(tg_max(small_add(small_mul(sl.nx, sl.nx), small_mul(sl.ny, sl.ny)), small_mul(sl.ny, sl.ny)));
     /* horizons initialised on the tangent plane (sec. 2.1): cos = -/+ n_x/|n'| */
     h1i = tg_clamp(tg_mul(tg_neg(sl.nx), inv_len_n), TG_R(-1.0f), TG_ONE);
     h0i = tg_neg(h1i);
     /* Q(-c, -1) = Q(c, 1) - pi/2 and R(-c) = R(c): one fit for both sides */
-    q1i = slice_Q(h1i, 1); q0i = tg_sub(q1i, TG_HALF_PI);
+    /* |Q| < 2, R <= 1/2, |n'| < 4: small */
+    q1i = slice_Q(h1i, 1); q0i = small_sub(q1i, TG_HALF_PI);
     r1i = slice_R(h1i); r0i = r1i;
-    p1i = tg_add(tg_mul(sl.nx, q1i), tg_mul(sl.ny, r1i));
-    p0i = tg_add(tg_mul(sl.nx, q0i), tg_mul(sl.ny, r0i));
+    p1i = small_add(small_mul(sl.nx, q1i), small_mul(sl.ny, r1i));
+    p0i = small_add(small_mul(sl.nx, q0i), small_mul(sl.ny, r0i));
     side_init(&front, h1i, q1i, p1i);
     side_init(&back, h0i, q0i, p0i);
     slice_screen_dir(c, px, sl.d, &ux, &uy);
@@ -1204,10 +1216,12 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
     q1 = NEAR_FIELD(c) || front.h == h1i ? front.q : slice_Q(front.h, 1);
     q0 = NEAR_FIELD(c) || back.h == h0i ? back.q : slice_Q(back.h, -1);
     r1 = slice_R(front.h); r0 = slice_R(back.h);
-    /* AO_i = P(theta1) + P(theta0) (eq. 10-11 with |sin|); open minus found */
+    /* AO_i = P(theta1) + P(theta0) (eq. 10-11 with |sin|); open minus found
+     * (the slice's terms small as above; the sum over the slices is kept
+     * saturating: tg_add) */
     acc->occlusion = tg_add(acc->occlusion,
-        tg_add(tg_sub(p1i, tg_add(tg_mul(sl.nx, q1), tg_mul(sl.ny, r1))),
-               tg_sub(p0i, tg_add(tg_mul(sl.nx, q0), tg_mul(sl.ny, r0)))));
+        small_add(small_sub(p1i, small_add(small_mul(sl.nx, q1), small_mul(sl.ny, r1))),
+                  small_sub(p0i, small_add(small_mul(sl.nx, q0), small_mul(sl.ny, r0)))));
     /* eq. 5-6: n~x = Q1 + Q0, n~y = R1 + R0; B = D n~x + w_o n~y */
     if (!TG_NO_BENT_NORMALS) acc->bent_delta = tgi_v3_add(acc->bent_delta, tgi_v3_add(
         tgi_v3_scale(sl.d, tg_sub(tg_add(q1, q0), tg_add(q1i, q0i))),
