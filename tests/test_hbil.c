@@ -300,6 +300,41 @@ TEST(open_plane_long_radius)
     }
 }
 
+/* A ground plane to its far edge at a grazing view: the camera 0.3 above
+ * it, the plane 800 across, so the row where it ends against the sky
+ * spans it from 12 units away to 400.  A sample there, between that row
+ * and the sky, took the row's depth on a ray above it (or, moved to the
+ * row's own ray, a point off the slice): far above the plane, it closed
+ * the horizon (AO 0.88 along the row at radius 50; sample_depth_edge). */
+TEST(open_plane_far_edge)
+{
+    scene s = { 1, { { { -400, 0, -400 }, { 800, 0, 0 }, { 0, 0, 800 }, 1 } } };
+    double eye[3] = { 0, 0.3, -8 }, target[3] = { 0, 0, 0 }, up[3] = { 0, 1, 0 }, radii[3] = { 0.5, 50, 500 };
+    int k, interleaved;
+    for (k = 0; k < 3; k++)
+        for (interleaved = 0; interleaved <= 1; interleaved++) {
+            gbuf g;
+            result r;
+            double worst = 1;
+            size_t i, n, count = 0;
+            gbuf_make(&g, &s, 64, 48, eye, target, up);
+            n = (size_t)g.w * g.h;
+            result_alloc(&r, n);
+            if (interleaved) run_interleaved(&g, radii[k], &r); else run_full(&g, radii[k], 0, &r);
+            for (i = 0; i < n; i++) {
+                if (g.sky[i]) continue;
+                count++;
+                worst = fmin(worst, check_d(r.ao[i]));
+            }
+            printf("  plane to its far edge, radius %g%s: min AO %.4f over %zu pixels\n", radii[k],
+                   interleaved ? " (interleaved)" : "", worst, count);
+            CHECK(count > n / 3, "the plane covers %zu of %zu pixels", count, n);
+            CHECK(worst >= 0.99, "radius %g%s: worst AO %.4f", radii[k], interleaved ? " interleaved" : "", worst);
+            result_free(&r);
+            gbuf_free(&g);
+        }
+}
+
 /* ---- the groove: faces y = x (x >= 0) and y = -x (x <= 0), crease along z ---- */
 static void groove_scene(scene *s)
 {
@@ -1317,6 +1352,7 @@ int main(int argc, char **argv)
     RUN(open_plane_full_res);
     RUN(open_plane_interleaved);
     RUN(open_plane_long_radius);
+    RUN(open_plane_far_edge);
     RUN(groove);
     RUN(cone_is_the_aperture_of_a_cosine_weighted_ao);
     RUN(interleaved_matches_full_res);

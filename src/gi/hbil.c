@@ -342,7 +342,13 @@ static void slice_screen_dir(const hbil_ctx *c, const hbil_pixel *px, tg_vec3 d,
  * a depth discontinuity, next to the sky or the image edge (here): the
  * nearest pixel's tangent plane is extended to the ray through the
  * continuous position; 0 (skip the sample) when that ray misses the plane
- * or lands far from the nearest pixel. */
+ * or lands far from the nearest pixel, or when the nearest pixel's plane
+ * is seen edge-on: it has no depth along any ray but its own, and its own
+ * is off the slice.  (It took the nearest's depth on the continuous ray:
+ * at a ground plane's far edge against the sky, where a pixel spans the
+ * plane from metres away to its end, that point lay far above the plane,
+ * or, moved to the pixel's own ray, far off the slice, and closed the
+ * horizon: AO 0.88 along the row; test_hbil open_plane_far_edge.) */
 HBIL_EDGE static tg_real sample_depth_edge(const hbil_ctx *c, const tgi_gview *g, int major_x, int a, int b0,
                                            tg_real f, int sa, int sn)
 {
@@ -367,7 +373,7 @@ HBIL_EDGE static tg_real sample_depth_edge(const hbil_ctx *c, const tgi_gview *g
     }
     gn = tg_add(tg_add(tg_mul(n.x, tg_mul(Xn, c->inv_ppu)), tg_mul(n.y, tg_mul(Yn, c->inv_ppu))), n.z);
     gc = tg_add(tg_add(tg_mul(n.x, tg_mul(X, c->inv_ppu)), tg_mul(n.y, tg_mul(Y, c->inv_ppu))), n.z);
-    if (gn > TG_R(-0.01f)) return zn;                     /* the nearest is seen edge-on */
+    if (gn > TG_R(-0.01f)) return 0;                      /* the nearest is seen edge-on: skip */
     if (gc > TG_R(-0.005f)) return 0;                     /* the ray misses that plane: skip */
     ratio = tg_div(gn, gc);
     if (ratio < TG_R(0.5f) || ratio > TG_R(2.0f)) return 0; /* too far from the nearest: skip */
