@@ -266,17 +266,17 @@ int tgi_near_under_plane(tg_real nr, tg_real nax, tg_real nay, tg_real np, tg_re
 }
 
 #if TGI_DEPTH_LAYERS
-/* Over further depth layers, whether a sample above pixel q's tangent
- * plane, at depth z with its nearest back face at zb (0: none), is solid
+/* Over further depth layers, whether a sample above a pixel's tangent
+ * plane pl, at depth z with its nearest back face at zb (0: none), is solid
  * down to that plane, so that its horizon bounds the occlusion from below
  * as on one layer: a one-sided boundary (no back face behind it, as
  * ssilvb.c's boundary_sectors) is; a closed object is where its back face,
  * on the sample's view ray, lies on or under the plane (the segment from
  * front to back then crosses every angle from the front's down to the
  * plane); a twosided sheet (zb = z) of unknown thickness is not. */
-static inline int near_solid_below(const near_pixel *q, tg_real zb, tg_real z, const signed char off[2], const int wide)
+static inline int near_solid_below(const near_plane *pl, tg_real zb, tg_real z, const signed char off[2], const int wide)
 {
-    return !(zb >= z) || near_under_plane(&q->pl, zb, off[0], off[1], wide);
+    return !(zb >= z) || near_under_plane(pl, zb, off[0], off[1], wide);
 }
 #endif
 
@@ -292,8 +292,13 @@ __attribute__((always_inline))   /* a copy for each `inside` and `wide`, their t
 static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q, const signed char (*off)[2],
                                        const int inside, const int wide)
 {
-    const tgi_gview *g = u->full;
+    /* the view and the plane as locals, kept in registers through the
+     * loop (near_vd, which writes *q, would else have them read again at
+     * every sample) */
+    const tgi_gview gv = *u->full, *g = &gv;
+    const near_plane pl = q->pl;
     const int x = q->x, y = q->y;
+    const size_t i0 = tgi_gv_index(g, x, y);
     tg_real best = TG_R(-1.0f);
     int n, steps = u->steps;
     for (n = 0; n < steps; n++) {
@@ -302,12 +307,15 @@ static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q
         tg_real z, d2, fdx, fdy;
         tg_vec3 h;
         if (!inside && ((unsigned)sx >= (unsigned)g->width || (unsigned)sy >= (unsigned)g->height)) break;
-        j = tgi_gv_index(g, sx, sy);
+        /* inside: the index of (sx, sy) as the pixel's plus the offset's
+         * (the same size_t, both taken modulo 2^N) */
+        j = inside ? i0 + (size_t)((ptrdiff_t)off[n][1] * g->row_stride + (ptrdiff_t)off[n][0] * g->pixel_stride)
+                   : tgi_gv_index(g, sx, sy);
         if (tgi_gv_is_sky(g, j)) continue;
         z = tgi_gv_depth(g, j);
-        if (near_under_plane(&q->pl, z, off[n][0], off[n][1], wide)) continue;
+        if (near_under_plane(&pl, z, off[n][0], off[n][1], wide)) continue;
 #if TGI_DEPTH_LAYERS
-        if (u->layers && !near_solid_below(q, tgi_gv_back_depth(g, j), z, off[n], wide)) continue;
+        if (u->layers && !near_solid_below(&pl, tgi_gv_back_depth(g, j), z, off[n], wide)) continue;
 #endif
         fdx = tg_from_int(off[n][0]);
         fdy = tg_from_int(off[n][1]);
