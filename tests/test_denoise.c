@@ -145,9 +145,61 @@ TEST(every_order_and_split_gives_the_same_values)
     sf_gbuffer_free(&gb);
 }
 
+/* A tap whose depth weight 1 - dz / (tol z) rounds to 0 or below adds
+ * nothing (the filter's sums take every tap of the window without a test:
+ * tap_weights clamps the weights at 0).  A flat 5x5 patch far away (depth
+ * 200, so that in Q16.16 the rounded dz / ztol can pass 1 while dz < ztol)
+ * with near field 1 and one neighbour with near field 100 at depths from
+ * just inside the tolerance to just outside: the centre's filtered near
+ * field, a weighted average, never falls below 1 (a negative weight would
+ * take it there), nor rises far above it where the neighbour weighs
+ * (nearly) nothing. */
+TEST(a_tap_at_the_depth_tolerance_adds_nothing_below_zero)
+{
+    static tgi_gbuffer gb;
+    tgi_view v;
+    tgi_gview g;
+    tgi_gresult r;
+    tgi_denoise_params p;
+    const float zi = 200.0f, ztol = 0.1f * zi;
+    int s, i, below = 0, tried = 0;
+    double lowest = 2;
+    tgi_view_make(&v, tg_v3(0, TG_ONE, 0), tg_v3(0, 0, tg_neg(TG_ONE)), tg_v3(0, TG_ONE, 0), TG_R(1.0f), TG_R(0.05f),
+                  TG_R(1000.0f), 5, 5);
+    sf_gbuffer_alloc(&gb, 5, 5, NULL, 0);
+    sf_results_alloc(&r, 25, 1, 0, 1);
+    g = sf_view(&gb, &v);
+    tgi_denoise_defaults(&p);
+    for (s = -64; s <= 64; s++) {
+        tgi_denoise_walk k;
+        tgi_gr_value out;
+        float zj = zi + ztol * (1.0f + (float)s / 65536.0f);
+        for (i = 0; i < 25; i++) {
+            sf_gbuffer_set(&gb, (size_t)i, tg_from_float(i == 11 ? zj : zi), tg_v3(0, TG_ONE, 0), 0);
+            tgi_gr_set_ao(&r, (size_t)i, TG_ONE);
+            tgi_gr_set_near(&r, (size_t)i, i == 11 ? tg_v3(TG_R(100.0f), TG_R(100.0f), TG_R(100.0f))
+                                                  : tg_v3(TG_ONE, TG_ONE, TG_ONE));
+        }
+        tgi_denoise_walk_start(&k);
+        out = tgi_denoise_pixel(&p, &g, &r, &k, 2, 2);
+        tried++;
+        if (out.near.x < TG_ONE) below++;
+        if (check_d(out.near.x) < lowest) lowest = check_d(out.near.x);
+        CHECK(check_d(out.near.x) < 1.01, "near field %g at neighbour depth %.6f (tolerance %g): it weighs",
+              check_d(out.near.x), (double)zj, (double)ztol);
+    }
+    printf("  a tap at %.0f +- 2^-10 of the depth tolerance, %d depths: lowest filtered near field %.9g\n", (double)ztol, tried,
+           lowest);
+    CHECK(below == 0, "%d of %d depths give a near field below every input's (lowest %.9g): a negative weight", below,
+          tried, lowest);
+    sf_results_free(&r);
+    sf_gbuffer_free(&gb);
+}
+
 int main(void)
 {
     RUN(bands_are_aligned_to_the_first_row);
     RUN(every_order_and_split_gives_the_same_values);
+    RUN(a_tap_at_the_depth_tolerance_adds_nothing_below_zero);
     return check_summary();
 }

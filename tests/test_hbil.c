@@ -1264,6 +1264,57 @@ static void quarter_ao(const gbuf *g, double radius, int fine_full, double *sum)
     sf_gbuffer_free(&gb);
 }
 
+/* The upsample reads the full view through its strides: the same values
+ * from a view whose rows lie 2600 pixels apart in a wider store as from
+ * the packed one.  The near horizon's march inside the image reads each
+ * sample's index offset from the plan (resample.h TGI_NEAR_DELTAS), kept in
+ * 16 bits: the packed rows take it, the wide ones (13 rows of 2600 pixels
+ * do not fit) compute each index; both the same samples, so the same bits. */
+TEST(quarter_upsample_same_for_any_row_stride)
+{
+    static const quad floor_q = { { 0, 0, -20 }, { 20, 0, 0 }, { 0, 0, 40 }, 1 };
+    static const quad wall_q = { { 0, 0, -20 }, { 0, 0.4, 0 }, { 0, 0, 40 }, 1 };
+    double eye[3] = { 6, 2.2, 0 }, target[3] = { 0, 0.3, 0 }, up[3] = { 0, 1, 0 };
+    const int wide_w = 2600;
+    const double radius = 2;
+    scene s;
+    gbuf g;
+    tgi_gbuffer gb, hgb, wgb;
+    tgi_gview full, half, wide;
+    tgi_gresult hres;
+    int hw, hh, x, y, differ = 0, lower = 0;
+    s.n = 2; s.q[0] = floor_q; s.q[1] = wall_q;
+    gbuf_make(&g, &s, 160, 120, eye, target, up);
+    view_of(&g, &gb, &full);
+    tgi_half_size(g.w, g.h, &hw, &hh);
+    sf_gbuffer_alloc(&hgb, hw, hh, NULL, 0);
+    tgi_downsample_rows(&full, &hgb, NULL, NULL, 0, hh);
+    tgi_gview_packed(&half, &hgb, 0, hw, hh, 2, 0, 0, &g.view);
+    hres = results_of((size_t)hw * hh, 0);
+    kernel_sub_images_on(&half, &half, radius, 0, &hres);
+    sf_gbuffer_alloc(&wgb, wide_w, g.h, NULL, 0);
+    for (y = 0; y < g.h; y++)
+        for (x = 0; x < g.w; x++) tgi_gview_copy_pixel(&wgb, (size_t)y * wide_w + x, &full, tgi_gv_index(&full, x, y));
+    tgi_gview_packed(&wide, &wgb, 0, wide_w, g.h, 1, 0, 0, &g.view);
+    wide.width = g.w;   /* the image's 160 columns, rows 2600 apart */
+    for (y = 0; y < g.h; y++)
+        for (x = 0; x < g.w; x++) {
+            tgi_gr_value a = tgi_upsample_pixel(&full, &half, &hres, tg_from_float((float)radius), x, y);
+            tgi_gr_value b = tgi_upsample_pixel(&wide, &half, &hres, tg_from_float((float)radius), x, y);
+            differ += memcmp(&a.ao, &b.ao, sizeof a.ao) != 0 || memcmp(&a.bent, &b.bent, sizeof a.bent) != 0;
+            lower += a.ao < TG_ONE;
+        }
+    printf("  upsample through rows 160 and %d apart: %d of %d pixels differ (%d with AO below 1)\n", wide_w, differ,
+           g.w * g.h, lower);
+    CHECK(differ == 0, "%d pixels differ", differ);
+    CHECK(lower > 1000, "only %d pixels with AO below 1: nothing tested", lower);
+    sf_results_free(&hres);
+    sf_gbuffer_free(&wgb);
+    sf_gbuffer_free(&hgb);
+    sf_gbuffer_free(&gb);
+    gbuf_free(&g);
+}
+
 TEST(quarter_resolution_keeps_the_contact_shadow)
 {
     static const quad floor_q = { { 0, 0, -20 }, { 20, 0, 0 }, { 0, 0, 40 }, 1 };
@@ -1375,6 +1426,7 @@ int main(int argc, char **argv)
 #if TG_FIXED
     RUN(near_plane_test_is_the_saturating_one);
 #endif
+    RUN(quarter_upsample_same_for_any_row_stride);
     RUN(quarter_resolution_keeps_the_contact_shadow);
 #if !TG_NO_GI_QUARTER && !TG_NO_BUILTIN_SCENES
     RUN(quarter_resolution_in_a_room);

@@ -207,7 +207,9 @@ static void tap_weights(const tgi_denoise_walk *k, int o, const tg_real *spatial
         w = weight_mul(spatial[j], TG_ONE - weight_mul(dzc, inv_ztol));   /* in [0, 1]: never saturates */
         wt[j] = weight_mul(w, normal_weight(tgi_v3_dot(ni, tg_v3(k->nx[o + j], k->ny[o + j], k->nz[o + j]))));
     }
-    for (j = 0; j < PIXEL_TAPS; j++) wt[j] *= kept[j];
+    /* kept or 0, and never below 0 (a weight 1 - dz / ztol rounded below
+     * 0 adds nothing, as a rejected one) */
+    for (j = 0; j < PIXEL_TAPS; j++) wt[j] = tg_max(wt[j] * kept[j], 0);
 }
 
 #endif
@@ -307,8 +309,10 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
         int j = order[t];
         const tg_real *tv = k->v[o + j];
         tg_real wj = wt[j];
-        if (wj <= 0) continue;
-        /* written out: straight-line code the compiler keeps in registers
+        /* no test for a weight 0 (tap_weights: >= 0): the products of the
+         * finite values and +0 are zeros, and a sum plus a zero is the sum
+         * (a sum from +0 is never -0: x + -x is +0), as without the tap.
+         * Written out: straight-line code the compiler keeps in registers
          * (Q16.16) or turns into vector operations (float) */
 #if TG_FIXED
         sum[0] += (int64_t)tv[0] * wj; sum[1] += (int64_t)tv[1] * wj;

@@ -135,6 +135,10 @@ static const tg_real near_dir[16][2] = {
  * TGI_NEAR_STEPS of them). */
 static const int near_t[16] = { 1, 2, 3, 4, 6, 9, 13, 19, 28, 42, 63, 94, 141, 211, 316, 474 };
 
+#if TGI_NEAR_DELTAS
+static int64_t abs64(int64_t v) { return v < 0 ? -v : v; }
+#endif
+
 void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res,
                         tg_real radius)
 {
@@ -146,6 +150,9 @@ void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_g
     u->layers = full->store.back_depth != NULL;
 #endif
     u->reach = 0;
+#if TGI_NEAR_DELTAS
+    u->deltas = 0;
+#endif
     if (TG_QUARTER_NEAR_REACH < 1 || radius <= 0) return;
     u->steps = TGI_NEAR_STEPS;
     u->wfx = tg_mul(tg_from_int(v->width), v->focal_x);
@@ -175,6 +182,14 @@ void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_g
                     if (dy > u->reach || -dy > u->reach) u->reach = dy > 0 ? dy : -dy;
                 }
         }
+#if TGI_NEAR_DELTAS
+    /* the index offsets, when every one fits 16 bits (|dx|, |dy| <= reach) */
+    u->deltas = (int64_t)u->reach * (abs64(full->row_stride) + abs64(full->pixel_stride)) <= INT16_MAX;
+    for (c = 0; c < 16 && u->deltas; c++)
+        for (k = 0; k < 4; k++)
+            for (n = 0; n < u->steps; n++)
+                u->delta[c][k][n] = (int16_t)(u->off[c][k][n][1] * full->row_stride + u->off[c][k][n][0] * full->pixel_stride);
+#endif
 }
 
 /* A pixel's near horizon: its view position p, normal n and unit vector
@@ -266,17 +281,17 @@ int tgi_near_under_plane(tg_real nr, tg_real nax, tg_real nay, tg_real np, tg_re
 }
 
 #if TGI_DEPTH_LAYERS
-/* Over further depth layers, whether a sample above pixel q's tangent
- * plane, at depth z with its nearest back face at zb (0: none), is solid
+/* Over further depth layers, whether a sample above a pixel's tangent
+ * plane pl, at depth z with its nearest back face at zb (0: none), is solid
  * down to that plane, so that its horizon bounds the occlusion from below
  * as on one layer: a one-sided boundary (no back face behind it, as
  * ssilvb.c's boundary_sectors) is; a closed object is where its back face,
  * on the sample's view ray, lies on or under the plane (the segment from
  * front to back then crosses every angle from the front's down to the
  * plane); a twosided sheet (zb = z) of unknown thickness is not. */
-static inline int near_solid_below(const near_pixel *q, tg_real zb, tg_real z, const signed char off[2], const int wide)
+static inline int near_solid_below(const near_plane *pl, tg_real zb, tg_real z, const signed char off[2], const int wide)
 {
-    return !(zb >= z) || near_under_plane(&q->pl, zb, off[0], off[1], wide);
+    return !(zb >= z) || near_under_plane(pl, zb, off[0], off[1], wide);
 }
 #endif
 
@@ -289,11 +304,20 @@ static inline int near_solid_below(const near_pixel *q, tg_real zb, tg_real z, c
 #if defined(__GNUC__)
 __attribute__((always_inline))   /* a copy for each `inside` and `wide`, their tests gone from the loop */
 #endif
-static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q, const signed char (*off)[2],
+static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q, int cell, int side,
                                        const int inside, const int wide)
 {
-    const tgi_gview *g = u->full;
+    const signed char (*off)[2] = u->off[cell][side];
+#if TGI_NEAR_DELTAS
+    const int16_t *delta = u->delta[cell][side];
+#endif
+    /* the view and the plane as locals, kept in registers through the
+     * loop (near_vd, which writes *q, would else have them read again at
+     * every sample) */
+    const tgi_gview gv = *u->full, *g = &gv;
+    const near_plane pl = q->pl;
     const int x = q->x, y = q->y;
+    const size_t i0 = tgi_gv_index(g, x, y);
     tg_real best = TG_R(-1.0f);
     int n, steps = u->steps;
     for (n = 0; n < steps; n++) {
@@ -302,12 +326,19 @@ static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q
         tg_real z, d2, fdx, fdy;
         tg_vec3 h;
         if (!inside && ((unsigned)sx >= (unsigned)g->width || (unsigned)sy >= (unsigned)g->height)) break;
-        j = tgi_gv_index(g, sx, sy);
+        /* inside: the index of (sx, sy) as the pixel's plus the offset's
+         * (the same size_t, both taken modulo 2^N) */
+#if TGI_NEAR_DELTAS
+        j = inside ? i0 + (size_t)(ptrdiff_t)delta[n] : tgi_gv_index(g, sx, sy);
+#else
+        j = inside ? i0 + (size_t)((ptrdiff_t)off[n][1] * g->row_stride + (ptrdiff_t)off[n][0] * g->pixel_stride)
+                   : tgi_gv_index(g, sx, sy);
+#endif
         if (tgi_gv_is_sky(g, j)) continue;
         z = tgi_gv_depth(g, j);
-        if (near_under_plane(&q->pl, z, off[n][0], off[n][1], wide)) continue;
+        if (near_under_plane(&pl, z, off[n][0], off[n][1], wide)) continue;
 #if TGI_DEPTH_LAYERS
-        if (u->layers && !near_solid_below(q, tgi_gv_back_depth(g, j), z, off[n], wide)) continue;
+        if (u->layers && !near_solid_below(&pl, tgi_gv_back_depth(g, j), z, off[n], wide)) continue;
 #endif
         fdx = tg_from_int(off[n][0]);
         fdy = tg_from_int(off[n][1]);
@@ -330,8 +361,8 @@ static inline void near_sides_with(const tgi_upsample_plan *u, near_pixel *q, in
 {
     int k;
     for (k = 0; k < 2; k++) {
-        c1[k] = near_horizon_cos(u, q, u->off[cell][2 * k], inside, wide);
-        c0[k] = near_horizon_cos(u, q, u->off[cell][2 * k + 1], inside, wide);
+        c1[k] = near_horizon_cos(u, q, cell, 2 * k, inside, wide);
+        c0[k] = near_horizon_cos(u, q, cell, 2 * k + 1, inside, wide);
     }
 }
 static void near_horizon_sides(const tgi_upsample_plan *u, near_pixel *q, int cell,
@@ -339,7 +370,11 @@ static void near_horizon_sides(const tgi_upsample_plan *u, near_pixel *q, int ce
 {
     const tgi_gview *g = u->full;
     const int inside = q->x >= u->reach && q->y >= u->reach && q->x + u->reach < g->width
-                       && q->y + u->reach < g->height;
+                       && q->y + u->reach < g->height
+#if TGI_NEAR_DELTAS
+                       && u->deltas   /* the inside copy reads the index offsets */
+#endif
+        ;
     if (NEAR_WIDE(q)) {   /* Q16.16 only */
         if (inside) near_sides_with(u, q, cell, c1, c0, 1, 1);
         else near_sides_with(u, q, cell, c1, c0, 0, 1);

@@ -31,6 +31,16 @@ void tgi_downsample_rows(const tgi_gview *full, const tgi_gbuffer *half, const t
 #error "TG_QUARTER_NEAR_REACH: the near horizon's offsets are kept in a byte (at most 140, samples up to 94 pixels away)"
 #endif
 
+/* TGI_NEAR_DELTAS: the plan also keeps each sample's index offset
+ * (dy row_stride + dx pixel_stride of the full view, in 16 bits) for the
+ * march inside the image: 896 bytes more with the default reach, which
+ * keeps the plan within the 4x4 filter's window it shares the stack with
+ * (float 2080 bytes); a build for size (TG_OUTLINE_HELPERS) or a longer
+ * reach computes the index at each sample instead. */
+#ifndef TGI_NEAR_DELTAS
+#define TGI_NEAR_DELTAS (!TG_OUTLINE_HELPERS && TGI_NEAR_STEPS <= 7)
+#endif
+
 /* What the upsample of a frame keeps fixed: the views and the half-res
  * results, the camera's per-pixel ray steps, the radius's shift
  * (tgi_ao_unit_shift) and, scaled by it, its square, the height over a
@@ -44,11 +54,16 @@ typedef struct tgi_upsample_plan {
     const tgi_gview *full, *half;
     const tgi_gresult *res;
     tg_real wfx, hfy, ax, ay, r2, above_r;
-    int shift, steps, reach;
+    int shift;
+    short steps, reach;   /* (short: the plan within the window, TGI_NEAR_DELTAS) */
 #if TGI_DEPTH_LAYERS
     int layers;           /* full has further depth layers: the near horizon takes only what is solid below it */
 #endif
     signed char off[16][4][TGI_NEAR_STEPS][2];
+#if TGI_NEAR_DELTAS
+    int deltas;           /* every offset's index offset fits (else no pixel takes the march's inside copy) */
+    int16_t delta[16][4][TGI_NEAR_STEPS];
+#endif
 } tgi_upsample_plan;
 
 /* The plan of upsampling half_res (indexed like the view half) to full with

@@ -101,20 +101,21 @@ void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_coun
             for (x = 0; x < w; x++) {
                 size_t i = tgi_gv_index(g, x, y);
                 tg_vec3 n, p, e;
-                tg_real kx;
+                tg_real kx, z;
                 if (tgi_gv_is_sky(g, i)) {
                     if (fresh && first == 0) tgi_rgb_set(e_out, i, tg_v3(0, 0, 0));
                     continue;
                 }
                 n = tgi_gv_normal(g, i);
                 kx = tg_div(tg_sub(tg_add(tg_from_int(x), TG_R(0.5f)), half_w), view->pixels_per_unit);
-                p = tgi_v3_add(view->eye, tgi_v3_scale(tgi_v3_add(row_dir, tgi_v3_scale(view->right, kx)), tgi_gv_depth(g, i)));
+                z = tgi_gv_depth(g, i);   /* decoded once: the calls below would have it read again */
+                p = tgi_v3_add(view->eye, tgi_v3_scale(tgi_v3_add(row_dir, tgi_v3_scale(view->right, kx)), z));
                 e = fresh && first == 0 ? tg_v3(0, 0, 0) : tgi_rgb_get(e_out, i);   /* the stored 0 reads back as 0 */
                 for (k = 0; k < count; k++) {
                     tg_real inv, f = light_factor(&pl[k], p, n, &inv);
                     if (f <= 0) continue;
                     if (pl[k].shadow) f = tg_mul(f, tgi_shadow_visibility_err(pl[k].shadow, p, n,
-                                                                                    tg_mul(tgi_gv_depth(g, i), position_error)));
+                                                                                    tg_mul(z, position_error)));
                     e = tgi_v3_add(e, light_irradiance(pl[k].radiant, f, inv));
                 }
                 tgi_rgb_set(e_out, i, e);
