@@ -349,24 +349,36 @@ static void groove_view(gbuf *g, const scene *s, int w, int h)
     gbuf_make(g, s, w, h, eye, target, up);
 }
 
-/* Ray-traced cosine-weighted AO with maximum distance `radius`. */
-static double reference_ao(const scene *s, const double *p, const double *n, double radius)
+/* The mean of f(face hit or -1, hit point) over 4096 cosine-weighted
+ * directions about n from p, rays cut at `radius`. */
+static double cosine_mean(const scene *s, const double *p, const double *n, double radius,
+                          double (*f)(int face, const double *hit))
 {
-    int k, N = 4096, open = 0;
-    double t1[3], t2[3], a[3] = { 1, 0, 0 };
+    int k, N = 4096;
+    double t1[3], t2[3], a[3] = { 1, 0, 0 }, sum = 0;
     if (fabs(n[0]) > 0.9) { a[0] = 0; a[1] = 1; }
     cross3(n, a, t1); norm3(t1); cross3(n, t1, t2);
     for (k = 0; k < N; k++) {
         double u1 = (k + 0.5) / N, u2 = fmod(k * 0.618033988749895, 1.0);
-        double r = sqrt(u1), ph = 2 * 3.14159265358979 * u2, z = sqrt(1 - u1), d[3], o[3], t;
-        int j;
+        double r = sqrt(u1), ph = 2 * 3.14159265358979 * u2, z = sqrt(1 - u1), d[3], o[3], t = 0, hit[3];
+        int j, face;
         for (j = 0; j < 3; j++) {
             d[j] = r * cos(ph) * t1[j] + r * sin(ph) * t2[j] + z * n[j];
             o[j] = p[j] + 1e-6 * n[j];
         }
-        if (cast(s, o, d, radius, &t, NULL) < 0) open++;
+        face = cast(s, o, d, radius, &t, NULL);
+        for (j = 0; j < 3; j++) hit[j] = o[j] + t * d[j];
+        sum += f(face, hit);
     }
-    return (double)open / N;
+    return sum / N;
+}
+
+static double open_direction(int face, const double *hit) { (void)hit; return face < 0; }
+
+/* Ray-traced cosine-weighted AO with maximum distance `radius`. */
+static double reference_ao(const scene *s, const double *p, const double *n, double radius)
+{
+    return cosine_mean(s, p, n, radius, open_direction);
 }
 
 /* Mean AO per face over bands of 4 pixel columns from the crease (the crease
@@ -588,23 +600,11 @@ TEST(near_field_complements_ao)
  * +0.2% with 32, -1.4% with 128: the sum depended on the step).  A band
  * closed right after another rise takes the mean of the two samples'
  * radiance (the trapezoid rule along the surface): -4.3%, -3.5%, -3.1%. */
+static double ramp_radiance(int face, const double *hit) { return face == 1 ? 0.5 + 2 * sqrt(2.0) * fabs(hit[0]) : 0; }
+
 static double reference_near(const scene *s, const double *p, const double *n, double radius)
 {
-    int k, N = 4096;
-    double t1[3], t2[3], a[3] = { 1, 0, 0 }, sum = 0;
-    if (fabs(n[0]) > 0.9) { a[0] = 0; a[1] = 1; }
-    cross3(n, a, t1); norm3(t1); cross3(n, t1, t2);
-    for (k = 0; k < N; k++) {
-        double u1 = (k + 0.5) / N, u2 = fmod(k * 0.618033988749895, 1.0);
-        double r = sqrt(u1), ph = 2 * 3.14159265358979 * u2, z = sqrt(1 - u1), d[3], o[3], t;
-        int j;
-        for (j = 0; j < 3; j++) {
-            d[j] = r * cos(ph) * t1[j] + r * sin(ph) * t2[j] + z * n[j];
-            o[j] = p[j] + 1e-6 * n[j];
-        }
-        if (cast(s, o, d, radius, &t, NULL) == 1) sum += 0.5 + 2 * sqrt(2.0) * fabs(o[0] + t * d[0]);
-    }
-    return 3.14159265358979 * sum / N;   /* cosine-weighted samples: E = pi mean(L) */
+    return 3.14159265358979 * cosine_mean(s, p, n, radius, ramp_radiance);   /* cosine-weighted: E = pi mean(L) */
 }
 
 TEST(near_field_of_a_radiance_ramp)
