@@ -65,6 +65,17 @@ static inline tg_real tgi_div_pos(tg_real a, tg_real b)
     return (tg_real)tgi_div_round((int64_t)a * 65536, b);
 #endif
 }
+/* tgi_div_pos for a >= 0 too: the rounding's half divisor a shift and the
+ * division unsigned, the same quotient (a non-negative one truncates alike) */
+static inline tg_real tgi_div_nonneg(tg_real a, tg_real b)
+{
+#if TG_OUTLINE_HELPERS
+    return tgi_div_pos(a, b);
+#else
+    const uint64_t den = (uint64_t)(uint32_t)b;
+    return (tg_real)((((uint64_t)(uint32_t)a << 16) + (den >> 1)) / den);
+#endif
+}
 #else
 typedef float tgi_wide;
 static inline tgi_wide tgi_wide_mul(tgi_wide a, tgi_wide b) { return a * b; }
@@ -74,6 +85,7 @@ static inline tgi_wide tgi_wide_dot(tgi_wide ax, tgi_wide ay, tgi_wide az, tgi_w
 }
 static inline tg_real tgi_wide_real(tgi_wide a) { return a; }
 static inline tg_real tgi_div_pos(tg_real a, tg_real b) { return a / b; }
+static inline tg_real tgi_div_nonneg(tg_real a, tg_real b) { return a / b; }
 #endif
 
 /* acc + w v, a running weighted sum in tgi_wide (tgi_wide_real gives its

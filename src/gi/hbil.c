@@ -303,9 +303,11 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
     nw = tgi_gv_normal(g, i);
     px->n = tg_v3(tgi_v3_dot(nw, v->right), tgi_v3_dot(nw, v->up), tgi_v3_dot(nw, v->forward));
     ndv = tgi_v3_dot(px->n, px->wo);
-    if (ndv < HBIL_MIN_NDOTV)
+    if (ndv < HBIL_MIN_NDOTV) {
         px->n = tgi_v3_normalize_or(tgi_v3_add(px->n, tgi_v3_scale(px->wo, tg_sub(HBIL_MIN_NDOTV, ndv))), px->wo);
-    px->ndv = tgi_v3_dot(px->n, px->wo);
+        ndv = tgi_v3_dot(px->n, px->wo);
+    }
+    px->ndv = ndv;
     /* the world radius projected to image pixels; the 3D test is unclamped */
     r_px = tg_div(tg_mul(c->p->radius, c->ppu), px->z);
     /* no other cap in pixels: the march ends at the screen's edge
@@ -373,8 +375,7 @@ HBIL_EDGE static tg_real sample_depth_edge(const hbil_ctx *c, const tgi_gview *g
     }
     gn = tg_add(tg_add(tg_mul(n.x, tg_mul(Xn, c->inv_ppu)), tg_mul(n.y, tg_mul(Yn, c->inv_ppu))), n.z);
     gc = tg_add(tg_add(tg_mul(n.x, tg_mul(X, c->inv_ppu)), tg_mul(n.y, tg_mul(Y, c->inv_ppu))), n.z);
-    if (gn > TG_R(-0.01f)) return 0;                      /* the nearest is seen edge-on: skip */
-    if (gc > TG_R(-0.005f)) return 0;                     /* the ray misses that plane: skip */
+    if (gn > TG_R(-0.01f) || gc > TG_R(-0.005f)) return 0; /* the nearest seen edge-on, or the ray misses its plane */
     ratio = tg_div(gn, gc);
     if (ratio < TG_R(0.5f) || ratio > TG_R(2.0f)) return 0; /* too far from the nearest: skip */
     return tg_mul(zn, ratio);
@@ -536,7 +537,8 @@ static HBIL_INLINE tg_real near_sum_pos(tg_real s, tg_real l, tg_real de)
 static HBIL_GATHER_INLINE void gather_rise(const hbil_ctx *c, const hbil_slice *sl, hbil_side *sd, int side,
                         tg_real cos_new, tg_vec3 dir, const tgi_gview *g, const tgi_rgb *rad, int si, int trapezoid)
 {
-    tg_real br = sd->lr, bg = sd->lg, bb = sd->lb;
+    const tg_real lr_old = sd->lr, lg_old = sd->lg, lb_old = sd->lb;   /* the running radiance before this rise */
+    tg_real br, bg, bb;                                                    /* the band's */
     tg_real q_new = slice_Q(cos_new, side);
     /* P(theta) = int_0^theta (n'.w_i') |sin| : the antiderivative of eq. 10
      * (|n'| <= 1, |Q| < 2, R <= 1/2, |P| < 2.5: small_mul) */
@@ -563,11 +565,11 @@ static HBIL_GATHER_INLINE void gather_rise(const hbil_ctx *c, const hbil_slice *
             }
         }
     }
-    if (trapezoid) {
-        br = tg_mul(tg_add(br, sd->lr), TG_R(0.5f));
-        bg = tg_mul(tg_add(bg, sd->lg), TG_R(0.5f));
-        bb = tg_mul(tg_add(bb, sd->lb), TG_R(0.5f));
-    } else {
+    if (trapezoid) {   /* right after another rise: the mean of the band's two ends */
+        br = tg_mul(tg_add(lr_old, sd->lr), TG_R(0.5f));
+        bg = tg_mul(tg_add(lg_old, sd->lg), TG_R(0.5f));
+        bb = tg_mul(tg_add(lb_old, sd->lb), TG_R(0.5f));
+    } else {           /* eq. 18: the far end's */
         br = sd->lr; bg = sd->lg; bb = sd->lb;
     }
     if (all_nonneg(sd->er, sd->eg, sd->eb, br, bg, bb)) {   /* de >= 0 too */
@@ -744,15 +746,7 @@ static inline int depths_close(tg_real za, tg_real zb)
 static inline tg_real lerp_inverse_depth(tg_real za, tg_real zb, tg_real f)
 {
     tg_real zd = (tg_real)((tgi_wide)zb - za), fzd = small_mul(f, zd);
-#if TG_FIXED && !TG_OUTLINE_HELPERS
-    /* tgi_div_pos for a numerator >= 0 (za > 0) and a divisor > 0: the
-     * rounding's half divisor is a shift, the quotient unsigned (the same
-     * truncation of a non-negative quotient) */
-    const uint64_t den = (uint64_t)(uint32_t)small_sub(zb, fzd);
-    const tg_real ratio = (tg_real)((((uint64_t)(uint32_t)za << 16) + (den >> 1)) / den);
-#else
-    const tg_real ratio = tgi_div_pos(za, small_sub(zb, fzd));
-#endif
+    const tg_real ratio = tgi_div_nonneg(za, small_sub(zb, fzd));   /* za > 0 */
     return tgi_wide_real((tgi_wide)za + tgi_wide_mul(fzd, ratio));
 }
 
