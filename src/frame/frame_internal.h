@@ -95,6 +95,7 @@ struct tg_frame {
     /* with --gi-quarter: the same at half width and height, and the filtered ones */
     tgi_gbuffer half;              /* storage of the quarter-res copy */
     tgi_gresult half_set[2], half_res, half_prev, half_filtered;
+    tgi_gresult near_horizon;      /* the full-res near horizons' AO (AO plane alone) the upsample caps with */
     tgi_rgb half_source;
     /* the filtered (or upsampled) results an AOV asks for, at full resolution */
     tgi_gresult out;
@@ -203,6 +204,8 @@ int tgi_frame_ao_multibounce(const tg_frame *f);
  * quarter resolution (plan.c). */
 int tgi_frame_interleaved(const tg_frame *f);
 int tgi_frame_quarter(const tg_frame *f);
+/* --gi-quarter with the full-resolution near horizon (TG_QUARTER_NEAR_REACH >= 1) */
+int tgi_frame_near_horizon(const tg_frame *f);
 /* HBIL's kernel on --gi-quarter's half-resolution image (the request's
  * technique, interleave and gi_scale) */
 int tgi_request_quarter(const tg_request *r);

@@ -337,6 +337,8 @@ static void group_filter(layout *l, tg_frame *f)
     kernel_size(f, &w, &h, &n);
     take_results(l, &f->half_filtered, n, bent_needed(f), near_field(f),
                  "quarter-res filtered results: AO, bent, near [" FMT_AO ", " FMT_BENT ", " FMT_RGB "]");
+    if (tgi_frame_near_horizon(f))
+        take_results(l, &f->near_horizon, f->pixels, 0, 0, "near horizons at full resolution, the upsample's cap [" FMT_AO "]");
 }
 
 /* Last frame's accumulated results: the second set (its near field, at full

@@ -21,7 +21,7 @@ tgi_pass_step_fn tgi_pass_animate, tgi_pass_depth_range, tgi_pass_shadow_maps, t
 tgi_pass_rows_fn tgi_pass_gbuffer, tgi_pass_motion, tgi_pass_direct, tgi_pass_reproject, tgi_pass_push_pull_down,
     tgi_pass_push_pull_fill,
     tgi_pass_downsample, tgi_pass_hbil_interleaved, tgi_pass_hbil_full, tgi_pass_hbil_layers, tgi_pass_temporal,
-    tgi_pass_filter_quarter, tgi_pass_ssao, tgi_pass_vo, tgi_pass_hbao, tgi_pass_gtao, tgi_pass_ssilvb, tgi_pass_ssdo,
+    tgi_pass_filter_quarter, tgi_pass_near_horizon, tgi_pass_ssao, tgi_pass_vo, tgi_pass_hbao, tgi_pass_gtao, tgi_pass_ssilvb, tgi_pass_ssdo,
     tgi_pass_bentcone, tgi_pass_reference, tgi_pass_pathtrace, tgi_pass_resolve, tgi_pass_keep_history;
 /* A left-out feature (tinygi.h "FEATURE SWITCHES") has no rows below, so
  * nothing refers to its passes and the linker leaves them out. */
@@ -64,6 +64,7 @@ static int runs_hbil_layers(const tg_frame *f) { return runs_hbil(f) && reads_la
 #endif
 #if !TG_NO_GI_QUARTER
 static int runs_hbil_quarter(const tg_frame *f) { return runs_hbil(f) && tgi_frame_quarter(f); }
+static int runs_near_horizon(const tg_frame *f) { return runs_hbil_quarter(f) && tgi_frame_near_horizon(f); }
 #endif
 #if !TG_NO_TECHNIQUES
 static int runs_ssao(const tg_frame *f) { return technique_runs(f, TG_TECH_SSAO); }
@@ -173,6 +174,8 @@ const tgi_pass tgi_passes[] = {
 #if !TG_NO_GI_QUARTER
     { "depth/normal-aware 4x4 filter at quarter resolution", runs_hbil_quarter,
       B(HALF) | B(RESULTS) | B(FILTER), TGI_BOUNCE, KERNEL_ROWS(tgi_pass_filter_quarter) },
+    { "near horizon at full resolution (AO under 2 slices of nearby pixels) for the upsample's cap", runs_near_horizon,
+      B(GBUFFER) | B(HALF) | B(FILTER), TGI_BOUNCE, ROWS(tgi_pass_near_horizon) },
 #endif
 #if !TG_NO_COLOR && !TG_NO_TEMPORAL
     { "direct light (Lambert, shadows, spot falloff): E_direct", lights_after_history,

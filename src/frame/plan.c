@@ -326,3 +326,8 @@ int tgi_frame_quarter(const tg_frame *f)
 {
     return tgi_request_quarter(&f->request);
 }
+
+int tgi_frame_near_horizon(const tg_frame *f)
+{
+    return TG_QUARTER_NEAR_REACH >= 1 && tgi_frame_quarter(f);
+}

@@ -39,6 +39,13 @@ void tgi_pass_filter_quarter(tg_frame *f, int y0, int y1)
     tgi_denoise_defaults(&p);
     tgi_denoise_rows(&p, &f->half_view, &f->half_res, &f->half_filtered, y0, y1);
 }
+
+/* Each full-res pixel's near horizon, which the upsample (the resolve) caps
+ * its AO with over the pixel's 3x3 neighbourhood. */
+void tgi_pass_near_horizon(tg_frame *f, int y0, int y1)
+{
+    tgi_near_horizon_rows(&f->full, &f->half_view, &f->half_filtered, f->request.radius, &f->near_horizon, y0, y1);
+}
 #endif
 
 /* What a row of the resolve needs, fixed per call. */
@@ -67,7 +74,8 @@ static void resolve_ctx_init(resolve_ctx *c, const tg_frame *f)
     c->quarter = tgi_frame_quarter(f);
 #if !TG_NO_GI_QUARTER
     if (c->hbil && c->quarter) {
-        tgi_upsample_start(&c->r.up.plan, &f->full, &f->half_view, &f->half_filtered, f->request.radius);
+        tgi_upsample_start(&c->r.up.plan, &f->full, &f->half_view, &f->half_filtered, f->request.radius,
+                           tgi_frame_near_horizon(f) ? &f->near_horizon : NULL);
         tgi_upsample_walk_start(&c->r.up.walk);
     } else
 #endif

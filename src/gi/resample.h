@@ -53,6 +53,7 @@ void tgi_downsample_rows(const tgi_gview *full, const tgi_gbuffer *half, const t
 typedef struct tgi_upsample_plan {
     const tgi_gview *full, *half;
     const tgi_gresult *res;
+    const tgi_gresult *near;   /* the full-res near horizons' AO (tgi_near_horizon_rows); NULL: taken on the spot */
     tg_real wfx, hfy, ax, ay, r2, above_r;
     int shift;
     short steps, reach;   /* (short: the plan within the window, TGI_NEAR_DELTAS) */
@@ -67,9 +68,11 @@ typedef struct tgi_upsample_plan {
 } tgi_upsample_plan;
 
 /* The plan of upsampling half_res (indexed like the view half) to full with
- * gather radius `radius` (world units). */
+ * gather radius `radius` (world units), reading the near horizons' AO from
+ * near (full's size, written by tgi_near_horizon_rows; NULL: each pixel
+ * takes its neighbours' on the spot, the same values). */
 void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res,
-                        tg_real radius);
+                        tg_real radius, const tgi_gresult *near);
 
 /* A half-res pixel as the upsample reads it (resample.c), and the last four
  * a walk along the full-res rows read (index (size_t)-1: none). */
@@ -114,11 +117,20 @@ tg_real tgi_near_horizon_bound(tg_vec3 nv, tg_vec3 vd, tg_real sdx, tg_real sdy,
 int tgi_near_under_plane(tg_real nr, tg_real nax, tg_real nay, tg_real np, tg_real above, int reach, tg_real z, int ox,
                          int oy, int fast);
 
+/* The near horizon of every full-res pixel of rows [y0, y1): the AO under
+ * its two slices' horizons within TG_QUARTER_NEAR_REACH full-res pixels
+ * (resample.c near_horizon_ao; 1 where it cannot cap the upsampled AO)
+ * into near's AO plane (full's size), which the upsample reads over each
+ * pixel's 3x3 neighbourhood. */
+void tgi_near_horizon_rows(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res, tg_real radius,
+                           const tgi_gresult *near, int y0, int y1);
+
 /* The upsampled results at full-res pixel (x, y) from the half-res results
  * half_res (indexed like the view half), guided by both views' depth and
- * normals, the AO no more than the near horizon's within
- * TG_QUARTER_NEAR_REACH full-res pixels (gather radius `radius`, world
- * units); and full-res rows [y0, y1) of them into out. */
+ * normals, the AO no more than the mean near horizon of the pixel and its
+ * neighbours at its depth (3x3, within TG_QUARTER_NEAR_REACH full-res pixels,
+ * gather radius `radius`, world units); and full-res rows [y0, y1) of them
+ * into out. */
 tgi_gr_value tgi_upsample_pixel(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res,
                                 tg_real radius, int x, int y);
 void tgi_upsample_rows(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res, tg_real radius,
