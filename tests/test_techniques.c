@@ -210,15 +210,17 @@ TEST(hbil_over_depth_layers_against_the_reference)
  * tangent plane, src/gi/resample.c) against the same reference, at the
  * same radius: measured at 80x60, one layer 0.088 / +0.005, three layers
  * 0.057 / +0.006 (both number types; with the near horizon taking every
- * sample three layers were 0.066 / -0.014).  Three layers must take a
- * quarter off one layer's error, within the issue's 0.06 at sizes of
+ * sample three layers were 0.066 / -0.014).  Since one layer's cap is the
+ * near horizon's mean over 3x3 pixels (this round's twelfth session) one
+ * layer is 0.057 / +0.011 too, so three layers must no longer take a
+ * quarter off it, only be no worse; within the issue's 0.06 at sizes of
  * 160x120 and more (here 0.065: a 40x30 half image) and its 0.01 bias. */
 TEST(quarter_over_depth_layers_against_the_reference)
 {
     double r[2], b[2];
     spheres_layers_against_the_reference(2, r, b);
     CHECK(r[1] < 0.065 && fabs(b[1]) < 0.01, "three layers: RMSE %g, bias %g", r[1], b[1]);
-    CHECK(r[1] < 0.75 * r[0], "three layers %g against one layer %g", r[1], r[0]);
+    CHECK(r[1] <= r[0], "three layers %g against one layer %g", r[1], r[0]);
 }
 
 TEST(gtao_multibounce_fit)

@@ -470,15 +470,18 @@ static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t 
 /* The near horizon of surface pixel (x, y), index i, as the plane of
  * tgi_near_horizon_rows keeps it (the results' AO storage, the same value
  * read back), skipping its integrals (near_horizon_ao) where it cannot go
- * below the filtered half-res AO of the sample that stands for the pixel. */
+ * below the highest filtered AO of the half-res pixels its upsample
+ * weighs (bilinear_taps), so not below its upsampled AO, a weighted mean
+ * of theirs. */
 static tg_real near_horizon_stored(const tgi_upsample_plan *u, int x, int y, size_t i)
 {
-    const tgi_gview *half = u->half;
-    int hx = x >> 1, hy = y >> 1;
-    tg_real ao;
-    if (hx >= half->width) hx = half->width - 1;
-    if (hy >= half->height) hy = half->height - 1;
-    ao = near_horizon_ao(u, x, y, i, tgi_gv_normal(u->full, i), tgi_gr_ao(u->res, tgi_gv_index(half, hx, hy)));
+    size_t tap[4];
+    tg_real wt[4], top = 0, ao;
+    int k;
+    bilinear_taps(u->half, x, y, tap, wt);
+    for (k = 0; k < 4; k++)
+        if (wt[k] > 0 && !tgi_gv_is_sky(u->half, tap[k])) top = tg_max(top, tgi_gr_ao(u->res, tap[k]));
+    ao = near_horizon_ao(u, x, y, i, tgi_gv_normal(u->full, i), top);
 #if TG_WIDE_STORAGE
     return ao;
 #else
