@@ -989,9 +989,12 @@ typedef struct hbil_fine_best {
  * fine_ratio of the march's unit (the sub-image's pixel); (fa0, fb0) is
  * the pixel in the fine image.  The major index is stepped, the minor
  * offset taken anew at each t (slope t, as one product), so every sample
- * is the one a sample taken alone would be.  Inlined into refine_fine's
- * call (its set-up, once for all the runs, costs as much as a sample), one
- * copy when compiling for size. */
+ * is the one a sample taken alone would be.  follow (a constant at each
+ * call): the runs follow the pixel's surface from t = 1 (refine_fine),
+ * interpolating only between neighbours on one surface and ending at a
+ * silhouette (HBIL_EDGE_SLOPE).  Inlined into refine_fine's calls (its
+ * set-up, once for all the runs, costs as much as a sample), one copy when
+ * compiling for size. */
 #if TG_OUTLINE_HELPERS
 #define HBIL_FINE_INLINE HBIL_NOINLINE
 #elif defined(__GNUC__)
@@ -1018,8 +1021,7 @@ static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, c
         int t, fa = fa0 + lo * dir;
         size_t ia = (size_t)fa * smaj;
         tg_real tm = small_mul(small_from_int(lo * dir), inv_r);
-        const int on_surface = follow && lo == 1;   /* the run follows the pixel's surface (refine_fine) */
-        tg_real zc = mr->z;                          /* the depth of its last sample */
+        tg_real zc = mr->z;   /* follow: the depth of the last sample on the pixel's surface */
         for (t = lo; t < hi; t++, fa += dir, ia += dmaj, tm = small_add(tm, dtm)) {
             /* |slope| <= 1, t and the fine pixels below 2^14, times 1/4 or 1/8: small_mul */
             const tg_real minor = small_mul_int(slope, t);
@@ -1032,7 +1034,7 @@ static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, c
             si = ia + (size_t)fb * smin;
             za = tgi_gv_depth(fg, si);
             if (fb + 1 < bmax && za > 0 && depths_close(za, zb = tgi_gv_depth(fg, si + smin))   /* as in march_samples */
-                && (!on_surface || tg_abs(tg_sub(za, zb)) <= tg_mul(za, c->fine_edge))) {   /* not across a silhouette */
+                && (!follow || tg_abs(tg_sub(za, zb)) <= tg_mul(za, c->fine_edge))) {   /* not across a silhouette */
                 z1 = lerp_inverse_depth(za, zb, f);
             } else {                                                        /* as in march_samples */
                 const int nb = f >= TG_R(0.5f);
@@ -1043,7 +1045,7 @@ static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, c
                 if (z1 <= 0) continue;
                 si = sn;
             }
-            if (on_surface) {   /* a silhouette ends the surface */
+            if (follow) {   /* a silhouette ends the surface */
                 if (tg_abs(tg_sub(z1, zc)) > tg_mul(zc, c->fine_edge)) break;
                 zc = z1;
             }
@@ -1061,6 +1063,14 @@ static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, c
             best->si = (int)si;
         }
     }
+}
+
+/* fine_run's one run t = lo .. hi - 1 following the pixel's surface: out
+ * of line (rare: refine_fine's register use stays that of before). */
+HBIL_NOINLINE static void fine_follow(const hbil_ctx *c, hbil_fine_best *best, const hbil_march *mr, int major_x,
+                                      int fa0, int fb0, int lo, int hi, int dir)
+{
+    fine_run(c, best, mr, major_x, fa0, fb0, &lo, &hi, 1, dir, 1);
 }
 
 /* The interleaved kernel marches a 4x4 sub-image, whose pixels are 4
@@ -1120,7 +1130,10 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
     const int sub_room = dir > 0 ? (major_x ? c->g->width : c->g->height) - 1 - a0 : a0;
     const tg_real ext = tg_mul(mr->extent, tg_from_int(r));                            /* fine pixels */
     const int long_reach = mr->extent > c->long_reach;
-    const int follow = !long_reach && sd->beyond;   /* the pixels before the first sample, on the pixel's surface */
+    const int first = r * (mr->run.da - mr->run.back) * dir;   /* the first sample's fine pixel */
+    /* the screen's edge (room) and the extent (small_from_int(t) <= ext:
+     * t <= floor(ext), ext >= 0) end every run */
+    const int tmax = ext < 0 ? -1 : tg_to_int(ext) < room ? tg_to_int(ext) : room;
     hbil_fine_best best;
     int t0 = -1, k, span[2][2] = { { 0, 0 }, { 0, 0 } };   /* fine pixels [span[k][0], span[k][1]) */
     best.h = sd->h;
@@ -1136,17 +1149,13 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
         span[1][0] = !long_reach ? t0 + 1 : t0 - r + 1 > 1 ? t0 - r + 1 : 1;
         span[1][1] = t0 + r;
     }
-    if (long_reach || follow) {   /* and those before the first sample the peak's span does not take */
-        const int first = r * (mr->run.da - mr->run.back) * dir;
+    if (long_reach) {   /* and those before the first sample the peak's span does not take */
         span[0][0] = 1;
         span[0][1] = t0 >= 0 && span[1][0] < first ? span[1][0] : first;
     }
     {
         /* the runs in the order of before: the peak's span without t0, the
-         * span before the first sample, the screen's last pixel; each ends
-         * at the screen's edge (room) and at the extent (small_from_int(t)
-         * <= ext: t <= floor(ext), ext >= 0) */
-        const int tmax = ext < 0 ? -1 : tg_to_int(ext) < room ? tg_to_int(ext) : room;
+         * span before the first sample, the screen's last pixel */
         int lo[4], hi[4];
         lo[0] = span[1][0]; hi[0] = t0 >= 0 && t0 < span[1][1] ? t0 : span[1][1];
         lo[1] = t0 >= 0 && t0 + 1 > span[1][0] ? t0 + 1 : span[1][0]; hi[1] = span[1][1];
@@ -1161,12 +1170,16 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
         }
         if (n > 0) {
 #if TG_OUTLINE_HELPERS
-            fine_run(c, &best, mr, major_x, fa0, fb0, lo, hi, n, dir, follow);
+            fine_run(c, &best, mr, major_x, fa0, fb0, lo, hi, n, dir, 0);
 #else       /* a copy per axis, as MARCH_SAMPLES */
-            if (major_x) fine_run(c, &best, mr, 1, fa0, fb0, lo, hi, n, dir, follow);
-            else fine_run(c, &best, mr, 0, fa0, fb0, lo, hi, n, dir, follow);
+            if (major_x) fine_run(c, &best, mr, 1, fa0, fb0, lo, hi, n, dir, 0);
+            else fine_run(c, &best, mr, 0, fa0, fb0, lo, hi, n, dir, 0);
 #endif
         }
+    }
+    if (!long_reach && sd->beyond) {   /* the pixels before a first sample beyond the radius, on the pixel's surface */
+        int lo = 1, hi = first <= tmax ? first : tmax + 1;
+        if (lo < hi) fine_follow(c, &best, mr, major_x, fa0, fb0, lo, hi, dir);
     }
     if (best.si < 0) return;
     /* one raise to the highest: the band it closes lies within a few
