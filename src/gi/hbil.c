@@ -1114,8 +1114,8 @@ HBIL_NOINLINE static void fine_follow(const hbil_ctx *c, hbil_fine_best *best, c
  * builtin:columns at 160x120 the back wall's pixels 1 to 3 above its
  * crease with the floor see their first samples on the floor 1.8 away at
  * radius 1.5, and the floor within it went unseen (AO too bright by up to
- * 0.2: RMSE 0.064 against the ray-traced AO, 0.051 without the
- * interleave).  So then the fine pixels before the first sample are taken
+ * 0.26 on a pixel: RMSE 0.064 against the ray-traced AO, 0.051 without
+ * the interleave; now 0.052).  So then the fine pixels before the first sample are taken
  * while they continue the pixel's surface (HBIL_EDGE_SLOPE): not past a
  * silhouette, nor interpolated across one, which one depth layer would
  * take as infinitely thick (the floor beside builtin:spheres' spheres). */
