@@ -156,6 +156,19 @@ static void march(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel
     }
 }
 
+/* Whether the ray from offset a along direction v (any length) has no
+ * point within the radius above the tangent plane: outside the radius
+ * (|a|^2 = d2) and not moving inward, or on or under the tangent plane
+ * and not rising.  Every segment of a sample lies on its view ray beyond
+ * its front point, and of a segment segment_sectors counts only such
+ * points, so this decides as it would (up to the rounding at the
+ * boundaries) for the cost of two or three dot products. */
+static int ray_misses(const tgi_ao_slice_pixel *px, tg_vec3 a, tg_vec3 v, tg_real d2)
+{
+    if (d2 >= px->r2 && tgi_v3_dot(a, v) >= 0) return 1;
+    return tgi_v3_dot(a, px->nv) <= px->above && tgi_v3_dot(v, px->nv) <= 0;
+}
+
 /* The sectors of the solid segment from offset a to offset b (scaled by
  * the pixel's shift, as the samples are) where it lies within the radius,
  * |p|^2 < r2: the segment p = a + u t, u = (b - a) / |b - a|, 0 <= t <= |b
@@ -169,28 +182,30 @@ static uint32_t segment_sectors(const vb_tech *t, const tgi_ao_slice_pixel *px, 
                                 int side)
 {
     tg_vec3 ab = tgi_v3_sub(b, a), u;
-    tg_real len2 = tgi_v3_dot(ab, ab), inv_len, len, d2 = tgi_v3_dot(a, a), reach, au, disc, root, t0, t1, ua, ub;
-    if (!(len2 > 0)) return 0;
-    inv_len = tg_rsqrt(len2);
-    len = tg_min(tg_mul(len2, inv_len), t->thick_max);                 /* |b - a|, one root for it and u */
-    reach = tg_add(px->rs, len);
-    if (d2 >= tg_sqr(reach)) return 0;                                /* cannot reach the sphere */
-    u = tgi_v3_scale(ab, inv_len);
-    au = tgi_v3_dot(a, u);
-    disc = tg_sub(tg_sqr(au), tg_sub(d2, px->r2));
-    if (!(disc > 0)) return 0;
-    root = tg_sqrt(disc);
-    t0 = tg_max(tg_sub(tg_neg(au), root), 0);
-    t1 = tg_min(tg_add(tg_neg(au), root), len);
-    if (!(t0 < t1)) return 0;
-    a = tgi_v3_add(a, tgi_v3_scale(u, t0));
-    b = tgi_v3_add(a, tgi_v3_scale(u, tg_sub(t1, t0)));
+    tg_real len2 = tgi_v3_dot(ab, ab), d2 = tgi_v3_dot(a, a), b2, inv_len, len, reach, au, disc, root, t0, t1, ua, ub;
+    if (!(len2 > 0) || ray_misses(px, a, ab, d2)) return 0;
+    if (!(d2 < px->r2 && (b2 = tgi_v3_dot(b, b)) < px->r2)) {        /* clip it to the sphere */
+        inv_len = tg_rsqrt(len2);
+        len = tg_min(tg_mul(len2, inv_len), t->thick_max);             /* |b - a|, one root for it and u */
+        reach = tg_add(px->rs, len);
+        if (d2 >= tg_sqr(reach)) return 0;                            /* cannot reach the sphere */
+        u = tgi_v3_scale(ab, inv_len);
+        au = tgi_v3_dot(a, u);
+        disc = tg_sub(tg_sqr(au), tg_sub(d2, px->r2));
+        if (!(disc > 0)) return 0;
+        root = tg_sqrt(disc);
+        t0 = tg_max(tg_sub(tg_neg(au), root), 0);
+        t1 = tg_min(tg_add(tg_neg(au), root), len);
+        if (!(t0 < t1)) return 0;
+        a = tgi_v3_add(a, tgi_v3_scale(u, t0));
+        b = tgi_v3_add(a, tgi_v3_scale(u, tg_sub(t1, t0)));
+        d2 = tgi_v3_dot(a, a);
+        b2 = tgi_v3_dot(b, b);
+    }
     if (tgi_v3_dot(a, px->nv) <= px->above && tgi_v3_dot(b, px->nv) <= px->above) return 0;   /* under the tangent plane */
-    d2 = tgi_v3_dot(a, a);
-    len2 = tgi_v3_dot(b, b);
-    if (!(d2 > 0) || !(len2 > 0)) return 0;
+    if (!(d2 > 0) || !(b2 > 0)) return 0;
     ua = half_circle_u(px, sl, a, d2, side);
-    ub = half_circle_u(px, sl, b, len2, side);
+    ub = half_circle_u(px, sl, b, b2, side);
     return tgi_ssilvb_sector_bits(tg_min(ua, ub), tg_max(ua, ub));
 }
 
@@ -250,14 +265,17 @@ static void march_layers(const vb_tech *t, const tgi_gview *g, const tgi_ao_slic
     int steps = t->p->steps, s, j, got;
     uint32_t bits;
     tgi_ao_slice_pixel on_screen = *px;
+    tgi_ao_rays rays = { -1, -1, 0, 0, { 0, 0, 0 } };
     if (t->to_edge) on_screen.r_px = tg_min(px->r_px, tgi_ao_screen_reach(g, px, sdx, sdy));
     for (s = 0; s < steps; s++) {
-        got = tgi_ao_slice_point(g, &on_screen, s, steps, sdx, sdy, &hf, &j, &ray);
+        got = tgi_ao_slice_point(g, &on_screen, s, steps, sdx, sdy, &hf, &j, &rays);
         if (got < 0) break;
         if (got == 0) continue;
+        ray = rays.ray;
+        d2 = tgi_v3_dot(hf, hf);
+        if (ray_misses(px, hf, ray, d2)) continue;
         zf = tgi_gv_depth(g, (size_t)j);
         zb = tgi_gv_back_depth(g, (size_t)j);
-        d2 = tgi_v3_dot(hf, hf);
         if (layer_point(t, px, hf, ray, zf, zb, &hb))                 /* solid to its back face */
             bits = segment_sectors(t, px, sl, hf, hb, side);
         else if (zb == zf)                                            /* a twosided sheet: the thickness */
