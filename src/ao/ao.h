@@ -272,20 +272,30 @@ static inline int tgi_ao_slice_pixel_at(const tgi_gview *g, const tgi_gresult *o
 
 /* The view rays per unit of depth of a march (tgi_ao_slice_point): the
  * last column's and row's (the samples of a slice side share them, a
- * division each saved), and the sample's.  Starts with qx = qy = -1. */
-typedef struct tgi_ao_rays { int qx, qy; tg_real kx, ky; tg_vec3 ray; } tgi_ao_rays;
+ * division each saved), and the sample's; the last sample's pixel index,
+ * which a march reading them skips when the next sample falls in it
+ * again (it would add nothing).  Starts with qx = qy = j = -1. */
+typedef struct tgi_ao_rays { int qx, qy, j; tg_real kx, ky; tg_vec3 ray; } tgi_ao_rays;
 
 /* The pixel of sample s of `steps` along screen direction (sdx, sdy) at
  * distance (s + jitter) r_px / steps (the view's pixels): 1 with *h the
  * view offset of its surface from pv (times 2^shift; at the full-resolution
  * pixel it stands for) and *j its index (and, when rays is not NULL,
  * rays->ray its view ray per unit of depth, tgi_ao_unproject at depth 1);
- * 0 to skip it (within a pixel, or sky); -1 past the screen's edge (the
- * march ends). */
+ * 0 to skip it (within a pixel, or sky, or with rays the last sample's
+ * pixel); -1 past the screen's edge (the march ends). */
+static inline int tgi_ao_slice_point_at(const tgi_gview *g, const tgi_ao_slice_pixel *px, tg_real t_px,
+                                        tg_real sdx, tg_real sdy, tg_vec3 *h, int *j, tgi_ao_rays *rays);
 static inline int tgi_ao_slice_point(const tgi_gview *g, const tgi_ao_slice_pixel *px, int s, int steps,
                                      tg_real sdx, tg_real sdy, tg_vec3 *h, int *j, tgi_ao_rays *rays)
 {
     tg_real t_px = tg_div(tg_mul(tg_add(tg_from_int(s), px->jitter), px->r_px), tg_from_int(steps));
+    return tgi_ao_slice_point_at(g, px, t_px, sdx, sdy, h, j, rays);
+}
+/* The same at t_px pixels from the pixel's centre. */
+static inline int tgi_ao_slice_point_at(const tgi_gview *g, const tgi_ao_slice_pixel *px, tg_real t_px,
+                                        tg_real sdx, tg_real sdy, tg_vec3 *h, int *j, tgi_ao_rays *rays)
+{
     int qx, qy;
     if (t_px < TG_ONE) return 0;
     qx = tg_to_int(tg_add(tg_add(tg_from_int(px->x), TG_R(0.5f)), tg_mul(sdx, t_px)));
@@ -297,6 +307,8 @@ static inline int tgi_ao_slice_point(const tgi_gview *g, const tgi_ao_slice_pixe
     qy = qy * g->step + g->offset_y;
     if (rays) {   /* the surface is the ray at its depth: tgi_ao_unproject's products, the same bits */
         tg_real z = tgi_gv_depth(g, *j);
+        if (*j == rays->j) return 0;
+        rays->j = *j;
         if (qx != rays->qx) { rays->qx = qx; rays->kx = tgi_ao_ray_x(g->camera, qx); }
         if (qy != rays->qy) { rays->qy = qy; rays->ky = tgi_ao_ray_y(g->camera, qy); }
         rays->ray = tg_v3(rays->kx, rays->ky, TG_ONE);

@@ -264,11 +264,13 @@ static void march_layers(const vb_tech *t, const tgi_gview *g, const tgi_ao_slic
     tg_vec3 hf, hb, h3, h3end, ray;
     int steps = t->p->steps, s, j, got;
     uint32_t bits;
-    tgi_ao_slice_pixel on_screen = *px;
-    tgi_ao_rays rays = { -1, -1, 0, 0, { 0, 0, 0 } };
-    if (t->to_edge) on_screen.r_px = tg_min(px->r_px, tgi_ao_screen_reach(g, px, sdx, sdy));
-    for (s = 0; s < steps; s++) {
-        got = tgi_ao_slice_point(g, &on_screen, s, steps, sdx, sdy, &hf, &j, &rays);
+    tgi_ao_rays rays = { -1, -1, -1, 0, 0, { 0, 0, 0 } };
+    tg_real r_px = px->r_px, dt, t_px;
+    if (t->to_edge) r_px = tg_min(r_px, tgi_ao_screen_reach(g, px, sdx, sdy));
+    dt = tg_div(r_px, tg_from_int(steps));                            /* the samples' spacing in pixels */
+    t_px = tg_mul(px->jitter, dt);
+    for (s = 0; s < steps; s++, t_px = tg_add(t_px, dt)) {
+        got = tgi_ao_slice_point_at(g, px, t_px, sdx, sdy, &hf, &j, &rays);
         if (got < 0) break;
         if (got == 0) continue;
         ray = rays.ray;
