@@ -284,22 +284,22 @@ typedef struct tgi_ao_rays { int qx, qy, j; tg_real kx, ky; tg_vec3 ray; } tgi_a
  * rays->ray its view ray per unit of depth, tgi_ao_unproject at depth 1);
  * 0 to skip it (within a pixel, or sky, or with rays the last sample's
  * pixel); -1 past the screen's edge (the march ends). */
-static inline int tgi_ao_slice_point_at(const tgi_gview *g, const tgi_ao_slice_pixel *px, tg_real t_px,
-                                        tg_real sdx, tg_real sdy, tg_vec3 *h, int *j, tgi_ao_rays *rays);
+static inline int tgi_ao_slice_point_at(const tgi_gview *g, const tgi_ao_slice_pixel *px, tg_real fx, tg_real fy,
+                                        tg_vec3 *h, int *j, tgi_ao_rays *rays);
 static inline int tgi_ao_slice_point(const tgi_gview *g, const tgi_ao_slice_pixel *px, int s, int steps,
                                      tg_real sdx, tg_real sdy, tg_vec3 *h, int *j, tgi_ao_rays *rays)
 {
     tg_real t_px = tg_div(tg_mul(tg_add(tg_from_int(s), px->jitter), px->r_px), tg_from_int(steps));
-    return tgi_ao_slice_point_at(g, px, t_px, sdx, sdy, h, j, rays);
-}
-/* The same at t_px pixels from the pixel's centre. */
-static inline int tgi_ao_slice_point_at(const tgi_gview *g, const tgi_ao_slice_pixel *px, tg_real t_px,
-                                        tg_real sdx, tg_real sdy, tg_vec3 *h, int *j, tgi_ao_rays *rays)
-{
-    int qx, qy;
     if (t_px < TG_ONE) return 0;
-    qx = tg_to_int(tg_add(tg_add(tg_from_int(px->x), TG_R(0.5f)), tg_mul(sdx, t_px)));
-    qy = tg_to_int(tg_add(tg_add(tg_from_int(px->y), TG_R(0.5f)), tg_mul(sdy, t_px)));
+    return tgi_ao_slice_point_at(g, px, tg_add(tg_add(tg_from_int(px->x), TG_R(0.5f)), tg_mul(sdx, t_px)),
+                                 tg_add(tg_add(tg_from_int(px->y), TG_R(0.5f)), tg_mul(sdy, t_px)), h, j, rays);
+}
+/* The same for the sample at screen position (fx, fy) (the view's pixels),
+ * a pixel or more from px's centre. */
+static inline int tgi_ao_slice_point_at(const tgi_gview *g, const tgi_ao_slice_pixel *px, tg_real fx, tg_real fy,
+                                        tg_vec3 *h, int *j, tgi_ao_rays *rays)
+{
+    int qx = tg_to_int(fx), qy = tg_to_int(fy);
     if (qx < 0 || qy < 0 || qx >= g->width || qy >= g->height) return -1;
     *j = (int)tgi_gv_index(g, qx, qy);
     if (tgi_gv_is_sky(g, *j)) return 0;

@@ -265,12 +265,17 @@ static void march_layers(const vb_tech *t, const tgi_gview *g, const tgi_ao_slic
     int steps = t->p->steps, s, j, got;
     uint32_t bits;
     tgi_ao_rays rays = { -1, -1, -1, 0, 0, { 0, 0, 0 } };
-    tg_real r_px = px->r_px, dt, t_px;
+    tg_real r_px = px->r_px, dt, t_px, fx, fy, dx, dy;
     if (t->to_edge) r_px = tg_min(r_px, tgi_ao_screen_reach(g, px, sdx, sdy));
     dt = tg_div(r_px, tg_from_int(steps));                            /* the samples' spacing in pixels */
     t_px = tg_mul(px->jitter, dt);
-    for (s = 0; s < steps; s++, t_px = tg_add(t_px, dt)) {
-        got = tgi_ao_slice_point_at(g, px, t_px, sdx, sdy, &hf, &j, &rays);
+    dx = tg_mul(sdx, dt);
+    dy = tg_mul(sdy, dt);
+    fx = tg_add(tg_add(tg_from_int(px->x), TG_R(0.5f)), tg_mul(sdx, t_px));   /* the sample on the screen */
+    fy = tg_add(tg_add(tg_from_int(px->y), TG_R(0.5f)), tg_mul(sdy, t_px));
+    for (s = 0; s < steps; s++, t_px = tg_add(t_px, dt), fx = tg_add(fx, dx), fy = tg_add(fy, dy)) {
+        if (t_px < TG_ONE) continue;                                  /* within the pixel */
+        got = tgi_ao_slice_point_at(g, px, fx, fy, &hf, &j, &rays);
         if (got < 0) break;
         if (got == 0) continue;
         ray = rays.ray;
