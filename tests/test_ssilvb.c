@@ -544,6 +544,61 @@ TEST(deterministic_under_row_splits)
           memcmp(a.nr, b.nr, sizeof a.nr) == 0, "the same bits under a row split");
 }
 
+/* tgi_ao_slice_point with a march's rays (ssilvb's layered march: the
+ * last column's and row's ray kept, a division each saved, and a sample in
+ * the pixel of the one before skipped, as it adds nothing) against the
+ * plain one, over every pixel of the groove, 8 directions, 16 steps and two
+ * radii (shifted in Q16.16): the same result, offset and index bits, the
+ * ray tgi_ao_unproject's at depth 1, or 0 exactly where the sample's pixel
+ * is the last one read. */
+TEST(slice_point_rays_keep_the_bits)
+{
+    static scene s;
+    static outputs o;
+    static const float radii[2] = { 0.3f, 3.0f };
+    ao_pass io;
+    tg_vec3 dirs[8];
+    int x, y, k, r, st, n = 0, skipped = 0, bad = 0;
+    groove(&s);
+    io_for(&io, &s, &o, 0);
+    tgi_ao_circle(TG_R(6.2831853f), 8, dirs);
+    for (r = 0; r < 2; r++) {
+        tg_real radius = TG_R(radii[r]);
+        int shift = tgi_ao_unit_shift(radius), steps = 16;
+        for (y = 0; y < H; y++)
+            for (x = 0; x < W; x++) {
+                int i = (int)tgi_gv_index(&io.g, x, y);
+                tgi_ao_slice_pixel px;
+                if (!tgi_ao_slice_pixel_at(&io.g, &io.out, x, y, i, radius, steps, TG_R(0.37f), shift, &px)) continue;
+                for (k = 0; k < 8; k++) {
+                    tgi_ao_rays rays = { -1, -1, -1, 0, 0, { 0, 0, 0 } };
+                    int last = -1;
+                    for (st = 0; st < steps; st++) {
+                        tg_vec3 h0, h1;
+                        int j0 = -1, j1 = -1;
+                        int g0 = tgi_ao_slice_point(&io.g, &px, st, steps, dirs[k].x, dirs[k].y, &h0, &j0, NULL);
+                        int g1 = tgi_ao_slice_point(&io.g, &px, st, steps, dirs[k].x, dirs[k].y, &h1, &j1, &rays);
+                        if (g0 < 0) { bad += g1 != g0; break; }
+                        if (g0 == 0) { bad += g1 != 0; continue; }
+                        n++;
+                        if (j0 == last) { skipped++; bad += g1 != 0; continue; }
+                        last = j0;
+                        if (g1 != 1 || j1 != j0 || memcmp(&h0, &h1, sizeof h0) != 0) { bad++; continue; }
+                        {
+                            int qx = (j0 % io.g.row_stride) / io.g.pixel_stride, qy = j0 / io.g.row_stride;
+                            tg_vec3 want = tgi_ao_unproject(io.g.camera, qx, qy, TG_ONE);
+                            bad += memcmp(&want, &rays.ray, sizeof want) != 0;
+                        }
+                    }
+                }
+            }
+    }
+    printf("# slice points with the march's rays: %d samples, %d in the pixel before (skipped), %d differ\n", n,
+           skipped, bad);
+    CHECK(n > 10000 && skipped > 100, "the march covers the groove (%d samples, %d skipped)", n, skipped);
+    CHECK(bad == 0, "%d samples differ from the plain slice point", bad);
+}
+
 int main(void)
 {
     RUN(sector_bits_and_popcount);
@@ -557,5 +612,6 @@ int main(void)
     RUN(near_field_gathers_the_occluded_sectors);
     RUN(hard_cases_stay_finite);
     RUN(deterministic_under_row_splits);
+    RUN(slice_point_rays_keep_the_bits);
     return check_summary();
 }
