@@ -284,6 +284,9 @@ typedef struct tgi_ao_rays { int qx, qy, j; tg_real kx, ky; tg_vec3 ray; } tgi_a
  * rays->ray its view ray per unit of depth, tgi_ao_unproject at depth 1);
  * 0 to skip it (within a pixel, or sky, or with rays the last sample's
  * pixel); -1 past the screen's edge (the march ends). */
+#if defined(__GNUC__)
+__attribute__((always_inline))   /* in each march's loop: its results in registers, not stored through pointers */
+#endif
 static inline int tgi_ao_slice_point_at(const tgi_gview *g, const tgi_ao_slice_pixel *px, tg_real fx, tg_real fy,
                                         tg_vec3 *h, int *j, tgi_ao_rays *rays);
 static inline int tgi_ao_slice_point(const tgi_gview *g, const tgi_ao_slice_pixel *px, int s, int steps,
