@@ -39,31 +39,6 @@ uint32_t tgi_ssilvb_sector_bits(tg_real lo, tg_real hi)
     return (((uint32_t)1 << count) - 1u) << start;           /* bits past 31 fall off */
 }
 
-/* The slice integrals from 0 to theta (either sign), ssilvb.h:
- *   a  = int cos(t - g) |sin t|           (the cosine-weighted visibility)
- *   bs = int sin t cos(t - g) |sin t|     (bent normal along the slice direction)
- *   bc = int cos t cos(t - g) |sin t|     (bent normal along the view vector)
- * the positive branch's antiderivatives (gtao.h: a(h), F_s, F_c) minus
- * their value at 0, times sign(theta).  One sin and one cos. */
-typedef struct slice_prim { tg_real a, bs, bc; } slice_prim;
-
-static slice_prim prim(tg_real th, tg_real cos_g, tg_real sin_g)
-{
-    tg_real s = tg_sin(th), c = tg_cos(th), s2 = tg_sqr(s), c2 = tg_sqr(c);
-    tg_real s3 = tg_mul(s2, s), c3 = tg_mul(c2, c);
-    /* cos(2 th - g) = (c^2 - s^2) cos g + 2 s c sin g */
-    tg_real cos2 = tg_add(tg_mul(tg_sub(c2, s2), cos_g), tg_mul(tg_ldexp(tg_mul(s, c), 1), sin_g));
-    slice_prim r;
-    r.a = tg_ldexp(tg_sub(tg_add(cos_g, tg_mul(tg_ldexp(th, 1), sin_g)), cos2), -2);
-    /* F_s(th) - F_s(0) = cos g s^3/3 + sin g (c^3/3 - c + 2/3) */
-    r.bs = tg_add(tg_mul(cos_g, tg_div(s3, TG_R(3.0f))),
-                  tg_mul(sin_g, tg_add(tg_sub(tg_div(c3, TG_R(3.0f)), c), TG_R(0.666666667f))));
-    /* F_c(th) - F_c(0) = (sin g s^3 - cos g c^3)/3 + cos g / 3 */
-    r.bc = tg_div(tg_add(tg_sub(tg_mul(sin_g, s3), tg_mul(cos_g, c3)), cos_g), TG_R(3.0f));
-    if (th < 0) { r.a = tg_neg(r.a); r.bs = tg_neg(r.bs); r.bc = tg_neg(r.bc); }
-    return r;
-}
-
 /* What a slice of the visibility bitmask reads besides the pixel: the
  * parameters, the radiance the near field gathers (with `near`), and the
  * thickness scaled by the pixel's shift (tgi_ao_slice_pixel). */
@@ -87,6 +62,67 @@ static tg_real sector_angle(const vb_slice *sl, int k)
     return tg_add(sl->theta0, tg_mul(tg_from_int(k), sl->step));
 }
 
+/* cos(k pi / 32), k = 0..16: the sines and cosines of the sector
+ * boundaries' angles from the slice's (sector_sc), no tg_sin or tg_cos. */
+static const tg_real quarter_cos[17] = {
+    TG_R(1.000000000f),
+    TG_R(0.995184727f),
+    TG_R(0.980785280f),
+    TG_R(0.956940336f),
+    TG_R(0.923879533f),
+    TG_R(0.881921264f),
+    TG_R(0.831469612f),
+    TG_R(0.773010453f),
+    TG_R(0.707106781f),
+    TG_R(0.634393284f),
+    TG_R(0.555570233f),
+    TG_R(0.471396737f),
+    TG_R(0.382683432f),
+    TG_R(0.290284677f),
+    TG_R(0.195090322f),
+    TG_R(0.098017140f),
+    TG_R(0.000000000f)
+};
+
+/* cos and sin of k pi / N_b, k = 0..N_b (N_b = 32), by symmetry from quarter_cos. */
+static void sector_sc(int k, tg_real *ck, tg_real *sk)
+{
+    if (k <= 16) { *ck = quarter_cos[k]; *sk = quarter_cos[16 - k]; }
+    else { *ck = tg_neg(quarter_cos[32 - k]); *sk = quarter_cos[k - 16]; }
+}
+
+/* The slice integrals from 0 to theta (either sign), ssilvb.h:
+ *   a  = int cos(t - g) |sin t|           (the cosine-weighted visibility)
+ *   bs = int sin t cos(t - g) |sin t|     (bent normal along the slice direction)
+ *   bc = int cos t cos(t - g) |sin t|     (bent normal along the view vector)
+ * the positive branch's antiderivatives (gtao.h: a(h), F_s, F_c) minus
+ * their value at 0, times sign(theta), at the boundary theta_k = g - pi/2
+ * + k pi / N_b of sector k: sin theta_k = -cos(g + k pi / N_b) and cos
+ * theta_k = sin(g + k pi / N_b), from the slice's cos g, sin g and
+ * sector_sc's. */
+typedef struct slice_prim { tg_real a, bs, bc; } slice_prim;
+
+static slice_prim prim(const vb_slice *sl, int k)
+{
+    tg_real th = sector_angle(sl, k), cos_g = sl->cos_g, sin_g = sl->sin_g, ck, sk, s, c, s2, c2, s3, c3, cos2;
+    const tg_real third = TG_R(0.333333333f);
+    slice_prim r;
+    sector_sc(k, &ck, &sk);
+    s = tg_sub(tg_mul(sin_g, sk), tg_mul(cos_g, ck));
+    c = tg_add(tg_mul(sin_g, ck), tg_mul(cos_g, sk));
+    s2 = tg_sqr(s); c2 = tg_sqr(c); s3 = tg_mul(s2, s); c3 = tg_mul(c2, c);
+    /* cos(2 th - g) = (c^2 - s^2) cos g + 2 s c sin g */
+    cos2 = tg_add(tg_mul(tg_sub(c2, s2), cos_g), tg_mul(tg_ldexp(tg_mul(s, c), 1), sin_g));
+    r.a = tg_ldexp(tg_sub(tg_add(cos_g, tg_mul(tg_ldexp(th, 1), sin_g)), cos2), -2);
+    /* F_s(th) - F_s(0) = cos g s^3/3 + sin g (c^3/3 - c + 2/3) */
+    r.bs = tg_add(tg_mul(cos_g, tg_mul(s3, third)),
+                  tg_mul(sin_g, tg_add(tg_sub(tg_mul(c3, third), c), TG_R(0.666666667f))));
+    /* F_c(th) - F_c(0) = (sin g s^3 - cos g c^3)/3 + cos g / 3 */
+    r.bc = tg_mul(tg_add(tg_sub(tg_mul(sin_g, s3), tg_mul(cos_g, c3)), cos_g), third);
+    if (th < 0) { r.a = tg_neg(r.a); r.bs = tg_neg(r.bs); r.bc = tg_neg(r.bc); }
+    return r;
+}
+
 /* Sum of prim over the runs of set bits of b: the cosine weight (and the
  * bent integrals when bent is not NULL). */
 static tg_real mask_weight(const vb_slice *sl, uint32_t b, tg_real *bs, tg_real *bc)
@@ -98,8 +134,8 @@ static tg_real mask_weight(const vb_slice *sl, uint32_t b, tg_real *bs, tg_real 
         slice_prim p0, p1;
         if (!((b >> k) & 1u)) { k++; continue; }
         for (j = k; j < TG_SSILVB_SECTORS && ((b >> j) & 1u); j++) {}
-        p0 = prim(sector_angle(sl, k), sl->cos_g, sl->sin_g);
-        p1 = prim(sector_angle(sl, j), sl->cos_g, sl->sin_g);
+        p0 = prim(sl, k);
+        p1 = prim(sl, j);
         w = tg_add(w, tg_sub(p1.a, p0.a));
         if (bs) {
             *bs = tg_add(*bs, tg_sub(p1.bs, p0.bs));
