@@ -544,6 +544,42 @@ TEST(deterministic_under_row_splits)
           memcmp(a.nr, b.nr, sizeof a.nr) == 0, "the same bits under a row split");
 }
 
+/* tgi_ssilvb_half_circle_u (a polynomial acos) against the exact u =
+ * (side acos c - gamma) / pi + 1/2 over 201 x 2 x 41 directions and
+ * normal angles: within 5e-5 (float) or 2e-4 (Q16.16, its inputs rounded
+ * to 2^-16 and acos' slope near |c| = 1), and the sector it falls in
+ * (floor(32 u), the bit tgi_ssilvb_sector_bits starts at) the exact one
+ * but where the exact u is that close to a sector's boundary, then one
+ * off at most. */
+TEST(half_circle_u_without_acos)
+{
+    int i, side, k, n = 0, off = 0, far = 0;
+    double worst = 0, tol = TG_FIXED ? 2e-4 : 5e-5;
+    for (k = 0; k <= 40; k++) {
+        double gamma = -1.5 + 3.0 * k / 40;
+        tg_real g = tg_from_float((float)gamma);
+        for (side = -1; side <= 1; side += 2)
+            for (i = 0; i <= 200; i++) {
+                tg_real c = tg_from_float((float)(-1.0 + 2.0 * i / 200 + (i % 7) * 1e-4 * (i < 200)));
+                double cd = check_d(c), want = (side * acos(fmin(1, fmax(-1, cd))) - check_d(g)) / PI + 0.5;
+                double got = check_d(tgi_ssilvb_half_circle_u(c, side, g)), d = fabs(got - want);
+                int sw = (int)floor(32 * want), sg = (int)floor(32 * got);
+                n++;
+                worst = fmax(worst, d);
+                if (d > tol) far++;
+                if (sg != sw) {
+                    double edge = fabs(32 * want - floor(32 * want + 0.5)) / 32;
+                    if (edge > tol || abs(sg - sw) > 1) far++;
+                    else off++;
+                }
+            }
+    }
+    printf("# half circle u without acos: %d directions, worst %.2g of the half circle, %d one sector off at a "
+           "boundary\n", n, worst, off);
+    CHECK(far == 0, "%d directions off by more than %g or in the wrong sector away from a boundary (worst %g)", far,
+          tol, worst);
+}
+
 /* tgi_ao_slice_point with a march's rays (ssilvb's layered march: the
  * last column's and row's ray kept, a division each saved, and a sample in
  * the pixel of the one before skipped, as it adds nothing) against the
@@ -613,5 +649,6 @@ int main(void)
     RUN(hard_cases_stay_finite);
     RUN(deterministic_under_row_splits);
     RUN(slice_point_rays_keep_the_bits);
+    RUN(half_circle_u_without_acos);
     return check_summary();
 }
