@@ -169,9 +169,10 @@ static tg_real half_circle_u(const tgi_ao_slice_pixel *px, const vb_slice *sl, t
     return tgi_ssilvb_half_circle_u(tg_mul(tgi_v3_dot(h, px->vd), tg_rsqrt(d2)), side, sl->gamma);
 }
 
-/* The new sectors of a sample (bits) into *mask; with e, its pixel j's
- * radiance L over the new ones gathered into *e when the sender, at front
- * offset hf, faces the receiver. */
+/* The new sectors of a sample (bits, some not in *mask: the callers skip
+ * a sample with none, which adds nothing) into *mask; with e, its pixel
+ * j's radiance L over the new ones gathered into *e when the sender, at
+ * front offset hf, faces the receiver. */
 static void take_sectors(const vb_tech *t, const tgi_gview *g, const vb_slice *sl, uint32_t bits, int j, tg_vec3 hf,
                          uint32_t *mask, tg_vec3 *e)
 {
@@ -192,6 +193,7 @@ static void march(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel
     tg_real thick = t->thick, d2, db2, uf, ub;
     tg_vec3 hf, hb;
     int steps = t->p->steps, s, j, got;
+    uint32_t bits;
     for (s = 0; s < steps; s++) {
         got = tgi_ao_slice_sample(g, px, s, steps, sdx, sdy, &hf, &d2, &j);
         if (got < 0) break;
@@ -201,7 +203,8 @@ static void march(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel
         db2 = tgi_v3_dot(hb, hb);
         uf = half_circle_u(px, sl, hf, d2, side);
         ub = db2 > 0 ? half_circle_u(px, sl, hb, db2, side) : (side > 0 ? TG_ONE : 0);
-        take_sectors(t, g, sl, tgi_ssilvb_sector_bits(tg_min(uf, ub), tg_max(uf, ub)), j, hf, mask, e);
+        bits = tgi_ssilvb_sector_bits(tg_min(uf, ub), tg_max(uf, ub));
+        if (bits & ~*mask) take_sectors(t, g, sl, bits, j, hf, mask, e);
     }
 }
 
@@ -338,7 +341,8 @@ static void march_layers(const vb_tech *t, const tgi_gview *g, const tgi_ao_slic
             bits = segment_sectors(t, px, sl, hf, tgi_v3_add(hf, tgi_v3_scale(ray, t->thick)), side);
         else                                                          /* no back face: a boundary */
             bits = boundary_sectors(t, px, sl, hf, ray, d2, side);
-        take_sectors(t, g, sl, bits, j, hf, mask, d2 < px->r2 ? e : NULL);   /* a sender within the radius */
+        if (bits & ~*mask)                                            /* new sectors; a sender within the radius */
+            take_sectors(t, g, sl, bits, j, hf, mask, d2 < px->r2 ? e : NULL);
         if (layer_point(t, px, hf, ray, zf, tgi_gv_behind_depth(g, (size_t)j), &h3)) {
             h3end = tgi_v3_add(h3, tgi_v3_scale(ray, t->thick));
             *mask |= segment_sectors(t, px, sl, h3, h3end, side);
