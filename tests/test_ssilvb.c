@@ -580,6 +580,44 @@ TEST(half_circle_u_without_acos)
           tol, worst);
 }
 
+/* tgi_ssilvb_horizon_bits (the sector of a horizon among the slice's
+ * boundaries' cosines, no angle) against tgi_ssilvb_sector_bits at the
+ * exact u = (side acos c - gamma) / pi + 1/2 (from u to the end of its
+ * side) over 401 x 2 x 61 directions and normal angles in (-pi/2, pi/2):
+ * the same bits, or where the exact u is within 1e-4 of a sector boundary
+ * (the rounding of c and of the bounds; in Q16.16 4e-3, acos(1 - 2^-16)
+ * being 0.0055) the bits of u on one side of it. */
+TEST(horizon_bits_without_the_angle)
+{
+    int i, side, k, n = 0, edge = 0, bad = 0;
+    double tol = TG_FIXED ? 4e-3 : 1e-4;
+    for (k = 0; k <= 60; k++) {
+        double gamma = -1.55 + 3.1 * k / 60;
+        tg_real g = tg_from_float((float)gamma), bound[TG_SSILVB_SECTORS + 1];
+        int kz;
+        tgi_ssilvb_bounds(g, tg_from_float((float)cos(gamma)), tg_from_float((float)sin(gamma)), bound, &kz);
+        for (side = -1; side <= 1; side += 2)
+            for (i = 0; i <= 400; i++) {
+                tg_real c = tg_from_float((float)(-1.0 + 2.0 * i / 400 + (i % 5) * 3e-4 * (i < 400)));
+                double u = (side * acos(fmin(1, fmax(-1, check_d(c)))) - gamma) / PI + 0.5;
+                uint32_t got = tgi_ssilvb_horizon_bits(c, side, bound, kz), want, lo, hi;
+#define VB_BITS(x) (side > 0 ? tgi_ssilvb_sector_bits(tg_from_float((float)(x)), TG_ONE) \
+                             : tgi_ssilvb_sector_bits(0, tg_from_float((float)(x))))
+                want = VB_BITS(u);
+                lo = VB_BITS(u - tol);
+                hi = VB_BITS(u + tol);
+#undef VB_BITS
+                n++;
+                if (got == want) continue;
+                if (got == lo || got == hi) edge++;
+                else bad++;
+            }
+    }
+    printf("# horizon bits without the angle: %d directions, %d at a sector boundary one off, %d wrong\n", n, edge,
+           bad);
+    CHECK(bad == 0 && edge < n / 100, "%d directions in the wrong sectors, %d at a boundary", bad, edge);
+}
+
 /* tgi_ao_slice_point with a march's rays (ssilvb's layered march: the
  * last column's and row's ray kept, a division each saved, and a sample in
  * the pixel of the one before skipped, as it adds nothing) against the
@@ -650,5 +688,6 @@ int main(void)
     RUN(deterministic_under_row_splits);
     RUN(slice_point_rays_keep_the_bits);
     RUN(half_circle_u_without_acos);
+    RUN(horizon_bits_without_the_angle);
     return check_summary();
 }

@@ -55,6 +55,8 @@ typedef struct vb_tech {
 typedef struct vb_slice {
     tg_real gamma, cos_g, sin_g;
     tg_real theta0, step;             /* theta_k = theta0 + k step, step = pi / N_b */
+    int kz;                           /* tgi_ssilvb_bounds' (-1: not yet) */
+    tg_real bound[TG_SSILVB_SECTORS + 1];
 } vb_slice;
 
 static tg_real sector_angle(const vb_slice *sl, int k)
@@ -89,6 +91,40 @@ static void sector_sc(int k, tg_real *ck, tg_real *sk)
 {
     if (k <= 16) { *ck = quarter_cos[k]; *sk = quarter_cos[16 - k]; }
     else { *ck = tg_neg(quarter_cos[32 - k]); *sk = quarter_cos[k - 16]; }
+}
+
+void tgi_ssilvb_bounds(tg_real gamma, tg_real cos_g, tg_real sin_g, tg_real bound[TG_SSILVB_SECTORS + 1], int *kz)
+{
+    int k;
+    for (k = 0; k <= 16; k++) {        /* cos theta_k = sin(g + k pi / N_b) = sin g cos(k pi / N_b) + cos g sin(k pi / N_b) */
+        tg_real a = tg_mul(sin_g, quarter_cos[k]), b = tg_mul(cos_g, quarter_cos[16 - k]);
+        bound[k] = tg_add(a, b);
+        bound[TG_SSILVB_SECTORS - k] = tg_sub(b, a);
+    }
+    k = tg_to_int(tg_mul(tg_sub(TG_HALF_PI, gamma), TG_R(10.1859164f)));   /* (pi/2 - gamma) N_b / pi */
+    *kz = k < 0 ? 0 : k > TG_SSILVB_SECTORS ? TG_SSILVB_SECTORS : k;
+}
+
+uint32_t tgi_ssilvb_horizon_bits(tg_real c, int side, const tg_real bound[TG_SSILVB_SECTORS + 1], int kz)
+{
+    int lo, hi, m;
+    if (side > 0) {      /* past kz, theta_k in (0, pi): theta >= theta_k where c <= cos theta_k, falling with k */
+        lo = kz; hi = TG_SSILVB_SECTORS + 1;
+        while (hi - lo > 1) {
+            m = (lo + hi) >> 1;
+            if (c <= bound[m]) lo = m;
+            else hi = m;
+        }
+        return lo >= TG_SSILVB_SECTORS ? 0 : 0xffffffffu << lo;   /* from floor(u N_b) up */
+    }
+    /* theta = -acos c: up to kz, theta_k in (-pi, 0]: theta >= theta_k where cos theta_k <= c, rising with k */
+    lo = -1; hi = kz + 1;
+    while (hi - lo > 1) {
+        m = (lo + hi) >> 1;
+        if (bound[m] <= c) lo = m;
+        else hi = m;
+    }
+    return lo + 1 >= TG_SSILVB_SECTORS ? 0xffffffffu : ((uint32_t)1 << (lo + 1)) - 1u;   /* ceil(u N_b) from 0 */
 }
 
 /* The slice integrals from 0 to theta (either sign), ssilvb.h:
@@ -282,12 +318,16 @@ static int layer_point(const vb_tech *t, const tgi_ao_slice_pixel *px, tg_vec3 h
  * tangent plane is there too: the depth buffer's, seen from the pixel);
  * otherwise its view ray's segment to 64 radii where it enters the
  * radius. */
-static uint32_t boundary_sectors(const vb_tech *t, const tgi_ao_slice_pixel *px, const vb_slice *sl, tg_vec3 hf,
+static uint32_t boundary_sectors(const vb_tech *t, const tgi_ao_slice_pixel *px, vb_slice *sl, tg_vec3 hf,
                                  tg_vec3 ray, tg_real d2, int side)
 {
     tg_real uf;
     if (!(d2 < px->r2 && d2 > 0 && tgi_v3_dot(hf, px->nv) > px->above))
         return segment_sectors(t, px, sl, hf, tgi_v3_add(hf, tgi_v3_scale(ray, t->thick_max)), side);
+    if (sl->cos_g > 0) {                                              /* its sector among the boundaries' cosines */
+        if (sl->kz < 0) tgi_ssilvb_bounds(sl->gamma, sl->cos_g, sl->sin_g, sl->bound, &sl->kz);
+        return tgi_ssilvb_horizon_bits(tg_mul(tgi_v3_dot(hf, px->vd), tg_rsqrt(d2)), side, sl->bound, sl->kz);
+    }
     uf = half_circle_u(px, sl, hf, d2, side);
     return side > 0 ? tgi_ssilvb_sector_bits(uf, TG_ONE) : tgi_ssilvb_sector_bits(0, uf);
 }
@@ -309,7 +349,7 @@ static uint32_t boundary_sectors(const vb_tech *t, const tgi_ao_slice_pixel *px,
  * occludes only where sampled, as with the paper's constant thickness.
  * With t->to_edge the samples spread over the part of the radius on the
  * screen (tgi_ao_screen_reach). */
-static void march_layers(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel *px, const vb_slice *sl,
+static void march_layers(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel *px, vb_slice *sl,
                          tg_real sdx, tg_real sdy, int side, uint32_t *mask, tg_vec3 *e)
 {
     tg_real zf, zb, d2;
@@ -361,6 +401,7 @@ static void bitmask_slice(const void *tech, const tgi_gview *g, const tgi_ao_sli
     sl.gamma = f->gamma; sl.cos_g = f->cos_g; sl.sin_g = f->sin_g;
     sl.theta0 = tg_sub(f->gamma, TG_HALF_PI);
     sl.step = t->sector;
+    sl.kz = -1;                                                       /* no bounds yet */
     if (g->store.back_depth) {
         march_layers(t, g, px, &sl, sdx, sdy, 1, &mask, t->near ? &sum->near : NULL);
         march_layers(t, g, px, &sl, tg_neg(sdx), tg_neg(sdy), -1, &mask, t->near ? &sum->near : NULL);
