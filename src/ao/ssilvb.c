@@ -265,7 +265,8 @@ static int ray_misses(const tgi_ao_slice_pixel *px, tg_vec3 a, tg_vec3 v, tg_rea
  * than 64 radii (t->thick_max) is cut there (as good as infinite), so one
  * that can reach the sphere has |a| < rs + |b - a| <= 65 and (a.u)^2 and
  * |a|^2 stay inside Q16.16.  0 when no part is within the radius above
- * the tangent plane. */
+ * the tangent plane.  A segment ray_misses rejects costs no root, one
+ * with both ends within the radius is not clipped. */
 static uint32_t segment_sectors(const vb_tech *t, const tgi_ao_slice_pixel *px, const vb_slice *sl, tg_vec3 a, tg_vec3 b,
                                 int side)
 {
@@ -348,7 +349,11 @@ static uint32_t boundary_sectors(const vb_tech *t, const tgi_ao_slice_pixel *px,
  * unknown).  Between two samples a surface thinner than their spacing
  * occludes only where sampled, as with the paper's constant thickness.
  * With t->to_edge the samples spread over the part of the radius on the
- * screen (tgi_ao_screen_reach). */
+ * screen (tgi_ao_screen_reach).  What costs nothing: a sample whose view
+ * ray misses the radius above the tangent plane (ray_misses: none of its
+ * segments counts) or that falls in the pixel of the one before
+ * (tgi_ao_rays: it would set the same sectors again) is skipped before
+ * its layers are read. */
 static void march_layers(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel *px, vb_slice *sl,
                          tg_real sdx, tg_real sdy, int side, uint32_t *mask, tg_vec3 *e)
 {
