@@ -544,6 +544,135 @@ TEST(deterministic_under_row_splits)
           memcmp(a.nr, b.nr, sizeof a.nr) == 0, "the same bits under a row split");
 }
 
+/* tgi_ssilvb_half_circle_u (a polynomial acos) against the exact u =
+ * (side acos c - gamma) / pi + 1/2 over 201 x 2 x 41 directions and
+ * normal angles: within 5e-5 (float) or 1e-4 (Q16.16, its inputs rounded
+ * to 2^-16 and acos' slope near |c| = 1), and the sector it falls in
+ * (floor(32 u), the bit tgi_ssilvb_sector_bits starts at) the exact one
+ * but where the exact u is that close to a sector's boundary, then one
+ * off at most. */
+TEST(half_circle_u_without_acos)
+{
+    int i, side, k, n = 0, off = 0, far = 0;
+    double worst = 0, tol = TG_FIXED ? 1e-4 : 5e-5;
+    for (k = 0; k <= 40; k++) {
+        double gamma = -1.5 + 3.0 * k / 40;
+        tg_real g = tg_from_float((float)gamma);
+        for (side = -1; side <= 1; side += 2)
+            for (i = 0; i <= 200; i++) {
+                tg_real c = tg_from_float((float)(-1.0 + 2.0 * i / 200 + (i % 7) * 1e-4 * (i < 200)));
+                double cd = check_d(c), want = (side * acos(fmin(1, fmax(-1, cd))) - check_d(g)) / PI + 0.5;
+                double got = check_d(tgi_ssilvb_half_circle_u(c, side, g)), d = fabs(got - want);
+                int sw = (int)floor(32 * want), sg = (int)floor(32 * got);
+                n++;
+                worst = fmax(worst, d);
+                if (d > tol) far++;
+                if (sg != sw) {
+                    double edge = fabs(32 * want - floor(32 * want + 0.5)) / 32;
+                    if (edge > tol || abs(sg - sw) > 1) far++;
+                    else off++;
+                }
+            }
+    }
+    printf("# half circle u without acos: %d directions, worst %.2g of the half circle, %d one sector off at a "
+           "boundary\n", n, worst, off);
+    CHECK(far == 0, "%d directions off by more than %g or in the wrong sector away from a boundary (worst %g)", far,
+          tol, worst);
+}
+
+/* tgi_ssilvb_horizon_bits (the sector of a horizon among the slice's
+ * boundaries' cosines, no angle) against tgi_ssilvb_sector_bits at the
+ * exact u = (side acos c - gamma) / pi + 1/2 (from u to the end of its
+ * side) over 401 x 2 x 61 directions and normal angles in (-pi/2, pi/2):
+ * the same bits, or where the exact u is within 1e-4 of a sector boundary
+ * (the rounding of c and of the bounds; in Q16.16 4e-3, acos(1 - 2^-16)
+ * being 0.0055) the bits of u on one side of it. */
+TEST(horizon_bits_without_the_angle)
+{
+    int i, side, k, n = 0, edge = 0, bad = 0;
+    double tol = TG_FIXED ? 4e-3 : 1e-4;
+    for (k = 0; k <= 60; k++) {
+        double gamma = -1.55 + 3.1 * k / 60;
+        tg_real g = tg_from_float((float)gamma), bound[TG_SSILVB_SECTORS + 1];
+        int kz;
+        tgi_ssilvb_bounds(g, tg_from_float((float)cos(gamma)), tg_from_float((float)sin(gamma)), bound, &kz);
+        for (side = -1; side <= 1; side += 2)
+            for (i = 0; i <= 400; i++) {
+                tg_real c = tg_from_float((float)(-1.0 + 2.0 * i / 400 + (i % 5) * 3e-4 * (i < 400)));
+                double u = (side * acos(fmin(1, fmax(-1, check_d(c)))) - gamma) / PI + 0.5;
+                uint32_t got = tgi_ssilvb_horizon_bits(c, side, bound, kz), want, lo, hi;
+#define VB_BITS(x) (side > 0 ? tgi_ssilvb_sector_bits(tg_from_float((float)(x)), TG_ONE) \
+                             : tgi_ssilvb_sector_bits(0, tg_from_float((float)(x))))
+                want = VB_BITS(u);
+                lo = VB_BITS(u - tol);
+                hi = VB_BITS(u + tol);
+#undef VB_BITS
+                n++;
+                if (got == want) continue;
+                if (got == lo || got == hi) edge++;
+                else bad++;
+            }
+    }
+    printf("# horizon bits without the angle: %d directions, %d at a sector boundary one off, %d wrong\n", n, edge,
+           bad);
+    CHECK(bad == 0 && edge < n / 100, "%d directions in the wrong sectors, %d at a boundary", bad, edge);
+}
+
+/* tgi_ao_slice_point with a march's rays (ssilvb's layered march: the
+ * last column's and row's ray kept, a division each saved, and a sample in
+ * the pixel of the one before skipped, as it adds nothing) against the
+ * plain one, over every pixel of the groove, 8 directions, 16 steps and two
+ * radii (shifted in Q16.16): the same result, offset and index bits, the
+ * ray tgi_ao_unproject's at depth 1, or 0 exactly where the sample's pixel
+ * is the last one read. */
+TEST(slice_point_rays_keep_the_bits)
+{
+    static scene s;
+    static outputs o;
+    static const float radii[2] = { 0.3f, 3.0f };
+    ao_pass io;
+    tg_vec3 dirs[8];
+    int x, y, k, r, st, n = 0, skipped = 0, bad = 0;
+    groove(&s);
+    io_for(&io, &s, &o, 0);
+    tgi_ao_circle(TG_R(6.2831853f), 8, dirs);
+    for (r = 0; r < 2; r++) {
+        tg_real radius = TG_R(radii[r]);
+        int shift = tgi_ao_unit_shift(radius), steps = 16;
+        for (y = 0; y < H; y++)
+            for (x = 0; x < W; x++) {
+                int i = (int)tgi_gv_index(&io.g, x, y);
+                tgi_ao_slice_pixel px;
+                if (!tgi_ao_slice_pixel_at(&io.g, &io.out, x, y, i, radius, steps, TG_R(0.37f), shift, &px)) continue;
+                for (k = 0; k < 8; k++) {
+                    tgi_ao_rays rays = { -1, -1, -1, 0, 0, { 0, 0, 0 } };
+                    int last = -1;
+                    for (st = 0; st < steps; st++) {
+                        tg_vec3 h0, h1;
+                        int j0 = -1, j1 = -1;
+                        int g0 = tgi_ao_slice_point(&io.g, &px, st, steps, dirs[k].x, dirs[k].y, &h0, &j0, NULL);
+                        int g1 = tgi_ao_slice_point(&io.g, &px, st, steps, dirs[k].x, dirs[k].y, &h1, &j1, &rays);
+                        if (g0 < 0) { bad += g1 != g0; break; }
+                        if (g0 == 0) { bad += g1 != 0; continue; }
+                        n++;
+                        if (j0 == last) { skipped++; bad += g1 != 0; continue; }
+                        last = j0;
+                        if (g1 != 1 || j1 != j0 || memcmp(&h0, &h1, sizeof h0) != 0) { bad++; continue; }
+                        {
+                            int qx = (j0 % io.g.row_stride) / io.g.pixel_stride, qy = j0 / io.g.row_stride;
+                            tg_vec3 want = tgi_ao_unproject(io.g.camera, qx, qy, TG_ONE);
+                            bad += memcmp(&want, &rays.ray, sizeof want) != 0;
+                        }
+                    }
+                }
+            }
+    }
+    printf("# slice points with the march's rays: %d samples, %d in the pixel before (skipped), %d differ\n", n,
+           skipped, bad);
+    CHECK(n > 10000 && skipped > 100, "the march covers the groove (%d samples, %d skipped)", n, skipped);
+    CHECK(bad == 0, "%d samples differ from the plain slice point", bad);
+}
+
 int main(void)
 {
     RUN(sector_bits_and_popcount);
@@ -557,5 +686,8 @@ int main(void)
     RUN(near_field_gathers_the_occluded_sectors);
     RUN(hard_cases_stay_finite);
     RUN(deterministic_under_row_splits);
+    RUN(slice_point_rays_keep_the_bits);
+    RUN(half_circle_u_without_acos);
+    RUN(horizon_bits_without_the_angle);
     return check_summary();
 }

@@ -70,14 +70,21 @@ static inline tg_real tgi_ao_multibounce(tg_real ao, tg_real albedo)
 
 /* ---- view-space helpers (view.h conventions: x right, y up, z forward) ---- */
 
-/* View-space position of the centre of pixel (x, y) at view depth z. */
-static inline tg_vec3 tgi_ao_unproject(const tgi_view *v, int x, int y, tg_real z)
+/* View-space position of the centre of pixel (x, y) at view depth z:
+ * (kx z, ky z, z) with kx, ky its ray per unit of depth (the two below). */
+static inline tg_real tgi_ao_ray_x(const tgi_view *v, int x)
 {
     /* x_v = ndc_x z / focal_x with ndc_x = (2x + 1 - W) / W: one division per
      * axis, of numbers near 1, so Q16.16 keeps its precision */
-    tg_real kx = tg_div(tg_from_int(2 * x + 1 - v->width), tg_mul(tg_from_int(v->width), v->focal_x));
-    tg_real ky = tg_div(tg_from_int(v->height - 2 * y - 1), tg_mul(tg_from_int(v->height), v->focal_y));
-    return tg_v3(tg_mul(kx, z), tg_mul(ky, z), z);
+    return tg_div(tg_from_int(2 * x + 1 - v->width), tg_mul(tg_from_int(v->width), v->focal_x));
+}
+static inline tg_real tgi_ao_ray_y(const tgi_view *v, int y)
+{
+    return tg_div(tg_from_int(v->height - 2 * y - 1), tg_mul(tg_from_int(v->height), v->focal_y));
+}
+static inline tg_vec3 tgi_ao_unproject(const tgi_view *v, int x, int y, tg_real z)
+{
+    return tg_v3(tg_mul(tgi_ao_ray_x(v, x), z), tg_mul(tgi_ao_ray_y(v, y), z), z);
 }
 
 /* Pixel (px, py) of a view-space point: 1, or 0 when it is behind the
@@ -263,30 +270,52 @@ static inline int tgi_ao_slice_pixel_at(const tgi_gview *g, const tgi_gresult *o
     return 1;
 }
 
+/* The view rays per unit of depth of a march (tgi_ao_slice_point): the
+ * last column's and row's (the samples of a slice side share them, a
+ * division each saved), and the sample's; the last sample's pixel index,
+ * which a march reading them skips when the next sample falls in it
+ * again (it would add nothing).  Starts with qx = qy = j = -1. */
+typedef struct tgi_ao_rays { int qx, qy, j; tg_real kx, ky; tg_vec3 ray; } tgi_ao_rays;
+
 /* The pixel of sample s of `steps` along screen direction (sdx, sdy) at
  * distance (s + jitter) r_px / steps (the view's pixels): 1 with *h the
  * view offset of its surface from pv (times 2^shift; at the full-resolution
- * pixel it stands for) and *j its index (and, when ray is not
- * NULL, its view ray per unit of depth, tgi_ao_unproject at depth 1); 0 to
- * skip it (within a pixel, or sky); -1 past the screen's edge (the march
- * ends). */
+ * pixel it stands for) and *j its index (and, when rays is not NULL,
+ * rays->ray its view ray per unit of depth, tgi_ao_unproject at depth 1);
+ * 0 to skip it (within a pixel, or sky, or with rays the last sample's
+ * pixel); -1 past the screen's edge (the march ends). */
+#if defined(__GNUC__)
+__attribute__((always_inline))   /* in each march's loop: its results in registers, not stored through pointers */
+#endif
+static inline int tgi_ao_slice_point_at(const tgi_gview *g, const tgi_ao_slice_pixel *px, tg_real fx, tg_real fy,
+                                        tg_vec3 *h, int *j, tgi_ao_rays *rays);
 static inline int tgi_ao_slice_point(const tgi_gview *g, const tgi_ao_slice_pixel *px, int s, int steps,
-                                     tg_real sdx, tg_real sdy, tg_vec3 *h, int *j, tg_vec3 *ray)
+                                     tg_real sdx, tg_real sdy, tg_vec3 *h, int *j, tgi_ao_rays *rays)
 {
     tg_real t_px = tg_div(tg_mul(tg_add(tg_from_int(s), px->jitter), px->r_px), tg_from_int(steps));
-    int qx, qy;
     if (t_px < TG_ONE) return 0;
-    qx = tg_to_int(tg_add(tg_add(tg_from_int(px->x), TG_R(0.5f)), tg_mul(sdx, t_px)));
-    qy = tg_to_int(tg_add(tg_add(tg_from_int(px->y), TG_R(0.5f)), tg_mul(sdy, t_px)));
+    return tgi_ao_slice_point_at(g, px, tg_add(tg_add(tg_from_int(px->x), TG_R(0.5f)), tg_mul(sdx, t_px)),
+                                 tg_add(tg_add(tg_from_int(px->y), TG_R(0.5f)), tg_mul(sdy, t_px)), h, j, rays);
+}
+/* The same for the sample at screen position (fx, fy) (the view's pixels),
+ * a pixel or more from px's centre. */
+static inline int tgi_ao_slice_point_at(const tgi_gview *g, const tgi_ao_slice_pixel *px, tg_real fx, tg_real fy,
+                                        tg_vec3 *h, int *j, tgi_ao_rays *rays)
+{
+    int qx = tg_to_int(fx), qy = tg_to_int(fy);
     if (qx < 0 || qy < 0 || qx >= g->width || qy >= g->height) return -1;
     *j = (int)tgi_gv_index(g, qx, qy);
     if (tgi_gv_is_sky(g, *j)) return 0;
     qx = qx * g->step + g->offset_x;   /* the full-resolution pixel it stands for */
     qy = qy * g->step + g->offset_y;
-    if (ray) {   /* the surface is the ray at its depth: tgi_ao_unproject's products, the same bits */
+    if (rays) {   /* the surface is the ray at its depth: tgi_ao_unproject's products, the same bits */
         tg_real z = tgi_gv_depth(g, *j);
-        *ray = tgi_ao_unproject(g->camera, qx, qy, TG_ONE);
-        *h = tgi_v3_sub(tg_v3(tg_mul(ray->x, z), tg_mul(ray->y, z), z), px->pv);
+        if (*j == rays->j) return 0;
+        rays->j = *j;
+        if (qx != rays->qx) { rays->qx = qx; rays->kx = tgi_ao_ray_x(g->camera, qx); }
+        if (qy != rays->qy) { rays->qy = qy; rays->ky = tgi_ao_ray_y(g->camera, qy); }
+        rays->ray = tg_v3(rays->kx, rays->ky, TG_ONE);
+        *h = tgi_v3_sub(tg_v3(tg_mul(rays->kx, z), tg_mul(rays->ky, z), z), px->pv);
     } else {
         *h = tgi_v3_sub(tgi_ao_unproject(g->camera, qx, qy, tgi_gv_depth(g, *j)), px->pv);
     }

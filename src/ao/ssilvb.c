@@ -39,31 +39,6 @@ uint32_t tgi_ssilvb_sector_bits(tg_real lo, tg_real hi)
     return (((uint32_t)1 << count) - 1u) << start;           /* bits past 31 fall off */
 }
 
-/* The slice integrals from 0 to theta (either sign), ssilvb.h:
- *   a  = int cos(t - g) |sin t|           (the cosine-weighted visibility)
- *   bs = int sin t cos(t - g) |sin t|     (bent normal along the slice direction)
- *   bc = int cos t cos(t - g) |sin t|     (bent normal along the view vector)
- * the positive branch's antiderivatives (gtao.h: a(h), F_s, F_c) minus
- * their value at 0, times sign(theta).  One sin and one cos. */
-typedef struct slice_prim { tg_real a, bs, bc; } slice_prim;
-
-static slice_prim prim(tg_real th, tg_real cos_g, tg_real sin_g)
-{
-    tg_real s = tg_sin(th), c = tg_cos(th), s2 = tg_sqr(s), c2 = tg_sqr(c);
-    tg_real s3 = tg_mul(s2, s), c3 = tg_mul(c2, c);
-    /* cos(2 th - g) = (c^2 - s^2) cos g + 2 s c sin g */
-    tg_real cos2 = tg_add(tg_mul(tg_sub(c2, s2), cos_g), tg_mul(tg_ldexp(tg_mul(s, c), 1), sin_g));
-    slice_prim r;
-    r.a = tg_ldexp(tg_sub(tg_add(cos_g, tg_mul(tg_ldexp(th, 1), sin_g)), cos2), -2);
-    /* F_s(th) - F_s(0) = cos g s^3/3 + sin g (c^3/3 - c + 2/3) */
-    r.bs = tg_add(tg_mul(cos_g, tg_div(s3, TG_R(3.0f))),
-                  tg_mul(sin_g, tg_add(tg_sub(tg_div(c3, TG_R(3.0f)), c), TG_R(0.666666667f))));
-    /* F_c(th) - F_c(0) = (sin g s^3 - cos g c^3)/3 + cos g / 3 */
-    r.bc = tg_div(tg_add(tg_sub(tg_mul(sin_g, s3), tg_mul(cos_g, c3)), cos_g), TG_R(3.0f));
-    if (th < 0) { r.a = tg_neg(r.a); r.bs = tg_neg(r.bs); r.bc = tg_neg(r.bc); }
-    return r;
-}
-
 /* What a slice of the visibility bitmask reads besides the pixel: the
  * parameters, the radiance the near field gathers (with `near`), and the
  * thickness scaled by the pixel's shift (tgi_ao_slice_pixel). */
@@ -80,11 +55,108 @@ typedef struct vb_tech {
 typedef struct vb_slice {
     tg_real gamma, cos_g, sin_g;
     tg_real theta0, step;             /* theta_k = theta0 + k step, step = pi / N_b */
+    int kz;                           /* tgi_ssilvb_bounds' (-1: not yet) */
+    tg_real bound[TG_SSILVB_SECTORS + 1];
 } vb_slice;
 
 static tg_real sector_angle(const vb_slice *sl, int k)
 {
     return tg_add(sl->theta0, tg_mul(tg_from_int(k), sl->step));
+}
+
+/* cos(k pi / 32), k = 0..16: the sines and cosines of the sector
+ * boundaries' angles from the slice's (sector_sc), no tg_sin or tg_cos. */
+static const tg_real quarter_cos[17] = {
+    TG_R(1.000000000f),
+    TG_R(0.995184727f),
+    TG_R(0.980785280f),
+    TG_R(0.956940336f),
+    TG_R(0.923879533f),
+    TG_R(0.881921264f),
+    TG_R(0.831469612f),
+    TG_R(0.773010453f),
+    TG_R(0.707106781f),
+    TG_R(0.634393284f),
+    TG_R(0.555570233f),
+    TG_R(0.471396737f),
+    TG_R(0.382683432f),
+    TG_R(0.290284677f),
+    TG_R(0.195090322f),
+    TG_R(0.098017140f),
+    TG_R(0.000000000f)
+};
+
+/* cos and sin of k pi / N_b, k = 0..N_b (N_b = 32), by symmetry from quarter_cos. */
+static void sector_sc(int k, tg_real *ck, tg_real *sk)
+{
+    if (k <= 16) { *ck = quarter_cos[k]; *sk = quarter_cos[16 - k]; }
+    else { *ck = tg_neg(quarter_cos[32 - k]); *sk = quarter_cos[k - 16]; }
+}
+
+void tgi_ssilvb_bounds(tg_real gamma, tg_real cos_g, tg_real sin_g, tg_real bound[TG_SSILVB_SECTORS + 1], int *kz)
+{
+    int k;
+    for (k = 0; k <= 16; k++) {        /* cos theta_k = sin(g + k pi / N_b) = sin g cos(k pi / N_b) + cos g sin(k pi / N_b) */
+        tg_real a = tg_mul(sin_g, quarter_cos[k]), b = tg_mul(cos_g, quarter_cos[16 - k]);
+        bound[k] = tg_add(a, b);
+        bound[TG_SSILVB_SECTORS - k] = tg_sub(b, a);
+    }
+    k = tg_to_int(tg_mul(tg_sub(TG_HALF_PI, gamma), TG_R(10.1859164f)));   /* (pi/2 - gamma) N_b / pi */
+    *kz = k < 0 ? 0 : k > TG_SSILVB_SECTORS ? TG_SSILVB_SECTORS : k;
+}
+
+uint32_t tgi_ssilvb_horizon_bits(tg_real c, int side, const tg_real bound[TG_SSILVB_SECTORS + 1], int kz)
+{
+    int lo, hi, m;
+    if (side > 0) {      /* past kz, theta_k in (0, pi): theta >= theta_k where c <= cos theta_k, falling with k */
+        lo = kz; hi = TG_SSILVB_SECTORS + 1;
+        while (hi - lo > 1) {
+            m = (lo + hi) >> 1;
+            if (c <= bound[m]) lo = m;
+            else hi = m;
+        }
+        return lo >= TG_SSILVB_SECTORS ? 0 : 0xffffffffu << lo;   /* from floor(u N_b) up */
+    }
+    /* theta = -acos c: up to kz, theta_k in (-pi, 0]: theta >= theta_k where cos theta_k <= c, rising with k */
+    lo = -1; hi = kz + 1;
+    while (hi - lo > 1) {
+        m = (lo + hi) >> 1;
+        if (bound[m] <= c) lo = m;
+        else hi = m;
+    }
+    return lo + 1 >= TG_SSILVB_SECTORS ? 0xffffffffu : ((uint32_t)1 << (lo + 1)) - 1u;   /* ceil(u N_b) from 0 */
+}
+
+/* The slice integrals from 0 to theta (either sign), ssilvb.h:
+ *   a  = int cos(t - g) |sin t|           (the cosine-weighted visibility)
+ *   bs = int sin t cos(t - g) |sin t|     (bent normal along the slice direction)
+ *   bc = int cos t cos(t - g) |sin t|     (bent normal along the view vector)
+ * the positive branch's antiderivatives (gtao.h: a(h), F_s, F_c) minus
+ * their value at 0, times sign(theta), at the boundary theta_k = g - pi/2
+ * + k pi / N_b of sector k: sin theta_k = -cos(g + k pi / N_b) and cos
+ * theta_k = sin(g + k pi / N_b), from the slice's cos g, sin g and
+ * sector_sc's. */
+typedef struct slice_prim { tg_real a, bs, bc; } slice_prim;
+
+static slice_prim prim(const vb_slice *sl, int k)
+{
+    tg_real th = sector_angle(sl, k), cos_g = sl->cos_g, sin_g = sl->sin_g, ck, sk, s, c, s2, c2, s3, c3, cos2;
+    const tg_real third = TG_R(0.333333333f);
+    slice_prim r;
+    sector_sc(k, &ck, &sk);
+    s = tg_sub(tg_mul(sin_g, sk), tg_mul(cos_g, ck));
+    c = tg_add(tg_mul(sin_g, ck), tg_mul(cos_g, sk));
+    s2 = tg_sqr(s); c2 = tg_sqr(c); s3 = tg_mul(s2, s); c3 = tg_mul(c2, c);
+    /* cos(2 th - g) = (c^2 - s^2) cos g + 2 s c sin g */
+    cos2 = tg_add(tg_mul(tg_sub(c2, s2), cos_g), tg_mul(tg_ldexp(tg_mul(s, c), 1), sin_g));
+    r.a = tg_ldexp(tg_sub(tg_add(cos_g, tg_mul(tg_ldexp(th, 1), sin_g)), cos2), -2);
+    /* F_s(th) - F_s(0) = cos g s^3/3 + sin g (c^3/3 - c + 2/3) */
+    r.bs = tg_add(tg_mul(cos_g, tg_mul(s3, third)),
+                  tg_mul(sin_g, tg_add(tg_sub(tg_mul(c3, third), c), TG_R(0.666666667f))));
+    /* F_c(th) - F_c(0) = (sin g s^3 - cos g c^3)/3 + cos g / 3 */
+    r.bc = tg_mul(tg_add(tg_sub(tg_mul(sin_g, s3), tg_mul(cos_g, c3)), cos_g), third);
+    if (th < 0) { r.a = tg_neg(r.a); r.bs = tg_neg(r.bs); r.bc = tg_neg(r.bc); }
+    return r;
 }
 
 /* Sum of prim over the runs of set bits of b: the cosine weight (and the
@@ -98,8 +170,8 @@ static tg_real mask_weight(const vb_slice *sl, uint32_t b, tg_real *bs, tg_real 
         slice_prim p0, p1;
         if (!((b >> k) & 1u)) { k++; continue; }
         for (j = k; j < TG_SSILVB_SECTORS && ((b >> j) & 1u); j++) {}
-        p0 = prim(sector_angle(sl, k), sl->cos_g, sl->sin_g);
-        p1 = prim(sector_angle(sl, j), sl->cos_g, sl->sin_g);
+        p0 = prim(sl, k);
+        p1 = prim(sl, j);
         w = tg_add(w, tg_sub(p1.a, p0.a));
         if (bs) {
             *bs = tg_add(*bs, tg_sub(p1.bs, p0.bs));
@@ -110,19 +182,33 @@ static tg_real mask_weight(const vb_slice *sl, uint32_t b, tg_real *bs, tg_real 
     return w;
 }
 
-/* The signed angle from the view vector (positive toward the slice direction
- * on side +1) of view offset h, |h|^2 = d2 > 0, mapped to u in [0, 1] over
- * the slice's half circle: u = (theta - gamma) / pi + 1/2. */
-static tg_real half_circle_u(const tgi_ao_slice_pixel *px, const vb_slice *sl, tg_vec3 h, tg_real d2, int side)
+tg_real tgi_ssilvb_half_circle_u(tg_real c, int side, tg_real gamma)
 {
-    tg_real th = tg_acos(tg_mul(tgi_v3_dot(h, px->vd), tg_rsqrt(d2)));
+    /* acos |c| = sqrt(1 - |c|) (a0 + a1 |c| + a2 |c|^2 + a3 |c|^3) within
+     * 6.7e-5 (Abramowitz and Stegun 4.4.45): 2e-5 of the half circle */
+    tg_real a = tg_min(tg_abs(c), TG_ONE), th;
+    th = tg_add(TG_R(0.0742610f), tg_mul(a, TG_R(-0.0187293f)));
+    th = tg_add(TG_R(-0.2121144f), tg_mul(a, th));
+    th = tg_add(TG_R(1.5707288f), tg_mul(a, th));
+    th = tg_mul(tg_sqrt(tg_sub(TG_ONE, a)), th);
+    if (c < 0) th = tg_sub(TG_PI, th);
     if (side < 0) th = tg_neg(th);
-    return tg_add(tg_mul(tg_sub(th, sl->gamma), TG_INV_PI), TG_R(0.5f));
+    return tg_add(tg_mul(tg_sub(th, gamma), TG_INV_PI), TG_R(0.5f));
 }
 
-/* The new sectors of a sample (bits) into *mask; with e, its pixel j's
- * radiance L over the new ones gathered into *e when the sender, at front
- * offset hf, faces the receiver. */
+/* The signed angle from the view vector (positive toward the slice direction
+ * on side +1) of view offset h, |h|^2 = d2 > 0, mapped to u in [0, 1] over
+ * the slice's half circle: u = (theta - gamma) / pi + 1/2
+ * (tgi_ssilvb_half_circle_u). */
+static tg_real half_circle_u(const tgi_ao_slice_pixel *px, const vb_slice *sl, tg_vec3 h, tg_real d2, int side)
+{
+    return tgi_ssilvb_half_circle_u(tg_mul(tgi_v3_dot(h, px->vd), tg_rsqrt(d2)), side, sl->gamma);
+}
+
+/* The new sectors of a sample (bits, some not in *mask: the callers skip
+ * a sample with none, which adds nothing) into *mask; with e, its pixel
+ * j's radiance L over the new ones gathered into *e when the sender, at
+ * front offset hf, faces the receiver. */
 static void take_sectors(const vb_tech *t, const tgi_gview *g, const vb_slice *sl, uint32_t bits, int j, tg_vec3 hf,
                          uint32_t *mask, tg_vec3 *e)
 {
@@ -143,6 +229,7 @@ static void march(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel
     tg_real thick = t->thick, d2, db2, uf, ub;
     tg_vec3 hf, hb;
     int steps = t->p->steps, s, j, got;
+    uint32_t bits;
     for (s = 0; s < steps; s++) {
         got = tgi_ao_slice_sample(g, px, s, steps, sdx, sdy, &hf, &d2, &j);
         if (got < 0) break;
@@ -152,8 +239,22 @@ static void march(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel
         db2 = tgi_v3_dot(hb, hb);
         uf = half_circle_u(px, sl, hf, d2, side);
         ub = db2 > 0 ? half_circle_u(px, sl, hb, db2, side) : (side > 0 ? TG_ONE : 0);
-        take_sectors(t, g, sl, tgi_ssilvb_sector_bits(tg_min(uf, ub), tg_max(uf, ub)), j, hf, mask, e);
+        bits = tgi_ssilvb_sector_bits(tg_min(uf, ub), tg_max(uf, ub));
+        if (bits & ~*mask) take_sectors(t, g, sl, bits, j, hf, mask, e);
     }
+}
+
+/* Whether the ray from offset a along direction v (any length) has no
+ * point within the radius above the tangent plane: outside the radius
+ * (|a|^2 = d2) and not moving inward, or on or under the tangent plane
+ * and not rising.  Every segment of a sample lies on its view ray beyond
+ * its front point, and of a segment segment_sectors counts only such
+ * points, so this decides as it would (up to the rounding at the
+ * boundaries) for the cost of two or three dot products. */
+static int ray_misses(const tgi_ao_slice_pixel *px, tg_vec3 a, tg_vec3 v, tg_real d2)
+{
+    if (d2 >= px->r2 && tgi_v3_dot(a, v) >= 0) return 1;
+    return tgi_v3_dot(a, px->nv) <= px->above && tgi_v3_dot(v, px->nv) <= 0;
 }
 
 /* The sectors of the solid segment from offset a to offset b (scaled by
@@ -164,33 +265,36 @@ static void march(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel
  * than 64 radii (t->thick_max) is cut there (as good as infinite), so one
  * that can reach the sphere has |a| < rs + |b - a| <= 65 and (a.u)^2 and
  * |a|^2 stay inside Q16.16.  0 when no part is within the radius above
- * the tangent plane. */
+ * the tangent plane.  A segment ray_misses rejects costs no root, one
+ * with both ends within the radius is not clipped. */
 static uint32_t segment_sectors(const vb_tech *t, const tgi_ao_slice_pixel *px, const vb_slice *sl, tg_vec3 a, tg_vec3 b,
                                 int side)
 {
     tg_vec3 ab = tgi_v3_sub(b, a), u;
-    tg_real len2 = tgi_v3_dot(ab, ab), inv_len, len, d2 = tgi_v3_dot(a, a), reach, au, disc, root, t0, t1, ua, ub;
-    if (!(len2 > 0)) return 0;
-    inv_len = tg_rsqrt(len2);
-    len = tg_min(tg_mul(len2, inv_len), t->thick_max);                 /* |b - a|, one root for it and u */
-    reach = tg_add(px->rs, len);
-    if (d2 >= tg_sqr(reach)) return 0;                                /* cannot reach the sphere */
-    u = tgi_v3_scale(ab, inv_len);
-    au = tgi_v3_dot(a, u);
-    disc = tg_sub(tg_sqr(au), tg_sub(d2, px->r2));
-    if (!(disc > 0)) return 0;
-    root = tg_sqrt(disc);
-    t0 = tg_max(tg_sub(tg_neg(au), root), 0);
-    t1 = tg_min(tg_add(tg_neg(au), root), len);
-    if (!(t0 < t1)) return 0;
-    a = tgi_v3_add(a, tgi_v3_scale(u, t0));
-    b = tgi_v3_add(a, tgi_v3_scale(u, tg_sub(t1, t0)));
+    tg_real len2 = tgi_v3_dot(ab, ab), d2 = tgi_v3_dot(a, a), b2, inv_len, len, reach, au, disc, root, t0, t1, ua, ub;
+    if (!(len2 > 0) || ray_misses(px, a, ab, d2)) return 0;
+    if (!(d2 < px->r2 && (b2 = tgi_v3_dot(b, b)) < px->r2)) {        /* clip it to the sphere */
+        inv_len = tg_rsqrt(len2);
+        len = tg_min(tg_mul(len2, inv_len), t->thick_max);             /* |b - a|, one root for it and u */
+        reach = tg_add(px->rs, len);
+        if (d2 >= tg_sqr(reach)) return 0;                            /* cannot reach the sphere */
+        u = tgi_v3_scale(ab, inv_len);
+        au = tgi_v3_dot(a, u);
+        disc = tg_sub(tg_sqr(au), tg_sub(d2, px->r2));
+        if (!(disc > 0)) return 0;
+        root = tg_sqrt(disc);
+        t0 = tg_max(tg_sub(tg_neg(au), root), 0);
+        t1 = tg_min(tg_add(tg_neg(au), root), len);
+        if (!(t0 < t1)) return 0;
+        a = tgi_v3_add(a, tgi_v3_scale(u, t0));
+        b = tgi_v3_add(a, tgi_v3_scale(u, tg_sub(t1, t0)));
+        d2 = tgi_v3_dot(a, a);
+        b2 = tgi_v3_dot(b, b);
+    }
     if (tgi_v3_dot(a, px->nv) <= px->above && tgi_v3_dot(b, px->nv) <= px->above) return 0;   /* under the tangent plane */
-    d2 = tgi_v3_dot(a, a);
-    len2 = tgi_v3_dot(b, b);
-    if (!(d2 > 0) || !(len2 > 0)) return 0;
+    if (!(d2 > 0) || !(b2 > 0)) return 0;
     ua = half_circle_u(px, sl, a, d2, side);
-    ub = half_circle_u(px, sl, b, len2, side);
+    ub = half_circle_u(px, sl, b, b2, side);
     return tgi_ssilvb_sector_bits(tg_min(ua, ub), tg_max(ua, ub));
 }
 
@@ -215,12 +319,16 @@ static int layer_point(const vb_tech *t, const tgi_ao_slice_pixel *px, tg_vec3 h
  * tangent plane is there too: the depth buffer's, seen from the pixel);
  * otherwise its view ray's segment to 64 radii where it enters the
  * radius. */
-static uint32_t boundary_sectors(const vb_tech *t, const tgi_ao_slice_pixel *px, const vb_slice *sl, tg_vec3 hf,
+static uint32_t boundary_sectors(const vb_tech *t, const tgi_ao_slice_pixel *px, vb_slice *sl, tg_vec3 hf,
                                  tg_vec3 ray, tg_real d2, int side)
 {
     tg_real uf;
     if (!(d2 < px->r2 && d2 > 0 && tgi_v3_dot(hf, px->nv) > px->above))
         return segment_sectors(t, px, sl, hf, tgi_v3_add(hf, tgi_v3_scale(ray, t->thick_max)), side);
+    if (sl->cos_g > 0) {                                              /* its sector among the boundaries' cosines */
+        if (sl->kz < 0) tgi_ssilvb_bounds(sl->gamma, sl->cos_g, sl->sin_g, sl->bound, &sl->kz);
+        return tgi_ssilvb_horizon_bits(tg_mul(tgi_v3_dot(hf, px->vd), tg_rsqrt(d2)), side, sl->bound, sl->kz);
+    }
     uf = half_circle_u(px, sl, hf, d2, side);
     return side > 0 ? tgi_ssilvb_sector_bits(uf, TG_ONE) : tgi_ssilvb_sector_bits(0, uf);
 }
@@ -241,30 +349,45 @@ static uint32_t boundary_sectors(const vb_tech *t, const tgi_ao_slice_pixel *px,
  * unknown).  Between two samples a surface thinner than their spacing
  * occludes only where sampled, as with the paper's constant thickness.
  * With t->to_edge the samples spread over the part of the radius on the
- * screen (tgi_ao_screen_reach). */
-static void march_layers(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel *px, const vb_slice *sl,
+ * screen (tgi_ao_screen_reach).  What costs nothing: a sample whose view
+ * ray misses the radius above the tangent plane (ray_misses: none of its
+ * segments counts) or that falls in the pixel of the one before
+ * (tgi_ao_rays: it would set the same sectors again) is skipped before
+ * its layers are read. */
+static void march_layers(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel *px, vb_slice *sl,
                          tg_real sdx, tg_real sdy, int side, uint32_t *mask, tg_vec3 *e)
 {
     tg_real zf, zb, d2;
     tg_vec3 hf, hb, h3, h3end, ray;
     int steps = t->p->steps, s, j, got;
     uint32_t bits;
-    tgi_ao_slice_pixel on_screen = *px;
-    if (t->to_edge) on_screen.r_px = tg_min(px->r_px, tgi_ao_screen_reach(g, px, sdx, sdy));
-    for (s = 0; s < steps; s++) {
-        got = tgi_ao_slice_point(g, &on_screen, s, steps, sdx, sdy, &hf, &j, &ray);
+    tgi_ao_rays rays = { -1, -1, -1, 0, 0, { 0, 0, 0 } };
+    tg_real r_px = px->r_px, dt, t_px, fx, fy, dx, dy;
+    if (t->to_edge) r_px = tg_min(r_px, tgi_ao_screen_reach(g, px, sdx, sdy));
+    dt = tg_div(r_px, tg_from_int(steps));                            /* the samples' spacing in pixels */
+    t_px = tg_mul(px->jitter, dt);
+    dx = tg_mul(sdx, dt);
+    dy = tg_mul(sdy, dt);
+    fx = tg_add(tg_add(tg_from_int(px->x), TG_R(0.5f)), tg_mul(sdx, t_px));   /* the sample on the screen */
+    fy = tg_add(tg_add(tg_from_int(px->y), TG_R(0.5f)), tg_mul(sdy, t_px));
+    for (s = 0; s < steps; s++, t_px = tg_add(t_px, dt), fx = tg_add(fx, dx), fy = tg_add(fy, dy)) {
+        if (t_px < TG_ONE) continue;                                  /* within the pixel */
+        got = tgi_ao_slice_point_at(g, px, fx, fy, &hf, &j, &rays);
         if (got < 0) break;
         if (got == 0) continue;
+        ray = rays.ray;
+        d2 = tgi_v3_dot(hf, hf);
+        if (ray_misses(px, hf, ray, d2)) continue;
         zf = tgi_gv_depth(g, (size_t)j);
         zb = tgi_gv_back_depth(g, (size_t)j);
-        d2 = tgi_v3_dot(hf, hf);
         if (layer_point(t, px, hf, ray, zf, zb, &hb))                 /* solid to its back face */
             bits = segment_sectors(t, px, sl, hf, hb, side);
         else if (zb == zf)                                            /* a twosided sheet: the thickness */
             bits = segment_sectors(t, px, sl, hf, tgi_v3_add(hf, tgi_v3_scale(ray, t->thick)), side);
         else                                                          /* no back face: a boundary */
             bits = boundary_sectors(t, px, sl, hf, ray, d2, side);
-        take_sectors(t, g, sl, bits, j, hf, mask, d2 < px->r2 ? e : NULL);   /* a sender within the radius */
+        if (bits & ~*mask)                                            /* new sectors; a sender within the radius */
+            take_sectors(t, g, sl, bits, j, hf, mask, d2 < px->r2 ? e : NULL);
         if (layer_point(t, px, hf, ray, zf, tgi_gv_behind_depth(g, (size_t)j), &h3)) {
             h3end = tgi_v3_add(h3, tgi_v3_scale(ray, t->thick));
             *mask |= segment_sectors(t, px, sl, h3, h3end, side);
@@ -283,6 +406,7 @@ static void bitmask_slice(const void *tech, const tgi_gview *g, const tgi_ao_sli
     sl.gamma = f->gamma; sl.cos_g = f->cos_g; sl.sin_g = f->sin_g;
     sl.theta0 = tg_sub(f->gamma, TG_HALF_PI);
     sl.step = t->sector;
+    sl.kz = -1;                                                       /* no bounds yet */
     if (g->store.back_depth) {
         march_layers(t, g, px, &sl, sdx, sdy, 1, &mask, t->near ? &sum->near : NULL);
         march_layers(t, g, px, &sl, tg_neg(sdx), tg_neg(sdy), -1, &mask, t->near ? &sum->near : NULL);

@@ -77,6 +77,23 @@ void tgi_ssilvb_rows(const tgi_ssilvb_params *p, const tgi_gview *g, const tgi_r
 /* Sectors [floor(lo N_b), that + ceil((hi - lo) N_b)) of N_b = 32, lo and
  * hi clamped to [0, 1] (the paper's bit range of a front/back pair). */
 uint32_t tgi_ssilvb_sector_bits(tg_real lo, tg_real hi);
+/* u = (theta - gamma) / pi + 1/2 of the angle theta = side acos(c) from
+ * the view vector in a slice of normal angle gamma: where it lies over the
+ * half circle [gamma - pi/2, gamma + pi/2] (0 and 1 at its ends), the
+ * acos a polynomial within 6.7e-5 (no tg_acos): 2e-5 of the half circle,
+ * 1/1500 of a sector. */
+tg_real tgi_ssilvb_half_circle_u(tg_real c, int side, tg_real gamma);
+/* A slice's sector boundaries theta_k = gamma - pi/2 + k pi / N_b for
+ * gamma in (-pi/2, pi/2) (cos_g > 0: the normal toward the eye): their
+ * cosines bound[k], k = 0..N_b, and kz, how many of k = 1..N_b have
+ * theta_k <= 0. */
+void tgi_ssilvb_bounds(tg_real gamma, tg_real cos_g, tg_real sin_g, tg_real bound[TG_SSILVB_SECTORS + 1], int *kz);
+/* The sectors a horizon at theta = side acos(c) closes, from it to the end
+ * of its side: tgi_ssilvb_sector_bits(u, 1) on side +1, (0, u) on side -1,
+ * u = tgi_ssilvb_half_circle_u's, without the angle: c placed among the
+ * slice's bounds by a binary search (the same sectors but where theta is
+ * within rounding of a boundary). */
+uint32_t tgi_ssilvb_horizon_bits(tg_real c, int side, const tg_real bound[TG_SSILVB_SECTORS + 1], int kz);
 /* Set bits of a 32-bit mask (portable, no builtin). */
 int tgi_ssilvb_popcount(uint32_t b);
 
