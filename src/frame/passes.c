@@ -64,7 +64,7 @@ static int runs_hbil_layers(const tg_frame *f) { return runs_hbil(f) && reads_la
 #endif
 #if !TG_NO_GI_QUARTER
 static int runs_hbil_quarter(const tg_frame *f) { return runs_hbil(f) && tgi_frame_quarter(f); }
-static int runs_near_horizon(const tg_frame *f) { return runs_hbil_quarter(f) && tgi_frame_near_horizon(f); }
+static int runs_near_horizon(const tg_frame *f) { return runs_hbil(f) && tgi_frame_near_horizon(f); }
 #endif
 #if !TG_NO_TECHNIQUES
 static int runs_ssao(const tg_frame *f) { return technique_runs(f, TG_TECH_SSAO); }

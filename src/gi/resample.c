@@ -80,9 +80,10 @@ static tg_real upsample_normal_weight(tg_vec3 n, tg_vec3 m)
 /* 1 - |z_j - z| / (0.1 z), clamped to [0, 1]: |0.1 z| < |z| (tg_mul's
  * product, never saturating), the quotient of 0 <= |z_j - z| < 0.1 z
  * within [0, 1) (tgi_div_pos). */
+static tg_real upsample_depth_tol(tg_real z) { return (tg_real)tgi_wide_mul(z, TG_R(0.1f)); }
 static tg_real upsample_depth_weight(tg_real z, tg_real zj)
 {
-    tg_real tol = (tg_real)tgi_wide_mul(z, TG_R(0.1f));
+    tg_real tol = upsample_depth_tol(z);
     tg_real dz = tg_abs(tg_sub(zj, z));
     if (tol <= 0 || dz >= tol) return 0;
     return (tg_real)((tgi_wide)TG_ONE - tgi_div_pos(dz, tol));
@@ -503,7 +504,7 @@ static tg_real near_horizon_stored(const tgi_upsample_plan *u, int x, int y, siz
 static tg_real near_horizon_mean(const tgi_upsample_plan *u, int x, int y, tg_real z)
 {
     const tgi_gview *full = u->full;
-    const tg_real tol = (tg_real)tgi_wide_mul(z, TG_R(0.1f));   /* upsample_depth_weight's reach */
+    const tg_real tol = upsample_depth_tol(z);   /* where upsample_depth_weight is above 0 */
     tg_real sum = 0;
     int n = 0, xx, yy, r = 1;
 #if TGI_DEPTH_LAYERS
@@ -631,20 +632,4 @@ tgi_gr_value tgi_upsample_pixel(const tgi_gview *full, const tgi_gview *half, co
     tgi_upsample_start(&u, full, half, half_res, radius, NULL);
     tgi_upsample_walk_start(&w);
     return tgi_upsample_at(&u, &w, x, y);
-}
-
-void tgi_upsample_rows(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res, tg_real radius,
-                       const tgi_gresult *out, int y0, int y1)
-{
-    tgi_upsample_plan u;
-    tgi_upsample_walk w;
-    int x, y;
-    if (y1 > full->height) y1 = full->height;
-    tgi_upsample_start(&u, full, half, half_res, radius, NULL);
-    tgi_upsample_walk_start(&w);
-    for (y = y0; y < y1; y++)
-        for (x = 0; x < full->width; x++) {
-            tgi_gr_value v = tgi_upsample_at(&u, &w, x, y);
-            tgi_gr_put(out, tgi_gv_index(full, x, y), &v);
-        }
 }

@@ -129,11 +129,8 @@ void tgi_near_horizon_rows(const tgi_gview *full, const tgi_gview *half, const t
  * half_res (indexed like the view half), guided by both views' depth and
  * normals, the AO no more than the mean near horizon of the pixel and its
  * neighbours at its depth (3x3, within TG_QUARTER_NEAR_REACH full-res pixels,
- * gather radius `radius`, world units); and full-res rows [y0, y1) of them
- * into out. */
+ * gather radius `radius`, world units). */
 tgi_gr_value tgi_upsample_pixel(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res,
                                 tg_real radius, int x, int y);
-void tgi_upsample_rows(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res, tg_real radius,
-                       const tgi_gresult *out, int y0, int y1);
 
 #endif
