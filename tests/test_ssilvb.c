@@ -304,7 +304,8 @@ static void io_with_layers(ao_pass *io, const scene *s, int layers)
 #if TG_WIDE_STORAGE
     static tg_real back[W * H], behind[W * H];
 #else
-    static uint32_t back[W * H], behind[W * H];
+    static uint8_t back[W * H];   /* codes against the pixel's depth, as the rasterizer keeps them */
+    static uint32_t behind[W * H];
 #endif
     int i;
     for (i = 0; i < W * H; i++) {
@@ -312,7 +313,7 @@ static void io_with_layers(ao_pass *io, const scene *s, int layers)
 #if TG_WIDE_STORAGE
         back[i] = b; behind[i] = c;
 #else
-        back[i] = s->back[i] > 0 ? tgi_depth_pack(b) : 0;
+        back[i] = s->back[i] > 0 ? tgi_back_code(tgi_gv_depth(&io->g, (size_t)i), b) : TGI_BACK_NONE;
         behind[i] = s->behind[i] > 0 ? tgi_depth_pack(c) : 0;
 #endif
     }

@@ -158,8 +158,7 @@ static void ao_against(const char *scene, tg_request q, const double *ref, doubl
 }
 
 /* HBIL on `spheres` at 80x60 (at gi_scale `scale`), 8 frames, one layer
- * and three against the reference, all at the scene's one-layer radius
- * (the layers would reach further: TG_RADIUS_LIGHT_DIVISOR): RMSE and
+ * and three against the reference, all at the scene's radius for AO: RMSE and
  * bias r[0], b[0] on one layer, r[1], b[1] on three. */
 static void spheres_layers_against_the_reference(int scale, double r[2], double b[2])
 {
@@ -180,6 +179,7 @@ static void spheres_layers_against_the_reference(int scale, double r[2], double 
     q.frames = 8;
     q.radius = radius;
     q.gi_scale = scale;
+    q.depth_layers = 1;   /* not the plan's choice (two for AO alone in the open) */
     ao_against(scene, q, ref, &r[0], &b[0]);
     q.depth_layers = 3;
     ao_against(scene, q, ref, &r[1], &b[1]);
@@ -221,6 +221,103 @@ TEST(quarter_over_depth_layers_against_the_reference)
     spheres_layers_against_the_reference(2, r, b);
     CHECK(r[1] < 0.065 && fabs(b[1]) < 0.01, "three layers: RMSE %g, bias %g", r[1], b[1]);
     CHECK(r[1] <= r[0], "three layers %g against one layer %g", r[1], r[0]);
+}
+
+/* AO alone from HBIL in a scene with an environment: the plan takes the
+ * second depth layer (request.depth_layers 0 -> 2, with
+ * TG_DEFAULT_LAYERED_AO_SAMPLES a side) at the radius AO has on one layer,
+ * in the memory of one layer (the layer is a byte a pixel, and the
+ * filtered AO lives in those bytes once the kernel has read them,
+ * layout.c), and meets issue 14's AO goal on
+ * builtin:spheres at 160x120 where one layer does not: measured against
+ * 4096 directions 0.026 / +0.003, one layer 0.047 / -0.003 (both number
+ * types); here against 256 directions, whose noise adds to both.  Light,
+ * a closed room, quarter resolution and an asked layer count keep theirs. */
+TEST(ao_alone_takes_a_second_layer_in_the_open)
+{
+    const char *spheres = tg_builtin_scene("spheres"), *cornell = tg_builtin_scene("cornell");
+    tg_request q = request(160, 120, AOVBIT(TG_AOV_AO) | AOVBIT(TG_AOV_DEPTH)), one;
+    rendered r;
+    double *ref, *aliased, *kept, r2, b2, r1, b1;
+    size_t bytes_two, bytes_one;
+    tg_real radius_two, radius_one;
+    int i, differ = 0;
+    if (!setup_checked(&r, spheres, &q, "AO alone")) return;
+    CHECK(r.plan.request.depth_layers == (TGI_DEPTH_LAYERS ? 2 : 1), "spheres, AO alone: %d layers",
+          r.plan.request.depth_layers);
+    if (!TGI_DEPTH_LAYERS) { teardown(&r); return; }
+    CHECK(r.plan.request.samples == TG_DEFAULT_LAYERED_AO_SAMPLES, "samples %d", r.plan.request.samples);
+    bytes_two = r.plan.total_bytes;
+    radius_two = r.plan.request.radius;
+    teardown(&r);
+    one = q;
+    one.depth_layers = 1;
+    if (!setup_checked(&r, spheres, &one, "AO alone, one layer")) return;
+    bytes_one = r.plan.total_bytes;
+    radius_one = r.plan.request.radius;
+    teardown(&r);
+    CHECK(radius_two == radius_one, "the radius AO has on one layer: %g, %g", check_d(radius_two), check_d(radius_one));
+    CHECK(bytes_two == bytes_one, "no more memory than one layer (the layer's byte a pixel is the filtered "
+          "AO's): %.0f against %.0f", (double)bytes_two, (double)bytes_one);
+    {   /* what keeps one layer */
+        static const struct { const char *what; int scene_cornell, color, quarter, layers; } keep[] = {
+            { "with colour", 0, 1, 0, 0 }, { "a closed room", 1, 0, 0, 0 }, { "quarter resolution", 0, 0, 1, 0 },
+            { "one layer asked", 0, 0, 0, 1 } };
+        size_t k;
+        for (k = 0; k < sizeof keep / sizeof keep[0]; k++) {
+            tg_request c = q;
+            if (keep[k].color) c.aovs |= AOVBIT(TG_AOV_COLOR);
+            if (keep[k].quarter) c.gi_scale = 2;
+            c.depth_layers = keep[k].layers;
+            if (!setup_checked(&r, keep[k].scene_cornell ? cornell : spheres, &c, keep[k].what)) continue;
+            CHECK(r.plan.request.depth_layers == 1, "%s: %d layers", keep[k].what, r.plan.request.depth_layers);
+            teardown(&r);
+        }
+    }
+    /* the filtered AO in the layer's bytes is the AO kept apart (with the
+     * bent normal asked the results take their own plane) */
+    q.frames = 3;
+    {
+        tg_request bent = q;
+        bent.aovs |= AOVBIT(TG_AOV_BENT);
+        bent.depth_layers = 2;
+        bent.samples = TG_DEFAULT_LAYERED_AO_SAMPLES;
+        aliased = NULL;
+        if (setup_checked(&r, spheres, &q, "AO alone, 3 frames")) {
+            for (i = 0; i < 3; i++) tg_frame_render(r.frame, i, NULL);
+            aliased = read_aov(&r, TG_AOV_AO);
+            teardown(&r);
+        }
+        if (aliased && setup_checked(&r, spheres, &bent, "AO and bent, 3 frames")) {
+            for (i = 0; i < 3; i++) tg_frame_render(r.frame, i, NULL);
+            kept = read_aov(&r, TG_AOV_AO);
+            for (i = 0; i < 160 * 120; i++) differ += aliased[i] != kept[i];
+            CHECK(differ == 0, "%d AO pixels differ from the results kept in their own plane", differ);
+            free(kept);
+            teardown(&r);
+        }
+        free(aliased);
+    }
+    /* against the reference */
+    q.frames = 8;
+    {
+        tg_request rq = request(160, 120, AOVBIT(TG_AOV_AO) | AOVBIT(TG_AOV_DEPTH));
+        rq.technique = TG_TECH_REFERENCE;
+        rq.samples = 256;
+        rq.radius = radius_one;
+        if (!setup_checked(&r, spheres, &rq, "reference")) return;
+        CHECK(tg_frame_render(r.frame, 0, NULL) == TG_OK, "the reference renders");
+        ref = read_aov(&r, TG_AOV_AO);
+        teardown(&r);
+    }
+    ao_against(spheres, q, ref, &r2, &b2);
+    one.frames = 8;
+    ao_against(spheres, one, ref, &r1, &b1);
+    printf("# hbil on spheres 160x120, AO alone, 8 frames, against the reference (256 directions): the plan's two "
+           "layers %.4f / %+.4f, one layer %.4f / %+.4f\n", r2, b2, r1, b1);
+    CHECK(r2 <= 0.04 && fabs(b2) <= 0.01, "two layers: RMSE %g, bias %g", r2, b2);
+    CHECK(r2 < 0.75 * r1, "two layers %g against one layer %g", r2, r1);
+    free(ref);
 }
 
 TEST(gtao_multibounce_fit)
@@ -391,6 +488,7 @@ int main(void)
     RUN(reference_ao_does_not_depend_on_the_image_size);
     RUN(hbil_over_depth_layers_against_the_reference);
     RUN(quarter_over_depth_layers_against_the_reference);
+    RUN(ao_alone_takes_a_second_layer_in_the_open);
     RUN(gtao_multibounce_fit);
     RUN(ao_multibounce_option_applies_the_fit_to_the_ao_output);
     RUN(pathtrace_furnace_through_the_frame);

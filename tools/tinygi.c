@@ -102,14 +102,17 @@ static void print_help(FILE *out)
         "                    ssilvb (default hbil; pathtrace: the path-traced ground\n"
         "                    truth; ssilvb: GTAO's slices with a visibility bitmask)\n"
         "  --slices N        horizon slices per pixel, 1..%d (default %d)\n"
-        "  --samples N       samples per slice, 1..%d (default %d; pathtrace: paths\n"
-        "                    per pixel, default %d)\n"
+        "  --samples N       samples per slice, 1..%d (default %d; %d for hbil's AO\n"
+        "                    alone over depth layers at every pixel; pathtrace:\n"
+        "                    paths per pixel, default %d)\n"
         "  --radius R        gather radius in world units, 0..%d (default %d)\n"
         "  --thickness T     ssilvb: surface thickness behind the depth buffer, world\n"
         "                    units, 0..%d (default: the radius / %d)\n"
         "  --depth-layers N  ssilvb and hbil, 1..%d: 2 also keeps the nearest back\n"
         "                    face's depth, where a closed object ends, 3 also the\n"
-        "                    surface behind it (default 1: the depth buffer alone);\n"
+        "                    surface behind it; 1 the depth buffer alone (default:\n"
+        "                    2 for --aov ao, bent or cone alone from hbil in a scene\n"
+        "                    with an env, else 1; --explain prints it);\n"
         "                    hbil's kernel then is the visibility bitmask (with\n"
         "                    --gi-quarter on the half-resolution image)\n"
         "  --bounces N       light bounces, 0..%d (default %d; pathtrace: the most\n"
@@ -123,7 +126,8 @@ static void print_help(FILE *out)
         "  --threads N       threads that share each pass's rows, 1..%d (default: the\n"
         "                    processors, here %d); the image is the same for every N\n",
         TG_DEFAULT_WIDTH, TG_DEFAULT_HEIGHT, TG_MAX_IMAGE_SIDE, (long)TG_MAX_IMAGE_PIXELS,
-        TG_MAX_FRAMES, TG_MAX_SLICES, TG_DEFAULT_SLICES, TG_MAX_SAMPLES, TG_DEFAULT_SAMPLES, TG_DEFAULT_PATHTRACE_SAMPLES,
+        TG_MAX_FRAMES, TG_MAX_SLICES, TG_DEFAULT_SLICES, TG_MAX_SAMPLES, TG_DEFAULT_SAMPLES, TG_DEFAULT_LAYERED_AO_SAMPLES,
+        TG_DEFAULT_PATHTRACE_SAMPLES,
         TG_MAX_RADIUS, TG_DEFAULT_RADIUS, TG_MAX_THICKNESS, TG_THICKNESS_RADIUS_DIVISOR, TG_MAX_DEPTH_LAYERS, TG_MAX_BOUNCES, TG_DEFAULT_BOUNCES, TG_DEFAULT_PATHTRACE_BOUNCES, TG_MAX_EXPOSURE,
         TG_MIN_SHADOW_MAP, TG_MAX_SHADOW_MAP, TG_MAX_THREADS, tgp_cores());
     fprintf(out,

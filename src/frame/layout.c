@@ -65,6 +65,7 @@ static void *take(layout *l, const char *name, size_t count, size_t elem)
 #define FMT_BENT "3 x tg_real"
 #define FMT_PREV "tg_real depth and normal"
 #define FMT_BACK "tg_real"
+#define FMT_BEHIND "tg_real"
 #else
 #define FMT_G "32-bit float depth (0: sky); octahedral 2x11 normal + 10-bit material index"
 #define FMT_G_GEOMETRY "32-bit float depth (0: sky); octahedral 2x8 normal"
@@ -72,7 +73,8 @@ static void *take(layout *l, const char *name, size_t count, size_t elem)
 #define FMT_AO "8 bits"
 #define FMT_BENT "octahedral 2x8"
 #define FMT_PREV "16-bit float depth + octahedral 2x8 normal"
-#define FMT_BACK "32-bit float, 0: none"
+#define FMT_BACK "8-bit log code of the depth behind the surface's, 0: none"
+#define FMT_BEHIND "32-bit float, 0: none"
 #endif
 
 static tg_real *take_real(layout *l, const char *name, size_t n)
@@ -183,7 +185,7 @@ static void group_gbuffer(layout *l, tg_frame *f)
         f->gb.back_depth = (void *)take(l, "G-buffer back-face depth, the second layer [" FMT_BACK "]", f->pixels,
                                         sizeof *f->gb.back_depth);
     if (f->request.depth_layers >= 3)
-        f->gb.behind_depth = (void *)take(l, "G-buffer depth behind the back face, the third layer [" FMT_BACK "]",
+        f->gb.behind_depth = (void *)take(l, "G-buffer depth behind the back face, the third layer [" FMT_BEHIND "]",
                                           f->pixels, sizeof *f->gb.behind_depth);
 #endif
 }
@@ -323,7 +325,7 @@ static void group_half(layout *l, tg_frame *f)
         f->half.back_depth = (void *)take(l, "quarter-res back-face depth, the second layer [" FMT_BACK "]", n,
                                           sizeof *f->half.back_depth);
     if (f->request.depth_layers >= 3)
-        f->half.behind_depth = (void *)take(l, "quarter-res depth behind the back face, the third layer [" FMT_BACK "]",
+        f->half.behind_depth = (void *)take(l, "quarter-res depth behind the back face, the third layer [" FMT_BEHIND "]",
                                             n, sizeof *f->half.behind_depth);
 #endif
 }
@@ -378,6 +380,19 @@ static void group_color(layout *l, tg_frame *f)
     int ao = wants_aov(f, TG_AOV_AO) || wants_aov(f, TG_AOV_CONE), bent = !TG_NO_BENT_NORMALS && wants_aov(f, TG_AOV_BENT);
     int near = wants_aov(f, TG_AOV_NEAR) && near_field(f);
     if (!resolves_into_planes(f) || !(ao || bent || near)) return;
+#if TGI_DEPTH_LAYERS && !TG_WIDE_STORAGE
+    /* AO alone over further depth layers at every pixel: the filtered AO
+     * (8 bits a pixel) in the second layer's bytes (8-bit codes), which
+     * only the kernel reads, a pass before the resolve writes them (the
+     * next frame's rasterizer draws the layer anew): AO-only frames take
+     * the second layer for 1 byte a pixel */
+    if (!bent && !near && f->request.depth_layers >= 2 && f->request.gi_scale == 1) {
+        note_buffer(l->plan, "filtered AO, in the second layer's bytes once the kernel has read them [" FMT_AO "]", 0);
+        if (l->arena && f->gb.back_depth) tgi_gresult_carve(&f->out, f->pixels, 0, 0, 0, f->gb.back_depth);
+        else if (l->arena) l->overflow = 1;
+        return;
+    }
+#endif
     take_results(l, &f->out, f->pixels, bent, near, "filtered results for the AOVs asked [" FMT_AO ", " FMT_BENT ", " FMT_RGB "]");
     if (!ao) f->out.ao = NULL;
 }

@@ -150,28 +150,51 @@ int tgi_request_refused(const tg_request *r, tg_error *err)
  * the screen bounds the march).  With an environment, directions with
  * nothing within the radius see the sky instead, and the environment's
  * ground where the scene's own lit floor is what a path would meet.  For
- * AO alone on one depth layer a local radius (diagonal /
- * TG_RADIUS_ENV_DIVISOR) keeps a foreground object from occluding, in the
- * depth buffer, what lies far behind it.  Light reaches further (diagonal
- * / TG_RADIUS_LIGHT_DIVISOR): where a foreground object is taken as solid
- * the direction sends that object's own light in place of the sky's, an
- * error far smaller than an AO of 0 for 1, while a local radius takes the
- * environment's ground for every lit surface beyond it (builtin:groove's
- * wall, lit by the floor in front of it: colour RMSE 0.080 -> 0.056
- * against the path tracer; spheres 0.043 -> 0.055, both sizes alike;
- * README "Colour against the path tracer").  Over further depth layers
- * what lies behind an object is held, and AO reaches as far (README "HBIL
- * over further depth layers"); off-screen occluders are what a longer
- * radius then misses.  A scene without extent gets TG_DEFAULT_RADIUS. */
+ * AO alone a local radius (diagonal / TG_RADIUS_ENV_DIVISOR), on one depth
+ * layer or more (what AO means, the ray-traced reference's cut-off, does
+ * not change with the layers a frame reads): on one it keeps a foreground
+ * object from occluding, in the depth buffer, what lies far behind it.
+ * Light reaches further (diagonal / TG_RADIUS_LIGHT_DIVISOR): where a
+ * foreground object is taken as solid the direction sends that object's
+ * own light in place of the sky's, an error far smaller than an AO of 0
+ * for 1, while a local radius takes the environment's ground for every lit
+ * surface beyond it (builtin:groove's wall, lit by the floor in front of
+ * it: colour RMSE 0.080 -> 0.056 against the path tracer; spheres 0.043 ->
+ * 0.055, both sizes alike; README "Colour against the path tracer").  A
+ * scene without extent gets TG_DEFAULT_RADIUS. */
 #define LIGHT_AOVS ((1u << TG_AOV_COLOR) | (1u << TG_AOV_IRRADIANCE) | (1u << TG_AOV_NEAR) | (1u << TG_AOV_FAR))
+#define AO_AOVS ((1u << TG_AOV_AO) | (1u << TG_AOV_BENT) | (1u << TG_AOV_CONE))
 static tg_real scene_gather_radius(const tg_scene *s, const tg_request *r)
 {
     tg_real d = tgi_v3_length(tgi_v3_sub(s->bounds_max, s->bounds_min));
     if (d <= 0) return tg_from_int(TG_DEFAULT_RADIUS);
     if (s->env.type != TG_ENV_NONE)
-        d = tg_div(d, tg_from_int(r->depth_layers >= 2 || (r->aovs & LIGHT_AOVS) ? TG_RADIUS_LIGHT_DIVISOR
-                                                                                  : TG_RADIUS_ENV_DIVISOR));
+        d = tg_div(d, tg_from_int(r->aovs & LIGHT_AOVS ? TG_RADIUS_LIGHT_DIVISOR : TG_RADIUS_ENV_DIVISOR));
     return tg_min(d, tg_from_int(TG_MAX_RADIUS));
+}
+
+/* AO alone (ao, bent, cone; no light) from HBIL at every pixel. */
+static int hbil_ao_alone(const tg_request *r)
+{
+    return (r->aovs & AO_AOVS) && !(r->aovs & LIGHT_AOVS) && r->technique == TG_TECH_HBIL && r->gi_scale == 1;
+}
+
+/* The depth layers of a request that leaves them to the plan (0): two for
+ * HBIL's AO alone at every pixel in a scene with an environment, where AO
+ * decides how much sky a surface sees and one layer takes the ground
+ * hidden behind every closed object as solid (builtin:spheres at 160x120,
+ * AO RMSE against the ray-traced reference 0.047 -> 0.026, columns 0.052
+ * -> 0.033; README "Depth layers for AO alone"), at no memory (the second
+ * layer's 8-bit codes hold the filtered AO once the kernel has read them:
+ * layout.c group_color) for about twice the instructions; one otherwise:
+ * light meets its goals on one layer at a third of the cost, in a closed
+ * room the layers add nothing (builtin:cornell 0.028 -> 0.029),
+ * --gi-quarter is the cheap setting, and a build without the layers
+ * (TG_NO_TECHNIQUES) has one. */
+static int planned_depth_layers(const tg_request *r, const tg_scene *s)
+{
+    int ao_wanted = s->effects_auto || (s->effects & TG_EFFECT_AO);
+    return TGI_DEPTH_LAYERS && hbil_ao_alone(r) && ao_wanted && s->env.type != TG_ENV_NONE ? 2 : 1;
 }
 
 /* Unset GI settings from the scene's gi line, else the defaults (the
@@ -184,8 +207,11 @@ int tgi_request_resolve(tg_request *r, const tg_scene *s, tg_error *err)
         if (r->bounces < 0) r->bounces = TG_DEFAULT_PATHTRACE_BOUNCES;
     }
     if (r->slices <= 0) r->slices = s->gi.slices > 0 ? s->gi.slices : TG_DEFAULT_SLICES;
-    if (r->samples <= 0) r->samples = s->gi.samples > 0 ? s->gi.samples : TG_DEFAULT_SAMPLES;
     if (r->aovs == 0) r->aovs = 1u << TG_AOV_COLOR;
+    if (r->depth_layers == 0) r->depth_layers = planned_depth_layers(r, s);
+    if (r->samples <= 0)   /* the bitmask over layers counts a sample's whole segment: fewer for AO */
+        r->samples = s->gi.samples > 0 ? s->gi.samples
+                     : hbil_ao_alone(r) && r->depth_layers >= 2 ? TG_DEFAULT_LAYERED_AO_SAMPLES : TG_DEFAULT_SAMPLES;
     if (r->radius == UNSET_RADIUS) r->radius = s->gi.radius >= 0 ? s->gi.radius : scene_gather_radius(s, r);
     if (r->bounces < 0) r->bounces = s->gi.bounces >= 0 ? s->gi.bounces : TG_DEFAULT_BOUNCES;
     if (r->thickness == UNSET_RADIUS) r->thickness = tg_div(r->radius, tg_from_int(TG_THICKNESS_RADIUS_DIVISOR));

@@ -55,9 +55,10 @@ typedef struct tgi_gbuffer {
 #if TGI_DEPTH_LAYERS && TG_WIDE_STORAGE
     tg_real *back_depth, *behind_depth;
 #elif TGI_DEPTH_LAYERS
-    uint32_t *back_depth;         /* the second depth layer: view depth of the nearest back
-                                     face (binary32 bits, as depth); 0 where none; NULL
-                                     unless planned (request.depth_layers >= 2) */
+    uint8_t *back_depth;          /* the second depth layer: view depth of the nearest back
+                                     face at or behind the pixel's surface, as an 8-bit code
+                                     against its depth (tgi_back_code, pack.h); 0 where none;
+                                     NULL unless planned (request.depth_layers >= 2) */
     uint32_t *behind_depth;       /* the third: the nearest surface behind that back face
                                      (request.depth_layers 3); 0 where none */
 #endif

@@ -82,10 +82,10 @@ static inline int tgi_gv_material_index(const tgi_gview *v, size_t i)
 }
 #endif
 /* The second depth layer (request.depth_layers 2): the view depth of the
- * nearest back face at the pixel (a one-sided triangle facing away, or
- * either face of a twosided one), where a closed object the depth buffer
- * sees ends; 0 where no back face was drawn or the frame has no second
- * layer. */
+ * nearest back face at or behind the pixel's surface (a one-sided triangle
+ * facing away, or either face of a twosided one: then the surface's own
+ * depth), where a closed object the depth buffer sees ends; 0 where no back
+ * face was drawn or the frame has no second layer. */
 #if !TGI_DEPTH_LAYERS
 #define TGI_LAYER_DEPTH(v, plane, i) ((void)(v), (void)(i), (tg_real)0)   /* left out (gbuffer.h) */
 #elif TG_WIDE_STORAGE
@@ -93,7 +93,14 @@ static inline int tgi_gv_material_index(const tgi_gview *v, size_t i)
 #else
 #define TGI_LAYER_DEPTH(v, plane, i) ((v)->store.plane ? tgi_depth_unpack((v)->store.plane[i]) : 0)
 #endif
+#if TGI_DEPTH_LAYERS && !TG_WIDE_STORAGE   /* an 8-bit code against the pixel's depth (pack.h) */
+static inline tg_real tgi_gv_back_depth(const tgi_gview *v, size_t i)
+{
+    return v->store.back_depth ? tgi_back_decode(v->store.back_depth[i], tgi_gv_depth(v, i)) : 0;
+}
+#else
 static inline tg_real tgi_gv_back_depth(const tgi_gview *v, size_t i) { return TGI_LAYER_DEPTH(v, back_depth, i); }
+#endif
 /* The third (request.depth_layers 3): the view depth of the nearest
  * surface (either facing) behind that back face, where the space a closed
  * object's back leaves open ends (the floor under a sphere); 0 where none. */

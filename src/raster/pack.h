@@ -85,6 +85,70 @@ static inline float tgi_abs_bits(float v)
 }
 #endif
 
+/* ---- the second depth layer: the back face's depth against the pixel's ---- */
+/* The nearest back face behind a pixel's surface, z_b >= z_f > 0 (the
+ * G-buffer's second depth layer, request.depth_layers >= 2), in 8 bits:
+ * the relative depth t = z_b / z_f - 1 on a log scale, code 2 + 16 o + m
+ * for t = 2^(o - 10) (1 + m / 16), o and m in 0..15, rounded to the
+ * nearest m (a step is 1/16 to 1/32 of t: a thickness at most 3.2% off);
+ * 1 a sheet (z_b = z_f, a twosided surface's own back face), 0 none.  A
+ * layer thinner than 2^-10 z_f takes the smallest code, one thicker than
+ * 58 z_f (code 255) the largest (the bitmask takes 64 radii behind as
+ * infinite).  The codes order as the depths for one z_f (the nearest back
+ * face is the smallest code); float and Q16.16 may round a t at a step's
+ * middle apart, as their depths do. */
+#define TGI_BACK_NONE 0u
+#define TGI_BACK_SHEET 1u
+#define TGI_BACK_LAST 255u
+static inline uint8_t tgi_back_code(tg_real zf, tg_real zb)
+{
+    int o, m;
+    if (!(zf > 0) || !(zb >= zf)) return TGI_BACK_NONE;
+    if (zb == zf) return TGI_BACK_SHEET;
+#if TG_FIXED
+    {
+        const uint32_t v = (uint32_t)tg_div(tg_sub(zb, zf), zf);   /* t, saturated */
+        int top;
+        if (v < 64u) return 2;                                      /* t < 2^-10 */
+        top = tgi_bit_length64(v) - 1;                              /* 6..30 */
+        o = top - 6;
+        m = (int)(((((uint64_t)v - ((uint64_t)1 << top)) << 4) + ((uint64_t)1 << (top - 1))) >> top);
+    }
+#else
+    {
+        tgi_f32_bits b;
+        int e;
+        b.f = (zb - zf) / zf;
+        e = (int)((b.u >> 23) & 0xFFu) - 127;
+        if (e < -10) return 2;
+        o = e + 10;
+        m = (int)(((b.u & 0x7FFFFFu) + (1u << 18)) >> 19);
+    }
+#endif
+    if (m == 16) { m = 0; o++; }
+    if (o > 15 || (o == 15 && m > 13)) return TGI_BACK_LAST;
+    return (uint8_t)(2 + 16 * o + m);
+}
+/* z_b of code c at a pixel of depth zf > 0 (0: none). */
+static inline tg_real tgi_back_decode(uint8_t c, tg_real zf)
+{
+    int k, o, m;
+    if (c == TGI_BACK_NONE) return 0;
+    if (c == TGI_BACK_SHEET) return zf;
+    k = c - 2;
+    o = k >> 4;
+    m = k & 15;
+#if TG_FIXED
+    return tg_add(zf, tg_mul(zf, (tg_real)((int32_t)(16 + m) << (o + 2))));   /* t = (16 + m) 2^(o - 14) */
+#else
+    {
+        tgi_f32_bits t;
+        t.u = ((uint32_t)(o - 10 + 127) << 23) | ((uint32_t)m << 19);       /* exactly 2^(o - 10) (1 + m/16) */
+        return zf + zf * t.f;
+    }
+#endif
+}
+
 /* ---- octahedral unit vectors ---- */
 
 /* Quantize one octahedral coordinate p in [-1, 1] (as num / den, |num| <= den)

@@ -451,8 +451,11 @@ typedef struct depth_out {
     uint16_t *d16;
 #if TGI_RASTER_BACK_LAYER && TG_WIDE_STORAGE
     tg_real *back, *behind;
+    const tg_real *front;         /* the G-buffer's depth, final before the back faces are drawn */
 #elif TGI_RASTER_BACK_LAYER
-    uint32_t *back, *behind;      /* behind: kept only beyond back[i] (the third layer) */
+    uint8_t *back;                /* codes against front[i] (tgi_back_code) */
+    uint32_t *behind;             /* kept only beyond back[i]'s code (the third layer) */
+    const uint32_t *front;        /* the G-buffer's depth, final before the back faces are drawn */
 #endif
     tg_real lo;
 #if TG_FIXED
@@ -495,15 +498,18 @@ static inline void depth_keep(const depth_out *o, size_t i, tg_real z)
 #if TG_WIDE_STORAGE
         if (o->back[i] > 0 && z > o->back[i] && (!(o->behind[i] > 0) || z < o->behind[i])) o->behind[i] = z;
 #else
+        /* beyond the back face's code (not the back face itself, drawn again here) */
         uint32_t zb = tgi_depth_pack(z);   /* binary32 words order like the depths */
-        if (o->back[i] && zb > o->back[i] && (!o->behind[i] || zb < o->behind[i])) o->behind[i] = zb;
+        if (o->back[i] && tgi_back_code(tgi_depth_unpack(o->front[i]), z) > o->back[i] &&
+            (!o->behind[i] || zb < o->behind[i]))
+            o->behind[i] = zb;
 #endif
-    } else if (o->back) {
+    } else if (o->back) {   /* the nearest back face at or behind the surface */
 #if TG_WIDE_STORAGE
-        if (!(o->back[i] > 0) || z < o->back[i]) o->back[i] = z;
+        if (o->front[i] > 0 && z >= o->front[i] && (!(o->back[i] > 0) || z < o->back[i])) o->back[i] = z;
 #else
-        uint32_t zb = tgi_depth_pack(z);
-        if (!o->back[i] || zb < o->back[i]) o->back[i] = zb;
+        uint8_t c = tgi_back_code(tgi_depth_unpack(o->front[i]), z);
+        if (c != TGI_BACK_NONE && (o->back[i] == TGI_BACK_NONE || c < o->back[i])) o->back[i] = c;
 #endif
 #endif
     } else if (z < o->d32[i]) {
@@ -1148,12 +1154,7 @@ static void gbuffer_triangle(raster_target *rt, tri_vertices *tv, const tgi_rast
     if (tv->flags & V_INSIDE) {
         area2 = signed_area2(tv->sx, tv->sy);
         front = area2 < 0;                        /* counter-clockwise as seen, y down */
-        if (area2 == 0 || (!front && !twosided)) {   /* zero area, culled */
-#if TGI_RASTER_BACK_LAYER
-            if (area2 != 0 && rt->dout.back) back_triangle(rt, tv, front, area2);   /* a back face */
-#endif
-            return;
-        }
+        if (area2 == 0 || (!front && !twosided)) return;   /* zero area, culled */
     }
     rt->material = mesh->tri_material[t];
     rt->cull_back = !twosided;
@@ -1165,10 +1166,27 @@ static void gbuffer_triangle(raster_target *rt, tri_vertices *tv, const tgi_rast
                      front ? -area2 : area2, !front && twosided);
     else
         draw_clip_tri(rt, tv->v, rt->tri_nrm);
-#if TGI_RASTER_BACK_LAYER
-    if (rt->dout.back && (twosided || !(tv->flags & V_INSIDE))) back_triangle(rt, tv, front, area2);
-#endif
 }
+
+#if TGI_RASTER_BACK_LAYER
+/* Triangle t into the back-face layer, once the depth buffer is final: a
+ * one-sided triangle facing away, either face of a twosided one, a
+ * clipped one (the clipper culls its front faces). */
+static void back_face_triangle(raster_target *rt, tri_vertices *tv, const tgi_raster_mesh *mesh, int t)
+{
+    int twosided, front = 0;
+    int64_t area2 = 0;
+    if (tv->flags & V_OFF_SIDE) return;
+    twosided = mesh->materials[mesh->tri_material[t]].twosided;
+    rt->cull_back = !twosided;
+    if (tv->flags & V_INSIDE) {
+        area2 = signed_area2(tv->sx, tv->sy);
+        front = area2 < 0;
+        if (area2 == 0 || (front && !twosided)) return;   /* zero area; a front face */
+    }
+    back_triangle(rt, tv, front, area2);
+}
+#endif
 
 void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_mesh *mesh, int y0, int y1)
 {
@@ -1182,9 +1200,6 @@ void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_
     rt.clip.znear = view->znear > 0 ? view->znear : TG_EPS;
     rt.clip.zfar = view->zfar > rt.clip.znear ? view->zfar : tg_add(rt.clip.znear, TG_ONE);
     rt.gb = gb;
-#if TGI_RASTER_BACK_LAYER
-    rt.dout.back = gb->back_depth;
-#endif
     vf.eye = view->eye;
     vf.rx = tgi_v3_scale(view->right, view->focal_x);
     vf.ry = tgi_v3_scale(view->up, view->focal_y);
@@ -1198,9 +1213,19 @@ void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_
         gbuffer_triangle(&rt, &tv, mesh, t);
     }
 #if TGI_RASTER_BACK_LAYER
+    /* the second layer, once these rows' depth is final: the back faces at
+     * or behind it */
+    if (!gb->back_depth) return;
+    rt.dout.back = gb->back_depth;
+    rt.dout.front = gb->depth;
+    for (t = 0; t < mesh->tri_count; t++) {
+        tri_vertices tv;
+        triangle_fetch(&cache, &rt, &vf, mesh, t, &tv);
+        back_face_triangle(&rt, &tv, mesh, t);
+    }
     /* the third layer, once these rows' back faces are all drawn: every
      * triangle, either facing, beyond the back face */
-    if (!gb->behind_depth || !gb->back_depth) return;
+    if (!gb->behind_depth) return;
     rt.dout.behind = gb->behind_depth;
     rt.cull_back = 0;
     for (t = 0; t < mesh->tri_count; t++) {
