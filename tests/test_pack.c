@@ -5,6 +5,7 @@
  * wrapping, nothing non-finite; the G-buffer of a frame that reads no
  * material (gview.h): 6 bytes a pixel, the normal within 2x8's step.
  */
+#include <math.h>
 #include <stdlib.h>
 #include "check.h"
 #include "raster/gview.h"
@@ -120,6 +121,57 @@ static void oct_round_trip(int bits, double max_deg)
     }
     CHECK(worst <= max_deg, "2x%d: worst angle %.4f deg (bound %.4f)", bits, worst, max_deg);
     CHECK(worst_len <= 1e-4, "2x%d: decoded length off by %.3g", bits, worst_len);
+}
+
+/* The second depth layer's 8-bit code (tgi_back_code): a back face behind
+ * the pixel's depth z_f comes back within half a step of its thickness
+ * (1/32 of t = z_b / z_f - 1, plus the number type's rounding), the codes
+ * order as the depths, z_b = z_f is a sheet (returned exactly), a face in
+ * front of the surface or a pixel of sky has none, and thicknesses past
+ * the range take its ends; the same codes in both builds (away from a
+ * step's middle). */
+TEST(back_face_code)
+{
+    static const double zfs[] = { 0.05, 0.3, 1.0, 7.5, 120.0, 900.0 };
+    size_t k;
+    int i, worse = 0, disorder = 0;
+    double worst = 0;
+    for (k = 0; k < sizeof zfs / sizeof zfs[0]; k++) {
+        tg_real zf = rv(zfs[k]);
+        uint8_t last = TGI_BACK_SHEET;
+        CHECK(tgi_back_code(zf, zf) == TGI_BACK_SHEET && tgi_back_decode(TGI_BACK_SHEET, zf) == zf,
+              "z_f %g: a sheet is its own depth", zfs[k]);
+        CHECK(tgi_back_code(zf, rv(zfs[k] * 0.9)) == TGI_BACK_NONE && tgi_back_code(0, zf) == TGI_BACK_NONE &&
+              tgi_back_decode(TGI_BACK_NONE, zf) == 0, "z_f %g: in front of the surface or on sky, none", zfs[k]);
+        for (i = 0; i <= 400; i++) {
+            double t = pow(2.0, -9.0 + 14.5 * i / 400.0), zb = dv(zf) * (1 + t);   /* 2^-9 .. 2^5.5 */
+            tg_real zbr = rv(zb);
+            uint8_t c;
+            double got, want, err, tol;
+            if (TG_FIXED && zb > 30000) break;   /* Q16.16's range */
+            c = tgi_back_code(zf, zbr);
+            got = dv(tgi_back_decode(c, zf));
+            want = dv(zbr);
+            err = fabs(got - want) / (want - dv(zf));   /* relative to the thickness */
+            tol = 1.0 / 32 + (TG_FIXED ? 4.0 / 65536 / (want - dv(zf)) + 1e-3 : 1e-5);
+            if (err > tol) { if (worse < 4) printf("# z_f %g t %g: code %d gives %g for %g\n", zfs[k], t, c, got, want); worse++; }
+            if (err > worst && zb - dv(zf) > 1e-2) worst = err;
+            if (c < last) disorder++;
+            last = c;
+        }
+    }
+    CHECK(worse == 0, "%d decoded back faces off by more than half a step", worse);
+    CHECK(disorder == 0, "%d codes out of order", disorder);
+    CHECK(worst > 0.005 && worst < 1.0 / 32 + 1e-3, "worst relative thickness error %g", worst);
+    /* past the range: the ends */
+    CHECK(tgi_back_code(TG_ONE, rv(1.0 + 1e-4)) == 2, "thinner than 2^-10: the smallest code, got %d",
+          tgi_back_code(TG_ONE, rv(1.0 + 1e-4)));
+    CHECK(tgi_back_code(TG_ONE, rv(200.0)) == TGI_BACK_LAST, "thicker than 58 z_f: the largest code");
+    CHECK(fabs(dv(tgi_back_decode(TGI_BACK_LAST, TG_ONE)) - 59.0) < 1e-3, "the largest code: t = 58, got z_b %g",
+          dv(tgi_back_decode(TGI_BACK_LAST, TG_ONE)));
+    /* the same code in both builds: t = 0.3 and 3 at z_f 2 (not at a step's middle) */
+    CHECK(tgi_back_code(rv(2.0), rv(2.6)) == 2 + 16 * 8 + 3 && tgi_back_code(rv(2.0), rv(8.0)) == 2 + 16 * 11 + 8,
+          "codes %d %d", tgi_back_code(rv(2.0), rv(2.6)), tgi_back_code(rv(2.0), rv(8.0)));
 }
 
 TEST(octahedral_normals)
@@ -340,6 +392,7 @@ int main(void)
 #if TG_FIXED
     RUN(depth_unpack_every_word);
 #endif
+    RUN(back_face_code);
     RUN(octahedral_normals);
     RUN(octahedral_unpack_matches_oracle);
     RUN(shared_exponent_rgb);
