@@ -173,11 +173,13 @@ static tg_real scene_gather_radius(const tg_scene *s, const tg_request *r)
     return tg_min(d, tg_from_int(TG_MAX_RADIUS));
 }
 
+#if TGI_DEPTH_LAYERS
 /* AO alone (ao, bent, cone; no light) from HBIL at every pixel. */
 static int hbil_ao_alone(const tg_request *r)
 {
     return (r->aovs & AO_AOVS) && !(r->aovs & LIGHT_AOVS) && r->technique == TG_TECH_HBIL && r->gi_scale == 1;
 }
+#endif
 
 /* The depth layers of a request that leaves them to the plan (0): two for
  * HBIL's AO alone at every pixel in a scene with an environment, where AO
@@ -191,11 +193,13 @@ static int hbil_ao_alone(const tg_request *r)
  * room the layers add nothing (builtin:cornell 0.028 -> 0.029),
  * --gi-quarter is the cheap setting, and a build without the layers
  * (TG_NO_TECHNIQUES) has one. */
+#if TGI_DEPTH_LAYERS
 static int planned_depth_layers(const tg_request *r, const tg_scene *s)
 {
     int ao_wanted = s->effects_auto || (s->effects & TG_EFFECT_AO);
-    return TGI_DEPTH_LAYERS && hbil_ao_alone(r) && ao_wanted && s->env.type != TG_ENV_NONE ? 2 : 1;
+    return hbil_ao_alone(r) && ao_wanted && s->env.type != TG_ENV_NONE ? 2 : 1;
 }
+#endif
 
 /* Unset GI settings from the scene's gi line, else the defaults (the
  * radius: sized to the scene); then the scene's values are checked like
@@ -208,10 +212,12 @@ int tgi_request_resolve(tg_request *r, const tg_scene *s, tg_error *err)
     }
     if (r->slices <= 0) r->slices = s->gi.slices > 0 ? s->gi.slices : TG_DEFAULT_SLICES;
     if (r->aovs == 0) r->aovs = 1u << TG_AOV_COLOR;
+#if TGI_DEPTH_LAYERS   /* else one layer (0 and 1 alike) */
     if (r->depth_layers == 0) r->depth_layers = planned_depth_layers(r, s);
-    if (r->samples <= 0)   /* the bitmask over layers counts a sample's whole segment: fewer for AO */
-        r->samples = s->gi.samples > 0 ? s->gi.samples
-                     : hbil_ao_alone(r) && r->depth_layers >= 2 ? TG_DEFAULT_LAYERED_AO_SAMPLES : TG_DEFAULT_SAMPLES;
+    if (r->samples <= 0 && s->gi.samples <= 0 && hbil_ao_alone(r) && r->depth_layers >= 2)
+        r->samples = TG_DEFAULT_LAYERED_AO_SAMPLES;   /* the bitmask counts a sample's whole segment */
+#endif
+    if (r->samples <= 0) r->samples = s->gi.samples > 0 ? s->gi.samples : TG_DEFAULT_SAMPLES;
     if (r->radius == UNSET_RADIUS) r->radius = s->gi.radius >= 0 ? s->gi.radius : scene_gather_radius(s, r);
     if (r->bounces < 0) r->bounces = s->gi.bounces >= 0 ? s->gi.bounces : TG_DEFAULT_BOUNCES;
     if (r->thickness == UNSET_RADIUS) r->thickness = tg_div(r->radius, tg_from_int(TG_THICKNESS_RADIUS_DIVISOR));
