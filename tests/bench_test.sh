@@ -69,7 +69,7 @@ expect "every row finite and in range${bad:+: $bad}" test -z "$bad"
 near_techs=$(awk -F, 'NR > 1 && $13 != "" {print $2}' "$T/o/bench.csv" | sort -u | tr '\n' ' ')
 expect "near error for hbil, ssdo, gtao+ir, ssilvb only ($near_techs)" \
     test "$near_techs" = "gtao+ir hbil hbil-1x hbil-3l hbil-full ssdo ssilvb ssilvb-3l "
-for t in hbil hbil-1x hbil-full hbil-3l gtao hbao ssao vo ssdo bentcone ssdo-do gtao+ir ssilvb ssilvb-3l; do
+for t in hbil hbil-1x hbil-full hbil-3l hbil-ao gtao hbao ssao vo ssdo bentcone ssdo-do gtao+ir ssilvb ssilvb-3l; do
     expect "technique $t in the table" grep -q "^[a-z]*,$t," "$T/o/bench.csv"
 done
 
@@ -138,10 +138,10 @@ else
 fi
 expect "bench.svg: <svg ... </svg>" sh -c "head -n 1 '$svg' | grep -q '^<svg' && tail -n 1 '$svg' | grep -q '^</svg>'"
 lines=$(grep -c '<polyline fill="none" stroke="#[0-9a-f]*" stroke-width="2"' "$svg")
-expect "bench.svg: a polyline per technique and number type ($lines)" test "$lines" -eq 24
+expect "bench.svg: a polyline per technique and number type ($lines)" test "$lines" -eq 26
 expect "bench.svg: no NaN/inf coordinates" sh -c "! grep -qi 'nan\|inf' '$svg'"
 
-# contact sheet: 5x3 tiles (twelve techniques and the reference) with 2-pixel borders
+# contact sheet: 5x3 tiles (thirteen techniques and the reference) with 2-pixel borders
 cw=$((5 * W + 12)); ch=$((3 * H + 8))
 ppm="$T/o/contact.ppm"
 expect "contact.ppm header" test "$(head -c 20 "$ppm" | tr '\n' ' ' | cut -d' ' -f1-4)" = "P6 $cw $ch 255"

@@ -363,9 +363,12 @@ typedef struct config {
 
 /* The request's depth layers for a curve: "ssilvb-3l" is the visibility
  * bitmask with the G-buffer's back faces and the surfaces behind them,
- * "hbil-3l" HBIL over them (its kernel that bitmask, at full resolution). */
+ * "hbil-3l" HBIL over them (its kernel that bitmask, at full resolution);
+ * "hbil-ao" HBIL's AO alone as a user gets it, the plan's layers (two in a
+ * scene with an environment) and samples (0: its default); the others one. */
 static int label_layers(const char *label)
 {
+    if (strcmp(label, "hbil-ao") == 0) return 0;
     return strcmp(label, "ssilvb-3l") == 0 || strcmp(label, "hbil-3l") == 0 ? 3 : 1;
 }
 
@@ -380,7 +383,7 @@ static void add(const char *label, tg_technique t, int slices, int samples, doub
     c->interleave = strcmp(label, "hbil-full") != 0;
     c->gi_scale = strcmp(label, "hbil") == 0 ? 2 : 1;
     c->near = near;
-    c->is_default = slices == TG_DEFAULT_SLICES && samples == TG_DEFAULT_SAMPLES && rscale == 1.0;
+    c->is_default = slices == TG_DEFAULT_SLICES && (samples == TG_DEFAULT_SAMPLES || samples == 0) && rscale == 1.0;
     c->on_curve = on_curve;
 }
 
@@ -403,6 +406,9 @@ static void build_sweep(void)
     add("hbil-3l", TG_TECH_HBIL, 1, 8, 1.0, 1, 1);
     add("hbil-3l", TG_TECH_HBIL, 2, 16, 1.0, 1, 1);
     add("hbil-3l", TG_TECH_HBIL, TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES, 1.0, 1, 1);
+    /* HBIL's AO alone as `--aov ao` plans it (no near field asked: the
+     * plan's depth layers and samples) */
+    add("hbil-ao", TG_TECH_HBIL, TG_DEFAULT_SLICES, 0, 1.0, 0, 1);
     for (i = 0; i < 6; i++) add("gtao", TG_TECH_GTAO, ss[i][0], ss[i][1], 1.0, 0, 1);
     for (i = 0; i < 6; i++) add("hbao", TG_TECH_HBAO, ss[i][0], ss[i][1], 1.0, 0, 1);
     for (i = 0; i < 6; i++) add("ssao", TG_TECH_SSAO, 2, ssao_n[i], 1.0, 0, 1);
@@ -1312,10 +1318,10 @@ static int cmp_ms(const void *a, const void *b)
 }
 
 static const char *tech_names[] = { "hbil", "hbil-1x", "hbil-full", "gtao", "hbao", "ssao", "vo", "ssdo", "bentcone",
-                                    "ssilvb", "ssilvb-3l", "hbil-3l" };
+                                    "ssilvb", "ssilvb-3l", "hbil-3l", "hbil-ao" };
 static const char *tech_colors[] = { "#d62728", "#e377c2", "#ff7f0e", "#1f77b4", "#17becf", "#7f7f7f", "#2ca02c", "#9467bd", "#8c564b",
-                                     "#bcbd22", "#393b79", "#8b0000" };
-#define NTECH 12
+                                     "#bcbd22", "#393b79", "#8b0000", "#ff1493" };
+#define NTECH 13
 
 /* An SVG plot W x H on white. */
 static void svg_begin(FILE *f, int W, int H)
