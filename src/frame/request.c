@@ -186,7 +186,7 @@ static int hbil_ao_alone(const tg_request *r)
  * decides how much sky a surface sees and one layer takes the ground
  * hidden behind every closed object as solid (builtin:spheres at 160x120,
  * AO RMSE against the ray-traced reference 0.047 -> 0.026, columns 0.052
- * -> 0.033; README "Depth layers for AO alone"), at no memory (the second
+ * -> 0.033; README "AO alone takes two layers in the open"), at no memory (the second
  * layer's 8-bit codes hold the filtered AO once the kernel has read them:
  * layout.c group_color) for about twice the instructions; one otherwise:
  * light meets its goals on one layer at a third of the cost, in a closed
