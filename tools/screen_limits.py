@@ -12,9 +12,13 @@ For every scene it renders, with BUILD/tinygi (float):
   reference   --technique reference --aov ao: ray-traced AO on the BVH, 256
               directions a pixel, the same cut-off distance as the kernel's
               radius; it sees every surface of the scene, on screen or not;
-  hbil        --aov ao --frames N: the default (4x4-interleaved kernel, 2
-              slices x 32 samples), after N frames of temporal accumulation;
-  one layer   --aov ao --no-interleave --slices 8 --samples 128: the
+  hbil        --aov ao --frames N --depth-layers 1: the default kernel on
+              one depth layer, as a colour frame has it (4x4-interleaved, 2
+              slices x 32 samples), after N frames of temporal accumulation
+              (AO alone in a scene with an environment takes two layers by
+              default, README "AO alone takes two layers in the open");
+  one layer   --aov ao --depth-layers 1 --no-interleave --slices 8
+              --samples 128: the
               full-resolution kernel with 4x the slices and samples a
               side: the horizon over the depth buffer as a height field (each
               pixel's surface taken as infinitely thick), as closely as the
@@ -32,11 +36,10 @@ For every scene it renders, with BUILD/tinygi (float):
               the next surface on; what the hidden surfaces cost one layer;
   depth       --aov depth: the geometry mask (depth 0 is sky).
 
-Over further depth layers a scene without a gi radius gets a longer one
-(its diagonal / 6 with an environment, TG_RADIUS_LIGHT_DIVISOR, against /
-30 on one layer; `--explain` prints it): the two layered columns are
-compared with the reference at their own radius (a second reference run
-where it differs).
+The layered columns are compared with the reference at their own radius
+(`--explain` prints it; a second reference run where it differs: until
+this round's thirteenth session AO over further layers got a longer
+radius, now AO alone has the same over any number of layers).
 
 and reports over the geometry pixels the RMSE and the mean difference
 (bias) of hbil, of one layer, of hbil over three layers and of three
@@ -151,8 +154,8 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     runs = {
         "reference": ["--technique", "reference", "--aov", "ao"],
-        "hbil": ["--aov", "ao", "--frames", str(args.frames)],
-        "one layer": ["--aov", "ao", "--no-interleave", "--slices", "8", "--samples", "128"],
+        "hbil": ["--aov", "ao", "--frames", str(args.frames), "--depth-layers", "1"],
+        "one layer": ["--aov", "ao", "--depth-layers", "1", "--no-interleave", "--slices", "8", "--samples", "128"],
         "hbil three layers": ["--aov", "ao", "--frames", str(args.frames), "--depth-layers", "3"],
         "three layers": ["--aov", "ao", "--technique", "ssilvb", "--depth-layers", "3", "--slices", "8",
                          "--samples", "128"],
@@ -164,8 +167,8 @@ def main():
     sheet = []
     for scene in args.scenes.split(","):
         img = {}
-        r1 = gather_radius(exe, scene, args.size, [])
-        r3 = gather_radius(exe, scene, args.size, ["--depth-layers", "3"])
+        r1 = gather_radius(exe, scene, args.size, ["--aov", "ao", "--depth-layers", "1"])
+        r3 = gather_radius(exe, scene, args.size, ["--aov", "ao", "--depth-layers", "3"])
         runs["reference, layers"] = ["--technique", "reference", "--aov", "ao", "--radius", r3]
         for name, extra in runs.items():
             path = os.path.join(args.out, "%s-%s.pfm" % (scene, name.replace(" ", "-")))
@@ -195,7 +198,8 @@ def main():
     write_png(os.path.join(args.out, "screen-limits.png"), len(sheet[0]), len(sheet), sheet)
     md = ["# What screen space cannot see", "",
           "`python3 tools/screen_limits.py --size %s --frames %d` (AO against `--technique reference`, "
-          "over geometry pixels; one layer: `--no-interleave --slices 8 --samples 128`; hbil, three layers: "
+          "over geometry pixels; hbil: `--depth-layers 1`; one layer: `--depth-layers 1 --no-interleave --slices 8 "
+          "--samples 128`; hbil, three layers: "
           "`--frames %d --depth-layers 3`; three layers: `--technique ssilvb --depth-layers 3 --slices 8 "
           "--samples 128`; the layered columns against the reference at their own radius)."
           % (args.size, args.frames, args.frames),
