@@ -1282,7 +1282,9 @@ static const point *find_point(const char *tech, const char *number, int slices,
 static const char *setting(const point *p, char *buf, size_t n)
 {
     const char *t = p->tech;
-    if (!strncmp(t, "hbil", 4) || !strcmp(t, "gtao") || !strcmp(t, "hbao") || !strncmp(t, "ssilvb", 6))
+    if (p->samples == 0)   /* hbil-ao: the plan's samples (16 over two layers, 32 on one) */
+        snprintf(buf, n, "%d slice%s x the plan's", p->slices, p->slices == 1 ? "" : "s");
+    else if (!strncmp(t, "hbil", 4) || !strcmp(t, "gtao") || !strcmp(t, "hbao") || !strncmp(t, "ssilvb", 6))
         snprintf(buf, n, "%d slice%s x %d", p->slices, p->slices == 1 ? "" : "s", p->samples);
     else snprintf(buf, n, "%d samples", p->samples);
     if (fabs(p->rscale - 1) > 1e-3) {
@@ -1549,7 +1551,7 @@ static void color_report(FILE *md)
     }
     fclose(f);
     fprintf(md, "## Colour against the path-traced reference\n\n");
-    fprintf(md, "Each technique at its default setting (%d slices x %d samples, the radius its plan gives it: the scene's, over three depth layers a longer one where the scene has an environment and no radius of its own; HBIL converged over %d frames, the others one frame; `reference`: the ray-traced AO and one-bounce near field, composed like the others) against `--technique pathtrace` (%d paths per pixel in two halves, its default bounces). Colour RMSE over geometry pixels with every channel clamped to [0, 1]; energy: sum Lo / sum Lo_ref (1 = the path tracer's light). The reference's own noise (from its two halves) is a floor under every RMSE; `noise removed` is sqrt(RMSE^2 - noise^2), the error's estimate against the converged image (0 where the noise is larger). CPU ms: median per frame (converged).\n\n",
+    fprintf(md, "Each technique at its default setting (%d slices x %d samples, the radius its plan gives it: the scene's, or sized to it, the diagonal / 6 for light where it has an environment; HBIL converged over %d frames, the others one frame; `reference`: the ray-traced AO and one-bounce near field, composed like the others) against `--technique pathtrace` (%d paths per pixel in two halves, its default bounces). Colour RMSE over geometry pixels with every channel clamped to [0, 1]; energy: sum Lo / sum Lo_ref (1 = the path tracer's light). The reference's own noise (from its two halves) is a floor under every RMSE; `noise removed` is sqrt(RMSE^2 - noise^2), the error's estimate against the converged image (0 where the noise is larger). CPU ms: median per frame (converged).\n\n",
             TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES, frames, crows[0].paths);
     fprintf(md, "| technique | number | CPU ms | colour RMSE | noise removed | energy (mean) | energy (range over scenes) |\n"
                 "|---|---|---:|---:|---:|---:|---|\n");
