@@ -354,6 +354,16 @@ static uint32_t boundary_sectors(const vb_tech *t, const tgi_ao_slice_pixel *px,
  * segments counts) or that falls in the pixel of the one before
  * (tgi_ao_rays: it would set the same sectors again) is skipped before
  * its layers are read. */
+/* a + b, in tgi_wide where the caller's bound keeps the sum inside
+ * tg_real (the same value as tg_add's then), else saturating. */
+#if TG_FIXED && TG_MAX_IMAGE_SIDE > 8192
+#error "march_layers' on-screen bound (4 sqrt 2 TG_MAX_IMAGE_SIDE pixels within Q16.16) needs TG_MAX_IMAGE_SIDE <= 8192"
+#endif
+static inline tg_real march_add(tg_real a, tg_real b, int bounded)
+{
+    return bounded ? (tg_real)((tgi_wide)a + b) : tg_add(a, b);
+}
+
 static void march_layers(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel *px, vb_slice *sl,
                          tg_real sdx, tg_real sdy, int side, uint32_t *mask, tg_vec3 *e)
 {
@@ -363,6 +373,12 @@ static void march_layers(const vb_tech *t, const tgi_gview *g, const tgi_ao_slic
     uint32_t bits;
     tgi_ao_rays rays = { -1, -1, -1, 0, 0, { 0, 0, 0 } };
     tg_real r_px = px->r_px, dt, t_px, fx, fy, dx, dy;
+    /* on the screen (to_edge) the march's distance and position stay
+     * within two reaches of the screen, at most 2 x 8192 sqrt 2 pixels
+     * (TG_MAX_IMAGE_SIDE), and their steps within Q16.16: stepped in
+     * tgi_wide they are tg_add's sums, which never saturate here (the
+     * saturation's two tests were a fifth of a Q16.16 layered frame) */
+    const int on_screen = t->to_edge;
     if (t->to_edge) r_px = tg_min(r_px, tgi_ao_screen_reach(g, px, sdx, sdy));
     dt = tg_div(r_px, tg_from_int(steps));                            /* the samples' spacing in pixels */
     t_px = tg_mul(px->jitter, dt);
@@ -370,7 +386,8 @@ static void march_layers(const vb_tech *t, const tgi_gview *g, const tgi_ao_slic
     dy = tg_mul(sdy, dt);
     fx = tg_add(tg_add(tg_from_int(px->x), TG_R(0.5f)), tg_mul(sdx, t_px));   /* the sample on the screen */
     fy = tg_add(tg_add(tg_from_int(px->y), TG_R(0.5f)), tg_mul(sdy, t_px));
-    for (s = 0; s < steps; s++, t_px = tg_add(t_px, dt), fx = tg_add(fx, dx), fy = tg_add(fy, dy)) {
+    for (s = 0; s < steps; s++, t_px = march_add(t_px, dt, on_screen), fx = march_add(fx, dx, on_screen),
+                               fy = march_add(fy, dy, on_screen)) {
         if (t_px < TG_ONE) continue;                                  /* within the pixel */
         got = tgi_ao_slice_point_at(g, px, fx, fy, &hf, &j, &rays);
         if (got < 0) break;
