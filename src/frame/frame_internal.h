@@ -123,6 +123,8 @@ enum tgi_buffer_group {
     TGI_BUF_GROUPS
 };
 #define TGI_BUF(g) (1u << (g))
+/* The AOVs of the AO kernel's results (no light). */
+#define TGI_AO_AOVS ((1u << TG_AOV_AO) | (1u << TG_AOV_BENT) | (1u << TG_AOV_CONE))
 
 /* ---- the pass table ---- */
 enum tgi_pass_rows {

@@ -388,8 +388,7 @@ static void group_color(layout *l, tg_frame *f)
      * the second layer for 1 byte a pixel */
     if (!bent && !near && f->request.depth_layers >= 2 && f->request.gi_scale == 1) {
         note_buffer(l->plan, "filtered AO, in the second layer's bytes once the kernel has read them [" FMT_AO "]", 0);
-        if (l->arena && f->gb.back_depth) tgi_gresult_carve(&f->out, f->pixels, 0, 0, 0, f->gb.back_depth);
-        else if (l->arena) l->overflow = 1;
+        if (l->arena) tgi_gresult_carve(&f->out, f->pixels, 0, 0, 0, f->gb.back_depth);   /* group_gbuffer took it */
         return;
     }
 #endif

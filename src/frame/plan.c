@@ -78,7 +78,7 @@ static uint32_t wanted_effects(uint32_t possible, uint32_t aovs)
     int color = (aovs & (AOV(TG_AOV_COLOR) | AOV(TG_AOV_IRRADIANCE))) != 0;
     int want_near = color || (aovs & AOV(TG_AOV_NEAR));
     int want_far = color || (aovs & AOV(TG_AOV_FAR));
-    int want_ao = (aovs & (AOV(TG_AOV_AO) | AOV(TG_AOV_BENT) | AOV(TG_AOV_CONE))) != 0;
+    int want_ao = (aovs & TGI_AO_AOVS) != 0;
     uint32_t e = 0;
     if (want_near && (possible & TG_EFFECT_NEAR)) e |= TG_EFFECT_NEAR;
     if (want_far && (possible & TG_EFFECT_FAR)) e |= TG_EFFECT_FAR;

@@ -163,7 +163,6 @@ int tgi_request_refused(const tg_request *r, tg_error *err)
  * 0.055, both sizes alike; README "Colour against the path tracer").  A
  * scene without extent gets TG_DEFAULT_RADIUS. */
 #define LIGHT_AOVS ((1u << TG_AOV_COLOR) | (1u << TG_AOV_IRRADIANCE) | (1u << TG_AOV_NEAR) | (1u << TG_AOV_FAR))
-#define AO_AOVS ((1u << TG_AOV_AO) | (1u << TG_AOV_BENT) | (1u << TG_AOV_CONE))
 static tg_real scene_gather_radius(const tg_scene *s, const tg_request *r)
 {
     tg_real d = tgi_v3_length(tgi_v3_sub(s->bounds_max, s->bounds_min));
@@ -177,7 +176,7 @@ static tg_real scene_gather_radius(const tg_scene *s, const tg_request *r)
 /* AO alone (ao, bent, cone; no light) from HBIL at every pixel. */
 static int hbil_ao_alone(const tg_request *r)
 {
-    return (r->aovs & AO_AOVS) && !(r->aovs & LIGHT_AOVS) && r->technique == TG_TECH_HBIL && r->gi_scale == 1;
+    return (r->aovs & TGI_AO_AOVS) && !(r->aovs & LIGHT_AOVS) && r->technique == TG_TECH_HBIL && r->gi_scale == 1;
 }
 #endif
 

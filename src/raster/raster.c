@@ -1169,22 +1169,24 @@ static void gbuffer_triangle(raster_target *rt, tri_vertices *tv, const tgi_rast
 }
 
 #if TGI_RASTER_BACK_LAYER
-/* Triangle t into the back-face layer, once the depth buffer is final: a
- * one-sided triangle facing away, either face of a twosided one, a
- * clipped one (the clipper culls its front faces). */
-static void back_face_triangle(raster_target *rt, tri_vertices *tv, const tgi_raster_mesh *mesh, int t)
+/* Every triangle into a further layer (rt->dout.back, or .behind), once
+ * the layer before it is final: with cull, a one-sided triangle's back
+ * face only (the second layer: where a closed object ends), else either
+ * face (the third: any surface behind the back face); back_triangle skips
+ * zero areas and culled faces. */
+static void further_layer(raster_target *rt, vertex_cache *cache, const view_frame *vf, const tgi_raster_mesh *mesh,
+                          int cull)
 {
-    int twosided, front = 0;
-    int64_t area2 = 0;
-    if (tv->flags & V_OFF_SIDE) return;
-    twosided = mesh->materials[mesh->tri_material[t]].twosided;
-    rt->cull_back = !twosided;
-    if (tv->flags & V_INSIDE) {
-        area2 = signed_area2(tv->sx, tv->sy);
-        front = area2 < 0;
-        if (area2 == 0 || (front && !twosided)) return;   /* zero area; a front face */
+    int t;
+    for (t = 0; t < mesh->tri_count; t++) {
+        tri_vertices tv;
+        int64_t area2;
+        triangle_fetch(cache, rt, vf, mesh, t, &tv);
+        if (tv.flags & V_OFF_SIDE) continue;
+        rt->cull_back = cull && !mesh->materials[mesh->tri_material[t]].twosided;
+        area2 = tv.flags & V_INSIDE ? signed_area2(tv.sx, tv.sy) : 0;
+        back_triangle(rt, &tv, area2 < 0, area2);
     }
-    back_triangle(rt, tv, front, area2);
 }
 #endif
 
@@ -1218,24 +1220,12 @@ void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_
     if (!gb->back_depth) return;
     rt.dout.back = gb->back_depth;
     rt.dout.front = gb->depth;
-    for (t = 0; t < mesh->tri_count; t++) {
-        tri_vertices tv;
-        triangle_fetch(&cache, &rt, &vf, mesh, t, &tv);
-        back_face_triangle(&rt, &tv, mesh, t);
-    }
+    further_layer(&rt, &cache, &vf, mesh, 1);
     /* the third layer, once these rows' back faces are all drawn: every
      * triangle, either facing, beyond the back face */
     if (!gb->behind_depth) return;
     rt.dout.behind = gb->behind_depth;
-    rt.cull_back = 0;
-    for (t = 0; t < mesh->tri_count; t++) {
-        tri_vertices tv;
-        int64_t area2;
-        triangle_fetch(&cache, &rt, &vf, mesh, t, &tv);
-        if (tv.flags & V_OFF_SIDE) continue;
-        area2 = tv.flags & V_INSIDE ? signed_area2(tv.sx, tv.sy) : 0;
-        back_triangle(&rt, &tv, area2 < 0, area2);
-    }
+    further_layer(&rt, &cache, &vf, mesh, 0);
 #endif
 }
 
