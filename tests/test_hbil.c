@@ -1007,7 +1007,6 @@ TEST(blocks_decorrelate_march_offsets)
 /* The frame's interleaved pass on the image k (tgi_pass_hbil_interleaved):
  * its 16 strided sub-images; fine: the image the horizons are refined on
  * (gi/hbil.c refine_fine), NULL for none. */
-static int hbil_no_line = 0;   /* 1: kernel_sub_images_on's refinement without the horizon's line (hbil.c) */
 static void kernel_sub_images_on(const tgi_gview *k, const tgi_gview *fine, double radius, int rot, tgi_gresult *all)
 {
     int ii, jj;
@@ -1021,7 +1020,6 @@ static void kernel_sub_images_on(const tgi_gview *k, const tgi_gview *fine, doub
             params_for(&p, radius);
             p.rotation = rot;
             p.fine = fine;
-            p.no_line = hbil_no_line;
             tgi_hbil_for_sub_image(&p, ii, jj);
             tgi_hbil_rows(&p, &sub, NULL, &o, 0, sub.height);
         }
@@ -1211,171 +1209,6 @@ TEST(interleaved_horizon_finds_the_crease_within_the_radius)
     gbuf_free(&g);
     free(sum);
 }
-
-#if !TG_OUTLINE_HELPERS /* a size build's refinement has no line */
-/* The refinement's horizon line (gi/hbil.c line_set, line_under): random
- * pixels (pixels per unit 30 to 3000, steps 1, 4 and 8, anywhere on a
- * screen 2048 wide, depths 0.01 to 1000), slices, horizons at any angle,
- * and samples 1/4 to 400 march units away whose depths lie on the
- * horizon's line, within 10^-7 to 10^-1 of it either side, or anywhere,
- * between two depths or at one.  In float what the line takes (skips) is
- * never over the horizon by more than sample_cos's tie (cos|cos| - h|h| <=
- * 2^-12, in double precision from the kernel's own inputs), where the full
- * test rejects it too.  Q16.16's full test errs itself beyond the tie at
- * large depths and tiny q (its 1/z, q and offsets in 2^-16), and the line
- * follows it (its q): there the line is held to the full test, never
- * skipping a sample both it and the exact angle put over the tie, and
- * disagreeing with it on at most 1 in 10^4 samples (2 measured).  And the
- * line takes most samples that lie on the horizon (the pixel's own plane,
- * a wall past its top): what its tilt above the horizon is for. */
-TEST(horizon_line_keeps_the_horizons)
-{
-    static const double near_rel[] = { 0, 1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1 };
-    unsigned seed = 2026;
-    long count = 0, under = 0, above = 0, bad = 0, far = 0, wrong = 0, on = 0, on_under = 0;
-    double worst = -1;
-    int i;
-    for (i = 0; i < 400000; i++) {
-        const int steps[3] = { 1, 4, 8 };
-        double ppu = 30 * pow(100, check_rnd(&seed)), step = steps[(int)(check_rnd(&seed) * 3)];
-        double X = (check_rnd(&seed) - 0.5) * 2048, Y = (check_rnd(&seed) - 0.5) * 1536, z = 0.01 * pow(1e5, check_rnd(&seed));
-        double P0[3], wo[3], D[3], e[3], u[3], s[3], N[3], dt[3], th, h, c, t, lu, a, b, zl, z1, za, zb, f, rel;
-        int k, r, kind;
-        P0[0] = X / step; P0[1] = Y / step; P0[2] = ppu / step;
-        for (k = 0; k < 3; k++) wo[k] = -P0[k];
-        norm3(wo);
-        for (k = 0; k < 3; k++) e[k] = check_rnd(&seed) - 0.5;
-        a = dot3(e, wo);
-        for (k = 0; k < 3; k++) D[k] = e[k] - a * wo[k];
-        norm3(D);
-        /* the slice's screen direction: D's projection at the pixel, in
-         * pixels at the pixel's depth (sample_cos's s, y up) */
-        u[0] = D[0] - P0[0] / P0[2] * D[2]; u[1] = D[1] - P0[1] / P0[2] * D[2]; u[2] = 0;
-        lu = sqrt(u[0] * u[0] + u[1] * u[1]);
-        if (lu < 1e-3) continue;
-        th = CHECK_PI * check_rnd(&seed);
-        h = cos(th); c = sin(th);
-        t = 0.25 * pow(1600, check_rnd(&seed));
-        if (check_rnd(&seed) < 0.3) t = floor(t * 4) / 4;   /* a fine pixel's offset */
-        for (k = 0; k < 3; k++) s[k] = t * u[k] / lu;
-        /* the depth at which the ray through s meets the horizon's line:
-         * d = (z1 / z)(P0 + s) - P0 on the line H = h w_o + c D */
-        for (k = 0; k < 3; k++) N[k] = c * wo[k] - h * D[k];
-        a = dot3(P0, N);
-        for (k = 0, b = 0; k < 3; k++) b += (P0[k] + s[k]) * N[k];
-        zl = b != 0 ? z * a / b : -1;
-        kind = (int)(check_rnd(&seed) * 3);
-        if (zl <= 0 || zl > 30000 || kind == 0) {
-            z1 = z * pow(100, check_rnd(&seed) * 2 - 1);   /* anywhere */
-            rel = -1;
-        } else {
-            r = (int)(check_rnd(&seed) * (sizeof near_rel / sizeof near_rel[0]));
-            rel = near_rel[r] * (check_rnd(&seed) < 0.5 ? -1 : 1);
-            z1 = zl * (1 + rel);
-        }
-        if (z1 > 30000 || z1 < 1e-3) continue;
-        /* between two depths: the same, or 1/z linear across a step */
-        /* at f = 0 the depth is za's, zb anything close; else zb such that
-         * 1/z1 = (1 - f)/za + f/zb */
-        f = check_rnd(&seed) < 0.5 ? 0 : check_rnd(&seed);
-        za = z1 * (1 + (check_rnd(&seed) < 0.5 || f == 0 ? 0 : 0.2 * (check_rnd(&seed) - 0.5)));
-        zb = f > 0 ? 1 / ((1 / z1 - (1 - f) / za) / f) : z1 * (1 + (check_rnd(&seed) < 0.5 ? 0 : 0.4 * (check_rnd(&seed) - 0.5)));
-        if (!(zb > 0) || zb > 4 * za || za > 4 * zb || zb > 30000) { zb = za = z1; f = 0; }
-        {
-            /* the inputs as the kernel holds them, and in double precision
-             * from those the full test's margin cos|cos| - h|h| (sample_cos
-             * takes the sample as above when it is over HBIL_TIE, 2^-12) */
-            const tg_vec3 p0r = tv(P0[0], P0[1], P0[2]), wor = tv(wo[0], wo[1], wo[2]), dr = tv(D[0], D[1], D[2]);
-            const tg_real zr = tg_from_float((float)z), hr = tg_from_float((float)h), cr = tg_from_float((float)c);
-            const tg_real sxr = tg_from_float((float)s[0]), syr = tg_from_float((float)s[1]);
-            const tg_real zar = tg_from_float((float)za), zbr = tg_from_float((float)zb), fr = tg_from_float((float)f);
-            const int got = tgi_hbil_line_and_test(p0r, zr, wor, dr, hr, cr, sxr, syr, zar, zbr, fr);
-            double p[3], w[3], sd[3], zz = check_d(zr), ff = check_d(fr), zt, cd, hh = check_d(hr), margin;
-            vd(p0r, p); vd(wor, w);
-            sd[0] = check_d(sxr); sd[1] = check_d(syr); sd[2] = 0;
-            zt = 1 / ((1 - ff) / check_d(zar) + ff / check_d(zbr));
-            for (k = 0; k < 3; k++) dt[k] = zt / zz * (p[k] + sd[k]) - p[k];
-            cd = dot3(dt, w) / sqrt(dot3(dt, dt));
-            margin = cd * fabs(cd) - hh * fabs(hh);
-            count++;
-            under += got & 1;
-            above += (got >> 1) & 1;
-            if (rel == 0 && za == zb) { on++; on_under += got & 1; }
-            if ((got & 1) && margin > worst) worst = margin;
-            if ((got & 1) && margin > 1.0 / 4096 && far++ < 5 && !TG_FIXED)
-                fprintf(stderr, "under the line, %.3g over the horizon (cos|cos| - h|h|): ppu %g step %g X %g Y %g z %g theta %.6f t %g z1 %.9g (line %.9g) za %g zb %g f %g\n",
-                        margin, ppu, step, X, Y, z, th, t, z1, zl, za, zb, f);
-            bad += got == 3;
-            wrong += got == 3 && margin > 1.0 / 4096;
-        }
-    }
-    printf("  horizon line: %ld samples, %ld at or under the line (the highest %.2g over the horizon), %ld above the "
-           "horizon by the full test, %ld both; on the horizon %ld of %ld under\n", count, under, worst, above, bad, on_under, on);
-#if !TG_FIXED
-    CHECK(far == 0, "%ld samples the line skips are over the horizon by more than the tie (the highest %.3g)", far, worst);
-#else
-    /* Q16.16's full test errs itself far beyond the tie where depths are
-     * large or q tiny (its 1/z, q and offsets in 2^-16), and the line
-     * follows it (its q): compared with it, not with the exact angle */
-    (void)far;
-#endif
-    CHECK(wrong == 0, "%ld samples the line skips are over the horizon by the full test and by more than the tie", wrong);
-    CHECK(bad * 10000 <= count, "%ld of %ld samples the line skips are above the horizon by the full test", bad, count);
-    CHECK(count > 300000 && under > count / 4 && above > count / 10, "cases: %ld, %ld under, %ld above", count, under, above);
-    CHECK(on > 1000 && on_under > on / 2, "samples on the horizon: %ld of %ld under the line", on_under, on);
-}
-
-/* The refinement with the horizon's line gives the kernel's results to
- * the bit: the interleaved kernel (the 8 rotations) with and without it
- * on floors before walls (low and high, radius small and room-wide), a
- * groove and a floor under a grazing view, at 96x72 and 160x120. */
-TEST(horizon_line_changes_no_result)
-{
-    struct { int kind; double height, radius, eye[3]; int w, h; } cases[] = {
-        { 0, 0.4, 1.0, { 6, 2.2, 0 }, 160, 120 }, { 0, 1.5, 10, { 6, 2.2, 0 }, 96, 72 },
-        { 0, 6, 1.5, { 14, 3, -9 }, 160, 120 }, { 0, 3, 30, { 3, 0.3, 1 }, 96, 72 },
-        { 1, 0, 1.0, { 0, 0, 0 }, 96, 72 }, { 1, 0, 5.0, { 0, 0, 0 }, 160, 120 },
-    };
-    long pixels = 0, differ = 0;
-    int ci;
-    for (ci = 0; ci < (int)(sizeof cases / sizeof cases[0]); ci++) {
-        double target[3] = { 0, 0.5, 0 }, up[3] = { 0, 1, 0 };
-        scene sc;
-        gbuf g;
-        tgi_gbuffer gb;
-        tgi_gview full;
-        result r0, r1;
-        size_t i, n;
-        int rot, k;
-        if (cases[ci].kind == 0) { floor_and_wall(&sc, cases[ci].height); gbuf_make(&g, &sc, cases[ci].w, cases[ci].h, cases[ci].eye, target, up); }
-        else { groove_scene(&sc); groove_view(&g, &sc, cases[ci].w, cases[ci].h); }
-        n = (size_t)g.w * g.h;
-        result_alloc(&r0, n); result_alloc(&r1, n);
-        view_of(&g, &gb, &full);
-        for (rot = 0; rot < TG_HBIL_ROTATIONS; rot++) {
-            for (k = 0; k < 2; k++) {
-                tgi_gresult all = results_of(n, 0);
-                hbil_no_line = k;
-                kernel_sub_images_on(&full, &full, cases[ci].radius, rot, &all);
-                results_read(&all, n, k ? &r1 : &r0);
-            }
-            hbil_no_line = 0;
-            for (i = 0; i < n; i++) {
-                pixels++;
-                if (memcmp(&r0.ao[i], &r1.ao[i], sizeof r0.ao[i]) || memcmp(&r0.bx[i], &r1.bx[i], sizeof r0.bx[i])
-                    || memcmp(&r0.by[i], &r1.by[i], sizeof r0.by[i]) || memcmp(&r0.bz[i], &r1.bz[i], sizeof r0.bz[i]))
-                    differ++;
-            }
-        }
-        sf_gbuffer_free(&gb);
-        result_free(&r0); result_free(&r1);
-        gbuf_free(&g);
-    }
-    printf("  horizon line: %ld pixel results, %ld differ without it\n", pixels, differ);
-    CHECK(differ == 0 && pixels > 100000, "%ld of %ld results differ", differ, pixels);
-}
-
-#endif
 
 /* --gi-quarter's contact shadow: a floor at the foot of a wall 0.4 high,
  * 160x120, the kernel on the half-resolution copy (its 16 sub-images, the 8
@@ -1641,10 +1474,6 @@ int main(int argc, char **argv)
     RUN(full_resolution_radius_beyond_150_pixels);
     RUN(interleaved_horizon_finds_the_wall_top_pixel);
     RUN(interleaved_horizon_finds_the_crease_within_the_radius);
-#if !TG_OUTLINE_HELPERS
-    RUN(horizon_line_keeps_the_horizons);
-    RUN(horizon_line_changes_no_result);
-#endif
     RUN(near_horizon_bound_stays_below_the_integral);
 #if TG_FIXED
     RUN(near_plane_test_is_the_saturating_one);

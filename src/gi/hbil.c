@@ -831,102 +831,6 @@ static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, t
 }
 
 
-/* Where refine_fine takes the line below: not when compiling for size
- * (TG_OUTLINE_HELPERS: there one copy of sample_cos takes every sample),
- * nor without the refinement. */
-#if !TG_NO_FINE_HORIZON && !TG_OUTLINE_HELPERS
-#define HBIL_HORIZON_LINE 1
-#else
-#define HBIL_HORIZON_LINE 0
-#endif
-#if HBIL_HORIZON_LINE
-/* The horizon as a line (refine_fine's samples; HBIL sec. 1.2-1.3).  A
- * side's samples lie in the slice plane on its side of w_o: with the
- * plane's orthonormal axes w_o and side D, the horizon at angle theta from
- * w_o (h = cos theta, c = sin theta) is the ray H = h w_o + c D from the
- * pixel, and a sample's offset d lies at or under it exactly when d.N <= 0
- * for N = c w_o - h D (d.N = |d| sin(theta - theta_d)).  sample_cos forms d
- * = s + q (P0 + s), q = (z1 - z) / z, so d.N = s.N + q A, A = (P0 + s).N =
- * B + s.N, B = P0.N: linear in q, and q grows with z1, which is at least
- * min(za, zb) (1/z interpolated between the two): where A < 0 a sample
- * whose d.N <= 0 at q(min(za, zb)) is at or under the line at its own
- * depth, and refine_fine skips it without its depth's division and
- * sample_cos (most fine samples: they lie along the surface the horizon
- * was found on).  The line is turned above the horizon by HBIL_LINE_TILT
- * (N - tan(m) H), a quarter of the least angle sample_cos's tie leaves
- * under the horizon (HBIL_TIE: 2^-12 rad), so that it takes the samples on
- * the horizon too (the pixel's own plane, a wall beyond its top); q is
- * formed as sample_cos forms it (its rounded 1/z), so that the line errs
- * with the full test rather than against it.  Tests (tests/test_hbil.c):
- * horizon_line_keeps_the_horizons (what the line takes is never above the
- * horizon by more than the tie in float, computed in double precision, and
- * it disagrees with sample_cos on 2 of 400,000 random near-tie samples in
- * Q16.16, whose full test errs itself beyond the tie there, none in
- * float), horizon_line_changes_no_result (the kernel's results bit for
- * bit with and without it). */
-#define HBIL_LINE_TILT TG_R(0.00006103515625f)    /* 2^-14 rad: a quarter of the tie's least angle */
-typedef struct hbil_line {
-    tg_real nx, ny;         /* N's screen components (march units) */
-    tgi_wide b;             /* B = P0.N */
-} hbil_line;
-
-/* The line that takes no sample: A = 0 everywhere. */
-static void line_none(hbil_line *ln)
-{
-    ln->nx = ln->ny = 0;
-    ln->b = 0;
-}
-
-static void line_set(hbil_line *ln, const hbil_march *mr, tg_vec3 d, tg_real h, tg_real c)
-{
-    /* |h|, |c| <= 1 (+ a rounding), the axes unit: small */
-    const tg_real ct = small_sub(c, small_mul(HBIL_LINE_TILT, h)), ht = small_add(h, small_mul(HBIL_LINE_TILT, c));
-    const tg_real nz = small_sub(small_mul(ct, mr->woz), small_mul(ht, d.z));
-    tgi_wide b;
-    ln->nx = small_sub(small_mul(ct, mr->wox), small_mul(ht, d.x));
-    ln->ny = small_sub(small_mul(ct, mr->woy), small_mul(ht, d.y));
-    /* B = P0.N from N's own components, one rounding: the line through the pixel */
-    b = tgi_wide_dot(mr->p0x, mr->p0y, mr->p0z, ln->nx, ln->ny, nz);
-    ln->b = b;
-#if TG_FIXED
-    /* a line further than 2^14 march units from the eye takes no sample */
-    if (b <= -((tgi_wide)1 << 30) || b >= ((tgi_wide)1 << 30)) line_none(ln);
-#endif
-}
-
-/* The line of the horizon h a sample with offset o (1 / |o| = inv_len, as
- * sample_cos leaves them) set, side D d: its sine is o.d / |o|. */
-static void line_through(hbil_line *ln, const hbil_march *mr, tg_vec3 d, tg_real h, const tgi_wide o[3], tg_real inv_len)
-{
-    /* |o| inv_len = 1: the product small */
-    const tg_real c = small_mul((tg_real)tgi_wide_dot(o[0], o[1], o[2], d.x, d.y, d.z), inv_len);
-    line_set(ln, mr, d, h, c);
-}
-
-/* 1 when the sample at screen offset (sx, sy) whose depth lies between
- * depths whose nearer is zmin is at or under the line (above). */
-static inline int line_under(const hbil_line *ln, const hbil_march *mr, tg_real sx, tg_real sy, tg_real zmin)
-{
-    /* d.N = s.N + q A, q at zmin as sample_cos forms it (its own rounded
-     * 1/z); a sample deeper has a q no smaller, so where A < 0 a d.N no
-     * larger */
-    const tg_real q = tg_mul(small_sub(zmin, mr->z), mr->inv_z);
-#if TG_FIXED
-    /* s.N: |s| <= 2^14 march units (HBIL_MAX_RADIUS_UNITS), |N| <= 1 (+
-     * a rounding): below 2^47 as Q32; A to Q16.16 by the floor of s.N
-     * (offset into the unsigned range: no shift of a negative value), |B|
-     * < 2^30 (line_set, else nothing is under), so |A| < 2^31.1 and q A
-     * (q > -1, < 2^15) below 2^62.1 as Q32: the sum exact */
-    const int64_t sn = (int64_t)sx * ln->nx + (int64_t)sy * ln->ny;
-    const int64_t a = ln->b + ((int64_t)(((uint64_t)sn + ((uint64_t)1 << 48)) >> 16) - ((int64_t)1 << 32));
-    return a < 0 && sn + (int64_t)q * a <= 0;
-#else
-    const float sn = sx * ln->nx + sy * ln->ny, a = ln->b + sn;
-    return a < 0.0f && sn + q * a <= 0.0f;
-#endif
-}
-#endif
-
 /* The unit direction d / |d| of a sample that raised the horizon, and
  * h|h| + HBIL_TIE of its cosine h: |d_i| <= |d| (< 128 in Q16.16, as
  * sample_cos leaves it) and 1/|d| <= 256 give products of at most 1 (plus
@@ -938,28 +842,6 @@ static inline tg_vec3 sample_dir(const tgi_wide d[3], tg_real inv_len)
 }
 static inline tg_real horizon_sq(tg_real h) { return small_mul(h, tg_abs(h)); }
 static inline tg_real horizon_tie(tg_real hs) { return small_add(hs, HBIL_TIE); }
-
-#if HBIL_HORIZON_LINE && !TG_NO_COLOR
-int tgi_hbil_line_and_test(tg_vec3 p0, tg_real z, tg_vec3 wo, tg_vec3 d, tg_real h, tg_real c, tg_real sx, tg_real sy,
-                           tg_real za, tg_real zb, tg_real f)
-{
-    hbil_march mr;
-    hbil_line ln;
-    tgi_wide dd[3];
-    tg_real inv_len, cn;
-    int under;
-    memset(&mr, 0, sizeof mr);
-    mr.p0x = p0.x; mr.p0y = p0.y; mr.p0z = p0.z;
-    mr.z = z;
-    mr.inv_z = tg_div(TG_ONE, z);
-    mr.wox = wo.x; mr.woy = wo.y; mr.woz = wo.z;
-    mr.r2 = tgi_wide_mul(HBIL_MAX_RADIUS_UNITS, HBIL_MAX_RADIUS_UNITS);
-    line_set(&ln, &mr, d, h, c);
-    under = line_under(&ln, &mr, sx, sy, tg_min(za, zb));
-    cn = sample_cos(&mr, lerp_inverse_depth(za, zb, f), sx, sy, h, horizon_tie(horizon_sq(h)), dd, &inv_len);
-    return under | (cn > HBIL_NOT_ABOVE) << 1;
-}
-#endif
 
 /* The samples of one side; major_x is a constant in each of the two
  * copies (MARCH_SAMPLES), so the axis choice costs nothing per sample.
@@ -1093,10 +975,6 @@ HBIL_NOINLINE static void march_between(const hbil_ctx *c, const hbil_slice *sl,
 /* The highest of refine_fine's samples. */
 typedef struct hbil_fine_best {
     tg_real h, hs;          /* the highest horizon the fine samples found, h|h| */
-#if HBIL_HORIZON_LINE
-    hbil_line line;         /* h as a line (line_set) */
-    tg_vec3 dside;          /* the slice's D toward the side */
-#endif
     tgi_wide d[3];          /* its offset (march units) */
     tg_real inv_len;        /* 1 / |d| */
     int si;                 /* its pixel in the fine image; -1: none above the side's */
@@ -1155,14 +1033,8 @@ static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, c
             f = frac_small(minor, b0);
             si = ia + (size_t)fb * smin;
             za = tgi_gv_depth(fg, si);
-            /* fine pixels to the march's units: times 1/4 or 1/8, exact */
-            sx = major_x ? tm : small_mul(minor, inv_r);
-            sy = major_x ? small_mul(tg_neg(minor), inv_r) : tg_neg(tm);
             if (fb + 1 < bmax && za > 0 && depths_close(za, zb = tgi_gv_depth(fg, si + smin))   /* as in march_samples */
                 && (!follow || tg_abs(tg_sub(za, zb)) <= tg_mul(za, c->fine_edge))) {   /* not across a silhouette */
-#if HBIL_HORIZON_LINE
-                if (!follow && line_under(&best->line, mr, sx, sy, tg_min(za, zb))) continue;   /* at or under the horizon (line_set) */
-#endif
                 z1 = lerp_inverse_depth(za, zb, f);
             } else {                                                        /* as in march_samples */
                 const int nb = f >= TG_R(0.5f);
@@ -1177,6 +1049,9 @@ static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, c
                 if (tg_abs(tg_sub(z1, zc)) > tg_mul(zc, c->fine_edge)) break;
                 zc = z1;
             }
+            /* fine pixels to the march's units: times 1/4 or 1/8, exact */
+            sx = major_x ? tm : small_mul(minor, inv_r);
+            sy = major_x ? small_mul(tg_neg(minor), inv_r) : tg_neg(tm);
             cn = sample_cos(mr, z1, sx, sy, h, hs_tie, d, &inv_len);
             if (cn <= HBIL_NOT_ABOVE) continue;
             h = cn;
@@ -1185,9 +1060,6 @@ static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, c
             hs_tie = horizon_tie(best->hs);
             best->d[0] = d[0]; best->d[1] = d[1]; best->d[2] = d[2];
             best->inv_len = inv_len;
-#if HBIL_HORIZON_LINE
-            if (!c->p->no_line) line_through(&best->line, mr, best->dside, cn, d, inv_len);
-#endif
             best->si = (int)si;
         }
     }
@@ -1266,13 +1138,6 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
     int t0 = -1, k, span[2][2] = { { 0, 0 }, { 0, 0 } };   /* fine pixels [span[k][0], span[k][1]) */
     best.h = sd->h;
     best.hs = sd->hs;
-#if HBIL_HORIZON_LINE
-    best.dside = side > 0 ? sl->d : tg_v3(tg_neg(sl->d.x), tg_neg(sl->d.y), tg_neg(sl->d.z));
-    if (!c->p->no_line)   /* |h| <= 1: sin = sqrt(1 - h^2) */
-        line_set(&best.line, mr, best.dside, sd->h, unit_sqrt(small_sub(TG_ONE, small_mul(sd->h, sd->h))));
-    else
-        line_none(&best.line);
-#endif
     best.si = -1;
     best.d[0] = best.d[1] = best.d[2] = 0;   /* read only with si >= 0, but gcc cannot tell */
     best.inv_len = 0;

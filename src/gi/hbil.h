@@ -72,8 +72,6 @@ typedef struct tgi_hbil_params {
                                * each side is refined there (hbil.c, refine_fine); NULL: none */
     const tgi_rgb *fine_radiance; /* the radiance indexed like fine; NULL: the refinement's
                                * bands take the radiance gathered before them */
-    int no_line;              /* 1: the refinement takes every sample through the full test,
-                               * not past the horizon's line first (tests: the same horizons) */
 } tgi_hbil_params;
 
 /* Defaults: 2 slices, 32 samples, radius 1, phi0 of
@@ -133,21 +131,6 @@ void tgi_hbil_interleaved_rows(const tgi_hbil_params *p, const tgi_gview *k, con
  * integral (eq. 10-11) as the kernel evaluates it (one square root and a
  * polynomial; error in tests/test_hbil.c). */
 tg_real tgi_hbil_slice_q(tg_real c);
-
-#if !TG_NO_COLOR && !TG_NO_FINE_HORIZON && !TG_OUTLINE_HELPERS
-/* The refinement's horizon line (hbil.c line_set, line_under) beside the
- * full test (sample_cos) for one sample, for tests: the pixel at p0 in
- * the march's units (its view position (X, Y, ppu) / step from the eye,
- * in image pixels), at depth z, w_o its unit vector toward the eye, d the
- * slice's unit D toward the side (normal to w_o), the horizon at cos h
- * and sin c from w_o; the sample at screen offset (sx, sy) (the march's
- * units, y up) at the depth 1/z-interpolated from za to zb at f in [0, 1).
- * Bit 0: the line takes the sample as at or under it (refine_fine skips
- * it); bit 1: the full test takes it as above the horizon.  Not in a
- * size build (TG_OUTLINE_HELPERS), whose refinement has no line. */
-int tgi_hbil_line_and_test(tg_vec3 p0, tg_real z, tg_vec3 wo, tg_vec3 d, tg_real h, tg_real c, tg_real sx, tg_real sy,
-                           tg_real za, tg_real zb, tg_real f);
-#endif
 
 #if !TG_WIDE_STORAGE && !TG_NO_COLOR
 /* The near field's weight t = smoothstep(a, b, -n_s.w_i) (HBIL sec. 3.4) of
