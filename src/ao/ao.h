@@ -24,6 +24,7 @@
 #define TG_AO_H
 
 #include "../core/vec.h"
+#include "../core/unit.h"
 #include "../raster/gview.h"
 #include "../light/sh.h"
 #include "sampling.h"
@@ -217,7 +218,7 @@ static inline tg_real tgi_ao_view_at(const tgi_gview *g, int x, int y, size_t i,
 static inline void tgi_ao_write_bent_view(const tgi_gview *g, const tgi_gresult *out, size_t i, tg_vec3 bent_view)
 {
     if (!tgi_gr_has_bent(out)) return;
-    tgi_gr_set_bent(out, i, tgi_v3_normalize_or(tgi_ao_dir_to_world(g->camera, bent_view), tgi_gv_normal(g, i)));
+    tgi_gr_set_bent(out, i, tgi_v3_unit_or(tgi_ao_dir_to_world(g->camera, bent_view), tgi_gv_normal(g, i)));
 }
 
 /* ---- view-vector slices (GTAO, gtao.c; the visibility bitmask, ssilvb.c) ---- */

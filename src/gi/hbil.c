@@ -17,6 +17,7 @@
 #include "hbil.h"
 #include "interleave.h"
 #include "../light/sh.h"
+#include "../core/unit.h"
 
 #define HBIL_PATTERN 16
 /* Smallest n.w_o allowed: normals facing away from the camera are bent
@@ -1350,7 +1351,7 @@ static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
         tg_vec3 dw = tgi_v3_add(tgi_v3_add(tgi_v3_scale(v->right, acc.bent_delta.x),
                                          tgi_v3_scale(v->up, acc.bent_delta.y)),
                                tgi_v3_scale(v->forward, acc.bent_delta.z));
-        tgi_gr_set_bent(out, i, tgi_v3_normalize_or(tgi_v3_add(tgi_v3_scale(nw, tg_from_int(c->slices)), dw), nw));
+        tgi_gr_set_bent(out, i, tgi_v3_unit_or(tgi_v3_add(tgi_v3_scale(nw, tg_from_int(c->slices)), dw), nw));
     }
     if (NEAR_FIELD(c))   /* eq. 16-18; the receiver's (1 - F0) of eq. 19 is applied where Lo is composed */
         tgi_gr_set_near(out, i, tg_v3(tg_mul(acc.er, c->pi_over_s), tg_mul(acc.eg, c->pi_over_s),

@@ -617,7 +617,7 @@ tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk
         tg_real d = tgi_v3_dot(b, n);
         /* keep it in the normal's hemisphere: drop the part below the tangent plane */
         if (d < 0) b = tgi_v3_sub(b, tgi_v3_scale(n, d));
-        v.bent = tgi_v3_normalize_or(b, n);
+        v.bent = tgi_v3_unit_or(b, n);
     }
     v.near = want_near ? tg_v3(tg_max(0, tg_div(near.x, sum)), tg_max(0, tg_div(near.y, sum)), tg_max(0, tg_div(near.z, sum)))
                        : tg_v3(0, 0, 0);
