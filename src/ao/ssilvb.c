@@ -333,6 +333,16 @@ static uint32_t boundary_sectors(const vb_tech *t, const tgi_ao_slice_pixel *px,
     return side > 0 ? tgi_ssilvb_sector_bits(uf, TG_ONE) : tgi_ssilvb_sector_bits(0, uf);
 }
 
+/* a + b, in tgi_wide where the caller's bound keeps the sum inside
+ * tg_real (the same value as tg_add's then), else saturating. */
+#if TG_FIXED && TG_MAX_IMAGE_SIDE > 8192
+#error "march_layers' on-screen bound (4 sqrt 2 TG_MAX_IMAGE_SIDE pixels within Q16.16) needs TG_MAX_IMAGE_SIDE <= 8192"
+#endif
+static inline tg_real march_add(tg_real a, tg_real b, int bounded)
+{
+    return bounded ? (tg_real)((tgi_wide)a + b) : tg_add(a, b);
+}
+
 /* march with the G-buffer's further depth layers (request.depth_layers >=
  * 2): a sample's surface is solid along the pixel's view ray from its
  * front, the depth buffer's, to the nearest back face behind it
@@ -354,16 +364,6 @@ static uint32_t boundary_sectors(const vb_tech *t, const tgi_ao_slice_pixel *px,
  * segments counts) or that falls in the pixel of the one before
  * (tgi_ao_rays: it would set the same sectors again) is skipped before
  * its layers are read. */
-/* a + b, in tgi_wide where the caller's bound keeps the sum inside
- * tg_real (the same value as tg_add's then), else saturating. */
-#if TG_FIXED && TG_MAX_IMAGE_SIDE > 8192
-#error "march_layers' on-screen bound (4 sqrt 2 TG_MAX_IMAGE_SIDE pixels within Q16.16) needs TG_MAX_IMAGE_SIDE <= 8192"
-#endif
-static inline tg_real march_add(tg_real a, tg_real b, int bounded)
-{
-    return bounded ? (tg_real)((tgi_wide)a + b) : tg_add(a, b);
-}
-
 static void march_layers(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel *px, vb_slice *sl,
                          tg_real sdx, tg_real sdy, int side, uint32_t *mask, tg_vec3 *e)
 {

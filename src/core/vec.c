@@ -19,10 +19,21 @@
 
 #define VEC_MAX_N 4
 
+/* normalize_n is inlined into its callers, each of which passes n as a
+ * constant, so its loops unroll (out of line a 3-vector's normalisation
+ * cost about 80 instructions in float, and a pixel's bent normal comes
+ * through tgi_v3_normalize_or two or three times: the kernel, the filter,
+ * temporal accumulation); one copy when compiling for size. */
+#if defined(__GNUC__) && !TG_OUTLINE_HELPERS
+#define VEC_NORMALIZE_INLINE inline __attribute__((always_inline))
+#else
+#define VEC_NORMALIZE_INLINE
+#endif
+
 #if TG_FIXED
 
 /* Normalize v[0..n) in place; returns 0 (v untouched) for the zero vector. */
-static int normalize_n(tg_real *v, int n)
+static VEC_NORMALIZE_INLINE int normalize_n(tg_real *v, int n)
 {
     int64_t w[VEC_MAX_N], m = 0, inv;
     uint64_t sum = 0, len2;
@@ -94,7 +105,7 @@ static int finite_n(const tg_real *v, int n)
     return 1;
 }
 
-static int normalize_n(tg_real *v, int n)
+static VEC_NORMALIZE_INLINE int normalize_n(tg_real *v, int n)
 {
     float w[VEC_MAX_N], sum = 0.0f, r;
     int i;
@@ -140,17 +151,6 @@ static tg_real dot4(const tg_real *r, tg_real a, tg_real b, tg_real c, tg_real d
 tg_vec3 tgi_v3_normalize_or(tg_vec3 a, tg_vec3 fallback)
 {
     tg_real v[3];
-#if !TG_FIXED
-    /* normalize_n's common case written out, the same operations in the
-     * same order (its array and loops cost a 3-vector about 80
-     * instructions; every pixel's bent normal comes here two or three
-     * times: the kernel, the filter, temporal accumulation) */
-    const float sum = a.x * a.x + a.y * a.y + a.z * a.z;
-    if (sum > 1e-30f && sum < 1e30f) {
-        const float r = tg_sqrt(sum);
-        return tg_v3(a.x / r, a.y / r, a.z / r);
-    }
-#endif
     v[0] = a.x; v[1] = a.y; v[2] = a.z;
     if (!normalize_n(v, 3)) return fallback;
     return tg_v3(v[0], v[1], v[2]);
