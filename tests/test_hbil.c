@@ -1006,8 +1006,10 @@ TEST(blocks_decorrelate_march_offsets)
  * and no cap on the march but the screen. */
 /* The frame's interleaved pass on the image k (tgi_pass_hbil_interleaved):
  * its 16 strided sub-images; fine: the image the horizons are refined on
- * (gi/hbil.c refine_fine), NULL for none. */
-static void kernel_sub_images_on(const tgi_gview *k, const tgi_gview *fine, double radius, int rot, tgi_gresult *all)
+ * (gi/hbil.c refine_fine), NULL for none; samples a side (0: the
+ * default). */
+static void kernel_sub_images_on(const tgi_gview *k, const tgi_gview *fine, double radius, int samples, int rot,
+                                 tgi_gresult *all)
 {
     int ii, jj;
     for (jj = 0; jj < 4; jj++)
@@ -1018,6 +1020,7 @@ static void kernel_sub_images_on(const tgi_gview *k, const tgi_gview *fine, doub
             tgi_gview_strided_sub(&sub, k, ii, jj);
             if (sub.width == 0 || sub.height == 0) continue;
             params_for(&p, radius);
+            if (samples > 0) p.samples = samples;
             p.rotation = rot;
             p.fine = fine;
             tgi_hbil_for_sub_image(&p, ii, jj);
@@ -1075,9 +1078,9 @@ static void floor_ao_error(const gbuf *g, const scene *s, const double *ao, doub
 
 /* The interleaved kernel's AO of g at radius `radius` as the frame's pass
  * computes it (refine: the horizons refined on g's own pixels, gi/hbil.c
- * refine_fine), the 8 frame rotations averaged as the frame's accumulation
- * does, one value a pixel into sum. */
-static void interleaved_accumulated(const gbuf *g, double radius, int refine, double *sum)
+ * refine_fine; samples a side, 0: the default), the 8 frame rotations
+ * averaged as the frame's accumulation does, one value a pixel into sum. */
+static void interleaved_accumulated(const gbuf *g, double radius, int refine, int samples, double *sum)
 {
     size_t i, n = (size_t)g->w * g->h;
     tgi_gbuffer gb;
@@ -1089,7 +1092,7 @@ static void interleaved_accumulated(const gbuf *g, double radius, int refine, do
     memset(sum, 0, n * sizeof(double));
     for (rot = 0; rot < TG_HBIL_ROTATIONS; rot++) {
         tgi_gresult all = results_of(n, 0);
-        kernel_sub_images_on(&full, refine ? &full : NULL, radius, rot, &all);
+        kernel_sub_images_on(&full, refine ? &full : NULL, radius, samples, rot, &all);
         results_read(&all, n, &r);
         for (i = 0; i < n; i++) sum[i] += check_d(r.ao[i]) / TG_HBIL_ROTATIONS;
     }
@@ -1106,7 +1109,7 @@ static void wall_top_error(int w, int h, int refine, double *rmse_out, double *b
     floor_and_wall(&s, 1.5);
     gbuf_make(&g, &s, w, h, eye, target, up);
     sum = malloc((size_t)g.w * g.h * sizeof(double));
-    interleaved_accumulated(&g, radius, refine, sum);
+    interleaved_accumulated(&g, radius, refine, 0, sum);
     floor_ao_error(&g, &s, sum, radius, -1, 3, w > 200 ? 7 : 1, rmse_out, bias_out, worst_out, cnt_out);
     gbuf_free(&g);
     free(sum);
@@ -1177,6 +1180,38 @@ TEST(interleaved_horizon_finds_the_wall_top_pixel)
     CHECK(rmse[1] < 0.025, "rmse %.4f", rmse[1]);
 }
 
+/* A floor before a low step (a wall 0.25 high at x = 0, nothing behind
+ * it), radius 10 (a long reach, gi/hbil.c refine_fine), 4 samples a side
+ * at 160x120: the march's step m is then several sub-image pixels, and
+ * for the floor within 0.8 of the step its top, the horizon toward it,
+ * lies between the pixel and the side's first sample, m - o sub-image
+ * pixels away (o the start's offset).  The fine pixels before the first
+ * sub-image pixel and the sub-image pixels after it up to that sample
+ * (gi/hbil.c march_near) must find it: with the fine pixels alone the AO
+ * there is too bright (measured bias +0.060, rmse 0.069); with march_near
+ * +0.014, 0.024 in both number types, as with every fine pixel up to the
+ * first sample (refine_fine before march_near: +0.014, 0.024). */
+TEST(long_reach_finds_a_step_before_the_first_sample)
+{
+    double eye[3] = { 6, 2.2, 0 }, target[3] = { 0, 0.5, 0 }, up[3] = { 0, 1, 0 }, *sum, rmse, bias, worst;
+    const double radius = 10;
+    scene s;
+    gbuf g;
+    int cnt;
+    floor_and_wall(&s, 0.25);
+    gbuf_make(&g, &s, 160, 120, eye, target, up);
+    sum = malloc((size_t)g.w * g.h * sizeof(double));
+    interleaved_accumulated(&g, radius, 1, 4, sum);
+    floor_ao_error(&g, &s, sum, radius, 0.05, 0.8, 1, &rmse, &bias, &worst, &cnt);
+    printf("  floor 0.05-0.8 before a step 0.25 high, radius 10, 4 samples, 160x120, %d pixels: rmse %.4f, bias %+.4f, "
+           "worst %.3f against ray-traced\n", cnt, rmse, bias, worst);
+    CHECK(cnt > 100, "floor pixels %d", cnt);
+    CHECK(fabs(bias) < 0.02, "bias %+.4f (the AO too bright: the step's top before the first sample missed)", bias);
+    CHECK(rmse < 0.04, "rmse %.4f", rmse);
+    gbuf_free(&g);
+    free(sum);
+}
+
 /* A back wall's foot as builtin:columns sees it (14 from the wall, the eye
  * 3 high, 160x120, radius 1.5): the floor at the crease is seen at a
  * grazing angle, its depth changing by about 0.5 a pixel row, so that it
@@ -1199,7 +1234,7 @@ TEST(interleaved_horizon_finds_the_crease_within_the_radius)
     floor_and_wall(&s, 6);
     gbuf_make(&g, &s, 160, 120, eye, target, up);
     sum = malloc((size_t)g.w * g.h * sizeof(double));
-    interleaved_accumulated(&g, radius, 1, sum);
+    interleaved_accumulated(&g, radius, 1, 0, sum);
     face_ao_error(&g, &s, sum, radius, 1, wall_n, 1, 0, 0.6, 1, &rmse, &bias, &worst, &cnt);
     printf("  wall 0-0.6 above the crease, radius 1.5, 160x120 interleaved, %d pixels: rmse %.4f, bias %+.4f, worst %.3f\n",
            cnt, rmse, bias, worst);
@@ -1303,7 +1338,7 @@ static void quarter_ao(const gbuf *g, double radius, int fine_full, double *sum)
     memset(sum, 0, (size_t)g->w * g->h * sizeof *sum);
     for (rot = 0; rot < TG_HBIL_ROTATIONS; rot++) {
         tgi_gresult hres = results_of(hn, 0);
-        kernel_sub_images_on(&half, fine_full ? &full : &half, radius, rot, &hres);
+        kernel_sub_images_on(&half, fine_full ? &full : &half, radius, 0, rot, &hres);
         for (y = 0; y < g->h; y++)
             for (x = 0; x < g->w; x++) {
                 tgi_gr_value v = tgi_upsample_pixel(&full, &half, &hres, tg_from_float((float)radius), x, y);
@@ -1342,7 +1377,7 @@ TEST(quarter_upsample_same_for_any_row_stride)
     tgi_downsample_rows(&full, &hgb, NULL, NULL, 0, hh);
     tgi_gview_packed(&half, &hgb, 0, hw, hh, 2, 0, 0, &g.view);
     hres = results_of((size_t)hw * hh, 0);
-    kernel_sub_images_on(&half, &half, radius, 0, &hres);
+    kernel_sub_images_on(&half, &half, radius, 0, 0, &hres);
     sf_gbuffer_alloc(&wgb, wide_w, g.h, NULL, 0);
     for (y = 0; y < g.h; y++)
         for (x = 0; x < g.w; x++) tgi_gview_copy_pixel(&wgb, (size_t)y * wide_w + x, &full, tgi_gv_index(&full, x, y));
@@ -1473,6 +1508,7 @@ int main(int argc, char **argv)
     RUN(wall_top_sets_the_horizon_at_any_radius);
     RUN(full_resolution_radius_beyond_150_pixels);
     RUN(interleaved_horizon_finds_the_wall_top_pixel);
+    RUN(long_reach_finds_a_step_before_the_first_sample);
     RUN(interleaved_horizon_finds_the_crease_within_the_radius);
     RUN(near_horizon_bound_stays_below_the_integral);
 #if TG_FIXED
