@@ -67,7 +67,8 @@ bench-publish:
 #                       (min..max) of CPU and wall time, load average at start and end;
 #                       one thread (BENCH_THREADS="1 2" adds configurations);
 #                       BENCH_BASELINE=DIR also runs DIR/tinygi[-fixed] (an older
-#                       checkout's build directory) in the same rounds, for before/after
+#                       checkout's build directory) in the same rounds, for before/after,
+#                       with the first of BENCH_THREADS when it takes --threads
 #   make bench-threads  the same for --threads 1 and 2 (BENCH_THREADS), cornell and
 #                       columns (BENCH_FRAME_SCENES), and the wall-time speed-up of
 #                       each thread count over one, paired round by round, of the

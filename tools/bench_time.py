@@ -121,7 +121,8 @@ def baseline_lines(configs, samples, threads, baseline):
     """CPU time of this build (its first thread count) against --baseline's, per configuration."""
     if not baseline:
         return []
-    lines = ["", "Against the baseline build %s (the rows with threads 'before', run with its defaults): "
+    lines = ["", "Against the baseline build %s (the rows with threads 'before', run with this build's first "
+             "thread count, or its default when it has no --threads): "
              "%s; CPU time this build / baseline, median of the per-round ratios (ratio of the medians)."
              % (baseline, bench_count.describe_source(baseline)), "",
              "| scene | mode | type | baseline CPU ms/frame | this CPU ms/frame | ratio |",
@@ -137,6 +138,15 @@ def baseline_lines(configs, samples, threads, baseline):
                      % (cfg[0], cfg[1], cfg[2], statistics.median(old), statistics.median(new),
                         statistics.median(ratios), statistics.median(new) / statistics.median(old)))
     return lines
+
+
+def takes_threads(binary):
+    """Whether the tinygi at binary has --threads (its --help says so)."""
+    try:
+        out = subprocess.run([binary, "--help"], capture_output=True, text=True, timeout=30)
+    except (OSError, subprocess.TimeoutExpired):
+        return False
+    return "--threads" in out.stdout + out.stderr
 
 
 def run_timed(cmd):
@@ -157,9 +167,14 @@ def frame_main(args):
     if not threads or not all(re.match(r"^[1-9][0-9]*$", n) for n in threads):
         sys.exit("bench_time: --threads: expected a list of thread counts, got '%s'" % args.threads)
     configs = [(s, m, t, n) for s in args.scenes for m in args.modes for t in args.types for n in threads]
+    baseline_threads = []
     if args.baseline:
-        # the same configurations run by an older build, one thread (it may predate --threads)
+        # the same configurations run by an older build, with this build's first thread count
+        # when it takes --threads (else it predates them and runs one thread): CPU times of one
+        # thread against two would count the pool's waiting as the change's
         configs += [(s, m, t, "before") for s in args.scenes for m in args.modes for t in args.types]
+        if takes_threads(os.path.join(args.baseline, "tinygi")):
+            baseline_threads = ["--threads", threads[0]]
     tmp = tempfile.mkdtemp(prefix="bench-frame-")
 
     def run_one(cfg):
@@ -168,8 +183,7 @@ def frame_main(args):
         binary = os.path.join(build, "tinygi" if ntype == "float" else "tinygi-fixed")
         cmd = [binary, "render", "builtin:" + scene, "--size", args.size, "--frames", str(args.frames),
                "-o", os.path.join(tmp, "out.ppm"), "--quiet"]
-        if nthreads != "before":
-            cmd += ["--threads", nthreads]
+        cmd += ["--threads", nthreads] if nthreads != "before" else baseline_threads
         if mode == "quarter":
             cmd.append("--gi-quarter")
         cpu, wall = run_timed(cmd)
