@@ -1007,7 +1007,7 @@ typedef struct hbil_fine_best {
     tgi_wide d[3];          /* its offset (march units) */
     tg_real inv_len;        /* 1 / |d| */
     int si;                 /* its pixel in the fine image; -1: none above the side's */
-    int t;                  /* its distance in fine pixels */
+    int t;                  /* its distance in fine pixels (kept by a run with a stride) */
 } hbil_fine_best;
 
 /* The samples of the fine image t = los[k] .. his[k] - 1 (k < runs, runs
@@ -1093,7 +1093,7 @@ static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, c
             best->d[0] = d[0]; best->d[1] = d[1]; best->d[2] = d[2];
             best->inv_len = inv_len;
             best->si = (int)si;
-            best->t = t;
+            if (stride > 1) best->t = t;   /* refine_fine_sparse's: what lies beside it */
         }
     }
 }
