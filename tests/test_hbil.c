@@ -1100,19 +1100,29 @@ static void interleaved_accumulated(const gbuf *g, double radius, int refine, in
     result_free(&r);
 }
 
-static void wall_top_error(int w, int h, int refine, double *rmse_out, double *bias_out, double *worst_out, int *cnt_out)
+/* A floor before a wall `height` high (floor_and_wall), radius 10, seen
+ * from (6, 2.2, 0) at w x h: the interleaved kernel's accumulated AO
+ * (interleaved_accumulated; samples a side, 0: the default) on the floor
+ * pixels x0 to x1 from the wall against the ray-traced AO. */
+static void floor_before_wall_error(int w, int h, double height, int refine, int samples, double x0, double x1,
+                                    double *rmse_out, double *bias_out, double *worst_out, int *cnt_out)
 {
     double eye[3] = { 6, 2.2, 0 }, target[3] = { 0, 0.5, 0 }, up[3] = { 0, 1, 0 }, *sum;
     const double radius = 10;
     scene s;
     gbuf g;
-    floor_and_wall(&s, 1.5);
+    floor_and_wall(&s, height);
     gbuf_make(&g, &s, w, h, eye, target, up);
     sum = malloc((size_t)g.w * g.h * sizeof(double));
-    interleaved_accumulated(&g, radius, refine, 0, sum);
-    floor_ao_error(&g, &s, sum, radius, -1, 3, w > 200 ? 7 : 1, rmse_out, bias_out, worst_out, cnt_out);
+    interleaved_accumulated(&g, radius, refine, samples, sum);
+    floor_ao_error(&g, &s, sum, radius, x0, x1, w > 200 ? 7 : 1, rmse_out, bias_out, worst_out, cnt_out);
     gbuf_free(&g);
     free(sum);
+}
+
+static void wall_top_error(int w, int h, int refine, double *rmse_out, double *bias_out, double *worst_out, int *cnt_out)
+{
+    floor_before_wall_error(w, h, 1.5, refine, 0, -1, 3, rmse_out, bias_out, worst_out, cnt_out);
 }
 
 TEST(wall_top_sets_the_horizon_at_any_radius)
@@ -1193,23 +1203,14 @@ TEST(interleaved_horizon_finds_the_wall_top_pixel)
  * first sample (refine_fine before march_near: +0.014, 0.024). */
 TEST(long_reach_finds_a_step_before_the_first_sample)
 {
-    double eye[3] = { 6, 2.2, 0 }, target[3] = { 0, 0.5, 0 }, up[3] = { 0, 1, 0 }, *sum, rmse, bias, worst;
-    const double radius = 10;
-    scene s;
-    gbuf g;
+    double rmse, bias, worst;
     int cnt;
-    floor_and_wall(&s, 0.25);
-    gbuf_make(&g, &s, 160, 120, eye, target, up);
-    sum = malloc((size_t)g.w * g.h * sizeof(double));
-    interleaved_accumulated(&g, radius, 1, 4, sum);
-    floor_ao_error(&g, &s, sum, radius, 0.05, 0.8, 1, &rmse, &bias, &worst, &cnt);
+    floor_before_wall_error(160, 120, 0.25, 1, 4, 0.05, 0.8, &rmse, &bias, &worst, &cnt);
     printf("  floor 0.05-0.8 before a step 0.25 high, radius 10, 4 samples, 160x120, %d pixels: rmse %.4f, bias %+.4f, "
            "worst %.3f against ray-traced\n", cnt, rmse, bias, worst);
     CHECK(cnt > 100, "floor pixels %d", cnt);
     CHECK(fabs(bias) < 0.02, "bias %+.4f (the AO too bright: the step's top before the first sample missed)", bias);
     CHECK(rmse < 0.04, "rmse %.4f", rmse);
-    gbuf_free(&g);
-    free(sum);
 }
 
 /* A back wall's foot as builtin:columns sees it (14 from the wall, the eye

@@ -1216,7 +1216,7 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
         int lo[4], hi[4];
         lo[0] = span[1][0]; hi[0] = t0 >= 0 && t0 < span[1][1] ? t0 : span[1][1];
         lo[1] = t0 >= 0 && t0 + 1 > span[1][0] ? t0 + 1 : span[1][0]; hi[1] = span[1][1];
-        lo[2] = span[0][0]; hi[2] = r >= HBIL_SPARSE_RATIO ? span[0][0] : span[0][1];   /* else refine_fine_sparse's */
+        lo[2] = span[0][0]; hi[2] = r >= HBIL_SPARSE_RATIO ? span[0][0] : span[0][1];   /* empty: refine_fine_sparse's */
         lo[3] = room; hi[3] = room > r * sub_room ? room + 1 : room;
         int n = 0;
         for (k = 0; k < 4; k++) {   /* the runs that are not empty, in order */
