@@ -959,23 +959,39 @@ static void march_run(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_si
  * comes out too bright (by 0.03 on average on builtin:cornell).  So the
  * screen's last pixel within the extent is a sample, and the m - 1 pixels
  * after the sample that set the horizon are marched one by one. */
+/* Whether the march *mr (with a fine image) has refine_fine's long reach:
+ * past HBIL_LONG_REACH. */
+static inline int march_long_reach(const hbil_ctx *c, const hbil_march *mr) { return mr->extent > c->long_reach; }
+
+/* Pixels from the side's pixel to the screen's edge along its march (*mr
+ * as march_side set it up). */
+static inline int march_room(const hbil_ctx *c, const hbil_march *mr, int major_x)
+{
+    const int a0 = mr->run.a + mr->run.back;
+    return mr->run.da > 0 ? (major_x ? c->g->width : c->g->height) - 1 - a0 : a0;
+}
+
+/* The side's pixels p + 1 .. p + k one by one (march_run), k cut at the
+ * screen's edge (room, march_room) and at the march's extent. */
+static inline void march_pixels(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_side *sd, const hbil_march *mr,
+                                int major_x, int room, int p, int k)
+{
+    if (k > room - p) k = room - p;
+    if (tg_from_int(p + k) > mr->extent) k = tg_to_int(mr->extent) - p;
+    if (k > 0) march_run(c, sl, side, sd, mr, major_x, p, 1, k);
+}
+
 HBIL_NOINLINE static void march_between(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_side *sd,
                                         const hbil_march *mr, int major_x)
 {
     const int dir = mr->run.da < 0 ? -1 : 1, m = mr->run.da * dir, a0 = mr->run.a + mr->run.back;
-    const int room = dir > 0 ? (major_x ? c->g->width : c->g->height) - 1 - a0 : a0;  /* pixels to the edge */
+    const int room = march_room(c, mr, major_x);
     const int last = mr->run.n * m - mr->run.back * dir;                 /* the last sample's distance */
-    int p, k;
     /* room > 0: a side with no sample (n = 0, the offset put the first
      * past the edge) has last = -o, and a pixel on the edge would sample
      * itself (test open_plane_long_radius) */
     if (room > 0 && last < room && tg_from_int(room) <= mr->extent) march_run(c, sl, side, sd, mr, major_x, last, room - last, 1);
-    if (sd->peak_a < 0) return;
-    p = (sd->peak_a - a0) * dir;
-    k = m - 1;
-    if (k > room - p) k = room - p;
-    if (tg_from_int(p + k) > mr->extent) k = tg_to_int(mr->extent) - p;
-    if (k > 0) march_run(c, sl, side, sd, mr, major_x, p, 1, k);
+    if (sd->peak_a >= 0) march_pixels(c, sl, side, sd, mr, major_x, room, (sd->peak_a - a0) * dir, m - 1);
 }
 
 #if !TG_NO_FINE_HORIZON /* left out with TG_NO_FINE_HORIZON=1 (tinygi.h "FEATURE SWITCHES") */
@@ -994,11 +1010,7 @@ HBIL_NOINLINE static void march_between(const hbil_ctx *c, const hbil_slice *sl,
 HBIL_NOINLINE static void march_near(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_side *sd,
                                      const hbil_march *mr, int major_x, int k)
 {
-    const int dir = mr->run.da < 0 ? -1 : 1, a0 = mr->run.a + mr->run.back;
-    const int room = dir > 0 ? (major_x ? c->g->width : c->g->height) - 1 - a0 : a0;  /* pixels to the edge */
-    if (k > room) k = room;
-    if (tg_from_int(k) > mr->extent) k = tg_to_int(mr->extent);
-    if (k > 0) march_run(c, sl, side, sd, mr, major_x, 0, 1, k);
+    march_pixels(c, sl, side, sd, mr, major_x, march_room(c, mr, major_x), 0, k);
 }
 
 /* The highest of refine_fine's samples. */
@@ -1185,7 +1197,7 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
     const int room = dir > 0 ? (major_x ? fg->width : fg->height) - 1 - fa0 : fa0;       /* fine pixels to the edge */
     const int sub_room = dir > 0 ? (major_x ? c->g->width : c->g->height) - 1 - a0 : a0;
     const tg_real ext = tg_mul(mr->extent, tg_from_int(r));                            /* fine pixels */
-    const int long_reach = mr->extent > c->long_reach;
+    const int long_reach = march_long_reach(c, mr);
     const int first = r * (mr->run.da - mr->run.back) * dir;   /* the first sample's fine pixel */
     /* the screen's edge (room) and the extent (small_from_int(t) <= ext:
      * t <= floor(ext), ext >= 0) end every run */
@@ -1301,7 +1313,7 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     mr.run.minor = small_add(small_from_int(major_x ? px->y : px->x), mr.run.ox);
     mr.run.dminor = small_mul_int(slope, m);
 #if !TG_NO_FINE_HORIZON
-    if (c->fine && mr.extent > c->long_reach && m - o > 1) march_near(c, sl, side, sd, &mr, major_x, m - o - 1);
+    if (c->fine && march_long_reach(c, &mr) && m - o > 1) march_near(c, sl, side, sd, &mr, major_x, m - o - 1);
 #endif
     MARCH_SAMPLES(c, sl, side, sd, &mr, &mr.run, major_x);
     if (m > 1) march_between(c, sl, side, sd, &mr, major_x);
