@@ -1031,13 +1031,17 @@ typedef struct hbil_fine_best {
  * fine_ratio of the march's unit (the sub-image's pixel); (fa0, fb0) is
  * the pixel in the fine image.  The major index is stepped, the minor
  * offset taken anew at each t (slope t, as one product), so every sample
- * is the one a sample taken alone would be.  follow (a constant at each
- * call): the runs follow the pixel's surface from t = 1 (refine_fine),
- * interpolating only between neighbours on one surface and ending at a
- * silhouette (HBIL_EDGE_SLOPE).  stride (a constant at each call): every
- * stride-th pixel of the runs, t = lo, lo + stride, ... < hi.  Inlined into
+ * is the one a sample taken alone would be.  mode (a constant at each
+ * call): HBIL_FINE_EVERY takes every pixel of the runs; HBIL_FINE_FOLLOW
+ * follows the pixel's surface from t = 1 (refine_fine), interpolating only
+ * between neighbours on one surface and ending at a silhouette
+ * (HBIL_EDGE_SLOPE); HBIL_FINE_CLIMB ends a run at its first pixel that
+ * does not raise the horizon (fine_climb).  stride (a constant at each
+ * call): every stride-th pixel of the runs, t = lo, lo + stride, ... up to
+ * hi, not included (a negative stride runs down).  Inlined into
  * refine_fine's calls (its set-up, once for all the runs, costs as much as
  * a sample), one copy when compiling for size. */
+enum { HBIL_FINE_EVERY, HBIL_FINE_FOLLOW, HBIL_FINE_CLIMB };
 #if TG_OUTLINE_HELPERS
 #define HBIL_FINE_INLINE HBIL_NOINLINE
 #elif defined(__GNUC__)
@@ -1046,9 +1050,10 @@ typedef struct hbil_fine_best {
 #define HBIL_FINE_INLINE inline
 #endif
 static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, const hbil_march *mr, int major_x,
-                                      int fa0, int fb0, const int *los, const int *his, int runs, int dir, int follow,
+                                      int fa0, int fb0, const int *los, const int *his, int runs, int dir, int mode,
                                       int stride)
 {
+    const int follow = mode == HBIL_FINE_FOLLOW, climb = mode == HBIL_FINE_CLIMB;
     const tgi_gview *fg = c->fine;
     const int bmax = major_x ? fg->height : fg->width;
     const size_t smaj = (size_t)(major_x ? fg->pixel_stride : fg->row_stride);
@@ -1066,14 +1071,17 @@ static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, c
         size_t ia = (size_t)fa * smaj;
         tg_real tm = small_mul(small_from_int(lo * dir), inv_r);
         tg_real zc = mr->z;   /* follow: the depth of the last sample on the pixel's surface */
-        for (t = lo; t < hi; t += stride, fa += dir * stride, ia += dmaj, tm = small_add(tm, dtm)) {
+        for (t = lo; stride > 0 ? t < hi : t > hi; t += stride, fa += dir * stride, ia += dmaj, tm = small_add(tm, dtm)) {
             /* |slope| <= 1, t and the fine pixels below 2^14, times 1/4 or 1/8: small_mul */
             const tg_real minor = small_mul_int(slope, t);
             const int b0 = floor_small(minor), fb = fb0 + b0;
             tg_real f, z1, za, zb, sx, sy, inv_len, cn;
             size_t si;
             tgi_wide d[3];
-            if ((unsigned)fb >= (unsigned)bmax) continue;                  /* the slice leaves the image */
+            if ((unsigned)fb >= (unsigned)bmax) {                           /* the slice leaves the image */
+                if (climb) break;
+                continue;
+            }
             f = frac_small(minor, b0);
             si = ia + (size_t)fb * smin;
             za = tgi_gv_depth(fg, si);
@@ -1083,10 +1091,12 @@ static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, c
             } else {                                                        /* as in march_samples */
                 const int nb = f >= TG_R(0.5f);
                 size_t sn = nb ? si + smin : si;
-                if (nb && fb + 1 >= bmax) continue;                         /* outside the image */
-                if (tgi_gv_is_sky(fg, sn) || tgi_gv_depth(fg, sn) <= 0) continue;   /* sky never occludes */
-                z1 = sample_depth_edge(c, fg, major_x, fa, fb, f, (int)si, (int)sn);
-                if (z1 <= 0) continue;
+                if ((nb && fb + 1 >= bmax)                                  /* outside the image */
+                    || tgi_gv_is_sky(fg, sn) || tgi_gv_depth(fg, sn) <= 0       /* sky never occludes */
+                    || (z1 = sample_depth_edge(c, fg, major_x, fa, fb, f, (int)si, (int)sn)) <= 0) {
+                    if (climb) break;
+                    continue;
+                }
                 si = sn;
             }
             if (follow) {   /* a silhouette ends the surface */
@@ -1097,7 +1107,10 @@ static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, c
             sx = major_x ? tm : small_mul(minor, inv_r);
             sy = major_x ? small_mul(tg_neg(minor), inv_r) : tg_neg(tm);
             cn = sample_cos(mr, z1, sx, sy, h, hs_tie, d, &inv_len);
-            if (cn <= HBIL_NOT_ABOVE) continue;
+            if (cn <= HBIL_NOT_ABOVE) {
+                if (climb) break;
+                continue;
+            }
             h = cn;
             best->h = cn;
             best->hs = horizon_sq(cn);
@@ -1125,11 +1138,11 @@ HBIL_NOINLINE static void refine_fine_sparse(const hbil_ctx *c, hbil_fine_best *
     const tg_real h = best->h;
     int los[2], his[2], n = 0;
     if (lo >= hi) return;
-    fine_run(c, best, mr, major_x, fa0, fb0, &lo, &hi, 1, dir, 0, 2);
+    fine_run(c, best, mr, major_x, fa0, fb0, &lo, &hi, 1, dir, HBIL_FINE_EVERY, 2);
     if (best->h == h) return;
     if (best->t - 1 >= lo) { los[n] = best->t - 1; his[n++] = best->t; }
     if (best->t + 1 < hi) { los[n] = best->t + 1; his[n++] = best->t + 2; }
-    if (n > 0) fine_run(c, best, mr, major_x, fa0, fb0, los, his, n, dir, 0, 1);
+    if (n > 0) fine_run(c, best, mr, major_x, fa0, fb0, los, his, n, dir, HBIL_FINE_EVERY, 1);
 }
 
 /* fine_run's one run t = lo .. hi - 1 following the pixel's surface: out
@@ -1137,7 +1150,27 @@ HBIL_NOINLINE static void refine_fine_sparse(const hbil_ctx *c, hbil_fine_best *
 HBIL_NOINLINE static void fine_follow(const hbil_ctx *c, hbil_fine_best *best, const hbil_march *mr, int major_x,
                                       int fa0, int fb0, int lo, int hi, int dir)
 {
-    fine_run(c, best, mr, major_x, fa0, fb0, &lo, &hi, 1, dir, 1, 1);
+    fine_run(c, best, mr, major_x, fa0, fb0, &lo, &hi, 1, dir, HBIL_FINE_FOLLOW, 1);
+}
+
+/* The fine pixels around the peak's sample t0, lo <= t < hi, climbing: up
+ * from t0 + 1 while each raises the horizon, then down from t0 - 1 alike.
+ * Near the peak the horizon along the fine pixels rises to an edge and
+ * falls past it: the highest is the first before the climb stops, not
+ * found only by taking every pixel of the span (r - 1 each side, 3 with
+ * the 4x4 interleave).  AO against the ray-traced reference unchanged to
+ * 0.0001 (RMSE and bias, the four built-ins at 160x120 and 320x240);
+ * cornell 320x240 -1.4% of the frame's instructions in float, -2.4% in
+ * Q16.16.  Not for --gi-quarter's 8-times finer image, whose spans the
+ * climb cut short (cornell 160x120 bias +0.0096 -> +0.0108). */
+HBIL_NOINLINE static void fine_climb(const hbil_ctx *c, hbil_fine_best *best, const hbil_march *mr, int major_x,
+                                     int fa0, int fb0, int t0, int lo, int hi, int dir)
+{
+    int from = t0 + 1, to = hi;
+    if (from < to) fine_run(c, best, mr, major_x, fa0, fb0, &from, &to, 1, dir, HBIL_FINE_CLIMB, 1);
+    from = t0 - 1;
+    to = lo - 1;
+    if (from > to) fine_run(c, best, mr, major_x, fa0, fb0, &from, &to, 1, dir, HBIL_FINE_CLIMB, -1);
 }
 
 /* The interleaved kernel marches a 4x4 sub-image, whose pixels are 4
@@ -1202,6 +1235,7 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
     /* the screen's edge (room) and the extent (small_from_int(t) <= ext:
      * t <= floor(ext), ext >= 0) end every run */
     const int tmax = ext < 0 ? -1 : tg_to_int(ext) < room ? tg_to_int(ext) : room;
+    const int climb = sd->peak_a >= 0 && r < HBIL_SPARSE_RATIO;   /* the peak's span by fine_climb */
     hbil_fine_best best;
     int t0 = -1, k, span[2][2] = { { 0, 0 }, { 0, 0 } };   /* fine pixels [span[k][0], span[k][1]) */
     best.h = sd->h;
@@ -1222,12 +1256,15 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
         span[0][1] = t0 >= 0 && span[1][0] < first ? span[1][0] : first;
         if (span[0][1] > r) span[0][1] = r;   /* up to the first sub-image pixel: march_near takes the rest */
     }
+    if (climb)   /* the peak's span, climbing */
+        fine_climb(c, &best, mr, major_x, fa0, fb0, t0, span[1][0], span[1][1] <= tmax ? span[1][1] : tmax + 1, dir);
     {
-        /* the runs in the order of before: the peak's span without t0, the
-         * span before the first sample, the screen's last pixel */
+        /* the runs in the order of before: the peak's span without t0
+         * (unless climbed), the span before the first sample, the screen's
+         * last pixel */
         int lo[4], hi[4];
-        lo[0] = span[1][0]; hi[0] = t0 >= 0 && t0 < span[1][1] ? t0 : span[1][1];
-        lo[1] = t0 >= 0 && t0 + 1 > span[1][0] ? t0 + 1 : span[1][0]; hi[1] = span[1][1];
+        lo[0] = span[1][0]; hi[0] = climb ? lo[0] : t0 >= 0 && t0 < span[1][1] ? t0 : span[1][1];
+        lo[1] = t0 >= 0 && t0 + 1 > span[1][0] ? t0 + 1 : span[1][0]; hi[1] = climb ? lo[1] : span[1][1];
         lo[2] = span[0][0]; hi[2] = r >= HBIL_SPARSE_RATIO ? span[0][0] : span[0][1];   /* empty: refine_fine_sparse's */
         lo[3] = room; hi[3] = room > r * sub_room ? room + 1 : room;
         int n = 0;
@@ -1239,10 +1276,10 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
         }
         if (n > 0) {
 #if TG_OUTLINE_HELPERS
-            fine_run(c, &best, mr, major_x, fa0, fb0, lo, hi, n, dir, 0, 1);
+            fine_run(c, &best, mr, major_x, fa0, fb0, lo, hi, n, dir, HBIL_FINE_EVERY, 1);
 #else       /* a copy per axis, as MARCH_SAMPLES */
-            if (major_x) fine_run(c, &best, mr, 1, fa0, fb0, lo, hi, n, dir, 0, 1);
-            else fine_run(c, &best, mr, 0, fa0, fb0, lo, hi, n, dir, 0, 1);
+            if (major_x) fine_run(c, &best, mr, 1, fa0, fb0, lo, hi, n, dir, HBIL_FINE_EVERY, 1);
+            else fine_run(c, &best, mr, 0, fa0, fb0, lo, hi, n, dir, HBIL_FINE_EVERY, 1);
 #endif
         }
     }
