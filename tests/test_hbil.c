@@ -1213,16 +1213,27 @@ TEST(interleaved_horizon_finds_the_wall_top_pixel)
  * there is too bright (measured bias +0.060, rmse 0.069); with march_near
  * +0.014, 0.024 in both number types, as with every fine pixel up to the
  * first sample (refine_fine before march_near: +0.014, 0.024). */
-TEST(long_reach_finds_a_step_before_the_first_sample)
+/* floor_before_wall_error at 160x120 with the refinement, printed and
+ * bounded: at least min_cnt floor pixels, |bias| < max_bias (the AO too
+ * bright: `missed` missed), RMSE < max_rmse, the worst pixel < max_worst. */
+static void floor_before_check(double height, double depth, int samples, double x0, double x1, int min_cnt,
+                               double max_bias, double max_rmse, double max_worst, const char *missed)
 {
     double rmse, bias, worst;
     int cnt;
-    floor_before_wall_error(160, 120, 0.25, 0, 1, 4, 0.05, 0.8, &rmse, &bias, &worst, &cnt);
-    printf("  floor 0.05-0.8 before a step 0.25 high, radius 10, 4 samples, 160x120, %d pixels: rmse %.4f, bias %+.4f, "
-           "worst %.3f against ray-traced\n", cnt, rmse, bias, worst);
-    CHECK(cnt > 100, "floor pixels %d", cnt);
-    CHECK(fabs(bias) < 0.02, "bias %+.4f (the AO too bright: the step's top before the first sample missed)", bias);
-    CHECK(rmse < 0.04, "rmse %.4f", rmse);
+    floor_before_wall_error(160, 120, height, depth, 1, samples, x0, x1, &rmse, &bias, &worst, &cnt);
+    printf("  floor %.2f-%.2f before a wall %.2f high, top %.1f deep, radius 10, %d samples a side, 160x120, %d pixels: "
+           "rmse %.4f, bias %+.4f, worst %.3f against ray-traced\n", x0, x1, height, depth,
+           samples > 0 ? samples : TG_DEFAULT_SAMPLES, cnt, rmse, bias, worst);
+    CHECK(cnt > min_cnt, "floor pixels %d", cnt);
+    CHECK(fabs(bias) < max_bias, "bias %+.4f (the AO too bright: %s missed)", bias, missed);
+    CHECK(rmse < max_rmse, "rmse %.4f", rmse);
+    CHECK(worst < max_worst, "worst pixel %.3f", worst);
+}
+
+TEST(long_reach_finds_a_step_before_the_first_sample)
+{
+    floor_before_check(0.25, 0, 4, 0.05, 0.8, 100, 0.02, 0.04, 1, "the step's top before the first sample");
 }
 
 /* A floor before a box 0.5 high and 1 deep, radius 10 (a long reach),
@@ -1237,15 +1248,7 @@ TEST(long_reach_finds_a_step_before_the_first_sample)
  * 0.167. */
 TEST(box_top_edge_before_the_peak_sample)
 {
-    double rmse, bias, worst;
-    int cnt;
-    floor_before_wall_error(160, 120, 0.5, 1, 1, 0, 0.05, 3, &rmse, &bias, &worst, &cnt);
-    printf("  floor 0.05-3 before a box 0.5 high and 1 deep, radius 10, 160x120, %d pixels: rmse %.4f, bias %+.4f, "
-           "worst %.3f against ray-traced\n", cnt, rmse, bias, worst);
-    CHECK(cnt > 1000, "floor pixels %d", cnt);
-    CHECK(fabs(bias) < 0.006, "bias %+.4f (the AO too bright: the box's edge before the peak's sample missed)", bias);
-    CHECK(rmse < 0.015, "rmse %.4f", rmse);
-    CHECK(worst < 0.1, "worst pixel %.3f", worst);
+    floor_before_check(0.5, 1, 0, 0.05, 3, 1000, 0.006, 0.015, 0.1, "the box's edge before the peak's sample");
 }
 
 /* A back wall's foot as builtin:columns sees it (14 from the wall, the eye
