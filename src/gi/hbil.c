@@ -1156,13 +1156,14 @@ HBIL_NOINLINE static void fine_follow(const hbil_ctx *c, hbil_fine_best *best, c
 /* The fine pixels around the peak's sample t0, lo <= t < hi, climbing: up
  * from t0 + 1 while each raises the horizon, then down from t0 - 1 alike.
  * Near the peak the horizon along the fine pixels rises to an edge and
- * falls past it: the highest is the first before the climb stops, not
- * found only by taking every pixel of the span (r - 1 each side, 3 with
- * the 4x4 interleave).  AO against the ray-traced reference unchanged to
- * 0.0001 (RMSE and bias, the four built-ins at 160x120 and 320x240);
- * cornell 320x240 -1.4% of the frame's instructions in float, -2.4% in
- * Q16.16.  Not for --gi-quarter's 8-times finer image, whose spans the
- * climb cut short (cornell 160x120 bias +0.0096 -> +0.0108). */
+ * falls past it, so the climb ends past the highest, where taking every
+ * pixel of the span (the r - 1 after t0 and, on a long reach, the r - 1
+ * before it: 3 each with the 4x4 interleave) finds none higher: AO against
+ * the ray-traced reference unchanged to 0.0001 (RMSE and bias, the four
+ * built-ins at 160x120 and 320x240, both number types); cornell 320x240
+ * -1.4% of the frame's instructions in float, -2.2% in Q16.16.  Not for
+ * --gi-quarter's 8-times finer image, where climbing cut spans short
+ * (cornell 160x120 bias +0.0096 -> +0.0108). */
 HBIL_NOINLINE static void fine_climb(const hbil_ctx *c, hbil_fine_best *best, const hbil_march *mr, int major_x,
                                      int fa0, int fb0, int t0, int lo, int hi, int dir)
 {
