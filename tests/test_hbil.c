@@ -959,7 +959,7 @@ TEST(rotations_stratify_slice_angles_and_march_offsets)
 TEST(blocks_decorrelate_march_offsets)
 {
     enum { B = 32 };
-    int rot, bx, by, i, j, k, same = 0, pairs = 0, unstratified = 0;
+    int rot, bx, by, i, j, k, same = 0, pairs = 0, unstratified = 0, repeats = 0;
     for (rot = 0; rot < TG_HBIL_ROTATIONS; rot++)
         for (by = 0; by < B; by++)
             for (bx = 0; bx < B; bx++) {
@@ -982,9 +982,21 @@ TEST(blocks_decorrelate_march_offsets)
                     }
                 for (k = 0; k < 16; k++) unstratified += seen[k] != 1;
             }
+    /* over the rotations every pixel's offset takes 8 different strata */
+    for (by = 0; by < B; by++)
+        for (bx = 0; bx < B; bx++)
+            for (j = 0; j < 4; j++)
+                for (i = 0; i < 4; i++) {
+                    int seen[16] = { 0 };
+                    for (rot = 0; rot < TG_HBIL_ROTATIONS; rot++) {
+                        k = (int)floor(check_d(tgi_hbil_block_jitter(tgi_hbil_step_jitter(i, j, rot), bx, by, rot)) * 16);
+                        if (k >= 0 && k < 16 && seen[k]++) repeats++;
+                    }
+                }
     printf("  blocks: %.3f of neighbouring blocks share a sub-image's offset (1/16 = 0.0625 by chance), "
-           "%d unstratified blocks\n", (double)same / pairs, unstratified);
+           "%d unstratified blocks, %d strata repeated over the rotations\n", (double)same / pairs, unstratified, repeats);
     CHECK(unstratified == 0, "%d blocks do not take each of the 16 offset strata once", unstratified);
+    CHECK(repeats == 0, "%d times a pixel's offset fell in a stratum it took in another rotation", repeats);
     CHECK((double)same / pairs < 0.1, "neighbouring blocks share offsets: %.3f", (double)same / pairs);
 }
 

@@ -1433,10 +1433,12 @@ static void write_open(const hbil_ctx *c, int i)
 
 tg_real tgi_hbil_block_jitter(tg_real sub_image_jitter, int bx, int by, int rot)
 {
-    uint32_t hsh = (uint32_t)bx * 0x8DA6B343u ^ (uint32_t)by * 0xD8163841u ^ (uint32_t)rot * 0xCB1AB31Fu;
+    /* the rotations' shifts: 0, 8, 4, 12, 2, 10, 6, 14 sixteenths, as rotation_offset orders them */
+    static const uint8_t bitrev3[8] = { 0, 4, 2, 6, 1, 5, 3, 7 };
+    uint32_t hsh = (uint32_t)bx * 0x8DA6B343u ^ (uint32_t)by * 0xD8163841u;
     tg_real j;
     hsh ^= hsh >> 15; hsh *= 0x2C1B3C6Du; hsh ^= hsh >> 12;
-    j = tg_add(sub_image_jitter, tg_ratio((int)(hsh >> 28), 16));
+    j = tg_add(sub_image_jitter, tg_ratio((int)(((hsh >> 28) + 2u * bitrev3[rot & 7]) & 15u), 16));
     return j >= TG_ONE ? tg_sub(j, TG_ONE) : j;
 }
 
