@@ -1214,17 +1214,6 @@ TEST(interleaved_horizon_finds_the_wall_top_pixel)
     CHECK(rmse[1] < 0.025, "rmse %.4f", rmse[1]);
 }
 
-/* A floor before a low step (a wall 0.25 high at x = 0, nothing behind
- * it), radius 10 (a long reach, gi/hbil.c refine_fine), 4 samples a side
- * at 160x120: the march's step m is then several sub-image pixels, and
- * for the floor within 0.8 of the step its top, the horizon toward it,
- * lies between the pixel and the side's first sample, m - o sub-image
- * pixels away (o the start's offset).  The fine pixels before the first
- * sub-image pixel and the sub-image pixels after it up to that sample
- * (gi/hbil.c march_near) must find it: with the fine pixels alone the AO
- * there is too bright (measured bias +0.060, rmse 0.069); with march_near
- * +0.014, 0.024 in both number types, as with every fine pixel up to the
- * first sample (refine_fine before march_near: +0.014, 0.024). */
 /* floor_before_wall_error at 160x120 with the refinement, printed and
  * bounded: at least min_cnt floor pixels, |bias| < max_bias (the AO too
  * bright: `missed` missed), RMSE < max_rmse, the worst pixel < max_worst. */
@@ -1243,6 +1232,17 @@ static void floor_before_check(double height, double depth, int samples, double 
     CHECK(worst < max_worst, "worst pixel %.3f", worst);
 }
 
+/* A floor before a low step (a wall 0.25 high at x = 0, nothing behind
+ * it), radius 10 (a long reach, gi/hbil.c refine_fine), 4 samples a side
+ * at 160x120: the march's step m is then several sub-image pixels, and
+ * for the floor within 0.8 of the step its top, the horizon toward it,
+ * lies between the pixel and the side's first sample, m - o sub-image
+ * pixels away (o the start's offset).  The fine pixels before the first
+ * sub-image pixel and the sub-image pixels after it up to that sample
+ * (gi/hbil.c march_near) must find it: with the fine pixels alone the AO
+ * there is too bright (measured bias +0.060, rmse 0.069); with march_near
+ * +0.014, 0.024 in both number types, as with every fine pixel up to the
+ * first sample (refine_fine before march_near: +0.014, 0.024). */
 TEST(long_reach_finds_a_step_before_the_first_sample)
 {
     floor_before_check(0.25, 0, 4, 0.05, 0.8, 100, 0.02, 0.04, 1, "the step's top before the first sample");

@@ -98,13 +98,16 @@ static const uint8_t slice_rank4[4][4] = {
     { 0, 8, 2, 10 }, { 12, 4, 14, 6 }, { 3, 11, 1, 9 }, { 15, 7, 13, 5 }
 };
 
+/* The rotations' order: 0..7 bit-reversed, so any run of consecutive
+ * frames spreads out (rotation_offset, tgi_hbil_block_jitter). */
+static const uint8_t rotation_rank[8] = { 0, 4, 2, 6, 1, 5, 3, 7 };
+
 /* Where in its stratum rotation r samples, in [0, 1): the eighths in
- * bit-reversed order, so any run of consecutive frames spreads out; the
- * march offsets use the order shifted by half, apart from the angles'. */
+ * rotation_rank's order; the march offsets use the order shifted by half,
+ * apart from the angles'. */
 static tg_real rotation_offset(int r)
 {
-    static const uint8_t bitrev3[8] = { 0, 4, 2, 6, 1, 5, 3, 7 };
-    return tg_ratio(2 * bitrev3[r & 7] + 1, 2 * TG_HBIL_ROTATIONS);
+    return tg_ratio(2 * rotation_rank[r & 7] + 1, 2 * TG_HBIL_ROTATIONS);
 }
 
 tg_real tgi_hbil_slice_phi0(int i, int j, int slices, int rot)
@@ -1433,12 +1436,11 @@ static void write_open(const hbil_ctx *c, int i)
 
 tg_real tgi_hbil_block_jitter(tg_real sub_image_jitter, int bx, int by, int rot)
 {
-    /* the rotations' shifts: 0, 8, 4, 12, 2, 10, 6, 14 sixteenths, as rotation_offset orders them */
-    static const uint8_t bitrev3[8] = { 0, 4, 2, 6, 1, 5, 3, 7 };
     uint32_t hsh = (uint32_t)bx * 0x8DA6B343u ^ (uint32_t)by * 0xD8163841u;
     tg_real j;
     hsh ^= hsh >> 15; hsh *= 0x2C1B3C6Du; hsh ^= hsh >> 12;
-    j = tg_add(sub_image_jitter, tg_ratio((int)(((hsh >> 28) + 2u * bitrev3[rot & 7]) & 15u), 16));
+    /* the rotations' shifts: 0, 8, 4, 12, 2, 10, 6, 14 sixteenths, in rotation_rank's order */
+    j = tg_add(sub_image_jitter, tg_ratio((int)(((hsh >> 28) + 2u * rotation_rank[rot & 7]) & 15u), 16));
     return j >= TG_ONE ? tg_sub(j, TG_ONE) : j;
 }
 
