@@ -156,7 +156,8 @@ static void image_read_back(image *im)
 static void image_render(image *im, const geo *g, const tgi_material *materials, const double eye[3],
                          const double target[3], double fov_deg, int w, int h)
 {
-    static const tgi_material white = { "white", { TG_ONE, TG_ONE, TG_ONE }, 0, { 0, 0, 0 }, 1 };
+    static const tgi_material white = { "white", { TG_ONE, TG_ONE, TG_ONE }, 0, { 0, 0, 0 }, 1,
+                                        { TG_INV_PI, TG_INV_PI, TG_INV_PI } };   /* diffuse: tgi_material_finish's */
     tgi_raster_mesh mesh;
     size_t n = (size_t)w * (size_t)h;
     int k, used;

@@ -34,6 +34,7 @@ static inline void sf_gbuffer_alloc(tgi_gbuffer *g, int w, int h, const tgi_mate
     tgi_gbuffer_carve(g, w, h, sf_calloc(tgi_gbuffer_carve(g, w, h, NULL), 1));
     if (!materials) {
         sf_material_table[0].albedo = tg_v3(TG_R(0.8f), TG_R(0.8f), TG_R(0.8f));
+        tgi_material_finish(&sf_material_table[0]);
         materials = sf_material_table;
         material_count = 1;
     }

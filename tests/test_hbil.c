@@ -664,6 +664,7 @@ TEST(near_field_is_irradiance)
     memset(m, 0, sizeof m);
     for (k = 0; k < 2; k++) m[k].albedo = tg_v3(TG_R(0.8f), TG_R(0.8f), TG_R(0.8f));
     m[1].f0 = TG_R(0.5f);
+    for (k = 0; k < 2; k++) tgi_material_finish(&m[k]);
     groove_scene(&s);
     s.q[0].rad = 1.0; s.q[1].rad = 1.0;
     groove_view(&g, &s, 64, 48);

@@ -104,6 +104,7 @@ static gbuf *gbuf_new(void)
 {
     gbuf *g = (gbuf *)calloc(1, sizeof(gbuf));
     gbuf_materials[0].albedo = tg_v3(TG_ONE, TG_ONE, TG_ONE);
+    tgi_material_finish(&gbuf_materials[0]);
     sf_gbuffer_alloc(&g->gb, W, H, gbuf_materials, 9);
     return g;
 }
@@ -553,6 +554,7 @@ TEST(compose_formula_sky_and_saturation)
         gbuf_materials[1 + i].albedo = tg_v3(rv(0.8), rv(0.5), rv(0.2));
         gbuf_materials[1 + i].f0 = rv(0.04 * (i % 4));
         gbuf_materials[1 + i].emissive = i >= 4 ? tg_v3(rv(0.75), rv(0.75), rv(0.75)) : tg_v3(0, 0, 0);
+        tgi_material_finish(&gbuf_materials[1 + i]);
     }
     g->gb.has_emissive = 1;
     {

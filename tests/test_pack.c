@@ -359,6 +359,7 @@ TEST(geometry_gbuffer_without_material)
     memset(mats, 0, sizeof mats);
     mats[1].albedo = tg_v3(TG_R(0.5f), TG_R(0.5f), TG_R(0.5f));
     mats[1].f0 = TG_R(0.25f);
+    tgi_material_finish(&mats[1]);
 #if TG_WIDE_STORAGE
     CHECK(bytes == full, "wide storage keeps every plane (%lu vs %lu bytes)", (unsigned long)bytes, (unsigned long)full);
 #else

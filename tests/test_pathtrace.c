@@ -30,6 +30,7 @@ static tgi_material material(double albedo, double f0, double e0, double e1, dou
     tgi_material m;
     memset(&m, 0, sizeof m);
     m.albedo = v3(albedo, albedo, albedo); m.f0 = rv(f0); m.emissive = v3(e0, e1, e2); m.twosided = 1;
+    tgi_material_finish(&m);
     return m;
 }
 

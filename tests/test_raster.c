@@ -75,6 +75,7 @@ static mesh *mesh_new(void)
         m->materials[k].albedo = V(0.25 * (k + 1), 0.5, 0.75);
         m->materials[k].f0 = R(0.04);
         m->materials[k].emissive = V(0, 0, 0.125 * k);
+        tgi_material_finish(&m->materials[k]);
     }
     m->materials[1].twosided = 1;
     return m;

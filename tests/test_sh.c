@@ -118,6 +118,7 @@ static small_gb *make_gb(double albedo)
     tgi_gview v;
     int i;
     g->material.albedo = v3d(albedo, albedo, albedo);
+    tgi_material_finish(&g->material);
     sf_gbuffer_alloc(&g->gb, N, N, &g->material, 1);
     v = sf_view(&g->gb, NULL);
     for (i = 0; i < N * N; i++) {
@@ -371,6 +372,7 @@ TEST(uniform_sky_gives_albedo_times_ao_in_both_modes)
     env.type = TG_ENV_UNIFORM; env.uniform = v3d(L[0], L[1], L[2]);
     tgi_sh9_from_env(&env, sh);
     g->material.f0 = rv(f0);
+    tgi_material_finish(&g->material);
     for (mode = TG_FAR_CONE_SH; mode <= TG_FAR_CUBE_F0; mode++) {
         double worst = 0;
         for (i = 0; i < N * N; i++) {

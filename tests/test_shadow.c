@@ -596,8 +596,8 @@ TEST(occluder_at_the_bounds_near_side_casts_its_shadow)
 static void ties_from(const double eye[3], const char *what)
 {
     static const tgi_material mats[2] = {
-        { "red", { TG_ONE, 0, 0 }, 0, { 0, 0, 0 }, 1 },
-        { "blue", { 0, 0, TG_ONE }, 0, { 0, 0, 0 }, 1 },
+        { "red", { TG_ONE, 0, 0 }, 0, { 0, 0, 0 }, 1, { TG_INV_PI, 0, 0 } },   /* diffuse: tgi_material_finish's */
+        { "blue", { 0, 0, TG_ONE }, 0, { 0, 0, 0 }, 1, { 0, 0, TG_INV_PI } },
     };
     static const double target[3] = { 0, 0, 0 };
     double q[4][3] = { { -1, 0, -1 }, { 1, 0, -1 }, { 1, 0, 1 }, { -1, 0, 1 } };

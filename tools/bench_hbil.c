@@ -83,7 +83,8 @@ static void dump(const char *path)
 /* usage: bench_hbil [RUNS [DUMP_FILE]]  (RUNS default 15; 1 for callgrind) */
 int main(int argc, char **argv)
 {
-    static const tgi_material white = { "white", { TG_ONE, TG_ONE, TG_ONE }, 0, { 0, 0, 0 }, 0 };
+    static const tgi_material white = { "white", { TG_ONE, TG_ONE, TG_ONE }, 0, { 0, 0, 0 }, 0,
+                                        { TG_INV_PI, TG_INV_PI, TG_INV_PI } };   /* diffuse: tgi_material_finish's */
     tgi_view v;
     tgi_denoise_params dp;
     tgi_hbil_params hp;

@@ -199,6 +199,7 @@ int main(int argc, char **argv)
     memset(&m, 0, sizeof m);
     m.albedo = V(0.8, 0.6, 0.4);
     m.f0 = tg_from_float(0.04f);
+    tgi_material_finish(&m);
     mesh.pos = pos; mesh.nrm = nrm; mesh.tri_material = mat; mesh.tri_object = obj;
     mesh.materials = &m;
     mesh.tri_count = build_sphere(pos, nrm);

@@ -102,7 +102,7 @@ static void bake(const tg_scene *s, const char *fn, const char *source)
     ARRAY("tgi_material", "materials", s->material_count,
           (fputs("{", out), name(s->materials[i_].name), comma_vec3(s->materials[i_].albedo),
            comma_real(s->materials[i_].f0), comma_vec3(s->materials[i_].emissive),
-           fprintf(out, ", %d}", s->materials[i_].twosided)));
+           fprintf(out, ", %d", s->materials[i_].twosided), comma_vec3(s->materials[i_].diffuse), fputs("}", out)));
     ARRAY("tgi_object", "objects", s->object_count,
           (fputs("{", out), name(s->objects[i_].name),
            fprintf(out, ", %d, %d, %d, %d}", s->objects[i_].first_tri, s->objects[i_].tri_count,

@@ -241,11 +241,11 @@ static inline void tgi_gview_copy_pixel(const tgi_gbuffer *dst, size_t j, const 
 /* ---- the light a diffuse surface sends ---- */
 
 /* Lo of pixel i of storage g under irradiance e: albedo / pi (1 - F0) e +
- * emissive (HBIL sec. 2.3: eq. 14's 1/pi, eq. 19's 1 - F0); 0 on sky. */
+ * emissive (HBIL sec. 2.3: eq. 14's 1/pi, eq. 19's 1 - F0; the material's
+ * diffuse); 0 on sky. */
 static inline tg_vec3 tgi_gb_lit(const tgi_gbuffer *g, size_t i, tg_vec3 e)
 {
     const tgi_material *m;
-    tg_real kd;
     tg_vec3 lo;
     if (g->depth[i] == 0 || !tgi_gb_has_material(g)) return tg_v3(0, 0, 0);
 #if TG_WIDE_STORAGE
@@ -253,9 +253,7 @@ static inline tg_vec3 tgi_gb_lit(const tgi_gbuffer *g, size_t i, tg_vec3 e)
 #else
     m = &g->materials[g->nm[i] >> TGI_MATERIAL_SHIFT];
 #endif
-    kd = tg_mul(tg_saturate(tg_sub(TG_ONE, m->f0)), TG_INV_PI);
-    lo = tg_v3(tg_mul(tg_mul(m->albedo.x, kd), e.x), tg_mul(tg_mul(m->albedo.y, kd), e.y),
-               tg_mul(tg_mul(m->albedo.z, kd), e.z));
+    lo = tg_v3(tg_mul(m->diffuse.x, e.x), tg_mul(m->diffuse.y, e.y), tg_mul(m->diffuse.z, e.z));
     return g->has_emissive ? tgi_v3_add(lo, m->emissive) : lo;
 }
 static inline tg_vec3 tgi_gv_lit(const tgi_gview *v, size_t i, tg_vec3 e) { return tgi_gb_lit(&v->store, i, e); }

@@ -269,6 +269,7 @@ tg_status tgi_parse_add_material(tgi_parser *p, const tgi_lexer *lx, int col,
     if (p->fill) {
         if (p->materials >= p->material_cap) return fail_runtime(p, "a mesh file changed while parsing");
         p->scene->materials[p->materials] = *m;
+        tgi_material_finish(&p->scene->materials[p->materials]);
     }
     *index = (int)p->materials++;
     return TG_OK;
