@@ -65,7 +65,16 @@ static void print_error(const tg_error *err)
 /* Invariants every parsed scene keeps; returns the number of problems. */
 static int check_invariants(const tg_scene *s, const char *what)
 {
-    int bad = 0, t, i, o, sum = 0;
+    int bad = 0, t, i, o, sum = 0, m;
+    /* every material's diffuse factor, formed once by the parser: albedo / pi (1 - F0) */
+    for (m = 0; m < s->material_count; m++) {
+        const tgi_material *mt = &s->materials[m];
+        const double kd = (1 - D(mt->f0)) / 3.14159265358979, tol = TG_FIXED ? 3e-5 : 1e-6;
+        CHECK(fabs(D(mt->diffuse.x) - D(mt->albedo.x) * kd) <= tol && fabs(D(mt->diffuse.y) - D(mt->albedo.y) * kd) <= tol &&
+                  fabs(D(mt->diffuse.z) - D(mt->albedo.z) * kd) <= tol,
+              "%s: material %s's diffuse %g %g %g, albedo %g %g %g, f0 %g", what, mt->name, D(mt->diffuse.x),
+              D(mt->diffuse.y), D(mt->diffuse.z), D(mt->albedo.x), D(mt->albedo.y), D(mt->albedo.z), D(mt->f0));
+    }
     for (o = 0; o < s->object_count; o++) {
         if (s->objects[o].first_tri != sum) bad++;
         sum += s->objects[o].tri_count;
@@ -756,6 +765,7 @@ TEST(obj_from_memory)
     CHECK(veq(s->materials[red].emissive, 0, 0, 0), "no Ke: the mesh material's emission");
     CHECK(veq(s->materials[glow].albedo, 0.5, 0.5, 0.5) && veq(s->materials[glow].emissive, 2, 3, 4), "Kd grey, Ke");
     CHECK(D(s->materials[glow].f0) == D(s->materials[0].f0) && s->materials[glow].twosided, "f0/twosided from the mesh material");
+    check_invariants(s, "usemtl");
     CHECK(s->tri_material[0] == 0 && s->tri_material[1] == 0, "faces before usemtl: the mesh material");
     CHECK(s->tri_material[2] == red, "usemtl red");
     for (t = 3; t < 6; t++) CHECK(s->tri_material[t] == glow, "usemtl glow");
