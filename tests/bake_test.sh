@@ -6,7 +6,8 @@
 # depth, normal, albedo, AO and bent normals over several frames), for the
 # Cornell box, OBJ meshes, and a scene with camera and object keys, a
 # shadowed spot light, spheres, a two-sided emitter and an SH9 environment.
-# A baked file built for the other number type stops with its #error, and
+# A baked file built for the other number type or another scene layout
+# (TGI_SCENE_LAYOUT) stops with its #error, and
 # bad input is FILE:LINE:COL: error:, exit 2.
 set -u
 cd "$(dirname "$0")/.."
@@ -58,6 +59,15 @@ for num in float fixed; do
         fail "bake/$num: built with the other number type" "compiled"
     elif grep -q "baked for $num" "$tmp/err"; then ok "bake/$num: the other number type stops at #error"
     else fail "bake/$num: the other number type" "$(head -c 300 "$tmp/err")"; fi
+    # a file baked for another scene layout (tgi_material without its diffuse factor, say) stops at its #error
+    sed 's/^#if TGI_SCENE_LAYOUT != \([0-9]*\)$/#if TGI_SCENE_LAYOUT != \1 + 1/' "$tmp/baked-$num-1.c" >"$tmp/old-layout.c"
+    # shellcheck disable=SC2086
+    if ! grep -q '^#if TGI_SCENE_LAYOUT != [0-9]* + 1$' "$tmp/old-layout.c"; then
+        fail "bake/$num: scene layout" "the baked file has no layout check"
+    elif $CC $TG_CFLAGS $def -Isrc -c "$tmp/old-layout.c" -o "$tmp/x.o" 2>"$tmp/err"; then
+        fail "bake/$num: built for another scene layout" "compiled"
+    elif grep -q "baked for scene layout" "$tmp/err"; then ok "bake/$num: another scene layout stops at #error"
+    else fail "bake/$num: another scene layout" "$(head -c 300 "$tmp/err")"; fi
     # bad input: FILE:LINE:COL: error:, exit 2, no output file
     "$bake" "$tmp/bad.scene" -o "$tmp/bad.c" 2>"$tmp/err"; rc=$?
     if [ $rc = 2 ] && grep -q "bad.scene:3:[0-9]*: error:" "$tmp/err" && [ ! -e "$tmp/bad.c" ]; then

@@ -12,7 +12,8 @@
  * The file defines `const tg_scene *NAME(void)` (default tg_baked_scene)
  * and holds the values of this tool's number type (tinygi-bake float,
  * tinygi-bake-fixed Q16.16), exactly as the parser made them; built with
- * the other number type it stops with #error.  It includes "scene/scene.h",
+ * the other number type, or against a core whose scene layout differs
+ * (TGI_SCENE_LAYOUT), it stops with #error.  It includes "scene/scene.h",
  * so compile it with the core's src/ on the include path, and bake again
  * when the core changes.  Exit 0, 2 on bad input (FILE:LINE:COL: error:),
  * 3 when the output cannot be written.
@@ -96,6 +97,8 @@ static void bake(const tg_scene *s, const char *fn, const char *source)
     fputs("#include \"scene/scene.h\"\n", out);
     fprintf(out, "#if %sTG_FIXED\n#error \"baked for %s: bake it with tinygi-bake%s\"\n#endif\n\n",
             TG_FIXED ? "!" : "", TG_NUMBER_NAME, TG_FIXED ? "-fixed" : "");
+    fprintf(out, "#if TGI_SCENE_LAYOUT != %d\n#error \"baked for scene layout %d: bake it again with this tinygi's "
+                 "tinygi-bake\"\n#endif\n\n", TGI_SCENE_LAYOUT, TGI_SCENE_LAYOUT);
     ARRAY("tgi_camera_key", "camera_keys", s->camera_key_count,
           (fputs("{", out), real(s->camera_keys[i_].t), comma_vec3(s->camera_keys[i_].pos),
            comma_vec3(s->camera_keys[i_].target), fputs("}", out)));

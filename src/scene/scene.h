@@ -16,6 +16,11 @@
 #include "../core/vec.h"
 #include "../core/material.h"
 
+/* The C layout of the scene's tables as tinygi-bake writes them: a baked
+ * file stops with #error where it differs (tools/scene_bake.c).  Raised
+ * when a baked struct changes: 2, tgi_material.diffuse. */
+#define TGI_SCENE_LAYOUT 2
+
 typedef struct tgi_key {         /* object_key: rigid transform at time t */
     tg_real t;
     tg_vec3 translate;
