@@ -164,6 +164,9 @@ typedef struct hbil_ctx {
     tg_real inv_fine_ratio;
     tg_real long_reach;         /* HBIL_LONG_REACH in the march's units (refine_fine) */
     tg_real fine_edge;          /* HBIL_EDGE_SLOPE / ppu times the fine image's step (refine_fine) */
+#if TG_FIXED
+    tg_real q_near;             /* |q| <= q_near: no offset component beyond HBIL_FAR (march_q_near) */
+#endif
 } hbil_ctx;
 
 /* One side of one slice: the horizon and the radiance gathered under it. */
@@ -672,6 +675,24 @@ static inline int wide_far(tgi_wide dx, tgi_wide dy, tgi_wide dz)
     return (uint64_t)(dx + HBIL_FAR) > (uint64_t)(2 * HBIL_FAR) || (uint64_t)(dy + HBIL_FAR) > (uint64_t)(2 * HBIL_FAR)
         || (uint64_t)(dz + HBIL_FAR) > (uint64_t)(2 * HBIL_FAR);
 }
+
+/* A bound on q = (z1 - z) / z (Q16.16) within which wide_far is 0 for
+ * every sample of a frame w x h whose kernel image has the given step and
+ * p0z = ppu / step: a sample lies in the image, so its screen position
+ * P0 + s (march units from the centre) has |.| <= wh = (max(w, h) / 2 + 2)
+ * / step + 2 and |s| <= 2 wh; then |d_x|, |d_y| <= 2 wh + wh |q| + 1 ulp
+ * and |d_z| <= p0z |q| + 1 ulp, each at most 2^14 = 16384 units (below
+ * HBIL_FAR) for |q| <= the returned bound (0 where none is). */
+static tg_real march_q_near(int w, int h, int step, tg_real p0z)
+{
+    const int64_t lim = (int64_t)1 << 30;   /* 16384 units */
+    const int64_t wh = ((int64_t)((w > h ? w : h) / 2 + 2) << 16) / (step > 0 ? step : 1) + ((int64_t)2 << 16);
+    int64_t qa = lim - 2 * wh - 2, qb;
+    qa = qa > 0 ? (qa << 16) / wh : 0;                                  /* (lim - 2 wh - 2) / wh */
+    qb = p0z > 0 ? ((lim - 1) << 16) / p0z : qa;                        /* (lim - 1) / p0z */
+    qa = qa < qb ? qa : qb;
+    return (tg_real)(qa < (int64_t)TG_REAL_MAX / 2 ? qa : (int64_t)TG_REAL_MAX / 2);
+}
 #else
 static inline int wide_far(tgi_wide dx, tgi_wide dy, tgi_wide dz) { (void)dx; (void)dy; (void)dz; return 0; }
 #endif
@@ -786,6 +807,9 @@ typedef struct hbil_run {
 /* The march's per-side constants (march_side). */
 typedef struct hbil_march {
     tg_real p0x, p0y, p0z, z, inv_z, wox, woy, woz;
+#if TG_FIXED
+    tg_real q_near;                /* hbil_ctx's */
+#endif
     tgi_wide r2;                   /* the 3D radius squared, march units */
     tg_real slope, extent;         /* minor per major pixel; the march's extent, major pixels */
     int smaj, smin, bmax;
@@ -819,7 +843,12 @@ static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, t
     dx = (tgi_wide)sx + tgi_wide_mul((tgi_wide)mr->p0x + sx, q);
     dy = (tgi_wide)sy + tgi_wide_mul((tgi_wide)mr->p0y + sy, q);
     dz = tgi_wide_mul(mr->p0z, q);
+#if TG_FIXED && !TG_OUTLINE_HELPERS
+    /* within q_near no component is beyond HBIL_FAR (march_q_near): wide_far's tests only past it */
+    if ((uint32_t)q + (uint32_t)mr->q_near > 2u * (uint32_t)mr->q_near && wide_far(dx, dy, dz)) return HBIL_BEYOND;
+#else
     if (wide_far(dx, dy, dz)) return HBIL_BEYOND;                             /* beyond the 3D radius */
+#endif
     len2 = wide_len2(dx, dy, dz);
     if (len2 > mr->r2) return HBIL_BEYOND;                                    /* beyond the 3D radius */
     dot = tgi_wide_dot(dx, dy, dz, mr->wox, mr->woy, mr->woz);
@@ -1334,6 +1363,9 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     mr.p0x = small_mul(px->X, c->inv_step);
     mr.p0y = small_mul(px->Y, c->inv_step);
     mr.p0z = small_mul(c->ppu, c->inv_step);
+#if TG_FIXED
+    mr.q_near = c->q_near;
+#endif
     mr.z = px->z;
     mr.inv_z = px->inv_z;
     mr.r2 = px->radius_units2;
@@ -1490,6 +1522,9 @@ static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, 
     c->ppu = c->v->pixels_per_unit;
     c->inv_ppu = tg_div(TG_ONE, c->ppu);
     c->inv_step = tg_ratio(1, c->step);
+#if TG_FIXED
+    c->q_near = march_q_near(c->full_w, c->full_h, c->step, small_mul(c->ppu, c->inv_step));
+#endif
     c->pi_over_s = tg_div(TG_PI, tg_from_int(c->slices));
     c->near_field = tgi_rgb_present(radiance) && tgi_gr_has_near(out);
 #if !TG_WIDE_STORAGE && !TG_NO_COLOR
