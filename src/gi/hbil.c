@@ -581,7 +581,7 @@ static HBIL_GATHER_INLINE void gather_rise(const hbil_ctx *c, const hbil_slice *
         tg_real t = rejection_weight(c, tgi_gv_normal_dir(g, si), dir);
 #endif
         if (t != 0) {   /* lerp(L_old, L(x'), 0) is L_old: the sender's radiance is not read */
-            tg_vec3 l = tgi_rgb_get(rad, si);
+            tg_vec3 l = tgi_rgb_read(rad, si);
             if (all_nonneg(sd->lr, sd->lg, sd->lb, l.x, l.y, l.z)) {
                 sd->lr = radiance_lerp_pos(sd->lr, l.x, t);
                 sd->lg = radiance_lerp_pos(sd->lg, l.y, t);

@@ -283,21 +283,24 @@ static inline int tgi_rgb_present(const tgi_rgb *c) { return c && c->p != NULL; 
 static inline tg_vec3 tgi_rgb_stored(const tgi_rgb *c, size_t i) { return tgi_rgb9e5_unpack(c->p[i]); }
 static inline void tgi_rgb_set(const tgi_rgb *c, size_t i, tg_vec3 v) { c->p[i] = tgi_rgb9e5_pack(v); }
 #endif
-/* Inline in every reader (the gather's sender radiance, the filter's and the
- * compose's reads): gcc left the Q16.16 read a call in the kernel, whose
- * tg_vec3 comes back through the stack (-0.6% of cornell's Q16.16 frame);
- * compiling for size (TG_OUTLINE_HELPERS) leaves it to the compiler. */
+/* The read, inline wherever it is called: the kernel's gather calls it
+ * (gcc left tgi_rgb_get a call there in Q16.16, its tg_vec3 returned
+ * through the stack: -0.6% of cornell's Q16.16 frame), the other passes
+ * tgi_rgb_get, which the compiler places (forced into them it cost temporal
+ * and push/pull 75 instructions a pixel).  Compiling for size
+ * (TG_OUTLINE_HELPERS) leaves both to the compiler. */
 #if defined(__GNUC__) && !TG_OUTLINE_HELPERS
 #define TGI_RGB_GET_INLINE inline __attribute__((always_inline))
 #else
 #define TGI_RGB_GET_INLINE inline
 #endif
-static TGI_RGB_GET_INLINE tg_vec3 tgi_rgb_get(const tgi_rgb *c, size_t i)
+static TGI_RGB_GET_INLINE tg_vec3 tgi_rgb_read(const tgi_rgb *c, size_t i)
 {
     tg_vec3 v = tgi_rgb_stored(c, i);
     if (!c->lit) return v;
     return tgi_gb_lit(c->lit, c->lit_at + i, v);
 }
+static inline tg_vec3 tgi_rgb_get(const tgi_rgb *c, size_t i) { return tgi_rgb_read(c, i); }
 #if TG_WIDE_STORAGE
 /* A vector stored wide, three tg_real planes, moved on to index `start`
  * (absent planes stay absent). */
@@ -448,7 +451,7 @@ static inline tg_real tgi_gr_cone(const tgi_gresult *r, size_t i)
     return tg_acos(tg_sqrt(tg_sub(TG_ONE, tg_saturate(tgi_gr_ao(r, i)))));
 }
 static inline int tgi_gr_has_near(const tgi_gresult *r) { return tgi_rgb_present(&r->near); }
-static inline tg_vec3 tgi_gr_near(const tgi_gresult *r, size_t i) { return tgi_rgb_get(&r->near, i); }
+static inline tg_vec3 tgi_gr_near(const tgi_gresult *r, size_t i) { return tgi_rgb_stored(&r->near, i); }   /* results are never lit */
 static inline void tgi_gr_set_near(const tgi_gresult *r, size_t i, tg_vec3 e) { tgi_rgb_set(&r->near, i, e); }
 
 /* Every channel of pixel i at once (those r lacks read as ao 1, bent 0, near 0). */
