@@ -142,6 +142,10 @@ void tgi_hbil_defaults(tgi_hbil_params *p)
     p->rejection_b = TG_R(0.2f);
 }
 
+/* Q16.16 tests wide_far only past a bound on q (march_q_near); compiling
+ * for size (TG_OUTLINE_HELPERS) keeps the one test, and not the bound. */
+#define HBIL_Q_NEAR (TG_FIXED && !TG_OUTLINE_HELPERS)
+
 /* ---- per-call constants ---- */
 typedef struct hbil_ctx {
     const tgi_hbil_params *p;
@@ -164,7 +168,7 @@ typedef struct hbil_ctx {
     tg_real inv_fine_ratio;
     tg_real long_reach;         /* HBIL_LONG_REACH in the march's units (refine_fine) */
     tg_real fine_edge;          /* HBIL_EDGE_SLOPE / ppu times the fine image's step (refine_fine) */
-#if TG_FIXED
+#if HBIL_Q_NEAR
     tg_real q_near;             /* |q| <= q_near: no offset component beyond HBIL_FAR (march_q_near) */
 #endif
 } hbil_ctx;
@@ -683,6 +687,7 @@ static inline int wide_far(tgi_wide dx, tgi_wide dy, tgi_wide dz)
  * / step + 2 and |s| <= 2 wh; then |d_x|, |d_y| <= 2 wh + wh |q| + 1 ulp
  * and |d_z| <= p0z |q| + 1 ulp, each at most 2^14 = 16384 units (below
  * HBIL_FAR) for |q| <= the returned bound (0 where none is). */
+#if HBIL_Q_NEAR
 static tg_real march_q_near(int w, int h, int step, tg_real p0z)
 {
     const int64_t lim = (int64_t)1 << 30;   /* 16384 units */
@@ -693,6 +698,7 @@ static tg_real march_q_near(int w, int h, int step, tg_real p0z)
     qa = qa < qb ? qa : qb;
     return (tg_real)(qa < (int64_t)TG_REAL_MAX / 2 ? qa : (int64_t)TG_REAL_MAX / 2);
 }
+#endif
 #else
 static inline int wide_far(tgi_wide dx, tgi_wide dy, tgi_wide dz) { (void)dx; (void)dy; (void)dz; return 0; }
 #endif
@@ -807,7 +813,7 @@ typedef struct hbil_run {
 /* The march's per-side constants (march_side). */
 typedef struct hbil_march {
     tg_real p0x, p0y, p0z, z, inv_z, wox, woy, woz;
-#if TG_FIXED
+#if HBIL_Q_NEAR
     tg_real q_near;                /* hbil_ctx's */
 #endif
     tgi_wide r2;                   /* the 3D radius squared, march units */
@@ -843,7 +849,7 @@ static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, t
     dx = (tgi_wide)sx + tgi_wide_mul((tgi_wide)mr->p0x + sx, q);
     dy = (tgi_wide)sy + tgi_wide_mul((tgi_wide)mr->p0y + sy, q);
     dz = tgi_wide_mul(mr->p0z, q);
-#if TG_FIXED && !TG_OUTLINE_HELPERS
+#if HBIL_Q_NEAR
     /* within q_near no component is beyond HBIL_FAR (march_q_near): wide_far's tests only past it */
     if ((uint32_t)q + (uint32_t)mr->q_near > 2u * (uint32_t)mr->q_near && wide_far(dx, dy, dz)) return HBIL_BEYOND;
 #else
@@ -1363,7 +1369,7 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     mr.p0x = small_mul(px->X, c->inv_step);
     mr.p0y = small_mul(px->Y, c->inv_step);
     mr.p0z = small_mul(c->ppu, c->inv_step);
-#if TG_FIXED
+#if HBIL_Q_NEAR
     mr.q_near = c->q_near;
 #endif
     mr.z = px->z;
@@ -1522,7 +1528,7 @@ static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, 
     c->ppu = c->v->pixels_per_unit;
     c->inv_ppu = tg_div(TG_ONE, c->ppu);
     c->inv_step = tg_ratio(1, c->step);
-#if TG_FIXED
+#if HBIL_Q_NEAR
     c->q_near = march_q_near(c->full_w, c->full_h, c->step, small_mul(c->ppu, c->inv_step));
 #endif
     c->pi_over_s = tg_div(TG_PI, tg_from_int(c->slices));
