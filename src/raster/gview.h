@@ -286,8 +286,8 @@ static inline void tgi_rgb_set(const tgi_rgb *c, size_t i, tg_vec3 v) { c->p[i] 
 /* The read, inline wherever it is called: the kernel's gather calls it
  * (gcc left tgi_rgb_get a call there in Q16.16, its tg_vec3 returned
  * through the stack: -0.6% of cornell's Q16.16 frame), the other passes
- * tgi_rgb_get, which the compiler places (forced into them it cost temporal
- * and push/pull 75 instructions a pixel).  Compiling for size
+ * tgi_rgb_get, which the compiler places (forced into every reader it cost
+ * push/pull 32 instructions a pixel).  Compiling for size
  * (TG_OUTLINE_HELPERS) leaves both to the compiler. */
 #if defined(__GNUC__) && !TG_OUTLINE_HELPERS
 #define TGI_RGB_GET_INLINE inline __attribute__((always_inline))
