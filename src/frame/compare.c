@@ -71,8 +71,7 @@ static tg_vec3 direct_radiance_at(void *user, int tri, tg_vec3 pos, tg_vec3 nrm)
     const tg_frame *f = (const tg_frame *)user;
     const tg_scene *s = f->scene;
     const tgi_material *m = &s->materials[s->tri_material[tri]];
-    tg_vec3 e = tg_v3(0, 0, 0), lo;
-    tg_real k;
+    tg_vec3 e = tg_v3(0, 0, 0);
     int l;
     if (f->effects & TG_EFFECT_DIRECT) {
         for (l = 0; l < s->light_count; l++) {
@@ -82,9 +81,7 @@ static tg_vec3 direct_radiance_at(void *user, int tri, tg_vec3 pos, tg_vec3 nrm)
             e = tgi_v3_add(e, el);
         }
     }
-    k = tg_mul(TG_INV_PI, tg_sub(TG_ONE, m->f0));   /* compose: albedo / pi * (1 - F0) */
-    lo = tgi_v3_scale(tgi_v3_mul(m->albedo, e), k);
-    return tgi_v3_add(lo, m->emissive);
+    return tgi_v3_add(tgi_v3_mul(m->diffuse, e), m->emissive);   /* compose's: albedo / pi (1 - F0) E */
 }
 
 void tgi_pass_reference_bvh(tg_frame *f)

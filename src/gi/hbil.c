@@ -155,6 +155,7 @@ typedef struct hbil_ctx {
     const tgi_gresult *out;
     int slices, samples, step, full_w, full_h;
     tg_real ppu, inv_ppu, inv_step, pi_over_s;
+    tg_real p0z;                /* ppu / step: the z of P0 in the march's units (march_side) */
     tg_real cos_phi[HBIL_PATTERN][TG_MAX_SLICES], sin_phi[HBIL_PATTERN][TG_MAX_SLICES];
     tg_real jitter[HBIL_PATTERN];  /* step_jitter per pattern cell */
     tg_real rejection_a, rejection_b;
@@ -1368,7 +1369,7 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
      * 2^14 times |slope| <= 1 */
     mr.p0x = small_mul(px->X, c->inv_step);
     mr.p0y = small_mul(px->Y, c->inv_step);
-    mr.p0z = small_mul(c->ppu, c->inv_step);
+    mr.p0z = c->p0z;
 #if HBIL_Q_NEAR
     mr.q_near = c->q_near;
 #endif
@@ -1528,8 +1529,9 @@ static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, 
     c->ppu = c->v->pixels_per_unit;
     c->inv_ppu = tg_div(TG_ONE, c->ppu);
     c->inv_step = tg_ratio(1, c->step);
+    c->p0z = small_mul(c->ppu, c->inv_step);
 #if HBIL_Q_NEAR
-    c->q_near = march_q_near(c->full_w, c->full_h, c->step, small_mul(c->ppu, c->inv_step));
+    c->q_near = march_q_near(c->full_w, c->full_h, c->step, c->p0z);
 #endif
     c->pi_over_s = tg_div(TG_PI, tg_from_int(c->slices));
     c->near_field = tgi_rgb_present(radiance) && tgi_gr_has_near(out);
