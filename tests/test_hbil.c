@@ -812,7 +812,8 @@ TEST(rejection_tests_keep_the_weights)
  * near_plane_start) gives the saturating expression's answer: random
  * pixels (plane terms from a few units to the whole range, where products
  * and sums saturate), samples and depths, and the compare's edges (z i at
- * T 2^16 + 2^15 - 1 + (T < 0) and one either side, for T of either sign,
+ * T 2^16 + 2^15 - 1, where tg_mul's rounding puts it, and one either side
+ * (the tie, past it, was under with ties rounded away from zero), for T of either sign,
  * near and at the range's ends, above = TG_REAL_MAX). */
 static tg_real plane_term(unsigned *seed)
 {
@@ -846,7 +847,7 @@ TEST(near_plane_test_is_the_saturating_one)
     }
     /* i = nr = +-2^-16 (nax = nay = 0): z i = +-z; np = 0, so T = above */
     for (i = 0; i < (long)(sizeof ts / sizeof ts[0]); i++) {
-        const int64_t t = ts[i], edge = t * 65536 + 32767 + (t < 0);
+        const int64_t t = ts[i], edge = t * 65536 + 32767;
         int sign, d;
         for (sign = -1; sign <= 1; sign += 2)
             for (d = -1; d <= 1; d++) {

@@ -216,6 +216,38 @@ static int isqrt_ok(uint64_t v, uint32_t r)
 }
 
 #if TG_FIXED
+/* Q16.16's rounding shift (every product's rounding, tinygi.h
+ * tgi_shr_round): p 2^-s to the nearest integer, a tie toward +infinity,
+ * for either sign of p: |p - r 2^s| <= 2^(s-1), and r 2^s > p at a tie.
+ * Random p (|p| < 2^61, as every caller's) and shifts, each p's ties and
+ * their neighbours, and tg_mul's ties: +-1.5 ulp and +-0.5 ulp. */
+TEST(rounding_shift_ties_toward_plus_infinity)
+{
+    uint64_t v = 0x2545f4914f6cdd1dull;
+    long bad = 0, ties = 0, i;
+    for (i = 0; i < 4000000; i++) {
+        int64_t p, r, e, half;
+        int sh;
+        v ^= v << 13; v ^= v >> 7; v ^= v << 17;
+        p = (int64_t)v >> (3 + (int)((v >> 33) & 31));
+        sh = 1 + (int)((v >> 20) % 48);
+        half = (int64_t)1 << (sh - 1);
+        if (i & 1) p = (p / (2 * half)) * (2 * half) + ((p < 0) ? -half : half);   /* a tie */
+        r = tgi_shr_round(p, sh);
+        e = p - r * (2 * half);                    /* the rounding's error, times 2^sh */
+        ties += e == half || e == -half;
+        if ((e > half || e < -half || e == half) && bad++ < 5)
+            fprintf(stderr, "p %lld >> %d: %lld (error %lld of %lld)\n", (long long)p, sh, (long long)r, (long long)e,
+                    (long long)half);
+    }
+    CHECK(bad == 0 && ties > 1000000, "%ld rounding shifts not to nearest, ties up (%ld ties)", bad, ties);
+    CHECK(tg_mul(3, 32768) == 2 && tg_mul(-3, 32768) == -1 && tg_mul(1, 32768) == 1 && tg_mul(-1, 32768) == 0,
+          "tg_mul's ties: 1.5 ulp -> %d, -1.5 -> %d, 0.5 -> %d, -0.5 -> %d", (int)tg_mul(3, 32768),
+          (int)tg_mul(-3, 32768), (int)tg_mul(1, 32768), (int)tg_mul(-1, 32768));
+}
+#endif
+
+#if TG_FIXED
 /* The size build's out-of-line rounding shift and division (tinygi.h,
  * TG_OUTLINE_HELPERS) against the inline ones every other build uses:
  * edges (0, +-1, the extremes, division by 0) and random operands. */
@@ -979,6 +1011,7 @@ int main(void)
 #endif
     RUN(unit_or_matches_normalize_or);
 #if TG_FIXED
+    RUN(rounding_shift_ties_toward_plus_infinity);
     RUN(outline_div_and_shift_match_inline);
     RUN(div_rounds_alike_for_every_sign);
     RUN(div_pos_matches_div);

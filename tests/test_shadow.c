@@ -730,6 +730,46 @@ TEST(plate_nearer_than_the_near_plane_shadows)
     plate_scene_free(&ps);
 }
 
+#if TG_FIXED
+/* The Q16.16 lookups' perspective depth test, one 64-bit compare, agrees
+ * with num >= tg_mul(a, den) as written: random operands over the range
+ * (where the product saturates too) and every product at a rounding tie,
+ * a den = (2 num + 1 + 2 k) 2^15 over a = 1, and one either side: the
+ * compare's bound is where tg_mul's rounding puts it (ties toward
+ * +infinity since this round's eighteenth session: the bound moved from
+ * num 2^16 + 2^15 to num 2^16 + 2^15 - 1, and this test failed at the ties
+ * with the old one). */
+TEST(perspective_test_in_64_bits_is_tg_mul_s)
+{
+    unsigned seed = 4242;
+    long count = 0, ties = 0, bad = 0, i;
+    for (i = 0; i < 2000000; i++) {
+        const tg_real num = -(tg_real)(check_rnd(&seed) * (check_rnd(&seed) < 0.5 ? 70000.0 : 2147483647.0)) - 1;
+        const tg_real a = (tg_real)((2 * check_rnd(&seed) - 1) * (check_rnd(&seed) < 0.5 ? 2147483647.0 : 65536.0 * 16));
+        const tg_real den = (tg_real)((2 * check_rnd(&seed) - 1) * (check_rnd(&seed) < 0.5 ? 2147483647.0 : 65536.0 * 16));
+        count++;
+        if (tgi_shadow_lit_perspective_q16(num, a, den, 1) != tgi_shadow_lit_perspective_q16(num, a, den, 0) && bad++ < 5)
+            fprintf(stderr, "num %d a %d den %d: %d in 64 bits, %d by tg_mul\n", (int)num, (int)a, (int)den,
+                    tgi_shadow_lit_perspective_q16(num, a, den, 1), tgi_shadow_lit_perspective_q16(num, a, den, 0));
+    }
+    for (i = 1; i <= 60000; i += 7) {
+        const int64_t num = -i;
+        int k, d;
+        for (k = -2; k <= 2; k++)
+            for (d = -1; d <= 1; d++) {
+                const int64_t den = (2 * num + 1 + 2 * k) * 32768 + d;   /* a den = P, a = 1: ties at d = 0 */
+                if (den < -(int64_t)TG_REAL_MAX || den > TG_REAL_MAX) continue;
+                ties += d == 0;
+                if (tgi_shadow_lit_perspective_q16((tg_real)num, 1, (tg_real)den, 1)
+                        != tgi_shadow_lit_perspective_q16((tg_real)num, 1, (tg_real)den, 0) && bad++ < 10)
+                    fprintf(stderr, "num %ld den %ld: differ\n", (long)num, (long)den);
+            }
+    }
+    printf("  perspective depth tests: %ld random, %ld at rounding ties (and either side), %ld differ\n", count, ties, bad);
+    CHECK(bad == 0 && ties > 20000, "%ld of the tests differ (%ld ties)", bad, ties);
+}
+#endif
+
 int main(void)
 {
     RUN(occluder_at_the_bounds_near_side_casts_its_shadow);
@@ -745,6 +785,9 @@ int main(void)
     RUN(receiver_beyond_89_94_degrees_under_a_plate_is_dark);
     RUN(tent_pcf_is_odd_about_a_shadow_edge);
     RUN(plate_nearer_than_the_near_plane_shadows);
+#if TG_FIXED
+    RUN(perspective_test_in_64_bits_is_tg_mul_s);
+#endif
     free(bvh_mem);
     return check_summary();
 }

@@ -231,18 +231,16 @@ static tg_vec3 near_vd(near_pixel *q)
  * 64 bits.  sat is monotone, so for above < TG_REAL_MAX, D <= above iff
  * sat(P) <= T = above + np (exact, 64 bits), which holds always when T >=
  * TG_REAL_MAX, never when T < TG_REAL_MIN (sat(P) >= TG_REAL_MIN), else iff
- * P <= T; and P, z i rounded half away from zero, is <= T iff z i <= T 2^16
- * + 2^15 - 1 (z i >= 0) or <= T 2^16 + 2^15 (z i < 0), the one bound
- * T 2^16 + 2^15 - 1 + (T < 0) serving both (a z i of the other sign than T
- * is on the same side of either).  above = TG_REAL_MAX: every sample is
- * under (D <= TG_REAL_MAX). */
+ * P <= T; and P = floor((z i + 2^15) / 2^16) (tgi_shr_round) is <= T iff
+ * z i + 2^15 < (T + 1) 2^16, that is z i <= T 2^16 + 2^15 - 1.  above =
+ * TG_REAL_MAX: every sample is under (D <= TG_REAL_MAX). */
 static void near_plane_start(near_plane *pl, int reach)
 {
     const int64_t t = (int64_t)pl->above + pl->np;
     pl->wide = (int64_t)tg_abs(pl->nr) + (int64_t)reach * ((int64_t)tg_abs(pl->nax) + tg_abs(pl->nay)) <= TG_REAL_MAX;
     if (pl->above >= TG_REAL_MAX || t >= TG_REAL_MAX) pl->lim = INT64_MAX;
     else if (t < TG_REAL_MIN) pl->lim = INT64_MIN;
-    else pl->lim = t * 65536 + 32767 + (t < 0);
+    else pl->lim = t * 65536 + 32767;
 }
 #endif
 

@@ -527,15 +527,23 @@ static void fetch_taps(const tgi_shadow_map *sm, const tgi_shadow_face *fc, int 
 
 /* A perspective tap's test num >= tg_mul(a, den) (num < 0, as
  * prepare_perspective leaves it).  In Q16.16 without the product's rounding
- * and saturation: for P = a den and an integer num <= -1, num >=
- * tgi_shr_round(P, 16) exactly when P <= num 2^16 + 2^15 (P >= 0 fails both;
- * P < 0: -num <= floor((-P + 2^15) / 2^16) iff -num 2^16 <= -P + 2^15), and
- * saturation changes neither side (a product above the range fails both, one
- * below it passes both). */
+ * and saturation: for P = a den and an integer num, num >= tgi_shr_round(P,
+ * 16) = floor((P + 2^15) / 2^16) exactly when P + 2^15 < (num + 1) 2^16,
+ * that is P <= num 2^16 + 2^15 - 1 (perspective_bound), and saturation
+ * changes neither side (a product above the range fails both, one below it
+ * passes both).  tests/test_shadow.c checks the two forms agree
+ * (tgi_shadow_lit_perspective_q16). */
+#if TG_FIXED
+static inline int64_t perspective_bound(tg_real num) { return (int64_t)num * 65536 + 32767; }
+int tgi_shadow_lit_perspective_q16(tg_real num, tg_real a, tg_real den, int wide)
+{
+    return wide ? (int64_t)a * den <= perspective_bound(num) : num >= tg_mul(a, den);
+}
+#endif
 static inline int lit_perspective(tg_real num, tg_real a, tg_real den)
 {
 #if Q16_WIDE
-    return (int64_t)a * den <= (int64_t)num * 65536 + 32768;
+    return (int64_t)a * den <= perspective_bound(num);
 #else
     return num >= tg_mul(a, den);
 #endif
@@ -555,7 +563,7 @@ static tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *q, int i0, 
     const uint16_t *row = depth + fc->offset + (size_t)j0 * (size_t)fc->size + (size_t)i0;
     tg_real lit = 0, lo_bias = tg_add(fc->depth_lo, q->bias);
 #if Q16_WIDE
-    int64_t lim = (int64_t)q->num * 65536 + 32768;   /* lit_perspective's bound */
+    int64_t lim = perspective_bound(q->num);   /* lit_perspective's */
 #endif
     int i, j;
     for (j = 0; j < taps; j++, row += fc->size) {

@@ -276,6 +276,12 @@ tg_real tgi_shadow_visibility_err(const tgi_shadow_map *sm, tg_vec3 world_pos, t
 /* The same for an exact receiver (a ray-traced point): position_error 0. */
 tg_real tgi_shadow_visibility(const tgi_shadow_map *sm, tg_vec3 world_pos, tg_vec3 world_normal);
 
+#if TG_FIXED
+/* For tests: a perspective tap's depth test num >= tg_mul(a, den), as the
+ * 64-bit compare of the Q16.16 lookups (wide) or as written. */
+int tgi_shadow_lit_perspective_q16(tg_real num, tg_real a, tg_real den, int wide);
+#endif
+
 /* Error bound, per unit of view depth, of a world position reconstructed
  * from the G-buffer depth of `view` (the rasterizer's 1/16-pixel snapping,
  * and the arithmetic): position_error = depth * this. */
