@@ -173,8 +173,8 @@ static inline tg_real tgi_div_inline(tg_real a, tg_real b)
 }
 static inline tg_real tg_div(tg_real a, tg_real b) { return TGI_Q16_HELPER(div)(a, b); }
 static inline tg_real tg_from_int(int32_t i) { return tgi_sat64((int64_t)i * 65536); }
-/* Floor to integer. */
-static inline int32_t tg_to_int(tg_real a) { return (int32_t)(a >= 0 ? a >> 16 : -((-(int64_t)a + 65535) >> 16)); }
+/* Floor to integer: the shift floors (tgi_shift_floors). */
+static inline int32_t tg_to_int(tg_real a) { return (int32_t)(a >> 16); }
 /* Round to nearest integer. */
 static inline int32_t tg_round_int(tg_real a) { return tg_to_int(a + (a < TG_REAL_MAX - 32768 ? 32768 : 0)); }
 /* n/d as a tg_real, exactly rounded; d > 0. */
