@@ -61,11 +61,18 @@
 /* ---------------------------------------------------------------------- */
 /* integer helpers, shared                                                 */
 
-/* Round-half-away-from-zero right shift without shifting negative values. */
+/* Rounded right shift: in Q16.16 tinygi.h's tgi_shr_round (to nearest,
+ * ties toward +infinity; compiling for size its one copy below); the float
+ * build's range reduction keeps its ties away from zero (and its bits),
+ * without shifting negative values. */
 static int64_t shr_round(int64_t p, int s)
 {
+#if TG_FIXED
+    return tgi_shr_round(p, s);
+#else
     int64_t half = (int64_t)1 << (s - 1);
     return p >= 0 ? (p + half) >> s : -((-p + half) >> s);
+#endif
 }
 
 #if TG_FIXED
@@ -100,6 +107,9 @@ static const uint32_t rsqrt_seed[48] = {
 #if TG_FIXED
 /* tinygi.h's tgi_shr_round and tg_div, once, for builds that compile for
  * size (TG_OUTLINE_HELPERS); the same statements. */
+#if defined(__GNUC__)
+__attribute__((noinline))   /* short enough for -flto to copy into every caller: 1.5 KB more */
+#endif
 int64_t tgi_shr_round_q16(int64_t p, int s) { return tgi_shr_round_inline(p, s); }
 int32_t tgi_div_q16(int32_t a, int32_t b) { return tgi_div_inline(a, b); }
 #endif
