@@ -126,13 +126,13 @@ static inline tg_real tg_add(tg_real a, tg_real b) { return tgi_sat64((int64_t)a
 static inline tg_real tg_sub(tg_real a, tg_real b) { return tgi_sat64((int64_t)a - b); }
 static inline tg_real tg_neg(tg_real a) { return -a; }
 /* p 2^-s rounded to nearest, ties toward +infinity: (p + 2^(s-1)) >> s,
- * the rounding shift of Q formats (CMSIS-DSP's, ARM's rounding shift
- * instructions).  The shift of a negative p floors: C99 leaves that to the
- * implementation (6.5.7), so tgi_shift_floors stops the build on one that
- * does not.  Every product and rounding shift of Q16.16 rounds so; ties
- * were rounded away from zero before (a sign test and, for a negative p,
- * two negations more: 6% of a Q16.16 frame's instructions).  Magnitudes
- * never exceed the old rounding's (a negative tie rounds up, toward 0).
+ * as ARM's rounding shift instructions (VRSHR) round.  The shift of a
+ * negative p floors: C99 leaves that to the implementation (6.5.7), so
+ * tgi_shift_floors stops the build on one that does not.  Every product
+ * and rounding shift of Q16.16 rounds so; ties were rounded away from zero
+ * before (a sign test and, for a negative p, two negations more: 6% of a
+ * Q16.16 frame's instructions).  Magnitudes never exceed the old
+ * rounding's (a negative tie rounds up, toward 0).
  * tgi_shr_round_q16 and tgi_div_q16 (src/core/real.c, always in the Q16.16
  * library) are the same code out of line: compiling for size
  * (TG_OUTLINE_HELPERS) every file calls that one copy instead of keeping
