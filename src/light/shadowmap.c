@@ -533,19 +533,21 @@ static void fetch_taps(const tgi_shadow_map *sm, const tgi_shadow_face *fc, int 
  * changes neither side (a product above the range fails both, one below it
  * passes both).  tests/test_shadow.c checks the two forms agree
  * (tgi_shadow_lit_perspective_q16). */
+static inline int lit_perspective_mul(tg_real num, tg_real a, tg_real den) { return num >= tg_mul(a, den); }
 #if TG_FIXED
 static inline int64_t perspective_bound(tg_real num) { return (int64_t)num * 65536 + 32767; }
+static inline int lit_perspective_wide(tg_real num, tg_real a, tg_real den) { return (int64_t)a * den <= perspective_bound(num); }
 int tgi_shadow_lit_perspective_q16(tg_real num, tg_real a, tg_real den, int wide)
 {
-    return wide ? (int64_t)a * den <= perspective_bound(num) : num >= tg_mul(a, den);
+    return wide ? lit_perspective_wide(num, a, den) : lit_perspective_mul(num, a, den);
 }
 #endif
 static inline int lit_perspective(tg_real num, tg_real a, tg_real den)
 {
 #if Q16_WIDE
-    return (int64_t)a * den <= perspective_bound(num);
+    return lit_perspective_wide(num, a, den);
 #else
-    return num >= tg_mul(a, den);
+    return lit_perspective_mul(num, a, den);
 #endif
 }
 
