@@ -795,12 +795,21 @@ static inline int depths_close(tg_real za, tg_real zb)
  * TG_REAL_MAX, close (depths_close): zb - za fits, f zd fits, zb - f zd
  * lies between them (> 0), so za / (zb - f zd) < 4 (tgi_div_pos) and its
  * product with f zd stays below 2^50 in tgi_wide: the same depth as
- * tg_mul and tg_add wherever they would not have saturated. */
+ * tg_mul and tg_add wherever they would not have saturated.  The sum is
+ * za zb / (zb - f zd) > 0 within its roundings, a few ulps and the
+ * quotient's 2^-17 times |f zd| < 2^15 (2^14 ulps in all), far above
+ * TG_REAL_MIN: in Q16.16 only its top is tested (tgi_wide_real's other
+ * test never acts). */
 static inline tg_real lerp_inverse_depth(tg_real za, tg_real zb, tg_real f)
 {
     tg_real zd = (tg_real)((tgi_wide)zb - za), fzd = small_mul(f, zd);
     const tg_real ratio = tgi_div_nonneg(za, small_sub(zb, fzd));   /* za > 0 */
-    return tgi_wide_real((tgi_wide)za + tgi_wide_mul(fzd, ratio));
+    const tgi_wide z = (tgi_wide)za + tgi_wide_mul(fzd, ratio);
+#if TG_FIXED
+    return z > TG_REAL_MAX ? TG_REAL_MAX : (tg_real)z;
+#else
+    return tgi_wide_real(z);
+#endif
 }
 
 /* A run of samples along a side: march_side's, or march_between's

@@ -256,7 +256,14 @@ static inline tg_vec3 tgi_gb_lit(const tgi_gbuffer *g, size_t i, tg_vec3 e)
     /* diffuse <= 1/pi: each product is smaller than its e, never saturates (tgi_wide_mul: tg_mul's rounding) */
     lo = tg_v3((tg_real)tgi_wide_mul(m->diffuse.x, e.x), (tg_real)tgi_wide_mul(m->diffuse.y, e.y),
                (tg_real)tgi_wide_mul(m->diffuse.z, e.z));
+#if TG_FIXED
+    /* a material that emits nothing adds nothing: lo itself, without three
+     * saturating adds of 0 (in a scene with a light panel, most reads) */
+    if (!g->has_emissive || (m->emissive.x | m->emissive.y | m->emissive.z) == 0) return lo;
+    return tgi_v3_add(lo, m->emissive);
+#else
     return g->has_emissive ? tgi_v3_add(lo, m->emissive) : lo;
+#endif
 }
 static inline tg_vec3 tgi_gv_lit(const tgi_gview *v, size_t i, tg_vec3 e) { return tgi_gb_lit(&v->store, i, e); }
 
