@@ -632,7 +632,8 @@ static int march_steps(const hbil_ctx *c, tg_real extent, int *n)
 /* Floor of a finite value well inside the int range (the march's minor
  * coordinate): tg_to_int without its NaN and saturation tests; in Q16.16
  * the integer part of the raw value offset by 2^31 into the unsigned
- * range, without tg_to_int's branch on the sign. */
+ * range, the same integer as tg_to_int's shift (written as the shift, gcc
+ * compiled the march 0.15% longer: cornell 320x240, callgrind). */
 static inline int floor_small(tg_real a)
 {
 #if TG_FIXED
@@ -716,17 +717,10 @@ static inline tgi_wide wide_abs(tgi_wide d)
 #endif
 }
 
-/* tgi_wide_dot(d, d): in Q16.16 the exact sum of squares is >= 0 (below
- * 3 2^60: each |d_i| <= HBIL_FAR < 2^31 after wide_far), where
- * tgi_shr_round is (s + 2^15) >> 16: the same value without its sign test. */
-#if TG_FIXED
-static inline tgi_wide wide_len2(tgi_wide dx, tgi_wide dy, tgi_wide dz)
-{
-    return (tgi_wide)(((uint64_t)(dx * dx + dy * dy + dz * dz) + 32768u) >> 16);
-}
-#else
+/* |d|^2 = tgi_wide_dot(d, d): in Q16.16 the exact sum of squares is >= 0
+ * and below 3.0001 2^60 (each |d_i| <= HBIL_FAR, just over 2^30, after
+ * wide_far): it fits int64 and tgi_shr_round. */
 #define wide_len2(dx, dy, dz) tgi_wide_dot(dx, dy, dz, dx, dy, dz)
-#endif
 
 /* tgi_wide_mul(a, b) <= tgi_wide_mul(c, d) (the horizon test).  In Q16.16
  * the rounding (tgi_shr_round) does not decrease: a b <= c d exactly
