@@ -953,6 +953,49 @@ TEST(frame_memory_any_base_and_short)
     }
 }
 
+/* The frame's memory at every size short of plan.total_bytes, for plans
+ * whose layout carves different groups (shadow maps, shadow rays and their
+ * BVH, the game loop's scene state, the reference, quarter resolution):
+ * each is TG_ERR_MEMORY naming total_bytes, with no frame, whichever buffer
+ * the memory runs out at (within the 16 bytes of alignment slack a frame
+ * may fit, and then renders in what it was given).  (Layout carved on past the buffer that did not
+ * fit: a light's shadow descriptor was set up through a null pointer, found
+ * by fuzz_api-fixed.) */
+TEST(frame_memory_every_short_size)
+{
+    static const struct { int method, game_loop, technique, gi_scale; } cases[] = {
+        { TG_SHADOWS_MAPS, 0, TG_TECH_HBIL, 1 }, { TG_SHADOWS_RAYS, 0, TG_TECH_HBIL, 1 },
+        { TG_SHADOWS_RAYS, 1, TG_TECH_HBIL, 2 }, { TG_SHADOWS_AUTO, 1, TG_TECH_REFERENCE, 1 },
+    };
+    size_t c;
+    for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        tg_request q = small_request(5, 4, 2);
+        tg_plan plan;
+        tg_error err;
+        size_t size, bad = 0;
+        q.shadow_method = cases[c].method;
+        q.game_loop = cases[c].game_loop;
+        q.technique = (tg_technique)cases[c].technique;
+        q.gi_scale = cases[c].gi_scale;
+        CHECK(tg_plan_make(&plan, scene_everything(), &q, &err) == TG_OK, "case %zu: %s", c, err.message);
+        for (size = 0; size < plan.total_bytes; size++) {
+            unsigned char *m = (unsigned char *)malloc(size ? size : 1);
+            tg_frame *frame = (tg_frame *)m;
+            tg_status st;
+            if (!m) { fprintf(stderr, "out of memory\n"); exit(3); }
+            st = tg_frame_create(&plan, m, size, &frame, &err);
+            if (st == TG_OK && size + 16 >= plan.total_bytes) {   /* the alignment slack, unused at this base */
+                CHECK(tg_frame_render(frame, 0, &err) == TG_OK, "case %zu: %zu bytes: %s", c, size, err.message);
+            } else if (st != TG_ERR_MEMORY || frame || err.bytes_needed != plan.total_bytes) {
+                if (!bad) CHECK(0, "case %zu: %zu bytes of %zu: status %d", c, size, plan.total_bytes, st);
+                bad++;
+            }
+            free(m);
+        }
+        CHECK(bad == 0, "case %zu: %zu sizes not refused", c, bad);
+    }
+}
+
 /* Frames rendered in any order, past the last and at INT_MAX; negative
  * indices refused; outputs in bounds after each. */
 TEST(render_indices_out_of_order)
@@ -1291,6 +1334,7 @@ int main(void)
     CASE(techniques_at_odd_sizes, NULL);
     CASE(plan_explain_any_size, NULL);
     CASE(frame_memory_any_base_and_short, NULL);
+    CASE(frame_memory_every_short_size, NULL);
     CASE(render_indices_out_of_order, NULL);
     CASE(aov_not_requested_or_unknown, NULL);
     CASE(aov_rows_outside_refused, NULL);
