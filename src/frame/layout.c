@@ -518,7 +518,7 @@ int tgi_frame_layout(tg_frame **fp, tg_plan *plan, tg_arena *arena)
         const tgi_pass *p = &tgi_passes[k];
         if (!p->needed(f)) continue;
         if (!arena && add_pass(plan, k)) return 1;
-        for (g = 0; g < TGI_BUF_GROUPS; g++)
+        for (g = 0; g < TGI_BUF_GROUPS && !l.overflow; g++)
             if ((p->buffers & TGI_BUF(g)) && !(l.carved & TGI_BUF(g))) {
                 l.carved |= TGI_BUF(g);
                 group_layout[g](&l, f);
