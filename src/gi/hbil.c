@@ -777,8 +777,17 @@ static inline tg_real horizon_cos(tg_real dot, tg_real len2, tg_real *inv_len)
 static inline int depths_close(tg_real za, tg_real zb)
 {
 #if TG_FIXED
-    /* tgi_wide_mul(TG_R(4), z) = (4 2^16 z) 2^-16 rounded = 4 z exactly */
+    /* tgi_wide_mul(TG_R(4), z) = (4 2^16 z) 2^-16 rounded = 4 z exactly;
+     * for integers 4 zb > za is zb > floor(za / 4) = za >> 2 (tinygi.h
+     * tgi_shift_floors), the same answer in 32 bits: a 32-bit core takes
+     * that form (no 64-bit products; Cortex-M3 cornell 160x120: -1.9% of
+     * the Q16.16 frame), x86-64 the 64-bit one (the 32-bit form: +0.4%,
+     * gcc 12's register choices in the march) */
+#if UINTPTR_MAX > 0xFFFFFFFFu
     return (tgi_wide)zb * 4 > za && (tgi_wide)za * 4 > zb;
+#else
+    return zb > (za >> 2) && za > (zb >> 2);
+#endif
 #else
     return tgi_wide_mul(HBIL_LERP_MAX_RATIO, zb) > za && tgi_wide_mul(HBIL_LERP_MAX_RATIO, za) > zb;
 #endif
