@@ -9,13 +9,16 @@
 # copies them to tools/bench-results/ (the README's copy).
 #
 #   make bench BENCH_SIZE=160x120 BENCH_RUNS=5 [BENCH_ARGS="--scenes columns"]
+#   make bench-cost   then each configuration on the curves in instructions
+#                     per pixel (callgrind; BENCH_COST_SCENES="a b" narrows it):
+#                     bench.md gains the counts, bench-cost.svg plots them
 
 BENCH_SIZE ?= 160x120
 BENCH_RUNS ?= 5
 BENCH_DIR  ?= $(BUILD)/bench
 BENCH_ARGS ?=
 
-.PHONY: bench bench-build bench-publish bench-hbil
+.PHONY: bench bench-build bench-publish bench-hbil bench-cost
 
 # The bench programs, once per number type ($(1) float|fixed, $(2) file
 # suffix): bench-float/-fixed (tools/bench.c), bench_raster[-fixed],
@@ -49,11 +52,22 @@ bench: bench-build
 	$(BUILD)/bench-fixed run --size $(BENCH_SIZE) --runs $(BENCH_RUNS) --out $(BENCH_DIR) $(BENCH_ARGS)
 	$(BUILD)/bench-float report --size $(BENCH_SIZE) --out $(BENCH_DIR)
 
+# The accuracy bench's configurations (the curves) in instructions per pixel:
+# callgrind counts each one's timed frame (tools/bench_cost.py, `bench
+# count`); then the report again, which adds them to bench.md and draws
+# bench-cost.svg.  Run after `make bench` (same BENCH_SIZE and BENCH_DIR);
+# load does not matter.
+bench-cost: bench-build bench-valgrind
+	python3 tools/bench_cost.py --build $(BUILD) --size $(BENCH_SIZE) --out $(BENCH_DIR) --jobs $(BENCH_JOBS) \
+	  $(if $(BENCH_COST_SCENES),--scenes "$(BENCH_COST_SCENES)")
+	$(BUILD)/bench-float report --size $(BENCH_SIZE) --out $(BENCH_DIR)
+
 bench-publish:
 	@mkdir -p tools/bench-results
 	cp $(BENCH_DIR)/bench.svg $(BENCH_DIR)/bench.md $(BENCH_DIR)/bench.csv $(BENCH_DIR)/contact.png tools/bench-results/
 	cp $(BENCH_DIR)/bench-color.svg $(BENCH_DIR)/bench-color.csv $(BENCH_DIR)/contact-color.png tools/bench-results/
 	cp $(BENCH_DIR)/multibounce-float.csv tools/bench-results/multibounce.csv
+	if [ -f $(BENCH_DIR)/bench-cost.svg ]; then cp $(BENCH_DIR)/bench-cost.svg $(BENCH_DIR)/cost-float.csv $(BENCH_DIR)/cost-fixed.csv tools/bench-results/; fi
 
 # ---- cost and speed benches (speed is measured here, never in tests) ----
 #

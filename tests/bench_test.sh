@@ -22,6 +22,10 @@
 #    contact-color.png: a 5x3 sheet, 8-bit RGB;
 #  - multi-bounce AO: multibounce-float.csv / -fixed.csv, two AO sources per
 #    scene, RMSEs in [0, 1], biases in [-1, 1]; bench.md's section;
+#  - instructions (where valgrind is installed): tools/bench_cost.py's
+#    cost-float.csv / cost-fixed.csv, a count per curve point and scene, SSAO's
+#    growing with its samples; the report's table of every curve setting with
+#    both number types' counts; bench-cost.svg parses, a polyline per curve;
 #  - bad usage exits 2.
 # Timings are printed by the bench, never asserted here.
 set -u
@@ -165,6 +169,38 @@ expect "bench-color.svg: a dot per technique and number type ($dots)" test "$dot
 expect "bench-color.svg: no NaN/inf" sh -c "! grep -qi 'nan\|inf' '$csvg'"
 png_is "$T/o/contact-color.png" $((5 * W + 12)) $((3 * H + 8)) 2
 
+# instructions per pixel of each configuration on the curves (tools/bench_cost.py,
+# callgrind) and the report with them, where valgrind is installed (not
+# under the sanitizers: valgrind cannot run their programs)
+if command -v valgrind >/dev/null 2>&1 && [ -z "${ASAN_OPTIONS:-}" ]; then
+    expect "bench_cost.py runs" python3 tools/bench_cost.py --build "$BUILD" --size ${W}x${H} --scenes groove,columns \
+        --out "$T/o" >"$T/cost.log" 2>&1
+    expect "report with the counts" "$F" report --size ${W}x${H} --out "$T/o" >"$T/report2.log" 2>&1
+    on_curve=$(awk -F, 'NR > 1 && $1 == "groove" && $15 == 1' "$T/o/rows-float.csv" | wc -l)
+    for n in float fixed; do
+        f="$T/o/cost-$n.csv"
+        expect "cost-$n.csv header" test "$(head -n 1 "$f" 2>/dev/null)" = "scene,technique,slices,samples,number,pixels,instructions"
+        expect "cost-$n.csv: every curve point of both scenes ($on_curve each)" test $(($(wc -l <"$f") - 1)) -eq $((2 * on_curve))
+        bad=$(awk -F, -v n=$n -v px=$((W * H)) 'NR > 1 { if (NF != 7 || $5 != n || $6 != px || $7 !~ /^[0-9]+$/ || $7 < 200 * px) print NR }' "$f")
+        expect "cost-$n.csv: a frame of at least 200 instructions a pixel${bad:+ (bad lines $bad)}" test -z "$bad"
+        # the counts belong to their configurations: SSAO's grow with its samples (4 to 64)
+        grows=$(awk -F, '$1 == "columns" && $2 == "ssao" { if (n && $7 <= last) bad = 1; last = $7; n++ } END { print (n == 6 && !bad) ? "yes" : "no" }' "$f")
+        expect "cost-$n.csv: ssao's instructions grow with its samples" test "$grows" = yes
+    done
+    expect "bench.md: every curve setting with its instructions" grep -qF "## Every setting on the curves" "$md"
+    counted=$(awk -F'|' '/^## Every setting on the curves/ { on = 1; next } /^## / { on = 0 } on && /^\| [a-z]/ && $5 ~ /[0-9]/ && $7 ~ /[0-9]/' "$md" | wc -l)
+    expect "bench.md: float and Q16.16 counts on every curve setting ($counted of $on_curve)" test "$counted" -eq "$on_curve"
+    badtab=$(awk -F'|' '/^\|/ { if (!inhdr) { cols = NF; inhdr = 1 } else if (NF != cols) print NR } !/^\|/ { inhdr = 0 }' "$md")
+    expect "bench.md tables well-formed with the counts${badtab:+ (bad lines $badtab)}" test -z "$badtab"
+    csvg="$T/o/bench-cost.svg"
+    expect "bench-cost.svg parses" python3 -c "import sys, xml.dom.minidom; xml.dom.minidom.parse(sys.argv[1])" "$csvg"
+    lines=$(grep -c '<polyline fill="none" stroke="#[0-9a-f]*" stroke-width="2"' "$csvg")
+    expect "bench-cost.svg: a polyline per technique and number type ($lines)" test "$lines" -eq 26
+    expect "bench-cost.svg: no NaN/inf coordinates" sh -c "! grep -qi 'nan\|inf' '$csvg'"
+else
+    echo "skip: tools/bench_cost.py not run: valgrind is not installed (make bench-valgrind installs it), or the programs are the sanitizers'"
+fi
+
 # usage
 "$F" >/dev/null 2>&1; expect "no command: exit 2" test $? -eq 2
 "$F" run --size 2x2 >/dev/null 2>&1; expect "bad size: exit 2" test $? -eq 2
@@ -172,6 +208,12 @@ png_is "$T/o/contact-color.png" $((5 * W + 12)) $((3 * H + 8)) 2
 "$F" report --out "$T/empty" >/dev/null 2>&1; expect "report without rows: exit 2" test $? -eq 2
 "$F" run --pt-samples 1 --out "$T/x" >/dev/null 2>&1; expect "bad pt-samples: exit 2" test $? -eq 2
 "$F" run --pt-samples 1000 --out "$T/x" >/dev/null 2>&1; expect "pt-samples past 512 not a multiple of 512: exit 2" test $? -eq 2
+
+# --only ao: the sweep alone, no colour and no multi-bounce rows
+"$F" run --size 16x12 --runs 1 --ref-samples 17 --scenes groove --only ao --out "$T/aoonly" >/dev/null 2>&1
+expect "--only ao: the sweep's rows, no colour or multi-bounce rows" \
+    sh -c "test \$(wc -l <'$T/aoonly/rows-float.csv') -gt 40 && test \$(wc -l <'$T/aoonly/color-float.csv') -eq 1 && test \$(wc -l <'$T/aoonly/multibounce-float.csv') -eq 1"
+"$F" run --only shadows --out "$T/x" >/dev/null 2>&1; expect "--only shadows: exit 2" test $? -eq 2
 
 # a reference of more paths than a frame takes: traced over frames (two halves of two)
 "$F" run --size 16x12 --runs 1 --scenes cornell --pt-samples 1024 --color-frames 2 --only color --out "$T/big" >/dev/null 2>&1

@@ -5,7 +5,7 @@
  * against the ray-traced reference (cached per scene and radius):
  *
  *   bench run    [--size WxH] [--runs N] [--out DIR] [--ref-samples N] [--scenes a,b]
- *                [--pt-samples N] [--color-frames N] [--only color|multibounce]
+ *                [--pt-samples N] [--color-frames N] [--only ao|color|multibounce]
  *       sweep techniques x settings (samples, slices, radius) over the
  *       built-in scenes in this binary's number type; writes
  *       DIR/rows-<float|fixed>.csv, DIR/passes-<type>.md (HBIL pass
@@ -15,7 +15,14 @@
  *   bench report [--out DIR]
  *       read DIR/rows-*.csv, write DIR/bench.csv, DIR/bench.md (summary,
  *       frontier, the papers' claims with a verdict, full table) and
- *       DIR/bench.svg (AO RMSE against ms, one polyline per technique).
+ *       DIR/bench.svg (AO RMSE against ms, one polyline per technique);
+ *       with DIR/cost-*.csv (tools/bench_cost.py) also each point's
+ *       instructions per pixel in bench.md and DIR/bench-cost.svg (AO RMSE
+ *       against instructions per pixel).
+ *   bench count  [--size WxH] [--scenes a,b]
+ *       for callgrind (tools/bench_cost.py): each configuration on the
+ *       curves set up as `bench run` times it, its line printed, then its
+ *       timed frame rendered once in count_frame.
  *
  * Colour: every technique at its default setting (HBIL converged over
  * --color-frames frames, the others one frame; plus "reference", the
@@ -76,7 +83,7 @@
 static int opt_w = 160, opt_h = 120, opt_runs = 5, opt_ref_samples = 256, opt_pt_samples = 1024, opt_color_frames = 60;
 static const char *opt_out = "build/bench";
 static char opt_scenes[256] = "";
-static char opt_only[32] = "";     /* "": everything; "color" or "multibounce": that part alone */
+static char opt_only[32] = "";     /* "": everything; "ao", "color" or "multibounce": that part alone */
 
 static void die(const char *msg, const char *arg)
 {
@@ -455,6 +462,20 @@ static float *interreflection_near(const tg_frame *f, int w, int h)
     return out;
 }
 
+/* The request of one configuration (the timed run and the count alike). */
+static tg_request config_request(const config *c, double radius)
+{
+    uint32_t aovs = AOVBIT(TG_AOV_AO) | AOVBIT(TG_AOV_BENT);
+    tg_request q;
+    if (c->near) aovs |= AOVBIT(TG_AOV_NEAR);
+    if (strcmp(c->label, "gtao+ir") == 0) aovs |= AOVBIT(TG_AOV_DIRECT) | AOVBIT(TG_AOV_ALBEDO);
+    q = base_request(c->tech, c->slices, c->samples, radius, aovs);
+    q.interleave = c->interleave;
+    q.gi_scale = c->gi_scale;
+    q.depth_layers = label_layers(c->label);
+    return q;
+}
+
 /* Time one configuration: warm up, read the outputs, then opt_runs frames. */
 static double run_config(tg_scene *s, const config *c, double radius, result *out, double *cpu_ms)
 {
@@ -463,14 +484,7 @@ static double run_config(tg_scene *s, const config *c, double radius, result *ou
     tg_error err;
     double t[MAX_RUNS];
     int k, n = opt_w * opt_h, ir = strcmp(c->label, "gtao+ir") == 0;
-    uint32_t aovs = AOVBIT(TG_AOV_AO) | AOVBIT(TG_AOV_BENT);
-    tg_request q;
-    if (c->near) aovs |= AOVBIT(TG_AOV_NEAR);
-    if (ir) aovs |= AOVBIT(TG_AOV_DIRECT) | AOVBIT(TG_AOV_ALBEDO);
-    q = base_request(c->tech, c->slices, c->samples, radius, aovs);
-    q.interleave = c->interleave;
-    q.gi_scale = c->gi_scale;
-    q.depth_layers = label_layers(c->label);
+    tg_request q = config_request(c, radius);
     if (!frame_open(&fr, s, &q)) die("frame", c->label);
     tg_frame_render(fr.frame, 0, &err);
     memset(out, 0, sizeof *out);
@@ -1113,7 +1127,7 @@ static int cmd_run(void)
         r0 = scene_radius(s);
         printf("%s (%s, radius %.3f, %dx%d, %d runs)\n", name, NUMBER, r0, opt_w, opt_h, opt_runs);
         fflush(stdout);
-        for (ci = 0; ci < ncfg && !*opt_only; ci++) {
+        for (ci = 0; ci < ncfg && (!*opt_only || !strcmp(opt_only, "ao")); ci++) {
             const config *c = &cfgs[ci];
             double radius = r0 * c->rscale, ms, cpu;
             result ref, res;
@@ -1137,12 +1151,12 @@ static int cmd_run(void)
             result_free(&res);
             result_free(&ref);
         }
-        if (!*opt_only && (strcmp(name, "cornell") == 0 || (!scene_wanted("cornell") && strcmp(name, sheet_scene) == 0)))
+        if ((!*opt_only || !strcmp(opt_only, "ao")) && (strcmp(name, "cornell") == 0 || (!scene_wanted("cornell") && strcmp(name, sheet_scene) == 0)))
             pass_breakdown(s, name);
         if (!color_scene) color_scene = name;
-        if (strcmp(opt_only, "multibounce"))
+        if (strcmp(opt_only, "multibounce") && strcmp(opt_only, "ao"))
             color_rows(s, name, ccsv, !strcmp(NUMBER, "float") && strcmp(name, color_scene) == 0);
-        if (strcmp(opt_only, "color")) multibounce_rows(name, r0, mcsv);
+        if (strcmp(opt_only, "color") && strcmp(opt_only, "ao")) multibounce_rows(name, r0, mcsv);
         free(mem);
     }
     fclose(csv);
@@ -1150,6 +1164,54 @@ static int cmd_run(void)
     fclose(mcsv);
     sheet_write(&ao_sheet);
     sheet_write(&color_sheet);
+    return 0;
+}
+
+/* ------------------------------------------------------------------ */
+/* bench count: the frame each timed run times, once per configuration on
+ * the curves, for callgrind (tools/bench_cost.py runs this under
+ * `valgrind --tool=callgrind --collect-atstart=no --toggle-collect=count_frame
+ * --dump-after=count_frame`: one profile per call, in the order of the
+ * lines printed) */
+
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+void count_frame(tg_frame *f);
+void count_frame(tg_frame *f)
+{
+    tg_error err;
+    if (tg_frame_render(f, 0, &err) != TG_OK) die("render", err.message);
+}
+
+static int cmd_count(void)
+{
+    int si, ci;
+    const char *name;
+    build_sweep();
+    for (si = 0; (name = tg_builtin_name(si)) != NULL; si++) {
+        void *mem;
+        tg_scene *s;
+        double r0;
+        if (!scene_wanted(name)) continue;
+        s = load_scene(name, &mem);
+        r0 = scene_radius(s);
+        for (ci = 0; ci < ncfg; ci++) {
+            const config *c = &cfgs[ci];
+            tg_request q;
+            frame_run fr;
+            tg_error err;
+            if (!c->on_curve) continue;
+            q = config_request(c, r0 * c->rscale);
+            if (!frame_open(&fr, s, &q)) die("frame", c->label);
+            tg_frame_render(fr.frame, 0, &err);   /* as run_config: the timed frames follow a first */
+            printf("count: %s,%s,%d,%d,%s,%d\n", name, c->label, c->slices, c->samples, NUMBER, opt_w * opt_h);
+            fflush(stdout);
+            count_frame(fr.frame);
+            frame_close(&fr);
+        }
+        free(mem);
+    }
     return 0;
 }
 
@@ -1222,6 +1284,8 @@ typedef struct point {
     char tech[32], number[8];
     int slices, samples, is_default, on_curve, scenes, near_n;
     double ms, wall, ao_rmse, ao_max, bent_deg, near_rel, rscale;   /* ms: CPU ms, wall: hosted clock */
+    double ipp;                      /* instructions per pixel (cost-*.csv, mean over its scenes); 0: not counted */
+    int ipp_n;
 } point;
 
 static point pts[512];
@@ -1267,6 +1331,51 @@ static void group_points(void)
         p->ms /= p->scenes; p->wall /= p->scenes; p->ao_rmse /= p->scenes; p->bent_deg /= p->scenes;
         p->near_rel = p->near_n ? p->near_rel / p->near_n : (double)NAN;
     }
+}
+
+/* DIR/cost-<number>.csv (tools/bench_cost.py): each curve point's frame in
+ * instructions per pixel, the mean over the scenes counted. */
+static point *curve_point(const char *tech, const char *number, int slices, int samples)
+{
+    int j;
+    for (j = 0; j < npts; j++)
+        if (pts[j].on_curve && strcmp(pts[j].tech, tech) == 0 && strcmp(pts[j].number, number) == 0 &&
+            pts[j].slices == slices && pts[j].samples == samples && fabs(pts[j].rscale - 1) < 1e-3)
+            return &pts[j];
+    return NULL;
+}
+
+static int ncost;
+static int parse_cost_row(char *line, int i)
+{
+    char scene[32], tech[32], number[8];
+    int slices, samples;
+    double pixels, instructions;
+    point *p;
+    (void)i;
+    if (sscanf(line, "%31[^,],%31[^,],%d,%d,%7[^,],%lf,%lf", scene, tech, &slices, &samples, number, &pixels,
+               &instructions) != 7 || pixels <= 0)
+        return 0;
+    p = curve_point(tech, number, slices, samples);
+    if (p) { p->ipp += instructions / pixels; p->ipp_n++; }
+    return 1;
+}
+
+static int read_costs(void)
+{
+    int j, n = 0;
+    ncost = 0;
+    read_csv("cost", "float", &ncost, parse_cost_row);
+    read_csv("cost", "fixed", &ncost, parse_cost_row);
+    for (j = 0; j < npts; j++)
+        if (pts[j].ipp_n) { pts[j].ipp /= pts[j].ipp_n; n++; }
+    return n;
+}
+
+static void fmt_ipp(char *buf, size_t n, const point *p)
+{
+    if (p->ipp_n) snprintf(buf, n, "%.0f", p->ipp);
+    else snprintf(buf, n, "-");
 }
 
 static const point *find_point(const char *tech, const char *number, int slices, int samples)
@@ -1349,16 +1458,31 @@ static void svg_log_x_grid(FILE *f, double lx0, double lx1, int W, int H, int L,
     }
 }
 
-static void write_svg(void)
+/* A point's x in the plot: CPU ms, or instructions per pixel (0: none). */
+static double plot_x(const point *p, int by_instructions)
+{
+    return by_instructions ? (p->ipp_n ? p->ipp : 0) : p->ms;
+}
+
+static int cmp_ipp(const void *a, const void *b)
+{
+    const point *x = *(const point *const *)a, *y = *(const point *const *)b;
+    return x->ipp < y->ipp ? -1 : x->ipp > y->ipp;
+}
+
+/* bench.svg: AO RMSE against CPU ms; by_instructions: bench-cost.svg,
+ * against instructions per pixel (the points counted). */
+static void write_svg(int by_instructions)
 {
     const int W = 860, H = 540, L = 70, R = 150, T = 50, B = 60;
     double xmin = 1e30, xmax = 0, ymax = 0, lx0, lx1, ystep = 1;
     int j, k, yticks = 5;
-    FILE *f = open_out("bench.svg", "w");
+    FILE *f = open_out(by_instructions ? "bench-cost.svg" : "bench.svg", "w");
     for (j = 0; j < npts; j++) {
-        if (!pts[j].on_curve) continue;
-        if (pts[j].ms < xmin) xmin = pts[j].ms;
-        if (pts[j].ms > xmax) xmax = pts[j].ms;
+        double x = plot_x(&pts[j], by_instructions);
+        if (!pts[j].on_curve || x <= 0) continue;
+        if (x < xmin) xmin = x;
+        if (x > xmax) xmax = x;
         if (pts[j].ao_rmse > ymax) ymax = pts[j].ao_rmse;
     }
     if (xmax <= 0) xmax = 1;
@@ -1371,12 +1495,13 @@ static void write_svg(void)
         yticks = (int)ceil(top / ystep - 1e-9);
         ymax = yticks * ystep;
     }
-#define PX(ms) (L + (log10(ms) - lx0) / (lx1 - lx0) * (W - L - R))
+#define PX(p) (L + (log10(plot_x(p, by_instructions)) - lx0) / (lx1 - lx0) * (W - L - R))
 #define PY(v) (H - B - (v) / ymax * (H - T - B))
     svg_begin(f, W, H);
-    fprintf(f, "<text x=\"%d\" y=\"22\" font-size=\"15\" font-weight=\"bold\">tinygi: AO error against time (mean over %s scenes, %dx%d)</text>\n",
-            L, "the built-in", opt_w, opt_h);
-    fprintf(f, "<text x=\"%d\" y=\"40\" fill=\"#444\">lower left is better; solid = float, dashed = Q16.16 fixed; each line sweeps its technique's samples/slices; grey band = frontier</text>\n", L);
+    fprintf(f, "<text x=\"%d\" y=\"22\" font-size=\"15\" font-weight=\"bold\">tinygi: AO error against %s (mean over %s scenes, %dx%d)</text>\n",
+            L, by_instructions ? "instructions" : "time", "the built-in", opt_w, opt_h);
+    fprintf(f, "<text x=\"%d\" y=\"40\" fill=\"#444\">lower left is better; solid = float, dashed = Q16.16 fixed; each line sweeps its technique's samples/slices%s</text>\n", L,
+            by_instructions ? " (callgrind, tools/bench_cost.py)" : "; grey band = frontier");
     /* axes and grid */
     svg_log_x_grid(f, lx0, lx1, W, H, L, R, T, B);
     for (k = 0; k <= yticks; k++) {
@@ -1385,17 +1510,18 @@ static void write_svg(void)
         fprintf(f, "<text x=\"%d\" y=\"%.1f\" text-anchor=\"end\">%g</text>\n", L - 6, y + 4, v);
     }
     fprintf(f, "<rect x=\"%d\" y=\"%d\" width=\"%d\" height=\"%d\" fill=\"none\" stroke=\"black\"/>\n", L, T, W - L - R, H - T - B);
-    fprintf(f, "<text x=\"%d\" y=\"%d\" text-anchor=\"middle\">median CPU ms per frame (log scale)</text>\n", (L + W - R) / 2, H - 18);
+    fprintf(f, "<text x=\"%d\" y=\"%d\" text-anchor=\"middle\">%s (log scale)</text>\n", (L + W - R) / 2, H - 18,
+            by_instructions ? "instructions per pixel of a frame (x86-64, gcc)" : "median CPU ms per frame");
     fprintf(f, "<text x=\"16\" y=\"%d\" text-anchor=\"middle\" transform=\"rotate(-90 16 %d)\">AO RMSE vs ray-traced reference</text>\n", (T + H - B) / 2, (T + H - B) / 2);
     /* frontier */
-    {
+    if (!by_instructions) {
         const point *fr[512];
         int nf = 0;
         for (j = 0; j < npts; j++) if (on_frontier(&pts[j])) fr[nf++] = &pts[j];
         qsort(fr, (size_t)nf, sizeof fr[0], cmp_ms);
         if (nf > 1) {
             fprintf(f, "<polyline fill=\"none\" stroke=\"#bbb\" stroke-width=\"9\" stroke-linejoin=\"round\" stroke-opacity=\"0.6\" points=\"");
-            for (k = 0; k < nf; k++) fprintf(f, "%.1f,%.1f ", PX(fr[k]->ms), PY(fr[k]->ao_rmse));
+            for (k = 0; k < nf; k++) fprintf(f, "%.1f,%.1f ", PX(fr[k]), PY(fr[k]->ao_rmse));
             fprintf(f, "\"/>\n");
         }
     }
@@ -1407,20 +1533,21 @@ static void write_svg(void)
             const point *cp[64];
             int nc = 0, i;
             for (j = 0; j < npts && nc < 64; j++)
-                if (pts[j].on_curve && !strcmp(pts[j].tech, tech_names[k]) && !strcmp(pts[j].number, number)) cp[nc++] = &pts[j];
+                if (pts[j].on_curve && !strcmp(pts[j].tech, tech_names[k]) && !strcmp(pts[j].number, number) &&
+                    plot_x(&pts[j], by_instructions) > 0) cp[nc++] = &pts[j];
             if (!nc) continue;
-            qsort(cp, (size_t)nc, sizeof cp[0], cmp_ms);
+            qsort(cp, (size_t)nc, sizeof cp[0], by_instructions ? cmp_ipp : cmp_ms);
             fprintf(f, "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"2\"%s points=\"", tech_colors[k],
                     num ? " stroke-dasharray=\"6 4\"" : "");
-            for (i = 0; i < nc; i++) fprintf(f, "%.1f,%.1f ", PX(cp[i]->ms), PY(cp[i]->ao_rmse));
+            for (i = 0; i < nc; i++) fprintf(f, "%.1f,%.1f ", PX(cp[i]), PY(cp[i]->ao_rmse));
             fprintf(f, "\"/>\n");
             for (i = 0; i < nc; i++) {
                 char buf[64];
-                fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%d\" fill=\"%s\"><title>%s %s %s: %.2f ms, AO RMSE %.4f</title></circle>\n",
-                        PX(cp[i]->ms), PY(cp[i]->ao_rmse), cp[i]->is_default ? 5 : 3, num ? "white" : tech_colors[k],
-                        tech_names[k], number, setting(cp[i], buf, sizeof buf), cp[i]->ms, cp[i]->ao_rmse);
+                fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%d\" fill=\"%s\"><title>%s %s %s: %.2f ms, %.0f instructions a pixel, AO RMSE %.4f</title></circle>\n",
+                        PX(cp[i]), PY(cp[i]->ao_rmse), cp[i]->is_default ? 5 : 3, num ? "white" : tech_colors[k],
+                        tech_names[k], number, setting(cp[i], buf, sizeof buf), cp[i]->ms, cp[i]->ipp, cp[i]->ao_rmse);
                 if (num) fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%d\" fill=\"none\" stroke=\"%s\"/>\n",
-                                 PX(cp[i]->ms), PY(cp[i]->ao_rmse), cp[i]->is_default ? 5 : 3, tech_colors[k]);
+                                 PX(cp[i]), PY(cp[i]->ao_rmse), cp[i]->is_default ? 5 : 3, tech_colors[k]);
             }
         }
         fprintf(f, "<line x1=\"%d\" y1=\"%d\" x2=\"%d\" y2=\"%d\" stroke=\"%s\" stroke-width=\"3\"/>\n", W - R + 14, T + 10 + 18 * k,
@@ -1433,10 +1560,11 @@ static void write_svg(void)
         char buf[64];
         for (j = 0; j < npts; j++)
             if (pts[j].on_curve && !strcmp(pts[j].tech, tech_names[k]) && !strcmp(pts[j].number, "float") &&
-                (!last || pts[j].ms > last->ms)) last = &pts[j];
+                plot_x(&pts[j], by_instructions) > 0 && (!last || plot_x(&pts[j], by_instructions) > plot_x(last, by_instructions)))
+                last = &pts[j];
         if (last)
             fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" fill=\"%s\" font-size=\"11\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\">%s %s</text>\n",
-                    PX(last->ms) + 6, PY(last->ao_rmse) - 5, tech_colors[k], tech_names[k], setting(last, buf, sizeof buf));
+                    PX(last) + 6, PY(last->ao_rmse) - 5, tech_colors[k], tech_names[k], setting(last, buf, sizeof buf));
     }
     fprintf(f, "<text x=\"%d\" y=\"%d\" fill=\"#444\" font-size=\"11\">big dot: default</text>\n", W - R + 14, T + 14 + 18 * NTECH + 6);
     fprintf(f, "<text x=\"%d\" y=\"%d\" fill=\"#444\" font-size=\"11\">(%d slices x %d)</text>\n", W - R + 14, T + 14 + 18 * NTECH + 20, TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES);
@@ -1672,8 +1800,8 @@ static void multibounce_report(FILE *md)
 static int cmd_report(void)
 {
     FILE *f, *md;
-    int i, j, num;
-    char buf[64], nb[32];
+    int i, j, num, counted;
+    char buf[64], nb[32], ib[32];
     nrows = 0;
     ncrows = 0;
     read_csv("rows", "float", &nrows, parse_row);
@@ -1682,6 +1810,7 @@ static int cmd_report(void)
     read_csv("color", "fixed", &ncrows, parse_color_row);
     if (!nrows && !ncrows && !multibounce_rows_exist()) die("no rows: run `bench run` first", opt_out);
     group_points();
+    counted = read_costs();
     f = open_out("bench.csv", "w");
     fprintf(f, "scene,technique,slices,samples,radius,interleave,number,median_ms,cpu_ms,ao_rmse,ao_max,bent_deg,near_rel,default,curve\n");
     for (i = 0; i < nrows; i++) {
@@ -1692,22 +1821,41 @@ static int cmd_report(void)
         fprintf(f, "%d,%d\n", r->is_default, r->on_curve);
     }
     fclose(f);
-    write_svg();
+    write_svg(0);
+    if (counted) write_svg(1);
     write_color_svg();
     md = open_out("bench.md", "w");
     fprintf(md, "# tinygi accuracy vs time\n\n");
     fprintf(md, "Errors against the ray-traced reference (same radius as an obscurance cut-off); each value is the mean over the built-in scenes (max AO error: the worst pixel of any scene); CPU ms: median process CPU time per whole frame (robust on a busy machine: the plot, the frontier and the claims use it); wall ms: median by the hosted clock.\n\n");
     fprintf(md, "## Default setting (%d slices x %d samples, the scene's radius)\n\n", TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES);
-    fprintf(md, "| technique | number | CPU ms | wall ms | AO RMSE | AO max | bent deg | near rel. err |\n|---|---|---:|---:|---:|---:|---:|---:|\n");
+    fprintf(md, "| technique | number | CPU ms | instr/px | wall ms | AO RMSE | AO max | bent deg | near rel. err |\n|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
     for (num = 0; num < 2; num++)
         for (j = 0; j < npts; j++) {
             const point *p = &pts[j];
             if (strcmp(p->number, num ? "fixed" : "float") || !(p->is_default || !strcmp(p->tech, "gtao+ir")) || fabs(p->rscale - 1) > 1e-3) continue;
             if (!p->is_default && !(p->slices == TG_DEFAULT_SLICES && p->samples == TG_DEFAULT_SAMPLES)) continue;
             fmt_near(nb, sizeof nb, p->near_rel);
-            fprintf(md, "| %s | %s | %.2f | %.2f | %.4f | %.3f | %.2f | %s |\n", p->tech, p->number, p->ms, p->wall, p->ao_rmse, p->ao_max, p->bent_deg, nb);
+            fmt_ipp(ib, sizeof ib, p);
+            fprintf(md, "| %s | %s | %.2f | %s | %.2f | %.4f | %.3f | %.2f | %s |\n", p->tech, p->number, p->ms, ib, p->wall, p->ao_rmse, p->ao_max, p->bent_deg, nb);
         }
-    fprintf(md, "\n");
+    fprintf(md, "\ninstr/px: the frame's instructions per pixel (callgrind, `make bench-cost`, tools/bench_cost.py; the mean over the scenes counted; - where not counted).\n\n");
+    if (counted) {
+        /* every step of every curve: what its accuracy costs in ms and in instructions */
+        fprintf(md, "## Every setting on the curves: AO error, CPU ms and instructions per pixel\n\n");
+        fprintf(md, "| technique | setting | float ms | float instr/px | Q16.16 ms | Q16.16 instr/px | AO RMSE (float) |\n|---|---|---:|---:|---:|---:|---:|\n");
+        for (i = 0; i < NTECH; i++)
+            for (j = 0; j < npts; j++) {
+                const point *p = &pts[j], *q;
+                char fb[32];
+                if (!p->on_curve || strcmp(p->tech, tech_names[i]) || strcmp(p->number, "float")) continue;
+                q = curve_point(p->tech, "fixed", p->slices, p->samples);
+                fmt_ipp(fb, sizeof fb, p);
+                if (q) fmt_ipp(ib, sizeof ib, q); else snprintf(ib, sizeof ib, "-");
+                if (q) snprintf(nb, sizeof nb, "%.2f", q->ms); else snprintf(nb, sizeof nb, "-");
+                fprintf(md, "| %s | %s | %.2f | %s | %s | %s | %.4f |\n", p->tech, setting(p, buf, sizeof buf), p->ms, fb, nb, ib, p->ao_rmse);
+            }
+        fprintf(md, "\n");
+    }
     color_report(md);
     multibounce_report(md);
     fprintf(md, "## Frontier (float): no other setting is both faster and more accurate\n\n");
@@ -1716,13 +1864,14 @@ static int cmd_report(void)
         int nf = 0;
         for (j = 0; j < npts; j++) if (on_frontier(&pts[j])) fr[nf++] = &pts[j];
         qsort(fr, (size_t)nf, sizeof fr[0], cmp_ms);
-        fprintf(md, "| technique | setting | ms | AO RMSE | step cost |\n|---|---|---:|---:|---|\n");
+        fprintf(md, "| technique | setting | ms | instr/px | AO RMSE | step cost |\n|---|---|---:|---:|---:|---|\n");
         for (i = 0; i < nf; i++) {
             char step[128] = "";
             if (i > 0) snprintf(step, sizeof step, "%+.2f ms (x%.2f) for %.4f less RMSE (-%.0f%%)", fr[i]->ms - fr[i - 1]->ms,
                                 fr[i]->ms / fr[i - 1]->ms, fr[i - 1]->ao_rmse - fr[i]->ao_rmse,
                                 100 * (1 - fr[i]->ao_rmse / fr[i - 1]->ao_rmse));
-            fprintf(md, "| %s | %s | %.2f | %.4f | %s |\n", fr[i]->tech, setting(fr[i], buf, sizeof buf), fr[i]->ms, fr[i]->ao_rmse, step);
+            fmt_ipp(ib, sizeof ib, fr[i]);
+            fprintf(md, "| %s | %s | %.2f | %s | %.4f | %s |\n", fr[i]->tech, setting(fr[i], buf, sizeof buf), fr[i]->ms, ib, fr[i]->ao_rmse, step);
         }
     }
     fprintf(md, "\n## The papers' claims\n\n");
@@ -1766,14 +1915,15 @@ static int cmd_report(void)
     /* the verdicts on stdout */
     claim_lines(stdout, "float");
     claim_lines(stdout, "fixed");
-    printf("wrote %s/bench.md, bench.csv, bench.svg%s\n", opt_out, ncrows ? ", bench-color.csv, bench-color.svg" : "");
+    printf("wrote %s/bench.md, bench.csv, bench.svg%s%s\n", opt_out, counted ? ", bench-cost.svg" : "",
+           ncrows ? ", bench-color.csv, bench-color.svg" : "");
     return 0;
 }
 
 int main(int argc, char **argv)
 {
     int i;
-    if (argc < 2) die("usage: bench run|report [--size WxH] [--runs N] [--out DIR] [--ref-samples N] [--scenes a,b] [--pt-samples N] [--color-frames N] [--only color|multibounce]", NULL);
+    if (argc < 2) die("usage: bench run|report|count [--size WxH] [--runs N] [--out DIR] [--ref-samples N] [--scenes a,b] [--pt-samples N] [--color-frames N] [--only ao|color|multibounce]", NULL);
     for (i = 2; i < argc; i += 2) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!v) die("option needs a value", a);
@@ -1789,7 +1939,7 @@ int main(int argc, char **argv)
                 die("pt-samples must be 2..512, or a multiple of 512 up to 4096", v);
         }
         else if (!strcmp(a, "--only")) {
-            if (strcmp(v, "color") && strcmp(v, "multibounce")) die("--only takes color or multibounce", v);
+            if (strcmp(v, "ao") && strcmp(v, "color") && strcmp(v, "multibounce")) die("--only takes ao, color or multibounce", v);
             snprintf(opt_only, sizeof opt_only, "%s", v);
         }
         else if (!strcmp(a, "--color-frames")) { opt_color_frames = atoi(v); if (opt_color_frames < 1 || opt_color_frames > 1000) die("color-frames must be 1..1000", v); }
@@ -1797,6 +1947,7 @@ int main(int argc, char **argv)
     }
     if (!strcmp(argv[1], "run")) return cmd_run();
     if (!strcmp(argv[1], "report")) return cmd_report();
+    if (!strcmp(argv[1], "count")) return cmd_count();
     die("unknown command", argv[1]);
     return 2;
 }
