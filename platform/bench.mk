@@ -57,7 +57,7 @@ bench: bench-build
 # count`); then the report again, which adds them to bench.md and draws
 # bench-cost.svg.  Run after `make bench` (same BENCH_SIZE and BENCH_DIR);
 # load does not matter.
-bench-cost: bench-build bench-valgrind
+bench-cost: all bench-build bench-valgrind
 	python3 tools/bench_cost.py --build $(BUILD) --size $(BENCH_SIZE) --out $(BENCH_DIR) --jobs $(BENCH_JOBS) \
 	  $(if $(BENCH_COST_SCENES),--scenes "$(BENCH_COST_SCENES)")
 	$(BUILD)/bench-float report --size $(BENCH_SIZE) --out $(BENCH_DIR)

@@ -1345,7 +1345,6 @@ static point *curve_point(const char *tech, const char *number, int slices, int 
     return NULL;
 }
 
-static int ncost;
 static int parse_cost_row(char *line, int i)
 {
     char scene[32], tech[32], number[8];
@@ -1363,8 +1362,7 @@ static int parse_cost_row(char *line, int i)
 
 static int read_costs(void)
 {
-    int j, n = 0;
-    ncost = 0;
+    int j, n = 0, ncost = 0;
     read_csv("cost", "float", &ncost, parse_cost_row);
     read_csv("cost", "fixed", &ncost, parse_cost_row);
     for (j = 0; j < npts; j++)

@@ -33,7 +33,15 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from bench_count import Profile  # noqa: E402  (the callgrind reading, tested by its --self-test)
 
 HEADER = ["scene", "technique", "slices", "samples", "number", "pixels", "instructions"]
-SCENES = ["plane", "groove", "spheres", "cornell", "columns"]
+
+
+def builtin_scenes(build):
+    """The built-in scenes, as `tinygi list` names them (builtin:NAME ...)."""
+    r = subprocess.run([os.path.join(build, "tinygi"), "list"], stdout=subprocess.PIPE, text=True, check=True)
+    for line in r.stdout.splitlines():
+        if line.startswith("built-in scenes:"):
+            return [w[len("builtin:"):] for w in line.split()[2:] if w.startswith("builtin:")]
+    sys.exit("bench_cost.py: `tinygi list` names no built-in scenes")
 
 
 def count_scene(build, ntype, scene, size):
@@ -59,12 +67,12 @@ def main():
     ap = argparse.ArgumentParser(description="the accuracy bench's configurations in instructions (callgrind)")
     ap.add_argument("--build", default="build")
     ap.add_argument("--size", default="160x120")
-    ap.add_argument("--scenes", default=",".join(SCENES))
+    ap.add_argument("--scenes", default="", help="default: every built-in scene")
     ap.add_argument("--types", default="float,fixed")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--out", default="build/bench")
     args = ap.parse_args()
-    scenes = [s for s in args.scenes.replace(" ", ",").split(",") if s]
+    scenes = [s for s in args.scenes.replace(" ", ",").split(",") if s] or builtin_scenes(args.build)
     types = [t for t in args.types.replace(" ", ",").split(",") if t]
     for t in types:
         if t not in ("float", "fixed"):

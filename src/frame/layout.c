@@ -229,7 +229,7 @@ static void group_shadow_maps(layout *l, tg_frame *f)
                              &nd, &lo, &hi);
         rays |= by == TG_SHADOW_BY_RAYS;
         if (by == TG_SHADOW_BY_MAP) depth = take(l, "shadow maps (depth) [16 bits]", tgi_shadow_need_bytes(&nd), 1);
-        if (!l->arena || l->overflow) continue;   /* measuring, or the arena ran out (no descriptors) */
+        if (!l->arena || l->overflow) continue;   /* measuring, or the memory ran out (shadow_maps or shadow_ptrs may be NULL) */
         if (by == TG_SHADOW_BY_RAYS) tgi_shadow_rays_setup(&f->shadow_maps[i], &s->lights[i], bvh_shadow_ray, &f->bvh);
         else tgi_shadow_map_setup_need(&f->shadow_maps[i], &s->lights[i], &nd, lo, hi, depth);
         f->shadow_maps[i].filter = f->request.shadow_pcf ? TG_SHADOW_PCF_BILINEAR : TG_SHADOW_PCF_TENT;
@@ -514,11 +514,11 @@ int tgi_frame_layout(tg_frame **fp, tg_plan *plan, tg_arena *arena)
     if (!arena) f = *fp;
     *fp = f;
     frame_init(f, plan, n);
-    for (k = 0; k < tgi_pass_count && !l.overflow; k++) {   /* the arena ran out: no group carves on */
+    for (k = 0; k < tgi_pass_count; k++) {
         const tgi_pass *p = &tgi_passes[k];
         if (!p->needed(f)) continue;
         if (!arena && add_pass(plan, k)) return 1;
-        for (g = 0; g < TGI_BUF_GROUPS && !l.overflow; g++)
+        for (g = 0; g < TGI_BUF_GROUPS && !l.overflow; g++)   /* the memory ran out: no group carves on */
             if ((p->buffers & TGI_BUF(g)) && !(l.carved & TGI_BUF(g))) {
                 l.carved |= TGI_BUF(g);
                 group_layout[g](&l, f);
