@@ -116,10 +116,21 @@ typedef int32_t tg_real;
 #define TG_R(x) ((tg_real)((x) >= 0 ? (x) * 65536.0f + 0.5f : (x) * 65536.0f - 0.5f))
 #define TG_NUMBER_NAME "fixed"
 
+/* v clamped to [TG_REAL_MIN, TG_REAL_MAX], under every saturating
+ * operation.  A 64-bit host tests the range in one unsigned compare (v +
+ * MAX, wrapping below 0, is at most 2 MAX exactly in range): 20% fewer
+ * instructions in a Q16.16 SSAO frame, 1% in HBIL's.  On 32-bit cores the
+ * two signed compares measured fewer (make cross-count: the one compare
+ * took Cortex-M3 749.5M -> 751.9M, Cortex-M0 4211.0M -> 4248.2M).  The same
+ * values (tests/test_real.c sat64_is_the_clamp). */
 static inline tg_real tgi_sat64(int64_t v)
 {
+#if UINTPTR_MAX > 0xFFFFFFFFu
+    if ((uint64_t)v + (uint64_t)TG_REAL_MAX > 2u * (uint64_t)TG_REAL_MAX) return v > 0 ? TG_REAL_MAX : TG_REAL_MIN;
+#else
     if (v > (int64_t)TG_REAL_MAX) return TG_REAL_MAX;
     if (v < (int64_t)TG_REAL_MIN) return TG_REAL_MIN;
+#endif
     return (tg_real)v;
 }
 static inline tg_real tg_add(tg_real a, tg_real b) { return tgi_sat64((int64_t)a + b); }

@@ -545,6 +545,37 @@ TEST(gtao_open_plane_slice_bent_exact)
     CHECK(n > 500 && bad == 0, "%d of %d pixels hold another code than the slice integral's", bad, n);
 }
 
+/* sampling.h's frame helpers (tgi_ao_rotate_z, tgi_ao_from_local) compute
+ * without Q16.16's saturation tests within their bound (components of at
+ * most 2): the same bits as the saturating tg_mul / tg_add expression, for
+ * random unit vectors, rotations and frames, and at the bound itself. */
+static tg_real rand_component(uint32_t *st, tg_real bound)
+{
+    *st = *st * 1664525u + 1013904223u;
+    return tg_sub(tg_mul(tg_ratio((int32_t)(*st >> 16), 65536), tg_ldexp(bound, 1)), bound);
+}
+TEST(frame_helpers_match_the_saturating_form)
+{
+    uint32_t st = 12345u;
+    long bad = 0, i;
+    for (i = 0; i < 200000; i++) {
+        tg_real lim = (i % 100) == 0 ? TG_R(2.0f) : TG_ONE;   /* one in a hundred at the bound */
+        tg_vec3 l = tg_v3(rand_component(&st, lim), rand_component(&st, lim), rand_component(&st, lim));
+        tg_vec3 n = tgi_unit(tg_v3(rand_component(&st, TG_ONE), rand_component(&st, TG_ONE), rand_component(&st, TG_ONE)));
+        tg_real a = rand_component(&st, TG_R(3.14159265f)), c = tg_cos(a), sn = tg_sin(a);
+        tg_vec3 t, b, want, got;
+        if (lim != TG_ONE) { n = tg_v3(lim, tg_neg(lim), lim); t = n; b = tgi_v3_neg(n); c = lim; sn = tg_neg(lim); }
+        else tgi_ao_basis(n, &t, &b);
+        want = tg_v3(tg_sub(tg_mul(c, l.x), tg_mul(sn, l.y)), tg_add(tg_mul(sn, l.x), tg_mul(c, l.y)), l.z);
+        got = tgi_ao_rotate_z(l, c, sn);
+        bad += !(got.x == want.x && got.y == want.y && got.z == want.z);
+        want = tgi_v3_add(tgi_v3_add(tgi_v3_scale(t, l.x), tgi_v3_scale(b, l.y)), tgi_v3_scale(n, l.z));
+        got = tgi_ao_from_local(l, t, b, n);
+        bad += !(got.x == want.x && got.y == want.y && got.z == want.z);
+    }
+    CHECK(bad == 0, "%ld of 400000 rotations and frame changes differ from the saturating form", bad);
+}
+
 int main(void)
 {
     uniform_sky[0] = tg_v3(TG_R(3.5449077f), TG_R(3.5449077f), TG_R(3.5449077f));
@@ -558,6 +589,7 @@ int main(void)
     RUN(ssao_2d_out_of_range_is_open);
     RUN(hbao_falloff_bounds_far_occlusion);
     RUN(gtao_open_plane_slice_bent_exact);
+    RUN(frame_helpers_match_the_saturating_form);
     free(bvh_mem);
     return check_summary();
 }

@@ -707,6 +707,41 @@ TEST(saturation)
     CHECK(tg_isfinite(tg_acos(TG_REAL_MAX)), "acos(MAX) finite");
 }
 
+#if TG_FIXED
+/* tgi_sat64, under every tg_add, tg_mul and tg_div: one unsigned compare on
+ * a 64-bit host, two signed ones on a 32-bit core (tinygi.h); either must
+ * be the clamp to [TG_REAL_MIN, TG_REAL_MAX] = [-(2^31 - 1), 2^31 - 1].
+ * The edges (-2^31 is below the range: TG_REAL_MIN is symmetric), the
+ * int64 extremes and random values of every magnitude. */
+static tg_real clamp_by_definition(int64_t v)
+{
+    return v > TG_REAL_MAX ? TG_REAL_MAX : v < TG_REAL_MIN ? TG_REAL_MIN : (tg_real)v;
+}
+TEST(sat64_is_the_clamp)
+{
+    static const int64_t edges[] = { INT64_MIN, INT64_MIN + 1, -((int64_t)1 << 32), -((int64_t)1 << 31) - 1,
+                                     -((int64_t)1 << 31), -((int64_t)1 << 31) + 1, -1, 0, 1,
+                                     ((int64_t)1 << 31) - 2, ((int64_t)1 << 31) - 1, (int64_t)1 << 31,
+                                     ((int64_t)1 << 32) - 2, ((int64_t)1 << 32) - 1, (int64_t)1 << 32, INT64_MAX - 1,
+                                     INT64_MAX };
+    uint64_t v = 0x9e3779b97f4a7c15ull;
+    long bad = 0, i;
+    for (i = 0; i < (long)(sizeof edges / sizeof edges[0]); i++)
+        if (tgi_sat64(edges[i]) != clamp_by_definition(edges[i]) && bad++ < 5)
+            fprintf(stderr, "tgi_sat64(%lld) = %d\n", (long long)edges[i], (int)tgi_sat64(edges[i]));
+    for (i = 0; i < 1000000; i++) {
+        int64_t x;
+        v ^= v << 13; v ^= v >> 7; v ^= v << 17;
+        x = (int64_t)v >> (int)((v >> 58) & 63);   /* every magnitude from 2^0 to 2^63 */
+        if (tgi_sat64(x) != clamp_by_definition(x) && bad++ < 5)
+            fprintf(stderr, "tgi_sat64(%lld) = %d\n", (long long)x, (int)tgi_sat64(x));
+    }
+    CHECK(bad == 0, "%ld values where tgi_sat64 is not the clamp to [TG_REAL_MIN, TG_REAL_MAX]", bad);
+    CHECK(tg_add(TG_REAL_MIN, -1) == TG_REAL_MIN && tg_sub(-TG_ONE, TG_REAL_MAX) == TG_REAL_MIN,
+          "a sum of -2^31 saturates to TG_REAL_MIN = -(2^31 - 1)");
+}
+#endif
+
 /* ---- the decimal parser ---- */
 
 static tg_real parse(const char *s, size_t *used, int *ovf)
@@ -1032,6 +1067,9 @@ int main(void)
     RUN(floor_exact);
     RUN(smoothstep_values);
     RUN(saturation);
+#if TG_FIXED
+    RUN(sat64_is_the_clamp);
+#endif
     RUN(parse_grammar);
     RUN(parse_rounding);
     RUN(parse_random);
