@@ -293,7 +293,9 @@ static inline int tgi_ao_slice_point_at(const tgi_gview *g, const tgi_ao_slice_p
 static inline int tgi_ao_slice_point(const tgi_gview *g, const tgi_ao_slice_pixel *px, int s, int steps,
                                      tg_real sdx, tg_real sdy, tg_vec3 *h, int *j, tgi_ao_rays *rays)
 {
-    tg_real t_px = tg_div(tg_mul(tg_add(tg_from_int(s), px->jitter), px->r_px), tg_from_int(steps));
+    /* (s + jitter) r_px >= 0 (jitter in [0, 1), r_px > 0), steps >= 1: a
+     * quotient no larger than the product, tg_div's without its tests */
+    tg_real t_px = tgi_div_nonneg(tg_mul(tg_add(tg_from_int(s), px->jitter), px->r_px), tg_from_int(steps));
     if (t_px < TG_ONE) return 0;
     return tgi_ao_slice_point_at(g, px, tg_add(tg_add(tg_from_int(px->x), TG_R(0.5f)), tg_mul(sdx, t_px)),
                                  tg_add(tg_add(tg_from_int(px->y), TG_R(0.5f)), tg_mul(sdy, t_px)), h, j, rays);
@@ -351,13 +353,15 @@ static inline tg_real tgi_ao_screen_reach(const tgi_gview *g, const tgi_ao_slice
     return tg_min(rx, ry);
 }
 
-/* Sample s as tgi_ao_slice_point gives it, also with *d2 = |h|^2, and 0
- * when not within the radius or on or under the tangent plane (where a
- * horizon is clamped anyway). */
+/* Sample s as tgi_ao_slice_point gives it with the march's rays (so 0
+ * too for a sample in the last one's pixel: marches whose samples only
+ * raise a maximum or set bits lose nothing by it), also with *d2 = |h|^2,
+ * and 0 when not within the radius or on or under the tangent plane (where
+ * a horizon is clamped anyway). */
 static inline int tgi_ao_slice_sample(const tgi_gview *g, const tgi_ao_slice_pixel *px, int s, int steps,
-                                      tg_real sdx, tg_real sdy, tg_vec3 *h, tg_real *d2, int *j)
+                                      tg_real sdx, tg_real sdy, tg_vec3 *h, tg_real *d2, int *j, tgi_ao_rays *rays)
 {
-    int got = tgi_ao_slice_point(g, px, s, steps, sdx, sdy, h, j, NULL);
+    int got = tgi_ao_slice_point(g, px, s, steps, sdx, sdy, h, j, rays);
     if (got <= 0) return got;
     *d2 = tgi_v3_dot(*h, *h);
     if (*d2 >= px->r2 || *d2 <= 0) return 0;

@@ -22,8 +22,9 @@ static tg_real horizon_cos(const tgi_gtao_params *p, const tgi_gview *g, const t
     tg_real best = TG_R(-1.0f), d2;
     tg_vec3 h;
     int s, j, got;
+    tgi_ao_rays rays = { -1, -1, -1, 0, 0, { 0, 0, 0 } };
     for (s = 0; s < p->steps; s++) {
-        got = tgi_ao_slice_sample(g, px, s, p->steps, sdx, sdy, &h, &d2, &j);
+        got = tgi_ao_slice_sample(g, px, s, p->steps, sdx, sdy, &h, &d2, &j, &rays);
         if (got < 0) break;
         /* (h.v) / |h| by one rsqrt: a signed squared cosine would save it but
          * loses Q16.16 bits for the nearest samples (|h|^2 ~ 1e-4) */

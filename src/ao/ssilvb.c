@@ -230,8 +230,9 @@ static void march(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel
     tg_vec3 hf, hb;
     int steps = t->p->steps, s, j, got;
     uint32_t bits;
+    tgi_ao_rays rays = { -1, -1, -1, 0, 0, { 0, 0, 0 } };
     for (s = 0; s < steps; s++) {
-        got = tgi_ao_slice_sample(g, px, s, steps, sdx, sdy, &hf, &d2, &j);
+        got = tgi_ao_slice_sample(g, px, s, steps, sdx, sdy, &hf, &d2, &j, &rays);
         if (got < 0) break;
         if (got == 0) continue;
         /* the back point: the front moved by the thickness away from the eye */

@@ -99,9 +99,8 @@ static void vo_pixel(const tgi_vo_params *p, const tgi_gview *g, const tgi_gresu
     if (p->area)   /* each sample's footprint: radius R_px / sqrt(n) */
         foot_px = tg_div(tg_div(tg_mul(p->radius, v->pixels_per_unit), tgi_gv_depth(g, i)), tg_sqrt(tg_from_int(n)));
     for (k = 0; k < n; k++) {
-        tg_real sx = tg_sub(tg_mul(rot->c, dx[k]), tg_mul(rot->s, dy[k]));
-        tg_real sy = tg_add(tg_mul(rot->s, dx[k]), tg_mul(rot->c, dy[k]));
-        tg_vec3 s = tg_v3(tg_add(pv.x, tg_mul(sx, p->radius)), tg_add(pv.y, tg_mul(sy, p->radius)), pv.z);
+        tg_vec3 sd = tgi_ao_rotate_z(tg_v3(dx[k], dy[k], 0), rot->c, rot->s);   /* a disk point turned */
+        tg_vec3 s = tg_v3(tg_add(pv.x, tg_mul(sd.x, p->radius)), tg_add(pv.y, tg_mul(sd.y, p->radius)), pv.z);
         tg_real lo = tg_neg(zs[k]), hi = zs[k], z0, z1;
         int qx, qy, j;
         if (p->use_normal) {  /* sec. 4.4: cut at the tangent plane, along the eye ray through s */
