@@ -35,6 +35,8 @@ SKIP=${SKIP:-}
 QEMU_TIMEOUT=${CROSS_TIMEOUT:-300}
 CLI_SCENES=${CROSS_CLI_SCENES:-cornell}
 CLI_AOVS=${CROSS_CLI_AOVS:-"depth normal ao"} # besides colour
+# the other techniques, each in colour and AO (the CLI's names)
+CLI_TECHNIQUES=${CROSS_CLI_TECHNIQUES:-"gtao hbao ssao vo ssdo bentcone ssilvb reference pathtrace"}
 CROSS_TESTS=${CROSS_TESTS:-test_fbdev} # test programs run on the Linux targets ("all": every one)
 
 CFLAGS="-std=c99 -ffp-contract=off -fexcess-precision=fast -O2 -Wall -Wextra -Wpedantic -Wshadow -Wdouble-promotion -Werror"
@@ -203,9 +205,10 @@ build_hosted() {
     fi
 }
 
-# run_cli TARGET DIR: `tinygi render` of the CLI scenes, colour PPM and every AOV as PFM.
+# run_cli TARGET DIR: `tinygi render` of the CLI scenes, colour PPM and every AOV as PFM,
+# and each other technique's colour and AO.
 run_cli() {
-    local t=$1 dir=$2 runner num exe s a rc=0
+    local t=$1 dir=$2 runner num exe s a tech rc=0
     runner=$(target_run "$t")
     rm -rf "$dir"; mkdir -p "$dir"
     for num in float fixed; do
@@ -215,6 +218,12 @@ run_cli() {
             for a in color $CLI_AOVS; do
                 $runner "$exe" render "builtin:$s" --size "$SIZE" --frames "$FRAMES" --shadow-size "$SHADOW" --quiet --aov "$a" \
                     -o "$dir/$s-$num.$a.pfm" >>"$dir.log" 2>&1 || rc=1
+            done
+            for tech in $CLI_TECHNIQUES; do
+                $runner "$exe" render "builtin:$s" --size "$SIZE" --frames "$FRAMES" --shadow-size "$SHADOW" --quiet --technique "$tech" \
+                    -o "$dir/$s-$num.$tech.ppm" >>"$dir.log" 2>&1 || rc=1
+                $runner "$exe" render "builtin:$s" --size "$SIZE" --frames "$FRAMES" --shadow-size "$SHADOW" --quiet --technique "$tech" \
+                    --aov ao -o "$dir/$s-$num.$tech.ao.pfm" >>"$dir.log" 2>&1 || rc=1
             done
         done
     done

@@ -45,9 +45,13 @@ CROSS_AOVS    ?= color,depth,normal,albedo,ao,bent,cone,near,far,direct,irradian
 CROSS_SHADOW  ?= 64
 # the run of every target (the Linux ones render only this one)
 CROSS_RUN     ?= size=$(CROSS_SIZE),frames=$(CROSS_FRAMES),shadow=$(CROSS_SHADOW),aovs=$(subst $(comma),+,$(CROSS_AOVS)),$(subst $(space),$(comma),$(strip $(CROSS_SCENES)))
-CROSS_M3_RUNS   ?= $(CROSS_RUN) size=320x240,frames=2,shadow=64,aovs=color,cornell
-CROSS_M4F_RUNS  ?= $(CROSS_RUN)
-CROSS_RV32_RUNS ?= $(CROSS_RUN)
+# every other technique, colour and AO, on the 32-bit cores (soft float,
+# the FPU, Q16.16 on ARM and RISC-V)
+CROSS_TECHNIQUES ?= gtao hbao ssao vo ssdo bentcone ssilvb reference pathtrace
+CROSS_TECH_RUNS ?= $(foreach t,$(CROSS_TECHNIQUES),size=32x24,frames=2,shadow=32,aovs=color+ao,technique=$(t),cornell)
+CROSS_M3_RUNS   ?= $(CROSS_RUN) size=320x240,frames=2,shadow=64,aovs=color,cornell $(CROSS_TECH_RUNS)
+CROSS_M4F_RUNS  ?= $(CROSS_RUN) $(CROSS_TECH_RUNS)
+CROSS_RV32_RUNS ?= $(CROSS_RUN) $(CROSS_TECH_RUNS)
 CROSS_M0MPS2_RUNS ?= $(CROSS_RUN)
 # 16 KB of RAM: a full-colour 64x48 frame cannot fit; cornell colour over two
 # frames (reprojection) at 12x9, and AO at 24x18
