@@ -277,14 +277,26 @@ static inline int tgi_ao_slice_pixel_at(const tgi_gview *g, const tgi_gresult *o
  * which a march reading them skips when the next sample falls in it
  * again (it would add nothing).  Starts with qx = qy = j = -1. */
 typedef struct tgi_ao_rays { int qx, qy, j; tg_real kx, ky; tg_vec3 ray; } tgi_ao_rays;
+#define TGI_AO_RAYS_NONE { -1, -1, -1, 0, 0, { 0, 0, 0 } }
+
+/* The view position of full-resolution pixel (qx, qy) at depth z, as
+ * tgi_ao_unproject gives it (its products, the same bits), with the
+ * column's and row's rays kept in *rays: their divisions once a column
+ * and once a row of a march. */
+static inline tg_vec3 tgi_ao_rays_unproject(const tgi_view *v, tgi_ao_rays *rays, int qx, int qy, tg_real z)
+{
+    if (qx != rays->qx) { rays->qx = qx; rays->kx = tgi_ao_ray_x(v, qx); }
+    if (qy != rays->qy) { rays->qy = qy; rays->ky = tgi_ao_ray_y(v, qy); }
+    return tg_v3(tg_mul(rays->kx, z), tg_mul(rays->ky, z), z);
+}
 
 /* The pixel of sample s of `steps` along screen direction (sdx, sdy) at
  * distance (s + jitter) r_px / steps (the view's pixels): 1 with *h the
  * view offset of its surface from pv (times 2^shift; at the full-resolution
- * pixel it stands for) and *j its index (and, when rays is not NULL,
- * rays->ray its view ray per unit of depth, tgi_ao_unproject at depth 1);
- * 0 to skip it (within a pixel, or sky, or with rays the last sample's
- * pixel); -1 past the screen's edge (the march ends). */
+ * pixel it stands for), *j its index and rays->ray its view ray per unit
+ * of depth (tgi_ao_unproject at depth 1); 0 to skip it (within a pixel,
+ * sky, or the last sample's pixel: the march's rays, starting
+ * TGI_AO_RAYS_NONE); -1 past the screen's edge (the march ends). */
 #if defined(__GNUC__)
 __attribute__((always_inline))   /* in each march's loop: its results in registers, not stored through pointers */
 #endif
@@ -324,17 +336,10 @@ static inline int tgi_ao_slice_point_at(const tgi_gview *g, const tgi_ao_slice_p
     if (tgi_gv_is_sky(g, *j)) return 0;
     qx = qx * g->step + g->offset_x;   /* the full-resolution pixel it stands for */
     qy = qy * g->step + g->offset_y;
-    if (rays) {   /* the surface is the ray at its depth: tgi_ao_unproject's products, the same bits */
-        tg_real z = tgi_gv_depth(g, *j);
-        if (*j == rays->j) return 0;
-        rays->j = *j;
-        if (qx != rays->qx) { rays->qx = qx; rays->kx = tgi_ao_ray_x(g->camera, qx); }
-        if (qy != rays->qy) { rays->qy = qy; rays->ky = tgi_ao_ray_y(g->camera, qy); }
-        rays->ray = tg_v3(rays->kx, rays->ky, TG_ONE);
-        *h = tgi_v3_sub(tg_v3(tg_mul(rays->kx, z), tg_mul(rays->ky, z), z), px->pv);
-    } else {
-        *h = tgi_v3_sub(tgi_ao_unproject(g->camera, qx, qy, tgi_gv_depth(g, *j)), px->pv);
-    }
+    if (*j == rays->j) return 0;
+    rays->j = *j;
+    *h = tgi_v3_sub(tgi_ao_rays_unproject(g->camera, rays, qx, qy, tgi_gv_depth(g, *j)), px->pv);
+    rays->ray = tg_v3(rays->kx, rays->ky, TG_ONE);
     if (px->shift) *h = tg_v3(tg_ldexp(h->x, px->shift), tg_ldexp(h->y, px->shift), tg_ldexp(h->z, px->shift));
     return 1;
 }

@@ -22,7 +22,7 @@ static tg_real horizon_cos(const tgi_gtao_params *p, const tgi_gview *g, const t
     tg_real best = TG_R(-1.0f), d2;
     tg_vec3 h;
     int s, j, got;
-    tgi_ao_rays rays = { -1, -1, -1, 0, 0, { 0, 0, 0 } };
+    tgi_ao_rays rays = TGI_AO_RAYS_NONE;
     for (s = 0; s < p->steps; s++) {
         got = tgi_ao_slice_sample(g, px, s, p->steps, sdx, sdy, &h, &d2, &j, &rays);
         if (got < 0) break;

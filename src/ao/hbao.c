@@ -25,8 +25,8 @@ static tg_real direction_occlusion(const tgi_hbao_params *p, const tgi_gview *g,
     tg_vec3 axis = tgi_v3_cross(d3, view_dir), tangent;
     tg_real sin_t, max_sin, occlusion = 0;
     tg_real above = tg_add(tg_ldexp(pv.z, -10), tg_mul(p->radius, TG_R(0.005f)));
-    int s, ray_qx = -1, ray_qy = -1;
-    tg_real kx = 0, ky = 0;     /* the view ray per unit of depth of column ray_qx and row ray_qy */
+    int s;
+    tgi_ao_rays rays = TGI_AO_RAYS_NONE;
     /* tangent: the tangent plane's line in the slice (eye, screen direction) */
     tangent = tgi_v3_normalize_or(tgi_v3_cross(axis, nv), d3);
     if (tgi_v3_dot(tangent, d3) < 0) tangent = tgi_v3_neg(tangent);
@@ -44,13 +44,7 @@ static tg_real direction_occlusion(const tgi_hbao_params *p, const tgi_gview *g,
         if (qx < 0 || qy < 0 || qx >= g->width || qy >= g->height) break;
         j = (int)tgi_gv_index(g, qx, qy);
         if (tgi_gv_is_sky(g, j)) continue;
-        /* tgi_ao_unproject's products, its divisions once a column and row */
-        if (qx != ray_qx) { ray_qx = qx; kx = tgi_ao_ray_x(v, qx); }
-        if (qy != ray_qy) { ray_qy = qy; ky = tgi_ao_ray_y(v, qy); }
-        {
-            tg_real z = tgi_gv_depth(g, j);
-            h = tgi_v3_sub(tg_v3(tg_mul(kx, z), tg_mul(ky, z), z), pv);
-        }
+        h = tgi_v3_sub(tgi_ao_rays_unproject(v, &rays, qx, qy, tgi_gv_depth(g, j)), pv);
         dist2 = tgi_v3_dot(h, h);
         if (dist2 >= tg_sqr(p->radius) || dist2 <= 0) continue;
         if (tgi_v3_dot(h, nv) <= above) continue;           /* on or under the tangent plane: no horizon */

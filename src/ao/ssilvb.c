@@ -230,7 +230,7 @@ static void march(const vb_tech *t, const tgi_gview *g, const tgi_ao_slice_pixel
     tg_vec3 hf, hb;
     int steps = t->p->steps, s, j, got;
     uint32_t bits;
-    tgi_ao_rays rays = { -1, -1, -1, 0, 0, { 0, 0, 0 } };
+    tgi_ao_rays rays = TGI_AO_RAYS_NONE;
     for (s = 0; s < steps; s++) {
         got = tgi_ao_slice_sample(g, px, s, steps, sdx, sdy, &hf, &d2, &j, &rays);
         if (got < 0) break;
@@ -372,7 +372,7 @@ static void march_layers(const vb_tech *t, const tgi_gview *g, const tgi_ao_slic
     tg_vec3 hf, hb, h3, h3end, ray;
     int steps = t->p->steps, s, j, got;
     uint32_t bits;
-    tgi_ao_rays rays = { -1, -1, -1, 0, 0, { 0, 0, 0 } };
+    tgi_ao_rays rays = TGI_AO_RAYS_NONE;
     tg_real r_px = px->r_px, dt, t_px, fx, fy, dx, dy;
     /* on the screen (to_edge) the march's distance and position stay
      * within two reaches of the screen, at most 2 x 8192 sqrt 2 pixels
