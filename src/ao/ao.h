@@ -279,15 +279,14 @@ static inline int tgi_ao_slice_pixel_at(const tgi_gview *g, const tgi_gresult *o
 typedef struct tgi_ao_rays { int qx, qy, j; tg_real kx, ky; tg_vec3 ray; } tgi_ao_rays;
 #define TGI_AO_RAYS_NONE { -1, -1, -1, 0, 0, { 0, 0, 0 } }
 
-/* The view position of full-resolution pixel (qx, qy) at depth z, as
- * tgi_ao_unproject gives it (its products, the same bits), with the
- * column's and row's rays kept in *rays: their divisions once a column
- * and once a row of a march. */
-static inline tg_vec3 tgi_ao_rays_unproject(const tgi_view *v, tgi_ao_rays *rays, int qx, int qy, tg_real z)
+/* The rays of full-resolution column qx and row qy in rays->kx, ky: their
+ * divisions once a column and once a row of a march.  The view position
+ * at depth z is then (kx z, ky z, z), tgi_ao_unproject's products (the
+ * same bits). */
+static inline void tgi_ao_rays_at(const tgi_view *v, tgi_ao_rays *rays, int qx, int qy)
 {
     if (qx != rays->qx) { rays->qx = qx; rays->kx = tgi_ao_ray_x(v, qx); }
     if (qy != rays->qy) { rays->qy = qy; rays->ky = tgi_ao_ray_y(v, qy); }
-    return tg_v3(tg_mul(rays->kx, z), tg_mul(rays->ky, z), z);
 }
 
 /* The pixel of sample s of `steps` along screen direction (sdx, sdy) at
@@ -336,10 +335,14 @@ static inline int tgi_ao_slice_point_at(const tgi_gview *g, const tgi_ao_slice_p
     if (tgi_gv_is_sky(g, *j)) return 0;
     qx = qx * g->step + g->offset_x;   /* the full-resolution pixel it stands for */
     qy = qy * g->step + g->offset_y;
-    if (*j == rays->j) return 0;
-    rays->j = *j;
-    *h = tgi_v3_sub(tgi_ao_rays_unproject(g->camera, rays, qx, qy, tgi_gv_depth(g, *j)), px->pv);
-    rays->ray = tg_v3(rays->kx, rays->ky, TG_ONE);
+    {
+        tg_real z = tgi_gv_depth(g, *j);
+        if (*j == rays->j) return 0;
+        rays->j = *j;
+        tgi_ao_rays_at(g->camera, rays, qx, qy);
+        rays->ray = tg_v3(rays->kx, rays->ky, TG_ONE);
+        *h = tgi_v3_sub(tg_v3(tg_mul(rays->kx, z), tg_mul(rays->ky, z), z), px->pv);
+    }
     if (px->shift) *h = tg_v3(tg_ldexp(h->x, px->shift), tg_ldexp(h->y, px->shift), tg_ldexp(h->z, px->shift));
     return 1;
 }

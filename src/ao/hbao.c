@@ -37,14 +37,16 @@ static tg_real direction_occlusion(const tgi_hbao_params *p, const tgi_gview *g,
         tg_real t_px = tgi_div_nonneg(tg_mul(tg_add(tg_from_int(s), jitter), r_px), tg_from_int(p->steps));
         int qx, qy, j;
         tg_vec3 h;
-        tg_real dist2, dist, sin_h;
+        tg_real z, dist2, dist, sin_h;
         if (t_px < TG_ONE) continue;
         qx = tg_to_int(tg_add(tg_add(tg_from_int(x), TG_R(0.5f)), tg_mul(sdx, t_px)));
         qy = tg_to_int(tg_add(tg_add(tg_from_int(y), TG_R(0.5f)), tg_mul(sdy, t_px)));
         if (qx < 0 || qy < 0 || qx >= g->width || qy >= g->height) break;
         j = (int)tgi_gv_index(g, qx, qy);
         if (tgi_gv_is_sky(g, j)) continue;
-        h = tgi_v3_sub(tgi_ao_rays_unproject(v, &rays, qx, qy, tgi_gv_depth(g, j)), pv);
+        z = tgi_gv_depth(g, j);
+        tgi_ao_rays_at(v, &rays, qx, qy);
+        h = tgi_v3_sub(tg_v3(tg_mul(rays.kx, z), tg_mul(rays.ky, z), z), pv);   /* tgi_ao_unproject's products */
         dist2 = tgi_v3_dot(h, h);
         if (dist2 >= tg_sqr(p->radius) || dist2 <= 0) continue;
         if (tgi_v3_dot(h, nv) <= above) continue;           /* on or under the tangent plane: no horizon */
