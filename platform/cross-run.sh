@@ -35,8 +35,9 @@ SKIP=${SKIP:-}
 QEMU_TIMEOUT=${CROSS_TIMEOUT:-300}
 CLI_SCENES=${CROSS_CLI_SCENES:-cornell}
 CLI_AOVS=${CROSS_CLI_AOVS:-"depth normal ao"} # besides colour
-# the other techniques, each in colour and AO (the CLI's names)
-CLI_TECHNIQUES=${CROSS_CLI_TECHNIQUES:-"gtao hbao ssao vo ssdo bentcone ssilvb reference pathtrace"}
+# the other techniques, each in colour and AO (the CLI's names; the list is
+# platform/cross.mk's CROSS_CLI_TECHNIQUES, none when run without make)
+CLI_TECHNIQUES=${CROSS_CLI_TECHNIQUES:-}
 CROSS_TESTS=${CROSS_TESTS:-test_fbdev} # test programs run on the Linux targets ("all": every one)
 
 CFLAGS="-std=c99 -ffp-contract=off -fexcess-precision=fast -O2 -Wall -Wextra -Wpedantic -Wshadow -Wdouble-promotion -Werror"

@@ -50,6 +50,7 @@ CROSS_RUN     ?= size=$(CROSS_SIZE),frames=$(CROSS_FRAMES),shadow=$(CROSS_SHADOW
 # on the Linux targets (in soft float under QEMU it took 2 minutes of
 # RV32 at 32x24)
 CROSS_TECHNIQUES ?= gtao hbao ssao vo ssdo bentcone ssilvb reference
+CROSS_CLI_TECHNIQUES ?= $(CROSS_TECHNIQUES) pathtrace
 CROSS_TECH_RUNS ?= $(foreach t,$(CROSS_TECHNIQUES),size=32x24,frames=2,shadow=32,aovs=color+ao,technique=$(t),cornell)
 CROSS_M3_RUNS   ?= $(CROSS_RUN) size=320x240,frames=2,shadow=64,aovs=color,cornell $(CROSS_TECH_RUNS)
 CROSS_M4F_RUNS  ?= $(CROSS_RUN) $(CROSS_TECH_RUNS)
@@ -76,6 +77,7 @@ CROSS_ENV = CROSS_BUILD="$(CROSS_BUILD)" CROSS_TARGETS="$(CROSS_TARGETS)" \
 	 CROSS_RV32_ARENA="$(CROSS_RV32_ARENA)" CROSS_M0_ARENA="$(CROSS_M0_ARENA)" \
 	 CROSS_M0MPS2_RUNS="$(CROSS_M0MPS2_RUNS)" CROSS_M0MPS2_ARENA="$(CROSS_M0MPS2_ARENA)" \
 	 CROSS_COUNT_RUN="$(CROSS_COUNT_RUN)" CROSS_COUNT_ARENA="$(CROSS_COUNT_ARENA)" \
+	 CROSS_CLI_TECHNIQUES="$(CROSS_CLI_TECHNIQUES)" \
 	 SKIP="$(SKIP)" MAKE="$(MAKE)" HOST_CC="$(CC)"
 
 .PHONY: cross cross-count cross-install

@@ -330,19 +330,18 @@ static inline int tgi_ao_slice_point_at(const tgi_gview *g, const tgi_ao_slice_p
                                         tg_vec3 *h, int *j, tgi_ao_rays *rays)
 {
     int qx = tgi_ao_pixel_of(fx, g->width), qy = tgi_ao_pixel_of(fy, g->height);
+    tg_real z;
     if (qx < 0 || qy < 0) return -1;
     *j = (int)tgi_gv_index(g, qx, qy);
     if (tgi_gv_is_sky(g, *j)) return 0;
     qx = qx * g->step + g->offset_x;   /* the full-resolution pixel it stands for */
     qy = qy * g->step + g->offset_y;
-    {
-        tg_real z = tgi_gv_depth(g, *j);
-        if (*j == rays->j) return 0;
-        rays->j = *j;
-        tgi_ao_rays_at(g->camera, rays, qx, qy);
-        rays->ray = tg_v3(rays->kx, rays->ky, TG_ONE);
-        *h = tgi_v3_sub(tg_v3(tg_mul(rays->kx, z), tg_mul(rays->ky, z), z), px->pv);
-    }
+    z = tgi_gv_depth(g, *j);
+    if (*j == rays->j) return 0;
+    rays->j = *j;
+    tgi_ao_rays_at(g->camera, rays, qx, qy);
+    rays->ray = tg_v3(rays->kx, rays->ky, TG_ONE);
+    *h = tgi_v3_sub(tg_v3(tg_mul(rays->kx, z), tg_mul(rays->ky, z), z), px->pv);
     if (px->shift) *h = tg_v3(tg_ldexp(h->x, px->shift), tg_ldexp(h->y, px->shift), tg_ldexp(h->z, px->shift));
     return 1;
 }
