@@ -142,19 +142,20 @@ test: tests-build
 	 bash tests/run.sh
 
 # ---- the single-file build ----
-amalgamation: $(AMALG)/tinygi.c $(AMALG)/tinygi.h
+amalgamation: $(AMALG)/tinygi.c $(AMALG)/tinygi.h $(AMALG)/tinygi_scene.h
 $(AMALG)/tinygi.c: tools/amalgamate.sh tools/amalgamate.awk $(CORE_SRC) $(CORE_HDR)
 	sh tools/amalgamate.sh $(AMALG) $(CORE_SRC)
-$(AMALG)/tinygi.h: $(AMALG)/tinygi.c
+$(AMALG)/tinygi.h $(AMALG)/tinygi_scene.h: $(AMALG)/tinygi.c
 
 # ---- install: both number types, each with its pkg-config file ----
 # The installed header is the amalgamated one: src/tinygi.h with the headers
-# it includes inlined, so one file is enough.
-install: all $(AMALG)/tinygi.h
+# it includes inlined, so one file is enough; tinygi_scene.h beside it is
+# for scenes baked by the installed tinygi-bake (tools/scene_bake.c).
+install: all $(AMALG)/tinygi.h $(AMALG)/tinygi_scene.h
 	$(INSTALL) -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(LIBDIR) $(DESTDIR)$(INCLUDEDIR) $(DESTDIR)$(PKGCONFIGDIR)
-	$(INSTALL) -m 644 $(AMALG)/tinygi.h $(DESTDIR)$(INCLUDEDIR)/tinygi.h
+	$(INSTALL) -m 644 $(AMALG)/tinygi.h $(AMALG)/tinygi_scene.h $(DESTDIR)$(INCLUDEDIR)/
 	$(INSTALL) -m 644 $(LIB_float) $(LIB_fixed) $(DESTDIR)$(LIBDIR)/
-	$(INSTALL) -m 755 $(CLI_float) $(CLI_fixed) $(DESTDIR)$(BINDIR)/
+	$(INSTALL) -m 755 $(CLI_float) $(CLI_fixed) $(BAKE_float) $(BAKE_fixed) $(DESTDIR)$(BINDIR)/
 	sed -e 's|@PREFIX@|$(PREFIX)|; s|@LIBDIR@|$(LIBDIR)|; s|@INCLUDEDIR@|$(INCLUDEDIR)|' \
 	    -e 's|@VERSION@|$(VERSION)|; s|@NAME@|tinygi|; s|@NUMBER@|float|; s|@CFLAGS@||' \
 	    tools/tinygi.pc.in >$(DESTDIR)$(PKGCONFIGDIR)/tinygi.pc
@@ -162,9 +163,10 @@ install: all $(AMALG)/tinygi.h
 	    -e 's|@VERSION@|$(VERSION)|; s|@NAME@|tinygi-fixed|; s|@NUMBER@|Q16.16 fixed point|; s|@CFLAGS@| -DTG_FIXED=1|' \
 	    tools/tinygi.pc.in >$(DESTDIR)$(PKGCONFIGDIR)/tinygi-fixed.pc
 uninstall:
-	rm -f $(DESTDIR)$(INCLUDEDIR)/tinygi.h \
+	rm -f $(DESTDIR)$(INCLUDEDIR)/tinygi.h $(DESTDIR)$(INCLUDEDIR)/tinygi_scene.h \
 	      $(DESTDIR)$(LIBDIR)/libtinygi.a $(DESTDIR)$(LIBDIR)/libtinygi-fixed.a \
 	      $(DESTDIR)$(BINDIR)/tinygi $(DESTDIR)$(BINDIR)/tinygi-fixed \
+	      $(DESTDIR)$(BINDIR)/tinygi-bake $(DESTDIR)$(BINDIR)/tinygi-bake-fixed \
 	      $(DESTDIR)$(PKGCONFIGDIR)/tinygi.pc $(DESTDIR)$(PKGCONFIGDIR)/tinygi-fixed.pc
 
 # ---- gcc and clang agree bit for bit (CI; each compiler builds in build-CC) ----

@@ -9,7 +9,8 @@
 #   0 tinygi.h (the public header)
 #   1 core
 #   2 scene, raster        (independent of each other)
-#   3 light, gi, ao        (may include each other, without a cycle)
+#   3 light, gi, ao        (may include each other, without a cycle);
+#     tinygi_scene.h       (the scene's tables for baked files: scene/scene.h)
 #   4 frame
 #   5 platform
 #   6 tools
@@ -22,7 +23,7 @@ cd "$(dirname "$0")/.."
 level() {
     case $1 in
         tinygi.h) echo 0 ;; core) echo 1 ;; scene|raster) echo 2 ;;
-        light|gi|ao) echo 3 ;; frame) echo 4 ;; platform) echo 5 ;; tools) echo 6 ;;
+        light|gi|ao|tinygi_scene.h) echo 3 ;; frame) echo 4 ;; platform) echo 5 ;; tools) echo 6 ;;
         *) echo -1 ;;
     esac
 }
@@ -31,6 +32,7 @@ peers_allowed() { [ "$1" = 3 ]; }   # the level whose folders may include each o
 folder_of() { # a repository path to its folder in the graph
     case $1 in
         src/tinygi.h) echo tinygi.h ;;
+        src/tinygi_scene.h) echo tinygi_scene.h ;;
         src/*/*) p=${1#src/}; echo "${p%%/*}" ;;
         platform/*) echo platform ;;
         tools/*) echo tools ;;

@@ -4,7 +4,8 @@
 # from the code: the C between the markers "<!-- begin examples/minimal.c -->"
 # and "<!-- end examples/minimal.c -->" in README.md is examples/minimal.c
 # (from its first #include on), and it compiles with the build's flags against
-# both built libraries and renders the same image as the CLI.
+# both built libraries and renders the same image as the CLI; and the
+# README's `--explain` example is what that command prints.
 set -u
 cd "$(dirname "$0")/.."
 . tests/shcheck.sh
@@ -24,4 +25,13 @@ for num in float fixed; do
     else fail "README snippet compiles ($num)" "$(head -n 10 "$T/cc.err")"; continue; fi
     same_as_cli "README snippet renders what the CLI renders ($num)" "$T/snippet-$num" $num
 done
+# The README's --explain example is that command's output today (the plan,
+# its passes and every buffer's bytes): it cannot go stale.
+awk '$0 == "$ build/tinygi render builtin:cornell --explain" { on = 1; next } on && /^```/ { exit } on' \
+    README.md >"$T/explain-readme.txt"
+expect "README has the --explain example" test -s "$T/explain-readme.txt"
+if "$BUILD/tinygi" render builtin:cornell --explain >"$T/explain.txt" 2>&1 \
+    && diff -u "$T/explain-readme.txt" "$T/explain.txt" >"$T/explain.diff"; then
+    ok "README --explain example is the CLI's output"
+else fail "README --explain example is the CLI's output" "$(head -n 20 "$T/explain.diff" 2>/dev/null)"; fi
 summary

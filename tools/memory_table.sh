@@ -90,7 +90,7 @@ fits_table() {
 
 tables() {
     echo "<!-- memory-table: begin (make memory-table writes this part) -->"
-    echo "Frame arena (\`tg_plan.total_bytes\`), both number types alike:"
+    echo "Frame arena (\`tg_plan.total_bytes\`), float (Q16.16 the same but for the shadow maps, see below):"
     echo
     frame_table
     echo

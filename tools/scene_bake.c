@@ -13,9 +13,10 @@
  * and holds the values of this tool's number type (tinygi-bake float,
  * tinygi-bake-fixed Q16.16), exactly as the parser made them; built with
  * the other number type, or against a core whose scene layout differs
- * (TGI_SCENE_LAYOUT), it stops with #error.  It includes "scene/scene.h",
- * so compile it with the core's src/ on the include path, and bake again
- * when the core changes.  Exit 0, 2 on bad input (FILE:LINE:COL: error:),
+ * (TGI_SCENE_LAYOUT), it stops with #error.  It includes "tinygi_scene.h":
+ * compile it with the core's src/ on the include path, or against the
+ * installed library (make install puts tinygi_scene.h beside tinygi.h),
+ * and bake again when the core changes.  Exit 0, 2 on bad input (FILE:LINE:COL: error:),
  * 3 when the output cannot be written.
  */
 #include <stdio.h>
@@ -94,7 +95,7 @@ static void bake(const tg_scene *s, const char *fn, const char *source)
     name(source);
     fprintf(out, ",\n * number type %s: the parsed scene as C data.  Do not edit; bake it again. */\n",
             TG_NUMBER_NAME);
-    fputs("#include \"scene/scene.h\"\n", out);
+    fputs("#include \"tinygi_scene.h\"\n", out);
     fprintf(out, "#if %sTG_FIXED\n#error \"baked for %s: bake it with tinygi-bake%s\"\n#endif\n\n",
             TG_FIXED ? "!" : "", TG_NUMBER_NAME, TG_FIXED ? "-fixed" : "");
     fprintf(out, "#if TGI_SCENE_LAYOUT != %d\n#error \"baked for scene layout %d: bake it again with this tinygi's "
