@@ -735,6 +735,39 @@ static const char mtl_a[] =
     "newmtl red\nKa 0 0 0\nKd 0.8 0.1 0.1\nNs 10\n"
     "newmtl glow\nKd 0.5\nKe 2 3 4\n";
 
+/* Two MTL materials whose "objname/mtlname" names are cut to one prefix
+ * (an object name of 30 bytes leaves no room for the MTL name) stay two
+ * materials, each face in its own; a second usemtl of one reuses it.
+ * Before the fix every face took the first material (red). */
+TEST(obj_cut_material_names_stay_distinct)
+{
+    static const memfile files[] = {
+        {"m.obj", "mtllib m.mtl\nv -1 0 0\nv 0 0 0\nv 0 1 0\nv 1 0 0\nv 1 1 0\n"
+                  "usemtl red\nf 1 2 3\nusemtl blue\nf 2 4 5\nusemtl red\nf 1 3 2\n"},
+        {"m.mtl", "newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\n"}, {NULL, NULL}};
+    static const char scene[] = CAM "material m albedo 0.5 0.5 0.5\n"
+                                    "mesh file m.obj material m name statue_in_the_main_hall_left_1\n";
+    memfs fs;
+    tg_io io;
+    tg_scene *s;
+    tg_error err;
+    tg_status st;
+    int a, b, c;
+    io = memfs_io(&fs, files);
+    st = parse_io(scene, strlen(scene), "s.scene", &io, &s, &err);
+    CHECK(st == TG_OK, "parse");
+    if (st) { print_error(&err); return; }
+    CHECK(s->tri_count == 3, "%d triangles", s->tri_count);
+    CHECK(s->material_count == 3, "base + red + blue: %d", s->material_count);
+    if (s->tri_count != 3) return;
+    a = s->tri_material[0]; b = s->tri_material[1]; c = s->tri_material[2];
+    CHECK(a != b, "red and blue faces: two materials (%d, %d)", a, b);
+    CHECK(a == c, "the second usemtl red reuses the first (%d, %d)", a, c);
+    CHECK(veq(s->materials[a].albedo, 1, 0, 0), "the first face red");
+    CHECK(veq(s->materials[b].albedo, 0, 0, 1), "the second face blue");
+    check_invariants(s, "cut material names");
+}
+
 TEST(obj_from_memory)
 {
     static const memfile files[] = {
@@ -1089,6 +1122,7 @@ int main(void)
     RUN(limits);
     RUN(sky_up_defaults_to_y);
     RUN(arena_protocol);
+    RUN(obj_cut_material_names_stay_distinct);
     RUN(obj_from_memory);
     RUN(obj_transform);
     RUN(obj_bad_input);

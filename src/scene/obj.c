@@ -365,6 +365,14 @@ static tg_status mtl_find(obj_state *o, const tgi_lexer *lx, const tgi_token *na
                  "' is not defined in the mtllib files");
 }
 
+static int same_vec(tg_vec3 a, tg_vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+/* The same name and values (diffuse follows from albedo and f0: set when added) */
+static int same_material(const tgi_material *a, const tgi_material *b)
+{
+    return strcmp(a->name, b->name) == 0 && same_vec(a->albedo, b->albedo) && a->f0 == b->f0
+        && same_vec(a->emissive, b->emissive) && a->twosided == b->twosided;
+}
+
 static tg_status obj_usemtl(obj_state *o, tgi_lexer *lx, const tgi_token *kw)
 {
     tgi_parser *p = o->p;
@@ -387,14 +395,18 @@ static tg_status obj_usemtl(obj_state *o, tgi_lexer *lx, const tgi_token *kw)
     k = name.n < TG_MAX_NAME - n ? name.n : TG_MAX_NAME - n;
     memcpy(full + n, name.s, k);
     full[n + k] = '\0';
-    for (i = o->first_material; i < p->materials; i++)
-        if (strcmp(p->scene->materials[i].name, full) == 0) {
-            o->material = (int)i;
-            return TG_OK;
-        }
     m = p->scene->materials[o->base_material];
     memcpy(m.name, full, sizeof full);
     if ((st = mtl_find(o, lx, &name, &m))) return st;
+    /* a material this OBJ added already is reused: the same name and the
+     * same values.  The name alone is not enough: two MTL names cut to the
+     * same prefix (a long object or MTL name) are two materials (they were
+     * one, every face in the first's colour). */
+    for (i = o->first_material; i < p->materials; i++)
+        if (same_material(&p->scene->materials[i], &m)) {
+            o->material = (int)i;
+            return TG_OK;
+        }
     if ((st = tgi_parse_add_material(p, lx, name.col, &m, &index))) return st;
     o->material = index;
     return TG_OK;
