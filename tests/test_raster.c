@@ -495,6 +495,55 @@ static void add_grid(mesh *m, const tgi_view *v, const double *P, int nx, int nz
 /* A jittered grid of quads on a tilted plane in front of the camera (past
  * the screen edges), distinct object ids: no pixel left as sky, and every
  * pixel clearly inside a triangle holds that triangle's id. */
+/* A ground plane seen from above, once as a quad of +-900 and once of
+ * +-20000 units, the far plane at 100: both show the same floor, pixel for
+ * pixel.  In Q16.16 the big quad's clip coordinates (20000 fx sideways,
+ * 19000 deep) and the clipper's differences and guard products saturated,
+ * and it clipped to nothing: every pixel sky (raster.c
+ * gbuffer_wide_triangle clips it in 64 bits now).  Also at a 5-degree
+ * field of view, where +-3000 was already lost. */
+static void floor_quad(mesh *m, double e)
+{
+    const double x[4] = { -e, -e, e, e }, z[4] = { -e, e, e, -e };
+    static const int tri[6] = { 0, 1, 2, 0, 2, 3 };
+    int k;
+    for (k = 0; k < 6; k++) {
+        m->pos[3 * m->n + k % 3 + (k / 3) * 3] = V(x[tri[k]], 0, z[tri[k]]);
+        m->nrm[3 * m->n + k % 3 + (k / 3) * 3] = V(0, 1, 0);
+    }
+    m->mat[m->n] = m->mat[m->n + 1] = 0;
+    m->n += 2;
+}
+
+TEST(far_ground_plane_in_fixed_point)
+{
+    static const double fovs[2] = { 60, 5 }, big[2] = { 20000, 3000 };
+    int f;
+    for (f = 0; f < 2; f++) {
+        tgi_view v;
+        mesh *small = mesh_new(), *large = mesh_new();
+        gbuf a, b;
+        int i, floor = 0, differ = 0, depth_off = 0;
+        tgi_view_make(&v, V(0, 3, 12), V(0, 0, 0), V(0, 1, 0), R(fovs[f] * 3.14159265358979 / 180.0), R(0.05), R(100),
+                      32, 24);
+        floor_quad(small, 900);
+        floor_quad(large, big[f]);
+        gbuf_draw(&a, &v, small);
+        gbuf_draw(&b, &v, large);
+        for (i = 0; i < 32 * 24; i++) {
+            if (gsky(&a, i) != gsky(&b, i)) { differ++; continue; }
+            if (gsky(&a, i)) continue;
+            floor++;
+            if (fabs(gdepth(&a, i) - gdepth(&b, i)) > 1e-3 * gdepth(&a, i)) depth_off++;
+        }
+        CHECK(floor >= 200, "fov %g: %d floor pixels", fovs[f], floor);
+        CHECK(differ == 0, "fov %g: %d pixels floor in one quad and sky in the other", fovs[f], differ);
+        CHECK(depth_off == 0, "fov %g: %d depths apart by more than 0.1%%", fovs[f], depth_off);
+        drawn_free(&a, small);
+        drawn_free(&b, large);
+    }
+}
+
 TEST(gbuffer_tiling_ids)
 {
     enum { W = 80, H = 60, N = 12 };
@@ -1203,6 +1252,7 @@ int main(void)
     RUN(fill_rule_random_fans);
     RUN(fill_rule_on_pixel_centres);
     RUN(fill_rule_matches_brute_force);
+    RUN(far_ground_plane_in_fixed_point);
     RUN(gbuffer_tiling_ids);
     RUN(front_back_twosided);
     RUN(near_plane_clipping);

@@ -1051,6 +1051,142 @@ static inline view_vertex view_vertex_make(const raster_target *rt, const view_f
     return o;
 }
 
+#if TG_FIXED
+/* ---- G-buffer triangles beyond Q16.16's clip range ----
+ * A vertex's clip coordinates x = d . right fx, y = d . up fy, w = d .
+ * forward (d from the eye) leave Q16.16 (32767) for a vertex more than
+ * 32767 / fx units to the side or 32767 deep, and the clipper's
+ * differences and guard-band products 8 w leave it sooner: a ground plane
+ * of +-20000 seen at 60 degrees, or of +-3000 at 5, clipped to nothing,
+ * and the plane vanished.  Such a triangle (a coordinate past
+ * TGI_CLIP_SAFE: tri_saturated) is clipped here in 64 bits, as
+ * clip_polygon clips (near, far, then the guard band; the screen's planes
+ * when 8 zfar would not fit), from its world vertices: what is left lies
+ * within the band and the depth range, so it fits tg_real again and is
+ * drawn as any clipped polygon.  Only such triangles take this path: every other keeps
+ * its bits. (tests/test_raster.c far_ground_plane_in_fixed_point) */
+typedef struct wide_vertex {
+    int64_t x, y, w;              /* Q16.16 in 64 bits; z = w (G-buffer mode) */
+    tg_vec3 n;
+} wide_vertex;
+
+/* Whether a clip coordinate of v is past TGI_CLIP_SAFE (2048 units, 2^27
+ * raw): within it, the clipper's differences of two coordinates (< 2^28)
+ * and guard-band products 8 w (< 2^30) fit tg_real, and clip_polygon is
+ * exact; past it they saturate (a saturated vertex too: 32767). */
+#define TGI_CLIP_SAFE ((int32_t)1 << 27)
+static int tri_saturated(const clip_vertex *v)
+{
+    int k;
+    for (k = 0; k < 3; k++)
+        if ((uint32_t)v[k].x + TGI_CLIP_SAFE > 2u * TGI_CLIP_SAFE || (uint32_t)v[k].y + TGI_CLIP_SAFE > 2u * TGI_CLIP_SAFE
+            || (uint32_t)v[k].w + TGI_CLIP_SAFE > 2u * TGI_CLIP_SAFE) return 1;
+    return 0;
+}
+
+/* (a . b) for a = p - eye exact in 64 bits (|a_i| < 2^32 raw) and a unit
+ * axis times a focal length (|b_i| < 2^31): each product below 2^63 / 4 */
+static int64_t wide_dot(const int64_t *a, tg_vec3 b)
+{
+    return tgi_shr_round(a[0] * b.x + a[1] * b.y + a[2] * b.z, TG_FRAC_BITS);
+}
+
+static int64_t wide_plane_distance(const clip_ctx *c, const wide_vertex *v, int p, int64_t g)
+{
+    switch (p) {
+    case PL_LEFT: return v->x + g * v->w;
+    case PL_RIGHT: return g * v->w - v->x;
+    case PL_BOTTOM: return v->y + g * v->w;
+    case PL_TOP: return g * v->w - v->y;
+    case PL_NEAR: return v->w - c->znear;
+    default: return c->zfar - v->w;
+    }
+}
+
+static void wide_snap_to_plane(const clip_ctx *c, wide_vertex *v, int p, int64_t g)
+{
+    switch (p) {
+    case PL_LEFT: v->x = -g * v->w; break;
+    case PL_RIGHT: v->x = g * v->w; break;
+    case PL_BOTTOM: v->y = -g * v->w; break;
+    case PL_TOP: v->y = g * v->w; break;
+    case PL_NEAR: v->w = c->znear; break;
+    default: v->w = c->zfar; break;
+    }
+}
+
+/* a + (b - a) t for t = t31 2^-31 in [0, 1], |b - a| < 2^48: in two
+ * products below 2^62 (the high and the low 16 bits of b - a), within a
+ * unit of the exact value.  The fraction needs the 31 bits: an edge from
+ * behind the eye to 20000 units ahead is 2^46 raw long, and a Q16.16 t
+ * would put its clipped point half a unit off (depth 1.4% off). */
+static int64_t wide_lerp(int64_t a, int64_t b, int64_t t31)
+{
+    const int64_t d = b - a, hi = d / 65536, lo = d - hi * 65536;
+    return a + tgi_shr_round(hi * t31, 15) + tgi_shr_round(lo * t31, 31);
+}
+
+/* din / (din - dout) as t31, din >= 0 > dout (below 2^49 each): both
+ * shifted until the divisor is below 2^31, then (din << 31) / divisor
+ * rounded, at most 2^31 */
+static int64_t wide_fraction(int64_t din, int64_t dout)
+{
+    int64_t den = din - dout;
+    while (den >= ((int64_t)1 << 31)) { din >>= 1; den >>= 1; }
+    return ((din << 31) + den / 2) / den;
+}
+
+static void gbuffer_wide_triangle(const raster_target *rt, const view_frame *vf, const tg_vec3 *pos, const tg_vec3 *nrm)
+{
+    static const int order[PL_COUNT] = { PL_NEAR, PL_FAR, PL_LEFT, PL_RIGHT, PL_BOTTOM, PL_TOP };
+    /* the guard band where 8 zfar fits tg_real (the far plane within 4095:
+     * every G-buffer's default), else the screen's planes (drawn polygons
+     * whose vertices lie on the screen's edges come out up to 0.4% off in
+     * depth: the guard band's are exact) */
+    const int64_t g = rt->clip.zfar <= TG_REAL_MAX / 8 ? 8 : 1;
+    wide_vertex a[MAX_POLY], b[MAX_POLY];
+    clip_vertex poly[MAX_POLY];
+    int k, o, n = 3;
+    for (k = 0; k < 3; k++) {
+        const int64_t d[3] = { (int64_t)pos[k].x - vf->eye.x, (int64_t)pos[k].y - vf->eye.y, (int64_t)pos[k].z - vf->eye.z };
+        a[k].x = wide_dot(d, vf->rx);
+        a[k].y = wide_dot(d, vf->ry);
+        a[k].w = wide_dot(d, vf->rz);
+        a[k].n = nrm ? nrm[k] : tg_v3(0, 0, 0);
+    }
+    for (o = 0; o < PL_COUNT && n > 0; o++) {
+        int i, m = 0, p = order[o];
+        for (i = 0; i < n; i++) {
+            const wide_vertex *va = &a[i], *vb = &a[i + 1 == n ? 0 : i + 1];
+            int64_t da = wide_plane_distance(&rt->clip, va, p, g), db = wide_plane_distance(&rt->clip, vb, p, g);
+            if (da >= 0) b[m++] = *va;
+            if ((da >= 0) != (db >= 0) && m < MAX_POLY) {
+                const wide_vertex *in = da >= 0 ? va : vb, *out = da >= 0 ? vb : va;
+                const int64_t din = da >= 0 ? da : db, dout = da >= 0 ? db : da;
+                const int64_t t31 = wide_fraction(din, dout);
+                b[m].x = wide_lerp(in->x, out->x, t31);
+                b[m].y = wide_lerp(in->y, out->y, t31);
+                b[m].w = wide_lerp(in->w, out->w, t31);
+                b[m].n = tgi_v3_lerp(in->n, out->n, (tg_real)((t31 + (1 << 14)) >> 15));
+                wide_snap_to_plane(&rt->clip, &b[m], p, g);
+                m++;
+            }
+        }
+        n = m;
+        memcpy(a, b, (size_t)n * sizeof *a);
+    }
+    for (k = 0; k < n; k++) {   /* within the band and the depth range: tg_real again */
+        poly[k].x = tgi_sat64(a[k].x);
+        poly[k].y = tgi_sat64(a[k].y);
+        poly[k].z = poly[k].w = tgi_sat64(a[k].w);
+        poly[k].n = a[k].n;
+    }
+    if (n >= 3) draw_polygon(rt, poly, n);
+}
+#else
+static inline int tri_saturated(const clip_vertex *v) { (void)v; return 0; }   /* float: none */
+#endif
+
 /* Neighbouring triangles of a mesh share vertices (a triangle strip reuses
  * two of every three): a direct-mapped cache keyed by the position's bits
  * gives back the same view_vertex without transforming it again. */
@@ -1126,9 +1262,20 @@ static inline void triangle_fetch(vertex_cache *c, const raster_target *rt, cons
  * triangle facing away, or either face of a twosided one (a sheet is its
  * own back); the nearest such depth is kept.  front, area2: its facing and
  * signed area when all its vertices are inside (tv->flags & V_INSIDE). */
-static void back_triangle(raster_target *rt, tri_vertices *tv, int front, int64_t area2)
+static void back_triangle(raster_target *rt, const view_frame *vf, const tg_vec3 *pos, tri_vertices *tv, int front,
+                          int64_t area2)
 {
     static const int order_front[3] = { 0, 2, 1 }, order_back[3] = { 0, 1, 2 };
+#if TG_FIXED
+    if (tri_saturated(tv->v)) {                   /* as gbuffer_triangle */
+        rt->back_layer = 1;
+        gbuffer_wide_triangle(rt, vf, pos, NULL);
+        rt->back_layer = 0;
+        return;
+    }
+#else
+    (void)vf; (void)pos;
+#endif
     if ((tv->flags & V_INSIDE) && area2 == 0) return;   /* zero area */
     rt->back_layer = 1;
     if (!(tv->flags & V_INSIDE)) {
@@ -1144,12 +1291,18 @@ static void back_triangle(raster_target *rt, tri_vertices *tv, int front, int64_
 
 /* Triangle t: reject, cull, draw (clipped if needed); into the back-face
  * layer too when the G-buffer has one. */
-static void gbuffer_triangle(raster_target *rt, tri_vertices *tv, const tgi_raster_mesh *mesh, int t)
+static void gbuffer_triangle(raster_target *rt, const view_frame *vf, tri_vertices *tv, const tgi_raster_mesh *mesh, int t)
 {
     static const int order_front[3] = { 0, 2, 1 }, order_back[3] = { 0, 1, 2 };
     int twosided, front = 0;
     int64_t area2 = 0;
+#if TG_FIXED
+    const int wide = tri_saturated(tv->v);        /* its flags and snaps are not to be trusted */
+    if (!wide && (tv->flags & V_OFF_SIDE)) return;
+#else
+    (void)vf;
     if (tv->flags & V_OFF_SIDE) return;           /* wholly off one side of the screen */
+#endif
     twosided = mesh->materials[mesh->tri_material[t]].twosided;
     if (tv->flags & V_INSIDE) {
         area2 = signed_area2(tv->sx, tv->sy);
@@ -1161,6 +1314,12 @@ static void gbuffer_triangle(raster_target *rt, tri_vertices *tv, const tgi_rast
     rt->flip_back = twosided;
     rt->object = mesh->tri_object ? mesh->tri_object[t] : 0;
     rt->tri_nrm = mesh->nrm + 3 * t;
+#if TG_FIXED
+    if (wide) {
+        gbuffer_wide_triangle(rt, vf, mesh->pos + 3 * t, rt->tri_nrm);
+        return;
+    }
+#endif
     if (tv->flags & V_INSIDE)
         draw_snapped(rt, tv->v, rt->tri_nrm, tv->sx, tv->sy, tv->iw, front ? order_front : order_back,
                      front ? -area2 : area2, !front && twosided);
@@ -1182,10 +1341,10 @@ static void further_layer(raster_target *rt, vertex_cache *cache, const view_fra
         tri_vertices tv;
         int64_t area2;
         triangle_fetch(cache, rt, vf, mesh, t, &tv);
-        if (tv.flags & V_OFF_SIDE) continue;
+        if ((tv.flags & V_OFF_SIDE) && !(TG_FIXED && tri_saturated(tv.v))) continue;
         rt->cull_back = cull && !mesh->materials[mesh->tri_material[t]].twosided;
         area2 = tv.flags & V_INSIDE ? signed_area2(tv.sx, tv.sy) : 0;
-        back_triangle(rt, &tv, area2 < 0, area2);
+        back_triangle(rt, vf, mesh->pos + 3 * t, &tv, area2 < 0, area2);
     }
 }
 #endif
@@ -1212,7 +1371,7 @@ void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_
     for (t = 0; t < mesh->tri_count; t++) {
         tri_vertices tv;
         triangle_fetch(&cache, &rt, &vf, mesh, t, &tv);
-        gbuffer_triangle(&rt, &tv, mesh, t);
+        gbuffer_triangle(&rt, &vf, &tv, mesh, t);
     }
 #if TGI_RASTER_BACK_LAYER
     /* the second layer, once these rows' depth is final: the back faces at
