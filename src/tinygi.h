@@ -43,16 +43,19 @@
  *   message fit to show a person, with FILE:LINE:COL when it is about input.
  *
  * ARGUMENTS: what the core checks, what the caller guarantees
- *   - Pointers are not checked: each must point to memory of the size its
- *     comment gives, unless the comment allows NULL.  `err` may be NULL in
- *     every function but tg_frame_create (the status alone then tells).
+ *   - Handles are checked: a NULL scene, request, plan or frame, a plan
+ *     whose tg_plan_make failed (total_bytes 0) and a NULL row buffer are
+ *     refused with TG_ERR_INPUT (tests/test_hostile.c).  Other pointers
+ *     are not: each must point to memory of the size its comment gives,
+ *     unless the comment allows NULL.  `err` may be NULL in every function
+ *     (the status alone then tells).
  *   - Sizes, indices and names are checked as each function's comment says;
  *     past its range a value is refused with a status or gets the stated
  *     fallback, and nothing outside the memory given is read or written.
  *   - A handle is used only after the call that made it returned TG_OK: the
  *     scene of tg_scene_parse, the plan of tg_plan_make, the frame of
  *     tg_frame_create.  What a failed call leaves (a NULL scene or frame, a
- *     plan with total_bytes 0) must not be passed on.
+ *     plan with total_bytes 0) is refused when passed on, as above.
  *   - Memory the core points into stays valid and untouched by the caller
  *     while it is in use: a scene's arena while the scene, its plans or its
  *     frames are used; a frame's memory while the frame is.  The core

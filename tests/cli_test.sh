@@ -161,6 +161,9 @@ check_binary() {
     refused "$tag/opt_radius_negative" "${U}option --radius" render builtin:cornell --radius -1
     refused "$tag/opt_radius_nan" "${U}option --radius" render builtin:cornell --radius nan
     refused "$tag/opt_radius_inf" "${U}option --radius" render builtin:cornell --radius inf
+    # hex is not a number in a scene file, nor on the command line (strtod read it: radius 16)
+    refused "$tag/opt_radius_hex" "${U}option --radius" render builtin:cornell --radius 0x10
+    refused "$tag/opt_exposure_hex_float" "${U}option --exposure" render builtin:cornell --exposure 0x1p-1
     refused "$tag/opt_bounces" "${U}option --bounces" render builtin:cornell --bounces -1
     refused "$tag/opt_exposure" "${U}option --exposure" render builtin:cornell --exposure -2
     refused "$tag/opt_shadow_size" "${U}option --shadow-size" render builtin:cornell --shadow-size 4

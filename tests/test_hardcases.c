@@ -330,6 +330,15 @@ static const hard_case named_cases[] = {
       "light point pos 0 2.5 0 color 1 1 1 intensity 4 shadows\n"
       "env uniform 0.2 0.2 0.2\n",
       16, 12, 4, 0, 0, -1, 0, NULL },
+    /* A world near float's range (coordinates 3e38, the camera as far out):
+     * eye + view ray overflowed to inf, and the motion AOV of a camera that
+     * never moves was NaN (motion.h; inf - inf).  Q16.16 refuses the
+     * numbers (beyond 32767). */
+    { "world_near_float_range", "world near float's range",
+      "camera pos 0 3e38 3e38 target 0 0 0 far 3.4e38\n"
+      "material m albedo 0.5 0.5 0.5\n"
+      "quad p0 -3e38 0 -3e38 p1 -3e38 0 3e38 p2 3e38 0 3e38 p3 3e38 0 -3e38 material m\n",
+      7, 5, 2, 0, 0, -1, 1, NULL },
 };
 
 /* Run every case of named_cases the test `test` owns (it owns at least one). */
@@ -360,6 +369,7 @@ NAMED_TEST(degenerate_triangles)
 NAMED_TEST(fov_extremes_and_camera_straight_down)
 NAMED_TEST(symmetric_pit)
 NAMED_TEST(camera_cut_and_fast_object)
+NAMED_TEST(world_near_float_range)
 
 /* A generated scene: its name and text. */
 typedef struct scene_buf { char name[64], text[1024]; } scene_buf;
@@ -530,5 +540,6 @@ int main(void)
     RUN(symmetric_pit);
     RUN(acos_a_hair_outside_its_domain);
     RUN(camera_cut_and_fast_object);
+    RUN(world_near_float_range);
     return check_summary();
 }

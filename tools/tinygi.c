@@ -184,11 +184,17 @@ static int parse_long(const char *s, long lo, long hi, long *out)
     return 0;
 }
 
+/* A decimal number, as the scene format writes one (no hex, inf or nan:
+ * strtod reads those, the scene parser does not): 0 ok, 1 not a number, 2
+ * outside lo..hi. */
 static int parse_number(const char *s, double lo, double hi, double *out)
 {
     char *end;
     double v;
+    const char *c;
     if (!*s || !((*s >= '0' && *s <= '9') || *s == '-' || *s == '+' || *s == '.')) return 1;
+    for (c = s; *c; c++)
+        if (!((*c >= '0' && *c <= '9') || *c == '-' || *c == '+' || *c == '.' || *c == 'e' || *c == 'E')) return 1;
     errno = 0;
     v = strtod(s, &end);
     if (*end) return 1;

@@ -25,6 +25,27 @@ size_t tg_error_format(const tg_error *err, char *buf, size_t size)
     return t.at;
 }
 
+/* s into t with each control byte (below 0x20, and 0x7f) written as \xNN:
+ * a message quotes what the input holds (a name, a file name), and an
+ * escape sequence there (ESC [ 2 J) must not reach a terminal as one.
+ * Bytes from 0x80 stay (UTF-8 names). */
+static void put_escaped(tgi_text *t, const char *s)
+{
+    static const char hex[] = "0123456789abcdef";
+    char one[2] = { 0, 0 }, esc[5] = { '\\', 'x', 0, 0, 0 };
+    for (; *s; s++) {
+        const unsigned char c = (unsigned char)*s;
+        if (c < 0x20 || c == 0x7f) {
+            esc[2] = hex[c >> 4];
+            esc[3] = hex[c & 15];
+            tgi_text_put(t, esc);
+        } else {
+            one[0] = (char)c;
+            tgi_text_put(t, one);
+        }
+    }
+}
+
 void tgi_error_clear(tg_error *err)
 {
     if (!err) return;
@@ -34,15 +55,13 @@ void tgi_error_clear(tg_error *err)
 void tgi_error_set(tg_error *err, tg_status status, const char *file, int line,
                   int col, const char *message)
 {
-    size_t n;
     (void)status;
     if (!err) return;
     err->file[0] = '\0';
     if (file) {
-        n = strlen(file);
-        if (n >= sizeof err->file) n = sizeof err->file - 1;
-        memcpy(err->file, file, n);
-        err->file[n] = '\0';
+        tgi_text t;
+        tgi_text_init(&t, err->file, sizeof err->file);
+        put_escaped(&t, file);
     }
     err->line = line;
     err->col = col;
@@ -65,7 +84,7 @@ void tgi_error_append(tg_error *err, const char *text)
     tgi_text t;
     if (!err) return;
     t = message_text(err);
-    tgi_text_put(&t, text);
+    put_escaped(&t, text);
 }
 
 void tgi_error_append_int(tg_error *err, long v)

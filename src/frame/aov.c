@@ -140,6 +140,7 @@ static int row_outside(const tg_frame *f, int y)
 
 tg_status tg_frame_aov_row(const tg_frame *f, tg_aov aov, int y, tg_real *out)
 {
+    if (!f || !out) return TG_ERR_INPUT;
     if (row_outside(f, y)) {
         memset(out, 0, (size_t)f->width * (size_t)tg_aov_channels(aov) * sizeof(tg_real));
         return TG_ERR_INPUT;
@@ -197,6 +198,7 @@ static void span8(const tg_frame *f, tg_aov aov, int y, int x0, int w, uint8_t *
 tg_status tg_frame_aov_row8(const tg_frame *f, tg_aov aov, int y, uint8_t *rgb)
 {
     int x0;
+    if (!f || !rgb) return TG_ERR_INPUT;
     if (row_outside(f, y)) {
         memset(rgb, 0, (size_t)f->width * 3u);
         return TG_ERR_INPUT;

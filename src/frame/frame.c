@@ -22,13 +22,19 @@ tg_status tg_frame_create(const tg_plan *plan, void *memory, size_t size,
 {
     tg_arena arena;
     tg_frame *f = NULL;
-    tg_plan copy = *plan;
+    tg_plan copy;
     tgi_error_clear(err);
-    *frame = NULL;
+    if (frame) *frame = NULL;
+    if (!plan || !frame || plan->total_bytes == 0) {   /* total_bytes 0: tg_plan_make failed */
+        tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0,
+                      "tg_frame_create: needs a plan that tg_plan_make made and somewhere to put the frame");
+        return TG_ERR_INPUT;
+    }
+    copy = *plan;
     tg_arena_init(&arena, memory, size);
     if (tgi_frame_layout(&f, &copy, &arena) != 0) {
         tgi_error_set(err, TG_ERR_MEMORY, NULL, 0, 0, "the frame arena is too small for the plan");
-        err->bytes_needed = plan->total_bytes;
+        if (err) err->bytes_needed = plan->total_bytes;
         return TG_ERR_MEMORY;
     }
     if (f->effects & TG_EFFECT_FAR) tgi_sh9_from_env(&f->scene->env, f->sh);
@@ -55,7 +61,7 @@ static int runs_now(const tg_frame *f, const tgi_pass *p)
 
 tg_status tg_frame_set_parallel(tg_frame *f, const tg_parallel *p)
 {
-    if (p && !p->run) return TG_ERR_INPUT;
+    if (!f || (p && !p->run)) return TG_ERR_INPUT;
     if (p) f->parallel = *p;
     else memset(&f->parallel, 0, sizeof f->parallel);
     return TG_OK;
@@ -101,6 +107,10 @@ tg_status tg_frame_render(tg_frame *f, int index, tg_error *err)
 {
     int k = 0, end, j;
     tgi_error_clear(err);
+    if (!f) {   /* a failed tg_frame_create leaves NULL */
+        tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "tg_frame_render: the frame is NULL");
+        return TG_ERR_INPUT;
+    }
     if (index < 0) {
         tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "frame index must be >= 0");
         return TG_ERR_INPUT;

@@ -181,6 +181,10 @@ tg_status tg_plan_make(tg_plan *plan, const tg_scene *scene, const tg_request *r
     tg_frame probe, *pp = &probe;
     uint32_t possible;
     tgi_error_clear(err);
+    if (!plan || !scene || !req) {   /* a failed tg_scene_parse leaves a NULL scene */
+        tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "tg_plan_make: plan, scene and request must not be NULL");
+        return TG_ERR_INPUT;
+    }
     memset(plan, 0, sizeof *plan);
     plan->request = *req;
     plan->scene = scene;
@@ -250,8 +254,10 @@ size_t tg_plan_explain(const tg_plan *plan, char *buf, size_t size)
 {
     tgi_text t;
     int i;
-    size_t pixels = (size_t)plan->request.width * (size_t)plan->request.height;
+    size_t pixels;
     tgi_text_init(&t, buf, size);
+    if (!plan) return 0;   /* nothing to explain: "" */
+    pixels = (size_t)plan->request.width * (size_t)plan->request.height;
     put_number_line(&t, "plan: ", (size_t)plan->request.width, "x");
     put_number_line(&t, "", (size_t)plan->request.height, ", technique ");
     tgi_text_put(&t, tg_technique_name(plan->request.technique));

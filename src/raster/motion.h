@@ -41,8 +41,17 @@ static inline int tgi_motion_prev_position_inline(const tgi_view *cur, const tgi
     pv = tgi_view_world_to_view_inline(prev, p);
     *prev_z = pv.z;
     if (pv.z <= TG_R(0.0001f)) return 0;
+#if !TG_FIXED
+    /* a world near float's range (coordinates of 1e38): eye + ray overflows
+     * to inf and inf - inf is NaN: no previous position (the motion AOV
+     * was NaN there; test_motion.c motion_finite_near_float_range) */
+    if (!(pv.z == pv.z)) return 0;
+    tgi_view_project_inline(prev, pv, px, py);
+    return tg_isfinite(*px) && tg_isfinite(*py);
+#else
     tgi_view_project_inline(prev, pv, px, py);
     return 1;
+#endif
 }
 
 /* A camera pair for tgi_motion_prev_position_pair: in Q16.16 with the
