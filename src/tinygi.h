@@ -15,7 +15,7 @@
  * Feature switches TG_NO_TECHNIQUES, TG_NO_REFERENCE, TG_NO_OBJ,
  * TG_NO_BUILTIN_SCENES, TG_NO_SHADOW_MAPS, TG_NO_ENVIRONMENT,
  * TG_NO_SCENE_TEXT, TG_NO_COLOR, TG_NO_GI_QUARTER, TG_NO_TEMPORAL,
- * TG_NO_ANIMATION, TG_NO_BENT_NORMALS, TG_NO_FINE_HORIZON (0 or 1, for
+ * TG_NO_ANIMATION, TG_NO_BENT_NORMALS, TG_NO_FINE_HORIZON, TG_NO_WIDE_CLIP (0 or 1, for
  * the LIBRARY's build) leave code out of it to save flash: see "FEATURE
  * SWITCHES" below.
  *
@@ -452,6 +452,15 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
  *                         refine_fine; about 1 KB): nothing is refused, but
  *                         the AO and light differ, the horizons set by the
  *                         sub-images' samples alone (README "Flash size").
+ *   TG_NO_WIDE_CLIP       Q16.16 only: the rasterizer's 64-bit clipper for
+ *                         G-buffer triangles whose clip coordinates pass
+ *                         2048 units (src/raster/raster.c,
+ *                         gbuffer_wide_triangle; about 1.6 KB): nothing is
+ *                         refused, but such a triangle (a ground plane of
+ *                         +-20000, or +-3000 at a 5-degree fov) may be
+ *                         lost; a scene that stays within 2048 units
+ *                         (times the focal length, 1.3 at 60 degrees) of
+ *                         the camera renders the same.
  * README "Flash size" has the .text each configuration takes on a Cortex-M4
  * (`make size-table`).
  */
@@ -493,6 +502,9 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
 #endif
 #ifndef TG_NO_FINE_HORIZON
 #define TG_NO_FINE_HORIZON 0
+#endif
+#ifndef TG_NO_WIDE_CLIP
+#define TG_NO_WIDE_CLIP 0
 #endif
 /* TG_OUTLINE_HELPERS: 1 makes the larger storage helpers every pass calls
  * (src/raster/pack.h: octahedral normals, RGB9E5) one out-of-line copy

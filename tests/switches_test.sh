@@ -14,7 +14,7 @@ cd "$(dirname "$0")/.."
 . tests/shcheck.sh
 sh_host_build
 
-SWITCHES="TECHNIQUES REFERENCE OBJ BUILTIN_SCENES SHADOW_MAPS ENVIRONMENT SCENE_TEXT COLOR GI_QUARTER TEMPORAL ANIMATION FINE_HORIZON BENT_NORMALS"
+SWITCHES="TECHNIQUES REFERENCE OBJ BUILTIN_SCENES SHADOW_MAPS ENVIRONMENT SCENE_TEXT COLOR GI_QUARTER TEMPORAL ANIMATION FINE_HORIZON WIDE_CLIP BENT_NORMALS"
 # the global symbols (nm) of each switch's left-out files, and (COLOR) the
 # HBIL kernel's near-field gather, a local function left out of a kept file
 pattern() {
@@ -36,6 +36,8 @@ pattern() {
         # (static inline) function at -O0; the techniques keep their own
         # (TG_NO_TECHNIQUES, TG_NO_REFERENCE), so it is checked with them gone
         BENT_NORMALS)   echo ' t tgi_gr_set_bent$' ;;
+        # no file: Q16.16's 64-bit clipper (a local function; none in float)
+        WIDE_CLIP)      echo ' t gbuffer_wide_triangle$' ;;
     esac
 }
 
@@ -43,7 +45,7 @@ pattern() {
 # (BENT_NORMALS's static function is inlined at -O2: a switch build keeping
 # it, below)
 full=$BUILD/tinygi
-for sw in ${SWITCHES% BENT_NORMALS}; do
+for sw in ${SWITCHES% WIDE_CLIP BENT_NORMALS}; do
     n=$(nm "$full" 2>/dev/null | grep -cE "$(pattern "$sw")")
     if [ "$n" -gt 0 ]; then ok "switches/full-cli-has-$sw"; else fail "switches/full-cli-has-$sw" "pattern finds nothing in $full"; fi
 done
@@ -118,12 +120,16 @@ for c in $configs; do
     check "$c" $(switches_of "$c")
 done
 
-# BENT_NORMALS's pattern finds the function in a build that keeps bent normals
+# BENT_NORMALS's pattern finds the function in a build that keeps bent
+# normals, WIDE_CLIP's in a Q16.16 build that keeps the wide clipper
 for num in float fixed; do
     n=$(nm "$tmp/$num-TECHNIQUES" 2>/dev/null | grep -cE "$(pattern BENT_NORMALS)")
     if [ "$n" -gt 0 ]; then ok "switches/$num-TECHNIQUES has BENT_NORMALS's pattern"
     else fail "switches/$num-TECHNIQUES has BENT_NORMALS's pattern" "nothing in $tmp/$num-TECHNIQUES"; fi
 done
+n=$(nm "$tmp/fixed-TECHNIQUES" 2>/dev/null | grep -cE "$(pattern WIDE_CLIP)")
+if [ "$n" -gt 0 ]; then ok "switches/fixed-TECHNIQUES has WIDE_CLIP's pattern"
+else fail "switches/fixed-TECHNIQUES has WIDE_CLIP's pattern" "nothing in $tmp/fixed-TECHNIQUES"; fi
 
 # every build of a number type renders the same AO, bit for bit, but those
 # without the fine horizon (FINE_HORIZON, all), which render the same as

@@ -1051,7 +1051,7 @@ static inline view_vertex view_vertex_make(const raster_target *rt, const view_f
     return o;
 }
 
-#if TG_FIXED
+#if TG_FIXED && !TG_NO_WIDE_CLIP
 /* ---- G-buffer triangles beyond Q16.16's clip range ----
  * A vertex's clip coordinates x = d . right fx, y = d . up fy, w = d .
  * forward (d from the eye) leave Q16.16 (32767) for a vertex more than
@@ -1184,7 +1184,8 @@ static void gbuffer_wide_triangle(const raster_target *rt, const view_frame *vf,
     if (n >= 3) draw_polygon(rt, poly, n);
 }
 #else
-static inline int tri_saturated(const clip_vertex *v) { (void)v; return 0; }   /* float: none */
+/* float: none; TG_NO_WIDE_CLIP: left out (tinygi.h) */
+static inline int tri_saturated(const clip_vertex *v) { (void)v; return 0; }
 #endif
 
 /* Neighbouring triangles of a mesh share vertices (a triangle strip reuses
@@ -1266,7 +1267,7 @@ static void back_triangle(raster_target *rt, const view_frame *vf, const tg_vec3
                           int64_t area2)
 {
     static const int order_front[3] = { 0, 2, 1 }, order_back[3] = { 0, 1, 2 };
-#if TG_FIXED
+#if TG_FIXED && !TG_NO_WIDE_CLIP
     if (tri_saturated(tv->v)) {                   /* as gbuffer_triangle */
         rt->back_layer = 1;
         gbuffer_wide_triangle(rt, vf, pos, NULL);
@@ -1296,7 +1297,7 @@ static void gbuffer_triangle(raster_target *rt, const view_frame *vf, tri_vertic
     static const int order_front[3] = { 0, 2, 1 }, order_back[3] = { 0, 1, 2 };
     int twosided, front = 0;
     int64_t area2 = 0;
-#if TG_FIXED
+#if TG_FIXED && !TG_NO_WIDE_CLIP
     const int wide = tri_saturated(tv->v);        /* its flags and snaps are not to be trusted */
     if (!wide && (tv->flags & V_OFF_SIDE)) return;
 #else
@@ -1314,7 +1315,7 @@ static void gbuffer_triangle(raster_target *rt, const view_frame *vf, tri_vertic
     rt->flip_back = twosided;
     rt->object = mesh->tri_object ? mesh->tri_object[t] : 0;
     rt->tri_nrm = mesh->nrm + 3 * t;
-#if TG_FIXED
+#if TG_FIXED && !TG_NO_WIDE_CLIP
     if (wide) {
         gbuffer_wide_triangle(rt, vf, mesh->pos + 3 * t, rt->tri_nrm);
         return;
