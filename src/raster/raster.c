@@ -1063,8 +1063,9 @@ static inline view_vertex view_vertex_make(const raster_target *rt, const view_f
  * clip_polygon clips (near, far, then the guard band; the screen's planes
  * when 8 zfar would not fit), from its world vertices: what is left lies
  * within the band and the depth range, so it fits tg_real again and is
- * drawn as any clipped polygon.  Only such triangles take this path: every other keeps
- * its bits. (tests/test_raster.c far_ground_plane_in_fixed_point) */
+ * drawn as any clipped polygon.  Only such triangles take
+ * this path: every other keeps its bits (tests/test_raster.c
+ * far_ground_plane_in_fixed_point). */
 typedef struct wide_vertex {
     int64_t x, y, w;              /* Q16.16 in 64 bits; z = w (G-buffer mode) */
     tg_vec3 n;
@@ -1084,12 +1085,22 @@ static int tri_saturated(const clip_vertex *v)
     return 0;
 }
 
-/* (a . b) for a = p - eye exact in 64 bits (|a_i| < 2^32 raw) and a unit
- * axis times a focal length (|b_i| < 2^31): each product below 2^63 / 4 */
+/* (a . b) for a = p - eye exact in 64 bits (|a_i| < 2^32 raw: scene
+ * coordinates within +-32767) and a unit axis times a focal length (|b_i|
+ * < 2^31): each product is below 2^63, a quarter of it below 2^61, so the
+ * three quarters sum without overflow; below 2^48.6 in all. */
 static int64_t wide_dot(const int64_t *a, tg_vec3 b)
 {
-    return tgi_shr_round(a[0] * b.x + a[1] * b.y + a[2] * b.z, TG_FRAC_BITS);
+    return tgi_shr_round((a[0] * b.x >> 2) + (a[1] * b.y >> 2) + (a[2] * b.z >> 2), TG_FRAC_BITS - 2);
 }
+
+/* The bound under which the clipping below cannot overflow: coordinates
+ * below 2^46 raw (2^30 units) keep every difference below 2^47 and every
+ * plane distance below 2^50.  Past it (a focal length over 2^14, a field of
+ * view under 0.01 degrees, on geometry 30000 units away) the triangle is
+ * not drawn. */
+#define WIDE_CLIP_MAX ((int64_t)1 << 46)
+static int wide_in_range(int64_t v) { return v < WIDE_CLIP_MAX && v > -WIDE_CLIP_MAX; }
 
 static int64_t wide_plane_distance(const clip_ctx *c, const wide_vertex *v, int p, int64_t g)
 {
@@ -1115,7 +1126,7 @@ static void wide_snap_to_plane(const clip_ctx *c, wide_vertex *v, int p, int64_t
     }
 }
 
-/* a + (b - a) t for t = t31 2^-31 in [0, 1], |b - a| < 2^48: in two
+/* a + (b - a) t for t = t31 2^-31 in [0, 1], |b - a| < 2^47: in two
  * products below 2^62 (the high and the low 16 bits of b - a), within a
  * unit of the exact value.  The fraction needs the 31 bits: an edge from
  * behind the eye to 20000 units ahead is 2^46 raw long, and a Q16.16 t
@@ -1126,7 +1137,7 @@ static int64_t wide_lerp(int64_t a, int64_t b, int64_t t31)
     return a + tgi_shr_round(hi * t31, 15) + tgi_shr_round(lo * t31, 31);
 }
 
-/* din / (din - dout) as t31, din >= 0 > dout (below 2^49 each): both
+/* din / (din - dout) as t31, din >= 0 > dout (below 2^50 each): both
  * shifted until the divisor is below 2^31, then (din << 31) / divisor
  * rounded, at most 2^31 */
 static int64_t wide_fraction(int64_t din, int64_t dout)
@@ -1153,6 +1164,7 @@ static void gbuffer_wide_triangle(const raster_target *rt, const view_frame *vf,
         a[k].y = wide_dot(d, vf->ry);
         a[k].w = wide_dot(d, vf->rz);
         a[k].n = nrm ? nrm[k] : tg_v3(0, 0, 0);
+        if (!wide_in_range(a[k].x) || !wide_in_range(a[k].y) || !wide_in_range(a[k].w)) return;
     }
     for (o = 0; o < PL_COUNT && n > 0; o++) {
         int i, m = 0, p = order[o];
