@@ -43,11 +43,12 @@ static inline int tgi_motion_prev_position_inline(const tgi_view *cur, const tgi
     if (pv.z <= TG_R(0.0001f)) return 0;
 #if !TG_FIXED
     /* a world near float's range (coordinates of 1e38): eye + ray overflows
-     * to inf and inf - inf is NaN: no previous position (the motion AOV
-     * was NaN there; test_motion.c motion_finite_near_float_range) */
-    if (!(pv.z == pv.z)) return 0;
+     * to inf and inf - inf is NaN, or the projection overflows: no previous
+     * position (the motion AOV was NaN there; test_hardcases.c
+     * world_near_float_range).  v - v is 0 for every finite v, NaN for the
+     * infinities and NaN: one subtraction and compare a coordinate. */
     tgi_view_project_inline(prev, pv, px, py);
-    return tg_isfinite(*px) && tg_isfinite(*py);
+    return *px - *px == 0.0f && *py - *py == 0.0f;
 #else
     tgi_view_project_inline(prev, pv, px, py);
     return 1;
