@@ -1016,7 +1016,11 @@ static int target_rows(raster_target *rt, int width, int height, int y0, int y1)
  * V_INSIDE when inside the guard band and the depth range (no clipping
  * needed; sx, sy are then its 28.4 screen position), V_RIGHT.. when beyond
  * that screen side. */
-enum { V_INSIDE = 1, V_RIGHT = 2, V_LEFT = 4, V_TOP = 8, V_BOTTOM = 16 };
+/* V_NARROW (Q16.16 with the wide clipper): the vertex's clip coordinates
+ * are within TGI_CLIP_SAFE; a vertex past it has no flag at all (its
+ * saturated coordinates say nothing), so a triangle with one is neither
+ * inside nor off a side, and tri_wide sends it to gbuffer_wide_triangle. */
+enum { V_INSIDE = 1, V_RIGHT = 2, V_LEFT = 4, V_TOP = 8, V_BOTTOM = 16, V_NARROW = 32 };
 #define V_OFF_SIDE (V_RIGHT | V_LEFT | V_TOP | V_BOTTOM)
 
 typedef struct view_vertex {
@@ -1030,6 +1034,15 @@ typedef struct view_frame {
     tg_vec3 eye, rx, ry, rz;      /* clip x = (p - eye) . rx, y = . ry, w = . rz */
     tg_real znear, zfar;
 } view_frame;
+
+#if TG_FIXED && !TG_NO_WIDE_CLIP
+/* Whether a clip coordinate is past TGI_CLIP_SAFE (2048 units, 2^27 raw):
+ * within it, the clipper's differences of two coordinates (< 2^28) and
+ * guard-band products 8 w (< 2^30) fit tg_real, and clip_polygon is exact;
+ * past it they saturate (a saturated coordinate too: 32767). */
+#define TGI_CLIP_SAFE ((int32_t)1 << 27)
+static inline int past_clip_safe(tg_real c) { return (uint32_t)c + TGI_CLIP_SAFE > 2u * TGI_CLIP_SAFE; }
+#endif
 
 static inline view_vertex view_vertex_make(const raster_target *rt, const view_frame *vf, tg_vec3 p)
 {
@@ -1046,6 +1059,9 @@ static inline view_vertex view_vertex_make(const raster_target *rt, const view_f
     if (x < nw) o.flags |= V_LEFT;
     if (y > w) o.flags |= V_TOP;
     if (y < nw) o.flags |= V_BOTTOM;
+#if TG_FIXED && !TG_NO_WIDE_CLIP
+    o.flags = past_clip_safe(x) || past_clip_safe(y) || past_clip_safe(w) ? 0 : o.flags | V_NARROW;
+#endif
     o.sx = rt->half_w16 + snap_ndc(x, w, o.iw, rt->half_w16);
     o.sy = rt->half_h16 - snap_ndc(y, w, o.iw, rt->half_h16);
     return o;
@@ -1059,31 +1075,17 @@ static inline view_vertex view_vertex_make(const raster_target *rt, const view_f
  * differences and guard-band products 8 w leave it sooner: a ground plane
  * of +-20000 seen at 60 degrees, or of +-3000 at 5, clipped to nothing,
  * and the plane vanished.  Such a triangle (a coordinate past
- * TGI_CLIP_SAFE: tri_saturated) is clipped here in 64 bits, as
+ * TGI_CLIP_SAFE) is clipped here in 64 bits, as
  * clip_polygon clips (near, far, then the guard band; the screen's planes
  * when 8 zfar would not fit), from its world vertices: what is left lies
  * within the band and the depth range, so it fits tg_real again and is
- * drawn as any clipped polygon.  Only such triangles take
- * this path: every other keeps its bits (tests/test_raster.c
- * far_ground_plane_in_fixed_point). */
+ * drawn as any clipped polygon.  Only such triangles (a vertex without
+ * V_NARROW: tri_wide) take this path: every other keeps its bits
+ * (tests/test_raster.c far_ground_plane_in_fixed_point). */
 typedef struct wide_vertex {
     int64_t x, y, w;              /* Q16.16 in 64 bits; z = w (G-buffer mode) */
     tg_vec3 n;
 } wide_vertex;
-
-/* Whether a clip coordinate of v is past TGI_CLIP_SAFE (2048 units, 2^27
- * raw): within it, the clipper's differences of two coordinates (< 2^28)
- * and guard-band products 8 w (< 2^30) fit tg_real, and clip_polygon is
- * exact; past it they saturate (a saturated vertex too: 32767). */
-#define TGI_CLIP_SAFE ((int32_t)1 << 27)
-static int tri_saturated(const clip_vertex *v)
-{
-    int k;
-    for (k = 0; k < 3; k++)
-        if ((uint32_t)v[k].x + TGI_CLIP_SAFE > 2u * TGI_CLIP_SAFE || (uint32_t)v[k].y + TGI_CLIP_SAFE > 2u * TGI_CLIP_SAFE
-            || (uint32_t)v[k].w + TGI_CLIP_SAFE > 2u * TGI_CLIP_SAFE) return 1;
-    return 0;
-}
 
 /* (a . b) for a = p - eye exact in 64 bits (|a_i| < 2^32 raw: scene
  * coordinates within +-32767) and a unit axis times a focal length (|b_i|
@@ -1195,9 +1197,6 @@ static void gbuffer_wide_triangle(const raster_target *rt, const view_frame *vf,
     }
     if (n >= 3) draw_polygon(rt, poly, n);
 }
-#else
-/* float: none; TG_NO_WIDE_CLIP: left out (tinygi.h) */
-static inline int tri_saturated(const clip_vertex *v) { (void)v; return 0; }
 #endif
 
 /* Neighbouring triangles of a mesh share vertices (a triangle strip reuses
@@ -1240,6 +1239,13 @@ typedef struct tri_vertices {
     int flags;                    /* V_* of all three: V_INSIDE if all are inside, V_RIGHT.. if all are beyond */
 } tri_vertices;
 
+/* Whether a vertex of tv is past Q16.16's clip range (V_NARROW missing):
+ * the triangle is drawn by gbuffer_wide_triangle.  Never in float, nor
+ * with TG_NO_WIDE_CLIP. */
+#if TG_FIXED && !TG_NO_WIDE_CLIP
+static inline int tri_wide(const tri_vertices *tv) { return !(tv->flags & V_NARROW); }
+#endif
+
 /* Vertex k of tv: the view_vertex of p, from the cache or made there. */
 static inline void vertex_fetch(vertex_cache *c, const raster_target *rt, const view_frame *vf, tg_vec3 p,
                                 tri_vertices *tv, int k)
@@ -1280,7 +1286,7 @@ static void back_triangle(raster_target *rt, const view_frame *vf, const tg_vec3
 {
     static const int order_front[3] = { 0, 2, 1 }, order_back[3] = { 0, 1, 2 };
 #if TG_FIXED && !TG_NO_WIDE_CLIP
-    if (tri_saturated(tv->v)) {                   /* as gbuffer_triangle */
+    if (tri_wide(tv)) {                           /* as gbuffer_triangle */
         rt->back_layer = 1;
         gbuffer_wide_triangle(rt, vf, pos, NULL);
         rt->back_layer = 0;
@@ -1309,13 +1315,10 @@ static void gbuffer_triangle(raster_target *rt, const view_frame *vf, tri_vertic
     static const int order_front[3] = { 0, 2, 1 }, order_back[3] = { 0, 1, 2 };
     int twosided, front = 0;
     int64_t area2 = 0;
-#if TG_FIXED && !TG_NO_WIDE_CLIP
-    const int wide = tri_saturated(tv->v);        /* its flags and snaps are not to be trusted */
-    if (!wide && (tv->flags & V_OFF_SIDE)) return;
-#else
+#if !TG_FIXED || TG_NO_WIDE_CLIP
     (void)vf;
-    if (tv->flags & V_OFF_SIDE) return;           /* wholly off one side of the screen */
 #endif
+    if (tv->flags & V_OFF_SIDE) return;           /* wholly off one side of the screen */
     twosided = mesh->materials[mesh->tri_material[t]].twosided;
     if (tv->flags & V_INSIDE) {
         area2 = signed_area2(tv->sx, tv->sy);
@@ -1328,7 +1331,7 @@ static void gbuffer_triangle(raster_target *rt, const view_frame *vf, tri_vertic
     rt->object = mesh->tri_object ? mesh->tri_object[t] : 0;
     rt->tri_nrm = mesh->nrm + 3 * t;
 #if TG_FIXED && !TG_NO_WIDE_CLIP
-    if (wide) {
+    if (tri_wide(tv)) {
         gbuffer_wide_triangle(rt, vf, mesh->pos + 3 * t, rt->tri_nrm);
         return;
     }
@@ -1354,7 +1357,7 @@ static void further_layer(raster_target *rt, vertex_cache *cache, const view_fra
         tri_vertices tv;
         int64_t area2;
         triangle_fetch(cache, rt, vf, mesh, t, &tv);
-        if ((tv.flags & V_OFF_SIDE) && !(TG_FIXED && tri_saturated(tv.v))) continue;
+        if (tv.flags & V_OFF_SIDE) continue;
         rt->cull_back = cull && !mesh->materials[mesh->tri_material[t]].twosided;
         area2 = tv.flags & V_INSIDE ? signed_area2(tv.sx, tv.sy) : 0;
         back_triangle(rt, vf, mesh->pos + 3 * t, &tv, area2 < 0, area2);
