@@ -172,8 +172,10 @@ check_binary() {
         render builtin:cornell --threads $((MAX_THREADS + 1))
     refused "$tag/opt_depth_layers" "${U}option --depth-layers: must be 1\\.\\.3, got 4\$" \
         render builtin:cornell --technique ssilvb --depth-layers 4
-    refused "$tag/opt_depth_layers_unread" "error: depth_layers must be 0\\.\\.1 for technique gtao .*got 2\$" \
+    refused "$tag/opt_depth_layers_unread" "${U}option --depth-layers: must be 1 for technique gtao .*got 2\$" \
         render builtin:cornell --technique gtao --depth-layers 2
+    refused "$tag/opt_depth_layers_unread_any_order" "${U}option --depth-layers: must be 1 for technique ssao .*got 3\$" \
+        render builtin:cornell --depth-layers 3 --technique ssao
     refused "$tag/opt_unknown" "${U}unknown option '--sparkle'" render builtin:cornell --sparkle
     ONCE=1 refused "$tag/opt_missing_value" "${U}option --frames: missing value" render builtin:cornell --frames
     ONCE=1 refused "$tag/opt_extension" "${U}option -o: expected a file name ending in .ppm, .png or .pfm" render builtin:cornell -o "$O/out.jpg"

@@ -519,6 +519,13 @@ static int parse_render_args(int argc, char **argv, render_opts *o)
         usage_error("%s: missing SCENE (a scene file or builtin:NAME)", argv[1]);
         return 1;
     }
+    /* the API refuses it too (request.c), naming the request's field */
+    if (o->depth_layers > 1 && o->technique >= 0 && o->technique != TG_TECH_HBIL && o->technique != TG_TECH_SSILVB) {
+        usage_error("option --depth-layers: must be 1 for technique %s (further layers are read by "
+                    "techniques hbil and ssilvb), got %ld", tg_technique_name((tg_technique)o->technique),
+                    o->depth_layers);
+        return 1;
+    }
     return 0;
 }
 
