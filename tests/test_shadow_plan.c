@@ -3,7 +3,9 @@
  * test_shadow_plan.c - the plan's shadows: each face's size is the size
  * rule's and the plan carves exactly those bytes (absent faces none);
  * --shadow-size still forces every face the view needs; the plan's choice
- * between maps and shadow rays; rays against maps at a fine size; and no
+ * between maps and shadow rays (rays where one map is too coarse: a box on
+ * a far-reaching ground plane, its shadow checked against the geometry);
+ * rays against maps at a fine size; and no
  * pixel of cornell's ceiling round the lamp (facing the light, nothing
  * between) left without direct light at 40x30, 160x120 or 320x240.
  */
@@ -160,7 +162,8 @@ TEST(culled_faces_take_no_memory)
 }
 
 /* The plan's choice: tgi_shadow_choose on the rule's bytes, the BVH's
- * bytes and the scene (README "Shadows"), as --explain reports it; rays
+ * bytes and the scene, then rays where one map is too coarse and the BVH
+ * smaller (tgi_shadow_map_coarse; README "Shadows"), as --explain reports it; rays
  * carve the BVH and no map, forced either way. */
 TEST(plan_chooses_as_the_rule_says)
 {
@@ -182,6 +185,15 @@ TEST(plan_chooses_as_the_rule_says)
                 want = m == TG_SHADOWS_MAPS ? TG_SHADOW_BY_MAP : m == TG_SHADOWS_RAYS ? TG_SHADOW_BY_RAYS
                      : tgi_shadow_choose(tgi_shadow_need_bytes(&nd), tgi_bvh_bytes(r.scene->tri_count),
                                          (size_t)sizes[b][0] * (size_t)sizes[b][1]);
+                if (m == TG_SHADOWS_AUTO && want == TG_SHADOW_BY_MAP
+                    && tgi_bvh_bytes(r.scene->tri_count) < tgi_shadow_need_bytes(&nd)) {   /* one map too coarse */
+                    const tgi_scene_camera *c = &r.scene->camera;
+                    tgi_view v;
+                    tgi_view_make(&v, c->pos, c->target, c->up, c->fov, c->znear, c->zfar, sizes[b][0], sizes[b][1]);
+                    if (tgi_shadow_map_coarse(&nd, &r.scene->lights[0], &v, r.scene->bounds_min, r.scene->bounds_max,
+                                              r.scene->tri_pos, r.scene->tri_count))
+                        want = TG_SHADOW_BY_RAYS;
+                }
                 CHECK((r.frame->shadow_maps[0].ray != NULL) == (want == TG_SHADOW_BY_RAYS), "%s %dx%d %s: rays %d, want %d",
                       scenes[a], sizes[b][0], sizes[b][1], method_names[m], r.frame->shadow_maps[0].ray != NULL, want);
                 CHECK((buffer_bytes(&r.plan, "shadow rays: BVH") == round16(tgi_bvh_bytes(r.scene->tri_count))) ==
@@ -281,6 +293,106 @@ static int check_ceiling(int w, int h, int method, int pcf, const char *what)
     return count;
 }
 
+/* A 2-unit box on a ground plane of half side `half` under a directional
+ * light (README "Shadows": where one map is not enough). */
+static const char *box_on_ground(int half, char *text, size_t size)
+{
+    snprintf(text, size,
+             "camera pos 0 3 8  target 0 0.5 0\n"
+             "material base albedo 0.5 0.5 0.5\n"
+             "material red albedo 0.8 0.2 0.2\n"
+             "quad p0 -%d 0 -%d p1 -%d 0 %d p2 %d 0 %d p3 %d 0 -%d material base\n"
+             "box min -1 0 -1 max 1 2 1 material red\n"
+             "light directional dir -0.3 -1 -0.2 color 1 1 1 intensity 3 shadows\n"
+             "env uniform 0.1 0.1 0.1\n",
+             half, half, half, half, half, half, half, half);
+    return text;
+}
+
+/* Whether the ray from (x, 0, z) toward the light (-dir) meets the box
+ * [-1, 1] x [0, 2] x [-1, 1] (slabs). */
+static int in_box_shadow(double x, double z)
+{
+    const double o[3] = { x, 0, z }, d[3] = { 0.3, 1, 0.2 }, lo[3] = { -1, 0, -1 }, hi[3] = { 1, 2, 1 };
+    double t0 = 0, t1 = 1e9;
+    int k;
+    for (k = 0; k < 3; k++) {
+        double a = (lo[k] - o[k]) / d[k], b = (hi[k] - o[k]) / d[k];
+        if (a > b) { double c = a; a = b; b = c; }
+        if (a > t0) t0 = a;
+        if (b < t1) t1 = b;
+    }
+    return t0 <= t1;
+}
+
+/* One map for a ground plane that runs far past the box spends its texels
+ * on the distant floor: the auto choice takes shadow rays there
+ * (tgi_shadow_map_coarse), and the box's shadow on the floor is where the
+ * geometry puts it: every floor pixel whose footprint (0.1 about it) lies
+ * wholly in the shadow gets under a tenth of the lit floor's direct light,
+ * every one wholly outside over nine tenths.  With one map (the choice
+ * before) the +-200 plane's shadow was blotchy and partly missing (PSNR
+ * 35 dB against rays).  A +-5 plane keeps its map (not coarse). */
+TEST(one_map_too_coarse_takes_rays)
+{
+    static const int halves[2] = { 5, 200 };
+    char text[1024];
+    int k;
+    for (k = 0; k < 2; k++) {
+        const int w = 160, h = 120;
+        rendered r, maps;
+        tg_request q = request(w, h, AOVBIT(TG_AOV_DIRECT) | AOVBIT(TG_AOV_DEPTH) | AOVBIT(TG_AOV_NORMAL));
+        const tgi_scene_camera *c;
+        tgi_shadow_need nd;
+        tgi_view v;
+        double *e, *depth, *normal, lit = 0;
+        int x, y, j, shadowed = 0, open = 0, bad = 0, coarse;
+        box_on_ground(halves[k], text, sizeof text);
+        if (!set_up_maps(&maps, text, q)) continue;
+        c = &maps.scene->camera;
+        tgi_view_make(&v, c->pos, c->target, c->up, c->fov, c->znear, c->zfar, w, h);
+        plan_need(maps.scene, 0, w, h, 0, &nd);
+        coarse = tgi_shadow_map_coarse(&nd, &maps.scene->lights[0], &v, maps.scene->bounds_min, maps.scene->bounds_max,
+                                       maps.scene->tri_pos, maps.scene->tri_count);
+        CHECK(coarse == (halves[k] == 200), "+-%d plane: one map coarse %d", halves[k], coarse);
+        teardown(&maps);
+        if (!setup_checked(&r, text, &q, "box on the ground") || tg_frame_render(r.frame, 0, NULL) != TG_OK) {
+            CHECK(0, "%s", r.msg);
+            continue;
+        }
+        CHECK((r.frame->shadow_maps[0].ray != NULL) == (halves[k] == 200), "+-%d plane: rays %d", halves[k],
+              r.frame->shadow_maps[0].ray != NULL);
+        e = read_aov(&r, TG_AOV_DIRECT);
+        depth = read_aov(&r, TG_AOV_DEPTH);
+        normal = read_aov(&r, TG_AOV_NORMAL);
+        for (j = 0; j < w * h; j++)
+            if (depth[j] > 0 && normal[3 * j + 1] > 0.99 && e[3 * j] > lit) lit = e[3 * j];
+        for (y = 0; y < h; y++)
+            for (x = 0; x < w; x++) {
+                size_t i = (size_t)y * (size_t)w + (size_t)x;
+                double ppu = check_d(v.pixels_per_unit), ky = (h / 2.0 - (y + 0.5)) / ppu, kx = (x + 0.5 - w / 2.0) / ppu;
+                double p[3];
+                int all_in, any_in;
+                if (depth[i] <= 0 || normal[3 * i + 1] < 0.99) continue;   /* sky, or not the floor */
+                for (j = 0; j < 3; j++)
+                    p[j] = check_d((&v.eye.x)[j]) +
+                           (check_d((&v.forward.x)[j]) + ky * check_d((&v.up.x)[j]) + kx * check_d((&v.right.x)[j])) * depth[i];
+                if (fabs(p[1]) > 0.01) continue;                             /* the box's top */
+                all_in = in_box_shadow(p[0] - 0.1, p[2] - 0.1) && in_box_shadow(p[0] + 0.1, p[2] - 0.1) &&
+                         in_box_shadow(p[0] - 0.1, p[2] + 0.1) && in_box_shadow(p[0] + 0.1, p[2] + 0.1);
+                any_in = in_box_shadow(p[0] - 0.1, p[2] - 0.1) || in_box_shadow(p[0] + 0.1, p[2] - 0.1) ||
+                         in_box_shadow(p[0] - 0.1, p[2] + 0.1) || in_box_shadow(p[0] + 0.1, p[2] + 0.1);
+                if (all_in) shadowed++, bad += e[3 * i] >= 0.1 * lit;
+                else if (!any_in) open++, bad += e[3 * i] <= 0.9 * lit;
+            }
+        CHECK(lit > 0 && shadowed >= 20 && open >= 1000, "+-%d plane: %d pixels in the shadow, %d outside", halves[k],
+              shadowed, open);
+        CHECK(bad == 0, "+-%d plane: %d floor pixels lit against the geometry", halves[k], bad);
+        free(e); free(depth); free(normal);
+        teardown(&r);
+    }
+}
+
 TEST(ceiling_round_the_lamp_is_lit)
 {
     static const int sizes[][2] = { { 40, 30 }, { 160, 120 }, { 320, 240 } };
@@ -363,6 +475,7 @@ int main(void)
     RUN(default_maps_fit_in_eight_bytes_a_pixel);
     RUN(culled_faces_take_no_memory);
     RUN(plan_chooses_as_the_rule_says);
+    RUN(one_map_too_coarse_takes_rays);
     RUN(ceiling_round_the_lamp_is_lit);
     RUN(rays_match_fine_maps);
     RUN(unknown_views_need_every_face);

@@ -387,6 +387,104 @@ void tgi_shadow_map_size_rule(tgi_shadow_need *nd, const tgi_light *l, const tgi
     }
 }
 
+/* ---- where one map is too coarse ---- */
+
+/* The rule's density is an average over the receivers, and one map has
+ * one: receivers that span depths far apart (a ground plane running from
+ * the objects out to the horizon) get it where the near ones need many
+ * times more.  A receiver is served coarsely where a texel of the map
+ * spans more than TG_SHADOW_COARSE x TG_SHADOW_COARSE of its pixels. */
+
+/* Texels per unit of face f's light plane (the rule's units: need_merge's
+ * inverse) that the finished need's map has: its size less the border
+ * across the window (or the whole face). */
+static tg_real map_density(const tgi_shadow_need *nd, int f, const light_face *lf)
+{
+    const tg_real *w = nd->window[f];
+    tg_real side = nd->window_set[f] ? tg_max(tg_sub(w[2], w[0]), tg_sub(w[3], w[1])) : nd->whole_side[f];
+    tg_real d;
+    if (!(side > 0) || nd->size[f] <= 2 * TG_SHADOW_BORDER) return 0;
+    d = tg_div(tg_from_int(nd->size[f] - 2 * TG_SHADOW_BORDER), side);
+    return lf->perspective ? d : tg_div(d, lf->scale);   /* directional: per world unit -> per light-plane unit */
+}
+
+/* The triangle t cut to the frustum, the face's pyramid and (nslab 0 or
+ * 2) the slab's half-spaces, into p; returns its vertices. */
+static int receiver_piece(tg_vec3 *p, const tg_vec3 *pos, int t, const hexa *cam, const light_face *lf,
+                          const halfspace *slab, int nslab)
+{
+    int n;
+    memcpy(p, pos + 3 * (size_t)t, 3 * sizeof *p);
+    n = clip(p, 3, cam->h, 6, CLIP_SLACK);
+    if (n > 0 && lf->perspective) n = clip(p, n, lf->pyramid.h, 6, CLIP_SLACK);
+    return n > 0 && nslab > 0 ? clip(p, n, slab, nslab, 0) : n;
+}
+
+/* The image areas (NDC units^2) of the receivers the rule measures on face
+ * f (triangle_areas': lit and seen, cut to the frustum and the face's
+ * pyramid) and of those served coarsely by a map of `density`: each piece
+ * cut into the view's depth slabs [znear 2^k, znear 2^(k+1)), within which
+ * a pixel's footprint varies by at most 2, and each slab's own density
+ * (rule_density) compared with the map's.  p: room for a polygon. */
+static void coarse_areas(const light_face *lf, const tgi_light *l, const tgi_view *v, const hexa *cam,
+                         const tg_vec3 *pos, int tri_count, tg_real density, tg_real *all, tg_real *coarse,
+                         tg_vec3 *p)
+{
+    const int stride = tri_count / TG_SHADOW_RULE_TRIANGLES + 1;
+    const tg_real eye_z = tgi_v3_dot(v->eye, v->forward);
+    const tg_real limit = tg_mul(density, tg_from_int(TG_SHADOW_COARSE));
+    int t, i, n;
+    for (t = 0; t < tri_count; t += stride) {
+        tg_real zmin = TG_REAL_MAX, zmax = 0, zlo;
+        if (!lit_and_seen(l, v, pos + 3 * (size_t)t)) continue;
+        n = receiver_piece(p, pos, t, cam, lf, NULL, 0);
+        for (i = 0; i < n; i++) {
+            tg_real z = tg_sub(tgi_v3_dot(p[i], v->forward), eye_z);
+            zmin = tg_min(zmin, z);
+            zmax = tg_max(zmax, z);
+        }
+        for (zlo = tg_max(v->znear, TG_R(0.001f)); n > 0 && zlo < zmax; zlo = tg_ldexp(zlo, 1)) {
+            const tg_real zhi = tg_ldexp(zlo, 1);
+            halfspace slab[2];
+            region rg;
+            int m = n;
+            if (zhi <= zmin) continue;
+            if (zlo > zmin || zhi < zmax) {   /* the piece spans slabs: cut anew for this one */
+                slab[0].n = v->forward; slab[0].d = tg_neg(tg_add(eye_z, zlo));                 /* z >= zlo */
+                slab[1].n = tgi_v3_neg(v->forward); slab[1].d = tg_add(eye_z, zhi);              /* z <= zhi */
+                m = receiver_piece(p, pos, t, cam, lf, slab, 2);
+            }
+            if (m < 3) continue;
+            memset(&rg, 0, sizeof rg);
+            areas(v, lf, p, m, &rg.cam, &rg.light);
+            *all = tg_add(*all, rg.cam);
+            /* no area on the light plane (grazing light, or below the number type's step): no density serves it */
+            if (!(rg.light > 0) || rule_density(&rg, v) > limit) *coarse = tg_add(*coarse, rg.cam);
+        }
+    }
+}
+
+int tgi_shadow_map_coarse(const tgi_shadow_need *nd, const tgi_light *l, const tgi_view *view,
+                          tg_vec3 lo, tg_vec3 hi, const tg_vec3 *tri_pos, int tri_count)
+{
+    light_face lf;
+    hexa cam;
+    tg_vec3 p[POLY_MAX];
+    tg_real margin = tg_add(tg_ldexp(tgi_v3_length(tgi_v3_sub(hi, lo)), -12), 64 * TG_EPS);
+    int f;
+    if (!tri_pos || tri_count <= 0 || !camera_hexa(&cam, view, lo, hi, margin)) return 0;
+    for (f = 0; f < nd->faces; f++) {
+        tg_real all = 0, coarse = 0, density;
+        if (nd->size[f] == 0) continue;
+        light_face_make(&lf, l, f, lo, hi, margin);
+        density = map_density(nd, f, &lf);
+        if (!(density > 0)) continue;
+        coarse_areas(&lf, l, view, &cam, tri_pos, tri_count, density, &all, &coarse, p);
+        if (tg_mul(coarse, tg_from_int(TG_SHADOW_COARSE_SHARE)) > all) return 1;
+    }
+    return 0;
+}
+
 size_t tgi_shadow_map_bytes_for_view(const tgi_light *l, const tgi_view *view, tg_vec3 lo, tg_vec3 hi,
                                      const tg_vec3 *tri_pos, int tri_count, int size_override)
 {
@@ -487,7 +585,7 @@ int tgi_shadow_plan(const tg_scene *s, const tg_request *r, int light, size_t bv
                     tgi_shadow_need *nd, tg_vec3 *lo, tg_vec3 *hi)
 {
     const tgi_light *l = &s->lights[light];
-    int views = s->camera_key_count > 0 ? r->frames : 1, k, n;
+    int views = s->camera_key_count > 0 ? r->frames : 1, k, n, by;
     tgi_view v;
     tgi_shadow_animation_bounds(s, r->frames, lo, hi);
     tgi_shadow_need_init(nd, l);
@@ -502,7 +600,13 @@ int tgi_shadow_plan(const tg_scene *s, const tg_request *r, int light, size_t bv
     tgi_shadow_need_finish(nd, r->shadow_map_size);
     if (r->shadow_map_size <= 0) spend_the_budget(nd, (size_t)r->width * (size_t)r->height);
     if (r->shadow_method == TG_SHADOWS_MAPS || r->shadow_map_size > 0) return TG_SHADOW_BY_MAP;
-    return tgi_shadow_choose(tgi_shadow_need_bytes(nd), bvh_bytes, (size_t)r->width * (size_t)r->height);
+    by = tgi_shadow_choose(tgi_shadow_need_bytes(nd), bvh_bytes, (size_t)r->width * (size_t)r->height);
+    if (by == TG_SHADOW_BY_MAP && bvh_bytes < tgi_shadow_need_bytes(nd) && views_known(s, r))
+        for (k = 0; k < n && by == TG_SHADOW_BY_MAP; k++) {   /* one map too coarse for what a view sees */
+            frame_view(&v, s, r, n == views ? k : (int)((long)k * (views - 1) / (n > 1 ? n - 1 : 1)));
+            if (tgi_shadow_map_coarse(nd, l, &v, *lo, *hi, s->tri_pos, s->tri_count)) by = TG_SHADOW_BY_RAYS;
+        }
+    return by;
 }
 
 /* "  light I (TYPE): ..." for the plan's explanation. */
@@ -520,7 +624,17 @@ static void put_light(tgi_text *t, const tg_scene *s, const tg_request *r, int i
     if (by == TG_SHADOW_BY_RAYS) {
         tgi_text_put(t, "): shadow rays against the BVH of ");
         tgi_text_put_uint(t, (size_t)s->tri_count);
-        tgi_text_put(t, " triangles\n");
+        tgi_text_put(t, " triangles");
+        if (r->shadow_method == TG_SHADOWS_AUTO &&
+            tgi_shadow_choose(tgi_shadow_need_bytes(&nd), bvh, (size_t)r->width * (size_t)r->height) == TG_SHADOW_BY_MAP)
+        {   /* tgi_shadow_map_coarse's reason */
+            tgi_text_put(t, " (one map would give over 1/");
+            tgi_text_put_uint(t, TG_SHADOW_COARSE_SHARE);
+            tgi_text_put(t, " of the receivers seen a texel for more than ");
+            tgi_text_put_uint(t, TG_SHADOW_COARSE * TG_SHADOW_COARSE);
+            tgi_text_put(t, " pixels)");
+        }
+        tgi_text_put(t, "\n");
         return;
     }
     tgi_text_put(t, "): 16-bit map, texels per side");

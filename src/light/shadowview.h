@@ -80,6 +80,22 @@ enum { TG_SHADOW_BY_MAP = 0, TG_SHADOW_BY_RAYS = 1 };
  * from tgi_shadow_need_bytes, bvh_bytes from tgi_bvh_bytes(triangles). */
 int tgi_shadow_choose(size_t map_bytes, size_t bvh_bytes, size_t pixels);
 
+/* A map serves a receiver coarsely where one of its texels spans more
+ * than TG_SHADOW_COARSE x TG_SHADOW_COARSE image pixels of it; when more
+ * than 1 / TG_SHADOW_COARSE_SHARE of the receivers' image area is served
+ * so (a ground plane far past the objects under one map: README
+ * "Shadows"), the plan's auto choice takes shadow rays instead, if the BVH
+ * is the smaller. */
+#define TG_SHADOW_COARSE 4
+#define TG_SHADOW_COARSE_SHARE 4
+
+/* 1 when the finished need nd's maps serve the receivers view sees (the
+ * rule's: lit, seen, tri_pos[0 .. 3 tri_count)) coarsely on more than 1 /
+ * TG_SHADOW_COARSE_SHARE of their image area on some face, each measured
+ * in the view's depth slabs of ratio 2. */
+int tgi_shadow_map_coarse(const tgi_shadow_need *nd, const tgi_light *l, const tgi_view *view,
+                          tg_vec3 lo, tg_vec3 hi, const tg_vec3 *tri_pos, int tri_count);
+
 /* ---- the plan ---- */
 
 /* Views the plan gives the rule: every frame's camera up to this many;
