@@ -407,6 +407,39 @@ TEST(gather_radius_reaches_further_for_light)
             }
 }
 
+/* A scene across more than Q16.16's range (each coordinate within it): its
+ * diagonal, 56569 for +-20000 in x and z, no longer fits tg_real; the radius
+ * it gives (diagonal / 6 for light, / 30 for AO alone, with an env) is the
+ * same in both number types (Q16.16 gave 5461 and 1092, the saturated
+ * diagonal's), and so is a scene's across 60000 with no env, capped at
+ * TG_MAX_RADIUS. */
+TEST(gather_radius_of_a_scene_past_the_range)
+{
+    static const char *texts[2] = {
+        "camera pos 0 3 8 target 0 0 0\n"
+        "material m albedo 0.5 0.5 0.5\n"
+        "quad p0 -20000 0 -20000 p1 -20000 0 20000 p2 20000 0 20000 p3 20000 0 -20000 material m\n"
+        "env uniform 1 1 1\n",
+        "camera pos 0 3 8 target 0 0 0\n"
+        "material m albedo 0.5 0.5 0.5\n"
+        "quad p0 -30000 0 -1 p1 -30000 0 1 p2 30000 0 1 p3 30000 0 -1 material m\n" };
+    const double diagonal = sqrt(2.0) * 40000;
+    int t, o;
+    for (t = 0; t < 2; t++)
+        for (o = 0; o < 2; o++) {
+            rendered r;
+            tg_request q = small_request();
+            const int light = o == 1 && !TG_NO_COLOR;
+            const double want = t == 1 ? TG_MAX_RADIUS
+                              : diagonal / (light ? TG_RADIUS_LIGHT_DIVISOR : TG_RADIUS_ENV_DIVISOR);
+            q.aovs = light ? AOVBIT(TG_AOV_COLOR) : AOVBIT(TG_AOV_AO);
+            if (!setup_checked(&r, texts[t], &q, "a scene past the range")) continue;
+            CHECK(fabs(check_d(r.plan.request.radius) - want) < 1e-3 * want, "scene %d, %s: radius %g, want %g", t,
+                  light ? "light" : "AO", check_d(r.plan.request.radius), want);
+            teardown(&r);
+        }
+}
+
 /* The scene's gi values are held to the same limits (by the parser, or
  * else by the plan), with the same words. */
 TEST(scene_gi_values_have_the_same_limits)
@@ -477,6 +510,7 @@ int main(void)
     RUN(thickness_unset_follows_the_radius);
     RUN(depth_layers_are_planned_only_when_asked);
     RUN(gather_radius_reaches_further_for_light);
+    RUN(gather_radius_of_a_scene_past_the_range);
     RUN(refusal_names_the_field_and_the_value);
     RUN(scene_gi_values_have_the_same_limits);
     RUN(aov_rows_outside_the_image_are_refused);

@@ -166,10 +166,24 @@ int tgi_request_refused(const tg_request *r, tg_error *err)
 static tg_real scene_gather_radius(const tg_scene *s, const tg_request *r)
 {
     tg_real d = tgi_v3_length(tgi_v3_sub(s->bounds_max, s->bounds_min));
+    int halved = 0;
+#if TG_FIXED
+    if (d >= TG_REAL_MAX) {
+        /* the diagonal beyond Q16.16's range (a scene across more than
+         * 32767 units, each coordinate within it): the extent halved until
+         * each axis is within half the range, the radius doubled back
+         * after the division (it saturated: +-20000 with an env gave 5461
+         * against float's 9428; test_request gather_radius_of_a_scene_past_the_range) */
+        int64_t ex = (int64_t)s->bounds_max.x - s->bounds_min.x, ey = (int64_t)s->bounds_max.y - s->bounds_min.y;
+        int64_t ez = (int64_t)s->bounds_max.z - s->bounds_min.z;
+        while (ex > TG_REAL_MAX / 2 || ey > TG_REAL_MAX / 2 || ez > TG_REAL_MAX / 2) ex >>= 1, ey >>= 1, ez >>= 1, halved++;
+        d = tgi_v3_length(tg_v3((tg_real)ex, (tg_real)ey, (tg_real)ez));
+    }
+#endif
     if (d <= 0) return tg_from_int(TG_DEFAULT_RADIUS);
     if (s->env.type != TG_ENV_NONE)
         d = tg_div(d, tg_from_int(r->aovs & LIGHT_AOVS ? TG_RADIUS_LIGHT_DIVISOR : TG_RADIUS_ENV_DIVISOR));
-    return tg_min(d, tg_from_int(TG_MAX_RADIUS));
+    return tg_min(tg_ldexp(d, halved), tg_from_int(TG_MAX_RADIUS));
 }
 
 #if TGI_DEPTH_LAYERS
