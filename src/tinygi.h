@@ -453,14 +453,16 @@ size_t tg_parse_real(const char *s, size_t len, tg_real *out, int *overflow);
  *                         the AO and light differ, the horizons set by the
  *                         sub-images' samples alone (README "Flash size").
  *   TG_NO_WIDE_CLIP       Q16.16 only: the rasterizer's 64-bit clipper for
- *                         G-buffer triangles whose clip coordinates pass
- *                         2048 units (src/raster/raster.c,
- *                         gbuffer_wide_triangle; about 1.6 KB): nothing is
- *                         refused, but such a triangle (a ground plane of
- *                         +-20000, or +-3000 at a 5-degree fov) may be
- *                         lost; a scene that stays within 2048 units
- *                         (times the focal length, 1.3 at 60 degrees) of
- *                         the camera renders the same.
+ *                         G-buffer triangles that need clipping or whose
+ *                         clip coordinates pass 2048 units
+ *                         (src/raster/raster.c, gbuffer_wide_triangle;
+ *                         about 1.6 KB): nothing is refused, but such a
+ *                         far triangle (a ground plane of +-20000, or
+ *                         +-3000 at a 5-degree fov) may be lost, and a
+ *                         clipped one is clipped with a 16-bit fraction
+ *                         (a +-200 floor's depth up to 0.9% off); a scene
+ *                         whose triangles stay within the screen's guard
+ *                         band and the depth range renders the same.
  * README "Flash size" has the .text each configuration takes on a Cortex-M4
  * (`make size-table`).
  */

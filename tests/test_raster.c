@@ -544,6 +544,56 @@ TEST(far_ground_plane_in_fixed_point)
     }
 }
 
+/* A ground plane that runs far past the screen, clipped by the guard band
+ * and the near plane, seen from above at an angle: every floor pixel's
+ * depth is the ray's hit on the plane y = 0 within 2e-4 of it (the
+ * rounding of the view basis; and the slope across the pixel).  In Q16.16
+ * a +-200 floor came out 1.4e-3 deep (the clipper's 16-bit fraction on its
+ * 400-unit edges and the 32-bit view transform of its far vertices), enough
+ * to sink the floor under itself by more than the shadow rays' offset: a
+ * wedge of false shadow over a third of the image (PSNR 7.7 dB against
+ * float).  Clipped triangles are now drawn from 64 bits, as the far ones. */
+TEST(clipped_ground_plane_depth)
+{
+    static const double halves[3] = { 50, 200, 900 };
+    int f;
+    for (f = 0; f < 3; f++) {
+        enum { W = 80, H = 60 };
+        tgi_view v;
+        mesh *m = mesh_new();
+        gbuf g;
+        int i, j, floor_px = 0, bad = 0;
+        double worst = 0;
+        tgi_view_make(&v, V(1.684, 4, 6.316), V(0, 0, 0), V(0, 1, 0), R(60 * 3.14159265358979 / 180.0), R(0.05), R(1000),
+                      W, H);
+        floor_quad(m, halves[f]);
+        gbuf_draw(&g, &v, m);
+        for (j = 0; j < H; j++)
+            for (i = 0; i < W; i++) {
+                double dx, dy, dir_y, z, err, slope;
+                int k;
+                if (gsky(&g, j * W + i)) continue;
+                pixel_ray(&v, i, j, &dx, &dy);
+                dir_y = D(v.forward.y) + dx * D(v.right.y) + dy * D(v.up.y);
+                if (dir_y >= 0) continue;
+                z = -D(v.eye.y) / dir_y;
+                for (slope = 0, k = 0; k < 2; k++) {   /* the depth's change to the next pixel */
+                    double ex, ey, zn;
+                    pixel_ray(&v, i + (k == 0), j + (k == 1), &ex, &ey);
+                    zn = -D(v.eye.y) / (D(v.forward.y) + ex * D(v.right.y) + ey * D(v.up.y));
+                    if (zn > 0 && fabs(zn - z) > slope) slope = fabs(zn - z);
+                }
+                floor_px++;
+                err = fabs(gdepth(&g, j * W + i) - z);
+                if (err / z > worst) worst = err / z;
+                if (err > 2e-4 * z + 0.05 * slope + 4.0 / 65536) bad++;
+            }
+        CHECK(floor_px > W * H / 2, "+-%g: %d floor pixels", halves[f], floor_px);
+        CHECK(bad == 0, "+-%g: %d floor pixels off the plane's depth (worst rel %g)", halves[f], bad, worst);
+        drawn_free(&g, m);
+    }
+}
+
 TEST(gbuffer_tiling_ids)
 {
     enum { W = 80, H = 60, N = 12 };
@@ -1253,6 +1303,7 @@ int main(void)
     RUN(fill_rule_on_pixel_centres);
     RUN(fill_rule_matches_brute_force);
     RUN(far_ground_plane_in_fixed_point);
+    RUN(clipped_ground_plane_depth);
     RUN(gbuffer_tiling_ids);
     RUN(front_back_twosided);
     RUN(near_plane_clipping);

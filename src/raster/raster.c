@@ -1286,7 +1286,7 @@ static void back_triangle(raster_target *rt, const view_frame *vf, const tg_vec3
 {
     static const int order_front[3] = { 0, 2, 1 }, order_back[3] = { 0, 1, 2 };
 #if TG_FIXED && !TG_NO_WIDE_CLIP
-    if (tri_wide(tv)) {                           /* as gbuffer_triangle */
+    if (tri_wide(tv) || !(tv->flags & V_INSIDE)) {   /* as gbuffer_triangle */
         rt->back_layer = 1;
         gbuffer_wide_triangle(rt, vf, pos, NULL);
         rt->back_layer = 0;
@@ -1331,7 +1331,7 @@ static void gbuffer_triangle(raster_target *rt, const view_frame *vf, tri_vertic
     rt->object = mesh->tri_object ? mesh->tri_object[t] : 0;
     rt->tri_nrm = mesh->nrm + 3 * t;
 #if TG_FIXED && !TG_NO_WIDE_CLIP
-    if (tri_wide(tv)) {
+    if (tri_wide(tv) || !(tv->flags & V_INSIDE)) {   /* clipped: in 64 bits, exactly (gbuffer_wide_triangle) */
         gbuffer_wide_triangle(rt, vf, mesh->pos + 3 * t, rt->tri_nrm);
         return;
     }
