@@ -293,24 +293,27 @@ static int check_ceiling(int w, int h, int method, int pcf, const char *what)
     return count;
 }
 
-/* A 2-unit box on a ground plane of half side `half` under a directional
- * light (README "Shadows": where one map is not enough). */
-static const char *box_on_ground(int half, char *text, size_t size)
+/* A 2-unit box on a ground plane of half side `half`, both moved by
+ * (offset, 0, offset), under a directional light (README "Shadows": where
+ * one map is not enough). */
+static const char *box_on_ground(int half, int offset, char *text, size_t size)
 {
+    const int lo = offset - half, hi = offset + half;
     snprintf(text, size,
-             "camera pos 0 3 8  target 0 0.5 0\n"
+             "camera pos %d 3 %d  target %d 0.5 %d\n"
              "material base albedo 0.5 0.5 0.5\n"
              "material red albedo 0.8 0.2 0.2\n"
-             "quad p0 -%d 0 -%d p1 -%d 0 %d p2 %d 0 %d p3 %d 0 -%d material base\n"
-             "box min -1 0 -1 max 1 2 1 material red\n"
+             "quad p0 %d 0 %d p1 %d 0 %d p2 %d 0 %d p3 %d 0 %d material base\n"
+             "box min %d 0 %d max %d 2 %d material red\n"
              "light directional dir -0.3 -1 -0.2 color 1 1 1 intensity 3 shadows\n"
              "env uniform 0.1 0.1 0.1\n",
-             half, half, half, half, half, half, half, half);
+             offset, offset + 8, offset, offset, lo, lo, lo, hi, hi, hi, hi, lo,
+             offset - 1, offset - 1, offset + 1, offset + 1);
     return text;
 }
 
 /* Whether the ray from (x, 0, z) toward the light (-dir) meets the box
- * [-1, 1] x [0, 2] x [-1, 1] (slabs). */
+ * [-1, 1] x [0, 2] x [-1, 1] (slabs; x, z relative to the box's centre). */
 static int in_box_shadow(double x, double z)
 {
     const double o[3] = { x, 0, z }, d[3] = { 0.3, 1, 0.2 }, lo[3] = { -1, 0, -1 }, hi[3] = { 1, 2, 1 };
@@ -325,18 +328,56 @@ static int in_box_shadow(double x, double z)
     return t0 <= t1;
 }
 
+/* The rendered frame r of box_on_ground(.., offset): the box's shadow on
+ * the floor is where the geometry puts it: every floor pixel whose
+ * footprint (0.1 about it) lies wholly in the shadow gets under a tenth of
+ * the lit floor's direct light, every one wholly outside over nine tenths. */
+static void check_box_shadow(const rendered *r, int offset, const char *what)
+{
+    const int w = r->plan.request.width, h = r->plan.request.height;
+    const tgi_scene_camera *c = &r->scene->camera;
+    double *e = read_aov(r, TG_AOV_DIRECT), *depth = read_aov(r, TG_AOV_DEPTH), *normal = read_aov(r, TG_AOV_NORMAL);
+    double lit = 0;
+    tgi_view v;
+    int x, y, j, shadowed = 0, open = 0, bad = 0;
+    tgi_view_make(&v, c->pos, c->target, c->up, c->fov, c->znear, c->zfar, w, h);
+    for (j = 0; j < w * h; j++)
+        if (depth[j] > 0 && normal[3 * j + 1] > 0.99 && e[3 * j] > lit) lit = e[3 * j];
+    for (y = 0; y < h; y++)
+        for (x = 0; x < w; x++) {
+            size_t i = (size_t)y * (size_t)w + (size_t)x;
+            double ppu = check_d(v.pixels_per_unit), ky = (h / 2.0 - (y + 0.5)) / ppu, kx = (x + 0.5 - w / 2.0) / ppu;
+            double p[3], px, pz;
+            int all_in, any_in;
+            if (depth[i] <= 0 || normal[3 * i + 1] < 0.99) continue;   /* sky, or not the floor */
+            for (j = 0; j < 3; j++)
+                p[j] = check_d((&v.eye.x)[j]) +
+                       (check_d((&v.forward.x)[j]) + ky * check_d((&v.up.x)[j]) + kx * check_d((&v.right.x)[j])) * depth[i];
+            if (fabs(p[1]) > 0.01) continue;                             /* the box's top */
+            px = p[0] - offset;
+            pz = p[2] - offset;
+            all_in = in_box_shadow(px - 0.1, pz - 0.1) && in_box_shadow(px + 0.1, pz - 0.1) &&
+                     in_box_shadow(px - 0.1, pz + 0.1) && in_box_shadow(px + 0.1, pz + 0.1);
+            any_in = in_box_shadow(px - 0.1, pz - 0.1) || in_box_shadow(px + 0.1, pz - 0.1) ||
+                     in_box_shadow(px - 0.1, pz + 0.1) || in_box_shadow(px + 0.1, pz + 0.1);
+            if (all_in) shadowed++, bad += e[3 * i] >= 0.1 * lit;
+            else if (!any_in) open++, bad += e[3 * i] <= 0.9 * lit;
+        }
+    CHECK(lit > 0 && shadowed >= 20 && open >= 1000, "%s: %d pixels in the shadow, %d outside", what, shadowed, open);
+    CHECK(bad == 0, "%s: %d floor pixels lit against the geometry", what, bad);
+    free(e); free(depth); free(normal);
+}
+
 /* One map for a ground plane that runs far past the box spends its texels
  * on the distant floor: the auto choice takes shadow rays there
- * (tgi_shadow_map_coarse), and the box's shadow on the floor is where the
- * geometry puts it: every floor pixel whose footprint (0.1 about it) lies
- * wholly in the shadow gets under a tenth of the lit floor's direct light,
- * every one wholly outside over nine tenths.  With one map (the choice
- * before) the +-200 plane's shadow was blotchy and partly missing (PSNR
- * 35 dB against rays).  A +-5 plane keeps its map (not coarse). */
+ * (tgi_shadow_map_coarse), and the box's shadow is where the geometry puts
+ * it (check_box_shadow).  With one map (the choice before) the +-200
+ * plane's shadow was blotchy and partly missing (PSNR 35 dB against rays).
+ * A +-5 plane keeps its map (not coarse). */
 TEST(one_map_too_coarse_takes_rays)
 {
     static const int halves[2] = { 5, 200 };
-    char text[1024];
+    char text[1024], what[64];
     int k;
     for (k = 0; k < 2; k++) {
         const int w = 160, h = 120;
@@ -345,9 +386,8 @@ TEST(one_map_too_coarse_takes_rays)
         const tgi_scene_camera *c;
         tgi_shadow_need nd;
         tgi_view v;
-        double *e, *depth, *normal, lit = 0;
-        int x, y, j, shadowed = 0, open = 0, bad = 0, coarse;
-        box_on_ground(halves[k], text, sizeof text);
+        int coarse;
+        box_on_ground(halves[k], 0, text, sizeof text);
         if (!set_up_maps(&maps, text, q)) continue;
         c = &maps.scene->camera;
         tgi_view_make(&v, c->pos, c->target, c->up, c->fov, c->znear, c->zfar, w, h);
@@ -362,33 +402,36 @@ TEST(one_map_too_coarse_takes_rays)
         }
         CHECK((r.frame->shadow_maps[0].ray != NULL) == (halves[k] == 200), "+-%d plane: rays %d", halves[k],
               r.frame->shadow_maps[0].ray != NULL);
-        e = read_aov(&r, TG_AOV_DIRECT);
-        depth = read_aov(&r, TG_AOV_DEPTH);
-        normal = read_aov(&r, TG_AOV_NORMAL);
-        for (j = 0; j < w * h; j++)
-            if (depth[j] > 0 && normal[3 * j + 1] > 0.99 && e[3 * j] > lit) lit = e[3 * j];
-        for (y = 0; y < h; y++)
-            for (x = 0; x < w; x++) {
-                size_t i = (size_t)y * (size_t)w + (size_t)x;
-                double ppu = check_d(v.pixels_per_unit), ky = (h / 2.0 - (y + 0.5)) / ppu, kx = (x + 0.5 - w / 2.0) / ppu;
-                double p[3];
-                int all_in, any_in;
-                if (depth[i] <= 0 || normal[3 * i + 1] < 0.99) continue;   /* sky, or not the floor */
-                for (j = 0; j < 3; j++)
-                    p[j] = check_d((&v.eye.x)[j]) +
-                           (check_d((&v.forward.x)[j]) + ky * check_d((&v.up.x)[j]) + kx * check_d((&v.right.x)[j])) * depth[i];
-                if (fabs(p[1]) > 0.01) continue;                             /* the box's top */
-                all_in = in_box_shadow(p[0] - 0.1, p[2] - 0.1) && in_box_shadow(p[0] + 0.1, p[2] - 0.1) &&
-                         in_box_shadow(p[0] - 0.1, p[2] + 0.1) && in_box_shadow(p[0] + 0.1, p[2] + 0.1);
-                any_in = in_box_shadow(p[0] - 0.1, p[2] - 0.1) || in_box_shadow(p[0] + 0.1, p[2] - 0.1) ||
-                         in_box_shadow(p[0] - 0.1, p[2] + 0.1) || in_box_shadow(p[0] + 0.1, p[2] + 0.1);
-                if (all_in) shadowed++, bad += e[3 * i] >= 0.1 * lit;
-                else if (!any_in) open++, bad += e[3 * i] <= 0.9 * lit;
-            }
-        CHECK(lit > 0 && shadowed >= 20 && open >= 1000, "+-%d plane: %d pixels in the shadow, %d outside", halves[k],
-              shadowed, open);
-        CHECK(bad == 0, "+-%d plane: %d floor pixels lit against the geometry", halves[k], bad);
-        free(e); free(depth); free(normal);
+        snprintf(what, sizeof what, "+-%d plane", halves[k]);
+        check_box_shadow(&r, 0, what);
+        teardown(&r);
+    }
+}
+
+/* The same +-10 scene 0 to 2000 units from the origin, with a shadow map:
+ * the box's shadow where the geometry puts it.  A lookup placed its texel
+ * as (p.r - cx) s and the depth raster as the rows r s and -cx s, whose
+ * roundings differ by |p| 2^-17 in NDC: a few texels at 1000 units, and in
+ * Q16.16 the lit floor came out shadowed from about 400 on (a hard-case
+ * probe: 54112 of 54176 pixels at 1000). */
+TEST(ortho_map_far_from_the_origin)
+{
+    static const int offsets[3] = { 0, 1000, 2000 };
+    char text[1024], what[64];
+    int k;
+    for (k = 0; k < 3; k++) {
+        rendered r;
+        tg_request q = request(160, 120, AOVBIT(TG_AOV_DIRECT) | AOVBIT(TG_AOV_DEPTH) | AOVBIT(TG_AOV_NORMAL));
+        box_on_ground(10, offsets[k], text, sizeof text);
+        if (!set_up_maps(&r, text, q)) continue;
+        if (tg_frame_render(r.frame, 0, NULL) != TG_OK) {
+            CHECK(0, "%s", r.msg);
+            teardown(&r);
+            continue;
+        }
+        CHECK(r.frame->shadow_maps[0].ray == NULL, "offset %d: a map", offsets[k]);
+        snprintf(what, sizeof what, "+-10 plane at %d, map", offsets[k]);
+        check_box_shadow(&r, offsets[k], what);
         teardown(&r);
     }
 }
@@ -476,6 +519,7 @@ int main(void)
     RUN(culled_faces_take_no_memory);
     RUN(plan_chooses_as_the_rule_says);
     RUN(one_map_too_coarse_takes_rays);
+    RUN(ortho_map_far_from_the_origin);
     RUN(ceiling_round_the_lamp_is_lit);
     RUN(rays_match_fine_maps);
     RUN(unknown_views_need_every_face);

@@ -433,6 +433,7 @@ typedef struct lookup {
 static int prepare_ortho(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, tg_real err, lookup *q)
 {
     const tgi_shadow_face *fc = &sm->face[0];
+    const tg_real *m = fc->world_to_clip.m;
     tg_vec3 r = fc->right, u = fc->up, f = fc->forward;
     tg_real nl_z = tgi_v3_dot(n, f), depth, inv_nz;
     if (nl_z >= 0) return 0;
@@ -441,8 +442,14 @@ static int prepare_ortho(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, tg_real
     err = tg_add(err, map_error(sm, fc, tg_abs(depth)));
     q->fc = fc;
     q->num = q->den_c = q->bias = 0;
-    q->ndc_x = tg_mul(tg_sub(tgi_v3_dot(p, r), sm->ortho_center_x), sm->ortho_scale);
-    q->ndc_y = tg_mul(tg_sub(tgi_v3_dot(p, u), sm->ortho_center_y), sm->ortho_scale);
+    /* the texel as the depth raster placed it: world_to_clip's rows as
+     * raster_depth_rows applies them (src/raster/raster.c), not (p.r - cx)
+     * s, whose rounding differs from the rows' (r s and -cx s) by up to
+     * |p| 2^-17 in NDC: at 1000 units from the origin a few texels, the
+     * lookups then read their neighbours' depths and a lit floor came out
+     * shadowed in Q16.16 (test_shadow ortho_lookup_far_from_the_origin) */
+    q->ndc_x = tg_add(tgi_v3_dot(p, tg_v3(m[0], m[1], m[2])), m[3]);
+    q->ndc_y = tg_add(tgi_v3_dot(p, tg_v3(m[4], m[5], m[6])), m[7]);
     /* the receiver moved by err along n is err / |n . f| nearer the light */
     q->base = tg_sub(tg_sub(depth, depth_bias(fc, fc->texel_world)), tg_div(err, tg_neg(nl_z)));
     /* plane n.(dx, dy, dz) = 0 -> dz = -(nx dx + ny dy) / nz; world = ndc / scale */
