@@ -742,6 +742,31 @@ TEST(hbil_slice_q_accuracy)
     CHECK(worst <= (TG_FIXED ? 4.0 / 65536.0 : 1e-6), "Q error %g at %g", worst, at);
 }
 
+/* The slice integral's square root (gi/hbil.c unit_sqrt) over x in [0,
+ * 1]: in Q16.16 every value gives tg_sqrt's, exactly rounded (the inline
+ * line-table form must not change a bit); in float a 2e5-point grid within
+ * 2 float ulps (2.4e-7 relative) of libm. */
+TEST(hbil_unit_sqrt_exact)
+{
+    long i, n = TG_FIXED ? 65536 : 200000, bad = 0;
+    double worst = 0;
+    for (i = 0; i <= n; i++) {
+        tg_real x = TG_FIXED ? (tg_real)i : tg_from_float((float)i / (float)n), s = tgi_hbil_unit_sqrt(x);
+#if TG_FIXED
+        if (s != tg_sqrt(x)) {
+            if (bad < 5) printf("  unit_sqrt raw %ld: %ld, tg_sqrt %ld\n", i, (long)s, (long)tg_sqrt(x));
+            bad++;
+        }
+#else
+        double w = sqrt(check_d(x)), e = w > 0 ? fabs(check_d(s) - w) / w : fabs(check_d(s));
+        if (e > worst) worst = e;
+#endif
+    }
+    printf("  unit_sqrt: %ld of %ld differ from tg_sqrt, float max rel. error %.3g\n", bad, n + 1, worst);
+    CHECK(bad == 0, "%ld values differ", bad);
+    CHECK(worst <= 2.4e-7, "rel. error %g", worst);
+}
+
 #if !TG_WIDE_STORAGE && !TG_NO_COLOR
 /* The near field's weight t = smoothstep(a, b, -n_s.w_i) (HBIL sec. 3.4):
  * the kernel's tests that answer t = 0 or 1 without normalising the
@@ -1553,6 +1578,7 @@ int main(int argc, char **argv)
     RUN(gather_radius_sized_to_the_scene);
     RUN(fixed_and_float_agree);
     RUN(hbil_slice_q_accuracy);
+    RUN(hbil_unit_sqrt_exact);
 #if !TG_WIDE_STORAGE && !TG_NO_COLOR
     RUN(rejection_tests_keep_the_weights);
 #endif

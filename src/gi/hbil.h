@@ -139,6 +139,10 @@ void tgi_hbil_interleaved_rows(const tgi_hbil_params *p, const tgi_gview *k, con
  * integral (eq. 10-11) as the kernel evaluates it (one square root and a
  * polynomial; error in tests/test_hbil.c). */
 tg_real tgi_hbil_slice_q(tg_real c);
+/* Its square root, sqrt(x) for x in [0, 1]: Q16.16 gives tg_sqrt's value
+ * (exactly rounded) without the call; float a two-step rsqrt times x and a
+ * Newton step (tests/test_hbil.c hbil_unit_sqrt_exact). */
+tg_real tgi_hbil_unit_sqrt(tg_real x);
 
 #if !TG_WIDE_STORAGE && !TG_NO_COLOR
 /* The near field's weight t = smoothstep(a, b, -n_s.w_i) (HBIL sec. 3.4) of
