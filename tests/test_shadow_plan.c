@@ -436,6 +436,32 @@ TEST(ortho_map_far_from_the_origin)
     }
 }
 
+/* Shadow rays on the same +-10 scene far from the origin: the ray starts
+ * off the surface by 2^-14 of the point's coordinates in Q16.16 (its unit
+ * normals' 16 bits) and 2^-19 in float, so float keeps the box's shadow at
+ * 20000 (2^-14 there too put the start 2.4 units up, over the 2-unit box:
+ * no shadow, PSNR 19.4 dB against the map); Q16.16's stays exact to 2000. */
+TEST(rays_far_from_the_origin)
+{
+    static const int offsets[4] = { 0, 1000, 2000, 20000 };
+    char text[1024], what[64];
+    int k;
+    for (k = 0; k < 4; k++) {
+        rendered r;
+        tg_request q = request(160, 120, AOVBIT(TG_AOV_DIRECT) | AOVBIT(TG_AOV_DEPTH) | AOVBIT(TG_AOV_NORMAL));
+        if (TG_FIXED && offsets[k] > 2000) continue;
+        q.shadow_method = TG_SHADOWS_RAYS;
+        box_on_ground(10, offsets[k], text, sizeof text);
+        if (!setup_checked(&r, text, &q, "box on the ground, rays") || tg_frame_render(r.frame, 0, NULL) != TG_OK) {
+            CHECK(0, "%s", r.msg);
+            continue;
+        }
+        snprintf(what, sizeof what, "+-10 plane at %d, rays", offsets[k]);
+        check_box_shadow(&r, offsets[k], what);
+        teardown(&r);
+    }
+}
+
 TEST(ceiling_round_the_lamp_is_lit)
 {
     static const int sizes[][2] = { { 40, 30 }, { 160, 120 }, { 320, 240 } };
@@ -520,6 +546,7 @@ int main(void)
     RUN(plan_chooses_as_the_rule_says);
     RUN(one_map_too_coarse_takes_rays);
     RUN(ortho_map_far_from_the_origin);
+    RUN(rays_far_from_the_origin);
     RUN(ceiling_round_the_lamp_is_lit);
     RUN(rays_match_fine_maps);
     RUN(unknown_views_need_every_face);

@@ -334,7 +334,18 @@ int tgi_bvh_occluded(const tgi_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax)
     return bvh_walk(bvh, o, d, 1, &hit);
 }
 
-#define SHADOW_EPS_REL TG_R(0.00006103515625f) /* 2^-14 of a point's coordinates */
+/* The ray's start off the surface, relative to the point's coordinates:
+ * what the plane tests against a triangle (n . (o - v0), a unit normal
+ * times a distance within the scene) and the point's own reconstruction
+ * may err by.  Q16.16's unit normal holds 16 bits, so 2^-14; float's 24,
+ * so 2^-19 (it was 2^-14 there too: 2.4 units at 20000 from the origin,
+ * more than a 2-unit box, whose shadow then vanished; test_shadow_plan
+ * rays_far_from_the_origin). */
+#if TG_FIXED
+#define SHADOW_EPS_REL TG_R(0.00006103515625f) /* 2^-14 */
+#else
+#define SHADOW_EPS_REL TG_R(0.0000019073486328125f) /* 2^-19 */
+#endif
 #define SHADOW_EPS_ULPS 8
 
 tg_real tgi_bvh_light_visibility(const void *tracer, const tgi_light *l, tg_vec3 p, tg_vec3 n, tg_real err)
