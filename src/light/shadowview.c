@@ -420,20 +420,29 @@ static int receiver_piece(tg_vec3 *p, const tg_vec3 *pos, int t, const hexa *cam
     return n > 0 && nslab > 0 ? clip(p, n, slab, nslab, 0) : n;
 }
 
+/* Depth slabs coarse_areas measures: [z0 2^k, z0 2^(k+1)) for k below the
+ * last, which runs on to the far side (z0 = the near plane: 2^31 z0 is
+ * past any depth either number type holds at a 0.001 near plane). */
+#define COARSE_SLABS 32
+
 /* The image areas (NDC units^2) of the receivers the rule measures on face
  * f (triangle_areas': lit and seen, cut to the frustum and the face's
- * pyramid) and of those served coarsely by a map of `density`: each piece
- * cut into the view's depth slabs [znear 2^k, znear 2^(k+1)), within which
- * a pixel's footprint varies by at most 2, and each slab's own density
- * (rule_density) compared with the map's.  p: room for a polygon. */
+ * pyramid) and of those served coarsely by a map of `density`: the pieces
+ * cut into the view's depth slabs, within each of which a pixel's
+ * footprint varies by at most 2, their areas summed per slab over the
+ * triangles, and each slab's own density (rule_density) compared with the
+ * map's; a slab with no area on the light plane (lit at grazing incidence)
+ * no density serves.  p: room for a polygon. */
 static void coarse_areas(const light_face *lf, const tgi_light *l, const tgi_view *v, const hexa *cam,
                          const tg_vec3 *pos, int tri_count, tg_real density, tg_real *all, tg_real *coarse,
                          tg_vec3 *p)
 {
     const int stride = tri_count / TG_SHADOW_RULE_TRIANGLES + 1;
-    const tg_real eye_z = tgi_v3_dot(v->eye, v->forward);
+    const tg_real eye_z = tgi_v3_dot(v->eye, v->forward), z0 = tg_max(v->znear, TG_R(0.001f));
     const tg_real limit = tg_mul(density, tg_from_int(TG_SHADOW_COARSE));
-    int t, i, n;
+    tg_real cam_area[COARSE_SLABS], light_area[COARSE_SLABS];
+    int t, i, k, n;
+    for (k = 0; k < COARSE_SLABS; k++) cam_area[k] = light_area[k] = 0;
     for (t = 0; t < tri_count; t += stride) {
         tg_real zmin = TG_REAL_MAX, zmax = 0, zlo;
         if (!lit_and_seen(l, v, pos + 3 * (size_t)t)) continue;
@@ -443,24 +452,28 @@ static void coarse_areas(const light_face *lf, const tgi_light *l, const tgi_vie
             zmin = tg_min(zmin, z);
             zmax = tg_max(zmax, z);
         }
-        for (zlo = tg_max(v->znear, TG_R(0.001f)); n > 0 && zlo < zmax; zlo = tg_ldexp(zlo, 1)) {
+        for (k = 0, zlo = z0; n > 0 && k < COARSE_SLABS && (k == 0 || zlo < zmax); k++, zlo = tg_ldexp(zlo, 1)) {
+            const int last = k + 1 == COARSE_SLABS;
             const tg_real zhi = tg_ldexp(zlo, 1);
             halfspace slab[2];
-            region rg;
             int m = n;
-            if (zhi <= zmin) continue;
-            if (zlo > zmin || zhi < zmax) {   /* the piece spans slabs: cut anew for this one */
+            if (!last && zhi <= zmin) continue;
+            if ((k > 0 && zlo > zmin) || (!last && zhi < zmax)) {   /* the piece spans slabs: cut anew for this one */
                 slab[0].n = v->forward; slab[0].d = tg_neg(tg_add(eye_z, zlo));                 /* z >= zlo */
                 slab[1].n = tgi_v3_neg(v->forward); slab[1].d = tg_add(eye_z, zhi);              /* z <= zhi */
-                m = receiver_piece(p, pos, t, cam, lf, slab, 2);
+                m = receiver_piece(p, pos, t, cam, lf, k > 0 ? slab : slab + 1, (k > 0) + !last);
             }
-            if (m < 3) continue;
-            memset(&rg, 0, sizeof rg);
-            areas(v, lf, p, m, &rg.cam, &rg.light);
-            *all = tg_add(*all, rg.cam);
-            /* no area on the light plane (grazing light, or below the number type's step): no density serves it */
-            if (!(rg.light > 0) || rule_density(&rg, v) > limit) *coarse = tg_add(*coarse, rg.cam);
+            if (m >= 3) areas(v, lf, p, m, &cam_area[k], &light_area[k]);
         }
+    }
+    for (k = 0; k < COARSE_SLABS; k++) {
+        region rg;
+        if (!(cam_area[k] > 0)) continue;
+        memset(&rg, 0, sizeof rg);
+        rg.cam = cam_area[k];
+        rg.light = light_area[k];
+        *all = tg_add(*all, rg.cam);
+        if (!(rg.light > 0) || rule_density(&rg, v) > limit) *coarse = tg_add(*coarse, rg.cam);
     }
 }
 
