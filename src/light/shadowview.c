@@ -408,8 +408,9 @@ static tg_real map_density(const tgi_shadow_need *nd, int f, const light_face *l
     return lf->perspective ? d : tg_div(d, lf->scale);   /* directional: per world unit -> per light-plane unit */
 }
 
-/* The triangle t cut to the frustum, the face's pyramid and (nslab 0 or
- * 2) the slab's half-spaces, into p; returns its vertices. */
+/* The triangle t cut to the frustum, the face's pyramid and the nslab
+ * half-spaces slab[] (a depth slab's sides, or none), into p; returns its
+ * vertices. */
 static int receiver_piece(tg_vec3 *p, const tg_vec3 *pos, int t, const hexa *cam, const light_face *lf,
                           const halfspace *slab, int nslab)
 {
@@ -477,8 +478,9 @@ static void coarse_areas(const light_face *lf, const tgi_light *l, const tgi_vie
     }
 }
 
-int tgi_shadow_map_coarse(const tgi_shadow_need *nd, const tgi_light *l, const tgi_view *view,
-                          tg_vec3 lo, tg_vec3 hi, const tg_vec3 *tri_pos, int tri_count)
+/* APART: its polygon, frustum and slab sums stay off tgi_shadow_plan's frame */
+APART int tgi_shadow_map_coarse(const tgi_shadow_need *nd, const tgi_light *l, const tgi_view *view,
+                                tg_vec3 lo, tg_vec3 hi, const tg_vec3 *tri_pos, int tri_count)
 {
     light_face lf;
     hexa cam;
@@ -587,6 +589,13 @@ APART static void spend_the_budget(tgi_shadow_need *nd, size_t pixels)
     *nd = base;
 }
 
+/* The frame of the plan's k-th of n views: every frame's, or n spread over
+ * the `views` frames. */
+static int plan_view_frame(int k, int n, int views)
+{
+    return n == views ? k : (int)((long)k * (views - 1) / (n > 1 ? n - 1 : 1));
+}
+
 /* Whether the views the rule sees are all the views the lookups come from. */
 static int views_known(const tg_scene *s, const tg_request *r)
 {
@@ -607,7 +616,7 @@ int tgi_shadow_plan(const tg_scene *s, const tg_request *r, int light, size_t bv
     if (!views_known(s, r)) tgi_shadow_need_all(nd);
     n = views < TG_SHADOW_PLAN_VIEWS ? views : TG_SHADOW_PLAN_VIEWS;
     for (k = 0; k < n; k++) {   /* every frame's view, or n spread over them */
-        frame_view(&v, s, r, n == views ? k : (int)((long)k * (views - 1) / (n > 1 ? n - 1 : 1)));
+        frame_view(&v, s, r, plan_view_frame(k, n, views));
         tgi_shadow_map_size_rule(nd, l, &v, *lo, *hi, s->tri_pos, s->tri_count);
     }
     tgi_shadow_need_finish(nd, r->shadow_map_size);
@@ -616,7 +625,7 @@ int tgi_shadow_plan(const tg_scene *s, const tg_request *r, int light, size_t bv
     by = tgi_shadow_choose(tgi_shadow_need_bytes(nd), bvh_bytes, (size_t)r->width * (size_t)r->height);
     if (by == TG_SHADOW_BY_MAP && bvh_bytes < tgi_shadow_need_bytes(nd) && views_known(s, r))
         for (k = 0; k < n && by == TG_SHADOW_BY_MAP; k++) {   /* one map too coarse for what a view sees */
-            frame_view(&v, s, r, n == views ? k : (int)((long)k * (views - 1) / (n > 1 ? n - 1 : 1)));
+            frame_view(&v, s, r, plan_view_frame(k, n, views));
             if (tgi_shadow_map_coarse(nd, l, &v, *lo, *hi, s->tri_pos, s->tri_count)) by = TG_SHADOW_BY_RAYS;
         }
     return by;
