@@ -334,13 +334,15 @@ int tgi_bvh_occluded(const tgi_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax)
     return bvh_walk(bvh, o, d, 1, &hit);
 }
 
-/* The ray's start off the surface, relative to the point's coordinates:
- * what the plane tests against a triangle (n . (o - v0), a unit normal
- * times a distance within the scene) and the point's own reconstruction
- * may err by.  Q16.16's unit normal holds 16 bits, so 2^-14; float's 24,
- * so 2^-19 (it was 2^-14 there too: 2.4 units at 20000 from the origin,
- * more than a 2-unit box, whose shadow then vanished; test_shadow_plan
- * rays_far_from_the_origin). */
+/* The ray's start off the surface: what the plane tests against a
+ * triangle (n . (o - v0), a unit normal times a distance within the
+ * triangle, at most the scene's extent) and the point's own
+ * reconstruction may err by.  Q16.16 holds every coordinate to 2^-16
+ * wherever it lies and a unit normal in 16 bits: 2^-14 of the scene's
+ * extent (the BVH's root box).  Float holds 24 bits of each coordinate:
+ * 2^-19 of the point's coordinates.  (Both took 2^-14 of the point's
+ * coordinates: 2.4 units at 20000 from the origin, over a 2-unit box,
+ * whose shadow vanished; test_shadow_plan rays_far_from_the_origin.) */
 #if TG_FIXED
 #define SHADOW_EPS_REL TG_R(0.00006103515625f) /* 2^-14 */
 #else
@@ -348,13 +350,28 @@ int tgi_bvh_occluded(const tgi_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax)
 #endif
 #define SHADOW_EPS_ULPS 8
 
+/* What SHADOW_EPS_REL is relative to (plus a unit). */
+static tg_real shadow_eps_scale(const tgi_bvh *bvh, tg_vec3 p)
+{
+#if TG_FIXED
+    const tgi_bvh_node *root = &bvh->nodes[0];
+    (void)p;
+    return tg_add(tg_max(tg_max(tg_sub(root->hi.x, root->lo.x), tg_sub(root->hi.y, root->lo.y)),
+                         tg_sub(root->hi.z, root->lo.z)), TG_ONE);
+#else
+    (void)bvh;
+    return tg_add(tg_add(tg_add(tg_abs(p.x), tg_abs(p.y)), tg_abs(p.z)), TG_ONE);
+#endif
+}
+
 tg_real tgi_bvh_light_visibility(const void *tracer, const tgi_light *l, tg_vec3 p, tg_vec3 n, tg_real err)
 {
     const tgi_bvh *bvh = (const tgi_bvh *)tracer;
-    tg_real s = tg_add(tg_add(tg_add(tg_abs(p.x), tg_abs(p.y)), tg_abs(p.z)), TG_ONE);
-    tg_real eps = tg_add(tg_mul(s, SHADOW_EPS_REL), SHADOW_EPS_ULPS * TG_EPS), tmax;
-    tg_vec3 o = tgi_v3_add(p, tgi_v3_scale(n, tg_add(tg_max(err, 0), eps))), d;
+    tg_real eps, tmax;
+    tg_vec3 o, d;
     if (bvh->node_count == 0) return TG_ONE;
+    eps = tg_add(tg_mul(shadow_eps_scale(bvh, p), SHADOW_EPS_REL), SHADOW_EPS_ULPS * TG_EPS);
+    o = tgi_v3_add(p, tgi_v3_scale(n, tg_add(tg_max(err, 0), eps)));
     if (l->type == TG_LIGHT_DIRECTIONAL) {
         /* out of the root box: |o - centre| + its half diagonal, and a unit */
         const tgi_bvh_node *root = &bvh->nodes[0];

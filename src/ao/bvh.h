@@ -68,8 +68,9 @@ int tgi_bvh_occluded(const tgi_bvh *bvh, tg_vec3 o, tg_vec3 d, tg_real tmax);
 /* Shadow ray for light l from receiver p (unit normal n facing the light,
  * position error bound err): 1 when nothing blocks the segment to the light
  * (a point or spot) or the ray toward it (directional), else 0 - hard
- * shadows.  The ray starts at p + n (err + e |p|_1 + 8 ulps), e = 2^-14 in
- * Q16.16 and 2^-19 in float (the plane tests' precision), and stops
+ * shadows.  The ray starts at p + n (err + e + 8 ulps), e = 2^-14 of the
+ * scene's extent in Q16.16 and 2^-19 of |p|_1 in float (the plane tests'
+ * precision), and stops
  * that much short of a point light.  `bvh` is a const tgi_bvh * (the shape
  * of tgi_shadow_ray_fn in light/shadowmap.h). */
 tg_real tgi_bvh_light_visibility(const void *bvh, const tgi_light *l, tg_vec3 p, tg_vec3 n, tg_real err);
