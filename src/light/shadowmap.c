@@ -447,7 +447,7 @@ static int prepare_ortho(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, tg_real
      * s, whose rounding differs from the rows' (r s and -cx s) by up to
      * |p| 2^-17 in NDC: at 1000 units from the origin a few texels, the
      * lookups then read their neighbours' depths and a lit floor came out
-     * shadowed in Q16.16 (test_shadow ortho_lookup_far_from_the_origin) */
+     * shadowed in Q16.16 (test_shadow_plan ortho_map_far_from_the_origin) */
     q->ndc_x = tg_add(tgi_v3_dot(p, tg_v3(m[0], m[1], m[2])), m[3]);
     q->ndc_y = tg_add(tgi_v3_dot(p, tg_v3(m[4], m[5], m[6])), m[7]);
     /* the receiver moved by err along n is err / |n . f| nearer the light */

@@ -608,6 +608,7 @@ int tgi_shadow_plan(const tg_scene *s, const tg_request *r, int light, size_t bv
 {
     const tgi_light *l = &s->lights[light];
     int views = s->camera_key_count > 0 ? r->frames : 1, k, n, by;
+    size_t bytes;
     tgi_view v;
     tgi_shadow_animation_bounds(s, r->frames, lo, hi);
     tgi_shadow_need_init(nd, l);
@@ -622,8 +623,9 @@ int tgi_shadow_plan(const tg_scene *s, const tg_request *r, int light, size_t bv
     tgi_shadow_need_finish(nd, r->shadow_map_size);
     if (r->shadow_map_size <= 0) spend_the_budget(nd, (size_t)r->width * (size_t)r->height);
     if (r->shadow_method == TG_SHADOWS_MAPS || r->shadow_map_size > 0) return TG_SHADOW_BY_MAP;
-    by = tgi_shadow_choose(tgi_shadow_need_bytes(nd), bvh_bytes, (size_t)r->width * (size_t)r->height);
-    if (by == TG_SHADOW_BY_MAP && bvh_bytes < tgi_shadow_need_bytes(nd) && views_known(s, r))
+    bytes = tgi_shadow_need_bytes(nd);
+    by = tgi_shadow_choose(bytes, bvh_bytes, (size_t)r->width * (size_t)r->height);
+    if (by == TG_SHADOW_BY_MAP && bvh_bytes < bytes && views_known(s, r))
         for (k = 0; k < n && by == TG_SHADOW_BY_MAP; k++) {   /* one map too coarse for what a view sees */
             frame_view(&v, s, r, plan_view_frame(k, n, views));
             if (tgi_shadow_map_coarse(nd, l, &v, *lo, *hi, s->tri_pos, s->tri_count)) by = TG_SHADOW_BY_RAYS;

@@ -1016,11 +1016,11 @@ static int target_rows(raster_target *rt, int width, int height, int y0, int y1)
  * V_INSIDE when inside the guard band and the depth range (no clipping
  * needed; sx, sy are then its 28.4 screen position), V_RIGHT.. when beyond
  * that screen side. */
-/* V_NARROW (Q16.16 with the wide clipper): the vertex's clip coordinates
- * are within TGI_CLIP_SAFE; a vertex past it has no flag at all (its
- * saturated coordinates say nothing), so a triangle with one is neither
- * inside nor off a side, and tri_wide sends it to gbuffer_wide_triangle. */
-enum { V_INSIDE = 1, V_RIGHT = 2, V_LEFT = 4, V_TOP = 8, V_BOTTOM = 16, V_NARROW = 32 };
+/* In Q16.16 with the wide clipper a vertex whose clip coordinates pass
+ * TGI_CLIP_SAFE has no flag at all (its saturated coordinates say
+ * nothing), so a triangle with one is neither inside nor off a side: it is
+ * clipped, in 64 bits (gbuffer_wide_triangle). */
+enum { V_INSIDE = 1, V_RIGHT = 2, V_LEFT = 4, V_TOP = 8, V_BOTTOM = 16 };
 #define V_OFF_SIDE (V_RIGHT | V_LEFT | V_TOP | V_BOTTOM)
 
 typedef struct view_vertex {
@@ -1060,7 +1060,7 @@ static inline view_vertex view_vertex_make(const raster_target *rt, const view_f
     if (y > w) o.flags |= V_TOP;
     if (y < nw) o.flags |= V_BOTTOM;
 #if TG_FIXED && !TG_NO_WIDE_CLIP
-    o.flags = past_clip_safe(x) || past_clip_safe(y) || past_clip_safe(w) ? 0 : o.flags | V_NARROW;
+    if (past_clip_safe(x) || past_clip_safe(y) || past_clip_safe(w)) o.flags = 0;
 #endif
     o.sx = rt->half_w16 + snap_ndc(x, w, o.iw, rt->half_w16);
     o.sy = rt->half_h16 - snap_ndc(y, w, o.iw, rt->half_h16);
@@ -1068,7 +1068,7 @@ static inline view_vertex view_vertex_make(const raster_target *rt, const view_f
 }
 
 #if TG_FIXED && !TG_NO_WIDE_CLIP
-/* ---- G-buffer triangles beyond Q16.16's clip range ----
+/* ---- G-buffer triangles clipped in Q16.16 ----
  * A vertex's clip coordinates x = d . right fx, y = d . up fy, w = d .
  * forward (d from the eye) leave Q16.16 (32767) for a vertex more than
  * 32767 / fx units to the side or 32767 deep, and the clipper's
@@ -1079,9 +1079,12 @@ static inline view_vertex view_vertex_make(const raster_target *rt, const view_f
  * clip_polygon clips (near, far, then the guard band; the screen's planes
  * when 8 zfar would not fit), from its world vertices: what is left lies
  * within the band and the depth range, so it fits tg_real again and is
- * drawn as any clipped polygon.  Only such triangles (a vertex without
- * V_NARROW: tri_wide) take this path: every other keeps its bits
- * (tests/test_raster.c far_ground_plane_in_fixed_point). */
+ * drawn as any clipped polygon (tests/test_raster.c
+ * far_ground_plane_in_fixed_point).  So is every other triangle that needs
+ * clipping (not V_INSIDE): clip_polygon's 16-bit fraction on a +-200
+ * floor's 400-unit edges, and the 32-bit view transform of its far
+ * vertices, put its depth up to 0.9% off, and sank it under its own shadow
+ * rays' start (clipped_ground_plane_depth). */
 typedef struct wide_vertex {
     int64_t x, y, w;              /* Q16.16 in 64 bits; z = w (G-buffer mode) */
     tg_vec3 n;
@@ -1239,13 +1242,6 @@ typedef struct tri_vertices {
     int flags;                    /* V_* of all three: V_INSIDE if all are inside, V_RIGHT.. if all are beyond */
 } tri_vertices;
 
-/* Whether a vertex of tv is past Q16.16's clip range (V_NARROW missing):
- * the triangle is drawn by gbuffer_wide_triangle.  Never in float, nor
- * with TG_NO_WIDE_CLIP. */
-#if TG_FIXED && !TG_NO_WIDE_CLIP
-static inline int tri_wide(const tri_vertices *tv) { return !(tv->flags & V_NARROW); }
-#endif
-
 /* Vertex k of tv: the view_vertex of p, from the cache or made there. */
 static inline void vertex_fetch(vertex_cache *c, const raster_target *rt, const view_frame *vf, tg_vec3 p,
                                 tri_vertices *tv, int k)
@@ -1286,7 +1282,7 @@ static void back_triangle(raster_target *rt, const view_frame *vf, const tg_vec3
 {
     static const int order_front[3] = { 0, 2, 1 }, order_back[3] = { 0, 1, 2 };
 #if TG_FIXED && !TG_NO_WIDE_CLIP
-    if (tri_wide(tv) || !(tv->flags & V_INSIDE)) {   /* as gbuffer_triangle */
+    if (!(tv->flags & V_INSIDE)) {               /* as gbuffer_triangle */
         rt->back_layer = 1;
         gbuffer_wide_triangle(rt, vf, pos, NULL);
         rt->back_layer = 0;
@@ -1331,7 +1327,7 @@ static void gbuffer_triangle(raster_target *rt, const view_frame *vf, tri_vertic
     rt->object = mesh->tri_object ? mesh->tri_object[t] : 0;
     rt->tri_nrm = mesh->nrm + 3 * t;
 #if TG_FIXED && !TG_NO_WIDE_CLIP
-    if (tri_wide(tv) || !(tv->flags & V_INSIDE)) {   /* clipped: in 64 bits, exactly (gbuffer_wide_triangle) */
+    if (!(tv->flags & V_INSIDE)) {               /* clipped: in 64 bits (gbuffer_wide_triangle) */
         gbuffer_wide_triangle(rt, vf, mesh->pos + 3 * t, rt->tri_nrm);
         return;
     }
