@@ -485,11 +485,17 @@ TEST(animation_bounds_hold_every_pose)
 TEST(choice_between_maps_and_rays)
 {
     size_t pixels = 320 * 240, budget = pixels * TG_SHADOW_MAP_BYTES_PER_PIXEL;
-    CHECK(tgi_shadow_choose(budget, 1000, pixels) == TG_SHADOW_BY_MAP, "maps within the budget");
-    CHECK(tgi_shadow_choose(budget + 1, 1000, pixels) == TG_SHADOW_BY_RAYS, "maps over it, a smaller BVH: rays");
-    CHECK(tgi_shadow_choose(budget + 1, budget + 2, pixels) == TG_SHADOW_BY_MAP, "a larger BVH: maps");
-    CHECK(tgi_shadow_choose(0, 0, 0) == TG_SHADOW_BY_MAP, "no map bytes: maps");
-    CHECK(tgi_shadow_choose(1, 0, (size_t)-1) == TG_SHADOW_BY_MAP, "a budget past size_t: maps");
+    CHECK(tgi_shadow_choose(budget, 1000, pixels, 1) == TG_SHADOW_BY_MAP, "maps within the budget");
+    CHECK(tgi_shadow_choose(budget + 1, 1000, pixels, 1) == TG_SHADOW_BY_RAYS, "maps over it, a smaller BVH: rays");
+    CHECK(tgi_shadow_choose(budget + 1, budget + 2, pixels, 1) == TG_SHADOW_BY_MAP, "a larger BVH: maps");
+    CHECK(tgi_shadow_choose(0, 0, 0, 1) == TG_SHADOW_BY_MAP, "no map bytes: maps");
+    CHECK(tgi_shadow_choose(1, 0, (size_t)-1, 1) == TG_SHADOW_BY_MAP, "a budget past size_t: maps");
+    /* four shadowed lights share it: a quarter each (0 or 1 light: the whole) */
+    CHECK(tgi_shadow_light_budget(pixels, 4) == budget / 4 && tgi_shadow_light_budget(pixels, 0) == budget
+          && tgi_shadow_light_budget(pixels, 1) == budget, "the lights' shares");
+    CHECK(tgi_shadow_choose(budget / 4, 1000, pixels, 4) == TG_SHADOW_BY_MAP, "four lights: maps within a share");
+    CHECK(tgi_shadow_choose(budget / 4 + 1, 1000, pixels, 4) == TG_SHADOW_BY_RAYS, "four lights: over a share, rays");
+    CHECK(tgi_shadow_choose(budget / 4 + 1, budget, pixels, 4) == TG_SHADOW_BY_MAP, "four lights: a larger BVH, maps");
 }
 
 int main(void)

@@ -66,8 +66,8 @@
  *       tgi_shadow_map_size_rule(&nd, light, &v, lo, hi, tri_pos, tri_count);
  *   tgi_shadow_need_finish(&nd, request.shadow_map_size);  (0 = by the rule)
  *   map_bytes = tgi_shadow_need_bytes(&nd);
- *   tgi_shadow_choose(map_bytes, tgi_bvh_bytes(tri_count) or 0 once a BVH
- *                     is paid for, pixels):
+ *   tgi_shadow_choose(map_bytes, tgi_bvh_bytes(tri_count) (0 when a BVH
+ *                     is built anyway), pixels, shadowed lights):
  *     TG_SHADOW_BY_MAP:  tgi_shadow_map_setup_need(&sm, light, &nd, lo, hi,
  *                        take(map_bytes)); sm.filter = the request's;
  *                        frame 0, and every frame whose objects moved

@@ -547,11 +547,16 @@ void tgi_shadow_animation_bounds(const tg_scene *s, int frames, tg_vec3 *lo, tg_
     }
 }
 
-int tgi_shadow_choose(size_t map_bytes, size_t bvh_bytes, size_t pixels)
+size_t tgi_shadow_light_budget(size_t pixels, int lights)
 {
     size_t budget;
-    if (tg_size_mul(pixels, TG_SHADOW_MAP_BYTES_PER_PIXEL, &budget) || map_bytes <= budget)
-        return TG_SHADOW_BY_MAP;
+    if (tg_size_mul(pixels, TG_SHADOW_MAP_BYTES_PER_PIXEL, &budget)) return (size_t)-1;   /* past size_t: no limit */
+    return budget / (size_t)(lights > 1 ? lights : 1);
+}
+
+int tgi_shadow_choose(size_t map_bytes, size_t bvh_bytes, size_t pixels, int lights)
+{
+    if (map_bytes <= tgi_shadow_light_budget(pixels, lights)) return TG_SHADOW_BY_MAP;
     return bvh_bytes < map_bytes ? TG_SHADOW_BY_RAYS : TG_SHADOW_BY_MAP;
 }
 
@@ -569,17 +574,17 @@ static void frame_view(tgi_view *v, const tg_scene *s, const tg_request *r, int 
     tgi_view_make(v, pos, target, s->camera.up, s->camera.fov, s->camera.znear, s->camera.zfar, r->width, r->height);
 }
 
-/* A finished need well within TG_SHADOW_MAP_BYTES_PER_PIXEL bytes per
- * image pixel: its densities raised by up to TG_SHADOW_RULE_GAIN, as far
- * as the maps still fit (in steps of 1/16; a texel per pixel leaves 1-2
- * pixel bands along concave corners, where the filter's footprint
- * crosses onto the other surface, README "Shadows"). */
-APART static void spend_the_budget(tgi_shadow_need *nd, size_t pixels)
+/* A finished need well within its light's share of the budget
+ * (tgi_shadow_light_budget): its densities raised by up to
+ * TG_SHADOW_RULE_GAIN, as far as the maps still fit (in steps of 1/16; a
+ * texel per pixel leaves 1-2 pixel bands along concave corners, where the
+ * filter's footprint crosses onto the other surface, README "Shadows"). */
+APART static void spend_the_budget(tgi_shadow_need *nd, size_t budget)
 {
     tgi_shadow_need base = *nd;
-    size_t budget, bytes = tgi_shadow_need_bytes(nd);
+    size_t bytes = tgi_shadow_need_bytes(nd);
     int step, f;
-    if (bytes == 0 || tg_size_mul(pixels, TG_SHADOW_MAP_BYTES_PER_PIXEL, &budget) || bytes >= budget) return;
+    if (bytes == 0 || bytes >= budget) return;
     for (step = 16 * TG_SHADOW_RULE_GAIN; step > 16; step--) {
         for (f = 0; f < nd->faces; f++) nd->density[f] = tg_mul(base.density[f], tg_ratio(step, 16));
         tgi_shadow_need_finish(nd, 0);
@@ -587,6 +592,14 @@ APART static void spend_the_budget(tgi_shadow_need *nd, size_t pixels)
         if (bytes > 0 && bytes <= budget) return;
     }
     *nd = base;
+}
+
+/* The lights that cast shadows (at least 1): their maps share the budget. */
+static int shadowed_lights(const tg_scene *s)
+{
+    int i, n = 0;
+    for (i = 0; i < s->light_count; i++) n += s->lights[i].shadows != 0;
+    return n > 1 ? n : 1;
 }
 
 /* The frame of the plan's k-th of n views: every frame's, or n spread over
@@ -621,10 +634,11 @@ int tgi_shadow_plan(const tg_scene *s, const tg_request *r, int light, size_t bv
         tgi_shadow_map_size_rule(nd, l, &v, *lo, *hi, s->tri_pos, s->tri_count);
     }
     tgi_shadow_need_finish(nd, r->shadow_map_size);
-    if (r->shadow_map_size <= 0) spend_the_budget(nd, (size_t)r->width * (size_t)r->height);
+    if (r->shadow_map_size <= 0)
+        spend_the_budget(nd, tgi_shadow_light_budget((size_t)r->width * (size_t)r->height, shadowed_lights(s)));
     if (r->shadow_method == TG_SHADOWS_MAPS || r->shadow_map_size > 0) return TG_SHADOW_BY_MAP;
     bytes = tgi_shadow_need_bytes(nd);
-    by = tgi_shadow_choose(bytes, bvh_bytes, (size_t)r->width * (size_t)r->height);
+    by = tgi_shadow_choose(bytes, bvh_bytes, (size_t)r->width * (size_t)r->height, shadowed_lights(s));
     if (by == TG_SHADOW_BY_MAP && bvh_bytes < bytes && views_known(s, r))
         for (k = 0; k < n && by == TG_SHADOW_BY_MAP; k++) {   /* one map too coarse for what a view sees */
             frame_view(&v, s, r, plan_view_frame(k, n, views));
@@ -649,14 +663,29 @@ static void put_light(tgi_text *t, const tg_scene *s, const tg_request *r, int i
         tgi_text_put(t, "): shadow rays against the BVH of ");
         tgi_text_put_uint(t, (size_t)s->tri_count);
         tgi_text_put(t, " triangles");
-        if (r->shadow_method == TG_SHADOWS_AUTO &&
-            tgi_shadow_choose(tgi_shadow_need_bytes(&nd), bvh, (size_t)r->width * (size_t)r->height) == TG_SHADOW_BY_MAP)
-        {   /* tgi_shadow_map_coarse's reason */
-            tgi_text_put(t, " (one map would give over 1/");
-            tgi_text_put_uint(t, TG_SHADOW_COARSE_SHARE);
-            tgi_text_put(t, " of the receivers seen a texel for more than ");
-            tgi_text_put_uint(t, TG_SHADOW_COARSE * TG_SHADOW_COARSE);
-            tgi_text_put(t, " pixels)");
+        if (r->shadow_method == TG_SHADOWS_AUTO) {
+            const size_t pixels = (size_t)r->width * (size_t)r->height, bytes = tgi_shadow_need_bytes(&nd);
+            const int lights = shadowed_lights(s);
+            if (tgi_shadow_choose(bytes, bvh, pixels, lights) == TG_SHADOW_BY_MAP) {   /* tgi_shadow_map_coarse's reason */
+                tgi_text_put(t, " (one map would give over 1/");
+                tgi_text_put_uint(t, TG_SHADOW_COARSE_SHARE);
+                tgi_text_put(t, " of the receivers seen a texel for more than ");
+                tgi_text_put_uint(t, TG_SHADOW_COARSE * TG_SHADOW_COARSE);
+                tgi_text_put(t, " pixels)");
+            } else {   /* the bytes' */
+                tgi_text_put(t, " (its maps would take ");
+                tgi_text_put_uint(t, bytes);
+                tgi_text_put(t, " bytes, over its share of the maps' budget: ");
+                tgi_text_put_uint(t, tgi_shadow_light_budget(pixels, lights));
+                tgi_text_put(t, " bytes, ");
+                if (lights > 1) {
+                    tgi_text_put(t, "1/");
+                    tgi_text_put_uint(t, (size_t)lights);
+                    tgi_text_put(t, " of ");
+                }
+                tgi_text_put_uint(t, TG_SHADOW_MAP_BYTES_PER_PIXEL);
+                tgi_text_put(t, " bytes a pixel)");
+            }
         }
         tgi_text_put(t, "\n");
         return;

@@ -67,18 +67,27 @@ enum { TG_SHADOW_BY_MAP = 0, TG_SHADOW_BY_RAYS = 1 };
 
 /* Image pixels' worth of shadow-map bytes the plan accepts before it
  * considers shadow rays (16-bit maps by the rule take 1.8-7 bytes a pixel
- * on the built-in scenes). */
+ * on the built-in scenes): the maps of all the lights that cast shadows
+ * together, each light's share 1 / (their count) of it
+ * (tgi_shadow_light_budget). */
 #define TG_SHADOW_MAP_BYTES_PER_PIXEL 8
+
+/* One shadowed light's share of the maps' budget for an image of `pixels`
+ * pixels and `lights` shadowed lights (<= 1: the whole budget);
+ * (size_t)-1 when the budget is past size_t. */
+size_t tgi_shadow_light_budget(size_t pixels, int lights);
 
 /* The choice for one light, measured (README "Shadows"): a shadow ray
  * against the BVH costs 1.3-6 times the instructions of a PCF lookup per
  * pixel and frame (900 on 4 triangles, 1800 on 32, 2500-2900 on 300-2300;
  * the 4-tap lookup 250-400), while a static scene's maps are rendered
- * once; so maps, unless they take more than TG_SHADOW_MAP_BYTES_PER_PIXEL
- * bytes per image pixel and the BVH (shared by every light that uses rays:
- * pass 0 once one is paid for) takes fewer bytes than they do.  map_bytes
- * from tgi_shadow_need_bytes, bvh_bytes from tgi_bvh_bytes(triangles). */
-int tgi_shadow_choose(size_t map_bytes, size_t bvh_bytes, size_t pixels);
+ * once; so maps, unless they take more than the light's share of the
+ * budget (tgi_shadow_light_budget: 64 point lights' maps took 35 MB at
+ * 320x240 when each light had the whole budget) and the BVH (shared by
+ * every light that uses rays) takes fewer bytes than they do.  map_bytes
+ * from tgi_shadow_need_bytes, bvh_bytes from tgi_bvh_bytes(triangles),
+ * lights the count of shadowed lights. */
+int tgi_shadow_choose(size_t map_bytes, size_t bvh_bytes, size_t pixels, int lights);
 
 /* A map serves a receiver coarsely where one of its texels spans more
  * than TG_SHADOW_COARSE x TG_SHADOW_COARSE image pixels of it; when more
@@ -103,7 +112,7 @@ int tgi_shadow_map_coarse(const tgi_shadow_need *nd, const tgi_light *l, const t
 #define TG_SHADOW_PLAN_VIEWS 16
 
 /* The plan raises the rule's densities by up to this factor while the maps
- * stay within TG_SHADOW_MAP_BYTES_PER_PIXEL bytes per image pixel. */
+ * stay within their light's share of the budget (tgi_shadow_light_budget). */
 #define TG_SHADOW_RULE_GAIN 2
 
 /* Light `light`'s shadows for request r (defaults resolved): how
