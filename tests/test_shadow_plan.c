@@ -355,9 +355,8 @@ static int check_ceiling(int w, int h, int method, int pcf, const char *what)
 /* A 2-unit box on a ground plane of half side `half`, both moved by
  * (offset, 0, offset), under a directional light (README "Shadows": where
  * one map is not enough). */
-static const char *box_on_ground(int half, int offset, char *text, size_t size)
+static const char *box_on_ground_at(int half, int ox, int oz, char *text, size_t size)
 {
-    const int lo = offset - half, hi = offset + half;
     snprintf(text, size,
              "camera pos %d 3 %d  target %d 0.5 %d\n"
              "material base albedo 0.5 0.5 0.5\n"
@@ -366,9 +365,13 @@ static const char *box_on_ground(int half, int offset, char *text, size_t size)
              "box min %d 0 %d max %d 2 %d material red\n"
              "light directional dir -0.3 -1 -0.2 color 1 1 1 intensity 3 shadows\n"
              "env uniform 0.1 0.1 0.1\n",
-             offset, offset + 8, offset, offset, lo, lo, lo, hi, hi, hi, hi, lo,
-             offset - 1, offset - 1, offset + 1, offset + 1);
+             ox, oz + 8, ox, oz, ox - half, oz - half, ox - half, oz + half, ox + half, oz + half, ox + half, oz - half,
+             ox - 1, oz - 1, ox + 1, oz + 1);
     return text;
+}
+static const char *box_on_ground(int half, int offset, char *text, size_t size)
+{
+    return box_on_ground_at(half, offset, offset, text, size);
 }
 
 /* Whether the ray from (x, 0, z) toward the light (-dir) meets the box
@@ -391,7 +394,7 @@ static int in_box_shadow(double x, double z)
  * the floor is where the geometry puts it: every floor pixel whose
  * footprint (0.1 about it) lies wholly in the shadow gets under a tenth of
  * the lit floor's direct light, every one wholly outside over nine tenths. */
-static void check_box_shadow(const rendered *r, int offset, const char *what)
+static void check_box_shadow_at(const rendered *r, int ox, int oz, const char *what)
 {
     const int w = r->plan.request.width, h = r->plan.request.height;
     const tgi_scene_camera *c = &r->scene->camera;
@@ -413,8 +416,8 @@ static void check_box_shadow(const rendered *r, int offset, const char *what)
                 p[j] = check_d((&v.eye.x)[j]) +
                        (check_d((&v.forward.x)[j]) + ky * check_d((&v.up.x)[j]) + kx * check_d((&v.right.x)[j])) * depth[i];
             if (fabs(p[1]) > 0.01) continue;                             /* the box's top */
-            px = p[0] - offset;
-            pz = p[2] - offset;
+            px = p[0] - ox;
+            pz = p[2] - oz;
             all_in = in_box_shadow(px - 0.1, pz - 0.1) && in_box_shadow(px + 0.1, pz - 0.1) &&
                      in_box_shadow(px - 0.1, pz + 0.1) && in_box_shadow(px + 0.1, pz + 0.1);
             any_in = in_box_shadow(px - 0.1, pz - 0.1) || in_box_shadow(px + 0.1, pz - 0.1) ||
@@ -426,6 +429,7 @@ static void check_box_shadow(const rendered *r, int offset, const char *what)
     CHECK(bad == 0, "%s: %d floor pixels lit against the geometry", what, bad);
     free(e); free(depth); free(normal);
 }
+static void check_box_shadow(const rendered *r, int offset, const char *what) { check_box_shadow_at(r, offset, offset, what); }
 
 /* One map for a ground plane that runs far past the box spends its texels
  * on the distant floor: the auto choice takes shadow rays there
@@ -491,6 +495,37 @@ TEST(ortho_map_far_from_the_origin)
         CHECK(r.frame->shadow_maps[0].ray == NULL, "offset %d: a map", offsets[k]);
         snprintf(what, sizeof what, "+-10 plane at %d, map", offsets[k]);
         check_box_shadow(&r, offsets[k], what);
+        teardown(&r);
+    }
+}
+
+/* The same +-10 scene with the default shadows, up to 30000 units from the
+ * origin on one axis and 20000 on two: the box's shadow where the geometry
+ * puts it in both number types.  In Q16.16 the size rule's sums lo + hi and
+ * a triangle's three corners saturated past 16384 (10922) units (the
+ * ground measured about x = 16384, its light-plane area 0: an 8-texel map,
+ * its shadow anywhere), and so did the map's window centre (minx + maxx);
+ * on two axes at 20000 a map's light-plane coordinates (up to |p|_1)
+ * are past Q16.16's range and the plan takes rays. */
+TEST(default_shadows_far_out)
+{
+    static const int at[][2] = { { 30000, 0 }, { 0, 30000 }, { -30000, 0 }, { 15000, 15000 }, { 20000, 20000 } };
+    char text[1024], what[64];
+    size_t k;
+    for (k = 0; k < sizeof at / sizeof at[0]; k++) {
+        rendered r;
+        tg_request q = request(160, 120, AOVBIT(TG_AOV_DIRECT) | AOVBIT(TG_AOV_DEPTH) | AOVBIT(TG_AOV_NORMAL));
+        box_on_ground_at(10, at[k][0], at[k][1], text, sizeof text);
+        if (!setup_checked(&r, text, &q, "box on the ground, far out") || tg_frame_render(r.frame, 0, NULL) != TG_OK) {
+            CHECK(0, "%s", r.msg);
+            continue;
+        }
+        if (at[k][0] == 0 || at[k][1] == 0)   /* one axis: a map, of the size it has at the origin */
+            CHECK(r.frame->shadow_maps[0].ray == NULL && r.frame->shadow_maps[0].face[0].size > 128,
+                  "(%d, %d): rays %d, a map of %d texels", at[k][0], at[k][1], r.frame->shadow_maps[0].ray != NULL,
+                  r.frame->shadow_maps[0].face[0].size);
+        snprintf(what, sizeof what, "+-10 plane at (%d, %d), default shadows", at[k][0], at[k][1]);
+        check_box_shadow_at(&r, at[k][0], at[k][1], what);
         teardown(&r);
     }
 }
@@ -607,6 +642,7 @@ int main(void)
     RUN(one_map_too_coarse_takes_rays);
     RUN(ortho_map_far_from_the_origin);
     RUN(rays_far_from_the_origin);
+    RUN(default_shadows_far_out);
     RUN(ceiling_round_the_lamp_is_lit);
     RUN(rays_match_fine_maps);
     RUN(unknown_views_need_every_face);

@@ -189,8 +189,12 @@ static void setup_ortho(tgi_shadow_map *sm, tg_vec3 dir, tg_vec3 lo, tg_vec3 hi)
     margin = tg_max(tg_mul(half, TG_R(0.01f)), TG_R(0.01f));
     scale = tg_div(TG_ONE, half);
     fc->right = r; fc->up = u; fc->forward = f;
-    sm->ortho_center_x = tg_mul(tg_add(minx, maxx), TG_R(0.5f));
-    sm->ortho_center_y = tg_mul(tg_add(miny, maxy), TG_R(0.5f));
+    /* the window's centre; the sum in tgi_wide (core/real.h: tg_mul and
+     * tg_add's result where they do not saturate): in Q16.16 a window past
+     * 16384 units from the origin saturated the sum (a +-10 ground at x =
+     * 30000 got its map centred at 16384) */
+    sm->ortho_center_x = (tg_real)tgi_wide_mul((tgi_wide)minx + maxx, TG_R(0.5f));
+    sm->ortho_center_y = (tg_real)tgi_wide_mul((tgi_wide)miny + maxy, TG_R(0.5f));
     sm->ortho_near = tg_sub(minz, margin);
     sm->ortho_scale = scale;
     sm->ortho_scale_inv = half;

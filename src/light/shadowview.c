@@ -234,6 +234,24 @@ static int camera_hexa(hexa *x, const tgi_view *v, tg_vec3 lo, tg_vec3 hi, tg_re
     return 1;
 }
 
+/* (lo + hi) / 2 and a triangle's centroid, the sums in tgi_wide (core/real.h:
+ * tgi_v3_add and tgi_v3_scale's result where they do not saturate): in
+ * Q16.16 the sums of a scene past 16384 (10922) units from the origin
+ * saturated, and a ground at x = 30000 was measured about x = 16384, its
+ * light-plane area rounded to 0 (an 8-texel map), its faces' sides wrong. */
+static tg_vec3 mid_point(tg_vec3 lo, tg_vec3 hi)
+{
+    return tg_v3((tg_real)tgi_wide_mul((tgi_wide)lo.x + hi.x, TG_R(0.5f)), (tg_real)tgi_wide_mul((tgi_wide)lo.y + hi.y, TG_R(0.5f)),
+                 (tg_real)tgi_wide_mul((tgi_wide)lo.z + hi.z, TG_R(0.5f)));
+}
+static tg_vec3 centroid(const tg_vec3 *t)
+{
+    const tg_real third = TG_R(1.0f / 3.0f);
+    return tg_v3((tg_real)tgi_wide_mul((tgi_wide)t[0].x + t[1].x + t[2].x, third),
+                 (tg_real)tgi_wide_mul((tgi_wide)t[0].y + t[1].y + t[2].y, third),
+                 (tg_real)tgi_wide_mul((tgi_wide)t[0].z + t[1].z + t[2].z, third));
+}
+
 static void light_face_make(light_face *lf, const tgi_light *l, int face, tg_vec3 lo, tg_vec3 hi, tg_real margin)
 {
     tg_real zfar = 0;
@@ -245,7 +263,7 @@ static void light_face_make(light_face *lf, const tgi_light *l, int face, tg_vec
     lf->tan_nominal = tgi_shadow_nominal_tan(l);
     if (!lf->perspective) {
         /* light-plane coordinates about the bounds' centre, scaled to about 1 */
-        tg_vec3 c = tgi_v3_scale(tgi_v3_add(lo, hi), TG_R(0.5f));
+        tg_vec3 c = mid_point(lo, hi);
         lf->o = c;
         lf->scale = tg_div(TG_ONE, tg_max(tgi_v3_length(tgi_v3_sub(hi, c)), TG_R(0.001f)));
         return;
@@ -259,7 +277,7 @@ static void light_face_make(light_face *lf, const tgi_light *l, int face, tg_vec
 /* Facing both the camera and the light (the side the camera sees is the lit one). */
 static int lit_and_seen(const tgi_light *l, const tgi_view *v, const tg_vec3 *t)
 {
-    tg_vec3 n, c = tgi_v3_scale(tgi_v3_add(tgi_v3_add(t[0], t[1]), t[2]), TG_R(1.0f / 3.0f));
+    tg_vec3 n, c = centroid(t);
     tg_real to_eye, to_light;
     if (!tgi_face_normal(t[0], t[1], t[2], &n)) return 0;
     to_eye = tgi_v3_dot(n, tgi_v3_sub(v->eye, c));
@@ -616,6 +634,34 @@ static int views_known(const tg_scene *s, const tg_request *r)
     return !r->game_loop && r->technique != TG_TECH_REFERENCE && views <= TG_SHADOW_PLAN_VIEWS;
 }
 
+/* |p|_1, the largest dot product of p with a unit vector or more, without
+ * saturation (tgi_wide). */
+static tgi_wide reach_l1(tg_vec3 p)
+{
+    return (tgi_wide)tg_abs(p.x) + (tgi_wide)tg_abs(p.y) + (tgi_wide)tg_abs(p.z);
+}
+
+/* Whether a map's arithmetic cannot hold the scene of request r within the
+ * bounds lo, hi: the rule's clip planes through the eye and a directional
+ * map's light-plane coordinates (its window, its texels) are dot products of
+ * positions from the origin with unit vectors, up to |p|_1 of the bounds'
+ * corners and the views' eyes, and in Q16.16 they saturate past
+ * TG_REAL_MAX (a box on a +-10 ground 25000 units from the origin on x and
+ * z: the rule measured nothing and planned an 8-texel map that shadowed
+ * the wrong pixels).  Never in float, whose range holds any scene. */
+static int map_out_of_range(const tg_scene *s, const tg_request *r, tg_vec3 lo, tg_vec3 hi)
+{
+    tgi_wide reach = 0;
+    tgi_view v;
+    int views = s->camera_key_count > 0 ? r->frames : 1, n = views < TG_SHADOW_PLAN_VIEWS ? views : TG_SHADOW_PLAN_VIEWS, k;
+    for (k = 0; k < 8; k++) reach = reach_l1(corner(lo, hi, k)) > reach ? reach_l1(corner(lo, hi, k)) : reach;
+    for (k = 0; k < n && !r->game_loop; k++) {
+        frame_view(&v, s, r, plan_view_frame(k, n, views));
+        reach = reach_l1(v.eye) > reach ? reach_l1(v.eye) : reach;
+    }
+    return reach > (tgi_wide)TG_REAL_MAX;
+}
+
 int tgi_shadow_plan(const tg_scene *s, const tg_request *r, int light, size_t bvh_bytes,
                     tgi_shadow_need *nd, tg_vec3 *lo, tg_vec3 *hi)
 {
@@ -637,6 +683,7 @@ int tgi_shadow_plan(const tg_scene *s, const tg_request *r, int light, size_t bv
     if (r->shadow_map_size <= 0)
         spend_the_budget(nd, tgi_shadow_light_budget((size_t)r->width * (size_t)r->height, shadowed_lights(s)));
     if (r->shadow_method == TG_SHADOWS_MAPS || r->shadow_map_size > 0) return TG_SHADOW_BY_MAP;
+    if (bvh_bytes != SIZE_MAX && map_out_of_range(s, r, *lo, *hi)) return TG_SHADOW_BY_RAYS;   /* a BVH is possible */
     bytes = tgi_shadow_need_bytes(nd);
     by = tgi_shadow_choose(bytes, bvh_bytes, (size_t)r->width * (size_t)r->height, shadowed_lights(s));
     if (by == TG_SHADOW_BY_MAP && bvh_bytes < bytes && views_known(s, r))
@@ -666,7 +713,10 @@ static void put_light(tgi_text *t, const tg_scene *s, const tg_request *r, int i
         if (r->shadow_method == TG_SHADOWS_AUTO) {
             const size_t pixels = (size_t)r->width * (size_t)r->height, bytes = tgi_shadow_need_bytes(&nd);
             const int lights = shadowed_lights(s);
-            if (tgi_shadow_choose(bytes, bvh, pixels, lights) == TG_SHADOW_BY_MAP) {   /* tgi_shadow_map_coarse's reason */
+            if (map_out_of_range(s, r, lo, hi)) {
+                tgi_text_put(t, " (the scene reaches past the number type's range from the origin, where a map's"
+                                " coordinates would saturate)");
+            } else if (tgi_shadow_choose(bytes, bvh, pixels, lights) == TG_SHADOW_BY_MAP) {   /* tgi_shadow_map_coarse's reason */
                 tgi_text_put(t, " (one map would give over 1/");
                 tgi_text_put_uint(t, TG_SHADOW_COARSE_SHARE);
                 tgi_text_put(t, " of the receivers seen a texel for more than ");
