@@ -32,6 +32,7 @@ env sh9 0.3 0.35 0.4  0.05 0.05 0.06  0.1 0.1 0.12  0 0 0  0.01 0.01 0.01  0 0 0
 gi radius 1.5 slices 2 samples 4
 SCENE
 printf 'camera pos 0 1 -3  target 0 0 0\nmaterial m albedo 0.5 0.5 0.5\nquad p0 0 0 0  p1 1 0 0  p2 1 1 0  p3 0 1 x  material m\n' >"$tmp/bad.scene"
+printf 'camera pos 0 1 -3  target 0 0 0\nmaterial m albedo 0.5 0.5 0.5\nquad p0 0 0 0  p1 1 0 0  p2 1 1 0  p3 0 1 0  material m\n' >"$tmp/good.scene"
 
 host_objs() { ls "$BUILD/$1"/platform/hosted/*.o "$BUILD/$1"/platform/fbdev/*.o 2>/dev/null | tr '\n' ' '; }
 for num in float fixed; do
@@ -73,5 +74,21 @@ for num in float fixed; do
     if [ $rc = 2 ] && grep -q "bad.scene:3:[0-9]*: error:" "$tmp/err" && [ ! -e "$tmp/bad.c" ]; then
         ok "bake/$num: bad input is FILE:LINE:COL, exit 2"
     else fail "bake/$num: bad input" "exit $rc: $(head -c 300 "$tmp/err")"; fi
+    # never over an input (the scene itself, or through a link to it): exit 2, the scene intact
+    cp "$tmp/good.scene" "$tmp/in.scene"
+    ln -sf in.scene "$tmp/in-link.c"
+    "$bake" "$tmp/in.scene" -o "$tmp/in.scene" 2>"$tmp/err"; rc=$?
+    "$bake" "$tmp/in.scene" -o "$tmp/in-link.c" 2>>"$tmp/err"; rc2=$?
+    if [ $rc = 2 ] && [ $rc2 = 2 ] && cmp -s "$tmp/good.scene" "$tmp/in.scene" && grep -q "refusing to overwrite" "$tmp/err"; then
+        ok "bake/$num: the output is the input: refused, exit 2"
+    else fail "bake/$num: output over the input" "exit $rc, $rc2: $(head -c 300 "$tmp/err")"; fi
+    # a source name holding "*/" stays inside the file's comment: the file compiles
+    mkdir -p "$tmp/we*"
+    cp "$tmp/good.scene" "$tmp/we*/s.scene"
+    # shellcheck disable=SC2086
+    if "$bake" "$tmp/we*/s.scene" -o "$tmp/star.c" 2>"$tmp/err" &&
+       $CC $TG_CFLAGS $def -Isrc -c "$tmp/star.c" -o "$tmp/star.o" 2>>"$tmp/err"; then
+        ok "bake/$num: a source path with */ compiles"
+    else fail "bake/$num: a source path with */" "$(head -c 300 "$tmp/err")"; fi
 done
 summary

@@ -63,10 +63,13 @@ static void comma_vec3(tg_vec3 v)
 
 static void name(const char *s)
 {
+    const char *const start = s;
     fputs("\"", out);
     for (; *s; s++) {
         unsigned char c = (unsigned char)*s;
-        if (c >= 32 && c < 127 && c != '"' && c != '\\' && c != '?') fputc(c, out);
+        /* '/' after '*' too: the source's name stands in a comment as well,
+         * which "*" "/" would end (the string's value is the same) */
+        if (c >= 32 && c < 127 && c != '"' && c != '\\' && c != '?' && !(c == '/' && s[-1] == '*' && s != start)) fputc(c, out);
         else fprintf(out, "\\%03o", c);
     }
     fputs("\"", out);
@@ -181,8 +184,8 @@ static int is_c_name(const char *s)
 int main(int argc, char **argv)
 {
     const char *in = NULL, *path = NULL, *fn = "tg_baked_scene", *text;
-    char *data = NULL, msg[512];
-    size_t size;
+    char *data = NULL, *baked = NULL, msg[512];
+    size_t size, baked_size = 0;
     void *mem;
     tg_arena arena;
     tg_scene *s = NULL;
@@ -225,22 +228,49 @@ int main(int argc, char **argv)
     tgp_host_io_init(&io);
     memset(&err, 0, sizeof err);
     st = tg_scene_parse(text, size, in, &io.io, &arena, &s, &err);
-    tgp_host_io_free(&io);
     if (st != TG_OK) {
+        tgp_host_io_free(&io);
         tg_error_format(&err, msg, sizeof msg);
         fprintf(stderr, "%s\n", msg);
         return st == TG_ERR_INPUT ? 2 : 3;
     }
-    out = fopen(path, "w");
+    {   /* never over an input: the scene, or a mesh or MTL it read (device and inode) */
+        const char *input = NULL;
+        tgp_file_id id;
+        const tgp_host_io_file *f;
+        if (!tgp_file_identify(path, &id)) {
+            if (data && tgp_file_is(in, &id)) input = in;   /* the scene's file (not builtin:) */
+            for (f = io.files; f && !input; f = f->next)
+                if (f->id.dev == id.dev && f->id.ino == id.ino) input = f->path;
+        }
+        if (input) {
+            fprintf(stderr, "%s: error: the output is the input file '%s'; refusing to overwrite it\n", path, input);
+            tgp_host_io_free(&io);
+            return 2;
+        }
+    }
+    tgp_host_io_free(&io);
+    if (tgp_outfile_check(path, msg, sizeof msg)) {
+        fprintf(stderr, "%s: error: %s\n", path, msg);
+        return 3;
+    }
+    /* the C text in memory, then written to a temporary file and renamed
+     * over the output: a failed write leaves the old file as it was */
+    out = open_memstream(&baked, &baked_size);
     if (!out) {
-        fprintf(stderr, "tinygi-bake: error: cannot write %s\n", path);
+        fputs("tinygi-bake: error: out of memory\n", stderr);
         return 3;
     }
     bake(s, fn, in);
     if (fclose(out) != 0) {
-        fprintf(stderr, "tinygi-bake: error: cannot write %s\n", path);
+        fputs("tinygi-bake: error: out of memory\n", stderr);
         return 3;
     }
+    if (tgp_file_write_atomic(path, baked, baked_size, msg, sizeof msg)) {
+        fprintf(stderr, "%s: error: %s\n", path, msg);
+        return 3;
+    }
+    free(baked);
     free(mem);
     free(data);
     return 0;
