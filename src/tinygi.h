@@ -652,7 +652,8 @@ typedef struct tg_error {
  * no ":LINE:COL" when line <= 0) into buf, cut to size - 1 bytes and always
  * NUL-terminated when size > 0; buf may be NULL when size is 0.  Returns the
  * length of the whole text, as snprintf does (>= size: it was cut).  `err`
- * is one a tinygi function filled, or all zero. */
+ * is one a tinygi function filled, or all zero; NULL formats as all zero
+ * ("error: "). */
 size_t tg_error_format(const tg_error *err, char *buf, size_t size);
 
 /* ---- the arena: one block of caller memory, carved front to back ---- */
@@ -834,7 +835,8 @@ typedef struct tg_request {
                               with any other technique */
 } tg_request;
 
-/* Every field at its default: 320x240, one frame, colour, HBIL, GI settings unset. */
+/* Every field at its default: 320x240, one frame, colour, HBIL, GI settings
+ * unset.  NULL: nothing is done. */
 void tg_request_defaults(tg_request *r);
 
 /* ---- the frame plan ---- */
@@ -876,7 +878,9 @@ typedef struct tg_frame tg_frame;
  * plan->total_bytes is enough at every address.  Too little (or NULL
  * memory) is TG_ERR_MEMORY, err->bytes_needed = plan->total_bytes.  On
  * failure *frame is NULL.  The frame uses only those bytes; it copies what
- * it needs of the plan, and points into the plan's scene. */
+ * it needs of the plan, and points into the plan's scene.  A plan whose
+ * request was changed after tg_plan_make is checked again as tg_plan_make
+ * checks a request: a field past its limit is TG_ERR_INPUT. */
 tg_status tg_frame_create(const tg_plan *plan, void *memory, size_t size,
                           tg_frame **frame, tg_error *err);
 /* Render frame `index` (0-based; the keys' time comes from it unless

@@ -1359,6 +1359,66 @@ TEST(null_handles_refused)
     guard_free(&g);
 }
 
+/* A plan made, then tg_plan_make failing on it (a NULL scene: a re-parse
+ * that failed): the plan is left with total_bytes 0 and no scene, and
+ * makes no frame (it kept the old plan's bytes and scene, and a frame was
+ * made from it: an outside probe, the twenty-third session). */
+TEST(failed_plan_over_a_good_one)
+{
+    tg_request q = small_request(8, 6, 1);
+    tg_plan plan;
+    tg_error err;
+    tg_frame *frame = NULL;
+    guarded g = guard_alloc(1u << 20, 0);
+    CHECK(tg_plan_make(&plan, scene_everything(), &q, &err) == TG_OK && plan.total_bytes > 0, "%s", err.message);
+    CHECK(tg_plan_make(&plan, NULL, &q, &err) == TG_ERR_INPUT, "NULL scene refused");
+    CHECK(plan.total_bytes == 0 && plan.scene == NULL, "the failed plan: total_bytes %zu, scene %p", plan.total_bytes,
+          (const void *)plan.scene);
+    CHECK(tg_frame_create(&plan, g.p, g.size, &frame, &err) == TG_ERR_INPUT && frame == NULL, "a frame from it");
+    CHECK(tg_plan_make(&plan, scene_everything(), NULL, &err) == TG_ERR_INPUT && plan.total_bytes == 0, "NULL request");
+    guard_free(&g);
+}
+
+/* A request changed in the plan after tg_plan_make is checked again by
+ * tg_frame_create as tg_plan_make checks one (bounces 1000000 rendered for
+ * minutes, technique 99 and slices 50 were taken: an outside probe). */
+TEST(plan_request_changed_after_make)
+{
+    tg_request q = small_request(8, 6, 1);
+    tg_plan plan, bad;
+    tg_error err;
+    tg_frame *frame = NULL;
+    guarded g;
+    int k;
+    CHECK(tg_plan_make(&plan, scene_everything(), &q, &err) == TG_OK, "%s", err.message);
+    g = guard_alloc(plan.total_bytes, 0);
+    for (k = 0; k < 5; k++) {
+        bad = plan;
+        switch (k) {
+        case 0: bad.request.bounces = 1000000; break;
+        case 1: bad.request.technique = (tg_technique)99; break;
+        case 2: bad.request.slices = 50; break;
+        case 3: bad.request.gi_scale = 7; break;
+        default: bad.request.frames = 0; break;
+        }
+        frame = NULL;
+        CHECK(tg_frame_create(&bad, g.p, g.size, &frame, &err) == TG_ERR_INPUT && frame == NULL && err.message[0],
+              "change %d taken", k);
+    }
+    CHECK(tg_frame_create(&plan, g.p, g.size, &frame, &err) == TG_OK && frame, "the plan as made: %s", err.message);
+    guard_free(&g);
+}
+
+/* tg_request_defaults(NULL) does nothing; tg_error_format(NULL) formats a
+ * zeroed error (both dereferenced NULL). */
+TEST(defaults_and_format_of_null)
+{
+    char buf[32];
+    tg_request_defaults(NULL);
+    CHECK(tg_error_format(NULL, buf, sizeof buf) == strlen("error: ") && !strcmp(buf, "error: "), "'%s'", buf);
+    CHECK(tg_error_format(NULL, NULL, 0) == strlen("error: "), "NULL error, NULL buffer");
+}
+
 int main(void)
 {
     CASE(real_functions_at_extremes, NULL);
@@ -1397,5 +1457,8 @@ int main(void)
     CASE(create_short_with_null_err, NULL);
     CASE(render_before_create, NULL);
     CASE(null_handles_refused, NULL);
+    CASE(failed_plan_over_a_good_one, NULL);
+    CASE(plan_request_changed_after_make, NULL);
+    CASE(defaults_and_format_of_null, NULL);
     return check_summary();
 }

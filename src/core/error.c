@@ -8,7 +8,9 @@
 
 size_t tg_error_format(const tg_error *err, char *buf, size_t size)
 {
+    static const tg_error none;   /* NULL formats as a zeroed error */
     tgi_text t;
+    if (!err) err = &none;
     tgi_text_init(&t, buf, size);
     if (err->file[0]) {
         tgi_text_put(&t, err->file);

@@ -181,6 +181,7 @@ tg_status tg_plan_make(tg_plan *plan, const tg_scene *scene, const tg_request *r
     tg_frame probe, *pp = &probe;
     uint32_t possible;
     tgi_error_clear(err);
+    if (plan) memset(plan, 0, sizeof *plan);   /* a failed call leaves total_bytes 0, whatever fails */
     if (!plan || !scene || !req) {   /* a failed tg_scene_parse leaves a NULL scene */
         tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "tg_plan_make: plan, scene and request must not be NULL");
         return TG_ERR_INPUT;

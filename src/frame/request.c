@@ -14,6 +14,7 @@
 
 void tg_request_defaults(tg_request *r)
 {
+    if (!r) return;   /* a NULL handle: nothing to fill */
     memset(r, 0, sizeof *r);
     r->width = TG_DEFAULT_WIDTH;
     r->height = TG_DEFAULT_HEIGHT;
