@@ -31,6 +31,10 @@ int main(void)
     uint8_t *rgb;
     int y, w, h;
 
+    if (!text) { /* a library built with TG_NO_BUILTIN_SCENES=1 has none */
+        fputs("minimal: no built-in scenes in this build: parse a scene file's text\n", stderr);
+        return 1;
+    }
     tg_arena_init(&scene_arena, scene_memory, sizeof scene_memory);
     if (tg_scene_parse(text, strlen(text), "builtin:cornell", NULL, &scene_arena, &scene, &err) != TG_OK)
         return fail(&err); /* TG_ERR_MEMORY: err.bytes_needed says how many bytes */

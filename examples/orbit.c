@@ -41,6 +41,10 @@ static tg_frame *start_frame(int w, int h, int frames, void **memory)
     tg_plan plan;
     tg_frame *frame = NULL;
     tg_error err;
+    if (!text) { /* a library built with TG_NO_BUILTIN_SCENES=1 has none */
+        fputs("orbit: no built-in scenes in this build: parse a scene file's text\n", stderr);
+        return NULL;
+    }
     tg_arena_init(&scene_arena, scene_memory, sizeof scene_memory);
     if (tg_scene_parse(text, strlen(text), "builtin:cornell", NULL, &scene_arena, &scene, &err) != TG_OK) {
         fail(&err);

@@ -38,4 +38,14 @@ if [ -n "$line" ]; then
     else fail "README amalgamation line compiles" "$cmd: $(head -n 10 "$T/cc.err")"; fi
     same_as_cli "README amalgamation line renders what the CLI renders" "$T/minimal" float
 fi
+# without built-in scenes (TG_NO_BUILTIN_SCENES=1) both examples say so and
+# exit 1 (they passed NULL to strlen: a segfault, an outside probe)
+for ex in minimal orbit; do
+    # shellcheck disable=SC2086
+    if $CC $TG_CFLAGS -O0 -DTG_NO_BUILTIN_SCENES=1 -I"$A" examples/$ex.c "$A/tinygi.c" -o "$T/$ex-nobuiltin" $TG_LDLIBS 2>"$T/cc.err"; then
+        (cd "$T" && "./$ex-nobuiltin" >"$T/out" 2>&1); rc=$?
+        if [ $rc = 1 ] && grep -q "no built-in scenes" "$T/out"; then ok "$ex without built-in scenes: says so, exit 1"
+        else fail "$ex without built-in scenes" "exit $rc: $(head -c 300 "$T/out")"; fi
+    else fail "$ex without built-in scenes compiles" "$(head -n 10 "$T/cc.err")"; fi
+done
 summary
