@@ -142,6 +142,12 @@ check_binary() {
     # ---- bad options: exit 2, "tinygi: error: option NAME: ...", nothing written ----
     local U='^tinygi: error: '
     refused "$tag/opt_size_word" "${U}option --size: .*'abc'" render builtin:cornell --size abc
+    # control bytes in what a message quotes are written as \xNN, as the core's are: one line, no escape
+    # sequence reaches the terminal (they were written raw: an outside probe)
+    refused "$tag/opt_size_control_bytes" "${U}option --size: .*'3\\\\x1bx4'" render builtin:cornell --size "$(printf '3\033x4')"
+    ONCE=1 refused "$tag/scene_name_control_bytes" 'nope\\x1b\[2J\\x0ax\.scene: error: cannot read' render "$(printf 'nope\033[2J\nx').scene" -o "$O/out.ppm"
+    ONCE=1 refused "$tag/list_takes_no_argument" "${U}list: unexpected argument 'extra'" list extra
+    ONCE=1 refused "$tag/version_takes_no_argument" "${U}--version: unexpected argument 'x'" --version x
     refused "$tag/opt_size_zero" "${U}option --size" render builtin:cornell --size 0x10
     refused "$tag/opt_size_negative" "${U}option --size" render builtin:cornell --size -5x5
     refused "$tag/opt_size_half" "${U}option --size" render builtin:cornell --size 10x

@@ -49,19 +49,39 @@
 
 /* ---- messages ---- */
 
+/* One line on stderr: the message formatted, each control byte in it
+ * (below 0x20, and 0x7f) written as \xNN, as the core writes its messages
+ * (src/core/error.c): a file name or an option's value holding ESC [ 2 J
+ * reached the terminal as an escape sequence, and a newline split the
+ * line. */
+static void say(const char *fmt, ...)
+{
+    char line[4096];
+    const unsigned char *c;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(line, sizeof line, fmt, ap);
+    va_end(ap);
+    for (c = (const unsigned char *)line; *c; c++) {
+        if (*c < 0x20 || *c == 0x7f) fprintf(stderr, "\\x%02x", *c);
+        else fputc(*c, stderr);
+    }
+    fputc('\n', stderr);
+}
+
 static void usage_error(const char *fmt, ...)
 {
+    char what[3072];
     va_list ap;
-    fputs("tinygi: error: ", stderr);
     va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
+    vsnprintf(what, sizeof what, fmt, ap);
     va_end(ap);
-    fputc('\n', stderr);
+    say("tinygi: error: %s", what);
 }
 
 static void file_error(const char *path, const char *what)
 {
-    fprintf(stderr, "%s: error: %s\n", path, what);
+    say("%s: error: %s", path, what);
 }
 
 static void core_error(const tg_error *err)
@@ -553,7 +573,7 @@ static int load_scene_text(const char *scene, char **owned, const char **text, s
     }
     r = tgp_file_read_limited(scene, (size_t)TG_MAX_FILE_BYTES, owned, size, id, why, sizeof why);
     if (r) {
-        fprintf(stderr, "%s: error: cannot read: %s\n", scene, why);
+        say("%s: error: cannot read: %s", scene, why);
         return exit_for((tg_status)r);
     }
     *is_file = 1;
@@ -739,7 +759,7 @@ static int render_frames(const render_opts *o, const out_pattern *pat, tgp_img_f
     if (!status && !o->quiet) {
         double ms = (tgp_clock_seconds() - start) * 1000.0 / o->frames;
         pattern_path(pat, pat->numbered ? 0 : o->frames - 1, path);
-        fprintf(stderr, "tinygi: wrote %s%s (%dx%d %s, %d frame%s, %.1f ms/frame)\n", path,
+        say("tinygi: wrote %s%s (%dx%d %s, %d frame%s, %.1f ms/frame)", path,
                 pat->numbered && o->frames > 1 ? " ..." : "", o->width, o->height,
                 tg_aov_name((tg_aov)o->aov), o->frames, o->frames > 1 ? "s" : "", ms);
     }
@@ -784,8 +804,7 @@ static int refuse_inputs(const render_opts *o, const out_pattern *pat,
         for (in = io->files; in && !input; in = in->next)
             if (out.dev == in->id.dev && out.ino == in->id.ino) input = in->path;
         if (input) {
-            fprintf(stderr, "%s: error: the output is the input file '%s'; refusing to "
-                    "overwrite it\n", path, input);
+            say("%s: error: the output is the input file '%s'; refusing to overwrite it", path, input);
             return EXIT_INPUT;
         }
     }
@@ -933,8 +952,8 @@ static int diff_output_refused(const char *out, const char *a_path, const char *
         return 1;
     }
     if (!tgp_file_identify(out, &id) && (tgp_file_is(a_path, &id) || tgp_file_is(b_path, &id))) {
-        fprintf(stderr, "%s: error: the output is the input file '%s'; refusing to overwrite it\n",
-                out, tgp_file_is(a_path, &id) ? a_path : b_path);
+        say("%s: error: the output is the input file '%s'; refusing to overwrite it",
+            out, tgp_file_is(a_path, &id) ? a_path : b_path);
         return 1;
     }
     return 0;
@@ -1055,6 +1074,11 @@ int main(int argc, char **argv)
     const char *cmd = argc > 1 ? argv[1] : NULL;
     if (!cmd) {
         print_help(stderr);
+        return EXIT_INPUT;
+    }
+    if ((!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help") || !strcmp(cmd, "--version")
+         || !strcmp(cmd, "list")) && argc > 2) {   /* they take no arguments */
+        usage_error("%s: unexpected argument '%s'", cmd, argv[2]);
         return EXIT_INPUT;
     }
     if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
