@@ -793,8 +793,11 @@ typedef struct tg_request {
     int game_loop;         /* 0 (default): the camera and objects follow the scene's keys;
                               1: the program may also set the camera, objects, lights and
                               environment per frame ("the game loop" below): the frame keeps
-                              a copy of the lights and environment and posed copies of the
-                              triangles (72 bytes a triangle) */
+                              a copy of the lights and environment, posed copies of the
+                              triangles (72 bytes a triangle), each object's motion and a
+                              2-byte-a-pixel object id; the shadow plan makes every map face
+                              whole (it cannot know the cameras), which may choose shadow
+                              rays instead (README "A game loop") */
     tg_real thickness;     /* technique ssilvb: world units, 0..TG_MAX_THICKNESS; -1: unset
                               (radius / TG_THICKNESS_RADIUS_DIVISOR); NaN, the infinities and
                               other negatives are refused */
