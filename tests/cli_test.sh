@@ -298,6 +298,11 @@ check_binary() {
     expect "$tag/aov_near_with_near_field_is_quiet" [ "$rc" -eq 0 -a ! -s "$T/err" ]
     run render builtin:spheres --size 16x12 --aov far -o "$O/f.ppm" --quiet
     expect "$tag/aov_far_with_environment_is_quiet" [ "$rc" -eq 0 -a ! -s "$T/err" ]
+    # --aov ao from the path tracer: white, and a warning says why (it was silent: an outside probe)
+    run render builtin:cornell --size 16x12 --aov ao --technique pathtrace -o "$O/a.ppm" --quiet
+    expect "$tag/aov_ao_pathtrace_warns" grep -q '^tinygi: warning: --aov ao holds no occlusion (AO 1): technique pathtrace' "$T/err"
+    run render builtin:cornell --size 16x12 --aov ao --technique reference -o "$O/a.ppm" --quiet
+    expect "$tag/aov_ao_reference_is_quiet" [ "$rc" -eq 0 -a ! -s "$T/err" ]
     rm -rf "${O:?}"/*
     run render builtin:cornell --size 16x12 -o "$T/no/such/dir/x.ppm"
     expect "$tag/unwritable_output_exit_1" [ "$rc" -eq 1 -a "$(err_lines)" -eq 1 ]

@@ -832,6 +832,11 @@ static void warn_black_aov(const render_opts *o, const tg_plan *plan, const tg_s
     if (o->aov == TG_AOV_FAR && !(plan->effects & TG_EFFECT_FAR))
         fprintf(stderr, "tinygi: warning: --aov far is black: the scene has no environment "
                 "light (an env line) or its effects line leaves far out\n");
+    if ((o->aov == TG_AOV_AO || o->aov == TG_AOV_BENT || o->aov == TG_AOV_CONE) && !(plan->effects & TG_EFFECT_AO))
+        fprintf(stderr, "tinygi: warning: --aov %s holds no occlusion (AO 1): %s\n", tg_aov_name((tg_aov)o->aov),
+                plan->request.technique == TG_TECH_PATHTRACE
+                    ? "technique pathtrace traces all light itself and computes no AO (technique reference does)"
+                    : "the scene's effects line leaves ao out");
 }
 
 /* The scene and its plan: 0 or exit status. */
