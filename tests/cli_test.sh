@@ -332,7 +332,7 @@ check_binary() {
     # ---- view (framebuffer): device errors exit 1, usage errors exit 2 ----
     run view builtin:cornell --size 16x12 --fbdev "$T/no_such_fb"
     expect "$tag/view_missing_device_exit_1" [ "$rc" -eq 1 -a "$(err_lines)" -eq 1 ]
-    expect "$tag/view_missing_device_message" grep -q "error: .*no_such_fb" "$T/err"
+    expect "$tag/view_missing_device_message" grep -q "^$T/no_such_fb: error: " "$T/err"
     run view builtin:cornell --fbdev /dev/null
     expect "$tag/view_not_a_framebuffer_exit_1" [ "$rc" -eq 1 -a "$(err_lines)" -eq 1 ]
     ONCE=1 refused "$tag/view_refuses_output" "^tinygi: error: option -o: not used by tinygi view" view builtin:cornell -o "$O/v.ppm"

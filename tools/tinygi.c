@@ -929,7 +929,11 @@ static int cmd_render(int argc, char **argv)
     }
     if (!status && o.view) {
         if (tgp_fbdev_view(o.fbdev, frame, o.width, o.height, o.frames, why, sizeof why)) {
-            usage_error("%s", why);
+            /* the device's errors start "PATH: ": PATH: error: ..., as for files */
+            const char *dev = o.fbdev ? o.fbdev : "/dev/fb0";
+            const size_t n = strlen(dev);
+            if (!strncmp(why, dev, n) && why[n] == ':' && why[n + 1] == ' ') file_error(dev, why + n + 2);
+            else usage_error("%s", why);
             status = EXIT_RUNTIME;
         }
     } else if (!status) {
