@@ -130,6 +130,8 @@ int main(int argc, char **argv)
         else break;
     }
     if (i < argc || frames < 1) {
+        if (i >= argc) fprintf(stderr, "orbit: error: -n: expected a frame count >= 1\n");
+        else fprintf(stderr, "orbit: error: unexpected '%s'\n", argv[i]);
         fprintf(stderr, "usage: orbit [-n FRAMES] [-s WIDTHxHEIGHT] [-o PREFIX]\n");
         return 2;
     }
