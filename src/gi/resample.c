@@ -503,23 +503,23 @@ static tg_real near_horizon_mean(const tgi_upsample_plan *u, int x, int y, tg_re
 {
     const tgi_gview *full = u->full;
     const tg_real tol = upsample_depth_tol(z);   /* where upsample_depth_weight is above 0 */
-    tg_real sum = 0;
-    int n = 0, xx, yy, r = 1;
+    tgi_wide sum = 0;   /* at most 9 AO values in [0, 1]: tg_add's sums without its saturation tests */
+    int n = 0, xx, yy, r = 1, xa, xb, ya, yb;
 #if TGI_DEPTH_LAYERS
     if (u->layers) r = 0;
 #endif
-    for (yy = y - r; yy <= y + r; yy++) {
-        if (yy < 0 || yy >= full->height) continue;
-        for (xx = x - r; xx <= x + r; xx++) {
-            size_t j;
-            if (xx < 0 || xx >= full->width) continue;
-            j = tgi_gv_index(full, xx, yy);
+    /* the neighbourhood's part inside the image, rows then columns */
+    xa = x - r < 0 ? 0 : x - r; xb = x + r >= full->width ? full->width - 1 : x + r;
+    ya = y - r < 0 ? 0 : y - r; yb = y + r >= full->height ? full->height - 1 : y + r;
+    for (yy = ya; yy <= yb; yy++) {
+        size_t j = tgi_gv_index(full, xa, yy);
+        for (xx = xa; xx <= xb; xx++, j += (size_t)full->pixel_stride) {   /* j: (xx, yy), modulo 2^N */
             if (tgi_gv_is_sky(full, j) || !(tg_abs(tg_sub(tgi_gv_depth(full, j), z)) < tol)) continue;
-            sum = tg_add(sum, u->near ? tgi_gr_ao(u->near, j) : near_horizon_stored(u, xx, yy, j));   /* at most 9 */
+            sum += u->near ? tgi_gr_ao(u->near, j) : near_horizon_stored(u, xx, yy, j);
             n++;
         }
     }
-    return n > 0 ? tgi_div_nonneg(sum, tg_from_int(n)) : TG_ONE;
+    return n > 0 ? tgi_div_nonneg(tgi_wide_real(sum), tg_from_int(n)) : TG_ONE;
 }
 
 void tgi_near_horizon_rows(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res, tg_real radius,
