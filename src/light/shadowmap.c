@@ -647,8 +647,17 @@ static tg_real pcf(const tgi_shadow_map *sm, const lookup *q)
     }
     for (i = 0; i < taps; i++) {
         /* tap i's texel centre (i0 + i) relative to the lookup, in NDC (y up) */
+#if Q16_WIDE
+        /* fx, fy in [0, 2) (the floor's fraction, plus 1 for the tent) and
+         * texel_ndc = 2 / size in (0, 2]: i - fx within [-2, 3] and its
+         * product within [-6, 6], so tgi_wide (core/real.h) gives tg_sub's
+         * and tg_mul's integers without their saturation tests */
+        dx[i] = tg_mul(q->slope_x, (tg_real)tgi_wide_mul((int64_t)i * TG_ONE - fx, fc->texel_ndc));
+        dy[i] = tg_mul(q->slope_y, tg_neg((tg_real)tgi_wide_mul((int64_t)i * TG_ONE - fy, fc->texel_ndc)));
+#else
         dx[i] = tg_mul(q->slope_x, tg_mul(tg_sub(tg_from_int(i), fx), fc->texel_ndc));
         dy[i] = tg_mul(q->slope_y, tg_neg(tg_mul(tg_sub(tg_from_int(i), fy), fc->texel_ndc)));
+#endif
     }
     if (sm->depth_bits == TG_SHADOW_DEPTH16 && i0 >= 0 && j0 >= 0 && i0 + taps <= fc->size && j0 + taps <= fc->size)
         return tg_saturate(tg_mul(pcf16_inside(fc, q, i0, j0, taps, (const uint16_t *)sm->depth, wx, wy, dx, dy,
