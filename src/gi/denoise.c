@@ -87,7 +87,20 @@ static tg_real normal_weight(tg_real d)
 }
 #endif
 
-#if Q16_WIDE
+#if Q16_WIDE && !TG_WIDE_STORAGE
+/* A tap's key: its normal's stored code (tgi_gv_normal_word; UINT64_MAX on
+ * sky, which no code is).  Equal codes decode to equal normals, whose
+ * weight is the centre's own (weigh_and_sum); unequal codes take
+ * normal_d8 of the decoded normals, which gives that same weight where
+ * they decode alike: the same weights as keys that compare the decoded
+ * normals (normal_key below, kept where normals are stored as tg_real),
+ * without building one at each decode. */
+#define NORMAL_WORDS 1
+#else
+#define NORMAL_WORDS 0
+#endif
+
+#if Q16_WIDE && !NORMAL_WORDS
 /* A normal as one word, equal for two normals exactly when they are equal:
  * its components in 21 bits each when all are within [-2^20, 2^20) (unit
  * normals are within [-2^16, 2^16]), else `other` (UINT64_MAX for a tap,
@@ -113,13 +126,17 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
         k->z[j] = k->nx[j] = k->ny[j] = k->nz[j] = 0;
         v[0] = v[1] = v[2] = v[3] = v[4] = v[5] = v[6] = 0;
         v[7] = TG_FIXED ? 0 : TG_ONE;
-#if Q16_WIDE
+#if NORMAL_WORDS
+        k->nkey[j] = UINT64_MAX;
+#elif Q16_WIDE
         k->nkey[j] = normal_key(tg_v3(0, 0, 0), UINT64_MAX);
 #endif
         return;
     }
     n = tgi_gv_normal(g, i);
-#if Q16_WIDE
+#if NORMAL_WORDS
+    k->nkey[j] = tgi_gv_normal_word(g, i);
+#elif Q16_WIDE
     k->nkey[j] = normal_key(n, UINT64_MAX);
 #endif
     b = has_bent ? tgi_gr_bent(r, i) : tg_v3(0, 0, 0);
@@ -164,11 +181,16 @@ static inline uint64_t normal_d8(tg_vec3 a, tg_vec3 b)
  * normal, no near field; tap_load's values are 0 there, so are their sums,
  * which are then not added (tgi_denoise_pixel does not read them). */
 static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const tg_real *spatial, tg_real zi,
-                                         tg_vec3 ni, tg_real ztol, tg_real inv_ztol, uint32_t window, int whole,
+                                         tg_vec3 ni, int ce, tg_real ztol, tg_real inv_ztol, uint32_t window, int whole,
                                          const int bent, const int near, int64_t *sum)
 {
     int64_t s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0, s6 = 0, sw = 0;
+#if NORMAL_WORDS
+    uint64_t key = k->nkey[ce], same = normal_d8(ni, ni);   /* the centre's code */
+#else
     uint64_t key = normal_key(ni, UINT64_MAX - 1), same = normal_d8(ni, ni);
+    (void)ce;
+#endif
     int j, e;
     for (j = 0, e = o; whole ? j < 5 * 5 : window != 0; j++, e++, window >>= 1) {
         tg_real dz;
@@ -200,12 +222,12 @@ static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
-static void whole_fewer(const tgi_denoise_walk *k, int o, const tg_real *spatial, tg_real zi, tg_vec3 ni, tg_real ztol,
+static void whole_fewer(const tgi_denoise_walk *k, int o, const tg_real *spatial, tg_real zi, tg_vec3 ni, int ce, tg_real ztol,
                         tg_real inv_ztol, int bent, int near, int64_t *sum)
 {
-    if (near) weigh_and_sum(k, o, spatial, zi, ni, ztol, inv_ztol, 0, 1, 0, 1, sum);
-    else if (bent) weigh_and_sum(k, o, spatial, zi, ni, ztol, inv_ztol, 0, 1, 1, 0, sum);
-    else weigh_and_sum(k, o, spatial, zi, ni, ztol, inv_ztol, 0, 1, 0, 0, sum);
+    if (near) weigh_and_sum(k, o, spatial, zi, ni, ce, ztol, inv_ztol, 0, 1, 0, 1, sum);
+    else if (bent) weigh_and_sum(k, o, spatial, zi, ni, ce, ztol, inv_ztol, 0, 1, 1, 0, sum);
+    else weigh_and_sum(k, o, spatial, zi, ni, ce, ztol, inv_ztol, 0, 1, 0, 0, sum);
 }
 #else
 /* The weight of every entry of the walk for the centre (depth zi, normal
@@ -338,13 +360,15 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
 #if Q16_WIDE
     if (xb - xa == 4 && yb - ya == 4) {   /* the whole window: every entry; a copy per set of channels */
         const tg_real *sp = spatial_w[x % 5];
-        if (has_bent && has_near) weigh_and_sum(k, o, sp, zi, ni, ztol, inv_ztol, 0, 1, 1, 1, sum);
-        else whole_fewer(k, o, sp, zi, ni, ztol, inv_ztol, has_bent, has_near, sum);
+        const int ce = o + 2 * 5 + x % 5;   /* the centre's entry */
+        if (has_bent && has_near) weigh_and_sum(k, o, sp, zi, ni, ce, ztol, inv_ztol, 0, 1, 1, 1, sum);
+        else whole_fewer(k, o, sp, zi, ni, ce, ztol, inv_ztol, has_bent, has_near, sum);
     } else {   /* the window's entries inside the image: its rows' slots of its columns */
         uint32_t slots = 0, window = 0;
+        const int ce = o + 2 * 5 + x % 5;
         for (xx = xa; xx <= xb; xx++) slots |= 1u << (xx % 5);
         for (yy = ya; yy <= yb; yy++) window |= slots << ((yy - y + 2) * 5);
-        weigh_and_sum(k, o, spatial_w[x % 5], zi, ni, ztol, inv_ztol, window, 0, 1, 1, sum);
+        weigh_and_sum(k, o, spatial_w[x % 5], zi, ni, ce, ztol, inv_ztol, window, 0, 1, 1, sum);
     }
 #else
     tap_weights(k, o, spatial_w[x % 5], zi, ni, ztol, inv_ztol, wt);

@@ -69,6 +69,12 @@ static inline tg_vec3 tgi_gv_normal(const tgi_gview *v, size_t i)
     if (!v->store.nm) return tgi_oct_unpack(v->store.n8[i], 8);
     return tgi_oct_unpack(v->store.nm[i] & TGI_NORMAL_MASK, TGI_NORMAL_BITS);
 }
+/* The normal's stored code (its octahedral direction's bits): equal codes
+ * give equal normals (tgi_gv_normal). */
+static inline uint32_t tgi_gv_normal_word(const tgi_gview *v, size_t i)
+{
+    return v->store.nm ? v->store.nm[i] & TGI_NORMAL_MASK : v->store.n8[i];
+}
 /* The normal as its octahedral direction before the normalisation
  * (tgi_oct_fold): tgi_gv_normal is this over its length. */
 static inline tgi_oct_dir tgi_gv_normal_dir(const tgi_gview *v, size_t i)
