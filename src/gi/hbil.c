@@ -1000,7 +1000,10 @@ static inline void march_samples(
     const int smaj = mr->smaj, smin = mr->smin, bmax = mr->bmax, da = run->da, n = run->n;
     const tg_real dminor = run->dminor;
     const int back = run->back;
-    tg_real minor = run->minor, ox = run->ox, hs_tie = horizon_tie(sd->hs);
+    /* the horizon in a local (stored back at each rise): sd's fields are
+     * stored through a pointer the compiler cannot tell from g's, so it
+     * reloaded sd->h at every sample */
+    tg_real minor = run->minor, ox = run->ox, h = sd->h, hs_tie = horizon_tie(sd->hs);
     /* the major offset k da - back of sample k, stepped (whole pixels < 2^14: exact) */
     tg_real smajor = small_from_int(-back);
     const tg_real dmajor = small_from_int(da);
@@ -1034,13 +1037,23 @@ static inline void march_samples(
         }
         sx = major_x ? smajor : ox;
         sy = major_x ? tg_neg(ox) : tg_neg(smajor);
+#if TG_OUTLINE_HELPERS   /* compiling for size: read where used (8 bytes fewer) */
         cn = sample_cos(mr, z1, sx, sy, sd->h, hs_tie, d, &inv_len);
+        (void)h;
+#else
+        cn = sample_cos(mr, z1, sx, sy, h, hs_tie, d, &inv_len);
+#endif
         if (cn <= HBIL_NOT_ABOVE) {
 #if !TG_NO_FINE_HORIZON
-            if (k == 1 && run == &mr->run) sd->beyond = cn == HBIL_BEYOND;   /* the side's first sample (refine_fine) */
+            /* the side's first sample (refine_fine); beyond is 0 from
+             * side_init and set nowhere else, so only a sample beyond the
+             * radius tests k: the horizon test's failures (most samples)
+             * go on without it */
+            if (cn == HBIL_BEYOND && k == 1 && run == &mr->run) sd->beyond = 1;
 #endif
             continue;
         }
+        h = cn;
         sd->h = cn;
         sd->peak_a = a;
         sd->hs = horizon_sq(cn);
@@ -1065,7 +1078,12 @@ static inline void march_samples(
 
 /* Samples at p0 + k step pixels from the pixel, k = 1..n, along the
  * march *mr that march_side set up. */
-static void march_run(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_side *sd, const hbil_march *mr,
+#if TG_OUTLINE_HELPERS
+static void march_run(
+#else
+static HBIL_INLINE void march_run(   /* into march_between and march_near: the call and its set-up cost ~25 instructions a run */
+#endif
+                      const hbil_ctx *c, const hbil_slice *sl, int side, hbil_side *sd, const hbil_march *mr,
                       int major_x, int p0, int step, int n)
 {
     hbil_run r;
