@@ -192,6 +192,7 @@ typedef struct hbil_pixel {
     tg_real z, inv_z;
     tg_vec3 wo, wx, wy;     /* local camera frame, sec. 1.1 */
     tg_vec3 n;              /* view-space normal with n.w_o >= HBIL_MIN_NDOTV */
+    tg_vec3 nw;             /* the G-buffer's normal (world space), decoded once (pixel_run's bent normal; not compiling for size) */
     tg_real ndv;            /* n.w_o (every slice's n'_y) */
     tgi_wide radius_units2; /* (3D radius in image pixels at depth z)^2 */
     tg_real reach;          /* march extent, image pixels */
@@ -399,7 +400,7 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
 {
     const tgi_gview *g = c->g;
     const tgi_view *v = c->v;
-    tg_vec3 nw, k;
+    tg_vec3 nw, k;   /* nw: px->nw */
     tg_real ndv, r_px;
     if (tgi_gv_is_sky(g, i) || tgi_gv_depth(g, i) <= 0) return 0;
     px->z = tgi_gv_depth(g, i);
@@ -413,6 +414,9 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
     px->wx = tgi_v3_scale(tg_v3(tg_neg(TG_ONE), 0, k.x), tg_rsqrt(tg_add(TG_ONE, tg_mul(k.x, k.x))));
     px->wy = tgi_v3_cross(px->wo, px->wx);
     nw = tgi_gv_normal(g, i);
+#if !TG_OUTLINE_HELPERS   /* compiling for size, pixel_run reads it again */
+    px->nw = nw;
+#endif
     px->n = tg_v3(tgi_v3_dot(nw, v->right), tgi_v3_dot(nw, v->up), tgi_v3_dot(nw, v->forward));
     ndv = tgi_v3_dot(px->n, px->wo);
     if (ndv < HBIL_MIN_NDOTV) {
@@ -1524,7 +1528,13 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
 
 static void side_init(hbil_side *sd, tg_real h, tg_real q_open, tg_real p_open)
 {
+#if TG_OUTLINE_HELPERS   /* compiling for size: the call is shorter */
     memset(sd, 0, sizeof *sd);
+#else   /* every field set (a memset of the struct was a call to the C library's, 4 a pixel) */
+    sd->beyond = 0;
+    sd->lr = sd->lg = sd->lb = 0;
+    sd->er = sd->eg = sd->eb = 0;
+#endif
     sd->peak_a = -1;
     sd->h = h;
     sd->hs = horizon_sq(h);     /* |h| <= 1 */
@@ -1626,7 +1636,11 @@ static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
     if (HAS_CONE(out)) tgi_gr_set_cone(out, i, tgi_cone_angle_from_ao(ao));   /* not eq. 12: sh.h */
     if (HAS_BENT(out)) {
         /* eq. 6: summed unnormalised over slices, normalised once (in world space) */
-        tg_vec3 nw = tgi_gv_normal(c->g, i);
+#if TG_OUTLINE_HELPERS   /* compiling for size: read again (shorter) */
+        const tg_vec3 nw = tgi_gv_normal(c->g, i);
+#else
+        const tg_vec3 nw = px->nw;   /* tgi_gv_normal(c->g, i), as pixel_setup read it */
+#endif
         tg_vec3 dw = tgi_v3_add(tgi_v3_add(tgi_v3_scale(v->right, acc.bent_delta.x),
                                          tgi_v3_scale(v->up, acc.bent_delta.y)),
                                tgi_v3_scale(v->forward, acc.bent_delta.z));
