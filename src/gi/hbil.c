@@ -1471,11 +1471,46 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
  * the sample's screen offset s (image pixels, y up) gives the view-space
  * offset d = s + q (P0 + s), q = (z1 - z) / z, P0 = the pixel's position
  * (X, Y, ppu) / step (see top). */
+#if !TG_OUTLINE_HELPERS   /* compiling for size, march_side sets them per side (shorter) */
+/* What a slice's two sides share, set once a slice (march_axis): the
+ * major axis, the slope (minor per major pixel, side +1's), the march's
+ * extent (major pixels), its step m, count n and start offset o, and the
+ * major direction of side +1 (set in march_side per side, they cost ~50
+ * instructions a side: two divisions, three tg_to_int) */
+typedef struct hbil_axis {
+    int major_x, m, n, o, dir;
+    tg_real slope, extent;
+} hbil_axis;
+
+static void march_axis(const hbil_ctx *c, const hbil_pixel *px, tg_real ux, tg_real uy, hbil_axis *ax)
+{
+    const int major_x = tg_abs(ux) >= tg_abs(uy);
+    const tg_real umaj = major_x ? tg_abs(ux) : tg_abs(uy);
+    int o;
+    ax->major_x = major_x;
+    /* |minor| <= umaj: |slope| <= 1 (tgi_div_pos, umaj > 0 or 1) */
+    ax->slope = tgi_div_pos(major_x ? uy : ux, umaj == 0 ? TG_ONE : umaj);
+    ax->dir = (major_x ? ux : uy) < 0 ? -1 : 1;
+    /* the reach in [0, 2^14] (radius >= 0, HBIL_MAX_RADIUS_UNITS) times
+     * |u| <= 1: small_mul */
+    ax->extent = small_mul(px->reach, umaj);
+    ax->m = march_steps(c, ax->extent, &ax->n);
+    o = tg_to_int(small_mul(px->jitter, small_from_int(ax->m)));     /* sample k at k m - o pixels */
+    ax->o = o < 0 || o >= ax->m ? 0 : o;
+}
+#endif
+
+#if TG_OUTLINE_HELPERS
 static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice *sl,
                        tg_real ux, tg_real uy, int side, hbil_side *sd)
+#else
+static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice *sl,
+                       const hbil_axis *ax, int side, hbil_side *sd)
+#endif
 {
     const tgi_gview *g = c->g;
     const int w = g->width, h = g->height, rs = g->row_stride, ps = g->pixel_stride;
+#if TG_OUTLINE_HELPERS
     const int major_x = tg_abs(ux) >= tg_abs(uy);
     const int amax = major_x ? w : h;
     const tg_real umaj = major_x ? tg_abs(ux) : tg_abs(uy);
@@ -1483,6 +1518,13 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     tg_real slope = tgi_div_pos(major_x ? uy : ux, umaj == 0 ? TG_ONE : umaj);
     int dir = ((major_x ? ux : uy) < 0 ? -1 : 1) * side;
     int m, kmax, o;
+#else
+    const int major_x = ax->major_x;
+    const int amax = major_x ? w : h;
+    const int dir = ax->dir * side, m = ax->m, o = ax->o;
+    const tg_real slope = side < 0 ? tg_neg(ax->slope) : ax->slope;
+    int kmax;
+#endif
     hbil_march mr;
     mr.smaj = major_x ? ps : rs;
     mr.smin = major_x ? rs : ps;
@@ -1501,12 +1543,18 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     mr.inv_z = px->inv_z;
     mr.r2 = px->radius_units2;
     mr.wox = px->wo.x; mr.woy = px->wo.y; mr.woz = px->wo.z;
+#if TG_OUTLINE_HELPERS
     if (side < 0) slope = tg_neg(slope);
     mr.slope = slope;
     mr.extent = small_mul(px->reach, umaj);
     m = march_steps(c, mr.extent, &mr.run.n);
     o = tg_to_int(small_mul(px->jitter, small_from_int(m)));     /* sample k at k m - o pixels */
     if (o < 0 || o >= m) o = 0;
+#else
+    mr.slope = slope;
+    mr.extent = ax->extent;
+    mr.run.n = ax->n;
+#endif
     mr.run.da = m * dir;
     mr.run.a = major_x ? px->x : px->y;
     kmax = ((mr.run.da > 0 ? amax - 1 - mr.run.a : mr.run.a) + o) / m;   /* never past the screen edge */
@@ -1551,6 +1599,9 @@ typedef struct hbil_sums {
 static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_real sphi, hbil_sums *acc)
 {
     hbil_slice sl;
+#if !TG_OUTLINE_HELPERS
+    hbil_axis ax;
+#endif
     hbil_side front, back;
     tg_real inv_len_n, h1i, h0i, ux, uy, q1, q0, q1i, q0i, r1, r0, r1i, r0i, p1i, p0i;
     /* the frame's vectors w_x, w_y, w_o and n are unit (|component| <= 1
@@ -1573,8 +1624,14 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
     side_init(&front, h1i, q1i, p1i);
     side_init(&back, h0i, q0i, p0i);
     slice_screen_dir(c, px, sl.d, &ux, &uy);
+#if TG_OUTLINE_HELPERS
     march_side(c, px, &sl, ux, uy, 1, &front);
     march_side(c, px, &sl, ux, uy, -1, &back);
+#else
+    march_axis(c, px, ux, uy, &ax);   /* what the two sides share, once */
+    march_side(c, px, &sl, &ax, 1, &front);
+    march_side(c, px, &sl, &ax, -1, &back);
+#endif
     /* Q at the found horizons: the near field's gather kept them */
     q1 = NEAR_FIELD(c) || front.h == h1i ? front.q : slice_Q(front.h, 1);
     q0 = NEAR_FIELD(c) || back.h == h0i ? back.q : slice_Q(back.h, -1);
