@@ -303,6 +303,20 @@ check_binary() {
     expect "$tag/aov_ao_pathtrace_warns" grep -q '^tinygi: warning: --aov ao holds no occlusion (AO 1): technique pathtrace' "$T/err"
     run render builtin:cornell --size 16x12 --aov ao --technique reference -o "$O/a.ppm" --quiet
     expect "$tag/aov_ao_reference_is_quiet" [ "$rc" -eq 0 -a ! -s "$T/err" ]
+    # options the frame reads nowhere: a warning each (they were silent: an outside probe)
+    run render builtin:cornell --size 16x12 --thickness 0.5 -o "$O/t.ppm" --quiet
+    expect "$tag/thickness_unread_by_hbil_warns" grep -q '^tinygi: warning: --thickness is unread: hbil reads it only over depth layers' "$T/err"
+    run render builtin:cornell --size 16x12 --thickness 0.5 --technique gtao -o "$O/t.ppm" --quiet
+    expect "$tag/thickness_unread_by_gtao_warns" grep -q '^tinygi: warning: --thickness is unread: only ssilvb' "$T/err"
+    run render builtin:cornell --size 16x12 --thickness 0.5 --technique ssilvb -o "$O/t.ppm" --quiet
+    expect "$tag/thickness_read_by_ssilvb_is_quiet" [ "$rc" -eq 0 -a ! -s "$T/err" ]
+    run render builtin:cornell --size 16x12 --thickness 0.5 --depth-layers 2 -o "$O/t.ppm" --quiet
+    expect "$tag/thickness_read_over_layers_is_quiet" [ "$rc" -eq 0 -a ! -s "$T/err" ]
+    run render builtin:cornell --size 16x12 --ao-multibounce -o "$O/m.ppm" --quiet
+    expect "$tag/ao_multibounce_unread_warns" grep -q '^tinygi: warning: --ao-multibounce is unread: .* this render writes color$' "$T/err"
+    expect "$tag/ao_multibounce_unread_still_renders" [ "$rc" -eq 0 -a -s "$O/m.ppm" ]
+    run render builtin:cornell --size 16x12 --ao-multibounce --aov ao -o "$O/m.ppm" --quiet
+    expect "$tag/ao_multibounce_read_is_quiet" [ "$rc" -eq 0 -a ! -s "$T/err" ]
     rm -rf "${O:?}"/*
     run render builtin:cornell --size 16x12 -o "$T/no/such/dir/x.ppm"
     expect "$tag/unwritable_output_exit_1" [ "$rc" -eq 1 -a "$(err_lines)" -eq 1 ]

@@ -839,6 +839,23 @@ static void warn_black_aov(const render_opts *o, const tg_plan *plan, const tg_s
                     : "the scene's effects line leaves ao out");
 }
 
+/* An option this frame reads nowhere: say so rather than ignore it (both
+ * were silent: an outside probe).  The thickness is the visibility
+ * bitmask's, which ssilvb runs and hbil over depth layers (plan.c prints it
+ * under the same condition); the multi-bounce fit changes the ao output only. */
+static void warn_unread_options(const render_opts *o, const tg_plan *plan)
+{
+    const tg_request *r = &plan->request;
+    if (o->have_thickness && r->technique != TG_TECH_SSILVB &&
+        !(r->technique == TG_TECH_HBIL && r->depth_layers >= 2))
+        fprintf(stderr, "tinygi: warning: --thickness is unread: %s\n",
+                r->technique == TG_TECH_HBIL ? "hbil reads it only over depth layers (--depth-layers 2 or 3)"
+                                             : "only ssilvb, and hbil over depth layers, read it");
+    if (o->ao_multibounce && o->aov != TG_AOV_AO)
+        fprintf(stderr, "tinygi: warning: --ao-multibounce is unread: it changes the ao output "
+                "(--aov ao) only, and this render writes %s\n", tg_aov_name((tg_aov)o->aov));
+}
+
 /* The scene and its plan: 0 or exit status. */
 static int plan_scene(const render_opts *o, const out_pattern *pat, tgp_host_io *io,
                       char **owned, void **scene_mem, tg_plan *plan)
@@ -864,6 +881,7 @@ static int plan_scene(const render_opts *o, const out_pattern *pat, tgp_host_io 
         return exit_for(s);
     }
     warn_black_aov(o, plan, scene);
+    warn_unread_options(o, plan);
     return 0;
 }
 
