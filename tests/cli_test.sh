@@ -266,6 +266,11 @@ check_binary() {
     run render builtin:spheres --size 17x13 --gi-quarter --depth-layers 3 --explain
     expect "$tag/explain_gi_quarter_lists_the_half_layers" eval "grep -q 'quarter-res back-face depth' '$T/out' &&
         grep -q 'quarter-res depth behind the back face' '$T/out'"
+    # AO alone keeps no material: no line of the plan may say it does (the
+    # G-buffer pass named a material: an outside probe)
+    run render builtin:spheres --size 17x13 --aov ao --explain
+    expect "$tag/explain_ao_alone_names_no_material" eval "grep -q 'G-buffer, no material' '$T/out' &&
+        ! grep -v 'no material' '$T/out' | grep -q 'material'"
     run render builtin:spheres --size 17x13 --gi-quarter --depth-layers 3 --frames 2 -o "$O/ql.ppm" --quiet
     expect "$tag/render_gi_quarter_depth_layers" [ "$rc" -eq 0 -a -s "$O/ql.ppm" ]
     run render builtin:cornell --size=16x12 --frames=2 --aov=depth -o "$O/eq.pfm" --quiet

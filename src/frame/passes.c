@@ -99,7 +99,7 @@ static int resolves(const tg_frame *f)
 const tgi_pass tgi_passes[] = {
     { "camera (the program's or its keys'; posed triangles when objects move)", always,
       B(POSE), 0, SERIAL(tgi_pass_animate) },
-    { "rasterize G-buffer (depth, normal, material)", always,
+    { "rasterize G-buffer (the planes under buffers)", always,
       B(GBUFFER), 0, ROWS(tgi_pass_gbuffer) },
 #if !TG_NO_TEMPORAL
     { "motion vectors", wants_motion,
