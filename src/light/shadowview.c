@@ -651,15 +651,15 @@ static tgi_wide reach_l1(tg_vec3 p)
  * the wrong pixels).  Never in float, whose range holds any scene. */
 static int map_out_of_range(const tg_scene *s, const tg_request *r, tg_vec3 lo, tg_vec3 hi)
 {
-    tgi_wide reach = 0;
     tgi_view v;
     int views = s->camera_key_count > 0 ? r->frames : 1, n = views < TG_SHADOW_PLAN_VIEWS ? views : TG_SHADOW_PLAN_VIEWS, k;
-    for (k = 0; k < 8; k++) reach = reach_l1(corner(lo, hi, k)) > reach ? reach_l1(corner(lo, hi, k)) : reach;
+    for (k = 0; k < 8; k++)
+        if (reach_l1(corner(lo, hi, k)) > (tgi_wide)TG_REAL_MAX) return 1;
     for (k = 0; k < n && !r->game_loop; k++) {
         frame_view(&v, s, r, plan_view_frame(k, n, views));
-        reach = reach_l1(v.eye) > reach ? reach_l1(v.eye) : reach;
+        if (reach_l1(v.eye) > (tgi_wide)TG_REAL_MAX) return 1;
     }
-    return reach > (tgi_wide)TG_REAL_MAX;
+    return 0;
 }
 
 int tgi_shadow_plan(const tg_scene *s, const tg_request *r, int light, size_t bvh_bytes,
