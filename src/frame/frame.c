@@ -25,7 +25,8 @@ tg_status tg_frame_create(const tg_plan *plan, void *memory, size_t size,
     tg_plan copy;
     tgi_error_clear(err);
     if (frame) *frame = NULL;
-    if (!plan || !frame || plan->total_bytes == 0) {   /* total_bytes 0: tg_plan_make failed */
+    /* total_bytes 0 or no scene: tg_plan_make failed, or never made it */
+    if (!plan || !frame || plan->total_bytes == 0 || !plan->scene) {
         tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0,
                       "tg_frame_create: needs a plan that tg_plan_make made and somewhere to put the frame");
         return TG_ERR_INPUT;
@@ -33,10 +34,7 @@ tg_status tg_frame_create(const tg_plan *plan, void *memory, size_t size,
     /* the API checks what tg_plan_make checked: a request changed in the
      * plan after it (bounces 1000000 ran for minutes, technique 99 was
      * taken) is refused as tg_plan_make would refuse it */
-    if (!plan->scene || tgi_request_refused(&plan->request, err)) {
-        if (!plan->scene) tgi_error_set(err, TG_ERR_INPUT, NULL, 0, 0, "tg_frame_create: the plan has no scene");
-        return TG_ERR_INPUT;
-    }
+    if (tgi_request_refused(&plan->request, err)) return TG_ERR_INPUT;
     copy = *plan;
     tg_arena_init(&arena, memory, size);
     if (tgi_frame_layout(&f, &copy, &arena) != 0) {
