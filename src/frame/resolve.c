@@ -98,15 +98,28 @@ static tgi_gr_value results_at(resolve_ctx *c, const tg_frame *f, int x, int y, 
 }
 
 #if !TG_NO_COLOR /* a build with TG_NO_COLOR (tinygi.h "FEATURE SWITCHES") composes nothing */
+/* The G-buffer normal of surface pixel (x, y, index i): the filter's walk
+ * holds it when the filter ran for the pixel (results_at), decoded there
+ * by the same tgi_gv_normal (columns 320x240: one decode a pixel fewer). */
+static tg_vec3 normal_at(const resolve_ctx *c, const tg_frame *f, int x, int y, size_t i)
+{
+#if !TG_OUTLINE_HELPERS
+    if (c->hbil && !c->quarter) return tgi_denoise_centre_normal(&c->r.walk, x, y);
+#else
+    (void)c; (void)x; (void)y;
+#endif
+    return tgi_gv_normal(&f->full, i);
+}
+
 /* E = E_direct + E_far + E_near (HBIL sec. 2.3) of a surface pixel. */
-static tg_vec3 irradiance_at(const resolve_ctx *c, const tg_frame *f, size_t i, const tgi_gr_value *v)
+static tg_vec3 irradiance_at(const resolve_ctx *c, const tg_frame *f, int x, int y, size_t i, const tgi_gr_value *v)
 {
     tg_vec3 e = tg_v3(0, 0, 0), far;
     int has_bent = c->hbil ? (c->quarter ? tgi_gr_has_bent(&f->half_filtered) : tgi_gr_has_bent(&f->res))
                            : tgi_gr_has_bent(&f->res);
     if (tgi_rgb_present(&f->direct)) e = tgi_rgb_get(&f->direct, i);
     if (c->far_inline) {
-        far = tgi_far_irradiance(f->sh, tgi_gv_normal(&f->full, i), c->gi, v->ao, has_bent, v->bent, c->far_mode);
+        far = tgi_far_irradiance(f->sh, normal_at(c, f, x, y, i), c->gi, v->ao, has_bent, v->bent, c->far_mode);
         if (c->far_own) tgi_rgb_set(c->far_own, i, far);
         e = tgi_v3_add(e, far);
     } else if (tgi_rgb_present(&f->far)) {
@@ -138,7 +151,7 @@ static void resolve_pixel(resolve_ctx *c, tg_frame *f, int compose, int x, int y
         if (tgi_rgb_present(&f->irradiance)) tgi_rgb_set(&f->irradiance, i, tg_v3(0, 0, 0));
         return;
     }
-    e = irradiance_at(c, f, i, &v);
+    e = irradiance_at(c, f, x, y, i, &v);
     if (!compose) return;
     if (tgi_rgb_present(&f->irradiance)) tgi_rgb_set(&f->irradiance, i, e);
     tgi_rgb_set(c->lo, i, tgi_gv_lit(&f->full, i, e));   /* HBIL eq. 14, 19 */

@@ -100,6 +100,15 @@ static inline int tgi_denoise_band(const tgi_denoise_walk *k, int y, int y1)
 
 void tgi_denoise_walk_start(tgi_denoise_walk *k);
 
+/* The G-buffer normal of surface pixel (x, y) as tgi_denoise_pixel, just
+ * called for it, decoded it into the walk (its window's centre entry):
+ * tgi_gv_normal's, without decoding it again. */
+static inline tg_vec3 tgi_denoise_centre_normal(const tgi_denoise_walk *k, int x, int y)
+{
+    int e = (y - k->band + 2) * 5 + x % 5;
+    return tg_v3(k->nx[e], k->ny[e], k->nz[e]);
+}
+
 /* The filtered values of pixel (x, y) of view g from the results r (indexed
  * like g); k: the walk (tgi_denoise_walk_start), kept between calls. */
 tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, const tgi_gresult *r,
