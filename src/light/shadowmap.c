@@ -433,16 +433,32 @@ typedef struct lookup {
     tg_real num, den_c, bias;   /* perspective */
 } lookup;
 
+/* a . b for b a face's basis vector (right, up, forward: unit vectors and
+ * their cross products, components within [-2, 2]) or a row of an
+ * orthographic face's world_to_clip (those times its scale, 1 / half >= 0.01,
+ * within 101: components within +-2^23 in Q16.16).  Each product is below
+ * 2^31 2^23 and their sum below 2^56, never past the 2^62 tgi_v3_dot tests
+ * for, so the sum rounded once and saturated (tgi_wide_dot, tgi_wide_real:
+ * core/real.h) is tgi_v3_dot's result without that test. */
+#if Q16_WIDE
+static inline tg_real dot_basis(tg_vec3 a, tg_vec3 b)
+{
+    return tgi_wide_real(tgi_wide_dot(a.x, a.y, a.z, b.x, b.y, b.z));
+}
+#else
+#define dot_basis tgi_v3_dot   /* the code as it was (a build for size) */
+#endif
+
 /* 1 when prepared, 0 when the surface faces away from the light. */
 static int prepare_ortho(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, tg_real err, lookup *q)
 {
     const tgi_shadow_face *fc = &sm->face[0];
     const tg_real *m = fc->world_to_clip.m;
     tg_vec3 r = fc->right, u = fc->up, f = fc->forward;
-    tg_real nl_z = tgi_v3_dot(n, f), depth, inv_nz;
+    tg_real nl_z = dot_basis(n, f), depth, inv_nz;
     if (nl_z >= 0) return 0;
     nl_z = tg_min(nl_z, tg_neg(GRAZING_MIN_COS));
-    depth = tg_sub(tgi_v3_dot(p, f), sm->ortho_near);
+    depth = tg_sub(dot_basis(p, f), sm->ortho_near);
     err = tg_add(err, map_error(sm, fc, tg_abs(depth)));
     q->fc = fc;
     q->num = q->den_c = q->bias = 0;
@@ -452,14 +468,14 @@ static int prepare_ortho(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, tg_real
      * |p| 2^-17 in NDC: at 1000 units from the origin a few texels, the
      * lookups then read their neighbours' depths and a lit floor came out
      * shadowed in Q16.16 (test_shadow_plan ortho_map_far_from_the_origin) */
-    q->ndc_x = tg_add(tgi_v3_dot(p, tg_v3(m[0], m[1], m[2])), m[3]);
-    q->ndc_y = tg_add(tgi_v3_dot(p, tg_v3(m[4], m[5], m[6])), m[7]);
+    q->ndc_x = tg_add(dot_basis(p, tg_v3(m[0], m[1], m[2])), m[3]);
+    q->ndc_y = tg_add(dot_basis(p, tg_v3(m[4], m[5], m[6])), m[7]);
     /* the receiver moved by err along n is err / |n . f| nearer the light */
     q->base = tg_sub(tg_sub(depth, depth_bias(fc, fc->texel_world)), tg_div(err, tg_neg(nl_z)));
     /* plane n.(dx, dy, dz) = 0 -> dz = -(nx dx + ny dy) / nz; world = ndc / scale */
     inv_nz = tg_div(tg_neg(sm->ortho_scale_inv), nl_z);
-    q->slope_x = tg_mul(tgi_v3_dot(n, r), inv_nz);
-    q->slope_y = tg_mul(tgi_v3_dot(n, u), inv_nz);
+    q->slope_x = tg_mul(dot_basis(n, r), inv_nz);
+    q->slope_y = tg_mul(dot_basis(n, u), inv_nz);
     return 1;
 }
 
@@ -474,7 +490,7 @@ static int prepare_perspective(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, t
     q->fc = fc;
     q->base = 0;
     r = fc->right; u = fc->up; f = fc->forward;
-    lz = tgi_v3_dot(d, f); lx = tgi_v3_dot(d, r); ly = tgi_v3_dot(d, u);
+    lz = dot_basis(d, f); lx = dot_basis(d, r); ly = dot_basis(d, u);
     if (lz <= TG_R(0.001f)) return -1;
     q->num = tgi_v3_dot(n, d);          /* n . (p - light): < 0 when the surface faces it */
     if (q->num >= 0) return 0;
@@ -486,8 +502,8 @@ static int prepare_perspective(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, t
     /* the plane moved toward the light by err, at most half way to it */
     err = tg_add(err, map_error(sm, fc, lz));
     q->num = tg_min(tg_add(q->num, err), tg_ldexp(q->num, -1));
-    q->slope_x = tg_mul(tgi_v3_dot(n, r), fc->tan_half);
-    q->slope_y = tg_mul(tgi_v3_dot(n, u), fc->tan_half);
+    q->slope_x = tg_mul(dot_basis(n, r), fc->tan_half);
+    q->slope_y = tg_mul(dot_basis(n, u), fc->tan_half);
     return 1;
 }
 
@@ -574,7 +590,8 @@ static tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *q, int i0, 
                             const tg_real *dx, const tg_real *dy, int perspective)
 {
     const uint16_t *row = depth + fc->offset + (size_t)j0 * (size_t)fc->size + (size_t)i0;
-    tg_real lit = 0, lo_bias = tg_add(fc->depth_lo, q->bias);
+    tg_real lo_bias = tg_add(fc->depth_lo, q->bias);
+    tgi_wide lit = 0;   /* sum of row_lit wy[j]: row_lit in [0, 3] (wx's sum), wy's sum 3: within 9 */
 #if Q16_WIDE
     int64_t lim = perspective_bound(q->num);   /* lit_perspective's */
 #endif
@@ -611,9 +628,9 @@ static tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *q, int i0, 
 #endif
             }
         }
-        lit = tg_add(lit, tg_mul(row_lit, wy[j]));
+        lit += tgi_wide_mul(row_lit, wy[j]);   /* tg_mul's and tg_add's: never saturating */
     }
-    return lit;
+    return (tg_real)lit;
 }
 
 /* PCF over the prepared lookup: continuous texel position (rows top to
@@ -633,16 +650,17 @@ static tg_real pcf(const tgi_shadow_map *sm, const lookup *q)
     sv = tg_sub(tg_mul(tg_sub(TG_ONE, q->ndc_y), half_size), TG_R(0.5f));
     i0 = tg_to_int(su); j0 = tg_to_int(sv);
     if (i0 < -2 || j0 < -2 || i0 > fc->size + 1 || j0 > fc->size + 1) return TG_ONE;
-    fx = tg_sub(su, tg_from_int(i0));
-    fy = tg_sub(sv, tg_from_int(j0));
+    /* the floor's fractions, in [0, 1): these and the weights below never saturate */
+    fx = su - tg_from_int(i0);
+    fy = sv - tg_from_int(j0);
     if (taps == 4) {
-        wx[0] = tg_sub(TG_ONE, fx); wx[1] = wx[2] = TG_ONE; wx[3] = fx;
-        wy[0] = tg_sub(TG_ONE, fy); wy[1] = wy[2] = TG_ONE; wy[3] = fy;
-        i0 -= 1; j0 -= 1; fx = tg_add(fx, TG_ONE); fy = tg_add(fy, TG_ONE);
+        wx[0] = TG_ONE - fx; wx[1] = wx[2] = TG_ONE; wx[3] = fx;
+        wy[0] = TG_ONE - fy; wy[1] = wy[2] = TG_ONE; wy[3] = fy;
+        i0 -= 1; j0 -= 1; fx += TG_ONE; fy += TG_ONE;
         norm = TG_R(1.0f / 9.0f);
     } else {
-        wx[0] = tg_sub(TG_ONE, fx); wx[1] = fx;
-        wy[0] = tg_sub(TG_ONE, fy); wy[1] = fy;
+        wx[0] = TG_ONE - fx; wx[1] = fx;
+        wy[0] = TG_ONE - fy; wy[1] = fy;
         norm = TG_ONE;
     }
     for (i = 0; i < taps; i++) {
@@ -659,9 +677,10 @@ static tg_real pcf(const tgi_shadow_map *sm, const lookup *q)
         dy[i] = tg_mul(q->slope_y, tg_neg(tg_mul(tg_sub(tg_from_int(i), fy), fc->texel_ndc)));
 #endif
     }
-    if (sm->depth_bits == TG_SHADOW_DEPTH16 && i0 >= 0 && j0 >= 0 && i0 + taps <= fc->size && j0 + taps <= fc->size)
-        return tg_saturate(tg_mul(pcf16_inside(fc, q, i0, j0, taps, (const uint16_t *)sm->depth, wx, wy, dx, dy,
-                                               !sm->orthographic), norm));
+    if (sm->depth_bits == TG_SHADOW_DEPTH16 && i0 >= 0 && j0 >= 0 && i0 + taps <= fc->size && j0 + taps <= fc->size) {
+        lit = pcf16_inside(fc, q, i0, j0, taps, (const uint16_t *)sm->depth, wx, wy, dx, dy, !sm->orthographic);
+        return tg_saturate((tg_real)tgi_wide_mul(lit, norm));   /* within 9 times norm <= 1: tg_mul's */
+    }
     fetch_taps(sm, fc, i0, j0, taps, st);
     for (j = 0; j < taps; j++) {
         tg_real row_lit = 0;
