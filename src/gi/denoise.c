@@ -114,15 +114,29 @@ static inline uint64_t normal_key(tg_vec3 n, uint64_t other)
 }
 #endif
 
+/* REUSE_NORMAL: a column's taps are loaded top to bottom; a tap whose
+ * normal's stored code (tgi_gv_normal_word) is the one just above it
+ * takes that tap's decoded normal (equal codes decode to equal normals)
+ * instead of decoding it again: a plane's pixels share their code.  Not
+ * with normals stored as tg_real (nothing to decode) nor in a build for
+ * size. */
+#define REUSE_NORMAL (!TG_WIDE_STORAGE && !TG_OUTLINE_HELPERS)
+
 /* Pixel (xx, yy) of g decoded into entry j of the walk; has_bent, has_near:
- * what tgi_gr_get_kept reads of r. */
+ * what tgi_gr_get_kept reads of r.  above: the normal's code of the tap
+ * loaded just before it, (xx, yy - 1) in entry j - 5, or UINT64_MAX; set to
+ * this tap's (UINT64_MAX on sky), for the tap below (REUSE_NORMAL). */
 static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_gresult *r, int has_bent, int has_near,
-                     int xx, int yy)
+                     int xx, int yy, uint64_t *above)
 {
     size_t i = tgi_gv_index(g, xx, yy);
     tg_real *v = k->v[j];
     tg_vec3 n, b, e;
+#if REUSE_NORMAL
+    uint32_t code;
+#endif
     if (tgi_gv_is_sky(g, i)) {
+        *above = UINT64_MAX;
         k->z[j] = k->nx[j] = k->ny[j] = k->nz[j] = 0;
         v[0] = v[1] = v[2] = v[3] = v[4] = v[5] = v[6] = 0;
         v[7] = TG_FIXED ? 0 : TG_ONE;
@@ -133,9 +147,16 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
 #endif
         return;
     }
+#if REUSE_NORMAL
+    code = tgi_gv_normal_word(g, i);
+    n = *above == code ? tg_v3(k->nx[j - 5], k->ny[j - 5], k->nz[j - 5]) : tgi_gv_normal(g, i);
+    *above = code;
+#else
+    (void)above;
     n = tgi_gv_normal(g, i);
+#endif
 #if NORMAL_WORDS
-    k->nkey[j] = tgi_gv_normal_word(g, i);
+    k->nkey[j] = code;
 #elif Q16_WIDE
     k->nkey[j] = normal_key(n, UINT64_MAX);
 #endif
@@ -347,9 +368,11 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     if (k->band != band || xa < k->lo) { k->band = band; k->lo = k->next = xa; }
     if (k->next <= xb) {
         int ra = band < 2 ? 0 : band - 2, rb = band + TGI_DENOISE_BAND + 1 >= h ? h - 1 : band + TGI_DENOISE_BAND + 1;
-        for (; k->next <= xb; k->next++)
+        for (; k->next <= xb; k->next++) {
+            uint64_t above = UINT64_MAX;   /* none: the column's first tap decodes */
             for (yy = ra; yy <= rb; yy++)
-                tap_load(k, (yy - band + 2) * 5 + k->next % 5, g, r, has_bent, has_near, k->next, yy);
+                tap_load(k, (yy - band + 2) * 5 + k->next % 5, g, r, has_bent, has_near, k->next, yy, &above);
+        }
     }
     if (k->next - k->lo > 5) k->lo = k->next - 5;
     o = (y - band) * 5;   /* the pixel's entries: tap (xx, yy) at o + (yy - y + 2) * 5 + xx % 5 */
