@@ -117,17 +117,21 @@ static inline uint64_t normal_key(tg_vec3 n, uint64_t other)
 /* REUSE_NORMAL: a column's taps are loaded top to bottom; a tap whose
  * normal's stored code (tgi_gv_normal_word) is the one just above it
  * takes that tap's decoded normal (equal codes decode to equal normals)
- * instead of decoding it again: a plane's pixels share their code.  Not
- * with normals stored as tg_real (nothing to decode) nor in a build for
- * size. */
+ * instead of decoding it again: a plane's pixels share their code; so does
+ * the bent normal (its octahedral code, tgi_gr_bent_word).  Not with normals
+ * stored as tg_real (nothing to decode) nor in a build for size. */
 #define REUSE_NORMAL (!TG_WIDE_STORAGE && !TG_OUTLINE_HELPERS)
 
+/* The codes of the tap loaded just before, (xx, yy - 1) in entry j - 5:
+ * UINT64_MAX and UINT32_MAX for none (the column's first tap, or sky),
+ * which no code is. */
+typedef struct tap_above { uint64_t normal; uint32_t bent; } tap_above;
+
 /* Pixel (xx, yy) of g decoded into entry j of the walk; has_bent, has_near:
- * what tgi_gr_get_kept reads of r.  above: the normal's code of the tap
- * loaded just before it, (xx, yy - 1) in entry j - 5, or UINT64_MAX; set to
- * this tap's (UINT64_MAX on sky), for the tap below (REUSE_NORMAL). */
+ * what tgi_gr_get_kept reads of r.  above: the codes of the tap above it,
+ * set to this tap's for the tap below (REUSE_NORMAL). */
 static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_gresult *r, int has_bent, int has_near,
-                     int xx, int yy, uint64_t *above)
+                     int xx, int yy, tap_above *above)
 {
     size_t i = tgi_gv_index(g, xx, yy);
     tg_real *v = k->v[j];
@@ -136,7 +140,7 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
     uint32_t code;
 #endif
     if (tgi_gv_is_sky(g, i)) {
-        *above = UINT64_MAX;
+        above->normal = UINT64_MAX; above->bent = UINT32_MAX;
         k->z[j] = k->nx[j] = k->ny[j] = k->nz[j] = 0;
         v[0] = v[1] = v[2] = v[3] = v[4] = v[5] = v[6] = 0;
         v[7] = TG_FIXED ? 0 : TG_ONE;
@@ -149,8 +153,8 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
     }
 #if REUSE_NORMAL
     code = tgi_gv_normal_word(g, i);
-    n = *above == code ? tg_v3(k->nx[j - 5], k->ny[j - 5], k->nz[j - 5]) : tgi_gv_normal(g, i);
-    *above = code;
+    n = above->normal == code ? tg_v3(k->nx[j - 5], k->ny[j - 5], k->nz[j - 5]) : tgi_gv_normal(g, i);
+    above->normal = code;
 #else
     (void)above;
     n = tgi_gv_normal(g, i);
@@ -160,7 +164,16 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
 #elif Q16_WIDE
     k->nkey[j] = normal_key(n, UINT64_MAX);
 #endif
+#if REUSE_NORMAL
+    b = tg_v3(0, 0, 0);
+    if (has_bent) {
+        uint32_t bent = tgi_gr_bent_word(r, i);
+        b = above->bent == bent ? tg_v3(k->v[j - 5][1], k->v[j - 5][2], k->v[j - 5][3]) : tgi_gr_bent(r, i);
+        above->bent = bent;
+    }
+#else
     b = has_bent ? tgi_gr_bent(r, i) : tg_v3(0, 0, 0);
+#endif
     e = has_near ? tgi_gr_near(r, i) : tg_v3(0, 0, 0);
     k->z[j] = tgi_gv_depth(g, i);
     k->nx[j] = n.x; k->ny[j] = n.y; k->nz[j] = n.z;
@@ -369,7 +382,7 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     if (k->next <= xb) {
         int ra = band < 2 ? 0 : band - 2, rb = band + TGI_DENOISE_BAND + 1 >= h ? h - 1 : band + TGI_DENOISE_BAND + 1;
         for (; k->next <= xb; k->next++) {
-            uint64_t above = UINT64_MAX;   /* none: the column's first tap decodes */
+            tap_above above = { UINT64_MAX, UINT32_MAX };   /* none: the column's first tap decodes */
             for (yy = ra; yy <= rb; yy++)
                 tap_load(k, (yy - band + 2) * 5 + k->next % 5, g, r, has_bent, has_near, k->next, yy, &above);
         }

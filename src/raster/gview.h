@@ -438,6 +438,8 @@ static inline tg_real tgi_gr_ao(const tgi_gresult *r, size_t i) { return tgi_uno
 static inline void tgi_gr_set_ao(const tgi_gresult *r, size_t i, tg_real v) { r->ao[i] = tgi_unorm8_pack(v); }
 static inline int tgi_gr_has_bent(const tgi_gresult *r) { return r->bent != NULL; }
 static inline tg_vec3 tgi_gr_bent(const tgi_gresult *r, size_t i) { return tgi_oct_unpack(r->bent[i], 8); }
+/* The bent normal's stored code: equal codes give equal bent normals (tgi_gr_bent). */
+static inline uint32_t tgi_gr_bent_word(const tgi_gresult *r, size_t i) { return r->bent[i]; }
 static inline void tgi_gr_set_bent(const tgi_gresult *r, size_t i, tg_vec3 b) { r->bent[i] = (uint16_t)tgi_oct_pack(b, 8); }
 #endif
 /* The bent cone's half angle: from the AO when read, unless a
