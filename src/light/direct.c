@@ -7,6 +7,12 @@
 #include "direct.h"
 
 #define LIGHT_CHUNK 8   /* lights prepared at once (a frame rarely has more) */
+/* REUSE_NORMAL: a pixel whose normal's stored code (tgi_gv_normal_word) is
+ * that of the last normal decoded takes that normal (equal codes decode to
+ * equal normals) instead of decoding it again: a plane's pixels share their
+ * code.  Not with normals stored as tg_real (nothing to decode) nor in a
+ * build for size. */
+#define REUSE_NORMAL (!TG_WIDE_STORAGE && !TG_OUTLINE_HELPERS)
 
 /* What a light needs per pixel, prepared once per row range. */
 typedef struct prepared_light {
@@ -92,6 +98,10 @@ void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_coun
             for (x = 0; x < w; x++) tgi_rgb_set(e_out, tgi_gv_index(g, x, y), tg_v3(0, 0, 0));
     for (first = 0; first < light_count; first += LIGHT_CHUNK) {
         int count = light_count - first < LIGHT_CHUNK ? light_count - first : LIGHT_CHUNK;
+        tg_vec3 n = tg_v3(0, 0, 0);
+#if REUSE_NORMAL
+        uint64_t n_code = UINT64_MAX;   /* n's code: none decoded yet (no code is UINT64_MAX) */
+#endif
         for (k = 0; k < count; k++)
             prepare(&pl[k], &lights[first + k], shadow_maps ? shadow_maps[first + k] : NULL);
         for (y = y0; y < y1; y++) {
@@ -100,13 +110,20 @@ void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_coun
             tg_vec3 row_dir = tgi_v3_add(view->forward, tgi_v3_scale(view->up, ky));
             for (x = 0; x < w; x++) {
                 size_t i = tgi_gv_index(g, x, y);
-                tg_vec3 n, p, e;
+                tg_vec3 p, e;
                 tg_real kx, z;
                 if (tgi_gv_is_sky(g, i)) {
                     if (fresh && first == 0) tgi_rgb_set(e_out, i, tg_v3(0, 0, 0));
                     continue;
                 }
+#if REUSE_NORMAL
+                if (tgi_gv_normal_word(g, i) != n_code) {
+                    n = tgi_gv_normal(g, i);
+                    n_code = tgi_gv_normal_word(g, i);
+                }
+#else
                 n = tgi_gv_normal(g, i);
+#endif
                 kx = tg_div(tg_sub(tg_add(tg_from_int(x), TG_R(0.5f)), half_w), view->pixels_per_unit);
                 z = tgi_gv_depth(g, i);   /* decoded once: the calls below would have it read again */
                 p = tgi_v3_add(view->eye, tgi_v3_scale(tgi_v3_add(row_dir, tgi_v3_scale(view->right, kx)), z));
