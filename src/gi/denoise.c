@@ -322,10 +322,15 @@ static DENOISE_INLINE void window_sums(const tgi_denoise_walk *k, int o, const t
 
 /* A value's filtered result: its sum over the weights' sum ws > 0 (see
  * tgi_denoise_pixel); in Q16.16 the sum is Q32, rounded half away from zero
- * as tg_div rounds. */
+ * as tg_div rounds.  A weighted average (weights >= 0) of values within
+ * [TG_REAL_MIN, TG_REAL_MAX], integers, lies within them, and so does its
+ * rounding to an integer: tgi_sat64 would change nothing (and is kept in a
+ * build for size, where it costs nothing). */
 static tg_real average(tgi_wide sum, tgi_wide ws)
 {
-#if TG_FIXED
+#if Q16_WIDE
+    return (tg_real)tgi_div_round(sum, ws);
+#elif TG_FIXED
     return tgi_sat64(tgi_div_round(sum, ws));
 #else
     return tg_div(sum, ws);
