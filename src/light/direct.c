@@ -13,6 +13,14 @@
  * code.  Not with normals stored as tg_real (nothing to decode) nor in a
  * build for size. */
 #define REUSE_NORMAL (!TG_WIDE_STORAGE && !TG_OUTLINE_HELPERS)
+/* light_factor inline in the rows' loop (gcc kept it a call: its prologue,
+ * epilogue and the vectors passed cost more than the body's registers);
+ * a build for size keeps the one copy */
+#if defined(__GNUC__) && !TG_OUTLINE_HELPERS
+#define LIGHT_FACTOR_INLINE inline __attribute__((always_inline))
+#else
+#define LIGHT_FACTOR_INLINE
+#endif
 
 /* What a light needs per pixel, prepared once per row range. */
 typedef struct prepared_light {
@@ -39,7 +47,7 @@ static void prepare(prepared_light *p, const tgi_light *l, const tgi_shadow_map 
 /* Unshadowed irradiance scale as cosine * spot edge (<= 1) and the inverse
  * distance (1 for directional lights): E = radiant * scale * inv * inv.  The
  * product is formed largest first so Q16.16 keeps its relative precision. */
-static tg_real light_factor(const prepared_light *p, tg_vec3 pos, tg_vec3 n, tg_real *inv_dist)
+static LIGHT_FACTOR_INLINE tg_real light_factor(const prepared_light *p, tg_vec3 pos, tg_vec3 n, tg_real *inv_dist)
 {
     tg_vec3 v;
     tg_real len2, inv, cosine;
