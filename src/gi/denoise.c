@@ -114,13 +114,10 @@ static inline uint64_t normal_key(tg_vec3 n, uint64_t other)
 }
 #endif
 
-/* REUSE_NORMAL: a column's taps are loaded top to bottom; a tap whose
- * normal's stored code (tgi_gv_normal_word) is the one just above it
- * takes that tap's decoded normal (equal codes decode to equal normals)
- * instead of decoding it again: a plane's pixels share their code; so does
- * the bent normal (its octahedral code, tgi_gr_bent_word).  Not with normals
- * stored as tg_real (nothing to decode) nor in a build for size. */
-#define REUSE_NORMAL (!TG_WIDE_STORAGE && !TG_OUTLINE_HELPERS)
+/* TGI_REUSE_NORMAL (raster/gview.h): a column's taps are loaded top to
+ * bottom; a tap whose normal's stored code is the one just above it takes
+ * that tap's decoded normal; so does the bent normal (its octahedral code,
+ * tgi_gr_bent_word). */
 
 /* The codes of the tap loaded just before, (xx, yy - 1) in entry j - 5:
  * UINT64_MAX and UINT32_MAX for none (the column's first tap, or sky),
@@ -129,14 +126,14 @@ typedef struct tap_above { uint64_t normal; uint32_t bent; } tap_above;
 
 /* Pixel (xx, yy) of g decoded into entry j of the walk; has_bent, has_near:
  * what tgi_gr_get_kept reads of r.  above: the codes of the tap above it,
- * set to this tap's for the tap below (REUSE_NORMAL). */
+ * set to this tap's for the tap below (TGI_REUSE_NORMAL). */
 static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_gresult *r, int has_bent, int has_near,
                      int xx, int yy, tap_above *above)
 {
     size_t i = tgi_gv_index(g, xx, yy);
     tg_real *v = k->v[j];
     tg_vec3 n, b, e;
-#if REUSE_NORMAL
+#if TGI_REUSE_NORMAL
     uint32_t code;
 #endif
     if (tgi_gv_is_sky(g, i)) {
@@ -151,7 +148,7 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
 #endif
         return;
     }
-#if REUSE_NORMAL
+#if TGI_REUSE_NORMAL
     code = tgi_gv_normal_word(g, i);
     n = above->normal == code ? tg_v3(k->nx[j - 5], k->ny[j - 5], k->nz[j - 5]) : tgi_gv_normal(g, i);
     above->normal = code;
@@ -164,7 +161,7 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
 #elif Q16_WIDE
     k->nkey[j] = normal_key(n, UINT64_MAX);
 #endif
-#if REUSE_NORMAL
+#if TGI_REUSE_NORMAL
     b = tg_v3(0, 0, 0);
     if (has_bent) {
         uint32_t bent = tgi_gr_bent_word(r, i);

@@ -7,12 +7,6 @@
 #include "direct.h"
 
 #define LIGHT_CHUNK 8   /* lights prepared at once (a frame rarely has more) */
-/* REUSE_NORMAL: a pixel whose normal's stored code (tgi_gv_normal_word) is
- * that of the last normal decoded takes that normal (equal codes decode to
- * equal normals) instead of decoding it again: a plane's pixels share their
- * code.  Not with normals stored as tg_real (nothing to decode) nor in a
- * build for size. */
-#define REUSE_NORMAL (!TG_WIDE_STORAGE && !TG_OUTLINE_HELPERS)
 /* light_factor inline in the rows' loop (gcc kept it a call: its prologue,
  * epilogue and the vectors passed cost more than the body's registers);
  * a build for size keeps the one copy */
@@ -107,7 +101,7 @@ void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_coun
     for (first = 0; first < light_count; first += LIGHT_CHUNK) {
         int count = light_count - first < LIGHT_CHUNK ? light_count - first : LIGHT_CHUNK;
         tg_vec3 n = tg_v3(0, 0, 0);
-#if REUSE_NORMAL
+#if TGI_REUSE_NORMAL
         uint64_t n_code = UINT64_MAX;   /* n's code: none decoded yet (no code is UINT64_MAX) */
 #endif
         for (k = 0; k < count; k++)
@@ -124,10 +118,11 @@ void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_coun
                     if (fresh && first == 0) tgi_rgb_set(e_out, i, tg_v3(0, 0, 0));
                     continue;
                 }
-#if REUSE_NORMAL
-                if (tgi_gv_normal_word(g, i) != n_code) {
+#if TGI_REUSE_NORMAL
+                uint32_t code = tgi_gv_normal_word(g, i);
+                if (code != n_code) {
                     n = tgi_gv_normal(g, i);
-                    n_code = tgi_gv_normal_word(g, i);
+                    n_code = code;
                 }
 #else
                 n = tgi_gv_normal(g, i);
