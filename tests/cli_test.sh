@@ -352,6 +352,15 @@ check_binary() {
     run view builtin:cornell --size 16x12 --fbdev "$T/no_such_fb"
     expect "$tag/view_missing_device_exit_1" [ "$rc" -eq 1 -a "$(err_lines)" -eq 1 ]
     expect "$tag/view_missing_device_message" grep -q "^$T/no_such_fb: error: " "$T/err"
+    reason=$(sed "s|^$T/no_such_fb: error: ||" "$T/err")
+    # a device path longer than the platform's message buffer (256 bytes):
+    # still PATH: error: REASON, the whole path and the same reason (the
+    # CLI once looked for the path at the front of "PATH: REASON", which
+    # was cut short, and printed "tinygi: error: PATH...")
+    long="$T/no_such_dir/$(printf '%0150d' 1)/$(printf '%0150d' 2)"
+    run view builtin:cornell --size 16x12 --fbdev "$long"
+    expect "$tag/view_long_device_path_exit_1" [ "$rc" -eq 1 -a "$(err_lines)" -eq 1 ]
+    expect "$tag/view_long_device_path_message" [ -n "$reason" -a "$(cat "$T/err")" = "$long: error: $reason" ]
     run view builtin:cornell --fbdev /dev/null
     expect "$tag/view_not_a_framebuffer_exit_1" [ "$rc" -eq 1 -a "$(err_lines)" -eq 1 ]
     ONCE=1 refused "$tag/view_refuses_output" "^tinygi: error: option -o: not used by tinygi view" view builtin:cornell -o "$O/v.ppm"

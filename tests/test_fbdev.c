@@ -6,10 +6,12 @@
  * hand, in the machine's byte order as fbdev stores them), padding beyond
  * the visible line is untouched, rows are line_length apart, the visible
  * offset is honoured, clipping holds, and unusable devices and formats are
- * clear errors.  Devices whose bytes are one of the core's pixel formats
+ * clear errors: the reason alone, never the device's path (the caller names
+ * the device), and tgp_fbdev_view says which errors are the device's.  Devices whose bytes are one of the core's pixel formats
  * show frames through tg_frame_write_pixels: the same bytes as the
  * conversion from the bitfields, screen by screen.
  */
+#include <errno.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -229,20 +231,30 @@ TEST(unsupported_formats_are_errors)
     CHECK(tgp_fb_info_format(&info, TG_FB_FORMAT_COUNT, W, H, 0) != 0, "unknown format");
 }
 
+/* fb->error is the reason alone: the system's strerror() text when the
+ * file cannot be opened, and never the path (nor its last part). */
 TEST(unusable_devices_are_errors)
 {
     tgp_fb fb;
     tgp_fb_info info;
     char path[64];
+    const char *base;
     CHECK(tgp_fb_open(&fb, "/nonexistent/fb9") != 0, "missing device opened");
-    CHECK(strstr(fb.error, "/nonexistent/fb9") != NULL && strstr(fb.error, "No such file") != NULL,
-          "message: %s", fb.error);
+    CHECK(strcmp(fb.error, strerror(ENOENT)) == 0, "reason: '%s', not '%s'", fb.error, strerror(ENOENT));
+    tgp_fb_info_format(&info, TG_FB_XRGB8888, W, H, 0);
+    CHECK(tgp_fb_open_file(&fb, "/nonexistent/fb9", &info) != 0, "missing file mapped");
+    CHECK(strcmp(fb.error, strerror(ENOENT)) == 0, "reason: '%s', not '%s'", fb.error, strerror(ENOENT));
     if (make_file(path, 64) != 0) { CHECK(0, "temp file"); return; }
+    base = strrchr(path, '/') + 1;
     CHECK(tgp_fb_open(&fb, path) != 0, "regular file taken for a framebuffer");
-    CHECK(strstr(fb.error, "not a framebuffer") != NULL, "message: %s", fb.error);
+    CHECK(strncmp(fb.error, "not a framebuffer (", 19) == 0 && !strstr(fb.error, base), "reason: %s", fb.error);
     tgp_fb_info_format(&info, TG_FB_XRGB8888, W, H, 0); /* needs 192 bytes, the file has 64 */
     CHECK(tgp_fb_open_file(&fb, path, &info) != 0, "short file mapped");
-    CHECK(strstr(fb.error, "needed") != NULL, "message: %s", fb.error);
+    CHECK(strcmp(fb.error, "64 bytes of screen memory, 192 needed for 8x6") == 0, "reason: %s", fb.error);
+    info.bits_per_pixel = 8;
+    CHECK(tgp_fb_open_file(&fb, path, &info) != 0, "8 bpp file mapped");
+    CHECK(strncmp(fb.error, "unsupported pixel format: ", 26) == 0 && !strstr(fb.error, base),
+          "reason: %s", fb.error);
     unlink(path);
 }
 
@@ -310,6 +322,41 @@ TEST(view_shows_rendered_frame)
     CHECK(untouched(mem, (size_t)y0 * line + 4u * (size_t)(x0 - 1), 4), "pixel left of the image");
     CHECK(untouched(mem, (size_t)(y0 + FH) * line, (int)line), "line below the image");
     free(mem);
+    free(frame_mem);
+}
+
+/* tgp_fbdev_view tells the device's errors (TGP_FB_VIEW_DEVICE, `msg` the
+ * reason alone) from the others (TGP_FB_VIEW_FAILED, a whole message), so
+ * the caller need not look for the path in the message: a path longer than
+ * tgp_fb.error, whose "PATH: REASON" was cut short before, is no different. */
+TEST(view_device_errors_are_the_reason)
+{
+    void *frame_mem;
+    tg_frame *frame = cornell_frame(16, 12, &frame_mem);
+    char path[600], msg[256];
+    size_t n;
+    tgp_fb fb;
+    tgp_fb_info info;
+    if (!frame) { CHECK(0, "cornell frame"); free(frame_mem); return; }
+    CHECK(tgp_fbdev_view("/nonexistent/fb9", frame, 16, 12, 1, msg, sizeof msg) == TGP_FB_VIEW_DEVICE,
+          "missing device: not a device error");
+    CHECK(strcmp(msg, strerror(ENOENT)) == 0, "reason: '%s', not '%s'", msg, strerror(ENOENT));
+    strcpy(path, "/nonexistent");
+    for (n = strlen(path); n + 101 < sizeof path; n += 101) /* 5 parts of 100 bytes */
+        snprintf(path + n, sizeof path - n, "/%0100d", 7);
+    CHECK(strlen(path) > sizeof fb.error, "path of %lu bytes", (unsigned long)strlen(path));
+    CHECK(tgp_fbdev_view(path, frame, 16, 12, 1, msg, sizeof msg) == TGP_FB_VIEW_DEVICE,
+          "long missing path: not a device error");
+    CHECK(strcmp(msg, strerror(ENOENT)) == 0, "reason: '%s', not '%s'", msg, strerror(ENOENT));
+    /* not the device's: a whole message, TGP_FB_VIEW_FAILED */
+    tgp_fb_info_format(&info, TG_FB_XRGB8888, W, H, 0);
+    if (make_file(path, (size_t)4 * W * H) != 0) { CHECK(0, "temp file"); free(frame_mem); return; }
+    CHECK(tgp_fb_open_file(&fb, path, &info) == 0, "%s", fb.error);
+    CHECK(tgp_fb_view_frames(&fb, frame, 0, 12, 1, msg, sizeof msg) == TGP_FB_VIEW_FAILED, "bad size shown");
+    CHECK(strcmp(msg, "view: bad image size 0x12") == 0, "message: %s", msg);
+    CHECK(tgp_fb_view_frames(&fb, frame, 16, 12, 1, msg, sizeof msg) == TGP_FB_VIEW_OK, "%s", msg);
+    tgp_fb_close(&fb);
+    unlink(path);
     free(frame_mem);
 }
 
@@ -401,6 +448,7 @@ int main(void)
     RUN(unsupported_formats_are_errors);
     RUN(unusable_devices_are_errors);
     RUN(view_shows_rendered_frame);
+    RUN(view_device_errors_are_the_reason);
     RUN(core_format_of_each_layout);
     RUN(view_core_path_same_bytes_as_bitfields);
     return check_summary();

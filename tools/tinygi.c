@@ -946,14 +946,11 @@ static int cmd_render(int argc, char **argv)
         }
     }
     if (!status && o.view) {
-        if (tgp_fbdev_view(o.fbdev, frame, o.width, o.height, o.frames, why, sizeof why)) {
-            /* the device's errors start "PATH: ": PATH: error: ..., as for files */
-            const char *dev = o.fbdev ? o.fbdev : "/dev/fb0";
-            const size_t n = strlen(dev);
-            if (!strncmp(why, dev, n) && why[n] == ':' && why[n + 1] == ' ') file_error(dev, why + n + 2);
-            else usage_error("%s", why);
-            status = EXIT_RUNTIME;
-        }
+        int r = tgp_fbdev_view(o.fbdev, frame, o.width, o.height, o.frames, why, sizeof why);
+        /* the device's errors are a reason: PATH: error: REASON, as for files */
+        if (r == TGP_FB_VIEW_DEVICE) file_error(o.fbdev ? o.fbdev : TGP_FB_DEFAULT_PATH, why);
+        else if (r != TGP_FB_VIEW_OK) usage_error("%s", why);
+        if (r != TGP_FB_VIEW_OK) status = EXIT_RUNTIME;
     } else if (!status) {
         tgp_outfile_remove_on_signals();
         status = render_frames(&o, &pat, format, frame);

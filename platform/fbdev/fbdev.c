@@ -231,18 +231,18 @@ void tgp_fb_close(tgp_fb *fb)
 }
 
 #ifdef __linux__
-static int fb_map(tgp_fb *fb, const char *path, size_t size)
+static int fb_map(tgp_fb *fb, size_t size)
 {
     size_t need = (size_t)(fb->info.yoffset + fb->info.yres) * fb->info.line_length;
     void *m;
     if (size < need) {
-        snprintf(fb->error, sizeof fb->error, "%s: %lu bytes of screen memory, %lu needed for %dx%d",
-                 path, (unsigned long)size, (unsigned long)need, fb->info.xres, fb->info.yres);
+        snprintf(fb->error, sizeof fb->error, "%lu bytes of screen memory, %lu needed for %dx%d",
+                 (unsigned long)size, (unsigned long)need, fb->info.xres, fb->info.yres);
         return -1;
     }
     m = mmap(NULL, size, PROT_READ | PROT_WRITE, MAP_SHARED, fb->fd, 0);
     if (m == MAP_FAILED) {
-        snprintf(fb->error, sizeof fb->error, "%s: cannot map the screen: %s", path, strerror(errno));
+        snprintf(fb->error, sizeof fb->error, "cannot map the screen: %s", strerror(errno));
         return -1;
     }
     fb->map = m;
@@ -282,33 +282,27 @@ int tgp_fb_open(tgp_fb *fb, const char *path)
     struct fb_var_screeninfo var;
     struct fb_fix_screeninfo fix;
     tgp_fb_info info;
-    char why[200];
     fb_clear(fb);
-    if (!path) path = "/dev/fb0";
+    if (!path) path = TGP_FB_DEFAULT_PATH;
     fb->fd = open(path, O_RDWR);
     if (fb->fd < 0) {
-        snprintf(fb->error, sizeof fb->error, "%s: %s", path, strerror(errno));
+        snprintf(fb->error, sizeof fb->error, "%s", strerror(errno));
         return -1;
     }
     if (ioctl(fb->fd, FBIOGET_VSCREENINFO, &var) != 0 || ioctl(fb->fd, FBIOGET_FSCREENINFO, &fix) != 0) {
-        snprintf(fb->error, sizeof fb->error, "%s: not a framebuffer (screen info ioctl failed: %s)",
-                 path, strerror(errno));
+        snprintf(fb->error, sizeof fb->error, "not a framebuffer (screen info ioctl failed: %s)",
+                 strerror(errno));
         return fb_fail(fb);
     }
     if (fix.type != FB_TYPE_PACKED_PIXELS || fix.visual != FB_VISUAL_TRUECOLOR ||
         var.red.msb_right || var.green.msb_right || var.blue.msb_right) {
-        snprintf(fb->error, sizeof fb->error, "%s: unsupported framebuffer (type %u, visual %u; "
-                 "tinygi draws packed true-colour pixels)", path, fix.type, fix.visual);
+        snprintf(fb->error, sizeof fb->error, "unsupported framebuffer (type %u, visual %u; "
+                 "tinygi draws packed true-colour pixels)", fix.type, fix.visual);
         return fb_fail(fb);
     }
     fb_info_from_linux(&info, &var, &fix);
-    if (fb_setup(fb, &info) != 0) {
-        memcpy(why, fb->error, sizeof why - 1);
-        why[sizeof why - 1] = 0;
-        snprintf(fb->error, sizeof fb->error, "%s: %s", path, why);
-        return fb_fail(fb);
-    }
-    if (fb_map(fb, path, fix.smem_len ? (size_t)fix.smem_len
+    if (fb_setup(fb, &info) != 0) return fb_fail(fb);
+    if (fb_map(fb, fix.smem_len ? (size_t)fix.smem_len
                                       : (size_t)var.yres_virtual * fix.line_length) != 0)
         return fb_fail(fb);
     return 0;
@@ -321,22 +315,22 @@ int tgp_fb_open_file(tgp_fb *fb, const char *path, const tgp_fb_info *info)
     if (fb_setup(fb, info) != 0) return -1;
     fb->fd = open(path, O_RDWR);
     if (fb->fd < 0) {
-        snprintf(fb->error, sizeof fb->error, "%s: %s", path, strerror(errno));
+        snprintf(fb->error, sizeof fb->error, "%s", strerror(errno));
         return -1;
     }
     if (fstat(fb->fd, &st) != 0 || st.st_size <= 0) {
-        snprintf(fb->error, sizeof fb->error, "%s: empty or unreadable file", path);
+        snprintf(fb->error, sizeof fb->error, "empty or unreadable file");
         return fb_fail(fb);
     }
-    if (fb_map(fb, path, (size_t)st.st_size) != 0) return fb_fail(fb);
+    if (fb_map(fb, (size_t)st.st_size) != 0) return fb_fail(fb);
     return 0;
 }
 #else
 int tgp_fb_open(tgp_fb *fb, const char *path)
 {
+    (void)path;
     fb_clear(fb);
-    snprintf(fb->error, sizeof fb->error, "%s: the Linux framebuffer is not available on this system",
-             path ? path : "/dev/fb0");
+    snprintf(fb->error, sizeof fb->error, "the Linux framebuffer is not available on this system");
     return -1;
 }
 
@@ -385,12 +379,12 @@ int tgp_fb_view_frames(tgp_fb *fb, tg_frame *frame, int width, int height,
     int i;
     if (width <= 0 || height <= 0) {
         snprintf(msg, size, "view: bad image size %dx%d", width, height);
-        return 1;
+        return TGP_FB_VIEW_FAILED;
     }
     rgb = malloc((size_t)width * 3u);
     if (!rgb) {
         snprintf(msg, size, "view: out of memory");
-        return 1;
+        return TGP_FB_VIEW_FAILED;
     }
     memset(&err, 0, sizeof err);
     for (i = 0; i < frames; i++) {
@@ -398,16 +392,16 @@ int tgp_fb_view_frames(tgp_fb *fb, tg_frame *frame, int width, int height,
         if (s != TG_OK) {
             tg_error_format(&err, msg, size);
             free(rgb);
-            return 1;
+            return TGP_FB_VIEW_FAILED;
         }
         if (show_frame(fb, frame, width, height, rgb) != 0) {
             snprintf(msg, size, "view: a %dx%d frame's rows cannot be written to the screen", width, height);
             free(rgb);
-            return 1;
+            return TGP_FB_VIEW_FAILED;
         }
     }
     free(rgb);
-    return 0;
+    return TGP_FB_VIEW_OK;
 }
 
 int tgp_fbdev_view(const char *path, tg_frame *frame, int width, int height,
@@ -417,7 +411,7 @@ int tgp_fbdev_view(const char *path, tg_frame *frame, int width, int height,
     int r;
     if (tgp_fb_open(&fb, path) != 0) {
         snprintf(msg, size, "%s", fb.error);
-        return 1;
+        return TGP_FB_VIEW_DEVICE;
     }
     r = tgp_fb_view_frames(&fb, frame, width, height, frames, msg, size);
     tgp_fb_close(&fb);

@@ -18,8 +18,10 @@
  * ioctls do not work on regular files, so tests use tgp_fb_open_file() with
  * screen info the caller supplies (tgp_fb_info_format fills one in).
  *
- * Errors come back as a message in fb->error (or the caller's buffer),
- * fit to show a person: "/dev/fb0: No such file or directory".
+ * Errors come back as a reason in fb->error (or the caller's buffer), fit
+ * to show a person, without the device's path: the caller has the path and
+ * names it, e.g. "/dev/fb0: error: No such file or directory" from the path
+ * it passed (TGP_FB_DEFAULT_PATH for NULL) and fb->error.
  */
 #ifndef TG_FBDEV_H
 #define TG_FBDEV_H
@@ -28,6 +30,9 @@
 #include <stdint.h>
 
 #include "tinygi.h"
+
+/* The device tgp_fb_open() and tgp_fbdev_view() use when given NULL. */
+#define TGP_FB_DEFAULT_PATH "/dev/fb0"
 
 typedef struct tgp_fb_channel {
     int offset, length; /* bit position from the least significant bit; 0 length: absent */
@@ -60,7 +65,7 @@ typedef struct tgp_fb {
     uint32_t lut[3][256];    /* 8-bit channel value -> its bits in the pixel */
     uint32_t opaque;         /* the bits of no colour channel, all ones */
     int pixel_format;        /* tgp_fb_core_format's, or -1: from the bitfields */
-    char error[256];
+    char error[256];         /* why opening failed; never holds the path */
 } tgp_fb;
 
 /* The name of a format ("XRGB8888"), and screen info for it; line_length 0
@@ -77,10 +82,13 @@ int tgp_fb_core_format(const tgp_fb_info *info);
 /* Check that tinygi can draw this format; 0, or -1 with a message. */
 int tgp_fb_info_check(const tgp_fb_info *info, char *msg, size_t size);
 
-/* Open and map a framebuffer device (ioctls); 0, or -1 with fb->error set. */
+/* Open and map the framebuffer device at `path` (NULL: TGP_FB_DEFAULT_PATH)
+ * with ioctls; 0, or -1 with the reason in fb->error (the system's
+ * strerror() text when opening the file fails; the path is not in it). */
 int tgp_fb_open(tgp_fb *fb, const char *path);
 /* Map a regular file as a framebuffer described by `info` (for tests): the
- * file must already hold (yoffset + yres) * line_length bytes. */
+ * file must already hold (yoffset + yres) * line_length bytes.  0, or -1
+ * with the reason in fb->error, as for tgp_fb_open(). */
 int tgp_fb_open_file(tgp_fb *fb, const char *path, const tgp_fb_info *info);
 void tgp_fb_close(tgp_fb *fb);
 
@@ -96,14 +104,25 @@ typedef void (*tgp_fb_row_fn)(void *user, int y, uint8_t *rgb);
 void tgp_fb_draw(tgp_fb *fb, int x0, int y0, int width, int height,
                 tgp_fb_row_fn row, void *user, uint8_t *rgb_row);
 
+/* What tgp_fbdev_view() and tgp_fb_view_frames() return. */
+enum {
+    TGP_FB_VIEW_OK = 0,
+    TGP_FB_VIEW_FAILED = 1, /* `msg` is a whole message ("view: out of memory",
+                               a render error) */
+    TGP_FB_VIEW_DEVICE = 2  /* the device cannot be used: `msg` is the reason
+                               only, as in tgp_fb.error; the caller adds the path */
+};
+
 /* Render `frames` frames of `frame` (tg_frame_render with index 0, 1, ...)
- * and show each, centred, on the framebuffer at `path` (NULL: /dev/fb0) as
- * soon as it is rendered.  Returns 0, or 1 with a message in `msg` when
- * the device cannot be used (missing, not a framebuffer, unsupported
- * format), memory runs out or a frame fails to render. */
+ * and show each, centred, on the framebuffer at `path` (NULL:
+ * TGP_FB_DEFAULT_PATH) as soon as it is rendered.  Returns TGP_FB_VIEW_OK;
+ * TGP_FB_VIEW_DEVICE with the reason in `msg` when the device cannot be used
+ * (missing, not a framebuffer, unsupported format); or TGP_FB_VIEW_FAILED
+ * with a message in `msg` when memory runs out or a frame fails to render. */
 int tgp_fbdev_view(const char *path, tg_frame *frame, int width, int height,
                   int frames, char *msg, size_t size);
-/* The same on an open framebuffer (tests use a file-backed one). */
+/* The same on an open framebuffer (tests use a file-backed one): returns
+ * TGP_FB_VIEW_OK or TGP_FB_VIEW_FAILED. */
 int tgp_fb_view_frames(tgp_fb *fb, tg_frame *frame, int width, int height,
                       int frames, char *msg, size_t size);
 
