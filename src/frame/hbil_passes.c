@@ -30,6 +30,7 @@ static void hbil_params(const tg_frame *f, tgi_hbil_params *p)
      * its own eighth of the directions and march offsets (a first frame is
      * the same whatever its index); without it, every frame the first's */
     p->rotation = (f->needs & TG_NEED_TEMPORAL) ? f->frames_rendered % TG_HBIL_ROTATIONS : 0;
+    p->per_pixel_pattern = 1;   /* tgi_hbil_pattern */
 }
 
 /* Results without the cone: the kernel and the filter leave it to the
@@ -51,8 +52,9 @@ void tgi_pass_downsample(tg_frame *f, int y0, int y1)
 /* The kernel on each of the 16 sub-images (i, j) of the kernel's image
  * (HBIL sec. 3.3), each a strided view of the image (no copy): its pixel
  * (x, y) is the image's (4x + i, 4y + j); its results and source radiance
- * are read and written in place, indexed alike.  Each sub-image gets its
- * own first slice angle and the kernel marches in sub-image pixels.  Rows
+ * are read and written in place, indexed alike.  Each pixel takes the
+ * slice angles of its cell of the 4x4 pattern (gi/hbil.h,
+ * tgi_hbil_pattern) and the kernel marches in sub-image pixels.  Rows
  * [y0, y1) of the image: row Y is row Y / 4 of the sub-images (i, Y & 3),
  * so any split of the rows writes disjoint pixels. */
 void tgi_pass_hbil_interleaved(tg_frame *f, int y0, int y1)
@@ -63,13 +65,13 @@ void tgi_pass_hbil_interleaved(tg_frame *f, int y0, int y1)
     const tgi_gview *k = tgi_frame_kernel(f, &res, &source);
     int i, j;
     hbil_params(f, &p);
+    p.pattern_scale = k->step;
 #if !TG_NO_FINE_HORIZON
     p.fine = &f->full;          /* the horizons are refined on the full-resolution pixels (gi/hbil.c) */
     p.fine_radiance = tgi_frame_source(f);
 #endif
     for (j = 0; j < 4; j++)
         for (i = 0; i < 4; i++) {
-            tgi_hbil_params ps = p;
             tgi_gview sub;
             tgi_gresult out;
             tgi_rgb src;
@@ -80,8 +82,7 @@ void tgi_pass_hbil_interleaved(tg_frame *f, int y0, int y1)
             out = without_cone(res);
             out = tgi_gresult_from(&out, o);
             src = tgi_rgb_from(source, o);
-            tgi_hbil_for_sub_image(&ps, i, j);
-            tgi_hbil_rows(&ps, &sub, &src, &out, (y0 - j + 3) / 4, (y1 - j + 3) / 4);
+            tgi_hbil_rows(&p, &sub, &src, &out, (y0 - j + 3) / 4, (y1 - j + 3) / 4);
         }
 }
 
@@ -92,9 +93,11 @@ void tgi_pass_hbil_interleaved(tg_frame *f, int y0, int y1)
  * its front to its back face and open behind it, where a horizon takes
  * everything under it as solid.  It runs on the kernel's image (the
  * full-resolution view, or with --gi-quarter the half-resolution copy,
- * whose layers are point-sampled down with its depth), each pixel of it
- * with the slice angles and march offsets of its 4x4 sub-image (HBIL sec.
- * 3.3, tgi_hbil_slice_phi0, tgi_hbil_step_jitter) for this frame's
+ * whose layers are point-sampled down with its depth), each pixel (x, y)
+ * of it with the slice angles and march offsets of the cell (x & 3, y & 3)
+ * of the 4x4 pattern (HBIL sec. 3.3, tgi_hbil_slice_phi0,
+ * tgi_hbil_step_jitter; it marches in the image's own pixels, so the
+ * horizon kernel's shift by column, tgi_hbil_pattern, is not needed) for this frame's
  * rotation, so the 4x4 filter (at quarter resolution, then the upsample)
  * and the temporal accumulation that follow see the same 16 x slices
  * directions a block, turned every frame, as with the horizon kernel.
@@ -132,6 +135,5 @@ void tgi_pass_hbil_full(tg_frame *f, int y0, int y1)
     tgi_hbil_params p;
     tgi_gresult res = without_cone(&f->res);
     hbil_params(f, &p);
-    p.per_pixel_pattern = 1;
     tgi_hbil_rows(&p, &f->full, tgi_frame_source(f), &res, y0, y1);
 }

@@ -125,10 +125,14 @@ tg_real tgi_hbil_step_jitter(int i, int j, int rot)
     return tg_mul(rank, TG_R(1.0f / 16.0f));
 }
 
-void tgi_hbil_for_sub_image(tgi_hbil_params *p, int i, int j)
+int tgi_hbil_pattern(int x, int y, int rot)
 {
-    p->slice_phi0 = tgi_hbil_slice_phi0(i, j, p->slices, p->rotation);
-    p->step_jitter = tgi_hbil_step_jitter(i, j, p->rotation);
+    /* t: the top 2 bits of frac((x >> 2) / golden ratio + rot / 8), a
+     * Weyl sequence: neighbouring block columns' shifts spread evenly
+     * (hashed shifts measured worse), and over the 8 rotations each column
+     * takes each shift twice */
+    uint32_t h = (uint32_t)(x >> 2) * 0x9E3779B1u + ((uint32_t)rot << 29);
+    return (int)(((uint32_t)y + (h >> 30)) & 3u) * 4 + (x & 3);
 }
 
 void tgi_hbil_defaults(tgi_hbil_params *p)
@@ -166,6 +170,12 @@ typedef struct hbil_ctx {
     const tgi_rgb *fine_rad;    /* its radiance, or NULL */
     int fine_i, fine_j;         /* pixel (x, y) is fine's (x fine_ratio + fine_i, y fine_ratio + fine_j) */
     int fine_ratio;             /* 4, or 8 for a sub-image of --gi-quarter's half-res image */
+#if !TG_NO_GI_QUARTER
+    int pattern_shift;          /* the image the pattern tiles has pixels of 2^pattern_shift full-resolution ones */
+#define PATTERN_SHIFT(c) ((c)->pattern_shift)
+#else
+#define PATTERN_SHIFT(c) 0
+#endif
     tg_real inv_fine_ratio;
     tg_real long_reach;         /* HBIL_LONG_REACH in the march's units (refine_fine) */
     tg_real fine_edge;          /* HBIL_EDGE_SLOPE / ppu times the fine image's step (refine_fine) */
@@ -1684,7 +1694,8 @@ static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
     tg_real ao;
     int X = px->x * c->step + c->g->offset_x, Y = px->y * c->step + c->g->offset_y;
     memset(&acc, 0, sizeof acc);
-    if (c->p->per_pixel_pattern) pat = (Y & 3) * 4 + (X & 3);
+    if (c->p->per_pixel_pattern)
+        pat = tgi_hbil_pattern(X >> PATTERN_SHIFT(c), Y >> PATTERN_SHIFT(c), c->p->rotation);
     px->jitter = tgi_hbil_block_jitter(c->jitter[pat], X >> 2, Y >> 2, c->p->rotation);
     for (s = 0; s < c->slices; s++)
         slice_run(c, px, c->cos_phi[pat][s], c->sin_phi[pat][s], &acc);
@@ -1752,6 +1763,9 @@ static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, 
         if (c->near_field && p->fine_radiance && tgi_rgb_present(p->fine_radiance)) c->fine_rad = p->fine_radiance;
     }
 #endif
+#if !TG_NO_GI_QUARTER
+    c->pattern_shift = p->pattern_scale > 1;   /* --gi-quarter's half-resolution image */
+#endif
     npat = p->per_pixel_pattern ? HBIL_PATTERN : 1;
     for (pat = 0; pat < npat; pat++) {
         tg_real phi0 = p->per_pixel_pattern ? tgi_hbil_slice_phi0(pat & 3, pat >> 2, c->slices, p->rotation)
@@ -1803,7 +1817,8 @@ void tgi_hbil_interleaved_rows(const tgi_hbil_params *p, const tgi_gview *k, con
                              k->offset_y + j * k->step, k->camera);
             res = tgi_gresult_from(out, o);
             if (radiance) src = tgi_rgb_from(radiance, o);
-            tgi_hbil_for_sub_image(&ps, i, j);
+            ps.per_pixel_pattern = 1;
+            ps.pattern_scale = k->step;
             ps.fine = k;                 /* k's radiance is packed like split: not at hand */
             ps.fine_radiance = 0;
             tgi_hbil_rows(&ps, &sub, &src, &res, (y0 - j + 3) / 4, (y1 - j + 3) / 4);

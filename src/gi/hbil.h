@@ -21,12 +21,22 @@
  *   sender-normal rejection filter and running lerp of sec. 3.4.
  *
  * Slice angles: with S slices per pixel the slices of a pixel are
- * phi0 + s * pi / S.  Each of the 16 sub-images (i, j) gets its own phi0
- * (tgi_hbil_slice_phi0), stratified over [0, pi / S), so a 4x4 block covers
- * 16 * S directions (32 with the default S = 2, pi / 32 apart).  For the
- * full-resolution image set per_pixel_pattern: full-res pixel (X, Y) then
- * uses tgi_hbil_slice_phi0(X & 3, Y & 3, S), the same directions the
- * interleaved path gives that pixel, so the two results are comparable.
+ * phi0 + s * pi / S.  Each of the 16 cells (i, j) of the 4x4 pattern gets
+ * its own phi0 (tgi_hbil_slice_phi0), stratified over [0, pi / S), so a
+ * 4x4 block covers 16 * S directions (32 with the default S = 2, pi / 32
+ * apart).  Pixel (X, Y) of the image takes the cell tgi_hbil_pattern(X, Y):
+ * (X & 3, (Y + t) & 3), t hashed from its block column X >> 2 and the
+ * frame's rotation.  The kernel runs on the full-resolution image or on
+ * its 16 sub-images (sub-image (i, j)'s pixel (x, y) is (4x + i, 4y + j))
+ * with per_pixel_pattern set, and both give a pixel the same cell, so the
+ * two results are comparable.  Not one cell
+ * per sub-image (HBIL sec. 3.3 as printed): then every pixel of a
+ * sub-image marches one slice direction at the same offsets, and where
+ * the sub-image's step is one of its pixels (a 40x30 sub-image, 32
+ * samples) their near fields err alike along the slice, diagonal bands
+ * fixed to the screen that the temporal accumulation drags into streaks
+ * when the camera moves; shifted by t, neighbours along a sub-image's row
+ * march different slices.
  *
  * Estimators (documented deviations, both consistent with the paper's
  * integrals and exact for unoccluded surfaces):
@@ -61,11 +71,16 @@
 typedef struct tgi_hbil_params {
     int slices, samples;      /* per pixel; defaults TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES; slices clamped to [1, TG_MAX_SLICES] */
     tg_real radius;           /* world units; projected to pixels, the march stops at the screen's edge */
-    tg_real slice_phi0;       /* first slice angle of this image (interleaved), radians */
-    int per_pixel_pattern;    /* full-res: slice angle from (X & 3, Y & 3), slice_phi0 ignored */
+    tg_real slice_phi0;       /* without the pattern: every pixel's first slice angle, radians */
+    int per_pixel_pattern;    /* each pixel's slice angle and march offset from its cell
+                               * (tgi_hbil_pattern) at its place in the kernel's image, read from
+                               * the view (a sub-image's pixel (x, y) stands for the image's
+                               * (4x + i, 4y + j)); slice_phi0 and step_jitter ignored */
+    int pattern_scale;        /* with the pattern: the kernel's image's pixels are this many
+                               * full-resolution pixels wide (2: --gi-quarter; 0 or 1: full) */
     int rotation;             /* with the pattern: the frame rotation (tgi_hbil_slice_phi0) */
-    tg_real step_jitter;      /* in [0, 1): this image's samples start that fraction of a march
-                               * step nearer (interleaved; from (X & 3, Y & 3) with the pattern) */
+    tg_real step_jitter;      /* in [0, 1): without the pattern, every pixel's samples start
+                               * that fraction of a march step nearer */
     tg_real rejection_a, rejection_b; /* sec. 3.4 t = smoothstep(a, b, -n'.w_i) */
     const tgi_gview *fine; /* interleaved: the image the 4x4 sub-image is taken from (its
                                * pixel (x, y) is fine's (4x + i, 4y + j)); the horizon on
@@ -75,7 +90,7 @@ typedef struct tgi_hbil_params {
 } tgi_hbil_params;
 
 /* Defaults: 2 slices, 32 samples, radius 1, phi0 of
- * sub-image (0,0), no pattern, rejection a = 0, b = 0.2. */
+ * cell (0,0), no pattern, rejection a = 0, b = 0.2. */
 void tgi_hbil_defaults(tgi_hbil_params *p);
 
 /* First slice angle of sub-image (i, j), i, j in 0..3, with `slices` per
@@ -115,8 +130,14 @@ tg_real tgi_hbil_step_jitter(int i, int j, int rot);
  * 0.178 in one frame, the same bits as before). */
 tg_real tgi_hbil_block_jitter(tg_real sub_image_jitter, int bx, int by, int rot);
 
-/* p's slice angle and march offset for sub-image (i, j) in p->rotation. */
-void tgi_hbil_for_sub_image(tgi_hbil_params *p, int i, int j);
+/* The cell i + 4 j of the 4x4 pattern (tgi_hbil_slice_phi0,
+ * tgi_hbil_step_jitter) pixel (x, y) of an image takes in rotation rot:
+ * i = x & 3, j = (y + t) & 3, t in 0..3 hashed from x >> 2 and rot
+ * (integers only: the same on every target).  Every aligned 4x4 block
+ * and every 4 consecutive rows of a column x hold all 16, or all 4 cells
+ * of column x & 3, so the 5x5 filter (gi/denoise.h) weighs the 16 alike. */
+int tgi_hbil_pattern(int x, int y, int rot);
+
 
 /* Run the kernel on rows [y0, y1) of the view `g` (its camera is the
  * full-resolution one).  radiance: last frame's diffuse radiance reprojected,
