@@ -875,6 +875,7 @@ static const obj_bad obj_bad_cases[] = {
     {"mtllib m.mtl\nusemtl red\n", "newmtl red\nKd 1.5 0 0\n", "s/m.mtl", 2, 4, "'Kd' must be in [0, 1]"},
     {"mtllib m.mtl\nusemtl red\n", "newmtl red\nKd 0.5 x 0.5\n", "s/m.mtl", 2, 8, "expected a number in 'Kd'"},
     {"mtllib m.mtl\nusemtl red\n", "newmtl red\nKe 1 -1 0\n", "s/m.mtl", 2, 6, "'Ke' must be 0 or more"},
+    {"mtllib m.mtl\nusemtl red\n", "newmtl red\nKd 0.5 -0.1 0.5\n", "s/m.mtl", 2, 8, "'Kd' must be in [0, 1]"},   /* radiance >= 0: gi/hbil.c radiance_nonneg */
     {"mtllib m.mtl\nusemtl red\n", "newmtl red\nKd 1 1\n", "s/m.mtl", 2, 7, "'Kd' expects 3 numbers"},
     /* not an OBJ at all: an error, not an empty object */
     {"", NULL, "s/t.scene", 3, 11, "mesh file 's/m.obj' has no faces; expected an OBJ file with 'v' and 'f' lines"},

@@ -611,24 +611,39 @@ static HBIL_INLINE tg_real radiance_lerp(tg_real a, tg_real b, tg_real t)
     return tg_add(a, t == TG_ONE ? d : small_mul(d, t));
 }
 
-/* Q16.16, the same with a and b in [0, TG_REAL_MAX] (radiance, the common
- * case: gather_rise tests it): b - a fits and a + (b - a) t lies between
- * a and b, so neither tg_sub nor tg_add would saturate. */
+/* The same with a and b in [0, TG_REAL_MAX] (radiance: radiance_nonneg):
+ * in Q16.16 b - a fits and a + (b - a) t lies between a and b, so neither
+ * tg_sub nor tg_add would saturate; in float the same operations. */
 static HBIL_INLINE tg_real radiance_lerp_pos(tg_real a, tg_real b, tg_real t)
 {
     const tg_real d = small_sub(b, a);
     return small_add(a, t == TG_ONE ? d : small_mul(d, t));
 }
 
-/* Q16.16: 1 when the six values are all >= 0 (their or has no sign bit);
- * float: 0, the plain arithmetic is the same either way. */
-static inline int all_nonneg(tg_real a, tg_real b, tg_real c, tg_real d, tg_real e, tg_real f)
+/* 1 when gather_rise's running radiance, the band's and the sums are in
+ * [0, TG_REAL_MAX], as radiance_lerp_pos and near_sum_pos need (in Q16.16
+ * a negative one could wrap b - a, or a sum below TG_REAL_MIN, and then
+ * not give tg_add's saturated value; in float the arithmetic of the two
+ * branches is the same).  With packed storage it always is,
+ * without a test: every radiance read (tgi_rgb_read, raster/gview.h) is an
+ * RGB9E5 word's decode (tgi_rgb9e5_chan, raster/pack.h: unsigned, saturated
+ * at TG_REAL_MAX; a hole decodes to 0), or tgi_gb_lit of one: diffuse e +
+ * emissive, where diffuse = albedo (1 - F0)/pi >= 0 (tgi_material_finish,
+ * core/material.h, from an albedo in [0, 1] and F0 in [0, 1]) and emissive
+ * >= 0, as the parser (scene/parse.c st_material) and the MTL reader
+ * (scene/obj.c mtl_color) check them and tinygi-bake copies them; no setter
+ * changes a material.  The running radiance starts at 0 (side_init) and is
+ * a lerp of such values with t in [0, 1]; the band is one of them or the
+ * mean of two; the sums start at 0 and add products of them with de >= 0.
+ * Wide storage keeps any tg_real a pass writes (a hole is TG_REAL_MIN until
+ * push/pull fills it): there the test stays. */
+static inline int radiance_nonneg(tg_real a, tg_real b, tg_real c, tg_real d, tg_real e, tg_real f)
 {
-#if TG_FIXED
+#if TG_FIXED && TG_WIDE_STORAGE
     return (a | b | c | d | e | f) >= 0;
 #else
     (void)a; (void)b; (void)c; (void)d; (void)e; (void)f;
-    return 0;
+    return TG_FIXED;   /* float: 0, the general branch, the same code as before */
 #endif
 }
 
@@ -680,7 +695,7 @@ static HBIL_GATHER_INLINE void gather_rise(const hbil_ctx *c, const hbil_slice *
 #endif
         if (t != 0) {   /* lerp(L_old, L(x'), 0) is L_old: the sender's radiance is not read */
             tg_vec3 l = tgi_rgb_read(rad, si);
-            if (all_nonneg(sd->lr, sd->lg, sd->lb, l.x, l.y, l.z)) {
+            if (radiance_nonneg(sd->lr, sd->lg, sd->lb, l.x, l.y, l.z)) {
                 sd->lr = radiance_lerp_pos(sd->lr, l.x, t);
                 sd->lg = radiance_lerp_pos(sd->lg, l.y, t);
                 sd->lb = radiance_lerp_pos(sd->lb, l.z, t);
@@ -698,7 +713,7 @@ static HBIL_GATHER_INLINE void gather_rise(const hbil_ctx *c, const hbil_slice *
     } else {           /* eq. 18: the far end's */
         br = sd->lr; bg = sd->lg; bb = sd->lb;
     }
-    if (all_nonneg(sd->er, sd->eg, sd->eb, br, bg, bb)) {   /* de >= 0 too */
+    if (radiance_nonneg(sd->er, sd->eg, sd->eb, br, bg, bb)) {   /* de >= 0 too */
         sd->er = near_sum_pos(sd->er, br, de);
         sd->eg = near_sum_pos(sd->eg, bg, de);
         sd->eb = near_sum_pos(sd->eb, bb, de);
