@@ -610,6 +610,72 @@ TEST(bad_input_table)
     }
 }
 
+/* ---- a line with two errors reports the first in the text ----
+ * Each pair of lines holds the same two mistakes in both orders; the error
+ * is the one further left, whichever check the parser would run first. */
+
+#define CAM_LINE "camera pos 0 1 5 target 0 0 0\n"
+#define MAT_LINE "material m albedo 0.5 0.5 0.5\n"
+
+static const bad_case first_error_cases[] = {
+    /* two values out of range */
+    {"camera pos 0 1 5 target 0 0 0 near -1 fov 500\n", 1, 36, "'near' must be greater than 0"},
+    {"camera pos 0 1 5 target 0 0 0 fov 500 near -1\n", 1, 35, "'fov' must be between 0 and 180"},
+    {CAM_LINE "material q f0 2 albedo 2 0 0\n", 2, 15, "'f0' must be in [0, 1]"},
+    {CAM_LINE "material q albedo 2 0 0 f0 2\n", 2, 19, "'albedo' must be in [0, 1]"},
+    {CAM_LINE MAT_LINE "sphere center 0 0 0 segments 2 radius -1 material m\n", 3, 30, "sphere segments must be 4..256, got 2"},
+    {CAM_LINE MAT_LINE "sphere center 0 0 0 radius -1 segments 2 material m\n", 3, 28, "'radius' must be greater than 0"},
+    {CAM_LINE "gi bounces 500 slices 20\n", 2, 12, "gi bounces must be 0..100, got 500"},
+    {CAM_LINE "gi slices 20 bounces 500\n", 2, 11, "gi slices must be 1..8, got 20"},
+    {CAM_LINE "light spot pos 0 0 0 angle 100 dir 0 0 0 color 1 1 1\n", 2, 28, "'angle' must be in (0, 90]"},
+    {CAM_LINE "light spot pos 0 0 0 dir 0 0 0 angle 100 color 1 1 1\n", 2, 26, "'dir' must be a direction of non-zero length"},
+    {CAM_LINE "light point pos 0 0 0 intensity -1 color -1 1 1\n", 2, 33, "'intensity' must be 0 or more"},
+    {CAM_LINE "light point pos 0 0 0 color -1 1 1 intensity -1\n", 2, 29, "'color' must be 0 or more"},
+    {CAM_LINE MAT_LINE "mesh file a.obj rotate 0 0 0 1 scale 0 material m\n", 3, 24, "'rotate' must be a direction of non-zero length"},
+    {CAM_LINE MAT_LINE "mesh file a.obj scale 0 rotate 0 0 0 1 material m\n", 3, 23, "'scale' must be greater than 0"},
+    {CAM_LINE "env sky -1 1 1 up 0 0 0 ground 1 1 1\n", 2, 9, "'sky' must be 0 or more"},
+    {CAM_LINE "env sky 1 1 1 up 0 0 0 ground -1 1 1\n", 2, 18, "'up' must be a direction of non-zero length"},
+    /* a value against two keys (checked after the single values) */
+    {"camera pos 0 0 0 target 0 0 0 fov 500\n", 1, 25, "camera 'target' must differ from 'pos'"},
+    {"camera fov 500 pos 0 0 0 target 0 0 0\n", 1, 12, "'fov' must be between 0 and 180"},
+    {CAM_LINE MAT_LINE "quad p0 0 0 0 p1 1 0 0 p2 2 0 0 p3 3 0 0 material m name aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa\n", 3, 9, "quad has zero area"},
+    {CAM_LINE MAT_LINE "box min 0 0 0 max 1 0 1 material m segments 2\n", 3, 21, "box 'max' must be greater than 'min'"},
+    /* a bad value, then a bad token (the line is read up to the token) */
+    {CAM_LINE "material q albedo 2 0 0 f0 x\n", 2, 19, "'albedo' must be in [0, 1]"},
+    {CAM_LINE "material q f0 x albedo 2 0 0\n", 2, 15, "expected a number for 'f0', got 'x'"},
+    {"camera pos 0 1 5 target 0 0 0 fov 500 bogus 1\n", 1, 35, "'fov' must be between 0 and 180"},
+    {"camera pos 0 1 5 target 0 0 0 bogus 1 fov 500\n", 1, 31, "unknown key 'bogus'"},
+    {"camera pos 0 1 5 target 0 0 0 up 0 0 0 pos 1 1 1\n", 1, 34, "'up' must be a direction of non-zero length"},
+    {CAM_LINE "gi slices 20 samples 2.5\n", 2, 11, "gi slices must be 1..8, got 20"},
+    {CAM_LINE "material q emissive -1 0 0 albedo 0.5 0.5\n", 2, 21, "'emissive' must be 0 or more"},
+    {CAM_LINE MAT_LINE "sphere radius -1 center 0 0 x material m\n", 3, 15, "'radius' must be greater than 0"},
+    {CAM_LINE "env uniform -1 1 1 x\n", 2, 13, "'uniform' must be 0 or more"},
+    {CAM_LINE "env uniform 1 x -1\n", 2, 15, "expected a number for 'uniform', got 'x'"},
+    /* no error made up from the keys not read: far is after the bad token */
+    {"camera pos 0 1 5 target 0 0 0 near 2000 bogus far 3000\n", 1, 41, "unknown key 'bogus'"},
+    /* a missing key is reported at the keyword, left of every value */
+    {CAM_LINE "sphere center 0 0 0 radius -1\n", 2, 1, "missing the required key 'material'"},
+    /* names, resolved in pass 2 */
+    {CAM_LINE MAT_LINE "box min 0 0 0 max 1 1 1 material m name a\nbox min 2 0 0 max 3 1 1 name a material nope\n", 4, 30, "duplicate object name 'a'"},
+    {CAM_LINE MAT_LINE "box min 0 0 0 max 1 1 1 material m name a\nbox min 2 0 0 max 3 1 1 material nope name a\n", 4, 34, "undefined material 'nope'"},
+};
+
+TEST(first_error_in_text)
+{
+    size_t i, n = sizeof first_error_cases / sizeof first_error_cases[0];
+    for (i = 0; i < n; i++) {
+        const bad_case *c = &first_error_cases[i];
+        tg_scene *s = (tg_scene *)1;
+        tg_error err;
+        char msg[600];
+        tg_status st = parse_io(c->text, strlen(c->text), "scenes/t.scene", NULL, &s, &err);
+        tg_error_format(&err, msg, sizeof msg);
+        CHECK(st == TG_ERR_INPUT && s == NULL, "first-error case %d: status %d (%s)", (int)i, (int)st, msg);
+        CHECK(err.line == c->line && err.col == c->col && strstr(err.message, c->fragment) != NULL,
+              "first-error case %d: got %s, expected %d:%d ...%s", (int)i, msg, c->line, c->col, c->fragment);
+    }
+}
+
 TEST(limits)
 {
     tg_scene *s;
@@ -1120,6 +1186,7 @@ int main(void)
     RUN(lexing);
     RUN(number_notes);
     RUN(bad_input_table);
+    RUN(first_error_in_text);
     RUN(limits);
     RUN(sky_up_defaults_to_y);
     RUN(arena_protocol);

@@ -12,7 +12,9 @@
  * spheres and meshes all end up as 3 positions + 3 unit normals each.
  *
  * Every input error names FILE:LINE:COL of the offending token and says what
- * was expected.
+ * was expected.  A line reports its first error in the text (the smallest
+ * column): its checks do not stop at the first that fails, and each error
+ * replaces the one set only when it stands further left (line_error).
  */
 #include <string.h>
 #include "parse_internal.h"
@@ -33,10 +35,43 @@ tg_status tgi_parse_fail(tgi_parser *p, const char *file, int line, int col,
     return TG_ERR_INPUT;
 }
 
+/* An error at `col` of the current line: where to write its message, or
+ * NULL (the tgi_error_* calls then write nothing) when the line already has
+ * an error at that column or further left, which stands.  run_pass starts
+ * each line with none (p->line_col = 0). */
+static tg_error *line_error(tgi_parser *p, const tgi_lexer *lx, int col)
+{
+    if (p->line_col > 0 && p->line_col <= col) return NULL;
+    p->line_col = col;
+    tgi_error_set(p->err, TG_ERR_INPUT, lx->file, lx->lineno, col, "");
+    return p->err;
+}
+
+/* TG_ERR_INPUT when the current line has an error, else TG_OK: a statement
+ * checks all it can, then stops here before it adds anything to the scene. */
+static tg_status line_status(const tgi_parser *p)
+{
+    return p->line_col ? TG_ERR_INPUT : TG_OK;
+}
+
+/* An error at `col` of the current line, its message begun with up to three
+ * pieces (NULL pieces are skipped): returns where to append the rest (NULL
+ * when an error further left stands, as line_error). */
+static tg_error *fail_begin(tgi_parser *p, const tgi_lexer *lx, int col,
+                            const char *a, const char *b, const char *c)
+{
+    tg_error *e = line_error(p, lx, col);
+    if (a) tgi_error_append(e, a);
+    if (b) tgi_error_append(e, b);
+    if (c) tgi_error_append(e, c);
+    return e;
+}
+
 static tg_status fail(tgi_parser *p, const tgi_lexer *lx, int col,
                       const char *a, const char *b, const char *c)
 {
-    return tgi_parse_fail(p, lx->file, lx->lineno, col, a, b, c);
+    fail_begin(p, lx, col, a, b, c);
+    return TG_ERR_INPUT;
 }
 
 /* "NAME must be LO..HI, got GOT" (lex.h), GOT a count or a token's text. */
@@ -44,14 +79,16 @@ static tg_status limit(tgi_parser *p, const tgi_lexer *lx, int col, const char *
                        long lo, long hi, size_t got)
 {
     char buf[24];
-    return tgi_limit_fail(p->err, lx->file, lx->lineno, col, name, lo, hi, tgi_number_text(got, buf));
+    return tgi_limit_fail(line_error(p, lx, col), lx->file, lx->lineno, col, name, lo, hi,
+                          tgi_number_text(got, buf));
 }
 
 static tg_status limit_tok(tgi_parser *p, const tgi_lexer *lx, const tgi_token *t,
                            const char *name, long lo, long hi)
 {
     char buf[48];
-    return tgi_limit_fail(p->err, lx->file, lx->lineno, t->col, name, lo, hi, tgi_tok_str(t, buf));
+    return tgi_limit_fail(line_error(p, lx, t->col), lx->file, lx->lineno, t->col, name, lo, hi,
+                          tgi_tok_str(t, buf));
 }
 
 static tg_status fail_runtime(tgi_parser *p, const char *what)
@@ -94,72 +131,77 @@ static int find_key(const key_spec *spec, int n, const tgi_token *t)
     return -1;
 }
 
-/* Read `count` numbers for `what`; stops (wrong count) at a key of `spec`. */
+/* Read `count` numbers for `what`; stops (wrong count) at a key of `spec`.
+ * On an error toks[] holds the numbers read before it. */
 static tg_status read_numbers(tgi_parser *p, tgi_lexer *lx, const key_spec *spec,
                               int nspec, const char *what, int count, int integer,
                               tgi_token *toks, tg_real *v, long *iv)
 {
     tgi_token t;
+    tg_error *e;
     char buf[48];
     int i, r;
     for (i = 0; i < count; i++) {
         int more = tgi_lex_peek(lx, &t);
         if (!more || (spec && find_key(spec, nspec, &t) >= 0)) {
-            fail(p, lx, more ? t.col : tgi_lex_eol_col(lx), "'", what, "' expects ");
-            tgi_error_append_int(p->err, count);
-            tgi_error_append(p->err, count == 1 ? " number, got " : " numbers, got ");
-            tgi_error_append_int(p->err, i);
+            e = fail_begin(p, lx, more ? t.col : tgi_lex_eol_col(lx), "'", what, "' expects ");
+            tgi_error_append_int(e, count);
+            tgi_error_append(e, count == 1 ? " number, got " : " numbers, got ");
+            tgi_error_append_int(e, i);
             return TG_ERR_INPUT;
         }
         tgi_lex_token(lx, &t);
-        toks[i] = t;
         r = integer ? tgi_tok_int(&t, iv) : tgi_tok_real(&t, &v[i]);
         if (r == 1) {
-            fail(p, lx, t.col, integer ? "expected an integer for '" : "expected a number for '",
-                 what, "', got '");
-            tgi_error_append(p->err, tgi_tok_str(&t, buf));
-            tgi_error_append(p->err, "'");
+            e = fail_begin(p, lx, t.col, integer ? "expected an integer for '" : "expected a number for '",
+                           what, "', got '");
+            tgi_error_append(e, tgi_tok_str(&t, buf));
+            tgi_error_append(e, "'");
             return TG_ERR_INPUT;
         }
         if (r == 2) {
-            fail(p, lx, t.col, "number out of range for '", what, "': '");
-            tgi_error_append(p->err, tgi_tok_str(&t, buf));
-            tgi_error_append(p->err, "'" TGI_RANGE_NOTE);
+            e = fail_begin(p, lx, t.col, "number out of range for '", what, "': '");
+            tgi_error_append(e, tgi_tok_str(&t, buf));
+            tgi_error_append(e, "'" TGI_RANGE_NOTE);
             return TG_ERR_INPUT;
         }
+        toks[i] = t;
     }
     return TG_OK;
 }
 
+/* The keys of a statement, left to right, into val[] in spec's order.  A key
+ * is present once its value is read whole.  At an error the rest of the line
+ * is not read (so no key is reported missing): the statement then checks the
+ * values read before it, each of which stands further left. */
 static tg_status parse_keys(tgi_parser *p, tgi_lexer *lx, const tgi_token *stmt,
                             const key_spec *spec, int nspec, key_val *val)
 {
     tgi_token t;
+    tg_error *e;
     char buf[48];
     int k, i, prev = -1;
-    tg_status st;
     memset(val, 0, sizeof(key_val) * (size_t)nspec);
     while (tgi_lex_token(lx, &t)) {
         k = find_key(spec, nspec, &t);
         if (k < 0) {
             tg_real dummy;
             if (prev >= 0 && tgi_tok_real(&t, &dummy) != 1) {
-                fail(p, lx, t.col, "too many numbers for '", spec[prev].key, "' (expects ");
-                tgi_error_append_int(p->err, kind_numbers(spec[prev].kind));
-                tgi_error_append(p->err, ")");
+                e = fail_begin(p, lx, t.col, "too many numbers for '", spec[prev].key, "' (expects ");
+                tgi_error_append_int(e, kind_numbers(spec[prev].kind));
+                tgi_error_append(e, ")");
                 return TG_ERR_INPUT;
             }
-            fail(p, lx, t.col, "unknown key '", tgi_tok_str(&t, buf), "' in '");
-            tgi_error_append(p->err, tgi_tok_str(stmt, buf));
-            tgi_error_append(p->err, "'; expected one of:");
+            e = fail_begin(p, lx, t.col, "unknown key '", tgi_tok_str(&t, buf), "' in '");
+            tgi_error_append(e, tgi_tok_str(stmt, buf));
+            tgi_error_append(e, "'; expected one of:");
             for (i = 0; i < nspec; i++) {
-                tgi_error_append(p->err, " ");
-                tgi_error_append(p->err, spec[i].key);
+                tgi_error_append(e, " ");
+                tgi_error_append(e, spec[i].key);
             }
             return TG_ERR_INPUT;
         }
         if (val[k].present) return fail(p, lx, t.col, "duplicate key '", spec[k].key, "'");
-        val[k].present = 1;
         val[k].key = t;
         if (spec[k].kind == K_NAME || spec[k].kind == K_PATH) {
             if (!tgi_lex_token(lx, &val[k].tok[0]))
@@ -169,17 +211,18 @@ static tg_status parse_keys(tgi_parser *p, tgi_lexer *lx, const tgi_token *stmt,
                 return limit(p, lx, val[k].tok[0].col, "name length in bytes", 1, TG_MAX_NAME,
                              val[k].tok[0].n);
         } else if (spec[k].kind != K_FLAG) {
-            st = read_numbers(p, lx, spec, nspec, spec[k].key, kind_numbers(spec[k].kind),
-                              spec[k].kind == K_INT, val[k].tok, val[k].v, &val[k].i);
-            if (st) return st;
+            if (read_numbers(p, lx, spec, nspec, spec[k].key, kind_numbers(spec[k].kind),
+                             spec[k].kind == K_INT, val[k].tok, val[k].v, &val[k].i))
+                return TG_ERR_INPUT;
         }
+        val[k].present = 1;
         prev = kind_numbers(spec[k].kind) ? k : -1;
     }
     for (k = 0; k < nspec; k++)
         if (spec[k].required && !val[k].present) {
-            fail(p, lx, stmt->col, "'", tgi_tok_str(stmt, buf), "' is missing the required key '");
-            tgi_error_append(p->err, spec[k].key);
-            tgi_error_append(p->err, "'");
+            e = fail_begin(p, lx, stmt->col, "'", tgi_tok_str(stmt, buf), "' is missing the required key '");
+            tgi_error_append(e, spec[k].key);
+            tgi_error_append(e, "'");
             return TG_ERR_INPUT;
         }
     return TG_OK;
@@ -193,15 +236,17 @@ static tg_status expect_end(tgi_parser *p, tgi_lexer *lx, const char *what, int 
     char buf[48];
     if (!tgi_lex_token(lx, &t)) return TG_OK;
     if (count > 0 && tgi_tok_real(&t, &dummy) != 1) {
-        fail(p, lx, t.col, "too many numbers for '", what, "' (expects ");
-        tgi_error_append_int(p->err, count);
-        tgi_error_append(p->err, ")");
+        tg_error *e = fail_begin(p, lx, t.col, "too many numbers for '", what, "' (expects ");
+        tgi_error_append_int(e, count);
+        tgi_error_append(e, ")");
         return TG_ERR_INPUT;
     }
     return fail(p, lx, t.col, "unexpected '", tgi_tok_str(&t, buf), "' at the end of the line");
 }
 
-/* ---- value checks ---- */
+/* ---- value checks ----
+ * Each checks a key only when it is present (read whole), so a statement
+ * runs them all, whatever failed before, and then asks line_status. */
 #define LO_OPEN 1
 #define HI_OPEN 2
 
@@ -211,15 +256,15 @@ static tg_status check_range(tgi_parser *p, const tgi_lexer *lx, const key_val *
 {
     char buf[48];
     int i, n = kv->tok[3].s ? 4 : kv->tok[2].s ? 3 : 1;
-    for (i = 0; i < n; i++) {
+    for (i = 0; kv->present && i < n; i++) {
         tg_real v = kv->v[i];
         if (v < lo || v > hi || ((open & LO_OPEN) && v == lo) || ((open & HI_OPEN) && v == hi)) {
-            fail(p, lx, kv->tok[i].col, "'", key, "' must be ");
-            tgi_error_append(p->err, expect);
-            tgi_error_append(p->err, ", got '");
-            tgi_error_append(p->err, tgi_tok_str(&kv->tok[i], buf));
-            tgi_error_append(p->err, "'");
-            if (tgi_tok_rounds_to_zero(&kv->tok[i], v)) tgi_error_append(p->err, TGI_ZERO_NOTE);
+            tg_error *e = fail_begin(p, lx, kv->tok[i].col, "'", key, "' must be ");
+            tgi_error_append(e, expect);
+            tgi_error_append(e, ", got '");
+            tgi_error_append(e, tgi_tok_str(&kv->tok[i], buf));
+            tgi_error_append(e, "'");
+            if (tgi_tok_rounds_to_zero(&kv->tok[i], v)) tgi_error_append(e, TGI_ZERO_NOTE);
             return TG_ERR_INPUT;
         }
     }
@@ -230,16 +275,19 @@ static tg_vec3 kv_vec3(const key_val *kv) { return tg_v3(kv->v[0], kv->v[1], kv-
 
 static int is_zero_vec(tg_vec3 v) { return v.x == 0 && v.y == 0 && v.z == 0; }
 
-/* The unit direction of a vec3 value; zero length is an error. */
+/* The unit direction of a vec3 value into *out (unchanged when the key is
+ * absent); zero length is an error. */
 static tg_status kv_dir(tgi_parser *p, const tgi_lexer *lx, const key_val *kv,
                         const char *key, tg_vec3 *out)
 {
-    tg_vec3 d = tgi_unit(kv_vec3(kv));
+    tg_vec3 d;
+    if (!kv->present) return TG_OK;
+    d = tgi_unit(kv_vec3(kv));
     if (is_zero_vec(d)) {
-        fail(p, lx, kv->tok[0].col, "'", key, "' must be a direction of non-zero length");
+        tg_error *e = fail_begin(p, lx, kv->tok[0].col, "'", key, "' must be a direction of non-zero length");
         if (tgi_tok_rounds_to_zero(&kv->tok[0], kv->v[0]) || tgi_tok_rounds_to_zero(&kv->tok[1], kv->v[1]) ||
             tgi_tok_rounds_to_zero(&kv->tok[2], kv->v[2]))
-            tgi_error_append(p->err, TGI_ZERO_NOTE);
+            tgi_error_append(e, TGI_ZERO_NOTE);
         return TG_ERR_INPUT;
     }
     *out = d;
@@ -372,17 +420,25 @@ static tg_status emit_quad(tgi_parser *p, const tgi_lexer *lx, int col, const tg
     return st ? st : tgi_parse_emit_tri(p, lx, col, b, n ? nn : NULL, material);
 }
 
-/* The material a geometry statement names: resolved in pass 2. */
-static tg_status resolve_material(tgi_parser *p, const tgi_lexer *lx, const key_val *kv, int *index)
+/* The object name key, or NULL. */
+static const tgi_token *name_of(const key_val *kv) { return kv->present ? &kv->tok[0] : NULL; }
+
+/* A geometry line, once its values are checked: the material it names
+ * (resolved in pass 2) into *index, and its object begun.  Both name errors
+ * (an undefined material, a duplicate object name) are looked for, and the
+ * line reports the one further left. */
+static tg_status begin_geometry(tgi_parser *p, const tgi_lexer *lx, const tgi_token *kw,
+                                const key_val *material, const key_val *name, int *index)
 {
     char buf[48];
+    tg_status st;
     *index = 0;
-    if (!p->fill) return TG_OK;
-    *index = find_material(p, &kv->tok[0]);
-    if (*index < 0)
-        return fail(p, lx, kv->tok[0].col, "undefined material '", tgi_tok_str(&kv->tok[0], buf),
-                    "'; define it with a 'material' line before its use");
-    return TG_OK;
+    if ((st = line_status(p))) return st;
+    if (p->fill && (*index = find_material(p, &material->tok[0])) < 0)
+        fail(p, lx, material->tok[0].col, "undefined material '", tgi_tok_str(&material->tok[0], buf),
+             "'; define it with a 'material' line before its use");
+    st = tgi_parse_begin_object(p, lx, kw->col, name_of(name));
+    return st ? st : line_status(p);
 }
 
 /* ===================================================================== */
@@ -400,27 +456,26 @@ static tg_status st_camera(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, co
     tgi_scene_camera cam;
     tg_status st;
     tg_real fov = TG_R(TG_DEFAULT_FOV);
+    int whole = !p->line_col; /* parse_keys read the whole line: an absent key has its default */
     (void)kw;
     cam.pos = kv_vec3(&v[0]);
     cam.target = kv_vec3(&v[1]);
-    if (is_zero_vec(tgi_v3_sub(cam.target, cam.pos)))
-        return fail(p, lx, v[1].tok[0].col, "camera 'target' must differ from 'pos'", NULL, NULL);
+    if (v[0].present && v[1].present && is_zero_vec(tgi_v3_sub(cam.target, cam.pos)))
+        fail(p, lx, v[1].tok[0].col, "camera 'target' must differ from 'pos'", NULL, NULL);
     cam.up = tg_v3(0, TG_ONE, 0);
-    if (v[2].present && (st = kv_dir(p, lx, &v[2], "up", &cam.up))) return st;
-    if (v[3].present) {
-        if ((st = check_range(p, lx, &v[3], "fov", 0, TG_R(180.0f), LO_OPEN | HI_OPEN,
-                              "between 0 and 180 degrees (exclusive)")))
-            return st;
+    kv_dir(p, lx, &v[2], "up", &cam.up);
+    if (v[3].present && !check_range(p, lx, &v[3], "fov", 0, TG_R(180.0f), LO_OPEN | HI_OPEN,
+                                     "between 0 and 180 degrees (exclusive)"))
         fov = v[3].v[0];
-    }
     cam.fov = tgi_deg_to_rad(fov);
     cam.znear = TG_R(TG_DEFAULT_NEAR);
     cam.zfar = TG_R(TG_DEFAULT_FAR);
-    if ((st = kv_positive(p, lx, &v[4], "near", &cam.znear))) return st;
+    st = kv_positive(p, lx, &v[4], "near", &cam.znear);
     if (v[5].present) cam.zfar = v[5].v[0];
-    if (cam.zfar <= cam.znear)
-        return fail(p, lx, v[5].present ? v[5].tok[0].col : v[4].tok[0].col,
-                    "camera 'far' must be greater than 'near'", NULL, NULL);
+    if (!st && (whole || (v[4].present && v[5].present)) && cam.zfar <= cam.znear)
+        fail(p, lx, v[5].present ? v[5].tok[0].col : v[4].tok[0].col,
+             "camera 'far' must be greater than 'near'", NULL, NULL);
+    if ((st = line_status(p))) return st;
     p->have_camera = 1;
     if (p->fill) p->scene->camera = cam;
     return TG_OK;
@@ -433,8 +488,9 @@ static tg_status st_camera_key(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw
     key.t = v[0].v[0];
     key.pos = kv_vec3(&v[1]);
     key.target = kv_vec3(&v[2]);
-    if (is_zero_vec(tgi_v3_sub(key.target, key.pos)))
-        return fail(p, lx, v[2].tok[0].col, "camera_key 'target' must differ from 'pos'", NULL, NULL);
+    if (v[1].present && v[2].present && is_zero_vec(tgi_v3_sub(key.target, key.pos)))
+        fail(p, lx, v[2].tok[0].col, "camera_key 'target' must differ from 'pos'", NULL, NULL);
+    if (line_status(p)) return TG_ERR_INPUT;
     if (p->camera_keys >= TG_MAX_KEYS)
         return limit(p, lx, kw->col, "camera_key count", 0, TG_MAX_KEYS, p->camera_keys + 1);
     if (p->fill) { /* insert sorted by t */
@@ -465,20 +521,16 @@ static tg_status st_material(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, 
         return fail(p, lx, have ? name.col : tgi_lex_eol_col(lx),
                     "'material' expects a name first: material NAME albedo R G B ...", NULL, NULL);
     if (name.n > TG_MAX_NAME) return limit(p, lx, name.col, "name length in bytes", 1, TG_MAX_NAME, name.n);
-    if ((st = parse_keys(p, lx, kw, spec, NSPEC(spec), v))) return st;
+    parse_keys(p, lx, kw, spec, NSPEC(spec), v);
+    check_range(p, lx, &v[0], "albedo", 0, TG_ONE, 0, "in [0, 1]");
+    check_range(p, lx, &v[1], "f0", 0, TG_ONE, 0, "in [0, 1]");
+    check_range(p, lx, &v[2], "emissive", 0, TG_REAL_MAX, 0, "0 or more");
+    if ((st = line_status(p))) return st;
     memset(&m, 0, sizeof m);
     copy_name(m.name, &name);
-    if ((st = check_range(p, lx, &v[0], "albedo", 0, TG_ONE, 0, "in [0, 1]"))) return st;
     m.albedo = kv_vec3(&v[0]);
-    m.f0 = TG_R(TG_DEFAULT_F0);
-    if (v[1].present) {
-        if ((st = check_range(p, lx, &v[1], "f0", 0, TG_ONE, 0, "in [0, 1]"))) return st;
-        m.f0 = v[1].v[0];
-    }
-    if (v[2].present) {
-        if ((st = check_range(p, lx, &v[2], "emissive", 0, TG_REAL_MAX, 0, "0 or more"))) return st;
-        m.emissive = kv_vec3(&v[2]);
-    }
+    m.f0 = v[1].present ? v[1].v[0] : TG_R(TG_DEFAULT_F0);
+    if (v[2].present) m.emissive = kv_vec3(&v[2]);
     m.twosided = v[3].present;
     if (p->fill && find_material(p, &name) >= 0)
         return fail(p, lx, name.col, "duplicate material '", tgi_tok_str(&name, buf),
@@ -486,20 +538,17 @@ static tg_status st_material(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, 
     return tgi_parse_add_material(p, lx, name.col, &m, &index);
 }
 
-/* The object name key, or NULL. */
-static const tgi_token *name_of(const key_val *kv) { return kv->present ? &kv->tok[0] : NULL; }
-
 static tg_status st_quad(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *v)
 {
     tg_vec3 q[4], n;
     tg_status st;
     int i, mat;
     for (i = 0; i < 4; i++) q[i] = kv_vec3(&v[i]);
-    if (!tgi_face_normal(q[0], q[1], q[2], &n) || !tgi_face_normal(q[0], q[2], q[3], &n))
-        return fail(p, lx, v[0].tok[0].col,
-                    "quad has zero area; expected four corners p0 p1 p2 p3 around a polygon", NULL, NULL);
-    if ((st = resolve_material(p, lx, &v[4], &mat))) return st;
-    if ((st = tgi_parse_begin_object(p, lx, kw->col, name_of(&v[5])))) return st;
+    if (v[0].present && v[1].present && v[2].present && v[3].present &&
+        (!tgi_face_normal(q[0], q[1], q[2], &n) || !tgi_face_normal(q[0], q[2], q[3], &n)))
+        fail(p, lx, v[0].tok[0].col,
+             "quad has zero area; expected four corners p0 p1 p2 p3 around a polygon", NULL, NULL);
+    if ((st = begin_geometry(p, lx, kw, &v[4], &v[5], &mat))) return st;
     return emit_quad(p, lx, kw->col, q, NULL, mat);
 }
 
@@ -513,12 +562,12 @@ static tg_status st_box(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const
     tg_vec3 lo, hi, c[8], q[4], n;
     tg_status st;
     int i, f, mat, inward;
-    for (i = 0; i < 3; i++)
-        if (!(v[0].v[i] < v[1].v[i]))
-            return fail(p, lx, v[1].tok[i].col,
-                        "box 'max' must be greater than 'min' on every axis", NULL, NULL);
-    if ((st = resolve_material(p, lx, &v[2], &mat))) return st;
-    if ((st = tgi_parse_begin_object(p, lx, kw->col, name_of(&v[4])))) return st;
+    for (i = 0; v[0].present && v[1].present && i < 3; i++)
+        if (!(v[0].v[i] < v[1].v[i])) {
+            fail(p, lx, v[1].tok[i].col, "box 'max' must be greater than 'min' on every axis", NULL, NULL);
+            break;
+        }
+    if ((st = begin_geometry(p, lx, kw, &v[2], &v[4], &mat))) return st;
     if (!p->fill) return count_tris(p, lx, kw->col, 12);
     lo = kv_vec3(&v[0]);
     hi = kv_vec3(&v[1]);
@@ -558,17 +607,16 @@ static tg_status st_sphere(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, co
     tg_status st;
     tg_real r;
     int mat, segs = TG_DEFAULT_SPHERE_SEGMENTS, rings, i, j, k;
-    if ((st = check_range(p, lx, &v[1], "radius", 0, TG_REAL_MAX, LO_OPEN, "greater than 0")))
-        return st;
+    check_range(p, lx, &v[1], "radius", 0, TG_REAL_MAX, LO_OPEN, "greater than 0");
     if (v[3].present) {
         if (v[3].i < TG_MIN_SPHERE_SEGMENTS || v[3].i > TG_MAX_SPHERE_SEGMENTS)
-            return limit_tok(p, lx, &v[3].tok[0], "sphere segments", TG_MIN_SPHERE_SEGMENTS,
-                             TG_MAX_SPHERE_SEGMENTS);
-        segs = (int)v[3].i;
+            limit_tok(p, lx, &v[3].tok[0], "sphere segments", TG_MIN_SPHERE_SEGMENTS,
+                      TG_MAX_SPHERE_SEGMENTS);
+        else
+            segs = (int)v[3].i;
     }
     rings = segs / 2;
-    if ((st = resolve_material(p, lx, &v[2], &mat))) return st;
-    if ((st = tgi_parse_begin_object(p, lx, kw->col, name_of(&v[4])))) return st;
+    if ((st = begin_geometry(p, lx, kw, &v[2], &v[4], &mat))) return st;
     if (!p->fill) return count_tris(p, lx, kw->col, (size_t)(2 * segs * (rings - 1)));
     c = kv_vec3(&v[0]);
     r = v[1].v[0];
@@ -613,17 +661,15 @@ static tg_status st_mesh(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, cons
     int mat;
     xf.translate = v[2].present ? kv_vec3(&v[2]) : tg_v3(0, 0, 0);
     xf.scale = TG_ONE;
-    if ((st = kv_positive(p, lx, &v[3], "scale", &xf.scale))) return st;
+    kv_positive(p, lx, &v[3], "scale", &xf.scale);
     xf.rot = tgi_m4_identity();
     if (v[4].present) {
         tg_vec3 axis;
-        if ((st = kv_dir(p, lx, &v[4], "rotate", &axis))) return st;
-        xf.rot = tgi_m4_rotate(axis, tgi_deg_to_rad(v[4].v[3]));
+        if (!kv_dir(p, lx, &v[4], "rotate", &axis)) xf.rot = tgi_m4_rotate(axis, tgi_deg_to_rad(v[4].v[3]));
     }
+    if ((st = begin_geometry(p, lx, kw, &v[1], &v[5], &mat))) return st;
     if (v[5].present) copy_name(objname, &v[5].tok[0]);
     else base_name(&v[0].tok[0], objname);
-    if ((st = resolve_material(p, lx, &v[1], &mat))) return st;
-    if ((st = tgi_parse_begin_object(p, lx, kw->col, name_of(&v[5])))) return st;
 #if TG_NO_OBJ
     (void)xf;
     return fail(p, lx, kw->col, "'mesh': OBJ files are left out of this build (TG_NO_OBJ=1)", NULL, NULL);
@@ -645,9 +691,10 @@ static tg_status st_object_key(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw
     if (v[2].present) key.translate = kv_vec3(&v[2]);
     key.axis = tg_v3(0, TG_ONE, 0);
     if (v[3].present) {
-        if ((st = kv_dir(p, lx, &v[3], "rotate", &key.axis))) return st;
+        kv_dir(p, lx, &v[3], "rotate", &key.axis);
         key.angle = tgi_deg_to_rad(v[3].v[3]);
     }
+    if ((st = line_status(p))) return st;
     if (p->object_keys >= TG_MAX_KEYS)
         return limit(p, lx, kw->col, "object_key count", 0, TG_MAX_KEYS, p->object_keys + 1);
     if (p->fill) {
@@ -698,37 +745,30 @@ static tg_status st_light(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, con
         return fail(p, lx, tgi_lex_eol_col(lx), "'light' expects a type: directional, point or spot", NULL, NULL);
     if (tgi_tok_is(&type, "directional")) {
         l.type = TG_LIGHT_DIRECTIONAL;
-        st = parse_keys(p, lx, kw, dir_spec, NSPEC(dir_spec), v);
+        parse_keys(p, lx, kw, dir_spec, NSPEC(dir_spec), v);
     } else if (tgi_tok_is(&type, "point")) {
         l.type = TG_LIGHT_POINT;
-        st = parse_keys(p, lx, kw, point_spec, NSPEC(point_spec), v);
+        parse_keys(p, lx, kw, point_spec, NSPEC(point_spec), v);
     } else if (tgi_tok_is(&type, "spot")) {
         l.type = TG_LIGHT_SPOT;
-        st = parse_keys(p, lx, kw, spot_spec, NSPEC(spot_spec), v);
+        parse_keys(p, lx, kw, spot_spec, NSPEC(spot_spec), v);
     } else
         return fail(p, lx, type.col, "unknown light type '", tgi_tok_str(&type, buf),
                     "'; expected directional, point or spot");
-    if (st) return st;
-    if (l.type == TG_LIGHT_DIRECTIONAL) {
-        if ((st = kv_dir(p, lx, &v[0], "dir", &l.dir))) return st;
-    } else {
-        l.pos = kv_vec3(&v[0]);
-    }
-    if ((st = check_color(p, lx, &v[1], "color"))) return st;
-    l.color = kv_vec3(&v[1]);
-    l.intensity = TG_ONE;
-    if (v[2].present) {
-        if ((st = check_range(p, lx, &v[2], "intensity", 0, TG_REAL_MAX, 0, "0 or more"))) return st;
-        l.intensity = v[2].v[0];
-    }
-    l.shadows = v[3].present;
+    if (l.type == TG_LIGHT_DIRECTIONAL) kv_dir(p, lx, &v[0], "dir", &l.dir);
+    else l.pos = kv_vec3(&v[0]);
+    check_color(p, lx, &v[1], "color");
+    check_range(p, lx, &v[2], "intensity", 0, TG_REAL_MAX, 0, "0 or more");
     if (l.type == TG_LIGHT_SPOT) {
-        if ((st = kv_dir(p, lx, &v[4], "dir", &l.dir))) return st;
-        if ((st = check_range(p, lx, &v[5], "angle", 0, TG_R(90.0f), LO_OPEN,
-                              "in (0, 90] degrees (the cone's half angle)")))
-            return st;
+        kv_dir(p, lx, &v[4], "dir", &l.dir);
+        check_range(p, lx, &v[5], "angle", 0, TG_R(90.0f), LO_OPEN,
+                    "in (0, 90] degrees (the cone's half angle)");
         l.angle = tgi_deg_to_rad(v[5].v[0]);
     }
+    if ((st = line_status(p))) return st;
+    l.color = kv_vec3(&v[1]);
+    l.intensity = v[2].present ? v[2].v[0] : TG_ONE;
+    l.shadows = v[3].present;
     if (p->lights >= TG_MAX_LIGHTS)
         return limit(p, lx, kw->col, "light count", 0, TG_MAX_LIGHTS, p->lights + 1);
     if (p->fill) p->scene->lights[p->lights] = l;
@@ -742,18 +782,18 @@ static tg_status positional(tgi_parser *p, tgi_lexer *lx, const char *what, int 
 {
     tgi_token toks[27];
     char buf[48];
-    tg_status st;
     int i;
-    if ((st = read_numbers(p, lx, NULL, 0, what, count, 0, toks, out, NULL))) return st;
-    if ((st = expect_end(p, lx, what, count))) return st;
-    for (i = 0; nonneg && i < count; i++)
+    memset(toks, 0, sizeof toks);
+    if (!read_numbers(p, lx, NULL, 0, what, count, 0, toks, out, NULL))
+        expect_end(p, lx, what, count);
+    for (i = 0; nonneg && i < count && toks[i].s; i++) /* the numbers read */
         if (out[i] < 0) {
-            fail(p, lx, toks[i].col, "'", what, "' must be 0 or more, got '");
-            tgi_error_append(p->err, tgi_tok_str(&toks[i], buf));
-            tgi_error_append(p->err, "'");
-            return TG_ERR_INPUT;
+            tg_error *e = fail_begin(p, lx, toks[i].col, "'", what, "' must be 0 or more, got '");
+            tgi_error_append(e, tgi_tok_str(&toks[i], buf));
+            tgi_error_append(e, "'");
+            break;
         }
-    return TG_OK;
+    return line_status(p);
 }
 
 static tg_status st_env(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const key_val *parsed)
@@ -776,14 +816,15 @@ static tg_status st_env(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const
         env.type = TG_ENV_UNIFORM;
         env.uniform = tg_v3(num[0], num[1], num[2]);
     } else if (tgi_tok_is(&type, "sky")) {
-        if ((st = parse_keys(p, lx, kw, sky_spec, NSPEC(sky_spec), v))) return st;
-        if ((st = check_color(p, lx, &v[0], "sky")) || (st = check_color(p, lx, &v[1], "ground")))
-            return st;
+        parse_keys(p, lx, kw, sky_spec, NSPEC(sky_spec), v);
+        check_color(p, lx, &v[0], "sky");
+        check_color(p, lx, &v[1], "ground");
+        env.up = tg_v3(0, TG_ONE, 0);
+        kv_dir(p, lx, &v[2], "up", &env.up);
+        if ((st = line_status(p))) return st;
         env.type = TG_ENV_SKY;
         env.sky = kv_vec3(&v[0]);
         env.ground = kv_vec3(&v[1]);
-        env.up = tg_v3(0, TG_ONE, 0);
-        if (v[2].present && (st = kv_dir(p, lx, &v[2], "up", &env.up))) return st;
     } else if (tgi_tok_is(&type, "sh9")) {
         tgi_lex_token(lx, &type);
         if ((st = positional(p, lx, "sh9", 27, 0, num))) return st;
@@ -796,11 +837,11 @@ static tg_status st_env(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const
     return TG_OK;
 }
 
-/* An integer value within a limit of tinygi.h's block. */
+/* An integer value within a limit of tinygi.h's block (or absent). */
 static tg_status int_limit(tgi_parser *p, const tgi_lexer *lx, const key_val *kv,
                            const char *name, long lo, long hi)
 {
-    if (kv->i >= lo && kv->i <= hi) return TG_OK;
+    if (!kv->present || (kv->i >= lo && kv->i <= hi)) return TG_OK;
     return limit_tok(p, lx, &kv->tok[0], name, lo, hi);
 }
 
@@ -809,26 +850,16 @@ static tg_status st_gi(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, const 
     tgi_gi_settings gi;
     tg_status st;
     (void)kw;
-    gi.radius = TG_R(-1.0f);
-    gi.slices = gi.samples = 0;
-    gi.bounces = -1;
-    if (v[0].present) {
-        if (v[0].v[0] < 0 || v[0].v[0] > TG_R(TG_MAX_RADIUS))
-            return limit_tok(p, lx, &v[0].tok[0], "gi radius", 0, TG_MAX_RADIUS);
-        gi.radius = v[0].v[0];
-    }
-    if (v[1].present) {
-        if ((st = int_limit(p, lx, &v[1], "gi slices", 1, TG_MAX_SLICES))) return st;
-        gi.slices = (int)v[1].i;
-    }
-    if (v[2].present) {
-        if ((st = int_limit(p, lx, &v[2], "gi samples", 1, TG_MAX_SAMPLES))) return st;
-        gi.samples = (int)v[2].i;
-    }
-    if (v[3].present) {
-        if ((st = int_limit(p, lx, &v[3], "gi bounces", 0, TG_MAX_BOUNCES))) return st;
-        gi.bounces = (int)v[3].i;
-    }
+    if (v[0].present && (v[0].v[0] < 0 || v[0].v[0] > TG_R(TG_MAX_RADIUS)))
+        limit_tok(p, lx, &v[0].tok[0], "gi radius", 0, TG_MAX_RADIUS);
+    int_limit(p, lx, &v[1], "gi slices", 1, TG_MAX_SLICES);
+    int_limit(p, lx, &v[2], "gi samples", 1, TG_MAX_SAMPLES);
+    int_limit(p, lx, &v[3], "gi bounces", 0, TG_MAX_BOUNCES);
+    if ((st = line_status(p))) return st;
+    gi.radius = v[0].present ? v[0].v[0] : TG_R(-1.0f);
+    gi.slices = v[1].present ? (int)v[1].i : 0;
+    gi.samples = v[2].present ? (int)v[2].i : 0;
+    gi.bounces = v[3].present ? (int)v[3].i : -1;
     if (p->fill) p->scene->gi = gi;
     return TG_OK;
 }
@@ -854,10 +885,9 @@ static tg_status st_effects(tgi_parser *p, tgi_lexer *lx, const tgi_token *kw, c
             if (is_auto) return fail(p, lx, t.col, "'auto' cannot be mixed with a list of effects", NULL, NULL);
             for (i = 0; i < sizeof effect_words / sizeof effect_words[0]; i++)
                 if (tgi_tok_is(&t, effect_words[i].word)) break;
-            if (i == sizeof effect_words / sizeof effect_words[0])
-            {
-                fail(p, lx, t.col, "unknown effect '", tgi_tok_str(&t, buf), "'");
-                tgi_error_append(p->err, expect);
+            if (i == sizeof effect_words / sizeof effect_words[0]) {
+                tg_error *e = fail_begin(p, lx, t.col, "unknown effect '", tgi_tok_str(&t, buf), "'");
+                tgi_error_append(e, expect);
                 return TG_ERR_INPUT;
             }
             bits |= effect_words[i].bit;
@@ -944,21 +974,22 @@ static tg_status run_pass(tgi_parser *p, const char *text, size_t size)
     reset_counts(p);
     tgi_lex_init(&lx, text, size, p->file);
     while ((r = tgi_lex_line(&lx, p->err)) > 0) {
+        p->line_col = 0;
         if (!tgi_lex_token(&lx, &kw)) continue;
         for (i = 0; i < n; i++)
             if (tgi_tok_is(&kw, statements[i].kw)) break;
         if (i == n) {
-            fail(p, &lx, kw.col, "unknown keyword '", tgi_tok_str(&kw, buf), "'; expected one of:");
+            tg_error *e = fail_begin(p, &lx, kw.col, "unknown keyword '", tgi_tok_str(&kw, buf), "'; expected one of:");
             for (i = 0; i < n; i++) {
-                tgi_error_append(p->err, " ");
-                tgi_error_append(p->err, statements[i].kw);
+                tgi_error_append(e, " ");
+                tgi_error_append(e, statements[i].kw);
             }
             return TG_ERR_INPUT;
         }
         if (statements[i].once && seen[i]++)
             return fail(p, &lx, kw.col, "duplicate '", statements[i].kw, "' statement; only one is allowed");
-        if (statements[i].keys && (st = parse_keys(p, &lx, &kw, statements[i].keys, statements[i].nkeys, v)))
-            return st;
+        /* an error in the keys leaves the statement to check the values read before it */
+        if (statements[i].keys) parse_keys(p, &lx, &kw, statements[i].keys, statements[i].nkeys, v);
         if ((st = statements[i].fn(p, &lx, &kw, statements[i].keys ? v : NULL))) return st;
     }
     if (r < 0) return TG_ERR_INPUT;

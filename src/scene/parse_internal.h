@@ -32,6 +32,8 @@ typedef struct tgi_parser {
     tg_vec3 *scratch;                   /* pass 2: room for obj_scratch vec3 */
     uint16_t *key_owner;                /* pass 2: object of each object key */
     int have_camera;
+    int line_col;                       /* column of the error set on the current
+                                         * scene line, 0: none (parse.c, "errors") */
 } tgi_parser;
 
 /* Set an input error at (file, line, col): message built from up to three
