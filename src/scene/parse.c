@@ -991,6 +991,7 @@ static tg_status run_pass(tgi_parser *p, const char *text, size_t size)
         /* an error in the keys leaves the statement to check the values read before it */
         if (statements[i].keys) parse_keys(p, &lx, &kw, statements[i].keys, statements[i].nkeys, v);
         if ((st = statements[i].fn(p, &lx, &kw, statements[i].keys ? v : NULL))) return st;
+        if ((st = line_status(p))) return st;   /* an error its statement did not stop at */
     }
     if (r < 0) return TG_ERR_INPUT;
     if (!p->have_camera && p->camera_keys == 0)
