@@ -170,7 +170,6 @@ static void run_full_with(const gbuf *g, double radius, int near, result *r, con
     tgi_rgb rad = tgi_rgb_none();
     params_for(&p, radius);
     if (hbil_samples > 0) p.samples = hbil_samples;
-    p.per_pixel_pattern = 1;
     if (!hbil_rejection) { p.rejection_a = TG_R(-3.0f); p.rejection_b = TG_R(-2.0f); }  /* t = 1 for every sender */
     sf_gbuffer_alloc(&gb, g->w, g->h, materials, count);
     sf_gbuffer_fill(&gb, g->depth, g->nx, g->ny, g->nz, g->sky, mat);
@@ -232,7 +231,6 @@ static void run_strided(const gbuf *g, double radius, result *r)
             tgi_gview_strided_sub(&sub, &full, i, j);
             if (sub.width == 0 || sub.height == 0) continue;
             params_for(&p, radius);
-            p.per_pixel_pattern = 1;   /* as tgi_hbil_interleaved_rows */
             p.fine = &full;
             tgi_hbil_rows(&p, &sub, NULL, &o, 0, sub.height);
         }
@@ -1062,8 +1060,7 @@ static void kernel_sub_images_on(const tgi_gview *k, const tgi_gview *fine, doub
             if (samples > 0) p.samples = samples;
             p.rotation = rot;
             p.fine = fine;
-            p.per_pixel_pattern = 1;   /* as tgi_pass_hbil_interleaved */
-            p.pattern_scale = k->step;
+            p.pattern_scale = k->step;   /* as tgi_pass_hbil_interleaved */
             tgi_hbil_rows(&p, &sub, NULL, &o, 0, sub.height);
         }
 }

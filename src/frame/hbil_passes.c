@@ -30,7 +30,6 @@ static void hbil_params(const tg_frame *f, tgi_hbil_params *p)
      * its own eighth of the directions and march offsets (a first frame is
      * the same whatever its index); without it, every frame the first's */
     p->rotation = (f->needs & TG_NEED_TEMPORAL) ? f->frames_rendered % TG_HBIL_ROTATIONS : 0;
-    p->per_pixel_pattern = 1;   /* tgi_hbil_pattern */
 }
 
 /* Results without the cone: the kernel and the filter leave it to the

@@ -141,7 +141,6 @@ void tgi_hbil_defaults(tgi_hbil_params *p)
     p->slices = TG_DEFAULT_SLICES;
     p->samples = TG_DEFAULT_SAMPLES;
     p->radius = TG_ONE;
-    p->slice_phi0 = tgi_hbil_slice_phi0(0, 0, p->slices, 0);
     p->rejection_a = 0;
     p->rejection_b = TG_R(0.2f);
 }
@@ -1705,12 +1704,11 @@ static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
     const tgi_gresult *out = c->out;
     const tgi_view *v = c->v;
     hbil_sums acc;
-    int s, pat = 0;
+    int s, pat;
     tg_real ao;
     int X = px->x * c->step + c->g->offset_x, Y = px->y * c->step + c->g->offset_y;
     memset(&acc, 0, sizeof acc);
-    if (c->p->per_pixel_pattern)
-        pat = tgi_hbil_pattern(X >> PATTERN_SHIFT(c), Y >> PATTERN_SHIFT(c), c->p->rotation);
+    pat = tgi_hbil_pattern(X >> PATTERN_SHIFT(c), Y >> PATTERN_SHIFT(c), c->p->rotation);
     px->jitter = tgi_hbil_block_jitter(c->jitter[pat], X >> 2, Y >> 2, c->p->rotation);
     for (s = 0; s < c->slices; s++)
         slice_run(c, px, c->cos_phi[pat][s], c->sin_phi[pat][s], &acc);
@@ -1737,7 +1735,7 @@ static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
 static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, const tgi_rgb *radiance,
                      const tgi_gresult *out)
 {
-    int pat, s, npat;
+    int pat, s;
     c->p = p;
     c->g = g;
     c->v = g->camera;
@@ -1781,11 +1779,9 @@ static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, 
 #if !TG_NO_GI_QUARTER
     c->pattern_shift = p->pattern_scale > 1;   /* --gi-quarter's half-resolution image */
 #endif
-    npat = p->per_pixel_pattern ? HBIL_PATTERN : 1;
-    for (pat = 0; pat < npat; pat++) {
-        tg_real phi0 = p->per_pixel_pattern ? tgi_hbil_slice_phi0(pat & 3, pat >> 2, c->slices, p->rotation)
-                                            : p->slice_phi0;
-        c->jitter[pat] = p->per_pixel_pattern ? tgi_hbil_step_jitter(pat & 3, pat >> 2, p->rotation) : p->step_jitter;
+    for (pat = 0; pat < HBIL_PATTERN; pat++) {
+        tg_real phi0 = tgi_hbil_slice_phi0(pat & 3, pat >> 2, c->slices, p->rotation);
+        c->jitter[pat] = tgi_hbil_step_jitter(pat & 3, pat >> 2, p->rotation);
         for (s = 0; s < c->slices; s++) {
             tg_real phi = tg_add(phi0, tg_mul(c->pi_over_s, tg_from_int(s)));
             c->cos_phi[pat][s] = tg_cos(phi);
@@ -1832,7 +1828,6 @@ void tgi_hbil_interleaved_rows(const tgi_hbil_params *p, const tgi_gview *k, con
                              k->offset_y + j * k->step, k->camera);
             res = tgi_gresult_from(out, o);
             if (radiance) src = tgi_rgb_from(radiance, o);
-            ps.per_pixel_pattern = 1;
             ps.pattern_scale = k->step;
             ps.fine = k;                 /* k's radiance is packed like split: not at hand */
             ps.fine_radiance = 0;

@@ -27,9 +27,8 @@
  * apart).  Pixel (X, Y) of the image takes the cell tgi_hbil_pattern(X, Y):
  * (X & 3, (Y + t) & 3), t hashed from its block column X >> 2 and the
  * frame's rotation.  The kernel runs on the full-resolution image or on
- * its 16 sub-images (sub-image (i, j)'s pixel (x, y) is (4x + i, 4y + j))
- * with per_pixel_pattern set, and both give a pixel the same cell, so the
- * two results are comparable.  Not one cell
+ * its 16 sub-images (sub-image (i, j)'s pixel (x, y) is (4x + i, 4y + j)),
+ * and both give a pixel the same cell, so the two results are comparable.  Not one cell
  * per sub-image (HBIL sec. 3.3 as printed): then every pixel of a
  * sub-image marches one slice direction at the same offsets, and where
  * the sub-image's step is one of its pixels (a 40x30 sub-image, 32
@@ -71,16 +70,13 @@
 typedef struct tgi_hbil_params {
     int slices, samples;      /* per pixel; defaults TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES; slices clamped to [1, TG_MAX_SLICES] */
     tg_real radius;           /* world units; projected to pixels, the march stops at the screen's edge */
-    tg_real slice_phi0;       /* without the pattern: every pixel's first slice angle, radians */
-    int per_pixel_pattern;    /* each pixel's slice angle and march offset from its cell
-                               * (tgi_hbil_pattern) at its place in the kernel's image, read from
-                               * the view (a sub-image's pixel (x, y) stands for the image's
-                               * (4x + i, 4y + j)); slice_phi0 and step_jitter ignored */
-    int pattern_scale;        /* with the pattern: the kernel's image's pixels are this many
-                               * full-resolution pixels wide (2: --gi-quarter; 0 or 1: full) */
-    int rotation;             /* with the pattern: the frame rotation (tgi_hbil_slice_phi0) */
-    tg_real step_jitter;      /* in [0, 1): without the pattern, every pixel's samples start
-                               * that fraction of a march step nearer */
+    int pattern_scale;        /* each pixel's slice angles and march offset are its cell's
+                               * (tgi_hbil_pattern) at its place in the kernel's image, read
+                               * from the view (a sub-image's pixel (x, y) stands for the
+                               * image's (4x + i, 4y + j)); the kernel's image's pixels are
+                               * this many full-resolution pixels wide (2: --gi-quarter; 0 or
+                               * 1: full resolution) */
+    int rotation;             /* the frame rotation (tgi_hbil_slice_phi0, tgi_hbil_pattern) */
     tg_real rejection_a, rejection_b; /* sec. 3.4 t = smoothstep(a, b, -n'.w_i) */
     const tgi_gview *fine; /* interleaved: the image the 4x4 sub-image is taken from (its
                                * pixel (x, y) is fine's (4x + i, 4y + j)); the horizon on
@@ -89,8 +85,8 @@ typedef struct tgi_hbil_params {
                                * bands take the radiance gathered before them */
 } tgi_hbil_params;
 
-/* Defaults: 2 slices, 32 samples, radius 1, phi0 of
- * cell (0,0), no pattern, rejection a = 0, b = 0.2. */
+/* Defaults: 2 slices, 32 samples, radius 1, rotation 0, the
+ * full-resolution pattern, rejection a = 0, b = 0.2. */
 void tgi_hbil_defaults(tgi_hbil_params *p);
 
 /* First slice angle of sub-image (i, j), i, j in 0..3, with `slices` per
