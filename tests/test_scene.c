@@ -589,25 +589,29 @@ static const bad_case bad_cases[] = {
     {"camera pos 0 1 5 target 0 0 0\nmaterial m albedo 1 1 1 twosided 1\n", 2, 34, "unknown key '1'"},
 };
 
+/* One bad case: refused with no scene, at its file, line and column, with
+ * its fragment in the message; `table` names the table in a failure. */
+static void check_bad_case(const bad_case *c, const char *table, int i)
+{
+    tg_scene *s = (tg_scene *)1;
+    tg_error err;
+    char msg[600];
+    tg_status st = parse_io(c->text, strlen(c->text), "scenes/t.scene", NULL, &s, &err);
+    tg_error_format(&err, msg, sizeof msg);
+    CHECK(st == TG_ERR_INPUT, "%s case %d: status %d (%s)", table, i, (int)st, msg);
+    CHECK(s == NULL, "%s case %d: no scene on error", table, i);
+    CHECK(strcmp(err.file, "scenes/t.scene") == 0, "%s case %d: file '%s'", table, i, err.file);
+    CHECK(err.line == c->line && err.col == c->col, "%s case %d: at %d:%d, expected %d:%d (%s)", table, i,
+          err.line, err.col, c->line, c->col, msg);
+    CHECK(strstr(err.message, c->fragment) != NULL, "%s case %d: message '%s' lacks '%s'", table, i,
+          err.message, c->fragment);
+}
+
 TEST(bad_input_table)
 {
     size_t i, n = sizeof bad_cases / sizeof bad_cases[0];
     CHECK(n >= 30, "%d cases", (int)n);
-    for (i = 0; i < n; i++) {
-        tg_scene *s = (tg_scene *)1;
-        tg_error err;
-        char msg[600];
-        tg_status st = parse_io(bad_cases[i].text, strlen(bad_cases[i].text), "scenes/t.scene", NULL, &s, &err);
-        tg_error_format(&err, msg, sizeof msg);
-        CHECK(st == TG_ERR_INPUT, "case %d: status %d (%s)", (int)i, (int)st, msg);
-        CHECK(s == NULL, "case %d: no scene on error", (int)i);
-        CHECK(strcmp(err.file, "scenes/t.scene") == 0, "case %d: file '%s'", (int)i, err.file);
-        CHECK(err.line == bad_cases[i].line && err.col == bad_cases[i].col,
-              "case %d: at %d:%d, expected %d:%d (%s)", (int)i, err.line, err.col, bad_cases[i].line,
-              bad_cases[i].col, msg);
-        CHECK(strstr(err.message, bad_cases[i].fragment) != NULL, "case %d: message '%s' lacks '%s'", (int)i,
-              err.message, bad_cases[i].fragment);
-    }
+    for (i = 0; i < n; i++) check_bad_case(&bad_cases[i], "bad-input", (int)i);
 }
 
 /* ---- a line with two errors reports the first in the text ----
@@ -663,17 +667,7 @@ static const bad_case first_error_cases[] = {
 TEST(first_error_in_text)
 {
     size_t i, n = sizeof first_error_cases / sizeof first_error_cases[0];
-    for (i = 0; i < n; i++) {
-        const bad_case *c = &first_error_cases[i];
-        tg_scene *s = (tg_scene *)1;
-        tg_error err;
-        char msg[600];
-        tg_status st = parse_io(c->text, strlen(c->text), "scenes/t.scene", NULL, &s, &err);
-        tg_error_format(&err, msg, sizeof msg);
-        CHECK(st == TG_ERR_INPUT && s == NULL, "first-error case %d: status %d (%s)", (int)i, (int)st, msg);
-        CHECK(err.line == c->line && err.col == c->col && strstr(err.message, c->fragment) != NULL,
-              "first-error case %d: got %s, expected %d:%d ...%s", (int)i, msg, c->line, c->col, c->fragment);
-    }
+    for (i = 0; i < n; i++) check_bad_case(&first_error_cases[i], "first-error", (int)i);
 }
 
 TEST(limits)
