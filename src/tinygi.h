@@ -873,6 +873,10 @@ tg_status tg_plan_make(tg_plan *plan, const tg_scene *scene,
  * as by tg_error_format (buf may be NULL when size is 0); returns the length
  * of the whole text. */
 size_t tg_plan_explain(const tg_plan *plan, char *buf, size_t size);
+/* Whether the plan's frames read request.thickness (the visibility
+ * bitmask's surface thickness: technique ssilvb, and hbil over depth
+ * layers, depth_layers >= 2); 0 when the thickness changes nothing. */
+int tg_plan_reads_thickness(const tg_plan *plan);
 
 /* ---- frames ---- */
 typedef struct tg_frame tg_frame;

@@ -364,6 +364,68 @@ TEST(depth_layers_are_planned_only_when_asked)
     }
 }
 
+/* tg_plan_reads_thickness says what the frames do: for every technique
+ * and number of depth layers it accepts (hbil also at quarter resolution),
+ * the AO of a thin and of a thick thickness differ where it says 1 and are
+ * the same bits where it says 0 (the CLI's "--thickness is unread"
+ * warning asks it).  The scene: a twosided plank in front of a wall, both
+ * sheets (over depth layers the thickness is a twosided sheet's alone), the
+ * wall beside the plank seeing behind it only when it is thin. */
+static const char *sheet_text =
+    "camera pos 0 0 3 target 0 0 0 fov 60\n"
+    "material sheet albedo 0.7 0.7 0.7 twosided\n"
+    "quad p0 -3 -3 -1  p1 3 -3 -1  p2 3 3 -1  p3 -3 3 -1 material sheet\n"
+    "quad p0 -0.15 -2 -0.2  p1 0.15 -2 -0.2  p2 0.15 2 -0.2  p3 -0.15 2 -0.2 material sheet\n";
+
+TEST(plan_reads_thickness_as_rendered)
+{
+    int t, layers, gi_scale, k;
+    for (t = 0; t < TG_TECH_COUNT; t++)
+        for (layers = 1; layers <= TG_MAX_DEPTH_LAYERS; layers++)
+            for (gi_scale = 1; gi_scale <= (t == TG_TECH_HBIL ? 2 : 1); gi_scale++) {
+                double *ao[2] = { NULL, NULL };
+                int reads = -1, differ = 0, planned = 1;
+                size_t n = 0, i;
+                for (k = 0; k < 2; k++) {
+                    rendered r;
+                    tg_error err;
+                    tg_request q = small_request();
+                    q.technique = (tg_technique)t;
+                    q.depth_layers = layers;
+                    q.gi_scale = gi_scale;
+                    q.aovs = 1u << TG_AOV_AO;
+                    q.slices = 2;
+                    q.samples = t == TG_TECH_PATHTRACE || t == TG_TECH_REFERENCE ? 4 : 8;
+                    q.width = 32;
+                    q.height = 24;
+                    q.radius = TG_ONE;
+                    q.thickness = k ? TG_R(4.0f) : TG_R(0.01f);
+                    if (!setup(&r, sheet_text, &q)) {   /* refused only for layers the technique does not read */
+                        CHECK(layers > 1 && strstr(r.msg, "depth_layers must be"), "%s, %d layers: %s",
+                              tg_technique_name(q.technique), layers, r.msg);
+                        planned = 0;
+                        teardown(&r);
+                        break;
+                    }
+                    if (k == 0) reads = tg_plan_reads_thickness(&r.plan);
+                    else CHECK(tg_plan_reads_thickness(&r.plan) == reads, "%s: the answer changed with the thickness",
+                               tg_technique_name(q.technique));
+                    CHECK(tg_frame_render(r.frame, 0, &err) == TG_OK, "%s, %d layers: render", tg_technique_name(q.technique), layers);
+                    n = (size_t)q.width * (size_t)q.height;
+                    ao[k] = read_aov(&r, TG_AOV_AO);
+                    teardown(&r);
+                }
+                if (planned) {
+                    for (i = 0; i < n; i++) differ += ao[0][i] != ao[1][i];
+                    CHECK(reads == (differ > 0), "%s, %d layers, gi_scale %d: tg_plan_reads_thickness %d, "
+                          "%d of %d AO pixels differ between thickness 0.01 and 4",
+                          tg_technique_name((tg_technique)t), layers, gi_scale, reads, differ, (int)n);
+                }
+                free(ao[0]);
+                free(ao[1]);
+            }
+}
+
 /* A scene with an environment and no gi radius: for light (colour, near,
  * far, irradiance) its radius is the bounds' diagonal /
  * TG_RADIUS_LIGHT_DIVISOR (6), for AO alone / TG_RADIUS_ENV_DIVISOR (30),
@@ -509,6 +571,7 @@ int main(void)
     RUN(radius_and_exposure_at_their_extremes);
     RUN(thickness_unset_follows_the_radius);
     RUN(depth_layers_are_planned_only_when_asked);
+    RUN(plan_reads_thickness_as_rendered);
     RUN(gather_radius_reaches_further_for_light);
     RUN(gather_radius_of_a_scene_past_the_range);
     RUN(refusal_names_the_field_and_the_value);

@@ -846,8 +846,7 @@ static void warn_black_aov(const render_opts *o, const tg_plan *plan, const tg_s
 static void warn_unread_options(const render_opts *o, const tg_plan *plan)
 {
     const tg_request *r = &plan->request;
-    if (o->have_thickness && r->technique != TG_TECH_SSILVB &&
-        !(r->technique == TG_TECH_HBIL && r->depth_layers >= 2))
+    if (o->have_thickness && !tg_plan_reads_thickness(plan))
         fprintf(stderr, "tinygi: warning: --thickness is unread: %s\n",
                 r->technique == TG_TECH_HBIL ? "hbil reads it only over depth layers (--depth-layers 2 or 3)"
                                              : "only ssilvb, and hbil over depth layers, read it");

@@ -251,6 +251,16 @@ static void put_passes(tgi_text *t, const tg_plan *plan)
     }
 }
 
+/* The visibility bitmask reads the thickness (Therrien et al. 2023: a
+ * sample occludes the sectors between its front and its front plus the
+ * thickness, src/ao/ssilvb.c): ssilvb always, hbil when its kernel is the bitmask over depth
+ * layers (hbil_passes.c, tgi_pass_hbil_layers). */
+int tg_plan_reads_thickness(const tg_plan *plan)
+{
+    return plan->request.technique == TG_TECH_SSILVB ||
+           (plan->request.technique == TG_TECH_HBIL && plan->request.depth_layers >= 2);
+}
+
 size_t tg_plan_explain(const tg_plan *plan, char *buf, size_t size)
 {
     tgi_text t;
@@ -276,8 +286,7 @@ size_t tg_plan_explain(const tg_plan *plan, char *buf, size_t size)
         put_number_line(&t, " (world units), slices ", (size_t)plan->request.slices, ", samples ");
         put_number_line(&t, "", (size_t)plan->request.samples, "");
     }
-    if (plan->request.technique == TG_TECH_SSILVB ||
-        (plan->request.technique == TG_TECH_HBIL && plan->request.depth_layers >= 2)) {   /* the bitmask's surfaces */
+    if (tg_plan_reads_thickness(plan)) {   /* the bitmask's surfaces */
         tgi_text_put(&t, "\nvisibility bitmask: radius ");
         tgi_text_put_real(&t, plan->request.radius);
         tgi_text_put(&t, ", thickness ");
