@@ -376,6 +376,21 @@ static inline tg_real slice_q_eval(tg_real c)
 {
     const tg_real *k = slice_q_fit;
     tg_real a = tg_min(tg_abs(c), TG_ONE), p, t;
+#if TG_FIXED && !TG_OUTLINE_HELPERS
+    /* Horner as below, each step small_add(small_mul(p, a), k) with the
+     * constant in the rounding's offset: floor((p a + 2^15) / 2^16) + k =
+     * floor((p a + 2^15 + k 2^16) / 2^16), the same integer (|p| < 0.8,
+     * a in [0, 1]: every partial sum fits tg_real, so small_add's and the
+     * casts' truncations changed nothing); p stays in 64 bits (two
+     * instructions fewer a step: Q16.16 cornell 160x120, 3 frames, -0.54%) */
+    int64_t pw = ((int64_t)k[6] * a + ((int64_t)k[5] * 65536 + 32768)) >> 16;
+    pw = (pw * a + ((int64_t)k[4] * 65536 + 32768)) >> 16;
+    pw = (pw * a + ((int64_t)k[3] * 65536 + 32768)) >> 16;
+    pw = (pw * a + ((int64_t)k[2] * 65536 + 32768)) >> 16;
+    pw = (pw * a + ((int64_t)k[1] * 65536 + 32768)) >> 16;
+    pw = (pw * a + ((int64_t)k[0] * 65536 + 32768)) >> 16;
+    p = (tg_real)pw;
+#else
     /* Horner, written out (gcc keeps a loop as a loop); |p| < 0.8 */
     p = small_add(small_mul(k[6], a), k[5]);
     p = small_add(small_mul(p, a), k[4]);
@@ -383,6 +398,7 @@ static inline tg_real slice_q_eval(tg_real c)
     p = small_add(small_mul(p, a), k[2]);
     p = small_add(small_mul(p, a), k[1]);
     p = small_add(small_mul(p, a), k[0]);
+#endif
     t = small_mul(unit_sqrt(small_sub(TG_ONE, a)), p);
     return c < 0 ? small_sub(TG_HALF_PI, t) : t;
 }
