@@ -214,17 +214,32 @@ typedef struct hbil_slice {
     tg_real nx, ny;         /* n' */
 } hbil_slice;
 
+/* n / 2 for an n below 2^15 in magnitude, tg_ratio(n, 2): in Q16.16 n
+ * 2^15 exactly (tg_ratio adds +-1 to the even n 2^16 and halves it
+ * truncating: the same), without its division and saturation test; the
+ * builds for size and float call tg_ratio as before. */
+static inline tg_real half_small(int n)
+{
+#if TG_FIXED && !TG_OUTLINE_HELPERS
+    return (tg_real)n * 32768;
+#else
+    return tg_ratio(n, 2);
+#endif
+}
+
 /* Full-res screen position (pixels from the centre, y up) of pixel x or
- * row y of the view g (the kernel's image or the fine one). */
+ * row y of the view g (the kernel's image or the fine one; x, y within it
+ * or one pixel before it, sample_depth_edge's b0): the doubled position is
+ * below 2 TG_MAX_IMAGE_SIDE + 1 = 2^14 + 1 in magnitude (half_small). */
 static tg_real view_x(const hbil_ctx *c, const tgi_gview *g, int x)
 {
     int X2 = 2 * (x * g->step + g->offset_x) + 1 - c->full_w;
-    return tg_ratio(X2, 2);
+    return half_small(X2);
 }
 static tg_real view_y(const hbil_ctx *c, const tgi_gview *g, int y)
 {
     int Y2 = c->full_h - 2 * (y * g->step + g->offset_y) - 1;
-    return tg_ratio(Y2, 2);
+    return half_small(Y2);
 }
 static tg_real full_x(const hbil_ctx *c, int x) { return view_x(c, c->g, x); }
 static tg_real full_y(const hbil_ctx *c, int y) { return view_y(c, c->g, y); }
