@@ -530,14 +530,17 @@ HBIL_EDGE static tg_real sample_depth_edge(const hbil_ctx *c, const tgi_gview *g
     if (major_x) {
         X = view_x(c, g, a);
         Yn = view_y(c, g, bn);
-        Y = tg_sub(view_y(c, g, b0), tg_mul(f, tg_from_int(g->step)));
+        Y = small_sub(view_y(c, g, b0), small_mul_int(f, g->step));   /* see below */
         Xn = X;
     } else {
         Y = view_y(c, g, a);
         Xn = view_x(c, g, bn);
-        X = tg_add(view_x(c, g, b0), tg_mul(f, tg_from_int(g->step)));
+        X = small_add(view_x(c, g, b0), small_mul_int(f, g->step));
         Yn = Y;
     }
+    /* f in [0, 1) times the step (< 2^13: the view lies in the full image)
+     * is exact, and the sum with a position below 2^13 small: small_add,
+     * small_sub and small_mul_int give tg_add, tg_sub and tg_mul's values */
     gn = tg_add(tg_add(tg_mul(n.x, tg_mul(Xn, c->inv_ppu)), tg_mul(n.y, tg_mul(Yn, c->inv_ppu))), n.z);
     gc = tg_add(tg_add(tg_mul(n.x, tg_mul(X, c->inv_ppu)), tg_mul(n.y, tg_mul(Y, c->inv_ppu))), n.z);
     if (gn > TG_R(-0.01f) || gc > TG_R(-0.005f)) return 0; /* the nearest seen edge-on, or the ray misses its plane */
