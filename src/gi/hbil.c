@@ -202,6 +202,9 @@ typedef struct hbil_pixel {
     tg_vec3 wo, wx, wy;     /* local camera frame, sec. 1.1 */
     tg_vec3 n;              /* view-space normal with n.w_o >= HBIL_MIN_NDOTV */
     tg_vec3 nw;             /* the G-buffer's normal (world space), decoded once (pixel_run's bent normal; not compiling for size) */
+#if TG_FIXED && !TG_OUTLINE_HELPERS
+    tg_real kx, ky;         /* X / ppu, Y / ppu (slice_screen_dir; Q16.16 not compiling for size) */
+#endif
     tg_real ndv;            /* n.w_o (every slice's n'_y) */
     tgi_wide radius_units2; /* (3D radius in image pixels at depth z)^2 */
     tg_real reach;          /* march extent, image pixels */
@@ -457,6 +460,10 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
     px->Y = full_y(c, px->y);
     /* w_o: unit vector from the surface toward the eye (sec. 1.1) */
     k = tg_v3(tg_mul(px->X, c->inv_ppu), tg_mul(px->Y, c->inv_ppu), TG_ONE);
+#if TG_FIXED && !TG_OUTLINE_HELPERS
+    px->kx = k.x;
+    px->ky = k.y;
+#endif
     px->wo = tgi_v3_scale(k, tg_neg(tg_rsqrt(tgi_v3_dot(k, k))));          /* |k| >= 1 */
     /* w_x = Y x w_o / |..| = (-1, 0, k_x) / sqrt(1 + k_x^2), w_y = w_o x w_x (sec. 1.1) */
     px->wx = tgi_v3_scale(tg_v3(tg_neg(TG_ONE), 0, k.x), tg_rsqrt(tg_add(TG_ONE, tg_mul(k.x, k.x))));
@@ -465,8 +472,10 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
 #if !TG_OUTLINE_HELPERS   /* compiling for size, pixel_run reads it again */
     px->nw = nw;
 #endif
-    px->n = tg_v3(tgi_v3_dot(nw, v->right), tgi_v3_dot(nw, v->up), tgi_v3_dot(nw, v->forward));
-    ndv = tgi_v3_dot(px->n, px->wo);
+    /* unit vectors (the normal, the camera's axes, w_o: |component| <= 1
+     * and a rounding), n's components from their dots: small_dot */
+    px->n = tg_v3(small_dot_rare(nw, v->right), small_dot_rare(nw, v->up), small_dot_rare(nw, v->forward));
+    ndv = small_dot_rare(px->n, px->wo);
     if (ndv < HBIL_MIN_NDOTV) {
         px->n = tgi_v3_normalize_or(tgi_v3_add(px->n, tgi_v3_scale(px->wo, tg_sub(HBIL_MIN_NDOTV, ndv))), px->wo);
         ndv = tgi_v3_dot(px->n, px->wo);
@@ -484,7 +493,12 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
 /* Screen direction of D (image pixels, y down): d/de project(p + e D). */
 static void slice_screen_dir(const hbil_ctx *c, const hbil_pixel *px, tg_vec3 d, tg_real *ux, tg_real *uy)
 {
+#if !TG_FIXED || TG_OUTLINE_HELPERS   /* float (its frame took +0.1% kept) and compiling for size (shorter): computed again */
     tg_real kx = tg_mul(px->X, c->inv_ppu), ky = tg_mul(px->Y, c->inv_ppu);
+#else
+    tg_real kx = px->kx, ky = px->ky;   /* pixel_setup's, the same products */
+    (void)c;
+#endif
     tg_vec3 u = tg_v3(tg_sub(d.x, tg_mul(kx, d.z)), tg_neg(tg_sub(d.y, tg_mul(ky, d.z))), 0);
     tg_real len2 = tg_add(tg_mul(u.x, u.x), tg_mul(u.y, u.y)), inv;
     if (len2 < TG_R(0.0001f)) { *ux = TG_ONE; *uy = 0; return; }  /* D is never along the ray */
