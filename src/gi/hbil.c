@@ -734,6 +734,20 @@ static HBIL_INLINE tg_real radiance_mean_pos(tg_real a, tg_real b)
 #endif
 }
 
+/* tg_add(a, tg_add(b, c)) for a, b, c in [0, TG_REAL_MAX]
+ * (radiance_nonneg): min(a + b + c, TG_REAL_MAX) in 64 bits, one
+ * saturation test (an inner sum saturated at TG_REAL_MAX saturates the
+ * outer one too).  Float: as before. */
+static inline tg_real near_sum3_pos(tg_real a, tg_real b, tg_real c)
+{
+#if TG_FIXED
+    const int64_t v = (int64_t)a + b + c;
+    return v > (int64_t)TG_REAL_MAX ? TG_REAL_MAX : (tg_real)v;
+#else
+    return tg_add(a, tg_add(b, c));
+#endif
+}
+
 /* A raised horizon: gather L(x') over the band it closes (eq. 18-19, sec.
  * 3.4).  The sender is pixel si of g, its radiance pixel si of rad; a
  * sample of the fine image without its radiance (refine_fine) passes rad
@@ -1754,9 +1768,19 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
     if (!TG_NO_BENT_NORMALS) acc->bent_delta = small_v3_add(acc->bent_delta, small_v3_add(
         small_v3_scale(sl.d, small_sub(small_add(q1, q0), small_add(q1i, q0i))),
         small_v3_scale(px->wo, small_sub(small_add(r1, r0), small_add(r1i, r0i)))));
-    acc->er = tg_add(acc->er, tg_add(front.er, back.er));
-    acc->eg = tg_add(acc->eg, tg_add(front.eg, back.eg));
-    acc->eb = tg_add(acc->eb, tg_add(front.eb, back.eb));
+#if !TG_OUTLINE_HELPERS   /* compiling for size: the saturating sums alone (8 bytes shorter) */
+    if (radiance_nonneg(acc->er, acc->eg, acc->eb, front.er, front.eg, front.eb)
+        && radiance_nonneg(back.er, back.eg, back.eb, 0, 0, 0)) {   /* sums of gather_rise's sums */
+        acc->er = near_sum3_pos(acc->er, front.er, back.er);
+        acc->eg = near_sum3_pos(acc->eg, front.eg, back.eg);
+        acc->eb = near_sum3_pos(acc->eb, front.eb, back.eb);
+    } else
+#endif
+    {
+        acc->er = tg_add(acc->er, tg_add(front.er, back.er));
+        acc->eg = tg_add(acc->eg, tg_add(front.eg, back.eg));
+        acc->eb = tg_add(acc->eb, tg_add(front.eb, back.eb));
+    }
 }
 
 static void write_open(const hbil_ctx *c, int i)
