@@ -148,4 +148,30 @@ for num in float fixed; do
     if [ -z "$differ" ]; then ok "switches/$num: every build renders the same AO ($want; without the fine horizon $want_coarse)"
     else fail "switches/$num: every build renders the same AO" "$want; differ:$differ"; fi
 done
+
+# A development build (-Werror in TG_CFLAGS: DEV=1, as CI) compiles each
+# source file of the core on its own, as an embedder's build does, without
+# a warning: every file that names a switch with that switch set, and every
+# file with all of them (the amalgamation above silences clang's unused
+# static functions, which a file on its own shows: a helper used only by
+# code a switch leaves out).  A user's build (no -Werror) skips this: a
+# newer compiler's new warning must not fail it.
+case " $TG_CFLAGS " in
+*" -Werror "*)
+    for num in float fixed; do
+        numdef=$(numdef_of "$num-")
+        for sw in $SWITCHES all; do
+            if [ $sw = all ]; then files=$(ls src/*/*.c); defs=""; for s in $SWITCHES; do defs="$defs -DTG_NO_$s=1"; done
+            else files=$(grep -l "TG_NO_$sw\b" src/*/*.c); defs="-DTG_NO_$sw=1"; fi
+            bad=""
+            for f in $files; do
+                # shellcheck disable=SC2086
+                $CC $TG_CFLAGS -O0 $numdef $defs -Isrc -c "$f" -o "$tmp/alone.o" >"$tmp/alone.log" 2>&1 ||
+                    bad="$bad $f: $(grep -m 1 -E 'error|warning' "$tmp/alone.log")"
+            done
+            if [ -z "$bad" ]; then ok "switches/$num-$sw: each file alone compiles without a warning"
+            else fail "switches/$num-$sw: each file alone compiles without a warning" "$bad"; fi
+        done
+    done ;;
+esac
 summary

@@ -1228,9 +1228,11 @@ static HBIL_INLINE void march_run(   /* into march_between and march_near: the c
  * comes out too bright (by 0.03 on average on builtin:cornell).  So the
  * screen's last pixel within the extent is a sample, and the m - 1 pixels
  * after the sample that set the horizon are marched one by one. */
+#if !TG_NO_FINE_HORIZON
 /* Whether the march *mr (with a fine image) has refine_fine's long reach:
  * past HBIL_LONG_REACH. */
 static inline int march_long_reach(const hbil_ctx *c, const hbil_march *mr) { return mr->extent > c->long_reach; }
+#endif
 
 /* Pixels from the side's pixel to the screen's edge along its march (*mr
  * as march_side set it up). */

@@ -470,6 +470,7 @@ typedef struct depth_out {
 #define KEEPS_BACK(o) 0
 #endif
 
+#if TGI_RASTER_DEPTH_ROWS   /* depth_rows' (neither kept with every switch set) */
 static inline uint16_t depth_code(const depth_out *o, tg_real z)
 {
 #if TG_FIXED
@@ -516,6 +517,7 @@ static inline void depth_keep(const depth_out *o, size_t i, tg_real z)
         o->d32[i] = z;
     }
 }
+#endif
 
 /* One triangle ready to draw: screen vertices ordered so area2 > 0. */
 typedef struct screen_tri {
