@@ -578,6 +578,18 @@ static inline int lit_perspective(tg_real num, tg_real a, tg_real den)
 #endif
 }
 
+/* PCF_COPIES: pcf16_inside and pcf_taps inline with a constant footprint
+ * (2 or 4 taps a side) and kind of face, a copy for each: their loops then
+ * have constant bounds, which the compiler writes out (cornell's bilinear
+ * point light: a lookup's loops and their counters gone); a build for size
+ * (TG_OUTLINE_HELPERS) keeps the one copy. */
+#define PCF_COPIES (!TG_OUTLINE_HELPERS)
+#if PCF_COPIES && defined(__GNUC__)
+#define PCF_INLINE inline __attribute__((always_inline))
+#else
+#define PCF_INLINE inline
+#endif
+
 /* The common case of pcf(): a 16-bit face, the footprint inside it; the
  * codes compared as read back (the bias folded into the read-back).  In
  * Q16.16 without the saturating adds, giving the same tests: the sums in 64
@@ -585,7 +597,7 @@ static inline int lit_perspective(tg_real num, tg_real a, tg_real den)
  * read-back depth above TG_REAL_MAX, a den below TG_REAL_MIN: a den above
  * TG_REAL_MAX gives den_c either way; an ortho depth below TG_REAL_MIN passes
  * either way); row_lit, at most 4 weights in [0, 1], never saturates. */
-static tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *q, int i0, int j0, int taps,
+static PCF_INLINE tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *q, int i0, int j0, const int taps,
                             const uint16_t *depth, const tg_real *wx, const tg_real *wy,
                             const tg_real *dx, const tg_real *dy, int perspective)
 {
@@ -638,14 +650,13 @@ static tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *q, int i0, 
  *   tent      taps i0-1 .. i0+2, weights 1-f, 1, 1, f (sum 3 per axis)
  *   bilinear  taps i0 .. i0+1, weights 1-f, f (sum 1 per axis)
  * Taps outside the map, and texels where nothing was drawn, are lit. */
-static tg_real pcf(const tgi_shadow_map *sm, const lookup *q)
+static PCF_INLINE tg_real pcf_taps(const tgi_shadow_map *sm, const lookup *q, const int taps)
 {
     const tgi_shadow_face *fc = q->fc;
     tg_real half_size = tg_ldexp(tg_from_int(fc->size), -1);
     tg_real su, sv, fx, fy, norm, lit = 0, wx[PCF_MAX_TAPS], wy[PCF_MAX_TAPS], dx[PCF_MAX_TAPS], dy[PCF_MAX_TAPS];
     tg_real st[PCF_MAX_TAPS][PCF_MAX_TAPS];
     int i0, j0, i, j;
-    int taps = sm->filter == TG_SHADOW_PCF_BILINEAR ? 2 : 4;
     su = tg_sub(tg_mul(tg_add(q->ndc_x, TG_ONE), half_size), TG_R(0.5f));
     sv = tg_sub(tg_mul(tg_sub(TG_ONE, q->ndc_y), half_size), TG_R(0.5f));
     i0 = tg_to_int(su); j0 = tg_to_int(sv);
@@ -678,7 +689,12 @@ static tg_real pcf(const tgi_shadow_map *sm, const lookup *q)
 #endif
     }
     if (sm->depth_bits == TG_SHADOW_DEPTH16 && i0 >= 0 && j0 >= 0 && i0 + taps <= fc->size && j0 + taps <= fc->size) {
+#if PCF_COPIES
+        lit = sm->orthographic ? pcf16_inside(fc, q, i0, j0, taps, (const uint16_t *)sm->depth, wx, wy, dx, dy, 0)
+                               : pcf16_inside(fc, q, i0, j0, taps, (const uint16_t *)sm->depth, wx, wy, dx, dy, 1);
+#else
         lit = pcf16_inside(fc, q, i0, j0, taps, (const uint16_t *)sm->depth, wx, wy, dx, dy, !sm->orthographic);
+#endif
         return tg_saturate((tg_real)tgi_wide_mul(lit, norm));   /* within 9 times norm <= 1: tg_mul's */
     }
     fetch_taps(sm, fc, i0, j0, taps, st);
@@ -698,6 +714,16 @@ static tg_real pcf(const tgi_shadow_map *sm, const lookup *q)
         lit = tg_add(lit, tg_mul(row_lit, wy[j]));
     }
     return tg_saturate(tg_mul(lit, norm));
+}
+
+/* pcf_taps with the map's footprint (PCF_COPIES: a copy for each). */
+static tg_real pcf(const tgi_shadow_map *sm, const lookup *q)
+{
+#if PCF_COPIES
+    return sm->filter == TG_SHADOW_PCF_BILINEAR ? pcf_taps(sm, q, 2) : pcf_taps(sm, q, 4);
+#else
+    return pcf_taps(sm, q, sm->filter == TG_SHADOW_PCF_BILINEAR ? 2 : 4);
+#endif
 }
 
 tg_real tgi_shadow_visibility_err(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, tg_real position_error)
