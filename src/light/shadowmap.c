@@ -434,7 +434,8 @@ typedef struct lookup {
 } lookup;
 
 /* a . b for b a face's basis vector (right, up, forward: unit vectors and
- * their cross products, components within [-2, 2]) or a row of an
+ * their cross products, components within [-2, 2]), for a the receiver's
+ * unit normal (tgi_shadow_visibility_err's n, the same bound) or a row of an
  * orthographic face's world_to_clip (those times its scale, 1 / half >= 0.01,
  * within 101: components within +-2^23 in Q16.16).  Each product is below
  * 2^31 2^23 and their sum below 2^56, never past the 2^62 tgi_v3_dot tests
@@ -492,9 +493,9 @@ static int prepare_perspective(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, t
     r = fc->right; u = fc->up; f = fc->forward;
     lz = dot_basis(d, f); lx = dot_basis(d, r); ly = dot_basis(d, u);
     if (lz <= TG_R(0.001f)) return -1;
-    q->num = tgi_v3_dot(n, d);          /* n . (p - light): < 0 when the surface faces it */
+    q->num = dot_basis(n, d);           /* n . (p - light): < 0 when the surface faces it; n unit (dot_basis) */
     if (q->num >= 0) return 0;
-    inv_lz = tg_div(TG_ONE, lz);
+    inv_lz = tgi_div_pos(TG_ONE, lz);   /* lz > 0.001: 1 / lz < 1000, tg_div's quotient (core/real.h) */
     q->ndc_x = tg_mul(tg_sub(tg_mul(lx, inv_lz), fc->center_x), fc->focal);
     q->ndc_y = tg_mul(tg_sub(tg_mul(ly, inv_lz), fc->center_y), fc->focal);
     q->den_c = tg_mul(q->num, inv_lz);  /* n . r at the lookup */
@@ -653,14 +654,39 @@ static PCF_INLINE tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *
 static PCF_INLINE tg_real pcf_taps(const tgi_shadow_map *sm, const lookup *q, const int taps)
 {
     const tgi_shadow_face *fc = q->fc;
-    tg_real half_size = tg_ldexp(tg_from_int(fc->size), -1);
     tg_real su, sv, fx, fy, norm, lit = 0, wx[PCF_MAX_TAPS], wy[PCF_MAX_TAPS], dx[PCF_MAX_TAPS], dy[PCF_MAX_TAPS];
     tg_real st[PCF_MAX_TAPS][PCF_MAX_TAPS];
     int i0, j0, i, j;
-    su = tg_sub(tg_mul(tg_add(q->ndc_x, TG_ONE), half_size), TG_R(0.5f));
-    sv = tg_sub(tg_mul(tg_sub(TG_ONE, q->ndc_y), half_size), TG_R(0.5f));
+#if Q16_WIDE
+    /* su = (ndc_x + 1) size / 2 - 1/2 (sv alike) in 64 bits without the
+     * three saturations, and the range test on the 64-bit floor: |ndc + 1| <
+     * 2^32 and size / 2 <= 2^12 (2^28 in Q16.16), so the product < 2^60.
+     * Where the floor passes the test (within [-2, size + 1], size <= 2^13)
+     * the sum ndc + 1 is within 1/4 of that (size / 2 >= 4), the product
+     * and su within range: tg_add's, tg_mul's and tg_sub's values.  Where
+     * it fails, so does the saturating form's: a sum past TG_REAL_MAX (the
+     * sum never falls below TG_REAL_MIN: ndc + 1 > TG_REAL_MIN) saturates
+     * the product (size / 2 >= 1) and su at TG_REAL_MAX - 1/2, a product
+     * past either end su at that end's side (TG_REAL_MAX - 1/2 or
+     * TG_REAL_MIN), and an su beyond the test's bounds within the range
+     * is the same su: TG_ONE (lit) either way. */
+    {
+        const int64_t half = (int64_t)fc->size << 15;
+        const int64_t wu = tgi_wide_mul((int64_t)q->ndc_x + TG_ONE, half) - 32768;
+        const int64_t wv = tgi_wide_mul(TG_ONE - (int64_t)q->ndc_y, half) - 32768;
+        const int64_t iu = wu >> 16, iv = wv >> 16;   /* tg_to_int's floor */
+        if (iu < -2 || iv < -2 || iu > fc->size + 1 || iv > fc->size + 1) return TG_ONE;
+        su = (tg_real)wu; sv = (tg_real)wv; i0 = (int)iu; j0 = (int)iv;
+    }
+#else
+    {
+        tg_real half_size = tg_ldexp(tg_from_int(fc->size), -1);
+        su = tg_sub(tg_mul(tg_add(q->ndc_x, TG_ONE), half_size), TG_R(0.5f));
+        sv = tg_sub(tg_mul(tg_sub(TG_ONE, q->ndc_y), half_size), TG_R(0.5f));
+    }
     i0 = tg_to_int(su); j0 = tg_to_int(sv);
     if (i0 < -2 || j0 < -2 || i0 > fc->size + 1 || j0 > fc->size + 1) return TG_ONE;
+#endif
     /* the floor's fractions, in [0, 1): these and the weights below never saturate */
     fx = su - tg_from_int(i0);
     fy = sv - tg_from_int(j0);
