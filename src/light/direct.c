@@ -7,6 +7,27 @@
 #include "direct.h"
 
 #define LIGHT_CHUNK 8   /* lights prepared at once (a frame rarely has more) */
+/* Q16_WIDE: the Q16.16 dot products and products below without tg_mul's
+ * saturation and tgi_v3_dot's test for a sum past 2^62 (each states its
+ * bounds), giving the same integers; a build for size (TG_OUTLINE_HELPERS)
+ * keeps the generic code, which is smaller. */
+#define Q16_WIDE (TG_FIXED && !TG_OUTLINE_HELPERS)
+#if Q16_WIDE
+/* a . b for a unit vector a (components within [-2, 2]: a G-buffer normal,
+ * a light's normalised direction): each product below 2^17 2^31, their sum
+ * below 2^50, never past the 2^62 tgi_v3_dot tests for, so the sum rounded
+ * once and saturated (tgi_wide_dot, core/real.h) is tgi_v3_dot's result. */
+static inline tg_real dot_unit(tg_vec3 a, tg_vec3 b)
+{
+    return tgi_wide_real(tgi_wide_dot(a.x, a.y, a.z, b.x, b.y, b.z));
+}
+/* a b for a product within the range (each use says why): tg_mul's integer
+ * without its saturation test */
+static inline tg_real mul_small(tg_real a, tg_real b) { return (tg_real)tgi_wide_mul(a, b); }
+#else
+#define dot_unit tgi_v3_dot
+#define mul_small tg_mul
+#endif
 /* light_factor inline in the rows' loop (gcc kept it a call: its prologue,
  * epilogue and the vectors passed cost more than the body's registers);
  * a build for size keeps the one copy */
@@ -47,7 +68,7 @@ static LIGHT_FACTOR_INLINE tg_real light_factor(const prepared_light *p, tg_vec3
     tg_real len2, inv, cosine;
     *inv_dist = TG_ONE;
     if (p->type == TG_LIGHT_DIRECTIONAL)
-        return tg_max(tgi_v3_dot(n, p->to_light), 0); /* Lambert */
+        return tg_max(dot_unit(n, p->to_light), 0); /* Lambert */
     v = tgi_v3_sub(p->pos, pos);
     len2 = tgi_v3_dot(v, v);
     if (len2 < TG_REAL_MAX) {   /* 1/d from d^2 (the common case) */
@@ -55,12 +76,19 @@ static LIGHT_FACTOR_INLINE tg_real light_factor(const prepared_light *p, tg_vec3
     } else {                    /* d^2 saturated (fixed point, d > 181): the exact length */
         inv = tg_div(TG_ONE, tg_max(tgi_v3_length(v), TG_DIRECT_MIN_DISTANCE));
     }
-    cosine = tg_mul(tgi_v3_dot(n, v), inv); /* Lambert */
+    /* n . v inv and -dir . v inv, n and dir unit: below 2 in magnitude, so
+     * no product saturates (mul_small), nor the cosine times the spot's
+     * smoothstep in [0, 1].  |n|, |dir| <= sqrt(3) (components within
+     * [-1, 1]); inv <= 1.04 / |v| (1 + 2^-14) where it is 1 / sqrt(len2),
+     * len2 >= 7 2^-16 being v . v within 2^-17; where len2 is raised to
+     * 0.01^2 (7 2^-16), inv <= 97 and |v| < 0.0107; where len2 saturated,
+     * inv <= 1 / |v|; the dot's rounding adds at most 2^-17 97 */
+    cosine = mul_small(dot_unit(n, v), inv); /* Lambert */
     if (cosine <= 0) return 0;
     *inv_dist = inv;
     if (p->type == TG_LIGHT_SPOT) {
-        tg_real along = tg_mul(tg_neg(tgi_v3_dot(v, p->dir)), inv);
-        cosine = tg_mul(cosine, tg_smoothstep(p->cos_outer, p->cos_inner, along)); /* smooth spot edge */
+        tg_real along = mul_small(tg_neg(dot_unit(p->dir, v)), inv);
+        cosine = mul_small(cosine, tg_smoothstep(p->cos_outer, p->cos_inner, along)); /* smooth spot edge */
     }
     return cosine;
 }
@@ -134,8 +162,9 @@ void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_coun
                 for (k = 0; k < count; k++) {
                     tg_real inv, f = light_factor(&pl[k], p, n, &inv);
                     if (f <= 0) continue;
-                    if (pl[k].shadow) f = tg_mul(f, tgi_shadow_visibility_err(pl[k].shadow, p, n,
-                                                                                    tg_mul(z, position_error)));
+                    /* f below 2 (light_factor), the visibility in [0, 1]: mul_small */
+                    if (pl[k].shadow) f = mul_small(f, tgi_shadow_visibility_err(pl[k].shadow, p, n,
+                                                                                       tg_mul(z, position_error)));
                     e = tgi_v3_add(e, light_irradiance(pl[k].radiant, f, inv));
                 }
                 tgi_rgb_set(e_out, i, e);
