@@ -212,7 +212,7 @@ static inline uint64_t normal_d8(tg_vec3 a, tg_vec3 b)
  * normal, no near field; tap_load's values are 0 there, so are their sums,
  * which are then not added (tgi_denoise_pixel does not read them). */
 static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const tg_real *spatial, tg_real zi,
-                                         tg_vec3 ni, int ce, tg_real ztol, tg_real inv_ztol, uint32_t window, int whole,
+                                         tg_vec3 ni, int ce, int64_t dz_lim, tg_real inv_ztol, uint32_t window, int whole,
                                          const int bent, const int near, int64_t *sum)
 {
     int64_t s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0, s6 = 0, sw = 0;
@@ -230,9 +230,8 @@ static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const
         const tg_real *tv;
         if (!whole && !(window & 1)) continue;
         dz = tg_abs(k->z[e] - zi);   /* depths are never negative: no overflow */
-        if (dz >= ztol) continue;
-        omt = TG_ONE - (int64_t)mul_pos((uint64_t)dz, (uint64_t)inv_ztol);   /* 1 - dz / ztol */
-        if (omt <= 0) continue;
+        if (dz >= dz_lim) continue;   /* dz >= ztol, or 1 - dz / ztol <= 0 (dz_lim) */
+        omt = TG_ONE - (int64_t)mul_pos((uint64_t)dz, (uint64_t)inv_ztol);   /* 1 - dz / ztol, > 0 */
         /* the normal weight: the centre's own for a normal equal to it (the
          * common case: a plane's pixels share their normal); a weight 0
          * (normals apart) adds 0 */
@@ -253,12 +252,12 @@ static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
-static void whole_fewer(const tgi_denoise_walk *k, int o, const tg_real *spatial, tg_real zi, tg_vec3 ni, int ce, tg_real ztol,
+static void whole_fewer(const tgi_denoise_walk *k, int o, const tg_real *spatial, tg_real zi, tg_vec3 ni, int ce, int64_t dz_lim,
                         tg_real inv_ztol, int bent, int near, int64_t *sum)
 {
-    if (near) weigh_and_sum(k, o, spatial, zi, ni, ce, ztol, inv_ztol, 0, 1, 0, 1, sum);
-    else if (bent) weigh_and_sum(k, o, spatial, zi, ni, ce, ztol, inv_ztol, 0, 1, 1, 0, sum);
-    else weigh_and_sum(k, o, spatial, zi, ni, ce, ztol, inv_ztol, 0, 1, 0, 0, sum);
+    if (near) weigh_and_sum(k, o, spatial, zi, ni, ce, dz_lim, inv_ztol, 0, 1, 0, 1, sum);
+    else if (bent) weigh_and_sum(k, o, spatial, zi, ni, ce, dz_lim, inv_ztol, 0, 1, 1, 0, sum);
+    else weigh_and_sum(k, o, spatial, zi, ni, ce, dz_lim, inv_ztol, 0, 1, 0, 0, sum);
 }
 #else
 /* The weight of every entry of the walk for the centre (depth zi, normal
@@ -357,6 +356,9 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     int xa = x < 2 ? 0 : x - 2, xb = x + 2 >= w ? w - 1 : x + 2;
     int ya = y < 2 ? 0 : y - 2, yb = y + 2 >= h ? h - 1 : y + 2;
     tg_real zi, ztol, inv_ztol;
+#if Q16_WIDE
+    int64_t dz_lim;
+#endif
 #if !Q16_WIDE
     tg_real wt[PIXEL_TAPS];
     const unsigned char *order;
@@ -396,17 +398,28 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     ztol = tg_mul(p->depth_tolerance, zi);
     inv_ztol = tg_div(TG_ONE, ztol);
 #if Q16_WIDE
+    /* dz_lim: the entries kept are those with dz < ztol and 1 - dz / ztol
+     * > 0, that is mul_pos(dz, inv_ztol) < 1 (2^16), dz inv_ztol + 2^15 <
+     * 2^32, dz < ceil((2^32 - 2^15) / inv_ztol): one bound, the smaller,
+     * for both tests, set once a pixel (ztol >= 0: zi >= 0 and the
+     * tolerance's default 0.1; inv_ztol > 0 except for a negative one,
+     * when ztol < 0 rejects every entry as before) */
+    dz_lim = ztol;
+    if (inv_ztol > 0) {
+        const int64_t t = (int64_t)(((((uint64_t)1 << 32) - 32768u) + (uint64_t)inv_ztol - 1) / (uint64_t)inv_ztol);
+        dz_lim = t < dz_lim ? t : dz_lim;
+    }
     if (xb - xa == 4 && yb - ya == 4) {   /* the whole window: every entry; a copy per set of channels */
         const tg_real *sp = spatial_w[x % 5];
         const int ce = o + 2 * 5 + x % 5;   /* the centre's entry */
-        if (has_bent && has_near) weigh_and_sum(k, o, sp, zi, ni, ce, ztol, inv_ztol, 0, 1, 1, 1, sum);
-        else whole_fewer(k, o, sp, zi, ni, ce, ztol, inv_ztol, has_bent, has_near, sum);
+        if (has_bent && has_near) weigh_and_sum(k, o, sp, zi, ni, ce, dz_lim, inv_ztol, 0, 1, 1, 1, sum);
+        else whole_fewer(k, o, sp, zi, ni, ce, dz_lim, inv_ztol, has_bent, has_near, sum);
     } else {   /* the window's entries inside the image: its rows' slots of its columns */
         uint32_t slots = 0, window = 0;
         const int ce = o + 2 * 5 + x % 5;
         for (xx = xa; xx <= xb; xx++) slots |= 1u << (xx % 5);
         for (yy = ya; yy <= yb; yy++) window |= slots << ((yy - y + 2) * 5);
-        weigh_and_sum(k, o, spatial_w[x % 5], zi, ni, ce, ztol, inv_ztol, window, 0, 1, 1, sum);
+        weigh_and_sum(k, o, spatial_w[x % 5], zi, ni, ce, dz_lim, inv_ztol, window, 0, 1, 1, sum);
     }
 #else
     tap_weights(k, o, spatial_w[x % 5], zi, ni, ztol, inv_ztol, wt);
