@@ -208,41 +208,55 @@ static inline uint64_t normal_d8(tg_vec3 a, tg_vec3 b)
     return mul_pos(d, d);
 }
 
+/* One entry e (spatial weight sp) of weigh_and_sum into the sums s[0..7]
+ * (s[7] the weights'). */
+static DENOISE_INLINE void weigh_entry(const tgi_denoise_walk *k, int e, tg_real sp, tg_real zi, tg_vec3 ni,
+                                       int64_t dz_lim, tg_real inv_ztol, uint64_t key, uint64_t same,
+                                       const int bent, const int near, int64_t *s)
+{
+    tg_real dz = tg_abs(k->z[e] - zi);   /* depths are never negative: no overflow */
+    int64_t omt, wj;
+    uint64_t d;
+    const tg_real *tv;
+    if (dz >= dz_lim) return;   /* dz >= ztol, or 1 - dz / ztol <= 0 (dz_lim) */
+    omt = TG_ONE - (int64_t)mul_pos((uint64_t)dz, (uint64_t)inv_ztol);   /* 1 - dz / ztol, > 0 */
+    /* the normal weight: the centre's own for a normal equal to it (the
+     * common case: a plane's pixels share their normal); a weight 0
+     * (normals apart) adds 0 */
+    d = k->nkey[e] == key ? same : normal_d8(ni, tg_v3(k->nx[e], k->ny[e], k->nz[e]));
+    wj = (int64_t)mul_pos(mul_pos((uint64_t)sp, (uint64_t)omt), d);
+    tv = k->v[e];
+    s[0] += tv[0] * wj; s[7] += wj;   /* the weights' sum */
+    if (bent) { s[1] += tv[1] * wj; s[2] += tv[2] * wj; s[3] += tv[3] * wj; }
+    if (near) { s[4] += tv[4] * wj; s[5] += tv[5] * wj; s[6] += tv[6] * wj; }
+}
+
 /* bent, near (constants in each copy): 0 when the results have no bent
  * normal, no near field; tap_load's values are 0 there, so are their sums,
- * which are then not added (tgi_denoise_pixel does not read them). */
+ * which are then not added (tgi_denoise_pixel does not read them).  A
+ * whole window's entries a row of five written out (the loop's counters
+ * and tests a row, not an entry). */
 static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const tg_real *spatial, tg_real zi,
                                          tg_vec3 ni, int ce, int64_t dz_lim, tg_real inv_ztol, uint32_t window, int whole,
                                          const int bent, const int near, int64_t *sum)
 {
-    int64_t s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0, s6 = 0, sw = 0;
+    int64_t s[TGI_DENOISE_VALUES + 1] = { 0, 0, 0, 0, 0, 0, 0, 0 };
 #if NORMAL_WORDS
     uint64_t key = k->nkey[ce], same = normal_d8(ni, ni);   /* the centre's code */
 #else
     uint64_t key = normal_key(ni, UINT64_MAX - 1), same = normal_d8(ni, ni);
     (void)ce;
 #endif
-    int j, e;
-    for (j = 0, e = o; whole ? j < 5 * 5 : window != 0; j++, e++, window >>= 1) {
-        tg_real dz;
-        int64_t omt, wj;
-        uint64_t d;
-        const tg_real *tv;
-        if (!whole && !(window & 1)) continue;
-        dz = tg_abs(k->z[e] - zi);   /* depths are never negative: no overflow */
-        if (dz >= dz_lim) continue;   /* dz >= ztol, or 1 - dz / ztol <= 0 (dz_lim) */
-        omt = TG_ONE - (int64_t)mul_pos((uint64_t)dz, (uint64_t)inv_ztol);   /* 1 - dz / ztol, > 0 */
-        /* the normal weight: the centre's own for a normal equal to it (the
-         * common case: a plane's pixels share their normal); a weight 0
-         * (normals apart) adds 0 */
-        d = k->nkey[e] == key ? same : normal_d8(ni, tg_v3(k->nx[e], k->ny[e], k->nz[e]));
-        wj = (int64_t)mul_pos(mul_pos((uint64_t)spatial[j], (uint64_t)omt), d);
-        tv = k->v[e];
-        s0 += tv[0] * wj; sw += wj;   /* the weights' sum */
-        if (bent) { s1 += tv[1] * wj; s2 += tv[2] * wj; s3 += tv[3] * wj; }
-        if (near) { s4 += tv[4] * wj; s5 += tv[5] * wj; s6 += tv[6] * wj; }
+    int j, c;
+#define ENTRY(j_) weigh_entry(k, o + (j_), spatial[j_], zi, ni, dz_lim, inv_ztol, key, same, bent, near, s)
+    if (whole) {
+        for (j = 0; j < 5 * 5; j += 5) { ENTRY(j); ENTRY(j + 1); ENTRY(j + 2); ENTRY(j + 3); ENTRY(j + 4); }
+    } else {
+        for (j = 0; window != 0; j++, window >>= 1)
+            if (window & 1) ENTRY(j);
     }
-    sum[0] = s0; sum[1] = s1; sum[2] = s2; sum[3] = s3; sum[4] = s4; sum[5] = s5; sum[6] = s6; sum[7] = sw;
+#undef ENTRY
+    for (c = 0; c <= TGI_DENOISE_VALUES; c++) sum[c] = s[c];
 }
 /* weigh_and_sum over a whole window without the bent normal, the near
  * field or both (cornell 320x240 3 frames, no bent normals: 3 products a
