@@ -77,6 +77,10 @@ void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_
     const tgi_gresult *r = &rl, *prev = &prevl;
     tg_real alpha;
     int x, y, has_bent;
+    tg_vec3 n = tg_v3(0, 0, 0);
+#if TGI_REUSE_NORMAL
+    uint64_t n_code = UINT64_MAX;   /* n's code: none decoded yet (no code is UINT64_MAX) */
+#endif
     if (reset || !prev_view) return;
     pl = *params; gl = *view_in; rl = *r_in; prevl = *prev_in; hl = *prev_geometry;
     has_bent = tgi_gr_has_bent(r);
@@ -91,9 +95,18 @@ void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_
         for (x = 0; x < g->width; x++) {
             size_t i = tgi_gv_index(g, x, y), s;
             tgi_gr_value v, h;
-            tg_vec3 n;
             if (tgi_gv_is_sky(g, i)) continue;
+#if TGI_REUSE_NORMAL
+            {   /* the normal decoded last when its stored code is this one's (raster/gview.h) */
+                uint32_t code = tgi_gv_normal_word(g, i);
+                if (code != n_code) {
+                    n = tgi_gv_normal(g, i);
+                    n_code = code;
+                }
+            }
+#else
             n = tgi_gv_normal(g, i);
+#endif
             if (!history_at(p, g, &hl, &cams, x * g->step + g->offset_x, fy, tgi_gv_depth(g, i), n, &s))
                 continue;
             v = tgi_gr_get(r, i);
