@@ -386,13 +386,23 @@ void tgi_shadow_map_render(tgi_shadow_map *sm, const tg_vec3 *pos, int tri_count
     for (f = 0; f < sm->faces; f++) tgi_shadow_map_render_rows(sm, f, pos, tri_count, 0, sm->face[f].size);
 }
 
-int tgi_shadow_cube_face(tg_vec3 d)
+/* LOOKUP_INLINE: a lookup's helpers inline in it (the float build called
+ * cube_face, both builds map_error); a build for size keeps the calls. */
+#if !TG_OUTLINE_HELPERS && defined(__GNUC__)
+#define LOOKUP_INLINE inline __attribute__((always_inline))
+#else
+#define LOOKUP_INLINE inline
+#endif
+
+static LOOKUP_INLINE int cube_face(tg_vec3 d)
 {
     tg_real ax = tg_abs(d.x), ay = tg_abs(d.y), az = tg_abs(d.z);
     if (ax >= ay && ax >= az) return d.x >= 0 ? 0 : 1;
     if (ay >= az) return d.y >= 0 ? 2 : 3;
     return d.z >= 0 ? 4 : 5;
 }
+
+int tgi_shadow_cube_face(tg_vec3 d) { return cube_face(d); }
 
 tg_real tgi_shadow_gbuffer_error(const tgi_view *view)
 {
@@ -402,7 +412,7 @@ tg_real tgi_shadow_gbuffer_error(const tgi_view *view)
 
 /* How far the face's own depths may lie in front of the true surface: along
  * its normal at distance `lz` (perspective) or anywhere (orthographic). */
-static tg_real map_error(const tgi_shadow_map *sm, const tgi_shadow_face *fc, tg_real lz)
+static LOOKUP_INLINE tg_real map_error(const tgi_shadow_map *sm, const tgi_shadow_face *fc, tg_real lz)
 {
     tg_real texel = sm->orthographic ? fc->texel_world : tg_mul(fc->texel_world, lz);
     return tg_add(tg_add(tg_mul(texel, RECEIVER_SNAP), tg_mul(lz, RECEIVER_ULPS * TG_EPS)),
@@ -485,7 +495,7 @@ static int prepare_ortho(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, tg_real
 static int prepare_perspective(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, tg_real err, lookup *q)
 {
     tg_vec3 d = tgi_v3_sub(p, sm->origin), r, u, f;
-    const tgi_shadow_face *fc = &sm->face[sm->faces == 6 ? tgi_shadow_cube_face(d) : 0];
+    const tgi_shadow_face *fc = &sm->face[sm->faces == 6 ? cube_face(d) : 0];
     tg_real lx, ly, lz, inv_lz;
     if (fc->size == 0) return -1;
     q->fc = fc;
