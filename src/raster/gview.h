@@ -55,7 +55,7 @@ static inline size_t tgi_gv_index(const tgi_gview *v, int x, int y)
 static inline int tgi_gv_is_sky(const tgi_gview *v, size_t i) { return v->store.depth[i] == 0; }
 /* A pass that meets the normal's stored code it decoded last
  * (tgi_gv_normal_word: a plane's pixels share theirs) takes that normal
- * instead of decoding it again (denoise.c, direct.c); not with normals
+ * instead of decoding it again (denoise.c, direct.c, temporal.c); not with normals
  * stored as tg_real (nothing to decode) nor in a build for size. */
 #define TGI_REUSE_NORMAL (!TG_WIDE_STORAGE && !TG_OUTLINE_HELPERS)
 #if TG_WIDE_STORAGE
