@@ -344,6 +344,7 @@ static inline tg_real tg_sqr(tg_real a) { return tg_mul(a, a); }
 #define tg_request_defaults TG_ABI(tg_request_defaults)
 #define tg_plan_make TG_ABI(tg_plan_make)
 #define tg_plan_explain TG_ABI(tg_plan_explain)
+#define tg_plan_reads_thickness TG_ABI(tg_plan_reads_thickness)
 #define tg_frame_create TG_ABI(tg_frame_create)
 #define tg_frame_render TG_ABI(tg_frame_render)
 #define tg_frame_aov_row TG_ABI(tg_frame_aov_row)
