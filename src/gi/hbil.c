@@ -1118,6 +1118,7 @@ static inline void march_samples(
                                  const hbil_march *mr, const hbil_run *run, const int major_x)
 {
     const tgi_gview *const g = c->g;
+    const tgi_rgb *const rad = c->rad;
     const int smaj = mr->smaj, smin = mr->smin, bmax = mr->bmax, da = run->da, n = run->n;
     const tg_real dminor = run->dminor;
     const int back = run->back;
@@ -1181,7 +1182,7 @@ static inline void march_samples(
         hs_tie = horizon_tie(sd->hs);
         if (NEAR_FIELD(c))
             gather_rise(c, sl, sd, side, cn, sample_dir(d, inv_len),
-                        c->g, c->rad, f < TG_R(0.5f) ? sa : sa + smin, after_rise);   /* the nearest pixel */
+                        g, rad, f < TG_R(0.5f) ? sa : sa + smin, after_rise);   /* the nearest pixel */
         rose = 1;
     }
 }
