@@ -738,6 +738,7 @@ static HBIL_INLINE tg_real radiance_mean_pos(tg_real a, tg_real b)
  * (radiance_nonneg): min(a + b + c, TG_REAL_MAX) in 64 bits, one
  * saturation test (an inner sum saturated at TG_REAL_MAX saturates the
  * outer one too).  Float: as before. */
+#if !TG_OUTLINE_HELPERS   /* its one use is not compiled for size (slice_run) */
 static inline tg_real near_sum3_pos(tg_real a, tg_real b, tg_real c)
 {
 #if TG_FIXED
@@ -747,6 +748,7 @@ static inline tg_real near_sum3_pos(tg_real a, tg_real b, tg_real c)
     return tg_add(a, tg_add(b, c));
 #endif
 }
+#endif
 
 /* A raised horizon: gather L(x') over the band it closes (eq. 18-19, sec.
  * 3.4).  The sender is pixel si of g, its radiance pixel si of rad; a
