@@ -46,6 +46,20 @@ static inline tg_real tgi_v3_dot(tg_vec3 a, tg_vec3 b)
 static inline tg_real tgi_v3_dot(tg_vec3 a, tg_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 #endif
 
+/* a . b where the sum of the products cannot pass 2^62 (each caller says
+ * why: a unit vector against one within 2^23 or so): in Q16.16 the sum
+ * rounded once and saturated (tgi_wide_dot, tgi_wide_real), tgi_v3_dot's
+ * result without its test; float, and a build for size (one copy),
+ * tgi_v3_dot itself. */
+#if TG_FIXED && !TG_OUTLINE_HELPERS
+static inline tg_real tgi_v3_dot_bounded(tg_vec3 a, tg_vec3 b)
+{
+    return tgi_wide_real(tgi_wide_dot(a.x, a.y, a.z, b.x, b.y, b.z));
+}
+#else
+#define tgi_v3_dot_bounded tgi_v3_dot
+#endif
+
 static inline tg_vec3 tgi_v3_cross(tg_vec3 a, tg_vec3 b)
 {
     return tg_v3(tg_sub(tg_mul(a.y, b.z), tg_mul(a.z, b.y)),

@@ -12,20 +12,15 @@
  * bounds), giving the same integers; a build for size (TG_OUTLINE_HELPERS)
  * keeps the generic code, which is smaller. */
 #define Q16_WIDE (TG_FIXED && !TG_OUTLINE_HELPERS)
-#if Q16_WIDE
 /* a . b for a unit vector a (components within [-2, 2]: a G-buffer normal,
  * a light's normalised direction): each product below 2^17 2^31, their sum
- * below 2^50, never past the 2^62 tgi_v3_dot tests for, so the sum rounded
- * once and saturated (tgi_wide_dot, core/real.h) is tgi_v3_dot's result. */
-static inline tg_real dot_unit(tg_vec3 a, tg_vec3 b)
-{
-    return tgi_wide_real(tgi_wide_dot(a.x, a.y, a.z, b.x, b.y, b.z));
-}
+ * below 2^50, never past 2^62 (tgi_v3_dot_bounded, core/vec.h). */
+#define dot_unit tgi_v3_dot_bounded
+#if Q16_WIDE
 /* a b for a product within the range (each use says why): tg_mul's integer
  * without its saturation test */
 static inline tg_real mul_small(tg_real a, tg_real b) { return (tg_real)tgi_wide_mul(a, b); }
 #else
-#define dot_unit tgi_v3_dot
 #define mul_small tg_mul
 #endif
 /* light_factor inline in the rows' loop (gcc kept it a call: its prologue,

@@ -451,14 +451,7 @@ typedef struct lookup {
  * 2^31 2^23 and their sum below 2^56, never past the 2^62 tgi_v3_dot tests
  * for, so the sum rounded once and saturated (tgi_wide_dot, tgi_wide_real:
  * core/real.h) is tgi_v3_dot's result without that test. */
-#if Q16_WIDE
-static inline tg_real dot_basis(tg_vec3 a, tg_vec3 b)
-{
-    return tgi_wide_real(tgi_wide_dot(a.x, a.y, a.z, b.x, b.y, b.z));
-}
-#else
-#define dot_basis tgi_v3_dot   /* the code as it was (a build for size) */
-#endif
+#define dot_basis tgi_v3_dot_bounded
 
 /* 1 when prepared, 0 when the surface faces away from the light. */
 static int prepare_ortho(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, tg_real err, lookup *q)
