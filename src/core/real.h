@@ -44,6 +44,12 @@ static inline uint64_t tgi_isqrt_round64(uint64_t v)
  * build the same operations in float.  The results equal tg_mul, tg_add and
  * tgi_v3_dot's whenever those would not have saturated (and no product may
  * reach 2^62). */
+/* TGI_Q16_WIDE: a Q16.16 build whose kernels take those unsaturated
+ * paths (each with its bounds at the code), giving the same integers as
+ * the generic code; a build for size (TG_OUTLINE_HELPERS, tinygi.h) and
+ * the float build keep the generic code (smaller; float has no saturation
+ * to skip).  The one place the kernels ask. */
+#define TGI_Q16_WIDE (TG_FIXED && !TG_OUTLINE_HELPERS)
 #if TG_FIXED
 typedef int64_t tgi_wide;
 static inline tgi_wide tgi_wide_mul(tgi_wide a, tgi_wide b) { return tgi_shr_round(a * b, TG_FRAC_BITS); }

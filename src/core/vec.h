@@ -51,7 +51,7 @@ static inline tg_real tgi_v3_dot(tg_vec3 a, tg_vec3 b) { return a.x * b.x + a.y 
  * rounded once and saturated (tgi_wide_dot, tgi_wide_real), tgi_v3_dot's
  * result without its test; float, and a build for size (one copy),
  * tgi_v3_dot itself. */
-#if TG_FIXED && !TG_OUTLINE_HELPERS
+#if TGI_Q16_WIDE
 static inline tg_real tgi_v3_dot_bounded(tg_vec3 a, tg_vec3 b)
 {
     return tgi_wide_real(tgi_wide_dot(a.x, a.y, a.z, b.x, b.y, b.z));

@@ -7,11 +7,6 @@
 #include "denoise.h"
 #include "../core/unit.h"
 
-/* Q16_WIDE: the Q16.16 paths below that compute in 64 bits without tg_mul's
- * and tg_add's saturation tests (each states its bounds), giving the same
- * integers as the generic code; a size build (TG_OUTLINE_HELPERS, tinygi.h)
- * keeps the generic code, which is smaller. */
-#define Q16_WIDE (TG_FIXED && !TG_OUTLINE_HELPERS)
 /* FLOAT_UNROLLED: the float sums of a whole window written out per column
  * phase (window_sums); a build for size keeps the loop over window_order. */
 #define FLOAT_UNROLLED (!TG_FIXED && !TG_OUTLINE_HELPERS)
@@ -48,7 +43,7 @@ static const tg_real spatial_w[5][PIXEL_TAPS] = {
 };
 #undef PHASE
 
-#if !Q16_WIDE && !FLOAT_UNROLLED
+#if !TGI_Q16_WIDE && !FLOAT_UNROLLED
 /* The entries of a whole window in the order of the sums (rows, then
  * columns), for a centre in column x with x % 5 = phase: row r's columns
  * x - 2 .. x + 2 are slots (phase + 3 .. phase + 7) % 5. */
@@ -62,7 +57,7 @@ static const unsigned char window_order[5][25] = {
 #undef ROW
 #endif
 
-#if Q16_WIDE
+#if TGI_Q16_WIDE
 /* Q16.16 products without tg_mul's sign test and saturation, giving its
  * integers where the bounds stated at each use hold: a b >= 0 and below
  * 2^63 - 2^15, rounded as tgi_shr_round rounds a non-negative product. */
@@ -87,7 +82,7 @@ static tg_real normal_weight(tg_real d)
 }
 #endif
 
-#if Q16_WIDE && !TG_WIDE_STORAGE
+#if TGI_Q16_WIDE && !TG_WIDE_STORAGE
 /* A tap's key: its normal's stored code (tgi_gv_normal_word; UINT64_MAX on
  * sky, which no code is).  Equal codes decode to equal normals, whose
  * weight is the centre's own (weigh_and_sum); unequal codes take
@@ -100,7 +95,7 @@ static tg_real normal_weight(tg_real d)
 #define NORMAL_WORDS 0
 #endif
 
-#if Q16_WIDE && !NORMAL_WORDS
+#if TGI_Q16_WIDE && !NORMAL_WORDS
 /* A normal as one word, equal for two normals exactly when they are equal:
  * its components in 21 bits each when all are within [-2^20, 2^20) (unit
  * normals are within [-2^16, 2^16]), else `other` (UINT64_MAX for a tap,
@@ -143,7 +138,7 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
         v[7] = TG_FIXED ? 0 : TG_ONE;
 #if NORMAL_WORDS
         k->nkey[j] = UINT64_MAX;
-#elif Q16_WIDE
+#elif TGI_Q16_WIDE
         k->nkey[j] = normal_key(tg_v3(0, 0, 0), UINT64_MAX);
 #endif
         return;
@@ -158,7 +153,7 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
 #endif
 #if NORMAL_WORDS
     k->nkey[j] = code;
-#elif Q16_WIDE
+#elif TGI_Q16_WIDE
     k->nkey[j] = normal_key(n, UINT64_MAX);
 #endif
 #if TGI_REUSE_NORMAL
@@ -180,7 +175,7 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
     v[7] = TG_FIXED ? 0 : TG_ONE;
 }
 
-#if Q16_WIDE
+#if TGI_Q16_WIDE
 /* The weights of tap_weights below (the float build's) in Q16.16 and the
  * sums of tgi_denoise_pixel in one pass over the window's entries, the set
  * bits of `window` (bit j: entry j).  The same integers for every weight
@@ -338,7 +333,7 @@ static DENOISE_INLINE void window_sums(const tgi_denoise_walk *k, int o, const t
  * build for size, where it costs nothing). */
 static tg_real average(tgi_wide sum, tgi_wide ws)
 {
-#if Q16_WIDE
+#if TGI_Q16_WIDE
     return (tg_real)tgi_div_round(sum, ws);
 #elif TG_FIXED
     return tgi_sat64(tgi_div_round(sum, ws));
@@ -370,10 +365,10 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     int xa = x < 2 ? 0 : x - 2, xb = x + 2 >= w ? w - 1 : x + 2;
     int ya = y < 2 ? 0 : y - 2, yb = y + 2 >= h ? h - 1 : y + 2;
     tg_real zi, ztol, inv_ztol;
-#if Q16_WIDE
+#if TGI_Q16_WIDE
     int64_t dz_lim;
 #endif
-#if !Q16_WIDE
+#if !TGI_Q16_WIDE
     tg_real wt[PIXEL_TAPS];
     const unsigned char *order;
     unsigned char part[25];
@@ -411,7 +406,7 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     ni = tg_v3(k->nx[o + 2 * 5 + x % 5], k->ny[o + 2 * 5 + x % 5], k->nz[o + 2 * 5 + x % 5]);
     ztol = tg_mul(p->depth_tolerance, zi);
     inv_ztol = tg_div(TG_ONE, ztol);
-#if Q16_WIDE
+#if TGI_Q16_WIDE
     /* dz_lim: the entries kept are those with dz < ztol and 1 - dz / ztol
      * > 0, that is mul_pos(dz, inv_ztol) < 1 (2^16), dz inv_ztol + 2^15 <
      * 2^32, dz < ceil((2^32 - 2^15) / inv_ztol): one bound, the smaller,

@@ -75,7 +75,7 @@ typedef struct tgi_denoise_walk {
     int base, band, lo, next;       /* the band's first row; its columns [lo, next) are decoded */
     tg_real z[TGI_DENOISE_TAPS];    /* view depth; 0 on sky, which no centre's depth test passes */
     tg_real nx[TGI_DENOISE_TAPS], ny[TGI_DENOISE_TAPS], nz[TGI_DENOISE_TAPS];   /* G-buffer normal (0 on sky) */
-#if TG_FIXED && !TG_OUTLINE_HELPERS
+#if TGI_Q16_WIDE
     uint64_t nkey[TGI_DENOISE_TAPS];    /* the normal as one word (denoise.c normal_key) */
 #endif
     /* the kept results as tgi_gr_get_kept reads them; an 8th value makes an

@@ -147,7 +147,7 @@ void tgi_hbil_defaults(tgi_hbil_params *p)
 
 /* Q16.16 tests wide_far only past a bound on q (march_q_near); compiling
  * for size (TG_OUTLINE_HELPERS) keeps the one test, and not the bound. */
-#define HBIL_Q_NEAR (TG_FIXED && !TG_OUTLINE_HELPERS)
+#define HBIL_Q_NEAR TGI_Q16_WIDE
 
 /* ---- per-call constants ---- */
 typedef struct hbil_ctx {
@@ -202,7 +202,7 @@ typedef struct hbil_pixel {
     tg_vec3 wo, wx, wy;     /* local camera frame, sec. 1.1 */
     tg_vec3 n;              /* view-space normal with n.w_o >= HBIL_MIN_NDOTV */
     tg_vec3 nw;             /* the G-buffer's normal (world space), decoded once (pixel_run's bent normal; not compiling for size) */
-#if TG_FIXED && !TG_OUTLINE_HELPERS
+#if TGI_Q16_WIDE
     tg_real kx, ky;         /* X / ppu, Y / ppu (slice_screen_dir; Q16.16 not compiling for size) */
 #endif
     tg_real ndv;            /* n.w_o (every slice's n'_y) */
@@ -223,7 +223,7 @@ typedef struct hbil_slice {
  * builds for size and float call tg_ratio as before. */
 static inline tg_real half_small(int n)
 {
-#if TG_FIXED && !TG_OUTLINE_HELPERS
+#if TGI_Q16_WIDE
     return (tg_real)n * 32768;
 #else
     return tg_ratio(n, 2);
@@ -310,7 +310,7 @@ static inline tg_real small_dot(tg_vec3 a, tg_vec3 b) { return (tg_real)tgi_wide
  * from a line table of its own (below; gcc keeps it a function of 26
  * instructions: forced inline into the march, +6.5M instructions in a
  * Q16.16 cornell 320x240 frame pair), tg_sqrt itself compiling for size. */
-#if TG_FIXED && !TG_OUTLINE_HELPERS
+#if TGI_Q16_WIDE
 /* 256 sqrt(u) in Q14 for u in [2^15, 2^17), on 192 intervals of 2^9: the
  * line { value at the interval's start, slope } through the chord moved up
  * by half its largest distance from the curve (minimax), rounded to
@@ -370,7 +370,7 @@ static const uint32_t unit_sqrt_line[192][2] = {
 #endif
 static tg_real unit_sqrt(tg_real x)
 {
-#if TG_FIXED && !TG_OUTLINE_HELPERS
+#if TGI_Q16_WIDE
     /* x = u 2^-16, u in [0, 2^16]: sqrt(x) raw is R, the nearest integer
      * to sqrt(v), v = u 2^16 (tg_sqrt's).  u 4^k in [2^15, 2^17) takes
      * the line's a = 256 sqrt(u 4^k) 2^-k within 0.19 (< 1/2) of sqrt(v),
@@ -402,7 +402,7 @@ static inline tg_real slice_q_eval(tg_real c)
 {
     const tg_real *k = slice_q_fit;
     tg_real a = tg_min(tg_abs(c), TG_ONE), p, t;
-#if TG_FIXED && !TG_OUTLINE_HELPERS
+#if TGI_Q16_WIDE
     /* Horner as below, each step small_add(small_mul(p, a), k) with the
      * constant in the rounding's offset: floor((p a + 2^15) / 2^16) + k =
      * floor((p a + 2^15 + k 2^16) / 2^16), the same integer (|p| < 0.8,
@@ -460,7 +460,7 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
     px->Y = full_y(c, px->y);
     /* w_o: unit vector from the surface toward the eye (sec. 1.1) */
     k = tg_v3(tg_mul(px->X, c->inv_ppu), tg_mul(px->Y, c->inv_ppu), TG_ONE);
-#if TG_FIXED && !TG_OUTLINE_HELPERS
+#if TGI_Q16_WIDE
     px->kx = k.x;
     px->ky = k.y;
 #endif
@@ -726,7 +726,7 @@ static HBIL_INLINE tg_real near_sum_pos(tg_real s, tg_real l, tg_real de)
  * Float, and compiling for size (4 bytes shorter): as before. */
 static HBIL_INLINE tg_real radiance_mean_pos(tg_real a, tg_real b)
 {
-#if TG_FIXED && !TG_OUTLINE_HELPERS
+#if TGI_Q16_WIDE
     const uint32_t m = ((uint32_t)a + (uint32_t)b + 1u) >> 1;
     return m > 0x40000000u ? (tg_real)0x40000000 : (tg_real)m;
 #else

@@ -7,16 +7,11 @@
 #include "direct.h"
 
 #define LIGHT_CHUNK 8   /* lights prepared at once (a frame rarely has more) */
-/* Q16_WIDE: the Q16.16 dot products and products below without tg_mul's
- * saturation and tgi_v3_dot's test for a sum past 2^62 (each states its
- * bounds), giving the same integers; a build for size (TG_OUTLINE_HELPERS)
- * keeps the generic code, which is smaller. */
-#define Q16_WIDE (TG_FIXED && !TG_OUTLINE_HELPERS)
 /* a . b for a unit vector a (components within [-2, 2]: a G-buffer normal,
  * a light's normalised direction): each product below 2^17 2^31, their sum
  * below 2^50, never past 2^62 (tgi_v3_dot_bounded, core/vec.h). */
 #define dot_unit tgi_v3_dot_bounded
-#if Q16_WIDE
+#if TGI_Q16_WIDE
 /* a b for a product within the range (each use says why): tg_mul's integer
  * without its saturation test */
 static inline tg_real mul_small(tg_real a, tg_real b) { return (tg_real)tgi_wide_mul(a, b); }

@@ -57,13 +57,8 @@ void tgi_sh9_from_env(const tgi_env *env, tg_vec3 sh[9])
     }
 }
 
-/* Q16_WIDE: the Q16.16 paths below that compute without tg_mul's and
- * tg_sub's saturation tests where their operands are bounded (each states
- * its bounds), giving the same integers; a size build (TG_OUTLINE_HELPERS,
- * tinygi.h) keeps the generic code, which is smaller. */
-#define Q16_WIDE (TG_FIXED && !TG_OUTLINE_HELPERS)
 
-#if Q16_WIDE
+#if TGI_Q16_WIDE
 /* a b and a - b where the caller bounds the result within the range: tg_mul
  * and tg_sub's integers (tgi_wide_mul rounds as tg_mul rounds) */
 static inline tg_real mul_in(tg_real a, tg_real b, int in_range) { return in_range ? (tg_real)tgi_wide_mul(a, b) : tg_mul(a, b); }
@@ -113,7 +108,7 @@ static SH_INLINE tg_vec3 sh_eval_in(const tg_vec3 sh[9], tg_vec3 n, tg_real c0, 
 
 static tg_vec3 sh_eval_rgb(const tg_vec3 sh[9], tg_vec3 n, tg_real c0, tg_real c1, tg_real c2)
 {
-#if Q16_WIDE
+#if TGI_Q16_WIDE
     if ((uint32_t)(n.x + 2 * TG_ONE) <= 4u * TG_ONE && (uint32_t)(n.y + 2 * TG_ONE) <= 4u * TG_ONE &&
         (uint32_t)(n.z + 2 * TG_ONE) <= 4u * TG_ONE && (uint32_t)(c0 + 4 * TG_ONE) <= 8u * TG_ONE &&
         (uint32_t)(c1 + 4 * TG_ONE) <= 8u * TG_ONE && (uint32_t)(c2 + 4 * TG_ONE) <= 8u * TG_ONE)

@@ -11,11 +11,6 @@
 #include "shadowmap.h"
 #include "../raster/raster.h"
 
-/* Q16_WIDE: the Q16.16 paths below that compute in 64 bits without tg_mul's
- * and tg_add's saturation tests (each states its bounds), giving the same
- * integers as the generic code; a size build (TG_OUTLINE_HELPERS, tinygi.h)
- * keeps the generic code, which is smaller. */
-#define Q16_WIDE (TG_FIXED && !TG_OUTLINE_HELPERS)
 
 #if !TG_NO_SHADOW_MAPS /* the whole file is left out with TG_NO_SHADOW_MAPS=1 (tinygi.h "FEATURE SWITCHES") */
 
@@ -575,7 +570,7 @@ int tgi_shadow_lit_perspective_q16(tg_real num, tg_real a, tg_real den, int wide
 #endif
 static inline int lit_perspective(tg_real num, tg_real a, tg_real den)
 {
-#if Q16_WIDE
+#if TGI_Q16_WIDE
     return lit_perspective_wide(num, a, den);
 #else
     return lit_perspective_mul(num, a, den);
@@ -608,7 +603,7 @@ static PCF_INLINE tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *
     const uint16_t *row = depth + fc->offset + (size_t)j0 * (size_t)fc->size + (size_t)i0;
     tg_real lo_bias = tg_add(fc->depth_lo, q->bias);
     tgi_wide lit = 0;   /* sum of row_lit wy[j]: row_lit in [0, 3] (wx's sum), wy's sum 3: within 9 */
-#if Q16_WIDE
+#if TGI_Q16_WIDE
     int64_t lim = perspective_bound(q->num);   /* lit_perspective's */
 #endif
     int i, j;
@@ -617,7 +612,7 @@ static PCF_INLINE tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *
         if (perspective) {
             tg_real den_row = tg_add(q->den_c, dy[j]);
             for (i = 0; i < taps; i++) {
-#if Q16_WIDE
+#if TGI_Q16_WIDE
                 int64_t den = (int64_t)den_row + dx[i];
                 int64_t a = (int64_t)lo_bias + (((int64_t)fc->depth_range * row[i] + 32768) >> 16);
                 den = den < q->den_c ? den : q->den_c;
@@ -632,7 +627,7 @@ static PCF_INLINE tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *
         } else {                            /* base + min(dx + dy, 0) <= stored, as two tests */
             tg_real base_row = tg_add(q->base, dy[j]);
             for (i = 0; i < taps; i++) {
-#if Q16_WIDE
+#if TGI_Q16_WIDE
                 int64_t stored = (int64_t)fc->depth_lo + (((int64_t)fc->depth_range * row[i] + 32768) >> 16);
                 int64_t b = (int64_t)base_row + dx[i];
                 stored = stored < TG_REAL_MAX ? stored : TG_REAL_MAX;
@@ -660,7 +655,7 @@ static PCF_INLINE tg_real pcf_taps(const tgi_shadow_map *sm, const lookup *q, co
     tg_real su, sv, fx, fy, norm, lit = 0, wx[PCF_MAX_TAPS], wy[PCF_MAX_TAPS], dx[PCF_MAX_TAPS], dy[PCF_MAX_TAPS];
     tg_real st[PCF_MAX_TAPS][PCF_MAX_TAPS];
     int i0, j0, i, j;
-#if Q16_WIDE
+#if TGI_Q16_WIDE
     /* su = (ndc_x + 1) size / 2 - 1/2 (sv alike) in 64 bits without the
      * three saturations, and the range test on the 64-bit floor: |ndc + 1| <
      * 2^32 and size / 2 <= 2^12 (2^28 in Q16.16), so the product < 2^60.
@@ -705,7 +700,7 @@ static PCF_INLINE tg_real pcf_taps(const tgi_shadow_map *sm, const lookup *q, co
     }
     for (i = 0; i < taps; i++) {
         /* tap i's texel centre (i0 + i) relative to the lookup, in NDC (y up) */
-#if Q16_WIDE
+#if TGI_Q16_WIDE
         /* fx, fy in [0, 2) (the floor's fraction, plus 1 for the tent) and
          * texel_ndc = 2 / size in (0, 2]: i - fx within [-2, 3] and its
          * product within [-6, 6], so tgi_wide (core/real.h) gives tg_sub's
