@@ -39,7 +39,7 @@ for s in $scenes; do
         out=$(mktemp)
         valgrind --tool=callgrind --callgrind-out-file="$out" "$bin" "$s" "$size" "$m" >/dev/null 2>&1
         callgrind_annotate --inclusive=yes --threshold=100 "$out" >"$out.txt" 2>/dev/null
-        get() { grep -E ":$1 \[" "$out.txt" | head -1 | awk '{gsub(",", "", $1); print $1}'; }
+        get() { grep -E ":$1(_f32|_q16)? \[" "$out.txt" | head -1 | awk '{gsub(",", "", $1); print $1}'; }
         vis=$(get tgi_shadow_visibility_err); render=$(get tgi_shadow_map_render); bvh=$(get tgi_bvh_build)
         setup=${render:-${bvh:-0}}
         echo "| $m | $(( ${vis:-0} / pixels )) | $setup |"

@@ -15,21 +15,22 @@ cd "$(dirname "$0")/.."
 sh_host_build
 
 SWITCHES="TECHNIQUES REFERENCE OBJ BUILTIN_SCENES SHADOW_MAPS ENVIRONMENT SCENE_TEXT COLOR GI_QUARTER TEMPORAL ANIMATION FINE_HORIZON WIDE_CLIP BENT_NORMALS"
-# the global symbols (nm) of each switch's left-out files, and (COLOR) the
-# HBIL kernel's near-field gather, a local function left out of a kept file
+# the global symbols (nm; each ends in _f32 or _q16, src/core/abi_names.h) of
+# each switch's left-out files, and (COLOR) the HBIL kernel's near-field
+# gather, a local function left out of a kept file
 pattern() {
     case $1 in
-        TECHNIQUES)     echo ' T tgi_((ssao|vo|hbao|gtao|ssilvb|ssdo|bentcone)_|pass_(ssao|vo|hbao|gtao|ssilvb|ssdo|bentcone)$)' ;;
+        TECHNIQUES)     echo ' T tgi_((ssao|vo|hbao|gtao|ssilvb|ssdo|bentcone)_|pass_(ssao|vo|hbao|gtao|ssilvb|ssdo|bentcone)_(f32|q16)$)' ;;
         REFERENCE)      echo ' T tgi_(reference_|bvh_|pathtrace_|ray_triangle|pass_reference)' ;;
         OBJ)            echo ' T tgi_obj_' ;;
         BUILTIN_SCENES) echo ' [a-zA-Z] scene_(plane|groove|cornell|spheres|columns)$' ;;
         SHADOW_MAPS)    echo ' T tgi_(shadow_|raster_depth)' ;;
         ENVIRONMENT)    echo ' T tgi_(sh9_|env_radiance|far_|cone_)' ;;
         SCENE_TEXT)     echo ' T tgi_(lex_|tok_|parse_|obj_)' ;;
-        COLOR)          echo ' T tgi_(direct_rows|pushpull_|reproject_gather|compose_|tonemap_row8|raster_depth|pass_(direct|reproject|push_pull(_down|_fill)?|shadow_maps)$)| t gather_rise$' ;;
-        GI_QUARTER)     echo ' T tgi_(downsample_rows|upsample_pixel|pass_(downsample|filter_quarter)$)' ;;
-        TEMPORAL)       echo ' T tgi_(temporal_|motion_|pushpull_|reproject_gather|pass_(temporal|motion|keep_history|reproject|push_pull(_down|_fill)?)$)' ;;
-        ANIMATION)      echo ' T tgi_(anim_camera|anim_object_matrix|q_slerp)$' ;;
+        COLOR)          echo ' T tgi_(direct_rows|pushpull_|reproject_gather|compose_|tonemap_row8|raster_depth|pass_(direct|reproject|push_pull(_down|_fill)?|shadow_maps)_(f32|q16)$)| t gather_rise$' ;;
+        GI_QUARTER)     echo ' T tgi_(downsample_rows|upsample_pixel|pass_(downsample|filter_quarter)_(f32|q16)$)' ;;
+        TEMPORAL)       echo ' T tgi_(temporal_|motion_|pushpull_|reproject_gather|pass_(temporal|motion|keep_history|reproject|push_pull(_down|_fill)?)_(f32|q16)$)' ;;
+        ANIMATION)      echo ' T tgi_(anim_camera|anim_object_matrix|q_slerp)_(f32|q16)$' ;;
         # no file: the HBIL kernel's refinement on the fine image (local functions)
         FINE_HORIZON)   echo ' t (refine_fine|fine_sample)' ;;
         # no file: the kernel's and the frame's bent-normal storage, a local

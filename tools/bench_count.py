@@ -54,7 +54,7 @@ import tempfile
 # ---- callgrind profile parsing ------------------------------------------
 
 _SUFFIX = re.compile(r"(\.(part|isra|constprop|cold|lto_priv)(\.\d+)?)+$")
-_ABI = re.compile(r"^(tg_\w+)_(f32|q16)$")   # the public API's symbols (TG_ABI in tinygi.h)
+_ABI = re.compile(r"^(tgi?_\w+)_(f32|q16)$")  # symbols carry the number type (TG_ABI: tinygi.h, core/abi_names.h)
 
 
 def base_name(fn):
@@ -399,9 +399,10 @@ SELF_TEST_C = r"""
 #include <string.h>
 static volatile unsigned sink;
 static void __attribute__((noinline)) spin(unsigned n) { unsigned i; for (i = 0; i < n; i++) sink += i; }
-void __attribute__((noinline)) tgi_pass_alpha(int i) { spin(i == 0 ? 50000 : 10000); }
-void __attribute__((noinline)) tgi_pass_beta(void) { spin(30000); }
-void __attribute__((noinline)) tg_frame_render(int i) { tgi_pass_alpha(i); tgi_pass_beta(); spin(1000); }
+/* the library's internal symbols carry the number type (core/abi_names.h) */
+void __attribute__((noinline)) tgi_pass_alpha_q16(int i) { spin(i == 0 ? 50000 : 10000); }
+void __attribute__((noinline)) tgi_pass_beta_q16(void) { spin(30000); }
+void __attribute__((noinline)) tg_frame_render(int i) { tgi_pass_alpha_q16(i); tgi_pass_beta_q16(); spin(1000); }
 void __attribute__((noinline)) tg_frame_aov_row8(void) { spin(7000); }
 int main(int argc, char **argv)
 {

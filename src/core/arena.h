@@ -7,6 +7,7 @@
 #define TG_ARENA_H
 
 #include "../tinygi.h"
+#include "abi_names.h"
 
 /* Bytes from offset `used` of `base` to the next 16-byte aligned address:
  * tg_arena_alloc starts its next block at used + tgi_arena_pad(base, used). */

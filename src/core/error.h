@@ -7,6 +7,7 @@
 #define TG_ERROR_H
 
 #include "../tinygi.h"
+#include "abi_names.h"
 
 void tgi_error_clear(tg_error *err);
 void tgi_error_set(tg_error *err, tg_status status, const char *file, int line,

@@ -7,6 +7,7 @@
 #define TG_PATH_H
 
 #include "../tinygi.h"
+#include "abi_names.h"
 
 /* Join the directory of `base` (up to its last '/') and `rel` (rel_n bytes)
  * into out (TG_MAX_PATH bytes); an absolute `rel` ('/' first) is used as

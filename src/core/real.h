@@ -9,6 +9,7 @@
 #define TG_REAL_H
 
 #include "../tinygi.h"
+#include "abi_names.h"
 
 /* Number of significant bits of v (0 for 0). */
 static inline int tgi_bit_length64(uint64_t v)

@@ -8,6 +8,7 @@
 #define TG_PIXELS_H
 
 #include "../tinygi.h"
+#include "../core/abi_names.h"
 
 /* Bytes per pixel of a format, 0 if unknown. */
 int tgi_pixel_bytes(tg_pixel_format format);

@@ -8,6 +8,7 @@
 #define TG_LEX_H
 
 #include "../tinygi.h"
+#include "../core/abi_names.h"
 
 typedef struct tgi_token {
     const char *s;
