@@ -18,28 +18,20 @@ BENCH_RUNS ?= 5
 BENCH_DIR  ?= $(BUILD)/bench
 BENCH_ARGS ?=
 
-.PHONY: bench bench-build bench-publish bench-hbil bench-cost
+.PHONY: bench bench-build bench-publish bench-cost
 
 # The bench programs, once per number type ($(1) float|fixed, $(2) file
-# suffix): bench-float/-fixed (tools/bench.c), bench_raster[-fixed],
-# bench_hbil[-fixed].  They link the hosted platform and the core library.
+# suffix): bench-float/-fixed (tools/bench.c), bench_raster[-fixed].  They
+# link the hosted platform and the core library.
 BENCH_LINK = -D_POSIX_C_SOURCE=200809L -Isrc -Iplatform
 define bench_programs
 $$(BUILD)/bench-$(1): tools/bench.c $$(HOST_OBJ_$(1)) $$(BUILD)/libtinygi$(2).a
 	$$(CC) $$(CFLAGS_ALL) $$(NUMDEF_$(1)) $$(BENCH_LINK) $$< $$(HOST_OBJ_$(1)) $$(BUILD)/libtinygi$(2).a -o $$@ $$(LDLIBS_HOST)
 $$(BUILD)/bench_raster$(2): tools/bench_raster.c $$(HOST_OBJ_$(1)) $$(BUILD)/libtinygi$(2).a
 	$$(CC) $$(CFLAGS_ALL) $$(NUMDEF_$(1)) $$(BENCH_LINK) $$< $$(HOST_OBJ_$(1)) $$(BUILD)/libtinygi$(2).a -o $$@ $$(LDLIBS_HOST)
-$$(BUILD)/bench_hbil$(2): tools/bench_hbil.c $$(HOST_OBJ_$(1)) $$(BUILD)/libtinygi$(2).a
-	$$(CC) $$(CFLAGS_ALL) -Wno-double-promotion $$(NUMDEF_$(1)) $$(BENCH_LINK) $$< $$(HOST_OBJ_$(1)) $$(BUILD)/libtinygi$(2).a -o $$@ $$(LDLIBS_HOST)
 endef
 $(eval $(call bench_programs,float,))
 $(eval $(call bench_programs,fixed,-fixed))
-
-# the HBIL chain alone (split, kernel, merge, filter) on an analytic 320x240
-# groove; `valgrind --tool=callgrind $(BUILD)/bench_hbil 1` counts it
-bench-hbil: $(BUILD)/bench_hbil $(BUILD)/bench_hbil-fixed
-	$(BUILD)/bench_hbil
-	$(BUILD)/bench_hbil-fixed
 
 bench-build: $(BUILD)/bench-float $(BUILD)/bench-fixed
 
