@@ -213,12 +213,17 @@ typedef struct near_pixel {
 
 /* The unit vector to the eye, normalised the first time a sample needs it
  * (most pixels have none above their tangent plane: near_horizon_ao). */
-static tg_vec3 near_vd(near_pixel *q)
+#if defined(__GNUC__)
+__attribute__((noinline))   /* once a pixel: the march's registers stay its own on the other samples */
+#endif
+static void near_vd_set(near_pixel *q)
 {
-    if (!q->has_vd) {
-        q->vd = tgi_v3_normalize_or(tgi_v3_neg(q->pv), tg_v3(0, 0, TG_R(-1.0f)));
-        q->has_vd = 1;
-    }
+    q->vd = tgi_v3_normalize_or(tgi_v3_neg(q->pv), tg_v3(0, 0, TG_R(-1.0f)));
+    q->has_vd = 1;
+}
+static inline tg_vec3 near_vd(near_pixel *q)
+{
+    if (!q->has_vd) near_vd_set(q);
     return q->vd;
 }
 
