@@ -420,6 +420,18 @@ tg_real tgi_near_horizon_bound(tg_vec3 nv, tg_vec3 vd, tg_real sdx, tg_real sdy,
     return tg_sub(TG_ONE, tg_div(lost, open));
 }
 
+/* tg_ldexp(z, -10), the depth's part of the height over the tangent plane
+ * below which a sample counts for nothing: in float one product by 2^-10
+ * where z 2^-10 is a normal number (z >= 2^-116; NaN fails the test),
+ * where each of tg_ldexp's ten halvings is exact too: the same value. */
+static tg_real near_depth_part(tg_real z)
+{
+#if !TG_FIXED && !TG_OUTLINE_HELPERS
+    if (z >= TG_R(0x1p-116f)) return z * TG_R(0x1p-10f);
+#endif
+    return tg_ldexp(z, -10);
+}
+
 /* The near horizon of surface pixel (x, y), index i, world normal n: the
  * AO (cosine-weighted, RTR eq. 11.18, the slices weighted as GTAO's,
  * src/ao/ao.h) under the horizons of full-resolution pixels up to
@@ -450,7 +462,7 @@ static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t 
     q.pl.nay = tg_mul(q.nv.y, u->ay);
     q.pl.nr = tg_add(tg_add(tg_mul(q.nv.x, q.kx), tg_mul(q.nv.y, q.ky)), q.nv.z);
     q.pl.np = tgi_v3_dot(q.nv, q.pv);
-    q.pl.above = tg_add(tg_ldexp(q.pv.z, -10), u->above_r);
+    q.pl.above = tg_add(near_depth_part(q.pv.z), u->above_r);
 #if TG_FIXED
     near_plane_start(&q.pl, u->reach);
 #endif
