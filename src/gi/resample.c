@@ -491,12 +491,22 @@ static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t 
  * of theirs. */
 static tg_real near_horizon_stored(const tgi_upsample_plan *u, int x, int y, size_t i)
 {
+    /* bilinear_taps' taps in its order, those of weight above 0: the
+     * first always (1 or 1/2 times 1 or 1/2), the second where x is odd,
+     * the third where y is, the fourth where both are */
+    const tgi_gview *half = u->half;
+    int X0 = x >> 1, Y0 = y >> 1, X1 = X0 + (x & 1), Y1 = Y0 + (y & 1);
     size_t tap[4];
-    tg_real wt[4], top = 0, ao;
-    int k;
-    bilinear_taps(u->half, x, y, tap, wt);
-    for (k = 0; k < 4; k++)
-        if (wt[k] > 0 && !tgi_gv_is_sky(u->half, tap[k])) top = tg_max(top, tgi_gr_ao(u->res, tap[k]));
+    tg_real top = 0, ao;
+    int k, n = 1;
+    if (X1 >= half->width) X1 = half->width - 1;
+    if (Y1 >= half->height) Y1 = half->height - 1;
+    tap[0] = tgi_gv_index(half, X0, Y0);
+    if (x & 1) tap[n++] = tgi_gv_index(half, X1, Y0);
+    if (y & 1) tap[n++] = tgi_gv_index(half, X0, Y1);
+    if (x & y & 1) tap[n++] = tgi_gv_index(half, X1, Y1);
+    for (k = 0; k < n; k++)
+        if (!tgi_gv_is_sky(half, tap[k])) top = tg_max(top, tgi_gr_ao(u->res, tap[k]));
     ao = near_horizon_ao(u, x, y, i, tgi_gv_normal(u->full, i), top);
 #if TG_WIDE_STORAGE
     return ao;
