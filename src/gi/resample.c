@@ -309,17 +309,13 @@ static inline int near_solid_below(const near_plane *pl, tg_real zb, tg_real z, 
 __attribute__((always_inline))   /* a copy for each `inside` and `wide`, their tests gone from the loop */
 #endif
 static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q, int cell, int side,
-                                       const int inside, const int wide)
+                                       const tgi_gview *g, const near_plane *ppl, const int inside, const int wide)
 {
     const signed char (*off)[2] = u->off[cell][side];
 #if TGI_NEAR_DELTAS
     const int16_t *delta = u->delta[cell][side];
 #endif
-    /* the view and the plane as locals, kept in registers through the
-     * loop (near_vd, which writes *q, would else have them read again at
-     * every sample) */
-    const tgi_gview gv = *u->full, *g = &gv;
-    const near_plane pl = q->pl;
+    const near_plane pl = *ppl;
     const int x = q->x, y = q->y;
     const size_t i0 = tgi_gv_index(g, x, y);
     tg_real best = TG_R(-1.0f);
@@ -363,10 +359,15 @@ __attribute__((always_inline))
 static inline void near_sides_with(const tgi_upsample_plan *u, near_pixel *q, int cell, tg_real c1[2], tg_real c0[2],
                                    const int inside, const int wide)
 {
+    /* the view and the plane as locals, kept in registers through the
+     * marches (near_vd, which writes *q, would else have them read again
+     * at every sample) */
+    const tgi_gview gv = *u->full;
+    const near_plane pl = q->pl;
     int k;
     for (k = 0; k < 2; k++) {
-        c1[k] = near_horizon_cos(u, q, cell, 2 * k, inside, wide);
-        c0[k] = near_horizon_cos(u, q, cell, 2 * k + 1, inside, wide);
+        c1[k] = near_horizon_cos(u, q, cell, 2 * k, &gv, &pl, inside, wide);
+        c0[k] = near_horizon_cos(u, q, cell, 2 * k + 1, &gv, &pl, inside, wide);
     }
 }
 static void near_horizon_sides(const tgi_upsample_plan *u, near_pixel *q, int cell,
