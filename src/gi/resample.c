@@ -442,7 +442,7 @@ static tg_real near_depth_part(tg_real z)
  * integrals) when no sample rises above the tangent plane, or when its lower
  * bound (tgi_near_horizon_bound) is above `ao`, the upsampled AO it caps, by
  * more than NEAR_BOUND_MARGIN: either way no lower than `ao`. */
-static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t i, tg_vec3 n, tg_real ao)
+static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t i, tg_vec3 nv, tg_real ao)
 {
     const tgi_gview *full = u->full;
     int cell = (x & 3) + ((y & 3) << 2);
@@ -457,7 +457,7 @@ static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t 
     q.ky = tg_div(tg_from_int(full->camera->height - 2 * y - 1), u->hfy);
     z = tgi_gv_depth(full, i);                                   /* tgi_ao_view_at's view of the pixel */
     q.pv = tg_v3(tg_mul(q.kx, z), tg_mul(q.ky, z), z);
-    q.nv = tgi_ao_dir_to_view(full->camera, n);
+    q.nv = nv;
     q.has_vd = 0;
     q.pl.nax = tg_mul(q.nv.x, u->ax);
     q.pl.nay = tg_mul(q.nv.y, u->ay);
@@ -484,13 +484,40 @@ static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t 
     return open > 0 ? tg_saturate(tg_div(vis, open)) : TG_ONE;
 }
 
+/* A pixel's normal in view space (tgi_ao_dir_to_view of tgi_gv_normal),
+ * taken again from the last pixel's where their stored codes are equal
+ * (TGI_REUSE_NORMAL, raster/gview.h: the same normal, the same value). */
+typedef struct near_normal {
+#if TGI_REUSE_NORMAL
+    uint64_t code;   /* nv's code: none decoded yet (no code is UINT64_MAX) */
+#endif
+    tg_vec3 nv;
+} near_normal;
+static void near_normal_start(near_normal *m)
+{
+#if TGI_REUSE_NORMAL
+    m->code = UINT64_MAX;
+#endif
+    m->nv = tg_v3(0, 0, 0);
+}
+static tg_vec3 near_view_normal(const tgi_gview *g, near_normal *m, size_t i)
+{
+#if TGI_REUSE_NORMAL
+    uint32_t code = tgi_gv_normal_word(g, i);
+    if (code == m->code) return m->nv;
+    m->code = code;
+#endif
+    m->nv = tgi_ao_dir_to_view(g->camera, tgi_gv_normal(g, i));
+    return m->nv;
+}
+
 /* The near horizon of surface pixel (x, y), index i, as the plane of
  * tgi_near_horizon_rows keeps it (the results' AO storage, the same value
  * read back), skipping its integrals (near_horizon_ao) where it cannot go
  * below the highest filtered AO of the half-res pixels its upsample
  * weighs (bilinear_taps), so not below its upsampled AO, a weighted mean
- * of theirs. */
-static tg_real near_horizon_stored(const tgi_upsample_plan *u, int x, int y, size_t i)
+ * of theirs; m keeps the last pixel's normal (near_view_normal). */
+static tg_real near_horizon_stored(const tgi_upsample_plan *u, near_normal *m, int x, int y, size_t i)
 {
     /* bilinear_taps' taps in its order, those of weight above 0: the
      * first always (1 or 1/2 times 1 or 1/2), the second where x is odd,
@@ -508,7 +535,7 @@ static tg_real near_horizon_stored(const tgi_upsample_plan *u, int x, int y, siz
     if (x & y & 1) tap[n++] = tgi_gv_index(half, X1, Y1);
     for (k = 0; k < n; k++)
         if (!tgi_gv_is_sky(half, tap[k])) top = tg_max(top, tgi_gr_ao(u->res, tap[k]));
-    ao = near_horizon_ao(u, x, y, i, tgi_gv_normal(u->full, i), top);
+    ao = near_horizon_ao(u, x, y, i, near_view_normal(u->full, m, i), top);
 #if TG_WIDE_STORAGE
     return ao;
 #else
@@ -533,6 +560,8 @@ static tg_real near_horizon_mean(const tgi_upsample_plan *u, int x, int y, tg_re
     const tg_real tol = upsample_depth_tol(z);   /* where upsample_depth_weight is above 0 */
     tgi_wide sum = 0;   /* at most 9 AO values in [0, 1]: tg_add's sums without its saturation tests */
     int n = 0, xx, yy, r = 1, xa, xb, ya, yb;
+    near_normal m;
+    near_normal_start(&m);
 #if TGI_DEPTH_LAYERS
     if (u->layers) r = 0;
 #endif
@@ -543,7 +572,7 @@ static tg_real near_horizon_mean(const tgi_upsample_plan *u, int x, int y, tg_re
         size_t j = tgi_gv_index(full, xa, yy);
         for (xx = xa; xx <= xb; xx++, j += (size_t)full->pixel_stride) {   /* j: (xx, yy), modulo 2^N */
             if (tgi_gv_is_sky(full, j) || !(tg_abs(tg_sub(tgi_gv_depth(full, j), z)) < tol)) continue;
-            sum += u->near ? tgi_gr_ao(u->near, j) : near_horizon_stored(u, xx, yy, j);
+            sum += u->near ? tgi_gr_ao(u->near, j) : near_horizon_stored(u, &m, xx, yy, j);
             n++;
         }
     }
@@ -554,13 +583,15 @@ void tgi_near_horizon_rows(const tgi_gview *full, const tgi_gview *half, const t
                            const tgi_gresult *near, int y0, int y1)
 {
     tgi_upsample_plan u;
+    near_normal m;
     int x, y;
     if (y1 > full->height) y1 = full->height;
     tgi_upsample_start(&u, full, half, half_res, radius, near);
+    near_normal_start(&m);
     for (y = y0; y < y1; y++)
         for (x = 0; x < full->width; x++) {
             size_t i = tgi_gv_index(full, x, y);
-            tgi_gr_set_ao(near, i, tgi_gv_is_sky(full, i) ? TG_ONE : near_horizon_stored(&u, x, y, i));
+            tgi_gr_set_ao(near, i, tgi_gv_is_sky(full, i) ? TG_ONE : near_horizon_stored(&u, &m, x, y, i));
         }
 }
 
