@@ -206,6 +206,7 @@ typedef struct near_plane {
 } near_plane;
 typedef struct near_pixel {
     int x, y, has_vd;
+    size_t i;             /* tgi_gv_index(full, x, y) */
     tg_vec3 pv, nv, vd;
     tg_real kx, ky;
     near_plane pl;
@@ -317,7 +318,7 @@ static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q
 #endif
     const near_plane pl = *ppl;
     const int x = q->x, y = q->y;
-    const size_t i0 = tgi_gv_index(g, x, y);
+    const size_t i0 = q->i;
     tg_real best = TG_R(-1.0f);
     int n, steps = u->steps;
     for (n = 0; n < steps; n++) {
@@ -433,7 +434,7 @@ static tg_real near_depth_part(tg_real z)
     return tg_ldexp(z, -10);
 }
 
-/* The near horizon of surface pixel (x, y), index i, world normal n: the
+/* The near horizon of surface pixel (x, y), index i (tgi_gv_index), normal nv in view space: the
  * AO (cosine-weighted, RTR eq. 11.18, the slices weighted as GTAO's,
  * src/ao/ao.h) under the horizons of full-resolution pixels up to
  * TG_QUARTER_NEAR_REACH away along its two slices, both sides, within the
@@ -452,7 +453,7 @@ static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t 
     tgi_ao_slice sl;
     int k, found = 0;
     if (u->steps < 1) return TG_ONE;
-    q.x = x; q.y = y;
+    q.x = x; q.y = y; q.i = i;
     q.kx = tg_div(tg_from_int(2 * x + 1 - full->camera->width), u->wfx);   /* tgi_ao_unproject's ray */
     q.ky = tg_div(tg_from_int(full->camera->height - 2 * y - 1), u->hfy);
     z = tgi_gv_depth(full, i);                                   /* tgi_ao_view_at's view of the pixel */
