@@ -320,29 +320,40 @@ static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q
     const int x = q->x, y = q->y;
     const size_t i0 = q->i;
     tg_real best = TG_R(-1.0f);
-    int n, steps = u->steps;
-    for (n = 0; n < steps; n++) {
-        int sx = x + off[n][0], sy = y + off[n][1];
-        size_t j;
+    int n = 0, steps = u->steps;
+    for (;;) {
+        size_t j = 0;
         tg_real z, d2, fdx, fdy;
         tg_vec3 h;
-        if (!inside && ((unsigned)sx >= (unsigned)g->width || (unsigned)sy >= (unsigned)g->height)) break;
-        /* inside: the index of (sx, sy) as the pixel's plus the offset's
-         * (the same size_t, both taken modulo 2^N) */
+        /* the next sample above the tangent plane, in a loop of its own (the
+         * compiler keeps its few values in registers) */
+        for (; n < steps; n++) {
+            int sx = x + off[n][0], sy = y + off[n][1];
+            if (!inside && ((unsigned)sx >= (unsigned)g->width || (unsigned)sy >= (unsigned)g->height)) {
+                n = steps;   /* the march ends at the screen's edge */
+                break;
+            }
+            /* inside: the index of (sx, sy) as the pixel's plus the offset's
+             * (the same size_t, both taken modulo 2^N) */
 #if TGI_NEAR_DELTAS
-        j = inside ? i0 + (size_t)(ptrdiff_t)delta[n] : tgi_gv_index(g, sx, sy);
+            j = inside ? i0 + (size_t)(ptrdiff_t)delta[n] : tgi_gv_index(g, sx, sy);
 #else
-        j = inside ? i0 + (size_t)((ptrdiff_t)off[n][1] * g->row_stride + (ptrdiff_t)off[n][0] * g->pixel_stride)
-                   : tgi_gv_index(g, sx, sy);
+            j = inside ? i0 + (size_t)((ptrdiff_t)off[n][1] * g->row_stride + (ptrdiff_t)off[n][0] * g->pixel_stride)
+                       : tgi_gv_index(g, sx, sy);
 #endif
-        if (tgi_gv_is_sky(g, j)) continue;
+            if (!tgi_gv_is_sky(g, j) && !near_under_plane(&pl, tgi_gv_depth(g, j), off[n][0], off[n][1], wide)) break;
+        }
+        if (n >= steps) break;
         z = tgi_gv_depth(g, j);
-        if (near_under_plane(&pl, z, off[n][0], off[n][1], wide)) continue;
 #if TGI_DEPTH_LAYERS
-        if (u->layers && !near_solid_below(&pl, tgi_gv_back_depth(g, j), z, off[n], wide)) continue;
+        if (u->layers && !near_solid_below(&pl, tgi_gv_back_depth(g, j), z, off[n], wide)) {
+            n++;
+            continue;
+        }
 #endif
         fdx = tg_from_int(off[n][0]);
         fdy = tg_from_int(off[n][1]);
+        n++;
         h = tg_v3(tg_sub(tg_mul(z, tg_add(q->kx, tg_mul(fdx, u->ax))), q->pv.x),
                   tg_sub(tg_mul(z, tg_sub(q->ky, tg_mul(fdy, u->ay))), q->pv.y), tg_sub(z, q->pv.z));
         if (u->shift) h = tg_v3(tg_ldexp(h.x, u->shift), tg_ldexp(h.y, u->shift), tg_ldexp(h.z, u->shift));
