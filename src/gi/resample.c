@@ -632,6 +632,27 @@ void tgi_upsample_walk_start(tgi_upsample_walk *w)
 {
     int t;
     for (t = 0; t < 4; t++) w->tap[t].index = (size_t)-1;
+#if TGI_REUSE_NORMAL
+    w->code = UINT64_MAX;
+    w->n = tg_v3(0, 0, 0);
+#endif
+}
+
+/* Full-res pixel i's normal, taken again from the walk's last where their
+ * stored codes are equal (TGI_REUSE_NORMAL, raster/gview.h: the same
+ * normal, the same value). */
+static tg_vec3 upsample_normal(const tgi_gview *full, tgi_upsample_walk *w, size_t i)
+{
+#if TGI_REUSE_NORMAL
+    uint32_t code = tgi_gv_normal_word(full, i);
+    if (code == w->code) return w->n;
+    w->code = code;
+    w->n = tgi_gv_normal(full, i);
+    return w->n;
+#else
+    (void)w;
+    return tgi_gv_normal(full, i);
+#endif
 }
 
 tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk, int x, int y)
@@ -645,7 +666,7 @@ tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk
     int k, want_bent = tgi_gr_has_bent(hr), want_near = tgi_gr_has_near(hr);
     tgi_gr_value v;
     if (tgi_gv_is_sky(full, i)) return upsample_open(full, i);
-    n = tgi_gv_normal(full, i);
+    n = upsample_normal(full, walk, i);
     z = tgi_gv_depth(full, i);
     bilinear_taps(half, x, y, tap, wt);
     for (k = 0; k < 4; k++) {
