@@ -99,21 +99,26 @@ static tgi_gr_value upsample_open(const tgi_gview *full, size_t i)
     return v;
 }
 
-/* The (up to) 2x2 half-res neighbours of full-res (x, y) and their bilinear
- * weights: an even coordinate sits on a half-res sample, an odd one halfway. */
-static void bilinear_taps(const tgi_gview *half, int x, int y, size_t tap[4], tg_real wt[4])
+/* The (up to) 2x2 half-res neighbours of full-res (x, y) of bilinear
+ * weight above 0 (an even coordinate sits on a half-res sample, an odd one
+ * halfway): (X0, Y0) always, (X1, Y0) where x is odd, (X0, Y1) where y
+ * is, (X1, Y1) where both are, in this order; each of the same weight, 1
+ * or 1/2 times 1 or 1/2 (exact, tgi_wide), returned; their count in *n.
+ * slot[k]: the parity of tap k's coordinates (before the clamp at the
+ * edge), a slot of the walk (tgi_upsample_at). */
+static tg_real bilinear_taps(const tgi_gview *half, int x, int y, size_t tap[4], int slot[4], int *n)
 {
-    int X0 = x >> 1, Y0 = y >> 1, X1 = X0 + (x & 1), Y1 = Y0 + (y & 1);
+    int X0 = x >> 1, Y0 = y >> 1, X1 = X0 + (x & 1), Y1 = Y0 + (y & 1), k = 1;
+    int s0 = (X0 & 1) + ((Y0 & 1) << 1), sx = (x & 1), sy = (y & 1) << 1;   /* the parities of X1, Y1 flip X0's, Y0's */
     tg_real h = TG_R(0.5f);
     if (X1 >= half->width) X1 = half->width - 1;
     if (Y1 >= half->height) Y1 = half->height - 1;
-    tap[0] = tgi_gv_index(half, X0, Y0); tap[1] = tgi_gv_index(half, X1, Y0);
-    tap[2] = tgi_gv_index(half, X0, Y1); tap[3] = tgi_gv_index(half, X1, Y1);
-    /* products of 1 and 1/2 (exact, tgi_wide) */
-    wt[0] = (tg_real)tgi_wide_mul((x & 1) ? h : TG_ONE, (y & 1) ? h : TG_ONE);
-    wt[1] = (x & 1) ? (tg_real)tgi_wide_mul(h, (y & 1) ? h : TG_ONE) : 0;
-    wt[2] = (y & 1) ? (tg_real)tgi_wide_mul((x & 1) ? h : TG_ONE, h) : 0;
-    wt[3] = ((x & 1) && (y & 1)) ? (tg_real)tgi_wide_mul(h, h) : 0;
+    tap[0] = tgi_gv_index(half, X0, Y0); slot[0] = s0;
+    if (x & 1) { tap[k] = tgi_gv_index(half, X1, Y0); slot[k++] = s0 ^ sx; }
+    if (y & 1) { tap[k] = tgi_gv_index(half, X0, Y1); slot[k++] = s0 ^ sy; }
+    if (x & y & 1) { tap[k] = tgi_gv_index(half, X1, Y1); slot[k++] = s0 ^ sx ^ sy; }
+    *n = k;
+    return (tg_real)tgi_wide_mul((x & 1) ? h : TG_ONE, (y & 1) ? h : TG_ONE);
 }
 
 /* The near horizon's slice directions: cell (x & 3, y & 3) of a 4x4 block
@@ -660,27 +665,25 @@ tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk
     const tgi_gview *full = u->full, *half = u->half;
     const tgi_gresult *hr = u->res;
     size_t i = tgi_gv_index(full, x, y), tap[4];
-    tg_real wt[4], sum, ao, floor_w = TG_R(0.015625f), z;
+    tg_real wt, sum, ao, floor_w = TG_R(0.015625f), z;
     tgi_wide sum_w = 0, ao_w = 0, near_w[3] = { 0, 0, 0 };   /* running sums (tgi_wide_add_weighted) */
     tg_vec3 n, bend = tg_v3(0, 0, 0), near;
-    int k, want_bent = tgi_gr_has_bent(hr), want_near = tgi_gr_has_near(hr);
+    int k, taps, slot[4], want_bent = tgi_gr_has_bent(hr), want_near = tgi_gr_has_near(hr);
     tgi_gr_value v;
     if (tgi_gv_is_sky(full, i)) return upsample_open(full, i);
     n = upsample_normal(full, walk, i);
     z = tgi_gv_depth(full, i);
-    bilinear_taps(half, x, y, tap, wt);
-    for (k = 0; k < 4; k++) {
+    wt = bilinear_taps(half, x, y, tap, slot, &taps);
+    for (k = 0; k < taps; k++) {
         const tgi_upsample_tap *c;
         tg_real w;
-        if (wt[k] == 0) continue;
         /* tap k is half-res pixel (X0 or X1, Y0 or Y1): a slot per parity of
          * its coordinates, the two of a pixel's taps on an axis differ in it */
-        c = upsample_tap(u, walk, (((x >> 1) + (k & 1 ? x & 1 : 0)) & 1) + ((((y >> 1) + (k & 2 ? y & 1 : 0)) & 1) << 1),
-                         tap[k]);
+        c = upsample_tap(u, walk, slot[k], tap[k]);
         if (c->sky) continue;
         /* the depth weight within [0, 1] and the bilinear one within (0, 1]
          * keep each product within its other factor (tgi_wide) */
-        w = (tg_real)tgi_wide_mul(wt[k], tg_max(floor_w, (tg_real)tgi_wide_mul(upsample_depth_weight(z, c->z),
+        w = (tg_real)tgi_wide_mul(wt, tg_max(floor_w, (tg_real)tgi_wide_mul(upsample_depth_weight(z, c->z),
                                                                                upsample_normal_weight(n, c->n))));
         sum_w = tgi_wide_add_weighted(sum_w, w, TG_ONE);
         ao_w = tgi_wide_add_weighted(ao_w, w, c->ao);
