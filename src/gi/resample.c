@@ -571,6 +571,11 @@ static tg_real near_horizon_stored(const tgi_upsample_plan *u, near_normal *m, i
  * depth layers the pixel's own: there the near horizon takes only what is
  * solid below it and the cap stays a bound (the mean: spheres 0.043 ->
  * 0.044, columns 0.037 -> 0.040). */
+/* A sky neighbour (depth 0) is never within tol of z, so it has no test
+ * of its own: z >= 0 (a surface's depth, tgi_gv_depth), so |0 - z| = z
+ * (tg_sub exact) and tol = 0.1 z rounded is at most z (float: z times
+ * 0.1f rounded, monotone; Q16.16: floor((6554 z + 2^15) / 2^16) <= z, raw
+ * values), so z < tol fails; NaN fails it too. */
 static tg_real near_horizon_mean(const tgi_upsample_plan *u, int x, int y, tg_real z)
 {
     const tgi_gview *full = u->full;
@@ -588,7 +593,7 @@ static tg_real near_horizon_mean(const tgi_upsample_plan *u, int x, int y, tg_re
     for (yy = ya; yy <= yb; yy++) {
         size_t j = tgi_gv_index(full, xa, yy);
         for (xx = xa; xx <= xb; xx++, j += (size_t)full->pixel_stride) {   /* j: (xx, yy), modulo 2^N */
-            if (tgi_gv_is_sky(full, j) || !(tg_abs(tg_sub(tgi_gv_depth(full, j), z)) < tol)) continue;
+            if (!(tg_abs(tg_sub(tgi_gv_depth(full, j), z)) < tol)) continue;   /* sky too (near_horizon_mean's note) */
             sum += u->near ? tgi_gr_ao(u->near, j) : near_horizon_stored(u, &m, xx, yy, j);
             n++;
         }
