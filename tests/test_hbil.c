@@ -830,6 +830,74 @@ TEST(rejection_tests_keep_the_weights)
 }
 #endif
 
+#if !TG_WIDE_STORAGE && !TG_NO_COLOR
+/* The kernel's smoothstep of the ramp (gi/hbil.c ramp_smoothstep, Q16.16
+ * without tg_smoothstep's tests, 1/(b - a)'s divisor set once a call) is
+ * tg_smoothstep(a, b, t) bit for bit: a camera on the world axes and the
+ * sender's normal (0, 0, q) make -n_s.w_i the product -n_s.z dir.z, every
+ * t from 64 steps below a to 64 above b for the paper's ramp (0, 0.2), the
+ * test above's (0.3, 0.3 + 2^-12) and a few within [-2, 2]; at 4099 points
+ * for 300 random ramps within [-2, 2] and for ramps whose b - a does not fit
+ * (tg_smoothstep's path), a = b and a > b. */
+TEST(ramp_smoothstep_is_tg_smoothstep)
+{
+    static const float ramps[][2] = { { 0.0f, 0.2f }, { 0.3f, 0.3f + 1.0f / 4096 }, { -2.0f, 2.0f }, { -1.0f, 1.0f },
+                                      { -0.5f, 0.0f }, { 1.9f, 2.0f }, { -2.0f, -1.999f }, { 0.0f, 1.0f / 65536 },
+                                      { -1.0f, 32767.0f }, { -30000.0f, 30000.0f }, { -32768.0f, 32767.0f },
+                                      { 0.1f, 0.1f }, { 0.2f, 0.0f } };
+    const int nfixed = (int)(sizeof ramps / sizeof ramps[0]);
+#if TG_FIXED
+    const tg_real ulp = 1;                      /* one Q16.16 step */
+#else
+    const tg_real ulp = 1.0f / 65536;
+#endif
+    tgi_view view;
+    unsigned seed = 777u;
+    long count = 0, bad = 0;
+    int k, bits;
+    memset(&view, 0, sizeof view);
+    view.right = tg_v3(TG_ONE, 0, 0);
+    view.up = tg_v3(0, TG_ONE, 0);
+    view.forward = tg_v3(0, 0, TG_ONE);
+    for (bits = 8; bits <= 11; bits += 3) {
+        const uint32_t h = (1u << (bits - 1)) - 1;     /* x = y = 0 */
+        const tgi_oct_dir n = tgi_oct_fold(h | h << bits, bits);
+        const tg_vec3 ns = tgi_oct_unit(n);
+        CHECK(n.x == 0 && n.y == 0 && n.z > 0 && ns.x == 0 && ns.y == 0 && ns.z > 0, "normal (%d %d %d)", n.x, n.y, n.z);
+        for (k = 0; k < nfixed + 300; k++) {
+            tg_real a, b, lo, hi, x, stepx;
+            if (k < nfixed) {
+                a = tg_from_float(ramps[k][0]);
+                b = tg_from_float(ramps[k][1]);
+            } else {
+                a = tg_from_float((float)(4 * check_rnd(&seed) - 2));
+                b = tg_from_float((float)(4 * check_rnd(&seed) - 2));
+                if (b < a) { tg_real s = a; a = b; b = s; }
+                if (b == a) b = tg_add(a, ulp);
+            }
+            lo = tg_sub(a < b ? a : b, TG_R(64.0f / 65536)); hi = tg_add(a < b ? b : a, TG_R(64.0f / 65536));
+            if (tg_sub(hi, lo) < TG_R(2.0f) && hi < TG_R(2.5f) && lo > TG_R(-2.5f) && k < nfixed)
+                stepx = ulp;                             /* every t (Q16.16) */
+            else
+                stepx = tg_max(ulp, tg_div(tg_sub(hi, lo), TG_R(4096.0f)));
+            for (x = lo;; x = tg_add(x, stepx)) {
+                const tg_vec3 dir = tg_v3(0, 0, tg_neg(x));
+                const tg_real t = tg_neg(tg_mul(ns.z, dir.z));
+                const tg_real want = tg_smoothstep(a, b, t);
+                const tg_real got = tgi_hbil_rejection_weight(&view, a, b, n, dir, 0);
+                count++;
+                if (memcmp(&want, &got, sizeof want) && bad++ < 5)
+                    fprintf(stderr, "ramp (%.9g, %.9g), t %.9g: %.9g, tg_smoothstep %.9g\n", check_exact(a), check_exact(b),
+                            check_exact(t), check_exact(got), check_exact(want));
+                if (x >= hi || tg_add(x, stepx) == x) break;
+            }
+        }
+    }
+    printf("  ramp smoothstep: %ld weights, %ld differ from tg_smoothstep\n", count, bad);
+    CHECK(bad == 0 && count > 500000, "%ld of %ld weights differ from tg_smoothstep", bad, count);
+}
+#endif
+
 #if TG_FIXED
 /* The near horizon's tangent-plane test in one 64-bit compare (resample.c
  * near_plane_start) gives the saturating expression's answer: random
@@ -1622,6 +1690,7 @@ int main(int argc, char **argv)
     RUN(hbil_unit_sqrt_exact);
 #if !TG_WIDE_STORAGE && !TG_NO_COLOR
     RUN(rejection_tests_keep_the_weights);
+    RUN(ramp_smoothstep_is_tg_smoothstep);
 #endif
     RUN(rotations_stratify_slice_angles_and_march_offsets);
     RUN(blocks_decorrelate_march_offsets);

@@ -162,6 +162,9 @@ typedef struct hbil_ctx {
     tg_real cos_phi[HBIL_PATTERN][TG_MAX_SLICES], sin_phi[HBIL_PATTERN][TG_MAX_SLICES];
     tg_real jitter[HBIL_PATTERN];  /* step_jitter per pattern cell */
     tg_real rejection_a, rejection_b;
+#if TGI_Q16_WIDE
+    tg_real ramp_d;             /* b - a where a < b and it fits (ramp_init), else 0 */
+#endif
     int reject_fast;            /* rejection_weight's tests without the normalisation apply */
     tgi_wide reject_lo2, reject_hi2;  /* x|x| of the ramp's ends moved out by HBIL_REJECT_MARGIN */
     int near_field;
@@ -570,6 +573,32 @@ HBIL_EDGE static tg_real sample_depth_edge(const hbil_ctx *c, const tgi_gview *g
 #define HBIL_FACING_MAX ((int64_t)1 << 30)
 #endif
 
+#if TGI_Q16_WIDE
+/* tg_smoothstep(a, b, x) inside the ramp, a < x < b, with d = b - a
+ * fitting tg_real (ramp_init): tg_smoothstep's operations without its
+ * tests.  tg_sub(x, a) = x - a in (0, d) and tg_sub(b, a) = d do not
+ * saturate; tg_div of u = x - a > 0 by d > 0 is (u 2^16 + d/2) / d, which
+ * tgi_div_nonneg gives, at most 2^16 (u < d), so tg_saturate keeps it;
+ * then q^2 <= 2^32 rounds to at most 2^16, and 3 - 2q lies in [1, 3]:
+ * tg_mul's products (below 2^50) neither saturate, tgi_wide_mul's
+ * roundings.  The same bits as tg_smoothstep (tests/test_hbil.c,
+ * ramp_smoothstep_is_tg_smoothstep), without the call, the tests and the
+ * signs. */
+static inline tg_real ramp_smoothstep(tg_real a, tg_real d, tg_real x)
+{
+    const tg_real q = tgi_div_nonneg(x - a, d);
+    return (tg_real)tgi_wide_mul(tgi_wide_mul(q, q), 3 * TG_ONE - 2 * q);
+}
+
+/* ramp_d: b - a for a < b where the difference fits tg_real, else 0 (the
+ * kernel then calls tg_smoothstep) */
+static void ramp_init(hbil_ctx *c)
+{
+    const int64_t d = (int64_t)c->rejection_b - c->rejection_a;
+    c->ramp_d = d > 0 && d <= TG_REAL_MAX ? (tg_real)d : 0;
+}
+#endif
+
 /* HBIL sec. 3.4's weight t = smoothstep(a, b, -n_s.w_i) of a sender with
  * the unit normal n_s seen along dir (view space; w_i is dir in world space). */
 static tg_real rejection_ramp(const hbil_ctx *c, tg_vec3 ns, tg_vec3 dir)
@@ -582,6 +611,10 @@ static tg_real rejection_ramp(const hbil_ctx *c, tg_vec3 ns, tg_vec3 dir)
                        small_add(small_add(small_mul(v->right.z, dir.x), small_mul(v->up.z, dir.y)), small_mul(v->forward.z, dir.z)));
     t = tg_neg(small_dot_rare(ns, wi));   /* n_s unit, |w_i|'s components below 2: small */
     /* outside the ramp without the call (tg_smoothstep gives 0 and 1 there) */
+#if TGI_Q16_WIDE
+    if (c->ramp_d)
+        return t <= c->rejection_a ? 0 : t >= c->rejection_b ? TG_ONE : ramp_smoothstep(c->rejection_a, c->ramp_d, t);
+#endif
     if (c->rejection_b > c->rejection_a)
         return t <= c->rejection_a ? 0 : t >= c->rejection_b ? TG_ONE : tg_smoothstep(c->rejection_a, c->rejection_b, t);
     return tg_smoothstep(c->rejection_a, c->rejection_b, t);
@@ -596,6 +629,9 @@ static void rejection_init(hbil_ctx *c, tg_real a, tg_real b)
     const tg_real lo = tg_sub(a, HBIL_REJECT_MARGIN), hi = tg_add(b, HBIL_REJECT_MARGIN);
     c->rejection_a = a;
     c->rejection_b = b;
+#if TGI_Q16_WIDE
+    ramp_init(c);
+#endif
     c->reject_fast = b > a && lo >= TG_R(-2.0f) && hi <= TG_R(2.0f);
     c->reject_lo2 = (tgi_wide)lo * (lo < 0 ? -(tgi_wide)lo : lo);
     c->reject_hi2 = (tgi_wide)hi * (hi < 0 ? -(tgi_wide)hi : hi);
@@ -1869,6 +1905,9 @@ static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, 
 #else
     c->rejection_a = p->rejection_a;
     c->rejection_b = p->rejection_b;
+#if TGI_Q16_WIDE
+    ramp_init(c);
+#endif
     c->reject_fast = 0;
 #endif
     c->fine = 0;
