@@ -638,6 +638,15 @@ static void rejection_init(hbil_ctx *c, tg_real a, tg_real b)
 }
 #endif
 
+#if TGI_Q16_WIDE
+/* rejection_ramp of the stored normal, the normalisation out of line too:
+ * off the march's registers, where gather_rise is inlined */
+static HBIL_NOINLINE tg_real rejection_ramp_oct(const hbil_ctx *c, tgi_oct_dir n, tg_vec3 dir)
+{
+    return rejection_ramp(c, tgi_oct_unit(n), dir);
+}
+#endif
+
 /* rejection_ramp's t for a sender whose normal is stored as the octahedral
  * direction n (tgi_gv_normal_dir), n_s = n / |n|.  Outside the ramp, where t
  * is 0 or 1, the sign of f - x |n| tells, for f = -n.w_i and x the ramp's
@@ -678,7 +687,11 @@ static HBIL_INLINE tg_real rejection_weight(const hbil_ctx *c, tgi_oct_dir n, tg
         if (ff <= c->reject_lo2 * (float)n2) return 0;
 #endif
     }
+#if TGI_Q16_WIDE
+    return rejection_ramp_oct(c, n, dir);
+#else
     return rejection_ramp(c, tgi_oct_unit(n), dir);   /* tgi_gv_normal's n_s, the word decoded once */
+#endif
 }
 
 #if !TG_NO_COLOR
