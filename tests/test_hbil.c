@@ -832,7 +832,7 @@ TEST(rejection_tests_keep_the_weights)
 
 #if !TG_WIDE_STORAGE && !TG_NO_COLOR
 /* The kernel's smoothstep of the ramp (gi/hbil.c ramp_smoothstep, Q16.16
- * without tg_smoothstep's tests, 1/(b - a)'s divisor set once a call) is
+ * without tg_smoothstep's tests, its divisor b - a set once a call) is
  * tg_smoothstep(a, b, t) bit for bit: a camera on the world axes and the
  * sender's normal (0, 0, q) make -n_s.w_i the product -n_s.z dir.z, every
  * t from 64 steps below a to 64 above b for the paper's ramp (0, 0.2), the

@@ -580,7 +580,7 @@ HBIL_EDGE static tg_real sample_depth_edge(const hbil_ctx *c, const tgi_gview *g
  * saturate; tg_div of u = x - a > 0 by d > 0 is (u 2^16 + d/2) / d, which
  * tgi_div_nonneg gives, at most 2^16 (u < d), so tg_saturate keeps it;
  * then q^2 <= 2^32 rounds to at most 2^16, and 3 - 2q lies in [1, 3]:
- * tg_mul's products (below 2^50) neither saturate, tgi_wide_mul's
+ * tg_mul's products (below 2^34) neither saturate, tgi_wide_mul's
  * roundings.  The same bits as tg_smoothstep (tests/test_hbil.c,
  * ramp_smoothstep_is_tg_smoothstep), without the call, the tests and the
  * signs. */
