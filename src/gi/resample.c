@@ -106,7 +106,10 @@ static tgi_gr_value upsample_open(const tgi_gview *full, size_t i)
  * or 1/2 times 1 or 1/2 (exact, tgi_wide), returned; their count in *n.
  * slot[k]: the parity of tap k's coordinates (before the clamp at the
  * edge), a slot of the walk (tgi_upsample_at). */
-static tg_real bilinear_taps(const tgi_gview *half, int x, int y, size_t tap[4], int slot[4], int *n)
+#if defined(__GNUC__) && !TG_OUTLINE_HELPERS
+__attribute__((always_inline))   /* into its two callers: out of line it cost Q16.16's --gi-quarter 0.7% */
+#endif
+static inline tg_real bilinear_taps(const tgi_gview *half, int x, int y, size_t tap[4], int slot[4], int *n)
 {
     int X0 = x >> 1, Y0 = y >> 1, X1 = X0 + (x & 1), Y1 = Y0 + (y & 1), k = 1;
     int s0 = (X0 & 1) + ((Y0 & 1) << 1), sx = (x & 1), sy = (y & 1) << 1;   /* the parities of X1, Y1 flip X0's, Y0's */
@@ -502,30 +505,11 @@ static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t 
 }
 
 /* A pixel's normal in view space (tgi_ao_dir_to_view of tgi_gv_normal),
- * taken again from the last pixel's where their stored codes are equal
- * (TGI_REUSE_NORMAL, raster/gview.h: the same normal, the same value). */
-typedef struct near_normal {
-#if TGI_REUSE_NORMAL
-    uint64_t code;   /* nv's code: none decoded yet (no code is UINT64_MAX) */
-#endif
-    tg_vec3 nv;
-} near_normal;
-static void near_normal_start(near_normal *m)
+ * m's where the stored code repeats (tgi_gv_normal_repeats). */
+static tg_vec3 near_view_normal(const tgi_gview *g, tgi_normal_memo *m, size_t i)
 {
-#if TGI_REUSE_NORMAL
-    m->code = UINT64_MAX;
-#endif
-    m->nv = tg_v3(0, 0, 0);
-}
-static tg_vec3 near_view_normal(const tgi_gview *g, near_normal *m, size_t i)
-{
-#if TGI_REUSE_NORMAL
-    uint32_t code = tgi_gv_normal_word(g, i);
-    if (code == m->code) return m->nv;
-    m->code = code;
-#endif
-    m->nv = tgi_ao_dir_to_view(g->camera, tgi_gv_normal(g, i));
-    return m->nv;
+    if (!tgi_gv_normal_repeats(g, m, i)) m->n = tgi_ao_dir_to_view(g->camera, tgi_gv_normal(g, i));
+    return m->n;
 }
 
 /* The near horizon of surface pixel (x, y), index i, as the plane of
@@ -534,22 +518,13 @@ static tg_vec3 near_view_normal(const tgi_gview *g, near_normal *m, size_t i)
  * below the highest filtered AO of the half-res pixels its upsample
  * weighs (bilinear_taps), so not below its upsampled AO, a weighted mean
  * of theirs; m keeps the last pixel's normal (near_view_normal). */
-static tg_real near_horizon_stored(const tgi_upsample_plan *u, near_normal *m, int x, int y, size_t i)
+static tg_real near_horizon_stored(const tgi_upsample_plan *u, tgi_normal_memo *m, int x, int y, size_t i)
 {
-    /* bilinear_taps' taps in its order, those of weight above 0: the
-     * first always (1 or 1/2 times 1 or 1/2), the second where x is odd,
-     * the third where y is, the fourth where both are */
     const tgi_gview *half = u->half;
-    int X0 = x >> 1, Y0 = y >> 1, X1 = X0 + (x & 1), Y1 = Y0 + (y & 1);
     size_t tap[4];
     tg_real top = 0, ao;
-    int k, n = 1;
-    if (X1 >= half->width) X1 = half->width - 1;
-    if (Y1 >= half->height) Y1 = half->height - 1;
-    tap[0] = tgi_gv_index(half, X0, Y0);
-    if (x & 1) tap[n++] = tgi_gv_index(half, X1, Y0);
-    if (y & 1) tap[n++] = tgi_gv_index(half, X0, Y1);
-    if (x & y & 1) tap[n++] = tgi_gv_index(half, X1, Y1);
+    int k, n, slot[4];
+    (void)bilinear_taps(half, x, y, tap, slot, &n);   /* those of weight above 0 */
     for (k = 0; k < n; k++)
         if (!tgi_gv_is_sky(half, tap[k])) top = tg_max(top, tgi_gr_ao(u->res, tap[k]));
     ao = near_horizon_ao(u, x, y, i, near_view_normal(u->full, m, i), top);
@@ -590,8 +565,8 @@ static tg_real near_horizon_mean(const tgi_upsample_plan *u, int x, int y, tg_re
     const tg_real tol = upsample_depth_tol(z);   /* where upsample_depth_weight is above 0 */
     tgi_wide sum = 0;   /* at most 9 AO values in [0, 1]: tg_add's sums without its saturation tests */
     int n = 0, xx, yy, r = 1, xa, xb, ya, yb;
-    near_normal m;
-    near_normal_start(&m);
+    tgi_normal_memo m;
+    tgi_normal_memo_start(&m);
 #if TGI_DEPTH_LAYERS
     if (u->layers) r = 0;
 #endif
@@ -625,11 +600,11 @@ void tgi_near_horizon_rows(const tgi_gview *full, const tgi_gview *half, const t
                            const tgi_gresult *near, int y0, int y1)
 {
     tgi_upsample_plan u;
-    near_normal m;
+    tgi_normal_memo m;
     int x, y;
     if (y1 > full->height) y1 = full->height;
     tgi_upsample_start(&u, full, half, half_res, radius, near);
-    near_normal_start(&m);
+    tgi_normal_memo_start(&m);
     for (y = y0; y < y1; y++)
         for (x = 0; x < full->width; x++) {
             size_t i = tgi_gv_index(full, x, y);
@@ -662,27 +637,7 @@ void tgi_upsample_walk_start(tgi_upsample_walk *w)
 {
     int t;
     for (t = 0; t < 4; t++) w->tap[t].index = (size_t)-1;
-#if TGI_REUSE_NORMAL
-    w->code = UINT64_MAX;
-    w->n = tg_v3(0, 0, 0);
-#endif
-}
-
-/* Full-res pixel i's normal, taken again from the walk's last where their
- * stored codes are equal (TGI_REUSE_NORMAL, raster/gview.h: the same
- * normal, the same value). */
-static tg_vec3 upsample_normal(const tgi_gview *full, tgi_upsample_walk *w, size_t i)
-{
-#if TGI_REUSE_NORMAL
-    uint32_t code = tgi_gv_normal_word(full, i);
-    if (code == w->code) return w->n;
-    w->code = code;
-    w->n = tgi_gv_normal(full, i);
-    return w->n;
-#else
-    (void)w;
-    return tgi_gv_normal(full, i);
-#endif
+    tgi_normal_memo_start(&w->normal);
 }
 
 tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk, int x, int y)
@@ -696,7 +651,7 @@ tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk
     int k, taps, slot[4], want_bent = tgi_gr_has_bent(hr), want_near = tgi_gr_has_near(hr);
     tgi_gr_value v;
     if (tgi_gv_is_sky(full, i)) return upsample_open(full, i);
-    n = upsample_normal(full, walk, i);
+    n = tgi_gv_normal_memo(full, &walk->normal, i);   /* the walk's last where the code repeats */
     z = tgi_gv_depth(full, i);
     wt = bilinear_taps(half, x, y, tap, slot, &taps);
     for (k = 0; k < taps; k++) {

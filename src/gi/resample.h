@@ -75,9 +75,8 @@ void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_g
                         tg_real radius, const tgi_gresult *near);
 
 /* A half-res pixel as the upsample reads it (resample.c), and the last four
- * a walk along the full-res rows read (index (size_t)-1: none); with
- * TGI_REUSE_NORMAL also the last full-res pixel's normal and its stored
- * code (UINT64_MAX: none). */
+ * a walk along the full-res rows read (index (size_t)-1: none), and the
+ * last full-res pixel's normal. */
 typedef struct tgi_upsample_tap {
     size_t index;
     int sky;
@@ -86,10 +85,7 @@ typedef struct tgi_upsample_tap {
 } tgi_upsample_tap;
 typedef struct tgi_upsample_walk {
     tgi_upsample_tap tap[4];
-#if TGI_REUSE_NORMAL
-    uint64_t code;
-    tg_vec3 n;
-#endif
+    tgi_normal_memo normal;   /* the last full-res pixel's (raster/gview.h) */
 } tgi_upsample_walk;
 void tgi_upsample_walk_start(tgi_upsample_walk *w);
 

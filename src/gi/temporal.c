@@ -77,11 +77,9 @@ void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_
     const tgi_gresult *r = &rl, *prev = &prevl;
     tg_real alpha;
     int x, y, has_bent;
-    tg_vec3 n = tg_v3(0, 0, 0);
-#if TGI_REUSE_NORMAL
-    uint64_t n_code = UINT64_MAX;   /* n's code: none decoded yet (no code is UINT64_MAX) */
-#endif
+    tgi_normal_memo nm;   /* the normal decoded last (raster/gview.h) */
     if (reset || !prev_view) return;
+    tgi_normal_memo_start(&nm);
     pl = *params; gl = *view_in; rl = *r_in; prevl = *prev_in; hl = *prev_geometry;
     has_bent = tgi_gr_has_bent(r);
     alpha = p->alpha;
@@ -96,17 +94,7 @@ void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_
             size_t i = tgi_gv_index(g, x, y), s;
             tgi_gr_value v, h;
             if (tgi_gv_is_sky(g, i)) continue;
-#if TGI_REUSE_NORMAL
-            {   /* the normal decoded last when its stored code is this one's (raster/gview.h) */
-                uint32_t code = tgi_gv_normal_word(g, i);
-                if (code != n_code) {
-                    n = tgi_gv_normal(g, i);
-                    n_code = code;
-                }
-            }
-#else
-            n = tgi_gv_normal(g, i);
-#endif
+            const tg_vec3 n = tgi_gv_normal_memo(g, &nm, i);
             if (!history_at(p, g, &hl, &cams, x * g->step + g->offset_x, fy, tgi_gv_depth(g, i), n, &s))
                 continue;
             v = tgi_gr_get(r, i);

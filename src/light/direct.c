@@ -118,10 +118,8 @@ void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_coun
             for (x = 0; x < w; x++) tgi_rgb_set(e_out, tgi_gv_index(g, x, y), tg_v3(0, 0, 0));
     for (first = 0; first < light_count; first += LIGHT_CHUNK) {
         int count = light_count - first < LIGHT_CHUNK ? light_count - first : LIGHT_CHUNK;
-        tg_vec3 n = tg_v3(0, 0, 0);
-#if TGI_REUSE_NORMAL
-        uint64_t n_code = UINT64_MAX;   /* n's code: none decoded yet (no code is UINT64_MAX) */
-#endif
+        tgi_normal_memo nm;   /* the normal decoded last (raster/gview.h) */
+        tgi_normal_memo_start(&nm);
         for (k = 0; k < count; k++)
             prepare(&pl[k], &lights[first + k], shadow_maps ? shadow_maps[first + k] : NULL);
         for (y = y0; y < y1; y++) {
@@ -136,15 +134,7 @@ void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_coun
                     if (fresh && first == 0) tgi_rgb_set(e_out, i, tg_v3(0, 0, 0));
                     continue;
                 }
-#if TGI_REUSE_NORMAL
-                uint32_t code = tgi_gv_normal_word(g, i);
-                if (code != n_code) {
-                    n = tgi_gv_normal(g, i);
-                    n_code = code;
-                }
-#else
-                n = tgi_gv_normal(g, i);
-#endif
+                const tg_vec3 n = tgi_gv_normal_memo(g, &nm, i);
                 kx = tg_div(tg_sub(tg_add(tg_from_int(x), TG_R(0.5f)), half_w), view->pixels_per_unit);
                 z = tgi_gv_depth(g, i);   /* decoded once: the calls below would have it read again */
                 p = tgi_v3_add(view->eye, tgi_v3_scale(tgi_v3_add(row_dir, tgi_v3_scale(view->right, kx)), z));

@@ -92,6 +92,38 @@ static inline int tgi_gv_material_index(const tgi_gview *v, size_t i)
     return v->store.nm ? (int)(v->store.nm[i] >> TGI_MATERIAL_SHIFT) : 0;
 }
 #endif
+/* The normal a pass decoded last and its stored code (TGI_REUSE_NORMAL;
+ * UINT64_MAX: none yet, no code is), or what the pass derived from that
+ * normal (resample.c keeps it in view space). */
+typedef struct tgi_normal_memo {
+    uint64_t code;
+    tg_vec3 n;
+} tgi_normal_memo;
+static inline void tgi_normal_memo_start(tgi_normal_memo *m)
+{
+    m->code = UINT64_MAX;
+    m->n = tg_v3(0, 0, 0);
+}
+/* 1 when pixel i's stored normal code is m's (m->n then stands for its
+ * normal); else m takes the code and 0 (the caller sets m->n).  Always 0
+ * without TGI_REUSE_NORMAL. */
+static inline int tgi_gv_normal_repeats(const tgi_gview *v, tgi_normal_memo *m, size_t i)
+{
+#if TGI_REUSE_NORMAL
+    const uint32_t code = tgi_gv_normal_word(v, i);
+    if (code == m->code) return 1;
+    m->code = code;
+#else
+    (void)v; (void)m; (void)i;
+#endif
+    return 0;
+}
+/* Pixel i's normal (tgi_gv_normal), the one m holds where the code repeats. */
+static inline tg_vec3 tgi_gv_normal_memo(const tgi_gview *v, tgi_normal_memo *m, size_t i)
+{
+    if (!tgi_gv_normal_repeats(v, m, i)) m->n = tgi_gv_normal(v, i);
+    return m->n;
+}
 /* The second depth layer (request.depth_layers 2): the view depth of the
  * nearest back face at or behind the pixel's surface (a one-sided triangle
  * facing away, or either face of a twosided one: then the surface's own
