@@ -95,27 +95,37 @@ TEST(depth_unpack_every_word)
     CHECK(bad == 0, "%ld of %ld depth words read back wrong", bad, n);
 }
 
-/* pack.h's two forms of the unpack (32-bit shifts on 32-bit cores, a 64-bit
- * shift on 64-bit hosts) agree on every word.  Sufficient: neither reads
- * the sign (the 64-bit form masks it off, the 32-bit form's bits << 8
- * shifts it out), so sign 0 covers sign 1, which is still tried at each
- * exponent's edges; outside e = 110 .. 141 neither reads the significand
- * (0 or TG_REAL_MAX from e alone), so a few significands there; inside,
- * every significand of each of the 32 exponents (2^28 words, the only ones
- * where the shifts differ), and a stride through all 2^32 besides. */
+/* The unpack as main had it before the twenty-eighth session, the
+ * reference for pack.h's two forms (32-bit shifts on 32-bit cores, a 64-bit
+ * shift on 64-bit hosts). */
+static tg_real depth_unpack_main(uint32_t bits)
+{
+    uint32_t e = (bits >> 23) & 0xFF, m = (bits & 0x7FFFFFu) | 0x800000u;
+    if (e - 110u >= 32u) return e >= 142u ? TG_REAL_MAX : 0;
+    return (tg_real)((((uint64_t)m << (e - 110u)) + (1u << 23)) >> 24);
+}
+
+/* Both forms give depth_unpack_main's value for every word.  Sufficient:
+ * outside e = 110 .. 141 no form reads the significand (0 or TG_REAL_MAX
+ * from the sign and e alone), so a few significands there, at every
+ * exponent in both signs; inside, every significand of each of the 32
+ * exponents (the words that reach the shifts) in both signs; and a stride
+ * through all 2^32 besides. */
 TEST(depth_unpack_forms_agree)
 {
     uint64_t b;
     uint32_t e, f, sign;
     long bad = 0, n = 0;
 #define DEPTH_FORMS_AGREE(w) do { \
+        const tg_real want = depth_unpack_main(w); \
         n++; \
-        if (tgi_depth_unpack32(w) != tgi_depth_unpack64(w) && bad++ < 5) \
-            fprintf(stderr, "depth word 0x%08x: 32-bit %ld, 64-bit %ld\n", (unsigned)(w), \
-                    (long)tgi_depth_unpack32(w), (long)tgi_depth_unpack64(w)); \
+        if ((tgi_depth_unpack32(w) != want || tgi_depth_unpack64(w) != want) && bad++ < 5) \
+            fprintf(stderr, "depth word 0x%08x: 32-bit %ld, 64-bit %ld, main %ld\n", (unsigned)(w), \
+                    (long)tgi_depth_unpack32(w), (long)tgi_depth_unpack64(w), (long)want); \
     } while (0)
-    for (e = 110; e < 142; e++)
-        for (f = 0; f <= 0x7FFFFFu; f++) DEPTH_FORMS_AGREE((e << 23) | f);
+    for (sign = 0; sign < 2; sign++)
+        for (e = 110; e < 142; e++)
+            for (f = 0; f <= 0x7FFFFFu; f++) DEPTH_FORMS_AGREE((sign << 31) | (e << 23) | f);
     for (sign = 0; sign < 2; sign++)
         for (e = 0; e < 256; e++) {
             const uint32_t fs[6] = { 0, 1, 0x3FFFFFu, 0x400000u, 0x7FFFFEu, 0x7FFFFFu };
@@ -123,7 +133,7 @@ TEST(depth_unpack_forms_agree)
         }
     for (b = 0; b <= 0xFFFFFFFFu; b += 251) DEPTH_FORMS_AGREE((uint32_t)b);
 #undef DEPTH_FORMS_AGREE
-    CHECK(bad == 0, "%ld of %ld depth words unpack apart in the two forms", bad, n);
+    CHECK(bad == 0, "%ld of %ld depth words unpack apart from main's", bad, n);
 }
 #endif
 
