@@ -337,6 +337,46 @@ TEST(div_pos_matches_div)
 }
 #endif
 
+#if TG_FIXED
+/* tgi_div_nonneg32 (core/real.h, the 32-bit cores' tgi_div_nonneg) is the
+ * 64-bit form's quotient floor((a 2^16 + floor(b / 2)) / b) mod 2^32 for
+ * every a >= 0, b > 0: divisors at and around each power of two (both
+ * branches and their edges, the correction steps' worst cases near 2^k D
+ * - b = 2^k), numerators at 0, 2^31 - 1 and random, quotients past 2^32
+ * included (truncated alike). */
+TEST(div_nonneg32_matches)
+{
+    uint64_t v = 0x9e3779b97f4a7c15ull;
+    long bad = 0, n = 0;
+    int i, e, j;
+    for (i = 0; i < 3000000; i++) {
+        uint32_t a, b;
+        uint64_t want;
+        v ^= v << 13; v ^= v >> 7; v ^= v << 17;
+        a = (uint32_t)(v >> 33) >> (int)((v >> 8) % 32);                      /* 0 .. 2^31 - 1 */
+        b = ((uint32_t)v >> 1) >> (int)((v >> 16) % 31);                      /* 0 .. 2^31 - 1 */
+        if (i % 4 == 1) b = ((uint32_t)1 << ((v >> 24) % 31)) + (uint32_t)((v >> 40) % 5) - 2;   /* near 2^k */
+        if (i % 4 == 2) b |= 0xFFFFu >> ((v >> 28) % 16);                    /* low bits set: 2^k D - b near 2^k */
+        if (i % 8 == 3) a = (v >> 50) & 1 ? 0x7FFFFFFFu : 0;
+        if (b == 0 || b > 0x7FFFFFFFu) continue;
+        want = ((((uint64_t)a << 16) + (b >> 1)) / b) & 0xFFFFFFFFu;
+        n++;
+        if ((uint32_t)tgi_div_nonneg32((tg_real)a, (tg_real)b) != (uint32_t)want) bad++;
+    }
+    for (e = 0; e < 31; e++)                                                  /* every divisor's bit length, both ends */
+        for (j = 0; j < 2; j++) {
+            const uint32_t b = j ? (e == 30 ? 0x7FFFFFFFu : ((uint32_t)2 << e) - 1) : (uint32_t)1 << e;
+            uint64_t a;
+            for (a = 0; a <= 0x7FFFFFFFu; a = a < 0x7FFFFFFFu && a * 3 + 0xFFFFu > 0x7FFFFFFFu ? 0x7FFFFFFFu : a * 3 + 0xFFFFu) {
+                uint64_t want = (((a << 16) + (b >> 1)) / b) & 0xFFFFFFFFu;
+                n++;
+                if ((uint32_t)tgi_div_nonneg32((tg_real)a, (tg_real)b) != (uint32_t)want) bad++;
+            }
+        }
+    CHECK(n > 2000000 && bad == 0, "%ld of %ld quotients differ from the 64-bit division", bad, n);
+}
+#endif
+
 TEST(isqrt64_exact)
 {
     uint64_t k, v = 88172645463325252ull;
@@ -1050,6 +1090,7 @@ int main(void)
     RUN(outline_div_and_shift_match_inline);
     RUN(div_rounds_alike_for_every_sign);
     RUN(div_pos_matches_div);
+    RUN(div_nonneg32_matches);
 #endif
     RUN(text_put_real_as_float);
     RUN(integer_helpers);
