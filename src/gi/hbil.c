@@ -1597,18 +1597,35 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
         /* the runs in the order of before: the peak's span without t0
          * (unless climbed), the span before the first sample, the screen's
          * last pixel */
-        int lo[4], hi[4];
+        int lo[4], hi[4], n = 0;
+#if TG_OUTLINE_HELPERS   /* compiling for size: the four runs' bounds, then a loop keeping the runs that are not empty */
         lo[0] = span[1][0]; hi[0] = climb ? lo[0] : t0 >= 0 && t0 < span[1][1] ? t0 : span[1][1];
         lo[1] = t0 >= 0 && t0 + 1 > span[1][0] ? t0 + 1 : span[1][0]; hi[1] = climb ? lo[1] : span[1][1];
         lo[2] = span[0][0]; hi[2] = r >= HBIL_SPARSE_RATIO ? span[0][0] : span[0][1];   /* empty: refine_fine_sparse's */
         lo[3] = room; hi[3] = room > r * sub_room ? room + 1 : room;
-        int n = 0;
         for (k = 0; k < 4; k++) {   /* the runs that are not empty, in order */
             const int end = hi[k] <= tmax ? hi[k] : tmax + 1;
             if (lo[k] >= end) continue;
             lo[n] = lo[k];
             hi[n++] = end;
         }
+#else
+        /* the same runs without the loop and its arrays' reloads
+         * (cornell 160x120: -1.2% of the frame in float, -0.75% in Q16.16): the first two are empty
+         * when climbed (hi = lo) and without a peak (t0 < 0: span[1] is
+         * { 0, 0 }, lo = 0 = hi), the third one at HBIL_SPARSE_RATIO and
+         * without a long reach (span[0] is { 0, 0 }) */
+#define FINE_RUN_ADD(l, h) do { const int l_ = (l), e_ = (h) <= tmax ? (h) : tmax + 1; \
+                                if (l_ < e_) { lo[n] = l_; hi[n++] = e_; } } while (0)
+        (void)k;
+        if (!climb && t0 >= 0) {
+            FINE_RUN_ADD(span[1][0], t0 < span[1][1] ? t0 : span[1][1]);
+            FINE_RUN_ADD(t0 + 1 > span[1][0] ? t0 + 1 : span[1][0], span[1][1]);
+        }
+        if (r < HBIL_SPARSE_RATIO && long_reach) FINE_RUN_ADD(span[0][0], span[0][1]);
+        if (room > r * sub_room) FINE_RUN_ADD(room, room + 1);
+#undef FINE_RUN_ADD
+#endif
         if (n > 0) {
 #if TG_OUTLINE_HELPERS
             fine_run(c, &best, mr, major_x, fa0, fb0, lo, hi, n, dir, HBIL_FINE_EVERY, 1);
