@@ -103,7 +103,7 @@ static inline tg_real tgi_div_nonneg32(tg_real a, tg_real b)
     }
     return (tg_real)((q1 << 16) + q2);
 }
-#if UINTPTR_MAX <= 0xFFFFFFFFu && (defined(__ARM_FEATURE_IDIV) || defined(__riscv_div))
+#if !TGI_CORE64 && (defined(__ARM_FEATURE_IDIV) || defined(__riscv_div))
 #define TGI_DIV32 1
 #else
 #define TGI_DIV32 0

@@ -1034,7 +1034,7 @@ static inline int depths_close(tg_real za, tg_real zb)
      * that form (no 64-bit products; Cortex-M3 cornell 160x120: -1.9% of
      * the Q16.16 frame), x86-64 the 64-bit one (the 32-bit form: +0.4%,
      * gcc 12's register choices in the march) */
-#if UINTPTR_MAX > 0xFFFFFFFFu
+#if TGI_CORE64
     return (tgi_wide)zb * 4 > za && (tgi_wide)za * 4 > zb;
 #else
     return zb > (za >> 2) && za > (zb >> 2);
@@ -1590,7 +1590,7 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
 #endif
     const int climb = sd->peak_a >= 0 && r < HBIL_SPARSE_RATIO;   /* the peak's span by fine_climb */
     hbil_fine_best best;
-    int t0 = -1, k, span[2][2] = { { 0, 0 }, { 0, 0 } };   /* fine pixels [span[k][0], span[k][1]) */
+    int t0 = -1, span[2][2] = { { 0, 0 }, { 0, 0 } };   /* fine pixels [span[k][0], span[k][1]) */
     /* Nothing to take (most sides of a short reach: 68% on builtin:columns
      * 320x240): without a peak, a long reach or a first sample beyond the
      * radius every span below is empty (no climb, no sparse run, no
@@ -1635,6 +1635,7 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
          * last pixel */
         int lo[4], hi[4], n = 0;
 #if TG_OUTLINE_HELPERS   /* compiling for size: the four runs' bounds, then a loop keeping the runs that are not empty */
+        int k;
         lo[0] = span[1][0]; hi[0] = climb ? lo[0] : t0 >= 0 && t0 < span[1][1] ? t0 : span[1][1];
         lo[1] = t0 >= 0 && t0 + 1 > span[1][0] ? t0 + 1 : span[1][0]; hi[1] = climb ? lo[1] : span[1][1];
         lo[2] = span[0][0]; hi[2] = r >= HBIL_SPARSE_RATIO ? span[0][0] : span[0][1];   /* empty: refine_fine_sparse's */
@@ -1653,7 +1654,6 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
          * without a long reach (span[0] is { 0, 0 }) */
 #define FINE_RUN_ADD(l, h) do { const int l_ = (l), e_ = (h) <= tmax ? (h) : tmax + 1; \
                                 if (l_ < e_) { lo[n] = l_; hi[n++] = e_; } } while (0)
-        (void)k;
         if (!climb && t0 >= 0) {
             FINE_RUN_ADD(span[1][0], t0 < span[1][1] ? t0 : span[1][1]);
             FINE_RUN_ADD(t0 + 1 > span[1][0] ? t0 + 1 : span[1][0], span[1][1]);

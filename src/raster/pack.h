@@ -54,10 +54,9 @@ static inline uint32_t tgi_depth_pack(tg_real z)
  * r = m 2^(e - 134) rounded to nearest, ties up; the sign ignored; 0 below
  * e = 110 (< 2^-17, and 0: sky), TG_REAL_MAX from e = 142 (>= 2^15: beyond
  * Q16.16).
- * 64 bits: m 2^(e - 110) (e in [110, 142): below 2^55) rounded at bit 24
- * (tests/test_pack.c depth_unpack_main, the form before the twenty-eighth
- * session), e taken as (bits << 1) >> 24, the bits 23..30 as (bits >> 23)
- * & 0xFF took them, in one lea and a shift on x86-64 (it had been a copy,
+ * 64 bits: m 2^(e - 110) (e in [110, 142): below 2^55) rounded at bit 24,
+ * e taken as (bits << 1) >> 24, the bits 23..30 as (bits >> 23) & 0xFF
+ * took them, in one lea and a shift on x86-64 (it had been a copy,
  * a shift and a zero extension: callgrind --frames 2 --threads 1 Q16.16,
  * cornell 160x120 806.9M -> 803.7M, 320x240 --gi-quarter 1575.7M ->
  * 1567.2M). */
@@ -87,7 +86,7 @@ static inline tg_real tgi_depth_unpack32(uint32_t bits)
 }
 static inline tg_real tgi_depth_unpack(uint32_t bits)
 {
-#if UINTPTR_MAX > 0xFFFFFFFFu
+#if TGI_CORE64
     return tgi_depth_unpack64(bits);
 #else
     return tgi_depth_unpack32(bits);
