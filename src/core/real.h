@@ -28,6 +28,17 @@ static inline int tgi_bit_length64(uint64_t v)
 #endif
 }
 
+/* 32 - tgi_bit_length64(v) for v != 0 (the leading zeros of 32 bits),
+ * without the test for 0 that gcc keeps in tgi_bit_length64. */
+static inline int tgi_clz32_nz(uint32_t v)
+{
+#if defined(__GNUC__)
+    return __builtin_clz(v);
+#else
+    return 32 - tgi_bit_length64(v);
+#endif
+}
+
 /* sqrt of a 64-bit integer, floor; used by fixed-point vector lengths. */
 uint32_t tgi_isqrt64(uint64_t v);
 /* sqrt of a 64-bit integer, rounded to nearest. */

@@ -1008,11 +1008,24 @@ static inline tg_real horizon_cos(tg_real dot, tg_real len2, tg_real *inv_len)
     /* len2 = L 2^-16 with 0 < L < 2^31 (a sample with d = 0 has dot = 0
      * and fails the horizon test; sample_cos halves a longer d): L 2^e = X 2^30, X in [1, 4), e even
      * in [0, 30], so 1/|d| = rsqrt(X) 2^(e/2 - 7) = y 2^(e/2 - 37) for y
-     * = rsqrt(X) in Q30 (<= 2^30); |dot| < 2^24, dot y < 2^54 */
-    const int e = (32 - tgi_bit_length64((uint32_t)len2)) & ~1;
+     * = rsqrt(X) in Q30 (<= 2^30); |dot| < 2^24, dot y < 2^54.  The two
+     * roundings tgi_shr_round(y, s + 1) and tgi_shr_round(dot y, s + 17),
+     * s = 20 - e/2 in [5, 20], with the one variable shift s first: the
+     * offsets 2^s and 2^(s + 16) are multiples of 2^s, so floor((x + 2^(s
+     * + k)) 2^-(s + k + 1)) = floor((floor(x 2^-s) + 2^k) 2^-(k + 1)) (the
+     * shift floors), the same integers (not the three shift counts and two
+     * offsets computed per rise; compiling for size the two calls of
+     * tgi_shr_round, 24 bytes shorter in the AO-only program) */
+    const int e = tgi_clz32_nz((uint32_t)len2) & ~1;
     const int64_t y = (int64_t)tgi_rsqrt_q30_fast((uint64_t)(uint32_t)len2 << e);
-    *inv_len = (tg_real)tgi_shr_round(y, 21 - e / 2);                 /* <= 256: 2^24 */
+#if TGI_Q16_WIDE
+    const int s = 20 - e / 2;
+    *inv_len = (tg_real)(((y >> s) + 1) >> 1);                        /* <= 256: 2^24 */
+    return tg_clamp((tg_real)(((dot * y >> s) + 65536) >> 17), TG_R(-1.0f), TG_ONE);
+#else
+    *inv_len = (tg_real)tgi_shr_round(y, 21 - e / 2);
     return tg_clamp((tg_real)tgi_shr_round(dot * y, 37 - e / 2), TG_R(-1.0f), TG_ONE);
+#endif
 #else
     float r = tgi_rsqrt_fast(len2);
     r = r * (1.5f - 0.5f * len2 * r * r);
