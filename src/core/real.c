@@ -127,14 +127,22 @@ static uint64_t mantissa_even(uint64_t v, int *e)
 /* 1/sqrt(M) in Q30 for M in [1/4, 1) given in Q32 (relative error about
  * 2^-29): table seed (1.5%), then three Newton steps
  * y <- y (3 - M y^2) / 2 in integers. */
+static inline uint64_t rsqrt_step(uint64_t m, uint64_t y)
+{
+    const uint64_t my2 = (m * ((y * y) >> 30)) >> 32; /* M y^2, Q30 */
+    return (y * (3 * ((uint64_t)1 << 30) - my2)) >> 31;
+}
 static uint64_t rsqrt_q30(uint64_t m)
 {
     uint64_t y = rsqrt_seed[(m >> 26) - 16];
+#if TG_OUTLINE_HELPERS   /* compiling for size: the loop */
     int i;
-    for (i = 0; i < 3; i++) {
-        uint64_t my2 = (m * ((y * y) >> 30)) >> 32; /* M y^2, Q30 */
-        y = (y * (3 * ((uint64_t)1 << 30) - my2)) >> 31;
-    }
+    for (i = 0; i < 3; i++) y = rsqrt_step(m, y);
+#else   /* the three steps written out: gcc -O2 kept the loop (its counter, 2 instructions a step) */
+    y = rsqrt_step(m, y);
+    y = rsqrt_step(m, y);
+    y = rsqrt_step(m, y);
+#endif
     return y;
 }
 
@@ -277,11 +285,27 @@ tg_real tg_sqrt(tg_real x)
 /* 1/sqrt(x): x_raw = M 2^e, raw = 2^24 / sqrt(x_raw) = 2^(24 - e/2) / sqrt(M). */
 tg_real tg_rsqrt(tg_real x)
 {
+#if TG_OUTLINE_HELPERS   /* compiling for size: mantissa_even's code, shared */
     int e;
     uint64_t y;
     if (x <= 0) return TG_REAL_MAX;
     y = rsqrt_q30(mantissa_even((uint64_t)x, &e));
     return tgi_sat64((int64_t)((y + ((uint64_t)1 << (5 + e / 2))) >> (6 + e / 2)));
+#else
+    /* mantissa_even without its branch: 0 < x < 2^31 has bl = 32 - c bits
+     * (c = clz32(x) >= 1); for s = c & ~1, M = x << s in Q32 (bl even: s = c,
+     * x 2^(32 - bl); bl odd: s = c - 1, x 2^(32 - bl) / 2 exactly) and e =
+     * 32 - s (bl rounded up to even): mantissa_even's M and e.  Then the
+     * rounding (y + 2^(k - 1)) >> k, k = 6 + e/2 = 22 - s/2, as ((y >> (k -
+     * 1)) + 1) >> 1 (the offset a multiple of 2^(k - 1): the same floor);
+     * y <= 2^31, so the result < 2^26 needs no saturation test */
+    int s;
+    uint64_t y;
+    if (x <= 0) return TG_REAL_MAX;
+    s = tgi_clz32_nz((uint32_t)x) & ~1;
+    y = rsqrt_q30((uint64_t)(uint32_t)x << s);
+    return (tg_real)(((y >> (21 - s / 2)) + 1) >> 1);
+#endif
 }
 
 #else
