@@ -268,7 +268,7 @@ tg_real tg_sqrt(tg_real x)
     uint64_t x30, t, s, r, r2, v;
     int h;
     if (x <= 0) return 0;
-    h = (46 - tgi_bit_length64((uint32_t)x)) >> 1;   /* 7..22: v = x_raw 2^16, v 4^h in [2^60, 2^62) */
+    h = (tgi_clz32_nz((uint32_t)x) + 14) >> 1;       /* (46 - bit length) / 2, 7..22: v = x_raw 2^16, v 4^h in [2^60, 2^62) */
     x30 = (uint64_t)x << (2 * h - 14);       /* X = v 4^h 2^-60 in Q30, [2^30, 2^32) */
     c = sqrt_quad[(x30 >> 25) - 32];
     t = x30 & 0x1ffffffu;                    /* t in Q30, < 2^25 */

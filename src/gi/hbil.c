@@ -384,7 +384,7 @@ static tg_real unit_sqrt(tg_real x)
     int k;
     const uint32_t *c;
     if (x <= 0) return 0;
-    k = (17 - tgi_bit_length64(u)) >> 1;            /* 0..8 */
+    k = (tgi_clz32_nz(u) - 15) >> 1;                /* 0..8: 17 - bit length, u > 0 */
     uk = u << 2 * k;                                 /* [2^15, 2^17) */
     c = unit_sqrt_line[(uk >> 9) - 64];
     a = c[0] + c[1] * (uk & 511u);                   /* 256 sqrt(uk) in Q14, < 2^31 */

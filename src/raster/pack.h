@@ -285,7 +285,7 @@ static TGI_OCT_INLINE tg_vec3 tgi_oct_unit_inline(tgi_oct_dir d)
          * 2^bits - 1 the encoder never writes, bits <= 15); x30 in [2^30, 2^32) */
         uint32_t mx = (uint32_t)(x < 0 ? -x : x), my = (uint32_t)(y < 0 ? -y : y), mz = (uint32_t)(z < 0 ? -z : z);
         uint32_t len2 = mx * mx + my * my + mz * mz;
-        int b = tgi_bit_length64(len2), k = (32 - b) >> 1, shift = 29 - k;
+        int k = tgi_clz32_nz(len2) >> 1, shift = 29 - k;   /* (32 - bit length) / 2, len2 > 0 */
         uint64_t r = tgi_rsqrt_q30_fast((uint64_t)len2 << (2 * k));
         /* component c / |.| in Q16.16: |c| r 2^-shift, truncated toward 0 (odd in c) */
         n.x = tgi_oct_signed((mx * r) >> shift, x);
