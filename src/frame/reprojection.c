@@ -53,9 +53,36 @@ void tgi_pass_keep_history(tg_frame *f, int y0, int y1)
     tgi_gview g = f->full;
     tgi_prev_geometry h = f->prev_geometry;
     int x, y, w = f->width;
+#if TGI_REUSE_NORMAL
+    /* tgi_prev_keep's word with its normal's code kept from the pixel
+     * before whose stored normal code (tgi_gv_normal_word) is the same:
+     * equal codes decode to equal normals, which pack to equal codes (the
+     * same words; a plane's pixels share their normal).  UINT64_MAX: none
+     * yet, which no code is; sky takes +z as tgi_prev_keep, unmemoised. */
+    uint64_t code_before = UINT64_MAX;
+    uint32_t oct_before = 0;
+    const uint32_t sky = tgi_oct_pack(tg_v3(0, 0, TG_ONE), 8);
+    for (y = y0; y < y1; y++) {
+        size_t j = (size_t)y * (size_t)w;
+        for (x = 0; x < w; x++, j++) {
+            size_t i = tgi_gv_index(&g, x, y);
+            const uint32_t d = g.store.depth[i];
+            if (d == 0) {   /* sky (tgi_gv_is_sky): depth 0 */
+                h.dn[j] = sky;
+                continue;
+            }
+            if (tgi_gv_normal_word(&g, i) != code_before) {
+                code_before = tgi_gv_normal_word(&g, i);
+                oct_before = tgi_oct_pack(tgi_gv_normal(&g, i), 8);
+            }
+            h.dn[j] = (((d + 0x8000u) >> 16) << 16) | oct_before;
+        }
+    }
+#else
     for (y = y0; y < y1; y++) {
         size_t j = (size_t)y * (size_t)w;
         for (x = 0; x < w; x++, j++) tgi_prev_keep(&h, j, &g, tgi_gv_index(&g, x, y));
     }
+#endif
 }
 #endif /* !TG_NO_TEMPORAL */
