@@ -21,7 +21,8 @@ void tgi_temporal_defaults(tgi_temporal_params *p)
  * (locals: no store through the result planes can change them, so their
  * fields stay in registers along the row). */
 static int history_at(const tgi_temporal_params *p, const tgi_gview *g, const tgi_prev_geometry *h,
-                      const tgi_motion_pair *cams, int fx, int fy, tg_real depth, tg_vec3 n, size_t *s)
+                      const tgi_motion_pair *cams, int fx, int fy, tg_real depth, tg_vec3 n, size_t *s,
+                      tgi_normal_memo *pm)
 {
     const tgi_view *view = cams->cur;
     int px, py, sx, sy;
@@ -37,7 +38,18 @@ static int history_at(const tgi_temporal_params *p, const tgi_gview *g, const tg
     full = (size_t)(sy * g->step + g->offset_y) * (size_t)view->width + (size_t)(sx * g->step + g->offset_x);
     hz = tgi_prev_depth(h, full);
     if (!(hz > 0 && tg_abs(tg_sub(hz, z)) <= tg_mul(p->history_depth_tolerance, hz))) return 0;
+#if TGI_REUSE_NORMAL
+    /* last frame's normal: the one decoded before when its octahedral code
+     * (the word's low 16 bits, all tgi_prev_normal decodes) is the same */
+    if ((h->dn[full] & 0xFFFFu) != pm->code) {
+        pm->code = h->dn[full] & 0xFFFFu;
+        pm->n = tgi_prev_normal(h, full);
+    }
+    return tgi_v3_dot(pm->n, n) >= p->history_normal_cos;
+#else
+    (void)pm;
     return tgi_v3_dot(tgi_prev_normal(h, full), n) >= p->history_normal_cos;
+#endif
 }
 
 /* tg_lerp(a, b, t): in Q16.16 for t within [0, 1] and |b - a| within
@@ -77,9 +89,10 @@ void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_
     const tgi_gresult *r = &rl, *prev = &prevl;
     tg_real alpha;
     int x, y, has_bent;
-    tgi_normal_memo nm;   /* the normal decoded last (raster/gview.h) */
+    tgi_normal_memo nm, pm;   /* the normal decoded last (raster/gview.h), and last frame's (history_at) */
     if (reset || !prev_view) return;
     tgi_normal_memo_start(&nm);
+    tgi_normal_memo_start(&pm);
     pl = *params; gl = *view_in; rl = *r_in; prevl = *prev_in; hl = *prev_geometry;
     has_bent = tgi_gr_has_bent(r);
     alpha = p->alpha;
@@ -95,7 +108,7 @@ void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_
             tgi_gr_value v, h;
             if (tgi_gv_is_sky(g, i)) continue;
             const tg_vec3 n = tgi_gv_normal_memo(g, &nm, i);
-            if (!history_at(p, g, &hl, &cams, x * g->step + g->offset_x, fy, tgi_gv_depth(g, i), n, &s))
+            if (!history_at(p, g, &hl, &cams, x * g->step + g->offset_x, fy, tgi_gv_depth(g, i), n, &s, &pm))
                 continue;
             v = tgi_gr_get(r, i);
             h = tgi_gr_get(prev, s);
