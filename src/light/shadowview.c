@@ -88,13 +88,15 @@ static void hexa_frustum(hexa *x, tg_vec3 o, tg_vec3 r, tg_vec3 u, tg_vec3 f, tg
 static int clip(tg_vec3 *p, int n, const halfspace *h, int count, tg_real margin)
 {
     tg_vec3 tmp[POLY_MAX];
+    tg_real dist[POLY_MAX];   /* each vertex's signed distance, once: an edge's end is the next one's start */
     int k, i;
     for (k = 0; k < count && n > 0; k++) {
         int m = 0;
+        for (i = 0; i < n; i++) dist[i] = tg_add(tg_add(tgi_v3_dot(h[k].n, p[i]), h[k].d), margin);
         for (i = 0; i < n; i++) {
-            tg_vec3 a = p[i], b = p[i + 1 == n ? 0 : i + 1];
-            tg_real da = tg_add(tg_add(tgi_v3_dot(h[k].n, a), h[k].d), margin);
-            tg_real db = tg_add(tg_add(tgi_v3_dot(h[k].n, b), h[k].d), margin);
+            const int j = i + 1 == n ? 0 : i + 1;
+            tg_vec3 a = p[i], b = p[j];
+            tg_real da = dist[i], db = dist[j];
             if (da >= 0 && m < POLY_MAX) tmp[m++] = a;
             if ((da >= 0) != (db >= 0) && m < POLY_MAX)
                 tmp[m++] = tgi_v3_lerp(a, b, tg_clamp(tg_div(da, tg_sub(da, db)), 0, TG_ONE));
