@@ -149,7 +149,7 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
         v[0] = v[1] = v[2] = v[3] = v[4] = v[5] = v[6] = 0;
         v[7] = TG_FIXED ? 0 : TG_ONE;
 #if NORMAL_WORDS
-        k->nkey[j] = UINT64_MAX;
+        k->nkey[j] = UINT32_MAX;
 #elif TGI_Q16_WIDE
         k->nkey[j] = normal_key(tg_v3(0, 0, 0), UINT64_MAX);
 #endif

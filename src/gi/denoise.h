@@ -63,7 +63,7 @@ static inline void tgi_gr_put_kept(const tgi_gresult *r, size_t i, const tgi_gr_
  * values (TGI_DENOISE_TAPS: the band's entries and 3 more, which stay 0,
  * so that a pixel's entries and the 3 after them are 28, a multiple of 4). */
 #ifndef TGI_DENOISE_BAND
-/* 4 rows: the walk is 2080 bytes of stack in float, 2424 in Q16.16 (its
+/* 4 rows: the walk is 2080 bytes of stack in float, 2252 in Q16.16 (its
  * normals' words), 1360 with 1 row (a build for size, TG_OUTLINE_HELPERS,
  * keeps that, as before: README "Porting"); 8 rows would save half a
  * decode more a pixel for 1 KB more. */
@@ -75,7 +75,11 @@ typedef struct tgi_denoise_walk {
     int base, band, lo, next;       /* the band's first row; its columns [lo, next) are decoded */
     tg_real z[TGI_DENOISE_TAPS];    /* view depth; 0 on sky, which no centre's depth test passes */
     tg_real nx[TGI_DENOISE_TAPS], ny[TGI_DENOISE_TAPS], nz[TGI_DENOISE_TAPS];   /* G-buffer normal (0 on sky) */
-#if TGI_Q16_WIDE
+#if TGI_Q16_WIDE && !TG_WIDE_STORAGE
+    /* the normal's stored code (tgi_gv_normal_word, below 2^22); UINT32_MAX,
+     * which no code is, on sky.  4 bytes as z's: one base register for both */
+    uint32_t nkey[TGI_DENOISE_TAPS];
+#elif TGI_Q16_WIDE
     uint64_t nkey[TGI_DENOISE_TAPS];    /* the normal as one word (denoise.c normal_key) */
 #endif
     /* the kept results as tgi_gr_get_kept reads them; an 8th value makes an
