@@ -475,6 +475,14 @@ TEST(rsqrt_whole_domain)
     sweep_raw(&s, tg_rsqrt, ref_rsqrt, 1 << 20, INT32_MAX, 2039, 0);
     check_stat(&s, 0.501, 0, 0);
     CHECK(tg_rsqrt(1) == (tg_real)(1 << 24), "rsqrt(2^-16) = 256 exactly");
+    {   /* at most 1 from 1 on (hbil.c pixel_setup's unsaturated scales; every x was tried) */
+        int64_t x;
+        long over = 0;
+        for (x = TG_ONE; x <= INT32_MAX; x += x < 2 * TG_ONE ? 1 : 4093)
+            if (tg_rsqrt((tg_real)x) > TG_ONE) over++;
+        CHECK(tg_rsqrt(TG_ONE) == TG_ONE && tg_rsqrt(TG_REAL_MAX) <= TG_ONE && over == 0,
+              "rsqrt above 1 for %ld x >= 1", over);
+    }
 #else
     sweep_bits(&s, tg_rsqrt, ref_rsqrt, from_bits(1), FLT_MAX, 1021, 0, 0);
     check_stat(&s, 0, 2.5e-7, 0);

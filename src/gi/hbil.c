@@ -475,9 +475,18 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
     px->kx = k.x;
     px->ky = k.y;
 #endif
-    px->wo = tgi_v3_scale(k, tg_neg(tg_rsqrt(tgi_v3_dot(k, k))));          /* |k| >= 1 */
+#if TGI_Q16_WIDE
+    /* the scales are tg_rsqrt of values >= 1, at most 1 (65536 raw; every
+     * x >= 65536 tried): |k_i r| <= |k_i| <= TG_REAL_MAX rounds inside the
+     * range, so tg_mul never saturates there: small_v3_scale, its values */
+#define HBIL_UNIT_SCALE small_v3_scale
+#else
+#define HBIL_UNIT_SCALE tgi_v3_scale
+#endif
+    px->wo = HBIL_UNIT_SCALE(k, tg_neg(tg_rsqrt(tgi_v3_dot(k, k))));          /* |k| >= 1 */
     /* w_x = Y x w_o / |..| = (-1, 0, k_x) / sqrt(1 + k_x^2), w_y = w_o x w_x (sec. 1.1) */
-    px->wx = tgi_v3_scale(tg_v3(tg_neg(TG_ONE), 0, k.x), tg_rsqrt(tg_add(TG_ONE, tg_mul(k.x, k.x))));
+    px->wx = HBIL_UNIT_SCALE(tg_v3(tg_neg(TG_ONE), 0, k.x), tg_rsqrt(tg_add(TG_ONE, tg_mul(k.x, k.x))));
+#undef HBIL_UNIT_SCALE
     px->wy = tgi_v3_cross(px->wo, px->wx);
     nw = tgi_gv_normal(g, i);
 #if !TG_OUTLINE_HELPERS   /* compiling for size, pixel_run reads it again */
