@@ -886,16 +886,28 @@ static HBIL_GATHER_INLINE void gather_rise(const hbil_ctx *c, const hbil_slice *
 
 /* Whole-pixel steps along the major axis: `samples` steps of m pixels
  * reach the extent; returns m and sets *n, the count of steps.  The
- * divisors are counts >= 1: the quotients fit (tgi_div_pos). */
+ * divisors are counts >= 1: the quotients fit (tgi_div_pos).  The extent
+ * is in [0, 2^14] (the reach, at most HBIL_MAX_RADIUS_UNITS, times |u| <=
+ * 1), samples <= TG_MAX_SAMPLES: the rounded quotient's floor m has m
+ * samples <= extent + samples 2^-17 < 2^14 + 1, and m <= 2^14 + 1 after
+ * the increment, so small_from_int gives tg_from_int's values (it would
+ * not saturate) without its tests (compiling for size tg_from_int as
+ * before: 12 bytes shorter in the AO-only program). */
+#if TG_OUTLINE_HELPERS
+#define STEPS_FROM_INT tg_from_int
+#else
+#define STEPS_FROM_INT small_from_int
+#endif
 static int march_steps(const hbil_ctx *c, tg_real extent, int *n)
 {
-    int m = tg_to_int(tgi_div_pos(extent, tg_from_int(c->samples)));
-    if (tg_from_int(m * c->samples) < extent) m++;
+    int m = tg_to_int(tgi_div_pos(extent, STEPS_FROM_INT(c->samples)));
+    if (STEPS_FROM_INT(m * c->samples) < extent) m++;
     if (m < 1) m = 1;
-    *n = tg_to_int(tgi_div_pos(extent, tg_from_int(m)));
+    *n = tg_to_int(tgi_div_pos(extent, STEPS_FROM_INT(m)));
     if (*n > c->samples) *n = c->samples;
     return m;
 }
+#undef STEPS_FROM_INT
 
 /* Floor of a finite value well inside the int range (the march's minor
  * coordinate): tg_to_int without its NaN and saturation tests; in Q16.16
