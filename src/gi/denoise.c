@@ -131,6 +131,14 @@ static inline uint64_t normal_key(tg_vec3 n, uint64_t other)
  * which no code is. */
 typedef struct tap_above { uint64_t normal; uint32_t bent; } tap_above;
 
+/* Value c of entry j of the walk (denoise.h: planes in Q16.16 on 64-bit
+ * cores, else an entry's values together). */
+#if TGI_Q16_WIDE
+#define VAL(k, j, c) ((k)->v[c][j])
+#else
+#define VAL(k, j, c) ((k)->v[j][c])
+#endif
+
 /* Pixel (xx, yy) of g decoded into entry j of the walk; has_bent, has_near:
  * what tgi_gr_get_kept reads of r.  above: the codes of the tap above it,
  * set to this tap's for the tap below (TGI_REUSE_NORMAL). */
@@ -138,7 +146,6 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
                      int xx, int yy, tap_above *above)
 {
     size_t i = tgi_gv_index(g, xx, yy);
-    tg_real *v = k->v[j];
     tg_vec3 n, b, e;
 #if TGI_REUSE_NORMAL
     uint32_t code;
@@ -146,8 +153,10 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
     if (tgi_gv_is_sky(g, i)) {
         above->normal = UINT64_MAX; above->bent = UINT32_MAX;
         k->z[j] = k->nx[j] = k->ny[j] = k->nz[j] = 0;
-        v[0] = v[1] = v[2] = v[3] = v[4] = v[5] = v[6] = 0;
-        v[7] = TG_FIXED ? 0 : TG_ONE;
+        VAL(k, j, 0) = VAL(k, j, 1) = VAL(k, j, 2) = VAL(k, j, 3) = VAL(k, j, 4) = VAL(k, j, 5) = VAL(k, j, 6) = 0;
+#if !TGI_Q16_WIDE
+        VAL(k, j, 7) = TG_FIXED ? 0 : TG_ONE;
+#endif
 #if NORMAL_WORDS
         k->nkey[j] = UINT32_MAX;
 #elif TGI_Q16_WIDE
@@ -172,7 +181,7 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
     b = tg_v3(0, 0, 0);
     if (has_bent) {
         uint32_t bent = tgi_gr_bent_word(r, i);
-        b = above->bent == bent ? tg_v3(k->v[j - 5][1], k->v[j - 5][2], k->v[j - 5][3]) : tgi_gr_bent(r, i);
+        b = above->bent == bent ? tg_v3(VAL(k, j - 5, 1), VAL(k, j - 5, 2), VAL(k, j - 5, 3)) : tgi_gr_bent(r, i);
         above->bent = bent;
     }
 #else
@@ -181,10 +190,12 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
     e = has_near ? tgi_gr_near(r, i) : tg_v3(0, 0, 0);
     k->z[j] = tgi_gv_depth(g, i);
     k->nx[j] = n.x; k->ny[j] = n.y; k->nz[j] = n.z;
-    v[0] = r->ao ? tgi_gr_ao(r, i) : TG_ONE;
-    v[1] = b.x; v[2] = b.y; v[3] = b.z;
-    v[4] = e.x; v[5] = e.y; v[6] = e.z;
-    v[7] = TG_FIXED ? 0 : TG_ONE;
+    VAL(k, j, 0) = r->ao ? tgi_gr_ao(r, i) : TG_ONE;
+    VAL(k, j, 1) = b.x; VAL(k, j, 2) = b.y; VAL(k, j, 3) = b.z;
+    VAL(k, j, 4) = e.x; VAL(k, j, 5) = e.y; VAL(k, j, 6) = e.z;
+#if !TGI_Q16_WIDE
+    VAL(k, j, 7) = TG_FIXED ? 0 : TG_ONE;
+#endif
 }
 
 #if TGI_Q16_WIDE
@@ -224,7 +235,6 @@ static DENOISE_INLINE void weigh_entry(const tgi_denoise_walk *k, int e, tg_real
     tg_real dz = tg_abs(k->z[e] - zi);   /* depths are never negative: no overflow */
     int64_t omt, wj;
     uint64_t d;
-    const tg_real *tv;
     if (dz >= dz_lim) return;   /* dz >= ztol, or 1 - dz / ztol <= 0 (dz_lim) */
     omt = TG_ONE - (int64_t)mul_pos((uint64_t)dz, (uint64_t)inv_ztol);   /* 1 - dz / ztol, > 0 */
     /* the normal weight: the centre's own for a normal equal to it (the
@@ -232,10 +242,9 @@ static DENOISE_INLINE void weigh_entry(const tgi_denoise_walk *k, int e, tg_real
      * (normals apart) adds 0 */
     d = k->nkey[e] == key ? same : normal_d8(ni, tg_v3(k->nx[e], k->ny[e], k->nz[e]));
     wj = (int64_t)mul_pos(mul_pos((uint64_t)sp, (uint64_t)omt), d);
-    tv = k->v[e];
-    s[0] += tv[0] * wj; s[7] += wj;   /* the weights' sum */
-    if (bent) { s[1] += tv[1] * wj; s[2] += tv[2] * wj; s[3] += tv[3] * wj; }
-    if (near) { s[4] += tv[4] * wj; s[5] += tv[5] * wj; s[6] += tv[6] * wj; }
+    s[0] += VAL(k, e, 0) * wj; s[7] += wj;   /* the weights' sum */
+    if (bent) { s[1] += VAL(k, e, 1) * wj; s[2] += VAL(k, e, 2) * wj; s[3] += VAL(k, e, 3) * wj; }
+    if (near) { s[4] += VAL(k, e, 4) * wj; s[5] += VAL(k, e, 5) * wj; s[6] += VAL(k, e, 6) * wj; }
 }
 
 /* bent, near (constants in each copy): 0 when the results have no bent

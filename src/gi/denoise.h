@@ -60,12 +60,13 @@ static inline void tgi_gr_put_kept(const tgi_gresult *r, size_t i, const tgi_gr_
  * planes below, one plane per value, so that a pixel's 25 taps are
  * contiguous entries (from (y - band) * 5: denoise.c), the weights of all
  * taps one loop over contiguous values and a tap's sums read contiguous
- * values (TGI_DENOISE_TAPS: the band's entries and 3 more, which stay 0,
+ * values in float (in Q16.16 on 64-bit cores the results too a plane per
+ * value: v below) (TGI_DENOISE_TAPS: the band's entries and 3 more, which stay 0,
  * so that a pixel's entries and the 3 after them are 28, a multiple of 4). */
 #ifndef TGI_DENOISE_BAND
-/* 4 rows: the walk is 2080 bytes of stack in float, 2252 in Q16.16 (its
- * normals' words), 1360 with 1 row (a build for size, TG_OUTLINE_HELPERS,
- * keeps that, as before: README "Porting"); 8 rows would save half a
+/* 4 rows: the walk is 2080 bytes of stack in float and in Q16.16 (its
+ * normals' words, and 7 values an entry, not 8), 1360 with 1 row (a build
+ * for size, TG_OUTLINE_HELPERS, keeps that, as before: README "Porting"); 8 rows would save half a
  * decode more a pixel for 1 KB more. */
 #define TGI_DENOISE_BAND (TG_OUTLINE_HELPERS ? 1 : 4)
 #endif
@@ -82,10 +83,17 @@ typedef struct tgi_denoise_walk {
 #elif TGI_Q16_WIDE
     uint64_t nkey[TGI_DENOISE_TAPS];    /* the normal as one word (denoise.c normal_key) */
 #endif
+#if TGI_Q16_WIDE
+    /* the kept results as tgi_gr_get_kept reads them, a plane per value
+     * (value c of entry j at v[c][j]): indexed as z is, one base register
+     * for all the planes a tap reads */
+    tg_real v[TGI_DENOISE_VALUES][TGI_DENOISE_TAPS];
+#else
     /* the kept results as tgi_gr_get_kept reads them; an 8th value makes an
      * entry two of the float build's vectors of 4: 1 there (a tap's weight
      * times it is its weight, the weights' sum), unused (0) in Q16.16 */
     tg_real v[TGI_DENOISE_TAPS][TGI_DENOISE_VALUES + 1];
+#endif
 } tgi_denoise_walk;
 
 /* The first row of the band of row y (bands from row base), and the end
