@@ -983,6 +983,11 @@ TEST(integer_helpers)
         if (tgi_bit_length64(p) != k + 1 || tgi_bit_length64(p - 1) != k || tgi_bit_length64(p | 1) != k + 1) bad++;
     }
     CHECK(bad == 0, "%d wrong bit lengths", bad);
+    for (k = 0; k < 32; k++) {   /* tgi_clz32_nz: 32 - the bit length, at both ends of each length */
+        uint32_t p = (uint32_t)1 << k, q = p | (p - 1);
+        if (tgi_clz32_nz(p) != 31 - k || tgi_clz32_nz(q) != 31 - k || tgi_clz32_nz(p | 1) != 31 - k) bad++;
+    }
+    CHECK(bad == 0, "%d wrong leading-zero counts", bad);
     CHECK(tgi_isqrt_round64(0) == 0 && tgi_isqrt_round64(2) == 1 && tgi_isqrt_round64(3) == 2 &&
           tgi_isqrt_round64(12) == 3 && tgi_isqrt_round64(13) == 4, "rounded isqrt");
 #if TG_FIXED

@@ -29,10 +29,12 @@ static inline int tgi_bit_length64(uint64_t v)
 }
 
 /* 32 - tgi_bit_length64(v) for v != 0 (the leading zeros of 32 bits),
- * without the test for 0 that gcc keeps in tgi_bit_length64. */
+ * without the test for 0 that gcc keeps in tgi_bit_length64.
+ * __builtin_clz counts in an unsigned int: only where that has 32 bits
+ * (a 16-bit int would truncate v; a 64-bit one would count 32 more). */
 static inline int tgi_clz32_nz(uint32_t v)
 {
-#if defined(__GNUC__)
+#if defined(__GNUC__) && defined(__SIZEOF_INT__) && __SIZEOF_INT__ == 4
     return __builtin_clz(v);
 #else
     return 32 - tgi_bit_length64(v);
