@@ -263,6 +263,10 @@ static void near_plane_start(near_plane *pl, int reach)
  * z (n . r) - n . p (near_horizon_cos).  Q16.16 with `wide` (a constant in
  * each copy of the march: pl->wide, NEAR_WIDE): near_plane_start's
  * compare, the same answer. */
+static inline int near_under_plane_r(const near_plane *pl, tg_real z, tg_real fox, tg_real foy)
+{
+    return tg_sub(tg_mul(z, tg_add(pl->nr, tg_sub(tg_mul(fox, pl->nax), tg_mul(foy, pl->nay)))), pl->np) <= pl->above;
+}
 static inline int near_under_plane(const near_plane *pl, tg_real z, int ox, int oy, const int wide)
 {
 #if TG_FIXED
@@ -270,8 +274,38 @@ static inline int near_under_plane(const near_plane *pl, tg_real z, int ox, int 
 #else
     (void)wide;
 #endif
-    return tg_sub(tg_mul(z, tg_add(pl->nr, tg_sub(tg_mul(tg_from_int(ox), pl->nax), tg_mul(tg_from_int(oy), pl->nay)))),
-                  pl->np) <= pl->above;
+    return near_under_plane_r(pl, z, tg_from_int(ox), tg_from_int(oy));
+}
+
+/* A march offset o (tgi_upsample_start's off[][][][]) as a tg_real:
+ * tg_from_int(o), in float read from a table (a load, not a sign
+ * extension's conversion with its register clear), the same value: each
+ * integer up to 16 is exactly a float.  |o| <= TG_QUARTER_NEAR_REACH: o =
+ * floor((128 + t s) / 256) with |s| <= 256 is within [-t, t] (floor(t +
+ * 1/2) = t, floor(1/2 - t) = -t), t = near_t[n] <= TG_QUARTER_NEAR_REACH
+ * (TGI_NEAR_STEPS_OF). */
+#define NEAR_OFF_TABLE (!TG_FIXED && !TG_OUTLINE_HELPERS && TG_QUARTER_NEAR_REACH <= 16)
+#if NEAR_OFF_TABLE
+static const float near_off_float[33] = { -16, -15, -14, -13, -12, -11, -10, -9, -8, -7, -6, -5, -4, -3, -2, -1, 0,
+                                          1,   2,   3,   4,   5,   6,   7,   8,  9,  10, 11, 12, 13, 14, 15, 16 };
+#endif
+static inline tg_real near_off_real(int o)
+{
+#if NEAR_OFF_TABLE
+    return (near_off_float + 16)[o];
+#else
+    return tg_from_int(o);
+#endif
+}
+/* near_under_plane of a march offset off (near_off_real). */
+static inline int near_under_off(const near_plane *pl, tg_real z, const signed char off[2], const int wide)
+{
+#if TG_FIXED
+    if (wide) return near_under_plane(pl, z, off[0], off[1], 1);
+#else
+    (void)wide;
+#endif
+    return near_under_plane_r(pl, z, near_off_real(off[0]), near_off_real(off[1]));
 }
 #if TG_FIXED
 #define NEAR_WIDE(q) ((q)->pl.wide)
@@ -304,7 +338,7 @@ int tgi_near_under_plane(tg_real nr, tg_real nax, tg_real nay, tg_real np, tg_re
  * plane); a twosided sheet (zb = z) of unknown thickness is not. */
 static inline int near_solid_below(const near_plane *pl, tg_real zb, tg_real z, const signed char off[2], const int wide)
 {
-    return !(zb >= z) || near_under_plane(pl, zb, off[0], off[1], wide);
+    return !(zb >= z) || near_under_off(pl, zb, off, wide);
 }
 #endif
 
@@ -349,7 +383,7 @@ static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q
             j = inside ? i0 + (size_t)((ptrdiff_t)off[n][1] * g->row_stride + (ptrdiff_t)off[n][0] * g->pixel_stride)
                        : tgi_gv_index(g, sx, sy);
 #endif
-            if (!tgi_gv_is_sky(g, j) && !near_under_plane(&pl, tgi_gv_depth(g, j), off[n][0], off[n][1], wide)) break;
+            if (!tgi_gv_is_sky(g, j) && !near_under_off(&pl, tgi_gv_depth(g, j), off[n], wide)) break;
         }
         if (n >= steps) break;
         z = tgi_gv_depth(g, j);
@@ -359,8 +393,8 @@ static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q
             continue;
         }
 #endif
-        fdx = tg_from_int(off[n][0]);
-        fdy = tg_from_int(off[n][1]);
+        fdx = near_off_real(off[n][0]);
+        fdy = near_off_real(off[n][1]);
         n++;
         h = tg_v3(tg_sub(tg_mul(z, tg_add(q->kx, tg_mul(fdx, u->ax))), q->pv.x),
                   tg_sub(tg_mul(z, tg_sub(q->ky, tg_mul(fdy, u->ay))), q->pv.y), tg_sub(z, q->pv.z));
