@@ -68,14 +68,14 @@ void tgi_pass_keep_history(tg_frame *f, int y0, int y1)
             size_t i = tgi_gv_index(&g, x, y);
             const uint32_t d = g.store.depth[i];
             if (d == 0) {   /* sky (tgi_gv_is_sky): depth 0 */
-                h.dn[j] = sky;
+                h.dn[j] = tgi_prev_word(0, sky);
                 continue;
             }
             if (tgi_gv_normal_word(&g, i) != code_before) {
                 code_before = tgi_gv_normal_word(&g, i);
                 oct_before = tgi_oct_pack(tgi_gv_normal(&g, i), 8);
             }
-            h.dn[j] = (((d + 0x8000u) >> 16) << 16) | oct_before;
+            h.dn[j] = tgi_prev_word(d, oct_before);
         }
     }
 #else

@@ -421,6 +421,15 @@ typedef struct tgi_prev_geometry {
 #endif
 } tgi_prev_geometry;
 
+#if !TG_WIDE_STORAGE
+/* The word of a pixel of stored depth bits d (0: sky) and octahedral 2x8
+ * normal code oct. */
+static inline uint32_t tgi_prev_word(uint32_t d, uint32_t oct)
+{
+    const uint32_t top = d ? (d + 0x8000u) >> 16 : 0;
+    return (top << 16) | oct;
+}
+#endif
 /* Keep pixel i of view g as pixel j of last frame's geometry h. */
 static inline void tgi_prev_keep(const tgi_prev_geometry *h, size_t j, const tgi_gview *g, size_t i)
 {
@@ -429,8 +438,7 @@ static inline void tgi_prev_keep(const tgi_prev_geometry *h, size_t j, const tgi
     h->depth[j] = tgi_gv_depth(g, i);
     h->nx[j] = n.x; h->ny[j] = n.y; h->nz[j] = n.z;
 #else
-    uint32_t d = g->store.depth[i], top = d ? (d + 0x8000u) >> 16 : 0;
-    h->dn[j] = (top << 16) | tgi_oct_pack(n, 8);
+    h->dn[j] = tgi_prev_word(g->store.depth[i], tgi_oct_pack(n, 8));
 #endif
 }
 #if TG_WIDE_STORAGE
