@@ -7,15 +7,6 @@
 #include "reproject.h"
 #include "../raster/motion.h"
 
-/* |.| for a comparison: in float by the sign bit (an and in the float
- * registers, no libm; not tg_abs's compare and select); the two differ only
- * at -0 (+0 here), which compares equal to +0: the same test. */
-#if !TG_FIXED && defined(__GNUC__)
-#define cmp_abs __builtin_fabsf
-#else
-#define cmp_abs tg_abs
-#endif
-
 #if !TG_NO_COLOR /* the whole file is left out with TG_NO_COLOR=1 (tinygi.h "FEATURE SWITCHES") */
 
 /* Last frame's pixel holding this surface: 1 and *s when its depth agrees.
@@ -34,7 +25,7 @@ static int history_pixel(const tgi_reproject_io *io, const tgi_motion_pair *cams
     if (sx < 0 || sy < 0 || sx >= g->width || sy >= g->height) return 0;
     *s = (size_t)sy * (size_t)g->width + (size_t)sx;
     hz = tgi_prev_depth(io->prev_geometry, *s);
-    return hz > 0 && cmp_abs(tg_sub(z, hz)) <= tg_mul(tol, hz);   /* the z-test of HBIL sec. 3.2 */
+    return hz > 0 && tgi_abs_cmp(tg_sub(z, hz)) <= tg_mul(tol, hz);   /* the z-test of HBIL sec. 3.2 */
 }
 
 void tgi_reproject_gather_rows(const tgi_reproject_io *io_in, int y0, int y1)

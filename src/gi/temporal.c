@@ -8,15 +8,6 @@
 #include "../raster/motion.h"
 #include "../core/unit.h"
 
-/* |.| for a comparison: in float by the sign bit (an and in the float
- * registers, no libm; not tg_abs's compare and select); the two differ only
- * at -0 (+0 here), which compares equal to +0: the same test. */
-#if !TG_FIXED && defined(__GNUC__)
-#define cmp_abs __builtin_fabsf
-#else
-#define cmp_abs tg_abs
-#endif
-
 void tgi_temporal_defaults(tgi_temporal_params *p)
 {
     p->alpha = TG_R(0.2f);
@@ -46,7 +37,7 @@ static int history_at(const tgi_temporal_params *p, const tgi_gview *g, const tg
     *s = tgi_gv_index(g, sx, sy);
     full = (size_t)(sy * g->step + g->offset_y) * (size_t)view->width + (size_t)(sx * g->step + g->offset_x);
     hz = tgi_prev_depth(h, full);
-    if (!(hz > 0 && cmp_abs(tg_sub(hz, z)) <= tg_mul(p->history_depth_tolerance, hz))) return 0;
+    if (!(hz > 0 && tgi_abs_cmp(tg_sub(hz, z)) <= tg_mul(p->history_depth_tolerance, hz))) return 0;
 #if TGI_REUSE_NORMAL
     /* last frame's normal: the one decoded before when its octahedral code
      * (the word's low 16 bits, all tgi_prev_normal decodes) is the same */

@@ -389,17 +389,9 @@ void tgi_shadow_map_render(tgi_shadow_map *sm, const tg_vec3 *pos, int tri_count
 #define LOOKUP_INLINE inline
 #endif
 
-/* |.| for the comparisons below: in float by the sign bit (an and in the
- * float registers, no libm; not tg_abs's compare and select); the two
- * differ only at -0 (+0 here), which compares equal to +0: the same face. */
-#if !TG_FIXED && defined(__GNUC__)
-#define face_abs __builtin_fabsf
-#else
-#define face_abs tg_abs
-#endif
 static LOOKUP_INLINE int cube_face(tg_vec3 d)
 {
-    tg_real ax = face_abs(d.x), ay = face_abs(d.y), az = face_abs(d.z);
+    tg_real ax = tgi_abs_cmp(d.x), ay = tgi_abs_cmp(d.y), az = tgi_abs_cmp(d.z);
     if (ax >= ay && ax >= az) return d.x >= 0 ? 0 : 1;
     if (ay >= az) return d.y >= 0 ? 2 : 3;
     return d.z >= 0 ? 4 : 5;
