@@ -41,19 +41,6 @@ static inline int tgi_clz32_nz(uint32_t v)
 #endif
 }
 
-/* |v| where only comparisons read it: in float by the sign bit (an and in
- * the float registers, no libm; not tg_abs's compare and select), in Q16.16
- * and without GCC's builtins tg_abs.  The forms differ only at -0 (+0
- * here), which compares equal to +0: every comparison answers the same. */
-static inline tg_real tgi_abs_cmp(tg_real v)
-{
-#if !TG_FIXED && defined(__GNUC__)
-    return __builtin_fabsf(v);
-#else
-    return tg_abs(v);
-#endif
-}
-
 /* sqrt of a 64-bit integer, floor; used by fixed-point vector lengths. */
 uint32_t tgi_isqrt64(uint64_t v);
 /* sqrt of a 64-bit integer, rounded to nearest. */

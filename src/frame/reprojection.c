@@ -57,11 +57,12 @@ void tgi_pass_keep_history(tg_frame *f, int y0, int y1)
     /* tgi_prev_keep's word with its normal's code kept from the pixel
      * before whose stored normal code (tgi_gv_normal_word) is the same:
      * equal codes decode to equal normals, which pack to equal codes (the
-     * same words; a plane's pixels share their normal).  UINT64_MAX: none
-     * yet, which no code is; sky takes +z as tgi_prev_keep, unmemoised. */
-    uint64_t code_before = UINT64_MAX;
+     * same words; a plane's pixels share their normal; the memo starts with
+     * no code); sky takes +z as tgi_prev_keep, unmemoised. */
+    tgi_normal_memo m;   /* its code only: the packed code is what repeats */
     uint32_t oct_before = 0;
     const uint32_t sky = tgi_oct_pack(tg_v3(0, 0, TG_ONE), 8);
+    tgi_normal_memo_start(&m);
     for (y = y0; y < y1; y++) {
         size_t j = (size_t)y * (size_t)w;
         for (x = 0; x < w; x++, j++) {
@@ -71,10 +72,7 @@ void tgi_pass_keep_history(tg_frame *f, int y0, int y1)
                 h.dn[j] = tgi_prev_word(0, sky);
                 continue;
             }
-            if (tgi_gv_normal_word(&g, i) != code_before) {
-                code_before = tgi_gv_normal_word(&g, i);
-                oct_before = tgi_oct_pack(tgi_gv_normal(&g, i), 8);
-            }
+            if (!tgi_gv_normal_repeats(&g, &m, i)) oct_before = tgi_oct_pack(tgi_gv_normal(&g, i), 8);
             h.dn[j] = tgi_prev_word(d, oct_before);
         }
     }

@@ -63,20 +63,15 @@ static const unsigned char window_order[5][25] = {
  * 2^63 - 2^15, rounded as tgi_shr_round rounds a non-negative product. */
 static inline uint64_t mul_pos(uint64_t a, uint64_t b) { return (a * b + 32768u) >> 16; }
 #else
-/* The weights' factors are in [0, 1] (up to a rounding): their products
- * never saturate, so tgi_wide_mul (core/real.h) gives tg_mul's result. */
-#if TG_FIXED
-#define dn_abs tg_abs
-#else
-/* |.| in float by the sign bit (tgi_abs_bits, raster/pack.h: one and, not
- * tg_abs's compare and select).  The two differ only at -0 (+0 here, -0
+/* |.| as tgi_abs_fast (raster/pack.h: in float by the sign bit, one and,
+ * not tg_abs's compare and select).  The two differ only at -0 (+0 here, -0
  * there), which changes no weight: a depth step of -0 gives min(dz, ztol)
  * = +-0 (or ztol itself, when ztol is 0) and 1 - (+-0) inv_ztol the same
  * value (+-0 times a finite inv_ztol, or NaN times an infinite one, which
  * is rejected: ztol = 0 keeps no tap); in normal_weight a dot of -0 gives
  * (-0 + -0) / 2 = -0 there, +0 here, whose square is +0 either way. */
-#define dn_abs tgi_abs_bits
-#endif
+/* The weights' factors are in [0, 1] (up to a rounding): their products
+ * never saturate, so tgi_wide_mul (core/real.h) gives tg_mul's result. */
 static tg_real weight_mul(tg_real a, tg_real b) { return (tg_real)tgi_wide_mul(a, b); }
 
 /* max(0, n_i . n_j)^8; the clamp as (d + |d|) / 2 (exact in both number
@@ -85,7 +80,7 @@ static tg_real weight_mul(tg_real a, tg_real b) { return (tg_real)tgi_wide_mul(a
  * bounds the weights for the sums' products (tgi_denoise_pixel). */
 static tg_real normal_weight(tg_real d)
 {
-    d = (d + dn_abs(d)) / 2;
+    d = (d + tgi_abs_fast(d)) / 2;
 #if TG_FIXED
     d = tg_min(d, 2 * TG_ONE);
 #endif
@@ -303,7 +298,7 @@ static void tap_weights(const tgi_denoise_walk *k, int o, const tg_real *spatial
     int j;
     for (j = 0; j < PIXEL_TAPS; j++) {
         /* depths are never negative: their difference never saturates */
-        tg_real dz = dn_abs(k->z[o + j] - zi), w;
+        tg_real dz = tgi_abs_fast(k->z[o + j] - zi), w;
         tg_real dzc = tg_min(dz, ztol);   /* = dz where the weight is kept: dz / ztol in [0, 1] */
         tg_real kept = dz < ztol ? 1 : 0;
         w = weight_mul(spatial[j], TG_ONE - weight_mul(dzc, inv_ztol));   /* in [0, 1]: never saturates */

@@ -25,7 +25,7 @@ static int history_pixel(const tgi_reproject_io *io, const tgi_motion_pair *cams
     if (sx < 0 || sy < 0 || sx >= g->width || sy >= g->height) return 0;
     *s = (size_t)sy * (size_t)g->width + (size_t)sx;
     hz = tgi_prev_depth(io->prev_geometry, *s);
-    return hz > 0 && tgi_abs_cmp(tg_sub(z, hz)) <= tg_mul(tol, hz);   /* the z-test of HBIL sec. 3.2 */
+    return hz > 0 && tgi_abs_fast(tg_sub(z, hz)) <= tg_mul(tol, hz);   /* the z-test of HBIL sec. 3.2 */
 }
 
 void tgi_reproject_gather_rows(const tgi_reproject_io *io_in, int y0, int y1)

@@ -37,19 +37,8 @@ static int history_at(const tgi_temporal_params *p, const tgi_gview *g, const tg
     *s = tgi_gv_index(g, sx, sy);
     full = (size_t)(sy * g->step + g->offset_y) * (size_t)view->width + (size_t)(sx * g->step + g->offset_x);
     hz = tgi_prev_depth(h, full);
-    if (!(hz > 0 && tgi_abs_cmp(tg_sub(hz, z)) <= tg_mul(p->history_depth_tolerance, hz))) return 0;
-#if TGI_REUSE_NORMAL
-    /* last frame's normal: the one decoded before when its octahedral code
-     * (the word's low 16 bits, all tgi_prev_normal decodes) is the same */
-    if ((h->dn[full] & 0xFFFFu) != pm->code) {
-        pm->code = h->dn[full] & 0xFFFFu;
-        pm->n = tgi_prev_normal(h, full);
-    }
-    return tgi_v3_dot(pm->n, n) >= p->history_normal_cos;
-#else
-    (void)pm;
-    return tgi_v3_dot(tgi_prev_normal(h, full), n) >= p->history_normal_cos;
-#endif
+    if (!(hz > 0 && tgi_abs_fast(tg_sub(hz, z)) <= tg_mul(p->history_depth_tolerance, hz))) return 0;
+    return tgi_v3_dot(tgi_prev_normal_memo(h, pm, full), n) >= p->history_normal_cos;
 }
 
 /* tg_lerp(a, b, t): in Q16.16 for t within [0, 1] and |b - a| within

@@ -10,6 +10,7 @@
 #include <string.h>
 #include "shadowmap.h"
 #include "../raster/raster.h"
+#include "../raster/pack.h"
 
 
 #if !TG_NO_SHADOW_MAPS /* the whole file is left out with TG_NO_SHADOW_MAPS=1 (tinygi.h "FEATURE SWITCHES") */
@@ -391,7 +392,7 @@ void tgi_shadow_map_render(tgi_shadow_map *sm, const tg_vec3 *pos, int tri_count
 
 static LOOKUP_INLINE int cube_face(tg_vec3 d)
 {
-    tg_real ax = tgi_abs_cmp(d.x), ay = tgi_abs_cmp(d.y), az = tgi_abs_cmp(d.z);
+    tg_real ax = tgi_abs_fast(d.x), ay = tgi_abs_fast(d.y), az = tgi_abs_fast(d.z);
     if (ax >= ay && ax >= az) return d.x >= 0 ? 0 : 1;
     if (ay >= az) return d.y >= 0 ? 2 : 3;
     return d.z >= 0 ? 4 : 5;

@@ -454,6 +454,22 @@ static inline tg_real tgi_prev_depth(const tgi_prev_geometry *h, size_t j)
 }
 static inline tg_vec3 tgi_prev_normal(const tgi_prev_geometry *h, size_t j) { return tgi_oct_unpack(h->dn[j] & 0xFFFFu, 8); }
 #endif
+/* Last frame's normal of pixel j (tgi_prev_normal), the one m holds where
+ * its octahedral code (the word's low 16 bits) repeats. */
+static inline tg_vec3 tgi_prev_normal_memo(const tgi_prev_geometry *h, tgi_normal_memo *m, size_t j)
+{
+#if TGI_REUSE_NORMAL
+    const uint32_t code = h->dn[j] & 0xFFFFu;
+    if (code != m->code) {
+        m->code = code;
+        m->n = tgi_prev_normal(h, j);
+    }
+    return m->n;
+#else
+    (void)m;
+    return tgi_prev_normal(h, j);
+#endif
+}
 
 /* ---- the GI results of a pass ---- */
 typedef struct tgi_gresult {

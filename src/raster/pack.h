@@ -119,6 +119,17 @@ static inline float tgi_abs_bits(float v)
 #endif
 }
 #endif
+/* |v| in either number type where -0's sign changes nothing (a
+ * comparison, or a use that says why): float by the sign bit
+ * (tgi_abs_bits, +0 at -0), Q16.16 tg_abs. */
+static inline tg_real tgi_abs_fast(tg_real v)
+{
+#if TG_FIXED
+    return tg_abs(v);
+#else
+    return tgi_abs_bits(v);
+#endif
+}
 
 /* ---- the second depth layer: the back face's depth against the pixel's ---- */
 /* The nearest back face behind a pixel's surface, z_b >= z_f > 0 (the
