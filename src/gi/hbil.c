@@ -1011,8 +1011,12 @@ static inline tgi_wide wide_abs(tgi_wide d)
 #if TG_FIXED
 static inline int wide_products_le(tgi_wide a, tgi_wide b, tgi_wide c, tgi_wide d)
 {
+    /* past p <= q, p > q and the rounded p >= the rounded q (the shift
+     * is monotone): <= is ==, the bits above 2^16 of p + 2^15 and q + 2^15
+     * equal, their xor below 2^16 (one compare for the two shifts) */
     const int64_t p = a * b, q = c * d;
-    return p <= q || tgi_shr_round(p, TG_FRAC_BITS) <= tgi_shr_round(q, TG_FRAC_BITS);
+    const int64_t half = (int64_t)1 << (TG_FRAC_BITS - 1);
+    return p <= q || (uint64_t)((p + half) ^ (q + half)) < ((uint64_t)1 << TG_FRAC_BITS);
 }
 #else
 #define wide_products_le(a, b, c, d) (tgi_wide_mul(a, b) <= tgi_wide_mul(c, d))
