@@ -1102,6 +1102,18 @@ static inline int depths_close(tg_real za, tg_real zb)
  * test never acts). */
 static inline tg_real lerp_inverse_depth(tg_real za, tg_real zb, tg_real f)
 {
+#if TGI_Q16_WIDE && TGI_CORE64
+    /* the same integers in int64 throughout (no narrowing and widening
+     * between the steps): zd, f zd fit tg_real, zb - f zd lies in (0,
+     * TG_REAL_MAX] (tgi_div_nonneg's unsigned 64-bit division), the
+     * quotient below 4 (2^18); cornell 160x120 Q16.16 768.64M -> 761.52M
+     * (gcc 12: fewer conversions, and the march's registers) */
+    const int64_t zd = (int64_t)zb - za, fzd = tgi_wide_mul(f, zd);
+    const uint64_t den = (uint64_t)((int64_t)zb - fzd);
+    const int64_t ratio = (int64_t)((((uint64_t)za << 16) + (den >> 1)) / den);
+    const int64_t z = (int64_t)za + tgi_wide_mul(fzd, ratio);
+    return z > TG_REAL_MAX ? TG_REAL_MAX : (tg_real)z;
+#else
     tg_real zd = (tg_real)((tgi_wide)zb - za), fzd = small_mul(f, zd);
     const tg_real ratio = tgi_div_nonneg(za, small_sub(zb, fzd));   /* za > 0 */
     const tgi_wide z = (tgi_wide)za + tgi_wide_mul(fzd, ratio);
@@ -1109,6 +1121,7 @@ static inline tg_real lerp_inverse_depth(tg_real za, tg_real zb, tg_real f)
     return z > TG_REAL_MAX ? TG_REAL_MAX : (tg_real)z;
 #else
     return tgi_wide_real(z);
+#endif
 #endif
 }
 
