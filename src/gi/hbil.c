@@ -1173,7 +1173,7 @@ static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, t
      * when qw does, so the test is the one on the saturated q (its range
      * test only past q_near: cornell 160x120 -0.50% of the Q16.16 frame) */
     const int64_t qw = tgi_shr_round((int64_t)small_sub(z1, mr->z) * mr->inv_z, TG_FRAC_BITS);
-    tg_real q;
+    tgi_wide q;
 #else
     const tg_real q = tg_mul(small_sub(z1, mr->z), mr->inv_z);   /* z1, z in (0, TG_REAL_MAX] */
 #endif
@@ -1193,7 +1193,7 @@ static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, t
         HBIL_SAMPLE_D();
         if (wide_far(dx, dy, dz)) return HBIL_BEYOND;
     } else {
-        q = (tg_real)qw;
+        q = qw;   /* kept in int64 (no narrowing to widen again): 761.52M -> 759.90M */
         HBIL_SAMPLE_D();
     }
 #else
