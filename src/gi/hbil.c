@@ -1032,10 +1032,15 @@ static inline int wide_products_le(tgi_wide a, tgi_wide b, tgi_wide c, tgi_wide 
  * the cosine within 0.71 of a unit of 2^-16 of dot / |d| (tg_sqrt and two
  * divisions before, whose rounded |d| erred up to 2^-9 relative at the
  * shortest). */
+#if TGI_Q16_WIDE
+typedef tgi_wide hbil_cos_arg;   /* Q16.16: dot and len2 unnarrowed (sample_cos) */
+#else
+typedef tg_real hbil_cos_arg;
+#endif
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-static inline tg_real horizon_cos(tg_real dot, tg_real len2, tg_real *inv_len)
+static inline tg_real horizon_cos(hbil_cos_arg dot, hbil_cos_arg len2, tg_real *inv_len)
 {
 #if TG_FIXED
     /* len2 = L 2^-16 with 0 < L < 2^31 (a sample with d = 0 has dot = 0
@@ -1215,7 +1220,10 @@ static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, t
         len2 = tgi_shr_round(len2, 2 * k);
     }
 #endif
-    cn = horizon_cos((tg_real)dot, (tg_real)len2, inv_len);     /* HBIL sec. 1.3; d, dot, len2 fit tg_real here */
+    /* HBIL sec. 1.3; d, dot, len2 fit tg_real here: Q16.16 passes them
+     * unnarrowed (cornell 160x120 -0.07%), a build for size as tg_real
+     * (tgi_wide there: the AO-only program 8 bytes longer) */
+    cn = horizon_cos((hbil_cos_arg)dot, (hbil_cos_arg)len2, inv_len);
     if (cn <= h) return HBIL_NOT_ABOVE;
     d[0] = dx; d[1] = dy; d[2] = dz;
     return cn;
