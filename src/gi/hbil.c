@@ -1260,7 +1260,12 @@ static inline void march_samples(
 {
     const tgi_gview *const g = c->g;
     const tgi_rgb *const rad = c->rad;
-    const int smaj = mr->smaj, smin = mr->smin, bmax = mr->bmax, da = run->da, n = run->n;
+    const int smaj = mr->smaj, bmax = mr->bmax, da = run->da, n = run->n;
+    /* the pixel indices in ptrdiff_t (< 2^26: TG_MAX_IMAGE_SIDE squared),
+     * not int widened at each of the two depth reads: cornell 160x120
+     * Q16.16 759.35M -> 757.97M, float 536.31M -> 535.98M (a 32-bit
+     * core's ptrdiff_t is its int) */
+    const ptrdiff_t smin = mr->smin;
     const tg_real dminor = run->dminor;
     const int back = run->back;
     /* the horizon in a local (stored back at each rise): sd's fields are
@@ -1289,9 +1294,11 @@ static inline void march_samples(
     const tg_real dmajor = small_from_int(da);
 #define HBIL_SMAJOR() smajor
 #endif
-    int k, a = run->a, sa_major = a * smaj, rose = 0;
+    int k, a = run->a, rose = 0;
+    ptrdiff_t sa_major = (ptrdiff_t)a * smaj;
     for (k = 1; k <= n; k++) {
-        int b0, sa, after_rise = rose;
+        int b0, after_rise = rose;
+        ptrdiff_t sa;
         rose = 0;
         tg_real f, z1, sx, sy, za, zb, cn, inv_len;
         tgi_wide d[3];
@@ -1301,7 +1308,7 @@ static inline void march_samples(
         smajor = (tg_real)((tgi_wide)smajor + dmajor);
 #endif
         a += da;
-        sa_major += da * smaj;
+        sa_major += (ptrdiff_t)da * smaj;
         b0 = floor_small(minor);
         f = frac_small(minor, b0);
         sa = sa_major + b0 * smin;
@@ -1314,9 +1321,9 @@ static inline void march_samples(
         } else {
             int bn = f < TG_R(0.5f) ? b0 : b0 + 1, sn;
             if (bn < 0 || bn >= bmax) break;                    /* the slice leaves the image */
-            sn = bn == b0 ? sa : sa + smin;
+            sn = (int)(bn == b0 ? sa : sa + smin);
             if (tgi_gv_is_sky(g, sn) || tgi_gv_depth(g, sn) <= 0) continue;  /* sky never occludes */
-            z1 = sample_depth_edge(c, g, major_x, a, b0, f, sa, sn);
+            z1 = sample_depth_edge(c, g, major_x, a, b0, f, (int)sa, sn);
             if (z1 <= 0) continue;
         }
         sx = major_x ? HBIL_SMAJOR() : ox;
