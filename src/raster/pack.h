@@ -208,8 +208,11 @@ static inline uint32_t tgi_oct_quant(int64_t num, int64_t den, int bits)
 #else
 static inline uint32_t tgi_oct_quant(float p, int bits)
 {
-    float q = (float)((1u << bits) - 2);
-    float u = (p + 1.0f) * 0.5f * q + 0.5f;
+    /* (p + 1) 0.5 q in one product by q / 2 (odd, exact): p + 1 is 0 or at
+     * least 2^-24 in magnitude, so halving it is exact and the product
+     * rounds once either way */
+    float q = (float)((1u << bits) - 2), h = (float)((1u << (bits - 1)) - 1);
+    float u = (p + 1.0f) * h + 0.5f;
     if (!(u > 0.0f)) return 0;
     if (u >= q) return (uint32_t)q;
     return (uint32_t)u;
