@@ -419,6 +419,61 @@ TEST(geometry_gbuffer_without_material)
     free(mem2);
 }
 
+#if !TG_FIXED
+/* The float octahedral packing as it was written before its clamps were
+ * dropped and its fold negated (pack.h tgi_oct_quant_unit's proof): the
+ * oracle the packing must match bit for bit. */
+static uint32_t oct_quant_clamped(float p, int bits)
+{
+    float q = (float)((1u << bits) - 2);
+    float u = (p + 1.0f) * 0.5f * q + 0.5f;
+    if (!(u > 0.0f)) return 0;
+    if (u >= q) return (uint32_t)q;
+    return (uint32_t)u;
+}
+static uint32_t oct_pack_clamped(tg_vec3 m, int bits)
+{
+    float ax = fabsf(m.x), ay = fabsf(m.y), l1 = ax + ay + fabsf(m.z), x, y, r;
+    if (!(l1 > 0.0f) || l1 > TG_REAL_MAX) return oct_pack_clamped(tg_v3(0, 0, TG_ONE), bits);
+    r = 1.0f / l1;
+    x = m.x * r; y = m.y * r;
+    if (m.z < 0.0f) {
+        float fx = (1.0f - ay * r) * (m.x < 0.0f ? -1.0f : 1.0f), fy = (1.0f - ax * r) * (m.y < 0.0f ? -1.0f : 1.0f);
+        x = fx; y = fy;
+    }
+    return oct_quant_clamped(x, bits) | (oct_quant_clamped(y, bits) << bits);
+}
+
+/* Random components over 2^-141 .. 2^126.6 (sums past FLT_MAX too) with
+ * either sign, zeros (+0 and -0) and equal magnitudes among them, 8 and 11
+ * bits. */
+TEST(octahedral_pack_matches_clamped_form)
+{
+    uint32_t s = 12345;
+    int i, bad = 0;
+    for (i = 0; i < 400000; i++) {
+        float c[3];
+        int k, bits = (i & 1) ? 11 : 8;
+        for (k = 0; k < 3; k++) {
+            double r = rnd(&s), e = rnd(&s);
+            int kind = (int)(rnd(&s) * 8.0);
+            c[k] = (float)(ldexp(0.5 + r, (int)(e * 267.0) - 140) * (rnd(&s) < 0.5 ? -1.0 : 1.0));
+            if (kind == 0) c[k] = 0.0f;
+            else if (kind == 1) c[k] = -0.0f;
+            else if (kind == 2 && k > 0) c[k] = c[k - 1];
+            else if (kind == 3) c[k] = (float)(r * 2.0 - 1.0);
+        }
+        if (tgi_oct_pack(tg_v3(c[0], c[1], c[2]), bits) != oct_pack_clamped(tg_v3(c[0], c[1], c[2]), bits)) {
+            if (bad++ < 5)
+                CHECK(0, "(%g, %g, %g) at %d bits packs as 0x%x, the clamped form 0x%x", (double)c[0], (double)c[1],
+                      (double)c[2], bits, (unsigned)tgi_oct_pack(tg_v3(c[0], c[1], c[2]), bits),
+                      (unsigned)oct_pack_clamped(tg_v3(c[0], c[1], c[2]), bits));
+        }
+    }
+    CHECK(bad == 0, "%d of 400000 vectors differ", bad);
+}
+#endif
+
 int main(void)
 {
     RUN(depth_is_binary32_in_both_builds);
@@ -430,6 +485,9 @@ int main(void)
     RUN(back_face_code);
     RUN(octahedral_normals);
     RUN(octahedral_unpack_matches_oracle);
+#if !TG_FIXED
+    RUN(octahedral_pack_matches_clamped_form);
+#endif
     RUN(shared_exponent_rgb);
     RUN(shared_exponent_every_channel);
     RUN(unorm8_ao);

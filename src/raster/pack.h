@@ -217,6 +217,13 @@ static inline uint32_t tgi_oct_quant(float p, int bits)
     if (u >= q) return (uint32_t)q;
     return (uint32_t)u;
 }
+/* tgi_oct_quant for the coordinates tgi_oct_pack_l1 makes, where its
+ * clamps never act (u within (0, q + 1): truncated, 0 .. q, as clamped). */
+static inline uint32_t tgi_oct_quant_unit(float p, int bits)
+{
+    float h = (float)((1u << (bits - 1)) - 1);
+    return (uint32_t)((p + 1.0f) * h + 0.5f);
+}
 #endif
 
 #if TG_FIXED
@@ -234,6 +241,38 @@ static inline uint32_t tgi_oct_pack64(int64_t x, int64_t y, int64_t z, int bits)
 }
 #endif
 
+#if !TG_FIXED
+/* The octahedral fold and quantization of m, whose |.| are ax, ay (of x,
+ * y) and l1 = ax + ay + |z| as tgi_oct_pack sums them; `quant` one of the
+ * two quantizations above (the same bits where both apply). */
+#define TGI_OCT_FOLD_QUANT(m, ax, ay, l1, bits, quant)                                             \
+    do {                                                                                            \
+        float r_ = 1.0f / (l1), x_ = (m).x * r_, y_ = (m).y * r_;                                   \
+        if ((m).z < 0.0f) { /* (1 - |p.yx|) sign(p): the sign by negation, as exact as x -1 */     \
+            float fx_ = 1.0f - (ay) * r_, fy_ = 1.0f - (ax) * r_;                                   \
+            x_ = (m).x < 0.0f ? -fx_ : fx_;                                                         \
+            y_ = (m).y < 0.0f ? -fy_ : fy_;                                                         \
+        }                                                                                           \
+        oct_word_ = quant(x_, bits) | (quant(y_, bits) << (bits));                                  \
+    } while (0)
+
+/* tgi_oct_pack of m for l1 in [2^-127, TG_REAL_MAX] (ax, ay, l1 as there),
+ * without the quantization's clamps: r = 1 / l1 is finite (1 / l1 <=
+ * 2^127) and l1 r <= 1 + 2^-22 (r within 2^-24 relative, or 2^-150 where
+ * it is subnormal, l1 < 2^128); l1 >= ax (sums of non-negative terms round
+ * no lower than a term), so |m.x| r and its rounded product (ay r in the
+ * fold) are at most 1 + 2^-22, and 1 - ay r >= -2^-22: p + 1 rounds into
+ * [-2^-22, 2 + 2^-22], u into (0.49, q + 0.5 + 2^-8) for bits <= 15
+ * (tests/test_pack.c octahedral_pack_matches_clamped_form). */
+static inline uint32_t tgi_oct_pack_l1(tg_vec3 m, float ax, float ay, float l1, int bits)
+{
+    uint32_t oct_word_;
+    TGI_OCT_FOLD_QUANT(m, ax, ay, l1, bits, tgi_oct_quant_unit);
+    return oct_word_;
+}
+#define TGI_OCT_L1_MIN 5.87747175e-39f    /* 2^-127 */
+#endif
+
 /* Vector m (any length > 0; the zero vector packs as +z) to two `bits`-bit
  * coordinates, u in the low bits, v above it. */
 static inline uint32_t tgi_oct_pack(tg_vec3 m, int bits)
@@ -244,15 +283,12 @@ static inline uint32_t tgi_oct_pack(tg_vec3 m, int bits)
     /* |.| by the sign bit (three ands): unlike v < 0 ? -v : v it makes -0
      * into +0, which changes no bit below (l1, 1 - ax r) */
     float ax = tgi_abs_bits(m.x), ay = tgi_abs_bits(m.y), l1 = ax + ay + tgi_abs_bits(m.z);
-    float x, y, r;
+    uint32_t oct_word_;
+    if (l1 >= TGI_OCT_L1_MIN && l1 <= TG_REAL_MAX) return tgi_oct_pack_l1(m, ax, ay, l1, bits);
     if (!(l1 > 0.0f) || l1 > TG_REAL_MAX) return tgi_oct_pack(tg_v3(0, 0, TG_ONE), bits);
-    r = 1.0f / l1;
-    x = m.x * r; y = m.y * r;
-    if (m.z < 0.0f) {
-        float fx = (1.0f - ay * r) * (m.x < 0.0f ? -1.0f : 1.0f), fy = (1.0f - ax * r) * (m.y < 0.0f ? -1.0f : 1.0f);
-        x = fx; y = fy;
-    }
-    return tgi_oct_quant(x, bits) | (tgi_oct_quant(y, bits) << bits);
+    /* below 2^-127: 1 / l1 may overflow, the clamps act on infinite or NaN coordinates */
+    TGI_OCT_FOLD_QUANT(m, ax, ay, l1, bits, tgi_oct_quant);
+    return oct_word_;
 #endif
 }
 
