@@ -1037,7 +1037,7 @@ typedef tgi_wide hbil_cos_arg;   /* Q16.16: dot and len2 unnarrowed (sample_cos)
 #else
 typedef tg_real hbil_cos_arg;
 #endif
-#if defined(__GNUC__)
+#if defined(__GNUC__) && TG_FIXED   /* float: gcc's own choice, 0.16% fewer (cornell 160x120) */
 __attribute__((always_inline))
 #endif
 static inline tg_real horizon_cos(hbil_cos_arg dot, hbil_cos_arg len2, tg_real *inv_len)
