@@ -474,6 +474,67 @@ TEST(octahedral_pack_matches_clamped_form)
 }
 #endif
 
+#if TG_FIXED
+/* tgi_depth_pack_pos (the rasterizer's, for z >= 1 raw) is tgi_depth_pack:
+ * every word below 2^25 (the exact shifts, and the first roundings), each
+ * power of two's neighbourhood (the carries) and 2,000,000 random ones. */
+TEST(depth_pack_pos_matches)
+{
+    uint32_t s = 777, v;
+    int b, d, bad = 0;
+    for (v = 1; v < (1u << 25); v++) bad += tgi_depth_pack_pos((tg_real)v) != tgi_depth_pack((tg_real)v);
+    for (b = 25; b <= 31; b++)
+        for (d = -300; d <= 300; d++) {
+            v = (uint32_t)((int64_t)1 << b) + (uint32_t)d;
+            if (v >= 1u && v <= 0x7FFFFFFFu) bad += tgi_depth_pack_pos((tg_real)v) != tgi_depth_pack((tg_real)v);
+        }
+    for (d = 0; d < 2000000; d++) {
+        s = s * 1664525u + 1013904223u;
+        v = (s >> 1) >> (s & 7);
+        if (v) bad += tgi_depth_pack_pos((tg_real)v) != tgi_depth_pack((tg_real)v);
+    }
+    CHECK(bad == 0, "%d depths pack apart", bad);
+}
+
+static int64_t asr_zero(int64_t v, int sh) { return v >= 0 ? v >> sh : -((-v) >> sh); }
+
+/* The rasterizer's packing of a normal sum s >> sm (rounded toward zero)
+ * by magnitudes and s <= -2^sm (tgi_oct_pack_abs) is tgi_oct_pack64 of the
+ * shifted components: random sums below 2^(sm + 31), with zeros, sums
+ * near -2^sm, +-(2^sm - 1) (shifting to 0) and equal magnitudes, 8 and 11
+ * bits, shifts 0 .. 30. */
+TEST(octahedral_pack_abs_matches)
+{
+    uint32_t s = 4242;
+    int i, bad = 0;
+    for (i = 0; i < 400000; i++) {
+        int64_t c[3], m[3];
+        uint64_t a[3];
+        int k, bits = (i & 1) ? 11 : 8, sm = (int)(rnd(&s) * 31.0);
+        const int64_t neg = -((int64_t)1 << sm);
+        uint32_t want, got;
+        for (k = 0; k < 3; k++) {
+            int kind = (int)(rnd(&s) * 8.0);
+            double r = rnd(&s) * 2.0 - 1.0, e = rnd(&s);
+            c[k] = (int64_t)(r * ldexp(1.0, sm + (int)(e * 31.0)));
+            if (kind == 0) c[k] = 0;
+            else if (kind == 1) c[k] = neg + (int64_t)(rnd(&s) * 3.0) - 1;
+            else if (kind == 2) c[k] = (rnd(&s) < 0.5 ? -1 : 1) * (((int64_t)1 << sm) - 1);
+            else if (kind == 3 && k > 0) c[k] = -c[k - 1];
+            m[k] = asr_zero(c[k], sm);
+            a[k] = (uint64_t)(m[k] < 0 ? -m[k] : m[k]);
+        }
+        if (!(a[0] + a[1] + a[2])) continue;
+        want = tgi_oct_pack64(m[0], m[1], m[2], bits);
+        got = tgi_oct_pack_abs(a[0], a[1], a[0] + a[1] + a[2], c[0] <= neg, c[1] <= neg, c[2] <= neg, bits);
+        if (want != got && bad++ < 5)
+            CHECK(0, "(%lld, %lld, %lld) >> %d at %d bits: 0x%x, tgi_oct_pack64 0x%x", (long long)c[0],
+                  (long long)c[1], (long long)c[2], sm, bits, (unsigned)got, (unsigned)want);
+    }
+    CHECK(bad == 0, "%d of 400000 vectors differ", bad);
+}
+#endif
+
 int main(void)
 {
     RUN(depth_is_binary32_in_both_builds);
@@ -481,6 +542,8 @@ int main(void)
 #if TG_FIXED
     RUN(depth_unpack_every_word);
     RUN(depth_unpack_forms_agree);
+    RUN(depth_pack_pos_matches);
+    RUN(octahedral_pack_abs_matches);
 #endif
     RUN(back_face_code);
     RUN(octahedral_normals);

@@ -48,6 +48,21 @@ static inline uint32_t tgi_depth_pack(tg_real z)
     }
     return ((uint32_t)(e + 127) << 23) | (m & 0x7FFFFFu);
 }
+/* tgi_depth_pack for z >= 1 raw (a positive depth), without the branches:
+ * b = bit length of v in 1..31, m = round(v 2^(24 - b)) ties up in
+ * [2^23, 2^24] as (v 2^32 + 2^(b + 7)) >> (b + 8) (for b <= 24 the added
+ * half lies below v 2^32's lowest set bit: the exact v << (24 - b); above,
+ * the same floor((v + 2^(s - 1)) / 2^s), s = b - 24, below 2^64), and the
+ * word ((b + 109) << 23) + m: for m < 2^24 the exponent field e + 127 =
+ * b + 110 over m's 23 bits (m - 2^23), for m = 2^24 (the rounding carried)
+ * the next exponent with a zero significand, both as tgi_depth_pack. */
+static inline uint32_t tgi_depth_pack_pos(tg_real z)
+{
+    const uint32_t v = (uint32_t)z;
+    const int c = tgi_clz32_nz(v);    /* 32 - b */
+    const uint32_t m = (uint32_t)((((uint64_t)v << 32) + ((uint64_t)1 << (39 - c))) >> (40 - c));
+    return ((uint32_t)(141 - c) << 23) + m;
+}
 /* The depth of a word, in two forms of the same function of every 32-bit
  * word (tests/test_pack.c depth_unpack_forms_agree): z = m 2^(e - 150), e
  * the biased exponent field, m the 24-bit significand, so Q16.16 raw
@@ -238,6 +253,25 @@ static inline uint32_t tgi_oct_pack64(int64_t x, int64_t y, int64_t z, int bits)
         x = fx; y = fy;
     }
     return tgi_oct_quant(x, l1, bits) | (tgi_oct_quant(y, l1, bits) << bits);
+}
+#endif
+
+#if TG_FIXED
+/* tgi_oct_pack64 of a vector (x, y, z) given as its magnitudes ax, ay
+ * (|x|, |y|), l1 = |x| + |y| + |z| > 0 and whether x, y, z < 0: the
+ * quantization's num + den is, along x, Np = x + l1 = l1 + ax (x >= 0) or
+ * Nn = l1 - ax (x < 0) unfolded, and (l1 - ay) sign(x) + l1 = 2 l1 - ay or
+ * ay folded (z < 0): in both Np = 2 l1 - Nn; likewise along y with ax.
+ * All non-negative, so the quotient is the same unsigned
+ * (tests/test_pack.c octahedral_pack_abs_matches). */
+static inline uint32_t tgi_oct_pack_abs(uint64_t ax, uint64_t ay, uint64_t l1, int xneg, int yneg, int zneg,
+                                        int bits)
+{
+    const uint64_t q = (1u << bits) - 2, l2 = 2 * l1;
+    uint64_t nx = zneg ? ay : l1 - ax, ny = zneg ? ax : l1 - ay;
+    if (!xneg) nx = l2 - nx;
+    if (!yneg) ny = l2 - ny;
+    return (uint32_t)((nx * q + l1) / l2) | ((uint32_t)((ny * q + l1) / l2) << bits);
 }
 #endif
 

@@ -798,11 +798,44 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
             uint64_t sq = (uint64_t)bary_sums(&b, u, sn), s0 = (uint64_t)sn[0], s1 = (uint64_t)sn[1],
                      s2 = (uint64_t)sn[2];
             size_t i = pw.i, end = pw.i + (size_t)(pw.xb - pw.col);
+#if TG_WIDE_STORAGE
             for (; i < end; i++, sq += dq, s0 += dn[0], s1 += dn[1], s2 += dn[2]) {
                 int64_t n[3];
                 n[0] = (int64_t)s0; n[1] = (int64_t)s1; n[2] = (int64_t)s2;
                 gbuffer_pixel(&g, &sf, &b, i, su, (int64_t)sq, n, bits);
             }
+#else
+            /* gbuffer_pixel's integers, cheaper.  Depth: u_i >= 0 at a
+             * covered pixel (e_i >= 0, u_i = (e_i - bias_i) 2^ls, bias_i
+             * 0 or -1) and q_i <= 2^30, so sq <= su and z >= w_min >= 1:
+             * tgi_sat64 only clamps above, tgi_depth_pack_pos applies.
+             * Normal: |asr64(s, sm)| = |s| >> sm, and asr64(s, sm) < 0
+             * exactly where s <= -2^sm (s > INT64_MIN: |s| < 2^61 for unit
+             * normals, as above), which tgi_oct_pack_abs takes; its l1 is
+             * 0 exactly for the zero vector. */
+            if (su > 0) {
+                const int64_t wsu = b.wmin * su, neg = -((int64_t)1 << b.sm);
+                for (; i < end; i++, sq += dq, s0 += dn[0], s1 += dn[1], s2 += dn[2]) {
+                    const int64_t sqi = (int64_t)sq >> 30, x = (int64_t)s0, y = (int64_t)s1, zs = (int64_t)s2;
+                    int64_t z;
+                    uint64_t ax, ay, l1;
+                    uint32_t zb, w;
+                    if (sqi <= 0) continue;
+                    z = (wsu + (sqi >> 1)) / sqi;
+                    if (z > TG_REAL_MAX) z = TG_REAL_MAX;
+                    zb = tgi_depth_pack_pos((tg_real)z);
+                    if (g.depth[i] && zb >= g.depth[i]) continue;
+                    g.depth[i] = zb;
+                    ax = (x < 0 ? 0u - (uint64_t)x : (uint64_t)x) >> b.sm;
+                    ay = (y < 0 ? 0u - (uint64_t)y : (uint64_t)y) >> b.sm;
+                    l1 = ax + ay + ((zs < 0 ? 0u - (uint64_t)zs : (uint64_t)zs) >> b.sm);
+                    w = l1 ? tgi_oct_pack_abs(ax, ay, l1, x <= neg, y <= neg, zs <= neg, bits)
+                           : tgi_oct_pack(sf.fallback_normal, bits);
+                    put_nm(&g, i, w | sf.material, bits);
+                    if (g.object) g.object[i] = sf.object;
+                }
+            }
+#endif
             pw.col = pw.xb;
         }
         return;
