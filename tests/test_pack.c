@@ -475,24 +475,50 @@ TEST(octahedral_pack_matches_clamped_form)
 #endif
 
 #if TG_FIXED
-/* tgi_depth_pack_pos (the rasterizer's, for z >= 1 raw) is tgi_depth_pack:
- * every word below 2^25 (the exact shifts, and the first roundings), each
- * power of two's neighbourhood (the carries) and 2,000,000 random ones. */
-TEST(depth_pack_pos_matches)
+/* tgi_depth_pack as it was written with its branches (b <= 24, the
+ * rounding's carry). */
+static uint32_t depth_pack_branchy(tg_real z)
+{
+    uint32_t v = (uint32_t)z, m;
+    int b, e;
+    if (z <= 0) return 0;
+    b = tgi_bit_length64(v);
+    e = b - 1 - 16;
+    if (b <= 24) {
+        m = v << (24 - b);
+    } else {
+        int s = b - 24;
+        m = (v + (1u << (s - 1))) >> s;
+        if (m >> 24) { m >>= 1; e++; }
+    }
+    return ((uint32_t)(e + 127) << 23) | (m & 0x7FFFFFu);
+}
+
+/* tgi_depth_pack (and tgi_depth_pack_pos, the rasterizer's for z >= 1
+ * raw) give the branchy form's words: every word below 2^25 (the exact
+ * shifts, and the first roundings), each power of two's neighbourhood (the
+ * carries), 2,000,000 random ones, and 0 for z <= 0. */
+TEST(depth_pack_matches_branchy_form)
 {
     uint32_t s = 777, v;
     int b, d, bad = 0;
-    for (v = 1; v < (1u << 25); v++) bad += tgi_depth_pack_pos((tg_real)v) != tgi_depth_pack((tg_real)v);
+    for (v = 1; v < (1u << 25); v++)
+        bad += tgi_depth_pack((tg_real)v) != depth_pack_branchy((tg_real)v) ||
+               tgi_depth_pack_pos((tg_real)v) != depth_pack_branchy((tg_real)v);
     for (b = 25; b <= 31; b++)
         for (d = -300; d <= 300; d++) {
             v = (uint32_t)((int64_t)1 << b) + (uint32_t)d;
-            if (v >= 1u && v <= 0x7FFFFFFFu) bad += tgi_depth_pack_pos((tg_real)v) != tgi_depth_pack((tg_real)v);
+            if (v >= 1u && v <= 0x7FFFFFFFu)
+                bad += tgi_depth_pack((tg_real)v) != depth_pack_branchy((tg_real)v) ||
+                       tgi_depth_pack_pos((tg_real)v) != depth_pack_branchy((tg_real)v);
         }
     for (d = 0; d < 2000000; d++) {
         s = s * 1664525u + 1013904223u;
         v = (s >> 1) >> (s & 7);
-        if (v) bad += tgi_depth_pack_pos((tg_real)v) != tgi_depth_pack((tg_real)v);
+        bad += tgi_depth_pack((tg_real)v) != depth_pack_branchy((tg_real)v);
+        bad += tgi_depth_pack(-(tg_real)v) != 0u;
     }
+    bad += tgi_depth_pack(TG_REAL_MIN) != 0u || tgi_depth_pack(TG_REAL_MAX) != depth_pack_branchy(TG_REAL_MAX);
     CHECK(bad == 0, "%d depths pack apart", bad);
 }
 
@@ -542,7 +568,7 @@ int main(void)
 #if TG_FIXED
     RUN(depth_unpack_every_word);
     RUN(depth_unpack_forms_agree);
-    RUN(depth_pack_pos_matches);
+    RUN(depth_pack_matches_branchy_form);
     RUN(octahedral_pack_abs_matches);
 #endif
     RUN(back_face_code);

@@ -32,36 +32,27 @@
 
 /* ---- depth: binary32 bits ---- */
 #if TG_FIXED
-static inline uint32_t tgi_depth_pack(tg_real z)
-{
-    uint32_t v = (uint32_t)z, m;
-    int b, e;
-    if (z <= 0) return 0;
-    b = tgi_bit_length64(v);          /* 1..31: z = v 2^-16, v in [2^(b-1), 2^b) */
-    e = b - 1 - 16;                   /* floor(log2(z)) */
-    if (b <= 24) {
-        m = v << (24 - b);            /* exact: 24 significant bits */
-    } else {
-        int s = b - 24;
-        m = (v + (1u << (s - 1))) >> s;
-        if (m >> 24) { m >>= 1; e++; }   /* rounding carried into the next power of two */
-    }
-    return ((uint32_t)(e + 127) << 23) | (m & 0x7FFFFFu);
-}
-/* tgi_depth_pack for z >= 1 raw (a positive depth), without the branches:
- * b = bit length of v in 1..31, m = round(v 2^(24 - b)) ties up in
- * [2^23, 2^24] as (v 2^32 + 2^(b + 7)) >> (b + 8) (for b <= 24 the added
- * half lies below v 2^32's lowest set bit: the exact v << (24 - b); above,
- * the same floor((v + 2^(s - 1)) / 2^s), s = b - 24, below 2^64), and the
- * word ((b + 109) << 23) + m: for m < 2^24 the exponent field e + 127 =
- * b + 110 over m's 23 bits (m - 2^23), for m = 2^24 (the rounding carried)
- * the next exponent with a zero significand, both as tgi_depth_pack. */
+/* The word of a depth z >= 1 raw, in 32 bits without a branch: b = bit
+ * length of v = z in 1..31, n = v 2^(32 - b) (its leading 1 at bit 31),
+ * x = n >> 7 = floor(v 2^(25 - b)) and m = round(v 2^(24 - b)) ties up =
+ * (x + 1) >> 1 (floor((y + 1) / 2) = floor((floor(y) + 1) / 2) for real
+ * y; for b <= 24 x is even, and m the exact v << (24 - b)), in [2^23,
+ * 2^24]; the word is ((b + 109) << 23) + m: for m < 2^24 the exponent field
+ * floor(log2(z)) + 127 = b + 110 over m's 23 bits (m - 2^23), for m = 2^24
+ * (the rounding carried) the next exponent over a zero significand.  It
+ * had been two branches (b <= 24, the carry) and, above 24 bits, v + 2^(s -
+ * 1) >> s, s = b - 24: the same words (tests/test_pack.c
+ * depth_pack_matches_branchy_form: every word below 2^25, around each
+ * power of two, 2,000,000 random). */
 static inline uint32_t tgi_depth_pack_pos(tg_real z)
 {
     const uint32_t v = (uint32_t)z;
     const int c = tgi_clz32_nz(v);    /* 32 - b */
-    const uint32_t m = (uint32_t)((((uint64_t)v << 32) + ((uint64_t)1 << (39 - c))) >> (40 - c));
-    return ((uint32_t)(141 - c) << 23) + m;
+    return ((uint32_t)(141 - c) << 23) + ((((v << c) >> 7) + 1u) >> 1);
+}
+static inline uint32_t tgi_depth_pack(tg_real z)
+{
+    return z > 0 ? tgi_depth_pack_pos(z) : 0;
 }
 /* The depth of a word, in two forms of the same function of every 32-bit
  * word (tests/test_pack.c depth_unpack_forms_agree): z = m 2^(e - 150), e

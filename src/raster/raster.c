@@ -762,6 +762,25 @@ static inline int64_t bary_sums(const bary_setup *b, const int64_t u[3], int64_t
     return u[0] * b->q[0] + u[1] * b->q[1] + u[2] * b->q[2];
 }
 
+#if !TG_OUTLINE_HELPERS
+/* gbuffer_rows' pixels with shifted weights (rs > 0: a triangle of 2^21
+ * pixels or more), rare: out of line, draw_snapped the smaller (callgrind
+ * build/bench_raster-fixed 1280x720: 92.2M a frame inline, 91.1M not). */
+static RASTER_NOINLINE void gbuffer_rows_shifted(const tgi_gbuffer *gbp, const surface *sfp, const bary_setup *bp,
+                                                 const tri_edges *te, pixel_walk *pwp, int bits)
+{
+    const tgi_gbuffer g = *gbp;
+    const surface sf = *sfp;
+    const bary_setup b = *bp;
+    pixel_walk pw = *pwp;
+    while (pixel_walk_row(&pw, te))
+        for (; pw.col < pw.xb; pixel_walk_step(&pw, te)) {
+            int64_t u[3], su = bary_weights(&b, te, pw.e, u), sn[3], sq = bary_sums(&b, u, sn);
+            gbuffer_pixel(&g, &sf, &b, pw.i, su, sq, sn, bits);
+        }
+}
+#endif
+
 static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const screen_tri *st, const surface *sfp)
 {
     /* local copies: the stores may alias anything reached through a pointer */
@@ -840,12 +859,14 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
         }
         return;
     }
-#endif
+    gbuffer_rows_shifted(&g, &sf, &b, te, &pw, bits);
+#else
     while (pixel_walk_row(&pw, te))
         for (; pw.col < pw.xb; pixel_walk_step(&pw, te)) {
             int64_t u[3], su = bary_weights(&b, te, pw.e, u), sn[3], sq = bary_sums(&b, u, sn);
             gbuffer_pixel(&g, &sf, &b, pw.i, su, sq, sn, bits);
         }
+#endif
 }
 
 #if TGI_RASTER_DEPTH_ROWS
@@ -1250,7 +1271,18 @@ typedef struct view_frame {
 static inline int past_clip_safe(tg_real c) { return (uint32_t)c + TGI_CLIP_SAFE > 2u * TGI_CLIP_SAFE; }
 #endif
 
-static inline view_vertex view_vertex_make(const raster_target *rt, const view_frame *vf, tg_vec3 p)
+/* Q16.16 (outside size builds): the vertex set-up always inline, down to
+ * the triangle's three fetches in tgi_raster_gbuffer.  Left to gcc, some of
+ * it went out of line with small changes anywhere in this file (its
+ * max-inline-insns-single): view_vertex_make called at a cache miss, or
+ * vertex_fetch, or triangle_fetch, each 0.3 to 3M a frame at 320x240
+ * (build/bench_raster-fixed, callgrind). */
+#if TG_FIXED && !TG_OUTLINE_HELPERS
+#define VIEW_VERTEX_INLINE RASTER_INLINE
+#else
+#define VIEW_VERTEX_INLINE inline
+#endif
+static VIEW_VERTEX_INLINE view_vertex view_vertex_make(const raster_target *rt, const view_frame *vf, tg_vec3 p)
 {
     view_vertex o;
     tg_vec3 d = tgi_v3_sub(p, vf->eye);
@@ -1449,7 +1481,7 @@ typedef struct tri_vertices {
 } tri_vertices;
 
 /* Vertex k of tv: the view_vertex of p, from the cache or made there. */
-static inline void vertex_fetch(vertex_cache *c, const raster_target *rt, const view_frame *vf, tg_vec3 p,
+static VIEW_VERTEX_INLINE void vertex_fetch(vertex_cache *c, const raster_target *rt, const view_frame *vf, tg_vec3 p,
                                 tri_vertices *tv, int k)
 {
     uint32_t kx = real_bits(p.x), ky = real_bits(p.y), kz = real_bits(p.z);
@@ -1469,7 +1501,7 @@ static inline void vertex_fetch(vertex_cache *c, const raster_target *rt, const 
 }
 
 /* Triangle t's three vertices, through the cache. */
-static inline void triangle_fetch(vertex_cache *c, const raster_target *rt, const view_frame *vf,
+static VIEW_VERTEX_INLINE void triangle_fetch(vertex_cache *c, const raster_target *rt, const view_frame *vf,
                                   const tgi_raster_mesh *mesh, int t, tri_vertices *tv)
 {
     tv->flags = ~0;
