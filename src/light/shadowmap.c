@@ -408,18 +408,31 @@ tg_real tgi_shadow_gbuffer_error(const tgi_view *view)
 
 /* How far the face's own depths may lie in front of the true surface: along
  * its normal at distance `lz` (perspective) or anywhere (orthographic). */
+/* a b for b within [0, 1] (a constant): |a b| <= |a|, so tg_mul never
+ * saturates; Q16.16 its integer without the test (tgi_wide_mul) */
+#if TGI_Q16_WIDE
+static inline tg_real mul_frac(tg_real a, tg_real b) { return (tg_real)tgi_wide_mul(a, b); }
+#else
+#define mul_frac tg_mul
+#endif
+/* The sums below in plain + (tg_add's value, never saturating, float's own
+ * operation): texel in [0, 2^15] (texel_world > 0 times lz > 0, saturated at
+ * most), so texel / 8 <= 2^12; |lz| <= 2^15 (a tg_real), |lz 8 EPS| <= 4 in
+ * Q16.16 (in float the sums cannot overflow): the whole sum within
+ * [-4, 2^12 + 5], well inside the range. */
 static LOOKUP_INLINE tg_real map_error(const tgi_shadow_map *sm, const tgi_shadow_face *fc, tg_real lz)
 {
     tg_real texel = sm->orthographic ? fc->texel_world : tg_mul(fc->texel_world, lz);
-    return tg_add(tg_add(tg_mul(texel, RECEIVER_SNAP), tg_mul(lz, RECEIVER_ULPS * TG_EPS)),
-                  RECEIVER_ULPS * TG_EPS);
+    return mul_frac(texel, RECEIVER_SNAP) + mul_frac(lz, RECEIVER_ULPS * TG_EPS) + RECEIVER_ULPS * TG_EPS;
 }
 
 /* The constant depth bias of a lookup at distance lz: half a texel, plus one
- * quantisation step of a 16-bit face. */
+ * quantisation step of a 16-bit face.  texel in [0, 2^15] (map_error), its
+ * half within 2^14 + 1/2 and depth_step <= 1/2 (range / 2^16, or TG_EPS, or
+ * 0): the sum never saturates, tg_add's value as plain +. */
 static tg_real depth_bias(const tgi_shadow_face *fc, tg_real texel)
 {
-    return tg_add(tg_ldexp(texel, -1), fc->depth_step);
+    return tg_ldexp(texel, -1) + fc->depth_step;
 }
 
 /* One lookup, prepared: the texel position and the receiver plane (the
@@ -501,7 +514,10 @@ static int prepare_perspective(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, t
     q->bias = depth_bias(fc, tg_mul(fc->texel_world, lz));
     /* the plane moved toward the light by err, at most half way to it */
     err = tg_add(err, map_error(sm, fc, lz));
-    q->num = tg_min(tg_add(q->num, err), tg_ldexp(q->num, -1));
+    /* num < 0 and err >= 0 (position_error clamped to >= 0, map_error's
+     * terms >= 0 here): num + err within [TG_REAL_MIN, TG_REAL_MAX), tg_add's
+     * value as plain + */
+    q->num = tg_min(q->num + err, tg_ldexp(q->num, -1));
     q->slope_x = tg_mul(dot_basis(n, r), fc->tan_half);
     q->slope_y = tg_mul(dot_basis(n, u), fc->tan_half);
     return 1;
@@ -602,7 +618,10 @@ static PCF_INLINE tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *
                             const tg_real *dx, const tg_real *dy, int perspective)
 {
     const uint16_t *row = depth + fc->offset + (size_t)j0 * (size_t)fc->size + (size_t)i0;
-    tg_real lo_bias = tg_add(fc->depth_lo, q->bias);
+    /* depth_lo in [0, 0.05] (0 for an orthographic face, else the near
+     * plane, tgi_shadow_near's clamp), bias in [0, 2^14 + 1] (depth_bias;
+     * 0 orthographic): tg_add's value as plain + */
+    tg_real lo_bias = fc->depth_lo + q->bias;
     tgi_wide lit = 0;   /* sum of row_lit wy[j]: row_lit in [0, 3] (wx's sum), wy's sum 3: within 9 */
 #if TGI_Q16_WIDE
     int64_t lim = perspective_bound(q->num);   /* lit_perspective's */
