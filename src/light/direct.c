@@ -135,7 +135,19 @@ void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_coun
                     continue;
                 }
                 const tg_vec3 n = tgi_gv_normal_memo(g, &nm, i);
+#if TGI_Q16_WIDE
+                /* x + 1/2 - half_w: for x < 16383 (every row within
+                 * TG_MAX_IMAGE_SIDE) neither tg_from_int nor tg_add
+                 * saturates, and half_w lies in [-2^14, 2^14] (tg_from_int's
+                 * range halved), so the difference lies within (-2^14,
+                 * 2^15 - 1/2]: tg_sub's value in one integer expression
+                 * (wider rows keep the saturating form) */
+                kx = tg_div(x < 16383 ? (tg_real)(x * 65536 + 32768 - half_w)
+                                      : tg_sub(tg_add(tg_from_int(x), TG_R(0.5f)), half_w),
+                            view->pixels_per_unit);
+#else
                 kx = tg_div(tg_sub(tg_add(tg_from_int(x), TG_R(0.5f)), half_w), view->pixels_per_unit);
+#endif
                 z = tgi_gv_depth(g, i);   /* decoded once: the calls below would have it read again */
                 p = tgi_v3_add(view->eye, tgi_v3_scale(tgi_v3_add(row_dir, tgi_v3_scale(view->right, kx)), z));
                 e = fresh && first == 0 ? tg_v3(0, 0, 0) : tgi_rgb_get(e_out, i);   /* the stored 0 reads back as 0 */
