@@ -693,7 +693,8 @@ static PCF_INLINE tg_real pcf_taps(const tgi_shadow_map *sm, const lookup *q, co
         const int64_t wu = tgi_wide_mul((int64_t)q->ndc_x + TG_ONE, half) - 32768;
         const int64_t wv = tgi_wide_mul(TG_ONE - (int64_t)q->ndc_y, half) - 32768;
         const int64_t iu = wu >> 16, iv = wv >> 16;   /* tg_to_int's floor */
-        if (iu < -2 || iv < -2 || iu > fc->size + 1 || iv > fc->size + 1) return TG_ONE;
+        if ((uint64_t)(iu + 2) > (uint64_t)fc->size + 3 || (uint64_t)(iv + 2) > (uint64_t)fc->size + 3)
+            return TG_ONE;   /* outside [-2, size + 1], in one unsigned compare */
         su = (tg_real)wu; sv = (tg_real)wv; i0 = (int)iu; j0 = (int)iv;
     }
 #else
@@ -703,7 +704,8 @@ static PCF_INLINE tg_real pcf_taps(const tgi_shadow_map *sm, const lookup *q, co
         sv = tg_sub(tg_mul(tg_sub(TG_ONE, q->ndc_y), half_size), TG_R(0.5f));
     }
     i0 = tg_to_int(su); j0 = tg_to_int(sv);
-    if (i0 < -2 || j0 < -2 || i0 > fc->size + 1 || j0 > fc->size + 1) return TG_ONE;
+    if ((unsigned)i0 + 2u > (unsigned)fc->size + 3u || (unsigned)j0 + 2u > (unsigned)fc->size + 3u)
+        return TG_ONE;   /* outside [-2, size + 1], in one unsigned compare */
 #endif
     /* the floor's fractions, in [0, 1): these and the weights below never saturate */
     fx = su - tg_from_int(i0);
@@ -732,7 +734,12 @@ static PCF_INLINE tg_real pcf_taps(const tgi_shadow_map *sm, const lookup *q, co
         dy[i] = tg_mul(q->slope_y, tg_neg(tg_mul(tg_sub(tg_from_int(i), fy), fc->texel_ndc)));
 #endif
     }
-    if (sm->depth_bits == TG_SHADOW_DEPTH16 && i0 >= 0 && j0 >= 0 && i0 + taps <= fc->size && j0 + taps <= fc->size) {
+    /* the footprint inside the face, 0 <= i0, j0 <= size - taps, in one
+     * unsigned compare each: size >= TG_MIN_SHADOW_MAP >= taps (a face
+     * looked up is never empty: prepare_perspective's test, and a
+     * directional map with a face has it, need_layout) */
+    if (sm->depth_bits == TG_SHADOW_DEPTH16 && (unsigned)i0 <= (unsigned)(fc->size - taps)
+        && (unsigned)j0 <= (unsigned)(fc->size - taps)) {
 #if PCF_COPIES
         lit = sm->orthographic ? pcf16_inside(fc, q, i0, j0, taps, (const uint16_t *)sm->depth, wx, wy, dx, dy, 0)
                                : pcf16_inside(fc, q, i0, j0, taps, (const uint16_t *)sm->depth, wx, wy, dx, dy, 1);
