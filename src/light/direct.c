@@ -18,6 +18,24 @@ static inline tg_real mul_small(tg_real a, tg_real b) { return (tg_real)tgi_wide
 #else
 #define mul_small tg_mul
 #endif
+/* v . v rounded and saturated as tgi_v3_dot gives it.  Q16.16: each
+ * square is at most 2^62, so the three sum below 2^64 in uint64_t, exactly;
+ * where that sum is at most 2^62 it is tgi_v3_dot's (which drops its third
+ * product only past 2^62), rounded alike and then clamped at TG_REAL_MAX
+ * (it is never negative); past 2^62 both give TG_REAL_MAX (tgi_v3_dot's
+ * sum then also exceeds 2^62 > TG_REAL_MAX 2^16).  (Where a component is
+ * TG_REAL_MIN, its square 2^62, tgi_v3_dot's int64_t sum can reach 2^63 and
+ * overflow, undefined in C: here TG_REAL_MAX, the exact length's branch.) */
+#if TGI_Q16_WIDE
+static inline tg_real length2(tg_vec3 v)
+{
+    uint64_t s = (uint64_t)((int64_t)v.x * v.x) + (uint64_t)((int64_t)v.y * v.y) + (uint64_t)((int64_t)v.z * v.z);
+    s = (s + 32768) >> 16;
+    return s < (uint64_t)TG_REAL_MAX ? (tg_real)s : TG_REAL_MAX;
+}
+#else
+static inline tg_real length2(tg_vec3 v) { return tgi_v3_dot(v, v); }
+#endif
 /* light_factor inline in the rows' loop (gcc kept it a call: its prologue,
  * epilogue and the vectors passed cost more than the body's registers);
  * a build for size keeps the one copy */
@@ -60,7 +78,7 @@ static LIGHT_FACTOR_INLINE tg_real light_factor(const prepared_light *p, tg_vec3
     if (p->type == TG_LIGHT_DIRECTIONAL)
         return tg_max(dot_unit(n, p->to_light), 0); /* Lambert */
     v = tgi_v3_sub(p->pos, pos);
-    len2 = tgi_v3_dot(v, v);
+    len2 = length2(v);
     if (len2 < TG_REAL_MAX) {   /* 1/d from d^2 (the common case) */
         inv = tg_rsqrt(tg_max(len2, tg_mul(TG_DIRECT_MIN_DISTANCE, TG_DIRECT_MIN_DISTANCE)));
     } else {                    /* d^2 saturated (fixed point, d > 181): the exact length */
