@@ -746,6 +746,14 @@ static PCF_INLINE tg_real pcf_taps(const tgi_shadow_map *sm, const lookup *q, co
 #else
         lit = pcf16_inside(fc, q, i0, j0, taps, (const uint16_t *)sm->depth, wx, wy, dx, dy, !sm->orthographic);
 #endif
+        /* bilinear: norm = 1 and lit already within [0, 1], so tg_mul by 1
+         * (exact) and tg_saturate give lit itself.  Each row_lit is a sum
+         * of some of wx[0] + wx[1] and lit of row_lit wy[j], every term >= 0
+         * and rounded monotonically, so lit <= wy[0] + wy[1] (row_lit <= 1
+         * alike): in Q16.16 (1 - f) + f = 1 exactly; in float fl(1 - f) is
+         * within 2^-25 of 1 - f (f in [0, 1)), so their sum rounds to at
+         * most 1 */
+        if (taps == 2) return lit;
         return tg_saturate((tg_real)tgi_wide_mul(lit, norm));   /* within 9 times norm <= 1: tg_mul's */
     }
     fetch_taps(sm, fc, i0, j0, taps, st);
