@@ -147,6 +147,16 @@ static inline tg_real tgi_div_pos(tg_real a, tg_real b) { return a / b; }
 static inline tg_real tgi_div_nonneg(tg_real a, tg_real b) { return a / b; }
 #endif
 
+/* tg_mul(a, b) for a product provably within the range (each use says
+ * why): in a TGI_Q16_WIDE build tg_mul's integer without its saturation
+ * test, elsewhere tg_mul itself (a build for size keeps its one function;
+ * float has nothing to skip). */
+#if TGI_Q16_WIDE
+static inline tg_real tgi_mul_in_range(tg_real a, tg_real b) { return (tg_real)tgi_wide_mul(a, b); }
+#else
+#define tgi_mul_in_range tg_mul
+#endif
+
 /* acc + w v, a running weighted sum in tgi_wide (tgi_wide_real gives its
  * value), for weights w within [0, 1].  Q16.16: tg_add's running sum of
  * tg_mul's products saturates at each step; for 0 <= w <= 1 and v >= 0 the

@@ -11,13 +11,6 @@
  * a light's normalised direction): each product below 2^17 2^31, their sum
  * below 2^50, never past 2^62 (tgi_v3_dot_bounded, core/vec.h). */
 #define dot_unit tgi_v3_dot_bounded
-#if TGI_Q16_WIDE
-/* a b for a product within the range (each use says why): tg_mul's integer
- * without its saturation test */
-static inline tg_real mul_small(tg_real a, tg_real b) { return (tg_real)tgi_wide_mul(a, b); }
-#else
-#define mul_small tg_mul
-#endif
 /* v . v rounded and saturated as tgi_v3_dot gives it.  Q16.16: each
  * square is at most 2^62, so the three sum below 2^64 in uint64_t, exactly;
  * where that sum is at most 2^62 it is tgi_v3_dot's (which drops its third
@@ -85,18 +78,18 @@ static LIGHT_FACTOR_INLINE tg_real light_factor(const prepared_light *p, tg_vec3
         inv = tg_div(TG_ONE, tg_max(tgi_v3_length(v), TG_DIRECT_MIN_DISTANCE));
     }
     /* n . v inv and -dir . v inv, n and dir unit: below 2 in magnitude, so
-     * no product saturates (mul_small), nor the cosine times the spot's
+     * no product saturates (tgi_mul_in_range), nor the cosine times the spot's
      * smoothstep in [0, 1].  |n|, |dir| <= sqrt(3) (components within
      * [-1, 1]); inv <= 1.04 / |v| (1 + 2^-14) where it is 1 / sqrt(len2),
      * len2 >= 7 2^-16 being v . v within 2^-17; where len2 is raised to
      * 0.01^2 (7 2^-16), inv <= 97 and |v| < 0.0107; where len2 saturated,
      * inv <= 1 / |v|; the dot's rounding adds at most 2^-17 97 */
-    cosine = mul_small(dot_unit(n, v), inv); /* Lambert */
+    cosine = tgi_mul_in_range(dot_unit(n, v), inv); /* Lambert */
     if (cosine <= 0) return 0;
     *inv_dist = inv;
     if (p->type == TG_LIGHT_SPOT) {
-        tg_real along = mul_small(tg_neg(dot_unit(p->dir, v)), inv);
-        cosine = mul_small(cosine, tg_smoothstep(p->cos_outer, p->cos_inner, along)); /* smooth spot edge */
+        tg_real along = tgi_mul_in_range(tg_neg(dot_unit(p->dir, v)), inv);
+        cosine = tgi_mul_in_range(cosine, tg_smoothstep(p->cos_outer, p->cos_inner, along)); /* smooth spot edge */
     }
     return cosine;
 }
@@ -172,8 +165,8 @@ void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_coun
                 for (k = 0; k < count; k++) {
                     tg_real inv, f = light_factor(&pl[k], p, n, &inv);
                     if (f <= 0) continue;
-                    /* f below 2 (light_factor), the visibility in [0, 1]: mul_small */
-                    if (pl[k].shadow) f = mul_small(f, tgi_shadow_visibility_err(pl[k].shadow, p, n,
+                    /* f below 2 (light_factor), the visibility in [0, 1]: tgi_mul_in_range */
+                    if (pl[k].shadow) f = tgi_mul_in_range(f, tgi_shadow_visibility_err(pl[k].shadow, p, n,
                                                                                        tg_mul(z, position_error)));
                     e = tgi_v3_add(e, light_irradiance(pl[k].radiant, f, inv));
                 }

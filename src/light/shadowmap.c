@@ -407,23 +407,17 @@ tg_real tgi_shadow_gbuffer_error(const tgi_view *view)
 }
 
 /* How far the face's own depths may lie in front of the true surface: along
- * its normal at distance `lz` (perspective) or anywhere (orthographic). */
-/* a b for b within [0, 1] (a constant): |a b| <= |a|, so tg_mul never
- * saturates; Q16.16 its integer without the test (tgi_wide_mul) */
-#if TGI_Q16_WIDE
-static inline tg_real mul_frac(tg_real a, tg_real b) { return (tg_real)tgi_wide_mul(a, b); }
-#else
-#define mul_frac tg_mul
-#endif
-/* The sums below in plain + (tg_add's value, never saturating, float's own
- * operation): texel in [0, 2^15] (texel_world > 0 times lz > 0, saturated at
- * most), so texel / 8 <= 2^12; |lz| <= 2^15 (a tg_real), |lz 8 EPS| <= 4 in
- * Q16.16 (in float the sums cannot overflow): the whole sum within
- * [-4, 2^12 + 5], well inside the range. */
+ * its normal at distance `lz` (perspective) or anywhere (orthographic).  The
+ * products by constants within [0, 1] never saturate (|a b| <= |a|:
+ * tgi_mul_in_range); the sums in plain + (tg_add's value, never
+ * saturating, float's own operation): texel in [0, 2^15] (texel_world > 0
+ * times lz > 0, saturated at most), so texel / 8 <= 2^12; |lz| <= 2^15 (a
+ * tg_real), |lz 8 EPS| <= 4 in Q16.16 (in float the sums cannot overflow):
+ * the whole sum within [-4, 2^12 + 5], well inside the range. */
 static LOOKUP_INLINE tg_real map_error(const tgi_shadow_map *sm, const tgi_shadow_face *fc, tg_real lz)
 {
     tg_real texel = sm->orthographic ? fc->texel_world : tg_mul(fc->texel_world, lz);
-    return mul_frac(texel, RECEIVER_SNAP) + mul_frac(lz, RECEIVER_ULPS * TG_EPS) + RECEIVER_ULPS * TG_EPS;
+    return tgi_mul_in_range(texel, RECEIVER_SNAP) + tgi_mul_in_range(lz, RECEIVER_ULPS * TG_EPS) + RECEIVER_ULPS * TG_EPS;
 }
 
 /* The constant depth bias of a lookup at distance lz: half a texel, plus one

@@ -212,24 +212,23 @@ static inline uint32_t tgi_oct_quant(int64_t num, int64_t den, int bits)
     return (uint32_t)(((num + den) * q + den) / (2 * den));
 }
 #else
+/* (p + 1) 0.5 q + 1/2, q = 2^bits - 2: in one product by q / 2 (odd,
+ * exact): p + 1 is 0 or at least 2^-24 in magnitude, so halving it is
+ * exact and the product rounds once either way */
+static inline float tgi_oct_quant_u(float p, int bits)
+{
+    return (p + 1.0f) * (float)((1u << (bits - 1)) - 1) + 0.5f;
+}
 static inline uint32_t tgi_oct_quant(float p, int bits)
 {
-    /* (p + 1) 0.5 q in one product by q / 2 (odd, exact): p + 1 is 0 or at
-     * least 2^-24 in magnitude, so halving it is exact and the product
-     * rounds once either way */
-    float q = (float)((1u << bits) - 2), h = (float)((1u << (bits - 1)) - 1);
-    float u = (p + 1.0f) * h + 0.5f;
+    float q = (float)((1u << bits) - 2), u = tgi_oct_quant_u(p, bits);
     if (!(u > 0.0f)) return 0;
     if (u >= q) return (uint32_t)q;
     return (uint32_t)u;
 }
 /* tgi_oct_quant for the coordinates tgi_oct_pack_l1 makes, where its
  * clamps never act (u within (0, q + 1): truncated, 0 .. q, as clamped). */
-static inline uint32_t tgi_oct_quant_unit(float p, int bits)
-{
-    float h = (float)((1u << (bits - 1)) - 1);
-    return (uint32_t)((p + 1.0f) * h + 0.5f);
-}
+static inline uint32_t tgi_oct_quant_unit(float p, int bits) { return (uint32_t)tgi_oct_quant_u(p, bits); }
 #endif
 
 #if TG_FIXED
@@ -267,19 +266,21 @@ static inline uint32_t tgi_oct_pack_abs(uint64_t ax, uint64_t ay, uint64_t l1, i
 #endif
 
 #if !TG_FIXED
-/* The octahedral fold and quantization of m, whose |.| are ax, ay (of x,
- * y) and l1 = ax + ay + |z| as tgi_oct_pack sums them; `quant` one of the
- * two quantizations above (the same bits where both apply). */
-#define TGI_OCT_FOLD_QUANT(m, ax, ay, l1, bits, quant)                                             \
-    do {                                                                                            \
-        float r_ = 1.0f / (l1), x_ = (m).x * r_, y_ = (m).y * r_;                                   \
-        if ((m).z < 0.0f) { /* (1 - |p.yx|) sign(p): the sign by negation, as exact as x -1 */     \
-            float fx_ = 1.0f - (ay) * r_, fy_ = 1.0f - (ax) * r_;                                   \
-            x_ = (m).x < 0.0f ? -fx_ : fx_;                                                         \
-            y_ = (m).y < 0.0f ? -fy_ : fy_;                                                         \
-        }                                                                                           \
-        oct_word_ = quant(x_, bits) | (quant(y_, bits) << (bits));                                  \
-    } while (0)
+/* m projected on the octahedron |x|+|y|+|z| = 1: its plane coordinates
+ * *x, *y, the lower half folded over ((1 - |p.yx|) sign(p), the sign by
+ * negation, as exact as a product by -1); ax, ay are |m.x|, |m.y| and l1 =
+ * ax + ay + |m.z| as tgi_oct_pack sums them. */
+static inline void tgi_oct_project(tg_vec3 m, float ax, float ay, float l1, float *x, float *y)
+{
+    const float r = 1.0f / l1;
+    *x = m.x * r;
+    *y = m.y * r;
+    if (m.z < 0.0f) {
+        const float fx = 1.0f - ay * r, fy = 1.0f - ax * r;
+        *x = m.x < 0.0f ? -fx : fx;
+        *y = m.y < 0.0f ? -fy : fy;
+    }
+}
 
 /* tgi_oct_pack of m for l1 in [2^-127, TG_REAL_MAX] (ax, ay, l1 as there),
  * without the quantization's clamps: r = 1 / l1 is finite (1 / l1 <=
@@ -291,9 +292,9 @@ static inline uint32_t tgi_oct_pack_abs(uint64_t ax, uint64_t ay, uint64_t l1, i
  * (tests/test_pack.c octahedral_pack_matches_clamped_form). */
 static inline uint32_t tgi_oct_pack_l1(tg_vec3 m, float ax, float ay, float l1, int bits)
 {
-    uint32_t oct_word_;
-    TGI_OCT_FOLD_QUANT(m, ax, ay, l1, bits, tgi_oct_quant_unit);
-    return oct_word_;
+    float x, y;
+    tgi_oct_project(m, ax, ay, l1, &x, &y);
+    return tgi_oct_quant_unit(x, bits) | (tgi_oct_quant_unit(y, bits) << bits);
 }
 #define TGI_OCT_L1_MIN 5.87747175e-39f    /* 2^-127 */
 #endif
@@ -308,12 +309,12 @@ static inline uint32_t tgi_oct_pack(tg_vec3 m, int bits)
     /* |.| by the sign bit (three ands): unlike v < 0 ? -v : v it makes -0
      * into +0, which changes no bit below (l1, 1 - ax r) */
     float ax = tgi_abs_bits(m.x), ay = tgi_abs_bits(m.y), l1 = ax + ay + tgi_abs_bits(m.z);
-    uint32_t oct_word_;
+    float x, y;
     if (l1 >= TGI_OCT_L1_MIN && l1 <= TG_REAL_MAX) return tgi_oct_pack_l1(m, ax, ay, l1, bits);
     if (!(l1 > 0.0f) || l1 > TG_REAL_MAX) return tgi_oct_pack(tg_v3(0, 0, TG_ONE), bits);
     /* below 2^-127: 1 / l1 may overflow, the clamps act on infinite or NaN coordinates */
-    TGI_OCT_FOLD_QUANT(m, ax, ay, l1, bits, tgi_oct_quant);
-    return oct_word_;
+    tgi_oct_project(m, ax, ay, l1, &x, &y);
+    return tgi_oct_quant(x, bits) | (tgi_oct_quant(y, bits) << bits);
 #endif
 }
 

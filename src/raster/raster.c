@@ -431,6 +431,10 @@ static inline int32_t snap_ndc(tg_real c, tg_real w, inv_w iw, int32_t half16)
 
 #if TG_FIXED
 static int64_t asr64(int64_t v, int s) { return v >= 0 ? v >> s : -((-v) >> s); }
+#if !TG_WIDE_STORAGE && !TG_OUTLINE_HELPERS
+/* |v| as unsigned (INT64_MIN too: 2^63), for gbuffer_rows' row loop */
+static inline uint64_t mag64(int64_t v) { return v < 0 ? 0u - (uint64_t)v : (uint64_t)v; }
+#endif
 
 #if TG_WIDE_STORAGE
 
@@ -845,9 +849,9 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
                     zb = tgi_depth_pack_pos((tg_real)z);
                     if (g.depth[i] && zb >= g.depth[i]) continue;
                     g.depth[i] = zb;
-                    ax = (x < 0 ? 0u - (uint64_t)x : (uint64_t)x) >> b.sm;
-                    ay = (y < 0 ? 0u - (uint64_t)y : (uint64_t)y) >> b.sm;
-                    l1 = ax + ay + ((zs < 0 ? 0u - (uint64_t)zs : (uint64_t)zs) >> b.sm);
+                    ax = mag64(x) >> b.sm;
+                    ay = mag64(y) >> b.sm;
+                    l1 = ax + ay + (mag64(zs) >> b.sm);
                     w = l1 ? tgi_oct_pack_abs(ax, ay, l1, x <= neg, y <= neg, zs <= neg, bits)
                            : tgi_oct_pack(sf.fallback_normal, bits);
                     put_nm(&g, i, w | sf.material, bits);
@@ -1074,7 +1078,6 @@ static void gbuffer_rows(const tgi_gbuffer *gbp, const tri_edges *te, const scre
 }
 
 #endif
-
 
 /* ---------------------------------------------------------------------- */
 /* triangles                                                               */
