@@ -11,14 +11,14 @@
  * a light's normalised direction): each product below 2^17 2^31, their sum
  * below 2^50, never past 2^62 (tgi_v3_dot_bounded, core/vec.h). */
 #define dot_unit tgi_v3_dot_bounded
-/* v . v rounded and saturated as tgi_v3_dot gives it.  Q16.16: each
- * square is at most 2^62, so the three sum below 2^64 in uint64_t, exactly;
- * where that sum is at most 2^62 it is tgi_v3_dot's (which drops its third
- * product only past 2^62), rounded alike and then clamped at TG_REAL_MAX
- * (it is never negative); past 2^62 both give TG_REAL_MAX (tgi_v3_dot's
- * sum then also exceeds 2^62 > TG_REAL_MAX 2^16).  (Where a component is
- * TG_REAL_MIN, its square 2^62, tgi_v3_dot's int64_t sum can reach 2^63 and
- * overflow, undefined in C: here TG_REAL_MAX, the exact length's branch.) */
+/* v . v rounded and saturated as tgi_v3_dot gives it, for every v.  Q16.16:
+ * each square is below 2^62 (|v_i| <= TG_REAL_MAX = 2^31 - 1), so the three
+ * sum below 2^64 in uint64_t, exactly and without tgi_v3_dot's test for a
+ * sum past 2^63 or its signs; where that sum is at most 2^62 it is
+ * tgi_v3_dot's (which drops its third product only past 2^62), rounded
+ * alike and then clamped at TG_REAL_MAX (it is never negative); past 2^62
+ * both give TG_REAL_MAX (tgi_v3_dot's sum then also exceeds 2^62 >
+ * TG_REAL_MAX 2^16). */
 #if TGI_Q16_WIDE
 static inline tg_real length2(tg_vec3 v)
 {
