@@ -32,6 +32,36 @@ for src in tools/*.c; do
 done
 expect "tools/size_app.c is linked by tools/size_table.sh" grep -q "size_app.c" tools/size_table.sh
 
+# the peer programs (tools/peers/) need the peers' sources, which this
+# repository does not have: their shared main (peer_common.h, with
+# raster_sphere.h) is compiled with a peer that draws nothing, and its line
+# is the one tools/bench_time.py reads; build.sh refuses what is not a
+# checkout
+cat >"$T/peer_none.c" <<'PEER'
+#include "peer_common.h"
+static long drawn;
+static const char *peer_name(void) { return "none"; }
+static int peer_setup(int w, int h, const float *pos, int tris) { (void)pos; (void)tris; return w == 64 && h == 48; }
+static void bench_clear(void) { drawn = 0; }
+static void bench_draw(void) { drawn = 7; }
+static long peer_covered(void) { return drawn; }
+static void peer_done(void) {}
+int main(int argc, char **argv) { return peer_main(argc, argv); }
+PEER
+if ${CC:-cc} -std=c99 -Wall -Wextra -Werror -Itools/peers "$T/peer_none.c" -lm -o "$T/peer_none" 2>"$T/peer.log"; then
+    ok "tools/peers/peer_common.h compiles (-Wall -Wextra)"
+    line=$("$T/peer_none" 64x48 --frames 2)
+    expect "a peer program prints the result line (tris=49728 ... covered=7)" \
+        sh -c 'printf "%s\n" "$1" | grep -Eq "^none 64x48 tris=49728 frames=2 draw_cpu_ms=[0-9.]+ draw_wall_ms=[0-9.]+ clear_cpu_ms=[0-9.]+ clear_wall_ms=[0-9.]+ covered=7$"' _ "$line"
+    "$T/peer_none" 32x32 >/dev/null 2>&1; rc=$?
+    expect "a peer program refuses a size it cannot draw (exit 2)" test "$rc" -eq 2
+else
+    fail "tools/peers/peer_common.h compiles (-Wall -Wextra)" "$(head -n 5 "$T/peer.log")"
+fi
+sh tools/peers/build.sh "$T" "$T" "$T/peers" >/dev/null 2>"$T/peers.log"; rc=$?
+expect "tools/peers/build.sh refuses a directory that is not TinyGL (exit 2, says why)" \
+    sh -c '[ "$1" -eq 2 ] && grep -q "is not a TinyGL checkout" "$2"' _ "$rc" "$T/peers.log"
+
 # the make targets the README's commands name
 awk '
 function targets(cmd,    n, w, i, started) {

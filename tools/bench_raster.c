@@ -23,58 +23,22 @@
 #include "raster/raster.h"
 #include "raster/gview.h"
 
-#define RINGS 112
-#define SLICES 224
-#define PI 3.14159265358979323846
-
-/* CPU time of this thread: on a shared, loaded machine it tracks the work
- * done far better than the wall clock (which counts time spent descheduled);
- * both are reported. */
-static double cpu_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
-}
-
-static double wall_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
-}
+#include "raster_sphere.h"
 
 static tg_vec3 V(double x, double y, double z)
 {
     return tg_v3(tg_from_float((float)x), tg_from_float((float)y), tg_from_float((float)z));
 }
 
-/* Unit sphere at the origin, counter-clockwise seen from outside. */
+/* raster_sphere.h's sphere as tinygi's numbers (the normal is the position) */
 static int build_sphere(tg_vec3 *pos, tg_vec3 *nrm)
 {
-    int r, s, n = 0;
-    for (r = 0; r < RINGS; r++)
-        for (s = 0; s < SLICES; s++) {
-            double t0 = PI * r / RINGS, t1 = PI * (r + 1) / RINGS;
-            double p0 = 2 * PI * s / SLICES, p1 = 2 * PI * (s + 1) / SLICES;
-            double c[4][3];
-            int q[2][3] = { { 0, 2, 1 }, { 1, 2, 3 } }, k, l;
-            double th[4] = { t0, t0, t1, t1 }, ph[4] = { p0, p1, p0, p1 };
-            for (k = 0; k < 4; k++) {
-                c[k][0] = sin(th[k]) * cos(ph[k]);
-                c[k][1] = cos(th[k]);
-                c[k][2] = -sin(th[k]) * sin(ph[k]);
-            }
-            for (k = 0; k < 2; k++) {
-                if ((r == 0 && k == 0) || (r == RINGS - 1 && k == 1)) continue; /* pole slivers */
-                for (l = 0; l < 3; l++) {
-                    const double *v = c[q[k][l]];
-                    pos[3 * n + l] = V(v[0], v[1], v[2]);
-                    nrm[3 * n + l] = V(v[0], v[1], v[2]);
-                }
-                n++;
-            }
-        }
+    float *c = (float *)malloc(sizeof(float) * 9 * SPHERE_MAX_TRIS);
+    int n, i;
+    if (!c) return 0;
+    n = sphere_corners(c);
+    for (i = 0; i < 3 * n; i++) pos[i] = nrm[i] = V(c[3 * i], c[3 * i + 1], c[3 * i + 2]);
+    free(c);
     return n;
 }
 
@@ -141,8 +105,8 @@ static void bench(const tgi_raster_mesh *mesh, int w, int h, int frames)
         exit(1);
     }
     /* the sphere fills ~90% of the image height */
-    tgi_view_make(&view, V(0, 0, -3.4), V(0, 0, 0), V(0, 1, 0), tg_from_float(0.6f), tg_from_float(0.05f),
-                 tg_from_float(1000.0f), w, h);
+    tgi_view_make(&view, V(0, 0, -SPHERE_CAM_DIST), V(0, 0, 0), V(0, 1, 0), tg_from_float((float)SPHERE_CAM_FOV),
+                 tg_from_float((float)SPHERE_CAM_NEAR), tg_from_float((float)SPHERE_CAM_FAR), w, h);
     for (f = -2; f < frames; f++) {
         double c0 = cpu_seconds(), w0 = wall_seconds(), c1, w1;
         bench_clear(&gb);
@@ -161,19 +125,13 @@ static void bench(const tgi_raster_mesh *mesh, int w, int h, int frames)
     free(mem); free(gb.object);
 }
 
-static int parse_size(const char *s, int *w, int *h)
-{
-    char x;
-    return sscanf(s, "%d%c%d", w, &x, h) == 3 && x == 'x' && *w >= 1 && *h >= 1 && *w <= 8192 && *h <= 8192;
-}
-
 int main(int argc, char **argv)
 {
     int frames = 20, sizes[8][2], nsizes = 0, a, k;
-    tg_vec3 *pos = (tg_vec3 *)malloc(sizeof(tg_vec3) * 3 * RINGS * SLICES * 2);
-    tg_vec3 *nrm = (tg_vec3 *)malloc(sizeof(tg_vec3) * 3 * RINGS * SLICES * 2);
-    uint16_t *mat = (uint16_t *)calloc(RINGS * SLICES * 2, sizeof(uint16_t));
-    uint16_t *obj = (uint16_t *)calloc(RINGS * SLICES * 2, sizeof(uint16_t));
+    tg_vec3 *pos = (tg_vec3 *)malloc(sizeof(tg_vec3) * 3 * SPHERE_MAX_TRIS);
+    tg_vec3 *nrm = (tg_vec3 *)malloc(sizeof(tg_vec3) * 3 * SPHERE_MAX_TRIS);
+    uint16_t *mat = (uint16_t *)calloc(SPHERE_MAX_TRIS, sizeof(uint16_t));
+    uint16_t *obj = (uint16_t *)calloc(SPHERE_MAX_TRIS, sizeof(uint16_t));
     tgi_material m;
     tgi_raster_mesh mesh;
     for (a = 1; a < argc; a++) {
