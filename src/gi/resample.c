@@ -144,6 +144,39 @@ static const tg_real near_dir[16][2] = {
  * TGI_NEAR_STEPS of them). */
 static const int near_t[16] = { 1, 2, 3, 4, 6, 9, 13, 19, 28, 42, 63, 94, 141, 211, 316, 474 };
 
+/* NEAR_OFF_PAIRS (float, with the index offsets): each march offset of
+ * tgi_upsample_start's off[][][][] as a pair of floats in a constant
+ * table, which the march inside the image reads with one load an offset
+ * (near_off_real's is a sign extension and a load) and multiplies from
+ * memory (cornell 320x240 --gi-quarter 2 frames: float 1000.22M ->
+ * 992.56M).  The same formula of the same integers: the
+ * rounded direction (ux, uy) = round(256 near_dir[c]) of slice 0 (those
+ * of slice 1 are (-uy, ux): round(-v) = -round(v), no 256 near_dir[c][k]
+ * lies within 0.001 of a half), side 1 the other way, and each t =
+ * near_t[n]; tgi_upsample_start checks every pair against off (the
+ * inside copy runs only where they agree: u->deltas).  Up to 7 steps
+ * (TG_QUARTER_NEAR_REACH <= 16, as NEAR_OFF_TABLE); 3584 bytes of constants,
+ * none in a build for size. */
+#define NEAR_OFF_PAIRS (!TG_FIXED && !TG_OUTLINE_HELPERS && TG_QUARTER_NEAR_REACH <= 16 && TGI_NEAR_DELTAS)
+#if NEAR_OFF_PAIRS
+#define NEAR_O(s, t) ((float)((((128 + (t) * (s) + 256 * ((t) + 1)) >> 8) - ((t) + 1))))
+#define NEAR_OP(sx, sy, t) { NEAR_O(sx, t), NEAR_O(sy, t) }
+#define NEAR_OS(sx, sy) \
+    { NEAR_OP(sx, sy, 1), NEAR_OP(sx, sy, 2), NEAR_OP(sx, sy, 3), NEAR_OP(sx, sy, 4), NEAR_OP(sx, sy, 6), \
+      NEAR_OP(sx, sy, 9), NEAR_OP(sx, sy, 13) }
+#define NEAR_OC(ux, uy) { NEAR_OS(ux, uy), NEAR_OS(-(ux), -(uy)), NEAR_OS(-(uy), ux), NEAR_OS(uy, -(ux)) }
+static const float near_off_pairs[16][4][7][2] = {
+    NEAR_OC(256, 13), NEAR_OC(172, 190), NEAR_OC(248, 62),  NEAR_OC(132, 220),
+    NEAR_OC(86, 241), NEAR_OC(231, 109), NEAR_OC(38, 253),  NEAR_OC(206, 152),
+    NEAR_OC(241, 86), NEAR_OC(109, 231), NEAR_OC(253, 38),  NEAR_OC(152, 206),
+    NEAR_OC(13, 256), NEAR_OC(190, 172), NEAR_OC(62, 248),  NEAR_OC(220, 132)
+};
+#undef NEAR_OC
+#undef NEAR_OS
+#undef NEAR_OP
+#undef NEAR_O
+#endif
+
 #if TGI_NEAR_DELTAS
 static int64_t abs64(int64_t v) { return v < 0 ? -v : v; }
 #endif
@@ -194,6 +227,15 @@ void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_g
 #if TGI_NEAR_DELTAS
     /* the index offsets, when every one fits 16 bits (|dx|, |dy| <= reach) */
     u->deltas = (int64_t)u->reach * (abs64(full->row_stride) + abs64(full->pixel_stride)) <= INT16_MAX;
+#if NEAR_OFF_PAIRS
+    /* the inside copy reads near_off_pairs too: only where each is off's */
+    for (c = 0; c < 16 && u->deltas; c++)
+        for (k = 0; k < 4; k++)
+            for (n = 0; n < u->steps; n++)
+                if (near_off_pairs[c][k][n][0] != (float)u->off[c][k][n][0]
+                    || near_off_pairs[c][k][n][1] != (float)u->off[c][k][n][1])
+                    u->deltas = 0;
+#endif
     for (c = 0; c < 16 && u->deltas; c++)
         for (k = 0; k < 4; k++)
             for (n = 0; n < u->steps; n++)
@@ -358,6 +400,9 @@ static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q
 #if TGI_NEAR_DELTAS
     const int16_t *delta = u->delta[cell][side];
 #endif
+#if NEAR_OFF_PAIRS
+    const float (*pair)[2] = near_off_pairs[cell][side];   /* off's, inside (u->deltas) */
+#endif
     const near_plane pl = *ppl;
     const int x = q->x, y = q->y;
     const size_t i0 = q->i;
@@ -393,6 +438,12 @@ static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q
             j = inside ? i0 + (size_t)((ptrdiff_t)off[n][1] * g->row_stride + (ptrdiff_t)off[n][0] * g->pixel_stride)
                        : tgi_gv_index(g, sx, sy);
 #endif
+#if NEAR_OFF_PAIRS
+            if (inside) {
+                if (!tgi_gv_is_sky(g, j) && !near_under_plane_r(&pl, tgi_gv_depth(g, j), pair[n][0], pair[n][1])) break;
+                continue;
+            }
+#endif
             if (!tgi_gv_is_sky(g, j) && !near_under_off(&pl, tgi_gv_depth(g, j), off[n], wide)) break;
         }
         if (n >= steps) break;
@@ -403,8 +454,13 @@ static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q
             continue;
         }
 #endif
+#if NEAR_OFF_PAIRS
+        fdx = inside ? pair[n][0] : near_off_real(off[n][0]);
+        fdy = inside ? pair[n][1] : near_off_real(off[n][1]);
+#else
         fdx = near_off_real(off[n][0]);
         fdy = near_off_real(off[n][1]);
+#endif
         n++;
         h = tg_v3(tg_sub(tg_mul(z, tg_add(q->kx, tg_mul(fdx, u->ax))), q->pv.x),
                   tg_sub(tg_mul(z, tg_sub(q->ky, tg_mul(fdy, u->ay))), q->pv.y), tg_sub(z, q->pv.z));
