@@ -659,6 +659,31 @@ static inline void near_mean_term(const tgi_upsample_plan *u, size_t j, tg_real 
  * (tg_sub exact) and tol = 0.1 z rounded is at most z (float: z times
  * 0.1f rounded, monotone; Q16.16: floor((6554 z + 2^15) / 2^16) <= z, raw
  * values), so z < tol fails; NaN fails it too. */
+/* Whether the stored near horizons of the 3x3 neighbourhood rows j0, j1,
+ * j2 (each three pixels px apart) are all 1: then so is their mean over
+ * any of them (near_horizon_mean), whatever the depth tests take.  Stored
+ * as a byte, 1 is 255 (tgi_unorm8_unpack(255) is TG_ONE exactly: Q16.16
+ * 255 * 257 + 1 = 65536; float 255 times 1/255 rounded rounds to 1), and
+ * no other byte unpacks to it; the n terms taken then sum to n exactly
+ * (integers up to 9; Q16.16 n 2^16), n / n is 1 exactly (tgi_div_nonneg),
+ * and no term gives TG_ONE as well.  Most pixels have no sample above
+ * their tangent plane (near_horizon_ao: 1), so the test, an and of the
+ * nine bytes, skips the depth tests and the sum for most.  A build for
+ * size tests nothing and sums. */
+#if !TG_OUTLINE_HELPERS
+static inline int near_all_open(const tgi_gresult *r, size_t j0, size_t j1, size_t j2, size_t px)
+{
+#if TG_WIDE_STORAGE
+    return r->ao[j0] == TG_ONE && r->ao[j0 + px] == TG_ONE && r->ao[j0 + 2 * px] == TG_ONE && r->ao[j1] == TG_ONE
+           && r->ao[j1 + px] == TG_ONE && r->ao[j1 + 2 * px] == TG_ONE && r->ao[j2] == TG_ONE
+           && r->ao[j2 + px] == TG_ONE && r->ao[j2 + 2 * px] == TG_ONE;
+#else
+    return (r->ao[j0] & r->ao[j0 + px] & r->ao[j0 + 2 * px] & r->ao[j1] & r->ao[j1 + px] & r->ao[j1 + 2 * px] & r->ao[j2]
+            & r->ao[j2 + px] & r->ao[j2 + 2 * px]) == 255;
+#endif
+}
+#endif
+
 static tg_real near_horizon_mean(const tgi_upsample_plan *u, int x, int y, tg_real z)
 {
     const tgi_gview *full = u->full;
@@ -676,6 +701,9 @@ static tg_real near_horizon_mean(const tgi_upsample_plan *u, int x, int y, tg_re
     if (u->near && xb - xa == 2 && yb - ya == 2) {   /* all 3x3 inside the image, the stored near horizons */
         const size_t px = (size_t)full->pixel_stride, row = (size_t)full->row_stride;
         const size_t j0 = tgi_gv_index(full, xa, ya), j1 = j0 + row, j2 = j1 + row;   /* modulo 2^N, as the loop's */
+#if !TG_OUTLINE_HELPERS
+        if (near_all_open(u->near, j0, j1, j2, px)) return TG_ONE;
+#endif
         /* the loop's terms in its order (rows, then columns) */
         near_mean_term(u, j0, z, tol, &sum, &n); near_mean_term(u, j0 + px, z, tol, &sum, &n);
         near_mean_term(u, j0 + 2 * px, z, tol, &sum, &n);
