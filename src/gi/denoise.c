@@ -267,7 +267,14 @@ static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const
             if (window & 1) ENTRY(j);
     }
 #undef ENTRY
-    for (c = 0; c <= TGI_DENOISE_VALUES; c++) sum[c] = s[c];
+    /* the sums out, those of a channel left out (bent, near: 0, s[c] never
+     * added to) as the constant 0 they are: gcc then keeps every sum in a
+     * register without a flag of whether any entry was added (a register
+     * and an instruction an entry; Q16.16 cornell 160x120 2 frames 754.48M
+     * -> 752.74M) */
+    sum[0] = s[0]; sum[7] = s[7];
+    for (c = 1; c < 4; c++) sum[c] = bent ? s[c] : 0;
+    for (c = 4; c < 7; c++) sum[c] = near ? s[c] : 0;
 }
 /* weigh_and_sum over a whole window without the bent normal, the near
  * field or both (cornell 320x240 3 frames, no bent normals: 3 products a
