@@ -655,8 +655,8 @@ static tg_real near_horizon_stored_at(const tgi_upsample_plan *u, tgi_normal_mem
     return near_horizon_stored(u, m, x, y, i, near_ray_y(u, y));
 }
 
-/* The mean near horizon of full-res pixel (x, y) at depth z and of its 3x3
- * neighbours at its depth (within a tenth of it, where the upsample's depth
+/* The upsampled AO ao of full-res pixel (x, y) at depth z capped by the
+ * mean near horizon of the pixel and of its 3x3 neighbours at its depth (within a tenth of it, where the upsample's depth
  * weight reaches): a pixel's own is 2 slices (its 4x4 cell's, near_dir),
  * a noisy estimate whose low side the cap min(upsampled, near) would take
  * (dark single pixels beside a sphere's foot, AO biased low); the mean
@@ -679,32 +679,60 @@ static inline void near_mean_term(const tgi_upsample_plan *u, size_t j, tg_real 
  * (tg_sub exact) and tol = 0.1 z rounded is at most z (float: z times
  * 0.1f rounded, monotone; Q16.16: floor((6554 z + 2^15) / 2^16) <= z, raw
  * values), so z < tol fails; NaN fails it too. */
-/* Whether the stored near horizons of the 3x3 neighbourhood rows j0, j1,
- * j2 (each three pixels px apart) are all 1: then so is their mean over
- * any of them (near_horizon_mean), whatever the depth tests take.  Stored
- * as a byte, 1 is 255 (tgi_unorm8_unpack(255) is TG_ONE exactly: Q16.16
- * 255 * 257 + 1 = 65536; float 255 times 1/255 rounded rounds to 1), and
- * no other byte unpacks to it; the n terms taken then sum to n exactly
- * (integers up to 9; Q16.16 n 2^16), n / n is 1 exactly (tgi_div_nonneg),
- * and no term gives TG_ONE as well.  Most pixels have no sample above
- * their tangent plane (near_horizon_ao: 1), so the test, an and of the
- * nine bytes, skips the depth tests and the sum for most.  A build for
- * size tests nothing and sums. */
+/* The least of the stored near horizons of the 3x3 neighbourhood rows j0,
+ * j1, j2 (each three pixels px apart): m.  Their mean over any of them
+ * (near_horizon_mean, whatever its depth tests take; none: TG_ONE) is at
+ * least m: in Q16.16 exactly (n values >= m sum to s >= n m, exact
+ * integers, and tgi_div_nonneg gives floor(s / n + 1/2) >= m, m an
+ * integer), in float but for the roundings (n <= 9 values >= m > 0, all
+ * normal: each of the n - 1 sums of non-negative terms and the quotient
+ * lose at most a factor 1 - 2^-24, so the mean is > m (1 - 9 2^-24)).  So
+ * the cap min(ao, mean) is ao where ao <= m (Q16.16), where ao < m (1 -
+ * 2^-20) rounded (float: that product is at most m (1 - 2^-20) (1 +
+ * 2^-24) < m (1 - 9 2^-24); m = 0 passes no ao >= 0), and where m is 1
+ * (every stored near horizon lies in [0, 1]: near_horizon_ao gives
+ * TG_ONE or a tg_saturate; so all nine are 1, as byte 255, which
+ * tgi_unorm8_unpack makes TG_ONE exactly: Q16.16 255 * 257 + 1 = 65536,
+ * float 255 times 1/255 rounded rounds to 1; n ones sum to n exactly,
+ * n / n = 1, and ao <= 1, a tg_saturate).  Most pixels have no sample
+ * above their tangent plane (near_horizon_ao: 1) or a near horizon above
+ * the upsampled AO: the nine values' minimum skips their depth tests and
+ * their sum for most (cornell 320x240 --gi-quarter 2 frames, float 992.60M
+ * -> 977.82M, Q16.16 1480.88M -> 1449.32M with the other changes between;
+ * the and of the nine bytes against 255 alone took 978.20M, 1450.76M).
+ * The minimum of the bytes, unpacked (tgi_unorm8_unpack is
+ * non-decreasing).  A build for size tests nothing and sums. */
 #if !TG_OUTLINE_HELPERS
-static inline int near_all_open(const tgi_gresult *r, size_t j0, size_t j1, size_t j2, size_t px)
+#define NEAR_LESS(a, b) ((b) < (a) ? (b) : (a))
+static inline tg_real near_least(const tgi_gresult *r, size_t j0, size_t j1, size_t j2, size_t px)
 {
 #if TG_WIDE_STORAGE
-    return r->ao[j0] == TG_ONE && r->ao[j0 + px] == TG_ONE && r->ao[j0 + 2 * px] == TG_ONE && r->ao[j1] == TG_ONE
-           && r->ao[j1 + px] == TG_ONE && r->ao[j1 + 2 * px] == TG_ONE && r->ao[j2] == TG_ONE
-           && r->ao[j2 + px] == TG_ONE && r->ao[j2 + 2 * px] == TG_ONE;
+    tg_real m;
 #else
-    return (r->ao[j0] & r->ao[j0 + px] & r->ao[j0 + 2 * px] & r->ao[j1] & r->ao[j1 + px] & r->ao[j1 + 2 * px] & r->ao[j2]
-            & r->ao[j2 + px] & r->ao[j2 + 2 * px]) == 255;
+    uint8_t m;
+#endif
+    m = NEAR_LESS(r->ao[j0], r->ao[j0 + px]); m = NEAR_LESS(m, r->ao[j0 + 2 * px]);
+    m = NEAR_LESS(m, r->ao[j1]); m = NEAR_LESS(m, r->ao[j1 + px]); m = NEAR_LESS(m, r->ao[j1 + 2 * px]);
+    m = NEAR_LESS(m, r->ao[j2]); m = NEAR_LESS(m, r->ao[j2 + px]); m = NEAR_LESS(m, r->ao[j2 + 2 * px]);
+#if TG_WIDE_STORAGE
+    return m;
+#else
+    return tgi_unorm8_unpack(m);
+#endif
+}
+#undef NEAR_LESS
+/* whether near_least's m leaves the upsampled AO ao uncapped */
+static inline int near_below_least(tg_real ao, tg_real m)
+{
+#if TG_FIXED
+    return ao <= m;
+#else
+    return m >= TG_ONE || ao < m * (1.0f - 0x1p-20f);
 #endif
 }
 #endif
 
-static tg_real near_horizon_mean(const tgi_upsample_plan *u, int x, int y, tg_real z)
+static tg_real near_horizon_mean(const tgi_upsample_plan *u, int x, int y, tg_real z, tg_real ao)
 {
     const tgi_gview *full = u->full;
     const tg_real tol = upsample_depth_tol(z);   /* where upsample_depth_weight is above 0 */
@@ -722,7 +750,7 @@ static tg_real near_horizon_mean(const tgi_upsample_plan *u, int x, int y, tg_re
         const size_t px = (size_t)full->pixel_stride, row = (size_t)full->row_stride;
         const size_t j0 = tgi_gv_index(full, xa, ya), j1 = j0 + row, j2 = j1 + row;   /* modulo 2^N, as the loop's */
 #if !TG_OUTLINE_HELPERS
-        if (near_all_open(u->near, j0, j1, j2, px)) return TG_ONE;
+        if (near_below_least(ao, near_least(u->near, j0, j1, j2, px))) return ao;
 #endif
         /* the loop's terms in its order (rows, then columns) */
         near_mean_term(u, j0, z, tol, &sum, &n); near_mean_term(u, j0 + px, z, tol, &sum, &n);
@@ -731,7 +759,7 @@ static tg_real near_horizon_mean(const tgi_upsample_plan *u, int x, int y, tg_re
         near_mean_term(u, j1 + 2 * px, z, tol, &sum, &n);
         near_mean_term(u, j2, z, tol, &sum, &n); near_mean_term(u, j2 + px, z, tol, &sum, &n);
         near_mean_term(u, j2 + 2 * px, z, tol, &sum, &n);
-        return n > 0 ? tgi_div_nonneg(tgi_wide_real(sum), tg_from_int(n)) : TG_ONE;
+        return tg_min(ao, n > 0 ? tgi_div_nonneg(tgi_wide_real(sum), tg_from_int(n)) : TG_ONE);
     }
     for (yy = ya; yy <= yb; yy++) {
         size_t j = tgi_gv_index(full, xa, yy);
@@ -741,7 +769,7 @@ static tg_real near_horizon_mean(const tgi_upsample_plan *u, int x, int y, tg_re
             n++;
         }
     }
-    return n > 0 ? tgi_div_nonneg(tgi_wide_real(sum), tg_from_int(n)) : TG_ONE;
+    return tg_min(ao, n > 0 ? tgi_div_nonneg(tgi_wide_real(sum), tg_from_int(n)) : TG_ONE);
 }
 
 void tgi_near_horizon_rows(const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res, tg_real radius,
@@ -833,7 +861,7 @@ tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk
     /* the upsampled AO misses what lies between the half-res samples (a
      * contact shadow a few pixels wide): the near horizon's is the lower */
     v.ao = tg_saturate(tg_div(ao, sum));
-    if (u->steps > 0) v.ao = tg_min(v.ao, near_horizon_mean(u, x, y, z));
+    if (u->steps > 0) v.ao = near_horizon_mean(u, x, y, z, v.ao);
     v.bent = n;
     if (want_bent) {
         tg_vec3 b = tgi_v3_add(n, tg_v3(tg_div(bend.x, sum), tg_div(bend.y, sum), tg_div(bend.z, sum)));
