@@ -924,15 +924,29 @@ static inline int floor_small(tg_real a)
 #endif
 }
 
-/* a - floor_small(a) (b0 = floor_small(a)), in [0, 1): the raw value's
- * fraction bits in Q16.16. */
-static inline tg_real frac_small(tg_real a, int b0)
+/* b0 = floor_small(a), returned, and *f = a - b0 in [0, 1): the raw
+ * value's fraction bits in Q16.16.  In float the truncation's conversion
+ * back, (float)i, serves the floor's compare and the fraction, less one
+ * where the floor is i - 1: (float)(i - 1) is (float)i - 1 exactly (|i| <
+ * 2^24), so the fraction is a - (float)b0 as it was, the same bits (it
+ * had been a - (float)b0 after floor_small, whose conversion fine_run made
+ * again: cornell 160x120 float 530.83M -> 530.31M, Q16.16 754.48M ->
+ * 752.06M, its fine_run computing f before the image test; --gi-quarter
+ * 320x240 float 1000.22M -> 997.59M, Q16.16's kernel the same). */
+static inline int floor_frac_small(tg_real a, tg_real *f)
 {
 #if TG_FIXED
-    (void)b0;
-    return a & 0xFFFF;
+    *f = a & 0xFFFF;
+    return floor_small(a);
 #else
-    return a - (tg_real)b0;
+    int i = (int)a;
+    tg_real fi = (tg_real)i;
+    if (fi > a) {
+        i--;
+        fi = fi - 1.0f;
+    }
+    *f = a - fi;
+    return i;
 #endif
 }
 
@@ -1309,8 +1323,7 @@ static inline void march_samples(
 #endif
         a += da;
         sa_major += (ptrdiff_t)da * smaj;
-        b0 = floor_small(minor);
-        f = frac_small(minor, b0);
+        b0 = floor_frac_small(minor, &f);
         sa = sa_major + b0 * smin;
         /* both neighbours surface (depth > 0 is not sky) and close: 1/z
          * interpolated linearly, 1/z = (1-f)/za + f/zb  <=>
@@ -1527,15 +1540,14 @@ static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, c
         for (t = lo; stride > 0 ? t < hi : t > hi; t += stride, fa += dir * stride, ia += dmaj, tm = small_add(tm, dtm)) {
             /* |slope| <= 1, t and the fine pixels below 2^14, times 1/4 or 1/8: small_mul */
             const tg_real minor = small_mul_int(slope, t);
-            const int b0 = floor_small(minor), fb = fb0 + b0;
             tg_real f, z1, za, zb, sx, sy, inv_len, cn;
+            const int b0 = floor_frac_small(minor, &f), fb = fb0 + b0;
             size_t si;
             tgi_wide d[3];
             if ((unsigned)fb >= (unsigned)bmax) {                           /* the slice leaves the image */
                 if (climb) break;
                 continue;
             }
-            f = frac_small(minor, b0);
             si = ia + (size_t)fb * smin;
             za = tgi_gv_depth(fg, si);
             if (fb + 1 < bmax && za > 0 && depths_close(za, zb = tgi_gv_depth(fg, si + smin))   /* as in march_samples */
