@@ -2060,7 +2060,13 @@ static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
     int s, pat;
     tg_real ao;
     int X = px->x * c->step + c->g->offset_x, Y = px->y * c->step + c->g->offset_y;
+#if TG_OUTLINE_HELPERS   /* compiling for size: the call is shorter */
     memset(&acc, 0, sizeof acc);
+#else   /* every field set, as side_init (the memset was a call to the C library's a pixel) */
+    acc.occlusion = 0;
+    acc.bent_delta = tg_v3(0, 0, 0);
+    acc.er = acc.eg = acc.eb = 0;
+#endif
     pat = tgi_hbil_pattern(X >> PATTERN_SHIFT(c), Y >> PATTERN_SHIFT(c), c->p->rotation);
     px->jitter = tgi_hbil_block_jitter(c->jitter[pat], X >> 2, Y >> 2, c->p->rotation);
     for (s = 0; s < c->slices; s++)
