@@ -1974,6 +1974,26 @@ typedef struct hbil_sums {
     tg_real er, eg, eb;     /* sum of L dE */
 } hbil_sums;
 
+/* tg_rsqrt(x) for x known positive, normal and finite (each use says
+ * why): in float tg_rsqrt's seed and three Newton steps, the same
+ * operations, without its range tests (x > 0, x <= TG_REAL_MAX, x below
+ * the smallest normal) and its scale (1 for a normal x: a product that
+ * changes no bit); cornell 160x120, 2 frames, float 529.04M -> 528.46M.
+ * Q16.16 and compiling for size tg_rsqrt itself. */
+#if TG_FIXED || TG_OUTLINE_HELPERS
+#define rsqrt_in_range tg_rsqrt
+#else
+static inline float rsqrt_in_range(float x)
+{
+    float y = tgi_f_from_bits(0x5f3759dfu - (tgi_f_bits(x) >> 1));
+    const float hx = 0.5f * x;
+    y = y * (1.5f - hx * y * y);
+    y = y * (1.5f - hx * y * y);
+    y = y * (1.5f - hx * y * y);
+    return y;
+}
+#endif
+
 static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_real sphi, hbil_sums *acc)
 {
     hbil_slice sl;
@@ -1988,8 +2008,10 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
     sl.d = small_v3_add(small_v3_scale(px->wx, cphi), small_v3_scale(px->wy, sphi)); /* HBIL sec. 1.2 D(phi) */
     sl.nx = small_dot(px->n, sl.d);                            /* HBIL eq. 2 */
     sl.ny = px->ndv;
-    /* |n'|^2 >= ny^2 > 0 (ny >= HBIL_MIN_NDOTV) */
-    inv_len_n = tg_rsqrt(tg_max(small_add(small_mul(sl.nx, sl.nx), small_mul(sl.ny, sl.ny)), small_mul(sl.ny, sl.ny)));
+    /* |n'|^2 >= ny^2 > 2^-15 (ny = n.w_o is at least HBIL_MIN_NDOTV =
+     * 2^-7 over sqrt(1 + 2^-14) and a rounding, pixel_setup's bent n), and
+     * below 32 (n''s components below 4): rsqrt_in_range */
+    inv_len_n = rsqrt_in_range(tg_max(small_add(small_mul(sl.nx, sl.nx), small_mul(sl.ny, sl.ny)), small_mul(sl.ny, sl.ny)));
     /* horizons initialised on the tangent plane (sec. 2.1): cos = -/+ n_x/|n'| */
     h1i = tg_clamp(tg_mul(tg_neg(sl.nx), inv_len_n), TG_R(-1.0f), TG_ONE);
     h0i = tg_neg(h1i);
