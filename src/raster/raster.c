@@ -1445,8 +1445,25 @@ static void gbuffer_wide_triangle(const raster_target *rt, const view_frame *vf,
 
 /* Neighbouring triangles of a mesh share vertices (a triangle strip reuses
  * two of every three): a direct-mapped cache keyed by the position's bits
- * gives back the same view_vertex without transforming it again. */
+ * gives back the same view_vertex without transforming it again.  A hit
+ * is the entry view_vertex_make made from the same bits: the same vertex
+ * whatever the cache's size or hash.
+ * On a 64-bit host outside size builds (VCACHE_BIG) it has 1024 entries
+ * (40 KB of stack in float, 52 KB in Q16.16): a grid of quads, row by
+ * row (a tessellated sphere's rings), meets each vertex again a row
+ * later, after a row's worth of others, which 16 entries never keep
+ * (bench_raster's sphere of 224 slices: 56,285 transforms a frame for
+ * 25,203 vertices; 34,191 with 1024).  Its hash takes z's bits rotated
+ * by one: with z's sign in the top bit, a sign flip of x and of z added
+ * 2^31 twice, so (x, y, z) and (-x, y, -z) (a ring's opposite points)
+ * shared an entry (49,842 transforms with 1024 entries). */
+#if UINTPTR_MAX > 0xFFFFFFFFu && !TG_OUTLINE_HELPERS
+#define VCACHE_BIG 1
+#define VCACHE_BITS 10
+#else
+#define VCACHE_BIG 0
 #define VCACHE_BITS 4
+#endif
 typedef struct vertex_cache {
     uint32_t key[1 << VCACHE_BITS][3];
     view_vertex v[1 << VCACHE_BITS];
@@ -1488,7 +1505,12 @@ static VIEW_VERTEX_INLINE void vertex_fetch(vertex_cache *c, const raster_target
                                 tri_vertices *tv, int k)
 {
     uint32_t kx = real_bits(p.x), ky = real_bits(p.y), kz = real_bits(p.z);
-    uint32_t h = (kx * 0x9E3779B1u + ky * 0x85EBCA77u + kz * 0xC2B2AE3Du) >> (32 - VCACHE_BITS);
+#if VCACHE_BIG
+    const uint32_t hz = (kz << 1) | (kz >> 31);
+#else
+    const uint32_t hz = kz;
+#endif
+    uint32_t h = (kx * 0x9E3779B1u + ky * 0x85EBCA77u + hz * 0xC2B2AE3Du) >> (32 - VCACHE_BITS);
     const view_vertex *o = &c->v[h];
     if (c->key[h][0] != kx || c->key[h][1] != ky || c->key[h][2] != kz) {
         c->key[h][0] = kx; c->key[h][1] = ky; c->key[h][2] = kz;
