@@ -432,8 +432,16 @@ static inline int32_t snap_ndc(tg_real c, tg_real w, inv_w iw, int32_t half16)
 #if TG_FIXED
 static int64_t asr64(int64_t v, int s) { return v >= 0 ? v >> s : -((-v) >> s); }
 #if !TG_WIDE_STORAGE && !TG_OUTLINE_HELPERS
-/* |v| as unsigned (INT64_MIN too: 2^63), for gbuffer_rows' row loop */
-static inline uint64_t mag64(int64_t v) { return v < 0 ? 0u - (uint64_t)v : (uint64_t)v; }
+/* |v| as unsigned (INT64_MIN too: 2^63), for gbuffer_rows' row loop: by
+ * the sign's mask s (all ones for v < 0), (v ^ s) - s = ~v + 1 = -v modulo
+ * 2^64, else v.  (As v < 0 ? -v : v, gcc stepped each sum's negation as
+ * an induction variable of its own beside the sum, and spilled; callgrind
+ * bench_raster-fixed 1280x720 86.07M -> 85.84M a frame.) */
+static inline uint64_t mag64(int64_t v)
+{
+    const uint64_t s = 0u - ((uint64_t)v >> 63);
+    return ((uint64_t)v ^ s) - s;
+}
 #endif
 
 #if TG_WIDE_STORAGE
