@@ -1018,10 +1018,16 @@ static RASTER_INLINE void gbuffer_rows_bits(const tgi_gbuffer *gbp, const tri_ed
             d = tgi_depth_unpack(g.depth[i]);   /* a reinterpretation: 0 is sky */
             if (d > 0.0f && wmin >= qv * d) continue;
             {   /* qv * d rounds: an equal depth can pass the test above, and the
-                 * first surface drawn keeps it, as in Q16.16 */
-                uint32_t zb = tgi_depth_pack(wmin / qv);
-                if (g.depth[i] != 0 && zb >= g.depth[i]) continue;
-                g.depth[i] = zb;
+                 * first surface drawn keeps it, as in Q16.16.  wmin > 0 (every
+                 * drawn vertex has w > 0: w >= znear > 0 unclipped, draw_polygon's
+                 * test clipped) and qv > 0, both finite, so z = wmin / qv is +0, +inf
+                 * or positive, never NaN or negative: its bits are tgi_depth_pack's
+                 * word (+0's are 0).  For any stored word d_w, d_w - 1 < zb
+                 * (unsigned, wrapping at 0) is d_w != 0 && zb >= d_w. */
+                tgi_f32_bits zb;
+                zb.f = wmin / qv;
+                if (g.depth[i] - 1u < zb.u) continue;
+                g.depth[i] = zb.u;
             }
             {   /* tgi_oct_pack(normal_nonzero(m) ? m : fallback): l1 > 1e-14 is nonzero, and
                  * above 2^-127, so the unclamped tgi_oct_pack_l1 packs it */
