@@ -1467,10 +1467,11 @@ static void gbuffer_wide_triangle(const raster_target *rt, const view_frame *vf,
  * row (a tessellated sphere's rings), meets each vertex again a row
  * later, after a row's worth of others, which 16 entries never keep
  * (bench_raster's sphere of 224 slices: 56,285 transforms a frame for
- * 25,203 vertices; 34,191 with 1024).  Its hash takes z's bits rotated
- * by one: with z's sign in the top bit, a sign flip of x and of z added
- * 2^31 twice, so (x, y, z) and (-x, y, -z) (a ring's opposite points)
- * shared an entry (49,842 transforms with 1024 entries). */
+ * 25,203 vertices; 33,941 with 1024).  Its hash and keys are 64-bit,
+ * x and y in one word (two multiplies and a compare fewer than three
+ * 32-bit keys).  (The 32-bit hash sum(k_i c_i), c_i odd, put (x, y, z)
+ * and (-x, y, -z), a ring's opposite points, on one entry: the two sign
+ * flips each add 2^31; 49,842 transforms with 1024 entries.) */
 #if UINTPTR_MAX > 0xFFFFFFFFu && !TG_OUTLINE_HELPERS
 #define VCACHE_BIG 1
 #define VCACHE_BITS 10
@@ -1479,7 +1480,12 @@ static void gbuffer_wide_triangle(const raster_target *rt, const view_frame *vf,
 #define VCACHE_BITS 4
 #endif
 typedef struct vertex_cache {
+#if VCACHE_BIG
+    uint64_t key_xy[1 << VCACHE_BITS];
+    uint32_t key_z[1 << VCACHE_BITS];
+#else
     uint32_t key[1 << VCACHE_BITS][3];
+#endif
     view_vertex v[1 << VCACHE_BITS];
 } vertex_cache;
 
@@ -1501,7 +1507,12 @@ static void vertex_cache_init(vertex_cache *c, const raster_target *rt, const vi
     uint32_t z = real_bits(0);
     int i;
     for (i = 0; i < 1 << VCACHE_BITS; i++) {
+#if VCACHE_BIG
+        c->key_xy[i] = (uint64_t)z << 32 | z;
+        c->key_z[i] = z;
+#else
         c->key[i][0] = c->key[i][1] = c->key[i][2] = z;
+#endif
         c->v[i] = o;
     }
 }
@@ -1520,16 +1531,21 @@ static VIEW_VERTEX_INLINE void vertex_fetch(vertex_cache *c, const raster_target
 {
     uint32_t kx = real_bits(p.x), ky = real_bits(p.y), kz = real_bits(p.z);
 #if VCACHE_BIG
-    const uint32_t hz = (kz << 1) | (kz >> 31);
+    const uint64_t kxy = (uint64_t)ky << 32 | kx;
+    const uint32_t h = (uint32_t)((kxy * 0x9E3779B97F4A7C15u + kz * 0x85EBCA77C2B2AE63u) >> (64 - VCACHE_BITS));
+    const view_vertex *o = &c->v[h];
+    if (c->key_xy[h] != kxy || c->key_z[h] != kz) {
+        c->key_xy[h] = kxy; c->key_z[h] = kz;
+        c->v[h] = view_vertex_make(rt, vf, p);
+    }
 #else
-    const uint32_t hz = kz;
-#endif
-    uint32_t h = (kx * 0x9E3779B1u + ky * 0x85EBCA77u + hz * 0xC2B2AE3Du) >> (32 - VCACHE_BITS);
+    uint32_t h = (kx * 0x9E3779B1u + ky * 0x85EBCA77u + kz * 0xC2B2AE3Du) >> (32 - VCACHE_BITS);
     const view_vertex *o = &c->v[h];
     if (c->key[h][0] != kx || c->key[h][1] != ky || c->key[h][2] != kz) {
         c->key[h][0] = kx; c->key[h][1] = ky; c->key[h][2] = kz;
         c->v[h] = view_vertex_make(rt, vf, p);
     }
+#endif
     tv->v[k].x = o->x;
     tv->v[k].y = o->y;
     tv->v[k].z = tv->v[k].w = o->w;
