@@ -122,12 +122,11 @@ static inline void edge_setup(tri_edges *t, int i, int32_t ax, int32_t ay, int32
 
 /* Set up the three edge functions of a triangle with area2 > 0 in 28.4
  * screen space (y down).  Edge i is opposite vertex i; E_i(p) >= 0 inside.
- * Returns 0 when the box holds no pixel centre.  Always inline in Q16.16
- * outside size builds (gcc called it from draw_snapped, the edges through
- * memory: callgrind bench_raster-fixed 320x240 33.14M -> 32.70M a frame,
- * 1280x720 84.81M -> 84.23M); float measured 26.14M -> 25.64M but
- * 61.09M -> 61.18M, and keeps gcc's choice. */
-#if TG_FIXED && !TG_OUTLINE_HELPERS
+ * Returns 0 when the box holds no pixel centre.  Always inline outside
+ * size builds (gcc called it from draw_snapped, the edges through memory:
+ * callgrind bench_raster-fixed 320x240 33.14M -> 32.70M a frame, 1280x720
+ * 84.81M -> 84.23M; bench_raster 26.13M -> 25.56M, 59.11M -> 59.01M). */
+#if !TG_OUTLINE_HELPERS
 #define EDGES_INLINE RASTER_INLINE
 #else
 #define EDGES_INLINE inline
