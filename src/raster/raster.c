@@ -40,7 +40,7 @@
 
 #define SUB 16                    /* sub-pixels per pixel (28.4) */
 #ifndef SPAN_WALK_MAX
-#define SPAN_WALK_MAX 3           /* span_row walks boxes this wide or narrower (SPAN_DIVIDE) */
+#define SPAN_WALK_MAX 4           /* span_row walks boxes this wide or narrower (SPAN_DIVIDE) */
 #endif
 #define HALF_SUB 8                /* pixel centre offset */
 #define GUARD 8                   /* guard band, in NDC units */
@@ -229,10 +229,11 @@ static SPAN_INLINE int span_row(const tri_edges *te, span_walk *sw, int *xa, int
     int64_t lo = 0, hi = n - 1;
     if (n <= SPAN_WALK_MAX) goto walk;
     /* the three edges written out: gcc had kept the loop over them (its
-     * counter, its loads through te and sw), and with it the walk paid off
-     * up to 4 pixels, now 3 (callgrind bench_raster 1280x720 61.09M ->
-     * 59.11M a frame, 320x240 26.135M -> 26.132M; 4 pixels: 59.13M and
-     * 26.20M, 5: 59.22M and 26.24M) */
+     * counter, its loads through te and sw): callgrind bench_raster
+     * 1280x720 61.09M -> 59.13M a frame, 320x240 26.135M -> 26.20M, or with
+     * walks to 3 pixels 59.11M, 26.13M; with edges_setup inline too, walks
+     * to 2, 3, 4, 5, 6 pixels: 59.05M / 25.68M, 59.01M / 25.56M, 59.00M /
+     * 25.53M, 59.03M / 25.55M, 59.17M / 25.55M */
     span_bound(sw->e[0], te->step_x[0], &lo, &hi);
     span_bound(sw->e[1], te->step_x[1], &lo, &hi);
     span_bound(sw->e[2], te->step_x[2], &lo, &hi);
