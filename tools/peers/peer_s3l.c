@@ -16,7 +16,7 @@
 #define S3L_RESOLUTION_Y PEER_H
 #define S3L_PIXEL_FUNCTION draw_pixel
 #define S3L_Z_BUFFER 1
-#include "small3dlib.h"
+#include <small3dlib.h>   /* the peer's, on the -I path (tools/peers/build.sh) */
 
 static uint32_t frame[PEER_W * PEER_H];
 static S3L_Unit *verts;
