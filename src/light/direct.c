@@ -5,6 +5,14 @@
  * maps.  See direct.h.
  */
 #include "direct.h"
+/* the shadow lookup inline in the rows (shadow_lookup.h); a build for size
+ * calls the one copy in shadowmap.c */
+#include "shadow_lookup.h"
+#if !TG_OUTLINE_HELPERS && !TG_NO_SHADOW_MAPS
+#define SHADOW_LOOKUP shadow_lookup
+#else
+#define SHADOW_LOOKUP tgi_shadow_visibility_err
+#endif
 
 #define LIGHT_CHUNK 8   /* lights prepared at once (a frame rarely has more) */
 /* a . b for a unit vector a (components within [-2, 2]: a G-buffer normal,
@@ -166,8 +174,8 @@ void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_coun
                     tg_real inv, f = light_factor(&pl[k], p, n, &inv);
                     if (f <= 0) continue;
                     /* f below 2 (light_factor), the visibility in [0, 1]: tgi_mul_in_range */
-                    if (pl[k].shadow) f = tgi_mul_in_range(f, tgi_shadow_visibility_err(pl[k].shadow, p, n,
-                                                                                       tg_mul(z, position_error)));
+                    if (pl[k].shadow) f = tgi_mul_in_range(f, SHADOW_LOOKUP(pl[k].shadow, p, n,
+                                                                           tg_mul(z, position_error)));
                     e = tgi_v3_add(e, light_irradiance(pl[k].radiant, f, inv));
                 }
                 tgi_rgb_set(e_out, i, e);
