@@ -1041,7 +1041,11 @@ static RASTER_INLINE void gbuffer_rows_bits(const tgi_gbuffer *gbp, const tri_ed
         mz = pnz.v + pnz.dy * dy + pnz.dx * dx;
         i = (size_t)row * (size_t)W + (size_t)xa;
         for (col = xa; col < xb; col++, i++, qv += pq.dx, mx += pnx.dx, my += pny.dx, mz += pnz.dx) {
+#if TG_WIDE_STORAGE
             float d;
+#else
+            uint32_t dw;
+#endif
             if (!(qv > 0.0f)) continue;
 #if TG_WIDE_STORAGE
             (void)bits;
@@ -1060,18 +1064,21 @@ static RASTER_INLINE void gbuffer_rows_bits(const tgi_gbuffer *gbp, const tri_ed
             }
             g.material[i] = (uint16_t)sf.material;
 #else
-            d = tgi_depth_unpack(g.depth[i]);   /* a reinterpretation: 0 is sky */
-            if (d > 0.0f && wmin >= qv * d) continue;
-            {   /* qv * d rounds: an equal depth can pass the test above, and the
-                 * first surface drawn keeps it, as in Q16.16.  wmin > 0 (every
-                 * drawn vertex has w > 0: w >= znear > 0 unclipped, draw_polygon's
-                 * test clipped) and qv > 0, both finite, so z = wmin / qv is +0, +inf
-                 * or positive, never NaN or negative: its bits are tgi_depth_pack's
-                 * word (+0's are 0).  For any stored word d_w, d_w - 1 < zb
-                 * (unsigned, wrapping at 0) is d_w != 0 && zb >= d_w. */
+            dw = g.depth[i];
+            {   /* The stored word dw: 0 is sky, drawn over without a test.  Else
+                 * the two tests as before: d > 0 as (int32_t)dw > 0 (d's bits: a
+                 * positive float or +inf exactly where the signed word is
+                 * positive, but for a positive NaN, where wmin >= qv d fails as
+                 * d > 0 did); then qv * d rounds, so an equal depth can pass
+                 * that test, and the first surface drawn keeps it, as in Q16.16:
+                 * zb >= dw.  wmin > 0 (every drawn vertex has w > 0: w >= znear
+                 * > 0 unclipped, draw_polygon's test clipped) and qv > 0, both
+                 * finite, so z = wmin / qv is +0, +inf or positive, never NaN
+                 * or negative: its bits are tgi_depth_pack's word (+0's are 0).
+                 * z is found before the first test (no side effect). */
                 tgi_f32_bits zb;
                 zb.f = wmin / qv;
-                if (g.depth[i] - 1u < zb.u) continue;
+                if (dw != 0 && (((int32_t)dw > 0 && wmin >= qv * tgi_depth_unpack(dw)) || zb.u >= dw)) continue;
                 g.depth[i] = zb.u;
             }
             {   /* tgi_oct_pack(normal_nonzero(m) ? m : fallback): l1 > 1e-14 is nonzero, and
