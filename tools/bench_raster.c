@@ -37,7 +37,8 @@ static int build_sphere(tg_vec3 *pos, tg_vec3 *nrm)
     int n, i;
     if (!c) return 0;
     n = sphere_corners(c);
-    for (i = 0; i < 3 * n; i++) pos[i] = nrm[i] = V(c[3 * i], c[3 * i + 1], c[3 * i + 2]);
+    for (i = 0; i < 3 * n; i++)
+        pos[i] = nrm[i] = tg_v3(tg_from_float(c[3 * i]), tg_from_float(c[3 * i + 1]), tg_from_float(c[3 * i + 2]));
     free(c);
     return n;
 }

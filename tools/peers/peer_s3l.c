@@ -42,10 +42,10 @@ static int find_vertex(const float *v)
 {
     int i;
     for (i = nverts - 1; i >= 0 && i >= nverts - 2 * SPHERE_SLICES - 4; i--)   /* the ring above or this one */
-        if (verts[3 * i] == (S3L_Unit)lround(v[0] * S3L_F) && verts[3 * i + 1] == (S3L_Unit)lround(v[1] * S3L_F)
-            && verts[3 * i + 2] == (S3L_Unit)lround(v[2] * S3L_F) && vcol[i][0] == (uint8_t)lround((0.5f * v[0] + 0.5f) * 255)
-            && vcol[i][1] == (uint8_t)lround((0.5f * v[1] + 0.5f) * 255)
-            && vcol[i][2] == (uint8_t)lround((0.5f * v[2] + 0.5f) * 255))
+        if (verts[3 * i] == (S3L_Unit)lroundf(v[0] * S3L_F) && verts[3 * i + 1] == (S3L_Unit)lroundf(v[1] * S3L_F)
+            && verts[3 * i + 2] == (S3L_Unit)lroundf(v[2] * S3L_F) && vcol[i][0] == (uint8_t)lroundf((0.5f * v[0] + 0.5f) * 255)
+            && vcol[i][1] == (uint8_t)lroundf((0.5f * v[1] + 0.5f) * 255)
+            && vcol[i][2] == (uint8_t)lroundf((0.5f * v[2] + 0.5f) * 255))
             return i;
     return -1;
 }
@@ -65,8 +65,8 @@ static int peer_setup(int w, int h, const float *pos, int tris)
         if (j < 0) {
             j = nverts++;
             for (k = 0; k < 3; k++) {
-                verts[3 * j + k] = (S3L_Unit)lround(v[k] * S3L_F);
-                vcol[j][k] = (uint8_t)lround((0.5f * v[k] + 0.5f) * 255);
+                verts[3 * j + k] = (S3L_Unit)lroundf(v[k] * S3L_F);
+                vcol[j][k] = (uint8_t)lroundf((0.5f * v[k] + 0.5f) * 255);
             }
         }
         if (j > 65535) return 0;   /* S3L_Index is 16 bits */
