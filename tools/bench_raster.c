@@ -128,32 +128,14 @@ static void bench(const tgi_raster_mesh *mesh, int w, int h, int frames)
 
 int main(int argc, char **argv)
 {
-    int frames = 20, sizes[8][2], nsizes = 0, a, k;
+    int frames, sizes[8][2], nsizes, k;
     tg_vec3 *pos = (tg_vec3 *)malloc(sizeof(tg_vec3) * 3 * SPHERE_MAX_TRIS);
     tg_vec3 *nrm = (tg_vec3 *)malloc(sizeof(tg_vec3) * 3 * SPHERE_MAX_TRIS);
     uint16_t *mat = (uint16_t *)calloc(SPHERE_MAX_TRIS, sizeof(uint16_t));
     uint16_t *obj = (uint16_t *)calloc(SPHERE_MAX_TRIS, sizeof(uint16_t));
     tgi_material m;
     tgi_raster_mesh mesh;
-    for (a = 1; a < argc; a++) {
-        if (!strcmp(argv[a], "--frames") && a + 1 < argc) {
-            frames = atoi(argv[++a]);
-            if (frames < 1 || frames > 100000) {
-                fprintf(stderr, "bench_raster: --frames must be 1..100000, got '%s'\n", argv[a]);
-                return 2;
-            }
-        } else if (nsizes < 8 && parse_size(argv[a], &sizes[nsizes][0], &sizes[nsizes][1])) {
-            nsizes++;
-        } else {
-            fprintf(stderr, "usage: bench_raster [WxH ...] [--frames N]   (got '%s')\n", argv[a]);
-            return 2;
-        }
-    }
-    if (nsizes == 0) {
-        sizes[0][0] = 320; sizes[0][1] = 240;
-        sizes[1][0] = 1280; sizes[1][1] = 720;
-        nsizes = 2;
-    }
+    if (sphere_bench_args(argc, argv, "bench_raster", &frames, sizes, &nsizes)) return 2;
     if (!pos || !nrm || !mat || !obj) return 1;
     memset(&m, 0, sizeof m);
     m.albedo = V(0.8, 0.6, 0.4);

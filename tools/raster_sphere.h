@@ -5,12 +5,14 @@
  * sphere of 49,728 triangles (112 rings x 224 slices, the pole slivers
  * dropped, counter-clockwise seen from outside; the unit normal is the
  * position), seen from 3.4 units on -z with a 0.6 rad vertical field of
- * view; thread CPU time and wall time.
+ * view; thread CPU time and wall time; the programs' command line.
  */
 #ifndef TG_RASTER_SPHERE_H
 #define TG_RASTER_SPHERE_H
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #define SPHERE_RINGS 112
@@ -74,6 +76,36 @@ static int parse_size(const char *s, int *w, int *h)
 {
     char x;
     return sscanf(s, "%d%c%d", w, &x, h) == 3 && x == 'x' && *w >= 1 && *h >= 1 && *w <= 8192 && *h <= 8192;
+}
+
+/* The bench programs' command line, `NAME [WxH ...] [--frames N]`: up to 8
+ * sizes (default 320x240 and 1280x720) and the frames a run (default 20);
+ * 0, or 2 after a message on stderr. */
+static int sphere_bench_args(int argc, char **argv, const char *name, int *frames, int sizes[8][2], int *nsizes)
+{
+    int a;
+    *frames = 20;
+    *nsizes = 0;
+    for (a = 1; a < argc; a++) {
+        if (!strcmp(argv[a], "--frames") && a + 1 < argc) {
+            *frames = atoi(argv[++a]);
+            if (*frames < 1 || *frames > 100000) {
+                fprintf(stderr, "%s: --frames must be 1..100000, got '%s'\n", name, argv[a]);
+                return 2;
+            }
+        } else if (*nsizes < 8 && parse_size(argv[a], &sizes[*nsizes][0], &sizes[*nsizes][1])) {
+            (*nsizes)++;
+        } else {
+            fprintf(stderr, "usage: %s [WxH ...] [--frames N]   (got '%s')\n", name, argv[a]);
+            return 2;
+        }
+    }
+    if (*nsizes == 0) {
+        sizes[0][0] = 320; sizes[0][1] = 240;
+        sizes[1][0] = 1280; sizes[1][1] = 720;
+        *nsizes = 2;
+    }
+    return 0;
 }
 
 #endif

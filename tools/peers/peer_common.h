@@ -26,27 +26,9 @@ static void peer_done(void);
 /* Two untimed frames, then `frames` timed ones; one result line. */
 static int peer_main(int argc, char **argv)
 {
-    int frames = 20, sizes[8][2], nsizes = 0, a, k, tris;
+    int frames, sizes[8][2], nsizes, k, tris;
     float *pos = (float *)malloc(sizeof(float) * 9 * SPHERE_MAX_TRIS);
-    for (a = 1; a < argc; a++) {
-        if (!strcmp(argv[a], "--frames") && a + 1 < argc) {
-            frames = atoi(argv[++a]);
-            if (frames < 1 || frames > 100000) {
-                fprintf(stderr, "%s: --frames must be 1..100000, got '%s'\n", peer_name(), argv[a]);
-                return 2;
-            }
-        } else if (nsizes < 8 && parse_size(argv[a], &sizes[nsizes][0], &sizes[nsizes][1])) {
-            nsizes++;
-        } else {
-            fprintf(stderr, "usage: %s [WxH ...] [--frames N]   (got '%s')\n", peer_name(), argv[a]);
-            return 2;
-        }
-    }
-    if (nsizes == 0) {
-        sizes[0][0] = 320; sizes[0][1] = 240;
-        sizes[1][0] = 1280; sizes[1][1] = 720;
-        nsizes = 2;
-    }
+    if (sphere_bench_args(argc, argv, peer_name(), &frames, sizes, &nsizes)) return 2;
     if (!pos) return 1;
     tris = sphere_corners(pos);
     for (k = 0; k < nsizes; k++) {
