@@ -197,6 +197,24 @@ typedef struct hbil_ctx {
 #endif
 } hbil_ctx;
 
+/* The side's gathered sums (hbil_side.er, eg, eb).  Q16.16 with packed
+ * storage, not compiling for size (HBIL_WIDE_SUMS): int64, unsaturated,
+ * the sums of gather_rise's rounded products l de >= 0 (each below 5
+ * 2^31 raw, l <= TG_REAL_MAX and de < 5: near_sum_pos), fewer than 2^16
+ * a side (a rise is a sample: the march's, its runs' and refine_fine's,
+ * each a pixel of an image side below 2^14, or one a call), so below
+ * 2^51.  Saturated once, in slice_run: for terms >= 0, min(min(x, M) +
+ * y, M) = min(x + y, M) (either x >= M, both M, or the same sum), so
+ * saturating the whole sum gives the running saturated sums' value
+ * (near_sum_pos a rise, near_sum3_pos a slice) without a test a channel
+ * a rise. */
+#define HBIL_WIDE_SUMS (TGI_Q16_WIDE && !TG_WIDE_STORAGE)
+#if HBIL_WIDE_SUMS
+typedef int64_t hbil_esum;
+#else
+typedef tg_real hbil_esum;
+#endif
+
 /* One side of one slice: the horizon and the radiance gathered under it. */
 typedef struct hbil_side {
     tg_real h, hs;          /* horizon cosine from w_o and h|h| */
@@ -205,7 +223,7 @@ typedef struct hbil_side {
     int beyond;             /* the march's first sample lay beyond the 3D radius (refine_fine) */
     tg_real q;              /* Q(theta) at the current horizon (near field: kept by gather_rise) */
     tg_real lr, lg, lb;     /* running radiance of sec. 3.4 */
-    tg_real er, eg, eb;     /* gathered sum of L * dE (eq. 18) */
+    hbil_esum er, eg, eb;   /* gathered sum of L * dE (eq. 18; HBIL_WIDE_SUMS) */
 } hbil_side;
 
 /* The pixel: its frame and normal in view space. */
@@ -836,7 +854,7 @@ static HBIL_INLINE tg_real radiance_mean_pos(tg_real a, tg_real b)
  * saturation test (an inner sum saturated at TG_REAL_MAX saturates the
  * outer one too).  Float: as before. */
 #if !TG_OUTLINE_HELPERS   /* its one use is not compiled for size (slice_run) */
-static inline tg_real near_sum3_pos(tg_real a, tg_real b, tg_real c)
+static inline tg_real near_sum3_pos(tg_real a, hbil_esum b, hbil_esum c)
 {
 #if TG_FIXED
     const int64_t v = (int64_t)a + b + c;
@@ -904,6 +922,11 @@ static HBIL_GATHER_INLINE void gather_rise(const hbil_ctx *c, const hbil_slice *
     } else {           /* eq. 18: the far end's */
         br = sd->lr; bg = sd->lg; bb = sd->lb;
     }
+#if HBIL_WIDE_SUMS   /* near_sum_pos's terms (radiance_nonneg: the band >= 0, de >= 0), unsaturated */
+    sd->er += ((int64_t)br * de + 32768) >> 16;
+    sd->eg += ((int64_t)bg * de + 32768) >> 16;
+    sd->eb += ((int64_t)bb * de + 32768) >> 16;
+#else
     if (radiance_nonneg(sd->er, sd->eg, sd->eb, br, bg, bb)) {   /* de >= 0 too */
         sd->er = near_sum_pos(sd->er, br, de);
         sd->eg = near_sum_pos(sd->eg, bg, de);
@@ -913,6 +936,7 @@ static HBIL_GATHER_INLINE void gather_rise(const hbil_ctx *c, const hbil_slice *
         sd->eg = tg_add(sd->eg, tg_mul(bg, de));
         sd->eb = tg_add(sd->eb, tg_mul(bb, de));
     }
+#endif
 }
 
 /* Floor of a finite value well inside the int range (the march's minor
@@ -2088,6 +2112,11 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
     if (!TG_NO_BENT_NORMALS) acc->bent_delta = small_v3_add(acc->bent_delta, small_v3_add(
         small_v3_scale(sl.d, small_sub(small_add(q1, q0), small_add(q1i, q0i))),
         small_v3_scale(px->wo, small_sub(small_add(r1, r0), small_add(r1i, r0i)))));
+#if HBIL_WIDE_SUMS   /* the sides' sums unsaturated (hbil_esum), acc's in [0, TG_REAL_MAX] */
+    acc->er = near_sum3_pos(acc->er, front.er, back.er);
+    acc->eg = near_sum3_pos(acc->eg, front.eg, back.eg);
+    acc->eb = near_sum3_pos(acc->eb, front.eb, back.eb);
+#else
 #if !TG_OUTLINE_HELPERS   /* compiling for size: the saturating sums alone (8 bytes shorter) */
     if (radiance_nonneg(acc->er, acc->eg, acc->eb, front.er, front.eg, front.eb)
         && radiance_nonneg(back.er, back.eg, back.eb, 0, 0, 0)) {   /* sums of gather_rise's sums */
@@ -2101,6 +2130,7 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
         acc->eg = tg_add(acc->eg, tg_add(front.eg, back.eg));
         acc->eb = tg_add(acc->eb, tg_add(front.eb, back.eb));
     }
+#endif
 }
 
 static void write_open(const hbil_ctx *c, int i)
