@@ -614,7 +614,7 @@ HBIL_EDGE static tg_real sample_depth_edge(const hbil_ctx *c, const tgi_gview *g
 
 /* The margin of rejection_weight's tests (below), and in Q16.16 the value of
  * f past which f|f| is not formed (|f| < 2^28 for |n| < 2^11, |w_i| < 2). */
-#define HBIL_REJECT_MARGIN TG_R(0.0009765625f)   /* 2^-10 */
+#define HBIL_REJECT_MARGIN TG_R(0.000244140625f)   /* 2^-12 */
 #if TG_FIXED
 #define HBIL_FACING_MAX ((int64_t)1 << 30)
 #endif
@@ -711,11 +711,22 @@ static HBIL_NOINLINE tg_real rejection_ramp_oct(const hbil_ctx *c, tgi_oct_dir n
  * is 0 or 1, the sign of f - x |n| tells, for f = -n.w_i and x the ramp's
  * end, without the normalisation: f|f| against x|x| |n|^2 (reject_lo2,
  * reject_hi2; |n|^2 < 2^22 is exact in both types).  The ends are moved out
- * by HBIL_REJECT_MARGIN, far above the error of the t computed with n_s
- * (below 2e-4 in Q16.16, with the normal's quantisation and the roundings of
- * w_i, and 1e-5 in float), so the tests answer only where that t is beyond
- * the end too: the weights are rejection_ramp's (tests/test_hbil.c,
- * rejection_tests_keep_the_weights). */
+ * by HBIL_REJECT_MARGIN, 2^-12 = 2.44e-4, above the error of the t
+ * computed with n_s, so the tests answer only where that t is beyond the
+ * end too: the weights are rejection_ramp's (tests/test_hbil.c,
+ * rejection_tests_keep_the_weights).  The error, Q16.16: both start from
+ * the same dir (|dir| <= 1 + 2^-9: sample_dir's 1/|d| >= 2^-7 rounded to
+ * 2^-17, and its own roundings), M dir exact here (M the camera's axes,
+ * |M dir|_j <= |dir|); against g = -(n / |n|).(M dir): n_s's components
+ * within 3.2e-6 relative (the Q30 rsqrt) plus 2^-16 (truncated) of n / |n|
+ * (sum over j below 3.2e-6 sqrt 3 + 3 2^-16 = 5.1e-5, times |w_i,j| <
+ * 1.01), w_i's within 3 2^-17 of M dir (three roundings; times sum |n_j| /
+ * |n| <= sqrt 3: 4.0e-5), the dot's rounding 2^-17: |t - g| < 1.0e-4; f
+ * here is g |n| 2^16 truncated (within 1 / (|n| 2^16) < 1.1e-7 of g, |n|
+ * >= q / sqrt 3 > 146); so f at or past an end moved out by 2.44e-4 puts t
+ * 1.4e-4 past the end.  Float: 1e-5.  (The margin was 2^-10: cornell
+ * 160x120, 2 frames, Q16.16 737.69M -> 736.02M, float 526.76M -> 525.78M;
+ * 2^-11 took 737.39M and 526.60M.) */
 #if TG_OUTLINE_HELPERS
 static tg_real rejection_weight(const hbil_ctx *c, tgi_oct_dir n, tg_vec3 dir)
 #else
