@@ -892,8 +892,20 @@ static inline tg_real near_sum3_pos(tg_real a, hbil_esum b, hbil_esum c)
 #else
 #define HBIL_GATHER_INLINE HBIL_INLINE
 #endif
+/* rad_set: 1 where rad is known not NULL, without the test (the march's
+ * c->rad, which NEAR_FIELD's tgi_rgb_present checked), 0 where it may be
+ * (refine_fine's fine radiance); compiling for size the test alone. */
+#if TG_OUTLINE_HELPERS
+#define GATHER_RISE(c, sl, sd, side, cos_new, dir, g, rad, si, trapezoid, rad_set) \
+    gather_rise(c, sl, sd, side, cos_new, dir, g, rad, si, trapezoid)
 static HBIL_GATHER_INLINE void gather_rise(const hbil_ctx *c, const hbil_slice *sl, hbil_side *sd, int side,
                         tg_real cos_new, tg_vec3 dir, const tgi_gview *g, const tgi_rgb *rad, int si, int trapezoid)
+#else
+#define GATHER_RISE gather_rise
+static HBIL_GATHER_INLINE void gather_rise(const hbil_ctx *c, const hbil_slice *sl, hbil_side *sd, int side,
+                        tg_real cos_new, tg_vec3 dir, const tgi_gview *g, const tgi_rgb *rad, int si, int trapezoid,
+                        const int rad_set)
+#endif
 {
     const tg_real lr_old = sd->lr, lg_old = sd->lg, lb_old = sd->lb;   /* the running radiance before this rise */
     tg_real br, bg, bb;                                                    /* the band's */
@@ -904,7 +916,11 @@ static HBIL_GATHER_INLINE void gather_rise(const hbil_ctx *c, const hbil_slice *
     tg_real de = tg_max(0, small_sub(sd->p_old, p_new));      /* HBIL eq. 18 */
     sd->p_old = p_new;
     sd->q = q_new;
+#if TG_OUTLINE_HELPERS
     if (rad) {
+#else
+    if (rad_set || rad) {
+#endif
 #if TG_WIDE_STORAGE
         tg_real t = rejection_ramp(c, tgi_gv_normal(g, si), dir);
 #else
@@ -1455,8 +1471,8 @@ static inline void march_samples(
         hs_tie = horizon_tie(sd->hs);
 #endif
         if (NEAR_FIELD(c))
-            gather_rise(c, sl, sd, side, cn, sample_dir(d, inv_len),
-                        g, rad, f < TG_R(0.5f) ? sa : sa + smin, k - 1 == k_rose);   /* the nearest pixel; right after a rise */
+            GATHER_RISE(c, sl, sd, side, cn, sample_dir(d, inv_len),
+                        g, rad, f < TG_R(0.5f) ? sa : sa + smin, k - 1 == k_rose, 1);   /* the nearest pixel; right after a rise */
         k_rose = k;
     }
 #if TGI_Q16_WIDE
@@ -1911,9 +1927,9 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
     sd->h = best.h;
     sd->hs = best.hs;
     if (NEAR_FIELD(c))
-        gather_rise(c, sl, sd, side, best.h,
+        GATHER_RISE(c, sl, sd, side, best.h,
                     sample_dir(best.d, best.inv_len),
-                    fg, c->fine_rad, best.si, 0);
+                    fg, c->fine_rad, best.si, 0, 0);
 }
 
 #endif /* !TG_NO_FINE_HORIZON */
