@@ -802,7 +802,11 @@ static HBIL_INLINE tg_real radiance_lerp(tg_real a, tg_real b, tg_real t)
 static HBIL_INLINE tg_real radiance_lerp_pos(tg_real a, tg_real b, tg_real t)
 {
     const tg_real d = small_sub(b, a);
+#if TG_FIXED   /* integers: a + (b - a) is b (float rounds the two) */
+    return t == TG_ONE ? b : small_add(a, small_mul(d, t));
+#else
     return small_add(a, t == TG_ONE ? d : small_mul(d, t));
+#endif
 }
 
 /* 1 when gather_rise's running radiance, the band's and the sums are in
