@@ -612,12 +612,8 @@ HBIL_EDGE static tg_real sample_depth_edge(const hbil_ctx *c, const tgi_gview *g
     return tg_mul(zn, ratio);
 }
 
-/* The margin of rejection_weight's tests (below), and in Q16.16 the value of
- * f past which f|f| is not formed (|f| < 2^28 for |n| < 2^11, |w_i| < 2). */
+/* The margin of rejection_weight's tests (below). */
 #define HBIL_REJECT_MARGIN TG_R(0.000244140625f)   /* 2^-12 */
-#if TG_FIXED
-#define HBIL_FACING_MAX ((int64_t)1 << 30)
-#endif
 
 #if TGI_Q16_WIDE
 /* tg_smoothstep(a, b, x) inside the ramp, a < x < b, with d = b - a
@@ -745,12 +741,16 @@ static HBIL_INLINE tg_real rejection_weight(const hbil_ctx *c, tgi_oct_dir n, tg
         const int64_t wx = (int64_t)v->right.x * dir.x + (int64_t)v->up.x * dir.y + (int64_t)v->forward.x * dir.z;
         const int64_t wy = (int64_t)v->right.y * dir.x + (int64_t)v->up.y * dir.y + (int64_t)v->forward.y * dir.z;
         const int64_t wz = (int64_t)v->right.z * dir.x + (int64_t)v->up.z * dir.y + (int64_t)v->forward.z * dir.z;
+        /* dir's components below 2 (a sample's direction, sample_dir: |d_i|
+         * 1/|d| rounded, at most 1 + 2^-9; the test entry below takes no
+         * other), so each |w_i| < 2 sqrt 3 (1 + 2^-15) < 2^1.8 (a camera
+         * axis's row), and |n.w_i| <= (|n_x| + |n_y| + |n_z|) 2^1.8 = q
+         * 2^1.8 < 2^12.8: |f| < 2^28.8 and f|f| < 2^58 without a test of f
+         * (it was 2 instructions a rise); x|x| |n|^2 < 2^34 2^22 */
         const int64_t f = -((n.x * wx + n.y * wy + n.z * wz) >> 16);
-        if (f < HBIL_FACING_MAX && f > -HBIL_FACING_MAX) {
-            const int64_t ff = f < 0 ? -f * f : f * f;             /* < 2^60; x|x| |n|^2 < 2^34 2^22 */
-            if (ff >= c->reject_hi2 * n2) return TG_ONE;         /* the common case first */
-            if (ff <= c->reject_lo2 * n2) return 0;
-        }
+        const int64_t ff = f < 0 ? -f * f : f * f;
+        if (ff >= c->reject_hi2 * n2) return TG_ONE;             /* the common case first */
+        if (ff <= c->reject_lo2 * n2) return 0;
 #else
         const float f = -((float)n.x * (v->right.x * dir.x + v->up.x * dir.y + v->forward.x * dir.z)
                           + (float)n.y * (v->right.y * dir.x + v->up.y * dir.y + v->forward.y * dir.z)
@@ -781,7 +781,10 @@ tg_real tgi_hbil_rejection_weight(const tgi_view *v, tg_real a, tg_real b, tgi_o
 #endif
     c.v = v;
     rejection_init(&c, a, b);
-    if (!tests) c.reject_fast = 0;
+    /* the tests for a dir as the kernel's (rejection_weight: components below 2) */
+    if (!tests || !(dir.x < TG_R(2.0f) && dir.x > TG_R(-2.0f) && dir.y < TG_R(2.0f) && dir.y > TG_R(-2.0f)
+                    && dir.z < TG_R(2.0f) && dir.z > TG_R(-2.0f)))
+        c.reject_fast = 0;
     return rejection_weight(&c, n, dir);
 }
 #endif
