@@ -843,7 +843,9 @@ static inline int radiance_nonneg(tg_real a, tg_real b, tg_real c, tg_real d, tg
  * de in [0, 5) (the band's dE, |P| < 2.5): the product is l de rounded
  * (>= 0, below 2^51 as an integer) and both tg_mul and tg_add saturate
  * only at TG_REAL_MAX, so one saturation of the sum gives the same (a
- * saturated product saturates the sum too). */
+ * saturated product saturates the sum too).  With HBIL_WIDE_SUMS its
+ * term alone, in gather_rise. */
+#if !HBIL_WIDE_SUMS
 static HBIL_INLINE tg_real near_sum_pos(tg_real s, tg_real l, tg_real de)
 {
 #if TG_FIXED
@@ -853,6 +855,7 @@ static HBIL_INLINE tg_real near_sum_pos(tg_real s, tg_real l, tg_real de)
     return s + l * de;
 #endif
 }
+#endif
 
 /* tg_mul(tg_add(a, b), TG_R(0.5f)) for a, b in [0, TG_REAL_MAX]
  * (radiance_nonneg).  Q16.16: the sum x = min(a + b, 2^31 - 1) times 2^15
