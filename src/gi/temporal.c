@@ -16,26 +16,59 @@ void tgi_temporal_defaults(tgi_temporal_params *p)
 }
 
 /* Where last frame's results hold this pixel's surface (normal n, depth z
- * now): 1 and *s (indexed like g) when last frame's depth and normal agree
- * (the history is accepted).  The cameras of cams are the caller's copies
- * (locals: no store through the result planes can change them, so their
- * fields stay in registers along the row). */
-static int history_at(const tgi_temporal_params *p, const tgi_gview *g, const tgi_prev_geometry *h,
-                      const tgi_motion_pair *cams, int fx, int fy, tg_real depth, tg_vec3 n, size_t *s,
-                      tgi_normal_memo *pm)
+ * now, full-resolution pixel (fx, fy)): 1 and *s (indexed like g) when last
+ * frame's depth and normal agree (the history is accepted).  The cameras of
+ * cams are the caller's copies (locals: no store through the result planes
+ * can change them, so their fields stay in registers along the row); unit:
+ * g is the camera's whole image (step 1, no offset, its size). */
+#if defined(__GNUC__)
+__attribute__((always_inline))   /* one copy in the row loop, its tests against the row's registers */
+#endif
+static inline int history_at(const tgi_temporal_params *p, const tgi_gview *g, const tgi_prev_geometry *h,
+                             const tgi_motion_pair *cams, int unit, int fx, int fy, tg_real depth, tg_vec3 n,
+                             size_t *s, tgi_normal_memo *pm)
 {
     const tgi_view *view = cams->cur;
     int px, py, sx, sy;
     tg_real mx, my, z, hz;
     size_t full;
+#if TG_FIXED
     if (!tgi_motion_prev_position_pair(cams, NULL, fx, fy, depth, &mx, &my, &z)) return 0;
     px = tg_to_int(mx); py = tg_to_int(my);
-    if (px < 0 || py < 0 || px >= view->width || py >= view->height) return 0;
-    sx = (px - g->offset_x) / g->step;    /* the pixel of g standing for the full-res pixel's block */
-    sy = (py - g->offset_y) / g->step;
-    if (px < g->offset_x || py < g->offset_y || sx >= g->width || sy >= g->height) return 0;
-    *s = tgi_gv_index(g, sx, sy);
-    full = (size_t)(sy * g->step + g->offset_y) * (size_t)view->width + (size_t)(sx * g->step + g->offset_x);
+    /* px < 0 || px >= width as one unsigned compare (width >= 0) */
+    if ((uint32_t)px >= (uint32_t)view->width || (uint32_t)py >= (uint32_t)view->height) return 0;
+#else
+    {
+        /* tgi_motion_prev_position_inline (raster/motion.h) without a
+         * delta, its operations in its order, and without its test that
+         * the position is finite: the range test below fails for NaN and
+         * the infinities as that test did.  Within it, tg_to_int is floor
+         * (no NaN, no saturation: 0 <= m < width <= TG_MAX_IMAGE_SIDE),
+         * floor(m) >= 0 where m >= 0 and floor(m) < width where m < width
+         * (an integer, exact in float), and floor is the truncation (int32_t)m for
+         * m >= 0: the same px, py and the same rejections. */
+        const tgi_view *before = cams->prev;
+        const tg_real sx0 = tg_add(tg_from_int(fx), TG_R(0.5f)), sy0 = tg_add(tg_from_int(fy), TG_R(0.5f));
+        tg_vec3 pv = tgi_view_world_to_view_inline(
+            before, tgi_view_view_to_world_inline(view, tgi_view_unproject_inline(view, sx0, sy0, depth)));
+        z = pv.z;
+        if (pv.z <= TG_R(0.0001f)) return 0;
+        tgi_view_project_inline(before, pv, &mx, &my);
+        if (!(mx >= 0 && mx < tg_from_int(view->width) && my >= 0 && my < tg_from_int(view->height))) return 0;
+        px = (int32_t)mx; py = (int32_t)my;
+    }
+#endif
+    if (unit) {
+        /* step 1 at offset 0 over the whole image: the pixel itself */
+        *s = tgi_gv_index(g, px, py);
+        full = (size_t)py * (size_t)view->width + (size_t)px;
+    } else {
+        sx = (px - g->offset_x) / g->step;    /* the pixel of g standing for the full-res pixel's block */
+        sy = (py - g->offset_y) / g->step;
+        if (px < g->offset_x || py < g->offset_y || sx >= g->width || sy >= g->height) return 0;
+        *s = tgi_gv_index(g, sx, sy);
+        full = (size_t)(sy * g->step + g->offset_y) * (size_t)view->width + (size_t)(sx * g->step + g->offset_x);
+    }
     hz = tgi_prev_depth(h, full);
     if (!(hz > 0 && tgi_abs_fast(tg_sub(hz, z)) <= tg_mul(p->history_depth_tolerance, hz))) return 0;
     return tgi_v3_dot(tgi_prev_normal_memo(h, pm, full), n) >= p->history_normal_cos;
@@ -77,39 +110,46 @@ void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_
     const tgi_gview *g = &gl;
     const tgi_gresult *r = &rl, *prev = &prevl;
     tg_real alpha;
-    int x, y, has_bent;
+    int x, y, has_bent, unit, r_ao, p_ao, p_bent, r_near, p_near;
     tgi_normal_memo nm, pm;   /* the normal decoded last (raster/gview.h), and last frame's (history_at) */
     if (reset || !prev_view) return;
     tgi_normal_memo_start(&nm);
     tgi_normal_memo_start(&pm);
     pl = *params; gl = *view_in; rl = *r_in; prevl = *prev_in; hl = *prev_geometry;
     has_bent = tgi_gr_has_bent(r);
+    p_bent = tgi_gr_has_bent(prev);
+    r_ao = r->ao != NULL;
+    p_ao = prev->ao != NULL;
+    r_near = tgi_gr_has_near(r);
+    p_near = tgi_gr_has_near(prev);
     alpha = p->alpha;
     if (y0 < 0) y0 = 0;
     if (y1 > g->height) y1 = g->height;
     view = *g->camera;
     before = *prev_view;
     tgi_motion_pair_start(&cams, &view, &before);
+    unit = g->step == 1 && g->offset_x == 0 && g->offset_y == 0 && g->width == view.width && g->height == view.height;
     for (y = y0; y < y1; y++) {
         int fy = y * g->step + g->offset_y;
         for (x = 0; x < g->width; x++) {
             size_t i = tgi_gv_index(g, x, y), s;
-            tgi_gr_value v, h;
             if (tgi_gv_is_sky(g, i)) continue;
             const tg_vec3 n = tgi_gv_normal_memo(g, &nm, i);
-            if (!history_at(p, g, &hl, &cams, x * g->step + g->offset_x, fy, tgi_gv_depth(g, i), n, &s, &pm))
+            if (!history_at(p, g, &hl, &cams, unit, x * g->step + g->offset_x, fy, tgi_gv_depth(g, i), n, &s, &pm))
                 continue;
-            v = tgi_gr_get(r, i);
-            h = tgi_gr_get(prev, s);
-            /* exponential average; the bent normal only where r has one
-             * (tgi_gr_put writes no other channel: without it no
-             * renormalisation of a zero vector, cornell 320x240 3 frames
-             * float 13M instructions; the near field's lerp tested the
-             * same way cost more than it saved) */
-            v.ao = lerp_unit(h.ao, v.ao, alpha);
-            if (has_bent) v.bent = tgi_v3_unit_or(lerp_unit3(h.bent, v.bent, alpha), n);
-            v.near = lerp_unit3(h.near, v.near, alpha);
-            tgi_gr_put(r, i, &v);
+            /* exponential average of the channels r has (tgi_gr_get and
+             * tgi_gr_put channel by channel, whether each plane is present
+             * tested once before the rows: prev's absent ones read as ao 1,
+             * bent and near 0); the bent normal only where r has one
+             * (without it no renormalisation of a zero vector, cornell
+             * 320x240 3 frames float 13M instructions) */
+            if (r_ao) tgi_gr_set_ao(r, i, lerp_unit(p_ao ? tgi_gr_ao(prev, s) : TG_ONE, tgi_gr_ao(r, i), alpha));
+            if (has_bent) {
+                const tg_vec3 hb = p_bent ? tgi_gr_bent(prev, s) : tg_v3(0, 0, 0);
+                tgi_gr_set_bent(r, i, tgi_v3_unit_or(lerp_unit3(hb, tgi_gr_bent(r, i), alpha), n));
+            }
+            if (r_near)
+                tgi_gr_set_near(r, i, lerp_unit3(p_near ? tgi_gr_near(prev, s) : tg_v3(0, 0, 0), tgi_gr_near(r, i), alpha));
         }
     }
 }
