@@ -5,7 +5,7 @@
  */
 #include "../tinygi.h"
 #include "temporal.h"
-#include "../raster/motion.h"
+#include "reproject.h"   /* tgi_reproject_prev_pixel */
 #include "../core/unit.h"
 
 void tgi_temporal_defaults(tgi_temporal_params *p)
@@ -25,39 +25,14 @@ void tgi_temporal_defaults(tgi_temporal_params *p)
 __attribute__((always_inline))   /* one copy in the row loop, its tests against the row's registers */
 #endif
 static inline int history_at(const tgi_temporal_params *p, const tgi_gview *g, const tgi_prev_geometry *h,
-                             const tgi_motion_pair *cams, int unit, int fx, int fy, tg_real depth, tg_vec3 n,
+                             const tgi_reproject_cams *cams, int unit, int fx, int fy, tg_real depth, tg_vec3 n,
                              size_t *s, tgi_normal_memo *pm)
 {
-    const tgi_view *view = cams->cur;
+    const tgi_view *view = cams->pair.cur;
     int px, py, sx, sy;
-    tg_real mx, my, z, hz;
+    tg_real z, hz;
     size_t full;
-#if TG_FIXED
-    if (!tgi_motion_prev_position_pair(cams, NULL, fx, fy, depth, &mx, &my, &z)) return 0;
-    px = tg_to_int(mx); py = tg_to_int(my);
-    /* px < 0 || px >= width as one unsigned compare (width >= 0) */
-    if ((uint32_t)px >= (uint32_t)view->width || (uint32_t)py >= (uint32_t)view->height) return 0;
-#else
-    {
-        /* tgi_motion_prev_position_inline (raster/motion.h) without a
-         * delta, its operations in its order, and without its test that
-         * the position is finite: the range test below fails for NaN and
-         * the infinities as that test did.  Within it, tg_to_int is floor
-         * (no NaN, no saturation: 0 <= m < width <= TG_MAX_IMAGE_SIDE),
-         * floor(m) >= 0 where m >= 0 and floor(m) < width where m < width
-         * (an integer, exact in float), and floor is the truncation (int32_t)m for
-         * m >= 0: the same px, py and the same rejections. */
-        const tgi_view *before = cams->prev;
-        const tg_real sx0 = tg_add(tg_from_int(fx), TG_R(0.5f)), sy0 = tg_add(tg_from_int(fy), TG_R(0.5f));
-        tg_vec3 pv = tgi_view_world_to_view_inline(
-            before, tgi_view_view_to_world_inline(view, tgi_view_unproject_inline(view, sx0, sy0, depth)));
-        z = pv.z;
-        if (pv.z <= TG_R(0.0001f)) return 0;
-        tgi_view_project_inline(before, pv, &mx, &my);
-        if (!(mx >= 0 && mx < tg_from_int(view->width) && my >= 0 && my < tg_from_int(view->height))) return 0;
-        px = (int32_t)mx; py = (int32_t)my;
-    }
-#endif
+    if (!tgi_reproject_prev_pixel(cams, NULL, fx, fy, depth, &px, &py, &z)) return 0;
     if (unit) {
         /* step 1 at offset 0 over the whole image: the pixel itself */
         *s = tgi_gv_index(g, px, py);
@@ -105,7 +80,7 @@ void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_
     tgi_gresult rl, prevl;
     tgi_prev_geometry hl;
     tgi_view view, before;
-    tgi_motion_pair cams;
+    tgi_reproject_cams cams;
     const tgi_temporal_params *p = &pl;
     const tgi_gview *g = &gl;
     const tgi_gresult *r = &rl, *prev = &prevl;
@@ -127,7 +102,7 @@ void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_
     if (y1 > g->height) y1 = g->height;
     view = *g->camera;
     before = *prev_view;
-    tgi_motion_pair_start(&cams, &view, &before);
+    tgi_reproject_cams_start(&cams, &view, &before, view.width, view.height);
     unit = g->step == 1 && g->offset_x == 0 && g->offset_y == 0 && g->width == view.width && g->height == view.height;
     for (y = y0; y < y1; y++) {
         int fy = y * g->step + g->offset_y;
