@@ -87,6 +87,22 @@ static inline tg_vec3 texel(const tgi_rgb *c, size_t t)
     return c->lit ? tgi_rgb_get(c, t) : tgi_rgb_stored(c, t);
 }
 
+/* A running sum's next term w v for a weight w within [0, 1] and a value
+ * v >= 0: tgi_wide_add_weighted (core/real.h) without its test that they
+ * are (stored colour planes, RGB9E5, decode to values >= 0; each use says
+ * why its weights lie in [0, 1]); with tg_real planes (TG_WIDE_STORAGE)
+ * and in float tgi_wide_add_weighted itself. */
+#if TG_FIXED && !TG_WIDE_STORAGE
+static inline tgi_wide add_weighted_nonneg(tgi_wide acc, tg_real w, tg_real v)
+{
+    return acc + (((int64_t)w * v + 32768) >> 16);
+}
+#define PP_NONNEG 1
+#else
+#define add_weighted_nonneg tgi_wide_add_weighted
+#define PP_NONNEG 0
+#endif
+
 /* One tap of the 2x2 box: the finer texel t added to *s with its weight
  * (level 0, wt NULL: 1 for a value, skipped for a hole). */
 #if defined(__GNUC__)
@@ -106,6 +122,36 @@ static inline void push_tap(const tgi_rgb *c, const pp_weight *wt, size_t t, tg_
     *sw = tg_add(*sw, wf);
 }
 
+#if PP_NONNEG && !TG_OUTLINE_HELPERS
+/* push_tap over an unlit plane in Q16.16: its texels (RGB9E5) are >= 0 and
+ * the weights (unorm8) within [0, 1], so each term tg_add adds is >= 0
+ * (tg_mul's product of such a pair lies within [0, v], unsaturated) and
+ * the sums only grow: saturating at each step gives min(MAX, the exact
+ * sum), what one saturation of the unsaturated sum gives (push_level's
+ * tgi_wide_real).  The weights' sum is at most 4. */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void push_tap_wide(const tgi_rgb *c, const pp_weight *wt, size_t t, tgi_wide s[3], tg_real *sw)
+{
+    tg_vec3 v;
+    if (wt) {
+        const tg_real wf = weight_get(wt, t);
+        v = tgi_rgb_stored(c, t);
+        s[0] = add_weighted_nonneg(s[0], wf, v.x);
+        s[1] = add_weighted_nonneg(s[1], wf, v.y);
+        s[2] = add_weighted_nonneg(s[2], wf, v.z);
+        *sw += wf;
+    } else if (!tgi_rgb_is_hole(c, t)) {
+        v = tgi_rgb_stored(c, t);
+        s[0] += v.x;
+        s[1] += v.y;
+        s[2] += v.z;
+        *sw += TG_ONE;
+    }
+}
+#endif
+
 /* Push one level: a 2x2 box over the weighted texels of the finer w x h
  * level, its values c and weights wt.  Level 0, the image, has no weights
  * (wt NULL): a value weighs 1, a hole 0, and the value enters unscaled.
@@ -122,11 +168,25 @@ static void push_level(const tgi_rgb *c, const pp_weight *wt, int w, int h, cons
             tg_real sw = 0;
             size_t fx = (size_t)(2 * x);
             int second_column = 2 * x + 1 < w;
-            push_tap(c, wt, r0 + fx, &s, &sw);
-            if (second_column) push_tap(c, wt, r0 + fx + 1, &s, &sw);
-            if (second_row) {
-                push_tap(c, wt, r1 + fx, &s, &sw);
-                if (second_column) push_tap(c, wt, r1 + fx + 1, &s, &sw);
+#if PP_NONNEG && !TG_OUTLINE_HELPERS
+            if (!c->lit) {
+                tgi_wide sum[3] = { 0, 0, 0 };
+                push_tap_wide(c, wt, r0 + fx, sum, &sw);
+                if (second_column) push_tap_wide(c, wt, r0 + fx + 1, sum, &sw);
+                if (second_row) {
+                    push_tap_wide(c, wt, r1 + fx, sum, &sw);
+                    if (second_column) push_tap_wide(c, wt, r1 + fx + 1, sum, &sw);
+                }
+                s = tg_v3(tgi_wide_real(sum[0]), tgi_wide_real(sum[1]), tgi_wide_real(sum[2]));
+            } else
+#endif
+            {
+                push_tap(c, wt, r0 + fx, &s, &sw);
+                if (second_column) push_tap(c, wt, r0 + fx + 1, &s, &sw);
+                if (second_row) {
+                    push_tap(c, wt, r1 + fx, &s, &sw);
+                    if (second_column) push_tap(c, wt, r1 + fx + 1, &s, &sw);
+                }
             }
             if (sw > 0) {
                 tgi_rgb_set(&coarse->c, o, tgi_v3_scale(s, tg_div(TG_ONE, sw)));   /* weighted mean */
@@ -185,12 +245,14 @@ static inline tg_vec3 row_sample(pp_row_sampler *rs, int x)
         rs->q[3] = texel(c, rs->r1 + x1);
         rs->cx = cx;
     }
-    /* the bilinear weights within [0, 1]: running sums of tgi_wide_add_weighted (core/real.h) */
+    /* the bilinear weights within [0, 1] (products of 0.25 and 0.75 or
+     * their complements), the levels' texels unlit: running sums of
+     * add_weighted_nonneg */
     for (k = 0; k < 4; k++) {
         const tg_real wk = rs->wxy[p][k & 1][k >> 1];
-        ox = tgi_wide_add_weighted(ox, wk, rs->q[k].x);
-        oy = tgi_wide_add_weighted(oy, wk, rs->q[k].y);
-        oz = tgi_wide_add_weighted(oz, wk, rs->q[k].z);
+        ox = add_weighted_nonneg(ox, wk, rs->q[k].x);
+        oy = add_weighted_nonneg(oy, wk, rs->q[k].y);
+        oz = add_weighted_nonneg(oz, wk, rs->q[k].z);
     }
     return tg_v3(tgi_wide_real(ox), tgi_wide_real(oy), tgi_wide_real(oz));
 }
