@@ -86,6 +86,9 @@ static inline tg_vec3 texel(const tgi_rgb *c, size_t t)
 {
     return c->lit ? tgi_rgb_get(c, t) : tgi_rgb_stored(c, t);
 }
+/* Texel t of a level (1..): never lit (tgi_rgb_carve gives no light), the
+ * stored word decoded. */
+static inline tg_vec3 level_texel(const tgi_rgb *c, size_t t) { return tgi_rgb_stored(c, t); }
 
 /* A running sum's next term w v for a weight w within [0, 1] and a value
  * v >= 0: tgi_wide_add_weighted (core/real.h) without its test that they
@@ -97,11 +100,12 @@ static inline tgi_wide add_weighted_nonneg(tgi_wide acc, tg_real w, tg_real v)
 {
     return acc + (((int64_t)w * v + 32768) >> 16);
 }
-#define PP_NONNEG 1
 #else
 #define add_weighted_nonneg tgi_wide_add_weighted
-#define PP_NONNEG 0
 #endif
+/* push_tap_wide's sums: float (the same additions, in tgi_wide: float) and
+ * Q16.16 over RGB9E5 planes (texels >= 0); not when compiling for size. */
+#define PP_BOX_WIDE ((!TG_FIXED || !TG_WIDE_STORAGE) && !TG_OUTLINE_HELPERS)
 
 /* One tap of the 2x2 box: the finer texel t added to *s with its weight
  * (level 0, wt NULL: 1 for a value, skipped for a hole). */
@@ -122,13 +126,14 @@ static inline void push_tap(const tgi_rgb *c, const pp_weight *wt, size_t t, tg_
     *sw = tg_add(*sw, wf);
 }
 
-#if PP_NONNEG && !TG_OUTLINE_HELPERS
-/* push_tap over an unlit plane in Q16.16: its texels (RGB9E5) are >= 0 and
- * the weights (unorm8) within [0, 1], so each term tg_add adds is >= 0
- * (tg_mul's product of such a pair lies within [0, v], unsaturated) and
- * the sums only grow: saturating at each step gives min(MAX, the exact
- * sum), what one saturation of the unsaturated sum gives (push_level's
- * tgi_wide_real).  The weights' sum is at most 4. */
+#if PP_BOX_WIDE
+/* push_tap over an unlit plane, its stored words decoded inline.  Float:
+ * the same additions and products in the same order.  Q16.16: the texels
+ * (RGB9E5) are >= 0 and the weights (unorm8) within [0, 1], so each term
+ * tg_add adds is >= 0 (tg_mul's product of such a pair lies within [0, v],
+ * unsaturated) and the sums only grow: saturating at each step gives
+ * min(MAX, the exact sum), what one saturation of the unsaturated sum
+ * gives (push_level's tgi_wide_real).  The weights' sum is at most 4. */
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
@@ -157,7 +162,11 @@ static inline void push_tap_wide(const tgi_rgb *c, const pp_weight *wt, size_t t
  * (wt NULL): a value weighs 1, a hole 0, and the value enters unscaled.
  * The taps in the order (0,0) (1,0) (0,1) (1,1); those past the finer
  * level's last row or column are left out.  Coarse rows [cy0, cy1). */
-static void push_level(const tgi_rgb *c, const pp_weight *wt, int w, int h, const pp_level *coarse, int cy0, int cy1)
+#if defined(__GNUC__) && !TG_OUTLINE_HELPERS
+__attribute__((always_inline))   /* a copy for level 0 (wt NULL) and one for the weighted levels */
+#endif
+static inline void push_level_of(const tgi_rgb *c, const pp_weight *wt, int w, int h, const pp_level *coarse, int cy0,
+                                 int cy1)
 {
     int x, y;
     for (y = cy0; y < cy1; y++) {
@@ -168,7 +177,7 @@ static void push_level(const tgi_rgb *c, const pp_weight *wt, int w, int h, cons
             tg_real sw = 0;
             size_t fx = (size_t)(2 * x);
             int second_column = 2 * x + 1 < w;
-#if PP_NONNEG && !TG_OUTLINE_HELPERS
+#if PP_BOX_WIDE
             if (!c->lit) {
                 tgi_wide sum[3] = { 0, 0, 0 };
                 push_tap_wide(c, wt, r0 + fx, sum, &sw);
@@ -198,6 +207,19 @@ static void push_level(const tgi_rgb *c, const pp_weight *wt, int w, int h, cons
         }
     }
 }
+
+static void push_level(const tgi_rgb *c, const pp_weight *wt, int w, int h, const pp_level *coarse, int cy0, int cy1)
+{
+    push_level_of(c, wt, w, h, coarse, cy0, cy1);
+}
+#if !TG_OUTLINE_HELPERS
+static void push_level0(const tgi_rgb *c, int w, int h, const pp_level *coarse, int cy0, int cy1)
+{
+    push_level_of(c, NULL, w, h, coarse, cy0, cy1);
+}
+#else
+#define push_level0(c, w, h, coarse, cy0, cy1) push_level(c, NULL, w, h, coarse, cy0, cy1)
+#endif
 
 /* Bilinear samples of a coarse level at the centres of one row y of the
  * finer level: fine centre (x + 0.5) / 2 - 0.5 in coarse texel units, so
@@ -239,10 +261,10 @@ static inline tg_vec3 row_sample(pp_row_sampler *rs, int x)
     if (cx != rs->cx) {
         const tgi_rgb *c = &rs->coarse->c;
         size_t x0 = (size_t)(cx < 0 ? 0 : cx), x1 = (size_t)(cx + 1 >= rs->coarse->w ? rs->coarse->w - 1 : cx + 1);
-        rs->q[0] = texel(c, rs->r0 + x0);
-        rs->q[1] = texel(c, rs->r0 + x1);
-        rs->q[2] = texel(c, rs->r1 + x0);
-        rs->q[3] = texel(c, rs->r1 + x1);
+        rs->q[0] = level_texel(c, rs->r0 + x0);
+        rs->q[1] = level_texel(c, rs->r0 + x1);
+        rs->q[2] = level_texel(c, rs->r1 + x0);
+        rs->q[3] = level_texel(c, rs->r1 + x1);
         rs->cx = cx;
     }
     /* the bilinear weights within [0, 1] (products of 0.25 and 0.75 or
@@ -269,7 +291,7 @@ static void pull_level(const pp_level *fine, const pp_level *coarse)
             tg_real wt = weight_get(fine->wt, t);
             tg_vec3 c, up;
             if (wt >= TG_ONE) continue;
-            c = texel(&fine->c, t);
+            c = level_texel(&fine->c, t);
             up = row_sample(&rs, x);
             c = tg_v3(tg_lerp(up.x, c.x, wt), tg_lerp(up.y, c.y, wt), tg_lerp(up.z, c.z, wt));  /* w c + (1 - w) c_up */
             tgi_rgb_set(&fine->c, t, c);
@@ -294,7 +316,7 @@ void tgi_pushpull_push_rows(int w, int h, const tgi_rgb *c, void *scratch, int y
     if (y0 < 0) y0 = 0;
     if (y1 > h) y1 = h;
     if (y0 >= y1) return;
-    push_level(c, NULL, w, h, &lv[0], (y0 + 1) >> 1, (y1 + 1) >> 1);   /* the level-1 rows y with y0 <= 2y < y1 */
+    push_level0(c, w, h, &lv[0], (y0 + 1) >> 1, (y1 + 1) >> 1);   /* the level-1 rows y with y0 <= 2y < y1 */
 }
 
 void tgi_pushpull_levels(int w, int h, void *scratch)
