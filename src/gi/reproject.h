@@ -44,6 +44,8 @@ typedef struct tgi_reproject_cams {
     int w, h;
 #if TG_FIXED
     int64_t v_lim;   /* the pair's v_max, at most TG_REAL_MAX; -1: every pixel through the pair */
+    int64_t d_lim;   /* a depth up to this has V <= v_lim at every pixel (below); -1: none */
+    int64_t ex, ey, ez;   /* the current eye less the previous one */
 #endif
 } tgi_reproject_cams;
 
@@ -60,6 +62,17 @@ static inline void tgi_reproject_cams_start(tgi_reproject_cams *c, const tgi_vie
     if (w < 0 || w > 8192 || h < 0 || h > 8192 || prev->width < 0 || prev->width > 8192 || prev->height < 0 ||
         prev->height > 8192 || prev->pixels_per_unit <= 0)
         c->v_lim = -1;
+    /* V <= v_lim without summing it: with W x H the current view's sides
+     * (tgi_reproject_prev_pixel's pixels lie within them), |vx| <=
+     * |2x + 1 - W| 2^15 depth / ppu + 1/2 (the rounding) < W 2^15 depth /
+     * ppu + 1, |vy| alike with H, so V < depth k + 2 for k =
+     * floor((W + H) 2^15 / ppu) + 2 (more than (W + H) 2^15 / ppu + 1):
+     * depth <= (v_lim - 2) / k is enough (ppu > 0 wherever v_lim >= 0) */
+    c->d_lim = -1;
+    if (c->v_lim >= 2) c->d_lim = (c->v_lim - 2) / ((((int64_t)cur->width + cur->height) << 15) / cur->pixels_per_unit + 2);
+    c->ex = (int64_t)cur->eye.x - prev->eye.x;
+    c->ey = (int64_t)cur->eye.y - prev->eye.y;
+    c->ez = (int64_t)cur->eye.z - prev->eye.z;
 #endif
 }
 
@@ -76,7 +89,8 @@ static inline void tgi_reproject_cams_start(tgi_reproject_cams *c, const tgi_vie
  *    saturation; 0 <= m < w <= TG_MAX_IMAGE_SIDE, an integer exact in
  *    float, floor(m) >= 0 where m >= 0 and floor(m) < w where m < w) and
  *    floor is the truncation (int32_t)m for m >= 0;
- *  - Q16.16, without delta, for V = |vx| + |vy| + depth <= v_lim: the
+ *  - Q16.16, without delta, for a pixel of the current view and V =
+ *    |vx| + |vy| + depth <= v_lim (known from depth <= d_lim, else summed): the
  *    pair's sums (motion.h) with its roundings but none of the saturations
  *    (tgi_view_mul_div's, tg_add's, tg_sub's): v_lim <= TG_REAL_MAX, so
  *    vx and vy were in range and saturated to themselves, and the pair's
@@ -97,20 +111,21 @@ static inline int tgi_reproject_prev_pixel(const tgi_reproject_cams *c, const tg
 {
     tg_real mx, my;
 #if TG_FIXED
-    if (!delta && (unsigned)x < 8192u && (unsigned)y < 8192u && depth >= 0) {
-        const tgi_view *cv = c->pair.cur, *pv = c->pair.prev;
+    const tgi_view *cv = c->pair.cur, *pv = c->pair.prev;
+    /* the pixel within the current view (W, H <= 8192 where v_lim >= 0) */
+    if (!delta && (unsigned)x < (unsigned)cv->width && (unsigned)y < (unsigned)cv->height && depth >= 0) {
         const int64_t ppu = cv->pixels_per_unit, hu = ppu / 2;
         const int64_t ax = (int64_t)((2 * x + 1 - cv->width) * 32768) * depth;
         const int64_t ay = (int64_t)((cv->height - 2 * y - 1) * 32768) * depth;
         const int64_t vx = ax >= 0 ? (ax + hu) / ppu : -((-ax + hu) / ppu);   /* tgi_view_mul_div's rounding */
         const int64_t vy = ay >= 0 ? (ay + hu) / ppu : -((-ay + hu) / ppu);
-        if ((vx < 0 ? -vx : vx) + (vy < 0 ? -vy : vy) + depth <= c->v_lim) {
+        if (depth <= c->d_lim || (vx < 0 ? -vx : vx) + (vy < 0 ? -vy : vy) + depth <= c->v_lim) {
             const int64_t rx = (int64_t)cv->right.x * vx + (int64_t)cv->up.x * vy + (int64_t)cv->forward.x * depth;
             const int64_t ry = (int64_t)cv->right.y * vx + (int64_t)cv->up.y * vy + (int64_t)cv->forward.y * depth;
             const int64_t rz = (int64_t)cv->right.z * vx + (int64_t)cv->up.z * vy + (int64_t)cv->forward.z * depth;
-            const int64_t dx = cv->eye.x - (int64_t)pv->eye.x + tgi_shr_round(rx, 16);   /* world - prev eye */
-            const int64_t dy = cv->eye.y - (int64_t)pv->eye.y + tgi_shr_round(ry, 16);
-            const int64_t dz = cv->eye.z - (int64_t)pv->eye.z + tgi_shr_round(rz, 16);
+            const int64_t dx = c->ex + tgi_shr_round(rx, 16);   /* world - prev eye */
+            const int64_t dy = c->ey + tgi_shr_round(ry, 16);
+            const int64_t dz = c->ez + tgi_shr_round(rz, 16);
             const int64_t qx = (int64_t)(tg_real)tgi_shr_round(dx * pv->right.x + dy * pv->right.y + dz * pv->right.z, 16);
             const int64_t qy = (int64_t)(tg_real)tgi_shr_round(dx * pv->up.x + dy * pv->up.y + dz * pv->up.z, 16);
             const tg_real z = (tg_real)tgi_shr_round(dx * pv->forward.x + dy * pv->forward.y + dz * pv->forward.z, 16);
