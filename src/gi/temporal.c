@@ -45,8 +45,11 @@ static inline int history_at(const tgi_temporal_params *p, const tgi_gview *g, c
         full = (size_t)(sy * g->step + g->offset_y) * (size_t)view->width + (size_t)(sx * g->step + g->offset_x);
     }
     hz = tgi_prev_depth(h, full);
-    if (!(hz > 0 && tgi_abs_fast(tg_sub(hz, z)) <= tg_mul(p->history_depth_tolerance, hz))) return 0;
-    return tgi_v3_dot(tgi_prev_normal_memo(h, pm, full), n) >= p->history_normal_cos;
+    /* hz - z without tg_sub's saturation: hz > 0 there and z > 0.0001 (an
+     * accepted position), both at most TG_REAL_MAX; the normals are unit
+     * vectors (tgi_v3_dot_bounded) */
+    if (!(hz > 0 && tgi_abs_fast(hz - z) <= tg_mul(p->history_depth_tolerance, hz))) return 0;
+    return tgi_v3_dot_bounded(tgi_prev_normal_memo(h, pm, full), n) >= p->history_normal_cos;
 }
 
 /* tg_lerp(a, b, t): in Q16.16 for t within [0, 1] and |b - a| within
