@@ -155,7 +155,15 @@ static inline int tgi_reproject_prev_pixel(const tgi_reproject_cams *c, const tg
     v = tgi_view_world_to_view_inline(pv, p);
     *prev_z = v.z;
     if (v.z <= TG_R(0.0001f)) return 0;
-    tgi_view_project_inline(pv, v, &mx, &my);
+    {
+        /* tgi_view_project_inline without tgi_view_mul_div's clamp to
+         * [-MAX, MAX], which acts only on the infinities: c + inf and
+         * c - inf fail the range test as c +- MAX do (c the centre, within
+         * [0, 4096]), and NaN passes the clamp as it is */
+        const tg_real z = tg_max(v.z, TGI_VIEW_MIN_DEPTH);
+        mx = tg_ldexp(tg_from_int(pv->width), -1) + v.x * pv->pixels_per_unit / z;
+        my = tg_ldexp(tg_from_int(pv->height), -1) - v.y * pv->pixels_per_unit / z;
+    }
     if (!(mx >= 0 && mx < tg_from_int(c->w) && my >= 0 && my < tg_from_int(c->h))) return 0;
     *px = (int32_t)mx;
     *py = (int32_t)my;
