@@ -169,6 +169,10 @@ static inline void push_level_of(const tgi_rgb *c, const pp_weight *wt, int w, i
                                  int cy1)
 {
     int x, y;
+#if PP_BOX_WIDE && TG_FIXED
+    const tg_real inv_n[5] = { 0, tg_div(TG_ONE, TG_ONE), tg_div(TG_ONE, 2 * TG_ONE), tg_div(TG_ONE, 3 * TG_ONE),
+                               tg_div(TG_ONE, 4 * TG_ONE) };   /* tg_div(TG_ONE, sw) for sw = n TG_ONE */
+#endif
     for (y = cy0; y < cy1; y++) {
         size_t r0 = (size_t)(2 * y) * (size_t)w, r1 = r0 + (size_t)w, o = (size_t)y * (size_t)coarse->w;
         int second_row = 2 * y + 1 < h;
@@ -187,6 +191,20 @@ static inline void push_level_of(const tgi_rgb *c, const pp_weight *wt, int w, i
                     if (second_column) push_tap_wide(c, wt, r1 + fx + 1, sum, &sw);
                 }
                 s = tg_v3(tgi_wide_real(sum[0]), tgi_wide_real(sum[1]), tgi_wide_real(sum[2]));
+#if TG_FIXED
+                if (!wt && sw > 0) {
+                    /* level 0 in Q16.16 (float's division and products
+                     * test nothing): sw = n TG_ONE for the n values among
+                     * the taps, so the mean's 1 / sw is inv_n[n] and its
+                     * weight min(sw, 1) is 1; s >= 0 and 1 / n <= 1, so
+                     * each product lies within [0, s] (tgi_mul_in_range) */
+                    const tg_real inv = inv_n[sw >> 16];
+                    tgi_rgb_set(&coarse->c, o, tg_v3(tgi_mul_in_range(s.x, inv), tgi_mul_in_range(s.y, inv),
+                                                     tgi_mul_in_range(s.z, inv)));
+                    weight_set(coarse->wt, o, TG_ONE);
+                    continue;
+                }
+#endif
             } else
 #endif
             {
