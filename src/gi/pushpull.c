@@ -307,6 +307,20 @@ static inline tg_vec3 row_sample(pp_row_sampler *rs, int x)
     return tg_v3(tgi_wide_real(ox), tgi_wide_real(oy), tgi_wide_real(oz));
 }
 
+/* tg_lerp(a, b, t) for a, b within [0, TG_REAL_MAX] and t within [0, 1]:
+ * in Q16.16 over RGB9E5 levels (texels >= 0, row_sample's sums too) b - a
+ * is within range, the product (b - a) t rounds to within |b - a| and a
+ * plus it lies between a and b, so none of tg_sub's, tg_mul's and tg_add's
+ * saturations acts: the same integers without their tests. */
+static inline tg_real lerp_level(tg_real a, tg_real b, tg_real t)
+{
+#if TG_FIXED && !TG_WIDE_STORAGE
+    return (tg_real)(a + tgi_shr_round(((int64_t)b - a) * t, 16));
+#else
+    return tg_lerp(a, b, t);
+#endif
+}
+
 /* Pull one level: complete texels of weight < 1 from the coarser level. */
 static void pull_level(const pp_level *fine, const pp_level *coarse)
 {
@@ -321,7 +335,7 @@ static void pull_level(const pp_level *fine, const pp_level *coarse)
             if (wt >= TG_ONE) continue;
             c = level_texel(&fine->c, t);
             up = row_sample(&rs, x);
-            c = tg_v3(tg_lerp(up.x, c.x, wt), tg_lerp(up.y, c.y, wt), tg_lerp(up.z, c.z, wt));  /* w c + (1 - w) c_up */
+            c = tg_v3(lerp_level(up.x, c.x, wt), lerp_level(up.y, c.y, wt), lerp_level(up.z, c.z, wt));  /* w c + (1 - w) c_up */
             tgi_rgb_set(&fine->c, t, c);
             weight_set(fine->wt, t, TG_ONE);
         }
