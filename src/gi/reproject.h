@@ -42,7 +42,10 @@ typedef struct tgi_reproject_io {
 typedef struct tgi_reproject_cams {
     tgi_motion_pair pair;
     int w, h;
-#if TG_FIXED
+#if !TG_FIXED
+    tg_real cur_cx, cur_cy, prev_cx, prev_cy;   /* the views' centres (tgi_view_unproject_inline's, project's) */
+    tg_real wr, hr;                             /* w and h */
+#else
     int64_t v_lim;   /* the pair's v_max, at most TG_REAL_MAX; -1: every pixel through the pair */
     int64_t d_lim;   /* a depth up to this has V <= v_lim at every pixel (below); -1: none */
     int64_t ex, ey, ez;   /* the current eye less the previous one */
@@ -55,7 +58,14 @@ static inline void tgi_reproject_cams_start(tgi_reproject_cams *c, const tgi_vie
     tgi_motion_pair_start(&c->pair, cur, prev);
     c->w = w;
     c->h = h;
-#if TG_FIXED
+#if !TG_FIXED
+    c->cur_cx = tg_ldexp(tg_from_int(cur->width), -1);
+    c->cur_cy = tg_ldexp(tg_from_int(cur->height), -1);
+    c->prev_cx = tg_ldexp(tg_from_int(prev->width), -1);
+    c->prev_cy = tg_ldexp(tg_from_int(prev->height), -1);
+    c->wr = tg_from_int(w);
+    c->hr = tg_from_int(h);
+#else
     c->v_lim = c->pair.v_max < TG_REAL_MAX ? c->pair.v_max : TG_REAL_MAX;
     /* below: the sides within 2^13, so the centres (w 2^15) and the range
      * (w 2^16) are exact Q16.16 integers below TG_REAL_MAX */
@@ -150,7 +160,10 @@ static inline int tgi_reproject_prev_pixel(const tgi_reproject_cams *c, const tg
 #else
     const tgi_view *cv = c->pair.cur, *pv = c->pair.prev;
     const tg_real sx = tg_add(tg_from_int(x), TG_R(0.5f)), sy = tg_add(tg_from_int(y), TG_R(0.5f));
-    tg_vec3 p = tgi_view_view_to_world_inline(cv, tgi_view_unproject_inline(cv, sx, sy, depth)), v;
+    /* tgi_view_unproject_inline with the centres computed once */
+    const tg_vec3 u = tg_v3(tgi_view_mul_div(tg_sub(sx, c->cur_cx), depth, cv->pixels_per_unit),
+                            tgi_view_mul_div(tg_sub(c->cur_cy, sy), depth, cv->pixels_per_unit), depth);
+    tg_vec3 p = tgi_view_view_to_world_inline(cv, u), v;
     if (delta) p = tgi_m4_point(delta, p);
     v = tgi_view_world_to_view_inline(pv, p);
     *prev_z = v.z;
@@ -161,10 +174,10 @@ static inline int tgi_reproject_prev_pixel(const tgi_reproject_cams *c, const tg
          * c - inf fail the range test as c +- MAX do (c the centre, within
          * [0, 4096]), and NaN passes the clamp as it is */
         const tg_real z = tg_max(v.z, TGI_VIEW_MIN_DEPTH);
-        mx = tg_ldexp(tg_from_int(pv->width), -1) + v.x * pv->pixels_per_unit / z;
-        my = tg_ldexp(tg_from_int(pv->height), -1) - v.y * pv->pixels_per_unit / z;
+        mx = c->prev_cx + v.x * pv->pixels_per_unit / z;
+        my = c->prev_cy - v.y * pv->pixels_per_unit / z;
     }
-    if (!(mx >= 0 && mx < tg_from_int(c->w) && my >= 0 && my < tg_from_int(c->h))) return 0;
+    if (!(mx >= 0 && mx < c->wr && my >= 0 && my < c->hr)) return 0;
     *px = (int32_t)mx;
     *py = (int32_t)my;
     return 1;
