@@ -20,7 +20,8 @@ void tgi_temporal_defaults(tgi_temporal_params *p)
  * frame's depth and normal agree (the history is accepted).  The cameras of
  * cams are the caller's copies (locals: no store through the result planes
  * can change them, so their fields stay in registers along the row); unit:
- * g is the camera's whole image (step 1, no offset, its size). */
+ * g is the camera's whole image (step 1, no offset, its size, tgi_gv_index
+ * y width + x). */
 #if defined(__GNUC__)
 __attribute__((always_inline))   /* one copy in the row loop, its tests against the row's registers */
 #endif
@@ -34,9 +35,10 @@ static inline int history_at(const tgi_temporal_params *p, const tgi_gview *g, c
     size_t full;
     if (!tgi_reproject_prev_pixel(cams, NULL, fx, fy, depth, &px, &py, &z)) return 0;
     if (unit) {
-        /* step 1 at offset 0 over the whole image: the pixel itself */
-        *s = tgi_gv_index(g, px, py);
+        /* step 1 at offset 0 over the whole image, stored row by row: the
+         * pixel itself, at the same index in g */
         full = (size_t)py * (size_t)view->width + (size_t)px;
+        *s = full;
     } else {
         sx = (px - g->offset_x) / g->step;    /* the pixel of g standing for the full-res pixel's block */
         sy = (py - g->offset_y) / g->step;
@@ -172,7 +174,7 @@ void tgi_temporal_rows(const tgi_temporal_params *params, const tgi_gview *view_
     before = *prev_view;
     tgi_reproject_cams_start(&t.cams, &view, &before, view.width, view.height);
     t.unit = t.g.step == 1 && t.g.offset_x == 0 && t.g.offset_y == 0 && t.g.width == view.width &&
-             t.g.height == view.height;
+             t.g.height == view.height && t.g.pixel_stride == 1 && t.g.row_stride == view.width;
 #if !TG_OUTLINE_HELPERS
     if (!tgi_gr_has_bent(&t.r)) {   /* a copy of the loop without the bent normal (not when compiling for size) */
         accumulate_rows(&t, 0, y0, y1);
