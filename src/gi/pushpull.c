@@ -157,6 +157,20 @@ static inline void push_tap_wide(const tgi_rgb *c, const pp_weight *wt, size_t t
 }
 #endif
 
+/* tg_div(TG_ONE, sw) for the box's weight sum sw > 0.  Stored 8-bit
+ * weights (tgi_unorm8_unpack: at least 257 raw in Q16.16 where not 0) and
+ * level 0's 1s make sw at least 257 raw, so 2^32 / sw fits: tgi_div_pos,
+ * tg_div's rounding without its tests; tg_real weights (TG_WIDE_STORAGE)
+ * may be smaller: tg_div. */
+static inline tg_real inv_weight(tg_real sw)
+{
+#if TG_WIDE_STORAGE
+    return tg_div(TG_ONE, sw);
+#else
+    return tgi_div_pos(TG_ONE, sw);
+#endif
+}
+
 /* Push one level: a 2x2 box over the weighted texels of the finer w x h
  * level, its values c and weights wt.  Level 0, the image, has no weights
  * (wt NULL): a value weighs 1, a hole 0, and the value enters unscaled.
@@ -216,7 +230,7 @@ static inline void push_level_of(const tgi_rgb *c, const pp_weight *wt, int w, i
                 }
             }
             if (sw > 0) {
-                tgi_rgb_set(&coarse->c, o, tgi_v3_scale(s, tg_div(TG_ONE, sw)));   /* weighted mean */
+                tgi_rgb_set(&coarse->c, o, tgi_v3_scale(s, inv_weight(sw)));   /* weighted mean */
                 weight_set(coarse->wt, o, tg_min(sw, TG_ONE));                     /* Kraus: clamped to 1 */
             } else {
                 tgi_rgb_set(&coarse->c, o, tg_v3(0, 0, 0));
