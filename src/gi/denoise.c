@@ -13,8 +13,12 @@
 
 #if defined(__GNUC__)
 #define DENOISE_INLINE inline __attribute__((always_inline))   /* a constant (whole, phase) in each copy */
+/* the rare side of a test, laid out after the common one (which then
+ * falls through, no jump back) */
+#define DENOISE_RARE(c) __builtin_expect((c) != 0, 0)
 #else
 #define DENOISE_INLINE inline
+#define DENOISE_RARE(c) (c)
 #endif
 
 void tgi_denoise_defaults(tgi_denoise_params *p)
@@ -34,6 +38,7 @@ void tgi_denoise_defaults(tgi_denoise_params *p)
 #define PHASE(a, b, c, d, e, ha, hb, hc, hd, he) \
     { ha, hb, hc, hd, he, a, b, c, d, e, a, b, c, d, e, a, b, c, d, e, ha, hb, hc, hd, he, 0, 0, 0 }
 #define PIXEL_TAPS 28   /* a pixel's 25 entries of the walk and the 3 after them (denoise.h) */
+#if !TGI_Q16_WIDE
 static const tg_real spatial_w[5][PIXEL_TAPS] = {
     PHASE(W_1, W_1, W_H, W_H, W_1, W_H, W_H, W_Q, W_Q, W_H),   /* x % 5 = 0: window columns 3 4 0 1 2 in slots 0..4 */
     PHASE(W_1, W_1, W_1, W_H, W_H, W_H, W_H, W_H, W_Q, W_Q),   /* 1: columns 2 3 4 0 1 */
@@ -41,6 +46,32 @@ static const tg_real spatial_w[5][PIXEL_TAPS] = {
     PHASE(W_H, W_H, W_1, W_1, W_1, W_Q, W_Q, W_H, W_H, W_H),   /* 3: columns 4 0 1 2 3 */
     PHASE(W_1, W_H, W_H, W_1, W_1, W_H, W_Q, W_Q, W_H, W_H),   /* 4: columns 1 2 3 4 0 */
 };
+#endif
+#if TGI_Q16_WIDE
+/* The same weights for weigh_entry: sp and c = sp 2^16 + 2^15 a tap, so
+ * that mul_pos(sp, 1 - q), q = dz / ztol rounded, is (c - sp q) >> 16, the
+ * product's rounding constant and the 1 folded into c: the same integer,
+ * sp (2^16 - q) + 2^15 = c - sp q, positive where a tap is kept (1 - q >
+ * 0); sp <= 2^16 and 0 <= q < 2^16, so no overflow.  Two instructions a
+ * tap fewer than 1 - q and mul_pos (both operands 64-bit, one read from
+ * the table by the multiply). */
+typedef struct spatial_pair { int64_t c, w; } spatial_pair;
+#define SP_PAIR(w) { ((int64_t)(w) << 16) + 32768, (w) }
+#undef PHASE
+#define PHASE(a, b, c, d, e, ha, hb, hc, hd, he) \
+    { SP_PAIR(ha), SP_PAIR(hb), SP_PAIR(hc), SP_PAIR(hd), SP_PAIR(he), \
+      SP_PAIR(a), SP_PAIR(b), SP_PAIR(c), SP_PAIR(d), SP_PAIR(e), SP_PAIR(a), SP_PAIR(b), SP_PAIR(c), SP_PAIR(d), SP_PAIR(e), \
+      SP_PAIR(a), SP_PAIR(b), SP_PAIR(c), SP_PAIR(d), SP_PAIR(e), \
+      SP_PAIR(ha), SP_PAIR(hb), SP_PAIR(hc), SP_PAIR(hd), SP_PAIR(he), SP_PAIR(0), SP_PAIR(0), SP_PAIR(0) }
+static const spatial_pair spatial_pairs[5][PIXEL_TAPS] = {
+    PHASE(W_1, W_1, W_H, W_H, W_1, W_H, W_H, W_Q, W_Q, W_H),   /* as spatial_w */
+    PHASE(W_1, W_1, W_1, W_H, W_H, W_H, W_H, W_H, W_Q, W_Q),
+    PHASE(W_H, W_1, W_1, W_1, W_H, W_Q, W_H, W_H, W_H, W_Q),
+    PHASE(W_H, W_H, W_1, W_1, W_1, W_Q, W_Q, W_H, W_H, W_H),
+    PHASE(W_1, W_H, W_H, W_1, W_1, W_H, W_Q, W_Q, W_H, W_H),
+};
+#undef SP_PAIR
+#endif
 #undef PHASE
 
 #if !TGI_Q16_WIDE && !FLOAT_UNROLLED
@@ -223,20 +254,24 @@ static inline uint64_t normal_d8(tg_vec3 a, tg_vec3 b)
 
 /* One entry e (spatial weight sp) of weigh_and_sum into the sums s[0..7]
  * (s[7] the weights'). */
-static DENOISE_INLINE void weigh_entry(const tgi_denoise_walk *k, int e, tg_real sp, tg_real zi, tg_vec3 ni,
+static DENOISE_INLINE void weigh_entry(const tgi_denoise_walk *k, int e, const spatial_pair *sp, int64_t zi, tg_vec3 ni,
                                        int64_t dz_lim, tg_real inv_ztol, uint64_t key, uint64_t same,
                                        const int bent, const int near, int64_t *s)
 {
-    tg_real dz = tg_abs(k->z[e] - zi);   /* depths are never negative: no overflow */
-    int64_t omt, wj;
-    uint64_t d;
+    /* in 64 bits (the depth's load widens it; no widening of dz for the
+     * product); depths are never negative: no overflow in 32 bits either */
+    int64_t dz = (int64_t)k->z[e] - zi, q, wj;
+    uint64_t d, t;
+    dz = dz < 0 ? -dz : dz;
     if (dz >= dz_lim) return;   /* dz >= ztol, or 1 - dz / ztol <= 0 (dz_lim) */
-    omt = TG_ONE - (int64_t)mul_pos((uint64_t)dz, (uint64_t)inv_ztol);   /* 1 - dz / ztol, > 0 */
+    q = (int64_t)mul_pos((uint64_t)dz, (uint64_t)inv_ztol);   /* dz / ztol, 1 - q > 0 */
+    t = (uint64_t)(sp->c - sp->w * q) >> 16;                  /* mul_pos(sp, 1 - q) (spatial_pairs) */
     /* the normal weight: the centre's own for a normal equal to it (the
      * common case: a plane's pixels share their normal); a weight 0
      * (normals apart) adds 0 */
-    d = k->nkey[e] == key ? same : normal_d8(ni, tg_v3(k->nx[e], k->ny[e], k->nz[e]));
-    wj = (int64_t)mul_pos(mul_pos((uint64_t)sp, (uint64_t)omt), d);
+    d = same;
+    if (DENOISE_RARE(k->nkey[e] != key)) d = normal_d8(ni, tg_v3(k->nx[e], k->ny[e], k->nz[e]));
+    wj = (int64_t)mul_pos(t, d);
     s[0] += VAL(k, e, 0) * wj; s[7] += wj;   /* the weights' sum */
     if (bent) { s[1] += VAL(k, e, 1) * wj; s[2] += VAL(k, e, 2) * wj; s[3] += VAL(k, e, 3) * wj; }
     if (near) { s[4] += VAL(k, e, 4) * wj; s[5] += VAL(k, e, 5) * wj; s[6] += VAL(k, e, 6) * wj; }
@@ -247,7 +282,7 @@ static DENOISE_INLINE void weigh_entry(const tgi_denoise_walk *k, int e, tg_real
  * which are then not added (tgi_denoise_pixel does not read them).  A
  * whole window's entries a row of five written out (the loop's counters
  * and tests a row, not an entry). */
-static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const tg_real *spatial, tg_real zi,
+static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const spatial_pair *spatial, tg_real zi,
                                          tg_vec3 ni, int ce, int64_t dz_lim, tg_real inv_ztol, uint32_t window, int whole,
                                          const int bent, const int near, int64_t *sum)
 {
@@ -259,7 +294,7 @@ static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const
     (void)ce;
 #endif
     int j, c;
-#define ENTRY(j_) weigh_entry(k, o + (j_), spatial[j_], zi, ni, dz_lim, inv_ztol, key, same, bent, near, s)
+#define ENTRY(j_) weigh_entry(k, o + (j_), &spatial[j_], zi, ni, dz_lim, inv_ztol, key, same, bent, near, s)
     if (whole) {
         for (j = 0; j < 5 * 5; j += 5) { ENTRY(j); ENTRY(j + 1); ENTRY(j + 2); ENTRY(j + 3); ENTRY(j + 4); }
     } else {
@@ -284,7 +319,7 @@ static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
-static void whole_fewer(const tgi_denoise_walk *k, int o, const tg_real *spatial, tg_real zi, tg_vec3 ni, int ce, int64_t dz_lim,
+static void whole_fewer(const tgi_denoise_walk *k, int o, const spatial_pair *spatial, tg_real zi, tg_vec3 ni, int ce, int64_t dz_lim,
                         tg_real inv_ztol, int bent, int near, int64_t *sum)
 {
     if (near) weigh_and_sum(k, o, spatial, zi, ni, ce, dz_lim, inv_ztol, 0, 1, 0, 1, sum);
@@ -442,7 +477,7 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
         dz_lim = t < dz_lim ? t : dz_lim;
     }
     if (xb - xa == 4 && yb - ya == 4) {   /* the whole window: every entry; a copy per set of channels */
-        const tg_real *sp = spatial_w[x % 5];
+        const spatial_pair *sp = spatial_pairs[x % 5];
         const int ce = o + 2 * 5 + x % 5;   /* the centre's entry */
         if (has_bent && has_near) weigh_and_sum(k, o, sp, zi, ni, ce, dz_lim, inv_ztol, 0, 1, 1, 1, sum);
         else whole_fewer(k, o, sp, zi, ni, ce, dz_lim, inv_ztol, has_bent, has_near, sum);
@@ -451,7 +486,7 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
         const int ce = o + 2 * 5 + x % 5;
         for (xx = xa; xx <= xb; xx++) slots |= 1u << (xx % 5);
         for (yy = ya; yy <= yb; yy++) window |= slots << ((yy - y + 2) * 5);
-        weigh_and_sum(k, o, spatial_w[x % 5], zi, ni, ce, dz_lim, inv_ztol, window, 0, 1, 1, sum);
+        weigh_and_sum(k, o, spatial_pairs[x % 5], zi, ni, ce, dz_lim, inv_ztol, window, 0, 1, 1, sum);
     }
 #else
     tap_weights(k, o, spatial_w[x % 5], zi, ni, ztol, inv_ztol, wt);
