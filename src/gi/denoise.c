@@ -399,6 +399,19 @@ static tg_real average(tgi_wide sum, tgi_wide ws)
     return tg_div(sum, ws);
 #endif
 }
+#if TGI_Q16_WIDE && !TG_WIDE_STORAGE
+/* average of a channel whose values are never negative: the AO (unorm8
+ * unpacked, within [0, 1], or 1 without the plane) and the near field
+ * (rgb9e5 unpacked: never negative), weights >= 0, so sum >= 0 and
+ * tgi_div_round's test of its sign is known; the AO's average, its values
+ * within [0, 1], is within [0, 1] too (sum <= ws: (sum + ws / 2) / ws <=
+ * 1.5 rounds down to at most 1), so tg_saturate changes nothing there */
+static tg_real average_pos(tgi_wide sum, tgi_wide ws) { return (tg_real)(((uint64_t)sum + (uint64_t)ws / 2) / (uint64_t)ws); }
+#define AO_AVERAGE(s, ws) average_pos(s, ws)
+#else
+#define average_pos average
+#define AO_AVERAGE(s, ws) tg_saturate(average(s, ws))
+#endif
 
 /* The filtered bent normal made unit again (out of line: inlined, its
  * registers cost the filter's loop more than the call). */
@@ -463,7 +476,14 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     zi = k->z[o + 2 * 5 + x % 5];
     ni = tg_v3(k->nx[o + 2 * 5 + x % 5], k->ny[o + 2 * 5 + x % 5], k->nz[o + 2 * 5 + x % 5]);
     ztol = tg_mul(p->depth_tolerance, zi);
+#if TGI_Q16_WIDE
+    /* tg_div(1, ztol) (tgi_div_inline: 2^32 plus half of ztol > 0, over
+     * ztol, saturated) without its tests of the signs where ztol > 0, the
+     * common case (zi > 0, the tolerance's default 0.1) */
+    inv_ztol = ztol > 0 ? tgi_sat64((((int64_t)1 << 32) + ztol / 2) / ztol) : tg_div(TG_ONE, ztol);
+#else
     inv_ztol = tg_div(TG_ONE, ztol);
+#endif
 #if TGI_Q16_WIDE
     /* dz_lim: the entries kept are those with dz < ztol and 1 - dz / ztol
      * > 0, that is mul_pos(dz, inv_ztol) < 1 (2^16), dz inv_ztol + 2^15 <
@@ -532,10 +552,10 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
 #endif
     ws = sum[TGI_DENOISE_VALUES];
     if (ws <= 0) return tgi_gr_get_kept(r, i);   /* the centre always weighs 1: cannot happen */
-    v.ao = tg_saturate(average(sum[0], ws));
+    v.ao = AO_AVERAGE(sum[0], ws);
     v.bent = has_bent ? bent_unit(tg_v3(average(sum[1], ws), average(sum[2], ws), average(sum[3], ws)), ni)
                       : tg_v3(0, 0, 0);
-    v.near = has_near ? tg_v3(average(sum[4], ws), average(sum[5], ws), average(sum[6], ws)) : tg_v3(0, 0, 0);
+    v.near = has_near ? tg_v3(average_pos(sum[4], ws), average_pos(sum[5], ws), average_pos(sum[6], ws)) : tg_v3(0, 0, 0);
     return v;
 }
 
