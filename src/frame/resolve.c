@@ -88,8 +88,27 @@ static void resolve_ctx_init(resolve_ctx *c, const tg_frame *f)
 
 /* The GI results of full-resolution pixel (x, y) as compose and the AOVs use
  * them: HBIL's filtered (or upsampled), another technique's as they are. */
-static tgi_gr_value results_at(resolve_ctx *c, const tg_frame *f, int x, int y, size_t i)
+#if defined(__GNUC__) && !TG_OUTLINE_HELPERS
+#define RESOLVE_INLINE inline __attribute__((always_inline))   /* a copy per mode (below) */
+#elif TG_OUTLINE_HELPERS
+#define RESOLVE_INLINE   /* a build for size: the compiler's choice, one copy */
+#else
+#define RESOLVE_INLINE inline
+#endif
+
+/* mode, a constant in each copy of the pixel's code (tgi_pass_resolve):
+ * RESOLVE_FILTER where c->gi and c->hbil are set and c->quarter is not (the
+ * full-res filter runs), RESOLVE_UPSAMPLE where all three are (the
+ * upsample runs); else 0, the flags read. */
+#define RESOLVE_FILTER 1
+#define RESOLVE_UPSAMPLE 2
+static RESOLVE_INLINE tgi_gr_value results_at(resolve_ctx *c, const tg_frame *f, int x, int y, size_t i,
+                                              const int mode)
 {
+    if (mode == RESOLVE_FILTER) return tgi_denoise_pixel(&c->filter, &f->full, &f->res, &c->r.walk, x, y);
+#if !TG_NO_GI_QUARTER
+    if (mode == RESOLVE_UPSAMPLE) return tgi_upsample_at(&c->r.up.plan, &c->r.up.walk, x, y);
+#endif
     if (!c->hbil) return tgi_gr_get_kept(&f->res, i);
 #if !TG_NO_GI_QUARTER
     if (c->quarter) return tgi_upsample_at(&c->r.up.plan, &c->r.up.walk, x, y);
@@ -101,37 +120,39 @@ static tgi_gr_value results_at(resolve_ctx *c, const tg_frame *f, int x, int y, 
 /* The G-buffer normal of surface pixel (x, y, index i): the filter's walk
  * holds it when the filter ran for the pixel (results_at), decoded there
  * by the same tgi_gv_normal (columns 320x240: one decode a pixel fewer). */
-static tg_vec3 normal_at(const resolve_ctx *c, const tg_frame *f, int x, int y, size_t i)
+static RESOLVE_INLINE tg_vec3 normal_at(const resolve_ctx *c, const tg_frame *f, int x, int y, size_t i, const int mode)
 {
 #if !TG_OUTLINE_HELPERS
-    if (c->hbil && !c->quarter) return tgi_denoise_centre_normal(&c->r.walk, x, y);
+    if (mode == RESOLVE_FILTER || (mode == 0 && c->hbil && !c->quarter)) return tgi_denoise_centre_normal(&c->r.walk, x, y);
 #else
-    (void)c; (void)x; (void)y;
+    (void)c; (void)x; (void)y; (void)mode;
 #endif
     return tgi_gv_normal(&f->full, i);
 }
 
 /* E = E_direct + E_far + E_near (HBIL sec. 2.3) of a surface pixel. */
-static tg_vec3 irradiance_at(const resolve_ctx *c, const tg_frame *f, int x, int y, size_t i, const tgi_gr_value *v)
+static RESOLVE_INLINE tg_vec3 irradiance_at(const resolve_ctx *c, const tg_frame *f, int x, int y, size_t i,
+                                            const tgi_gr_value *v, const int mode)
 {
     tg_vec3 e = tg_v3(0, 0, 0), far;
-    int has_bent = c->hbil ? (c->quarter ? tgi_gr_has_bent(&f->half_filtered) : tgi_gr_has_bent(&f->res))
-                           : tgi_gr_has_bent(&f->res);
+    int has_bent = mode == RESOLVE_UPSAMPLE || (mode == 0 && c->hbil && c->quarter) ? tgi_gr_has_bent(&f->half_filtered)
+                                                                                     : tgi_gr_has_bent(&f->res);
     if (tgi_rgb_present(&f->direct)) e = tgi_rgb_get(&f->direct, i);
     if (c->far_inline) {
-        far = tgi_far_irradiance(f->sh, normal_at(c, f, x, y, i), c->gi, v->ao, has_bent, v->bent, c->far_mode);
+        far = tgi_far_irradiance(f->sh, normal_at(c, f, x, y, i, mode), mode || c->gi, v->ao, has_bent, v->bent,
+                                 c->far_mode);
         if (c->far_own) tgi_rgb_set(c->far_own, i, far);
         e = tgi_v3_add(e, far);
     } else if (tgi_rgb_present(&f->far)) {
         e = tgi_v3_add(e, tgi_rgb_get(&f->far, i));   /* SSDO's or bent cones' own */
     }
-    if (c->gi && (f->effects & TG_EFFECT_NEAR)) e = tgi_v3_add(e, v->near);
+    if ((mode || c->gi) && (f->effects & TG_EFFECT_NEAR)) e = tgi_v3_add(e, v->near);
     return e;
 }
 #endif
 
 /* Pixel (x, y): its GI results, their AOV, E and Lo. */
-static void resolve_pixel(resolve_ctx *c, tg_frame *f, int compose, int x, int y)
+static RESOLVE_INLINE void resolve_pixel(resolve_ctx *c, tg_frame *f, int compose, int x, int y, const int mode)
 {
     size_t i = tgi_gv_index(&f->full, x, y);
     tgi_gr_value v;
@@ -141,8 +162,8 @@ static void resolve_pixel(resolve_ctx *c, tg_frame *f, int compose, int x, int y
     (void)compose;
 #endif
     v.ao = TG_ONE; v.bent = v.near = tg_v3(0, 0, 0);
-    if (c->gi) v = results_at(c, f, x, y, i);
-    if (c->hbil) tgi_gr_put_kept(&f->out, i, &v);   /* the filtered results an AOV asks for */
+    if (mode || c->gi) v = results_at(c, f, x, y, i, mode);
+    if (mode || c->hbil) tgi_gr_put_kept(&f->out, i, &v);   /* the filtered results an AOV asks for */
 #if !TG_NO_COLOR /* without colour (the plan refuses the far field and composition) nothing else */
     if (tgi_gv_is_sky(&f->full, i)) {
         if (c->far_own) tgi_rgb_set(c->far_own, i, tg_v3(0, 0, 0));
@@ -151,7 +172,7 @@ static void resolve_pixel(resolve_ctx *c, tg_frame *f, int compose, int x, int y
         if (tgi_rgb_present(&f->irradiance)) tgi_rgb_set(&f->irradiance, i, tg_v3(0, 0, 0));
         return;
     }
-    e = irradiance_at(c, f, x, y, i, &v);
+    e = irradiance_at(c, f, x, y, i, &v, mode);
     if (!compose) return;
     if (tgi_rgb_present(&f->irradiance)) tgi_rgb_set(&f->irradiance, i, e);
     tgi_rgb_set(c->lo, i, tgi_gv_lit(&f->full, i, e));   /* HBIL eq. 14, 19 */
@@ -164,9 +185,28 @@ void tgi_pass_resolve(tg_frame *f, int y0, int y1)
     int x, y, yy, end, compose = (f->needs & TG_NEED_COMPOSE) != 0;
     resolve_ctx_init(&c, f);
     /* the filter's order: band by band, column by column (denoise.h); else row by row */
+#if !TG_OUTLINE_HELPERS   /* (a build for size keeps one copy) */
+    /* HBIL's two ways: a copy of the pixel's code each, without the flags'
+     * tests (cornell 160x120 2 frames float 526.76M -> 526.14M, Q16.16
+     * 743.17M -> 742.44M; 320x240 --gi-quarter float 969.85M -> 964.35M,
+     * Q16.16 1433.16M -> 1433.02M) */
+    if (c.gi && c.hbil && !c.quarter) {
+        for (y = y0; y < y1; y = end) {
+            end = tgi_denoise_band(&c.r.walk, y, y1);
+            for (x = 0; x < f->width; x++)
+                for (yy = y; yy < end; yy++) resolve_pixel(&c, f, compose, x, yy, RESOLVE_FILTER);
+        }
+        return;
+    }
+    if (c.gi && c.hbil) {
+        for (y = y0; y < y1; y++)
+            for (x = 0; x < f->width; x++) resolve_pixel(&c, f, compose, x, y, RESOLVE_UPSAMPLE);
+        return;
+    }
+#endif
     for (y = y0; y < y1; y = end) {
         end = c.hbil && !c.quarter ? tgi_denoise_band(&c.r.walk, y, y1) : y + 1;
         for (x = 0; x < f->width; x++)
-            for (yy = y; yy < end; yy++) resolve_pixel(&c, f, compose, x, yy);
+            for (yy = y; yy < end; yy++) resolve_pixel(&c, f, compose, x, yy, 0);
     }
 }
