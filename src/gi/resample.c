@@ -181,6 +181,16 @@ static const float near_off_pairs[16][4][7][2] = {
 static int64_t abs64(int64_t v) { return v < 0 ? -v : v; }
 #endif
 
+/* The offsets (dx, dy) and the index offset of sample n of cell c's side k
+ * in the plan (TGI_NEAR_STEP_PAIRS: side by side, or apart). */
+#if TGI_NEAR_STEP_PAIRS
+#define NEAR_OFF(u, c, k, n) ((u)->step[c][k][n].off)
+#define NEAR_DELTA(u, c, k, n) ((u)->step[c][k][n].delta)
+#else
+#define NEAR_OFF(u, c, k, n) ((u)->off[c][k][n])
+#define NEAR_DELTA(u, c, k, n) ((u)->delta[c][k][n])
+#endif
+
 void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_gview *half, const tgi_gresult *half_res,
                         tg_real radius, const tgi_gresult *near)
 {
@@ -215,7 +225,7 @@ void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_g
             int ux = tg_round_int(tg_ldexp(k ? tg_neg(d[1]) : d[0], 8)), uy = tg_round_int(tg_ldexp(k ? d[0] : d[1], 8));
             for (e = 0; e < 2; e++)
                 for (n = 0; n < u->steps; n++) {
-                    signed char *o = u->off[c][2 * k + e][n];
+                    signed char *o = NEAR_OFF(u, c, 2 * k + e, n);
                     int t = near_t[n], far = 256 * (t + 1), sx = e ? -ux : ux, sy = e ? -uy : uy;
                     int dx = ((128 + t * sx + far) >> 8) - (t + 1), dy = ((128 + t * sy + far) >> 8) - (t + 1);
                     o[0] = (signed char)dx;
@@ -232,14 +242,15 @@ void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_g
     for (c = 0; c < 16 && u->deltas; c++)
         for (k = 0; k < 4; k++)
             for (n = 0; n < u->steps; n++)
-                if (near_off_pairs[c][k][n][0] != (float)u->off[c][k][n][0]
-                    || near_off_pairs[c][k][n][1] != (float)u->off[c][k][n][1])
+                if (near_off_pairs[c][k][n][0] != (float)NEAR_OFF(u, c, k, n)[0]
+                    || near_off_pairs[c][k][n][1] != (float)NEAR_OFF(u, c, k, n)[1])
                     u->deltas = 0;
 #endif
     for (c = 0; c < 16 && u->deltas; c++)
         for (k = 0; k < 4; k++)
             for (n = 0; n < u->steps; n++)
-                u->delta[c][k][n] = (int16_t)(u->off[c][k][n][1] * full->row_stride + u->off[c][k][n][0] * full->pixel_stride);
+                NEAR_DELTA(u, c, k, n) = (int16_t)(NEAR_OFF(u, c, k, n)[1] * full->row_stride
+                                                   + NEAR_OFF(u, c, k, n)[0] * full->pixel_stride);
 #endif
 }
 
@@ -396,9 +407,17 @@ __attribute__((always_inline))   /* a copy for each `inside` and `wide`, their t
 static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q, int cell, int side,
                                        const tgi_gview *g, const near_plane *ppl, const int inside, const int wide)
 {
+#if TGI_NEAR_STEP_PAIRS
+    const struct tgi_near_step *st = u->step[cell][side];
+#define STEP_OFF(n) (st[n].off)
+#define STEP_DELTA(n) (st[n].delta)
+#else
     const signed char (*off)[2] = u->off[cell][side];
 #if TGI_NEAR_DELTAS
     const int16_t *delta = u->delta[cell][side];
+#endif
+#define STEP_OFF(n) (off[n])
+#define STEP_DELTA(n) (delta[n])
 #endif
 #if NEAR_OFF_PAIRS
     const float (*pair)[2] = near_off_pairs[cell][side];   /* off's, inside (u->deltas) */
@@ -425,7 +444,7 @@ static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q
         /* the next sample above the tangent plane, in a loop of its own (the
          * compiler keeps its few values in registers) */
         for (; n < steps; n++) {
-            int sx = x + off[n][0], sy = y + off[n][1];
+            int sx = x + STEP_OFF(n)[0], sy = y + STEP_OFF(n)[1];
             if (!inside && ((unsigned)sx >= (unsigned)g->width || (unsigned)sy >= (unsigned)g->height)) {
                 n = steps;   /* the march ends at the screen's edge */
                 break;
@@ -433,9 +452,10 @@ static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q
             /* inside: the index of (sx, sy) as the pixel's plus the offset's
              * (the same size_t, both taken modulo 2^N) */
 #if TGI_NEAR_DELTAS
-            j = inside ? i0 + (size_t)(ptrdiff_t)delta[n] : tgi_gv_index(g, sx, sy);
+            j = inside ? i0 + (size_t)(ptrdiff_t)STEP_DELTA(n) : tgi_gv_index(g, sx, sy);
 #else
-            j = inside ? i0 + (size_t)((ptrdiff_t)off[n][1] * g->row_stride + (ptrdiff_t)off[n][0] * g->pixel_stride)
+            j = inside ? i0 + (size_t)((ptrdiff_t)STEP_OFF(n)[1] * g->row_stride
+                                       + (ptrdiff_t)STEP_OFF(n)[0] * g->pixel_stride)
                        : tgi_gv_index(g, sx, sy);
 #endif
 #if NEAR_OFF_PAIRS
@@ -444,22 +464,22 @@ static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q
                 continue;
             }
 #endif
-            if (!tgi_gv_is_sky(g, j) && !near_under_off(&pl, tgi_gv_depth(g, j), off[n], wide)) break;
+            if (!tgi_gv_is_sky(g, j) && !near_under_off(&pl, tgi_gv_depth(g, j), STEP_OFF(n), wide)) break;
         }
         if (n >= steps) break;
         z = tgi_gv_depth(g, j);
 #if TGI_DEPTH_LAYERS
-        if (u->layers && !near_solid_below(&pl, tgi_gv_back_depth(g, j), z, off[n], wide)) {
+        if (u->layers && !near_solid_below(&pl, tgi_gv_back_depth(g, j), z, STEP_OFF(n), wide)) {
             n++;
             continue;
         }
 #endif
 #if NEAR_OFF_PAIRS
-        fdx = inside ? pair[n][0] : near_off_real(off[n][0]);
-        fdy = inside ? pair[n][1] : near_off_real(off[n][1]);
+        fdx = inside ? pair[n][0] : near_off_real(STEP_OFF(n)[0]);
+        fdy = inside ? pair[n][1] : near_off_real(STEP_OFF(n)[1]);
 #else
-        fdx = near_off_real(off[n][0]);
-        fdy = near_off_real(off[n][1]);
+        fdx = near_off_real(STEP_OFF(n)[0]);
+        fdy = near_off_real(STEP_OFF(n)[1]);
 #endif
         n++;
         h = tg_v3(tg_sub(tg_mul(z, tg_add(q->kx, tg_mul(fdx, u->ax))), q->pv.x),
@@ -470,6 +490,8 @@ static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q
         best = tg_max(best, tg_mul(tgi_v3_dot(h, near_vd(q)), tg_rsqrt(d2)));
     }
     return best;
+#undef STEP_OFF
+#undef STEP_DELTA
 }
 
 /* near_horizon_cos of the four sides of pixel q's slices into c1[k], c0[k]. */

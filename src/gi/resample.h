@@ -40,6 +40,9 @@ void tgi_downsample_rows(const tgi_gview *full, const tgi_gbuffer *half, const t
 #ifndef TGI_NEAR_DELTAS
 #define TGI_NEAR_DELTAS (!TG_OUTLINE_HELPERS && TGI_NEAR_STEPS <= 7)
 #endif
+/* TGI_NEAR_STEP_PAIRS: the index offsets kept beside the offsets (the
+ * plan's step below), in Q16.16; the same bytes. */
+#define TGI_NEAR_STEP_PAIRS (TGI_NEAR_DELTAS && TG_FIXED)
 
 /* What the upsample of a frame keeps fixed: the views and the half-res
  * results, the camera's per-pixel ray steps, the radius's shift
@@ -60,10 +63,21 @@ typedef struct tgi_upsample_plan {
 #if TGI_DEPTH_LAYERS
     int layers;           /* full has further depth layers: the near horizon takes only what is solid below it */
 #endif
+#if TGI_NEAR_STEP_PAIRS
+    /* a sample's offsets beside its index offset: Q16.16's march reads
+     * both through one base register, which keeps one more of its
+     * tangent plane's values in a register (cornell 320x240 --gi-quarter 2
+     * frames near_horizon_sides 146.15M -> 144.56M; float, whose loop
+     * then steps a pointer more, 111.37M -> 113.73M, keeps them apart) */
+    struct tgi_near_step { int16_t delta; signed char off[2]; } step[16][4][TGI_NEAR_STEPS];
+#else
     signed char off[16][4][TGI_NEAR_STEPS][2];
+#endif
 #if TGI_NEAR_DELTAS
     int deltas;           /* every offset's index offset fits (else no pixel takes the march's inside copy) */
+#if !TGI_NEAR_STEP_PAIRS
     int16_t delta[16][4][TGI_NEAR_STEPS];
+#endif
 #endif
 } tgi_upsample_plan;
 
