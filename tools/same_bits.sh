@@ -11,8 +11,11 @@
 # few and many samples, AO alone over one and three layers; and every other
 # technique), 3 frames to PFM (linear, every bit), with build A on 1 thread
 # and build B on 2 (the split must not matter either), and compares the
-# files byte for byte.  Prints each difference and the count; exit 1 when
-# any file differs or a render fails.
+# files byte for byte.  Then the moving scenes of tools/same_bits/ (a camera
+# and an object that move: reprojection, temporal accumulation, push/pull
+# with motion; far depths, far world coordinates), 4 frames, under
+# moving_settings.  Prints each difference and the count; exit 1 when any
+# file differs or a render fails.
 set -u
 [ $# -ge 2 ] || { echo "usage: sh tools/same_bits.sh BUILD_A BUILD_B [WxH]" >&2; exit 2; }
 a=$1 b=$2 size=${3:-96x72}
@@ -35,22 +38,41 @@ settings='-
 --technique bentcone
 --technique reference --aov ao
 --technique pathtrace --samples 4'
+moving_settings='-
+--gi-quarter
+--no-interleave
+--aov ao
+--aov near
+--aov bent'
+here=$(dirname "$0")
 echo "0 0" >"$tmp/count"
+# compare SOURCE FRAMES ARGS...: one render by each build, counted
+compare() {
+    src=$1 frames=$2; shift 2
+    read -r n bad <"$tmp/count"
+    n=$((n + 1))
+    if ! "$a/tinygi$sfx" render "$src" --size "$size" --frames "$frames" --threads 1 --quiet "$@" -o "$tmp/a.pfm" 2>"$tmp/err" \
+        || ! "$b/tinygi$sfx" render "$src" --size "$size" --frames "$frames" --threads 2 --quiet "$@" -o "$tmp/b.pfm" 2>>"$tmp/err"; then
+        bad=$((bad + 1)); echo "FAILED $num $src $*: $(head -c 200 "$tmp/err")"
+    elif ! cmp -s "$tmp/a.pfm" "$tmp/b.pfm"; then
+        bad=$((bad + 1)); echo "DIFFER $num $src $*"
+    fi
+    echo "$n $bad" >"$tmp/count"
+}
 for num in float fixed; do
     sfx=; [ $num = fixed ] && sfx=-fixed
     for scene in cornell columns spheres groove; do
         echo "$settings" | while read -r args; do
             [ "$args" = - ] && args=
-            read -r n bad <"$tmp/count"
-            n=$((n + 1))
             # shellcheck disable=SC2086 # the settings are split into words on purpose
-            if ! "$a/tinygi$sfx" render "builtin:$scene" --size "$size" --frames 3 --threads 1 --quiet $args -o "$tmp/a.pfm" 2>"$tmp/err" \
-                || ! "$b/tinygi$sfx" render "builtin:$scene" --size "$size" --frames 3 --threads 2 --quiet $args -o "$tmp/b.pfm" 2>>"$tmp/err"; then
-                bad=$((bad + 1)); echo "FAILED $num $scene $args: $(head -c 200 "$tmp/err")"
-            elif ! cmp -s "$tmp/a.pfm" "$tmp/b.pfm"; then
-                bad=$((bad + 1)); echo "DIFFER $num $scene $args"
-            fi
-            echo "$n $bad" >"$tmp/count"
+            compare "builtin:$scene" 3 $args
+        done
+    done
+    for scene in "$here"/same_bits/moving-*.scene; do
+        echo "$moving_settings" | while read -r args; do
+            [ "$args" = - ] && args=
+            # shellcheck disable=SC2086
+            compare "$scene" 4 $args
         done
     done
 done
