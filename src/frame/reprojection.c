@@ -59,26 +59,20 @@ void tgi_pass_keep_history(tg_frame *f, int y0, int y1)
      * equal codes decode to equal normals, which pack to equal codes (the
      * same words; a plane's pixels share their normal; the memo starts with
      * no code); sky takes +z as tgi_prev_keep, unmemoised. */
-    /* the memo (tgi_gv_normal_repeats') as a local word, in a register
-     * along the row: no code is all ones (tgi_gv_normal_word: TGI_NORMAL_BITS
-     * bits twice, or 16) */
-    uint32_t code_before = UINT32_MAX, oct_before = 0;
+    tgi_normal_memo m;   /* its code only: the packed code is what repeats */
+    uint32_t oct_before = 0;
     const uint32_t sky = tgi_oct_pack(tg_v3(0, 0, TG_ONE), 8), sky_word = tgi_prev_word(0, sky);
     const size_t step = (size_t)g.pixel_stride;
+    tgi_normal_memo_start(&m);
     for (y = y0; y < y1; y++) {
         size_t j = (size_t)y * (size_t)w, i = tgi_gv_index(&g, 0, y);   /* i: tgi_gv_index(&g, x, y) */
         for (x = 0; x < w; x++, j++, i += step) {
             const uint32_t d = g.store.depth[i];
-            uint32_t code;
             if (d == 0) {   /* sky (tgi_gv_is_sky): depth 0 */
                 h.dn[j] = sky_word;
                 continue;
             }
-            code = tgi_gv_normal_word(&g, i);
-            if (code != code_before) {
-                code_before = code;
-                oct_before = tgi_oct_pack(tgi_gv_normal(&g, i), 8);
-            }
+            if (!tgi_gv_normal_repeats(&g, &m, i)) oct_before = tgi_oct_pack(tgi_gv_normal(&g, i), 8);
             h.dn[j] = tgi_prev_word(d, oct_before);
         }
     }

@@ -155,6 +155,8 @@ typedef struct hbil_unit_memo {
     tgi_oct_dir d;
     tg_vec3 n;
 } hbil_unit_memo;
+/* A memo that holds no direction yet (an octahedral component is below 2^15 in size). */
+static inline void unit_memo_start(hbil_unit_memo *m) { m->d.x = INT32_MIN; }
 #endif
 
 /* ---- per-call constants ---- */
@@ -773,10 +775,10 @@ tg_real tgi_hbil_rejection_weight(const tgi_view *v, tg_real a, tg_real b, tgi_o
     hbil_ctx c;
 #if TGI_Q16_WIDE
     hbil_unit_memo m;
-    m.d.x = INT32_MIN;   /* no direction (|x| < 2^15) */
 #endif
     memset(&c, 0, sizeof c);
 #if TGI_Q16_WIDE
+    unit_memo_start(&m);
     c.memo = &m;
 #endif
     c.v = v;
@@ -2300,7 +2302,7 @@ void tgi_hbil_rows(const tgi_hbil_params *p, const tgi_gview *g, const tgi_rgb *
     int x, y;
 #if TGI_Q16_WIDE
     hbil_unit_memo memo;
-    memo.d.x = INT32_MIN;   /* no direction yet (|x| < 2^15) */
+    unit_memo_start(&memo);
     c.memo = &memo;
 #endif
     if (y0 < 0) y0 = 0;
