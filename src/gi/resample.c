@@ -570,11 +570,76 @@ static void near_horizon_sides(const tgi_upsample_plan *u, near_pixel *q, int ce
  * the rounding of either number type in the integrals and the bound. */
 #define NEAR_BOUND_MARGIN TG_R(0.015625f)
 
+#if TGI_Q16_WIDE
+/* Whether a Q16.16 value lies within [-2, 2 - 2^-16]: a + 2^17 (modulo 2^32) within
+ * [0, 2^18 - 1], so the or of several such sums is below 2^18 iff each is. */
+#define NEAR_SMALL(a) ((uint32_t)(a) + 0x20000u)
+
+/* tgi_near_horizon_bound in Q16.16 without the saturation tests that
+ * cannot fire, where every input lies within [-2, 2] (NEAR_SMALL: unit
+ * vectors and cosines, up to their roundings) and each slice's n . s
+ * within [-2, 2] (tested; 0: the caller takes the generic code, which
+ * gives the same value).  Bounds (values, not raw): n . v, d . v, d . d
+ * within 12, 8, 8, so the sums of products of the dots (tgi_wide_dot,
+ * below 2^37) rounded once are tgi_v3_dot's, unsaturated; dv^2 <= 64,
+ * perp within 72; perp > 0.01, so tg_rsqrt(perp) <= 10.1; n . d - (n . v)
+ * dv within 104, times that within 1051: tg_mul's products unsaturated;
+ * len^2 = (n . v)^2 + (n . s)^2 <= 148 (each square rounded, never
+ * negative, so tg_add's sum, saturated or not, is the same); c^2 <= 4, 1 -
+ * c^2 within [-3, 1], its root (of max(0, .)) <= 1 (+ rounding), times
+ * n . v <= 12.2, c n . s <= 4, each l within 12.2 + 16.2 (len <= 12.2),
+ * lost <= 4 of those; (n . s)^2 / len with len > 0.01 (raw >= 656) and
+ * (n . s)^2 in [0, 4]: a quotient in [0, 400], tg_div's rounding
+ * (tgi_div_nonneg: b > 0, a >= 0) unsaturated; open within 2 (12 + 400).
+ * The last quotient, lost / open (open may be tiny), keeps tg_div. */
+static int near_bound_wide(tg_vec3 nv, tg_vec3 vd, tg_real sdx, tg_real sdy, const tg_real c1[2], const tg_real c0[2],
+                           tg_real *out)
+{
+    tg_real nv_v, lost = 0, open = 0;
+    int k;
+    if ((NEAR_SMALL(nv.x) | NEAR_SMALL(nv.y) | NEAR_SMALL(nv.z) | NEAR_SMALL(vd.x) | NEAR_SMALL(vd.y) | NEAR_SMALL(vd.z)
+         | NEAR_SMALL(sdx) | NEAR_SMALL(sdy) | NEAR_SMALL(c1[0]) | NEAR_SMALL(c1[1]) | NEAR_SMALL(c0[0])
+         | NEAR_SMALL(c0[1])) >= 0x40000u)
+        return 0;
+    nv_v = (tg_real)tgi_wide_dot(nv.x, nv.y, nv.z, vd.x, vd.y, vd.z);
+    if (nv_v <= 0) { *out = TG_R(-1.0f); return 1; }
+    for (k = 0; k < 2; k++) {
+        const tg_real dx = k ? -sdy : sdx, dy = k ? -sdx : -sdy;   /* the slice's (x, -y, 0) */
+        tg_real dv = (tg_real)tgi_wide_dot(dx, dy, 0, vd.x, vd.y, vd.z), perp, nv_s, len, l;
+        perp = (tg_real)(tgi_wide_dot(dx, dy, 0, dx, dy, 0) - tgi_wide_mul(dv, dv));
+        if (perp <= TG_R(0.01f)) { *out = TG_R(-1.0f); return 1; }
+        nv_s = (tg_real)tgi_wide_mul(tgi_wide_dot(nv.x, nv.y, nv.z, dx, dy, 0) - tgi_wide_mul(nv_v, dv), tg_rsqrt(perp));
+        if (NEAR_SMALL(nv_s) >= 0x40000u) return 0;
+        len = tg_sqrt((tg_real)(tgi_wide_mul(nv_v, nv_v) + tgi_wide_mul(nv_s, nv_s)));
+        if (len <= TG_R(0.01f)) { *out = TG_R(-1.0f); return 1; }
+        if (c1[k] > TG_R(-1.0f)) {   /* len (1 - sin(t - g)) */
+            tgi_wide r = tgi_wide_mul(tg_sqrt(tg_max(0, (tg_real)(TG_ONE - tgi_wide_mul(c1[k], c1[k])))), nv_v);
+            l = (tg_real)(len - (r - tgi_wide_mul(c1[k], nv_s)));
+            lost += tg_max(0, l);
+        }
+        if (c0[k] > TG_R(-1.0f)) {   /* len (1 - sin(t + g)) */
+            tgi_wide r = tgi_wide_mul(tg_sqrt(tg_max(0, (tg_real)(TG_ONE - tgi_wide_mul(c0[k], c0[k])))), nv_v);
+            l = (tg_real)(len - (r + tgi_wide_mul(c0[k], nv_s)));
+            lost += tg_max(0, l);
+        }
+        open += nv_v + tgi_div_nonneg((tg_real)tgi_wide_mul(nv_s, nv_s), len);   /* len (cos g + sin^2 g) */
+    }
+    *out = tg_sub(TG_ONE, tg_div(lost, open));
+    return 1;
+}
+#undef NEAR_SMALL
+#endif
+
 tg_real tgi_near_horizon_bound(tg_vec3 nv, tg_vec3 vd, tg_real sdx, tg_real sdy, const tg_real c1[2],
                                 const tg_real c0[2])
 {
-    tg_real nv_v = tgi_v3_dot(nv, vd), lost = 0, open = 0;
+    tg_real nv_v, lost = 0, open = 0;
     int k;
+#if TGI_Q16_WIDE
+    if (near_bound_wide(nv, vd, sdx, sdy, c1, c0, &lost)) return lost;
+    lost = 0;
+#endif
+    nv_v = tgi_v3_dot(nv, vd);
     if (nv_v <= 0) return TG_R(-1.0f);
     for (k = 0; k < 2; k++) {
         tg_vec3 d3 = k ? tg_v3(tg_neg(sdy), tg_neg(sdx), 0) : tg_v3(sdx, tg_neg(sdy), 0);   /* the slice's (x, -y, 0) */
