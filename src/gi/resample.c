@@ -946,6 +946,9 @@ tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk
     tg_real wt, sum, ao, floor_w = TG_R(0.015625f), z;
     tgi_wide sum_w = 0, ao_w = 0, near_w[3] = { 0, 0, 0 };   /* running sums (tgi_wide_add_weighted) */
     tg_vec3 n, bend = tg_v3(0, 0, 0), near;
+#if TGI_Q16_WIDE && !TG_WIDE_STORAGE
+    tgi_wide bend_w[3] = { 0, 0, 0 };   /* bend's sums, unsaturated (below) */
+#endif
     int k, taps, slot[4], want_bent = tgi_gr_has_bent(hr), want_near = tgi_gr_has_near(hr);
     tgi_gr_value v;
     if (tgi_gv_is_sky(full, i)) return upsample_open(full, i);
@@ -978,9 +981,23 @@ tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk
         sum_w = tgi_wide_add_weighted(sum_w, w, TG_ONE);
         ao_w = tgi_wide_add_weighted(ao_w, w, c->ao);
 #endif
+#if TGI_Q16_WIDE && !TG_WIDE_STORAGE
+        /* the bend's tg_mul and tg_add without their saturation tests: each
+         * component is the difference of two octahedral unit vectors'
+         * (tgi_oct_unpack: within 1 + 2^-16, upsample_normal_weight's note),
+         * within 2 + 2^-15, times w in (0, 256]: products within 513, their
+         * sum over at most 4 taps within 2052, far inside the range, so the
+         * same integers */
+        if (want_bent) {
+            bend_w[0] += tgi_wide_mul(w, c->bend.x);
+            bend_w[1] += tgi_wide_mul(w, c->bend.y);
+            bend_w[2] += tgi_wide_mul(w, c->bend.z);
+        }
+#else
         if (want_bent)
             bend = tg_v3(tg_add(bend.x, tg_mul(w, c->bend.x)), tg_add(bend.y, tg_mul(w, c->bend.y)),
                          tg_add(bend.z, tg_mul(w, c->bend.z)));
+#endif
         if (want_near) {
             near_w[0] = tgi_wide_add_weighted(near_w[0], w, c->near.x);
             near_w[1] = tgi_wide_add_weighted(near_w[1], w, c->near.y);
@@ -989,15 +1006,32 @@ tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk
     }
     sum = tgi_wide_real(sum_w);
     ao = tgi_wide_real(ao_w);
+#if TGI_Q16_WIDE && !TG_WIDE_STORAGE
+    bend = tg_v3((tg_real)bend_w[0], (tg_real)bend_w[1], (tg_real)bend_w[2]);
+#endif
     near = tg_v3(tgi_wide_real(near_w[0]), tgi_wide_real(near_w[1]), tgi_wide_real(near_w[2]));
     if (sum <= 0) return upsample_open(full, i);   /* only sky around: treat as open */
     /* the upsampled AO misses what lies between the half-res samples (a
      * contact shadow a few pixels wide): the near horizon's is the lower */
+#if !TG_WIDE_STORAGE
+    /* tg_div's quotients where they fit (tgi_div_nonneg, tgi_div_pos: the
+     * same roundings, sum > 0): the AO's sum is at least 0 and at most the
+     * weights' (each product w a rounded, a within [0, 1] (unorm8), is
+     * within [0, w]), so its quotient lies in [0, 1]; each bend's sum is
+     * that of w b rounded, |b| within 2 + 2^-15 (above), so its quotient is
+     * within 2.001 */
+    v.ao = tg_saturate(tgi_div_nonneg(ao, sum));
+#else
     v.ao = tg_saturate(tg_div(ao, sum));
+#endif
     if (u->steps > 0) v.ao = near_horizon_mean(u, x, y, z, v.ao);
     v.bent = n;
     if (want_bent) {
+#if !TG_WIDE_STORAGE
+        tg_vec3 b = tgi_v3_add(n, tg_v3(tgi_div_pos(bend.x, sum), tgi_div_pos(bend.y, sum), tgi_div_pos(bend.z, sum)));
+#else
         tg_vec3 b = tgi_v3_add(n, tg_v3(tg_div(bend.x, sum), tg_div(bend.y, sum), tg_div(bend.z, sum)));
+#endif
         tg_real d = tgi_v3_dot(b, n);
         /* keep it in the normal's hemisphere: drop the part below the tangent plane */
         if (d < 0) b = tgi_v3_sub(b, tgi_v3_scale(n, d));
