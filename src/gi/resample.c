@@ -925,7 +925,13 @@ static const tgi_upsample_tap *upsample_tap(const tgi_upsample_plan *u, tgi_upsa
     c->ao = tgi_gr_ao(u->res, j);
     if (tgi_gr_has_bent(u->res)) {   /* the bend (bent - normal) is what carries over (Klehm sec. 3.4) */
         tg_vec3 b = tgi_gr_bent(u->res, j);
+#if !TG_WIDE_STORAGE
+        /* octahedral unit vectors (within 1 + 2^-16): tg_sub's differences
+         * never saturate */
+        c->bend = tg_v3(b.x - c->n.x, b.y - c->n.y, b.z - c->n.z);
+#else
         c->bend = tg_v3(tg_sub(b.x, c->n.x), tg_sub(b.y, c->n.y), tg_sub(b.z, c->n.z));
+#endif
     }
     if (tgi_gr_has_near(u->res)) c->near = tgi_gr_near(u->res, j);
     return c;
@@ -1028,11 +1034,14 @@ tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk
     v.bent = n;
     if (want_bent) {
 #if !TG_WIDE_STORAGE
-        tg_vec3 b = tgi_v3_add(n, tg_v3(tgi_div_pos(bend.x, sum), tgi_div_pos(bend.y, sum), tgi_div_pos(bend.z, sum)));
+        /* n within 1 + 2^-16, the quotients within 2.001: b within 3.01,
+         * tg_add's sums and the dot (tgi_v3_dot_bounded) unsaturated */
+        tg_vec3 b = tg_v3(n.x + tgi_div_pos(bend.x, sum), n.y + tgi_div_pos(bend.y, sum), n.z + tgi_div_pos(bend.z, sum));
+        tg_real d = tgi_v3_dot_bounded(b, n);
 #else
         tg_vec3 b = tgi_v3_add(n, tg_v3(tg_div(bend.x, sum), tg_div(bend.y, sum), tg_div(bend.z, sum)));
-#endif
         tg_real d = tgi_v3_dot(b, n);
+#endif
         /* keep it in the normal's hemisphere: drop the part below the tangent plane */
         if (d < 0) b = tgi_v3_sub(b, tgi_v3_scale(n, d));
         v.bent = tgi_v3_unit_or(b, n);
