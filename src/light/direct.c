@@ -15,6 +15,16 @@
 #endif
 
 #define LIGHT_CHUNK 8   /* lights prepared at once (a frame rarely has more) */
+/* Q16.16: the pixel rays' right kx depends on the column alone, so the rows
+ * share it, computed for DIRECT_COLUMNS columns at a time (on the stack, 12
+ * bytes each): the same operations, the same bits, without a division and
+ * three saturating products a pixel.  Float computes it per pixel (its
+ * division and products cost less than the chunks' loop). */
+#if TGI_Q16_WIDE   /* Q16.16 but a build for size (one loop) */
+#define DIRECT_COLUMNS 32
+#else
+#define DIRECT_COLUMNS 0
+#endif
 /* a . b for a unit vector a (components within [-2, 2]: a G-buffer normal,
  * a light's normalised direction): each product below 2^17 2^31, their sum
  * below 2^50, never past 2^62 (tgi_v3_dot_bounded, core/vec.h). */
@@ -54,6 +64,9 @@ typedef struct prepared_light {
     tg_vec3 pos, dir;
     tg_real cos_outer, cos_inner;
     const tgi_shadow_map *shadow;
+#if TGI_Q16_WIDE
+    uint64_t inv2_limit;    /* light_irradiance_wide's bound on inv^2 (raw) */
+#endif
 } prepared_light;
 
 static void prepare(prepared_light *p, const tgi_light *l, const tgi_shadow_map *sm)
@@ -66,6 +79,13 @@ static void prepare(prepared_light *p, const tgi_light *l, const tgi_shadow_map 
     p->cos_outer = tg_cos(l->angle);
     p->cos_inner = tg_cos(tg_mul(l->angle, TG_SPOT_INNER));
     p->shadow = sm;
+#if TGI_Q16_WIDE
+    {   /* 2 R + 1 for R the largest |radiant| (raw): 0 when above TG_REAL_MAX (never unsaturated) */
+        int64_t r = tg_max(tg_max(tg_abs(p->radiant.x), tg_abs(p->radiant.y)), tg_abs(p->radiant.z));
+        int64_t r2 = 2 * r + 1;
+        p->inv2_limit = r2 <= TG_REAL_MAX ? ((uint64_t)1 << 62) / (uint64_t)r2 : 0;
+    }
+#endif
 }
 
 /* Unshadowed irradiance scale as cosine * spot edge (<= 1) and the inverse
@@ -110,6 +130,33 @@ static tg_vec3 light_irradiance(tg_vec3 radiant, tg_real scale, tg_real inv)
     return e;
 }
 
+#if TGI_Q16_WIDE
+/* light_irradiance(p->radiant, scale, inv) for scale in (0, 2) (light_factor
+ * times a visibility in [0, 1]) and inv > 0, without the nine products'
+ * saturation where none can saturate: for R the largest |radiant| (raw),
+ * each |radiant scale| < 2 R 2^16, so the first products are at most 2 R
+ * after rounding, within range when 2 R + 1 <= TG_REAL_MAX; where inv < 1
+ * the next two are no larger; else they are at most (2 R + 1) inv / 2^16
+ * + 1/2 and (2 R + 1) inv^2 / 2^32 + inv / 2^17 + 1/2 (raw inv below 2^31),
+ * so with (2 R + 1) inv^2 <= 2^62 (inv2_limit) below 2^30 + 2^14 + 1: no
+ * product leaves the range, tg_mul's values as tgi_mul_in_range's. */
+static inline tg_vec3 light_irradiance_wide(const prepared_light *p, tg_real scale, tg_real inv)
+{
+    if ((uint64_t)((int64_t)inv * inv) > p->inv2_limit) return light_irradiance(p->radiant, scale, inv);
+    {
+        tg_vec3 e = tg_v3(tgi_mul_in_range(p->radiant.x, scale), tgi_mul_in_range(p->radiant.y, scale),
+                          tgi_mul_in_range(p->radiant.z, scale));
+        if (inv != TG_ONE)
+            e = tg_v3(tgi_mul_in_range(tgi_mul_in_range(e.x, inv), inv), tgi_mul_in_range(tgi_mul_in_range(e.y, inv), inv),
+                      tgi_mul_in_range(tgi_mul_in_range(e.z, inv), inv));
+        return e;
+    }
+}
+#define LIGHT_IRRADIANCE(p, scale, inv) light_irradiance_wide(p, scale, inv)
+#else
+#define LIGHT_IRRADIANCE(p, scale, inv) light_irradiance((p)->radiant, scale, inv)
+#endif
+
 tg_vec3 tgi_direct_irradiance(const tgi_light *l, tg_vec3 p, tg_vec3 n)
 {
     prepared_light pl;
@@ -120,12 +167,42 @@ tg_vec3 tgi_direct_irradiance(const tgi_light *l, tg_vec3 p, tg_vec3 n)
 }
 
 #if !TG_NO_COLOR /* the direct-light pass is left out with TG_NO_COLOR=1 (tinygi.h "FEATURE SWITCHES") */
+/* kx of column x's pixel centre: (x + 1/2 - half_w) / pixels_per_unit */
+static inline tg_real column_kx(const tgi_view *view, tg_real half_w, int x)
+{
+#if TGI_Q16_WIDE
+    /* x + 1/2 - half_w: for x < 16383 (every row within
+     * TG_MAX_IMAGE_SIDE) neither tg_from_int nor tg_add
+     * saturates, and half_w lies in [-2^14, 2^14] (tg_from_int's
+     * range halved), so the difference lies within (-2^14,
+     * 2^15 - 1/2]: tg_sub's value in one integer expression
+     * (wider rows keep the saturating form) */
+    return tg_div(x < 16383 ? (tg_real)(x * 65536 + 32768 - half_w)
+                            : tg_sub(tg_add(tg_from_int(x), TG_R(0.5f)), half_w),
+                  view->pixels_per_unit);
+#else
+    return tg_div(tg_sub(tg_add(tg_from_int(x), TG_R(0.5f)), half_w), view->pixels_per_unit);
+#endif
+}
+
 void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_count,
                     const tgi_shadow_map *const *shadow_maps, const tgi_rgb *e_out, int y0, int y1)
 {
     const tgi_view *view = g->camera;
     prepared_light pl[LIGHT_CHUNK];
-    int first, k, x, y, w = g->width;
+#if DIRECT_COLUMNS
+    tg_vec3 right_kx[DIRECT_COLUMNS];   /* right kx of the chunk's columns */
+#define RIGHT_KX(x) right_kx[(x) - x0]
+    tg_real rk_max;         /* the largest |right kx| component of the chunk */
+    uint64_t z_limit;       /* depths below it: p without saturation (the rows' loop) */
+    const int eye_small = tg_max(tg_max(tg_abs(view->eye.x), tg_abs(view->eye.y)), tg_abs(view->eye.z)) < ((tg_real)1 << 30);
+#else
+#define RIGHT_KX(x) tgi_v3_scale(view->right, column_kx(view, half_w, x))
+#endif
+    int first, k, x, x0, x1, y, w = g->width;
+#if TGI_Q16_WIDE
+    int zero;   /* e is still the 0 it started as */
+#endif
     tg_real half_w = tg_ldexp(tg_from_int(view->width), -1), half_h = tg_ldexp(tg_from_int(view->height), -1);
     tg_real position_error = tgi_shadow_gbuffer_error(view); /* per unit depth */
     /* E starts at 0: the first chunk of lights writes every pixel (a plane
@@ -141,44 +218,75 @@ void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_coun
         tgi_normal_memo_start(&nm);
         for (k = 0; k < count; k++)
             prepare(&pl[k], &lights[first + k], shadow_maps ? shadow_maps[first + k] : NULL);
-        for (y = y0; y < y1; y++) {
-            /* pixel centre ray with view z = 1: forward + right kx + up ky (view.h) */
-            tg_real ky = tg_div(tg_sub(half_h, tg_add(tg_from_int(y), TG_R(0.5f))), view->pixels_per_unit);
-            tg_vec3 row_dir = tgi_v3_add(view->forward, tgi_v3_scale(view->up, ky));
-            for (x = 0; x < w; x++) {
-                size_t i = tgi_gv_index(g, x, y);
-                tg_vec3 p, e;
-                tg_real kx, z;
-                if (tgi_gv_is_sky(g, i)) {
-                    if (fresh && first == 0) tgi_rgb_set(e_out, i, tg_v3(0, 0, 0));
-                    continue;
-                }
-                const tg_vec3 n = tgi_gv_normal_memo(g, &nm, i);
-#if TGI_Q16_WIDE
-                /* x + 1/2 - half_w: for x < 16383 (every row within
-                 * TG_MAX_IMAGE_SIDE) neither tg_from_int nor tg_add
-                 * saturates, and half_w lies in [-2^14, 2^14] (tg_from_int's
-                 * range halved), so the difference lies within (-2^14,
-                 * 2^15 - 1/2]: tg_sub's value in one integer expression
-                 * (wider rows keep the saturating form) */
-                kx = tg_div(x < 16383 ? (tg_real)(x * 65536 + 32768 - half_w)
-                                      : tg_sub(tg_add(tg_from_int(x), TG_R(0.5f)), half_w),
-                            view->pixels_per_unit);
+        for (x0 = 0; x0 < w; x0 = x1) {
+#if DIRECT_COLUMNS
+            x1 = w - x0 > DIRECT_COLUMNS ? x0 + DIRECT_COLUMNS : w;
 #else
-                kx = tg_div(tg_sub(tg_add(tg_from_int(x), TG_R(0.5f)), half_w), view->pixels_per_unit);
+            x1 = w;
 #endif
-                z = tgi_gv_depth(g, i);   /* decoded once: the calls below would have it read again */
-                p = tgi_v3_add(view->eye, tgi_v3_scale(tgi_v3_add(row_dir, tgi_v3_scale(view->right, kx)), z));
-                e = fresh && first == 0 ? tg_v3(0, 0, 0) : tgi_rgb_get(e_out, i);   /* the stored 0 reads back as 0 */
-                for (k = 0; k < count; k++) {
-                    tg_real inv, f = light_factor(&pl[k], p, n, &inv);
-                    if (f <= 0) continue;
-                    /* f below 2 (light_factor), the visibility in [0, 1]: tgi_mul_in_range */
-                    if (pl[k].shadow) f = tgi_mul_in_range(f, SHADOW_LOOKUP(pl[k].shadow, p, n,
-                                                                           tg_mul(z, position_error)));
-                    e = tgi_v3_add(e, light_irradiance(pl[k].radiant, f, inv));
+#if DIRECT_COLUMNS
+            rk_max = 0;
+            for (x = x0; x < x1; x++) {
+                tg_vec3 rk = tgi_v3_scale(view->right, column_kx(view, half_w, x));
+                right_kx[x - x0] = rk;
+                rk_max = tg_max(rk_max, tg_max(tg_max(tg_abs(rk.x), tg_abs(rk.y)), tg_abs(rk.z)));
+            }
+#endif
+            for (y = y0; y < y1; y++) {
+                /* pixel centre ray with view z = 1: forward + right kx + up ky (view.h) */
+                tg_real ky = tg_div(tg_sub(half_h, tg_add(tg_from_int(y), TG_R(0.5f))), view->pixels_per_unit);
+                tg_vec3 row_dir = tgi_v3_add(view->forward, tgi_v3_scale(view->up, ky));
+#if DIRECT_COLUMNS
+                /* p = eye + (row_dir + right kx) z without saturation where
+                 * none can happen: with D = the largest |row_dir| plus the
+                 * largest |right kx| (raw) at most TG_REAL_MAX, no sum
+                 * row_dir + right kx leaves the range; for 0 <= z < z_limit
+                 * = 2^46 / D each product is below 2^46 raw, at most 2^30
+                 * once rounded, and with |eye| < 2^30 (eye_small) the sums
+                 * stay within the range: tg_add's and tg_mul's values.
+                 * z_limit 0 (no pixel) where the bounds fail. */
+                {
+                    int64_t d = (int64_t)tg_max(tg_max(tg_abs(row_dir.x), tg_abs(row_dir.y)), tg_abs(row_dir.z)) + rk_max;
+                    z_limit = eye_small && d <= TG_REAL_MAX ? ((uint64_t)1 << 46) / (uint64_t)(d + 1) : 0;
                 }
-                tgi_rgb_set(e_out, i, e);
+#endif
+                for (x = x0; x < x1; x++) {
+                    size_t i = tgi_gv_index(g, x, y);
+                    tg_vec3 p, e;
+                    tg_real z;
+                    if (tgi_gv_is_sky(g, i)) {
+                        if (fresh && first == 0) tgi_rgb_set(e_out, i, tg_v3(0, 0, 0));
+                        continue;
+                    }
+                    const tg_vec3 n = tgi_gv_normal_memo(g, &nm, i);
+                    z = tgi_gv_depth(g, i);   /* decoded once: the calls below would have it read again */
+#if DIRECT_COLUMNS
+                    if ((uint64_t)(uint32_t)z < z_limit) {
+                        const tg_vec3 rk = right_kx[x - x0];
+                        p = tg_v3(view->eye.x + tgi_mul_in_range(row_dir.x + rk.x, z),
+                                  view->eye.y + tgi_mul_in_range(row_dir.y + rk.y, z),
+                                  view->eye.z + tgi_mul_in_range(row_dir.z + rk.z, z));
+                    } else
+#endif
+                    p = tgi_v3_add(view->eye, tgi_v3_scale(tgi_v3_add(row_dir, RIGHT_KX(x)), z));
+                    e = fresh && first == 0 ? tg_v3(0, 0, 0) : tgi_rgb_get(e_out, i);   /* the stored 0 reads back as 0 */
+#if TGI_Q16_WIDE
+                    zero = fresh && first == 0;
+#endif
+                    for (k = 0; k < count; k++) {
+                        tg_real inv, f = light_factor(&pl[k], p, n, &inv);
+                        if (f <= 0) continue;
+                        /* f below 2 (light_factor), the visibility in [0, 1]: tgi_mul_in_range */
+                        if (pl[k].shadow) f = tgi_mul_in_range(f, SHADOW_LOOKUP(pl[k].shadow, p, n,
+                                                                               tg_mul(z, position_error)));
+#if TGI_Q16_WIDE
+                        /* tg_add(0, v) is v: the first light's irradiance as it is */
+                        if (zero) { e = LIGHT_IRRADIANCE(&pl[k], f, inv); zero = 0; continue; }
+#endif
+                        e = tgi_v3_add(e, LIGHT_IRRADIANCE(&pl[k], f, inv));
+                    }
+                    tgi_rgb_set(e_out, i, e);
+                }
             }
         }
     }
