@@ -352,13 +352,25 @@ static PCF_INLINE tg_real pcf_taps(const tgi_shadow_map *sm, const lookup *q, co
         wy[0] = TG_ONE - fy; wy[1] = fy;
         norm = TG_ONE;
     }
+#if TGI_Q16_WIDE
+    /* fx, fy in [0, 2) (the floor's fraction, plus 1 for the tent) and
+     * texel_ndc = 2 / size in (0, 2]: i - fx within [-2, 3] and its
+     * product within [-6, 6], so tgi_wide (core/real.h) gives tg_sub's
+     * and tg_mul's integers without their saturation tests; and where both
+     * slopes lie within [-2^12, 2^12] (one unsigned compare each) their
+     * products by those within [-6 2^12, 6 2^12], within 1/2 after
+     * rounding: tg_mul's values without its saturation */
+    if ((uint32_t)q->slope_x + ((uint32_t)1 << 28) <= ((uint32_t)1 << 29)
+        && (uint32_t)q->slope_y + ((uint32_t)1 << 28) <= ((uint32_t)1 << 29)) {
+        for (i = 0; i < taps; i++) {
+            dx[i] = tgi_mul_in_range(q->slope_x, (tg_real)tgi_wide_mul((int64_t)i * TG_ONE - fx, fc->texel_ndc));
+            dy[i] = tgi_mul_in_range(q->slope_y, tg_neg((tg_real)tgi_wide_mul((int64_t)i * TG_ONE - fy, fc->texel_ndc)));
+        }
+    } else
+#endif
     for (i = 0; i < taps; i++) {
         /* tap i's texel centre (i0 + i) relative to the lookup, in NDC (y up) */
 #if TGI_Q16_WIDE
-        /* fx, fy in [0, 2) (the floor's fraction, plus 1 for the tent) and
-         * texel_ndc = 2 / size in (0, 2]: i - fx within [-2, 3] and its
-         * product within [-6, 6], so tgi_wide (core/real.h) gives tg_sub's
-         * and tg_mul's integers without their saturation tests */
         dx[i] = tg_mul(q->slope_x, (tg_real)tgi_wide_mul((int64_t)i * TG_ONE - fx, fc->texel_ndc));
         dy[i] = tg_mul(q->slope_y, tg_neg((tg_real)tgi_wide_mul((int64_t)i * TG_ONE - fy, fc->texel_ndc)));
 #else
