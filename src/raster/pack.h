@@ -385,11 +385,15 @@ static inline tg_vec3 tgi_oct_unpack_inline(uint32_t w, int bits) { return tgi_o
 #define TGI_RGB9E5_INVALID 0xF8000000u    /* exponent 31, mantissas 0: "no value" */
 
 #if TG_FIXED
+/* c / 2^(e - 8) raw rounded half up, for e in [0, 31], in one form without
+ * branches: (q 2^8 + 2^(e - 1)) >> e in 64 bits (2^(e - 1) taken as 0 for
+ * e = 0).  It is each case's former value: for e >= 9 (q + 2^(e - 9)) >>
+ * (e - 8), the same floor of the same quotient; for e = 8 q (128 / 256
+ * floors away); for e < 8 q << (8 - e) (2^(e - 1) / 2^e floors away). */
 static inline uint32_t tgi_rgb9e5_mant(tg_real c, int e)
 {
-    uint32_t q = c > 0 ? (uint32_t)c : 0;      /* raw Q16.16; a mantissa is c / 2^(e - 8) raw */
-    if (e >= 8) return e - 8 >= 1 ? (q + (1u << (e - 9))) >> (e - 8) : q;
-    return q << (8 - e);
+    uint64_t q = c > 0 ? (uint32_t)c : 0;      /* raw Q16.16; a mantissa is c / 2^(e - 8) raw */
+    return (uint32_t)(((q << 8) + (((uint64_t)1 << e) >> 1)) >> e);
 }
 static inline uint32_t tgi_rgb9e5_pack_inline(tg_vec3 c)
 {
