@@ -344,6 +344,9 @@ void tgi_shadow_rays_setup(tgi_shadow_map *sm, const tgi_light *l, tgi_shadow_ra
     sm->tracer = tracer;
 }
 
+/* the 16-bit faces' clear is a memset of 0xFF bytes */
+typedef char tgi_depth16_empty_bytes[TG_RASTER_DEPTH16_EMPTY == 0xFFFF ? 1 : -1];
+
 void tgi_shadow_map_render_rows(tgi_shadow_map *sm, int face, const tg_vec3 *pos,
                                int tri_count, int y0, int y1)
 {
@@ -357,7 +360,8 @@ void tgi_shadow_map_render_rows(tgi_shadow_map *sm, int face, const tg_vec3 *pos
     if (y0 >= y1) return;
     if (sm->depth_bits == TG_SHADOW_DEPTH16) {
         uint16_t *depth = (uint16_t *)sm->depth + fc->offset;
-        for (i = (size_t)y0 * n; i < (size_t)y1 * n; i++) depth[i] = TG_RASTER_DEPTH16_EMPTY;
+        /* every code TG_RASTER_DEPTH16_EMPTY (0xFFFF: tgi_depth16_empty_bytes) */
+        memset(depth + (size_t)y0 * n, 0xFF, (size_t)(y1 - y0) * n * sizeof *depth);
         tgi_raster_depth16(depth, fc->size, fc->size, &fc->world_to_clip, sm->orthographic,
                            fc->depth_lo, fc->depth_range, pos, tri_count, y0, y1);
     } else {
