@@ -385,15 +385,23 @@ static inline tg_vec3 tgi_oct_unpack_inline(uint32_t w, int bits) { return tgi_o
 #define TGI_RGB9E5_INVALID 0xF8000000u    /* exponent 31, mantissas 0: "no value" */
 
 #if TG_FIXED
-/* c / 2^(e - 8) raw rounded half up, for e in [0, 31], in one form without
- * branches: (q 2^8 + 2^(e - 1)) >> e in 64 bits (2^(e - 1) taken as 0 for
- * e = 0).  It is each case's former value: for e >= 9 (q + 2^(e - 9)) >>
- * (e - 8), the same floor of the same quotient; for e = 8 q (128 / 256
- * floors away); for e < 8 q << (8 - e) (2^(e - 1) / 2^e floors away). */
+/* c / 2^(e - 8) raw rounded half up, for e in [0, 31].  On a 64-bit core
+ * in one form without branches: (q 2^8 + 2^(e - 1)) >> e in 64 bits
+ * (2^(e - 1) taken as 0 for e = 0), each case's value: for e >= 9 (q +
+ * 2^(e - 9)) >> (e - 8), the same floor of the same quotient; for e = 8 q
+ * (128 / 256 floors away); for e < 8 q << (8 - e) (2^(e - 1) / 2^e floors
+ * away).  A 32-bit core keeps the cases (64-bit shifts by a variable cost
+ * it code). */
 static inline uint32_t tgi_rgb9e5_mant(tg_real c, int e)
 {
+#if TGI_CORE64
     uint64_t q = c > 0 ? (uint32_t)c : 0;      /* raw Q16.16; a mantissa is c / 2^(e - 8) raw */
     return (uint32_t)(((q << 8) + (((uint64_t)1 << e) >> 1)) >> e);
+#else
+    uint32_t q = c > 0 ? (uint32_t)c : 0;
+    if (e >= 8) return e - 8 >= 1 ? (q + (1u << (e - 9))) >> (e - 8) : q;
+    return q << (8 - e);
+#endif
 }
 static inline uint32_t tgi_rgb9e5_pack_inline(tg_vec3 c)
 {
