@@ -154,6 +154,17 @@ LOOKUP_STATIC int prepare_perspective(const tgi_shadow_map *sm, tg_vec3 p, tg_ve
      * terms >= 0 here): num + err within [TG_REAL_MIN, TG_REAL_MAX), tg_add's
      * value as plain + */
     q->num = tg_min(q->num + err, tg_ldexp(q->num, -1));
+#if TGI_Q16_WIDE
+    /* n . r and n . u (components within [-2, 2]) lie within 12, so the
+     * dots need no saturation test (tgi_wide_dot's integer is dot_basis's)
+     * and, for tan_half <= 128, their products lie within 1536: tg_mul's
+     * values as tgi_mul_in_range's */
+    if (fc->tan_half <= TG_R(128.0f)) {
+        q->slope_x = tgi_mul_in_range((tg_real)tgi_wide_dot(n.x, n.y, n.z, r.x, r.y, r.z), fc->tan_half);
+        q->slope_y = tgi_mul_in_range((tg_real)tgi_wide_dot(n.x, n.y, n.z, u.x, u.y, u.z), fc->tan_half);
+        return 1;
+    }
+#endif
     q->slope_x = tg_mul(dot_basis(n, r), fc->tan_half);
     q->slope_y = tg_mul(dot_basis(n, u), fc->tan_half);
     return 1;
