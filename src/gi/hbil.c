@@ -1668,10 +1668,15 @@ static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, c
                 && (!follow || tg_abs(tg_sub(za, zb)) <= tg_mul(za, c->fine_edge))) {   /* not across a silhouette */
                 z1 = lerp_inverse_depth(za, zb, f);
             } else {                                                        /* as in march_samples */
+                /* sky (a zero word) reads as depth 0 in both types
+                 * (pack.h), so march_samples' test, sky or depth <= 0, is
+                 * depth <= 0: the nearest's depth, za already read when it
+                 * is si (cornell 160x120: fewer loads and, in Q16.16,
+                 * conversions; see the commit) */
                 const int nb = f >= TG_R(0.5f);
                 size_t sn = nb ? si + smin : si;
                 if ((nb && fb + 1 >= bmax)                                  /* outside the image */
-                    || tgi_gv_is_sky(fg, sn) || tgi_gv_depth(fg, sn) <= 0       /* sky never occludes */
+                    || (nb ? tgi_gv_depth(fg, sn) : za) <= 0                /* sky never occludes */
                     || (z1 = sample_depth_edge(c, fg, major_x, fa, fb, f, (int)si, (int)sn)) <= 0) {
                     if (climb) break;
                     continue;
