@@ -1557,7 +1557,9 @@ static inline void march_pixels(const hbil_ctx *c, const hbil_slice *sl, int sid
                                 int major_x, int room, int p, int k)
 {
     if (k > room - p) k = room - p;
-    if (tg_from_int(p + k) > mr->extent) k = EXTENT_TO_INT(mr->extent) - p;   /* the extent in [0, 2^14] (march_steps) */
+    /* p + k <= room < 2^13 (the image's side): small_from_int, without
+     * Q16.16's saturation test */
+    if (small_from_int(p + k) > mr->extent) k = EXTENT_TO_INT(mr->extent) - p;   /* the extent in [0, 2^14] (march_steps) */
     if (k > 0) march_run(c, sl, side, sd, mr, major_x, p, 1, k);
 }
 
@@ -1570,7 +1572,8 @@ HBIL_NOINLINE static void march_between(const hbil_ctx *c, const hbil_slice *sl,
     /* room > 0: a side with no sample (n = 0, the offset put the first
      * past the edge) has last = -o, and a pixel on the edge would sample
      * itself (test open_plane_long_radius) */
-    if (room > 0 && last < room && tg_from_int(room) <= mr->extent) march_run(c, sl, side, sd, mr, major_x, last, room - last, 1);
+    if (room > 0 && last < room && small_from_int(room) <= mr->extent)   /* room < 2^13: small_from_int */
+        march_run(c, sl, side, sd, mr, major_x, last, room - last, 1);
     if (sd->peak_a >= 0) march_pixels(c, sl, side, sd, mr, major_x, room, (sd->peak_a - a0) * dir, m - 1);
 }
 
