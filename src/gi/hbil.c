@@ -1837,7 +1837,13 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
     const int fb0 = r * (major_x ? px->y : px->x) + (major_x ? c->fine_j : c->fine_i);
     const int room = dir > 0 ? (major_x ? fg->width : fg->height) - 1 - fa0 : fa0;       /* fine pixels to the edge */
     const int sub_room = dir > 0 ? (major_x ? c->g->width : c->g->height) - 1 - a0 : a0;
+#if TG_FIXED
+    /* tg_mul(extent, tg_from_int(r)): the raw product e r 2^16 is a
+     * multiple of 2^16, its rounding shift exact: e r, saturated */
+    const tg_real ext = tgi_sat64((int64_t)mr->extent * r);                              /* fine pixels */
+#else
     const tg_real ext = tg_mul(mr->extent, tg_from_int(r));                            /* fine pixels */
+#endif
     const int long_reach = march_long_reach(c, mr);
     const int first = r * (mr->run.da - mr->run.back) * dir;   /* the first sample's fine pixel */
     /* the screen's edge (room) and the extent (small_from_int(t) <= ext:
