@@ -1644,15 +1644,17 @@ static HBIL_FINE_INLINE void fine_run(const hbil_ctx *c, hbil_fine_best *best, c
     const size_t dmaj = (dir > 0 ? smaj : (size_t)0 - smaj) * (size_t)stride;   /* modulo 2^N: the sums are the indices */
     const tg_real slope = mr->slope, inv_r = c->inv_fine_ratio;
     /* t dir / r, the major offset in the march's units, stepped: multiples
-     * of 1/4 or 1/8 below 2^14, exact in both types */
-    const tg_real dtm = small_mul(small_from_int(dir * stride), inv_r);
+     * of 1/4 or 1/8 below 2^14, exact in both types; small_mul_int, in
+     * Q16.16 the integer product small_mul(small_from_int(i), 1/r) gave
+     * (it rounded a multiple of 2^16), float's code the same */
+    const tg_real dtm = small_mul_int(inv_r, dir * stride);
     tg_real h = best->h, hs_tie = horizon_tie(best->hs);
     int run;
     for (run = 0; run < runs; run++) {
         const int lo = los[run], hi = his[run];
         int t, fa = fa0 + lo * dir;
         size_t ia = (size_t)fa * smaj;
-        tg_real tm = small_mul(small_from_int(lo * dir), inv_r);
+        tg_real tm = small_mul_int(inv_r, lo * dir);
         tg_real zc = mr->z;   /* follow: the depth of the last sample on the pixel's surface */
         for (t = lo; stride > 0 ? t < hi : t > hi; t += stride, fa += dir * stride, ia += dmaj, tm = small_add(tm, dtm)) {
             /* |slope| <= 1, t and the fine pixels below 2^14, times 1/4 or 1/8: small_mul */
