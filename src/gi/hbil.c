@@ -1552,8 +1552,12 @@ static inline int march_room(const hbil_ctx *c, const hbil_march *mr, int major_
 }
 
 /* The side's pixels p + 1 .. p + k one by one (march_run), k cut at the
- * screen's edge (room, march_room) and at the march's extent. */
-static inline void march_pixels(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_side *sd, const hbil_march *mr,
+ * screen's edge (room, march_room) and at the march's extent.  Inlined
+ * into march_between and march_near (gcc kept it out of line: a call and
+ * a six-register prologue a run; cornell 160x120 -0.5% of the frame in
+ * float, -0.3% in Q16.16, .text +6.4 KB, +6.7 KB; the size builds keep
+ * march_run out of line). */
+static HBIL_INLINE void march_pixels(const hbil_ctx *c, const hbil_slice *sl, int side, hbil_side *sd, const hbil_march *mr,
                                 int major_x, int room, int p, int k)
 {
     if (k > room - p) k = room - p;
