@@ -1028,9 +1028,13 @@ static HBIL_GATHER_INLINE void gather_rise(const hbil_ctx *c, const hbil_slice *
         br = sd->lr; bg = sd->lg; bb = sd->lb;
     }
 #if HBIL_WIDE_SUMS   /* near_sum_pos's terms (radiance_nonneg: the band >= 0, de >= 0), unsaturated */
-    sd->er += ((int64_t)br * de + 32768) >> 16;
-    sd->eg += ((int64_t)bg * de + 32768) >> 16;
-    sd->eb += ((int64_t)bb * de + 32768) >> 16;
+    /* each l de + 2^15 >= 0, so its shift is the same unsigned (gcc
+     * vectorised two of the sums, and x86-64's SSE2 has no 64-bit
+     * arithmetic shift: 19 instructions a rise for one; cornell 160x120,
+     * 2 frames, Q16.16 713.04M -> 710.04M) */
+    sd->er += (int64_t)((uint64_t)((int64_t)br * de + 32768) >> 16);
+    sd->eg += (int64_t)((uint64_t)((int64_t)bg * de + 32768) >> 16);
+    sd->eb += (int64_t)((uint64_t)((int64_t)bb * de + 32768) >> 16);
 #else
     if (radiance_nonneg(sd->er, sd->eg, sd->eb, br, bg, bb)) {   /* de >= 0 too */
         sd->er = near_sum_pos(sd->er, br, de);
