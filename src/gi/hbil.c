@@ -160,10 +160,11 @@ static inline void unit_memo_start(hbil_unit_memo *m) { m->d.x = INT32_MIN; }
 #endif
 
 /* rejection_weight_memo: gather_rise's rejection weight with the last
- * sender normal's products kept; Q16.16, not compiling for size (float
- * took it too: cornell 160x120, 2 frames, 520.18M -> 516.92M, but columns
- * 214.29M -> 214.79M, its 12 products cheaper than the memo's misses) */
-#define HBIL_REJECT_MEMO (TGI_Q16_WIDE && !TG_WIDE_STORAGE && !TG_NO_COLOR)
+ * sender normal's products kept; not compiling for size.  (Float took it
+ * at first with the ramp's normalisation inlined: cornell 160x120, 2
+ * frames, 520.18M -> 516.92M but columns 214.29M -> 214.79M; with that out
+ * of line, rejection_ramp_unit, it pays in both.) */
+#define HBIL_REJECT_MEMO (!TG_OUTLINE_HELPERS && !TG_WIDE_STORAGE && !TG_NO_COLOR)
 #if HBIL_REJECT_MEMO
 /* A sender normal by its stored code in image g, its octahedral direction
  * d, |d|^2 and d's dot products with the camera's right, up and forward
@@ -172,8 +173,12 @@ typedef struct hbil_reject_memo {
     const tgi_gview *g;
     uint32_t word;
     tgi_oct_dir d;
+#if TG_FIXED
     int32_t n2;
     int64_t nr, nu, nf;
+#else
+    float n2, nr, nu, nf;
+#endif
 } hbil_reject_memo;
 /* A memo that holds no normal yet (no image is NULL) */
 static inline void reject_memo_start(hbil_reject_memo *m) { m->g = NULL; m->word = 0; }
@@ -819,37 +824,82 @@ static HBIL_INLINE tg_real rejection_weight(const hbil_ctx *c, tgi_oct_dir n, tg
  * M^T n = (n.right, n.up, n.forward), kept with |n|^2 for the sender's
  * stored code (tgi_gv_normal_word; equal codes of one image, equal
  * normals): a flat surface's senders repeat it, and then a rise takes
- * three products for f, not the octahedral fold and twelve.  The same
- * integer sum in int64, exact (|n.axis| <= (|n_x| + |n_y| + |n_z|) 2^16
- * < 2^27 (a camera axis unit, |n|_1 = q < 2^11), times |dir_i| < 2^17:
- * below 2^46 a term), so the same f, ff and answers as rejection_weight;
- * the slow path with the memo's n (cornell 160x120, 2 frames: Q16.16
- * 723.31M -> 713.04M, columns 314.99M -> 314.64M). */
+ * three products for f, not the octahedral fold and twelve.  Q16.16: the
+ * same integer sum in int64, exact (|n.axis| <= (|n_x| + |n_y| + |n_z|)
+ * 2^16 < 2^27 (a camera axis unit, |n|_1 = q < 2^11), times |dir_i| <
+ * 2^17: below 2^46 a term), so the same f, ff and answers as
+ * rejection_weight (cornell 160x120, 2 frames: 723.31M -> 713.04M,
+ * columns 314.99M -> 314.64M).  Float: f summed in another order, its
+ * rounding a few 2^-24 of |n| |w_i| (|n|^2 exact below 2^22), far inside
+ * the margin's 2.44e-4 (the bound above, 1e-5 in float): the tests still
+ * answer only beyond the moved ends, elsewhere rejection_ramp gives the
+ * weight, the same bits (tests/test_hbil.c
+ * rejection_tests_keep_the_weights takes this arithmetic through
+ * tgi_hbil_rejection_weight; cornell 518.99M -> 506.62M, columns 213.72M
+ * -> 213.12M). */
+/* The memo m takes direction n (its key set by the caller) */
+static HBIL_INLINE void reject_memo_fill(const hbil_ctx *c, hbil_reject_memo *m, tgi_oct_dir n)
+{
+    const tgi_view *v = c->v;
+    m->d = n;
+#if TG_FIXED
+    m->n2 = n.x * n.x + n.y * n.y + n.z * n.z;      /* |n|^2 <= q^2 < 2^22 */
+    m->nr = (int64_t)n.x * v->right.x + (int64_t)n.y * v->right.y + (int64_t)n.z * v->right.z;
+    m->nu = (int64_t)n.x * v->up.x + (int64_t)n.y * v->up.y + (int64_t)n.z * v->up.z;
+    m->nf = (int64_t)n.x * v->forward.x + (int64_t)n.y * v->forward.y + (int64_t)n.z * v->forward.z;
+#else
+    {   /* |n|^2 < 2^22 exact in float, as the integer */
+        const float x = (float)n.x, y = (float)n.y, z = (float)n.z;
+        m->n2 = x * x + y * y + z * z;
+        m->nr = x * v->right.x + y * v->right.y + z * v->right.z;
+        m->nu = x * v->up.x + y * v->up.y + z * v->up.z;
+        m->nf = x * v->forward.x + y * v->forward.y + z * v->forward.z;
+    }
+#endif
+}
+/* rejection_weight of m's direction (the tests through m's products) */
+static HBIL_INLINE tg_real rejection_weight_m(const hbil_ctx *c, const hbil_reject_memo *m, tg_vec3 dir)
+{
+    if (c->reject_fast) {
+#if TG_FIXED
+        /* the same f and ff as rejection_weight's (its bounds: f|f| < 2^58) */
+        const int64_t f = -((m->nr * dir.x + m->nu * dir.y + m->nf * dir.z) >> 16);
+        const int64_t ff = f < 0 ? -f * f : f * f;
+#else
+        const float f = -(m->nr * dir.x + m->nu * dir.y + m->nf * dir.z);
+        const float ff = f * (f < 0.0f ? -f : f);
+#endif
+        if (ff >= c->reject_hi2 * m->n2) return TG_ONE;          /* the common case first */
+        if (ff <= c->reject_lo2 * m->n2) return 0;
+    }
+#if TG_FIXED
+    return rejection_ramp_oct(c, m->d.x, m->d.y, m->d.z, dir.x, dir.y, dir.z);
+#else
+    return rejection_ramp_unit(c, m->d.x, m->d.y, m->d.z, dir.x, dir.y, dir.z);
+#endif
+}
 static HBIL_INLINE tg_real rejection_weight_memo(const hbil_ctx *c, const tgi_gview *g, size_t si, tg_vec3 dir)
 {
     hbil_reject_memo *const m = c->reject_memo;
     const uint32_t word = tgi_gv_normal_word(g, si);
     if (word != m->word || g != m->g) {
+#if TG_FIXED   /* as written before float took the memo (the fill's call here took 0.26M more, cornell) */
         const tgi_view *v = c->v;
         const tgi_oct_dir n = tgi_gv_normal_dir(g, si);
         m->g = g;
         m->word = word;
         m->d = n;
-        m->n2 = n.x * n.x + n.y * n.y + n.z * n.z;      /* |n|^2 <= q^2 < 2^22 */
+        m->n2 = n.x * n.x + n.y * n.y + n.z * n.z;
         m->nr = (int64_t)n.x * v->right.x + (int64_t)n.y * v->right.y + (int64_t)n.z * v->right.z;
         m->nu = (int64_t)n.x * v->up.x + (int64_t)n.y * v->up.y + (int64_t)n.z * v->up.z;
         m->nf = (int64_t)n.x * v->forward.x + (int64_t)n.y * v->forward.y + (int64_t)n.z * v->forward.z;
+#else
+        m->g = g;
+        m->word = word;
+        reject_memo_fill(c, m, tgi_gv_normal_dir(g, si));
+#endif
     }
-    if (c->reject_fast) {
-        /* the same f and ff as rejection_weight's (its bounds: f|f| < 2^58) */
-        const int64_t f = -((m->nr * dir.x + m->nu * dir.y + m->nf * dir.z) >> 16);
-        const int64_t ff = f < 0 ? -f * f : f * f;
-        if (ff >= c->reject_hi2 * m->n2) return TG_ONE;          /* the common case first */
-        if (ff <= c->reject_lo2 * m->n2) return 0;
-    }
-    /* n by its address, dir's components as scalars: no 12-byte structs
-     * packed into registers before the test (gcc did it at every rise) */
-    return rejection_ramp_oct(c, m->d.x, m->d.y, m->d.z, dir.x, dir.y, dir.z);
+    return rejection_weight_m(c, m, dir);
 }
 #endif
 
@@ -871,7 +921,15 @@ tg_real tgi_hbil_rejection_weight(const tgi_view *v, tg_real a, tg_real b, tgi_o
     if (!tests || !(dir.x < TG_R(2.0f) && dir.x > TG_R(-2.0f) && dir.y < TG_R(2.0f) && dir.y > TG_R(-2.0f)
                     && dir.z < TG_R(2.0f) && dir.z > TG_R(-2.0f)))
         c.reject_fast = 0;
+#if HBIL_REJECT_MEMO   /* the kernel's: the tests through the memo's products */
+    {
+        hbil_reject_memo rm;
+        reject_memo_fill(&c, &rm, n);
+        return rejection_weight_m(&c, &rm, dir);
+    }
+#else
     return rejection_weight(&c, n, dir);
+#endif
 }
 #endif
 #endif /* !TG_WIDE_STORAGE */
