@@ -771,7 +771,10 @@ static HBIL_NOINLINE tg_real rejection_ramp_unit(const hbil_ctx *c, int32_t nx, 
  * >= q / sqrt 3 > 146); so f at or past an end moved out by 2.44e-4 puts t
  * 1.4e-4 past the end.  Float: 1e-5.  (The margin was 2^-10: cornell
  * 160x120, 2 frames, Q16.16 737.69M -> 736.02M, float 526.76M -> 525.78M;
- * 2^-11 took 737.39M and 526.60M.) */
+ * 2^-11 took 737.39M and 526.60M.)  Not compiled where the kernel and
+ * tgi_hbil_rejection_weight take rejection_weight_memo's tests
+ * (HBIL_REJECT_MEMO). */
+#if !HBIL_REJECT_MEMO
 #if TG_OUTLINE_HELPERS
 static tg_real rejection_weight(const hbil_ctx *c, tgi_oct_dir n, tg_vec3 dir)
 #else
@@ -817,6 +820,7 @@ static HBIL_INLINE tg_real rejection_weight(const hbil_ctx *c, tgi_oct_dir n, tg
     return rejection_ramp(c, tgi_oct_unit(n), dir);   /* tgi_gv_normal's n_s, the word decoded once */
 #endif
 }
+#endif /* !HBIL_REJECT_MEMO */
 
 #if HBIL_REJECT_MEMO
 /* rejection_weight of sender si of image g, its tests written with M^T n:
