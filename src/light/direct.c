@@ -130,7 +130,7 @@ static tg_vec3 light_irradiance(tg_vec3 radiant, tg_real scale, tg_real inv)
     return e;
 }
 
-#if TGI_Q16_WIDE
+#if TGI_Q16_WIDE && !TG_NO_COLOR   /* used by the direct-light pass alone */
 /* light_irradiance(p->radiant, scale, inv) for scale in (0, 2) (light_factor
  * times a visibility in [0, 1]) and inv > 0, without the nine products'
  * saturation where none can saturate: for R the largest |radiant| (raw),
