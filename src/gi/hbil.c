@@ -887,21 +887,9 @@ static HBIL_INLINE tg_real rejection_weight_memo(const hbil_ctx *c, const tgi_gv
     hbil_reject_memo *const m = c->reject_memo;
     const uint32_t word = tgi_gv_normal_word(g, si);
     if (word != m->word || g != m->g) {
-#if TG_FIXED   /* as written before float took the memo (the fill's call here took 0.26M more, cornell) */
-        const tgi_view *v = c->v;
-        const tgi_oct_dir n = tgi_gv_normal_dir(g, si);
-        m->g = g;
-        m->word = word;
-        m->d = n;
-        m->n2 = n.x * n.x + n.y * n.y + n.z * n.z;
-        m->nr = (int64_t)n.x * v->right.x + (int64_t)n.y * v->right.y + (int64_t)n.z * v->right.z;
-        m->nu = (int64_t)n.x * v->up.x + (int64_t)n.y * v->up.y + (int64_t)n.z * v->up.z;
-        m->nf = (int64_t)n.x * v->forward.x + (int64_t)n.y * v->forward.y + (int64_t)n.z * v->forward.z;
-#else
         m->g = g;
         m->word = word;
         reject_memo_fill(c, m, tgi_gv_normal_dir(g, si));
-#endif
     }
     return rejection_weight_m(c, m, dir);
 }
