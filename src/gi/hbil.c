@@ -165,10 +165,10 @@ static inline void unit_memo_start(hbil_unit_memo *m) { m->d.x = INT32_MIN; }
  * frames, 520.18M -> 516.92M but columns 214.29M -> 214.79M; with that out
  * of line, rejection_ramp_unit, it pays in both.) */
 #define HBIL_REJECT_MEMO (!TG_OUTLINE_HELPERS && !TG_WIDE_STORAGE && !TG_NO_COLOR)
-#if HBIL_REJECT_MEMO
 /* A sender normal by its stored code in image g, its octahedral direction
  * d, |d|^2 and d's dot products with the camera's right, up and forward
- * axes (rejection_weight_memo) */
+ * axes (rejection_weight_m's tests; the key g, word for
+ * rejection_weight_memo) */
 typedef struct hbil_reject_memo {
     const tgi_gview *g;
     uint32_t word;
@@ -180,6 +180,7 @@ typedef struct hbil_reject_memo {
     float n2, nr, nu, nf;
 #endif
 } hbil_reject_memo;
+#if HBIL_REJECT_MEMO
 /* A memo that holds no normal yet (no image is NULL) */
 static inline void reject_memo_start(hbil_reject_memo *m) { m->g = NULL; m->word = 0; }
 #endif
@@ -771,77 +772,9 @@ static HBIL_NOINLINE tg_real rejection_ramp_unit(const hbil_ctx *c, int32_t nx, 
  * >= q / sqrt 3 > 146); so f at or past an end moved out by 2.44e-4 puts t
  * 1.4e-4 past the end.  Float: 1e-5.  (The margin was 2^-10: cornell
  * 160x120, 2 frames, Q16.16 737.69M -> 736.02M, float 526.76M -> 525.78M;
- * 2^-11 took 737.39M and 526.60M.)  Not compiled where the kernel and
- * tgi_hbil_rejection_weight take rejection_weight_memo's tests
- * (HBIL_REJECT_MEMO). */
-#if !HBIL_REJECT_MEMO
-#if TG_OUTLINE_HELPERS
-static tg_real rejection_weight(const hbil_ctx *c, tgi_oct_dir n, tg_vec3 dir)
-#else
-static HBIL_INLINE tg_real rejection_weight(const hbil_ctx *c, tgi_oct_dir n, tg_vec3 dir)   /* in gather_rise */
-#endif
-{
-    if (c->reject_fast) {
-        const tgi_view *v = c->v;
-        const int32_t n2 = n.x * n.x + n.y * n.y + n.z * n.z;      /* |n|^2 <= q^2 < 2^22 */
-#if TG_FIXED
-        /* w_i unrounded, Q32 (|camera axis| <= 1: each product < 2^47 for
-         * any dir), and -n.w_i exactly (|n| < 2^11: < 2^62), to Q16.16
-         * floored by the shift (tgi_shift_floors; within a unit of 2^-16 as
-         * a truncation, which the margin's bound above takes; the division
-         * truncating cost two instructions more a rise) */
-        const int64_t wx = (int64_t)v->right.x * dir.x + (int64_t)v->up.x * dir.y + (int64_t)v->forward.x * dir.z;
-        const int64_t wy = (int64_t)v->right.y * dir.x + (int64_t)v->up.y * dir.y + (int64_t)v->forward.y * dir.z;
-        const int64_t wz = (int64_t)v->right.z * dir.x + (int64_t)v->up.z * dir.y + (int64_t)v->forward.z * dir.z;
-        /* dir's components below 2 (a sample's direction, sample_dir: |d_i|
-         * 1/|d| rounded, at most 1 + 2^-9; the test entry below takes no
-         * other), so each |w_i| < 2 sqrt 3 (1 + 2^-15) < 2^1.8 (a camera
-         * axis's row), and |n.w_i| <= (|n_x| + |n_y| + |n_z|) 2^1.8 = q
-         * 2^1.8 < 2^12.8: |f| < 2^28.8 and f|f| < 2^58 without a test of f
-         * (it was 2 instructions a rise); x|x| |n|^2 < 2^34 2^22 */
-        const int64_t f = -((n.x * wx + n.y * wy + n.z * wz) >> 16);
-        const int64_t ff = f < 0 ? -f * f : f * f;
-        if (ff >= c->reject_hi2 * n2) return TG_ONE;             /* the common case first */
-        if (ff <= c->reject_lo2 * n2) return 0;
-#else
-        const float f = -((float)n.x * (v->right.x * dir.x + v->up.x * dir.y + v->forward.x * dir.z)
-                          + (float)n.y * (v->right.y * dir.x + v->up.y * dir.y + v->forward.y * dir.z)
-                          + (float)n.z * (v->right.z * dir.x + v->up.z * dir.y + v->forward.z * dir.z));
-        const float ff = f * (f < 0.0f ? -f : f);
-        if (ff >= c->reject_hi2 * (float)n2) return TG_ONE;
-        if (ff <= c->reject_lo2 * (float)n2) return 0;
-#endif
-    }
-#if TGI_Q16_WIDE
-    return rejection_ramp_oct(c, n.x, n.y, n.z, dir.x, dir.y, dir.z);
-#elif !TG_OUTLINE_HELPERS
-    return rejection_ramp_unit(c, n.x, n.y, n.z, dir.x, dir.y, dir.z);
-#else
-    return rejection_ramp(c, tgi_oct_unit(n), dir);   /* tgi_gv_normal's n_s, the word decoded once */
-#endif
-}
-#endif /* !HBIL_REJECT_MEMO */
-
-#if HBIL_REJECT_MEMO
-/* rejection_weight of sender si of image g, its tests written with M^T n:
- * n.w_i = n.(M dir) = (M^T n).dir for M the camera's axes (w_i = M dir),
- * M^T n = (n.right, n.up, n.forward), kept with |n|^2 for the sender's
- * stored code (tgi_gv_normal_word; equal codes of one image, equal
- * normals): a flat surface's senders repeat it, and then a rise takes
- * three products for f, not the octahedral fold and twelve.  Q16.16: the
- * same integer sum in int64, exact (|n.axis| <= (|n_x| + |n_y| + |n_z|)
- * 2^16 < 2^27 (a camera axis unit, |n|_1 = q < 2^11), times |dir_i| <
- * 2^17: below 2^46 a term), so the same f, ff and answers as
- * rejection_weight (cornell 160x120, 2 frames: 723.31M -> 713.04M,
- * columns 314.99M -> 314.64M).  Float: f summed in another order, its
- * rounding a few 2^-24 of |n| |w_i| (|n|^2 exact below 2^22), far inside
- * the margin's 2.44e-4 (the bound above, 1e-5 in float): the tests still
- * answer only beyond the moved ends, elsewhere rejection_ramp gives the
- * weight, the same bits (tests/test_hbil.c
- * rejection_tests_keep_the_weights takes this arithmetic through
- * tgi_hbil_rejection_weight; cornell 518.99M -> 506.62M, columns 213.72M
- * -> 213.12M). */
-/* The memo m takes direction n (its key set by the caller) */
+ * 2^-11 took 737.39M and 526.60M.) */
+/* The memo m takes direction n (its key set by the caller): M^T n =
+ * (n.right, n.up, n.forward) for M the camera's axes, and |n|^2 */
 static HBIL_INLINE void reject_memo_fill(const hbil_ctx *c, hbil_reject_memo *m, tgi_oct_dir n)
 {
     const tgi_view *v = c->v;
@@ -861,12 +794,23 @@ static HBIL_INLINE void reject_memo_fill(const hbil_ctx *c, hbil_reject_memo *m,
     }
 #endif
 }
-/* rejection_weight of m's direction (the tests through m's products) */
+/* The weight of m's direction n for a sample's direction dir, the tests
+ * above written with M^T n: n.w_i = n.(M dir) = (M^T n).dir (w_i = M dir).
+ * Q16.16: an exact integer sum in int64 (|n.axis| <= (|n_x| + |n_y| +
+ * |n_z|) 2^16 < 2^27 for a camera axis unit and |n|_1 = q < 2^11, times
+ * |dir_i| < 2^17: below 2^46 a term), to Q16.16 floored by the shift
+ * (tgi_shift_floors: within a unit of 2^-16 as a truncation, which the
+ * margin's bound takes); dir's components below 2 (a sample's direction,
+ * sample_dir: at most 1 + 2^-9; the test entry below takes no other), so
+ * |f| < 2^28.8 and f|f| < 2^58 without a test of f; x|x| |n|^2 < 2^34
+ * 2^22.  Float: its rounding a few 2^-24 of |n| |w_i| (|n|^2 exact below
+ * 2^22), inside the margin's bound (1e-5 in float).  (Summed as n.(M dir)
+ * the integers were the same; float's sum in that order took the same
+ * answers: tests/test_hbil.c rejection_tests_keep_the_weights.) */
 static HBIL_INLINE tg_real rejection_weight_m(const hbil_ctx *c, const hbil_reject_memo *m, tg_vec3 dir)
 {
     if (c->reject_fast) {
 #if TG_FIXED
-        /* the same f and ff as rejection_weight's (its bounds: f|f| < 2^58) */
         const int64_t f = -((m->nr * dir.x + m->nu * dir.y + m->nf * dir.z) >> 16);
         const int64_t ff = f < 0 ? -f * f : f * f;
 #else
@@ -876,12 +820,21 @@ static HBIL_INLINE tg_real rejection_weight_m(const hbil_ctx *c, const hbil_reje
         if (ff >= c->reject_hi2 * m->n2) return TG_ONE;          /* the common case first */
         if (ff <= c->reject_lo2 * m->n2) return 0;
     }
-#if TG_FIXED
+#if TGI_Q16_WIDE
     return rejection_ramp_oct(c, m->d.x, m->d.y, m->d.z, dir.x, dir.y, dir.z);
-#else
+#elif !TG_OUTLINE_HELPERS
     return rejection_ramp_unit(c, m->d.x, m->d.y, m->d.z, dir.x, dir.y, dir.z);
+#else
+    return rejection_ramp(c, tgi_oct_unit(m->d), dir);   /* tgi_gv_normal's n_s, the word decoded once */
 #endif
 }
+#if HBIL_REJECT_MEMO
+/* rejection_weight_m of sender si of image g, M^T n and |n|^2 kept for the
+ * sender's stored code (tgi_gv_normal_word; equal codes of one image,
+ * equal normals): a flat surface's senders repeat it, and then a rise
+ * takes three products for f, not the octahedral fold and twelve
+ * (cornell 160x120, 2 frames: Q16.16 723.31M -> 713.04M, columns 314.99M
+ * -> 314.64M; float 518.99M -> 506.62M, columns 213.72M -> 213.12M) */
 static HBIL_INLINE tg_real rejection_weight_memo(const hbil_ctx *c, const tgi_gview *g, size_t si, tg_vec3 dir)
 {
     hbil_reject_memo *const m = c->reject_memo;
@@ -892,6 +845,15 @@ static HBIL_INLINE tg_real rejection_weight_memo(const hbil_ctx *c, const tgi_gv
         reject_memo_fill(c, m, tgi_gv_normal_dir(g, si));
     }
     return rejection_weight_m(c, m, dir);
+}
+#else
+/* rejection_weight_m of one sender's direction n, no memo (the builds for
+ * size; and TG_NO_COLOR's, which never gather) */
+static tg_real rejection_weight(const hbil_ctx *c, tgi_oct_dir n, tg_vec3 dir)
+{
+    hbil_reject_memo m;
+    reject_memo_fill(c, &m, n);
+    return rejection_weight_m(c, &m, dir);
 }
 #endif
 
