@@ -203,6 +203,28 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
 #elif TGI_Q16_WIDE
     k->nkey[j] = normal_key(n, UINT64_MAX);
 #endif
+#if TGI_Q16_WIDE
+    k->z[j] = tgi_gv_depth(g, i);
+    k->nx[j] = n.x; k->ny[j] = n.y; k->nz[j] = n.z;
+    VAL(k, j, 0) = r->ao ? tgi_gr_ao(r, i) : TG_ONE;
+    /* a channel the results lack is not stored (3 stores a tap each): its
+     * planes keep what they held (0 from tgi_denoise_walk_start, or values
+     * decoded before: integers within the range, whose products and sums
+     * stay within tgi_denoise_pixel's bounds), which no filtered value
+     * reads (weigh_and_sum adds them only to sums tgi_denoise_pixel then
+     * leaves unused); each channel's loads and stores under the one test */
+    if (has_bent) {
+#if TGI_REUSE_NORMAL
+        uint32_t bent = tgi_gr_bent_word(r, i);
+        b = above->bent == bent ? tg_v3(VAL(k, j - 5, 1), VAL(k, j - 5, 2), VAL(k, j - 5, 3)) : tgi_gr_bent(r, i);
+        above->bent = bent;
+#else
+        b = tgi_gr_bent(r, i);
+#endif
+        VAL(k, j, 1) = b.x; VAL(k, j, 2) = b.y; VAL(k, j, 3) = b.z;
+    }
+    if (has_near) { e = tgi_gr_near(r, i); VAL(k, j, 4) = e.x; VAL(k, j, 5) = e.y; VAL(k, j, 6) = e.z; }
+#else
 #if TGI_REUSE_NORMAL
     b = tg_v3(0, 0, 0);
     if (has_bent) {
@@ -219,7 +241,6 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
     VAL(k, j, 0) = r->ao ? tgi_gr_ao(r, i) : TG_ONE;
     VAL(k, j, 1) = b.x; VAL(k, j, 2) = b.y; VAL(k, j, 3) = b.z;
     VAL(k, j, 4) = e.x; VAL(k, j, 5) = e.y; VAL(k, j, 6) = e.z;
-#if !TGI_Q16_WIDE
     VAL(k, j, 7) = TG_FIXED ? 0 : TG_ONE;
 #endif
 }

@@ -86,7 +86,8 @@ typedef struct tgi_denoise_walk {
 #if TGI_Q16_WIDE
     /* the kept results as tgi_gr_get_kept reads them, a plane per value
      * (value c of entry j at v[c][j]): indexed as z is, one base register
-     * for all the planes a tap reads */
+     * for all the planes a tap reads; the planes of a channel the results
+     * lack are left as they are (denoise.c tap_load) */
     tg_real v[TGI_DENOISE_VALUES][TGI_DENOISE_TAPS];
 #else
     /* the kept results as tgi_gr_get_kept reads them; an 8th value makes an
