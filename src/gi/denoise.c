@@ -276,8 +276,8 @@ static inline uint64_t normal_d8(tg_vec3 a, tg_vec3 b)
 /* One entry e (spatial weight sp) of weigh_and_sum into the sums s[0..7]
  * (s[7] the weights'). */
 static DENOISE_INLINE void weigh_entry(const tgi_denoise_walk *k, int e, const spatial_pair *sp, int64_t zi, tg_vec3 ni,
-                                       int64_t dz_lim, tg_real inv_ztol, uint64_t key, uint64_t same,
-                                       const int bent, const int near, int64_t *s)
+                                       int64_t dz_lim, tg_real inv_ztol, uint64_t inv_wide, uint64_t key, uint64_t same,
+                                       const int bent, const int near, const int wide, int64_t *s)
 {
     /* in 64 bits (the depth's load widens it; no widening of dz for the
      * product); depths are never negative: no overflow in 32 bits either */
@@ -285,7 +285,7 @@ static DENOISE_INLINE void weigh_entry(const tgi_denoise_walk *k, int e, const s
     uint64_t d, t;
     dz = dz < 0 ? -dz : dz;
     if (dz >= dz_lim) return;   /* dz >= ztol, or 1 - dz / ztol <= 0 (dz_lim) */
-    q = (int64_t)mul_pos((uint64_t)dz, (uint64_t)inv_ztol);   /* dz / ztol, 1 - q > 0 */
+    q = (int64_t)mul_pos((uint64_t)dz, wide ? inv_wide : (uint64_t)inv_ztol);   /* dz / ztol, 1 - q > 0 */
     t = (uint64_t)(sp->c - sp->w * q) >> 16;                  /* mul_pos(sp, 1 - q) (spatial_pairs) */
     /* the normal weight: the centre's own for a normal equal to it (the
      * common case: a plane's pixels share their normal); a weight 0
@@ -304,9 +304,16 @@ static DENOISE_INLINE void weigh_entry(const tgi_denoise_walk *k, int e, const s
  * whole window's entries a row of five written out (the loop's counters
  * and tests a row, not an entry). */
 static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const spatial_pair *spatial, tg_real zi,
-                                         tg_vec3 ni, int ce, int64_t dz_lim, tg_real inv_ztol, uint32_t window, int whole,
-                                         const int bent, const int near, int64_t *sum)
+                                         tg_vec3 ni, int ce, int64_t dz_lim, tg_real inv_ztol, uint64_t inv_wide, uint32_t window,
+                                         int whole, const int bent, const int near, int64_t *sum)
 {
+    /* whole_fewer's copies (wide) take the inverse inv_wide, widened
+     * once by the caller (the same value, (uint64_t)inv_ztol): from a
+     * tg_real, gcc sign-extended it again at each of their 25 entries
+     * (Q16.16 cornell 160x120 2 frames 694.46M -> 693.80M); the copies
+     * inlined in tgi_denoise_pixel keep the tg_real (widened there, columns
+     * took 73K more) */
+    const int wide = whole && !(bent && near);
     int64_t s[TGI_DENOISE_VALUES + 1] = { 0, 0, 0, 0, 0, 0, 0, 0 };
 #if NORMAL_WORDS
     uint64_t key = k->nkey[ce], same = normal_d8(ni, ni);   /* the centre's code */
@@ -315,14 +322,14 @@ static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const
     (void)ce;
 #endif
     int j, c;
-#define ENTRY(j_) weigh_entry(k, o + (j_), &spatial[j_], zi, ni, dz_lim, inv_ztol, key, same, bent, near, s)
+#define ENTRY(j_) weigh_entry(k, o + (j_), &spatial[j_], zi, ni, dz_lim, inv_ztol, inv_wide, key, same, bent, near, wide, s)
 #define ROW5(j) ENTRY(j); ENTRY(j + 1); ENTRY(j + 2); ENTRY(j + 3); ENTRY(j + 4)
     /* whole_fewer's copies (out of line, registers to spare) all 25
      * written out: no counters, nor the end read back from the stack (5
      * instructions a row; Q16.16 cornell 160x120 2 frames 695.61M ->
      * 695.01M); the copy inlined in tgi_denoise_pixel keeps the rows a loop
      * (written out there, columns took 31K more) */
-    if (whole && !(bent && near)) {
+    if (wide) {
         ROW5(0); ROW5(5); ROW5(10); ROW5(15); ROW5(20);
     } else if (whole) {
         for (j = 0; j < 5 * 5; j += 5) { ROW5(j); }
@@ -350,11 +357,11 @@ static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const
 __attribute__((noinline))
 #endif
 static void whole_fewer(const tgi_denoise_walk *k, int o, const spatial_pair *spatial, tg_real zi, tg_vec3 ni, int ce, int64_t dz_lim,
-                        tg_real inv_ztol, int bent, int near, int64_t *sum)
+                        uint64_t inv_ztol, int bent, int near, int64_t *sum)
 {
-    if (near) weigh_and_sum(k, o, spatial, zi, ni, ce, dz_lim, inv_ztol, 0, 1, 0, 1, sum);
-    else if (bent) weigh_and_sum(k, o, spatial, zi, ni, ce, dz_lim, inv_ztol, 0, 1, 1, 0, sum);
-    else weigh_and_sum(k, o, spatial, zi, ni, ce, dz_lim, inv_ztol, 0, 1, 0, 0, sum);
+    if (near) weigh_and_sum(k, o, spatial, zi, ni, ce, dz_lim, 0, inv_ztol, 0, 1, 0, 1, sum);
+    else if (bent) weigh_and_sum(k, o, spatial, zi, ni, ce, dz_lim, 0, inv_ztol, 0, 1, 1, 0, sum);
+    else weigh_and_sum(k, o, spatial, zi, ni, ce, dz_lim, 0, inv_ztol, 0, 1, 0, 0, sum);
 }
 #else
 /* The weight of every entry of the walk for the centre (depth zi, normal
@@ -529,14 +536,14 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
     if (xb - xa == 4 && yb - ya == 4) {   /* the whole window: every entry; a copy per set of channels */
         const spatial_pair *sp = spatial_pairs[x % 5];
         const int ce = o + 2 * 5 + x % 5;   /* the centre's entry */
-        if (has_bent && has_near) weigh_and_sum(k, o, sp, zi, ni, ce, dz_lim, inv_ztol, 0, 1, 1, 1, sum);
-        else whole_fewer(k, o, sp, zi, ni, ce, dz_lim, inv_ztol, has_bent, has_near, sum);
+        if (has_bent && has_near) weigh_and_sum(k, o, sp, zi, ni, ce, dz_lim, inv_ztol, 0, 0, 1, 1, 1, sum);
+        else whole_fewer(k, o, sp, zi, ni, ce, dz_lim, (uint64_t)inv_ztol, has_bent, has_near, sum);
     } else {   /* the window's entries inside the image: its rows' slots of its columns */
         uint32_t slots = 0, window = 0;
         const int ce = o + 2 * 5 + x % 5;
         for (xx = xa; xx <= xb; xx++) slots |= 1u << (xx % 5);
         for (yy = ya; yy <= yb; yy++) window |= slots << ((yy - y + 2) * 5);
-        weigh_and_sum(k, o, spatial_pairs[x % 5], zi, ni, ce, dz_lim, inv_ztol, window, 0, 1, 1, sum);
+        weigh_and_sum(k, o, spatial_pairs[x % 5], zi, ni, ce, dz_lim, inv_ztol, 0, window, 0, 1, 1, sum);
     }
 #else
     tap_weights(k, o, spatial_w[x % 5], zi, ni, ztol, inv_ztol, wt);
