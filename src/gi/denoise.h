@@ -64,7 +64,7 @@ static inline void tgi_gr_put_kept(const tgi_gresult *r, size_t i, const tgi_gr_
  * value: v below) (TGI_DENOISE_TAPS: the band's entries and 3 more, which stay 0,
  * so that a pixel's entries and the 3 after them are 28, a multiple of 4). */
 #ifndef TGI_DENOISE_BAND
-/* 4 rows: the walk is 2080 bytes of stack in float and in Q16.16 (its
+/* 4 rows: the walk is 2080 bytes of stack in float and 2088 in Q16.16 (its
  * normals' words, and 7 values an entry, not 8), 1360 with 1 row (a build
  * for size, TG_OUTLINE_HELPERS, keeps that, as before: README "Porting"); 8 rows would save half a
  * decode more a pixel for 1 KB more. */
@@ -80,6 +80,7 @@ typedef struct tgi_denoise_walk {
     /* the normal's stored code (tgi_gv_normal_word, below 2^22); UINT32_MAX,
      * which no code is, on sky.  4 bytes as z's: one base register for both */
     uint32_t nkey[TGI_DENOISE_TAPS];
+    uint32_t same_key, same;        /* a centre's code and its own normal weight (denoise.c) */
 #elif TGI_Q16_WIDE
     uint64_t nkey[TGI_DENOISE_TAPS];    /* the normal as one word (denoise.c normal_key) */
 #endif
