@@ -3,13 +3,27 @@
  * threads.c - the row-range pool (POSIX threads).
  *
  * One job at a time: run() posts fn, job and rows under the pool's lock,
- * wakes the workers and works itself.  The rows are cut into chunks of
- * ceil(rows / (threads * CHUNKS_PER_THREAD)) rows; every thread takes the
- * next chunk under the lock (a counter), runs fn on it without the lock,
- * and counts it done under the lock.  run() returns when every chunk is
+ * wakes the workers and works itself.  Every thread takes the next range
+ * of rows under the lock (a counter), runs fn on it without the lock, and
+ * counts its rows done under the lock.  run() returns when every row is
  * done: the lock orders every write of fn before the caller's next read.
  * Workers sleep on a condition variable between jobs and block every
  * signal, so a signal reaches the thread that started them.
+ *
+ * The ranges shrink as the rows run out (guided self-scheduling,
+ * Polychronopoulos and Kuck 1987): each is ceil(left / (2 threads)) of the
+ * `left` rows not yet taken, at most ceil(rows / (4 threads)), so the first
+ * are long and few (240 rows on two threads: 19 ranges, 30 rows down to 1)
+ * and a thread that draws costly rows near the end keeps the others
+ * waiting for a row's time, not a chunk's; the cap keeps costly first rows
+ * (columns' top rows, where push/pull fills most holes) out of one long
+ * range.  Even chunks of ceil(rows / (8 threads)) rows, before, left one
+ * thread a whole chunk alone at a pass's end (cornell --gi-quarter's kernel:
+ * 15 chunks of 14M-21M instructions; columns' kernel: 0.9M sky chunks
+ * beside 30M ones).  Shorter ranges throughout cost more instead: each
+ * call of a pass sets itself up again (HBIL's kernel about 108K
+ * instructions, its 16 sub-images'), so one row a range lost more than
+ * the balance gained.
  */
 #include <pthread.h>
 #include <signal.h>
@@ -18,10 +32,6 @@
 #include <string.h>
 #include <unistd.h>
 #include "threads.h"
-
-/* Chunks per thread: enough that an uneven pass (sky rows are cheap)
- * balances, few enough that taking one costs nothing next to its rows. */
-#define CHUNKS_PER_THREAD 8
 
 struct tgp_pool {
     pthread_mutex_t lock;
@@ -32,24 +42,28 @@ struct tgp_pool {
     /* the job, read and written under lock */
     tg_rows_fn fn;
     void *job;
-    int rows, chunk, chunks, next, done;
+    int rows, next, done;
+    int share, cap;                 /* a range: ceil(left / share) rows, at most cap */
     unsigned long generation;       /* jobs posted so far */
     int busy, stop;
 };
 
-/* Take chunks of the current job until none is left; lock held on entry
- * and on return. */
+/* Take ranges of the current job until no row is left; lock held on
+ * entry and on return. */
 static void work(tgp_pool *p)
 {
-    while (p->next < p->chunks) {
+    while (p->next < p->rows) {
         tg_rows_fn fn = p->fn;
         void *job = p->job;
-        int y0 = p->next++ * p->chunk;
-        int y1 = p->rows - y0 > p->chunk ? y0 + p->chunk : p->rows;
+        int left = p->rows - p->next;
+        int y0 = p->next, n = left / p->share + (left % p->share != 0);   /* 1..left */
+        if (n > p->cap) n = p->cap;                                        /* cap >= 1 */
+        p->next = y0 + n;
         pthread_mutex_unlock(&p->lock);
-        fn(job, y0, y1);
+        fn(job, y0, y0 + n);
         pthread_mutex_lock(&p->lock);
-        if (++p->done == p->chunks) pthread_cond_signal(&p->finished);
+        p->done += n;
+        if (p->done == p->rows) pthread_cond_signal(&p->finished);
     }
 }
 
@@ -72,7 +86,6 @@ static void *worker_main(void *arg)
 static void pool_run(void *user, tg_rows_fn fn, void *job, int rows)
 {
     tgp_pool *p = (tgp_pool *)user;
-    int parts;
     if (rows <= 0) return;
     if (p->started == 0 || rows == 1) {
         fn(job, 0, rows);
@@ -84,18 +97,16 @@ static void pool_run(void *user, tg_rows_fn fn, void *job, int rows)
         fn(job, 0, rows);
         return;
     }
-    parts = p->threads * CHUNKS_PER_THREAD;
     p->busy = 1;
     p->fn = fn;
     p->job = job;
     p->rows = rows;
-    p->chunk = rows / parts + (rows % parts != 0);
-    p->chunks = rows / p->chunk + (rows % p->chunk != 0);
+    p->cap = rows / (2 * p->share) + (rows % (2 * p->share) != 0);
     p->next = p->done = 0;
     p->generation++;
     pthread_cond_broadcast(&p->posted);
     work(p);
-    while (p->done < p->chunks) pthread_cond_wait(&p->finished, &p->lock);
+    while (p->done < p->rows) pthread_cond_wait(&p->finished, &p->lock);
     p->busy = 0;
     pthread_mutex_unlock(&p->lock);
 }
@@ -150,6 +161,7 @@ int tgp_pool_create(int threads, tgp_pool **pool, char *why, size_t why_size)
         return 1;
     }
     p->threads = threads;
+    p->share = 2 * threads;
     rc = pthread_mutex_init(&p->lock, NULL);
     if (rc == 0 && (rc = pthread_cond_init(&p->posted, NULL)) != 0) pthread_mutex_destroy(&p->lock);
     if (rc == 0 && (rc = pthread_cond_init(&p->finished, NULL)) != 0) {

@@ -22,9 +22,10 @@ int tgp_pool_create(int threads, tgp_pool **pool, char *why, size_t why_size);
 /* Stop and join the threads, free the pool (NULL is allowed).  Not while a
  * run is under way. */
 void tgp_pool_destroy(tgp_pool *pool);
-/* The hook: run(fn, job, rows) splits [0, rows) into chunks of a few rows
- * that the threads take one at a time until none is left (an uneven pass
- * still balances), and returns when all have returned.  A run started while
+/* The hook: run(fn, job, rows) splits [0, rows) into ranges that the
+ * threads take one at a time until none is left, long at first and a row
+ * or two at the end (an uneven pass still balances), and returns when all
+ * have returned.  A run started while
  * another is under way (from inside fn, or from a second thread) calls
  * fn(job, 0, rows) on its own thread. */
 tg_parallel tgp_pool_parallel(tgp_pool *pool);
