@@ -914,8 +914,8 @@ tg_status tg_frame_render(tg_frame *frame, int index, tg_error *err);
  * when every call has returned (the next pass reads what they wrote, so
  * `run` must also make their writes visible to the calling thread: a mutex,
  * a join or a core's FIFO and barrier do).  Serial steps (the camera,
- * shadow maps, the reprojection scatter, push/pull, the reference's BVH)
- * run on the thread that called tg_frame_render.
+ * shadow maps, the reprojection scatter, push/pull's coarser levels, the
+ * reference's BVH) run on the thread that called tg_frame_render.
  *  - Any split gives the same bits as one call over [0, rows).
  *  - fn touches only the frame's arena and the scene (read only): nothing
  *    global, no allocation, no I/O; each thread that runs it needs the stack

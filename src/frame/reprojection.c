@@ -35,7 +35,33 @@ void tgi_pass_push_pull_down(tg_frame *f, int y0, int y1)
     tgi_pushpull_push_rows(f->width, f->height, &f->bounce_source, f->pushpull_mips, y0, y1);
 }
 
-void tgi_pass_push_pull(tg_frame *f) { tgi_pushpull_levels(f->width, f->height, f->pushpull_mips); }
+#if !TG_OUTLINE_HELPERS
+static void push2_rows(void *job, int y0, int y1)
+{
+    const tg_frame *f = (const tg_frame *)job;
+    tgi_pushpull_push2_rows(f->width, f->height, f->pushpull_mips, y0, y1);
+}
+
+static void pull1_rows(void *job, int y0, int y1)
+{
+    const tg_frame *f = (const tg_frame *)job;
+    tgi_pushpull_pull1_rows(f->width, f->height, f->pushpull_mips, y0, y1);
+}
+#endif
+
+/* The coarser levels: level 2's push and level 1's pull over rows through
+ * the platform's hook (most of the step's work), the rest on this thread;
+ * a build for size runs them all here. */
+void tgi_pass_push_pull(tg_frame *f)
+{
+#if !TG_OUTLINE_HELPERS
+    tgi_frame_parallel_rows(f, push2_rows, f, tgi_pushpull_level_rows(f->width, f->height, 2));
+    tgi_pushpull_levels_coarse(f->width, f->height, f->pushpull_mips);
+    tgi_frame_parallel_rows(f, pull1_rows, f, tgi_pushpull_level_rows(f->width, f->height, 1));
+#else
+    tgi_pushpull_levels(f->width, f->height, f->pushpull_mips);
+#endif
+}
 
 void tgi_pass_push_pull_fill(tg_frame *f, int y0, int y1)
 {

@@ -335,12 +335,13 @@ static inline tg_real lerp_level(tg_real a, tg_real b, tg_real t)
 #endif
 }
 
-/* Pull one level: complete texels of weight < 1 from the coarser level. */
-static void pull_level(const pp_level *fine, const pp_level *coarse)
+/* Pull one level, its rows [y0, y1): complete texels of weight < 1 from
+ * the coarser level. */
+static void pull_level(const pp_level *fine, const pp_level *coarse, int y0, int y1)
 {
     int x, y;
     pp_row_sampler rs;
-    for (y = 0; y < fine->h; y++) {
+    for (y = y0; y < y1; y++) {
         size_t t = (size_t)y * (size_t)fine->w;
         row_sampler_start(&rs, coarse, y);
         for (x = 0; x < fine->w; x++, t++) {
@@ -375,19 +376,62 @@ void tgi_pushpull_push_rows(int w, int h, const tgi_rgb *c, void *scratch, int y
     push_level0(c, w, h, &lv[0], (y0 + 1) >> 1, (y1 + 1) >> 1);   /* the level-1 rows y with y0 <= 2y < y1 */
 }
 
-void tgi_pushpull_levels(int w, int h, void *scratch)
+/* Levels first.. pushed from the level before, the coarsest texel set,
+ * and pulled back down to level last (lv[k] is level k + 1). */
+static void levels_between(pp_level *lv, int nl, int first, int last)
 {
-    pp_level lv[MAX_LEVELS];
-    int nl = levels_of(w, h, scratch, lv), k;
-    if (!nl) return;
-    for (k = 1; k < nl; k++) push_level(&lv[k - 1].c, lv[k - 1].wt, lv[k - 1].w, lv[k - 1].h, &lv[k], 0, lv[k].h);
+    int k;
+    for (k = first - 1; k < nl; k++) push_level(&lv[k - 1].c, lv[k - 1].wt, lv[k - 1].w, lv[k - 1].h, &lv[k], 0, lv[k].h);
     /* the coarsest texel: what weight it has, over black */
     if (weight_get(lv[nl - 1].wt, 0) < TG_ONE) {
         tgi_rgb_set(&lv[nl - 1].c, 0, tgi_v3_scale(tgi_rgb_get(&lv[nl - 1].c, 0), weight_get(lv[nl - 1].wt, 0)));
         weight_set(lv[nl - 1].wt, 0, TG_ONE);
     }
-    for (k = nl - 2; k >= 0; k--) pull_level(&lv[k], &lv[k + 1]);
+    for (k = nl - 2; k >= last - 1; k--) pull_level(&lv[k], &lv[k + 1], 0, lv[k].h);
 }
+
+void tgi_pushpull_levels(int w, int h, void *scratch)
+{
+    pp_level lv[MAX_LEVELS];
+    int nl = levels_of(w, h, scratch, lv);
+    if (nl) levels_between(lv, nl, 2, 1);
+}
+
+#if !TG_OUTLINE_HELPERS
+int tgi_pushpull_level_rows(int w, int h, int level)
+{
+    pp_level lv[MAX_LEVELS];
+    size_t bytes;
+    int nl = w <= 0 || h <= 0 || (w == 1 && h == 1) ? 0 : levels_layout(w, h, NULL, lv, &bytes);
+    return level >= 1 && level <= nl ? lv[level - 1].h : 0;
+}
+
+void tgi_pushpull_push2_rows(int w, int h, void *scratch, int y0, int y1)
+{
+    pp_level lv[MAX_LEVELS];
+    if (levels_of(w, h, scratch, lv) < 2) return;
+    if (y0 < 0) y0 = 0;
+    if (y1 > lv[1].h) y1 = lv[1].h;
+    if (y0 < y1) push_level(&lv[0].c, lv[0].wt, lv[0].w, lv[0].h, &lv[1], y0, y1);
+}
+
+void tgi_pushpull_levels_coarse(int w, int h, void *scratch)
+{
+    pp_level lv[MAX_LEVELS];
+    int nl = levels_of(w, h, scratch, lv);
+    if (nl == 1) levels_between(lv, nl, 2, 1);   /* level 1 is the coarsest: its texel alone */
+    else if (nl) levels_between(lv, nl, 3, 2);
+}
+
+void tgi_pushpull_pull1_rows(int w, int h, void *scratch, int y0, int y1)
+{
+    pp_level lv[MAX_LEVELS];
+    if (levels_of(w, h, scratch, lv) < 2) return;
+    if (y0 < 0) y0 = 0;
+    if (y1 > lv[0].h) y1 = lv[0].h;
+    if (y0 < y1) pull_level(&lv[0], &lv[1], y0, y1);
+}
+#endif
 
 void tgi_pushpull_fill_rows(int w, int h, const tgi_rgb *c, void *scratch, int y0, int y1)
 {

@@ -36,4 +36,19 @@ void tgi_pushpull_push_rows(int w, int h, const tgi_rgb *c, void *scratch, int y
 void tgi_pushpull_levels(int w, int h, void *scratch);
 void tgi_pushpull_fill_rows(int w, int h, const tgi_rgb *c, void *scratch, int y0, int y1);
 
+#if !TG_OUTLINE_HELPERS /* (builds for size keep levels one step) */
+/* levels in three steps, the first and last row-parallel (the same bits
+ * for any split): the larger two levels' share of the work over rows
+ * (cornell 320x240, float: 2.3M instructions of the 3.1M a frame):
+ *   push2_rows     level 2's rows [y0, y1) pushed from level 1;
+ *   levels_coarse  levels 3.. pushed, then pulled back to level 2;
+ *   pull1_rows     level 1's rows [y0, y1) pulled from level 2.
+ * tgi_pushpull_level_rows: the rows of level 1 or 2 (0 when the chain
+ * has no such level: then its steps do nothing). */
+int tgi_pushpull_level_rows(int w, int h, int level);
+void tgi_pushpull_push2_rows(int w, int h, void *scratch, int y0, int y1);
+void tgi_pushpull_levels_coarse(int w, int h, void *scratch);
+void tgi_pushpull_pull1_rows(int w, int h, void *scratch, int y0, int y1);
+#endif
+
 #endif
