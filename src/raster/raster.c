@@ -1330,7 +1330,11 @@ enum { V_INSIDE = 1, V_RIGHT = 2, V_LEFT = 4, V_TOP = 8, V_BOTTOM = 16 };
 /* The vertex cache's size (see vertex_cache below). */
 #if UINTPTR_MAX > 0xFFFFFFFFu && !TG_OUTLINE_HELPERS
 #define VCACHE_BIG 1
+#if TG_FIXED
 #define VCACHE_BITS 10
+#else
+#define VCACHE_BITS 11            /* float's 20-byte entries: 2048 in 64 KB */
+#endif
 #else
 #define VCACHE_BIG 0
 #define VCACHE_BITS 4
@@ -1545,12 +1549,15 @@ static void gbuffer_wide_triangle(const raster_target *rt, const view_frame *vf,
  * gives back the same view_vertex without transforming it again.  A hit
  * is the entry view_vertex_make made from the same bits: the same vertex
  * whatever the cache's size or hash.
- * On a 64-bit host outside size builds (VCACHE_BIG) it has 1024 entries
- * (32 KB of stack in float, 52 KB in Q16.16): a grid of quads, row by
- * row (a tessellated sphere's rings), meets each vertex again a row
+ * On a 64-bit host outside size builds (VCACHE_BIG) it has 2048 entries
+ * in float (64 KB of stack), 1024 in Q16.16 (52 KB): a grid of quads, row
+ * by row (a tessellated sphere's rings), meets each vertex again a row
  * later, after a row's worth of others, which 16 entries never keep
  * (bench_raster's sphere of 224 slices: 56,285 transforms a frame for
- * 25,203 vertices; 33,941 with 1024).  Its hash and keys are 64-bit,
+ * 25,203 vertices; 33,941 with 1024, 30,009 with 2048: callgrind
+ * bench_raster 320x240 25.08M -> 24.63M a frame, 1280x720 56.27M ->
+ * 55.82M; Q16.16's 2048 would take 104 KB, near musl's 128 KB thread
+ * stacks, for 32.93M -> 32.17M and 81.65M -> 80.89M).  Its hash and keys are 64-bit,
  * x and y in one word (two multiplies and a compare fewer than three
  * 32-bit keys).  (The 32-bit hash sum(k_i c_i), c_i odd, put (x, y, z)
  * and (-x, y, -z), a ring's opposite points, on one entry: the two sign
