@@ -165,13 +165,11 @@ static inline void unit_memo_start(hbil_unit_memo *m) { m->d.x = INT32_MIN; }
  * frames, 520.18M -> 516.92M but columns 214.29M -> 214.79M; with that out
  * of line, rejection_ramp_unit, it pays in both.) */
 #define HBIL_REJECT_MEMO (!TG_OUTLINE_HELPERS && !TG_WIDE_STORAGE && !TG_NO_COLOR)
-/* A sender normal by its stored code in image g, its octahedral direction
- * d, |d|^2 and d's dot products with the camera's right, up and forward
- * axes (rejection_weight_m's tests; the key g, word for
- * rejection_weight_memo) */
+/* A sender normal by its stored code (key: reject_memo_key), its
+ * octahedral direction d, |d|^2 and d's dot products with the camera's
+ * right, up and forward axes (rejection_weight_m's tests) */
 typedef struct hbil_reject_memo {
-    const tgi_gview *g;
-    uint32_t word;
+    uint32_t key;
     tgi_oct_dir d;
 #if TG_FIXED
     int32_t n2;
@@ -181,8 +179,19 @@ typedef struct hbil_reject_memo {
 #endif
 } hbil_reject_memo;
 #if HBIL_REJECT_MEMO
-/* A memo that holds no normal yet (no image is NULL) */
-static inline void reject_memo_start(hbil_reject_memo *m) { m->g = NULL; m->word = 0; }
+/* A memo that holds no normal yet (no key is all ones: reject_memo_key) */
+static inline void reject_memo_start(hbil_reject_memo *m) { m->key = UINT32_MAX; }
+/* The key of sender si of image g: its stored code (tgi_gv_normal_word),
+ * below 2^22 (TGI_NORMAL_MASK) with materials, and 2^22 plus the 16-bit
+ * code without (tgi_gb_has_material: the 8-bit octahedral pair), so equal
+ * keys are equal codes of one storage form, which tgi_gv_normal_dir
+ * decodes alike in any image.  (Keyed by the image and the code, the
+ * memo missed at every change between the sub-image's senders and the
+ * fine image's, refine_fine's gather and the march's after it.) */
+static inline uint32_t reject_memo_key(const tgi_gview *g, size_t si)
+{
+    return tgi_gv_normal_word(g, si) | (uint32_t)!tgi_gb_has_material(&g->store) << TGI_MATERIAL_SHIFT;
+}
 #endif
 
 /* ---- per-call constants ---- */
@@ -830,7 +839,7 @@ static HBIL_INLINE tg_real rejection_weight_m(const hbil_ctx *c, const hbil_reje
 }
 #if HBIL_REJECT_MEMO
 /* rejection_weight_m of sender si of image g, M^T n and |n|^2 kept for the
- * sender's stored code (tgi_gv_normal_word; equal codes of one image,
+ * sender's stored code (reject_memo_key; equal codes of one storage form,
  * equal normals): a flat surface's senders repeat it, and then a rise
  * takes three products for f, not the octahedral fold and twelve
  * (cornell 160x120, 2 frames: Q16.16 723.31M -> 713.04M, columns 314.99M
@@ -838,10 +847,9 @@ static HBIL_INLINE tg_real rejection_weight_m(const hbil_ctx *c, const hbil_reje
 static HBIL_INLINE tg_real rejection_weight_memo(const hbil_ctx *c, const tgi_gview *g, size_t si, tg_vec3 dir)
 {
     hbil_reject_memo *const m = c->reject_memo;
-    const uint32_t word = tgi_gv_normal_word(g, si);
-    if (word != m->word || g != m->g) {
-        m->g = g;
-        m->word = word;
+    const uint32_t key = reject_memo_key(g, si);
+    if (key != m->key) {
+        m->key = key;
         reject_memo_fill(c, m, tgi_gv_normal_dir(g, si));
     }
     return rejection_weight_m(c, m, dir);
