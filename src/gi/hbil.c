@@ -149,7 +149,10 @@ void tgi_hbil_defaults(tgi_hbil_params *p)
  * for size (TG_OUTLINE_HELPERS) keeps the one test, and not the bound. */
 #define HBIL_Q_NEAR TGI_Q16_WIDE
 
-#if TGI_Q16_WIDE
+/* The call's last normalised sender normal kept (rejection_ramp_oct), not
+ * compiling for size */
+#define HBIL_UNIT_MEMO (!TG_OUTLINE_HELPERS)
+#if HBIL_UNIT_MEMO
 /* An octahedral direction and its unit vector (rejection_ramp_oct) */
 typedef struct hbil_unit_memo {
     tgi_oct_dir d;
@@ -163,7 +166,8 @@ static inline void unit_memo_start(hbil_unit_memo *m) { m->d.x = INT32_MIN; }
  * sender normal's products kept; not compiling for size.  (Float took it
  * at first with the ramp's normalisation inlined: cornell 160x120, 2
  * frames, 520.18M -> 516.92M but columns 214.29M -> 214.79M; with that out
- * of line, rejection_ramp_unit, it pays in both.) */
+ * of line, rejection_ramp_unit then, rejection_ramp_oct now, it pays in
+ * both.) */
 #define HBIL_REJECT_MEMO (!TG_OUTLINE_HELPERS && !TG_WIDE_STORAGE && !TG_NO_COLOR)
 /* A sender normal by its stored code (key: reject_memo_key), its
  * octahedral direction d, |d|^2 and d's dot products with the camera's
@@ -211,7 +215,7 @@ typedef struct hbil_ctx {
     tg_real ramp_d;             /* b - a where a < b and it fits (ramp_init), else 0 */
 #endif
     int reject_fast;            /* rejection_weight's tests without the normalisation apply */
-#if TGI_Q16_WIDE
+#if HBIL_UNIT_MEMO
     hbil_unit_memo *memo;       /* the call's last normalised sender normal (rejection_ramp_oct; tgi_hbil_rows' local) */
 #endif
 #if HBIL_REJECT_MEMO
@@ -720,7 +724,7 @@ static void rejection_init(hbil_ctx *c, tg_real a, tg_real b)
 }
 #endif
 
-#if TGI_Q16_WIDE
+#if HBIL_UNIT_MEMO
 /* rejection_ramp of the stored normal, the normalisation out of line too:
  * off the march's registers, where gather_rise is inlined.  The call's
  * last normalised direction and its unit vector are kept (c->memo, a
@@ -730,12 +734,14 @@ static void rejection_init(hbil_ctx *c, tg_real a, tg_real b)
  * of the last (a flat surface's, the common case) takes the same unit
  * vector without the integer rsqrt, ~70 instructions (cornell 160x120,
  * 2 frames: Q16.16 746.43M -> 740.80M; with the memo in hbil_side, set
- * at each side_init, 745.35M, and columns +0.2M).  The direction n and
+ * at each side_init, 745.35M, and columns +0.2M); float's, without the
+ * conversions and the rsqrt, ~35 (499.87M -> 498.22M; it was
+ * rejection_ramp_unit, which decoded at every call).  The direction n and
  * dir as six scalars: as two 12-byte structs gcc packed them into
  * registers at every rise, before the tests that make the call rare
  * (cornell 160x120, 2 frames, Q16.16 710.04M -> 707.72M, columns 314.49M
  * -> 314.45M; dir's alone 707.93M but columns 314.56M, dir by address
- * 710.10M). */
+ * 710.10M; float 520.18M -> 518.99M, columns 214.29M -> 213.72M). */
 static HBIL_NOINLINE tg_real rejection_ramp_oct(const hbil_ctx *c, int32_t nx, int32_t ny, int32_t nz, tg_real dx, tg_real dy, tg_real dz)
 {
     hbil_unit_memo *const m = c->memo;
@@ -744,20 +750,6 @@ static HBIL_NOINLINE tg_real rejection_ramp_oct(const hbil_ctx *c, int32_t nx, i
         m->n = tgi_oct_unit(m->d);
     }
     return rejection_ramp(c, m->n, tg_v3(dx, dy, dz));
-}
-#endif
-
-#if !TGI_Q16_WIDE && !TG_OUTLINE_HELPERS
-/* Float: rejection_ramp of the stored normal, its normalisation out of
- * line, the direction n and dir as six scalars (as rejection_ramp_oct;
- * cornell 160x120, 2 frames, float 520.18M -> 518.99M, columns 214.29M
- * -> 213.72M: three stores of dir a rise fewer, the call's set-up on the
- * rare path) */
-static HBIL_NOINLINE tg_real rejection_ramp_unit(const hbil_ctx *c, int32_t nx, int32_t ny, int32_t nz, tg_real dx, tg_real dy, tg_real dz)
-{
-    tgi_oct_dir n;
-    n.x = nx; n.y = ny; n.z = nz;
-    return rejection_ramp(c, tgi_oct_unit(n), tg_v3(dx, dy, dz));   /* tgi_gv_normal's n_s, the word decoded once */
 }
 #endif
 
@@ -829,10 +821,8 @@ static HBIL_INLINE tg_real rejection_weight_m(const hbil_ctx *c, const hbil_reje
         if (ff >= c->reject_hi2 * m->n2) return TG_ONE;          /* the common case first */
         if (ff <= c->reject_lo2 * m->n2) return 0;
     }
-#if TGI_Q16_WIDE
+#if HBIL_UNIT_MEMO
     return rejection_ramp_oct(c, m->d.x, m->d.y, m->d.z, dir.x, dir.y, dir.z);
-#elif !TG_OUTLINE_HELPERS
-    return rejection_ramp_unit(c, m->d.x, m->d.y, m->d.z, dir.x, dir.y, dir.z);
 #else
     return rejection_ramp(c, tgi_oct_unit(m->d), dir);   /* tgi_gv_normal's n_s, the word decoded once */
 #endif
@@ -869,11 +859,11 @@ static tg_real rejection_weight(const hbil_ctx *c, tgi_oct_dir n, tg_vec3 dir)
 tg_real tgi_hbil_rejection_weight(const tgi_view *v, tg_real a, tg_real b, tgi_oct_dir n, tg_vec3 dir, int tests)
 {
     hbil_ctx c;
-#if TGI_Q16_WIDE
+#if HBIL_UNIT_MEMO
     hbil_unit_memo m;
 #endif
     memset(&c, 0, sizeof c);
-#if TGI_Q16_WIDE
+#if HBIL_UNIT_MEMO
     unit_memo_start(&m);
     c.memo = &m;
 #endif
@@ -2430,13 +2420,13 @@ void tgi_hbil_rows(const tgi_hbil_params *p, const tgi_gview *g, const tgi_rgb *
     hbil_ctx c;
     hbil_pixel px;
     int x, y;
-#if TGI_Q16_WIDE
+#if HBIL_UNIT_MEMO
     hbil_unit_memo memo;
 #endif
 #if HBIL_REJECT_MEMO
     hbil_reject_memo reject_memo;
 #endif
-#if TGI_Q16_WIDE
+#if HBIL_UNIT_MEMO
     unit_memo_start(&memo);
     c.memo = &memo;
 #endif
