@@ -1943,7 +1943,10 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
     const int fb0 = r * (major_x ? px->y : px->x) + (major_x ? c->fine_j : c->fine_i);
     const int room = dir > 0 ? (major_x ? fg->width : fg->height) - 1 - fa0 : fa0;       /* fine pixels to the edge */
     const int sub_room = dir > 0 ? (major_x ? c->g->width : c->g->height) - 1 - a0 : a0;
-#if TG_FIXED
+#if TGI_Q16_WIDE
+    /* tg_mul(extent, tg_from_int(r)) saturated, floored: below */
+    const int64_t ext_floor = ((int64_t)mr->extent * r) >> 16;                          /* fine pixels */
+#elif TG_FIXED
     /* tg_mul(extent, tg_from_int(r)): the raw product e r 2^16 is a
      * multiple of 2^16, its rounding shift exact: e r, saturated */
     const tg_real ext = tgi_sat64((int64_t)mr->extent * r);                              /* fine pixels */
@@ -1959,7 +1962,14 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
      * bound, which a NaN takes too) times |u| <= 1, so 0 <= ext <= 2^14 r
      * here (cornell 160x120: -0.2% of the float frame; Q16.16's
      * tg_to_int is the floor alone) */
-#if TG_FIXED
+#if TGI_Q16_WIDE
+    /* Q16.16 (not for size): ext's floor from the unsaturated product,
+     * without the test of ext < 0: e r >= 0 (0 <= ext, above; and a
+     * negative floor would end every run as -1 does: each starts at 1 or
+     * more), and where tgi_sat64 would cut e r (raw at or past 2^31) the
+     * floor, 2^15 - 1 or more either way, is cut to room < 2^14 */
+    const int tmax = ext_floor < room ? (int)ext_floor : room;
+#elif TG_FIXED
     const int tmax = ext < 0 ? -1 : tg_to_int(ext) < room ? tg_to_int(ext) : room;
 #else
     const int tmax = ext < 0 ? -1 : floor_small(ext) < room ? floor_small(ext) : room;
