@@ -1972,7 +1972,7 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
 #elif TG_FIXED
     const int tmax = ext < 0 ? -1 : tg_to_int(ext) < room ? tg_to_int(ext) : room;
 #else
-    const int tmax = ext < 0 ? -1 : floor_small(ext) < room ? floor_small(ext) : room;
+    const int tmax = floor_small(ext) < room ? floor_small(ext) : room;   /* 0 <= ext: no test of ext < 0, as Q16.16's */
 #endif
     const int climb = sd->peak_a >= 0 && r < HBIL_SPARSE_RATIO;   /* the peak's span by fine_climb */
     hbil_fine_best best;
