@@ -701,6 +701,21 @@ static tg_real rejection_ramp(const hbil_ctx *c, tg_vec3 ns, tg_vec3 dir)
     if (c->ramp_d)
         return t <= c->rejection_a ? 0 : t >= c->rejection_b ? TG_ONE : ramp_smoothstep(c->rejection_a, c->ramp_d, t);
 #endif
+#if !TG_FIXED && !TG_OUTLINE_HELPERS
+    /* float with reject_fast's ends, a < b within [-2, 2] (rejection_init),
+     * and a < t < b: tg_smoothstep's operations inline without its tests
+     * (the call, ~19 instructions a ramp: cornell 160x120, 2 frames, float
+     * 496.96M -> 496.17M): t - a <= b - a, both finite and > 0, as rounded
+     * (rounding is monotone), so the quotient lies in (0, 1] and
+     * tg_saturate keeps it */
+    if (c->reject_fast) {
+        tg_real u;
+        if (t <= c->rejection_a) return 0;
+        if (t >= c->rejection_b) return TG_ONE;
+        u = tg_div(tg_sub(t, c->rejection_a), tg_sub(c->rejection_b, c->rejection_a));
+        return tg_mul(tg_mul(u, u), tg_sub(TG_R(3.0f), tg_add(u, u)));
+    }
+#endif
     if (c->rejection_b > c->rejection_a)
         return t <= c->rejection_a ? 0 : t >= c->rejection_b ? TG_ONE : tg_smoothstep(c->rejection_a, c->rejection_b, t);
     return tg_smoothstep(c->rejection_a, c->rejection_b, t);
