@@ -1547,10 +1547,30 @@ static inline void march_samples(
      * (a flag, rose, cleared at every sample and kept in memory: cornell
      * 160x120, 2 frames, float 528.46M -> 527.40M, Q16.16 751.54M ->
      * 750.58M; k == k_after, k_after = k + 1 at a rise, took Q16.16 to
-     * 753.49M, the march's registers) */
+     * 753.49M, the march's registers).  Q16.16 (not for size) counts the
+     * samples by a itself, up to a_end = run->a + n da (|n da| <= extent +
+     * m < 2^15: no overflow), without k: the first sample is a == a_first,
+     * and a_rose, the last rise's a (run->a - da before the first, which
+     * no sample's a - da is: da != 0), stands for k_rose (cornell 160x120,
+     * 2 frames, Q16.16 695.60M -> 694.86M; float so took 0.07% more). */
+#if TGI_Q16_WIDE
+    int a = run->a, a_rose = run->a - da;
+    const int a_first = run->a + da, a_end = run->a + (n > 0 ? n : 0) * da;
+#define HBIL_FIRST() (a == a_first)
+#define HBIL_AFTER_RISE() (a - da == a_rose)
+#define HBIL_ROSE() (a_rose = a)
+#else
     int k, a = run->a, k_rose = -1;
+#define HBIL_FIRST() (k == 1)
+#define HBIL_AFTER_RISE() (k - 1 == k_rose)
+#define HBIL_ROSE() (k_rose = k)
+#endif
     ptrdiff_t sa_major = (ptrdiff_t)a * smaj;
+#if TGI_Q16_WIDE
+    while (a != a_end) {
+#else
     for (k = 1; k <= n; k++) {
+#endif
         int b0;
         ptrdiff_t sa;
         tg_real f, z1, sx, sy, za, zb, cn, inv_len;
@@ -1590,9 +1610,9 @@ static inline void march_samples(
 #if !TG_NO_FINE_HORIZON
             /* the side's first sample (refine_fine); beyond is 0 from
              * side_init and set nowhere else, so only a sample beyond the
-             * radius tests k: the horizon test's failures (most samples)
+             * radius tests k (a): the horizon test's failures (most samples)
              * go on without it */
-            if (cn == HBIL_BEYOND && k == 1 && run == &mr->run) sd->beyond = 1;
+            if (cn == HBIL_BEYOND && HBIL_FIRST() && run == &mr->run) sd->beyond = 1;
 #endif
             continue;
         }
@@ -1609,8 +1629,8 @@ static inline void march_samples(
 #endif
         if (NEAR_FIELD(c))
             GATHER_RISE(c, sl, sd, side, cn, sample_dir(d, inv_len),
-                        g, rad, f < TG_R(0.5f) ? sa : sa + smin, k - 1 == k_rose, 1);   /* the nearest pixel; right after a rise */
-        k_rose = k;
+                        g, rad, f < TG_R(0.5f) ? sa : sa + smin, HBIL_AFTER_RISE(), 1);   /* the nearest pixel; right after a rise */
+        HBIL_ROSE();
     }
 #if TGI_Q16_WIDE
     sd->h = h;
@@ -1618,6 +1638,9 @@ static inline void march_samples(
     sd->hs = hs;
 #endif
 #undef HBIL_SMAJOR
+#undef HBIL_FIRST
+#undef HBIL_AFTER_RISE
+#undef HBIL_ROSE
 }
 
 /* march_samples along the major axis major_x: a copy per axis, or the one copy */
