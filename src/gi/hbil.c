@@ -1542,6 +1542,12 @@ static inline void march_samples(
      * 772.15M -> 771.52M); float computed so took 0.1% more (the integer's
      * conversion), there it is stepped. */
 #if TGI_Q16_WIDE
+    /* ox = minor - mo, not stepped: in Q16.16 both are integers stepped
+     * by the same dminor without rounding or saturation (|minor|, |ox| <
+     * 2^14 px), so their difference stays mo, the pixel's own minor
+     * coordinate (march_side's run, and march_run's: minor - ox kept),
+     * below 2^13 px (cornell 160x120 Q16.16 688.84M -> 688.24M) */
+    const tg_real mo = minor - ox;
     const int a_origin = run->a + back;
 #define HBIL_SMAJOR() small_from_int(a - a_origin)
 #else
@@ -1583,7 +1589,11 @@ static inline void march_samples(
         tg_real f, z1, sx, sy, za, zb, cn, inv_len;
         tgi_wide d[3];
         minor = (tg_real)((tgi_wide)minor + dminor);           /* |minor|, |ox| < 2^14 px: no saturation */
+#if TGI_Q16_WIDE
+        ox = minor - mo;
+#else
         ox = (tg_real)((tgi_wide)ox + dminor);
+#endif
 #if !TGI_Q16_WIDE
         smajor = (tg_real)((tgi_wide)smajor + dmajor);
 #endif
