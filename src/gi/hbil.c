@@ -1339,7 +1339,14 @@ static inline int depths_close(tg_real za, tg_real zb)
     return zb > (za >> 2) && za > (zb >> 2);
 #endif
 #else
-    return tgi_wide_mul(HBIL_LERP_MAX_RATIO, zb) > za && tgi_wide_mul(HBIL_LERP_MAX_RATIO, za) > zb;
+    /* one test, of the smaller: with za > 0, 4 zb > za holds where zb >=
+     * za and 4 za > zb where za > zb, so the test that can fail is the
+     * smaller's times 4 against the larger; the same answer for every zb
+     * (a NaN: both forms false; zb <= 0: min zb, false; infinities: 4 inf
+     * > inf false in both; 4 min rounds to infinity only at min >= 2^126,
+     * where both hold).  Cornell 160x120 float 501.96M -> 499.89M (the
+     * fine runs' copies too) */
+    return tgi_wide_mul(HBIL_LERP_MAX_RATIO, tg_min(za, zb)) > tg_max(za, zb);
 #endif
 }
 
