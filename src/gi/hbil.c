@@ -1570,14 +1570,14 @@ static inline void march_samples(
      * 753.49M, the march's registers).  Not compiling for size, the
      * samples are counted by a itself, up to a_end = run->a + n da (|n da|
      * <= extent + m < 2^15: no overflow), without k: the first sample is a
-     * == a_first, and a_rose, the last rise's a (run->a - da before the
+     * == run->a + da, and a_rose, the last rise's a (run->a - da before the
      * first, which no sample's a - da is: da != 0), stands for k_rose
      * (cornell 160x120, 2 frames, Q16.16 695.60M -> 694.86M; float, after
      * depths_close's one test, 499.89M -> 499.62M, before it 0.07% more). */
 #if !TG_OUTLINE_HELPERS
     int a = run->a, a_rose = run->a - da;
-    const int a_first = run->a + da, a_end = run->a + (n > 0 ? n : 0) * da;
-#define HBIL_FIRST() (a == a_first)
+    const int a_end = run->a + (n > 0 ? n : 0) * da;
+#define HBIL_FIRST() (a == run->a + da)
 #define HBIL_AFTER_RISE() (a - da == a_rose)
 #define HBIL_ROSE() (a_rose = a)
 #else
