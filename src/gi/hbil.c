@@ -1576,7 +1576,7 @@ static inline void march_samples(
      * depths_close's one test, 499.89M -> 499.62M, before it 0.07% more). */
 #if !TG_OUTLINE_HELPERS
     int a = run->a, a_rose = run->a - da;
-    const int a_end = run->a + (n > 0 ? n : 0) * da;
+    const int a_end = run->a + n * da;   /* n >= 0: march_steps' (extent >= 0, samples >= 1) cut at kmax >= 0, or march_run's k > 0 */
 #define HBIL_FIRST() (a == run->a + da)
 #define HBIL_AFTER_RISE() (a - da == a_rose)
 #define HBIL_ROSE() (a_rose = a)
