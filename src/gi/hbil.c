@@ -1111,6 +1111,7 @@ static HBIL_GATHER_INLINE void gather_rise(const hbil_ctx *c, const hbil_slice *
  * the integer part of the raw value offset by 2^31 into the unsigned
  * range, the same integer as tg_to_int's shift (written as the shift, gcc
  * compiled the march 0.15% longer: cornell 320x240, callgrind). */
+#if !TGI_Q16_WIDE || !TG_NO_FINE_HORIZON   /* unused there (floor_frac_small's guard) */
 static inline int floor_small(tg_real a)
 {
 #if TG_FIXED
@@ -1120,6 +1121,7 @@ static inline int floor_small(tg_real a)
     return (tg_real)i > a ? i - 1 : i;
 #endif
 }
+#endif
 
 /* tg_to_int of a value known finite and within [0, 2^14 + 2] (each use
  * says why): in float floor_small, without tg_to_int's NaN and range
@@ -1167,6 +1169,7 @@ static int march_steps(const hbil_ctx *c, tg_real extent, int *n)
  * again: cornell 160x120 float 530.83M -> 530.31M, Q16.16 754.48M ->
  * 752.06M, its fine_run computing f before the image test; --gi-quarter
  * 320x240 float 1000.22M -> 997.59M, Q16.16's kernel the same). */
+#if !TGI_Q16_WIDE || !TG_NO_FINE_HORIZON   /* Q16.16's march takes its own form (march_samples): fine_run's alone */
 static inline int floor_frac_small(tg_real a, tg_real *f)
 {
 #if TG_FIXED
@@ -1183,6 +1186,7 @@ static inline int floor_frac_small(tg_real a, tg_real *f)
     return i;
 #endif
 }
+#endif
 
 /* The sample's offset from the pixel, its squared length and its dot with
  * w_o (march_samples) in tgi_wide (core/real.h), which does not saturate.  The bounds that
