@@ -1111,7 +1111,11 @@ static HBIL_GATHER_INLINE void gather_rise(const hbil_ctx *c, const hbil_slice *
  * the integer part of the raw value offset by 2^31 into the unsigned
  * range, the same integer as tg_to_int's shift (written as the shift, gcc
  * compiled the march 0.15% longer: cornell 320x240, callgrind). */
-#if !TGI_Q16_WIDE || !TG_NO_FINE_HORIZON   /* unused there (floor_frac_small's guard) */
+/* Its users: the fine refinement (refine_fine, and fine_run through
+ * floor_frac_small), EXTENT_TO_INT in float not compiling for size, and
+ * the march's floor_frac_small in Q16.16 compiling for size; without the
+ * fine horizon, float for size and Q16.16's wide march have none */
+#if !TG_NO_FINE_HORIZON || (TG_FIXED ? TG_OUTLINE_HELPERS : !TG_OUTLINE_HELPERS)
 static inline int floor_small(tg_real a)
 {
 #if TG_FIXED
