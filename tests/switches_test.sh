@@ -152,8 +152,9 @@ done
 
 # A development build (-Werror in TG_CFLAGS: DEV=1, as CI) compiles each
 # source file of the core on its own, as an embedder's build does, without
-# a warning: every file that names a switch with that switch set, every
-# file with all of them, and every file at -Os (a build for size:
+# a warning: every file that names a switch with that switch set (at -O0
+# and at -Os: clang -Os float with TG_NO_FINE_HORIZON once found hbil.c's
+# floor_small unused), every file with all of them, and every file at -Os (a build for size:
 # TG_OUTLINE_HELPERS's second forms) (the amalgamation above silences clang's unused
 # static functions, which a file on its own shows: a helper used only by
 # code a switch leaves out).  A user's build (no -Werror) skips this: a
@@ -163,17 +164,19 @@ case " $TG_CFLAGS " in
     for num in float fixed; do
         numdef=$(numdef_of "$num-")
         for sw in $SWITCHES all size; do
-            opt=-O0
+            opts="-O0 -Os"   # -Os: a switch with the builds for size's forms too
             case $sw in
-            all)  files=$(ls src/*/*.c); defs=""; for s in $SWITCHES; do defs="$defs -DTG_NO_$s=1"; done ;;
-            size) files=$(ls src/*/*.c); defs=""; opt=-Os ;;   # TG_OUTLINE_HELPERS's forms (tinygi.h)
+            all)  files=$(ls src/*/*.c); defs=""; opts=-O0; for s in $SWITCHES; do defs="$defs -DTG_NO_$s=1"; done ;;
+            size) files=$(ls src/*/*.c); defs=""; opts=-Os ;;   # TG_OUTLINE_HELPERS's forms (tinygi.h)
             *)    files=$(grep -l "TG_NO_$sw\b" src/*/*.c); defs="-DTG_NO_$sw=1" ;;
             esac
             bad=""
             for f in $files; do
-                # shellcheck disable=SC2086
-                $CC $TG_CFLAGS $opt $numdef $defs -Isrc -c "$f" -o "$tmp/alone.o" >"$tmp/alone.log" 2>&1 ||
-                    bad="$bad $f: $(grep -m 1 -E 'error|warning' "$tmp/alone.log")"
+                for opt in $opts; do
+                    # shellcheck disable=SC2086
+                    $CC $TG_CFLAGS $opt $numdef $defs -Isrc -c "$f" -o "$tmp/alone.o" >"$tmp/alone.log" 2>&1 ||
+                        bad="$bad $f ($opt): $(grep -m 1 -E 'error|warning' "$tmp/alone.log")"
+                done
             done
             if [ -z "$bad" ]; then ok "switches/$num-$sw: each file alone compiles without a warning"
             else fail "switches/$num-$sw: each file alone compiles without a warning" "$bad"; fi
