@@ -211,7 +211,7 @@ typedef struct hbil_ctx {
     tg_real cos_phi[HBIL_PATTERN][TG_MAX_SLICES], sin_phi[HBIL_PATTERN][TG_MAX_SLICES];
     tg_real jitter[HBIL_PATTERN];  /* step_jitter per pattern cell */
     tg_real rejection_a, rejection_b;
-#if TGI_Q16_WIDE
+#if !TG_OUTLINE_HELPERS
     tg_real ramp_d;             /* b - a where a < b and it fits (ramp_init), else 0 */
 #endif
     int reject_fast;            /* rejection_weight's tests without the normalisation apply */
@@ -659,29 +659,45 @@ HBIL_EDGE static tg_real sample_depth_edge(const hbil_ctx *c, const tgi_gview *g
 /* The margin of rejection_weight's tests (below). */
 #define HBIL_REJECT_MARGIN TG_R(0.000244140625f)   /* 2^-12 */
 
-#if TGI_Q16_WIDE
+#if !TG_OUTLINE_HELPERS
 /* tg_smoothstep(a, b, x) inside the ramp, a < x < b, with d = b - a
  * fitting tg_real (ramp_init): tg_smoothstep's operations without its
- * tests.  tg_sub(x, a) = x - a in (0, d) and tg_sub(b, a) = d do not
- * saturate; tg_div of u = x - a > 0 by d > 0 is (u 2^16 + d/2) / d, which
- * tgi_div_nonneg gives, at most 2^16 (u < d), so tg_saturate keeps it;
- * then q^2 <= 2^32 rounds to at most 2^16, and 3 - 2q lies in [1, 3]:
- * tg_mul's products (below 2^34) neither saturate, tgi_wide_mul's
- * roundings.  The same bits as tg_smoothstep (tests/test_hbil.c,
- * ramp_smoothstep_is_tg_smoothstep), without the call, the tests and the
- * signs. */
+ * tests and the call (float: ~19 instructions a ramp, cornell 160x120, 2
+ * frames, 496.96M -> 496.17M).  Q16.16: tg_sub(x, a) = x - a in (0, d)
+ * and tg_sub(b, a) = d do not saturate; tg_div of u = x - a > 0 by d > 0
+ * is (u 2^16 + d/2) / d, which tgi_div_nonneg gives, at most 2^16 (u <
+ * d), so tg_saturate keeps it; then q^2 <= 2^32 rounds to at most 2^16,
+ * and 3 - 2q lies in [1, 3]: tg_mul's products (below 2^34) neither
+ * saturate, tgi_wide_mul's roundings.  Float: the same operations on the
+ * same d = b - a, finite and > 0; for a finite x in (a, b), x - a lies in
+ * (0, d] as rounded (rounding is monotone), so the quotient lies in (0, 1]
+ * and tg_saturate would keep it (kept, it took cornell 160x120, 2 frames,
+ * 492.28M -> 492.81M).  The same bits as tg_smoothstep (tests/test_hbil.c,
+ * ramp_smoothstep_is_tg_smoothstep).  (Float had its own inline copy of
+ * these operations beside this one until the thirty-fourth session's
+ * review.) */
 static inline tg_real ramp_smoothstep(tg_real a, tg_real d, tg_real x)
 {
+#if TG_FIXED
     const tg_real q = tgi_div_nonneg(x - a, d);
     return (tg_real)tgi_wide_mul(tgi_wide_mul(q, q), 3 * TG_ONE - 2 * q);
+#else
+    const tg_real q = (x - a) / d;
+    return q * q * (3.0f - (q + q));
+#endif
 }
 
 /* ramp_d: b - a for a < b where the difference fits tg_real, else 0 (the
  * kernel then calls tg_smoothstep) */
 static void ramp_init(hbil_ctx *c)
 {
+#if TG_FIXED
     const int64_t d = (int64_t)c->rejection_b - c->rejection_a;
     c->ramp_d = d > 0 && d <= TG_REAL_MAX ? (tg_real)d : 0;
+#else
+    const tg_real d = c->rejection_b - c->rejection_a;   /* NaN ends: 0 */
+    c->ramp_d = c->rejection_b > c->rejection_a && d <= TG_REAL_MAX ? d : 0;
+#endif
 }
 #endif
 
@@ -697,24 +713,9 @@ static tg_real rejection_ramp(const hbil_ctx *c, tg_vec3 ns, tg_vec3 dir)
                        small_add(small_add(small_mul(v->right.z, dir.x), small_mul(v->up.z, dir.y)), small_mul(v->forward.z, dir.z)));
     t = tg_neg(small_dot_rare(ns, wi));   /* n_s unit, |w_i|'s components below 2: small */
     /* outside the ramp without the call (tg_smoothstep gives 0 and 1 there) */
-#if TGI_Q16_WIDE
+#if !TG_OUTLINE_HELPERS
     if (c->ramp_d)
         return t <= c->rejection_a ? 0 : t >= c->rejection_b ? TG_ONE : ramp_smoothstep(c->rejection_a, c->ramp_d, t);
-#endif
-#if !TG_FIXED && !TG_OUTLINE_HELPERS
-    /* float with reject_fast's ends, a < b within [-2, 2] (rejection_init),
-     * and a < t < b: tg_smoothstep's operations inline without its tests
-     * (the call, ~19 instructions a ramp: cornell 160x120, 2 frames, float
-     * 496.96M -> 496.17M): t - a <= b - a, both finite and > 0, as rounded
-     * (rounding is monotone), so the quotient lies in (0, 1] and
-     * tg_saturate keeps it */
-    if (c->reject_fast) {
-        tg_real u;
-        if (t <= c->rejection_a) return 0;
-        if (t >= c->rejection_b) return TG_ONE;
-        u = tg_div(tg_sub(t, c->rejection_a), tg_sub(c->rejection_b, c->rejection_a));
-        return tg_mul(tg_mul(u, u), tg_sub(TG_R(3.0f), tg_add(u, u)));
-    }
 #endif
     if (c->rejection_b > c->rejection_a)
         return t <= c->rejection_a ? 0 : t >= c->rejection_b ? TG_ONE : tg_smoothstep(c->rejection_a, c->rejection_b, t);
@@ -730,7 +731,7 @@ static void rejection_init(hbil_ctx *c, tg_real a, tg_real b)
     const tg_real lo = tg_sub(a, HBIL_REJECT_MARGIN), hi = tg_add(b, HBIL_REJECT_MARGIN);
     c->rejection_a = a;
     c->rejection_b = b;
-#if TGI_Q16_WIDE
+#if !TG_OUTLINE_HELPERS
     ramp_init(c);
 #endif
     c->reject_fast = b > a && lo >= TG_R(-2.0f) && hi <= TG_R(2.0f);
@@ -2484,7 +2485,7 @@ static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, 
 #else
     c->rejection_a = p->rejection_a;
     c->rejection_b = p->rejection_b;
-#if TGI_Q16_WIDE
+#if !TG_OUTLINE_HELPERS
     ramp_init(c);
 #endif
     c->reject_fast = 0;
