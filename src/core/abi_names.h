@@ -91,6 +91,7 @@
 #define tgi_hbao_rows TG_ABI(tgi_hbao_rows)
 #define tgi_hbil_block_jitter TG_ABI(tgi_hbil_block_jitter)
 #define tgi_hbil_defaults TG_ABI(tgi_hbil_defaults)
+#define tgi_hbil_dirs_init TG_ABI(tgi_hbil_dirs_init)
 #define tgi_hbil_interleaved_rows TG_ABI(tgi_hbil_interleaved_rows)
 #define tgi_hbil_pattern TG_ABI(tgi_hbil_pattern)
 #define tgi_hbil_rejection_weight TG_ABI(tgi_hbil_rejection_weight)

@@ -63,8 +63,15 @@ void tgi_pass_hbil_interleaved(tg_frame *f, int y0, int y1)
     const tgi_rgb *source;
     const tgi_gview *k = tgi_frame_kernel(f, &res, &source);
     int i, j;
+#if !TG_OUTLINE_HELPERS   /* not compiling for size: the 16 sub-images' calls share one table */
+    tgi_hbil_dirs dirs;
+#endif
     hbil_params(f, &p);
     p.pattern_scale = k->step;
+#if !TG_OUTLINE_HELPERS
+    tgi_hbil_dirs_init(&dirs, &p);
+    p.dirs = &dirs;
+#endif
 #if !TG_NO_FINE_HORIZON
     p.fine = &f->full;          /* the horizons are refined on the full-resolution pixels (gi/hbil.c) */
     p.fine_radiance = tgi_frame_source(f);

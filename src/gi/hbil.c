@@ -208,8 +208,7 @@ typedef struct hbil_ctx {
     int slices, samples, step, full_w, full_h;
     tg_real ppu, inv_ppu, inv_step, pi_over_s;
     tg_real p0z;                /* ppu / step: the z of P0 in the march's units (march_side) */
-    tg_real cos_phi[HBIL_PATTERN][TG_MAX_SLICES], sin_phi[HBIL_PATTERN][TG_MAX_SLICES];
-    tg_real jitter[HBIL_PATTERN];  /* step_jitter per pattern cell */
+    const tgi_hbil_dirs *dirs;  /* per pattern cell: slice directions, step_jitter (p->dirs, or tgi_hbil_rows' local) */
     tg_real rejection_a, rejection_b;
 #if !TG_OUTLINE_HELPERS
     tg_real ramp_d;             /* b - a where a < b and it fits (ramp_init), else 0 */
@@ -2434,9 +2433,9 @@ static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
     acc.er = acc.eg = acc.eb = 0;
 #endif
     pat = tgi_hbil_pattern(X >> PATTERN_SHIFT(c), Y >> PATTERN_SHIFT(c), c->p->rotation);
-    px->jitter = tgi_hbil_block_jitter(c->jitter[pat], X >> 2, Y >> 2, c->p->rotation);
+    px->jitter = tgi_hbil_block_jitter(c->dirs->jitter[pat], X >> 2, Y >> 2, c->p->rotation);
     for (s = 0; s < c->slices; s++)
-        slice_run(c, px, c->cos_phi[pat][s], c->sin_phi[pat][s], &acc);
+        slice_run(c, px, c->dirs->cos_phi[pat][s], c->dirs->sin_phi[pat][s], &acc);
     ao = tg_saturate(tg_sub(TG_ONE, tg_div(acc.occlusion, tg_from_int(c->slices))));
     tgi_gr_set_ao(out, i, ao);
     if (HAS_CONE(out)) tgi_gr_set_cone(out, i, tgi_cone_angle_from_ao(ao));   /* not eq. 12: sh.h */
@@ -2457,16 +2456,37 @@ static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
                                       tg_mul(acc.eb, c->pi_over_s)));
 }
 
-static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, const tgi_rgb *radiance,
-                     const tgi_gresult *out)
+static int clamp_slices(int slices)
 {
+    return slices < 1 ? 1 : slices > TG_MAX_SLICES ? TG_MAX_SLICES : slices;
+}
+
+void tgi_hbil_dirs_init(tgi_hbil_dirs *d, const tgi_hbil_params *p)
+{
+    const int slices = clamp_slices(p->slices);
+    const tg_real pi_over_s = tg_div(TG_PI, tg_from_int(slices));
     int pat, s;
+    for (pat = 0; pat < HBIL_PATTERN; pat++) {
+        tg_real phi0 = tgi_hbil_slice_phi0(pat & 3, pat >> 2, slices, p->rotation);
+        d->jitter[pat] = tgi_hbil_step_jitter(pat & 3, pat >> 2, p->rotation);
+        for (s = 0; s < slices; s++) {
+            tg_real phi = tg_add(phi0, tg_mul(pi_over_s, tg_from_int(s)));
+            d->cos_phi[pat][s] = tg_cos(phi);
+            d->sin_phi[pat][s] = tg_sin(phi);
+        }
+    }
+}
+
+/* own: the table's room when p->dirs is NULL */
+static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, const tgi_rgb *radiance,
+                     const tgi_gresult *out, tgi_hbil_dirs *own)
+{
     c->p = p;
     c->g = g;
     c->v = g->camera;
     c->rad = radiance;
     c->out = out;
-    c->slices = p->slices < 1 ? 1 : p->slices > TG_MAX_SLICES ? TG_MAX_SLICES : p->slices;
+    c->slices = clamp_slices(p->slices);
     c->samples = p->samples < 1 ? 1 : p->samples;
     c->step = g->step < 1 ? 1 : g->step;
     c->full_w = c->v->width;
@@ -2507,21 +2527,15 @@ static void ctx_init(hbil_ctx *c, const tgi_hbil_params *p, const tgi_gview *g, 
 #if !TG_NO_GI_QUARTER
     c->pattern_shift = p->pattern_scale > 1;   /* --gi-quarter's half-resolution image */
 #endif
-    for (pat = 0; pat < HBIL_PATTERN; pat++) {
-        tg_real phi0 = tgi_hbil_slice_phi0(pat & 3, pat >> 2, c->slices, p->rotation);
-        c->jitter[pat] = tgi_hbil_step_jitter(pat & 3, pat >> 2, p->rotation);
-        for (s = 0; s < c->slices; s++) {
-            tg_real phi = tg_add(phi0, tg_mul(c->pi_over_s, tg_from_int(s)));
-            c->cos_phi[pat][s] = tg_cos(phi);
-            c->sin_phi[pat][s] = tg_sin(phi);
-        }
-    }
+    if (!p->dirs) tgi_hbil_dirs_init(own, p);
+    c->dirs = p->dirs ? p->dirs : own;
 }
 
 void tgi_hbil_rows(const tgi_hbil_params *p, const tgi_gview *g, const tgi_rgb *radiance,
                    const tgi_gresult *out, int y0, int y1)
 {
     hbil_ctx c;
+    tgi_hbil_dirs own;
     hbil_pixel px;
     int x, y;
 #if HBIL_UNIT_MEMO
@@ -2540,7 +2554,7 @@ void tgi_hbil_rows(const tgi_hbil_params *p, const tgi_gview *g, const tgi_rgb *
 #endif
     if (y0 < 0) y0 = 0;
     if (y1 > g->height) y1 = g->height;
-    ctx_init(&c, p, g, radiance, out);
+    ctx_init(&c, p, g, radiance, out, &own);
     for (y = y0; y < y1; y++) {
         for (x = 0; x < g->width; x++) {
             int i = (int)tgi_gv_index(g, x, y);
@@ -2556,6 +2570,15 @@ void tgi_hbil_interleaved_rows(const tgi_hbil_params *p, const tgi_gview *k, con
                                const tgi_rgb *radiance, const tgi_gresult *out, int y0, int y1)
 {
     int i, j;
+#if !TG_OUTLINE_HELPERS   /* not compiling for size: the 16 calls share one table */
+    tgi_hbil_dirs dirs;
+    tgi_hbil_params q = *p;
+    if (!q.dirs) {
+        tgi_hbil_dirs_init(&dirs, p);
+        q.dirs = &dirs;
+    }
+    p = &q;
+#endif
     for (j = 0; j < 4; j++)
         for (i = 0; i < 4; i++) {
             tgi_hbil_params ps = *p;

@@ -67,6 +67,8 @@
 #include "../tinygi.h"
 #include "../raster/gview.h"
 
+struct tgi_hbil_dirs;
+
 typedef struct tgi_hbil_params {
     int slices, samples;      /* per pixel; defaults TG_DEFAULT_SLICES, TG_DEFAULT_SAMPLES; slices clamped to [1, TG_MAX_SLICES] */
     tg_real radius;           /* world units; projected to pixels, the march stops at the screen's edge */
@@ -83,7 +85,25 @@ typedef struct tgi_hbil_params {
                                * each side is refined there (hbil.c, refine_fine); NULL: none */
     const tgi_rgb *fine_radiance; /* the radiance indexed like fine; NULL: the refinement's
                                * bands take the radiance gathered before them */
+    const struct tgi_hbil_dirs *dirs; /* tgi_hbil_dirs_init's table for these slices and
+                               * rotation, shared by the calls of a pass; NULL (the
+                               * default): each call computes its own */
 } tgi_hbil_params;
+
+/* The 4x4 pattern's per-cell constants for a count of slices and a
+ * rotation: each cell's slice directions (cos, sin of tgi_hbil_slice_phi0
+ * + s pi / slices) and march offset (tgi_hbil_step_jitter).  They cost
+ * 16 x slices cosines and sines, which a call of tgi_hbil_rows computes
+ * when params.dirs is NULL: a pass that makes many calls with one
+ * slices and rotation (16 sub-images a row range, ranges a frame) computes
+ * the table once and points params.dirs at it (same values, same bits). */
+typedef struct tgi_hbil_dirs {
+    tg_real cos_phi[16][TG_MAX_SLICES], sin_phi[16][TG_MAX_SLICES];
+    tg_real jitter[16];
+} tgi_hbil_dirs;
+/* The table for p's slices (clamped to [1, TG_MAX_SLICES] as the kernel
+ * clamps them) and rotation */
+void tgi_hbil_dirs_init(tgi_hbil_dirs *d, const tgi_hbil_params *p);
 
 /* Defaults: 2 slices, 32 samples, radius 1, rotation 0, the
  * full-resolution pattern, rejection a = 0, b = 0.2. */
