@@ -19,7 +19,7 @@
 #include "../light/sh.h"
 #include "../core/unit.h"
 
-#define HBIL_PATTERN 16
+#define HBIL_PATTERN TGI_HBIL_PATTERN
 /* Smallest n.w_o allowed: normals facing away from the camera are bent
  * toward it (an invalid G-buffer normal; the horizon frame needs n.w_o > 0). */
 #define HBIL_MIN_NDOTV TG_R(0.0078125f)

@@ -97,9 +97,10 @@ typedef struct tgi_hbil_params {
  * when params.dirs is NULL: a pass that makes many calls with one
  * slices and rotation (16 sub-images a row range, ranges a frame) computes
  * the table once and points params.dirs at it (same values, same bits). */
+#define TGI_HBIL_PATTERN 16     /* the 4x4 pattern's cells (tgi_hbil_pattern) */
 typedef struct tgi_hbil_dirs {
-    tg_real cos_phi[16][TG_MAX_SLICES], sin_phi[16][TG_MAX_SLICES];
-    tg_real jitter[16];
+    tg_real cos_phi[TGI_HBIL_PATTERN][TG_MAX_SLICES], sin_phi[TGI_HBIL_PATTERN][TG_MAX_SLICES];
+    tg_real jitter[TGI_HBIL_PATTERN];
 } tgi_hbil_dirs;
 /* The table for p's slices (clamped to [1, TG_MAX_SLICES] as the kernel
  * clamps them) and rotation */
