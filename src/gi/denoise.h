@@ -64,11 +64,21 @@ static inline void tgi_gr_put_kept(const tgi_gresult *r, size_t i, const tgi_gr_
  * value: v below) (TGI_DENOISE_TAPS: the band's entries and 3 more, which stay 0,
  * so that a pixel's entries and the 3 after them are 28, a multiple of 4). */
 #ifndef TGI_DENOISE_BAND
-/* 4 rows: the walk is 2080 bytes of stack in float and 2088 in Q16.16 (its
- * normals' words, and 7 values an entry, not 8), 1360 with 1 row (a build
- * for size, TG_OUTLINE_HELPERS, keeps that, as before: README "Porting"); 8 rows would save half a
- * decode more a pixel for 1 KB more. */
-#define TGI_DENOISE_BAND (TG_OUTLINE_HELPERS ? 1 : 4)
+/* 4 rows on 32-bit cores: the walk is 2080 bytes of stack in float and
+ * 2088 in Q16.16 (its normals' words, and 7 values an entry, not 8), 1360
+ * with 1 row (a build for size, TG_OUTLINE_HELPERS, keeps that, as before:
+ * README "Porting").  16 rows on 64-bit hosts (pointers past 32 bits, as
+ * tinygi.h's TGI_CORE64, which only Q16.16 defines), whose stacks
+ * are large (the rasterizer's vertex cache alone takes 54-65 KB there):
+ * 4960 bytes in float, 4968 in Q16.16, and each pixel decoded (16 + 4) /
+ * 16 times, not (4 + 4) / 4; a thread's row range, which starts its own
+ * bands, is then mostly one band (callgrind, render --size 160x120
+ * --frames 2, --threads 1: cornell float 492.10M -> 489.32M, Q16.16
+ * 677.39M -> 674.13M, columns 211.52M -> 208.59M, 304.58M -> 300.87M;
+ * --threads 2: cornell 494.67M -> 492.72M, 680.62M -> 678.37M, columns
+ * 216.74M -> 214.75M, 311.28M -> 308.74M; 8 rows, 3040 bytes, took about
+ * half of that: 490.21M, 675.17M, 209.38M, 301.88M with one thread). */
+#define TGI_DENOISE_BAND (TG_OUTLINE_HELPERS ? 1 : UINTPTR_MAX > 0xFFFFFFFFu ? 16 : 4)
 #endif
 #define TGI_DENOISE_TAPS ((TGI_DENOISE_BAND + 4) * 5 + 3)
 #define TGI_DENOISE_VALUES 7        /* AO, bent normal x y z, near field r g b */
