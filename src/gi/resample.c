@@ -144,37 +144,52 @@ static const tg_real near_dir[16][2] = {
  * TGI_NEAR_STEPS of them). */
 static const int near_t[16] = { 1, 2, 3, 4, 6, 9, 13, 19, 28, 42, 63, 94, 141, 211, 316, 474 };
 
-/* NEAR_OFF_PAIRS (float, with the index offsets): each march offset of
- * tgi_upsample_start's off[][][][] as a pair of floats in a constant
- * table, which the march inside the image reads with one load an offset
- * (near_off_real's is a sign extension and a load) and multiplies from
- * memory (cornell 320x240 --gi-quarter 2 frames: float 1000.22M ->
- * 992.56M).  The same formula of the same integers: the
- * rounded direction (ux, uy) = round(256 near_dir[c]) of slice 0 (those
- * of slice 1 are (-uy, ux): round(-v) = -round(v), no 256 near_dir[c][k]
- * lies within 0.001 of a half), side 1 the other way, and each t =
- * near_t[n]; tgi_upsample_start checks every pair against off (the
- * inside copy runs only where they agree: u->deltas).  Up to 7 steps
- * (TG_QUARTER_NEAR_REACH <= 16, as NEAR_OFF_TABLE); 3584 bytes of constants,
- * none in a build for size. */
-#define NEAR_OFF_PAIRS (!TG_FIXED && !TG_OUTLINE_HELPERS && TG_QUARTER_NEAR_REACH <= 16 && TGI_NEAR_DELTAS)
+/* NEAR_OFF_CONST: the march offsets of tgi_upsample_start's off[][][][]
+ * as constants.  Offset n of side e of a cell's slice k is
+ * floor((128 + t s) / 256) for t = near_t[n] on either axis of the
+ * rounded direction (ux, uy) = round(256 near_dir[c]) of slice 0, those
+ * of slice 1 (-uy, ux) (round(-v) = -round(v)), side 1 the other way: the
+ * pixel of the sample t pixels along it, stepping in 1/256 pixel from the
+ * pixel's centre; integers alike in both number types (no 256
+ * near_dir[c][k] lies within 0.001 of a half, so float's and Q16.16's
+ * roundings agree: tgi_upsample_start's computation of them from
+ * near_dir, before these, gave every one in both types for each
+ * TG_QUARTER_NEAR_REACH from 1 to 18, and its farthest offset was the
+ * last t).  NEAR_OI
+ * keeps the shift to non-negative numbers (t s >= -256 t).  Up to 7 steps
+ * (TG_QUARTER_NEAR_REACH <= 18); 896 bytes of constants, where
+ * tgi_upsample_start computed them at each call (36K instructions a call,
+ * once a row range of two passes); none in a build for size.
+ *
+ * NEAR_OFF_PAIRS (float, with the index offsets): the same offsets as
+ * pairs of floats, which the march inside the image reads with one load an
+ * offset (near_off_real's is a sign extension and a load) and multiplies
+ * from memory (cornell 320x240 --gi-quarter 2 frames: float 1000.22M ->
+ * 992.56M); 3584 bytes more (TG_QUARTER_NEAR_REACH <= 16, as
+ * NEAR_OFF_TABLE). */
+#define NEAR_OFF_CONST (!TG_OUTLINE_HELPERS && TG_QUARTER_NEAR_REACH >= 1 && TGI_NEAR_STEPS <= 7)
+#define NEAR_OFF_PAIRS (!TG_FIXED && NEAR_OFF_CONST && TG_QUARTER_NEAR_REACH <= 16 && TGI_NEAR_DELTAS)
+#if NEAR_OFF_CONST
+#define NEAR_OI(s, t) ((((128 + (t) * (s) + 256 * ((t) + 1)) >> 8) - ((t) + 1)))
+#define NEAR_OP(T, sx, sy, t) { (T)NEAR_OI(sx, t), (T)NEAR_OI(sy, t) }
+#define NEAR_OS(T, sx, sy) \
+    { NEAR_OP(T, sx, sy, 1), NEAR_OP(T, sx, sy, 2), NEAR_OP(T, sx, sy, 3), NEAR_OP(T, sx, sy, 4), \
+      NEAR_OP(T, sx, sy, 6), NEAR_OP(T, sx, sy, 9), NEAR_OP(T, sx, sy, 13) }
+#define NEAR_OC(T, ux, uy) { NEAR_OS(T, ux, uy), NEAR_OS(T, -(ux), -(uy)), NEAR_OS(T, -(uy), ux), NEAR_OS(T, uy, -(ux)) }
+#define NEAR_CELLS(T) \
+    NEAR_OC(T, 256, 13), NEAR_OC(T, 172, 190), NEAR_OC(T, 248, 62),  NEAR_OC(T, 132, 220), \
+    NEAR_OC(T, 86, 241), NEAR_OC(T, 231, 109), NEAR_OC(T, 38, 253),  NEAR_OC(T, 206, 152), \
+    NEAR_OC(T, 241, 86), NEAR_OC(T, 109, 231), NEAR_OC(T, 253, 38),  NEAR_OC(T, 152, 206), \
+    NEAR_OC(T, 13, 256), NEAR_OC(T, 190, 172), NEAR_OC(T, 62, 248),  NEAR_OC(T, 220, 132)
+static const signed char near_off_const[16][4][7][2] = { NEAR_CELLS(signed char) };
 #if NEAR_OFF_PAIRS
-#define NEAR_O(s, t) ((float)((((128 + (t) * (s) + 256 * ((t) + 1)) >> 8) - ((t) + 1))))
-#define NEAR_OP(sx, sy, t) { NEAR_O(sx, t), NEAR_O(sy, t) }
-#define NEAR_OS(sx, sy) \
-    { NEAR_OP(sx, sy, 1), NEAR_OP(sx, sy, 2), NEAR_OP(sx, sy, 3), NEAR_OP(sx, sy, 4), NEAR_OP(sx, sy, 6), \
-      NEAR_OP(sx, sy, 9), NEAR_OP(sx, sy, 13) }
-#define NEAR_OC(ux, uy) { NEAR_OS(ux, uy), NEAR_OS(-(ux), -(uy)), NEAR_OS(-(uy), ux), NEAR_OS(uy, -(ux)) }
-static const float near_off_pairs[16][4][7][2] = {
-    NEAR_OC(256, 13), NEAR_OC(172, 190), NEAR_OC(248, 62),  NEAR_OC(132, 220),
-    NEAR_OC(86, 241), NEAR_OC(231, 109), NEAR_OC(38, 253),  NEAR_OC(206, 152),
-    NEAR_OC(241, 86), NEAR_OC(109, 231), NEAR_OC(253, 38),  NEAR_OC(152, 206),
-    NEAR_OC(13, 256), NEAR_OC(190, 172), NEAR_OC(62, 248),  NEAR_OC(220, 132)
-};
+static const float near_off_pairs[16][4][7][2] = { NEAR_CELLS(float) };
+#endif
+#undef NEAR_CELLS
 #undef NEAR_OC
 #undef NEAR_OS
 #undef NEAR_OP
-#undef NEAR_O
+#undef NEAR_OI
 #endif
 
 #if TGI_NEAR_DELTAS
@@ -214,11 +229,24 @@ void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_g
     u->shift = tgi_ao_unit_shift(radius);
     u->r2 = tg_sqr(tg_ldexp(radius, u->shift));
     u->above_r = tg_mul(radius, TG_R(0.005f));
+#if NEAR_OFF_CONST
+    /* the constants; the farthest any lies on either axis: the last t (cell
+     * 0's side 0, ux = 256, lies t away on x; |ux|, |uy| <= 256 keep every
+     * offset within [-t, t], near_off_real's note) */
+    u->reach = (short)near_t[TGI_NEAR_STEPS - 1];
+    for (c = 0; c < 16; c++)
+        for (k = 0; k < 4; k++)
+            for (n = 0; n < TGI_NEAR_STEPS; n++) {
+                NEAR_OFF(u, c, k, n)[0] = near_off_const[c][k][n][0];
+                NEAR_OFF(u, c, k, n)[1] = near_off_const[c][k][n][1];
+            }
+    (void)e;
+#else
     /* sample t of side e (k's direction, then against it) of a cell's slice k
      * along the screen direction (ux, uy) / 256 (y down), stepping in 1/256
      * pixel from the pixel's centre (integers alike in both number types):
      * the pixel floor((128 + t u) / 256) away, the shift kept to non-negative
-     * numbers */
+     * numbers (NEAR_OFF_CONST's formula) */
     for (c = 0; c < 16; c++)
         for (k = 0; k < 2; k++) {
             const tg_real *d = near_dir[c];
@@ -234,23 +262,17 @@ void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_g
                     if (dy > u->reach || -dy > u->reach) u->reach = dy > 0 ? dy : -dy;
                 }
         }
+#endif
 #if TGI_NEAR_DELTAS
     /* the index offsets, when every one fits 16 bits (|dx|, |dy| <= reach) */
     u->deltas = (int64_t)u->reach * (abs64(full->row_stride) + abs64(full->pixel_stride)) <= INT16_MAX;
-#if NEAR_OFF_PAIRS
-    /* the inside copy reads near_off_pairs too: only where each is off's */
-    for (c = 0; c < 16 && u->deltas; c++)
-        for (k = 0; k < 4; k++)
-            for (n = 0; n < u->steps; n++)
-                if (near_off_pairs[c][k][n][0] != (float)NEAR_OFF(u, c, k, n)[0]
-                    || near_off_pairs[c][k][n][1] != (float)NEAR_OFF(u, c, k, n)[1])
-                    u->deltas = 0;
-#endif
-    for (c = 0; c < 16 && u->deltas; c++)
-        for (k = 0; k < 4; k++)
-            for (n = 0; n < u->steps; n++)
-                NEAR_DELTA(u, c, k, n) = (int16_t)(NEAR_OFF(u, c, k, n)[1] * full->row_stride
-                                                   + NEAR_OFF(u, c, k, n)[0] * full->pixel_stride);
+    if (u->deltas) {
+        const int rs = (int)full->row_stride, ps = (int)full->pixel_stride;   /* each within INT16_MAX (reach >= 1) */
+        for (c = 0; c < 16; c++)
+            for (k = 0; k < 4; k++)
+                for (n = 0; n < TGI_NEAR_STEPS; n++)
+                    NEAR_DELTA(u, c, k, n) = (int16_t)(NEAR_OFF(u, c, k, n)[1] * rs + NEAR_OFF(u, c, k, n)[0] * ps);
+    }
 #endif
 }
 
