@@ -263,6 +263,32 @@ void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_g
                 }
         }
 #endif
+#if TGI_Q16_WIDE
+    /* Where near_horizon_cos may take a sample's offset from pixel q, h =
+     * (z (kx + ox ax) - p.x, z (ky - oy ay) - p.y, z - p.z) scaled by
+     * 2^shift, and its squared length in 64 bits without the saturation
+     * tests: wherever each component lies within [-2^hk, 2^hk) before the
+     * scale (tested there, else the generic code) and the pixel's |kx| <=
+     * kx_room, |ky| <= ky_room, |p.x|, |p.y| <= p_room (near_horizon_ao),
+     * each is the same integer as tg_mul's, tg_add's, tg_sub's and
+     * tg_ldexp's.  With |kx| + reach |ax| <= TG_REAL_MAX,
+     * tg_mul(tg_from_int(ox), ax) is ox ax exactly (|ox| <= reach: ox 2^16
+     * ax rounded at 2^16) and its sum with kx does not saturate (y alike);
+     * z times it (below 2^62) rounded is tg_mul's product where that does not
+     * saturate, which |h.x| < 2^hk and |p.x| <= TG_REAL_MAX - 2^hk ensure
+     * (its difference with p.x then fits too); z - p.z (both depths, within
+     * [0, TG_REAL_MAX]) never saturates.  hk = 30 - max(shift, 0) keeps each
+     * component times 2^shift within 2^30 (tg_ldexp unsaturated; a negative
+     * shift is its rounding), so the squares sum below 2^62 (tgi_v3_dot
+     * without its test; its rounding, then saturated: d2 >= r2 (r2 <=
+     * TG_REAL_MAX) and d2 <= 0 as for the unsaturated sum).  A room below
+     * 0 fails every pixel's test. */
+    u->hk = 30 - (u->shift > 0 ? u->shift : 0);
+    u->kx_room = (int64_t)TG_REAL_MAX - (int64_t)u->reach * (u->ax < 0 ? -(int64_t)u->ax : u->ax);
+    u->ky_room = (int64_t)TG_REAL_MAX - (int64_t)u->reach * (u->ay < 0 ? -(int64_t)u->ay : u->ay);
+    u->p_room = (int64_t)TG_REAL_MAX - ((int64_t)1 << u->hk);
+    if (u->kx_room < 0 || u->ky_room < 0) u->hk = 0;
+#endif
 #if TGI_NEAR_DELTAS
     /* the index offsets, when every one fits 16 bits (|dx|, |dy| <= reach) */
     u->deltas = (int64_t)u->reach * (abs64(full->row_stride) + abs64(full->pixel_stride)) <= INT16_MAX;
@@ -293,6 +319,9 @@ typedef struct near_pixel {
     tg_vec3 pv, nv, vd;
     tg_real kx, ky;
     near_plane pl;
+#if TGI_Q16_WIDE
+    int hk;               /* near_hk_set; -1: not yet */
+#endif
 } near_pixel;
 
 /* The unit vector to the eye, normalised the first time a sample needs it
@@ -310,6 +339,21 @@ static inline tg_vec3 near_vd(near_pixel *q)
     if (!q->has_vd) near_vd_set(q);
     return q->vd;
 }
+
+#if TGI_Q16_WIDE
+/* near_horizon_cos's offsets in 64 bits for pixel q: the plan's hk where q
+ * passes its tests (tgi_upsample_start's note on hk), else 0. */
+#if defined(__GNUC__)
+__attribute__((noinline))   /* once a pixel, as near_vd_set */
+#endif
+static void near_hk_set(const tgi_upsample_plan *u, near_pixel *q)
+{
+    q->hk = (uint64_t)((int64_t)q->kx + u->kx_room) <= 2 * (uint64_t)u->kx_room
+            && (uint64_t)((int64_t)q->ky + u->ky_room) <= 2 * (uint64_t)u->ky_room
+            && (uint64_t)((int64_t)q->pv.x + u->p_room) <= 2 * (uint64_t)u->p_room
+            && (uint64_t)((int64_t)q->pv.y + u->p_room) <= 2 * (uint64_t)u->p_room ? u->hk : 0;
+}
+#endif
 
 #if TG_FIXED
 /* The tangent-plane test of near_under_plane without its saturation tests,
@@ -502,6 +546,35 @@ static inline tg_real near_horizon_cos(const tgi_upsample_plan *u, near_pixel *q
 #else
         fdx = near_off_real(STEP_OFF(n)[0]);
         fdy = near_off_real(STEP_OFF(n)[1]);
+#endif
+#if TGI_Q16_WIDE
+        if (q->hk < 0) near_hk_set(u, q);
+        if (q->hk) {   /* tgi_upsample_start's note on hk */
+            const int64_t lh = (int64_t)1 << q->hk;
+            const int64_t bx = (int64_t)q->kx + (int64_t)STEP_OFF(n)[0] * u->ax;
+            const int64_t by = (int64_t)q->ky - (int64_t)STEP_OFF(n)[1] * u->ay;
+            int64_t hx = tgi_shr_round((int64_t)z * bx, TG_FRAC_BITS) - q->pv.x;
+            int64_t hy = tgi_shr_round((int64_t)z * by, TG_FRAC_BITS) - q->pv.y, hz = (int64_t)z - q->pv.z;
+            if (((uint64_t)(hx + lh) | (uint64_t)(hy + lh) | (uint64_t)(hz + lh)) < 2 * (uint64_t)lh) {
+                tgi_wide d2w;
+                n++;
+                if (u->shift > 0) {
+                    const int64_t m = (int64_t)1 << u->shift;
+                    hx *= m; hy *= m; hz *= m;
+                } else if (u->shift < 0) {
+                    hx = tgi_shr_round(hx, -u->shift); hy = tgi_shr_round(hy, -u->shift); hz = tgi_shr_round(hz, -u->shift);
+                }
+                d2w = tgi_wide_dot(hx, hy, hz, hx, hy, hz);
+                if (d2w >= u->r2 || d2w <= 0) continue;                      /* beyond the gather radius */
+                /* d2 < r2 <= TG_REAL_MAX keeps each component below 2^24
+                 * (its square below 2^47), times near_vd's unit vector
+                 * (within 1 + 2^-16, below 2^17) the products' sum far
+                 * below 2^62: tgi_v3_dot's value without its test */
+                h = tg_v3((tg_real)hx, (tg_real)hy, (tg_real)hz);
+                best = tg_max(best, tg_mul(tgi_v3_dot_bounded(h, near_vd(q)), tg_rsqrt((tg_real)d2w)));
+                continue;
+            }
+        }
 #endif
         n++;
         h = tg_v3(tg_sub(tg_mul(z, tg_add(q->kx, tg_mul(fdx, u->ax))), q->pv.x),
@@ -738,6 +811,9 @@ static tg_real near_horizon_ao(const tgi_upsample_plan *u, int x, int y, size_t 
     q.pl.above = tg_add(near_depth_part(q.pv.z), u->above_r);
 #if TG_FIXED
     near_plane_start(&q.pl, u->reach);
+#endif
+#if TGI_Q16_WIDE
+    q.hk = -1;   /* near_hk_set, at the first sample above the tangent plane */
 #endif
     near_horizon_sides(u, &q, cell, c1, c0);   /* the cell's direction and the one at right angles */
     for (k = 0; k < 2; k++) found |= c1[k] > TG_R(-1.0f) || c0[k] > TG_R(-1.0f);

@@ -73,6 +73,10 @@ typedef struct tgi_upsample_plan {
 #else
     signed char off[16][4][TGI_NEAR_STEPS][2];
 #endif
+#if TG_FIXED && !TG_OUTLINE_HELPERS
+    int hk;               /* the near horizon's offsets in 64 bits within 2^hk (0: never), */
+    int64_t kx_room, ky_room, p_room;   /* for pixels within these (resample.c) */
+#endif
 #if TGI_NEAR_DELTAS
     int deltas;           /* every offset's index offset fits (else no pixel takes the march's inside copy) */
 #if !TGI_NEAR_STEP_PAIRS
