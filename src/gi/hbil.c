@@ -647,8 +647,28 @@ HBIL_EDGE static tg_real sample_depth_edge(const hbil_ctx *c, const tgi_gview *g
     /* f in [0, 1) times the step (< 2^13: the view lies in the full image)
      * is exact, and the sum with a position below 2^13 small: small_add,
      * small_sub and small_mul_int give tg_add, tg_sub and tg_mul's values */
-    gn = tg_add(tg_add(tg_mul(n.x, tg_mul(Xn, c->inv_ppu)), tg_mul(n.y, tg_mul(Yn, c->inv_ppu))), n.z);
-    gc = tg_add(tg_add(tg_mul(n.x, tg_mul(X, c->inv_ppu)), tg_mul(n.y, tg_mul(Y, c->inv_ppu))), n.z);
+#if TGI_Q16_WIDE
+    /* With ppu >= 1 (inv_ppu <= 1: every camera but a tiny image with an
+     * extreme field of view) nothing below saturates: |X|, |Y|, |Xn|, |Yn|
+     * <= 2^13 + 1/2 (view_x), so each product with inv_ppu is at most 2^13
+     * + 1 in magnitude after its rounding; n's components are dots of unit
+     * vectors (tgi_oct_unpack's and the camera's basis, each within 2^-10
+     * of unit length) rounded once, below 1.003 in magnitude, so each
+     * product with one below 8218 and the sums below 16438 < 2^15: tg_mul and
+     * tg_add's values without their saturation tests, and the sums exact
+     * (integer adds), so gn and gc share their term of the major axis, whose
+     * position is the same (Xn = X or Yn = Y).  Cornell 160x120, 2 frames:
+     * Q16.16 sample_depth_edge 7.76M -> 6.60M. */
+    if (c->inv_ppu <= TG_ONE) {
+        const tg_real tx = small_mul(n.x, small_mul(X, c->inv_ppu)), ty = small_mul(n.y, small_mul(Y, c->inv_ppu));
+        gc = tx + ty + n.z;
+        gn = major_x ? tx + small_mul(n.y, small_mul(Yn, c->inv_ppu)) + n.z : small_mul(n.x, small_mul(Xn, c->inv_ppu)) + ty + n.z;
+    } else
+#endif
+    {
+        gn = tg_add(tg_add(tg_mul(n.x, tg_mul(Xn, c->inv_ppu)), tg_mul(n.y, tg_mul(Yn, c->inv_ppu))), n.z);
+        gc = tg_add(tg_add(tg_mul(n.x, tg_mul(X, c->inv_ppu)), tg_mul(n.y, tg_mul(Y, c->inv_ppu))), n.z);
+    }
     if (gn > TG_R(-0.01f) || gc > TG_R(-0.005f)) return 0; /* the nearest seen edge-on, or the ray misses its plane */
     ratio = tg_div(gn, gc);
     if (ratio < TG_R(0.5f) || ratio > TG_R(2.0f)) return 0; /* too far from the nearest: skip */
