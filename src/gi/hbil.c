@@ -727,10 +727,19 @@ static tg_real rejection_ramp(const hbil_ctx *c, tg_vec3 ns, tg_vec3 dir)
     const tgi_view *v = c->v;
     tg_real t;
     /* unit vectors: the camera's axes and dir (|.| <= 1, small_mul) */
+#if TGI_Q16_WIDE
+    /* the same sums in tgi_wide, not narrowed to tg_real and widened again
+     * for the dot (each below 4 in magnitude: the same integers) */
+    const tgi_wide wx = tgi_wide_mul(v->right.x, dir.x) + tgi_wide_mul(v->up.x, dir.y) + tgi_wide_mul(v->forward.x, dir.z);
+    const tgi_wide wy = tgi_wide_mul(v->right.y, dir.x) + tgi_wide_mul(v->up.y, dir.y) + tgi_wide_mul(v->forward.y, dir.z);
+    const tgi_wide wz = tgi_wide_mul(v->right.z, dir.x) + tgi_wide_mul(v->up.z, dir.y) + tgi_wide_mul(v->forward.z, dir.z);
+    t = tg_neg((tg_real)tgi_wide_dot(ns.x, ns.y, ns.z, wx, wy, wz));
+#else
     tg_vec3 wi = tg_v3(small_add(small_add(small_mul(v->right.x, dir.x), small_mul(v->up.x, dir.y)), small_mul(v->forward.x, dir.z)),
                        small_add(small_add(small_mul(v->right.y, dir.x), small_mul(v->up.y, dir.y)), small_mul(v->forward.y, dir.z)),
                        small_add(small_add(small_mul(v->right.z, dir.x), small_mul(v->up.z, dir.y)), small_mul(v->forward.z, dir.z)));
     t = tg_neg(small_dot_rare(ns, wi));   /* n_s unit, |w_i|'s components below 2: small */
+#endif
     /* outside the ramp without the call (tg_smoothstep gives 0 and 1 there) */
 #if !TG_OUTLINE_HELPERS
     if (c->ramp_d)
