@@ -277,6 +277,9 @@ typedef struct hbil_pixel {
     tg_vec3 wo, wx, wy;     /* local camera frame, sec. 1.1 */
     tg_vec3 n;              /* view-space normal with n.w_o >= HBIL_MIN_NDOTV */
     tg_vec3 nw;             /* the G-buffer's normal (world space), decoded once (pixel_run's bent normal; not compiling for size) */
+#if TGI_REUSE_NORMAL
+    tgi_normal_memo nm;     /* the stored normal code decoded last (nw its normal), nm.n its view-space n before pixel_setup bends it */
+#endif
 #if TGI_Q16_WIDE
     tg_real kx, ky;         /* X / ppu, Y / ppu (slice_screen_dir; Q16.16 not compiling for size) */
 #endif
@@ -560,13 +563,28 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
     px->wx = HBIL_UNIT_SCALE(tg_v3(tg_neg(TG_ONE), 0, k.x), tg_rsqrt(tg_add(TG_ONE, tg_mul(k.x, k.x))));
 #undef HBIL_UNIT_SCALE
     px->wy = tgi_v3_cross(px->wo, px->wx);
-    nw = tgi_gv_normal(g, i);
-#if !TG_OUTLINE_HELPERS   /* compiling for size, pixel_run reads it again */
-    px->nw = nw;
+#if TGI_REUSE_NORMAL
+    /* a pixel whose stored normal code is the last decoded one's (a flat
+     * surface's pixels share theirs) has its normal (tgi_gv_normal is a
+     * function of the code) and so its n before the bend below, the same
+     * products of the same normal and the call's camera: px->nw and
+     * px->nm.n as that pixel left them (pixel_setup alone sets them) */
+    if (tgi_gv_normal_repeats(g, &px->nm, (size_t)i)) {
+        px->n = px->nm.n;
+    } else
 #endif
-    /* unit vectors (the normal, the camera's axes, w_o: |component| <= 1
-     * and a rounding), n's components from their dots: small_dot */
-    px->n = tg_v3(small_dot_rare(nw, v->right), small_dot_rare(nw, v->up), small_dot_rare(nw, v->forward));
+    {
+        nw = tgi_gv_normal(g, i);
+#if !TG_OUTLINE_HELPERS   /* compiling for size, pixel_run reads it again */
+        px->nw = nw;
+#endif
+        /* unit vectors (the normal, the camera's axes, w_o: |component| <= 1
+         * and a rounding), n's components from their dots: small_dot */
+        px->n = tg_v3(small_dot_rare(nw, v->right), small_dot_rare(nw, v->up), small_dot_rare(nw, v->forward));
+#if TGI_REUSE_NORMAL
+        px->nm.n = px->n;
+#endif
+    }
     ndv = small_dot_rare(px->n, px->wo);
     if (ndv < HBIL_MIN_NDOTV) {
         px->n = tgi_v3_normalize_or(tgi_v3_add(px->n, tgi_v3_scale(px->wo, tg_sub(HBIL_MIN_NDOTV, ndv))), px->wo);
@@ -2614,6 +2632,9 @@ void tgi_hbil_rows(const tgi_hbil_params *p, const tgi_gview *g, const tgi_rgb *
     if (y0 < 0) y0 = 0;
     if (y1 > g->height) y1 = g->height;
     ctx_init(&c, p, g, radiance, out, &own);
+#if TGI_REUSE_NORMAL
+    tgi_normal_memo_start(&px.nm);
+#endif
     for (y = y0; y < y1; y++) {
         for (x = 0; x < g->width; x++) {
             int i = (int)tgi_gv_index(g, x, y);
