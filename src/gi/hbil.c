@@ -562,7 +562,16 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
     /* w_x = Y x w_o / |..| = (-1, 0, k_x) / sqrt(1 + k_x^2), w_y = w_o x w_x (sec. 1.1) */
     px->wx = HBIL_UNIT_SCALE(tg_v3(tg_neg(TG_ONE), 0, k.x), tg_rsqrt(tg_add(TG_ONE, tg_mul(k.x, k.x))));
 #undef HBIL_UNIT_SCALE
+#if TGI_Q16_WIDE
+    /* w_o and w_x unit (|component| <= 1 and a rounding): products below
+     * 2, differences below 4, so tg_mul and tg_sub would not saturate:
+     * tgi_v3_cross's operations in its order, small */
+    px->wy = tg_v3(small_sub(small_mul(px->wo.y, px->wx.z), small_mul(px->wo.z, px->wx.y)),
+                   small_sub(small_mul(px->wo.z, px->wx.x), small_mul(px->wo.x, px->wx.z)),
+                   small_sub(small_mul(px->wo.x, px->wx.y), small_mul(px->wo.y, px->wx.x)));
+#else
     px->wy = tgi_v3_cross(px->wo, px->wx);
+#endif
 #if TGI_REUSE_NORMAL
     /* a pixel whose stored normal code is the last decoded one's (a flat
      * surface's pixels share theirs) has its normal (tgi_gv_normal is a
