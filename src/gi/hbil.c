@@ -2460,8 +2460,8 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
      * and the sum over at most TG_MAX_SLICES = 8 slices below 2^8: tg_mul
      * and tg_add would not saturate (their bits, 15M fewer instructions in
      * a Q16.16 cornell 320x240 frame pair).  Only where the results take
-     * a bent normal (pixel_run reads the sum under HAS_BENT alone; cornell
-     * 160x120 writes none: see the commit) */
+     * a bent normal (pixel_run reads the sum under HAS_BENT alone; the
+     * default colour frame writes none: its sums were wasted work) */
     if (HAS_BENT(c->out)) acc->bent_delta = small_v3_add(acc->bent_delta, small_v3_add(
         small_v3_scale(sl.d, small_sub(small_add(q1, q0), small_add(q1i, q0i))),
         small_v3_scale(px->wo, small_sub(small_add(r1, r0), small_add(r1i, r0i)))));
