@@ -192,7 +192,7 @@ static const float near_off_pairs[16][4][7][2] = { NEAR_CELLS(float) };
 #undef NEAR_OI
 #endif
 
-#if TGI_NEAR_DELTAS
+#if TGI_NEAR_DELTAS || TGI_Q16_WIDE
 static int64_t abs64(int64_t v) { return v < 0 ? -v : v; }
 #endif
 
@@ -284,8 +284,8 @@ void tgi_upsample_start(tgi_upsample_plan *u, const tgi_gview *full, const tgi_g
      * TG_REAL_MAX) and d2 <= 0 as for the unsaturated sum).  A room below
      * 0 fails every pixel's test. */
     u->hk = 30 - (u->shift > 0 ? u->shift : 0);
-    u->kx_room = (int64_t)TG_REAL_MAX - (int64_t)u->reach * (u->ax < 0 ? -(int64_t)u->ax : u->ax);
-    u->ky_room = (int64_t)TG_REAL_MAX - (int64_t)u->reach * (u->ay < 0 ? -(int64_t)u->ay : u->ay);
+    u->kx_room = (int64_t)TG_REAL_MAX - (int64_t)u->reach * abs64(u->ax);
+    u->ky_room = (int64_t)TG_REAL_MAX - (int64_t)u->reach * abs64(u->ay);
     u->p_room = (int64_t)TG_REAL_MAX - ((int64_t)1 << u->hk);
     if (u->kx_room < 0 || u->ky_room < 0) u->hk = 0;
 #endif

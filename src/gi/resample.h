@@ -73,7 +73,7 @@ typedef struct tgi_upsample_plan {
 #else
     signed char off[16][4][TGI_NEAR_STEPS][2];
 #endif
-#if TG_FIXED && !TG_OUTLINE_HELPERS
+#if TGI_Q16_WIDE
     int hk;               /* the near horizon's offsets in 64 bits within 2^hk (0: never), */
     int64_t kx_room, ky_room, p_room;   /* for pixels within these (resample.c) */
 #endif
