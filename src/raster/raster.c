@@ -1001,11 +1001,11 @@ static void depth_rows(const depth_out *o, int W, const tri_edges *te, const scr
          * uint64_t, exact modulo 2^64, so at every covered pixel the same
          * 64 bits as the sum there (within int64_t: 0 <= u_i, sum(u) <
          * 2^30, 0 <= q_i <= 2^30 and |z_i| < 2^31); su is the same at
-         * every pixel (the steps of u sum to 0).  A 16-bit target's
-         * depth_keep written out (gcc called it a texel).  With
-         * span_start: callgrind tinygi-fixed render builtin:cornell
-         * --size 160x120 --frames 2, draw_snapped + depth_keep 11.73M ->
-         * 7.79M, the whole 677.39M -> 673.93M. */
+         * every pixel (the steps of u sum to 0); depth_keep is inline
+         * here (DEPTH_KEEP_INLINE).  With span_start: callgrind
+         * tinygi-fixed render builtin:cornell --size 160x120 --frames 2,
+         * draw_snapped + depth_keep 11.73M -> 7.79M, the whole 677.39M ->
+         * 673.93M. */
         const uint64_t du1 = (uint64_t)te->step_x[1] << b.ls, du2 = (uint64_t)te->step_x[2] << b.ls;
         const int64_t *a = ortho ? b.z : b.q;
         const uint64_t dv = du1 * (uint64_t)(a[1] - a[0]) + du2 * (uint64_t)(a[2] - a[0]);
@@ -1024,12 +1024,7 @@ static void depth_rows(const depth_out *o, int W, const tri_edges *te, const scr
                     if (vi <= 0) continue;
                     z = (b.wmin * su + vi / 2) / vi;
                 }
-                if (o->d16) {
-                    const uint16_t q = depth_code(o, tgi_sat64(z));
-                    if (q < o->d16[i]) o->d16[i] = q;
-                } else {
-                    depth_keep(o, i, tgi_sat64(z));
-                }
+                depth_keep(o, i, tgi_sat64(z));
             }
         }
         return;
