@@ -2267,25 +2267,50 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
  * major direction of side +1 (set in march_side per side, they cost ~50
  * instructions a side: two divisions, three tg_to_int) */
 typedef struct hbil_axis {
-    int major_x, m, n, o, dir;
-    tg_real slope, extent;
+    int major_x, m, o, dir, amax;
+    tg_real slope, b;
+    hbil_march *mt;   /* the pixel's march constants (march_template) */
+    int n;
 } hbil_axis;
 
-static void march_axis(const hbil_ctx *c, const hbil_pixel *px, tg_real ux, tg_real uy, hbil_axis *ax)
+static void march_axis(const hbil_ctx *c, const hbil_pixel *px, tg_real ux, tg_real uy, hbil_axis *ax, hbil_march *mt)
 {
+    const tgi_gview *g = c->g;
     const int major_x = tg_abs(ux) >= tg_abs(uy);
     const tg_real umaj = major_x ? tg_abs(ux) : tg_abs(uy);
     int o;
     ax->major_x = major_x;
+    ax->amax = major_x ? g->width : g->height;
+    ax->b = small_from_int(major_x ? px->y : px->x);
+    mt->smaj = major_x ? g->pixel_stride : g->row_stride;
+    mt->smin = major_x ? g->row_stride : g->pixel_stride;
+    mt->bmax = major_x ? g->height : g->width;
     /* |minor| <= umaj: |slope| <= 1 (tgi_div_pos, umaj > 0 or 1) */
     ax->slope = tgi_div_pos(major_x ? uy : ux, umaj == 0 ? TG_ONE : umaj);
     ax->dir = (major_x ? ux : uy) < 0 ? -1 : 1;
     /* the reach in [0, 2^14] (radius >= 0, HBIL_MAX_RADIUS_UNITS) times
      * |u| <= 1: small_mul */
-    ax->extent = small_mul(px->reach, umaj);
-    ax->m = march_steps(c, ax->extent, &ax->n);
+    mt->extent = small_mul(px->reach, umaj);
+    ax->m = march_steps(c, mt->extent, &ax->n);
     o = EXTENT_TO_INT(small_mul(px->jitter, small_from_int(ax->m)));     /* sample k at k m - o pixels; jitter in [0, 1) */
     ax->o = o < 0 || o >= ax->m ? 0 : o;
+}
+
+/* What every side of a pixel shares, set once a pixel (pixel_run):
+ * march_side copies it and sets the side's own fields */
+static void march_template(const hbil_ctx *c, const hbil_pixel *px, hbil_march *mt)
+{
+    /* small_mul: see march_side */
+    mt->p0x = small_mul(px->X, c->inv_step);
+    mt->p0y = small_mul(px->Y, c->inv_step);
+    mt->p0z = c->p0z;
+#if HBIL_Q_NEAR
+    mt->q_near = c->q_near;
+#endif
+    mt->z = px->z;
+    mt->inv_z = px->inv_z;
+    mt->r2 = px->radius_units2;
+    mt->wox = px->wo.x; mt->woy = px->wo.y; mt->woz = px->wo.z;
 }
 #endif
 
@@ -2297,9 +2322,9 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
                        const hbil_axis *ax, int side, hbil_side *sd)
 #endif
 {
+#if TG_OUTLINE_HELPERS
     const tgi_gview *g = c->g;
     const int w = g->width, h = g->height, rs = g->row_stride, ps = g->pixel_stride;
-#if TG_OUTLINE_HELPERS
     const int major_x = tg_abs(ux) >= tg_abs(uy);
     const int amax = major_x ? w : h;
     const tg_real umaj = major_x ? tg_abs(ux) : tg_abs(uy);
@@ -2307,59 +2332,67 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     tg_real slope = tgi_div_pos(major_x ? uy : ux, umaj == 0 ? TG_ONE : umaj);
     int dir = ((major_x ? ux : uy) < 0 ? -1 : 1) * side;
     int m, kmax, o;
+    hbil_march mr_, *const mr = &mr_;
 #else
     const int major_x = ax->major_x;
-    const int amax = major_x ? w : h;
+    const int amax = ax->amax;
     const int dir = ax->dir * side, m = ax->m, o = ax->o;
     const tg_real slope = side < 0 ? tg_neg(ax->slope) : ax->slope;
     int kmax;
+    hbil_march *const mr = ax->mt;
 #endif
-    hbil_march mr;
-    mr.smaj = major_x ? ps : rs;
-    mr.smin = major_x ? rs : ps;
-    mr.bmax = major_x ? h : w;
+#if TG_OUTLINE_HELPERS
+    mr->smaj = major_x ? ps : rs;
+    mr->smin = major_x ? rs : ps;
+    mr->bmax = major_x ? h : w;
+#endif
     /* the per-side products and sums below are small (small_mul): screen
      * positions < 2^13 and ppu times 1/step <= 1, the reach in [0, 2^14]
      * (radius >= 0, HBIL_MAX_RADIUS_UNITS) times |u| <= 1, offsets below
      * 2^14 times |slope| <= 1 */
-    mr.p0x = small_mul(px->X, c->inv_step);
-    mr.p0y = small_mul(px->Y, c->inv_step);
-    mr.p0z = c->p0z;
+#if TG_OUTLINE_HELPERS
+    mr->p0x = small_mul(px->X, c->inv_step);
+    mr->p0y = small_mul(px->Y, c->inv_step);
+    mr->p0z = c->p0z;
 #if HBIL_Q_NEAR
-    mr.q_near = c->q_near;
+    mr->q_near = c->q_near;
 #endif
-    mr.z = px->z;
-    mr.inv_z = px->inv_z;
-    mr.r2 = px->radius_units2;
-    mr.wox = px->wo.x; mr.woy = px->wo.y; mr.woz = px->wo.z;
+    mr->z = px->z;
+    mr->inv_z = px->inv_z;
+    mr->r2 = px->radius_units2;
+    mr->wox = px->wo.x; mr->woy = px->wo.y; mr->woz = px->wo.z;
+#endif
 #if TG_OUTLINE_HELPERS
     if (side < 0) slope = tg_neg(slope);
-    mr.slope = slope;
-    mr.extent = small_mul(px->reach, umaj);
-    m = march_steps(c, mr.extent, &mr.run.n);
+    mr->slope = slope;
+    mr->extent = small_mul(px->reach, umaj);
+    m = march_steps(c, mr->extent, &mr->run.n);
     o = tg_to_int(small_mul(px->jitter, small_from_int(m)));     /* sample k at k m - o pixels */
     if (o < 0 || o >= m) o = 0;
 #else
-    mr.slope = slope;
-    mr.extent = ax->extent;
-    mr.run.n = ax->n;
+    mr->slope = slope;
+    mr->run.n = ax->n;
 #endif
-    mr.run.da = m * dir;
-    mr.run.a = major_x ? px->x : px->y;
-    kmax = ((mr.run.da > 0 ? amax - 1 - mr.run.a : mr.run.a) + o) / m;   /* never past the screen edge */
-    if (mr.run.n > kmax) mr.run.n = kmax;
-    mr.run.back = o * dir;
-    mr.run.a -= mr.run.back;
-    mr.run.ox = small_mul_int(slope, -o);
-    mr.run.minor = small_add(small_from_int(major_x ? px->y : px->x), mr.run.ox);
-    mr.run.dminor = small_mul_int(slope, m);
-#if !TG_NO_FINE_HORIZON
-    if (c->fine && march_long_reach(c, &mr) && m - o > 1) march_near(c, sl, side, sd, &mr, major_x, m - o - 1);
+    mr->run.da = m * dir;
+    mr->run.a = major_x ? px->x : px->y;
+    kmax = ((mr->run.da > 0 ? amax - 1 - mr->run.a : mr->run.a) + o) / m;   /* never past the screen edge */
+    if (mr->run.n > kmax) mr->run.n = kmax;
+    mr->run.back = o * dir;
+    mr->run.a -= mr->run.back;
+    mr->run.ox = small_mul_int(slope, -o);
+#if TG_OUTLINE_HELPERS
+    mr->run.minor = small_add(small_from_int(major_x ? px->y : px->x), mr->run.ox);
+#else
+    mr->run.minor = small_add(ax->b, mr->run.ox);
 #endif
-    MARCH_SAMPLES(c, sl, side, sd, &mr, &mr.run, major_x);
-    if (m > 1) march_between(c, sl, side, sd, &mr, major_x);
+    mr->run.dminor = small_mul_int(slope, m);
 #if !TG_NO_FINE_HORIZON
-    if (c->fine) refine_fine(c, px, sl, side, sd, &mr, major_x);
+    if (c->fine && march_long_reach(c, mr) && m - o > 1) march_near(c, sl, side, sd, mr, major_x, m - o - 1);
+#endif
+    MARCH_SAMPLES(c, sl, side, sd, mr, &mr->run, major_x);
+    if (m > 1) march_between(c, sl, side, sd, mr, major_x);
+#if !TG_NO_FINE_HORIZON
+    if (c->fine) refine_fine(c, px, sl, side, sd, mr, major_x);
 #endif
 }
 
@@ -2405,7 +2438,11 @@ static inline float rsqrt_in_range(float x)
 }
 #endif
 
+#if TG_OUTLINE_HELPERS
 static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_real sphi, hbil_sums *acc)
+#else
+static void slice_run(const hbil_ctx *c, const hbil_pixel *px, hbil_march *mt, tg_real cphi, tg_real sphi, hbil_sums *acc)
+#endif
 {
     hbil_slice sl;
 #if !TG_OUTLINE_HELPERS
@@ -2439,7 +2476,8 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_
     march_side(c, px, &sl, ux, uy, 1, &front);
     march_side(c, px, &sl, ux, uy, -1, &back);
 #else
-    march_axis(c, px, ux, uy, &ax);   /* what the two sides share, once */
+    march_axis(c, px, ux, uy, &ax, mt);   /* what the two sides share, once */
+    ax.mt = mt;
     march_side(c, px, &sl, &ax, 1, &front);
     march_side(c, px, &sl, &ax, -1, &back);
 #endif
@@ -2510,6 +2548,9 @@ static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
     const tgi_gresult *out = c->out;
     const tgi_view *v = c->v;
     hbil_sums acc;
+#if !TG_OUTLINE_HELPERS
+    hbil_march mt;
+#endif
     int s, pat;
     tg_real ao;
     int X = px->x * c->step + c->g->offset_x, Y = px->y * c->step + c->g->offset_y;
@@ -2522,8 +2563,14 @@ static void pixel_run(const hbil_ctx *c, hbil_pixel *px, int i)
 #endif
     pat = tgi_hbil_pattern(X >> PATTERN_SHIFT(c), Y >> PATTERN_SHIFT(c), c->p->rotation);
     px->jitter = tgi_hbil_block_jitter(c->dirs->jitter[pat], X >> 2, Y >> 2, c->p->rotation);
+#if TG_OUTLINE_HELPERS
     for (s = 0; s < c->slices; s++)
         slice_run(c, px, c->dirs->cos_phi[pat][s], c->dirs->sin_phi[pat][s], &acc);
+#else
+    march_template(c, px, &mt);
+    for (s = 0; s < c->slices; s++)
+        slice_run(c, px, &mt, c->dirs->cos_phi[pat][s], c->dirs->sin_phi[pat][s], &acc);
+#endif
     ao = tg_saturate(tg_sub(TG_ONE, tg_div(acc.occlusion, tg_from_int(c->slices))));
     tgi_gr_set_ao(out, i, ao);
     if (HAS_CONE(out)) tgi_gr_set_cone(out, i, tgi_cone_angle_from_ao(ao));   /* not eq. 12: sh.h */
