@@ -282,6 +282,7 @@ typedef struct hbil_pixel {
 #endif
 #if TGI_Q16_WIDE
     tg_real kx, ky;         /* X / ppu, Y / ppu (slice_screen_dir; Q16.16 not compiling for size) */
+    int k_small;            /* |kx|, |ky| < 32 (slice_screen_dir) */
 #endif
     tg_real ndv;            /* n.w_o (every slice's n'_y) */
     tgi_wide radius_units2; /* (3D radius in image pixels at depth z)^2 */
@@ -549,6 +550,9 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
 #if TGI_Q16_WIDE
     px->kx = k.x;
     px->ky = k.y;
+    /* k_x, k_y in (-32, 32): offset by 32 below 64 as unsigned (a negative one wraps high) */
+    px->k_small = (uint32_t)k.x + (32u << TG_FRAC_BITS) < (64u << TG_FRAC_BITS)
+               && (uint32_t)k.y + (32u << TG_FRAC_BITS) < (64u << TG_FRAC_BITS);
 #endif
 #if TGI_Q16_WIDE
     /* the scales are tg_rsqrt of values >= 1, at most 1 (65536 raw; every
@@ -618,8 +622,26 @@ static void slice_screen_dir(const hbil_ctx *c, const hbil_pixel *px, tg_vec3 d,
     tg_real kx = px->kx, ky = px->ky;   /* pixel_setup's, the same products */
     (void)c;
 #endif
-    tg_vec3 u = tg_v3(tg_sub(d.x, tg_mul(kx, d.z)), tg_neg(tg_sub(d.y, tg_mul(ky, d.z))), 0);
-    tg_real len2 = tg_add(tg_mul(u.x, u.x), tg_mul(u.y, u.y)), inv;
+    tg_vec3 u;
+    tg_real len2, inv;
+#if TGI_Q16_WIDE
+    if (px->k_small) {
+        /* |k_x|, |k_y| < 32 (every field of view below 170 degrees at an
+         * aspect ratio up to 2) and D's components below 2 (slice_run): |k d_z| < 64,
+         * |u_x|, |u_y| < 66, |u|^2 < 2^14; 1/|u| < 2^7 for |u|^2 >= 0.0001
+         * (below), so |u_i| / |u| < 66 2^7 < 2^13: tg_mul, tg_sub and
+         * tg_add would not saturate (small_*) */
+        const tg_real sx = small_sub(d.x, small_mul(kx, d.z)), sy = tg_neg(small_sub(d.y, small_mul(ky, d.z)));
+        len2 = small_add(small_mul(sx, sx), small_mul(sy, sy));
+        if (len2 < TG_R(0.0001f)) { *ux = TG_ONE; *uy = 0; return; }
+        inv = tg_rsqrt(len2);
+        *ux = small_mul(sx, inv);
+        *uy = small_mul(sy, inv);
+        return;
+    }
+#endif
+    u = tg_v3(tg_sub(d.x, tg_mul(kx, d.z)), tg_neg(tg_sub(d.y, tg_mul(ky, d.z))), 0);
+    len2 = tg_add(tg_mul(u.x, u.x), tg_mul(u.y, u.y));
     if (len2 < TG_R(0.0001f)) { *ux = TG_ONE; *uy = 0; return; }  /* D is never along the ray */
     inv = tg_rsqrt(len2);
     *ux = tg_mul(u.x, inv);
@@ -2263,14 +2285,18 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
 #if !TG_OUTLINE_HELPERS   /* compiling for size, march_side sets them per side (shorter) */
 /* What a slice's two sides share, set once a slice (march_axis): the
  * major axis, the slope (minor per major pixel, side +1's), the march's
- * extent (major pixels), its step m, count n and start offset o, and the
- * major direction of side +1 (set in march_side per side, they cost ~50
- * instructions a side: two divisions, three tg_to_int) */
+ * step m, count n and start offset o, the major direction of side +1, the
+ * image's side along the major axis (amax) and the pixel's minor
+ * coordinate b (set in march_side per side, they cost ~50 instructions a
+ * side: two divisions, three tg_to_int); and in the pixel's hbil_march
+ * (mt) the slice's fields: the strides, bmax and the extent.  The march
+ * itself is mt: each side sets its own fields in it (the slope and the
+ * run), not a copy (cornell 160x120, 2 frames: a copy of the struct a side
+ * took float +0.9M, Q16.16 +0.2M; the fields set a side, +3.4M and +3.2M) */
 typedef struct hbil_axis {
-    int major_x, m, o, dir, amax;
+    int major_x, m, n, o, dir, amax;
     tg_real slope, b;
-    hbil_march *mt;   /* the pixel's march constants (march_template) */
-    int n;
+    hbil_march *mt;         /* the pixel's march (march_template), the slice's fields set */
 } hbil_axis;
 
 static void march_axis(const hbil_ctx *c, const hbil_pixel *px, tg_real ux, tg_real uy, hbil_axis *ax, hbil_march *mt)
@@ -2282,6 +2308,7 @@ static void march_axis(const hbil_ctx *c, const hbil_pixel *px, tg_real ux, tg_r
     ax->major_x = major_x;
     ax->amax = major_x ? g->width : g->height;
     ax->b = small_from_int(major_x ? px->y : px->x);
+    ax->mt = mt;
     mt->smaj = major_x ? g->pixel_stride : g->row_stride;
     mt->smin = major_x ? g->row_stride : g->pixel_stride;
     mt->bmax = major_x ? g->height : g->width;
@@ -2296,11 +2323,12 @@ static void march_axis(const hbil_ctx *c, const hbil_pixel *px, tg_real ux, tg_r
     ax->o = o < 0 || o >= ax->m ? 0 : o;
 }
 
-/* What every side of a pixel shares, set once a pixel (pixel_run):
- * march_side copies it and sets the side's own fields */
+/* The march's fields every side of the pixel shares, set once a pixel
+ * (pixel_run; march_side set them per side, 4 sides a pixel with the
+ * default 2 slices).  The products are small (small_mul): screen
+ * positions < 2^13 times 1 / step <= 1. */
 static void march_template(const hbil_ctx *c, const hbil_pixel *px, hbil_march *mt)
 {
-    /* small_mul: see march_side */
     mt->p0x = small_mul(px->X, c->inv_step);
     mt->p0y = small_mul(px->Y, c->inv_step);
     mt->p0z = c->p0z;
@@ -2333,36 +2361,20 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     int dir = ((major_x ? ux : uy) < 0 ? -1 : 1) * side;
     int m, kmax, o;
     hbil_march mr_, *const mr = &mr_;
-#else
-    const int major_x = ax->major_x;
-    const int amax = ax->amax;
-    const int dir = ax->dir * side, m = ax->m, o = ax->o;
-    const tg_real slope = side < 0 ? tg_neg(ax->slope) : ax->slope;
-    int kmax;
-    hbil_march *const mr = ax->mt;
-#endif
-#if TG_OUTLINE_HELPERS
     mr->smaj = major_x ? ps : rs;
     mr->smin = major_x ? rs : ps;
     mr->bmax = major_x ? h : w;
-#endif
     /* the per-side products and sums below are small (small_mul): screen
      * positions < 2^13 and ppu times 1/step <= 1, the reach in [0, 2^14]
      * (radius >= 0, HBIL_MAX_RADIUS_UNITS) times |u| <= 1, offsets below
      * 2^14 times |slope| <= 1 */
-#if TG_OUTLINE_HELPERS
     mr->p0x = small_mul(px->X, c->inv_step);
     mr->p0y = small_mul(px->Y, c->inv_step);
     mr->p0z = c->p0z;
-#if HBIL_Q_NEAR
-    mr->q_near = c->q_near;
-#endif
     mr->z = px->z;
     mr->inv_z = px->inv_z;
     mr->r2 = px->radius_units2;
     mr->wox = px->wo.x; mr->woy = px->wo.y; mr->woz = px->wo.z;
-#endif
-#if TG_OUTLINE_HELPERS
     if (side < 0) slope = tg_neg(slope);
     mr->slope = slope;
     mr->extent = small_mul(px->reach, umaj);
@@ -2370,6 +2382,12 @@ static void march_side(const hbil_ctx *c, const hbil_pixel *px, const hbil_slice
     o = tg_to_int(small_mul(px->jitter, small_from_int(m)));     /* sample k at k m - o pixels */
     if (o < 0 || o >= m) o = 0;
 #else
+    const int major_x = ax->major_x;
+    const int amax = ax->amax;
+    const int dir = ax->dir * side, m = ax->m, o = ax->o;
+    const tg_real slope = side < 0 ? tg_neg(ax->slope) : ax->slope;
+    int kmax;
+    hbil_march *const mr = ax->mt;   /* the pixel's and the slice's fields set: the side's below (offsets below 2^14 times |slope| <= 1: small) */
     mr->slope = slope;
     mr->run.n = ax->n;
 #endif
@@ -2460,8 +2478,9 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, hbil_march *mt, t
      * 2^-7 over sqrt(1 + 2^-14) and a rounding, pixel_setup's bent n), and
      * below 32 (n''s components below 4): rsqrt_in_range */
     inv_len_n = rsqrt_in_range(tg_max(small_add(small_mul(sl.nx, sl.nx), small_mul(sl.ny, sl.ny)), small_mul(sl.ny, sl.ny)));
-    /* horizons initialised on the tangent plane (sec. 2.1): cos = -/+ n_x/|n'| */
-    h1i = tg_clamp(tg_mul(tg_neg(sl.nx), inv_len_n), TG_R(-1.0f), TG_ONE);
+    /* horizons initialised on the tangent plane (sec. 2.1): cos = -/+
+     * n_x/|n'| (|n_x| < 4 times 1/|n'| < 2^8: small_mul) */
+    h1i = tg_clamp(small_mul(tg_neg(sl.nx), inv_len_n), TG_R(-1.0f), TG_ONE);
     h0i = tg_neg(h1i);
     /* Q(-c, -1) = Q(c, 1) - pi/2 and R(-c) = R(c): one fit for both sides */
     /* |Q| < 2, R <= 1/2, |n'| < 4: small */
@@ -2477,7 +2496,6 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, hbil_march *mt, t
     march_side(c, px, &sl, ux, uy, -1, &back);
 #else
     march_axis(c, px, ux, uy, &ax, mt);   /* what the two sides share, once */
-    ax.mt = mt;
     march_side(c, px, &sl, &ax, 1, &front);
     march_side(c, px, &sl, &ax, -1, &back);
 #endif
