@@ -282,7 +282,9 @@ typedef struct hbil_pixel {
 #endif
 #if TGI_Q16_WIDE
     tg_real kx, ky;         /* X / ppu, Y / ppu (slice_screen_dir; Q16.16 not compiling for size) */
-    int k_small;            /* |kx|, |ky| < 32 (slice_screen_dir) */
+#endif
+#if !TG_OUTLINE_HELPERS
+    int k_small;            /* |X / ppu|, |Y / ppu| < 32 (pixel_setup, slice_screen_dir) */
 #endif
     tg_real ndv;            /* n.w_o (every slice's n'_y) */
     tgi_wide radius_units2; /* (3D radius in image pixels at depth z)^2 */
@@ -534,6 +536,26 @@ static tg_real slice_Q(tg_real c, int side)
 #endif
     return side < 0 ? tg_neg(q) : q;
 }
+/* tg_rsqrt(x) for x known positive, normal and finite (each use says
+ * why): in float tg_rsqrt's seed and three Newton steps, the same
+ * operations, without its range tests (x > 0, x <= TG_REAL_MAX, x below
+ * the smallest normal) and its scale (1 for a normal x: a product that
+ * changes no bit); cornell 160x120, 2 frames, float 529.04M -> 528.46M.
+ * Q16.16 and compiling for size tg_rsqrt itself. */
+#if TG_FIXED || TG_OUTLINE_HELPERS
+#define rsqrt_in_range tg_rsqrt
+#else
+static inline float rsqrt_in_range(float x)
+{
+    float y = tgi_f_from_bits(0x5f3759dfu - (tgi_f_bits(x) >> 1));
+    const float hx = 0.5f * x;
+    y = y * (1.5f - hx * y * y);
+    y = y * (1.5f - hx * y * y);
+    y = y * (1.5f - hx * y * y);
+    return y;
+}
+#endif
+
 static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
 {
     const tgi_gview *g = c->g;
@@ -550,9 +572,20 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
 #if TGI_Q16_WIDE
     px->kx = k.x;
     px->ky = k.y;
+#endif
+#if TGI_Q16_WIDE
     /* k_x, k_y in (-32, 32): offset by 32 below 64 as unsigned (a negative one wraps high) */
     px->k_small = (uint32_t)k.x + (32u << TG_FRAC_BITS) < (64u << TG_FRAC_BITS)
                && (uint32_t)k.y + (32u << TG_FRAC_BITS) < (64u << TG_FRAC_BITS);
+#elif !TG_OUTLINE_HELPERS
+    px->k_small = tg_abs(k.x) < TG_R(32.0f) && tg_abs(k.y) < TG_R(32.0f);   /* not a NaN */
+#endif
+    /* in float, where |k_x|, |k_y| < 32, |k|^2 in [1, 2049] and 1 + k_x^2
+     * in [1, 1025]: positive, normal and finite (rsqrt_in_range) */
+#if !TG_FIXED && !TG_OUTLINE_HELPERS
+#define HBIL_RSQRT_K(x) (px->k_small ? rsqrt_in_range(x) : tg_rsqrt(x))
+#else
+#define HBIL_RSQRT_K(x) tg_rsqrt(x)
 #endif
 #if TGI_Q16_WIDE
     /* the scales are tg_rsqrt of values >= 1, at most 1 (65536 raw; every
@@ -562,10 +595,11 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
 #else
 #define HBIL_UNIT_SCALE tgi_v3_scale
 #endif
-    px->wo = HBIL_UNIT_SCALE(k, tg_neg(tg_rsqrt(tgi_v3_dot(k, k))));          /* |k| >= 1 */
+    px->wo = HBIL_UNIT_SCALE(k, tg_neg(HBIL_RSQRT_K(tgi_v3_dot(k, k))));          /* |k| >= 1 */
     /* w_x = Y x w_o / |..| = (-1, 0, k_x) / sqrt(1 + k_x^2), w_y = w_o x w_x (sec. 1.1) */
-    px->wx = HBIL_UNIT_SCALE(tg_v3(tg_neg(TG_ONE), 0, k.x), tg_rsqrt(tg_add(TG_ONE, tg_mul(k.x, k.x))));
+    px->wx = HBIL_UNIT_SCALE(tg_v3(tg_neg(TG_ONE), 0, k.x), HBIL_RSQRT_K(tg_add(TG_ONE, tg_mul(k.x, k.x))));
 #undef HBIL_UNIT_SCALE
+#undef HBIL_RSQRT_K
 #if TGI_Q16_WIDE
     /* w_o and w_x unit (|component| <= 1 and a rounding): products below
      * 2, differences below 4, so tg_mul and tg_sub would not saturate:
@@ -643,7 +677,13 @@ static void slice_screen_dir(const hbil_ctx *c, const hbil_pixel *px, tg_vec3 d,
     u = tg_v3(tg_sub(d.x, tg_mul(kx, d.z)), tg_neg(tg_sub(d.y, tg_mul(ky, d.z))), 0);
     len2 = tg_add(tg_mul(u.x, u.x), tg_mul(u.y, u.y));
     if (len2 < TG_R(0.0001f)) { *ux = TG_ONE; *uy = 0; return; }  /* D is never along the ray */
+#if !TG_FIXED && !TG_OUTLINE_HELPERS
+    /* float: |k_x|, |k_y| < 32 and D's components below 2 (as Q16.16's
+     * above) put |u|^2 in [0.0001, 2^14): positive, normal and finite */
+    inv = px->k_small ? rsqrt_in_range(len2) : tg_rsqrt(len2);
+#else
     inv = tg_rsqrt(len2);
+#endif
     *ux = tg_mul(u.x, inv);
     *uy = tg_mul(u.y, inv);
 }
@@ -2435,26 +2475,6 @@ typedef struct hbil_sums {
     tg_vec3 bent_delta;     /* sum_i B_i - B_i(open), view space */
     tg_real er, eg, eb;     /* sum of L dE */
 } hbil_sums;
-
-/* tg_rsqrt(x) for x known positive, normal and finite (each use says
- * why): in float tg_rsqrt's seed and three Newton steps, the same
- * operations, without its range tests (x > 0, x <= TG_REAL_MAX, x below
- * the smallest normal) and its scale (1 for a normal x: a product that
- * changes no bit); cornell 160x120, 2 frames, float 529.04M -> 528.46M.
- * Q16.16 and compiling for size tg_rsqrt itself. */
-#if TG_FIXED || TG_OUTLINE_HELPERS
-#define rsqrt_in_range tg_rsqrt
-#else
-static inline float rsqrt_in_range(float x)
-{
-    float y = tgi_f_from_bits(0x5f3759dfu - (tgi_f_bits(x) >> 1));
-    const float hx = 0.5f * x;
-    y = y * (1.5f - hx * y * y);
-    y = y * (1.5f - hx * y * y);
-    y = y * (1.5f - hx * y * y);
-    return y;
-}
-#endif
 
 #if TG_OUTLINE_HELPERS
 static void slice_run(const hbil_ctx *c, const hbil_pixel *px, tg_real cphi, tg_real sphi, hbil_sums *acc)
