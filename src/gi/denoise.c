@@ -321,13 +321,13 @@ static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const
                                          tg_vec3 ni, int ce, uint64_t same, int64_t dz_lim, tg_real inv_ztol, uint64_t inv_wide,
                                          uint32_t window, int whole, const int bent, const int near, int64_t *sum)
 {
-    /* whole_fewer's copies (wide) take the inverse inv_wide, widened
-     * once by the caller (the same value, (uint64_t)inv_ztol): from a
-     * tg_real, gcc sign-extended it again at each of their 25 entries
-     * (Q16.16 cornell 160x120 2 frames 694.46M -> 693.80M); the copies
-     * inlined in tgi_denoise_pixel keep the tg_real (widened there, columns
-     * took 73K more) */
-    const int wide = whole && !(bent && near);
+    /* whole_fewer's and whole_all's copies (wide) take the inverse
+     * inv_wide, widened once by the caller (the same value,
+     * (uint64_t)inv_ztol): from a tg_real, gcc sign-extended it again at
+     * each of their 25 entries (Q16.16 cornell 160x120 2 frames 694.46M ->
+     * 693.80M); the copy inlined in tgi_denoise_pixel (part of a window)
+     * keeps the tg_real (widened there, columns took 73K more) */
+    const int wide = whole;
     int64_t s[TGI_DENOISE_VALUES + 1] = { 0, 0, 0, 0, 0, 0, 0, 0 };
 #if NORMAL_WORDS
     uint64_t key = k->nkey[ce];   /* the centre's code */
@@ -367,6 +367,24 @@ static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const
  * tap fewer, tgi_denoise_pixel 374.5M -> 341.8M with this).  Out of line:
  * inlined too, tgi_denoise_pixel's registers spilled more in the common
  * copy (every channel; columns 405.7M -> 410.5M, cornell 333.1M). */
+/* weigh_and_sum over a whole window with every channel, out of line too:
+ * inlined in tgi_denoise_pixel, whose own values (the pixel's, the
+ * results' and the view's) hold registers across it, its 8 sums and the
+ * pixel's constants spilled (the inverse and the normal weight read back
+ * from the stack into a register at each entry, a sum added in memory);
+ * here a call a pixel (Q16.16 columns 160x120 2 frames 286.41M -> 285.62M;
+ * cornell, whose results have no bent normal, 656.06M -> 656.08M: the
+ * test of the two channels before the calls).  Its own function, not a
+ * copy in whole_fewer: there, the copies' registers shared, cornell's
+ * took 0.66M more. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+static void whole_all(const tgi_denoise_walk *k, int o, const spatial_pair *spatial, tg_real zi, tg_vec3 ni, int ce, uint64_t same,
+                      int64_t dz_lim, uint64_t inv_ztol, int64_t *sum)
+{
+    weigh_and_sum(k, o, spatial, zi, ni, ce, same, dz_lim, 0, inv_ztol, 0, 1, 1, 1, sum);
+}
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
@@ -565,7 +583,7 @@ tgi_gr_value tgi_denoise_pixel(const tgi_denoise_params *p, const tgi_gview *g, 
 #endif
     if (xb - xa == 4 && yb - ya == 4) {   /* the whole window: every entry; a copy per set of channels */
         const spatial_pair *sp = spatial_pairs[x % 5];
-        if (has_bent && has_near) weigh_and_sum(k, o, sp, zi, ni, ce, same, dz_lim, inv_ztol, 0, 0, 1, 1, 1, sum);
+        if (has_bent && has_near) whole_all(k, o, sp, zi, ni, ce, same, dz_lim, (uint64_t)inv_ztol, sum);
         else whole_fewer(k, o, sp, zi, ni, ce, same, dz_lim, (uint64_t)inv_ztol, has_bent, has_near, sum);
     } else {   /* the window's entries inside the image: its rows' slots of its columns */
         uint32_t slots = 0, window = 0;
