@@ -143,8 +143,10 @@ static tg_real normal_weight(tg_real d)
  * normals (normal_key below, kept where normals are stored as tg_real),
  * without building one at each decode. */
 #define NORMAL_WORDS 1
+typedef uint32_t normal_code;   /* the walk's nkey: compared in 32 bits, not widened at each entry */
 #else
 #define NORMAL_WORDS 0
+typedef uint64_t normal_code;
 #endif
 
 #if TGI_Q16_WIDE && !NORMAL_WORDS
@@ -290,7 +292,7 @@ static inline uint64_t normal_d8(tg_vec3 a, tg_vec3 b)
 /* One entry e (spatial weight sp) of weigh_and_sum into the sums s[0..7]
  * (s[7] the weights'). */
 static DENOISE_INLINE void weigh_entry(const tgi_denoise_walk *k, int e, const spatial_pair *sp, int64_t zi, tg_vec3 ni,
-                                       int64_t dz_lim, tg_real inv_ztol, uint64_t inv_wide, uint64_t key, uint64_t same,
+                                       int64_t dz_lim, tg_real inv_ztol, uint64_t inv_wide, normal_code key, uint64_t same,
                                        const int bent, const int near, const int wide, int64_t *s)
 {
     /* in 64 bits (the depth's load widens it; no widening of dz for the
@@ -330,9 +332,9 @@ static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const
     const int wide = whole;
     int64_t s[TGI_DENOISE_VALUES + 1] = { 0, 0, 0, 0, 0, 0, 0, 0 };
 #if NORMAL_WORDS
-    uint64_t key = k->nkey[ce];   /* the centre's code */
+    normal_code key = k->nkey[ce];   /* the centre's code */
 #else
-    uint64_t key = normal_key(ni, UINT64_MAX - 1);
+    normal_code key = normal_key(ni, UINT64_MAX - 1);
     (void)ce;
 #endif
     int j, c;
