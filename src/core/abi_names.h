@@ -208,6 +208,7 @@
 #define tgi_rgb9e5_unpack TG_ABI(tgi_rgb9e5_unpack)
 #define tgi_rgb_carve TG_ABI(tgi_rgb_carve)
 #define tgi_rsqrt_seed_q30 TG_ABI(tgi_rsqrt_seed_q30)
+#define tgi_rsqrt_seed_q30_64 TG_ABI(tgi_rsqrt_seed_q30_64)
 #define tgi_sh9_from_env TG_ABI(tgi_sh9_from_env)
 #define tgi_sh9_irradiance TG_ABI(tgi_sh9_irradiance)
 #define tgi_sh9_irradiance_bent_cone TG_ABI(tgi_sh9_irradiance_bent_cone)

@@ -94,8 +94,9 @@ const uint32_t tgi_rsqrt_seed_q30[24] = {
     589959130u, 579133272u, 568882316u, 559157115u, 549914212u, 541115017u };
 #endif
 
-/* 1/sqrt(M) in Q30 at the middle of [i/64, (i+1)/64), i = 16..63. */
-static const uint32_t rsqrt_seed[48] = {
+/* 1/sqrt(M) in Q30 at the middle of [i/64, (i+1)/64), i = 16..63
+ * (tgi_rsqrt_q30, real.h). */
+const uint32_t tgi_rsqrt_seed_q30_64[48] = {
     2114695713, 2053387115, 1997119227, 1945237133, 1897199172, 1852552937, 1810917218, 1771968208,
     1735428857, 1701060526, 1668656406, 1638036256, 1609042172, 1581535151, 1555392273, 1530504391,
     1506774204, 1484114654, 1462447584, 1441702596, 1421816090, 1402730445, 1384393311, 1366757007,
@@ -124,27 +125,9 @@ static uint64_t mantissa_even(uint64_t v, int *e)
     return m;
 }
 
-/* 1/sqrt(M) in Q30 for M in [1/4, 1) given in Q32 (relative error about
- * 2^-29): table seed (1.5%), then three Newton steps
- * y <- y (3 - M y^2) / 2 in integers. */
-static inline uint64_t rsqrt_step(uint64_t m, uint64_t y)
-{
-    const uint64_t my2 = (m * ((y * y) >> 30)) >> 32; /* M y^2, Q30 */
-    return (y * (3 * ((uint64_t)1 << 30) - my2)) >> 31;
-}
-static uint64_t rsqrt_q30(uint64_t m)
-{
-    uint64_t y = rsqrt_seed[(m >> 26) - 16];
-#if TG_OUTLINE_HELPERS   /* compiling for size: the loop */
-    int i;
-    for (i = 0; i < 3; i++) y = rsqrt_step(m, y);
-#else   /* the three steps written out: gcc -O2 kept the loop (its counter, 2 instructions a step) */
-    y = rsqrt_step(m, y);
-    y = rsqrt_step(m, y);
-    y = rsqrt_step(m, y);
-#endif
-    return y;
-}
+/* 1/sqrt(M) in Q30 for M in [1/4, 1) given in Q32: tgi_rsqrt_q30
+ * (real.h), out of line for tgi_isqrt64 and compiling for size. */
+static uint64_t rsqrt_q30(uint64_t m) { return tgi_rsqrt_q30(m); }
 
 /* floor(sqrt(v)): sqrt(M) 2^(e/2) from the Newton reciprocal (within a few
  * units), then made exact by integer tests r^2 <= v < (r+1)^2. */
@@ -291,20 +274,9 @@ tg_real tg_rsqrt(tg_real x)
     if (x <= 0) return TG_REAL_MAX;
     y = rsqrt_q30(mantissa_even((uint64_t)x, &e));
     return tgi_sat64((int64_t)((y + ((uint64_t)1 << (5 + e / 2))) >> (6 + e / 2)));
-#else
-    /* mantissa_even without its branch: 0 < x < 2^31 has bl = 32 - c bits
-     * (c = clz32(x) >= 1); for s = c & ~1, M = x << s in Q32 (bl even: s = c,
-     * x 2^(32 - bl); bl odd: s = c - 1, x 2^(32 - bl) / 2 exactly) and e =
-     * 32 - s (bl rounded up to even): mantissa_even's M and e.  Then the
-     * rounding (y + 2^(k - 1)) >> k, k = 6 + e/2 = 22 - s/2, as ((y >> (k -
-     * 1)) + 1) >> 1 (the offset a multiple of 2^(k - 1): the same floor);
-     * y <= 2^31, so the result < 2^26 needs no saturation test */
-    int s;
-    uint64_t y;
+#else   /* tgi_rsqrt_pos (real.h), rsqrt_q30 inline */
     if (x <= 0) return TG_REAL_MAX;
-    s = tgi_clz32_nz((uint32_t)x) & ~1;
-    y = rsqrt_q30((uint64_t)(uint32_t)x << s);
-    return (tg_real)(((y >> (21 - s / 2)) + 1) >> 1);
+    return tgi_rsqrt_pos(x);
 #endif
 }
 

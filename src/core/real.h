@@ -175,6 +175,55 @@ static inline tgi_wide tgi_wide_add_weighted(tgi_wide acc, tg_real w, tg_real v)
 static inline tgi_wide tgi_wide_add_weighted(tgi_wide acc, tg_real w, tg_real v) { return acc + w * v; }
 #endif
 
+/* ---- the exact reciprocal square root ----
+ * tg_rsqrt's steps (real.c), inline for the kernels' calls of positive x
+ * (the HBIL kernel's six a pixel in Q16.16: one call and two returns, its
+ * test of x <= 0 and the call into rsqrt_q30 fewer; the same operations,
+ * so the same bits for every x > 0: checked against the previous
+ * out-of-line tg_rsqrt at every x in (0, 2^31), 0 differ, by a program
+ * linking 93f6823's libtinygi-fixed.a, session 36). */
+/* 1/sqrt(M) in Q30 at the middle of [i/64, (i+1)/64), i = 16..63 (real.c). */
+extern const uint32_t tgi_rsqrt_seed_q30_64[48];
+
+/* 1/sqrt(M) in Q30 for M in [1/4, 1) given in Q32 (relative error about
+ * 2^-29): table seed (1.5%), then three Newton steps
+ * y <- y (3 - M y^2) / 2 in integers. */
+static inline uint64_t tgi_rsqrt_step_q30(uint64_t m, uint64_t y)
+{
+    const uint64_t my2 = (m * ((y * y) >> 30)) >> 32; /* M y^2, Q30 */
+    return (y * (3 * ((uint64_t)1 << 30) - my2)) >> 31;
+}
+static inline uint64_t tgi_rsqrt_q30(uint64_t m)
+{
+    uint64_t y = tgi_rsqrt_seed_q30_64[(m >> 26) - 16];
+#if TG_OUTLINE_HELPERS   /* compiling for size: the loop */
+    int i;
+    for (i = 0; i < 3; i++) y = tgi_rsqrt_step_q30(m, y);
+#else   /* the three steps written out: gcc -O2 kept the loop (its counter, 2 instructions a step) */
+    y = tgi_rsqrt_step_q30(m, y);
+    y = tgi_rsqrt_step_q30(m, y);
+    y = tgi_rsqrt_step_q30(m, y);
+#endif
+    return y;
+}
+
+#if TG_FIXED
+/* tg_rsqrt(x) for x > 0 (not compiling for size: real.c's form).
+ * mantissa_even without its branch: 0 < x < 2^31 has bl = 32 - c bits
+ * (c = clz32(x) >= 1); for s = c & ~1, M = x << s in Q32 (bl even: s = c,
+ * x 2^(32 - bl); bl odd: s = c - 1, x 2^(32 - bl) / 2 exactly) and e =
+ * 32 - s (bl rounded up to even): mantissa_even's M and e.  Then the
+ * rounding (y + 2^(k - 1)) >> k, k = 6 + e/2 = 22 - s/2, as ((y >> (k -
+ * 1)) + 1) >> 1 (the offset a multiple of 2^(k - 1): the same floor);
+ * y <= 2^31, so the result < 2^26 needs no saturation test */
+static inline tg_real tgi_rsqrt_pos(tg_real x)
+{
+    const int s = tgi_clz32_nz((uint32_t)x) & ~1;
+    const uint64_t y = tgi_rsqrt_q30((uint64_t)(uint32_t)x << s);
+    return (tg_real)(((y >> (21 - s / 2)) + 1) >> 1);
+}
+#endif
+
 /* ---- the per-pixel reciprocal square root ----
  * Cheaper than tg_rsqrt (two Newton steps instead of three, and no range
  * handling), for the rasterizer's per-pixel normals, whose error stays below

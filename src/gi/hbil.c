@@ -541,8 +541,13 @@ static tg_real slice_Q(tg_real c, int side)
  * operations, without its range tests (x > 0, x <= TG_REAL_MAX, x below
  * the smallest normal) and its scale (1 for a normal x: a product that
  * changes no bit); cornell 160x120, 2 frames, float 529.04M -> 528.46M.
- * Q16.16 and compiling for size tg_rsqrt itself. */
-#if TG_FIXED || TG_OUTLINE_HELPERS
+ * Q16.16 not compiling for size: tgi_rsqrt_pos, tg_rsqrt's steps inline
+ * for x > 0 (real.h), at every call of the kernel's (x >= 1 in
+ * pixel_setup, x >= 0.0001 in slice_screen_dir, x > 2^-15 in slice_run);
+ * compiling for size tg_rsqrt itself. */
+#if TGI_Q16_WIDE
+#define rsqrt_in_range tgi_rsqrt_pos
+#elif TG_FIXED || TG_OUTLINE_HELPERS
 #define rsqrt_in_range tg_rsqrt
 #else
 static inline float rsqrt_in_range(float x)
@@ -584,6 +589,8 @@ static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)
      * in [1, 1025]: positive, normal and finite (rsqrt_in_range) */
 #if !TG_FIXED && !TG_OUTLINE_HELPERS
 #define HBIL_RSQRT_K(x) (px->k_small ? rsqrt_in_range(x) : tg_rsqrt(x))
+#elif TGI_Q16_WIDE
+#define HBIL_RSQRT_K(x) rsqrt_in_range(x)   /* x >= 1 (|k|^2 with k_z = 1, 1 + k_x^2) */
 #else
 #define HBIL_RSQRT_K(x) tg_rsqrt(x)
 #endif
@@ -668,7 +675,7 @@ static void slice_screen_dir(const hbil_ctx *c, const hbil_pixel *px, tg_vec3 d,
         const tg_real sx = small_sub(d.x, small_mul(kx, d.z)), sy = tg_neg(small_sub(d.y, small_mul(ky, d.z)));
         len2 = small_add(small_mul(sx, sx), small_mul(sy, sy));
         if (len2 < TG_R(0.0001f)) { *ux = TG_ONE; *uy = 0; return; }
-        inv = tg_rsqrt(len2);
+        inv = rsqrt_in_range(len2);
         *ux = small_mul(sx, inv);
         *uy = small_mul(sy, inv);
         return;
@@ -681,6 +688,8 @@ static void slice_screen_dir(const hbil_ctx *c, const hbil_pixel *px, tg_vec3 d,
     /* float: |k_x|, |k_y| < 32 and D's components below 2 (as Q16.16's
      * above) put |u|^2 in [0.0001, 2^14): positive, normal and finite */
     inv = px->k_small ? rsqrt_in_range(len2) : tg_rsqrt(len2);
+#elif TGI_Q16_WIDE
+    inv = rsqrt_in_range(len2);   /* len2 >= 0.0001 */
 #else
     inv = tg_rsqrt(len2);
 #endif
