@@ -1527,6 +1527,13 @@ static inline tg_real lerp_inverse_depth(tg_real za, tg_real zb, tg_real f)
 #endif
 }
 
+/* refine_fine's per-slice values in hbil_march (march_axis): float not
+ * compiling for size (march_side sets the march per side there).  Cornell
+ * 160x120, 2 frames: float 481.66M -> 480.58M; Q16.16, whose floor of the
+ * extent is a product and a shift, took 654.42M -> 655.45M (tgi_hbil_rows
+ * +3.05M, refine_fine -1.1M), so computes them per side as before */
+#define HBIL_FINE_SLICE (!TG_FIXED && !TG_OUTLINE_HELPERS && !TG_NO_FINE_HORIZON)
+
 /* A run of samples along a side: march_side's, or march_between's
  * (march_run), which march_samples reads in place of copies of the whole
  * hbil_march. */
@@ -1557,6 +1564,15 @@ typedef struct hbil_march {
     tg_real slope, extent;         /* minor per major pixel; the march's extent, major pixels */
     int smaj, smin, bmax;
     hbil_run run;                  /* the side's own samples */
+#if HBIL_FINE_SLICE
+    /* refine_fine's values of the slice, set once a slice (march_axis,
+     * with a fine image), not a side: the pixel in the fine image (fa0
+     * along the major axis, fb0 the minor), the fine and the sub-image
+     * pixels to the screen's edge against and along the major axis
+     * (froom, fsub: [0] toward -a, [1] toward +a), floor(extent r) (fext),
+     * the first sample's fine pixel r (m - o) (ffirst), the long reach */
+    int fa0, fb0, froom[2], fsub[2], fext, ffirst, flong;
+#endif
 } hbil_march;
 
 /* The sample at screen offset (sx, sy) from the pixel (image pixels, y
@@ -2189,6 +2205,13 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
 {
     const tgi_gview *fg = c->fine;
     const int dir = mr->run.da < 0 ? -1 : 1, a0 = mr->run.a + mr->run.back, r = c->fine_ratio;
+#if HBIL_FINE_SLICE   /* march_axis's, the same values (cornell 160x120: see the commit) */
+    const int fa0 = mr->fa0, fb0 = mr->fb0;
+    const int room = mr->froom[dir > 0], sub_room = mr->fsub[dir > 0];
+    const int tmax = mr->fext < room ? mr->fext : room;
+    const int long_reach = mr->flong, first = mr->ffirst;
+    (void)px;
+#else
     const int fa0 = r * a0 + (major_x ? c->fine_i : c->fine_j);
     const int fb0 = r * (major_x ? px->y : px->x) + (major_x ? c->fine_j : c->fine_i);
     const int room = dir > 0 ? (major_x ? fg->width : fg->height) - 1 - fa0 : fa0;       /* fine pixels to the edge */
@@ -2224,6 +2247,7 @@ HBIL_NOINLINE static void refine_fine(const hbil_ctx *c, const hbil_pixel *px, c
 #else
     const int tmax = floor_small(ext) < room ? floor_small(ext) : room;   /* 0 <= ext: no test of ext < 0, as Q16.16's */
 #endif
+#endif /* HBIL_FINE_SLICE */
     const int climb = sd->peak_a >= 0 && r < HBIL_SPARSE_RATIO;   /* the peak's span by fine_climb */
     hbil_fine_best best;
     int t0 = -1, span[2][2] = { { 0, 0 }, { 0, 0 } };   /* fine pixels [span[k][0], span[k][1]) */
@@ -2370,6 +2394,21 @@ static void march_axis(const hbil_ctx *c, const hbil_pixel *px, tg_real ux, tg_r
     ax->m = march_steps(c, mt->extent, &ax->n);
     o = EXTENT_TO_INT(small_mul(px->jitter, small_from_int(ax->m)));     /* sample k at k m - o pixels; jitter in [0, 1) */
     ax->o = o < 0 || o >= ax->m ? 0 : o;
+#if HBIL_FINE_SLICE
+    if (c->fine) {   /* refine_fine's values of the slice: its operations of before, once a slice */
+        const tgi_gview *fg = c->fine;
+        const int r = c->fine_ratio, a0 = major_x ? px->x : px->y;
+        mt->fa0 = r * a0 + (major_x ? c->fine_i : c->fine_j);
+        mt->fb0 = r * (major_x ? px->y : px->x) + (major_x ? c->fine_j : c->fine_i);
+        mt->froom[0] = mt->fa0;                                                    /* fine pixels to the edge */
+        mt->froom[1] = (major_x ? fg->width : fg->height) - 1 - mt->fa0;
+        mt->fsub[0] = a0;
+        mt->fsub[1] = ax->amax - 1 - a0;
+        mt->fext = floor_small(tg_mul(mt->extent, tg_from_int(r)));   /* 0 <= ext <= 2^14 r (refine_fine) */
+        mt->ffirst = r * (ax->m - ax->o);   /* r (da - back) dir = r (m dir - o dir) dir */
+        mt->flong = march_long_reach(c, mt);
+    }
+#endif
 }
 
 /* The march's fields every side of the pixel shares, set once a pixel
