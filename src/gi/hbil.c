@@ -1291,6 +1291,46 @@ static int march_steps(const hbil_ctx *c, tg_real extent, int *n)
 #undef STEPS_FROM_INT
 
 
+/* Branches gcc is told the march takes mostly (HBIL_LIKELY) or seldom:
+ * its register choices (the march has more live values than registers)
+ * then favour the common path; the same operations.  Each measured on
+ * cornell 160x120, 2 frames, one at a time, and kept in the type it
+ * lowered (the other's code as written):
+ *   both: the interpolated depth (both neighbours inside, surface and
+ *     close), float 480.77M -> 480.03M, Q16.16 655.70M -> 655.06M;
+ *   Q16.16: the sample not above the horizon 656.79M -> 655.70M (float
+ *     +0.65M), sample_cos's q within q_near 655.06M -> 654.73M, a sample
+ *     beyond the radius seldom 654.74M -> 653.78M (float +0.20M);
+ *   float: floor_frac_small's negative correction seldom 480.03M ->
+ *     479.78M, the horizon test failing 479.50M -> 479.04M (Q16.16
+ *     +0.58M), the cosine at or under h seldom 479.78M -> 479.50M (Q16.16
+ *     +1.0M).
+ * Measured and not kept: Q16.16 len2 <= r2 (655.75M against 654.73M) and
+ * len2 < 2^30 (656.18M); float len2 <= r2 (481.65M against 480.03M); the
+ * slice leaving the image seldom (float 479.53M, Q16.16 653.84M).  Not in
+ * the builds for size. */
+#if defined(__GNUC__) && !TG_OUTLINE_HELPERS
+#define HBIL_LIKELY(x) __builtin_expect(!!(x), 1)
+#define HBIL_UNLIKELY(x) __builtin_expect(!!(x), 0)
+#else
+#define HBIL_LIKELY(x) (x)
+#define HBIL_UNLIKELY(x) (x)
+#endif
+#if TGI_Q16_WIDE
+#define HBIL_Q16_LIKELY(x) HBIL_LIKELY(x)
+#define HBIL_Q16_UNLIKELY(x) HBIL_UNLIKELY(x)
+#else
+#define HBIL_Q16_LIKELY(x) (x)
+#define HBIL_Q16_UNLIKELY(x) (x)
+#endif
+#if TG_FIXED
+#define HBIL_F_LIKELY(x) (x)
+#define HBIL_F_UNLIKELY(x) (x)
+#else
+#define HBIL_F_LIKELY(x) HBIL_LIKELY(x)
+#define HBIL_F_UNLIKELY(x) HBIL_UNLIKELY(x)
+#endif
+
 /* b0 = floor_small(a), returned, and *f = a - b0 in [0, 1): the raw
  * value's fraction bits in Q16.16.  In float the truncation's conversion
  * back, (float)i, serves the floor's compare and the fraction, less one
@@ -1309,7 +1349,7 @@ static inline int floor_frac_small(tg_real a, tg_real *f)
 #else
     int i = (int)a;
     tg_real fi = (tg_real)i;
-    if (fi > a) {
+    if (HBIL_UNLIKELY(fi > a)) {
         i--;
         fi = fi - 1.0f;
     }
@@ -1599,19 +1639,6 @@ typedef struct hbil_march {
  * the unit vector toward the sample.  One copy for the march and the fine samples when compiling for
  * size (TG_OUTLINE_HELPERS), inlined into each otherwise (and into the
  * march alone without the fine samples, TG_NO_FINE_HORIZON). */
-/* A branch gcc is told a Q16.16 march takes mostly: its register choices
- * (the march has more live values than registers) then favour that path.
- * Used on march_samples' sample not above the horizon, its interpolated
- * depth and sample_cos's q within q_near; cornell 160x120, 2 frames:
- * Q16.16 656.79M -> 655.70M -> 655.06M -> 654.73M, one at a time (float so
- * took 480.77M -> 481.42M with the first, so not there).  Measured and not
- * kept: len2 <= r2 (655.75M) and len2 < 2^30 (656.18M).  Float and the
- * builds for size as written. */
-#if TGI_Q16_WIDE && defined(__GNUC__)
-#define HBIL_Q16_LIKELY(x) __builtin_expect(!!(x), 1)
-#else
-#define HBIL_Q16_LIKELY(x) (x)
-#endif
 
 #define HBIL_NOT_ABOVE TG_R(-2.0f)
 #define HBIL_BEYOND TG_R(-3.0f)    /* not above either: beyond the 3D radius */
@@ -1664,7 +1691,7 @@ static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, t
     if (len2 > mr->r2) return HBIL_BEYOND;                                    /* beyond the 3D radius */
     dot = tgi_wide_dot(dx, dy, dz, mr->wox, mr->woy, mr->woz);
     /* cos(theta) > horizon, without a division: dot|dot| > h|h| |d|^2 */
-    if (wide_products_le(dot, wide_abs(dot), hs_tie, len2)) return HBIL_NOT_ABOVE;
+    if (HBIL_F_LIKELY(wide_products_le(dot, wide_abs(dot), hs_tie, len2))) return HBIL_NOT_ABOVE;
 #if TG_FIXED
     if (len2 >= ((tgi_wide)1 << 30)) {   /* |d| >= 128: |d|^2 beyond tg_real; the cosine and the direction are scale-free */
         int k = 1;
@@ -1678,7 +1705,7 @@ static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, t
      * unnarrowed (cornell 160x120 -0.07%), a build for size as tg_real
      * (tgi_wide there: the AO-only program 8 bytes longer) */
     cn = horizon_cos((hbil_cos_arg)dot, (hbil_cos_arg)len2, inv_len);
-    if (cn <= h) return HBIL_NOT_ABOVE;
+    if (HBIL_F_UNLIKELY(cn <= h)) return HBIL_NOT_ABOVE;
     d[0] = dx; d[1] = dy; d[2] = dz;
     return cn;
 }
@@ -1830,7 +1857,7 @@ static inline void march_samples(
         /* both neighbours surface (depth > 0 is not sky) and close: 1/z
          * interpolated linearly, 1/z = (1-f)/za + f/zb  <=>
          * z = za + f (zb - za) za / (zb - f (zb - za)) */
-        if (HBIL_Q16_LIKELY((unsigned)b0 < (unsigned)(bmax - 1)                 /* b0 and b0 + 1 inside */
+        if (HBIL_LIKELY((unsigned)b0 < (unsigned)(bmax - 1)                 /* b0 and b0 + 1 inside */
             && (za = tgi_gv_depth(g, sa)) > 0 && depths_close(za, zb = tgi_gv_depth(g, sa + smin)))) {
             z1 = lerp_inverse_depth(za, zb, f);
         } else {
@@ -1855,7 +1882,7 @@ static inline void march_samples(
              * side_init and set nowhere else, so only a sample beyond the
              * radius tests k (a): the horizon test's failures (most samples)
              * go on without it */
-            if (cn == HBIL_BEYOND && HBIL_FIRST() && run == &mr->run) sd->beyond = 1;
+            if (HBIL_Q16_UNLIKELY(cn == HBIL_BEYOND) && HBIL_FIRST() && run == &mr->run) sd->beyond = 1;
 #endif
             continue;
         }
