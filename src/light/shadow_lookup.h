@@ -270,6 +270,36 @@ static PCF_INLINE tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *
     int64_t lim = perspective_bound(q->num);   /* lit_perspective's */
 #endif
     int i, j;
+#if TGI_Q16_WIDE
+    /* A perspective lookup with den_c >= -2^30 raw, both slopes within
+     * 2^10 and lo_bias + depth_range <= TG_REAL_MAX (nearly every one):
+     * the loop below without its clamps, which cannot act there.  den_c =
+     * num / lz (num < 0, 1 / lz > 0) is <= 0; each dx, dy is a slope
+     * times (i - f) texel_ndc within 6 (pcf_taps), rounded: within 6 2^26
+     * + 1 raw.  So den_c + dy[j] lies within [-(2^30 + 3 2^27 + 1), 6 2^26
+     * + 1] (tg_add's value) and den_row + dx[i] >= -(2^30 + 3 2^28 + 2) >
+     * TG_REAL_MIN: the clamp at TG_REAL_MIN never acts.  A code read back
+     * adds (range q + 2^15) >> 16 <= max(range, 0) (q <= 65535) to
+     * lo_bias >= 0, so a <= TG_REAL_MAX: depth16_plus's tg_add value, the
+     * clamp at TG_REAL_MAX never acts. */
+    if (perspective && q->den_c >= -((tg_real)1 << 30)
+        && (uint32_t)q->slope_x + ((uint32_t)1 << 26) <= ((uint32_t)1 << 27)
+        && (uint32_t)q->slope_y + ((uint32_t)1 << 26) <= ((uint32_t)1 << 27)
+        && (int64_t)lo_bias + fc->depth_range <= (int64_t)TG_REAL_MAX) {
+        for (j = 0; j < taps; j++, row += fc->size) {
+            tg_real row_lit = 0;
+            const int64_t den_row = (int64_t)q->den_c + dy[j];
+            for (i = 0; i < taps; i++) {
+                int64_t den = den_row + dx[i];
+                int64_t a = (int64_t)lo_bias + (((int64_t)fc->depth_range * row[i] + 32768) >> 16);
+                den = den < q->den_c ? den : q->den_c;
+                row_lit += a * den <= lim ? wx[i] : 0;
+            }
+            lit += tgi_wide_mul(row_lit, wy[j]);
+        }
+        return (tg_real)lit;
+    }
+#endif
     for (j = 0; j < taps; j++, row += fc->size) {
         tg_real row_lit = 0;
         if (perspective) {
@@ -315,7 +345,7 @@ static PCF_INLINE tg_real pcf16_inside(const tgi_shadow_face *fc, const lookup *
 static PCF_INLINE tg_real pcf_taps(const tgi_shadow_map *sm, const lookup *q, const int taps)
 {
     const tgi_shadow_face *fc = q->fc;
-    tg_real su, sv, fx, fy, norm, lit = 0, wx[PCF_MAX_TAPS], wy[PCF_MAX_TAPS], dx[PCF_MAX_TAPS], dy[PCF_MAX_TAPS];
+    tg_real fx, fy, norm, lit = 0, wx[PCF_MAX_TAPS], wy[PCF_MAX_TAPS], dx[PCF_MAX_TAPS], dy[PCF_MAX_TAPS];
     tg_real st[PCF_MAX_TAPS][PCF_MAX_TAPS];
     int i0, j0, i, j;
 #if TGI_Q16_WIDE
@@ -338,9 +368,14 @@ static PCF_INLINE tg_real pcf_taps(const tgi_shadow_map *sm, const lookup *q, co
         const int64_t iu = wu >> 16, iv = wv >> 16;   /* tg_to_int's floor */
         if ((uint64_t)(iu + 2) > (uint64_t)fc->size + 3 || (uint64_t)(iv + 2) > (uint64_t)fc->size + 3)
             return TG_ONE;   /* outside [-2, size + 1], in one unsigned compare */
-        su = (tg_real)wu; sv = (tg_real)wv; i0 = (int)iu; j0 = (int)iv;
+        i0 = (int)iu; j0 = (int)iv;
+        /* su - tg_from_int(i0) (sv's alike), su = wu: i0 within [-2, size
+         * + 1] (size <= 2^13), so tg_from_int's i0 2^16 is exact and su
+         * minus the floor's 2^16 multiple is su's low 16 bits */
+        fx = (tg_real)(wu & 0xFFFF); fy = (tg_real)(wv & 0xFFFF);
     }
 #else
+    tg_real su, sv;
     {
         tg_real half_size = tg_ldexp(tg_from_int(fc->size), -1);
         su = tg_sub(tg_mul(tg_add(q->ndc_x, TG_ONE), half_size), TG_R(0.5f));
@@ -349,10 +384,10 @@ static PCF_INLINE tg_real pcf_taps(const tgi_shadow_map *sm, const lookup *q, co
     i0 = tg_to_int(su); j0 = tg_to_int(sv);
     if ((unsigned)i0 + 2u > (unsigned)fc->size + 3u || (unsigned)j0 + 2u > (unsigned)fc->size + 3u)
         return TG_ONE;   /* outside [-2, size + 1], in one unsigned compare */
-#endif
-    /* the floor's fractions, in [0, 1): these and the weights below never saturate */
     fx = su - tg_from_int(i0);
     fy = sv - tg_from_int(j0);
+#endif
+    /* the floor's fractions, in [0, 1): these and the weights below never saturate */
     if (taps == 4) {
         wx[0] = TG_ONE - fx; wx[1] = wx[2] = TG_ONE; wx[3] = fx;
         wy[0] = TG_ONE - fy; wy[1] = wy[2] = TG_ONE; wy[3] = fy;
