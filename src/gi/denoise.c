@@ -323,13 +323,12 @@ static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const
                                          tg_vec3 ni, int ce, uint64_t same, int64_t dz_lim, tg_real inv_ztol, uint64_t inv_wide,
                                          uint32_t window, int whole, const int bent, const int near, int64_t *sum)
 {
-    /* whole_fewer's and whole_all's copies (wide) take the inverse
+    /* whole_fewer's and whole_all's copies (whole) take the inverse
      * inv_wide, widened once by the caller (the same value,
      * (uint64_t)inv_ztol): from a tg_real, gcc sign-extended it again at
      * each of their 25 entries (Q16.16 cornell 160x120 2 frames 694.46M ->
      * 693.80M); the copy inlined in tgi_denoise_pixel (part of a window)
      * keeps the tg_real (widened there, columns took 73K more) */
-    const int wide = whole;
     int64_t s[TGI_DENOISE_VALUES + 1] = { 0, 0, 0, 0, 0, 0, 0, 0 };
 #if NORMAL_WORDS
     normal_code key = k->nkey[ce];   /* the centre's code */
@@ -338,17 +337,15 @@ static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const
     (void)ce;
 #endif
     int j, c;
-#define ENTRY(j_) weigh_entry(k, o + (j_), &spatial[j_], zi, ni, dz_lim, inv_ztol, inv_wide, key, same, bent, near, wide, s)
+#define ENTRY(j_) weigh_entry(k, o + (j_), &spatial[j_], zi, ni, dz_lim, inv_ztol, inv_wide, key, same, bent, near, whole, s)
 #define ROW5(j) ENTRY(j); ENTRY(j + 1); ENTRY(j + 2); ENTRY(j + 3); ENTRY(j + 4)
-    /* whole_fewer's copies (out of line, registers to spare) all 25
-     * written out: no counters, nor the end read back from the stack (5
-     * instructions a row; Q16.16 cornell 160x120 2 frames 695.61M ->
-     * 695.01M); the copy inlined in tgi_denoise_pixel keeps the rows a loop
-     * (written out there, columns took 31K more) */
-    if (wide) {
+    /* whole_fewer's and whole_all's copies (out of line, registers to
+     * spare) all 25 written out: no counters, nor the end read back from
+     * the stack (5 instructions a row; Q16.16 cornell 160x120 2 frames
+     * 695.61M -> 695.01M); the copy inlined in tgi_denoise_pixel takes
+     * part of a window only */
+    if (whole) {
         ROW5(0); ROW5(5); ROW5(10); ROW5(15); ROW5(20);
-    } else if (whole) {
-        for (j = 0; j < 5 * 5; j += 5) { ROW5(j); }
     } else {
         for (j = 0; window != 0; j++, window >>= 1)
             if (window & 1) ENTRY(j);
