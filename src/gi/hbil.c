@@ -2606,7 +2606,7 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, hbil_march *mt, t
     hbil_axis ax;
 #endif
     hbil_side front, back;
-    tg_real inv_len_n, h1i, h0i, ux, uy, q1, q0, q1i, q0i, r1, r0, r1i, r0i, p1i, p0i;
+    tg_real inv_len_n, h1i, h0i, ux, uy, q1, q0, q1i, q0i, r1, r0, r1i, r0i, p1i, p0i, pf1, pf0;
     /* the frame's vectors w_x, w_y, w_o and n are unit (|component| <= 1
      * and a rounding), cos and sin at most 1: D's components below 2, n'
      * below 4, their products and sums small (small_mul, small_dot) */
@@ -2638,17 +2638,28 @@ static void slice_run(const hbil_ctx *c, const hbil_pixel *px, hbil_march *mt, t
     march_side(c, px, &sl, &ax, 1, &front);
     march_side(c, px, &sl, &ax, -1, &back);
 #endif
-    /* Q at the found horizons: the near field's gather kept them */
-    q1 = NEAR_FIELD(c) || front.h == h1i ? front.q : slice_Q(front.h, 1);
-    q0 = NEAR_FIELD(c) || back.h == h0i ? back.q : slice_Q(back.h, -1);
+    /* Q and P at the found horizons: the near field's gather kept them
+     * (gather_rise's q_new and p_new of the rise to h, P's sum the one
+     * below; every rise of h gathers there, the march's and refine_fine's),
+     * side_init's q_open and p_open at an unraised horizon (h1i: q1i and
+     * p1i, whose r1i = slice_R(h1i); h0i: q0i and p0i, r0i = slice_R(h1i)
+     * = slice_R(-h1i), c c = (-c)(-c) exactly) */
     r1 = slice_R(front.h); r0 = slice_R(back.h);
+    if (NEAR_FIELD(c) || front.h == h1i) {
+        q1 = front.q; pf1 = front.p_old;
+    } else {
+        q1 = slice_Q(front.h, 1); pf1 = small_add(small_mul(sl.nx, q1), small_mul(sl.ny, r1));
+    }
+    if (NEAR_FIELD(c) || back.h == h0i) {
+        q0 = back.q; pf0 = back.p_old;
+    } else {
+        q0 = slice_Q(back.h, -1); pf0 = small_add(small_mul(sl.nx, q0), small_mul(sl.ny, r0));
+    }
     /* AO_i = P(theta1) + P(theta0) (eq. 10-11 with |sin|); open minus found
      * (the slice's terms small as above: |P| < 4 2 + 4 / 2 = 10, a term
      * below 40, and the sum over at most TG_MAX_SLICES = 8 slices below
      * 320: small_add gives tg_add's value) */
-    acc->occlusion = small_add(acc->occlusion,
-        small_add(small_sub(p1i, small_add(small_mul(sl.nx, q1), small_mul(sl.ny, r1))),
-                  small_sub(p0i, small_add(small_mul(sl.nx, q0), small_mul(sl.ny, r0)))));
+    acc->occlusion = small_add(acc->occlusion, small_add(small_sub(p1i, pf1), small_sub(p0i, pf0)));
     /* eq. 5-6: n~x = Q1 + Q0, n~y = R1 + R0; B = D n~x + w_o n~y.  Small
      * (as above): |Q| < 2 and R in [0, 1/2] make the two factors below 8
      * and 2, D's components below 2 and w_o's 1, a slice's term below 18
