@@ -490,7 +490,10 @@ static HBIL_SQRT_INLINE tg_real unit_sqrt(tg_real x)
 static inline tg_real slice_q_eval(tg_real c)
 {
     const tg_real *k = slice_q_fit;
-    tg_real a = tg_min(tg_abs(c), TG_ONE), p, t;
+    /* |c| as tgi_abs_fast (raster/pack.h; float: +0 at c = -0, whose
+     * products k a are zeros added to the nonzero k[5] .. k[0], and 1 - a
+     * = 1 either way; a NaN fails a < 1 either way: a = 1) */
+    tg_real a = tg_min(tgi_abs_fast(c), TG_ONE), p, t;
 #if TGI_Q16_WIDE
     /* Horner as below, each step small_add(small_mul(p, a), k) with the
      * constant in the rounding's offset: floor((p a + 2^15) / 2^16) + k =
@@ -1720,7 +1723,12 @@ static inline tg_vec3 sample_dir(const tgi_wide d[3], tg_real inv_len)
 {
     return tg_v3(small_mul((tg_real)d[0], inv_len), small_mul((tg_real)d[1], inv_len), small_mul((tg_real)d[2], inv_len));
 }
-static inline tg_real horizon_sq(tg_real h) { return small_mul(h, tg_abs(h)); }
+/* h|h|, |h| as tgi_abs_fast (raster/pack.h: in float by the sign bit,
+ * one and, where tg_abs is a compare and a select): at h = -0 the product
+ * is a zero of the other sign, and hs is read only as horizon_tie's
+ * hs + HBIL_TIE, HBIL_TIE for either zero; h is never a NaN (the clamped
+ * tangent-plane cosine, or horizon_cos's of a finite d with |d| > 0) */
+static inline tg_real horizon_sq(tg_real h) { return small_mul(h, tgi_abs_fast(h)); }
 static inline tg_real horizon_tie(tg_real hs) { return small_add(hs, HBIL_TIE); }
 
 /* The samples of one side; major_x is a constant in each of the two
