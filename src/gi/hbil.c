@@ -971,7 +971,7 @@ static HBIL_INLINE tg_real rejection_weight_m(const hbil_ctx *c, const hbil_reje
         const int64_t ff = f < 0 ? -f * f : f * f;
 #else
         const float f = -(m->nr * dir.x + m->nu * dir.y + m->nf * dir.z);
-        const float ff = f * (f < 0.0f ? -f : f);
+        const float ff = f * tgi_abs_fast(f);   /* f|f| (raster/pack.h: a sign bit cleared; at f = -0 a zero of the other sign, equal in both tests) */
 #endif
         if (ff >= c->reject_hi2 * m->n2) return TG_ONE;          /* the common case first */
         if (ff <= c->reject_lo2 * m->n2) return 0;
