@@ -1617,6 +1617,7 @@ typedef struct hbil_march {
     hbil_mreal inv_z, wox, woy, woz;
 #if HBIL_Q_NEAR
     hbil_mreal q_near;             /* hbil_ctx's */
+    hbil_mreal q_span;             /* 2 q_near (< 2^31), sample_cos's one compare of qw + q_near */
 #endif
     tgi_wide r2;                   /* the 3D radius squared, march units */
     tg_real slope, extent;         /* minor per major pixel; the march's extent, major pixels */
@@ -1677,7 +1678,7 @@ static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, t
      * One branch for the saturation and the test, d computed in each arm
      * (as a conditional q and a second test of q_far, gcc 12 tested it
      * twice: cornell 160x120 Q16.16 770.99M -> 768.64M) */
-    if (!HBIL_Q16_LIKELY((uint64_t)qw + (uint64_t)mr->q_near <= 2u * (uint64_t)mr->q_near)) {
+    if (!HBIL_Q16_LIKELY((uint64_t)qw + (uint64_t)mr->q_near <= (uint64_t)mr->q_span)) {
         q = tgi_sat64(qw);
         HBIL_SAMPLE_D();
         if (wide_far(dx, dy, dz)) return HBIL_BEYOND;
@@ -2501,6 +2502,7 @@ static void march_template(const hbil_ctx *c, const hbil_pixel *px, hbil_march *
     mt->p0z = c->p0z;
 #if HBIL_Q_NEAR
     mt->q_near = c->q_near;
+    mt->q_span = 2 * (hbil_mreal)c->q_near;   /* its doubling once a pixel, not at each sample (two instructions fewer) */
 #endif
     mt->z = px->z;
     mt->inv_z = px->inv_z;
