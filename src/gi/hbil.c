@@ -1525,9 +1525,11 @@ static inline int depths_close(tg_real za, tg_real zb)
      * tgi_shift_floors), the same answer in 32 bits: a 32-bit core takes
      * that form (no 64-bit products; Cortex-M3 cornell 160x120: -1.9% of
      * the Q16.16 frame), x86-64 the 64-bit one (the 32-bit form: +0.4%,
-     * gcc 12's register choices in the march) */
+     * gcc 12's register choices in the march), za's test first (zb's
+     * first, gcc 12 laid the lerp out of line after it, a jump more a
+     * sample: cornell 160x120 Q16.16 647.79M -> 646.22M) */
 #if TGI_CORE64
-    return (tgi_wide)zb * 4 > za && (tgi_wide)za * 4 > zb;
+    return (tgi_wide)za * 4 > zb && (tgi_wide)zb * 4 > za;
 #else
     return zb > (za >> 2) && za > (zb >> 2);
 #endif
