@@ -176,8 +176,11 @@ typedef struct hbil_reject_memo {
     uint32_t key;
     tgi_oct_dir d;
 #if TG_FIXED
-    int32_t n2;
+    /* n2 last: after d, gcc 12 stored d and n2 at a fill as one vector (SSE2:
+     * ~4 instructions more than four scalar stores; cornell 160x120 Q16.16
+     * 644.27M -> 643.67M) */
     int64_t nr, nu, nf;
+    int32_t n2;
 #else
     float n2, nr, nu, nf;
 #endif
