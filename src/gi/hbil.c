@@ -1610,9 +1610,18 @@ static inline tg_real lerp_inverse_depth(tg_real za, tg_real zb, tg_real f)
 /* A run of samples along a side: march_side's, or march_between's
  * (march_run), which march_samples reads in place of copies of the whole
  * hbil_march. */
+/* The fields' order: the minor coordinates and the integers alternate;
+ * minor, dminor, ox, a in a row were stored by gcc 12 as one SSE2 vector
+ * put together from four registers (~4 instructions more a side than four
+ * scalar stores: cornell 160x120, 2 frames, Q16.16 643.67M -> 643.20M,
+ * float 472.94M -> 472.84M). */
 typedef struct hbil_run {
-    tg_real minor, dminor, ox;     /* ox: the minor offset before the first sample */
-    int a, da, n;
+    tg_real minor;
+    int a;
+    tg_real dminor;
+    int da;
+    tg_real ox;                    /* ox: the minor offset before the first sample */
+    int n;
     int back;                      /* o dir: sample k stands k da - back from the pixel */
 } hbil_run;
 /* The march's per-side constants (march_side).  In Q16.16 the ones
