@@ -108,16 +108,34 @@ typedef struct lookup {
  * core/real.h) is tgi_v3_dot's result without that test. */
 #define dot_basis tgi_v3_dot_bounded
 
-/* 1 when prepared, 0 when the surface faces away from the light. */
-LOOKUP_COPIED int prepare_ortho(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, tg_real err, lookup *q)
+/* The terms of an orthographic lookup that depend on the receiver's normal
+ * alone (direct.c keeps them while the G-buffer's normal code repeats). */
+typedef struct ortho_normal {
+    tg_real nl_z;               /* n . forward, at most -GRAZING_MIN_COS */
+    tg_real slope_x, slope_y;   /* depth per NDC unit */
+} ortho_normal;
+
+/* 1 with t set, 0 when the surface faces away from the light. */
+static LOOKUP_INLINE int ortho_normal_terms(const tgi_shadow_map *sm, tg_vec3 n, ortho_normal *t)
+{
+    const tgi_shadow_face *fc = &sm->face[0];
+    tg_real nl_z = dot_basis(n, fc->forward), inv_nz;
+    if (nl_z >= 0) return 0;
+    t->nl_z = nl_z = tg_min(nl_z, tg_neg(GRAZING_MIN_COS));
+    /* plane n.(dx, dy, dz) = 0 -> dz = -(nx dx + ny dy) / nz; world = ndc / scale */
+    inv_nz = tg_div(tg_neg(sm->ortho_scale_inv), nl_z);
+    t->slope_x = tg_mul(dot_basis(n, fc->right), inv_nz);
+    t->slope_y = tg_mul(dot_basis(n, fc->up), inv_nz);
+    return 1;
+}
+
+/* The lookup at p given its normal's terms. */
+static LOOKUP_INLINE void prepare_ortho_at(const tgi_shadow_map *sm, tg_vec3 p, const ortho_normal *t, tg_real err,
+                                           lookup *q)
 {
     const tgi_shadow_face *fc = &sm->face[0];
     const tg_real *m = fc->world_to_clip.m;
-    tg_vec3 r = fc->right, u = fc->up, f = fc->forward;
-    tg_real nl_z = dot_basis(n, f), depth, inv_nz;
-    if (nl_z >= 0) return 0;
-    nl_z = tg_min(nl_z, tg_neg(GRAZING_MIN_COS));
-    depth = tg_sub(dot_basis(p, f), sm->ortho_near);
+    tg_real depth = tg_sub(dot_basis(p, fc->forward), sm->ortho_near);
     err = tg_add(err, map_error(sm, fc, tg_abs(depth)));
     q->fc = fc;
     q->num = q->den_c = q->bias = 0;
@@ -130,11 +148,17 @@ LOOKUP_COPIED int prepare_ortho(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, 
     q->ndc_x = tg_add(dot_basis(p, tg_v3(m[0], m[1], m[2])), m[3]);
     q->ndc_y = tg_add(dot_basis(p, tg_v3(m[4], m[5], m[6])), m[7]);
     /* the receiver moved by err along n is err / |n . f| nearer the light */
-    q->base = tg_sub(tg_sub(depth, depth_bias(fc, fc->texel_world)), tg_div(err, tg_neg(nl_z)));
-    /* plane n.(dx, dy, dz) = 0 -> dz = -(nx dx + ny dy) / nz; world = ndc / scale */
-    inv_nz = tg_div(tg_neg(sm->ortho_scale_inv), nl_z);
-    q->slope_x = tg_mul(dot_basis(n, r), inv_nz);
-    q->slope_y = tg_mul(dot_basis(n, u), inv_nz);
+    q->base = tg_sub(tg_sub(depth, depth_bias(fc, fc->texel_world)), tg_div(err, tg_neg(t->nl_z)));
+    q->slope_x = t->slope_x;
+    q->slope_y = t->slope_y;
+}
+
+/* 1 when prepared, 0 when the surface faces away from the light. */
+LOOKUP_COPIED int prepare_ortho(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, tg_real err, lookup *q)
+{
+    ortho_normal t;
+    if (!ortho_normal_terms(sm, n, &t)) return 0;
+    prepare_ortho_at(sm, p, &t, err, q);
     return 1;
 }
 
@@ -498,6 +522,16 @@ static LOOKUP_INLINE tg_real shadow_lookup(const tgi_shadow_map *sm, tg_vec3 p, 
     state = sm->orthographic ? prepare_ortho(sm, p, n, position_error, &q)
                              : prepare_perspective(sm, p, n, position_error, &q);
     if (state <= 0) return state < 0 ? TG_ONE : 0;
+    return pcf(sm, &q);
+}
+
+/* shadow_lookup of a plain orthographic map (no ray, a face) for a surface
+ * facing the light, its normal's terms t given. */
+static LOOKUP_INLINE tg_real shadow_lookup_ortho(const tgi_shadow_map *sm, tg_vec3 p, const ortho_normal *t,
+                                                 tg_real position_error)
+{
+    lookup q;
+    prepare_ortho_at(sm, p, t, tg_max(position_error, 0), &q);
     return pcf(sm, &q);
 }
 
