@@ -56,6 +56,26 @@ static inline tg_real length2(tg_vec3 v) { return tgi_v3_dot(v, v); }
 #define LIGHT_FACTOR_INLINE
 #endif
 
+/* 1/sqrt(x) for light_factor's x: at least tg_mul(TG_DIRECT_MIN_DISTANCE,
+ * TG_DIRECT_MIN_DISTANCE) (1e-4 in float) and below TG_REAL_MAX (the
+ * branch's test; a NaN fails it).  Float not compiling for size: tg_rsqrt's
+ * seed and three Newton steps without its range tests (x > 0, x <=
+ * TG_REAL_MAX, x below the smallest normal, all settled) and its scale (1
+ * for a normal x: a product that changes no bit). */
+#if !TG_FIXED && !TG_OUTLINE_HELPERS
+static inline float rsqrt_positive(float x)
+{
+    float y = tgi_f_from_bits(0x5f3759dfu - (tgi_f_bits(x) >> 1));
+    const float hx = 0.5f * x;
+    y = y * (1.5f - hx * y * y);
+    y = y * (1.5f - hx * y * y);
+    y = y * (1.5f - hx * y * y);
+    return y;
+}
+#else
+#define rsqrt_positive tg_rsqrt
+#endif
+
 /* What a light needs per pixel, prepared once per row range. */
 typedef struct prepared_light {
     tgi_light_type type;
@@ -114,7 +134,7 @@ static LIGHT_FACTOR_INLINE tg_real light_factor(const prepared_light *p, tg_vec3
     v = tgi_v3_sub(p->pos, pos);
     len2 = length2(v);
     if (len2 < TG_REAL_MAX) {   /* 1/d from d^2 (the common case) */
-        inv = tg_rsqrt(tg_max(len2, tg_mul(TG_DIRECT_MIN_DISTANCE, TG_DIRECT_MIN_DISTANCE)));
+        inv = rsqrt_positive(tg_max(len2, tg_mul(TG_DIRECT_MIN_DISTANCE, TG_DIRECT_MIN_DISTANCE)));
     } else {                    /* d^2 saturated (fixed point, d > 181): the exact length */
         inv = tg_div(TG_ONE, tg_max(tgi_v3_length(v), TG_DIRECT_MIN_DISTANCE));
     }
