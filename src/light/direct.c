@@ -408,12 +408,16 @@ void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_coun
             for (x = 0; x < w; x++) tgi_rgb_set(e_out, tgi_gv_index(g, x, y), tg_v3(0, 0, 0));
     for (first = 0; first < light_count; first += LIGHT_CHUNK) {
         int count = light_count - first < LIGHT_CHUNK ? light_count - first : LIGHT_CHUNK;
+#if DIRECT_KIND_COPIES
         int directional = 0;  /* of the chunk's lights */
+#endif
         tgi_normal_memo nm;   /* the normal decoded last (raster/gview.h) */
         tgi_normal_memo_start(&nm);
         for (k = 0; k < count; k++) {
             prepare(&pl[k], &lights[first + k], shadow_maps ? shadow_maps[first + k] : NULL);
+#if DIRECT_KIND_COPIES
             directional += pl[k].type == TG_LIGHT_DIRECTIONAL;
+#endif
         }
         fr.count = count;
         fr.zero_first = fresh && first == 0;
