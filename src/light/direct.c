@@ -61,7 +61,9 @@ static inline tg_real length2(tg_vec3 v) { return tgi_v3_dot(v, v); }
  * branch's test; a NaN fails it).  Float not compiling for size: tg_rsqrt's
  * seed and three Newton steps without its range tests (x > 0, x <=
  * TG_REAL_MAX, x below the smallest normal, all settled) and its scale (1
- * for a normal x: a product that changes no bit). */
+ * for a normal x: a product that changes no bit).  Q16.16 not compiling
+ * for size: tgi_rsqrt_pos (core/real.h), tg_rsqrt's operations for x > 0
+ * inline, x being at least 655^2 2^-16 rounded = 7 raw. */
 #if !TG_FIXED && !TG_OUTLINE_HELPERS
 static inline float rsqrt_positive(float x)
 {
@@ -72,8 +74,26 @@ static inline float rsqrt_positive(float x)
     y = y * (1.5f - hx * y * y);
     return y;
 }
+#elif TGI_Q16_WIDE
+#define rsqrt_positive tgi_rsqrt_pos
 #else
 #define rsqrt_positive tg_rsqrt
+#endif
+
+#if TGI_Q16_WIDE
+/* tgi_v3_sub(a, b) with one range test: the differences in 64 bits, each
+ * within [TG_REAL_MIN, TG_REAL_MAX] exactly when its value plus 2^31 lies
+ * in [0, 2^32) (a negative sum has its high bits set as uint64_t), and
+ * there tg_sub's value; else tgi_v3_sub's saturation */
+static inline tg_vec3 v3_sub(tg_vec3 a, tg_vec3 b)
+{
+    const int64_t x = (int64_t)a.x - b.x, y = (int64_t)a.y - b.y, z = (int64_t)a.z - b.z;
+    const uint64_t h = (uint64_t)1 << 31;
+    if ((((uint64_t)x + h) | ((uint64_t)y + h) | ((uint64_t)z + h)) >> 32) return tgi_v3_sub(a, b);
+    return tg_v3((tg_real)x, (tg_real)y, (tg_real)z);
+}
+#else
+#define v3_sub tgi_v3_sub
 #endif
 
 /* What a light needs per pixel, prepared once per row range. */
@@ -131,7 +151,7 @@ static LIGHT_FACTOR_INLINE tg_real light_factor(const prepared_light *p, tg_vec3
     *inv_dist = TG_ONE;
     if (kind == LIGHTS_DIRECTIONAL || (kind == LIGHTS_ANY && p->type == TG_LIGHT_DIRECTIONAL))
         return tg_max(dot_unit(n, p->to_light), 0); /* Lambert */
-    v = tgi_v3_sub(p->pos, pos);
+    v = v3_sub(p->pos, pos);
     len2 = length2(v);
     if (len2 < TG_REAL_MAX) {   /* 1/d from d^2 (the common case) */
         inv = rsqrt_positive(tg_max(len2, tg_mul(TG_DIRECT_MIN_DISTANCE, TG_DIRECT_MIN_DISTANCE)));
@@ -219,13 +239,14 @@ static inline tg_real column_kx(const tgi_view *view, tg_real half_w, int x)
 }
 
 /* The rows' loop in copies by the kinds of light in a chunk (LIGHTS_*, a
- * constant in each): columns' and spheres' one directional light, and in
- * float cornell's one point light, have no per-light test of the type left
+ * constant in each): columns' and spheres' one directional light and
+ * cornell's one point light have no per-light test of the type left
  * (callgrind, 160x120, 2 frames, the rows float / Q16.16: cornell 16.50M
  * -> 16.21M / 24.24M -> 24.03M; columns 13.02M -> 12.21M / 18.72M ->
- * 18.41M; spheres 11.69M -> 10.96M / 16.84M -> 16.53M).  Q16.16 has no copy
- * for point and spot lights: gcc's registers there made cornell's rows
- * 24.22M, against 24.03M through the LIGHTS_ANY copy.  A build for size keeps the one copy. */
+ * 18.41M; spheres 11.69M -> 10.96M / 16.84M -> 16.53M; Q16.16 with the
+ * copy for point and spot lights only since v3_sub and tgi_rsqrt_pos made
+ * it gain: without them gcc's registers there cost cornell 0.19M).  A
+ * build for size keeps the one copy. */
 #if !TG_OUTLINE_HELPERS && defined(__GNUC__)
 #define DIRECT_KIND_COPIES 1
 #define ROWS_INLINE inline __attribute__((always_inline))
@@ -435,9 +456,7 @@ void tgi_direct_rows(const tgi_gview *g, const tgi_light *lights, int light_coun
 #endif
 #if DIRECT_KIND_COPIES
             if (directional == count) direct_rows_kind(&fr, &nm, y0, y1, x0, x1, LIGHTS_DIRECTIONAL);
-#if !TG_FIXED
             else if (directional == 0) direct_rows_kind(&fr, &nm, y0, y1, x0, x1, LIGHTS_POSITIONAL);
-#endif
             else
 #endif
             direct_rows_kind(&fr, &nm, y0, y1, x0, x1, LIGHTS_ANY);
