@@ -80,21 +80,6 @@ static inline float rsqrt_positive(float x)
 #define rsqrt_positive tg_rsqrt
 #endif
 
-#if TGI_Q16_WIDE
-/* tgi_v3_sub(a, b) with one range test: the differences in 64 bits, each
- * within [TG_REAL_MIN, TG_REAL_MAX] exactly when its value plus 2^31 lies
- * in [0, 2^32) (a negative sum has its high bits set as uint64_t), and
- * there tg_sub's value; else tgi_v3_sub's saturation */
-static inline tg_vec3 v3_sub(tg_vec3 a, tg_vec3 b)
-{
-    const int64_t x = (int64_t)a.x - b.x, y = (int64_t)a.y - b.y, z = (int64_t)a.z - b.z;
-    const uint64_t h = (uint64_t)1 << 31;
-    if ((((uint64_t)x + h) | ((uint64_t)y + h) | ((uint64_t)z + h)) >> 32) return tgi_v3_sub(a, b);
-    return tg_v3((tg_real)x, (tg_real)y, (tg_real)z);
-}
-#else
-#define v3_sub tgi_v3_sub
-#endif
 
 /* What a light needs per pixel, prepared once per row range. */
 typedef struct prepared_light {
