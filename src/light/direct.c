@@ -105,7 +105,7 @@ static void prepare(prepared_light *p, const tgi_light *l, const tgi_shadow_map 
     p->cos_outer = tg_cos(l->angle);
     p->cos_inner = tg_cos(tg_mul(l->angle, TG_SPOT_INNER));
     p->shadow = sm;
-#if !TG_NO_SHADOW_MAPS
+#if !TG_NO_SHADOW_MAPS && !TG_OUTLINE_HELPERS   /* read by the directional copy alone (DIRECT_KIND_COPIES) */
     p->ortho_plain = sm && !sm->ray && sm->faces != 0 && sm->orthographic;
 #else
     p->ortho_plain = 0;
