@@ -175,10 +175,18 @@ typedef struct tap_above { uint64_t normal; uint32_t bent; } tap_above;
 
 /* Value c of entry j of the walk (denoise.h: planes in Q16.16 on 64-bit
  * cores, else an entry's values together). */
-#if TGI_Q16_WIDE
+#if TGI_DENOISE_LANES
+/* an entry's lanes (denoise.h): the value plus 2^31, unsigned */
+#define SET_VAL(k, j, c, x) ((k)->v[j][c] = (uint32_t)(x) ^ 0x80000000u)
+#define GET_VAL(k, j, c) ((tg_real)(int32_t)((k)->v[j][c] ^ 0x80000000u))
+#elif TGI_Q16_WIDE
 #define VAL(k, j, c) ((k)->v[c][j])
 #else
 #define VAL(k, j, c) ((k)->v[j][c])
+#endif
+#ifndef SET_VAL
+#define SET_VAL(k, j, c, x) (VAL(k, j, c) = (x))
+#define GET_VAL(k, j, c) VAL(k, j, c)
 #endif
 
 /* Pixel (xx, yy) of g decoded into entry j of the walk; has_bent, has_near:
@@ -195,7 +203,12 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
     if (tgi_gv_is_sky(g, i)) {
         above->normal = UINT64_MAX; above->bent = UINT32_MAX;
         k->z[j] = k->nx[j] = k->ny[j] = k->nz[j] = 0;
+#if TGI_DENOISE_LANES
+        SET_VAL(k, j, 0, 0); SET_VAL(k, j, 1, 0); SET_VAL(k, j, 2, 0); SET_VAL(k, j, 3, 0);
+        SET_VAL(k, j, 4, 0); SET_VAL(k, j, 5, 0); SET_VAL(k, j, 6, 0);
+#else
         VAL(k, j, 0) = VAL(k, j, 1) = VAL(k, j, 2) = VAL(k, j, 3) = VAL(k, j, 4) = VAL(k, j, 5) = VAL(k, j, 6) = 0;
+#endif
 #if !TGI_Q16_WIDE
         VAL(k, j, 7) = TG_FIXED ? 0 : TG_ONE;
 #endif
@@ -222,7 +235,7 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
 #if TGI_Q16_WIDE
     k->z[j] = tgi_gv_depth(g, i);
     k->nx[j] = n.x; k->ny[j] = n.y; k->nz[j] = n.z;
-    VAL(k, j, 0) = r->ao ? tgi_gr_ao(r, i) : TG_ONE;
+    SET_VAL(k, j, 0, r->ao ? tgi_gr_ao(r, i) : TG_ONE);
     /* a channel the results lack is not stored (3 stores a tap each): its
      * planes keep what they held (0 from tgi_denoise_walk_start, or values
      * decoded before: integers within the range, whose products and sums
@@ -232,14 +245,14 @@ static void tap_load(tgi_denoise_walk *k, int j, const tgi_gview *g, const tgi_g
     if (has_bent) {
 #if TGI_REUSE_NORMAL
         uint32_t bent = tgi_gr_bent_word(r, i);
-        b = above->bent == bent ? tg_v3(VAL(k, j - 5, 1), VAL(k, j - 5, 2), VAL(k, j - 5, 3)) : tgi_gr_bent(r, i);
+        b = above->bent == bent ? tg_v3(GET_VAL(k, j - 5, 1), GET_VAL(k, j - 5, 2), GET_VAL(k, j - 5, 3)) : tgi_gr_bent(r, i);
         above->bent = bent;
 #else
         b = tgi_gr_bent(r, i);
 #endif
-        VAL(k, j, 1) = b.x; VAL(k, j, 2) = b.y; VAL(k, j, 3) = b.z;
+        SET_VAL(k, j, 1, b.x); SET_VAL(k, j, 2, b.y); SET_VAL(k, j, 3, b.z);
     }
-    if (has_near) { e = tgi_gr_near(r, i); VAL(k, j, 4) = e.x; VAL(k, j, 5) = e.y; VAL(k, j, 6) = e.z; }
+    if (has_near) { e = tgi_gr_near(r, i); SET_VAL(k, j, 4, e.x); SET_VAL(k, j, 5, e.y); SET_VAL(k, j, 6, e.z); }
 #else
 #if TGI_REUSE_NORMAL
     b = tg_v3(0, 0, 0);
@@ -289,11 +302,38 @@ static inline uint64_t normal_d8(tg_vec3 a, tg_vec3 b)
     return mul_pos(d, d);
 }
 
+#if TGI_DENOISE_LANES
+/* The sums of the lanes (denoise.h): 64-bit, two a vector, each the
+ * products of a lane's values by the weights (SSE2's pmuludq: the even
+ * 32-bit lanes of two vectors, unsigned, multiplied into two 64-bit
+ * ones).  Lanes 0-3 (AO, bent x y z) in a, 4-7 (near r g b, 1) in b; their
+ * even lanes (0 and 2) and odd ones (1 and 3, moved down by a shuffle)
+ * apart.  A lane's value is below 2^32 and a weight at most 2^24
+ * (normal_weight), a product below 2^56 and 25 of them below 2^61: the
+ * sums exact.  A sum less 2^31 times the weights' sum (the lanes' bias),
+ * modulo 2^64, is the sum of the values times the weights, whose size is
+ * below 2^60 (tgi_denoise_pixel): exactly the int64_t it is, the same
+ * sums as a product a value.  A tap's 7 products, 21 instructions (load,
+ * multiply, add), take 12 here and the weight's broadcast 2; the 8 sums
+ * in 4 vector registers leave the centre's constants in general ones
+ * (Q16.16 160x120 2 frames: columns 282.43M -> 277.46M, cornell, whose
+ * results have no bent normal, 649.46M -> 648.57M; --gi-quarter 228.00M
+ * -> 226.96M, 320.66M -> 320.39M). */
+typedef int lanes_i32 __attribute__((vector_size(16)));
+typedef unsigned long long lanes_u64 __attribute__((vector_size(16)));
+typedef struct entry_sums { lanes_u64 a_even, a_odd, b_even, b_odd; } entry_sums;
+static inline lanes_u64 lanes_mul_even(lanes_i32 a, lanes_i32 w) { return (lanes_u64)__builtin_ia32_pmuludq128(a, w); }
+typedef const uint32_t (*lane_row)[TGI_DENOISE_VALUES + 1];   /* a pixel's first entry's lanes, k->v + o */
+#else
+typedef int64_t entry_sums;   /* s[0..7], s[7] the weights' */
+typedef const void *lane_row;  /* unused */
+#endif
+
 /* One entry e (spatial weight sp) of weigh_and_sum into the sums s[0..7]
  * (s[7] the weights'). */
 static DENOISE_INLINE void weigh_entry(const tgi_denoise_walk *k, int e, const spatial_pair *sp, int64_t zi, tg_vec3 ni,
                                        int64_t dz_lim, tg_real inv_ztol, uint64_t inv_wide, normal_code key, uint64_t same,
-                                       const int bent, const int near, const int wide, int64_t *s)
+                                       const int bent, const int near, const int wide, const lane_row lanes, int j, entry_sums *s)
 {
     /* in 64 bits (the depth's load widens it; no widening of dz for the
      * product); depths are never negative: no overflow in 32 bits either */
@@ -309,9 +349,22 @@ static DENOISE_INLINE void weigh_entry(const tgi_denoise_walk *k, int e, const s
     d = same;
     if (DENOISE_RARE(k->nkey[e] != key)) d = normal_d8(ni, tg_v3(k->nx[e], k->ny[e], k->nz[e]));
     wj = (int64_t)mul_pos(t, d);
+#if TGI_DENOISE_LANES
+    {
+        /* wj <= 2^24 (normal_d8 <= 2^24, t <= 2^16): a 32-bit lane */
+        const lanes_i32 w = { (int)wj, (int)wj, (int)wj, (int)wj };
+        const lanes_i32 a = *(const lanes_i32 *)lanes[j], b = *(const lanes_i32 *)(lanes[j] + 4);
+        s->a_even += lanes_mul_even(a, w);                                        /* AO, bent y */
+        if (bent) s->a_odd += lanes_mul_even(__builtin_shufflevector(a, a, 1, 1, 3, 3), w);       /* bent x, z */
+        if (near) s->b_even += lanes_mul_even(b, w);                              /* near r, b */
+        s->b_odd += lanes_mul_even(__builtin_shufflevector(b, b, 1, 1, 3, 3), w);                 /* near g, the weights' */
+    }
+#else
+    (void)lanes; (void)j;
     s[0] += VAL(k, e, 0) * wj; s[7] += wj;   /* the weights' sum */
     if (bent) { s[1] += VAL(k, e, 1) * wj; s[2] += VAL(k, e, 2) * wj; s[3] += VAL(k, e, 3) * wj; }
     if (near) { s[4] += VAL(k, e, 4) * wj; s[5] += VAL(k, e, 5) * wj; s[6] += VAL(k, e, 6) * wj; }
+#endif
 }
 
 /* bent, near (constants in each copy): 0 when the results have no bent
@@ -329,7 +382,14 @@ static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const
      * each of their 25 entries (Q16.16 cornell 160x120 2 frames 694.46M ->
      * 693.80M); the copy inlined in tgi_denoise_pixel (part of a window)
      * keeps the tg_real (widened there, columns took 73K more) */
+#if TGI_DENOISE_LANES
+    entry_sums ls = { { 0, 0 }, { 0, 0 }, { 0, 0 }, { 0, 0 } }, *s = &ls;
+    const lane_row lanes = k->v + o;
+    uint64_t bias;
+#else
     int64_t s[TGI_DENOISE_VALUES + 1] = { 0, 0, 0, 0, 0, 0, 0, 0 };
+    const lane_row lanes = NULL;
+#endif
 #if NORMAL_WORDS
     normal_code key = k->nkey[ce];   /* the centre's code */
 #else
@@ -337,7 +397,7 @@ static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const
     (void)ce;
 #endif
     int j, c;
-#define ENTRY(j_) weigh_entry(k, o + (j_), &spatial[j_], zi, ni, dz_lim, inv_ztol, inv_wide, key, same, bent, near, whole, s)
+#define ENTRY(j_) weigh_entry(k, o + (j_), &spatial[j_], zi, ni, dz_lim, inv_ztol, inv_wide, key, same, bent, near, whole, lanes, j_, s)
 #define ROW5(j) ENTRY(j); ENTRY(j + 1); ENTRY(j + 2); ENTRY(j + 3); ENTRY(j + 4)
     /* whole_fewer's and whole_all's copies (out of line, registers to
      * spare) all 25 written out: no counters, nor the end read back from
@@ -357,9 +417,21 @@ static DENOISE_INLINE void weigh_and_sum(const tgi_denoise_walk *k, int o, const
      * register without a flag of whether any entry was added (a register
      * and an instruction an entry; Q16.16 cornell 160x120 2 frames 754.48M
      * -> 752.74M) */
+#if TGI_DENOISE_LANES
+    (void)c;
+    bias = ls.b_odd[1] << 31;   /* the weights' sum times the lanes' bias */
+    sum[0] = (int64_t)(ls.a_even[0] - bias); sum[7] = (int64_t)ls.b_odd[1];
+    sum[1] = bent ? (int64_t)(ls.a_odd[0] - bias) : 0;
+    sum[2] = bent ? (int64_t)(ls.a_even[1] - bias) : 0;
+    sum[3] = bent ? (int64_t)(ls.a_odd[1] - bias) : 0;
+    sum[4] = near ? (int64_t)(ls.b_even[0] - bias) : 0;
+    sum[5] = near ? (int64_t)(ls.b_odd[0] - bias) : 0;
+    sum[6] = near ? (int64_t)(ls.b_even[1] - bias) : 0;
+#else
     sum[0] = s[0]; sum[7] = s[7];
     for (c = 1; c < 4; c++) sum[c] = bent ? s[c] : 0;
     for (c = 4; c < 7; c++) sum[c] = near ? s[c] : 0;
+#endif
 }
 /* weigh_and_sum over a whole window without the bent normal, the near
  * field or both (cornell 320x240 3 frames, no bent normals: 3 products a
@@ -492,6 +564,12 @@ void tgi_denoise_walk_start(tgi_denoise_walk *k)
 {
     memset(k, 0, sizeof *k);
     k->base = -1;                       /* set by the first pixel */
+#if TGI_DENOISE_LANES
+    {
+        int j;
+        for (j = 0; j < TGI_DENOISE_TAPS; j++) k->v[j][TGI_DENOISE_VALUES] = 1;   /* the weights' lane */
+    }
+#endif
     k->band = -2 * TGI_DENOISE_BAND;    /* none: a band starts at row -(TGI_DENOISE_BAND - 1) or later */
 #if NORMAL_WORDS
     k->same_key = UINT32_MAX;           /* none: no centre is sky */

@@ -61,7 +61,7 @@ static inline void tgi_gr_put_kept(const tgi_gresult *r, size_t i, const tgi_gr_
  * contiguous entries (from (y - band) * 5: denoise.c), the weights of all
  * taps one loop over contiguous values and a tap's sums read contiguous
  * values in float (in Q16.16 on 64-bit cores the results too a plane per
- * value: v below) (TGI_DENOISE_TAPS: the band's entries and 3 more, which stay 0,
+ * value, on x86-64 an entry's values together: v below) (TGI_DENOISE_TAPS: the band's entries and 3 more, which stay 0,
  * so that a pixel's entries and the 3 after them are 28, a multiple of 4). */
 #ifndef TGI_DENOISE_BAND
 /* 4 rows on 32-bit cores: the walk is 2080 bytes of stack in float and
@@ -70,7 +70,8 @@ static inline void tgi_gr_put_kept(const tgi_gresult *r, size_t i, const tgi_gr_
  * README "Porting").  16 rows on 64-bit hosts (pointers past 32 bits, as
  * tinygi.h's TGI_CORE64, which only Q16.16 defines), whose stacks
  * are large (the rasterizer's vertex cache alone takes 54-65 KB there):
- * 4960 bytes in float, 4968 in Q16.16, and each pixel decoded (16 + 4) /
+ * 4960 bytes in float, 4968 in Q16.16 (5392 on x86-64: TGI_DENOISE_LANES'
+ * 8 lanes an entry), and each pixel decoded (16 + 4) /
  * 16 times, not (4 + 4) / 4; a thread's row range, which starts its own
  * bands, is then mostly one band (callgrind, render --size 160x120
  * --frames 2, --threads 1: cornell float 492.10M -> 489.32M, Q16.16
@@ -82,6 +83,15 @@ static inline void tgi_gr_put_kept(const tgi_gresult *r, size_t i, const tgi_gr_
 #endif
 #define TGI_DENOISE_TAPS ((TGI_DENOISE_BAND + 4) * 5 + 3)
 #define TGI_DENOISE_VALUES 7        /* AO, bent normal x y z, near field r g b */
+/* TGI_DENOISE_LANES: Q16.16 on x86-64 (whose SSE2 every such core has),
+ * where the filter's sums take two exact 64-bit products of 32-bit lanes
+ * an instruction (pmuludq, a GCC and clang builtin, no header: denoise.c
+ * weigh_entry); elsewhere a product an instruction */
+#if TGI_Q16_WIDE && defined(__GNUC__) && defined(__SSE2__) && defined(__x86_64__)
+#define TGI_DENOISE_LANES 1
+#else
+#define TGI_DENOISE_LANES 0
+#endif
 typedef struct tgi_denoise_walk {
     int base, band, lo, next;       /* the band's first row; its columns [lo, next) are decoded */
     tg_real z[TGI_DENOISE_TAPS];    /* view depth; 0 on sky, which no centre's depth test passes */
@@ -94,7 +104,14 @@ typedef struct tgi_denoise_walk {
 #elif TGI_Q16_WIDE
     uint64_t nkey[TGI_DENOISE_TAPS];    /* the normal as one word (denoise.c normal_key) */
 #endif
-#if TGI_Q16_WIDE
+#if TGI_DENOISE_LANES
+    /* the kept results as tgi_gr_get_kept reads them, an entry's 7 values
+     * as unsigned 32-bit lanes biased by 2^31 (value + 2^31: lane ^
+     * 2^31), then 1 (the weights' sum's lane): two vectors of 4, whose
+     * products by a tap's weight are SSE2's 32 x 32 -> 64-bit multiplies
+     * (denoise.c weigh_entry) */
+    uint32_t v[TGI_DENOISE_TAPS][TGI_DENOISE_VALUES + 1] __attribute__((aligned(16)));
+#elif TGI_Q16_WIDE
     /* the kept results as tgi_gr_get_kept reads them, a plane per value
      * (value c of entry j at v[c][j]): indexed as z is, one base register
      * for all the planes a tap reads; the planes of a channel the results
