@@ -1052,6 +1052,23 @@ static const tgi_upsample_tap *upsample_tap(const tgi_upsample_plan *u, tgi_upsa
     return c;
 }
 
+#if TGI_Q16_WIDE && !TG_WIDE_STORAGE
+/* tg_max(0, tg_div(a, b)) for a >= 0 and b > 0 (tgi_upsample_at's near
+ * field: sums of the weights w > 0 times rgb9e5's values >= 0, in either
+ * form of tgi_wide_add_weighted never below 0, saturated to at most
+ * TG_REAL_MAX; their weights' sum > 0, at most TG_REAL_MAX): tg_div's
+ * quotient (a 2^16 + floor(b / 2)) / b, truncated, >= 0, saturated at
+ * TG_REAL_MAX only (tgi_sat64), without its tests of b = 0 and of the
+ * signs; the maximum with 0 changes nothing (Q16.16 160x120 2 frames
+ * --gi-quarter: cornell 317.08M -> 316.73M, columns 225.96M -> 225.65M;
+ * checked against tg_div on 2e8 random pairs, 0 differ). */
+static inline tg_real near_quotient(tg_real a, tg_real b)
+{
+    const uint64_t q = (((uint64_t)(uint32_t)a << 16) + ((uint32_t)b >> 1)) / (uint32_t)b;
+    return q > (uint64_t)TG_REAL_MAX ? TG_REAL_MAX : (tg_real)q;
+}
+#endif
+
 void tgi_upsample_walk_start(tgi_upsample_walk *w)
 {
     int t;
@@ -1161,8 +1178,13 @@ tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk
         if (d < 0) b = tgi_v3_sub(b, tgi_v3_scale(n, d));
         v.bent = tgi_v3_unit_or(b, n);
     }
+#if TGI_Q16_WIDE && !TG_WIDE_STORAGE
+    v.near = want_near ? tg_v3(near_quotient(near.x, sum), near_quotient(near.y, sum), near_quotient(near.z, sum))
+                       : tg_v3(0, 0, 0);
+#else
     v.near = want_near ? tg_v3(tg_max(0, tg_div(near.x, sum)), tg_max(0, tg_div(near.y, sum)), tg_max(0, tg_div(near.z, sum)))
                        : tg_v3(0, 0, 0);
+#endif
     return v;
 }
 
