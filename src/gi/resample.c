@@ -343,16 +343,20 @@ typedef struct near_pixel {
  * (most pixels have none above their tangent plane: near_horizon_ao).
  * tgi_v3_unit_or: tgi_v3_normalize_or's bits, in Q16.16 inline (core/unit.h;
  * flatten: gcc else made it a function of its own, the upsample's bent
- * normal then calling it too), in float the call (Q16.16 160x120 2 frames
- * --gi-quarter: cornell 320.39M -> 318.04M, columns 226.96M -> 226.26M). */
-#if defined(__GNUC__) && TG_FIXED
+ * normal then calling it too; Q16.16 160x120 2 frames --gi-quarter:
+ * cornell 320.39M -> 318.04M, columns 226.96M -> 226.26M). */
+#if defined(__GNUC__) && TGI_Q16_WIDE
 __attribute__((noinline, flatten))   /* once a pixel: the march's registers stay its own on the other samples */
 #elif defined(__GNUC__)
 __attribute__((noinline))
 #endif
 static void near_vd_set(near_pixel *q)
 {
+#if TGI_Q16_WIDE
     q->vd = tgi_v3_unit_or(tgi_v3_neg(q->pv), tg_v3(0, 0, TG_R(-1.0f)));
+#else   /* float, and a build for size: the call, one copy */
+    q->vd = tgi_v3_normalize_or(tgi_v3_neg(q->pv), tg_v3(0, 0, TG_R(-1.0f)));
+#endif
     q->has_vd = 1;
 }
 static inline tg_vec3 near_vd(near_pixel *q)
