@@ -86,8 +86,9 @@ static inline void tgi_gr_put_kept(const tgi_gresult *r, size_t i, const tgi_gr_
 /* TGI_DENOISE_LANES: Q16.16 on x86-64 (whose SSE2 every such core has),
  * where the filter's sums take two exact 64-bit products of 32-bit lanes
  * an instruction (pmuludq, a GCC and clang builtin, no header: denoise.c
- * weigh_entry); elsewhere a product an instruction */
-#if TGI_Q16_WIDE && defined(__GNUC__) && defined(__SSE2__) && defined(__x86_64__)
+ * weigh_entry; __builtin_shufflevector: clang, GCC 12 on); elsewhere a
+ * product an instruction */
+#if TGI_Q16_WIDE && defined(__GNUC__) && defined(__SSE2__) && defined(__x86_64__) && (defined(__clang__) || __GNUC__ >= 12)
 #define TGI_DENOISE_LANES 1
 #else
 #define TGI_DENOISE_LANES 0
