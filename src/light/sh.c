@@ -74,6 +74,30 @@ static inline tg_real sub_in(tg_real a, tg_real b, int in_range) { return in_ran
 #define SH_INLINE inline
 #endif
 
+/* w0 . l0 + w1 . l1 + w2 . l2, each dot rounded once, summed with tg_add.
+ * in_range (Q16.16): the weights within 64 (2^22 as integers) against any
+ * coefficients (below 2^31) give products below 2^53 and sums below 2^55,
+ * so tgi_v3_dot's 2^62 test cannot act and each dot is tgi_wide_dot's
+ * integer saturated; when all three lie in [-2^29, 2^29) neither that
+ * saturation nor tg_add's can act (partial sums within 2^30, the whole
+ * within 3 2^29 < 2^31), so one test of the three stands for five. */
+static SH_INLINE tg_real sum3_in(tg_vec3 w0, tg_vec3 w1, tg_vec3 w2, tg_vec3 l0, tg_vec3 l1, tg_vec3 l2, int in_range)
+{
+#if TGI_Q16_WIDE
+    if (in_range) {
+        tgi_wide d0 = tgi_wide_dot(w0.x, w0.y, w0.z, l0.x, l0.y, l0.z);
+        tgi_wide d1 = tgi_wide_dot(w1.x, w1.y, w1.z, l1.x, l1.y, l1.z);
+        tgi_wide d2 = tgi_wide_dot(w2.x, w2.y, w2.z, l2.x, l2.y, l2.z);
+        const tgi_wide half = (tgi_wide)1 << 29;
+        if ((((uint64_t)(d0 + half) | (uint64_t)(d1 + half) | (uint64_t)(d2 + half)) >> 30) == 0)
+            return (tg_real)(d0 + d1 + d2);
+        return tg_add(tg_add(tgi_wide_real(d0), tgi_wide_real(d1)), tgi_wide_real(d2));
+    }
+#endif
+    (void)in_range;
+    return tg_add(tg_add(tgi_v3_dot(w0, l0), tgi_v3_dot(w1, l1)), tgi_v3_dot(w2, l2));
+}
+
 /* HBIL sec. 2.2.4 evaluation: the per-coefficient weights for normal n and
  * band weights c0, c1, c2 (computed once, shared by the three channels):
  *   E = c0 L00 + c1 (y L1-1 + z L10 + x L11) + c2 L20 (3z^2 - 1)
@@ -94,15 +118,12 @@ static SH_INLINE tg_vec3 sh_eval_in(const tg_vec3 sh[9], tg_vec3 n, tg_real c0, 
                        mul_in(c2x, mul_in(z, x, in_range), in_range),
                        mul_in(mul_in(c2, SQRT3, in_range), sub_in(mul_in(x, x, in_range), mul_in(y, y, in_range), in_range),
                               in_range));
-    tg_real er = tg_add(tg_add(tgi_v3_dot(w0, tg_v3(sh[0].x, sh[1].x, sh[2].x)),
-                               tgi_v3_dot(w1, tg_v3(sh[3].x, sh[4].x, sh[5].x))),
-                        tgi_v3_dot(w2, tg_v3(sh[6].x, sh[7].x, sh[8].x)));
-    tg_real eg = tg_add(tg_add(tgi_v3_dot(w0, tg_v3(sh[0].y, sh[1].y, sh[2].y)),
-                               tgi_v3_dot(w1, tg_v3(sh[3].y, sh[4].y, sh[5].y))),
-                        tgi_v3_dot(w2, tg_v3(sh[6].y, sh[7].y, sh[8].y)));
-    tg_real eb = tg_add(tg_add(tgi_v3_dot(w0, tg_v3(sh[0].z, sh[1].z, sh[2].z)),
-                               tgi_v3_dot(w1, tg_v3(sh[3].z, sh[4].z, sh[5].z))),
-                        tgi_v3_dot(w2, tg_v3(sh[6].z, sh[7].z, sh[8].z)));
+    tg_real er = sum3_in(w0, w1, w2, tg_v3(sh[0].x, sh[1].x, sh[2].x), tg_v3(sh[3].x, sh[4].x, sh[5].x),
+                         tg_v3(sh[6].x, sh[7].x, sh[8].x), in_range);
+    tg_real eg = sum3_in(w0, w1, w2, tg_v3(sh[0].y, sh[1].y, sh[2].y), tg_v3(sh[3].y, sh[4].y, sh[5].y),
+                         tg_v3(sh[6].y, sh[7].y, sh[8].y), in_range);
+    tg_real eb = sum3_in(w0, w1, w2, tg_v3(sh[0].z, sh[1].z, sh[2].z), tg_v3(sh[3].z, sh[4].z, sh[5].z),
+                         tg_v3(sh[6].z, sh[7].z, sh[8].z), in_range);
     return tg_v3(tg_max(er, 0), tg_max(eg, 0), tg_max(eb, 0));
 }
 
