@@ -61,14 +61,22 @@ void tgi_sh9_from_env(const tgi_env *env, tg_vec3 sh[9])
 #if TGI_Q16_WIDE
 /* a b and a - b where the caller bounds the result within the range: tg_mul
  * and tg_sub's integers (tgi_wide_mul rounds as tg_mul rounds) */
-static inline tg_real mul_in(tg_real a, tg_real b, int in_range) { return in_range ? (tg_real)tgi_wide_mul(a, b) : tg_mul(a, b); }
-static inline tg_real sub_in(tg_real a, tg_real b, int in_range) { return in_range ? a - b : tg_sub(a, b); }
+typedef tgi_wide sh_weight;   /* in range: the integers in 64 bits (no sign extension before each product) */
+static inline sh_weight mul_in(sh_weight a, sh_weight b, int in_range)
+{
+    return in_range ? tgi_wide_mul(a, b) : tg_mul((tg_real)a, (tg_real)b);
+}
+static inline sh_weight sub_in(sh_weight a, sh_weight b, int in_range)
+{
+    return in_range ? a - b : tg_sub((tg_real)a, (tg_real)b);
+}
 #if defined(__GNUC__)
 #define SH_INLINE inline __attribute__((always_inline))   /* in_range a constant in each copy */
 #else
 #define SH_INLINE inline
 #endif
 #else
+typedef tg_real sh_weight;
 #define mul_in(a, b, in_range) tg_mul(a, b)
 #define sub_in(a, b, in_range) tg_sub(a, b)
 #define SH_INLINE inline
@@ -81,13 +89,13 @@ static inline tg_real sub_in(tg_real a, tg_real b, int in_range) { return in_ran
  * integer saturated; when all three lie in [-2^29, 2^29) neither that
  * saturation nor tg_add's can act (partial sums within 2^30, the whole
  * within 3 2^29 < 2^31), so one test of the three stands for five. */
-static SH_INLINE tg_real sum3_in(tg_vec3 w0, tg_vec3 w1, tg_vec3 w2, tg_vec3 l0, tg_vec3 l1, tg_vec3 l2, int in_range)
+static SH_INLINE tg_real sum3_in(const sh_weight w[9], tg_vec3 l0, tg_vec3 l1, tg_vec3 l2, int in_range)
 {
 #if TGI_Q16_WIDE
     if (in_range) {
-        tgi_wide d0 = tgi_wide_dot(w0.x, w0.y, w0.z, l0.x, l0.y, l0.z);
-        tgi_wide d1 = tgi_wide_dot(w1.x, w1.y, w1.z, l1.x, l1.y, l1.z);
-        tgi_wide d2 = tgi_wide_dot(w2.x, w2.y, w2.z, l2.x, l2.y, l2.z);
+        tgi_wide d0 = tgi_wide_dot(w[0], w[1], w[2], l0.x, l0.y, l0.z);
+        tgi_wide d1 = tgi_wide_dot(w[3], w[4], w[5], l1.x, l1.y, l1.z);
+        tgi_wide d2 = tgi_wide_dot(w[6], w[7], w[8], l2.x, l2.y, l2.z);
         const tgi_wide half = (tgi_wide)1 << 29;
         if ((((uint64_t)(d0 + half) | (uint64_t)(d1 + half) | (uint64_t)(d2 + half)) >> 30) == 0)
             return (tg_real)(d0 + d1 + d2);
@@ -95,7 +103,9 @@ static SH_INLINE tg_real sum3_in(tg_vec3 w0, tg_vec3 w1, tg_vec3 w2, tg_vec3 l0,
     }
 #endif
     (void)in_range;
-    return tg_add(tg_add(tgi_v3_dot(w0, l0), tgi_v3_dot(w1, l1)), tgi_v3_dot(w2, l2));
+    return tg_add(tg_add(tgi_v3_dot(tg_v3((tg_real)w[0], (tg_real)w[1], (tg_real)w[2]), l0),
+                         tgi_v3_dot(tg_v3((tg_real)w[3], (tg_real)w[4], (tg_real)w[5]), l1)),
+                  tgi_v3_dot(tg_v3((tg_real)w[6], (tg_real)w[7], (tg_real)w[8]), l2));
 }
 
 /* HBIL sec. 2.2.4 evaluation: the per-coefficient weights for normal n and
@@ -107,23 +117,24 @@ static SH_INLINE tg_real sum3_in(tg_vec3 w0, tg_vec3 w1, tg_vec3 w2, tg_vec3 l0,
  * product or difference saturates (a constant where inlined). */
 static SH_INLINE tg_vec3 sh_eval_in(const tg_vec3 sh[9], tg_vec3 n, tg_real c0, tg_real c1, tg_real c2, int in_range)
 {
-    tg_real x = n.x, y = n.y, z = n.z, c2x = mul_in(c2, TWO_SQRT3, in_range);
-    (void)in_range;   /* unused by the generic code */
-    /* the nine weights in three triples; each channel is then three dot
-     * products (64-bit accumulation in fixed point, one rounding each) */
-    tg_vec3 w0 = tg_v3(c0, mul_in(c1, y, in_range), mul_in(c1, z, in_range));
-    tg_vec3 w1 = tg_v3(mul_in(c1, x, in_range), mul_in(c2x, mul_in(x, y, in_range), in_range),
-                       mul_in(c2x, mul_in(y, z, in_range), in_range));
-    tg_vec3 w2 = tg_v3(mul_in(c2, sub_in(mul_in(TG_R(3.0f), mul_in(z, z, in_range), in_range), TG_ONE, in_range), in_range),
-                       mul_in(c2x, mul_in(z, x, in_range), in_range),
-                       mul_in(mul_in(c2, SQRT3, in_range), sub_in(mul_in(x, x, in_range), mul_in(y, y, in_range), in_range),
-                              in_range));
-    tg_real er = sum3_in(w0, w1, w2, tg_v3(sh[0].x, sh[1].x, sh[2].x), tg_v3(sh[3].x, sh[4].x, sh[5].x),
+    const sh_weight x = n.x, y = n.y, z = n.z, c2x = mul_in(c2, TWO_SQRT3, in_range);
+    /* the nine weights (in_range: each the value tg_real would hold, in 64
+     * bits); each channel is then three dot products (64-bit accumulation
+     * in fixed point, one rounding each) */
+    const sh_weight w[9] = {
+        c0, mul_in(c1, y, in_range), mul_in(c1, z, in_range),
+        mul_in(c1, x, in_range), mul_in(c2x, mul_in(x, y, in_range), in_range), mul_in(c2x, mul_in(y, z, in_range), in_range),
+        mul_in(c2, sub_in(mul_in(TG_R(3.0f), mul_in(z, z, in_range), in_range), TG_ONE, in_range), in_range),
+        mul_in(c2x, mul_in(z, x, in_range), in_range),
+        mul_in(mul_in(c2, SQRT3, in_range), sub_in(mul_in(x, x, in_range), mul_in(y, y, in_range), in_range), in_range)
+    };
+    tg_real er = sum3_in(w, tg_v3(sh[0].x, sh[1].x, sh[2].x), tg_v3(sh[3].x, sh[4].x, sh[5].x),
                          tg_v3(sh[6].x, sh[7].x, sh[8].x), in_range);
-    tg_real eg = sum3_in(w0, w1, w2, tg_v3(sh[0].y, sh[1].y, sh[2].y), tg_v3(sh[3].y, sh[4].y, sh[5].y),
+    tg_real eg = sum3_in(w, tg_v3(sh[0].y, sh[1].y, sh[2].y), tg_v3(sh[3].y, sh[4].y, sh[5].y),
                          tg_v3(sh[6].y, sh[7].y, sh[8].y), in_range);
-    tg_real eb = sum3_in(w0, w1, w2, tg_v3(sh[0].z, sh[1].z, sh[2].z), tg_v3(sh[3].z, sh[4].z, sh[5].z),
+    tg_real eb = sum3_in(w, tg_v3(sh[0].z, sh[1].z, sh[2].z), tg_v3(sh[3].z, sh[4].z, sh[5].z),
                          tg_v3(sh[6].z, sh[7].z, sh[8].z), in_range);
+    (void)in_range;   /* unused by the generic code */
     return tg_v3(tg_max(er, 0), tg_max(eg, 0), tg_max(eb, 0));
 }
 
