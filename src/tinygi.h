@@ -266,19 +266,28 @@ static inline int tg_isfinite(tg_real a) { return a == a && a <= TG_REAL_MAX && 
 static inline float tgi_f_from_bits(uint32_t b) { float f; TGI_PUN_COPY(&f, &b, sizeof f); return f; }
 static inline uint32_t tgi_f_bits(float f) { uint32_t b; TGI_PUN_COPY(&b, &f, sizeof b); return b; }
 
+/* tg_rsqrt's steps for a normal x in (0, TG_REAL_MAX]: the bit-trick seed
+ * (within 3.5%) and three Newton steps (quadratic), without the range
+ * tests; for callers that have settled the range (the HBIL kernel, direct
+ * light's 1/d), the same bits as tg_rsqrt there. */
+static inline float tgi_rsqrt_normal(float x)
+{
+    float y = tgi_f_from_bits(0x5f3759dfu - (tgi_f_bits(x) >> 1));
+    const float hx = 0.5f * x;
+    y = y * (1.5f - hx * y * y);
+    y = y * (1.5f - hx * y * y);
+    y = y * (1.5f - hx * y * y);
+    return y;
+}
+
 /* Bit-trick seed (within 3.5%) and three Newton steps (quadratic); x <= 0 gives TG_REAL_MAX. */
 static inline tg_real tg_rsqrt(tg_real x)
 {
-    float y, hx, scale = 1.0f;
+    float scale = 1.0f;
     if (!(x > 0.0f)) return TG_REAL_MAX;
     if (x > TG_REAL_MAX) return 0.0f;
     if (x < 1.17549435e-38f) { x *= 18446744073709551616.0f; scale = 4294967296.0f; }
-    y = tgi_f_from_bits(0x5f3759dfu - (tgi_f_bits(x) >> 1));
-    hx = 0.5f * x;
-    y = y * (1.5f - hx * y * y);
-    y = y * (1.5f - hx * y * y);
-    y = y * (1.5f - hx * y * y);
-    return y * scale;
+    return tgi_rsqrt_normal(x) * scale;
 }
 
 /* sqrt = x * rsqrt(x), plus one Newton correction on the residual; x <= 0 gives 0. */

@@ -578,15 +578,7 @@ static tg_real slice_Q(tg_real c, int side)
 #elif TG_FIXED || TG_OUTLINE_HELPERS
 #define rsqrt_in_range tg_rsqrt
 #else
-static inline float rsqrt_in_range(float x)
-{
-    float y = tgi_f_from_bits(0x5f3759dfu - (tgi_f_bits(x) >> 1));
-    const float hx = 0.5f * x;
-    y = y * (1.5f - hx * y * y);
-    y = y * (1.5f - hx * y * y);
-    y = y * (1.5f - hx * y * y);
-    return y;
-}
+#define rsqrt_in_range tgi_rsqrt_normal   /* tinygi.h */
 #endif
 
 static int pixel_setup(const hbil_ctx *c, hbil_pixel *px, int i)

@@ -65,15 +65,7 @@ static inline tg_real length2(tg_vec3 v) { return tgi_v3_dot(v, v); }
  * for size: tgi_rsqrt_pos (core/real.h), tg_rsqrt's operations for x > 0
  * inline, x being at least 655^2 2^-16 rounded = 7 raw. */
 #if !TG_FIXED && !TG_OUTLINE_HELPERS
-static inline float rsqrt_positive(float x)
-{
-    float y = tgi_f_from_bits(0x5f3759dfu - (tgi_f_bits(x) >> 1));
-    const float hx = 0.5f * x;
-    y = y * (1.5f - hx * y * y);
-    y = y * (1.5f - hx * y * y);
-    y = y * (1.5f - hx * y * y);
-    return y;
-}
+#define rsqrt_positive tgi_rsqrt_normal   /* tinygi.h */
 #elif TGI_Q16_WIDE
 #define rsqrt_positive tgi_rsqrt_pos
 #else
