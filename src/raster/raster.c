@@ -1091,6 +1091,18 @@ static inline void plane_basis_make(plane_basis *pb, const screen_tri *st, const
     pb->oy = (float)(te->cy - st->y[0]);
 }
 
+/* RASTER_OCT_LANES: the float G-buffer's normal in vector lanes (below,
+ * at oct_pack_lanes), where GCC's or clang's vector extensions are */
+#if !TG_WIDE_STORAGE && defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__) && !TG_OUTLINE_HELPERS && defined(__has_builtin)
+#if __has_builtin(__builtin_shufflevector) && __has_builtin(__builtin_convertvector)
+#define RASTER_OCT_LANES 1
+#endif
+#endif
+#ifndef RASTER_OCT_LANES
+#define RASTER_OCT_LANES 0
+#endif
+
+#if !RASTER_OCT_LANES || TGI_RASTER_DEPTH_ROWS   /* the lanes make the G-buffer's planes themselves */
 /* a(p) = a0 + lambda1 (a1 - a0) + lambda2 (a2 - a0), lambda from the edge functions. */
 static inline plane plane_make(const plane_basis *pb, float a0, float a1, float a2)
 {
@@ -1103,6 +1115,7 @@ static inline plane plane_make(const plane_basis *pb, float a0, float a1, float 
     p.dy = gy * (float)SUB;
     return p;
 }
+#endif
 
 /* Whether the interpolated normal m is used (else the fallback):
  * |m|^2 > 1e-30, as computed.  Decided first by the l1 norm tgi_oct_pack
@@ -1142,9 +1155,7 @@ static RASTER_NOINLINE uint32_t oct_pack_rare(const surface *sf, float mx, float
  * defined.  Not in the -Os size build.  Exact: tools/same_bits.sh 0 differ,
  * bench_raster's gbuffer_fnv unchanged; callgrind bench_raster a frame
  * 1280x720 54.93M -> 52.38M, 320x240 23.55M -> 22.60M. */
-#if !TG_WIDE_STORAGE && defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__) && !TG_OUTLINE_HELPERS && defined(__has_builtin)
-#if __has_builtin(__builtin_shufflevector) && __has_builtin(__builtin_convertvector)
-#define RASTER_OCT_LANES 1
+#if RASTER_OCT_LANES
 typedef float oct_v4f __attribute__((vector_size(16)));
 typedef int32_t oct_v4i __attribute__((vector_size(16)));
 typedef struct oct_lanes { oct_v4f one, half, scale; oct_v4i sign; } oct_lanes;
@@ -1176,10 +1187,6 @@ static inline plane_lanes plane_make_lanes(const plane_basis *pb, oct_v4f a0, oc
     p.dy = gy * (float)SUB;
     return p;
 }
-#endif
-#endif
-#ifndef RASTER_OCT_LANES
-#define RASTER_OCT_LANES 0
 #endif
 
 static RASTER_INLINE void gbuffer_rows_bits(const tgi_gbuffer *gbp, const tri_edges *te, const screen_tri *st,
