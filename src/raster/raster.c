@@ -1092,8 +1092,13 @@ static inline void plane_basis_make(plane_basis *pb, const screen_tri *st, const
 }
 
 /* RASTER_OCT_LANES: the float G-buffer's normal in vector lanes (below,
- * at oct_pack_lanes), where GCC's or clang's vector extensions are */
-#if !TG_WIDE_STORAGE && defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__) && !TG_OUTLINE_HELPERS && defined(__has_builtin)
+ * at oct_pack_lanes), where GCC's or clang's vector extensions are and
+ * the machine has IEEE single-precision vector registers (SSE2, AArch64's
+ * NEON; not 32-bit ARM's NEON, which flushes subnormals): elsewhere the
+ * compiler would emulate the lanes (no gain) and gcc warns that a vector
+ * argument takes a non-standard ABI (-Wpsabi, 32-bit PowerPC) */
+#if !TG_WIDE_STORAGE && defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__) && !TG_OUTLINE_HELPERS && defined(__has_builtin) \
+    && (defined(__SSE2__) || defined(__aarch64__))
 #if __has_builtin(__builtin_shufflevector) && __has_builtin(__builtin_convertvector)
 #define RASTER_OCT_LANES 1
 #endif
