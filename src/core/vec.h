@@ -60,6 +60,24 @@ static inline tg_real tgi_v3_dot_bounded(tg_vec3 a, tg_vec3 b)
 #define tgi_v3_dot_bounded tgi_v3_dot
 #endif
 
+/* tgi_v3_sub(a, b) with one range test (Q16.16 on 64-bit cores, not
+ * compiling for size; direct light's vector to a point light, the
+ * perspective shadow lookup's): the differences in 64 bits, each within
+ * [TG_REAL_MIN, TG_REAL_MAX] exactly when it plus 2^31 lies in [0, 2^32)
+ * (a negative sum has its high bits set as uint64_t), and there tg_sub's
+ * value; else tgi_v3_sub's saturation.  Elsewhere tgi_v3_sub itself. */
+#if TGI_Q16_WIDE
+static inline tg_vec3 tgi_v3_sub_wide(tg_vec3 a, tg_vec3 b)
+{
+    const int64_t x = (int64_t)a.x - b.x, y = (int64_t)a.y - b.y, z = (int64_t)a.z - b.z;
+    const uint64_t h = (uint64_t)1 << 31;
+    if ((((uint64_t)x + h) | ((uint64_t)y + h) | ((uint64_t)z + h)) >> 32) return tgi_v3_sub(a, b);
+    return tg_v3((tg_real)x, (tg_real)y, (tg_real)z);
+}
+#else
+#define tgi_v3_sub_wide tgi_v3_sub
+#endif
+
 static inline tg_vec3 tgi_v3_cross(tg_vec3 a, tg_vec3 b)
 {
     return tg_v3(tg_sub(tg_mul(a.y, b.z), tg_mul(a.z, b.y)),

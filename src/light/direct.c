@@ -128,7 +128,7 @@ static LIGHT_FACTOR_INLINE tg_real light_factor(const prepared_light *p, tg_vec3
     *inv_dist = TG_ONE;
     if (kind == LIGHTS_DIRECTIONAL || (kind == LIGHTS_ANY && p->type == TG_LIGHT_DIRECTIONAL))
         return tg_max(dot_unit(n, p->to_light), 0); /* Lambert */
-    v = v3_sub(p->pos, pos);
+    v = tgi_v3_sub_wide(p->pos, pos);
     len2 = length2(v);
     if (len2 < TG_REAL_MAX) {   /* 1/d from d^2 (the common case) */
         inv = rsqrt_positive(tg_max(len2, tg_mul(TG_DIRECT_MIN_DISTANCE, TG_DIRECT_MIN_DISTANCE)));
@@ -221,7 +221,7 @@ static inline tg_real column_kx(const tgi_view *view, tg_real half_w, int x)
  * (callgrind, 160x120, 2 frames, the rows float / Q16.16: cornell 16.50M
  * -> 16.21M / 24.24M -> 24.03M; columns 13.02M -> 12.21M / 18.72M ->
  * 18.41M; spheres 11.69M -> 10.96M / 16.84M -> 16.53M; Q16.16 with the
- * copy for point and spot lights only since v3_sub and tgi_rsqrt_pos made
+ * copy for point and spot lights only since tgi_v3_sub_wide and tgi_rsqrt_pos made
  * it gain: without them gcc's registers there cost cornell 0.19M).  A
  * build for size keeps the one copy. */
 #if !TG_OUTLINE_HELPERS && defined(__GNUC__)

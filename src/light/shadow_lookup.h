@@ -13,23 +13,6 @@
 #include "shadowmap.h"
 #include "../raster/pack.h"   /* tgi_abs_fast */
 
-#if TGI_Q16_WIDE
-/* tgi_v3_sub(a, b) with one range test (prepare_perspective and direct.c's
- * light_factor, Q16.16 not compiling for size): the differences in 64
- * bits, each within [TG_REAL_MIN, TG_REAL_MAX] exactly when it plus 2^31
- * lies in [0, 2^32) (a negative sum has its high bits set as uint64_t),
- * and there tg_sub's value; else tgi_v3_sub's saturation */
-static inline tg_vec3 v3_sub(tg_vec3 a, tg_vec3 b)
-{
-    const int64_t x = (int64_t)a.x - b.x, y = (int64_t)a.y - b.y, z = (int64_t)a.z - b.z;
-    const uint64_t h = (uint64_t)1 << 31;
-    if ((((uint64_t)x + h) | ((uint64_t)y + h) | ((uint64_t)z + h)) >> 32) return tgi_v3_sub(a, b);
-    return tg_v3((tg_real)x, (tg_real)y, (tg_real)z);
-}
-#else
-#define v3_sub tgi_v3_sub
-#endif
-
 #if !TG_NO_SHADOW_MAPS /* included unconditionally: tools/amalgamate.sh inlines a header once */
 
 #define GRAZING_MIN_COS TG_R(0.001f)    /* |n . l| floor: keeps the receiver plane's slope finite */
@@ -183,7 +166,7 @@ LOOKUP_COPIED int prepare_ortho(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, 
  * or in an absent face (lit). */
 LOOKUP_COPIED int prepare_perspective(const tgi_shadow_map *sm, tg_vec3 p, tg_vec3 n, tg_real err, lookup *q)
 {
-    tg_vec3 d = v3_sub(p, sm->origin), r, u, f;
+    tg_vec3 d = tgi_v3_sub_wide(p, sm->origin), r, u, f;
     const tgi_shadow_face *fc = &sm->face[sm->faces == 6 ? cube_face(d) : 0];
     tg_real lx, ly, lz, inv_lz;
     if (fc->size == 0) return -1;
