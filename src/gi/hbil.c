@@ -1750,7 +1750,14 @@ static HBIL_SAMPLE_INLINE tg_real sample_cos(const hbil_march *mr, tg_real z1, t
  * not saturate). */
 static inline tg_vec3 sample_dir(const tgi_wide d[3], tg_real inv_len)
 {
+#if TGI_Q16_WIDE
+    /* d's components fit tg_real (|d_i| < 128 units: the same integers
+     * unnarrowed), their products small_mul's without the narrowing and
+     * widening again (a sign extension a component a rise) */
+    return tg_v3((tg_real)tgi_wide_mul(d[0], inv_len), (tg_real)tgi_wide_mul(d[1], inv_len), (tg_real)tgi_wide_mul(d[2], inv_len));
+#else
     return tg_v3(small_mul((tg_real)d[0], inv_len), small_mul((tg_real)d[1], inv_len), small_mul((tg_real)d[2], inv_len));
+#endif
 }
 /* h|h|, |h| as tgi_abs_fast (raster/pack.h: in float by the sign bit,
  * one and, where tg_abs is a compare and a select): at h = -0 the product
