@@ -1620,7 +1620,8 @@ static inline tg_real lerp_inverse_depth(tg_real za, tg_real zb, tg_real f)
     ratio = (int64_t)((((uint64_t)za << 16) + (den >> 1)) / den);
     return (tg_real)((int64_t)za + tgi_wide_mul(fzd, ratio));
 #else
-    tg_real zd = (tg_real)((tgi_wide)zb - za), fzd = small_mul(f, zd);
+    tg_real zd = (tg_real)((tgi_wide)zb - za), fzd = small_mul(f, zd), ratio;
+    tgi_wide z;
 #if HBIL_EQUAL_DEPTHS
     /* equal depths (as Q16.16's above): zd = +0, fzd = f 0 = +0 (f >= 0
      * finite), za / (zb - 0) = 1 exactly, z = za + 0 1 = za, finite (za
@@ -1634,8 +1635,8 @@ static inline tg_real lerp_inverse_depth(tg_real za, tg_real zb, tg_real f)
      * depths_close 467.73M and 199.33M (sum +3.7M) */
     if (za == zb) return za;
 #endif
-    const tg_real ratio = tgi_div_nonneg(za, small_sub(zb, fzd));   /* za > 0 */
-    const tgi_wide z = (tgi_wide)za + tgi_wide_mul(fzd, ratio);
+    ratio = tgi_div_nonneg(za, small_sub(zb, fzd));   /* za > 0 */
+    z = (tgi_wide)za + tgi_wide_mul(fzd, ratio);
 #if TG_FIXED
     return z > TG_REAL_MAX ? TG_REAL_MAX : (tg_real)z;
 #else
