@@ -421,29 +421,52 @@ static inline tg_real tgi_rgb9e5_chan(uint32_t m, int e)
 }
 #else
 static inline float tgi_pow2f(int k) { tgi_f32_bits b; b.u = (uint32_t)(k + 127) << 23; return b.f; }
-static inline uint32_t tgi_rgb9e5_mant(float c, float inv_step)
+/* c / 2^(e - 24) + 1/2, truncated: c at least +0 and no NaN (the clamp
+ * below; +0 gives (uint32_t)0.5 = 0, the former test's 0), inv_step =
+ * 2^(24 - e) */
+static inline uint32_t tgi_rgb9e5_mant(float c, float inv_step) { return (uint32_t)(c * inv_step + 0.5f); }
+/* A channel's binary32 bits clamped to [0, (511 / 512) 2^16]: a negative
+ * (sign set) or a NaN to +0, and +inf to the top.  Non-negative floats
+ * order as their bits, so the clamps and the channels' largest are integer
+ * compares (gcc kept the float clamps' branches). */
+#define TGI_RGB9E5_TOP_BITS 0x477F8000u       /* 65408 = (511 / 512) 2^16 */
+static inline uint32_t tgi_rgb9e5_clamp_bits(float c)
 {
-    float m = c * inv_step + 0.5f;
-    return c > 0.0f ? (uint32_t)m : 0;
+    tgi_f32_bits b;
+    b.f = c;
+    if (b.u > TGI_RGB9E5_TOP_BITS) b.u = b.u > 0x7F800000u ? 0 : TGI_RGB9E5_TOP_BITS;
+    return b.u;
 }
+/* The shared exponent e = floor(log2 max) + 16 from the float's exponent
+ * field, plus 1 where the largest mantissa would round to 512: with max =
+ * 2^(e - 16) (1 + f), max / 2^(e - 24) = 256 (1 + f) is exact and below
+ * 512, so v + 0.5 is exact below 512 (a multiple of v's step 2^-15) and
+ * rounds to 512 or more iff v >= 511.5, that is f >= 1 - 2^-9, the 23-bit
+ * fraction at least 0x7FC000: the carry of fraction + 0x4000 into the
+ * exponent field.  Where e is raised from below 0 to 0 (max < 2^-16), max
+ * / 2^-24 < 256 never rounds to 512 and the carried exponent is still at
+ * most 0.  The top's fraction, 0x7F8000, carries nothing: e <= 31.  (A
+ * sweep of every binary32 channel value, alone and beside others, against
+ * the former float clamps and mantissa-and-test: the same words.) */
 static inline uint32_t tgi_rgb9e5_pack_inline(tg_vec3 c)
 {
-    const float top = 65408.0f;               /* (511 / 512) 2^16 */
-    float r = c.x > top ? top : c.x, g = c.y > top ? top : c.y, b = c.z > top ? top : c.z, mx;
-    tgi_f32_bits bits;
+    uint32_t r = tgi_rgb9e5_clamp_bits(c.x), g = tgi_rgb9e5_clamp_bits(c.y), b = tgi_rgb9e5_clamp_bits(c.z);
+    uint32_t mx = r > g ? r : g;
+    tgi_f32_bits f;
+    float inv_step;
     int e;
-    if (!(r > 0.0f)) r = 0.0f;
-    if (!(g > 0.0f)) g = 0.0f;
-    if (!(b > 0.0f)) b = 0.0f;
-    mx = r > g ? r : g;
-    if (b > mx) mx = b;
-    if (mx < 5.9604645e-8f) return 0;          /* below half the smallest step, 2^-24 */
-    bits.f = mx;
-    e = (int)((bits.u >> 23) & 0xFF) - 127 + 16;   /* floor(log2) + 16, >= -8 */
+    mx = mx > b ? mx : b;
+    if (mx < 0x33800000u) return 0;            /* below half the smallest step, 2^-24 */
+    e = (int)((mx + 0x4000u) >> 23) - 127 + 16;   /* floor(log2) + 16 + the rounding's carry, >= -8 */
     if (e < 0) e = 0;
-    if (tgi_rgb9e5_mant(mx, tgi_pow2f(24 - e)) >= 512) e++;
-    return tgi_rgb9e5_mant(r, tgi_pow2f(24 - e)) | (tgi_rgb9e5_mant(g, tgi_pow2f(24 - e)) << 9)
-           | (tgi_rgb9e5_mant(b, tgi_pow2f(24 - e)) << 18) | ((uint32_t)e << 27);
+    inv_step = tgi_pow2f(24 - e);
+    f.u = r;
+    r = tgi_rgb9e5_mant(f.f, inv_step);
+    f.u = g;
+    g = tgi_rgb9e5_mant(f.f, inv_step);
+    f.u = b;
+    b = tgi_rgb9e5_mant(f.f, inv_step);
+    return r | (g << 9) | (b << 18) | ((uint32_t)e << 27);
 }
 static inline tg_real tgi_rgb9e5_chan(uint32_t m, int e) { return (float)m * tgi_pow2f(e - 24); }
 #endif
