@@ -476,6 +476,21 @@ static inline tg_vec3 tgi_rgb9e5_unpack_inline(uint32_t w)
 {
     int e = (int)(w >> 27);
     tg_vec3 c;
+#if TGI_Q16_WIDE
+    /* e in [8, 30] (radiance from 2^-8 up: nearly every word the kernel
+     * gathers): m 2^e is a multiple of 2^8, so tgi_rgb9e5_chan's (m 2^e +
+     * 128) >> 8 is m 2^(e - 8) exactly, at most 511 2^22 < TG_REAL_MAX
+     * (no saturation), in 32 bits: three shifts without the 64-bit
+     * rounding and the clamps (the HBIL gather's reads on x86-64: 28
+     * instructions -> 17) */
+    if ((unsigned)(e - 8) <= 22u) {
+        const int s = e - 8;
+        c.x = (tg_real)((w & 511u) << s);
+        c.y = (tg_real)(((w >> 9) & 511u) << s);
+        c.z = (tg_real)(((w >> 18) & 511u) << s);
+        return c;
+    }
+#endif
     c.x = tgi_rgb9e5_chan(w & 511u, e);
     c.y = tgi_rgb9e5_chan((w >> 9) & 511u, e);
     c.z = tgi_rgb9e5_chan((w >> 18) & 511u, e);
