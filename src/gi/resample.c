@@ -1259,23 +1259,29 @@ tgi_gr_value tgi_upsample_at(const tgi_upsample_plan *u, tgi_upsample_walk *walk
 #endif
         if (want_near) {
 #if TGI_Q16_WIDE && !TG_WIDE_STORAGE
-            /* tgi_wide_add_weighted's fast form for the three channels
-             * under one test of w: its other test, v >= 0, always passes
-             * (rgb9e5 unpacked is never negative); the slow form's code
-             * then out of the common path (Q16.16 160x120 2 frames
-             * --gi-quarter: cornell 316.73M -> 315.60M, columns 225.65M ->
-             * 224.63M) */
-            if ((uint32_t)w <= (uint32_t)TG_ONE) {
-                near_w[0] += ((int64_t)w * c->near.x + 32768) >> 16;
-                near_w[1] += ((int64_t)w * c->near.y + 32768) >> 16;
-                near_w[2] += ((int64_t)w * c->near.z + 32768) >> 16;
-            } else
+            /* tgi_wide_add_weighted's fast form for every w, w above 1
+             * too (the normal weight of two equal normals rounds a little
+             * above 1, so its slow form ran at a third of the taps): each
+             * term p = w v rounded is >= 0 (w in (0, 256], v >= 0: rgb9e5
+             * unpacked is never negative), where tg_mul rounds it alike.
+             * Over terms >= 0 both forms end at min(S, TG_REAL_MAX), S the
+             * terms' exact sum: the slow form's step sat(sat(acc) +
+             * sat(p)) is min(acc + p, TG_REAL_MAX) for acc, p >= 0 (either
+             * above the range puts the sum there), so by induction the
+             * running sum is S while S is within the range, and at least
+             * TG_REAL_MAX once S is above it, and tgi_wide_real
+             * saturates it at the end; here the sum is S itself (p below
+             * 2^55, four of them below 2^57) (Q16.16 160x120 2 frames
+             * --gi-quarter: cornell 310.35M -> 310.18M, columns 216.21M ->
+             * 216.04M) */
+            near_w[0] += ((int64_t)w * c->near.x + 32768) >> 16;
+            near_w[1] += ((int64_t)w * c->near.y + 32768) >> 16;
+            near_w[2] += ((int64_t)w * c->near.z + 32768) >> 16;
+#else
+            near_w[0] = tgi_wide_add_weighted(near_w[0], w, c->near.x);
+            near_w[1] = tgi_wide_add_weighted(near_w[1], w, c->near.y);
+            near_w[2] = tgi_wide_add_weighted(near_w[2], w, c->near.z);
 #endif
-            {
-                near_w[0] = tgi_wide_add_weighted(near_w[0], w, c->near.x);
-                near_w[1] = tgi_wide_add_weighted(near_w[1], w, c->near.y);
-                near_w[2] = tgi_wide_add_weighted(near_w[2], w, c->near.z);
-            }
         }
     }
     sum = tgi_wide_real(sum_w);
