@@ -476,8 +476,12 @@ static inline int near_under_off(const near_plane *pl, tg_real z, const signed c
  * float, 32 -> 27 in Q16.16; 16% of cornell's pixels make their cell's
  * values anew (160x120 2 frames --gi-quarter: float cornell 227.25M ->
  * 225.73M, columns 156.27M -> 154.46M; Q16.16 312.32M -> 310.35M, 218.08M
- * -> 216.21M).  None in a build for size. */
-#define NEAR_SLOPES (!TG_OUTLINE_HELPERS && TG_QUARTER_NEAR_REACH >= 1)
+ * -> 216.21M).  The memo takes 1.8 KB of stack in float, 3.6 KB in
+ * Q16.16 (tgi_near_horizon_rows'), so only on 64-bit hosts, whose stacks
+ * are large (as TGI_DENOISE_BAND's 16 rows, gi/denoise.h): 32-bit cores
+ * keep the offsets' form within their stack (README "Porting"); none in a
+ * build for size. */
+#define NEAR_SLOPES (!TG_OUTLINE_HELPERS && TG_QUARTER_NEAR_REACH >= 1 && UINTPTR_MAX > 0xFFFFFFFFu)
 #define NEAR_SLOPE_DELTAS (NEAR_SLOPES && TG_FIXED && TGI_NEAR_DELTAS)   /* (near_slope) */
 #if NEAR_SLOPES
 /* a sample's value, in Q16.16 beside its index offset (NEAR_DELTA, where
