@@ -483,6 +483,7 @@ static inline int near_under_off(const near_plane *pl, tg_real z, const signed c
  * build for size. */
 #define NEAR_SLOPES (!TG_OUTLINE_HELPERS && TG_QUARTER_NEAR_REACH >= 1 && UINTPTR_MAX > 0xFFFFFFFFu)
 #define NEAR_SLOPE_DELTAS (NEAR_SLOPES && TG_FIXED && TGI_NEAR_DELTAS)   /* (near_slope) */
+#define NEAR_RAYS (NEAR_SLOPES && TG_FIXED ? 1024 : 0)   /* (near_ray_x) */
 #if NEAR_SLOPES
 /* a sample's value, in Q16.16 beside its index offset (NEAR_DELTA, where
  * the plan has them; else unset and unread): the march's loop then reads one table, its
@@ -500,8 +501,18 @@ typedef struct near_slopes {
     uint32_t key[16][2];   /* the bits of the (nax, nay) each cell's values were made for */
     unsigned char set[16];
     near_slope t[16][4][TGI_NEAR_STEPS];
+#if NEAR_RAYS
+    const tg_real *ray_x;   /* near_ray_x of columns [0, rays), tgi_near_horizon_rows' (NEAR_RAYS) */
+    int rays;
+#endif
 } near_slopes;
-static void near_slopes_start(near_slopes *s) { memset(s->set, 0, sizeof s->set); }
+static void near_slopes_start(near_slopes *s)
+{
+    memset(s->set, 0, sizeof s->set);
+#if NEAR_RAYS
+    s->rays = 0;
+#endif
+}
 static inline uint32_t near_bits(tg_real v)
 {
 #if TG_FIXED
@@ -922,6 +933,18 @@ static tg_real near_ray_y(const tgi_upsample_plan *u, int y)
 {
     return tg_div(tg_from_int(u->full->camera->height - 2 * y - 1), u->hfy);
 }
+/* The view ray's x of column x (tgi_ao_unproject's), which
+ * tgi_near_horizon_rows in Q16.16 computes once a call for its first
+ * NEAR_RAYS columns, near_horizon_ao reading them from its memo (the same
+ * quotient, not once a pixel: 160x120 2 frames --gi-quarter cornell
+ * 310.18M -> 309.52M, columns 216.03M -> 215.39M; float's quotient, a
+ * division, cost less than the table, 225.73M -> 225.76M, 154.46M ->
+ * 154.48M, so it keeps it); 4 KB of stack, so only on 64-bit hosts (as
+ * NEAR_SLOPES); u->steps > 0 (wfx set). */
+static tg_real near_ray_x(const tgi_upsample_plan *u, int x)
+{
+    return tg_div(tg_from_int(2 * x + 1 - u->full->camera->width), u->wfx);
+}
 
 static tg_real near_horizon_ao(const tgi_upsample_plan *u, near_slopes *s, int x, int y, size_t i, tg_real ky, tg_vec3 nv,
                                tg_real ao)
@@ -935,7 +958,11 @@ static tg_real near_horizon_ao(const tgi_upsample_plan *u, near_slopes *s, int x
     int k, found = 0;
     if (u->steps < 1) return TG_ONE;
     q.x = x; q.y = y; q.i = i;
-    q.kx = tg_div(tg_from_int(2 * x + 1 - full->camera->width), u->wfx);   /* tgi_ao_unproject's ray */
+#if NEAR_RAYS
+    q.kx = x < s->rays ? s->ray_x[x] : near_ray_x(u, x);   /* tgi_ao_unproject's ray */
+#else
+    q.kx = near_ray_x(u, x);   /* tgi_ao_unproject's ray */
+#endif
     q.ky = ky;   /* near_ray_y(u, y) */
     z = tgi_gv_depth(full, i);                                   /* tgi_ao_view_at's view of the pixel */
     q.pv = tg_v3(tg_mul(q.kx, z), tg_mul(q.ky, z), z);
@@ -1137,10 +1164,18 @@ void tgi_near_horizon_rows(const tgi_gview *full, const tgi_gview *half, const t
     tgi_normal_memo m;
     near_slopes sl;   /* along the rows: a plane's pixels share a cell's values */
     int x, y;
+#if NEAR_RAYS
+    tg_real ray_x[NEAR_RAYS];   /* near_ray_x of columns [0, sl.rays) */
+#endif
     if (y1 > full->height) y1 = full->height;
     tgi_upsample_start(&u, full, half, half_res, radius, near);
     tgi_normal_memo_start(&m);
     near_slopes_start(&sl);
+#if NEAR_RAYS
+    sl.ray_x = ray_x;
+    if (u.steps > 0 && y0 < y1)
+        for (sl.rays = full->width < NEAR_RAYS ? full->width : NEAR_RAYS, x = 0; x < sl.rays; x++) ray_x[x] = near_ray_x(&u, x);
+#endif
     for (y = y0; y < y1; y++) {
         const tg_real ky = u.steps > 0 ? near_ray_y(&u, y) : 0;
         for (x = 0; x < full->width; x++) {
