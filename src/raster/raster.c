@@ -1148,36 +1148,50 @@ static RASTER_NOINLINE uint32_t oct_pack_rare(const surface *sf, float mx, float
 /* The normal's interpolants in vector lanes (GCC's and clang's vector
  * extensions): the planes of (mx, my, mz, qv) made at once, s = (mx, my,
  * mz, 0) found per row and stepped per pixel by one vector add, the
- * magnitudes by one and, l1 by one add of the lanes (ax + ay in lane 0,
- * az + 0 = az in lane 2) and one scalar add, and the octahedral x and y
- * projected, folded and quantized side by side in lanes 0 and 1.  Each
- * lane is the scalar IEEE operation on the same operands (-ffp-contract=off:
- * no fused or reassociated step), so every word is tgi_oct_pack_l1's: l1 =
- * (ax + ay) + az as there, the fold's -fx the sign bit flipped where m.x <
- * 0 (as negation), the truncation cvttps2dq's (uint32_t) of u in (0.49,
- * q + 0.5).  The unused lanes 2 and 3 hold mz r or 1 - az r (bounded as
- * x and y: u in (0.49, q + 0.5) too), and 0 or 1, so their conversion is
+ * magnitudes by one and, l1 by two adds of the lanes into every lane
+ * (ax + ay in lanes 0 and 1, az + 0 = 0 + az = az in lanes 2 and 3, then
+ * each lane plus the one two away: (ax + ay) + az everywhere, IEEE
+ * addition being commutative), r = 1 / l1 by one vector division (no
+ * broadcast), and the octahedral x and y projected, folded and quantized
+ * side by side in lanes 0 and 1, packed by one shift and or of the lanes.
+ * Each lane is the scalar IEEE operation on the same operands
+ * (-ffp-contract=off: no fused or reassociated step), so every word is
+ * tgi_oct_pack_l1's: l1 = (ax + ay) + az as there, the fold's -fx the sign
+ * bit flipped where m.x < 0 (as negation), the truncation cvttps2dq's
+ * (uint32_t) of u in (0.49, q + 0.5).  The fold flips by s's own sign bit
+ * (s & sign: two instructions fewer than the mask of s < 0): s is never
+ * -0, the one word where the two differ, as the row's s is row_start + 0
+ * (-0 + 0 = +0, every other word unchanged) and a sum of two floats is -0
+ * only when both are (an exact zero rounds to +0; with gradual underflow
+ * no nonzero sum rounds to zero; SSE2 and AArch64 do not flush by
+ * default); it is not NaN either where the fold runs (l1 in range).  The
+ * sign of a zero s changes no word anyway (|s|, s < 0 and s r + 1 are the
+ * same).  The unused lanes 2 and 3 hold mz r or 1 - az r (bounded as x and
+ * y: u in (0.49, q + 0.5) too), and 0 or 1, so their conversion is
  * defined.  Not in the -Os size build.  Exact: tools/same_bits.sh 0 differ,
  * bench_raster's gbuffer_fnv unchanged; callgrind bench_raster a frame
- * 1280x720 54.93M -> 52.38M, 320x240 23.55M -> 22.60M. */
+ * 1280x720 54.93M -> 52.38M, 320x240 23.55M -> 22.60M (the flip by the
+ * sign bit, l1 in every lane and the packing in lanes: 52.38M -> 50.51M,
+ * 22.60M -> 22.44M). */
 #if RASTER_OCT_LANES
 typedef float oct_v4f __attribute__((vector_size(16)));
 typedef int32_t oct_v4i __attribute__((vector_size(16)));
-typedef struct oct_lanes { oct_v4f one, half, scale; oct_v4i sign; } oct_lanes;
-/* s as above, a = |s|, l1 = (a0 + a1) + a2 */
-static RASTER_INLINE uint32_t oct_pack_lanes(const oct_lanes *c, oct_v4f s, oct_v4f a, float l1, int bits)
+typedef struct oct_lanes { oct_v4f one, half, scale, zero; oct_v4i sign; } oct_lanes;
+/* s as above, a = |s|, l1 = (a0 + a1) + a2 in every lane */
+static RASTER_INLINE uint32_t oct_pack_lanes(const oct_lanes *c, oct_v4f s, oct_v4f a, oct_v4f l1, int bits)
 {
-    const float r = 1.0f / l1;
+    const oct_v4f r = c->one / l1;
     oct_v4f p;
     oct_v4i k;
     if (s[2] < 0.0f) {        /* (1 - |p.yx|) sign(p) */
         p = c->one - __builtin_shufflevector(a, a, 1, 0, 2, 3) * r;
-        p = (oct_v4f)((oct_v4i)p ^ ((s < 0.0f) & c->sign));
+        p = (oct_v4f)((oct_v4i)p ^ ((oct_v4i)s & c->sign));
     } else {
         p = s * r;
     }
     k = __builtin_convertvector((p + c->one) * c->scale + c->half, oct_v4i);
-    return (uint32_t)k[0] | ((uint32_t)k[1] << bits);
+    k |= __builtin_shufflevector(k, k, 1, 1, 1, 1) << bits;
+    return (uint32_t)k[0];
 }
 /* plane_make in each lane */
 typedef struct plane_lanes { oct_v4f v, dx, dy; } plane_lanes;
@@ -1219,6 +1233,7 @@ static RASTER_INLINE void gbuffer_rows_bits(const tgi_gbuffer *gbp, const tri_ed
 #else
     const float scale = (float)((1u << (bits - 1)) - 1);   /* tgi_oct_quant_u's */
     const oct_lanes lanes = {{1.0f, 1.0f, 1.0f, 1.0f}, {0.5f, 0.5f, 0.5f, 0.5f}, {scale, scale, scale, scale},
+                             {0.0f, 0.0f, 0.0f, 0.0f},
                              {INT32_MIN, INT32_MIN, 0, 0}};
     const oct_v4i magnitude = {INT32_MAX, INT32_MAX, INT32_MAX, INT32_MAX}, normal = {-1, -1, -1, 0};
     /* lane k: the products n.x q, n.y q, n.z q, 1 q = q as pnx, pny, pnz, pq take them */
@@ -1243,7 +1258,7 @@ static RASTER_INLINE void gbuffer_rows_bits(const tgi_gbuffer *gbp, const tri_ed
 #if RASTER_OCT_LANES
         {   /* the lanes of mx, my, mz, qv below, the same operations */
             const oct_v4f row_start = pl.v + pl.dy * dy + pl.dx * dx;
-            oct_v4f s = (oct_v4f)((oct_v4i)row_start & normal);
+            oct_v4f s = (oct_v4f)((oct_v4i)(row_start + lanes.zero) & normal);
             for (col = xa, qv = row_start[3]; col < xb; col++, i++, qv += qdx, s += sdx) {
                 tgi_f32_bits zb, lb, lo, hi;
                 oct_v4f a, t;
@@ -1255,10 +1270,11 @@ static RASTER_INLINE void gbuffer_rows_bits(const tgi_gbuffer *gbp, const tri_ed
                 g.depth[i] = zb.u;
                 a = (oct_v4f)((oct_v4i)s & magnitude);
                 t = a + __builtin_shufflevector(a, a, 1, 0, 3, 2);
-                lb.f = t[0] + t[2];
+                t += __builtin_shufflevector(t, t, 2, 3, 0, 1);
+                lb.f = t[0];
                 lo.f = 1e-14f;
                 hi.f = TG_REAL_MAX;
-                put_nm(&g, i, (lb.u - lo.u - 1u < hi.u - lo.u ? oct_pack_lanes(&lanes, s, a, lb.f, bits)
+                put_nm(&g, i, (lb.u - lo.u - 1u < hi.u - lo.u ? oct_pack_lanes(&lanes, s, a, t, bits)
                                                                : oct_pack_rare(&sf, s[0], s[1], s[2], bits))
                               | sf.material, bits);
                 if (g.object) g.object[i] = sf.object;
