@@ -1878,9 +1878,10 @@ typedef struct tri_vertices {
     int flags;                    /* V_* of all three: V_INSIDE if all are inside, V_RIGHT.. if all are beyond */
 } tri_vertices;
 
-/* Vertex k of tv: the view_vertex of p, from the cache or made there. */
-static VIEW_VERTEX_INLINE void vertex_fetch(vertex_cache *c, const raster_target *rt, const view_frame *vf, tg_vec3 p,
-                                tri_vertices *tv, int k)
+/* The view_vertex of p, from the cache or made there: a copy (the next
+ * look-up may take its entry). */
+static VIEW_VERTEX_INLINE view_vertex vertex_lookup(vertex_cache *c, const raster_target *rt, const view_frame *vf,
+                                                   tg_vec3 p)
 {
 #if VCACHE_BIG
     /* x and y's bits as one 64-bit word through a union (C99 reads the
@@ -1914,6 +1915,12 @@ static VIEW_VERTEX_INLINE void vertex_fetch(vertex_cache *c, const raster_target
         c->v[h] = view_vertex_make(rt, vf, p);
     }
 #endif
+    return *o;
+}
+
+/* Vertex k of tv from its view_vertex o. */
+static inline void tri_vertex_set(tri_vertices *tv, int k, const view_vertex *o)
+{
 #if VIEW_XY
     tv->v[k].x = o->x;
     tv->v[k].y = o->y;
@@ -1922,7 +1929,15 @@ static VIEW_VERTEX_INLINE void vertex_fetch(vertex_cache *c, const raster_target
     tv->sx[k] = o->sx;
     tv->sy[k] = o->sy;
     tv->iw[k] = o->iw;
-    tv->flags &= o->flags;
+}
+
+/* Vertex k of tv: the view_vertex of p, from the cache or made there. */
+static VIEW_VERTEX_INLINE void vertex_fetch(vertex_cache *c, const raster_target *rt, const view_frame *vf, tg_vec3 p,
+                                tri_vertices *tv, int k)
+{
+    const view_vertex o = vertex_lookup(c, rt, vf, p);
+    tri_vertex_set(tv, k, &o);
+    tv->flags &= o.flags;
 }
 
 /* Triangle t's three vertices, through the cache. */
@@ -1982,20 +1997,14 @@ static void back_triangle(raster_target *rt, const view_frame *vf, const tg_vec3
 }
 #endif
 
-/* Triangle t: reject, cull, draw (clipped if needed); into the back-face
- * layer too when the G-buffer has one. */
-static void gbuffer_triangle(raster_target *rt, const view_frame *vf, tri_vertices *tv, const tgi_raster_mesh *mesh, int t)
+/* Triangle t of tgi_raster_gbuffer, neither off a side nor culled:
+ * twosided its material's, front its facing and area2 its signed area when
+ * all its vertices are inside (tv->flags & V_INSIDE). */
+static RASTER_INLINE void gbuffer_triangle_drawn(raster_target *rt, const view_frame *vf, tri_vertices *tv,
+                                                 const tgi_raster_mesh *mesh, int t, int twosided, int front,
+                                                 int64_t area2)
 {
     static const int order_front[3] = { 0, 2, 1 }, order_back[3] = { 0, 1, 2 };
-    int twosided, front = 0;
-    int64_t area2 = 0;
-    if (tv->flags & V_OFF_SIDE) return;           /* wholly off one side of the screen */
-    twosided = mesh->materials[mesh->tri_material[t]].twosided;
-    if (tv->flags & V_INSIDE) {
-        area2 = signed_area2(tv->sx, tv->sy);
-        front = area2 < 0;                        /* counter-clockwise as seen, y down */
-        if (area2 == 0 || (!front && !twosided)) return;   /* zero area, culled */
-    }
     rt->material = mesh->tri_material[t];
     rt->cull_back = !twosided;
     rt->flip_back = twosided;
@@ -2058,9 +2067,28 @@ void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_
     vf.zfar = rt.clip.zfar;
     vertex_cache_init(&cache, &rt, &vf);
     for (t = 0; t < mesh->tri_count; t++) {
+        /* Triangle t: reject, cull, draw (clipped if needed).  Its vertices
+         * as values until it is drawn: a culled one (most back faces of a
+         * closed mesh) writes nothing. */
+        const tg_vec3 *pos = mesh->pos + 3 * t;
+        const view_vertex a = vertex_lookup(&cache, &rt, &vf, pos[0]), b = vertex_lookup(&cache, &rt, &vf, pos[1]),
+                          c = vertex_lookup(&cache, &rt, &vf, pos[2]);
         tri_vertices tv;
-        triangle_fetch(&cache, &rt, &vf, mesh, t, &tv);
-        gbuffer_triangle(&rt, &vf, &tv, mesh, t);
+        int twosided, front = 0;
+        int64_t area2 = 0;
+        tv.flags = a.flags & b.flags & c.flags;
+        if (tv.flags & V_OFF_SIDE) continue;      /* wholly off one side of the screen */
+        twosided = mesh->materials[mesh->tri_material[t]].twosided;
+        if (tv.flags & V_INSIDE) {
+            const int32_t sx[3] = { a.sx, b.sx, c.sx }, sy[3] = { a.sy, b.sy, c.sy };
+            area2 = signed_area2(sx, sy);
+            front = area2 < 0;                    /* counter-clockwise as seen, y down */
+            if (area2 == 0 || (!front && !twosided)) continue;   /* zero area, culled */
+        }
+        tri_vertex_set(&tv, 0, &a);
+        tri_vertex_set(&tv, 1, &b);
+        tri_vertex_set(&tv, 2, &c);
+        gbuffer_triangle_drawn(&rt, &vf, &tv, mesh, t, twosided, front, area2);
     }
 #if TGI_RASTER_BACK_LAYER
     /* the second layer, once these rows' depth is final: the back faces at
