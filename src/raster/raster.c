@@ -1160,13 +1160,16 @@ static RASTER_NOINLINE uint32_t oct_pack_rare(const surface *sf, float mx, float
  * bit flipped where m.x < 0 (as negation), the truncation cvttps2dq's
  * (uint32_t) of u in (0.49, q + 0.5).  The fold flips by s's own sign bit
  * (s & sign: two instructions fewer than the mask of s < 0): s is never
- * -0, the one word where the two differ, as the row's s is row_start + 0
- * (-0 + 0 = +0, every other word unchanged) and a sum of two floats is -0
- * only when both are (an exact zero rounds to +0; with gradual underflow
- * no nonzero sum rounds to zero; SSE2 and AArch64 do not flush by
- * default); it is not NaN either where the fold runs (l1 in range).  The
- * sign of a zero s changes no word anyway (|s|, s < 0 and s r + 1 are the
- * same).  The unused lanes 2 and 3 hold mz r or 1 - az r (bounded as x and
+ * -0, the one word where the two differ, as the planes' value is taken as
+ * v0 = pl.v + 0 (-0 + 0 = +0, every other word unchanged) and a sum of
+ * two floats is -0 only when both are (an exact zero rounds to +0; with
+ * gradual underflow no nonzero sum rounds to zero; SSE2 and AArch64 do not
+ * flush by default), so neither row_start = (v0 + dy pl.dy) + dx pl.dx nor
+ * s stepped from it is; it is not NaN either where the fold runs (l1 in
+ * range).  That + 0 changes at most the sign of a zero, in pl.v and so in
+ * s and qv, which changes no word (|s|, s < 0, s r + 1, qv > 0 are the
+ * same; the rare path's tgi_oct_pack reads m through |m|, m < 0 and m r
+ * + 1 too).  The unused lanes 2 and 3 hold mz r or 1 - az r (bounded as x and
  * y: u in (0.49, q + 0.5) too), and 0 or 1, so their conversion is
  * defined.  Not in the -Os size build.  Exact: tools/same_bits.sh 0 differ,
  * bench_raster's gbuffer_fnv unchanged; callgrind bench_raster a frame
@@ -1175,7 +1178,9 @@ static RASTER_NOINLINE uint32_t oct_pack_rare(const surface *sf, float mx, float
  * 22.60M -> 22.44M).  The lane shuffles that read a vector kept for later
  * (a, t, s) are written on its integer view, the same bits moved: SSE2's
  * pshufd copies and shuffles in one instruction where shufps shuffles in
- * place after a copy (50.51M -> 49.20M, 22.44M -> 22.21M). */
+ * place after a copy (50.51M -> 49.20M, 22.44M -> 22.21M).  The + 0 once
+ * a triangle, on pl.v, not once a row (48.98M -> 48.89M, 21.99M ->
+ * 21.98M). */
 #if RASTER_OCT_LANES
 typedef float oct_v4f __attribute__((vector_size(16)));
 typedef int32_t oct_v4i __attribute__((vector_size(16)));
@@ -1245,6 +1250,7 @@ static RASTER_INLINE void gbuffer_rows_bits(const tgi_gbuffer *gbp, const tri_ed
                                             (oct_v4f){st->n[2].x, st->n[2].y, st->n[2].z, 1.0f} * q[2]);
     const oct_v4f sdx = (oct_v4f)((oct_v4i)pl.dx & normal);
     const float qdx = pl.dx[3];
+    const oct_v4f v0 = pl.v + lanes.zero;   /* never -0: oct_pack_lanes' s (above) */
 #endif
     span_begin(&sw, te);
     for (row = te->y0; row < te->y1; row++) {
@@ -1260,8 +1266,8 @@ static RASTER_INLINE void gbuffer_rows_bits(const tgi_gbuffer *gbp, const tri_ed
         i = (size_t)row * (size_t)W + (size_t)xa;
 #if RASTER_OCT_LANES
         {   /* the lanes of mx, my, mz, qv below, the same operations */
-            const oct_v4f row_start = pl.v + pl.dy * dy + pl.dx * dx;
-            oct_v4f s = (oct_v4f)((oct_v4i)(row_start + lanes.zero) & normal);
+            const oct_v4f row_start = v0 + pl.dy * dy + pl.dx * dx;
+            oct_v4f s = (oct_v4f)((oct_v4i)row_start & normal);
             for (col = xa, qv = row_start[3]; col < xb; col++, i++, qv += qdx, s += sdx) {
                 tgi_f32_bits zb, lb, lo, hi;
                 oct_v4f a, t;
