@@ -2055,6 +2055,12 @@ static void further_layer(raster_target *rt, vertex_cache *cache, const view_fra
 
 void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_mesh *mesh, int y0, int y1)
 {
+    /* the mesh's fields read once (the loop's stores, to the G-buffer,
+     * would otherwise have them read again every triangle) */
+    const tg_vec3 *const mesh_pos = mesh->pos;
+    const uint16_t *const tri_material = mesh->tri_material;
+    const tgi_material *const materials = mesh->materials;
+    const int tri_count = mesh->tri_count;
     raster_target rt;
     view_frame vf;
     vertex_cache cache;
@@ -2072,11 +2078,11 @@ void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_
     vf.znear = rt.clip.znear;
     vf.zfar = rt.clip.zfar;
     vertex_cache_init(&cache, &rt, &vf);
-    for (t = 0; t < mesh->tri_count; t++) {
+    for (t = 0; t < tri_count; t++) {
         /* Triangle t: reject, cull, draw (clipped if needed).  Its vertices
          * as values until it is drawn: a culled one (most back faces of a
          * closed mesh) writes nothing. */
-        const tg_vec3 *pos = mesh->pos + 3 * t;
+        const tg_vec3 *pos = mesh_pos + 3 * t;
         const view_vertex a = vertex_lookup(&cache, &rt, &vf, pos[0]), b = vertex_lookup(&cache, &rt, &vf, pos[1]),
                           c = vertex_lookup(&cache, &rt, &vf, pos[2]);
         tri_vertices tv;
@@ -2084,7 +2090,7 @@ void tgi_raster_gbuffer(tgi_gbuffer *gb, const tgi_view *view, const tgi_raster_
         int64_t area2 = 0;
         tv.flags = a.flags & b.flags & c.flags;
         if (tv.flags & V_OFF_SIDE) continue;      /* wholly off one side of the screen */
-        twosided = mesh->materials[mesh->tri_material[t]].twosided;
+        twosided = materials[tri_material[t]].twosided;
         if (tv.flags & V_INSIDE) {
             const int32_t sx[3] = { a.sx, b.sx, c.sx }, sy[3] = { a.sy, b.sy, c.sy };
             area2 = signed_area2(sx, sy);
