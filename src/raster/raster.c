@@ -196,6 +196,16 @@ typedef struct span_walk {
 static inline void span_begin(span_walk *sw, const tri_edges *te)
 {
     int64_t dy = te->y0 - te->oy;
+#if TG_FIXED && !TG_OUTLINE_HELPERS
+    /* dy = 0 unless the rows [row0, row1) cut the box's top (a thread
+     * drawing the rows below another's): no products then.  Q16.16 only (callgrind
+     * bench_raster-fixed bench_draw a frame: 1280x720 76.84M -> 76.69M,
+     * 320x240 31.06M -> 30.99M; float 48.27M -> 48.94M, 21.36M -> 21.41M) */
+    if (dy == 0) {
+        sw->e[0] = te->e[0]; sw->e[1] = te->e[1]; sw->e[2] = te->e[2];
+        return;
+    }
+#endif
     sw->e[0] = te->e[0] + dy * te->step_y[0];
     sw->e[1] = te->e[1] + dy * te->step_y[1];
     sw->e[2] = te->e[2] + dy * te->step_y[2];
