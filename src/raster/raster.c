@@ -1952,6 +1952,7 @@ static inline void tri_vertex_set(tri_vertices *tv, int k, const view_vertex *o)
     tv->iw[k] = o->iw;
 }
 
+#if TGI_RASTER_BACK_LAYER   /* (further_layer's; the G-buffer's loop keeps a triangle's vertices as values until it is drawn) */
 /* Vertex k of tv: the view_vertex of p, from the cache or made there. */
 static VIEW_VERTEX_INLINE void vertex_fetch(vertex_cache *c, const raster_target *rt, const view_frame *vf, tg_vec3 p,
                                 tri_vertices *tv, int k)
@@ -1970,6 +1971,7 @@ static VIEW_VERTEX_INLINE void triangle_fetch(vertex_cache *c, const raster_targ
     vertex_fetch(c, rt, vf, mesh->pos[3 * t + 1], tv, 1);
     vertex_fetch(c, rt, vf, mesh->pos[3 * t + 2], tv, 2);
 }
+#endif
 
 /* The clip-space x, y of tv's vertices (at pos) for the clipper: as
  * view_vertex_make finds them, the same bits. */
