@@ -40,6 +40,16 @@ static inline int tgi_clz32_nz(uint32_t v)
     return 32 - tgi_bit_length64(v);
 #endif
 }
+/* 64 - tgi_bit_length64(v) for v != 0, the same way (__builtin_clzll counts
+ * in an unsigned long long: only where that has 64 bits). */
+static inline int tgi_clz64_nz(uint64_t v)
+{
+#if defined(__GNUC__) && defined(__SIZEOF_LONG_LONG__) && __SIZEOF_LONG_LONG__ == 8
+    return __builtin_clzll(v);
+#else
+    return 64 - tgi_bit_length64(v);
+#endif
+}
 
 /* sqrt of a 64-bit integer, floor; used by fixed-point vector lengths. */
 uint32_t tgi_isqrt64(uint64_t v);

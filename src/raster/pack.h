@@ -390,17 +390,6 @@ static inline tg_vec3 tgi_oct_unpack_inline(uint32_t w, int bits) { return tgi_o
  * 634.64M -> 634.37M, columns 269.86M -> 269.69M); elsewhere the trial
  * mantissa and its test (a 32-bit core's 64-bit shifts cost it code). */
 #define TGI_RGB9E5_CARRY_BITS (TGI_Q16_WIDE && TGI_CORE64)
-#if TGI_RGB9E5_CARRY_BITS
-/* 64 - the bit length of v != 0 (without tgi_bit_length64's test for 0) */
-static inline int tgi_rgb9e5_clz64_nz(uint64_t v)
-{
-#if defined(__GNUC__) && defined(__SIZEOF_LONG_LONG__) && __SIZEOF_LONG_LONG__ == 8
-    return __builtin_clzll(v);
-#else
-    return 64 - tgi_bit_length64(v);
-#endif
-}
-#endif
 /* c / 2^(e - 8) raw rounded half up, for e in [0, 31].  On a 64-bit core
  * in one form without branches: (q 2^8 + 2^(e - 1)) >> e in 64 bits
  * (2^(e - 1) taken as 0 for e = 0), each case's value: for e >= 9 (q +
@@ -432,7 +421,7 @@ static inline uint32_t tgi_rgb9e5_pack_inline(tg_vec3 c)
      * 512, S >= 2^(e + 9), exactly when S's bit length is e + 10, not e +
      * 9: the exponent is that length - 9, without the test (a sweep of
      * every mx against the test: the same exponent) */
-    e = 55 - tgi_rgb9e5_clz64_nz(((uint64_t)(uint32_t)mx << 8) + (((uint64_t)1 << e) >> 1));
+    e = 55 - tgi_clz64_nz(((uint64_t)(uint32_t)mx << 8) + (((uint64_t)1 << e) >> 1));
 #else
     if (tgi_rgb9e5_mant(mx, e) >= 512) e++;
 #endif
