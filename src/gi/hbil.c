@@ -1572,6 +1572,15 @@ static inline int depths_close(tg_real za, tg_real zb)
 #endif
 }
 
+/* Whether lerp_inverse_depth gives za at once for equal depths, and the
+ * march tests them first (below): in both number types, not compiling for
+ * size.  On 32-bit cores too (Q16.16's other form below: zd = 0, fzd =
+ * small_mul(f, 0) = 0, tgi_div_nonneg(za, za) = 2^16 exactly, z = za):
+ * make cross-count, cornell 160x120 second frame, Cortex-M3 Q16.16 541.7M
+ * -> 507.9M, RV32IMAC Q16.16 708.8M -> 652.0M (a 64-bit division in
+ * software skipped) */
+#define HBIL_EQUAL_DEPTHS (!TG_OUTLINE_HELPERS)
+
 /* The depth at fraction f in [0, 1) from za to zb, 1/z linear:
  * z = za + f (zb - za) za / (zb - f (zb - za)).  0 < za, zb <=
  * TG_REAL_MAX, close (depths_close): zb - za fits, f zd fits, zb - f zd
@@ -1582,14 +1591,6 @@ static inline int depths_close(tg_real za, tg_real zb)
  * quotient's 2^-17 times |f zd| < 2^15 (2^14 ulps in all), far above
  * TG_REAL_MIN: in Q16.16 only its top is tested (tgi_wide_real's other
  * test never acts). */
-/* Whether lerp_inverse_depth gives za at once for equal depths, and the
- * march tests them first (below): in both number types, not compiling for
- * size.  On 32-bit cores too (Q16.16's other form below: zd = 0, fzd =
- * small_mul(f, 0) = 0, tgi_div_nonneg(za, za) = 2^16 exactly, z = za):
- * make cross-count, cornell 160x120 second frame, Cortex-M3 Q16.16 541.7M
- * -> 507.9M, RV32IMAC Q16.16 708.8M -> 652.0M (a 64-bit division in
- * software skipped) */
-#define HBIL_EQUAL_DEPTHS (!TG_OUTLINE_HELPERS)
 static inline tg_real lerp_inverse_depth(tg_real za, tg_real zb, tg_real f)
 {
 #if TGI_Q16_WIDE && TGI_CORE64
@@ -1649,13 +1650,6 @@ static inline tg_real lerp_inverse_depth(tg_real za, tg_real zb, tg_real f)
 #endif
 }
 
-/* The march's depths_close(za, zb = z) for za > 0 (and fine_run's):
- * equal depths first (close: za < 4 za), which lerp_inverse_depth then
- * gives at once (HBIL_EQUAL_DEPTHS; gcc 12 joins the two tests; in
- * fine_run too, cornell 160x120, 2 frames, Q16.16 621.13M -> 617.82M,
- * float 464.52M -> 462.10M, columns +0.06M and +0.17M).  A macro: as an
- * inline function gcc 12 laid the march out otherwise (cornell 160x120,
- * 2 frames, Q16.16 621.13M -> 622.16M, float 464.52M -> 463.63M) */
 /* The depth of pixel j of g beside pixel i whose depth za is: in Q16.16
  * equal stored words give za without decoding the second (76% of cornell's
  * interpolated samples: a plane along a row or a column); different words
@@ -1665,6 +1659,14 @@ static inline tg_real lerp_inverse_depth(tg_real za, tg_real zb, tg_real f)
 #else
 #define DEPTH_BESIDE(g, i, j, za) tgi_gv_depth(g, j)
 #endif
+
+/* The march's depths_close(za, zb = z) for za > 0 (and fine_run's):
+ * equal depths first (close: za < 4 za), which lerp_inverse_depth then
+ * gives at once (HBIL_EQUAL_DEPTHS; gcc 12 joins the two tests; in
+ * fine_run too, cornell 160x120, 2 frames, Q16.16 621.13M -> 617.82M,
+ * float 464.52M -> 462.10M, columns +0.06M and +0.17M).  A macro: as an
+ * inline function gcc 12 laid the march out otherwise (cornell 160x120,
+ * 2 frames, Q16.16 621.13M -> 622.16M, float 464.52M -> 463.63M) */
 #if HBIL_EQUAL_DEPTHS
 #define DEPTHS_EQUAL_OR_CLOSE(za, zb, z) (((zb) = (z)) == (za) || depths_close(za, zb))
 #else
